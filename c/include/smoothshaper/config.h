@@ -1,0 +1,71 @@
+/**
+ * @file config.h
+ * @brief ::sms_stage_config, the plain description of one stage of any family.
+ *
+ * A config is data only: fill it by hand (start from sms_stage_config_default()), or let
+ * sms_design_for_mode() fill it for a vibration mode. Each family reads only its own fields.
+ */
+#ifndef SMOOTHSHAPER_CONFIG_H
+#define SMOOTHSHAPER_CONFIG_H
+
+#include "smoothshaper/types.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** @brief Most ZV^n order accepted (ZV^n has n+1 impulses). */
+#define SMS_SHAPER_MAX_ORDER 8
+
+/**
+ * @brief Everything that defines one stage.
+ *
+ * | field            | used by                                  | valid range |
+ * |------------------|------------------------------------------|-------------|
+ * | kind             | all                                      | an ::sms_kind |
+ * | timing           | smoothers, shapers                       | an ::sms_timing |
+ * | T                | rectangular, harmonic, damped harmonic, exponential | finite, >= Ts [s] |
+ * | sigma            | damped harmonic, exponential             | finite, <= 0 [1/s] |
+ * | k                | smoothers: which zero exact timing pins  | >= 1; odd for (damped) harmonic |
+ * | wn               | shapers, notches                         | finite, > 0, below pi/Ts [rad/s] |
+ * | zeta             | shapers, notches (zero damping xi1)      | [0, 1) |
+ * | order            | ::SMS_SHAPER_ZVN                         | 1 .. ::SMS_SHAPER_MAX_ORDER |
+ * | tolerance        | ::SMS_SHAPER_EI, ::SMS_SHAPER_EI2        | (0, 1), e.g. 0.05 |
+ * | notch_pole_zeta  | notches (pole damping xi2)               | finite, > zeta |
+ *
+ * The pinned zero of a smoother (exact timing) is s = sigma + j*k*2*pi/T for rectangular and
+ * exponential, s = sigma + j*k*3*pi/T for harmonic and damped harmonic (sigma = 0 when the
+ * family has none).
+ */
+typedef struct sms_stage_config {
+    sms_kind kind;
+    sms_timing timing;
+    double T;
+    double sigma;
+    unsigned k;
+    double wn;
+    double zeta;
+    unsigned order;
+    double tolerance;
+    double notch_pole_zeta;
+} sms_stage_config;
+
+/**
+ * @brief A config of the given kind with every field at a documented default:
+ * timing ::SMS_TIMING_EXACT, T = 0 (must be set for smoothers), sigma = 0, k = 1, wn = 0
+ * (must be set for shapers and notches), zeta = 0, order = 1, tolerance = 0.05,
+ * notch_pole_zeta = 0.7. The kind is stored as given (validated only by init).
+ */
+SMS_API sms_stage_config sms_stage_config_default(sms_kind kind);
+
+/**
+ * @brief Validate a config for sample period Ts without building anything.
+ * @return ::SMS_OK or the status init would return (first offending field wins, in the
+ *         table order above).
+ */
+SMS_API sms_status sms_stage_config_validate(const sms_stage_config *config, double Ts);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

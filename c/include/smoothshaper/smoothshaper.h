@@ -1,0 +1,18 @@
+/**
+ * @file smoothshaper.h
+ * @brief Umbrella header: include this one.
+ */
+#ifndef SMOOTHSHAPER_H
+#define SMOOTHSHAPER_H
+
+#include "smoothshaper/types.h"
+#include "smoothshaper/config.h"
+#include "smoothshaper/smoother.h"
+#include "smoothshaper/shaper.h"
+#include "smoothshaper/notch.h"
+#include "smoothshaper/stage.h"
+#include "smoothshaper/chain.h"
+#include "smoothshaper/design.h"
+#include "smoothshaper/trajectory.h"
+
+#endif

@@ -1,0 +1,96 @@
+/**
+ * @file types.h
+ * @brief Scalar type, status codes and stage kinds shared by every smoothshaper module.
+ *
+ * Precision: the library is compiled once per precision from one source. Define
+ * `SMS_USE_FLOAT` (the `smoothshaper_float` CMake target does it for you, also for its
+ * consumers) to make ::sms_real a `float`; otherwise it is a `double`. Design quantities
+ * (durations, frequencies, damping) are always `double`: only the signal path and the filter
+ * state use ::sms_real.
+ */
+#ifndef SMOOTHSHAPER_TYPES_H
+#define SMOOTHSHAPER_TYPES_H
+
+#include <stddef.h>
+#include "smoothshaper/export.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#ifdef SMS_USE_FLOAT
+typedef float sms_real;   /**< signal and state type (float build) */
+#else
+typedef double sms_real;  /**< signal and state type (double build) */
+#endif
+
+/**
+ * @brief Result of every function that can fail. ::SMS_OK is 0, errors are negative and each
+ * names the offending argument. On any error the object passed in is left untouched.
+ */
+typedef enum sms_status {
+    SMS_OK = 0,
+    SMS_ERR_NULL = -1,              /**< a required pointer argument is NULL */
+    SMS_ERR_SAMPLE_PERIOD = -2,     /**< Ts is NaN/Inf or <= 0 */
+    SMS_ERR_DURATION = -3,          /**< T is NaN/Inf or <= 0 */
+    SMS_ERR_DURATION_BELOW_TS = -4, /**< T < Ts: the filter would be shorter than one sample */
+    SMS_ERR_SIGMA = -5,             /**< sigma is NaN/Inf or > 0 (an unstable mode) */
+    SMS_ERR_WN = -6,                /**< natural frequency wn is NaN/Inf or <= 0 */
+    SMS_ERR_ZETA = -7,              /**< damping ratio zeta is NaN/Inf or outside [0, 1) */
+    SMS_ERR_MULTIPLE = -8,          /**< the multiple k is < 1 */
+    SMS_ERR_EVEN_MULTIPLE = -9,     /**< k is even for a harmonic family: no zero lands on wn */
+    SMS_ERR_ORDER = -10,            /**< order out of range (ZV^n n, chain length, B-spline degree) */
+    SMS_ERR_BUFFER_TOO_SMALL = -11, /**< caller buffer shorter than the size query demands */
+    SMS_ERR_KIND = -12,             /**< unknown ::sms_kind or ::sms_timing value */
+    SMS_ERR_NOTCH_DAMPING = -13,    /**< notch: pole damping must exceed zero damping */
+    SMS_ERR_TOLERANCE = -14,        /**< shaper vibration tolerance outside (0, 1) */
+    SMS_ERR_TOO_LONG = -15,         /**< a length (samples) overflows size_t or the state format */
+    SMS_ERR_ABOVE_NYQUIST = -16,    /**< the mode lies at or above the Nyquist frequency pi/Ts */
+    SMS_ERR_LIMIT = -17,            /**< a kinematic limit or displacement is NaN/Inf or <= 0 */
+    SMS_ERR_RECORD = -18,           /**< a measured record is too short, non-finite or not a decay */
+    SMS_ERR_STATE = -19,            /**< a saved state vector does not match this object */
+    SMS_ERR_BANDWIDTH = -20         /**< notch bandwidth is NaN/Inf, <= 0 or too wide */
+} sms_status;
+
+/** @brief Stage families. Values are stable (the FMU enumeration and saved states use them). */
+typedef enum sms_kind {
+    SMS_RECTANGULAR = 0,      /**< moving average M, SPEC 3.1 */
+    SMS_HARMONIC = 1,         /**< sinusoidal S, SPEC 3.2 */
+    SMS_DAMPED_HARMONIC = 2,  /**< S_sigma, SPEC 3.3 */
+    SMS_EXPONENTIAL = 3,      /**< M_sigma, SPEC 3.4 */
+    SMS_SHAPER_ZV = 4,        /**< ZV input shaper, SPEC 3.5 */
+    SMS_SHAPER_ZVD = 5,       /**< ZVD = ZV^2 */
+    SMS_SHAPER_ZVDD = 6,      /**< ZVDD = ZV^3 */
+    SMS_SHAPER_ZVN = 7,       /**< ZV^n, n = sms_stage_config::order */
+    SMS_SHAPER_EI = 8,        /**< extra-insensitive (one hump) */
+    SMS_SHAPER_EI2 = 9,       /**< two-hump extra-insensitive */
+    SMS_SHAPER_MZV = 10,      /**< modified ZV as used by 3-D printer firmware */
+    SMS_NOTCH_TUSTIN = 11,    /**< notch, Tustin with pre-warping at wn, SPEC 3.6 */
+    SMS_NOTCH_MATCHED = 12    /**< notch, pole-zero matched, SPEC 3.6 */
+} sms_kind;
+
+#define SMS_KIND_COUNT 13
+
+/**
+ * @brief How a duration that is not a whole number of sample periods is realised.
+ *
+ * ::SMS_TIMING_EXACT (default) keeps the continuous design and corrects the end taps so that the
+ * discrete zero sits exactly on the sampled continuous zero e^{s Ts} (see docs/exact-mode.md).
+ * ::SMS_TIMING_PAPER reproduces the seeds: N = round(T/Ts) and the integer-N formulas.
+ * When T/Ts is an integer (to 1e-9 relative) both give the same filter.
+ */
+typedef enum sms_timing {
+    SMS_TIMING_EXACT = 0,
+    SMS_TIMING_PAPER = 1
+} sms_timing;
+
+/** @brief Human-readable one-line description of a status (static storage, never NULL). */
+SMS_API const char *sms_status_string(sms_status status);
+
+/** @brief Name of a kind ("rectangular", "harmonic", ..., "notch_matched"), or NULL if unknown. */
+SMS_API const char *sms_kind_name(sms_kind kind);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

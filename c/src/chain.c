@@ -1,0 +1,142 @@
+/* Stages in series over one caller buffer, laid out stage after stage. */
+#include "smoothshaper/chain.h"
+
+sms_status sms_chain_buffer_size(const sms_stage_config *configs, size_t n, double Ts, size_t *n_reals)
+{
+    size_t total = 0, i;
+    if (configs == NULL || n_reals == NULL)
+        return SMS_ERR_NULL;
+    if (n == 0 || n > SMS_CHAIN_MAX_STAGES)
+        return SMS_ERR_ORDER;
+    for (i = 0; i < n; ++i) {
+        size_t need;
+        sms_status st = sms_stage_buffer_size(&configs[i], Ts, &need);
+        if (st != SMS_OK)
+            return st;
+        if (need > (size_t)-1 - total)
+            return SMS_ERR_TOO_LONG;
+        total += need;
+    }
+    *n_reals = total;
+    return SMS_OK;
+}
+
+sms_status sms_chain_init(sms_chain *chain, sms_stage *stages, const sms_stage_config *configs,
+                          size_t n, double Ts, sms_real *buffer, size_t n_reals)
+{
+    size_t total, offset = 0, i;
+    sms_status st;
+    if (chain == NULL || stages == NULL)
+        return SMS_ERR_NULL;
+    st = sms_chain_buffer_size(configs, n, Ts, &total);
+    if (st != SMS_OK)
+        return st;
+    if (total > 0 && buffer == NULL)
+        return SMS_ERR_NULL;
+    if (n_reals < total)
+        return SMS_ERR_BUFFER_TOO_SMALL;
+    /* Every config is valid and the buffer is large enough: the inits below cannot fail. */
+    for (i = 0; i < n; ++i) {
+        size_t need;
+        (void)sms_stage_buffer_size(&configs[i], Ts, &need);
+        st = sms_stage_init(&stages[i], &configs[i], Ts, need ? buffer + offset : NULL, need);
+        if (st != SMS_OK)
+            return st;
+        offset += need;
+    }
+    chain->stages = stages;
+    chain->n_stages = n;
+    chain->buffer = buffer;
+    chain->buffer_len = total;
+    return SMS_OK;
+}
+
+void sms_chain_reset(sms_chain *chain, sms_real rest)
+{
+    size_t i;
+    for (i = 0; i < chain->n_stages; ++i)
+        sms_stage_reset(&chain->stages[i], rest);
+}
+
+void sms_chain_step(sms_chain *chain, sms_real *x)
+{
+    size_t i;
+    for (i = 0; i < chain->n_stages; ++i)
+        sms_stage_step(&chain->stages[i], x);
+}
+
+void sms_chain_process(sms_chain *chain, const sms_real *in, sms_real *out, size_t n)
+{
+    size_t i;
+    if (n == 0 || chain->n_stages == 0)
+        return;
+    sms_stage_process(&chain->stages[0], in, out, n);
+    for (i = 1; i < chain->n_stages; ++i)
+        sms_stage_process(&chain->stages[i], out, out, n);
+}
+
+size_t sms_chain_length(const sms_chain *chain)
+{
+    size_t i, total = 0, fir_stages = 0;
+    for (i = 0; i < chain->n_stages; ++i) {
+        size_t len = sms_stage_length(&chain->stages[i]);
+        if (len > 0) {
+            total += len;
+            ++fir_stages;
+        }
+    }
+    return fir_stages > 0 ? total - (fir_stages - 1) : 0;
+}
+
+size_t sms_chain_state_count(const sms_chain *chain)
+{
+    size_t i, total = 0;
+    for (i = 0; i < chain->n_stages; ++i)
+        total += sms_stage_state_count(&chain->stages[i]);
+    return total;
+}
+
+void sms_chain_save_state(const sms_chain *chain, double *dst)
+{
+    size_t i;
+    for (i = 0; i < chain->n_stages; ++i) {
+        sms_stage_save_state(&chain->stages[i], dst);
+        dst += sms_stage_state_count(&chain->stages[i]);
+    }
+}
+
+sms_status sms_chain_load_state(sms_chain *chain, const double *src, size_t n)
+{
+    size_t i, offset = 0;
+    if (chain == NULL || src == NULL)
+        return SMS_ERR_NULL;
+    if (n != sms_chain_state_count(chain))
+        return SMS_ERR_STATE;
+    /* Check every stage before writing any, so a bad vector leaves the whole chain as it was. */
+    for (i = 0; i < chain->n_stages; ++i) {
+        size_t count = sms_stage_state_count(&chain->stages[i]);
+        sms_status st = sms_stage_check_state(&chain->stages[i], src + offset, count);
+        if (st != SMS_OK)
+            return st;
+        offset += count;
+    }
+    for (i = 0; i < chain->n_stages; ++i) {
+        size_t count = sms_stage_state_count(&chain->stages[i]);
+        sms_status st = sms_stage_load_state(&chain->stages[i], src, count);
+        if (st != SMS_OK)
+            return st;
+        src += count;
+    }
+    return SMS_OK;
+}
+
+void sms_chain_rebind(sms_chain *chain, sms_stage *stages, sms_real *buffer)
+{
+    size_t i, offset = 0;
+    chain->stages = stages;
+    chain->buffer = buffer;
+    for (i = 0; i < chain->n_stages; ++i) {
+        sms_stage_rebind(&stages[i], buffer + offset);
+        offset += sms_stage_buffer_len(&stages[i]);
+    }
+}

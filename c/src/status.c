@@ -1,0 +1,50 @@
+/* Status and kind names: constant tables, no state. */
+#include "smoothshaper/types.h"
+
+const char *sms_status_string(sms_status status)
+{
+    switch (status) {
+    case SMS_OK: return "ok";
+    case SMS_ERR_NULL: return "a required pointer argument is NULL";
+    case SMS_ERR_SAMPLE_PERIOD: return "Ts must be finite and > 0";
+    case SMS_ERR_DURATION: return "T must be finite and > 0";
+    case SMS_ERR_DURATION_BELOW_TS: return "T must be >= Ts";
+    case SMS_ERR_SIGMA: return "sigma must be finite and <= 0";
+    case SMS_ERR_WN: return "wn must be finite and > 0";
+    case SMS_ERR_ZETA: return "zeta must be finite and in [0, 1)";
+    case SMS_ERR_MULTIPLE: return "k must be >= 1 (and 1 for shapers and notches)";
+    case SMS_ERR_EVEN_MULTIPLE: return "k must be odd for harmonic families: an even k puts no zero on the mode";
+    case SMS_ERR_ORDER: return "order out of range";
+    case SMS_ERR_BUFFER_TOO_SMALL: return "buffer smaller than the size query requires";
+    case SMS_ERR_KIND: return "unknown kind or timing";
+    case SMS_ERR_NOTCH_DAMPING: return "notch_pole_zeta must be finite and > zeta";
+    case SMS_ERR_TOLERANCE: return "tolerance must be in (0, 1)";
+    case SMS_ERR_TOO_LONG: return "length too large to represent";
+    case SMS_ERR_ABOVE_NYQUIST: return "wn must lie below the Nyquist frequency pi/Ts";
+    case SMS_ERR_LIMIT: return "kinematic limits and displacement must be finite and > 0";
+    case SMS_ERR_RECORD: return "record too short, non-finite, or not a decaying oscillation";
+    case SMS_ERR_STATE: return "saved state does not match this object";
+    case SMS_ERR_BANDWIDTH: return "bandwidth must be finite, > 0 and narrower than the notch allows";
+    }
+    return "unknown status";
+}
+
+const char *sms_kind_name(sms_kind kind)
+{
+    switch (kind) {
+    case SMS_RECTANGULAR: return "rectangular";
+    case SMS_HARMONIC: return "harmonic";
+    case SMS_DAMPED_HARMONIC: return "damped_harmonic";
+    case SMS_EXPONENTIAL: return "exponential";
+    case SMS_SHAPER_ZV: return "zv";
+    case SMS_SHAPER_ZVD: return "zvd";
+    case SMS_SHAPER_ZVDD: return "zvdd";
+    case SMS_SHAPER_ZVN: return "zvn";
+    case SMS_SHAPER_EI: return "ei";
+    case SMS_SHAPER_EI2: return "ei2";
+    case SMS_SHAPER_MZV: return "mzv";
+    case SMS_NOTCH_TUSTIN: return "notch_tustin";
+    case SMS_NOTCH_MATCHED: return "notch_matched";
+    }
+    return NULL;
+}
