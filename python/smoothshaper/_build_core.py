@@ -1,0 +1,134 @@
+"""cffi builder for ``smoothshaper._core`` (double) and ``smoothshaper._core_float`` (float).
+
+API mode, out of line: the extension compiles every ``c/src/*.c`` straight into the module,
+so ``pip install .`` needs only a C compiler. The cdef is generated from the public headers,
+never written by hand: the C preprocessor expands ``c/include/smoothshaper/smoothshaper.h``
+(``SMS_API`` defined empty, the C library headers replaced by empty stand-ins because cffi
+knows ``size_t`` and friends), pycparser re-emits the declarations (function bodies of
+``static inline`` helpers dropped), and the integer ``#define`` constants of the headers are
+added as ``#define NAME ...`` so the compiler fills in their values. A function added to any
+public header therefore appears in Python at the next build.
+
+Run ``python python/smoothshaper/_build_core.py`` to build in place for a quick try; setup.py
+uses :data:`ffibuilder` and :data:`ffibuilder_float` through ``cffi_modules``.
+"""
+from __future__ import annotations
+
+import glob
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+
+from cffi import FFI
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
+INCLUDE_DIR = os.path.join(ROOT, "c", "include")
+SRC_DIR = os.path.join(ROOT, "c", "src")
+UMBRELLA = os.path.join(INCLUDE_DIR, "smoothshaper", "smoothshaper.h")
+
+# C library headers a public header may include; each becomes an empty file for the
+# preprocessor run (cffi declares the standard types itself).
+_STD_HEADERS = ("stddef.h", "stdint.h", "stdbool.h", "limits.h", "float.h", "math.h",
+                "string.h", "stdlib.h")
+_DEFINE = re.compile(r"^\s*#\s*define\s+(SMS_[A-Z0-9_]+)\s+\(?\s*-?(?:0x[0-9A-Fa-f]+|\d+)[uUlL]*\s*\)?\s*$")
+
+
+def _compiler() -> list[str]:
+    cc = os.environ.get("CC") or shutil.which("cc") or shutil.which("gcc") or shutil.which("clang")
+    if not cc:
+        raise RuntimeError("smoothshaper needs a C compiler (set CC, or install gcc or clang)")
+    return cc.split()
+
+
+def _preprocess(defines: list[str]) -> str:
+    with tempfile.TemporaryDirectory() as fake_std:
+        for name in _STD_HEADERS:
+            open(os.path.join(fake_std, name), "w").close()
+        cmd = _compiler() + ["-E", "-P", "-nostdinc", "-I", fake_std, "-I", INCLUDE_DIR,
+                             "-DSMS_API=", "-D__attribute__(x)=", "-D__extension__=",
+                             "-D__inline=inline", "-D__restrict="]
+        cmd += [f"-D{d}" for d in defines] + [UMBRELLA]
+        out = subprocess.run(cmd, check=True, capture_output=True, text=True)
+    return out.stdout
+
+
+def _declarations(source: str) -> str:
+    """Re-emit the preprocessed header as plain declarations: typedefs, structs, enums and
+    prototypes; inline function bodies are dropped (non-static ones keep their prototype)."""
+    import pycparser
+    from pycparser import c_ast
+    from pycparser.c_generator import CGenerator
+
+    # pycparser needs the standard typedef names to parse; cffi knows them natively.
+    std_types = ("size_t", "ptrdiff_t", "int8_t", "int16_t", "int32_t", "int64_t",
+                 "uint8_t", "uint16_t", "uint32_t", "uint64_t", "intptr_t", "uintptr_t")
+    prelude = "".join(f"typedef int {t};\n" for t in std_types) + "typedef _Bool bool;\n"
+    ast = pycparser.CParser().parse(prelude + source, "smoothshaper.h")
+    gen = CGenerator()
+    lines = []
+    for node in ast.ext[len(std_types) + 1:]:
+        if isinstance(node, c_ast.FuncDef):
+            if "static" in (node.decl.storage or []):
+                continue
+            node = node.decl
+        if isinstance(node, c_ast.Decl) and "inline" in (node.funcspec or []):
+            node.funcspec = [f for f in node.funcspec if f != "inline"]
+            if "static" in (node.storage or []):
+                continue
+        if isinstance(node, c_ast.Pragma):
+            continue
+        lines.append(gen.visit(node) + ";")
+    return "\n".join(lines) + "\n"
+
+
+def _integer_constants() -> str:
+    names = []
+    for header in sorted(glob.glob(os.path.join(INCLUDE_DIR, "smoothshaper", "*.h"))):
+        with open(header, encoding="utf-8") as f:
+            for line in f:
+                m = _DEFINE.match(line)
+                if m and m.group(1) not in names:
+                    names.append(m.group(1))
+    return "".join(f"#define {name} ...\n" for name in names)
+
+
+def cdef_text(defines: list[str] | None = None) -> str:
+    """The cdef for the given preprocessor defines (e.g. ``["SMS_USE_FLOAT"]``)."""
+    return _integer_constants() + _declarations(_preprocess(defines or []))
+
+
+def _sources() -> list[str]:
+    # setuptools wants paths relative to the setup.py directory (the repository root).
+    paths = sorted(glob.glob(os.path.join(SRC_DIR, "*.c")))
+    if not paths:
+        raise RuntimeError(f"no C sources found in {SRC_DIR}")
+    return [os.path.relpath(p, ROOT) for p in paths]
+
+
+def make_builder(module: str, defines: list[str]) -> FFI:
+    ffi = FFI()
+    ffi.cdef(cdef_text(defines))
+    macros = [(d, None) for d in defines]
+    ffi.set_source(
+        module,
+        '#include "smoothshaper/smoothshaper.h"\n',
+        sources=_sources(),
+        include_dirs=[os.path.relpath(INCLUDE_DIR, ROOT), os.path.relpath(SRC_DIR, ROOT)],
+        define_macros=macros,
+        libraries=[] if sys.platform == "win32" else ["m"],
+    )
+    return ffi
+
+
+ffibuilder = make_builder("smoothshaper._core", [])
+ffibuilder_float = make_builder("smoothshaper._core_float", ["SMS_USE_FLOAT"])
+
+if __name__ == "__main__":
+    # Quick in-place build: the modules land next to this file.
+    os.chdir(ROOT)
+    for builder in (ffibuilder, ffibuilder_float):
+        builder.compile(tmpdir=os.path.join(ROOT, "build-python-package", "cffi"), verbose=True)

@@ -1,0 +1,411 @@
+"""C-backed filters: :class:`Chain` and the C design / identification functions.
+
+Everything here calls the compiled C core (``smoothshaper._core``, or ``_core_float`` with
+``precision="float"``) through cffi. Arrays in and out are float64 (the float module rounds
+the input to float32, filters in float32 and returns float64). Memory follows the C house
+style: the Python object owns the ``sms_stage`` array and the delay-line buffer (a NumPy
+array); the C ``sms_chain`` holds pointers into them, which stay valid because the object
+keeps both alive and never reallocates them.
+
+Errors: every C status maps to :class:`ParameterError` (a ``ValueError``) whose message starts
+with the offending parameter's name (``Ts``, ``T``, ``sigma``, ``k``, ``wn``, ``zeta``,
+``order``, ``tolerance``, ``notch_pole_zeta``, ``state``, ...). The C library validates before
+it writes, and so does this module, so a failed call leaves the object as it was.
+"""
+from __future__ import annotations
+
+import math
+from collections import namedtuple
+from typing import Iterable, Sequence
+
+import numpy as np
+
+from . import stages as _stages
+from .stages import Stage
+
+PRECISIONS = ("double", "float")
+
+# C status -> the parameter it names (see sms_status in c/include/smoothshaper/types.h).
+_STATUS_PARAMETER = {
+    -1: "argument", -2: "Ts", -3: "T", -4: "T", -5: "sigma", -6: "wn", -7: "zeta", -8: "k",
+    -9: "k", -10: "order", -11: "buffer", -12: "kind", -13: "notch_pole_zeta",
+    -14: "tolerance", -15: "T", -16: "wn", -17: "limits", -18: "x", -19: "state",
+    -20: "bandwidth",
+}
+_SMS_ERR_TOO_LONG = -15
+
+
+class ParameterError(ValueError):
+    """A parameter the C core rejected. ``parameter`` names it, ``status`` is the C code."""
+
+    def __init__(self, parameter: str, message: str, status: int | None = None):
+        super().__init__(message)
+        self.parameter = parameter
+        self.status = status
+
+
+_backends: dict = {}
+
+
+def _backend(precision: str):
+    """(ffi, lib) of the compiled module for ``precision``; imported on first use so the
+    pure-Python parts of the package work without the extension."""
+    if precision not in PRECISIONS:
+        raise ValueError(f"precision must be 'double' or 'float', got {precision!r}")
+    if precision not in _backends:
+        try:
+            if precision == "double":
+                from . import _core as mod
+            else:
+                from . import _core_float as mod
+        except ImportError as exc:  # pragma: no cover - depends on the installation
+            raise ImportError(
+                f"the C extension for precision={precision!r} is not built ({exc}); "
+                "install the package with `pip install -e .` from the repository root") from exc
+        _backends[precision] = (mod.ffi, mod.lib)
+    return _backends[precision]
+
+
+def _real_dtype(precision: str):
+    return np.float64 if precision == "double" else np.float32
+
+
+def _finite(name: str, value) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a real number, got {value!r}") from None
+    if not math.isfinite(v):
+        raise ValueError(f"{name} must be finite, got {v!r}")
+    return v
+
+
+def _positive(name: str, value) -> float:
+    v = _finite(name, value)
+    if v <= 0:
+        raise ValueError(f"{name} must be > 0, got {v!r}")
+    return v
+
+
+def status_string(status: int, precision: str = "double") -> str:
+    """The C library's one-line description of a status code."""
+    ffi, lib = _backend(precision)
+    return ffi.string(lib.sms_status_string(int(status))).decode()
+
+
+def _raise_status(status: int, lib, ffi, context: str, parameter: str | None = None,
+                  value=None):
+    parameter = parameter or _STATUS_PARAMETER.get(status, "argument")
+    text = ffi.string(lib.sms_status_string(status)).decode()
+    if not text.startswith(parameter + " "):
+        text = f"{parameter}: {text}"
+    got = "" if value is None else f" (got {parameter}={value!r})"
+    raise ParameterError(parameter, f"{text}{got}; {context}", status)
+
+
+def _stage_parameter(stage: Stage, status: int) -> tuple[str, object]:
+    """Name and value of the stage field a status refers to (a too-long shaper is a too-low wn)."""
+    parameter = _STATUS_PARAMETER.get(status, "argument")
+    if status == _SMS_ERR_TOO_LONG and stage.kind not in _stages.SMOOTHERS:
+        parameter = "wn"
+    return parameter, getattr(stage, parameter, None)
+
+
+def _unsigned(name: str, value: int) -> int:
+    if not 0 <= value <= 0xFFFFFFFF:
+        raise ValueError(f"{name} must fit an unsigned 32-bit integer, got {value!r}")
+    return value
+
+
+def _fill_config(config, stage: Stage) -> None:
+    config.kind = stage.kind_index
+    config.timing = _stages.TIMINGS.index(stage.timing)
+    config.T = stage.T
+    config.sigma = stage.sigma
+    config.k = _unsigned("k", stage.k)
+    config.wn = stage.wn
+    config.zeta = stage.zeta
+    config.order = _unsigned("order", stage.order)
+    config.tolerance = stage.tolerance
+    config.notch_pole_zeta = stage.notch_pole_zeta
+
+
+def _stage_from_config(config) -> Stage:
+    kind = _stages.KINDS[config.kind]
+    common = dict(timing=_stages.TIMINGS[config.timing], k=config.k)
+    if kind in _stages.SMOOTHERS:
+        return Stage(kind, T=config.T, sigma=config.sigma, **common)
+    return Stage(kind, wn=config.wn, zeta=config.zeta, order=config.order,
+                 tolerance=config.tolerance, notch_pole_zeta=config.notch_pole_zeta, **common)
+
+
+def _as_stage_list(stages) -> tuple[Stage, ...]:
+    if isinstance(stages, Stage):
+        stages = [stages]
+    try:
+        out = tuple(stages)
+    except TypeError:
+        raise ValueError(f"stages must be a Stage or a sequence of Stage, got {stages!r}") from None
+    for i, s in enumerate(out):
+        if not isinstance(s, Stage):
+            raise ValueError(f"stages[{i}] must be a smoothshaper.stages.Stage, got {s!r}")
+    return out
+
+
+def _signal(name: str, values) -> np.ndarray:
+    try:
+        x = np.asarray(values, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be an array of real numbers") from None
+    if x.ndim != 1:
+        raise ValueError(f"{name} must be one-dimensional, got shape {x.shape}")
+    bad = np.flatnonzero(~np.isfinite(x))
+    if bad.size:
+        raise ValueError(f"{name} must be finite: {name}[{bad[0]}] = {x[bad[0]]!r}")
+    return x
+
+
+class Chain:
+    """Stages in series, filtered by the C core: ``y = H_{n-1}(...H_1(H_0(u)))``.
+
+    Parameters
+    ----------
+    stages : Stage or sequence of Stage
+        1 to ``SMS_CHAIN_MAX_STAGES`` (16) stage descriptions (``smoothshaper.stages``).
+    Ts : float
+        Sample period [s], finite and > 0 (keyword-only).
+    precision : {'double', 'float'}
+        Which build of the C core filters the signal (keyword-only).
+
+    The chain starts at rest at 0. Every stage has unit DC gain and realises
+    ``y[n] = sum_i h[i] x[n-i]`` (notches: their biquad), so the chain is their product.
+
+    Raises
+    ------
+    ValueError (:class:`ParameterError`)
+        naming the invalid parameter, e.g. ``wn`` above the Nyquist frequency ``pi/Ts``.
+    """
+
+    def __init__(self, stages: Stage | Iterable[Stage], *, Ts: float, precision: str = "double"):
+        self.Ts = _positive("Ts", Ts)
+        self.stages = _as_stage_list(stages)
+        ffi, lib = _backend(precision)
+        self.precision = precision
+        self._ffi, self._lib = ffi, lib
+        n = len(self.stages)
+        if not 1 <= n <= lib.SMS_CHAIN_MAX_STAGES:
+            raise ParameterError(
+                "stages", f"stages: a chain needs 1 to {lib.SMS_CHAIN_MAX_STAGES} stages, got {n}")
+        configs = ffi.new("sms_stage_config[]", n)
+        for i, stage in enumerate(self.stages):
+            _fill_config(configs[i], stage)
+            st = lib.sms_stage_config_validate(ffi.addressof(configs, i), self.Ts)
+            if st != 0:
+                parameter, value = _stage_parameter(stage, st)
+                _raise_status(st, lib, ffi, f"stages[{i}] is {stage.kind}, Ts={self.Ts!r}",
+                              parameter, value)
+        n_reals = ffi.new("size_t *")
+        st = lib.sms_chain_buffer_size(configs, n, self.Ts, n_reals)
+        if st != 0:
+            _raise_status(st, lib, ffi, f"chain of {n} stages, Ts={self.Ts!r}")
+        # Owned by this object for its whole life; the C chain points into both.
+        self._buffer = np.zeros(max(1, n_reals[0]), dtype=_real_dtype(precision))
+        self._buffer_c = ffi.from_buffer("sms_real[]", self._buffer)
+        self._stage_mem = ffi.new("sms_stage[]", n)
+        self._chain = ffi.new("sms_chain *")
+        self._configs = configs
+        st = lib.sms_chain_init(self._chain, self._stage_mem, configs, n, self.Ts,
+                                self._buffer_c, n_reals[0])
+        if st != 0:
+            _raise_status(st, lib, ffi, f"chain of {n} stages, Ts={self.Ts!r}")
+
+    # -- filtering ------------------------------------------------------------------------
+
+    def process(self, u) -> np.ndarray:
+        """Filter the 1-D signal ``u`` (any length, samples at Ts) and return ``y`` (float64,
+        same length). Continues from the current state; ``u`` is not modified.
+
+        Raises ValueError naming ``u`` if it is not 1-D or holds NaN/Inf (state untouched)."""
+        x = _signal("u", u)
+        work = np.array(x, dtype=_real_dtype(self.precision), order="C", copy=True)
+        if self.precision == "float" and not np.isfinite(work).all():
+            raise ValueError("u must be finite in float precision: a sample overflows float32")
+        if work.size:
+            ptr = self._ffi.from_buffer("sms_real[]", work)
+            self._lib.sms_chain_process(self._chain, ptr, ptr, work.size)
+        return work.astype(np.float64, copy=False)
+
+    def step(self, x: float) -> float:
+        """Filter one sample and return the output sample."""
+        v = _finite("x", x)
+        cell = self._ffi.new("sms_real *", v)
+        if self.precision == "float" and not math.isfinite(cell[0]):
+            raise ValueError(f"x must be finite in float precision, got {v!r}")
+        self._lib.sms_chain_step(self._chain, cell)
+        return float(cell[0])
+
+    def reset(self, rest: float = 0.0) -> None:
+        """Put every stage at rest at ``rest``, as if the input had been ``rest`` forever."""
+        v = _finite("rest", rest)
+        self._lib.sms_chain_reset(self._chain, v)
+
+    # -- state ----------------------------------------------------------------------------
+
+    @property
+    def state_size(self) -> int:
+        """Number of doubles in :attr:`state`."""
+        return int(self._lib.sms_chain_state_count(self._chain))
+
+    def get_state(self) -> np.ndarray:
+        """The full dynamic state as a float64 array (a copy). Restoring it with
+        :meth:`set_state` into this chain or an identically configured one continues the
+        filtering bit-exactly."""
+        out = np.zeros(self.state_size, dtype=np.float64)
+        if out.size:
+            self._lib.sms_chain_save_state(self._chain, self._ffi.from_buffer("double[]", out))
+        return out
+
+    def set_state(self, state) -> None:
+        """Restore a state from :meth:`get_state`. Raises ValueError naming ``state`` if it
+        has the wrong length or does not fit this chain; then nothing is changed."""
+        try:
+            s = np.array(state, dtype=np.float64, order="C", copy=True)
+        except (TypeError, ValueError):
+            raise ParameterError("state", "state must be an array of real numbers") from None
+        if s.ndim != 1 or s.size != self.state_size:
+            raise ParameterError(
+                "state", f"state must be a 1-D array of {self.state_size} values for this chain, "
+                f"got shape {s.shape}")
+        if not np.isfinite(s).all():
+            raise ParameterError("state", "state must be finite")
+        st = self._lib.sms_chain_load_state(self._chain, self._ffi.from_buffer("double[]", s),
+                                            s.size)
+        if st != 0:
+            _raise_status(st, self._lib, self._ffi, "it was not saved from an identical chain",
+                          "state")
+
+    state = property(get_state, set_state, doc="The dynamic state (see get_state/set_state).")
+
+    def copy(self) -> "Chain":
+        """An independent chain with the same stages and the same current state."""
+        twin = Chain(self.stages, Ts=self.Ts, precision=self.precision)
+        twin.set_state(self.get_state())
+        return twin
+
+    __copy__ = copy
+
+    # -- impulse response -----------------------------------------------------------------
+
+    @property
+    def length(self) -> int:
+        """FIR length of the chain in samples (sum of the stage lengths minus stages - 1;
+        IIR notches count 0)."""
+        return int(self._lib.sms_chain_length(self._chain))
+
+    @property
+    def is_fir(self) -> bool:
+        """True unless the chain contains a notch (IIR)."""
+        return all(s.kind not in _stages.NOTCHES for s in self.stages)
+
+    def impulse_response(self, n: int | None = None) -> np.ndarray:
+        """The first ``n`` samples of the impulse response, computed by the C core on a fresh
+        copy of the chain (this chain's state is not touched). ``n`` defaults to
+        :attr:`length` for an FIR chain and is required when the chain contains a notch."""
+        if n is None:
+            if not self.is_fir:
+                raise ValueError("n is required: the chain contains an IIR notch")
+            n = self.length
+        if isinstance(n, bool) or int(n) != n or n < 1:
+            raise ValueError(f"n must be an integer >= 1, got {n!r}")
+        impulse = np.zeros(int(n))
+        impulse[0] = 1.0
+        return Chain(self.stages, Ts=self.Ts, precision=self.precision).process(impulse)
+
+    def taps(self) -> np.ndarray:
+        """The FIR taps of the whole chain (:attr:`length` values, DC gain 1)."""
+        if not self.is_fir:
+            raise ValueError("stages: taps() needs an FIR chain; it contains an IIR notch "
+                             "(use impulse_response(n))")
+        return self.impulse_response(self.length)
+
+    def __repr__(self) -> str:
+        kinds = ", ".join(s.kind for s in self.stages)
+        return f"Chain([{kinds}], Ts={self.Ts!r}, precision={self.precision!r})"
+
+
+# -- design and identification (C) ---------------------------------------------------------
+
+Mode = namedtuple("Mode", "wn zeta wd sigma")
+Mode.__doc__ = """A vibration mode: natural frequency wn [rad/s], damping ratio zeta, damped
+frequency wd = wn sqrt(1 - zeta^2) [rad/s], decay rate sigma = -zeta wn [1/s]."""
+
+
+def design_for_mode(kind: str, *, wn: float, zeta: float = 0.0, k: int = 1) -> Stage:
+    """The C ``sms_design_for_mode``: a stage of ``kind`` that cancels the mode (wn, zeta).
+
+    rectangular T = k 2pi/wd; harmonic T = k 3pi/wd (k odd); damped harmonic sigma = -zeta wn,
+    T = k 3pi/wd (k odd); exponential sigma = -zeta wn, T = k Td; shapers and notches take the
+    mode (k = 1). Same result as :func:`smoothshaper.stages.for_mode`, computed in C."""
+    if kind not in _stages.KINDS:
+        raise ValueError(f"kind must be one of {', '.join(_stages.KINDS)}; got {kind!r}")
+    wn_v, zeta_v = _finite("wn", wn), _finite("zeta", zeta)
+    if isinstance(k, bool) or int(k) != k or not 0 <= int(k) <= 0xFFFFFFFF:
+        raise ValueError(f"k must be an integer >= 1, got {k!r}")
+    ffi, lib = _backend("double")
+    config = ffi.new("sms_stage_config *")
+    st = lib.sms_design_for_mode(_stages.KINDS.index(kind), wn_v, zeta_v, int(k), config)
+    if st != 0:
+        parameter = _STATUS_PARAMETER.get(st, "argument")
+        value = {"wn": wn_v, "zeta": zeta_v, "k": k}.get(parameter)
+        _raise_status(st, lib, ffi, f"designing {kind} for a mode", parameter, value)
+    return _stage_from_config(config)
+
+
+def _mode(m) -> Mode:
+    return Mode(float(m.wn), float(m.zeta), float(m.wd), float(m.sigma))
+
+
+def identify_from_peaks(*, t1: float, p1: float, t2: float, p2: float) -> Mode:
+    """Mode from two successive peaks (t1, p1), (t2, p2) of a free decay (SPEC 4.3):
+    ``T0 = t2 - t1``, ``sigma = ln(p2/p1)/T0``, ``wd = 2 pi/T0``. Needs t2 > t1 and
+    p1 > p2 > 0 (measured about the final value)."""
+    values = {n: _finite(n, v) for n, v in (("t1", t1), ("p1", p1), ("t2", t2), ("p2", p2))}
+    if not values["t2"] > values["t1"]:
+        raise ParameterError("t2", f"t2 must be later than t1, got t1={t1!r}, t2={t2!r}")
+    if not values["p1"] > values["p2"] > 0:
+        raise ParameterError("p2", f"p2 must satisfy p1 > p2 > 0 (a decay), got p1={p1!r}, "
+                             f"p2={p2!r}")
+    ffi, lib = _backend("double")
+    out = ffi.new("sms_mode *")
+    st = lib.sms_identify_from_peaks(values["t1"], values["p1"], values["t2"], values["p2"], out)
+    if st != 0:
+        _raise_status(st, lib, ffi, "identifying from two peaks", "p2")
+    return _mode(out)
+
+
+def identify_from_record(x: Sequence[float], *, Ts: float) -> Mode:
+    """Mode of a sampled free decay ``x`` (about its final value) at sample period ``Ts``, by
+    the C least-squares fit over the whole record (n >= 8, at least one visible oscillation)."""
+    Ts_v = _positive("Ts", Ts)
+    data = np.ascontiguousarray(_signal("x", x))
+    ffi, lib = _backend("double")
+    out = ffi.new("sms_mode *")
+    st = lib.sms_identify_from_record(ffi.from_buffer("double[]", data), data.size, Ts_v, out)
+    if st != 0:
+        _raise_status(st, lib, ffi, f"identifying from a record of {data.size} samples, "
+                      f"Ts={Ts_v!r}")
+    return _mode(out)
+
+
+def notch_pole_zeta_from_bandwidth(*, wn: float, zeta: float = 0.0, bandwidth: float) -> float:
+    """Pole damping xi2 of a notch at ``wn`` (zero damping ``zeta``) whose -3 dB band is
+    ``bandwidth`` rad/s wide (C ``sms_notch_pole_zeta_from_bandwidth``)."""
+    args = (_finite("wn", wn), _finite("zeta", zeta), _finite("bandwidth", bandwidth))
+    ffi, lib = _backend("double")
+    out = ffi.new("double *")
+    st = lib.sms_notch_pole_zeta_from_bandwidth(*args, out)
+    if st != 0:
+        parameter = _STATUS_PARAMETER.get(st, "argument")
+        value = dict(zip(("wn", "zeta", "bandwidth"), args)).get(parameter)
+        _raise_status(st, lib, ffi, "notch pole damping from a bandwidth", parameter, value)
+    return float(out[0])
