@@ -1,0 +1,27 @@
+"""Pure-NumPy reference of every smoothshaper stage and chain (the test oracle).
+
+Written from SPEC section 3 and ``docs/exact-mode.md`` only; it never imports or calls the C
+core. Public API:
+
+* ``impulse_response(stage, *, Ts, length=None)``: discrete taps (DC gain 1);
+* ``notch_coefficients(stage, *, Ts) -> (b, a)``; ``discrete_transfer(stage, z, *, Ts)``;
+* ``shaper_impulses(stage) -> (amplitudes, times)``: the continuous shaper design;
+* ``continuous_impulse_response(stage, t)``, ``continuous_transfer(stage, s)``;
+* ``filter(stages, x, *, Ts, zi=None)``, ``filter_zi(stages, *, Ts, x0=0.0)``;
+* closed-form trajectories: ``harmonic_trajectory``, ``damped_harmonic_trajectory``,
+  ``exponential_trajectory``, ``rectangular_chain_trajectory``.
+"""
+from .continuous import continuous_impulse_response, continuous_transfer
+from .filtering import discrete_transfer, filter, filter_zi, impulse_response
+from .notch import notch_coefficients
+from .shapers import mode_pole, shaper_impulses
+from .smoothers import pinned_frequency
+from .trajectories import (damped_harmonic_trajectory, exponential_trajectory,
+                           harmonic_trajectory, rectangular_chain_trajectory)
+
+__all__ = [
+    "impulse_response", "notch_coefficients", "discrete_transfer", "shaper_impulses",
+    "mode_pole", "pinned_frequency", "continuous_impulse_response", "continuous_transfer",
+    "filter", "filter_zi", "harmonic_trajectory", "damped_harmonic_trajectory",
+    "exponential_trajectory", "rectangular_chain_trajectory",
+]

@@ -1,0 +1,57 @@
+"""Argument checks and the sample-grid rule shared by every reference stage.
+
+The integer test and the rounding are those of ``docs/exact-mode.md``: a ratio ``nu`` is the
+integer ``N = round(nu)`` when ``|nu - N| <= 1e-9 * max(1, nu)``; ``round`` is half away from
+zero (C ``round``), not Python's half-to-even, so both implementations pick the same sample.
+"""
+from __future__ import annotations
+
+import math
+
+from ..stages import Stage
+
+GRID_TOLERANCE = 1e-9
+
+
+def round_half_up(x: float) -> int:
+    """C ``round`` for x >= 0 (ties away from zero)."""
+    return int(math.floor(x + 0.5))
+
+
+def on_grid(nu: float) -> int | None:
+    """``round(nu)`` if ``nu`` passes the integer test, else None."""
+    n = round_half_up(nu)
+    return n if abs(nu - n) <= GRID_TOLERANCE * max(1.0, nu) else None
+
+
+def check_Ts(Ts) -> float:
+    """``Ts`` as a float; ValueError naming ``Ts`` unless finite and > 0."""
+    try:
+        value = float(Ts)
+    except (TypeError, ValueError):
+        raise ValueError(f"Ts must be a real number of seconds, got {Ts!r}") from None
+    if not math.isfinite(value) or value <= 0:
+        raise ValueError(f"Ts must be finite and > 0 s, got {Ts!r}")
+    return value
+
+
+def check_stage(stage) -> Stage:
+    if not isinstance(stage, Stage):
+        raise ValueError(f"stage must be a smoothshaper.Stage, got {type(stage).__name__}")
+    return stage
+
+
+def as_stage_list(stages) -> list[Stage]:
+    """One Stage or a sequence of them, as a non-empty list."""
+    if isinstance(stages, Stage):
+        return [stages]
+    try:
+        items = list(stages)
+    except TypeError:
+        raise ValueError(f"stages must be a Stage or a sequence of Stage, got {stages!r}") from None
+    if not items:
+        raise ValueError("stages must hold at least one Stage")
+    for i, s in enumerate(items):
+        if not isinstance(s, Stage):
+            raise ValueError(f"stages[{i}] must be a smoothshaper.Stage, got {type(s).__name__}")
+    return items

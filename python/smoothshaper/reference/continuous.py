@@ -1,0 +1,85 @@
+"""The continuous filters of SPEC 3 (normalised to DC gain 1), for analysis and closed forms.
+
+Smoothers, with ``a = s - sigma`` (sigma = 0 for the undamped families) and
+``phi(u) = (1 - e^{-u T})/u`` (``phi(0) = T``):
+
+* rectangular / exponential: ``h(t) = e^{sigma t}/phi(-sigma)`` on [0, T),
+  ``H(s) = phi(s - sigma)/phi(-sigma)``; this is ``(1 - e^{-sT})/(sT)`` for sigma = 0.
+* harmonic / damped harmonic: ``h(t) = e^{sigma t} sin(pi t/T)/F(-sigma)`` on [0, T] with
+  ``F(a) = int_0^T e^{-a t} sin(pi t/T) dt = (phi(a - j pi/T) - phi(a + j pi/T))/(2j)``
+  ``= (pi/T)(1 + e^{-aT})/(a^2 + (pi/T)^2)``; ``H(s) = F(s - sigma)/F(-sigma)``
+  (SPEC 3.2 and 3.3). The phi form has no removable singularity at ``a = ±j pi/T``.
+* shapers: ``H(s) = sum_m A_m e^{-s t_m}`` (impulses, see ``shaper_impulses``);
+* notches: ``(s^2 + 2 xi1 wn s + wn^2)/(s^2 + 2 xi2 wn s + wn^2)``.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..stages import NOTCHES, SHAPERS, Stage
+from ._checks import check_stage
+from .notch import notch_continuous_transfer
+from .shapers import shaper_continuous_transfer
+
+
+def _cexpm1(z: np.ndarray) -> np.ndarray:
+    """``e^z - 1`` for complex z without cancellation near 0."""
+    x, y = z.real, z.imag
+    re = np.expm1(x) * np.cos(y) - 2.0 * np.sin(0.5 * y) ** 2
+    return re + 1j * np.exp(x) * np.sin(y)
+
+
+def _phi(u: np.ndarray, T: float) -> np.ndarray:
+    """``(1 - e^{-uT})/u``, equal to T at u = 0."""
+    u = np.asarray(u, dtype=complex)
+    out = np.full(u.shape, T, dtype=complex)
+    nz = u != 0
+    out[nz] = -_cexpm1(-u[nz] * T) / u[nz]
+    return out
+
+
+def _sigma(stage: Stage) -> float:
+    return stage.sigma if stage.kind in ("damped_harmonic", "exponential") else 0.0
+
+
+def _smoother_laplace(stage: Stage, a: np.ndarray) -> np.ndarray:
+    """Laplace transform of the unnormalised shape at ``a = s - sigma``."""
+    T = stage.T
+    if stage.kind in ("rectangular", "exponential"):
+        return _phi(a, T)
+    w = math.pi / T
+    return (_phi(a - 1j * w, T) - _phi(a + 1j * w, T)) / 2j
+
+
+def continuous_transfer(stage: Stage, s) -> np.ndarray:
+    """``H_c(s)`` of one stage (DC gain 1) at complex ``s`` [1/s], any array shape."""
+    stage = check_stage(stage)
+    s = np.asarray(s, dtype=complex)
+    if stage.kind in SHAPERS:
+        return shaper_continuous_transfer(stage, s)
+    if stage.kind in NOTCHES:
+        return notch_continuous_transfer(stage, s)
+    sigma = _sigma(stage)
+    dc = _smoother_laplace(stage, np.array(-sigma, dtype=complex))
+    return _smoother_laplace(stage, s - sigma) / dc
+
+
+def continuous_impulse_response(stage: Stage, t) -> np.ndarray:
+    """Normalised impulse response ``h(t)`` (integral 1) of a smoother at times ``t`` [s];
+    0 outside ``[0, T)``. Shapers are impulse trains (use ``shaper_impulses``) and notches
+    have a Dirac part, so both raise ValueError naming ``stage``."""
+    stage = check_stage(stage)
+    if stage.kind in SHAPERS or stage.kind in NOTCHES:
+        raise ValueError(f"stage must be a smoother for continuous_impulse_response; "
+                         f"{stage.kind} has impulses (see shaper_impulses / continuous_transfer)")
+    t = np.asarray(t, dtype=float)
+    sigma, T = _sigma(stage), stage.T
+    inside = (t >= 0) & (t < T)
+    tc = np.where(inside, t, 0.0)
+    shape = np.exp(sigma * tc)
+    if stage.kind in ("harmonic", "damped_harmonic"):
+        shape = shape * np.sin(math.pi * tc / T)
+    area = _smoother_laplace(stage, np.array(-sigma, dtype=complex)).real
+    return np.where(inside, shape / area, 0.0)

@@ -1,0 +1,131 @@
+"""Impulse responses, discrete transfer functions and the direct-convolution chain.
+
+Explicit state (``zi`` / ``zf``): a list with one float64 array per stage, in chain order:
+
+* FIR stage (smoother or shaper, L taps): its last ``L - 1`` inputs, oldest first
+  (``zi[k][-1]`` is the input of the previous sample);
+* notch stage: ``[x[n-1], x[n-2], y[n-1], y[n-2]]`` of its direct form I.
+
+``filter_zi(stages, Ts=..., x0=v)`` is the state of a chain at rest at the value v (every
+stage has DC gain 1, so every past input and output equals v); the default ``zi=None`` is the
+chain at rest at 0.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ..stages import NOTCHES, SMOOTHERS, Stage
+from ._checks import as_stage_list, check_stage, check_Ts
+from .notch import biquad, notch_coefficients
+from .shapers import shaper_taps
+from .smoothers import smoother_taps
+
+
+def impulse_response(stage: Stage, *, Ts: float, length: int | None = None) -> np.ndarray:
+    """Discrete impulse response of one stage (DC gain 1).
+
+    Smoothers and shapers: their FIR taps (``length`` None gives all L taps; a larger length
+    pads zeros, a smaller one truncates). Notches: the first ``length`` samples (required).
+    """
+    stage = check_stage(stage)
+    if stage.kind in NOTCHES:
+        if length is None:
+            raise ValueError("length is required for a notch (its impulse response is infinite)")
+        n = _check_length(length)
+        x = np.zeros(n)
+        if n:
+            x[0] = 1.0
+        b, a = notch_coefficients(stage, Ts=Ts)
+        return biquad(b, a, x, np.zeros(4))[0]
+    h = smoother_taps(stage, Ts=Ts) if stage.kind in SMOOTHERS else shaper_taps(stage, Ts=Ts)
+    if length is None:
+        return h
+    n = _check_length(length)
+    return np.concatenate([h, np.zeros(max(0, n - h.size))])[:n]
+
+
+def _check_length(length) -> int:
+    if isinstance(length, bool) or int(length) != length or length < 0:
+        raise ValueError(f"length must be an integer >= 0, got {length!r}")
+    return int(length)
+
+
+def discrete_transfer(stage: Stage, z, *, Ts: float) -> np.ndarray:
+    """``H(z)`` of one discrete stage at complex ``z`` (any shape): ``sum_i h[i] z^-i`` for
+    FIR stages, ``b(z^-1)/a(z^-1)`` for notches."""
+    stage = check_stage(stage)
+    zinv = 1.0 / np.asarray(z, dtype=complex)
+    if stage.kind in NOTCHES:
+        b, a = notch_coefficients(stage, Ts=Ts)
+        return np.polyval(b[::-1], zinv) / np.polyval(a[::-1], zinv)
+    return np.polyval(impulse_response(stage, Ts=Ts)[::-1], zinv)
+
+
+def filter_zi(stages, *, Ts: float, x0: float = 0.0) -> list[np.ndarray]:
+    """State of the chain at rest at the value ``x0`` (see the module docstring)."""
+    x0 = float(x0)
+    if not np.isfinite(x0):
+        raise ValueError(f"x0 must be finite, got {x0!r}")
+    out = []
+    for stage in as_stage_list(stages):
+        if stage.kind in NOTCHES:
+            notch_coefficients(stage, Ts=Ts)          # validates Ts and wn
+            out.append(np.full(4, x0))
+        else:
+            out.append(np.full(impulse_response(stage, Ts=Ts).size - 1, x0))
+    return out
+
+
+def filter(stages, x, *, Ts: float, zi=None):
+    """Filter ``x`` through the chain ``stages`` (a Stage or a sequence) at period ``Ts`` [s].
+
+    Each FIR stage is a direct convolution with its taps, each notch a direct-form-I biquad.
+    Returns ``y`` (float64, same length as x) when ``zi`` is None (chain at rest at 0), else
+    ``(y, zf)`` with ``zf`` the state after the last sample, in the ``zi`` layout, so that
+    filtering blocks one after the other with the returned state equals filtering at once.
+    """
+    stages = as_stage_list(stages)
+    Ts = check_Ts(Ts)
+    x = np.asarray(x, dtype=float)
+    if x.ndim != 1:
+        raise ValueError(f"x must be one-dimensional, got shape {x.shape}")
+    if not np.all(np.isfinite(x)):
+        raise ValueError("x must hold finite samples (found NaN or Inf)")
+    rest = zi is None
+    states = filter_zi(stages, Ts=Ts) if rest else _check_zi(stages, zi, Ts)
+    y = x
+    final = []
+    for stage, state in zip(stages, states):
+        if stage.kind in NOTCHES:
+            b, a = notch_coefficients(stage, Ts=Ts)
+            y, new = biquad(b, a, y, state)
+        else:
+            h = impulse_response(stage, Ts=Ts)
+            padded = np.concatenate([state, y])
+            new = padded[padded.size - state.size:].copy()
+            y = np.convolve(padded, h, mode="valid") if h.size > 1 else padded * h[0]
+        final.append(new)
+    return y if rest else (y, final)
+
+
+def _check_zi(stages: list[Stage], zi, Ts: float) -> list[np.ndarray]:
+    expected = filter_zi(stages, Ts=Ts)
+    try:
+        items = list(zi)
+    except TypeError:
+        raise ValueError("zi must be a list with one state array per stage") from None
+    if len(items) != len(expected):
+        raise ValueError(f"zi must hold {len(expected)} state arrays (one per stage), "
+                         f"got {len(items)}")
+    out = []
+    for k, (got, want) in enumerate(zip(items, expected)):
+        arr = np.asarray(got, dtype=float)
+        if arr.shape != want.shape:
+            raise ValueError(f"zi[{k}] must have shape {want.shape}, got {arr.shape}")
+        if not np.all(np.isfinite(arr)):
+            raise ValueError(f"zi[{k}] must be finite")
+        out.append(arr.copy())
+    return out
+
+
+__all__ = ["impulse_response", "discrete_transfer", "filter", "filter_zi"]

@@ -1,0 +1,147 @@
+"""Input shapers: continuous designs (amplitudes and times) and their discrete taps.
+
+Continuous designs for the mode ``(wn, zeta)``, ``wd = wn sqrt(1-zeta^2)``, ``Td = 2 pi/wd``,
+``K = exp(-zeta pi/sqrt(1-zeta^2))``:
+
+* ZV^n (Smith 1957; Singer & Seering 1990): ``C(n,m) K^m/(1+K)^n`` at ``m Td/2``, m = 0..n.
+  ZV is n = 1, ZVD n = 2, ZVDD n = 3, ``zvn`` takes ``stage.order``.
+* EI (Singhose, Seering & Singer 1990/1997, undamped closed form for tolerance V):
+  ``(1+V)/4, (1-V)/2, (1+V)/4`` at ``0, Td/2, Td``; the residual at the design mode is V.
+* EI2, two-hump EI (Singhose, Seering & Singer 1997, undamped closed form):
+  ``X = (V^2 (sqrt(1-V^2) + 1))^(1/3)``, ``A1 = A4 = (3X^2 + 2X + 3V^2)/(16X)``,
+  ``A2 = A3 = 1/2 - A1`` at ``0, Td/2, Td, 3Td/2``.
+* MZV (as in Klipper's shaper_defs): ``1 - 1/sqrt2, sqrt2 - 1, 1 - 1/sqrt2`` at
+  ``0, 0.375 Td, 0.75 Td`` before damping.
+
+Damping: every design above is an undamped amplitude set ``B_m`` at times ``t_m`` (multiples of
+``Td``) carried to the damped mode by ``A_m = B_m e^{-zeta wn t_m} / sum_m B_m e^{-zeta wn t_m}``,
+so that ``A_m e^{-p t_m}`` equals ``B_m e^{-j wd t_m}`` up to one common factor. For ZV^n and
+MZV this is exactly the published damped form (the ``K`` powers above); for EI and EI2 it is the
+same transformation applied to the closed forms (the curve fits of Singhose et al. are
+approximations of an optimum, not a closed form, and are not used).
+
+Discrete taps follow ``docs/exact-mode.md``: paper timing rounds each impulse time; exact
+timing splits off-grid impulses linearly and adds the least-norm correction on the support
+that pins ``H(z_p) = H_c(p)``; ZV^n is the n-fold convolution of the exact ZV.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..stages import SHAPERS, Stage
+from ._checks import check_Ts, on_grid, round_half_up
+
+_ZVN_ORDER = {"zv": 1, "zvd": 2, "zvdd": 3}
+
+
+def zvn_order(stage: Stage) -> int:
+    """n of ZV^n for the ZV family (zv, zvd, zvdd, zvn)."""
+    return _ZVN_ORDER.get(stage.kind, stage.order)
+
+
+def _undamped_design(stage: Stage) -> tuple[np.ndarray, np.ndarray]:
+    """Amplitudes B_m (sum 1) and times in units of the damped period Td."""
+    kind = stage.kind
+    if kind in ("zv", "zvd", "zvdd", "zvn"):
+        n = zvn_order(stage)
+        B = np.array([math.comb(n, m) for m in range(n + 1)], dtype=float) / 2.0 ** n
+        return B, 0.5 * np.arange(n + 1)
+    V = stage.tolerance
+    if kind == "ei":
+        return np.array([(1 + V) / 4, (1 - V) / 2, (1 + V) / 4]), np.array([0.0, 0.5, 1.0])
+    if kind == "ei2":
+        X = (V * V * (math.sqrt(1 - V * V) + 1)) ** (1.0 / 3.0)
+        a1 = (3 * X * X + 2 * X + 3 * V * V) / (16 * X)
+        return np.array([a1, 0.5 - a1, 0.5 - a1, a1]), np.array([0.0, 0.5, 1.0, 1.5])
+    if kind == "mzv":
+        a1 = 1 - 1 / math.sqrt(2)
+        return np.array([a1, math.sqrt(2) - 1, a1]), np.array([0.0, 0.375, 0.75])
+    raise ValueError(f"kind must be a shaper ({', '.join(SHAPERS)}), got {kind!r}")
+
+
+def mode_pole(wn: float, zeta: float) -> complex:
+    """``p = -zeta wn + j wn sqrt(1 - zeta^2)``."""
+    return complex(-zeta * wn, wn * math.sqrt(1.0 - zeta * zeta))
+
+
+def shaper_impulses(stage: Stage) -> tuple[np.ndarray, np.ndarray]:
+    """The continuous shaper: ``(amplitudes, times)``, amplitudes summing to 1, times [s]
+    ascending from 0 (see the module docstring for the formulas)."""
+    B, units = _undamped_design(stage)
+    p = mode_pole(stage.wn, stage.zeta)
+    t = units * (2.0 * math.pi / p.imag)
+    A = B * np.exp(p.real * t)
+    return A / A.sum(), t
+
+
+def shaper_continuous_transfer(stage: Stage, s) -> np.ndarray:
+    """``H_c(s) = sum_m A_m e^{-s t_m}`` at complex ``s`` (any shape)."""
+    A, t = shaper_impulses(stage)
+    s = np.asarray(s, dtype=complex)
+    return np.tensordot(np.exp(-s[..., None] * t), A, axes=([-1], [0]))
+
+
+def _check_mode(stage: Stage, Ts: float) -> None:
+    if stage.wn >= math.pi / Ts:
+        raise ValueError(f"wn must be below the Nyquist frequency pi/Ts = {math.pi / Ts!r} "
+                         f"rad/s, got {stage.wn!r}")
+
+
+def _paper_taps(A: np.ndarray, t: np.ndarray, Ts: float) -> np.ndarray:
+    idx = [round_half_up(tm / Ts) for tm in t]
+    h = np.zeros(max(idx) + 1)
+    for a, i in zip(A, idx):
+        h[i] += a
+    return h
+
+
+def _exact_taps(A: np.ndarray, t: np.ndarray, target: complex, zp: complex,
+                Ts: float) -> np.ndarray:
+    """Linear split plus least-norm correction pinning ``H(zp) = target``."""
+    placed = []                       # (index, amplitude) of the base
+    split = set()
+    for a, tm in zip(A, t):
+        mu = tm / Ts
+        m = on_grid(mu)
+        if m is not None:
+            placed.append((m, a))
+            continue
+        m0 = int(math.floor(mu))
+        f = mu - m0
+        placed += [(m0, a * (1.0 - f)), (m0 + 1, a * f)]
+        split.update((m0, m0 + 1))
+    g = np.zeros(max(i for i, _ in placed) + 1)
+    for i, a in placed:
+        g[i] += a
+    if not split:
+        return g
+    support = np.array(sorted(split | {0}))
+    zinv = zp ** (-np.arange(g.size, dtype=float))
+    r = target - np.dot(g, zinv)
+    C = np.vstack([np.ones(support.size), zinv[support].real, zinv[support].imag])
+    d = C.T @ np.linalg.solve(C @ C.T, np.array([0.0, r.real, r.imag]))
+    g[support] += d
+    return g
+
+
+def shaper_taps(stage: Stage, *, Ts: float) -> np.ndarray:
+    """Discrete shaper taps (sum 1) at sample period ``Ts`` [s]; ``wn < pi/Ts`` required."""
+    Ts = check_Ts(Ts)
+    if stage.kind not in SHAPERS:
+        raise ValueError(f"kind must be a shaper ({', '.join(SHAPERS)}), got {stage.kind!r}")
+    _check_mode(stage, Ts)
+    if stage.timing == "paper":
+        return _paper_taps(*shaper_impulses(stage), Ts)
+    p = mode_pole(stage.wn, stage.zeta)
+    zp = np.exp(p * Ts)
+    if stage.kind in ("zv", "zvd", "zvdd", "zvn"):
+        zv = _exact_taps(*shaper_impulses(stage.with_(kind="zv")), 0.0, zp, Ts)
+        h = np.ones(1)
+        for _ in range(zvn_order(stage)):
+            h = np.convolve(h, zv)
+        return h
+    A, t = shaper_impulses(stage)
+    target = complex(np.dot(A, np.exp(-p * t)))
+    return _exact_taps(A, t, target, zp, Ts)
