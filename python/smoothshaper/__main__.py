@@ -1,0 +1,6 @@
+"""``python -m smoothshaper``: the same as the ``smoothshaper`` command."""
+import sys
+
+from .cli import main
+
+sys.exit(main())

@@ -1,0 +1,527 @@
+"""The ``smoothshaper`` command line: design, analyze, identify, validate, report.
+
+Stage spec syntax (``--stage``, repeatable, stages chain in the given order)::
+
+    KIND:key=value,key=value
+
+KIND is a stage kind (rectangular, harmonic, damped_harmonic, exponential, zv, zvd, zvdd, zvn,
+ei, ei2, mzv, notch_tustin, notch_matched; ``notch`` means notch_matched). Keys are the
+:class:`smoothshaper.stages.Stage` fields: T [s], sigma [1/s], k, wn [rad/s], zeta, order,
+tolerance, pole_zeta (or notch_pole_zeta), timing (exact|paper). A smoother given ``wn``
+(and optionally ``zeta``, ``k``) instead of ``T`` is designed for that mode (SPEC 4.2).
+Examples: ``harmonic:T=0.05``, ``zv:wn=100,zeta=0.05``, ``damped_harmonic:wn=125,zeta=0.12``.
+
+Exit codes: 0 success, 1 invalid input or failed run (one line on stderr), 2 bad usage,
+3 the subcommand's module is not available in this installation.
+"""
+from __future__ import annotations
+
+import argparse
+import csv
+import math
+import os
+import sys
+
+import numpy as np
+
+from . import stages as _stages
+from .stages import Stage
+
+EXIT_ERROR = 1
+EXIT_USAGE = 2
+EXIT_UNAVAILABLE = 3
+
+_KEY_ALIASES = {"pole_zeta": "notch_pole_zeta"}
+_INT_KEYS = ("k", "order")
+_FLOAT_KEYS = ("T", "sigma", "wn", "zeta", "tolerance", "notch_pole_zeta")
+
+
+class CliError(Exception):
+    """A user error: printed as one line, exit code ``code``."""
+
+    def __init__(self, message: str, code: int = EXIT_ERROR):
+        super().__init__(message)
+        self.code = code
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse that reports usage errors as one line (no usage dump)."""
+
+    def error(self, message):
+        raise CliError(f"{self.prog}: {message} (see --help)", EXIT_USAGE)
+
+
+# -- stage specs ---------------------------------------------------------------------------
+
+def parse_stage(spec: str) -> Stage:
+    """One ``--stage`` spec (see the module docstring) -> Stage. ValueError on bad syntax."""
+    kind, _, rest = spec.partition(":")
+    kind = kind.strip().lower()
+    if kind == "notch":
+        kind = "notch_matched"
+    if kind not in _stages.KINDS:
+        raise ValueError(f"stage {spec!r}: kind must be one of {', '.join(_stages.KINDS)}, "
+                         f"or notch")
+    fields: dict = {}
+    for item in filter(None, (p.strip() for p in rest.split(","))):
+        key, eq, value = item.partition("=")
+        key = _KEY_ALIASES.get(key.strip(), key.strip())
+        if not eq:
+            raise ValueError(f"stage {spec!r}: expected key=value, got {item!r}")
+        if key in fields:
+            raise ValueError(f"stage {spec!r}: {key} given twice")
+        if key in _INT_KEYS:
+            try:
+                fields[key] = int(value)
+            except ValueError:
+                raise ValueError(f"stage {spec!r}: {key} must be an integer, got {value!r}") from None
+        elif key in _FLOAT_KEYS:
+            try:
+                fields[key] = float(value)
+            except ValueError:
+                raise ValueError(f"stage {spec!r}: {key} must be a number, got {value!r}") from None
+        elif key == "timing":
+            fields[key] = value.strip()
+        else:
+            raise ValueError(f"stage {spec!r}: unknown key {key!r} (keys: T, sigma, k, wn, zeta, "
+                             "order, tolerance, pole_zeta, timing)")
+    if kind in _stages.SMOOTHERS and "T" not in fields and "wn" in fields:
+        from .filters import design_for_mode
+        unused = set(fields) - {"wn", "zeta", "k", "timing"}
+        if unused:
+            raise ValueError(f"stage {spec!r}: {', '.join(sorted(unused))} cannot be combined "
+                             "with wn (the mode sets the smoother)")
+        stage = design_for_mode(kind, wn=fields["wn"], zeta=fields.get("zeta", 0.0),
+                                k=fields.get("k", 1))
+        return stage.with_(timing=fields.get("timing", "exact"))
+    if kind in _stages.SMOOTHERS and "T" not in fields:
+        raise ValueError(f"stage {spec!r}: a {kind} stage needs T=<seconds> or wn=<rad/s>")
+    return Stage(kind, **fields)
+
+
+def _chain_from_args(args) -> list[Stage]:
+    stages = [parse_stage(s) for s in (args.stage or [])]
+    for kind in getattr(args, "kind", None) or []:
+        if args.wn is None:
+            raise CliError("--wn is required with --kind (the mode to design for)")
+        from .filters import design_for_mode
+        stages.append(design_for_mode(kind, wn=args.wn, zeta=args.zeta, k=args.k))
+    return stages
+
+
+# -- output helpers ------------------------------------------------------------------------
+
+def _fmt(value) -> str:
+    if value is None:
+        return "-"
+    if isinstance(value, float):
+        return f"{value:.6g}"
+    return str(value)
+
+
+def format_table(header: list[str], rows: list[list]) -> str:
+    cells = [header] + [[_fmt(v) for v in row] for row in rows]
+    widths = [max(len(r[i]) for r in cells) for i in range(len(header))]
+    lines = ["  ".join(c.rjust(w) for c, w in zip(row, widths)) for row in cells]
+    lines.insert(1, "  ".join("-" * w for w in widths))
+    return "\n".join(lines)
+
+
+class Progress:
+    """A one-line progress bar on stderr for long sweeps (only when enabled)."""
+
+    def __init__(self, total: int, label: str, enabled: bool):
+        self.total, self.label, self.enabled, self.done = max(1, total), label, enabled, 0
+
+    def advance(self, n: int = 1) -> None:
+        self.done = min(self.total, self.done + n)
+        if self.enabled:
+            frac = self.done / self.total
+            bar = "#" * int(30 * frac)
+            sys.stderr.write(f"\r{self.label} [{bar:<30}] {100 * frac:5.1f}%")
+            if self.done == self.total:
+                sys.stderr.write("\n")
+            sys.stderr.flush()
+
+
+def _shaper_duration(stage: Stage) -> float | None:
+    """Time of a shaper's last impulse [s] (C sms_shaper_impulses), None for other kinds."""
+    if stage.kind not in _stages.SHAPERS:
+        return None
+    from .filters import _backend, _fill_config
+    ffi, lib = _backend("double")
+    config = ffi.new("sms_stage_config *")
+    _fill_config(config, stage)
+    amps, times = ffi.new("double[64]"), ffi.new("double[64]")
+    count = ffi.new("size_t *")
+    if lib.sms_shaper_impulses(config, amps, times, 64, count) != 0:
+        return None
+    return max(times[i] for i in range(count[0]))
+
+
+def _duration(stage: Stage) -> float | None:
+    if stage.kind in _stages.SMOOTHERS:
+        return stage.T
+    return _shaper_duration(stage)
+
+
+def stage_rows(stages: list[Stage], Ts: float | None) -> tuple[list[str], list[list]]:
+    header = ["#", "kind", "T [s]", "sigma [1/s]", "wn [rad/s]", "zeta", "k", "order", "timing"]
+    if Ts is not None:
+        header.append("L [samples]")
+    rows = []
+    for i, s in enumerate(stages):
+        smoother = s.kind in _stages.SMOOTHERS
+        row = [i, s.kind, _duration(s), s.sigma if smoother else None,
+               None if smoother else s.wn, None if smoother else s.zeta,
+               s.k if smoother else None, s.order if s.kind == "zvn" else None,
+               None if s.kind in _stages.NOTCHES else s.timing]
+        if Ts is not None:
+            from .filters import Chain
+            row.append(Chain([s], Ts=Ts).length or "IIR")
+        rows.append(row)
+    return header, rows
+
+
+# -- subcommands ---------------------------------------------------------------------------
+
+def cmd_design(args) -> int:
+    kinematic = [args.h, args.vmax, args.amax, args.jmax]
+    if any(v is not None for v in kinematic):
+        if args.h is None or args.vmax is None:
+            raise CliError("kinematic design needs at least --h and --vmax")
+        try:
+            from .design import kinematic as design_kinematic
+        except ImportError as exc:
+            raise CliError(f"kinematic design is unavailable in this installation ({exc})",
+                           EXIT_UNAVAILABLE) from None
+        stages = list(design_kinematic(h=args.h, vmax=args.vmax, amax=args.amax,
+                                       jmax=args.jmax, profile=args.profile,
+                                       wn=args.wn, zeta=args.zeta))
+        stages += _chain_from_args(argparse.Namespace(stage=args.stage, kind=None))
+    else:
+        stages = _chain_from_args(args)
+    if not stages:
+        raise CliError("nothing to design: give --kind with --wn, --stage, or --h/--vmax limits")
+    header, rows = stage_rows(stages, args.Ts)
+    print(format_table(header, rows))
+    total = sum(d for d in (_duration(s) for s in stages) if d is not None)
+    print(f"total duration (delay of the chain): {total:.6g} s")
+    if args.Ts is not None:
+        from .filters import Chain
+        chain = Chain(stages, Ts=args.Ts)
+        print(f"chain FIR length at Ts={args.Ts:g} s: {chain.length} samples"
+              + ("" if chain.is_fir else " (plus IIR notch)"))
+    return 0
+
+
+def _analysis():
+    try:
+        from . import analysis
+    except ImportError as exc:
+        raise CliError(f"analyze is unavailable: smoothshaper.analysis cannot be imported ({exc})",
+                       EXIT_UNAVAILABLE) from None
+    return analysis
+
+
+def _pyplot():
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        raise CliError("analyze needs matplotlib: pip install 'smoothshaper[plot]'",
+                       EXIT_UNAVAILABLE) from None
+    return plt
+
+
+def _nominal_mode(args, stages: list[Stage]) -> tuple[float, float]:
+    if args.wn is not None:
+        return args.wn, args.zeta
+    for s in stages:
+        if s.kind not in _stages.SMOOTHERS:
+            return s.wn, s.zeta
+    raise CliError("--wn is required: the mode to analyse (no shaper/notch in the chain names one)")
+
+
+def prv_curve(stages, *, wn_hat, zeta, Ts, ratios, progress: Progress) -> np.ndarray:
+    """PRV [%] at wn = ratio*wn_hat, evaluated in chunks so the bar can move."""
+    analysis = _analysis()
+    out = np.empty(len(ratios))
+    for start in range(0, len(ratios), 64):
+        part = ratios[start:start + 64]
+        out[start:start + len(part)] = [analysis.prv(stages, wn=r * wn_hat, zeta=zeta, Ts=Ts)
+                                        for r in part]
+        progress.advance(len(part))
+    return out
+
+
+def cmd_analyze(args) -> int:
+    stages = _chain_from_args(args)
+    if not stages:
+        raise CliError("nothing to analyze: give --stage (or --kind with --wn)")
+    from .filters import Chain
+    chain = Chain(stages, Ts=args.Ts)
+    analysis = _analysis()
+    plt = _pyplot()
+    wn_hat, zeta = _nominal_mode(args, stages)
+    if not 0 < args.ratio_min < args.ratio_max:
+        raise CliError("--ratio-min and --ratio-max must satisfy 0 < min < max")
+    if args.points < 2:
+        raise CliError("--points must be >= 2")
+    os.makedirs(args.out, exist_ok=True)
+    show = args.progress if args.progress is not None else sys.stderr.isatty()
+
+    ratios = np.linspace(args.ratio_min, args.ratio_max, args.points)
+    nyquist_ratio = math.pi / args.Ts / wn_hat
+    ratios = ratios[ratios < nyquist_ratio]
+    bar = Progress(len(ratios), "PRV sweep", show)
+    prv = prv_curve(stages, wn_hat=wn_hat, zeta=zeta, Ts=args.Ts, ratios=ratios, progress=bar)
+    prv_nominal = float(analysis.prv(stages, wn=wn_hat, zeta=zeta, Ts=args.Ts))
+    band = ratios[prv <= 100 * args.tolerance]
+
+    fig, ax = plt.subplots(figsize=(7, 4))
+    ax.plot(ratios, prv)
+    ax.axhline(100 * args.tolerance, color="gray", ls="--", lw=0.8,
+               label=f"{100 * args.tolerance:g} % tolerance")
+    ax.set_xlabel(r"$\omega_n/\hat\omega_n$")
+    ax.set_ylabel("PRV [%]")
+    ax.set_title(f"Residual vibration, zeta = {zeta:g}, wn_hat = {wn_hat:g} rad/s")
+    ax.grid(True, alpha=0.3)
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(os.path.join(args.out, "prv.png"), dpi=120)
+    plt.close(fig)
+
+    w = np.linspace(0.0, math.pi / args.Ts, 2000)[1:]
+    mag = np.abs(np.asarray(analysis.frequency_response(stages, w, Ts=args.Ts)))
+    fig, ax = plt.subplots(figsize=(7, 4))
+    ax.semilogx(w, 20 * np.log10(np.maximum(mag, 1e-12)))
+    ax.axvline(wn_hat, color="gray", ls="--", lw=0.8, label=f"mode {wn_hat:g} rad/s")
+    ax.set_xlabel("frequency [rad/s]")
+    ax.set_ylabel("|H| [dB]")
+    ax.set_ylim(-140, 10)
+    ax.set_title("Magnitude of the discrete chain")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(os.path.join(args.out, "spectrum.png"), dpi=120)
+    plt.close(fig)
+
+    n = (chain.length if chain.is_fir else 0) + max(10, chain.length // 5) + int(
+        round(4 * 2 * math.pi / wn_hat / args.Ts) if not chain.is_fir else 0)
+    y = chain.process(np.ones(n))
+    t = np.arange(n) * args.Ts
+    fig, ax = plt.subplots(figsize=(7, 4))
+    ax.plot(t, y, label="filtered unit step (C core)")
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("output [-]")
+    ax.set_title("Step response")
+    ax.grid(True, alpha=0.3)
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(os.path.join(args.out, "step.png"), dpi=120)
+    plt.close(fig)
+
+    print(format_table(*stage_rows(stages, args.Ts)))
+    print(f"Ts: {args.Ts:g} s; chain length: {chain.length} samples "
+          f"({chain.length * args.Ts:.6g} s){'' if chain.is_fir else ' plus IIR notch'}")
+    print(f"mode analysed: wn_hat = {wn_hat:g} rad/s, zeta = {zeta:g}")
+    print(f"PRV at the nominal mode: {prv_nominal:.6g} %")
+    if band.size:
+        print(f"PRV <= {100 * args.tolerance:g} % for wn/wn_hat in [{band.min():.4g}, "
+              f"{band.max():.4g}] of the swept range (may be several bands)")
+    else:
+        print(f"PRV <= {100 * args.tolerance:g} % nowhere in the swept range")
+    print(f"step response: final value {y[-1]:.12g}, max {y.max():.12g}, min {y.min():.12g}")
+    print(f"plots: {', '.join(os.path.join(args.out, f) for f in ('prv.png', 'spectrum.png', 'step.png'))}")
+    return 0
+
+
+def read_record(path: str, column: str | None, time_column: str | None,
+                Ts: float | None) -> tuple[np.ndarray, float]:
+    """(x, Ts) from a CSV: optional header row, comma/semicolon/whitespace separated."""
+    try:
+        with open(path, newline="", encoding="utf-8") as f:
+            text = f.read()
+    except OSError as exc:
+        raise CliError(f"cannot read {path}: {exc.strerror}") from None
+    lines = [ln for ln in text.splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
+    if not lines:
+        raise CliError(f"{path}: no data")
+    try:
+        dialect = csv.Sniffer().sniff(lines[0], delimiters=",;\t ")
+    except csv.Error:
+        dialect = csv.excel
+    rows = list(csv.reader(lines, dialect))
+    header = None
+    try:
+        [float(v) for v in rows[0] if v.strip()]
+    except ValueError:
+        header, rows = [h.strip() for h in rows[0]], rows[1:]
+    try:
+        data = np.array([[float(v) for v in r if v.strip()] for r in rows], dtype=float)
+    except ValueError as exc:
+        raise CliError(f"{path}: non-numeric value ({exc})") from None
+    if data.ndim != 2 or data.shape[0] == 0:
+        raise CliError(f"{path}: rows must all have the same number of columns")
+
+    def index(name, default):
+        if name is None:
+            return default
+        if header is not None and name in header:
+            return header.index(name)
+        try:
+            i = int(name)
+        except ValueError:
+            raise CliError(f"{path}: no column {name!r}"
+                           + (f" (columns: {', '.join(header)})" if header else "")) from None
+        if not -data.shape[1] <= i < data.shape[1]:
+            raise CliError(f"{path}: column index {i} out of range ({data.shape[1]} columns)")
+        return i
+
+    xi = index(column, data.shape[1] - 1)
+    x = data[:, xi]
+    if Ts is None:
+        if data.shape[1] < 2 and time_column is None:
+            raise CliError(f"{path}: one column only: give --Ts (the sample period)")
+        t = data[:, index(time_column, 0)]
+        dt = np.diff(t)
+        if dt.size == 0 or not np.all(dt > 0):
+            raise CliError(f"{path}: the time column must increase")
+        Ts = float(np.mean(dt))
+        if np.max(np.abs(dt - Ts)) > 1e-6 * Ts + 1e-12:
+            raise CliError(f"{path}: the time column is not uniformly sampled")
+    return x, Ts
+
+
+def cmd_identify(args) -> int:
+    from .filters import identify_from_record
+    x, Ts = read_record(args.csv, args.column, args.time_column, args.Ts)
+    if args.start is not None:
+        x = x[int(round(args.start / Ts)):]
+    mode = identify_from_record(x, Ts=Ts)
+    print(f"record: {x.size} samples at Ts = {Ts:.6g} s")
+    print(format_table(["wn [rad/s]", "zeta", "wd [rad/s]", "sigma [1/s]", "Td [s]"],
+                       [[mode.wn, mode.zeta, mode.wd, mode.sigma, 2 * math.pi / mode.wd]]))
+    print("suggested stages (SPEC 4.2): "
+          f"damped_harmonic:wn={mode.wn:.6g},zeta={mode.zeta:.6g}  "
+          f"zv:wn={mode.wn:.6g},zeta={mode.zeta:.6g}")
+    return 0
+
+
+def _run_module(name: str, module_name: str, out_dir: str) -> int:
+    """Call smoothshaper.<module_name>.run(out_dir) for the subcommand ``name``; a missing
+    module is reported (exit 3), not a crash."""
+    import importlib
+    modname = f"smoothshaper.{module_name}"
+    try:
+        module = importlib.import_module(modname)
+    except ModuleNotFoundError as exc:
+        if exc.name == modname:
+            raise CliError(f"{name} is unavailable: module {modname} is not part of this "
+                           "installation yet", EXIT_UNAVAILABLE) from None
+        raise CliError(f"{name} is unavailable: it needs the Python package {exc.name!r} "
+                       "(pip install 'smoothshaper[validate]')", EXIT_UNAVAILABLE) from None
+    run = getattr(module, "run", None)
+    if run is None:
+        raise CliError(f"{name} is unavailable: {modname} has no run(out_dir)", EXIT_UNAVAILABLE)
+    result = run(out_dir)
+    if result is False or (isinstance(result, int) and not isinstance(result, bool) and result):
+        return EXIT_ERROR
+    print(f"{name}: results written to {out_dir}")
+    return 0
+
+
+def cmd_validate(args) -> int:
+    return _run_module("validate", "validation", args.out)
+
+
+def cmd_report(args) -> int:
+    return _run_module("report", "report", args.out)
+
+
+# -- parser --------------------------------------------------------------------------------
+
+def _add_chain_options(p, *, with_kind: bool = True) -> None:
+    p.add_argument("--stage", action="append", metavar="SPEC",
+                   help="a stage KIND:key=value,... (repeatable; see 'smoothshaper --help')")
+    if with_kind:
+        p.add_argument("--kind", action="append", choices=_stages.KINDS,
+                       help="design a stage of this kind for the mode --wn/--zeta (repeatable)")
+    p.add_argument("--wn", type=float, help="natural frequency of the mode [rad/s]")
+    p.add_argument("--zeta", type=float, default=0.0, help="damping ratio of the mode (default 0)")
+    p.add_argument("--k", type=int, default=1, help="multiple of the zero placed on the mode "
+                   "(odd for the harmonic families; default 1)")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="smoothshaper", description=__doc__,
+                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    sub.required = True
+
+    p = sub.add_parser("design", help="print the stages for a mode or kinematic limits")
+    _add_chain_options(p)
+    p.add_argument("--Ts", type=float, help="sample period [s]: also print lengths in samples")
+    g = p.add_argument_group("kinematic limits (SPEC 4.1; needs smoothshaper.design)")
+    g.add_argument("--h", type=float, help="displacement")
+    g.add_argument("--vmax", type=float, help="velocity limit")
+    g.add_argument("--amax", type=float, help="acceleration limit")
+    g.add_argument("--jmax", type=float, help="jerk limit")
+    g.add_argument("--profile", default="polynomial",
+                   choices=("polynomial", "trigonometric", "damped"), help="last-stage profile")
+    p.set_defaults(func=cmd_design)
+
+    p = sub.add_parser("analyze", help="PRV curve, spectrum and step response as PNG plots")
+    _add_chain_options(p)
+    p.add_argument("--Ts", type=float, default=1e-3, help="sample period [s] (default 1e-3)")
+    p.add_argument("--out", default="analysis", help="output folder for the PNGs (default ./analysis)")
+    p.add_argument("--ratio-min", type=float, default=0.2, help="sweep start, wn/wn_hat (default 0.2)")
+    p.add_argument("--ratio-max", type=float, default=3.0, help="sweep end, wn/wn_hat (default 3)")
+    p.add_argument("--points", type=int, default=600, help="sweep points (default 600)")
+    p.add_argument("--tolerance", type=float, default=0.05,
+                   help="vibration tolerance for the insensitivity band (default 0.05 = 5 %%)")
+    p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
+                   help="show the sweep progress bar (default: when stderr is a terminal)")
+    p.set_defaults(func=cmd_analyze)
+
+    p = sub.add_parser("identify", help="mode (wn, zeta) from a CSV record of a free decay")
+    p.add_argument("csv", help="CSV file: a time column and a signal column (header optional)")
+    p.add_argument("--column", help="signal column: header name or index (default: last)")
+    p.add_argument("--time-column", help="time column: header name or index (default: first)")
+    p.add_argument("--Ts", type=float, help="sample period [s] when the file has no time column")
+    p.add_argument("--start", type=float, help="ignore samples before this time [s]")
+    p.set_defaults(func=cmd_identify)
+
+    for name, func, what in (("validate", cmd_validate, "build and validate the FMUs with fmpy"),
+                             ("report", cmd_report, "reproduce the seed papers' claims")):
+        p = sub.add_parser(name, help=what)
+        p.add_argument("--out", default=os.path.join("out", name),
+                       help=f"output folder (default ./out/{name})")
+        p.set_defaults(func=func)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run the CLI; returns the exit code (errors: one line on stderr, no traceback)."""
+    try:
+        args = build_parser().parse_args(argv)
+        return args.func(args)
+    except CliError as exc:
+        code, message = exc.code, str(exc)
+    except (ValueError, OSError, RuntimeError, ImportError) as exc:
+        if os.environ.get("SMOOTHSHAPER_DEBUG"):
+            raise
+        code, message = EXIT_ERROR, str(exc)
+    except KeyboardInterrupt:
+        code, message = 130, "interrupted"
+    message = " ".join(message.split())
+    if not message.startswith("smoothshaper"):
+        message = f"smoothshaper: error: {message}"
+    sys.stderr.write(message + "\n")
+    return code
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())
