@@ -1,11 +1,271 @@
 /**
  * @file trajectory.h
- * @brief Kinematic design, online multi-point generation and B-spline filters (SPEC 3.7, 4.1, 4.4).
- * OWNER: trajectory work package.
+ * @brief Kinematic design (SPEC 4.1, 4.2 mixed), the online multi-point generator (SPEC 4.4)
+ * and B-spline interpolating filters (SPEC 3.7). OWNER: trajectory work package.
+ *
+ * Design quantities are `double`; the signal path uses ::sms_real. Nothing allocates.
  */
 #ifndef SMOOTHSHAPER_TRAJECTORY_H
 #define SMOOTHSHAPER_TRAJECTORY_H
 
 #include "smoothshaper/chain.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ------------------------------------------------------------------------------------------ */
+/* Kinematic design                                                                            */
+/* ------------------------------------------------------------------------------------------ */
+
+/** @brief Family of the last stage of a kinematic chain (values stable: FMU enumeration). */
+typedef enum sms_profile {
+    SMS_PROFILE_POLYNOMIAL = 0,    /**< all stages rectangular: trapezoid, double-S, ... */
+    SMS_PROFILE_TRIGONOMETRIC = 1, /**< last stage harmonic: modified trapezoid / double-S (seed 000 eq. 6) */
+    SMS_PROFILE_DAMPED = 2         /**< last stage exponential tuned to a damped mode: Damped-Jerk (SPEC 3.4) */
+} sms_profile;
+
+/** @brief Most bounds (derivative orders) accepted by the kinematic design. */
+#define SMS_KINEMATIC_MAX_ORDER 8
+
+/** @brief Largest mode multiple k the design tries for a mode-tuned last stage. */
+#define SMS_KINEMATIC_MAX_MULTIPLE 10000u
+
+/**
+ * @brief Time-optimal rest-to-rest chain for a displacement h and bounds on n derivatives.
+ *
+ * limits[i] bounds |q^(i+1)|: limits[0] = vmax, limits[1] = amax, limits[2] = jmax, ...
+ * The result has exactly n stages, stage i of length T[i] [s]; the trajectory (a step of h
+ * through the chain) lasts T[0] + ... + T[n-1] and satisfies every bound.
+ *
+ * Stage families: stages 0..n-2 are rectangular. The last stage is
+ * - ::SMS_PROFILE_POLYNOMIAL: rectangular, T = q^(n-1)/q^(n) of the effective bounds;
+ * - ::SMS_PROFILE_TRIGONOMETRIC: harmonic, T = (pi/2) q^(n-1)/q^(n) (n = 1: T = pi |h| / (2 vmax));
+ * - with a mode (wn > 0): tuned to it, T = k Tm, Tm = 2 pi/wd (rectangular; exponential with
+ *   sigma = -zeta wn for ::SMS_PROFILE_DAMPED) or Tm = 3 pi/wd with k odd (harmonic), and the
+ *   multiple k >= 1 that gives the shortest trajectory within every bound is chosen.
+ *   ::SMS_PROFILE_DAMPED requires wn > 0 and n >= 2.
+ *   Seed 001 sec. 5.2 (T1 = h/v, T2 = v/a, T3 = 2 pi/wn) is limits {v, a, j} with any
+ *   j >= a wn / (2 pi).
+ *
+ * Unreachable bounds (short moves, T2 < T3, ...): the design works from the last stage up.
+ * A chain with T[k] >= T[k+1] + ... + T[n-1] for every k has peak |q^(i)| equal to
+ * |h| g / (T[0] ... T[i-1]) (g = 1, or the peak density times T of a non-rectangular last
+ * stage), so each bound is met with equality where reachable. Where the inequality would fail,
+ * the bound of that derivative is lowered to the value at which it holds with equality (the
+ * time-scaling argument D(lambda h) <= lambda D(h) shows the duration then decreases
+ * monotonically towards that point, so this is the shortest chain of this structure). For
+ * n <= 3 (polynomial) this is the time-optimal bounded-jerk trajectory (ruckig's duration,
+ * e.g. h = 40, v = 250, a = 5000, j = 200000 gives 0.16 + 0.05 + 0.025 = 0.235 s); for n >= 4
+ * it is the shortest chain of this structure, which need not be the unconstrained optimum.
+ *
+ * @param h         displacement, finite and != 0 (the sign is irrelevant to the lengths)
+ * @param limits    n bounds, each finite and > 0
+ * @param n         1 .. ::SMS_KINEMATIC_MAX_ORDER
+ * @param profile   an ::sms_profile
+ * @param wn        0: no mode; else the mode's natural frequency, finite and > 0 [rad/s]
+ * @param zeta      damping ratio of the mode, [0, 1) (ignored when wn == 0)
+ * @param T         receives n lengths [s]
+ * @param capacity  length of T (>= n)
+ * @param count     receives n
+ * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_ORDER (n out of range, or DAMPED with n < 2),
+ *         ::SMS_ERR_LIMIT (h or a limit not finite/positive), ::SMS_ERR_KIND (profile),
+ *         ::SMS_ERR_WN (wn < 0, NaN/Inf, or 0 with DAMPED), ::SMS_ERR_ZETA,
+ *         ::SMS_ERR_BUFFER_TOO_SMALL (capacity < n), ::SMS_ERR_TOO_LONG (no multiple
+ *         k <= ::SMS_KINEMATIC_MAX_MULTIPLE meets the bounds). Outputs untouched on error.
+ */
+SMS_API sms_status sms_kinematic_design(double h, const double *limits, size_t n,
+                                        sms_profile profile, double wn, double zeta,
+                                        double *T, size_t capacity, size_t *count);
+
+/**
+ * @brief As sms_kinematic_design(), but fills ready-to-use stage configs (kind, T, sigma,
+ * and k = the mode multiple for a tuned stage, else 1; timing ::SMS_TIMING_EXACT), so that
+ * sms_chain_init() builds the chain directly. Same arguments, statuses and ranges.
+ */
+SMS_API sms_status sms_kinematic_configs(double h, const double *limits, size_t n,
+                                         sms_profile profile, double wn, double zeta,
+                                         sms_stage_config *configs, size_t capacity,
+                                         size_t *count);
+
+/* ------------------------------------------------------------------------------------------ */
+/* Online multi-point generator                                                                */
+/* ------------------------------------------------------------------------------------------ */
+
+/**
+ * @brief Limits and optional mode of the online generator (SPEC 4.4).
+ *
+ * | field   | valid range |
+ * |---------|-------------|
+ * | vmax, amax, jmax | finite, > 0 |
+ * | profile | an ::sms_profile (::SMS_PROFILE_DAMPED needs wn > 0) |
+ * | wn      | 0 (no mode) or finite > 0 and below pi/Ts [rad/s] |
+ * | zeta    | [0, 1) |
+ */
+typedef struct sms_generator_config {
+    double vmax, amax, jmax;
+    sms_profile profile;
+    double wn;   /**< 0: no mode to cancel */
+    double zeta;
+} sms_generator_config;
+
+/**
+ * @brief Online generator: a staircase of targets in, a bounded smooth trajectory out.
+ *
+ * Structure: a variable first stage followed by a fixed tail X = M(T2) * L(T3), where T2, T3
+ * and the family L of the last stage come from sms_kinematic_design() for a move long enough
+ * to reach vmax with the limits {vmax, amax, jmax} (so T2 >= T3, the tail lasts Tc = T2 + T3).
+ * The first stage is the moving average of length T1 = |segment| / V applied to each segment,
+ * realised as its output r(t): a ramp at velocity V towards the current target. V is
+ * re-planned per segment (|V| <= vmax, T1 >= Tc so short moves use V < vmax), the tail is fixed.
+ *
+ * Why it never exceeds a bound, for any target sequence: r'(t) is piecewise constant and is
+ * changed only (i) on sample instants, (ii) at least Nc = ceil(Tc/Ts) samples after its
+ * previous change, (iii) by at most vmax (a reversal first stops: V -> 0, then after Nc
+ * samples starts the other way), and |r'| <= vmax always. The output is q = r * X. Since X
+ * has support [0, Tc] and changes are >= Tc apart, at any instant at most the last change
+ * dV is still inside the tail's window, so exactly:
+ *   q'(t)   = r'(t) - dV (1 - F(s)),   |q'|   <= max|r'|           <= vmax,
+ *   q''(t)  = dV x2(s),                |q''|  <= vmax / T2         <= amax,
+ *   q'''(t) = dV x2'(s),               |q'''| <= vmax peak(L) / T2 <= jmax,
+ * with s the time since that change, x2 the tail's impulse response (peak 1/T2 because
+ * T2 >= T3) and F its integral; the last inequality of each line is the kinematic design.
+ * A naive scheme fails exactly where this one waits: overlapping segments add velocities,
+ * and a reversal (dV = 2 vmax) or two changes closer than Tc double a or j.
+ * Reaching: once the target holds, r ends its last segment exactly on it (r is assigned
+ * the target at the stop, not accumulated) and q equals the target exactly Nc samples later.
+ *
+ * Outputs: q, v, a, j are the exact values and derivatives of the continuous piecewise
+ * output at the sample instants (right limits where the jerk jumps), computed from tables of
+ * the tail's step, ramp, impulse and impulse-derivative responses filled at init.
+ * Per-sample work O(1); a re-plan is a handful of operations (see tests/bench).
+ * Rounding: bounds hold to a few ulps of vmax, amax, jmax.
+ * Time: a single segment from rest of length D with D >= vmax Tc takes D/vmax + Tc rounded
+ * up to the sample grid, the time-optimal duration with these limits.
+ */
+typedef struct sms_generator {
+    double Ts;
+    double vmax;
+    double T2, T3;        /**< tail stage lengths [s] */
+    sms_kind last_kind;   /**< family of the tail's last stage */
+    double sigma;         /**< its sigma (exponential), else 0 */
+    size_t n_tail;        /**< Nc: samples from a change until the tail has absorbed it */
+    double mean_delay;    /**< mean of the tail's impulse response [s] */
+    sms_real *table;      /**< caller buffer: 4 (Nc + 1) reals: E, F, x2, x2' at s = m Ts */
+    /* dynamic state */
+    sms_real target;      /**< latest valid target */
+    sms_real start;       /**< r at the start of the running segment */
+    sms_real goal;        /**< where the running segment ends */
+    sms_real r;           /**< first-stage output at the current sample */
+    sms_real velocity;    /**< r' (V) */
+    sms_real change;      /**< the last change of r' (dV) */
+    size_t seg_len;       /**< samples of the running segment (0: at rest) */
+    size_t seg_pos;       /**< samples elapsed in it */
+    size_t age;           /**< samples since the last change, saturated at Nc */
+} sms_generator;
+
+/** @brief Reals the generator's buffer needs: 4 (Nc + 1).
+ * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_SAMPLE_PERIOD, ::SMS_ERR_LIMIT, ::SMS_ERR_KIND,
+ *         ::SMS_ERR_WN, ::SMS_ERR_ZETA, ::SMS_ERR_ABOVE_NYQUIST, ::SMS_ERR_DURATION_BELOW_TS
+ *         (a tail stage shorter than Ts), ::SMS_ERR_TOO_LONG. */
+SMS_API sms_status sms_generator_buffer_size(const sms_generator_config *config, double Ts,
+                                             size_t *n_reals);
+/** @brief Validate, design the tail, fill the tables; the generator rests at 0.
+ * @return as sms_generator_buffer_size(), plus ::SMS_ERR_BUFFER_TOO_SMALL. Untouched on error. */
+SMS_API sms_status sms_generator_init(sms_generator *g, const sms_generator_config *config,
+                                      double Ts, sms_real *buffer, size_t n_reals);
+/** @brief Rest at `position` (target, output and first stage all there). */
+SMS_API void sms_generator_reset(sms_generator *g, sms_real position);
+/**
+ * @brief Advance one sample with the current target (the staircase value) and write
+ * out[0..3] = q, q', q'', q''' at this instant. A non-finite target is ignored (the previous
+ * target is kept), so the output stays bounded.
+ */
+SMS_API void sms_generator_step(sms_generator *g, sms_real target, sms_real out[4]);
+/** @brief Total duration of the tail Tc = T2 + T3 [s] (the output lags r by this at most). */
+SMS_API double sms_generator_tail_duration(const sms_generator *g);
+/** @brief Number of doubles sms_generator_save_state() writes (9). */
+SMS_API size_t sms_generator_state_count(const sms_generator *g);
+SMS_API void sms_generator_save_state(const sms_generator *g, double *dst);
+/** @brief Restore a saved state; ::SMS_ERR_STATE (nothing written) if n or a field is invalid. */
+SMS_API sms_status sms_generator_load_state(sms_generator *g, const double *src, size_t n);
+SMS_API sms_status sms_generator_check_state(const sms_generator *g, const double *src, size_t n);
+/** @brief Point a copied generator at a buffer holding the same tables. */
+SMS_API void sms_generator_rebind(sms_generator *g, sms_real *buffer);
+
+/* ------------------------------------------------------------------------------------------ */
+/* B-spline interpolating filters                                                              */
+/* ------------------------------------------------------------------------------------------ */
+
+#define SMS_BSPLINE_MAX_DEGREE 7
+#define SMS_BSPLINE_MAX_AXES 3
+
+/**
+ * @brief Uniform B-spline of degree p, knot spacing T = N Ts, on up to 3 axes (SPEC 3.7).
+ *
+ * Each axis is a chain of p rectangular stages of N samples fed with control points held
+ * for N samples each. Let d[k] be the response of one control point held N samples and
+ * filtered (support k = 0 .. (p+1)(N-1)), k0 = floor((p+1)(N-1)/2) its centre and
+ * c_m = d[k0 + m N]. For via-points Q_0 .. Q_{M-1} (M >= 2), sms_bspline_control_points()
+ * returns C_0 .. C_{M-1} with C_0 = Q_0, C_{M-1} = Q_{M-1} and interior points solving
+ * sum_m c_m C_{i-m} = Q_i, i = 1 .. M-2 (C_j = Q_0 for j < 0, Q_{M-1} for j > M-1).
+ * Feeding protocol (sample 0 = first sample after reset(Q_0)): input C_j on samples
+ * [(j-1) N, j N) for j = 1 .. M-2, then C_{M-1} forever. Then the output equals
+ * Q_0 up to sample 0, passes through Q_i at sample (i-1) N + k0 (sms_bspline_pass_sample()),
+ * and equals Q_{M-1} from sample (M-2) N + p (N-1) on.
+ * Its transfer function is P(z) * M_N(z)^p: zeros at w = k 2 pi / T for every k >= 1.
+ */
+typedef struct sms_bspline {
+    unsigned degree;       /**< p, 1 .. ::SMS_BSPLINE_MAX_DEGREE */
+    size_t n_axes;         /**< 1 .. ::SMS_BSPLINE_MAX_AXES */
+    size_t N;              /**< knot spacing in samples, N = round(T/Ts) >= 1 */
+    double Ts;
+    size_t k0;             /**< pass-through offset (see above) */
+    long m_first;          /**< first m with c_m != 0 (<= 0) */
+    size_t n_coeff;        /**< number of c_m stored */
+    double coeff[SMS_BSPLINE_MAX_DEGREE + 2];
+    sms_stage stages[SMS_BSPLINE_MAX_AXES * SMS_BSPLINE_MAX_DEGREE];
+    sms_chain chains[SMS_BSPLINE_MAX_AXES];
+} sms_bspline;
+
+/** @brief Reals needed: n_axes p times one rectangular stage of N samples.
+ * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_ORDER (degree or n_axes out of range),
+ *         ::SMS_ERR_SAMPLE_PERIOD, ::SMS_ERR_DURATION, ::SMS_ERR_DURATION_BELOW_TS, ::SMS_ERR_TOO_LONG. */
+SMS_API sms_status sms_bspline_buffer_size(unsigned degree, size_t n_axes, double T, double Ts,
+                                           size_t *n_reals);
+/** @brief Build the chains (knot spacing N = round(T/Ts) samples) at rest at 0 and compute
+ * c_m. Same statuses as sms_bspline_buffer_size() plus ::SMS_ERR_BUFFER_TOO_SMALL. */
+SMS_API sms_status sms_bspline_init(sms_bspline *b, unsigned degree, size_t n_axes, double T,
+                                    double Ts, sms_real *buffer, size_t n_reals);
+/** @brief Rest every axis at rest[axis] (n_axes values). */
+SMS_API void sms_bspline_reset(sms_bspline *b, const sms_real *rest);
+/** @brief One sample: in[axis] (the held control point) -> out[axis]; in == out allowed. */
+SMS_API void sms_bspline_step(sms_bspline *b, const sms_real *in, sms_real *out);
+/** @brief Doubles of work memory sms_bspline_control_points() needs for n_via via-points. */
+SMS_API size_t sms_bspline_work_size(const sms_bspline *b, size_t n_via);
+/**
+ * @brief Control points C (n_via rows of n_axes, row-major) from via-points Q (same layout).
+ * @param work    sms_bspline_work_size() doubles of scratch memory
+ * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_ORDER (n_via < 2), ::SMS_ERR_LIMIT (a
+ *         non-finite via-point), ::SMS_ERR_BUFFER_TOO_SMALL (n_work). control untouched on error.
+ */
+SMS_API sms_status sms_bspline_control_points(const sms_bspline *b, const double *via,
+                                              size_t n_via, double *control, double *work,
+                                              size_t n_work);
+/** @brief Sample (after reset) at which the output passes through via-point i, 1 <= i <= M-2:
+ * (i-1) N + k0. */
+SMS_API size_t sms_bspline_pass_sample(const sms_bspline *b, size_t i);
+/**
+ * @brief Shortest knot spacing that puts the first zero of sinc^p at or below every mode:
+ * T = N Ts with N = ceil(2 pi / (min wn Ts)) (T >= 2 pi / min wn, SPEC 3.7).
+ * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_ORDER (n = 0), ::SMS_ERR_WN, ::SMS_ERR_SAMPLE_PERIOD.
+ */
+SMS_API sms_status sms_bspline_period_for_modes(const double *wn, size_t n, double Ts, double *T);
+SMS_API size_t sms_bspline_state_count(const sms_bspline *b);
+SMS_API void sms_bspline_save_state(const sms_bspline *b, double *dst);
+SMS_API sms_status sms_bspline_load_state(sms_bspline *b, const double *src, size_t n);
+
+#ifdef __cplusplus
+}
+#endif
 #endif
