@@ -1,7 +1,41 @@
 /**
  * @file smoother.h
- * @brief FIR smoothers in O(1) recursive form: rectangular, harmonic, damped harmonic and
- * exponential (SPEC 3.1-3.4). OWNER: C smoothers work package (struct fields may change).
+ * @brief FIR smoothers in O(1), drift-free recursive form: rectangular, harmonic, damped
+ * harmonic and exponential (SPEC 3.1-3.4). OWNER: C smoothers work package.
+ *
+ * Every smoother is the FIR filter y[n] = sum_{i=0}^{L-1} h[i] x[n-i] with unit DC gain
+ * (sum h = 1) and the taps of docs/exact-mode.md (sms_smoother_taps() writes them). With
+ * r = e^{sigma Ts} and, for an integer N = T/Ts:
+ *
+ * | family (kind)              | taps h[i], i = 0..N-1            | transfer function |
+ * |----------------------------|----------------------------------|-------------------|
+ * | ::SMS_RECTANGULAR          | 1/N                              | (1/N)(1 - z^-N)/(1 - z^-1) |
+ * | ::SMS_HARMONIC             | sin(pi i/N)/sum                  | (1 - cos(pi/N))(z^-1 + z^-(N+1))/(1 - 2cos(pi/N) z^-1 + z^-2) |
+ * | ::SMS_DAMPED_HARMONIC      | r^i sin(pi i/N)/sum              | K (z^-1 + r^N z^-(N+1))/(1 - 2 r cos(pi/N) z^-1 + r^2 z^-2), K = (1 - 2r cos(pi/N) + r^2)/(1 + r^N) |
+ * | ::SMS_EXPONENTIAL          | r^i/sum                          | ((1 - r)/(1 - r^N))(1 - r^N z^-N)/(1 - r z^-1) |
+ *
+ * Timing (sms_stage_config::timing) when nu = T/Ts is not an integer (to 1e-9 relative):
+ * ::SMS_TIMING_PAPER uses N = max(1, round(nu)) and the table above (T' = N Ts);
+ * ::SMS_TIMING_EXACT samples the continuous response at i = 0..floor(nu), normalises, and adds
+ * a correction on the three taps floor(nu)-1 .. floor(nu)+1 (sum 0) so that the zero
+ * s* = sigma + j w* lies exactly on z* = e^{s* Ts}, w* = k 2 pi/T (rectangular, exponential)
+ * or k 3 pi/T (harmonic families); L = floor(nu) + 2.
+ *
+ * Realisation (O(1) per sample, no libm): the first M taps (M = N, or floor(nu) + 1) are
+ * Re or Im of c q^i with the pole q = r (rectangular, exponential) or q = r e^{j pi/nu}
+ * (harmonic families), computed by the complex first-order recursion
+ *   w[n] = q w[n-1] + c x[n] - c q^M x[n-M],   y[n] = Re/Im w[n] + sum_j d_j x[n-j],
+ * where d_j are the (at most 3) exact-timing corrections. The recursion cancels its own pole,
+ * so on its own it would accumulate rounding for ever (SPEC 5.2). Two copies of it run side by
+ * side, each restarted from zero every 2M samples, half a period apart; a copy restarted at
+ * t0 ignores inputs before t0 and is exact once it has seen M samples, and the output always
+ * comes from the copy that has run between M and 2M samples. The error against the exact
+ * convolution is therefore bounded independently of the run length (about M eps relative in
+ * the worst case, sqrt(M) eps typically), with no O(M) burst ever.
+ *
+ * Non-finite input: a NaN or Inf sample makes the output NaN while it is inside the ring or
+ * inside the recursion copy in use; at most 2M + 1 samples after it the output is again the
+ * exact convolution of the inputs since (the state is never poisoned for ever).
  */
 #ifndef SMOOTHSHAPER_SMOOTHER_H
 #define SMOOTHSHAPER_SMOOTHER_H
@@ -12,40 +46,117 @@
 extern "C" {
 #endif
 
-/** @brief Most numerator taps of the recursive form (head, tail and exact-timing corrections). */
-#define SMS_SMOOTHER_MAX_TAPS 10
+/** @brief Most exact-timing correction taps (on floor(nu)-1, floor(nu), floor(nu)+1). */
+#define SMS_SMOOTHER_MAX_CORRECTIONS 3
 
 /** @brief Instance of one smoother. Fields are public for inspection; change them only
  * through the functions below. */
 typedef struct sms_smoother {
     sms_kind kind;
-    size_t length;                          /**< impulse response length L [samples] */
-    size_t n_taps;                          /**< numerator taps used */
-    size_t tap_delay[SMS_SMOOTHER_MAX_TAPS];
-    sms_real tap_gain[SMS_SMOOTHER_MAX_TAPS];
-    sms_real a1, a2;                        /**< denominator 1 - a1 z^-1 - a2 z^-2 */
-    sms_real y1[2], y2[2];                  /**< past outputs of the two restarted copies */
-    size_t age[2];                          /**< samples since each copy restarted */
-    sms_real rest;                          /**< operating point set by reset */
-    sms_real *history;                      /**< caller buffer: past inputs (ring) */
-    size_t history_len;
-    size_t head;
+    size_t length;              /**< impulse response length L [samples] */
+    size_t window;              /**< M: taps from the recursion; ring length; copies restart every 2M */
+    sms_real pole_re, pole_im;  /**< q, the recursion's pole */
+    sms_real gain_re, gain_im;  /**< c, weight of the newest input */
+    sms_real tail_re, tail_im;  /**< -c q^M, weight of x[n-M] */
+    int imag_out;               /**< 1: output Im w (harmonic families); 0: Re w */
+    int real_only;              /**< 1: q, c, -c q^M are real (rectangular, exponential) */
+    size_t n_corrections;       /**< exact-timing correction taps in use (0 or 3) */
+    size_t correction_delay[SMS_SMOOTHER_MAX_CORRECTIONS];  /**< in 0..M */
+    sms_real correction_gain[SMS_SMOOTHER_MAX_CORRECTIONS];
+    sms_real w_re[2], w_im[2];  /**< state of the two restarted copies */
+    size_t age[2];              /**< samples each copy has consumed since its restart, 0..2M */
+    sms_real rest;              /**< operating point set by reset (subtracted on input) */
+    sms_real *history;          /**< caller buffer: the last M inputs minus rest (ring) */
+    size_t history_len;         /**< M */
+    size_t head;                /**< ring slot of x[n-M] (the oldest), 0..M-1 */
 } sms_smoother;
 
+/**
+ * @brief Validate a smoother config and report the buffer it needs.
+ * @param config  a smoother config (kind ::SMS_RECTANGULAR .. ::SMS_EXPONENTIAL)
+ * @param Ts      sample period [s], finite and > 0
+ * @param n_reals receives M, the ring length in ::sms_real (M = N, or floor(T/Ts) + 1 for
+ *                exact timing off the grid)
+ * @return ::SMS_OK or the status sms_smoother_init() would return for a large enough buffer.
+ */
 SMS_API sms_status sms_smoother_buffer_size(const sms_stage_config *config, double Ts, size_t *n_reals);
+
+/**
+ * @brief Validate, design and build a smoother at rest at 0. Design runs in double with libm
+ * (O(L) once); nothing is allocated.
+ *
+ * Checks, first failure wins (the order of the table in config.h):
+ * - ::SMS_ERR_NULL: f or config is NULL;
+ * - ::SMS_ERR_SAMPLE_PERIOD: Ts is NaN/Inf or <= 0;
+ * - ::SMS_ERR_KIND: config->kind is not a smoother, or config->timing is unknown;
+ * - ::SMS_ERR_DURATION: T is NaN/Inf or <= 0;
+ * - ::SMS_ERR_DURATION_BELOW_TS: T < Ts (beyond the 1e-9 integer test), or a harmonic family
+ *   with N < 2 samples (integer or paper timing: its only sample, sin(0), is zero);
+ * - ::SMS_ERR_SIGMA: damped families: sigma is NaN/Inf or > 0; also a sigma so negative that
+ *   a design constant overflows ::sms_real;
+ * - ::SMS_ERR_MULTIPLE: k < 1;
+ * - ::SMS_ERR_EVEN_MULTIPLE: k even for ::SMS_HARMONIC or ::SMS_DAMPED_HARMONIC;
+ * - ::SMS_ERR_ABOVE_NYQUIST: exact timing with T/Ts off the grid and the pinned zero w* at or
+ *   above pi/Ts (k 2 >= T/Ts rectangular/exponential, k 3 >= T/Ts harmonic families);
+ * - ::SMS_ERR_TOO_LONG: T/Ts + 2 exceeds min(2^52, SIZE_MAX/32);
+ * - ::SMS_ERR_NULL: buffer is NULL; ::SMS_ERR_BUFFER_TOO_SMALL: n_reals < M.
+ * @param f       instance to fill; untouched on error
+ * @param config  the stage description
+ * @param Ts      sample period [s]
+ * @param buffer  caller memory for the ring, at least sms_smoother_buffer_size() reals; the
+ *                smoother keeps this pointer (see sms_stage_rebind())
+ * @param n_reals length of buffer
+ */
 SMS_API sms_status sms_smoother_init(sms_smoother *f, const sms_stage_config *config, double Ts,
                                      sms_real *buffer, size_t n_reals);
+
+/**
+ * @brief Put the filter at rest at `rest`, as if every past input had been `rest`: the next
+ * outputs equal `rest` until the input changes. O(M) (clears the ring).
+ * @param rest finite; a NaN/Inf rest makes every output NaN until the next finite reset.
+ */
 SMS_API void sms_smoother_reset(sms_smoother *f, sms_real rest);
+
+/** @brief Filter one sample in place: *x = y[n] for input x[n]. O(1), no libm. */
 SMS_API void sms_smoother_step(sms_smoother *f, sms_real *x);
+
+/** @brief Filter n samples; in == out (in place) is allowed, other overlaps are not.
+ * Equal, bit for bit, to n calls of sms_smoother_step() and to any split into blocks. */
 SMS_API void sms_smoother_process(sms_smoother *f, const sms_real *in, sms_real *out, size_t n);
+
+/** @brief Number of doubles of the dynamic state: M + 8 (head, two ages, rest, the two
+ * complex copies, the ring). */
 SMS_API size_t sms_smoother_state_count(const sms_smoother *f);
+
+/** @brief Write the dynamic state, sms_smoother_state_count() doubles, into dst. Loading it
+ * into an identically configured smoother continues bit-exactly. */
 SMS_API void sms_smoother_save_state(const sms_smoother *f, double *dst);
-/** @brief Restore a saved state; validates first and writes nothing on error (::SMS_ERR_STATE). */
+
+/**
+ * @brief Restore a saved state; validates first and writes nothing on error.
+ * @return ::SMS_OK; ::SMS_ERR_NULL; ::SMS_ERR_STATE if n != sms_smoother_state_count(), the
+ * head is not an integer in [0, M), the ages are not integers in [0, 2M] that differ by M,
+ * rest is not finite, or a finite value lies outside the range of ::sms_real (NaN/Inf in the
+ * ring and the copies are accepted: they are what a non-finite input leaves behind).
+ */
 SMS_API sms_status sms_smoother_load_state(sms_smoother *f, const double *src, size_t n);
+
 /** @brief The validation of sms_smoother_load_state() alone: writes nothing. */
 SMS_API sms_status sms_smoother_check_state(const sms_smoother *f, const double *src, size_t n);
-/** @brief Write the L impulse-response taps (normalised, DC gain 1) into taps[0..L-1]. */
+
+/**
+ * @brief Write the L impulse-response taps (normalised, DC gain 1) of a config, computed in
+ * double, into taps[0..L-1]; the instance realises exactly these (to rounding).
+ * @param n_taps length of taps; must be >= L (L = N, or floor(T/Ts) + 2 for exact timing off
+ *               the grid); entries past L are left alone
+ * @return ::SMS_OK, ::SMS_ERR_NULL (config or taps), ::SMS_ERR_BUFFER_TOO_SMALL (n_taps < L),
+ *         or a validation status of sms_smoother_init().
+ */
 SMS_API sms_status sms_smoother_taps(const sms_stage_config *config, double Ts, double *taps, size_t n_taps);
+
+/** @brief Impulse-response length L of a config (the n_taps that sms_smoother_taps() needs).
+ * @return ::SMS_OK, ::SMS_ERR_NULL, or a validation status of sms_smoother_init(). */
+SMS_API sms_status sms_smoother_length(const sms_stage_config *config, double Ts, size_t *length);
 
 #ifdef __cplusplus
 }

@@ -1,0 +1,231 @@
+/* Design of the FIR smoothers (docs/exact-mode.md): validation, taps, recursive constants.
+ * Runs once per init in double with libm; nothing here is on the per-sample path. */
+#include <float.h>
+#include <math.h>
+#include <stdint.h>
+#include "smoother_design.h"
+
+#ifdef SMS_USE_FLOAT
+#define SMS_REAL_MAX FLT_MAX
+#else
+#define SMS_REAL_MAX DBL_MAX
+#endif
+
+#define SMS_PI 3.14159265358979323846
+
+/* docs/exact-mode.md: nu is the integer round(nu) when within 1e-9 relative. */
+#define SMS_GRID_TOLERANCE 1e-9
+
+/* sin(pi x) and cos(pi x) for x >= 0, exact at multiples of 1/2 (sin(pi) is 0, not 1e-16),
+ * so that the integer-N taps vanish where the sampled sine does. */
+static double sin_pi(double x)
+{
+    double sign = 1.0;
+    x = fmod(x, 2.0);
+    if (x > 1.0) {
+        x -= 1.0;
+        sign = -1.0;
+    }
+    if (x > 0.5)
+        x = 1.0 - x;
+    return sign * sin(SMS_PI * x);
+}
+
+static double cos_pi(double x)
+{
+    double sign = 1.0;
+    x = fmod(x, 2.0);
+    if (x > 1.0)
+        x = 2.0 - x;
+    if (x > 0.5) {
+        x = 1.0 - x;
+        sign = -1.0;
+    }
+    if (x > 0.25)
+        return sign * sin(SMS_PI * (0.5 - x));
+    return sign * cos(SMS_PI * x);
+}
+
+/* Neumaier's compensated sum: the normalisation and G(z*) then carry no O(N eps) error. */
+typedef struct { double sum, carry; } exact_sum;
+
+static void sum_add(exact_sum *s, double v)
+{
+    double t = s->sum + v;
+    if (fabs(s->sum) >= fabs(v))
+        s->carry += (s->sum - t) + v;
+    else
+        s->carry += (v - t) + s->sum;
+    s->sum = t;
+}
+
+static int on_grid(double nu, double *rounded)
+{
+    double n = floor(nu + 0.5);
+    *rounded = n;
+    return fabs(nu - n) <= SMS_GRID_TOLERANCE * (nu > 1.0 ? nu : 1.0);
+}
+
+static int describe(sms_kind kind, sms_smoother_family *family)
+{
+    switch (kind) {
+    case SMS_RECTANGULAR: sms_rectangular_describe(family); return 1;
+    case SMS_HARMONIC: sms_harmonic_describe(family); return 1;
+    case SMS_DAMPED_HARMONIC: sms_damped_harmonic_describe(family); return 1;
+    case SMS_EXPONENTIAL: sms_exponential_describe(family); return 1;
+    default: return 0;
+    }
+}
+
+/* Unnormalised base tap: e^{decay i} (sin(pi i/nu) for half-sine families). */
+static double base_tap(const sms_smoother_design *d, size_t i)
+{
+    double g = exp(d->decay * (double)i);
+    if (d->family.half_sine)
+        g *= sin_pi((double)i / d->nu);
+    return g;
+}
+
+static int fits_real(double v)
+{
+    return fabs(v) <= SMS_REAL_MAX; /* false for NaN and Inf too */
+}
+
+/* Exact timing: correction on taps N0-1, N0, N0+1 with sum 0 that cancels G(z*). */
+static int solve_correction(sms_smoother_design *d, size_t n0, double zero_turns_per_sample)
+{
+    const double a = zero_turns_per_sample; /* w* Ts / pi, in (0, 1) */
+    exact_sum g_re = {0.0, 0.0}, g_im = {0.0, 0.0};
+    double u_re, u_im, v_mag, v_re, v_im, r_re, r_im, q_re, q_im, den, x_re, x_im;
+    double d0, d1, d2;
+    size_t i;
+    /* G(z*) = sum g[i] z*^-i; the damping of g and of z*^-i cancel exactly. */
+    for (i = 0; i <= n0; ++i) {
+        double s = d->family.half_sine ? sin_pi((double)i / d->nu) : 1.0;
+        sum_add(&g_re, s * cos_pi(a * (double)i));
+        sum_add(&g_im, -s * sin_pi(a * (double)i));
+    }
+    /* u = 1/z*; with v = u^(N0-1): d0 + d1 u + d2 u^2 = R = -G/v and d0 + d1 + d2 = 0, so
+     * (u - 1)(d1 + d2 (u + 1)) = R: d1 + d2 (u + 1) = Q = R/(u - 1), two real equations. */
+    u_re = exp(-d->decay) * cos_pi(a);
+    u_im = -exp(-d->decay) * sin_pi(a);
+    v_mag = exp(-d->decay * (double)(n0 - 1));
+    v_re = v_mag * cos_pi(a * (double)(n0 - 1));
+    v_im = -v_mag * sin_pi(a * (double)(n0 - 1));
+    x_re = -(g_re.sum + g_re.carry) * d->gain;
+    x_im = -(g_im.sum + g_im.carry) * d->gain;
+    den = v_re * v_re + v_im * v_im;
+    r_re = (x_re * v_re + x_im * v_im) / den;
+    r_im = (x_im * v_re - x_re * v_im) / den;
+    den = (u_re - 1.0) * (u_re - 1.0) + u_im * u_im;
+    q_re = (r_re * (u_re - 1.0) + r_im * u_im) / den;
+    q_im = (r_im * (u_re - 1.0) - r_re * u_im) / den;
+    d2 = q_im / u_im;
+    d1 = q_re - d2 * (u_re + 1.0);
+    d0 = -d1 - d2;
+    d->n_corrections = 3;
+    d->correction_delay[0] = n0 - 1;
+    d->correction_delay[1] = n0;
+    d->correction_delay[2] = n0 + 1;
+    d->correction_gain[0] = d0;
+    d->correction_gain[1] = d1;
+    d->correction_gain[2] = d2;
+    return fits_real(d0) && fits_real(d1) && fits_real(d2);
+}
+
+sms_status sms_smoother_design_make(const sms_stage_config *config, double Ts,
+                                    sms_smoother_design *design)
+{
+    sms_smoother_design d;
+    double nu, rounded, sigma = 0.0, max_len, pole_mag, tail_mag;
+    int integer;
+    exact_sum total = {0.0, 0.0};
+    size_t i;
+
+    if (config == NULL || design == NULL)
+        return SMS_ERR_NULL;
+    if (!(isfinite(Ts) && Ts > 0.0))
+        return SMS_ERR_SAMPLE_PERIOD;
+    if (!describe(config->kind, &d.family))
+        return SMS_ERR_KIND;
+    if (config->timing != SMS_TIMING_EXACT && config->timing != SMS_TIMING_PAPER)
+        return SMS_ERR_KIND;
+    if (!(isfinite(config->T) && config->T > 0.0))
+        return SMS_ERR_DURATION;
+    nu = config->T / Ts;
+    integer = on_grid(nu, &rounded);
+    if (nu < 1.0 && !integer)
+        return SMS_ERR_DURATION_BELOW_TS;
+    if (d.family.damped) {
+        if (!(isfinite(config->sigma) && config->sigma <= 0.0))
+            return SMS_ERR_SIGMA;
+        sigma = config->sigma;
+    }
+    if (config->k < 1u)
+        return SMS_ERR_MULTIPLE;
+    if (d.family.half_sine && config->k % 2u == 0u)
+        return SMS_ERR_EVEN_MULTIPLE;
+    /* Exact timing off the grid pins w* = k zero_turns pi/T: it must lie below pi/Ts. */
+    if (!integer && config->timing == SMS_TIMING_EXACT
+        && (double)config->k * d.family.zero_turns >= nu)
+        return SMS_ERR_ABOVE_NYQUIST;
+    /* Lengths, ring indices and ages (up to 2L) must be exact in size_t and in a double. */
+    max_len = (double)(SIZE_MAX / (4u * sizeof(double)));
+    if (max_len > 4503599627370496.0)
+        max_len = 4503599627370496.0; /* 2^52 */
+    if (!(nu + 2.0 <= max_len))
+        return SMS_ERR_TOO_LONG;
+
+    d.decay = sigma * Ts;
+    d.n_corrections = 0;
+    if (integer || config->timing == SMS_TIMING_PAPER) {
+        if (rounded < 1.0)
+            rounded = 1.0;
+        d.nu = rounded;
+        d.window = (size_t)rounded;
+        d.length = d.window;
+    } else {
+        d.nu = nu;
+        d.window = (size_t)floor(nu) + 1u;
+        d.length = d.window + 1u;
+    }
+    /* One sample of sin(pi t/T) is its zero at t = 0: the harmonic families need N >= 2. */
+    if (d.family.half_sine && d.window < 2u)
+        return SMS_ERR_DURATION_BELOW_TS;
+
+    for (i = 0; i < d.window; ++i)
+        sum_add(&total, base_tap(&d, i));
+    d.gain = 1.0 / (total.sum + total.carry);
+    pole_mag = exp(d.decay);
+    tail_mag = exp(d.decay * (double)d.window);
+    if (d.family.half_sine) {
+        d.pole_re = pole_mag * cos_pi(1.0 / d.nu);
+        d.pole_im = pole_mag * sin_pi(1.0 / d.nu);
+        d.tail_re = -d.gain * tail_mag * cos_pi((double)d.window / d.nu);
+        d.tail_im = -d.gain * tail_mag * sin_pi((double)d.window / d.nu);
+    } else {
+        d.pole_re = pole_mag;
+        d.pole_im = 0.0;
+        d.tail_re = -d.gain * tail_mag;
+        d.tail_im = 0.0;
+    }
+    /* Only an extreme sigma (the response decays below the range of sms_real within the
+     * filter) can make a constant overflow. */
+    if (!(fits_real(d.gain) && fits_real(d.tail_re) && fits_real(d.tail_im)))
+        return SMS_ERR_SIGMA;
+    if (d.length > d.window
+        && !solve_correction(&d, d.window - 1u, (double)config->k * d.family.zero_turns / nu))
+        return SMS_ERR_SIGMA;
+    *design = d;
+    return SMS_OK;
+}
+
+double sms_smoother_design_tap(const sms_smoother_design *design, size_t i)
+{
+    double h = i < design->window ? design->gain * base_tap(design, i) : 0.0;
+    size_t j;
+    for (j = 0; j < design->n_corrections; ++j)
+        if (design->correction_delay[j] == i)
+            h += design->correction_gain[j];
+    return h;
+}
