@@ -1,0 +1,169 @@
+"""Frequency-domain analysis of stages and chains: responses, residual vibration, PRV,
+insensitivity and trajectory spectra. Pure NumPy/SciPy on top of ``smoothshaper.reference``.
+
+Definitions (SPEC 2 and 6):
+
+* chain transfer ``H(s) = prod_k H_k(s)``; continuous filters when ``Ts`` is None, else the
+  discrete filters evaluated at ``z = e^{s Ts}`` (``frequency_response``: ``s = j w``);
+* a mode ``(wn, zeta)`` has the pole ``p = -zeta wn + j wn sqrt(1-zeta^2)``;
+* ``residual_vibration`` = amplitude of the oscillation left on the mode by a filtered unit
+  step divided by that of the unfiltered step = ``|H(p)|`` (discrete: ``|H_d(e^{p Ts})|``,
+  the command held by a zero-order hold); ``prv`` = 100 times that (seed 003, footnote 2);
+* ``insensitivity``: the band of natural frequencies around ``wn_hat`` where the PRV stays at or
+  below ``100 * tolerance`` (damping fixed), and its width divided by ``wn_hat`` (the
+  nondimensional insensitivity of Singhose et al.).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .reference import continuous_transfer, discrete_transfer
+from .reference._checks import as_stage_list, check_Ts
+
+
+def transfer(stages, s, *, Ts: float | None = None) -> np.ndarray:
+    """Chain transfer at complex ``s`` [1/s] (any shape): continuous, or discrete at e^{s Ts}."""
+    stages = as_stage_list(stages)
+    s = np.asarray(s, dtype=complex)
+    out = np.ones(s.shape, dtype=complex)
+    if Ts is None:
+        for stage in stages:
+            out *= continuous_transfer(stage, s)
+        return out
+    Ts = check_Ts(Ts)
+    z = np.exp(s * Ts)
+    for stage in stages:
+        out *= discrete_transfer(stage, z, Ts=Ts)
+    return out
+
+
+def frequency_response(stages, w, *, Ts: float | None = None) -> np.ndarray:
+    """Complex response of the chain at angular frequencies ``w`` [rad/s]."""
+    w = np.asarray(w, dtype=float)
+    if not np.all(np.isfinite(w)):
+        raise ValueError("w must be finite")
+    return transfer(stages, 1j * w, Ts=Ts)
+
+
+def mode_poles(wn, zeta) -> np.ndarray:
+    """``p = -zeta wn + j wn sqrt(1 - zeta^2)`` (broadcast); ValueError naming wn or zeta."""
+    wn = np.asarray(wn, dtype=float)
+    zeta = np.asarray(zeta, dtype=float)
+    if not np.all(np.isfinite(wn)) or np.any(wn <= 0):
+        raise ValueError("wn must be finite and > 0 rad/s")
+    if not np.all(np.isfinite(zeta)) or np.any(zeta < 0) or np.any(zeta >= 1):
+        raise ValueError("zeta must be in [0, 1)")
+    return -zeta * wn + 1j * wn * np.sqrt(1.0 - zeta * zeta)
+
+
+def residual_vibration(stages, *, wn, zeta=0.0, Ts: float | None = None) -> np.ndarray:
+    """``|H(p)|`` for the modes (wn [rad/s], zeta), broadcast over array arguments."""
+    return np.abs(transfer(stages, mode_poles(wn, zeta), Ts=Ts))
+
+
+def prv(stages, *, wn, zeta=0.0, Ts: float | None = None) -> np.ndarray:
+    """Percent residual vibration, ``100 |H(p)|``."""
+    return 100.0 * residual_vibration(stages, wn=wn, zeta=zeta, Ts=Ts)
+
+
+def prv_curve(stages, *, wn_hat: float, ratio, zeta=0.0, Ts: float | None = None) -> np.ndarray:
+    """PRV at ``wn = ratio * wn_hat`` (the curves of seed 000 Fig. 4)."""
+    wn_hat = _positive("wn_hat", wn_hat)
+    return prv(stages, wn=np.asarray(ratio, dtype=float) * wn_hat, zeta=zeta, Ts=Ts)
+
+
+def prv_surface(stages, *, wn, zeta, Ts: float | None = None) -> np.ndarray:
+    """PRV on the grid ``zeta x wn``: result[i, j] is at (zeta[i], wn[j])."""
+    wn = np.atleast_1d(np.asarray(wn, dtype=float))
+    zeta = np.atleast_1d(np.asarray(zeta, dtype=float))
+    return prv(stages, wn=wn[None, :], zeta=zeta[:, None], Ts=Ts)
+
+
+@dataclass(frozen=True)
+class Insensitivity:
+    """Band ``[low, high]`` [rad/s] around wn_hat where PRV <= 100 tolerance."""
+    low: float
+    high: float
+    width: float
+    relative_width: float
+
+
+def insensitivity(stages, *, wn_hat: float, zeta: float = 0.0, tolerance: float = 0.05,
+                  Ts: float | None = None, span=(0.05, 4.0), points: int = 8001) -> Insensitivity:
+    """The connected band of ``wn`` containing ``wn_hat`` where ``residual <= tolerance``.
+
+    Searched on ``points`` ratios ``wn/wn_hat`` spanning ``span``, edges refined by bisection
+    to 1e-12. ``tolerance`` gets a relative slack of 1e-9 so that a design whose residual at
+    wn_hat equals the tolerance by construction (EI) counts as inside. Width 0 if the
+    residual at wn_hat exceeds the tolerance; ValueError if the band reaches ``span``.
+    """
+    from scipy.optimize import brentq
+
+    wn_hat = _positive("wn_hat", wn_hat)
+    if not 0 < tolerance < 1:
+        raise ValueError(f"tolerance must be in (0, 1), got {tolerance!r}")
+    lo_r, hi_r = (float(v) for v in span)
+    if not 0 < lo_r < 1 < hi_r:
+        raise ValueError(f"span must satisfy 0 < span[0] < 1 < span[1], got {span!r}")
+    limit = tolerance * (1 + 1e-9)
+
+    def excess(r):
+        return residual_vibration(stages, wn=r * wn_hat, zeta=zeta, Ts=Ts) - limit
+
+    if excess(1.0) > 0:
+        return Insensitivity(wn_hat, wn_hat, 0.0, 0.0)
+    r = np.linspace(lo_r, hi_r, points)
+    inside = excess(r) <= 0
+    j = int(np.argmin(np.abs(r - 1.0)))
+    if not inside[j]:                       # the grid point missed a narrow band: use 1.0
+        r, inside = np.insert(r, j, 1.0), np.insert(inside, j, True)
+    lo = j
+    while lo > 0 and inside[lo - 1]:
+        lo -= 1
+    hi = j
+    while hi < r.size - 1 and inside[hi + 1]:
+        hi += 1
+    if lo == 0 or hi == r.size - 1:
+        raise ValueError(f"span {span!r} is too narrow: the band reaches its edge")
+    left = brentq(lambda x: float(excess(x)), r[lo - 1], r[lo], xtol=1e-12)
+    right = brentq(lambda x: float(excess(x)), r[hi], r[hi + 1], xtol=1e-12)
+    return Insensitivity(left * wn_hat, right * wn_hat, (right - left) * wn_hat, right - left)
+
+
+def step_spectrum(stages, w, *, h: float = 1.0, derivative: int = 1,
+                  Ts: float | None = None) -> np.ndarray:
+    """Fourier transform of the ``derivative``-th time derivative (>= 1) of the chain's
+    response to a step of height ``h``: ``h (jw)^(d-1) H(jw)``; discrete (Ts given): the
+    d-th backward difference over Ts of the sampled response, times Ts,
+    ``h ((1 - e^{-jw Ts})/Ts)^(d-1) H_d(e^{jw Ts})``."""
+    if isinstance(derivative, bool) or int(derivative) != derivative or derivative < 1:
+        raise ValueError(f"derivative must be an integer >= 1, got {derivative!r}")
+    w = np.asarray(w, dtype=float)
+    H = frequency_response(stages, w, Ts=Ts)
+    if Ts is None:
+        d = 1j * w
+    else:
+        d = (1 - np.exp(-1j * w * Ts)) / Ts
+    return h * d ** (int(derivative) - 1) * H
+
+
+def signal_spectrum(x, *, Ts: float) -> tuple[np.ndarray, np.ndarray]:
+    """``(w, X)``: ``X(w) = Ts * sum_n x[n] e^{-j w n Ts}`` on the rfft grid (w in rad/s),
+    the sampled approximation of the continuous Fourier transform of x."""
+    Ts = check_Ts(Ts)
+    x = np.asarray(x, dtype=float)
+    if x.ndim != 1 or not np.all(np.isfinite(x)):
+        raise ValueError("x must be a one-dimensional array of finite samples")
+    X = Ts * np.fft.rfft(x)
+    w = 2 * math.pi * np.fft.rfftfreq(x.size, Ts)
+    return w, X
+
+
+def _positive(name: str, value) -> float:
+    v = float(value)
+    if not math.isfinite(v) or v <= 0:
+        raise ValueError(f"{name} must be finite and > 0, got {value!r}")
+    return v
