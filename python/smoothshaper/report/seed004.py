@@ -26,7 +26,7 @@ import numpy as np
 from .. import stages as st
 from ..reference.filtering import discrete_transfer
 from ..reference.shapers import shaper_impulses
-from . import _lib
+from .. import analysis
 from .claims import Claim, Section
 from .figures import COLORS, figure
 
@@ -89,12 +89,12 @@ def build(fig_dir=None) -> Section:
                   "closed form DT = 2 pi/wd", unit="s"))
     for name, stage in (("zv", zv), ("zvd", zvd)):
         sec.add(Claim(f"{name}.nominal", f"{name.upper()} PRV at the nominal mode",
-                      float(_lib.prv([stage], WN, XI)), 0.0, 1e-10, "exact cancellation", unit="%"))
+                      float(analysis.prv([stage], wn=WN, zeta=XI)), 0.0, 1e-10, "exact cancellation", unit="%"))
 
     rows, worst = [], {}
     for wn, xi in error_corners():
-        p_zv = float(_lib.prv([zv], wn, xi))
-        p_zvd = float(_lib.prv([zvd], wn, xi))
+        p_zv = float(analysis.prv([zv], wn=wn, zeta=xi))
+        p_zvd = float(analysis.prv([zvd], wn=wn, zeta=xi))
         tag = f"wn={wn:g},xi={xi:g}"
         sec.add(Claim(f"zv.err.{tag}", f"ZV PRV, true mode wn = {wn:g}, xi = {xi:g}", p_zv,
                       prv_closed_form(k_zv, t_zv, wn, xi), 1e-9, "closed form", unit="%"),
@@ -209,7 +209,7 @@ def _figures(sec, fig_dir, zv, zvd):
                 sec.figures) as (f, ax):
         for stage, name in ((zv, "ZV"), (zvd, "ZVD")):
             for xi, ls in ((XI, "-"), (1.2 * XI, "--")):
-                ax.plot(r, _lib.prv([stage], r * WN, xi), ls, color=COLORS[stage.kind],
+                ax.plot(r, analysis.prv([stage], wn=r * WN, zeta=xi), ls, color=COLORS[stage.kind],
                         label=f"{name}, true xi = {xi:g}")
         ax.axvline(1.1, color="0.5", lw=0.8)
         ax.set_xlabel("true wn / design wn [-]")
@@ -218,7 +218,7 @@ def _figures(sec, fig_dir, zv, zvd):
     with figure(fig_dir / "notch.png", f"Seed 004: notch for wz = {SERVO_WZ:g} rad/s, xi1 = "
                 f"{SERVO_XI:g}, xi2 = {NOTCH_POLE_XI:g} at Ts = {NOTCH_TS * 1e3:g} ms: continuous, "
                 "pre-warped Tustin, pole-zero matched, and plain Tustin", sec.figures) as (f, ax):
-        g = abs(_lib.transfer([st.notch(wn=SERVO_WZ, zeta=SERVO_XI, pole_zeta=NOTCH_POLE_XI)],
+        g = abs(analysis.transfer([st.notch(wn=SERVO_WZ, zeta=SERVO_XI, pole_zeta=NOTCH_POLE_XI)],
                               1j * w))
         ax.plot(w, 20 * np.log10(g), color="k", label="continuous")
         for disc, color in (("tustin", "tab:blue"), ("matched", "tab:red")):
