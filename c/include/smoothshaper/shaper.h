@@ -1,7 +1,35 @@
 /**
  * @file shaper.h
  * @brief Input shapers: ZV^n (ZV, ZVD, ZVDD, ...), EI, two-hump EI, MZV (SPEC 3.5).
- * OWNER: C shapers work package (struct fields may change).
+ *
+ * A shaper is a sparse FIR filter y[n] = sum_k g_k x[n - d_k] (k = 0..n_taps-1) with unit DC
+ * gain (sum g_k = 1). Work per sample is O(n_taps) <= ::SMS_SHAPER_MAX_TAPS; the caller owns the
+ * delay line (sms_shaper_buffer_size() reals = the impulse-response length L = max d_k + 1).
+ *
+ * Mode: wn [rad/s], zeta; wd = wn sqrt(1 - zeta^2), Td = 2 pi / wd, p = -zeta wn + j wd.
+ * Continuous designs (amplitudes A_m, sum 1, at times t_m), sources cited in shaper_designs.c:
+ * - ZV^n, n = 1 (ZV), 2 (ZVD), 3 (ZVDD) or sms_stage_config::order (ZVN):
+ *   A_m = C(n,m) K^m / (1+K)^n at t_m = m Td/2, m = 0..n, K = exp(-zeta pi / sqrt(1-zeta^2));
+ *   H_c(s) = ((1 + K e^{-s Td/2})/(1+K))^n has a zero of multiplicity n at p.
+ * - EI (one hump, tolerance V = sms_stage_config::tolerance): undamped closed form
+ *   [(1+V)/4, (1-V)/2, (1+V)/4] at [0, Td/2, Td]: |H(j wn)| = V at the top of the hump, zeros on
+ *   either side. zeta > 0: amplitudes weighted by K^m (as Klipper and the NumPy reference), so
+ *   H_c(sigma + j w) = H_undamped(j w)/S with S = sum_m B_m K^m: hump and zeros kept along
+ *   Re s = sigma; |H_c(p)| = V/S.
+ * - EI2 (two-hump EI): 4 impulses at m Td/2, exact zero at the mode, two humps of height V
+ *   (undamped closed form; for zeta > 0 the amplitudes are weighted by K^m, which keeps the
+ *   exact zero at p).
+ * - MZV: K' = exp(-0.75 zeta pi / sqrt(1-zeta^2)), [1 - 1/sqrt2, (sqrt2 - 1) K', (1 - 1/sqrt2) K'^2]
+ *   normalised, at [0, 0.375 Td, 0.75 Td]; exact zero at p.
+ *
+ * Discretisation (docs/exact-mode.md): ::SMS_TIMING_PAPER puts each impulse at sample
+ * round(t_m/Ts). ::SMS_TIMING_EXACT splits an off-grid impulse linearly between its two
+ * neighbouring samples and adds the least-norm correction on {0} and the split samples so that
+ * H(1) = 1 and H(e^{p Ts}) = H_c(p) (0 for ZV^n, EI2, MZV; V-sized for EI); ZV^n is the n-fold
+ * convolution of the exact discrete ZV (zero of multiplicity n at e^{p Ts}).
+ *
+ * Non-finite input: it enters the delay line like any sample, so the output is non-finite for
+ * exactly L samples and then clean again (a FIR cannot be poisoned for ever).
  */
 #ifndef SMOOTHSHAPER_SHAPER_H
 #define SMOOTHSHAPER_SHAPER_H
@@ -12,36 +40,79 @@
 extern "C" {
 #endif
 
-/** @brief Most non-zero taps of a discrete shaper (ZV^8 split over neighbouring samples). */
-#define SMS_SHAPER_MAX_TAPS 24
+/** @brief Most impulses of a continuous shaper design (ZV^n with n = ::SMS_SHAPER_MAX_ORDER). */
+#define SMS_SHAPER_MAX_IMPULSES (SMS_SHAPER_MAX_ORDER + 1)
 
+/** @brief Most non-zero taps of a discrete shaper: the exact ZV^n is the n-fold convolution of
+ * a 3-tap ZV (delays 0, m, m+1), i.e. at most (n+1)(n+2)/2 = 45 distinct delays for n = 8. */
+#define SMS_SHAPER_MAX_TAPS 45
+
+/** @brief Instance of one shaper. Fields are public for inspection; change them only through
+ * the functions below. */
 typedef struct sms_shaper {
     sms_kind kind;
-    size_t length;                        /**< impulse response length L [samples] */
-    size_t n_taps;
-    size_t tap_delay[SMS_SHAPER_MAX_TAPS];
-    sms_real tap_gain[SMS_SHAPER_MAX_TAPS];
-    sms_real rest;
-    sms_real *history;
-    size_t history_len;
-    size_t head;
+    size_t length;                        /**< impulse response length L = max delay + 1 [samples] */
+    size_t n_taps;                        /**< taps used, 1..::SMS_SHAPER_MAX_TAPS */
+    size_t tap_delay[SMS_SHAPER_MAX_TAPS];/**< increasing delays d_k [samples] */
+    sms_real tap_gain[SMS_SHAPER_MAX_TAPS];/**< g_k, sum 1 */
+    sms_real rest;                        /**< operating point set by the last reset */
+    sms_real *history;                    /**< caller buffer: the last L inputs (ring) */
+    size_t history_len;                   /**< = length */
+    size_t head;                          /**< ring index the next input is written to */
 } sms_shaper;
 
+/**
+ * @brief Reals of delay line a shaper of this config needs at period Ts (= its length L).
+ * @param config  kind ::SMS_SHAPER_ZV .. ::SMS_SHAPER_MZV; fields see config.h
+ * @param Ts      sample period [s], finite, > 0
+ * @param n_reals receives L
+ * @return ::SMS_OK, ::SMS_ERR_NULL, then the first failing check in this order:
+ *         ::SMS_ERR_KIND (not a shaper kind, or unknown timing), ::SMS_ERR_SAMPLE_PERIOD,
+ *         ::SMS_ERR_WN (NaN/Inf or <= 0), ::SMS_ERR_ABOVE_NYQUIST (wn >= pi/Ts),
+ *         ::SMS_ERR_ZETA (NaN/Inf or outside [0,1)), ::SMS_ERR_ORDER (ZVN: order outside
+ *         1..::SMS_SHAPER_MAX_ORDER), ::SMS_ERR_TOLERANCE (EI, EI2: outside (0,1)),
+ *         ::SMS_ERR_TOO_LONG (L above 2^40 samples: state indices must stay exact doubles).
+ *         The fields T, sigma, k and notch_pole_zeta are not read.
+ */
 SMS_API sms_status sms_shaper_buffer_size(const sms_stage_config *config, double Ts, size_t *n_reals);
+/**
+ * @brief Validate and build a shaper at rest at 0.
+ * @param f       instance; untouched on error
+ * @param buffer  caller memory of n_reals >= L reals (the delay line); kept by f
+ * @return as sms_shaper_buffer_size(), or ::SMS_ERR_NULL (f, config or buffer NULL),
+ *         ::SMS_ERR_BUFFER_TOO_SMALL (n_reals < L).
+ */
 SMS_API sms_status sms_shaper_init(sms_shaper *f, const sms_stage_config *config, double Ts,
                                    sms_real *buffer, size_t n_reals);
+/** @brief Rest at `rest`: as if the input had been `rest` forever (the output is then `rest`). */
 SMS_API void sms_shaper_reset(sms_shaper *f, sms_real rest);
+/** @brief One sample in place: x <- sum_k g_k x[n - d_k]. */
 SMS_API void sms_shaper_step(sms_shaper *f, sms_real *x);
+/** @brief n samples; in == out allowed, other overlaps not. Same result as n calls of step. */
 SMS_API void sms_shaper_process(sms_shaper *f, const sms_real *in, sms_real *out, size_t n);
+/** @brief Doubles in a saved state: L + 3 (kind, L, head, the delay line in ring order). */
 SMS_API size_t sms_shaper_state_count(const sms_shaper *f);
+/** @brief Write sms_shaper_state_count() doubles to dst. */
 SMS_API void sms_shaper_save_state(const sms_shaper *f, double *dst);
-/** @brief Restore a saved state; validates first and writes nothing on error (::SMS_ERR_STATE). */
+/** @brief Restore a saved state; validates first and writes nothing on error (::SMS_ERR_STATE:
+ * wrong n, kind, length or head; ::SMS_ERR_NULL). */
 SMS_API sms_status sms_shaper_load_state(sms_shaper *f, const double *src, size_t n);
 /** @brief The validation of sms_shaper_load_state() alone: writes nothing. */
 SMS_API sms_status sms_shaper_check_state(const sms_shaper *f, const double *src, size_t n);
-/** @brief The continuous design: amplitudes (sum 1) and times [s]; *count receives how many. */
+/**
+ * @brief The continuous design: amplitudes (sum 1) and times [s] in increasing order.
+ * @param capacity room in amplitudes and times; ::SMS_SHAPER_MAX_IMPULSES always suffices
+ * @param count    receives the number of impulses (n+1 for ZV^n, 3 for EI and MZV, 4 for EI2)
+ * @return ::SMS_OK, ::SMS_ERR_NULL, the config's status (checked as for Ts -> 0, i.e. without
+ *         the Nyquist and length checks), ::SMS_ERR_BUFFER_TOO_SMALL (capacity < count).
+ */
 SMS_API sms_status sms_shaper_impulses(const sms_stage_config *config, double *amplitudes,
                                        double *times, size_t capacity, size_t *count);
+/**
+ * @brief The realised discrete impulse response h[0..L-1] (double, whatever the build
+ * precision), L from sms_shaper_buffer_size(). Zeros between the sparse taps are written.
+ * @return as sms_shaper_buffer_size(), or ::SMS_ERR_BUFFER_TOO_SMALL (n_taps < L).
+ */
 SMS_API sms_status sms_shaper_taps(const sms_stage_config *config, double Ts, double *taps, size_t n_taps);
 
 #ifdef __cplusplus
