@@ -98,13 +98,12 @@ def _exact_taps(stage: Stage, nu: float, Ts: float) -> np.ndarray:
     support = np.arange(N0 - 1, N0 + 2)
     C = np.vstack([np.ones(3), zinv[support].real, zinv[support].imag])
     rhs = np.array([0.0, -G.real, -G.imag])
-    # The three columns are 1, z*^-i at consecutive i: independent unless z* is real, i.e.
-    # the pinned zero sits at 0 or pi/Ts (a duration of 2k or fewer samples per period).
-    if np.linalg.cond(C) > 1e10:
+    # The columns 1, z*^-i at three consecutive i are independent unless z* is real, i.e.
+    # unless the pinned zero sits on a multiple of pi/Ts.
+    if abs(math.sin(pinned_frequency(stage) * Ts)) < 1e-9:
         raise ValueError(
-            f"T = {stage.T!r} s is too short for exact timing at Ts = {Ts!r} s: the pinned "
-            f"zero w* = {pinned_frequency(stage)!r} rad/s must stay clear of the Nyquist "
-            f"frequency pi/Ts")
+            f"T = {stage.T!r} s cannot pin its zero w* = {pinned_frequency(stage)!r} rad/s at "
+            f"Ts = {Ts!r} s: w* Ts is a multiple of pi (choose T or k so that w* < pi/Ts)")
     d = np.linalg.solve(C, rhs)
     h = g.copy()
     h[support] += d
