@@ -1,0 +1,73 @@
+/*
+ * The contract between the shared FMI 2.0 Co-Simulation glue (fmi2_glue.c) and one model file.
+ *
+ * Each FMU binary links the glue with exactly one model file, which defines the functions
+ * below. The model keeps all of its data in one plain struct of fmu_model_size() bytes with
+ * fixed-size arrays: the glue allocates it through the importer's callbacks, copies it bytewise
+ * for fmi2GetFMUstate/fmi2SetFMUstate and then calls fmu_model_rebind() so the pointers inside
+ * the copy (the core's chain and stages) point at the copy's own arrays.
+ *
+ * Variables: the glue checks the call order and the value references' causality; the model
+ * stores and returns the values. Parameters are validated by fmu_model_build() at
+ * fmi2ExitInitializationMode; non-finite Reals are rejected by the glue at set.
+ */
+#ifndef FMU_MODEL_H
+#define FMU_MODEL_H
+
+#include <stddef.h>
+#include "fmi2Functions.h"
+
+/** What a value reference of a given base type is. */
+typedef enum fmu_var_class {
+    FMU_VAR_UNKNOWN = 0,  /**< no variable of this type has this value reference */
+    FMU_VAR_INPUT,        /**< settable in every state before termination */
+    FMU_VAR_PARAMETER,    /**< fixed: settable only before fmi2ExitInitializationMode */
+    FMU_VAR_OUTPUT        /**< read only */
+} fmu_var_class;
+
+/** FMI 2.0 base types the models use (Enumerations travel as Integers). */
+typedef enum fmu_type { FMU_REAL = 0, FMU_INTEGER = 1 } fmu_type;
+
+/** Largest message fmu_model_build() may write (including the terminating 0). */
+#define FMU_MESSAGE_LEN 256
+
+/** @return sizeof the model's data struct. */
+size_t fmu_model_size(void);
+/** @return the model identifier (= modelIdentifier in modelDescription.xml). */
+const char *fmu_model_identifier(void);
+/** @return the instantiation token (guid) the generated header carries. */
+const char *fmu_model_guid(void);
+/** @brief Put every variable at its start value, nothing built (the state after instantiate). */
+void fmu_model_defaults(void *model);
+/** @brief Classify a value reference of the given type. */
+fmu_var_class fmu_model_class(fmu_type type, fmi2ValueReference vr);
+/** @brief Name of the variable (for log messages) into buf (always 0-terminated). */
+void fmu_model_name(fmu_type type, fmi2ValueReference vr, char *buf, size_t len);
+/** @brief Every settable (input or parameter) value reference of the type, in a fixed order:
+ * the serialised state stores their values in this order. Writes at most cap; returns the
+ * count. */
+size_t fmu_model_settable(fmu_type type, fmi2ValueReference *out, size_t cap);
+/** @brief Read a variable (vr already classified as known). */
+double fmu_model_get_real(const void *model, fmi2ValueReference vr);
+int fmu_model_get_integer(const void *model, fmi2ValueReference vr);
+/** @brief Write an input or parameter (vr already classified, Real already finite). */
+void fmu_model_set_real(void *model, fmi2ValueReference vr, double value);
+void fmu_model_set_integer(void *model, fmi2ValueReference vr, int value);
+/** @return the sample period parameter Ts [s] (validated by fmu_model_build). */
+double fmu_model_sample_period(const void *model);
+/**
+ * @brief Validate every parameter and build the filters at rest at the current input.
+ * @return 0 on success; otherwise non-zero, the model untouched and msg naming the variable.
+ */
+int fmu_model_build(void *model, char *msg, size_t len);
+/** @brief One internal tick: filter the held input, update the outputs. Only after build. */
+void fmu_model_tick(void *model);
+/** @brief After a bytewise copy of a built model, point its internals at its own arrays. */
+void fmu_model_rebind(void *model);
+/** @brief Number of doubles of dynamic state (outputs and filter state) of a built model. */
+size_t fmu_model_state_count(const void *model);
+void fmu_model_save_state(const void *model, double *dst);
+/** @return 0 if accepted (model updated), non-zero if the vector does not fit (untouched). */
+int fmu_model_load_state(void *model, const double *src, size_t n);
+
+#endif

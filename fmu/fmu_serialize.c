@@ -1,0 +1,260 @@
+/*
+ * The serialised FMU state: a versioned, portable byte format with no pointers.
+ *
+ * Layout (every integer and double little-endian, doubles as IEEE-754 binary64):
+ *   "SMSF"                      magic (4 bytes)
+ *   u32 version                 FMU_STATE_VERSION
+ *   u32 G, G bytes              instantiation token (guid) of the model that wrote it
+ *   u32 phase, f64 t0, f64 t, u32 ticks_lo, u32 ticks_hi     the glue's clock
+ *   u32 nR, nR x (u32 vr, f64)  every Real input and parameter (fmu_model_settable order)
+ *   u32 nI, nI x (u32 vr, i32)  every Integer/Enumeration parameter
+ *   u32 nS, nS x f64            the model's dynamic state (outputs, filter state) if built
+ *   u32 crc                     CRC-32 (IEEE 802.3) of all the bytes before it
+ * Reading re-validates the parameters and rebuilds the filters through the model's own
+ * fmu_model_build(), then loads the dynamic state: a blob from another model, another version,
+ * truncated or altered is refused with a message.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "fmu_instance.h"
+
+#define FMU_STATE_VERSION 1u
+#define MAX_SETTABLE 1024u
+
+static uint32_t crc32_bytes(const unsigned char *p, size_t n)
+{
+    uint32_t crc = 0xffffffffu;
+    size_t i;
+    int b;
+    for (i = 0; i < n; ++i) {
+        crc ^= p[i];
+        for (b = 0; b < 8; ++b)
+            crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+    }
+    return ~crc;
+}
+
+/* ---------------------------------------------------------------- writer */
+
+typedef struct writer { unsigned char *p; size_t n; } writer;   /* p == NULL: only count */
+
+static void put_u32(writer *w, uint32_t v)
+{
+    int i;
+    if (w->p)
+        for (i = 0; i < 4; ++i)
+            w->p[w->n + (size_t)i] = (unsigned char)(v >> (8 * i));
+    w->n += 4;
+}
+
+static void put_f64(writer *w, double d)
+{
+    uint64_t v;
+    int i;
+    memcpy(&v, &d, sizeof v);
+    if (w->p)
+        for (i = 0; i < 8; ++i)
+            w->p[w->n + (size_t)i] = (unsigned char)(v >> (8 * i));
+    w->n += 8;
+}
+
+static void put_bytes(writer *w, const char *s, size_t n)
+{
+    if (w->p)
+        memcpy(w->p + w->n, s, n);
+    w->n += n;
+}
+
+static int is_built(const fmu_snapshot *s)
+{
+    return s->clock.phase == FMU_STEP_COMPLETE || s->clock.phase == FMU_TERMINATED;
+}
+
+static void write_all(const fmu_snapshot *s, writer *w)
+{
+    fmi2ValueReference vrs[MAX_SETTABLE];
+    const char *guid = fmu_model_guid();
+    size_t n, i;
+    put_bytes(w, "SMSF", 4);
+    put_u32(w, FMU_STATE_VERSION);
+    put_u32(w, (uint32_t)strlen(guid));
+    put_bytes(w, guid, strlen(guid));
+    put_u32(w, (uint32_t)s->clock.phase);
+    put_f64(w, s->clock.start_time);
+    put_f64(w, s->clock.time);
+    put_u32(w, (uint32_t)(s->clock.ticks & 0xffffffffu));
+    put_u32(w, (uint32_t)(s->clock.ticks >> 32));
+    n = fmu_model_settable(FMU_REAL, vrs, MAX_SETTABLE);
+    put_u32(w, (uint32_t)n);
+    for (i = 0; i < n; ++i) {
+        put_u32(w, vrs[i]);
+        put_f64(w, fmu_model_get_real(s->model, vrs[i]));
+    }
+    n = fmu_model_settable(FMU_INTEGER, vrs, MAX_SETTABLE);
+    put_u32(w, (uint32_t)n);
+    for (i = 0; i < n; ++i) {
+        put_u32(w, vrs[i]);
+        put_u32(w, (uint32_t)fmu_model_get_integer(s->model, vrs[i]));
+    }
+}
+
+size_t fmu_serialized_size(const fmu_snapshot *s)
+{
+    writer w;
+    size_t n = is_built(s) ? fmu_model_state_count(s->model) : 0;
+    w.p = NULL;
+    w.n = 0;
+    write_all(s, &w);
+    return w.n + 4 + 8 * n + 4;   /* + nS, the state doubles, the checksum */
+}
+
+int fmu_serialize(const fmu_snapshot *s, const fmi2CallbackFunctions *cb, unsigned char *out)
+{
+    writer w;
+    double *state = NULL;
+    size_t n = 0, i;
+    if (is_built(s)) {
+        n = fmu_model_state_count(s->model);
+        state = (double *)cb->allocateMemory(n > 0 ? n : 1, sizeof(double));
+        if (state == NULL)
+            return -1;
+        fmu_model_save_state(s->model, state);
+    }
+    w.p = out;
+    w.n = 0;
+    write_all(s, &w);
+    put_u32(&w, (uint32_t)n);   /* nS = 0 when nothing is built yet */
+    for (i = 0; i < n; ++i)
+        put_f64(&w, state[i]);
+    if (state != NULL)
+        cb->freeMemory(state);
+    put_u32(&w, crc32_bytes(out, w.n));
+    return 0;
+}
+
+/* ---------------------------------------------------------------- reader */
+
+typedef struct reader { const unsigned char *p; size_t n, pos; int bad; } reader;
+
+static uint32_t get_u32(reader *r)
+{
+    uint32_t v = 0;
+    int i;
+    if (r->bad || r->n - r->pos < 4) {
+        r->bad = 1;
+        return 0;
+    }
+    for (i = 0; i < 4; ++i)
+        v |= (uint32_t)r->p[r->pos + (size_t)i] << (8 * i);
+    r->pos += 4;
+    return v;
+}
+
+static double get_f64(reader *r)
+{
+    uint64_t v = 0;
+    double d;
+    int i;
+    if (r->bad || r->n - r->pos < 8) {
+        r->bad = 1;
+        return 0.0;
+    }
+    for (i = 0; i < 8; ++i)
+        v |= (uint64_t)r->p[r->pos + (size_t)i] << (8 * i);
+    r->pos += 8;
+    memcpy(&d, &v, sizeof d);
+    return d;
+}
+
+#define REFUSE(...) do { snprintf(msg, len, __VA_ARGS__); return -1; } while (0)
+
+static int read_values(reader *r, fmu_type type, void *model, char *msg, size_t len)
+{
+    uint32_t n = get_u32(r), i;
+    char name[96];
+    if (r->bad)
+        REFUSE("truncated state");
+    if (n != fmu_model_settable(type, NULL, 0))
+        REFUSE("state holds %lu %s variables, this model has %lu", (unsigned long)n,
+               type == FMU_REAL ? "Real" : "Integer", (unsigned long)fmu_model_settable(type, NULL, 0));
+    for (i = 0; i < n; ++i) {
+        fmi2ValueReference vr = get_u32(r);
+        fmu_var_class cls = fmu_model_class(type, vr);
+        if (r->bad)
+            REFUSE("truncated state");
+        if (cls != FMU_VAR_INPUT && cls != FMU_VAR_PARAMETER)
+            REFUSE("state names value reference %lu, not a settable variable", (unsigned long)vr);
+        if (type == FMU_REAL) {
+            double v = get_f64(r);
+            fmu_model_name(type, vr, name, sizeof name);
+            if (!r->bad && !isfinite(v))
+                REFUSE("state holds a non-finite %s", name);
+            fmu_model_set_real(model, vr, v);
+        } else {
+            fmu_model_set_integer(model, vr, (int)(int32_t)get_u32(r));
+        }
+    }
+    return r->bad ? (snprintf(msg, len, "truncated state"), -1) : 0;
+}
+
+int fmu_deserialize(const unsigned char *in, size_t size, fmu_snapshot *dst,
+                    const fmi2CallbackFunctions *cb, char *msg, size_t len)
+{
+    reader r;
+    const char *guid = fmu_model_guid();
+    uint32_t glen, phase, lo, hi, n_state, stored_crc;
+    double *state;
+    int rc;
+    if (size < 12 || memcmp(in, "SMSF", 4) != 0)
+        REFUSE("not a smoothshaper FMU state (bad magic)");
+    r.p = in;
+    r.n = size - 4;
+    r.pos = 4;
+    r.bad = 0;
+    stored_crc = (uint32_t)in[size - 4] | (uint32_t)in[size - 3] << 8 | (uint32_t)in[size - 2] << 16
+                 | (uint32_t)in[size - 1] << 24;
+    if (get_u32(&r) != FMU_STATE_VERSION)
+        REFUSE("unsupported state format version");
+    if (crc32_bytes(in, size - 4) != stored_crc)
+        REFUSE("checksum mismatch: the state is truncated or corrupted");
+    glen = get_u32(&r);
+    if (r.bad || glen != strlen(guid) || r.n - r.pos < glen || memcmp(in + r.pos, guid, glen) != 0)
+        REFUSE("the state was written by another model or model version (instantiation token differs)");
+    r.pos += glen;
+    phase = get_u32(&r);
+    dst->clock.start_time = get_f64(&r);
+    dst->clock.time = get_f64(&r);
+    lo = get_u32(&r);
+    hi = get_u32(&r);
+    if (r.bad || phase > FMU_TERMINATED || !isfinite(dst->clock.start_time)
+        || !isfinite(dst->clock.time))
+        REFUSE("truncated or invalid clock in the state");
+    dst->clock.phase = (fmu_phase)phase;
+    dst->clock.ticks = (uint64_t)hi << 32 | lo;
+    fmu_model_defaults(dst->model);
+    if (read_values(&r, FMU_REAL, dst->model, msg, len) != 0
+        || read_values(&r, FMU_INTEGER, dst->model, msg, len) != 0)
+        return -1;
+    n_state = get_u32(&r);
+    if (r.bad || (r.n - r.pos) / 8 < n_state || r.n - r.pos != 8 * (size_t)n_state)
+        REFUSE("truncated state (dynamic part)");
+    if (!is_built(dst))
+        return n_state == 0 ? 0 : (snprintf(msg, len, "state of an unbuilt FMU holds filter state"), -1);
+    if (fmu_model_build(dst->model, msg, len) != 0)
+        return -1;
+    if (n_state != fmu_model_state_count(dst->model))
+        REFUSE("state holds %lu filter values, the parameters need %lu", (unsigned long)n_state,
+               (unsigned long)fmu_model_state_count(dst->model));
+    state = (double *)cb->allocateMemory(n_state > 0 ? n_state : 1, sizeof(double));
+    if (state == NULL)
+        REFUSE("out of memory");
+    for (lo = 0; lo < n_state; ++lo)
+        state[lo] = get_f64(&r);
+    rc = fmu_model_load_state(dst->model, state, n_state);
+    cb->freeMemory(state);
+    if (rc != 0)
+        REFUSE("the filter state does not fit the parameters");
+    return 0;
+}

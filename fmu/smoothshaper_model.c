@@ -1,0 +1,287 @@
+/*
+ * SmoothShaper: y = H_7(...H_0(u)) at the internal ticks, a chain of up to SS_MAX_STAGES
+ * stages of any family, set by the parameters stage[k].* (unused stages have kind = none).
+ * Only the public smoothshaper API is used. At fmi2ExitInitializationMode the chain is put at
+ * rest at the current value of u (as if u had held that value forever), so y starts at u.
+ */
+#include <stdio.h>
+#include <string.h>
+
+#include "smoothshaper/smoothshaper.h"
+#include "SmoothShaper_variables.h"
+#include "fmu_model.h"
+
+/** Delay-line samples shared by all stages (about T/Ts + 2 per smoother, the shaper span per
+ * shaper): the largest chain the FMU accepts. */
+#define SS_MAX_DELAY_SAMPLES 65536
+
+static const char *const field_names[SS_FIELD_COUNT] = {
+    "kind", "design", "timing", "T", "sigma", "k", "wn", "zeta", "order", "tolerance",
+    "notch_pole_zeta"
+};
+
+typedef struct ss_params {
+    int ints[SS_FIELD_COUNT];     /* kind, design, timing, k, order (by SS_FIELD_*) */
+    double reals[SS_FIELD_COUNT]; /* T, sigma, wn, zeta, tolerance, notch_pole_zeta */
+} ss_params;
+
+typedef struct ss_model {
+    double u, y, Ts;
+    ss_params stage[SS_MAX_STAGES];
+    int built;
+    size_t n_active;                     /* stages with kind != none, in chain order */
+    sms_chain chain;
+    sms_stage stages[SS_MAX_STAGES];
+    sms_real buffer[SS_MAX_DELAY_SAMPLES];
+} ss_model;
+
+static int is_integer_field(unsigned f)
+{
+    return f == SS_FIELD_KIND || f == SS_FIELD_DESIGN || f == SS_FIELD_TIMING || f == SS_FIELD_K
+           || f == SS_FIELD_ORDER;
+}
+
+/* Split a stage value reference into (stage, field); 0 if it is not one. */
+static int stage_field(fmi2ValueReference vr, unsigned *k, unsigned *f)
+{
+    if (vr < SS_STAGE_BASE || vr >= SS_STAGE_BASE + SS_STAGE_STRIDE * SS_MAX_STAGES)
+        return 0;
+    *k = (vr - SS_STAGE_BASE) / SS_STAGE_STRIDE;
+    *f = (vr - SS_STAGE_BASE) % SS_STAGE_STRIDE;
+    return *f < SS_FIELD_COUNT;
+}
+
+size_t fmu_model_size(void) { return sizeof(ss_model); }
+const char *fmu_model_identifier(void) { return FMU_MODEL_IDENTIFIER; }
+const char *fmu_model_guid(void) { return FMU_MODEL_GUID; }
+
+void fmu_model_defaults(void *model)
+{
+    ss_model *m = (ss_model *)model;
+    unsigned k;
+    m->u = 0.0;
+    m->y = 0.0;
+    m->Ts = 0.001;
+    m->built = 0;
+    m->n_active = 0;
+    for (k = 0; k < SS_MAX_STAGES; ++k) {   /* the start values of modelDescription.xml */
+        ss_params *p = &m->stage[k];
+        memset(p, 0, sizeof *p);
+        p->ints[SS_FIELD_KIND] = SS_KIND_NONE;
+        p->ints[SS_FIELD_K] = 1;
+        p->ints[SS_FIELD_ORDER] = 1;
+        p->reals[SS_FIELD_T] = 0.01;
+        p->reals[SS_FIELD_WN] = 100.0;
+        p->reals[SS_FIELD_TOLERANCE] = 0.05;
+        p->reals[SS_FIELD_NOTCH_POLE_ZETA] = 0.7;
+    }
+}
+
+fmu_var_class fmu_model_class(fmu_type type, fmi2ValueReference vr)
+{
+    unsigned k, f;
+    if (type == FMU_REAL && vr == SS_VR_U) return FMU_VAR_INPUT;
+    if (type == FMU_REAL && vr == SS_VR_Y) return FMU_VAR_OUTPUT;
+    if (type == FMU_REAL && vr == SS_VR_TS) return FMU_VAR_PARAMETER;
+    if (stage_field(vr, &k, &f) && is_integer_field(f) == (type == FMU_INTEGER))
+        return FMU_VAR_PARAMETER;
+    return FMU_VAR_UNKNOWN;
+}
+
+void fmu_model_name(fmu_type type, fmi2ValueReference vr, char *buf, size_t len)
+{
+    unsigned k, f;
+    (void)type;
+    if (vr == SS_VR_U || vr == SS_VR_Y || vr == SS_VR_TS)
+        snprintf(buf, len, "%s", vr == SS_VR_U ? "u" : vr == SS_VR_Y ? "y" : "Ts");
+    else if (stage_field(vr, &k, &f))
+        snprintf(buf, len, "stage[%u].%s", k, field_names[f]);
+    else
+        snprintf(buf, len, "vr %lu", (unsigned long)vr);
+}
+
+size_t fmu_model_settable(fmu_type type, fmi2ValueReference *out, size_t cap)
+{
+    size_t n = 0;
+    unsigned k, f;
+    if (type == FMU_REAL) {
+        if (n < cap) out[n] = SS_VR_U;
+        ++n;
+        if (n < cap) out[n] = SS_VR_TS;
+        ++n;
+    }
+    for (k = 0; k < SS_MAX_STAGES; ++k)
+        for (f = 0; f < SS_FIELD_COUNT; ++f)
+            if (is_integer_field(f) == (type == FMU_INTEGER)) {
+                if (n < cap) out[n] = SS_STAGE_BASE + SS_STAGE_STRIDE * k + f;
+                ++n;
+            }
+    return n;
+}
+
+double fmu_model_get_real(const void *model, fmi2ValueReference vr)
+{
+    const ss_model *m = (const ss_model *)model;
+    unsigned k, f;
+    if (vr == SS_VR_U) return m->u;
+    if (vr == SS_VR_Y) return m->y;
+    if (vr == SS_VR_TS) return m->Ts;
+    return stage_field(vr, &k, &f) ? m->stage[k].reals[f] : 0.0;
+}
+
+int fmu_model_get_integer(const void *model, fmi2ValueReference vr)
+{
+    unsigned k, f;
+    return stage_field(vr, &k, &f) ? ((const ss_model *)model)->stage[k].ints[f] : 0;
+}
+
+void fmu_model_set_real(void *model, fmi2ValueReference vr, double value)
+{
+    ss_model *m = (ss_model *)model;
+    unsigned k, f;
+    if (vr == SS_VR_U) m->u = value;
+    else if (vr == SS_VR_TS) m->Ts = value;
+    else if (stage_field(vr, &k, &f)) m->stage[k].reals[f] = value;
+}
+
+void fmu_model_set_integer(void *model, fmi2ValueReference vr, int value)
+{
+    unsigned k, f;
+    if (stage_field(vr, &k, &f))
+        ((ss_model *)model)->stage[k].ints[f] = value;
+}
+
+double fmu_model_sample_period(const void *model) { return ((const ss_model *)model)->Ts; }
+
+/* The parameter a core status points at, for the message. */
+static const char *offending_field(sms_status st, int design_for_mode)
+{
+    switch (st) {
+    case SMS_ERR_DURATION: case SMS_ERR_DURATION_BELOW_TS: case SMS_ERR_TOO_LONG:
+        return design_for_mode ? "wn (the designed T)" : "T";
+    case SMS_ERR_SIGMA: return design_for_mode ? "zeta (the designed sigma)" : "sigma";
+    case SMS_ERR_WN: case SMS_ERR_ABOVE_NYQUIST: return "wn";
+    case SMS_ERR_ZETA: return "zeta";
+    case SMS_ERR_MULTIPLE: case SMS_ERR_EVEN_MULTIPLE: return "k";
+    case SMS_ERR_ORDER: return "order";
+    case SMS_ERR_TOLERANCE: return "tolerance";
+    case SMS_ERR_NOTCH_DAMPING: return "notch_pole_zeta";
+    default: return "kind";
+    }
+}
+
+/* Config of stage k from its parameters; 0 or non-zero with msg. */
+static int stage_config(const ss_model *m, unsigned k, sms_stage_config *c, char *msg, size_t len)
+{
+    const ss_params *p = &m->stage[k];
+    int kind = p->ints[SS_FIELD_KIND], for_mode = p->ints[SS_FIELD_DESIGN] == 1;
+    sms_status st;
+    if (kind < 0 || kind >= SMS_KIND_COUNT)
+        return snprintf(msg, len, "stage[%u].kind = %d is not a stage kind", k, kind), 1;
+    if (p->ints[SS_FIELD_DESIGN] != 0 && !for_mode)
+        return snprintf(msg, len, "stage[%u].design = %d is not raw (0) or for_mode (1)", k,
+                        p->ints[SS_FIELD_DESIGN]), 1;
+    if (p->ints[SS_FIELD_TIMING] != SMS_TIMING_EXACT && p->ints[SS_FIELD_TIMING] != SMS_TIMING_PAPER)
+        return snprintf(msg, len, "stage[%u].timing = %d is not exact (0) or paper (1)", k,
+                        p->ints[SS_FIELD_TIMING]), 1;
+    if (p->ints[SS_FIELD_K] < 1 || p->ints[SS_FIELD_ORDER] < 1)
+        return snprintf(msg, len, "stage[%u].%s must be >= 1", k,
+                        p->ints[SS_FIELD_K] < 1 ? "k" : "order"), 1;
+    if (for_mode) {
+        st = sms_design_for_mode((sms_kind)kind, p->reals[SS_FIELD_WN], p->reals[SS_FIELD_ZETA],
+                                 (unsigned)p->ints[SS_FIELD_K], c);
+        if (st != SMS_OK)
+            return snprintf(msg, len, "stage[%u].%s: %s", k, offending_field(st, 0),
+                            sms_status_string(st)), 1;
+    } else {
+        *c = sms_stage_config_default((sms_kind)kind);
+        c->T = p->reals[SS_FIELD_T];
+        c->sigma = p->reals[SS_FIELD_SIGMA];
+        c->k = (unsigned)p->ints[SS_FIELD_K];
+        c->wn = p->reals[SS_FIELD_WN];
+        c->zeta = p->reals[SS_FIELD_ZETA];
+    }
+    c->timing = (sms_timing)p->ints[SS_FIELD_TIMING];
+    c->order = (unsigned)p->ints[SS_FIELD_ORDER];
+    c->tolerance = p->reals[SS_FIELD_TOLERANCE];
+    c->notch_pole_zeta = p->reals[SS_FIELD_NOTCH_POLE_ZETA];
+    st = sms_stage_config_validate(c, m->Ts);
+    if (st == SMS_ERR_SAMPLE_PERIOD)
+        return snprintf(msg, len, "Ts must be finite and > 0"), 1;
+    if (st != SMS_OK)
+        return snprintf(msg, len, "stage[%u].%s: %s", k, offending_field(st, for_mode),
+                        sms_status_string(st)), 1;
+    return 0;
+}
+
+int fmu_model_build(void *model, char *msg, size_t len)
+{
+    ss_model *m = (ss_model *)model;
+    sms_stage_config configs[SS_MAX_STAGES];
+    size_t n = 0, need = 0;
+    unsigned k;
+    if (!(m->Ts > 0.0))
+        return snprintf(msg, len, "Ts must be finite and > 0, got %g", m->Ts), 1;
+    for (k = 0; k < SS_MAX_STAGES; ++k) {
+        if (m->stage[k].ints[SS_FIELD_KIND] == SS_KIND_NONE)
+            continue;
+        if (stage_config(m, k, &configs[n], msg, len) != 0)
+            return 1;
+        ++n;
+    }
+    if (n > 0 && sms_chain_buffer_size(configs, n, m->Ts, &need) != SMS_OK)
+        return snprintf(msg, len, "the stages do not form a valid chain"), 1;
+    if (need > SS_MAX_DELAY_SAMPLES)
+        return snprintf(msg, len, "the stages need %lu delay-line samples, more than the %d this "
+                        "FMU holds: shorten T/Ts", (unsigned long)need, SS_MAX_DELAY_SAMPLES), 1;
+    if (n > 0 && sms_chain_init(&m->chain, m->stages, configs, n, m->Ts, m->buffer,
+                                SS_MAX_DELAY_SAMPLES) != SMS_OK)
+        return snprintf(msg, len, "the chain could not be built"), 1;
+    m->n_active = n;
+    m->built = 1;
+    if (n > 0)
+        sms_chain_reset(&m->chain, (sms_real)m->u);
+    m->y = m->u;
+    return 0;
+}
+
+void fmu_model_tick(void *model)
+{
+    ss_model *m = (ss_model *)model;
+    sms_real x = (sms_real)m->u;
+    if (m->n_active > 0)
+        sms_chain_step(&m->chain, &x);
+    m->y = (double)x;
+}
+
+void fmu_model_rebind(void *model)
+{
+    ss_model *m = (ss_model *)model;
+    if (m->built && m->n_active > 0)
+        sms_chain_rebind(&m->chain, m->stages, m->buffer);
+}
+
+size_t fmu_model_state_count(const void *model)
+{
+    const ss_model *m = (const ss_model *)model;
+    return 1 + (m->n_active > 0 ? sms_chain_state_count(&m->chain) : 0);
+}
+
+void fmu_model_save_state(const void *model, double *dst)
+{
+    const ss_model *m = (const ss_model *)model;
+    dst[0] = m->y;
+    if (m->n_active > 0)
+        sms_chain_save_state(&m->chain, dst + 1);
+}
+
+int fmu_model_load_state(void *model, const double *src, size_t n)
+{
+    ss_model *m = (ss_model *)model;
+    if (n != fmu_model_state_count(m) || src[0] != src[0])
+        return 1;
+    if (m->n_active > 0 && sms_chain_load_state(&m->chain, src + 1, n - 1) != SMS_OK)
+        return 1;
+    m->y = src[0];
+    return 0;
+}

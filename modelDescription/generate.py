@@ -1,0 +1,252 @@
+#!/usr/bin/env python3
+"""Generate an FMU's modelDescription.xml and the matching C header of value references.
+
+One source of truth for every variable: the model tables below. The C model files include the
+generated `<Model>_variables.h` (value references, the instantiation token, array sizes), so the
+XML and the C code cannot disagree. Per-stage variables are produced by a loop, not by hand.
+
+Usage: generate.py MODEL OUT_DIR   (MODEL is SmoothShaper or TrajectoryGenerator)
+"""
+from __future__ import annotations
+
+import hashlib
+import sys
+import uuid
+from dataclasses import dataclass, field
+from pathlib import Path
+from xml.sax.saxutils import quoteattr
+
+FMI_PLATFORM_TYPES = ("Real", "Integer", "Enumeration")
+
+
+@dataclass
+class Var:
+    name: str
+    vr: int
+    type: str                  # Real, Integer or Enumeration (FMI 2.0 base types used here)
+    causality: str             # input, output, parameter
+    description: str
+    unit: str = ""             # Real only (FMI 2.0 allows units on Real variables only)
+    start: object = None
+    declared_type: str = ""    # Enumeration type name
+    variability: str = ""
+    min: object = None
+    max: object = None
+    c_name: str = ""           # macro suffix in the generated header
+    depends_on: list = field(default_factory=list)   # outputs: names of inputs (direct feedthrough)
+
+
+UNITS = {  # unit name -> SI base-unit exponents
+    "1": {}, "s": {"s": 1}, "1/s": {"s": -1}, "rad/s": {"rad": 1, "s": -1},
+    "m": {"m": 1}, "m/s": {"m": 1, "s": -1}, "m/s2": {"m": 1, "s": -2}, "m/s3": {"m": 1, "s": -3},
+}
+
+KINDS = ("rectangular", "harmonic", "damped_harmonic", "exponential", "zv", "zvd", "zvdd", "zvn",
+         "ei", "ei2", "mzv", "notch_tustin", "notch_matched")  # == sms_kind values 0..12
+KIND_TEXT = ("moving average M (SPEC 3.1)", "sinusoidal smoother S (SPEC 3.2)",
+             "damped sinusoidal smoother S_sigma (SPEC 3.3)", "exponential smoother M_sigma (SPEC 3.4)",
+             "ZV input shaper", "ZVD input shaper", "ZVDD input shaper", "ZV^n input shaper (order n)",
+             "extra-insensitive shaper", "two-hump extra-insensitive shaper", "modified ZV shaper",
+             "notch, Tustin pre-warped at wn", "notch, pole-zero matched")
+
+# SmoothShaper value references: globals below 100, stage k field f at 100 + 16 k + f.
+SS_MAX_STAGES = 8
+SS_STAGE_BASE = 100
+SS_STAGE_STRIDE = 16
+SS_FIELDS = (  # (name, type, unit, start, description, declared type, min, max)
+    ("kind", "Enumeration", "", -1, "stage family; none = stage unused (skipped)", "StageKind", None, None),
+    ("design", "Enumeration", "", 0, "raw: use T, sigma, k as given; for_mode: design T and sigma from "
+     "wn, zeta and k (sms_design_for_mode)", "StageDesign", None, None),
+    ("timing", "Enumeration", "", 0, "exact: zeros exactly on the sampled design for any Ts; paper: "
+     "round T/Ts like the seeds", "Timing", None, None),
+    ("T", "Real", "s", 0.01, "duration of a smoother's impulse response (smoothers, design = raw); "
+     "finite, >= Ts", "", None, None),
+    ("sigma", "Real", "1/s", 0.0, "decay rate of damped harmonic and exponential smoothers "
+     "(design = raw); finite, <= 0", "", None, None),
+    ("k", "Integer", "", 1, "multiple: which zero exact timing pins (smoothers), T = k * base "
+     "period for design = for_mode; >= 1, odd for the harmonic families", "", 1, None),
+    ("wn", "Real", "rad/s", 100.0, "natural frequency of the mode (shapers, notches, design = "
+     "for_mode); finite, 0 < wn < pi/Ts", "", None, None),
+    ("zeta", "Real", "1", 0.0, "damping ratio of the mode (shapers, notch zeros, design = "
+     "for_mode); in [0, 1)", "", None, None),
+    ("order", "Integer", "", 1, "n of the ZV^n shaper (kind = zvn); 1..8", "", 1, 8),
+    ("tolerance", "Real", "1", 0.05, "vibration tolerance of the EI shapers; in (0, 1)", "", None, None),
+    ("notch_pole_zeta", "Real", "1", 0.7, "pole damping of the notch; finite, > zeta", "", None, None),
+)
+
+ENUMS = {
+    "StageKind": [("none", -1, "no filter: the stage is skipped")]
+                 + [(k, i, t) for i, (k, t) in enumerate(zip(KINDS, KIND_TEXT))],
+    "StageDesign": [("raw", 0, "raw parameters T, sigma, k"),
+                    ("for_mode", 1, "designed for the mode (wn, zeta) with multiple k")],
+    "Timing": [("exact", 0, "exact timing (docs/exact-mode.md)"),
+               ("paper", 1, "N = round(T/Ts), as in the seeds")],
+    "Profile": [("polynomial", 0, "rectangular chain: double-S (jerk-limited) profile"),
+                ("trigonometric", 1, "harmonic last stage (modified double-S)"),
+                ("damped", 2, "exponential jerk stage cancelling the mode (damped-jerk)")],
+}
+
+
+def smooth_shaper() -> tuple[list[Var], list[str], str]:
+    vs = [
+        Var("u", 0, "Real", "input", "input command, held over each communication step; its value at "
+            "the end of initialization is the rest point", "1", 0.0, variability="discrete", c_name="U"),
+        Var("y", 1, "Real", "output", "filtered command: output of the last internal tick at k*Ts",
+            "1", variability="discrete", c_name="Y", depends_on=["u"]),
+        Var("Ts", 2, "Real", "parameter", "sample period of the internal ticks; finite, > 0", "s",
+            0.001, variability="fixed", c_name="TS"),
+    ]
+    for k in range(SS_MAX_STAGES):
+        for f, (name, typ, unit, start, desc, dtype, lo, hi) in enumerate(SS_FIELDS):
+            vs.append(Var(f"stage[{k}].{name}", SS_STAGE_BASE + SS_STAGE_STRIDE * k + f, typ,
+                          "parameter", f"stage {k}: {desc}", unit, start, dtype, "fixed", lo, hi))
+    header = [f"#define SS_MAX_STAGES {SS_MAX_STAGES}", f"#define SS_STAGE_BASE {SS_STAGE_BASE}",
+              f"#define SS_STAGE_STRIDE {SS_STAGE_STRIDE}"]
+    header += [f"#define SS_FIELD_{name.upper()} {f}" for f, (name, *_rest) in enumerate(SS_FIELDS)]
+    header.append(f"#define SS_FIELD_COUNT {len(SS_FIELDS)}")
+    header.append("#define SS_KIND_NONE (-1)")
+    return vs, header, ("Chain of up to 8 discrete smoothers, input shapers and notches (smoothshaper)")
+
+
+def trajectory_generator() -> tuple[list[Var], list[str], str]:
+    outs = [("q", "m", "position"), ("v", "m/s", "velocity"), ("a", "m/s2", "acceleration"),
+            ("j", "m/s3", "jerk")]
+    vs = [Var("target", 0, "Real", "input", "target position (piecewise constant via-points), held "
+              "over each communication step; its value at the end of initialization is the rest "
+              "position", "m", 0.0, variability="discrete", c_name="TARGET")]
+    for i, (n, unit, text) in enumerate(outs):
+        vs.append(Var(n, 1 + i, "Real", "output", f"{text} of the trajectory at the last internal tick",
+                      unit, variability="discrete", c_name=n.upper(), depends_on=["target"]))
+    vs += [
+        Var("Ts", 10, "Real", "parameter", "sample period of the internal ticks; finite, > 0", "s",
+            0.001, variability="fixed", c_name="TS"),
+        Var("vmax", 11, "Real", "parameter", "velocity bound; finite, > 0", "m/s", 1.0,
+            variability="fixed", c_name="VMAX"),
+        Var("amax", 12, "Real", "parameter", "acceleration bound; finite, > 0", "m/s2", 10.0,
+            variability="fixed", c_name="AMAX"),
+        Var("jmax", 13, "Real", "parameter", "jerk bound; finite, > 0", "m/s3", 100.0,
+            variability="fixed", c_name="JMAX"),
+        Var("profile", 14, "Enumeration", "parameter", "shape of the last stage", "", 0, "Profile",
+            "fixed", c_name="PROFILE"),
+        Var("wn", 15, "Real", "parameter", "natural frequency of a mode to cancel; 0 = none, else "
+            "finite, 0 < wn < pi/Ts", "rad/s", 0.0, variability="fixed", c_name="WN"),
+        Var("zeta", 16, "Real", "parameter", "damping ratio of the mode to cancel; in [0, 1)", "1",
+            0.0, variability="fixed", c_name="ZETA"),
+    ]
+    return vs, [], "Online jerk-limited multi-point trajectory generator (smoothshaper)"
+
+
+MODELS = {"SmoothShaper": smooth_shaper, "TrajectoryGenerator": trajectory_generator}
+
+
+def _fmt(v) -> str:
+    if isinstance(v, float):
+        return repr(v)
+    return str(v)
+
+
+def model_description(model: str, variables: list[Var], description: str, guid: str) -> str:
+    used_units = sorted({v.unit for v in variables if v.unit})
+    used_enums = sorted({v.declared_type for v in variables if v.declared_type})
+    out = ['<?xml version="1.0" encoding="UTF-8"?>',
+           f'<fmiModelDescription fmiVersion="2.0" modelName="{model}" guid="{guid}"',
+           f'  description={quoteattr(description)}',
+           '  generationTool="smoothshaper modelDescription/generate.py" author="smoothshaper"',
+           '  version="0.1.0" variableNamingConvention="structured" numberOfEventIndicators="0">',
+           f'  <CoSimulation modelIdentifier="{model}" canHandleVariableCommunicationStepSize="true"',
+           '    canInterpolateInputs="false" maxOutputDerivativeOrder="0" canRunAsynchronuously="false"',
+           '    canBeInstantiatedOnlyOncePerProcess="false" canNotUseMemoryManagementFunctions="false"',
+           '    canGetAndSetFMUstate="true" canSerializeFMUstate="true"',
+           '    providesDirectionalDerivative="false">',
+           '    <SourceFiles>']
+    out += [f'      <File name="{f}"/>' for f in SOURCE_FILES_PLACEHOLDER]
+    out += ['    </SourceFiles>', '  </CoSimulation>', '  <UnitDefinitions>']
+    for u in used_units:
+        exps = " ".join(f'{k}="{e}"' for k, e in UNITS[u].items())
+        out.append(f'    <Unit name="{u}"><BaseUnit {exps}/></Unit>' if exps else f'    <Unit name="{u}"/>')
+    out += ['  </UnitDefinitions>', '  <TypeDefinitions>']
+    for e in used_enums:
+        out.append(f'    <SimpleType name="{e}"><Enumeration>')
+        out += [f'      <Item name="{n}" value="{val}" description={quoteattr(t)}/>' for n, val, t in ENUMS[e]]
+        out.append('    </Enumeration></SimpleType>')
+    out += ['  </TypeDefinitions>', '  <LogCategories>']
+    out += [f'    <Category name="{n}" description={quoteattr(d)}/>' for n, d in LOG_CATEGORIES]
+    out += ['  </LogCategories>', '  <DefaultExperiment startTime="0" stopTime="1" stepSize="0.001"/>',
+            '  <ModelVariables>']
+    for i, v in enumerate(variables, 1):
+        attrs = f'name="{v.name}" valueReference="{v.vr}" causality="{v.causality}"'
+        if v.variability:
+            attrs += f' variability="{v.variability}"'
+        if v.causality == "parameter":
+            attrs += ' initial="exact"'
+        if v.causality == "output":
+            attrs += ' initial="calculated"'
+        attrs += f' description={quoteattr(v.description)}'
+        inner = ""
+        if v.declared_type:
+            inner += f' declaredType="{v.declared_type}"'
+        if v.unit:
+            inner += f' unit="{v.unit}"'
+        if v.min is not None:
+            inner += f' min="{v.min}"'
+        if v.max is not None:
+            inner += f' max="{v.max}"'
+        if v.start is not None:
+            inner += f' start="{_fmt(v.start)}"'
+        out.append(f'    <!-- index {i} -->')
+        out.append(f'    <ScalarVariable {attrs}>')
+        out.append(f'      <{v.type}{inner}/>')
+        out.append('    </ScalarVariable>')
+    index = {v.name: i for i, v in enumerate(variables, 1)}
+    out += ['  </ModelVariables>', '  <ModelStructure>', '    <Outputs>']
+    outputs = [v for v in variables if v.causality == "output"]
+    for v in outputs:
+        deps = " ".join(str(index[d]) for d in v.depends_on)
+        out.append(f'      <Unknown index="{index[v.name]}" dependencies="{deps}"/>')
+    out += ['    </Outputs>', '    <InitialUnknowns>']
+    for v in outputs:
+        deps = " ".join(str(index[d]) for d in v.depends_on)
+        out.append(f'      <Unknown index="{index[v.name]}" dependencies="{deps}"/>')
+    out += ['    </InitialUnknowns>', '  </ModelStructure>', '</fmiModelDescription>', '']
+    return "\n".join(out)
+
+
+LOG_CATEGORIES = (("logStatusError", "errors: wrong call order, bad arguments, invalid parameters"),
+                  ("logStatusWarning", "warnings"),
+                  ("logCalls", "a trace of every FMI function call"))
+SOURCE_FILES_PLACEHOLDER: list[str] = []
+
+
+def c_header(model: str, variables: list[Var], extra: list[str], guid: str) -> str:
+    guard = f"FMU_{model.upper()}_VARIABLES_H"
+    lines = [f"/* Generated by modelDescription/generate.py for {model}: do not edit. */",
+             f"#ifndef {guard}", f"#define {guard}", "",
+             f'#define FMU_MODEL_IDENTIFIER "{model}"', f'#define FMU_MODEL_GUID "{guid}"']
+    prefix = "SS" if model == "SmoothShaper" else "TG"
+    for v in variables:
+        if v.c_name:
+            lines.append(f"#define {prefix}_VR_{v.c_name} {v.vr}")
+    lines += extra
+    lines += ["", f"#endif /* {guard} */", ""]
+    return "\n".join(lines)
+
+
+def main(argv: list[str]) -> int:
+    if len(argv) < 3 or argv[1] not in MODELS:
+        print(__doc__, file=sys.stderr)
+        return 2
+    model, out_dir = argv[1], Path(argv[2])
+    SOURCE_FILES_PLACEHOLDER[:] = argv[3:]   # source files listed in <SourceFiles>
+    variables, extra, description = MODELS[model]()
+    # The token is a hash of everything but itself: any change of the interface changes it.
+    draft = model_description(model, variables, description, "{GUID}")
+    guid = "{" + str(uuid.UUID(hashlib.sha256(draft.encode()).hexdigest()[:32])) + "}"
+    out_dir.mkdir(parents=True, exist_ok=True)
+    xml = model_description(model, variables, description, guid)
+    (out_dir / "modelDescription.xml").write_text(xml)
+    (out_dir / f"{model}_variables.h").write_text(c_header(model, variables, extra, guid))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))

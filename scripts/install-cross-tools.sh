@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# Optional: the mingw-w64 cross compiler (builds binaries/win64 into the FMUs) and wine64 (runs
+# that binary through fmpy's remoting in tests/python/test_fmu_win64.py). Debian/Ubuntu, as root.
+# Without them the FMUs carry linux64 only and the wine test is skipped with its reason.
+set -euo pipefail
+if command -v x86_64-w64-mingw32-gcc >/dev/null && command -v wine64 >/dev/null; then
+    exit 0
+fi
+if [ "$(id -u)" -ne 0 ] || ! command -v apt-get >/dev/null; then
+    echo "install-cross-tools: needs root and apt-get; skipping (FMUs will be linux64 only)" >&2
+    exit 0
+fi
+export DEBIAN_FRONTEND=noninteractive
+apt-get update -qq
+apt-get install -y -qq --no-install-recommends gcc-mingw-w64-x86-64 wine64 >/dev/null
