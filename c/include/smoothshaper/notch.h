@@ -1,7 +1,28 @@
 /**
  * @file notch.h
  * @brief Notch filter as one biquad (SPEC 3.6): Tustin with pre-warping at wn, or pole-zero
- * matched. OWNER: C shapers work package (struct fields may change).
+ * matched.
+ *
+ * Continuous notch G(s) = (s^2 + 2 xi1 wn s + wn^2)/(s^2 + 2 xi2 wn s + wn^2), with
+ * xi1 = sms_stage_config::zeta in [0, 1) (zero damping) and xi2 = sms_stage_config::notch_pole_zeta
+ * (pole damping, xi1 < xi2 <= 1e6; xi2 >= 1 gives two real poles). Discrete difference equation
+ * (direct form I):  y[n] = b0 x[n] + b1 x[n-1] + b2 x[n-2] - a1 y[n-1] - a2 y[n-2].
+ * - ::SMS_NOTCH_TUSTIN: s = (wn / tan(wn Ts/2)) (z-1)/(z+1); with t = tan(wn Ts/2):
+ *   b = [1 + 2 xi1 t + t^2, 2(t^2 - 1), 1 - 2 xi1 t + t^2] / a0,
+ *   a = [1, 2(t^2 - 1), 1 - 2 xi2 t + t^2] / a0,  a0 = 1 + 2 xi2 t + t^2.
+ *   Gain 1 at DC and exactly the continuous G(j wn) = xi1/xi2 at wn (0 when xi1 = 0).
+ * - ::SMS_NOTCH_MATCHED: zeros exp(s Ts) of the numerator roots s = wn(-xi1 +- j sqrt(1-xi1^2))
+ *   (exactly the sampled mode poles when (wn, xi1) is the mode), poles exp(s Ts) of the
+ *   denominator roots (real when xi2 >= 1), gain such that H(1) = 1.
+ * Both need wn < pi/Ts. Work per sample O(1), no buffer (sms_stage_buffer_size() gives 0).
+ * Precision: coefficients are rounded to ::sms_real; since 1 + a1 + a2 ~ (wn Ts)^2, the DC gain
+ * is off by about 4 eps/(wn Ts)^2 (float, wn Ts = 0.05: ~3e-5). Prefer double for notches far
+ * below Nyquist.
+ *
+ * Non-finite input: such a sample is passed to the output unchanged and does not enter the
+ * state (the filter continues as if it had not been there). If finite input drives the output
+ * non-finite (overflow), the filter restarts at rest at that input and outputs it. The IIR
+ * state is therefore never poisoned.
  */
 #ifndef SMOOTHSHAPER_NOTCH_H
 #define SMOOTHSHAPER_NOTCH_H
@@ -12,25 +33,56 @@
 extern "C" {
 #endif
 
+/** @brief Largest accepted pole damping xi2 (beyond it a real pole rounds onto z = 1). */
+#define SMS_NOTCH_MAX_POLE_ZETA 1e6
+
+/** @brief Instance of one notch. Fields are public for inspection only. */
 typedef struct sms_notch {
     sms_kind kind;
     sms_real b0, b1, b2, a1, a2;  /**< y = b0 x + b1 x1 + b2 x2 - a1 y1 - a2 y2 */
-    sms_real x1, x2, y1, y2;
-    sms_real rest;
+    sms_real x1, x2, y1, y2;      /**< past inputs and outputs */
+    sms_real rest;                /**< operating point set by the last reset */
 } sms_notch;
 
+/**
+ * @brief Validate and build a notch at rest at 0.
+ * @return ::SMS_OK; ::SMS_ERR_NULL (f or config NULL); else the first failing check in this
+ *         order: ::SMS_ERR_KIND (not a notch kind), ::SMS_ERR_SAMPLE_PERIOD (Ts NaN/Inf or
+ *         <= 0), ::SMS_ERR_WN (NaN/Inf or <= 0), ::SMS_ERR_ABOVE_NYQUIST (wn >= pi/Ts),
+ *         ::SMS_ERR_ZETA (outside [0,1)), ::SMS_ERR_NOTCH_DAMPING (notch_pole_zeta NaN/Inf,
+ *         <= zeta or > ::SMS_NOTCH_MAX_POLE_ZETA). timing, T, sigma, k, order, tolerance
+ *         are not read. f is untouched on error.
+ */
 SMS_API sms_status sms_notch_init(sms_notch *f, const sms_stage_config *config, double Ts);
+/** @brief Rest at `rest`: as if the input had been `rest` forever. */
 SMS_API void sms_notch_reset(sms_notch *f, sms_real rest);
+/** @brief One sample in place (see the difference equation above). */
 SMS_API void sms_notch_step(sms_notch *f, sms_real *x);
+/** @brief n samples; in == out allowed. Same result as n calls of step. */
 SMS_API void sms_notch_process(sms_notch *f, const sms_real *in, sms_real *out, size_t n);
+/** @brief Doubles in a saved state: 6 (kind, x1, x2, y1, y2, rest). */
 SMS_API size_t sms_notch_state_count(const sms_notch *f);
+/** @brief Write sms_notch_state_count() doubles to dst. */
 SMS_API void sms_notch_save_state(const sms_notch *f, double *dst);
-/** @brief Restore a saved state; validates first and writes nothing on error (::SMS_ERR_STATE). */
+/** @brief Restore a saved state; validates first and writes nothing on error (::SMS_ERR_STATE:
+ * wrong n or kind; ::SMS_ERR_NULL). */
 SMS_API sms_status sms_notch_load_state(sms_notch *f, const double *src, size_t n);
 /** @brief The validation of sms_notch_load_state() alone: writes nothing. */
 SMS_API sms_status sms_notch_check_state(const sms_notch *f, const double *src, size_t n);
-/** @brief Pole damping xi2 such that the notch (zero damping xi1 = zeta, centre wn) has the
- * given -3 dB bandwidth [rad/s] (distance between the two -3 dB frequencies). */
+/**
+ * @brief Pole damping xi2 such that the continuous notch (zero damping xi1 = zeta, centre wn)
+ * has the given -3 dB bandwidth B [rad/s] (distance between the two frequencies where
+ * |G(jw)|^2 = 1/2).
+ *
+ * |G(jw)|^2 = 1/2  <=>  (wn^2 - w^2)^2 = 4 wn^2 w^2 (xi2^2 - 2 xi1^2); its two positive roots are
+ * w = wn (sqrt(c^2 + 1) +- c), c = sqrt(xi2^2 - 2 xi1^2), so B = 2 wn c exactly and
+ * xi2 = sqrt(B^2/(4 wn^2) + 2 xi1^2) (> xi1 for any B > 0; >= 1 for wide notches).
+ * @param wn        centre [rad/s], finite, > 0
+ * @param zeta      zero damping xi1, [0, 1)
+ * @param bandwidth B [rad/s], finite, > 0, and giving xi2 <= ::SMS_NOTCH_MAX_POLE_ZETA
+ * @param pole_zeta receives xi2
+ * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_WN, ::SMS_ERR_ZETA, ::SMS_ERR_BANDWIDTH.
+ */
 SMS_API sms_status sms_notch_pole_zeta_from_bandwidth(double wn, double zeta, double bandwidth,
                                                       double *pole_zeta);
 

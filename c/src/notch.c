@@ -1,0 +1,179 @@
+/* Notch biquad: Tustin (pre-warped at wn) or pole-zero matched coefficients, and the
+ * direct-form-I recursion with non-finite recovery (notch.h). */
+#include <math.h>
+#include "smoothshaper/notch.h"
+
+static const double pi = 3.14159265358979323846;
+
+static int is_finite(double v)
+{
+    return v - v == 0.0;
+}
+
+static sms_status check(const sms_stage_config *c, double Ts)
+{
+    if (c->kind != SMS_NOTCH_TUSTIN && c->kind != SMS_NOTCH_MATCHED)
+        return SMS_ERR_KIND;
+    if (!is_finite(Ts) || Ts <= 0.0)
+        return SMS_ERR_SAMPLE_PERIOD;
+    if (!is_finite(c->wn) || c->wn <= 0.0)
+        return SMS_ERR_WN;
+    if (c->wn * Ts >= pi)
+        return SMS_ERR_ABOVE_NYQUIST;
+    if (!is_finite(c->zeta) || c->zeta < 0.0 || c->zeta >= 1.0)
+        return SMS_ERR_ZETA;
+    if (!is_finite(c->notch_pole_zeta) || c->notch_pole_zeta <= c->zeta
+        || c->notch_pole_zeta > SMS_NOTCH_MAX_POLE_ZETA)
+        return SMS_ERR_NOTCH_DAMPING;
+    return SMS_OK;
+}
+
+/* Monic second-order polynomial 1 + c1 z^-1 + c2 z^-2 whose roots are exp(s Ts) for the roots s
+ * of s^2 + 2 xi wn s + wn^2. */
+static void matched_section(double wn, double xi, double Ts, double *c1, double *c2)
+{
+    if (xi < 1.0) {
+        double r = exp(-xi * wn * Ts), th = wn * sqrt(1.0 - xi * xi) * Ts;
+        *c1 = -2.0 * r * cos(th);
+        *c2 = r * r;
+    } else {
+        /* real roots; the small one without cancellation: s1 s2 = wn^2 */
+        double q = xi + sqrt((xi - 1.0) * (xi + 1.0));
+        double p1 = exp(-wn / q * Ts), p2 = exp(-wn * q * Ts);
+        *c1 = -(p1 + p2);
+        *c2 = p1 * p2;
+    }
+}
+
+sms_status sms_notch_init(sms_notch *f, const sms_stage_config *config, double Ts)
+{
+    double b0, b1, b2, a1, a2;
+    sms_notch built;
+    sms_status st;
+    if (f == NULL || config == NULL)
+        return SMS_ERR_NULL;
+    st = check(config, Ts);
+    if (st != SMS_OK)
+        return st;
+    if (config->kind == SMS_NOTCH_TUSTIN) {
+        double t = tan(0.5 * config->wn * Ts), t2 = t * t;
+        double x1 = config->zeta, x2 = config->notch_pole_zeta;
+        double a0 = 1.0 + 2.0 * x2 * t + t2;
+        b0 = (1.0 + 2.0 * x1 * t + t2) / a0;
+        b1 = 2.0 * (t2 - 1.0) / a0;
+        b2 = (1.0 - 2.0 * x1 * t + t2) / a0;
+        a1 = b1;
+        a2 = (1.0 - 2.0 * x2 * t + t2) / a0;
+    } else {
+        double n1, n2, g;
+        matched_section(config->wn, config->zeta, Ts, &n1, &n2);
+        matched_section(config->wn, config->notch_pole_zeta, Ts, &a1, &a2);
+        g = (1.0 + a1 + a2) / (1.0 + n1 + n2);
+        b0 = g;
+        b1 = g * n1;
+        b2 = g * n2;
+    }
+    built.kind = config->kind;
+    built.b0 = (sms_real)b0;
+    built.b1 = (sms_real)b1;
+    built.b2 = (sms_real)b2;
+    built.a1 = (sms_real)a1;
+    built.a2 = (sms_real)a2;
+    *f = built;
+    sms_notch_reset(f, (sms_real)0);
+    return SMS_OK;
+}
+
+void sms_notch_reset(sms_notch *f, sms_real rest)
+{
+    f->x1 = f->x2 = f->y1 = f->y2 = rest;
+    f->rest = rest;
+}
+
+void sms_notch_step(sms_notch *f, sms_real *x)
+{
+    sms_real in = *x;
+    sms_real y = f->b0 * in + f->b1 * f->x1 + f->b2 * f->x2 - f->a1 * f->y1 - f->a2 * f->y2;
+    if (y - y != 0) {
+        /* Non-finite: a bad input sample is skipped (passed through, state kept); overflow
+         * from finite input restarts at rest at that input. */
+        if (in - in == 0) {
+            f->x1 = f->x2 = f->y1 = f->y2 = in;
+            *x = in;
+        }
+        return;
+    }
+    f->x2 = f->x1;
+    f->x1 = in;
+    f->y2 = f->y1;
+    f->y1 = y;
+    *x = y;
+}
+
+void sms_notch_process(sms_notch *f, const sms_real *in, sms_real *out, size_t n)
+{
+    size_t i;
+    for (i = 0; i < n; ++i) {
+        sms_real x = in[i];
+        sms_notch_step(f, &x);
+        out[i] = x;
+    }
+}
+
+size_t sms_notch_state_count(const sms_notch *f)
+{
+    (void)f;
+    return 6u;
+}
+
+void sms_notch_save_state(const sms_notch *f, double *dst)
+{
+    dst[0] = (double)f->kind;
+    dst[1] = (double)f->x1;
+    dst[2] = (double)f->x2;
+    dst[3] = (double)f->y1;
+    dst[4] = (double)f->y2;
+    dst[5] = (double)f->rest;
+}
+
+sms_status sms_notch_check_state(const sms_notch *f, const double *src, size_t n)
+{
+    if (f == NULL || src == NULL)
+        return SMS_ERR_NULL;
+    if (n != 6u || src[0] != (double)f->kind)
+        return SMS_ERR_STATE;
+    return SMS_OK;
+}
+
+sms_status sms_notch_load_state(sms_notch *f, const double *src, size_t n)
+{
+    sms_status st = sms_notch_check_state(f, src, n);
+    if (st != SMS_OK)
+        return st;
+    f->x1 = (sms_real)src[1];
+    f->x2 = (sms_real)src[2];
+    f->y1 = (sms_real)src[3];
+    f->y2 = (sms_real)src[4];
+    f->rest = (sms_real)src[5];
+    return SMS_OK;
+}
+
+sms_status sms_notch_pole_zeta_from_bandwidth(double wn, double zeta, double bandwidth,
+                                              double *pole_zeta)
+{
+    double c, xi2;
+    if (pole_zeta == NULL)
+        return SMS_ERR_NULL;
+    if (!is_finite(wn) || wn <= 0.0)
+        return SMS_ERR_WN;
+    if (!is_finite(zeta) || zeta < 0.0 || zeta >= 1.0)
+        return SMS_ERR_ZETA;
+    if (!is_finite(bandwidth) || bandwidth <= 0.0)
+        return SMS_ERR_BANDWIDTH;
+    c = bandwidth / (2.0 * wn);
+    xi2 = sqrt(c * c + 2.0 * zeta * zeta);
+    if (!(xi2 <= SMS_NOTCH_MAX_POLE_ZETA))
+        return SMS_ERR_BANDWIDTH;
+    *pole_zeta = xi2;
+    return SMS_OK;
+}
