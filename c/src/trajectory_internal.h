@@ -1,0 +1,30 @@
+/* Internal: the kinematic design shared by kinematic.c and generator.c. */
+#ifndef SMS_TRAJECTORY_INTERNAL_H
+#define SMS_TRAJECTORY_INTERNAL_H
+
+#include "smoothshaper/trajectory.h"
+
+/* The problem being solved: n bounds, and how the last stage's length follows from its level. */
+typedef struct sms_kin_plan {
+    size_t n;
+    double L[SMS_KINEMATIC_MAX_ORDER];
+    int fixed;        /* 1: last stage has the fixed length T_fixed (tuned to a mode) */
+    double c_last;    /* free last stage: T = c_last * X / L[n-1] (1 rectangular, pi/2 harmonic) */
+    double T_fixed;   /* fixed last stage: its length ... */
+    double rho_fixed; /* ... and its peak density (bounds q^(n) <= level * rho) */
+} sms_kin_plan;
+
+/* Family of the designed last stage. */
+typedef struct sms_kin_last {
+    sms_kind kind;
+    double sigma;
+    unsigned k;
+} sms_kin_last;
+
+/* Validate and design: T[0..n-1] and the last stage's family. */
+sms_status sms_kin_solve(double h, const double *limits, size_t n, sms_profile profile,
+                         double wn, double zeta, double *T, sms_kin_last *last);
+/* Peak of the normalised impulse response of a rectangular, harmonic or exponential stage. */
+double sms_kin_peak_density(sms_kind kind, double T, double sigma);
+
+#endif
