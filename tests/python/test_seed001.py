@@ -24,7 +24,7 @@ def test_printed_double_s_T3_is_an_erratum():
 
 
 def test_spectrum_closed_form_vanishes_at_the_harmonic_zero():
-    """|S(jw)| of seed 001 Sec. 3.1 is zero at w = 3 pi/T3 and equals 1/2... at pi/T3 (limit)."""
+    """|S(jw)| of seed 001 Sec. 3.1 is zero at w = 3 pi/T3; every stage has unit DC gain."""
     T = [0.16, 0.05, 0.03618868]
     w0 = 3 * math.pi / T[-1]
     assert seed001.spectrum_closed_form(T, [w0], last="harmonic")[0] < 1e-12
