@@ -154,6 +154,13 @@ def _fig4(sec, data):
                         "2.86 %) sits on M1 M2's double zero at 2 wn_hat, whose neighbouring "
                         "lobe peaks at only 2.3 % near 2.5 wn_hat. Against M alone the paper's "
                         "claim holds lobe by lobe.")))
+    even = [st.harmonic(T=2 * 1.5 * T0)]      # k = 2 in eq. (13)/(15): T = 2 * 3 pi/wn
+    sec.add(Claim("eq13.even_k", "eq. (13)/(15) with k = 2 (T = 6 pi/wn): PRV at wn_hat",
+                  float(analysis.prv(even, wn=1.0)), 100 / 35, 1e-9,
+                  "closed form |cos(3 pi)|/|1 - 36|", unit="%", paper=0.0,
+                  note=("the paper allows k = 1, 2, ... in T = k 3 pi/wd; the zeros of S sit at "
+                        "odd multiples of pi/T only, so an even k puts none on the mode and "
+                        "leaves 100/35 = 2.9 % (SPEC 3.2). smoothshaper accepts only odd k.")))
     # Fig. 4b: unit step through S (T = 3 pi) and M1 M2 (2 pi, pi)
     t = np.linspace(0, 3 * math.pi, 300001)
     dt = t[1] - t[0]
@@ -312,6 +319,18 @@ def _fig11_13(sec, data):
                   "wn = 0.7, delta = 0.6", amp * math.exp(p.real * T),
                   discrete * wn / p.imag * math.exp(p.real * T), 1e-9,
                   "|H_d(e^{p Ts})| wn/wd e^{sigma T}"))
+    # Fig. 14: sensitivity to the filter's own parameters T and sigma, equal relative errors
+    for dh in (0.05, 0.5):
+        T = damped_filters(dh)["S_sigma"][0].T
+        for err in (0.1, 0.2):
+            worst_sigma = max(float(analysis.prv([st.damped_harmonic(T=T, sigma=-(1 + x) * dh)],
+                                                 wn=1.0, zeta=dh)) for x in (-err, err))
+            worst_T = max(float(analysis.prv([st.damped_harmonic(T=(1 + x) * T, sigma=-dh)],
+                                             wn=1.0, zeta=dh)) for x in (-err, err))
+            sec.add(Claim(f"fig14.{dh}.{err}", f"Fig. 14 (delta_hat = {dh}): worst PRV for a "
+                          f"+-{100 * err:.0f} % error on sigma over that for the same error on T",
+                          worst_sigma / worst_T, 1.0, 0.0,
+                          "paper: sigma errors matter little, T is critical", relation="<="))
     data["surfaces"] = surfaces
     data["fig11_numbers"] = (along_delta, along_wn, float(corner.max()),
                              float(A5.max() / A05.max()))
@@ -404,7 +423,7 @@ def _body(d) -> str:
         "paper does not give.", "",
         f"Peak velocities for the 30 mm step: S {e['vS']:.1f} mm/s, S_sigma {e['vSs']:.1f} mm/s, "
         f"M_sigma1 M_sigma2 {e['vMM']:.1f} mm/s (continuous trajectories).", "",
-        "**Caveat found while building this section (reported to the lead):** with exact timing "
+        "**Known issue found while building this section:** with exact timing "
         "(the default), the end-tap correction of `docs/exact-mode.md` at Ts = 500 us makes a "
         "unit step overshoot for one or two samples: peak of the filtered unit step "
         + ", ".join(f"{k} {v:.3f}" for k, v in e["overshoot"].items())
