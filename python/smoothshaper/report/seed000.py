@@ -468,6 +468,27 @@ def _figures(sec, fig_dir, d):
         ax.set_ylim(-0.4, 0.4)
         ax.set_xlabel("time [s]")
         ax.set_ylabel("tracking error [m per m of step]")
+    e = d["experiment"]
+    Ts = EXP_TS
+    n = int(0.35 / Ts)
+    t = np.arange(n) * Ts
+    plant = plants.tracking_error(wn=e["wn"], zeta=e["delta"])
+    colors = {"S_sigma": COLORS["damped_harmonic"], "S": COLORS["harmonic"],
+              "M_sigma1 M_sigma2": COLORS["exponential"], "ZVDD": COLORS["zvdd"],
+              "M_sigma1 ZV": COLORS["zv"]}
+    with figure(fig_dir / "fig17_experiment_model.png", "Seed 000 Fig. 17 on the one-mode model: "
+                "30 mm step through each filter of Sec. VI (paper timing, N = round(T/Ts), "
+                "Ts = 500 us) and the tracking error eps of the identified mode (exact ZOH)",
+                sec.figures, ncols=2, size=(12, 4.2)) as (f, ax):
+        for name, chain in e["filt"].items():
+            q = ref.filter([s.with_(timing="paper") for s in chain], np.full(n, EXP_H), Ts=Ts)
+            _, eps = plants.simulate_zoh(plant, q, Ts=Ts)
+            ax[0].plot(t, q, color=colors[name], label=name)
+            ax[1].plot(t, eps, color=colors[name], label=name)
+        ax[0].set_xlabel("time [s]")
+        ax[0].set_ylabel("command q [mm]")
+        ax[1].set_xlabel("time [s]")
+        ax[1].set_ylabel("tracking error eps [mm]")
     for dh, (P, Q, A) in d["surfaces"].items():
         tag = str(dh).replace(".", "")
         X, Y = np.meshgrid(SURF_WN, SURF_DELTA)
