@@ -120,6 +120,9 @@ def make_builder(module: str, defines: list[str]) -> FFI:
         include_dirs=[os.path.relpath(INCLUDE_DIR, ROOT), os.path.relpath(SRC_DIR, ROOT)],
         define_macros=macros,
         libraries=[] if sys.platform == "win32" else ["m"],
+        # Keep the C symbols private to each module: _core and _core_float define the same
+        # sms_* names, and an FMU loaded in the same process defines them too.
+        extra_compile_args=[] if sys.platform == "win32" else ["-fvisibility=hidden"],
     )
     return ffi
 

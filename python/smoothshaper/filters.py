@@ -24,6 +24,9 @@ from . import stages as _stages
 from .stages import Stage
 
 PRECISIONS = ("double", "float")
+#: Largest delay line a Chain allocates (2**28 reals: 2 GiB in double); beyond it the
+#: duration is rejected as a parameter error instead of failing in the allocator.
+MAX_BUFFER_REALS = 1 << 28
 
 # C status -> the parameter it names (see sms_status in c/include/smoothshaper/types.h).
 _STATUS_PARAMETER = {
@@ -33,6 +36,8 @@ _STATUS_PARAMETER = {
     -20: "bandwidth",
 }
 _SMS_ERR_TOO_LONG = -15
+_SMS_ERR_DURATION_BELOW_TS = -4
+_SMS_ERR_ABOVE_NYQUIST = -16
 
 
 class ParameterError(ValueError):
@@ -98,7 +103,7 @@ def _raise_status(status: int, lib, ffi, context: str, parameter: str | None = N
     parameter = parameter or _STATUS_PARAMETER.get(status, "argument")
     text = ffi.string(lib.sms_status_string(status)).decode()
     if not text.startswith(parameter + " "):
-        text = f"{parameter}: {text}"
+        text = f"{parameter} invalid: {text}"
     got = "" if value is None else f" (got {parameter}={value!r})"
     raise ParameterError(parameter, f"{text}{got}; {context}", status)
 
@@ -108,12 +113,14 @@ def _stage_parameter(stage: Stage, status: int) -> tuple[str, object]:
     parameter = _STATUS_PARAMETER.get(status, "argument")
     if status == _SMS_ERR_TOO_LONG and stage.kind not in _stages.SMOOTHERS:
         parameter = "wn"
+    if status == _SMS_ERR_ABOVE_NYQUIST and stage.kind in _stages.SMOOTHERS:
+        parameter = "T"     # the zero exact timing pins, k 2pi/T or k 3pi/T, is above pi/Ts
     return parameter, getattr(stage, parameter, None)
 
 
 def _unsigned(name: str, value: int) -> int:
     if not 0 <= value <= 0xFFFFFFFF:
-        raise ValueError(f"{name} must fit an unsigned 32-bit integer, got {value!r}")
+        raise ParameterError(name, f"{name} must fit an unsigned 32-bit integer, got {value!r}")
     return value
 
 
@@ -198,16 +205,33 @@ class Chain:
                 "stages", f"stages: a chain needs 1 to {lib.SMS_CHAIN_MAX_STAGES} stages, got {n}")
         configs = ffi.new("sms_stage_config[]", n)
         for i, stage in enumerate(self.stages):
-            _fill_config(configs[i], stage)
+            if stage.kind in _stages.SMOOTHERS and stage.T / self.Ts > MAX_BUFFER_REALS:
+                # Checked here because sizing a billion-sample smoother in C takes seconds.
+                raise ParameterError(
+                    "T", f"T too long for Ts={self.Ts!r}: T/Ts = {stage.T / self.Ts:.4g} samples "
+                    f"exceeds {MAX_BUFFER_REALS}; stages[{i}] is {stage.kind} with T={stage.T!r}")
+            try:
+                _fill_config(configs[i], stage)
+            except ParameterError as exc:
+                raise ParameterError(exc.parameter, f"{exc}; stages[{i}] is {stage.kind}") from None
             st = lib.sms_stage_config_validate(ffi.addressof(configs, i), self.Ts)
             if st != 0:
                 parameter, value = _stage_parameter(stage, st)
-                _raise_status(st, lib, ffi, f"stages[{i}] is {stage.kind}, Ts={self.Ts!r}",
+                hint = ""
+                if st == _SMS_ERR_DURATION_BELOW_TS and "harmonic" in stage.kind:
+                    hint = " (the harmonic families need T >= 2 Ts)"
+                if st == _SMS_ERR_ABOVE_NYQUIST and stage.kind in _stages.SMOOTHERS:
+                    hint = (f" (exact timing off the sample grid pins a zero at k*"
+                            f"{'3' if 'harmonic' in stage.kind else '2'}*pi/T, k={stage.k}: "
+                            "it must lie below pi/Ts)")
+                _raise_status(st, lib, ffi, f"stages[{i}] is {stage.kind}, Ts={self.Ts!r}{hint}",
                               parameter, value)
         n_reals = ffi.new("size_t *")
         st = lib.sms_chain_buffer_size(configs, n, self.Ts, n_reals)
         if st != 0:
             _raise_status(st, lib, ffi, f"chain of {n} stages, Ts={self.Ts!r}")
+        if n_reals[0] > MAX_BUFFER_REALS:
+            self._raise_too_long(configs, n_reals[0])
         # Owned by this object for its whole life; the C chain points into both.
         self._buffer = np.zeros(max(1, n_reals[0]), dtype=_real_dtype(precision))
         self._buffer_c = ffi.from_buffer("sms_real[]", self._buffer)
@@ -219,6 +243,20 @@ class Chain:
         if st != 0:
             _raise_status(st, lib, ffi, f"chain of {n} stages, Ts={self.Ts!r}")
 
+    def _raise_too_long(self, configs, total: int):
+        need = self._ffi.new("size_t *")
+        sizes = []
+        for i in range(len(self.stages)):
+            self._lib.sms_stage_buffer_size(self._ffi.addressof(configs, i), self.Ts, need)
+            sizes.append(need[0])
+        i = max(range(len(sizes)), key=sizes.__getitem__)
+        parameter = "T" if self.stages[i].kind in _stages.SMOOTHERS else "wn"
+        raise ParameterError(
+            parameter, f"{parameter} {'too long' if parameter == 'T' else 'too low'} for "
+            f"Ts={self.Ts!r}: the chain would need a delay line of {total} samples "
+            f"(more than {MAX_BUFFER_REALS}); stages[{i}] is {self.stages[i].kind} with "
+            f"{parameter}={getattr(self.stages[i], parameter)!r}")
+
     # -- filtering ------------------------------------------------------------------------
 
     def process(self, u) -> np.ndarray:
@@ -227,7 +265,8 @@ class Chain:
 
         Raises ValueError naming ``u`` if it is not 1-D or holds NaN/Inf (state untouched)."""
         x = _signal("u", u)
-        work = np.array(x, dtype=_real_dtype(self.precision), order="C", copy=True)
+        with np.errstate(over="ignore"):          # float32 overflow is reported just below
+            work = np.array(x, dtype=_real_dtype(self.precision), order="C", copy=True)
         if self.precision == "float" and not np.isfinite(work).all():
             raise ValueError("u must be finite in float precision: a sample overflows float32")
         if work.size:

@@ -1,0 +1,15 @@
+"""Shared pytest setup: hypothesis profiles sized for the 5-minute budget on 2 cores.
+
+``HYPOTHESIS_PROFILE=thorough`` runs many more examples (use it when changing the C core).
+"""
+import os
+
+from hypothesis import HealthCheck, settings
+
+# deadline=None: the first call of a test compiles nothing but may touch a cold cache; the
+# budget is enforced on the whole suite, not per example.
+settings.register_profile("default", max_examples=100, deadline=None,
+                          suppress_health_check=[HealthCheck.too_slow])
+settings.register_profile("thorough", max_examples=1000, deadline=None,
+                          suppress_health_check=[HealthCheck.too_slow])
+settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "default"))

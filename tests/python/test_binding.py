@@ -1,0 +1,71 @@
+"""The cffi extension exposes the whole public C API, generated from the headers."""
+import glob
+import os
+import re
+
+import pytest
+
+from smoothshaper import _build_core
+from smoothshaper.filters import _backend
+
+HEADERS = sorted(glob.glob(os.path.join(_build_core.INCLUDE_DIR, "smoothshaper", "*.h")))
+# A public function: "SMS_API <return type> name(" possibly with the name on the same line.
+API_FUNCTION = re.compile(r"SMS_API\s+[^;(]*?\b(sms_\w+)\s*\(")
+INT_DEFINE = re.compile(r"^\s*#\s*define\s+(SMS_[A-Z0-9_]+)\s+(\d+)\s*$", re.M)
+
+
+def _public_functions():
+    names = set()
+    for path in HEADERS:
+        with open(path, encoding="utf-8") as f:
+            names.update(API_FUNCTION.findall(f.read()))
+    return sorted(names)
+
+
+def test_headers_are_found():
+    assert os.path.basename(_build_core.UMBRELLA) == "smoothshaper.h"
+    assert len(_public_functions()) > 20
+
+
+@pytest.mark.parametrize("precision", ["double", "float"])
+def test_every_public_function_is_bound(precision):
+    ffi, lib = _backend(precision)
+    missing = [name for name in _public_functions() if not hasattr(lib, name)]
+    assert missing == []
+
+
+@pytest.mark.parametrize("precision, size", [("double", 8), ("float", 4)])
+def test_real_type_matches_precision(precision, size):
+    ffi, _ = _backend(precision)
+    assert ffi.sizeof("sms_real") == size
+
+
+def test_integer_constants_match_headers():
+    _, lib = _backend("double")
+    for path in HEADERS:
+        with open(path, encoding="utf-8") as f:
+            for name, value in INT_DEFINE.findall(f.read()):
+                assert getattr(lib, name) == int(value), name
+
+
+def test_cdef_is_generated_from_the_preprocessed_header():
+    text = _build_core.cdef_text([])
+    assert "typedef double sms_real;" in text
+    assert "typedef float sms_real;" in _build_core.cdef_text(["SMS_USE_FLOAT"])
+    # Preprocessor leftovers cffi cannot parse must be gone.
+    assert "SMS_API" not in text and "#include" not in text and "__attribute__" not in text
+
+
+def test_status_strings_cover_every_status():
+    ffi, lib = _backend("double")
+    statuses = [getattr(lib, n) for n in dir(lib) if n.startswith("SMS_ERR_")]
+    assert len(statuses) >= 20
+    texts = {ffi.string(lib.sms_status_string(s)).decode() for s in statuses}
+    assert len(texts) == len(statuses)          # distinct, so an error says which argument
+    assert ffi.string(lib.sms_status_string(lib.SMS_OK)) == b"ok"
+
+
+def test_kind_names_match_python_kinds():
+    from smoothshaper.stages import KINDS
+    ffi, lib = _backend("double")
+    assert [ffi.string(lib.sms_kind_name(i)).decode() for i in range(lib.SMS_KIND_COUNT)] == list(KINDS)
