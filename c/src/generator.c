@@ -1,0 +1,389 @@
+/* Online multi-point generator (SPEC 4.4). The bound argument is in trajectory.h; here:
+ * init designs the tail and tabulates its responses (libm allowed), step is O(1) without libm. */
+#include <math.h>
+#include "smoothshaper/trajectory.h"
+#include "trajectory_internal.h"
+
+#define GEN_STATE_COUNT 9u
+
+/* phi_k(x) = (e^x - sum_{i<k} x^i/i!) / x^k, accurate for small |x| (series) and large. */
+static double phi(int k, double x)
+{
+    if (fabs(x) < 0.5) {
+        double term = 1.0, sum = 0.0, fact = 1.0;
+        int i;
+        for (i = 1; i <= k; ++i)
+            fact *= i;
+        term = 1.0 / fact;
+        for (i = k + 1; i < k + 30; ++i) {
+            sum += term;
+            term *= x / i;
+        }
+        return sum;
+    } else {
+        double e = expm1(x);
+        if (k == 1)
+            return e / x;
+        e -= x;
+        if (k == 2)
+            return e / (x * x);
+        e -= 0.5 * x * x;
+        return e / (x * x * x);
+    }
+}
+
+/* The last tail stage L on [0, T3]: density l and its iterated integrals P1, P2, P3. */
+typedef struct last_stage {
+    sms_kind kind;
+    double T, sigma, A; /* A: exponential normalisation 1 / (T phi_1(sigma T)) */
+    double m1, m2;      /* first two moments, for the continuation beyond T */
+} last_stage;
+
+static double l_density(const last_stage *L, double s)
+{
+    if (s < 0.0 || s >= L->T) /* right limit: 0 from T on */
+        return 0.0;
+    switch (L->kind) {
+    case SMS_HARMONIC:
+        return 1.5707963267948966 / L->T * sin(3.14159265358979323846 * s / L->T);
+    case SMS_EXPONENTIAL:
+        return L->A * exp(L->sigma * s);
+    default:
+        return 1.0 / L->T;
+    }
+}
+
+/* P_k(s) = int_0^s l(tau) (s - tau)^(k-1)/(k-1)! dtau on [0, T]. */
+static double P_inside(const last_stage *L, int k, double s)
+{
+    double T = L->T;
+    switch (L->kind) {
+    case SMS_HARMONIC: {
+        double w = 3.14159265358979323846 / T, c = cos(w * s), sn = sin(w * s);
+        if (k == 1)
+            return 0.5 * (1.0 - c);
+        if (k == 2)
+            return 0.5 * (s - sn / w);
+        return 0.5 * (0.5 * s * s - (1.0 - c) / (w * w));
+    }
+    case SMS_EXPONENTIAL: {
+        double x = L->sigma * s, p = s;
+        if (k >= 2)
+            p *= s;
+        if (k >= 3)
+            p *= s;
+        return L->A * p * phi(k, x);
+    }
+    default:
+        if (k == 1)
+            return s / T;
+        if (k == 2)
+            return s * s / (2.0 * T);
+        return s * s * s / (6.0 * T);
+    }
+}
+
+static double P(const last_stage *L, int k, double s)
+{
+    if (s <= 0.0)
+        return 0.0;
+    if (s <= L->T)
+        return P_inside(L, k, s);
+    if (k == 1)
+        return 1.0;
+    if (k == 2)
+        return s - L->m1;
+    return 0.5 * (s * s - 2.0 * L->m1 * s + L->m2);
+}
+
+static sms_status design_tail(const sms_generator_config *c, double Ts, double *T2,
+                              sms_kin_last *last_out, double *T3, size_t *Nc)
+{
+    double L2[2], T[2], nu, Tc;
+    sms_status st;
+    if (c == NULL)
+        return SMS_ERR_NULL;
+    if (!isfinite(Ts) || !(Ts > 0.0))
+        return SMS_ERR_SAMPLE_PERIOD;
+    if (!isfinite(c->vmax) || !(c->vmax > 0.0))
+        return SMS_ERR_LIMIT;
+    if (c->wn > 0.0 && isfinite(c->wn) && c->wn * Ts >= 3.14159265358979323846)
+        return SMS_ERR_ABOVE_NYQUIST;
+    L2[0] = c->amax;
+    L2[1] = c->jmax;
+    /* the tail is the velocity rise: displacement vmax under the bounds {amax, jmax} */
+    st = sms_kin_solve(c->vmax, L2, 2, c->profile, c->wn, c->zeta, T, last_out);
+    if (st != SMS_OK)
+        return st;
+    if (T[0] < Ts || T[1] < Ts)
+        return SMS_ERR_DURATION_BELOW_TS;
+    Tc = T[0] + T[1];
+    nu = Tc / Ts;
+    if (nu > 1e15)
+        return SMS_ERR_TOO_LONG;
+    {
+        double n_round = floor(nu + 0.5);
+        if (fabs(nu - n_round) <= 1e-9 * (nu > 1.0 ? nu : 1.0))
+            *Nc = (size_t)n_round;
+        else
+            *Nc = (size_t)ceil(nu);
+    }
+    *T2 = T[0];
+    *T3 = T[1];
+    return SMS_OK;
+}
+
+sms_status sms_generator_buffer_size(const sms_generator_config *config, double Ts, size_t *n_reals)
+{
+    double T2, T3;
+    sms_kin_last last;
+    size_t Nc;
+    sms_status st;
+    if (n_reals == NULL)
+        return SMS_ERR_NULL;
+    st = design_tail(config, Ts, &T2, &last, &T3, &Nc);
+    if (st != SMS_OK)
+        return st;
+    if (Nc > ((size_t)-1) / 4u - 1u)
+        return SMS_ERR_TOO_LONG;
+    *n_reals = 4u * (Nc + 1u);
+    return SMS_OK;
+}
+
+sms_status sms_generator_init(sms_generator *g, const sms_generator_config *config, double Ts,
+                              sms_real *buffer, size_t n_reals)
+{
+    double T2, T3, mu;
+    sms_kin_last kl;
+    last_stage L;
+    size_t Nc, m, need;
+    sms_real *E, *F, *X2, *X2d;
+    sms_status st;
+    if (g == NULL)
+        return SMS_ERR_NULL;
+    st = design_tail(config, Ts, &T2, &kl, &T3, &Nc);
+    if (st != SMS_OK)
+        return st;
+    if (Nc > ((size_t)-1) / 4u - 1u)
+        return SMS_ERR_TOO_LONG;
+    need = 4u * (Nc + 1u);
+    if (buffer == NULL)
+        return SMS_ERR_NULL;
+    if (n_reals < need)
+        return SMS_ERR_BUFFER_TOO_SMALL;
+
+    L.kind = kl.kind;
+    L.T = T3;
+    L.sigma = kl.sigma;
+    L.A = kl.kind == SMS_EXPONENTIAL ? 1.0 / (T3 * phi(1, kl.sigma * T3)) : 0.0;
+    L.m1 = 0.0;
+    L.m2 = 0.0;
+    /* moments from continuity at T: P2(T) = T - m1, P3(T) = (T^2 - 2 m1 T + m2)/2 */
+    L.m1 = T3 - P_inside(&L, 2, T3);
+    L.m2 = 2.0 * P_inside(&L, 3, T3) - T3 * T3 + 2.0 * L.m1 * T3;
+    mu = 0.5 * T2 + L.m1;
+
+    E = buffer;
+    F = buffer + (Nc + 1u);
+    X2 = buffer + 2u * (Nc + 1u);
+    X2d = buffer + 3u * (Nc + 1u);
+    for (m = 0; m < Nc; ++m) {
+        double s = (double)m * Ts;
+        /* X = M(T2) * L: responses are differences of L's integrals over the window T2 */
+        double x2 = (P(&L, 1, s) - P(&L, 1, s - T2)) / T2;
+        double Fs = (P(&L, 2, s) - P(&L, 2, s - T2)) / T2;
+        double Gs = (P(&L, 3, s) - P(&L, 3, s - T2)) / T2;
+        double x2d = (l_density(&L, s) - l_density(&L, s - T2)) / T2;
+        E[m] = (sms_real)(Gs - s + mu);
+        F[m] = (sms_real)Fs;
+        X2[m] = (sms_real)x2;
+        X2d[m] = (sms_real)x2d;
+    }
+    /* settled: the change has passed through the whole tail */
+    E[Nc] = 0;
+    F[Nc] = 1;
+    X2[Nc] = 0;
+    X2d[Nc] = 0;
+
+    g->Ts = Ts;
+    g->vmax = config->vmax;
+    g->T2 = T2;
+    g->T3 = T3;
+    g->last_kind = kl.kind;
+    g->sigma = kl.sigma;
+    g->n_tail = Nc;
+    g->mean_delay = mu;
+    g->table = buffer;
+    sms_generator_reset(g, 0);
+    return SMS_OK;
+}
+
+void sms_generator_reset(sms_generator *g, sms_real position)
+{
+    g->target = position;
+    g->start = position;
+    g->goal = position;
+    g->r = position;
+    g->velocity = 0;
+    g->change = 0;
+    g->seg_len = 0;
+    g->seg_pos = 0;
+    g->age = g->n_tail;
+}
+
+/* Largest segment in samples; keeps counts exact in sms_real and far from overflow. */
+#define GEN_MAX_SEGMENT 4194304.0 /* 2^22 */
+
+/* Start a new constant-velocity segment from r towards the target (only when allowed). */
+static void replan(sms_generator *g)
+{
+    sms_real d = g->target - g->r;
+    sms_real V = g->velocity;
+    double dist, samples, m;
+    sms_real Vn;
+    if (V != 0 && (d == 0 || (d > 0) != (V > 0))) {
+        /* past or at the target while moving: stop first (a change of |V| <= vmax) */
+        g->change = -V;
+        g->velocity = 0;
+        g->seg_len = 0;
+        g->seg_pos = 0;
+        g->start = g->goal = g->r;
+        g->age = 0;
+        return;
+    }
+    dist = d < 0 ? -(double)d : (double)d;
+    samples = dist / (g->vmax * g->Ts);
+    if (samples > GEN_MAX_SEGMENT) {
+        /* absurdly far: go part of the way at vmax; the next re-plan continues */
+        samples = GEN_MAX_SEGMENT;
+        d = (sms_real)(d > 0 ? GEN_MAX_SEGMENT * g->vmax * g->Ts : -GEN_MAX_SEGMENT * g->vmax * g->Ts);
+    }
+    m = (double)(size_t)samples;
+    if (m < samples)
+        m += 1.0;
+    if (m < (double)g->n_tail)
+        m = (double)g->n_tail; /* T1 >= Tc: the stop is >= Nc samples after the start */
+    Vn = (sms_real)((double)d / (m * g->Ts));
+    g->start = g->r;
+    g->goal = g->r + d;
+    g->seg_len = (size_t)m;
+    g->seg_pos = 0;
+    if (Vn != V) {
+        g->change = Vn - V; /* same sign, both within vmax: |change| <= vmax */
+        g->velocity = Vn;
+        g->age = 0;
+    }
+}
+
+void sms_generator_step(sms_generator *g, sms_real target, sms_real out[4])
+{
+    const size_t Nc = g->n_tail;
+    const sms_real *E = g->table, *F = E + (Nc + 1u), *X2 = E + 2u * (Nc + 1u),
+                   *X2d = E + 3u * (Nc + 1u);
+    sms_real dv;
+    size_t s;
+    if (target - target == 0) /* finite (NaN and Inf give NaN) */
+        g->target = target;
+    if (g->age < Nc)
+        ++g->age;
+    /* 1. advance the first stage to this instant */
+    if (g->seg_len > 0) {
+        ++g->seg_pos;
+        if (g->seg_pos >= g->seg_len) {
+            g->r = g->goal; /* exact end of the segment */
+            g->seg_len = 0;
+            g->seg_pos = 0;
+            g->start = g->goal;
+            if (g->age >= Nc && g->target != g->r) {
+                replan(g); /* continue (same direction) or stop (reversal) right here */
+            } else {
+                g->change = -g->velocity;
+                g->velocity = 0;
+                g->age = 0;
+            }
+        } else {
+            g->r = g->start + (g->goal - g->start) * ((sms_real)g->seg_pos / (sms_real)g->seg_len);
+        }
+    }
+    /* 2. re-plan if the target moved and the last change has left the tail */
+    if (g->age >= Nc && g->target != (g->seg_len > 0 ? g->goal : g->r))
+        replan(g);
+    /* 3. output: only the last change is still inside the tail (header argument) */
+    s = g->age;
+    dv = g->change;
+    out[0] = g->r - (sms_real)g->mean_delay * g->velocity + dv * E[s];
+    out[1] = g->velocity - dv * (1 - F[s]);
+    out[2] = dv * X2[s];
+    out[3] = dv * X2d[s];
+}
+
+double sms_generator_tail_duration(const sms_generator *g)
+{
+    return g->T2 + g->T3;
+}
+
+size_t sms_generator_state_count(const sms_generator *g)
+{
+    (void)g;
+    return GEN_STATE_COUNT;
+}
+
+void sms_generator_save_state(const sms_generator *g, double *dst)
+{
+    dst[0] = (double)g->target;
+    dst[1] = (double)g->start;
+    dst[2] = (double)g->goal;
+    dst[3] = (double)g->r;
+    dst[4] = (double)g->velocity;
+    dst[5] = (double)g->change;
+    dst[6] = (double)g->seg_len;
+    dst[7] = (double)g->seg_pos;
+    dst[8] = (double)g->age;
+}
+
+static int is_count(double x, double max)
+{
+    return x >= 0.0 && x <= max && x == (double)(size_t)x;
+}
+
+sms_status sms_generator_check_state(const sms_generator *g, const double *src, size_t n)
+{
+    size_t i;
+    if (g == NULL || src == NULL)
+        return SMS_ERR_NULL;
+    if (n != GEN_STATE_COUNT)
+        return SMS_ERR_STATE;
+    for (i = 0; i < 6; ++i)
+        if (!isfinite(src[i]))
+            return SMS_ERR_STATE;
+    if (fabs(src[4]) > g->vmax * (1.0 + 1e-6) || fabs(src[5]) > g->vmax * (1.0 + 1e-6))
+        return SMS_ERR_STATE;
+    if (!is_count(src[6], GEN_MAX_SEGMENT) || !is_count(src[7], src[6]) ||
+        !is_count(src[8], (double)g->n_tail))
+        return SMS_ERR_STATE;
+    if (src[6] > 0.0 && src[7] >= src[6])
+        return SMS_ERR_STATE;
+    return SMS_OK;
+}
+
+sms_status sms_generator_load_state(sms_generator *g, const double *src, size_t n)
+{
+    sms_status st = sms_generator_check_state(g, src, n);
+    if (st != SMS_OK)
+        return st;
+    g->target = (sms_real)src[0];
+    g->start = (sms_real)src[1];
+    g->goal = (sms_real)src[2];
+    g->r = (sms_real)src[3];
+    g->velocity = (sms_real)src[4];
+    g->change = (sms_real)src[5];
+    g->seg_len = (size_t)src[6];
+    g->seg_pos = (size_t)src[7];
+    g->age = (size_t)src[8];
+    return SMS_OK;
+}
+
+void sms_generator_rebind(sms_generator *g, sms_real *buffer)
+{
+    g->table = buffer;
+}
