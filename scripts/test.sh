@@ -1,16 +1,29 @@
 #!/usr/bin/env bash
 # Set up from scratch and run every test: the C suite under ctest (double and float, then again
 # under AddressSanitizer + UndefinedBehaviorSanitizer) and the Python suite under pytest.
+# Needs: python3 >= 3.10 (with venv), a C compiler, cmake >= 3.16. Idempotent: reuses .venv.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-python3 -m venv .venv
+
+python3 -c 'import sys; sys.exit(0 if sys.version_info >= (3, 10) else "python3 >= 3.10 is required")'
+[ -x .venv/bin/python ] || python3 -m venv .venv
 . .venv/bin/activate
 python -m pip install -q --upgrade pip
+# Editable install: builds the cffi extensions smoothshaper._core/_core_float from c/src.
 python -m pip install -q -e ".[test]"
+
 cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release
 cmake --build build/release -j2
 ctest --test-dir build/release --output-on-failure -j2
+
 cmake -S . -B build/sanitize -DCMAKE_BUILD_TYPE=Debug -DSMS_SANITIZE=ON
 cmake --build build/sanitize -j2
 ctest --test-dir build/sanitize --output-on-failure -j2
+
+# An empty collection (pytest exit code 5) must fail loudly, never pass as "nothing to do".
+collected=$(python -m pytest tests/python --collect-only -q 2>/dev/null | grep -c '::' || true)
+if [ "$collected" -eq 0 ]; then
+    echo "test.sh: pytest collected no tests from tests/python" >&2
+    exit 1
+fi
 python -m pytest tests/python -q

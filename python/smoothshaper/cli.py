@@ -248,12 +248,22 @@ def prv_curve(stages, *, wn_hat, zeta, Ts, ratios, progress: Progress) -> np.nda
     """PRV [%] at wn = ratio*wn_hat, evaluated in chunks so the bar can move."""
     analysis = _analysis()
     out = np.empty(len(ratios))
-    for start in range(0, len(ratios), 64):
-        part = ratios[start:start + 64]
-        out[start:start + len(part)] = [analysis.prv(stages, wn=r * wn_hat, zeta=zeta, Ts=Ts)
-                                        for r in part]
+    for start in range(0, len(ratios), 256):
+        part = ratios[start:start + 256]
+        out[start:start + len(part)] = analysis.prv_curve(stages, wn_hat=wn_hat, ratio=part,
+                                                          zeta=zeta, Ts=Ts)
         progress.advance(len(part))
     return out
+
+
+def prv_surface(stages, *, wn, zetas, Ts, progress: Progress) -> np.ndarray:
+    """PRV [%] on the grid zetas x wn, one damping row at a time (for the bar)."""
+    analysis = _analysis()
+    rows = []
+    for z in zetas:
+        rows.append(analysis.prv_surface(stages, wn=wn, zeta=[z], Ts=Ts)[0])
+        progress.advance()
+    return np.array(rows)
 
 
 def cmd_analyze(args) -> int:
@@ -273,12 +283,39 @@ def cmd_analyze(args) -> int:
     show = args.progress if args.progress is not None else sys.stderr.isatty()
 
     ratios = np.linspace(args.ratio_min, args.ratio_max, args.points)
-    nyquist_ratio = math.pi / args.Ts / wn_hat
-    ratios = ratios[ratios < nyquist_ratio]
+    ratios = ratios[ratios * wn_hat < math.pi / args.Ts]       # modes below Nyquist only
+    if ratios.size < 2:
+        raise CliError("the swept modes lie above the Nyquist frequency pi/Ts: lower "
+                       "--ratio-max or --Ts")
     bar = Progress(len(ratios), "PRV sweep", show)
     prv = prv_curve(stages, wn_hat=wn_hat, zeta=zeta, Ts=args.Ts, ratios=ratios, progress=bar)
     prv_nominal = float(analysis.prv(stages, wn=wn_hat, zeta=zeta, Ts=args.Ts))
-    band = ratios[prv <= 100 * args.tolerance]
+    try:
+        band = analysis.insensitivity(stages, wn_hat=wn_hat, zeta=zeta, Ts=args.Ts,
+                                      tolerance=args.tolerance,
+                                      span=(args.ratio_min, min(args.ratio_max, ratios[-1])))
+        band_text = (f"[{band.low / wn_hat:.4g}, {band.high / wn_hat:.4g}] x wn_hat, "
+                     f"relative width {band.relative_width:.4g}")
+    except ValueError as exc:
+        band_text = f"not bounded inside the sweep ({exc})"
+    plots = ["prv.png", "spectrum.png", "step.png"]
+
+    if args.surface:
+        zetas = np.linspace(0.0, args.zeta_max, args.surface_points)
+        wn_grid = ratios * wn_hat
+        bar = Progress(len(zetas), "PRV surface", show)
+        surface = prv_surface(stages, wn=wn_grid, zetas=zetas, Ts=args.Ts, progress=bar)
+        fig, ax = plt.subplots(figsize=(7, 4.5))
+        levels = [0, 1, 2, 5, 10, 20, 50, 100, max(100.0, float(surface.max()))]
+        cs = ax.contourf(ratios, zetas, surface, levels=sorted(set(levels)), cmap="viridis")
+        fig.colorbar(cs, ax=ax, label="PRV [%]")
+        ax.set_xlabel(r"$\omega_n/\hat\omega_n$")
+        ax.set_ylabel(r"damping ratio $\zeta$")
+        ax.set_title("Residual vibration over frequency and damping")
+        fig.tight_layout()
+        fig.savefig(os.path.join(args.out, "prv_surface.png"), dpi=120)
+        plt.close(fig)
+        plots.append("prv_surface.png")
 
     fig, ax = plt.subplots(figsize=(7, 4))
     ax.plot(ratios, prv)
@@ -293,7 +330,7 @@ def cmd_analyze(args) -> int:
     fig.savefig(os.path.join(args.out, "prv.png"), dpi=120)
     plt.close(fig)
 
-    w = np.linspace(0.0, math.pi / args.Ts, 2000)[1:]
+    w = np.geomspace(min(wn_hat, math.pi / args.Ts) / 100, math.pi / args.Ts, 4000)
     mag = np.abs(np.asarray(analysis.frequency_response(stages, w, Ts=args.Ts)))
     fig, ax = plt.subplots(figsize=(7, 4))
     ax.semilogx(w, 20 * np.log10(np.maximum(mag, 1e-12)))
@@ -328,13 +365,9 @@ def cmd_analyze(args) -> int:
           f"({chain.length * args.Ts:.6g} s){'' if chain.is_fir else ' plus IIR notch'}")
     print(f"mode analysed: wn_hat = {wn_hat:g} rad/s, zeta = {zeta:g}")
     print(f"PRV at the nominal mode: {prv_nominal:.6g} %")
-    if band.size:
-        print(f"PRV <= {100 * args.tolerance:g} % for wn/wn_hat in [{band.min():.4g}, "
-              f"{band.max():.4g}] of the swept range (may be several bands)")
-    else:
-        print(f"PRV <= {100 * args.tolerance:g} % nowhere in the swept range")
+    print(f"insensitivity (PRV <= {100 * args.tolerance:g} %): {band_text}")
     print(f"step response: final value {y[-1]:.12g}, max {y.max():.12g}, min {y.min():.12g}")
-    print(f"plots: {', '.join(os.path.join(args.out, f) for f in ('prv.png', 'spectrum.png', 'step.png'))}")
+    print(f"plots: {', '.join(os.path.join(args.out, f) for f in plots)}")
     return 0
 
 
@@ -482,6 +515,11 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--points", type=int, default=600, help="sweep points (default 600)")
     p.add_argument("--tolerance", type=float, default=0.05,
                    help="vibration tolerance for the insensitivity band (default 0.05 = 5 %%)")
+    p.add_argument("--surface", action="store_true",
+                   help="also write prv_surface.png: PRV over wn/wn_hat and zeta")
+    p.add_argument("--zeta-max", type=float, default=0.3, help="surface damping range (default 0.3)")
+    p.add_argument("--surface-points", type=int, default=61,
+                   help="surface damping rows (default 61)")
     p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
                    help="show the sweep progress bar (default: when stderr is a terminal)")
     p.set_defaults(func=cmd_analyze)
