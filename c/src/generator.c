@@ -302,7 +302,7 @@ void sms_generator_step(sms_generator *g, sms_real target, sms_real out[4])
                 g->age = 0;
             }
         } else {
-            g->r = g->start + (g->goal - g->start) * ((sms_real)g->seg_pos / (sms_real)g->seg_len);
+            g->r = g->start + g->velocity * (sms_real)((double)g->seg_pos * g->Ts);
         }
     }
     /* 2. re-plan if the target moved and the last change has left the tail */
