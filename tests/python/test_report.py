@@ -52,7 +52,7 @@ def test_run_writes_readme_and_readable_figures(tmp_path):
     for key in ("seed004", "shapers"):
         section = report.build_section(key)
         for claim in section.claims:
-            assert claim.what in text
+            assert claim.what.replace("|", "\\|") in text
     pngs = sorted((tmp_path / "figures").rglob("*.png"))
     assert len(pngs) >= 4
     for png in pngs:
@@ -83,3 +83,10 @@ def test_figure_without_axis_labels_is_refused(tmp_path):
         with figure(tmp_path / "bad.png", "bad", out) as (fig, ax):
             ax.plot([0, 1], [0, 1], label="line")
     assert out == []
+
+
+def test_pipes_in_claim_text_do_not_split_table_cells():
+    c = cl.Claim("k", "|H(p)| at the mode", 0.0, 0.0, 1e-12, "closed form |S(p)|")
+    row = cl.claims_table([c]).splitlines()[2]
+    assert row.count(" | ") == 5          # six cells: what, paper, ours, asserted, tol, ok
+    assert "\\|H(p)\\|" in row

@@ -104,6 +104,11 @@ def fmt(x: float | None, unit: str = "") -> str:
     return f"{s} {unit}".strip()
 
 
+def _cell(text: str) -> str:
+    """Table-safe text: a literal '|' (as in |H(p)|) would split the cell."""
+    return text.replace("|", "\\|")
+
+
 def claims_table(claims: list[Claim]) -> str:
     """Markdown table: what, paper, ours, asserted, tolerance, status, note."""
     rows = ["| claim | paper | ours | asserted against | tolerance | ok |",
@@ -111,9 +116,9 @@ def claims_table(claims: list[Claim]) -> str:
     notes = []
     for c in claims:
         rel = {"==": "=", "<=": "&le;", ">=": "&ge;"}[c.relation]
-        asserted = f"{rel} {fmt(c.expected, c.unit)} ({c.reference})"
+        asserted = f"{rel} {fmt(c.expected, c.unit)} ({_cell(c.reference)})"
         mark = "yes" if c.holds else "**NO**"
-        what = c.what
+        what = _cell(c.what)
         if c.note:
             notes.append(c)
             what += f" [note {len(notes)}]"
