@@ -214,6 +214,9 @@ SMS_API void sms_generator_rebind(sms_generator *g, sms_real *buffer);
  * Q_0 up to sample 0, passes through Q_i at sample (i-1) N + k0 (sms_bspline_pass_sample()),
  * and equals Q_{M-1} from sample (M-2) N + p (N-1) on.
  * Its transfer function is P(z) * M_N(z)^p: zeros at w = k 2 pi / T for every k >= 1.
+ * The c_m are measured from the filter itself at init, so the pass-through holds to the
+ * filter's own rounding (1e-12 relative in double). Memory: the caller owns the struct and
+ * one buffer (the stages' delay lines); a copied struct keeps pointing at the same buffer.
  */
 typedef struct sms_bspline {
     unsigned degree;       /**< p, 1 .. ::SMS_BSPLINE_MAX_DEGREE */
@@ -224,8 +227,7 @@ typedef struct sms_bspline {
     long m_first;          /**< first m with c_m != 0 (<= 0) */
     size_t n_coeff;        /**< number of c_m stored */
     double coeff[SMS_BSPLINE_MAX_DEGREE + 2];
-    sms_stage stages[SMS_BSPLINE_MAX_AXES * SMS_BSPLINE_MAX_DEGREE];
-    sms_chain chains[SMS_BSPLINE_MAX_AXES];
+    sms_stage stages[SMS_BSPLINE_MAX_AXES * SMS_BSPLINE_MAX_DEGREE]; /**< axis a: [a p, a p + p) */
 } sms_bspline;
 
 /** @brief Reals needed: n_axes p times one rectangular stage of N samples.
