@@ -117,6 +117,10 @@ def make_builder(module: str, defines: list[str]) -> FFI:
         module,
         '#include "smoothshaper/smoothshaper.h"\n',
         sources=_sources(),
+        # Rebuild when any header changes, not only when a .c file does.
+        depends=[os.path.relpath(p, ROOT) for p in sorted(
+            glob.glob(os.path.join(INCLUDE_DIR, "smoothshaper", "*.h"))
+            + glob.glob(os.path.join(SRC_DIR, "*.h")))],
         include_dirs=[os.path.relpath(INCLUDE_DIR, ROOT), os.path.relpath(SRC_DIR, ROOT)],
         define_macros=macros,
         libraries=[] if sys.platform == "win32" else ["m"],
