@@ -221,9 +221,13 @@ class Chain:
                 if st == _SMS_ERR_DURATION_BELOW_TS and "harmonic" in stage.kind:
                     hint = " (the harmonic families need T >= 2 Ts)"
                 if st == _SMS_ERR_ABOVE_NYQUIST and stage.kind in _stages.SMOOTHERS:
-                    hint = (f" (exact timing off the sample grid pins a zero at k*"
-                            f"{'3' if 'harmonic' in stage.kind else '2'}*pi/T, k={stage.k}: "
-                            "it must lie below pi/Ts)")
+                    zero = f"{stage.k}*{'3' if 'harmonic' in stage.kind else '2'}*pi/T"
+                    raise ParameterError(
+                        "T", f"T too short for exact timing: off the sample grid it pins a zero "
+                        f"at k*{zero.split('*', 1)[1]} = {zero}, which must lie below the "
+                        f"Nyquist frequency pi/Ts (got T={stage.T!r}); stages[{i}] is "
+                        f"{stage.kind}, Ts={self.Ts!r} (use a longer T, k=1, or timing='paper')",
+                        st)
                 _raise_status(st, lib, ffi, f"stages[{i}] is {stage.kind}, Ts={self.Ts!r}{hint}",
                               parameter, value)
         n_reals = ffi.new("size_t *")

@@ -78,6 +78,9 @@ def test_Ts_is_keyword_only():
 @pytest.mark.parametrize("stage, Ts, parameter", [
     (sms.rectangular(T=0.0005), 1e-3, "T"),                         # T < Ts
     (sms.harmonic(T=0.0009), 1e-3, "T"),
+    (sms.harmonic(T=0.0015), 1e-3, "T"),                            # harmonic needs N >= 2
+    (sms.harmonic(T=0.0025), 1e-3, "T"),                            # pinned zero above pi/Ts
+    (sms.rectangular(T=0.0051, k=3), 1e-3, "T"),
     (sms.shaper("zv", wn=4000.0), 1e-3, "wn"),                      # above pi/Ts = 3141.6
     (sms.notch(wn=3200.0), 1e-3, "wn"),
     (sms.rectangular(T=1e6), 1e-3, "T"),                            # delay line too long
