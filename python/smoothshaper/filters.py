@@ -108,6 +108,16 @@ def _raise_status(status: int, lib, ffi, context: str, parameter: str | None = N
     raise ParameterError(parameter, f"{text}{got}; {context}", status)
 
 
+def raise_for_status(status: int, *, context: str, parameter: str | None = None, value=None,
+                     precision: str = "double") -> None:
+    """For other C-backed wrappers: do nothing on ``SMS_OK`` (0), else raise
+    :class:`ParameterError` naming ``parameter`` (default: the one the status names, e.g.
+    ``SMS_ERR_LIMIT`` -> ``limits``), with the C message, ``value`` and ``context``."""
+    if status != 0:
+        ffi, lib = _backend(precision)
+        _raise_status(int(status), lib, ffi, context, parameter, value)
+
+
 def _stage_parameter(stage: Stage, status: int) -> tuple[str, object]:
     """Name and value of the stage field a status refers to (a too-long shaper is a too-low wn)."""
     parameter = _STATUS_PARAMETER.get(status, "argument")

@@ -69,3 +69,15 @@ def test_kind_names_match_python_kinds():
     from smoothshaper.stages import KINDS
     ffi, lib = _backend("double")
     assert [ffi.string(lib.sms_kind_name(i)).decode() for i in range(lib.SMS_KIND_COUNT)] == list(KINDS)
+
+
+def test_raise_for_status_names_the_parameter():
+    from smoothshaper.filters import ParameterError, raise_for_status
+    _, lib = _backend("double")
+    raise_for_status(lib.SMS_OK, context="nothing")
+    with pytest.raises(ParameterError, match=r"^zeta must") as info:
+        raise_for_status(lib.SMS_ERR_ZETA, context="a test", value=1.5)
+    assert info.value.parameter == "zeta" and info.value.status == lib.SMS_ERR_ZETA
+    assert "1.5" in str(info.value) and "a test" in str(info.value)
+    with pytest.raises(ParameterError, match=r"^jmax invalid") as info:
+        raise_for_status(lib.SMS_ERR_LIMIT, context="design", parameter="jmax")
