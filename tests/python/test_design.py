@@ -1,0 +1,140 @@
+"""Kinematic design: ruckig's time-optimal duration, bounds of the sampled trajectory, seed 001
+check values, C vs the independent reference, parameter errors."""
+import math
+from fractions import Fraction
+
+import numpy as np
+import pytest
+from hypothesis import given, strategies as st
+
+ruckig = pytest.importorskip("ruckig")
+from smoothshaper import design  # noqa: E402
+
+
+def ruckig_duration(h, v, a, j):
+    otg = ruckig.Ruckig(1)
+    inp = ruckig.InputParameter(1)
+    inp.current_position = [0.0]
+    inp.target_position = [h]
+    inp.max_velocity = [v]
+    inp.max_acceleration = [a]
+    inp.max_jerk = [j]
+    traj = ruckig.Trajectory(1)
+    assert otg.calculate(inp, traj) == ruckig.Result.Working
+    return traj.duration
+
+
+def chain_derivative_peak(h, T, i, n_points=64):
+    """Exact peak of |q^(i)| (1 <= i <= n) of a step h through rectangular stages T, in
+    rational arithmetic (no cancellation):
+    q^(i)(t) = h / prod(T) * sum over subsets S of (-1)^|S| (t - sum_S T)_+^(n-i) / (n-i)!.
+    Continuous derivatives (i < n) are evaluated on a grid plus every breakpoint; the
+    piecewise-constant top derivative at the midpoint of every interval between breakpoints
+    wider than 1e-12 of the duration (T1 = T2 + T3 holds only to rounding when a bound is
+    unreachable, which can leave a sliver of ~1e-17 s where two jerk pulses touch)."""
+    n = len(T)
+    Tq = [Fraction(x) for x in T]
+    shifts = []
+    for mask in range(1 << n):
+        shifts.append((sum((Tq[b] for b in range(n) if mask >> b & 1), Fraction(0)),
+                       -1 if bin(mask).count("1") % 2 else 1))
+    total = sum(Tq)
+    breaks = sorted({s for s, _ in shifts})
+    if i < n:
+        ts = {total * Fraction(k, n_points) for k in range(n_points + 1)} | set(breaks)
+    else:
+        ts = {(a + b) / 2 for a, b in zip(breaks, breaks[1:]) if b - a > total * Fraction(1, 10 ** 12)}
+    scale = Fraction(h) / math.prod(Tq) / math.factorial(n - i)
+    peak = Fraction(0)
+    for t in ts:
+        acc = Fraction(0)
+        for shift, sign in shifts:
+            x = t - shift
+            if n - i == 0:
+                acc += sign if x >= 0 else 0
+            elif x > 0:
+                acc += sign * x ** (n - i)
+        peak = max(peak, abs(acc * scale))
+    return peak
+
+
+decades = st.floats(min_value=-3.0, max_value=3.0)
+
+
+@given(lh=decades, lv=decades, la=decades, lj=decades)
+def test_double_s_duration_equals_ruckig(lh, lv, la, lj):
+    h, v, a, j = 10 ** lh, 10 ** lv, 10 ** (la + 1), 10 ** (lj + 2)
+    stages = design.kinematic(h=h, vmax=v, amax=a, jmax=j)
+    T = [s.T for s in stages]
+    assert [s.kind for s in stages] == ["rectangular"] * 3
+    assert sum(T) == pytest.approx(ruckig_duration(h, v, a, j), rel=1e-9)
+    # the sampled trajectory stays within every bound (exact rational evaluation at a grid and
+    # at every breakpoint) and the largest bound-relative peak is reached (time-optimality)
+    ratios = [chain_derivative_peak(h, T, i) / Fraction(b) for i, b in enumerate((v, a, j), 1)]
+    assert max(ratios) <= 1 + Fraction(1, 10 ** 12)
+    assert ratios[0] >= 1 - Fraction(1, 10 ** 12) or ratios[1] >= 1 - Fraction(1, 10 ** 12) \
+        or ratios[2] >= 1 - Fraction(1, 10 ** 12)
+    assert T[0] >= T[1] + T[2] - 1e-12 * T[0] and T[1] >= T[2] * (1 - 1e-12)
+
+
+@given(lh=decades, lv=decades, la=decades, lj=decades, ls=decades,
+       profile=st.sampled_from(["polynomial", "trigonometric"]))
+def test_c_matches_reference_any_order(lh, lv, la, lj, ls, profile):
+    kw = dict(h=10 ** lh, vmax=10 ** lv, amax=10 ** la, jmax=10 ** lj, higher=(10 ** ls,),
+              profile=profile)
+    c = [s.T for s in design.kinematic(**kw)]
+    ref = [s.T for s in design.kinematic_reference(**kw)]
+    assert c == pytest.approx(ref, rel=1e-9)
+
+
+def test_seed_001_check_values():
+    T = [s.T for s in design.kinematic(h=40, vmax=250, amax=5000, jmax=200000)]
+    assert T == pytest.approx([0.16, 0.05, 0.025], rel=1e-14)
+    assert sum(T) == pytest.approx(0.235, rel=1e-14)
+    one = design.kinematic(h=40, vmax=250, profile="trigonometric")
+    assert one[0].kind == "harmonic" and one[0].T == pytest.approx(0.2513, abs=5e-5)
+    two = [s.T for s in design.kinematic(h=40, vmax=250, amax=5000, profile="trigonometric")]
+    assert two == pytest.approx([0.16, 0.0785], abs=5e-5)
+    three = design.kinematic(h=40, vmax=250, amax=5000, jmax=200000, profile="trigonometric")
+    assert [s.T for s in three] == pytest.approx([0.16, 0.05, 0.0393], abs=5e-5)
+    assert three[-1].kind == "harmonic"
+
+
+def test_mixed_time_frequency_seed_001_sec_5_2():
+    # T1 = h/v, T2 = v/a, last stage on the mode: 2 pi / 260.4 = 0.0241 s (the paper prints 0.0209)
+    stages = design.kinematic(h=40, vmax=250, amax=5000, jmax=1e6, wn=260.4)
+    assert [s.T for s in stages] == pytest.approx([0.16, 0.05, 2 * math.pi / 260.4], rel=1e-14)
+    assert stages[-1].k == 1
+
+
+def test_damped_jerk():
+    stages = design.kinematic(h=40, vmax=250, amax=5000, jmax=200000, profile="damped",
+                              wn=122.0, zeta=0.1)
+    last = stages[-1]
+    wd = 122.0 * math.sqrt(1 - 0.01)
+    assert last.kind == "exponential" and last.sigma == pytest.approx(-12.2)
+    assert last.T == pytest.approx(last.k * 2 * math.pi / wd, rel=1e-14)
+    ref = design.kinematic_reference(h=40, vmax=250, amax=5000, jmax=200000, profile="damped",
+                                     wn=122.0, zeta=0.1)
+    assert [s.T for s in stages] == pytest.approx([s.T for s in ref], rel=1e-12)
+    # peak jerk = acceleration level * peak density of the exponential stage <= jmax
+    rho = -last.sigma / -math.expm1(last.sigma * last.T)
+    assert 40 / (stages[0].T * stages[1].T) * rho <= 200000 * (1 + 1e-12)
+
+
+@pytest.mark.parametrize("kwargs, name", [
+    (dict(h=0.0, vmax=1), "h"),
+    (dict(h=float("nan"), vmax=1), "h"),
+    (dict(h=1, vmax=-1), "vmax"),
+    (dict(h=1, vmax=1, amax=0), "amax"),
+    (dict(h=1, vmax=1, jmax=5), "amax"),
+    (dict(h=1, vmax=1, amax=1, jmax=float("inf")), "jmax"),
+    (dict(h=1, vmax=1, amax=1, profile="cubic"), "profile"),
+    (dict(h=1, vmax=1, amax=1, profile="damped"), "wn"),
+    (dict(h=1, vmax=1, amax=1, wn=-3), "wn"),
+    (dict(h=1, vmax=1, amax=1, wn=3, zeta=1.0), "zeta"),
+    (dict(h=1, vmax=1, amax=1, jmax=1, higher=(1,) * 6), "higher"),
+])
+def test_errors_name_the_parameter(kwargs, name):
+    with pytest.raises(ValueError, match=rf"^{name}\b"):
+        design.kinematic(**kwargs)
