@@ -12,18 +12,29 @@ python -m pip install -q --upgrade pip
 # Editable install: builds the cffi extensions smoothshaper._core/_core_float from c/src.
 python -m pip install -q -e ".[test]"
 
-cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release
-cmake --build build/release -j2
-ctest --test-dir build/release --output-on-failure -j2
+# Every suite runs even if an earlier one fails, so one report shows all failures.
+failed=()
+step() { local name=$1; shift; echo "== $name"; "$@" || failed+=("$name"); }
 
-cmake -S . -B build/sanitize -DCMAKE_BUILD_TYPE=Debug -DSMS_SANITIZE=ON
-cmake --build build/sanitize -j2
-ctest --test-dir build/sanitize --output-on-failure -j2
+step "C build (release)" cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release
+step "C build (release)" cmake --build build/release -j2
+step "ctest (release)" ctest --test-dir build/release --output-on-failure -j2
+
+step "C build (sanitize)" cmake -S . -B build/sanitize -DCMAKE_BUILD_TYPE=Debug -DSMS_SANITIZE=ON
+step "C build (sanitize)" cmake --build build/sanitize -j2
+step "ctest (sanitize)" ctest --test-dir build/sanitize --output-on-failure -j2
 
 # An empty collection (pytest exit code 5) must fail loudly, never pass as "nothing to do".
 collected=$(python -m pytest tests/python --collect-only -q 2>/dev/null | grep -c '::' || true)
 if [ "$collected" -eq 0 ]; then
     echo "test.sh: pytest collected no tests from tests/python" >&2
+    failed+=("pytest collection")
+else
+    step "pytest ($collected tests)" python -m pytest tests/python -q
+fi
+
+if [ ${#failed[@]} -gt 0 ]; then
+    printf 'test.sh: FAILED: %s\n' "${failed[@]}" >&2
     exit 1
 fi
-python -m pytest tests/python -q
+echo "test.sh: all suites passed"
