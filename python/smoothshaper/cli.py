@@ -428,12 +428,33 @@ def read_record(path: str, column: str | None, time_column: str | None,
     return x, Ts
 
 
+def first_two_peaks(x: np.ndarray, Ts: float) -> tuple[float, float, float, float]:
+    """(t1, p1, t2, p2): the first two successive positive maxima of x, each refined by a
+    parabola through the sample and its neighbours (peaks of a damped sinusoid are exactly
+    one damped period apart, so their spacing and ratio give wd and sigma)."""
+    i = np.flatnonzero((x[1:-1] > x[:-2]) & (x[1:-1] >= x[2:]) & (x[1:-1] > 0)) + 1
+    if i.size < 2:
+        raise CliError("the record has fewer than two positive peaks: cannot use --method peaks")
+    out = []
+    for j in i[:2]:
+        a, b, c = x[j - 1], x[j], x[j + 1]
+        denom = a - 2 * b + c
+        shift = 0.5 * (a - c) / denom if denom != 0 else 0.0
+        out += [(j + shift) * Ts, b - 0.25 * (a - c) * shift]
+    return tuple(out)
+
+
 def cmd_identify(args) -> int:
-    from .filters import identify_from_record
+    from .filters import identify_from_peaks, identify_from_record
     x, Ts = read_record(args.csv, args.column, args.time_column, args.Ts)
     if args.start is not None:
         x = x[int(round(args.start / Ts)):]
-    mode = identify_from_record(x, Ts=Ts)
+    if args.method == "peaks":
+        t1, p1, t2, p2 = first_two_peaks(x, Ts)
+        mode = identify_from_peaks(t1=t1, p1=p1, t2=t2, p2=p2)
+        print(f"peaks: ({t1:.6g} s, {p1:.6g}) and ({t2:.6g} s, {p2:.6g})")
+    else:
+        mode = identify_from_record(x, Ts=Ts)
     print(f"record: {x.size} samples at Ts = {Ts:.6g} s")
     print(format_table(["wn [rad/s]", "zeta", "wd [rad/s]", "sigma [1/s]", "Td [s]"],
                        [[mode.wn, mode.zeta, mode.wd, mode.sigma, 2 * math.pi / mode.wd]]))
@@ -530,6 +551,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--time-column", help="time column: header name or index (default: first)")
     p.add_argument("--Ts", type=float, help="sample period [s] when the file has no time column")
     p.add_argument("--start", type=float, help="ignore samples before this time [s]")
+    p.add_argument("--method", choices=("record", "peaks"), default="record",
+                   help="record: least-squares fit of the whole decay (default); peaks: two "
+                   "successive peaks (SPEC 4.3). The signal must be about its final value")
     p.set_defaults(func=cmd_identify)
 
     for name, func, what in (("validate", cmd_validate, "build and validate the FMUs with fmpy"),

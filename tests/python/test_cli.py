@@ -148,6 +148,17 @@ def test_identify_recovers_the_mode_from_a_csv(tmp_path, capsys):
     assert "damped_harmonic:wn=" in out
 
 
+def test_identify_from_two_peaks(tmp_path, capsys):
+    path = tmp_path / "decay.csv"
+    _decay_csv(path)
+    code, out, err = run(capsys, "identify", str(path), "--method", "peaks")
+    assert code == 0, err
+    wn, zeta = _mode_from(out)[:2]
+    # Parabolic peak refinement at ~52 samples per period: timing error O((wd Ts)^2) ~ 1e-4.
+    assert wn == pytest.approx(60.0, rel=1e-3)
+    assert zeta == pytest.approx(0.03, rel=2e-2)
+
+
 def test_identify_single_column_with_Ts_and_noise(tmp_path, capsys):
     path = tmp_path / "decay.txt"
     _decay_csv(path, header=False, noise=1e-3)
