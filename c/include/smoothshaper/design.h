@@ -21,7 +21,13 @@ extern "C" {
  * - damped harmonic: sigma = -zeta wn, T = k 3 pi / wd, k odd
  * - exponential: sigma = -zeta wn, T = k Td
  * - shapers and notches: wn, zeta copied (k must be 1)
- * Other fields take sms_stage_config_default() values; timing is ::SMS_TIMING_EXACT.
+ * The config's k is set to k (exact timing pins the zero k 2 pi/T or k 3 pi/T, which is then
+ * wd). Other fields take sms_stage_config_default() values; timing is ::SMS_TIMING_EXACT.
+ * Why k must be odd for the harmonic families: their zeros sit at sigma +- j (2m+1) pi/T; with
+ * T = k 3 pi/wd the zero index is wd T/pi = 3k, an odd number only when k is odd. An even k
+ * puts wd between two zeros (about 2.9 % residual for k = 2, SPEC 3.2).
+ * Checks in order: config NULL, kind, wn, zeta, k < 1, k even (harmonic families), k != 1
+ * (shapers, notches). *config is untouched on error.
  * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_KIND, ::SMS_ERR_WN, ::SMS_ERR_ZETA,
  *         ::SMS_ERR_MULTIPLE (k < 1, or k != 1 for shapers/notches), ::SMS_ERR_EVEN_MULTIPLE.
  */
@@ -34,15 +40,33 @@ typedef struct sms_mode {
 } sms_mode;
 
 /**
- * @brief Mode from two successive peaks (t1, p1), (t2, p2) of a free decay (SPEC 4.3):
- * T0 = t2 - t1, sigma = ln(p2/p1)/T0, wd = 2 pi / T0.
- * @return ::SMS_ERR_RECORD unless t2 > t1, p1 > p2 > 0 (same sign, decaying) and all finite.
+ * @brief Mode from two successive peaks (t1, p1), (t2, p2) of a free decay about its final
+ * value (SPEC 4.3, seed 000 eq. 16): T0 = t2 - t1, sigma = ln(p2/p1)/T0, wd = 2 pi / T0,
+ * wn = sqrt(sigma^2 + wd^2), zeta = -sigma/wn. Two maxima or two minima (troughs) both work.
+ * @param t1,t2 peak times [s], finite, t2 > t1 (one damped period apart)
+ * @param p1,p2 peak values, finite, same sign, 0 < |p2| < |p1| (decaying)
+ * @return ::SMS_OK, ::SMS_ERR_NULL (mode), ::SMS_ERR_RECORD (any condition above violated);
+ *         *mode is untouched on error.
  */
 SMS_API sms_status sms_identify_from_peaks(double t1, double p1, double t2, double p2, sms_mode *mode);
 
 /**
- * @brief Mode from a sampled free decay x[0..n-1] at period Ts (about its final value), by a
- * least-squares fit over the whole record. Needs n >= 8 and at least one visible oscillation.
+ * @brief Mode from a sampled free decay x[0..n-1] at period Ts, by a least-squares fit of
+ * x[k] = c + e^{sigma t_k}(A cos(wd t_k) + B sin(wd t_k)), t_k = k Ts, over the whole record
+ * (c absorbs an unknown final value / offset).
+ *
+ * Method: start values from AR(2)-with-constant least-squares fits
+ * x[k] = a1 x[k-d] + a2 x[k-2d] + c at lags d = 1, 2, 4, ... (n >= 4d), each refined by
+ * Levenberg-Marquardt on all five parameters; the fit with the least squared error wins. For
+ * white noise this is the maximum-likelihood estimate: tests/c/test_identify.c measures it at
+ * the Cramer-Rao bound (worst of 20 noise draws within 3 standard deviations). Cost
+ * O(n log n) exp/cos/sin evaluations per iteration; design-time only (uses libm).
+ * @param x   record, all finite; n >= 8
+ * @param Ts  sample period [s], finite, > 0
+ * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_SAMPLE_PERIOD, ::SMS_ERR_RECORD (n < 8, a
+ *         non-finite sample, no oscillating fit, sigma >= 0 (not a decay), wd at or above
+ *         pi/Ts, or less than one period wd (n-1) Ts < 2 pi in the record); *mode is untouched
+ *         on error.
  */
 SMS_API sms_status sms_identify_from_record(const double *x, size_t n, double Ts, sms_mode *mode);
 
