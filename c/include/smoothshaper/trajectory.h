@@ -210,8 +210,9 @@ SMS_API void sms_generator_rebind(sms_generator *g, sms_real *buffer);
  * returns C_0 .. C_{M-1} with C_0 = Q_0, C_{M-1} = Q_{M-1} and interior points solving
  * sum_m c_m C_{i-m} = Q_i, i = 1 .. M-2 (C_j = Q_0 for j < 0, Q_{M-1} for j > M-1).
  * Feeding protocol (sample 0 = first sample after reset(Q_0)): input C_j on samples
- * [(j-1) N, j N) for j = 1 .. M-2, then C_{M-1} forever. Then the output equals
- * Q_0 up to sample 0, passes through Q_i at sample (i-1) N + k0 (sms_bspline_pass_sample()),
+ * [(j-1) N, j N) for j = 1 .. M-2, then C_{M-1} forever. Then the output rests at Q_0
+ * before sample 0 (at sample 0 it has moved by (C_1 - Q_0) / N^p), passes through Q_i at
+ * sample (i-1) N + k0 (sms_bspline_pass_sample()),
  * and equals Q_{M-1} from sample (M-2) N + p (N-1) on.
  * Its transfer function is P(z) * M_N(z)^p: zeros at w = k 2 pi / T for every k >= 1.
  * The c_m are measured from the filter itself at init, so the pass-through holds to the
