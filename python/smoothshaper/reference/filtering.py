@@ -103,7 +103,8 @@ def filter(stages, x, *, Ts: float, zi=None):
             h = impulse_response(stage, Ts=Ts)
             padded = np.concatenate([state, y])
             new = padded[padded.size - state.size:].copy()
-            y = np.convolve(padded, h, mode="valid") if h.size > 1 else padded * h[0]
+            # np.convolve swaps its arguments when the first is shorter (empty block)
+            y = np.convolve(padded, h, mode="valid") if y.size else y.copy()
         final.append(new)
     return y if rest else (y, final)
 
