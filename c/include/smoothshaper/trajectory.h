@@ -141,7 +141,10 @@ typedef struct sms_generator_config {
  * Per-sample work O(1); a re-plan is a handful of operations (see tests/bench).
  * Rounding: bounds hold to a few ulps of vmax, amax, jmax.
  * Time: a single segment from rest of length D with D >= vmax Tc takes D/vmax + Tc rounded
- * up to the sample grid, the time-optimal duration with these limits.
+ * up to the sample grid, the time-optimal duration with these limits. Shorter moves keep the
+ * fixed tail and use V = D/Tc (duration 2 Tc: bounded, not time-optimal; the one-shot
+ * sms_kinematic_design() gives the optimum for them). A target that arrives while a change
+ * is still inside the tail waits (at most Nc samples); a reversal stops first and waits Nc.
  */
 typedef struct sms_generator {
     double Ts;
