@@ -27,3 +27,14 @@ def test_robot_parameters_give_the_papers_modes():
         wn, delta = seed003.ROBOT_PAPER[axis]
         assert math.sqrt(k / m) == pytest.approx(wn, abs=0.05)
         assert d / (2 * math.sqrt(k * m)) == pytest.approx(delta, abs=5e-4)
+
+
+def test_robot_via_points_are_equally_spaced_and_three_dimensional():
+    from smoothshaper.report import seed003_robot
+    via = seed003_robot.via_points()
+    steps = np.linalg.norm(np.diff(via[:, :2], axis=0), axis=1)
+    assert via.shape[1] == 3 and via.shape[0] >= 20
+    assert np.ptp(via[:, 2]) > 0                  # z moves too
+    # chords of a path sampled equally in arc length: equal on straight parts, shorter on bends
+    assert steps.max() == pytest.approx(seed003_robot.SPACING, rel=0.01)
+    assert steps.min() > 0.95 * seed003_robot.SPACING
