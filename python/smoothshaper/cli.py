@@ -464,7 +464,7 @@ def cmd_identify(args) -> int:
     return 0
 
 
-def _run_module(name: str, module_name: str, out_dir: str) -> int:
+def _run_module(name: str, module_name: str, out_dir: str, **options) -> int:
     """Call smoothshaper.<module_name>.run(out_dir) for the subcommand ``name``; a missing
     module is reported (exit 3), not a crash."""
     import importlib
@@ -480,7 +480,7 @@ def _run_module(name: str, module_name: str, out_dir: str) -> int:
     run = getattr(module, "run", None)
     if run is None:
         raise CliError(f"{name} is unavailable: {modname} has no run(out_dir)", EXIT_UNAVAILABLE)
-    result = run(out_dir)
+    result = run(out_dir, **options)
     if result is False or (isinstance(result, int) and not isinstance(result, bool) and result):
         return EXIT_ERROR
     print(f"{name}: results written to {out_dir}")
@@ -492,7 +492,8 @@ def cmd_validate(args) -> int:
 
 
 def cmd_report(args) -> int:
-    return _run_module("report", "report", args.out)
+    options = {"only": args.only} if args.only else {}
+    return _run_module("report", "report", args.out, **options)
 
 
 # -- parser --------------------------------------------------------------------------------
@@ -561,6 +562,9 @@ def build_parser() -> argparse.ArgumentParser:
         p = sub.add_parser(name, help=what)
         p.add_argument("--out", default=os.path.join("out", name),
                        help=f"output folder (default ./out/{name})")
+        if name == "report":
+            p.add_argument("--only", nargs="+", metavar="SECTION",
+                           help="build only these sections (e.g. seed000 seed004)")
         p.set_defaults(func=func)
     return parser
 
