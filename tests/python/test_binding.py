@@ -81,3 +81,21 @@ def test_raise_for_status_names_the_parameter():
     assert "1.5" in str(info.value) and "a test" in str(info.value)
     with pytest.raises(ParameterError, match=r"^jmax invalid") as info:
         raise_for_status(lib.SMS_ERR_LIMIT, context="design", parameter="jmax")
+
+
+def test_every_status_maps_to_the_parameter_it_names():
+    from smoothshaper.filters import _STATUS_PARAMETER
+    _, lib = _backend("double")
+    expected = {
+        "SMS_ERR_SAMPLE_PERIOD": "Ts", "SMS_ERR_DURATION": "T", "SMS_ERR_DURATION_BELOW_TS": "T",
+        "SMS_ERR_SIGMA": "sigma", "SMS_ERR_WN": "wn", "SMS_ERR_ZETA": "zeta",
+        "SMS_ERR_MULTIPLE": "k", "SMS_ERR_EVEN_MULTIPLE": "k", "SMS_ERR_ORDER": "order",
+        "SMS_ERR_KIND": "kind", "SMS_ERR_NOTCH_DAMPING": "notch_pole_zeta",
+        "SMS_ERR_TOLERANCE": "tolerance", "SMS_ERR_ABOVE_NYQUIST": "wn",
+        "SMS_ERR_STATE": "state", "SMS_ERR_BANDWIDTH": "bandwidth", "SMS_ERR_LIMIT": "limits",
+        "SMS_ERR_RECORD": "x",
+    }
+    for name, parameter in expected.items():
+        assert _STATUS_PARAMETER[getattr(lib, name)] == parameter, name
+    statuses = {getattr(lib, n) for n in dir(lib) if n.startswith("SMS_ERR_")}
+    assert statuses <= set(_STATUS_PARAMETER)          # a new status needs a parameter name
