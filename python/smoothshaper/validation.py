@@ -1,0 +1,267 @@
+"""``smoothshaper validate``: build the FMUs, check them with fmpy, compare them with the reference.
+
+``run(out_dir)`` builds ``SmoothShaper.fmu`` and ``TrajectoryGenerator.fmu`` with CMake, runs
+fmpy's model-description validation on both, simulates every stage family and a few chains
+through ``SmoothShaper.fmu`` with fmpy for several communication step sizes, compares the output
+with :func:`smoothshaper.reference.filter` and writes ``README.md`` (tables of max errors) and
+PNG plots into ``out_dir``.
+
+Co-simulation output timing (what the comparison accounts for). fmpy sets the inputs at the
+communication point t_k, calls ``doStep(t_k, h)`` and records the outputs at t_{k+1}. The FMU
+runs internal ticks at n*Ts (n = 1, 2, ...); a doStep from t to t+h computes the ticks in
+(t, t+h] with the input held at its value at t, and its outputs are those of the last tick.
+So tick n filters x[n-1] = u(t_c), t_c the last communication point before n*Ts, and the value
+recorded at a communication point t is y[n_t - 1], n_t = floor(t/Ts) (the chain at rest at u(0)
+before the first tick, so y = u(0) while n_t = 0). :func:`expected_output` builds exactly this
+from the reference.
+"""
+from __future__ import annotations
+
+import math
+import os
+import shutil
+import subprocess
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from . import reference
+from .stages import damped_harmonic, exponential, for_mode, harmonic, notch, rectangular, shaper
+
+#: Relative error accepted between FMU and reference (SPEC 5.1: 1e-12 in double).
+REL_TOL = 1e-12
+#: Fraction of Ts by which a tick may follow the end of a step and still belong to it (fmu/).
+TICK_SLACK = 1e-6
+#: Model value references (modelDescription/generate.py).
+STAGE_FIELDS = ("kind", "design", "timing", "T", "sigma", "k", "wn", "zeta", "order", "tolerance",
+                "notch_pole_zeta")
+KIND_VALUES = {k: i for i, k in enumerate(
+    ("rectangular", "harmonic", "damped_harmonic", "exponential", "zv", "zvd", "zvdd", "zvn", "ei",
+     "ei2", "mzv", "notch_tustin", "notch_matched"))}
+
+
+@dataclass(frozen=True)
+class ModeStage:
+    """A stage the FMU designs itself for a mode (stage[k].design = for_mode)."""
+    kind: str
+    wn: float
+    zeta: float = 0.0
+    k: int = 1
+
+
+def start_values(stages, *, Ts: float) -> dict:
+    """fmpy start values of SmoothShaper for a chain of Stage or ModeStage (at most 8)."""
+    stages = list(stages)
+    if len(stages) > 8:
+        raise ValueError(f"stages must hold at most 8 stages, got {len(stages)}")
+    values = {"Ts": float(Ts)}
+    for k, s in enumerate(stages):
+        p = f"stage[{k}]."
+        values.update({p + "kind": KIND_VALUES[s.kind], p + "k": s.k, p + "wn": s.wn,
+                       p + "zeta": s.zeta})
+        if isinstance(s, ModeStage):
+            values[p + "design"] = 1
+        else:
+            values.update({p + "design": 0, p + "timing": 0 if s.timing == "exact" else 1,
+                           p + "T": s.T, p + "sigma": s.sigma, p + "order": s.order,
+                           p + "tolerance": s.tolerance, p + "notch_pole_zeta": s.notch_pole_zeta})
+    return values
+
+
+def reference_stages(stages) -> list[Stage]:
+    """The Stage list the reference filters: a ModeStage becomes stages.for_mode(...)."""
+    return [for_mode(s.kind, wn=s.wn, zeta=s.zeta, k=s.k) if isinstance(s, ModeStage) else s
+            for s in stages]
+
+
+def communication_points(*, step: float, stop_time: float) -> np.ndarray:
+    """t_k = k*step, k = 0..round(stop_time/step) (as fmpy computes them)."""
+    n = int(round(stop_time / step))
+    return np.arange(n + 1) * step
+
+
+def expected_output(stages, t: np.ndarray, u: np.ndarray, *, Ts: float) -> np.ndarray:
+    """What the FMU reports at the communication points t, given the inputs u set at them.
+
+    Implements the timing of the module docstring with the NumPy reference: the tick inputs
+    x[n-1] (n = 1..n_last) are the inputs held over the step containing n*Ts, the chain starts
+    at rest at u[0], and the output at t_k is the last tick's output (u[0] before any tick).
+    """
+    t = np.asarray(t, dtype=float)
+    u = np.asarray(u, dtype=float)
+    n_at = np.floor(t / Ts + TICK_SLACK).astype(np.int64)       # ticks done by each t_k
+    n_last = int(n_at[-1])
+    ticks = np.arange(1, n_last + 1)
+    step_of_tick = np.searchsorted(n_at, ticks, side="left") - 1  # step k with n_at[k] < n <= n_at[k+1]
+    x = u[step_of_tick]
+    stages = reference_stages(stages)
+    y_ticks = reference.filter(stages, x - u[0], Ts=Ts) + u[0]   # unit DC gain: rest at u[0]
+    out = np.full(t.shape, u[0])
+    done = n_at > 0
+    out[done] = y_ticks[n_at[done] - 1]
+    return out
+
+
+def simulate(fmu: str, stages, t: np.ndarray, u: np.ndarray, *, Ts: float) -> np.ndarray:
+    """y of SmoothShaper.fmu simulated by fmpy at the communication points t (inputs u at t)."""
+    import fmpy
+    step = float(t[1] - t[0])
+    signal = np.zeros(t.size, dtype=[("time", float), ("u", float)])
+    signal["time"], signal["u"] = t, u
+    result = fmpy.simulate_fmu(fmu, start_values=start_values(stages, Ts=Ts), input=signal,
+                               start_time=0.0, stop_time=float(t[-1]), output_interval=step,
+                               output=["y"], validate=False)
+    if result.size != t.size or not np.allclose(result["time"], t, rtol=0, atol=1e-9 * step):
+        raise RuntimeError(f"fmpy returned {result.size} samples, expected {t.size}")
+    return np.asarray(result["y"], dtype=float)
+
+
+def test_input(t: np.ndarray, *, seed: int = 1) -> np.ndarray:
+    """A staircase with steps of several sizes and both signs, then holding still."""
+    rng = np.random.default_rng(seed)
+    u = np.zeros_like(t)
+    edges = np.linspace(0.05, 0.6, 6) * t[-1]
+    for e in edges:
+        u[t >= e] += rng.uniform(-2.0, 3.0)
+    return u + 0.5   # a non-zero rest point exercises "initial u is the rest point"
+
+
+def validation_cases(Ts: float) -> list[tuple[str, list]]:
+    """Every family (raw and designed for a mode, exact and paper timing) and a few chains."""
+    wn, zeta = 2 * math.pi * 7.3, 0.08            # Td ~ 137 Ts at Ts = 1 ms: off the grid
+    T = 21.37 * Ts
+    cases = [
+        ("rectangular", [rectangular(T=T)]),
+        ("rectangular (paper)", [rectangular(T=T, timing="paper")]),
+        ("harmonic", [harmonic(T=T)]),
+        ("damped_harmonic", [damped_harmonic(T=T, sigma=-12.0)]),
+        ("exponential", [exponential(T=T, sigma=-9.0)]),
+        ("zv", [shaper("zv", wn=wn, zeta=zeta)]),
+        ("zvd", [shaper("zvd", wn=wn, zeta=zeta)]),
+        ("zvdd", [shaper("zvdd", wn=wn, zeta=zeta)]),
+        ("zvn (n=4)", [shaper("zvn", wn=wn, zeta=zeta, order=4)]),
+        ("ei", [shaper("ei", wn=wn, zeta=zeta, tolerance=0.05)]),
+        ("ei2", [shaper("ei2", wn=wn, zeta=zeta, tolerance=0.05)]),
+        ("mzv", [shaper("mzv", wn=wn, zeta=zeta)]),
+        ("zv (paper)", [shaper("zv", wn=wn, zeta=zeta, timing="paper")]),
+        ("notch_tustin", [notch(wn=wn, zeta=0.02, pole_zeta=0.5, discretization="tustin")]),
+        ("notch_matched", [notch(wn=wn, zeta=0.02, pole_zeta=0.5, discretization="matched")]),
+        ("zvd for mode", [ModeStage("zvd", wn, zeta)]),
+        ("damped_harmonic for mode", [ModeStage("damped_harmonic", wn, zeta)]),
+        ("exponential for mode (k=2)", [ModeStage("exponential", wn, zeta, 2)]),
+        ("chain M*M*S (double-S, harmonic end)",
+         [rectangular(T=40 * Ts), rectangular(T=12.5 * Ts), harmonic(T=6.3 * Ts)]),
+        ("chain M*ZV", [rectangular(T=30 * Ts), shaper("zv", wn=wn, zeta=zeta)]),
+        ("chain M*M*S_sigma*notch", [rectangular(T=25 * Ts), rectangular(T=9 * Ts),
+                                     damped_harmonic(T=T, sigma=-5.0),
+                                     notch(wn=3 * wn, zeta=0.0, pole_zeta=0.7)]),
+    ]
+    return cases
+
+
+# ---------------------------------------------------------------- build and fmpy checks
+
+def repo_root() -> Path:
+    return Path(__file__).resolve().parents[2]
+
+
+def build_fmus(build_dir: Path, *, source_dir: Path | None = None) -> dict[str, Path]:
+    """Configure and build the FMUs with CMake into build_dir; returns {model: path}."""
+    source_dir = Path(source_dir) if source_dir else repo_root()
+    if not (source_dir / "fmu" / "CMakeLists.txt").is_file():
+        raise RuntimeError(f"no FMU sources under {source_dir} (run from a source checkout)")
+    cmake = shutil.which("cmake")
+    if cmake is None:
+        raise RuntimeError("cmake is not on PATH: it is needed to build the FMUs")
+    subprocess.run([cmake, "-S", str(source_dir), "-B", str(build_dir), "-DSMS_BUILD_TESTS=OFF",
+                    "-DSMS_BUILD_SHARED=OFF", f"-DPython3_EXECUTABLE={sys.executable}"],
+                   check=True, stdout=subprocess.DEVNULL)
+    targets = [m + "_fmu" for m in ("SmoothShaper", "TrajectoryGenerator")
+               if (source_dir / "fmu" / ("smoothshaper_model.c" if m == "SmoothShaper"
+                                         else "trajectory_model.c")).is_file()]
+    subprocess.run([cmake, "--build", str(build_dir), "-j2", "--target", *targets], check=True,
+                   stdout=subprocess.DEVNULL)
+    found = {m: build_dir / "fmus" / f"{m}.fmu" for m in ("SmoothShaper", "TrajectoryGenerator")}
+    return {m: p for m, p in found.items() if p.is_file()}
+
+
+def fmpy_problems(fmu: Path) -> list[str]:
+    """fmpy's validation of the model description (an empty list means no problem)."""
+    from fmpy.validation import validate_fmu
+    return list(validate_fmu(str(fmu)))
+
+
+# ---------------------------------------------------------------- report
+
+def compare(fmu: Path, stages, *, Ts: float, step: float, stop_time: float):
+    t = communication_points(step=step, stop_time=stop_time)
+    u = test_input(t)
+    y = simulate(str(fmu), stages, t, u, Ts=Ts)
+    y_ref = expected_output(stages, t, u, Ts=Ts)
+    err = float(np.max(np.abs(y - y_ref)))
+    rel = err / max(float(np.max(np.abs(y_ref))), 1e-300)
+    return t, u, y, y_ref, err, rel
+
+
+def _plot(path: Path, name: str, t, u, y, y_ref) -> None:
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, (a0, a1) = plt.subplots(2, 1, figsize=(7, 4.5), sharex=True)
+    a0.step(t, u, where="post", color="0.6", label="u (held)")
+    a0.plot(t, y_ref, "k-", lw=2.5, alpha=0.4, label="reference")
+    a0.plot(t, y, "C1--", lw=1, label="FMU (fmpy)")
+    a0.set_title(f"SmoothShaper.fmu vs reference: {name}")
+    a0.legend(loc="best", fontsize=8)
+    a1.plot(t, y - y_ref, "C3")
+    a1.set_ylabel("FMU - reference")
+    a1.set_xlabel("t [s]")
+    fig.tight_layout()
+    fig.savefig(path, dpi=90)
+    plt.close(fig)
+
+
+def run(out_dir, *, build_dir=None, fmus: dict | None = None, Ts: float = 1e-3,
+        stop_time: float = 0.42, plots: bool = True) -> bool:
+    """Build, validate and compare; write README.md and PNGs to out_dir. True if all pass."""
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    if fmus is None:
+        fmus = build_fmus(Path(build_dir) if build_dir else out / "build")
+    lines = ["# FMU validation", "",
+             "Built with CMake; checked with fmpy; simulated with fmpy and compared with the "
+             "NumPy reference `smoothshaper.reference.filter` (independent of the C code).", "",
+             "Timing accounted for: fmpy sets u at t_k, calls doStep(t_k, h) and records y at "
+             "t_{k+1}; the FMU computes the ticks n*Ts in (t_k, t_k + h] with u held at u(t_k) "
+             "and reports the last tick's output (see `smoothshaper.validation`).", "",
+             "## fmpy validate", "", "| FMU | problems |", "|---|---|"]
+    ok = True
+    for model, path in sorted(fmus.items()):
+        problems = fmpy_problems(path)
+        ok &= not problems
+        lines.append(f"| {model}.fmu | {'none' if not problems else '; '.join(problems)} |")
+    if "SmoothShaper" in fmus:
+        steps = (("Ts", Ts), ("7 Ts", 7 * Ts), ("2.5 Ts", 2.5 * Ts), ("0.4 Ts", 0.4 * Ts))
+        lines += ["", f"## SmoothShaper vs reference (Ts = {Ts:g} s, 0 to {stop_time:g} s, "
+                  f"tolerance {REL_TOL:g} relative)", "",
+                  "| case | " + " | ".join(f"h = {n}" for n, _ in steps) + " | pass |",
+                  "|---|" + "---|" * (len(steps) + 1)]
+        for i, (name, stages) in enumerate(validation_cases(Ts)):
+            cells, passed = [], True
+            for j, (_, h) in enumerate(steps):
+                t, u, y, y_ref, err, rel = compare(fmus["SmoothShaper"], stages, Ts=Ts, step=h,
+                                                   stop_time=stop_time)
+                passed &= rel <= REL_TOL
+                cells.append(f"{rel:.2e}")
+                if plots and j == 0:
+                    _plot(out / f"smoothshaper_{i:02d}.png", name, t, u, y, y_ref)
+            ok &= passed
+            lines.append(f"| {name} | " + " | ".join(cells) + f" | {'yes' if passed else 'NO'} |")
+        lines += ["", "Cells: max |y_FMU - y_ref| / max |y_ref| over the run. Plots (h = Ts): "
+                  "`smoothshaper_NN.png` in table order."]
+    lines += ["", f"**Result: {'PASS' if ok else 'FAIL'}**", ""]
+    (out / "README.md").write_text("\n".join(lines))
+    print(f"validation {'passed' if ok else 'FAILED'}: report in {out / 'README.md'}")
+    return ok
