@@ -75,7 +75,7 @@ def _mode(profile, wn, zeta) -> tuple[float, float]:
                              "jerk stage is tuned to)")
         return 0.0, 0.0
     wn = _positive("wn", wn)
-    zeta = _finite("zeta", zeta)
+    zeta = 0.0 if zeta is None else _finite("zeta", zeta)
     if not 0.0 <= zeta < 1.0:
         raise ValueError(f"zeta must be in [0, 1), got {zeta!r}")
     return wn, zeta
