@@ -84,14 +84,16 @@ static void staircase(const sms_generator_config *c, double Ts, int style, unsig
 
 static void test_bounds_random(void)
 {
-    sms_generator_config c[5];
+    sms_generator_config c[7];
     int i, style;
     c[0] = make_config(1.0, 10.0, 100.0, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0);
     c[1] = make_config(250.0, 5000.0, 200000.0, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0);
     c[2] = make_config(2.0, 3.0, 50.0, SMS_PROFILE_TRIGONOMETRIC, 0.0, 0.0);
     c[3] = make_config(1.0, 10.0, 300.0, SMS_PROFILE_DAMPED, 60.0, 0.05);
     c[4] = make_config(0.5, 100.0, 300.0, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0); /* amax unreachable */
-    for (i = 0; i < 5; ++i)
+    c[5] = make_config(1.0, 10.0, 300.0, SMS_PROFILE_POLYNOMIAL, 40.0, 0.0);  /* jerk stage on a mode */
+    c[6] = make_config(1.0, 10.0, 300.0, SMS_PROFILE_TRIGONOMETRIC, 90.0, 0.02);
+    for (i = 0; i < 7; ++i)
         for (style = 0; style < 3; ++style) {
             staircase(&c[i], 1e-3, style, 17u + 31u * (unsigned)(i * 3 + style));
             staircase(&c[i], 0.37e-3, style, 99u + 7u * (unsigned)(i * 3 + style)); /* off-grid */

@@ -24,11 +24,14 @@ def staircase(spec, hold_last):
 
 
 @given(spec=steps, lv=st.floats(-1, 1), la=st.floats(0, 2), lj=st.floats(1, 3),
-       profile=st.sampled_from(["polynomial", "trigonometric", "damped"]),
+       profile_mode=st.sampled_from([("polynomial", {}), ("trigonometric", {}),
+                                     ("damped", dict(wn=50.0, zeta=0.05)),
+                                     ("polynomial", dict(wn=40.0)),
+                                     ("trigonometric", dict(wn=90.0, zeta=0.02))]),
        precision=st.sampled_from(["double", "float"]))
-def test_random_staircases_stay_bounded_and_arrive(spec, lv, la, lj, profile, precision):
+def test_random_staircases_stay_bounded_and_arrive(spec, lv, la, lj, profile_mode, precision):
     vmax, amax, jmax = 10 ** lv, 10 ** la, 10 ** lj
-    mode = dict(wn=50.0, zeta=0.05) if profile == "damped" else {}
+    profile, mode = profile_mode
     try:
         g = tr.Generator(vmax=vmax, amax=amax, jmax=jmax, Ts=1e-3, profile=profile,
                          precision=precision, **mode)
