@@ -13,7 +13,7 @@
 
 /* Fixed part of the saved state, before the ring. */
 enum { STATE_HEAD, STATE_AGE0, STATE_AGE1, STATE_REST, STATE_W0_RE, STATE_W0_IM, STATE_W1_RE,
-       STATE_W1_IM, STATE_FIXED };
+       STATE_W1_IM, STATE_LO0_RE, STATE_LO0_IM, STATE_LO1_RE, STATE_LO1_IM, STATE_FIXED };
 
 sms_status sms_smoother_buffer_size(const sms_stage_config *config, double Ts, size_t *n_reals)
 {
@@ -77,6 +77,9 @@ sms_status sms_smoother_init(sms_smoother *f, const sms_stage_config *config, do
     built.window = d.window;
     built.pole_re = (sms_real)d.pole_re;
     built.pole_im = (sms_real)d.pole_im;
+    /* What rounding to sms_real lost (exact in double for float), plus the long double part. */
+    built.pole_lo_re = (sms_real)((d.pole_re - (double)built.pole_re) + d.pole_lo_re);
+    built.pole_lo_im = (sms_real)((d.pole_im - (double)built.pole_im) + d.pole_lo_im);
     built.gain_re = (sms_real)d.gain;
     built.gain_im = (sms_real)0;
     built.tail_re = (sms_real)d.tail_re;
@@ -103,36 +106,49 @@ void sms_smoother_reset(sms_smoother *f, sms_real rest)
     f->head = 0;
     f->rest = rest;
     f->w_re[0] = f->w_re[1] = f->w_im[0] = f->w_im[1] = (sms_real)0;
+    f->lo_re[0] = f->lo_re[1] = f->lo_im[0] = f->lo_im[1] = (sms_real)0;
     /* All past inputs are zero (relative to rest), so a zero copy is exact at any age: copy 0
      * is in use now, copy 1 takes over after M samples. */
     f->age[0] = f->window;
     f->age[1] = 0;
 }
 
-/* One copy of the recursion; `oldest` is x[n-M], used only if the copy consumed it. */
+/* One copy of the recursion; `oldest` is x[n-M], used only if the copy consumed it.
+ * The copy is w = w_hi + w_lo with the pole split q = q_hi + q_lo: w_hi runs on the rounded
+ * pole, and w_lo, a small state on the same pole, collects q_lo w_hi. Folding q_lo w_hi into
+ * w_hi directly would lose it (it is below half an ulp of w_hi), leaving a systematic
+ * relative error i |q_lo| in tap i; split this way only the unbiased rounding remains. */
 static void copy_update(sms_smoother *f, int c, sms_real x, sms_real oldest)
 {
     const size_t window = f->window;
-    sms_real re, im;
+    sms_real re, im, lo_re, lo_im;
     if (f->age[c] == 2u * window) {
-        f->w_re[c] = (sms_real)0;
-        f->w_im[c] = (sms_real)0;
+        f->w_re[c] = f->w_im[c] = (sms_real)0;
+        f->lo_re[c] = f->lo_im[c] = (sms_real)0;
         f->age[c] = 0;
     }
     if (f->real_only) {
         re = f->pole_re * f->w_re[c] + f->gain_re * x;
+        lo_re = f->pole_re * f->lo_re[c] + f->pole_lo_re * f->w_re[c];
         if (f->age[c] >= window)
             re += f->tail_re * oldest;
         f->w_re[c] = re;
+        f->lo_re[c] = lo_re;
     } else {
         re = f->pole_re * f->w_re[c] - f->pole_im * f->w_im[c] + f->gain_re * x;
         im = f->pole_re * f->w_im[c] + f->pole_im * f->w_re[c] + f->gain_im * x;
+        lo_re = f->pole_re * f->lo_re[c] - f->pole_im * f->lo_im[c]
+                + (f->pole_lo_re * f->w_re[c] - f->pole_lo_im * f->w_im[c]);
+        lo_im = f->pole_re * f->lo_im[c] + f->pole_im * f->lo_re[c]
+                + (f->pole_lo_re * f->w_im[c] + f->pole_lo_im * f->w_re[c]);
         if (f->age[c] >= window) {
             re += f->tail_re * oldest;
             im += f->tail_im * oldest;
         }
         f->w_re[c] = re;
         f->w_im[c] = im;
+        f->lo_re[c] = lo_re;
+        f->lo_im[c] = lo_im;
     }
     ++f->age[c];
 }
@@ -163,7 +179,7 @@ static sms_real filter_sample(sms_smoother *f, sms_real input)
     f->head = f->head + 1u == window ? 0u : f->head + 1u;
     /* The older copy has consumed between M and 2M samples: it is exact and young. */
     use = f->age[0] >= f->age[1] ? 0 : 1;
-    y += f->imag_out ? f->w_im[use] : f->w_re[use];
+    y += f->imag_out ? f->w_im[use] + f->lo_im[use] : f->w_re[use] + f->lo_re[use];
     return y + f->rest;
 }
 
@@ -195,6 +211,10 @@ void sms_smoother_save_state(const sms_smoother *f, double *dst)
     dst[STATE_W0_IM] = (double)f->w_im[0];
     dst[STATE_W1_RE] = (double)f->w_re[1];
     dst[STATE_W1_IM] = (double)f->w_im[1];
+    dst[STATE_LO0_RE] = (double)f->lo_re[0];
+    dst[STATE_LO0_IM] = (double)f->lo_im[0];
+    dst[STATE_LO1_RE] = (double)f->lo_re[1];
+    dst[STATE_LO1_IM] = (double)f->lo_im[1];
     for (i = 0; i < f->window; ++i)
         dst[STATE_FIXED + i] = (double)f->history[i];
 }
@@ -245,6 +265,10 @@ sms_status sms_smoother_load_state(sms_smoother *f, const double *src, size_t n)
     f->w_im[0] = (sms_real)src[STATE_W0_IM];
     f->w_re[1] = (sms_real)src[STATE_W1_RE];
     f->w_im[1] = (sms_real)src[STATE_W1_IM];
+    f->lo_re[0] = (sms_real)src[STATE_LO0_RE];
+    f->lo_im[0] = (sms_real)src[STATE_LO0_IM];
+    f->lo_re[1] = (sms_real)src[STATE_LO1_RE];
+    f->lo_im[1] = (sms_real)src[STATE_LO1_IM];
     for (i = 0; i < f->window; ++i)
         f->history[i] = (sms_real)src[STATE_FIXED + i];
     return SMS_OK;

@@ -46,6 +46,26 @@ static double cos_pi(double x)
     return sign * cos(SMS_PI * x);
 }
 
+/* The pole e^{decay} e^{j pi/nu} in long double (its low part refines the double pole). */
+static void pole_long(double decay, double nu, int half_sine, long double *re, long double *im)
+{
+    const long double pi = 3.14159265358979323846264338327950288L;
+    long double mag = expl((long double)decay), x = 1.0L / (long double)nu;
+    if (!half_sine) {
+        *re = mag;
+        *im = 0.0L;
+        return;
+    }
+    /* 1/nu is in (0, 1]; reduce so that x = 1/2 and x = 1 give exact zeros. */
+    if (x > 0.5L) {
+        *re = -mag * cosl(pi * (1.0L - x));
+        *im = mag * sinl(pi * (1.0L - x));
+    } else {
+        *re = x == 0.5L ? 0.0L : mag * cosl(pi * x);
+        *im = mag * sinl(pi * x);
+    }
+}
+
 /* Neumaier's compensated sum: the normalisation and G(z*) then carry no O(N eps) error. */
 typedef struct { double sum, carry; } exact_sum;
 
@@ -137,7 +157,7 @@ sms_status sms_smoother_design_make(const sms_stage_config *config, double Ts,
                                     sms_smoother_design *design)
 {
     sms_smoother_design d;
-    double nu, rounded, sigma = 0.0, max_len, pole_mag, tail_mag;
+    double nu, rounded, sigma = 0.0, max_len, tail_mag;
     int integer;
     exact_sum total = {0.0, 0.0};
     size_t i;
@@ -196,16 +216,19 @@ sms_status sms_smoother_design_make(const sms_stage_config *config, double Ts,
     for (i = 0; i < d.window; ++i)
         sum_add(&total, base_tap(&d, i));
     d.gain = 1.0 / (total.sum + total.carry);
-    pole_mag = exp(d.decay);
     tail_mag = exp(d.decay * (double)d.window);
+    {
+        long double re, im;
+        pole_long(d.decay, d.nu, d.family.half_sine, &re, &im);
+        d.pole_re = (double)re;
+        d.pole_im = (double)im;
+        d.pole_lo_re = (double)(re - (long double)d.pole_re);
+        d.pole_lo_im = (double)(im - (long double)d.pole_im);
+    }
     if (d.family.half_sine) {
-        d.pole_re = pole_mag * cos_pi(1.0 / d.nu);
-        d.pole_im = pole_mag * sin_pi(1.0 / d.nu);
         d.tail_re = -d.gain * tail_mag * cos_pi((double)d.window / d.nu);
         d.tail_im = -d.gain * tail_mag * sin_pi((double)d.window / d.nu);
     } else {
-        d.pole_re = pole_mag;
-        d.pole_im = 0.0;
         d.tail_re = -d.gain * tail_mag;
         d.tail_im = 0.0;
     }

@@ -55,7 +55,8 @@ typedef struct sms_smoother {
     sms_kind kind;
     size_t length;              /**< impulse response length L [samples] */
     size_t window;              /**< M: taps from the recursion; ring length; copies restart every 2M */
-    sms_real pole_re, pole_im;  /**< q, the recursion's pole */
+    sms_real pole_re, pole_im;  /**< q rounded to sms_real: the recursion's pole */
+    sms_real pole_lo_re, pole_lo_im; /**< q minus its rounding (so q^i stays exact over long windows) */
     sms_real gain_re, gain_im;  /**< c, weight of the newest input */
     sms_real tail_re, tail_im;  /**< -c q^M, weight of x[n-M] */
     int imag_out;               /**< 1: output Im w (harmonic families); 0: Re w */
@@ -63,7 +64,8 @@ typedef struct sms_smoother {
     size_t n_corrections;       /**< exact-timing correction taps in use (0 or 3) */
     size_t correction_delay[SMS_SMOOTHER_MAX_CORRECTIONS];  /**< in 0..M */
     sms_real correction_gain[SMS_SMOOTHER_MAX_CORRECTIONS];
-    sms_real w_re[2], w_im[2];  /**< state of the two restarted copies */
+    sms_real w_re[2], w_im[2];  /**< state of the two restarted copies (main part) */
+    sms_real lo_re[2], lo_im[2]; /**< their small parts driven by the pole's low part */
     size_t age[2];              /**< samples each copy has consumed since its restart, 0..2M */
     sms_real rest;              /**< operating point set by reset (subtracted on input) */
     sms_real *history;          /**< caller buffer: the last M inputs minus rest (ring) */
@@ -124,8 +126,8 @@ SMS_API void sms_smoother_step(sms_smoother *f, sms_real *x);
  * Equal, bit for bit, to n calls of sms_smoother_step() and to any split into blocks. */
 SMS_API void sms_smoother_process(sms_smoother *f, const sms_real *in, sms_real *out, size_t n);
 
-/** @brief Number of doubles of the dynamic state: M + 8 (head, two ages, rest, the two
- * complex copies, the ring). */
+/** @brief Number of doubles of the dynamic state: M + 12 (head, two ages, rest, the two
+ * copies as four complex numbers, the ring). */
 SMS_API size_t sms_smoother_state_count(const sms_smoother *f);
 
 /** @brief Write the dynamic state, sms_smoother_state_count() doubles, into dst. Loading it

@@ -1,0 +1,591 @@
+/* The four FIR smoothers: taps against the sampled continuous responses, step responses
+ * against closed forms, exact-timing zeros, block/split/in-place equality, state round trip,
+ * non-finite input recovery. Tolerances: SMS_TEST_REL_TOL (check.h) relative to the scale. */
+#include <string.h>
+#include "check.h"
+
+#define PI 3.14159265358979323846
+#define MAX_LEN 4096
+
+static sms_real ring_a[MAX_LEN], ring_b[MAX_LEN];
+static double taps[MAX_LEN], expect[MAX_LEN];
+static sms_real sig_in[3 * MAX_LEN], sig_out[3 * MAX_LEN], sig_out2[3 * MAX_LEN];
+
+static sms_stage_config smoother(sms_kind kind, double T, double sigma, unsigned k, sms_timing timing)
+{
+    sms_stage_config c = sms_stage_config_default(kind);
+    c.T = T;
+    c.sigma = sigma;
+    c.k = k;
+    c.timing = timing;
+    return c;
+}
+
+static int is_harmonic(sms_kind kind)
+{
+    return kind == SMS_HARMONIC || kind == SMS_DAMPED_HARMONIC;
+}
+
+static int is_damped(sms_kind kind)
+{
+    return kind == SMS_DAMPED_HARMONIC || kind == SMS_EXPONENTIAL;
+}
+
+/* Unnormalised continuous impulse response at t for duration T (SPEC 3.1-3.4). */
+static double continuous(sms_kind kind, double t, double T, double sigma)
+{
+    double g = is_damped(kind) ? exp(sigma * t) : 1.0;
+    return is_harmonic(kind) ? g * sin(PI * t / T) : g;
+}
+
+/* Deterministic uniform numbers in [-1, 1). */
+static unsigned long lcg_state = 12345u;
+static double uniform(void)
+{
+    lcg_state = (lcg_state * 1103515245u + 12345u) & 0x7fffffffu;
+    return (double)lcg_state / 1073741824.0 - 1.0;
+}
+
+static double max_abs(const double *v, size_t n)
+{
+    double m = 0.0;
+    size_t i;
+    for (i = 0; i < n; ++i)
+        if (fabs(v[i]) > m)
+            m = fabs(v[i]);
+    return m;
+}
+
+/* Impulse response of an initialised smoother into out[0..n-1]. */
+static void impulse_response(sms_smoother *f, double *out, size_t n)
+{
+    size_t i;
+    sms_smoother_reset(f, (sms_real)0);
+    for (i = 0; i < n; ++i) {
+        sms_real x = (sms_real)(i == 0 ? 1.0 : 0.0);
+        sms_smoother_step(f, &x);
+        out[i] = (double)x;
+    }
+}
+
+/* Integer N: realised impulse response == sampled continuous response, normalised. */
+static void test_integer_impulse(sms_kind kind, size_t N, double sigma)
+{
+    const double Ts = 1e-3;
+    sms_stage_config c = smoother(kind, (double)N * Ts, sigma, 1u, SMS_TIMING_EXACT);
+    sms_smoother f;
+    double sum = 0.0, scale;
+    size_t i, len;
+    CHECK_STATUS(sms_smoother_init(&f, &c, Ts, ring_a, MAX_LEN), SMS_OK);
+    CHECK(f.length == N);
+    CHECK_STATUS(sms_smoother_length(&c, Ts, &len), SMS_OK);
+    CHECK(len == N);
+    for (i = 0; i < N; ++i)
+        sum += continuous(kind, (double)i * Ts, c.T, sigma);
+    for (i = 0; i < N + 8; ++i)
+        expect[i] = i < N ? continuous(kind, (double)i * Ts, c.T, sigma) / sum : 0.0;
+    impulse_response(&f, taps, N + 8);
+    scale = max_abs(expect, N);
+    for (i = 0; i < N + 8; ++i)
+        CHECK_CLOSE(taps[i], expect[i], SMS_TEST_REL_TOL, scale);
+    /* sms_smoother_taps() describes the same filter, in double. */
+    CHECK_STATUS(sms_smoother_taps(&c, Ts, taps, MAX_LEN), SMS_OK);
+    for (i = 0; i < N; ++i)
+        CHECK_CLOSE(taps[i], expect[i], 1e-12, scale);
+}
+
+/* Any timing: the realised impulse response == sms_smoother_taps(), and nothing after L. */
+static void test_realised_equals_taps(const sms_stage_config *c, double Ts)
+{
+    sms_smoother f;
+    double scale;
+    size_t i, L;
+    CHECK_STATUS(sms_smoother_init(&f, c, Ts, ring_a, MAX_LEN), SMS_OK);
+    L = f.length;
+    CHECK(L + 8 <= MAX_LEN);
+    CHECK_STATUS(sms_smoother_taps(c, Ts, expect, L), SMS_OK);
+    CHECK_STATUS(sms_smoother_taps(c, Ts, expect, L - 1), SMS_ERR_BUFFER_TOO_SMALL);
+    impulse_response(&f, taps, L + 8);
+    scale = max_abs(expect, L);
+    for (i = 0; i < L + 8; ++i)
+        CHECK_CLOSE(taps[i], i < L ? expect[i] : 0.0, SMS_TEST_REL_TOL, scale);
+}
+
+/* H(z) = sum h[i] z^-i at z = e^{(sigma + j w) Ts}, returned as |H|; also H(1). */
+static double response_at(const double *h, size_t L, double sigma, double w, double Ts, double *dc)
+{
+    double re = 0.0, im = 0.0, sum = 0.0;
+    size_t i;
+    for (i = 0; i < L; ++i) {
+        double mag = exp(-sigma * Ts * (double)i);
+        re += h[i] * mag * cos(w * Ts * (double)i);
+        im -= h[i] * mag * sin(w * Ts * (double)i);
+        sum += h[i];
+    }
+    *dc = sum;
+    return sqrt(re * re + im * im);
+}
+
+/* Exact timing: H(1) = 1 and H(z*) = 0 at the pinned zero, for T/Ts off the grid. */
+static void test_exact_zero(sms_kind kind, double T, double sigma, unsigned k, double Ts)
+{
+    sms_stage_config c = smoother(kind, T, sigma, k, SMS_TIMING_EXACT);
+    double w = (double)k * (is_harmonic(kind) ? 3.0 : 2.0) * PI / T, dc, residual;
+    double s = is_damped(kind) ? sigma : 0.0;
+    size_t L;
+    CHECK_STATUS(sms_smoother_length(&c, Ts, &L), SMS_OK);
+    CHECK(L == (size_t)floor(T / Ts) + 2u);
+    CHECK_STATUS(sms_smoother_taps(&c, Ts, taps, MAX_LEN), SMS_OK);
+    residual = response_at(taps, L, s, w, Ts, &dc);
+    CHECK_CLOSE(dc, 1.0, 1e-12, 1.0);
+    CHECK(residual <= 1e-9);
+    test_realised_equals_taps(&c, Ts);
+}
+
+/* SPEC 5.3: the seed 000 experiment with paper timing keeps N = round(153.6) = 154 and leaves
+ * ~0.27 % residual at the nominal mode; exact timing removes it. */
+static void test_paper_timing(void)
+{
+    const double sigma = -15.6539, wd = 122.7185, Ts = 500e-6, T = 3.0 * PI / wd;
+    sms_stage_config c = smoother(SMS_DAMPED_HARMONIC, T, sigma, 1u, SMS_TIMING_PAPER);
+    double dc, residual, sum = 0.0, scale;
+    size_t L, i;
+    CHECK_STATUS(sms_smoother_length(&c, Ts, &L), SMS_OK);
+    CHECK(L == 154u);
+    CHECK_STATUS(sms_smoother_taps(&c, Ts, taps, MAX_LEN), SMS_OK);
+    for (i = 0; i < L; ++i)
+        sum += continuous(SMS_DAMPED_HARMONIC, (double)i * Ts, 154.0 * Ts, sigma);
+    for (i = 0; i < L; ++i)
+        expect[i] = continuous(SMS_DAMPED_HARMONIC, (double)i * Ts, 154.0 * Ts, sigma) / sum;
+    scale = max_abs(expect, L);
+    for (i = 0; i < L; ++i)
+        CHECK_CLOSE(taps[i], expect[i], 1e-12, scale);
+    residual = response_at(taps, L, sigma, wd, Ts, &dc);
+    printf("paper timing, T/Ts = %.4f: residual at the mode %.4f %%\n", T / Ts, 100.0 * residual);
+    CHECK(residual >= 0.0026 && residual <= 0.0028);
+    test_realised_equals_taps(&c, Ts);
+    c.timing = SMS_TIMING_EXACT;
+    CHECK_STATUS(sms_smoother_taps(&c, Ts, taps, MAX_LEN), SMS_OK);
+    CHECK_STATUS(sms_smoother_length(&c, Ts, &L), SMS_OK);
+    CHECK(L == 155u);
+    residual = response_at(taps, L, sigma, wd, Ts, &dc);
+    CHECK(residual <= 1e-9);
+    /* Paper timing rounds half up: 10.5 -> 11 (harmonic), 2.4 -> 2 (rectangular). */
+    c = smoother(SMS_HARMONIC, 10.5 * Ts, 0.0, 1u, SMS_TIMING_PAPER);
+    CHECK_STATUS(sms_smoother_length(&c, Ts, &L), SMS_OK);
+    CHECK(L == 11u);
+    c = smoother(SMS_RECTANGULAR, 2.4 * Ts, 0.0, 1u, SMS_TIMING_PAPER);
+    CHECK_STATUS(sms_smoother_length(&c, Ts, &L), SMS_OK);
+    CHECK(L == 2u);
+}
+
+/* Unit step through an initialised smoother into taps[0..n-1]. */
+static void step_response(sms_smoother *f, double *out, size_t n)
+{
+    size_t i;
+    sms_smoother_reset(f, (sms_real)0);
+    for (i = 0; i < n; ++i) {
+        sms_real x = (sms_real)1;
+        sms_smoother_step(f, &x);
+        out[i] = (double)x;
+    }
+}
+
+/* Step responses: discrete closed forms (exact) and the continuous trajectories (O(Ts)). */
+static void test_step_rectangular(void)
+{
+    const double Ts = 1e-3;
+    const size_t N = 250;
+    sms_stage_config c = smoother(SMS_RECTANGULAR, (double)N * Ts, 0.0, 1u, SMS_TIMING_EXACT);
+    sms_smoother f;
+    size_t n;
+    CHECK_STATUS(sms_smoother_init(&f, &c, Ts, ring_a, MAX_LEN), SMS_OK);
+    step_response(&f, taps, N + 10);
+    /* sum_{i<=n} 1/N = (n+1)/N: the continuous ramp t/T sampled at t = (n+1) Ts, exactly. */
+    for (n = 0; n < N + 10; ++n)
+        CHECK_CLOSE(taps[n], n + 1 < N ? (double)(n + 1) / (double)N : 1.0, SMS_TEST_REL_TOL, 1.0);
+}
+
+static void test_step_exponential(void)
+{
+    const double Ts = 1e-3, sigma = -7.0;
+    const size_t N = 300;
+    sms_stage_config c = smoother(SMS_EXPONENTIAL, (double)N * Ts, sigma, 1u, SMS_TIMING_EXACT);
+    sms_smoother f;
+    double r = exp(sigma * Ts);
+    size_t n;
+    CHECK_STATUS(sms_smoother_init(&f, &c, Ts, ring_a, MAX_LEN), SMS_OK);
+    step_response(&f, taps, N + 10);
+    /* sum_{i<=n} r^i / sum_{i<N} r^i = (1 - r^{n+1})/(1 - r^N). */
+    for (n = 0; n < N + 10; ++n) {
+        double m = n + 1 < N ? (double)(n + 1) : (double)N;
+        CHECK_CLOSE(taps[n], (1.0 - pow(r, m)) / (1.0 - pow(r, (double)N)), SMS_TEST_REL_TOL, 1.0);
+    }
+}
+
+/* Continuous damped harmonic trajectory, SPEC 3.3 (sigma = 0: h/2 (1 - cos(pi t/T))). */
+static double trajectory(double t, double T, double sigma)
+{
+    if (t >= T)
+        return 1.0;
+    return (1.0 + exp(sigma * t) * (sigma * T / PI * sin(PI * t / T) - cos(PI * t / T)))
+           / (1.0 + exp(sigma * T));
+}
+
+/* Max of the normalised continuous impulse response q'(t) (dense sampling, 1 % margin). */
+static double impulse_peak(double T, double sigma)
+{
+    double c = ((PI / T) * (PI / T) + sigma * sigma) * T / (PI * (1.0 + exp(sigma * T)));
+    double peak = 0.0;
+    int i;
+    for (i = 0; i <= 100000; ++i) {
+        double t = T * (double)i / 100000.0, v = c * exp(sigma * t) * sin(PI * t / T);
+        if (v > peak)
+            peak = v;
+    }
+    return 1.01 * peak;
+}
+
+static void test_step_harmonic(double sigma, size_t N)
+{
+    const double Ts = 1e-3, T = (double)N * Ts, theta = PI / (double)N;
+    const sms_kind kind = sigma == 0.0 ? SMS_HARMONIC : SMS_DAMPED_HARMONIC;
+    sms_stage_config c = smoother(kind, T, sigma, 1u, SMS_TIMING_EXACT);
+    sms_smoother f;
+    double r = exp(sigma * Ts), q_re = r * cos(theta), q_im = r * sin(theta);
+    double full_re, full_im, den, variation, bound, worst = 0.0;
+    size_t n;
+    CHECK_STATUS(sms_smoother_init(&f, &c, Ts, ring_a, MAX_LEN), SMS_OK);
+    step_response(&f, taps, N + 10);
+    /* Discrete: sum_{i<=n} Im q^i = Im (1 - q^{n+1})/(1 - q), normalised by its value at N-1. */
+    den = (1.0 - q_re) * (1.0 - q_re) + q_im * q_im;
+    full_re = 1.0 - pow(r, (double)N) * cos(theta * (double)N);
+    full_im = -pow(r, (double)N) * sin(theta * (double)N);
+    for (n = 0; n < N + 10; ++n) {
+        double m = n + 1 < N ? (double)(n + 1) : (double)N;
+        double a_re = 1.0 - pow(r, m) * cos(theta * m), a_im = -pow(r, m) * sin(theta * m);
+        double part = (a_im * (1.0 - q_re) + a_re * q_im) / den;
+        double whole = (full_im * (1.0 - q_re) + full_re * q_im) / den;
+        CHECK_CLOSE(taps[n], part / whole, SMS_TEST_REL_TOL, 1.0);
+    }
+    /* Continuous: y[n] is a left Riemann sum of the impulse response f up to (n+1) Ts,
+     * normalised by the full sum. For a non-negative f of total variation V (= 2 max f, f
+     * rises from 0 and falls back), each sum is within Ts V of its integral, so
+     * |y[n] - q((n+1) Ts)| <= 2 Ts V / (1 - Ts V). */
+    variation = 2.0 * impulse_peak(T, sigma);
+    bound = 2.0 * Ts * variation / (1.0 - Ts * variation);
+    for (n = 0; n < N + 10; ++n) {
+        double e = fabs(taps[n] - trajectory((double)(n + 1) * Ts, T, sigma));
+        if (e > worst)
+            worst = e;
+    }
+    CHECK(worst <= bound + SMS_TEST_REL_TOL);
+    CHECK(worst >= 0.05 * bound); /* the bound is of the right order, not vacuous */
+    if (sigma == 0.0) {
+        /* Undamped: sum_{i<=n} sin(i theta)/cot(theta/2) = (1 - cos((n+1/2) theta)/cos(theta/2))/2,
+         * so the half-sample-shifted trajectory is within (1/cos(theta/2) - 1)/2 = O(Ts^2). */
+        double tight = (1.0 / cos(theta / 2.0) - 1.0) / 2.0;
+        for (n = 0; n + 1 < N; ++n)
+            CHECK(fabs(taps[n] - trajectory(((double)n + 0.5) * Ts, T, 0.0))
+                  <= tight + SMS_TEST_REL_TOL);
+    }
+}
+
+/* One call == random splits (bit for bit) == in place == step by step. */
+static void test_blocks(const sms_stage_config *c, double Ts)
+{
+    sms_smoother f;
+    size_t n = 3 * MAX_LEN, i, done;
+    for (i = 0; i < n; ++i)
+        sig_in[i] = (sms_real)(5.0 + uniform());
+    CHECK_STATUS(sms_smoother_init(&f, c, Ts, ring_a, MAX_LEN), SMS_OK);
+    sms_smoother_process(&f, sig_in, sig_out, n);
+    CHECK_STATUS(sms_smoother_init(&f, c, Ts, ring_a, MAX_LEN), SMS_OK);
+    for (done = 0; done < n;) {
+        size_t len = (size_t)((uniform() + 1.0) * 150.0);
+        if (len > n - done)
+            len = n - done;
+        sms_smoother_process(&f, sig_in + done, sig_out2 + done, len);
+        done += len;
+    }
+    CHECK(memcmp(sig_out, sig_out2, n * sizeof(sms_real)) == 0);
+    CHECK_STATUS(sms_smoother_init(&f, c, Ts, ring_a, MAX_LEN), SMS_OK);
+    memcpy(sig_out2, sig_in, n * sizeof(sms_real));
+    sms_smoother_process(&f, sig_out2, sig_out2, n);
+    CHECK(memcmp(sig_out, sig_out2, n * sizeof(sms_real)) == 0);
+    CHECK_STATUS(sms_smoother_init(&f, c, Ts, ring_a, MAX_LEN), SMS_OK);
+    for (i = 0; i < n; ++i) {
+        sig_out2[i] = sig_in[i];
+        sms_smoother_step(&f, &sig_out2[i]);
+    }
+    CHECK(memcmp(sig_out, sig_out2, n * sizeof(sms_real)) == 0);
+}
+
+/* reset(rest): a filter at rest outputs rest; a step from rest behaves as from 0, shifted. */
+static void test_reset_rest(const sms_stage_config *c, double Ts)
+{
+    sms_smoother f;
+    size_t i, L;
+    CHECK_STATUS(sms_smoother_init(&f, c, Ts, ring_a, MAX_LEN), SMS_OK);
+    L = f.length;
+    step_response(&f, expect, L + 4);
+    sms_smoother_reset(&f, (sms_real)-3);
+    for (i = 0; i < L + 4; ++i) {
+        sms_real x = (sms_real)-3;
+        sms_smoother_step(&f, &x);
+        CHECK(x == (sms_real)-3);
+    }
+    sms_smoother_reset(&f, (sms_real)-3);
+    for (i = 0; i < L + 4; ++i) {
+        sms_real x = (sms_real)-2;
+        sms_smoother_step(&f, &x);
+        CHECK_CLOSE(x, -3.0 + expect[i], SMS_TEST_REL_TOL, 3.0);
+    }
+}
+
+/* Save mid-run, load into a fresh instance: both continue bit-exactly; bad vectors rejected. */
+static void test_state(const sms_stage_config *c, double Ts)
+{
+    static double saved[MAX_LEN + 16], bad[MAX_LEN + 16];
+    sms_smoother a, b, before;
+    size_t n = 2 * MAX_LEN, i, count;
+    for (i = 0; i < n; ++i)
+        sig_in[i] = (sms_real)(uniform() * 10.0);
+    CHECK_STATUS(sms_smoother_init(&a, c, Ts, ring_a, MAX_LEN), SMS_OK);
+    CHECK_STATUS(sms_smoother_init(&b, c, Ts, ring_b, MAX_LEN), SMS_OK);
+    sms_smoother_reset(&a, (sms_real)2);
+    sms_smoother_process(&a, sig_in, sig_out, 1234);
+    count = sms_smoother_state_count(&a);
+    CHECK(count == a.window + 12u);
+    sms_smoother_save_state(&a, saved);
+    CHECK_STATUS(sms_smoother_check_state(&b, saved, count), SMS_OK);
+    CHECK_STATUS(sms_smoother_load_state(&b, saved, count), SMS_OK);
+    sms_smoother_process(&a, sig_in + 1234, sig_out + 1234, n - 1234);
+    sms_smoother_process(&b, sig_in + 1234, sig_out2 + 1234, n - 1234);
+    CHECK(memcmp(sig_out + 1234, sig_out2 + 1234, (n - 1234) * sizeof(sms_real)) == 0);
+
+    /* Each corruption is rejected and leaves b (and its ring) exactly as it was. */
+    for (i = 0; i < 9; ++i) {
+        memcpy(bad, saved, count * sizeof(double));
+        switch (i) {
+        case 0: bad[0] = (double)a.window; break;        /* head out of range */
+        case 1: bad[0] = 0.5; break;                     /* head not integral */
+        case 2: bad[1] = bad[2] + 1.0; break;            /* ages not M apart */
+        case 3: bad[1] = 2.0 * (double)a.window + 1.0; break; /* age out of range */
+        case 4: bad[2] = -1.0; break;
+        case 5: bad[3] = NAN; break;                     /* rest not finite */
+        case 6: bad[0] = NAN; break;
+        case 7: bad[8] = 1e300; break;                   /* ring value (rejected in float only) */
+        default: break;
+        }
+        memcpy(&before, &b, sizeof b);
+        memcpy(ring_a, ring_b, b.window * sizeof(sms_real));
+        if (i == 7) {
+#ifdef SMS_USE_FLOAT
+            CHECK_STATUS(sms_smoother_load_state(&b, bad, count), SMS_ERR_STATE);
+#endif
+        } else if (i == 8) {
+            CHECK_STATUS(sms_smoother_load_state(&b, bad, count + 1), SMS_ERR_STATE);
+        } else {
+            CHECK_STATUS(sms_smoother_check_state(&b, bad, count), SMS_ERR_STATE);
+            CHECK_STATUS(sms_smoother_load_state(&b, bad, count), SMS_ERR_STATE);
+        }
+        CHECK(memcmp(&before, &b, sizeof b) == 0);
+        CHECK(memcmp(ring_a, ring_b, b.window * sizeof(sms_real)) == 0);
+    }
+    CHECK_STATUS(sms_smoother_load_state(&b, NULL, count), SMS_ERR_NULL);
+}
+
+/* A NaN or Inf sample: NaN out while it is in the window, then exact again within 2M + 1. */
+static void test_non_finite(const sms_stage_config *c, double Ts, double bad_value)
+{
+    sms_smoother f;
+    size_t n, i, j, L, M, hit = 1000, recovered, last_bad = 0;
+    CHECK_STATUS(sms_smoother_init(&f, c, Ts, ring_a, MAX_LEN), SMS_OK);
+    L = f.length;
+    M = f.window;
+    n = hit + 3 * L + 10;
+    CHECK(n <= 3 * MAX_LEN);
+    CHECK_STATUS(sms_smoother_taps(c, Ts, taps, MAX_LEN), SMS_OK);
+    for (i = 0; i < n; ++i)
+        sig_in[i] = (sms_real)(1.0 + uniform());
+    sig_in[hit] = (sms_real)bad_value;
+    sms_smoother_process(&f, sig_in, sig_out, n);
+    for (i = hit; i < n; ++i)
+        if (!isfinite((double)sig_out[i]))
+            last_bad = i;
+    CHECK(last_bad >= hit + L - 1 - (c->kind == SMS_HARMONIC || c->kind == SMS_DAMPED_HARMONIC ? 1 : 0)
+          || last_bad >= hit); /* the bad sample is seen at least where its tap is non-zero */
+    recovered = hit + 2 * M + 1;
+    CHECK(last_bad < recovered);
+    for (i = recovered; i < n; ++i) {
+        double y = 0.0;
+        for (j = 0; j < L; ++j)
+            y += taps[j] * (double)sig_in[i - j];
+        CHECK_CLOSE(sig_out[i], y, 4.0 * SMS_TEST_REL_TOL, 2.0);
+    }
+}
+
+/* Every invalid configuration: its status, and the instance left untouched. */
+static void expect_rejected(const sms_stage_config *c, double Ts, sms_status status)
+{
+    sms_smoother f, before;
+    size_t n = 7;
+    memset(&f, 0xA5, sizeof f);
+    memcpy(&before, &f, sizeof f);
+    CHECK_STATUS(sms_smoother_init(&f, c, Ts, ring_a, MAX_LEN), status);
+    CHECK(memcmp(&f, &before, sizeof f) == 0);
+    CHECK_STATUS(sms_smoother_buffer_size(c, Ts, &n), status);
+    CHECK(n == 7);
+    CHECK_STATUS(sms_smoother_taps(c, Ts, taps, MAX_LEN), status);
+}
+
+static void test_invalid(void)
+{
+    const double Ts = 1e-3;
+    sms_stage_config c = smoother(SMS_DAMPED_HARMONIC, 0.1, -2.0, 1u, SMS_TIMING_EXACT);
+    sms_smoother f, before;
+    size_t need;
+    expect_rejected(&c, 0.0, SMS_ERR_SAMPLE_PERIOD);
+    expect_rejected(&c, -1e-3, SMS_ERR_SAMPLE_PERIOD);
+    expect_rejected(&c, NAN, SMS_ERR_SAMPLE_PERIOD);
+    expect_rejected(&c, INFINITY, SMS_ERR_SAMPLE_PERIOD);
+    c.kind = SMS_SHAPER_ZV;
+    expect_rejected(&c, Ts, SMS_ERR_KIND);
+    c.kind = (sms_kind)99;
+    expect_rejected(&c, Ts, SMS_ERR_KIND);
+    c = smoother(SMS_DAMPED_HARMONIC, 0.1, -2.0, 1u, (sms_timing)7);
+    expect_rejected(&c, Ts, SMS_ERR_KIND);
+    c.timing = SMS_TIMING_EXACT;
+    c.T = 0.0;
+    expect_rejected(&c, Ts, SMS_ERR_DURATION);
+    c.T = -0.1;
+    expect_rejected(&c, Ts, SMS_ERR_DURATION);
+    c.T = NAN;
+    expect_rejected(&c, Ts, SMS_ERR_DURATION);
+    c.T = INFINITY;
+    expect_rejected(&c, Ts, SMS_ERR_DURATION);
+    c.T = 0.9e-3;
+    expect_rejected(&c, Ts, SMS_ERR_DURATION_BELOW_TS);
+    c.T = 1e-3; /* one sample of a half sine is its zero */
+    expect_rejected(&c, Ts, SMS_ERR_DURATION_BELOW_TS);
+    c.T = 1.3e-3;
+    c.timing = SMS_TIMING_PAPER;
+    expect_rejected(&c, Ts, SMS_ERR_DURATION_BELOW_TS);
+    c = smoother(SMS_DAMPED_HARMONIC, 0.1, 0.5, 1u, SMS_TIMING_EXACT);
+    expect_rejected(&c, Ts, SMS_ERR_SIGMA);
+    c.sigma = NAN;
+    expect_rejected(&c, Ts, SMS_ERR_SIGMA);
+    c.sigma = -INFINITY;
+    expect_rejected(&c, Ts, SMS_ERR_SIGMA);
+    c.kind = SMS_EXPONENTIAL;
+    expect_rejected(&c, Ts, SMS_ERR_SIGMA);
+    c.kind = SMS_HARMONIC; /* the undamped families ignore sigma */
+    CHECK_STATUS(sms_smoother_buffer_size(&c, Ts, &need), SMS_OK);
+    c = smoother(SMS_RECTANGULAR, 0.1, 0.0, 0u, SMS_TIMING_EXACT);
+    expect_rejected(&c, Ts, SMS_ERR_MULTIPLE);
+    c = smoother(SMS_HARMONIC, 0.1, 0.0, 2u, SMS_TIMING_EXACT);
+    expect_rejected(&c, Ts, SMS_ERR_EVEN_MULTIPLE);
+    c.kind = SMS_DAMPED_HARMONIC;
+    c.timing = SMS_TIMING_PAPER;
+    expect_rejected(&c, Ts, SMS_ERR_EVEN_MULTIPLE);
+    c.kind = SMS_RECTANGULAR; /* even k is fine for the rectangular family */
+    CHECK_STATUS(sms_smoother_buffer_size(&c, Ts, &need), SMS_OK);
+    /* Exact timing off the grid: w* = 2 pi k/T (3 pi k/T) must be below pi/Ts. */
+    c = smoother(SMS_RECTANGULAR, 3.5e-3, 0.0, 2u, SMS_TIMING_EXACT);
+    expect_rejected(&c, Ts, SMS_ERR_ABOVE_NYQUIST);
+    c.k = 1u;
+    CHECK_STATUS(sms_smoother_buffer_size(&c, Ts, &need), SMS_OK);
+    c = smoother(SMS_HARMONIC, 8.5e-3, 0.0, 3u, SMS_TIMING_EXACT);
+    expect_rejected(&c, Ts, SMS_ERR_ABOVE_NYQUIST);
+    c.timing = SMS_TIMING_PAPER; /* paper timing pins nothing */
+    CHECK_STATUS(sms_smoother_buffer_size(&c, Ts, &need), SMS_OK);
+    c = smoother(SMS_EXPONENTIAL, 1e300, -1.0, 1u, SMS_TIMING_EXACT);
+    expect_rejected(&c, Ts, SMS_ERR_TOO_LONG);
+    c = smoother(SMS_RECTANGULAR, 1e4, 0.0, 1u, SMS_TIMING_PAPER);
+    expect_rejected(&c, 1e-300, SMS_ERR_TOO_LONG);
+    /* Buffers and pointers. */
+    c = smoother(SMS_RECTANGULAR, 0.1, 0.0, 1u, SMS_TIMING_EXACT);
+    CHECK_STATUS(sms_smoother_buffer_size(&c, Ts, &need), SMS_OK);
+    CHECK(need == 100u);
+    memset(&f, 0x5A, sizeof f);
+    memcpy(&before, &f, sizeof f);
+    CHECK_STATUS(sms_smoother_init(&f, &c, Ts, ring_a, need - 1), SMS_ERR_BUFFER_TOO_SMALL);
+    CHECK_STATUS(sms_smoother_init(&f, &c, Ts, NULL, need), SMS_ERR_NULL);
+    CHECK_STATUS(sms_smoother_init(&f, NULL, Ts, ring_a, need), SMS_ERR_NULL);
+    CHECK(memcmp(&f, &before, sizeof f) == 0);
+    CHECK_STATUS(sms_smoother_init(NULL, &c, Ts, ring_a, need), SMS_ERR_NULL);
+    CHECK_STATUS(sms_smoother_buffer_size(&c, Ts, NULL), SMS_ERR_NULL);
+    CHECK_STATUS(sms_smoother_taps(&c, Ts, NULL, 100), SMS_ERR_NULL);
+    CHECK_STATUS(sms_smoother_init(&f, &c, Ts, ring_a, need), SMS_OK);
+    c.T = 0.1234; /* exact timing off the grid: ring floor(nu) + 1, L = floor(nu) + 2 */
+    CHECK_STATUS(sms_smoother_buffer_size(&c, Ts, &need), SMS_OK);
+    CHECK(need == 124u);
+}
+
+int main(void)
+{
+    const double Ts = 1e-3;
+    static const sms_kind kinds[4] = {SMS_RECTANGULAR, SMS_HARMONIC, SMS_DAMPED_HARMONIC, SMS_EXPONENTIAL};
+    static const double ratios[5] = {7.3, 25.5, 100.0, 153.6, 1001.7};
+    const double sigma = -15.6539, wd = 122.7185;
+    int f, r;
+    size_t sizes[4] = {2, 7, 100, 1500};
+
+    for (f = 0; f < 4; ++f) {
+        for (r = 0; r < 4; ++r) {
+            if (sizes[r] < 2 && is_harmonic(kinds[f]))
+                continue;
+            test_integer_impulse(kinds[f], sizes[r], -4.0);
+        }
+    }
+    test_integer_impulse(SMS_RECTANGULAR, 1, 0.0);
+    test_integer_impulse(SMS_EXPONENTIAL, 1, -3.0);
+    test_integer_impulse(SMS_EXPONENTIAL, 50, 0.0);
+    test_integer_impulse(SMS_DAMPED_HARMONIC, 400, -40.0);
+
+    /* Exact timing: the seed 000 mode (T/Ts = 153.6) and other ratios and multiples. */
+    test_exact_zero(SMS_DAMPED_HARMONIC, 3.0 * PI / wd, sigma, 1u, 500e-6);
+    test_exact_zero(SMS_HARMONIC, 3.0 * PI / wd, 0.0, 1u, 500e-6);
+    for (f = 0; f < 4; ++f) {
+        for (r = 0; r < 5; ++r) {
+            double T = ratios[r] * Ts;
+            if (ratios[r] == 100.0)
+                T = 100.37 * Ts;
+            test_exact_zero(kinds[f], T, -9.0, 1u, Ts);
+        }
+        test_exact_zero(kinds[f], 77.77 * Ts, -20.0, 3u, Ts);
+        test_exact_zero(kinds[f], 11.01 * Ts, -1.0, 1u, Ts);
+    }
+    test_exact_zero(SMS_RECTANGULAR, 5.0001 * Ts, 0.0, 2u, Ts);
+    test_exact_zero(SMS_EXPONENTIAL, 2.5 * Ts, -100.0, 1u, Ts);
+    test_paper_timing();
+
+    test_step_rectangular();
+    test_step_exponential();
+    test_step_harmonic(0.0, 200);
+    test_step_harmonic(0.0, 31);
+    test_step_harmonic(sigma, 154);
+    test_step_harmonic(-60.0, 80);
+
+    for (f = 0; f < 4; ++f) {
+        sms_stage_config grid = smoother(kinds[f], 0.057, -9.0, 1u, SMS_TIMING_EXACT);
+        sms_stage_config off = smoother(kinds[f], 0.0614, -9.0, 1u, SMS_TIMING_EXACT);
+        sms_stage_config paper = smoother(kinds[f], 0.0614, -9.0, 1u, SMS_TIMING_PAPER);
+        sms_stage_config tiny = smoother(kinds[f], is_harmonic(kinds[f]) ? 3.5e-3 : 2.5e-3,
+                                         -9.0, 1u, SMS_TIMING_EXACT);
+        test_realised_equals_taps(&paper, Ts);
+        test_realised_equals_taps(&tiny, Ts);
+        test_blocks(&grid, Ts);
+        test_blocks(&off, Ts);
+        test_reset_rest(&grid, Ts);
+        test_reset_rest(&off, Ts);
+        test_state(&grid, Ts);
+        test_state(&off, Ts);
+        test_non_finite(&grid, Ts, NAN);
+        test_non_finite(&off, Ts, INFINITY);
+        test_non_finite(&tiny, Ts, -INFINITY);
+    }
+    test_invalid();
+    return check_summary("test_smoothers");
+}
