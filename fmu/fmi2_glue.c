@@ -32,15 +32,23 @@ static const char *const category_names[FMU_LOG_CATEGORIES] = {
 
 static void log_message(const fmu_instance *c, fmi2Status status, int category, const char *fmt, ...)
 {
-    char buf[512];
+    char buf[512], escaped[1024];
+    size_t i, j = 0;
     va_list ap;
     if (c == NULL || c->cb.logger == NULL || !c->log_on[category])
         return;
     va_start(ap, fmt);
     vsnprintf(buf, sizeof buf, fmt, ap);
     va_end(ap);
-    /* The message goes through "%s": a '%' in a variable name must not reach a printf format. */
-    c->cb.logger(c->cb.componentEnvironment, c->name, status, category_names[category], "%s", buf);
+    /* The logger's message is a printf format, but importers written in other languages print
+     * it verbatim: pass the finished text with every '%' doubled, which suits both. */
+    for (i = 0; buf[i] != '\0' && j + 2 < sizeof escaped; ++i) {
+        if (buf[i] == '%')
+            escaped[j++] = '%';
+        escaped[j++] = buf[i];
+    }
+    escaped[j] = '\0';
+    c->cb.logger(c->cb.componentEnvironment, c->name, status, category_names[category], escaped);
 }
 
 #define FAIL(c, ...) (log_message((c), fmi2Error, FMU_LOG_ERROR, __VA_ARGS__), fmi2Error)

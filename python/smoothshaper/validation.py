@@ -82,12 +82,14 @@ def communication_points(*, step: float, stop_time: float) -> np.ndarray:
     return np.arange(n + 1) * step
 
 
-def expected_output(stages, t: np.ndarray, u: np.ndarray, *, Ts: float) -> np.ndarray:
+def expected_output(stages, t: np.ndarray, u: np.ndarray, *, Ts: float,
+                    rest: float | None = None) -> np.ndarray:
     """What the FMU reports at the communication points t, given the inputs u set at them.
 
     Implements the timing of the module docstring with the NumPy reference: the tick inputs
     x[n-1] (n = 1..n_last) are the inputs held over the step containing n*Ts, the chain starts
-    at rest at u[0], and the output at t_k is the last tick's output (u[0] before any tick).
+    at rest at ``rest`` (default u[0]: the input at initialization), and the output at t_k is
+    the last tick's output (the rest point before any tick).
     """
     t = np.asarray(t, dtype=float)
     u = np.asarray(u, dtype=float)
@@ -96,9 +98,10 @@ def expected_output(stages, t: np.ndarray, u: np.ndarray, *, Ts: float) -> np.nd
     ticks = np.arange(1, n_last + 1)
     step_of_tick = np.searchsorted(n_at, ticks, side="left") - 1  # step k with n_at[k] < n <= n_at[k+1]
     x = u[step_of_tick]
+    rest = float(u[0]) if rest is None else float(rest)
     stages = reference_stages(stages)
-    y_ticks = reference.filter(stages, x - u[0], Ts=Ts) + u[0]   # unit DC gain: rest at u[0]
-    out = np.full(t.shape, u[0])
+    y_ticks = reference.filter(stages, x - rest, Ts=Ts) + rest   # unit DC gain: rest point
+    out = np.full(t.shape, rest)
     done = n_at > 0
     out[done] = y_ticks[n_at[done] - 1]
     return out

@@ -1,0 +1,229 @@
+"""SmoothShaper.fmu through fmpy: model description, reference agreement for every family and
+three kinds of communication step, FMU state (get/set, serialise), error handling, instances."""
+from __future__ import annotations
+
+import math
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+fmpy = pytest.importorskip("fmpy", reason="fmpy is needed to import the FMUs")
+from fmpy import extract, read_model_description  # noqa: E402
+from fmpy.fmi2 import FMU2Slave, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE  # noqa: E402
+from fmpy.fmi1 import FMICallException  # noqa: E402
+
+from smoothshaper import validation  # noqa: E402
+from smoothshaper.stages import damped_harmonic, harmonic, notch, rectangular, shaper  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[2]
+TS = 1e-3
+
+
+@pytest.fixture(scope="session")
+def fmus():
+    if shutil.which("cmake") is None:
+        pytest.skip("cmake is needed to build the FMUs")
+    return validation.build_fmus(ROOT / "build-pytest-fmu")
+
+
+@pytest.fixture(scope="session")
+def smoothshaper_dir(fmus, tmp_path_factory):
+    return extract(str(fmus["SmoothShaper"]), str(tmp_path_factory.mktemp("ss")))
+
+
+def test_fmpy_finds_no_problem(fmus):
+    for path in fmus.values():
+        assert validation.fmpy_problems(path) == []
+
+
+CASES = validation.validation_cases(TS)
+
+
+@pytest.mark.parametrize("name,stages", CASES, ids=[c[0] for c in CASES])
+@pytest.mark.parametrize("step", [TS, 7 * TS, 2.5 * TS], ids=["Ts", "7Ts", "2.5Ts"])
+def test_fmu_equals_reference(fmus, name, stages, step):
+    # Double rounding only: the FMU and the reference compute the same taps independently.
+    *_, err, rel = validation.compare(fmus["SmoothShaper"], stages, Ts=TS, step=step, stop_time=0.3)
+    assert rel <= validation.REL_TOL, (name, err)
+
+
+# ---------------------------------------------------------------- low-level driving
+
+class Logged:
+    """fmpy callbacks that keep the FMU's log messages."""
+
+    def __init__(self):
+        self.messages: list[str] = []
+        self.callbacks = fmi2CallbackFunctions()
+        self.callbacks.logger = fmi2CallbackLoggerTYPE(self._log)
+        self.callbacks.allocateMemory = fmpy.fmi2.defaultCallbacks.allocateMemory
+        self.callbacks.freeMemory = fmpy.fmi2.defaultCallbacks.freeMemory
+
+    def _log(self, env, name, status, category, message):
+        self.messages.append(message.decode().replace("%%", "%"))
+
+
+def vrs(unzipdir):
+    md = read_model_description(unzipdir)
+    return {v.name: v.valueReference for v in md.modelVariables}, md
+
+
+def slave(unzipdir, name="ss", logged: Logged | None = None) -> FMU2Slave:
+    names, md = vrs(unzipdir)
+    fmu = FMU2Slave(guid=md.guid, unzipDirectory=unzipdir,
+                    modelIdentifier=md.coSimulation.modelIdentifier, instanceName=name)
+    fmu.instantiate(callbacks=logged.callbacks if logged else None)
+    fmu.vr = names
+    return fmu
+
+
+def configure(fmu, stages, *, u0=0.0, Ts=TS):
+    fmu.setupExperiment(startTime=0.0)
+    fmu.enterInitializationMode()
+    for name, value in validation.start_values(stages, Ts=Ts).items():
+        if isinstance(value, int):
+            fmu.setInteger([fmu.vr[name]], [value])
+        else:
+            fmu.setReal([fmu.vr[name]], [value])
+    fmu.setReal([fmu.vr["u"]], [u0])
+    fmu.exitInitializationMode()
+
+
+def run(fmu, t0, u, step=TS):
+    y = np.empty(len(u))
+    for i, ui in enumerate(u):
+        fmu.setReal([fmu.vr["u"]], [ui])
+        fmu.doStep(t0 + i * step, step)
+        y[i] = fmu.getReal([fmu.vr["y"]])[0]
+    return y
+
+
+CHAIN = [rectangular(T=17.3 * TS), harmonic(T=9 * TS), shaper("zvd", wn=2 * math.pi * 9, zeta=0.1),
+         notch(wn=300.0, zeta=0.05, pole_zeta=0.6)]
+U = np.random.default_rng(4).uniform(-1, 2, 300)
+
+
+def test_state_get_set_is_bit_identical(smoothshaper_dir):
+    fmu = slave(smoothshaper_dir)
+    configure(fmu, CHAIN, u0=0.3)
+    run(fmu, 0.0, U[:100])
+    state = fmu.getFMUstate()
+    first = run(fmu, 0.1, U[100:])
+    fmu.setFMUstate(state)
+    again = run(fmu, 0.1, U[100:])
+    assert np.array_equal(first, again)
+    fmu.freeFMUstate(state)
+    fmu.terminate()
+    fmu.freeInstance()
+
+
+def test_serialised_state_continues_identically_in_a_fresh_instance(smoothshaper_dir):
+    a = slave(smoothshaper_dir, "a")
+    configure(a, CHAIN, u0=-0.2)
+    run(a, 0.0, U[:100])
+    blob = a.serializeFMUstate(a.getFMUstate())
+    expected = run(a, 0.1, U[100:])
+    b = slave(smoothshaper_dir, "b")        # fresh: only instantiated, default parameters
+    b.setFMUstate(b.deSerializeFMUstate(blob))
+    assert np.array_equal(run(b, 0.1, U[100:]), expected)
+    for f in (a, b):
+        f.freeInstance()
+
+
+def test_corrupted_truncated_or_foreign_blob_is_refused(smoothshaper_dir):
+    log = Logged()
+    fmu = slave(smoothshaper_dir, logged=log)
+    configure(fmu, CHAIN)
+    run(fmu, 0.0, U[:20])
+    blob = bytes(fmu.serializeFMUstate(fmu.getFMUstate()))
+    flipped = bytearray(blob)
+    flipped[len(blob) // 2] ^= 0x10
+    foreign = bytearray(blob)
+    foreign[20] ^= 0x01                      # inside the instantiation token
+    for bad in (bytes(flipped), blob[:-9], blob[:7], bytes(foreign), b"", b"SMSF" + b"\0" * 40):
+        with pytest.raises(FMICallException):
+            fmu.deSerializeFMUstate(bad)
+    assert any("checksum" in m for m in log.messages)
+    # The instance is unaffected and goes on as before.
+    fmu.setFMUstate(fmu.deSerializeFMUstate(blob))
+    fmu.freeInstance()
+
+
+def test_two_instances_with_different_parameters_do_not_interact(smoothshaper_dir):
+    a, b = slave(smoothshaper_dir, "a"), slave(smoothshaper_dir, "b")
+    stages_a = [rectangular(T=12 * TS)]
+    stages_b = [damped_harmonic(T=33.3 * TS, sigma=-20.0), shaper("ei", wn=150.0, zeta=0.05)]
+    configure(a, stages_a, u0=1.0)
+    configure(b, stages_b, u0=-1.0)
+    ya, yb = np.empty(U.size), np.empty(U.size)
+    for i, u in enumerate(U):                # interleaved, opposite inputs
+        a.setReal([a.vr["u"]], [u])
+        b.setReal([b.vr["u"]], [-u])
+        a.doStep(i * TS, TS)
+        b.doStep(i * TS, TS)
+        ya[i], yb[i] = a.getReal([a.vr["y"]])[0], b.getReal([b.vr["y"]])[0]
+    t = np.arange(U.size + 1) * TS
+    for y, stages, u, rest in ((ya, stages_a, U, 1.0), (yb, stages_b, -U, -1.0)):
+        # The value read after the step from t_k is the one recorded at t_{k+1}.
+        ref = validation.expected_output(stages, t, np.r_[u, u[-1]], Ts=TS, rest=rest)
+        assert np.max(np.abs(y - ref[1:])) <= validation.REL_TOL * np.max(np.abs(ref))
+    for f in (a, b):
+        f.freeInstance()
+
+
+def test_bad_parameters_fail_at_exit_initialization_naming_the_variable(smoothshaper_dir):
+    log = Logged()
+    fmu = slave(smoothshaper_dir, logged=log)
+    fmu.setupExperiment(startTime=0.0)
+    fmu.enterInitializationMode()
+    with pytest.raises(FMICallException):
+        fmu.setReal([fmu.vr["stage[1].T"]], [float("nan")])
+    assert "stage[1].T must be finite" in log.messages[-1]
+    fmu.setInteger([fmu.vr["stage[2].kind"]], [5])          # zvd
+    fmu.setReal([fmu.vr["stage[2].zeta"]], [1.5])
+    with pytest.raises(FMICallException):
+        fmu.exitInitializationMode()
+    assert "stage[2].zeta" in log.messages[-1]
+    fmu.setReal([fmu.vr["stage[2].zeta"]], [0.1])           # still in initialization mode
+    fmu.exitInitializationMode()
+    with pytest.raises(FMICallException):                  # fixed parameter after init
+        fmu.setReal([fmu.vr["Ts"]], [0.002])
+    with pytest.raises(FMICallException):                  # unknown value reference
+        fmu.getReal([99999])
+    with pytest.raises(FMICallException):                  # wrong order
+        fmu.enterInitializationMode()
+    fmu.doStep(0.0, TS)
+    fmu.reset()                                            # back to instantiated, defaults
+    configure(fmu, [])
+    assert run(fmu, 0.0, [2.0, 3.0]).tolist() == [2.0, 3.0]   # no stage: y is the held input
+    fmu.freeInstance()
+
+
+def test_sources_rebuild_with_fmpy_compile(fmus, tmp_path):
+    # fmpy compile reads <SourceFiles> and compiles with sources/ as the only include directory.
+    from fmpy.build import build_platform_binary
+    unzipdir = extract(str(fmus["SmoothShaper"]), str(tmp_path / "src"))
+    (Path(unzipdir) / "binaries" / "linux64" / "SmoothShaper.so").unlink()
+    (tmp_path / "build").mkdir()
+    build_platform_binary(unzipdir, build_dir=tmp_path / "build")
+    assert (Path(unzipdir) / "binaries" / "linux64" / "SmoothShaper.so").is_file()
+    stages = [rectangular(T=10 * TS), shaper("zv", wn=100.0)]
+    t = validation.communication_points(step=TS, stop_time=0.1)
+    u = validation.test_input(t)
+    y = validation.simulate(unzipdir, stages, t, u, Ts=TS)
+    assert np.max(np.abs(y - validation.expected_output(stages, t, u, Ts=TS))) < 1e-12 * 4
+
+
+def test_only_fmi2_symbols_are_exported(fmus, tmp_path):
+    nm = shutil.which("nm")
+    if nm is None:
+        pytest.skip("nm is needed to list the exported symbols")
+    import subprocess
+    unzipdir = extract(str(fmus["SmoothShaper"]), str(tmp_path / "x"))
+    so = Path(unzipdir) / "binaries" / "linux64" / "SmoothShaper.so"
+    out = subprocess.run([nm, "-D", "--defined-only", str(so)], capture_output=True, text=True,
+                         check=True).stdout
+    names = [line.split()[-1] for line in out.splitlines() if line.split()[-2] in "TDBR"]
+    assert names and all(n.startswith("fmi2") for n in names), names
