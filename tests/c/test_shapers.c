@@ -156,8 +156,7 @@ static void test_ei_design(void)
             CHECK(lo < V && hi < V);
             CHECK_CLOSE(lo, hi, 1e-9, V);
         }
-        /* zeros on either side */
-        wz = 2.0 / t0[2] * acos(-(1 - V) / (1 + V)) * 2.0 * PI / (2.0 * PI); /* w Td/2 = acos(..) */
+        /* zeros on either side: A2 + 2 A1 cos(w Td/2) = 0 */
         wz = acos(-(1 - V) / (1 + V)) / (0.5 * t0[2]);
         CHECK(cabs(hc(A0, t0, 3, I * wz)) <= 1e-14);
         CHECK(cabs(hc(A0, t0, 3, I * (2 * wn - wz))) <= 1e-14);
@@ -314,6 +313,29 @@ static void test_exact_timing(void)
             }
         }
     }
+}
+
+/* The integer test of docs/exact-mode.md: t/Ts within 1e-9 max(1, t/Ts) of an integer is on
+ * the grid (no split, exact == paper); just outside it, the impulse is split. */
+static void test_grid_threshold(void)
+{
+    static sms_real buf[MAX_LEN];
+    const double Ts = 1e-3;
+    double exact[MAX_LEN], paper[MAX_LEN];
+    size_t L, i;
+    sms_shaper f;
+    sms_stage_config c = make(SMS_SHAPER_ZV, PI / (50.0 * Ts * (1.0 + 5e-10)), 0.0, 1, SMS_TIMING_EXACT);
+    CHECK_STATUS(sms_shaper_init(&f, &c, Ts, buf, MAX_LEN), SMS_OK);
+    CHECK(f.n_taps == 2 && f.length == 51);
+    CHECK_STATUS(sms_shaper_buffer_size(&c, Ts, &L), SMS_OK);
+    CHECK_STATUS(sms_shaper_taps(&c, Ts, exact, MAX_LEN), SMS_OK);
+    c.timing = SMS_TIMING_PAPER;
+    CHECK_STATUS(sms_shaper_taps(&c, Ts, paper, MAX_LEN), SMS_OK);
+    for (i = 0; i < L; ++i)
+        CHECK(exact[i] == paper[i]);
+    c = make(SMS_SHAPER_ZV, PI / (50.0 * Ts * (1.0 + 1e-8)), 0.0, 1, SMS_TIMING_EXACT);
+    CHECK_STATUS(sms_shaper_init(&f, &c, Ts, buf, MAX_LEN), SMS_OK);
+    CHECK(f.n_taps == 3 && f.length == 52);
 }
 
 static void fill_random(sms_real *x, size_t n, unsigned seed)
@@ -486,6 +508,7 @@ int main(void)
     test_ei2_mzv_design();
     test_integer_grid();
     test_exact_timing();
+    test_grid_threshold();
     test_blocks_state_reset();
     test_non_finite_input();
     test_invalid();
