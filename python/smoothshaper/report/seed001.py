@@ -8,6 +8,8 @@ paper                                                     check
 Fig. 5: harmonic, h = 40 rad, v = 250 rad/s: T1 = 0.2513  kinematic design, 4 digits; peak v
 Fig. 6a: + a = 5000: T = (0.16, 0.0785) s                 design; peak v, a
 Fig. 6b: + j = 2e5: T = (0.16, 0.05, 0.0393) s            design; peak v, a, j
+Fig. 7: via-points 0, 20, 40, 100, 60, 0 online          Generator: limits never exceeded,
+                                                          each via-point reached exactly
 Sec. 5.2: Table 1 gives wn = sqrt(k_t/J_l) ~ 260 rad/s    plants.two_mass
 Fig. 9: modified double-S T3 = 1.5 * 2 pi/wr = 0.0362 s   design tuned to the mode
 Fig. 9: double-S T3 = 2 pi/wr printed as 0.0209 s         ERRATUM: 2 pi/260.4 = 0.0241 s
@@ -109,6 +111,7 @@ def build(fig_dir=None) -> Section:
         command=COMMAND)
     data = {}
     _kinematics(sec, data)
+    _multipoint(sec, data)
     _vibration(sec, data)
     _spectra(sec, data)
     sec.body = _body(data)
@@ -142,6 +145,30 @@ def _kinematics(sec, data):
             sec.add(Claim(f"{fig}.peak{d}", f"{fig}: peak {name} (Ts = 10 us differences)",
                           peak, lim, 2e-3 * lim, "the limit, reached (0.2 %: sampling)",
                           unit=unit))
+
+
+VIA = (0.0, 20.0, 40.0, 100.0, 60.0, 0.0)   # Fig. 7 via-points [rad]
+HOLD = 0.6                                   # s each via-point is held as the target
+
+
+def _multipoint(sec, data):
+    """Fig. 7: the online generator (modified double-S, Fig. 6b limits) fed with the staircase of
+    via-points, each held HOLD seconds (long enough to arrive)."""
+    from ..trajectory import Generator
+    Ts = 1e-4
+    gen = Generator(vmax=VMAX, amax=AMAX, jmax=JMAX, Ts=Ts, profile="trigonometric")
+    per = int(round(HOLD / Ts))
+    targets = np.repeat(np.array(VIA[1:]), per)
+    out = gen.process(targets)
+    for d, lim, name in ((1, VMAX, "velocity"), (2, AMAX, "acceleration"), (3, JMAX, "jerk")):
+        sec.add(Claim(f"fig7.peak{d}", f"Fig. 7: peak |{name}| over the multi-point motion",
+                      float(np.abs(out[:, d]).max()), lim, 1e-9 * lim,
+                      "the limit, never exceeded (SPEC 4.4)", relation="<="))
+    ends = np.arange(1, len(VIA)) * per - 1
+    sec.add(Claim("fig7.reach", "Fig. 7: max |q - via-point| at the end of each hold",
+                  float(np.abs(out[ends, 0] - np.array(VIA[1:])).max()), 0.0, 1e-9,
+                  "exact arrival (SPEC 4.4)", unit="rad"))
+    data["multipoint"] = (np.arange(targets.size) * Ts, targets, out)
 
 
 def _vibration(sec, data):
@@ -305,6 +332,17 @@ def _figures(sec, fig_dir, d):
             ax[k].set_title(case, fontsize=9)
             ax[k].set_xlabel("time [s]")
             ax[k].set_ylabel("tracking error [rad]")
+    t, targets, out = d["multipoint"]
+    with figure(fig_dir / "fig7_multipoint.png", "Seed 001 Fig. 7: online modified double-S "
+                "through the via-points 0, 20, 40, 100, 60, 0 rad (v = 250 rad/s, a = 5000 "
+                "rad/s^2, j = 2e5 rad/s^3), smoothshaper.trajectory.Generator", sec.figures,
+                nrows=2, ncols=2, size=(11, 6)) as (f, ax):
+        ax[0].plot(t, targets, color="0.6", ls="--", label="target (staircase)")
+        for k, lab in enumerate(("position [rad]", "velocity [rad/s]", "acceleration [rad/s^2]",
+                                 "jerk [rad/s^3]")):
+            ax[k].plot(t, out[:, k], color=COLORS["harmonic"], label="generator output")
+            ax[k].set_xlabel("time [s]")
+            ax[k].set_ylabel(lab)
     w, Vm, Vd = d["spectra"]
     wr, zeta = d["wr"], d["zeta"]
     Ge = 1 / np.abs(-w ** 2 + 2j * zeta * wr * w + wr ** 2)
