@@ -325,7 +325,7 @@ void sms_shaper_process(sms_shaper *f, const sms_real *in, sms_real *out, size_t
 
 size_t sms_shaper_state_count(const sms_shaper *f)
 {
-    return f->history_len + 3u;
+    return f->history_len + 4u;
 }
 
 void sms_shaper_save_state(const sms_shaper *f, double *dst)
@@ -334,15 +334,16 @@ void sms_shaper_save_state(const sms_shaper *f, double *dst)
     dst[0] = (double)f->kind;
     dst[1] = (double)f->history_len;
     dst[2] = (double)f->head;
+    dst[3] = (double)f->rest;
     for (i = 0; i < f->history_len; ++i)
-        dst[3 + i] = (double)f->history[i];
+        dst[4 + i] = (double)f->history[i];
 }
 
 sms_status sms_shaper_check_state(const sms_shaper *f, const double *src, size_t n)
 {
     if (f == NULL || src == NULL)
         return SMS_ERR_NULL;
-    if (n != f->history_len + 3u || src[0] != (double)f->kind
+    if (n != f->history_len + 4u || src[0] != (double)f->kind
         || src[1] != (double)f->history_len)
         return SMS_ERR_STATE;
     /* head: an integer in [0, L) (the negated test also rejects NaN) */
@@ -358,8 +359,9 @@ sms_status sms_shaper_load_state(sms_shaper *f, const double *src, size_t n)
     if (st != SMS_OK)
         return st;
     f->head = (size_t)src[2];
+    f->rest = (sms_real)src[3];
     for (i = 0; i < f->history_len; ++i)
-        f->history[i] = (sms_real)src[3 + i];
+        f->history[i] = (sms_real)src[4 + i];
     return SMS_OK;
 }
 

@@ -350,7 +350,7 @@ static void test_blocks_state_reset(void)
 {
     enum { N = 3000 };
     static sms_real in[N], one[N], split[N], b1[MAX_LEN], b2[MAX_LEN], b3[MAX_LEN];
-    static double state[MAX_LEN + 3], state2[MAX_LEN + 3];
+    static double state[MAX_LEN + 4], state2[MAX_LEN + 4];
     const double Ts = 500e-6;
     size_t ik;
     fill_random(in, N, 7);
@@ -377,7 +377,7 @@ static void test_blocks_state_reset(void)
         CHECK_STATUS(sms_shaper_init(&f, &c, Ts, b1, MAX_LEN), SMS_OK);
         sms_shaper_process(&f, in, one, N / 2);
         cnt = sms_shaper_state_count(&f);
-        CHECK(cnt == f.length + 3);
+        CHECK(cnt == f.length + 4);
         sms_shaper_save_state(&f, state);
         sms_shaper_process(&f, in + N / 2, one + N / 2, N - N / 2);
         CHECK_STATUS(sms_shaper_init(&h, &c, Ts, b3, MAX_LEN), SMS_OK);
@@ -413,6 +413,11 @@ static void test_blocks_state_reset(void)
             sms_shaper_step(&h, &x);
             CHECK_CLOSE(x, 2.5, SMS_TEST_REL_TOL, 2.5);
         }
+        /* the operating point travels with the state */
+        sms_shaper_save_state(&h, state);
+        CHECK_STATUS(sms_shaper_init(&g, &c, Ts, b2, MAX_LEN), SMS_OK);
+        CHECK_STATUS(sms_shaper_load_state(&g, state, cnt), SMS_OK);
+        CHECK(g.rest == (sms_real)2.5 && g.head == h.head);
     }
 }
 

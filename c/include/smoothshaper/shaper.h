@@ -90,7 +90,7 @@ SMS_API void sms_shaper_reset(sms_shaper *f, sms_real rest);
 SMS_API void sms_shaper_step(sms_shaper *f, sms_real *x);
 /** @brief n samples; in == out allowed, other overlaps not. Same result as n calls of step. */
 SMS_API void sms_shaper_process(sms_shaper *f, const sms_real *in, sms_real *out, size_t n);
-/** @brief Doubles in a saved state: L + 3 (kind, L, head, the delay line in ring order). */
+/** @brief Doubles in a saved state: L + 4 (kind, L, head, rest, the delay line in ring order). */
 SMS_API size_t sms_shaper_state_count(const sms_shaper *f);
 /** @brief Write sms_shaper_state_count() doubles to dst. */
 SMS_API void sms_shaper_save_state(const sms_shaper *f, double *dst);
