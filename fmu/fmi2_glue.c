@@ -393,6 +393,7 @@ fmi2Status fmi2GetFMUstate(fmi2Component comp, fmi2FMUstate *FMUstate)
         return FAIL(c, "fmi2GetFMUstate: out of memory");
     s->clock = c->clock;
     memcpy(s->model, c->model, fmu_model_size());
+    fmu_model_rebind(s->model);   /* the copy must describe its own arrays (serialise reads them) */
     *FMUstate = s;
     return fmi2OK;
 }
