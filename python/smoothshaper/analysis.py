@@ -20,24 +20,45 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .reference import continuous_transfer, discrete_transfer
+from .reference import continuous_transfer, impulse_response, notch_coefficients
+from .stages import NOTCHES
 from .reference._checks import as_stage_list, check_Ts
 
 
 def transfer(stages, s, *, Ts: float | None = None) -> np.ndarray:
     """Chain transfer at complex ``s`` [1/s] (any shape): continuous, or discrete at e^{s Ts}."""
+    return _evaluator(stages, Ts)(s)
+
+
+def _evaluator(stages, Ts):
+    """``s -> H(s)`` of the chain with the discrete taps / biquads computed once."""
     stages = as_stage_list(stages)
-    s = np.asarray(s, dtype=complex)
-    out = np.ones(s.shape, dtype=complex)
     if Ts is None:
-        for stage in stages:
-            out *= continuous_transfer(stage, s)
-        return out
+        def continuous(s):
+            s = np.asarray(s, dtype=complex)
+            out = np.ones(s.shape, dtype=complex)
+            for stage in stages:
+                out *= continuous_transfer(stage, s)
+            return out
+        return continuous
     Ts = check_Ts(Ts)
-    z = np.exp(s * Ts)
+    polys = []                     # (numerator, denominator) in powers of z^-1, reversed
     for stage in stages:
-        out *= discrete_transfer(stage, z, Ts=Ts)
-    return out
+        if stage.kind in NOTCHES:
+            b, a = notch_coefficients(stage, Ts=Ts)
+            polys.append((b[::-1], a[::-1]))
+        else:
+            polys.append((impulse_response(stage, Ts=Ts)[::-1], None))
+
+    def discrete(s):
+        zinv = np.exp(-np.asarray(s, dtype=complex) * Ts)
+        out = np.ones(zinv.shape, dtype=complex)
+        for num, den in polys:
+            out *= np.polyval(num, zinv)
+            if den is not None:
+                out /= np.polyval(den, zinv)
+        return out
+    return discrete
 
 
 def frequency_response(stages, w, *, Ts: float | None = None) -> np.ndarray:
@@ -110,8 +131,10 @@ def insensitivity(stages, *, wn_hat: float, zeta: float = 0.0, tolerance: float 
         raise ValueError(f"span must satisfy 0 < span[0] < 1 < span[1], got {span!r}")
     limit = tolerance * (1 + 1e-9)
 
+    H = _evaluator(stages, Ts)
+
     def excess(r):
-        return residual_vibration(stages, wn=r * wn_hat, zeta=zeta, Ts=Ts) - limit
+        return np.abs(H(mode_poles(np.asarray(r) * wn_hat, zeta))) - limit
 
     if excess(1.0) > 0:
         return Insensitivity(wn_hat, wn_hat, 0.0, 0.0)
