@@ -13,7 +13,7 @@
 
 /* Fixed part of the saved state, before the ring. */
 enum { STATE_HEAD, STATE_AGE0, STATE_AGE1, STATE_REST, STATE_W0_RE, STATE_W0_IM, STATE_W1_RE,
-       STATE_W1_IM, STATE_LO0_RE, STATE_LO0_IM, STATE_LO1_RE, STATE_LO1_IM, STATE_FIXED };
+       STATE_W1_IM, STATE_LO0_RE, STATE_LO0_IM, STATE_LO1_RE, STATE_LO1_IM, STATE_REF0, STATE_REF1, STATE_FIXED };
 
 sms_status sms_smoother_buffer_size(const sms_stage_config *config, double Ts, size_t *n_reals)
 {
@@ -107,26 +107,34 @@ void sms_smoother_reset(sms_smoother *f, sms_real rest)
     f->rest = rest;
     f->w_re[0] = f->w_re[1] = f->w_im[0] = f->w_im[1] = (sms_real)0;
     f->lo_re[0] = f->lo_re[1] = f->lo_im[0] = f->lo_im[1] = (sms_real)0;
+    f->ref[0] = f->ref[1] = (sms_real)0;
     /* All past inputs are zero (relative to rest), so a zero copy is exact at any age: copy 0
      * is in use now, copy 1 takes over after M samples. */
     f->age[0] = f->window;
     f->age[1] = 0;
 }
 
-/* One copy of the recursion; `oldest` is x[n-M], used only if the copy consumed it.
+/* One copy of the recursion; `oldest_input` is x[n-M], used only if the copy consumed it.
+ * A copy filters x - ref, ref being its input when it restarted, and adds ref back (the
+ * taps sum to 1): its state then stays as small as the input's variation, not its offset,
+ * and so does its rounding.
  * The copy is w = w_hi + w_lo with the pole split q = q_hi + q_lo: w_hi runs on the rounded
  * pole, and w_lo, a small state on the same pole, collects q_lo w_hi. Folding q_lo w_hi into
  * w_hi directly would lose it (it is below half an ulp of w_hi), leaving a systematic
  * relative error i |q_lo| in tap i; split this way only the unbiased rounding remains. */
-static void copy_update(sms_smoother *f, int c, sms_real x, sms_real oldest)
+static void copy_update(sms_smoother *f, int c, sms_real input, sms_real oldest_input)
 {
     const size_t window = f->window;
-    sms_real re, im, lo_re, lo_im;
+    sms_real re, im, lo_re, lo_im, x, oldest;
     if (f->age[c] == 2u * window) {
         f->w_re[c] = f->w_im[c] = (sms_real)0;
         f->lo_re[c] = f->lo_im[c] = (sms_real)0;
+        /* A finite input (x - x == 0) becomes the copy's reference; NaN/Inf must not. */
+        f->ref[c] = input - input == (sms_real)0 ? input : (sms_real)0;
         f->age[c] = 0;
     }
+    x = input - f->ref[c];
+    oldest = oldest_input - f->ref[c];
     if (f->real_only) {
         re = f->pole_re * f->w_re[c] + f->gain_re * x;
         lo_re = f->pole_re * f->lo_re[c] + f->pole_lo_re * f->w_re[c];
@@ -158,9 +166,15 @@ static sms_real filter_sample(sms_smoother *f, sms_real input)
     const size_t window = f->window;
     const sms_real x = input - f->rest;
     const sms_real oldest = f->history[f->head];
-    sms_real y = (sms_real)0;
+    sms_real y = (sms_real)0, ref;
     size_t j;
     int use;
+    copy_update(f, 0, x, oldest);
+    copy_update(f, 1, x, oldest);
+    /* The older copy has consumed between M and 2M samples: it is exact and young. */
+    use = f->age[0] >= f->age[1] ? 0 : 1;
+    /* The corrections sum to 0, so they too may act on x - ref (smaller rounding). */
+    ref = f->ref[use];
     for (j = 0; j < f->n_corrections; ++j) {
         size_t delay = f->correction_delay[j], idx;
         sms_real v = x;
@@ -171,16 +185,12 @@ static sms_real filter_sample(sms_smoother *f, sms_real input)
                 idx -= window;
             v = f->history[idx];
         }
-        y += f->correction_gain[j] * v;
+        y += f->correction_gain[j] * (v - ref);
     }
-    copy_update(f, 0, x, oldest);
-    copy_update(f, 1, x, oldest);
     f->history[f->head] = x;
     f->head = f->head + 1u == window ? 0u : f->head + 1u;
-    /* The older copy has consumed between M and 2M samples: it is exact and young. */
-    use = f->age[0] >= f->age[1] ? 0 : 1;
     y += f->imag_out ? f->w_im[use] + f->lo_im[use] : f->w_re[use] + f->lo_re[use];
-    return y + f->rest;
+    return y + ref + f->rest;
 }
 
 void sms_smoother_step(sms_smoother *f, sms_real *x)
@@ -215,6 +225,8 @@ void sms_smoother_save_state(const sms_smoother *f, double *dst)
     dst[STATE_LO0_IM] = (double)f->lo_im[0];
     dst[STATE_LO1_RE] = (double)f->lo_re[1];
     dst[STATE_LO1_IM] = (double)f->lo_im[1];
+    dst[STATE_REF0] = (double)f->ref[0];
+    dst[STATE_REF1] = (double)f->ref[1];
     for (i = 0; i < f->window; ++i)
         dst[STATE_FIXED + i] = (double)f->history[i];
 }
@@ -245,6 +257,8 @@ sms_status sms_smoother_check_state(const sms_smoother *f, const double *src, si
         return SMS_ERR_STATE;
     if (!isfinite(src[STATE_REST]) || !fits_real_or_nonfinite(src[STATE_REST]))
         return SMS_ERR_STATE;
+    if (!isfinite(src[STATE_REF0]) || !isfinite(src[STATE_REF1]))
+        return SMS_ERR_STATE;
     for (i = STATE_W0_RE; i < n; ++i)
         if (!fits_real_or_nonfinite(src[i]))
             return SMS_ERR_STATE;
@@ -269,6 +283,8 @@ sms_status sms_smoother_load_state(sms_smoother *f, const double *src, size_t n)
     f->lo_im[0] = (sms_real)src[STATE_LO0_IM];
     f->lo_re[1] = (sms_real)src[STATE_LO1_RE];
     f->lo_im[1] = (sms_real)src[STATE_LO1_IM];
+    f->ref[0] = (sms_real)src[STATE_REF0];
+    f->ref[1] = (sms_real)src[STATE_REF1];
     for (i = 0; i < f->window; ++i)
         f->history[i] = (sms_real)src[STATE_FIXED + i];
     return SMS_OK;

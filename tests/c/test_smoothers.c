@@ -356,7 +356,7 @@ static void test_state(const sms_stage_config *c, double Ts)
     sms_smoother_reset(&a, (sms_real)2);
     sms_smoother_process(&a, sig_in, sig_out, 1234);
     count = sms_smoother_state_count(&a);
-    CHECK(count == a.window + 12u);
+    CHECK(count == a.window + 14u);
     sms_smoother_save_state(&a, saved);
     CHECK_STATUS(sms_smoother_check_state(&b, saved, count), SMS_OK);
     CHECK_STATUS(sms_smoother_load_state(&b, saved, count), SMS_OK);

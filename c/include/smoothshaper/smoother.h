@@ -66,6 +66,7 @@ typedef struct sms_smoother {
     sms_real correction_gain[SMS_SMOOTHER_MAX_CORRECTIONS];
     sms_real w_re[2], w_im[2];  /**< state of the two restarted copies (main part) */
     sms_real lo_re[2], lo_im[2]; /**< their small parts driven by the pole's low part */
+    sms_real ref[2];            /**< each copy's reference: its (finite) input at restart */
     size_t age[2];              /**< samples each copy has consumed since its restart, 0..2M */
     sms_real rest;              /**< operating point set by reset (subtracted on input) */
     sms_real *history;          /**< caller buffer: the last M inputs minus rest (ring) */
@@ -126,8 +127,8 @@ SMS_API void sms_smoother_step(sms_smoother *f, sms_real *x);
  * Equal, bit for bit, to n calls of sms_smoother_step() and to any split into blocks. */
 SMS_API void sms_smoother_process(sms_smoother *f, const sms_real *in, sms_real *out, size_t n);
 
-/** @brief Number of doubles of the dynamic state: M + 12 (head, two ages, rest, the two
- * copies as four complex numbers, the ring). */
+/** @brief Number of doubles of the dynamic state: M + 14 (head, two ages, rest, the two
+ * copies as four complex numbers, their two references, the ring). */
 SMS_API size_t sms_smoother_state_count(const sms_smoother *f);
 
 /** @brief Write the dynamic state, sms_smoother_state_count() doubles, into dst. Loading it
@@ -138,7 +139,7 @@ SMS_API void sms_smoother_save_state(const sms_smoother *f, double *dst);
  * @brief Restore a saved state; validates first and writes nothing on error.
  * @return ::SMS_OK; ::SMS_ERR_NULL; ::SMS_ERR_STATE if n != sms_smoother_state_count(), the
  * head is not an integer in [0, M), the ages are not integers in [0, 2M] that differ by M,
- * rest is not finite, or a finite value lies outside the range of ::sms_real (NaN/Inf in the
+ * rest or a reference is not finite, or a finite value lies outside the range of ::sms_real (NaN/Inf in the
  * ring and the copies are accepted: they are what a non-finite input leaves behind).
  */
 SMS_API sms_status sms_smoother_load_state(sms_smoother *f, const double *src, size_t n);
