@@ -1,0 +1,115 @@
+/* Drift benchmark (SPEC 5.2): runs each smoother for many samples of 1e3 + uniform noise and
+ * prints, at decade checkpoints, the max |error| against the direct convolution with the
+ * taps (over a window of max(1e4, 4L) samples after the checkpoint) and the running max.
+ *
+ * usage: drift_bench_double [samples [family]]   samples default 1e9; family 0..3 or all.
+ * Built by CMake (tests/bench), never run by ctest. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <math.h>
+#include <time.h>
+#include "smoothshaper/smoothshaper.h"
+
+#ifdef SMS_USE_FLOAT
+#define PRECISION "float"
+#else
+#define PRECISION "double"
+#endif
+
+#define MAX_LEN 10100
+
+static sms_real ring[MAX_LEN];
+static double taps[MAX_LEN], recent[MAX_LEN];
+
+static unsigned long long rng = 88172645463325252ull;
+static double noise(void)
+{
+    rng ^= rng << 13;
+    rng ^= rng >> 7;
+    rng ^= rng << 17;
+    return (double)(rng >> 11) / 4503599627370496.0 - 1.0;
+}
+
+static void run(sms_kind kind, double T, double sigma, double total)
+{
+    const double Ts = 1e-3;
+    sms_stage_config c = sms_stage_config_default(kind);
+    sms_smoother f;
+    size_t L, head = 0, i, window;
+    double n, checkpoint = 1e4, window_end = -1.0, worst = 0.0, worst_window = 0.0;
+    clock_t start;
+    c.T = T;
+    c.sigma = sigma;
+    if (sms_smoother_init(&f, &c, Ts, ring, MAX_LEN) != SMS_OK
+        || sms_smoother_taps(&c, Ts, taps, MAX_LEN) != SMS_OK) {
+        printf("%s: configuration rejected\n", sms_kind_name(kind));
+        return;
+    }
+    L = f.length;
+    window = 4 * L > 10000 ? 4 * L : 10000;
+    for (i = 0; i < L; ++i)
+        recent[i] = 0.0;
+    printf("%s [%s] T/Ts = %.4g, L = %zu, sigma = %g, input 1e3 + U(-1, 1)\n",
+           sms_kind_name(kind), PRECISION, T / Ts, L, sigma);
+    start = clock();
+    for (n = 0.0; n < total; n += 1.0) {
+        sms_real x = (sms_real)(1e3 + noise());
+        recent[head] = (double)x;
+        sms_smoother_step(&f, &x);
+        if (n >= checkpoint && window_end < 0.0) {
+            window_end = n + (double)window;
+            worst_window = 0.0;
+        }
+        if (window_end >= 0.0) {
+            double y = 0.0, e;
+            size_t idx = head;
+            for (i = 0; i < L; ++i) {
+                y += taps[i] * recent[idx];
+                idx = idx == 0 ? L - 1 : idx - 1;
+            }
+            e = fabs((double)x - y);
+            if (!(e <= worst_window))
+                worst_window = e;
+            if (n + 1.0 >= window_end || n + 1.0 >= total) {
+                if (worst_window > worst || worst_window != worst_window)
+                    worst = worst_window;
+                printf("  after %.0e samples: max |error| %.3e (relative %.3e), running max %.3e\n",
+                       checkpoint, worst_window, worst_window / 1e3, worst);
+                fflush(stdout);
+                window_end = -1.0;
+                checkpoint *= 10.0;
+            }
+        }
+        head = head + 1 == L ? 0 : head + 1;
+    }
+    printf("  %s: max |error| bound observed %.3e (relative %.3e) over %.0e samples, %.1f ns/sample\n",
+           sms_kind_name(kind), worst, worst / 1e3, total,
+           1e9 * (double)(clock() - start) / CLOCKS_PER_SEC / total);
+}
+
+int main(int argc, char **argv)
+{
+    double total = argc > 1 ? atof(argv[1]) : 1e9;
+    int only = argc > 2 ? atoi(argv[2]) : -1;
+    if (!(total >= 1.0)) {
+        fprintf(stderr, "usage: %s [samples >= 1 [family 0..3]]\n", argv[0]);
+        return 2;
+    }
+    if (only < 0 || only == 0) {
+        run(SMS_RECTANGULAR, 0.1003, 0.0, total);
+        run(SMS_RECTANGULAR, 10.0, 0.0, total);
+    }
+    if (only < 0 || only == 1) {
+        run(SMS_HARMONIC, 0.1, 0.0, total);
+        run(SMS_HARMONIC, 10.0037, 0.0, total);
+    }
+    if (only < 0 || only == 2) {
+        run(SMS_DAMPED_HARMONIC, 3.0 * 3.14159265358979323846 / 122.7185 * 0.9, -15.6539, total);
+        run(SMS_DAMPED_HARMONIC, 10.0, -0.3, total);
+    }
+    if (only < 0 || only == 3) {
+        run(SMS_EXPONENTIAL, 0.1, -3.0, total);
+        run(SMS_EXPONENTIAL, 10.0, -0.1, total);
+    }
+    return 0;
+}
