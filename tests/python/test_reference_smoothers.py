@@ -234,3 +234,17 @@ def test_invalid_arguments_raise_value_error_naming_the_parameter(bad, name):
 def test_T_just_below_Ts_within_the_integer_test_is_one_sample():
     h = ref.impulse_response(sm.rectangular(T=1e-3 * (1 - 1e-12)), Ts=1e-3)
     assert h.tolist() == [1.0]
+
+
+@given(kind=st.sampled_from(FAMILIES), sigma=st.floats(-40.0, 0.0), re=st.floats(-20, 20),
+       im=st.floats(-300, 300))
+def test_continuous_transfer_is_the_laplace_transform_of_the_impulse_response(kind, sigma, re,
+                                                                               im):
+    """Gauss-Legendre quadrature (200 nodes, integrand analytic on [0, T]) of h(t) e^{-st}."""
+    T = 0.1
+    stage = family(kind, T, sigma=sigma)
+    x, w = np.polynomial.legendre.leggauss(200)
+    t = 0.5 * T * (x + 1)
+    s = complex(re, im)
+    quad = 0.5 * T * np.sum(w * ref.continuous_impulse_response(stage, t) * np.exp(-s * t))
+    assert abs(ref.continuous_transfer(stage, s) - quad) < 1e-12 * max(1.0, abs(quad))
