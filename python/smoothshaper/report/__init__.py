@@ -72,9 +72,9 @@ def run(out_dir, *, only=None) -> Path:
         if bad:
             failures.append(f"{key}: {', '.join(bad)}")
         n_ok = len(section.claims) - len(bad)
-        summary.append(f"| [{section.title}](#{_anchor(section.title)}) | {n_ok}/{len(section.claims)} "
-                       f"| {sum(c.disagrees_with_paper for c in section.claims)} "
-                       f"| {section.seconds:.1f} s |")
+        n_dis = sum(c.disagrees_with_paper for c in section.claims)
+        summary.append(f"| [{section.title}](#{_anchor(section.title)}) "
+                       f"| {n_ok}/{len(section.claims)} | {n_dis} | {section.seconds:.1f} s |")
         rendered.append(_render(section, out_dir))
     head = ["# smoothshaper: reproduction of the seed papers", "",
             "Every number below is computed by `smoothshaper` (stages, NumPy reference, analysis "

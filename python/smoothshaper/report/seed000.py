@@ -129,7 +129,8 @@ def _fig4(sec, data):
                       float(analysis.prv(f["S"], wn=r)), float(harmonic_prv_closed_form(r)), 1e-9,
                       "closed form |cos(1.5 pi r)|/|1-9r^2|", unit="%"))
     low = R <= 1.7
-    sec.add(Claim("fig4.S_below_M1M2.low", "Fig. 4: max of PRV(S) - PRV(M1 M2) for wn/wn_hat <= 1.7",
+    sec.add(Claim("fig4.S_below_M1M2.low",
+                  "Fig. 4: max of PRV(S) - PRV(M1 M2) for wn/wn_hat <= 1.7",
                   float(np.max(prv["S"][low] - prv["M1M2"][low])), 0.0, 1e-9,
                   "paper: S below M1 M2", unit="%", relation="<="))
     # Per lobe of M (between its zeros at integer ratios): S's worst against M's worst
@@ -178,7 +179,6 @@ def _fig4(sec, data):
 
 def _fig5(sec, data):
     f = undamped_filters()
-    prv = data["prv"]
     dur = {"S": f["S"][0].T, "M*ZV": f["M*ZV"][0].T + ref.shaper_impulses(f["M*ZV"][1])[1][-1],
            "ZVDD": ref.shaper_impulses(f["ZVDD"][0])[1][-1]}
     for k, v in dur.items():
@@ -195,7 +195,8 @@ def _fig5(sec, data):
         sec.add(Claim(f"fig5.width.{k}", f"Fig. 5: 5 % insensitivity of {k}", widths[k],
                       _width_closed_form(closed[k]), 1e-8, "closed form, root of PRV = 5 %"))
     sec.add(Claim("fig5.width_order", "Fig. 5: min(width(M*ZV) - width(S), width(ZVDD) - "
-                  "width(M*ZV))", min(widths["M*ZV"] - widths["S"], widths["ZVDD"] - widths["M*ZV"]),
+                  "width(M*ZV))",
+                  min(widths["M*ZV"] - widths["S"], widths["ZVDD"] - widths["M*ZV"]),
                   0.0, 0.0, "paper: shapers lower near wn_hat", relation=">="))
     r_hi = np.linspace(2.0, 4.0, 4001)
     hi = {k: analysis.prv(f[k], wn=r_hi) for k in ("S", "M*ZV", "ZVDD")}
@@ -270,8 +271,8 @@ def _fig11_13(sec, data):
                       0.0, 1e-10, "exact zero", unit="%"))
         frac = float(np.mean(P <= Q + 1e-9))
         if dh == 0.05:
-            sec.add(Claim("fig13.0.05", "Fig. 13a: fraction of the (wn, delta) grid where S_sigma's "
-                          "PRV is at or below M_sigma1 M_sigma2's", frac, 1.0, 0.0,
+            sec.add(Claim("fig13.0.05", "Fig. 13a: fraction of the (wn, delta) grid where "
+                          "S_sigma's PRV is at or below M_sigma1 M_sigma2's", frac, 1.0, 0.0,
                           "paper: S_sigma outperforms everywhere", paper=1.0))
         else:
             worse = Q < P - 1e-9
@@ -359,7 +360,8 @@ def _experiment(sec, data):
                       math.nan, 0.0512, 5e-5, f"not computed: {exc}", unit="s", paper=0.0512))
     paper_timing = [s.with_(timing="paper") for s in filt["S_sigma"]]
     sec.add(Claim("exp.paper_timing", "S_sigma with N = round(T/Ts) = 154 (paper, eq. 17): PRV "
-                  "at the identified mode", float(analysis.prv(paper_timing, wn=wn, zeta=delta, Ts=Ts)),
+                  "at the identified mode",
+                  float(analysis.prv(paper_timing, wn=wn, zeta=delta, Ts=Ts)),
                   0.27, 0.005, "SPEC 5.3 (measured 0.27 %)", unit="%"),
             Claim("exp.exact_timing", "S_sigma, exact timing (T/Ts = 153.6): PRV at the mode",
                   float(analysis.prv(filt["S_sigma"], wn=wn, zeta=delta, Ts=Ts)), 0.0, 1e-9,
@@ -428,7 +430,8 @@ def _identification(sec, sigma, wd):
     sec.add(Claim("eq16.T0", "eq. (16): T0 from two successive peaks of the free decay",
                   2 * math.pi / peaks.wd, 0.0512, 5e-5, "paper (4 digits)", unit="s", paper=0.0512),
             Claim("eq16.sigma", "eq. (16): sigma = ln(p2/p1)/T0 from the same peaks", peaks.sigma,
-                  sigma, 1e-6 * abs(sigma), "paper's identified -15.6539 (peaks by parabola, 10 us grid)",
+                  sigma, 1e-6 * abs(sigma),
+                  "paper's identified -15.6539 (peaks by parabola, 10 us grid)",
                   unit="1/s", paper=sigma))
     rec = identify_from_record(x[::fine][: int(0.25 / Ts)], Ts=Ts)
     sec.add(Claim("ident.record.wd", "whole-record fit (identify_from_record): wd", rec.wd, wd,

@@ -143,7 +143,8 @@ def _kinematics(sec, data):
             name = ("velocity", "acceleration", "jerk")[d - 1]
             unit = ("rad/s", "rad/s^2", "rad/s^3")[d - 1]
             sec.add(Claim(f"{fig}.peak{d}", f"{fig}: peak {name} (0.1 ms differences)",
-                          peak, lim, 2e-3 * lim, "the limit, reached (0.2 %: N rounding <= 0.5/N plus differences)",
+                          peak, lim, 2e-3 * lim,
+                          "the limit, reached (0.2 %: N rounding <= 0.5/N plus differences)",
                           unit=unit))
 
 
@@ -241,7 +242,8 @@ def _spectra(sec, data):
                   0.0, 1e-12, "exact zero of S at 1.5 * (2 pi/T3)"))
     sec.add(Claim("fig10b.closed", "Fig. 10b: max relative deviation of |V(w)| from h w "
                   "|sinc||sinc||S| over 1..1500 rad/s",
-                  float(np.max(np.abs(Vm - spectrum_closed_form(Tm, w, last="harmonic"))) / Vm.max()),
+                  float(np.max(np.abs(Vm - spectrum_closed_form(Tm, w, last="harmonic")))
+                        / Vm.max()),
                   0.0, 1e-12, "closed form (seed Sec. 3.1)"))
     for wx in (300.0, 350.0):
         ours = float(np.abs(analysis.step_spectrum(mod, [wx], h=H, derivative=2))[0]
@@ -258,10 +260,10 @@ def _spectra(sec, data):
 def _body(d) -> str:
     r = d["results"]
     lines = ["Kinematic designs by `smoothshaper.design.kinematic(h=40, vmax=250, amax=5000, "
-             "jmax=2e5, profile=...)`; the resonance-tuned ones (Fig. 9-13) add `wn=260.43` with a "
-             "jerk bound that does not bind (Sec. 5.2 constrains v, a and the spectrum only). Residual "
-             "vibration: exact zero-order-hold simulation (`smoothshaper.plants`) of the "
-             "tracking error eps = q_ref - q_l of G_ml (Table 1: wr = 260.43 rad/s, delta = "
+             "jmax=2e5, profile=...)`; the resonance-tuned ones (Fig. 9-13) add `wn=260.43` "
+             "with a jerk bound that does not bind (Sec. 5.2 constrains v, a and the spectrum "
+             "only). Residual vibration: exact zero-order-hold simulation "
+             "(`smoothshaper.plants`) of the tracking error eps = q_ref - q_l of G_ml (Table 1: wr = 260.43 rad/s, delta = "
              f"{d['zeta']:.5f}), Ts = {TS * 1e6:g} us, the seeds' rounding of N (paper timing); "
              "the second mode (350 rad/s) is in series with the same damping ratio. Peak to "
              "peak of eps after the command has settled [rad]:", "",

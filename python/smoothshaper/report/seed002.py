@@ -113,9 +113,9 @@ def _simulate(chain):
 
 def _figures(sec, fig_dir, prof, sim, Td):
     with figure(fig_dir / "profiles.png", "Seed 002: jerk-limited and Damped-Jerk profiles "
-                "(h = 0.5 rad, v = 1 rad/s, a = 4 rad/s^2, T_J = Td; acceleration and jerk by finite "
-                "differences of the paper-timing chain) and the load's deviation from the command "
-                "on a 5 Hz, zeta = 0.1 mode (exact ZOH simulation)", sec.figures,
+                "(h = 0.5 rad, v = 1 rad/s, a = 4 rad/s^2, T_J = Td; acceleration and jerk by "
+                "finite differences of the paper-timing chain) and the load's deviation from the "
+                "command on a 5 Hz, zeta = 0.1 mode (exact ZOH simulation)", sec.figures,
                 nrows=2, ncols=2, size=(11, 6)) as (f, ax):
         for name, color in (("jerk-limited", COLORS["rectangular"]),
                             ("Damped-Jerk", COLORS["exponential"])):

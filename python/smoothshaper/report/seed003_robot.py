@@ -44,7 +44,8 @@ def via_points() -> np.ndarray:
     arc = np.concatenate([[0], np.cumsum(np.hypot(*np.diff(dense, axis=0).T))])
     n = int(round(arc[-1] / SPACING))
     targets = np.linspace(0, arc[-1], n + 1)
-    xy = np.column_stack([np.interp(targets, arc, dense[:, 0]), np.interp(targets, arc, dense[:, 1])])
+    xy = np.column_stack([np.interp(targets, arc, dense[:, 0]),
+                          np.interp(targets, arc, dense[:, 1])])
     z = 0.05 * targets / arc[-1]
     return np.column_stack([xy, z])
 
@@ -149,7 +150,8 @@ def _figures(sec, fig_dir, via, res, shaped, T40):
             a.plot(load[:, 0], load[:, 1], color="tab:red", lw=0.8, label="robot (load)")
             a.set_xlabel("x [m]")
             a.set_ylabel("y [m]")
-        ax[1].plot(shaped[:, 0], shaped[:, 1], "--", color="tab:green", label="ZV-shaped linear path")
+        ax[1].plot(shaped[:, 0], shaped[:, 1], "--", color="tab:green",
+                   label="ZV-shaped linear path")
         ax[1].set_xlim(0.25, 0.40)
         ax[1].set_ylim(-0.02, 0.13)
         ax[0].set_aspect("equal")

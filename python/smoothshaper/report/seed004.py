@@ -79,7 +79,8 @@ def build(fig_dir=None) -> Section:
     A, t = shaper_impulses(zv)
     sec.add(Claim("zv.alpha", "ZV amplitude ratio k2/k1 = alpha", A[1] / A[0], a, 1e-12,
                   "closed form exp(-xi pi/sqrt(1-xi^2))"),
-            Claim("zv.k1", "ZV first amplitude k1", A[0], k_zv[0], 1e-12, "closed form 1/(1+alpha)"),
+            Claim("zv.k1", "ZV first amplitude k1", A[0], k_zv[0], 1e-12,
+                  "closed form 1/(1+alpha)"),
             Claim("zv.t2", "ZV second impulse time", t[1], t_zv[1], 1e-12,
                   "closed form DT/2 = pi/wd", unit="s"))
     A2, t2 = shaper_impulses(zvd)
@@ -89,7 +90,8 @@ def build(fig_dir=None) -> Section:
                   "closed form DT = 2 pi/wd", unit="s"))
     for name, stage in (("zv", zv), ("zvd", zvd)):
         sec.add(Claim(f"{name}.nominal", f"{name.upper()} PRV at the nominal mode",
-                      float(analysis.prv([stage], wn=WN, zeta=XI)), 0.0, 1e-10, "exact cancellation", unit="%"))
+                      float(analysis.prv([stage], wn=WN, zeta=XI)), 0.0, 1e-10,
+                      "exact cancellation", unit="%"))
 
     rows, worst = [], {}
     for wn, xi in error_corners():
@@ -191,7 +193,8 @@ def _figures(sec, fig_dir, zv, zvd):
     u = ((t >= 1) & (t < 11)).astype(float)     # the seed's rectangular torque profile
     with figure(fig_dir / "shaped_pulse.png", "Seed 004: load velocity for a rectangular "
                 "torque pulse, unshaped / ZV / ZVD, nominal mode and with 10 % error on wn and "
-                "20 % on xi (true wn = 1.1, xi = 0.04)", sec.figures, nrows=2, size=(8, 6)) as (f, ax):
+                "20 % on xi (true wn = 1.1, xi = 0.04)", sec.figures, nrows=2,
+                size=(8, 6)) as (f, ax):
         for row, (wn, xi, label) in enumerate(((WN, XI, "nominal wn = 1, xi = 0.05"),
                                                (1.1, 0.04, "true wn = 1.1, xi = 0.04"))):
             num, den = [wn * wn], [1, 2 * xi * wn, wn * wn]

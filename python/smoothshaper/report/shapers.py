@@ -29,7 +29,8 @@ from .figures import COLORS, figure
 
 TOL = 0.05
 KINDS = ("zv", "mzv", "zvd", "ei", "ei2")
-LABEL = {"zv": "ZV", "mzv": "MZV", "zvd": "ZVD", "ei": "EI (V = 5 %)", "ei2": "two-hump EI (V = 5 %)"}
+LABEL = {"zv": "ZV", "mzv": "MZV", "zvd": "ZVD", "ei": "EI (V = 5 %)",
+         "ei2": "two-hump EI (V = 5 %)"}
 DURATION_TD = {"zv": 0.5, "mzv": 0.75, "zvd": 1.0, "ei": 1.0, "ei2": 1.5}
 #: Insensitivity as quoted in the input-shaping literature (2 significant digits).
 QUOTED = {"ei": 0.40, "ei2": 0.72}
@@ -127,15 +128,16 @@ def build(fig_dir=None) -> Section:
 def _body(rows, disc) -> str:
     lines = ["Computed with `smoothshaper.analysis.insensitivity` (band of wn/wn_hat where "
              "`100 |H(p)|` <= 5 %, undamped designs and plant). Durations in damped periods Td:",
-             "", "| shaper | duration [Td] | band [wn/wn_hat] | insensitivity | per unit duration |",
+             "",
+             "| shaper | duration [Td] | band [wn/wn_hat] | insensitivity | per unit duration |",
              "|---|---|---|---|---|"]
     for kind, b in rows:
         lines.append(f"| {LABEL[kind]} | {DURATION_TD[kind]:g} | {b.low:.4f} .. {b.high:.4f} | "
                      f"{b.relative_width:.4f} | {b.relative_width / DURATION_TD[kind]:.3f} |")
     half = _zv_closed(DISC_WN, DISC_ZETA)[1][1] / DISC_TS
     lines += ["", "Sampled at Ts = 1 ms, a 40 Hz mode (zeta = 0.05) puts the impulse at Td/2 "
-              f"between two samples ({half:.3f} Ts). Rounding impulse times (paper timing) leaves a "
-              "residual at the nominal mode; exact timing (default) does not:", "",
+              f"between two samples ({half:.3f} Ts). Rounding impulse times (paper timing) "
+              "leaves a residual at the nominal mode; exact timing (default) does not:", "",
               "| shaper | exact timing PRV [%] | paper timing PRV [%] |", "|---|---|---|"]
     lines += [f"| {k.upper()} | {pe:.1e} | {pp:.2f} |" for k, pe, pp in disc]
     return "\n".join(lines)
