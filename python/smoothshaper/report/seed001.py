@@ -263,7 +263,8 @@ def _body(d) -> str:
              "jmax=2e5, profile=...)`; the resonance-tuned ones (Fig. 9-13) add `wn=260.43` "
              "with a jerk bound that does not bind (Sec. 5.2 constrains v, a and the spectrum "
              "only). Residual vibration: exact zero-order-hold simulation "
-             "(`smoothshaper.plants`) of the tracking error eps = q_ref - q_l of G_ml (Table 1: wr = 260.43 rad/s, delta = "
+             "(`smoothshaper.plants`) of the tracking error eps = q_ref - q_l of G_ml "
+             "(Table 1: wr = 260.43 rad/s, delta = "
              f"{d['zeta']:.5f}), Ts = {TS * 1e6:g} us, the seeds' rounding of N (paper timing); "
              "the second mode (350 rad/s) is in series with the same damping ratio. Peak to "
              "peak of eps after the command has settled [rad]:", "",
