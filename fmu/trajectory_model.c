@@ -1,0 +1,234 @@
+/*
+ * TrajectoryGenerator: the online multi-point generator of the smoothshaper library
+ * (sms_generator_*, trajectory.h) as an FMU. Input: target position (a staircase); outputs:
+ * q, v, a, j at the internal ticks, never beyond vmax, amax, jmax for any target sequence.
+ * At fmi2ExitInitializationMode the generator rests at the current target.
+ */
+#include <math.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "smoothshaper/smoothshaper.h"
+#include "TrajectoryGenerator_variables.h"
+#include "fmu_model.h"
+
+/** Longest tail the FMU holds: Nc = ceil((T2 + T3)/Ts) <= 16384 samples (T2 = vmax/amax,
+ * T3 about amax/jmax); the generator's tables take 4 (Nc + 1) reals. */
+#define TG_MAX_TAIL_SAMPLES 16384
+#define TG_TABLE_REALS (4 * (TG_MAX_TAIL_SAMPLES + 1))
+
+typedef struct tg_model {
+    double target, out[4];                     /* q, v, a, j */
+    double Ts, vmax, amax, jmax, wn, zeta;
+    int profile;
+    int built;
+    sms_generator gen;
+    sms_real table[TG_TABLE_REALS];
+} tg_model;
+
+/* Real value references and the field each one is, in modelDescription order. */
+static const fmi2ValueReference real_vrs[] = {
+    TG_VR_TARGET, TG_VR_Q, TG_VR_V, TG_VR_A, TG_VR_J, TG_VR_TS, TG_VR_VMAX, TG_VR_AMAX, TG_VR_JMAX,
+    TG_VR_WN, TG_VR_ZETA
+};
+static const char *const real_names[] = {
+    "target", "q", "v", "a", "j", "Ts", "vmax", "amax", "jmax", "wn", "zeta"
+};
+#define N_REALS (sizeof real_vrs / sizeof real_vrs[0])
+
+static const size_t real_offsets[] = {
+    offsetof(tg_model, target), offsetof(tg_model, out[0]), offsetof(tg_model, out[1]),
+    offsetof(tg_model, out[2]), offsetof(tg_model, out[3]), offsetof(tg_model, Ts),
+    offsetof(tg_model, vmax), offsetof(tg_model, amax), offsetof(tg_model, jmax),
+    offsetof(tg_model, wn), offsetof(tg_model, zeta)
+};
+
+/* Index of a Real value reference in real_vrs, or N_REALS. */
+static size_t real_index(fmi2ValueReference vr)
+{
+    size_t i;
+    for (i = 0; i < N_REALS && real_vrs[i] != vr; ++i)
+        ;
+    return i;
+}
+
+size_t fmu_model_size(void) { return sizeof(tg_model); }
+const char *fmu_model_identifier(void) { return FMU_MODEL_IDENTIFIER; }
+const char *fmu_model_guid(void) { return FMU_MODEL_GUID; }
+
+void fmu_model_defaults(void *model)
+{
+    tg_model *m = (tg_model *)model;   /* the start values of modelDescription.xml */
+    m->target = 0.0;
+    memset(m->out, 0, sizeof m->out);
+    m->Ts = 0.001;
+    m->vmax = 1.0;
+    m->amax = 10.0;
+    m->jmax = 100.0;
+    m->profile = SMS_PROFILE_POLYNOMIAL;
+    m->wn = 0.0;
+    m->zeta = 0.0;
+    m->built = 0;
+}
+
+fmu_var_class fmu_model_class(fmu_type type, fmi2ValueReference vr)
+{
+    size_t i;
+    if (type == FMU_INTEGER)
+        return vr == TG_VR_PROFILE ? FMU_VAR_PARAMETER : FMU_VAR_UNKNOWN;
+    for (i = 0; i < N_REALS; ++i)
+        if (real_vrs[i] == vr)
+            return i == 0 ? FMU_VAR_INPUT : i <= 4 ? FMU_VAR_OUTPUT : FMU_VAR_PARAMETER;
+    return FMU_VAR_UNKNOWN;
+}
+
+void fmu_model_name(fmu_type type, fmi2ValueReference vr, char *buf, size_t len)
+{
+    size_t i;
+    if (type == FMU_INTEGER && vr == TG_VR_PROFILE) {
+        snprintf(buf, len, "profile");
+        return;
+    }
+    for (i = 0; i < N_REALS; ++i)
+        if (type == FMU_REAL && real_vrs[i] == vr) {
+            snprintf(buf, len, "%s", real_names[i]);
+            return;
+        }
+    snprintf(buf, len, "vr %lu", (unsigned long)vr);
+}
+
+size_t fmu_model_settable(fmu_type type, fmi2ValueReference *out, size_t cap)
+{
+    size_t i, n = 0;
+    if (type == FMU_INTEGER) {
+        if (cap > 0) out[0] = TG_VR_PROFILE;
+        return 1;
+    }
+    for (i = 0; i < N_REALS; ++i)
+        if (i == 0 || i > 4) {
+            if (n < cap) out[n] = real_vrs[i];
+            ++n;
+        }
+    return n;
+}
+
+double fmu_model_get_real(const void *model, fmi2ValueReference vr)
+{
+    size_t i = real_index(vr);
+    return i < N_REALS ? *(const double *)(const void *)((const char *)model + real_offsets[i]) : 0.0;
+}
+
+int fmu_model_get_integer(const void *model, fmi2ValueReference vr)
+{
+    return vr == TG_VR_PROFILE ? ((const tg_model *)model)->profile : 0;
+}
+
+void fmu_model_set_real(void *model, fmi2ValueReference vr, double value)
+{
+    size_t i = real_index(vr);
+    if (i < N_REALS)
+        *(double *)(void *)((char *)model + real_offsets[i]) = value;
+}
+
+void fmu_model_set_integer(void *model, fmi2ValueReference vr, int value)
+{
+    if (vr == TG_VR_PROFILE)
+        ((tg_model *)model)->profile = value;
+}
+
+double fmu_model_sample_period(const void *model) { return ((const tg_model *)model)->Ts; }
+
+static const char *offending(sms_status st)
+{
+    switch (st) {
+    case SMS_ERR_SAMPLE_PERIOD: return "Ts";
+    case SMS_ERR_KIND: return "profile";
+    case SMS_ERR_WN: case SMS_ERR_ABOVE_NYQUIST: return "wn";
+    case SMS_ERR_ZETA: return "zeta";
+    case SMS_ERR_DURATION_BELOW_TS: return "amax, jmax (a tail stage is shorter than Ts)";
+    default: return "vmax, amax, jmax";
+    }
+}
+
+int fmu_model_build(void *model, char *msg, size_t len)
+{
+    tg_model *m = (tg_model *)model;
+    sms_generator_config c;
+    size_t need = 0;
+    sms_status st;
+    if (!(m->Ts > 0.0))
+        return snprintf(msg, len, "Ts must be finite and > 0, got %g", m->Ts), 1;
+    if (!(m->vmax > 0.0) || !(m->amax > 0.0) || !(m->jmax > 0.0))
+        return snprintf(msg, len, "%s must be > 0", !(m->vmax > 0.0) ? "vmax"
+                        : !(m->amax > 0.0) ? "amax" : "jmax"), 1;
+    if (m->profile < SMS_PROFILE_POLYNOMIAL || m->profile > SMS_PROFILE_DAMPED)
+        return snprintf(msg, len, "profile = %d is not polynomial (0), trigonometric (1) or "
+                        "damped (2)", m->profile), 1;
+    if (m->wn < 0.0)
+        return snprintf(msg, len, "wn must be 0 (no mode) or > 0, got %g", m->wn), 1;
+    c.vmax = m->vmax;
+    c.amax = m->amax;
+    c.jmax = m->jmax;
+    c.profile = (sms_profile)m->profile;
+    c.wn = m->wn;
+    c.zeta = m->zeta;
+    st = sms_generator_buffer_size(&c, m->Ts, &need);
+    if (st != SMS_OK)
+        return snprintf(msg, len, "%s: %s", offending(st), sms_status_string(st)), 1;
+    if (need > TG_TABLE_REALS)
+        return snprintf(msg, len, "the tail needs %lu table reals, more than the %d this FMU "
+                        "holds: raise amax/jmax or Ts", (unsigned long)need, TG_TABLE_REALS), 1;
+    st = sms_generator_init(&m->gen, &c, m->Ts, m->table, TG_TABLE_REALS);
+    if (st != SMS_OK)
+        return snprintf(msg, len, "%s: %s", offending(st), sms_status_string(st)), 1;
+    sms_generator_reset(&m->gen, (sms_real)m->target);
+    m->out[0] = m->target;
+    m->out[1] = m->out[2] = m->out[3] = 0.0;
+    m->built = 1;
+    return 0;
+}
+
+void fmu_model_tick(void *model)
+{
+    tg_model *m = (tg_model *)model;
+    sms_real out[4];
+    int i;
+    sms_generator_step(&m->gen, (sms_real)m->target, out);
+    for (i = 0; i < 4; ++i)
+        m->out[i] = (double)out[i];
+}
+
+void fmu_model_rebind(void *model)
+{
+    tg_model *m = (tg_model *)model;
+    if (m->built)
+        sms_generator_rebind(&m->gen, m->table);
+}
+
+size_t fmu_model_state_count(const void *model)
+{
+    return 4 + sms_generator_state_count(&((const tg_model *)model)->gen);
+}
+
+void fmu_model_save_state(const void *model, double *dst)
+{
+    const tg_model *m = (const tg_model *)model;
+    memcpy(dst, m->out, sizeof m->out);
+    sms_generator_save_state(&m->gen, dst + 4);
+}
+
+int fmu_model_load_state(void *model, const double *src, size_t n)
+{
+    tg_model *m = (tg_model *)model;
+    int i;
+    if (n != fmu_model_state_count(m))
+        return 1;
+    for (i = 0; i < 4; ++i)
+        if (!isfinite(src[i]))
+            return 1;
+    if (sms_generator_load_state(&m->gen, src + 4, n - 4) != SMS_OK)
+        return 1;
+    memcpy(m->out, src, sizeof m->out);
+    return 0;
+}
