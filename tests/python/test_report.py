@@ -90,3 +90,10 @@ def test_pipes_in_claim_text_do_not_split_table_cells():
     row = cl.claims_table([c]).splitlines()[2]
     assert row.count(" | ") == 5          # six cells: what, paper, ours, asserted, tol, ok
     assert "\\|H(p)\\|" in row
+
+
+def test_links_the_fmu_validation_report_when_present(tmp_path):
+    (tmp_path / "validation").mkdir()
+    (tmp_path / "validation" / "README.md").write_text("# validation\n")
+    readme = report.run(tmp_path / "report", only=["shapers"])
+    assert "](../validation/README.md)" in readme.read_text()

@@ -9,6 +9,7 @@ report cannot drift from what is tested. Reproduce from the command line with
 from __future__ import annotations
 
 import importlib
+import os
 import time
 import traceback
 from pathlib import Path
@@ -85,6 +86,10 @@ def run(out_dir, *, only=None) -> Path:
             "the tolerance. Disagreements with a paper are kept in the table with a note.", "",
             "| section | claims that hold | disagreements with the paper (explained) | time |",
             "|---|---|---|---|", *summary, ""]
+    validation = out_dir.parent / "validation" / "README.md"
+    if validation.is_file():   # written by `smoothshaper validate` (scripts/main.sh runs it first)
+        head += ["The FMUs are checked against the same NumPy reference by `smoothshaper "
+                 f"validate`: see [its report]({os.path.relpath(validation, out_dir)}).", ""]
     readme = out_dir / "README.md"
     readme.write_text("\n".join(head) + "\n" + "\n".join(rendered))
     if failures:
