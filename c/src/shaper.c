@@ -159,6 +159,9 @@ static void realise_exact(const double *amp, const double *time, size_t n_imp, d
             }
         }
     }
+    /* No split: no correction. A split at m0 >= 1 gives |S| = 3. m0 = 0 (t < Ts) only happens
+     * to MZV's middle impulse when Td < 8/3 Ts, and then its last one (0.75 Td in (1.5, 2) Ts)
+     * splits onto {1, 2}: |S| >= 3 always, so C C^T is invertible. */
     if (n_s == 1)
         return;
     for (i = 0; i < out->n; ++i) {
