@@ -13,6 +13,7 @@ Fig. 4b: S's peak velocity/acceleration "slightly      ratios pi/3 and pi^2/9
 higher" than M1 M2's
 Fig. 5: M*ZV and ZVDD (same duration 3 pi s) are       5 % insensitivity S < M*ZV < ZVDD;
 lower near wn_hat; S is low-pass                       PRV for r >= 2: S 100/35 %, ZVDD 100 %
+Fig. 9: peak of s_sigma grows with |sigma|          peaks vs closed form, increasing
 Fig. 6: S tuned to the damped frequency leaves a       closed form (pi/T)^2|1+e^{-pT}|/(2|p^2+
 residual for delta = 0.1; Fig. 8: S_sigma cancels it   (pi/T)^2|); exact ZOH simulation
 Fig. 11: S_sigma's PRV over (wn, delta), delta_hat =   zero at nominal; 0.05: delta errors cost
@@ -109,6 +110,7 @@ def build(fig_dir=None) -> Section:
     _fig4(sec, data)
     _fig5(sec, data)
     _fig6_8(sec, data)
+    _fig9(sec, data)
     _fig11_13(sec, data)
     _experiment(sec, data)
     sec.body = _body(data)
@@ -248,6 +250,35 @@ def _fig6_8(sec, data):
             Claim("fig8.sim", "Fig. 8b: S_sigma, residual of the same simulation", sim_Ss, 0.0,
                   1e-8, "exact zero on the sampled mode", unit="%"))
     data["fig6"] = (t, eS, eSs, e0, T)
+
+
+FIG9_SIGMAS = (0.0, -1.0, -2.0, -4.0, -8.0)   # 1/s, with T = 1 s
+
+
+def damped_peak_closed_form(T: float, sigma: float) -> float:
+    """Peak of eq. (14): at pi t*/T = atan(-pi/(sigma T)) (pi/2 for sigma = 0)."""
+    x = math.pi / 2 if sigma == 0 else math.atan(-math.pi / (sigma * T))
+    c = ((math.pi / T) ** 2 + sigma ** 2) / (1 + math.exp(sigma * T)) * T / math.pi
+    return c * math.exp(sigma * T * x / math.pi) * math.sin(x)
+
+
+def _fig9(sec, data):
+    t = np.linspace(0, 1.0, 100001)
+    peaks, dev = [], 0.0
+    curves = {}
+    for sigma in FIG9_SIGMAS:
+        h = ref.continuous_impulse_response(st.damped_harmonic(T=1.0, sigma=sigma), t)
+        curves[sigma] = h
+        peaks.append(h.max())
+        dev = max(dev, abs(h.max() / damped_peak_closed_form(1.0, sigma) - 1))
+    sec.add(Claim("fig9.peak_closed", "Fig. 9: peak of s_sigma(t) (T = 1 s, sigma = 0 .. -8), max "
+                  "relative deviation from the closed form", dev, 0.0, 1e-8,
+                  "closed form, peak of eq. (14)"),
+            Claim("fig9.grows", "Fig. 9: smallest increase of the peak from one sigma to the next "
+                  "more negative one", float(np.min(np.diff(peaks))), 0.0, 0.0,
+                  "paper: the peak (the trajectory's velocity) grows with |sigma|", unit="1/s",
+                  relation=">="))
+    data["fig9"] = (t, curves)
 
 
 def _abs_residual(stages, T, wn, delta):
@@ -538,6 +569,13 @@ def _figures(sec, fig_dir, d):
         ax[0].set_ylabel("command q [mm]")
         ax[1].set_xlabel("time [s]")
         ax[1].set_ylabel("tracking error eps [mm]")
+    t, curves = d["fig9"]
+    with figure(fig_dir / "fig9_impulse_responses.png", "Seed 000 Fig. 9: impulse response of "
+                "the damped harmonic smoother, T = 1 s, for several sigma", sec.figures) as (f, ax):
+        for sigma, h in curves.items():
+            ax.plot(t, h, label=f"sigma = {sigma:g} 1/s")
+        ax.set_xlabel("time [s]")
+        ax.set_ylabel("s_sigma(t) [1/s]")
     for dh, (P, Q, A) in d["surfaces"].items():
         tag = str(dh).replace(".", "")
         X, Y = np.meshgrid(SURF_WN, SURF_DELTA)
