@@ -276,9 +276,11 @@ static void test_exact_timing(void)
         {0.0, 2 * PI * 7.3, 1e-3},
         {-3.0, 2 * PI * 41.0, 1e-3},
         {-40.0, 2 * PI * 180.0, 1e-3},   /* 2.8 samples per half period */
+        {0.0, 0.9 * PI / 1e-3, 1e-3},    /* near Nyquist: MZV's middle impulse below Ts */
+        {-20.0, 0.99 * PI / 1e-3, 1e-3},
     };
     size_t im, ik;
-    for (im = 0; im < 4; ++im) {
+    for (im = 0; im < sizeof modes / sizeof modes[0]; ++im) {
         double wn = sqrt(modes[im].sigma * modes[im].sigma + modes[im].wd * modes[im].wd);
         double zeta = -modes[im].sigma / wn, Ts = modes[im].Ts;
         double complex p = mode_pole(wn, zeta), zp = cexp(p * Ts);
