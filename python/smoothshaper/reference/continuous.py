@@ -34,9 +34,13 @@ def _cexpm1(z: np.ndarray) -> np.ndarray:
 def _phi(u: np.ndarray, T: float) -> np.ndarray:
     """``(1 - e^{-uT})/u``, equal to T at u = 0."""
     u = np.asarray(u, dtype=complex)
-    out = np.full(u.shape, T, dtype=complex)
-    nz = u != 0
-    out[nz] = -_cexpm1(-u[nz] * T) / u[nz]
+    x = u * T
+    # |uT| < 1e-6: the series (error < (uT)^3/24 relative) also avoids dividing by a
+    # subnormal u, which overflows in complex division
+    small = np.abs(x) < 1e-6
+    out = np.asarray(T * (1.0 - x / 2.0 + x * x / 6.0), dtype=complex).reshape(u.shape)
+    big = ~small
+    out[big] = -_cexpm1(-u[big] * T) / u[big]
     return out
 
 
