@@ -5,8 +5,9 @@ so ``pip install .`` needs only a C compiler. The cdef is generated from the pub
 never written by hand: the C preprocessor expands ``c/include/smoothshaper/smoothshaper.h``
 (``SMS_API`` defined empty, the C library headers replaced by empty stand-ins because cffi
 knows ``size_t`` and friends), pycparser re-emits the declarations (function bodies of
-``static inline`` helpers dropped), and the integer ``#define`` constants of the headers are
-added as ``#define NAME ...`` so the compiler fills in their values. A function added to any
+``static inline`` helpers dropped), and the ``#define`` constants of the headers are added
+(``#define NAME ...`` for integers, ``static const double NAME;`` for floating values) so the
+compiler fills in their values. A function added to any
 public header therefore appears in Python at the next build.
 
 Run ``python python/smoothshaper/_build_core.py`` to build in place for a quick try; setup.py
@@ -34,7 +35,9 @@ UMBRELLA = os.path.join(INCLUDE_DIR, "smoothshaper", "smoothshaper.h")
 # preprocessor run (cffi declares the standard types itself).
 _STD_HEADERS = ("stddef.h", "stdint.h", "stdbool.h", "limits.h", "float.h", "math.h",
                 "string.h", "stdlib.h")
-_DEFINE = re.compile(r"^\s*#\s*define\s+(SMS_[A-Z0-9_]+)\s+\(?\s*-?(?:0x[0-9A-Fa-f]+|\d+)[uUlL]*\s*\)?\s*$")
+# Object-like macros with a value (function-like macros and SMS_API are not constants).
+_DEFINE = re.compile(r"^\s*#\s*define\s+(SMS_[A-Z0-9_]+)[ \t]+(\S.*?)\s*(?:/[*/].*)?$")
+_FLOAT_LITERAL = re.compile(r"(?<![xX0-9A-Fa-f])(?:\d+\.\d*|\.\d+|\d+[eE][-+]?\d+)")
 
 
 def _compiler() -> list[str]:
@@ -85,20 +88,25 @@ def _declarations(source: str) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _integer_constants() -> str:
-    names = []
+def _constants() -> str:
+    """cdef lines for the headers' constants: integers as ``#define NAME ...`` (the compiler
+    supplies the value), floating ones as ``static const double NAME;``."""
+    lines: dict[str, str] = {}
     for header in sorted(glob.glob(os.path.join(INCLUDE_DIR, "smoothshaper", "*.h"))):
         with open(header, encoding="utf-8") as f:
             for line in f:
                 m = _DEFINE.match(line)
-                if m and m.group(1) not in names:
-                    names.append(m.group(1))
-    return "".join(f"#define {name} ...\n" for name in names)
+                if not m or m.group(1) == "SMS_API" or m.group(1) in lines:
+                    continue
+                name, value = m.groups()
+                lines[name] = (f"static const double {name};\n" if _FLOAT_LITERAL.search(value)
+                               else f"#define {name} ...\n")
+    return "".join(lines.values())
 
 
 def cdef_text(defines: list[str] | None = None) -> str:
     """The cdef for the given preprocessor defines (e.g. ``["SMS_USE_FLOAT"]``)."""
-    return _integer_constants() + _declarations(_preprocess(defines or []))
+    return _constants() + _declarations(_preprocess(defines or []))
 
 
 def _sources() -> list[str]:

@@ -48,6 +48,17 @@ def test_integer_constants_match_headers():
                 assert getattr(lib, name) == int(value), name
 
 
+def test_every_object_like_define_is_bound():
+    _, lib = _backend("double")
+    names = set()
+    for path in HEADERS:
+        with open(path, encoding="utf-8") as f:
+            names.update(m.group(1) for m in map(_build_core._DEFINE.match, f) if m)
+    names.discard("SMS_API")
+    assert names and [n for n in sorted(names) if not hasattr(lib, n)] == []
+    assert lib.SMS_SHAPER_MAX_IMPULSES == lib.SMS_SHAPER_MAX_ORDER + 1   # expression macro
+
+
 def test_cdef_is_generated_from_the_preprocessed_header():
     text = _build_core.cdef_text([])
     assert "typedef double sms_real;" in text
