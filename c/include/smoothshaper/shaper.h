@@ -13,9 +13,9 @@
  *   H_c(s) = ((1 + K e^{-s Td/2})/(1+K))^n has a zero of multiplicity n at p.
  * - EI (one hump, tolerance V = sms_stage_config::tolerance): undamped closed form
  *   [(1+V)/4, (1-V)/2, (1+V)/4] at [0, Td/2, Td]: |H(j wn)| = V at the top of the hump, zeros on
- *   either side. zeta > 0: amplitudes weighted by K^m (as Klipper and the NumPy reference), so
- *   H_c(sigma + j w) = H_undamped(j w)/S with S = sum_m B_m K^m: hump and zeros kept along
- *   Re s = sigma; |H_c(p)| = V/S.
+ *   either side. zeta > 0: the closed-form amplitudes B_m weighted by K^m and normalised (as
+ *   Klipper and the NumPy reference), so H_c(sigma + j w) = H_B(j w)/S, S = sum_m B_m K^m, H_B the
+ *   closed form at the same times: hump and zeros kept along Re s = sigma; |H_c(p)| = V/S.
  * - EI2 (two-hump EI): 4 impulses at m Td/2, exact zero at the mode, two humps of height V
  *   (undamped closed form; for zeta > 0 the amplitudes are weighted by K^m, which keeps the
  *   exact zero at p).
@@ -28,8 +28,9 @@
  * H(1) = 1 and H(e^{p Ts}) = H_c(p) (0 for ZV^n, EI2, MZV; V-sized for EI); ZV^n is the n-fold
  * convolution of the exact discrete ZV (zero of multiplicity n at e^{p Ts}).
  *
- * Non-finite input: it enters the delay line like any sample, so the output is non-finite for
- * exactly L samples and then clean again (a FIR cannot be poisoned for ever).
+ * Non-finite input: it enters the delay line like any sample, so the outputs at delays d_k after
+ * it are non-finite, and from L samples after it on the output is clean again (a FIR cannot be
+ * poisoned for ever).
  */
 #ifndef SMOOTHSHAPER_SHAPER_H
 #define SMOOTHSHAPER_SHAPER_H
