@@ -110,3 +110,15 @@ def test_every_status_maps_to_the_parameter_it_names():
         assert _STATUS_PARAMETER[getattr(lib, name)] == parameter, name
     statuses = {getattr(lib, n) for n in dir(lib) if n.startswith("SMS_ERR_")}
     assert statuses <= set(_STATUS_PARAMETER)          # a new status needs a parameter name
+
+
+def test_declarations_drop_inline_bodies_and_keep_prototypes():
+    text = _build_core._declarations(
+        "typedef struct s { size_t n; double x[3]; } s;\n"
+        "static inline int helper(int a) { return a + 1; }\n"
+        "int exported(const s *p, size_t n);\n"
+        "inline double scaled(double v) { return 2.0 * v; }\n")
+    assert "helper" not in text
+    assert "int exported(const s *p, size_t n);" in text
+    assert "double scaled(double v);" in text and "return" not in text
+    assert "double x[3];" in text and "typedef int" not in text
