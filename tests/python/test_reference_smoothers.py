@@ -236,6 +236,9 @@ def test_T_just_below_Ts_within_the_integer_test_is_one_sample():
     assert h.tolist() == [1.0]
 
 
+GAUSS_200 = np.polynomial.legendre.leggauss(200)
+
+
 @given(kind=st.sampled_from(FAMILIES), sigma=st.floats(-40.0, 0.0), re=st.floats(-20, 20),
        im=st.floats(-300, 300))
 def test_continuous_transfer_is_the_laplace_transform_of_the_impulse_response(kind, sigma, re,
@@ -243,7 +246,7 @@ def test_continuous_transfer_is_the_laplace_transform_of_the_impulse_response(ki
     """Gauss-Legendre quadrature (200 nodes, integrand analytic on [0, T]) of h(t) e^{-st}."""
     T = 0.1
     stage = family(kind, T, sigma=sigma)
-    x, w = np.polynomial.legendre.leggauss(200)
+    x, w = GAUSS_200
     t = 0.5 * T * (x + 1)
     s = complex(re, im)
     quad = 0.5 * T * np.sum(w * ref.continuous_impulse_response(stage, t) * np.exp(-s * t))
