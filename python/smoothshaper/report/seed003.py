@@ -13,8 +13,11 @@ asymmetric; insensitivity of M^p "may be made          PRV(0.8)/PRV(1.2) = 1.5^3
 infinite": PRV <= V_tol for all wn >= w0               every r >= r_5 (root of sinc^3 = 0.05)
 Table I: wn = 60 rad/s, delta = 0.012 (x, z);          plants.cartesian_axis poles
 wn = 40 rad/s, delta = 0.008 (y)
-Sec. IV: B-spline through via-points on three axes,    smoothshaper.trajectory (when present):
-exact interpolation, T >= 2 pi/min(wn)                 via-points hit, residual vibration
+Fig. 3-4: the spline's spectrum is P(jw) sinc^p,       velocity spectrum of the spline through
+zero at k w0, lower at high frequency for larger p      the robot's via-points: 0 at w0; p = 5 vs 1
+Sec. IV: B-spline through via-points on three axes,    smoothshaper.trajectory.BSpline: via-points
+exact interpolation, T >= 2 pi/min(wn)                 hit, residual vibration vs p and w0; a ZV
+                                                       shaper misses the via-points (Fig. 15)
 =====================================================  ==========================================
 """
 from __future__ import annotations

@@ -106,6 +106,24 @@ def run(sec) -> dict:
     sec.add(Claim("robot.rv.y_above", "Fig. 10: RV on y (wn = 40 rad/s), p = 3, with w0 = 50 "
                   "over w0 <= 40 rad/s", res[(3, "w0=50")][0][1] / res[(3, "w0<=40")][0][1], 1.0,
                   0.0, "paper: vibration stays limited only while w0 <= wn", relation=">="))
+    # Fig. 3-4: spectrum of the x command (its velocity, which starts and ends at rest)
+    spectra = {}
+    w = np.linspace(1.0, 250.0, 2500)
+    for p in (1, 3, 5):
+        b = BSpline(degree=p, T=T50, Ts=TS, axes=3)
+        v = np.diff(b.interpolate(via, extra=10)[:, 0], prepend=via[0, 0]) / TS
+        V = TS * np.abs(np.exp(-1j * np.outer(w, np.arange(v.size)) * TS) @ v)
+        spectra[p] = V
+        w0 = 2 * math.pi / b.T
+        at = TS * abs(np.sum(v * np.exp(-1j * w0 * np.arange(v.size) * TS)))
+        sec.add(Claim(f"robot.spectrum_zero.p{p}", f"Fig. 3-4: x velocity spectrum of the "
+                      f"B-spline p = {p} at w0 = 2 pi/T, over its peak", at / V.max(), 0.0, 1e-9,
+                      "exact zero of M^p at w0"))
+    sec.add(Claim("robot.spectrum_p", "Fig. 4: x velocity spectrum above 1.5 w0, p = 5 over p = 1 "
+                  "(largest ratio of the peaks)",
+                  float(spectra[5][w > 75].max() / spectra[1][w > 75].max()), 0.1, 0.0,
+                  "paper: higher degree, stronger attenuation of high frequencies",
+                  relation="<="))
     # Input shapers do not interpolate (Fig. 15): ZV at 50 rad/s on the linear path
     lin = BSpline(degree=1, T=T40, Ts=TS, axes=3).interpolate(via, extra=200)
     zv = st.shaper("zv", wn=50.0)
@@ -136,6 +154,16 @@ def run(sec) -> dict:
 
     def figures(sec_, fig_dir: Path):
         _figures(sec_, fig_dir, via, res, shaped, T40)
+        with figure(fig_dir / "fig4_spectra.png", "Seed 003 Fig. 3-4: spectrum of the x-axis "
+                    "velocity of B-splines of degree 1, 3, 5 through the via-points, T = 2 pi/50 s",
+                    sec_.figures) as (f, ax):
+            for p_, V in spectra.items():
+                ax.semilogy(w, V, label=f"p = {p_}")
+            for k in (1, 2, 3, 4):
+                ax.axvline(50 * k, color="0.6", lw=0.6)
+            ax.set_ylim(1e-6, None)
+            ax.set_xlabel("frequency [rad/s]")
+            ax.set_ylabel("|V_x(w)| [m]")
     return {"body": body, "figures": figures}
 
 
