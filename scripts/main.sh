@@ -11,12 +11,12 @@ python3 -c 'import sys; sys.exit(0 if sys.version_info >= (3, 10) else "python3 
 python -m pip install -q --upgrade pip
 python -m pip install -q -e ".[validate]"
 
-# The C libraries and both FMUs (SmoothShaper.fmu, TrajectoryGenerator.fmu).
-cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release
-cmake --build build/release -j2
+# Both FMUs (SmoothShaper.fmu, TrajectoryGenerator.fmu) with CMake; validate reuses this build.
+cmake -S . -B build/fmu -DCMAKE_BUILD_TYPE=Release -DSMS_BUILD_TESTS=OFF -DSMS_BUILD_SHARED=OFF
+cmake --build build/fmu -j2
 
 status=0
-smoothshaper validate --out out/validation || status=$?
+smoothshaper validate --out out/validation --build-dir build/fmu || status=$?
 smoothshaper report --out out/report || status=$?
 if [ "$status" -eq 0 ]; then
     echo "main.sh: done; see out/validation and out/report"

@@ -488,7 +488,8 @@ def _run_module(name: str, module_name: str, out_dir: str, **options) -> int:
 
 
 def cmd_validate(args) -> int:
-    return _run_module("validate", "validation", args.out)
+    options = {"build_dir": args.build_dir} if args.build_dir else {}
+    return _run_module("validate", "validation", args.out, **options)
 
 
 def cmd_report(args) -> int:
@@ -562,6 +563,9 @@ def build_parser() -> argparse.ArgumentParser:
         p = sub.add_parser(name, help=what)
         p.add_argument("--out", default=os.path.join("out", name),
                        help=f"output folder (default ./out/{name})")
+        if name == "validate":
+            p.add_argument("--build-dir", help="CMake build folder for the FMUs (default: "
+                           "OUT/build); an existing build there is reused")
         if name == "report":
             p.add_argument("--only", nargs="+", metavar="SECTION",
                            help="build only these sections (e.g. seed000 seed004)")
