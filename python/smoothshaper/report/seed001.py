@@ -188,7 +188,7 @@ def _vibration(sec, data):
                   note=("the paper prints T3 = 0.0209 s, but its own formula 2 pi/wr with wr = "
                         "260.4 rad/s gives 0.0241 s (SPEC 4.2 erratum; 0.0209 s would be tuned "
                         "to 300.6 rad/s). The residual vibrations the paper reports are "
-                        "reproduced with 0.0241 s, not with 0.0209 s (see the table below).")))
+                        "reproduced with 0.0241 s, not with 0.0209 s (residual table above).")))
     for name, stages in (("modified double-S", mod), ("double-S", dbl)):
         sec.add(Claim(f"fig9.T12.{name}", f"Fig. 9: {name} T1, T2",
                       max(abs(stages[0].T - 0.16), abs(stages[1].T - 0.05)), 0.0, 1e-12,
