@@ -171,9 +171,8 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
         return NULL;
     }
     memcpy(c->name, instanceName, name_len + 1);
-    for (k = 0; k < FMU_LOG_CATEGORIES; ++k)
+    for (k = 0; k < FMU_LOG_CATEGORIES; ++k)   /* FMI 2.0: loggingOn switches all categories */
         c->log_on[k] = loggingOn ? 1 : 0;
-    c->log_on[FMU_LOG_ERROR] = 1;   /* errors are reported unless switched off explicitly */
     c->magic = FMU_INSTANCE_MAGIC;
     fmu_model_defaults(c->model);
     memset(&c->clock, 0, sizeof c->clock);

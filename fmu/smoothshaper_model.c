@@ -67,7 +67,7 @@ void fmu_model_defaults(void *model)
     for (k = 0; k < SS_MAX_STAGES; ++k) {   /* the start values of modelDescription.xml */
         ss_params *p = &m->stage[k];
         memset(p, 0, sizeof *p);
-        p->ints[SS_FIELD_KIND] = SS_KIND_NONE;
+        p->ints[SS_FIELD_KIND] = SS_DEFAULT_KIND(k);
         p->ints[SS_FIELD_K] = 1;
         p->ints[SS_FIELD_ORDER] = 1;
         p->reals[SS_FIELD_T] = 0.01;

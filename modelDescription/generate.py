@@ -51,6 +51,7 @@ KIND_TEXT = ("moving average M (SPEC 3.1)", "sinusoidal smoother S (SPEC 3.2)",
 
 # SmoothShaper value references: globals below 100, stage k field f at 100 + 16 k + f.
 SS_MAX_STAGES = 8
+SS_DEFAULT_KINDS = {0: 0, 1: 4}   # stage[0] rectangular, stage[1] zv, the others none
 SS_STAGE_BASE = 100
 SS_STAGE_STRIDE = 16
 SS_FIELDS = (  # (name, type, unit, start, description, declared type, min, max)
@@ -98,6 +99,8 @@ def smooth_shaper() -> tuple[list[Var], list[str], str]:
     ]
     for k in range(SS_MAX_STAGES):
         for f, (name, typ, unit, start, desc, dtype, lo, hi) in enumerate(SS_FIELDS):
+            if name == "kind":   # default chain M(T) * ZV(wn): useful out of the box
+                start = SS_DEFAULT_KINDS.get(k, -1)
             vs.append(Var(f"stage[{k}].{name}", SS_STAGE_BASE + SS_STAGE_STRIDE * k + f, typ,
                           "parameter", f"stage {k}: {desc}", unit, start, dtype, "fixed", lo, hi))
     header = [f"#define SS_MAX_STAGES {SS_MAX_STAGES}", f"#define SS_STAGE_BASE {SS_STAGE_BASE}",
@@ -105,6 +108,8 @@ def smooth_shaper() -> tuple[list[Var], list[str], str]:
     header += [f"#define SS_FIELD_{name.upper()} {f}" for f, (name, *_rest) in enumerate(SS_FIELDS)]
     header.append(f"#define SS_FIELD_COUNT {len(SS_FIELDS)}")
     header.append("#define SS_KIND_NONE (-1)")
+    header.append("#define SS_DEFAULT_KIND(k) ((k) == 0 ? %d : (k) == 1 ? %d : SS_KIND_NONE)"
+                  % (SS_DEFAULT_KINDS[0], SS_DEFAULT_KINDS[1]))
     return vs, header, ("Chain of up to 8 discrete smoothers, input shapers and notches (smoothshaper)")
 
 

@@ -57,6 +57,7 @@ def start_values(stages, *, Ts: float) -> dict:
     if len(stages) > 8:
         raise ValueError(f"stages must hold at most 8 stages, got {len(stages)}")
     values = {"Ts": float(Ts)}
+    values.update({f"stage[{k}].kind": -1 for k in range(len(stages), 8)})   # unused: none
     for k, s in enumerate(stages):
         p = f"stage[{k}]."
         values.update({p + "kind": KIND_VALUES[s.kind], p + "k": s.k, p + "wn": s.wn,
@@ -216,6 +217,74 @@ def fmpy_problems(fmu: Path) -> list[str]:
     return list(validate_fmu(str(fmu)))
 
 
+def fmutool_problems(fmu: Path) -> list[str]:
+    """`fmutool -input FMU -check` (fmu-manipulation-toolbox); an empty list means it passed."""
+    exe = shutil.which("fmutool") or str(Path(sys.executable).with_name("fmutool"))
+    if not Path(exe).is_file():
+        return ["fmutool not found (pip install fmu-manipulation-toolbox)"]
+    run_ = subprocess.run([exe, "-input", str(fmu), "-check"], capture_output=True, text=True)
+    text = run_.stdout + run_.stderr
+    problems = [line.strip() for line in text.splitlines() if "ERROR" in line or "WARNING" in line]
+    if "No semantic error" not in text or "compliant" not in text:
+        problems.append("fmutool did not report the FMU compliant")
+    return problems
+
+
+#: The second importer's case: SmoothShaper's default chain M(T) * ZV(wn) (libcosim ignores
+#: FMI 2.0 Enumerations, so the kinds keep their defaults) with Reals and Integers set.
+COSIM_REALS = {"Ts": 1e-3, "stage[0].T": 0.0137, "stage[1].wn": 150.0, "stage[1].zeta": 0.05}
+
+
+def simulate_libcosim(fmu: str, t: np.ndarray, u: np.ndarray, reals: dict) -> np.ndarray:
+    """y of SmoothShaper.fmu in libcosim (libcosimpy): fixed step t[1]-t[0], u overridden
+    before every step (as fmpy sets it), y read after the step."""
+    from fmpy import read_model_description
+    from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+    from libcosimpy.CosimManipulator import CosimManipulator
+    from libcosimpy.CosimObserver import CosimObserver
+    from libcosimpy.CosimSlave import CosimLocalSlave
+    log_output_level(CosimLogLevel.ERROR)
+    vr = {v.name: v.valueReference for v in read_model_description(fmu).modelVariables}
+    step_ns = int(round((t[1] - t[0]) * 1e9))
+    execution = CosimExecution.from_step_size(step_size=step_ns)
+    index = execution.add_local_slave(local_slave=CosimLocalSlave(fmu_path=str(fmu), instance_name="ss"))
+    override = CosimManipulator.create_override()
+    execution.add_manipulator(manipulator=override)
+    observer = CosimObserver.create_last_value()
+    execution.add_observer(observer=observer)
+    for name, value in {**reals, "u": float(u[0])}.items():
+        if not execution.real_initial_value(index, vr[name], float(value)):
+            raise RuntimeError(f"libcosim refused the initial value of {name}")
+    y = np.empty(t.size)
+    y[0] = float(u[0])   # at rest at u(0) (libcosim observes only after steps)
+    for k in range(t.size - 1):
+        override.slave_real_values(index, [vr["u"]], [float(u[k])])
+        if not execution.step():
+            raise RuntimeError(f"libcosim step {k} failed")
+        y[k + 1] = observer.last_real_values(index, [vr["y"]])[0]
+    return y
+
+
+def compare_importers(fmu: Path, *, stop_time: float = 0.3) -> tuple[float, float]:
+    """(max |y_libcosim - y_fmpy|, max |y_fmpy - reference|) on the COSIM_REALS case."""
+    import fmpy
+    from .stages import Stage
+    Ts = COSIM_REALS["Ts"]
+    t = communication_points(step=Ts, stop_time=stop_time)
+    u = test_input(t)
+    y_cosim = simulate_libcosim(str(fmu), t, u, COSIM_REALS)
+    signal = np.zeros(t.size, dtype=[("time", float), ("u", float)])
+    signal["time"], signal["u"] = t, u
+    r = fmpy.simulate_fmu(str(fmu), start_values=dict(COSIM_REALS), input=signal,
+                          stop_time=float(t[-1]), output_interval=Ts, output=["y"], validate=False)
+    y_fmpy = np.asarray(r["y"], dtype=float)
+    stages = [Stage("rectangular", T=COSIM_REALS["stage[0].T"]),
+              Stage("zv", wn=COSIM_REALS["stage[1].wn"], zeta=COSIM_REALS["stage[1].zeta"])]
+    ref = expected_output(stages, t, u, Ts=Ts)
+    return float(np.max(np.abs(y_cosim - y_fmpy))), float(np.max(np.abs(y_fmpy - ref)))
+
+
 # ---------------------------------------------------------------- report
 
 def compare(fmu: Path, stages, *, Ts: float, step: float, stop_time: float):
@@ -312,12 +381,22 @@ def run(out_dir, *, build_dir=None, fmus: dict | None = None, Ts: float = 1e-3,
              "Timing accounted for: fmpy sets u at t_k, calls doStep(t_k, h) and records y at "
              "t_{k+1}; the FMU computes the ticks n*Ts in (t_k, t_k + h] with u held at u(t_k) "
              "and reports the last tick's output (see `smoothshaper.validation`).", "",
-             "## fmpy validate", "", "| FMU | problems |", "|---|---|"]
+             "## fmpy validate and fmutool -check", "", "| FMU | fmpy validate | fmutool -check |",
+             "|---|---|---|"]
     ok = True
     for model, path in sorted(fmus.items()):
-        problems = fmpy_problems(path)
-        ok &= not problems
-        lines.append(f"| {model}.fmu | {'none' if not problems else '; '.join(problems)} |")
+        problems, checks = fmpy_problems(path), fmutool_problems(path)
+        ok &= not problems and not checks
+        lines.append(f"| {model}.fmu | {'; '.join(problems) or 'no problem'} | "
+                     f"{'; '.join(checks) or 'passed'} |")
+    if "SmoothShaper" in fmus:
+        d_importers, d_ref = compare_importers(fmus["SmoothShaper"])
+        same = d_importers <= REL_TOL and d_ref <= REL_TOL * 10
+        ok &= same
+        lines += ["", "## Second importer (libcosim via libcosimpy)", "",
+                  f"SmoothShaper default chain M * ZV with {COSIM_REALS}, h = Ts: "
+                  f"max |y_libcosim - y_fmpy| = {d_importers:.2e}, "
+                  f"max |y_fmpy - reference| = {d_ref:.2e}: {'same result' if same else 'DIFFERENT'}."]
     if "SmoothShaper" in fmus:
         steps = (("Ts", Ts), ("7 Ts", 7 * Ts), ("2.5 Ts", 2.5 * Ts), ("0.4 Ts", 0.4 * Ts))
         lines += ["", f"## SmoothShaper vs reference (Ts = {Ts:g} s, 0 to {stop_time:g} s, "

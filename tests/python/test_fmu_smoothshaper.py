@@ -74,7 +74,9 @@ def slave(unzipdir, name="ss", logged: Logged | None = None) -> FMU2Slave:
     names, md = vrs(unzipdir)
     fmu = FMU2Slave(guid=md.guid, unzipDirectory=unzipdir,
                     modelIdentifier=md.coSimulation.modelIdentifier, instanceName=name)
-    fmu.instantiate(callbacks=logged.callbacks if logged else None)
+    fmu.instantiate(callbacks=logged.callbacks if logged else None, loggingOn=logged is not None)
+    if logged is not None:   # errors and warnings only: no call trace
+        fmu.setDebugLogging(False, ["logCalls"])
     fmu.vr = names
     return fmu
 
@@ -227,3 +229,16 @@ def test_only_fmi2_symbols_are_exported(fmus, tmp_path):
                          check=True).stdout
     names = [line.split()[-1] for line in out.splitlines() if line.split()[-2] in "TDBR"]
     assert names and all(n.startswith("fmi2") for n in names), names
+
+
+def test_fmutool_check_passes(fmus):
+    pytest.importorskip("fmu_manipulation_toolbox", reason="fmu-manipulation-toolbox provides fmutool")
+    for path in fmus.values():
+        assert validation.fmutool_problems(path) == []
+
+
+def test_libcosim_gives_the_same_result_as_fmpy(fmus):
+    pytest.importorskip("libcosimpy", reason="libcosimpy is the second importer")
+    d_importers, d_reference = validation.compare_importers(fmus["SmoothShaper"])
+    assert d_importers == 0.0                   # same binary, same calls: same bits
+    assert d_reference <= 1e-14                 # |y| <= ~3: rounding of the two convolutions
