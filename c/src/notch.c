@@ -12,10 +12,10 @@ static int is_finite(double v)
 
 static sms_status check(const sms_stage_config *c, double Ts)
 {
-    if (c->kind != SMS_NOTCH_TUSTIN && c->kind != SMS_NOTCH_MATCHED)
-        return SMS_ERR_KIND;
     if (!is_finite(Ts) || Ts <= 0.0)
         return SMS_ERR_SAMPLE_PERIOD;
+    if (c->kind != SMS_NOTCH_TUSTIN && c->kind != SMS_NOTCH_MATCHED)
+        return SMS_ERR_KIND;
     if (!is_finite(c->wn) || c->wn <= 0.0)
         return SMS_ERR_WN;
     if (c->wn * Ts >= pi)

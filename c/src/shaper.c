@@ -43,10 +43,10 @@ static sms_status check_fields(const sms_stage_config *c)
 static sms_status check_config(const sms_stage_config *c, double Ts)
 {
     sms_status st;
-    if (!is_shaper(c->kind) || (c->timing != SMS_TIMING_EXACT && c->timing != SMS_TIMING_PAPER))
-        return SMS_ERR_KIND;
     if (!is_finite(Ts) || Ts <= 0.0)
         return SMS_ERR_SAMPLE_PERIOD;
+    if (!is_shaper(c->kind) || (c->timing != SMS_TIMING_EXACT && c->timing != SMS_TIMING_PAPER))
+        return SMS_ERR_KIND;
     if (!is_finite(c->wn) || c->wn <= 0.0)
         return SMS_ERR_WN;
     if (c->wn * Ts >= pi)

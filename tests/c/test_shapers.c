@@ -488,6 +488,7 @@ static void test_invalid(void)
     /* first offending field wins, in config.h table order */
     c = good; c.wn = NAN; c.zeta = 2; c.tolerance = 5; EXPECT_BAD(c, Ts, SMS_ERR_WN);
     c = good; c.zeta = 2; c.tolerance = 5; EXPECT_BAD(c, Ts, SMS_ERR_ZETA);
+    c = good; c.kind = SMS_RECTANGULAR; EXPECT_BAD(c, -1.0, SMS_ERR_SAMPLE_PERIOD);
     /* fields other families use are not read */
     c = good; c.T = NAN; c.sigma = 1.0; c.k = 0; c.order = 0; c.notch_pole_zeta = NAN;
     CHECK_STATUS(sms_shaper_buffer_size(&c, Ts, &L), SMS_OK);

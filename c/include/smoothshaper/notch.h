@@ -47,8 +47,8 @@ typedef struct sms_notch {
 /**
  * @brief Validate and build a notch at rest at 0.
  * @return ::SMS_OK; ::SMS_ERR_NULL (f or config NULL); else the first failing check in this
- *         order: ::SMS_ERR_KIND (not a notch kind), ::SMS_ERR_SAMPLE_PERIOD (Ts NaN/Inf or
- *         <= 0), ::SMS_ERR_WN (NaN/Inf or <= 0), ::SMS_ERR_ABOVE_NYQUIST (wn >= pi/Ts),
+ *         order: ::SMS_ERR_SAMPLE_PERIOD (Ts NaN/Inf or <= 0), ::SMS_ERR_KIND (not a notch
+ *         kind), ::SMS_ERR_WN (NaN/Inf or <= 0), ::SMS_ERR_ABOVE_NYQUIST (wn >= pi/Ts),
  *         ::SMS_ERR_ZETA (outside [0,1)), ::SMS_ERR_NOTCH_DAMPING (notch_pole_zeta NaN/Inf,
  *         <= zeta or > ::SMS_NOTCH_MAX_POLE_ZETA). timing, T, sigma, k, order, tolerance
  *         are not read. f is untouched on error.

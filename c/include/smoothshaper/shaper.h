@@ -68,7 +68,8 @@ typedef struct sms_shaper {
  * @param Ts      sample period [s], finite, > 0
  * @param n_reals receives L
  * @return ::SMS_OK, ::SMS_ERR_NULL, then the first failing check in this order:
- *         ::SMS_ERR_KIND (not a shaper kind, or unknown timing), ::SMS_ERR_SAMPLE_PERIOD,
+ *         ::SMS_ERR_SAMPLE_PERIOD (Ts NaN/Inf or <= 0; checked first, as the smoothers do),
+ *         ::SMS_ERR_KIND (not a shaper kind, or unknown timing),
  *         ::SMS_ERR_WN (NaN/Inf or <= 0), ::SMS_ERR_ABOVE_NYQUIST (wn >= pi/Ts),
  *         ::SMS_ERR_ZETA (NaN/Inf or outside [0,1)), ::SMS_ERR_ORDER (ZVN: order outside
  *         1..::SMS_SHAPER_MAX_ORDER), ::SMS_ERR_TOLERANCE (EI, EI2: outside (0,1)),
