@@ -222,6 +222,10 @@ def _vibration(sec, data):
         sec.add(Claim(f"p2p.{cname}.nominal_small", f"Fig. 10a: nominal p2p over the two-mode "
                       f"p2p, {cname}", p2p / results[(cname, "two modes")][0], 0.1, 0.0,
                       "paper: 'the error is null' at the end of motion", relation="<="))
+    sec.add(Claim("p2p.robust300", "Fig. 12: residual p2p with the mode at 300 rad/s, modified "
+                  "double-S over double-S", results[("modified double-S", "wr = 300")][0]
+                  / results[("double-S", "wr = 300")][0], 1.0, 0.0,
+                  "paper: trigonometric trajectories more robust to a wrong wr", relation="<="))
     printed = results[("double-S, T3 = 0.0209 (as printed)", "two modes")][0]
     sec.add(Claim("p2p.printed_T3_misses", "double-S with the printed T3 = 0.0209 s, two modes: "
                   "relative distance of its p2p from the paper's 0.0140",

@@ -67,6 +67,12 @@ def build(fig_dir=None) -> Section:
                   "closed form 100 (e^{zeta wn Td} - 1)/(wn Td)", unit="%"),
             Claim("damped.DJ", "PRV of the exponential jerk stage (Damped-Jerk)",
                   float(analysis.prv([dj], wn=WN, zeta=ZETA)), 0.0, 1e-10, "exact zero", unit="%"))
+    base = prof["jerk-limited"][:2]
+    p = complex(-ZETA * WN, WN * math.sqrt(1 - ZETA ** 2))
+    closed_base = 100 * math.prod(abs(-np.expm1(-p * s.T)) / abs(p * s.T) for s in base)
+    sec.add(Claim("base.acc_limited", "acceleration-limited part alone (M(h/v) M(v/a)): PRV on the "
+                  "mode", float(analysis.prv(base, wn=WN, zeta=ZETA)), closed_base, 1e-9,
+                  "closed form 100 prod |1 - e^{-pT}|/|pT|", unit="%"))
     sim = {}
     for name, chain in prof.items():
         sim[name] = _simulate(chain)
