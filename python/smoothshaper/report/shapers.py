@@ -140,7 +140,7 @@ def _body(rows, disc) -> str:
               "leaves a residual at the nominal mode; exact timing (default) does not:", "",
               "| shaper | exact timing PRV [%] | paper timing PRV [%] |", "|---|---|---|"]
     lines += [f"| {k.upper()} | {pe:.1e} | {pp:.2f} |" for k, pe, pp in disc]
-    lines += ["", "Not covered: the three-hump EI shaper (insensitivity about 0.97 in the same "
+    lines += ["", "Not covered: the three-hump EI shaper (wider still, in the same "
               "sources) is not one of the library's stages (SPEC 3.5 asks for EI and MZV at "
               "least); ZVDD (0.48) is, as ZV^3."]
     return "\n".join(lines)
