@@ -215,18 +215,40 @@ sms_status sms_identify_from_record(const double *x, size_t n, double Ts, sms_mo
         if (!is_finite(x[k]))
             return SMS_ERR_RECORD;
     /* Several AR(2) lags (1, 2, 4, ...): slow sampling suits lag 1, fast sampling with noise
-     * suits longer lags; keep the refined fit with the least squared error. */
-    for (d = 1; 4 * d <= n; d *= 2) {
-        double q[N_PARAM], cost;
-        q[0] = q[1] = q[2] = 0.0;
-        if (!ar2_start(x, n, Ts, d, q) || !fit_linear(x, n, Ts, q))
-            continue;
-        cost = refine(x, n, Ts, q);
-        if (is_finite(cost) && cost < best_cost) {
+     * suits longer lags. The two starts with the least squared error after the linear fit are
+     * refined (refinement dominates the cost); the better refined fit wins. */
+    {
+        double start[2][N_PARAM], start_cost[2] = {HUGE_VAL, HUGE_VAL};
+        int s;
+        for (d = 1; 4 * d <= n; d *= 2) {
+            double q[N_PARAM], cost;
+            q[0] = q[1] = q[2] = 0.0;
+            if (!ar2_start(x, n, Ts, d, q) || !fit_linear(x, n, Ts, q))
+                continue;
+            cost = sse(x, n, Ts, q);
+            if (!is_finite(cost) || cost >= start_cost[1])
+                continue;
+            s = cost < start_cost[0] ? 0 : 1;
+            if (s == 0) {
+                for (k = 0; k < N_PARAM; ++k)
+                    start[1][k] = start[0][k];
+                start_cost[1] = start_cost[0];
+            }
             for (k = 0; k < N_PARAM; ++k)
-                best[k] = q[k];
-            best_cost = cost;
-            found = 1;
+                start[s][k] = q[k];
+            start_cost[s] = cost;
+        }
+        for (s = 0; s < 2; ++s) {
+            double cost;
+            if (!is_finite(start_cost[s]))
+                continue;
+            cost = refine(x, n, Ts, start[s]);
+            if (is_finite(cost) && cost < best_cost) {
+                for (k = 0; k < N_PARAM; ++k)
+                    best[k] = start[s][k];
+                best_cost = cost;
+                found = 1;
+            }
         }
     }
     if (!found)

@@ -56,11 +56,12 @@ SMS_API sms_status sms_identify_from_peaks(double t1, double p1, double t2, doub
  * (c absorbs an unknown final value / offset).
  *
  * Method: start values from AR(2)-with-constant least-squares fits
- * x[k] = a1 x[k-d] + a2 x[k-2d] + c at lags d = 1, 2, 4, ... (n >= 4d), each refined by
- * Levenberg-Marquardt on all five parameters; the fit with the least squared error wins. For
- * white noise this is the maximum-likelihood estimate: tests/c/test_identify.c measures it at
- * the Cramer-Rao bound (worst of 20 noise draws within 3 standard deviations). Cost
- * O(n log n) exp/cos/sin evaluations per iteration; design-time only (uses libm).
+ * x[k] = a1 x[k-d] + a2 x[k-2d] + c at lags d = 1, 2, 4, ... (n >= 4d); the two starts with
+ * the least squared error are refined by Levenberg-Marquardt on all five parameters and the
+ * better fit wins. For white noise this is the maximum-likelihood estimate:
+ * tests/c/test_identify.c measures it at the Cramer-Rao bound (worst of 20 noise draws within
+ * 3 standard deviations). Cost: O(n) exp/cos/sin per iteration (about 0.2 s for n = 2e5);
+ * design-time only (uses libm).
  * @param x   record, all finite; n >= 8
  * @param Ts  sample period [s], finite, > 0
  * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_SAMPLE_PERIOD, ::SMS_ERR_RECORD (n < 8, a
