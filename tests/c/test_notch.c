@@ -260,6 +260,21 @@ static void test_blocks_and_state(void)
     CHECK_STATUS(sms_notch_check_state(&g, st, 7), SMS_ERR_STATE);
     CHECK_STATUS(sms_notch_load_state(&g, NULL, 6), SMS_ERR_NULL);
     CHECK(memcmp(&saved, &g, sizeof g) == 0);
+    {   /* a non-finite state (e.g. loaded) restarts at rest at the next finite input */
+        double poisoned[6];
+        sms_real x = (sms_real)2;
+        memcpy(poisoned, st, sizeof st);
+        poisoned[3] = NAN;
+        poisoned[4] = INFINITY;
+        CHECK_STATUS(sms_notch_load_state(&g, poisoned, 6), SMS_OK);
+        sms_notch_step(&g, &x);
+        CHECK(x == (sms_real)2);
+        for (i = 0; i < 10; ++i) {
+            x = (sms_real)2;
+            sms_notch_step(&g, &x);
+            CHECK_CLOSE(x, 2.0, 10 * SMS_TEST_REL_TOL, 2.0);
+        }
+    }
     sms_notch_reset(&g, (sms_real)-4);
     for (i = 0; i < 10; ++i) {
         sms_real x = (sms_real)-4;
