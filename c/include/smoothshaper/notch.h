@@ -20,9 +20,9 @@
  * below Nyquist.
  *
  * Non-finite input: such a sample is passed to the output unchanged and does not enter the
- * state (the filter continues as if it had not been there). If finite input drives the output
- * non-finite (overflow), the filter restarts at rest at that input and outputs it. The IIR
- * state is therefore never poisoned.
+ * state (the filter continues as if it had not been there). If the output is non-finite while
+ * the input is finite (overflow, or a non-finite state loaded by sms_notch_load_state()), the
+ * filter restarts at rest at that input and outputs it. The IIR state is never poisoned.
  */
 #ifndef SMOOTHSHAPER_NOTCH_H
 #define SMOOTHSHAPER_NOTCH_H
