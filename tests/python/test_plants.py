@@ -4,6 +4,8 @@ import math
 import numpy as np
 import pytest
 import scipy.signal
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import smoothshaper as sm
 from smoothshaper import analysis as an
@@ -115,3 +117,17 @@ def test_residual_amplitude_recovers_a_known_oscillation():
 def test_bad_arguments_raise_value_error_naming_the_parameter(call, name):
     with pytest.raises(ValueError, match=rf"^{name} "):
         call()
+
+
+@settings(max_examples=25)
+@given(kind=st.sampled_from(["rectangular", "harmonic", "zv", "ei", "mzv"]),
+       detune=st.floats(0.7, 1.3), zeta=st.floats(0.0, 0.3), wn_Ts=st.floats(0.02, 0.3))
+def test_time_domain_residual_equals_the_transfer_for_random_filters(kind, detune, zeta, wn_Ts):
+    Ts = 1e-3
+    wn = wn_Ts / Ts
+    stage = sm.for_mode(kind, wn=detune * wn, zeta=zeta)
+    expected = an.residual_vibration(stage, wn=wn, zeta=zeta, Ts=Ts)
+    L = ref.impulse_response(stage, Ts=Ts).size
+    n = L + int(8 * 2 * math.pi / (wn * Ts))              # eight periods after settling
+    got = measured_residual([stage], (wn, zeta), Ts, n=n)
+    assert got == pytest.approx(expected, rel=1e-6, abs=1e-9)
