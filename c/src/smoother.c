@@ -75,10 +75,10 @@ sms_status sms_smoother_init(sms_smoother *f, const sms_stage_config *config, do
     built.kind = config->kind;
     built.length = d.length;
     built.window = d.window;
-    built.pole_re = (sms_real)d.pole_re;
+    built.pole_m1_re = (sms_real)d.pole_m1_re;
     built.pole_im = (sms_real)d.pole_im;
     /* What rounding to sms_real lost (exact in double for float), plus the long double part. */
-    built.pole_lo_re = (sms_real)((d.pole_re - (double)built.pole_re) + d.pole_lo_re);
+    built.pole_lo_re = (sms_real)((d.pole_m1_re - (double)built.pole_m1_re) + d.pole_m1_lo_re);
     built.pole_lo_im = (sms_real)((d.pole_im - (double)built.pole_im) + d.pole_lo_im);
     built.gain_re = (sms_real)d.gain;
     built.gain_im = (sms_real)0;
@@ -114,18 +114,27 @@ void sms_smoother_reset(sms_smoother *f, sms_real rest)
     f->age[1] = 0;
 }
 
+/* Sum a + b and its exact rounding error (Knuth's TwoSum; needs IEEE evaluation, no
+ * -ffast-math reassociation). */
+static sms_real two_sum(sms_real a, sms_real b, sms_real *err)
+{
+    sms_real s = a + b, bb = s - a;
+    *err = (a - (s - bb)) + (b - bb);
+    return s;
+}
+
 /* One copy of the recursion; `oldest_input` is x[n-M], used only if the copy consumed it.
- * A copy filters x - ref, ref being its input when it restarted, and adds ref back (the
- * taps sum to 1): its state then stays as small as the input's variation, not its offset,
- * and so does its rounding.
- * The copy is w = w_hi + w_lo with the pole split q = q_hi + q_lo: w_hi runs on the rounded
- * pole, and w_lo, a small state on the same pole, collects q_lo w_hi. Folding q_lo w_hi into
- * w_hi directly would lose it (it is below half an ulp of w_hi), leaving a systematic
- * relative error i |q_lo| in tap i; split this way only the unbiased rounding remains. */
+ * - The copy filters x - ref, ref being its input when it restarted, and adds ref back (the
+ *   taps sum to 1): its state stays as small as the input's variation, not its offset.
+ * - The state is w + lo: w takes the update w += (q - 1) w + c x - c q^M x[n-M] (an increment
+ *   small against w), and lo, a small state on the same pole, collects what that addition
+ *   rounds away (exactly, by TwoSum) and what the rounded pole misses (q_lo w). Without it
+ *   both errors are systematic for a pole near 1 (the increment below half an ulp of w is
+ *   lost every sample) and tap i would be off by ~i eps. */
 static void copy_update(sms_smoother *f, int c, sms_real input, sms_real oldest_input)
 {
     const size_t window = f->window;
-    sms_real re, im, lo_re, lo_im, x, oldest;
+    sms_real x, oldest, d_re, d_im, e_re, e_im, w_re, w_im, lo_re, lo_im;
     if (f->age[c] == 2u * window) {
         f->w_re[c] = f->w_im[c] = (sms_real)0;
         f->lo_re[c] = f->lo_im[c] = (sms_real)0;
@@ -134,29 +143,24 @@ static void copy_update(sms_smoother *f, int c, sms_real input, sms_real oldest_
         f->age[c] = 0;
     }
     x = input - f->ref[c];
-    oldest = oldest_input - f->ref[c];
+    oldest = f->age[c] >= window ? oldest_input - f->ref[c] : (sms_real)0;
+    w_re = f->w_re[c];
+    lo_re = f->lo_re[c];
     if (f->real_only) {
-        re = f->pole_re * f->w_re[c] + f->gain_re * x;
-        lo_re = f->pole_re * f->lo_re[c] + f->pole_lo_re * f->w_re[c];
-        if (f->age[c] >= window)
-            re += f->tail_re * oldest;
-        f->w_re[c] = re;
-        f->lo_re[c] = lo_re;
+        d_re = f->pole_m1_re * w_re + (f->gain_re * x + f->tail_re * oldest);
+        f->w_re[c] = two_sum(w_re, d_re, &e_re);
+        f->lo_re[c] = lo_re + (f->pole_m1_re * lo_re + f->pole_lo_re * w_re + e_re);
     } else {
-        re = f->pole_re * f->w_re[c] - f->pole_im * f->w_im[c] + f->gain_re * x;
-        im = f->pole_re * f->w_im[c] + f->pole_im * f->w_re[c] + f->gain_im * x;
-        lo_re = f->pole_re * f->lo_re[c] - f->pole_im * f->lo_im[c]
-                + (f->pole_lo_re * f->w_re[c] - f->pole_lo_im * f->w_im[c]);
-        lo_im = f->pole_re * f->lo_im[c] + f->pole_im * f->lo_re[c]
-                + (f->pole_lo_re * f->w_im[c] + f->pole_lo_im * f->w_re[c]);
-        if (f->age[c] >= window) {
-            re += f->tail_re * oldest;
-            im += f->tail_im * oldest;
-        }
-        f->w_re[c] = re;
-        f->w_im[c] = im;
-        f->lo_re[c] = lo_re;
-        f->lo_im[c] = lo_im;
+        w_im = f->w_im[c];
+        lo_im = f->lo_im[c];
+        d_re = f->pole_m1_re * w_re - f->pole_im * w_im + (f->gain_re * x + f->tail_re * oldest);
+        d_im = f->pole_m1_re * w_im + f->pole_im * w_re + (f->gain_im * x + f->tail_im * oldest);
+        f->w_re[c] = two_sum(w_re, d_re, &e_re);
+        f->w_im[c] = two_sum(w_im, d_im, &e_im);
+        f->lo_re[c] = lo_re + (f->pole_m1_re * lo_re - f->pole_im * lo_im
+                               + (f->pole_lo_re * w_re - f->pole_lo_im * w_im) + e_re);
+        f->lo_im[c] = lo_im + (f->pole_m1_re * lo_im + f->pole_im * lo_re
+                               + (f->pole_lo_re * w_im + f->pole_lo_im * w_re) + e_im);
     }
     ++f->age[c];
 }

@@ -220,9 +220,9 @@ sms_status sms_smoother_design_make(const sms_stage_config *config, double Ts,
     {
         long double re, im;
         pole_long(d.decay, d.nu, d.family.half_sine, &re, &im);
-        d.pole_re = (double)re;
+        d.pole_m1_re = (double)(re - 1.0L);
+        d.pole_m1_lo_re = (double)((re - 1.0L) - (long double)d.pole_m1_re);
         d.pole_im = (double)im;
-        d.pole_lo_re = (double)(re - (long double)d.pole_re);
         d.pole_lo_im = (double)(im - (long double)d.pole_im);
     }
     if (d.family.half_sine) {

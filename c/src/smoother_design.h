@@ -30,9 +30,9 @@ typedef struct sms_smoother_design {
     double nu;             /* T'/Ts of the sampled response: N (integer, paper) or T/Ts (exact) */
     size_t length;         /* L: taps of the impulse response */
     size_t window;         /* M: taps 0..M-1 come from the recursion (M = N or N0 + 1) */
-    double pole_re, pole_im; /* q = e^{sigma Ts} e^{j pi/nu} (half sine) or e^{sigma Ts} */
-    double pole_lo_re, pole_lo_im; /* q - (pole_re, pole_im), from long double: the pole to
-                                    * ~2^-64, so q^i keeps its accuracy over long windows */
+    double pole_m1_re, pole_im; /* q - 1: q = e^{sigma Ts} e^{j pi/nu} (half sine) or e^{sigma Ts} */
+    double pole_m1_lo_re, pole_lo_im; /* what those doubles miss of q (from long double): the
+                                       * pole to ~2^-64, so q^i stays accurate over long windows */
     double gain;           /* c = 1/sum(base taps): weight of the newest input */
     double tail_re, tail_im; /* -c q^M: weight of x[n-M], which truncates the response */
     size_t n_corrections;  /* 0 or 3 */

@@ -56,6 +56,9 @@ static void run(sms_kind kind, double T, double sigma, double total)
         sms_real x = (sms_real)(1e3 + noise());
         recent[head] = (double)x;
         sms_smoother_step(&f, &x);
+        /* The last checkpoint is the end of the run: its window is the final samples. */
+        if (checkpoint + (double)window > total && checkpoint <= total * 10.0)
+            checkpoint = total - (double)window > 0.0 ? total - (double)window : 0.0;
         if (n >= checkpoint && window_end < 0.0) {
             window_end = n + (double)window;
             worst_window = 0.0;
@@ -73,11 +76,11 @@ static void run(sms_kind kind, double T, double sigma, double total)
             if (n + 1.0 >= window_end || n + 1.0 >= total) {
                 if (worst_window > worst || worst_window != worst_window)
                     worst = worst_window;
-                printf("  after %.0e samples: max |error| %.3e (relative %.3e), running max %.3e\n",
-                       checkpoint, worst_window, worst_window / 1e3, worst);
+                printf("  samples %.4g..%.4g: max |error| %.3e (relative %.3e), running max %.3e\n",
+                       checkpoint, n + 1.0, worst_window, worst_window / 1e3, worst);
                 fflush(stdout);
                 window_end = -1.0;
-                checkpoint *= 10.0;
+                checkpoint = n + 1.0 >= total ? total * 100.0 : checkpoint * 10.0;
             }
         }
         head = head + 1 == L ? 0 : head + 1;

@@ -25,13 +25,22 @@
  * Re or Im of c q^i with the pole q = r (rectangular, exponential) or q = r e^{j pi/nu}
  * (harmonic families), computed by the complex first-order recursion
  *   w[n] = q w[n-1] + c x[n] - c q^M x[n-M],   y[n] = Re/Im w[n] + sum_j d_j x[n-j],
- * where d_j are the (at most 3) exact-timing corrections. The recursion cancels its own pole,
- * so on its own it would accumulate rounding for ever (SPEC 5.2). Two copies of it run side by
- * side, each restarted from zero every 2M samples, half a period apart; a copy restarted at
- * t0 ignores inputs before t0 and is exact once it has seen M samples, and the output always
- * comes from the copy that has run between M and 2M samples. The error against the exact
- * convolution is therefore bounded independently of the run length (about M eps relative in
- * the worst case, sqrt(M) eps typically), with no O(M) burst ever.
+ * where d_j are the (at most 3) exact-timing corrections. A rotation is used rather than the
+ * real second-order resonator 1 - 2 r cos(pi/N) z^-1 + r^2 z^-2, whose rounding is amplified
+ * about N^2 times. The recursion cancels its own pole, so on its own it would accumulate
+ * rounding for ever (SPEC 5.2). Hence:
+ * - two copies run side by side, each restarted from zero every 2M samples, M apart; a copy
+ *   restarted at t0 ignores inputs before t0 and is exact once it has consumed M samples, and
+ *   the output always comes from the copy that has consumed between M and 2M samples;
+ * - each copy filters x - ref, ref being its (finite) input at its restart, and adds ref back
+ *   (unit DC gain; the corrections, which sum to 0, act on x - ref too), so its rounding
+ *   scales with how much the input varies within 2M samples, not with its offset;
+ * - the pole is split q = q_hi + q_lo (q_lo from a long double design) and each copy carries a
+ *   small second state driven by q_lo, so tap i keeps its accuracy for large i (otherwise the
+ *   pole's rounding gives a systematic relative error i eps, 1e-5 at i = 1500 in float).
+ * The error against the exact convolution is therefore bounded independently of the run
+ * length. Measured (tests/bench/drift_bench.c, 1e9 samples of 1e3 + U(-1, 1)): below 2e-14
+ * relative in double and 1e-7 relative in float for L = 100 and L = 10^4.
  *
  * Non-finite input: a NaN or Inf sample makes the output NaN while it is inside the ring or
  * inside the recursion copy in use; at most 2M + 1 samples after it the output is again the
@@ -55,8 +64,8 @@ typedef struct sms_smoother {
     sms_kind kind;
     size_t length;              /**< impulse response length L [samples] */
     size_t window;              /**< M: taps from the recursion; ring length; copies restart every 2M */
-    sms_real pole_re, pole_im;  /**< q rounded to sms_real: the recursion's pole */
-    sms_real pole_lo_re, pole_lo_im; /**< q minus its rounding (so q^i stays exact over long windows) */
+    sms_real pole_m1_re, pole_im;     /**< q - 1 (real part) and Im q, rounded: the recursion's pole */
+    sms_real pole_lo_re, pole_lo_im;  /**< what the rounding lost of q (to ~2^-64) */
     sms_real gain_re, gain_im;  /**< c, weight of the newest input */
     sms_real tail_re, tail_im;  /**< -c q^M, weight of x[n-M] */
     int imag_out;               /**< 1: output Im w (harmonic families); 0: Re w */
