@@ -347,6 +347,13 @@ class Chain:
 
     __copy__ = copy
 
+    def __deepcopy__(self, memo) -> "Chain":
+        return self.copy()
+
+    def __reduce__(self):
+        # Pickle the description and the state, never the pointers.
+        return (_restore_chain, (self.stages, self.Ts, self.precision, self.get_state()))
+
     # -- impulse response -----------------------------------------------------------------
 
     @property
@@ -384,6 +391,12 @@ class Chain:
     def __repr__(self) -> str:
         kinds = ", ".join(s.kind for s in self.stages)
         return f"Chain([{kinds}], Ts={self.Ts!r}, precision={self.precision!r})"
+
+
+def _restore_chain(stages, Ts, precision, state) -> Chain:
+    chain = Chain(stages, Ts=Ts, precision=precision)
+    chain.set_state(state)
+    return chain
 
 
 # -- design and identification (C) ---------------------------------------------------------

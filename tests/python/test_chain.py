@@ -1,7 +1,9 @@
 """Chain (C-backed): construction errors, state handling, block/sample equivalence."""
+import copy
 import dataclasses
 import gc
 import math
+import pickle
 
 import numpy as np
 import pytest
@@ -218,10 +220,14 @@ def test_reset_puts_the_chain_at_rest():
     np.testing.assert_allclose(y, 3.25, rtol=1e-12)
 
 
-def test_copy_is_independent_and_identical():
+@pytest.mark.parametrize("duplicate", [lambda c: c.copy(), copy.copy, copy.deepcopy,
+                                       lambda c: pickle.loads(pickle.dumps(c))],
+                         ids=["copy", "copy.copy", "deepcopy", "pickle"])
+def test_copies_are_independent_and_identical(duplicate):
     chain = _chain()
     chain.process(_signal(250, seed=7))
-    twin = chain.copy()
+    twin = duplicate(chain)
+    assert twin._buffer is not chain._buffer
     u = _signal(300, seed=8)
     np.testing.assert_array_equal(twin.process(u), chain.process(u))
 
