@@ -35,9 +35,11 @@
  * - each copy filters x - ref, ref being its (finite) input at its restart, and adds ref back
  *   (unit DC gain; the corrections, which sum to 0, act on x - ref too), so its rounding
  *   scales with how much the input varies within 2M samples, not with its offset;
- * - the pole is split q = q_hi + q_lo (q_lo from a long double design) and each copy carries a
- *   small second state driven by q_lo, so tap i keeps its accuracy for large i (otherwise the
- *   pole's rounding gives a systematic relative error i eps, 1e-5 at i = 1500 in float).
+ * - each copy's state is w + lo: w takes the increment (q - 1) w + c x - c q^M x[n-M], and lo
+ *   (a small state on the same pole) collects what that addition rounds away, exactly (TwoSum),
+ *   and what the rounded pole misses (q_lo w, q_lo from a long double design). For a pole near
+ *   1 both errors are otherwise systematic and tap i would be off by ~i eps (1e-5 at i = 1500
+ *   in float). TwoSum needs IEEE evaluation: do not build with -ffast-math.
  * The error against the exact convolution is therefore bounded independently of the run
  * length. Measured (tests/bench/drift_bench.c, 1e9 samples of 1e3 + U(-1, 1)): below 2e-14
  * relative in double and 1e-7 relative in float for L = 100 and L = 10^4.
