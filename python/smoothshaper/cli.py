@@ -105,7 +105,12 @@ def _chain_from_args(args) -> list[Stage]:
         if args.wn is None:
             raise CliError("--wn is required with --kind (the mode to design for)")
         from .filters import design_for_mode
-        stages.append(design_for_mode(kind, wn=args.wn, zeta=args.zeta, k=args.k))
+        stage = design_for_mode(kind, wn=args.wn, zeta=args.zeta, k=args.k)
+        if kind == "zvn":
+            stage = stage.with_(order=args.order)
+        if kind in ("ei", "ei2"):
+            stage = stage.with_(tolerance=args.tolerance_shaper)
+        stages.append(stage)
     return stages
 
 
@@ -509,6 +514,10 @@ def _add_chain_options(p, *, with_kind: bool = True) -> None:
     p.add_argument("--zeta", type=float, default=0.0, help="damping ratio of the mode (default 0)")
     p.add_argument("--k", type=int, default=1, help="multiple of the zero placed on the mode "
                    "(odd for the harmonic families; default 1)")
+    if with_kind:
+        p.add_argument("--order", type=int, default=1, help="n of --kind zvn (default 1)")
+        p.add_argument("--shaper-tolerance", dest="tolerance_shaper", type=float, default=0.05,
+                       help="vibration tolerance of --kind ei/ei2 (default 0.05)")
 
 
 def build_parser() -> argparse.ArgumentParser:

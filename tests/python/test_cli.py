@@ -73,6 +73,17 @@ def test_design_prints_a_table_for_a_mode(capsys):
     assert "total duration" in out and "chain FIR length" in out
 
 
+def test_design_zvn_order_and_ei_tolerance(capsys):
+    code, out, _ = run(capsys, "design", "--kind", "zvn", "--order", "3", "--kind", "ei",
+                       "--shaper-tolerance", "0.1", "--wn", "50")
+    assert code == 0
+    _, rows = _rows(out)
+    assert rows[0][1] == "zvn" and rows[0][7] == "3"
+    assert float(rows[0][2]) == pytest.approx(3 * math.pi / 50, rel=1e-5)   # 3 half periods
+    code, _, err = run(capsys, "design", "--kind", "zvn", "--order", "13", "--wn", "50")
+    assert code == cli.EXIT_ERROR and err.startswith("smoothshaper: error: order")
+
+
 def test_design_from_stage_specs(capsys):
     code, out, _ = run(capsys, "design", "--stage", "rectangular:T=0.02",
                        "--stage", "ei:wn=80,zeta=0.02")
