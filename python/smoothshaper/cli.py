@@ -31,6 +31,10 @@ EXIT_ERROR = 1
 EXIT_USAGE = 2
 EXIT_UNAVAILABLE = 3
 
+# Optional dependencies and the pyproject extra that installs each.
+_EXTRA_FOR_MODULE = {"scipy": "analysis", "matplotlib": "plot", "fmpy": "validate",
+                     "libcosimpy": "validate", "fmu_manipulation_toolbox": "validate"}
+
 _KEY_ALIASES = {"pole_zeta": "notch_pole_zeta"}
 _INT_KEYS = ("k", "order")
 _FLOAT_KEYS = ("T", "sigma", "wn", "zeta", "tolerance", "notch_pole_zeta")
@@ -594,6 +598,13 @@ def main(argv: list[str] | None = None) -> int:
         return EXIT_ERROR
     except CliError as exc:
         code, message = exc.code, str(exc)
+    except ModuleNotFoundError as exc:
+        extra = _EXTRA_FOR_MODULE.get((exc.name or "").split(".")[0])
+        if extra is None:
+            raise
+        code, message = EXIT_UNAVAILABLE, (
+            f"this command needs the Python package {exc.name.split('.')[0]!r}: "
+            f"pip install 'smoothshaper[{extra}]'")
     except (ValueError, OSError, RuntimeError, ImportError) as exc:
         if os.environ.get("SMOOTHSHAPER_DEBUG"):
             raise
