@@ -111,46 +111,69 @@ static int fits_real(double v)
     return fabs(v) <= SMS_REAL_MAX; /* false for NaN and Inf too */
 }
 
-/* Exact timing: correction on taps N0-1, N0, N0+1 with sum 0 that cancels G(z*). */
+/* sin(pi x), cos(pi x) in long double for x >= 0, exact zeros at multiples of 1/2. */
+static long double sin_pi_long(long double x)
+{
+    const long double pi = 3.14159265358979323846264338327950288L;
+    long double sign = 1.0L;
+    x = fmodl(x, 2.0L);
+    if (x > 1.0L) {
+        x -= 1.0L;
+        sign = -1.0L;
+    }
+    if (x > 0.5L)
+        x = 1.0L - x;
+    return sign * sinl(pi * x);
+}
+
+static long double cos_pi_long(long double x)
+{
+    return sin_pi_long(fmodl(x, 2.0L) + 0.5L);
+}
+
+/* Exact timing: correction on taps N0-1, N0, N0+1 with sum 0 that cancels G(z*). The 3 x 3
+ * system is ill-conditioned when w* Ts is small (columns 1, u, u^2 nearly equal), so it is
+ * solved in long double. */
 static int solve_correction(sms_smoother_design *d, size_t n0, double zero_turns_per_sample)
 {
-    const double a = zero_turns_per_sample; /* w* Ts / pi, in (0, 1) */
-    exact_sum g_re = {0.0, 0.0}, g_im = {0.0, 0.0};
-    double u_re, u_im, v_mag, v_re, v_im, r_re, r_im, q_re, q_im, den, x_re, x_im;
-    double d0, d1, d2;
+    const long double a = (long double)zero_turns_per_sample; /* w* Ts / pi, in (0, 1) */
+    const long double nu = (long double)d->nu, decay = (long double)d->decay;
+    long double g_re = 0.0L, g_im = 0.0L, s, u_re, u_im, v_mag, v_re, v_im, r_re, r_im;
+    long double q_re, q_im, den, x_re, x_im, d0, d1, d2;
     size_t i;
     /* G(z*) = sum g[i] z*^-i; the damping of g and of z*^-i cancel exactly. */
     for (i = 0; i <= n0; ++i) {
-        double s = d->family.half_sine ? sin_pi((double)i / d->nu) : 1.0;
-        sum_add(&g_re, s * cos_pi(a * (double)i));
-        sum_add(&g_im, -s * sin_pi(a * (double)i));
+        s = d->family.half_sine ? sin_pi_long((long double)i / nu) : 1.0L;
+        g_re += s * cos_pi_long(a * (long double)i);
+        g_im -= s * sin_pi_long(a * (long double)i);
     }
     /* u = 1/z*; with v = u^(N0-1): d0 + d1 u + d2 u^2 = R = -G/v and d0 + d1 + d2 = 0, so
      * (u - 1)(d1 + d2 (u + 1)) = R: d1 + d2 (u + 1) = Q = R/(u - 1), two real equations. */
-    u_re = exp(-d->decay) * cos_pi(a);
-    u_im = -exp(-d->decay) * sin_pi(a);
-    v_mag = exp(-d->decay * (double)(n0 - 1));
-    v_re = v_mag * cos_pi(a * (double)(n0 - 1));
-    v_im = -v_mag * sin_pi(a * (double)(n0 - 1));
-    x_re = -(g_re.sum + g_re.carry) * d->gain;
-    x_im = -(g_im.sum + g_im.carry) * d->gain;
+    u_re = expl(-decay) * cos_pi_long(a);
+    u_im = -expl(-decay) * sin_pi_long(a);
+    v_mag = expl(-decay * (long double)(n0 - 1));
+    v_re = v_mag * cos_pi_long(a * (long double)(n0 - 1));
+    v_im = -v_mag * sin_pi_long(a * (long double)(n0 - 1));
+    x_re = -g_re * (long double)d->gain;
+    x_im = -g_im * (long double)d->gain;
     den = v_re * v_re + v_im * v_im;
     r_re = (x_re * v_re + x_im * v_im) / den;
     r_im = (x_im * v_re - x_re * v_im) / den;
-    den = (u_re - 1.0) * (u_re - 1.0) + u_im * u_im;
-    q_re = (r_re * (u_re - 1.0) + r_im * u_im) / den;
-    q_im = (r_im * (u_re - 1.0) - r_re * u_im) / den;
+    den = (u_re - 1.0L) * (u_re - 1.0L) + u_im * u_im;
+    q_re = (r_re * (u_re - 1.0L) + r_im * u_im) / den;
+    q_im = (r_im * (u_re - 1.0L) - r_re * u_im) / den;
     d2 = q_im / u_im;
-    d1 = q_re - d2 * (u_re + 1.0);
+    d1 = q_re - d2 * (u_re + 1.0L);
     d0 = -d1 - d2;
     d->n_corrections = 3;
     d->correction_delay[0] = n0 - 1;
     d->correction_delay[1] = n0;
     d->correction_delay[2] = n0 + 1;
-    d->correction_gain[0] = d0;
-    d->correction_gain[1] = d1;
-    d->correction_gain[2] = d2;
-    return fits_real(d0) && fits_real(d1) && fits_real(d2);
+    d->correction_gain[0] = (double)d0;
+    d->correction_gain[1] = (double)d1;
+    d->correction_gain[2] = (double)d2;
+    return fits_real(d->correction_gain[0]) && fits_real(d->correction_gain[1])
+           && fits_real(d->correction_gain[2]);
 }
 
 sms_status sms_smoother_design_make(const sms_stage_config *config, double Ts,
