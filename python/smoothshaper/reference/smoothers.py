@@ -11,11 +11,13 @@ Discrete taps (``nu = T/Ts``):
 * **integer N** (``nu`` passes the integer test, either timing): ``h[i] = h_c(i Ts)/sum``,
   ``i = 0..N-1``;
 * **paper timing**: ``N = max(1, round(nu))`` and the integer formulas with ``T' = N Ts``;
-* **exact timing**: ``N0 = floor(nu)``; base ``g[i] = h_c(i Ts)``, ``i = 0..N0``, ``g[N0+1] = 0``,
-  normalised to sum 1; then a correction ``d`` on taps ``N0-1, N0, N0+1`` solving
-  ``sum d = 0`` and ``sum d[i] z*^{-i} = -G(z*)`` where ``z* = exp((sigma + j w*) Ts)``,
-  ``w* = k 2 pi/T`` (rectangular, exponential) or ``k 3 pi/T`` (harmonic families).
-  The result has ``H(1) = 1`` and ``H(z*) = 0`` to rounding; length ``N0 + 2``.
+* **exact timing**: ``N0 = floor(nu)``, ``f = nu - N0``; base ``g[i] = h_c(i Ts)``,
+  ``i = 0..N0-1``, and ``g[N0] = f h_c(N0 Ts)`` (the last sample covers only the fraction f of
+  its interval inside ``[0, T)``); a correction ``d`` on taps ``N0-1, N0`` solving
+  ``d[N0-1] z*^{-(N0-1)} + d[N0] z*^{-N0} = -G(z*)`` where ``z* = exp((sigma + j w*) Ts)``,
+  ``w* = k 2 pi/T`` (rectangular, exponential) or ``k 3 pi/T`` (harmonic families); then
+  ``h = (g + d)/sum(g + d)``. The result has ``H(1) = 1`` and ``H(z*) = 0`` to rounding,
+  non-negative taps, and length ``N0 + 1``.
 """
 from __future__ import annotations
 
@@ -86,40 +88,28 @@ def smoother_taps(stage: Stage, *, Ts: float) -> np.ndarray:
     return _exact_taps(stage, nu, Ts)
 
 
-def _cexpm1(z: complex) -> complex:
-    """``e^z - 1`` for complex z without cancellation near 0."""
-    return complex(math.expm1(z.real) * math.cos(z.imag) - 2.0 * math.sin(0.5 * z.imag) ** 2,
-                   math.exp(z.real) * math.sin(z.imag))
-
-
 def _exact_taps(stage: Stage, nu: float, Ts: float) -> np.ndarray:
     N0 = int(math.floor(nu))
-    i = np.arange(N0 + 2, dtype=float)
-    g = np.zeros(N0 + 2)
-    g[:N0 + 1] = _shape(stage.kind, i[:N0 + 1] * Ts, stage.T, _sigma(stage))
-    g /= g.sum()
+    i = np.arange(N0 + 1, dtype=float)
+    g = _shape(stage.kind, i * Ts, stage.T, _sigma(stage))
+    g[N0] *= nu - N0
     s_star = complex(_sigma(stage), pinned_frequency(stage))
-    # The columns 1, z*^-i at three consecutive i are independent unless z* is real, i.e.
-    # unless the pinned zero sits on a multiple of pi/Ts.
-    if abs(math.sin(pinned_frequency(stage) * Ts)) < 1e-9:
+    # The columns z*^-(N0-1), z*^-N0 are independent unless z* is real, i.e. unless the
+    # pinned zero sits on a multiple of pi/Ts.
+    w_star = pinned_frequency(stage)
+    if w_star * Ts >= math.pi or abs(math.sin(w_star * Ts)) < 1e-9:
         raise ValueError(
-            f"T = {stage.T!r} s cannot pin its zero w* = {pinned_frequency(stage)!r} rad/s at "
-            f"Ts = {Ts!r} s: w* Ts is a multiple of pi (choose T or k so that w* < pi/Ts)")
-    # G is tiny next to its terms and the solve below divides by ~(w* Ts)^3: sum exactly.
+            f"T = {stage.T!r} s cannot pin its zero w* = {w_star!r} rad/s at Ts = {Ts!r} s: "
+            f"w* Ts must lie below pi (choose a longer T or a smaller k)")
+    # G is small next to its terms: sum it exactly.
     terms = g * np.exp(-s_star * Ts * i)
     G = complex(math.fsum(terms.real), math.fsum(terms.imag))
-    # Eliminate d[N0] = -d[N0-1] - d[N0+1] and divide by z*^-N0:
-    #   d[N0-1] (z* - 1) + d[N0+1] (1/z* - 1) = -G z*^N0,
-    # with z* - 1 and 1/z* - 1 from expm1: the 3x3 system in raw powers of z* loses about
-    # 1/(w* Ts)^2 in accuracy (the correction is a near second difference), this form not.
-    a = _cexpm1(s_star * Ts)
-    b = _cexpm1(-s_star * Ts)
+    # Multiply the condition by z*^N0:  d[N0-1] z* + d[N0] = -G z*^N0 = R.
+    z = np.exp(s_star * Ts)
     R = -G * np.exp(s_star * Ts * N0)
-    det = a.real * b.imag - a.imag * b.real
-    d_first = (R.real * b.imag - R.imag * b.real) / det
-    d_last = (a.real * R.imag - a.imag * R.real) / det
-    d = np.array([d_first, -d_first - d_last, d_last])
-    support = np.arange(N0 - 1, N0 + 2)
+    d_first = R.imag / z.imag
+    d_last = R.real - d_first * z.real
     h = g.copy()
-    h[support] += d
-    return h
+    h[N0 - 1] += d_first
+    h[N0] += d_last
+    return h / math.fsum(h)
