@@ -47,7 +47,7 @@ static void matched_section(double wn, double xi, double Ts, double *c1, double 
 
 sms_status sms_notch_init(sms_notch *f, const sms_stage_config *config, double Ts)
 {
-    double b0, b1, b2, a1, a2;
+    double d0, d2, a1, a2;
     sms_notch built;
     sms_status st;
     if (f == NULL || config == NULL)
@@ -56,27 +56,27 @@ sms_status sms_notch_init(sms_notch *f, const sms_stage_config *config, double T
     if (st != SMS_OK)
         return st;
     if (config->kind == SMS_NOTCH_TUSTIN) {
+        /* b - a = [2 (xi1 - xi2) t, 0, 2 (xi2 - xi1) t] / a0, without cancellation */
         double t = tan(0.5 * config->wn * Ts), t2 = t * t;
-        double x1 = config->zeta, x2 = config->notch_pole_zeta;
-        double a0 = 1.0 + 2.0 * x2 * t + t2;
-        b0 = (1.0 + 2.0 * x1 * t + t2) / a0;
-        b1 = 2.0 * (t2 - 1.0) / a0;
-        b2 = (1.0 - 2.0 * x1 * t + t2) / a0;
-        a1 = b1;
-        a2 = (1.0 - 2.0 * x2 * t + t2) / a0;
+        double xi1 = config->zeta, xi2 = config->notch_pole_zeta;
+        double a0 = 1.0 + 2.0 * xi2 * t + t2;
+        d0 = 2.0 * (xi1 - xi2) * t / a0;
+        d2 = -d0;
+        a1 = 2.0 * (t2 - 1.0) / a0;
+        a2 = (1.0 - 2.0 * xi2 * t + t2) / a0;
     } else {
+        /* b = g [1, n1, n2], g = A(1)/N(1) */
         double n1, n2, g;
         matched_section(config->wn, config->zeta, Ts, &n1, &n2);
         matched_section(config->wn, config->notch_pole_zeta, Ts, &a1, &a2);
         g = (1.0 + a1 + a2) / (1.0 + n1 + n2);
-        b0 = g;
-        b1 = g * n1;
-        b2 = g * n2;
+        d0 = g - 1.0;
+        d2 = g * n2 - a2;
     }
+    /* H = 1 + (1 - z^-1)(d0 - d2 z^-1)/A: unit DC gain by structure (notch.h) */
     built.kind = config->kind;
-    built.b0 = (sms_real)b0;
-    built.b1 = (sms_real)b1;
-    built.b2 = (sms_real)b2;
+    built.d0 = (sms_real)d0;
+    built.d2 = (sms_real)d2;
     built.a1 = (sms_real)a1;
     built.a2 = (sms_real)a2;
     *f = built;
@@ -86,27 +86,30 @@ sms_status sms_notch_init(sms_notch *f, const sms_stage_config *config, double T
 
 void sms_notch_reset(sms_notch *f, sms_real rest)
 {
-    f->x1 = f->x2 = f->y1 = f->y2 = rest;
+    f->x1 = f->x2 = rest;
+    f->w1 = f->w2 = 0;
     f->rest = rest;
 }
 
 void sms_notch_step(sms_notch *f, sms_real *x)
 {
     sms_real in = *x;
-    sms_real y = f->b0 * in + f->b1 * f->x1 + f->b2 * f->x2 - f->a1 * f->y1 - f->a2 * f->y2;
+    sms_real w = f->d0 * (in - f->x1) + f->d2 * (f->x2 - f->x1) - f->a1 * f->w1 - f->a2 * f->w2;
+    sms_real y = in + w;
     if (y - y != 0) {
-        /* Non-finite: a bad input sample is skipped (passed through, state kept); overflow
-         * from finite input restarts at rest at that input. */
+        /* Non-finite: a bad input sample is skipped (passed through, state kept); a finite
+         * input with a non-finite result (overflow, bad loaded state) restarts at rest there. */
         if (in - in == 0) {
-            f->x1 = f->x2 = f->y1 = f->y2 = in;
+            f->x1 = f->x2 = in;
+            f->w1 = f->w2 = 0;
             *x = in;
         }
         return;
     }
     f->x2 = f->x1;
     f->x1 = in;
-    f->y2 = f->y1;
-    f->y1 = y;
+    f->w2 = f->w1;
+    f->w1 = w;
     *x = y;
 }
 
@@ -131,8 +134,8 @@ void sms_notch_save_state(const sms_notch *f, double *dst)
     dst[0] = (double)f->kind;
     dst[1] = (double)f->x1;
     dst[2] = (double)f->x2;
-    dst[3] = (double)f->y1;
-    dst[4] = (double)f->y2;
+    dst[3] = (double)f->w1;
+    dst[4] = (double)f->w2;
     dst[5] = (double)f->rest;
 }
 
@@ -152,8 +155,8 @@ sms_status sms_notch_load_state(sms_notch *f, const double *src, size_t n)
         return st;
     f->x1 = (sms_real)src[1];
     f->x2 = (sms_real)src[2];
-    f->y1 = (sms_real)src[3];
-    f->y2 = (sms_real)src[4];
+    f->w1 = (sms_real)src[3];
+    f->w2 = (sms_real)src[4];
     f->rest = (sms_real)src[5];
     return SMS_OK;
 }

@@ -79,7 +79,9 @@ static void test_equals_convolution(void)
     }
     CHECK(sms_chain_length(&chain) == L);
     CHECK_STATUS(sms_notch_init(&probe, &c[n - 1], Ts), SMS_OK);
-    b[0] = probe.b0; b[1] = probe.b1; b[2] = probe.b2; a[1] = probe.a1; a[2] = probe.a2;
+    /* the notch's realised transfer function: B = A + (1 - z^-1)(d0 - d2 z^-1) */
+    a[1] = probe.a1; a[2] = probe.a2;
+    b[0] = 1.0 + probe.d0; b[1] = a[1] - probe.d0 - probe.d2; b[2] = a[2] + probe.d2;
     random_input(in, N_IN, 5, 0.0);
     for (i = 0; i < N_IN; ++i) {
         double fir = 0, y;

@@ -85,9 +85,11 @@ static void test_cancels(void)
                 CHECK_STATUS(sms_stage_init(&stage, &c, Ts, buf, MAX_LEN), SMS_OK);
                 if (is_notch((sms_kind)kind)) {
                     const sms_notch *f = &stage.u.notch;
-                    double complex num = (double)f->b0 + (double)f->b1 / zp + (double)f->b2 / (zp * zp);
-                    double s = fabs((double)f->b0) + fabs((double)f->b1) / cabs(zp)
-                               + fabs((double)f->b2) / cabs(zp * zp);
+                    /* realised numerator A + (1 - z^-1)(d0 - d2 z^-1) (notch.h) */
+                    double complex num = 1.0 + (double)f->a1 / zp + (double)f->a2 / (zp * zp)
+                                         + (1.0 - 1.0 / zp) * ((double)f->d0 - (double)f->d2 / zp);
+                    double s = 1.0 + (fabs((double)f->a1) + 2 * fabs((double)f->d0) + 2 * fabs((double)f->d2)) / cabs(zp)
+                               + (fabs((double)f->a2) + fabs((double)f->d2)) / cabs(zp * zp);
                     if (cancels((sms_kind)kind, zeta))
                         CHECK(cabs(num) <= 4 * SMS_TEST_REL_TOL * s);
                     continue;

@@ -5,8 +5,8 @@
  *
  * Continuous notch G(s) = (s^2 + 2 xi1 wn s + wn^2)/(s^2 + 2 xi2 wn s + wn^2), with
  * xi1 = sms_stage_config::zeta in [0, 1) (zero damping) and xi2 = sms_stage_config::notch_pole_zeta
- * (pole damping, xi1 < xi2 <= 1e6; xi2 >= 1 gives two real poles). Discrete difference equation
- * (direct form I):  y[n] = b0 x[n] + b1 x[n-1] + b2 x[n-2] - a1 y[n-1] - a2 y[n-2].
+ * (pole damping, xi1 < xi2 <= 1e6; xi2 >= 1 gives two real poles). Discrete transfer function
+ * H(z) = (b0 + b1 z^-1 + b2 z^-2)/(1 + a1 z^-1 + a2 z^-2):
  * - ::SMS_NOTCH_TUSTIN: s = (wn / tan(wn Ts/2)) (z-1)/(z+1); with t = tan(wn Ts/2):
  *   b = [1 + 2 xi1 t + t^2, 2(t^2 - 1), 1 - 2 xi1 t + t^2] / a0,
  *   a = [1, 2(t^2 - 1), 1 - 2 xi2 t + t^2] / a0,  a0 = 1 + 2 xi2 t + t^2.
@@ -15,9 +15,13 @@
  *   (exactly the sampled mode poles when (wn, xi1) is the mode), poles exp(s Ts) of the
  *   denominator roots (real when xi2 >= 1), gain such that H(1) = 1.
  * Both need wn < pi/Ts. Work per sample O(1), no buffer (sms_stage_buffer_size() gives 0).
- * Precision: coefficients are rounded to ::sms_real; since 1 + a1 + a2 ~ (wn Ts)^2, the DC gain
- * is off by about 4 eps/(wn Ts)^2 (float, wn Ts = 0.05: ~3e-5). Prefer double for notches far
- * below Nyquist.
+ *
+ * Realisation, exact at DC in any precision: H = 1 + D/A with D = B - A, and since D(1) = 0,
+ * D(z) = (1 - z^-1)(d0 - d2 z^-1), d0 = b0 - 1, d2 = b2 - a2. Difference equations:
+ *   w[n] = d0 (x[n] - x[n-1]) + d2 (x[n-2] - x[n-1]) - a1 w[n-1] - a2 w[n-2],  y[n] = x[n] + w[n].
+ * A constant input gives differences of exactly 0, so w decays to 0 and the output equals the
+ * input exactly after the transient, whatever the rounding of d0, d2, a1, a2 (a direct-form
+ * biquad in float would miss unit DC gain by ~4 eps/(wn Ts)^2, e.g. 3e-5 at wn Ts = 0.05).
  *
  * Non-finite input: such a sample is passed to the output unchanged and does not enter the
  * state (the filter continues as if it had not been there). If the output is non-finite while
@@ -39,8 +43,9 @@ extern "C" {
 /** @brief Instance of one notch. Fields are public for inspection only. */
 typedef struct sms_notch {
     sms_kind kind;
-    sms_real b0, b1, b2, a1, a2;  /**< y = b0 x + b1 x1 + b2 x2 - a1 y1 - a2 y2 */
-    sms_real x1, x2, y1, y2;      /**< past inputs and outputs */
+    sms_real d0, d2, a1, a2;      /**< w = d0 (x - x1) + d2 (x2 - x1) - a1 w1 - a2 w2; y = x + w */
+    sms_real x1, x2;              /**< past inputs */
+    sms_real w1, w2;              /**< past w = y - x */
     sms_real rest;                /**< operating point set by the last reset */
 } sms_notch;
 
@@ -56,11 +61,11 @@ typedef struct sms_notch {
 SMS_API sms_status sms_notch_init(sms_notch *f, const sms_stage_config *config, double Ts);
 /** @brief Rest at `rest`: as if the input had been `rest` forever. */
 SMS_API void sms_notch_reset(sms_notch *f, sms_real rest);
-/** @brief One sample in place (see the difference equation above). */
+/** @brief One sample in place (see the difference equations above). */
 SMS_API void sms_notch_step(sms_notch *f, sms_real *x);
 /** @brief n samples; in == out allowed. Same result as n calls of step. */
 SMS_API void sms_notch_process(sms_notch *f, const sms_real *in, sms_real *out, size_t n);
-/** @brief Doubles in a saved state: 6 (kind, x1, x2, y1, y2, rest). */
+/** @brief Doubles in a saved state: 6 (kind, x1, x2, w1, w2, rest). */
 SMS_API size_t sms_notch_state_count(const sms_notch *f);
 /** @brief Write sms_notch_state_count() doubles to dst. */
 SMS_API void sms_notch_save_state(const sms_notch *f, double *dst);
