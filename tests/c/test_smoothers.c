@@ -4,7 +4,7 @@
 #include "check.h"
 
 #define PI 3.14159265358979323846
-#define MAX_LEN 4096
+#define MAX_LEN 12000
 
 static sms_real ring_a[MAX_LEN];
 static double taps[MAX_LEN], expect[MAX_LEN];
@@ -301,6 +301,10 @@ int main(void)
     test_integer_impulse(SMS_EXPONENTIAL, 1, -3.0);
     test_integer_impulse(SMS_EXPONENTIAL, 50, 0.0);
     test_integer_impulse(SMS_DAMPED_HARMONIC, 400, -40.0);
+    /* Long windows: the split pole keeps tap i accurate although q^i takes i steps. */
+    test_integer_impulse(SMS_HARMONIC, 10000, 0.0);
+    test_integer_impulse(SMS_DAMPED_HARMONIC, 10000, -0.3);
+    test_integer_impulse(SMS_EXPONENTIAL, 10000, -0.1);
 
     /* Exact timing: the seed 000 mode (T/Ts = 153.6) and other ratios and multiples. */
     test_exact_zero(SMS_DAMPED_HARMONIC, 3.0 * PI / wd, sigma, 1u, 500e-6);
