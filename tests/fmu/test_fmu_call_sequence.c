@@ -1,5 +1,6 @@
 /*
- * Random sequences of FMI 2.0 calls against SmoothShaper (linked in-process, so ASan/UBSan see
+ * Random sequences of FMI 2.0 calls against SmoothShaper, or TrajectoryGenerator when built with
+ * FMU_TEST_TRAJECTORY (each linked in-process, so ASan/UBSan see
  * everything): wrong orders, NULL pointers, bad value references, NaN and out-of-range
  * parameters, FMU states and corrupted serialised states. A shadow of the FMI state machine
  * predicts which state-changing calls must succeed; every call must return fmi2OK or fmi2Error
@@ -12,11 +13,18 @@
 #include <string.h>
 
 #include "fmi2Functions.h"
+#ifdef FMU_TEST_TRAJECTORY
+#include "TrajectoryGenerator_variables.h"
+#define VR_OUTPUT TG_VR_Q
+#else
 #include "SmoothShaper_variables.h"
+#define VR_OUTPUT SS_VR_Y
+#endif
 
 static int failures = 0;
 static unsigned long n_logged = 0;
 static char last_message[1024];
+static unsigned long n_steps_ok = 0, n_restored = 0;
 
 #define CHECK(cond) do { if (!(cond)) { ++failures; \
     fprintf(stderr, "%s:%d: check failed: %s\n", __FILE__, __LINE__, #cond); } } while (0)
@@ -60,12 +68,17 @@ static double random_real(void)
 static fmi2ValueReference random_vr(void)
 {
     static const fmi2ValueReference pool[] = {
-        SS_VR_U, SS_VR_Y, SS_VR_TS, 3, 99, 100000,
+#ifdef FMU_TEST_TRAJECTORY
+        TG_VR_TARGET, TG_VR_Q, TG_VR_V, TG_VR_A, TG_VR_J, TG_VR_TS, TG_VR_VMAX, TG_VR_AMAX,
+        TG_VR_JMAX, TG_VR_PROFILE, TG_VR_WN, TG_VR_ZETA, 5, 9, 17, 100000
+#else
+        SS_VR_U, VR_OUTPUT, SS_VR_TS, 3, 99, 100000,
         SS_STAGE_BASE + SS_FIELD_KIND, SS_STAGE_BASE + SS_FIELD_T, SS_STAGE_BASE + SS_FIELD_ZETA,
         SS_STAGE_BASE + SS_FIELD_WN, SS_STAGE_BASE + SS_FIELD_ORDER,
         SS_STAGE_BASE + SS_STAGE_STRIDE + SS_FIELD_KIND, SS_STAGE_BASE + SS_STAGE_STRIDE + SS_FIELD_T,
         SS_STAGE_BASE + SS_STAGE_STRIDE * 7 + SS_FIELD_NOTCH_POLE_ZETA,
         SS_STAGE_BASE + SS_STAGE_STRIDE * 8 + SS_FIELD_KIND, SS_STAGE_BASE + SS_FIELD_COUNT
+#endif
     };
     return pool[rnd(sizeof pool / sizeof pool[0])];
 }
@@ -106,6 +119,7 @@ static void run_sequence(unsigned length)
             CHECK(st == fmi2Error || s == S_STEP);
             if (st == fmi2OK) {
                 fmi2Real now = 0.0;
+                ++n_steps_ok;
                 CHECK(fmi2GetRealStatus(c, fmi2LastSuccessfulTime, &now) == fmi2OK);
                 t = now;
             }
@@ -118,7 +132,7 @@ static void run_sequence(unsigned length)
             st = fmi2SetReal(c, rnd(8) ? vrs : NULL, rnd(3), rnd(8) ? rs : NULL);
             break;
         case 11: st = fmi2SetInteger(c, &vr, 1, &n); break;
-        case 12: vrs[0] = vr; vrs[1] = SS_VR_Y;
+        case 12: vrs[0] = vr; vrs[1] = VR_OUTPUT;
             st = fmi2GetReal(c, vrs, rnd(3), rnd(8) ? out : NULL);
             CHECK(st == fmi2Error || s != S_INSTANTIATED);
             break;
@@ -149,6 +163,7 @@ static void run_sequence(unsigned length)
                         ++failures;
                         fprintf(stderr, "intact state refused: %s\n", last_message);
                     }
+                    ++n_restored;
                     CHECK(fmi2FreeFMUstate(c, &back) == fmi2OK);
                 }
                 free(blob);
@@ -199,6 +214,9 @@ int main(void)
     null_and_foreign_calls();
     for (seq = 0; seq < 300; ++seq)
         run_sequence(40 + rnd(200));
-    printf("call sequences: %d failures, %lu log messages\n", failures, n_logged);
+    CHECK(n_steps_ok > 300 && n_restored > 50);   /* the sequences reached the interesting states */
+    printf("call sequences: %d failures, %lu successful steps, %lu states deserialised, %lu log "
+           "messages\n", failures, n_steps_ok, n_restored, n_logged);
+
     return failures == 0 ? 0 : 1;
 }
