@@ -1,5 +1,5 @@
 /* The O(1) drift-free engine shared by the four smoothers: two restarted copies of a complex
- * first-order recursion plus at most three direct correction taps (see smoother.h). */
+ * first-order recursion plus at most two direct taps (exact timing) (see smoother.h). */
 #include <float.h>
 #include <math.h>
 #include "smoothshaper/smoother.h"
@@ -177,7 +177,8 @@ static sms_real filter_sample(sms_smoother *f, sms_real input)
     copy_update(f, 1, x, oldest);
     /* The older copy has consumed between M and 2M samples: it is exact and young. */
     use = f->age[0] >= f->age[1] ? 0 : 1;
-    /* The corrections sum to 0, so they too may act on x - ref (smaller rounding). */
+    /* The recursion's taps and the direct ones sum to 1 together: the direct taps act on
+     * x - ref too, and ref is added once (smaller rounding). */
     ref = f->ref[use];
     for (j = 0; j < f->n_corrections; ++j) {
         size_t delay = f->correction_delay[j], idx;

@@ -131,49 +131,38 @@ static long double cos_pi_long(long double x)
     return sin_pi_long(fmodl(x, 2.0L) + 0.5L);
 }
 
-/* Exact timing: correction on taps N0-1, N0, N0+1 with sum 0 that cancels G(z*). The 3 x 3
- * system is ill-conditioned when w* Ts is small (columns 1, u, u^2 nearly equal), so it is
- * solved in long double. */
-static int solve_correction(sms_smoother_design *d, size_t n0, double zero_turns_per_sample)
+/* Exact timing (docs/exact-mode.md): the base taps are g[i] = h_c(i Ts), i < N0, and the
+ * fraction f of g[N0] that lies inside [0, T); the corrections a on N0-1 and b on N0 solve
+ * a z*^-(N0-1) + b z*^-N0 = -G(z*), i.e. a z* + b = R = -G(z*) z*^N0 (two real unknowns, one
+ * complex equation). Long double: G is small next to its terms. Writes the unnormalised
+ * corrections and returns sum(g) + a + b over the whole support. */
+static long double exact_correction(const sms_smoother_design *d, size_t n0, double fraction,
+                                    double zero_turns_per_sample, long double *a_out,
+                                    long double *b_out)
 {
     const long double a = (long double)zero_turns_per_sample; /* w* Ts / pi, in (0, 1) */
     const long double nu = (long double)d->nu, decay = (long double)d->decay;
-    long double g_re = 0.0L, g_im = 0.0L, s, u_re, u_im, v_mag, v_re, v_im, r_re, r_im;
-    long double q_re, q_im, den, x_re, x_im, d0, d1, d2;
+    long double g_re = 0.0L, g_im = 0.0L, sum = 0.0L, shape, weight, r_mag, r_re, r_im;
+    long double z_re, z_im, first;
     size_t i;
-    /* G(z*) = sum g[i] z*^-i; the damping of g and of z*^-i cancel exactly. */
+    /* G(z*) = sum g[i] z*^-i: the damping of g[i] and of z*^-i cancel exactly. */
     for (i = 0; i <= n0; ++i) {
-        s = d->family.half_sine ? sin_pi_long((long double)i / nu) : 1.0L;
-        g_re += s * cos_pi_long(a * (long double)i);
-        g_im -= s * sin_pi_long(a * (long double)i);
+        shape = d->family.half_sine ? sin_pi_long((long double)i / nu) : 1.0L;
+        weight = i == n0 ? (long double)fraction : 1.0L;
+        g_re += weight * shape * cos_pi_long(a * (long double)i);
+        g_im -= weight * shape * sin_pi_long(a * (long double)i);
+        sum += weight * shape * expl(decay * (long double)i);
     }
-    /* u = 1/z*; with v = u^(N0-1): d0 + d1 u + d2 u^2 = R = -G/v and d0 + d1 + d2 = 0, so
-     * (u - 1)(d1 + d2 (u + 1)) = R: d1 + d2 (u + 1) = Q = R/(u - 1), two real equations. */
-    u_re = expl(-decay) * cos_pi_long(a);
-    u_im = -expl(-decay) * sin_pi_long(a);
-    v_mag = expl(-decay * (long double)(n0 - 1));
-    v_re = v_mag * cos_pi_long(a * (long double)(n0 - 1));
-    v_im = -v_mag * sin_pi_long(a * (long double)(n0 - 1));
-    x_re = -g_re * (long double)d->gain;
-    x_im = -g_im * (long double)d->gain;
-    den = v_re * v_re + v_im * v_im;
-    r_re = (x_re * v_re + x_im * v_im) / den;
-    r_im = (x_im * v_re - x_re * v_im) / den;
-    den = (u_re - 1.0L) * (u_re - 1.0L) + u_im * u_im;
-    q_re = (r_re * (u_re - 1.0L) + r_im * u_im) / den;
-    q_im = (r_im * (u_re - 1.0L) - r_re * u_im) / den;
-    d2 = q_im / u_im;
-    d1 = q_re - d2 * (u_re + 1.0L);
-    d0 = -d1 - d2;
-    d->n_corrections = 3;
-    d->correction_delay[0] = n0 - 1;
-    d->correction_delay[1] = n0;
-    d->correction_delay[2] = n0 + 1;
-    d->correction_gain[0] = (double)d0;
-    d->correction_gain[1] = (double)d1;
-    d->correction_gain[2] = (double)d2;
-    return fits_real(d->correction_gain[0]) && fits_real(d->correction_gain[1])
-           && fits_real(d->correction_gain[2]);
+    r_mag = expl(decay * (long double)n0);
+    z_re = expl(decay) * cos_pi_long(a);
+    z_im = expl(decay) * sin_pi_long(a);
+    /* R = -G e^{decay N0} e^{j pi a N0} */
+    r_re = -r_mag * (g_re * cos_pi_long(a * (long double)n0) - g_im * sin_pi_long(a * (long double)n0));
+    r_im = -r_mag * (g_re * sin_pi_long(a * (long double)n0) + g_im * cos_pi_long(a * (long double)n0));
+    first = r_im / z_im;
+    *a_out = first;
+    *b_out = r_re - first * z_re;
+    return sum + *a_out + *b_out;
 }
 
 sms_status sms_smoother_design_make(const sms_stage_config *config, double Ts,
@@ -228,17 +217,38 @@ sms_status sms_smoother_design_make(const sms_stage_config *config, double Ts,
         d.window = (size_t)rounded;
         d.length = d.window;
     } else {
+        /* Taps 0..N0-1 from the recursion, tap N0 (fractional, corrected) and the correction
+         * on N0-1 as direct taps. N0 >= 2 here: the Nyquist check needs nu > 2k. */
         d.nu = nu;
-        d.window = (size_t)floor(nu) + 1u;
+        d.window = (size_t)floor(nu);
         d.length = d.window + 1u;
     }
     /* One sample of sin(pi t/T) is its zero at t = 0: the harmonic families need N >= 2. */
     if (d.family.half_sine && d.window < 2u)
         return SMS_ERR_DURATION_BELOW_TS;
 
-    for (i = 0; i < d.window; ++i)
-        sum_add(&total, base_tap(&d, i));
-    d.gain = 1.0 / (total.sum + total.carry);
+    if (d.length > d.window) {
+        const size_t n0 = d.window;
+        const double fraction = nu - floor(nu);
+        long double a, b, last = (long double)fraction * expl((long double)d.decay * (long double)n0);
+        long double scale;
+        if (d.family.half_sine)
+            last *= sin_pi_long((long double)n0 / (long double)nu);
+        scale = 1.0L / exact_correction(&d, n0, fraction,
+                                        (double)config->k * d.family.zero_turns / nu, &a, &b);
+        d.gain = (double)scale;
+        d.n_corrections = 2;
+        d.correction_delay[0] = n0 - 1u;
+        d.correction_delay[1] = n0;
+        d.correction_gain[0] = (double)(scale * a);
+        d.correction_gain[1] = (double)(scale * (last + b));
+        if (!(fits_real(d.correction_gain[0]) && fits_real(d.correction_gain[1])))
+            return SMS_ERR_SIGMA;
+    } else {
+        for (i = 0; i < d.window; ++i)
+            sum_add(&total, base_tap(&d, i));
+        d.gain = 1.0 / (total.sum + total.carry);
+    }
     tail_mag = exp(d.decay * (double)d.window);
     {
         long double re, im;
@@ -258,9 +268,6 @@ sms_status sms_smoother_design_make(const sms_stage_config *config, double Ts,
     /* Only an extreme sigma (the response decays below the range of sms_real within the
      * filter) can make a constant overflow. */
     if (!(fits_real(d.gain) && fits_real(d.tail_re) && fits_real(d.tail_im)))
-        return SMS_ERR_SIGMA;
-    if (d.length > d.window
-        && !solve_correction(&d, d.window - 1u, (double)config->k * d.family.zero_turns / nu))
         return SMS_ERR_SIGMA;
     *design = d;
     return SMS_OK;

@@ -20,8 +20,8 @@ void sms_harmonic_describe(sms_smoother_family *family);
 void sms_damped_harmonic_describe(sms_smoother_family *family);
 void sms_exponential_describe(sms_smoother_family *family);
 
-/* Most correction taps of exact timing (on N0-1, N0, N0+1). */
-#define SMS_SMOOTHER_CORRECTION_TAPS 3
+/* Direct taps of exact timing: the correction on N0-1 and the corrected fractional tap N0. */
+#define SMS_SMOOTHER_CORRECTION_TAPS 2
 
 /* The designed filter: h[i] = Re/Im(gain * pole^i) for i < window, plus corrections. */
 typedef struct sms_smoother_design {
@@ -29,13 +29,13 @@ typedef struct sms_smoother_design {
     double decay;          /* sigma * Ts: log of the per-sample decay (0 when undamped) */
     double nu;             /* T'/Ts of the sampled response: N (integer, paper) or T/Ts (exact) */
     size_t length;         /* L: taps of the impulse response */
-    size_t window;         /* M: taps 0..M-1 come from the recursion (M = N or N0 + 1) */
+    size_t window;         /* M: taps 0..M-1 come from the recursion (M = N or N0) */
     double pole_m1_re, pole_im; /* q - 1: q = e^{sigma Ts} e^{j pi/nu} (half sine) or e^{sigma Ts} */
     double pole_m1_lo_re, pole_lo_im; /* what those doubles miss of q (from long double): the
                                        * pole to ~2^-64, so q^i stays accurate over long windows */
     double gain;           /* c = 1/sum(base taps): weight of the newest input */
     double tail_re, tail_im; /* -c q^M: weight of x[n-M], which truncates the response */
-    size_t n_corrections;  /* 0 or 3 */
+    size_t n_corrections;  /* 0 or 2 */
     size_t correction_delay[SMS_SMOOTHER_CORRECTION_TAPS];
     double correction_gain[SMS_SMOOTHER_CORRECTION_TAPS];
 } sms_smoother_design;

@@ -285,9 +285,9 @@ static void test_invalid(void)
     CHECK_STATUS(sms_smoother_buffer_size(&c, Ts, NULL), SMS_ERR_NULL);
     CHECK_STATUS(sms_smoother_taps(&c, Ts, NULL, 100), SMS_ERR_NULL);
     CHECK_STATUS(sms_smoother_init(&f, &c, Ts, ring_a, need), SMS_OK);
-    c.T = 0.1234; /* exact timing off the grid: ring floor(nu) + 1, L = floor(nu) + 2 */
+    c.T = 0.1234; /* exact timing off the grid: ring floor(nu), L = floor(nu) + 1 */
     CHECK_STATUS(sms_smoother_buffer_size(&c, Ts, &need), SMS_OK);
-    CHECK(need == 124u);
+    CHECK(need == 123u);
 }
 
 int main(void)

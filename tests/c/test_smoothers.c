@@ -124,7 +124,7 @@ static void test_exact_zero(sms_kind kind, double T, double sigma, unsigned k, d
     double s = is_damped(kind) ? sigma : 0.0;
     size_t L;
     CHECK_STATUS(sms_smoother_length(&c, Ts, &L), SMS_OK);
-    CHECK(L == (size_t)floor(T / Ts) + 2u);
+    CHECK(L == (size_t)floor(T / Ts) + 1u);
     CHECK_STATUS(sms_smoother_taps(&c, Ts, taps, MAX_LEN), SMS_OK);
     residual = response_at(taps, L, s, w, Ts, &dc);
     CHECK_CLOSE(dc, 1.0, 1e-12, 1.0);
@@ -157,7 +157,7 @@ static void test_paper_timing(void)
     c.timing = SMS_TIMING_EXACT;
     CHECK_STATUS(sms_smoother_taps(&c, Ts, taps, MAX_LEN), SMS_OK);
     CHECK_STATUS(sms_smoother_length(&c, Ts, &L), SMS_OK);
-    CHECK(L == 155u);
+    CHECK(L == 154u);
     residual = response_at(taps, L, sigma, wd, Ts, &dc);
     CHECK(residual <= 1e-9);
     /* Paper timing rounds half up: 10.5 -> 11 (harmonic), 2.4 -> 2 (rectangular). */
@@ -167,6 +167,41 @@ static void test_paper_timing(void)
     c = smoother(SMS_RECTANGULAR, 2.4 * Ts, 0.0, 1u, SMS_TIMING_PAPER);
     CHECK_STATUS(sms_smoother_length(&c, Ts, &L), SMS_OK);
     CHECK(L == 2u);
+}
+
+/* Exact timing keeps the taps non-negative, so a step rises monotonically to 1 without
+ * overshoot (docs/exact-mode.md), over a sweep of non-integer T/Ts, multiples and damping. */
+static void test_exact_no_overshoot(void)
+{
+    static const double ratios[9] = {3.1, 3.7, 6.5, 10.25, 33.3, 100.9, 257.77, 1000.5, 2999.3};
+    static const sms_kind kinds[4] = {SMS_RECTANGULAR, SMS_HARMONIC, SMS_DAMPED_HARMONIC, SMS_EXPONENTIAL};
+    static const double sigmas[3] = {-0.5, -20.0, -200.0};
+    const double Ts = 1e-3;
+    int f, r, s;
+    unsigned k;
+    for (f = 0; f < 4; ++f)
+        for (r = 0; r < 9; ++r)
+            for (k = 1u; k <= 3u; ++k)
+                for (s = 0; s < 3; ++s) {
+                    sms_stage_config c = smoother(kinds[f], ratios[r] * Ts, sigmas[s], k, SMS_TIMING_EXACT);
+                    double step = 0.0, lowest = 0.0, highest = 0.0;
+                    size_t L, i;
+                    if (is_harmonic(kinds[f]) && k == 2u)
+                        continue;
+                    if ((double)k * (is_harmonic(kinds[f]) ? 3.0 : 2.0) >= ratios[r])
+                        continue; /* above Nyquist: rejected, see test_smoother_stream.c */
+                    CHECK_STATUS(sms_smoother_length(&c, Ts, &L), SMS_OK);
+                    CHECK_STATUS(sms_smoother_taps(&c, Ts, taps, MAX_LEN), SMS_OK);
+                    for (i = 0; i < L; ++i) {
+                        step += taps[i];
+                        if (taps[i] < lowest)
+                            lowest = taps[i];
+                        if (step > highest)
+                            highest = step;
+                    }
+                    CHECK(lowest >= 0.0);
+                    CHECK(highest <= 1.0 + 1e-13);
+                }
 }
 
 /* Unit step through an initialised smoother into taps[0..n-1]. */
@@ -322,6 +357,7 @@ int main(void)
     test_exact_zero(SMS_RECTANGULAR, 5.0001 * Ts, 0.0, 2u, Ts);
     test_exact_zero(SMS_EXPONENTIAL, 2.5 * Ts, -100.0, 1u, Ts);
     test_paper_timing();
+    test_exact_no_overshoot();
 
     test_step_rectangular();
     test_step_exponential();

@@ -16,16 +16,18 @@
  *
  * Timing (sms_stage_config::timing) when nu = T/Ts is not an integer (to 1e-9 relative):
  * ::SMS_TIMING_PAPER uses N = max(1, round(nu)) and the table above (T' = N Ts);
- * ::SMS_TIMING_EXACT samples the continuous response at i = 0..floor(nu), normalises, and adds
- * a correction on the three taps floor(nu)-1 .. floor(nu)+1 (sum 0) so that the zero
- * s* = sigma + j w* lies exactly on z* = e^{s* Ts}, w* = k 2 pi/T (rectangular, exponential)
- * or k 3 pi/T (harmonic families); L = floor(nu) + 2.
+ * ::SMS_TIMING_EXACT keeps T. With N0 = floor(nu), f = nu - N0 (docs/exact-mode.md): base
+ * taps h_c(i Ts) for i < N0 and f h_c(N0 Ts) (the part of the last interval inside [0, T)); a correction on taps N0-1 and N0
+ * puts the zero s* = sigma + j w* exactly on z* = e^{s* Ts}, w* = k 2 pi/T (rectangular,
+ * exponential) or k 3 pi/T (harmonic families); then all taps are scaled to sum 1.
+ * L = N0 + 1. The correction is small, so the taps stay non-negative and a step never
+ * overshoots.
  *
- * Realisation (O(1) per sample, no libm): the first M taps (M = N, or floor(nu) + 1) are
+ * Realisation (O(1) per sample, no libm): the first M taps (M = N, or N0) are
  * Re or Im of c q^i with the pole q = r (rectangular, exponential) or q = r e^{j pi/nu}
  * (harmonic families), computed by the complex first-order recursion
  *   w[n] = q w[n-1] + c x[n] - c q^M x[n-M],   y[n] = Re/Im w[n] + sum_j d_j x[n-j],
- * where d_j are the (at most 3) exact-timing corrections. A rotation is used rather than the
+ * where d_j are the (at most 2) exact-timing taps N0-1 and N0. A rotation is used rather than the
  * real second-order resonator 1 - 2 r cos(pi/N) z^-1 + r^2 z^-2, whose rounding is amplified
  * about N^2 times. The recursion cancels its own pole, so on its own it would accumulate
  * rounding for ever (SPEC 5.2). Hence:
@@ -57,8 +59,8 @@
 extern "C" {
 #endif
 
-/** @brief Most exact-timing correction taps (on floor(nu)-1, floor(nu), floor(nu)+1). */
-#define SMS_SMOOTHER_MAX_CORRECTIONS 3
+/** @brief Most direct taps of exact timing (floor(nu)-1 and floor(nu)). */
+#define SMS_SMOOTHER_MAX_CORRECTIONS 2
 
 /** @brief Instance of one smoother. Fields are public for inspection; change them only
  * through the functions below. */
@@ -72,7 +74,7 @@ typedef struct sms_smoother {
     sms_real tail_re, tail_im;  /**< -c q^M, weight of x[n-M] */
     int imag_out;               /**< 1: output Im w (harmonic families); 0: Re w */
     int real_only;              /**< 1: q, c, -c q^M are real (rectangular, exponential) */
-    size_t n_corrections;       /**< exact-timing correction taps in use (0 or 3) */
+    size_t n_corrections;       /**< exact-timing direct taps in use (0 or 2) */
     size_t correction_delay[SMS_SMOOTHER_MAX_CORRECTIONS];  /**< in 0..M */
     sms_real correction_gain[SMS_SMOOTHER_MAX_CORRECTIONS];
     sms_real w_re[2], w_im[2];  /**< state of the two restarted copies (main part) */
@@ -89,7 +91,7 @@ typedef struct sms_smoother {
  * @brief Validate a smoother config and report the buffer it needs.
  * @param config  a smoother config (kind ::SMS_RECTANGULAR .. ::SMS_EXPONENTIAL)
  * @param Ts      sample period [s], finite and > 0
- * @param n_reals receives M, the ring length in ::sms_real (M = N, or floor(T/Ts) + 1 for
+ * @param n_reals receives M, the ring length in ::sms_real (M = N, or floor(T/Ts) for
  *                exact timing off the grid)
  * @return ::SMS_OK or the status sms_smoother_init() would return for a large enough buffer.
  */
@@ -161,7 +163,7 @@ SMS_API sms_status sms_smoother_check_state(const sms_smoother *f, const double 
 /**
  * @brief Write the L impulse-response taps (normalised, DC gain 1) of a config, computed in
  * double, into taps[0..L-1]; the instance realises exactly these (to rounding).
- * @param n_taps length of taps; must be >= L (L = N, or floor(T/Ts) + 2 for exact timing off
+ * @param n_taps length of taps; must be >= L (L = N, or floor(T/Ts) + 1 for exact timing off
  *               the grid); entries past L are left alone
  * @return ::SMS_OK, ::SMS_ERR_NULL (config or taps), ::SMS_ERR_BUFFER_TOO_SMALL (n_taps < L),
  *         or a validation status of sms_smoother_init().
