@@ -203,28 +203,42 @@ def test_bad_parameters_fail_at_exit_initialization_naming_the_variable(smoothsh
     fmu.freeInstance()
 
 
-def test_sources_rebuild_with_fmpy_compile(fmus, tmp_path):
+@pytest.mark.parametrize("model", ["SmoothShaper", "TrajectoryGenerator"])
+def test_sources_rebuild_with_fmpy_compile(fmus, tmp_path, model):
     # fmpy compile reads <SourceFiles> and compiles with sources/ as the only include directory.
     from fmpy.build import build_platform_binary
-    unzipdir = extract(str(fmus["SmoothShaper"]), str(tmp_path / "src"))
-    (Path(unzipdir) / "binaries" / "linux64" / "SmoothShaper.so").unlink()
+    if model not in fmus:
+        pytest.skip(f"{model}.fmu was not built")
+    unzipdir = extract(str(fmus[model]), str(tmp_path / "src"))
+    binary = Path(unzipdir) / "binaries" / "linux64" / f"{model}.so"
+    binary.unlink()
     (tmp_path / "build").mkdir()
     build_platform_binary(unzipdir, build_dir=tmp_path / "build")
-    assert (Path(unzipdir) / "binaries" / "linux64" / "SmoothShaper.so").is_file()
-    stages = [rectangular(T=10 * TS), shaper("zv", wn=100.0)]
+    assert binary.is_file()
     t = validation.communication_points(step=TS, stop_time=0.1)
-    u = validation.test_input(t)
-    y = validation.simulate(unzipdir, stages, t, u, Ts=TS)
-    assert np.max(np.abs(y - validation.expected_output(stages, t, u, Ts=TS))) < 1e-12 * 4
+    if model == "SmoothShaper":
+        stages = [rectangular(T=10 * TS), shaper("zv", wn=100.0)]
+        u = validation.test_input(t)
+        y = validation.simulate(unzipdir, stages, t, u, Ts=TS)
+        ref = validation.expected_output(stages, t, u, Ts=TS)
+    else:
+        target = validation.target_staircase(t)
+        y = validation.simulate_trajectory(unzipdir, t, target, Ts=TS, **validation.TRAJECTORY_LIMITS)
+        ref = validation.expected_trajectory(t, target, Ts=TS, **validation.TRAJECTORY_LIMITS)
+        y, ref = y[:, :3], ref[:, :3]
+    assert np.max(np.abs(y - ref)) <= validation.REL_TOL * np.max(np.abs(ref))
 
 
-def test_only_fmi2_symbols_are_exported(fmus, tmp_path):
+@pytest.mark.parametrize("model", ["SmoothShaper", "TrajectoryGenerator"])
+def test_only_fmi2_symbols_are_exported(fmus, tmp_path, model):
     nm = shutil.which("nm")
     if nm is None:
         pytest.skip("nm is needed to list the exported symbols")
+    if model not in fmus:
+        pytest.skip(f"{model}.fmu was not built")
     import subprocess
-    unzipdir = extract(str(fmus["SmoothShaper"]), str(tmp_path / "x"))
-    so = Path(unzipdir) / "binaries" / "linux64" / "SmoothShaper.so"
+    unzipdir = extract(str(fmus[model]), str(tmp_path / "x"))
+    so = Path(unzipdir) / "binaries" / "linux64" / f"{model}.so"
     out = subprocess.run([nm, "-D", "--defined-only", str(so)], capture_output=True, text=True,
                          check=True).stdout
     names = [line.split()[-1] for line in out.splitlines() if line.split()[-2] in "TDBR"]
