@@ -69,7 +69,10 @@ def test_design_prints_a_table_for_a_mode(capsys):
     assert float(rows[0][2]) == pytest.approx(3 * math.pi / wd, rel=1e-5)
     assert float(rows[1][3]) == pytest.approx(-10.0, rel=1e-5)            # sigma = -zeta wn
     assert float(rows[2][2]) == pytest.approx(2 * math.pi / wd, rel=1e-5)  # ZVD lasts Td
-    assert int(rows[0][-1]) == math.floor(3 * math.pi / wd / 1e-3) + 2     # exact timing L
+    # Length in samples as the exact-timing contract gives it (docs/exact-mode.md).
+    from smoothshaper import reference, stages
+    harmonic = stages.harmonic(T=3 * math.pi / wd)
+    assert int(rows[0][-1]) == reference.impulse_response(harmonic, Ts=1e-3).size
     assert "total duration" in out and "chain FIR length" in out
 
 
