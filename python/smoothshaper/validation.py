@@ -235,9 +235,11 @@ def fmutool_problems(fmu: Path) -> list[str]:
 COSIM_REALS = {"Ts": 1e-3, "stage[0].T": 0.0137, "stage[1].wn": 150.0, "stage[1].zeta": 0.05}
 
 
-def simulate_libcosim(fmu: str, t: np.ndarray, u: np.ndarray, reals: dict) -> np.ndarray:
-    """y of SmoothShaper.fmu in libcosim (libcosimpy): fixed step t[1]-t[0], u overridden
-    before every step (as fmpy sets it), y read after the step."""
+def simulate_libcosim(fmu: str, t: np.ndarray, u: np.ndarray, reals: dict, *, input_name: str = "u",
+                      outputs=("y",)) -> np.ndarray:
+    """Outputs (columns) of an FMU in libcosim (libcosimpy): fixed step t[1]-t[0], the input
+    overridden before every step (as fmpy sets it), outputs read after the step; row 0 is the
+    rest point (libcosim observes only after steps) and is left NaN."""
     from fmpy import read_model_description
     from libcosimpy.CosimExecution import CosimExecution
     from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
@@ -248,32 +250,32 @@ def simulate_libcosim(fmu: str, t: np.ndarray, u: np.ndarray, reals: dict) -> np
     vr = {v.name: v.valueReference for v in read_model_description(fmu).modelVariables}
     step_ns = int(round((t[1] - t[0]) * 1e9))
     execution = CosimExecution.from_step_size(step_size=step_ns)
-    index = execution.add_local_slave(local_slave=CosimLocalSlave(fmu_path=str(fmu), instance_name="ss"))
+    index = execution.add_local_slave(local_slave=CosimLocalSlave(fmu_path=str(fmu), instance_name="s"))
     override = CosimManipulator.create_override()
     execution.add_manipulator(manipulator=override)
     observer = CosimObserver.create_last_value()
     execution.add_observer(observer=observer)
-    for name, value in {**reals, "u": float(u[0])}.items():
+    for name, value in {**reals, input_name: float(u[0])}.items():
         if not execution.real_initial_value(index, vr[name], float(value)):
             raise RuntimeError(f"libcosim refused the initial value of {name}")
-    y = np.empty(t.size)
-    y[0] = float(u[0])   # at rest at u(0) (libcosim observes only after steps)
+    y = np.full((t.size, len(outputs)), np.nan)
+    out_vrs = [vr[n] for n in outputs]
     for k in range(t.size - 1):
-        override.slave_real_values(index, [vr["u"]], [float(u[k])])
+        override.slave_real_values(index, [vr[input_name]], [float(u[k])])
         if not execution.step():
             raise RuntimeError(f"libcosim step {k} failed")
-        y[k + 1] = observer.last_real_values(index, [vr["y"]])[0]
+        y[k + 1] = observer.last_real_values(index, out_vrs)
     return y
 
 
 def compare_importers(fmu: Path, *, stop_time: float = 0.3) -> tuple[float, float]:
-    """(max |y_libcosim - y_fmpy|, max |y_fmpy - reference|) on the COSIM_REALS case."""
+    """SmoothShaper: (max |y_libcosim - y_fmpy|, max |y_fmpy - reference|), COSIM_REALS case."""
     import fmpy
     from .stages import Stage
     Ts = COSIM_REALS["Ts"]
     t = communication_points(step=Ts, stop_time=stop_time)
     u = test_input(t)
-    y_cosim = simulate_libcosim(str(fmu), t, u, COSIM_REALS)
+    y_cosim = simulate_libcosim(str(fmu), t, u, COSIM_REALS)[1:, 0]
     signal = np.zeros(t.size, dtype=[("time", float), ("u", float)])
     signal["time"], signal["u"] = t, u
     r = fmpy.simulate_fmu(str(fmu), start_values=dict(COSIM_REALS), input=signal,
@@ -282,7 +284,17 @@ def compare_importers(fmu: Path, *, stop_time: float = 0.3) -> tuple[float, floa
     stages = [Stage("rectangular", T=COSIM_REALS["stage[0].T"]),
               Stage("zv", wn=COSIM_REALS["stage[1].wn"], zeta=COSIM_REALS["stage[1].zeta"])]
     ref = expected_output(stages, t, u, Ts=Ts)
-    return float(np.max(np.abs(y_cosim - y_fmpy))), float(np.max(np.abs(y_fmpy - ref)))
+    return float(np.max(np.abs(y_cosim - y_fmpy[1:]))), float(np.max(np.abs(y_fmpy - ref)))
+
+
+def compare_importers_trajectory(fmu: Path, *, Ts: float = 1e-3, stop_time: float = 1.0) -> float:
+    """TrajectoryGenerator: max |(q, v, a, j)_libcosim - (q, v, a, j)_fmpy|."""
+    t = communication_points(step=Ts, stop_time=stop_time)
+    target = target_staircase(t)
+    reals = {"Ts": Ts, **TRAJECTORY_LIMITS}
+    y_cosim = simulate_libcosim(str(fmu), t, target, reals, input_name="target", outputs="qvaj")
+    y_fmpy = simulate_trajectory(str(fmu), t, target, Ts=Ts, **TRAJECTORY_LIMITS)
+    return float(np.max(np.abs(y_cosim[1:] - y_fmpy[1:])))
 
 
 # ---------------------------------------------------------------- report
@@ -397,6 +409,12 @@ def run(out_dir, *, build_dir=None, fmus: dict | None = None, Ts: float = 1e-3,
                   f"SmoothShaper default chain M * ZV with {COSIM_REALS}, h = Ts: "
                   f"max |y_libcosim - y_fmpy| = {d_importers:.2e}, "
                   f"max |y_fmpy - reference| = {d_ref:.2e}: {'same result' if same else 'DIFFERENT'}."]
+    if "TrajectoryGenerator" in fmus:
+        d_tg = compare_importers_trajectory(fmus["TrajectoryGenerator"])
+        ok &= d_tg == 0.0
+        lines += ["", f"TrajectoryGenerator (polynomial profile, limits {TRAJECTORY_LIMITS}), h = Ts: "
+                  f"max |(q, v, a, j)_libcosim - (q, v, a, j)_fmpy| = {d_tg:.2e}: "
+                  f"{'same result' if d_tg == 0.0 else 'DIFFERENT'}."]
     if "SmoothShaper" in fmus:
         steps = (("Ts", Ts), ("7 Ts", 7 * Ts), ("2.5 Ts", 2.5 * Ts), ("0.4 Ts", 0.4 * Ts))
         lines += ["", f"## SmoothShaper vs reference (Ts = {Ts:g} s, 0 to {stop_time:g} s, "

@@ -104,3 +104,8 @@ def test_bad_parameters_fail_at_exit_initialization_naming_them(trajectory_dir, 
         start(fmu, **params)
     assert expected in log.messages[-1], log.messages[-1]
     fmu.freeInstance()
+
+
+def test_libcosim_gives_the_same_result_as_fmpy(fmus, trajectory_dir):  # noqa: F811
+    pytest.importorskip("libcosimpy", reason="libcosimpy is the second importer")
+    assert validation.compare_importers_trajectory(fmus["TrajectoryGenerator"]) == 0.0
