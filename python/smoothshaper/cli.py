@@ -569,8 +569,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--Ts", type=float, help="sample period [s] when the file has no time column")
     p.add_argument("--start", type=float, help="ignore samples before this time [s]")
     p.add_argument("--method", choices=("record", "peaks"), default="record",
-                   help="record: least-squares fit of the whole decay (default); peaks: two "
-                   "successive peaks (SPEC 4.3). The signal must be about its final value")
+                   help="record: least-squares fit of the whole decay, any constant offset "
+                   "included (default); peaks: two successive peaks (SPEC 4.3), the signal "
+                   "measured about its final value")
     p.set_defaults(func=cmd_identify)
 
     for name, func, what in (("validate", cmd_validate, "build and validate the FMUs with fmpy"),
