@@ -132,11 +132,11 @@ def test_analyze_needs_a_mode(tmp_path, capsys):
 
 # -- identify -------------------------------------------------------------------------------
 
-def _decay_csv(path, wn=60.0, zeta=0.03, Ts=2e-3, n=1500, header=True, noise=0.0):
+def _decay_csv(path, wn=60.0, zeta=0.03, Ts=2e-3, n=1500, header=True, noise=0.0, offset=0.0):
     t = np.arange(n) * Ts
     wd = wn * math.sqrt(1 - zeta**2)
     x = 1.3 * np.exp(-zeta * wn * t) * np.cos(wd * t - 0.4)
-    x += noise * np.random.default_rng(0).normal(size=n)
+    x += offset + noise * np.random.default_rng(0).normal(size=n)
     with open(path, "w") as f:
         if header:
             f.write("time,position\n")
@@ -153,7 +153,7 @@ def _mode_from(out):
 
 def test_identify_recovers_the_mode_from_a_csv(tmp_path, capsys):
     path = tmp_path / "decay.csv"
-    _decay_csv(path)
+    _decay_csv(path, offset=5.0)                 # settling at 5: the fit absorbs the offset
     code, out, err = run(capsys, "identify", str(path))
     assert code == 0, err
     wn, zeta = _mode_from(out)[:2]
