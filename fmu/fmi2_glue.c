@@ -369,12 +369,15 @@ static fmu_snapshot *new_snapshot(const fmu_instance *c)
         return NULL;
     }
     s->magic = FMU_SNAPSHOT_MAGIC;
+    s->owner = fmu_model_guid();
     return s;
 }
 
+/* A state made by this binary (another FMU in the same process has another guid string). */
 static int is_snapshot(const void *p)
 {
-    return p != NULL && ((const fmu_snapshot *)p)->magic == FMU_SNAPSHOT_MAGIC;
+    return p != NULL && ((const fmu_snapshot *)p)->magic == FMU_SNAPSHOT_MAGIC
+           && ((const fmu_snapshot *)p)->owner == fmu_model_guid();
 }
 
 fmi2Status fmi2GetFMUstate(fmi2Component comp, fmi2FMUstate *FMUstate)

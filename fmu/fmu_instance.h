@@ -39,6 +39,7 @@ typedef struct fmu_instance {
 /** An fmi2FMUstate: a copy of the clock and of the model data (pointers rebound on set). */
 typedef struct fmu_snapshot {
     uint32_t magic;
+    const char *owner;   /**< fmu_model_guid() of the binary that made it: refuses another model's */
     fmu_clock clock;
     void *model;
 } fmu_snapshot;

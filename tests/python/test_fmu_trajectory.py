@@ -109,3 +109,13 @@ def test_bad_parameters_fail_at_exit_initialization_naming_them(trajectory_dir, 
 def test_libcosim_gives_the_same_result_as_fmpy(fmus, trajectory_dir):  # noqa: F811
     pytest.importorskip("libcosimpy", reason="libcosimpy is the second importer")
     assert validation.compare_importers_trajectory(fmus["TrajectoryGenerator"]) == 0.0
+
+
+def test_an_fmu_state_of_the_other_model_is_refused_in_process(trajectory_dir, smoothshaper_dir):  # noqa: F811
+    ss, tg = slave(smoothshaper_dir, "ss"), slave(trajectory_dir, "tg")
+    state = ss.getFMUstate()
+    with pytest.raises(FMICallException):
+        tg.setFMUstate(state)          # same process, other binary: refused, no copy
+    ss.freeFMUstate(state)
+    for f in (ss, tg):
+        f.freeInstance()
