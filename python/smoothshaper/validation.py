@@ -22,6 +22,7 @@ import os
 import shutil
 import subprocess
 import sys
+import zipfile
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -393,13 +394,16 @@ def run(out_dir, *, build_dir=None, fmus: dict | None = None, Ts: float = 1e-3,
              "Timing accounted for: fmpy sets u at t_k, calls doStep(t_k, h) and records y at "
              "t_{k+1}; the FMU computes the ticks n*Ts in (t_k, t_k + h] with u held at u(t_k) "
              "and reports the last tick's output (see `smoothshaper.validation`).", "",
-             "## fmpy validate and fmutool -check", "", "| FMU | fmpy validate | fmutool -check |",
-             "|---|---|---|"]
+             "## fmpy validate and fmutool -check", "",
+             "| FMU | binaries | fmpy validate | fmutool -check |", "|---|---|---|---|"]
     ok = True
     for model, path in sorted(fmus.items()):
         problems, checks = fmpy_problems(path), fmutool_problems(path)
         ok &= not problems and not checks
-        lines.append(f"| {model}.fmu | {'; '.join(problems) or 'no problem'} | "
+        with zipfile.ZipFile(path) as z:
+            platforms = sorted({n.split("/")[1] for n in z.namelist()
+                                if n.startswith("binaries/") and n.count("/") == 2 and not n.endswith("/")})
+        lines.append(f"| {model}.fmu | {', '.join(platforms)} | {'; '.join(problems) or 'no problem'} | "
                      f"{'; '.join(checks) or 'passed'} |")
     if "SmoothShaper" in fmus:
         d_importers, d_ref = compare_importers(fmus["SmoothShaper"])
