@@ -197,6 +197,10 @@ def test_bad_parameters_fail_at_exit_initialization_naming_the_variable(smoothsh
     with pytest.raises(FMICallException):                  # wrong order
         fmu.enterInitializationMode()
     fmu.doStep(0.0, TS)
+    with pytest.raises(FMICallException):                  # not the end of the last step
+        fmu.doStep(0.5, TS)
+    with pytest.raises(FMICallException):
+        fmu.doStep(TS, -TS)
     fmu.reset()                                            # back to instantiated, defaults
     configure(fmu, [])
     assert run(fmu, 0.0, [2.0, 3.0]).tolist() == [2.0, 3.0]   # no stage: y is the held input
