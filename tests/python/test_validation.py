@@ -1,0 +1,54 @@
+"""smoothshaper.validation: the co-simulation timing model, checked on hand-computed cases, and
+the report of a full run (the FMUs built by the FMU tests' fixture)."""
+from __future__ import annotations
+
+import shutil
+
+import numpy as np
+import pytest
+
+from smoothshaper import validation
+from smoothshaper.stages import rectangular
+
+
+def test_tick_inputs_for_a_step_that_is_not_a_multiple_of_Ts():
+    # Ts = 1, h = 2.5: ticks 1, 2 in the first step (u = 0), 3..5 in the second (u = 1), 6, 7 in
+    # the third (u = 2); tick 5 sits exactly on t = 5, the end of the second step.
+    x, n_at = validation.tick_inputs(np.array([0.0, 2.5, 5.0, 7.5]), np.array([0.0, 1, 2, 3]), Ts=1.0)
+    assert n_at.tolist() == [0, 2, 5, 7]
+    assert x.tolist() == [0, 0, 1, 1, 1, 2, 2]
+
+
+def test_expected_output_is_the_last_ticks_output():
+    # Moving average of 2 taps over x = 0 0 1 1 1 2 2: y = 0 0 .5 1 1 1.5 2; read at ticks 2, 5, 7.
+    y = validation.expected_output([rectangular(T=2.0)], np.array([0.0, 2.5, 5.0, 7.5]),
+                                   np.array([0.0, 1, 2, 3]), Ts=1.0)
+    assert y.tolist() == [0.0, 0.0, 1.0, 2.0]
+
+
+def test_expected_output_starts_at_the_rest_point_and_keeps_it_without_ticks():
+    # h = 0.4 Ts: the first two communication points have no tick yet.
+    t = np.arange(6) * 0.4
+    y = validation.expected_output([rectangular(T=1.0)], t, np.array([3.0, 5, 5, 5, 5, 5]), Ts=1.0)
+    assert y.tolist() == [3.0, 3.0, 3.0, 5.0, 5.0, 5.0]   # tick 1 (t = 1) uses u(0.8) = 5
+
+
+def test_start_values_switch_unused_stages_off():
+    values = validation.start_values([rectangular(T=0.01)], Ts=1e-3)
+    assert values["stage[0].kind"] == 0 and values["stage[0].T"] == 0.01
+    assert all(values[f"stage[{k}].kind"] == -1 for k in range(1, 8))
+    with pytest.raises(ValueError, match="stages"):
+        validation.start_values([rectangular(T=0.01)] * 9, Ts=1e-3)
+
+
+def test_run_writes_a_passing_report(tmp_path):
+    pytest.importorskip("fmpy", reason="fmpy is needed to simulate the FMUs")
+    pytest.importorskip("matplotlib", reason="the report draws plots")
+    if shutil.which("cmake") is None:
+        pytest.skip("cmake is needed to build the FMUs")
+    from test_fmu_smoothshaper import ROOT
+    fmus = validation.build_fmus(ROOT / "build-pytest-fmu")
+    assert validation.run(tmp_path, fmus=fmus, stop_time=0.2) is True
+    report = (tmp_path / "README.md").read_text()
+    assert "**Result: PASS**" in report and "| NO |" not in report
+    assert (tmp_path / "smoothshaper_00.png").stat().st_size > 1000
