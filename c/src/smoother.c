@@ -12,8 +12,12 @@
 #endif
 
 /* Fixed part of the saved state, before the ring. */
-enum { STATE_HEAD, STATE_AGE0, STATE_AGE1, STATE_REST, STATE_W0_RE, STATE_W0_IM, STATE_W1_RE,
-       STATE_W1_IM, STATE_LO0_RE, STATE_LO0_IM, STATE_LO1_RE, STATE_LO1_IM, STATE_REF0, STATE_REF1, STATE_FIXED };
+enum {
+    STATE_HEAD, STATE_AGE0, STATE_AGE1, STATE_REST,
+    STATE_W0_RE, STATE_W0_IM, STATE_W1_RE, STATE_W1_IM,
+    STATE_LO0_RE, STATE_LO0_IM, STATE_LO1_RE, STATE_LO1_IM,
+    STATE_REF0, STATE_REF1, STATE_FIXED
+};
 
 sms_status sms_smoother_buffer_size(const sms_stage_config *config, double Ts, size_t *n_reals)
 {
@@ -114,8 +118,8 @@ void sms_smoother_reset(sms_smoother *f, sms_real rest)
     f->age[1] = 0;
 }
 
-/* Sum a + b and its exact rounding error (Knuth's TwoSum; needs IEEE evaluation, no
- * -ffast-math reassociation). */
+/* Sum a + b and its exact rounding error (Knuth's TwoSum). Needs IEEE evaluation in
+ * sms_real: no -ffast-math reassociation, no x87 excess precision (FLT_EVAL_METHOD 0). */
 static sms_real two_sum(sms_real a, sms_real b, sms_real *err)
 {
     sms_real s = a + b, bb = s - a;

@@ -143,7 +143,7 @@ static long double exact_correction(const sms_smoother_design *d, size_t n0, dou
     const long double a = (long double)zero_turns_per_sample; /* w* Ts / pi, in (0, 1) */
     const long double nu = (long double)d->nu, decay = (long double)d->decay;
     long double g_re = 0.0L, g_im = 0.0L, sum = 0.0L, shape, weight, r_mag, r_re, r_im;
-    long double z_re, z_im, first;
+    long double z_re, z_im, c_re, c_im, first;
     size_t i;
     /* G(z*) = sum g[i] z*^-i: the damping of g[i] and of z*^-i cancel exactly. */
     for (i = 0; i <= n0; ++i) {
@@ -157,8 +157,10 @@ static long double exact_correction(const sms_smoother_design *d, size_t n0, dou
     z_re = expl(decay) * cos_pi_long(a);
     z_im = expl(decay) * sin_pi_long(a);
     /* R = -G e^{decay N0} e^{j pi a N0} */
-    r_re = -r_mag * (g_re * cos_pi_long(a * (long double)n0) - g_im * sin_pi_long(a * (long double)n0));
-    r_im = -r_mag * (g_re * sin_pi_long(a * (long double)n0) + g_im * cos_pi_long(a * (long double)n0));
+    c_re = cos_pi_long(a * (long double)n0);
+    c_im = sin_pi_long(a * (long double)n0);
+    r_re = -r_mag * (g_re * c_re - g_im * c_im);
+    r_im = -r_mag * (g_re * c_im + g_im * c_re);
     first = r_im / z_im;
     *a_out = first;
     *b_out = r_re - first * z_re;

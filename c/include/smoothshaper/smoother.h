@@ -17,8 +17,8 @@
  * Timing (sms_stage_config::timing) when nu = T/Ts is not an integer (to 1e-9 relative):
  * ::SMS_TIMING_PAPER uses N = max(1, round(nu)) and the table above (T' = N Ts);
  * ::SMS_TIMING_EXACT keeps T. With N0 = floor(nu), f = nu - N0 (docs/exact-mode.md): base
- * taps h_c(i Ts) for i < N0 and f h_c(N0 Ts) (the part of the last interval inside [0, T)); a correction on taps N0-1 and N0
- * puts the zero s* = sigma + j w* exactly on z* = e^{s* Ts}, w* = k 2 pi/T (rectangular,
+ * taps h_c(i Ts) for i < N0 and f h_c(N0 Ts) (the part of the last interval inside [0, T));
+ * a correction on taps N0-1 and N0 puts the zero s* = sigma + j w* exactly on z* = e^{s* Ts}, w* = k 2 pi/T (rectangular,
  * exponential) or k 3 pi/T (harmonic families); then all taps are scaled to sum 1.
  * L = N0 + 1. The correction is small, so the taps stay non-negative and a step never
  * overshoots.
