@@ -43,8 +43,9 @@
  *   1 both errors are otherwise systematic and tap i would be off by ~i eps (1e-5 at i = 1500
  *   in float). TwoSum needs IEEE evaluation: do not build with -ffast-math.
  * The error against the exact convolution is therefore bounded independently of the run
- * length. Measured (tests/bench/drift_bench.c, 1e9 samples of 1e3 + U(-1, 1)): below 2e-14
- * relative in double and 1e-7 relative in float for L = 100 and L = 10^4.
+ * length. Measured (tests/bench/drift_bench.c, L = 71..10005, all families): max |error| over
+ * 1e9 samples of 1e3 + U(-1, 1) is 2.3e-16 (double) and 1.8e-7 (float) relative to 1e3; over
+ * 1e8 samples of 1e3 U(-1, 1), 2.7e-16 and 1.4e-7. Cost: about 10-20 ns per sample (x86-64).
  *
  * Non-finite input: a NaN or Inf sample makes the output NaN while it is inside the ring or
  * inside the recursion copy in use; at most 2M + 1 samples after it the output is again the
