@@ -21,7 +21,7 @@
 
 #define MAX_LEN 10100
 
-static sms_real ring[MAX_LEN];
+static sms_real ring[MAX_LEN], naive_in[MAX_LEN + 2];
 static double taps[MAX_LEN], recent[MAX_LEN];
 
 static unsigned long long rng = 88172645463325252ull;
@@ -42,6 +42,11 @@ static void run(sms_kind kind, double T, double sigma, double total)
     sms_smoother f;
     size_t L, head = 0, i, window;
     double n, checkpoint = 1e4, window_end = -1.0, worst = 0.0, worst_window = 0.0;
+    double naive_window = 0.0;
+    /* For an integer harmonic: the seed's recursion of S(z) (SPEC 3.2, 5.2) side by side. */
+    int naive = 0;
+    size_t naive_len = 0, naive_head = 0;
+    sms_real naive_a = 0, naive_b = 0, naive_y1 = 0, naive_y2 = 0, naive_y = 0;
     clock_t start;
     c.T = T;
     c.sigma = sigma;
@@ -54,6 +59,14 @@ static void run(sms_kind kind, double T, double sigma, double total)
     window = 4 * L > 10000 ? 4 * L : 10000;
     for (i = 0; i < L; ++i)
         recent[i] = 0.0;
+    if (kind == SMS_HARMONIC && f.n_corrections == 0) {
+        naive = 1;
+        naive_len = L + 2;
+        naive_a = (sms_real)(2.0 * cos(3.14159265358979323846 / (double)L));
+        naive_b = (sms_real)(1.0 - cos(3.14159265358979323846 / (double)L));
+        for (i = 0; i < naive_len; ++i)
+            naive_in[i] = (sms_real)0;
+    }
     printf("%s [%s] T/Ts = %.4g, L = %zu, sigma = %g, input %s\n",
            sms_kind_name(kind), PRECISION, T / Ts, L, sigma,
            white_input ? "1e3 U(-1, 1)" : "1e3 + U(-1, 1)");
@@ -61,6 +74,16 @@ static void run(sms_kind kind, double T, double sigma, double total)
     for (n = 0.0; n < total; n += 1.0) {
         sms_real x = (sms_real)(white_input ? 1e3 * noise() : 1e3 + noise());
         recent[head] = (double)x;
+        if (naive) {
+            /* y = 2 cos(pi/N) y1 - y2 + (1 - cos(pi/N)) (x[n-1] + x[n-N-1]) */
+            naive_in[naive_head] = x;
+            naive_y = naive_a * naive_y1 - naive_y2
+                      + naive_b * (naive_in[(naive_head + naive_len - 1) % naive_len]
+                                   + naive_in[(naive_head + 1) % naive_len]);
+            naive_y2 = naive_y1;
+            naive_y1 = naive_y;
+            naive_head = (naive_head + 1) % naive_len;
+        }
         sms_smoother_step(&f, &x);
         /* The last checkpoint is the end of the run: its window is the final samples. */
         if (checkpoint + (double)window > total && checkpoint <= total * 10.0)
@@ -68,6 +91,7 @@ static void run(sms_kind kind, double T, double sigma, double total)
         if (n >= checkpoint && window_end < 0.0) {
             window_end = n + (double)window;
             worst_window = 0.0;
+            naive_window = 0.0;
         }
         if (window_end >= 0.0) {
             long double y = 0.0L; /* the reference's own rounding stays below the engine's */
@@ -80,11 +104,16 @@ static void run(sms_kind kind, double T, double sigma, double total)
             e = (double)fabsl((long double)x - y);
             if (!(e <= worst_window))
                 worst_window = e;
+            if (naive && !((double)fabsl((long double)naive_y - y) <= naive_window))
+                naive_window = (double)fabsl((long double)naive_y - y);
             if (n + 1.0 >= window_end || n + 1.0 >= total) {
                 if (worst_window > worst || worst_window != worst_window)
                     worst = worst_window;
                 printf("  samples %.10g..%.10g: max |error| %.3e (relative %.3e), running max %.3e\n",
                        checkpoint, n + 1.0, worst_window, worst_window / 1e3, worst);
+                if (naive)
+                    printf("    (seed's recursion of S(z), same input: max |error| %.3e)\n",
+                           naive_window);
                 fflush(stdout);
                 window_end = -1.0;
                 checkpoint = n + 1.0 >= total ? total * 100.0 : checkpoint * 10.0;
