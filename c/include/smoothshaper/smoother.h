@@ -68,8 +68,8 @@ extern "C" {
 typedef struct sms_smoother {
     sms_kind kind;
     size_t length;              /**< impulse response length L [samples] */
-    size_t window;              /**< M: taps from the recursion; ring length; copies restart every 2M */
-    sms_real pole_m1_re, pole_im;     /**< q - 1 (real part) and Im q, rounded: the recursion's pole */
+    size_t window;              /**< M: taps from the recursion, ring length; restarts every 2M */
+    sms_real pole_m1_re, pole_im;     /**< Re q - 1 and Im q, rounded: the recursion's pole q */
     sms_real pole_lo_re, pole_lo_im;  /**< what the rounding lost of q (to ~2^-64) */
     sms_real gain_re, gain_im;  /**< c, weight of the newest input */
     sms_real tail_re, tail_im;  /**< -c q^M, weight of x[n-M] */
@@ -79,7 +79,7 @@ typedef struct sms_smoother {
     size_t correction_delay[SMS_SMOOTHER_MAX_CORRECTIONS];  /**< in 0..M */
     sms_real correction_gain[SMS_SMOOTHER_MAX_CORRECTIONS];
     sms_real w_re[2], w_im[2];  /**< state of the two restarted copies (main part) */
-    sms_real lo_re[2], lo_im[2]; /**< their small parts driven by the pole's low part */
+    sms_real lo_re[2], lo_im[2]; /**< their small parts: rounding of the increments, q_lo w */
     sms_real ref[2];            /**< each copy's reference: its (finite) input at restart */
     size_t age[2];              /**< samples each copy has consumed since its restart, 0..2M */
     sms_real rest;              /**< operating point set by reset (subtracted on input) */
