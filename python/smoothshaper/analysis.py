@@ -22,6 +22,7 @@ import numpy as np
 
 from .reference import continuous_transfer, impulse_response, notch_coefficients
 from .stages import NOTCHES
+from ._checks import positive as _positive
 from .reference._checks import as_stage_list, check_Ts
 
 
@@ -183,10 +184,3 @@ def signal_spectrum(x, *, Ts: float) -> tuple[np.ndarray, np.ndarray]:
     X = Ts * np.fft.rfft(x)
     w = 2 * math.pi * np.fft.rfftfreq(x.size, Ts)
     return w, X
-
-
-def _positive(name: str, value) -> float:
-    v = float(value)
-    if not math.isfinite(v) or v <= 0:
-        raise ValueError(f"{name} must be finite and > 0, got {value!r}")
-    return v

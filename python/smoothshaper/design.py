@@ -24,27 +24,11 @@ import math
 from . import stages as _stages
 from .filters import ParameterError, _backend, _raise_status
 from .stages import Stage
+from ._checks import finite as _finite, positive as _positive
 
 PROFILES = ("polynomial", "trigonometric", "damped")
 MAX_ORDER = 8
 MAX_MULTIPLE = 10000
-
-
-def _finite(name, value) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a real number, got {value!r}") from None
-    if not math.isfinite(v):
-        raise ValueError(f"{name} must be finite, got {v!r}")
-    return v
-
-
-def _positive(name, value) -> float:
-    v = _finite(name, value)
-    if v <= 0:
-        raise ValueError(f"{name} must be > 0, got {v!r}")
-    return v
 
 
 def _limits(vmax, amax, jmax, higher) -> list[float]:

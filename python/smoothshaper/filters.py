@@ -22,6 +22,7 @@ import numpy as np
 
 from . import stages as _stages
 from .stages import Stage
+from ._checks import finite as _finite, finite_signal as _signal, positive as _positive
 
 PRECISIONS = ("double", "float")
 #: Largest delay line a Chain allocates (2**28 reals: 2 GiB in double); beyond it the
@@ -73,23 +74,6 @@ def _backend(precision: str):
 
 def _real_dtype(precision: str):
     return np.float64 if precision == "double" else np.float32
-
-
-def _finite(name: str, value) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a real number, got {value!r}") from None
-    if not math.isfinite(v):
-        raise ValueError(f"{name} must be finite, got {v!r}")
-    return v
-
-
-def _positive(name: str, value) -> float:
-    v = _finite(name, value)
-    if v <= 0:
-        raise ValueError(f"{name} must be > 0, got {v!r}")
-    return v
 
 
 def status_string(status: int, precision: str = "double") -> str:
@@ -167,19 +151,6 @@ def _as_stage_list(stages) -> tuple[Stage, ...]:
         if not isinstance(s, Stage):
             raise ValueError(f"stages[{i}] must be a smoothshaper.stages.Stage, got {s!r}")
     return out
-
-
-def _signal(name: str, values) -> np.ndarray:
-    try:
-        x = np.asarray(values, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be an array of real numbers") from None
-    if x.ndim != 1:
-        raise ValueError(f"{name} must be one-dimensional, got shape {x.shape}")
-    bad = np.flatnonzero(~np.isfinite(x))
-    if bad.size:
-        raise ValueError(f"{name} must be finite: {name}[{bad[0]}] = {x[bad[0]]!r}")
-    return x
 
 
 class Chain:

@@ -20,6 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.linalg import expm
+from ._checks import nonnegative as _nonnegative, positive as _positive
 
 
 @dataclass(frozen=True)
@@ -44,20 +45,6 @@ class Plant:
 
     def poles(self) -> np.ndarray:
         return np.linalg.eigvals(self.A)
-
-
-def _positive(name: str, value) -> float:
-    v = float(value)
-    if not math.isfinite(v) or v <= 0:
-        raise ValueError(f"{name} must be finite and > 0, got {value!r}")
-    return v
-
-
-def _nonnegative(name: str, value) -> float:
-    v = float(value)
-    if not math.isfinite(v) or v < 0:
-        raise ValueError(f"{name} must be finite and >= 0, got {value!r}")
-    return v
 
 
 def _second_order(b1: float, b0: float, a1: float, a0: float, D: float, name: str) -> Plant:

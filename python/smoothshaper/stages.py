@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from ._checks import finite as _finite
 
 #: Stage kinds, in the order of the C enumeration ``sms_kind`` (index == C value).
 KINDS = (
@@ -20,16 +21,6 @@ SHAPERS = KINDS[4:11]
 NOTCHES = KINDS[11:]
 TIMINGS = ("exact", "paper")
 MAX_ZVN_ORDER = 8
-
-
-def _finite(name: str, value) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a real number, got {value!r}") from None
-    if not math.isfinite(v):
-        raise ValueError(f"{name} must be finite, got {v!r}")
-    return v
 
 
 @dataclass(frozen=True)

@@ -18,27 +18,11 @@ import numpy as np
 
 from . import design as _design
 from .filters import ParameterError, _backend, _raise_status, _real_dtype
+from ._checks import finite as _finite, finite_signal as _targets
 
 GEN_MAX_SEGMENT = 4194304.0  # 2**22 samples, as the C core
 BSPLINE_MAX_DEGREE = 7
 BSPLINE_MAX_AXES = 3
-
-
-def _finite(name, value) -> float:
-    return _design._finite(name, value)
-
-
-def _targets(name, values) -> np.ndarray:
-    try:
-        x = np.asarray(values, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be an array of real numbers") from None
-    if x.ndim != 1:
-        raise ValueError(f"{name} must be one-dimensional, got shape {x.shape}")
-    bad = np.flatnonzero(~np.isfinite(x))
-    if bad.size:
-        raise ValueError(f"{name} must be finite: {name}[{bad[0]}] = {x[bad[0]]!r}")
-    return x
 
 
 def _generator_config(ffi, vmax, amax, jmax, profile, wn, zeta):

@@ -16,20 +16,7 @@ import itertools
 import math
 
 import numpy as np
-
-
-def _positive(name: str, value) -> float:
-    v = float(value)
-    if not math.isfinite(v) or v <= 0:
-        raise ValueError(f"{name} must be finite and > 0, got {value!r}")
-    return v
-
-
-def _finite(name: str, value) -> float:
-    v = float(value)
-    if not math.isfinite(v):
-        raise ValueError(f"{name} must be finite, got {value!r}")
-    return v
+from .._checks import finite as _finite, positive as _positive
 
 
 def harmonic_trajectory(t, *, T: float, h: float = 1.0) -> np.ndarray:
