@@ -11,6 +11,11 @@ tolerance, pole_zeta (or notch_pole_zeta), timing (exact|paper). A smoother give
 (and optionally ``zeta``, ``k``) instead of ``T`` is designed for that mode (SPEC 4.2).
 Examples: ``harmonic:T=0.05``, ``zv:wn=100,zeta=0.05``, ``damped_harmonic:wn=125,zeta=0.12``.
 
+Trajectory forms (issue 5): ``design generator --via 0,20,40,100,60,0 --vmax V --amax A
+--jmax J --Ts TS`` runs via-points through the online generator; ``design bspline --via
+"x,y;x,y;..." (--T T | --wn WN) --Ts TS`` interpolates them with a B-spline
+(see smoothshaper/cli_trajectory.py).
+
 Exit codes: 0 success, 1 invalid input or failed run (one line on stderr), 2 bad usage,
 3 the subcommand's module is not available in this installation.
 """
@@ -233,13 +238,13 @@ def _analysis():
     return analysis
 
 
-def _pyplot():
+def _pyplot(command: str = "analyze"):
     try:
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
     except ImportError:
-        raise CliError("analyze needs matplotlib: pip install 'smoothshaper[plot]'",
+        raise CliError(f"{command} needs matplotlib: pip install 'smoothshaper[plot]'",
                        EXIT_UNAVAILABLE) from None
     return plt
 
@@ -532,7 +537,8 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     sub.required = True
 
-    p = sub.add_parser("design", help="print the stages for a mode or kinematic limits")
+    p = sub.add_parser("design", help="print the stages for a mode or kinematic limits; "
+                       "'design generator' / 'design bspline' run via-points (see their --help)")
     _add_chain_options(p)
     p.add_argument("--Ts", type=float, help="sample period [s]: also print lengths in samples")
     g = p.add_argument_group("kinematic limits (SPEC 4.1; needs smoothshaper.design)")
@@ -543,6 +549,8 @@ def build_parser() -> argparse.ArgumentParser:
     g.add_argument("--profile", default="polynomial",
                    choices=("polynomial", "trigonometric", "damped"), help="last-stage profile")
     p.set_defaults(func=cmd_design)
+    from .cli_trajectory import add_design_forms
+    add_design_forms(p, _Parser)
 
     p = sub.add_parser("analyze", help="PRV curve, spectrum and step response as PNG plots")
     _add_chain_options(p)

@@ -1,0 +1,359 @@
+"""``smoothshaper design generator`` and ``smoothshaper design bspline`` (issue 5's CLI forms).
+
+* ``generator``: a staircase of via-points through the C-backed online generator
+  (:class:`smoothshaper.trajectory.Generator`); each via-point is held until the output rests
+  on it (or for ``--hold`` seconds), and a table per segment gives the arrival time and the
+  sampled peaks of |v|, |a|, |j| against the limits.
+* ``bspline``: the C-backed B-spline interpolating filter (:class:`smoothshaper.trajectory.BSpline`):
+  knot spacing (from the lowest mode with ``--wn``), control points, and the instant and the
+  error with which each via-point is passed.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .cli import EXIT_ERROR, CliError, _pyplot, format_table
+
+# The C core keeps every bound "to a few ulps" (trajectory.h); 1e-9 relative is far above
+# that and far below any real violation.
+LIMIT_RTOL = 1e-9
+# Rest on the target: q, v, a, j within this fraction of the move's scale and of the limits.
+REST_RTOL = 1e-9
+# Refuse runs so long that the per-sample Python loop would take minutes.
+MAX_SAMPLES = 5_000_000
+PROFILES = ("polynomial", "trigonometric", "damped")
+
+
+def _numbers(option: str, text: str) -> list[float]:
+    """'1,2,-3' -> [1.0, 2.0, -3.0]; CliError naming ``option`` otherwise."""
+    items = [s.strip() for s in text.split(",")]
+    try:
+        values = [float(s) for s in items]
+    except ValueError:
+        raise CliError(f"{option} must be comma-separated numbers, got {text!r}") from None
+    bad = [v for v in values if not math.isfinite(v)]
+    if bad:
+        raise CliError(f"{option} must be finite, got {bad[0]!r}")
+    return values
+
+
+def parse_via_list(text: str) -> np.ndarray:
+    """``--via`` of the generator: '0,20,40' -> array of at least two positions."""
+    via = np.array(_numbers("--via", text))
+    if via.size < 2:
+        raise CliError("--via needs at least two points: the start and one target")
+    return via
+
+
+def parse_via_points(text: str) -> np.ndarray:
+    """``--via`` of the B-spline: 'x,y;x,y;...' -> (M, axes) with M >= 2, 1 <= axes <= 3."""
+    rows = [r for r in (part.strip() for part in text.split(";")) if r]
+    points = [_numbers("--via", r) for r in rows]
+    if len(points) < 2:
+        raise CliError("--via needs at least two points separated by ';'")
+    axes = len(points[0])
+    if any(len(p) != axes for p in points):
+        raise CliError("--via: every point must have the same number of coordinates, got "
+                       + ", ".join(str(len(p)) for p in points))
+    if not 1 <= axes <= 3:
+        raise CliError(f"--via: points must have 1 to 3 coordinates (axes), got {axes}")
+    return np.array(points)
+
+
+def _write_csv(path: str, header: list[str], columns: list[np.ndarray]) -> None:
+    data = np.column_stack(columns)
+    try:
+        np.savetxt(path, data, delimiter=",", header=",".join(header), comments="", fmt="%.17g")
+    except OSError as exc:
+        raise CliError(f"--csv: cannot write {path}: {exc.strerror}") from None
+
+
+def _save(fig, plt, path: str) -> None:
+    try:
+        fig.savefig(path, dpi=120)
+    except OSError as exc:
+        raise CliError(f"--plot: cannot write {path}: {exc.strerror}") from None
+    finally:
+        plt.close(fig)
+
+
+# -- generator -----------------------------------------------------------------------------
+
+def _at_rest(out: np.ndarray, target: float, scale: float, limits) -> np.ndarray:
+    """Mask of samples where q == target and v, a, j == 0, up to rounding."""
+    vmax, amax, jmax = limits
+    return ((np.abs(out[:, 0] - target) <= REST_RTOL * scale)
+            & (np.abs(out[:, 1]) <= REST_RTOL * vmax)
+            & (np.abs(out[:, 2]) <= REST_RTOL * amax)
+            & (np.abs(out[:, 3]) <= REST_RTOL * jmax))
+
+
+def run_until_reached(gen, via: np.ndarray, scale: float, max_samples: int):
+    """Feed via[1], via[2], ... each until the output rests on it, the next from the sample
+    after. Returns (targets, out, starts, arrivals) with sample indices.
+
+    Chunks of Nc samples are stepped at once; when the arrival falls inside a chunk the state
+    saved before it is restored and only the samples up to the arrival are replayed, so the
+    result is exactly what per-sample stepping would give."""
+    limits = (gen.vmax, gen.amax, gen.jmax)
+    chunk = max(64, gen.tail_samples)
+    targets, outs, starts, arrivals = [], [], [], []
+    k = 0
+    for p in via[1:]:
+        starts.append(k)
+        while True:
+            if k >= max_samples:
+                raise CliError(f"the output did not reach {p:g} within {max_samples} samples "
+                               "(raise --Ts)")
+            saved = gen.save_state()
+            block = np.full(chunk, p)
+            out = gen.process(block)
+            hit = np.flatnonzero(_at_rest(out, p, scale, limits))
+            if hit.size:
+                n = hit[0] + 1
+                gen.load_state(saved)
+                out = gen.process(block[:n])
+                targets.append(block[:n])
+                outs.append(out)
+                k += n
+                arrivals.append(k - 1)
+                break
+            targets.append(block)
+            outs.append(out)
+            k += chunk
+    return np.concatenate(targets), np.concatenate(outs), starts, arrivals
+
+
+def run_with_hold(gen, via: np.ndarray, hold_samples: int, scale: float, max_samples: int):
+    """Each of via[1], via[2], ... held for hold_samples; the last until the output rests on
+    it. Arrival of a segment: first rest on its target inside its window, else None."""
+    limits = (gen.vmax, gen.amax, gen.jmax)
+    head = np.repeat(via[1:-1], hold_samples)
+    out_head = gen.process(head)
+    _, out_last, _, last_arrival = run_until_reached(gen, via[-2:], scale,
+                                                     max_samples - head.size)
+    out = np.concatenate([out_head, out_last])
+    targets = np.concatenate([head, np.full(out_last.shape[0], via[-1])])
+    starts = [i * hold_samples for i in range(via.size - 1)]
+    arrivals = []
+    for i, p in enumerate(via[1:-1]):
+        window = out[starts[i]:starts[i] + hold_samples]
+        hit = np.flatnonzero(_at_rest(window, p, scale, limits))
+        arrivals.append(starts[i] + int(hit[0]) if hit.size else None)
+    arrivals.append(head.size + last_arrival[0])
+    return targets, out, starts, arrivals
+
+
+def segment_rows(out, starts, arrivals, via, Ts, limits):
+    """One row per segment: #, target, start, arrival, peaks and peak/limit ratios."""
+    rows = []
+    ends = starts[1:] + [out.shape[0]]
+    for i, (s, e) in enumerate(zip(starts, ends)):
+        peaks = np.max(np.abs(out[s:e, 1:4]), axis=0)
+        a = arrivals[i]
+        rows.append([i + 1, float(via[i + 1]), s * Ts, None if a is None else a * Ts,
+                     *[float(v) for v in peaks],
+                     *[float(v / lim) for v, lim in zip(peaks, limits)]])
+    return rows
+
+
+def cmd_generator(args) -> int:
+    from .trajectory import Generator
+    via = parse_via_list(args.via)
+    gen = Generator(vmax=args.vmax, amax=args.amax, jmax=args.jmax, Ts=args.Ts,
+                    profile=args.profile, wn=args.wn, zeta=args.zeta)
+    gen.reset(position=float(via[0]))
+    scale = max(float(np.max(np.abs(via))), gen.vmax * gen.Ts)
+    limits = (gen.vmax, gen.amax, gen.jmax)
+    Tc = gen.T2 + gen.T3
+    # A move of D takes about D/vmax + Tc (+ a wait of <= Tc before a re-plan or reversal).
+    estimate = sum(abs(b - a) / gen.vmax + 3 * Tc for a, b in zip(via[:-1], via[1:]))
+    if args.hold is not None:
+        if not (math.isfinite(args.hold) and args.hold >= gen.Ts):
+            raise CliError(f"--hold must be a time >= Ts = {gen.Ts:g} s, got {args.hold!r}")
+        hold_samples = int(round(args.hold / gen.Ts))
+        estimate += (via.size - 2) * hold_samples * gen.Ts
+    max_samples = int(math.ceil(estimate / gen.Ts)) + 10 * (via.size + 1)
+    if max_samples > MAX_SAMPLES:
+        raise CliError(f"--Ts: about {max_samples} samples would be needed (more than "
+                       f"{MAX_SAMPLES}); use a larger sample period")
+    if args.hold is None:
+        targets, out, starts, arrivals = run_until_reached(gen, via, scale, max_samples)
+    else:
+        targets, out, starts, arrivals = run_with_hold(gen, via, hold_samples, scale,
+                                                       max_samples)
+    t = np.arange(out.shape[0]) * gen.Ts
+    u = args.unit
+    rows = segment_rows(out, starts, arrivals, via, gen.Ts, limits)
+    print(f"online generator: vmax = {gen.vmax:g} {u}/s, amax = {gen.amax:g} {u}/s^2, "
+          f"jmax = {gen.jmax:g} {u}/s^3, profile {gen.profile}"
+          + (f", mode wn = {gen.wn:g} rad/s, zeta = {gen.zeta:g}" if gen.wn else ""))
+    print(f"tail: T2 = {gen.T2:.6g} s, T3 = {gen.T3:.6g} s (Nc = {gen.tail_samples} samples "
+          f"at Ts = {gen.Ts:g} s); start at rest at {via[0]:g} {u}")
+    print(format_table(["#", f"target [{u}]", "start [s]", "arrival [s]", "peak |v|",
+                        "peak |a|", "peak |j|", "v/vmax", "a/amax", "j/jmax"], rows))
+    missed = [r[0] for r in rows if r[3] is None]
+    if missed:
+        print("not reached before the next target (--hold): segment "
+              + ", ".join(str(m) for m in missed))
+    total = arrivals[-1] * gen.Ts
+    print(f"total time: {total:.6g} s ({arrivals[-1] + 1} samples, rest on {via[-1]:g} {u})")
+    peaks = np.max(np.abs(out[:, 1:4]), axis=0)
+    ok = all(p <= lim * (1 + LIMIT_RTOL) for p, lim in zip(peaks, limits))
+    print("sampled peaks within the limits: " + ("yes" if ok else "NO (exceeded)"))
+    if args.csv:
+        _write_csv(args.csv, ["time", "target", "position", "velocity", "acceleration", "jerk"],
+                   [t, targets, out[:, 0], out[:, 1], out[:, 2], out[:, 3]])
+        print(f"csv: {args.csv}")
+    if args.plot:
+        _plot_generator(args.plot, t, targets, out, starts, arrivals, limits, u, gen.Ts)
+        print(f"plot: {args.plot}")
+    return 0 if ok else EXIT_ERROR
+
+
+def _plot_generator(path, t, targets, out, starts, arrivals, limits, u, Ts):
+    plt = _pyplot("design generator --plot")
+    fig, axes = plt.subplots(4, 1, sharex=True, figsize=(8, 8))
+    names = [("position", f"[{u}]"), ("velocity", f"[{u}/s]"),
+             ("acceleration", f"[{u}/s$^2$]"), ("jerk", f"[{u}/s$^3$]")]
+    axes[0].step(t, targets, where="post", color="gray", lw=0.8, ls="--", label="target")
+    for i, (ax, (name, unit)) in enumerate(zip(axes, names)):
+        if i == 3:  # jerk: right limits at the samples, piecewise constant between
+            ax.step(t, out[:, i], where="post", lw=1.2, label=name)
+        else:
+            ax.plot(t, out[:, i], lw=1.2, label=name)
+        if i:
+            lim = limits[i - 1]
+            ax.axhline(lim, color="red", lw=0.7, ls=":", label="limit")
+            ax.axhline(-lim, color="red", lw=0.7, ls=":")
+        for a in arrivals:
+            if a is not None:
+                ax.axvline(a * Ts, color="green", lw=0.5, alpha=0.5)
+        ax.set_ylabel(f"{name} {unit}")
+        ax.grid(True, alpha=0.3)
+    axes[0].legend(loc="best", fontsize=8)
+    axes[1].legend(loc="best", fontsize=8)
+    axes[-1].set_xlabel("time [s]")
+    axes[0].set_title("Online multi-point generator (green: arrivals)")
+    fig.tight_layout()
+    _save(fig, plt, path)
+
+
+# -- B-spline ------------------------------------------------------------------------------
+
+def cmd_bspline(args) -> int:
+    from .trajectory import BSpline, bspline_period
+    via = parse_via_points(args.via)
+    M, n_axes = via.shape
+    if args.wn is not None:
+        modes = _numbers("--wn", args.wn)
+        if any(w <= 0 for w in modes):
+            raise CliError(f"--wn must be frequencies > 0 rad/s, got {args.wn!r}")
+        T = bspline_period(wn=modes, Ts=args.Ts)
+        origin = (f"from the lowest mode wn = {min(modes):g} rad/s "
+                  f"(2 pi/wn = {2 * math.pi / min(modes):.6g} s)")
+    else:
+        T, origin = args.T, f"requested T = {args.T:g} s"
+    spline = BSpline(degree=args.degree, T=T, Ts=args.Ts, axes=n_axes)
+    ctrl = spline.control_points(via)
+    out = spline.interpolate(via)
+    passes = [None] + [int(k) for k in spline.pass_samples(M)] + [spline.end_sample(M)]
+    axes = "xyz"[:n_axes]
+    print(f"B-spline of degree {spline.degree}, {n_axes} axis(es), {M} via-points")
+    print(f"knot spacing T = {spline.T:.6g} s (N = {spline.N} samples at Ts = {spline.Ts:g} s; "
+          f"{origin}); zeros at multiples of {2 * math.pi / spline.T:.6g} rad/s")
+    print(format_table(["#"] + [f"via {a}" for a in axes] + [f"control {a}" for a in axes],
+                       [[i, *map(float, via[i]), *map(float, ctrl[i])] for i in range(M)]))
+    rows, errors = [], []
+    for i, k in enumerate(passes):
+        if k is None:  # the filter rests on via[0] before sample 0 (reset)
+            rows.append([i, None, "rest", *([None] * n_axes), 0.0])
+            continue
+        err = float(np.max(np.abs(out[k] - via[i])))
+        errors.append(err)
+        rows.append([i, k, k * spline.Ts, *map(float, out[k]), err])
+    print()
+    print(format_table(["#", "sample", "time [s]"] + [f"output {a}" for a in axes]
+                       + ["|error|"], rows))
+    print(f"duration: {passes[-1] * spline.Ts:.6g} s (rest on the last via-point from sample "
+          f"{passes[-1]}); max pass-through error {max(errors):.3g}")
+    if args.csv:
+        t = np.arange(out.shape[0]) * spline.Ts
+        _write_csv(args.csv, ["time"] + list(axes), [t] + [out[:, a] for a in range(n_axes)])
+        print(f"csv: {args.csv}")
+    if args.plot:
+        _plot_bspline(args.plot, spline, via, ctrl, out, passes)
+        print(f"plot: {args.plot}")
+    return 0
+
+
+def _plot_bspline(path, spline, via, ctrl, out, passes):
+    plt = _pyplot("design bspline --plot")
+    n_axes = via.shape[1]
+    t = np.arange(out.shape[0]) * spline.Ts
+    held = spline.staircase(ctrl, out.shape[0])
+    fig, axes = plt.subplots(n_axes, 1, sharex=True, figsize=(8, 2.6 * n_axes + 0.6),
+                             squeeze=False)
+    tp = np.array([-spline.Ts if k is None else k * spline.Ts for k in passes])
+    for a, ax in enumerate(axes[:, 0]):
+        ax.step(t, held[:, a], where="post", color="gray", lw=0.8, ls="--",
+                label="control points (held)")
+        ax.plot(t, out[:, a], lw=1.2, label="B-spline output")
+        ax.plot(tp, via[:, a], "o", ms=5, mfc="none", color="red", label="via-points")
+        ax.set_ylabel(f"{'xyz'[a]} [unit]")
+        ax.grid(True, alpha=0.3)
+    axes[0, 0].legend(loc="best", fontsize=8)
+    axes[-1, 0].set_xlabel("time [s]")
+    axes[0, 0].set_title(f"B-spline interpolation, degree {spline.degree}, "
+                         f"T = {spline.T:.4g} s")
+    fig.tight_layout()
+    _save(fig, plt, path)
+
+
+# -- parsers -------------------------------------------------------------------------------
+
+def add_design_forms(design_parser, parser_class) -> None:
+    """Add the ``generator`` and ``bspline`` forms under ``design`` (optional, so the plain
+    ``design --kind ...`` / ``design --h ...`` forms keep working)."""
+    forms = design_parser.add_subparsers(dest="form", metavar="FORM", parser_class=parser_class)
+    forms.required = False
+
+    p = forms.add_parser("generator", help="via-points through the online generator (SPEC 4.4)",
+                         description="Run a staircase of via-points through the C-backed "
+                         "online generator: each via-point is held until the output rests on "
+                         "it (or for --hold seconds). The first via-point is the start (rest). "
+                         "Negative values: write --via=-5,10.")
+    p.add_argument("--via", required=True, metavar="P0,P1,...",
+                   help="positions: start, then the targets in order (e.g. 0,20,40,100,60,0)")
+    p.add_argument("--vmax", type=float, required=True, help="velocity limit [unit/s]")
+    p.add_argument("--amax", type=float, required=True, help="acceleration limit [unit/s^2]")
+    p.add_argument("--jmax", type=float, required=True, help="jerk limit [unit/s^3]")
+    p.add_argument("--Ts", type=float, required=True, help="sample period [s]")
+    p.add_argument("--profile", default="polynomial", choices=PROFILES,
+                   help="family of the tail's last stage (default polynomial)")
+    p.add_argument("--wn", type=float, help="mode to cancel [rad/s] (needed by damped)")
+    p.add_argument("--zeta", type=float, default=0.0, help="damping ratio of the mode (default 0)")
+    p.add_argument("--hold", type=float, metavar="SECONDS",
+                   help="hold each via-point this long instead of until reached (the last "
+                   "one is held until reached)")
+    p.add_argument("--unit", default="unit", help="position unit for labels (default 'unit')")
+    p.add_argument("--plot", metavar="PNG", help="write q, v, a, j over time to this PNG")
+    p.add_argument("--csv", metavar="CSV", help="write time, target, q, v, a, j to this CSV")
+    p.set_defaults(func=cmd_generator)
+
+    p = forms.add_parser("bspline", help="B-spline through via-points (SPEC 3.7, seed 003)",
+                         description="Interpolate via-points with the C-backed uniform "
+                         "B-spline filter. Negative values: write --via=\"-1,2;3,4\".")
+    p.add_argument("--via", required=True, metavar="X,Y,Z;...",
+                   help="via-points separated by ';', coordinates (1 to 3 axes) by ','")
+    p.add_argument("--degree", type=int, default=3, help="spline degree 1..7 (default 3)")
+    g = p.add_mutually_exclusive_group(required=True)
+    g.add_argument("--T", type=float, help="knot spacing [s] (rounded to whole samples)")
+    g.add_argument("--wn", metavar="WN[,WN...]",
+                   help="modes [rad/s]: T = the shortest N Ts >= 2 pi / min(wn)")
+    p.add_argument("--Ts", type=float, required=True, help="sample period [s]")
+    p.add_argument("--plot", metavar="PNG", help="write the axes over time to this PNG")
+    p.add_argument("--csv", metavar="CSV", help="write time and the axes to this CSV")
+    p.set_defaults(func=cmd_bspline)
