@@ -12,7 +12,8 @@ sms_status sms_design_for_mode(sms_kind kind, double wn, double zeta, unsigned k
     sms_stage_config c;
     if (config == NULL)
         return SMS_ERR_NULL;
-    if ((int)kind < 0 || (int)kind >= SMS_KIND_COUNT)
+    /* unsigned: negatives wrap, and short enums (ARM EABI) are unsigned already */
+    if ((unsigned)kind >= (unsigned)SMS_KIND_COUNT)
         return SMS_ERR_KIND;
     if (!(wn - wn == 0.0) || wn <= 0.0)
         return SMS_ERR_WN;
