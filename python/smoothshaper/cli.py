@@ -538,7 +538,11 @@ def build_parser() -> argparse.ArgumentParser:
     sub.required = True
 
     p = sub.add_parser("design", help="print the stages for a mode or kinematic limits; "
-                       "'design generator' / 'design bspline' run via-points (see their --help)")
+                       "'design generator' / 'design bspline' run via-points (see their --help)",
+                       description="Without FORM: the stages for a mode (--kind/--stage with "
+                       "--wn) or for kinematic limits (--h, --vmax, ...). With FORM (optional): "
+                       "'generator' runs via-points through the online generator, 'bspline' "
+                       "interpolates them; see 'smoothshaper design FORM --help'.")
     _add_chain_options(p)
     p.add_argument("--Ts", type=float, help="sample period [s]: also print lengths in samples")
     g = p.add_argument_group("kinematic limits (SPEC 4.1; needs smoothshaper.design)")

@@ -192,6 +192,9 @@ def cmd_generator(args) -> int:
           + (f", mode wn = {gen.wn:g} rad/s, zeta = {gen.zeta:g}" if gen.wn else ""))
     print(f"tail: T2 = {gen.T2:.6g} s, T3 = {gen.T3:.6g} s (Nc = {gen.tail_samples} samples "
           f"at Ts = {gen.Ts:g} s); start at rest at {via[0]:g} {u}")
+    print("each via-point held until the output rests on it" if args.hold is None else
+          f"each via-point held {hold_samples} samples ({hold_samples * gen.Ts:g} s), "
+          "the last until the output rests on it")
     print(format_table(["#", f"target [{u}]", "start [s]", "arrival [s]", "peak |v|",
                         "peak |a|", "peak |j|", "v/vmax", "a/amax", "j/jmax"], rows))
     missed = [r[0] for r in rows if r[3] is None]
@@ -314,10 +317,24 @@ def _plot_bspline(path, spline, via, ctrl, out, passes):
 
 # -- parsers -------------------------------------------------------------------------------
 
+def _hinting(parser_class):
+    """parser_class whose errors add the fix for a --via value starting with '-' (argparse
+    takes '-5,10' for an option)."""
+
+    class FormParser(parser_class):
+        def error(self, message):
+            if "--via: expected one argument" in message:
+                message += " (a list starting with a negative value is written --via=-5,10)"
+            super().error(message)
+
+    return FormParser
+
+
 def add_design_forms(design_parser, parser_class) -> None:
     """Add the ``generator`` and ``bspline`` forms under ``design`` (optional, so the plain
     ``design --kind ...`` / ``design --h ...`` forms keep working)."""
-    forms = design_parser.add_subparsers(dest="form", metavar="FORM", parser_class=parser_class)
+    forms = design_parser.add_subparsers(dest="form", metavar="FORM",
+                                         parser_class=_hinting(parser_class))
     forms.required = False
 
     p = forms.add_parser("generator", help="via-points through the online generator (SPEC 4.4)",

@@ -150,6 +150,7 @@ def test_generator_hold_mode(capsys, tmp_path):
     assert [num(r[3]) for r in rows[:-1]] == [None] * 4
     assert [float(r[2]) for r in rows] == pytest.approx([0.0, 0.1, 0.2, 0.3, 0.4])
     assert "not reached before the next target (--hold): segment 1, 2, 3, 4" in out
+    assert "held 100 samples (0.1 s)" in out
     _, data = read_csv(csv_path)
     np.testing.assert_array_equal(data[:400, 1], np.repeat([20.0, 40.0, 100.0, 60.0], 100))
     api = Generator(Ts=TS, **LIMITS).process(data[:, 1])
@@ -270,6 +271,7 @@ BS = ["design", "bspline"]
     (GEN + ["--via", "0,1", "--hold", "0"] + LIM, "--hold"),
     (GEN + ["--via", "0,1e9"] + LIM, "--Ts"),
     (GEN + LIM, "required: --via"),
+    (GEN + ["--via", "-5,10"] + LIM, "--via=-5,10"),
     (GEN + ["--via", "0,1", "--profile", "cubic"] + LIM, "invalid choice"),
     (GEN + ["--via", "0,10"] + LIM + ["--plot", "/nonexistent/dir/x.png"], "--plot"),
     (GEN + ["--via", "0,10"] + LIM + ["--csv", "/nonexistent/dir/x.csv"], "--csv"),
