@@ -290,3 +290,27 @@ def test_bad_input_is_one_line_and_nonzero_exit(capsys, argv, word):
     code, out, err = run(capsys, *argv)
     assert code != 0
     assert word in err and err.count("\n") == 1 and "Traceback" not in err
+
+
+def test_a_peak_above_a_limit_fails_the_run(capsys, monkeypatch):
+    # The seed 001 run touches every limit (ratios 1); with the check tightened below 1 the
+    # same peaks must be reported as exceeded and the run fail.
+    from smoothshaper import cli_trajectory
+    monkeypatch.setattr(cli_trajectory, "LIMIT_RTOL", -1e-6)
+    code, out, _ = run(capsys, *generator_argv())
+    assert code == cli.EXIT_ERROR and "within the limits: NO (exceeded)" in out
+
+
+def test_python_dash_m_runs_the_forms():
+    import os
+    import subprocess
+    import sys
+    ok = subprocess.run([sys.executable, "-m", "smoothshaper", "design", "bspline", "--via",
+                         "0;1;2", "--T", "0.05", "--Ts", "1e-3"], capture_output=True,
+                        text=True, env=dict(os.environ), timeout=60)
+    assert ok.returncode == 0 and "knot spacing T = 0.05 s" in ok.stdout, ok.stderr
+    bad = subprocess.run([sys.executable, "-m", "smoothshaper", "design", "generator",
+                          "--via", "0,1"] + LIM[:-2] + ["--Ts", "0"], capture_output=True,
+                         text=True, env=dict(os.environ), timeout=60)
+    assert bad.returncode == cli.EXIT_ERROR and bad.stderr.count("\n") == 1
+    assert bad.stderr.startswith("smoothshaper: error: Ts")
