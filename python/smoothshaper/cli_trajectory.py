@@ -5,8 +5,9 @@
   on it (or for ``--hold`` seconds), and a table per segment gives the arrival time and the
   sampled peaks of |v|, |a|, |j| against the limits.
 * ``bspline``: the C-backed B-spline interpolating filter
-  (:class:`smoothshaper.trajectory.BSpline`): knot spacing (from the lowest mode with ``--wn``), control points, and the instant and the
-  error with which each via-point is passed.
+  (:class:`smoothshaper.trajectory.BSpline`): knot spacing (from the lowest mode with
+  ``--wn``), control points, and the instant and the error with which each via-point is
+  passed.
 """
 from __future__ import annotations
 
