@@ -1,5 +1,5 @@
 cmake_minimum_required(VERSION 3.16)
-# Fails if a program linked with --gc-sections (per_sample_probe.c: only run-time functions
+# Fails if a program linked with --gc-sections (per_sample_probe.c: only step/process/reset
 # referenced) still imports a symbol that the C math library defines: the per-sample path
 # must not call libm (SPEC 7), whatever init does in the same translation unit.
 # Variables: EXE (the linked probe), NM, LIBM (the math library's shared object), GROUP (label).
@@ -33,6 +33,6 @@ foreach(entry ${imports})
 endforeach()
 if(math_imports)
   list(JOIN math_imports ", " listing)
-  message(FATAL_ERROR "${GROUP} run-time path reaches libm: ${listing}")
+  message(FATAL_ERROR "${GROUP} per-sample path reaches libm: ${listing}")
 endif()
-message(STATUS "${GROUP} run-time path: no libm symbol among the imports of ${EXE}")
+message(STATUS "${GROUP} per-sample path: no libm symbol among the imports of ${EXE}")

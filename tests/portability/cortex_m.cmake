@@ -1,6 +1,9 @@
 cmake_minimum_required(VERSION 3.16)
 # Cross-compiles every c/src/*.c for a Cortex-M4F (hard float, single-precision FPU) in both
 # precisions with the library's strict C99 flags, and prints the code size of each build.
+# Then links per_sample_probe.c (step/process/reset only) against those objects with newlib
+# and --gc-sections, fails if any newlib libm function survives in the image, and prints
+# the size of what the per-sample path keeps.
 # Variables: SOURCE_DIR (repository root), WORK_DIR (scratch). Prints "SKIPPED: <reason>"
 # (the ctest skip marker) when arm-none-eabi-gcc is not on PATH.
 find_program(ARM_GCC arm-none-eabi-gcc)
@@ -10,6 +13,10 @@ if(NOT ARM_GCC)
 endif()
 get_filename_component(arm_bin ${ARM_GCC} DIRECTORY)
 find_program(ARM_SIZE arm-none-eabi-size HINTS ${arm_bin})
+find_program(ARM_NM arm-none-eabi-nm HINTS ${arm_bin})
+if(NOT ARM_SIZE OR NOT ARM_NM)
+  message(FATAL_ERROR "arm-none-eabi-gcc found but not arm-none-eabi-size / -nm next to it")
+endif()
 
 file(GLOB sources ${SOURCE_DIR}/c/src/*.c)
 set(target_flags -mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16)
@@ -42,12 +49,80 @@ foreach(precision float double)
     message(FATAL_ERROR "cortex-m4 ${precision}: some sources do not compile (above)")
   endif()
   list(LENGTH objects n)
-  if(ARM_SIZE)
-    execute_process(COMMAND ${ARM_SIZE} -t ${objects} OUTPUT_VARIABLE sizes RESULT_VARIABLE rc)
-    string(REGEX MATCH "[ \t]*([0-9]+)[ \t]+([0-9]+)[ \t]+([0-9]+)[^\n]*\\(TOTALS\\)" totals "${sizes}")
-    message(STATUS "cortex-m4 ${precision}: ${n} sources, text ${CMAKE_MATCH_1} B, data "
-                   "${CMAKE_MATCH_2} B, bss ${CMAKE_MATCH_3} B (all objects, before gc-sections)\n${sizes}")
-  else()
-    message(STATUS "cortex-m4 ${precision}: ${n} sources compiled (no arm-none-eabi-size)")
-  endif()
+  execute_process(COMMAND ${ARM_SIZE} -t ${objects} OUTPUT_VARIABLE sizes RESULT_VARIABLE rc)
+  string(REGEX MATCH "[ \t]*([0-9]+)[ \t]+([0-9]+)[ \t]+([0-9]+)[^\n]*\\(TOTALS\\)" totals "${sizes}")
+  message(STATUS "cortex-m4 ${precision}: ${n} sources, text ${CMAKE_MATCH_1} B, data "
+                 "${CMAKE_MATCH_2} B, bss ${CMAKE_MATCH_3} B (all objects, before gc-sections)\n${sizes}")
+  set(objects_${precision} ${objects})
+endforeach()
+
+# Per-sample path on the target: which newlib libm functions does a --gc-sections image of
+# step/process/reset keep? Compared against the functions libm.a defines for this multilib.
+set(link_flags ${target_flags} -O2 --specs=nosys.specs -Wl,--gc-sections)
+execute_process(COMMAND ${ARM_GCC} ${target_flags} -print-file-name=libm.a
+  OUTPUT_VARIABLE libm_archive OUTPUT_STRIP_TRAILING_WHITESPACE)
+execute_process(COMMAND ${ARM_NM} --defined-only ${libm_archive}
+  OUTPUT_VARIABLE libm_table ERROR_QUIET)
+string(REGEX MATCHALL " [TW] [A-Za-z_][A-Za-z0-9_]*" libm_entries "${libm_table}")
+set(libm_symbols)
+foreach(entry ${libm_entries})
+  string(REGEX REPLACE "^ [TW] " "" name "${entry}")
+  list(APPEND libm_symbols ${name})
+endforeach()
+list(LENGTH libm_symbols n_libm)
+if(n_libm LESS 50)
+  message(FATAL_ERROR "only ${n_libm} functions read from ${libm_archive}")
+endif()
+
+# Size baseline: an empty program with the same start-up code.
+file(WRITE ${WORK_DIR}/empty.c "int main(void)\n{\n    return 0;\n}\n")
+execute_process(COMMAND ${ARM_GCC} ${link_flags} ${WORK_DIR}/empty.c -o ${WORK_DIR}/empty.elf
+  RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "cortex-m4: cannot link an empty program with nosys.specs:\n${err}")
+endif()
+function(elf_text elf out_var)
+  execute_process(COMMAND ${ARM_SIZE} ${elf} OUTPUT_VARIABLE table)
+  string(REGEX MATCH "\n[ \t]*([0-9]+)" row "${table}")
+  set(${out_var} ${CMAKE_MATCH_1} PARENT_SCOPE)
+endfunction()
+elf_text(${WORK_DIR}/empty.elf empty_text)
+
+set(group 0)
+foreach(group_name filters bspline generator)   # PROBE_GROUP 1, 2, 3
+  math(EXPR group "${group} + 1")
+  foreach(precision float double)
+    set(defines)
+    if(precision STREQUAL "float")
+      set(defines -DSMS_USE_FLOAT)
+    endif()
+    set(elf ${WORK_DIR}/probe_${group_name}_${precision}.elf)
+    execute_process(COMMAND ${ARM_GCC} ${link_flags} ${strict_flags} ${defines}
+      -DPROBE_GROUP=${group} -I${SOURCE_DIR}/c/include ${CMAKE_CURRENT_LIST_DIR}/per_sample_probe.c
+      ${objects_${precision}} -lm -o ${elf} RESULT_VARIABLE rc ERROR_VARIABLE err)
+    if(NOT rc EQUAL 0)
+      message(FATAL_ERROR "cortex-m4 ${precision}: the ${group_name} probe does not link:\n${err}")
+    endif()
+    execute_process(COMMAND ${ARM_NM} --defined-only ${elf} OUTPUT_VARIABLE elf_table)
+    string(REGEX MATCHALL " [TtWw] [A-Za-z_][A-Za-z0-9_]*" elf_entries "${elf_table}")
+    set(kept_math)
+    foreach(entry ${elf_entries})
+      string(REGEX REPLACE "^ [TtWw] " "" name "${entry}")
+      if(name IN_LIST libm_symbols)
+        list(APPEND kept_math ${name})
+      endif()
+    endforeach()
+    if(kept_math)
+      list(JOIN kept_math ", " listing)
+      message(SEND_ERROR "cortex-m4 ${precision}: the ${group_name} per-sample path keeps libm: ${listing}")
+      set(libm_note "keeps libm")
+    else()
+      set(libm_note "no libm")
+    endif()
+    # Includes the libgcc soft-float routines the double build needs on this single-precision FPU.
+    elf_text(${elf} probe_text)
+    math(EXPR path_text "${probe_text} - ${empty_text}")
+    message(STATUS "cortex-m4 ${precision}: ${group_name} per-sample path ${path_text} B text "
+                   "after gc-sections (empty program subtracted), ${libm_note}")
+  endforeach()
 endforeach()

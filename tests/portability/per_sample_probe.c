@@ -1,6 +1,7 @@
-/* Takes the address of every run-time function of one group (PROBE_GROUP) and nothing else,
- * so that a --gc-sections link keeps exactly the code those functions can reach. Never run:
- * check_no_libm.cmake inspects which libm symbols the linked program still imports.
+/* Takes the address of every per-sample function (step, process, reset) of one group
+ * (PROBE_GROUP) and nothing else, so that a --gc-sections link keeps exactly the code those
+ * functions can reach. Never run: check_no_libm.cmake and cortex_m.cmake inspect which libm
+ * symbols the linked program still needs.
  * Groups: 1 filters (stage, chain and the families behind them), 2 B-spline, 3 generator. */
 #include <smoothshaper/smoothshaper.h>
 
@@ -11,18 +12,14 @@ typedef void (*probe_fn)(void);
 static const probe_fn runtime_functions[] = {
 #if PROBE_GROUP == 1
     PROBE(sms_stage_step), PROBE(sms_stage_process), PROBE(sms_stage_reset),
-    PROBE(sms_stage_save_state), PROBE(sms_stage_load_state), PROBE(sms_stage_rebind),
     PROBE(sms_chain_step), PROBE(sms_chain_process), PROBE(sms_chain_reset),
-    PROBE(sms_chain_save_state), PROBE(sms_chain_load_state), PROBE(sms_chain_rebind),
     PROBE(sms_smoother_step), PROBE(sms_smoother_process), PROBE(sms_smoother_reset),
     PROBE(sms_shaper_step), PROBE(sms_shaper_process), PROBE(sms_shaper_reset),
     PROBE(sms_notch_step), PROBE(sms_notch_process), PROBE(sms_notch_reset)
 #elif PROBE_GROUP == 2
-    PROBE(sms_bspline_step), PROBE(sms_bspline_reset), PROBE(sms_bspline_save_state),
-    PROBE(sms_bspline_load_state)
+    PROBE(sms_bspline_step), PROBE(sms_bspline_reset)
 #elif PROBE_GROUP == 3
-    PROBE(sms_generator_step), PROBE(sms_generator_reset), PROBE(sms_generator_save_state),
-    PROBE(sms_generator_load_state), PROBE(sms_generator_rebind)
+    PROBE(sms_generator_step), PROBE(sms_generator_reset)
 #else
 #error "PROBE_GROUP must be 1, 2 or 3"
 #endif
