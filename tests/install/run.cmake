@@ -5,7 +5,7 @@
 #                      pkg-config gives for the prefix MODE=cmake installed
 #   BUILD_DIR   the smoothshaper build tree        CONFIG     its build type
 #   WORK_DIR    scratch directory (prefix, consumer build)
-#   GENERATOR, C_COMPILER                          SHARED, SANITIZE  ON/OFF as in the build
+#   GENERATOR, MAKE_PROGRAM, C_COMPILER            SHARED, SANITIZE  ON/OFF as in the build
 # Prints "SKIPPED: <reason>" (the ctest skip marker) when pkg-config is absent.
 cmake_minimum_required(VERSION 3.16)
 set(consumer_source ${CMAKE_CURRENT_LIST_DIR})
@@ -55,7 +55,8 @@ if(MODE STREQUAL "cmake")
 
   set(consumer_build ${WORK_DIR}/consumer)
   run_checked("configure consumer" ${CMAKE_COMMAND} -S ${consumer_source} -B ${consumer_build}
-    -G ${GENERATOR} -DCMAKE_C_COMPILER=${C_COMPILER} -DCMAKE_BUILD_TYPE=${CONFIG}
+    -G ${GENERATOR} -DCMAKE_MAKE_PROGRAM=${MAKE_PROGRAM} -DCMAKE_C_COMPILER=${C_COMPILER}
+    -DCMAKE_BUILD_TYPE=${CONFIG}
     -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF
     -DCONSUMER_EXPECT_SHARED=${SHARED} -DCONSUMER_SANITIZE=${SANITIZE})
   # find_package must have found the scratch prefix, not some other installed copy.
