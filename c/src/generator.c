@@ -39,10 +39,9 @@ typedef struct last_stage {
     double m1, m2;      /* first two moments, for the continuation beyond T */
 } last_stage;
 
-static double l_density(const last_stage *L, double s)
+/* l(s) by its formula, for s in [0, T] (the caller decides the support, see l_at_sample). */
+static double l_formula(const last_stage *L, double s)
 {
-    if (s < 0.0 || s >= L->T) /* right limit: 0 from T on */
-        return 0.0;
     switch (L->kind) {
     case SMS_HARMONIC:
         return 1.5707963267948966 / L->T * sin(3.14159265358979323846 * s / L->T);
@@ -51,6 +50,27 @@ static double l_density(const last_stage *L, double s)
     default:
         return 1.0 / L->T;
     }
+}
+
+/* Where a breakpoint b [s] falls on the sample axis: the integer round(b/Ts) when b/Ts passes
+ * the integer test of docs/exact-mode.md, else b/Ts itself. Comparing a sample index with it
+ * decides the side of a jump exactly: m Ts - b would round either way when b is on the grid. */
+static double breakpoint_samples(double b, double Ts)
+{
+    double nu = b / Ts, n = floor(nu + 0.5);
+    return fabs(nu - n) <= 1e-9 * (nu > 1.0 ? nu : 1.0) ? n : nu;
+}
+
+/* l(m Ts - delay) with the right limit at its jumps (trajectory.h): the stage is on for
+ * on <= m < off, on and off its start and end in samples (breakpoint_samples). */
+static double l_at_sample(const last_stage *L, size_t m, double Ts, double delay, double on,
+                          double off)
+{
+    double s = (double)m * Ts - delay;
+    if ((double)m < on || (double)m >= off)
+        return 0.0;
+    s = s < 0.0 ? 0.0 : (s > L->T ? L->T : s); /* a snapped breakpoint may leave s an ulp out */
+    return l_formula(L, s);
 }
 
 /* P_k(s) = int_0^s l(tau) (s - tau)^(k-1)/(k-1)! dtau on [0, T]. */
@@ -153,7 +173,7 @@ sms_status sms_generator_buffer_size(const sms_generator_config *config, double 
 sms_status sms_generator_init(sms_generator *g, const sms_generator_config *config, double Ts,
                               sms_real *buffer, size_t n_reals)
 {
-    double T2, T3, mu;
+    double T2, T3, mu, on2, off1, off2;
     sms_kin_last kl;
     last_stage L;
     size_t Nc, m, need;
@@ -187,13 +207,18 @@ sms_status sms_generator_init(sms_generator *g, const sms_generator_config *conf
     F = buffer + (Nc + 1u);
     X2 = buffer + 2u * (Nc + 1u);
     X2d = buffer + 3u * (Nc + 1u);
+    /* the jerk response l(s) - l(s - T2) jumps where the two copies of l start and end */
+    off1 = breakpoint_samples(T3, Ts);
+    on2 = breakpoint_samples(T2, Ts);
+    off2 = breakpoint_samples(T2 + T3, Ts);
     for (m = 0; m < Nc; ++m) {
         double s = (double)m * Ts;
         /* X = M(T2) * L: responses are differences of L's integrals over the window T2 */
         double x2 = (P(&L, 1, s) - P(&L, 1, s - T2)) / T2;
         double Fs = (P(&L, 2, s) - P(&L, 2, s - T2)) / T2;
         double Gs = (P(&L, 3, s) - P(&L, 3, s - T2)) / T2;
-        double x2d = (l_density(&L, s) - l_density(&L, s - T2)) / T2;
+        double x2d = (l_at_sample(&L, m, Ts, 0.0, 0.0, off1) -
+                      l_at_sample(&L, m, Ts, T2, on2, off2)) / T2;
         E[m] = (sms_real)(Gs - s + mu);
         F[m] = (sms_real)Fs;
         X2[m] = (sms_real)x2;

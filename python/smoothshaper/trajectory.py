@@ -145,9 +145,10 @@ class _Tail:
             return A * (e * (u / sg - 1 / sg ** 2) + 1 / sg ** 2)
         return A * (e * (u ** 2 / sg - 2 * u / sg ** 2 + 2 / sg ** 3) - 2 / sg ** 3)
 
-    def _density(self, s):
+    def _density(self, s, inside):
+        """l(s) where ``inside`` (the caller decides the support), else 0."""
         T = self.T3
-        inside = (s >= 0) & (s < T)
+        s = np.clip(s, 0.0, T)
         if self.kind == "rectangular":
             val = np.full_like(s, 1 / T)
         elif self.kind == "harmonic":
@@ -167,21 +168,38 @@ class _Tail:
             out = 0.5 * (s * s * M0 - 2 * s * M1 + self._M(2, u))
         return np.where(s > 0, out, 0.0)
 
-    def responses(self, s):
-        """Ramp G, step F, impulse x2 and its derivative x2' of the tail at s (>= 0)."""
+    def responses(self, m, Ts):
+        """Ramp G, step F, impulse x2 and its derivative x2' of the tail at s = m Ts.
+
+        x2' = (l(s) - l(s - T2)) / T2 jumps where a copy of l starts or ends; at a jump on a
+        sample instant it takes the right limit. Which side a sample is on is decided on the
+        integer sample index m against the breakpoint in samples (:func:`_breakpoint_samples`),
+        not on m Ts - T2, which rounds either way when the breakpoint is on the grid.
+        """
         T2 = self.T2
+        s = m * Ts
+        off1 = _breakpoint_samples(self.T3, Ts)
+        on2 = _breakpoint_samples(T2, Ts)
+        off2 = _breakpoint_samples(self.Tc, Ts)
         G = (self._P(3, s) - self._P(3, s - T2)) / T2
         G = np.where(s >= self.Tc, s - self.mu, G)
         F = np.where(s >= self.Tc, 1.0, (self._P(2, s) - self._P(2, s - T2)) / T2)
         x2 = np.where(s >= self.Tc, 0.0, (self._P(1, s) - self._P(1, s - T2)) / T2)
-        x2d = (self._density(s) - self._density(s - T2)) / T2
+        x2d = (self._density(s, m < off1) - self._density(s - T2, (m >= on2) & (m < off2))) / T2
         return G, F, x2, x2d
 
 
-def _tail_samples(Tc, Ts):
-    nu = Tc / Ts
+def _breakpoint_samples(b, Ts):
+    """A breakpoint b [s] in samples: round(b/Ts) if it passes the integer test of
+    docs/exact-mode.md (within 1e-9 * max(1, b/Ts)), else b/Ts."""
+    nu = b / Ts
     n = math.floor(nu + 0.5)
-    return int(n) if abs(nu - n) <= 1e-9 * max(nu, 1.0) else int(math.ceil(nu))
+    return float(n) if abs(nu - n) <= 1e-9 * max(nu, 1.0) else nu
+
+
+def _tail_samples(Tc, Ts):
+    nu = _breakpoint_samples(Tc, Ts)
+    return int(nu) if nu == int(nu) else int(math.ceil(nu))
 
 
 def generator_reference(targets, *, vmax, amax, jmax, Ts, profile="polynomial", wn=None,
@@ -192,6 +210,14 @@ def generator_reference(targets, *, vmax, amax, jmax, Ts, profile="polynomial", 
     samples, >= Nc samples apart, of at most vmax, segments of >= Nc samples ending exactly on
     the target) is replayed; the output is then the sum over all changes dV_i of
     dV_i * (ramp, step, impulse, impulse') responses of the tail at t - t_i.
+
+    Jumps of the jerk on a sample instant (the jerk response jumps at s = 0, T3, T2, T2 + T3
+    after each change): the output is the right limit, the value over [t_n, t_n + Ts) that a
+    zero-order hold applies next, as documented for ``sms_generator`` in trajectory.h. A
+    breakpoint b is on the grid when b/Ts passes the integer test of docs/exact-mode.md
+    (within 1e-9 * max(1, b/Ts) of an integer); the side is then decided on the integer sample
+    index, so stage lengths that are whole multiples of Ts give the right limit whatever the
+    rounding of T2, T3 and Ts (a change's last jump at T2 + T3 gives 0 there).
     """
     x = _targets("targets", targets)
     vmax = _design._positive("vmax", vmax)
@@ -251,8 +277,7 @@ def generator_reference(targets, *, vmax, amax, jmax, Ts, profile="polynomial", 
     out = np.zeros((n, 4))
     out[:, 0] = position
     for k0, dv in changes:
-        s = np.arange(n - k0) * Ts  # as the C tables: s = m Ts (decides sides of breakpoints)
-        G, F, x2, x2d = tail.responses(s)
+        G, F, x2, x2d = tail.responses(np.arange(n - k0), Ts)
         out[k0:, 0] += dv * G
         out[k0:, 1] += dv * F
         out[k0:, 2] += dv * x2

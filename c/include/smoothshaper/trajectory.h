@@ -136,8 +136,20 @@ typedef struct sms_generator_config {
  * the target at the stop, not accumulated) and q equals the target exactly Nc samples later.
  *
  * Outputs: q, v, a, j are the exact values and derivatives of the continuous piecewise
- * output at the sample instants (right limits where the jerk jumps), computed from tables of
- * the tail's step, ramp, impulse and impulse-derivative responses filled at init.
+ * output at the sample instants, computed from tables of the tail's step, ramp, impulse and
+ * impulse-derivative responses filled at init. q, q', q'' are continuous; the jerk
+ *   q'''(t) = dV x2'(s),  x2'(s) = (l(s) - l(s - T2)) / T2   (l: density of the last stage)
+ * jumps where a copy of l starts or ends, s = 0 (the change itself), T3, T2, T2 + T3 (with a
+ * rectangular or exponential last stage; a harmonic one is continuous there).
+ * Convention at a jump that falls on a sample instant: j is the right limit, the value that
+ * holds over [t_n, t_n + Ts) (what a zero-order hold applies next): at the change instant
+ * j = dV x2'(0+), at s = T2 + T3 j = 0. A breakpoint b is on the grid when b/Ts passes the
+ * integer test of docs/exact-mode.md (|b/Ts - round(b/Ts)| <= 1e-9 max(1, b/Ts)); the side
+ * is then decided by comparing the sample index with round(b/Ts), not by the sign of the
+ * rounded m Ts - b, so stage lengths that are whole multiples of Ts give the right limit
+ * whatever the rounding of T2, T3 and Ts. (Done when the tables are filled at init; the
+ * per-sample path is unchanged.) smoothshaper.trajectory.generator_reference follows the
+ * same convention independently.
  * Per-sample work O(1); a re-plan is a handful of operations (see tests/bench).
  * Rounding: bounds hold to a few ulps of vmax, amax, jmax.
  * Time: a single segment from rest of length D with D >= vmax Tc takes D/vmax + Tc rounded
