@@ -1,5 +1,6 @@
 /* Online generator: bounds under adversarial staircases (fixed seeds), exact arrival,
- * q/v/a/j consistency, time-optimal single moves, state save/load, bad input. */
+ * q/v/a/j consistency, the right-limit jerk at jumps on the grid, time-optimal single moves,
+ * state save/load, bad input. */
 #include <stdlib.h>
 #include "check.h"
 
@@ -132,6 +133,89 @@ static void test_consistency(void)
     CHECK(err <= 100 * SMS_TEST_REL_TOL * 4.0);
 }
 
+/* Density of the tail's last stage at s in [0, T3]: rectangular 1/T3, exponential
+ * sigma e^(sigma s) / (e^(sigma T3) - 1). */
+static double last_density(double s, double T3, double sigma)
+{
+    return sigma == 0.0 ? 1.0 / T3 : sigma * exp(sigma * s) / expm1(sigma * T3);
+}
+
+/* Jerk response of the tail at sample m after a unit change, from the closed form
+ * (l(s) - l(s - T2)) / T2 with the breakpoints n3 = T3/Ts, n2 = T2/Ts on the grid. right = 1:
+ * the right limit at a jump (the documented convention), 0: the left limit. */
+static double jerk_shape(long m, long n2, long n3, double Ts, double sigma, int right)
+{
+    double T2 = (double)n2 * Ts, T3 = (double)n3 * Ts, j = 0.0;
+    int first = right ? (m >= 0 && m < n3) : (m > 0 && m <= n3);
+    int second = right ? (m >= n2 && m < n2 + n3) : (m > n2 && m <= n2 + n3);
+    if (first)
+        j += last_density((double)m * Ts, T3, sigma);
+    if (second)
+        j -= last_density((double)(m - n2) * Ts, T3, sigma);
+    return j / T2;
+}
+
+/* Stage lengths whole multiples of Ts (the FMU validation's limits among them): a single move
+ * of D from rest changes r' by +V at tick 0 and by -V at tick K = ceil(D / (vmax Ts)); the jerk
+ * must equal the closed form at every tick, and at the jump ticks the right limit, which there
+ * differs from the left limit by a sizeable fraction of jmax (so the check can fail). */
+static void test_jerk_right_limit_on_grid(void)
+{
+    /* limits {vmax, amax, jmax} with T2 = vmax/amax = n2 Ts and T3 = amax/jmax = n3 Ts; amax,
+     * jmax 0: set as vmax / (n2 Ts), amax / (n3 Ts), which round so that T2 or T3 lands an ulp
+     * off n Ts (those jumps fell on the wrong side before the sample-index comparison) */
+    static const struct {
+        double vmax, amax, jmax, Ts;
+        long n2, n3;
+        int damped;
+    } cases[] = {
+        {1.0, 10.0, 200.0, 1e-3, 100, 50, 0},           /* validation.TRAJECTORY_LIMITS */
+        {1.0, 10.0, 100.0, 1e-3, 100, 100, 0},          /* T2 = T3: l ends as its copy starts */
+        {2.0, 8.0, 64.0, 1e-3, 250, 125, 0},
+        {250.0, 5000.0, 200000.0, 1e-4, 500, 250, 0},
+        {1.0, 10.0, 0.0, 1e-3, 100, 7, 0},
+        {1.0, 0.0, 0.0, 1e-4, 76, 25, 0},
+        {0.3, 30.0, 0.0, 1e-4, 100, 33, 0},
+        {1.0, 10.0, 400.0, 1e-3, 100, 50, 1},           /* exponential of one mode period */
+    };
+    size_t i;
+    for (i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        sms_generator g;
+        double Ts = cases[i].Ts, zeta = cases[i].damped ? 0.05 : 0.0;
+        long n2 = cases[i].n2, n3 = cases[i].n3, K, k, n_jumps = 0;
+        double amax = cases[i].amax > 0.0 ? cases[i].amax : cases[i].vmax / ((double)n2 * Ts);
+        double jmax = cases[i].jmax > 0.0 ? cases[i].jmax : amax / ((double)n3 * Ts);
+        /* mode period 2 pi / wd = n3 Ts */
+        double wn = cases[i].damped ? 2.0 * 3.14159265358979323846 / ((double)n3 * Ts) /
+                                          sqrt(1.0 - zeta * zeta) : 0.0;
+        double sigma = -zeta * wn, D = 0.7 * cases[i].vmax, V;
+        sms_generator_config c = make_config(cases[i].vmax, amax, jmax,
+                                             cases[i].damped ? SMS_PROFILE_DAMPED
+                                                             : SMS_PROFILE_POLYNOMIAL, wn, zeta);
+        sms_real out[4];
+        if (!build(&g, &c, Ts))
+            continue;
+        CHECK_CLOSE(g.T2, (double)n2 * Ts, 1e-12, 1.0);
+        CHECK_CLOSE(g.T3, (double)n3 * Ts, 1e-12, 1.0);
+        CHECK(g.n_tail == (size_t)(n2 + n3));
+        K = (long)ceil(D / (cases[i].vmax * Ts)); /* as the generator rounds */
+        CHECK(K >= n2 + n3);
+        V = D / ((double)K * Ts);
+        for (k = 0; k < K + n2 + n3 + 20; ++k) {
+            double right = V * jerk_shape(k, n2, n3, Ts, sigma, 1) -
+                           V * jerk_shape(k - K, n2, n3, Ts, sigma, 1);
+            double left = V * jerk_shape(k, n2, n3, Ts, sigma, 0) -
+                          V * jerk_shape(k - K, n2, n3, Ts, sigma, 0);
+            sms_generator_step(&g, (sms_real)D, out);
+            CHECK_CLOSE(out[3], right, SMS_TEST_REL_TOL, jmax);
+            if (fabs(right - left) > 0.1 * jmax)
+                ++n_jumps;
+        }
+        /* ticks 0, n3, n2, n2 + n3 after each change (n2 = n3 merges two) */
+        CHECK(n_jumps == (n2 == n3 ? 6 : 8));
+    }
+}
+
 /* A single long move from rest lasts D/vmax + Tc (on the grid) and reaches the bounds. */
 static void test_single_move(void)
 {
@@ -227,6 +311,7 @@ int main(void)
 {
     test_bounds_random();
     test_consistency();
+    test_jerk_right_limit_on_grid();
     test_single_move();
     test_state_and_bad_input();
     return check_summary("test_generator");
