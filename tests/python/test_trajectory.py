@@ -1,5 +1,8 @@
 """Online generator: never beyond v/a/j for random staircases (reversals, steps every few
-samples, tiny steps), exact arrival, C == NumPy reference, state round trip, errors."""
+samples, tiny steps), exact arrival, C == NumPy reference (q, v, a and j, also with every jerk
+jump on a sample instant, where both give the right limit), state round trip, errors."""
+import math
+
 import numpy as np
 import pytest
 from hypothesis import assume, given, strategies as st
@@ -116,3 +119,74 @@ def test_non_finite_targets_rejected():
     with pytest.raises(ValueError, match="^targets"):
         g.process([0.0, float("nan")])
     assert np.array_equal(g.save_state(), before)
+
+
+# Stage lengths that are whole multiples of Ts: every jump of the jerk falls on a sample
+# instant, where both implementations must report the right limit (trajectory.h). (vmax, amax,
+# jmax, Ts, n2, n3) with T2 = vmax/amax = n2 Ts, T3 = amax/jmax = n3 Ts; amax or jmax None:
+# computed as vmax/(n2 Ts), amax/(n3 Ts), which round T2 or T3 an ulp off n Ts.
+ON_GRID = [
+    (1.0, 10.0, 200.0, 1e-3, 100, 50),            # validation.TRAJECTORY_LIMITS
+    (1.0, 10.0, 100.0, 1e-3, 100, 100),           # T2 = T3
+    (2.0, 8.0, 64.0, 1e-3, 250, 125),
+    (1.0, 10.0, None, 1e-3, 100, 7),
+    (1.0, None, None, 1e-4, 76, 25),
+    (0.3, 30.0, None, 1e-4, 100, 33),
+]
+
+
+def on_grid_limits(vmax, amax, jmax, Ts, n2, n3):
+    amax = vmax / (n2 * Ts) if amax is None else amax
+    jmax = amax / (n3 * Ts) if jmax is None else jmax
+    return dict(vmax=vmax, amax=amax, jmax=jmax, Ts=Ts)
+
+
+def assert_c_equals_reference(kw, x):
+    g = tr.Generator(**kw)
+    y = g.process(x)
+    ref = tr.generator_reference(x, **kw)
+    scale = np.array([5.0 + kw["vmax"] * 0.2, kw["vmax"], kw["amax"], kw["jmax"]])
+    err = np.abs(y - ref) / scale
+    assert np.all(err <= 1e-11), (np.max(err, axis=0), np.flatnonzero(err[:, 3] > 1e-11))
+    return g, y, ref
+
+
+def test_validation_staircase_c_equals_reference_on_q_v_a_and_j():
+    from smoothshaper import validation
+    Ts = 1e-3
+    x = validation.target_staircase(validation.communication_points(step=Ts, stop_time=1.5))
+    g, _, _ = assert_c_equals_reference(dict(validation.TRAJECTORY_LIMITS, Ts=Ts), x)
+    assert (g.T2 / Ts, g.T3 / Ts) == pytest.approx((100, 50), rel=1e-12)
+
+
+def jerk_right_limit(k, K, V, n2, n3, Ts):
+    """Closed form of a single move of a polynomial tail: changes +V at tick 0 and -V at tick
+    K; after a change, (l(s) - l(s - T2)) / T2 with l = 1/T3 on [0, T3), right limits."""
+    def shape(m):
+        return (((m >= 0) & (m < n3)).astype(float) - ((m >= n2) & (m < n2 + n3))) / (n2 * n3 * Ts * Ts)
+    return V * (shape(k) - shape(k - K))
+
+
+@pytest.mark.parametrize("case", ON_GRID)
+def test_jerk_at_jumps_on_the_grid_is_the_right_limit(case):
+    kw = on_grid_limits(*case)
+    n2, n3, Ts = case[4], case[5], kw["Ts"]
+    D = 0.7 * kw["vmax"]
+    K = math.ceil(D / (kw["vmax"] * Ts))          # the segment length the generator rounds to
+    x = np.full(K + n2 + n3 + 20, D)
+    g, y, ref = assert_c_equals_reference(kw, x)
+    assert g.tail_samples == n2 + n3
+    k = np.arange(x.size)
+    V = D / (K * Ts)
+    expected = jerk_right_limit(k, K, V, n2, n3, Ts)
+    left = jerk_right_limit(k - 1, K, V, n2, n3, Ts)    # the value just before each tick
+    jumps = np.flatnonzero(np.abs(expected - left) > 0.1 * kw["jmax"])
+    assert set(jumps) == {0, n3, n2, n2 + n3, K, K + n3, K + n2, K + n2 + n3}
+    for out in (y, ref):
+        assert np.all(np.abs(out[:, 3] - expected) <= 1e-12 * kw["jmax"])
+
+
+@given(spec=steps, case=st.sampled_from(ON_GRID))
+def test_c_matches_numpy_reference_with_stage_lengths_on_the_grid(spec, case):
+    kw = on_grid_limits(*case)
+    assert_c_equals_reference(kw, staircase(spec, 2 * (case[4] + case[5])))
