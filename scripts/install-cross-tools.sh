@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
-# Optional: the mingw-w64 cross compiler (builds binaries/win64 into the FMUs) and wine64 (runs
-# that binary through fmpy's remoting in tests/python/test_fmu_win64.py). Debian/Ubuntu, as root.
-# Without them the FMUs carry linux64 only and the wine test is skipped with its reason.
+# Optional: the mingw-w64 cross compiler (builds binaries/win64 into the FMUs), wine64 (runs
+# that binary through fmpy's remoting in tests/python/test_fmu_win64.py) and the Cortex-M
+# toolchain with newlib (ctest cortex_m_compile). Debian/Ubuntu, as root. Without them the FMUs
+# carry linux64 only and those tests are skipped with their stated reason.
 set -euo pipefail
-if command -v x86_64-w64-mingw32-gcc >/dev/null && command -v wine64 >/dev/null; then
+if command -v x86_64-w64-mingw32-gcc >/dev/null && command -v wine64 >/dev/null \
+    && command -v arm-none-eabi-gcc >/dev/null; then
     exit 0
 fi
 if [ "$(id -u)" -ne 0 ] || ! command -v apt-get >/dev/null; then
@@ -12,4 +14,5 @@ if [ "$(id -u)" -ne 0 ] || ! command -v apt-get >/dev/null; then
 fi
 export DEBIAN_FRONTEND=noninteractive
 apt-get update -qq
-apt-get install -y -qq --no-install-recommends gcc-mingw-w64-x86-64 wine64 >/dev/null
+apt-get install -y -qq --no-install-recommends gcc-mingw-w64-x86-64 wine64 \
+    gcc-arm-none-eabi libnewlib-arm-none-eabi >/dev/null
