@@ -24,10 +24,11 @@ def trajectory_dir(fmus, tmp_path_factory):  # noqa: F811
 
 
 @pytest.mark.parametrize("step", [TS, 7 * TS, 2.5 * TS], ids=["Ts", "7Ts", "2.5Ts"])
-def test_q_v_a_equal_reference_and_bounds_hold(fmus, trajectory_dir, step):  # noqa: F811
-    t, target, y, ref, rel, _ = validation.compare_trajectory(
+def test_q_v_a_j_equal_reference_and_bounds_hold(fmus, trajectory_dir, step):  # noqa: F811
+    # the limits put every jerk jump on a tick: FMU and reference both give the right limit
+    t, target, y, ref, rel = validation.compare_trajectory(
         fmus["TrajectoryGenerator"], Ts=TS, step=step, stop_time=1.5)
-    assert np.all(rel[:3] <= validation.REL_TOL), rel
+    assert np.all(rel <= validation.REL_TOL), rel
     # SPEC 4.4: within the limits (a few ulps) and exactly on the last target once it holds.
     bounds = np.array([LIMITS["vmax"], LIMITS["amax"], LIMITS["jmax"]])
     assert np.all(np.max(np.abs(y[:, 1:]), axis=0) <= bounds * (1 + 1e-12))
