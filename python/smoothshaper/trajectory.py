@@ -181,10 +181,11 @@ class _Tail:
         off1 = _breakpoint_samples(self.T3, Ts)
         on2 = _breakpoint_samples(T2, Ts)
         off2 = _breakpoint_samples(self.Tc, Ts)
+        settled = m >= off2          # the change has passed through the whole tail
         G = (self._P(3, s) - self._P(3, s - T2)) / T2
-        G = np.where(s >= self.Tc, s - self.mu, G)
-        F = np.where(s >= self.Tc, 1.0, (self._P(2, s) - self._P(2, s - T2)) / T2)
-        x2 = np.where(s >= self.Tc, 0.0, (self._P(1, s) - self._P(1, s - T2)) / T2)
+        G = np.where(settled, s - self.mu, G)
+        F = np.where(settled, 1.0, (self._P(2, s) - self._P(2, s - T2)) / T2)
+        x2 = np.where(settled, 0.0, (self._P(1, s) - self._P(1, s - T2)) / T2)
         x2d = (self._density(s, m < off1) - self._density(s - T2, (m >= on2) & (m < off2))) / T2
         return G, F, x2, x2d
 
