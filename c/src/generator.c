@@ -238,6 +238,9 @@ sms_status sms_generator_init(sms_generator *g, const sms_generator_config *conf
     g->sigma = kl.sigma;
     g->n_tail = Nc;
     g->mean_delay = mu;
+    g->Ts_signal = (sms_real)Ts;
+    g->mean_delay_signal = (sms_real)mu;
+    g->step_distance = (sms_real)(config->vmax * Ts);
     g->table = buffer;
     sms_generator_reset(g, 0);
     return SMS_OK;
@@ -264,7 +267,7 @@ static void replan(sms_generator *g)
 {
     sms_real d = g->target - g->r;
     sms_real V = g->velocity;
-    double dist, samples, m;
+    sms_real samples, m; /* signal precision: no double arithmetic in a float build */
     sms_real Vn;
     if (V != 0 && (d == 0 || (d > 0) != (V > 0))) {
         /* past or at the target while moving: stop first (a change of |V| <= vmax) */
@@ -276,19 +279,18 @@ static void replan(sms_generator *g)
         g->age = 0;
         return;
     }
-    dist = d < 0 ? -(double)d : (double)d;
-    samples = dist / (g->vmax * g->Ts);
-    if (samples > GEN_MAX_SEGMENT) {
+    samples = (d < 0 ? -d : d) / g->step_distance;
+    if (samples > (sms_real)GEN_MAX_SEGMENT) {
         /* absurdly far: go part of the way at vmax; the next re-plan continues */
-        samples = GEN_MAX_SEGMENT;
-        d = (sms_real)(d > 0 ? GEN_MAX_SEGMENT * g->vmax * g->Ts : -GEN_MAX_SEGMENT * g->vmax * g->Ts);
+        samples = (sms_real)GEN_MAX_SEGMENT;
+        d = d > 0 ? samples * g->step_distance : -samples * g->step_distance;
     }
-    m = (double)(size_t)samples;
+    m = (sms_real)(size_t)samples;
     if (m < samples)
-        m += 1.0;
-    if (m < (double)g->n_tail)
-        m = (double)g->n_tail; /* T1 >= Tc: the stop is >= Nc samples after the start */
-    Vn = (sms_real)((double)d / (m * g->Ts));
+        m += 1;
+    if (m < (sms_real)g->n_tail)
+        m = (sms_real)g->n_tail; /* T1 >= Tc: the stop is >= Nc samples after the start */
+    Vn = d / (m * g->Ts_signal);
     g->start = g->r;
     g->goal = g->r + d;
     g->seg_len = (size_t)m;
@@ -327,7 +329,7 @@ void sms_generator_step(sms_generator *g, sms_real target, sms_real out[4])
                 g->age = 0;
             }
         } else {
-            g->r = g->start + g->velocity * (sms_real)((double)g->seg_pos * g->Ts);
+            g->r = g->start + g->velocity * ((sms_real)g->seg_pos * g->Ts_signal);
         }
     }
     /* 2. re-plan if the target moved and the last change has left the tail */
@@ -336,7 +338,7 @@ void sms_generator_step(sms_generator *g, sms_real target, sms_real out[4])
     /* 3. output: only the last change is still inside the tail (header argument) */
     s = g->age;
     dv = g->change;
-    out[0] = g->r - (sms_real)g->mean_delay * g->velocity + dv * E[s];
+    out[0] = g->r - g->mean_delay_signal * g->velocity + dv * E[s];
     out[1] = g->velocity - dv * (1 - F[s]);
     out[2] = dv * X2[s];
     out[3] = dv * X2d[s];

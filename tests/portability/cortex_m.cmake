@@ -120,12 +120,13 @@ foreach(group_name filters bspline generator)   # PROBE_GROUP 1, 2, 3
       set(libm_note "no libm")
     endif()
     if(precision STREQUAL "float")
-      # On an FPU without double precision, double arithmetic is libgcc soft-float: report it.
+      # On an FPU without double precision, double arithmetic is libgcc soft-float, tens of
+      # times slower: the float build's per-sample paths must not use it.
       string(REGEX MATCHALL " [TtWw] __aeabi_(d[a-z]+|f2d|[iu]2d|l2d|ul2d|d2[a-z]+)" soft_double "${elf_table}")
       list(LENGTH soft_double n_soft)
       if(n_soft GREATER 0)
-        message(STATUS "cortex-m4 float: the ${group_name} per-sample path links ${n_soft} "
-                       "soft-float double helpers (double arithmetic per sample or on re-plan)")
+        message(SEND_ERROR "cortex-m4 float: the ${group_name} per-sample path links ${n_soft} "
+                           "soft-float double helpers: ${soft_double}")
       else()
         message(STATUS "cortex-m4 float: the ${group_name} per-sample path is single precision only")
       endif()

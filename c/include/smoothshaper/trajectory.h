@@ -166,6 +166,9 @@ typedef struct sms_generator {
     double sigma;         /**< its sigma (exponential), else 0 */
     size_t n_tail;        /**< Nc: samples from a change until the tail has absorbed it */
     double mean_delay;    /**< mean of the tail's impulse response [s] */
+    sms_real Ts_signal;   /**< Ts and mean_delay in signal precision, so that the float */
+    sms_real mean_delay_signal; /**< build's per-sample path uses no double arithmetic */
+    sms_real step_distance; /**< vmax Ts: the farthest the first stage moves in one sample */
     sms_real *table;      /**< caller buffer: 4 (Nc + 1) reals: E, F, x2, x2' at s = m Ts */
     /* dynamic state */
     sms_real target;      /**< latest valid target */
