@@ -142,7 +142,14 @@ def _body(rows, disc) -> str:
     lines += [f"| {k.upper()} | {pe:.1e} | {pp:.2f} |" for k, pe, pp in disc]
     lines += ["", "Not covered: the three-hump EI shaper (wider still, in the same "
               "sources) is not one of the library's stages (SPEC 3.5 asks for EI and MZV at "
-              "least); ZVDD (0.48) is, as ZV^3."]
+              "least); ZVDD (0.48) is, as ZV^3.", "",
+              "Damped EI and two-hump EI: the library weights the undamped closed-form "
+              "amplitudes by K^m (K = exp(-zeta pi/sqrt(1-zeta^2)), the form 3-D printer "
+              "firmware uses), not Singhose's damped curve fit, which is only fitted for "
+              "zeta <= 0.3 and gives a negative amplitude beyond (A2 = -0.64 at zeta = 0.9, "
+              "V = 5 %). The K^m form keeps the humps and zeros on Re s = -zeta wn; its residual "
+              "at the damped mode is V divided by the sum of the K^m-weighted amplitudes, not "
+              "exactly V."]
     return "\n".join(lines)
 
 
