@@ -231,6 +231,17 @@ double sms_kin_peak_density(sms_kind kind, double T, double sigma)
     return peak_density(kind, T, sigma);
 }
 
+/* The solve both public designs share, with their capacity check. */
+static sms_status solve_into(double h, const double *limits, size_t n, sms_profile profile,
+                             double wn, double zeta, size_t capacity,
+                             double lengths[SMS_KINEMATIC_MAX_ORDER], sms_kin_last *last)
+{
+    sms_status st = sms_kin_solve(h, limits, n, profile, wn, zeta, lengths, last);
+    if (st != SMS_OK)
+        return st;
+    return capacity < n ? SMS_ERR_BUFFER_TOO_SMALL : SMS_OK;
+}
+
 sms_status sms_kinematic_design(double h, const double *limits, size_t n, sms_profile profile,
                                 double wn, double zeta, double *T, size_t capacity, size_t *count)
 {
@@ -240,11 +251,9 @@ sms_status sms_kinematic_design(double h, const double *limits, size_t n, sms_pr
     sms_status st;
     if (T == NULL || count == NULL)
         return SMS_ERR_NULL;
-    st = sms_kin_solve(h, limits, n, profile, wn, zeta, lengths, &last);
+    st = solve_into(h, limits, n, profile, wn, zeta, capacity, lengths, &last);
     if (st != SMS_OK)
         return st;
-    if (capacity < n)
-        return SMS_ERR_BUFFER_TOO_SMALL;
     for (i = 0; i < n; ++i)
         T[i] = lengths[i];
     *count = n;
@@ -261,11 +270,9 @@ sms_status sms_kinematic_configs(double h, const double *limits, size_t n, sms_p
     sms_status st;
     if (configs == NULL || count == NULL)
         return SMS_ERR_NULL;
-    st = sms_kin_solve(h, limits, n, profile, wn, zeta, lengths, &last);
+    st = solve_into(h, limits, n, profile, wn, zeta, capacity, lengths, &last);
     if (st != SMS_OK)
         return st;
-    if (capacity < n)
-        return SMS_ERR_BUFFER_TOO_SMALL;
     for (i = 0; i < n; ++i) {
         configs[i] = sms_stage_config_default(SMS_RECTANGULAR);
         configs[i].T = lengths[i];
