@@ -12,6 +12,7 @@
 #include <math.h>
 #include <time.h>
 #include "smoothshaper/smoothshaper.h"
+#include "smoother_fixtures.h"
 
 #ifdef SMS_USE_FLOAT
 #define PRECISION "float"
@@ -27,10 +28,7 @@ static double taps[MAX_LEN], recent[MAX_LEN];
 static unsigned long long rng = 88172645463325252ull;
 static double noise(void)
 {
-    rng ^= rng << 13;
-    rng ^= rng >> 7;
-    rng ^= rng << 17;
-    return (double)(rng >> 11) / 4503599627370496.0 - 1.0;
+    return 2.0 * xorshift_uniform(&rng) - 1.0; /* [-1, 1) */
 }
 
 static int white_input = 0;

@@ -4,6 +4,7 @@
  * length. (tests/bench/drift_bench.c prints the figures for up to 1e9 samples.) */
 #include <float.h>
 #include "check.h"
+#include "smoother_fixtures.h"
 
 #ifdef SMS_USE_FLOAT
 #define REAL_EPS FLT_EPSILON
@@ -21,10 +22,7 @@ static double taps[MAX_LEN], recent[MAX_LEN];
 static unsigned long long rng = 88172645463325252ull;
 static double noise(void)
 {
-    rng ^= rng << 13;
-    rng ^= rng >> 7;
-    rng ^= rng << 17;
-    return (double)(rng >> 11) / 4503599627370496.0 - 1.0; /* [-1, 1) */
+    return 2.0 * xorshift_uniform(&rng) - 1.0; /* [-1, 1) */
 }
 
 static void run_case(sms_kind kind, double T, double sigma)

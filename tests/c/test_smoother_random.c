@@ -4,6 +4,7 @@
  * timing off the grid leaves |H(z*)| <= 1e-9 at the pinned zero (relative to sum |h[i] z*^-i|,
  * which is 1 when undamped). */
 #include "check.h"
+#include "smoother_fixtures.h"
 
 #define PI 3.14159265358979323846
 #define MAX_LEN 5100
@@ -15,15 +16,7 @@ static double taps[MAX_LEN];
 static unsigned long long rng = 0x9E3779B97F4A7C15ull;
 static double uniform01(void)
 {
-    rng ^= rng << 13;
-    rng ^= rng >> 7;
-    rng ^= rng << 17;
-    return (double)(rng >> 11) / 9007199254740992.0;
-}
-
-static int is_harmonic(sms_kind kind)
-{
-    return kind == SMS_HARMONIC || kind == SMS_DAMPED_HARMONIC;
+    return xorshift_uniform(&rng);
 }
 
 /* |H(e^{s* Ts})| at the pinned zero relative to sum |h[i] z*^-i| (the size of its terms; 1

@@ -3,27 +3,13 @@
  * configuration rejected with its status and the instance untouched. */
 #include <string.h>
 #include "check.h"
+#include "smoother_fixtures.h"
 
 #define MAX_LEN 4096
 
 static sms_real ring_a[MAX_LEN], ring_b[MAX_LEN];
 static double taps[MAX_LEN], expect[MAX_LEN];
 static sms_real sig_in[3 * MAX_LEN], sig_out[3 * MAX_LEN], sig_out2[3 * MAX_LEN];
-
-static sms_stage_config smoother(sms_kind kind, double T, double sigma, unsigned k, sms_timing timing)
-{
-    sms_stage_config c = sms_stage_config_default(kind);
-    c.T = T;
-    c.sigma = sigma;
-    c.k = k;
-    c.timing = timing;
-    return c;
-}
-
-static int is_harmonic(sms_kind kind)
-{
-    return kind == SMS_HARMONIC || kind == SMS_DAMPED_HARMONIC;
-}
 
 /* Deterministic uniform numbers in [-1, 1). */
 static unsigned long lcg_state = 12345u;

@@ -2,27 +2,13 @@
  * responses against closed forms, exact-timing zeros, paper timing. (Streams, state, invalid
  * configurations: test_smoother_stream.c.) Tolerances: SMS_TEST_REL_TOL (check.h). */
 #include "check.h"
+#include "smoother_fixtures.h"
 
 #define PI 3.14159265358979323846
 #define MAX_LEN 12000
 
 static sms_real ring_a[MAX_LEN];
 static double taps[MAX_LEN], expect[MAX_LEN];
-
-static sms_stage_config smoother(sms_kind kind, double T, double sigma, unsigned k, sms_timing timing)
-{
-    sms_stage_config c = sms_stage_config_default(kind);
-    c.T = T;
-    c.sigma = sigma;
-    c.k = k;
-    c.timing = timing;
-    return c;
-}
-
-static int is_harmonic(sms_kind kind)
-{
-    return kind == SMS_HARMONIC || kind == SMS_DAMPED_HARMONIC;
-}
 
 static int is_damped(sms_kind kind)
 {
