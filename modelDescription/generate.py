@@ -43,8 +43,8 @@ UNITS = {  # unit name -> SI base-unit exponents
 
 KINDS = ("rectangular", "harmonic", "damped_harmonic", "exponential", "zv", "zvd", "zvdd", "zvn",
          "ei", "ei2", "mzv", "notch_tustin", "notch_matched")  # == sms_kind values 0..12
-KIND_TEXT = ("moving average M (SPEC 3.1)", "sinusoidal smoother S (SPEC 3.2)",
-             "damped sinusoidal smoother S_sigma (SPEC 3.3)", "exponential smoother M_sigma (SPEC 3.4)",
+KIND_TEXT = ("moving average M", "sinusoidal smoother S",
+             "damped sinusoidal smoother S_sigma", "exponential smoother M_sigma",
              "ZV input shaper", "ZVD input shaper", "ZVDD input shaper", "ZV^n input shaper (order n)",
              "extra-insensitive shaper", "two-hump extra-insensitive shaper", "modified ZV shaper",
              "notch, Tustin pre-warped at wn", "notch, pole-zero matched")

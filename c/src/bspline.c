@@ -1,4 +1,4 @@
-/* B-spline interpolating filters (SPEC 3.7, seed 003): p rectangular stages per axis, control
+/* B-spline filters (Biagiotti & Melchiorri 2011b): p rectangular stages per axis, control
  * points from via-points by a banded solve (no pivoting: the collocation matrix of a B-spline
  * basis is totally positive, for which elimination without pivoting is stable). */
 #include <math.h>

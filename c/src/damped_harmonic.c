@@ -1,4 +1,4 @@
-/* Damped harmonic smoother S_sigma, SPEC 3.3 (seed 000 eq. 10, 14, 17).
+/* Damped harmonic smoother S_sigma (Biagiotti et al. 2020, eq. 10, 14, 17).
  *
  * Continuous impulse response c e^{sigma t} sin(pi t/T) on [0, T); integer N, r = e^{sigma Ts}:
  * S_sigma(z) = K (z^-1 + r^N z^-(N+1)) / (1 - 2 r cos(pi/N) z^-1 + r^2 z^-2),

@@ -1,4 +1,4 @@
-/* A stage that cancels a given vibration mode (SPEC 4.2). Mirrors for_mode in
+/* A stage that cancels a given vibration mode (docs/design.md). Mirrors for_mode in
  * python/smoothshaper/stages.py. */
 #include <math.h>
 #include "smoothshaper/design.h"

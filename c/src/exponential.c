@@ -1,4 +1,4 @@
-/* Exponential (damped rectangular) smoother M_sigma, SPEC 3.4 (seed 000 ref. 20, seed 002).
+/* Exponential (damped rectangular) smoother M_sigma (docs/filters.md; Béarée 2014).
  *
  * Continuous impulse response sigma e^{sigma t}/(e^{sigma T} - 1) on [0, T); integer N,
  * r = e^{sigma Ts}: taps r^i / sum, i = 0..N-1, recursive form (1 - r^N z^-N)/(1 - r z^-1)

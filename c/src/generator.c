@@ -1,4 +1,4 @@
-/* Online multi-point generator (SPEC 4.4). The bound argument is in trajectory.h; here:
+/* Online multi-point generator (docs/design.md). The bound argument is in trajectory.h; here:
  * init designs the tail and tabulates its responses (libm allowed), step is O(1) without libm. */
 #include <math.h>
 #include "smoothshaper/trajectory.h"

@@ -1,4 +1,4 @@
-/* Mode identification (SPEC 4.3): from two peaks, and from a sampled free decay by a
+/* Mode identification (docs/design.md): from two peaks, and from a sampled free decay by a
  * least-squares fit of c + e^{sigma t}(A cos wd t + B sin wd t) over the whole record. */
 #include <math.h>
 #include "smoothshaper/design.h"

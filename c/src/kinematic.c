@@ -1,4 +1,4 @@
-/* Kinematic design (SPEC 4.1, 4.2 mixed): lengths of the shortest rest-to-rest chain within
+/* Kinematic design (docs/design.md): lengths of the shortest rest-to-rest chain within
  * n derivative bounds. Design-time code: libm is allowed here (not in any per-sample path). */
 #include <math.h>
 #include "smoothshaper/trajectory.h"
@@ -189,7 +189,7 @@ sms_status sms_kin_solve(double h, const double *limits, size_t n, sms_profile p
         }
         if (profile == SMS_PROFILE_TRIGONOMETRIC) {
             Tm = 3.0 * 3.14159265358979323846 / wd;
-            step = 2u; /* odd multiples only (SPEC 3.2) */
+            step = 2u; /* odd multiples only (docs/errata.md) */
         } else {
             Tm = 2.0 * 3.14159265358979323846 / wd;
         }

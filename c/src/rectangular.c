@@ -1,4 +1,4 @@
-/* Rectangular smoother M (moving average), SPEC 3.1.
+/* Rectangular smoother M (moving average), docs/filters.md.
  *
  * Continuous impulse response 1/T on [0, T); integer N: taps 1/N at delays 0..N-1,
  * M(z) = (1/N)(1 - z^-N)/(1 - z^-1). Zeros at w = 2 pi k/T for every k >= 1, so exact timing

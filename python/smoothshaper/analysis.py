@@ -1,7 +1,7 @@
 """Frequency-domain analysis of stages and chains: responses, residual vibration, PRV,
 insensitivity and trajectory spectra. Pure NumPy/SciPy on top of ``smoothshaper.reference``.
 
-Definitions (SPEC 2 and 6):
+Definitions (docs/analysis.md):
 
 * chain transfer ``H(s) = prod_k H_k(s)``; continuous filters when ``Ts`` is None, else the
   discrete filters evaluated at ``z = e^{s Ts}`` (``frequency_response``: ``s = j w``);

@@ -1,20 +1,15 @@
-"""The ``smoothshaper`` command line: design, analyze, identify, validate, report.
+"""The smoothshaper command line: design, analyze, identify, validate, report.
 
-Stage spec syntax (``--stage``, repeatable, stages chain in the given order)::
+A stage is written KIND:key=value,key=value (--stage, repeatable; stages chain in the given
+order). KIND is one of rectangular, harmonic, damped_harmonic, exponential, zv, zvd, zvdd, zvn,
+ei, ei2, mzv, notch_tustin, notch_matched ('notch' means notch_matched). Keys: T [s],
+sigma [1/s], k, wn [rad/s], zeta, order, tolerance, pole_zeta (or notch_pole_zeta), timing
+(exact or paper). A smoother given wn (and optionally zeta, k) instead of T is designed for
+that mode. Examples: harmonic:T=0.05, zv:wn=100,zeta=0.05, damped_harmonic:wn=125,zeta=0.12.
 
-    KIND:key=value,key=value
-
-KIND is a stage kind (rectangular, harmonic, damped_harmonic, exponential, zv, zvd, zvdd, zvn,
-ei, ei2, mzv, notch_tustin, notch_matched; ``notch`` means notch_matched). Keys are the
-:class:`smoothshaper.stages.Stage` fields: T [s], sigma [1/s], k, wn [rad/s], zeta, order,
-tolerance, pole_zeta (or notch_pole_zeta), timing (exact|paper). A smoother given ``wn``
-(and optionally ``zeta``, ``k``) instead of ``T`` is designed for that mode (SPEC 4.2).
-Examples: ``harmonic:T=0.05``, ``zv:wn=100,zeta=0.05``, ``damped_harmonic:wn=125,zeta=0.12``.
-
-Trajectory forms (issue 5): ``design generator --via 0,20,40,100,60,0 --vmax V --amax A
---jmax J --Ts TS`` runs via-points through the online generator; ``design bspline --via
-"x,y;x,y;..." (--T T | --wn WN) --Ts TS`` interpolates them with a B-spline
-(see smoothshaper/cli_trajectory.py).
+Trajectory forms: 'design generator' runs via-points through the online generator, 'design
+bspline' interpolates them with a B-spline (see 'smoothshaper design generator --help' and
+'smoothshaper design bspline --help').
 
 Exit codes: 0 success, 1 invalid input or failed run (one line on stderr), 2 bad usage,
 3 the subcommand's module is not available in this installation.
@@ -443,9 +438,11 @@ def read_record(path: str, column: str | None, time_column: str | None,
 
 
 def first_two_peaks(x: np.ndarray, Ts: float) -> tuple[float, float, float, float]:
-    """(t1, p1, t2, p2): the first two successive positive maxima of x, each refined by a
-    parabola through the sample and its neighbours (peaks of a damped sinusoid are exactly
-    one damped period apart, so their spacing and ratio give wd and sigma)."""
+    """(t1, p1, t2, p2): the first two successive positive maxima of x about its final value
+    (the mean of the record's last tenth, so a settled decay with an offset works), each
+    refined by a parabola through the sample and its neighbours (peaks of a damped sinusoid
+    are exactly one damped period apart, so their spacing and ratio give wd and sigma)."""
+    x = x - np.mean(x[-max(1, x.size // 10):])
     i = np.flatnonzero((x[1:-1] > x[:-2]) & (x[1:-1] >= x[2:]) & (x[1:-1] > 0)) + 1
     if i.size < 2:
         raise CliError("the record has fewer than two positive peaks: cannot use --method peaks")
@@ -466,13 +463,13 @@ def cmd_identify(args) -> int:
     if args.method == "peaks":
         t1, p1, t2, p2 = first_two_peaks(x, Ts)
         mode = identify_from_peaks(t1=t1, p1=p1, t2=t2, p2=p2)
-        print(f"peaks: ({t1:.6g} s, {p1:.6g}) and ({t2:.6g} s, {p2:.6g})")
+        print(f"peaks about the final value: ({t1:.6g} s, {p1:.6g}) and ({t2:.6g} s, {p2:.6g})")
     else:
         mode = identify_from_record(x, Ts=Ts)
     print(f"record: {x.size} samples at Ts = {Ts:.6g} s")
     print(format_table(["wn [rad/s]", "zeta", "wd [rad/s]", "sigma [1/s]", "Td [s]"],
                        [[mode.wn, mode.zeta, mode.wd, mode.sigma, 2 * math.pi / mode.wd]]))
-    print("suggested stages (SPEC 4.2): "
+    print("suggested stages: "
           f"damped_harmonic:wn={mode.wn:.6g},zeta={mode.zeta:.6g}  "
           f"zv:wn={mode.wn:.6g},zeta={mode.zeta:.6g}")
     return 0
@@ -514,7 +511,7 @@ def cmd_report(args) -> int:
 # -- parser --------------------------------------------------------------------------------
 
 def _add_chain_options(p, *, with_kind: bool = True) -> None:
-    p.add_argument("--stage", action="append", metavar="SPEC",
+    p.add_argument("--stage", action="append", metavar="STAGE",
                    help="a stage KIND:key=value,... (repeatable; see 'smoothshaper --help')")
     if with_kind:
         p.add_argument("--kind", action="append", choices=_stages.KINDS,
@@ -545,7 +542,7 @@ def build_parser() -> argparse.ArgumentParser:
                        "interpolates them; see 'smoothshaper design FORM --help'.")
     _add_chain_options(p)
     p.add_argument("--Ts", type=float, help="sample period [s]: also print lengths in samples")
-    g = p.add_argument_group("kinematic limits (SPEC 4.1; needs smoothshaper.design)")
+    g = p.add_argument_group("kinematic limits")
     g.add_argument("--h", type=float, help="displacement")
     g.add_argument("--vmax", type=float, help="velocity limit")
     g.add_argument("--amax", type=float, help="acceleration limit")
@@ -582,8 +579,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--start", type=float, help="ignore samples before this time [s]")
     p.add_argument("--method", choices=("record", "peaks"), default="record",
                    help="record: least-squares fit of the whole decay, any constant offset "
-                   "included (default); peaks: two successive peaks (SPEC 4.3), the signal "
-                   "measured about its final value")
+                   "included (default); peaks: two successive peaks, measured about the "
+                   "final value (the mean of the record's last tenth)")
     p.set_defaults(func=cmd_identify)
 
     for name, func, what in (("validate", cmd_validate, "build and validate the FMUs with fmpy"),

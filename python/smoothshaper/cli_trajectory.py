@@ -1,4 +1,4 @@
-"""``smoothshaper design generator`` and ``smoothshaper design bspline`` (issue 5's CLI forms).
+"""``smoothshaper design generator`` and ``smoothshaper design bspline``.
 
 * ``generator``: a staircase of via-points through the C-backed online generator
   (:class:`smoothshaper.trajectory.Generator`); each via-point is held until the output rests
@@ -338,7 +338,7 @@ def add_design_forms(design_parser, parser_class) -> None:
                                          parser_class=_hinting(parser_class))
     forms.required = False
 
-    p = forms.add_parser("generator", help="via-points through the online generator (SPEC 4.4)",
+    p = forms.add_parser("generator", help="via-points through the online generator",
                          description="Run a staircase of via-points through the C-backed "
                          "online generator: each via-point is held until the output rests on "
                          "it (or for --hold seconds). The first via-point is the start (rest). "
@@ -361,7 +361,7 @@ def add_design_forms(design_parser, parser_class) -> None:
     p.add_argument("--csv", metavar="CSV", help="write time, target, q, v, a, j to this CSV")
     p.set_defaults(func=cmd_generator)
 
-    p = forms.add_parser("bspline", help="B-spline through via-points (SPEC 3.7, seed 003)",
+    p = forms.add_parser("bspline", help="B-spline through via-points",
                          description="Interpolate via-points with the C-backed uniform "
                          "B-spline filter. Negative values: write --via=\"-1,2;3,4\".")
     p.add_argument("--via", required=True, metavar="X,Y,Z;...",

@@ -1,4 +1,4 @@
-"""Kinematic design (SPEC 4.1, 4.2 mixed): the shortest rest-to-rest chain within bounds.
+"""Kinematic design (docs/design.md): the shortest rest-to-rest chain within bounds.
 
 ``kinematic(h=, vmax=, amax=, jmax=, higher=(), profile=, wn=, zeta=)`` calls the C design
 (``sms_kinematic_configs``) and returns :class:`~smoothshaper.stages.Stage` objects whose
@@ -11,7 +11,7 @@ Bounds: ``vmax`` on |q'|, ``amax`` on |q''|, ``jmax`` on |q'''|, then ``higher``
 
 * ``"polynomial"``: rectangular stages (trapezoid, double-S, ...);
 * ``"trigonometric"``: the last stage harmonic (modified trapezoid / double-S, seed 000 eq. 6);
-* ``"damped"``: the last stage exponential, tuned to the damped mode (Damped-Jerk, SPEC 3.4).
+* ``"damped"``: the last stage exponential, tuned to the damped mode (Damped-Jerk, Béarée 2014).
 
 With ``wn`` given, the last stage is tuned to the mode (length ``k * 2*pi/wd``, harmonic
 ``k * 3*pi/wd`` with k odd) and k is the multiple giving the shortest trajectory within every

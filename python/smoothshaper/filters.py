@@ -403,7 +403,7 @@ def _mode(m) -> Mode:
 
 
 def identify_from_peaks(*, t1: float, p1: float, t2: float, p2: float) -> Mode:
-    """Mode from two successive peaks (t1, p1), (t2, p2) of a free decay (SPEC 4.3):
+    """Mode from two successive peaks (t1, p1), (t2, p2) of a free decay (Biagiotti et al. 2020, eq. 16):
     ``T0 = t2 - t1``, ``sigma = ln(p2/p1)/T0``, ``wd = 2 pi/T0``. Needs t2 > t1 and
     p1 > p2 > 0 (measured about the final value)."""
     values = {n: _finite(n, v) for n, v in (("t1", t1), ("p1", p1), ("t2", t2), ("p2", p2))}

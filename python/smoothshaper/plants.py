@@ -1,4 +1,4 @@
-"""Validation plants of SPEC 6 as continuous state space, and their exact ZOH simulation.
+"""Validation plants (docs/analysis.md) as continuous state space, and their exact ZOH simulation.
 
 Models (input: commanded position ``q_ref``):
 

@@ -91,22 +91,22 @@ class Stage:
 
 
 def rectangular(*, T: float, k: int = 1, timing: str = "exact") -> Stage:
-    """Moving average of duration ``T`` [s] (SPEC 3.1)."""
+    """Moving average of duration ``T`` [s] (docs/filters.md)."""
     return Stage("rectangular", T=T, k=k, timing=timing)
 
 
 def harmonic(*, T: float, k: int = 1, timing: str = "exact") -> Stage:
-    """Sinusoidal smoother of duration ``T`` [s] (SPEC 3.2)."""
+    """Sinusoidal smoother of duration ``T`` [s] (docs/filters.md)."""
     return Stage("harmonic", T=T, k=k, timing=timing)
 
 
 def damped_harmonic(*, T: float, sigma: float, k: int = 1, timing: str = "exact") -> Stage:
-    """Damped sinusoidal smoother, ``sigma`` <= 0 [1/s] (SPEC 3.3)."""
+    """Damped sinusoidal smoother, ``sigma`` <= 0 [1/s] (docs/filters.md)."""
     return Stage("damped_harmonic", T=T, sigma=sigma, k=k, timing=timing)
 
 
 def exponential(*, T: float, sigma: float, k: int = 1, timing: str = "exact") -> Stage:
-    """Exponential (damped rectangular) smoother (SPEC 3.4)."""
+    """Exponential (damped rectangular) smoother (docs/filters.md)."""
     return Stage("exponential", T=T, sigma=sigma, k=k, timing=timing)
 
 
@@ -120,7 +120,7 @@ def shaper(kind: str, *, wn: float, zeta: float = 0.0, order: int = 1,
 
 def notch(*, wn: float, zeta: float = 0.0, pole_zeta: float = 0.7,
           discretization: str = "matched") -> Stage:
-    """Notch at ``wn`` [rad/s]: zero damping ``zeta``, pole damping ``pole_zeta`` (SPEC 3.6).
+    """Notch at ``wn`` [rad/s]: zero damping ``zeta``, pole damping ``pole_zeta`` (docs/filters.md).
     ``discretization`` is 'matched' (pole-zero matching) or 'tustin' (pre-warped at wn)."""
     if discretization not in ("matched", "tustin"):
         raise ValueError(f"discretization must be 'matched' or 'tustin', got {discretization!r}")
@@ -128,7 +128,7 @@ def notch(*, wn: float, zeta: float = 0.0, pole_zeta: float = 0.7,
 
 
 def for_mode(kind: str, *, wn: float, zeta: float = 0.0, k: int = 1) -> Stage:
-    """A stage of ``kind`` that cancels the mode (wn [rad/s], zeta), per SPEC 4.2.
+    """A stage of ``kind`` that cancels the mode (wn [rad/s], zeta), per docs/design.md.
 
     Mirrors ``sms_design_for_mode``: rectangular T = k 2pi/wd; harmonic T = k 3pi/wd (k odd);
     damped harmonic sigma = -zeta wn, T = k 3pi/wd (k odd); exponential sigma = -zeta wn,

@@ -1,12 +1,12 @@
 """Online multi-point generator and B-spline interpolation: C-backed classes and NumPy references.
 
-* :class:`Generator` wraps ``sms_generator`` (SPEC 4.4): a staircase of targets in, position,
+* :class:`Generator` wraps ``sms_generator`` (docs/design.md): a staircase of targets in, position,
   velocity, acceleration and jerk out, never beyond ``vmax``, ``amax``, ``jmax`` (the argument
   is in ``c/include/smoothshaper/trajectory.h``); :func:`generator_reference` recomputes the
   same trajectory independently (it sums the tail response of *every* change of the first
   stage's velocity, instead of relying on only the last one being active, and evaluates the
   tail in closed form instead of tables).
-* :class:`BSpline` wraps ``sms_bspline`` (SPEC 3.7, seed 003); :func:`bspline_reference` is
+* :class:`BSpline` wraps ``sms_bspline`` (Biagiotti & Melchiorri 2011b); :func:`bspline_reference` is
   the NumPy version (dense solve, ``np.convolve``). :func:`bspline_period` picks the knot
   spacing from the modes, ``T >= 2*pi/min(wn)``.
 """
@@ -207,7 +207,7 @@ def generator_reference(targets, *, vmax, amax, jmax, Ts, profile="polynomial", 
                         zeta=0.0, position=0.0) -> np.ndarray:
     """NumPy reference of :class:`Generator`: ``(n, 4)`` array of q, q', q'', q'''.
 
-    The schedule of the first stage (SPEC 4.4 scheme of trajectory.h: velocity changes on
+    The schedule of the first stage (scheme of trajectory.h: velocity changes on
     samples, >= Nc samples apart, of at most vmax, segments of >= Nc samples ending exactly on
     the target) is replayed; the output is then the sum over all changes dV_i of
     dV_i * (ramp, step, impulse, impulse') responses of the tail at t - t_i.
@@ -453,7 +453,7 @@ def bspline_reference(via, *, degree: int, T: float, Ts: float):
 
 
 def bspline_period(*, wn, Ts: float) -> float:
-    """Shortest knot spacing ``N Ts >= 2 pi / min(wn)`` (SPEC 3.7; seed 003 sec. IV)."""
+    """Shortest knot spacing ``N Ts >= 2 pi / min(wn)`` (Biagiotti & Melchiorri 2011b, sec. IV)."""
     w = np.atleast_1d(np.asarray(wn, dtype=np.float64))
     if w.size == 0 or not np.all(np.isfinite(w)) or np.any(w <= 0):
         raise ValueError(f"wn must be one or more finite frequencies > 0 rad/s, got {wn!r}")

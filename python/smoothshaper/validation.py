@@ -31,7 +31,7 @@ import numpy as np
 from . import reference
 from .stages import damped_harmonic, exponential, for_mode, harmonic, notch, rectangular, shaper
 
-#: Relative error accepted between FMU and reference (SPEC 5.1: 1e-12 in double).
+#: Relative error accepted between FMU and reference (docs/numerics.md: 1e-12 in double).
 REL_TOL = 1e-12
 #: Fraction of Ts by which a tick may follow the end of a step and still belong to it (fmu/).
 TICK_SLACK = 1e-6

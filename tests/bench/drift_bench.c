@@ -1,4 +1,4 @@
-/* Drift benchmark (SPEC 5.2): runs each smoother for many samples of 1e3 + uniform noise and
+/* Drift benchmark (docs/numerics.md): runs each smoother for many samples of 1e3 + uniform noise and
  * prints, at decade checkpoints, the max |error| against the direct convolution with the
  * taps (over a window of max(1e4, 4L) samples after the checkpoint) and the running max.
  *
@@ -41,7 +41,7 @@ static void run(sms_kind kind, double T, double sigma, double total)
     size_t L, head = 0, i, window;
     double n, checkpoint = 1e4, window_end = -1.0, worst = 0.0, worst_window = 0.0;
     double naive_window = 0.0;
-    /* For an integer harmonic: the seed's recursion of S(z) (SPEC 3.2, 5.2) side by side. */
+    /* For an integer harmonic: the seed's recursion of S(z) (docs/numerics.md) side by side. */
     int naive = 0;
     size_t naive_len = 0, naive_head = 0;
     sms_real naive_a = 0, naive_b = 0, naive_y1 = 0, naive_y2 = 0, naive_y = 0;

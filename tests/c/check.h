@@ -7,10 +7,10 @@
 #include "smoothshaper/smoothshaper.h"
 
 #ifdef SMS_USE_FLOAT
-#define SMS_TEST_REL_TOL 1e-5   /* float: SPEC 5.1 */
+#define SMS_TEST_REL_TOL 1e-5   /* float: docs/numerics.md */
 #define SMS_TEST_PRECISION "float"
 #else
-#define SMS_TEST_REL_TOL 1e-12  /* double: SPEC 5.1 */
+#define SMS_TEST_REL_TOL 1e-12  /* double: docs/numerics.md */
 #define SMS_TEST_PRECISION "double"
 #endif
 

@@ -141,7 +141,7 @@ static void test_even_k_leaves_residual(void)
     c.timing = SMS_TIMING_PAPER;
     CHECK_STATUS(sms_smoother_length(&c, Ts, &L), SMS_OK);
     CHECK_STATUS(sms_smoother_taps(&c, Ts, taps, MAX_LEN), SMS_OK);
-    /* SPEC 3.2 quotes about 2.9 % */
+    /* docs/errata.md quotes about 2.9 % */
     CHECK(cabs(transfer(taps, L, cexp(I * wn * Ts))) > 0.02);
     CHECK(cabs(transfer(taps, L, cexp(I * wn * Ts))) < 0.04);
 }

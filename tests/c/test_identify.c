@@ -50,7 +50,7 @@ static void test_peaks(void)
             CHECK_CLOSE(m.wd, wd, 1e-12, wd);
             CHECK_CLOSE(m.wn, sqrt(sigma * sigma + wd * wd), 1e-12, wd);
             CHECK_CLOSE(m.zeta, -sigma / m.wn, 1e-12, 1.0);
-            {   /* SPEC 4.3: then T = 1.5 T0 for the damped harmonic smoother */
+            {   /* Biagiotti et al. 2020 eq. 16: T = 1.5 T0 for the damped harmonic smoother */
                 sms_stage_config c;
                 CHECK_STATUS(sms_design_for_mode(SMS_DAMPED_HARMONIC, m.wn, m.zeta, 1, &c), SMS_OK);
                 CHECK_CLOSE(c.T, 1.5 * (t2 - t1), 1e-12, c.T);

@@ -91,7 +91,7 @@ static void test_zvn_design(void)
             CHECK_STATUS(sms_shaper_impulses(&c, A, t, SMS_SHAPER_MAX_IMPULSES, &count), SMS_OK);
             CHECK(count == n + 1u);
             for (m = 0; m < count; ++m) {
-                /* A_m = C(n,m) K^m / (1+K)^n at m Td/2 (SPEC 3.5) */
+                /* A_m = C(n,m) K^m / (1+K)^n at m Td/2 (docs/filters.md) */
                 CHECK_CLOSE(A[m], binom * pow(K, (double)m) / pow(1 + K, (double)n), 1e-14, 1.0);
                 CHECK_CLOSE(t[m], 0.5 * Td * (double)m, 1e-15, Td);
                 binom = binom * (double)(n - m) / (double)(m + 1);

@@ -1,4 +1,4 @@
-/* Drift (SPEC 5.2): 1e7 samples of 1e3 + uniform noise through every recursive smoother.
+/* Drift (docs/numerics.md): 1e7 samples of 1e3 + uniform noise through every recursive smoother.
  * The error against the direct convolution with the taps over the last 1e4 samples must be
  * no larger than over the 1e4 after the first 1e4 (within 2x): rounding does not accumulate with run
  * length. (tests/bench/drift_bench.c prints the figures for up to 1e9 samples.) */

@@ -15,7 +15,7 @@ static int is_damped(sms_kind kind)
     return kind == SMS_DAMPED_HARMONIC || kind == SMS_EXPONENTIAL;
 }
 
-/* Unnormalised continuous impulse response at t for duration T (SPEC 3.1-3.4). */
+/* Unnormalised continuous impulse response at t for duration T (docs/filters.md). */
 static double continuous(sms_kind kind, double t, double T, double sigma)
 {
     double g = is_damped(kind) ? exp(sigma * t) : 1.0;
@@ -118,7 +118,7 @@ static void test_exact_zero(sms_kind kind, double T, double sigma, unsigned k, d
     test_realised_equals_taps(&c, Ts);
 }
 
-/* SPEC 5.3: the seed 000 experiment with paper timing keeps N = round(153.6) = 154 and leaves
+/* docs/errata.md: the seed 000 experiment with paper timing keeps N = round(153.6) = 154 and leaves
  * ~0.27 % residual at the nominal mode; exact timing removes it. */
 static void test_paper_timing(void)
 {
@@ -234,7 +234,7 @@ static void test_step_exponential(void)
     }
 }
 
-/* Continuous damped harmonic trajectory, SPEC 3.3 (sigma = 0: h/2 (1 - cos(pi t/T))). */
+/* Continuous damped harmonic trajectory, docs/filters.md (sigma = 0: h/2 (1 - cos(pi t/T))). */
 static double trajectory(double t, double T, double sigma)
 {
     if (t >= T)

@@ -5,8 +5,8 @@ Error measure: both implement y = h * u per stage (notches: the same biquad), so
 G = prod over stages of sum_i |h_stage[i]| (the l1 norm of each impulse response, the
 infinity-norm gain of the stage) every output is bounded by G max|u|, and the rounding error
 of either implementation is a small multiple of eps * (window length) * G max|u|. The
-contract (SPEC 5.1/5.2, docs/exact-mode.md) is 1e-12 of that scale in double. The float module
-rounds the input and every operation to float32 (eps 6e-8); SPEC 5.2's float target is
+contract (docs/numerics.md, docs/exact-mode.md) is 1e-12 of that scale in double. The float module
+rounds the input and every operation to float32 (eps 6e-8); docs/numerics.md's float target is
 1e-5 of the same scale, which is what FLOAT_REL_TOL asserts for FIR stages. A notch is an IIR
 biquad whose float32 coefficients move its poles by about eps/(wn Ts), relative to their
 distance xi2 wn Ts from the unit circle: a relative response error up to

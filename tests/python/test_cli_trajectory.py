@@ -1,7 +1,7 @@
-"""`smoothshaper design generator` and `design bspline` end to end (issue 5's CLI forms).
+"""`smoothshaper design generator` and `design bspline` end to end.
 
 Printed numbers carry 6 significant digits (format_table): comparisons with the Python API
-use rel 1e-5. Timing and pass-through claims come from trajectory.h / SPEC 4.1, 3.7.
+use rel 1e-5. Timing and pass-through claims come from trajectory.h and docs/design.md.
 """
 import csv
 import math
@@ -199,7 +199,7 @@ def test_bspline_from_modes_prints_T_control_points_and_passes(capsys, tmp_path)
     assert code == 0 and err == ""
     via = np.array([[float(v) for v in p.split(",")] for p in VIA_2D.split(";")])
     M = via.shape[0]
-    # T: the shortest whole number of samples covering 2 pi / min(wn) (SPEC 3.7).
+    # T: the shortest whole number of samples covering 2 pi / min(wn) (docs/filters.md).
     T = bspline_period(wn=[40.0, 25.0], Ts=TS)
     N = round(T / TS)
     assert (N - 1) * TS < 2 * math.pi / 25 <= N * TS

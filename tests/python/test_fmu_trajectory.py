@@ -29,7 +29,7 @@ def test_q_v_a_j_equal_reference_and_bounds_hold(fmus, trajectory_dir, step):  #
     t, target, y, ref, rel = validation.compare_trajectory(
         fmus["TrajectoryGenerator"], Ts=TS, step=step, stop_time=1.5)
     assert np.all(rel <= validation.REL_TOL), rel
-    # SPEC 4.4: within the limits (a few ulps) and exactly on the last target once it holds.
+    # docs/design.md: within the limits (a few ulps) and exactly on the last target once it holds.
     bounds = np.array([LIMITS["vmax"], LIMITS["amax"], LIMITS["jmax"]])
     assert np.all(np.max(np.abs(y[:, 1:]), axis=0) <= bounds * (1 + 1e-12))
     assert y[-1, 0] == target[-1] and np.all(y[-1, 1:] == 0.0)

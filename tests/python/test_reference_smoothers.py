@@ -10,7 +10,7 @@ import smoothshaper as sm
 from smoothshaper import reference as ref
 from smoothshaper.reference._checks import on_grid
 
-# Seed 000 experiment (SPEC 5.3): T = 3 pi/wd is 153.6 samples.
+# Seed 000 experiment (docs/errata.md): T = 3 pi/wd is 153.6 samples.
 SEED_SIGMA, SEED_WD, SEED_TS = -15.6539, 122.7185, 500e-6
 EPS = np.finfo(float).eps
 
@@ -133,7 +133,7 @@ def test_continuous_transfer_matches_the_spec_closed_forms():
 
 
 def test_continuous_harmonic_has_no_removable_singularity_problem():
-    """At s = j pi/T the SPEC formula is 0/0; the value is -j pi/4, and it is continuous."""
+    """At s = j pi/T the closed form is 0/0; the value is -j pi/4, and it is continuous."""
     T = 0.5
     s0 = 1j * math.pi / T
     H = ref.continuous_transfer(sm.harmonic(T=T), np.array([s0, s0 * (1 + 1e-9)]))
@@ -166,7 +166,7 @@ def test_seed000_paper_timing_leaves_the_first_order_residual():
     zero and, for S_sigma of duration T' = N Ts, |H'(s0)| = K T'^3/(8 pi^2),
     K = ((pi/T')^2 + sigma^2)/(1 + e^{sigma T'}). The relative error of that estimate is of
     the order of the relative shift 0.26 % plus the sampling error O(1/N) of the discrete
-    filter, so a 2 % band around it is safe; SPEC 5.3 quotes 0.27 %."""
+    filter, so a 2 % band around it is safe; docs/errata.md quotes 0.27 %."""
     T = 3 * math.pi / SEED_WD
     stage = sm.damped_harmonic(T=T, sigma=SEED_SIGMA, timing="paper")
     zp = np.exp(complex(SEED_SIGMA, SEED_WD) * SEED_TS)

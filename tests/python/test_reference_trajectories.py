@@ -8,7 +8,7 @@ import smoothshaper as sm
 from smoothshaper import reference as ref
 
 H, V, A, J = 40.0, 250.0, 5000.0, 200000.0
-T = [H / V, V / A, A / J]                     # 0.16, 0.05, 0.025 s (SPEC 4.1)
+T = [H / V, V / A, A / J]                     # 0.16, 0.05, 0.025 s (Biagiotti & Melchiorri 2011a)
 
 
 def test_rectangular_chain_reaches_its_limits_and_ends_at_the_optimal_duration():

@@ -1,7 +1,6 @@
 /**
  * @file design.h
- * @brief Design from a vibration mode (SPEC 4.2) and mode identification (SPEC 4.3).
- * OWNER: C shapers work package.
+ * @brief Design from a vibration mode and mode identification (docs/design.md).
  */
 #ifndef SMOOTHSHAPER_DESIGN_H
 #define SMOOTHSHAPER_DESIGN_H
@@ -25,7 +24,7 @@ extern "C" {
  * wd). Other fields take sms_stage_config_default() values; timing is ::SMS_TIMING_EXACT.
  * Why k must be odd for the harmonic families: their zeros sit at sigma +- j (2m+1) pi/T; with
  * T = k 3 pi/wd the zero index is wd T/pi = 3k, an odd number only when k is odd. An even k
- * puts wd between two zeros (about 2.9 % residual for k = 2, SPEC 3.2).
+ * puts wd between two zeros (about 2.9 % residual for k = 2, docs/errata.md).
  * Checks in order: config NULL, kind, wn, zeta, k < 1, k even (harmonic families), k != 1
  * (shapers, notches). *config is untouched on error.
  * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_KIND, ::SMS_ERR_WN, ::SMS_ERR_ZETA,
@@ -41,7 +40,7 @@ typedef struct sms_mode {
 
 /**
  * @brief Mode from two successive peaks (t1, p1), (t2, p2) of a free decay about its final
- * value (SPEC 4.3, seed 000 eq. 16): T0 = t2 - t1, sigma = ln(p2/p1)/T0, wd = 2 pi / T0,
+ * value (Biagiotti et al. 2020, eq. 16): T0 = t2 - t1, sigma = ln(p2/p1)/T0, wd = 2 pi / T0,
  * wn = sqrt(sigma^2 + wd^2), zeta = -sigma/wn. Two maxima or two minima (troughs) both work.
  * @param t1,t2 peak times [s], finite, t2 > t1 (one damped period apart)
  * @param p1,p2 peak values, finite, same sign, 0 < |p2| < |p1| (decaying)

@@ -1,6 +1,6 @@
 /**
  * @file notch.h
- * @brief Notch filter as one biquad (SPEC 3.6): Tustin with pre-warping at wn, or pole-zero
+ * @brief Notch filter as one biquad (docs/filters.md): Tustin with pre-warping at wn, or pole-zero
  * matched.
  *
  * Continuous notch G(s) = (s^2 + 2 xi1 wn s + wn^2)/(s^2 + 2 xi2 wn s + wn^2), with

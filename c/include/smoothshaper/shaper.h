@@ -1,6 +1,6 @@
 /**
  * @file shaper.h
- * @brief Input shapers: ZV^n (ZV, ZVD, ZVDD, ...), EI, two-hump EI, MZV (SPEC 3.5).
+ * @brief Input shapers: ZV^n (ZV, ZVD, ZVDD, ...), EI, two-hump EI, MZV (docs/filters.md).
  *
  * A shaper is a sparse FIR filter y[n] = sum_k g_k x[n - d_k] (k = 0..n_taps-1) with unit DC
  * gain (sum g_k = 1). Work per sample is O(n_taps) <= ::SMS_SHAPER_MAX_TAPS; the caller owns the

@@ -1,7 +1,7 @@
 /**
  * @file smoother.h
  * @brief FIR smoothers in O(1), drift-free recursive form: rectangular, harmonic, damped
- * harmonic and exponential (SPEC 3.1-3.4). OWNER: C smoothers work package.
+ * harmonic and exponential (docs/filters.md).
  *
  * Every smoother is the FIR filter y[n] = sum_{i=0}^{L-1} h[i] x[n-i] with unit DC gain
  * (sum h = 1) and the taps of docs/exact-mode.md (sms_smoother_taps() writes them). With
@@ -30,7 +30,7 @@
  * where d_j are the (at most 2) exact-timing taps N0-1 and N0. A rotation is used rather than the
  * real second-order resonator 1 - 2 r cos(pi/N) z^-1 + r^2 z^-2, whose rounding is amplified
  * about N^2 times. The recursion cancels its own pole, so on its own it would accumulate
- * rounding for ever (SPEC 5.2). Hence:
+ * rounding for ever (docs/numerics.md). Hence:
  * - two copies run side by side, each restarted from zero every 2M samples, M apart; a copy
  *   restarted at t0 ignores inputs before t0 and is exact once it has consumed M samples, and
  *   the output always comes from the copy that has consumed between M and 2M samples;

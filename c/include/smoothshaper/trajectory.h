@@ -1,7 +1,7 @@
 /**
  * @file trajectory.h
- * @brief Kinematic design (SPEC 4.1, 4.2 mixed), the online multi-point generator (SPEC 4.4)
- * and B-spline interpolating filters (SPEC 3.7). OWNER: trajectory work package.
+ * @brief Kinematic design (limits, optionally mixed with a mode), the online multi-point
+ * generator and B-spline interpolating filters (docs/design.md, docs/filters.md).
  *
  * Design quantities are `double`; the signal path uses ::sms_real. Nothing allocates.
  */
@@ -22,7 +22,7 @@ extern "C" {
 typedef enum sms_profile {
     SMS_PROFILE_POLYNOMIAL = 0,    /**< all stages rectangular: trapezoid, double-S, ... */
     SMS_PROFILE_TRIGONOMETRIC = 1, /**< last stage harmonic: modified trapezoid / double-S (seed 000 eq. 6) */
-    SMS_PROFILE_DAMPED = 2         /**< last stage exponential tuned to a damped mode: Damped-Jerk (SPEC 3.4) */
+    SMS_PROFILE_DAMPED = 2         /**< last stage exponential tuned to a damped mode (Béarée 2014) */
 } sms_profile;
 
 /** @brief Most bounds (derivative orders) accepted by the kinematic design. */
@@ -93,7 +93,7 @@ SMS_API sms_status sms_kinematic_configs(double h, const double *limits, size_t 
 /* ------------------------------------------------------------------------------------------ */
 
 /**
- * @brief Limits and optional mode of the online generator (SPEC 4.4).
+ * @brief Limits and optional mode of the online generator (docs/design.md).
  *
  * | field   | valid range |
  * |---------|-------------|
@@ -219,7 +219,7 @@ SMS_API void sms_generator_rebind(sms_generator *g, sms_real *buffer);
 #define SMS_BSPLINE_MAX_AXES 3
 
 /**
- * @brief Uniform B-spline of degree p, knot spacing T = N Ts, on up to 3 axes (SPEC 3.7).
+ * @brief Uniform B-spline of degree p, knot spacing T = N Ts, on up to 3 axes (docs/filters.md).
  *
  * Each axis is a chain of p rectangular stages of N samples fed with control points held
  * for N samples each. Let d[k] be the response of one control point held N samples and
@@ -278,7 +278,7 @@ SMS_API sms_status sms_bspline_control_points(const sms_bspline *b, const double
 SMS_API size_t sms_bspline_pass_sample(const sms_bspline *b, size_t i);
 /**
  * @brief Shortest knot spacing that puts the first zero of sinc^p at or below every mode:
- * T = N Ts with N = ceil(2 pi / (min wn Ts)) (T >= 2 pi / min wn, SPEC 3.7).
+ * T = N Ts with N = ceil(2 pi / (min wn Ts)) (T >= 2 pi / min wn, docs/filters.md).
  * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_ORDER (n = 0), ::SMS_ERR_WN, ::SMS_ERR_SAMPLE_PERIOD.
  */
 SMS_API sms_status sms_bspline_period_for_modes(const double *wn, size_t n, double Ts, double *T);

@@ -54,19 +54,19 @@ typedef enum sms_status {
 
 /** @brief Stage families. Values are stable (the FMU enumeration and saved states use them). */
 typedef enum sms_kind {
-    SMS_RECTANGULAR = 0,      /**< moving average M, SPEC 3.1 */
-    SMS_HARMONIC = 1,         /**< sinusoidal S, SPEC 3.2 */
-    SMS_DAMPED_HARMONIC = 2,  /**< S_sigma, SPEC 3.3 */
-    SMS_EXPONENTIAL = 3,      /**< M_sigma, SPEC 3.4 */
-    SMS_SHAPER_ZV = 4,        /**< ZV input shaper, SPEC 3.5 */
+    SMS_RECTANGULAR = 0,      /**< moving average M, docs/filters.md */
+    SMS_HARMONIC = 1,         /**< sinusoidal S, docs/filters.md */
+    SMS_DAMPED_HARMONIC = 2,  /**< S_sigma, docs/filters.md */
+    SMS_EXPONENTIAL = 3,      /**< M_sigma, docs/filters.md */
+    SMS_SHAPER_ZV = 4,        /**< ZV input shaper, docs/filters.md */
     SMS_SHAPER_ZVD = 5,       /**< ZVD = ZV^2 */
     SMS_SHAPER_ZVDD = 6,      /**< ZVDD = ZV^3 */
     SMS_SHAPER_ZVN = 7,       /**< ZV^n, n = sms_stage_config::order */
     SMS_SHAPER_EI = 8,        /**< extra-insensitive (one hump) */
     SMS_SHAPER_EI2 = 9,       /**< two-hump extra-insensitive */
     SMS_SHAPER_MZV = 10,      /**< modified ZV as used by 3-D printer firmware */
-    SMS_NOTCH_TUSTIN = 11,    /**< notch, Tustin with pre-warping at wn, SPEC 3.6 */
-    SMS_NOTCH_MATCHED = 12    /**< notch, pole-zero matched, SPEC 3.6 */
+    SMS_NOTCH_TUSTIN = 11,    /**< notch, Tustin with pre-warping at wn, docs/filters.md */
+    SMS_NOTCH_MATCHED = 12    /**< notch, pole-zero matched, docs/filters.md */
 } sms_kind;
 
 #define SMS_KIND_COUNT 13

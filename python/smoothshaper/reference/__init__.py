@@ -1,6 +1,6 @@
 """Pure-NumPy reference of every smoothshaper stage and chain (the test oracle).
 
-Written from SPEC section 3 and ``docs/exact-mode.md`` only; it never imports or calls the C
+Written from ``docs/filters.md`` and ``docs/exact-mode.md`` only; it never imports or calls the C
 core. Public API:
 
 * ``impulse_response(stage, *, Ts, length=None)``: discrete taps (DC gain 1);

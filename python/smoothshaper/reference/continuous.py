@@ -1,4 +1,4 @@
-"""The continuous filters of SPEC 3 (normalised to DC gain 1), for analysis and closed forms.
+"""The continuous filters of docs/filters.md (normalised to DC gain 1), for analysis and closed forms.
 
 Smoothers, with ``a = s - sigma`` (sigma = 0 for the undamped families) and
 ``phi(u) = (1 - e^{-u T})/u`` (``phi(0) = T``):
@@ -8,7 +8,7 @@ Smoothers, with ``a = s - sigma`` (sigma = 0 for the undamped families) and
 * harmonic / damped harmonic: ``h(t) = e^{sigma t} sin(pi t/T)/F(-sigma)`` on [0, T] with
   ``F(a) = int_0^T e^{-a t} sin(pi t/T) dt = (phi(a - j pi/T) - phi(a + j pi/T))/(2j)``
   ``= (pi/T)(1 + e^{-aT})/(a^2 + (pi/T)^2)``; ``H(s) = F(s - sigma)/F(-sigma)``
-  (SPEC 3.2 and 3.3). The phi form has no removable singularity at ``a = ±j pi/T``.
+  (docs/filters.md). The phi form has no removable singularity at ``a = ±j pi/T``.
 * shapers: ``H(s) = sum_m A_m e^{-s t_m}`` (impulses, see ``shaper_impulses``);
 * notches: ``(s^2 + 2 xi1 wn s + wn^2)/(s^2 + 2 xi2 wn s + wn^2)``.
 """

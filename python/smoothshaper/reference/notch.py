@@ -1,4 +1,4 @@
-"""Notch stage as one biquad (SPEC 3.6, ``docs/exact-mode.md``).
+"""Notch stage as one biquad (``docs/filters.md``, ``docs/exact-mode.md``).
 
 Continuous: ``G(s) = (s^2 + 2 xi1 wn s + wn^2)/(s^2 + 2 xi2 wn s + wn^2)`` with ``xi1 = zeta``
 (zero damping) and ``xi2 = notch_pole_zeta`` (pole damping), ``xi2 > xi1``.

@@ -1,6 +1,6 @@
 """FIR taps of the smoothers (rectangular, harmonic, damped harmonic, exponential).
 
-Written from SPEC 3.1-3.4 and ``docs/exact-mode.md``, never from the C code. Unnormalised
+Written from ``docs/filters.md`` and ``docs/exact-mode.md``, never from the C code. Unnormalised
 continuous impulse responses on ``[0, T)``:
 
 * rectangular ``1``; harmonic ``sin(pi t/T)``; damped harmonic ``e^{sigma t} sin(pi t/T)``;

@@ -1,7 +1,7 @@
 """Closed-form step responses (trajectories) of the continuous smoothers, height ``h``.
 
-* harmonic (SPEC 3.2): ``q(t) = h/2 (1 - cos(pi t/T))`` on [0, T];
-* damped harmonic (SPEC 3.3): ``q(t) = h/(1 + e^{sigma T}) (1 + e^{sigma t}
+* harmonic: ``q(t) = h/2 (1 - cos(pi t/T))`` on [0, T];
+* damped harmonic (Biagiotti et al. 2020): ``q(t) = h/(1 + e^{sigma T}) (1 + e^{sigma t}
   (sigma T/pi sin(pi t/T) - cos(pi t/T)))`` on [0, T];
 * exponential: ``q(t) = h (e^{sigma t} - 1)/(e^{sigma T} - 1)`` (``h t/T`` when sigma = 0);
 * chain of rectangular smoothers of lengths ``T_1..T_n`` (the time-optimal profile with n

@@ -21,7 +21,7 @@ Fig. 11: S_sigma's PRV over (wn, delta), delta_hat =   zero at nominal; 0.05: de
 wn << wn_hat, delta >> delta_hat                       low-wn / high-delta corner
 Fig. 12: absolute residual small for delta_hat = 0.5   envelope |H(p)| wn/wd e^{sigma T} at T
 Fig. 13: S_sigma below M_sigma1 M_sigma2 (T0, 0.5 T0)  fraction of the grid where it holds
-Sec. VI: sigma = -15.6539, wd = 122.7185, T0 = 0.0512  T0; SPEC 5.3: paper-timing rounding
+Sec. VI: sigma = -15.6539, wd = 122.7185, T0 = 0.0512  T0; paper-timing rounding
 s, Ts = 500 us, 30 mm step; S 4.718 N, S_sigma 3.634   (N = 154) leaves 0.27 %, exact timing ~0;
 N, M_sigma M_sigma 3.701 N, ZVDD 4.092 N (measured)    model residuals; peak velocities ordered
                                                        S < S_sigma < M_sigma M_sigma
@@ -79,7 +79,7 @@ def harmonic_prv_closed_form(r):
 
 
 def harmonic_damped_closed_form(T: float, wn: float, delta: float) -> float:
-    """|S(p)| from SPEC 3.2's S(s) at the plant pole p."""
+    """|S(p)| from the harmonic S(s) (docs/filters.md) at the plant pole p."""
     p = complex(-delta * wn, wn * math.sqrt(1 - delta * delta))
     a = (math.pi / T) ** 2
     return 100 * abs(a * (1 + np.exp(-p * T)) / (2 * (p * p + a)))
@@ -163,7 +163,7 @@ def _fig4(sec, data):
                   "closed form |cos(3 pi)|/|1 - 36|", unit="%", paper=0.0,
                   note=("the paper allows k = 1, 2, ... in T = k 3 pi/wd; the zeros of S sit at "
                         "odd multiples of pi/T only, so an even k puts none on the mode and "
-                        "leaves 100/35 = 2.9 % (SPEC 3.2). smoothshaper accepts only odd k.")))
+                        "leaves 100/35 = 2.9 %. smoothshaper accepts only odd k.")))
     # Fig. 4b: unit step through S (T = 3 pi) and M1 M2 (2 pi, pi)
     t = np.linspace(0, 3 * math.pi, 300001)
     dt = t[1] - t[0]
@@ -393,7 +393,7 @@ def _experiment(sec, data):
     sec.add(Claim("exp.paper_timing", "S_sigma with N = round(T/Ts) = 154 (paper, eq. 17): PRV "
                   "at the identified mode",
                   float(analysis.prv(paper_timing, wn=wn, zeta=delta, Ts=Ts)),
-                  0.27, 0.005, "SPEC 5.3 (measured 0.27 %)", unit="%"),
+                  0.27, 0.005, "measured 0.27 % (docs/errata.md)", unit="%"),
             Claim("exp.exact_timing", "S_sigma, exact timing (T/Ts = 153.6): PRV at the mode",
                   float(analysis.prv(filt["S_sigma"], wn=wn, zeta=delta, Ts=Ts)), 0.0, 1e-9,
                   "zero on the sampled mode", unit="%"))
@@ -427,7 +427,7 @@ def _experiment(sec, data):
                   min(vSs - vS, vMM - vSs), 0.0, 0.0,
                   "paper: S slowest, S_sigma below M_sigma1 M_sigma2", unit="mm/s",
                   relation=">="))
-    # SPEC 5.3 caveat found while building this report: exact timing's end-tap correction
+    # Exact-timing caveat found while building this report: exact timing's end-tap correction
     over = {k: float(ref.filter(v, np.ones(int(0.2 / Ts)), Ts=Ts).max()) for k, v in filt.items()}
     # ... and it grows with the length: one rectangular stage of 1000.5 samples
     long_rect = np.cumsum(ref.impulse_response(st.rectangular(T=1000.5 * Ts), Ts=Ts))

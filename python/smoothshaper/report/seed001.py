@@ -164,11 +164,11 @@ def _multipoint(sec, data):
     for d, lim, name in ((1, VMAX, "velocity"), (2, AMAX, "acceleration"), (3, JMAX, "jerk")):
         sec.add(Claim(f"fig7.peak{d}", f"Fig. 7: peak |{name}| over the multi-point motion",
                       float(np.abs(out[:, d]).max()), lim, 1e-9 * lim,
-                      "the limit, never exceeded (SPEC 4.4)", relation="<="))
+                      "the limit, never exceeded", relation="<="))
     ends = np.arange(1, len(VIA)) * per - 1
     sec.add(Claim("fig7.reach", "Fig. 7: max |q - via-point| at the end of each hold",
                   float(np.abs(out[ends, 0] - np.array(VIA[1:])).max()), 0.0, 1e-9,
-                  "exact arrival (SPEC 4.4)", unit="rad"))
+                  "exact arrival", unit="rad"))
     data["multipoint"] = (np.arange(targets.size) * Ts, targets, out)
 
 
@@ -178,7 +178,7 @@ def _vibration(sec, data):
     zeta = TABLE1["b_t"] / (2 * math.sqrt(TABLE1["k_t"] * TABLE1["J_l"]))
     poles = g.poles()
     sec.add(Claim("wr", "Table 1: resonance |p| of plants.two_mass", float(np.abs(poles[0])),
-                  260.4, 0.05, "SPEC 6 (paper: ~260)", unit="rad/s", paper=260.4))
+                  260.4, 0.05, "paper: ~260", unit="rad/s", paper=260.4))
     mod = _design(vmax=VMAX, amax=AMAX, jmax=JMAX_FREE, profile="trigonometric", wn=wr, zeta=0.0)
     dbl = _design(vmax=VMAX, amax=AMAX, jmax=JMAX_FREE, profile="polynomial", wn=wr, zeta=0.0)
     sec.add(Claim("fig9.T3.mod", "Fig. 9: modified double-S T3 = 1.5 * 2 pi/wr", mod[-1].T, 0.0362,
@@ -186,7 +186,7 @@ def _vibration(sec, data):
             Claim("fig9.T3.ds", "Fig. 9: double-S T3 = 2 pi/wr", dbl[-1].T, 2 * math.pi / wr, 1e-12,
                   "closed form 2 pi/260.43", unit="s", paper=0.0209,
                   note=("the paper prints T3 = 0.0209 s, but its own formula 2 pi/wr with wr = "
-                        "260.4 rad/s gives 0.0241 s (SPEC 4.2 erratum; 0.0209 s would be tuned "
+                        "260.4 rad/s gives 0.0241 s (docs/errata.md; 0.0209 s would be tuned "
                         "to 300.6 rad/s). The residual vibrations the paper reports are "
                         "reproduced with 0.0241 s, not with 0.0209 s (residual table above).")))
     for name, stages in (("modified double-S", mod), ("double-S", dbl)):

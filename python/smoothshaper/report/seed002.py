@@ -1,6 +1,6 @@
 """Seed 002 (Béarée, Control Eng. Practice 2014): the Damped-Jerk profile.
 
-The seed text stops after its Sec. 2; its claims, and the reading of Sec. 3 that SPEC 3.4 fixes:
+The seed text stops after its Sec. 2; its claims, and the reading of Sec. 3 in docs/filters.md:
 
 =====================================================  ==========================================
 seed                                                   check
@@ -10,7 +10,7 @@ limited one through M(T_J); T_J = k 2 pi/w1 cancels    undamped mode is 0 for k 
 an undamped mode
 "these elegant properties vanish when the damping      PRV of M(T_J = Td) on the damped mode:
 is not negligible"                                     closed form 100 (e^{zeta wn Td} - 1)/(wn Td)
-Damped-Jerk (SPEC 3.4 reading): jerk stage             PRV 0, continuous and in an exact ZOH
+Damped-Jerk (docs/filters.md reading): jerk stage             PRV 0, continuous and in an exact ZOH
 exponential, sigma = -zeta wn, T_J = Td                simulation of the load (plants.mode)
 (consequence) the jerk decays inside each jerk phase   peak jerk ratio |sigma| Td/(1 - e^{sigma Td})
 =====================================================  ==========================================

@@ -141,7 +141,7 @@ def _body(rows, disc) -> str:
               "| shaper | exact timing PRV [%] | paper timing PRV [%] |", "|---|---|---|"]
     lines += [f"| {k.upper()} | {pe:.1e} | {pp:.2f} |" for k, pe, pp in disc]
     lines += ["", "Not covered: the three-hump EI shaper (wider still, in the same "
-              "sources) is not one of the library's stages (SPEC 3.5 asks for EI and MZV at "
+              "sources) is not one of the library's stages (the library offers EI and MZV at "
               "least); ZVDD (0.48) is, as ZV^3.", "",
               "Damped EI and two-hump EI: the library weights the undamped closed-form "
               "amplitudes by K^m (K = exp(-zeta pi/sqrt(1-zeta^2)), the form 3-D printer "
