@@ -35,7 +35,9 @@ static void log_message(const fmu_instance *c, fmi2Status status, int category, 
     char buf[512], escaped[1024];
     size_t i, j = 0;
     va_list ap;
-    if (c == NULL || c->cb.logger == NULL || !c->log_on[category])
+    /* Errors and warnings always reach the logger; only the debug categories obey loggingOn
+     * and fmi2SetDebugLogging. */
+    if (c == NULL || c->cb.logger == NULL || (category >= FMU_LOG_CALLS && !c->log_on[category]))
         return;
     va_start(ap, fmt);
     vsnprintf(buf, sizeof buf, fmt, ap);
@@ -284,26 +286,35 @@ static fmi2Status get_values(fmi2Component comp, const char *func, fmu_type type
     return fmi2OK;
 }
 
+/* The message for a value set_values refuses (formatted only here, never on the hot path). */
+static fmi2Status refuse_value(fmu_instance *c, const char *func, fmu_type type, fmu_var_class cls,
+                               fmi2ValueReference vr, const void *value, size_t i)
+{
+    char name[96];
+    fmu_model_name(type, vr, name, sizeof name);
+    if (cls == FMU_VAR_OUTPUT)
+        return FAIL(c, "%s: %s is an output and cannot be set", func, name);
+    if (cls == FMU_VAR_PARAMETER && c->clock.phase == FMU_STEP_COMPLETE)
+        return FAIL(c, "%s: %s is a fixed parameter: set it before fmi2ExitInitializationMode",
+                    func, name);
+    return FAIL(c, "%s: %s must be finite, got %g", func, name, ((const fmi2Real *)value)[i]);
+}
+
 static fmi2Status set_values(fmi2Component comp, const char *func, fmu_type type,
                              const fmi2ValueReference vr[], size_t nvr, const void *value)
 {
     fmu_instance *c = checked(comp, func, IN_INSTANTIATED | IN_INIT | IN_STEP);
     size_t i;
-    char name[96];
     if (c == NULL || check_arrays(c, func, vr, nvr, value) != fmi2OK)
         return fmi2Error;
-    for (i = 0; i < nvr; ++i) {
+    for (i = 0; i < nvr; ++i) {   /* check all first: an error writes nothing */
         fmu_var_class cls = fmu_model_class(type, vr[i]);
         if (cls == FMU_VAR_UNKNOWN)
             return FAIL(c, "%s: unknown value reference %lu", func, (unsigned long)vr[i]);
-        fmu_model_name(type, vr[i], name, sizeof name);
-        if (cls == FMU_VAR_OUTPUT)
-            return FAIL(c, "%s: %s is an output and cannot be set", func, name);
-        if (cls == FMU_VAR_PARAMETER && c->clock.phase == FMU_STEP_COMPLETE)
-            return FAIL(c, "%s: %s is a fixed parameter: set it before fmi2ExitInitializationMode",
-                        func, name);
-        if (type == FMU_REAL && !isfinite(((const fmi2Real *)value)[i]))
-            return FAIL(c, "%s: %s must be finite, got %g", func, name, ((const fmi2Real *)value)[i]);
+        if (cls == FMU_VAR_OUTPUT
+            || (cls == FMU_VAR_PARAMETER && c->clock.phase == FMU_STEP_COMPLETE)
+            || (type == FMU_REAL && !isfinite(((const fmi2Real *)value)[i])))
+            return refuse_value(c, func, type, cls, vr[i], value, i);
     }
     for (i = 0; i < nvr; ++i) {
         if (type == FMU_REAL)

@@ -11,6 +11,9 @@
 #include "SmoothShaper_variables.h"
 #include "fmu_model.h"
 
+/* The generated kind codes are the core's sms_kind values (compile-time check). */
+typedef char ss_kind_codes_match_sms_kind[(SS_KIND_COUNT == SMS_KIND_COUNT) ? 1 : -1];
+
 /** Delay-line samples shared by all stages (about T/Ts + 2 per smoother, the shaper span per
  * shaper): the largest chain the FMU accepts. */
 #define SS_MAX_DELAY_SAMPLES 65536
@@ -153,21 +156,44 @@ void fmu_model_set_integer(void *model, fmi2ValueReference vr, int value)
 
 double fmu_model_sample_period(const void *model) { return ((const ss_model *)model)->Ts; }
 
-/* The parameter a core status points at, for the message. */
-static const char *offending_field(sms_status st, int design_for_mode)
+/* The field a core status points at (note: what it stands for when designed for a mode). */
+static unsigned offending_field(sms_status st, int design_for_mode, const char **note)
 {
+    *note = "";
     switch (st) {
     case SMS_ERR_DURATION: case SMS_ERR_DURATION_BELOW_TS: case SMS_ERR_TOO_LONG:
-        return design_for_mode ? "wn (the designed T)" : "T";
-    case SMS_ERR_SIGMA: return design_for_mode ? "zeta (the designed sigma)" : "sigma";
-    case SMS_ERR_WN: case SMS_ERR_ABOVE_NYQUIST: return "wn";
-    case SMS_ERR_ZETA: return "zeta";
-    case SMS_ERR_MULTIPLE: case SMS_ERR_EVEN_MULTIPLE: return "k";
-    case SMS_ERR_ORDER: return "order";
-    case SMS_ERR_TOLERANCE: return "tolerance";
-    case SMS_ERR_NOTCH_DAMPING: return "notch_pole_zeta";
-    default: return "kind";
+        if (!design_for_mode)
+            return SS_FIELD_T;
+        *note = " (the designed T)";
+        return SS_FIELD_WN;
+    case SMS_ERR_SIGMA:
+        if (!design_for_mode)
+            return SS_FIELD_SIGMA;
+        *note = " (the designed sigma)";
+        return SS_FIELD_ZETA;
+    case SMS_ERR_WN: case SMS_ERR_ABOVE_NYQUIST: return SS_FIELD_WN;
+    case SMS_ERR_ZETA: return SS_FIELD_ZETA;
+    case SMS_ERR_MULTIPLE: case SMS_ERR_EVEN_MULTIPLE: return SS_FIELD_K;
+    case SMS_ERR_ORDER: return SS_FIELD_ORDER;
+    case SMS_ERR_TOLERANCE: return SS_FIELD_TOLERANCE;
+    case SMS_ERR_NOTCH_DAMPING: return SS_FIELD_NOTCH_POLE_ZETA;
+    default: return SS_FIELD_KIND;
     }
+}
+
+/* "stage[k].field = value<note>: <status>" into msg; returns 1 (the build fails). */
+static int stage_error(const ss_model *m, unsigned k, sms_status st, int design_for_mode,
+                       char *msg, size_t len)
+{
+    const char *note;
+    unsigned f = offending_field(st, design_for_mode, &note);
+    if (is_integer_field(f))
+        snprintf(msg, len, "stage[%u].%s = %d%s: %s", k, field_names[f], m->stage[k].ints[f], note,
+                 sms_status_string(st));
+    else
+        snprintf(msg, len, "stage[%u].%s = %.17g%s: %s", k, field_names[f], m->stage[k].reals[f],
+                 note, sms_status_string(st));
+    return 1;
 }
 
 /* Config of stage k from its parameters; 0 or non-zero with msg. */
@@ -177,7 +203,8 @@ static int stage_config(const ss_model *m, unsigned k, sms_stage_config *c, char
     int kind = p->ints[SS_FIELD_KIND], for_mode = p->ints[SS_FIELD_DESIGN] == 1;
     sms_status st;
     if (kind < 0 || kind >= SMS_KIND_COUNT)
-        return snprintf(msg, len, "stage[%u].kind = %d is not a stage kind", k, kind), 1;
+        return snprintf(msg, len, "stage[%u].kind = %d is not a stage kind code (-1 = none, "
+                        "0 .. %d)", k, kind, SMS_KIND_COUNT - 1), 1;
     if (p->ints[SS_FIELD_DESIGN] != 0 && !for_mode)
         return snprintf(msg, len, "stage[%u].design = %d is not raw (0) or for_mode (1)", k,
                         p->ints[SS_FIELD_DESIGN]), 1;
@@ -185,14 +212,14 @@ static int stage_config(const ss_model *m, unsigned k, sms_stage_config *c, char
         return snprintf(msg, len, "stage[%u].timing = %d is not exact (0) or paper (1)", k,
                         p->ints[SS_FIELD_TIMING]), 1;
     if (p->ints[SS_FIELD_K] < 1 || p->ints[SS_FIELD_ORDER] < 1)
-        return snprintf(msg, len, "stage[%u].%s must be >= 1", k,
-                        p->ints[SS_FIELD_K] < 1 ? "k" : "order"), 1;
+        return snprintf(msg, len, "stage[%u].%s = %d: must be >= 1", k,
+                        p->ints[SS_FIELD_K] < 1 ? "k" : "order",
+                        p->ints[SS_FIELD_K] < 1 ? p->ints[SS_FIELD_K] : p->ints[SS_FIELD_ORDER]), 1;
     if (for_mode) {
         st = sms_design_for_mode((sms_kind)kind, p->reals[SS_FIELD_WN], p->reals[SS_FIELD_ZETA],
                                  (unsigned)p->ints[SS_FIELD_K], c);
         if (st != SMS_OK)
-            return snprintf(msg, len, "stage[%u].%s: %s", k, offending_field(st, 0),
-                            sms_status_string(st)), 1;
+            return stage_error(m, k, st, 0, msg, len);
     } else {
         *c = sms_stage_config_default((sms_kind)kind);
         c->T = p->reals[SS_FIELD_T];
@@ -207,10 +234,9 @@ static int stage_config(const ss_model *m, unsigned k, sms_stage_config *c, char
     c->notch_pole_zeta = p->reals[SS_FIELD_NOTCH_POLE_ZETA];
     st = sms_stage_config_validate(c, m->Ts);
     if (st == SMS_ERR_SAMPLE_PERIOD)
-        return snprintf(msg, len, "Ts must be finite and > 0"), 1;
+        return snprintf(msg, len, "Ts = %.17g: must be finite and > 0", m->Ts), 1;
     if (st != SMS_OK)
-        return snprintf(msg, len, "stage[%u].%s: %s", k, offending_field(st, for_mode),
-                        sms_status_string(st)), 1;
+        return stage_error(m, k, st, for_mode, msg, len);
     return 0;
 }
 
@@ -221,7 +247,7 @@ int fmu_model_build(void *model, char *msg, size_t len)
     size_t n = 0, need = 0;
     unsigned k;
     if (!(m->Ts > 0.0))
-        return snprintf(msg, len, "Ts must be finite and > 0, got %g", m->Ts), 1;
+        return snprintf(msg, len, "Ts = %.17g: must be finite and > 0", m->Ts), 1;
     for (k = 0; k < SS_MAX_STAGES; ++k) {
         if (m->stage[k].ints[SS_FIELD_KIND] == SS_KIND_NONE)
             continue;

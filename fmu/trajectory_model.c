@@ -139,15 +139,22 @@ void fmu_model_set_integer(void *model, fmi2ValueReference vr, int value)
 
 double fmu_model_sample_period(const void *model) { return ((const tg_model *)model)->Ts; }
 
-static const char *offending(sms_status st)
+/* "name = value: <status>" for the parameter a core status points at; returns 1. */
+static int refuse(const tg_model *m, sms_status st, char *msg, size_t len)
 {
+    const char *why = sms_status_string(st);
     switch (st) {
-    case SMS_ERR_SAMPLE_PERIOD: return "Ts";
-    case SMS_ERR_KIND: return "profile";
-    case SMS_ERR_WN: case SMS_ERR_ABOVE_NYQUIST: return "wn";
-    case SMS_ERR_ZETA: return "zeta";
-    case SMS_ERR_DURATION_BELOW_TS: return "amax, jmax (a tail stage is shorter than Ts)";
-    default: return "vmax, amax, jmax";
+    case SMS_ERR_SAMPLE_PERIOD: return snprintf(msg, len, "Ts = %.17g: %s", m->Ts, why), 1;
+    case SMS_ERR_KIND: return snprintf(msg, len, "profile = %d: %s", m->profile, why), 1;
+    case SMS_ERR_WN: case SMS_ERR_ABOVE_NYQUIST:
+        return snprintf(msg, len, "wn = %.17g: %s", m->wn, why), 1;
+    case SMS_ERR_ZETA: return snprintf(msg, len, "zeta = %.17g: %s", m->zeta, why), 1;
+    case SMS_ERR_DURATION_BELOW_TS:
+        return snprintf(msg, len, "amax = %.17g, jmax = %.17g (a tail stage is shorter than Ts): "
+                        "%s", m->amax, m->jmax, why), 1;
+    default:
+        return snprintf(msg, len, "vmax = %.17g, amax = %.17g, jmax = %.17g: %s", m->vmax, m->amax,
+                        m->jmax, why), 1;
     }
 }
 
@@ -158,15 +165,16 @@ int fmu_model_build(void *model, char *msg, size_t len)
     size_t need = 0;
     sms_status st;
     if (!(m->Ts > 0.0))
-        return snprintf(msg, len, "Ts must be finite and > 0, got %g", m->Ts), 1;
+        return snprintf(msg, len, "Ts = %.17g: must be finite and > 0", m->Ts), 1;
     if (!(m->vmax > 0.0) || !(m->amax > 0.0) || !(m->jmax > 0.0))
-        return snprintf(msg, len, "%s must be > 0", !(m->vmax > 0.0) ? "vmax"
-                        : !(m->amax > 0.0) ? "amax" : "jmax"), 1;
+        return snprintf(msg, len, "%s = %.17g: must be > 0", !(m->vmax > 0.0) ? "vmax"
+                        : !(m->amax > 0.0) ? "amax" : "jmax", !(m->vmax > 0.0) ? m->vmax
+                        : !(m->amax > 0.0) ? m->amax : m->jmax), 1;
     if (m->profile < SMS_PROFILE_POLYNOMIAL || m->profile > SMS_PROFILE_DAMPED)
         return snprintf(msg, len, "profile = %d is not polynomial (0), trigonometric (1) or "
                         "damped (2)", m->profile), 1;
     if (m->wn < 0.0)
-        return snprintf(msg, len, "wn must be 0 (no mode) or > 0, got %g", m->wn), 1;
+        return snprintf(msg, len, "wn = %.17g: must be 0 (no mode) or > 0", m->wn), 1;
     c.vmax = m->vmax;
     c.amax = m->amax;
     c.jmax = m->jmax;
@@ -175,13 +183,13 @@ int fmu_model_build(void *model, char *msg, size_t len)
     c.zeta = m->zeta;
     st = sms_generator_buffer_size(&c, m->Ts, &need);
     if (st != SMS_OK)
-        return snprintf(msg, len, "%s: %s", offending(st), sms_status_string(st)), 1;
+        return refuse(m, st, msg, len);
     if (need > TG_TABLE_REALS)
         return snprintf(msg, len, "the tail needs %lu table reals, more than the %d this FMU "
                         "holds: raise amax/jmax or Ts", (unsigned long)need, TG_TABLE_REALS), 1;
     st = sms_generator_init(&m->gen, &c, m->Ts, m->table, TG_TABLE_REALS);
     if (st != SMS_OK)
-        return snprintf(msg, len, "%s: %s", offending(st), sms_status_string(st)), 1;
+        return refuse(m, st, msg, len);
     sms_generator_reset(&m->gen, (sms_real)m->target);
     m->out[0] = m->target;
     m->out[1] = m->out[2] = m->out[3] = 0.0;

@@ -16,29 +16,33 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from xml.sax.saxutils import quoteattr
 
-FMI_PLATFORM_TYPES = ("Real", "Integer", "Enumeration")
 
 
 @dataclass
 class Var:
     name: str
     vr: int
-    type: str                  # Real, Integer or Enumeration (FMI 2.0 base types used here)
+    type: str                  # Real or Integer (choices are Integer codes: see CHOICES)
     causality: str             # input, output, parameter
     description: str
     unit: str = ""             # Real only (FMI 2.0 allows units on Real variables only)
     start: object = None
-    declared_type: str = ""    # Enumeration type name
+    choices: str = ""          # Integer code list (CHOICES key): min/max and names from it
     variability: str = ""
     min: object = None
     max: object = None
     c_name: str = ""           # macro suffix in the generated header
-    depends_on: list = field(default_factory=list)   # outputs: names of inputs (direct feedthrough)
+    initial_depends_on: list = field(default_factory=list)   # outputs: what they are computed
+    # from at initialization (the rest point). No output depends on an input within a step (the
+    # input set before doStep reaches the outputs only through that step), so <Outputs> lists no
+    # direct feedthrough.
 
 
-UNITS = {  # unit name -> SI base-unit exponents
+UNITS = {  # unit name -> SI base-unit exponents. Signals carry no unit: the filters and the
+    # generator work in whatever unit the input has (m, rad, mm, counts).
     "1": {}, "s": {"s": 1}, "1/s": {"s": -1}, "rad/s": {"rad": 1, "s": -1},
-    "m": {"m": 1}, "m/s": {"m": 1, "s": -1}, "m/s2": {"m": 1, "s": -2}, "m/s3": {"m": 1, "s": -3},
+    "kg.m2": {"kg": 1, "m": 2}, "N.m/rad": {"kg": 1, "m": 2, "s": -2, "rad": -1},
+    "N.m.s/rad": {"kg": 1, "m": 2, "s": -1, "rad": -1},
 }
 
 KINDS = ("rectangular", "harmonic", "damped_harmonic", "exponential", "zv", "zvd", "zvdd", "zvn",
@@ -54,89 +58,102 @@ SS_MAX_STAGES = 8
 SS_DEFAULT_KINDS = {0: 0, 1: 4}   # stage[0] rectangular, stage[1] zv, the others none
 SS_STAGE_BASE = 100
 SS_STAGE_STRIDE = 16
-SS_FIELDS = (  # (name, type, unit, start, description, declared type, min, max)
-    ("kind", "Enumeration", "", -1, "stage family; none = stage unused (skipped)", "StageKind", None, None),
-    ("design", "Enumeration", "", 0, "raw: use T, sigma, k as given; for_mode: design T and sigma from "
-     "wn, zeta and k (sms_design_for_mode)", "StageDesign", None, None),
-    ("timing", "Enumeration", "", 0, "exact: zeros exactly on the sampled design for any Ts; paper: "
-     "round T/Ts like the seeds", "Timing", None, None),
+SS_FIELDS = (  # (name, type, unit, start, description, choices, min, max)
+    ("kind", "Integer", "", -1, "stage family", "StageKind", None, None),
+    ("design", "Integer", "", 0, "how T and sigma are chosen", "StageDesign", None, None),
+    ("timing", "Integer", "", 0, "how T maps to the sample grid", "Timing", None, None),
     ("T", "Real", "s", 0.01, "duration of a smoother's impulse response (smoothers, design = raw); "
-     "finite, >= Ts", "", None, None),
+     "finite, >= Ts", "", 0.0, None),
     ("sigma", "Real", "1/s", 0.0, "decay rate of damped harmonic and exponential smoothers "
-     "(design = raw); finite, <= 0", "", None, None),
+     "(design = raw); finite, <= 0", "", None, 0.0),
     ("k", "Integer", "", 1, "multiple: which zero exact timing pins (smoothers), T = k * base "
      "period for design = for_mode; >= 1, odd for the harmonic families", "", 1, None),
     ("wn", "Real", "rad/s", 100.0, "natural frequency of the mode (shapers, notches, design = "
-     "for_mode); finite, 0 < wn < pi/Ts", "", None, None),
+     "for_mode); finite, 0 < wn < pi/Ts", "", 0.0, None),
     ("zeta", "Real", "1", 0.0, "damping ratio of the mode (shapers, notch zeros, design = "
-     "for_mode); in [0, 1)", "", None, None),
+     "for_mode); in [0, 1)", "", 0.0, 1.0),
     ("order", "Integer", "", 1, "n of the ZV^n shaper (kind = zvn); 1..8", "", 1, 8),
-    ("tolerance", "Real", "1", 0.05, "vibration tolerance of the EI shapers; in (0, 1)", "", None, None),
-    ("notch_pole_zeta", "Real", "1", 0.7, "pole damping of the notch; finite, > zeta", "", None, None),
+    ("tolerance", "Real", "1", 0.05, "vibration tolerance of the EI shapers; in (0, 1)", "", 0.0, 1.0),
+    ("notch_pole_zeta", "Real", "1", 0.7, "pole damping of the notch; finite, > zeta, <= 1e6", "",
+     0.0, 1e6),
 )
 
-ENUMS = {
+# Choices travel as Integer codes (FMI 2.0 Enumerations are not settable in every importer:
+# libcosim and FMI Library based hosts ignore them). Each variable's min/max bound the codes and
+# its description lists every code with its name.
+CHOICES = {
     "StageKind": [("none", -1, "no filter: the stage is skipped")]
                  + [(k, i, t) for i, (k, t) in enumerate(zip(KINDS, KIND_TEXT))],
-    "StageDesign": [("raw", 0, "raw parameters T, sigma, k"),
-                    ("for_mode", 1, "designed for the mode (wn, zeta) with multiple k")],
-    "Timing": [("exact", 0, "exact timing (docs/exact-mode.md)"),
-               ("paper", 1, "N = round(T/Ts), as in the seeds")],
+    "StageDesign": [("raw", 0, "use T, sigma, k as given"),
+                    ("for_mode", 1, "design T and sigma for the mode (wn, zeta) with multiple k")],
+    "Timing": [("exact", 0, "zeros exactly on the sampled continuous design for any Ts"),
+               ("paper", 1, "N = round(T/Ts), as in the source papers")],
     "Profile": [("polynomial", 0, "rectangular chain: double-S (jerk-limited) profile"),
                 ("trigonometric", 1, "harmonic last stage (modified double-S)"),
                 ("damped", 2, "exponential jerk stage cancelling the mode (damped-jerk)")],
 }
 
 
+def choice_text(choices: str) -> str:
+    """'codes: -1 = none (no filter ...), 0 = rectangular (...), ...' for a description."""
+    return "codes: " + ", ".join(f"{v} = {n} ({t})" for n, v, t in CHOICES[choices])
+
+
 def smooth_shaper() -> tuple[list[Var], list[str], str]:
     vs = [
-        Var("u", 0, "Real", "input", "input command, held over each communication step; its value at "
-            "the end of initialization is the rest point", "1", 0.0, variability="discrete", c_name="U"),
-        Var("y", 1, "Real", "output", "filtered command: output of the last internal tick at k*Ts",
-            "1", variability="discrete", c_name="Y", depends_on=["u"]),
+        Var("u", 0, "Real", "input", "input command (any unit), held over each communication "
+            "step; its value at the end of initialization is the rest point", "", 0.0, c_name="U"),
+        Var("y", 1, "Real", "output", "filtered command (the unit of u): output of the last "
+            "internal tick at k*Ts", "", variability="discrete", c_name="Y",
+            initial_depends_on=["u"]),
         Var("Ts", 2, "Real", "parameter", "sample period of the internal ticks; finite, > 0", "s",
-            0.001, variability="fixed", c_name="TS"),
+            0.001, variability="fixed", min=0.0, c_name="TS"),
     ]
     for k in range(SS_MAX_STAGES):
-        for f, (name, typ, unit, start, desc, dtype, lo, hi) in enumerate(SS_FIELDS):
+        for f, (name, typ, unit, start, desc, choices, lo, hi) in enumerate(SS_FIELDS):
             if name == "kind":   # default chain M(T) * ZV(wn): useful out of the box
                 start = SS_DEFAULT_KINDS.get(k, -1)
+            if choices:
+                desc = f"{desc}; {choice_text(choices)}"
             vs.append(Var(f"stage[{k}].{name}", SS_STAGE_BASE + SS_STAGE_STRIDE * k + f, typ,
-                          "parameter", f"stage {k}: {desc}", unit, start, dtype, "fixed", lo, hi))
+                          "parameter", f"stage {k}: {desc}", unit, start, choices, "fixed", lo, hi))
     header = [f"#define SS_MAX_STAGES {SS_MAX_STAGES}", f"#define SS_STAGE_BASE {SS_STAGE_BASE}",
               f"#define SS_STAGE_STRIDE {SS_STAGE_STRIDE}"]
     header += [f"#define SS_FIELD_{name.upper()} {f}" for f, (name, *_rest) in enumerate(SS_FIELDS)]
     header.append(f"#define SS_FIELD_COUNT {len(SS_FIELDS)}")
     header.append("#define SS_KIND_NONE (-1)")
+    header.append(f"#define SS_KIND_COUNT {len(KINDS)}   /* codes 0 .. SS_KIND_COUNT - 1 */")
     header.append("#define SS_DEFAULT_KIND(k) ((k) == 0 ? %d : (k) == 1 ? %d : SS_KIND_NONE)"
                   % (SS_DEFAULT_KINDS[0], SS_DEFAULT_KINDS[1]))
     return vs, header, ("Chain of up to 8 discrete smoothers, input shapers and notches (smoothshaper)")
 
 
 def trajectory_generator() -> tuple[list[Var], list[str], str]:
-    outs = [("q", "m", "position"), ("v", "m/s", "velocity"), ("a", "m/s2", "acceleration"),
-            ("j", "m/s3", "jerk")]
-    vs = [Var("target", 0, "Real", "input", "target position (piecewise constant via-points), held "
-              "over each communication step; its value at the end of initialization is the rest "
-              "position", "m", 0.0, variability="discrete", c_name="TARGET")]
-    for i, (n, unit, text) in enumerate(outs):
-        vs.append(Var(n, 1 + i, "Real", "output", f"{text} of the trajectory at the last internal tick",
-                      unit, variability="discrete", c_name=n.upper(), depends_on=["target"]))
+    # Position in any unit P (m, mm, rad, ...): the bounds and outputs are in P/s, P/s2, P/s3.
+    outs = [("q", "position"), ("v", "velocity (P/s)"), ("a", "acceleration (P/s2)"),
+            ("j", "jerk (P/s3)")]
+    vs = [Var("target", 0, "Real", "input", "target position in any unit P (piecewise constant "
+              "via-points), held over each communication step; its value at the end of "
+              "initialization is the rest position", "", 0.0, c_name="TARGET")]
+    for i, (n, text) in enumerate(outs):
+        vs.append(Var(n, 1 + i, "Real", "output", f"{text} of the trajectory at the last internal "
+                      "tick", "", variability="discrete", c_name=n.upper(),
+                      initial_depends_on=["target"]))
     vs += [
         Var("Ts", 10, "Real", "parameter", "sample period of the internal ticks; finite, > 0", "s",
-            0.001, variability="fixed", c_name="TS"),
-        Var("vmax", 11, "Real", "parameter", "velocity bound; finite, > 0", "m/s", 1.0,
-            variability="fixed", c_name="VMAX"),
-        Var("amax", 12, "Real", "parameter", "acceleration bound; finite, > 0", "m/s2", 10.0,
-            variability="fixed", c_name="AMAX"),
-        Var("jmax", 13, "Real", "parameter", "jerk bound; finite, > 0", "m/s3", 100.0,
-            variability="fixed", c_name="JMAX"),
-        Var("profile", 14, "Enumeration", "parameter", "shape of the last stage", "", 0, "Profile",
-            "fixed", c_name="PROFILE"),
+            0.001, variability="fixed", min=0.0, c_name="TS"),
+        Var("vmax", 11, "Real", "parameter", "velocity bound (P/s); finite, > 0", "", 1.0,
+            variability="fixed", min=0.0, c_name="VMAX"),
+        Var("amax", 12, "Real", "parameter", "acceleration bound (P/s2); finite, > 0", "", 10.0,
+            variability="fixed", min=0.0, c_name="AMAX"),
+        Var("jmax", 13, "Real", "parameter", "jerk bound (P/s3); finite, > 0", "", 100.0,
+            variability="fixed", min=0.0, c_name="JMAX"),
+        Var("profile", 14, "Integer", "parameter", "shape of the last stage; "
+            + choice_text("Profile"), "", 0, "Profile", "fixed", c_name="PROFILE"),
         Var("wn", 15, "Real", "parameter", "natural frequency of a mode to cancel; 0 = none, else "
-            "finite, 0 < wn < pi/Ts", "rad/s", 0.0, variability="fixed", c_name="WN"),
+            "finite, 0 < wn < pi/Ts", "rad/s", 0.0, variability="fixed", min=0.0, c_name="WN"),
         Var("zeta", 16, "Real", "parameter", "damping ratio of the mode to cancel; in [0, 1)", "1",
-            0.0, variability="fixed", c_name="ZETA"),
+            0.0, variability="fixed", min=0.0, max=1.0, c_name="ZETA"),
     ]
     return vs, [], "Online jerk-limited multi-point trajectory generator (smoothshaper)"
 
@@ -152,7 +169,6 @@ def _fmt(v) -> str:
 
 def model_description(model: str, variables: list[Var], description: str, guid: str) -> str:
     used_units = sorted({v.unit for v in variables if v.unit})
-    used_enums = sorted({v.declared_type for v in variables if v.declared_type})
     out = ['<?xml version="1.0" encoding="UTF-8"?>',
            f'<fmiModelDescription fmiVersion="2.0" modelName="{model}" guid="{guid}"',
            f'  description={quoteattr(description)}',
@@ -169,12 +185,7 @@ def model_description(model: str, variables: list[Var], description: str, guid: 
     for u in used_units:
         exps = " ".join(f'{k}="{e}"' for k, e in UNITS[u].items())
         out.append(f'    <Unit name="{u}"><BaseUnit {exps}/></Unit>' if exps else f'    <Unit name="{u}"/>')
-    out += ['  </UnitDefinitions>', '  <TypeDefinitions>']
-    for e in used_enums:
-        out.append(f'    <SimpleType name="{e}"><Enumeration>')
-        out += [f'      <Item name="{n}" value="{val}" description={quoteattr(t)}/>' for n, val, t in ENUMS[e]]
-        out.append('    </Enumeration></SimpleType>')
-    out += ['  </TypeDefinitions>', '  <LogCategories>']
+    out += ['  </UnitDefinitions>', '  <LogCategories>']
     out += [f'    <Category name="{n}" description={quoteattr(d)}/>' for n, d in LOG_CATEGORIES]
     out += ['  </LogCategories>', '  <DefaultExperiment startTime="0" stopTime="1" stepSize="0.001"/>',
             '  <ModelVariables>']
@@ -188,14 +199,15 @@ def model_description(model: str, variables: list[Var], description: str, guid: 
             attrs += ' initial="calculated"'
         attrs += f' description={quoteattr(v.description)}'
         inner = ""
-        if v.declared_type:
-            inner += f' declaredType="{v.declared_type}"'
+        lo, hi = v.min, v.max
+        if v.choices:   # an Integer code: bounded by its list
+            lo, hi = min(c[1] for c in CHOICES[v.choices]), max(c[1] for c in CHOICES[v.choices])
         if v.unit:
             inner += f' unit="{v.unit}"'
-        if v.min is not None:
-            inner += f' min="{v.min}"'
-        if v.max is not None:
-            inner += f' max="{v.max}"'
+        if lo is not None:
+            inner += f' min="{_fmt(lo)}"'
+        if hi is not None:
+            inner += f' max="{_fmt(hi)}"'
         if v.start is not None:
             inner += f' start="{_fmt(v.start)}"'
         out.append(f'    <!-- index {i} -->')
@@ -205,19 +217,19 @@ def model_description(model: str, variables: list[Var], description: str, guid: 
     index = {v.name: i for i, v in enumerate(variables, 1)}
     out += ['  </ModelVariables>', '  <ModelStructure>', '    <Outputs>']
     outputs = [v for v in variables if v.causality == "output"]
-    for v in outputs:
-        deps = " ".join(str(index[d]) for d in v.depends_on)
-        out.append(f'      <Unknown index="{index[v.name]}" dependencies="{deps}"/>')
+    for v in outputs:   # no direct feedthrough: an input reaches the outputs only via doStep
+        out.append(f'      <Unknown index="{index[v.name]}" dependencies=""/>')
     out += ['    </Outputs>', '    <InitialUnknowns>']
     for v in outputs:
-        deps = " ".join(str(index[d]) for d in v.depends_on)
+        deps = " ".join(str(index[d]) for d in v.initial_depends_on)
         out.append(f'      <Unknown index="{index[v.name]}" dependencies="{deps}"/>')
     out += ['    </InitialUnknowns>', '  </ModelStructure>', '</fmiModelDescription>', '']
     return "\n".join(out)
 
 
-LOG_CATEGORIES = (("logStatusError", "errors: wrong call order, bad arguments, invalid parameters"),
-                  ("logStatusWarning", "warnings"),
+LOG_CATEGORIES = (("logStatusError", "errors: wrong call order, bad arguments, invalid "
+                   "parameters (always sent to the logger)"),
+                  ("logStatusWarning", "warnings (always sent to the logger)"),
                   ("logCalls", "a trace of every FMI function call"))
 SOURCE_FILES_PLACEHOLDER: list[str] = []
 

@@ -231,16 +231,12 @@ def fmutool_problems(fmu: Path) -> list[str]:
     return problems
 
 
-#: The second importer's case: SmoothShaper's default chain M(T) * ZV(wn) (libcosim ignores
-#: FMI 2.0 Enumerations, so the kinds keep their defaults) with Reals and Integers set.
-COSIM_REALS = {"Ts": 1e-3, "stage[0].T": 0.0137, "stage[1].wn": 150.0, "stage[1].zeta": 0.05}
-
-
-def simulate_libcosim(fmu: str, t: np.ndarray, u: np.ndarray, reals: dict, *, input_name: str = "u",
+def simulate_libcosim(fmu: str, t: np.ndarray, u: np.ndarray, params: dict, *, input_name: str = "u",
                       outputs=("y",)) -> np.ndarray:
     """Outputs (columns) of an FMU in libcosim (libcosimpy): fixed step t[1]-t[0], the input
     overridden before every step (as fmpy sets it), outputs read after the step; row 0 is the
-    rest point (libcosim observes only after steps) and is left NaN."""
+    rest point (libcosim observes only after steps) and is left NaN. ``params``: start values
+    (int values are set as Integers, the FMUs' choice codes; the others as Reals)."""
     from fmpy import read_model_description
     from libcosimpy.CosimExecution import CosimExecution
     from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
@@ -256,8 +252,12 @@ def simulate_libcosim(fmu: str, t: np.ndarray, u: np.ndarray, reals: dict, *, in
     execution.add_manipulator(manipulator=override)
     observer = CosimObserver.create_last_value()
     execution.add_observer(observer=observer)
-    for name, value in {**reals, input_name: float(u[0])}.items():
-        if not execution.real_initial_value(index, vr[name], float(value)):
+    for name, value in {**params, input_name: float(u[0])}.items():
+        if isinstance(value, (int, np.integer)) and not isinstance(value, bool):
+            accepted = execution.integer_initial_value(index, vr[name], int(value))
+        else:
+            accepted = execution.real_initial_value(index, vr[name], float(value))
+        if not accepted:
             raise RuntimeError(f"libcosim refused the initial value of {name}")
     y = np.full((t.size, len(outputs)), np.nan)
     out_vrs = [vr[n] for n in outputs]
@@ -269,33 +269,34 @@ def simulate_libcosim(fmu: str, t: np.ndarray, u: np.ndarray, reals: dict, *, in
     return y
 
 
-def compare_importers(fmu: Path, *, stop_time: float = 0.3) -> tuple[float, float]:
-    """SmoothShaper: (max |y_libcosim - y_fmpy|, max |y_fmpy - reference|), COSIM_REALS case."""
-    import fmpy
-    from .stages import Stage
-    Ts = COSIM_REALS["Ts"]
+def compare_importers(fmu: Path, stages, *, Ts: float = 1e-3,
+                      stop_time: float = 0.3) -> tuple[float, float]:
+    """SmoothShaper with the chain ``stages`` (every parameter set, kinds as Integer codes):
+    (max |y_libcosim - y_fmpy|, max |y_fmpy - reference|)."""
     t = communication_points(step=Ts, stop_time=stop_time)
     u = test_input(t)
-    y_cosim = simulate_libcosim(str(fmu), t, u, COSIM_REALS)[1:, 0]
-    signal = np.zeros(t.size, dtype=[("time", float), ("u", float)])
-    signal["time"], signal["u"] = t, u
-    r = fmpy.simulate_fmu(str(fmu), start_values=dict(COSIM_REALS), input=signal,
-                          stop_time=float(t[-1]), output_interval=Ts, output=["y"], validate=False)
-    y_fmpy = np.asarray(r["y"], dtype=float)
-    stages = [Stage("rectangular", T=COSIM_REALS["stage[0].T"]),
-              Stage("zv", wn=COSIM_REALS["stage[1].wn"], zeta=COSIM_REALS["stage[1].zeta"])]
+    y_cosim = simulate_libcosim(str(fmu), t, u, start_values(stages, Ts=Ts))[1:, 0]
+    y_fmpy = simulate(str(fmu), stages, t, u, Ts=Ts)
     ref = expected_output(stages, t, u, Ts=Ts)
     return float(np.max(np.abs(y_cosim - y_fmpy[1:]))), float(np.max(np.abs(y_fmpy - ref)))
 
 
-def compare_importers_trajectory(fmu: Path, *, Ts: float = 1e-3, stop_time: float = 1.0) -> float:
-    """TrajectoryGenerator: max |(q, v, a, j)_libcosim - (q, v, a, j)_fmpy|."""
+def compare_importers_trajectory(fmu: Path, *, Ts: float = 1e-3, stop_time: float = 1.0,
+                                 profile: int = 0, wn: float = 0.0, zeta: float = 0.0) -> float:
+    """TrajectoryGenerator: max |(q, v, a, j)_libcosim - (q, v, a, j)_fmpy| for one profile
+    (its Integer code, 0 polynomial, 1 trigonometric, 2 damped with the mode wn, zeta)."""
     t = communication_points(step=Ts, stop_time=stop_time)
     target = target_staircase(t)
-    reals = {"Ts": Ts, **TRAJECTORY_LIMITS}
-    y_cosim = simulate_libcosim(str(fmu), t, target, reals, input_name="target", outputs="qvaj")
-    y_fmpy = simulate_trajectory(str(fmu), t, target, Ts=Ts, **TRAJECTORY_LIMITS)
+    params = {"Ts": Ts, **TRAJECTORY_LIMITS, "profile": int(profile), "wn": wn, "zeta": zeta}
+    y_cosim = simulate_libcosim(str(fmu), t, target, params, input_name="target", outputs="qvaj")
+    y_fmpy = simulate_trajectory(str(fmu), t, target, Ts=Ts, **TRAJECTORY_LIMITS,
+                                 profile=int(profile), wn=wn, zeta=zeta)
     return float(np.max(np.abs(y_cosim[1:] - y_fmpy[1:])))
+
+
+#: The TrajectoryGenerator profiles the importer comparison runs (the damped one with a mode).
+TRAJECTORY_PROFILES = (("polynomial", dict(profile=0)), ("trigonometric", dict(profile=1)),
+                       ("damped", dict(profile=2, wn=60.0, zeta=0.1)))
 
 
 # ---------------------------------------------------------------- report
@@ -404,20 +405,23 @@ def run(out_dir, *, build_dir=None, fmus: dict | None = None, Ts: float = 1e-3,
                                 if n.startswith("binaries/") and n.count("/") == 2 and not n.endswith("/")})
         lines.append(f"| {model}.fmu | {', '.join(platforms)} | {'; '.join(problems) or 'no problem'} | "
                      f"{'; '.join(checks) or 'passed'} |")
-    if "SmoothShaper" in fmus:
-        d_importers, d_ref = compare_importers(fmus["SmoothShaper"])
-        same = d_importers <= REL_TOL and d_ref <= REL_TOL * 10
-        ok &= same
+    if "SmoothShaper" in fmus or "TrajectoryGenerator" in fmus:
         lines += ["", "## Second importer (libcosim via libcosimpy)", "",
-                  f"SmoothShaper default chain M * ZV with {COSIM_REALS}, h = Ts: "
-                  f"max |y_libcosim - y_fmpy| = {d_importers:.2e}, "
-                  f"max |y_fmpy - reference| = {d_ref:.2e}: {'same result' if same else 'DIFFERENT'}."]
+                  "Every parameter set in libcosim (choices as Integer codes), h = Ts; libcosim "
+                  "must equal fmpy bit for bit.", "",
+                  "| FMU | case | max abs(libcosim - fmpy) | same |", "|---|---|---|---|"]
+    if "SmoothShaper" in fmus:
+        for name, stages in validation_cases(Ts):
+            d_importers, _ = compare_importers(fmus["SmoothShaper"], stages, Ts=Ts)
+            ok &= d_importers == 0.0
+            lines.append(f"| SmoothShaper | {name} | {d_importers:.1e} | "
+                         f"{'yes' if d_importers == 0.0 else 'NO'} |")
     if "TrajectoryGenerator" in fmus:
-        d_tg = compare_importers_trajectory(fmus["TrajectoryGenerator"])
-        ok &= d_tg == 0.0
-        lines += ["", f"TrajectoryGenerator (polynomial profile, limits {TRAJECTORY_LIMITS}), h = Ts: "
-                  f"max |(q, v, a, j)_libcosim - (q, v, a, j)_fmpy| = {d_tg:.2e}: "
-                  f"{'same result' if d_tg == 0.0 else 'DIFFERENT'}."]
+        for name, params in TRAJECTORY_PROFILES:
+            d_tg = compare_importers_trajectory(fmus["TrajectoryGenerator"], Ts=Ts, **params)
+            ok &= d_tg == 0.0
+            lines.append(f"| TrajectoryGenerator | profile {name} | {d_tg:.1e} | "
+                         f"{'yes' if d_tg == 0.0 else 'NO'} |")
     if "SmoothShaper" in fmus:
         steps = (("Ts", Ts), ("7 Ts", 7 * Ts), ("2.5 Ts", 2.5 * Ts), ("0.4 Ts", 0.4 * Ts))
         lines += ["", f"## SmoothShaper vs reference (Ts = {Ts:g} s, 0 to {stop_time:g} s, "

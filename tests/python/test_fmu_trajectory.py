@@ -107,9 +107,22 @@ def test_bad_parameters_fail_at_exit_initialization_naming_them(trajectory_dir, 
     fmu.freeInstance()
 
 
-def test_libcosim_gives_the_same_result_as_fmpy(fmus, trajectory_dir):  # noqa: F811
+@pytest.mark.parametrize("name,params", validation.TRAJECTORY_PROFILES,
+                         ids=[p[0] for p in validation.TRAJECTORY_PROFILES])
+def test_libcosim_sets_every_profile_and_equals_fmpy_bit_for_bit(fmus, trajectory_dir, name,  # noqa: F811
+                                                                 params):
     pytest.importorskip("libcosimpy", reason="libcosimpy is the second importer")
-    assert validation.compare_importers_trajectory(fmus["TrajectoryGenerator"]) == 0.0
+    assert validation.compare_importers_trajectory(fmus["TrajectoryGenerator"], **params) == 0.0
+
+
+def test_profiles_differ_so_the_profile_code_took_effect(fmus, trajectory_dir):  # noqa: F811
+    pytest.importorskip("libcosimpy", reason="libcosimpy is the second importer")
+    t = validation.communication_points(step=TS, stop_time=0.3)
+    target = validation.target_staircase(t)
+    runs = [validation.simulate_libcosim(str(fmus["TrajectoryGenerator"]), t, target,
+                                         {"Ts": TS, **LIMITS, **params}, input_name="target",
+                                         outputs="qvaj")[1:] for _, params in validation.TRAJECTORY_PROFILES]
+    assert not np.array_equal(runs[0], runs[1]) and not np.array_equal(runs[1], runs[2])
 
 
 def test_an_fmu_state_of_the_other_model_is_refused_in_process(trajectory_dir, smoothshaper_dir):  # noqa: F811
