@@ -14,5 +14,6 @@
 #include "smoothshaper/chain.h"
 #include "smoothshaper/design.h"
 #include "smoothshaper/trajectory.h"
+#include "smoothshaper/multi_generator.h"
 
 #endif

@@ -1,0 +1,162 @@
+/**
+ * @file multi_generator.h
+ * @brief Online multi-axis generator: a staircase of target vectors in, q, v, a, j per axis out,
+ * every axis within its own vmax, amax, jmax at every sample; phase-synchronised (straight
+ * lines, common arrival) or independent axes.
+ *
+ * Everything lives in the caller's ::sms_multi_generator (no buffer, no allocation); the
+ * per-sample path uses ::sms_real only and no libm (square and cube roots are Newton
+ * iterations), so a float build needs no double arithmetic.
+ */
+#ifndef SMOOTHSHAPER_MULTI_GENERATOR_H
+#define SMOOTHSHAPER_MULTI_GENERATOR_H
+
+#include "smoothshaper/types.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** @brief Most axes one generator drives. */
+#define SMS_MULTI_MAX_AXES 8
+
+/** @brief How the axes are coordinated (values stable: FMU parameter). */
+typedef enum sms_sync {
+    SMS_SYNC_PHASE = 0,      /**< one common profile: straight lines, common start and arrival */
+    SMS_SYNC_INDEPENDENT = 1 /**< each axis time-optimal on its own */
+} sms_sync;
+
+/**
+ * @brief Limits of the multi-axis generator.
+ *
+ * | field | valid range |
+ * |-------|-------------|
+ * | n_axes | 1 .. ::SMS_MULTI_MAX_AXES |
+ * | vmax[i], amax[i], jmax[i], i < n_axes | finite, > 0 (units of axis i per s, s^2, s^3) |
+ * | sync | an ::sms_sync |
+ */
+typedef struct sms_multi_generator_config {
+    size_t n_axes;
+    double vmax[SMS_MULTI_MAX_AXES];
+    double amax[SMS_MULTI_MAX_AXES];
+    double jmax[SMS_MULTI_MAX_AXES];
+    sms_sync sync;
+} sms_multi_generator_config;
+
+/** @brief One running move of a group of axes (all axes in phase mode, one in independent). */
+typedef struct sms_multi_move {
+    sms_real T1, rho1; /**< first velocity transition: length [s], jerk-phase fraction */
+    sms_real tau;      /**< cruise [s] */
+    sms_real T2, rho2; /**< stop transition */
+    sms_real off;      /**< move time [s] of its first sample (k = 0), in [0, Ts) */
+    sms_real seen;     /**< move time at which the pending target appeared */
+    size_t k;          /**< samples since the first sample */
+    size_t k_end;      /**< sample of arrival */
+    int active;        /**< 1 while moving */
+    int pending;       /**< 1 while the target differs from the move's goal */
+} sms_multi_move;
+
+/**
+ * @brief Online multi-axis generator.
+ *
+ * A move of a group of axes (all axes in ::SMS_SYNC_PHASE, each axis alone in
+ * ::SMS_SYNC_INDEPENDENT) starts at position p with velocity V and zero acceleration and has
+ * three phases: a velocity transition V -> W of length T1, a cruise at W for tau, and a stop
+ * transition W -> 0 of length T2. A transition from V_a to V_b is a straight line in velocity
+ * space with one normalised S-curve for every axis:
+ *   v(t) = V_a + (V_b - V_a) F(t / T),   F(0) = 0, F(1) = 1,
+ * F' piecewise linear (jerk +c, 0, -c over fractions rho, 1 - 2 rho, rho of T; rho <= 1/2).
+ * For a change dV the shortest such transition follows from the scaled unit limits
+ *   A = min_i amax_i / |dV_i|,  J = min_i jmax_i / |dV_i|:
+ *   T = 1/A + A/J, rho = (A/J)/T  if A^2 <= J;   T = 2/sqrt(J), rho = 1/2 otherwise,
+ * and then |a_i| <= |dV_i| A <= amax_i, |j_i| <= |dV_i| J <= jmax_i; a longer T with the same rho
+ * only lowers them. The transition is point-symmetric, so it covers (V_a + V_b) T / 2.
+ * Landing on the target B: with kappa = T1/2 + tau + T2/2,
+ *   W kappa = B - p - V T1/2,
+ * so W is parallel to u = B - p - V T1/2. Given T1, kappa is the smallest value with
+ * |W_i| <= vmax_i and tau >= 0 (T2 = the shortest stop transition of W); the move is feasible
+ * when the shortest transition V -> W fits in T1. T1 is the smallest feasible length, found
+ * by bisection on [T(V), T(2 vmax)] (the upper end is always feasible). The arrival is then
+ * moved onto the next sample by lengthening the cruise (W shrinks towards 0, which keeps
+ * every bound), and the output is set exactly to B at the arrival sample.
+ *
+ * From rest (V = 0) this is the time-optimal jerk-limited straight move, u = B - p and the
+ * path parameter s in [0, 1] has the limits min_i vmax_i/|d_i|, min_i amax_i/|d_i|,
+ * min_i jmax_i/|d_i| (d = B - p): every axis starts and arrives on the same sample, q stays on
+ * the segment from p to B, and the duration is the time-optimal one rounded up to the sample
+ * grid. (ruckig's Synchronization::Phase gives the same duration when it finds a
+ * phase-synchronised profile; when it does not, it falls back to a shorter, curved
+ * time-synchronised move.)
+ *
+ * A target that changes mid-motion is blended: the running move continues to the end of its
+ * first transition (or, if the change arrives later, to the current sample during the cruise),
+ * where the acceleration is zero; a new move starts there from (p, V) towards the new target:
+ * one velocity transition straight from V to the new cruise velocity, cruise, stop. The corner
+ * between the two straight segments is cut by that transition (so the path leaves the straight
+ * lines there); no axis exceeds any limit, because each transition keeps them by
+ * construction and transitions never overlap. A change seen during the stop transition waits
+ * for the arrival and then starts from rest. Every output q, v, a, j is the exact value of
+ * this continuous profile at the sample instant (the jerk at a jump is the right limit), so
+ * the backward differences dq/Ts, d2q/Ts^2, d3q/Ts^3 are averages of v, a, j and keep the
+ * limits too. Per-sample work is O(n_axes); a re-plan costs a bounded number (a few hundred)
+ * of O(n_axes) evaluations.
+ *
+ * Vibration stages: filter each axis's q (and v, a, j) with the same stages (e.g. a chain of
+ * shapers); identical linear filters on every axis keep straight lines straight, different
+ * ones bend them.
+ */
+typedef struct sms_multi_generator {
+    size_t n_axes;
+    sms_sync sync;
+    double Ts;
+    sms_real Ts_signal;
+    sms_real vmax[SMS_MULTI_MAX_AXES], amax[SMS_MULTI_MAX_AXES], jmax[SMS_MULTI_MAX_AXES];
+    sms_real target[SMS_MULTI_MAX_AXES]; /**< latest valid target */
+    sms_real goal[SMS_MULTI_MAX_AXES];   /**< target of the running move */
+    sms_real p[SMS_MULTI_MAX_AXES];      /**< position at the running move's start */
+    sms_real V[SMS_MULTI_MAX_AXES];      /**< velocity at its start */
+    sms_real W[SMS_MULTI_MAX_AXES];      /**< its cruise velocity */
+    sms_multi_move move[SMS_MULTI_MAX_AXES]; /**< phase: move[0]; independent: move[i] */
+} sms_multi_generator;
+
+/**
+ * @brief Validate the limits and Ts; the generator rests at 0 on every axis.
+ * @param g       caller-owned generator
+ * @param config  limits (see ::sms_multi_generator_config for ranges)
+ * @param Ts      sample period [s], finite and > 0
+ * @param bad_axis if not NULL, receives the offending axis for ::SMS_ERR_LIMIT (else 0)
+ * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_ORDER (n_axes out of range),
+ *         ::SMS_ERR_SAMPLE_PERIOD, ::SMS_ERR_LIMIT (a limit not finite and > 0, or a limit
+ *         ratio that overflows the signal type), ::SMS_ERR_KIND (sync). g untouched on error.
+ */
+SMS_API sms_status sms_multi_generator_init(sms_multi_generator *g,
+                                            const sms_multi_generator_config *config, double Ts,
+                                            size_t *bad_axis);
+/** @brief Rest at position[0 .. n_axes-1] (targets and output there); NULL: rest at 0. */
+SMS_API void sms_multi_generator_reset(sms_multi_generator *g, const sms_real *position);
+/**
+ * @brief Advance one sample with the current target vector (n_axes values; a non-finite
+ * component keeps that axis's previous target) and write out[4 i + m] = q, q', q'', q''' of
+ * axis i at this instant.
+ */
+SMS_API void sms_multi_generator_step(sms_multi_generator *g, const sms_real *target,
+                                      sms_real *out);
+/** @brief n samples: targets[k n_axes + i] in, out[(k n_axes + i) 4 + m] out. */
+SMS_API void sms_multi_generator_process(sms_multi_generator *g, const sms_real *targets,
+                                         size_t n, sms_real *out);
+/** @brief 1 while any axis is moving or waiting for a new target, else 0. */
+SMS_API int sms_multi_generator_busy(const sms_multi_generator *g);
+/**
+ * @brief Time-optimal phase-synchronised rest-to-rest duration for a displacement vector:
+ * the jerk-limited straight move under every axis's limits (continuous time, no grid).
+ * @param delta  n_axes displacements (finite; all zero gives 0)
+ * @param T      receives the duration [s]
+ * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_ORDER, ::SMS_ERR_LIMIT (limits or delta).
+ */
+SMS_API sms_status sms_multi_phase_duration(const sms_multi_generator_config *config,
+                                            const double *delta, double *T);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,517 @@
+/* Online multi-axis generator. The planning argument (transitions, landing, why no limit is
+ * exceeded) is in multi_generator.h; here the arithmetic, all in sms_real without libm in
+ * step (roots by Newton), so a float build stays single precision. */
+#include <float.h>
+#include <math.h>
+#include "smoothshaper/multi_generator.h"
+
+#ifdef SMS_USE_FLOAT
+#define REAL_EPS ((sms_real)FLT_EPSILON)
+#define REAL_MAX ((sms_real)FLT_MAX)
+#else
+#define REAL_EPS ((sms_real)DBL_EPSILON)
+#define REAL_MAX ((sms_real)DBL_MAX)
+#endif
+
+/* Bisection stops at this relative bracket or after MAX_BISECT halvings. */
+#define BRACKET_TOL (4 * REAL_EPS)
+#define MAX_BISECT 200
+/* A duration within this many ulps of a whole number of samples is on the grid. */
+#define GRID_TOL (8 * REAL_EPS)
+
+/* sqrt(x), x >= 0, by Newton after scaling into [1, 4) with exact powers of 2. */
+static sms_real root2(sms_real x)
+{
+    sms_real scale = 1, y;
+    int i;
+    if (!(x > 0))
+        return 0;
+    while (x >= 4) {
+        x *= (sms_real)0.25;
+        scale *= 2;
+    }
+    while (x < 1) {
+        x *= 4;
+        scale *= (sms_real)0.5;
+    }
+    y = (1 + x) * (sms_real)0.5;
+    for (i = 0; i < 7; ++i)
+        y = (y + x / y) * (sms_real)0.5;
+    return y * scale;
+}
+
+/* cbrt(x), x >= 0, by Newton after scaling into [1, 8). */
+static sms_real root3(sms_real x)
+{
+    sms_real scale = 1, y;
+    int i;
+    if (!(x > 0))
+        return 0;
+    while (x >= 8) {
+        x *= (sms_real)0.125;
+        scale *= 2;
+    }
+    while (x < 1) {
+        x *= 8;
+        scale *= (sms_real)0.5;
+    }
+    y = 1 + x * (sms_real)(1.0 / 7.0); /* within 2x of the root on [1, 8) */
+    for (i = 0; i < 8; ++i)
+        y = (2 * y + x / (y * y)) * (sms_real)(1.0 / 3.0);
+    return y * scale;
+}
+
+/* Shortest transition of a unit velocity change under unit limits A, J (header). */
+static sms_real unit_time(sms_real A, sms_real J, sms_real *rho)
+{
+    sms_real T, Tj;
+    *rho = (sms_real)0.5;
+    if (!(A < REAL_MAX) || !(J < REAL_MAX))
+        return 0; /* a change too small to resolve in this precision */
+    if (A * A <= J) {
+        Tj = A / J;
+        T = 1 / A + Tj;
+        *rho = Tj / T;
+    } else {
+        Tj = 1 / root2(J);
+        T = 2 * Tj;
+        *rho = (sms_real)0.5;
+    }
+    return T;
+}
+
+/* The axes a move drives and their limits. */
+typedef struct group {
+    size_t n;
+    const sms_real *vmax, *amax, *jmax;
+} group;
+
+/* Shortest transition for the change dV (0 for no change; rho 1/2 then). */
+static sms_real transition_time(const group *G, const sms_real *dV, sms_real *rho)
+{
+    sms_real A = REAL_MAX, J = REAL_MAX;
+    size_t i;
+    int any = 0;
+    for (i = 0; i < G->n; ++i) {
+        sms_real d = dV[i] < 0 ? -dV[i] : dV[i];
+        if (d > 0) {
+            sms_real a = G->amax[i] / d, j = G->jmax[i] / d;
+            any = 1;
+            if (a < A)
+                A = a;
+            if (j < J)
+                J = j;
+        }
+    }
+    *rho = (sms_real)0.5;
+    if (!any)
+        return 0;
+    return unit_time(A, J, rho);
+}
+
+/* Smallest kappa with kappa >= T1/2 + T(u/kappa)/2 (tau >= 0) and |u_i|/kappa <= vmax_i. */
+static sms_real landing_kappa(const group *G, const sms_real *u, sms_real T1)
+{
+    sms_real au = REAL_MAX, ju = REAL_MAX, kv = 0, kh, b;
+    size_t i;
+    int any = 0;
+    for (i = 0; i < G->n; ++i) {
+        sms_real d = u[i] < 0 ? -u[i] : u[i];
+        if (d > 0) {
+            sms_real a = G->amax[i] / d, j = G->jmax[i] / d, k = d / G->vmax[i];
+            any = 1;
+            if (a < au)
+                au = a;
+            if (j < ju)
+                ju = j;
+            if (k > kv)
+                kv = k;
+        }
+    }
+    if (!any)
+        return T1 / 2;
+    /* the stop's unit limits are kappa au, kappa ju; acceleration-limited regime first */
+    b = (T1 + au / ju) / 2;
+    kh = (b + root2(b * b + 2 / au)) / 2;
+    if (kh > ju / (au * au)) {
+        /* jerk-limited stop: kappa = y^2, y^3 - (T1/2) y - 1/sqrt(ju) = 0; Newton from the
+         * right of the root (the cubic is convex there) decreases monotonically */
+        sms_real c = T1 / 2, q = 1 / root2(ju), y = root2(c) + root3(q);
+        for (i = 0; i < 100; ++i) {
+            sms_real f = (y * y - c) * y - q, y_next = y - f / (3 * y * y - c);
+            if (!(y_next < y))
+                break;
+            y = y_next;
+        }
+        kh = y * y;
+    }
+    return kh > kv ? kh : kv;
+}
+
+/* A candidate move with first transition T1: its W, tau, T2, rho2 and whether V -> W fits. */
+typedef struct candidate {
+    sms_real W[SMS_MULTI_MAX_AXES];
+    sms_real kappa, tau, T2, rho2, rho1;
+    int feasible;
+} candidate;
+
+static void try_T1(const group *G, const sms_real *D, const sms_real *V, sms_real T1,
+                   candidate *c)
+{
+    sms_real u[SMS_MULTI_MAX_AXES], dW[SMS_MULTI_MAX_AXES];
+    size_t i;
+    for (i = 0; i < G->n; ++i)
+        u[i] = D[i] - V[i] * (T1 / 2);
+    c->kappa = landing_kappa(G, u, T1);
+    for (i = 0; i < G->n; ++i) {
+        c->W[i] = u[i] / c->kappa;
+        dW[i] = c->W[i] - V[i];
+    }
+    c->T2 = transition_time(G, c->W, &c->rho2);
+    c->tau = c->kappa - T1 / 2 - c->T2 / 2;
+    if (c->tau < 0)
+        c->tau = 0; /* rounding: kappa solves tau = 0 to an ulp */
+    c->feasible = transition_time(G, dW, &c->rho1) <= T1;
+}
+
+/* Plan a move from (p, V, a = 0) at move time 0 towards target; the first sample of the new
+ * move is at move time off. */
+static void plan(sms_multi_generator *g, size_t first, const group *G, sms_multi_move *m,
+                 const sms_real *p, const sms_real *V, sms_real off)
+{
+    sms_real D[SMS_MULTI_MAX_AXES], u[SMS_MULTI_MAX_AXES], dW[SMS_MULTI_MAX_AXES];
+    sms_real lo, hi, T1, rho, total, nu, n_round, delta, kappa;
+    const sms_real Ts = g->Ts_signal;
+    candidate c;
+    size_t i, k_end, it;
+    int moving = 0, any_move = 0;
+    for (i = 0; i < G->n; ++i) { /* p and V may alias the generator's own arrays */
+        g->p[first + i] = p[i];
+        g->V[first + i] = V[i];
+    }
+    p = g->p + first;
+    V = g->V + first;
+    for (i = 0; i < G->n; ++i) {
+        D[i] = g->target[first + i] - p[i];
+        if (V[i] != 0)
+            moving = 1;
+        if (D[i] != 0)
+            any_move = 1;
+        g->goal[first + i] = g->target[first + i];
+    }
+    m->pending = 0;
+    m->k = 0;
+    m->off = off;
+    if (!moving && !any_move) {
+        m->active = 0; /* already there at rest */
+        for (i = 0; i < G->n; ++i)
+            g->W[first + i] = 0;
+        return;
+    }
+    /* smallest feasible first transition: bisection on [T(V), T(2 vmax)] */
+    lo = transition_time(G, V, &rho);
+    try_T1(G, D, V, lo, &c);
+    if (!c.feasible) {
+        sms_real A = REAL_MAX, J = REAL_MAX;
+        for (i = 0; i < G->n; ++i) {
+            sms_real a = G->amax[i] / (2 * G->vmax[i]), j = G->jmax[i] / (2 * G->vmax[i]);
+            if (a < A)
+                A = a;
+            if (j < J)
+                J = j;
+        }
+        hi = unit_time(A, J, &rho) * (1 + 16 * REAL_EPS);
+        if (hi < lo)
+            hi = lo;
+        for (it = 0; it < MAX_BISECT && hi - lo > BRACKET_TOL * hi; ++it) {
+            sms_real mid = lo + (hi - lo) / 2;
+            try_T1(G, D, V, mid, &c);
+            if (c.feasible)
+                hi = mid;
+            else
+                lo = mid;
+        }
+        lo = hi;
+        try_T1(G, D, V, lo, &c);
+    }
+    T1 = lo;
+    /* arrival on the grid: lengthen the cruise by delta, W = u / (kappa + delta) */
+    total = T1 + c.tau + c.T2;
+    nu = (total - off) / Ts;
+    if (!(nu > 0))
+        nu = 0;
+    n_round = (sms_real)(size_t)(nu + (sms_real)0.5);
+    if ((n_round >= nu ? n_round - nu : nu - n_round) <= GRID_TOL * (nu > 1 ? nu : 1))
+        k_end = (size_t)n_round;
+    else
+        k_end = (size_t)nu + 1u; /* ceil: nu is not on the grid */
+    delta = (sms_real)k_end * Ts + off - total;
+    m->tau = c.tau + delta;
+    if (m->tau < 0)
+        m->tau = 0;
+    kappa = T1 / 2 + m->tau + c.T2 / 2;
+    for (i = 0; i < G->n; ++i) {
+        u[i] = D[i] - V[i] * (T1 / 2);
+        g->W[first + i] = kappa > 0 ? u[i] / kappa : 0;
+        dW[i] = g->W[first + i] - V[i];
+    }
+    m->T1 = T1;
+    (void)transition_time(G, dW, &m->rho1); /* its length fits T1 (header) */
+    m->T2 = c.T2;
+    m->rho2 = c.rho2;
+    m->k_end = k_end;
+    m->active = k_end > 0; /* 0: it ends by this very sample */
+}
+
+/* Normalised S-curve (header): F'(x) (acceleration), F(x), G(x) = int_0^x F; and F''. */
+static void s_curve(sms_real x, sms_real rho, sms_real *G, sms_real *F, sms_real *dF,
+                    sms_real *ddF)
+{
+    const sms_real ap = 1 / (1 - rho);
+    if (x < rho) {
+        *ddF = ap / rho;
+        *dF = ap * x / rho;
+        *F = ap * x * x / (2 * rho);
+        *G = ap * x * x * x / (6 * rho);
+    } else if (x < 1 - rho) {
+        *ddF = 0;
+        *dF = ap;
+        *F = ap * (x - rho / 2);
+        *G = ap * (x * x / 2 - rho * x / 2 + rho * rho / 6);
+    } else if (x < 1) {
+        sms_real y = 1 - x;
+        *ddF = -ap / rho;
+        *dF = ap * y / rho;
+        *F = 1 - ap * y * y / (2 * rho);
+        *G = x - (sms_real)0.5 + ap * y * y * y / (6 * rho);
+    } else {
+        *ddF = 0;
+        *dF = 0;
+        *F = 1;
+        *G = x - (sms_real)0.5;
+    }
+}
+
+/* Output of the axes [first, first + n) at move time t (k < k_end). */
+static void evaluate(const sms_multi_generator *g, size_t first, size_t n,
+                     const sms_multi_move *m, sms_real t, sms_real *out)
+{
+    sms_real G, F, dF, ddF;
+    size_t i;
+    if (t < m->T1) {
+        sms_real x = t / m->T1;
+        s_curve(x, m->rho1, &G, &F, &dF, &ddF);
+        for (i = first; i < first + n; ++i) {
+            sms_real dV = g->W[i] - g->V[i];
+            out[4 * i + 0] = g->p[i] + g->V[i] * t + dV * (m->T1 * G);
+            out[4 * i + 1] = g->V[i] + dV * F;
+            out[4 * i + 2] = dV * (dF / m->T1);
+            out[4 * i + 3] = dV * (ddF / (m->T1 * m->T1));
+        }
+    } else if (t < m->T1 + m->tau || !(m->T2 > 0)) {
+        sms_real c = t - m->T1;
+        for (i = first; i < first + n; ++i) {
+            out[4 * i + 0] = g->p[i] + (g->V[i] + g->W[i]) * (m->T1 / 2) + g->W[i] * c;
+            out[4 * i + 1] = g->W[i];
+            out[4 * i + 2] = 0;
+            out[4 * i + 3] = 0;
+        }
+    } else {
+        sms_real c = t - m->T1 - m->tau, x = c / m->T2;
+        s_curve(x, m->rho2, &G, &F, &dF, &ddF);
+        for (i = first; i < first + n; ++i) {
+            sms_real W = g->W[i];
+            out[4 * i + 0] = g->p[i] + (g->V[i] + W) * (m->T1 / 2) + W * m->tau + W * c -
+                             W * (m->T2 * G);
+            out[4 * i + 1] = W - W * F;
+            out[4 * i + 2] = -W * (dF / m->T2);
+            out[4 * i + 3] = -W * (ddF / (m->T2 * m->T2));
+        }
+    }
+}
+
+static void step_group(sms_multi_generator *g, size_t first, size_t n, sms_multi_move *m,
+                       sms_real *out)
+{
+    const group G = {n, g->vmax + first, g->amax + first, g->jmax + first};
+    sms_real t = 0;
+    size_t i;
+    int differs = 0;
+    if (m->active) {
+        ++m->k;
+        if (m->k >= m->k_end)
+            m->active = 0; /* arrived: rest exactly at the goal */
+        else
+            t = m->off + (sms_real)m->k * g->Ts_signal;
+    }
+    for (i = first; i < first + n; ++i)
+        if (g->target[i] != g->goal[i])
+            differs = 1;
+    if (!differs) {
+        m->pending = 0;
+    } else if (!m->pending) {
+        m->pending = 1;
+        m->seen = t;
+    }
+    if (m->pending) {
+        if (!m->active) {
+            sms_real zero[SMS_MULTI_MAX_AXES] = {0};
+            plan(g, first, &G, m, g->goal + first, zero, 0);
+            t = 0;
+        } else if (t >= m->T1) {
+            sms_real tr = m->seen > m->T1 ? m->seen : m->T1;
+            if (tr <= m->T1 + m->tau) {
+                /* zero acceleration at tr: blend into a new move from there */
+                sms_real p[SMS_MULTI_MAX_AXES], V[SMS_MULTI_MAX_AXES];
+                for (i = 0; i < n; ++i) {
+                    sms_real W = g->W[first + i];
+                    p[i] = g->p[first + i] + (g->V[first + i] + W) * (m->T1 / 2) +
+                           W * (tr - m->T1);
+                    V[i] = W;
+                }
+                plan(g, first, &G, m, p, V, t - tr);
+                t = m->off;
+            }
+        }
+    }
+    if (m->active) {
+        evaluate(g, first, n, m, t, out);
+    } else {
+        for (i = first; i < first + n; ++i) {
+            out[4 * i + 0] = g->goal[i];
+            out[4 * i + 1] = 0;
+            out[4 * i + 2] = 0;
+            out[4 * i + 3] = 0;
+        }
+    }
+}
+
+static int limit_ok(double x)
+{
+    return isfinite(x) && x > 0.0 && (sms_real)x > 0 && (double)(sms_real)x < (double)REAL_MAX;
+}
+
+sms_status sms_multi_generator_init(sms_multi_generator *g,
+                                    const sms_multi_generator_config *config, double Ts,
+                                    size_t *bad_axis)
+{
+    size_t i, n;
+    if (bad_axis != NULL)
+        *bad_axis = 0;
+    if (g == NULL || config == NULL)
+        return SMS_ERR_NULL;
+    n = config->n_axes;
+    if (n < 1 || n > SMS_MULTI_MAX_AXES)
+        return SMS_ERR_ORDER;
+    if (!isfinite(Ts) || !(Ts > 0.0) || !((sms_real)Ts > 0))
+        return SMS_ERR_SAMPLE_PERIOD;
+    for (i = 0; i < n; ++i) {
+        if (!limit_ok(config->vmax[i]) || !limit_ok(config->amax[i]) ||
+            !limit_ok(config->jmax[i])) {
+            if (bad_axis != NULL)
+                *bad_axis = i;
+            return SMS_ERR_LIMIT;
+        }
+    }
+    if ((unsigned)config->sync > (unsigned)SMS_SYNC_INDEPENDENT)
+        return SMS_ERR_KIND;
+    g->n_axes = n;
+    g->sync = config->sync;
+    g->Ts = Ts;
+    g->Ts_signal = (sms_real)Ts;
+    for (i = 0; i < SMS_MULTI_MAX_AXES; ++i) {
+        g->vmax[i] = i < n ? (sms_real)config->vmax[i] : 1;
+        g->amax[i] = i < n ? (sms_real)config->amax[i] : 1;
+        g->jmax[i] = i < n ? (sms_real)config->jmax[i] : 1;
+    }
+    sms_multi_generator_reset(g, NULL);
+    return SMS_OK;
+}
+
+void sms_multi_generator_reset(sms_multi_generator *g, const sms_real *position)
+{
+    size_t i;
+    for (i = 0; i < SMS_MULTI_MAX_AXES; ++i) {
+        sms_real x = (position != NULL && i < g->n_axes) ? position[i] : 0;
+        g->target[i] = x;
+        g->goal[i] = x;
+        g->p[i] = x;
+        g->V[i] = 0;
+        g->W[i] = 0;
+        g->move[i].T1 = g->move[i].tau = g->move[i].T2 = 0;
+        g->move[i].rho1 = g->move[i].rho2 = (sms_real)0.5;
+        g->move[i].off = g->move[i].seen = 0;
+        g->move[i].k = g->move[i].k_end = 0;
+        g->move[i].active = 0;
+        g->move[i].pending = 0;
+    }
+}
+
+void sms_multi_generator_step(sms_multi_generator *g, const sms_real *target, sms_real *out)
+{
+    size_t i;
+    for (i = 0; i < g->n_axes; ++i)
+        if (target[i] - target[i] == 0) /* finite (NaN and Inf give NaN) */
+            g->target[i] = target[i];
+    if (g->sync == SMS_SYNC_PHASE) {
+        step_group(g, 0, g->n_axes, &g->move[0], out);
+    } else {
+        for (i = 0; i < g->n_axes; ++i)
+            step_group(g, i, 1, &g->move[i], out);
+    }
+}
+
+void sms_multi_generator_process(sms_multi_generator *g, const sms_real *targets, size_t n,
+                                 sms_real *out)
+{
+    size_t k;
+    for (k = 0; k < n; ++k)
+        sms_multi_generator_step(g, targets + k * g->n_axes, out + 4u * k * g->n_axes);
+}
+
+int sms_multi_generator_busy(const sms_multi_generator *g)
+{
+    size_t i, groups = g->sync == SMS_SYNC_PHASE ? 1u : g->n_axes;
+    for (i = 0; i < groups; ++i)
+        if (g->move[i].active || g->move[i].pending)
+            return 1;
+    return 0;
+}
+
+/* Time-optimal unit rest-to-rest move under path limits V, A, J (closed form). */
+static double unit_move_time(double V, double A, double J)
+{
+    double Tv = V * J >= A * A ? V / A + A / J : 2.0 * sqrt(V / J), c;
+    if (V * Tv < 1.0)
+        return 1.0 / V + Tv; /* reaches V: cruise 1/V - Tv */
+    /* peak velocity c below V: c T(c) = 1 */
+    c = 0.5 * (-A * A / J + sqrt(A * A * A * A / (J * J) + 4.0 * A));
+    if (c * J >= A * A)
+        return 2.0 * (c / A + A / J);
+    return 4.0 * cbrt(0.5 / J); /* c = J Tj^2, 2 J Tj^3 = 1, T = 4 Tj */
+}
+
+sms_status sms_multi_phase_duration(const sms_multi_generator_config *config,
+                                    const double *delta, double *T)
+{
+    double V = HUGE_VAL, A = HUGE_VAL, J = HUGE_VAL;
+    size_t i;
+    if (config == NULL || delta == NULL || T == NULL)
+        return SMS_ERR_NULL;
+    if (config->n_axes < 1 || config->n_axes > SMS_MULTI_MAX_AXES)
+        return SMS_ERR_ORDER;
+    for (i = 0; i < config->n_axes; ++i) {
+        double d = fabs(delta[i]);
+        if (!isfinite(delta[i]) || !(isfinite(config->vmax[i]) && config->vmax[i] > 0.0) ||
+            !(isfinite(config->amax[i]) && config->amax[i] > 0.0) ||
+            !(isfinite(config->jmax[i]) && config->jmax[i] > 0.0))
+            return SMS_ERR_LIMIT;
+        if (d > 0.0) {
+            V = fmin(V, config->vmax[i] / d);
+            A = fmin(A, config->amax[i] / d);
+            J = fmin(J, config->jmax[i] / d);
+        }
+    }
+    *T = V == HUGE_VAL ? 0.0 : unit_move_time(V, A, J);
+    return SMS_OK;
+}
