@@ -292,14 +292,25 @@ static void s_curve(sms_real x, sms_real rho, sms_real *G, sms_real *F, sms_real
     }
 }
 
+/* Breakpoints (phase ends, jerk jumps) within SNAP of a sample instant count as on it, and
+ * the sample takes the right limit there; the decision then does not hang on the last ulp. */
+#define SNAP (64 * REAL_EPS)
+
+static sms_real snap(sms_real x, sms_real b, sms_real tol)
+{
+    return (x - b <= tol && b - x <= tol) ? b : x;
+}
+
 /* Output of the axes [first, first + n) at move time t (k < k_end). */
 static void evaluate(const sms_multi_generator *g, size_t first, size_t n,
                      const sms_multi_move *m, sms_real t, sms_real *out)
 {
     sms_real G, F, dF, ddF;
+    const sms_real tol = SNAP * (m->T1 + m->tau + m->T2);
     size_t i;
+    t = snap(snap(t, m->T1, tol), m->T1 + m->tau, tol);
     if (t < m->T1) {
-        sms_real x = t / m->T1;
+        sms_real x = snap(snap(t / m->T1, m->rho1, SNAP), 1 - m->rho1, SNAP);
         s_curve(x, m->rho1, &G, &F, &dF, &ddF);
         for (i = first; i < first + n; ++i) {
             sms_real dV = g->W[i] - g->V[i];
@@ -317,7 +328,8 @@ static void evaluate(const sms_multi_generator *g, size_t first, size_t n,
             out[4 * i + 3] = 0;
         }
     } else {
-        sms_real c = t - m->T1 - m->tau, x = c / m->T2;
+        sms_real c = t - m->T1 - m->tau;
+        sms_real x = snap(snap(snap(c / m->T2, m->rho2, SNAP), 1 - m->rho2, SNAP), 1, SNAP);
         s_curve(x, m->rho2, &G, &F, &dF, &ddF);
         for (i = first; i < first + n; ++i) {
             sms_real W = g->W[i];
@@ -358,7 +370,7 @@ static void step_group(sms_multi_generator *g, size_t first, size_t n, sms_multi
             sms_real zero[SMS_MULTI_MAX_AXES] = {0};
             plan(g, first, &G, m, g->goal + first, zero, 0);
             t = 0;
-        } else if (t >= m->T1) {
+        } else if (t >= m->T1 - SNAP * (m->T1 + m->tau + m->T2)) {
             sms_real tr = m->seen > m->T1 ? m->seen : m->T1;
             if (tr <= m->T1 + m->tau) {
                 /* zero acceleration at tr: blend into a new move from there */
@@ -369,7 +381,7 @@ static void step_group(sms_multi_generator *g, size_t first, size_t n, sms_multi
                            W * (tr - m->T1);
                     V[i] = W;
                 }
-                plan(g, first, &G, m, p, V, t - tr);
+                plan(g, first, &G, m, p, V, t > tr ? t - tr : 0);
                 t = m->off;
             }
         }

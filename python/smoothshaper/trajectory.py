@@ -459,3 +459,9 @@ def bspline_period(*, wn, Ts: float) -> float:
         raise ValueError(f"wn must be one or more finite frequencies > 0 rad/s, got {wn!r}")
     Ts = _design._positive("Ts", Ts)
     return max(1.0, math.ceil(2 * math.pi / (w.min() * Ts) * (1 - 1e-12))) * Ts
+
+
+# Coordinated multi-axis motion lives in its own module; exposed here with the other generators.
+from .multi_axis import (MultiAxisGenerator, MultiAxisMove, multi_axis_move,  # noqa: E402
+                         phase_duration)
+from .reference.multi_axis import multi_axis_reference  # noqa: E402

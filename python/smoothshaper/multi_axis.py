@@ -1,0 +1,214 @@
+"""Coordinated multi-axis motion: the C-backed online generator and the offline design.
+
+* :class:`MultiAxisGenerator` wraps ``sms_multi_generator``: target vectors of shape
+  (n, axes) in, (n, axes, 4) position, velocity, acceleration and jerk out; every axis within
+  its own ``vmax[i]``, ``amax[i]``, ``jmax[i]`` at every sample. ``sync="phase"`` (default)
+  moves all axes on one straight line, starting and arriving on the same sample with the
+  time-optimal duration under every axis's limits; ``sync="independent"`` runs each axis
+  time-optimally on its own. Targets changing mid-motion are blended (docs/multi-axis.md).
+* :func:`multi_axis_move` designs one rest-to-rest move offline for a target vector.
+* The independent NumPy reference is :func:`smoothshaper.reference.multi_axis.multi_axis_reference`.
+"""
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+
+from .filters import ParameterError, _backend, _real_dtype
+from .reference import multi_axis as _ref
+
+SYNC_MODES = ("phase", "independent")
+
+
+def _limit_vector(name: str, values, axes: int | None) -> np.ndarray:
+    """Per-axis limits as a float64 vector; ParameterError naming ``name[i]``."""
+    try:
+        v = np.atleast_1d(np.asarray(values, dtype=np.float64))
+    except (TypeError, ValueError):
+        raise ParameterError(name, f"{name} must be a sequence of numbers, got {values!r}") from None
+    if v.ndim != 1:
+        raise ParameterError(name, f"{name} must be one-dimensional, got shape {v.shape}")
+    if axes is not None and v.size == 1:
+        v = np.full(axes, v[0])
+    if axes is not None and v.size != axes:
+        raise ParameterError(name, f"{name} has {v.size} values for {axes} axes")
+    for i, x in enumerate(v):
+        if not (math.isfinite(x) and x > 0):
+            raise ParameterError(f"{name}[{i}]", f"{name}[{i}] must be finite and > 0, got {x!r}")
+    return v
+
+
+def _limits(vmax, amax, jmax, axes=None):
+    sizes = [np.size(x) for x in (vmax, amax, jmax)]
+    if axes is None:
+        axes = max(sizes)
+    v = _limit_vector("vmax", vmax, axes)
+    a = _limit_vector("amax", amax, axes)
+    j = _limit_vector("jmax", jmax, axes)
+    return v, a, j
+
+
+def _sync(sync: str) -> str:
+    s = str(sync).lower()
+    if s not in SYNC_MODES:
+        raise ParameterError("sync", f"sync must be one of {SYNC_MODES}, got {sync!r}")
+    return s
+
+
+class MultiAxisGenerator:
+    """Online multi-axis generator (C core, up to ``MAX_AXES`` axes).
+
+    Parameters (keyword-only): ``vmax``, ``amax``, ``jmax`` sequences with one limit per axis
+    (a scalar applies to every axis; units of each axis per s, s^2, s^3), ``Ts`` sample period
+    [s], ``sync`` ("phase" or "independent"), ``q0`` initial rest position (default 0),
+    ``stages`` optional vibration stages (a list of stage configs from
+    :mod:`smoothshaper.stages` applied to every axis, or one such list per axis; different
+    lists per axis bend straight lines and give a warning), ``precision``.
+
+    :meth:`process` takes targets of shape (n, axes) and returns (n, axes, 4): q, v, a, j of
+    each axis at each sample (the exact values of the continuous profile; after vibration
+    stages, the filtered ones). Raises :class:`ParameterError` naming the offending argument,
+    e.g. ``vmax[2]``.
+    """
+
+    MAX_AXES = 8
+
+    def __init__(self, *, vmax, amax, jmax, Ts: float, sync: str = "phase", q0=None,
+                 stages=None, precision: str = "double"):
+        ffi, lib = _backend(precision)
+        self._ffi, self._lib = ffi, lib
+        self.vmax, self.amax, self.jmax = _limits(vmax, amax, jmax)
+        self.axes = self.vmax.size
+        if not 1 <= self.axes <= lib.SMS_MULTI_MAX_AXES:
+            raise ParameterError("vmax", f"1 to {lib.SMS_MULTI_MAX_AXES} axes supported, "
+                                         f"got {self.axes}")
+        if not (isinstance(Ts, (int, float)) and math.isfinite(Ts) and Ts > 0):
+            raise ParameterError("Ts", f"Ts must be finite and > 0, got {Ts!r}")
+        self.Ts = float(Ts)
+        self.sync = _sync(sync)
+        self.precision = precision
+        cfg = ffi.new("sms_multi_generator_config *")
+        cfg.n_axes = self.axes
+        for i in range(self.axes):
+            cfg.vmax[i], cfg.amax[i], cfg.jmax[i] = self.vmax[i], self.amax[i], self.jmax[i]
+        cfg.sync = SYNC_MODES.index(self.sync)
+        self._gen = ffi.new("sms_multi_generator *")
+        bad = ffi.new("size_t *")
+        st = lib.sms_multi_generator_init(self._gen, cfg, self.Ts, bad)
+        if st != 0:
+            text = ffi.string(lib.sms_status_string(st)).decode()
+            raise ParameterError("vmax" if st == lib.SMS_ERR_LIMIT else "Ts",
+                                 f"limits of axis {bad[0]} rejected: {text}", st)
+        self._stages = self._make_stages(stages)
+        self.reset(q0)
+
+    def _make_stages(self, stages):
+        if stages is None:
+            return None
+        per_axis = (isinstance(stages, (list, tuple)) and len(stages) == self.axes
+                    and all(isinstance(s, (list, tuple)) for s in stages))
+        lists = [list(s) for s in stages] if per_axis else [list(stages)] * self.axes
+        if any(lst != lists[0] for lst in lists):
+            warnings.warn("different vibration stages per axis bend straight lines: the axes "
+                          "are delayed and smoothed differently", stacklevel=3)
+        from .filters import Chain
+        return [[Chain(lst, Ts=self.Ts, precision=self.precision) for _ in range(4)]
+                for lst in lists]
+
+    def reset(self, q0=None) -> None:
+        """Rest at ``q0`` (sequence of axes values; default 0) on every axis."""
+        if q0 is None:
+            q = np.zeros(self.axes)
+        else:
+            q = np.broadcast_to(np.asarray(q0, dtype=np.float64), (self.axes,)).copy()
+            bad = np.flatnonzero(~np.isfinite(q))
+            if bad.size:
+                raise ParameterError("q0", f"q0[{bad[0]}] must be finite, got {q[bad[0]]!r}")
+        self.q0 = q
+        buf = np.ascontiguousarray(q, dtype=_real_dtype(self.precision))
+        self._lib.sms_multi_generator_reset(self._gen, self._ffi.from_buffer("sms_real[]", buf))
+        if self._stages is not None:
+            for i, chains in enumerate(self._stages):
+                for m, chain in enumerate(chains):
+                    chain.reset(q[i] if m == 0 else 0.0)
+
+    def process(self, targets) -> np.ndarray:
+        """Targets (n, axes) -> (n, axes, 4) q, v, a, j. A 1-D array is taken as n samples of
+        one axis (axes == 1) or one sample of every axis."""
+        x = np.asarray(targets, dtype=np.float64)
+        if x.ndim == 1:
+            x = x.reshape(-1, 1) if self.axes == 1 else x.reshape(1, -1)
+        if x.ndim != 2 or x.shape[1] != self.axes:
+            raise ParameterError("targets", f"targets must have shape (n, {self.axes}), "
+                                            f"got {np.shape(targets)}")
+        bad = np.argwhere(~np.isfinite(x))
+        if bad.size:
+            raise ParameterError("targets", f"targets must be finite: targets[{bad[0][0]}, "
+                                            f"{bad[0][1]}] = {x[tuple(bad[0])]!r}")
+        dtype = _real_dtype(self.precision)
+        xin = np.ascontiguousarray(x, dtype=dtype)
+        out = np.empty((x.shape[0], self.axes, 4), dtype=dtype)
+        self._lib.sms_multi_generator_process(self._gen, self._ffi.from_buffer("sms_real[]", xin),
+                                              x.shape[0], self._ffi.from_buffer("sms_real[]", out))
+        out = out.astype(np.float64)
+        if self._stages is not None:
+            for i, chains in enumerate(self._stages):
+                for m in range(4):
+                    out[:, i, m] = chains[m].process(out[:, i, m])
+        return out
+
+    @property
+    def busy(self) -> bool:
+        """True while any axis moves or waits for a new target."""
+        return bool(self._lib.sms_multi_generator_busy(self._gen))
+
+
+@dataclass(frozen=True)
+class MultiAxisMove:
+    """An offline rest-to-rest move: ``T`` continuous time-optimal duration [s], ``N`` samples
+    until arrival (``ceil(T/Ts)`` for sync="phase"), ``profile`` (N + 1, axes, 4) from the
+    step at which the target is applied to the arrival (q, v, a, j)."""
+    T: float
+    N: int
+    Ts: float
+    profile: np.ndarray
+
+
+def phase_duration(delta, *, vmax, amax, jmax) -> float:
+    """Time-optimal phase-synchronised rest-to-rest duration [s] for a displacement vector
+    (continuous time): the jerk-limited straight move whose path parameter has the limits
+    min_i vmax_i/|delta_i|, min_i amax_i/|delta_i|, min_i jmax_i/|delta_i|."""
+    d = np.atleast_1d(np.asarray(delta, dtype=np.float64))
+    v, a, j = _limits(vmax, amax, jmax, d.size)
+    bad = np.flatnonzero(~np.isfinite(d))
+    if bad.size:
+        raise ParameterError("delta", f"delta[{bad[0]}] must be finite")
+    return _ref.phase_duration(d, vmax=v, amax=a, jmax=j)
+
+
+def multi_axis_move(start, target, *, vmax, amax, jmax, Ts: float, sync: str = "phase",
+                    precision: str = "double") -> MultiAxisMove:
+    """Rest-to-rest design from ``start`` to ``target`` (vectors of the axes): the sampled
+    phase-synchronised (or independent) time-optimal move. Raises ParameterError naming the
+    argument."""
+    s = np.atleast_1d(np.asarray(start, dtype=np.float64))
+    t = np.atleast_1d(np.asarray(target, dtype=np.float64))
+    if s.shape != t.shape or s.ndim != 1:
+        raise ParameterError("target", f"start and target must be vectors of the same length, "
+                                       f"got {s.shape} and {t.shape}")
+    gen = MultiAxisGenerator(vmax=vmax, amax=amax, jmax=jmax, Ts=Ts, sync=sync, q0=s,
+                             precision=precision)
+    d = t - s
+    if _sync(sync) == "phase":
+        T = phase_duration(d, vmax=gen.vmax, amax=gen.amax, jmax=gen.jmax)
+    else:
+        T = max(phase_duration([d[i]], vmax=gen.vmax[i], amax=gen.amax[i], jmax=gen.jmax[i])
+                for i in range(d.size))
+    n = int(math.ceil(T / Ts * (1 + 1e-12))) + 2
+    prof = gen.process(np.tile(t, (n, 1)))
+    arrived = np.all(prof[:, :, 0] == t, axis=1) & np.all(prof[:, :, 1:] == 0, axis=(1, 2))
+    N = int(np.argmax(arrived))
+    return MultiAxisMove(T=T, N=N, Ts=float(Ts), profile=prof[:N + 1])

@@ -1,0 +1,233 @@
+"""NumPy reference of the multi-axis online generator (the test oracle for ``sms_multi_generator``).
+
+Written from the planning rules stated in ``c/include/smoothshaper/multi_generator.h`` and
+``docs/multi-axis.md``; it never calls the C core. The structure differs on purpose: moves are
+kept as absolute-time records (start time, start state, phases) and evaluated through a
+generic velocity-transition formula, the roots come from ``math.sqrt``/``math.cbrt``, and the
+bisection is written over a feasibility predicate on whole vectors.
+
+* :func:`transition` -- shortest S-curve velocity change under per-axis limits;
+* :func:`phase_duration` -- time-optimal phase-synchronised rest-to-rest duration;
+* :func:`multi_axis_reference` -- the sampled generator output for a staircase of targets.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+_EPS = np.finfo(np.float64).eps
+
+
+def _unit_time(A: float, J: float) -> tuple[float, float]:
+    """Shortest unit velocity change with acceleration A and jerk J: (duration, rho)."""
+    if not (A < np.finfo(np.float64).max and J < np.finfo(np.float64).max):
+        return 0.0, 0.5
+    if A * A <= J:
+        Tj = A / J
+        T = 1.0 / A + Tj
+        return T, Tj / T
+    Tj = 1.0 / math.sqrt(J)
+    return 2.0 * Tj, 0.5
+
+
+def transition(dV, vmax, amax, jmax) -> tuple[float, float]:
+    """Duration and jerk fraction rho of the shortest straight velocity change dV."""
+    d = np.abs(dV)
+    nz = d > 0
+    if not nz.any():
+        return 0.0, 0.5
+    return _unit_time(float(np.min(amax[nz] / d[nz])), float(np.min(jmax[nz] / d[nz])))
+
+
+def phase_duration(delta, *, vmax, amax, jmax) -> float:
+    """Time-optimal jerk-limited straight rest-to-rest duration [s] for displacement ``delta``
+    (path parameter limits min_i limit_i/|delta_i|; closed form of the double-S)."""
+    d = np.abs(np.asarray(delta, dtype=np.float64))
+    nz = d > 0
+    if not nz.any():
+        return 0.0
+    V = float(np.min(np.asarray(vmax)[nz] / d[nz]))
+    A = float(np.min(np.asarray(amax)[nz] / d[nz]))
+    J = float(np.min(np.asarray(jmax)[nz] / d[nz]))
+    Tv = V / A + A / J if V * J >= A * A else 2.0 * math.sqrt(V / J)
+    if V * Tv < 1.0:
+        return 1.0 / V + Tv
+    c = 0.5 * (-A * A / J + math.sqrt(A ** 4 / J ** 2 + 4.0 * A))
+    if c * J >= A * A:
+        return 2.0 * (c / A + A / J)
+    return 4.0 * math.cbrt(0.5 / J)
+
+
+def _kappa(u, T1, vmax, amax, jmax) -> float:
+    """Smallest kappa = T1/2 + tau + T2/2 with tau >= 0 and |u/kappa| <= vmax."""
+    d = np.abs(u)
+    nz = d > 0
+    if not nz.any():
+        return T1 / 2
+    au = float(np.min(amax[nz] / d[nz]))
+    ju = float(np.min(jmax[nz] / d[nz]))
+    kv = float(np.max(d[nz] / vmax[nz]))
+    b = (T1 + au / ju) / 2
+    kh = (b + math.sqrt(b * b + 2.0 / au)) / 2
+    if kh > ju / (au * au):
+        c, q = T1 / 2, 1.0 / math.sqrt(ju)
+        y = math.sqrt(c) + math.cbrt(q)
+        for _ in range(100):
+            y_next = y - ((y * y - c) * y - q) / (3 * y * y - c)
+            if not y_next < y:
+                break
+            y = y_next
+        kh = y * y
+    return max(kh, kv)
+
+
+def _candidate(D, V, T1, lim):
+    u = D - V * (T1 / 2)
+    kappa = _kappa(u, T1, *lim)
+    W = u / kappa
+    T2, rho2 = transition(W, *lim)
+    tau = max(kappa - T1 / 2 - T2 / 2, 0.0)
+    feasible = transition(W - V, *lim)[0] <= T1
+    return feasible, W, tau, T2, rho2
+
+
+def _plan(p, V, B, off, Ts, lim):
+    """A move from (p, V, a = 0) to B; its first sample at move time ``off``. None: at rest."""
+    D = B - p
+    if not V.any() and not D.any():
+        return None
+    lo = transition(V, *lim)[0]
+    ok = _candidate(D, V, lo, lim)[0]
+    if not ok:
+        vmax, amax, jmax = lim
+        hi = _unit_time(float(np.min(amax / (2 * vmax))),
+                        float(np.min(jmax / (2 * vmax))))[0] * (1 + 16 * _EPS)
+        hi = max(hi, lo)
+        for _ in range(200):
+            if not hi - lo > 4 * _EPS * hi:
+                break
+            mid = lo + (hi - lo) / 2
+            if _candidate(D, V, mid, lim)[0]:
+                hi = mid
+            else:
+                lo = mid
+        lo = hi
+    T1 = lo
+    _, W, tau, T2, rho2 = _candidate(D, V, T1, lim)
+    nu = max((T1 + tau + T2 - off) / Ts, 0.0)
+    n_round = math.floor(nu + 0.5)
+    k_end = n_round if abs(n_round - nu) <= 8 * _EPS * max(nu, 1.0) else math.floor(nu) + 1
+    tau = max(tau + (k_end * Ts + off - (T1 + tau + T2)), 0.0)
+    kappa = T1 / 2 + tau + T2 / 2
+    u = D - V * (T1 / 2)
+    W = u / kappa if kappa > 0 else np.zeros_like(u)
+    rho1 = transition(W - V, *lim)[1]
+    return dict(p=p.copy(), V=V.copy(), W=W, goal=B.copy(), T1=T1, rho1=rho1, tau=tau, T2=T2,
+                rho2=rho2, off=off, k_end=k_end)
+
+
+def _s_curve(x: float, rho: float):
+    """(G, F, F', F'') of the normalised transition at x in [0, 1] (beyond 1: finished)."""
+    ap = 1.0 / (1.0 - rho)
+    if x < rho:
+        return ap * x ** 3 / (6 * rho), ap * x * x / (2 * rho), ap * x / rho, ap / rho
+    if x < 1 - rho:
+        return ap * (x * x / 2 - rho * x / 2 + rho * rho / 6), ap * (x - rho / 2), ap, 0.0
+    if x < 1:
+        y = 1 - x
+        return x - 0.5 + ap * y ** 3 / (6 * rho), 1 - ap * y * y / (2 * rho), ap * y / rho, -ap / rho
+    return x - 0.5, 1.0, 0.0, 0.0
+
+
+def _transition_state(Va, Vb, T, rho, t):
+    """Displacement, velocity, acceleration, jerk t into the transition Va -> Vb of length T."""
+    G, F, dF, ddF = _s_curve(_snap(t / T, rho, 1 - rho, 1.0), rho)
+    dV = Vb - Va
+    return Va * t + dV * (T * G), Va + dV * F, dV * (dF / T), dV * (ddF / (T * T))
+
+
+_SNAP = 64 * _EPS
+
+
+def _snap(x, *breaks, tol=_SNAP):
+    """x moved onto a breakpoint within tol (that sample then takes the right limit)."""
+    for b in breaks:
+        if abs(x - b) <= tol:
+            x = b
+    return x
+
+
+def _evaluate(m, t):
+    """(axes, 4) output of move m at move time t."""
+    T1, tau, T2 = m["T1"], m["tau"], m["T2"]
+    p, V, W = m["p"], m["V"], m["W"]
+    t = _snap(t, T1, T1 + tau, tol=_SNAP * (T1 + tau + T2))
+    if t < T1:
+        dq, v, a, j = _transition_state(V, W, T1, m["rho1"], t)
+        return np.stack([p + dq, v, a, j], axis=-1)
+    q1 = p + (V + W) * (T1 / 2)
+    if t < T1 + tau or not T2 > 0:
+        z = np.zeros_like(W)
+        return np.stack([q1 + W * (t - T1), W, z, z], axis=-1)
+    c = t - T1 - tau
+    dq, v, a, j = _transition_state(W, np.zeros_like(W), T2, m["rho2"], c)
+    return np.stack([q1 + W * tau + dq, v, a, j], axis=-1)
+
+
+def multi_axis_reference(targets, *, vmax, amax, jmax, Ts: float, sync: str = "phase",
+                         q0=None) -> np.ndarray:
+    """Sampled output of the multi-axis generator for a staircase of target vectors.
+
+    ``targets`` has shape (n, axes); the result (n, axes, 4) holds q, v, a, j per axis at each
+    sample. ``sync`` is "phase" (one common move) or "independent" (one move per axis).
+    """
+    x = np.asarray(targets, dtype=np.float64)
+    n, axes = x.shape
+    vmax, amax, jmax = (np.asarray(v, dtype=np.float64).reshape(axes) for v in (vmax, amax, jmax))
+    groups = [np.arange(axes)] if sync == "phase" else [np.array([i]) for i in range(axes)]
+    rest = np.zeros(axes) if q0 is None else np.asarray(q0, dtype=np.float64).copy()
+    out = np.zeros((n, axes, 4))
+    for idx in groups:
+        lim = (vmax[idx], amax[idx], jmax[idx])
+        position = rest[idx].copy()  # where the group rests when no move runs
+        move, k, seen, pending = None, 0, 0.0, False
+        for s in range(n):
+            B = x[s, idx]
+            t = 0.0
+            if move is not None:
+                k += 1
+                if k >= move["k_end"]:
+                    position, move = move["goal"], None
+                else:
+                    t = move["off"] + k * Ts
+            goal = position if move is None else move["goal"]
+            if np.array_equal(B, goal):
+                pending = False
+            elif not pending:
+                pending, seen = True, t
+            if pending:
+                if move is None:
+                    move, k, pending = _plan(position, np.zeros(len(idx)), B, 0.0, Ts, lim), 0, False
+                    if move is None:
+                        position = B.copy()
+                    t = 0.0
+                elif t >= move["T1"] - _SNAP * (move["T1"] + move["tau"] + move["T2"]):
+                    tr = max(seen, move["T1"])
+                    if tr <= move["T1"] + move["tau"]:
+                        state = _evaluate(move, tr)
+                        new = _plan(state[:, 0], move["W"].copy(), B, max(t - tr, 0.0), Ts, lim)
+                        move, k, pending = new, 0, False
+                        if move is None:
+                            position = B.copy()
+                        elif move["k_end"] == 0:
+                            position, move = move["goal"], None
+                        t = 0.0 if move is None else move["off"]
+            if move is not None and move["k_end"] == 0:
+                position, move = move["goal"], None
+            if move is None:
+                out[s, idx, 0] = position
+                out[s, idx, 1:] = 0.0
+            else:
+                out[s, idx] = _evaluate(move, t)
+    return out

@@ -1,0 +1,214 @@
+"""Multi-axis generator: phase-synchronised rest-to-rest moves against ruckig (same arrival
+sample, straight line, limits at every sample, duration), staircases with reversals and
+mid-motion changes (limits, exact arrival, C == NumPy reference), independent axes, errors."""
+import math
+import warnings
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings, strategies as st
+
+from smoothshaper.filters import ParameterError
+from smoothshaper.reference.multi_axis import multi_axis_reference, phase_duration
+from smoothshaper.trajectory import MultiAxisGenerator, multi_axis_move
+
+ruckig = pytest.importorskip("ruckig")
+
+SETTINGS = dict(max_examples=20, deadline=None,
+                suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
+
+
+@st.composite
+def limits(draw, axes):
+    """Per-axis limits spanning 4 orders of magnitude each."""
+    e = st.floats(min_value=-2.0, max_value=2.0)
+    v = np.array([10 ** draw(e) for _ in range(axes)])
+    a = np.array([10 ** draw(e) for _ in range(axes)]) * v
+    j = np.array([10 ** draw(e) for _ in range(axes)]) * a
+    return v, a, j
+
+
+def assert_within_limits(out, vmax, amax, jmax, Ts, q_before):
+    """Reported v, a, j and backward differences dq/Ts, d2q/Ts^2, d3q/Ts^3 within the limits
+    to 1e-9 relative (plus the rounding of q, a few ulps of the largest position)."""
+    lim = np.stack([vmax, amax, jmax])                           # (3, axes)
+    ratio = np.abs(out[:, :, 1:]) / lim.T[None]
+    assert ratio.max() <= 1 + 1e-9, ratio.max()
+    q = np.vstack([np.tile(q_before, (3, 1)), out[:, :, 0]])     # rest before the first sample
+    ulp = 4 * np.finfo(float).eps * np.abs(q).max(axis=0)
+    for order in (1, 2, 3):
+        d = np.diff(q, n=order, axis=0) / Ts ** order
+        allowed = lim[order - 1] * (1 + 1e-9) + 2 ** order * ulp / Ts ** order
+        assert np.all(np.abs(d) <= allowed), (order, (np.abs(d) / allowed).max())
+
+
+def ruckig_phase(delta, v, a, j):
+    """(duration, straight): ruckig's Synchronization.Phase rest-to-rest move and whether it
+    found a phase-synchronised one (else it falls back to a curved time-synchronised move)."""
+    n = len(delta)
+    inp = ruckig.InputParameter(n)
+    inp.current_position = [0.0] * n
+    inp.target_position = list(delta)
+    inp.max_velocity, inp.max_acceleration, inp.max_jerk = list(v), list(a), list(j)
+    inp.synchronization = ruckig.Synchronization.Phase
+    traj = ruckig.Trajectory(n)
+    ruckig.Ruckig(n).calculate(inp, traj)
+    ts = np.linspace(0, traj.duration, 41)
+    pos = np.array([traj.at_time(t)[0] for t in ts])
+    k = np.argmax(np.abs(delta))
+    dev = np.abs(pos - np.outer(pos[:, k] / delta[k], delta)).max() / np.abs(delta).max()
+    return traj.duration, dev < 1e-9
+
+
+@settings(**SETTINGS)
+@given(data=st.data(), axes=st.integers(2, 6))
+def test_phase_rest_to_rest_matches_ruckig(data, axes):
+    v, a, j = data.draw(limits(axes))
+    start = np.array(data.draw(st.lists(st.floats(-10, 10), min_size=axes, max_size=axes)))
+    delta = np.array(data.draw(st.lists(st.floats(-10, 10), min_size=axes, max_size=axes)))
+    if np.abs(delta).max() < 1e-3:
+        delta[0] = 1.0
+    target = start + delta
+    delta = target - start  # what the generator sees
+    T = phase_duration(delta, vmax=v, amax=a, jmax=j)
+    Ts = T / data.draw(st.floats(3.0, 600.0))
+    nu = T / Ts
+    gen = MultiAxisGenerator(vmax=v, amax=a, jmax=j, Ts=Ts, q0=start)
+    n = int(math.ceil(nu)) + 3
+    out = gen.process(np.tile(target, (n, 1)))
+    # every axis arrives exactly, on the same sample, ceil(T/Ts) samples after the step
+    at = (out[:, :, 0] == target) & np.all(out[:, :, 1:] == 0, axis=2)
+    moving = delta != 0
+    first = [int(np.argmax(at[:, i])) for i in np.flatnonzero(moving)]
+    assert len(set(first)) == 1 and np.all(at[first[0]:])
+    N = first[0]
+    near_integer = abs(nu - round(nu)) <= 1e-9 * nu
+    assert N == math.ceil(nu) or (near_integer and abs(N - round(nu)) <= 1), (N, nu)
+    # ruckig: same duration when it finds a phase-synchronised move, shorter (curved) otherwise
+    T_ruckig, straight = ruckig_phase(delta, v, a, j)
+    if straight:
+        assert T == pytest.approx(T_ruckig, rel=1e-12, abs=0)
+        assert N == math.ceil(T_ruckig / Ts) or near_integer
+    else:
+        assert T_ruckig <= T * (1 + 1e-12)
+    # straight line: q - start parallel to delta, to 1e-12 of the move
+    k = np.argmax(np.abs(delta))
+    s = (out[:, k, 0] - start[k]) / delta[k]
+    dev = np.abs(out[:, :, 0] - start - np.outer(s, delta)).max() / np.abs(delta).max()
+    assert dev <= 1e-12
+    assert_within_limits(out, v, a, j, Ts, start)
+    ref = multi_axis_reference(np.tile(target, (n, 1)), vmax=v, amax=a, jmax=j, Ts=Ts, q0=start)
+    for m, lim in enumerate([np.abs(out[:, :, 0]).max(axis=0) + 1e-300, v, a, j]):
+        assert np.all(np.abs(out[:, :, m] - ref[:, :, m]) <= 1e-12 * lim), m
+
+
+@st.composite
+def staircases(draw):
+    axes = draw(st.integers(1, 6))
+    v, a, j = draw(limits(axes))
+    Ts = 10 ** draw(st.floats(-4, -2))
+    scale = v * Ts * np.array([10 ** draw(st.floats(0, 2.0)) for _ in range(axes)])
+    steps = draw(st.lists(st.tuples(st.integers(1, 150),
+                                    st.lists(st.floats(-1, 1), min_size=axes, max_size=axes)),
+                          min_size=2, max_size=8))
+    rows = [np.tile(np.array(t) * scale, (hold, 1)) for hold, t in steps]
+    sync = draw(st.sampled_from(["phase", "independent"]))
+    return np.vstack(rows), v, a, j, Ts, sync
+
+
+@settings(**SETTINGS)
+@given(case=staircases())
+def test_staircase_limits_arrival_and_reference(case):
+    targets, v, a, j, Ts, sync = case
+    gen = MultiAxisGenerator(vmax=v, amax=a, jmax=j, Ts=Ts, sync=sync)
+    out = gen.process(targets)
+    tail = []
+    while gen.busy:  # hold the last target until arrival
+        tail.append(gen.process(targets[-1:]))
+        assert len(tail) < 10 ** 6
+    full_targets = np.vstack([targets] + [targets[-1:]] * len(tail))
+    full = np.concatenate([out] + tail) if tail else out
+    np.testing.assert_array_equal(full[-1, :, 0], targets[-1])
+    np.testing.assert_array_equal(full[-1, :, 1:], 0)
+    assert_within_limits(full, v, a, j, Ts, np.zeros(v.size))
+    ref = multi_axis_reference(full_targets, vmax=v, amax=a, jmax=j, Ts=Ts, sync=sync)
+    # C (Newton roots in the signal type) and reference (libm roots) agree to rounding; the
+    # largest difference seen is 1.1e-12 of amax (a transition whose velocity change nearly
+    # cancels), hence 2e-12 of each limit and of the largest position
+    for m, lim in enumerate([np.abs(full[:, :, 0]).max(axis=0) + 1e-300, v, a, j]):
+        assert np.all(np.abs(full[:, :, m] - ref[:, :, m]) <= 2e-12 * lim), m
+
+
+def test_held_targets_land_exactly_mid_staircase():
+    """Each target held long enough is reached exactly, on every axis, and stays there."""
+    v, a, j = np.array([1.0, 2.0, 0.5]), np.array([10.0, 4.0, 20.0]), np.array([100.0, 50.0, 400.0])
+    gen = MultiAxisGenerator(vmax=v, amax=a, jmax=j, Ts=1e-3)
+    for target in ([1.0, -2.0, 0.5], [1.2, -1.0, 0.5], [-1.0, -1.0, -1.0]):
+        out = gen.process(np.tile(target, (20000, 1)))
+        assert not gen.busy
+        np.testing.assert_array_equal(out[-1, :, 0], target)
+
+
+def test_independent_axes_are_single_axis_generators():
+    v, a, j = [1.0, 3.0], [5.0, 2.0], [50.0, 80.0]
+    targets = np.repeat([[1.0, -2.0], [-0.5, 2.0], [0.3, 0.3]], [300, 700, 3000], axis=0)
+    both = MultiAxisGenerator(vmax=v, amax=a, jmax=j, Ts=2e-3, sync="independent").process(targets)
+    for i in range(2):
+        one = MultiAxisGenerator(vmax=[v[i]], amax=[a[i]], jmax=[j[i]], Ts=2e-3).process(
+            targets[:, i:i + 1])
+        np.testing.assert_array_equal(both[:, i], one[:, 0])
+
+
+def test_offline_move_design():
+    m = multi_axis_move([0, 0, 0], [1, 2, -1], vmax=[1, 2, 3], amax=[10, 5, 20],
+                        jmax=[100, 300, 50], Ts=1e-3)
+    assert m.T == pytest.approx(phase_duration([1, 2, -1], vmax=[1, 2, 3], amax=[10, 5, 20],
+                                               jmax=[100, 300, 50]), rel=1e-15)
+    assert m.N == math.ceil(m.T / 1e-3 - 1e-9)
+    np.testing.assert_array_equal(m.profile[-1, :, 0], [1, 2, -1])
+    assert m.profile.shape == (m.N + 1, 3, 4)
+
+
+def test_float_build_keeps_limits():
+    v, a, j = [1.0, 2.0], [10.0, 5.0], [100.0, 300.0]
+    targets = np.repeat([[1.0, -2.0], [-0.5, 2.0], [0.3, 0.3]], [300, 700, 5000], axis=0)
+    out = MultiAxisGenerator(vmax=v, amax=a, jmax=j, Ts=1e-3, precision="float").process(targets)
+    lim = np.array([v, a, j]).T
+    assert (np.abs(out[:, :, 1:]) / lim[None]).max() <= 1 + 1e-5
+    np.testing.assert_allclose(out[-1, :, 0], [0.3, 0.3], rtol=0, atol=0)
+
+
+@pytest.mark.parametrize("kwargs, parameter", [
+    (dict(vmax=[1, -1, 1]), "vmax[1]"),
+    (dict(amax=[1, 1, 0]), "amax[2]"),
+    (dict(jmax=[1, float("nan"), 1]), "jmax[1]"),
+    (dict(amax=[1, 1]), "amax"),
+    (dict(Ts=0.0), "Ts"),
+    (dict(sync="sideways"), "sync"),
+    (dict(vmax=[1] * 9, amax=1, jmax=1), "vmax"),
+    (dict(q0=[0, float("inf"), 0]), "q0"),
+])
+def test_bad_input_names_the_parameter(kwargs, parameter):
+    args = dict(vmax=[1, 1, 1], amax=[1, 1, 1], jmax=[1, 1, 1], Ts=1e-3)
+    args.update(kwargs)
+    with pytest.raises(ParameterError) as e:
+        MultiAxisGenerator(**args)
+    assert e.value.parameter == parameter
+
+
+def test_targets_shape_and_values_checked():
+    gen = MultiAxisGenerator(vmax=[1, 1], amax=[1, 1], jmax=[1, 1], Ts=1e-3)
+    with pytest.raises(ParameterError, match="shape"):
+        gen.process(np.zeros((5, 3)))
+    with pytest.raises(ParameterError, match=r"targets\[2, 1\]"):
+        gen.process(np.array([[0, 0], [0, 0], [0, np.nan]]))
+
+
+def test_different_stages_per_axis_warn():
+    from smoothshaper import stages
+    zv = stages.shaper("zv", wn=30.0, zeta=0.05)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        MultiAxisGenerator(vmax=[1, 1], amax=[1, 1], jmax=[1, 1], Ts=1e-3, stages=[zv])
+    with pytest.warns(UserWarning, match="bend straight lines"):
+        MultiAxisGenerator(vmax=[1, 1], amax=[1, 1], jmax=[1, 1], Ts=1e-3, stages=[[zv], []])
