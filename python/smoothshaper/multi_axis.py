@@ -115,8 +115,8 @@ class MultiAxisGenerator:
             warnings.warn("different vibration stages per axis bend straight lines: the axes "
                           "are delayed and smoothed differently", stacklevel=3)
         from .filters import Chain
-        return [[Chain(lst, Ts=self.Ts, precision=self.precision) for _ in range(4)]
-                for lst in lists]
+        return [[Chain(lst, Ts=self.Ts, precision=self.precision) for _ in range(4)] if lst
+                else None for lst in lists]
 
     def reset(self, q0=None) -> None:
         """Rest at ``q0`` (sequence of axes values; default 0) on every axis."""
@@ -132,7 +132,7 @@ class MultiAxisGenerator:
         self._lib.sms_multi_generator_reset(self._gen, self._ffi.from_buffer("sms_real[]", buf))
         if self._stages is not None:
             for i, chains in enumerate(self._stages):
-                for m, chain in enumerate(chains):
+                for m, chain in enumerate(chains or []):
                     chain.reset(q[i] if m == 0 else 0.0)
 
     def process(self, targets) -> np.ndarray:
@@ -156,8 +156,8 @@ class MultiAxisGenerator:
         out = out.astype(np.float64)
         if self._stages is not None:
             for i, chains in enumerate(self._stages):
-                for m in range(4):
-                    out[:, i, m] = chains[m].process(out[:, i, m])
+                for m, chain in enumerate(chains or []):
+                    out[:, i, m] = chain.process(out[:, i, m])
         return out
 
     @property
