@@ -20,12 +20,12 @@ typedef char ss_kind_codes_match_sms_kind[(SS_KIND_COUNT == SMS_KIND_COUNT) ? 1 
 
 static const char *const field_names[SS_FIELD_COUNT] = {
     "kind", "design", "timing", "T", "sigma", "k", "wn", "zeta", "order", "tolerance",
-    "notch_pole_zeta"
+    "notch_pole_zeta", "duration"
 };
 
 typedef struct ss_params {
     int ints[SS_FIELD_COUNT];     /* kind, design, timing, k, order (by SS_FIELD_*) */
-    double reals[SS_FIELD_COUNT]; /* T, sigma, wn, zeta, tolerance, notch_pole_zeta */
+    double reals[SS_FIELD_COUNT]; /* T, sigma, wn, zeta, tolerance, notch_pole_zeta, duration */
 } ss_params;
 
 typedef struct ss_model {
@@ -77,6 +77,7 @@ void fmu_model_defaults(void *model)
         p->reals[SS_FIELD_WN] = 100.0;
         p->reals[SS_FIELD_TOLERANCE] = 0.05;
         p->reals[SS_FIELD_NOTCH_POLE_ZETA] = 0.7;
+        p->reals[SS_FIELD_DURATION] = 0.75;
     }
 }
 
@@ -177,6 +178,7 @@ static unsigned offending_field(sms_status st, int design_for_mode, const char *
     case SMS_ERR_ORDER: return SS_FIELD_ORDER;
     case SMS_ERR_TOLERANCE: return SS_FIELD_TOLERANCE;
     case SMS_ERR_NOTCH_DAMPING: return SS_FIELD_NOTCH_POLE_ZETA;
+    case SMS_ERR_SHAPER_DURATION: return SS_FIELD_DURATION;
     default: return SS_FIELD_KIND;
     }
 }
@@ -232,6 +234,7 @@ static int stage_config(const ss_model *m, unsigned k, sms_stage_config *c, char
     c->order = (unsigned)p->ints[SS_FIELD_ORDER];
     c->tolerance = p->reals[SS_FIELD_TOLERANCE];
     c->notch_pole_zeta = p->reals[SS_FIELD_NOTCH_POLE_ZETA];
+    c->duration = p->reals[SS_FIELD_DURATION];
     st = sms_stage_config_validate(c, m->Ts);
     if (st == SMS_ERR_SAMPLE_PERIOD)
         return snprintf(msg, len, "Ts = %.17g: must be finite and > 0", m->Ts), 1;

@@ -46,12 +46,14 @@ UNITS = {  # unit name -> SI base-unit exponents. Signals carry no unit: the fil
 }
 
 KINDS = ("rectangular", "harmonic", "damped_harmonic", "exponential", "zv", "zvd", "zvdd", "zvn",
-         "ei", "ei2", "mzv", "notch_tustin", "notch_matched")  # == sms_kind values 0..12
+         "ei", "ei2", "mzv", "notch_tustin", "notch_matched", "ei3", "gmzv")  # == sms_kind 0..14
 KIND_TEXT = ("moving average M", "sinusoidal smoother S",
              "damped sinusoidal smoother S_sigma", "exponential smoother M_sigma",
              "ZV input shaper", "ZVD input shaper", "ZVDD input shaper", "ZV^n input shaper (order n)",
              "extra-insensitive shaper", "two-hump extra-insensitive shaper", "modified ZV shaper",
-             "notch, Tustin pre-warped at wn", "notch, pole-zero matched")
+             "notch, Tustin pre-warped at wn", "notch, pole-zero matched",
+             "three-hump extra-insensitive shaper",
+             "generalised MZV shaper (order impulses over duration damped periods)")
 
 # SmoothShaper value references: globals below 100, stage k field f at 100 + 16 k + f.
 SS_MAX_STAGES = 8
@@ -72,10 +74,13 @@ SS_FIELDS = (  # (name, type, unit, start, description, choices, min, max)
      "for_mode); finite, 0 < wn < pi/Ts", "", 0.0, None),
     ("zeta", "Real", "1", 0.0, "damping ratio of the mode (shapers, notch zeros, design = "
      "for_mode); in [0, 1)", "", 0.0, 1.0),
-    ("order", "Integer", "", 1, "n of the ZV^n shaper (kind = zvn); 1..8", "", 1, 8),
+    ("order", "Integer", "", 1, "n of the ZV^n shaper (kind = zvn), 1..8; impulses of the "
+     "generalised MZV (kind = gmzv), 3..9", "", 1, 9),
     ("tolerance", "Real", "1", 0.05, "vibration tolerance of the EI shapers; in (0, 1)", "", 0.0, 1.0),
     ("notch_pole_zeta", "Real", "1", 0.7, "pole damping of the notch; finite, > zeta, <= 1e6", "",
      0.0, 1e6),
+    ("duration", "Real", "1", 0.75, "span of the generalised MZV (kind = gmzv) in damped periods; "
+     "in (0.5, (order-1)/2) (0.75 with order 3 is MZV)", "", 0.0, 4.0),
 )
 
 # Choices travel as Integer codes (FMI 2.0 Enumerations are not settable in every importer:

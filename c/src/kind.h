@@ -12,7 +12,8 @@ static inline sms_family sms_family_of(sms_kind kind)
     case SMS_RECTANGULAR: case SMS_HARMONIC: case SMS_DAMPED_HARMONIC: case SMS_EXPONENTIAL:
         return SMS_FAMILY_SMOOTHER;
     case SMS_SHAPER_ZV: case SMS_SHAPER_ZVD: case SMS_SHAPER_ZVDD: case SMS_SHAPER_ZVN:
-    case SMS_SHAPER_EI: case SMS_SHAPER_EI2: case SMS_SHAPER_MZV:
+    case SMS_SHAPER_EI: case SMS_SHAPER_EI2: case SMS_SHAPER_MZV: case SMS_SHAPER_EI3:
+    case SMS_SHAPER_GMZV:
         return SMS_FAMILY_SHAPER;
     case SMS_NOTCH_TUSTIN: case SMS_NOTCH_MATCHED:
         return SMS_FAMILY_NOTCH;

@@ -17,7 +17,8 @@ typedef struct sparse {
 
 static int is_shaper(sms_kind kind)
 {
-    return kind >= SMS_SHAPER_ZV && kind <= SMS_SHAPER_MZV;
+    return (kind >= SMS_SHAPER_ZV && kind <= SMS_SHAPER_MZV) || kind == SMS_SHAPER_EI3
+           || kind == SMS_SHAPER_GMZV;
 }
 
 static int is_finite(double v)
@@ -34,9 +35,16 @@ static sms_status check_fields(const sms_stage_config *c)
         return SMS_ERR_ZETA;
     if (c->kind == SMS_SHAPER_ZVN && (c->order < 1u || c->order > SMS_SHAPER_MAX_ORDER))
         return SMS_ERR_ORDER;
-    if ((c->kind == SMS_SHAPER_EI || c->kind == SMS_SHAPER_EI2)
+    if (c->kind == SMS_SHAPER_GMZV && (c->order < 3u || c->order > SMS_SHAPER_MAX_IMPULSES))
+        return SMS_ERR_ORDER;
+    if ((c->kind == SMS_SHAPER_EI || c->kind == SMS_SHAPER_EI2 || c->kind == SMS_SHAPER_EI3)
         && (!is_finite(c->tolerance) || c->tolerance <= 0.0 || c->tolerance >= 1.0))
         return SMS_ERR_TOLERANCE;
+    if (c->kind == SMS_SHAPER_GMZV) {
+        double amp[SMS_SHAPER_MAX_IMPULSES], units[SMS_SHAPER_MAX_IMPULSES];
+        if (!is_finite(c->duration) || !sms_gmzv_undamped(c->order, c->duration, amp, units))
+            return SMS_ERR_SHAPER_DURATION;
+    }
     return SMS_OK;
 }
 
@@ -160,8 +168,10 @@ static void realise_exact(const double *amp, const double *time, size_t n_imp, d
         }
     }
     /* No split: no correction. A split at m0 >= 1 gives |S| = 3. m0 = 0 (t < Ts) only happens
-     * to MZV's middle impulse when Td < 8/3 Ts, and then its last one (0.75 Td in (1.5, 2) Ts)
-     * splits onto {1, 2}: |S| >= 3 always, so C C^T is invertible. */
+     * when the impulse spacing is below Ts (MZV's middle impulse when Td < 8/3 Ts, GMZV with
+     * many impulses near Nyquist); the last impulse lies at >= Td/2 > Ts, so either it splits
+     * at m0 >= 1 or it sits on a sample m >= 2 and the one before it, less than Ts earlier,
+     * splits onto {m-1, m}: |S| >= 3 always, so C C^T is invertible. */
     if (n_s == 1)
         return;
     for (i = 0; i < out->n; ++i) {

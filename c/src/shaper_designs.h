@@ -4,8 +4,13 @@
 
 #include "smoothshaper/shaper.h"
 
-/* ZV^n order of a shaper kind (order field for ZVN), 0 for EI, EI2, MZV. */
+/* ZV^n order of a shaper kind (order field for ZVN), 0 for EI, EI2, EI3, MZV, GMZV. */
 unsigned sms_shaper_zv_order(const sms_stage_config *config);
+
+/* Undamped generalised MZV: amplitudes (least squares, not yet normalised) and times in damped
+ * periods for n impulses over `duration` periods; 0 if (n, duration) is out of range or an
+ * amplitude is negative. */
+int sms_gmzv_undamped(unsigned n, double duration, double *amp, double *units);
 
 /* Fill amp[] (sum 1) and time[] [s] (increasing, time[0] = 0) for a validated config; returns
  * the number of impulses (<= SMS_SHAPER_MAX_IMPULSES). */

@@ -12,8 +12,9 @@ sms_stage_config sms_stage_config_default(sms_kind kind)
     c.k = 1u;
     c.wn = 0.0;
     c.zeta = 0.0;
-    c.order = 1u;
+    c.order = kind == SMS_SHAPER_GMZV ? 3u : 1u;   /* GMZV: 3 impulses over 0.75 Td = MZV */
     c.tolerance = 0.05;
+    c.duration = 0.75;
     c.notch_pole_zeta = 0.7;
     return c;
 }

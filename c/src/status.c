@@ -25,6 +25,8 @@ const char *sms_status_string(sms_status status)
     case SMS_ERR_RECORD: return "record too short, non-finite, or not a decaying oscillation";
     case SMS_ERR_STATE: return "saved state does not match this object";
     case SMS_ERR_BANDWIDTH: return "bandwidth must be finite, > 0 and narrower than the notch allows";
+    case SMS_ERR_SHAPER_DURATION:
+        return "duration must lie in (0, (order-1)/2) damped periods and give no negative impulse";
     }
     return "unknown status";
 }
@@ -45,6 +47,8 @@ const char *sms_kind_name(sms_kind kind)
     case SMS_SHAPER_MZV: return "mzv";
     case SMS_NOTCH_TUSTIN: return "notch_tustin";
     case SMS_NOTCH_MATCHED: return "notch_matched";
+    case SMS_SHAPER_EI3: return "ei3";
+    case SMS_SHAPER_GMZV: return "gmzv";
     }
     return NULL;
 }

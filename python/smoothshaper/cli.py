@@ -2,9 +2,9 @@
 
 A stage is written KIND:key=value,key=value (--stage, repeatable; stages chain in the given
 order). KIND is one of rectangular, harmonic, damped_harmonic, exponential, zv, zvd, zvdd, zvn,
-ei, ei2, mzv, notch_tustin, notch_matched ('notch' means notch_matched). Keys: T [s],
-sigma [1/s], k, wn [rad/s], zeta, order, tolerance, pole_zeta (or notch_pole_zeta), timing
-(exact or paper). A smoother given wn (and optionally zeta, k) instead of T is designed for
+ei, ei2, ei3, mzv, gmzv, notch_tustin, notch_matched ('notch' means notch_matched). Keys:
+T [s], sigma [1/s], k, wn [rad/s], zeta, order, tolerance, duration (gmzv, in damped periods),
+pole_zeta (or notch_pole_zeta), timing (exact or paper). A smoother given wn (and optionally zeta, k) instead of T is designed for
 that mode. Examples: harmonic:T=0.05, zv:wn=100,zeta=0.05, damped_harmonic:wn=125,zeta=0.12.
 
 Trajectory forms: 'design generator' runs via-points through the online generator, 'design
@@ -37,7 +37,7 @@ _EXTRA_FOR_MODULE = {"scipy": "analysis", "matplotlib": "plot", "fmpy": "validat
 
 _KEY_ALIASES = {"pole_zeta": "notch_pole_zeta"}
 _INT_KEYS = ("k", "order")
-_FLOAT_KEYS = ("T", "sigma", "wn", "zeta", "tolerance", "notch_pole_zeta")
+_FLOAT_KEYS = ("T", "sigma", "wn", "zeta", "tolerance", "notch_pole_zeta", "duration")
 
 
 class CliError(Exception):

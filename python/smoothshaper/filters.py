@@ -34,7 +34,7 @@ _STATUS_PARAMETER = {
     -1: "argument", -2: "Ts", -3: "T", -4: "T", -5: "sigma", -6: "wn", -7: "zeta", -8: "k",
     -9: "k", -10: "order", -11: "buffer", -12: "kind", -13: "notch_pole_zeta",
     -14: "tolerance", -15: "T", -16: "wn", -17: "limits", -18: "x", -19: "state",
-    -20: "bandwidth",
+    -20: "bandwidth", -21: "duration",
 }
 _SMS_ERR_TOO_LONG = -15
 _SMS_ERR_DURATION_BELOW_TS = -4
@@ -129,6 +129,7 @@ def _fill_config(config, stage: Stage) -> None:
     config.order = _unsigned("order", stage.order)
     config.tolerance = stage.tolerance
     config.notch_pole_zeta = stage.notch_pole_zeta
+    config.duration = stage.duration
 
 
 def _stage_from_config(config) -> Stage:
@@ -137,7 +138,8 @@ def _stage_from_config(config) -> Stage:
     if kind in _stages.SMOOTHERS:
         return Stage(kind, T=config.T, sigma=config.sigma, **common)
     return Stage(kind, wn=config.wn, zeta=config.zeta, order=config.order,
-                 tolerance=config.tolerance, notch_pole_zeta=config.notch_pole_zeta, **common)
+                 tolerance=config.tolerance, notch_pole_zeta=config.notch_pole_zeta,
+                 duration=config.duration, **common)
 
 
 def _as_stage_list(stages) -> tuple[Stage, ...]:

@@ -14,13 +14,15 @@ from ._checks import finite as _finite
 KINDS = (
     "rectangular", "harmonic", "damped_harmonic", "exponential",
     "zv", "zvd", "zvdd", "zvn", "ei", "ei2", "mzv",
-    "notch_tustin", "notch_matched",
+    "notch_tustin", "notch_matched", "ei3", "gmzv",
 )
 SMOOTHERS = KINDS[:4]
-SHAPERS = KINDS[4:11]
-NOTCHES = KINDS[11:]
+SHAPERS = KINDS[4:11] + KINDS[13:15]
+NOTCHES = KINDS[11:13]
 TIMINGS = ("exact", "paper")
 MAX_ZVN_ORDER = 8
+#: Most impulses of a shaper design (ZV^8; the generalised MZV takes 3..MAX_IMPULSES).
+MAX_IMPULSES = MAX_ZVN_ORDER + 1
 
 
 @dataclass(frozen=True)
@@ -29,7 +31,9 @@ class Stage:
 
     Smoothers use ``T`` [s], ``sigma`` [1/s] (damped families) and ``k`` (the zero pinned by
     exact timing); shapers and notches use ``wn`` [rad/s] and ``zeta``; ``order`` is the n of
-    ZV^n; ``tolerance`` the EI vibration tolerance; ``notch_pole_zeta`` the notch pole damping.
+    ZV^n and the number of impulses of ``gmzv`` (3..9; ``None`` means 1, or 3 for gmzv);
+    ``tolerance`` the EI vibration tolerance (ei, ei2, ei3); ``duration`` the span of ``gmzv``
+    in damped periods (0.75 with order 3 is MZV); ``notch_pole_zeta`` the notch pole damping.
     """
 
     kind: str
@@ -38,17 +42,20 @@ class Stage:
     k: int = 1
     wn: float = 0.0
     zeta: float = 0.0
-    order: int = 1
+    order: int | None = None
     tolerance: float = 0.05
     notch_pole_zeta: float = 0.7
     timing: str = "exact"
+    duration: float = 0.75
 
     def __post_init__(self):
         if self.kind not in KINDS:
             raise ValueError(f"kind must be one of {', '.join(KINDS)}; got {self.kind!r}")
         if self.timing not in TIMINGS:
             raise ValueError(f"timing must be 'exact' or 'paper', got {self.timing!r}")
-        for name in ("T", "sigma", "wn", "zeta", "tolerance", "notch_pole_zeta"):
+        if self.order is None:
+            object.__setattr__(self, "order", 3 if self.kind == "gmzv" else 1)
+        for name in ("T", "sigma", "wn", "zeta", "tolerance", "notch_pole_zeta", "duration"):
             object.__setattr__(self, name, _finite(name, getattr(self, name)))
         if isinstance(self.k, bool) or int(self.k) != self.k:
             raise ValueError(f"k must be an integer >= 1, got {self.k!r}")
@@ -74,8 +81,15 @@ class Stage:
                 raise ValueError(f"zeta must be in [0, 1), got {self.zeta!r}")
         if self.kind == "zvn" and not 1 <= self.order <= MAX_ZVN_ORDER:
             raise ValueError(f"order must be in 1..{MAX_ZVN_ORDER} for zvn, got {self.order!r}")
-        if self.kind in ("ei", "ei2") and not 0.0 < self.tolerance < 1.0:
+        if self.kind in ("ei", "ei2", "ei3") and not 0.0 < self.tolerance < 1.0:
             raise ValueError(f"tolerance must be in (0, 1), got {self.tolerance!r}")
+        if self.kind == "gmzv":
+            if not 3 <= self.order <= MAX_IMPULSES:
+                raise ValueError(f"order (number of impulses) must be in 3..{MAX_IMPULSES} for "
+                                 f"gmzv, got {self.order!r}")
+            if not 0.0 < self.duration < 0.5 * (self.order - 1):
+                raise ValueError(f"duration must be in (0, {0.5 * (self.order - 1)!r}) damped "
+                                 f"periods for gmzv with order {self.order}, got {self.duration!r}")
         if self.kind in NOTCHES and not self.notch_pole_zeta > self.zeta:
             raise ValueError(
                 f"notch_pole_zeta must be > zeta ({self.zeta!r}), got {self.notch_pole_zeta!r}")
@@ -110,12 +124,15 @@ def exponential(*, T: float, sigma: float, k: int = 1, timing: str = "exact") ->
     return Stage("exponential", T=T, sigma=sigma, k=k, timing=timing)
 
 
-def shaper(kind: str, *, wn: float, zeta: float = 0.0, order: int = 1,
-           tolerance: float = 0.05, timing: str = "exact") -> Stage:
-    """Input shaper ``kind`` in zv, zvd, zvdd, zvn, ei, ei2, mzv for the mode (wn, zeta)."""
+def shaper(kind: str, *, wn: float, zeta: float = 0.0, order: int | None = None,
+           tolerance: float = 0.05, duration: float = 0.75, timing: str = "exact") -> Stage:
+    """Input shaper ``kind`` in zv, zvd, zvdd, zvn, ei, ei2, ei3, mzv, gmzv for the mode
+    (wn [rad/s], zeta). ``order``: n of zvn, impulses of gmzv; ``tolerance``: V of the EI
+    family; ``duration``: span of gmzv in damped periods."""
     if kind not in SHAPERS:
         raise ValueError(f"kind must be one of {', '.join(SHAPERS)} for a shaper, got {kind!r}")
-    return Stage(kind, wn=wn, zeta=zeta, order=order, tolerance=tolerance, timing=timing)
+    return Stage(kind, wn=wn, zeta=zeta, order=order, tolerance=tolerance, duration=duration,
+                 timing=timing)
 
 
 def notch(*, wn: float, zeta: float = 0.0, pole_zeta: float = 0.7,

@@ -37,10 +37,10 @@ REL_TOL = 1e-12
 TICK_SLACK = 1e-6
 #: Model value references (modelDescription/generate.py).
 STAGE_FIELDS = ("kind", "design", "timing", "T", "sigma", "k", "wn", "zeta", "order", "tolerance",
-                "notch_pole_zeta")
+                "notch_pole_zeta", "duration")
 KIND_VALUES = {k: i for i, k in enumerate(
     ("rectangular", "harmonic", "damped_harmonic", "exponential", "zv", "zvd", "zvdd", "zvn", "ei",
-     "ei2", "mzv", "notch_tustin", "notch_matched"))}
+     "ei2", "mzv", "notch_tustin", "notch_matched", "ei3", "gmzv"))}
 
 
 @dataclass(frozen=True)
@@ -68,7 +68,8 @@ def start_values(stages, *, Ts: float) -> dict:
         else:
             values.update({p + "design": 0, p + "timing": 0 if s.timing == "exact" else 1,
                            p + "T": s.T, p + "sigma": s.sigma, p + "order": s.order,
-                           p + "tolerance": s.tolerance, p + "notch_pole_zeta": s.notch_pole_zeta})
+                           p + "tolerance": s.tolerance, p + "notch_pole_zeta": s.notch_pole_zeta,
+                           p + "duration": s.duration})
     return values
 
 
@@ -170,6 +171,8 @@ def validation_cases(Ts: float) -> list[tuple[str, list]]:
         ("ei", [shaper("ei", wn=wn, zeta=zeta, tolerance=0.05)]),
         ("ei2", [shaper("ei2", wn=wn, zeta=zeta, tolerance=0.05)]),
         ("mzv", [shaper("mzv", wn=wn, zeta=zeta)]),
+        ("ei3", [shaper("ei3", wn=wn, zeta=zeta, tolerance=0.05)]),
+        ("gmzv (n=5, 1.2 Td)", [shaper("gmzv", wn=wn, zeta=zeta, order=5, duration=1.2)]),
         ("zv (paper)", [shaper("zv", wn=wn, zeta=zeta, timing="paper")]),
         ("notch_tustin", [notch(wn=wn, zeta=0.02, pole_zeta=0.5, discretization="tustin")]),
         ("notch_matched", [notch(wn=wn, zeta=0.02, pole_zeta=0.5, discretization="matched")]),

@@ -10,7 +10,7 @@
 
 static const sms_kind shaper_kinds[] = {
     SMS_SHAPER_ZV, SMS_SHAPER_ZVD, SMS_SHAPER_ZVDD, SMS_SHAPER_ZVN,
-    SMS_SHAPER_EI, SMS_SHAPER_EI2, SMS_SHAPER_MZV
+    SMS_SHAPER_EI, SMS_SHAPER_EI2, SMS_SHAPER_MZV, SMS_SHAPER_EI3, SMS_SHAPER_GMZV
 };
 #define N_KINDS (sizeof shaper_kinds / sizeof shaper_kinds[0])
 
@@ -215,6 +215,106 @@ static void test_ei2_mzv_design(void)
     }
 }
 
+/* Three-hump EI: undamped |H(j wn)| = V (middle hump) and two outer humps of height V;
+ * damped: the K^m weighting keeps |H| along Re s = sigma equal to the undamped one over S. */
+static void test_ei3_design(void)
+{
+    const double zetas[] = {0.0, 0.1, 0.3}, Vs[] = {0.05, 0.2};
+    size_t iz, iv;
+    for (iv = 0; iv < 2; ++iv) {
+        double V = Vs[iv], wn = 30.0, A0[5], t0[5];
+        size_t count;
+        sms_stage_config c = make(SMS_SHAPER_EI3, wn, 0.0, 1, SMS_TIMING_EXACT);
+        c.tolerance = V;
+        CHECK_STATUS(sms_shaper_impulses(&c, A0, t0, 5, &count), SMS_OK);
+        CHECK(count == 5);
+        CHECK_CLOSE(cabs(hc(A0, t0, 5, I * wn)), V, 1e-14, 1.0);
+        {
+            /* outer humps at the vertex c* = -A2/(4 A1) of the quadratic in c = cos(pi w/wn),
+             * i.e. w* = wn acos(c*)/pi and 2 wn - w*; between them |H| <= V */
+            double cs = -A0[1] / (4.0 * A0[0]), ws = wn * acos(cs) / PI, w;
+            CHECK_CLOSE(cabs(hc(A0, t0, 5, I * ws)), V, 1e-13, 1.0);
+            CHECK_CLOSE(cabs(hc(A0, t0, 5, I * (2 * wn - ws))), V, 1e-13, 1.0);
+            for (w = ws; w <= 2 * wn - ws; w += 1e-3 * wn)
+                CHECK(cabs(hc(A0, t0, 5, I * w)) <= V * (1 + 1e-12));
+        }
+        for (iz = 1; iz < 3; ++iz) {
+            double zeta = zetas[iz], A[5], t[5], S = 0, K, w;
+            double complex p = mode_pole(wn, zeta);
+            size_t m;
+            c = make(SMS_SHAPER_EI3, wn, zeta, 1, SMS_TIMING_EXACT);
+            c.tolerance = V;
+            CHECK_STATUS(sms_shaper_impulses(&c, A, t, 5, &count), SMS_OK);
+            K = exp(-zeta * PI / sqrt(1 - zeta * zeta));
+            for (m = 0; m < 5; ++m)
+                S += A0[m] * pow(K, (double)m);
+            for (w = 0.5 * cimag(p); w < 1.5 * cimag(p); w += 0.01 * cimag(p)) {
+                double und = cabs(hc(A0, t0, 5, I * w * wn / cimag(p)));
+                CHECK(fabs(cabs(hc(A, t, 5, creal(p) + I * w)) - und / S) <= 1e-13);
+            }
+        }
+    }
+}
+
+/* Generalised MZV: order 3, duration 0.75 is MZV (damped too); every (n, D) gives n equally
+ * spaced impulses over D Td whose undamped amplitudes B solve the least-squares problem, i.e.
+ * M^T M B is a constant vector (the normal equations with right-hand side M^T e_0 = ones). */
+static void test_gmzv_design(void)
+{
+    const double zetas[] = {0.0, 0.1, 0.4};
+    size_t iz;
+    for (iz = 0; iz < 3; ++iz) {
+        double wn = 40.0, zeta = zetas[iz], A[9], t[9], Am[3], tm[3], Td;
+        size_t count, m;
+        unsigned n;
+        sms_stage_config c = make(SMS_SHAPER_GMZV, wn, zeta, 3, SMS_TIMING_EXACT);
+        sms_stage_config mzv = make(SMS_SHAPER_MZV, wn, zeta, 1, SMS_TIMING_EXACT);
+        double complex p = mode_pole(wn, zeta);
+        Td = 2 * PI / cimag(p);
+        CHECK_STATUS(sms_shaper_impulses(&c, A, t, 9, &count), SMS_OK);
+        CHECK_STATUS(sms_shaper_impulses(&mzv, Am, tm, 3, &count), SMS_OK);
+        for (m = 0; m < 3; ++m) {
+            CHECK_CLOSE(A[m], Am[m], 1e-14, 1.0);
+            CHECK_CLOSE(t[m], tm[m], 1e-15, Td);
+        }
+        CHECK(cabs(hc(A, t, 3, p)) <= 1e-14);
+        for (n = 3; n <= SMS_SHAPER_MAX_IMPULSES; ++n) {
+            const double Ds[] = {0.55, 0.75, 0.45 * (double)(n - 1u)};
+            size_t id;
+            for (id = 0; id < 3; ++id) {
+                double B[9], G[9], tau, sum = 0;
+                size_t i, j, r;
+                c = make(SMS_SHAPER_GMZV, wn, zeta, n, SMS_TIMING_EXACT);
+                c.duration = Ds[id];
+                CHECK_STATUS(sms_shaper_impulses(&c, A, t, 9, &count), SMS_OK);
+                CHECK(count == n);
+                for (j = 0; j < n; ++j) {
+                    CHECK(A[j] >= 0.0);
+                    sum += A[j];
+                    CHECK_CLOSE(t[j], Ds[id] * Td * (double)j / (double)(n - 1u), 1e-14, Td);
+                    B[j] = A[j] * exp(zeta * wn * t[j]);
+                }
+                CHECK_CLOSE(sum, 1.0, 1e-14, 1.0);
+                tau = Ds[id] * (double)(n - 2u) / ((double)n - 2.0 * Ds[id] - 1.0);
+                for (j = 0; j < n; ++j)
+                    G[j] = 0.0;
+                for (r = 0; r < 2u * n - 1u; ++r) {
+                    double row[9], dot = 0;
+                    for (j = 0; j < n; ++j) {
+                        double w = 2 * PI * (1.0 + (double)((r - 1u) / 2u) / tau) * t[j] / Td;
+                        row[j] = r == 0 ? 1.0 : (r % 2u == 1u ? cos(w) : sin(w));
+                        dot += row[j] * B[j];
+                    }
+                    for (i = 0; i < n; ++i)
+                        G[i] += row[i] * dot;
+                }
+                for (i = 1; i < n; ++i)
+                    CHECK_CLOSE(G[i], G[0], 1e-12, fabs(G[0]));
+            }
+        }
+    }
+}
+
 /* Runs the shaper on a unit impulse and compares with sms_shaper_taps. */
 static void check_engine_matches_taps(const sms_stage_config *c, double Ts, const double *taps, size_t L)
 {
@@ -246,7 +346,8 @@ static void test_integer_grid(void)
         double wd = 2 * PI / (80 * Ts), wn = wd / sqrt(1 - zeta * zeta);
         for (ik = 0; ik < N_KINDS; ++ik) {
             for (timing = 0; timing < 2; ++timing) {
-                unsigned order = shaper_kinds[ik] == SMS_SHAPER_ZVN ? 6u : 1u;
+                unsigned order = shaper_kinds[ik] == SMS_SHAPER_ZVN ? 6u
+                                 : shaper_kinds[ik] == SMS_SHAPER_GMZV ? 5u : 1u;
                 sms_stage_config c = make(shaper_kinds[ik], wn, zeta, order, (sms_timing)timing);
                 double A[9], t[9], taps[MAX_LEN], expect[MAX_LEN];
                 size_t count, L = 0, m, i;
@@ -285,9 +386,12 @@ static void test_exact_timing(void)
         double zeta = -modes[im].sigma / wn, Ts = modes[im].Ts;
         double complex p = mode_pole(wn, zeta), zp = cexp(p * Ts);
         for (ik = 0; ik < N_KINDS; ++ik) {
-            unsigned order, n;
-            for (order = 1; order <= (shaper_kinds[ik] == SMS_SHAPER_ZVN ? SMS_SHAPER_MAX_ORDER : 1u); ++order) {
+            unsigned order, n, gmzv = shaper_kinds[ik] == SMS_SHAPER_GMZV;
+            unsigned last = shaper_kinds[ik] == SMS_SHAPER_ZVN ? SMS_SHAPER_MAX_ORDER
+                            : gmzv ? SMS_SHAPER_MAX_IMPULSES : 1u;
+            for (order = gmzv ? 3u : 1u; order <= last; ++order) {
                 sms_stage_config c = make(shaper_kinds[ik], wn, zeta, order, SMS_TIMING_EXACT);
+                c.duration = 0.375 * (double)(order - 1u);   /* GMZV: 0.75 (MZV) .. 3 periods */
                 double A[9], t[9], taps[MAX_LEN], sum = 0;
                 size_t count, L, i;
                 int k;
@@ -303,7 +407,7 @@ static void test_exact_timing(void)
                 n = zv_order(c.kind, order);
                 for (k = 1; k < (int)n; ++k)
                     CHECK(cabs(moment(taps, L, zp, k)) <= 1e-12 * moment_scale(taps, L, zp, k));
-                if (order == 1 || order == SMS_SHAPER_MAX_ORDER)
+                if (order == 1 || order == 3 || order == SMS_SHAPER_MAX_ORDER)
                     check_engine_matches_taps(&c, Ts, taps, L);
                 if (c.kind == SMS_SHAPER_ZV && im != 1) {
                     /* paper timing rounds 51.2 to 51 samples: a visible residual remains */
@@ -484,6 +588,15 @@ static void test_invalid(void)
     c = good; c.tolerance = 1; EXPECT_BAD(c, Ts, SMS_ERR_TOLERANCE);
     c = good; c.tolerance = NAN; EXPECT_BAD(c, Ts, SMS_ERR_TOLERANCE);
     c = good; c.kind = SMS_SHAPER_EI2; c.tolerance = -0.1; EXPECT_BAD(c, Ts, SMS_ERR_TOLERANCE);
+    c = good; c.kind = SMS_SHAPER_EI3; c.tolerance = 1.5; EXPECT_BAD(c, Ts, SMS_ERR_TOLERANCE);
+    c = good; c.kind = SMS_SHAPER_GMZV; c.order = 2; EXPECT_BAD(c, Ts, SMS_ERR_ORDER);
+    c = good; c.kind = SMS_SHAPER_GMZV; c.order = SMS_SHAPER_MAX_IMPULSES + 1; EXPECT_BAD(c, Ts, SMS_ERR_ORDER);
+    c = good; c.kind = SMS_SHAPER_GMZV; c.order = 3; c.duration = 1.0; EXPECT_BAD(c, Ts, SMS_ERR_SHAPER_DURATION);
+    c = good; c.kind = SMS_SHAPER_GMZV; c.order = 3; c.duration = 0.3; EXPECT_BAD(c, Ts, SMS_ERR_SHAPER_DURATION);
+    c = good; c.kind = SMS_SHAPER_GMZV; c.order = 5; c.duration = NAN; EXPECT_BAD(c, Ts, SMS_ERR_SHAPER_DURATION);
+    c = good; c.kind = SMS_SHAPER_GMZV; c.order = 5; c.duration = -1.0; EXPECT_BAD(c, Ts, SMS_ERR_SHAPER_DURATION);
+    c = good; c.kind = SMS_SHAPER_GMZV; c.order = 5; c.duration = 0.75;
+    CHECK_STATUS(sms_shaper_buffer_size(&c, Ts, &L), SMS_OK);
     c = good; c.wn = 1e-9; EXPECT_BAD(c, Ts, SMS_ERR_TOO_LONG);
     /* first offending field wins, in config.h table order */
     c = good; c.wn = NAN; c.zeta = 2; c.tolerance = 5; EXPECT_BAD(c, Ts, SMS_ERR_WN);
@@ -514,6 +627,8 @@ int main(void)
     test_zvn_design();
     test_ei_design();
     test_ei2_mzv_design();
+    test_ei3_design();
+    test_gmzv_design();
     test_integer_grid();
     test_exact_timing();
     test_grid_threshold();

@@ -64,8 +64,11 @@ def shaper_stages(draw, Ts):
     fields = dict(wn=wn, zeta=zeta, timing=draw(st.sampled_from(["exact", "paper"])))
     if kind == "zvn":
         fields["order"] = draw(st.integers(1, 5))
-    if kind in ("ei", "ei2"):
+    if kind in ("ei", "ei2", "ei3"):
         fields["tolerance"] = draw(st.floats(0.01, 0.2))
+    if kind == "gmzv":
+        fields["order"] = n = draw(st.integers(3, 9))
+        fields["duration"] = draw(st.floats(0.55, 0.49 * (n - 1)))
     return sms.Stage(kind, **fields)
 
 

@@ -11,7 +11,7 @@ import smoothshaper as sm
 from smoothshaper import reference as ref
 from smoothshaper.reference._checks import on_grid
 
-SHAPERS = ["zv", "zvd", "zvdd", "zvn", "ei", "ei2", "mzv"]
+SHAPERS = ["zv", "zvd", "zvdd", "zvn", "ei", "ei2", "mzv", "ei3", "gmzv"]
 
 
 def K_of(zeta, scale=1.0):
@@ -79,11 +79,65 @@ def test_undamped_two_hump_ei_has_two_humps_of_height_V(V):
     assert res[np.argmin(abs(r - 1))] < 1e-12
 
 
+@pytest.mark.parametrize("V", [0.05, 0.2])
+def test_undamped_three_hump_ei_has_three_humps_of_height_V(V):
+    """Singhose et al. (1997) closed form: with c = cos(pi w/wn), |H| = |A3 + 2 A2 c +
+    2 A1 (2c^2 - 1)|: V at the mode and -V at the vertex c* = -A2/(4 A1) on either side."""
+    stage = sm.shaper("ei3", wn=1.0, tolerance=V)
+    A, t = ref.shaper_impulses(stage)
+    a1 = (1 + 3 * V + 2 * math.sqrt(2 * V * (V + 1))) / 16
+    np.testing.assert_allclose(A, [a1, (1 - V) / 4, (1 + V) / 2 - 2 * a1, (1 - V) / 4, a1],
+                               rtol=1e-14)
+    np.testing.assert_allclose(t / (2 * math.pi), [0, 0.5, 1, 1.5, 2], rtol=1e-15)
+    ws = math.acos(-A[1] / (4 * A[0])) / math.pi
+    r = np.linspace(ws, 2 - ws, 20001)
+    res = np.abs(ref.continuous_transfer(stage, 1j * r))
+    peaks = scipy.signal.argrelmax(np.r_[0, res, 0])[0] - 1
+    assert len(peaks) == 3
+    np.testing.assert_allclose(res[peaks], V, rtol=1e-9)
+    assert res.max() <= V * (1 + 1e-12)
+
+
+@pytest.mark.parametrize("zeta", [0.0, 0.1, 0.5])
+def test_generalised_mzv_with_three_impulses_over_three_quarters_is_mzv(zeta):
+    g = ref.shaper_impulses(sm.shaper("gmzv", wn=40.0, zeta=zeta))
+    m = ref.shaper_impulses(sm.shaper("mzv", wn=40.0, zeta=zeta))
+    np.testing.assert_allclose(g[0], m[0], rtol=1e-13)
+    np.testing.assert_allclose(g[1], m[1], rtol=1e-15)
+
+
+@pytest.mark.parametrize("n", range(3, 10))
+def test_generalised_mzv_is_the_firmware_least_squares_design(n):
+    """n equally spaced impulses over D Td; the amplitudes satisfy the normal equations of the
+    firmware's system (sum A = 1, zeros at wd (1 + i/tau)): M^T M A is a constant vector."""
+    for D in (0.55, 0.75, 0.45 * (n - 1)):
+        A, t = ref.shaper_impulses(sm.shaper("gmzv", wn=2 * math.pi, order=n, duration=D))
+        np.testing.assert_allclose(t, D * np.arange(n) / (n - 1), rtol=1e-14)
+        assert np.all(A >= 0) and A.sum() == pytest.approx(1, abs=1e-15)
+        tau = D * (n - 2) / (n - 2 * D - 1)
+        w = 2 * math.pi * (1 + np.arange(n - 1)[:, None] / tau) * t
+        M = np.vstack([np.ones(n), np.cos(w), np.sin(w)])
+        g = M.T @ (M @ A)
+        np.testing.assert_allclose(g, g[0], rtol=1e-12)
+
+
+def test_generalised_mzv_rejects_bad_order_and_duration():
+    with pytest.raises(ValueError, match="order"):
+        sm.shaper("gmzv", wn=10.0, order=2)
+    with pytest.raises(ValueError, match="duration"):
+        sm.shaper("gmzv", wn=10.0, order=3, duration=1.0)
+    with pytest.raises(ValueError, match="duration"):        # negative least-squares impulse
+        ref.shaper_impulses(sm.shaper("gmzv", wn=10.0, order=5, duration=0.3))
+    with pytest.raises(sm.ParameterError, match="duration") as err:
+        sm.Chain([sm.shaper("gmzv", wn=10.0, order=5, duration=0.3)], Ts=1e-3)
+    assert err.value.parameter == "duration"
+
+
 def test_damped_designs_carry_the_undamped_vector_sum():
     """A_m e^{-p t_m} = c B_m e^{-j wd t_m}: the residual at the damped mode is the undamped
     design's residual times c = 1/sum_m B_m e^{-zeta wn t_m} (module docstring)."""
     wn, zeta, V = 3.0, 0.2, 0.05
-    for kind in ("ei", "ei2", "mzv"):
+    for kind in ("ei", "ei2", "mzv", "ei3", "gmzv"):
         damped = sm.shaper(kind, wn=wn, zeta=zeta, tolerance=V)
         undamped = sm.shaper(kind, wn=1.0, tolerance=V)
         A, t = ref.shaper_impulses(damped)
@@ -101,7 +155,12 @@ def test_damped_designs_carry_the_undamped_vector_sum():
 def test_exact_timing_gives_dc_gain_one_and_the_continuous_value_at_the_mode(kind, wn_Ts, zeta,
                                                                               order):
     Ts = 1e-3
-    stage = sm.shaper(kind, wn=wn_Ts / Ts, zeta=zeta, order=order)
+    if kind == "gmzv":      # 3..9 impulses over 0.75 .. 3 damped periods
+        order += 1
+        stage = sm.shaper(kind, wn=wn_Ts / Ts, zeta=zeta, order=max(order, 3),
+                          duration=0.375 * (max(order, 3) - 1))
+    else:
+        stage = sm.shaper(kind, wn=wn_Ts / Ts, zeta=zeta, order=order)
     h = ref.impulse_response(stage, Ts=Ts)
     p = ref.mode_pole(stage.wn, zeta)
     zp = np.exp(p * Ts)

@@ -29,8 +29,10 @@ extern "C" {
  * | k                | smoothers: which zero exact timing pins  | >= 1; odd for (damped) harmonic |
  * | wn               | shapers, notches                         | finite, > 0, below pi/Ts [rad/s] |
  * | zeta             | shapers, notches (zero damping xi1)      | [0, 1) |
- * | order            | ::SMS_SHAPER_ZVN                         | 1 .. ::SMS_SHAPER_MAX_ORDER |
- * | tolerance        | ::SMS_SHAPER_EI, ::SMS_SHAPER_EI2        | (0, 1), e.g. 0.05 |
+ * | order            | ::SMS_SHAPER_ZVN: n of ZV^n              | 1 .. ::SMS_SHAPER_MAX_ORDER |
+ * |                  | ::SMS_SHAPER_GMZV: number of impulses    | 3 .. ::SMS_SHAPER_MAX_IMPULSES |
+ * | tolerance        | ::SMS_SHAPER_EI, ::SMS_SHAPER_EI2, ::SMS_SHAPER_EI3 | (0, 1), e.g. 0.05 |
+ * | duration         | ::SMS_SHAPER_GMZV: span in damped periods Td | (0, (order-1)/2), no negative impulse; 0.75 = MZV |
  * | notch_pole_zeta  | notches (pole damping xi2)               | finite, > zeta |
  *
  * The pinned zero of a smoother (exact timing) is s = sigma + j*k*2*pi/T for rectangular and
@@ -48,13 +50,14 @@ typedef struct sms_stage_config {
     unsigned order;
     double tolerance;
     double notch_pole_zeta;
+    double duration;
 } sms_stage_config;
 
 /**
  * @brief A config of the given kind with every field at a documented default:
  * timing ::SMS_TIMING_EXACT, T = 0 (must be set for smoothers), sigma = 0, k = 1, wn = 0
- * (must be set for shapers and notches), zeta = 0, order = 1, tolerance = 0.05,
- * notch_pole_zeta = 0.7. The kind is stored as given (validated only by init).
+ * (must be set for shapers and notches), zeta = 0, order = 1 (3 for ::SMS_SHAPER_GMZV), tolerance = 0.05,
+ * notch_pole_zeta = 0.7, duration = 0.75. The kind is stored as given (validated only by init).
  */
 SMS_API sms_stage_config sms_stage_config_default(sms_kind kind);
 

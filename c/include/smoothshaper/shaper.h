@@ -1,6 +1,7 @@
 /**
  * @file shaper.h
- * @brief Input shapers: ZV^n (ZV, ZVD, ZVDD, ...), EI, two-hump EI, MZV (docs/filters.md).
+ * @brief Input shapers: ZV^n (ZV, ZVD, ZVDD, ...), EI, two- and three-hump EI, MZV, generalised
+ * MZV (docs/filters.md).
  *
  * A shaper is a sparse FIR filter y[n] = sum_k g_k x[n - d_k] (k = 0..n_taps-1) with unit DC
  * gain (sum g_k = 1). Work per sample is O(n_taps) <= ::SMS_SHAPER_MAX_TAPS; the caller owns the
@@ -21,6 +22,15 @@
  *   exact zero at p).
  * - MZV: K' = exp(-0.75 zeta pi / sqrt(1-zeta^2)), [1 - 1/sqrt2, (sqrt2 - 1) K', (1 - 1/sqrt2) K'^2]
  *   normalised, at [0, 0.375 Td, 0.75 Td]; exact zero at p.
+ * - EI3 (three-hump EI, tolerance V): [A1, A2, A3, A2, A1] at m Td/2, m = 0..4, with
+ *   A1 = (1 + 3V + 2 sqrt(2V(V+1)))/16, A2 = (1-V)/4, A3 = (1+V)/2 - 2 A1 (undamped closed
+ *   form; humps of height V at the mode and on either side); zeta > 0: weighted by K^m as EI.
+ * - GMZV (generalised MZV as 3-D printer firmware defines it): n = sms_stage_config::order
+ *   impulses (3..::SMS_SHAPER_MAX_IMPULSES) at t_j = j D Td/(n-1), D = sms_stage_config::duration
+ *   (damped periods, 0 < D < (n-1)/2); amplitudes are the least-squares solution of sum A = 1
+ *   and H(j wd (1 + i/tau)) = 0, i = 0..n-2, tau = D (n-2)/(n-2D-1), weighted by
+ *   e^{-zeta wn t_j} and normalised. n = 3, D = 0.75 is MZV. Configurations whose least-squares
+ *   amplitudes go negative (in practice D < 0.5) are rejected with ::SMS_ERR_SHAPER_DURATION.
  *
  * Discretisation (docs/exact-mode.md): ::SMS_TIMING_PAPER puts each impulse at sample
  * round(t_m/Ts). ::SMS_TIMING_EXACT splits an off-grid impulse linearly between its two
@@ -72,9 +82,11 @@ typedef struct sms_shaper {
  *         ::SMS_ERR_KIND (not a shaper kind, or unknown timing),
  *         ::SMS_ERR_WN (NaN/Inf or <= 0), ::SMS_ERR_ABOVE_NYQUIST (wn >= pi/Ts),
  *         ::SMS_ERR_ZETA (NaN/Inf or outside [0,1)), ::SMS_ERR_ORDER (ZVN: order outside
- *         1..::SMS_SHAPER_MAX_ORDER), ::SMS_ERR_TOLERANCE (EI, EI2: outside (0,1)),
+ *         1..::SMS_SHAPER_MAX_ORDER; GMZV: outside 3..::SMS_SHAPER_MAX_IMPULSES),
+ *         ::SMS_ERR_TOLERANCE (EI, EI2, EI3: outside (0,1)), ::SMS_ERR_SHAPER_DURATION (GMZV:
+ *         duration NaN/Inf, outside (0, (order-1)/2), or a negative least-squares amplitude),
  *         ::SMS_ERR_TOO_LONG (L above 2^40 samples: state indices must stay exact doubles).
- *         The fields T, sigma, k and notch_pole_zeta are not read.
+ *         The fields T, sigma, k and notch_pole_zeta are not read (duration only by GMZV).
  */
 SMS_API sms_status sms_shaper_buffer_size(const sms_stage_config *config, double Ts, size_t *n_reals);
 /**
@@ -104,7 +116,8 @@ SMS_API sms_status sms_shaper_check_state(const sms_shaper *f, const double *src
 /**
  * @brief The continuous design: amplitudes (sum 1) and times [s] in increasing order.
  * @param capacity room in amplitudes and times; ::SMS_SHAPER_MAX_IMPULSES always suffices
- * @param count    receives the number of impulses (n+1 for ZV^n, 3 for EI and MZV, 4 for EI2)
+ * @param count    receives the number of impulses (n+1 for ZV^n, 3 for EI and MZV, 4 for EI2,
+ *                 5 for EI3, order for GMZV)
  * @return ::SMS_OK, ::SMS_ERR_NULL, the config's status (checked as for Ts -> 0, i.e. without
  *         the Nyquist and length checks), ::SMS_ERR_BUFFER_TOO_SMALL (capacity < count).
  */

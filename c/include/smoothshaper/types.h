@@ -49,7 +49,9 @@ typedef enum sms_status {
     SMS_ERR_LIMIT = -17,            /**< a kinematic limit or displacement is NaN/Inf or <= 0 */
     SMS_ERR_RECORD = -18,           /**< a measured record is too short, non-finite or not a decay */
     SMS_ERR_STATE = -19,            /**< a saved state vector does not match this object */
-    SMS_ERR_BANDWIDTH = -20         /**< notch bandwidth is NaN/Inf, <= 0 or too wide */
+    SMS_ERR_BANDWIDTH = -20,        /**< notch bandwidth is NaN/Inf, <= 0 or too wide */
+    SMS_ERR_SHAPER_DURATION = -21   /**< generalised MZV duration outside (0, (order-1)/2) or
+                                         giving a negative impulse */
 } sms_status;
 
 /** @brief Stage families. Values are stable (the FMU enumeration and saved states use them). */
@@ -66,10 +68,13 @@ typedef enum sms_kind {
     SMS_SHAPER_EI2 = 9,       /**< two-hump extra-insensitive */
     SMS_SHAPER_MZV = 10,      /**< modified ZV as used by 3-D printer firmware */
     SMS_NOTCH_TUSTIN = 11,    /**< notch, Tustin with pre-warping at wn, docs/filters.md */
-    SMS_NOTCH_MATCHED = 12    /**< notch, pole-zero matched, docs/filters.md */
+    SMS_NOTCH_MATCHED = 12,   /**< notch, pole-zero matched, docs/filters.md */
+    SMS_SHAPER_EI3 = 13,      /**< three-hump extra-insensitive */
+    SMS_SHAPER_GMZV = 14      /**< generalised MZV: sms_stage_config::order impulses over
+                                   sms_stage_config::duration damped periods */
 } sms_kind;
 
-#define SMS_KIND_COUNT 13
+#define SMS_KIND_COUNT 15
 
 /**
  * @brief How a duration that is not a whole number of sample periods is realised.

@@ -12,6 +12,13 @@ Continuous designs for the mode ``(wn, zeta)``, ``wd = wn sqrt(1-zeta^2)``, ``Td
   ``A2 = A3 = 1/2 - A1`` at ``0, Td/2, Td, 3Td/2``.
 * MZV (as in Klipper's shaper_defs): ``1 - 1/sqrt2, sqrt2 - 1, 1 - 1/sqrt2`` at
   ``0, 0.375 Td, 0.75 Td`` before damping.
+* EI3, three-hump EI (Singhose, Porter, Tuttle & Singer 1997, undamped closed form):
+  ``A1 = A5 = (1 + 3V + 2 sqrt(2V(V+1)))/16``, ``A2 = A4 = (1-V)/4``, ``A3 = (1+V)/2 - 2 A1``
+  at ``m Td/2``, m = 0..4.
+* GMZV, the generalised MZV of 3-D printer firmware (D. Butyugin's ``shaper_defs.py``,
+  ``get_mzv_coeffs``): ``n = stage.order`` impulses at ``j D Td/(n-1)``, ``D = stage.duration``;
+  amplitudes are the least-squares solution (``numpy.linalg.lstsq``) of ``sum A = 1`` and
+  ``H(j wd (1 + i/tau)) = 0`` for i = 0..n-2, ``tau = D (n-2)/(n-2D-1)``. n = 3, D = 0.75 is MZV.
 
 Damping: every design above is an undamped amplitude set ``B_m`` at times ``t_m`` (multiples of
 ``Td``) carried to the damped mode by ``A_m = B_m e^{-zeta wn t_m} / sum_m B_m e^{-zeta wn t_m}``,
@@ -58,7 +65,30 @@ def _undamped_design(stage: Stage) -> tuple[np.ndarray, np.ndarray]:
     if kind == "mzv":
         a1 = 1 - 1 / math.sqrt(2)
         return np.array([a1, math.sqrt(2) - 1, a1]), np.array([0.0, 0.375, 0.75])
+    if kind == "ei3":
+        a1 = (1 + 3 * V + 2 * math.sqrt(2 * V * (V + 1))) / 16
+        a2 = (1 - V) / 4
+        return np.array([a1, a2, (1 + V) / 2 - 2 * a1, a2, a1]), 0.5 * np.arange(5.0)
+    if kind == "gmzv":
+        return gmzv_undamped(stage.order, stage.duration)
     raise ValueError(f"kind must be a shaper ({', '.join(SHAPERS)}), got {kind!r}")
+
+
+def gmzv_undamped(n: int, duration: float) -> tuple[np.ndarray, np.ndarray]:
+    """Undamped generalised MZV: amplitudes (sum 1) and times in damped periods for ``n``
+    impulses over ``duration`` periods. Raises ValueError (naming ``duration``) when the
+    least-squares amplitudes go negative (in practice duration < 0.5)."""
+    units = duration * np.arange(n) / (n - 1.0)
+    tau = duration * (n - 2.0) / (n - 2.0 * duration - 1.0)
+    w = 2.0 * math.pi * (1.0 + np.arange(n - 1)[:, None] / tau) * units[None, :]
+    M = np.vstack([np.ones(n), np.cos(w), np.sin(w)])
+    f = np.zeros(M.shape[0])
+    f[0] = 1.0
+    A = np.linalg.lstsq(M, f, rcond=None)[0]
+    if np.any(A < 0.0):
+        raise ValueError(f"duration {duration!r} gives a negative impulse for gmzv with {n} "
+                         f"impulses (the least-squares design needs duration > 0.5 damped periods)")
+    return A / A.sum(), units
 
 
 def mode_pole(wn: float, zeta: float) -> complex:
