@@ -31,6 +31,9 @@
  *   and H(j wd (1 + i/tau)) = 0, i = 0..n-2, tau = D (n-2)/(n-2D-1), weighted by
  *   e^{-zeta wn t_j} and normalised. n = 3, D = 0.75 is MZV. Configurations whose least-squares
  *   amplitudes go negative (in practice D < 0.5) are rejected with ::SMS_ERR_SHAPER_DURATION.
+ *   The zeros crowd together as D approaches (n-1)/2: the system's condition number grows from
+ *   ~10 (D = 0.3 (n-1)) to ~1e12 (n = 9, D = 0.49 (n-1)), and the amplitudes are only as
+ *   accurate as cond * machine epsilon there.
  *
  * Discretisation (docs/exact-mode.md): ::SMS_TIMING_PAPER puts each impulse at sample
  * round(t_m/Ts). ::SMS_TIMING_EXACT splits an off-grid impulse linearly between its two
