@@ -13,7 +13,9 @@ static sms_status knot_samples(unsigned degree, size_t n_axes, double T, double 
         return SMS_ERR_SAMPLE_PERIOD;
     if (!isfinite(T) || !(T > 0.0))
         return SMS_ERR_DURATION;
-    if (T < Ts)
+    /* The rule of every duration: T below Ts is refused; T within the grid tolerance (1e-9
+     * relative) of Ts is one sample. */
+    if (T / Ts < 1.0 - 1e-9)
         return SMS_ERR_DURATION_BELOW_TS;
     nu = floor(T / Ts + 0.5);
     if (nu > 1e12)

@@ -12,17 +12,23 @@ static int is_finite(double v)
     return v - v == 0.0;
 }
 
-static void fill_mode(double sigma, double wd, sms_mode *mode)
+/* The mode of (sigma, wd); 0 unless every derived value is finite with wn > 0 (hypot: sigma^2
+ * would overflow long before wn does). */
+static int fill_mode(double sigma, double wd, sms_mode *mode)
 {
+    double wn = hypot(sigma, wd);
+    if (!(is_finite(sigma) && is_finite(wd) && is_finite(wn) && wn > 0.0))
+        return 0;
     mode->sigma = sigma;
     mode->wd = wd;
-    mode->wn = sqrt(sigma * sigma + wd * wd);
-    mode->zeta = -sigma / mode->wn;
+    mode->wn = wn;
+    mode->zeta = -sigma / wn;
+    return 1;
 }
 
 sms_status sms_identify_from_peaks(double t1, double p1, double t2, double p2, sms_mode *mode)
 {
-    double T0;
+    double T0, half, ratio_log, sigma, wd;
     if (mode == NULL)
         return SMS_ERR_NULL;
     if (!is_finite(t1) || !is_finite(t2) || !is_finite(p1) || !is_finite(p2) || !(t2 > t1))
@@ -30,9 +36,19 @@ sms_status sms_identify_from_peaks(double t1, double p1, double t2, double p2, s
     /* same sign, strictly decaying in magnitude */
     if (!((p1 > 0.0 && p2 > 0.0) || (p1 < 0.0 && p2 < 0.0)) || !(fabs(p2) < fabs(p1)))
         return SMS_ERR_RECORD;
+    /* ln|p2| - ln|p1|, not ln(p2/p1): the quotient can underflow to 0 (or a subnormal). */
+    ratio_log = log(fabs(p2)) - log(fabs(p1));
     T0 = t2 - t1;
-    fill_mode(log(p2 / p1) / T0, 2.0 * pi / T0, mode);
-    return SMS_OK;
+    if (is_finite(T0)) {
+        sigma = ratio_log / T0;
+        wd = 2.0 * pi / T0;
+    } else { /* t2 - t1 overflows: the same quotients from half the interval */
+        half = 0.5 * t2 - 0.5 * t1;
+        sigma = 0.5 * ratio_log / half;
+        wd = pi / half;
+    }
+    /* Peaks closer than about 1e-305 s would give an infinite frequency or decay rate. */
+    return fill_mode(sigma, wd, mode) ? SMS_OK : SMS_ERR_RECORD;
 }
 
 /* Solve the n x n system M y = r (row-major, overwritten) by Gaussian elimination with
@@ -202,7 +218,7 @@ static int ar2_start(const double *x, size_t n, double Ts, size_t d, double *q)
 
 sms_status sms_identify_from_record(const double *x, size_t n, double Ts, sms_mode *mode)
 {
-    double best[N_PARAM], best_cost = HUGE_VAL;
+    double best[N_PARAM] = {0.0, 0.0, 0.0, 0.0, 0.0}, best_cost = HUGE_VAL;
     size_t k, d;
     int found = 0;
     if (x == NULL || mode == NULL)
@@ -259,6 +275,5 @@ sms_status sms_identify_from_record(const double *x, size_t n, double Ts, sms_mo
     if (!(best[3] < 0.0) || !(best[4] < pi / Ts) || best[4] * (double)(n - 1) * Ts < 2.0 * pi
         || (best[1] == 0.0 && best[2] == 0.0))
         return SMS_ERR_RECORD;
-    fill_mode(best[3], best[4], mode);
-    return SMS_OK;
+    return fill_mode(best[3], best[4], mode) ? SMS_OK : SMS_ERR_RECORD;
 }

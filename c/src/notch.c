@@ -45,6 +45,22 @@ static void matched_section(double wn, double xi, double Ts, double *c1, double 
     }
 }
 
+/* (1 + c1 + c2)/(wn Ts)^2 of matched_section, the section's DC value scaled so that it neither
+ * cancels nor underflows for a mode far below the sample rate: 1 - 2 r cos th + r^2 =
+ * (1 - r)^2 + 4 r sin^2(th/2), and (1 - p1)(1 - p2) for real roots. */
+static double matched_dc_scaled(double wn, double xi, double Ts)
+{
+    double e = wn * Ts;
+    if (xi < 1.0) {
+        double r = exp(-xi * e), half = 0.5 * sqrt(1.0 - xi * xi);
+        double u = expm1(-xi * e) / e, v = half > 0.0 ? sin(half * e) / e : 0.0;
+        return u * u + 4.0 * r * v * v;
+    } else {
+        double q = xi + sqrt((xi - 1.0) * (xi + 1.0));
+        return (expm1(-e / q) / e) * (expm1(-e * q) / e);
+    }
+}
+
 sms_status sms_notch_init(sms_notch *f, const sms_stage_config *config, double Ts)
 {
     double d0, d2, a1, a2;
@@ -69,7 +85,8 @@ sms_status sms_notch_init(sms_notch *f, const sms_stage_config *config, double T
         double n1, n2, g;
         matched_section(config->wn, config->zeta, Ts, &n1, &n2);
         matched_section(config->wn, config->notch_pole_zeta, Ts, &a1, &a2);
-        g = (1.0 + a1 + a2) / (1.0 + n1 + n2);
+        g = matched_dc_scaled(config->wn, config->notch_pole_zeta, Ts)
+            / matched_dc_scaled(config->wn, config->zeta, Ts);
         d0 = g - 1.0;
         d2 = g * n2 - a2;
     }

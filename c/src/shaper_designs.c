@@ -78,9 +78,10 @@ static size_t design_ei(double V, double K, double Td, double *amp, double *time
  * e^{-p m Td/2} = (-1/K)^m turns the weights back into A1 - A2 + A3 - A4 = 0. */
 static size_t design_ei2(double V, double K, double Td, double *amp, double *time)
 {
-    double V2 = V * V;
-    double X = cbrt(V2 * (sqrt(1.0 - V2) + 1.0));
-    double a1 = (3.0 * X * X + 2.0 * X + 3.0 * V2) / (16.0 * X);
+    /* X = V^(2/3) (sqrt(1-V^2) + 1)^(1/3) and A1 = (3 X + 2 + 3 V (V/X))/16, written so that
+     * no intermediate underflows: V^2 is 0 below V = 1e-162, and 0/0 made every tap NaN. */
+    double c = cbrt(V), X = c * c * cbrt(sqrt(1.0 - V * V) + 1.0);
+    double a1 = (3.0 * X + 2.0 + 3.0 * V * (V / X)) / 16.0;
     amp[0] = a1;
     amp[1] = (0.5 - a1) * K;
     amp[2] = (0.5 - a1) * K * K;

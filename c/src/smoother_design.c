@@ -66,19 +66,6 @@ static void pole_long(double decay, double nu, int half_sine, long double *re, l
     }
 }
 
-/* Neumaier's compensated sum: the normalisation and G(z*) then carry no O(N eps) error. */
-typedef struct { double sum, carry; } exact_sum;
-
-static void sum_add(exact_sum *s, double v)
-{
-    double t = s->sum + v;
-    if (fabs(s->sum) >= fabs(v))
-        s->carry += (s->sum - t) + v;
-    else
-        s->carry += (v - t) + s->sum;
-    s->sum = t;
-}
-
 static int on_grid(double nu, double *rounded)
 {
     double n = floor(nu + 0.5);
@@ -111,15 +98,19 @@ static int fits_real(double v)
     return fabs(v) <= SMS_REAL_MAX; /* false for NaN and Inf too */
 }
 
-/* sin(pi x), cos(pi x) in long double for x >= 0, exact zeros at multiples of 1/2. */
+/* sin(pi x), cos(pi x) in long double for any real x, exact zeros at multiples of 1/2. */
 static long double sin_pi_long(long double x)
 {
     const long double pi = 3.14159265358979323846264338327950288L;
     long double sign = 1.0L;
+    if (x < 0.0L) {
+        x = -x;
+        sign = -1.0L;
+    }
     x = fmodl(x, 2.0L);
     if (x > 1.0L) {
         x -= 1.0L;
-        sign = -1.0L;
+        sign = -sign;
     }
     if (x > 0.5L)
         x = 1.0L - x;
@@ -128,13 +119,54 @@ static long double sin_pi_long(long double x)
 
 static long double cos_pi_long(long double x)
 {
-    return sin_pi_long(fmodl(x, 2.0L) + 0.5L);
+    return sin_pi_long(fmodl(fabsl(x), 2.0L) + 0.5L);
+}
+
+/* Sum_{i=0}^{n-1} q^i, q = e^{decay} e^{j pi t} (decay <= 0), in closed form: O(1) whatever n,
+ * so that sizing and refusing a long filter costs no more than a short one.
+ * (1 - q^n)/(1 - q) with 1 - e^{d} e^{j pi t} = -expm1(d) + 2 e^{d} sin^2(pi t/2) - j e^{d} sin(pi t):
+ * both real parts are sums of non-negative terms, so nothing cancels when q is near 1 (long,
+ * lightly damped windows) and the result keeps long double relative accuracy. */
+static void geometric_sum(long double decay, long double t, long double n, long double *re,
+                          long double *im)
+{
+    long double r = expl(decay), rn = expl(decay * n), s, sn;
+    long double den_re, den_im, num_re, num_im, den;
+    s = sin_pi_long(0.5L * t);
+    sn = sin_pi_long(0.5L * t * n);
+    den_re = -expm1l(decay) + 2.0L * r * s * s;
+    den_im = -r * sin_pi_long(t);
+    num_re = -expm1l(decay * n) + 2.0L * rn * sn * sn;
+    num_im = -rn * sin_pi_long(t * n);
+    den = den_re * den_re + den_im * den_im;
+    if (den == 0.0L) { /* q = 1: n terms of 1 */
+        *re = n;
+        *im = 0.0L;
+        return;
+    }
+    /* num / den_c = num * conj(den_c) / |den_c|^2 */
+    *re = (num_re * den_re + num_im * den_im) / den;
+    *im = (num_im * den_re - num_re * den_im) / den;
+}
+
+/* Sum of the unnormalised base taps e^{decay i} (sin(pi i/nu)), i = 0..n-1, in closed form. */
+static long double base_tap_sum(const sms_smoother_design *d, size_t n)
+{
+    long double re, im;
+    if (!d->family.half_sine) {
+        geometric_sum((long double)d->decay, 0.0L, (long double)n, &re, &im);
+        return re;
+    }
+    geometric_sum((long double)d->decay, 1.0L / (long double)d->nu, (long double)n, &re, &im);
+    return im;
 }
 
 /* Exact timing (docs/exact-mode.md): the base taps are g[i] = h_c(i Ts), i < N0, and the
  * fraction f of g[N0] that lies inside [0, T); the corrections a on N0-1 and b on N0 solve
  * a z*^-(N0-1) + b z*^-N0 = -G(z*), i.e. a z* + b = R = -G(z*) z*^N0 (two real unknowns, one
- * complex equation). Long double: G is small next to its terms. Writes the unnormalised
+ * complex equation). G(z*) = sum g[i] z*^-i: the damping of g[i] and of z*^-i cancel, leaving
+ * geometric sums of unit phasors (sin(pi i/nu) = (e^{j pi i/nu} - e^{-j pi i/nu})/2j), summed
+ * in closed form in long double (G is small next to its terms). Writes the unnormalised
  * corrections and returns sum(g) + a + b over the whole support. */
 static long double exact_correction(const sms_smoother_design *d, size_t n0, double fraction,
                                     double zero_turns_per_sample, long double *a_out,
@@ -142,23 +174,30 @@ static long double exact_correction(const sms_smoother_design *d, size_t n0, dou
 {
     const long double a = (long double)zero_turns_per_sample; /* w* Ts / pi, in (0, 1) */
     const long double nu = (long double)d->nu, decay = (long double)d->decay;
-    long double g_re = 0.0L, g_im = 0.0L, sum = 0.0L, shape, weight, r_mag, r_re, r_im;
+    const long double n = (long double)n0, f = (long double)fraction;
+    long double g_re, g_im, sum, shape_n0, r_mag, r_re, r_im;
     long double z_re, z_im, c_re, c_im, first;
-    size_t i;
-    /* G(z*) = sum g[i] z*^-i: the damping of g[i] and of z*^-i cancel exactly. */
-    for (i = 0; i <= n0; ++i) {
-        shape = d->family.half_sine ? sin_pi_long((long double)i / nu) : 1.0L;
-        weight = i == n0 ? (long double)fraction : 1.0L;
-        g_re += weight * shape * cos_pi_long(a * (long double)i);
-        g_im -= weight * shape * sin_pi_long(a * (long double)i);
-        sum += weight * shape * expl(decay * (long double)i);
+    if (d->family.half_sine) {
+        long double p_re, p_im, m_re, m_im;
+        geometric_sum(0.0L, 1.0L / nu - a, n, &p_re, &p_im);
+        geometric_sum(0.0L, -(1.0L / nu + a), n, &m_re, &m_im);
+        /* (P - M)/(2j) */
+        g_re = 0.5L * (p_im - m_im);
+        g_im = -0.5L * (p_re - m_re);
+        shape_n0 = sin_pi_long(n / nu);
+    } else {
+        geometric_sum(0.0L, -a, n, &g_re, &g_im);
+        shape_n0 = 1.0L;
     }
-    r_mag = expl(decay * (long double)n0);
+    g_re += f * shape_n0 * cos_pi_long(a * n);
+    g_im -= f * shape_n0 * sin_pi_long(a * n);
+    sum = base_tap_sum(d, n0) + f * shape_n0 * expl(decay * n);
+    r_mag = expl(decay * n);
     z_re = expl(decay) * cos_pi_long(a);
     z_im = expl(decay) * sin_pi_long(a);
     /* R = -G e^{decay N0} e^{j pi a N0} */
-    c_re = cos_pi_long(a * (long double)n0);
-    c_im = sin_pi_long(a * (long double)n0);
+    c_re = cos_pi_long(a * n);
+    c_im = sin_pi_long(a * n);
     r_re = -r_mag * (g_re * c_re - g_im * c_im);
     r_im = -r_mag * (g_re * c_im + g_im * c_re);
     first = r_im / z_im;
@@ -173,8 +212,6 @@ sms_status sms_smoother_design_make(const sms_stage_config *config, double Ts,
     sms_smoother_design d;
     double nu, rounded, sigma = 0.0, max_len, tail_mag;
     int integer;
-    exact_sum total = {0.0, 0.0};
-    size_t i;
 
     if (config == NULL || design == NULL)
         return SMS_ERR_NULL;
@@ -188,7 +225,9 @@ sms_status sms_smoother_design_make(const sms_stage_config *config, double Ts,
         return SMS_ERR_DURATION;
     nu = config->T / Ts;
     integer = on_grid(nu, &rounded);
-    if (nu < 1.0 && !integer)
+    /* One rule for short durations: T below Ts is refused; only T within the grid tolerance
+     * of Ts (nu rounds to 1 on the grid) counts as one sample. */
+    if (nu < 1.0 && !(integer && rounded >= 1.0))
         return SMS_ERR_DURATION_BELOW_TS;
     if (d.family.damped) {
         if (!(isfinite(config->sigma) && config->sigma <= 0.0))
@@ -213,9 +252,7 @@ sms_status sms_smoother_design_make(const sms_stage_config *config, double Ts,
     d.decay = sigma * Ts;
     d.n_corrections = 0;
     if (integer || config->timing == SMS_TIMING_PAPER) {
-        if (rounded < 1.0)
-            rounded = 1.0;
-        d.nu = rounded;
+        d.nu = rounded; /* >= 1: nu >= 1 - 1e-9 here */
         d.window = (size_t)rounded;
         d.length = d.window;
     } else {
@@ -247,9 +284,7 @@ sms_status sms_smoother_design_make(const sms_stage_config *config, double Ts,
         if (!(fits_real(d.correction_gain[0]) && fits_real(d.correction_gain[1])))
             return SMS_ERR_SIGMA;
     } else {
-        for (i = 0; i < d.window; ++i)
-            sum_add(&total, base_tap(&d, i));
-        d.gain = 1.0 / (total.sum + total.carry);
+        d.gain = (double)(1.0L / base_tap_sum(&d, d.window));
     }
     tail_mag = exp(d.decay * (double)d.window);
     {

@@ -297,7 +297,7 @@ def _bspline_args(degree, T, Ts, axes):
         raise ValueError(f"axes must be an integer in 1..{BSPLINE_MAX_AXES}, got {axes!r}")
     Ts = _design._positive("Ts", Ts)
     T = _design._positive("T", T)
-    if T < Ts:
+    if T / Ts < 1.0 - 1e-9:   # the one rule for short T (T within 1e-9 of Ts is one sample)
         raise ValueError(f"T must be >= Ts = {Ts!r} (one knot spacing of at least a sample), "
                          f"got {T!r}")
     return int(degree), T, Ts, int(axes)

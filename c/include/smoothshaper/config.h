@@ -24,7 +24,7 @@ extern "C" {
  * |------------------|------------------------------------------|-------------|
  * | kind             | all                                      | an ::sms_kind |
  * | timing           | smoothers, shapers                       | an ::sms_timing |
- * | T                | rectangular, harmonic, damped harmonic, exponential | finite, >= Ts [s] |
+ * | T                | rectangular, harmonic, damped harmonic, exponential | finite, >= Ts [s] (1) |
  * | sigma            | damped harmonic, exponential             | finite, <= 0 [1/s] |
  * | k                | smoothers: which zero exact timing pins  | >= 1; odd for (damped) harmonic |
  * | wn               | shapers, notches                         | finite, > 0, below pi/Ts [rad/s] |
@@ -34,6 +34,12 @@ extern "C" {
  * | tolerance        | ::SMS_SHAPER_EI, ::SMS_SHAPER_EI2, ::SMS_SHAPER_EI3 | (0, 1), e.g. 0.05 |
  * | duration         | ::SMS_SHAPER_GMZV: span in damped periods Td | (0, (order-1)/2), no negative impulse; 0.75 = MZV |
  * | notch_pole_zeta  | notches (pole damping xi2)               | finite, > zeta |
+ *
+ * (1) One rule for short durations, everywhere (smoothers, B-splines, the Python reference and
+ * the FMUs): T/Ts below 1 is refused with ::SMS_ERR_DURATION_BELOW_TS, except within the
+ * sample-grid tolerance (T/Ts >= 1 - 1e-9), which is one sample. There is no pass-through for
+ * tiny T. The harmonic families need two samples (T/Ts >= 2 - 2e-9): one sample of
+ * sin(pi t/T) is its zero.
  *
  * The pinned zero of a smoother (exact timing) is s = sigma + j*k*2*pi/T for rectangular and
  * exponential, s = sigma + j*k*3*pi/T for harmonic and damped harmonic (sigma = 0 when the

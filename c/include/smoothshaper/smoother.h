@@ -15,7 +15,7 @@
  * | ::SMS_EXPONENTIAL          | r^i/sum                          | ((1 - r)/(1 - r^N))(1 - r^N z^-N)/(1 - r z^-1) |
  *
  * Timing (sms_stage_config::timing) when nu = T/Ts is not an integer (to 1e-9 relative):
- * ::SMS_TIMING_PAPER uses N = max(1, round(nu)) and the table above (T' = N Ts);
+ * ::SMS_TIMING_PAPER uses N = round(nu) (>= 1) and the table above (T' = N Ts);
  * ::SMS_TIMING_EXACT keeps T. With N0 = floor(nu), f = nu - N0 (docs/exact-mode.md): base
  * taps h_c(i Ts) for i < N0 and f h_c(N0 Ts) (the part of the last interval inside [0, T));
  * a correction on taps N0-1 and N0 puts the zero s* = sigma + j w* exactly on z* = e^{s* Ts}, w* = k 2 pi/T (rectangular,

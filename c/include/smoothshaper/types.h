@@ -33,7 +33,8 @@ typedef enum sms_status {
     SMS_ERR_NULL = -1,              /**< a required pointer argument is NULL */
     SMS_ERR_SAMPLE_PERIOD = -2,     /**< Ts is NaN/Inf or <= 0 */
     SMS_ERR_DURATION = -3,          /**< T is NaN/Inf or <= 0 */
-    SMS_ERR_DURATION_BELOW_TS = -4, /**< T < Ts: the filter would be shorter than one sample */
+    SMS_ERR_DURATION_BELOW_TS = -4, /**< T < Ts (beyond the 1e-9 grid tolerance): shorter than
+                                     one sample; see config.h for the one rule */
     SMS_ERR_SIGMA = -5,             /**< sigma is NaN/Inf or > 0 (an unstable mode) */
     SMS_ERR_WN = -6,                /**< natural frequency wn is NaN/Inf or <= 0 */
     SMS_ERR_ZETA = -7,              /**< damping ratio zeta is NaN/Inf or outside [0, 1) */

@@ -71,7 +71,8 @@ def _sampled(stage: Stage, N: int, Ts: float) -> np.ndarray:
 def smoother_taps(stage: Stage, *, Ts: float) -> np.ndarray:
     """Normalised FIR taps (DC gain 1) of a smoother stage at sample period ``Ts`` [s].
 
-    Raises ValueError naming ``T`` when ``T < Ts`` (beyond the integer test) or the pinned
+    Raises ValueError naming ``T`` when ``T < Ts`` (beyond the integer test: ``T`` within
+    1e-9 of ``Ts`` is one sample, anything shorter is refused, never a pass-through) or the pinned
     zero cannot be placed, ``Ts`` when it is not > 0, ``kind`` for a non-smoother.
     """
     Ts = check_Ts(Ts)
@@ -79,7 +80,7 @@ def smoother_taps(stage: Stage, *, Ts: float) -> np.ndarray:
         raise ValueError(f"kind must be a smoother ({', '.join(SMOOTHERS)}), got {stage.kind!r}")
     nu = stage.T / Ts
     N = on_grid(nu)
-    if N is None and nu < 1.0:
+    if nu < 1.0 and not N:   # the one rule for short T: below Ts (beyond the grid test) refused
         raise ValueError(f"T must be >= Ts ({Ts!r} s), got {stage.T!r}")
     if N is not None:
         return _sampled(stage, N, Ts)
