@@ -118,100 +118,219 @@ void sms_smoother_reset(sms_smoother *f, sms_real rest)
     f->age[1] = 0;
 }
 
-/* Sum a + b and its exact rounding error (Knuth's TwoSum). Needs IEEE evaluation in
- * sms_real: no -ffast-math reassociation, no x87 excess precision (FLT_EVAL_METHOD 0). */
-static sms_real two_sum(sms_real a, sms_real b, sms_real *err)
-{
-    sms_real s = a + b, bb = s - a;
-    *err = (a - (s - bb)) + (b - bb);
-    return s;
-}
+/* The per-sample engine. Between two events (a copy restarts, the ring head wraps) the roles
+ * are fixed: the "old" copy has consumed M..2M samples, takes x[n-M] and gives the output; the
+ * "young" one has consumed fewer than M and takes no x[n-M] (its inputs before the restart
+ * must not reach it, so that a NaN there cannot either). sms_smoother_process() therefore
+ * runs segments: the state goes into locals, a tight loop runs the segment, the state goes
+ * back. The two copies do the same arithmetic on different data, so they run as the two lanes
+ * of one small vector (lane 0 old, lane 1 young; the young lane sees x[n-M] replaced by its
+ * reference, i.e. 0, and a zero tail weight). Each copy's state is w + lo, updated for the
+ * input u = c (x - ref) + t (x[n-M] - ref) as
+ *   d = (q - 1) w + u,  w' + e = w + d exactly (TwoSum),  lo' = lo + ((q - 1) lo + q_lo w + e):
+ * lo collects what the addition rounds away and what the rounded pole misses, and rotates on
+ * the same pole. TwoSum needs IEEE evaluation in sms_real: no -ffast-math reassociation, no
+ * x87 excess precision (FLT_EVAL_METHOD 0). */
 
-/* One copy of the recursion; `oldest_input` is x[n-M], used only if the copy consumed it.
- * - The copy filters x - ref, ref being its input when it restarted, and adds ref back (the
- *   taps sum to 1): its state stays as small as the input's variation, not its offset.
- * - The state is w + lo: w takes the update w += (q - 1) w + c x - c q^M x[n-M] (an increment
- *   small against w), and lo, a small state on the same pole, collects what that addition
- *   rounds away (exactly, by TwoSum) and what the rounded pole misses (q_lo w). Without it
- *   both errors are systematic for a pole near 1 (the increment below half an ulp of w is
- *   lost every sample) and tap i would be off by ~i eps. */
-static void copy_update(sms_smoother *f, int c, sms_real input, sms_real oldest_input)
-{
-    const size_t window = f->window;
-    sms_real x, oldest, d_re, d_im, e_re, e_im, w_re, w_im, lo_re, lo_im;
-    if (f->age[c] == 2u * window) {
-        f->w_re[c] = f->w_im[c] = (sms_real)0;
-        f->lo_re[c] = f->lo_im[c] = (sms_real)0;
-        /* A finite input (x - x == 0) becomes the copy's reference; NaN/Inf must not. */
-        f->ref[c] = input - input == (sms_real)0 ? input : (sms_real)0;
-        f->age[c] = 0;
-    }
-    x = input - f->ref[c];
-    oldest = f->age[c] >= window ? oldest_input - f->ref[c] : (sms_real)0;
-    w_re = f->w_re[c];
-    lo_re = f->lo_re[c];
-    if (f->real_only) {
-        d_re = f->pole_m1_re * w_re + (f->gain_re * x + f->tail_re * oldest);
-        f->w_re[c] = two_sum(w_re, d_re, &e_re);
-        f->lo_re[c] = lo_re + (f->pole_m1_re * lo_re + f->pole_lo_re * w_re + e_re);
-    } else {
-        w_im = f->w_im[c];
-        lo_im = f->lo_im[c];
-        d_re = f->pole_m1_re * w_re - f->pole_im * w_im + (f->gain_re * x + f->tail_re * oldest);
-        d_im = f->pole_m1_re * w_im + f->pole_im * w_re + (f->gain_im * x + f->tail_im * oldest);
-        f->w_re[c] = two_sum(w_re, d_re, &e_re);
-        f->w_im[c] = two_sum(w_im, d_im, &e_im);
-        f->lo_re[c] = lo_re + (f->pole_m1_re * lo_re - f->pole_im * lo_im
-                               + (f->pole_lo_re * w_re - f->pole_lo_im * w_im) + e_re);
-        f->lo_im[c] = lo_im + (f->pole_m1_re * lo_im + f->pole_im * lo_re
-                               + (f->pole_lo_re * w_im + f->pole_lo_im * w_re) + e_im);
-    }
-    ++f->age[c];
-}
+#if defined(__GNUC__) && !defined(SMS_NO_VECTOR_EXTENSIONS)
+/* GCC/Clang vector extension: SSE2/NEON where available, plain scalar code elsewhere; each
+ * lane does exactly the IEEE operations of the portable version below. */
+typedef sms_real lanes __attribute__((vector_size(2 * sizeof(sms_real))));
+#define LANES(a, b) ((lanes){(a), (b)})
+#define LANE(v, i) ((v)[i])
+#define ADD(a, b) ((a) + (b))
+#define SUB(a, b) ((a) - (b))
+#define MUL(a, b) ((a) * (b))
+#else
+typedef struct lanes { sms_real v[2]; } lanes;
+static lanes lanes_make(sms_real a, sms_real b) { lanes r; r.v[0] = a; r.v[1] = b; return r; }
+static lanes lanes_add(lanes a, lanes b) { return lanes_make(a.v[0] + b.v[0], a.v[1] + b.v[1]); }
+static lanes lanes_sub(lanes a, lanes b) { return lanes_make(a.v[0] - b.v[0], a.v[1] - b.v[1]); }
+static lanes lanes_mul(lanes a, lanes b) { return lanes_make(a.v[0] * b.v[0], a.v[1] * b.v[1]); }
+#define LANES(a, b) lanes_make((a), (b))
+#define LANE(v, i) ((v).v[i])
+#define ADD(a, b) lanes_add((a), (b))
+#define SUB(a, b) lanes_sub((a), (b))
+#define MUL(a, b) lanes_mul((a), (b))
+#endif
 
-static sms_real filter_sample(sms_smoother *f, sms_real input)
+/* Knuth's TwoSum: s + e == a + b exactly. */
+#define TWO_SUM(s, e, a, b)                                                          \
+    do {                                                                             \
+        const lanes s_ = ADD((a), (b)), bb_ = SUB(s_, (a));                          \
+        (e) = ADD(SUB((a), SUB(s_, bb_)), SUB((b), bb_));                            \
+        (s) = s_;                                                                    \
+    } while (0)
+
+/* Both copies of one segment, by role (lane 0 old, lane 1 young), and the constants. */
+typedef struct segment {
+    lanes w_re, w_im, lo_re, lo_im, ref;
+    sms_real pm1_re, p_im, plo_re, plo_im, gain, tail_re, tail_im, corr0, corr1, rest;
+    sms_real *ring;
+    size_t head, window;
+} segment;
+
+/* Real pole (rectangular, exponential): Re w. */
+static void segment_real(segment *g, const sms_real *in, sms_real *out, size_t n, int corrections)
 {
-    const size_t window = f->window;
-    const sms_real x = input - f->rest;
-    const sms_real oldest = f->history[f->head];
-    sms_real y = (sms_real)0, ref;
-    size_t j;
-    int use;
-    copy_update(f, 0, x, oldest);
-    copy_update(f, 1, x, oldest);
-    /* The older copy has consumed between M and 2M samples: it is exact and young. */
-    use = f->age[0] >= f->age[1] ? 0 : 1;
-    /* The recursion's taps and the direct ones sum to 1 together: the direct taps act on
-     * x - ref too, and ref is added once (smaller rounding). */
-    ref = f->ref[use];
-    for (j = 0; j < f->n_corrections; ++j) {
-        size_t delay = f->correction_delay[j], idx;
-        sms_real v = x;
-        if (delay > 0) {
-            /* x[n-delay] sits delay slots behind the head's successor: head + M - delay. */
-            idx = f->head + window - delay;
-            if (idx >= window)
-                idx -= window;
-            v = f->history[idx];
+    const lanes pm1 = LANES(g->pm1_re, g->pm1_re), plo = LANES(g->plo_re, g->plo_re);
+    const lanes gain = LANES(g->gain, g->gain), tail = LANES(g->tail_re, (sms_real)0);
+    const lanes ref = g->ref;
+    const sms_real ref0 = LANE(ref, 0), ref1 = LANE(ref, 1), rest = g->rest;
+    const sms_real c0 = g->corr0, c1 = g->corr1;
+    sms_real *ring = g->ring + g->head;
+    const size_t to_wrap = g->window - g->head;
+    lanes w = g->w_re, lo = g->lo_re;
+    size_t i;
+    for (i = 0; i < n; ++i) {
+        const sms_real x = in[i] - rest, oldest = ring[i];
+        const lanes u = ADD(MUL(gain, SUB(LANES(x, x), ref)),
+                            MUL(tail, SUB(LANES(oldest, ref1), ref)));
+        const lanes d = ADD(MUL(pm1, w), u);
+        lanes s, e;
+        sms_real y;
+        TWO_SUM(s, e, w, d);
+        lo = ADD(lo, ADD(ADD(MUL(pm1, lo), MUL(plo, w)), e));
+        w = s;
+        y = LANE(w, 0) + LANE(lo, 0);
+        if (corrections) {
+            const sms_real next = i + 1u == to_wrap ? g->ring[0] : ring[i + 1u];
+            y += c0 * (next - ref0) + c1 * (oldest - ref0);
         }
-        y += f->correction_gain[j] * (v - ref);
+        ring[i] = x;
+        out[i] = y + ref0 + rest;
     }
-    f->history[f->head] = x;
-    f->head = f->head + 1u == window ? 0u : f->head + 1u;
-    y += f->imag_out ? f->w_im[use] + f->lo_im[use] : f->w_re[use] + f->lo_re[use];
-    return y + ref + f->rest;
+    g->w_re = w;
+    g->lo_re = lo;
 }
 
-void sms_smoother_step(sms_smoother *f, sms_real *x)
+/* Complex pole (harmonic families): Im w. */
+static void segment_complex(segment *g, const sms_real *in, sms_real *out, size_t n,
+                            int corrections)
 {
-    *x = filter_sample(f, *x);
+    const lanes pm1 = LANES(g->pm1_re, g->pm1_re), pim = LANES(g->p_im, g->p_im);
+    const lanes plo_re = LANES(g->plo_re, g->plo_re), plo_im = LANES(g->plo_im, g->plo_im);
+    const lanes gain = LANES(g->gain, g->gain);
+    const lanes tail_re = LANES(g->tail_re, (sms_real)0), tail_im = LANES(g->tail_im, (sms_real)0);
+    const lanes ref = g->ref;
+    const sms_real ref0 = LANE(ref, 0), ref1 = LANE(ref, 1), rest = g->rest;
+    const sms_real c0 = g->corr0, c1 = g->corr1;
+    sms_real *ring = g->ring + g->head;
+    const size_t to_wrap = g->window - g->head;
+    lanes w_re = g->w_re, w_im = g->w_im, lo_re = g->lo_re, lo_im = g->lo_im;
+    size_t i;
+    for (i = 0; i < n; ++i) {
+        const sms_real x = in[i] - rest, oldest = ring[i];
+        const lanes o = SUB(LANES(oldest, ref1), ref);
+        const lanes d_re = ADD(SUB(MUL(pm1, w_re), MUL(pim, w_im)),
+                               ADD(MUL(gain, SUB(LANES(x, x), ref)), MUL(tail_re, o)));
+        const lanes d_im = ADD(ADD(MUL(pm1, w_im), MUL(pim, w_re)), MUL(tail_im, o));
+        lanes s_re, s_im, e_re, e_im, r_re, r_im;
+        sms_real y;
+        TWO_SUM(s_re, e_re, w_re, d_re);
+        TWO_SUM(s_im, e_im, w_im, d_im);
+        r_re = ADD(ADD(SUB(MUL(pm1, lo_re), MUL(pim, lo_im)),
+                       SUB(MUL(plo_re, w_re), MUL(plo_im, w_im))), e_re);
+        r_im = ADD(ADD(ADD(MUL(pm1, lo_im), MUL(pim, lo_re)),
+                       ADD(MUL(plo_re, w_im), MUL(plo_im, w_re))), e_im);
+        lo_re = ADD(lo_re, r_re);
+        lo_im = ADD(lo_im, r_im);
+        w_re = s_re;
+        w_im = s_im;
+        /* Tap 0 of the half-sine families is 0: x reaches Im w a sample later. x - x (0, or NaN
+         * for a non-finite x) gives the output the NaN that the convolution's 0 x[n] has. */
+        y = LANE(w_im, 0) + LANE(lo_im, 0) + (x - x);
+        if (corrections) {
+            const sms_real next = i + 1u == to_wrap ? g->ring[0] : ring[i + 1u];
+            y += c0 * (next - ref0) + c1 * (oldest - ref0);
+        }
+        ring[i] = x;
+        out[i] = y + ref0 + rest;
+    }
+    g->w_re = w_re;
+    g->w_im = w_im;
+    g->lo_re = lo_re;
+    g->lo_im = lo_im;
 }
 
 void sms_smoother_process(sms_smoother *f, const sms_real *in, sms_real *out, size_t n)
 {
-    size_t i;
-    for (i = 0; i < n; ++i)
-        out[i] = filter_sample(f, in[i]);
+    const size_t window = f->window;
+    const int corrections = f->n_corrections > 0u;
+    segment g;
+    g.pm1_re = f->pole_m1_re;
+    g.p_im = f->pole_im;
+    g.plo_re = f->pole_lo_re;
+    g.plo_im = f->pole_lo_im;
+    g.gain = f->gain_re;
+    g.tail_re = f->tail_re;
+    g.tail_im = f->tail_im;
+    /* exact timing: the direct taps sit on delays M-1 and M (see the design) */
+    g.corr0 = corrections ? f->correction_gain[0] : (sms_real)0;
+    g.corr1 = corrections ? f->correction_gain[1] : (sms_real)0;
+    g.rest = f->rest;
+    g.ring = f->history;
+    g.window = window;
+    while (n > 0u) {
+        int old, young;
+        size_t seg;
+        /* The old copy has consumed 2M samples: it restarts on this sample and the young one,
+         * exact now (M samples), takes over. A finite input (x - x == 0) becomes the
+         * restarted copy's reference; NaN/Inf must not. */
+        old = f->age[0] >= f->age[1] ? 0 : 1;
+        if (f->age[old] == 2u * window) {
+            const sms_real x = in[0] - f->rest;
+            f->w_re[old] = f->w_im[old] = (sms_real)0;
+            f->lo_re[old] = f->lo_im[old] = (sms_real)0;
+            f->ref[old] = x - x == (sms_real)0 ? x : (sms_real)0;
+            f->age[old] = 0;
+            old = 1 - old;
+        }
+        young = 1 - old;
+        seg = window - f->age[young];
+        if (window - f->head < seg)
+            seg = window - f->head;
+        if (n < seg)
+            seg = n;
+        g.head = f->head;
+        g.w_re = LANES(f->w_re[old], f->w_re[young]);
+        g.w_im = LANES(f->w_im[old], f->w_im[young]);
+        g.lo_re = LANES(f->lo_re[old], f->lo_re[young]);
+        g.lo_im = LANES(f->lo_im[old], f->lo_im[young]);
+        g.ref = LANES(f->ref[old], f->ref[young]);
+        if (f->real_only) {
+            if (corrections)
+                segment_real(&g, in, out, seg, 1);
+            else
+                segment_real(&g, in, out, seg, 0);
+        } else {
+            if (corrections)
+                segment_complex(&g, in, out, seg, 1);
+            else
+                segment_complex(&g, in, out, seg, 0);
+        }
+        f->w_re[old] = LANE(g.w_re, 0);
+        f->w_re[young] = LANE(g.w_re, 1);
+        f->w_im[old] = LANE(g.w_im, 0);
+        f->w_im[young] = LANE(g.w_im, 1);
+        f->lo_re[old] = LANE(g.lo_re, 0);
+        f->lo_re[young] = LANE(g.lo_re, 1);
+        f->lo_im[old] = LANE(g.lo_im, 0);
+        f->lo_im[young] = LANE(g.lo_im, 1);
+        f->age[old] += seg;
+        f->age[young] += seg;
+        f->head += seg;
+        if (f->head == window)
+            f->head = 0;
+        in += seg;
+        out += seg;
+        n -= seg;
+    }
+}
+
+void sms_smoother_step(sms_smoother *f, sms_real *x)
+{
+    sms_smoother_process(f, x, x, 1u);
 }
 
 size_t sms_smoother_state_count(const sms_smoother *f)

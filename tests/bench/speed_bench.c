@@ -1,0 +1,379 @@
+/* Per-sample cost of every filter next to the plain recursion of the same filter, measured in
+ * one run: contenders interleaved round by round, CPU time, median over the rounds.
+ *
+ * The plain references are the textbook realisations, in sms_real like the library:
+ * - rectangular: running sum s += x[n] - x[n-N], y = s/N (drifts: its rounding never leaves);
+ * - harmonic / damped harmonic: the second-order form of Biagiotti and Melchiorri's smoother,
+ *   y[n] = 2 r cos(pi/N) y[n-1] - r^2 y[n-2] + K (x[n-1] + r^N x[n-N-1]) (its rounding is
+ *   amplified ~N^2 times and accumulates);
+ * - exponential: y[n] = r y[n-1] + g (x[n] - r^N x[n-N]);
+ * - notch: the direct-form-I biquad y = b0 x + b1 x1 + b2 x2 - a1 y1 - a2 y2;
+ * - shaper: a sparse FIR sum_k g_k x[n - d_k] over a ring, same taps as the library's;
+ * - direct-form FIR: sum_i h[i] x[n-i] over all L taps (what the O(1) smoothers replace).
+ *
+ * Output: a readable table, and one machine-readable line per contender,
+ *   "speed<TAB>path<TAB>contender<TAB>ns_per_sample", read by python -m smoothshaper.bench.
+ * Usage: speed_bench [--quick]   (--quick: a few short rounds, a smoke test of the harness). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include "smoothshaper/smoothshaper.h"
+
+#define PI 3.14159265358979323846
+#define BLOCK 4096
+#define MAX_RING 8192
+#define MAX_CONTENDERS 4
+#define MAX_ROUNDS 64
+
+static sms_real input[BLOCK], output[BLOCK];
+static sms_real stage_buffer[MAX_RING];
+
+static double cpu_seconds(void)
+{
+#if defined(CLOCK_PROCESS_CPUTIME_ID)
+    struct timespec t;
+    if (clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t) == 0)
+        return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+#endif
+    return (double)clock() / CLOCKS_PER_SEC;
+}
+
+/* ---- plain references ---------------------------------------------------------------- */
+
+typedef struct plain {
+    size_t n, head, len;
+    sms_real ring[MAX_RING];
+    sms_real a1, a2, b0, b1, b2, g, tail, y1, y2, x1, x2, s;
+    size_t n_taps, delay[64];
+    sms_real gain[64];
+    double taps[MAX_RING];
+} plain;
+
+static plain plain_state;
+
+static void plain_running_sum(plain *p, const sms_real *in, sms_real *out, size_t n)
+{
+    size_t i, head = p->head;
+    sms_real s = p->s, *ring = p->ring;
+    const sms_real g = p->g;
+    const size_t len = p->len;
+    for (i = 0; i < n; ++i) {
+        s += in[i] - ring[head];
+        ring[head] = in[i];
+        head = head + 1 == len ? 0 : head + 1;
+        out[i] = s * g;
+    }
+    p->s = s;
+    p->head = head;
+}
+
+/* y = a1 y1 - a2 y2 + g (x[n-1] + tail x[n-N-1]); ring of N+1 inputs. */
+static void plain_resonator(plain *p, const sms_real *in, sms_real *out, size_t n)
+{
+    size_t i, head = p->head;
+    sms_real y1 = p->y1, y2 = p->y2, x1 = p->x1, *ring = p->ring;
+    const sms_real a1 = p->a1, a2 = p->a2, g = p->g, tail = p->tail;
+    const size_t len = p->len;
+    for (i = 0; i < n; ++i) {
+        sms_real oldest = ring[head], y;
+        ring[head] = in[i];
+        head = head + 1 == len ? 0 : head + 1;
+        y = a1 * y1 - a2 * y2 + g * (x1 + tail * oldest);
+        x1 = in[i];
+        y2 = y1;
+        y1 = y;
+        out[i] = y;
+    }
+    p->y1 = y1;
+    p->y2 = y2;
+    p->x1 = x1;
+    p->head = head;
+}
+
+static void plain_first_order(plain *p, const sms_real *in, sms_real *out, size_t n)
+{
+    size_t i, head = p->head;
+    sms_real y = p->y1, *ring = p->ring;
+    const sms_real a1 = p->a1, g = p->g, tail = p->tail;
+    const size_t len = p->len;
+    for (i = 0; i < n; ++i) {
+        sms_real oldest = ring[head];
+        ring[head] = in[i];
+        head = head + 1 == len ? 0 : head + 1;
+        y = a1 * y + g * (in[i] + tail * oldest);
+        out[i] = y;
+    }
+    p->y1 = y;
+    p->head = head;
+}
+
+static void plain_biquad(plain *p, const sms_real *in, sms_real *out, size_t n)
+{
+    size_t i;
+    sms_real x1 = p->x1, x2 = p->x2, y1 = p->y1, y2 = p->y2;
+    const sms_real b0 = p->b0, b1 = p->b1, b2 = p->b2, a1 = p->a1, a2 = p->a2;
+    for (i = 0; i < n; ++i) {
+        sms_real y = b0 * in[i] + b1 * x1 + b2 * x2 - a1 * y1 - a2 * y2;
+        x2 = x1;
+        x1 = in[i];
+        y2 = y1;
+        y1 = y;
+        out[i] = y;
+    }
+    p->x1 = x1;
+    p->x2 = x2;
+    p->y1 = y1;
+    p->y2 = y2;
+}
+
+static void plain_sparse_fir(plain *p, const sms_real *in, sms_real *out, size_t n)
+{
+    size_t i, k, head = p->head;
+    const size_t len = p->len, n_taps = p->n_taps;
+    sms_real *ring = p->ring;
+    for (i = 0; i < n; ++i) {
+        sms_real acc = 0;
+        ring[head] = in[i];
+        for (k = 0; k < n_taps; ++k) {
+            size_t d = p->delay[k];
+            acc += p->gain[k] * ring[head >= d ? head - d : head + len - d];
+        }
+        head = head + 1 == len ? 0 : head + 1;
+        out[i] = acc;
+    }
+    p->head = head;
+}
+
+static void plain_direct_fir(plain *p, const sms_real *in, sms_real *out, size_t n)
+{
+    size_t i, k, head = p->head;
+    for (i = 0; i < n; ++i) {
+        sms_real acc = 0;
+        p->ring[head] = in[i];
+        for (k = 0; k < p->len; ++k)
+            acc += (sms_real)p->taps[k] * p->ring[head >= k ? head - k : head + p->len - k];
+        head = head + 1 == p->len ? 0 : head + 1;
+        out[i] = acc;
+    }
+    p->head = head;
+}
+
+/* ---- contenders ---------------------------------------------------------------------- */
+
+typedef struct contender {
+    const char *name;
+    void (*plain_run)(plain *, const sms_real *, sms_real *, size_t);
+    sms_stage *stage;
+} contender;
+
+static void run(const contender *c, size_t n)
+{
+    if (c->stage != NULL)
+        sms_stage_process(c->stage, input, output, n);
+    else
+        c->plain_run(&plain_state, input, output, n);
+}
+
+static int compare_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Median ns/sample of each contender; rounds interleave the contenders, rotating who goes
+ * first, each timed over `blocks` blocks of BLOCK samples. */
+static void measure(const char *path, contender *c, size_t n_c, int rounds, int blocks)
+{
+    static double samples[MAX_CONTENDERS][MAX_ROUNDS];
+    size_t j;
+    int r, b;
+    for (j = 0; j < n_c; ++j)
+        run(&c[j], BLOCK); /* warm caches and branch predictors */
+    for (r = 0; r < rounds; ++r) {
+        for (j = 0; j < n_c; ++j) {
+            const contender *cj = &c[(j + (size_t)r) % n_c];
+            double t0 = cpu_seconds();
+            for (b = 0; b < blocks; ++b)
+                run(cj, BLOCK);
+            samples[(j + (size_t)r) % n_c][r] = 1e9 * (cpu_seconds() - t0) / ((double)blocks * BLOCK);
+        }
+    }
+    for (j = 0; j < n_c; ++j) {
+        double median;
+        qsort(samples[j], (size_t)rounds, sizeof(double), compare_double);
+        median = samples[j][rounds / 2];
+        printf("speed\t%s\t%s\t%.4f\n", path, c[j].name, median);
+    }
+    for (j = 1; j < n_c; ++j)
+        printf("  %-22s %-14s / %-16s %.2fx\n", path, c[0].name, c[j].name,
+               samples[0][rounds / 2] / samples[j][rounds / 2]);
+}
+
+static sms_stage stage;
+
+static int init_stage(const sms_stage_config *c, double Ts)
+{
+    sms_status st = sms_stage_init(&stage, c, Ts, stage_buffer, MAX_RING);
+    if (st != SMS_OK) {
+        printf("init failed: %s\n", sms_status_string(st));
+        return 0;
+    }
+    return 1;
+}
+
+static void reset_plain(size_t len)
+{
+    memset(&plain_state, 0, sizeof plain_state);
+    plain_state.len = len;
+}
+
+static void smoother_row(const char *path, sms_kind kind, double T, double sigma, double Ts,
+                         int rounds, int blocks, int with_direct)
+{
+    sms_stage_config c = sms_stage_config_default(kind);
+    contender list[3];
+    size_t n_c = 0, N;
+    double r, cs;
+    c.T = T;
+    c.sigma = sigma;
+    c.timing = SMS_TIMING_PAPER;
+    if (!init_stage(&c, Ts))
+        return;
+    N = sms_stage_length(&stage);
+    r = exp(sigma * Ts);
+    cs = cos(PI / (double)N);
+    list[n_c].name = "smoothshaper";
+    list[n_c].stage = &stage;
+    list[n_c++].plain_run = NULL;
+    list[n_c].name = "plain recursion";
+    list[n_c].stage = NULL;
+    switch (kind) {
+    case SMS_RECTANGULAR:
+        reset_plain(N);
+        plain_state.g = (sms_real)(1.0 / (double)N);
+        list[n_c++].plain_run = plain_running_sum;
+        break;
+    case SMS_EXPONENTIAL:
+        reset_plain(N);
+        plain_state.a1 = (sms_real)r;
+        plain_state.g = (sms_real)((1.0 - r) / (1.0 - pow(r, (double)N)));
+        plain_state.tail = (sms_real)(-pow(r, (double)N));
+        list[n_c++].plain_run = plain_first_order;
+        break;
+    default: /* harmonic families: the seed's S(z) / S_sigma(z) */
+        reset_plain(N + 1);
+        plain_state.a1 = (sms_real)(2.0 * r * cs);
+        plain_state.a2 = (sms_real)(r * r);
+        plain_state.g = (sms_real)((1.0 - 2.0 * r * cs + r * r) / (1.0 + pow(r, (double)N)));
+        plain_state.tail = (sms_real)pow(r, (double)N);
+        list[n_c++].plain_run = plain_resonator;
+        break;
+    }
+    (void)with_direct;
+    measure(path, list, n_c, rounds, blocks);
+}
+
+static void direct_fir_row(const char *path, sms_kind kind, double T, double Ts, int rounds, int blocks)
+{
+    sms_stage_config c = sms_stage_config_default(kind);
+    contender list[2];
+    c.T = T;
+    c.timing = SMS_TIMING_PAPER;
+    if (!init_stage(&c, Ts))
+        return;
+    reset_plain(sms_stage_length(&stage));
+    (void)sms_smoother_taps(&c, Ts, plain_state.taps, MAX_RING);
+    list[0].name = "smoothshaper";
+    list[0].stage = &stage;
+    list[0].plain_run = NULL;
+    list[1].name = "direct-form FIR";
+    list[1].stage = NULL;
+    list[1].plain_run = plain_direct_fir;
+    measure(path, list, 2, rounds, blocks);
+}
+
+static void notch_row(const char *path, double wn, double Ts, int rounds, int blocks)
+{
+    sms_stage_config c = sms_stage_config_default(SMS_NOTCH_TUSTIN);
+    contender list[2];
+    double t, a0, xi1, xi2;
+    c.wn = wn;
+    c.zeta = 0.0;
+    c.notch_pole_zeta = 0.7;
+    if (!init_stage(&c, Ts))
+        return;
+    reset_plain(1);
+    t = tan(0.5 * wn * Ts);
+    xi1 = c.zeta;
+    xi2 = c.notch_pole_zeta;
+    a0 = 1.0 + 2.0 * xi2 * t + t * t;
+    plain_state.b0 = (sms_real)((1.0 + 2.0 * xi1 * t + t * t) / a0);
+    plain_state.b1 = (sms_real)(2.0 * (t * t - 1.0) / a0);
+    plain_state.b2 = (sms_real)((1.0 - 2.0 * xi1 * t + t * t) / a0);
+    plain_state.a1 = plain_state.b1;
+    plain_state.a2 = (sms_real)((1.0 - 2.0 * xi2 * t + t * t) / a0);
+    list[0].name = "smoothshaper";
+    list[0].stage = &stage;
+    list[0].plain_run = NULL;
+    list[1].name = "plain biquad";
+    list[1].stage = NULL;
+    list[1].plain_run = plain_biquad;
+    measure(path, list, 2, rounds, blocks);
+}
+
+static void shaper_row(const char *path, sms_kind kind, double wn, double zeta, double Ts,
+                       int rounds, int blocks)
+{
+    sms_stage_config c = sms_stage_config_default(kind);
+    contender list[2];
+    size_t L, i;
+    c.wn = wn;
+    c.zeta = zeta;
+    if (!init_stage(&c, Ts))
+        return;
+    L = sms_stage_length(&stage);
+    reset_plain(L);
+    (void)sms_shaper_taps(&c, Ts, plain_state.taps, MAX_RING);
+    for (i = 0; i < L; ++i) {
+        if (plain_state.taps[i] != 0.0) {
+            plain_state.delay[plain_state.n_taps] = i;
+            plain_state.gain[plain_state.n_taps++] = (sms_real)plain_state.taps[i];
+        }
+    }
+    list[0].name = "smoothshaper";
+    list[0].stage = &stage;
+    list[0].plain_run = NULL;
+    list[1].name = "sparse FIR";
+    list[1].stage = NULL;
+    list[1].plain_run = plain_sparse_fir;
+    measure(path, list, 2, rounds, blocks);
+}
+
+int main(int argc, char **argv)
+{
+    const int quick = argc > 1 && strcmp(argv[1], "--quick") == 0;
+    const int rounds = quick ? 3 : 31, blocks = quick ? 1 : 24;
+    const double Ts = 1e-3, T = 0.2, sigma = -10.0;
+    const double wn = 2.0 * PI * 40.0, zeta = 0.05;
+    unsigned long s = 12345u;
+    size_t i;
+    for (i = 0; i < BLOCK; ++i) {
+        s = s * 6364136223846793005u + 1442695040888963407u;
+        input[i] = (sms_real)(1e3 + ((double)(s >> 11) / 9007199254740992.0 * 2.0 - 1.0));
+    }
+    printf("precision\t%s\n", sizeof(sms_real) == sizeof(float) ? "float" : "double");
+    printf("# ns/sample, median of %d rounds of %d x %d samples, CPU time; N = T/Ts = %.0f\n",
+           rounds, blocks, BLOCK, T / Ts);
+    smoother_row("rectangular", SMS_RECTANGULAR, T, 0.0, Ts, rounds, blocks, 0);
+    smoother_row("harmonic", SMS_HARMONIC, T, 0.0, Ts, rounds, blocks, 0);
+    smoother_row("damped harmonic", SMS_DAMPED_HARMONIC, T, sigma, Ts, rounds, blocks, 0);
+    smoother_row("exponential", SMS_EXPONENTIAL, T, sigma, Ts, rounds, blocks, 0);
+    direct_fir_row("rectangular (FIR)", SMS_RECTANGULAR, T, Ts, rounds, quick ? 1 : 2);
+    notch_row("notch", wn, Ts, rounds, blocks);
+    shaper_row("ZV shaper", SMS_SHAPER_ZV, wn, zeta, Ts, rounds, blocks);
+    shaper_row("ZVD shaper", SMS_SHAPER_ZVD, wn, zeta, Ts, rounds, blocks);
+    shaper_row("EI shaper", SMS_SHAPER_EI, wn, zeta, Ts, rounds, blocks);
+    return 0;
+}
