@@ -108,36 +108,37 @@ void sms_notch_reset(sms_notch *f, sms_real rest)
     f->rest = rest;
 }
 
-void sms_notch_step(sms_notch *f, sms_real *x)
-{
-    sms_real in = *x;
-    sms_real w = f->d0 * (in - f->x1) + f->d2 * (f->x2 - f->x1) - f->a1 * f->w1 - f->a2 * f->w2;
-    sms_real y = in + w;
-    if (y - y != 0) {
-        /* Non-finite: a bad input sample is skipped (passed through, state kept); a finite
-         * input with a non-finite result (overflow, bad loaded state) restarts at rest there. */
-        if (in - in == 0) {
-            f->x1 = f->x2 = in;
-            f->w1 = f->w2 = 0;
-            *x = in;
-        }
-        return;
-    }
-    f->x2 = f->x1;
-    f->x1 = in;
-    f->w2 = f->w1;
-    f->w1 = w;
-    *x = y;
-}
-
+/* The state lives in locals for the whole block (the instance is read and written once). */
 void sms_notch_process(sms_notch *f, const sms_real *in, sms_real *out, size_t n)
 {
+    const sms_real d0 = f->d0, d2 = f->d2, a1 = f->a1, a2 = f->a2;
+    sms_real x1 = f->x1, x2 = f->x2, w1 = f->w1, w2 = f->w2;
     size_t i;
     for (i = 0; i < n; ++i) {
-        sms_real x = in[i];
-        sms_notch_step(f, &x);
-        out[i] = x;
+        const sms_real v = in[i];
+        const sms_real w = d0 * (v - x1) + d2 * (x2 - x1) - a1 * w1 - a2 * w2;
+        const sms_real y = v + w;
+        if (y - y != 0) {
+            /* Non-finite: a bad input sample is skipped (passed through, state kept); a finite
+             * input with a non-finite result (overflow, bad loaded state) restarts at rest
+             * there. */
+            if (v - v == 0) {
+                x1 = x2 = v;
+                w1 = w2 = 0;
+            }
+            out[i] = v;
+            continue;
+        }
+        x2 = x1;
+        x1 = v;
+        w2 = w1;
+        w1 = w;
+        out[i] = y;
     }
+    f->x1 = x1;
+    f->x2 = x2;
+    f->w1 = w1;
+    f->w2 = w2;
 }
 
 size_t sms_notch_state_count(const sms_notch *f)

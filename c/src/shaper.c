@@ -312,28 +312,26 @@ void sms_shaper_reset(sms_shaper *f, sms_real rest)
     f->head = 0;
 }
 
-void sms_shaper_step(sms_shaper *f, sms_real *x)
-{
-    size_t k, head = f->head, len = f->history_len;
-    sms_real acc = 0;
-    f->history[head] = *x;
-    for (k = 0; k < f->n_taps; ++k) {
-        size_t d = f->tap_delay[k];
-        size_t idx = head >= d ? head - d : head + len - d;
-        acc += f->tap_gain[k] * f->history[idx];
-    }
-    f->head = head + 1u == len ? 0u : head + 1u;
-    *x = acc;
-}
-
+/* The ring index and the tap table stay in locals for the whole block. A tap's sample sits
+ * d_k slots behind the head, wrapped once. */
 void sms_shaper_process(sms_shaper *f, const sms_real *in, sms_real *out, size_t n)
 {
-    size_t i;
+    const size_t len = f->history_len, n_taps = f->n_taps;
+    const size_t *delay = f->tap_delay;
+    const sms_real *gain = f->tap_gain;
+    sms_real *ring = f->history;
+    size_t i, k, head = f->head;
     for (i = 0; i < n; ++i) {
-        sms_real x = in[i];
-        sms_shaper_step(f, &x);
-        out[i] = x;
+        sms_real acc = 0;
+        ring[head] = in[i];
+        for (k = 0; k < n_taps; ++k) {
+            const size_t d = delay[k];
+            acc += gain[k] * ring[head >= d ? head - d : head + len - d];
+        }
+        head = head + 1u == len ? 0u : head + 1u;
+        out[i] = acc;
     }
+    f->head = head;
 }
 
 size_t sms_shaper_state_count(const sms_shaper *f)

@@ -127,38 +127,51 @@ void sms_smoother_reset(sms_smoother *f, sms_real rest)
  * of one small vector (lane 0 old, lane 1 young; the young lane sees x[n-M] replaced by its
  * reference, i.e. 0, and a zero tail weight). Each copy's state is w + lo, updated for the
  * input u = c (x - ref) + t (x[n-M] - ref) as
- *   d = (q - 1) w + u,  w' + e = w + d exactly (TwoSum),  lo' = lo + ((q - 1) lo + q_lo w + e):
+ *   d = (q - 1) w + u,  w' + e = w + d (Fast2Sum),  lo' = lo + ((q - 1) lo + q_lo w + e):
  * lo collects what the addition rounds away and what the rounded pole misses, and rotates on
- * the same pole. TwoSum needs IEEE evaluation in sms_real: no -ffast-math reassociation, no
- * x87 excess precision (FLT_EVAL_METHOD 0). */
+ * the same pole. Fast2Sum needs IEEE evaluation in sms_real: no -ffast-math reassociation,
+ * no x87 excess precision (FLT_EVAL_METHOD 0). */
 
-#if defined(__GNUC__) && !defined(SMS_NO_VECTOR_EXTENSIONS)
-/* GCC/Clang vector extension: SSE2/NEON where available, plain scalar code elsewhere; each
- * lane does exactly the IEEE operations of the portable version below. */
-typedef sms_real lanes __attribute__((vector_size(2 * sizeof(sms_real))));
+#if defined(__GNUC__) && (defined(__SSE2__) || defined(__ARM_NEON)) \
+    && !defined(SMS_NO_VECTOR_EXTENSIONS)
+/* GCC/Clang vector extension on targets with 128-bit SIMD (SSE2, NEON): one register holds
+ * both copies (float: twice, lanes 2 and 3 repeat 0 and 1; 64-bit float vectors would go
+ * through general registers). Each lane does exactly the IEEE operations of the portable
+ * version below, so both give the same bits. */
+typedef sms_real lanes __attribute__((vector_size(16)));
+#ifdef SMS_USE_FLOAT
+#define LANES(a, b) ((lanes){(a), (b), (a), (b)})
+#else
 #define LANES(a, b) ((lanes){(a), (b)})
+#endif
 #define LANE(v, i) ((v)[i])
+/* Fast targets: one loop per variant (real or complex pole, with or without corrections). */
+#define SMS_SMOOTHER_SPECIALISE 1
 #define ADD(a, b) ((a) + (b))
 #define SUB(a, b) ((a) - (b))
 #define MUL(a, b) ((a) * (b))
 #else
-typedef struct lanes { sms_real v[2]; } lanes;
-static lanes lanes_make(sms_real a, sms_real b) { lanes r; r.v[0] = a; r.v[1] = b; return r; }
-static lanes lanes_add(lanes a, lanes b) { return lanes_make(a.v[0] + b.v[0], a.v[1] + b.v[1]); }
-static lanes lanes_sub(lanes a, lanes b) { return lanes_make(a.v[0] - b.v[0], a.v[1] - b.v[1]); }
-static lanes lanes_mul(lanes a, lanes b) { return lanes_make(a.v[0] * b.v[0], a.v[1] * b.v[1]); }
-#define LANES(a, b) lanes_make((a), (b))
-#define LANE(v, i) ((v).v[i])
-#define ADD(a, b) lanes_add((a), (b))
-#define SUB(a, b) lanes_sub((a), (b))
-#define MUL(a, b) lanes_mul((a), (b))
+/* Elsewhere (no SIMD, e.g. Cortex-M): scalar lanes, and the two copies run one after the
+ * other over each segment (young first: it only reads the input, which the old one may
+ * overwrite in place). One loop per pole type keeps the code small. */
+typedef sms_real lanes;
+#define LANES(a, b) ((void)(b), (a))
+#define LANE(v, i) ((void)(i), (v))
+#define ADD(a, b) ((a) + (b))
+#define SUB(a, b) ((a) - (b))
+#define MUL(a, b) ((a) * (b))
 #endif
 
-/* Knuth's TwoSum: s + e == a + b exactly. */
-#define TWO_SUM(s, e, a, b)                                                          \
+/* Dekker's Fast2Sum (3 operations instead of TwoSum's 6): s + e == a + b exactly when
+ * |a| >= |b|, a the state and b its increment. That is the case where the lost part is
+ * systematic (an increment far below the state, for a pole near 1) and must be kept. Where
+ * |b| > |a| (just after a restart, or where w crosses zero), e may miss the exact error by
+ * about an ulp of b: no more than the rounding already made in computing b, and not
+ * systematic. */
+#define FAST_TWO_SUM(s, e, a, b)                                                          \
     do {                                                                             \
-        const lanes s_ = ADD((a), (b)), bb_ = SUB(s_, (a));                          \
-        (e) = ADD(SUB((a), SUB(s_, bb_)), SUB((b), bb_));                            \
+        const lanes s_ = ADD((a), (b));                                              \
+        (e) = SUB((b), SUB(s_, (a)));                                                \
         (s) = s_;                                                                    \
     } while (0)
 
@@ -170,8 +183,10 @@ typedef struct segment {
     size_t head, window;
 } segment;
 
-/* Real pole (rectangular, exponential): Re w. */
-static void segment_real(segment *g, const sms_real *in, sms_real *out, size_t n, int corrections)
+/* Real pole (rectangular, exponential): Re w. unit_pole: q = 1 exactly (rectangular), so
+ * (q - 1) w and q_lo w vanish. */
+static void segment_real(segment *g, const sms_real *in, sms_real *out, size_t n, int emit,
+                         int corrections, int unit_pole)
 {
     const lanes pm1 = LANES(g->pm1_re, g->pm1_re), plo = LANES(g->plo_re, g->plo_re);
     const lanes gain = LANES(g->gain, g->gain), tail = LANES(g->tail_re, (sms_real)0);
@@ -183,29 +198,31 @@ static void segment_real(segment *g, const sms_real *in, sms_real *out, size_t n
     lanes w = g->w_re, lo = g->lo_re;
     size_t i;
     for (i = 0; i < n; ++i) {
-        const sms_real x = in[i] - rest, oldest = ring[i];
+        const sms_real x = in[i] - rest, oldest = emit ? ring[i] : ref0;
         const lanes u = ADD(MUL(gain, SUB(LANES(x, x), ref)),
                             MUL(tail, SUB(LANES(oldest, ref1), ref)));
-        const lanes d = ADD(MUL(pm1, w), u);
+        const lanes d = unit_pole ? u : ADD(MUL(pm1, w), u);
         lanes s, e;
         sms_real y;
-        TWO_SUM(s, e, w, d);
-        lo = ADD(lo, ADD(ADD(MUL(pm1, lo), MUL(plo, w)), e));
+        FAST_TWO_SUM(s, e, w, d);
+        lo = unit_pole ? ADD(lo, e) : ADD(lo, ADD(ADD(MUL(pm1, lo), MUL(plo, w)), e));
         w = s;
         y = LANE(w, 0) + LANE(lo, 0);
         if (corrections) {
             const sms_real next = i + 1u == to_wrap ? g->ring[0] : ring[i + 1u];
             y += c0 * (next - ref0) + c1 * (oldest - ref0);
         }
-        ring[i] = x;
-        out[i] = y + ref0 + rest;
+        if (emit) {
+            ring[i] = x;
+            out[i] = y + ref0 + rest;
+        }
     }
     g->w_re = w;
     g->lo_re = lo;
 }
 
 /* Complex pole (harmonic families): Im w. */
-static void segment_complex(segment *g, const sms_real *in, sms_real *out, size_t n,
+static void segment_complex(segment *g, const sms_real *in, sms_real *out, size_t n, int emit,
                             int corrections)
 {
     const lanes pm1 = LANES(g->pm1_re, g->pm1_re), pim = LANES(g->p_im, g->p_im);
@@ -220,15 +237,15 @@ static void segment_complex(segment *g, const sms_real *in, sms_real *out, size_
     lanes w_re = g->w_re, w_im = g->w_im, lo_re = g->lo_re, lo_im = g->lo_im;
     size_t i;
     for (i = 0; i < n; ++i) {
-        const sms_real x = in[i] - rest, oldest = ring[i];
+        const sms_real x = in[i] - rest, oldest = emit ? ring[i] : ref0;
         const lanes o = SUB(LANES(oldest, ref1), ref);
         const lanes d_re = ADD(SUB(MUL(pm1, w_re), MUL(pim, w_im)),
                                ADD(MUL(gain, SUB(LANES(x, x), ref)), MUL(tail_re, o)));
         const lanes d_im = ADD(ADD(MUL(pm1, w_im), MUL(pim, w_re)), MUL(tail_im, o));
         lanes s_re, s_im, e_re, e_im, r_re, r_im;
         sms_real y;
-        TWO_SUM(s_re, e_re, w_re, d_re);
-        TWO_SUM(s_im, e_im, w_im, d_im);
+        FAST_TWO_SUM(s_re, e_re, w_re, d_re);
+        FAST_TWO_SUM(s_im, e_im, w_im, d_im);
         r_re = ADD(ADD(SUB(MUL(pm1, lo_re), MUL(pim, lo_im)),
                        SUB(MUL(plo_re, w_re), MUL(plo_im, w_im))), e_re);
         r_im = ADD(ADD(ADD(MUL(pm1, lo_im), MUL(pim, lo_re)),
@@ -237,15 +254,17 @@ static void segment_complex(segment *g, const sms_real *in, sms_real *out, size_
         lo_im = ADD(lo_im, r_im);
         w_re = s_re;
         w_im = s_im;
-        /* Tap 0 of the half-sine families is 0: x reaches Im w a sample later. x - x (0, or NaN
+        /* Tap 0 of the half-sine families is 0: x reaches Im w a sample later. 0 x (0, or NaN
          * for a non-finite x) gives the output the NaN that the convolution's 0 x[n] has. */
-        y = LANE(w_im, 0) + LANE(lo_im, 0) + (x - x);
+        y = LANE(w_im, 0) + LANE(lo_im, 0) + (sms_real)0 * x;
         if (corrections) {
             const sms_real next = i + 1u == to_wrap ? g->ring[0] : ring[i + 1u];
             y += c0 * (next - ref0) + c1 * (oldest - ref0);
         }
-        ring[i] = x;
-        out[i] = y + ref0 + rest;
+        if (emit) {
+            ring[i] = x;
+            out[i] = y + ref0 + rest;
+        }
     }
     g->w_re = w_re;
     g->w_im = w_im;
@@ -257,6 +276,9 @@ void sms_smoother_process(sms_smoother *f, const sms_real *in, sms_real *out, si
 {
     const size_t window = f->window;
     const int corrections = f->n_corrections > 0u;
+#ifdef SMS_SMOOTHER_SPECIALISE
+    const int unit_pole = f->real_only && f->pole_m1_re == (sms_real)0 && f->pole_lo_re == (sms_real)0;
+#endif
     segment g;
     g.pm1_re = f->pole_m1_re;
     g.p_im = f->pole_im;
@@ -293,21 +315,24 @@ void sms_smoother_process(sms_smoother *f, const sms_real *in, sms_real *out, si
         if (n < seg)
             seg = n;
         g.head = f->head;
+#ifdef SMS_SMOOTHER_SPECIALISE
         g.w_re = LANES(f->w_re[old], f->w_re[young]);
         g.w_im = LANES(f->w_im[old], f->w_im[young]);
         g.lo_re = LANES(f->lo_re[old], f->lo_re[young]);
         g.lo_im = LANES(f->lo_im[old], f->lo_im[young]);
         g.ref = LANES(f->ref[old], f->ref[young]);
+        /* Constant flags per call: the compiler drops the unused branches from each loop. */
         if (f->real_only) {
             if (corrections)
-                segment_real(&g, in, out, seg, 1);
+                segment_real(&g, in, out, seg, 1, 1, unit_pole);
+            else if (unit_pole)
+                segment_real(&g, in, out, seg, 1, 0, 1);
             else
-                segment_real(&g, in, out, seg, 0);
+                segment_real(&g, in, out, seg, 1, 0, 0);
+        } else if (corrections) {
+            segment_complex(&g, in, out, seg, 1, 1);
         } else {
-            if (corrections)
-                segment_complex(&g, in, out, seg, 1);
-            else
-                segment_complex(&g, in, out, seg, 0);
+            segment_complex(&g, in, out, seg, 1, 0);
         }
         f->w_re[old] = LANE(g.w_re, 0);
         f->w_re[young] = LANE(g.w_re, 1);
@@ -317,6 +342,30 @@ void sms_smoother_process(sms_smoother *f, const sms_real *in, sms_real *out, si
         f->lo_re[young] = LANE(g.lo_re, 1);
         f->lo_im[old] = LANE(g.lo_im, 0);
         f->lo_im[young] = LANE(g.lo_im, 1);
+#else
+        {
+            int pass;
+            for (pass = 0; pass < 2; ++pass) {
+                const int c = pass == 0 ? young : old;
+                g.w_re = f->w_re[c];
+                g.w_im = f->w_im[c];
+                g.lo_re = f->lo_re[c];
+                g.lo_im = f->lo_im[c];
+                g.ref = f->ref[c];
+                g.tail_re = pass == 0 ? (sms_real)0 : f->tail_re;
+                g.tail_im = pass == 0 ? (sms_real)0 : f->tail_im;
+                /* q = 1 needs no branch here: (q - 1) w = 0 w and q_lo w add exact zeros. */
+                if (f->real_only)
+                    segment_real(&g, in, out, seg, pass, corrections && pass, 0);
+                else
+                    segment_complex(&g, in, out, seg, pass, corrections && pass);
+                f->w_re[c] = g.w_re;
+                f->w_im[c] = g.w_im;
+                f->lo_re[c] = g.lo_re;
+                f->lo_im[c] = g.lo_im;
+            }
+        }
+#endif
         f->age[old] += seg;
         f->age[young] += seg;
         f->head += seg;
@@ -326,11 +375,6 @@ void sms_smoother_process(sms_smoother *f, const sms_real *in, sms_real *out, si
         out += seg;
         n -= seg;
     }
-}
-
-void sms_smoother_step(sms_smoother *f, sms_real *x)
-{
-    sms_smoother_process(f, x, x, 1u);
 }
 
 size_t sms_smoother_state_count(const sms_smoother *f)

@@ -38,15 +38,20 @@
  *   (unit DC gain; the corrections, which sum to 0, act on x - ref too), so its rounding
  *   scales with how much the input varies within 2M samples, not with its offset;
  * - each copy's state is w + lo: w takes the increment (q - 1) w + c x - c q^M x[n-M], and lo
- *   (a small state on the same pole) collects what that addition rounds away, exactly (TwoSum),
- *   and what the rounded pole misses (q_lo w, q_lo from a long double design). For a pole near
- *   1 both errors are otherwise systematic and tap i would be off by ~i eps (1e-5 at i = 1500
- *   in float). TwoSum needs IEEE evaluation: do not build with -ffast-math.
+ *   (a small state on the same pole) collects what that addition rounds away (Dekker's
+ *   Fast2Sum, exact when the increment is below the state, which is when the loss would be
+ *   systematic) and what the rounded pole misses (q_lo w, q_lo from a long double design).
+ *   For a pole near 1 both errors are otherwise systematic and tap i would be off by ~i eps
+ *   (1e-5 at i = 1500 in float). Fast2Sum needs IEEE evaluation: do not build with -ffast-math.
  * The error against the exact convolution is therefore bounded independently of the run
  * length. Measured (tests/bench/drift_bench.c, L = 71..10005, all families): max |error| over
  * 1e9 samples of 1e3 + U(-1, 1) is 2.4e-16 (double) and 2.2e-7 (float) relative to 1e3; over
- * 1e8 samples of 1e3 U(-1, 1), 2.7e-16 and 1.4e-7. Cost: about 10-20 ns per sample (x86-64).
- *
+ * 1e8 samples of 1e3 U(-1, 1), 2.7e-16 and 1.4e-7.
+ * Cost (tests/bench/speed_bench.c, x86-64, -O2): about twice the plain drifting recursion of
+ * the same filter; sms_smoother_process() runs blocks with the state in locals and the two
+ * copies in the two lanes of one SIMD register (SSE2/NEON with GCC or Clang; elsewhere the
+ * copies run one after the other, same arithmetic, smaller code).
+
  * Non-finite input: a NaN or Inf sample makes the output NaN while it is inside the ring or
  * inside the recursion copy in use; at most 2M + 1 samples after it the output is again the
  * exact convolution of the inputs since (the state is never poisoned for ever).
