@@ -183,6 +183,21 @@ typedef struct segment {
     size_t head, window;
 } segment;
 
+/* The old copy's sample i of a segment: add the exact-timing direct taps on x[n-M+1] (the
+ * ring slot after this one; `wrap` is the segment's sample where that slot is ring[0]) and
+ * x[n-M], store x in the ring, write the output. */
+static void finish_sample(sms_real *ring, sms_real *out, size_t i, sms_real x, sms_real oldest,
+                          sms_real y, sms_real ref0, sms_real rest, int corrections,
+                          const sms_real *ring0, size_t wrap, sms_real corr0, sms_real corr1)
+{
+    if (corrections) {
+        const sms_real next = i == wrap ? ring0[0] : ring[i + 1u];
+        y += corr0 * (next - ref0) + corr1 * (oldest - ref0);
+    }
+    ring[i] = x;
+    out[i] = y + ref0 + rest;
+}
+
 /* Real pole (rectangular, exponential): Re w. unit_pole: q = 1 exactly (rectangular), so
  * (q - 1) w and q_lo w vanish. */
 static void segment_real(segment *g, const sms_real *in, sms_real *out, size_t n, int emit,
@@ -192,9 +207,9 @@ static void segment_real(segment *g, const sms_real *in, sms_real *out, size_t n
     const lanes gain = LANES(g->gain, g->gain), tail = LANES(g->tail_re, (sms_real)0);
     const lanes ref = g->ref;
     const sms_real ref0 = LANE(ref, 0), ref1 = LANE(ref, 1), rest = g->rest;
-    const sms_real c0 = g->corr0, c1 = g->corr1;
+    const sms_real corr0 = g->corr0, corr1 = g->corr1;
+    const size_t wrap = g->window - g->head - 1u;
     sms_real *ring = g->ring + g->head;
-    const size_t to_wrap = g->window - g->head;
     lanes w = g->w_re, lo = g->lo_re;
     size_t i;
     for (i = 0; i < n; ++i) {
@@ -208,14 +223,9 @@ static void segment_real(segment *g, const sms_real *in, sms_real *out, size_t n
         lo = unit_pole ? ADD(lo, e) : ADD(lo, ADD(ADD(MUL(pm1, lo), MUL(plo, w)), e));
         w = s;
         y = LANE(w, 0) + LANE(lo, 0);
-        if (corrections) {
-            const sms_real next = i + 1u == to_wrap ? g->ring[0] : ring[i + 1u];
-            y += c0 * (next - ref0) + c1 * (oldest - ref0);
-        }
-        if (emit) {
-            ring[i] = x;
-            out[i] = y + ref0 + rest;
-        }
+        if (emit)
+            finish_sample(ring, out, i, x, oldest, y, ref0, rest, corrections, g->ring, wrap,
+                              corr0, corr1);
     }
     g->w_re = w;
     g->lo_re = lo;
@@ -231,9 +241,9 @@ static void segment_complex(segment *g, const sms_real *in, sms_real *out, size_
     const lanes tail_re = LANES(g->tail_re, (sms_real)0), tail_im = LANES(g->tail_im, (sms_real)0);
     const lanes ref = g->ref;
     const sms_real ref0 = LANE(ref, 0), ref1 = LANE(ref, 1), rest = g->rest;
-    const sms_real c0 = g->corr0, c1 = g->corr1;
+    const sms_real corr0 = g->corr0, corr1 = g->corr1;
+    const size_t wrap = g->window - g->head - 1u;
     sms_real *ring = g->ring + g->head;
-    const size_t to_wrap = g->window - g->head;
     lanes w_re = g->w_re, w_im = g->w_im, lo_re = g->lo_re, lo_im = g->lo_im;
     size_t i;
     for (i = 0; i < n; ++i) {
@@ -257,14 +267,9 @@ static void segment_complex(segment *g, const sms_real *in, sms_real *out, size_
         /* Tap 0 of the half-sine families is 0: x reaches Im w a sample later. 0 x (0, or NaN
          * for a non-finite x) gives the output the NaN that the convolution's 0 x[n] has. */
         y = LANE(w_im, 0) + LANE(lo_im, 0) + (sms_real)0 * x;
-        if (corrections) {
-            const sms_real next = i + 1u == to_wrap ? g->ring[0] : ring[i + 1u];
-            y += c0 * (next - ref0) + c1 * (oldest - ref0);
-        }
-        if (emit) {
-            ring[i] = x;
-            out[i] = y + ref0 + rest;
-        }
+        if (emit)
+            finish_sample(ring, out, i, x, oldest, y, ref0, rest, corrections, g->ring, wrap,
+                              corr0, corr1);
     }
     g->w_re = w_re;
     g->w_im = w_im;
