@@ -160,8 +160,17 @@ def segment_rows(out, starts, arrivals, via, Ts, limits):
     return rows
 
 
+def _limit(text: str):
+    """--vmax/--amax/--jmax: one number, or one per axis ('1,2,3') for multi-axis via-points."""
+    values = _numbers("limit", text)
+    return values[0] if len(values) == 1 else text
+
+
 def cmd_generator(args) -> int:
     from .trajectory import Generator
+    if ";" in args.via or any(isinstance(x, str) for x in (args.vmax, args.amax, args.jmax)):
+        from .cli_multi_axis import cmd_multi_generator
+        return cmd_multi_generator(args)
     via = parse_via_list(args.via)
     gen = Generator(vmax=args.vmax, amax=args.amax, jmax=args.jmax, Ts=args.Ts,
                     profile=args.profile, wn=args.wn, zeta=args.zeta)
@@ -342,12 +351,22 @@ def add_design_forms(design_parser, parser_class) -> None:
                          description="Run a staircase of via-points through the C-backed "
                          "online generator: each via-point is held until the output rests on "
                          "it (or for --hold seconds). The first via-point is the start (rest). "
-                         "Negative values: write --via=-5,10.")
-    p.add_argument("--via", required=True, metavar="P0,P1,...",
-                   help="positions: start, then the targets in order (e.g. 0,20,40,100,60,0)")
-    p.add_argument("--vmax", type=float, required=True, help="velocity limit [unit/s]")
-    p.add_argument("--amax", type=float, required=True, help="acceleration limit [unit/s^2]")
-    p.add_argument("--jmax", type=float, required=True, help="jerk limit [unit/s^3]")
+                         "Several axes: points separated by ';' (--via \"0,0,0;10,5,2;...\"), "
+                         "limits per axis ('1,2,3') or one for all; the axes move on straight "
+                         "lines and arrive together (--sync phase) or each on its own "
+                         "(--sync independent). Negative values: write --via=-5,10.")
+    p.add_argument("--via", required=True, metavar="P0,P1,... | X,Y,Z;X,Y,Z;...",
+                   help="positions: start, then the targets in order (e.g. 0,20,40,100,60,0); "
+                   "for several axes points separated by ';'")
+    p.add_argument("--vmax", type=_limit, required=True,
+                   help="velocity limit [unit/s] (one per axis: V1,V2,...)")
+    p.add_argument("--amax", type=_limit, required=True,
+                   help="acceleration limit [unit/s^2] (one per axis: A1,A2,...)")
+    p.add_argument("--jmax", type=_limit, required=True,
+                   help="jerk limit [unit/s^3] (one per axis: J1,J2,...)")
+    p.add_argument("--sync", choices=("phase", "independent"), default="phase",
+                   help="several axes: straight lines and common arrival (phase, default) or "
+                   "each axis time-optimal on its own (independent)")
     p.add_argument("--Ts", type=float, required=True, help="sample period [s]")
     p.add_argument("--profile", default="polynomial", choices=PROFILES,
                    help="family of the tail's last stage (default polynomial)")

@@ -1,0 +1,252 @@
+"""``smoothshaper design generator --via "x,y,z;x,y,z;..."``: multi-axis via-points.
+
+Runs the via-points through the C-backed multi-axis generator
+(:class:`smoothshaper.trajectory.MultiAxisGenerator`): the first point is the start (rest),
+each further point is held until every axis rests on it (or for ``--hold`` seconds, the last
+until reached). Prints one row per segment (arrival, duration against the time-optimal
+straight move, the largest |v|, |a|, |j| over the axes as a fraction of each axis's limit, and
+how far the path leaves the straight segment) and writes a plot: per-axis profiles scaled by
+their limits, and the path in 2-D or 3-D.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .cli import EXIT_ERROR, CliError, _pyplot, format_table
+
+LIMIT_RTOL = 1e-9
+MAX_SAMPLES = 5_000_000
+AXIS_NAMES = "xyzabcuv"
+
+
+def _numbers(option: str, text: str) -> list[float]:
+    items = [s.strip() for s in str(text).split(",")]
+    try:
+        values = [float(s) for s in items]
+    except ValueError:
+        raise CliError(f"{option} must be comma-separated numbers, got {text!r}") from None
+    bad = [v for v in values if not math.isfinite(v)]
+    if bad:
+        raise CliError(f"{option} must be finite, got {bad[0]!r}")
+    return values
+
+
+def parse_points(text: str) -> np.ndarray:
+    """'x,y,z;x,y,z;...' -> (M, axes), M >= 2, 1 <= axes <= 8."""
+    rows = [r for r in (part.strip() for part in text.split(";")) if r]
+    points = [_numbers("--via", r) for r in rows]
+    if len(points) < 2:
+        raise CliError("--via needs at least two points separated by ';' (start; target; ...)")
+    axes = len(points[0])
+    if any(len(p) != axes for p in points):
+        raise CliError("--via: every point must have the same number of coordinates, got "
+                       + ", ".join(str(len(p)) for p in points))
+    if not 1 <= axes <= len(AXIS_NAMES):
+        raise CliError(f"--via: points must have 1 to {len(AXIS_NAMES)} coordinates, got {axes}")
+    return np.array(points)
+
+
+def parse_limit(option: str, value, axes: int) -> np.ndarray:
+    """One value for every axis, or one per axis ('1,2,3')."""
+    v = np.array(_numbers(option, value) if isinstance(value, str) else [float(value)])
+    if v.size == 1:
+        v = np.full(axes, v[0])
+    if v.size != axes:
+        raise CliError(f"{option}: give one value or one per axis ({axes}), got {v.size}")
+    bad = np.flatnonzero(v <= 0)
+    if bad.size:
+        raise CliError(f"{option}: every limit must be > 0, got {v[bad[0]]:g} for axis "
+                       f"{AXIS_NAMES[bad[0]]}")
+    return v
+
+
+def _arrival(out: np.ndarray, target: np.ndarray) -> np.ndarray:
+    """Samples where every axis rests exactly on target (the generator lands bit for bit)."""
+    return np.flatnonzero(np.all(out[:, :, 0] == target, axis=1)
+                          & np.all(out[:, :, 1:] == 0, axis=(1, 2)))
+
+
+def run(gen, via: np.ndarray, hold_samples: int | None, max_samples: int):
+    """(targets, out, starts, arrivals): each point held until reached (or hold_samples)."""
+    targets, outs, starts, arrivals = [], [], [], []
+    k = 0
+    chunk = 4096
+    for i, p in enumerate(via[1:]):
+        starts.append(k)
+        last = i == via.shape[0] - 2
+        if hold_samples is not None and not last:
+            block = np.tile(p, (hold_samples, 1))
+            out = gen.process(block)
+            hit = _arrival(out, p)
+            targets.append(block)
+            outs.append(out)
+            arrivals.append(k + int(hit[0]) if hit.size else None)
+            k += hold_samples
+            continue
+        while True:
+            if k >= max_samples:
+                raise CliError(f"the output did not reach point {i + 1} within {max_samples} "
+                               "samples (raise --Ts)")
+            block = np.tile(p, (chunk, 1))
+            out = gen.process(block)
+            hit = _arrival(out, p)
+            if hit.size:
+                # at rest on p the state no longer changes: the extra samples are dropped
+                n = int(hit[0]) + 1
+                targets.append(block[:n])
+                outs.append(out[:n])
+                k += n
+                arrivals.append(k - 1)
+                break
+            targets.append(block)
+            outs.append(out)
+            k += chunk
+    return np.concatenate(targets), np.concatenate(outs), starts, arrivals
+
+
+def _deviation(q: np.ndarray, a: np.ndarray, b: np.ndarray) -> float:
+    """Largest distance of the points q from the segment a-b, relative to its length."""
+    d = b - a
+    L = float(np.linalg.norm(d))
+    if L == 0:
+        return float(np.max(np.linalg.norm(q - a, axis=1))) if q.size else 0.0
+    s = np.clip((q - a) @ d / (L * L), 0.0, 1.0)
+    return float(np.max(np.linalg.norm(q - a - np.outer(s, d), axis=1))) / L
+
+
+def cmd_multi_generator(args) -> int:
+    from .trajectory import MultiAxisGenerator, phase_duration
+    via = parse_points(args.via)
+    axes = via.shape[1]
+    v = parse_limit("--vmax", args.vmax, axes)
+    a = parse_limit("--amax", args.amax, axes)
+    j = parse_limit("--jmax", args.jmax, axes)
+    sync = getattr(args, "sync", None) or "phase"
+    gen = MultiAxisGenerator(vmax=v, amax=a, jmax=j, Ts=args.Ts, sync=sync, q0=via[0])
+    Ts = gen.Ts
+    hold_samples = None
+    if args.hold is not None:
+        if not (math.isfinite(args.hold) and args.hold >= Ts):
+            raise CliError(f"--hold must be a time >= Ts = {Ts:g} s, got {args.hold!r}")
+        hold_samples = int(round(args.hold / Ts))
+    optimum = [phase_duration(q1 - q0, vmax=v, amax=a, jmax=j) for q0, q1 in zip(via[:-1], via[1:])]
+    estimate = sum(optimum) * 3 + (hold_samples or 0) * Ts * len(optimum)
+    max_samples = int(math.ceil(estimate / Ts)) + 10 * (len(optimum) + 1) + 4096
+    if max_samples > MAX_SAMPLES:
+        raise CliError(f"--Ts: about {max_samples} samples would be needed (more than "
+                       f"{MAX_SAMPLES}); use a larger sample period")
+    targets, out, starts, arrivals = run(gen, via, hold_samples, max_samples)
+    lim = np.array([v, a, j])                                   # (3, axes)
+    names = AXIS_NAMES[:axes]
+    u = args.unit
+    rows = []
+    ends = starts[1:] + [out.shape[0]]
+    prev = via[0]
+    for i, (s, e) in enumerate(zip(starts, ends)):
+        ratio = (np.abs(out[s:e, :, 1:]) / lim.T[None]).max(axis=(0, 1))
+        arr = arrivals[i]
+        dur = None if arr is None else (arr - s) * Ts
+        # the segment a move follows: from where it started (rest on the previous point, or
+        # wherever the previous one was left by --hold) to this point
+        dev = _deviation(out[s:e, :, 0], out[s - 1, :, 0] if s else prev, via[i + 1])
+        rows.append([i + 1, ",".join(f"{x:g}" for x in via[i + 1]), s * Ts,
+                     None if arr is None else arr * Ts, dur, optimum[i], *map(float, ratio), dev])
+    print(f"multi-axis generator ({gen.sync}), {axes} axes ({names}), Ts = {Ts:g} s; "
+          f"start at rest at ({','.join(f'{x:g}' for x in via[0])}) {u}")
+    print(format_table(["axis", f"vmax [{u}/s]", f"amax [{u}/s^2]", f"jmax [{u}/s^3]"],
+                       [[names[i], float(v[i]), float(a[i]), float(j[i])] for i in range(axes)]))
+    print()
+    print("each point held until every axis rests on it" if hold_samples is None else
+          f"each point held {hold_samples} samples ({hold_samples * Ts:g} s), the last "
+          "until reached")
+    print(format_table(["#", f"target [{u}]", "start [s]", "arrival [s]", "duration [s]",
+                        "optimum [s]", "max v/vmax", "max a/amax", "max j/jmax",
+                        "off line"], rows))
+    print("optimum: time-optimal straight move from rest (phase-synchronised); 'off line': "
+          "largest distance from the straight segment / its length")
+    missed = [r[0] for r in rows if r[3] is None]
+    if missed:
+        print("not reached before the next point (--hold): segment "
+              + ", ".join(str(m) for m in missed))
+    total = arrivals[-1] * Ts
+    print(f"total time: {total:.6g} s ({arrivals[-1] + 1} samples)")
+    ok = bool(np.all(np.abs(out[:, :, 1:]) <= lim.T[None] * (1 + LIMIT_RTOL)))
+    print("every axis within its limits at every sample: " + ("yes" if ok else "NO (exceeded)"))
+    if args.csv:
+        t = np.arange(out.shape[0]) * Ts
+        cols = [t] + [targets[:, i] for i in range(axes)]
+        header = ["time"] + [f"target_{n}" for n in names]
+        for i, n in enumerate(names):
+            cols += [out[:, i, m] for m in range(4)]
+            header += [f"{n}_q", f"{n}_v", f"{n}_a", f"{n}_j"]
+        try:
+            np.savetxt(args.csv, np.column_stack(cols), delimiter=",", header=",".join(header),
+                       comments="", fmt="%.17g")
+        except OSError as exc:
+            raise CliError(f"--csv: cannot write {args.csv}: {exc.strerror}") from None
+        print(f"csv: {args.csv}")
+    if args.plot:
+        plot(args.plot, out, via, lim, arrivals, Ts, names, u, gen.sync)
+        print(f"plot: {args.plot}")
+    return 0 if ok else EXIT_ERROR
+
+
+def plot(path, out, via, lim, arrivals, Ts, names, u, sync):
+    """Left: q and v/vmax, a/amax, j/jmax of every axis over time; right: the path."""
+    plt = _pyplot("design generator --plot")
+    axes = out.shape[1]
+    t = np.arange(out.shape[0]) * Ts
+    fig = plt.figure(figsize=(13, 8))
+    gs = fig.add_gridspec(4, 2, width_ratios=[1.35, 1])
+    left = [fig.add_subplot(gs[0, 0])]
+    left += [fig.add_subplot(gs[r, 0], sharex=left[0]) for r in range(1, 4)]
+    labels = [f"position [{u}]", "v / vmax", "a / amax", "j / jmax"]
+    for m, ax in enumerate(left):
+        for i in range(axes):
+            y = out[:, i, m] if m == 0 else out[:, i, m] / lim[m - 1, i]
+            if m == 3:
+                ax.step(t, y, where="post", lw=1.0, label=names[i])
+            else:
+                ax.plot(t, y, lw=1.2, label=names[i])
+        if m:
+            ax.axhline(1, color="red", lw=0.7, ls=":")
+            ax.axhline(-1, color="red", lw=0.7, ls=":")
+            ax.set_ylim(-1.15, 1.15)
+        for k in arrivals:
+            if k is not None:
+                ax.axvline(k * Ts, color="green", lw=0.5, alpha=0.5)
+        ax.set_ylabel(labels[m])
+        ax.grid(True, alpha=0.3)
+    left[0].legend(loc="best", fontsize=8, ncol=min(axes, 4))
+    left[0].set_title(f"Per-axis profiles ({sync}; red: each axis's limit, green: arrivals)")
+    left[-1].set_xlabel("time [s]")
+    if axes >= 3:
+        ax = fig.add_subplot(gs[:, 1], projection="3d")
+        ax.plot(via[:, 0], via[:, 1], via[:, 2], "--", color="gray", lw=0.8,
+                label="straight segments")
+        ax.plot(out[:, 0, 0], out[:, 1, 0], out[:, 2, 0], lw=1.5, label="generated path")
+        ax.scatter(via[:, 0], via[:, 1], via[:, 2], color="red", s=20, label="via-points")
+        ax.set_zlabel(f"{names[2]} [{u}]")
+    else:
+        ax = fig.add_subplot(gs[:, 1])
+        y0 = via[:, 1] if axes >= 2 else np.zeros(via.shape[0])
+        y = out[:, 1, 0] if axes >= 2 else np.zeros(out.shape[0])
+        ax.plot(via[:, 0], y0, "--", color="gray", lw=0.8, label="straight segments")
+        ax.plot(out[:, 0, 0], y, lw=1.5, label="generated path")
+        ax.plot(via[:, 0], y0, "o", color="red", ms=4, label="via-points")
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.grid(True, alpha=0.3)
+    ax.set_xlabel(f"{names[0]} [{u}]")
+    if axes >= 2:
+        ax.set_ylabel(f"{names[1]} [{u}]")
+    ax.set_title("Path" + (" (first three axes)" if axes > 3 else ""))
+    ax.legend(loc="best", fontsize=8)
+    fig.tight_layout()
+    try:
+        fig.savefig(path, dpi=110)
+    except OSError as exc:
+        raise CliError(f"--plot: cannot write {path}: {exc.strerror}") from None
+    finally:
+        plt.close(fig)
