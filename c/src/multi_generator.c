@@ -13,6 +13,16 @@
 #define REAL_MAX ((sms_real)DBL_MAX)
 #endif
 
+/* Ratios limit/|change| are capped here (conservative: a lower limit), so that tiny or
+ * subnormal changes give tiny finite durations and A^2 stays finite in float too. */
+#define RATIO_CAP ((sms_real)1152921504606846976.0) /* 2^60 */
+
+static sms_real ratio(sms_real limit, sms_real d)
+{
+    sms_real r = limit / d;
+    return r < RATIO_CAP ? r : RATIO_CAP;
+}
+
 /* Bisection stops at this relative bracket or after MAX_BISECT halvings. */
 #define BRACKET_TOL (4 * REAL_EPS)
 #define MAX_BISECT 200
@@ -95,7 +105,7 @@ static sms_real transition_time(const group *G, const sms_real *dV, sms_real *rh
     for (i = 0; i < G->n; ++i) {
         sms_real d = dV[i] < 0 ? -dV[i] : dV[i];
         if (d > 0) {
-            sms_real a = G->amax[i] / d, j = G->jmax[i] / d;
+            sms_real a = ratio(G->amax[i], d), j = ratio(G->jmax[i], d);
             any = 1;
             if (a < A)
                 A = a;
@@ -118,7 +128,7 @@ static sms_real landing_kappa(const group *G, const sms_real *u, sms_real T1)
     for (i = 0; i < G->n; ++i) {
         sms_real d = u[i] < 0 ? -u[i] : u[i];
         if (d > 0) {
-            sms_real a = G->amax[i] / d, j = G->jmax[i] / d, k = d / G->vmax[i];
+            sms_real a = ratio(G->amax[i], d), j = ratio(G->jmax[i], d), k = d / G->vmax[i];
             any = 1;
             if (a < au)
                 au = a;

@@ -278,6 +278,27 @@ static void non_finite_target(void)
     CHECK(o[0] == 1 && o[4] == 1);
 }
 
+/* Tiny and subnormal moves: finite outputs, exact arrival. */
+static void tiny_moves(void)
+{
+    sms_multi_generator_config c = random_config(2, SMS_SYNC_PHASE);
+    sms_multi_generator g;
+    const double sizes[] = {1e-30, 1e-300, 2.2250738585072014e-311};
+    sms_real t[2], o[8];
+    size_t s, k;
+    CHECK_STATUS(sms_multi_generator_init(&g, &c, 1e-2, NULL), SMS_OK);
+    for (s = 0; s < sizeof sizes / sizeof sizes[0]; ++s) {
+        t[0] = (sms_real)sizes[s];
+        t[1] = -(sms_real)sizes[s];
+        for (k = 0; k < 100000 && (k < 2 || sms_multi_generator_busy(&g)); ++k) {
+            sms_multi_generator_step(&g, t, o);
+            CHECK(o[0] - o[0] == 0 && o[1] - o[1] == 0 && o[4] - o[4] == 0);
+        }
+        CHECK(!sms_multi_generator_busy(&g));
+        CHECK(o[0] == t[0] && o[4] == t[1]);
+    }
+}
+
 int main(void)
 {
     unsigned trial;
@@ -288,5 +309,6 @@ int main(void)
     independent_equals_single();
     bad_input();
     non_finite_target();
+    tiny_moves();
     return check_summary("test_multi_generator");
 }

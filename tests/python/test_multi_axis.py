@@ -2,6 +2,7 @@
 sample, straight line, limits at every sample, duration), staircases with reversals and
 mid-motion changes (limits, exact arrival, C == NumPy reference), independent axes, errors."""
 import math
+import os
 import warnings
 
 import numpy as np
@@ -14,7 +15,8 @@ from smoothshaper.trajectory import MultiAxisGenerator, multi_axis_move
 
 ruckig = pytest.importorskip("ruckig")
 
-SETTINGS = dict(max_examples=20, deadline=None,
+# MULTI_AXIS_EXAMPLES=500 pytest tests/python/test_multi_axis.py: the long random campaign
+SETTINGS = dict(max_examples=int(os.environ.get("MULTI_AXIS_EXAMPLES", "20")), deadline=None,
                 suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 
 
@@ -212,3 +214,15 @@ def test_different_stages_per_axis_warn():
         MultiAxisGenerator(vmax=[1, 1], amax=[1, 1], jmax=[1, 1], Ts=1e-3, stages=[zv])
     with pytest.warns(UserWarning, match="bend straight lines"):
         MultiAxisGenerator(vmax=[1, 1], amax=[1, 1], jmax=[1, 1], Ts=1e-3, stages=[[zv], []])
+
+
+@pytest.mark.parametrize("size", [1e-30, 1e-300, 2.2250738585072014e-311])
+def test_tiny_moves_arrive_and_match_reference(size):
+    """Tiny and subnormal displacements: limit ratios are capped, outputs stay finite."""
+    targets = np.array([[0.0, 0.0]] + [[size, -size]] * 50)
+    args = dict(vmax=[1.0, 2.0], amax=[1.0, 3.0], jmax=[1.0, 5.0], Ts=0.01)
+    out = MultiAxisGenerator(**args).process(targets)
+    ref = multi_axis_reference(targets, **args)
+    assert np.all(np.isfinite(out))
+    np.testing.assert_array_equal(out[-1, :, 0], [size, -size])
+    np.testing.assert_allclose(out, ref, rtol=0, atol=1e-12 * size)

@@ -17,6 +17,12 @@ import math
 import numpy as np
 
 _EPS = np.finfo(np.float64).eps
+_CAP = 2.0 ** 60  # limit/|change| ratios are capped (a conservative, lower limit)
+
+
+def _ratio(lim, d) -> float:
+    with np.errstate(over="ignore"):
+        return float(min(np.min(lim / d), _CAP))
 
 
 def _unit_time(A: float, J: float) -> tuple[float, float]:
@@ -37,7 +43,7 @@ def transition(dV, vmax, amax, jmax) -> tuple[float, float]:
     nz = d > 0
     if not nz.any():
         return 0.0, 0.5
-    return _unit_time(float(np.min(amax[nz] / d[nz])), float(np.min(jmax[nz] / d[nz])))
+    return _unit_time(_ratio(amax[nz], d[nz]), _ratio(jmax[nz], d[nz]))
 
 
 def phase_duration(delta, *, vmax, amax, jmax) -> float:
@@ -65,8 +71,8 @@ def _kappa(u, T1, vmax, amax, jmax) -> float:
     nz = d > 0
     if not nz.any():
         return T1 / 2
-    au = float(np.min(amax[nz] / d[nz]))
-    ju = float(np.min(jmax[nz] / d[nz]))
+    au = _ratio(amax[nz], d[nz])
+    ju = _ratio(jmax[nz], d[nz])
     kv = float(np.max(d[nz] / vmax[nz]))
     b = (T1 + au / ju) / 2
     kh = (b + math.sqrt(b * b + 2.0 / au)) / 2
