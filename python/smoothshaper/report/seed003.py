@@ -18,6 +18,8 @@ zero at k w0, lower at high frequency for larger p      the robot's via-points: 
 Sec. IV: B-spline through via-points on three axes,    smoothshaper.trajectory.BSpline: via-points
 exact interpolation, T >= 2 pi/min(wn)                 hit, residual vibration vs p and w0; a ZV
                                                        shaper misses the via-points (Fig. 15)
+(beyond the paper) the same robot and via-points       MultiAxisGenerator: common arrival, straight
+through the multi-axis generator                       lines, limits, residual vibration per axis
 =====================================================  ==========================================
 """
 from __future__ import annotations
@@ -123,8 +125,9 @@ def build(fig_dir=None) -> Section:
 
 def _via_points(sec, data):
     """Sec. IV robot example (smoothshaper.trajectory.BSpline, see seed003_robot)."""
-    from . import seed003_robot
+    from . import seed003_multi_axis, seed003_robot
     data["via"] = seed003_robot.run(sec)
+    data["multi"] = seed003_multi_axis.run(sec, seed003_robot.via_points())
 
 
 def _body(d) -> str:
@@ -132,7 +135,7 @@ def _body(d) -> str:
              f"M^3's PRV stays at or below 5 % for every wn >= {d['r5']:.4f} w0 (infinite "
              f"insensitivity upward), ZVDDD's only on [{d['zvddd'].low / W0:.4f}, "
              f"{d['zvddd'].high / W0:.4f}] w0 and is back to 100 % at 2 w0."]
-    lines += ["", d["via"]["body"]]
+    lines += ["", d["via"]["body"], "", d["multi"]["body"]]
     return "\n".join(lines)
 
 
@@ -151,3 +154,4 @@ def _figures(sec, fig_dir, d):
             a.set_ylabel("percent residual vibration [%]")
             a.set_ylim(0, 100)
     d["via"]["figures"](sec, fig_dir)
+    d["multi"]["figures"](sec, fig_dir)
