@@ -21,35 +21,15 @@ MAX_SAMPLES = 5_000_000
 AXIS_NAMES = "xyzabcuv"
 
 
-def _numbers(option: str, text: str) -> list[float]:
-    items = [s.strip() for s in str(text).split(",")]
-    try:
-        values = [float(s) for s in items]
-    except ValueError:
-        raise CliError(f"{option} must be comma-separated numbers, got {text!r}") from None
-    bad = [v for v in values if not math.isfinite(v)]
-    if bad:
-        raise CliError(f"{option} must be finite, got {bad[0]!r}")
-    return values
-
-
 def parse_points(text: str) -> np.ndarray:
     """'x,y,z;x,y,z;...' -> (M, axes), M >= 2, 1 <= axes <= 8."""
-    rows = [r for r in (part.strip() for part in text.split(";")) if r]
-    points = [_numbers("--via", r) for r in rows]
-    if len(points) < 2:
-        raise CliError("--via needs at least two points separated by ';' (start; target; ...)")
-    axes = len(points[0])
-    if any(len(p) != axes for p in points):
-        raise CliError("--via: every point must have the same number of coordinates, got "
-                       + ", ".join(str(len(p)) for p in points))
-    if not 1 <= axes <= len(AXIS_NAMES):
-        raise CliError(f"--via: points must have 1 to {len(AXIS_NAMES)} coordinates, got {axes}")
-    return np.array(points)
+    from .cli_trajectory import parse_via_points  # lazy: cli_trajectory dispatches here
+    return parse_via_points(text, max_axes=len(AXIS_NAMES))
 
 
 def parse_limit(option: str, value, axes: int) -> np.ndarray:
     """One value for every axis, or one per axis ('1,2,3')."""
+    from .cli_trajectory import _numbers
     v = np.array(_numbers(option, value) if isinstance(value, str) else [float(value)])
     if v.size == 1:
         v = np.full(axes, v[0])
@@ -181,11 +161,8 @@ def cmd_multi_generator(args) -> int:
         for i, n in enumerate(names):
             cols += [out[:, i, m] for m in range(4)]
             header += [f"{n}_q", f"{n}_v", f"{n}_a", f"{n}_j"]
-        try:
-            np.savetxt(args.csv, np.column_stack(cols), delimiter=",", header=",".join(header),
-                       comments="", fmt="%.17g")
-        except OSError as exc:
-            raise CliError(f"--csv: cannot write {args.csv}: {exc.strerror}") from None
+        from .cli_trajectory import _write_csv
+        _write_csv(args.csv, header, cols)
         print(f"csv: {args.csv}")
     if args.plot:
         plot(args.plot, out, via, lim, arrivals, Ts, names, u, gen.sync)
@@ -244,9 +221,5 @@ def plot(path, out, via, lim, arrivals, Ts, names, u, sync):
     ax.set_title("Path" + (" (first three axes)" if axes > 3 else ""))
     ax.legend(loc="best", fontsize=8)
     fig.tight_layout()
-    try:
-        fig.savefig(path, dpi=110)
-    except OSError as exc:
-        raise CliError(f"--plot: cannot write {path}: {exc.strerror}") from None
-    finally:
-        plt.close(fig)
+    from .cli_trajectory import _save
+    _save(fig, plt, path)

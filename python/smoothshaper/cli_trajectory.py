@@ -48,8 +48,9 @@ def parse_via_list(text: str) -> np.ndarray:
     return via
 
 
-def parse_via_points(text: str) -> np.ndarray:
-    """``--via`` of the B-spline: 'x,y;x,y;...' -> (M, axes) with M >= 2, 1 <= axes <= 3."""
+def parse_via_points(text: str, max_axes: int = 3) -> np.ndarray:
+    """``--via`` of the B-spline (and of multi-axis via-points): 'x,y;x,y;...' -> (M, axes)
+    with M >= 2, 1 <= axes <= max_axes."""
     rows = [r for r in (part.strip() for part in text.split(";")) if r]
     points = [_numbers("--via", r) for r in rows]
     if len(points) < 2:
@@ -58,8 +59,8 @@ def parse_via_points(text: str) -> np.ndarray:
     if any(len(p) != axes for p in points):
         raise CliError("--via: every point must have the same number of coordinates, got "
                        + ", ".join(str(len(p)) for p in points))
-    if not 1 <= axes <= 3:
-        raise CliError(f"--via: points must have 1 to 3 coordinates (axes), got {axes}")
+    if not 1 <= axes <= max_axes:
+        raise CliError(f"--via: points must have 1 to {max_axes} coordinates (axes), got {axes}")
     return np.array(points)
 
 
