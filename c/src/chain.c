@@ -1,48 +1,54 @@
 /* Stages in series over one caller buffer, laid out stage after stage. */
 #include "smoothshaper/chain.h"
 
-sms_status sms_chain_buffer_size(const sms_stage_config *configs, size_t n, double Ts, size_t *n_reals)
+/* Validate every config and size its stage (need[i]); the total into *n_reals. */
+static sms_status size_stages(const sms_stage_config *configs, size_t n, double Ts,
+                              size_t need[SMS_CHAIN_MAX_STAGES], size_t *n_reals)
 {
     size_t total = 0, i;
-    if (configs == NULL || n_reals == NULL)
-        return SMS_ERR_NULL;
     if (n == 0 || n > SMS_CHAIN_MAX_STAGES)
         return SMS_ERR_ORDER;
     for (i = 0; i < n; ++i) {
-        size_t need;
-        sms_status st = sms_stage_buffer_size(&configs[i], Ts, &need);
+        sms_status st = sms_stage_buffer_size(&configs[i], Ts, &need[i]);
         if (st != SMS_OK)
             return st;
-        if (need > (size_t)-1 - total)
+        if (need[i] > (size_t)-1 - total)
             return SMS_ERR_TOO_LONG;
-        total += need;
+        total += need[i];
     }
     *n_reals = total;
     return SMS_OK;
 }
 
+sms_status sms_chain_buffer_size(const sms_stage_config *configs, size_t n, double Ts, size_t *n_reals)
+{
+    size_t need[SMS_CHAIN_MAX_STAGES];
+    if (configs == NULL || n_reals == NULL)
+        return SMS_ERR_NULL;
+    return size_stages(configs, n, Ts, need, n_reals);
+}
+
 sms_status sms_chain_init(sms_chain *chain, sms_stage *stages, const sms_stage_config *configs,
                           size_t n, double Ts, sms_real *buffer, size_t n_reals)
 {
-    size_t total, offset = 0, i;
+    size_t need[SMS_CHAIN_MAX_STAGES], total, offset = 0, i;
     sms_status st;
-    if (chain == NULL || stages == NULL)
+    if (chain == NULL || stages == NULL || configs == NULL)
         return SMS_ERR_NULL;
-    st = sms_chain_buffer_size(configs, n, Ts, &total);
+    st = size_stages(configs, n, Ts, need, &total);
     if (st != SMS_OK)
         return st;
     if (total > 0 && buffer == NULL)
         return SMS_ERR_NULL;
     if (n_reals < total)
         return SMS_ERR_BUFFER_TOO_SMALL;
-    /* Every config is valid and the buffer is large enough: the inits below cannot fail. */
+    /* Every config is valid and the buffer is large enough: the inits below cannot fail, and
+     * each builds its stage once (the sizes above are kept, not asked again). */
     for (i = 0; i < n; ++i) {
-        size_t need;
-        (void)sms_stage_buffer_size(&configs[i], Ts, &need);
-        st = sms_stage_init(&stages[i], &configs[i], Ts, need ? buffer + offset : NULL, need);
+        st = sms_stage_init(&stages[i], &configs[i], Ts, need[i] ? buffer + offset : NULL, need[i]);
         if (st != SMS_OK)
             return st;
-        offset += need;
+        offset += need[i];
     }
     chain->stages = stages;
     chain->n_stages = n;

@@ -117,13 +117,68 @@ def _sources() -> list[str]:
     return [os.path.relpath(p, ROOT) for p in paths]
 
 
+# Binding glue compiled into each module (not part of the C library): Chain.process in one
+# call. It checks every input sample first (the state stays untouched on a bad one), then
+# filters float64 to float64; the float build converts through a small block on the stack,
+# so the float path makes no full-size copy of the signal.
+_GLUE_CDEF = """
+ptrdiff_t smspy_chain_process_f64(sms_chain *chain, const double *in, double *out, size_t n);
+"""
+_GLUE_SOURCE = r"""
+#include <float.h>
+#include <stddef.h>
+#include "smoothshaper/smoothshaper.h"
+
+/* Index of the first sample that is NaN/Inf or does not fit sms_real, or -1. */
+static ptrdiff_t smspy_first_bad_sample(const double *in, size_t n)
+{
+#ifdef SMS_USE_FLOAT
+    const double limit = FLT_MAX;
+#else
+    const double limit = DBL_MAX;
+#endif
+    size_t i;
+    for (i = 0; i < n; ++i)
+        if (!(in[i] >= -limit && in[i] <= limit))
+            return (ptrdiff_t)i;
+    return -1;
+}
+
+/* -1 after filtering all n samples (in == out allowed); else the index of the first bad one,
+ * and nothing filtered. */
+static ptrdiff_t smspy_chain_process_f64(sms_chain *chain, const double *in, double *out, size_t n)
+{
+    const ptrdiff_t bad = smspy_first_bad_sample(in, n);
+    if (bad >= 0)
+        return bad;
+#ifdef SMS_USE_FLOAT
+    float block[1024];
+    while (n > 0) {
+        size_t m = n < 1024 ? n : 1024, i;
+        for (i = 0; i < m; ++i)
+            block[i] = (float)in[i];
+        sms_chain_process(chain, block, block, m);
+        for (i = 0; i < m; ++i)
+            out[i] = (double)block[i];
+        in += m;
+        out += m;
+        n -= m;
+    }
+#else
+    sms_chain_process(chain, in, out, n);
+#endif
+    return -1;
+}
+"""
+
+
 def make_builder(module: str, defines: list[str]) -> FFI:
     ffi = FFI()
-    ffi.cdef(cdef_text(defines))
+    ffi.cdef(cdef_text(defines) + _GLUE_CDEF)
     macros = [(d, None) for d in defines]
     ffi.set_source(
         module,
-        '#include "smoothshaper/smoothshaper.h"\n',
+        _GLUE_SOURCE,
         sources=_sources(),
         # Rebuild when any header changes, not only when a .c file does.
         depends=[os.path.relpath(p, ROOT) for p in sorted(

@@ -187,6 +187,8 @@ class Chain:
             raise ParameterError(
                 "stages", f"stages: a chain needs 1 to {lib.SMS_CHAIN_MAX_STAGES} stages, got {n}")
         configs = ffi.new("sms_stage_config[]", n)
+        need = ffi.new("size_t *")
+        sizes = []
         for i, stage in enumerate(self.stages):
             if stage.kind in _stages.SMOOTHERS and stage.T / self.Ts > MAX_BUFFER_REALS:
                 # Checked here because sizing a billion-sample smoother in C takes seconds.
@@ -197,7 +199,9 @@ class Chain:
                 _fill_config(configs[i], stage)
             except ParameterError as exc:
                 raise ParameterError(exc.parameter, f"{exc}; stages[{i}] is {stage.kind}") from None
-            st = lib.sms_stage_config_validate(ffi.addressof(configs, i), self.Ts)
+            # Validates and sizes the stage (its design is closed-form, O(1)).
+            st = lib.sms_stage_buffer_size(ffi.addressof(configs, i), self.Ts, need)
+            sizes.append(need[0])
             if st != 0:
                 parameter, value = _stage_parameter(stage, st)
                 hint = ""
@@ -213,29 +217,20 @@ class Chain:
                         st)
                 _raise_status(st, lib, ffi, f"stages[{i}] is {stage.kind}, Ts={self.Ts!r}{hint}",
                               parameter, value)
-        n_reals = ffi.new("size_t *")
-        st = lib.sms_chain_buffer_size(configs, n, self.Ts, n_reals)
-        if st != 0:
-            _raise_status(st, lib, ffi, f"chain of {n} stages, Ts={self.Ts!r}")
-        if n_reals[0] > MAX_BUFFER_REALS:
-            self._raise_too_long(configs, n_reals[0])
+        total = sum(sizes)
+        if total > MAX_BUFFER_REALS:
+            self._raise_too_long(sizes, total)
         # Owned by this object for its whole life; the C chain points into both.
-        self._buffer = np.zeros(max(1, n_reals[0]), dtype=_real_dtype(precision))
+        self._buffer = np.zeros(max(1, total), dtype=_real_dtype(precision))
         self._buffer_c = ffi.from_buffer("sms_real[]", self._buffer)
         self._stage_mem = ffi.new("sms_stage[]", n)
         self._chain = ffi.new("sms_chain *")
-        self._configs = configs
         st = lib.sms_chain_init(self._chain, self._stage_mem, configs, n, self.Ts,
-                                self._buffer_c, n_reals[0])
+                                self._buffer_c, total)
         if st != 0:
             _raise_status(st, lib, ffi, f"chain of {n} stages, Ts={self.Ts!r}")
 
-    def _raise_too_long(self, configs, total: int):
-        need = self._ffi.new("size_t *")
-        sizes = []
-        for i in range(len(self.stages)):
-            self._lib.sms_stage_buffer_size(self._ffi.addressof(configs, i), self.Ts, need)
-            sizes.append(need[0])
+    def _raise_too_long(self, sizes: list, total: int):
         i = max(range(len(sizes)), key=sizes.__getitem__)
         parameter = "T" if self.stages[i].kind in _stages.SMOOTHERS else "wn"
         raise ParameterError(
@@ -250,16 +245,23 @@ class Chain:
         """Filter the 1-D signal ``u`` (any length, samples at Ts) and return ``y`` (float64,
         same length). Continues from the current state; ``u`` is not modified.
 
-        Raises ValueError naming ``u`` if it is not 1-D or holds NaN/Inf (state untouched)."""
-        x = _signal("u", u)
-        with np.errstate(over="ignore"):          # float32 overflow is reported just below
-            work = np.array(x, dtype=_real_dtype(self.precision), order="C", copy=True)
-        if self.precision == "float" and not np.isfinite(work).all():
-            raise ValueError("u must be finite in float precision: a sample overflows float32")
-        if work.size:
-            ptr = self._ffi.from_buffer("sms_real[]", work)
-            self._lib.sms_chain_process(self._chain, ptr, ptr, work.size)
-        return work.astype(np.float64, copy=False)
+        Raises ValueError naming ``u`` if it is not 1-D or holds NaN/Inf, or (float
+        precision) a value beyond float32; the state is then untouched."""
+        try:
+            y = np.array(u, dtype=np.float64)   # the output: u is copied once, filtered in place
+        except (TypeError, ValueError):
+            raise ValueError("u must be an array of real numbers") from None
+        if y.ndim != 1:
+            raise ValueError(f"u must be one-dimensional, got shape {y.shape}")
+        if y.size:
+            data = self._ffi.from_buffer("double[]", y)
+            bad = self._lib.smspy_chain_process_f64(self._chain, data, data, y.size)
+            if bad >= 0:
+                if math.isfinite(y[bad]):
+                    raise ValueError(f"u must be finite in float precision: u[{bad}] = "
+                                     f"{y[bad]!r} overflows float32")
+                raise ValueError(f"u must be finite: u[{bad}] = {y[bad]!r}")
+        return y
 
     def step(self, x: float) -> float:
         """Filter one sample and return the output sample."""
@@ -313,9 +315,20 @@ class Chain:
     state = property(get_state, set_state, doc="The dynamic state (see get_state/set_state).")
 
     def copy(self) -> "Chain":
-        """An independent chain with the same stages and the same current state."""
-        twin = Chain(self.stages, Ts=self.Ts, precision=self.precision)
-        twin.set_state(self.get_state())
+        """An independent chain with the same stages and the same current state: a copy of
+        the C instances and their delay lines (nothing is designed again)."""
+        ffi, lib = self._ffi, self._lib
+        twin = Chain.__new__(Chain)
+        twin.Ts, twin.stages, twin.precision = self.Ts, self.stages, self.precision
+        twin._ffi, twin._lib = ffi, lib
+        twin._buffer = self._buffer.copy()
+        twin._buffer_c = ffi.from_buffer("sms_real[]", twin._buffer)
+        n = len(self.stages)
+        twin._stage_mem = ffi.new("sms_stage[]", n)
+        ffi.memmove(twin._stage_mem, self._stage_mem, ffi.sizeof("sms_stage") * n)
+        twin._chain = ffi.new("sms_chain *")
+        twin._chain[0] = self._chain[0]
+        lib.sms_chain_rebind(twin._chain, twin._stage_mem, twin._buffer_c)
         return twin
 
     __copy__ = copy
@@ -352,7 +365,9 @@ class Chain:
             raise ValueError(f"n must be an integer >= 1, got {n!r}")
         impulse = np.zeros(int(n))
         impulse[0] = 1.0
-        return Chain(self.stages, Ts=self.Ts, precision=self.precision).process(impulse)
+        twin = self.copy()
+        twin.reset(0.0)
+        return twin.process(impulse)
 
     def taps(self) -> np.ndarray:
         """The FIR taps of the whole chain (:attr:`length` values, DC gain 1)."""

@@ -232,6 +232,24 @@ def test_copies_are_independent_and_identical(duplicate):
     np.testing.assert_array_equal(twin.process(u), chain.process(u))
 
 
+def test_copy_owns_its_memory():
+    """copy() duplicates the C instances and delay lines and points the copy at its own:
+    it keeps filtering right after the original and its buffers are gone."""
+    u = _signal(400, seed=9)
+    reference = _chain()
+    reference.process(u[:200])
+    expected = reference.process(u[200:])
+    chain = _chain()
+    chain.process(u[:200])
+    twin = chain.copy()
+    assert twin._stage_mem != chain._stage_mem
+    del chain
+    gc.collect()
+    junk = [np.random.default_rng(i).normal(size=10000) for i in range(20)]  # reuse freed memory
+    np.testing.assert_array_equal(twin.process(u[200:]), expected)
+    del junk
+
+
 # -- processing -----------------------------------------------------------------------------
 
 def test_split_blocks_and_steps_equal_one_shot():
