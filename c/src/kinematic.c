@@ -1,26 +1,40 @@
-/* Kinematic design (docs/design.md): lengths of the shortest rest-to-rest chain within
- * n derivative bounds. Design-time code: libm is allowed here (not in any per-sample path). */
+/* Kinematic design (docs/design.md, docs/sampled-limits.md): lengths of the shortest
+ * rest-to-rest chain within n derivative bounds, as a continuous design and on a sample grid.
+ * any per-sample path). */
 #include <math.h>
 #include "smoothshaper/trajectory.h"
 #include "trajectory_internal.h"
+#include "smoother_design.h"
+
+#define KIN_PI 3.14159265358979323846
 
 /*
  * The recursion. A chain M(T0) * C' turns a step of X into a motion whose velocity is
  * (X/T0) times the step response of C' (the rise), held, then the mirrored fall, provided
  * T0 >= D' (the rise's duration) so that rise and fall do not overlap. The rise is the same
  * problem one derivative down: displacement V = X/T0 with the bounds limits[k+1..]. So
- *   D_k(X) = min over V <= L_k of X/V + D_{k+1}(V)   subject to X/V >= D_{k+1}(V).
+ *   D_k(X) = min over V <= cap_k of X/V + D_{k+1}(V)   subject to X/V >= D_{k+1}(V).
  * Time scaling gives D(lambda X) <= lambda D(X) for lambda >= 1, hence V D'(V) <= D(V) and
- * X/V + D_{k+1}(V) decreases with V on the feasible set: V is L_k when feasible, else the
- * root of V D_{k+1}(V) = X (the bound L_k is unreachable; the effective bound is that V).
+ * X/V + D_{k+1}(V) decreases with V on the feasible set: V is cap_k when feasible ("stage k
+ * at its bound"), else the largest V with X/V = D_{k+1}(V) ("stage k tight": T_k equals the
+ * duration of the stages below it).
+ *
+ * Closed form per regime (no nested root finding, so the cost is O(n^2) for any input).
+ * Let m >= k be the first stage at its bound, stages k..m-1 tight, S = T_m + ... + T_{n-1}.
+ * Tight stages double the duration: T_{m-1} = S, T_{m-2} = 2 S, ..., T_k = 2^(m-1-k) S, and
+ * the level entering m is X_m = X / (2^(d(d-1)/2) S^d), d = m - k. Below a stage at its bound
+ * the problem restarts from the known level cap_m, whose duration C_m = D_{m+1}(cap_m) is a
+ * constant (computed once, bottom up). With T_m = X_m / cap_m and S = T_m + C_m:
+ *   S^d (S - C_m) = X / (2^(d(d-1)/2) cap_m),
+ * increasing in S >= C_m with its root in [max(C_m, K^(1/(d+1))), C_m + K^(1/(d+1))]. The
+ * last stage ends the recursion: free, T = c X_{n-1}/L_{n-1} gives S^(d+1) = c X/(2^.. L);
+ * fixed (tuned to a mode), S = T_fixed. The regime is the first m whose decisions agree with
+ * the recursion: not at the bound at j < m (X_j/cap_j < C_j), at the bound at m.
  */
 
-static double last_stage_length(const sms_kin_plan *p, double X)
-{
-    return p->fixed ? p->T_fixed : p->c_last * X / p->L[p->n - 1];
-}
+#define KIN_TOL 1e-12
 
-/* Largest displacement level V allowed at stage k (a fixed last stage caps the level below it). */
+/* Largest level allowed at stage k (a fixed last stage caps the level below it). */
 static double level_cap(const sms_kin_plan *p, size_t k)
 {
     double cap = p->L[k];
@@ -32,96 +46,123 @@ static double level_cap(const sms_kin_plan *p, size_t k)
     return cap;
 }
 
-static double solve_level(const sms_kin_plan *p, size_t k, double X, double *T);
-
-/* g(V) = V * D_{k+1}(V), increasing in V. */
-static double g_of(const sms_kin_plan *p, size_t k, double V)
+/* Root S of d ln S + ln(S - C) = ln K on the bracket of the header comment. */
+static double tight_root(unsigned d, double C, double logK)
 {
-    return V * solve_level(p, k + 1, V, NULL);
+    double r = exp(logK / (double)(d + 1u)), lo = r > C ? r : C, hi = C + r;
+    int it;
+    for (it = 0; it < 200 && lo < hi; ++it) {
+        double mid = 0.5 * (lo + hi), f;
+        if (mid <= lo || mid >= hi)
+            break;
+        f = (double)d * log(mid) + log(mid - C) - logK;
+        if (f < 0.0)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return hi;
 }
 
-/* Root of g(V) = X with g(hi) > X; Illinois regula falsi on (log V, log g): g is a power of V
- * piecewise, so this converges in a few iterations; bisection steps guard the bracket. */
-static double root_level(const sms_kin_plan *p, size_t k, double X, double hi)
+/* Duration D_k(X) of stages k..n-1; lengths into T[k..] when T != NULL. C[j] = D_{j+1}(cap_j)
+ * must be known for j >= k. */
+static double solve_from(const sms_kin_plan *p, const double *C, size_t k, double X, double *T)
 {
-    double ghi = g_of(p, k, hi);
-    double lo = hi * (X / ghi); /* g(lambda V) <= lambda g(V) for lambda <= 1 */
-    double glo = g_of(p, k, lo);
-    double ulo, uhi, flo, fhi;
-    int side = 0, it;
-    if (glo >= X)
-        return lo;
-    ulo = log(lo);
-    uhi = log(hi);
-    flo = log(glo) - log(X);
-    fhi = log(ghi) - log(X);
-    for (it = 0; it < 200; ++it) {
-        double u, f;
-        if (uhi - ulo <= 4e-16 * (fabs(uhi) + fabs(ulo)) + 1e-300)
-            break;
-        u = (it % 8 == 7) ? 0.5 * (ulo + uhi) : (ulo * fhi - uhi * flo) / (fhi - flo);
-        if (!(u > ulo && u < uhi))
-            u = 0.5 * (ulo + uhi);
-        f = log(g_of(p, k, exp(u))) - log(X);
-        if (f == 0.0)
-            return exp(u);
-        if (f < 0.0) {
-            ulo = u;
-            flo = f;
-            if (side == -1)
-                fhi *= 0.5;
-            side = -1;
+    size_t m, best_m = p->n - 1, j;
+    double best_S = 0.0, best_bad = HUGE_VAL, logX = log(X);
+    for (m = k; m < p->n; ++m) {
+        unsigned d = (unsigned)(m - k);
+        double logc = 0.5 * (double)d * ((double)d - 1.0) * 0.69314718055994530942;
+        double S, logXm, bad = 0.0, lx;
+        if (m + 1 == p->n) {
+            if (p->fixed)
+                S = p->T_fixed;
+            else
+                S = exp((log(p->c_last) + logX - logc - log(p->L[m])) / (double)(d + 1u));
         } else {
-            uhi = u;
-            fhi = f;
-            if (side == 1)
-                flo *= 0.5;
-            side = 1;
+            S = tight_root(d, C[m], logX - logc - log(level_cap(p, m)));
+        }
+        logXm = logX - logc - (double)d * log(S);
+        /* the recursion's decisions: stages k..m-1 below their bound, m at it */
+        lx = logX;
+        for (j = k; j < m; ++j) {
+            double Tj = ldexp(S, (int)(m - 1 - j)), excess = lx - log(level_cap(p, j) * C[j]);
+            if (excess > bad)
+                bad = excess;
+            lx -= log(Tj);
+        }
+        if (m + 1 < p->n) {
+            double deficit = log(C[m] * level_cap(p, m)) - logXm;
+            if (deficit > bad)
+                bad = deficit;
+        }
+        if (bad <= KIN_TOL) {
+            best_m = m;
+            best_S = S;
+            best_bad = bad;
+            break;
+        }
+        if (bad < best_bad) {
+            best_bad = bad;
+            best_m = m;
+            best_S = S;
         }
     }
-    return exp(ulo); /* the feasible side: X/V >= D_{k+1}(V) */
-}
-
-/* Level V of stage k for displacement X (closed form when only the last stage is below). */
-static double level_of(const sms_kin_plan *p, size_t k, double X)
-{
-    double cap = level_cap(p, k);
-    double below = solve_level(p, k + 1, cap, NULL);
-    if (X / cap >= below)
-        return cap;
-    if (k + 2 == p->n) {
-        if (p->fixed)
-            return X / p->T_fixed;                           /* X/V = T_fixed */
-        return sqrt(X * p->L[p->n - 1] / p->c_last);         /* X/V = c V / L */
-    }
-    return root_level(p, k, X, cap);
-}
-
-/* Duration of stages k..n-1 for displacement X; writes their lengths to T[k..] if T != NULL. */
-static double solve_level(const sms_kin_plan *p, size_t k, double X, double *T)
-{
-    double V, Tk, rest;
-    if (k + 1 == p->n) {
-        Tk = last_stage_length(p, X);
+    m = best_m;
+    {
+        double S = best_S, total, Tm;
         if (T != NULL)
-            T[k] = Tk;
-        return Tk;
+            for (j = k; j < m; ++j)
+                T[j] = ldexp(S, (int)(m - 1 - j));
+        total = ldexp(S, (int)(m - k));
+        if (m + 1 == p->n) {
+            if (T != NULL)
+                T[m] = S;
+            return total;
+        }
+        /* stage m at its bound, then the problem from the level cap_m */
+        {
+            double X_m = exp(logX - 0.5 * (double)(m - k) * ((double)(m - k) - 1.0) *
+                             0.69314718055994530942 - (double)(m - k) * log(S));
+            double cap = level_cap(p, m), rest;
+            rest = solve_from(p, C, m + 1, cap, T);
+            Tm = X_m / cap;
+            if (Tm < rest) /* rounding at a regime boundary: keep the structure exact */
+                Tm = rest;
+            if (T != NULL) {
+                T[m] = Tm;
+                /* tight stages above m: each exactly the sum of those below it */
+                if (m > k) {
+                    double below = Tm + rest;
+                    size_t i;
+                    for (i = m; i-- > k;) {
+                        T[i] = below;
+                        below += T[i];
+                    }
+                }
+            }
+            if (m > k)
+                return ldexp(Tm + rest, (int)(m - k));
+            return Tm + rest;
+        }
     }
-    V = level_of(p, k, X);
-    rest = solve_level(p, k + 1, V, T);
-    Tk = X / V;
-    if (Tk < rest) /* rounding at the root: keep the structure exact */
-        Tk = rest;
-    if (T != NULL)
-        T[k] = Tk;
-    return Tk + rest;
+}
+
+/* D(h) and lengths for the whole chain. */
+static double solve_plan(const sms_kin_plan *p, double h, double *T)
+{
+    double C[SMS_KINEMATIC_MAX_ORDER];
+    size_t m;
+    for (m = p->n - 1; m-- > 0;)
+        C[m] = solve_from(p, C, m + 1, level_cap(p, m), NULL);
+    return solve_from(p, C, 0, h, T);
 }
 
 static double peak_density(sms_kind kind, double T, double sigma)
 {
     switch (kind) {
     case SMS_HARMONIC:
-        return 1.5707963267948966 / T;
+        return 0.5 * KIN_PI / T;
     case SMS_EXPONENTIAL:
         if (sigma < 0.0)
             return -sigma / -expm1(sigma * T);
@@ -131,10 +172,26 @@ static double peak_density(sms_kind kind, double T, double sigma)
     }
 }
 
+/* Every duration the design can produce is a combination of these ratios (h/vmax, vmax/amax,
+ * ...); keeping each within [KIN_RATIO_MIN, KIN_RATIO_MAX] keeps every intermediate of the
+ * closed forms finite and non-zero, so the check makes the design O(n^2) for any input. */
+#define KIN_RATIO_MAX 1e60
+#define KIN_RATIO_MIN 1e-60
+
+static sms_status check_ratio(double r)
+{
+    if (!(r <= KIN_RATIO_MAX))
+        return SMS_ERR_TOO_LONG; /* also NaN (never here: inputs are finite and > 0) */
+    if (!(r >= KIN_RATIO_MIN))
+        return SMS_ERR_LIMIT;
+    return SMS_OK;
+}
+
 static sms_status validate(double h, const double *limits, size_t n, sms_profile profile,
                            double wn, double zeta)
 {
     size_t i;
+    sms_status st;
     if (limits == NULL)
         return SMS_ERR_NULL;
     if (n < 1 || n > SMS_KINEMATIC_MAX_ORDER)
@@ -144,8 +201,7 @@ static sms_status validate(double h, const double *limits, size_t n, sms_profile
     for (i = 0; i < n; ++i)
         if (!isfinite(limits[i]) || !(limits[i] > 0.0))
             return SMS_ERR_LIMIT;
-    if (profile != SMS_PROFILE_POLYNOMIAL && profile != SMS_PROFILE_TRIGONOMETRIC &&
-        profile != SMS_PROFILE_DAMPED)
+    if ((unsigned)profile > (unsigned)SMS_PROFILE_DAMPED)
         return SMS_ERR_KIND;
     if (!isfinite(wn) || wn < 0.0 || (profile == SMS_PROFILE_DAMPED && wn == 0.0))
         return SMS_ERR_WN;
@@ -153,17 +209,192 @@ static sms_status validate(double h, const double *limits, size_t n, sms_profile
         return SMS_ERR_ORDER;
     if (wn > 0.0 && (!isfinite(zeta) || zeta < 0.0 || zeta >= 1.0))
         return SMS_ERR_ZETA;
+    st = check_ratio(fabs(h) / limits[0]);
+    for (i = 1; i < n && st == SMS_OK; ++i)
+        st = check_ratio(limits[i - 1] / limits[i]);
+    if (st == SMS_OK && wn > 0.0)
+        st = check_ratio(1.0 / wn);
+    return st;
+}
+
+/* Smallest whole number of samples N with N Ts >= T: round(nu) when nu passes the integer
+ * test of docs/exact-mode.md, else ceil(nu); at least 1. */
+static double grid_ceil(double nu)
+{
+    double r = floor(nu + 0.5);
+    if (fabs(nu - r) <= 1e-9 * (nu > 1.0 ? nu : 1.0))
+        return r < 1.0 ? 1.0 : r;
+    return ceil(nu);
+}
+
+/* Largest tap of the exact-timing stage tuned to the mode, and its length in samples. */
+static sms_status tuned_taps(sms_kind kind, double T, double sigma, unsigned k, double Ts,
+                             double *peak, double *support)
+{
+    sms_stage_config c = sms_stage_config_default(kind);
+    sms_smoother_design d;
+    size_t cand[6], i;
+    double best = 0.0;
+    sms_status st;
+    c.T = T;
+    c.sigma = sigma;
+    c.k = k;
+    st = sms_smoother_design_make(&c, Ts, &d);
+    if (st != SMS_OK)
+        return st;
+    /* base taps are constant, decaying or one half sine: the peak is at an end, at the
+     * corrected taps or at the middle of the sine */
+    cand[0] = 0u;
+    cand[1] = 1u;
+    cand[2] = (size_t)(0.5 * d.nu);
+    cand[3] = cand[2] + 1u;
+    cand[4] = d.length >= 2u ? d.length - 2u : 0u;
+    cand[5] = d.length - 1u;
+    for (i = 0; i < 6; ++i)
+        if (cand[i] < d.length) {
+            double t = fabs(sms_smoother_design_tap(&d, cand[i]));
+            if (t > best)
+                best = t;
+        }
+    *peak = best;
+    *support = (double)d.length;
     return SMS_OK;
 }
 
-sms_status sms_kin_solve(double h, const double *limits, size_t n, sms_profile profile,
-                         double wn, double zeta, double *T, sms_kin_last *last)
+/* Largest tap of the integer-N harmonic stage: tan(pi/2N) (N even) or sin(pi/2N) (N odd). */
+static double harmonic_peak_tap(double N)
+{
+    double x = 0.5 * KIN_PI / N;
+    return fmod(N, 2.0) == 0.0 ? tan(x) : sin(x);
+}
+
+/* The sampled bounds of a chain of whole-sample stages N[0..n-1] (the last one may be tuned:
+ * fixed taps of largest value tap_last over supp_last samples), all in logarithms:
+ *  - structure: N[i] >= samples of the stages after it, so that the shifted copies in each
+ *    backward difference never overlap (the discrete form of T_k >= T_k+1 + ... + T_n-1);
+ *  - level i < n-1: h / (N[0] ... N[i] Ts^(i+1)) <= L[i];
+ *  - top: h / (N[0] ... N[n-2] Ts^(n-1)) * (largest tap of the last stage) / Ts <= L[n-1].
+ * Returns 1 when all hold (to 1e-12 relative). */
+static int grid_feasible(const sms_kin_plan *p, double logh, double logTs, const double *N,
+                         sms_kind last_kind, int tuned, double tap_last, double supp_last)
+{
+    size_t n = p->n, i;
+    double below = tuned ? supp_last : N[n - 1], logprod = 0.0, logtap;
+    for (i = n - 1; i-- > 0;) {
+        if (N[i] < below)
+            return 0;
+        below += N[i];
+    }
+    for (i = 0; i + 1 < n; ++i) {
+        logprod += log(N[i]);
+        if (logprod < logh - log(p->L[i]) - (double)(i + 1) * logTs - 1e-12)
+            return 0;
+    }
+    if (tuned)
+        logtap = log(tap_last);
+    else if (last_kind == SMS_HARMONIC) {
+        if (N[n - 1] < 2.0)
+            return 0; /* one sample of a half sine is its zero: not a stage */
+        logtap = log(harmonic_peak_tap(N[n - 1]));
+    }
+    else
+        logtap = -log(N[n - 1]);
+    return logprod - logtap >= logh - log(p->L[n - 1]) - (double)n * logTs - 1e-12;
+}
+
+/* Whole-sample lengths: the shortest total among N[i] = ceil(T[i]/Ts) + {-1, 0, 1} that
+ * meets grid_feasible() (ties: longer early stages), with the greedy rounding (each N[i]
+ * the larger of its ceiling and the samples after it, which is always feasible) as the
+ * fallback. N[n-1] = 0 for a tuned last stage (it keeps its exact length). */
+static sms_status on_grid(const sms_kin_plan *p, double h, const double *T, sms_kind last_kind,
+                          int tuned, double supp_last, double Ts, double *N)
+{
+    size_t n = p->n, m = tuned ? n - 1 : n, i, combos = 1, c;
+    double base[SMS_KINEMATIC_MAX_ORDER], cand[SMS_KINEMATIC_MAX_ORDER], below, total, best;
+    double logh = log(h), logTs = log(Ts), tap_last = 0.0;
+    for (i = 0; i < n; ++i)
+        if (!(T[i] / Ts <= 4503599627370496.0)) /* 2^52 samples */
+            return SMS_ERR_TOO_LONG;
+    if (tuned)
+        tap_last = p->rho_fixed * Ts; /* >= the largest tap: the density the design used */
+    /* greedy */
+    if (tuned) {
+        N[n - 1] = 0.0;
+        below = supp_last;
+    } else {
+        double nu = T[n - 1] / Ts;
+        N[n - 1] = grid_ceil(nu);
+        if (last_kind == SMS_HARMONIC) {
+            if (N[n - 1] < 2.0)
+                N[n - 1] = 2.0;
+            if (harmonic_peak_tap(N[n - 1]) > 0.5 * KIN_PI / nu)
+                N[n - 1] += 1.0; /* an odd N always has peak sin(pi/2N) < pi/2N */
+        }
+        below = N[n - 1];
+    }
+    total = tuned ? 0.0 : N[n - 1];
+    for (i = n - 1; i-- > 0;) {
+        double Ni = grid_ceil(T[i] / Ts);
+        if (Ni < below)
+            Ni = below;
+        N[i] = Ni;
+        below += Ni;
+        total += Ni;
+    }
+    if (!(total <= 4503599627370496.0))
+        return SMS_ERR_TOO_LONG;
+    best = total;
+    /* neighbourhood search */
+    for (i = 0; i < m; ++i) {
+        base[i] = grid_ceil(T[i] / Ts);
+        combos *= 3u;
+    }
+    cand[n - 1] = 0.0;
+    for (c = 0; c < combos; ++c) {
+        size_t code = c;
+        double sum = 0.0;
+        int ok = 1, better;
+        for (i = 0; i < m; ++i) {
+            cand[i] = base[i] + (double)(code % 3u) - 1.0;
+            code /= 3u;
+            if (cand[i] < 1.0)
+                ok = 0;
+            sum += cand[i];
+        }
+        if (!ok || sum > best)
+            continue;
+        if (!grid_feasible(p, logh, logTs, cand, last_kind, tuned, tap_last, supp_last))
+            continue;
+        better = sum < best;
+        for (i = 0; i < m && !better && sum == best; ++i) {
+            if (cand[i] != N[i]) {
+                better = cand[i] > N[i];
+                break;
+            }
+        }
+        if (better) {
+            best = sum;
+            for (i = 0; i < m; ++i)
+                N[i] = cand[i];
+        }
+    }
+    return SMS_OK;
+}
+
+/* The design: continuous lengths (Ts == 0) or lengths on the grid of Ts (docs/sampled-limits.md):
+ * every stage but a mode-tuned last one lasts a whole number of samples N_k >= T_k/Ts, and
+ * N_k >= N_{k+1} + ... + N_{n-1}, so the sampled differences obey the bounds. */
+sms_status sms_kin_solve_sampled(double h, const double *limits, size_t n, sms_profile profile,
+                                 double wn, double zeta, double Ts, double *T, sms_kin_last *last)
 {
     sms_kin_plan p;
     size_t i;
+    double support_last = 0.0;
     sms_status st = validate(h, limits, n, profile, wn, zeta);
     if (st != SMS_OK)
         return st;
+    if (!(Ts >= 0.0) || !isfinite(Ts))
+        return SMS_ERR_SAMPLE_PERIOD;
     p.n = n;
     for (i = 0; i < n; ++i)
         p.L[i] = limits[i];
@@ -173,25 +404,26 @@ sms_status sms_kin_solve(double h, const double *limits, size_t n, sms_profile p
     last->kind = profile == SMS_PROFILE_TRIGONOMETRIC ? SMS_HARMONIC : SMS_RECTANGULAR;
     if (wn == 0.0) {
         p.fixed = 0;
-        p.c_last = profile == SMS_PROFILE_TRIGONOMETRIC ? 1.5707963267948966 : 1.0;
+        p.c_last = profile == SMS_PROFILE_TRIGONOMETRIC ? 0.5 * KIN_PI : 1.0;
         p.T_fixed = p.rho_fixed = 0.0;
-        (void)solve_level(&p, 0, h, T);
-        return SMS_OK;
+        (void)solve_plan(&p, h, T);
     } else {
         /* Mode-tuned last stage: try the multiples k Tm, keep the shortest feasible chain.
-         * Past the first k whose peak no longer caps the level below, durations only grow. */
+         * Past the first k whose peak no longer caps the level below, durations only grow.
+         * On a grid the stage keeps its exact length (its zero stays on the mode) and its
+         * sampled peak density (largest tap / Ts) bounds the top derivative. */
         double wd = wn * sqrt(1.0 - zeta * zeta);
-        double Tm, best = HUGE_VAL, Tbest[SMS_KINEMATIC_MAX_ORDER];
+        double Tm, best = HUGE_VAL, Tbest[SMS_KINEMATIC_MAX_ORDER], supp_best = 0.0;
         unsigned k, step = 1u, kbest = 0u;
         if (profile == SMS_PROFILE_DAMPED) {
             last->kind = SMS_EXPONENTIAL;
             last->sigma = -zeta * wn;
         }
         if (profile == SMS_PROFILE_TRIGONOMETRIC) {
-            Tm = 3.0 * 3.14159265358979323846 / wd;
-            step = 2u; /* odd multiples only (docs/errata.md) */
+            Tm = 3.0 * KIN_PI / wd;
+            step = 2u; /* odd multiples only */
         } else {
-            Tm = 2.0 * 3.14159265358979323846 / wd;
+            Tm = 2.0 * KIN_PI / wd;
         }
         p.fixed = 1;
         p.c_last = 0.0;
@@ -207,7 +439,7 @@ sms_status sms_kin_solve(double h, const double *limits, size_t n, sms_profile p
             } else {
                 uncapped = p.L[n - 2] * p.rho_fixed <= p.L[n - 1];
             }
-            dur = solve_level(&p, 0, h, Tk);
+            dur = solve_plan(&p, h, Tk);
             if (dur < best) {
                 best = dur;
                 kbest = k;
@@ -219,11 +451,43 @@ sms_status sms_kin_solve(double h, const double *limits, size_t n, sms_profile p
         }
         if (kbest == 0u)
             return SMS_ERR_TOO_LONG;
+        if (Ts > 0.0) {
+            /* k is chosen on the continuous design (O(1) per multiple); its sampled taps
+             * (O(length), once) then set the density that bounds the top derivative */
+            double tap;
+            p.T_fixed = kbest * Tm;
+            p.rho_fixed = peak_density(last->kind, p.T_fixed, last->sigma);
+            st = tuned_taps(last->kind, p.T_fixed, last->sigma, kbest, Ts, &tap, &supp_best);
+            if (st != SMS_OK)
+                return st;
+            if (tap / Ts > p.rho_fixed) {
+                p.rho_fixed = tap / Ts;
+                if (n == 1 && h * p.rho_fixed > p.L[0])
+                    return SMS_ERR_TOO_LONG;
+                (void)solve_plan(&p, h, Tbest);
+            }
+        }
         last->k = kbest;
+        support_last = supp_best;
         for (i = 0; i < n; ++i)
             T[i] = Tbest[i];
-        return SMS_OK;
     }
+    if (Ts > 0.0) {
+        double N[SMS_KINEMATIC_MAX_ORDER];
+        st = on_grid(&p, h, T, last->kind, wn > 0.0, support_last, Ts, N);
+        if (st != SMS_OK)
+            return st;
+        for (i = 0; i < n; ++i)
+            if (N[i] > 0.0)
+                T[i] = N[i] * Ts;
+    }
+    return SMS_OK;
+}
+
+sms_status sms_kin_solve(double h, const double *limits, size_t n, sms_profile profile,
+                         double wn, double zeta, double *T, sms_kin_last *last)
+{
+    return sms_kin_solve_sampled(h, limits, n, profile, wn, zeta, 0.0, T, last);
 }
 
 double sms_kin_peak_density(sms_kind kind, double T, double sigma)
@@ -233,17 +497,18 @@ double sms_kin_peak_density(sms_kind kind, double T, double sigma)
 
 /* The solve both public designs share, with their capacity check. */
 static sms_status solve_into(double h, const double *limits, size_t n, sms_profile profile,
-                             double wn, double zeta, size_t capacity,
+                             double wn, double zeta, double Ts, size_t capacity,
                              double lengths[SMS_KINEMATIC_MAX_ORDER], sms_kin_last *last)
 {
-    sms_status st = sms_kin_solve(h, limits, n, profile, wn, zeta, lengths, last);
+    sms_status st = sms_kin_solve_sampled(h, limits, n, profile, wn, zeta, Ts, lengths, last);
     if (st != SMS_OK)
         return st;
     return capacity < n ? SMS_ERR_BUFFER_TOO_SMALL : SMS_OK;
 }
 
 sms_status sms_kinematic_design(double h, const double *limits, size_t n, sms_profile profile,
-                                double wn, double zeta, double *T, size_t capacity, size_t *count)
+                                double wn, double zeta, double Ts, double *T, size_t capacity,
+                                size_t *count)
 {
     double lengths[SMS_KINEMATIC_MAX_ORDER];
     sms_kin_last last;
@@ -251,7 +516,7 @@ sms_status sms_kinematic_design(double h, const double *limits, size_t n, sms_pr
     sms_status st;
     if (T == NULL || count == NULL)
         return SMS_ERR_NULL;
-    st = solve_into(h, limits, n, profile, wn, zeta, capacity, lengths, &last);
+    st = solve_into(h, limits, n, profile, wn, zeta, Ts, capacity, lengths, &last);
     if (st != SMS_OK)
         return st;
     for (i = 0; i < n; ++i)
@@ -261,7 +526,7 @@ sms_status sms_kinematic_design(double h, const double *limits, size_t n, sms_pr
 }
 
 sms_status sms_kinematic_configs(double h, const double *limits, size_t n, sms_profile profile,
-                                 double wn, double zeta, sms_stage_config *configs,
+                                 double wn, double zeta, double Ts, sms_stage_config *configs,
                                  size_t capacity, size_t *count)
 {
     double lengths[SMS_KINEMATIC_MAX_ORDER];
@@ -270,7 +535,9 @@ sms_status sms_kinematic_configs(double h, const double *limits, size_t n, sms_p
     sms_status st;
     if (configs == NULL || count == NULL)
         return SMS_ERR_NULL;
-    st = solve_into(h, limits, n, profile, wn, zeta, capacity, lengths, &last);
+    if (!(Ts > 0.0) || !isfinite(Ts))
+        return SMS_ERR_SAMPLE_PERIOD;
+    st = solve_into(h, limits, n, profile, wn, zeta, Ts, capacity, lengths, &last);
     if (st != SMS_OK)
         return st;
     for (i = 0; i < n; ++i) {

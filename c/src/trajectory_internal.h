@@ -21,9 +21,12 @@ typedef struct sms_kin_last {
     unsigned k;
 } sms_kin_last;
 
-/* Validate and design: T[0..n-1] and the last stage's family. */
+/* Validate and design: T[0..n-1] (continuous lengths) and the last stage's family. */
 sms_status sms_kin_solve(double h, const double *limits, size_t n, sms_profile profile,
                          double wn, double zeta, double *T, sms_kin_last *last);
+/* As sms_kin_solve(), on the grid of Ts when Ts > 0 (sms_kinematic_design()). */
+sms_status sms_kin_solve_sampled(double h, const double *limits, size_t n, sms_profile profile,
+                                 double wn, double zeta, double Ts, double *T, sms_kin_last *last);
 /* Peak of the normalised impulse response of a rectangular, harmonic or exponential stage. */
 double sms_kin_peak_density(sms_kind kind, double T, double sigma);
 

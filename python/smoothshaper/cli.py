@@ -186,8 +186,12 @@ def stage_rows(stages: list[Stage], Ts: float | None) -> tuple[list[str], list[l
                s.k if smoother else None, s.order if s.kind == "zvn" else None,
                None if s.kind in _stages.NOTCHES else s.timing]
         if Ts is not None:
-            from .filters import Chain
-            row.append(Chain([s], Ts=Ts).length or "IIR")
+            from .filters import Chain, ParameterError
+            try:
+                row.append(Chain([s], Ts=Ts).length or "IIR")
+            except ParameterError as exc:    # name the stage by its place in the whole chain
+                raise ParameterError(exc.parameter, str(exc).replace(
+                    "stages[0]", f"stages[{len(rows)}]"), exc.status) from None
         rows.append(row)
     return header, rows
 
@@ -206,7 +210,7 @@ def cmd_design(args) -> int:
                            EXIT_UNAVAILABLE) from None
         stages = list(design_kinematic(h=args.h, vmax=args.vmax, amax=args.amax,
                                        jmax=args.jmax, profile=args.profile,
-                                       wn=args.wn, zeta=args.zeta))
+                                       wn=args.wn, zeta=args.zeta, Ts=args.Ts))
         stages += _chain_from_args(argparse.Namespace(stage=args.stage, kind=None))
     else:
         stages = _chain_from_args(args)

@@ -1,10 +1,13 @@
 """Kinematic design (docs/design.md): the shortest rest-to-rest chain within bounds.
 
-``kinematic(h=, vmax=, amax=, jmax=, higher=(), profile=, wn=, zeta=)`` calls the C design
-(``sms_kinematic_configs``) and returns :class:`~smoothshaper.stages.Stage` objects whose
-durations sum to the trajectory's duration. ``kinematic_reference`` is an independent pure-Python
-implementation of the same design (bisection instead of the C core's regula falsi and closed
-forms), used as the test oracle.
+``kinematic(h=, vmax=, amax=, jmax=, higher=(), profile=, wn=, zeta=, Ts=)`` calls the C design
+(``sms_kinematic_design`` / ``sms_kinematic_configs``) and returns
+:class:`~smoothshaper.stages.Stage` objects whose durations sum to the trajectory's duration.
+With ``Ts`` the lengths lie on that sample grid and the chain run at ``Ts`` keeps every bound
+at every sample (its backward differences, docs/sampled-limits.md); without it they are the
+continuous optimum. ``kinematic_reference`` is an independent pure-Python implementation of
+the same design (nested bisection instead of the C core's closed forms per regime), used as
+the test oracle.
 
 Bounds: ``vmax`` on |q'|, ``amax`` on |q''|, ``jmax`` on |q'''|, then ``higher`` for the 4th,
 5th, ... derivatives (at most 8 in all). Profiles:
@@ -19,7 +22,10 @@ bound. Seed 001 sec. 5.2 (T3 = 2*pi/wn) is ``jmax >= amax * wn / (2*pi)`` with `
 """
 from __future__ import annotations
 
+import itertools
 import math
+
+import numpy as np
 
 from . import stages as _stages
 from .filters import ParameterError, _backend, _raise_status
@@ -65,15 +71,75 @@ def _mode(profile, wn, zeta) -> tuple[float, float]:
     return wn, zeta
 
 
+#: Every stage length is a combination of the ratios h/vmax, vmax/amax, amax/jmax, ... and
+#: 1/wn; the C design refuses a ratio outside [1e-60, 1e60] s (in O(1), before any iteration).
+RATIO_RANGE = (1e-60, 1e60)
+#: Most samples a design on a grid may span (counts stay exact in a double).
+MAX_SAMPLES = 2.0 ** 52
+
+
+def _names(n: int) -> list[str]:
+    return ["vmax", "amax", "jmax"][:n] + [f"higher[{i}]" for i in range(max(0, n - 3))]
+
+
+def _check_ratios(h: float, limits: list[float], wn: float) -> None:
+    """ParameterError naming the bound (and h) whose ratio no usable duration can carry."""
+    names = _names(len(limits))
+    pairs = [("h", abs(h), names[0], limits[0])]
+    pairs += [(names[i - 1], limits[i - 1], names[i], limits[i]) for i in range(1, len(limits))]
+    for num_name, num, den_name, den in pairs:
+        r = num / den
+        if not RATIO_RANGE[0] <= r <= RATIO_RANGE[1]:
+            what = "longer than 1e60 s" if not r <= RATIO_RANGE[1] else "shorter than 1e-60 s"
+            raise ParameterError(
+                den_name, f"{num_name}/{den_name} = {r:.6g} s: a stage of the design would be "
+                f"{what} ({num_name}={num!r}, {den_name}={den!r}); bring {den_name} and "
+                f"{num_name} closer together", -15 if r > 1 else -17)
+    if wn and not RATIO_RANGE[0] <= 1.0 / wn <= RATIO_RANGE[1]:
+        raise ParameterError("wn", f"wn = {wn!r} rad/s: the mode period 2 pi/wn is outside "
+                             "[1e-60, 1e60] s", -6)
+
+
+def _design_error(st: int, lib, ffi, *, h, limits, Ts, wn) -> None:
+    names = _names(len(limits))
+    given = ", ".join(f"{n}={v!r}" for n, v in zip(["h"] + names, [h] + limits))
+    if st == -15:
+        if Ts:
+            raise ParameterError("Ts", f"Ts = {Ts!r} s: the design ({given}) spans more than "
+                                 f"2^52 samples (or no mode multiple k <= {MAX_MULTIPLE} meets "
+                                 "the bounds)", st)
+        raise ParameterError("wn", f"wn: no multiple k <= {MAX_MULTIPLE} of the mode period "
+                             f"meets the bounds ({given})", st)
+    if st in (-16, -4) and wn:
+        raise ParameterError("wn", f"wn = {wn!r} rad/s: the stage tuned to the mode cannot be "
+                             f"placed on the grid Ts = {Ts!r} s (its zero is at or above the "
+                             f"Nyquist frequency pi/Ts = {math.pi / Ts:.6g} rad/s, or the stage "
+                             "is shorter than one sample)", st)
+    _raise_status(st, lib, ffi, f"kinematic design ({given})")
+
+
 def kinematic(*, h: float, vmax: float, amax: float | None = None, jmax: float | None = None,
               higher=(), profile: str = "polynomial", wn: float | None = None,
-              zeta: float = 0.0) -> list[Stage]:
+              zeta: float = 0.0, Ts: float | None = None) -> list[Stage]:
     """Stages of the shortest rest-to-rest chain for displacement ``h`` within the bounds.
 
     Returns one stage per bound (first ones rectangular, the last per ``profile``); their
     ``T`` sum to the trajectory's duration. For three bounds and ``profile="polynomial"`` this
     is the time-optimal jerk-limited trajectory (e.g. h=40, vmax=250, amax=5000, jmax=2e5:
-    T = 0.16, 0.05, 0.025 s). Raises ``ValueError`` naming the offending parameter.
+    T = 0.16, 0.05, 0.025 s).
+
+    ``Ts`` [s]: the sample period the chain will run at. With it every stage (except a last
+    stage tuned to a mode, which keeps its exact length and zero) lasts a whole number of
+    samples, at least its continuous length and at least the samples of the stages after it,
+    so that a step of ``h`` through ``Chain(stages, Ts=Ts)`` has backward differences
+    ``|diff(q, i)| / Ts**i`` within the i-th bound at every sample (docs/sampled-limits.md;
+    the price is under one sample per stage for up to three bounds). Without ``Ts`` the
+    lengths are the continuous optimum, for analysis; run at a ``Ts`` off their grid, exact
+    timing can exceed a bound between samples' differences by up to about 13 %.
+
+    Raises :class:`~smoothshaper.filters.ParameterError` (a ``ValueError``) naming the
+    offending parameter: a bound, ``h``, ``wn``, ``zeta``, ``Ts``; extreme combinations
+    name the pair whose ratio no duration can carry (e.g. ``h/vmax = 1e+318 s``).
     """
     h = _finite("h", h)
     if h == 0:
@@ -83,22 +149,40 @@ def kinematic(*, h: float, vmax: float, amax: float | None = None, jmax: float |
     if profile == "damped" and len(limits) < 2:
         raise ValueError("amax must be given for profile='damped' (the exponential stage is "
                          "the jerk/acceleration stage)")
+    Ts_ = 0.0 if Ts is None else _positive("Ts", Ts)
+    _check_ratios(h, limits, wn_)
     ffi, lib = _backend("double")
     n = len(limits)
-    configs = ffi.new("sms_stage_config[]", n)
     count = ffi.new("size_t *")
+    if Ts is None:
+        T = ffi.new("double[]", n)
+        st = lib.sms_kinematic_design(h, ffi.new("double[]", limits), n,
+                                      PROFILES.index(profile), wn_, zeta_, 0.0, T, n, count)
+        if st != 0:
+            _design_error(st, lib, ffi, h=h, limits=limits, Ts=None, wn=wn_)
+        return _continuous_stages(list(T), profile, wn_, zeta_, h, limits)
+    configs = ffi.new("sms_stage_config[]", n)
     st = lib.sms_kinematic_configs(h, ffi.new("double[]", limits), n, PROFILES.index(profile),
-                                   wn_, zeta_, configs, n, count)
+                                   wn_, zeta_, Ts_, configs, n, count)
     if st != 0:
-        if st == -15:
-            raise ParameterError("wn", f"wn: no multiple k <= {MAX_MULTIPLE} of the mode period "
-                                 "meets the bounds", st)
-        _raise_status(st, lib, ffi, "kinematic design")
+        _design_error(st, lib, ffi, h=h, limits=limits, Ts=Ts_, wn=wn_)
     out = []
     for i in range(count[0]):
         c = configs[i]
         out.append(Stage(_stages.KINDS[c.kind], T=c.T, sigma=c.sigma, k=c.k))
     return out
+
+
+def _continuous_stages(T, profile, wn, zeta, h, limits) -> list[Stage]:
+    """Stage objects for continuous lengths: the last stage's family and mode multiple."""
+    last, sigma, k = ("harmonic" if profile == "trigonometric" else "rectangular"), 0.0, 1
+    if wn:
+        wd = wn * math.sqrt(1 - zeta * zeta)
+        if profile == "damped":
+            last, sigma = "exponential", -zeta * wn
+        Tm = (3 * math.pi if last == "harmonic" else 2 * math.pi) / wd
+        k = max(1, int(round(T[-1] / Tm)))
+    return [Stage("rectangular", T=t) for t in T[:-1]] + [Stage(last, T=T[-1], sigma=sigma, k=k)]
 
 
 # ----------------------------------------------------------------------------------------------
@@ -152,9 +236,84 @@ class _Problem:
         return [max(X / lo, sum(rest))] + rest
 
 
+def _grid_samples(nu: float) -> int:
+    """Whole samples covering nu: round(nu) within the 1e-9 integer test, else ceil; >= 1."""
+    r = math.floor(nu + 0.5)
+    if abs(nu - r) <= 1e-9 * max(nu, 1.0):
+        return max(1, int(r))
+    return int(math.ceil(nu))
+
+
+def _on_grid(T: list[float], Ts: float, h: float, limits: list[float], tuned_tap=None,
+             tuned_support=None, harmonic_last=False):
+    """Reference rounding to whole samples: the shortest total among
+    N_k = ceil(T_k/Ts) + {-1, 0, 1} whose chain keeps every bound at every sample (ties:
+    longer early stages), else the greedy N_k = max(ceil(T_k/Ts), samples below). Sufficient
+    conditions, each checked directly: N_k >= sum of the samples after it (copies in the
+    differences never overlap), h / (N_0 ... N_i Ts^(i+1)) <= L_i, and the top derivative
+    h / (N_0 ... N_(n-2) Ts^(n-1)) * (largest tap of the last stage) / Ts <= L_(n-1)."""
+    n = len(T)
+    tuned = tuned_tap is not None
+
+    def last_tap(N_last):
+        if tuned:
+            return tuned_tap
+        if harmonic_last:
+            if N_last < 2:
+                return 1.0
+            taps = np.sin(np.pi * np.arange(N_last) / N_last)
+            return taps.max() / taps.sum()
+        return 1.0 / N_last
+
+    def support(N):
+        return tuned_support if tuned else N[-1]
+
+    def ok(N):
+        if harmonic_last and N[-1] < 2:
+            return False
+        below = support(N)
+        for i in range(n - 2, -1, -1):
+            if N[i] < below:
+                return False
+            below += N[i]
+        prod = 1.0
+        for i in range(n - 1):
+            prod *= N[i]
+            if h / (prod * Ts ** (i + 1)) > limits[i] * (1 + 1e-12):
+                return False
+        return h / (prod * Ts ** (n - 1)) * last_tap(N[-1]) / Ts <= limits[-1] * (1 + 1e-12)
+
+    # greedy (always feasible)
+    N = [0] * n
+    if not tuned:
+        nu = T[-1] / Ts
+        N[-1] = _grid_samples(nu)
+        if harmonic_last:
+            N[-1] = max(N[-1], 2)
+            if last_tap(N[-1]) > math.pi / (2 * nu):
+                N[-1] += 1
+    below = support(N)
+    for i in range(n - 2, -1, -1):
+        N[i] = max(_grid_samples(T[i] / Ts), below)
+        below += N[i]
+    m = n - 1 if tuned else n
+    base = [_grid_samples(T[i] / Ts) for i in range(m)]
+    best = (sum(N[:m]), [-x for x in N[:m]])
+    for offsets in itertools.product((-1, 0, 1), repeat=m):
+        cand = [b + o for b, o in zip(base, offsets)]
+        if min(cand) < 1:
+            continue
+        key = (sum(cand), [-x for x in cand])
+        if key < best and ok(cand + ([0] if tuned else [])):
+            best, N[:m] = key, cand
+    return [N[i] * Ts if N[i] else T[i] for i in range(n)]
+
+
 def kinematic_reference(*, h, vmax, amax=None, jmax=None, higher=(), profile="polynomial",
-                        wn=None, zeta=0.0) -> list[Stage]:
+                        wn=None, zeta=0.0, Ts=None) -> list[Stage]:
     """Pure-Python reference of :func:`kinematic` (same contract, independent code)."""
+    from .reference.filtering import impulse_response
+
     h = abs(_finite("h", h))
     if h == 0:
         raise ValueError("h must be non-zero")
@@ -164,6 +323,9 @@ def kinematic_reference(*, h, vmax, amax=None, jmax=None, higher=(), profile="po
     if wn_ == 0.0:
         prob = _Problem(limits, c_last=math.pi / 2 if last_kind == "harmonic" else 1.0)
         T = prob.lengths(0, h)
+        if Ts is not None:
+            T = _on_grid(T, _positive("Ts", Ts), h, limits,
+                         harmonic_last=last_kind == "harmonic")
         return [Stage("rectangular", T=t) for t in T[:-1]] + [Stage(last_kind, T=T[-1])]
     sigma = 0.0
     if profile == "damped":
@@ -188,6 +350,13 @@ def kinematic_reference(*, h, vmax, amax=None, jmax=None, higher=(), profile="po
     if best is None:
         raise ValueError(f"wn: no multiple k <= {MAX_MULTIPLE} of the mode period meets the bounds")
     k, T = best
+    if Ts is not None:
+        # the tuned stage keeps its exact taps; its largest tap / Ts bounds the top derivative
+        Ts = _positive("Ts", Ts)
+        taps = impulse_response(Stage(last_kind, T=k * Tm, sigma=sigma, k=k), Ts=Ts)
+        rho = max(_peak_density(last_kind, k * Tm, sigma), float(np.max(np.abs(taps))) / Ts)
+        T = _Problem(limits, T_fixed=k * Tm, rho=rho).lengths(0, h)
+        T = _on_grid(T, Ts, h, limits, tuned_tap=rho * Ts, tuned_support=len(taps))
     return ([Stage("rectangular", T=t) for t in T[:-1]] +
             [Stage(last_kind, T=T[-1], sigma=sigma, k=k)])
 

@@ -70,7 +70,7 @@ int main(void)
         t0 = now();
         for (k = 0; k < m; ++k) {
             L[0] = 250.0 + (double)(k % 100);
-            sms_kinematic_design(0.4 + 1e-3 * (double)(k % 1000), L, 3, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, T, 3, &cnt);
+            sms_kinematic_design(0.4 + 1e-3 * (double)(k % 1000), L, 3, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, 0.0, T, 3, &cnt);
             sink += (sms_real)T[0];
         }
         design_ns = (now() - t0) / (double)m * 1e9;

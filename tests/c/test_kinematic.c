@@ -65,19 +65,19 @@ static void test_seed_values(void)
 {
     double L[3] = {250.0, 5000.0, 200000.0}, T[4];
     size_t n = 0;
-    CHECK_STATUS(sms_kinematic_design(40.0, L, 3, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, T, 4, &n), SMS_OK);
+    CHECK_STATUS(sms_kinematic_design(40.0, L, 3, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, 0.0, T, 4, &n), SMS_OK);
     CHECK(n == 3);
     CHECK_CLOSE(T[0], 0.16, 1e-14, 1.0);
     CHECK_CLOSE(T[1], 0.05, 1e-14, 1.0);
     CHECK_CLOSE(T[2], 0.025, 1e-14, 1.0);
     /* seed 001: harmonic alone, modified trapezoid, modified double-S */
-    CHECK_STATUS(sms_kinematic_design(40.0, L, 1, SMS_PROFILE_TRIGONOMETRIC, 0.0, 0.0, T, 4, &n), SMS_OK);
+    CHECK_STATUS(sms_kinematic_design(40.0, L, 1, SMS_PROFILE_TRIGONOMETRIC, 0.0, 0.0, 0.0, T, 4, &n), SMS_OK);
     CHECK_CLOSE(T[0], PI * 40.0 / 500.0, 1e-14, 1.0);
     CHECK(fabs(T[0] - 0.2513) < 5e-5);
-    CHECK_STATUS(sms_kinematic_design(40.0, L, 2, SMS_PROFILE_TRIGONOMETRIC, 0.0, 0.0, T, 4, &n), SMS_OK);
+    CHECK_STATUS(sms_kinematic_design(40.0, L, 2, SMS_PROFILE_TRIGONOMETRIC, 0.0, 0.0, 0.0, T, 4, &n), SMS_OK);
     CHECK_CLOSE(T[0], 0.16, 1e-14, 1.0);
     CHECK(fabs(T[1] - 0.0785) < 5e-5);
-    CHECK_STATUS(sms_kinematic_design(40.0, L, 3, SMS_PROFILE_TRIGONOMETRIC, 0.0, 0.0, T, 4, &n), SMS_OK);
+    CHECK_STATUS(sms_kinematic_design(40.0, L, 3, SMS_PROFILE_TRIGONOMETRIC, 0.0, 0.0, 0.0, T, 4, &n), SMS_OK);
     CHECK_CLOSE(T[0], 0.16, 1e-14, 1.0);
     CHECK_CLOSE(T[1], 0.05, 1e-14, 1.0);
     CHECK(fabs(T[2] - 0.0393) < 5e-5);
@@ -90,14 +90,14 @@ static void test_mode_tuned(void)
     double L[3] = {250.0, 5000.0, 1e6}, T[3];
     sms_stage_config cfg[3];
     size_t n;
-    CHECK_STATUS(sms_kinematic_design(40.0, L, 3, SMS_PROFILE_POLYNOMIAL, 260.4, 0.0, T, 3, &n), SMS_OK);
+    CHECK_STATUS(sms_kinematic_design(40.0, L, 3, SMS_PROFILE_POLYNOMIAL, 260.4, 0.0, 0.0, T, 3, &n), SMS_OK);
     CHECK_CLOSE(T[0], 0.16, 1e-14, 1.0);
     CHECK_CLOSE(T[1], 0.05, 1e-14, 1.0);
     CHECK_CLOSE(T[2], 2.0 * PI / 260.4, 1e-14, 1.0);
     CHECK(fabs(T[2] - 0.0241) < 5e-5);
     /* Damped-Jerk: exponential jerk stage, T_J = k Td with the jerk bound met */
     L[2] = 200000.0;
-    CHECK_STATUS(sms_kinematic_configs(40.0, L, 3, SMS_PROFILE_DAMPED, 122.0, 0.1, cfg, 3, &n), SMS_OK);
+    CHECK_STATUS(sms_kinematic_configs(40.0, L, 3, SMS_PROFILE_DAMPED, 122.0, 0.1, 1e-4, cfg, 3, &n), SMS_OK);
     CHECK(cfg[2].kind == SMS_EXPONENTIAL);
     CHECK_CLOSE(cfg[2].sigma, -12.2, 1e-14, 12.2);
     {
@@ -121,7 +121,7 @@ static void test_mode_tuned(void)
         }
     }
     /* trigonometric tuned: odd multiples of 3 pi / wd only */
-    CHECK_STATUS(sms_kinematic_configs(40.0, L, 3, SMS_PROFILE_TRIGONOMETRIC, 300.0, 0.0, cfg, 3, &n), SMS_OK);
+    CHECK_STATUS(sms_kinematic_configs(40.0, L, 3, SMS_PROFILE_TRIGONOMETRIC, 300.0, 0.0, 1e-4, cfg, 3, &n), SMS_OK);
     CHECK(cfg[2].kind == SMS_HARMONIC);
     CHECK(cfg[2].k % 2u == 1u);
     CHECK_CLOSE(cfg[2].T, cfg[2].k * 3.0 * PI / 300.0, 1e-14, 1.0);
@@ -138,7 +138,7 @@ static void test_double_s_random(void)
         L[0] = log_uniform(&seed, 1e-3, 1e3);
         L[1] = log_uniform(&seed, 1e-3, 1e5);
         L[2] = log_uniform(&seed, 1e-3, 1e7);
-        CHECK_STATUS(sms_kinematic_design(trial % 2 ? h : -h, L, 3, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, T, 3, &n), SMS_OK);
+        CHECK_STATUS(sms_kinematic_design(trial % 2 ? h : -h, L, 3, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, 0.0, T, 3, &n), SMS_OK);
         CHECK_CLOSE(T[0] + T[1] + T[2], double_s_duration(h, L[0], L[1], L[2]), 1e-12,
                     T[0] + T[1] + T[2]);
         check_structure_and_bounds(h, L, 3, T, 1.0);
@@ -156,16 +156,16 @@ static void test_higher_orders(void)
             L[i] = log_uniform(&seed, 1e-2, 1e4);
         if (order > 6)
             order = 6;
-        CHECK_STATUS(sms_kinematic_design(h, L, order, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, T, 6, &n), SMS_OK);
+        CHECK_STATUS(sms_kinematic_design(h, L, order, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, 0.0, T, 6, &n), SMS_OK);
         check_structure_and_bounds(h, L, order, T, 1.0);
-        CHECK_STATUS(sms_kinematic_design(h, L, order, SMS_PROFILE_TRIGONOMETRIC, 0.0, 0.0, T, 6, &n), SMS_OK);
+        CHECK_STATUS(sms_kinematic_design(h, L, order, SMS_PROFILE_TRIGONOMETRIC, 0.0, 0.0, 0.0, T, 6, &n), SMS_OK);
         check_structure_and_bounds(h, L, order, T, PI / 2.0);
     }
     /* n = 2: short move gives the triangular profile T1 = T2 = sqrt(h/a) */
     {
         double L[2] = {10.0, 1.0}, T[2];
         size_t n;
-        CHECK_STATUS(sms_kinematic_design(4.0, L, 2, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, T, 2, &n), SMS_OK);
+        CHECK_STATUS(sms_kinematic_design(4.0, L, 2, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, 0.0, T, 2, &n), SMS_OK);
         CHECK_CLOSE(T[0], 2.0, 1e-14, 1.0);
         CHECK_CLOSE(T[1], 2.0, 1e-14, 1.0);
     }
@@ -176,29 +176,186 @@ static void test_bad_input(void)
     double L[3] = {250.0, 5000.0, 200000.0}, T[3] = {-1.0, -1.0, -1.0};
     size_t n = 99;
     sms_stage_config cfg[3];
-    CHECK_STATUS(sms_kinematic_design(0.0, L, 3, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, T, 3, &n), SMS_ERR_LIMIT);
-    CHECK_STATUS(sms_kinematic_design(NAN, L, 3, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, T, 3, &n), SMS_ERR_LIMIT);
+    CHECK_STATUS(sms_kinematic_design(0.0, L, 3, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, 0.0, T, 3, &n), SMS_ERR_LIMIT);
+    CHECK_STATUS(sms_kinematic_design(NAN, L, 3, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, 0.0, T, 3, &n), SMS_ERR_LIMIT);
     L[1] = -1.0;
-    CHECK_STATUS(sms_kinematic_design(1.0, L, 3, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, T, 3, &n), SMS_ERR_LIMIT);
+    CHECK_STATUS(sms_kinematic_design(1.0, L, 3, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, 0.0, T, 3, &n), SMS_ERR_LIMIT);
     L[1] = INFINITY;
-    CHECK_STATUS(sms_kinematic_design(1.0, L, 3, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, T, 3, &n), SMS_ERR_LIMIT);
+    CHECK_STATUS(sms_kinematic_design(1.0, L, 3, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, 0.0, T, 3, &n), SMS_ERR_LIMIT);
     L[1] = 5000.0;
-    CHECK_STATUS(sms_kinematic_design(1.0, L, 0, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, T, 3, &n), SMS_ERR_ORDER);
-    CHECK_STATUS(sms_kinematic_design(1.0, L, SMS_KINEMATIC_MAX_ORDER + 1, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, T, 3, &n), SMS_ERR_ORDER);
-    CHECK_STATUS(sms_kinematic_design(1.0, L, 3, (sms_profile)7, 0.0, 0.0, T, 3, &n), SMS_ERR_KIND);
-    CHECK_STATUS(sms_kinematic_design(1.0, L, 3, SMS_PROFILE_DAMPED, 0.0, 0.0, T, 3, &n), SMS_ERR_WN);
-    CHECK_STATUS(sms_kinematic_design(1.0, L, 3, SMS_PROFILE_POLYNOMIAL, -5.0, 0.0, T, 3, &n), SMS_ERR_WN);
-    CHECK_STATUS(sms_kinematic_design(1.0, L, 3, SMS_PROFILE_POLYNOMIAL, 50.0, 1.0, T, 3, &n), SMS_ERR_ZETA);
-    CHECK_STATUS(sms_kinematic_design(1.0, L, 1, SMS_PROFILE_DAMPED, 50.0, 0.1, T, 3, &n), SMS_ERR_ORDER);
-    CHECK_STATUS(sms_kinematic_design(1.0, L, 3, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, T, 2, &n), SMS_ERR_BUFFER_TOO_SMALL);
-    CHECK_STATUS(sms_kinematic_design(1.0, NULL, 3, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, T, 3, &n), SMS_ERR_NULL);
-    CHECK_STATUS(sms_kinematic_configs(1.0, L, 3, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, NULL, 3, &n), SMS_ERR_NULL);
-    CHECK_STATUS(sms_kinematic_configs(1.0, L, 3, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, cfg, 1, &n), SMS_ERR_BUFFER_TOO_SMALL);
+    CHECK_STATUS(sms_kinematic_design(1.0, L, 0, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, 0.0, T, 3, &n), SMS_ERR_ORDER);
+    CHECK_STATUS(sms_kinematic_design(1.0, L, SMS_KINEMATIC_MAX_ORDER + 1, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, 0.0, T, 3, &n), SMS_ERR_ORDER);
+    CHECK_STATUS(sms_kinematic_design(1.0, L, 3, (sms_profile)7, 0.0, 0.0, 0.0, T, 3, &n), SMS_ERR_KIND);
+    CHECK_STATUS(sms_kinematic_design(1.0, L, 3, SMS_PROFILE_DAMPED, 0.0, 0.0, 0.0, T, 3, &n), SMS_ERR_WN);
+    CHECK_STATUS(sms_kinematic_design(1.0, L, 3, SMS_PROFILE_POLYNOMIAL, -5.0, 0.0, 0.0, T, 3, &n), SMS_ERR_WN);
+    CHECK_STATUS(sms_kinematic_design(1.0, L, 3, SMS_PROFILE_POLYNOMIAL, 50.0, 1.0, 0.0, T, 3, &n), SMS_ERR_ZETA);
+    CHECK_STATUS(sms_kinematic_design(1.0, L, 1, SMS_PROFILE_DAMPED, 50.0, 0.1, 0.0, T, 3, &n), SMS_ERR_ORDER);
+    CHECK_STATUS(sms_kinematic_design(1.0, L, 3, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, 0.0, T, 2, &n), SMS_ERR_BUFFER_TOO_SMALL);
+    CHECK_STATUS(sms_kinematic_design(1.0, NULL, 3, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, 0.0, T, 3, &n), SMS_ERR_NULL);
+    CHECK_STATUS(sms_kinematic_configs(1.0, L, 3, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, 1e-4, NULL, 3, &n), SMS_ERR_NULL);
+    CHECK_STATUS(sms_kinematic_configs(1.0, L, 3, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, 1e-4, cfg, 1, &n), SMS_ERR_BUFFER_TOO_SMALL);
     CHECK(T[0] == -1.0 && T[1] == -1.0 && T[2] == -1.0 && n == 99); /* untouched */
+}
+
+
+#ifdef SMS_USE_FLOAT
+#define SAMPLE_EPS 5.96e-8
+#else
+#define SAMPLE_EPS 1.11e-16
+#endif
+
+/* Largest |D^i q| / Ts^i / limits[i-1] - 1 over a step of h through the chain the configs
+ * describe, beyond the rounding of the samples themselves (2^i 8 eps max|q| / Ts^i). */
+static double sampled_excess(double h, const double *L, size_t n, const sms_stage_config *cfg,
+                             double Ts, size_t *samples_out)
+{
+    sms_stage stages[SMS_KINEMATIC_MAX_ORDER];
+    sms_chain chain;
+    size_t need, len = 0, m, i;
+    sms_real *buf, *x;
+    double worst = -1.0, d[SMS_KINEMATIC_MAX_ORDER + 1];
+    for (i = 0; i < n; ++i)
+        len += (size_t)ceil(cfg[i].T / Ts) + 1u;
+    len += 4u;
+    if (sms_chain_buffer_size(cfg, n, Ts, &need) != SMS_OK || need > 2000000u || len > 2000000u)
+        return -2.0;
+    buf = (sms_real *)malloc((need + 1u) * sizeof(sms_real));
+    x = (sms_real *)malloc(len * sizeof(sms_real));
+    if (buf == NULL || x == NULL || sms_chain_init(&chain, stages, cfg, n, Ts, buf, need) != SMS_OK) {
+        free(buf);
+        free(x);
+        return -3.0;
+    }
+    for (m = 0; m < len; ++m)
+        x[m] = (sms_real)h;
+    sms_chain_process(&chain, x, x, len);
+    for (i = 0; i <= n; ++i)
+        d[i] = 0.0;
+    for (m = 0; m < len; ++m) {
+        /* e[i] = D^i q[m] from d[i] = D^i q[m-1] (q = 0 before the step) */
+        double e[SMS_KINEMATIC_MAX_ORDER + 1];
+        e[0] = (double)x[m];
+        for (i = 1; i <= n; ++i) {
+            double floor_ = ldexp(8.0 * SAMPLE_EPS * fabs(h), (int)i) / pow(Ts, (double)i);
+            double excess;
+            e[i] = e[i - 1] - d[i - 1];
+            excess = (fabs(e[i]) / pow(Ts, (double)i) - floor_) / L[i - 1] - 1.0;
+            if (excess > worst)
+                worst = excess;
+        }
+        for (i = 0; i <= n; ++i)
+            d[i] = e[i];
+    }
+    if (samples_out != NULL)
+        *samples_out = len;
+    free(buf);
+    free(x);
+    return worst;
+}
+
+/* The sampled output keeps every bound for any Ts: limits spanning 6 orders of magnitude,
+ * every profile, with and without a mode. */
+static void test_sampled_limits_random(void)
+{
+    unsigned seed = 4242u;
+    int trial, tested = 0;
+    for (trial = 0; trial < 600; ++trial) {
+        double L[4], Tc[4], h = log_uniform(&seed, 1e-3, 1e3), total = 0.0, Ts, excess;
+        size_t n = 1u + (size_t)(urand(&seed) * 4.0), i, cnt;
+        sms_profile profile = (sms_profile)(trial % 3);
+        double wn = 0.0, zeta = 0.0;
+        sms_stage_config cfg[4];
+        sms_status st;
+        if (n > 4u)
+            n = 4u;
+        for (i = 0; i < n; ++i)
+            L[i] = log_uniform(&seed, 1e-3, 1e3) * pow(10.0, (double)i);
+        if (profile == SMS_PROFILE_DAMPED && n < 2u)
+            n = 2u, L[1] = log_uniform(&seed, 1e-3, 1e4);
+        if (profile == SMS_PROFILE_DAMPED || (trial % 5 == 0 && n >= 2u)) {
+            zeta = profile == SMS_PROFILE_DAMPED ? 0.3 * urand(&seed) : 0.0;
+        }
+        CHECK_STATUS(sms_kinematic_design(h, L, n, profile == SMS_PROFILE_DAMPED ?
+                     SMS_PROFILE_POLYNOMIAL : profile, 0.0, 0.0, 0.0, Tc, 4, &cnt), SMS_OK);
+        for (i = 0; i < n; ++i)
+            total += Tc[i];
+        if (profile == SMS_PROFILE_DAMPED || (trial % 5 == 0 && n >= 2u))
+            wn = 2.0 * PI / (Tc[n - 1] * (0.5 + urand(&seed)));
+        /* between 3 and 3000 samples in all, off the grid */
+        Ts = total / log_uniform(&seed, 3.0, 3000.0);
+        st = sms_kinematic_configs(trial % 2 ? h : -h, L, n, profile, wn, zeta, Ts, cfg, 4, &cnt);
+        if (wn > 0.0 && (st == SMS_ERR_ABOVE_NYQUIST || st == SMS_ERR_DURATION_BELOW_TS))
+            continue;
+        CHECK_STATUS(st, SMS_OK);
+        if (st != SMS_OK)
+            continue;
+        for (i = 0; i + 1 < n || (i + 1 == n && wn == 0.0); ++i) {
+            double nu = cfg[i].T / Ts;
+            CHECK(fabs(nu - floor(nu + 0.5)) <= 1e-9 * nu); /* on the grid */
+        }
+        excess = sampled_excess(h, L, n, cfg, Ts, NULL);
+        if (excess == -2.0)
+            continue;
+        ++tested;
+        CHECK(excess <= 1e-9);
+        if (excess > 1e-9)
+            fprintf(stderr, "trial %d: n %lu profile %d wn %g h %g Ts %g: excess %g\n", trial,
+                    (unsigned long)n, (int)profile, wn, h, Ts, excess);
+    }
+    CHECK(tested > 300);
+}
+
+/* The reported cases: h = 40, v = 250, a = 5000, j = 2e5 at T/Ts = 10.5 and 1000.5. */
+static void test_sampled_limits_examples(void)
+{
+    double L[3] = {250.0, 5000.0, 200000.0}, Tc[3], T[3], Ts[3] = {0.025 / 10.5, 0.16 / 10.5,
+                                                                   0.16 / 1000.5};
+    sms_stage_config cfg[3];
+    size_t n, i, k;
+    for (k = 0; k < 3; ++k) {
+        CHECK_STATUS(sms_kinematic_configs(40.0, L, 3, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, Ts[k], cfg, 3, &n), SMS_OK);
+        CHECK(sampled_excess(40.0, L, 3, cfg, Ts[k], NULL) <= 1e-9);
+        /* price: less than one sample per stage over the continuous optimum */
+        CHECK_STATUS(sms_kinematic_design(40.0, L, 3, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, 0.0, Tc, 3, &n), SMS_OK);
+        CHECK_STATUS(sms_kinematic_design(40.0, L, 3, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, Ts[k], T, 3, &n), SMS_OK);
+        for (i = 0; i < 3; ++i)
+            CHECK(cfg[i].T == T[i]);
+        CHECK((T[0] + T[1] + T[2] - (Tc[0] + Tc[1] + Tc[2])) / Ts[k] < 3.0);
+        CHECK(T[0] + T[1] + T[2] >= Tc[0] + Tc[1] + Tc[2]);
+    }
+}
+
+/* Finite but extreme bounds: a status in O(1), never OK with a non-finite length. */
+static void test_extreme_bounds(void)
+{
+    double L[8], T[8];
+    size_t n, order, i;
+    for (order = 1; order <= 8; ++order) {
+        for (i = 0; i < order; ++i)
+            L[i] = (i % 2) ? 1e-300 : 1e300;
+        CHECK(sms_kinematic_design(1.0, L, order, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, 0.0, T, 8, &n) != SMS_OK);
+        for (i = 0; i < order; ++i)
+            L[i] = pow(10.0, 7.0 * (double)i);
+        CHECK_STATUS(sms_kinematic_design(1e-20, L, order, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, 0.0, T, 8, &n), SMS_OK);
+        for (i = 0; i < order; ++i)
+            CHECK(isfinite(T[i]) && T[i] > 0.0);
+    }
+    L[0] = 1e-10;
+    CHECK_STATUS(sms_kinematic_design(1e308, L, 1, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, 0.0, T, 8, &n), SMS_ERR_TOO_LONG);
+    L[0] = 250.0; L[1] = 5000.0; L[2] = 1e7;
+    CHECK_STATUS(sms_kinematic_design(40.0, L, 3, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, 1e-300, T, 8, &n), SMS_ERR_TOO_LONG);
+    CHECK_STATUS(sms_kinematic_design(40.0, L, 3, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, -1.0, T, 8, &n), SMS_ERR_SAMPLE_PERIOD);
+    {
+        sms_stage_config cfg[3];
+        CHECK_STATUS(sms_kinematic_configs(40.0, L, 3, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, 0.0, cfg, 3, &n), SMS_ERR_SAMPLE_PERIOD);
+    }
 }
 
 int main(void)
 {
+    test_sampled_limits_examples();
+    test_sampled_limits_random();
+    test_extreme_bounds();
     test_seed_values();
     test_mode_tuned();
     test_double_s_random();

@@ -32,7 +32,8 @@ typedef enum sms_profile {
 #define SMS_KINEMATIC_MAX_MULTIPLE 10000u
 
 /**
- * @brief Time-optimal rest-to-rest chain for a displacement h and bounds on n derivatives.
+ * @brief Time-optimal rest-to-rest chain for a displacement h and bounds on n derivatives,
+ * continuous (Ts = 0) or realised on the sample grid of Ts (Ts > 0).
  *
  * limits[i] bounds |q^(i+1)|: limits[0] = vmax, limits[1] = amax, limits[2] = jmax, ...
  * The result has exactly n stages, stage i of length T[i] [s]; the trajectory (a step of h
@@ -58,6 +59,19 @@ typedef enum sms_profile {
  * n <= 3 (polynomial) this is the time-optimal bounded-jerk trajectory (ruckig's duration,
  * e.g. h = 40, v = 250, a = 5000, j = 200000 gives 0.16 + 0.05 + 0.025 = 0.235 s); for n >= 4
  * it is the shortest chain of this structure, which need not be the unconstrained optimum.
+ * Cost: O(n^2) closed-form steps for any input (no nested iteration).
+ *
+ * On a sample grid (Ts > 0; docs/sampled-limits.md): every stage except a mode-tuned last one
+ * lasts a whole number of samples, N[k] Ts with N[k] >= T[k]/Ts (the continuous length) and
+ * N[k] >= N[k+1] + ... + N[n-1] (samples of the stages after it; a tuned stage counts its
+ * floor(T/Ts) + 1 taps); a harmonic last stage takes the next odd N when the largest sampled
+ * tap would exceed (pi/2)/(T/Ts). A tuned last stage keeps its exact length (its zero stays
+ * on the mode, exact timing) and the design bounds the top derivative with its largest
+ * sampled tap / Ts instead of the continuous peak density: both are satisfied. Then every
+ * backward difference of the sampled output (chain fed with a step of h at a sample) obeys
+ * the bounds: |D^i q[m]| / Ts^i <= limits[i-1] for i = 1..n (to rounding). Price: the
+ * duration grows by less than one sample per stage for n <= 3 (at most 2^(n-1) - 1 + 1
+ * samples over ceil for longer chains), see docs/sampled-limits.md for measured figures.
  *
  * @param h         displacement, finite and != 0 (the sign is irrelevant to the lengths)
  * @param limits    n bounds, each finite and > 0
@@ -65,26 +79,35 @@ typedef enum sms_profile {
  * @param profile   an ::sms_profile
  * @param wn        0: no mode; else the mode's natural frequency, finite and > 0 [rad/s]
  * @param zeta      damping ratio of the mode, [0, 1) (ignored when wn == 0)
+ * @param Ts        0: continuous lengths; else the sample period [s], finite and > 0
  * @param T         receives n lengths [s]
  * @param capacity  length of T (>= n)
  * @param count     receives n
  * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_ORDER (n out of range, or DAMPED with n < 2),
- *         ::SMS_ERR_LIMIT (h or a limit not finite/positive), ::SMS_ERR_KIND (profile),
- *         ::SMS_ERR_WN (wn < 0, NaN/Inf, or 0 with DAMPED), ::SMS_ERR_ZETA,
- *         ::SMS_ERR_BUFFER_TOO_SMALL (capacity < n), ::SMS_ERR_TOO_LONG (no multiple
- *         k <= ::SMS_KINEMATIC_MAX_MULTIPLE meets the bounds). Outputs untouched on error.
+ *         ::SMS_ERR_LIMIT (h or a limit not finite/positive, or a ratio |h|/vmax,
+ *         vmax/amax, amax/jmax, ..., 1/wn below 1e-60: a stage would be shorter than any
+ *         usable duration), ::SMS_ERR_TOO_LONG (such a ratio above 1e60, more than 2^52
+ *         samples in all, or no multiple k <= ::SMS_KINEMATIC_MAX_MULTIPLE meets the bounds),
+ *         ::SMS_ERR_KIND (profile), ::SMS_ERR_WN (wn < 0, NaN/Inf, or 0 with DAMPED),
+ *         ::SMS_ERR_ZETA, ::SMS_ERR_SAMPLE_PERIOD (Ts < 0 or not finite),
+ *         ::SMS_ERR_ABOVE_NYQUIST (tuned stage on a grid too coarse to place its zero),
+ *         ::SMS_ERR_BUFFER_TOO_SMALL (capacity < n). Every check is O(1) before any
+ *         iteration; outputs untouched on error.
  */
 SMS_API sms_status sms_kinematic_design(double h, const double *limits, size_t n,
-                                        sms_profile profile, double wn, double zeta,
+                                        sms_profile profile, double wn, double zeta, double Ts,
                                         double *T, size_t capacity, size_t *count);
 
 /**
- * @brief As sms_kinematic_design(), but fills ready-to-use stage configs (kind, T, sigma,
- * and k = the mode multiple for a tuned stage, else 1; timing ::SMS_TIMING_EXACT), so that
- * sms_chain_init() builds the chain directly. Same arguments, statuses and ranges.
+ * @brief As sms_kinematic_design() on the grid of Ts (> 0), but fills ready-to-use stage
+ * configs (kind, T, sigma, and k = the mode multiple for a tuned stage, else 1; timing
+ * ::SMS_TIMING_EXACT, which for the lengths on the grid is the plain integer-N filter), so that
+ * sms_chain_init() with the same Ts builds the chain directly and its sampled output keeps
+ * every bound. Same arguments and statuses; Ts = 0 gives ::SMS_ERR_SAMPLE_PERIOD (a chain
+ * always runs at a sample period).
  */
 SMS_API sms_status sms_kinematic_configs(double h, const double *limits, size_t n,
-                                         sms_profile profile, double wn, double zeta,
+                                         sms_profile profile, double wn, double zeta, double Ts,
                                          sms_stage_config *configs, size_t capacity,
                                          size_t *count);
 

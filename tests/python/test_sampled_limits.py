@@ -1,0 +1,117 @@
+"""Kinematic chains keep their bounds at every sample, for any Ts: the backward differences of
+a step of h through Chain(kinematic(..., Ts=Ts), Ts=Ts) stay within vmax, amax, jmax, ...
+(docs/sampled-limits.md). Tolerance: 1e-9 relative plus the rounding of the samples
+themselves, 2**i * 8 * eps * |h| / Ts**i for the i-th difference (eps of the precision)."""
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings, strategies as st
+
+from smoothshaper import design
+from smoothshaper.filters import Chain, ParameterError
+
+EPS = {"double": np.finfo(np.float64).eps, "float": np.finfo(np.float32).eps}
+
+
+def sampled_ratios(stages, Ts, h, limits, precision="double"):
+    """max |diff(q, i)| / Ts**i / limits[i-1] beyond the rounding floor, i = 1..n."""
+    n_samples = sum(int(math.ceil(s.T / Ts)) + 1 for s in stages) + 4
+    q = Chain(stages, Ts=Ts, precision=precision).process(np.full(n_samples, float(h)))
+    q = np.concatenate([[0.0], np.asarray(q, dtype=np.float64)])
+    out = []
+    for i, L in enumerate(limits, 1):
+        floor = 2.0 ** i * 8 * EPS[precision] * abs(h) / Ts ** i
+        out.append((np.abs(np.diff(q, i)).max() / Ts ** i - floor) / L)
+    return out
+
+
+def test_reported_cases_keep_every_bound():
+    L = [250.0, 5000.0, 2e5]
+    for Ts in (0.025 / 10.5, 0.16 / 10.5, 0.16 / 1000.5):
+        cont = design.kinematic(h=40, vmax=250, amax=5000, jmax=2e5)
+        grid = design.kinematic(h=40, vmax=250, amax=5000, jmax=2e5, Ts=Ts)
+        assert max(sampled_ratios(grid, Ts, 40, L)) <= 1 + 1e-9
+        if Ts < 0.01:
+            # the continuous lengths with exact timing are what exceeded (1.17 jmax)
+            assert max(sampled_ratios(cont, Ts, 40, L)) > 1.0001
+        for g in grid:
+            assert abs(g.T / Ts - round(g.T / Ts)) <= 1e-9 * g.T / Ts
+        price = (design.duration(grid) - design.duration(cont)) / Ts
+        assert 0 <= price < len(L)       # under one sample per stage
+
+
+limits_strategy = st.tuples(
+    st.floats(-3, 3), st.floats(-3, 3), st.floats(-3, 3), st.floats(-3, 3), st.floats(-3, 3),
+    st.integers(1, 4), st.sampled_from(["polynomial", "trigonometric"]), st.floats(0.5, 3.5),
+    st.booleans(), st.sampled_from(["double", "float"]))
+
+
+@settings(max_examples=80, deadline=None)
+@given(limits_strategy)
+def test_every_sample_within_bounds(case):
+    lh, lv, la, lj, ls, n, profile, lsamples, negative, precision = case
+    h = (-1 if negative else 1) * 10.0 ** lh
+    limits = [10.0 ** lv, 10.0 ** (la + 1), 10.0 ** (lj + 2), 10.0 ** (ls + 3)][:n]
+    kw = dict(vmax=limits[0], amax=limits[1] if n > 1 else None,
+              jmax=limits[2] if n > 2 else None, higher=tuple(limits[3:]), profile=profile)
+    cont = design.kinematic(h=h, **kw)
+    Ts = design.duration(cont) / 10.0 ** lsamples     # 3 to 3000 samples, off the grid
+    grid = design.kinematic(h=h, Ts=Ts, **kw)
+    ratios = sampled_ratios(grid, Ts, h, limits, precision)
+    assert max(ratios) <= 1 + 1e-9, ratios
+    ref = design.kinematic_reference(h=h, Ts=Ts, **kw)
+    for a, b in zip(grid, ref):
+        assert a.kind == b.kind
+        # same samples, except where a continuous length sits on a ceil boundary
+        assert abs(a.T - b.T) <= 1e-9 * a.T or abs(a.T - b.T) <= Ts * (1 + 1e-9)
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.floats(-2, 2), st.floats(0.02, 0.45), st.floats(0.5, 1.5), st.booleans(),
+       st.sampled_from(["polynomial", "trigonometric", "damped"]))
+def test_mode_tuned_stage_keeps_its_zero_and_the_bounds(lh, zeta, period_ratio, odd, profile):
+    """A last stage tuned to a mode keeps its exact length (zero on the mode) and the design
+    bounds the jerk with its largest sampled tap: both hold."""
+    h, L = 10.0 ** lh, [1.0, 10.0, 200.0]
+    zeta = zeta if profile == "damped" else 0.0
+    cont = design.kinematic(h=h, vmax=1, amax=10, jmax=200)
+    wn = 2 * math.pi / (cont[-1].T * period_ratio)
+    Ts = cont[-1].T / (7.3 if odd else 23.7)
+    try:
+        grid = design.kinematic(h=h, vmax=1, amax=10, jmax=200, profile=profile, wn=wn,
+                                zeta=zeta, Ts=Ts)
+    except ParameterError as exc:     # mode above Nyquist for this grid
+        assert exc.parameter == "wn"
+        return
+    wd = wn * math.sqrt(1 - zeta ** 2)
+    Tm = (3 if profile == "trigonometric" else 2) * math.pi / wd
+    assert grid[-1].T == pytest.approx(grid[-1].k * Tm, rel=1e-12)
+    assert max(sampled_ratios(grid, Ts, h, L)) <= 1 + 1e-9
+
+
+@pytest.mark.parametrize("kwargs, parameter, words", [
+    (dict(h=1e308, vmax=1e-10), "vmax", ["h/vmax", "1e+308", "1e-10"]),
+    (dict(h=1e60, vmax=1e70, amax=1e-5), "amax", ["vmax/amax", "1e+70"]),
+    (dict(h=1, vmax=1, amax=1, jmax=1e300), "jmax", ["amax/jmax", "shorter"]),
+    (dict(h=40, vmax=250, amax=5000, jmax=2e5, Ts=1e-300), "Ts", ["2^52", "vmax=250"]),
+    (dict(h=40, vmax=250, amax=5000, jmax=2e5, wn=5000.0, Ts=1e-3), "wn", ["Nyquist"]),
+])
+def test_extreme_inputs_name_the_cause(kwargs, parameter, words):
+    with pytest.raises(ParameterError) as exc:
+        design.kinematic(**kwargs)
+    assert exc.value.parameter == parameter
+    for w in words:
+        assert w in str(exc.value)
+
+
+def test_extreme_bounds_answer_at_once():
+    """Six, seven and eight bounds spanning 1e-300 .. 1e300: a refusal, not a long search;
+    feasible extreme chains (ratios 1e7 per order) are designed, all lengths finite."""
+    for n in (6, 7, 8):
+        with pytest.raises(ParameterError):
+            design.kinematic(h=1, vmax=1e300, amax=1e-300, jmax=1e300,
+                             higher=[1e-300 if i % 2 else 1e300 for i in range(n - 3)])
+        stages = design.kinematic(h=1e-20, vmax=1.0, amax=1e7, jmax=1e14,
+                                  higher=[10.0 ** (7 * i) for i in range(3, n)])
+        assert all(math.isfinite(s.T) and s.T > 0 for s in stages)
