@@ -1,6 +1,6 @@
 /* Kinematic design (docs/design.md, docs/sampled-limits.md): lengths of the shortest
  * rest-to-rest chain within n derivative bounds, as a continuous design and on a sample grid.
- * any per-sample path). */
+ * Design-time code: libm is allowed here (not in any per-sample path). */
 #include <math.h>
 #include "smoothshaper/trajectory.h"
 #include "trajectory_internal.h"
