@@ -49,6 +49,10 @@ sms_status sms_design_for_mode(sms_kind kind, double wn, double zeta, unsigned k
         c.zeta = zeta;
         break;
     }
+    /* wn far below 1 rad/s (or zeta within 1e-300 of 1) can overflow T = k 2pi/wd: the
+     * duration is then not a number, so the mode is refused rather than designed to Inf. */
+    if (!(c.T - c.T == 0.0))
+        return SMS_ERR_WN;
     c.k = k;
     *config = c;
     return SMS_OK;

@@ -1,5 +1,6 @@
 /* Notch biquad: Tustin (pre-warped at wn) or pole-zero matched coefficients, and the
  * direct-form-I recursion with non-finite recovery (notch.h). */
+#include <float.h>
 #include <math.h>
 #include "smoothshaper/notch.h"
 
@@ -20,6 +21,10 @@ static sms_status check(const sms_stage_config *c, double Ts)
         return SMS_ERR_WN;
     if (c->wn * Ts >= pi)
         return SMS_ERR_ABOVE_NYQUIST;
+    /* wn Ts must be a normal double: the design divides by it (a notch 1e-308 of the sample
+     * rate is no filter anyone can realise). */
+    if (!(c->wn * Ts >= DBL_MIN))
+        return SMS_ERR_WN;
     if (!is_finite(c->zeta) || c->zeta < 0.0 || c->zeta >= 1.0)
         return SMS_ERR_ZETA;
     if (!is_finite(c->notch_pole_zeta) || c->notch_pole_zeta <= c->zeta
@@ -192,8 +197,9 @@ sms_status sms_notch_pole_zeta_from_bandwidth(double wn, double zeta, double ban
     if (!is_finite(bandwidth) || bandwidth <= 0.0)
         return SMS_ERR_BANDWIDTH;
     c = bandwidth / (2.0 * wn);
-    xi2 = sqrt(c * c + 2.0 * zeta * zeta);
-    if (!(xi2 <= SMS_NOTCH_MAX_POLE_ZETA))
+    xi2 = hypot(c, sqrt(2.0) * zeta);
+    /* A band so narrow (or so wide) that xi2 rounds onto zeta (or overflows) is no notch. */
+    if (!(xi2 <= SMS_NOTCH_MAX_POLE_ZETA) || !(xi2 > zeta))
         return SMS_ERR_BANDWIDTH;
     *pole_zeta = xi2;
     return SMS_OK;

@@ -247,6 +247,15 @@ static sms_status realise(const sms_stage_config *c, double Ts, sparse *out)
     } else {
         realise_exact(amp, time, n_imp, Ts, sigma, wd, out);
     }
+    /* Exact timing weighs the impulses with z^-i = e^{zeta wn i Ts}...: for zeta near 1 over a
+     * long span that overflows (while K^m underflows), and the correction is not a number.
+     * Refuse the mode instead of returning NaN taps (paper timing still realises it). */
+    {
+        size_t i;
+        for (i = 0; i < out->n; ++i)
+            if (!is_finite(out->gain[i]))
+                return SMS_ERR_ZETA;
+    }
     return SMS_OK;
 }
 
@@ -393,6 +402,10 @@ sms_status sms_shaper_impulses(const sms_stage_config *config, double *amplitude
     n = sms_shaper_design(config, amp, time);
     if (capacity < n)
         return SMS_ERR_BUFFER_TOO_SMALL;
+    /* A period beyond double (wn sqrt(1 - zeta^2) below ~1e-308) has no finite impulse times. */
+    for (i = 0; i < n; ++i)
+        if (!is_finite(time[i]))
+            return SMS_ERR_TOO_LONG;
     for (i = 0; i < n; ++i) {
         amplitudes[i] = amp[i];
         times[i] = time[i];

@@ -129,14 +129,10 @@ _GLUE_SOURCE = r"""
 #include <stddef.h>
 #include "smoothshaper/smoothshaper.h"
 
-/* Index of the first sample that is NaN/Inf or does not fit sms_real, or -1. */
+/* Index of the first sample that is NaN/Inf or beyond SMS_INPUT_MAX (types.h), or -1. */
 static ptrdiff_t smspy_first_bad_sample(const double *in, size_t n)
 {
-#ifdef SMS_USE_FLOAT
-    const double limit = FLT_MAX;
-#else
-    const double limit = DBL_MAX;
-#endif
+    const double limit = SMS_INPUT_MAX;
     size_t i;
     for (i = 0; i < n; ++i)
         if (!(in[i] >= -limit && in[i] <= limit))

@@ -36,6 +36,14 @@ _STATUS_PARAMETER = {
     -14: "tolerance", -15: "T", -16: "wn", -17: "limits", -18: "x", -19: "state",
     -20: "bandwidth", -21: "duration",
 }
+#: Saved Chain states start with this tag and format version, then the configuration they
+#: belong to (see :meth:`Chain.get_state`).
+STATE_TAG = 5459283.0          # "SMS" read as a 24-bit integer
+STATE_VERSION = 1
+#: Per stage, in this order, in a saved state (kind and timing as their index).
+STATE_STAGE_FIELDS = ("kind", "timing", "T", "sigma", "k", "wn", "zeta", "order", "tolerance",
+                      "notch_pole_zeta", "duration")
+_STATE_HEAD = 5                # tag, version, precision, Ts, number of stages
 _SMS_ERR_TOO_LONG = -15
 _SMS_ERR_DURATION_BELOW_TS = -4
 _SMS_ERR_ABOVE_NYQUIST = -16
@@ -48,6 +56,17 @@ class ParameterError(ValueError):
         super().__init__(message)
         self.parameter = parameter
         self.status = status
+
+
+def check_memory(parameter: str, n_reals, what: str) -> int:
+    """``n_reals`` as an int, or :class:`ParameterError` naming ``parameter`` when it exceeds
+    :data:`MAX_BUFFER_REALS`: a request too large is refused in O(1) with the limit stated,
+    never by numpy's MemoryError (or hours of swapping)."""
+    if not n_reals <= MAX_BUFFER_REALS:
+        raise ParameterError(
+            parameter, f"{parameter} out of range: {what} would need {float(n_reals):.4g} values, "
+            f"more than the limit of {MAX_BUFFER_REALS} (smoothshaper.filters.MAX_BUFFER_REALS)")
+    return int(n_reals)
 
 
 _backends: dict = {}
@@ -74,6 +93,33 @@ def _backend(precision: str):
 
 def _real_dtype(precision: str):
     return np.float64 if precision == "double" else np.float32
+
+
+def input_max(precision: str = "double") -> float:
+    """Largest ``|x|`` the per-sample path takes (C ``SMS_INPUT_MAX``: 1e305 in double, 3e35 in
+    float): within it every output and state value stays finite."""
+    ffi, lib = _backend(precision)
+    return float(lib.SMS_INPUT_MAX)
+
+
+def _check_input(name: str, x: np.ndarray, precision: str) -> None:
+    """ParameterError naming ``name[i]`` for the first sample beyond :func:`input_max`."""
+    bound = input_max(precision)
+    bad = np.flatnonzero(np.abs(x) > bound)
+    if bad.size:
+        i = bad[0]
+        where = f"{name}[{i}]" if x.ndim else name
+        value = x[i] if x.ndim else x
+        raise ParameterError(
+            name, f"{name} out of range: {where} = {float(value)!r} exceeds {bound:g} "
+            f"(SMS_INPUT_MAX for precision={precision!r}), beyond which internal sums of the "
+            f"filters could overflow")
+
+
+def _stage_fields(stage: Stage) -> tuple[float, ...]:
+    values = {"kind": float(stage.kind_index), "timing": float(_stages.TIMINGS.index(stage.timing))}
+    return tuple(values[f] if f in values else float(getattr(stage, f))
+                 for f in STATE_STAGE_FIELDS)
 
 
 def status_string(status: int, precision: str = "double") -> str:
@@ -245,8 +291,9 @@ class Chain:
         """Filter the 1-D signal ``u`` (any length, samples at Ts) and return ``y`` (float64,
         same length). Continues from the current state; ``u`` is not modified.
 
-        Raises ValueError naming ``u`` if it is not 1-D or holds NaN/Inf, or (float
-        precision) a value beyond float32; the state is then untouched."""
+        Raises ValueError naming ``u`` if it is not 1-D or holds NaN/Inf, or
+        :class:`ParameterError` for a sample beyond :func:`input_max`; the state is then
+        untouched."""
         try:
             y = np.array(u, dtype=np.float64)   # the output: u is copied once, filtered in place
         except (TypeError, ValueError):
@@ -258,56 +305,118 @@ class Chain:
             bad = self._lib.smspy_chain_process_f64(self._chain, data, data, y.size)
             if bad >= 0:
                 if math.isfinite(y[bad]):
-                    raise ValueError(f"u must be finite in float precision: u[{bad}] = "
-                                     f"{y[bad]!r} overflows float32")
+                    _check_input("u", y, self.precision)
                 raise ValueError(f"u must be finite: u[{bad}] = {y[bad]!r}")
         return y
 
     def step(self, x: float) -> float:
         """Filter one sample and return the output sample."""
         v = _finite("x", x)
+        _check_input("x", np.float64(v), self.precision)
         cell = self._ffi.new("sms_real *", v)
-        if self.precision == "float" and not math.isfinite(cell[0]):
-            raise ValueError(f"x must be finite in float precision, got {v!r}")
         self._lib.sms_chain_step(self._chain, cell)
         return float(cell[0])
 
     def reset(self, rest: float = 0.0) -> None:
         """Put every stage at rest at ``rest``, as if the input had been ``rest`` forever."""
         v = _finite("rest", rest)
+        _check_input("rest", np.float64(v), self.precision)
         self._lib.sms_chain_reset(self._chain, v)
 
     # -- state ----------------------------------------------------------------------------
 
     @property
     def state_size(self) -> int:
-        """Number of doubles in :attr:`state`."""
+        """Number of doubles in :attr:`state` (the configuration header plus the C state)."""
+        return self._header_size + self._core_state_size
+
+    @property
+    def _header_size(self) -> int:
+        return _STATE_HEAD + len(STATE_STAGE_FIELDS) * len(self.stages)
+
+    @property
+    def _core_state_size(self) -> int:
         return int(self._lib.sms_chain_state_count(self._chain))
 
+    def _header(self) -> np.ndarray:
+        head = [STATE_TAG, STATE_VERSION, float(PRECISIONS.index(self.precision)), self.Ts,
+                float(len(self.stages))]
+        for stage in self.stages:
+            head.extend(_stage_fields(stage))
+        return np.array(head, dtype=np.float64)
+
     def get_state(self) -> np.ndarray:
-        """The full dynamic state as a float64 array (a copy). Restoring it with
-        :meth:`set_state` into this chain or an identically configured one continues the
-        filtering bit-exactly."""
+        """The full dynamic state as a float64 array (a copy), tagged with the configuration
+        it belongs to. Restoring it with :meth:`set_state` into this chain or an identically
+        configured one continues the filtering bit-exactly.
+
+        Layout: ``[STATE_TAG, STATE_VERSION, precision (0 double, 1 float), Ts, n_stages]``,
+        then per stage the :data:`STATE_STAGE_FIELDS` (kind and timing as indices), then the C
+        core's state (``sms_chain_save_state``: delay lines, recursion states, indices)."""
         out = np.zeros(self.state_size, dtype=np.float64)
-        if out.size:
-            self._lib.sms_chain_save_state(self._chain, self._ffi.from_buffer("double[]", out))
+        head = self._header()
+        out[:head.size] = head
+        if self._core_state_size:
+            self._lib.sms_chain_save_state(
+                self._chain, self._ffi.from_buffer("double[]", out[head.size:]))
         return out
 
+    def _identity_mismatch(self, s: np.ndarray) -> str | None:
+        """Why the header of ``s`` does not describe this chain, or None."""
+        if s.size < _STATE_HEAD or s[0] != STATE_TAG:
+            return "it is not a saved Chain state (no state tag; was it saved by get_state?)"
+        if s[1] != STATE_VERSION:
+            return (f"it has state format version {float(s[1])!r}, this library reads version "
+                    f"{STATE_VERSION}")
+        mine = self._header()
+        if s[2] != mine[2]:
+            names = {0.0: "'double'", 1.0: "'float'"}
+            return (f"precision differs: the state is from precision={names.get(s[2], float(s[2]))}, "
+                    f"this chain is precision={self.precision!r}")
+        if s[3] != mine[3]:
+            return (f"Ts differs: the state is from Ts={float(s[3])!r}, this chain has "
+                    f"Ts={self.Ts!r}")
+        if s[4] != mine[4]:
+            return (f"the number of stages differs: the state has {float(s[4]):g}, this chain "
+                    f"{len(self.stages)}")
+        if s.size < mine.size:
+            return "it is truncated inside its configuration header"
+        for i in range(len(self.stages)):
+            for j, field in enumerate(STATE_STAGE_FIELDS):
+                k = _STATE_HEAD + i * len(STATE_STAGE_FIELDS) + j
+                if s[k] != mine[k]:
+                    theirs, ours = float(s[k]), float(mine[k])
+                    if field in ("kind", "timing"):
+                        table = _stages.KINDS if field == "kind" else _stages.TIMINGS
+                        theirs = table[int(theirs)] if theirs in range(len(table)) else theirs
+                        ours = table[int(ours)]
+                    return (f"stages[{i}].{field} differs: the state is from {field}={theirs!r}, "
+                            f"this chain has {field}={ours!r}")
+        return None
+
     def set_state(self, state) -> None:
-        """Restore a state from :meth:`get_state`. Raises ValueError naming ``state`` if it
-        has the wrong length or does not fit this chain; then nothing is changed."""
+        """Restore a state from :meth:`get_state`. Raises :class:`ParameterError` naming
+        ``state`` if it has the wrong shape, comes from another configuration (the message
+        says which field differs: precision, Ts, a stage's kind, T, sigma, ...), or does not
+        fit this chain; then nothing is changed."""
         try:
             s = np.array(state, dtype=np.float64, order="C", copy=True)
         except (TypeError, ValueError):
             raise ParameterError("state", "state must be an array of real numbers") from None
-        if s.ndim != 1 or s.size != self.state_size:
+        if s.ndim != 1:
+            raise ParameterError("state", f"state must be a 1-D array, got shape {s.shape}")
+        why = self._identity_mismatch(s)
+        if why is not None:
+            raise ParameterError("state", f"state is from another configuration: {why}")
+        if s.size != self.state_size:
             raise ParameterError(
                 "state", f"state must be a 1-D array of {self.state_size} values for this chain, "
-                f"got shape {s.shape}")
-        if not np.isfinite(s).all():
+                f"got {s.size}")
+        core = s[self._header_size:]
+        if not np.isfinite(core).all():
             raise ParameterError("state", "state must be finite")
-        st = self._lib.sms_chain_load_state(self._chain, self._ffi.from_buffer("double[]", s),
-                                            s.size)
+        st = self._lib.sms_chain_load_state(self._chain, self._ffi.from_buffer("double[]", core),
+                                            core.size)
         if st != 0:
             _raise_status(st, self._lib, self._ffi, "it was not saved from an identical chain",
                           "state")
@@ -363,7 +472,7 @@ class Chain:
             n = self.length
         if isinstance(n, bool) or int(n) != n or n < 1:
             raise ValueError(f"n must be an integer >= 1, got {n!r}")
-        impulse = np.zeros(int(n))
+        impulse = np.zeros(check_memory("n", n, "the impulse response"))
         impulse[0] = 1.0
         twin = self.copy()
         twin.reset(0.0)
@@ -432,8 +541,10 @@ def identify_from_peaks(*, t1: float, p1: float, t2: float, p2: float) -> Mode:
     ffi, lib = _backend("double")
     out = ffi.new("sms_mode *")
     st = lib.sms_identify_from_peaks(values["t1"], values["p1"], values["t2"], values["p2"], out)
-    if st != 0:
-        _raise_status(st, lib, ffi, "identifying from two peaks", "p2")
+    if st != 0:   # the checks above passed: the rates 1/(t2 - t1) overflow double
+        raise ParameterError(
+            "t2", f"t2 too close to t1 (t2 - t1 = {values['t2'] - values['t1']!r} s): the "
+            f"frequency or decay rate of the mode would exceed the range of double", st)
     return _mode(out)
 
 

@@ -17,7 +17,7 @@ import math
 import numpy as np
 
 from . import design as _design
-from .filters import ParameterError, _backend, _raise_status, _real_dtype
+from .filters import ParameterError, _backend, _raise_status, _real_dtype, check_memory
 from ._checks import finite as _finite, finite_signal as _targets
 
 GEN_MAX_SEGMENT = 4194304.0  # 2**22 samples, as the C core
@@ -62,6 +62,7 @@ class Generator:
         if st != 0:
             parameter = "Ts" if st == -4 else None
             _raise_status(st, lib, ffi, "online generator", parameter)
+        check_memory("Ts", need[0], f"the generator's delay line at Ts={self.Ts!r}")
         self._buffer = np.zeros(need[0], dtype=_real_dtype(precision))
         self._gen = ffi.new("sms_generator *")
         st = lib.sms_generator_init(self._gen, cfg, self.Ts,
@@ -333,6 +334,8 @@ class BSpline:
         st = lib.sms_bspline_buffer_size(degree, axes, T, Ts, need)
         if st != 0:
             _raise_status(st, lib, ffi, "B-spline filter")
+        check_memory("T", need[0], f"a degree-{degree} B-spline on {axes} axes with T/Ts = "
+                     f"{T / Ts:.6g}")
         self._buffer = np.zeros(need[0], dtype=_real_dtype(precision))
         self._b = ffi.new("sms_bspline *")
         st = lib.sms_bspline_init(self._b, degree, axes, T, Ts,
@@ -417,6 +420,8 @@ def bspline_reference(via, *, degree: int, T: float, Ts: float):
     q = _via("via", via)
     degree, T, Ts, _ = _bspline_args(degree, T, Ts, min(q.shape[1], BSPLINE_MAX_AXES))
     N = max(1, int(math.floor(T / Ts + 0.5)))
+    check_memory("T", (degree + 1) * N * (q.shape[0] + degree), f"the reference B-spline with "
+                 f"T/Ts = {T / Ts:.6g}")
     d = np.ones(N)
     for _ in range(degree):
         d = np.convolve(d, np.full(N, 1.0 / N))

@@ -141,7 +141,7 @@ static void peaks_extremes(void)
 /* Pole-zero matched notch far below the sample rate: the DC normalisation used to be 0/0. */
 static void matched_notch_low_mode(void)
 {
-    const double wn_ts[] = { 1e-6, 1e-10, 1e-200, 1e-310 };
+    const double wn_ts[] = { 1e-6, 1e-10, 1e-200, 1e-306 };
     size_t i;
     for (i = 0; i < sizeof wn_ts / sizeof wn_ts[0]; ++i) {
         sms_stage_config c = sms_stage_config_default(SMS_NOTCH_MATCHED);
@@ -157,6 +157,12 @@ static void matched_notch_low_mode(void)
         for (n = 0; n < 10; ++n)
             sms_notch_step(&f, &x);
         CHECK(x == (sms_real)3); /* unit DC gain */
+    }
+    {   /* wn Ts below the normal range of double is refused, naming wn */
+        sms_stage_config c = sms_stage_config_default(SMS_NOTCH_MATCHED);
+        sms_notch f;
+        c.wn = 1e-310 / 1e-3;
+        CHECK_STATUS(sms_notch_init(&f, &c, 1e-3), SMS_ERR_WN);
     }
 }
 

@@ -88,7 +88,9 @@ typedef struct sms_shaper {
  *         1..::SMS_SHAPER_MAX_ORDER; GMZV: outside 3..::SMS_SHAPER_MAX_IMPULSES),
  *         ::SMS_ERR_TOLERANCE (EI, EI2, EI3: outside (0,1)), ::SMS_ERR_SHAPER_DURATION (GMZV:
  *         duration NaN/Inf, outside (0, (order-1)/2), or a negative least-squares amplitude),
- *         ::SMS_ERR_TOO_LONG (L above 2^40 samples: state indices must stay exact doubles).
+ *         ::SMS_ERR_TOO_LONG (L above 2^40 samples: state indices must stay exact doubles),
+ *         ::SMS_ERR_ZETA also when exact timing cannot weigh the impulses in double (zeta so
+ *         close to 1 that e^{zeta wn t} overflows over the span; paper timing still works).
  *         The fields T, sigma, k and notch_pole_zeta are not read (duration only by GMZV).
  */
 SMS_API sms_status sms_shaper_buffer_size(const sms_stage_config *config, double Ts, size_t *n_reals);
@@ -122,7 +124,8 @@ SMS_API sms_status sms_shaper_check_state(const sms_shaper *f, const double *src
  * @param count    receives the number of impulses (n+1 for ZV^n, 3 for EI and MZV, 4 for EI2,
  *                 5 for EI3, order for GMZV)
  * @return ::SMS_OK, ::SMS_ERR_NULL, the config's status (checked as for Ts -> 0, i.e. without
- *         the Nyquist and length checks), ::SMS_ERR_BUFFER_TOO_SMALL (capacity < count).
+ *         the Nyquist and length checks), ::SMS_ERR_BUFFER_TOO_SMALL (capacity < count),
+ *         ::SMS_ERR_TOO_LONG (the damped period 2 pi/(wn sqrt(1 - zeta^2)) overflows double).
  */
 SMS_API sms_status sms_shaper_impulses(const sms_stage_config *config, double *amplitudes,
                                        double *times, size_t capacity, size_t *count);

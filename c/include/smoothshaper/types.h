@@ -25,6 +25,27 @@ typedef double sms_real;  /**< signal and state type (double build) */
 #endif
 
 /**
+ * @brief Largest input magnitude the per-sample paths are specified for.
+ *
+ * The largest internal sums (x - rest, the recursions' states, the notch's w) are the input
+ * range times the stage's internal gain, and this bound leaves a factor of about 2^10 (float
+ * 2^13) to the overflow threshold of ::sms_real: inputs and reset values with
+ * |x| <= SMS_INPUT_MAX keep every output and state finite for stages whose internal gain is
+ * below that factor (all undamped smoothers, notches and shapers away from zeta -> 1).
+ * Heavily damped smoothers (sigma Ts below about -7: recursion gain e^{-sigma Ts}) and
+ * exact-timing shapers with large correction taps have a smaller finite range. Larger or
+ * non-finite inputs are not refused on the per-sample path (it has no status): they can make
+ * outputs non-finite for a while (see each family's header for how it recovers), and the state
+ * saved then still loads (save/load accept whatever a run produces; tests/c/test_fuzz_api.c
+ * checks it). The Python wrappers refuse inputs beyond this bound before they reach the core.
+ */
+#ifdef SMS_USE_FLOAT
+#define SMS_INPUT_MAX 3.0e35
+#else
+#define SMS_INPUT_MAX 1.0e305
+#endif
+
+/**
  * @brief Result of every function that can fail. ::SMS_OK is 0, errors are negative and each
  * names the offending argument. On any error the object passed in is left untouched.
  */

@@ -12,6 +12,19 @@ from ..stages import Stage
 
 GRID_TOLERANCE = 1e-9
 
+#: Most taps or samples one reference array holds (2**28 float64: 2 GiB), the same limit as the
+#: C-backed Chain's delay line; beyond it a ValueError names the parameter instead of numpy
+#: failing in the allocator (or the machine swapping).
+MAX_SAMPLES = 1 << 28
+
+
+def check_samples(parameter: str, n, what: str) -> int:
+    """``n`` as an int; ValueError naming ``parameter`` when it exceeds :data:`MAX_SAMPLES`."""
+    if not n <= MAX_SAMPLES:
+        raise ValueError(f"{parameter} out of range: {what} would hold {float(n):.4g} samples, more "
+                         f"than the limit of {MAX_SAMPLES} (2 GiB of float64)")
+    return int(n)
+
 
 def round_half_up(x: float) -> int:
     """C ``round`` for x >= 0 (ties away from zero)."""

@@ -15,7 +15,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..stages import NOTCHES, SMOOTHERS, Stage
-from ._checks import as_stage_list, check_stage, check_Ts
+from ._checks import as_stage_list, check_samples, check_stage, check_Ts
 from .notch import biquad, notch_coefficients
 from .shapers import shaper_taps
 from .smoothers import smoother_taps
@@ -47,7 +47,7 @@ def impulse_response(stage: Stage, *, Ts: float, length: int | None = None) -> n
 def _check_length(length) -> int:
     if isinstance(length, bool) or int(length) != length or length < 0:
         raise ValueError(f"length must be an integer >= 0, got {length!r}")
-    return int(length)
+    return check_samples("length", length, "the impulse response")
 
 
 def discrete_transfer(stage: Stage, z, *, Ts: float) -> np.ndarray:

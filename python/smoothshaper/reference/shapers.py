@@ -38,7 +38,7 @@ import math
 import numpy as np
 
 from ..stages import SHAPERS, Stage
-from ._checks import check_Ts, on_grid, round_half_up
+from ._checks import check_Ts, check_samples, on_grid, round_half_up
 
 _ZVN_ORDER = {"zv": 1, "zvd": 2, "zvdd": 3}
 
@@ -59,8 +59,10 @@ def _undamped_design(stage: Stage) -> tuple[np.ndarray, np.ndarray]:
     if kind == "ei":
         return np.array([(1 + V) / 4, (1 - V) / 2, (1 + V) / 4]), np.array([0.0, 0.5, 1.0])
     if kind == "ei2":
-        X = (V * V * (math.sqrt(1 - V * V) + 1)) ** (1.0 / 3.0)
-        a1 = (3 * X * X + 2 * X + 3 * V * V) / (16 * X)
+        # X = (V^2 (sqrt(1 - V^2) + 1))^(1/3), A1 = (3 X^2 + 2 X + 3 V^2)/(16 X), rearranged so
+        # that nothing underflows for a tiny V (V^2 is 0 below 1e-162).
+        X = V ** (1.0 / 3.0) * V ** (1.0 / 3.0) * (math.sqrt(1 - V * V) + 1) ** (1.0 / 3.0)
+        a1 = (3 * X + 2 + 3 * V * (V / X)) / 16
         return np.array([a1, 0.5 - a1, 0.5 - a1, a1]), np.array([0.0, 0.5, 1.0, 1.5])
     if kind == "mzv":
         a1 = 1 - 1 / math.sqrt(2)
@@ -162,6 +164,9 @@ def shaper_taps(stage: Stage, *, Ts: float) -> np.ndarray:
     if stage.kind not in SHAPERS:
         raise ValueError(f"kind must be a shaper ({', '.join(SHAPERS)}), got {stage.kind!r}")
     _check_mode(stage, Ts)
+    span = shaper_impulses(stage)[1][-1] / Ts      # ZV^n: already the n-fold span
+    check_samples("wn", span + 2.0, f"the taps of a {stage.kind} shaper at wn Ts = "
+                  f"{stage.wn * Ts:.6g}")
     if stage.timing == "paper":
         return _paper_taps(*shaper_impulses(stage), Ts)
     p = mode_pole(stage.wn, stage.zeta)

@@ -26,7 +26,7 @@ import math
 import numpy as np
 
 from ..stages import SMOOTHERS, Stage
-from ._checks import check_Ts, on_grid, round_half_up
+from ._checks import check_Ts, check_samples, on_grid, round_half_up
 
 
 def _shape(kind: str, t: np.ndarray, T: float, sigma: float) -> np.ndarray:
@@ -82,6 +82,7 @@ def smoother_taps(stage: Stage, *, Ts: float) -> np.ndarray:
     N = on_grid(nu)
     if nu < 1.0 and not N:   # the one rule for short T: below Ts (beyond the grid test) refused
         raise ValueError(f"T must be >= Ts ({Ts!r} s), got {stage.T!r}")
+    check_samples("T", nu + 1.0, f"the taps of a {stage.kind} smoother with T/Ts = {nu:.6g}")
     if N is not None:
         return _sampled(stage, N, Ts)
     if stage.timing == "paper":
