@@ -9,12 +9,22 @@
  * changes nothing. Every fmi2Error leaves the instance as it was before the call.
  *
  * Time: internal ticks happen at t0 + n*Ts (n = 1, 2, ... an integer counter, so no drift).
- * fmi2DoStep(t, h) computes every tick with t0 + n*Ts in (t, t+h] (a tick within 1e-6*Ts after
- * t+h counts as inside, so that accumulated rounding of t+h by the importer does not shift a
- * tick to the next step). Each of those ticks filters the input value set before the call (the
- * input is held over the step). The outputs after the call are those of the last tick computed;
- * a step that contains no tick leaves the outputs unchanged. Before the first tick the outputs
- * are the rest point: the input value at fmi2ExitInitializationMode.
+ * fmi2DoStep(t, h) computes every tick in (t, t+h]: the instance counts the ticks done and the
+ * time advanced since the last one (fmu_clock), and a step of length h computes
+ * floor((since_tick + h)/Ts + 1e-6) ticks. So the tick count follows the step lengths, not the
+ * importer's accumulated t: a host doing t += h (whose t drifts from k*h by many ticks over
+ * 1e9 steps) gets exactly one tick per step of h = Ts, and a host with exact t = k*h gets the
+ * ticks n*Ts <= t+h (a tick up to 1e-6 Ts after t+h counts as inside). Each of those ticks
+ * filters the input value set before the call (the input is held over the step). The outputs
+ * after the call are those of the last tick computed; a step that contains no tick leaves the
+ * outputs unchanged. Before the first tick the outputs are the rest point: the input value at
+ * fmi2ExitInitializationMode. Once the held input has been absorbed (outputs unchanged for
+ * several chain lengths of ticks, see run_ticks) the remaining ticks of a step are skipped: a
+ * step of any length costs at most a few chain lengths of ticks.
+ *
+ * Identity: every entry point first checks that the instance (and any FMU state) was made by
+ * this binary (same model, same precision); another model's instance gets fmi2Error and is
+ * never written to.
  */
 #include <math.h>
 #include <stdarg.h>
@@ -23,8 +33,8 @@
 
 #include "fmu_instance.h"
 
-#define TICK_SLACK 1e-6          /* fraction of Ts: see the file comment */
-#define MAX_TICK_INDEX 4.0e15    /* keeps t/Ts exactly representable as an integer count */
+#define TICK_SLACK FMU_TICK_SLACK
+#define MAX_TICK_INDEX 4.0e15    /* keeps tick counts exactly representable as doubles */
 
 static const char *const category_names[FMU_LOG_CATEGORIES] = {
     "logStatusError", "logStatusWarning", "logCalls"
@@ -59,12 +69,36 @@ static const char *const phase_names[] = {
     "instantiated", "initialization mode", "step complete", "terminated"
 };
 
+/* Made by this binary: same model (the guid's address is this library's) and precision. */
+static int is_ours(const fmu_identity *id, uint32_t magic)
+{
+    return id->magic == magic && id->guid == fmu_model_guid()
+           && id->real_bytes == fmu_model_real_bytes();
+}
+
+static fmu_identity identity(uint32_t magic)
+{
+    fmu_identity id;
+    id.magic = magic;
+    id.guid = fmu_model_guid();
+    id.real_bytes = fmu_model_real_bytes();
+    return id;
+}
+
 /* The instance if the pointer is one of ours and its state is in `allowed` (bit mask). */
 static fmu_instance *checked(fmi2Component comp, const char *func, unsigned allowed)
 {
     fmu_instance *c = (fmu_instance *)comp;
-    if (c == NULL || c->magic != FMU_INSTANCE_MAGIC)
+    if (c == NULL || c->id.magic != FMU_INSTANCE_MAGIC)
         return NULL;
+    if (!is_ours(&c->id, FMU_INSTANCE_MAGIC)) {
+        /* Another smoothshaper model's (or precision's) instance: same glue layout, so its
+         * logger can say so; nothing of it is written. */
+        log_message(c, fmi2Error, FMU_LOG_ERROR, "%s: instance '%s' belongs to another FMU (not "
+                    "%s, %u-byte reals): refused", func, c->name ? c->name : "?",
+                    fmu_model_identifier(), fmu_model_real_bytes());
+        return NULL;
+    }
     log_message(c, fmi2OK, FMU_LOG_CALLS, "%s", func);
     if (!(allowed & (1u << c->clock.phase))) {
         log_message(c, fmi2Error, FMU_LOG_ERROR, "%s is not allowed in state '%s'", func,
@@ -175,24 +209,57 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
     memcpy(c->name, instanceName, name_len + 1);
     for (k = 0; k < FMU_LOG_CATEGORIES; ++k)   /* FMI 2.0: loggingOn switches all categories */
         c->log_on[k] = loggingOn ? 1 : 0;
-    c->magic = FMU_INSTANCE_MAGIC;
+    c->id = identity(FMU_INSTANCE_MAGIC);
     fmu_model_defaults(c->model);
     memset(&c->clock, 0, sizeof c->clock);
     c->clock.phase = FMU_INSTANTIATED;
     return c;
 }
 
+/* Free the filters' block (the model is unbuilt afterwards). */
+static void release_blocks(fmu_instance *c)
+{
+    if (c->mem != NULL)
+        c->cb.freeMemory(c->mem);
+    c->mem = NULL;
+    c->mem_bytes = 0;
+}
+
 void fmi2FreeInstance(fmi2Component comp)
 {
-    fmu_instance *c = (fmu_instance *)comp;
+    fmu_instance *c = checked(comp, "fmi2FreeInstance", IN_INSTANTIATED | IN_INIT | IN_STEP
+                              | IN_TERMINATED);
     fmi2CallbackFreeMemory release;
-    if (c == NULL || c->magic != FMU_INSTANCE_MAGIC)
+    if (c == NULL)
         return;
     release = c->cb.freeMemory;
-    c->magic = 0;
+    release_blocks(c);
+    c->id.magic = 0;
     release(c->model);
     release(c->name);
     release(c);
+}
+
+int fmu_build(const fmi2CallbackFunctions *cb, void *model, void **mem, size_t *bytes, char *msg,
+              size_t len)
+{
+    size_t need = 0;
+    void *block;
+    if (fmu_model_plan(model, &need, msg, len) != 0)
+        return 1;
+    block = cb->allocateMemory(need > 0 ? need : 1, 1);
+    if (block == NULL)
+        return snprintf(msg, len, "out of memory: the filters need %lu bytes",
+                        (unsigned long)need), 1;
+    if (fmu_model_build(model, block, need, msg, len) != 0) {
+        cb->freeMemory(block);
+        return 1;
+    }
+    if (*mem != NULL)
+        cb->freeMemory(*mem);
+    *mem = block;
+    *bytes = need;
+    return 0;
 }
 
 fmi2Status fmi2SetupExperiment(fmi2Component comp, fmi2Boolean toleranceDefined, fmi2Real tolerance,
@@ -228,10 +295,12 @@ fmi2Status fmi2ExitInitializationMode(fmi2Component comp)
     if (c == NULL)
         return fmi2Error;
     msg[0] = '\0';
-    if (fmu_model_build(c->model, msg, sizeof msg) != 0)
+    if (fmu_build(&c->cb, c->model, &c->mem, &c->mem_bytes, msg, sizeof msg) != 0)
         return FAIL(c, "fmi2ExitInitializationMode: %s", msg);
     c->clock.time = c->clock.start_time;
     c->clock.ticks = 0;
+    c->clock.since_tick = 0.0;
+    c->clock.steady = 0;
     c->clock.phase = FMU_STEP_COMPLETE;
     return fmi2OK;
 }
@@ -250,6 +319,7 @@ fmi2Status fmi2Reset(fmi2Component comp)
     fmu_instance *c = checked(comp, "fmi2Reset", IN_ANY);
     if (c == NULL)
         return fmi2Error;
+    release_blocks(c);
     memset(c->model, 0, fmu_model_size());
     fmu_model_defaults(c->model);
     memset(&c->clock, 0, sizeof c->clock);
@@ -317,6 +387,10 @@ static fmi2Status set_values(fmi2Component comp, const char *func, fmu_type type
             return refuse_value(c, func, type, cls, vr[i], value, i);
     }
     for (i = 0; i < nvr; ++i) {
+        if (type == FMU_REAL && c->clock.steady != 0
+            && fmu_model_class(type, vr[i]) == FMU_VAR_INPUT
+            && fmu_model_get_real(c->model, vr[i]) != ((const fmi2Real *)value)[i])
+            c->clock.steady = 0;   /* a new input: it has to be absorbed again */
         if (type == FMU_REAL)
             fmu_model_set_real(c->model, vr[i], ((const fmi2Real *)value)[i]);
         else
@@ -364,7 +438,9 @@ static void free_snapshot(const fmu_instance *c, fmu_snapshot *s)
 {
     if (s == NULL)
         return;
-    s->magic = 0;
+    s->id.magic = 0;
+    if (s->mem != NULL)
+        c->cb.freeMemory(s->mem);
     c->cb.freeMemory(s->model);
     c->cb.freeMemory(s);
 }
@@ -379,34 +455,56 @@ static fmu_snapshot *new_snapshot(const fmu_instance *c)
         c->cb.freeMemory(s);
         return NULL;
     }
-    s->magic = FMU_SNAPSHOT_MAGIC;
-    s->owner = fmu_model_guid();
+    s->id = identity(FMU_SNAPSHOT_MAGIC);
     return s;
 }
 
-/* A state made by this binary (another FMU in the same process has another guid string). */
+/* A state made by this binary (another FMU in the same process has another guid address). */
 static int is_snapshot(const void *p)
 {
-    return p != NULL && ((const fmu_snapshot *)p)->magic == FMU_SNAPSHOT_MAGIC
-           && ((const fmu_snapshot *)p)->owner == fmu_model_guid();
+    return p != NULL && is_ours(&((const fmu_snapshot *)p)->id, FMU_SNAPSHOT_MAGIC);
+}
+
+/* Make *dst (block of *dst_bytes) a block of `bytes` holding src; O(bytes). The old block is
+ * replaced only once the new one exists. @return 0, or non-zero when out of memory. */
+static int copy_block(const fmu_instance *c, void **dst, size_t *dst_bytes, const void *src,
+                      size_t bytes)
+{
+    if (*dst == NULL || *dst_bytes != bytes) {
+        void *block = bytes > 0 ? c->cb.allocateMemory(bytes, 1) : NULL;
+        if (bytes > 0 && block == NULL)
+            return 1;
+        if (*dst != NULL)
+            c->cb.freeMemory(*dst);
+        *dst = block;
+        *dst_bytes = bytes;
+    }
+    if (bytes > 0)
+        memcpy(*dst, src, bytes);
+    return 0;
 }
 
 fmi2Status fmi2GetFMUstate(fmi2Component comp, fmi2FMUstate *FMUstate)
 {
     fmu_instance *c = checked(comp, "fmi2GetFMUstate", IN_ANY);
     fmu_snapshot *s;
+    int fresh;
     if (c == NULL)
         return fmi2Error;
     if (FMUstate == NULL)
         return FAIL(c, "fmi2GetFMUstate: FMUstate is NULL");
     if (*FMUstate != NULL && !is_snapshot(*FMUstate))
         return FAIL(c, "fmi2GetFMUstate: *FMUstate is neither NULL nor a state of this FMU");
-    s = *FMUstate != NULL ? (fmu_snapshot *)*FMUstate : new_snapshot(c);
-    if (s == NULL)
+    fresh = *FMUstate == NULL;
+    s = fresh ? new_snapshot(c) : (fmu_snapshot *)*FMUstate;
+    if (s == NULL || copy_block(c, &s->mem, &s->mem_bytes, c->mem, c->mem_bytes) != 0) {
+        if (fresh)
+            free_snapshot(c, s);
         return FAIL(c, "fmi2GetFMUstate: out of memory");
+    }
     s->clock = c->clock;
     memcpy(s->model, c->model, fmu_model_size());
-    fmu_model_rebind(s->model);   /* the copy must describe its own arrays (serialise reads them) */
+    fmu_model_rebind(s->model, s->mem);   /* the copy describes its own block (serialise reads it) */
     *FMUstate = s;
     return fmi2OK;
 }
@@ -419,9 +517,11 @@ fmi2Status fmi2SetFMUstate(fmi2Component comp, fmi2FMUstate FMUstate)
         return fmi2Error;
     if (!is_snapshot(FMUstate))
         return FAIL(c, "fmi2SetFMUstate: FMUstate is NULL or not a state of this FMU");
+    if (copy_block(c, &c->mem, &c->mem_bytes, s->mem, s->mem_bytes) != 0)
+        return FAIL(c, "fmi2SetFMUstate: out of memory");
     c->clock = s->clock;
     memcpy(c->model, s->model, fmu_model_size());
-    fmu_model_rebind(c->model);
+    fmu_model_rebind(c->model, c->mem);
     return fmi2OK;
 }
 
@@ -529,12 +629,29 @@ fmi2Status fmi2GetRealOutputDerivatives(fmi2Component comp, const fmi2ValueRefer
     return FAIL(c, "fmi2GetRealOutputDerivatives: not provided (maxOutputDerivativeOrder=0)");
 }
 
+/* Run n ticks with the held input. Once the outputs have not changed for
+ * FMU_STEADY_TICKS(state count) ticks in a row under the same input, the held input is absorbed:
+ * every delay line and restart cycle of the filters has been filled with it (their lengths are
+ * bounded by the state count) and the state repeats with outputs that no longer change, so the
+ * remaining ticks are skipped. A step of any length costs at most that many ticks. */
+static void run_ticks(fmu_instance *c, uint64_t n)
+{
+    uint64_t i, steady_limit = FMU_STEADY_TICKS(fmu_model_state_count(c->model));
+    for (i = 0; i < n; ++i) {
+        if (c->clock.steady >= steady_limit)
+            return;
+        if (fmu_model_tick(c->model))
+            c->clock.steady = 0;
+        else
+            ++c->clock.steady;
+    }
+}
+
 fmi2Status fmi2DoStep(fmi2Component comp, fmi2Real currentCommunicationPoint,
                       fmi2Real communicationStepSize, fmi2Boolean noSetFMUStatePriorToCurrentPoint)
 {
     fmu_instance *c = checked(comp, "fmi2DoStep", IN_STEP);
-    double Ts, t_end, last;
-    uint64_t target;
+    double Ts, advanced, n;
     (void)noSetFMUStatePriorToCurrentPoint;
     if (c == NULL)
         return fmi2Error;
@@ -544,18 +661,21 @@ fmi2Status fmi2DoStep(fmi2Component comp, fmi2Real currentCommunicationPoint,
                        "communicationStepSize finite and > 0 (got %g, %g)",
                     currentCommunicationPoint, communicationStepSize);
     Ts = fmu_model_sample_period(c->model);
-    /* Importers that accumulate t += h drift by rounding: accept that, refuse a jump. */
+    /* Importers compute t + h in their own rounding: accept that, refuse a jump. */
     if (fabs(currentCommunicationPoint - c->clock.time) > TICK_SLACK * Ts + 1e-9 * fabs(c->clock.time))
         return FAIL(c, "fmi2DoStep: currentCommunicationPoint %.17g is not the end of the last "
                        "step %.17g", currentCommunicationPoint, c->clock.time);
-    t_end = currentCommunicationPoint + communicationStepSize;
-    last = floor((t_end - c->clock.start_time) / Ts + TICK_SLACK);
-    if (!(last < MAX_TICK_INDEX))
-        return FAIL(c, "fmi2DoStep: the step ends beyond %g ticks", MAX_TICK_INDEX);
-    target = last > 0.0 ? (uint64_t)last : 0u;
-    for (; c->clock.ticks < target; ++c->clock.ticks)
-        fmu_model_tick(c->model);
-    c->clock.time = t_end;
+    advanced = c->clock.since_tick + communicationStepSize;
+    n = floor(advanced / Ts + TICK_SLACK);
+    if (n < 0.0)
+        n = 0.0;
+    if (!((double)c->clock.ticks + n < MAX_TICK_INDEX))
+        return FAIL(c, "fmi2DoStep: the step (h = %g) would end beyond %g ticks",
+                    communicationStepSize, MAX_TICK_INDEX);
+    run_ticks(c, (uint64_t)n);
+    c->clock.ticks += (uint64_t)n;
+    c->clock.since_tick = fma(-n, Ts, advanced);   /* exact remainder: no drift over long runs */
+    c->clock.time = currentCommunicationPoint + communicationStepSize;
     return fmi2OK;
 }
 

@@ -19,33 +19,64 @@ typedef enum fmu_phase {
 
 enum { FMU_LOG_ERROR = 0, FMU_LOG_WARNING = 1, FMU_LOG_CALLS = 2, FMU_LOG_CATEGORIES = 3 };
 
-/** Everything the glue keeps besides the model data. */
+/**
+ * The glue's clock. Ticks are counted, never derived from the importer's time alone: a doStep
+ * of length h advances the position since_tick + h and computes floor of that over Ts ticks, so
+ * a host that accumulates t += h (whose t drifts from k*h) still gets exactly one tick per
+ * step of h = Ts. The importer's time is kept only to check that steps are contiguous.
+ */
 typedef struct fmu_clock {
     fmu_phase phase;
     double start_time;   /**< t0 from fmi2SetupExperiment */
-    double time;         /**< last communication point reached */
+    double time;         /**< last communication point reached (the importer's number) */
     uint64_t ticks;      /**< internal ticks computed so far; tick n is at t0 + n*Ts */
+    double since_tick;   /**< time advanced since tick `ticks` [s], in [-slack*Ts, Ts) */
+    uint64_t steady;     /**< ticks in a row whose outputs did not change (same input) */
 } fmu_clock;
 
-typedef struct fmu_instance {
+/** Ticks of unchanged outputs after which a held input counts as absorbed, for a model with
+ * `count` state values: more than any delay line, restart cycle or pure delay it holds. */
+#define FMU_STEADY_TICKS(count) (8u * (uint64_t)(count) + 16u)
+
+/** What identifies the binary an instance or a state belongs to: one model, one precision. */
+typedef struct fmu_identity {
     uint32_t magic;
+    const char *guid;    /**< fmu_model_guid() of this binary (compared by address) */
+    uint32_t real_bytes; /**< fmu_model_real_bytes() */
+} fmu_identity;
+
+typedef struct fmu_instance {
+    fmu_identity id;     /**< first: checked at every entry before anything else is read */
     fmi2CallbackFunctions cb;
     char *name;
     int log_on[FMU_LOG_CATEGORIES];
     fmu_clock clock;
-    void *model;
+    void *model;         /**< fmu_model_size() bytes */
+    void *mem;           /**< the filters' block (NULL before build) */
+    size_t mem_bytes;
 } fmu_instance;
 
-/** An fmi2FMUstate: a copy of the clock and of the model data (pointers rebound on set). */
+/** An fmi2FMUstate: a copy of the clock, the model struct and its block (rebound on set). */
 typedef struct fmu_snapshot {
-    uint32_t magic;
-    const char *owner;   /**< fmu_model_guid() of the binary that made it: refuses another model's */
+    fmu_identity id;
     fmu_clock clock;
     void *model;
+    void *mem;
+    size_t mem_bytes;
 } fmu_snapshot;
 
-#define FMU_INSTANCE_MAGIC 0x534d5349u  /* "SMSI" */
-#define FMU_SNAPSHOT_MAGIC 0x534d5353u  /* "SMSS" */
+#define FMU_INSTANCE_MAGIC 0x32534d53u  /* "SMS2" */
+#define FMU_SNAPSHOT_MAGIC 0x32534d54u
+
+/** Fraction of Ts by which a tick may follow the end of a step and still belong to it. */
+#define FMU_TICK_SLACK 1e-6
+
+/**
+ * Plan, allocate (through cb) and build model; on success *mem and *bytes hold the new block and
+ * the previous block is freed; on failure nothing changes and msg says why.
+ */
+int fmu_build(const fmi2CallbackFunctions *cb, void *model, void **mem, size_t *bytes, char *msg,
+              size_t len);
 
 /** Bytes fmu_serialize() writes for this snapshot. */
 size_t fmu_serialized_size(const fmu_snapshot *s);
@@ -53,9 +84,11 @@ size_t fmu_serialized_size(const fmu_snapshot *s);
  * vector passes through scratch memory from cb. @return 0, or non-zero when out of memory. */
 int fmu_serialize(const fmu_snapshot *s, const fmi2CallbackFunctions *cb, unsigned char *out);
 /**
- * Parse a serialised state into dst (whose model data is allocated, fmu_model_size() bytes).
- * @return 0 on success, else non-zero with msg saying why (foreign, truncated, corrupted,
- *         invalid parameters); dst is then unspecified and must not be used.
+ * Parse a serialised state into dst (whose model struct is allocated, fmu_model_size() bytes;
+ * its block is allocated here through cb).
+ * @return 0 on success, else non-zero with msg saying why (foreign, other precision, truncated,
+ *         corrupted, clock and tick count disagreeing, invalid parameters); dst then holds no
+ *         block and must only be freed.
  */
 int fmu_deserialize(const unsigned char *in, size_t size, fmu_snapshot *dst,
                     const fmi2CallbackFunctions *cb, char *msg, size_t len);

@@ -2,14 +2,15 @@
  * The contract between the shared FMI 2.0 Co-Simulation glue (fmi2_glue.c) and one model file.
  *
  * Each FMU binary links the glue with exactly one model file, which defines the functions
- * below. The model keeps all of its data in one plain struct of fmu_model_size() bytes with
- * fixed-size arrays: the glue allocates it through the importer's callbacks, copies it bytewise
- * for fmi2GetFMUstate/fmi2SetFMUstate and then calls fmu_model_rebind() so the pointers inside
- * the copy (the core's chain and stages) point at the copy's own arrays.
+ * below. A model keeps its parameters and filter descriptors in one small plain struct of
+ * fmu_model_size() bytes, and its delay lines / tables in one block sized to the configured
+ * filters: fmu_model_plan() validates the parameters and says how many bytes (closed form, no
+ * work proportional to the size), the glue allocates them through the importer's callbacks
+ * and fmu_model_build() builds into them. FMU states copy the struct and the block and call
+ * fmu_model_rebind() so the copy's internal pointers point at the copy's own block.
  *
  * Variables: the glue checks the call order and the value references' causality; the model
- * stores and returns the values. Parameters are validated by fmu_model_build() at
- * fmi2ExitInitializationMode; non-finite Reals are rejected by the glue at set.
+ * stores and returns the values. Non-finite Reals are rejected by the glue at set.
  */
 #ifndef FMU_MODEL_H
 #define FMU_MODEL_H
@@ -53,18 +54,29 @@ int fmu_model_get_integer(const void *model, fmi2ValueReference vr);
 /** @brief Write an input or parameter (vr already classified, Real already finite). */
 void fmu_model_set_real(void *model, fmi2ValueReference vr, double value);
 void fmu_model_set_integer(void *model, fmi2ValueReference vr, int value);
-/** @return the sample period parameter Ts [s] (validated by fmu_model_build). */
+/** @return the sample period parameter Ts [s] (validated by fmu_model_plan). */
 double fmu_model_sample_period(const void *model);
+/** @return sizeof(sms_real) of this build (a saved state of the other precision is refused). */
+unsigned fmu_model_real_bytes(void);
 /**
- * @brief Validate every parameter and build the filters at rest at the current input.
- * @return 0 on success; otherwise non-zero, the model untouched and msg naming the variable.
+ * @brief Validate every parameter; O(1) in the size of the filters.
+ * @param bytes  out: bytes of memory fmu_model_build() needs (may be 0).
+ * @return 0 on success; otherwise non-zero, msg naming the variable and its value.
  */
-int fmu_model_build(void *model, char *msg, size_t len);
-/** @brief One internal tick: filter the held input, update the outputs. Only after build. */
-void fmu_model_tick(void *model);
-/** @brief After a bytewise copy of a built model, point its internals at its own arrays. */
-void fmu_model_rebind(void *model);
-/** @brief Number of doubles of dynamic state (outputs and filter state) of a built model. */
+int fmu_model_plan(const void *model, size_t *bytes, char *msg, size_t len);
+/**
+ * @brief Build the filters into mem (bytes from fmu_model_plan, aligned for any type), at rest
+ * at the current input.
+ * @return 0 on success; otherwise non-zero with msg, and the model untouched.
+ */
+int fmu_model_build(void *model, void *mem, size_t bytes, char *msg, size_t len);
+/** @brief One internal tick: filter the held input, update the outputs. Only after build.
+ * @return non-zero if an output changed (bitwise), 0 if all kept their values. */
+int fmu_model_tick(void *model);
+/** @brief After a bytewise copy of a built model and its block, point it at its own block. */
+void fmu_model_rebind(void *model, void *mem);
+/** @brief Number of doubles of dynamic state (outputs and filter state) of a built model: a
+ * complete description (loading it continues bit for bit). */
 size_t fmu_model_state_count(const void *model);
 void fmu_model_save_state(const void *model, double *dst);
 /** @return 0 if accepted (model updated), non-zero if the vector does not fit (untouched). */

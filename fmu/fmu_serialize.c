@@ -5,14 +5,18 @@
  *   "SMSF"                      magic (4 bytes)
  *   u32 version                 FMU_STATE_VERSION
  *   u32 G, G bytes              instantiation token (guid) of the model that wrote it
- *   u32 phase, f64 t0, f64 t, u32 ticks_lo, u32 ticks_hi     the glue's clock
+ *   u32 R                       bytes of a signal real (sms_real) in the binary that wrote it
+ *   u32 phase, f64 t0, f64 t, u32 ticks_lo, u32 ticks_hi, f64 since_tick, u32 steady_lo,
+ *   u32 steady_hi               the glue's clock
  *   u32 nR, nR x (u32 vr, f64)  every Real input and parameter (fmu_model_settable order)
  *   u32 nI, nI x (u32 vr, i32)  every Integer/Enumeration parameter
  *   u32 nS, nS x f64            the model's dynamic state (outputs, filter state) if built
  *   u32 crc                     CRC-32 (IEEE 802.3) of all the bytes before it
  * Reading re-validates the parameters and rebuilds the filters through the model's own
- * fmu_model_build(), then loads the dynamic state: a blob from another model, another version,
- * truncated or altered is refused with a message.
+ * fmu_model_plan() / fmu_model_build(), then loads the dynamic state: a blob from another model,
+ * version or precision, truncated or altered, or whose clock disagrees with its tick count
+ * (t != t0 + ticks*Ts + since_tick beyond the rounding of an accumulating host) is refused with
+ * a message, so a crafted state can never make the next doStep run a huge number of ticks.
  */
 #include <math.h>
 #include <stdio.h>
@@ -20,7 +24,10 @@
 
 #include "fmu_instance.h"
 
-#define FMU_STATE_VERSION 1u
+#define FMU_STATE_VERSION 2u
+/* Relative disagreement of t and t0 + ticks*Ts allowed: a host doing t += h drifts by about
+ * 2e-8 t over 1e9 steps of 1 ms. */
+#define CLOCK_REL_SLACK 1e-6
 #define MAX_SETTABLE 1024u
 
 static uint32_t crc32_bytes(const unsigned char *p, size_t n)
@@ -81,11 +88,15 @@ static void write_all(const fmu_snapshot *s, writer *w)
     put_u32(w, FMU_STATE_VERSION);
     put_u32(w, (uint32_t)strlen(guid));
     put_bytes(w, guid, strlen(guid));
+    put_u32(w, fmu_model_real_bytes());
     put_u32(w, (uint32_t)s->clock.phase);
     put_f64(w, s->clock.start_time);
     put_f64(w, s->clock.time);
     put_u32(w, (uint32_t)(s->clock.ticks & 0xffffffffu));
     put_u32(w, (uint32_t)(s->clock.ticks >> 32));
+    put_f64(w, s->clock.since_tick);
+    put_u32(w, (uint32_t)(s->clock.steady & 0xffffffffu));
+    put_u32(w, (uint32_t)(s->clock.steady >> 32));
     n = fmu_model_settable(FMU_REAL, vrs, MAX_SETTABLE);
     put_u32(w, (uint32_t)n);
     for (i = 0; i < n; ++i) {
@@ -199,12 +210,27 @@ static int read_values(reader *r, fmu_type type, void *model, char *msg, size_t 
     return r->bad ? (snprintf(msg, len, "truncated state"), -1) : 0;
 }
 
+/* The clock of a built state: ticks below the limit, since_tick in [-slack Ts, Ts), and the time
+ * where the ticks put it (within an accumulating host's drift). 0, or -1 with msg. */
+static int check_clock(const fmu_clock *k, double Ts, char *msg, size_t len)
+{
+    double ticks = (double)k->ticks, at = k->start_time + ticks * Ts + k->since_tick;
+    if (!(ticks < 4.0e15) || !(k->since_tick >= -2.0 * FMU_TICK_SLACK * Ts)
+        || !(k->since_tick < Ts))
+        REFUSE("the state's clock is inconsistent (ticks %.17g, time since the last tick %.17g s, "
+               "Ts %.17g s)", ticks, k->since_tick, Ts);
+    if (!(fabs(k->time - at) <= FMU_TICK_SLACK * Ts + CLOCK_REL_SLACK * fabs(k->time)))
+        REFUSE("the state's time %.17g s disagrees with its tick count (%.17g ticks of %.17g s "
+               "from t0 = %.17g s end at %.17g s)", k->time, ticks, Ts, k->start_time, at);
+    return 0;
+}
+
 int fmu_deserialize(const unsigned char *in, size_t size, fmu_snapshot *dst,
                     const fmi2CallbackFunctions *cb, char *msg, size_t len)
 {
     reader r;
     const char *guid = fmu_model_guid();
-    uint32_t glen, phase, lo, hi, n_state, stored_crc;
+    uint32_t glen, real_bytes, phase, lo, hi, lo2, n_state, stored_crc;
     double *state;
     int rc;
     if (size < 12 || memcmp(in, "SMSF", 4) != 0)
@@ -223,13 +249,20 @@ int fmu_deserialize(const unsigned char *in, size_t size, fmu_snapshot *dst,
     if (r.bad || glen != strlen(guid) || r.n - r.pos < glen || memcmp(in + r.pos, guid, glen) != 0)
         REFUSE("the state was written by another model or model version (instantiation token differs)");
     r.pos += glen;
+    real_bytes = get_u32(&r);
+    if (!r.bad && real_bytes != fmu_model_real_bytes())
+        REFUSE("the state was written by a build with %lu-byte reals, this one has %lu-byte reals "
+               "(other precision)", (unsigned long)real_bytes, (unsigned long)fmu_model_real_bytes());
     phase = get_u32(&r);
     dst->clock.start_time = get_f64(&r);
     dst->clock.time = get_f64(&r);
     lo = get_u32(&r);
     hi = get_u32(&r);
+    dst->clock.since_tick = get_f64(&r);
+    lo2 = get_u32(&r);
+    dst->clock.steady = (uint64_t)get_u32(&r) << 32 | lo2;
     if (r.bad || phase > FMU_TERMINATED || !isfinite(dst->clock.start_time)
-        || !isfinite(dst->clock.time))
+        || !isfinite(dst->clock.time) || !isfinite(dst->clock.since_tick))
         REFUSE("truncated or invalid clock in the state");
     dst->clock.phase = (fmu_phase)phase;
     dst->clock.ticks = (uint64_t)hi << 32 | lo;
@@ -242,7 +275,11 @@ int fmu_deserialize(const unsigned char *in, size_t size, fmu_snapshot *dst,
         REFUSE("truncated state (dynamic part)");
     if (!is_built(dst))
         return n_state == 0 ? 0 : (snprintf(msg, len, "state of an unbuilt FMU holds filter state"), -1);
-    if (fmu_model_build(dst->model, msg, len) != 0)
+    /* The clock before any work proportional to the filters (Ts itself is checked by the build). */
+    if (fmu_model_sample_period(dst->model) > 0.0
+        && check_clock(&dst->clock, fmu_model_sample_period(dst->model), msg, len) != 0)
+        return -1;
+    if (fmu_build(cb, dst->model, &dst->mem, &dst->mem_bytes, msg, len) != 0)
         return -1;
     if (n_state != fmu_model_state_count(dst->model))
         REFUSE("state holds %lu filter values, the parameters need %lu", (unsigned long)n_state,

@@ -14,10 +14,6 @@
 /* The generated kind codes are the core's sms_kind values (compile-time check). */
 typedef char ss_kind_codes_match_sms_kind[(SS_KIND_COUNT == SMS_KIND_COUNT) ? 1 : -1];
 
-/** Delay-line samples shared by all stages (about T/Ts + 2 per smoother, the shaper span per
- * shaper): the largest chain the FMU accepts. */
-#define SS_MAX_DELAY_SAMPLES 65536
-
 static const char *const field_names[SS_FIELD_COUNT] = {
     "kind", "design", "timing", "T", "sigma", "k", "wn", "zeta", "order", "tolerance",
     "notch_pole_zeta", "duration"
@@ -28,6 +24,8 @@ typedef struct ss_params {
     double reals[SS_FIELD_COUNT]; /* T, sigma, wn, zeta, tolerance, notch_pole_zeta, duration */
 } ss_params;
 
+/* Parameters and the chain's descriptors; the delay lines live in the glue's block, sized to
+ * the configured chain. */
 typedef struct ss_model {
     double u, y, Ts;
     ss_params stage[SS_MAX_STAGES];
@@ -35,7 +33,7 @@ typedef struct ss_model {
     size_t n_active;                     /* stages with kind != none, in chain order */
     sms_chain chain;
     sms_stage stages[SS_MAX_STAGES];
-    sms_real buffer[SS_MAX_DELAY_SAMPLES];
+    size_t n_reals;                      /* delay-line samples of all stages (the glue's block) */
 } ss_model;
 
 static int is_integer_field(unsigned f)
@@ -243,30 +241,58 @@ static int stage_config(const ss_model *m, unsigned k, sms_stage_config *c, char
     return 0;
 }
 
-int fmu_model_build(void *model, char *msg, size_t len)
+unsigned fmu_model_real_bytes(void) { return (unsigned)sizeof(sms_real); }
+
+/* Validate every parameter: the configs of the used stages, their count and the delay-line
+ * samples they need (the core's size query: closed form). 0, or non-zero with msg. */
+static int configure(const ss_model *m, sms_stage_config *configs, size_t *n, size_t *need,
+                     char *msg, size_t len)
 {
-    ss_model *m = (ss_model *)model;
-    sms_stage_config configs[SS_MAX_STAGES];
-    size_t n = 0, need = 0;
     unsigned k;
+    *n = 0;
+    *need = 0;
     if (!(m->Ts > 0.0))
         return snprintf(msg, len, "Ts = %.17g: must be finite and > 0", m->Ts), 1;
     for (k = 0; k < SS_MAX_STAGES; ++k) {
         if (m->stage[k].ints[SS_FIELD_KIND] == SS_KIND_NONE)
             continue;
-        if (stage_config(m, k, &configs[n], msg, len) != 0)
+        if (stage_config(m, k, &configs[*n], msg, len) != 0)
             return 1;
-        ++n;
+        ++*n;
     }
-    if (n > 0 && sms_chain_buffer_size(configs, n, m->Ts, &need) != SMS_OK)
+    if (*n > 0 && sms_chain_buffer_size(configs, *n, m->Ts, need) != SMS_OK)
         return snprintf(msg, len, "the stages do not form a valid chain"), 1;
-    if (need > SS_MAX_DELAY_SAMPLES)
-        return snprintf(msg, len, "the stages need %lu delay-line samples, more than the %d this "
-                        "FMU holds: shorten T/Ts", (unsigned long)need, SS_MAX_DELAY_SAMPLES), 1;
-    if (n > 0 && sms_chain_init(&m->chain, m->stages, configs, n, m->Ts, m->buffer,
-                                SS_MAX_DELAY_SAMPLES) != SMS_OK)
+    if (*need > (size_t)-1 / sizeof(sms_real))
+        return snprintf(msg, len, "the stages need %lu delay-line samples: more than this "
+                        "platform can address", (unsigned long)*need), 1;
+    return 0;
+}
+
+int fmu_model_plan(const void *model, size_t *bytes, char *msg, size_t len)
+{
+    sms_stage_config configs[SS_MAX_STAGES];
+    size_t n, need;
+    if (configure((const ss_model *)model, configs, &n, &need, msg, len) != 0)
+        return 1;
+    *bytes = need * sizeof(sms_real);
+    return 0;
+}
+
+int fmu_model_build(void *model, void *mem, size_t bytes, char *msg, size_t len)
+{
+    ss_model *m = (ss_model *)model;
+    sms_stage_config configs[SS_MAX_STAGES];
+    size_t n, need;
+    if (configure(m, configs, &n, &need, msg, len) != 0)
+        return 1;
+    if (need * sizeof(sms_real) > bytes)
+        return snprintf(msg, len, "the stages need %lu delay-line samples, the block holds %lu",
+                        (unsigned long)need, (unsigned long)(bytes / sizeof(sms_real))), 1;
+    if (n > 0 && sms_chain_init(&m->chain, m->stages, configs, n, m->Ts, (sms_real *)mem,
+                                need) != SMS_OK)
         return snprintf(msg, len, "the chain could not be built"), 1;
     m->n_active = n;
+    m->n_reals = need;
     m->built = 1;
     if (n > 0)
         sms_chain_reset(&m->chain, (sms_real)m->u);
@@ -274,20 +300,22 @@ int fmu_model_build(void *model, char *msg, size_t len)
     return 0;
 }
 
-void fmu_model_tick(void *model)
+int fmu_model_tick(void *model)
 {
     ss_model *m = (ss_model *)model;
     sms_real x = (sms_real)m->u;
+    double before = m->y;
     if (m->n_active > 0)
         sms_chain_step(&m->chain, &x);
     m->y = (double)x;
+    return m->y != before;
 }
 
-void fmu_model_rebind(void *model)
+void fmu_model_rebind(void *model, void *mem)
 {
     ss_model *m = (ss_model *)model;
     if (m->built && m->n_active > 0)
-        sms_chain_rebind(&m->chain, m->stages, m->buffer);
+        sms_chain_rebind(&m->chain, m->stages, (sms_real *)mem);
 }
 
 size_t fmu_model_state_count(const void *model)

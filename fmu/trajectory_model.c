@@ -13,18 +13,12 @@
 #include "TrajectoryGenerator_variables.h"
 #include "fmu_model.h"
 
-/** Longest tail the FMU holds: Nc = ceil((T2 + T3)/Ts) <= 16384 samples (T2 = vmax/amax,
- * T3 about amax/jmax); the generator's tables take 4 (Nc + 1) reals. */
-#define TG_MAX_TAIL_SAMPLES 16384
-#define TG_TABLE_REALS (4 * (TG_MAX_TAIL_SAMPLES + 1))
-
 typedef struct tg_model {
     double target, out[4];                     /* q, v, a, j */
     double Ts, vmax, amax, jmax, wn, zeta;
     int profile;
     int built;
-    sms_generator gen;
-    sms_real table[TG_TABLE_REALS];
+    sms_generator gen;                         /* tables in the glue's block */
 } tg_model;
 
 /* Real value references and the field each one is, in modelDescription order. */
@@ -158,11 +152,12 @@ static int refuse(const tg_model *m, sms_status st, char *msg, size_t len)
     }
 }
 
-int fmu_model_build(void *model, char *msg, size_t len)
+unsigned fmu_model_real_bytes(void) { return (unsigned)sizeof(sms_real); }
+
+/* Validate every parameter into c; need = table reals (the core's size query). 0 or 1 + msg. */
+static int configure(const tg_model *m, sms_generator_config *c, size_t *need, char *msg,
+                     size_t len)
 {
-    tg_model *m = (tg_model *)model;
-    sms_generator_config c;
-    size_t need = 0;
     sms_status st;
     if (!(m->Ts > 0.0))
         return snprintf(msg, len, "Ts = %.17g: must be finite and > 0", m->Ts), 1;
@@ -175,19 +170,41 @@ int fmu_model_build(void *model, char *msg, size_t len)
                         "damped (2)", m->profile), 1;
     if (m->wn < 0.0)
         return snprintf(msg, len, "wn = %.17g: must be 0 (no mode) or > 0", m->wn), 1;
-    c.vmax = m->vmax;
-    c.amax = m->amax;
-    c.jmax = m->jmax;
-    c.profile = (sms_profile)m->profile;
-    c.wn = m->wn;
-    c.zeta = m->zeta;
-    st = sms_generator_buffer_size(&c, m->Ts, &need);
+    c->vmax = m->vmax;
+    c->amax = m->amax;
+    c->jmax = m->jmax;
+    c->profile = (sms_profile)m->profile;
+    c->wn = m->wn;
+    c->zeta = m->zeta;
+    *need = 0;
+    st = sms_generator_buffer_size(c, m->Ts, need);
     if (st != SMS_OK)
         return refuse(m, st, msg, len);
-    if (need > TG_TABLE_REALS)
-        return snprintf(msg, len, "the tail needs %lu table reals, more than the %d this FMU "
-                        "holds: raise amax/jmax or Ts", (unsigned long)need, TG_TABLE_REALS), 1;
-    st = sms_generator_init(&m->gen, &c, m->Ts, m->table, TG_TABLE_REALS);
+    if (*need > (size_t)-1 / sizeof(sms_real))
+        return snprintf(msg, len, "the tail needs %lu table reals: more than this platform can "
+                        "address", (unsigned long)*need), 1;
+    return 0;
+}
+
+int fmu_model_plan(const void *model, size_t *bytes, char *msg, size_t len)
+{
+    sms_generator_config c;
+    size_t need;
+    if (configure((const tg_model *)model, &c, &need, msg, len) != 0)
+        return 1;
+    *bytes = need * sizeof(sms_real);
+    return 0;
+}
+
+int fmu_model_build(void *model, void *mem, size_t bytes, char *msg, size_t len)
+{
+    tg_model *m = (tg_model *)model;
+    sms_generator_config c;
+    size_t need;
+    sms_status st;
+    if (configure(m, &c, &need, msg, len) != 0)
+        return 1;
+    st = sms_generator_init(&m->gen, &c, m->Ts, (sms_real *)mem, bytes / sizeof(sms_real));
     if (st != SMS_OK)
         return refuse(m, st, msg, len);
     sms_generator_reset(&m->gen, (sms_real)m->target);
@@ -197,21 +214,24 @@ int fmu_model_build(void *model, char *msg, size_t len)
     return 0;
 }
 
-void fmu_model_tick(void *model)
+int fmu_model_tick(void *model)
 {
     tg_model *m = (tg_model *)model;
     sms_real out[4];
-    int i;
+    int i, changed = 0;
     sms_generator_step(&m->gen, (sms_real)m->target, out);
-    for (i = 0; i < 4; ++i)
+    for (i = 0; i < 4; ++i) {
+        changed |= m->out[i] != (double)out[i];
         m->out[i] = (double)out[i];
+    }
+    return changed;
 }
 
-void fmu_model_rebind(void *model)
+void fmu_model_rebind(void *model, void *mem)
 {
     tg_model *m = (tg_model *)model;
     if (m->built)
-        sms_generator_rebind(&m->gen, m->table);
+        sms_generator_rebind(&m->gen, (sms_real *)mem);
 }
 
 size_t fmu_model_state_count(const void *model)

@@ -1,0 +1,121 @@
+/*
+ * Tick accounting against a host that accumulates its clock (t += h, h = Ts = 1 ms), as simple
+ * masters and fmpy's SSP runner do. That clock drifts from k*h: at step 334,586 the step ends at
+ * 334.58599999899997 (1e-6 ticks early) and after 1e9 steps it is 18.5 ticks ahead. Every step of
+ * h = Ts must still compute exactly one tick.
+ *
+ * The probe: a 2-sample moving average (taps 1/2, 1/2) fed u = k before step k. After step k,
+ * y = (k + (k - 1))/2 exactly; a lost tick leaves y at the previous value, a doubled tick gives
+ * (k + k)/2. The host clock is accumulated over all 1e9 steps (cheap); the FMU runs the first
+ * 400,000 steps contiguously (through step 334,586) and fresh instances run windows of steps
+ * starting at the accumulated clock of steps 1e7, 1e8 and 1e9 - 4000. With the environment
+ * variable SMS_FMU_CLOCK_FULL=1 one instance runs all 1e9 steps contiguously (about a minute).
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fmi2Functions.h"
+#include "SmoothShaper_variables.h"
+
+static void logger(fmi2ComponentEnvironment env, fmi2String name, fmi2Status status,
+                   fmi2String category, fmi2String message, ...)
+{
+    (void)env; (void)status; (void)category;
+    fprintf(stderr, "[%s] %s\n", name, message);
+}
+
+static const fmi2CallbackFunctions callbacks = { logger, calloc, free, NULL, NULL };
+static const double h = 1e-3;
+
+/* A SmoothShaper instance with one stage M(T = 2 Ts), at rest at u0, clock at t0. */
+static fmi2Component probe(double t0, double u0)
+{
+    const fmi2ValueReference vr_ts = SS_VR_TS, vr_u = SS_VR_U;
+    fmi2ValueReference kinds[SS_MAX_STAGES], vr_T = SS_STAGE_BASE + SS_FIELD_T;
+    fmi2Integer none[SS_MAX_STAGES];
+    double T = 2 * h;
+    int k;
+    fmi2Component c = fmi2Instantiate("clock", fmi2CoSimulation, FMU_MODEL_GUID, "", &callbacks,
+                                      fmi2False, fmi2False);
+    if (c == NULL)
+        return NULL;
+    for (k = 0; k < SS_MAX_STAGES; ++k) {
+        kinds[k] = SS_STAGE_BASE + SS_STAGE_STRIDE * (unsigned)k + SS_FIELD_KIND;
+        none[k] = k == 0 ? 0 : SS_KIND_NONE;   /* stage 0 rectangular, the others none */
+    }
+    if (fmi2SetupExperiment(c, fmi2False, 0.0, t0, fmi2False, 0.0) != fmi2OK
+        || fmi2EnterInitializationMode(c) != fmi2OK
+        || fmi2SetInteger(c, kinds, SS_MAX_STAGES, none) != fmi2OK
+        || fmi2SetReal(c, &vr_ts, 1, &h) != fmi2OK || fmi2SetReal(c, &vr_T, 1, &T) != fmi2OK
+        || fmi2SetReal(c, &vr_u, 1, &u0) != fmi2OK || fmi2ExitInitializationMode(c) != fmi2OK) {
+        fmi2FreeInstance(c);
+        return NULL;
+    }
+    return c;
+}
+
+/* Steps k = first .. first + n - 1 with the host clock starting at *t (advanced t += h).
+ * Returns the number of steps whose output shows a lost or doubled tick. */
+static long run(fmi2Component c, long first, long n, double *t)
+{
+    const fmi2ValueReference vr_u = SS_VR_U, vr_y = SS_VR_Y;
+    long bad = 0, i;
+    for (i = 0; i < n; ++i) {
+        /* inputs modulo 2^20 keep (k + k - 1)/2 exact and distinguish neighbours */
+        double k = (double)((first + i) % 1048576L), prev = k == 0.0 ? 1048575.0 : k - 1.0, y;
+        if (i == 0)
+            prev = k;   /* the instance rests at u = k before its first step */
+        fmi2SetReal(c, &vr_u, 1, &k);
+        if (fmi2DoStep(c, *t, h, fmi2True) != fmi2OK)
+            return n;
+        *t += h;
+        fmi2GetReal(c, &vr_y, 1, &y);
+        if (y != 0.5 * (k + prev)) {
+            if (bad < 5)
+                fprintf(stderr, "step %ld (t = %.17g): y = %.17g, expected %.17g\n", first + i, *t,
+                        y, 0.5 * (k + prev));
+            ++bad;
+        }
+    }
+    return bad;
+}
+
+static long window(long first, long n, double t0)
+{
+    double t = t0;
+    long bad;
+    fmi2Component c = probe(t0, (double)(first % 1048576L));
+    if (c == NULL) {
+        fprintf(stderr, "could not set up the probe\n");
+        return 1;
+    }
+    bad = run(c, first, n, &t);
+    fmi2FreeInstance(c);
+    printf("steps %ld .. %ld (host t from %.17g): %ld lost or doubled ticks\n", first,
+           first + n - 1, t0, bad);
+    return bad;
+}
+
+int main(void)
+{
+    const long total = 1000000000L, windows[] = { 10000000L, 100000000L, 1000000000L - 4000 };
+    const char *full = getenv("SMS_FMU_CLOCK_FULL");
+    long bad = 0, step;
+    size_t w = 0;
+    double t = 0.0;
+    if (full != NULL && strcmp(full, "1") == 0)
+        return window(0, total, 0.0) != 0;
+    bad += window(0, 400000, 0.0);   /* includes step 334,586 */
+    for (step = 0; step < total && w < sizeof windows / sizeof windows[0]; ++step) {
+        if (step == windows[w])
+            bad += window(windows[w++], 4000, t);
+        t += h;   /* the host's accumulated clock */
+    }
+    printf("host clock at step %ld: %.17g (k*h = %.17g)\n", step, t, (double)step * h);
+    if (bad != 0) {
+        fprintf(stderr, "FAILED: %ld steps lost or doubled a tick\n", bad);
+        return 1;
+    }
+    return 0;
+}

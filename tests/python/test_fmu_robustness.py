@@ -1,0 +1,220 @@
+"""What a co-simulation master can throw at the FMUs: memory through its callbacks sized to the
+chain, saved states sized to the chain, crafted or foreign states, another model's instance, a
+held input over an enormous step. (Tick accounting under t += h hosts: tests/fmu/test_fmu_clock.c.)"""
+from __future__ import annotations
+
+import ctypes
+import math
+import struct
+import zlib
+
+import numpy as np
+import pytest
+
+fmpy = pytest.importorskip("fmpy", reason="fmpy is needed to import the FMUs")
+from fmpy.fmi1 import FMICallException  # noqa: E402
+from fmpy.fmi2 import (FMU2Slave, fmi2CallbackAllocateMemoryTYPE,  # noqa: E402
+                       fmi2CallbackFreeMemoryTYPE)
+
+from smoothshaper import validation  # noqa: E402
+from smoothshaper.filters import Chain  # noqa: E402
+from smoothshaper.stages import harmonic, notch, rectangular, shaper  # noqa: E402
+from test_fmu_smoothshaper import (CHAIN, Logged, configure, fmus, run, slave,  # noqa: E402,F401
+                                   smoothshaper_dir)
+from test_fmu_trajectory import start, trajectory_dir  # noqa: E402,F401
+
+TS = 1e-3
+
+
+class Counted(Logged):
+    """Logged callbacks whose allocator records every request (bytes)."""
+
+    def __init__(self):
+        super().__init__()
+        self.sizes: list[int] = []
+        libc = ctypes.CDLL(None)
+        libc.calloc.restype = ctypes.c_void_p
+        libc.calloc.argtypes = [ctypes.c_size_t, ctypes.c_size_t]
+        libc.free.argtypes = [ctypes.c_void_p]
+
+        def allocate(n, size):
+            self.sizes.append(n * size)
+            return libc.calloc(n, size)
+
+        self.callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(allocate)
+        self.callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(lambda p: libc.free(p))
+
+
+def serialized(fmu) -> bytes:
+    state = fmu.getFMUstate()
+    blob = bytes(fmu.serializeFMUstate(state))
+    fmu.freeFMUstate(state)
+    return blob
+
+
+def test_memory_comes_from_the_importer_sized_to_the_chain(smoothshaper_dir):
+    sizes = {}
+    for n in (10, 10000):
+        log = Counted()
+        fmu = slave(smoothshaper_dir, logged=log)
+        configure(fmu, [rectangular(T=n * TS)])
+        sizes[n] = max(log.sizes)
+        fmu.freeInstance()
+    assert sizes[10] < 16384                         # no fixed 65,536-sample (532 KB) line
+    assert 8 * 10000 <= sizes[10000] <= 8 * 10000 + 4096
+
+
+def test_saved_state_bytes_are_proportional_to_the_chain(smoothshaper_dir):
+    size = {}
+    for n in (10, 1000, 10000):
+        fmu = slave(smoothshaper_dir)
+        configure(fmu, [rectangular(T=n * TS)])
+        size[n] = len(serialized(fmu))
+        fmu.freeInstance()
+    assert (size[10000] - size[1000]) * 990 == (size[1000] - size[10]) * 9000   # linear
+    assert size[1000] - size[10] == 8 * 990          # one double per delay-line sample
+    assert size[10] < 2048
+
+
+def test_a_02_hz_shaper_at_10_khz_runs_and_equals_the_library(smoothshaper_dir):
+    # ZVDD for 0.2 Hz spans 1.5 periods = 75,000 samples at Ts = 0.1 ms (the old fixed
+    # delay line held 65,536).
+    Ts, step = 1e-4, 0.01
+    stages = [shaper("zvdd", wn=2 * math.pi * 0.2)]
+    t = validation.communication_points(step=step, stop_time=12.0)
+    u = validation.test_input(t)
+    y = validation.simulate(smoothshaper_dir, stages, t, u, Ts=Ts)
+    x, n_at = validation.tick_inputs(t, u, Ts=Ts)
+    chain = Chain(stages, Ts=Ts)
+    assert chain.state_size > 75000
+    chain.reset(u[0])
+    expected = validation.at_communication_points(chain.process(x), n_at, u[0])
+    assert np.array_equal(y, expected)
+
+
+# ---------------------------------------------------------------- crafted and foreign states
+
+def clock_offset(blob: bytes) -> int:
+    """Offset of the clock (u32 phase) in a serialised state: after magic, version, token, R."""
+    glen = struct.unpack_from("<I", blob, 8)[0]
+    return 12 + glen + 4
+
+
+def patched(blob: bytes, offset: int, fmt: str, value) -> bytes:
+    """The blob with one field replaced and the CRC-32 recomputed (a well-formed forgery)."""
+    b = bytearray(blob)
+    struct.pack_into(fmt, b, offset, value)
+    struct.pack_into("<I", b, len(b) - 4, zlib.crc32(bytes(b[:-4])))
+    return bytes(b)
+
+
+@pytest.fixture
+def stepped(smoothshaper_dir):
+    log = Logged()
+    fmu = slave(smoothshaper_dir, logged=log)
+    configure(fmu, CHAIN, u0=0.3)
+    run(fmu, 0.0, np.linspace(0, 1, 50))
+    yield fmu, log, serialized(fmu)
+    fmu.freeInstance()
+
+
+def test_a_state_whose_clock_disagrees_with_its_ticks_is_refused(stepped):
+    fmu, log, blob = stepped
+    at = clock_offset(blob)
+    for offset, fmt, value in ((at + 12, "<d", 1e9),          # t = 1e9 s after 50 ticks
+                               (at + 20, "<Q", 10 ** 12),     # 1e12 ticks at t = 0.05 s
+                               (at + 28, "<d", 5 * TS)):      # since_tick beyond Ts
+        with pytest.raises(FMICallException):
+            fmu.deSerializeFMUstate(patched(blob, offset, fmt, value))
+        assert "clock" in log.messages[-1] or "tick count" in log.messages[-1], log.messages[-1]
+    # A consistent clock far away is fine: 1e12 ticks at t = 1e9 s, and the next 1 ms step
+    # computes one tick (not 1e12).
+    far = patched(patched(blob, at + 12, "<d", 1e9), at + 20, "<Q", 10 ** 12)
+    fmu.setFMUstate(fmu.deSerializeFMUstate(far))
+    fmu.setReal([fmu.vr["u"]], [0.7])
+    fmu.doStep(1e9, TS)
+
+
+def test_a_state_of_the_other_precision_is_refused(stepped):
+    fmu, log, blob = stepped
+    precision_at = clock_offset(blob) - 4
+    assert struct.unpack_from("<I", blob, precision_at)[0] == 8
+    with pytest.raises(FMICallException):
+        fmu.deSerializeFMUstate(patched(blob, precision_at, "<I", 4))
+    assert "other precision" in log.messages[-1]
+
+
+ENTRY_POINTS = [
+    ("fmi2DoStep", lambda f, c: f.fmi2DoStep(c, 0.05, TS, 1)),
+    ("fmi2SetReal", lambda f, c: f.fmi2SetReal(c, (ctypes.c_uint32 * 1)(0), 1,
+                                               (ctypes.c_double * 1)(5.0))),
+    ("fmi2GetReal", lambda f, c: f.fmi2GetReal(c, (ctypes.c_uint32 * 1)(1), 1,
+                                               (ctypes.c_double * 1)())),
+    ("fmi2Reset", lambda f, c: f.fmi2Reset(c)),
+    ("fmi2Terminate", lambda f, c: f.fmi2Terminate(c)),
+    ("fmi2GetFMUstate", lambda f, c: f.fmi2GetFMUstate(c, ctypes.byref(ctypes.c_void_p()))),
+]
+
+
+@pytest.mark.parametrize("name,call", ENTRY_POINTS, ids=[e[0] for e in ENTRY_POINTS])
+def test_another_models_instance_is_refused_and_untouched(smoothshaper_dir, trajectory_dir,  # noqa: F811
+                                                          name, call):
+    log = Logged()
+    ss = slave(smoothshaper_dir, "ss")
+    tg, twin = slave(trajectory_dir, "tg", logged=log), slave(trajectory_dir, "twin")
+    for f in (tg, twin):
+        start(f, target=0.2)
+    with pytest.raises(FMICallException):
+        call(ss, tg.component)
+    assert "belongs to another FMU" in log.messages[-1]
+    ss.fmi2FreeInstance(tg.component)           # void: must not free the other model's instance
+    targets = np.repeat([0.2, 0.5, -0.1], 100)
+    from test_fmu_trajectory import run as run_tg
+    assert np.array_equal(run_tg(tg, 0.0, targets), run_tg(twin, 0.0, targets))
+    for f in (ss, tg, twin):
+        f.freeInstance()
+
+
+def test_set_state_given_another_models_instance_never_writes(smoothshaper_dir, trajectory_dir):  # noqa: F811
+    ss, tg = slave(smoothshaper_dir, "ss"), slave(trajectory_dir, "tg")
+    start(tg, target=0.2)
+    state = ss.getFMUstate()
+    with pytest.raises(FMICallException):
+        ss.fmi2SetFMUstate(tg.component, state)  # used to copy 531,720 bytes over tg's block
+    ss.freeFMUstate(state)
+    tg.doStep(0.0, TS)
+    assert tg.getReal([tg.vr["q"]])[0] == 0.2
+    for f in (ss, tg):
+        f.freeInstance()
+
+
+# ---------------------------------------------------------------- held input over a huge step
+
+@pytest.mark.parametrize("stages", [CHAIN, [rectangular(T=2000 * TS), harmonic(T=9 * TS)],
+                                    [notch(wn=300.0, zeta=0.0, pole_zeta=0.1)]],
+                         ids=["M*S*ZVD*notch", "long M*S", "notch"])
+def test_a_huge_step_over_a_held_input_equals_ticking_through_it(smoothshaper_dir, stages):
+    # doStep(h = 1e9 s) is 1e12 ticks: once the chain has absorbed the held input its state is
+    # a fixed point and the rest is skipped. Ticking one by one reaches the same bits.
+    a, b = slave(smoothshaper_dir, "a"), slave(smoothshaper_dir, "b")
+    for f in (a, b):
+        configure(f, stages, u0=-0.4)
+        run(f, 0.0, np.linspace(-1, 2, 30))
+        f.setReal([f.vr["u"]], [1.25])
+    a.doStep(0.03, 1e9)
+    ya = a.getReal([a.vr["y"]])[0]
+    yb = run(b, 0.03, np.full(5000, 1.25))[-1]  # one tick per step
+    assert ya == yb and abs(ya - 1.25) <= 1e-12
+    a.doStep(0.03 + 1e9, TS)                    # and it goes on from there
+    assert a.getReal([a.vr["y"]])[0] == ya
+    for f in (a, b):
+        f.freeInstance()
+
+
+def test_a_huge_step_of_the_generator_ends_at_rest_on_the_target(trajectory_dir):  # noqa: F811
+    tg = slave(trajectory_dir)
+    start(tg, target=0.0)
+    tg.setReal([tg.vr["target"]], [0.75])
+    tg.doStep(0.0, 1e9)
+    assert tg.getReal([tg.vr[n] for n in "qvaj"]) == [0.75, 0.0, 0.0, 0.0]
+    tg.freeInstance()
