@@ -1,4 +1,4 @@
-"""The smoothshaper command line: design, analyze, identify, validate, report.
+"""The smoothshaper command line: design, analyze, identify, calibrate, validate, report.
 
 A stage is written KIND:key=value,key=value (--stage, repeatable; stages chain in the given
 order). KIND is one of rectangular, harmonic, damped_harmonic, exponential, zv, zvd, zvdd, zvn,
@@ -464,6 +464,10 @@ def cmd_identify(args) -> int:
     x, Ts = read_record(args.csv, args.column, args.time_column, args.Ts)
     if args.start is not None:
         x = x[int(round(args.start / Ts)):]
+    # a sweep or noise must not yield a confident mode: the whole record has to be explained
+    # by damped oscillations (calibrate.modes.decay_modes); it also gives the uncertainties
+    from .calibrate.modes import decay_modes
+    fitted, r2 = decay_modes(x, Ts, path=args.csv, column=args.column or "signal")
     if args.method == "peaks":
         t1, p1, t2, p2 = first_two_peaks(x, Ts)
         mode = identify_from_peaks(t1=t1, p1=p1, t2=t2, p2=p2)
@@ -473,6 +477,11 @@ def cmd_identify(args) -> int:
     print(f"record: {x.size} samples at Ts = {Ts:.6g} s")
     print(format_table(["wn [rad/s]", "zeta", "wd [rad/s]", "sigma [1/s]", "Td [s]"],
                        [[mode.wn, mode.zeta, mode.wd, mode.sigma, 2 * math.pi / mode.wd]]))
+    m = fitted[0]
+    print(f"whole-record fit (explains {100 * r2:.1f} % of the signal): wn = {m.wn:.6g} +- "
+          f"{m.wn_std:.2g} rad/s, zeta = {m.zeta:.4g} +- {m.zeta_std:.2g} (1 sd)"
+          + (f"; {len(fitted) - 1} further mode(s): see 'smoothshaper calibrate'"
+             if len(fitted) > 1 else ""))
     print("suggested stages: "
           f"damped_harmonic:wn={mode.wn:.6g},zeta={mode.zeta:.6g}  "
           f"zv:wn={mode.wn:.6g},zeta={mode.zeta:.6g}")
@@ -586,6 +595,9 @@ def build_parser() -> argparse.ArgumentParser:
                    "included (default); peaks: two successive peaks, measured about the "
                    "final value (the mean of the record's last tenth)")
     p.set_defaults(func=cmd_identify)
+
+    from .cli_calibrate import add_parser as add_calibrate
+    add_calibrate(sub)
 
     for name, func, what in (("validate", cmd_validate, "build and validate the FMUs with fmpy"),
                              ("report", cmd_report, "reproduce the seed papers' claims")):

@@ -1,0 +1,156 @@
+"""From a measured record to a recommended, verified filter (``smoothshaper calibrate``).
+
+>>> from smoothshaper import calibrate
+>>> result = calibrate.run(["examples/resonance_x.csv"], max_delay=0.03)   # doctest: +SKIP
+>>> result.axes[0].recommended.stages                                      # doctest: +SKIP
+
+Steps (docs/calibrate.md): read and recognise the record (:mod:`.records`), estimate the
+spectrum (Welch) or fit the decay and identify every significant mode with its uncertainty
+(:mod:`.modes`), tune every candidate family to the modes and rank them (:mod:`.candidates`),
+then plots (:mod:`.plots`) and ready-to-use outputs (:mod:`.outputs`).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .candidates import (Candidate, Objective, Reference, chain_taps, evaluate, families,
+                         recommend, tune)
+from .modes import Mode, Spectrum, decay_modes, spectral_modes, welch
+from .records import KINDS, Record, RecordError, load
+
+__all__ = ["run", "Calibration", "AxisResult", "Mode", "Candidate", "Reference", "RecordError",
+           "KINDS", "load"]
+
+
+@dataclass
+class AxisResult:
+    """Everything found for one axis (one signal column) of one record."""
+    name: str
+    record: Record
+    modes: list[Mode]
+    band: tuple[float, float]
+    resolution: float                    # [Hz]
+    spectrum: Spectrum | None            # what the modes were fitted on (None for decays)
+    candidates: list[Candidate] = field(default_factory=list)
+    recommended: Candidate | None = None
+    fit_r2: float | None = None          # decays: variance explained
+
+
+@dataclass
+class Calibration:
+    axes: list[AxisResult]
+    reference: Reference
+    max_delay: float | None
+    max_smoothing: float | None
+    skipped: list[str] = field(default_factory=list)   # axes without a resonance, and why
+
+
+def _band(record: Record, band, spec: Spectrum | None) -> tuple[float, float]:
+    if record.kind in ("psd", "frf"):
+        lo_default, hi_default = float(record.f[1] if record.f[0] == 0 else record.f[0]), \
+            float(record.f[-1])
+    else:
+        df = float(spec.f[1] - spec.f[0])
+        lo_default, hi_default = 5 * df, 0.4 / record.Ts
+    if band is None:
+        return lo_default, hi_default
+    lo, hi = band
+    return max(lo, lo_default), min(hi, hi_default)
+
+
+def _columns(record: Record, axis: str) -> list[int]:
+    if axis == "all" or record.kind in ("decay", "frf"):
+        return list(range(record.signals.shape[1]))
+    if axis in record.names:
+        return [record.names.index(axis)]
+    raise RecordError(record.path, f"no axis {axis!r} (columns: {', '.join(record.names)})")
+
+
+def identify(record: Record, column: int, band=None) -> AxisResult:
+    """Modes of one column of a record."""
+    name = record.names[column]
+    if record.kind == "decay":
+        x = record.signals[:, column]
+        modes, r2 = decay_modes(x, record.Ts, path=record.path, column=name, band=band)
+        return AxisResult(name, record, modes, _band_decay(record, band),
+                          1.0 / (x.size * record.Ts), None, fit_r2=r2)
+    if record.kind == "raw":
+        spec = welch(record.signals[:, column], record.Ts)
+    else:
+        P = record.signals[:, column]
+        if record.kind == "frf":
+            P = P ** 2
+        spec = Spectrum(record.f, P)
+    b = _band(record, band, spec)
+    modes = spectral_modes(spec, b, path=record.path, column=name)
+    return AxisResult(name, record, modes, b, float(np.median(np.diff(spec.f))), spec)
+
+
+def _band_decay(record, band):
+    hi = 0.4 / record.Ts
+    return (0.0, hi) if band is None else (max(0.0, band[0]), min(hi, band[1]))
+
+
+def run(paths, *, kind: str = "auto", axis: str = "all", band=None,
+        reference: Reference | None = None, max_delay: float | None = None,
+        max_smoothing: float | None = None, progress=None) -> Calibration:
+    """Identify the modes in every record of ``paths`` and rank every candidate filter.
+
+    ``kind``: auto, raw, decay, psd or frf; ``axis``: x, y, z (a column name) or all;
+    ``band``: (low, high) [Hz] to search; ``reference``: sample period of the filters and the
+    reference move (:class:`Reference`); ``max_delay`` [s]: longest impulse response allowed;
+    ``max_smoothing``: largest corner rounding allowed (length units of ``reference``);
+    ``progress``: callable(done, total) or None. Raises :class:`RecordError` (a ValueError)
+    naming the file, row or column and the reason.
+    """
+    reference = reference or Reference()
+    for name, value in (("max_delay", max_delay), ("max_smoothing", max_smoothing)):
+        if value is not None and not (math.isfinite(value) and value > 0):
+            raise ValueError(f"{name} must be finite and > 0, got {value!r}")
+    if not (math.isfinite(reference.Ts) and reference.Ts > 0):
+        raise ValueError(f"Ts must be finite and > 0, got {reference.Ts!r}")
+    if not (math.isfinite(reference.accel) and reference.accel > 0):
+        raise ValueError(f"accel must be finite and > 0, got {reference.accel!r}")
+    records = [load(p, kind) for p in paths]
+    axes, skipped = [], []
+    for rec in records:
+        columns = _columns(rec, axis)
+        for j in columns:
+            try:
+                res = identify(rec, j, band)
+            except RecordError as exc:
+                # --axis all: an axis without a resonance (e.g. z of a horizontal test) is
+                # reported and skipped; a record with none at all is an error
+                if len(columns) == 1:
+                    raise
+                skipped.append(str(exc))
+                continue
+            if len(records) > 1:
+                res.name = f"{rec.path}:{res.name}"
+            axes.append(res)
+    if not axes:
+        raise RecordError(paths[0], "no axis shows a resonance: " + "; ".join(skipped))
+    work = sum(len(families(len(a.modes))) for a in axes)
+    done = 0
+    for res in axes:
+        fast = [m for m in res.modes if m.wn < 0.95 * math.pi / reference.Ts]
+        if len(fast) < len(res.modes):
+            raise ValueError(f"Ts = {reference.Ts:g} s: a mode at {res.modes[0].wn:.4g} rad/s "
+                             "is at or above the filters' Nyquist frequency; use a smaller --Ts")
+        objective = Objective(res.modes, reference.Ts)
+        h0 = np.ones(1)
+        res.candidates.append(evaluate("none", [], h0, objective, reference, max_delay,
+                                       max_smoothing))
+        for fam in families(len(res.modes)):
+            c = tune(fam, res.modes, objective, reference, max_delay, max_smoothing)
+            if c is not None:
+                res.candidates.append(c)
+            done += 1
+            if progress:
+                progress(done, work)
+        res.candidates.sort(key=lambda c: c.vibration)
+        res.recommended = recommend(res.candidates)
+    return Calibration(axes, reference, max_delay, max_smoothing, skipped)

@@ -1,0 +1,178 @@
+"""Ready-to-use outputs of a calibration: table, JSON, C config, FMU start values, firmware lines.
+
+* ``recommended.stages``: dicts that ``smoothshaper.Stage(**d)`` accepts, so
+  ``Chain([Stage(**d) for d in stages], Ts=...)`` builds the filter.
+* ``c_config``: C code filling ``sms_stage_config`` values for ``sms_chain_init``.
+* ``fmu_start_values``: ``fmpy.simulate_fmu(start_values=...)`` values for SmoothShaper.fmu.
+* ``input_shaper``: ``[input_shaper]`` lines when 3-D printer firmware knows the shaper.
+"""
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import asdict
+
+from .candidates import Candidate, firmware_lines
+
+C_KIND = {"rectangular": "SMS_RECTANGULAR", "harmonic": "SMS_HARMONIC",
+          "damped_harmonic": "SMS_DAMPED_HARMONIC", "exponential": "SMS_EXPONENTIAL",
+          "zv": "SMS_SHAPER_ZV", "zvd": "SMS_SHAPER_ZVD", "zvdd": "SMS_SHAPER_ZVDD",
+          "zvn": "SMS_SHAPER_ZVN", "ei": "SMS_SHAPER_EI", "ei2": "SMS_SHAPER_EI2",
+          "mzv": "SMS_SHAPER_MZV", "ei3": "SMS_SHAPER_EI3", "gmzv": "SMS_SHAPER_GMZV",
+          "notch_tustin": "SMS_NOTCH_TUSTIN", "notch_matched": "SMS_NOTCH_MATCHED"}
+
+
+def c_config(c: Candidate, Ts: float, axis: str) -> str:
+    """C statements that fill ``cfg[]`` for the recommended chain of ``axis``."""
+    n = len(c.stages)
+    lines = [f"/* smoothshaper calibrate, axis {axis}: {c.name}, remaining vibration "
+             f"{c.vibration:.3g} %, delay {c.length:.4g} s (designed for Ts = {Ts:g} s) */",
+             f"sms_stage_config cfg_{axis}[{n}];"]
+    for i, s in enumerate(c.stages):
+        v = f"cfg_{axis}[{i}]"
+        lines.append(f"{v} = sms_stage_config_default({C_KIND[s.kind]});")
+        if s.kind in ("rectangular", "harmonic", "damped_harmonic", "exponential"):
+            lines.append(f"{v}.T = {s.T!r};  /* s */")
+            if s.sigma:
+                lines.append(f"{v}.sigma = {s.sigma!r};  /* 1/s */")
+            if s.k != 1:
+                lines.append(f"{v}.k = {s.k}u;")
+        else:
+            lines.append(f"{v}.wn = {s.wn!r};  /* rad/s ({s.wn / (2 * math.pi):.6g} Hz) */")
+            lines.append(f"{v}.zeta = {s.zeta!r};")
+            if s.kind in ("zvn", "gmzv"):
+                lines.append(f"{v}.order = {s.order}u;")
+            if s.kind in ("ei", "ei2", "ei3"):
+                lines.append(f"{v}.tolerance = {s.tolerance!r};")
+            if s.kind == "gmzv":
+                lines.append(f"{v}.duration = {s.duration!r};  /* damped periods */")
+    lines.append(f"/* then: sms_chain_buffer_size(cfg_{axis}, {n}, Ts, &need); "
+                 f"sms_chain_init(&chain, stages, cfg_{axis}, {n}, Ts, buffer, need); */")
+    return "\n".join(lines) + "\n"
+
+
+def fmu_start_values(c: Candidate, Ts: float) -> dict:
+    from ..validation import start_values
+    return start_values(c.stages, Ts=Ts)
+
+
+def axis_json(res, Ts: float) -> dict:
+    out = {"axis": res.name, "file": res.record.path, "kind": res.record.kind,
+           "band_hz": list(res.band), "resolution_hz": res.resolution,
+           "modes": [m.as_dict() for m in res.modes],
+           "candidates": [c.as_dict() for c in res.candidates], "recommended": None}
+    if res.record.kind == "raw":
+        out["sample_period"] = res.record.Ts
+        out["timestamp_jitter"] = res.record.jitter
+    if res.fit_r2 is not None:
+        out["decay_fit_r2"] = res.fit_r2
+    c = res.recommended
+    if c is not None:
+        out["recommended"] = {
+            "name": c.name, "stages": [asdict(s) for s in c.stages],
+            "vibration": c.vibration, "vibration_range": list(c.vibration_range),
+            "delay": {"length": c.length, "centroid": c.lag}, "smoothing": c.smoothing,
+            "c_config": c_config(c, Ts, _ident(res.name)),
+            "fmu_start_values": fmu_start_values(c, Ts),
+            "input_shaper": firmware_lines(c, _ident(res.name))}
+    return out
+
+
+def _ident(name: str) -> str:
+    return "".join(ch if ch.isalnum() else "_" for ch in name.split(":")[-1])
+
+
+def to_json(cal) -> dict:
+    ref = cal.reference
+    doc = {"reference": asdict(ref), "max_delay": cal.max_delay,
+           "max_smoothing": cal.max_smoothing,
+           "axes": [axis_json(a, ref.Ts) for a in cal.axes], "skipped": cal.skipped}
+    if len(doc["axes"]) == 1:        # one axis: its results at the top level too
+        for key in ("modes", "candidates", "recommended"):
+            doc[key] = doc["axes"][0][key]
+    return doc
+
+
+def write_json(cal, path: str) -> None:
+    with open(path, "w", encoding="utf-8") as fh:
+        json.dump(to_json(cal), fh, indent=1, default=_default)
+        fh.write("\n")
+
+
+def _default(o):
+    import numpy as np
+    if isinstance(o, np.generic):
+        return o.item()
+    raise TypeError(f"not JSON serialisable: {type(o).__name__}")
+
+
+def _fmt(v, spec=".3g"):
+    if v is None:
+        return "-"
+    if isinstance(v, float) and math.isinf(v):
+        return "unbounded"
+    return format(v, spec)
+
+
+def report_text(cal, top: int = 12) -> str:
+    """The stdout report: modes and the ranked candidates per axis."""
+    out = []
+    ref = cal.reference
+    for res in cal.axes:
+        rec = res.record
+        head = f"== axis {res.name} ({rec.path}, {rec.kind} record"
+        if rec.kind in ("raw", "decay"):
+            head += f", {rec.signals.shape[0]} samples at {1 / rec.Ts:.6g} Hz"
+            if rec.resampled:
+                head += f", time stamps resampled (jitter {100 * rec.jitter:.2g} % of Ts)"
+        out.append(head + ")")
+        out.append(f"band {res.band[0]:.4g} to {res.band[1]:.4g} Hz, resolution "
+                   f"{res.resolution:.4g} Hz" + (f", decay fit explains {100 * res.fit_r2:.1f} %"
+                                                  if res.fit_r2 is not None else ""))
+        out.append("modes (+- 1 standard deviation):")
+        for i, m in enumerate(res.modes, 1):
+            out.append(f"  {i}: {m.f_hz:.4g} Hz = {m.wn:.5g} +- {m.wn_std:.2g} rad/s, zeta "
+                       f"{m.zeta:.4g} +- {m.zeta_std:.2g}, share {100 * m.weight / sum(x.weight for x in res.modes):.0f} %")
+        out.append(f"{'candidate':<17}{'vibration %':>12}{'(+-2 sd)':>17}{'delay s':>9}"
+                   f"{'lag s':>9}{'smoothing':>10}{'peak acc':>10}{'peak jerk':>11}  class   design")
+        for c in res.candidates[:top]:
+            mark = "*" if c is res.recommended else (" " if c.meets else "x")
+            design = ", ".join(_design_text(s) for s in c.stages) or "-"
+            out.append(f"{mark}{c.name:<16}{c.vibration:12.3g}"
+                       f"{'[' + _fmt(c.vibration_range[0]) + ', ' + _fmt(c.vibration_range[1]) + ']':>17}"
+                       f"{c.length:9.4g}{c.lag:9.4g}{c.smoothing:10.3g}{_fmt(c.peak_accel):>10}"
+                       f"{_fmt(c.peak_jerk):>11}  {c.continuity:<7} {design}")
+        limits = []
+        if cal.max_delay is not None:
+            limits.append(f"delay <= {cal.max_delay:g} s")
+        if cal.max_smoothing is not None:
+            limits.append(f"smoothing <= {cal.max_smoothing:g}")
+        lim = " and ".join(limits) or "no limits"
+        if res.recommended is None:
+            out.append(f"no candidate meets {lim}: relax --max-delay / --max-smoothing")
+        else:
+            c = res.recommended
+            out.append(f"recommended ({lim}): {c.name}: {', '.join(_design_text(s) for s in c.stages)}"
+                       f"; remaining vibration {c.vibration:.3g} % (+-2 sd: "
+                       f"{c.vibration_range[0]:.3g} to {c.vibration_range[1]:.3g} %), delay "
+                       f"{c.length:.4g} s")
+            fw = firmware_lines(c, _ident(res.name))
+            if fw:
+                out.append("  [input_shaper]: " + "; ".join(fw))
+        out.append(f"(* recommended, x outside the limits; smoothing and peaks for a move at "
+                   f"{ref.accel:g}/s^2, corner velocity {ref.corner_velocity:g}/s, filters at "
+                   f"Ts = {ref.Ts:g} s)")
+        out.append("")
+    for why in cal.skipped:
+        out.append(f"skipped: {why}")
+    return "\n".join(out) + ("\n" if cal.skipped else "")
+
+
+def _design_text(s) -> str:
+    if s.kind in ("rectangular", "harmonic", "damped_harmonic", "exponential"):
+        text = f"{s.kind} T={s.T:.5g} s"
+        return text + (f" sigma={s.sigma:.4g}" if s.sigma else "")
+    text = f"{s.kind} {s.wn / (2 * math.pi):.4g} Hz ({s.wn:.5g} rad/s) zeta={s.zeta:.3g}"
+    if s.kind == "gmzv":
+        text += f" n={s.order} D={s.duration:.3g}"
+    return text

@@ -1,0 +1,108 @@
+"""``smoothshaper calibrate``: from measured records to a recommended filter.
+
+    smoothshaper calibrate FILE... [--kind auto|raw|decay|psd|frf] [--axis x|y|z|all]
+        [--band FMIN FMAX] [--max-delay S] [--max-smoothing D] [--accel A]
+        [--corner-velocity V] [--Ts S] [--out DIR] [--json FILE]
+
+Prints the identified modes and the ranked candidates per axis; ``--out`` writes the two
+figures, ``config_<axis>.c``, ``fmu_start_values_<axis>.json`` (for
+``fmpy.simulate_fmu(start_values=...)``) and ``input_shaper.cfg`` when firmware knows the
+shaper; ``--json`` writes everything (docs/calibrate.md).
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+import time
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser(
+        "calibrate", help="identify the modes in measured records and recommend a filter",
+        description="Identify every significant mode (wn, zeta, uncertainty) in measured "
+        "records (accelerometer resonance tests, free decays, PSD tables, frequency responses), "
+        "tune every filter family to them and recommend the one that leaves the least "
+        "vibration within the delay and smoothing limits.")
+    p.add_argument("files", nargs="+", metavar="FILE", help="CSV record(s)")
+    p.add_argument("--kind", choices=("auto", "raw", "decay", "psd", "frf"), default="auto",
+                   help="record kind (default auto: from the header and the signal)")
+    p.add_argument("--axis", default="all", help="x, y, z (a column name) or all (default)")
+    p.add_argument("--band", nargs=2, type=float, metavar=("FMIN", "FMAX"),
+                   help="frequency band to search [Hz] (default: 5 resolution steps to 0.4 of "
+                   "the sample rate, or the table's range)")
+    p.add_argument("--max-delay", type=float, metavar="S",
+                   help="longest filter impulse response allowed [s]")
+    p.add_argument("--max-smoothing", type=float, metavar="D",
+                   help="largest corner rounding allowed (length unit of --accel)")
+    p.add_argument("--accel", type=float, default=3000.0,
+                   help="acceleration of the reference move (default 3000, e.g. mm/s^2)")
+    p.add_argument("--corner-velocity", type=float, default=5.0,
+                   help="square-corner velocity of the reference corner (default 5, e.g. mm/s)")
+    p.add_argument("--distance", type=float, default=10.0,
+                   help="length of the reference rest-to-rest move (default 10, e.g. mm)")
+    p.add_argument("--Ts", type=float, default=1e-4,
+                   help="sample period the filter will run at [s] (default 1e-4)")
+    p.add_argument("--out", metavar="DIR", help="write figures and config files here")
+    p.add_argument("--json", metavar="FILE", help="write all results as JSON")
+    p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
+                   help="progress bar (default: when stderr is a terminal)")
+    p.set_defaults(func=cmd_calibrate)
+
+
+def cmd_calibrate(args) -> int:
+    from . import calibrate
+    from .calibrate import outputs
+    from .cli import Progress
+    enabled = sys.stderr.isatty() if args.progress is None else args.progress
+    bar = {}
+
+    def progress(done, total):
+        if "bar" not in bar:
+            bar["bar"] = Progress(total, "tuning candidates", enabled)
+        bar["bar"].advance(done - bar["bar"].done)
+
+    ref = calibrate.Reference(Ts=args.Ts, accel=args.accel,
+                              corner_velocity=args.corner_velocity, distance=args.distance)
+    start = time.process_time()
+    cal = calibrate.run(args.files, kind=args.kind, axis=args.axis,
+                        band=tuple(args.band) if args.band else None, reference=ref,
+                        max_delay=args.max_delay, max_smoothing=args.max_smoothing,
+                        progress=progress)
+    elapsed = time.process_time() - start
+    print(outputs.report_text(cal), end="")
+    print(f"analysis: {elapsed:.2f} s of CPU time")
+    if args.json:
+        outputs.write_json(cal, args.json)
+        print(f"wrote {args.json}")
+    if args.out:
+        from .calibrate import plots
+        os.makedirs(args.out, exist_ok=True)
+        written = plots.write(cal, args.out)
+        firmware = []
+        for res in cal.axes:
+            c = res.recommended
+            if c is None:
+                continue
+            ident = outputs._ident(res.name)
+            path = os.path.join(args.out, f"config_{ident}.c")
+            with open(path, "w", encoding="utf-8") as fh:
+                fh.write(outputs.c_config(c, ref.Ts, ident))
+            written.append(path)
+            path = os.path.join(args.out, f"fmu_start_values_{ident}.json")
+            with open(path, "w", encoding="utf-8") as fh:
+                json.dump(outputs.fmu_start_values(c, ref.Ts), fh, indent=1)
+            written.append(path)
+            lines = calibrate.candidates.firmware_lines(c, ident)
+            if lines:
+                firmware += lines
+        if firmware:
+            path = os.path.join(args.out, "input_shaper.cfg")
+            with open(path, "w", encoding="utf-8") as fh:
+                fh.write("[input_shaper]\n" + "\n".join(firmware) + "\n")
+            written.append(path)
+        print("wrote " + ", ".join(written))
+    if any(res.recommended is None for res in cal.axes):
+        return 1
+    return 0
