@@ -437,7 +437,13 @@ def read_record(path: str, column: str | None, time_column: str | None,
             raise CliError(f"{path}: the time column must increase")
         Ts = float(np.mean(dt))
         if np.max(np.abs(dt - Ts)) > 1e-6 * Ts + 1e-12:
-            raise CliError(f"{path}: the time column is not uniformly sampled")
+            # jittered time stamps (real accelerometer logs): resample onto a uniform grid
+            from scipy.interpolate import CubicSpline
+            if np.max(dt) > 5 * Ts:
+                i = int(np.argmax(dt)) + 1
+                raise CliError(f"{path}: a gap of {dt[i - 1]:.6g} s before time {t[i]:.6g} s: "
+                               "the record is not contiguous")
+            x = CubicSpline(t - t[0], x)(np.arange(t.size) * Ts)
     return x, Ts
 
 

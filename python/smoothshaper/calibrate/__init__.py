@@ -52,13 +52,30 @@ def _band(record: Record, band, spec: Spectrum | None) -> tuple[float, float]:
     if record.kind in ("psd", "frf"):
         lo_default, hi_default = float(record.f[1] if record.f[0] == 0 else record.f[0]), \
             float(record.f[-1])
+        if record.kind == "psd":        # a resonance test's PSD: its excited part
+            lo_default, hi_default = excited_band(spec, lo_default, hi_default)
     else:
         df = float(spec.f[1] - spec.f[0])
-        lo_default, hi_default = 5 * df, 0.4 / record.Ts
+        lo_default, hi_default = excited_band(spec, 5 * df, 0.4 / record.Ts)
     if band is None:
         return lo_default, hi_default
     lo, hi = band
     return max(lo, lo_default), min(hi, hi_default)
+
+
+def excited_band(spec: Spectrum, lo: float, hi: float) -> tuple[float, float]:
+    """The part of [lo, hi] a resonance test excited: where the smoothed PSD stands 10 dB above
+    the noise floor (the median of the top fifth of the spectrum), shrunk by 15 % at each end,
+    so that the steep edges of a sweep's band are not taken for resonances."""
+    f, P = spec.f, spec.P
+    logP = np.log10(np.maximum(P, 1e-300))
+    kern = np.hanning(29)[1:-1]
+    smooth = np.convolve(logP, kern / kern.sum(), mode="same")
+    floor = float(np.median(logP[int(0.8 * f.size):]))
+    excited = np.flatnonzero((smooth > floor + 1.0) & (f >= lo) & (f <= hi))
+    if excited.size < 16:
+        return lo, hi
+    return max(lo, f[excited[0]] * 1.15), min(hi, f[excited[-1]] / 1.15)
 
 
 def _columns(record: Record, axis: str) -> list[int]:

@@ -11,7 +11,7 @@ Hermite nodes over wn ~ N(wn_i, sd_wn) and zeta ~ N(zeta_i, sd_zeta)):
 
 Each candidate's design frequency (and damping, and for the generalised MZV its duration) is
 tuned to minimise V (Nelder-Mead), subject to the delay and smoothing limits. The stated
-uncertainty of V is the range of the same sum with each mode anywhere in its +-2 sd box.
+uncertainty of V is the range of the same sum with each mode anywhere in its +-3 sd box.
 """
 from __future__ import annotations
 
@@ -29,6 +29,8 @@ _SMOOTHING_ORDER = {"rectangular": 1, "exponential": 1, "harmonic": 2, "damped_h
 #: Shaper kinds 3-D printer firmware knows (Klipper [input_shaper] shaper_type names).
 FIRMWARE_NAMES = {"zv": "zv", "mzv": "mzv", "zvd": "zvd", "ei": "ei", "ei2": "2hump_ei",
                   "ei3": "3hump_ei"}
+#: Half-width of the uncertainty box, in standard deviations, for the stated range.
+BOX = 3.0
 _GH_WN = np.polynomial.hermite_e.hermegauss(5)
 _GH_Z = np.polynomial.hermite_e.hermegauss(3)
 
@@ -81,7 +83,7 @@ def chain_taps(stages: list[Stage], Ts: float) -> np.ndarray:
 
 
 class Objective:
-    """Remaining vibration of taps over the modes, nominal, band-averaged and +-2 sd range."""
+    """Remaining vibration of taps over the modes, nominal, band-averaged and +-3 sd range."""
 
     def __init__(self, modes: list[Mode], Ts: float):
         self.Ts = Ts
@@ -97,8 +99,8 @@ class Objective:
                     poles.append(_pole(wn, z))
                     gw.append(ww * wz / (2 * math.pi))
                     idx.append(i)
-            for wn in np.linspace(m.wn - 2 * m.wn_std, m.wn + 2 * m.wn_std, 9):
-                for z in (m.zeta - 2 * m.zeta_std, m.zeta, m.zeta + 2 * m.zeta_std):
+            for wn in np.linspace(m.wn - BOX * m.wn_std, m.wn + BOX * m.wn_std, 9):
+                for z in (m.zeta - BOX * m.zeta_std, m.zeta, m.zeta + BOX * m.zeta_std):
                     box.append(_pole(max(wn, 1e-9), min(max(z, 0.0), 0.99)))
                     box_idx.append(i)
         self.poles, self.gw, self.idx = np.array(poles), np.array(gw), np.array(idx)
@@ -142,12 +144,24 @@ class Objective:
         return 100 * math.sqrt(float(self.w @ lo)), 100 * math.sqrt(float(self.w @ hi))
 
 
-def duration(stages) -> float:
-    """Continuous impulse-response duration of a chain [s]."""
-    total = 0.0
+_ZVN_ORDER = {"zv": lambda s: 1, "zvd": lambda s: 2, "zvdd": lambda s: 3,
+              "zvn": lambda s: s.order}
+
+
+def duration(stages, Ts: float) -> float:
+    """Impulse-response length (L - 1) Ts of the discrete chain [s], without building it: a
+    smoother of duration T spans floor(T/Ts) samples, a shaper whose last impulse is at t
+    spans ceil(t/Ts) (exact timing splits it onto the next sample)."""
+    n = 0
     for s in stages:
-        total += s.T if s.kind in _SMOOTHING_ORDER else float(shaper_impulses(s)[1][-1])
-    return total
+        if s.kind in _SMOOTHING_ORDER:
+            n += math.floor(s.T / Ts + 1e-9)
+        elif s.kind in _ZVN_ORDER:      # exact ZV^n: n convolved exact ZVs
+            n += _ZVN_ORDER[s.kind](s) * math.ceil(float(shaper_impulses(
+                s.with_(kind="zv"))[1][-1]) / Ts - 1e-9)
+        else:
+            n += math.ceil(float(shaper_impulses(s)[1][-1]) / Ts - 1e-9)
+    return n * Ts
 
 
 def _pole(wn, zeta):
@@ -278,7 +292,7 @@ def tune(family: Family, modes: list[Mode], objective: Objective, ref: Reference
                 if any(p[2 * i] >= 0.95 * nyq for i in range(family.slots)):
                     raise ValueError("above Nyquist")
                 stages = family.build(p)
-                cache[key] = (stages, duration(stages))
+                cache[key] = (stages, duration(stages, ref.Ts))
             except (ValueError, ParameterError):
                 cache[key] = None
         return cache[key]
@@ -293,14 +307,13 @@ def tune(family: Family, modes: list[Mode], objective: Objective, ref: Reference
         stages, length = d
         v = objective.band_continuous(stages)
         if max_delay is not None:
-            # the discrete filter may be up to 2 samples longer than the continuous design
-            excess = (length + 2 * ref.Ts) / max_delay - 1
-            if excess > 0:
-                v += 1e3 * (excess + 0.01)
+            excess = length / max_delay - 1
+            if excess > 1e-9:               # any violation costs more than any V [%]
+                v += 1e3 * (1 + excess)
         if max_smoothing is not None:
             excess = smoothing(chain_taps(stages, ref.Ts), ref) / max_smoothing - 1
             if excess > 0:
-                v += 1e3 * (excess + 0.01)
+                v += 1e3 * (1 + excess)
         return v
 
     starts = []
@@ -310,8 +323,11 @@ def tune(family: Family, modes: list[Mode], objective: Objective, ref: Reference
     base += [e[0] for e in family.extra]
     starts.append(np.array(base))
     if max_delay is not None:
-        # a shorter design (higher frequency) when the nominal one is too long
-        for scale in (0.3, 0.6):
+        # shorter designs (higher frequency) when the nominal one is too long: the one that
+        # just fits (the duration scales as 1/wn) and two others
+        d0 = design(np.array(base))
+        fit = math.log(d0[1] / max_delay) + 0.01 if d0 is not None and d0[1] > 0 else 0.0
+        for scale in sorted({min(max(fit, 0.0), 0.69), 0.3, 0.6}):
             u = np.array(base)
             for i in range(family.slots):
                 u[2 * i] = scale

@@ -133,15 +133,19 @@ def report_text(cal, top: int = 12) -> str:
         for i, m in enumerate(res.modes, 1):
             out.append(f"  {i}: {m.f_hz:.4g} Hz = {m.wn:.5g} +- {m.wn_std:.2g} rad/s, zeta "
                        f"{m.zeta:.4g} +- {m.zeta_std:.2g}, share {100 * m.weight / sum(x.weight for x in res.modes):.0f} %")
-        out.append(f"{'candidate':<17}{'vibration %':>12}{'(+-2 sd)':>17}{'delay s':>9}"
-                   f"{'lag s':>9}{'smoothing':>10}{'peak acc':>10}{'peak jerk':>11}  class   design")
+        rows = []
         for c in res.candidates[:top]:
             mark = "*" if c is res.recommended else (" " if c.meets else "x")
-            design = ", ".join(_design_text(s) for s in c.stages) or "-"
-            out.append(f"{mark}{c.name:<16}{c.vibration:12.3g}"
-                       f"{'[' + _fmt(c.vibration_range[0]) + ', ' + _fmt(c.vibration_range[1]) + ']':>17}"
-                       f"{c.length:9.4g}{c.lag:9.4g}{c.smoothing:10.3g}{_fmt(c.peak_accel):>10}"
-                       f"{_fmt(c.peak_jerk):>11}  {c.continuity:<7} {design}")
+            rows.append([mark + c.name, _fmt(c.vibration),
+                         f"{_fmt(c.vibration_range[0])} .. {_fmt(c.vibration_range[1])}",
+                         _fmt(c.length, ".4g"), _fmt(c.lag, ".4g"), _fmt(c.smoothing),
+                         _fmt(c.peak_accel), _fmt(c.peak_jerk), c.continuity,
+                         "; ".join(_design_text(s) for s in c.stages) or "-"])
+        head = ["candidate", "vibration %", "+-3 sd range %", "delay s", "lag s", "smoothing",
+                "peak acc", "peak jerk", "class", "design"]
+        widths = [max(len(r[i]) for r in rows + [head]) for i in range(len(head))]
+        out.append("  ".join(h.ljust(w) for h, w in zip(head, widths)).rstrip())
+        out += ["  ".join(v.ljust(w) for v, w in zip(r, widths)).rstrip() for r in rows]
         limits = []
         if cal.max_delay is not None:
             limits.append(f"delay <= {cal.max_delay:g} s")
@@ -153,7 +157,7 @@ def report_text(cal, top: int = 12) -> str:
         else:
             c = res.recommended
             out.append(f"recommended ({lim}): {c.name}: {', '.join(_design_text(s) for s in c.stages)}"
-                       f"; remaining vibration {c.vibration:.3g} % (+-2 sd: "
+                       f"; remaining vibration {c.vibration:.3g} % (+-3 sd: "
                        f"{c.vibration_range[0]:.3g} to {c.vibration_range[1]:.3g} %), delay "
                        f"{c.length:.4g} s")
             fw = firmware_lines(c, _ident(res.name))

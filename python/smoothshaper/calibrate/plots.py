@@ -13,13 +13,14 @@ import os
 
 import numpy as np
 
-from .candidates import chain_taps
+from .candidates import BOX, chain_taps
 
 COLORS = ("tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple")
 
 
 def _R(h, Ts, wn, zeta):
-    p = -zeta * wn + 1j * wn * math.sqrt(1 - zeta * zeta)
+    zeta = np.broadcast_to(zeta, np.shape(wn))
+    p = -zeta * wn + 1j * wn * np.sqrt(1 - zeta * zeta)
     k = np.arange(h.size)
     return np.abs(np.exp(-np.outer(p, k) * Ts) @ h)
 
@@ -59,7 +60,10 @@ def write(cal, out_dir: str) -> list[str]:
         show &= f > 0
         ax.semilogy(f[show], P[show], color="black", lw=1.2, label=f"measured {label}")
         rec = res.recommended
-        zeta_for_curves = m0.zeta
+        # the residual at each frequency for the damping of the nearest mode
+        fm = np.array([m.f_hz for m in res.modes])
+        near = np.argmin(np.abs(np.log(np.maximum(f[show], 1e-9)[:, None] / fm)), axis=1)
+        zeta_for_curves = np.array([m.zeta for m in res.modes])[near]
         if rec is not None:
             h = chain_taps(rec.stages, Ts)
             R = _R(h, Ts, 2 * math.pi * f[show], zeta_for_curves)
@@ -79,12 +83,11 @@ def write(cal, out_dir: str) -> list[str]:
         for c, col in zip(_top(res, 4), COLORS):
             h = chain_taps(c.stages, Ts)
             R = _R(h, Ts, 2 * math.pi * f[show], zeta_for_curves)
-            s = c.stages[0]
-            design = (f"{s.wn / (2 * math.pi):.3g} Hz = {s.wn:.4g} rad/s" if s.wn
-                      else f"T = {s.T:.3g} s")
+            design = " + ".join(f"{s.wn / (2 * math.pi):.3g} Hz = {s.wn:.4g} rad/s" if s.wn
+                                else f"T = {s.T:.3g} s" for s in c.stages)
             ax2.plot(f[show], 100 * R, color=col, lw=1.0,
                      label=f"{c.name} @ {design}: {c.vibration:.2g} %, {1e3 * c.length:.3g} ms")
-        ax2.set_ylabel(f"residual vibration [%] (zeta = {zeta_for_curves:.2g})")
+        ax2.set_ylabel("residual vibration [%] (zeta of the nearest mode)")
         ax2.set_ylim(0, 110)
         h1, l1 = ax.get_legend_handles_labels()
         h2, l2 = ax2.get_legend_handles_labels()
@@ -105,9 +108,9 @@ def write(cal, out_dir: str) -> list[str]:
             h = chain_taps(c.stages, Ts)
             ax.plot(wn / (2 * math.pi), 100 * _R(h, Ts, wn, m.zeta), color=col,
                     label=f"{c.name} ({1e3 * c.length:.3g} ms)")
-        ax.axvspan((m.wn - 2 * m.wn_std) / (2 * math.pi), (m.wn + 2 * m.wn_std) / (2 * math.pi),
+        ax.axvspan((m.wn - BOX * m.wn_std) / (2 * math.pi), (m.wn + BOX * m.wn_std) / (2 * math.pi),
                    color="tab:red", alpha=0.15,
-                   label=f"mode 1 +- 2 sd: {m.f_hz:.4g} Hz = {m.wn:.4g} +- {2 * m.wn_std:.2g} "
+                   label=f"mode 1 +- 3 sd: {m.f_hz:.4g} Hz = {m.wn:.4g} +- {BOX * m.wn_std:.2g} "
                          "rad/s")
         ax.axvline(m.f_hz, color="tab:red", lw=0.8, ls=":")
         ax.set_xlabel("natural frequency of mode 1 [Hz]")

@@ -174,7 +174,8 @@ def _resample(path, t, x, numbers):
     bad = np.flatnonzero(dt <= 0)
     if bad.size:
         i = int(bad[0]) + 1
-        raise RecordError(path, f"time {t[i]!r} s does not increase (previous {t[i - 1]!r} s): "
+        raise RecordError(path, f"time {float(t[i]):g} s does not increase (previous "
+                          f"{float(t[i - 1]):g} s): "
                           "time stamps must be strictly increasing", row=int(numbers[i]), column=0)
     Ts = (t[-1] - t[0]) / (t.size - 1)
     jitter = float(np.max(np.abs(dt - Ts)) / Ts)
@@ -245,7 +246,7 @@ def load(path: str, kind: str = "auto") -> Record:
     bad = np.flatnonzero(df <= 0)
     if bad.size:
         i = int(bad[0]) + 1
-        raise RecordError(path, f"frequency {f[i]!r} does not increase: frequencies must be "
+        raise RecordError(path, f"frequency {float(f[i]):g} does not increase: frequencies must be "
                           "strictly increasing", row=int(numbers[i]), column=0)
     if f[0] < 0:
         raise RecordError(path, "negative frequency", row=int(numbers[0]), column=0)
@@ -256,8 +257,16 @@ def load(path: str, kind: str = "auto") -> Record:
         neg = np.argwhere(P < 0)
         if neg.size:
             i, j = neg[0]
-            raise RecordError(path, f"PSD value {P[i, j]!r} is negative: a power spectral "
+            raise RecordError(path, f"PSD value {float(P[i, j]):g} is negative: a power spectral "
                               "density is >= 0", row=int(numbers[i]), column=int(j) + 1)
+        if header is not None:
+            # Klipper's calibration CSV also carries shaper-response columns ("zv(39.2)") and
+            # the sum psd_xyz: keep the per-axis PSD columns
+            cols = [j for j, n in enumerate(names) if "psd" in n.lower()] or list(range(len(names)))
+            per_axis = [j for j in cols if _axis_name(names[j], j) in AXIS_NAMES]
+            cols = per_axis or cols
+            P = P[:, cols]
+            names = [_axis_name(names[j], j) for j in cols]
         return Record(path, kind, names, f=f, signals=P)
     # frequency response: magnitude, optional phase
     lower = _lower(header)
@@ -266,7 +275,7 @@ def load(path: str, kind: str = "auto") -> Record:
         mag = 10.0 ** (mag / 20.0)
     elif np.any(mag < 0):
         i = int(np.flatnonzero(mag < 0)[0])
-        raise RecordError(path, f"magnitude {mag[i]!r} is negative (if it is in dB, say so in "
+        raise RecordError(path, f"magnitude {float(mag[i]):g} is negative (if it is in dB, say so in "
                           "the header, e.g. 'mag_db')", row=int(numbers[i]), column=1)
     phase = None
     if data.shape[1] >= 3:
@@ -277,8 +286,8 @@ def load(path: str, kind: str = "auto") -> Record:
 
 
 def _axis_name(name: str, j: int) -> str:
-    low = name.lower()
+    low = name.lower().strip()
     for a in AXIS_NAMES:
-        if low.endswith(a) or low.endswith("_" + a):
+        if low == a or low.endswith("_" + a):
             return a
     return name

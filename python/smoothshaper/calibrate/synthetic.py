@@ -57,11 +57,18 @@ def sweep_input(fs: float, T: float, f0: float = 5.0, f1: float = 120.0,
     return accel_per_hz * f * np.sin(2 * np.pi * np.cumsum(f) * Ts)
 
 
-def resonance_record(modes, *, fs=3200.0, T=20.0, snr_db=30.0, jitter=0.01, seed=0,
-                     axes=1, offsets=(0.0, 0.0, 9810.0), f0=5.0, f1=120.0):
+def resonance_record(modes, *, fs=3200.0, T=None, snr_db=30.0, jitter=0.01, seed=0,
+                     axes=1, offsets=(0.0, 0.0, 9810.0), f0=None, f1=None, rate=2.0):
     """(t, accel (n, axes)): the first axis is the plant's response to the sweep; further axes
-    see it scaled by 0.3 and 0.05 (cross-talk), each with its own noise and offset."""
+    see it scaled by 0.3 and 0.05 (cross-talk), each with its own noise and offset. The sweep
+    runs from f0 (default 5 Hz) to f1 (2 x the highest mode) at ``rate`` Hz/s
+    unless T [s] is given: a sweep much faster than a mode's decay distorts its peak (the
+    firmware's test sweeps at 1 Hz/s)."""
     rng = np.random.default_rng(seed)
+    fmodes = [wn / (2 * math.pi) for wn, _ in modes]
+    f0 = min(5.0, 0.5 * min(fmodes)) if f0 is None else f0
+    f1 = 2.0 * max(fmodes) if f1 is None else f1
+    T = (f1 - f0) / rate if T is None else T
     u = sweep_input(fs, T, f0, f1)
     t, y = _at_jittered_times(plant(modes), u, 1.0 / fs, jitter, rng)
     cols = []
