@@ -11,8 +11,12 @@
  * - shaper: a sparse FIR sum_k g_k x[n - d_k] over a ring, same taps as the library's;
  * - direct-form FIR: sum_i h[i] x[n-i] over all L taps (what the O(1) smoothers replace).
  *
- * Output: a readable table, and one machine-readable line per contender,
- *   "speed<TAB>path<TAB>contender<TAB>ns_per_sample", read by python -m smoothshaper.bench.
+ * Trajectory paths: the online generator's cost per sample (cruise, no re-plan) and the
+ * kinematic design's cost in each regime of a velocity/acceleration/jerk move.
+ *
+ * Output: a readable table, and one machine-readable line per figure,
+ *   "speed<TAB>path<TAB>contender<TAB>ns_per_sample" or "design<TAB>regime<TAB>ns_per_design",
+ * read by python -m smoothshaper.bench.
  * Usage: speed_bench [--quick]   (--quick: a few short rounds, a smoke test of the harness). */
 #include <math.h>
 #include <stdio.h>
@@ -49,6 +53,7 @@ typedef struct plain {
     size_t n_taps, delay[64];
     sms_real gain[64];
     double taps[MAX_RING];
+    sms_real gain_reversed[MAX_RING];
 } plain;
 
 static plain plain_state;
@@ -146,15 +151,21 @@ static void plain_sparse_fir(plain *p, const sms_real *in, sms_real *out, size_t
     p->head = head;
 }
 
+/* Direct form over a doubled ring (each input stored twice, L apart), so the L taps meet
+ * L contiguous samples: taps reversed, one dot product per output. */
 static void plain_direct_fir(plain *p, const sms_real *in, sms_real *out, size_t n)
 {
     size_t i, k, head = p->head;
+    const size_t len = p->len;
+    sms_real *ring = p->ring;
     for (i = 0; i < n; ++i) {
+        const sms_real *window;
         sms_real acc = 0;
-        p->ring[head] = in[i];
-        for (k = 0; k < p->len; ++k)
-            acc += (sms_real)p->taps[k] * p->ring[head >= k ? head - k : head + p->len - k];
-        head = head + 1 == p->len ? 0 : head + 1;
+        ring[head] = ring[head + len] = in[i];
+        head = head + 1 == len ? 0 : head + 1;
+        window = ring + head; /* oldest .. newest */
+        for (k = 0; k < len; ++k)
+            acc += p->gain_reversed[k] * window[k];
         out[i] = acc;
     }
     p->head = head;
@@ -279,12 +290,15 @@ static void direct_fir_row(const char *path, sms_kind kind, double T, double Ts,
 {
     sms_stage_config c = sms_stage_config_default(kind);
     contender list[2];
+    size_t i;
     c.T = T;
     c.timing = SMS_TIMING_PAPER;
     if (!init_stage(&c, Ts))
         return;
     reset_plain(sms_stage_length(&stage));
     (void)sms_smoother_taps(&c, Ts, plain_state.taps, MAX_RING);
+    for (i = 0; i < plain_state.len; ++i)
+        plain_state.gain_reversed[i] = (sms_real)plain_state.taps[plain_state.len - 1 - i];
     list[0].name = "smoothshaper";
     list[0].stage = &stage;
     list[0].plain_run = NULL;
@@ -351,6 +365,70 @@ static void shaper_row(const char *path, sms_kind kind, double wn, double zeta, 
     measure(path, list, 2, rounds, blocks);
 }
 
+static sms_real generator_table[1 << 16];
+
+static void generator_row(int rounds)
+{
+    sms_generator g;
+    sms_generator_config c;
+    sms_real out[4];
+    size_t need, k;
+    double samples[MAX_ROUNDS];
+    int r;
+    volatile sms_real sink = 0;
+    c.vmax = 250.0;
+    c.amax = 5000.0;
+    c.jmax = 200000.0;
+    c.profile = SMS_PROFILE_POLYNOMIAL;
+    c.wn = 0.0;
+    c.zeta = 0.0;
+    if (sms_generator_buffer_size(&c, 1e-4, &need) != SMS_OK || need > sizeof generator_table / sizeof generator_table[0]
+        || sms_generator_init(&g, &c, 1e-4, generator_table, need) != SMS_OK) {
+        printf("generator init failed\n");
+        return;
+    }
+    for (r = 0; r < rounds; ++r) {
+        double t0 = cpu_seconds();
+        for (k = 0; k < 16u * BLOCK; ++k) {
+            sms_generator_step(&g, (sms_real)1e6, out); /* one long move: cruise, no re-plan */
+            sink += out[0];
+        }
+        samples[r] = 1e9 * (cpu_seconds() - t0) / (16.0 * BLOCK);
+    }
+    qsort(samples, (size_t)rounds, sizeof(double), compare_double);
+    printf("speed\tgenerator\tsmoothshaper\t%.4f\n", samples[rounds / 2]);
+}
+
+/* Kinematic design of a rest-to-rest move h within {vmax, amax, jmax} in each regime. */
+static void design_rows(int rounds)
+{
+    static const struct { const char *regime; double h, limits[3]; } cases[] = {
+        {"vmax reached", 1.0, {0.5, 5.0, 100.0}},
+        {"amax reached, vmax not", 0.1, {2.0, 5.0, 100.0}},
+        {"jmax only", 0.001, {2.0, 5.0, 100.0}},
+    };
+    size_t c;
+    for (c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
+        double samples[MAX_ROUNDS], T[3];
+        size_t count, k;
+        int r;
+        volatile double sink = 0.0;
+        for (r = 0; r < rounds; ++r) {
+            double t0 = cpu_seconds();
+            for (k = 0; k < 20000u; ++k) {
+                /* a slightly different move each time: nothing cached */
+                double h = cases[c].h * (1.0 + 1e-9 * (double)(k & 15u));
+                (void)sms_kinematic_design(h, cases[c].limits, 3, SMS_PROFILE_POLYNOMIAL, 0.0,
+                                           0.0, T, 3, &count);
+                sink += T[0];
+            }
+            samples[r] = 1e9 * (cpu_seconds() - t0) / 20000.0;
+        }
+        qsort(samples, (size_t)rounds, sizeof(double), compare_double);
+        printf("design\t%s\t%.2f\n", cases[c].regime, samples[rounds / 2]);
+    }
+}
+
 int main(int argc, char **argv)
 {
     const int quick = argc > 1 && strcmp(argv[1], "--quick") == 0;
@@ -375,5 +453,7 @@ int main(int argc, char **argv)
     shaper_row("ZV shaper", SMS_SHAPER_ZV, wn, zeta, Ts, rounds, blocks);
     shaper_row("ZVD shaper", SMS_SHAPER_ZVD, wn, zeta, Ts, rounds, blocks);
     shaper_row("EI shaper", SMS_SHAPER_EI, wn, zeta, Ts, rounds, blocks);
+    generator_row(rounds);
+    design_rows(rounds);
     return 0;
 }

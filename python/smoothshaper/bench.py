@@ -1,0 +1,435 @@
+"""Speed benchmark: every path of the library next to what it replaces, in one run.
+
+``python -m smoothshaper.bench`` prints the tables and writes them to ``docs/benchmarks.md``
+(``--output`` elsewhere, ``--quick`` for a few-second smoke run whose figures mean nothing).
+
+What is measured, always CPU time (``time.process_time_ns``, or the C clock of the process),
+the median of several rounds, the contenders of a row interleaved round by round so that a
+busy machine slows them alike:
+
+- C per-sample cost (``tests/bench/speed_bench.c`` compiled here against ``c/src`` at ``-O2``
+  and ``-O3 -march=native``, double and float): each filter next to the plain recursion of the
+  same filter, a plain biquad, a sparse FIR with the same taps and a direct-form FIR;
+  the online generator per sample; the kinematic design per regime.
+- Python: the :class:`~smoothshaper.filters.Chain` call floor, throughput against
+  ``scipy.signal.lfilter`` (the plain recursion, and the FIR taps) and ``oaconvolve``, the peak
+  memory of ``Chain.process`` in double and float, the cost of building, copying, pickling a
+  chain and of its taps.
+- Trajectory: ``design.kinematic`` against ``ruckig`` (both called from Python), per regime.
+- FMUs (when fmpy and cmake are available): one ``doStep`` of ``SmoothShaper`` and of
+  ``TrajectoryGenerator`` per sample period through fmpy, and the per-sample cost inside one
+  long ``doStep``.
+
+Nothing here asserts a time: machines are noisy; the numbers are for reading.
+"""
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import pickle
+import platform
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+import tracemalloc
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[2]
+SPEED_BENCH = ROOT / "tests" / "bench" / "speed_bench.c"
+
+
+# -- timing ---------------------------------------------------------------------------------
+
+def interleaved(contenders: dict, *, rounds: int, repeat: int = 1) -> dict:
+    """Median CPU seconds per call of each contender (name -> zero-argument callable). Each
+    round runs every contender `repeat` times, rotating who goes first."""
+    names = list(contenders)
+    samples = {name: [] for name in names}
+    for name in names:                      # warm caches, allocators, lazy imports
+        contenders[name]()
+    for r in range(rounds):
+        for j in range(len(names)):
+            name = names[(j + r) % len(names)]
+            fn = contenders[name]
+            t0 = time.process_time_ns()
+            for _ in range(repeat):
+                fn()
+            samples[name].append((time.process_time_ns() - t0) * 1e-9 / repeat)
+    return {name: statistics.median(v) for name, v in samples.items()}
+
+
+class Table:
+    """A titled table of rows, printed as it grows and rendered as Markdown."""
+
+    def __init__(self, title: str, columns: list[str], note: str = ""):
+        self.title, self.columns, self.note, self.rows = title, columns, note, []
+        print(f"\n## {title}")
+        print("  " + " | ".join(columns))
+
+    def add(self, *cells) -> None:
+        row = [c if isinstance(c, str) else _fmt(c) for c in cells]
+        self.rows.append(row)
+        print("  " + " | ".join(row), flush=True)
+
+    def markdown(self) -> str:
+        out = [f"## {self.title}", ""]
+        if self.note:
+            out += [self.note, ""]
+        out.append("| " + " | ".join(self.columns) + " |")
+        out.append("|" + "|".join("---" for _ in self.columns) + "|")
+        out += ["| " + " | ".join(r) + " |" for r in self.rows]
+        return "\n".join(out) + "\n"
+
+
+def _fmt(v) -> str:
+    if v is None or (isinstance(v, float) and not math.isfinite(v)):
+        return "n/a"
+    if isinstance(v, float):
+        return f"{v:.3g}" if abs(v) < 100 else f"{v:.0f}"
+    return str(v)
+
+
+def _ratio(a, b) -> str:
+    return f"{a / b:.2f}x" if a and b else "n/a"
+
+
+# -- C per-sample paths ---------------------------------------------------------------------
+
+def _compiler() -> str | None:
+    return os.environ.get("CC") or shutil.which("cc") or shutil.which("gcc") or shutil.which("clang")
+
+
+def run_c_bench(flags: list[str], precision: str, workdir: Path, quick: bool) -> dict:
+    """Compile speed_bench.c with the library sources and run it; {(kind, path, contender): ns}."""
+    cc = _compiler()
+    sources = sorted((ROOT / "c" / "src").glob("*.c"))
+    exe = workdir / f"speed_bench_{precision}_{'_'.join(f.strip('-') for f in flags)}"
+    defines = ["-DSMS_USE_FLOAT"] if precision == "float" else []
+    cmd = [cc, "-std=c99", *flags, *defines, "-I", str(ROOT / "c" / "include"),
+           "-I", str(ROOT / "c" / "src"), str(SPEED_BENCH), *map(str, sources), "-lm",
+           "-o", str(exe)]
+    subprocess.run(cmd, check=True)
+    out = subprocess.run([str(exe)] + (["--quick"] if quick else []), check=True,
+                         capture_output=True, text=True).stdout
+    figures = {}
+    for line in out.splitlines():
+        parts = line.split("\t")
+        if parts[0] == "speed" and len(parts) == 4:
+            figures[("speed", parts[1], parts[2])] = float(parts[3])
+        elif parts[0] == "design" and len(parts) == 3:
+            figures[("design", parts[1], "")] = float(parts[2])
+    return figures
+
+
+C_ROWS = [  # path, reference contender, target ratio (what the library promises)
+    ("rectangular", "plain recursion", "<= 2"),
+    ("harmonic", "plain recursion", "<= 2"),
+    ("damped harmonic", "plain recursion", "<= 2"),
+    ("exponential", "plain recursion", "<= 2"),
+    ("rectangular (FIR)", "direct-form FIR", "O(1) vs O(L)"),
+    ("notch", "plain biquad", "<= 1.2"),
+    ("ZV shaper", "sparse FIR", "<= 1"),
+    ("ZVD shaper", "sparse FIR", "<= 1"),
+    ("EI shaper", "sparse FIR", "<= 1"),
+]
+
+
+def c_tables(quick: bool) -> tuple[list[Table], dict]:
+    """The C tables, and the figures of every build {(flags, precision): figures}."""
+    if _compiler() is None or not SPEED_BENCH.is_file():
+        print("\n(C per-sample benchmark skipped: needs a C compiler and a source checkout)")
+        return [], {}
+    variants = [(["-O2"], "double"), (["-O2"], "float")]
+    if not quick:
+        variants += [(["-O3", "-march=native"], "double"), (["-O3", "-march=native"], "float")]
+    results = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        for flags, precision in variants:
+            results[(" ".join(flags), precision)] = run_c_bench(flags, precision, Path(tmp), quick)
+    columns = ["path", "reference", "target"]
+    for flags, precision in variants:
+        columns += [f"{precision} {' '.join(flags)}: ns (ref ns)", "ratio"]
+    per_sample = Table(
+        "C per-sample cost against the plain realisation", columns,
+        "ns per sample, N = T/Ts = 200 for the smoothers (paper timing), Ts = 1 ms; notch and "
+        "shapers for a 40 Hz mode, zeta 0.05 (exact timing). Ratio = smoothshaper / reference.")
+    for path, ref, target in C_ROWS:
+        cells = [path, ref, target]
+        for key, figures in results.items():
+            mine = figures.get(("speed", path, "smoothshaper"))
+            theirs = figures.get(("speed", path, ref))
+            cells += [f"{_fmt(mine)} ({_fmt(theirs)})", _ratio(mine, theirs)]
+        per_sample.add(*cells)
+    traj = Table("C trajectory paths", ["path"] + [f"{p} {f}" for f, p in results],
+                 "Generator: ns per sample while cruising (vmax 250, amax 5000, jmax 2e5, "
+                 "Ts = 0.1 ms). Kinematic design: ns per design of a rest-to-rest move.")
+    traj.add("generator step [ns/sample]",
+             *[r.get(("speed", "generator", "smoothshaper")) for r in results.values()])
+    for regime in ("vmax reached", "amax reached, vmax not", "jmax only"):
+        traj.add(f"kinematic design, {regime} [ns]",
+                 *[r.get(("design", regime, "")) for r in results.values()])
+    return [per_sample, traj], results
+
+
+# -- Python paths ---------------------------------------------------------------------------
+
+def python_tables(quick: bool) -> list[Table]:
+    import scipy.signal as sps
+
+    from .filters import Chain
+    from .stages import Stage
+
+    rounds = 3 if quick else 15
+    Ts = 1e-3
+    n = 10_000 if quick else 1_000_000
+    rng = np.random.default_rng(1)
+    u = 1e3 + rng.uniform(-1, 1, n)
+    tables = []
+
+    floor = Table("Python call floor", ["call", "us per call"],
+                  "Chain.process on one sample and Chain.step (rectangular stage).")
+    for precision in ("double", "float"):
+        chain = Chain([Stage("rectangular", T=0.01)], Ts=Ts, precision=precision)
+        one = np.zeros(1)
+        t = interleaved({"process": lambda: chain.process(one),
+                         "step": lambda: chain.step(0.0)}, rounds=rounds, repeat=2000)
+        floor.add(f"Chain.process(1 sample), {precision}", t["process"] * 1e6)
+        floor.add(f"Chain.step, {precision}", t["step"] * 1e6)
+    tables.append(floor)
+
+    # The damped harmonic smoother, N = 200: the library, scipy on its plain recursion (b, a),
+    # scipy on its FIR taps, overlap-add convolution.
+    N, sigma = 200, -10.0
+    stage = Stage("damped_harmonic", T=N * Ts, sigma=sigma, timing="paper")
+    chain = Chain([stage], Ts=Ts)
+    h = chain.taps()
+    r, c = math.exp(sigma * Ts), math.cos(math.pi / N)
+    K = (1 - 2 * r * c + r * r) / (1 + r ** N)
+    a = np.array([1.0, -2 * r * c, r * r])
+
+    def plain_recursion():
+        # y = K (x[n-1] + r^N x[n-N-1]) + 2 r c y[n-1] - r^2 y[n-2]: the sparse numerator
+        # in NumPy, the recursion in lfilter (a dense (b, a) of N + 2 taps would be O(N)).
+        v = u.copy()
+        v[N:] += r ** N * u[:-N]
+        return sps.lfilter([0.0, K], a, v)
+
+    t = interleaved({
+        "Chain.process": lambda: chain.process(u),
+        "lfilter, plain recursion": plain_recursion,
+        "lfilter, FIR taps": lambda: sps.lfilter(h, [1.0], u),
+        "oaconvolve, FIR taps": lambda: sps.oaconvolve(u, h)[:n],
+    }, rounds=max(3, rounds // 3))
+    through = Table("Python throughput (damped harmonic smoother, N = 200)",
+                    ["contender", "ns per sample", "vs Chain.process"],
+                    f"{n} samples of 1e3 + U(-1, 1), float64 in and out.")
+    for name, sec in t.items():
+        through.add(name, sec / n * 1e9, _ratio(sec, t["Chain.process"]))
+    tables.append(through)
+
+    big = 100_000 if quick else 10_000_000
+    x = rng.uniform(-1, 1, big)
+    memory = Table("Python peak memory of Chain.process",
+                   ["precision", "signal MiB", "peak extra MiB", "extra / signal"],
+                   f"{big} float64 samples; peak allocated during the call (tracemalloc), "
+                   "output included.")
+    for precision in ("double", "float"):
+        ch = Chain([stage], Ts=Ts, precision=precision)
+        tracemalloc.start()
+        tracemalloc.reset_peak()
+        before = tracemalloc.get_traced_memory()[0]
+        y = ch.process(x)
+        peak = tracemalloc.get_traced_memory()[1] - before
+        tracemalloc.stop()
+        del y
+        memory.add(precision, x.nbytes / 2**20, peak / 2**20, f"{peak / x.nbytes:.2f}")
+    tables.append(memory)
+
+    design = Table("Design cost of a chain (damped harmonic stage, exact timing)",
+                   ["N = T/Ts", "Chain() ms", "taps() ms", "copy() ms", "pickle round trip ms"])
+    for N in ((10_000, 100_000) if quick else (100_000, 1_000_000)):
+        st = [Stage("damped_harmonic", T=(N + 0.3) * 1e-4, sigma=-3.0)]
+        ch = Chain(st, Ts=1e-4)
+        t = interleaved({
+            "init": lambda: Chain(st, Ts=1e-4),
+            "taps": lambda: ch.taps(),
+            "copy": lambda: ch.copy(),
+            "pickle": lambda: pickle.loads(pickle.dumps(ch)),
+        }, rounds=3 if quick else 7)
+        design.add(N, t["init"] * 1e3, t["taps"] * 1e3, t["copy"] * 1e3, t["pickle"] * 1e3)
+    tables.append(design)
+    return tables
+
+
+def trajectory_table(quick: bool, c_figures: dict) -> list[Table]:
+    try:
+        import ruckig
+    except ImportError:
+        print("\n(kinematic design against ruckig skipped: ruckig is not installed)")
+        return []
+    from .filters import _backend
+
+    ffi, lib = _backend("double")
+    table = Table("Kinematic design against ruckig",
+                  ["regime", "smoothshaper C ns", "smoothshaper via cffi ns", "ruckig ns",
+                   "C / ruckig", "cffi / ruckig", "same duration"],
+                  "One rest-to-rest move within {vmax, amax, jmax}. ruckig: Ruckig.calculate "
+                  "through its Python binding (the C++ core plus the binding's call), objects "
+                  "prepared beforehand. smoothshaper: sms_kinematic_design in C (double, -O2) "
+                  "and through cffi (the call itself costs about 0.2 us).")
+    cases = {"vmax reached": (1.0, 0.5, 5.0, 100.0),
+             "amax reached, vmax not": (0.1, 2.0, 5.0, 100.0),
+             "jmax only": (0.001, 2.0, 5.0, 100.0)}
+    for regime, (h, v, a, j) in cases.items():
+        limits = ffi.new("double[]", [v, a, j])
+        T = ffi.new("double[]", 3)
+        count = ffi.new("size_t *")
+        design = lib.sms_kinematic_design
+        poly = lib.SMS_PROFILE_POLYNOMIAL
+        otg = ruckig.Ruckig(1)
+        inp = ruckig.InputParameter(1)
+        inp.current_position, inp.target_position = [0.0], [h]
+        inp.max_velocity, inp.max_acceleration, inp.max_jerk = [v], [a], [j]
+        traj = ruckig.Trajectory(1)
+        t = interleaved({
+            "sms": lambda: design(h, limits, 3, poly, 0.0, 0.0, T, 3, count),
+            "ruckig": lambda: otg.calculate(inp, traj),
+        }, rounds=3 if quick else 15, repeat=200 if quick else 5000)
+        same = abs(sum(T[i] for i in range(count[0])) - traj.duration) <= 1e-12 * traj.duration
+        in_c = c_figures.get(("-O2", "double"), {}).get(("design", regime, ""))
+        table.add(regime, in_c, t["sms"] * 1e9, t["ruckig"] * 1e9,
+                  _ratio(in_c * 1e-9 if in_c else None, t["ruckig"]),
+                  _ratio(t["sms"], t["ruckig"]), "yes" if same else "NO")
+    return [table]
+
+
+# -- FMUs -----------------------------------------------------------------------------------
+
+def fmu_table(quick: bool, build_dir: Path) -> list[Table]:
+    try:
+        import fmpy  # noqa: F401
+        from fmpy import extract, read_model_description
+        from fmpy.fmi2 import FMU2Slave
+    except ImportError:
+        print("\n(FMU benchmark skipped: fmpy is not installed)")
+        return []
+    if shutil.which("cmake") is None:
+        print("\n(FMU benchmark skipped: cmake is needed to build the FMUs)")
+        return []
+    from . import validation
+    from .filters import Chain
+    from .stages import Stage
+
+    fmus = validation.build_fmus(build_dir)
+    Ts = 1e-3
+    steps = 2_000 if quick else 50_000
+    table = Table("FMU paths (fmpy, one instance)",
+                  ["path", "us per doStep", "ns per sample", "Python Chain.step us"],
+                  "doStep of one sample period Ts = 1 ms, and one doStep of 1000 Ts "
+                  "(per-sample cost inside the FMU).")
+    chain = Chain([Stage("damped_harmonic", T=0.0531, sigma=-10.0)], Ts=Ts)
+    t_chain = interleaved({"step": lambda: chain.step(1.0)}, rounds=3, repeat=steps // 10)["step"]
+    for model, start in (("SmoothShaper", validation.start_values(
+            [Stage("damped_harmonic", T=0.0531, sigma=-10.0)], Ts=Ts)),
+            ("TrajectoryGenerator", dict(Ts=Ts, vmax=1.0, amax=10.0, jmax=1000.0))):
+        if model not in fmus:
+            continue
+        with tempfile.TemporaryDirectory() as tmp:
+            unzipped = extract(str(fmus[model]), tmp)
+            md = read_model_description(unzipped)
+            refs = {v.name: v.valueReference for v in md.modelVariables}
+            slave = FMU2Slave(guid=md.guid, unzipDirectory=unzipped,
+                              modelIdentifier=md.coSimulation.modelIdentifier,
+                              instanceName="bench")
+            slave.instantiate()
+            slave.setupExperiment(startTime=0.0)
+            for name, value in start.items():
+                var = next(v for v in md.modelVariables if v.name == name)
+                if var.type == "Integer" or var.type == "Enumeration":
+                    slave.setInteger([refs[name]], [int(value)])
+                else:
+                    slave.setReal([refs[name]], [float(value)])
+            slave.enterInitializationMode()
+            slave.exitInitializationMode()
+            clock = {"t": 0.0}
+
+            def one_step():
+                slave.doStep(clock["t"], Ts)
+                clock["t"] += Ts
+
+            def long_step():
+                slave.doStep(clock["t"], 1000 * Ts)
+                clock["t"] += 1000 * Ts
+
+            t = interleaved({"one": one_step, "long": long_step}, rounds=3,
+                            repeat=max(1, steps // 30))
+            slave.terminate()
+            slave.freeInstance()
+        table.add(model, t["one"] * 1e6, (t["long"] - t["one"]) / 999 * 1e9,
+                  t_chain * 1e6 if model == "SmoothShaper" else "")
+    return [table]
+
+
+# -- main -----------------------------------------------------------------------------------
+
+def _machine() -> str:
+    cpu = platform.processor() or platform.machine()
+    try:
+        with open("/proc/cpuinfo", encoding="utf-8") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    cpu = line.split(":", 1)[1].strip()
+                    break
+    except OSError:
+        pass
+    cc = _compiler()
+    version = ""
+    if cc:
+        try:
+            version = subprocess.run([cc, "--version"], capture_output=True, text=True).stdout
+            version = version.splitlines()[0]
+        except (OSError, IndexError):
+            version = cc
+    import scipy
+    return (f"{cpu}, {os.cpu_count()} cores; {version}; Python {platform.python_version()}, "
+            f"NumPy {np.__version__}, SciPy {scipy.__version__}")
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m smoothshaper.bench",
+                                     description=__doc__.split("\n\n")[0])
+    parser.add_argument("--quick", action="store_true",
+                        help="a few seconds: short runs, -O2 only (a smoke test; figures are noise)")
+    parser.add_argument("--output", type=Path, default=ROOT / "docs" / "benchmarks.md",
+                        help="Markdown file to write (default: docs/benchmarks.md)")
+    parser.add_argument("--no-fmu", action="store_true", help="skip the FMU paths")
+    parser.add_argument("--fmu-build-dir", type=Path, default=ROOT / "build-bench-fmu",
+                        help="where the FMUs are built (default: build-bench-fmu)")
+    args = parser.parse_args(argv)
+    machine = _machine()
+    print(f"machine: {machine}")
+    tables, c_figures = c_tables(args.quick)
+    tables += python_tables(args.quick) + trajectory_table(args.quick, c_figures)
+    if not args.no_fmu:
+        tables += fmu_table(args.quick, args.fmu_build_dir)
+    text = ["# Benchmarks", "",
+            "Written by `python -m smoothshaper.bench`" + (" --quick (smoke run: figures are "
+                                                           "noise)" if args.quick else "")
+            + f". Machine: {machine}.", "",
+            "CPU time, median of several rounds, contenders of a row interleaved round by "
+            "round. Smaller is faster; a ratio is smoothshaper's time over the reference's.", ""]
+    text += [t.markdown() for t in tables]
+    args.output.parent.mkdir(parents=True, exist_ok=True)
+    args.output.write_text("\n".join(text), encoding="utf-8")
+    print(f"\nwrote {args.output}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

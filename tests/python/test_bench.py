@@ -1,0 +1,30 @@
+"""The benchmark command runs end to end (a smoke test: --quick, no timing is asserted) and
+writes every table the docs quote."""
+import shutil
+from pathlib import Path
+
+import pytest
+
+from smoothshaper import bench
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+@pytest.mark.skipif(bench._compiler() is None, reason="needs a C compiler")
+def test_quick_run_writes_every_table(tmp_path, capsys):
+    out = tmp_path / "benchmarks.md"
+    args = ["--quick", "--output", str(out), "--fmu-build-dir", str(ROOT / "build-pytest-fmu")]
+    if shutil.which("cmake") is None:
+        args.append("--no-fmu")
+    assert bench.main(args) == 0
+    text = out.read_text()
+    for title in ("C per-sample cost against the plain realisation", "C trajectory paths",
+                  "Python call floor", "Python throughput", "Python peak memory",
+                  "Design cost of a chain"):
+        assert f"## {title}" in text
+    for path in ("rectangular", "harmonic", "damped harmonic", "exponential", "notch",
+                 "ZV shaper", "generator step", "vmax reached", "oaconvolve"):
+        assert f"| {path}" in text
+    assert "| n/a" not in text.split("## Python call floor")[0]   # every C figure measured
+    printed = capsys.readouterr().out
+    assert "wrote" in printed
