@@ -46,22 +46,43 @@ static double level_cap(const sms_kin_plan *p, size_t k)
     return cap;
 }
 
-/* Root S of d ln S + ln(S - C) = ln K on the bracket of the header comment. */
+/* Root S of d ln S + ln(S - C) = ln K, i.e. S^d (S - C) = K, on the bracket of the header
+ * comment (r = K^(1/(d+1))). d = 0: S = C + K. d = 1 (a velocity/acceleration/jerk move
+ * with vmax out of reach and amax reached): the quadratic, S = (C + sqrt(C^2 + 4 r^2))/2.
+ * d >= 2: Newton on F(S) = d ln S + ln(S - C) - ln K, which is increasing and concave, from
+ * S0 = C + K/(C + r)^d (F(S0) <= 0, since S0 <= C + r): the iterates rise monotonically to
+ * the root, quadratically. Finally S moves up by ulps until F(S) >= 0 (the side on which
+ * the stages fit, as the recursion's decisions expect). */
 static double tight_root(unsigned d, double C, double logK)
 {
-    double r = exp(logK / (double)(d + 1u)), lo = r > C ? r : C, hi = C + r;
+    double r = exp(logK / (double)(d + 1u)), S;
     int it;
-    for (it = 0; it < 200 && lo < hi; ++it) {
-        double mid = 0.5 * (lo + hi), f;
-        if (mid <= lo || mid >= hi)
-            break;
-        f = (double)d * log(mid) + log(mid - C) - logK;
-        if (f < 0.0)
-            lo = mid;
-        else
-            hi = mid;
+    if (d == 0u) {
+        S = C + r;
+    } else if (d == 1u) {
+        S = 0.5 * (C + hypot(C, 2.0 * r));
+    } else {
+        S = C + exp(logK - (double)d * log(C + r));
+        for (it = 0; it < 100; ++it) {
+            double f = (double)d * log(S) + log(S - C) - logK;
+            double step = f / ((double)d / S + 1.0 / (S - C));
+            if (!(step < 0.0) || -step <= 1e-16 * S)
+                break;
+            S -= step;
+        }
     }
-    return hi;
+    if (S <= C) /* C + r rounded to C: the root is within an ulp of C */
+        S = nextafter(C, HUGE_VAL);
+    /* d <= 1: compare S^d (S - C) with K = r^(d+1) directly (no logarithm) */
+    for (it = 0; it < 8; ++it) {
+        int low = d == 0u ? S - C < r
+                : d == 1u ? S * (S - C) < r * r
+                          : (double)d * log(S) + log(S - C) < logK;
+        if (!low)
+            break;
+        S = nextafter(S, HUGE_VAL);
+    }
+    return S;
 }
 
 /* Duration D_k(X) of stages k..n-1; lengths into T[k..] when T != NULL. C[j] = D_{j+1}(cap_j)

@@ -298,7 +298,7 @@ def trajectory_table(quick: bool, c_figures: dict) -> list[Table]:
         inp.max_velocity, inp.max_acceleration, inp.max_jerk = [v], [a], [j]
         traj = ruckig.Trajectory(1)
         t = interleaved({
-            "sms": lambda: design(h, limits, 3, poly, 0.0, 0.0, T, 3, count),
+            "sms": lambda: design(h, limits, 3, poly, 0.0, 0.0, 0.0, T, 3, count),
             "ruckig": lambda: otg.calculate(inp, traj),
         }, rounds=3 if quick else 15, repeat=200 if quick else 5000)
         same = abs(sum(T[i] for i in range(count[0])) - traj.duration) <= 1e-12 * traj.duration

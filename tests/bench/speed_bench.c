@@ -419,7 +419,7 @@ static void design_rows(int rounds)
                 /* a slightly different move each time: nothing cached */
                 double h = cases[c].h * (1.0 + 1e-9 * (double)(k & 15u));
                 (void)sms_kinematic_design(h, cases[c].limits, 3, SMS_PROFILE_POLYNOMIAL, 0.0,
-                                           0.0, T, 3, &count);
+                                           0.0, 0.0, T, 3, &count); /* continuous, as ruckig */
                 sink += T[0];
             }
             samples[r] = 1e9 * (cpu_seconds() - t0) / 20000.0;
