@@ -17,7 +17,6 @@ Exit codes: 0 success, 1 invalid input or failed run (one line on stderr), 2 bad
 from __future__ import annotations
 
 import argparse
-import csv
 import math
 import os
 import sys
@@ -386,31 +385,10 @@ def cmd_analyze(args) -> int:
 
 def read_record(path: str, column: str | None, time_column: str | None,
                 Ts: float | None) -> tuple[np.ndarray, float]:
-    """(x, Ts) from a CSV: optional header row, comma/semicolon/whitespace separated."""
-    try:
-        with open(path, newline="", encoding="utf-8") as f:
-            text = f.read()
-    except OSError as exc:
-        raise CliError(f"cannot read {path}: {exc.strerror}") from None
-    lines = [ln for ln in text.splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
-    if not lines:
-        raise CliError(f"{path}: no data")
-    try:
-        dialect = csv.Sniffer().sniff(lines[0], delimiters=",;\t ")
-    except csv.Error:
-        dialect = csv.excel
-    rows = list(csv.reader(lines, dialect))
-    header = None
-    try:
-        [float(v) for v in rows[0] if v.strip()]
-    except ValueError:
-        header, rows = [h.strip() for h in rows[0]], rows[1:]
-    try:
-        data = np.array([[float(v) for v in r if v.strip()] for r in rows], dtype=float)
-    except ValueError as exc:
-        raise CliError(f"{path}: non-numeric value ({exc})") from None
-    if data.ndim != 2 or data.shape[0] == 0:
-        raise CliError(f"{path}: rows must all have the same number of columns")
+    """(x, Ts) from a CSV: optional header row (also a '#time,accel_x,...' comment line right
+    above the data), comma/semicolon/tab/space separated; errors name the file and row."""
+    from .calibrate.records import read_table
+    header, data, _ = read_table(path)
 
     def index(name, default):
         if name is None:

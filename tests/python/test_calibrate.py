@@ -232,3 +232,70 @@ def test_jittered_klipper_style_header_is_read(tmp_path):
     rec = calibrate.load(str(p))
     assert rec.kind == "raw" and rec.names == ["x", "y", "z"]
     assert rec.resampled and 0.005 < rec.jitter < 0.02
+
+
+@pytest.mark.parametrize("name,make,expect", [
+    ("short.csv", lambda: "time,accel_x\n" + "".join(f"{0.001 * i},{math.sin(i)}\n"
+                                                      for i in range(30)), "too short"),
+    ("clipped.csv", lambda: "time,accel_x\n" + "".join(
+        f"{0.001 * i},{max(-0.5, min(0.5, math.sin(0.05 * i)))}\n" for i in range(2000)),
+     "clipped"),
+    ("noise.csv", lambda: "time,accel_x\n" + "".join(
+        f"{0.001 * i},{v}\n" for i, v in enumerate(np.random.default_rng(1).normal(size=4000))),
+     "no resonance in the band"),
+])
+def test_records_that_cannot_support_an_estimate(tmp_path, capsys, name, make, expect):
+    p = _bad(tmp_path, name, make())
+    assert main(["calibrate", str(p), "--no-progress"]) == 1
+    err = capsys.readouterr().err
+    assert str(p) in err and expect in err and err.count("\n") == 1, err
+
+
+def test_max_smoothing_is_met(tmp_path):
+    path = write_record(tmp_path / "rec.csv", "raw", [(TWO_PI * 40, 0.05)], 30.0)
+    free = calibrate.run([str(path)], axis="x").axes[0].recommended
+    limit = 0.5 * free.smoothing
+    res = calibrate.run([str(path)], axis="x", max_smoothing=limit).axes[0]
+    assert res.recommended.smoothing <= limit
+    assert all(c.smoothing <= limit for c in res.candidates if c.meets)
+
+
+def test_c_config_snippet_compiles(tmp_path):
+    import shutil
+    import subprocess
+    from smoothshaper.calibrate import outputs
+    cc = shutil.which("cc") or shutil.which("gcc")
+    if cc is None:
+        pytest.skip("no C compiler")
+    c = calibrate.Candidate("two", [sms.shaper("gmzv", wn=250.0, zeta=0.05, order=4,
+                                               duration=1.1), sms.for_mode("harmonic", wn=400.0)])
+    src = tmp_path / "snippet.c"
+    src.write_text('#include "smoothshaper/smoothshaper.h"\nint main(void)\n{\n'
+                   + outputs.c_config(c, 1e-4, "x") + "(void)cfg_x;\nreturn 0;\n}\n")
+    subprocess.run([cc, "-std=c99", "-Wall", "-Werror", "-pedantic", "-fsyntax-only",
+                    "-I", str(ROOT / "c" / "include"), str(src)], check=True)
+
+
+def test_fmu_start_values_reproduce_the_chain_in_fmpy(tmp_path):
+    fmpy = pytest.importorskip("fmpy")
+    import shutil
+    if shutil.which("cmake") is None:
+        pytest.skip("cmake is needed to build the FMUs")
+    from smoothshaper import validation
+    from smoothshaper.calibrate import outputs
+    fmus = validation.build_fmus(ROOT / "build-pytest-fmu")
+    Ts = 1e-3
+    c = calibrate.Candidate("two", [sms.shaper("ei3", wn=150.0, zeta=0.05),
+                                    sms.shaper("gmzv", wn=260.0, zeta=0.02, order=5,
+                                               duration=1.2)])
+    start = json.loads(json.dumps(outputs.fmu_start_values(c, Ts)))   # as written to the file
+    n = 200
+    t = np.arange(n) * Ts
+    signal = np.array(list(zip(t, np.where(t >= 0.01, 1.0, 0.0))),
+                      dtype=[("time", float), ("u", float)])
+    r = fmpy.simulate_fmu(str(fmus["SmoothShaper"]), start_values=start, input=signal,
+                          stop_time=(n - 1) * Ts, output_interval=Ts, output=["y"])
+    u = signal["u"]
+    y_ref = sms.Chain(c.stages, Ts=Ts).process(u)
+    # fmpy records the output of the step taken at t_k at t_(k+1)
+    np.testing.assert_allclose(r["y"][1:], y_ref[:-1], rtol=0, atol=1e-12)

@@ -350,14 +350,26 @@ def decay_modes(x: np.ndarray, Ts: float, *, path: str, column: str,
         cols = [0] + [j for i in range(n_modes) for j in (1 + 4 * i, 2 + 4 * i)]
         lin = np.linalg.lstsq(J[:, cols], x, rcond=None)[0]
         th0[cols] = lin
-        res = least_squares(lambda th: _decay_model(th, t, n_modes)[0] - x, th0,
-                            jac=lambda th: _decay_model(th, t, n_modes)[1], method="lm")
+        with np.errstate(over="ignore", invalid="ignore"):
+            res = least_squares(lambda th: _decay_model(th, t, n_modes)[0] - x, th0,
+                                jac=lambda th: _decay_model(th, t, n_modes)[1], method="lm")
+        if not np.all(np.isfinite(res.fun)):
+            continue
         ssr = float(np.sum(res.fun ** 2))
+        if n_modes > 1:
+            # a further term must be a decaying oscillation of its own, not a fit of the noise
+            amp = [math.hypot(*res.x[1 + 4 * i: 3 + 4 * i]) for i in range(n_modes)]
+            sig = [res.x[3 + 4 * i] for i in range(n_modes)]
+            if max(sig) >= 0 or min(amp) < 1e-2 * max(amp):
+                continue
         r2 = 1.0 - ssr / float(np.sum((x - np.mean(x)) ** 2))
         k = th0.size
         # keep a further mode only if it explains clearly more (an F-test-like margin)
         if best is None or ssr < best[1] * (1 - 10.0 * (k - best[3]) / x.size):
             best = (res, ssr, r2, k, n_modes)
+    if best is None:
+        raise RecordError(path, "not a free decay: the damped-oscillation fit diverges",
+                          column=column)
     res, ssr, r2, k, n_modes = best
     if r2 < DECAY_MIN_R2:
         raise RecordError(path, f"not a free decay: a sum of damped oscillations explains only "

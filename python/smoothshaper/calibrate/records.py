@@ -125,7 +125,7 @@ def read_table(path: str) -> tuple[list[str] | None, np.ndarray, np.ndarray]:
             try:
                 data[i, j] = float(v)
             except ValueError:
-                raise RecordError(path, f"{v!r} is not a number", row=no, column=j) from None
+                raise RecordError(path, f"non-numeric value {v!r}", row=no, column=j) from None
     bad = ~np.isfinite(data)
     if bad.any():
         i, j = np.argwhere(bad)[0]
