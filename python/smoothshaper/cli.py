@@ -463,7 +463,8 @@ def cmd_identify(args) -> int:
                        [[mode.wn, mode.zeta, mode.wd, mode.sigma, 2 * math.pi / mode.wd]]))
     m = fitted[0]
     print(f"whole-record fit (explains {100 * r2:.1f} % of the signal): wn = {m.wn:.6g} +- "
-          f"{m.wn_std:.2g} rad/s, zeta = {m.zeta:.4g} +- {m.zeta_std:.2g} (1 sd)"
+          f"{m.wn_std:.2g} rad/s (f = {m.f_hz:.5g} Hz), zeta = {m.zeta:.4g} +- "
+          f"{m.zeta_std:.2g} (1 sd)"
           + (f"; {len(fitted) - 1} further mode(s): see 'smoothshaper calibrate'"
              if len(fitted) > 1 else ""))
     print("suggested stages: "

@@ -2,7 +2,7 @@
 
     smoothshaper calibrate FILE... [--kind auto|raw|decay|psd|frf] [--axis x|y|z|all]
         [--band FMIN FMAX] [--max-delay S] [--max-smoothing D] [--accel A]
-        [--corner-velocity V] [--Ts S] [--out DIR] [--json FILE]
+        [--corner-velocity V] [--spread FRAC] [--Ts S] [--out DIR] [--json FILE]
 
 Prints the identified modes and the ranked candidates per axis; ``--out`` writes the two
 figures, ``config_<axis>.c``, ``fmu_start_values_<axis>.json`` (for
@@ -42,6 +42,9 @@ def add_parser(sub) -> None:
                    help="square-corner velocity of the reference corner (default 5, e.g. mm/s)")
     p.add_argument("--distance", type=float, default=10.0,
                    help="length of the reference rest-to-rest move (default 10, e.g. mm)")
+    p.add_argument("--spread", type=float, default=0.0, metavar="FRAC",
+                   help="expected variation of the mode frequencies over the workspace as a "
+                   "fraction (e.g. 0.05), added to the fit's uncertainty (default 0)")
     p.add_argument("--Ts", type=float, default=1e-4,
                    help="sample period the filter will run at [s] (default 1e-4)")
     p.add_argument("--out", metavar="DIR", help="write figures and config files here")
@@ -69,7 +72,7 @@ def cmd_calibrate(args) -> int:
     cal = calibrate.run(args.files, kind=args.kind, axis=args.axis,
                         band=tuple(args.band) if args.band else None, reference=ref,
                         max_delay=args.max_delay, max_smoothing=args.max_smoothing,
-                        progress=progress)
+                        spread=args.spread, progress=progress)
     elapsed = time.process_time() - start
     print(outputs.report_text(cal), end="")
     print(f"analysis: {elapsed:.2f} s of CPU time")

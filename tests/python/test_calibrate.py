@@ -299,3 +299,18 @@ def test_fmu_start_values_reproduce_the_chain_in_fmpy(tmp_path):
     y_ref = sms.Chain(c.stages, Ts=Ts).process(u)
     # fmpy records the output of the step taken at t_k at t_(k+1)
     np.testing.assert_allclose(r["y"][1:], y_ref[:-1], rtol=0, atol=1e-12)
+
+
+def test_spread_tunes_for_a_wider_band():
+    path = str(ROOT / "examples" / "resonance_psd.csv")
+    tight = calibrate.run([path], axis="x", max_delay=0.04).axes[0]
+    wide = calibrate.run([path], axis="x", max_delay=0.04, spread=0.05).axes[0]
+    m0, m1 = tight.modes[0], wide.modes[0]
+    assert m1.wn_std == pytest.approx(math.hypot(m0.wn_std, 0.05 * m0.wn), rel=1e-12)
+    # over +-5 %, the recommendation is more robust than the one for the pinned mode
+    wn = np.linspace(0.95, 1.05, 41) * m0.wn
+    def worst(c):
+        h = chain_taps(c.stages, 1e-4)
+        p = -m0.zeta * wn + 1j * wn * math.sqrt(1 - m0.zeta ** 2)
+        return np.max(np.abs(np.exp(-np.outer(p, np.arange(h.size)) * 1e-4) @ h))
+    assert worst(wide.recommended) < worst(tight.recommended)

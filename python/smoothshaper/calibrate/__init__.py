@@ -12,7 +12,7 @@ then plots (:mod:`.plots`) and ready-to-use outputs (:mod:`.outputs`).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -113,20 +113,25 @@ def _band_decay(record, band):
 
 def run(paths, *, kind: str = "auto", axis: str = "all", band=None,
         reference: Reference | None = None, max_delay: float | None = None,
-        max_smoothing: float | None = None, progress=None) -> Calibration:
+        max_smoothing: float | None = None, spread: float = 0.0,
+        progress=None) -> Calibration:
     """Identify the modes in every record of ``paths`` and rank every candidate filter.
 
     ``kind``: auto, raw, decay, psd or frf; ``axis``: x, y, z (a column name) or all;
     ``band``: (low, high) [Hz] to search; ``reference``: sample period of the filters and the
     reference move (:class:`Reference`); ``max_delay`` [s]: longest impulse response allowed;
     ``max_smoothing``: largest corner rounding allowed (length units of ``reference``);
-    ``progress``: callable(done, total) or None. Raises :class:`RecordError` (a ValueError)
+    ``spread``: how much the modes' natural frequencies vary over the machine's workspace, as a
+    fraction (e.g. 0.05), added in quadrature to each fit's standard deviation of wn, so the
+    candidates are tuned to stay good over that range; ``progress``: callable(done, total) or None. Raises :class:`RecordError` (a ValueError)
     naming the file, row or column and the reason.
     """
     reference = reference or Reference()
     for name, value in (("max_delay", max_delay), ("max_smoothing", max_smoothing)):
         if value is not None and not (math.isfinite(value) and value > 0):
             raise ValueError(f"{name} must be finite and > 0, got {value!r}")
+    if not (math.isfinite(spread) and 0 <= spread < 0.5):
+        raise ValueError(f"spread must be in [0, 0.5), got {spread!r}")
     if not (math.isfinite(reference.Ts) and reference.Ts > 0):
         raise ValueError(f"Ts must be finite and > 0, got {reference.Ts!r}")
     if not (math.isfinite(reference.accel) and reference.accel > 0):
@@ -145,6 +150,9 @@ def run(paths, *, kind: str = "auto", axis: str = "all", band=None,
                     raise
                 skipped.append(str(exc))
                 continue
+            if spread:
+                res.modes = [replace(m, wn_std=math.hypot(m.wn_std, spread * m.wn))
+                             for m in res.modes]
             if len(records) > 1:
                 res.name = f"{rec.path}:{res.name}"
             axes.append(res)
