@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The main job: set up, build the FMUs, validate them against the NumPy reference with fmpy,
-# and reproduce the seed papers' claims. Results land in out/validation and out/report.
+# reproduce the seed papers' claims and run the system co-simulation. Results land in
+# out/validation, out/report and out/cosim.
 # Needs: python3 >= 3.10 (with venv), a C compiler, cmake >= 3.16. Idempotent: reuses .venv.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -11,15 +12,19 @@ python3 -c 'import sys; sys.exit(0 if sys.version_info >= (3, 10) else "python3 
 python -m pip install -q --upgrade pip
 python -m pip install -q -e ".[validate]"
 
-# Both FMUs (SmoothShaper.fmu, TrajectoryGenerator.fmu) with CMake; validate reuses this build.
+# The FMUs (SmoothShaper, TrajectoryGenerator, ElasticPlant) with CMake; validate and the
+# system co-simulation reuse this build.
 cmake -S . -B build/fmu -DCMAKE_BUILD_TYPE=Release -DSMS_BUILD_TESTS=OFF -DSMS_BUILD_SHARED=OFF
 cmake --build build/fmu -j2
 
 status=0
 smoothshaper validate --out out/validation --build-dir build/fmu || status=$?
 smoothshaper report --out out/report || status=$?
+# System co-simulation: TrajectoryGenerator -> SmoothShaper -> ElasticPlant connected by an SSP
+# file, run in libcosim and fmpy with and without the shaper; plot and residual-vibration table.
+python -m smoothshaper.cosim --out out/cosim --build-dir build/fmu || status=$?
 if [ "$status" -eq 0 ]; then
-    echo "main.sh: done; see out/validation and out/report"
+    echo "main.sh: done; see out/validation, out/report and out/cosim"
 else
     echo "main.sh: a step failed (exit $status); see the messages above" >&2
 fi

@@ -206,12 +206,12 @@ def build_fmus(build_dir: Path, *, source_dir: Path | None = None) -> dict[str, 
     subprocess.run([cmake, "-S", str(source_dir), "-B", str(build_dir), "-DSMS_BUILD_TESTS=OFF",
                     "-DSMS_BUILD_SHARED=OFF", f"-DPython3_EXECUTABLE={sys.executable}"],
                    check=True, stdout=subprocess.DEVNULL)
-    targets = [m + "_fmu" for m in ("SmoothShaper", "TrajectoryGenerator")
-               if (source_dir / "fmu" / ("smoothshaper_model.c" if m == "SmoothShaper"
-                                         else "trajectory_model.c")).is_file()]
+    sources = {"SmoothShaper": "smoothshaper_model.c", "TrajectoryGenerator": "trajectory_model.c",
+               "ElasticPlant": "elastic_plant_model.c"}
+    targets = [m + "_fmu" for m, src in sources.items() if (source_dir / "fmu" / src).is_file()]
     subprocess.run([cmake, "--build", str(build_dir), "-j2", "--target", *targets], check=True,
                    stdout=subprocess.DEVNULL)
-    found = {m: build_dir / "fmus" / f"{m}.fmu" for m in ("SmoothShaper", "TrajectoryGenerator")}
+    found = {m: build_dir / "fmus" / f"{m}.fmu" for m in sources}
     return {m: p for m, p in found.items() if p.is_file()}
 
 

@@ -291,7 +291,8 @@ def test_inputs_are_continuous_outputs_have_no_direct_feedthrough(fmus):
         assert all(u.dependencies == inputs for u in md.initialUnknowns)
         reals = [v for v in md.modelVariables if v.causality == "parameter" and v.type == "Real"]
         assert all(v.min is not None or v.max is not None for v in reals)
-        assert all(v.unit in (None, "s", "1/s", "rad/s", "1") for v in md.modelVariables)
+        assert all(v.unit in (None, "s", "1/s", "rad/s", "1", "kg.m2", "N.m/rad", "N.m.s/rad")
+                   for v in md.modelVariables)
         signals = [v for v in md.modelVariables if v.causality in ("input", "output")]
         assert all(v.unit is None for v in signals)   # any unit: the filters are linear
 
