@@ -187,7 +187,7 @@ typedef struct segment {
  * ring slot after this one; `wrap` is the segment's sample where that slot is ring[0]) and
  * x[n-M], store x in the ring, write the output. */
 static void finish_sample(sms_real *ring, sms_real *out, size_t i, sms_real x, sms_real oldest,
-                          sms_real y, sms_real ref0, sms_real rest, int corrections,
+                          sms_real y, sms_real ref0, sms_real base, int corrections,
                           const sms_real *ring0, size_t wrap, sms_real corr0, sms_real corr1)
 {
     if (corrections) {
@@ -195,9 +195,10 @@ static void finish_sample(sms_real *ring, sms_real *out, size_t i, sms_real x, s
         y += corr0 * (next - ref0) + corr1 * (oldest - ref0);
     }
     ring[i] = x;
-    out[i] = y + ref0 + rest;
+    out[i] = y + base;
 }
 
+#ifdef SMS_SMOOTHER_SPECIALISE
 /* Real pole (rectangular, exponential): Re w. unit_pole: q = 1 exactly (rectangular), so
  * (q - 1) w and q_lo w vanish. */
 static void segment_real(segment *g, const sms_real *in, sms_real *out, size_t n, int emit,
@@ -207,6 +208,7 @@ static void segment_real(segment *g, const sms_real *in, sms_real *out, size_t n
     const lanes gain = LANES(g->gain, g->gain), tail = LANES(g->tail_re, (sms_real)0);
     const lanes ref = g->ref;
     const sms_real ref0 = LANE(ref, 0), ref1 = LANE(ref, 1), rest = g->rest;
+    const sms_real base = ref0 + rest; /* added back to the output: the reference, the rest */
     const sms_real corr0 = g->corr0, corr1 = g->corr1;
     const size_t wrap = g->window - g->head - 1u;
     sms_real *ring = g->ring + g->head;
@@ -224,16 +226,18 @@ static void segment_real(segment *g, const sms_real *in, sms_real *out, size_t n
         w = s;
         y = LANE(w, 0) + LANE(lo, 0);
         if (emit)
-            finish_sample(ring, out, i, x, oldest, y, ref0, rest, corrections, g->ring, wrap,
+            finish_sample(ring, out, i, x, oldest, y, ref0, base, corrections, g->ring, wrap,
                               corr0, corr1);
     }
     g->w_re = w;
     g->lo_re = lo;
 }
 
-/* Complex pole (harmonic families): Im w. */
+#endif
+
+/* Complex pole (harmonic families): Im w (real_out: Re w, for the portable path). */
 static void segment_complex(segment *g, const sms_real *in, sms_real *out, size_t n, int emit,
-                            int corrections)
+                            int corrections, int real_out)
 {
     const lanes pm1 = LANES(g->pm1_re, g->pm1_re), pim = LANES(g->p_im, g->p_im);
     const lanes plo_re = LANES(g->plo_re, g->plo_re), plo_im = LANES(g->plo_im, g->plo_im);
@@ -241,6 +245,7 @@ static void segment_complex(segment *g, const sms_real *in, sms_real *out, size_
     const lanes tail_re = LANES(g->tail_re, (sms_real)0), tail_im = LANES(g->tail_im, (sms_real)0);
     const lanes ref = g->ref;
     const sms_real ref0 = LANE(ref, 0), ref1 = LANE(ref, 1), rest = g->rest;
+    const sms_real base = ref0 + rest; /* added back to the output: the reference, the rest */
     const sms_real corr0 = g->corr0, corr1 = g->corr1;
     const size_t wrap = g->window - g->head - 1u;
     sms_real *ring = g->ring + g->head;
@@ -266,9 +271,10 @@ static void segment_complex(segment *g, const sms_real *in, sms_real *out, size_
         w_im = s_im;
         /* Tap 0 of the half-sine families is 0: x reaches Im w a sample later. 0 x (0, or NaN
          * for a non-finite x) gives the output the NaN that the convolution's 0 x[n] has. */
-        y = LANE(w_im, 0) + LANE(lo_im, 0) + (sms_real)0 * x;
+        y = real_out ? LANE(w_re, 0) + LANE(lo_re, 0)
+                     : LANE(w_im, 0) + LANE(lo_im, 0) + (sms_real)0 * x;
         if (emit)
-            finish_sample(ring, out, i, x, oldest, y, ref0, rest, corrections, g->ring, wrap,
+            finish_sample(ring, out, i, x, oldest, y, ref0, base, corrections, g->ring, wrap,
                               corr0, corr1);
     }
     g->w_re = w_re;
@@ -335,9 +341,9 @@ void sms_smoother_process(sms_smoother *f, const sms_real *in, sms_real *out, si
             else
                 segment_real(&g, in, out, seg, 1, 0, 0);
         } else if (corrections) {
-            segment_complex(&g, in, out, seg, 1, 1);
+            segment_complex(&g, in, out, seg, 1, 1, 0);
         } else {
-            segment_complex(&g, in, out, seg, 1, 0);
+            segment_complex(&g, in, out, seg, 1, 0, 0);
         }
         f->w_re[old] = LANE(g.w_re, 0);
         f->w_re[young] = LANE(g.w_re, 1);
@@ -359,11 +365,10 @@ void sms_smoother_process(sms_smoother *f, const sms_real *in, sms_real *out, si
                 g.ref = f->ref[c];
                 g.tail_re = pass == 0 ? (sms_real)0 : f->tail_re;
                 g.tail_im = pass == 0 ? (sms_real)0 : f->tail_im;
-                /* q = 1 needs no branch here: (q - 1) w = 0 w and q_lo w add exact zeros. */
-                if (f->real_only)
-                    segment_real(&g, in, out, seg, pass, corrections && pass, 0);
-                else
-                    segment_complex(&g, in, out, seg, pass, corrections && pass);
+                /* One loop for every family (smaller code): a real pole has Im q = 0 and
+                 * Im c = Im t = Im q_lo = 0, so Im w stays 0 and Re w follows exactly the
+                 * real recursion (the extra terms add exact zeros). */
+                segment_complex(&g, in, out, seg, pass, corrections && pass, f->real_only);
                 f->w_re[c] = g.w_re;
                 f->w_im[c] = g.w_im;
                 f->lo_re[c] = g.lo_re;
