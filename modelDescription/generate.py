@@ -5,7 +5,8 @@ One source of truth for every variable: the model tables below. The C model file
 generated `<Model>_variables.h` (value references, the instantiation token, array sizes), so the
 XML and the C code cannot disagree. Per-stage variables are produced by a loop, not by hand.
 
-Usage: generate.py MODEL OUT_DIR   (MODEL is SmoothShaper, TrajectoryGenerator or ElasticPlant)
+Usage: generate.py MODEL OUT_DIR   (MODEL is SmoothShaper, TrajectoryGenerator,
+ElasticPlant or MultiAxisGenerator)
 """
 from __future__ import annotations
 
@@ -185,9 +186,58 @@ def elastic_plant() -> tuple[list[Var], list[str], str]:
                     "exact zero-order-hold discretisation (smoothshaper)")
 
 
+MA_MAX_AXES = 8   # == SMS_MULTI_MAX_AXES
+# MultiAxisGenerator value references: globals below 100, axis i of field f at 100 f + i.
+MA_FIELDS = (  # (name, causality, start, description); units: those of axis i (P)
+    ("target", "input", 0.0, "target position of axis {i} (piecewise constant via-points, any "
+     "unit P), held over each communication step"),
+    ("q", "output", None, "position of axis {i} at the last internal tick"),
+    ("v", "output", None, "velocity of axis {i} (P/s) at the last internal tick"),
+    ("a", "output", None, "acceleration of axis {i} (P/s2) at the last internal tick"),
+    ("j", "output", None, "jerk of axis {i} (P/s3) at the last internal tick (right limit)"),
+    ("vmax", "parameter", 1.0, "velocity limit of axis {i} (P/s); finite, > 0 (axes in use)"),
+    ("amax", "parameter", 10.0, "acceleration limit of axis {i} (P/s2); finite, > 0 (axes in use)"),
+    ("jmax", "parameter", 100.0, "jerk limit of axis {i} (P/s3); finite, > 0 (axes in use)"),
+    ("q0", "parameter", 0.0, "initial rest position of axis {i} (P)"),
+)
+CHOICES["Sync"] = [("phase", 0, "one common profile: straight lines, every axis starts and "
+                    "arrives on the same sample, time-optimal under every axis's limits"),
+                   ("independent", 1, "each axis time-optimal on its own")]
+
+
+def multi_axis_generator() -> tuple[list[Var], list[str], str]:
+    vs = [
+        Var("Ts", 1, "Real", "parameter", "sample period of the internal ticks; finite, > 0", "s",
+            0.001, variability="fixed", min=0.0, c_name="TS"),
+        Var("axes", 2, "Integer", "parameter", f"number of axes in use, 1..{MA_MAX_AXES} (the "
+            "variables of the other axes are ignored)", "", 3, variability="fixed", min=1,
+            max=MA_MAX_AXES, c_name="AXES"),
+        Var("sync", 3, "Integer", "parameter", "coordination of the axes; " + choice_text("Sync"),
+            "", 0, "Sync", "fixed", c_name="SYNC"),
+    ]
+    for f, (name, causality, start, desc) in enumerate(MA_FIELDS, 1):
+        for i in range(MA_MAX_AXES):
+            extra = {}
+            if causality == "parameter":
+                extra = dict(variability="fixed")
+                if name != "q0":
+                    extra["min"] = 0.0
+            if causality == "output":
+                extra = dict(variability="discrete", initial_depends_on=[f"q0[{i}]"])
+            vs.append(Var(f"{name}[{i}]", 100 * f + i, "Real", causality, desc.format(i=i), "",
+                          start, **extra))
+    header = [f"#define MA_MAX_AXES {MA_MAX_AXES}"]
+    header += [f"#define MA_VR_{name.upper()}(i) ({100 * f} + (i))"
+               for f, (name, *_rest) in enumerate(MA_FIELDS, 1)]
+    header.append(f"#define MA_FIELD_COUNT {len(MA_FIELDS)}")
+    return vs, header, ("Online multi-axis jerk-limited generator, phase-synchronised or "
+                        "independent axes (smoothshaper)")
+
+
 MODELS = {"SmoothShaper": smooth_shaper, "TrajectoryGenerator": trajectory_generator,
-          "ElasticPlant": elastic_plant}
-PREFIXES = {"SmoothShaper": "SS", "TrajectoryGenerator": "TG", "ElasticPlant": "EP"}
+          "ElasticPlant": elastic_plant, "MultiAxisGenerator": multi_axis_generator}
+PREFIXES = {"SmoothShaper": "SS", "TrajectoryGenerator": "TG", "ElasticPlant": "EP",
+            "MultiAxisGenerator": "MA"}
 
 
 def _fmt(v) -> str:

@@ -537,3 +537,100 @@ sms_status sms_multi_phase_duration(const sms_multi_generator_config *config,
     *T = V == HUGE_VAL ? 0.0 : unit_move_time(V, A, J);
     return SMS_OK;
 }
+
+/* ---- state vector: per axis target, goal, p, V, W; per move its 11 fields ---------------- */
+
+#define AXIS_FIELDS 5u
+#define MOVE_FIELDS 11u
+
+static size_t move_count(const sms_multi_generator *g)
+{
+    return g->sync == SMS_SYNC_PHASE ? 1u : g->n_axes;
+}
+
+size_t sms_multi_generator_state_count(const sms_multi_generator *g)
+{
+    return AXIS_FIELDS * g->n_axes + MOVE_FIELDS * move_count(g);
+}
+
+void sms_multi_generator_save_state(const sms_multi_generator *g, double *dst)
+{
+    size_t i, n = g->n_axes;
+    for (i = 0; i < n; ++i) {
+        dst[i] = (double)g->target[i];
+        dst[n + i] = (double)g->goal[i];
+        dst[2 * n + i] = (double)g->p[i];
+        dst[3 * n + i] = (double)g->V[i];
+        dst[4 * n + i] = (double)g->W[i];
+    }
+    dst += AXIS_FIELDS * n;
+    for (i = 0; i < move_count(g); ++i, dst += MOVE_FIELDS) {
+        const sms_multi_move *m = &g->move[i];
+        dst[0] = (double)m->T1;
+        dst[1] = (double)m->rho1;
+        dst[2] = (double)m->tau;
+        dst[3] = (double)m->T2;
+        dst[4] = (double)m->rho2;
+        dst[5] = (double)m->off;
+        dst[6] = (double)m->seen;
+        dst[7] = (double)m->k;
+        dst[8] = (double)m->k_end;
+        dst[9] = (double)m->active;
+        dst[10] = (double)m->pending;
+    }
+}
+
+static int whole(double x)
+{
+    return x >= 0.0 && x <= 9007199254740992.0 && x == (double)(size_t)x;
+}
+
+sms_status sms_multi_generator_load_state(sms_multi_generator *g, const double *src, size_t n)
+{
+    size_t i, na;
+    const double *mv;
+    if (g == NULL || src == NULL)
+        return SMS_ERR_NULL;
+    if (n != sms_multi_generator_state_count(g))
+        return SMS_ERR_STATE;
+    na = g->n_axes;
+    for (i = 0; i < n; ++i)
+        if (!isfinite(src[i]))
+            return SMS_ERR_STATE;
+    for (i = 0; i < na; ++i)
+        if (fabs(src[3 * na + i]) > (double)g->vmax[i] * (1.0 + 1e-6) ||
+            fabs(src[4 * na + i]) > (double)g->vmax[i] * (1.0 + 1e-6))
+            return SMS_ERR_STATE;
+    mv = src + AXIS_FIELDS * na;
+    for (i = 0; i < move_count(g); ++i) {
+        const double *f = mv + MOVE_FIELDS * i;
+        if (f[0] < 0.0 || f[2] < 0.0 || f[3] < 0.0 || f[5] < 0.0 || f[6] < 0.0 ||
+            !(f[1] > 0.0 && f[1] <= 0.5) || !(f[4] > 0.0 && f[4] <= 0.5) || !whole(f[7]) ||
+            !whole(f[8]) || f[7] > f[8] || (f[9] != 0.0 && f[9] != 1.0) ||
+            (f[10] != 0.0 && f[10] != 1.0))
+            return SMS_ERR_STATE;
+    }
+    for (i = 0; i < na; ++i) {
+        g->target[i] = (sms_real)src[i];
+        g->goal[i] = (sms_real)src[na + i];
+        g->p[i] = (sms_real)src[2 * na + i];
+        g->V[i] = (sms_real)src[3 * na + i];
+        g->W[i] = (sms_real)src[4 * na + i];
+    }
+    for (i = 0; i < move_count(g); ++i) {
+        const double *f = mv + MOVE_FIELDS * i;
+        sms_multi_move *m = &g->move[i];
+        m->T1 = (sms_real)f[0];
+        m->rho1 = (sms_real)f[1];
+        m->tau = (sms_real)f[2];
+        m->T2 = (sms_real)f[3];
+        m->rho2 = (sms_real)f[4];
+        m->off = (sms_real)f[5];
+        m->seen = (sms_real)f[6];
+        m->k = (size_t)f[7];
+        m->k_end = (size_t)f[8];
+        m->active = (int)f[9];
+        m->pending = (int)f[10];
+    }
+    return SMS_OK;
+}

@@ -195,6 +195,11 @@ def repo_root() -> Path:
     return Path(__file__).resolve().parents[2]
 
 
+#: The FMUs and their model files under fmu/.
+FMU_MODELS = {"SmoothShaper": "smoothshaper_model.c", "TrajectoryGenerator": "trajectory_model.c",
+              "ElasticPlant": "elastic_plant_model.c", "MultiAxisGenerator": "multi_axis_model.c"}
+
+
 def build_fmus(build_dir: Path, *, source_dir: Path | None = None) -> dict[str, Path]:
     """Configure and build the FMUs with CMake into build_dir; returns {model: path}."""
     source_dir = Path(source_dir) if source_dir else repo_root()
@@ -206,12 +211,11 @@ def build_fmus(build_dir: Path, *, source_dir: Path | None = None) -> dict[str, 
     subprocess.run([cmake, "-S", str(source_dir), "-B", str(build_dir), "-DSMS_BUILD_TESTS=OFF",
                     "-DSMS_BUILD_SHARED=OFF", f"-DPython3_EXECUTABLE={sys.executable}"],
                    check=True, stdout=subprocess.DEVNULL)
-    sources = {"SmoothShaper": "smoothshaper_model.c", "TrajectoryGenerator": "trajectory_model.c",
-               "ElasticPlant": "elastic_plant_model.c"}
-    targets = [m + "_fmu" for m, src in sources.items() if (source_dir / "fmu" / src).is_file()]
+    targets = [m + "_fmu" for m, src in FMU_MODELS.items()
+               if (source_dir / "fmu" / src).is_file()]
     subprocess.run([cmake, "--build", str(build_dir), "-j2", "--target", *targets], check=True,
                    stdout=subprocess.DEVNULL)
-    found = {m: build_dir / "fmus" / f"{m}.fmu" for m in sources}
+    found = {m: build_dir / "fmus" / f"{m}.fmu" for m in FMU_MODELS}
     return {m: p for m, p in found.items() if p.is_file()}
 
 

@@ -156,6 +156,20 @@ SMS_API int sms_multi_generator_busy(const sms_multi_generator *g);
 SMS_API sms_status sms_multi_phase_duration(const sms_multi_generator_config *config,
                                             const double *delta, double *T);
 
+/** @brief Number of doubles sms_multi_generator_save_state() writes:
+ * 5 n_axes (target, goal, p, V, W) + 11 per move (n_axes moves, or 1 in phase mode). */
+SMS_API size_t sms_multi_generator_state_count(const sms_multi_generator *g);
+/** @brief Write the dynamic state (not the limits) as sms_multi_generator_state_count() doubles. */
+SMS_API void sms_multi_generator_save_state(const sms_multi_generator *g, double *dst);
+/**
+ * @brief Restore a saved state into a generator with the same configuration.
+ * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_STATE (n differs, a value is non-finite, a
+ * count is not a whole number, a flag is not 0/1, k > k_end, rho outside (0, 1/2], a duration
+ * negative, or a velocity beyond its axis's vmax); nothing written on error.
+ */
+SMS_API sms_status sms_multi_generator_load_state(sms_multi_generator *g, const double *src,
+                                                  size_t n);
+
 #ifdef __cplusplus
 }
 #endif
