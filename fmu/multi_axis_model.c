@@ -142,11 +142,12 @@ void fmu_model_set_integer(void *model, fmi2ValueReference vr, int value)
 
 double fmu_model_sample_period(const void *model) { return ((const ma_model *)model)->Ts; }
 
-int fmu_model_build(void *model, char *msg, size_t len)
+unsigned fmu_model_real_bytes(void) { return (unsigned)sizeof(sms_real); }
+
+/* Validate every parameter into c (O(axes)); 0, or 1 with msg naming the variable. */
+static int configure(const ma_model *m, sms_multi_generator_config *c, char *msg, size_t len)
 {
-    ma_model *m = (ma_model *)model;
-    sms_multi_generator_config c;
-    sms_real rest[MA_MAX_AXES];
+    sms_multi_generator check;
     size_t bad = 0;
     sms_status st;
     int i, f;
@@ -161,22 +162,47 @@ int fmu_model_build(void *model, char *msg, size_t len)
             if (!(m->field[f][i] > 0.0))
                 return snprintf(msg, len, "%s[%d] = %.17g: must be > 0", field_names[f], i,
                                 m->field[f][i]), 1;
-    memset(&c, 0, sizeof c);
-    c.n_axes = (size_t)m->axes;
-    c.sync = (sms_sync)m->sync;
+    memset(c, 0, sizeof *c);
+    c->n_axes = (size_t)m->axes;
+    c->sync = (sms_sync)m->sync;
     for (i = 0; i < m->axes; ++i) {
-        c.vmax[i] = m->field[F_VMAX][i];
-        c.amax[i] = m->field[F_AMAX][i];
-        c.jmax[i] = m->field[F_JMAX][i];
-        rest[i] = (sms_real)m->field[F_Q0][i];
+        c->vmax[i] = m->field[F_VMAX][i];
+        c->amax[i] = m->field[F_AMAX][i];
+        c->jmax[i] = m->field[F_JMAX][i];
     }
-    st = sms_multi_generator_init(&m->gen, &c, m->Ts, &bad);
+    st = sms_multi_generator_init(&check, c, m->Ts, &bad); /* the core's own checks */
     if (st == SMS_ERR_LIMIT)
         return snprintf(msg, len, "vmax[%d], amax[%d], jmax[%d] = %.17g, %.17g, %.17g: %s",
-                        (int)bad, (int)bad, (int)bad, c.vmax[bad], c.amax[bad], c.jmax[bad],
+                        (int)bad, (int)bad, (int)bad, c->vmax[bad], c->amax[bad], c->jmax[bad],
                         sms_status_string(st)), 1;
     if (st != SMS_OK)
         return snprintf(msg, len, "Ts = %.17g: %s", m->Ts, sms_status_string(st)), 1;
+    return 0;
+}
+
+int fmu_model_plan(const void *model, size_t *bytes, char *msg, size_t len)
+{
+    sms_multi_generator_config c;
+    if (configure((const ma_model *)model, &c, msg, len) != 0)
+        return 1;
+    *bytes = 0; /* everything lives in the model struct */
+    return 0;
+}
+
+int fmu_model_build(void *model, void *mem, size_t bytes, char *msg, size_t len)
+{
+    ma_model *m = (ma_model *)model;
+    sms_multi_generator_config c;
+    sms_real rest[MA_MAX_AXES];
+    int i;
+    (void)mem;
+    (void)bytes;
+    if (configure(m, &c, msg, len) != 0)
+        return 1;
+    if (sms_multi_generator_init(&m->gen, &c, m->Ts, NULL) != SMS_OK)
+        return snprintf(msg, len, "Ts = %.17g: refused", m->Ts), 1;
+    for (i = 0; i < m->axes; ++i)
+        rest[i] = (sms_real)m->field[F_Q0][i];
     sms_multi_generator_reset(&m->gen, rest);
     for (i = 0; i < MA_MAX_AXES; ++i) {
         m->field[F_Q][i] = i < m->axes ? (double)rest[i] : 0.0;
@@ -186,22 +212,26 @@ int fmu_model_build(void *model, char *msg, size_t len)
     return 0;
 }
 
-void fmu_model_tick(void *model)
+int fmu_model_tick(void *model)
 {
     ma_model *m = (ma_model *)model;
     sms_real target[MA_MAX_AXES], out[4 * MA_MAX_AXES];
-    int i, k;
+    int i, k, changed = 0;
     for (i = 0; i < m->axes; ++i)
         target[i] = (sms_real)m->field[F_TARGET][i];
     sms_multi_generator_step(&m->gen, target, out);
     for (i = 0; i < m->axes; ++i)
-        for (k = 0; k < 4; ++k)
+        for (k = 0; k < 4; ++k) {
+            changed |= m->field[F_Q + k][i] != (double)out[4 * i + k];
             m->field[F_Q + k][i] = (double)out[4 * i + k];
+        }
+    return changed;
 }
 
-void fmu_model_rebind(void *model)
+void fmu_model_rebind(void *model, void *mem)
 {
     (void)model; /* the generator holds no pointers */
+    (void)mem;
 }
 
 size_t fmu_model_state_count(const void *model)
