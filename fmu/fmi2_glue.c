@@ -69,18 +69,20 @@ static const char *const phase_names[] = {
     "instantiated", "initialization mode", "step complete", "terminated"
 };
 
-/* Made by this binary: same model (the guid's address is this library's) and precision. */
+/* One per binary: its address tells this binary's instances and states from any other's. */
+static const char glue_token = 0;
+
+/* Made by this binary (so by this model, in this precision). */
 static int is_ours(const fmu_identity *id, uint32_t magic)
 {
-    return id->magic == magic && id->guid == fmu_model_guid()
-           && id->real_bytes == fmu_model_real_bytes();
+    return id->magic == magic && id->binary == &glue_token;
 }
 
 static fmu_identity identity(uint32_t magic)
 {
     fmu_identity id;
     id.magic = magic;
-    id.guid = fmu_model_guid();
+    id.binary = &glue_token;
     id.real_bytes = fmu_model_real_bytes();
     return id;
 }
@@ -99,7 +101,8 @@ static fmu_instance *checked(fmi2Component comp, const char *func, unsigned allo
                     fmu_model_identifier(), fmu_model_real_bytes());
         return NULL;
     }
-    log_message(c, fmi2OK, FMU_LOG_CALLS, "%s", func);
+    if (c->log_on[FMU_LOG_CALLS])
+        log_message(c, fmi2OK, FMU_LOG_CALLS, "%s", func);
     if (!(allowed & (1u << c->clock.phase))) {
         log_message(c, fmi2Error, FMU_LOG_ERROR, "%s is not allowed in state '%s'", func,
                     phase_names[c->clock.phase]);
@@ -636,10 +639,14 @@ fmi2Status fmi2GetRealOutputDerivatives(fmi2Component comp, const fmi2ValueRefer
  * remaining ticks are skipped. A step of any length costs at most that many ticks. */
 static void run_ticks(fmu_instance *c, uint64_t n)
 {
-    uint64_t i, steady_limit = FMU_STEADY_TICKS(fmu_model_state_count(c->model));
+    uint64_t i, limit = 0;   /* computed once the outputs have held for 16 ticks */
     for (i = 0; i < n; ++i) {
-        if (c->clock.steady >= steady_limit)
-            return;
+        if (c->clock.steady >= 16) {
+            if (limit == 0)
+                limit = FMU_STEADY_TICKS(fmu_model_state_count(c->model));
+            if (c->clock.steady >= limit)
+                return;
+        }
         if (fmu_model_tick(c->model))
             c->clock.steady = 0;
         else
@@ -674,7 +681,9 @@ fmi2Status fmi2DoStep(fmi2Component comp, fmi2Real currentCommunicationPoint,
                     communicationStepSize, MAX_TICK_INDEX);
     run_ticks(c, (uint64_t)n);
     c->clock.ticks += (uint64_t)n;
-    c->clock.since_tick = fma(-n, Ts, advanced);   /* exact remainder: no drift over long runs */
+    /* The remainder exactly (no drift over long runs): advanced - Ts is exact for one tick
+     * (Sterbenz), fma rounds once for many. */
+    c->clock.since_tick = n == 1.0 ? advanced - Ts : fma(-n, Ts, advanced);
     c->clock.time = currentCommunicationPoint + communicationStepSize;
     return fmi2OK;
 }

@@ -38,11 +38,13 @@ typedef struct fmu_clock {
  * `count` state values: more than any delay line, restart cycle or pure delay it holds. */
 #define FMU_STEADY_TICKS(count) (8u * (uint64_t)(count) + 16u)
 
-/** What identifies the binary an instance or a state belongs to: one model, one precision. */
+/** What identifies the binary an instance or a state belongs to: one model, one precision.
+ * Each FMU binary links its own copy of the glue, so the address of a static object of the glue
+ * is unique to the binary: one pointer comparison, no call, at every entry. */
 typedef struct fmu_identity {
     uint32_t magic;
-    const char *guid;    /**< fmu_model_guid() of this binary (compared by address) */
-    uint32_t real_bytes; /**< fmu_model_real_bytes() */
+    const void *binary;  /**< address of this binary's glue token */
+    uint32_t real_bytes; /**< fmu_model_real_bytes() (for messages) */
 } fmu_identity;
 
 typedef struct fmu_instance {

@@ -357,13 +357,20 @@ def fmu_table(quick: bool, build_dir: Path) -> list[Table]:
                     slave.setReal([refs[name]], [float(value)])
             slave.enterInitializationMode()
             slave.exitInitializationMode()
-            clock = {"t": 0.0}
+            clock = {"t": 0.0, "k": 0}
+            # A new input before every step: a held input is absorbed after a few chain
+            # lengths and the FMU then skips the ticks, which would hide the per-sample cost.
+            vr_in = [refs["u" if "u" in refs else "target"]]
 
             def one_step():
+                clock["k"] += 1
+                slave.setReal(vr_in, [0.001 * (clock["k"] & 7)])
                 slave.doStep(clock["t"], Ts)
                 clock["t"] += Ts
 
             def long_step():
+                clock["k"] += 1
+                slave.setReal(vr_in, [0.001 * (clock["k"] & 7)])
                 slave.doStep(clock["t"], 1000 * Ts)
                 clock["t"] += 1000 * Ts
 

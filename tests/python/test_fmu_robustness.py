@@ -218,3 +218,15 @@ def test_a_huge_step_of_the_generator_ends_at_rest_on_the_target(trajectory_dir)
     tg.doStep(0.0, 1e9)
     assert tg.getReal([tg.vr[n] for n in "qvaj"]) == [0.75, 0.0, 0.0, 0.0]
     tg.freeInstance()
+
+
+def test_the_fmpy_input_benchmark_runs(fmus):  # noqa: F811
+    # Smoke test of tests/bench/fmu_input_bench.py (the full run prints 1e4/1e5/1e6 steps).
+    import importlib.util
+    from pathlib import Path
+    path = Path(__file__).resolve().parents[1] / "bench" / "fmu_input_bench.py"
+    spec = importlib.util.spec_from_file_location("fmu_input_bench", path)
+    bench = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(bench)
+    build_dir = Path(fmus["SmoothShaper"]).parents[1]
+    assert bench.main(["--quick", "--build-dir", str(build_dir)]) == 0
