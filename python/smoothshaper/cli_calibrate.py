@@ -30,22 +30,22 @@ def add_parser(sub) -> None:
                    help="record kind (default auto: from the header and the signal)")
     p.add_argument("--axis", default="all", help="x, y, z (a column name) or all (default)")
     p.add_argument("--band", nargs=2, type=float, metavar=("FMIN", "FMAX"),
-                   help="frequency band to search [Hz] (default: 5 resolution steps to 0.4 of "
-                   "the sample rate, or the table's range)")
+                   help="frequency band to search [Hz] (default: the part of the spectrum a "
+                   "resonance test excited, the table's range for a frequency response)")
     p.add_argument("--max-delay", type=float, metavar="S",
                    help="longest filter impulse response allowed [s]")
     p.add_argument("--max-smoothing", type=float, metavar="D",
                    help="largest corner rounding allowed (length unit of --accel)")
-    p.add_argument("--accel", type=float, default=3000.0,
+    p.add_argument("--accel", type=float, default=3000.0, metavar="A",
                    help="acceleration of the reference move (default 3000, e.g. mm/s^2)")
-    p.add_argument("--corner-velocity", type=float, default=5.0,
+    p.add_argument("--corner-velocity", type=float, default=5.0, metavar="V",
                    help="square-corner velocity of the reference corner (default 5, e.g. mm/s)")
-    p.add_argument("--distance", type=float, default=10.0,
+    p.add_argument("--distance", type=float, default=10.0, metavar="D",
                    help="length of the reference rest-to-rest move (default 10, e.g. mm)")
     p.add_argument("--spread", type=float, default=0.0, metavar="FRAC",
                    help="expected variation of the mode frequencies over the workspace as a "
                    "fraction (e.g. 0.05), added to the fit's uncertainty (default 0)")
-    p.add_argument("--Ts", type=float, default=1e-4,
+    p.add_argument("--Ts", type=float, default=1e-4, metavar="S",
                    help="sample period the filter will run at [s] (default 1e-4)")
     p.add_argument("--out", metavar="DIR", help="write figures and config files here")
     p.add_argument("--json", metavar="FILE", help="write all results as JSON")

@@ -33,7 +33,8 @@ KINDS = ("raw", "decay", "psd", "frf")
 def write_record(path: Path, kind: str, modes, snr, seed=3):
     """One synthetic record: 1 % time-stamp jitter and offsets where the kind has them."""
     if kind == "raw":
-        t, a = syn.resonance_record(modes, snr_db=snr, fs=1600.0, seed=seed, axes=3)
+        t, a = syn.resonance_record(modes, snr_db=snr, fs=1600.0, seed=seed, axes=3,
+                                    offsets=(120.0, -80.0, 9810.0))   # gravity on z
         syn.write_csv(path, [t, a[:, 0], a[:, 1], a[:, 2]],
                       ["time", "accel_x", "accel_y", "accel_z"])
     elif kind == "decay":
