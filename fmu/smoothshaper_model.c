@@ -329,7 +329,7 @@ void fmu_model_save_state(const void *model, double *dst)
     const ss_model *m = (const ss_model *)model;
     dst[0] = m->y;
     if (m->n_active > 0)
-        sms_chain_save_state(&m->chain, dst + 1);
+        sms_chain_get_state(&m->chain, dst + 1);
 }
 
 int fmu_model_load_state(void *model, const double *src, size_t n)
@@ -337,7 +337,7 @@ int fmu_model_load_state(void *model, const double *src, size_t n)
     ss_model *m = (ss_model *)model;
     if (n != fmu_model_state_count(m) || src[0] != src[0])
         return 1;
-    if (m->n_active > 0 && sms_chain_load_state(&m->chain, src + 1, n - 1) != SMS_OK)
+    if (m->n_active > 0 && sms_chain_set_state(&m->chain, src + 1, n - 1) != SMS_OK)
         return 1;
     m->y = src[0];
     return 0;

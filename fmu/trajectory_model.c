@@ -243,7 +243,7 @@ void fmu_model_save_state(const void *model, double *dst)
 {
     const tg_model *m = (const tg_model *)model;
     memcpy(dst, m->out, sizeof m->out);
-    sms_generator_save_state(&m->gen, dst + 4);
+    sms_generator_get_state(&m->gen, dst + 4);
 }
 
 int fmu_model_load_state(void *model, const double *src, size_t n)
@@ -255,7 +255,7 @@ int fmu_model_load_state(void *model, const double *src, size_t n)
     for (i = 0; i < 4; ++i)
         if (!isfinite(src[i]))
             return 1;
-    if (sms_generator_load_state(&m->gen, src + 4, n - 4) != SMS_OK)
+    if (sms_generator_set_state(&m->gen, src + 4, n - 4) != SMS_OK)
         return 1;
     memcpy(m->out, src, sizeof m->out);
     return 0;

@@ -252,16 +252,16 @@ size_t sms_bspline_state_count(const sms_bspline *b)
     return total;
 }
 
-void sms_bspline_save_state(const sms_bspline *b, double *dst)
+void sms_bspline_get_state(const sms_bspline *b, double *dst)
 {
     size_t i;
     for (i = 0; i < b->n_axes * b->degree; ++i) {
-        sms_stage_save_state(&b->stages[i], dst);
+        sms_stage_get_state(&b->stages[i], dst);
         dst += sms_stage_state_count(&b->stages[i]);
     }
 }
 
-sms_status sms_bspline_load_state(sms_bspline *b, const double *src, size_t n)
+sms_status sms_bspline_set_state(sms_bspline *b, const double *src, size_t n)
 {
     size_t i, off = 0;
     if (b == NULL || src == NULL)
@@ -277,7 +277,7 @@ sms_status sms_bspline_load_state(sms_bspline *b, const double *src, size_t n)
     }
     for (i = 0, off = 0; i < b->n_axes * b->degree; ++i) {
         size_t cnt = sms_stage_state_count(&b->stages[i]);
-        (void)sms_stage_load_state(&b->stages[i], src + off, cnt);
+        (void)sms_stage_set_state(&b->stages[i], src + off, cnt);
         off += cnt;
     }
     return SMS_OK;

@@ -102,16 +102,16 @@ size_t sms_chain_state_count(const sms_chain *chain)
     return total;
 }
 
-void sms_chain_save_state(const sms_chain *chain, double *dst)
+void sms_chain_get_state(const sms_chain *chain, double *dst)
 {
     size_t i;
     for (i = 0; i < chain->n_stages; ++i) {
-        sms_stage_save_state(&chain->stages[i], dst);
+        sms_stage_get_state(&chain->stages[i], dst);
         dst += sms_stage_state_count(&chain->stages[i]);
     }
 }
 
-sms_status sms_chain_load_state(sms_chain *chain, const double *src, size_t n)
+sms_status sms_chain_set_state(sms_chain *chain, const double *src, size_t n)
 {
     size_t i, offset = 0;
     if (chain == NULL || src == NULL)
@@ -128,7 +128,7 @@ sms_status sms_chain_load_state(sms_chain *chain, const double *src, size_t n)
     }
     for (i = 0; i < chain->n_stages; ++i) {
         size_t count = sms_stage_state_count(&chain->stages[i]);
-        sms_status st = sms_stage_load_state(&chain->stages[i], src, count);
+        sms_status st = sms_stage_set_state(&chain->stages[i], src, count);
         if (st != SMS_OK)
             return st;
         src += count;

@@ -355,7 +355,7 @@ size_t sms_generator_state_count(const sms_generator *g)
     return GEN_STATE_COUNT;
 }
 
-void sms_generator_save_state(const sms_generator *g, double *dst)
+void sms_generator_get_state(const sms_generator *g, double *dst)
 {
     dst[0] = (double)g->target;
     dst[1] = (double)g->start;
@@ -393,7 +393,7 @@ sms_status sms_generator_check_state(const sms_generator *g, const double *src, 
     return SMS_OK;
 }
 
-sms_status sms_generator_load_state(sms_generator *g, const double *src, size_t n)
+sms_status sms_generator_set_state(sms_generator *g, const double *src, size_t n)
 {
     sms_status st = sms_generator_check_state(g, src, n);
     if (st != SMS_OK)

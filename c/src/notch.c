@@ -152,7 +152,7 @@ size_t sms_notch_state_count(const sms_notch *f)
     return 6u;
 }
 
-void sms_notch_save_state(const sms_notch *f, double *dst)
+void sms_notch_get_state(const sms_notch *f, double *dst)
 {
     dst[0] = (double)f->kind;
     dst[1] = (double)f->x1;
@@ -171,7 +171,7 @@ sms_status sms_notch_check_state(const sms_notch *f, const double *src, size_t n
     return SMS_OK;
 }
 
-sms_status sms_notch_load_state(sms_notch *f, const double *src, size_t n)
+sms_status sms_notch_set_state(sms_notch *f, const double *src, size_t n)
 {
     sms_status st = sms_notch_check_state(f, src, n);
     if (st != SMS_OK)

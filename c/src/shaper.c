@@ -348,7 +348,7 @@ size_t sms_shaper_state_count(const sms_shaper *f)
     return f->history_len + 4u;
 }
 
-void sms_shaper_save_state(const sms_shaper *f, double *dst)
+void sms_shaper_get_state(const sms_shaper *f, double *dst)
 {
     size_t i;
     dst[0] = (double)f->kind;
@@ -372,7 +372,7 @@ sms_status sms_shaper_check_state(const sms_shaper *f, const double *src, size_t
     return SMS_OK;
 }
 
-sms_status sms_shaper_load_state(sms_shaper *f, const double *src, size_t n)
+sms_status sms_shaper_set_state(sms_shaper *f, const double *src, size_t n)
 {
     size_t i;
     sms_status st = sms_shaper_check_state(f, src, n);

@@ -392,7 +392,7 @@ size_t sms_smoother_state_count(const sms_smoother *f)
     return (size_t)STATE_FIXED + f->window;
 }
 
-void sms_smoother_save_state(const sms_smoother *f, double *dst)
+void sms_smoother_get_state(const sms_smoother *f, double *dst)
 {
     size_t i;
     dst[STATE_HEAD] = (double)f->head;
@@ -447,7 +447,7 @@ sms_status sms_smoother_check_state(const sms_smoother *f, const double *src, si
     return SMS_OK;
 }
 
-sms_status sms_smoother_load_state(sms_smoother *f, const double *src, size_t n)
+sms_status sms_smoother_set_state(sms_smoother *f, const double *src, size_t n)
 {
     size_t i;
     sms_status st = sms_smoother_check_state(f, src, n);

@@ -124,24 +124,24 @@ size_t sms_stage_state_count(const sms_stage *stage)
     return 0;
 }
 
-void sms_stage_save_state(const sms_stage *stage, double *dst)
+void sms_stage_get_state(const sms_stage *stage, double *dst)
 {
     switch (sms_family_of(stage->kind)) {
-    case SMS_FAMILY_SMOOTHER: sms_smoother_save_state(&stage->u.smoother, dst); break;
-    case SMS_FAMILY_SHAPER: sms_shaper_save_state(&stage->u.shaper, dst); break;
-    case SMS_FAMILY_NOTCH: sms_notch_save_state(&stage->u.notch, dst); break;
+    case SMS_FAMILY_SMOOTHER: sms_smoother_get_state(&stage->u.smoother, dst); break;
+    case SMS_FAMILY_SHAPER: sms_shaper_get_state(&stage->u.shaper, dst); break;
+    case SMS_FAMILY_NOTCH: sms_notch_get_state(&stage->u.notch, dst); break;
     case SMS_FAMILY_NONE: break;
     }
 }
 
-sms_status sms_stage_load_state(sms_stage *stage, const double *src, size_t n)
+sms_status sms_stage_set_state(sms_stage *stage, const double *src, size_t n)
 {
     if (stage == NULL || src == NULL)
         return SMS_ERR_NULL;
     switch (sms_family_of(stage->kind)) {
-    case SMS_FAMILY_SMOOTHER: return sms_smoother_load_state(&stage->u.smoother, src, n);
-    case SMS_FAMILY_SHAPER: return sms_shaper_load_state(&stage->u.shaper, src, n);
-    case SMS_FAMILY_NOTCH: return sms_notch_load_state(&stage->u.notch, src, n);
+    case SMS_FAMILY_SMOOTHER: return sms_smoother_set_state(&stage->u.smoother, src, n);
+    case SMS_FAMILY_SHAPER: return sms_shaper_set_state(&stage->u.shaper, src, n);
+    case SMS_FAMILY_NOTCH: return sms_notch_set_state(&stage->u.notch, src, n);
     case SMS_FAMILY_NONE: break;
     }
     return SMS_ERR_KIND;

@@ -2,14 +2,36 @@
 
 ``stages`` describes filters (pure Python); ``Chain`` and the functions from ``filters`` run
 the compiled C core (built by ``pip install``); ``reference`` and ``analysis`` are the
-independent NumPy implementation and the analysis tools.
+independent NumPy implementation and the analysis tools. Submodules load on first use, so
+``import smoothshaper as sms; sms.design.kinematic(...)`` works without importing SciPy or
+matplotlib up front.
+
+Every invalid argument raises :class:`ParameterError` (a ``ValueError``) whose ``parameter``
+attribute names the offending parameter, and whose message starts with that name.
 """
+import importlib as _importlib
+
+from .errors import ParameterError
 from .stages import (KINDS, Stage, damped_harmonic, exponential, for_mode, harmonic, notch,
                      rectangular, shaper)
-from .filters import (Chain, Mode, ParameterError, design_for_mode, identify_from_peaks,
-                      identify_from_record, notch_pole_zeta_from_bandwidth)
+from .filters import (Chain, Mode, design_for_mode, identify_from_peaks, identify_from_record,
+                      notch_pole_zeta_from_bandwidth)
 
 __all__ = ["KINDS", "Stage", "rectangular", "harmonic", "damped_harmonic", "exponential",
            "shaper", "notch", "for_mode", "Chain", "Mode", "ParameterError", "design_for_mode",
            "identify_from_peaks", "identify_from_record", "notch_pole_zeta_from_bandwidth"]
 __version__ = "0.1.0"
+
+#: Public submodules, imported lazily on attribute access (as SciPy does).
+SUBMODULES = ("analysis", "cli", "design", "errors", "filters", "plants", "reference", "report",
+              "stages", "trajectory", "validation")
+
+
+def __getattr__(name):
+    if name in SUBMODULES:
+        return _importlib.import_module(f"{__name__}.{name}")
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(SUBMODULES))

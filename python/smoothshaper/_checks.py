@@ -1,20 +1,49 @@
-"""Argument checks shared by every public function: each raises ValueError naming the
-parameter, so callers get the same message for the same mistake everywhere."""
+"""Argument checks shared by every public function: each raises
+:class:`~smoothshaper.errors.ParameterError` naming the parameter, so callers get the same
+message for the same mistake everywhere. Booleans, complex numbers and strings are refused
+(``T=True`` is a mistake, not 1 s), and numbers are shown plainly (``nan``, not
+``np.float64(nan)``)."""
 from __future__ import annotations
 
 import math
+import numbers
 
 import numpy as np
 
+from .errors import ParameterError
+
+
+def show(value) -> str:
+    """``value`` for an error message: NumPy scalars as plain Python numbers."""
+    if isinstance(value, np.generic):
+        value = value.item()
+    return repr(value)
+
+
+def _type_text(value) -> str:
+    if isinstance(value, (bool, np.bool_)):
+        return f"a boolean ({bool(value)!r})"
+    if isinstance(value, (complex, np.complexfloating)):
+        return f"a complex number ({show(value)})"
+    return f"{type(value).__name__} {show(value)}"
+
+
+def real(name: str, value) -> float:
+    """``value`` as a float; ParameterError naming ``name`` unless it is a real number
+    (int, float, NumPy real scalar or 0-d real array; not bool, complex or str)."""
+    if isinstance(value, np.ndarray) and value.ndim == 0:
+        value = value[()]
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (numbers.Real, np.number)) \
+            or isinstance(value, (complex, np.complexfloating)):
+        raise ParameterError(name, f"{name} must be a real number, got {_type_text(value)}")
+    return float(value)
+
 
 def finite(name: str, value) -> float:
-    """``value`` as a float; ValueError naming ``name`` unless it is a finite real number."""
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a real number, got {value!r}") from None
+    """A finite real number (see :func:`real`)."""
+    v = real(name, value)
     if not math.isfinite(v):
-        raise ValueError(f"{name} must be finite, got {v!r}")
+        raise ParameterError(name, f"{name} must be finite, got {v!r}")
     return v
 
 
@@ -22,7 +51,7 @@ def positive(name: str, value) -> float:
     """A finite real number > 0."""
     v = finite(name, value)
     if v <= 0:
-        raise ValueError(f"{name} must be > 0, got {v!r}")
+        raise ParameterError(name, f"{name} must be > 0, got {v!r}")
     return v
 
 
@@ -30,19 +59,67 @@ def nonnegative(name: str, value) -> float:
     """A finite real number >= 0."""
     v = finite(name, value)
     if v < 0:
-        raise ValueError(f"{name} must be >= 0, got {v!r}")
+        raise ParameterError(name, f"{name} must be >= 0, got {v!r}")
     return v
 
 
-def finite_signal(name: str, values) -> np.ndarray:
-    """A one-dimensional float64 array of finite values."""
+def integer(name: str, value, minimum: int | None = None) -> int:
+    """An integer (int, NumPy integer, or a float with an integral value), optionally
+    ``>= minimum``; never a bool."""
+    if isinstance(value, np.ndarray) and value.ndim == 0:
+        value = value[()]
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (numbers.Real, np.number)) \
+            or isinstance(value, (complex, np.complexfloating)):
+        raise ParameterError(name, f"{name} must be an integer, got {_type_text(value)}")
+    if isinstance(value, (numbers.Integral, np.integer)):
+        n = int(value)
+    else:
+        v = float(value)
+        if not math.isfinite(v) or v != int(v):
+            raise ParameterError(name, f"{name} must be an integer, got {v!r}")
+        n = int(v)
+    if minimum is not None and n < minimum:
+        raise ParameterError(name, f"{name} must be an integer >= {minimum}, got {n}")
+    return n
+
+
+def choice(name: str, value, options) -> str:
+    """``value`` lower-cased if it is one of ``options`` (names compare case-insensitively)."""
+    if not isinstance(value, str):
+        raise ParameterError(name, f"{name} must be one of {', '.join(options)}; "
+                             f"got {_type_text(value)}")
+    key = value.strip().lower()
+    if key not in options:
+        raise ParameterError(name, f"{name} must be one of {', '.join(options)}; got {value!r}")
+    return key
+
+
+def real_array(name: str, values, ndim: int | None = None) -> np.ndarray:
+    """``values`` as a float64 array; ParameterError naming ``name`` if it holds anything but
+    real numbers (complex, boolean, strings or objects are refused, not cast)."""
     try:
-        x = np.asarray(values, dtype=np.float64)
+        raw = np.asarray(values)
     except (TypeError, ValueError):
-        raise ValueError(f"{name} must be an array of real numbers") from None
-    if x.ndim != 1:
-        raise ValueError(f"{name} must be one-dimensional, got shape {x.shape}")
+        raise ParameterError(name, f"{name} must be an array of real numbers") from None
+    if raw.dtype.kind in "c":
+        raise ParameterError(name, f"{name} must be real, got a complex array")
+    if raw.dtype.kind == "b":
+        raise ParameterError(name, f"{name} must hold numbers, got a boolean array")
+    if raw.dtype.kind not in "iuf":
+        raise ParameterError(name, f"{name} must be an array of real numbers, "
+                             f"got dtype {raw.dtype}")
+    x = raw.astype(np.float64, copy=False)
+    if ndim is not None and x.ndim != ndim:
+        what = {1: "one-dimensional", 2: "two-dimensional"}.get(ndim, f"{ndim}-dimensional")
+        raise ParameterError(name, f"{name} must be {what}, got shape {x.shape}")
+    return x
+
+
+def finite_signal(name: str, values) -> np.ndarray:
+    """A one-dimensional float64 array of finite real values."""
+    x = real_array(name, values, ndim=1)
     bad = np.flatnonzero(~np.isfinite(x))
     if bad.size:
-        raise ValueError(f"{name} must be finite: {name}[{bad[0]}] = {x[bad[0]]!r}")
+        raise ParameterError(name, f"{name} must be finite: {name}[{bad[0]}] = "
+                             f"{float(x[bad[0]])!r}")
     return x

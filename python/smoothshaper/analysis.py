@@ -22,8 +22,14 @@ import numpy as np
 
 from .reference import continuous_transfer, impulse_response, notch_coefficients
 from .stages import NOTCHES
-from ._checks import positive as _positive
+from ._checks import (finite as _finite, finite_signal as _finite_signal, integer as _integer,
+                      positive as _positive, real_array as _real_array)
+from .errors import ParameterError
 from .reference._checks import as_stage_list, check_Ts
+
+__all__ = ["transfer", "frequency_response", "mode_poles", "residual_vibration", "prv",
+           "prv_curve", "prv_surface", "Insensitivity", "insensitivity", "step_spectrum",
+           "signal_spectrum"]
 
 
 def transfer(stages, s, *, Ts: float | None = None) -> np.ndarray:
@@ -64,20 +70,20 @@ def _evaluator(stages, Ts):
 
 def frequency_response(stages, w, *, Ts: float | None = None) -> np.ndarray:
     """Complex response of the chain at angular frequencies ``w`` [rad/s]."""
-    w = np.asarray(w, dtype=float)
+    w = _real_array("w", w)
     if not np.all(np.isfinite(w)):
-        raise ValueError("w must be finite")
+        raise ParameterError("w", "w must be finite")
     return transfer(stages, 1j * w, Ts=Ts)
 
 
 def mode_poles(wn, zeta) -> np.ndarray:
-    """``p = -zeta wn + j wn sqrt(1 - zeta^2)`` (broadcast); ValueError naming wn or zeta."""
-    wn = np.asarray(wn, dtype=float)
-    zeta = np.asarray(zeta, dtype=float)
+    """``p = -zeta wn + j wn sqrt(1 - zeta^2)`` (broadcast); ParameterError naming wn or zeta."""
+    wn = _real_array("wn", wn)
+    zeta = _real_array("zeta", zeta)
     if not np.all(np.isfinite(wn)) or np.any(wn <= 0):
-        raise ValueError("wn must be finite and > 0 rad/s")
+        raise ParameterError("wn", "wn must be finite and > 0 rad/s")
     if not np.all(np.isfinite(zeta)) or np.any(zeta < 0) or np.any(zeta >= 1):
-        raise ValueError("zeta must be in [0, 1)")
+        raise ParameterError("zeta", "zeta must be in [0, 1)")
     return -zeta * wn + 1j * wn * np.sqrt(1.0 - zeta * zeta)
 
 
@@ -94,13 +100,13 @@ def prv(stages, *, wn, zeta=0.0, Ts: float | None = None) -> np.ndarray:
 def prv_curve(stages, *, wn_hat: float, ratio, zeta=0.0, Ts: float | None = None) -> np.ndarray:
     """PRV at ``wn = ratio * wn_hat`` (the curves of seed 000 Fig. 4)."""
     wn_hat = _positive("wn_hat", wn_hat)
-    return prv(stages, wn=np.asarray(ratio, dtype=float) * wn_hat, zeta=zeta, Ts=Ts)
+    return prv(stages, wn=_real_array("ratio", ratio) * wn_hat, zeta=zeta, Ts=Ts)
 
 
 def prv_surface(stages, *, wn, zeta, Ts: float | None = None) -> np.ndarray:
     """PRV on the grid ``zeta x wn``: result[i, j] is at (zeta[i], wn[j])."""
-    wn = np.atleast_1d(np.asarray(wn, dtype=float))
-    zeta = np.atleast_1d(np.asarray(zeta, dtype=float))
+    wn = np.atleast_1d(_real_array("wn", wn))
+    zeta = np.atleast_1d(_real_array("zeta", zeta))
     return prv(stages, wn=wn[None, :], zeta=zeta[:, None], Ts=Ts)
 
 
@@ -120,16 +126,19 @@ def insensitivity(stages, *, wn_hat: float, zeta: float = 0.0, tolerance: float 
     Searched on ``points`` ratios ``wn/wn_hat`` spanning ``span``, edges refined by bisection
     to 1e-12. ``tolerance`` gets a relative slack of 1e-9 so that a design whose residual at
     wn_hat equals the tolerance by construction (EI) counts as inside. Width 0 if the
-    residual at wn_hat exceeds the tolerance; ValueError if the band reaches ``span``.
+    residual at wn_hat exceeds the tolerance; ParameterError if the band reaches ``span``.
     """
     from scipy.optimize import brentq
 
     wn_hat = _positive("wn_hat", wn_hat)
+    tolerance = _finite("tolerance", tolerance)
     if not 0 < tolerance < 1:
-        raise ValueError(f"tolerance must be in (0, 1), got {tolerance!r}")
-    lo_r, hi_r = (float(v) for v in span)
-    if not 0 < lo_r < 1 < hi_r:
-        raise ValueError(f"span must satisfy 0 < span[0] < 1 < span[1], got {span!r}")
+        raise ParameterError("tolerance", f"tolerance must be in (0, 1), got {tolerance!r}")
+    span_v = _real_array("span", span, ndim=1)
+    if span_v.size != 2 or not 0 < span_v[0] < 1 < span_v[1]:
+        raise ParameterError("span", "span must be two numbers with 0 < span[0] < 1 < span[1], "
+                             f"got {span_v.tolist()}")
+    lo_r, hi_r = float(span_v[0]), float(span_v[1])
     limit = tolerance * (1 + 1e-9)
 
     H = _evaluator(stages, Ts)
@@ -151,7 +160,7 @@ def insensitivity(stages, *, wn_hat: float, zeta: float = 0.0, tolerance: float 
     while hi < r.size - 1 and inside[hi + 1]:
         hi += 1
     if lo == 0 or hi == r.size - 1:
-        raise ValueError(f"span {span!r} is too narrow: the band reaches its edge")
+        raise ParameterError("span", f"span {span!r} is too narrow: the band reaches its edge")
     left = brentq(lambda x: float(excess(x)), r[lo - 1], r[lo], xtol=1e-12)
     right = brentq(lambda x: float(excess(x)), r[hi], r[hi + 1], xtol=1e-12)
     return Insensitivity(left * wn_hat, right * wn_hat, (right - left) * wn_hat, right - left)
@@ -163,9 +172,8 @@ def step_spectrum(stages, w, *, h: float = 1.0, derivative: int = 1,
     response to a step of height ``h``: ``h (jw)^(d-1) H(jw)``; discrete (Ts given): the
     d-th backward difference over Ts of the sampled response, times Ts,
     ``h ((1 - e^{-jw Ts})/Ts)^(d-1) H_d(e^{jw Ts})``."""
-    if isinstance(derivative, bool) or int(derivative) != derivative or derivative < 1:
-        raise ValueError(f"derivative must be an integer >= 1, got {derivative!r}")
-    w = np.asarray(w, dtype=float)
+    derivative = _integer("derivative", derivative, 1)
+    w = _real_array("w", w)
     H = frequency_response(stages, w, Ts=Ts)
     if Ts is None:
         d = 1j * w
@@ -178,9 +186,7 @@ def signal_spectrum(x, *, Ts: float) -> tuple[np.ndarray, np.ndarray]:
     """``(w, X)``: ``X(w) = Ts * sum_n x[n] e^{-j w n Ts}`` on the rfft grid (w in rad/s),
     the sampled approximation of the continuous Fourier transform of x."""
     Ts = check_Ts(Ts)
-    x = np.asarray(x, dtype=float)
-    if x.ndim != 1 or not np.all(np.isfinite(x)):
-        raise ValueError("x must be a one-dimensional array of finite samples")
+    x = _finite_signal("x", x)
     X = Ts * np.fft.rfft(x)
     w = 2 * math.pi * np.fft.rfftfreq(x.size, Ts)
     return w, X

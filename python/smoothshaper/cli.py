@@ -4,8 +4,8 @@ A stage is written KIND:key=value,key=value (--stage, repeatable; stages chain i
 order). KIND is one of rectangular, harmonic, damped_harmonic, exponential, zv, zvd, zvdd, zvn,
 ei, ei2, ei3, mzv, gmzv, notch_tustin, notch_matched ('notch' means notch_matched). Keys:
 T [s], sigma [1/s], k, wn [rad/s], zeta, order, tolerance, duration (gmzv, in damped periods),
-pole_zeta (or notch_pole_zeta), timing (exact or paper). A smoother given wn (and optionally zeta, k) instead of T is designed for
-that mode. Examples: harmonic:T=0.05, zv:wn=100,zeta=0.05, damped_harmonic:wn=125,zeta=0.12.
+notch_pole_zeta, timing (exact or paper). A smoother given wn (and optionally zeta, k) instead
+of T is designed for that mode. Examples: harmonic:T=0.05, zv:wn=100,zeta=0.05, damped_harmonic:wn=125,zeta=0.12.
 
 Trajectory forms: 'design generator' runs via-points through the online generator, 'design
 bspline' interpolates them with a B-spline (see 'smoothshaper design generator --help' and
@@ -24,11 +24,14 @@ import sys
 import numpy as np
 
 from . import stages as _stages
+from .cli_common import (EXIT_ERROR, EXIT_UNAVAILABLE, EXIT_USAGE, CliError, Parser as _Parser,
+                         Progress, format_table, pyplot as _pyplot)
+from .errors import ParameterError
 from .stages import Stage
 
-EXIT_ERROR = 1
-EXIT_USAGE = 2
-EXIT_UNAVAILABLE = 3
+__all__ = ["parse_stage", "stage_rows", "cmd_design", "prv_curve", "prv_surface", "cmd_analyze",
+           "read_record", "first_two_peaks", "cmd_identify", "cmd_validate", "cmd_report",
+           "build_parser", "main"]
 
 # Optional dependencies and the pyproject extra that installs each.
 _EXTRA_FOR_MODULE = {"scipy": "analysis", "matplotlib": "plot", "fmpy": "validate",
@@ -39,66 +42,58 @@ _INT_KEYS = ("k", "order")
 _FLOAT_KEYS = ("T", "sigma", "wn", "zeta", "tolerance", "notch_pole_zeta", "duration")
 
 
-class CliError(Exception):
-    """A user error: printed as one line, exit code ``code``."""
-
-    def __init__(self, message: str, code: int = EXIT_ERROR):
-        super().__init__(message)
-        self.code = code
-
-
-class _Parser(argparse.ArgumentParser):
-    """argparse that reports usage errors as one line (no usage dump)."""
-
-    def error(self, message):
-        raise CliError(f"{self.prog}: {message} (see --help)", EXIT_USAGE)
-
-
 # -- stage specs ---------------------------------------------------------------------------
 
 def parse_stage(spec: str) -> Stage:
-    """One ``--stage`` spec (see the module docstring) -> Stage. ValueError on bad syntax."""
+    """One ``--stage`` spec (see the module docstring) -> Stage. ParameterError (a ValueError)
+    naming ``stage`` on bad syntax."""
     kind, _, rest = spec.partition(":")
     kind = kind.strip().lower()
     if kind == "notch":
         kind = "notch_matched"
     if kind not in _stages.KINDS:
-        raise ValueError(f"stage {spec!r}: kind must be one of {', '.join(_stages.KINDS)}, "
-                         f"or notch")
+        raise ParameterError(
+            "stage", f"stage {spec!r}: kind must be one of {', '.join(_stages.KINDS)}, "
+                     "or notch")
     fields: dict = {}
     for item in filter(None, (p.strip() for p in rest.split(","))):
         key, eq, value = item.partition("=")
         key = _KEY_ALIASES.get(key.strip(), key.strip())
         if not eq:
-            raise ValueError(f"stage {spec!r}: expected key=value, got {item!r}")
+            raise ParameterError("stage", f"stage {spec!r}: expected key=value, got {item!r}")
         if key in fields:
-            raise ValueError(f"stage {spec!r}: {key} given twice")
+            raise ParameterError("stage", f"stage {spec!r}: {key} given twice")
         if key in _INT_KEYS:
             try:
                 fields[key] = int(value)
             except ValueError:
-                raise ValueError(f"stage {spec!r}: {key} must be an integer, got {value!r}") from None
+                raise ParameterError(
+                    "stage", f"stage {spec!r}: {key} must be an integer, got {value!r}") from None
         elif key in _FLOAT_KEYS:
             try:
                 fields[key] = float(value)
             except ValueError:
-                raise ValueError(f"stage {spec!r}: {key} must be a number, got {value!r}") from None
+                raise ParameterError(
+                    "stage", f"stage {spec!r}: {key} must be a number, got {value!r}") from None
         elif key == "timing":
             fields[key] = value.strip()
         else:
-            raise ValueError(f"stage {spec!r}: unknown key {key!r} (keys: T, sigma, k, wn, zeta, "
-                             "order, tolerance, pole_zeta, timing)")
+            raise ParameterError(
+                "stage", f"stage {spec!r}: unknown key {key!r} (keys: T, sigma, k, wn, zeta, "
+                         "order, tolerance, notch_pole_zeta, timing)")
     if kind in _stages.SMOOTHERS and "T" not in fields and "wn" in fields:
         from .filters import design_for_mode
         unused = set(fields) - {"wn", "zeta", "k", "timing"}
         if unused:
-            raise ValueError(f"stage {spec!r}: {', '.join(sorted(unused))} cannot be combined "
-                             "with wn (the mode sets the smoother)")
+            raise ParameterError(
+                "stage", f"stage {spec!r}: {', '.join(sorted(unused))} cannot be combined "
+                         "with wn (the mode sets the smoother)")
         stage = design_for_mode(kind, wn=fields["wn"], zeta=fields.get("zeta", 0.0),
                                 k=fields.get("k", 1))
         return stage.with_(timing=fields.get("timing", "exact"))
     if kind in _stages.SMOOTHERS and "T" not in fields:
-        raise ValueError(f"stage {spec!r}: a {kind} stage needs T=<seconds> or wn=<rad/s>")
+        raise ParameterError(
+            "stage", f"stage {spec!r}: a {kind} stage needs T=<seconds> or wn=<rad/s>")
     return Stage(kind, **fields)
 
 
@@ -112,45 +107,12 @@ def _chain_from_args(args) -> list[Stage]:
         if kind == "zvn":
             stage = stage.with_(order=args.order)
         if kind in ("ei", "ei2"):
-            stage = stage.with_(tolerance=args.tolerance_shaper)
+            stage = stage.with_(tolerance=args.tolerance)
         stages.append(stage)
     return stages
 
 
 # -- output helpers ------------------------------------------------------------------------
-
-def _fmt(value) -> str:
-    if value is None:
-        return "-"
-    if isinstance(value, float):
-        return f"{value:.6g}"
-    return str(value)
-
-
-def format_table(header: list[str], rows: list[list]) -> str:
-    cells = [header] + [[_fmt(v) for v in row] for row in rows]
-    widths = [max(len(r[i]) for r in cells) for i in range(len(header))]
-    lines = ["  ".join(c.rjust(w) for c, w in zip(row, widths)) for row in cells]
-    lines.insert(1, "  ".join("-" * w for w in widths))
-    return "\n".join(lines)
-
-
-class Progress:
-    """A one-line progress bar on stderr for long sweeps (only when enabled)."""
-
-    def __init__(self, total: int, label: str, enabled: bool):
-        self.total, self.label, self.enabled, self.done = max(1, total), label, enabled, 0
-
-    def advance(self, n: int = 1) -> None:
-        self.done = min(self.total, self.done + n)
-        if self.enabled:
-            frac = self.done / self.total
-            bar = "#" * int(30 * frac)
-            sys.stderr.write(f"\r{self.label} [{bar:<30}] {100 * frac:5.1f}%")
-            if self.done == self.total:
-                sys.stderr.write("\n")
-            sys.stderr.flush()
-
 
 def _shaper_duration(stage: Stage) -> float | None:
     """Time of a shaper's last impulse [s] (C sms_shaper_impulses), None for other kinds."""
@@ -234,17 +196,6 @@ def _analysis():
         raise CliError(f"analyze is unavailable: smoothshaper.analysis cannot be imported ({exc})",
                        EXIT_UNAVAILABLE) from None
     return analysis
-
-
-def _pyplot(command: str = "analyze"):
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
-        raise CliError(f"{command} needs matplotlib: pip install 'smoothshaper[plot]'",
-                       EXIT_UNAVAILABLE) from None
-    return plt
 
 
 def _nominal_mode(args, stages: list[Stage]) -> tuple[float, float]:
@@ -508,11 +459,19 @@ def cmd_report(args) -> int:
 
 # -- parser --------------------------------------------------------------------------------
 
+def _kind_arg(text: str) -> str:
+    """--kind value: kind names compare case-insensitively; 'notch' means notch_matched."""
+    try:
+        return _stages.kind_name(text)
+    except ValueError:
+        return text          # argparse then reports it against the choices
+
+
 def _add_chain_options(p, *, with_kind: bool = True) -> None:
     p.add_argument("--stage", action="append", metavar="STAGE",
                    help="a stage KIND:key=value,... (repeatable; see 'smoothshaper --help')")
     if with_kind:
-        p.add_argument("--kind", action="append", choices=_stages.KINDS,
+        p.add_argument("--kind", action="append", choices=_stages.KINDS, type=_kind_arg,
                        help="design a stage of this kind for the mode --wn/--zeta (repeatable)")
     p.add_argument("--wn", type=float, help="natural frequency of the mode [rad/s]")
     p.add_argument("--zeta", type=float, default=0.0, help="damping ratio of the mode (default 0)")
@@ -520,8 +479,11 @@ def _add_chain_options(p, *, with_kind: bool = True) -> None:
                    "(odd for the harmonic families; default 1)")
     if with_kind:
         p.add_argument("--order", type=int, default=1, help="n of --kind zvn (default 1)")
-        p.add_argument("--shaper-tolerance", dest="tolerance_shaper", type=float, default=0.05,
-                       help="vibration tolerance of --kind ei/ei2 (default 0.05)")
+    p.add_argument("--tolerance", type=float, default=0.05,
+                   help="vibration tolerance V: the residual --kind ei/ei2 accept at the mode, "
+                   "and the PRV level of analyze's insensitivity band (default 0.05 = 5 %%)")
+    # The old name of --tolerance for design (deprecated, hidden).
+    p.add_argument("--shaper-tolerance", dest="tolerance", type=float, help=argparse.SUPPRESS)
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -558,8 +520,6 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--ratio-min", type=float, default=0.2, help="sweep start, wn/wn_hat (default 0.2)")
     p.add_argument("--ratio-max", type=float, default=3.0, help="sweep end, wn/wn_hat (default 3)")
     p.add_argument("--points", type=int, default=600, help="sweep points (default 600)")
-    p.add_argument("--tolerance", type=float, default=0.05,
-                   help="vibration tolerance for the insensitivity band (default 0.05 = 5 %%)")
     p.add_argument("--surface", action="store_true",
                    help="also write prv_surface.png: PRV over wn/wn_hat and zeta")
     p.add_argument("--zeta-max", type=float, default=0.3, help="surface damping range (default 0.3)")

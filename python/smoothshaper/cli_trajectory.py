@@ -15,7 +15,11 @@ import math
 
 import numpy as np
 
-from .cli import EXIT_ERROR, CliError, _pyplot, format_table
+from .cli_common import EXIT_ERROR, CliError, format_table, pyplot as _pyplot
+
+__all__ = ["LIMIT_RTOL", "REST_RTOL", "MAX_SAMPLES", "PROFILES", "parse_via_list",
+           "parse_via_points", "run_until_reached", "run_with_hold", "segment_rows",
+           "cmd_generator", "cmd_bspline", "add_design_forms"]
 
 # The C core keeps every bound "to a few ulps" (trajectory.h); 1e-9 relative is far above
 # that and far below any real violation.
@@ -109,13 +113,13 @@ def run_until_reached(gen, via: np.ndarray, scale: float, max_samples: int):
             if k >= max_samples:
                 raise CliError(f"the output did not reach {p:g} within {max_samples} samples "
                                "(raise --Ts)")
-            saved = gen.save_state()
+            saved = gen.get_state()
             block = np.full(chunk, p)
             out = gen.process(block)
             hit = np.flatnonzero(_at_rest(out, p, scale, limits))
             if hit.size:
                 n = hit[0] + 1
-                gen.load_state(saved)
+                gen.set_state(saved)
                 out = gen.process(block[:n])
                 targets.append(block[:n])
                 outs.append(out)

@@ -30,7 +30,10 @@ import numpy as np
 from . import stages as _stages
 from .filters import ParameterError, _backend, _raise_status
 from .stages import Stage
-from ._checks import finite as _finite, positive as _positive
+from ._checks import choice as _choice, finite as _finite, positive as _positive
+
+__all__ = ["PROFILES", "profile_name", "MAX_ORDER", "MAX_MULTIPLE", "kinematic",
+           "kinematic_reference", "duration"]
 
 PROFILES = ("polynomial", "trigonometric", "damped")
 MAX_ORDER = 8
@@ -48,26 +51,32 @@ def _limits(vmax, amax, jmax, higher) -> list[float]:
             missing = missing or name
             continue
         if missing is not None:
-            raise ValueError(f"{missing} must be given when {name} is (bounds are consecutive "
-                             "derivatives)")
+            raise ParameterError(
+                missing, f"{missing} must be given when {name} is (bounds are consecutive "
+                         "derivatives)")
         out.append(_positive(name, value))
     if len(out) > MAX_ORDER:
-        raise ValueError(f"higher: at most {MAX_ORDER} bounds in all, got {len(out)}")
+        raise ParameterError("higher", f"higher: at most {MAX_ORDER} bounds in all, got {len(out)}")
     return out
 
 
+def profile_name(profile) -> str:
+    """The canonical (lower-case) profile name; ParameterError naming ``profile``."""
+    return _choice("profile", profile, PROFILES)
+
+
 def _mode(profile, wn, zeta) -> tuple[float, float]:
-    if profile not in PROFILES:
-        raise ValueError(f"profile must be one of {', '.join(PROFILES)}; got {profile!r}")
+    profile = profile_name(profile)
     if wn is None:
         if profile == "damped":
-            raise ValueError("wn must be given for profile='damped' (the mode the exponential "
-                             "jerk stage is tuned to)")
+            raise ParameterError(
+                "wn", "wn must be given for profile='damped' (the mode the exponential "
+                      "jerk stage is tuned to)")
         return 0.0, 0.0
     wn = _positive("wn", wn)
     zeta = 0.0 if zeta is None else _finite("zeta", zeta)
     if not 0.0 <= zeta < 1.0:
-        raise ValueError(f"zeta must be in [0, 1), got {zeta!r}")
+        raise ParameterError("zeta", f"zeta must be in [0, 1), got {zeta!r}")
     return wn, zeta
 
 
@@ -141,14 +150,16 @@ def kinematic(*, h: float, vmax: float, amax: float | None = None, jmax: float |
     offending parameter: a bound, ``h``, ``wn``, ``zeta``, ``Ts``; extreme combinations
     name the pair whose ratio no duration can carry (e.g. ``h/vmax = 1e+318 s``).
     """
+    profile = profile_name(profile)
     h = _finite("h", h)
     if h == 0:
-        raise ValueError("h must be non-zero (a displacement of 0 needs no trajectory)")
+        raise ParameterError("h", "h must be non-zero (a displacement of 0 needs no trajectory)")
     limits = _limits(vmax, amax, jmax, higher)
     wn_, zeta_ = _mode(profile, wn, zeta)
     if profile == "damped" and len(limits) < 2:
-        raise ValueError("amax must be given for profile='damped' (the exponential stage is "
-                         "the jerk/acceleration stage)")
+        raise ParameterError(
+            "amax", "amax must be given for profile='damped' (the exponential stage is "
+                    "the jerk/acceleration stage)")
     Ts_ = 0.0 if Ts is None else _positive("Ts", Ts)
     _check_ratios(h, limits, wn_)
     ffi, lib = _backend("double")
@@ -314,9 +325,10 @@ def kinematic_reference(*, h, vmax, amax=None, jmax=None, higher=(), profile="po
     """Pure-Python reference of :func:`kinematic` (same contract, independent code)."""
     from .reference.filtering import impulse_response
 
+    profile = profile_name(profile)
     h = abs(_finite("h", h))
     if h == 0:
-        raise ValueError("h must be non-zero")
+        raise ParameterError("h", "h must be non-zero")
     limits = _limits(vmax, amax, jmax, higher)
     wn_, zeta_ = _mode(profile, wn, zeta)
     last_kind = "harmonic" if profile == "trigonometric" else "rectangular"
@@ -348,7 +360,8 @@ def kinematic_reference(*, h, vmax, amax=None, jmax=None, higher=(), profile="po
         if uncapped:
             break
     if best is None:
-        raise ValueError(f"wn: no multiple k <= {MAX_MULTIPLE} of the mode period meets the bounds")
+        raise ParameterError(
+            "wn", f"wn: no multiple k <= {MAX_MULTIPLE} of the mode period meets the bounds")
     k, T = best
     if Ts is not None:
         # the tuned stage keeps its exact taps; its largest tap / Ts bounds the top derivative

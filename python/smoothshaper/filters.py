@@ -22,7 +22,13 @@ import numpy as np
 
 from . import stages as _stages
 from .stages import Stage
-from ._checks import finite as _finite, finite_signal as _signal, positive as _positive
+from ._checks import (choice as _choice, finite as _finite, finite_signal as _signal,
+                      integer as _integer, positive as _positive, real_array as _real_array)
+from .errors import ParameterError
+
+__all__ = ["Chain", "Mode", "ParameterError", "PRECISIONS", "MAX_BUFFER_REALS", "status_string",
+           "raise_for_status", "design_for_mode", "identify_from_peaks", "identify_from_record",
+           "notch_pole_zeta_from_bandwidth"]
 
 PRECISIONS = ("double", "float")
 #: Largest delay line a Chain allocates (2**28 reals: 2 GiB in double); beyond it the
@@ -49,15 +55,6 @@ _SMS_ERR_DURATION_BELOW_TS = -4
 _SMS_ERR_ABOVE_NYQUIST = -16
 
 
-class ParameterError(ValueError):
-    """A parameter the C core rejected. ``parameter`` names it, ``status`` is the C code."""
-
-    def __init__(self, parameter: str, message: str, status: int | None = None):
-        super().__init__(message)
-        self.parameter = parameter
-        self.status = status
-
-
 def check_memory(parameter: str, n_reals, what: str) -> int:
     """``n_reals`` as an int, or :class:`ParameterError` naming ``parameter`` when it exceeds
     :data:`MAX_BUFFER_REALS`: a request too large is refused in O(1) with the limit stated,
@@ -76,7 +73,7 @@ def _backend(precision: str):
     """(ffi, lib) of the compiled module for ``precision``; imported on first use so the
     pure-Python parts of the package work without the extension."""
     if precision not in PRECISIONS:
-        raise ValueError(f"precision must be 'double' or 'float', got {precision!r}")
+        precision = _choice("precision", precision, PRECISIONS)
     if precision not in _backends:
         try:
             if precision == "double":
@@ -194,10 +191,12 @@ def _as_stage_list(stages) -> tuple[Stage, ...]:
     try:
         out = tuple(stages)
     except TypeError:
-        raise ValueError(f"stages must be a Stage or a sequence of Stage, got {stages!r}") from None
+        raise ParameterError(
+            "stages", f"stages must be a Stage or a sequence of Stage, got {stages!r}") from None
     for i, s in enumerate(out):
         if not isinstance(s, Stage):
-            raise ValueError(f"stages[{i}] must be a smoothshaper.stages.Stage, got {s!r}")
+            raise ParameterError(
+                f"stages[{i}]", f"stages[{i}] must be a smoothshaper.Stage, got {s!r}")
     return out
 
 
@@ -218,13 +217,15 @@ class Chain:
 
     Raises
     ------
-    ValueError (:class:`ParameterError`)
-        naming the invalid parameter, e.g. ``wn`` above the Nyquist frequency ``pi/Ts``.
+    ParameterError
+        (a ``ValueError``) naming the invalid parameter, e.g. ``wn`` above the Nyquist
+        frequency ``pi/Ts``.
     """
 
     def __init__(self, stages: Stage | Iterable[Stage], *, Ts: float, precision: str = "double"):
         self.Ts = _positive("Ts", Ts)
         self.stages = _as_stage_list(stages)
+        precision = _choice("precision", precision, PRECISIONS)
         ffi, lib = _backend(precision)
         self.precision = precision
         self._ffi, self._lib = ffi, lib
@@ -291,22 +292,17 @@ class Chain:
         """Filter the 1-D signal ``u`` (any length, samples at Ts) and return ``y`` (float64,
         same length). Continues from the current state; ``u`` is not modified.
 
-        Raises ValueError naming ``u`` if it is not 1-D or holds NaN/Inf, or
-        :class:`ParameterError` for a sample beyond :func:`input_max`; the state is then
-        untouched."""
-        try:
-            y = np.array(u, dtype=np.float64)   # the output: u is copied once, filtered in place
-        except (TypeError, ValueError):
-            raise ValueError("u must be an array of real numbers") from None
-        if y.ndim != 1:
-            raise ValueError(f"u must be one-dimensional, got shape {y.shape}")
+        Raises ParameterError naming ``u`` if it is not 1-D real or holds NaN/Inf, or a
+        sample beyond :func:`input_max`; the state is then untouched."""
+        # The output: u is copied once (complex, boolean or text input is refused, not cast).
+        y = np.array(_real_array("u", u, ndim=1), dtype=np.float64)
         if y.size:
             data = self._ffi.from_buffer("double[]", y)
             bad = self._lib.smspy_chain_process_f64(self._chain, data, data, y.size)
             if bad >= 0:
                 if math.isfinite(y[bad]):
                     _check_input("u", y, self.precision)
-                raise ValueError(f"u must be finite: u[{bad}] = {y[bad]!r}")
+                raise ParameterError("u", f"u must be finite: u[{bad}] = {float(y[bad])!r}")
         return y
 
     def step(self, x: float) -> float:
@@ -352,12 +348,12 @@ class Chain:
 
         Layout: ``[STATE_TAG, STATE_VERSION, precision (0 double, 1 float), Ts, n_stages]``,
         then per stage the :data:`STATE_STAGE_FIELDS` (kind and timing as indices), then the C
-        core's state (``sms_chain_save_state``: delay lines, recursion states, indices)."""
+        core's state (``sms_chain_get_state``: delay lines, recursion states, indices)."""
         out = np.zeros(self.state_size, dtype=np.float64)
         head = self._header()
         out[:head.size] = head
         if self._core_state_size:
-            self._lib.sms_chain_save_state(
+            self._lib.sms_chain_get_state(
                 self._chain, self._ffi.from_buffer("double[]", out[head.size:]))
         return out
 
@@ -399,10 +395,7 @@ class Chain:
         ``state`` if it has the wrong shape, comes from another configuration (the message
         says which field differs: precision, Ts, a stage's kind, T, sigma, ...), or does not
         fit this chain; then nothing is changed."""
-        try:
-            s = np.array(state, dtype=np.float64, order="C", copy=True)
-        except (TypeError, ValueError):
-            raise ParameterError("state", "state must be an array of real numbers") from None
+        s = np.array(_real_array("state", state), dtype=np.float64, order="C", copy=True)
         if s.ndim != 1:
             raise ParameterError("state", f"state must be a 1-D array, got shape {s.shape}")
         why = self._identity_mismatch(s)
@@ -415,8 +408,8 @@ class Chain:
         core = s[self._header_size:]
         if not np.isfinite(core).all():
             raise ParameterError("state", "state must be finite")
-        st = self._lib.sms_chain_load_state(self._chain, self._ffi.from_buffer("double[]", core),
-                                            core.size)
+        st = self._lib.sms_chain_set_state(self._chain, self._ffi.from_buffer("double[]", core),
+                                           core.size)
         if st != 0:
             _raise_status(st, self._lib, self._ffi, "it was not saved from an identical chain",
                           "state")
@@ -468,10 +461,9 @@ class Chain:
         :attr:`length` for an FIR chain and is required when the chain contains a notch."""
         if n is None:
             if not self.is_fir:
-                raise ValueError("n is required: the chain contains an IIR notch")
+                raise ParameterError("n", "n is required: the chain contains an IIR notch")
             n = self.length
-        if isinstance(n, bool) or int(n) != n or n < 1:
-            raise ValueError(f"n must be an integer >= 1, got {n!r}")
+        n = _integer("n", n, 1)
         impulse = np.zeros(check_memory("n", n, "the impulse response"))
         impulse[0] = 1.0
         twin = self.copy()
@@ -481,8 +473,8 @@ class Chain:
     def taps(self) -> np.ndarray:
         """The FIR taps of the whole chain (:attr:`length` values, DC gain 1)."""
         if not self.is_fir:
-            raise ValueError("stages: taps() needs an FIR chain; it contains an IIR notch "
-                             "(use impulse_response(n))")
+            raise ParameterError("stages", "stages: taps() needs an FIR chain; it contains an "
+                                 "IIR notch (use impulse_response(n))")
         return self.impulse_response(self.length)
 
     def __repr__(self) -> str:
@@ -509,11 +501,11 @@ def design_for_mode(kind: str, *, wn: float, zeta: float = 0.0, k: int = 1) -> S
     rectangular T = k 2pi/wd; harmonic T = k 3pi/wd (k odd); damped harmonic sigma = -zeta wn,
     T = k 3pi/wd (k odd); exponential sigma = -zeta wn, T = k Td; shapers and notches take the
     mode (k = 1). Same result as :func:`smoothshaper.stages.for_mode`, computed in C."""
-    if kind not in _stages.KINDS:
-        raise ValueError(f"kind must be one of {', '.join(_stages.KINDS)}; got {kind!r}")
+    kind = _stages.kind_name(kind)
     wn_v, zeta_v = _finite("wn", wn), _finite("zeta", zeta)
-    if isinstance(k, bool) or int(k) != k or not 0 <= int(k) <= 0xFFFFFFFF:
-        raise ValueError(f"k must be an integer >= 1, got {k!r}")
+    k = _integer("k", k, 1)
+    if k > 0xFFFFFFFF:
+        raise ParameterError("k", f"k must fit an unsigned 32-bit integer, got {k}")
     ffi, lib = _backend("double")
     config = ffi.new("sms_stage_config *")
     st = lib.sms_design_for_mode(_stages.KINDS.index(kind), wn_v, zeta_v, int(k), config)
@@ -534,10 +526,11 @@ def identify_from_peaks(*, t1: float, p1: float, t2: float, p2: float) -> Mode:
     p1 > p2 > 0 (measured about the final value)."""
     values = {n: _finite(n, v) for n, v in (("t1", t1), ("p1", p1), ("t2", t2), ("p2", p2))}
     if not values["t2"] > values["t1"]:
-        raise ParameterError("t2", f"t2 must be later than t1, got t1={t1!r}, t2={t2!r}")
+        raise ParameterError("t2", f"t2 must be later than t1, got t1={values['t1']!r}, "
+                             f"t2={values['t2']!r}")
     if not values["p1"] > values["p2"] > 0:
-        raise ParameterError("p2", f"p2 must satisfy p1 > p2 > 0 (a decay), got p1={p1!r}, "
-                             f"p2={p2!r}")
+        raise ParameterError("p2", f"p2 must satisfy p1 > p2 > 0 (a decay), got "
+                             f"p1={values['p1']!r}, p2={values['p2']!r}")
     ffi, lib = _backend("double")
     out = ffi.new("sms_mode *")
     st = lib.sms_identify_from_peaks(values["t1"], values["p1"], values["t2"], values["p2"], out)

@@ -20,7 +20,12 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.linalg import expm
-from ._checks import nonnegative as _nonnegative, positive as _positive
+from ._checks import (finite_signal as _finite_signal, integer as _integer,
+                      nonnegative as _nonnegative, positive as _positive, real_array as _real_array)
+from .errors import ParameterError
+
+__all__ = ["Plant", "tracking_error", "mode", "two_mass", "cartesian_axis", "series", "rest_state",
+           "zoh_matrices", "simulate_zoh", "residual_amplitude"]
 
 
 @dataclass(frozen=True)
@@ -57,7 +62,7 @@ def _mode_args(wn, zeta) -> tuple[float, float]:
     wn = _positive("wn", wn)
     zeta = _nonnegative("zeta", zeta)
     if zeta >= 1:
-        raise ValueError(f"zeta must be in [0, 1), got {zeta!r}")
+        raise ParameterError("zeta", f"zeta must be in [0, 1), got {zeta!r}")
     return wn, zeta
 
 
@@ -80,7 +85,8 @@ def two_mass(*, J_l: float, k_t: float, b_t: float) -> Plant:
     b_t = _nonnegative("b_t", b_t)
     zeta = b_t / (2.0 * math.sqrt(k_t * J_l))
     if zeta >= 1:
-        raise ValueError(f"b_t must give an underdamped mode (zeta < 1), got zeta = {zeta!r}")
+        raise ParameterError(
+            "b_t", f"b_t must give an underdamped mode (zeta < 1), got zeta = {zeta!r}")
     p = mode(wn=math.sqrt(k_t / J_l), zeta=zeta)
     return Plant(p.A, p.B, p.C, p.D, "two_mass")
 
@@ -95,7 +101,7 @@ def cartesian_axis(*, m: float, d: float, k: float) -> Plant:
 def series(*plants: Plant) -> Plant:
     """The plants in series, ``plants[0]`` first: ``G = G_last ... G_0``."""
     if not plants:
-        raise ValueError("plants must hold at least one Plant")
+        raise ParameterError("plants", "plants must hold at least one Plant")
     out = plants[0]
     for nxt in plants[1:]:
         n1, n2 = out.order, nxt.order
@@ -128,18 +134,14 @@ def simulate_zoh(plant: Plant, u, *, Ts: float, x0=None, oversample: int = 1):
     Returns ``(t, y)`` with ``y`` at ``t = j Ts/oversample``, ``j = 0 .. len(u)*oversample - 1``
     (``y = C x(t) + D u``), exact up to rounding. ``x0`` is the initial state (default 0).
     """
-    u = np.asarray(u, dtype=float)
-    if u.ndim != 1 or not np.all(np.isfinite(u)):
-        raise ValueError("u must be a one-dimensional array of finite samples")
-    if isinstance(oversample, bool) or int(oversample) != oversample or oversample < 1:
-        raise ValueError(f"oversample must be an integer >= 1, got {oversample!r}")
+    u = _finite_signal("u", u)
+    m = _integer("oversample", oversample, 1)
     Ts = _positive("Ts", Ts)
-    m = int(oversample)
     h = Ts / m
     Ad, Bd = zoh_matrices(plant, h)
-    x = np.zeros(plant.order) if x0 is None else np.array(x0, dtype=float)
+    x = np.zeros(plant.order) if x0 is None else _real_array("x0", x0).copy()
     if x.shape != (plant.order,):
-        raise ValueError(f"x0 must have shape ({plant.order},), got {x.shape}")
+        raise ParameterError("x0", f"x0 must have shape ({plant.order},), got {x.shape}")
     uu = np.repeat(u, m)
     y = np.empty(uu.size)
     C, D = plant.C, plant.D
@@ -158,11 +160,11 @@ def residual_amplitude(t, y, *, wn: float, zeta: float = 0.0, t_start: float) ->
     ``|H(p)|`` of the filter (``analysis.residual_vibration``).
     """
     wn, zeta = _mode_args(wn, zeta)
-    t = np.asarray(t, dtype=float)
-    y = np.asarray(y, dtype=float)
+    t = _real_array("t", t)
+    y = _real_array("y", y)
     keep = t >= t_start
     if keep.sum() < 8:
-        raise ValueError("t_start leaves fewer than 8 samples to fit")
+        raise ParameterError("t_start", "t_start leaves fewer than 8 samples to fit")
     tk = t[keep]
     sigma, wd = -zeta * wn, wn * math.sqrt(1 - zeta * zeta)
     env = np.exp(sigma * tk)

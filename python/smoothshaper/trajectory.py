@@ -18,7 +18,11 @@ import numpy as np
 
 from . import design as _design
 from .filters import ParameterError, _backend, _raise_status, _real_dtype, check_memory
-from ._checks import finite as _finite, finite_signal as _targets
+from ._checks import (finite as _finite, finite_signal as _targets, integer as _integer,
+                      real_array as _real_array)
+
+__all__ = ["Generator", "generator_reference", "BSpline", "bspline_reference", "bspline_period",
+           "GEN_MAX_SEGMENT", "BSPLINE_MAX_DEGREE", "BSPLINE_MAX_AXES"]
 
 GEN_MAX_SEGMENT = 4194304.0  # 2**22 samples, as the C core
 BSPLINE_MAX_DEGREE = 7
@@ -30,6 +34,7 @@ def _generator_config(ffi, vmax, amax, jmax, profile, wn, zeta):
     cfg.vmax = _design._positive("vmax", vmax)
     cfg.amax = _design._positive("amax", amax)
     cfg.jmax = _design._positive("jmax", jmax)
+    profile = _design.profile_name(profile)
     wn_, zeta_ = _design._mode(profile, wn, zeta)
     cfg.profile = _design.PROFILES.index(profile)
     cfg.wn = wn_
@@ -70,7 +75,7 @@ class Generator:
         if st != 0:  # pragma: no cover - the size query validated the same arguments
             _raise_status(st, lib, ffi, "online generator")
         self.vmax, self.amax, self.jmax = cfg.vmax, cfg.amax, cfg.jmax
-        self.profile, self.wn, self.zeta = profile, cfg.wn, cfg.zeta
+        self.profile, self.wn, self.zeta = _design.PROFILES[cfg.profile], cfg.wn, cfg.zeta
 
     @property
     def T2(self) -> float:
@@ -98,18 +103,26 @@ class Generator:
             out[i] = (cell[0], cell[1], cell[2], cell[3])
         return out
 
-    def save_state(self) -> np.ndarray:
+    def get_state(self) -> np.ndarray:
+        """The dynamic state as a float64 array (a copy); :meth:`set_state` on this or an
+        identically configured generator continues bit-exactly."""
         out = np.empty(self._lib.sms_generator_state_count(self._gen), dtype=np.float64)
-        self._lib.sms_generator_save_state(self._gen, self._ffi.from_buffer("double[]", out))
+        self._lib.sms_generator_get_state(self._gen, self._ffi.from_buffer("double[]", out))
         return out
 
-    def load_state(self, state) -> None:
-        s = np.ascontiguousarray(state, dtype=np.float64)
-        st = self._lib.sms_generator_load_state(self._gen, self._ffi.from_buffer("double[]", s),
-                                                s.size)
+    def set_state(self, state) -> None:
+        """Restore a state from :meth:`get_state`. Raises ParameterError naming ``state`` if it
+        does not fit this generator; then nothing is changed."""
+        s = np.ascontiguousarray(_real_array("state", state, ndim=1), dtype=np.float64)
+        st = self._lib.sms_generator_set_state(self._gen, self._ffi.from_buffer("double[]", s),
+                                               s.size)
         if st != 0:
             raise ParameterError("state", "state does not match this generator (wrong length, "
                                  "non-finite, or counts out of range)", st)
+
+    # Old names (deprecated): one name per concept, as Chain.get_state / set_state.
+    save_state = get_state
+    load_state = set_state
 
 
 # ----------------------------------------------------------------------------------------------
@@ -292,31 +305,33 @@ def generator_reference(targets, *, vmax, amax, jmax, Ts, profile="polynomial", 
 # ----------------------------------------------------------------------------------------------
 
 def _bspline_args(degree, T, Ts, axes):
-    if isinstance(degree, bool) or int(degree) != degree or not 1 <= degree <= BSPLINE_MAX_DEGREE:
-        raise ValueError(f"degree must be an integer in 1..{BSPLINE_MAX_DEGREE}, got {degree!r}")
-    if isinstance(axes, bool) or int(axes) != axes or not 1 <= axes <= BSPLINE_MAX_AXES:
-        raise ValueError(f"axes must be an integer in 1..{BSPLINE_MAX_AXES}, got {axes!r}")
+    if not 1 <= _integer("degree", degree) <= BSPLINE_MAX_DEGREE:
+        raise ParameterError(
+            "degree", f"degree must be an integer in 1..{BSPLINE_MAX_DEGREE}, got {degree!r}")
+    if not 1 <= _integer("axes", axes) <= BSPLINE_MAX_AXES:
+        raise ParameterError(
+            "axes", f"axes must be an integer in 1..{BSPLINE_MAX_AXES}, got {axes!r}")
     Ts = _design._positive("Ts", Ts)
     T = _design._positive("T", T)
     if T / Ts < 1.0 - 1e-9:   # the one rule for short T (T within 1e-9 of Ts is one sample)
-        raise ValueError(f"T must be >= Ts = {Ts!r} (one knot spacing of at least a sample), "
-                         f"got {T!r}")
+        raise ParameterError(
+            "T", f"T must be >= Ts = {Ts!r} (one knot spacing of at least a sample), "
+                 f"got {T!r}")
     return int(degree), T, Ts, int(axes)
 
 
 def _via(name, via, axes=None) -> np.ndarray:
-    try:
-        q = np.asarray(via, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be an array of real numbers") from None
+    q = _real_array(name, via)
     if q.ndim == 1:
         q = q[:, None]
     if q.ndim != 2 or q.shape[0] < 2:
-        raise ValueError(f"{name} must have shape (M,) or (M, axes) with M >= 2, got {q.shape}")
+        raise ParameterError(
+            name, f"{name} must have shape (M,) or (M, axes) with M >= 2, got {q.shape}")
     if axes is not None and q.shape[1] != axes:
-        raise ValueError(f"{name} must have {axes} columns (one per axis), got {q.shape[1]}")
+        raise ParameterError(
+            name, f"{name} must have {axes} columns (one per axis), got {q.shape[1]}")
     if not np.all(np.isfinite(q)):
-        raise ValueError(f"{name} must be finite")
+        raise ParameterError(name, f"{name} must be finite")
     return q
 
 
@@ -388,9 +403,9 @@ class BSpline:
 
     def process(self, x, rest=None) -> np.ndarray:
         """Filter ``x`` ``(n, axes)`` after resting every axis at ``rest`` (default x[0])."""
-        x = np.ascontiguousarray(np.asarray(x, dtype=np.float64).reshape(-1, self.axes))
+        x = np.ascontiguousarray(_real_array("x", x).reshape(-1, self.axes))
         if not np.all(np.isfinite(x)):
-            raise ValueError("x must be finite")
+            raise ParameterError("x", "x must be finite")
         rest = x[0] if rest is None else np.asarray(rest, dtype=np.float64).reshape(self.axes)
         self._lib.sms_bspline_reset(self._b, self._ffi.new("sms_real[]", [float(v) for v in rest]))
         out = np.empty_like(x)
@@ -461,7 +476,8 @@ def bspline_period(*, wn, Ts: float) -> float:
     """Shortest knot spacing ``N Ts >= 2 pi / min(wn)`` (Biagiotti & Melchiorri 2011b, sec. IV)."""
     w = np.atleast_1d(np.asarray(wn, dtype=np.float64))
     if w.size == 0 or not np.all(np.isfinite(w)) or np.any(w <= 0):
-        raise ValueError(f"wn must be one or more finite frequencies > 0 rad/s, got {wn!r}")
+        raise ParameterError(
+            "wn", f"wn must be one or more finite frequencies > 0 rad/s, got {wn!r}")
     Ts = _design._positive("Ts", Ts)
     return max(1.0, math.ceil(2 * math.pi / (w.min() * Ts) * (1 - 1e-12))) * Ts
 

@@ -30,6 +30,13 @@ import numpy as np
 
 from . import reference
 from .stages import damped_harmonic, exponential, for_mode, harmonic, notch, rectangular, shaper
+from .errors import ParameterError
+
+__all__ = ["REL_TOL", "ModeStage", "start_values", "reference_stages", "communication_points",
+           "tick_inputs", "at_communication_points", "expected_output", "expected_trajectory",
+           "simulate", "validation_cases", "build_fmus", "fmpy_problems", "fmutool_problems",
+           "simulate_libcosim", "compare_importers", "compare_importers_trajectory", "compare",
+           "target_staircase", "simulate_trajectory", "compare_trajectory", "run"]
 
 #: Relative error accepted between FMU and reference (docs/numerics.md: 1e-12 in double).
 REL_TOL = 1e-12
@@ -56,7 +63,7 @@ def start_values(stages, *, Ts: float) -> dict:
     """fmpy start values of SmoothShaper for a chain of Stage or ModeStage (at most 8)."""
     stages = list(stages)
     if len(stages) > 8:
-        raise ValueError(f"stages must hold at most 8 stages, got {len(stages)}")
+        raise ParameterError("stages", f"stages must hold at most 8 stages, got {len(stages)}")
     values = {"Ts": float(Ts)}
     values.update({f"stage[{k}].kind": -1 for k in range(len(stages), 8)})   # unused: none
     for k, s in enumerate(stages):
@@ -174,8 +181,8 @@ def validation_cases(Ts: float) -> list[tuple[str, list]]:
         ("ei3", [shaper("ei3", wn=wn, zeta=zeta, tolerance=0.05)]),
         ("gmzv (n=5, 1.2 Td)", [shaper("gmzv", wn=wn, zeta=zeta, order=5, duration=1.2)]),
         ("zv (paper)", [shaper("zv", wn=wn, zeta=zeta, timing="paper")]),
-        ("notch_tustin", [notch(wn=wn, zeta=0.02, pole_zeta=0.5, discretization="tustin")]),
-        ("notch_matched", [notch(wn=wn, zeta=0.02, pole_zeta=0.5, discretization="matched")]),
+        ("notch_tustin", [notch(wn=wn, zeta=0.02, notch_pole_zeta=0.5, discretization="tustin")]),
+        ("notch_matched", [notch(wn=wn, zeta=0.02, notch_pole_zeta=0.5, discretization="matched")]),
         ("zvd for mode", [ModeStage("zvd", wn, zeta)]),
         ("damped_harmonic for mode", [ModeStage("damped_harmonic", wn, zeta)]),
         ("exponential for mode (k=2)", [ModeStage("exponential", wn, zeta, 2)]),
@@ -184,7 +191,7 @@ def validation_cases(Ts: float) -> list[tuple[str, list]]:
         ("chain M*ZV", [rectangular(T=30 * Ts), shaper("zv", wn=wn, zeta=zeta)]),
         ("chain M*M*S_sigma*notch", [rectangular(T=25 * Ts), rectangular(T=9 * Ts),
                                      damped_harmonic(T=T, sigma=-5.0),
-                                     notch(wn=3 * wn, zeta=0.0, pole_zeta=0.7)]),
+                                     notch(wn=3 * wn, zeta=0.0, notch_pole_zeta=0.7)]),
     ]
     return cases
 

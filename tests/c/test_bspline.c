@@ -128,16 +128,16 @@ static void test_period_and_state(void)
     }
     n = sms_bspline_state_count(&b);
     if (n <= 100000) {
-        sms_bspline_save_state(&b, state);
+        sms_bspline_get_state(&b, state);
         CHECK_STATUS(sms_bspline_init(&c, 3, 2, 0.05, 1e-3, buffer + need, need), SMS_OK);
-        CHECK_STATUS(sms_bspline_load_state(&c, state, n), SMS_OK);
+        CHECK_STATUS(sms_bspline_set_state(&c, state, n), SMS_OK);
         for (k = 0; k < 100; ++k) {
             x[0] = (sms_real)(k * 3 % 7);
             sms_bspline_step(&b, x, y);
             sms_bspline_step(&c, x, z);
             CHECK(y[0] == z[0] && y[1] == z[1]);
         }
-        CHECK_STATUS(sms_bspline_load_state(&c, state, n - 1), SMS_ERR_STATE);
+        CHECK_STATUS(sms_bspline_set_state(&c, state, n - 1), SMS_ERR_STATE);
     }
 }
 

@@ -133,26 +133,26 @@ static void test_splits_state_rebind(void)
     sms_chain_process(&chain, in, one, half);
     cnt = sms_chain_state_count(&chain);
     CHECK(cnt <= sizeof state / sizeof state[0]);
-    sms_chain_save_state(&chain, state);
+    sms_chain_get_state(&chain, state);
     sms_chain_process(&chain, in + half, one + half, N_IN - half);
     CHECK_STATUS(sms_chain_init(&chain2, stages2, c, n, Ts, buf2, MAX_BUF), SMS_OK);
-    CHECK_STATUS(sms_chain_load_state(&chain2, state, cnt), SMS_OK);
+    CHECK_STATUS(sms_chain_set_state(&chain2, state, cnt), SMS_OK);
     sms_chain_process(&chain2, in + half, split + half, N_IN - half);
     CHECK(same_bits(one + half, split + half, N_IN - half));
     /* wrong vectors change nothing: wrong length; a bad value in the last stages' part */
     saved = chain2;
     memcpy(saved_stages, stages2, sizeof stages2);
     memcpy(saved_buf, buf2, sizeof buf2);
-    CHECK_STATUS(sms_chain_load_state(&chain2, state, cnt - 1), SMS_ERR_STATE);
-    CHECK_STATUS(sms_chain_load_state(&chain2, state, cnt + 1), SMS_ERR_STATE);
+    CHECK_STATUS(sms_chain_set_state(&chain2, state, cnt - 1), SMS_ERR_STATE);
+    CHECK_STATUS(sms_chain_set_state(&chain2, state, cnt + 1), SMS_ERR_STATE);
     memcpy(bad, state, cnt * sizeof *state);
     bad[cnt - 6] = (double)SMS_NOTCH_TUSTIN;        /* notch state: kind tag of another kind */
-    CHECK_STATUS(sms_chain_load_state(&chain2, bad, cnt), SMS_ERR_STATE);
+    CHECK_STATUS(sms_chain_set_state(&chain2, bad, cnt), SMS_ERR_STATE);
     {   /* the ZVD stage (third) state: head out of range */
         size_t off = sms_stage_state_count(&stages2[0]) + sms_stage_state_count(&stages2[1]);
         memcpy(bad, state, cnt * sizeof *state);
         bad[off + 2] = 1e9;
-        CHECK_STATUS(sms_chain_load_state(&chain2, bad, cnt), SMS_ERR_STATE);
+        CHECK_STATUS(sms_chain_set_state(&chain2, bad, cnt), SMS_ERR_STATE);
     }
     CHECK(memcmp(&saved, &chain2, sizeof chain2) == 0);
     CHECK(memcmp(saved_stages, stages2, sizeof stages2) == 0);

@@ -257,13 +257,13 @@ static void test_state_and_bad_input(void)
     for (k = 0; k < 150; ++k)
         sms_generator_step(&g, 1, a);
     CHECK(sms_generator_state_count(&g) == 9u);
-    sms_generator_save_state(&g, state);
+    sms_generator_get_state(&g, state);
     h = g;
     for (i = 0; i < 4u * (g.n_tail + 1u); ++i)
         table2[i] = table[i];
     sms_generator_rebind(&h, table2);
     sms_generator_reset(&h, 5);
-    CHECK_STATUS(sms_generator_load_state(&h, state, 9), SMS_OK);
+    CHECK_STATUS(sms_generator_set_state(&h, state, 9), SMS_OK);
     for (k = 0; k < 500; ++k) {
         sms_generator_step(&g, k < 300 ? 1 : -2, a);
         sms_generator_step(&h, k < 300 ? 1 : -2, b);
@@ -272,11 +272,11 @@ static void test_state_and_bad_input(void)
     for (i = 0; i < 9; ++i)
         bad[i] = state[i];
     bad[6] = 1.5;
-    CHECK_STATUS(sms_generator_load_state(&h, bad, 9), SMS_ERR_STATE);
+    CHECK_STATUS(sms_generator_set_state(&h, bad, 9), SMS_ERR_STATE);
     bad[6] = state[6];
     bad[4] = NAN;
     CHECK_STATUS(sms_generator_check_state(&h, bad, 9), SMS_ERR_STATE);
-    CHECK_STATUS(sms_generator_load_state(&h, state, 8), SMS_ERR_STATE);
+    CHECK_STATUS(sms_generator_set_state(&h, state, 8), SMS_ERR_STATE);
     /* non-finite targets are ignored */
     sms_generator_reset(&g, 0);
     for (k = 0; k < 2000; ++k)

@@ -245,10 +245,10 @@ static void test_blocks_and_state(void)
     CHECK(sms_notch_state_count(&f) == 6);
     CHECK_STATUS(sms_notch_init(&f, &c, 1e-3), SMS_OK);
     sms_notch_process(&f, in, one, N / 2);
-    sms_notch_save_state(&f, st);
+    sms_notch_get_state(&f, st);
     sms_notch_process(&f, in + N / 2, one + N / 2, N - N / 2);
     CHECK_STATUS(sms_notch_init(&g, &c, 1e-3), SMS_OK);
-    CHECK_STATUS(sms_notch_load_state(&g, st, 6), SMS_OK);
+    CHECK_STATUS(sms_notch_set_state(&g, st, 6), SMS_OK);
     sms_notch_process(&g, in + N / 2, split + N / 2, N - N / 2);
     same = 1;
     for (i = N / 2; i < N; ++i)
@@ -257,10 +257,10 @@ static void test_blocks_and_state(void)
     saved = g;
     memcpy(st2, st, sizeof st);
     st2[0] = (double)SMS_NOTCH_MATCHED;
-    CHECK_STATUS(sms_notch_load_state(&g, st2, 6), SMS_ERR_STATE);
-    CHECK_STATUS(sms_notch_load_state(&g, st, 5), SMS_ERR_STATE);
+    CHECK_STATUS(sms_notch_set_state(&g, st2, 6), SMS_ERR_STATE);
+    CHECK_STATUS(sms_notch_set_state(&g, st, 5), SMS_ERR_STATE);
     CHECK_STATUS(sms_notch_check_state(&g, st, 7), SMS_ERR_STATE);
-    CHECK_STATUS(sms_notch_load_state(&g, NULL, 6), SMS_ERR_NULL);
+    CHECK_STATUS(sms_notch_set_state(&g, NULL, 6), SMS_ERR_NULL);
     CHECK(memcmp(&saved, &g, sizeof g) == 0);
     {   /* a non-finite state (e.g. loaded) restarts at rest at the next finite input */
         double poisoned[6];
@@ -268,7 +268,7 @@ static void test_blocks_and_state(void)
         memcpy(poisoned, st, sizeof st);
         poisoned[3] = NAN;
         poisoned[4] = INFINITY;
-        CHECK_STATUS(sms_notch_load_state(&g, poisoned, 6), SMS_OK);
+        CHECK_STATUS(sms_notch_set_state(&g, poisoned, 6), SMS_OK);
         sms_notch_step(&g, &x);
         CHECK(x == (sms_real)2);
         for (i = 0; i < 10; ++i) {

@@ -484,32 +484,32 @@ static void test_blocks_state_reset(void)
         sms_shaper_process(&f, in, one, N / 2);
         cnt = sms_shaper_state_count(&f);
         CHECK(cnt == f.length + 4);
-        sms_shaper_save_state(&f, state);
+        sms_shaper_get_state(&f, state);
         sms_shaper_process(&f, in + N / 2, one + N / 2, N - N / 2);
         CHECK_STATUS(sms_shaper_init(&h, &c, Ts, b3, MAX_LEN), SMS_OK);
-        CHECK_STATUS(sms_shaper_load_state(&h, state, cnt), SMS_OK);
+        CHECK_STATUS(sms_shaper_set_state(&h, state, cnt), SMS_OK);
         sms_shaper_process(&h, in + N / 2, split + N / 2, N - N / 2);
         same = 1;
         for (i = N / 2; i < N; ++i)
             same &= memcmp(&one[i], &split[i], sizeof one[i]) == 0;
         CHECK(same);
         /* wrong vectors: nothing written */
-        sms_shaper_save_state(&h, state);
+        sms_shaper_get_state(&h, state);
         memcpy(state2, state, cnt * sizeof *state);
         saved = h;
         memcpy(b2, b3, h.length * sizeof *b3);
-        CHECK_STATUS(sms_shaper_load_state(&h, state, cnt - 1), SMS_ERR_STATE);
+        CHECK_STATUS(sms_shaper_set_state(&h, state, cnt - 1), SMS_ERR_STATE);
         state2[0] = (double)SMS_SHAPER_ZV + (c.kind == SMS_SHAPER_ZV ? 1 : 0);
-        CHECK_STATUS(sms_shaper_load_state(&h, state2, cnt), SMS_ERR_STATE);
+        CHECK_STATUS(sms_shaper_set_state(&h, state2, cnt), SMS_ERR_STATE);
         state2[0] = state[0];
         state2[2] = (double)h.length;
-        CHECK_STATUS(sms_shaper_load_state(&h, state2, cnt), SMS_ERR_STATE);
+        CHECK_STATUS(sms_shaper_set_state(&h, state2, cnt), SMS_ERR_STATE);
         state2[2] = 0.5;
         CHECK_STATUS(sms_shaper_check_state(&h, state2, cnt), SMS_ERR_STATE);
         state2[2] = state[2];
         state2[1] += 1;
-        CHECK_STATUS(sms_shaper_load_state(&h, state2, cnt), SMS_ERR_STATE);
-        CHECK_STATUS(sms_shaper_load_state(&h, NULL, cnt), SMS_ERR_NULL);
+        CHECK_STATUS(sms_shaper_set_state(&h, state2, cnt), SMS_ERR_STATE);
+        CHECK_STATUS(sms_shaper_set_state(&h, NULL, cnt), SMS_ERR_NULL);
         CHECK(memcmp(&saved, &h, sizeof h) == 0);
         CHECK(memcmp(b2, b3, h.length * sizeof *b3) == 0);
         /* reset(rest): output constant rest at once */
@@ -520,9 +520,9 @@ static void test_blocks_state_reset(void)
             CHECK_CLOSE(x, 2.5, SMS_TEST_REL_TOL, 2.5);
         }
         /* the operating point travels with the state */
-        sms_shaper_save_state(&h, state);
+        sms_shaper_get_state(&h, state);
         CHECK_STATUS(sms_shaper_init(&g, &c, Ts, b2, MAX_LEN), SMS_OK);
-        CHECK_STATUS(sms_shaper_load_state(&g, state, cnt), SMS_OK);
+        CHECK_STATUS(sms_shaper_set_state(&g, state, cnt), SMS_OK);
         CHECK(g.rest == (sms_real)2.5 && g.head == h.head);
     }
 }

@@ -97,9 +97,9 @@ static void test_state(const sms_stage_config *c, double Ts)
     sms_smoother_process(&a, sig_in, sig_out, 1234);
     count = sms_smoother_state_count(&a);
     CHECK(count == a.window + 14u);
-    sms_smoother_save_state(&a, saved);
+    sms_smoother_get_state(&a, saved);
     CHECK_STATUS(sms_smoother_check_state(&b, saved, count), SMS_OK);
-    CHECK_STATUS(sms_smoother_load_state(&b, saved, count), SMS_OK);
+    CHECK_STATUS(sms_smoother_set_state(&b, saved, count), SMS_OK);
     sms_smoother_process(&a, sig_in + 1234, sig_out + 1234, n - 1234);
     sms_smoother_process(&b, sig_in + 1234, sig_out2 + 1234, n - 1234);
     CHECK(memcmp(sig_out + 1234, sig_out2 + 1234, (n - 1234) * sizeof(sms_real)) == 0);
@@ -122,18 +122,18 @@ static void test_state(const sms_stage_config *c, double Ts)
         memcpy(ring_a, ring_b, b.window * sizeof(sms_real));
         if (i == 7) {
 #ifdef SMS_USE_FLOAT
-            CHECK_STATUS(sms_smoother_load_state(&b, bad, count), SMS_ERR_STATE);
+            CHECK_STATUS(sms_smoother_set_state(&b, bad, count), SMS_ERR_STATE);
 #endif
         } else if (i == 8) {
-            CHECK_STATUS(sms_smoother_load_state(&b, bad, count + 1), SMS_ERR_STATE);
+            CHECK_STATUS(sms_smoother_set_state(&b, bad, count + 1), SMS_ERR_STATE);
         } else {
             CHECK_STATUS(sms_smoother_check_state(&b, bad, count), SMS_ERR_STATE);
-            CHECK_STATUS(sms_smoother_load_state(&b, bad, count), SMS_ERR_STATE);
+            CHECK_STATUS(sms_smoother_set_state(&b, bad, count), SMS_ERR_STATE);
         }
         CHECK(memcmp(&before, &b, sizeof b) == 0);
         CHECK(memcmp(ring_a, ring_b, b.window * sizeof(sms_real)) == 0);
     }
-    CHECK_STATUS(sms_smoother_load_state(&b, NULL, count), SMS_ERR_NULL);
+    CHECK_STATUS(sms_smoother_set_state(&b, NULL, count), SMS_ERR_NULL);
 }
 
 /* A NaN or Inf sample: NaN out while it is in the window, then exact again within 2M + 1. */
@@ -156,8 +156,8 @@ static void test_non_finite(const sms_stage_config *c, double Ts, double bad_val
         static double saved[MAX_LEN + 16];
         sms_smoother g;
         CHECK_STATUS(sms_smoother_init(&g, c, Ts, ring_b, MAX_LEN), SMS_OK);
-        sms_smoother_save_state(&f, saved);
-        CHECK_STATUS(sms_smoother_load_state(&g, saved, sms_smoother_state_count(&f)), SMS_OK);
+        sms_smoother_get_state(&f, saved);
+        CHECK_STATUS(sms_smoother_set_state(&g, saved, sms_smoother_state_count(&f)), SMS_OK);
         sms_smoother_process(&g, sig_in + hit + 1, sig_out2 + hit + 1, n - hit - 1);
     }
     sms_smoother_process(&f, sig_in + hit + 1, sig_out + hit + 1, n - hit - 1);

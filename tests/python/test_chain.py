@@ -31,8 +31,8 @@ EXAMPLES = [
     sms.shaper("ei2", wn=100.0, zeta=0.02),
     sms.shaper("mzv", wn=100.0, zeta=0.05),
     sms.shaper("zv", wn=100.0, zeta=0.05, timing="paper"),
-    sms.notch(wn=200.0, zeta=0.05, pole_zeta=0.7, discretization="tustin"),
-    sms.notch(wn=200.0, zeta=0.05, pole_zeta=0.7),
+    sms.notch(wn=200.0, zeta=0.05, notch_pole_zeta=0.7, discretization="tustin"),
+    sms.notch(wn=200.0, zeta=0.05, notch_pole_zeta=0.7),
 ]
 IDS = [f"{s.kind}-{i}" for i, s in enumerate(EXAMPLES)]
 RNG = np.random.default_rng(20261125)
@@ -117,7 +117,7 @@ def test_stage_constructors_name_the_parameter():
                        (lambda: sms.shaper("zv", wn=1, zeta=1), "zeta"),
                        (lambda: sms.shaper("zvn", wn=1, order=9), "order"),
                        (lambda: sms.shaper("ei", wn=1, tolerance=0), "tolerance"),
-                       (lambda: sms.notch(wn=1, zeta=0.5, pole_zeta=0.4), "notch_pole_zeta")]:
+                       (lambda: sms.notch(wn=1, zeta=0.5, notch_pole_zeta=0.4), "notch_pole_zeta")]:
         with pytest.raises(ValueError, match=rf"^{name} "):
             call()
 

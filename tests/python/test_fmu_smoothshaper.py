@@ -103,7 +103,7 @@ def run(fmu, t0, u, step=TS):
 
 
 CHAIN = [rectangular(T=17.3 * TS), harmonic(T=9 * TS), shaper("zvd", wn=2 * math.pi * 9, zeta=0.1),
-         notch(wn=300.0, zeta=0.05, pole_zeta=0.6)]
+         notch(wn=300.0, zeta=0.05, notch_pole_zeta=0.6)]
 U = np.random.default_rng(4).uniform(-1, 2, 300)
 
 

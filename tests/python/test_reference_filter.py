@@ -25,7 +25,7 @@ def stages(draw):
     wn = draw(st.floats(0.05, 2.0)) / TS
     zeta = draw(st.floats(0.0, 0.5))
     if kind == "notch":
-        return sm.notch(wn=wn, zeta=zeta, pole_zeta=zeta + draw(st.floats(0.05, 1.5)),
+        return sm.notch(wn=wn, zeta=zeta, notch_pole_zeta=zeta + draw(st.floats(0.05, 1.5)),
                         discretization=draw(st.sampled_from(["matched", "tustin"])))
     return sm.shaper(kind, wn=wn, zeta=zeta, timing=timing)
 

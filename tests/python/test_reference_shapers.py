@@ -232,14 +232,14 @@ def test_shaper_mode_must_be_below_nyquist():
 @pytest.mark.parametrize("xi1, xi2", [(0.0, 0.7), (0.05, 0.5), (0.1, 1.0), (0.1, 2.5)])
 def test_tustin_notch_equals_scipy_prewarped_bilinear(xi1, xi2):
     wn, Ts = 200.0, 1e-3
-    b, a = ref.notch_coefficients(sm.notch(wn=wn, zeta=xi1, pole_zeta=xi2,
+    b, a = ref.notch_coefficients(sm.notch(wn=wn, zeta=xi1, notch_pole_zeta=xi2,
                                            discretization="tustin"), Ts=Ts)
     fs = wn / (2 * math.tan(wn * Ts / 2))          # scipy uses s = 2 fs (z-1)/(z+1)
     bs, as_ = scipy.signal.bilinear([1, 2 * xi1 * wn, wn * wn], [1, 2 * xi2 * wn, wn * wn], fs)
     np.testing.assert_allclose(b, bs / as_[0], rtol=1e-12, atol=1e-15)
     np.testing.assert_allclose(a, as_ / as_[0], rtol=1e-12, atol=1e-15)
     z = np.exp(1j * wn * Ts)                        # prewarping: depth xi1/xi2 exactly at wn
-    stage = sm.notch(wn=wn, zeta=xi1, pole_zeta=xi2, discretization="tustin")
+    stage = sm.notch(wn=wn, zeta=xi1, notch_pole_zeta=xi2, discretization="tustin")
     assert abs(ref.discrete_transfer(stage, z, Ts=Ts)) == pytest.approx(xi1 / xi2, abs=1e-12)
     assert abs(ref.discrete_transfer(stage, 1.0, Ts=Ts) - 1) < 1e-12
 
@@ -247,7 +247,7 @@ def test_tustin_notch_equals_scipy_prewarped_bilinear(xi1, xi2):
 @pytest.mark.parametrize("xi1, xi2", [(0.0, 0.7), (0.05, 0.5), (0.1, 1.0), (0.1, 2.5)])
 def test_matched_notch_has_zeros_on_the_sampled_mode_and_dc_gain_one(xi1, xi2):
     wn, Ts = 200.0, 1e-3
-    stage = sm.notch(wn=wn, zeta=xi1, pole_zeta=xi2)
+    stage = sm.notch(wn=wn, zeta=xi1, notch_pole_zeta=xi2)
     b, a = ref.notch_coefficients(stage, Ts=Ts)
     zp = np.exp(ref.mode_pole(wn, xi1) * Ts)
     assert abs(np.polyval(b, zp)) < 1e-12 * abs(b).sum()   # b0 z^2 + b1 z + b2
@@ -259,7 +259,7 @@ def test_matched_notch_has_zeros_on_the_sampled_mode_and_dc_gain_one(xi1, xi2):
 
 
 def test_notch_impulse_response_and_filter_match_scipy_lfilter():
-    stage = sm.notch(wn=300.0, zeta=0.02, pole_zeta=0.6)
+    stage = sm.notch(wn=300.0, zeta=0.02, notch_pole_zeta=0.6)
     Ts = 1e-3
     b, a = ref.notch_coefficients(stage, Ts=Ts)
     x = np.random.default_rng(1).normal(size=500)

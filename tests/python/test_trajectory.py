@@ -89,13 +89,13 @@ def test_reversal_waits_instead_of_doubling_acceleration():
 def test_state_round_trip():
     g = tr.Generator(vmax=1.0, amax=10.0, jmax=100.0, Ts=1e-3)
     g.process(np.full(150, 1.0))
-    s = g.save_state()
+    s = g.get_state()
     h = tr.Generator(vmax=1.0, amax=10.0, jmax=100.0, Ts=1e-3)
-    h.load_state(s)
+    h.set_state(s)
     x = np.concatenate([np.full(100, 1.0), np.full(900, -0.5)])
     assert np.array_equal(g.process(x), h.process(x))
     with pytest.raises(ValueError, match="^state"):
-        h.load_state(s[:-1])
+        h.set_state(s[:-1])
 
 
 @pytest.mark.parametrize("kwargs, name", [
@@ -115,10 +115,10 @@ def test_errors_name_the_parameter(kwargs, name):
 
 def test_non_finite_targets_rejected():
     g = tr.Generator(vmax=1.0, amax=10.0, jmax=100.0, Ts=1e-3)
-    before = g.save_state()
+    before = g.get_state()
     with pytest.raises(ValueError, match="^targets"):
         g.process([0.0, float("nan")])
-    assert np.array_equal(g.save_state(), before)
+    assert np.array_equal(g.get_state(), before)
 
 
 # Stage lengths that are whole multiples of Ts: every jump of the jerk falls on a sample

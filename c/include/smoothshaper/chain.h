@@ -41,8 +41,8 @@ SMS_API void sms_chain_process(sms_chain *chain, const sms_real *in, sms_real *o
  * length in samples (IIR notches count 0). */
 SMS_API size_t sms_chain_length(const sms_chain *chain);
 SMS_API size_t sms_chain_state_count(const sms_chain *chain);
-SMS_API void sms_chain_save_state(const sms_chain *chain, double *dst);
-SMS_API sms_status sms_chain_load_state(sms_chain *chain, const double *src, size_t n);
+SMS_API void sms_chain_get_state(const sms_chain *chain, double *dst);
+SMS_API sms_status sms_chain_set_state(sms_chain *chain, const double *src, size_t n);
 /** @brief After copying chain, stages and buffer elsewhere, point the copy at its own memory. */
 SMS_API void sms_chain_rebind(sms_chain *chain, sms_stage *stages, sms_real *buffer);
 

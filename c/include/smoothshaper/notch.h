@@ -25,7 +25,7 @@
  *
  * Non-finite input: such a sample is passed to the output unchanged and does not enter the
  * state (the filter continues as if it had not been there). If the output is non-finite while
- * the input is finite (overflow, or a non-finite state loaded by sms_notch_load_state()), the
+ * the input is finite (overflow, or a non-finite state loaded by sms_notch_set_state()), the
  * filter restarts at rest at that input and outputs it. The IIR state is never poisoned.
  */
 #ifndef SMOOTHSHAPER_NOTCH_H
@@ -68,11 +68,11 @@ SMS_API void sms_notch_process(sms_notch *f, const sms_real *in, sms_real *out, 
 /** @brief Doubles in a saved state: 6 (kind, x1, x2, w1, w2, rest). */
 SMS_API size_t sms_notch_state_count(const sms_notch *f);
 /** @brief Write sms_notch_state_count() doubles to dst. */
-SMS_API void sms_notch_save_state(const sms_notch *f, double *dst);
+SMS_API void sms_notch_get_state(const sms_notch *f, double *dst);
 /** @brief Restore a saved state; validates first and writes nothing on error (::SMS_ERR_STATE:
  * wrong n or kind; ::SMS_ERR_NULL). */
-SMS_API sms_status sms_notch_load_state(sms_notch *f, const double *src, size_t n);
-/** @brief The validation of sms_notch_load_state() alone: writes nothing. */
+SMS_API sms_status sms_notch_set_state(sms_notch *f, const double *src, size_t n);
+/** @brief The validation of sms_notch_set_state() alone: writes nothing. */
 SMS_API sms_status sms_notch_check_state(const sms_notch *f, const double *src, size_t n);
 /**
  * @brief Pole damping xi2 such that the continuous notch (zero damping xi1 = zeta, centre wn)

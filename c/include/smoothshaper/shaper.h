@@ -112,11 +112,11 @@ SMS_API void sms_shaper_process(sms_shaper *f, const sms_real *in, sms_real *out
 /** @brief Doubles in a saved state: L + 4 (kind, L, head, rest, the delay line in ring order). */
 SMS_API size_t sms_shaper_state_count(const sms_shaper *f);
 /** @brief Write sms_shaper_state_count() doubles to dst. */
-SMS_API void sms_shaper_save_state(const sms_shaper *f, double *dst);
+SMS_API void sms_shaper_get_state(const sms_shaper *f, double *dst);
 /** @brief Restore a saved state; validates first and writes nothing on error (::SMS_ERR_STATE:
  * wrong n, kind, length or head; ::SMS_ERR_NULL). */
-SMS_API sms_status sms_shaper_load_state(sms_shaper *f, const double *src, size_t n);
-/** @brief The validation of sms_shaper_load_state() alone: writes nothing. */
+SMS_API sms_status sms_shaper_set_state(sms_shaper *f, const double *src, size_t n);
+/** @brief The validation of sms_shaper_set_state() alone: writes nothing. */
 SMS_API sms_status sms_shaper_check_state(const sms_shaper *f, const double *src, size_t n);
 /**
  * @brief The continuous design: amplitudes (sum 1) and times [s] in increasing order.

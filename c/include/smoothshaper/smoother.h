@@ -152,7 +152,7 @@ SMS_API size_t sms_smoother_state_count(const sms_smoother *f);
 
 /** @brief Write the dynamic state, sms_smoother_state_count() doubles, into dst. Loading it
  * into an identically configured smoother continues bit-exactly. */
-SMS_API void sms_smoother_save_state(const sms_smoother *f, double *dst);
+SMS_API void sms_smoother_get_state(const sms_smoother *f, double *dst);
 
 /**
  * @brief Restore a saved state; validates first and writes nothing on error.
@@ -161,9 +161,9 @@ SMS_API void sms_smoother_save_state(const sms_smoother *f, double *dst);
  * rest or a reference is not finite, or a finite value lies outside the range of ::sms_real (NaN/Inf in the
  * ring and the copies are accepted: they are what a non-finite input leaves behind).
  */
-SMS_API sms_status sms_smoother_load_state(sms_smoother *f, const double *src, size_t n);
+SMS_API sms_status sms_smoother_set_state(sms_smoother *f, const double *src, size_t n);
 
-/** @brief The validation of sms_smoother_load_state() alone: writes nothing. */
+/** @brief The validation of sms_smoother_set_state() alone: writes nothing. */
 SMS_API sms_status sms_smoother_check_state(const sms_smoother *f, const double *src, size_t n);
 
 /**

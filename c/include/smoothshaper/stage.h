@@ -53,14 +53,14 @@ SMS_API void sms_stage_step(sms_stage *stage, sms_real *x);
 SMS_API void sms_stage_process(sms_stage *stage, const sms_real *in, sms_real *out, size_t n);
 /** @brief Impulse-response length L in samples (notch: 0, it is IIR). */
 SMS_API size_t sms_stage_length(const sms_stage *stage);
-/** @brief Number of doubles sms_stage_save_state() writes. */
+/** @brief Number of doubles sms_stage_get_state() writes. */
 SMS_API size_t sms_stage_state_count(const sms_stage *stage);
 /** @brief Write the dynamic state (delay line, recursion state, indices) as doubles. */
-SMS_API void sms_stage_save_state(const sms_stage *stage, double *dst);
-/** @brief Restore a state written by sms_stage_save_state() of an identically configured stage.
+SMS_API void sms_stage_get_state(const sms_stage *stage, double *dst);
+/** @brief Restore a state written by sms_stage_get_state() of an identically configured stage.
  * @return ::SMS_OK, ::SMS_ERR_NULL, or ::SMS_ERR_STATE if n or any index does not fit. */
-SMS_API sms_status sms_stage_load_state(sms_stage *stage, const double *src, size_t n);
-/** @brief Would sms_stage_load_state() accept this vector? Writes nothing. */
+SMS_API sms_status sms_stage_set_state(sms_stage *stage, const double *src, size_t n);
+/** @brief Would sms_stage_set_state() accept this vector? Writes nothing. */
 SMS_API sms_status sms_stage_check_state(const sms_stage *stage, const double *src, size_t n);
 /** @brief Reals of the caller buffer this stage uses (its delay line; 0 for a notch). */
 SMS_API size_t sms_stage_buffer_len(const sms_stage *stage);

@@ -225,11 +225,11 @@ SMS_API void sms_generator_reset(sms_generator *g, sms_real position);
 SMS_API void sms_generator_step(sms_generator *g, sms_real target, sms_real out[4]);
 /** @brief Total duration of the tail Tc = T2 + T3 [s] (the output lags r by this at most). */
 SMS_API double sms_generator_tail_duration(const sms_generator *g);
-/** @brief Number of doubles sms_generator_save_state() writes (9). */
+/** @brief Number of doubles sms_generator_get_state() writes (9). */
 SMS_API size_t sms_generator_state_count(const sms_generator *g);
-SMS_API void sms_generator_save_state(const sms_generator *g, double *dst);
+SMS_API void sms_generator_get_state(const sms_generator *g, double *dst);
 /** @brief Restore a saved state; ::SMS_ERR_STATE (nothing written) if n or a field is invalid. */
-SMS_API sms_status sms_generator_load_state(sms_generator *g, const double *src, size_t n);
+SMS_API sms_status sms_generator_set_state(sms_generator *g, const double *src, size_t n);
 SMS_API sms_status sms_generator_check_state(const sms_generator *g, const double *src, size_t n);
 /** @brief Point a copied generator at a buffer holding the same tables. */
 SMS_API void sms_generator_rebind(sms_generator *g, sms_real *buffer);
@@ -306,8 +306,8 @@ SMS_API size_t sms_bspline_pass_sample(const sms_bspline *b, size_t i);
  */
 SMS_API sms_status sms_bspline_period_for_modes(const double *wn, size_t n, double Ts, double *T);
 SMS_API size_t sms_bspline_state_count(const sms_bspline *b);
-SMS_API void sms_bspline_save_state(const sms_bspline *b, double *dst);
-SMS_API sms_status sms_bspline_load_state(sms_bspline *b, const double *src, size_t n);
+SMS_API void sms_bspline_get_state(const sms_bspline *b, double *dst);
+SMS_API sms_status sms_bspline_set_state(sms_bspline *b, const double *src, size_t n);
 
 #ifdef __cplusplus
 }

@@ -117,6 +117,23 @@ SMS_API const char *sms_status_string(sms_status status);
 /** @brief Name of a kind ("rectangular", "harmonic", ..., "notch_matched"), or NULL if unknown. */
 SMS_API const char *sms_kind_name(sms_kind kind);
 
+/* Deprecated old names of the state functions. Every object now uses get_state/set_state,
+ * the names of the Python API and of FMI's fmi2GetFMUstate/fmi2SetFMUstate. */
+#define sms_smoother_save_state sms_smoother_get_state
+#define sms_smoother_load_state sms_smoother_set_state
+#define sms_shaper_save_state sms_shaper_get_state
+#define sms_shaper_load_state sms_shaper_set_state
+#define sms_notch_save_state sms_notch_get_state
+#define sms_notch_load_state sms_notch_set_state
+#define sms_stage_save_state sms_stage_get_state
+#define sms_stage_load_state sms_stage_set_state
+#define sms_chain_save_state sms_chain_get_state
+#define sms_chain_load_state sms_chain_set_state
+#define sms_generator_save_state sms_generator_get_state
+#define sms_generator_load_state sms_generator_set_state
+#define sms_bspline_save_state sms_bspline_get_state
+#define sms_bspline_load_state sms_bspline_set_state
+
 #ifdef __cplusplus
 }
 #endif

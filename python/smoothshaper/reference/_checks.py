@@ -9,20 +9,23 @@ from __future__ import annotations
 import math
 
 from ..stages import Stage
+from .._checks import positive as _positive
+from ..errors import ParameterError
 
 GRID_TOLERANCE = 1e-9
 
 #: Most taps or samples one reference array holds (2**28 float64: 2 GiB), the same limit as the
-#: C-backed Chain's delay line; beyond it a ValueError names the parameter instead of numpy
+#: C-backed Chain's delay line; beyond it a ParameterError names the parameter instead of numpy
 #: failing in the allocator (or the machine swapping).
 MAX_SAMPLES = 1 << 28
 
 
 def check_samples(parameter: str, n, what: str) -> int:
-    """``n`` as an int; ValueError naming ``parameter`` when it exceeds :data:`MAX_SAMPLES`."""
+    """``n`` as an int; ParameterError naming ``parameter`` when it exceeds :data:`MAX_SAMPLES`."""
     if not n <= MAX_SAMPLES:
-        raise ValueError(f"{parameter} out of range: {what} would hold {float(n):.4g} samples, more "
-                         f"than the limit of {MAX_SAMPLES} (2 GiB of float64)")
+        raise ParameterError(
+            parameter, f"{parameter} out of range: {what} would hold {float(n):.4g} samples, "
+            f"more than the limit of {MAX_SAMPLES} (2 GiB of float64)")
     return int(n)
 
 
@@ -38,19 +41,14 @@ def on_grid(nu: float) -> int | None:
 
 
 def check_Ts(Ts) -> float:
-    """``Ts`` as a float; ValueError naming ``Ts`` unless finite and > 0."""
-    try:
-        value = float(Ts)
-    except (TypeError, ValueError):
-        raise ValueError(f"Ts must be a real number of seconds, got {Ts!r}") from None
-    if not math.isfinite(value) or value <= 0:
-        raise ValueError(f"Ts must be finite and > 0 s, got {Ts!r}")
-    return value
+    """``Ts`` as a float; ParameterError naming ``Ts`` unless a finite real number > 0."""
+    return _positive("Ts", Ts)
 
 
 def check_stage(stage) -> Stage:
     if not isinstance(stage, Stage):
-        raise ValueError(f"stage must be a smoothshaper.Stage, got {type(stage).__name__}")
+        raise ParameterError(
+            "stage", f"stage must be a smoothshaper.Stage, got {type(stage).__name__}")
     return stage
 
 
@@ -61,10 +59,12 @@ def as_stage_list(stages) -> list[Stage]:
     try:
         items = list(stages)
     except TypeError:
-        raise ValueError(f"stages must be a Stage or a sequence of Stage, got {stages!r}") from None
+        raise ParameterError(
+            "stages", f"stages must be a Stage or a sequence of Stage, got {stages!r}") from None
     if not items:
-        raise ValueError("stages must hold at least one Stage")
+        raise ParameterError("stages", "stages must hold at least one Stage")
     for i, s in enumerate(items):
         if not isinstance(s, Stage):
-            raise ValueError(f"stages[{i}] must be a smoothshaper.Stage, got {type(s).__name__}")
+            raise ParameterError(
+                f"stages[{i}]", f"stages[{i}] must be a smoothshaper.Stage, got {type(s).__name__}")
     return items

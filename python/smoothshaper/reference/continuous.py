@@ -22,6 +22,9 @@ from ..stages import NOTCHES, SHAPERS, Stage
 from ._checks import check_stage
 from .notch import notch_continuous_transfer
 from .shapers import shaper_continuous_transfer
+from ..errors import ParameterError
+
+__all__ = ["continuous_transfer", "continuous_impulse_response"]
 
 
 def _cexpm1(z: np.ndarray) -> np.ndarray:
@@ -73,11 +76,12 @@ def continuous_transfer(stage: Stage, s) -> np.ndarray:
 def continuous_impulse_response(stage: Stage, t) -> np.ndarray:
     """Normalised impulse response ``h(t)`` (integral 1) of a smoother at times ``t`` [s];
     0 outside ``[0, T)``. Shapers are impulse trains (use ``shaper_impulses``) and notches
-    have a Dirac part, so both raise ValueError naming ``stage``."""
+    have a Dirac part, so both raise ParameterError naming ``stage``."""
     stage = check_stage(stage)
     if stage.kind in SHAPERS or stage.kind in NOTCHES:
-        raise ValueError(f"stage must be a smoother for continuous_impulse_response; "
-                         f"{stage.kind} has impulses (see shaper_impulses / continuous_transfer)")
+        raise ParameterError(
+            "stage", f"stage must be a smoother for continuous_impulse_response; {stage.kind} "
+                     "has impulses (see shaper_impulses / continuous_transfer)")
     t = np.asarray(t, dtype=float)
     sigma, T = _sigma(stage), stage.T
     inside = (t >= 0) & (t < T)

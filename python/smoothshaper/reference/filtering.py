@@ -19,6 +19,9 @@ from ._checks import as_stage_list, check_samples, check_stage, check_Ts
 from .notch import biquad, notch_coefficients
 from .shapers import shaper_taps
 from .smoothers import smoother_taps
+from .._checks import (finite as _finite, finite_signal as _finite_signal, integer as _integer,
+                       real_array as _real_array)
+from ..errors import ParameterError
 
 
 def impulse_response(stage: Stage, *, Ts: float, length: int | None = None) -> np.ndarray:
@@ -30,7 +33,8 @@ def impulse_response(stage: Stage, *, Ts: float, length: int | None = None) -> n
     stage = check_stage(stage)
     if stage.kind in NOTCHES:
         if length is None:
-            raise ValueError("length is required for a notch (its impulse response is infinite)")
+            raise ParameterError(
+                "length", "length is required for a notch (its impulse response is infinite)")
         n = _check_length(length)
         x = np.zeros(n)
         if n:
@@ -45,9 +49,7 @@ def impulse_response(stage: Stage, *, Ts: float, length: int | None = None) -> n
 
 
 def _check_length(length) -> int:
-    if isinstance(length, bool) or int(length) != length or length < 0:
-        raise ValueError(f"length must be an integer >= 0, got {length!r}")
-    return check_samples("length", length, "the impulse response")
+    return check_samples("length", _integer("length", length, 0), "the impulse response")
 
 
 def discrete_transfer(stage: Stage, z, *, Ts: float) -> np.ndarray:
@@ -63,9 +65,7 @@ def discrete_transfer(stage: Stage, z, *, Ts: float) -> np.ndarray:
 
 def filter_zi(stages, *, Ts: float, x0: float = 0.0) -> list[np.ndarray]:
     """State of the chain at rest at the value ``x0`` (see the module docstring)."""
-    x0 = float(x0)
-    if not np.isfinite(x0):
-        raise ValueError(f"x0 must be finite, got {x0!r}")
+    x0 = _finite("x0", x0)
     out = []
     for stage in as_stage_list(stages):
         if stage.kind in NOTCHES:
@@ -86,11 +86,7 @@ def filter(stages, x, *, Ts: float, zi=None):
     """
     stages = as_stage_list(stages)
     Ts = check_Ts(Ts)
-    x = np.asarray(x, dtype=float)
-    if x.ndim != 1:
-        raise ValueError(f"x must be one-dimensional, got shape {x.shape}")
-    if not np.all(np.isfinite(x)):
-        raise ValueError("x must hold finite samples (found NaN or Inf)")
+    x = _finite_signal("x", x)
     rest = zi is None
     states = filter_zi(stages, Ts=Ts) if rest else _check_zi(stages, zi, Ts)
     y = x
@@ -114,17 +110,18 @@ def _check_zi(stages: list[Stage], zi, Ts: float) -> list[np.ndarray]:
     try:
         items = list(zi)
     except TypeError:
-        raise ValueError("zi must be a list with one state array per stage") from None
+        raise ParameterError("zi", "zi must be a list with one state array per stage") from None
     if len(items) != len(expected):
-        raise ValueError(f"zi must hold {len(expected)} state arrays (one per stage), "
-                         f"got {len(items)}")
+        raise ParameterError("zi", f"zi must hold {len(expected)} state arrays (one per stage), "
+                                   f"got {len(items)}")
     out = []
     for k, (got, want) in enumerate(zip(items, expected)):
-        arr = np.asarray(got, dtype=float)
+        arr = _real_array(f"zi[{k}]", got)
         if arr.shape != want.shape:
-            raise ValueError(f"zi[{k}] must have shape {want.shape}, got {arr.shape}")
+            raise ParameterError(
+                f"zi[{k}]", f"zi[{k}] must have shape {want.shape}, got {arr.shape}")
         if not np.all(np.isfinite(arr)):
-            raise ValueError(f"zi[{k}] must be finite")
+            raise ParameterError(f"zi[{k}]", f"zi[{k}] must be finite")
         out.append(arr.copy())
     return out
 

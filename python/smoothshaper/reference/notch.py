@@ -20,6 +20,9 @@ import numpy as np
 
 from ..stages import NOTCHES, Stage
 from ._checks import check_Ts
+from ..errors import ParameterError
+
+__all__ = ["notch_coefficients", "notch_continuous_transfer", "biquad"]
 
 
 def _tustin_quadratic(xi: float, wn: float, c: float) -> np.ndarray:
@@ -43,11 +46,13 @@ def notch_coefficients(stage: Stage, *, Ts: float) -> tuple[np.ndarray, np.ndarr
     """``(b, a)`` of the discrete notch (``a[0] = 1``, DC gain 1); ``wn < pi/Ts`` required."""
     Ts = check_Ts(Ts)
     if stage.kind not in NOTCHES:
-        raise ValueError(f"kind must be a notch ({', '.join(NOTCHES)}), got {stage.kind!r}")
+        raise ParameterError(
+            "kind", f"kind must be a notch ({', '.join(NOTCHES)}), got {stage.kind!r}")
     wn, xi1, xi2 = stage.wn, stage.zeta, stage.notch_pole_zeta
     if wn >= math.pi / Ts:
-        raise ValueError(f"wn must be below the Nyquist frequency pi/Ts = {math.pi / Ts!r} "
-                         f"rad/s, got {wn!r}")
+        raise ParameterError(
+            "wn", f"wn must be below the Nyquist frequency pi/Ts = {math.pi / Ts!r} "
+                  f"rad/s, got {wn!r}")
     if stage.kind == "notch_tustin":
         c = wn / math.tan(wn * Ts / 2.0)
         b = _tustin_quadratic(xi1, wn, c)

@@ -39,6 +39,9 @@ import numpy as np
 
 from ..stages import SHAPERS, Stage
 from ._checks import check_Ts, check_samples, on_grid, round_half_up
+from ..errors import ParameterError
+
+__all__ = ["zvn_order", "mode_pole", "shaper_impulses", "shaper_continuous_transfer", "shaper_taps"]
 
 _ZVN_ORDER = {"zv": 1, "zvd": 2, "zvdd": 3}
 
@@ -73,12 +76,12 @@ def _undamped_design(stage: Stage) -> tuple[np.ndarray, np.ndarray]:
         return np.array([a1, a2, (1 + V) / 2 - 2 * a1, a2, a1]), 0.5 * np.arange(5.0)
     if kind == "gmzv":
         return gmzv_undamped(stage.order, stage.duration)
-    raise ValueError(f"kind must be a shaper ({', '.join(SHAPERS)}), got {kind!r}")
+    raise ParameterError("kind", f"kind must be a shaper ({', '.join(SHAPERS)}), got {kind!r}")
 
 
 def gmzv_undamped(n: int, duration: float) -> tuple[np.ndarray, np.ndarray]:
     """Undamped generalised MZV: amplitudes (sum 1) and times in damped periods for ``n``
-    impulses over ``duration`` periods. Raises ValueError (naming ``duration``) when the
+    impulses over ``duration`` periods. Raises ParameterError (naming ``duration``) when the
     least-squares amplitudes go negative (in practice duration < 0.5)."""
     units = duration * np.arange(n) / (n - 1.0)
     tau = duration * (n - 2.0) / (n - 2.0 * duration - 1.0)
@@ -88,8 +91,9 @@ def gmzv_undamped(n: int, duration: float) -> tuple[np.ndarray, np.ndarray]:
     f[0] = 1.0
     A = np.linalg.lstsq(M, f, rcond=None)[0]
     if np.any(A < 0.0):
-        raise ValueError(f"duration {duration!r} gives a negative impulse for gmzv with {n} "
-                         f"impulses (the least-squares design needs duration > 0.5 damped periods)")
+        raise ParameterError(
+            "duration", f"duration {duration!r} gives a negative impulse for gmzv with {n} "
+                        "impulses (the least-squares design needs duration > 0.5 damped periods)")
     return A / A.sum(), units
 
 
@@ -117,8 +121,9 @@ def shaper_continuous_transfer(stage: Stage, s) -> np.ndarray:
 
 def _check_mode(stage: Stage, Ts: float) -> None:
     if stage.wn >= math.pi / Ts:
-        raise ValueError(f"wn must be below the Nyquist frequency pi/Ts = {math.pi / Ts!r} "
-                         f"rad/s, got {stage.wn!r}")
+        raise ParameterError(
+            "wn", f"wn must be below the Nyquist frequency pi/Ts = {math.pi / Ts!r} "
+                  f"rad/s, got {stage.wn!r}")
 
 
 def _paper_taps(A: np.ndarray, t: np.ndarray, Ts: float) -> np.ndarray:
@@ -162,7 +167,8 @@ def shaper_taps(stage: Stage, *, Ts: float) -> np.ndarray:
     """Discrete shaper taps (sum 1) at sample period ``Ts`` [s]; ``wn < pi/Ts`` required."""
     Ts = check_Ts(Ts)
     if stage.kind not in SHAPERS:
-        raise ValueError(f"kind must be a shaper ({', '.join(SHAPERS)}), got {stage.kind!r}")
+        raise ParameterError(
+            "kind", f"kind must be a shaper ({', '.join(SHAPERS)}), got {stage.kind!r}")
     _check_mode(stage, Ts)
     span = shaper_impulses(stage)[1][-1] / Ts      # ZV^n: already the n-fold span
     check_samples("wn", span + 2.0, f"the taps of a {stage.kind} shaper at wn Ts = "

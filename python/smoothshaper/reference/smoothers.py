@@ -27,6 +27,9 @@ import numpy as np
 
 from ..stages import SMOOTHERS, Stage
 from ._checks import check_Ts, check_samples, on_grid, round_half_up
+from ..errors import ParameterError
+
+__all__ = ["pinned_frequency", "smoother_taps"]
 
 
 def _shape(kind: str, t: np.ndarray, T: float, sigma: float) -> np.ndarray:
@@ -56,9 +59,9 @@ def _sampled(stage: Stage, N: int, Ts: float) -> np.ndarray:
     i = np.arange(N, dtype=float)
     if stage.kind in ("harmonic", "damped_harmonic"):
         if N < 2:
-            raise ValueError(
-                f"T must be >= 2*Ts for the {stage.kind} family (one sample of sin(pi t/T) "
-                f"is 0), got T/Ts = {stage.T / Ts!r}")
+            raise ParameterError(
+                "T", f"T must be >= 2*Ts for the {stage.kind} family (one sample of sin(pi t/T) "
+                     f"is 0), got T/Ts = {stage.T / Ts!r}")
         # sin(pi i/N) with the integer N: the sampled wave vanishes exactly at i = 0.
         g = np.sin(math.pi * i / N)
         if stage.kind == "damped_harmonic":
@@ -71,17 +74,18 @@ def _sampled(stage: Stage, N: int, Ts: float) -> np.ndarray:
 def smoother_taps(stage: Stage, *, Ts: float) -> np.ndarray:
     """Normalised FIR taps (DC gain 1) of a smoother stage at sample period ``Ts`` [s].
 
-    Raises ValueError naming ``T`` when ``T < Ts`` (beyond the integer test: ``T`` within
+    Raises ParameterError naming ``T`` when ``T < Ts`` (beyond the integer test: ``T`` within
     1e-9 of ``Ts`` is one sample, anything shorter is refused, never a pass-through) or the pinned
     zero cannot be placed, ``Ts`` when it is not > 0, ``kind`` for a non-smoother.
     """
     Ts = check_Ts(Ts)
     if stage.kind not in SMOOTHERS:
-        raise ValueError(f"kind must be a smoother ({', '.join(SMOOTHERS)}), got {stage.kind!r}")
+        raise ParameterError(
+            "kind", f"kind must be a smoother ({', '.join(SMOOTHERS)}), got {stage.kind!r}")
     nu = stage.T / Ts
     N = on_grid(nu)
     if nu < 1.0 and not N:   # the one rule for short T: below Ts (beyond the grid test) refused
-        raise ValueError(f"T must be >= Ts ({Ts!r} s), got {stage.T!r}")
+        raise ParameterError("T", f"T must be >= Ts ({Ts!r} s), got {stage.T!r}")
     check_samples("T", nu + 1.0, f"the taps of a {stage.kind} smoother with T/Ts = {nu:.6g}")
     if N is not None:
         return _sampled(stage, N, Ts)
@@ -100,9 +104,9 @@ def _exact_taps(stage: Stage, nu: float, Ts: float) -> np.ndarray:
     # pinned zero sits on a multiple of pi/Ts.
     w_star = pinned_frequency(stage)
     if w_star * Ts >= math.pi or abs(math.sin(w_star * Ts)) < 1e-9:
-        raise ValueError(
-            f"T = {stage.T!r} s cannot pin its zero w* = {w_star!r} rad/s at Ts = {Ts!r} s: "
-            f"w* Ts must lie below pi (choose a longer T or a smaller k)")
+        raise ParameterError(
+            "T", f"T = {stage.T!r} s cannot pin its zero w* = {w_star!r} rad/s at Ts = {Ts!r} s: "
+                 f"w* Ts must lie below pi (choose a longer T or a smaller k)")
     # G is small next to its terms: sum it exactly.
     terms = g * np.exp(-s_star * Ts * i)
     G = complex(math.fsum(terms.real), math.fsum(terms.imag))

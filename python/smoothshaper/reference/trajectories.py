@@ -16,20 +16,25 @@ import itertools
 import math
 
 import numpy as np
-from .._checks import finite as _finite, positive as _positive
+from .._checks import (finite as _finite, integer as _integer, positive as _positive,
+                       real_array as _real_array)
+from ..errors import ParameterError
+
+__all__ = ["harmonic_trajectory", "damped_harmonic_trajectory", "exponential_trajectory",
+           "rectangular_chain_trajectory"]
 
 
 def harmonic_trajectory(t, *, T: float, h: float = 1.0) -> np.ndarray:
     """Step of height ``h`` through the harmonic smoother of duration ``T`` [s]."""
     T, h = _positive("T", T), _finite("h", h)
-    tc = np.clip(np.asarray(t, dtype=float), 0.0, T)
+    tc = np.clip(_real_array("t", t), 0.0, T)
     return 0.5 * h * (1.0 - np.cos(math.pi * tc / T))
 
 
 def damped_harmonic_trajectory(t, *, T: float, sigma: float, h: float = 1.0) -> np.ndarray:
     """Step of height ``h`` through the damped harmonic smoother (``sigma`` <= 0 [1/s])."""
     T, h, sigma = _positive("T", T), _finite("h", h), _finite("sigma", sigma)
-    tc = np.clip(np.asarray(t, dtype=float), 0.0, T)
+    tc = np.clip(_real_array("t", t), 0.0, T)
     x = math.pi * tc / T
     inner = np.exp(sigma * tc) * (sigma * T / math.pi * np.sin(x) - np.cos(x))
     return h / (1.0 + math.exp(sigma * T)) * (1.0 + inner)
@@ -38,7 +43,7 @@ def damped_harmonic_trajectory(t, *, T: float, sigma: float, h: float = 1.0) -> 
 def exponential_trajectory(t, *, T: float, sigma: float, h: float = 1.0) -> np.ndarray:
     """Step of height ``h`` through the exponential smoother (``sigma`` <= 0 [1/s])."""
     T, h, sigma = _positive("T", T), _finite("h", h), _finite("sigma", sigma)
-    tc = np.clip(np.asarray(t, dtype=float), 0.0, T)
+    tc = np.clip(_real_array("t", t), 0.0, T)
     if sigma == 0.0:
         return h * tc / T
     return h * np.expm1(sigma * tc) / math.expm1(sigma * T)
@@ -49,12 +54,13 @@ def rectangular_chain_trajectory(t, *, T, h: float = 1.0, derivative: int = 0) -
     or its ``derivative``-th time derivative (0 <= derivative < len(T))."""
     Ts = [_positive(f"T[{i}]", v) for i, v in enumerate(np.atleast_1d(T))]
     if not Ts:
-        raise ValueError("T must hold at least one duration")
+        raise ParameterError("T", "T must hold at least one duration")
     n = len(Ts)
-    if isinstance(derivative, bool) or int(derivative) != derivative or not 0 <= derivative < n:
-        raise ValueError(f"derivative must be an integer in 0..{n - 1}, got {derivative!r}")
+    if _integer("derivative", derivative, 0) >= n:
+        raise ParameterError(
+            "derivative", f"derivative must be an integer in 0..{n - 1}, got {derivative!r}")
     h = _finite("h", h)
-    t = np.asarray(t, dtype=float)
+    t = _real_array("t", t)
     power = n - int(derivative)
     acc = np.zeros(t.shape)
     for r in range(n + 1):

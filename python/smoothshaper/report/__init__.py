@@ -14,6 +14,7 @@ import time
 import traceback
 from pathlib import Path
 
+from ..errors import ParameterError
 from .claims import Claim, Figure, Section, claims_table
 
 #: Section keys in report order (most valuable first), each the name of a module here.
@@ -25,7 +26,8 @@ __all__ = ["run", "build_section", "SECTIONS", "Claim", "Figure", "Section"]
 def build_section(key: str, fig_dir: Path | None = None) -> Section:
     """Build one section; figures go to ``fig_dir`` (none drawn when it is None)."""
     if key not in SECTIONS:
-        raise ValueError(f"section must be one of {', '.join(SECTIONS)}, got {key!r}")
+        raise ParameterError(
+            "section", f"section must be one of {', '.join(SECTIONS)}, got {key!r}")
     module = importlib.import_module(f".{key}", __name__)
     t0 = time.perf_counter()
     section = module.build(fig_dir)
@@ -57,7 +59,8 @@ def run(out_dir, *, only=None) -> Path:
     keys = list(SECTIONS if only is None else only)
     for key in keys:
         if key not in SECTIONS:
-            raise ValueError(f"only must name sections among {', '.join(SECTIONS)}, got {key!r}")
+            raise ParameterError(
+                "only", f"only must name sections among {', '.join(SECTIONS)}, got {key!r}")
     out_dir.mkdir(parents=True, exist_ok=True)
     rendered, summary, failures = [], [], []
     for key in keys:

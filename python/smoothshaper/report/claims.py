@@ -13,6 +13,8 @@ import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
+__all__ = ["RELATIONS", "Claim", "Figure", "Section", "fmt", "claims_table"]
+
 RELATIONS = ("==", "<=", ">=")
 
 

@@ -10,6 +10,8 @@ from pathlib import Path
 
 from .claims import Figure
 
+__all__ = ["COLORS", "figure", "surface"]
+
 #: Colours by filter family, so one family looks the same in every figure.
 COLORS = {
     "harmonic": "k", "rectangular": "tab:red", "rect_chain": "tab:blue",

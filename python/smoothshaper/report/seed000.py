@@ -40,6 +40,8 @@ from .. import stages as st
 from .claims import Claim, Section
 from .figures import COLORS, figure, surface
 
+__all__ = ["COMMAND", "build"]
+
 COMMAND = "python -m smoothshaper.report --out report --only seed000"
 T0 = 2 * math.pi                       # nominal period for wn_hat = 1 rad/s
 R = np.linspace(0.01, 4.0, 4000)       # wn / wn_hat for the PRV curves

@@ -35,6 +35,8 @@ from .. import reference as ref
 from .claims import Claim, Section
 from .figures import COLORS, figure
 
+__all__ = ["COMMAND", "build"]
+
 COMMAND = "python -m smoothshaper.report --out report --only seed001"
 H, VMAX, AMAX, JMAX = 40.0, 250.0, 5000.0, 200000.0
 TABLE1 = dict(J_l=0.23e-5, k_t=0.156, b_t=1.0e-5)    # J_m = 0.72e-5 does not enter G_ml

@@ -31,6 +31,8 @@ from .. import stages as st
 from .claims import Claim, Section
 from .figures import COLORS, figure
 
+__all__ = ["COMMAND", "build"]
+
 COMMAND = "python -m smoothshaper.report --out report --only seed002"
 H, VMAX, AMAX = 0.5, 1.0, 4.0
 WN, ZETA = 2 * math.pi * 5.0, 0.1

@@ -33,12 +33,14 @@ from .. import analysis, plants
 from .. import stages as st
 from .claims import Claim, Section
 from .figures import COLORS, figure
+from .seed003_robot import ROBOT, ROBOT_PAPER, run as robot_run
+from .seed003_robot import via_points as robot_via_points
+
+__all__ = ["COMMAND", "build"]
 
 COMMAND = "python -m smoothshaper.report --out report --only seed003"
 W0 = 50.0                                  # rad/s, as the paper's Fig. 3 (T = 0.1257 s)
 R = np.linspace(0.01, 3.0, 3000)           # wn / w0
-ROBOT = {"x": (2.777, 4.0, 1e4), "y": (6.25, 4.0, 1e4), "z": (2.777, 4.0, 1e4)}
-ROBOT_PAPER = {"x": (60.0, 0.012), "y": (40.0, 0.008), "z": (60.0, 0.012)}
 
 
 def bspline_chain(p: int, w0: float = W0):
@@ -125,9 +127,9 @@ def build(fig_dir=None) -> Section:
 
 def _via_points(sec, data):
     """Sec. IV robot example (smoothshaper.trajectory.BSpline, see seed003_robot)."""
-    from . import seed003_multi_axis, seed003_robot
-    data["via"] = seed003_robot.run(sec)
-    data["multi"] = seed003_multi_axis.run(sec, seed003_robot.via_points())
+    from . import seed003_multi_axis
+    data["via"] = robot_run(sec)
+    data["multi"] = seed003_multi_axis.run(sec, robot_via_points())
 
 
 def _body(d) -> str:

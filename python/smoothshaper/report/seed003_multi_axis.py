@@ -26,6 +26,7 @@ from .. import stages as st
 from ..trajectory import BSpline, MultiAxisGenerator, bspline_period, phase_duration
 from .claims import Claim
 from .figures import figure
+from .seed003_robot import ROBOT
 
 TS = 1e-3
 VMAX = np.array([0.5, 0.4, 0.2])      # m/s per axis (z slower, as a vertical axis)
@@ -42,7 +43,6 @@ def corners(via: np.ndarray) -> np.ndarray:
 
 
 def _modes():
-    from .seed003 import ROBOT
     return {a: (math.sqrt(k / m), d / (2 * math.sqrt(k * m))) for a, (m, d, k) in ROBOT.items()}
 
 

@@ -21,10 +21,16 @@ from ..trajectory import BSpline, bspline_period
 from .claims import Claim
 from .figures import figure
 
+__all__ = ["run"]
+
 TS = 1e-3
 SPACING = 0.0454       # m, the paper's mean via-point distance
 BEND_RADIUS = 0.06     # m
 SETTLE = 1.5           # s simulated after the command stops
+#: Per axis (m, d, k) of m q'' + d q' + k q = d q_d' + k q_d (Biagiotti & Melchiorri 2011b, Table I).
+ROBOT = {"x": (2.777, 4.0, 1e4), "y": (6.25, 4.0, 1e4), "z": (2.777, 4.0, 1e4)}
+#: The paper's natural frequency [rad/s] and damping ratio per axis.
+ROBOT_PAPER = {"x": (60.0, 0.012), "y": (40.0, 0.008), "z": (60.0, 0.012)}
 
 
 def via_points() -> np.ndarray:
@@ -51,7 +57,6 @@ def via_points() -> np.ndarray:
 
 
 def _axes():
-    from .seed003 import ROBOT
     return {a: plants.cartesian_axis(m=m, d=d, k=k) for a, (m, d, k) in ROBOT.items()}
 
 
@@ -79,8 +84,7 @@ def rv(degree: int, T: float, via: np.ndarray):
 
 def run(sec) -> dict:
     via = via_points()
-    wn = [math.sqrt(k / m) for (m, _, k) in __import__(
-        "smoothshaper.report.seed003", fromlist=["ROBOT"]).ROBOT.values()]
+    wn = [math.sqrt(k / m) for (m, _, k) in ROBOT.values()]
     T40 = bspline_period(wn=wn, Ts=TS)           # T >= 2 pi/min(wn): w0 <= 40 rad/s
     T50 = 2 * math.pi / 50.0
     d = float(np.mean(np.linalg.norm(np.diff(via, axis=0), axis=1)))

@@ -30,6 +30,8 @@ from .. import analysis
 from .claims import Claim, Section
 from .figures import COLORS, figure
 
+__all__ = ["COMMAND", "build"]
+
 WN, XI = 1.0, 0.05               # shaping example
 WN_ERR, XI_ERR = 0.10, 0.20      # relative errors of the seed
 SERVO_WZ, SERVO_XI = 200.0, 0.1  # servo of the notch example
@@ -150,7 +152,7 @@ def _notch(sec: Section):
     zp = np.exp(p * Ts)
     out = {}
     for disc in ("matched", "tustin"):
-        stage = st.notch(wn=wz, zeta=xi1, pole_zeta=xi2, discretization=disc)
+        stage = st.notch(wn=wz, zeta=xi1, notch_pole_zeta=xi2, discretization=disc)
         out[disc] = (stage,
                      abs(complex(discrete_transfer(stage, zp, Ts=Ts))),
                      abs(complex(discrete_transfer(stage, np.exp(1j * wz * Ts), Ts=Ts))))
@@ -247,11 +249,11 @@ def _figures(sec, fig_dir, zv, zvd):
     with figure(fig_dir / "notch.png", f"Seed 004: notch for wz = {SERVO_WZ:g} rad/s, xi1 = "
                 f"{SERVO_XI:g}, xi2 = {NOTCH_POLE_XI:g} at Ts = {NOTCH_TS * 1e3:g} ms: continuous, "
                 "pre-warped Tustin, pole-zero matched, and plain Tustin", sec.figures) as (f, ax):
-        g = abs(analysis.transfer([st.notch(wn=SERVO_WZ, zeta=SERVO_XI, pole_zeta=NOTCH_POLE_XI)],
-                              1j * w))
+        notch = st.notch(wn=SERVO_WZ, zeta=SERVO_XI, notch_pole_zeta=NOTCH_POLE_XI)
+        g = abs(analysis.transfer([notch], 1j * w))
         ax.plot(w, 20 * np.log10(g), color="k", label="continuous")
         for disc, color in (("tustin", "tab:blue"), ("matched", "tab:red")):
-            stage = st.notch(wn=SERVO_WZ, zeta=SERVO_XI, pole_zeta=NOTCH_POLE_XI,
+            stage = st.notch(wn=SERVO_WZ, zeta=SERVO_XI, notch_pole_zeta=NOTCH_POLE_XI,
                              discretization=disc)
             hd = np.abs(discrete_transfer(stage, np.exp(1j * w * NOTCH_TS), Ts=NOTCH_TS))
             ax.plot(w, 20 * np.log10(hd), "--", color=color, label=f"{disc} (library)")

@@ -27,6 +27,8 @@ from .. import stages as st
 from .claims import Claim, Section
 from .figures import COLORS, figure
 
+__all__ = ["COMMAND", "build"]
+
 TOL = 0.05
 KINDS = ("zv", "mzv", "zvd", "ei", "ei2")
 LABEL = {"zv": "ZV", "mzv": "MZV", "zvd": "ZVD", "ei": "EI (V = 5 %)",

@@ -1,0 +1,251 @@
+"""One consistent Python API: ParameterError everywhere, plain numbers in messages, no silent
+casts of complex/boolean/text input, case-insensitive names, lazy submodules, ``__all__`` in
+every public module, one name per concept, no import cycles."""
+from __future__ import annotations
+
+import ast
+import importlib
+import pathlib
+import subprocess
+import sys
+import warnings
+
+import numpy as np
+import pytest
+
+import smoothshaper as sms
+from smoothshaper import ParameterError
+
+PACKAGE = pathlib.Path(sms.__file__).parent
+Ts = 1e-3
+
+
+def raises(parameter: str, func, *args, **kwargs) -> ParameterError:
+    """``func`` raises ParameterError (a ValueError) naming ``parameter``, with a message that
+    starts with it and shows no NumPy scalar reprs."""
+    with pytest.raises(ParameterError) as info:
+        func(*args, **kwargs)
+    exc = info.value
+    assert isinstance(exc, ValueError)
+    assert exc.parameter == parameter, (exc.parameter, str(exc))
+    assert str(exc).startswith(parameter), str(exc)
+    assert "np." not in str(exc) and "float64(" not in str(exc), str(exc)
+    return exc
+
+
+# -- the examples that used to fail ----------------------------------------------------------
+
+def test_stage_constructors_raise_parameter_error():
+    raises("zeta", sms.shaper, "zv", wn=100, zeta=1.2)
+    raises("wn", sms.shaper, "zv", wn=-1.0)
+    raises("T", sms.harmonic, T=-1.0)
+    raises("sigma", sms.exponential, T=0.1, sigma=0.5)
+    raises("k", sms.harmonic, T=0.1, k=2)
+    raises("order", sms.shaper, "zvn", wn=100, order=9)
+    raises("tolerance", sms.shaper, "ei", wn=100, tolerance=1.5)
+    raises("notch_pole_zeta", sms.notch, wn=100, zeta=0.5, notch_pole_zeta=0.1)
+    raises("kind", sms.Stage, "wobble")
+    raises("timing", sms.rectangular, T=0.1, timing="sloppy")
+    raises("discretization", sms.notch, wn=100, discretization="euler")
+
+
+def test_messages_show_plain_numbers():
+    exc = raises("T", sms.harmonic, T=np.float64("nan"))
+    assert str(exc) == "T must be finite, got nan"
+    exc = raises("zeta", sms.shaper, "zv", wn=100, zeta=np.float64(1.5))
+    assert str(exc).endswith("got 1.5")
+    exc = raises("u", sms.Chain(sms.harmonic(T=0.01), Ts=Ts).process, [0.0, np.nan])
+    assert "u[1] = nan" in str(exc)
+
+
+@pytest.mark.parametrize("value", [True, False, np.bool_(True), 1 + 2j, np.complex128(1),
+                                   "0.1", None, [0.1]])
+def test_scalars_refuse_bool_complex_and_text(value):
+    exc = raises("T", sms.harmonic, T=value)
+    assert "must be a real number" in str(exc)
+
+
+def test_integers_refuse_bool_and_fractions():
+    raises("k", sms.harmonic, T=0.1, k=True)
+    raises("k", sms.harmonic, T=0.1, k=1.5)
+    assert sms.harmonic(T=0.1, k=np.int64(3)).k == 3
+    assert sms.harmonic(T=0.1, k=3.0).k == 3
+
+
+@pytest.mark.parametrize("bad", [np.ones(4) + 1j, np.ones(4, dtype=bool), ["a", "b"]])
+def test_signals_refuse_complex_boolean_and_text(bad):
+    chain = sms.Chain(sms.harmonic(T=0.01), Ts=Ts)
+    before = chain.get_state()
+    raises("u", chain.process, bad)
+    assert np.array_equal(chain.get_state(), before)          # state untouched
+    raises("x", sms.reference.filter, sms.harmonic(T=0.01), bad, Ts=Ts)
+
+
+def test_other_entry_points_raise_parameter_error():
+    raises("Ts", sms.Chain, sms.harmonic(T=0.01), Ts=0.0)
+    raises("Ts", sms.Chain, sms.harmonic(T=0.01), Ts=True)
+    raises("stages[1]", sms.Chain, [sms.harmonic(T=0.01), "zv"], Ts=Ts)
+    raises("precision", sms.Chain, sms.harmonic(T=0.01), Ts=Ts, precision="half")
+    raises("state", sms.Chain(sms.harmonic(T=0.01), Ts=Ts).set_state, np.zeros(3) + 1j)
+    raises("n", sms.Chain(sms.harmonic(T=0.01), Ts=Ts).impulse_response, 0)
+    raises("kind", sms.design_for_mode, "wobble", wn=100.0)
+    raises("k", sms.design_for_mode, "harmonic", wn=100.0, k=True)
+    raises("wn", sms.for_mode, "harmonic", wn=0.0)
+    raises("t2", sms.identify_from_peaks, t1=1.0, p1=2.0, t2=0.5, p2=1.0)
+    raises("Ts", sms.identify_from_record, np.ones(50), Ts=-1.0)
+    raises("h", sms.design.kinematic, h=0.0, vmax=1.0)
+    raises("profile", sms.design.kinematic, h=1.0, vmax=1.0, profile="cubic")
+    raises("vmax", sms.trajectory.Generator, vmax=-1.0, amax=1.0, jmax=1.0, Ts=Ts)
+    raises("degree", sms.trajectory.BSpline, degree=True, T=0.1, Ts=Ts)
+    raises("via", sms.trajectory.bspline_reference, [[1 + 1j], [2]], degree=3, T=0.1, Ts=Ts)
+    raises("wn", sms.analysis.mode_poles, -1.0, 0.0)
+    raises("w", sms.analysis.frequency_response, sms.harmonic(T=0.1), [1 + 1j])
+    raises("tolerance", sms.analysis.insensitivity, sms.harmonic(T=0.1), wn_hat=30.0,
+           tolerance=2.0)
+    raises("u", sms.plants.simulate_zoh, sms.plants.mode(wn=10.0), np.ones(4) + 1j, Ts=Ts)
+    raises("oversample", sms.plants.simulate_zoh, sms.plants.mode(wn=10.0), np.ones(4), Ts=Ts,
+           oversample=True)
+    raises("t", sms.reference.harmonic_trajectory, [1j], T=1.0)
+
+
+# -- case-insensitive names ------------------------------------------------------------------
+
+def test_kind_names_are_case_insensitive():
+    assert sms.shaper("ZV", wn=100.0) == sms.shaper("zv", wn=100.0)
+    assert sms.for_mode("Damped_Harmonic", wn=100.0, zeta=0.1).kind == "damped_harmonic"
+    assert sms.Stage("ZVD", wn=100.0).kind == "zvd"
+    assert sms.Stage("notch", wn=100.0).kind == "notch_matched"
+    assert sms.design_for_mode("EI", wn=100.0).kind == "ei"
+    assert sms.notch(wn=100.0, discretization="Tustin").kind == "notch_tustin"
+    assert sms.rectangular(T=0.1, timing="PAPER").timing == "paper"
+    assert sms.Chain(sms.harmonic(T=0.01), Ts=Ts, precision="Float").precision == "float"
+    assert sms.design.kinematic(h=1.0, vmax=1.0, amax=10.0, profile="Trigonometric")[-1].kind \
+        == "harmonic"
+
+
+# -- one name per concept ----------------------------------------------------------------------
+
+def test_state_is_get_state_set_state_everywhere():
+    chain = sms.Chain(sms.harmonic(T=0.01), Ts=Ts)
+    gen = sms.trajectory.Generator(vmax=1.0, amax=10.0, jmax=100.0, Ts=Ts)
+    gen.process(np.full(20, 1.0))
+    saved = gen.get_state()
+    twin = sms.trajectory.Generator(vmax=1.0, amax=10.0, jmax=100.0, Ts=Ts)
+    twin.set_state(saved)
+    assert np.array_equal(twin.process(np.full(50, 1.0)), gen.process(np.full(50, 1.0)))
+    assert callable(chain.get_state) and callable(chain.set_state)
+    raises("state", twin.set_state, saved[:-1])
+
+
+def test_notch_pole_damping_has_one_name():
+    stage = sms.notch(wn=100.0, zeta=0.02, notch_pole_zeta=0.5)
+    assert stage.notch_pole_zeta == 0.5
+    with pytest.warns(DeprecationWarning):
+        assert sms.notch(wn=100.0, zeta=0.02, pole_zeta=0.5) == stage
+
+
+def test_cli_tolerance_has_one_flag(capsys):
+    from smoothshaper.cli import build_parser
+    for argv in (["design", "--kind", "ei", "--wn", "100", "--tolerance", "0.1"],
+                 ["analyze", "--kind", "ei", "--wn", "100", "--tolerance", "0.1"]):
+        assert build_parser().parse_args(argv).tolerance == 0.1
+    with pytest.raises(SystemExit):
+        build_parser().parse_args(["design", "--help"])
+    text = capsys.readouterr().out
+    assert "--tolerance" in text and "--shaper-tolerance" not in text
+
+
+# -- module structure ------------------------------------------------------------------------
+
+def _modules() -> list[str]:
+    out = []
+    for path in sorted(PACKAGE.rglob("*.py")):
+        rel = path.relative_to(PACKAGE.parent).with_suffix("")
+        parts = list(rel.parts)
+        if parts[-1] == "__init__":
+            parts = parts[:-1]
+        out.append(".".join(parts))
+    return out
+
+
+def _public(name: str) -> bool:
+    return not any(p.startswith("_") for p in name.split(".")[1:]) and name.split(".")[-1] \
+        not in ("__main__",)
+
+
+def test_submodules_are_attributes_loaded_lazily():
+    code = ("import sys, smoothshaper as sms; assert 'smoothshaper.design' not in sys.modules; "
+            "assert sms.design.kinematic; assert 'smoothshaper.design' in sys.modules; "
+            "assert sms.analysis.prv and sms.plants.mode and sms.trajectory.Generator; "
+            "assert 'design' in dir(sms)")
+    subprocess.run([sys.executable, "-c", code], check=True)
+    with pytest.raises(AttributeError):
+        sms.no_such_thing  # noqa: B018
+
+
+@pytest.mark.parametrize("name", [m for m in _modules() if _public(m)])
+def test_every_public_module_declares_all(name):
+    module = importlib.import_module(name) if "validation" not in name else \
+        pytest.importorskip(name)
+    assert hasattr(module, "__all__"), name
+    for item in module.__all__:
+        assert hasattr(module, item), (name, item)
+    leaked = {"np", "math", "dataclass", "os", "sys", "annotations"} & set(module.__all__)
+    assert not leaked, (name, leaked)
+
+
+def _imports(path: pathlib.Path, module: str, modules: set[str]) -> set[str]:
+    """Package modules imported anywhere in ``path`` (top level or inside functions)."""
+    is_pkg = path.name == "__init__.py"
+    base = module.split(".") if is_pkg else module.split(".")[:-1]
+    found = set()
+    for node in ast.walk(ast.parse(path.read_text())):
+        if isinstance(node, ast.ImportFrom):
+            if node.level:
+                anchor = base[:len(base) - node.level + 1]
+                target = ".".join(anchor + ([node.module] if node.module else []))
+            else:
+                target = node.module or ""
+            for alias in node.names:
+                sub = f"{target}.{alias.name}"
+                found.add(sub if sub in modules else target)
+        elif isinstance(node, ast.Import):
+            found.update(a.name for a in node.names)
+    return {m for m in found if m in modules and m != module}
+
+
+def test_no_import_cycles():
+    modules = set(_modules())
+    paths = {}
+    for path in PACKAGE.rglob("*.py"):
+        rel = path.relative_to(PACKAGE.parent).with_suffix("")
+        parts = list(rel.parts)
+        if parts[-1] == "__init__":
+            parts = parts[:-1]
+        paths[".".join(parts)] = path
+    # A package's __init__ importing its own submodules is not a cycle worth reporting, and a
+    # submodule importing a sibling through the package (``from . import x``) resolves to x.
+    graph = {m: {d for d in _imports(p, m, modules) if not m.startswith(d + ".")}
+             for m, p in paths.items()}
+    cycles = []
+    state: dict[str, int] = {}
+
+    def visit(node, stack):
+        state[node] = 1
+        for nxt in sorted(graph[node]):
+            if state.get(nxt) == 1:
+                cycles.append(stack[stack.index(nxt):] + [nxt])
+            elif nxt not in state:
+                visit(nxt, stack + [nxt])
+        state[node] = 2
+
+    for m in sorted(graph):
+        if m not in state:
+            visit(m, [m])
+    assert not cycles, cycles
+
+
+def test_package_import_emits_no_warnings():
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        subprocess.run([sys.executable, "-W", "error", "-c", "import smoothshaper"], check=True)
