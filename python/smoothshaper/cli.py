@@ -80,7 +80,7 @@ def parse_stage(spec: str) -> Stage:
         else:
             raise ParameterError(
                 "stage", f"stage {spec!r}: unknown key {key!r} (keys: T, sigma, k, wn, zeta, "
-                         "order, tolerance, notch_pole_zeta, timing)")
+                         "order, tolerance, duration, notch_pole_zeta, timing)")
     if kind in _stages.SMOOTHERS and "T" not in fields and "wn" in fields:
         from .filters import design_for_mode
         unused = set(fields) - {"wn", "zeta", "k", "timing"}
@@ -106,7 +106,7 @@ def _chain_from_args(args) -> list[Stage]:
         stage = design_for_mode(kind, wn=args.wn, zeta=args.zeta, k=args.k)
         if kind == "zvn":
             stage = stage.with_(order=args.order)
-        if kind in ("ei", "ei2"):
+        if kind in ("ei", "ei2", "ei3"):
             stage = stage.with_(tolerance=args.tolerance)
         stages.append(stage)
     return stages

@@ -19,16 +19,16 @@ import numpy as np
 
 from .filters import ParameterError, _backend, _real_dtype
 from .reference import multi_axis as _ref
+from ._checks import real_array as _real_array
+
+__all__ = ["SYNC_MODES", "MultiAxisGenerator", "MultiAxisMove", "phase_duration", "multi_axis_move"]
 
 SYNC_MODES = ("phase", "independent")
 
 
 def _limit_vector(name: str, values, axes: int | None) -> np.ndarray:
     """Per-axis limits as a float64 vector; ParameterError naming ``name[i]``."""
-    try:
-        v = np.atleast_1d(np.asarray(values, dtype=np.float64))
-    except (TypeError, ValueError):
-        raise ParameterError(name, f"{name} must be a sequence of numbers, got {values!r}") from None
+    v = np.atleast_1d(_real_array(name, values))
     if v.ndim != 1:
         raise ParameterError(name, f"{name} must be one-dimensional, got shape {v.shape}")
     if axes is not None and v.size == 1:
@@ -37,7 +37,7 @@ def _limit_vector(name: str, values, axes: int | None) -> np.ndarray:
         raise ParameterError(name, f"{name} has {v.size} values for {axes} axes")
     for i, x in enumerate(v):
         if not (math.isfinite(x) and x > 0):
-            raise ParameterError(f"{name}[{i}]", f"{name}[{i}] must be finite and > 0, got {x!r}")
+            raise ParameterError(f"{name}[{i}]", f"{name}[{i}] must be finite and > 0, got {float(x)!r}")
     return v
 
 

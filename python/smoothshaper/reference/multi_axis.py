@@ -16,6 +16,8 @@ import math
 
 import numpy as np
 
+__all__ = ["transition", "phase_duration", "multi_axis_reference"]
+
 _EPS = np.finfo(np.float64).eps
 _CAP = 2.0 ** 60  # limit/|change| ratios are capped (a conservative, lower limit)
 
