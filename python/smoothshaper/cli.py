@@ -24,8 +24,8 @@ import sys
 import numpy as np
 
 from . import stages as _stages
-from .cli_common import (EXIT_ERROR, EXIT_UNAVAILABLE, EXIT_USAGE, CliError, Parser as _Parser,
-                         Progress, format_table, pyplot as _pyplot)
+from .cli_common import (EXIT_ERROR, EXIT_UNAVAILABLE, EXIT_USAGE, CliError,  # noqa: F401
+                         Parser as _Parser, Progress, format_table, pyplot as _pyplot)
 from .errors import ParameterError
 from .stages import Stage
 

@@ -14,7 +14,12 @@ import math
 
 import numpy as np
 
-from .cli import EXIT_ERROR, CliError, _pyplot, format_table
+from .cli_common import EXIT_ERROR, CliError, format_table, numbers as _numbers
+from .cli_common import parse_via_points, pyplot as _pyplot, save_figure as _save
+from .cli_common import write_csv as _write_csv
+
+__all__ = ["LIMIT_RTOL", "MAX_SAMPLES", "AXIS_NAMES", "parse_points", "parse_limit", "run",
+           "cmd_multi_generator", "plot"]
 
 LIMIT_RTOL = 1e-9
 MAX_SAMPLES = 5_000_000
@@ -23,13 +28,11 @@ AXIS_NAMES = "xyzabcuv"
 
 def parse_points(text: str) -> np.ndarray:
     """'x,y,z;x,y,z;...' -> (M, axes), M >= 2, 1 <= axes <= 8."""
-    from .cli_trajectory import parse_via_points  # lazy: cli_trajectory dispatches here
     return parse_via_points(text, max_axes=len(AXIS_NAMES))
 
 
 def parse_limit(option: str, value, axes: int) -> np.ndarray:
     """One value for every axis, or one per axis ('1,2,3')."""
-    from .cli_trajectory import _numbers
     v = np.array(_numbers(option, value) if isinstance(value, str) else [float(value)])
     if v.size == 1:
         v = np.full(axes, v[0])
@@ -161,7 +164,6 @@ def cmd_multi_generator(args) -> int:
         for i, n in enumerate(names):
             cols += [out[:, i, m] for m in range(4)]
             header += [f"{n}_q", f"{n}_v", f"{n}_a", f"{n}_j"]
-        from .cli_trajectory import _write_csv
         _write_csv(args.csv, header, cols)
         print(f"csv: {args.csv}")
     if args.plot:
@@ -221,5 +223,4 @@ def plot(path, out, via, lim, arrivals, Ts, names, u, sync):
     ax.set_title("Path" + (" (first three axes)" if axes > 3 else ""))
     ax.legend(loc="best", fontsize=8)
     fig.tight_layout()
-    from .cli_trajectory import _save
     _save(fig, plt, path)

@@ -16,6 +16,8 @@ import math
 import numpy as np
 
 from .cli_common import EXIT_ERROR, CliError, format_table, pyplot as _pyplot
+from .cli_common import numbers as _numbers, parse_via_list, parse_via_points
+from .cli_common import save_figure as _save, write_csv as _write_csv
 
 __all__ = ["LIMIT_RTOL", "REST_RTOL", "MAX_SAMPLES", "PROFILES", "parse_via_list",
            "parse_via_points", "run_until_reached", "run_with_hold", "segment_rows",
@@ -30,62 +32,6 @@ REST_RTOL = 1e-9
 MAX_SAMPLES = 5_000_000
 PROFILES = ("polynomial", "trigonometric", "damped")
 
-
-def _numbers(option: str, text: str) -> list[float]:
-    """'1,2,-3' -> [1.0, 2.0, -3.0]; CliError naming ``option`` otherwise."""
-    items = [s.strip() for s in text.split(",")]
-    try:
-        values = [float(s) for s in items]
-    except ValueError:
-        raise CliError(f"{option} must be comma-separated numbers, got {text!r}") from None
-    bad = [v for v in values if not math.isfinite(v)]
-    if bad:
-        raise CliError(f"{option} must be finite, got {bad[0]!r}")
-    return values
-
-
-def parse_via_list(text: str) -> np.ndarray:
-    """``--via`` of the generator: '0,20,40' -> array of at least two positions."""
-    via = np.array(_numbers("--via", text))
-    if via.size < 2:
-        raise CliError("--via needs at least two points: the start and one target")
-    return via
-
-
-def parse_via_points(text: str, max_axes: int = 3) -> np.ndarray:
-    """``--via`` of the B-spline (and of multi-axis via-points): 'x,y;x,y;...' -> (M, axes)
-    with M >= 2, 1 <= axes <= max_axes."""
-    rows = [r for r in (part.strip() for part in text.split(";")) if r]
-    points = [_numbers("--via", r) for r in rows]
-    if len(points) < 2:
-        raise CliError("--via needs at least two points separated by ';'")
-    axes = len(points[0])
-    if any(len(p) != axes for p in points):
-        raise CliError("--via: every point must have the same number of coordinates, got "
-                       + ", ".join(str(len(p)) for p in points))
-    if not 1 <= axes <= max_axes:
-        raise CliError(f"--via: points must have 1 to {max_axes} coordinates (axes), got {axes}")
-    return np.array(points)
-
-
-def _write_csv(path: str, header: list[str], columns: list[np.ndarray]) -> None:
-    data = np.column_stack(columns)
-    try:
-        np.savetxt(path, data, delimiter=",", header=",".join(header), comments="", fmt="%.17g")
-    except OSError as exc:
-        raise CliError(f"--csv: cannot write {path}: {exc.strerror}") from None
-
-
-def _save(fig, plt, path: str) -> None:
-    try:
-        fig.savefig(path, dpi=120)
-    except OSError as exc:
-        raise CliError(f"--plot: cannot write {path}: {exc.strerror}") from None
-    finally:
-        plt.close(fig)
-
-
-# -- generator -----------------------------------------------------------------------------
 
 def _at_rest(out: np.ndarray, target: float, scale: float, limits) -> np.ndarray:
     """Mask of samples where q == target and v, a, j == 0, up to rounding."""

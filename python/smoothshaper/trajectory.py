@@ -22,7 +22,8 @@ from ._checks import (finite as _finite, finite_signal as _targets, integer as _
                       real_array as _real_array)
 
 __all__ = ["Generator", "generator_reference", "BSpline", "bspline_reference", "bspline_period",
-           "GEN_MAX_SEGMENT", "BSPLINE_MAX_DEGREE", "BSPLINE_MAX_AXES"]
+           "GEN_MAX_SEGMENT", "BSPLINE_MAX_DEGREE", "BSPLINE_MAX_AXES", "MultiAxisGenerator",
+           "MultiAxisMove", "multi_axis_move", "phase_duration", "multi_axis_reference"]
 
 GEN_MAX_SEGMENT = 4194304.0  # 2**22 samples, as the C core
 BSPLINE_MAX_DEGREE = 7

@@ -28,6 +28,8 @@ from .claims import Claim
 from .figures import figure
 from .seed003_robot import ROBOT
 
+__all__ = ["run"]
+
 TS = 1e-3
 VMAX = np.array([0.5, 0.4, 0.2])      # m/s per axis (z slower, as a vertical axis)
 AMAX = np.array([5.0, 4.0, 2.0])      # m/s^2
@@ -166,7 +168,6 @@ def run(sec, via: np.ndarray) -> dict:
                   "last via-point once stopped", float(np.abs(stream[-1, :, 0] - via[-1]).max()),
                   0.0, 0.0, "exact arrival on the held target", unit="m"))
     load_stream, rv_stream = residual(stream[:, :, 0], stop_stream, via[-1])
-    from .seed003 import ROBOT  # noqa: F401  (the axes are Table I's)
     wn = [m[0] for m in _modes().values()]
     b = BSpline(degree=3, T=bspline_period(wn=wn, Ts=TS), Ts=TS, axes=3)
     bcmd = b.interpolate(via, extra=int(SETTLE / TS))
