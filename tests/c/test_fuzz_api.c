@@ -168,22 +168,22 @@ static void exercise(sms_chain *chain)
     n = sms_chain_state_count(chain);
     if (n > sizeof state / sizeof state[0])
         return;
-    sms_chain_save_state(chain, state);
-    TIMED(st = sms_chain_load_state(chain, state, n));
+    sms_chain_get_state(chain, state);
+    TIMED(st = sms_chain_set_state(chain, state, n));
     CHECK(st == SMS_OK);
     for (i = 0; i < N_SAMPLES; ++i)
         x[i] = pick(4) == 0 ? out_of_range_sample() : extreme_sample();
     sms_chain_process(chain, x, x, N_SAMPLES);
-    sms_chain_save_state(chain, state);
-    TIMED(st = sms_chain_load_state(chain, state, n));
+    sms_chain_get_state(chain, state);
+    TIMED(st = sms_chain_set_state(chain, state, n));
     if (st != SMS_OK)
         fprintf(stderr, "state after out-of-range inputs refused: %d\n", (int)st);
     CHECK(st == SMS_OK);
     /* a state of the wrong length is refused and changes nothing */
     if (n > 1) {
         static double again[MAX_STATE * MAX_STAGES];
-        CHECK(sms_chain_load_state(chain, state, n - 1) == SMS_ERR_STATE);
-        sms_chain_save_state(chain, again);
+        CHECK(sms_chain_set_state(chain, state, n - 1) == SMS_ERR_STATE);
+        sms_chain_get_state(chain, again);
         CHECK(memcmp(again, state, n * sizeof state[0]) == 0);
     }
 }
@@ -294,8 +294,8 @@ static void null_arguments(void)
     CHECK(sms_chain_buffer_size(NULL, 1, 1e-3, &n) == SMS_ERR_NULL);
     CHECK(sms_chain_init(&chain, NULL, &c, 1, 1e-3, buffer, MAX_BUF) == SMS_ERR_NULL);
     CHECK(sms_chain_init(NULL, &s, &c, 1, 1e-3, buffer, MAX_BUF) == SMS_ERR_NULL);
-    CHECK(sms_chain_load_state(NULL, state, 1) == SMS_ERR_NULL);
-    CHECK(sms_stage_load_state(NULL, state, 1) == SMS_ERR_NULL);
+    CHECK(sms_chain_set_state(NULL, state, 1) == SMS_ERR_NULL);
+    CHECK(sms_stage_set_state(NULL, state, 1) == SMS_ERR_NULL);
     CHECK(sms_identify_from_peaks(0.0, 1.0, 1.0, 0.5, NULL) == SMS_ERR_NULL);
     CHECK(sms_identify_from_record(NULL, 100, 1e-3, &m) == SMS_ERR_NULL);
     CHECK(sms_design_for_mode(SMS_SHAPER_ZV, 10.0, 0.1, 1u, NULL) == SMS_ERR_NULL);
