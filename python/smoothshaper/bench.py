@@ -40,6 +40,9 @@ from pathlib import Path
 
 import numpy as np
 
+__all__ = ["ROOT", "SPEED_BENCH", "interleaved", "Table", "run_c_bench", "C_ROWS", "c_tables",
+           "python_tables", "trajectory_table", "fmu_table", "main"]
+
 ROOT = Path(__file__).resolve().parents[2]
 SPEED_BENCH = ROOT / "tests" / "bench" / "speed_bench.c"
 

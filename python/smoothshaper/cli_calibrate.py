@@ -17,6 +17,8 @@ import os
 import sys
 import time
 
+__all__ = ["add_parser", "cmd_calibrate"]
+
 
 def add_parser(sub) -> None:
     p = sub.add_parser(
@@ -57,7 +59,7 @@ def add_parser(sub) -> None:
 def cmd_calibrate(args) -> int:
     from . import calibrate
     from .calibrate import outputs
-    from .cli import Progress
+    from .cli_common import Progress
     enabled = sys.stderr.isatty() if args.progress is None else args.progress
     bar = {}
 

@@ -24,6 +24,10 @@ from ..reference import continuous_transfer, impulse_response, shaper_impulses
 from ..stages import Stage, for_mode, shaper
 from .modes import Mode
 
+__all__ = ["FIRMWARE_NAMES", "BOX", "Reference", "Candidate", "chain_taps", "Objective",
+           "duration", "Family", "families", "continuity", "smoothing", "move_peaks", "class_name",
+           "tune", "evaluate", "recommend", "firmware_lines"]
+
 #: Stage families whose impulse response integrates a step once (+1) or twice (+2).
 _SMOOTHING_ORDER = {"rectangular": 1, "exponential": 1, "harmonic": 2, "damped_harmonic": 2}
 #: Shaper kinds 3-D printer firmware knows (Klipper [input_shaper] shaper_type names).

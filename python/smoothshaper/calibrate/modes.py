@@ -27,6 +27,9 @@ import numpy as np
 
 from .records import RecordError
 
+__all__ = ["DECAY_MIN_R2", "Mode", "Spectrum", "welch", "spectral_modes", "decay_modes",
+           "check_free_decay"]
+
 #: A free-decay fit must explain this fraction of the signal's variance.
 DECAY_MIN_R2 = 0.8
 

@@ -14,6 +14,9 @@ from dataclasses import asdict
 
 from .candidates import Candidate, firmware_lines
 
+__all__ = ["C_KIND", "c_config", "fmu_start_values", "axis_json", "to_json", "write_json",
+           "report_text"]
+
 C_KIND = {"rectangular": "SMS_RECTANGULAR", "harmonic": "SMS_HARMONIC",
           "damped_harmonic": "SMS_DAMPED_HARMONIC", "exponential": "SMS_EXPONENTIAL",
           "zv": "SMS_SHAPER_ZV", "zvd": "SMS_SHAPER_ZVD", "zvdd": "SMS_SHAPER_ZVDD",

@@ -15,6 +15,8 @@ import numpy as np
 
 from .candidates import BOX, chain_taps
 
+__all__ = ["COLORS", "write"]
+
 COLORS = ("tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple")
 
 

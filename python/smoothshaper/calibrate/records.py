@@ -28,6 +28,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+__all__ = ["KINDS", "AXIS_NAMES", "RecordError", "Record", "read_table", "detect_kind", "load"]
+
 KINDS = ("auto", "raw", "decay", "psd", "frf")
 AXIS_NAMES = ("x", "y", "z")
 

@@ -15,6 +15,9 @@ import numpy as np
 
 from .. import plants
 
+__all__ = ["plant", "sweep_input", "resonance_record", "decay_record", "psd_table",
+           "frequency_response", "write_csv"]
+
 
 def plant(modes):
     """``modes``: [(wn [rad/s], zeta), ...] -> the series plant."""
