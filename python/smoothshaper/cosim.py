@@ -31,6 +31,11 @@ from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
+__all__ = ["TS", "STOP_TIME", "T_MOVE", "MOVE", "PLANT", "LIMITS", "SSD_NS", "plant_mode",
+           "parameters", "WITHOUT_SHAPER", "COMPONENTS", "CONNECTIONS", "system_structure",
+           "write_ssp", "target_signal", "ssp_parameters", "run_fmpy", "run_libcosim", "reference",
+           "residual_vibration", "Run", "run_all", "plot", "run", "main"]
+
 #: Sample period of every FMU and the communication step [s].
 TS = 1e-3
 #: Length of a run [s], time of the move [s] and its height (any position unit; here m).
