@@ -176,8 +176,6 @@ def _bad(tmp_path, name, text):
     return p
 
 
-SWEEP = None
-
 
 @pytest.mark.parametrize("name,text,args,expect", [
     ("empty.csv", "", [], "no data rows"),

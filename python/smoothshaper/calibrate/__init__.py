@@ -16,7 +16,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from .candidates import (Candidate, Objective, Reference, chain_taps, evaluate, families,
+from .candidates import (Candidate, Objective, Reference, evaluate, families,
                          recommend, tune)
 from .modes import Mode, Spectrum, decay_modes, spectral_modes, welch
 from .records import KINDS, Record, RecordError, load
