@@ -32,6 +32,7 @@
 #include <string.h>
 
 #include "fmu_instance.h"
+#include "smoothshaper/types.h"
 
 #define TICK_SLACK FMU_TICK_SLACK
 #define MAX_TICK_INDEX 4.0e15    /* keeps tick counts exactly representable as doubles */
@@ -370,6 +371,10 @@ static fmi2Status refuse_value(fmu_instance *c, const char *func, fmu_type type,
     if (cls == FMU_VAR_PARAMETER && c->clock.phase == FMU_STEP_COMPLETE)
         return FAIL(c, "%s: %s is a fixed parameter: set it before fmi2ExitInitializationMode",
                     func, name);
+    if (cls == FMU_VAR_INPUT && isfinite(((const fmi2Real *)value)[i]))
+        return FAIL(c, "%s: %s = %g is beyond %g, the input range (SMS_INPUT_MAX) within which "
+                    "the filters' internal sums stay finite", func, name,
+                    ((const fmi2Real *)value)[i], SMS_INPUT_MAX);
     return FAIL(c, "%s: %s must be finite, got %g", func, name, ((const fmi2Real *)value)[i]);
 }
 
@@ -386,7 +391,9 @@ static fmi2Status set_values(fmi2Component comp, const char *func, fmu_type type
             return FAIL(c, "%s: unknown value reference %lu", func, (unsigned long)vr[i]);
         if (cls == FMU_VAR_OUTPUT
             || (cls == FMU_VAR_PARAMETER && c->clock.phase == FMU_STEP_COMPLETE)
-            || (type == FMU_REAL && !isfinite(((const fmi2Real *)value)[i])))
+            || (type == FMU_REAL && !isfinite(((const fmi2Real *)value)[i]))
+            || (type == FMU_REAL && cls == FMU_VAR_INPUT
+                && fabs(((const fmi2Real *)value)[i]) > SMS_INPUT_MAX))
             return refuse_value(c, func, type, cls, vr[i], value, i);
     }
     for (i = 0; i < nvr; ++i) {
