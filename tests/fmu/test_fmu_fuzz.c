@@ -76,6 +76,11 @@ static double uniform(void)
 }
 
 /* A plausible value 10^[lo, hi], or (one time in five) an edge of double. */
+static double any_real(double lo, double hi);
+
+/* Sample periods: 1e-4 s and up (plus the edges), because both FMUs allocate the delay lines a
+ * configuration needs (no cap but memory), and 1e-9 s with a 1 s mode is 1e9 samples: accepted
+ * sizes must stay small for the 100 ms bound to be about the FMU's own work. */
 static double any_real(double lo, double hi)
 {
     static const double edge[] = { 0.0, -1.0, NAN, INFINITY, -INFINITY, DBL_MAX, -DBL_MAX,
@@ -83,6 +88,16 @@ static double any_real(double lo, double hi)
     if (pick(5) == 0)
         return edge[pick(sizeof edge / sizeof edge[0])];
     return pow(10.0, lo + (hi - lo) * uniform());
+}
+
+/* Damping ratios: near 1 a mode designs delay lines of 1e7+ samples, which the FMUs accept and
+ * allocate (no cap but memory): kept to invalid edges and plausible values. */
+static double any_zeta(void)
+{
+    static const double edge[] = { -1.0, 1.0, 1.5, NAN, INFINITY, -0.0, 1e300 };
+    if (pick(3))
+        return 0.1 * uniform();
+    return pick(4) ? pow(10.0, -12.0 + 11.5 * uniform()) : edge[pick(7)];
 }
 
 static double seconds(void)
@@ -119,12 +134,14 @@ static void random_parameters(fmi2Component c)
     fmi2Real v[6];
     fmi2Integer profile = (fmi2Integer)pick(4) - (pick(8) == 0 ? 2 : 0);
     fmi2ValueReference pvr = TG_VR_PROFILE;
-    v[0] = pick(6) ? pow(10.0, -4.0 + 2.0 * uniform()) : any_real(-9, 2);
+    v[0] = pick(6) ? pow(10.0, -4.0 + 2.0 * uniform()) : any_real(-4, 2);
+    /* T2 ~ vmax/amax and T3 ~ amax/jmax at most ~10 s in the plausible draws: the FMU
+     * allocates the tail the limits need, so accepted sizes stay small here */
     v[1] = any_real(-2, 2);
-    v[2] = any_real(-1, 3);
-    v[3] = any_real(0, 5);
+    v[2] = v[1] * any_real(-1, 2);
+    v[3] = v[2] * any_real(-1, 2);
     v[4] = any_real(0, 3);
-    v[5] = pick(2) ? 0.0 : any_real(-3, 0);
+    v[5] = pick(2) ? 0.0 : any_zeta();
     fmi2SetReal(c, vr, 6, v);
     fmi2SetInteger(c, &pvr, 1, &profile);
 }
@@ -136,7 +153,7 @@ static const fmi2ValueReference outputs[] = { SS_VR_Y };
 static void random_parameters(fmi2Component c)
 {
     fmi2ValueReference ts = SS_VR_TS;
-    double Ts = pick(6) ? pow(10.0, -4.0 + 2.0 * uniform()) : any_real(-9, 2);
+    double Ts = pick(6) ? pow(10.0, -4.0 + 2.0 * uniform()) : any_real(-4, 2);
     unsigned k, n_active = pick(4);
     fmi2SetReal(c, &ts, 1, &Ts);
     for (k = 0; k < SS_MAX_STAGES; ++k) {
@@ -156,10 +173,12 @@ static void random_parameters(fmi2Component c)
         iv[2] = (fmi2Integer)(pick(10) == 0 ? pick(4) : pick(2));
         iv[3] = pick(4) ? 1 : (fmi2Integer)pick(6) - 1;
         iv[4] = pick(3) ? 1 : (fmi2Integer)pick(12) - 1;
-        rv[0] = Ts * (pick(3) ? 2.0 + 200.0 * uniform() : any_real(-3, 7));
+        /* delay lines up to ~2e4 samples per stage (the FMUs allocate what a chain needs, so
+         * accepted sizes stay small here); the edges of double are refused in O(1) */
+        rv[0] = Ts * (pick(3) ? 2.0 + 200.0 * uniform() : any_real(-3, 4.3));
         rv[1] = pick(2) ? 0.0 : -any_real(-2, 3);
         rv[2] = any_real(0, 3);
-        rv[3] = pick(3) ? 0.1 * uniform() : any_real(-12, 0);
+        rv[3] = any_zeta();
         rv[4] = any_real(-300, 0);
         rv[5] = any_real(-1, 1);
         rv[6] = any_real(-1, 0.4);
@@ -279,7 +298,7 @@ static void run_sequence(unsigned length)
                 CHECK(isfinite(y[k]));
             break; }
         default: { fmi2ValueReference ts = TS_VR;
-            value = pick(2) ? any_real(-9, 2) : 1e-3;
+            value = pick(2) ? any_real(-4, 2) : 1e-3;   /* as random_parameters: see there */
             st = fmi2SetReal(c, &ts, 1, &value);
             break; }
         }

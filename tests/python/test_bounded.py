@@ -221,8 +221,10 @@ def _init(unzipdir, stage_values):
     return fmu, vr
 
 
-@pytest.mark.parametrize("nu", [1e9, 1e12])
+@pytest.mark.parametrize("nu", [1e13, 1e15])
 def test_fmu_refuses_a_chain_far_beyond_its_memory_at_once(smoothshaper_dir, nu):
+    # 8e13 bytes and more: sized in closed form, refused by the allocator (or the address
+    # range) at once, never designed sample by sample.
     from fmpy.fmi1 import FMICallException
     values = validation.start_values([stages.harmonic(T=nu * 1e-6 + 0.37e-6)], Ts=1e-6)
     fmu, _ = _init(smoothshaper_dir, values)
