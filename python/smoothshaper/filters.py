@@ -308,7 +308,8 @@ class Chain:
     def step(self, x: float) -> float:
         """Filter one sample and return the output sample."""
         v = _finite("x", x)
-        _check_input("x", np.float64(v), self.precision)
+        if abs(v) > self._lib.SMS_INPUT_MAX:      # the scalar test first: NumPy costs ~2 us
+            _check_input("x", np.float64(v), self.precision)
         cell = self._ffi.new("sms_real *", v)
         self._lib.sms_chain_step(self._chain, cell)
         return float(cell[0])
@@ -421,8 +422,7 @@ class Chain:
         the C instances and their delay lines (nothing is designed again)."""
         ffi, lib = self._ffi, self._lib
         twin = Chain.__new__(Chain)
-        twin.Ts, twin.stages, twin.precision = self.Ts, self.stages, self.precision
-        twin._ffi, twin._lib = ffi, lib
+        twin.__dict__.update(self.__dict__)       # the description; the memory is replaced:
         twin._buffer = self._buffer.copy()
         twin._buffer_c = ffi.from_buffer("sms_real[]", twin._buffer)
         n = len(self.stages)
