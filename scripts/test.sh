@@ -10,7 +10,7 @@ python3 -c 'import sys; sys.exit(0 if sys.version_info >= (3, 10) else "python3 
 . .venv/bin/activate
 python -m pip install -q --upgrade pip
 # Editable install: builds the cffi extensions smoothshaper._core/_core_float from c/src.
-python -m pip install -q -e ".[test]"
+python -m pip install -q -e ".[test,docs]"
 
 # Every suite runs even if an earlier one fails, so one report shows all failures.
 failed=()
@@ -32,6 +32,8 @@ if [ "$collected" -eq 0 ]; then
 else
     step "pytest ($collected tests)" python -m pytest tests/python -q
 fi
+
+step "API reference (sphinx, warnings as errors)" bash scripts/docs.sh
 
 if [ ${#failed[@]} -gt 0 ]; then
     printf 'test.sh: FAILED: %s\n' "${failed[@]}" >&2

@@ -9,7 +9,7 @@ continuous optimum. ``kinematic_reference`` is an independent pure-Python implem
 the same design (nested bisection instead of the C core's closed forms per regime), used as
 the test oracle.
 
-Bounds: ``vmax`` on |q'|, ``amax`` on |q''|, ``jmax`` on |q'''|, then ``higher`` for the 4th,
+Bounds: ``vmax`` on ``|q'|``, ``amax`` on ``|q''|``, ``jmax`` on ``|q'''|``, then ``higher`` for the 4th,
 5th, ... derivatives (at most 8 in all). Profiles:
 
 * ``"polynomial"``: rectangular stages (trapezoid, double-S, ...);

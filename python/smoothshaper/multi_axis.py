@@ -180,7 +180,7 @@ class MultiAxisMove:
 def phase_duration(delta, *, vmax, amax, jmax) -> float:
     """Time-optimal phase-synchronised rest-to-rest duration [s] for a displacement vector
     (continuous time): the jerk-limited straight move whose path parameter has the limits
-    min_i vmax_i/|delta_i|, min_i amax_i/|delta_i|, min_i jmax_i/|delta_i|."""
+    ``min_i vmax_i/|delta_i|``, ``min_i amax_i/|delta_i|``, ``min_i jmax_i/|delta_i|``."""
     d = np.atleast_1d(np.asarray(delta, dtype=np.float64))
     v, a, j = _limits(vmax, amax, jmax, d.size)
     bad = np.flatnonzero(~np.isfinite(d))

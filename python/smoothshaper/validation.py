@@ -286,7 +286,7 @@ def simulate_libcosim(fmu: str, t: np.ndarray, u: np.ndarray, params: dict, *, i
 def compare_importers(fmu: Path, stages, *, Ts: float = 1e-3,
                       stop_time: float = 0.3) -> tuple[float, float]:
     """SmoothShaper with the chain ``stages`` (every parameter set, kinds as Integer codes):
-    (max |y_libcosim - y_fmpy|, max |y_fmpy - reference|)."""
+    (``max |y_libcosim - y_fmpy|``, ``max |y_fmpy - reference|``)."""
     t = communication_points(step=Ts, stop_time=stop_time)
     u = test_input(t)
     y_cosim = simulate_libcosim(str(fmu), t, u, start_values(stages, Ts=Ts))[1:, 0]
@@ -297,7 +297,7 @@ def compare_importers(fmu: Path, stages, *, Ts: float = 1e-3,
 
 def compare_importers_trajectory(fmu: Path, *, Ts: float = 1e-3, stop_time: float = 1.0,
                                  profile: int = 0, wn: float = 0.0, zeta: float = 0.0) -> float:
-    """TrajectoryGenerator: max |(q, v, a, j)_libcosim - (q, v, a, j)_fmpy| for one profile
+    """TrajectoryGenerator: ``max |(q, v, a, j)_libcosim - (q, v, a, j)_fmpy|`` for one profile
     (its Integer code, 0 polynomial, 1 trigonometric, 2 damped with the mode wn, zeta)."""
     t = communication_points(step=Ts, stop_time=stop_time)
     target = target_staircase(t)

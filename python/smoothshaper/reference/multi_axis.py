@@ -50,7 +50,7 @@ def transition(dV, vmax, amax, jmax) -> tuple[float, float]:
 
 def phase_duration(delta, *, vmax, amax, jmax) -> float:
     """Time-optimal jerk-limited straight rest-to-rest duration [s] for displacement ``delta``
-    (path parameter limits min_i limit_i/|delta_i|; closed form of the double-S)."""
+    (path parameter limits ``min_i limit_i/|delta_i|``; closed form of the double-S)."""
     d = np.abs(np.asarray(delta, dtype=np.float64))
     nz = d > 0
     if not nz.any():
