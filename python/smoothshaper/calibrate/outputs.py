@@ -9,6 +9,7 @@
 from __future__ import annotations
 
 import json
+import os
 import math
 from dataclasses import asdict
 
@@ -97,6 +98,10 @@ def to_json(cal) -> dict:
 
 
 def write_json(cal, path: str) -> None:
+    """All results as JSON at ``path`` (its folder is created, like the --out folder)."""
+    folder = os.path.dirname(path)
+    if folder:
+        os.makedirs(folder, exist_ok=True)
     with open(path, "w", encoding="utf-8") as fh:
         json.dump(to_json(cal), fh, indent=1, default=_default)
         fh.write("\n")
