@@ -513,7 +513,14 @@ def build_parser() -> argparse.ArgumentParser:
     from .cli_trajectory import add_design_forms
     add_design_forms(p, _Parser)
 
-    p = sub.add_parser("analyze", help="PRV curve, spectrum and step response as PNG plots")
+    p = sub.add_parser("analyze", help="PRV curve, spectrum and step response as PNG plots",
+                       description="Analyse a chain (--stage/--kind) against a vibration mode "
+                       "(--wn, --zeta): writes prv.png (percent residual vibration over the "
+                       "actual-to-nominal frequency ratio, with the insensitivity band at "
+                       "--tolerance), spectrum.png (spectra of the step response's derivatives) "
+                       "and step.png (step response), and prints the insensitivity band. "
+                       "--surface adds prv_surface.png over frequency ratio and damping. "
+                       "Residual vibration and PRV are defined in docs/analysis.md.")
     _add_chain_options(p)
     p.add_argument("--Ts", type=float, default=1e-3, help="sample period [s] (default 1e-3)")
     p.add_argument("--out", default="analysis", help="output folder for the PNGs (default ./analysis)")
@@ -529,7 +536,12 @@ def build_parser() -> argparse.ArgumentParser:
                    help="show the sweep progress bar (default: when stderr is a terminal)")
     p.set_defaults(func=cmd_analyze)
 
-    p = sub.add_parser("identify", help="mode (wn, zeta) from a CSV record of a free decay")
+    p = sub.add_parser("identify", help="mode (wn, zeta) from a CSV record of a free decay",
+                       description="Estimate the natural frequency wn [rad/s] and damping ratio "
+                       "zeta of one mode from a sampled free decay (a CSV with a time column and "
+                       "a signal column, or one column with --Ts), and suggest stages that "
+                       "cancel it. Example data: examples/decay.csv. For accelerometer sweeps, "
+                       "PSD tables and several modes use 'smoothshaper calibrate'.")
     p.add_argument("csv", help="CSV file: a time column and a signal column (header optional)")
     p.add_argument("--column", help="signal column: header name or index (default: last)")
     p.add_argument("--time-column", help="time column: header name or index (default: first)")
@@ -544,9 +556,19 @@ def build_parser() -> argparse.ArgumentParser:
     from .cli_calibrate import add_parser as add_calibrate
     add_calibrate(sub)
 
+    descriptions = {
+        "validate": "Build the FMUs with CMake, check their model descriptions (fmpy, fmutool), "
+                    "simulate every stage family and several chains with fmpy at several "
+                    "communication step sizes and with libcosim, and compare with the NumPy "
+                    "reference (docs/cosimulation.md). Writes README.md (tables of maximum "
+                    "errors) and plots into --out; exit code 1 if any comparison fails.",
+        "report": "Reproduce the numerical claims of the source papers (docs/references.md) "
+                  "and of the shaper literature: every claim is recomputed, compared with its "
+                  "closed form or published value within a stated tolerance, and listed with "
+                  "figures in --out/README.md; exit code 1 if a claim fails."}
     for name, func, what in (("validate", cmd_validate, "build and validate the FMUs with fmpy"),
                              ("report", cmd_report, "reproduce the seed papers' claims")):
-        p = sub.add_parser(name, help=what)
+        p = sub.add_parser(name, help=what, description=descriptions[name])
         p.add_argument("--out", default=os.path.join("out", name),
                        help=f"output folder (default ./out/{name})")
         if name == "validate":

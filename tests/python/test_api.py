@@ -249,3 +249,15 @@ def test_package_import_emits_no_warnings():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         subprocess.run([sys.executable, "-W", "error", "-c", "import smoothshaper"], check=True)
+
+
+def test_every_subcommand_has_a_description_without_markup():
+    import argparse
+    from smoothshaper.cli import build_parser
+    parser = build_parser()
+    sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    assert set(sub.choices) >= {"design", "analyze", "identify", "validate", "report"}
+    for name, p in sub.choices.items():
+        assert p.description and len(p.description) > 40, name
+        for text in (p.description, p.format_help(), parser.format_help()):
+            assert ":class:" not in text and "``" not in text and "issue " not in text, name
