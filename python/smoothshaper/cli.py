@@ -269,10 +269,18 @@ def cmd_analyze(args) -> int:
         bar = Progress(len(zetas), "PRV surface", show)
         surface = prv_surface(stages, wn=wn_grid, zetas=zetas, Ts=args.Ts, progress=bar)
         fig, ax = plt.subplots(figsize=(7, 4.5))
-        levels = [0, 1, 2, 5, 10, 20, 50, 100, max(100.0, float(surface.max()))]
-        cs = ax.contourf(ratios, zetas, surface, levels=sorted(set(levels)), cmap="viridis")
-        fig.colorbar(cs, ax=ax, label="PRV [%]")
-        ax.set_xlabel(r"$\omega_n/\hat\omega_n$")
+        # Colour bands on a log-like scale, clipped at 200 % (far off the mode PRV runs to
+        # 1e4 % and a linear scale would paint 0..100 % one colour); labelled contours at the
+        # levels users compare against.
+        from matplotlib.colors import BoundaryNorm
+        levels = [0, 1, 2, 5, 10, 20, 50, 100, 200]
+        cs = ax.contourf(ratios, zetas, np.minimum(surface, levels[-1]), levels=levels,
+                         cmap="viridis", norm=BoundaryNorm(levels, 256))
+        fig.colorbar(cs, ax=ax, label="PRV [%] (clipped at 200 %)")
+        lines = ax.contour(ratios, zetas, surface, levels=[1, 5, 20, 100], colors="white",
+                           linewidths=0.9)
+        ax.clabel(lines, fmt="%g %%", fontsize=8)
+        ax.set_xlabel(r"actual / nominal natural frequency $\omega_n/\hat\omega_n$ [-]")
         ax.set_ylabel(r"damping ratio $\zeta$")
         ax.set_title("Residual vibration over frequency and damping")
         fig.tight_layout()
