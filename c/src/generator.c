@@ -3,8 +3,10 @@
 #include <math.h>
 #include "smoothshaper/trajectory.h"
 #include "trajectory_internal.h"
+#include "plan.h"
 
 #define GEN_STATE_COUNT 9u
+#define GEN_PLAN_STATE_COUNT 6u
 
 /* phi_k(x) = (e^x - sum_{i<k} x^i/i!) / x^k, accurate for small |x| (series) and large. */
 static double phi(int k, double x)
@@ -153,14 +155,50 @@ static sms_status design_tail(const sms_generator_config *c, double Ts, double *
     return SMS_OK;
 }
 
+/* The time-optimal realisation: polynomial profile, no mode. */
+static int is_time_optimal(const sms_generator_config *c)
+{
+    return c->profile == SMS_PROFILE_POLYNOMIAL && c->wn == 0.0;
+}
+
+/* Validation of the time-optimal realisation (no tail to design). */
+static sms_status check_time_optimal(const sms_generator_config *c, double Ts)
+{
+    if (!isfinite(Ts) || !(Ts > 0.0))
+        return SMS_ERR_SAMPLE_PERIOD;
+    if (!isfinite(c->vmax) || !(c->vmax > 0.0) || !isfinite(c->amax) || !(c->amax > 0.0) ||
+        !isfinite(c->jmax) || !(c->jmax > 0.0))
+        return SMS_ERR_LIMIT;
+    if (!isfinite(c->zeta) || c->zeta < 0.0 || c->zeta >= 1.0)
+        return SMS_ERR_ZETA;
+    /* every limit, Ts and their products must be finite non-zero reals of the build */
+    {
+        sms_real v = (sms_real)c->vmax, a = (sms_real)c->amax, j = (sms_real)c->jmax,
+                 t = (sms_real)Ts;
+        if (!(v > 0) || !(a > 0) || !(j > 0) || !(t > 0) || v - v != 0 || a - a != 0 ||
+            j - j != 0)
+            return SMS_ERR_LIMIT;
+        /* the plan forms products like a^2/j and v j: keep them finite */
+        if (!((a * a) / j - (a * a) / j == 0) || !(v * j - v * j == 0) || !(a * a > 0))
+            return SMS_ERR_LIMIT;
+    }
+    return SMS_OK;
+}
+
 sms_status sms_generator_buffer_size(const sms_generator_config *config, double Ts, size_t *n_reals)
 {
     double T2, T3;
     sms_kin_last last;
     size_t Nc;
     sms_status st;
-    if (n_reals == NULL)
+    if (n_reals == NULL || config == NULL)
         return SMS_ERR_NULL;
+    if (is_time_optimal(config)) {
+        st = check_time_optimal(config, Ts);
+        if (st == SMS_OK)
+            *n_reals = 0;
+        return st;
+    }
     st = design_tail(config, Ts, &T2, &last, &T3, &Nc);
     if (st != SMS_OK)
         return st;
@@ -179,8 +217,30 @@ sms_status sms_generator_init(sms_generator *g, const sms_generator_config *conf
     size_t Nc, m, need;
     sms_real *E, *F, *X2, *X2d;
     sms_status st;
-    if (g == NULL)
+    if (g == NULL || config == NULL)
         return SMS_ERR_NULL;
+    if (is_time_optimal(config)) {
+        st = check_time_optimal(config, Ts);
+        if (st != SMS_OK)
+            return st;
+        g->Ts = Ts;
+        g->vmax = config->vmax;
+        g->T2 = g->T3 = 0.0;
+        g->last_kind = SMS_RECTANGULAR;
+        g->sigma = 0.0;
+        g->n_tail = 0;
+        g->mean_delay = 0.0;
+        g->Ts_signal = (sms_real)Ts;
+        g->mean_delay_signal = 0;
+        g->step_distance = (sms_real)(config->vmax * Ts);
+        g->table = buffer;
+        g->time_optimal = 1;
+        g->limits.vmax = (sms_real)config->vmax;
+        g->limits.amax = (sms_real)config->amax;
+        g->limits.jmax = (sms_real)config->jmax;
+        sms_generator_reset(g, 0);
+        return SMS_OK;
+    }
     st = design_tail(config, Ts, &T2, &kl, &T3, &Nc);
     if (st != SMS_OK)
         return st;
@@ -242,12 +302,27 @@ sms_status sms_generator_init(sms_generator *g, const sms_generator_config *conf
     g->mean_delay_signal = (sms_real)mu;
     g->step_distance = (sms_real)(config->vmax * Ts);
     g->table = buffer;
+    g->time_optimal = 0;
+    g->limits.vmax = (sms_real)config->vmax;
+    g->limits.amax = (sms_real)config->amax;
+    g->limits.jmax = (sms_real)config->jmax;
     sms_generator_reset(g, 0);
     return SMS_OK;
 }
 
 void sms_generator_reset(sms_generator *g, sms_real position)
 {
+    if (position - position != 0)
+        return; /* NaN/Inf: stay where it is */
+    g->plan_q = position;
+    g->plan_v = 0;
+    g->plan_a = 0;
+    g->k = 0;
+    g->plan.count = 0;
+    g->plan.goal = position;
+    g->plan.end = 0;
+    g->plan.end_f = 0;
+    g->plan.duration = 0;
     g->target = position;
     g->start = position;
     g->goal = position;
@@ -302,6 +377,24 @@ static void replan(sms_generator *g)
     }
 }
 
+/* Time-optimal step: advance one sample on the plan; re-plan from the exact state there when
+ * the target differs from the plan's goal. */
+static void step_time_optimal(sms_generator *g, sms_real target, sms_real out[4])
+{
+    if (target - target == 0) /* finite (NaN and Inf give NaN) */
+        g->target = target;
+    ++g->k;
+    sms_plan_eval(&g->plan, g->Ts_signal, g->k, out);
+    if (g->target != g->plan.goal) {
+        g->plan_q = out[0];
+        g->plan_v = out[1];
+        g->plan_a = out[2];
+        g->k = 0;
+        sms_plan_to_rest(&g->plan, &g->limits, g->Ts_signal, out[0], out[1], out[2], g->target);
+        sms_plan_eval(&g->plan, g->Ts_signal, 0, out); /* the same q, v, a; the new jerk */
+    }
+}
+
 void sms_generator_step(sms_generator *g, sms_real target, sms_real out[4])
 {
     const size_t Nc = g->n_tail;
@@ -309,6 +402,10 @@ void sms_generator_step(sms_generator *g, sms_real target, sms_real out[4])
                    *X2d = E + 3u * (Nc + 1u);
     sms_real dv;
     size_t s;
+    if (g->time_optimal) {
+        step_time_optimal(g, target, out);
+        return;
+    }
     if (target - target == 0) /* finite (NaN and Inf give NaN) */
         g->target = target;
     if (g->age < Nc)
@@ -344,6 +441,13 @@ void sms_generator_step(sms_generator *g, sms_real target, sms_real out[4])
     out[3] = dv * X2d[s];
 }
 
+void sms_generator_process(sms_generator *g, const sms_real *targets, size_t n, sms_real *out)
+{
+    size_t i;
+    for (i = 0; i < n; ++i)
+        sms_generator_step(g, targets[i], out + 4u * i);
+}
+
 double sms_generator_tail_duration(const sms_generator *g)
 {
     return g->T2 + g->T3;
@@ -351,12 +455,20 @@ double sms_generator_tail_duration(const sms_generator *g)
 
 size_t sms_generator_state_count(const sms_generator *g)
 {
-    (void)g;
-    return GEN_STATE_COUNT;
+    return g->time_optimal ? GEN_PLAN_STATE_COUNT : GEN_STATE_COUNT;
 }
 
 void sms_generator_get_state(const sms_generator *g, double *dst)
 {
+    if (g->time_optimal) {
+        dst[0] = (double)g->target;
+        dst[1] = (double)g->plan.goal;
+        dst[2] = (double)g->plan_q;
+        dst[3] = (double)g->plan_v;
+        dst[4] = (double)g->plan_a;
+        dst[5] = (double)g->k;
+        return;
+    }
     dst[0] = (double)g->target;
     dst[1] = (double)g->start;
     dst[2] = (double)g->goal;
@@ -378,6 +490,24 @@ sms_status sms_generator_check_state(const sms_generator *g, const double *src, 
     size_t i;
     if (g == NULL || src == NULL)
         return SMS_ERR_NULL;
+    if (g->time_optimal) {
+        double V = (double)g->limits.vmax, A = (double)g->limits.amax,
+               J = (double)g->limits.jmax, brake;
+        if (n != GEN_PLAN_STATE_COUNT)
+            return SMS_ERR_STATE;
+        for (i = 0; i < 5; ++i)
+            if (!isfinite(src[i]) || (sms_real)src[i] - (sms_real)src[i] != 0)
+                return SMS_ERR_STATE;
+        /* a state a plan can start from: within the bounds, and able to stop its
+         * acceleration without passing vmax */
+        brake = src[3] + src[4] * fabs(src[4]) / (2.0 * J);
+        if (fabs(src[3]) > V * (1.0 + 1e-6) || fabs(src[4]) > A * (1.0 + 1e-6) ||
+            fabs(brake) > V * (1.0 + 1e-6))
+            return SMS_ERR_STATE;
+        if (!is_count(src[5], 9007199254740992.0)) /* 2^53 */
+            return SMS_ERR_STATE;
+        return SMS_OK;
+    }
     if (n != GEN_STATE_COUNT)
         return SMS_ERR_STATE;
     for (i = 0; i < 6; ++i)
@@ -398,6 +528,16 @@ sms_status sms_generator_set_state(sms_generator *g, const double *src, size_t n
     sms_status st = sms_generator_check_state(g, src, n);
     if (st != SMS_OK)
         return st;
+    if (g->time_optimal) {
+        g->target = (sms_real)src[0];
+        g->plan_q = (sms_real)src[2];
+        g->plan_v = (sms_real)src[3];
+        g->plan_a = (sms_real)src[4];
+        g->k = (size_t)src[5];
+        sms_plan_to_rest(&g->plan, &g->limits, g->Ts_signal, g->plan_q, g->plan_v, g->plan_a,
+                         (sms_real)src[1]);
+        return SMS_OK;
+    }
     g->target = (sms_real)src[0];
     g->start = (sms_real)src[1];
     g->goal = (sms_real)src[2];

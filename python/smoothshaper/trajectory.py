@@ -30,6 +30,33 @@ BSPLINE_MAX_DEGREE = 7
 BSPLINE_MAX_AXES = 3
 
 
+def _generator_error(st, lib, ffi, cfg, Ts, profile):
+    """ParameterError naming the cause of a refused generator config, with the values."""
+    if st == -4:
+        # the tail realisation: its stages T2 (about vmax/amax) and T3 (about amax/jmax, or
+        # the mode period) must each last a sample
+        T = ffi.new("double[2]")
+        cnt = ffi.new("size_t *")
+        lim = ffi.new("double[]", [cfg.vmax, cfg.amax, cfg.jmax])
+        lib.sms_kinematic_design(cfg.vmax, lim + 1, 2, cfg.profile, cfg.wn, cfg.zeta, 0.0, T, 2,
+                                 cnt)
+        short = "amax" if T[0] < Ts else "jmax"
+        raise ParameterError(
+            short, f"{short}: the {profile} profile's tail stages last T2 = {T[0]:.6g} s and "
+                   f"T3 = {T[1]:.6g} s (from vmax={cfg.vmax!r}, amax={cfg.amax!r}, "
+                   f"jmax={cfg.jmax!r}{f', wn={cfg.wn!r}' if cfg.wn else ''}), shorter than "
+                   f"Ts={Ts!r}; lower {short}, use a shorter Ts, or the polynomial profile "
+                   "without a mode (time-optimal, any Ts)", st)
+    if st == -16:
+        raise ParameterError("wn", f"wn={cfg.wn!r} rad/s is at or above the Nyquist frequency "
+                                   f"pi/Ts = {math.pi / Ts:.6g} rad/s", st)
+    if st == -17:
+        raise ParameterError("jmax", f"vmax={cfg.vmax!r}, amax={cfg.amax!r}, jmax={cfg.jmax!r}: "
+                                     "their ratios are out of the range this precision can "
+                                     "plan with (a^2/j or v j overflows)", st)
+    _raise_status(st, lib, ffi, "online generator")
+
+
 def _generator_config(ffi, vmax, amax, jmax, profile, wn, zeta):
     cfg = ffi.new("sms_generator_config *")
     cfg.vmax = _design._positive("vmax", vmax)
@@ -48,28 +75,35 @@ class Generator:
 
     Parameters (keyword-only): ``vmax``, ``amax``, ``jmax`` (> 0), ``Ts`` sample period [s],
     ``profile`` ("polynomial", "trigonometric", "damped"), optional mode ``wn`` [rad/s] and
-    ``zeta``, ``precision`` ("double" or "float").
+    ``zeta``, ``q0`` the initial position (the generator starts at rest there, default 0),
+    ``precision`` ("double" or "float").
 
     :meth:`process` takes the target (staircase) per sample and returns an ``(n, 4)`` array of
     position, velocity, acceleration and jerk: the exact values and derivatives of the
-    continuous output at the sample instants. The generator starts at rest at 0.
+    continuous output at the sample instants, so the backward differences of the samples keep
+    the bounds too (docs/sampled-limits.md). The polynomial profile without a mode is
+    time-optimal: every new target is reached in ruckig's time-optimal jerk-limited duration
+    from the current state, rounded up to the sample grid, for any ``Ts``. The other profiles
+    (a harmonic or mode-tuned last stage) use a fixed tail of stages T2, T3 and need both to
+    last at least ``Ts``. Errors: :class:`~smoothshaper.filters.ParameterError` naming the
+    parameter.
     """
 
     def __init__(self, *, vmax: float, amax: float, jmax: float, Ts: float,
                  profile: str = "polynomial", wn: float | None = None, zeta: float = 0.0,
-                 precision: str = "double"):
+                 q0: float = 0.0, precision: str = "double"):
         ffi, lib = _backend(precision)
         self._ffi, self._lib = ffi, lib
         self.Ts = _design._positive("Ts", Ts)
+        q0 = _finite("q0", q0)
         self.precision = precision
         cfg = _generator_config(ffi, vmax, amax, jmax, profile, wn, zeta)
         need = ffi.new("size_t *")
         st = lib.sms_generator_buffer_size(cfg, self.Ts, need)
         if st != 0:
-            parameter = "Ts" if st == -4 else None
-            _raise_status(st, lib, ffi, "online generator", parameter)
+            _generator_error(st, lib, ffi, cfg, self.Ts, profile)
         check_memory("Ts", need[0], f"the generator's delay line at Ts={self.Ts!r}")
-        self._buffer = np.zeros(need[0], dtype=_real_dtype(precision))
+        self._buffer = np.zeros(max(need[0], 1), dtype=_real_dtype(precision))
         self._gen = ffi.new("sms_generator *")
         st = lib.sms_generator_init(self._gen, cfg, self.Ts,
                                     ffi.from_buffer("sms_real[]", self._buffer), need[0])
@@ -77,6 +111,13 @@ class Generator:
             _raise_status(st, lib, ffi, "online generator")
         self.vmax, self.amax, self.jmax = cfg.vmax, cfg.amax, cfg.jmax
         self.profile, self.wn, self.zeta = _design.PROFILES[cfg.profile], cfg.wn, cfg.zeta
+        self.q0 = q0
+        self.reset(q0)
+
+    @property
+    def time_optimal(self) -> bool:
+        """True for the time-optimal realisation (polynomial profile, no mode)."""
+        return bool(self._gen.time_optimal)
 
     @property
     def T2(self) -> float:
@@ -91,18 +132,21 @@ class Generator:
         """Nc: samples between changes of the first stage's velocity (>= (T2 + T3)/Ts)."""
         return int(self._gen.n_tail)
 
-    def reset(self, position: float = 0.0) -> None:
-        self._lib.sms_generator_reset(self._gen, _finite("position", position))
+    def reset(self, position: float | None = None) -> None:
+        """Rest at ``position`` (default: ``q0``)."""
+        position = self.q0 if position is None else _finite("position", position)
+        self._lib.sms_generator_reset(self._gen, position)
 
     def process(self, targets) -> np.ndarray:
+        """Targets ``(n,)`` -> ``(n, 4)`` q, v, a, j; one C call for the whole block."""
         x = _targets("targets", targets)
-        out = np.empty((x.size, 4), dtype=np.float64)
-        cell = self._ffi.new("sms_real[4]")
-        step = self._lib.sms_generator_step
-        for i, target in enumerate(x):
-            step(self._gen, target, cell)
-            out[i] = (cell[0], cell[1], cell[2], cell[3])
-        return out
+        dtype = _real_dtype(self.precision)
+        xin = x if dtype == np.float64 else x.astype(dtype)
+        out = np.empty((x.size, 4), dtype=dtype)
+        if x.size:
+            self._lib.sms_generator_process(self._gen, self._ffi.from_buffer("sms_real[]", xin),
+                                            x.size, self._ffi.from_buffer("sms_real[]", out))
+        return out if dtype == np.float64 else out.astype(np.float64)
 
     def get_state(self) -> np.ndarray:
         """The dynamic state as a float64 array (a copy); :meth:`set_state` on this or an
@@ -222,7 +266,9 @@ def generator_reference(targets, *, vmax, amax, jmax, Ts, profile="polynomial", 
                         zeta=0.0, position=0.0) -> np.ndarray:
     """NumPy reference of :class:`Generator`: ``(n, 4)`` array of q, q', q'', q'''.
 
-    The schedule of the first stage (scheme of trajectory.h: velocity changes on
+    The polynomial profile without a mode is the time-optimal realisation: its reference is
+    :func:`smoothshaper.time_optimal.time_optimal_reference` (``position`` is the initial
+    rest). The other profiles: the schedule of the first stage (scheme of trajectory.h: velocity changes on
     samples, >= Nc samples apart, of at most vmax, segments of >= Nc samples ending exactly on
     the target) is replayed; the output is then the sum over all changes dV_i of
     dV_i * (ramp, step, impulse, impulse') responses of the tail at t - t_i.
@@ -238,6 +284,11 @@ def generator_reference(targets, *, vmax, amax, jmax, Ts, profile="polynomial", 
     x = _targets("targets", targets)
     vmax = _design._positive("vmax", vmax)
     Ts = _design._positive("Ts", Ts)
+    if profile == "polynomial" and wn is None:
+        from .time_optimal import time_optimal_reference
+        return time_optimal_reference(x, vmax=vmax, amax=_design._positive("amax", amax),
+                                      jmax=_design._positive("jmax", jmax), Ts=Ts,
+                                      q0=_finite("position", position))
     tail_stages = _design.kinematic_reference(h=vmax, vmax=amax, amax=jmax, profile=profile,
                                               wn=wn, zeta=zeta)
     tail = _Tail(tail_stages[0].T, tail_stages[1])

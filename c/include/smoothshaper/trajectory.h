@@ -115,6 +115,32 @@ SMS_API sms_status sms_kinematic_configs(double h, const double *limits, size_t 
 /* Online multi-point generator                                                                */
 /* ------------------------------------------------------------------------------------------ */
 
+/** @brief Most constant-jerk segments of a time-optimal plan: velocity change (3), cruise (1),
+ * stop (3). */
+#define SMS_PLAN_MAX_SEGMENTS 7
+
+/** @brief Bounds of a time-optimal plan: |v| <= vmax, |a| <= amax, |j| <= jmax (finite, > 0). */
+typedef struct sms_plan_limits {
+    sms_real vmax, amax, jmax;
+} sms_plan_limits;
+
+/** @brief The generator's running time-optimal plan (read-only; built by the generator).
+ * Segment i starts n[i] samples plus f[i] (in [0, Ts)) seconds after the plan's first
+ * sample, in state (p, v, a), and applies jerk j for d seconds. From `end` samples + `end_f`
+ * on the output rests exactly at `goal`. Times split into whole samples and a fraction keep
+ * a float build exact over any number of samples (a float time in seconds would not). */
+typedef struct sms_plan {
+    size_t count;                      /* segments in use (0: at rest at goal) */
+    size_t n[SMS_PLAN_MAX_SEGMENTS];
+    sms_real f[SMS_PLAN_MAX_SEGMENTS];
+    sms_real p[SMS_PLAN_MAX_SEGMENTS], v[SMS_PLAN_MAX_SEGMENTS], a[SMS_PLAN_MAX_SEGMENTS];
+    sms_real j[SMS_PLAN_MAX_SEGMENTS], d[SMS_PLAN_MAX_SEGMENTS];
+    size_t end;
+    sms_real end_f;
+    sms_real goal;
+    sms_real duration;                 /* sum of d [s] (continuous, before the grid) */
+} sms_plan;
+
 /**
  * @brief Limits and optional mode of the online generator (docs/design.md).
  *
@@ -135,12 +161,34 @@ typedef struct sms_generator_config {
 /**
  * @brief Online generator: a staircase of targets in, a bounded smooth trajectory out.
  *
- * Structure: a variable first stage followed by a fixed tail X = M(T2) * L(T3), where T2, T3
- * and the family L of the last stage come from sms_kinematic_design() for a move long enough
- * to reach vmax with the limits {vmax, amax, jmax} (so T2 >= T3, the tail lasts Tc = T2 + T3).
- * The first stage is the moving average of length T1 = |segment| / V applied to each segment,
- * realised as its output r(t): a ramp at velocity V towards the current target. V is
- * re-planned per segment (|V| <= vmax, T1 >= Tc so short moves use V < vmax), the tail is fixed.
+ * Two realisations, chosen by the config:
+ *
+ * **Time-optimal** (::SMS_PROFILE_POLYNOMIAL without a mode, wn = 0). Whenever the target
+ * differs from the goal of the running plan, the generator re-plans on that sample from its
+ * exact state (q, v, a) there: the time-optimal jerk-limited motion to the target at rest
+ * (ruckig's duration for this single-axis problem): a velocity change (v, a) -> (vp, 0) with
+ * jerk +-jmax and the acceleration held at +-amax if reached, a cruise at vp = +-vmax when the
+ * distance allows, and the stop (vp, 0) -> (0, 0); vp solves "distance of the two changes =
+ * target - q", which increases with vp (bisection, in ::sms_real, no libm). q, v, a stay
+ * continuous across a re-plan, the jerk jumps. The output is the exact closed form at each
+ * sample instant (jerk: the right limit at a jump), so every sampled difference dq/Ts,
+ * d2q/Ts^2, d3q/Ts^3 is an average of v, a, j and keeps the bounds (docs/sampled-limits.md).
+ * Once the target holds, q equals it exactly from the first sample at or after the plan's
+ * continuous end on: a rest-to-rest move of any length takes its time-optimal duration
+ * rounded up to the sample grid (h = 0.1, v = 1, a = 10, j = 1000 from rest: 0.297 s). Any
+ * Ts works (no stage has to be longer than a sample). Times are kept as whole samples plus a
+ * fraction and every segment is anchored on its own start (the stop on the target), so a
+ * float build keeps its error at the rounding of the positions for any move and run length.
+ * Per sample: O(1); a re-plan: about 60 (double) or 30 (float) evaluations of the distance.
+ *
+ * **Tail** (a trigonometric or damped profile, or a mode wn > 0: the last stage must have
+ * that family or be tuned to the mode). Structure: a variable first stage followed by a fixed
+ * tail X = M(T2) * L(T3), where T2, T3 and the family L of the last stage come from
+ * sms_kinematic_design() for a move long enough to reach vmax with the limits
+ * {vmax, amax, jmax} (so T2 >= T3, the tail lasts Tc = T2 + T3). The first stage is the
+ * moving average of length T1 = |segment| / V applied to each segment, realised as its output
+ * r(t): a ramp at velocity V towards the current target. V is re-planned per segment
+ * (|V| <= vmax, T1 >= Tc so short moves use V < vmax), the tail is fixed.
  *
  * Why it never exceeds a bound, for any target sequence: r'(t) is piecewise constant and is
  * changed only (i) on sample instants, (ii) at least Nc = ceil(Tc/Ts) samples after its
@@ -153,33 +201,17 @@ typedef struct sms_generator_config {
  *   q'''(t) = dV x2'(s),               |q'''| <= vmax peak(L) / T2 <= jmax,
  * with s the time since that change, x2 the tail's impulse response (peak 1/T2 because
  * T2 >= T3) and F its integral; the last inequality of each line is the kinematic design.
- * A naive scheme fails exactly where this one waits: overlapping segments add velocities,
- * and a reversal (dV = 2 vmax) or two changes closer than Tc double a or j.
- * Reaching: once the target holds, r ends its last segment exactly on it (r is assigned
- * the target at the stop, not accumulated) and q equals the target exactly Nc samples later.
- *
- * Outputs: q, v, a, j are the exact values and derivatives of the continuous piecewise
- * output at the sample instants, computed from tables of the tail's step, ramp, impulse and
- * impulse-derivative responses filled at init. q, q', q'' are continuous; the jerk
- *   q'''(t) = dV x2'(s),  x2'(s) = (l(s) - l(s - T2)) / T2   (l: density of the last stage)
- * jumps where a copy of l starts or ends, s = 0 (the change itself), T3, T2, T2 + T3 (with a
- * rectangular or exponential last stage; a harmonic one is continuous there).
- * Convention at a jump that falls on a sample instant: j is the right limit, the value that
- * holds over [t_n, t_n + Ts) (what a zero-order hold applies next): at the change instant
- * j = dV x2'(0+), at s = T2 + T3 j = 0. A breakpoint b is on the grid when b/Ts passes the
- * integer test of docs/exact-mode.md (|b/Ts - round(b/Ts)| <= 1e-9 max(1, b/Ts)); the side
- * is then decided by comparing the sample index with round(b/Ts), not by the sign of the
- * rounded m Ts - b, so stage lengths that are whole multiples of Ts give the right limit
- * whatever the rounding of T2, T3 and Ts. (Done when the tables are filled at init; the
- * per-sample path is unchanged.) smoothshaper.trajectory.generator_reference follows the
- * same convention independently.
- * Per-sample work O(1); a re-plan is a handful of operations (see tests/bench).
- * Rounding: bounds hold to a few ulps of vmax, amax, jmax.
- * Time: a single segment from rest of length D with D >= vmax Tc takes D/vmax + Tc rounded
- * up to the sample grid, the time-optimal duration with these limits. Shorter moves keep the
- * fixed tail and use V = D/Tc (duration 2 Tc: bounded, not time-optimal; the one-shot
- * sms_kinematic_design() gives the optimum for them). A target that arrives while a change
+ * Reaching: once the target holds, r ends its last segment exactly on it and q equals the
+ * target exactly Nc samples later. Outputs are the exact values at the sample instants
+ * (tables of the tail's responses filled at init), so the sampled differences keep the bounds
+ * here too. The jerk at a jump on a sample instant is the right limit, decided on sample
+ * indices (|b/Ts - round(b/Ts)| <= 1e-9 max(1, b/Ts) puts a breakpoint b on the grid).
+ * Time: a segment from rest of length D >= vmax Tc takes D/vmax + Tc rounded up to the grid;
+ * shorter moves take 2 Tc (bounded, not time-optimal). A target that arrives while a change
  * is still inside the tail waits (at most Nc samples); a reversal stops first and waits Nc.
+ * Needs T2, T3 >= Ts (::SMS_ERR_DURATION_BELOW_TS otherwise).
+ *
+ * Both: per-sample work O(1), no libm, ::sms_real only; a non-finite target is ignored.
  */
 typedef struct sms_generator {
     double Ts;
@@ -203,9 +235,16 @@ typedef struct sms_generator {
     size_t seg_len;       /**< samples of the running segment (0: at rest) */
     size_t seg_pos;       /**< samples elapsed in it */
     size_t age;           /**< samples since the last change, saturated at Nc */
+    /* time-optimal realisation */
+    int time_optimal;     /**< 1: time-optimal plan (polynomial, no mode); 0: tail */
+    sms_plan_limits limits; /**< vmax, amax, jmax in signal precision */
+    sms_real plan_q, plan_v, plan_a; /**< state the running plan started from */
+    sms_plan plan;        /**< the running plan (its goal is the target it heads for) */
+    size_t k;             /**< samples since the plan's first sample */
 } sms_generator;
 
-/** @brief Reals the generator's buffer needs: 4 (Nc + 1).
+/** @brief Reals the generator's buffer needs: 4 (Nc + 1) for the tail, 0 for the
+ * time-optimal realisation (which needs no buffer: init then accepts buffer NULL).
  * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_SAMPLE_PERIOD, ::SMS_ERR_LIMIT, ::SMS_ERR_KIND,
  *         ::SMS_ERR_WN, ::SMS_ERR_ZETA, ::SMS_ERR_ABOVE_NYQUIST, ::SMS_ERR_DURATION_BELOW_TS
  *         (a tail stage shorter than Ts), ::SMS_ERR_TOO_LONG. */
@@ -223,9 +262,16 @@ SMS_API void sms_generator_reset(sms_generator *g, sms_real position);
  * target is kept), so the output stays bounded.
  */
 SMS_API void sms_generator_step(sms_generator *g, sms_real target, sms_real out[4]);
-/** @brief Total duration of the tail Tc = T2 + T3 [s] (the output lags r by this at most). */
+/** @brief n steps: targets[0..n-1] in, out[4 i .. 4 i + 3] = q, v, a, j of step i.
+ * Equal, bit for bit, to n calls of sms_generator_step() and to any split into blocks. */
+SMS_API void sms_generator_process(sms_generator *g, const sms_real *targets, size_t n,
+                                   sms_real *out);
+/** @brief Tail: its duration Tc = T2 + T3 [s] (the output lags r by this at most).
+ * Time-optimal: 0 (there is no tail). */
 SMS_API double sms_generator_tail_duration(const sms_generator *g);
-/** @brief Number of doubles sms_generator_get_state() writes (9). */
+/** @brief Number of doubles sms_generator_get_state() writes: 9 (tail) or 6 (time-optimal:
+ * target, goal, the plan's start q, v, a and the samples since it; loading re-plans from
+ * these, so a saved state can also move the generator to any sample of its plan). */
 SMS_API size_t sms_generator_state_count(const sms_generator *g);
 SMS_API void sms_generator_get_state(const sms_generator *g, double *dst);
 /** @brief Restore a saved state; ::SMS_ERR_STATE (nothing written) if n or a field is invalid. */

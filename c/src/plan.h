@@ -1,0 +1,26 @@
+/* Internal: the time-optimal jerk-limited single-axis plan from a state (q, v, a) to a target
+ * at rest, evaluated exactly at sample instants. In ::sms_real, no libm: the online generator
+ * re-plans on its per-sample path, and a float build must not pull in double arithmetic.
+ * Other generators (multi-axis, FMUs) may reuse it; the interface below is kept stable. */
+#ifndef SMS_PLAN_H
+#define SMS_PLAN_H
+
+#include "smoothshaper/trajectory.h"
+
+/* Time-optimal plan from (q, v, a) to goal at rest, starting on a sample instant.
+ * Precondition (what any plan's own state satisfies): |v| <= vmax, |a| <= amax and
+ * |v + a|a|/(2 jmax)| <= vmax (the velocity after bringing a to 0 as fast as possible).
+ * Structure: a velocity change (v, a) -> (vp, 0) (jerk +-jmax, hold +-amax if reached,
+ * jerk -+jmax), a cruise at vp = +-vmax when the distance allows, and the stop (vp, 0) ->
+ * (0, 0). vp solves "distance of the two changes = goal - q", the distance being increasing
+ * in vp; bisection in sms_real. */
+void sms_plan_to_rest(sms_plan *plan, const sms_plan_limits *lim, sms_real Ts, sms_real q,
+                      sms_real v, sms_real a, sms_real goal);
+
+/* q, v, a, j at sample k after the plan's first sample (jerk: right limit at a jump). */
+void sms_plan_eval(const sms_plan *plan, sms_real Ts, size_t k, sms_real out[4]);
+
+/* sqrt(x) for x >= 0 in sms_real without libm (Newton after scaling by powers of 4). */
+sms_real sms_plan_sqrt(sms_real x);
+
+#endif

@@ -1,0 +1,152 @@
+"""NumPy reference of the time-optimal online generator (the polynomial profile without a mode).
+
+Written independently of ``c/src/plan.c``: the motion from a state (q, v, a) to a target at
+rest is built from the same three phases (velocity change to a peak velocity vp with the
+acceleration back at 0, a cruise at +-vmax when the distance allows, the stop), but vp is
+found by ``scipy.optimize.brentq`` and the plan is sampled on absolute float64 times, a
+breakpoint on the grid (within 1e-9 relative of a whole number of samples, as in
+docs/exact-mode.md) deciding the side of its jump by the sample index. Used by the tests and the arrival benchmark; not on any run path.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy.optimize import brentq
+
+
+def _change(v0: float, a0: float, v1: float, A: float, J: float) -> list[tuple[float, float]]:
+    """(duration, jerk) pieces that take (v0, a0) to (v1, 0) in the least time within A, J.
+
+    The acceleration first moves towards a peak ap of the sign of the remaining change, holds
+    it if |ap| reached A, then returns to 0. The velocity gained when a returns to 0 at once
+    is a0|a0|/(2J); the peak follows from v1 - v0 = (ap^2 - a0^2)/(2J) + ap^2/(2J) (+ hold)."""
+    settle = v0 + a0 * abs(a0) / (2 * J)
+    if v1 == settle:
+        return [(abs(a0) / J, -math.copysign(J, a0))] if a0 else []
+    s = 1.0 if v1 > settle else -1.0
+    b0, dv = s * a0, s * (v1 - v0)
+    peak = math.sqrt(max(J * dv + 0.5 * b0 * b0, 0.0))
+    hold = 0.0
+    if peak > A:
+        peak = A
+        hold = max((dv - (2 * A * A - b0 * b0) / (2 * J)) / A, 0.0)
+    peak = max(peak, b0)
+    return [((peak - b0) / J, s * J), (hold, 0.0), (peak / J, -s * J)]
+
+
+def _integrate(pieces, q, v, a):
+    """End state after the pieces from (q, v, a): the integrals of a constant jerk."""
+    for d, j in pieces:
+        if d <= 0:
+            continue
+        q, v, a = q + d * v + d * d * a / 2 + d ** 3 * j / 6, v + d * a + d * d * j / 2, a + d * j
+    return q, v, a
+
+
+def plan_to_rest(q: float, v: float, a: float, goal: float, *, vmax: float, amax: float,
+                 jmax: float):
+    """Pieces [(duration, jerk), ...] and the start states of the time-optimal motion from
+    (q, v, a) to goal at rest. Returns (pieces, starts) with starts[i] = (q, v, a) of piece i;
+    the stop is anchored on the goal (its start is the goal minus its own distance)."""
+    D = goal - q
+    if D == 0 and v == 0 and a == 0:
+        return [], []
+
+    def dist(vp):
+        first = _change(v, a, vp, amax, jmax)
+        stop = _change(vp, 0.0, 0.0, amax, jmax)
+        q1, _, _ = _integrate(first, 0.0, v, a)
+        q2, _, _ = _integrate(stop, 0.0, vp, 0.0)
+        return q1 + q2
+
+    cruise = 0.0
+    if D >= dist(vmax):
+        vp = vmax
+        cruise = (D - dist(vmax)) / vmax
+    elif D <= dist(-vmax):
+        vp = -vmax
+        cruise = (D - dist(-vmax)) / -vmax
+    else:
+        try:
+            vp = brentq(lambda x: dist(x) - D, -vmax, vmax, xtol=1e-300, rtol=8.9e-16,
+                        maxiter=1000)
+        except RuntimeError:       # a tiny D: the root sits in a flat corner; bisect
+            lo, hi = -vmax, vmax
+            for _ in range(3000):
+                mid = 0.5 * (lo + hi)
+                if not lo < mid < hi:
+                    break
+                lo, hi = (mid, hi) if dist(mid) < D else (lo, mid)
+            vp = 0.5 * (lo + hi)
+    first = _change(v, a, vp, amax, jmax)
+    stop = _change(vp, 0.0, 0.0, amax, jmax)
+    pieces, starts = [], []
+    state = (q, v, a)
+    for d, j in first:
+        if d > 0:
+            pieces.append((d, j))
+            starts.append(state)
+            state = _integrate([(d, j)], *state)
+    if cruise > 0:
+        pieces.append((cruise, 0.0))
+        starts.append((state[0], vp, 0.0))
+    qs, _, _ = _integrate(stop, 0.0, vp, 0.0)
+    state = (goal - qs, vp, 0.0)
+    for d, j in stop:
+        if d > 0:
+            pieces.append((d, j))
+            starts.append(state)
+            state = _integrate([(d, j)], *state)
+    return pieces, starts
+
+
+def plan_duration(q, v, a, goal, *, vmax, amax, jmax) -> float:
+    """Duration [s] of :func:`plan_to_rest`."""
+    pieces, _ = plan_to_rest(q, v, a, goal, vmax=vmax, amax=amax, jmax=jmax)
+    return float(sum(d for d, _ in pieces))
+
+
+def _ends(pieces, Ts):
+    """End of each piece in samples after the plan's start, snapped onto the grid when within
+    1e-9 relative of a whole number."""
+    out, total = [], 0.0
+    for d, _ in pieces:
+        total += d
+        b = total / Ts
+        r = math.floor(b + 0.5)
+        out.append(float(r) if abs(b - r) <= 1e-9 * max(1.0, b) else b)
+    return out
+
+
+def _evaluate(pieces, starts, ends, goal, m, Ts):
+    """q, v, a, j at sample m >= 0 after the plan's start (jerk: right limit at a jump)."""
+    begin = 0.0
+    for (d, j), (q0, v0, a0), end in zip(pieces, starts, ends):
+        if m < end:
+            s = max(m * Ts - begin, 0.0)
+            return (q0 + s * (v0 + s * (a0 / 2 + s * j / 6)), v0 + s * (a0 + s * j / 2),
+                    a0 + s * j, j)
+        begin += d
+    return goal, 0.0, 0.0, 0.0
+
+
+def time_optimal_reference(targets, *, vmax, amax, jmax, Ts, q0=0.0) -> np.ndarray:
+    """``(n, 4)`` q, v, a, j of the time-optimal online generator for a staircase of targets.
+
+    Sample i is at time i Ts; before sample 0 the generator rests at ``q0``. On every sample
+    whose target differs from the running plan's goal, a new plan starts from the exact state
+    of the running one at that instant."""
+    x = np.asarray(targets, dtype=np.float64)
+    out = np.empty((x.size, 4))
+    pieces, starts, ends, goal, i0 = [], [], [], float(q0), 0
+    for i, target in enumerate(x):
+        state = _evaluate(pieces, starts, ends, goal, i - i0, Ts)
+        if target != goal:
+            pieces, starts = plan_to_rest(state[0], state[1], state[2], float(target),
+                                          vmax=vmax, amax=amax, jmax=jmax)
+            ends = _ends(pieces, Ts)
+            goal, i0 = float(target), i
+            state = _evaluate(pieces, starts, ends, goal, 0, Ts)
+        out[i] = state
+    return out
