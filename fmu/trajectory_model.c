@@ -2,7 +2,8 @@
  * TrajectoryGenerator: the online multi-point generator of the smoothshaper library
  * (sms_generator_*, trajectory.h) as an FMU. Input: target position (a staircase); outputs:
  * q, v, a, j at the internal ticks, never beyond vmax, amax, jmax for any target sequence.
- * At fmi2ExitInitializationMode the generator rests at the current target.
+ * At fmi2ExitInitializationMode the generator rests at the parameter q0 (default 0): a target
+ * that differs from q0 from the first step on is a move.
  */
 #include <math.h>
 #include <stddef.h>
@@ -15,7 +16,7 @@
 
 typedef struct tg_model {
     double target, out[4];                     /* q, v, a, j */
-    double Ts, vmax, amax, jmax, wn, zeta;
+    double Ts, vmax, amax, jmax, wn, zeta, q0;
     int profile;
     int built;
     sms_generator gen;                         /* tables in the glue's block */
@@ -24,10 +25,10 @@ typedef struct tg_model {
 /* Real value references and the field each one is, in modelDescription order. */
 static const fmi2ValueReference real_vrs[] = {
     TG_VR_TARGET, TG_VR_Q, TG_VR_V, TG_VR_A, TG_VR_J, TG_VR_TS, TG_VR_VMAX, TG_VR_AMAX, TG_VR_JMAX,
-    TG_VR_WN, TG_VR_ZETA
+    TG_VR_WN, TG_VR_ZETA, TG_VR_Q0
 };
 static const char *const real_names[] = {
-    "target", "q", "v", "a", "j", "Ts", "vmax", "amax", "jmax", "wn", "zeta"
+    "target", "q", "v", "a", "j", "Ts", "vmax", "amax", "jmax", "wn", "zeta", "q0"
 };
 #define N_REALS (sizeof real_vrs / sizeof real_vrs[0])
 
@@ -35,7 +36,7 @@ static const size_t real_offsets[] = {
     offsetof(tg_model, target), offsetof(tg_model, out[0]), offsetof(tg_model, out[1]),
     offsetof(tg_model, out[2]), offsetof(tg_model, out[3]), offsetof(tg_model, Ts),
     offsetof(tg_model, vmax), offsetof(tg_model, amax), offsetof(tg_model, jmax),
-    offsetof(tg_model, wn), offsetof(tg_model, zeta)
+    offsetof(tg_model, wn), offsetof(tg_model, zeta), offsetof(tg_model, q0)
 };
 
 /* Index of a Real value reference in real_vrs, or N_REALS. */
@@ -63,6 +64,7 @@ void fmu_model_defaults(void *model)
     m->profile = SMS_PROFILE_POLYNOMIAL;
     m->wn = 0.0;
     m->zeta = 0.0;
+    m->q0 = 0.0;
     m->built = 0;
 }
 
@@ -170,6 +172,8 @@ static int configure(const tg_model *m, sms_generator_config *c, size_t *need, c
                         "damped (2)", m->profile), 1;
     if (m->wn < 0.0)
         return snprintf(msg, len, "wn = %.17g: must be 0 (no mode) or > 0", m->wn), 1;
+    if (!isfinite(m->q0) || (sms_real)m->q0 - (sms_real)m->q0 != 0)
+        return snprintf(msg, len, "q0 = %.17g: the initial position must be finite", m->q0), 1;
     c->vmax = m->vmax;
     c->amax = m->amax;
     c->jmax = m->jmax;
@@ -207,8 +211,8 @@ int fmu_model_build(void *model, void *mem, size_t bytes, char *msg, size_t len)
     st = sms_generator_init(&m->gen, &c, m->Ts, (sms_real *)mem, bytes / sizeof(sms_real));
     if (st != SMS_OK)
         return refuse(m, st, msg, len);
-    sms_generator_reset(&m->gen, (sms_real)m->target);
-    m->out[0] = m->target;
+    sms_generator_reset(&m->gen, (sms_real)m->q0);
+    m->out[0] = (double)(sms_real)m->q0;
     m->out[1] = m->out[2] = m->out[3] = 0.0;
     m->built = 1;
     return 0;

@@ -139,8 +139,8 @@ def trajectory_generator() -> tuple[list[Var], list[str], str]:
     outs = [("q", "position"), ("v", "velocity (P/s)"), ("a", "acceleration (P/s2)"),
             ("j", "jerk (P/s3)")]
     vs = [Var("target", 0, "Real", "input", "target position in any unit P (piecewise constant "
-              "via-points), held over each communication step; its value at the end of "
-              "initialization is the rest position", "", 0.0, c_name="TARGET")]
+              "via-points), held over each communication step; a target other than q0 from the "
+              "first step on is a move", "", 0.0, c_name="TARGET")]
     for i, (n, text) in enumerate(outs):
         vs.append(Var(n, 1 + i, "Real", "output", f"{text} of the trajectory at the last internal "
                       "tick", "", variability="discrete", c_name=n.upper(),
@@ -160,6 +160,8 @@ def trajectory_generator() -> tuple[list[Var], list[str], str]:
             "finite, 0 < wn < pi/Ts", "rad/s", 0.0, variability="fixed", min=0.0, c_name="WN"),
         Var("zeta", 16, "Real", "parameter", "damping ratio of the mode to cancel; in [0, 1)", "1",
             0.0, variability="fixed", min=0.0, max=1.0, c_name="ZETA"),
+        Var("q0", 17, "Real", "parameter", "initial position (P): the generator starts at rest "
+            "there; finite", "", 0.0, variability="fixed", c_name="Q0"),
     ]
     return vs, [], "Online jerk-limited multi-point trajectory generator (smoothshaper)"
 

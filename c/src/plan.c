@@ -21,8 +21,10 @@ sms_real sms_plan_sqrt(sms_real x)
     return y * scale;
 }
 
-/* Relative tolerance of the on-grid test for breakpoints: 1e-9 (double), 64 ulps (float). */
-#define PLAN_GRID_TOL (sizeof(sms_real) == sizeof(double) ? 1e-9 : 64.0 * 1.1920929e-7)
+/* Relative tolerance of the on-grid test for breakpoints: 8 ulps of sms_real times the
+ * breakpoint's sample count, what summing the segment lengths can round away. */
+#define PLAN_GRID_TOL (sizeof(sms_real) == sizeof(double) ? 8.0 * 2.220446049250313e-16 \
+                                                          : 8.0 * 1.1920929e-7)
 
 /* Up to three constant-jerk pieces. */
 typedef struct pieces {
@@ -124,20 +126,6 @@ static void push(sms_plan *plan, sms_real Ts, size_t *n, sms_real *f, sms_real p
     }
     if (*f < 0)
         *f = 0;
-    /* a breakpoint within rounding of a sample instant is on it (the integer test of
-     * docs/exact-mode.md, 1e-9 relative in double): then the sample takes the new segment's
-     * values (the right limit), whatever side the rounded sum fell on */
-    {
-        sms_real tol = (sms_real)PLAN_GRID_TOL * (*n > 1u ? (sms_real)*n : 1);
-        if (tol > (sms_real)0.25)
-            tol = (sms_real)0.25;
-        if (*f <= tol * Ts) {
-            *f = 0;
-        } else if (Ts - *f <= tol * Ts) {
-            *f = 0;
-            *n += 1;
-        }
-    }
 }
 
 void sms_plan_to_rest(sms_plan *plan, const sms_plan_limits *lim, sms_real Ts, sms_real q,
@@ -206,25 +194,41 @@ void sms_plan_to_rest(sms_plan *plan, const sms_plan_limits *lim, sms_real Ts, s
     plan->end_f = f;
 }
 
+/* Is sample k at or after the breakpoint (n, f)? A breakpoint within the rounding of its
+ * sum (8 ulps of its sample count) of a sample instant is on it, so the sample takes the new
+ * segment's values (the right limit) whatever side the rounded sum fell on; the new segment
+ * is then evaluated at its start (t clamped to 0: q off by at most v times that rounding,
+ * v and a exact, none beyond its bound). */
+static int at_or_after(size_t k, size_t n, sms_real f, sms_real Ts)
+{
+    sms_real tol;
+    if (k != n)
+        return k > n;
+    tol = (sms_real)PLAN_GRID_TOL * (n > 1u ? (sms_real)n : 1);
+    if (tol > (sms_real)0.25)
+        tol = (sms_real)0.25;
+    return f <= tol * Ts;
+}
+
 void sms_plan_eval(const sms_plan *plan, sms_real Ts, size_t k, sms_real out[4])
 {
     size_t i = plan->count;
     sms_real t;
-    /* at or after the end (sample k is at or after boundary (n, f) when k > n, or k == n
-     * and f == 0): exactly at rest on the goal */
-    if (i == 0 || k > plan->end || (k == plan->end && plan->end_f <= 0)) {
+    /* at or after the end: exactly at rest on the goal */
+    if (i == 0 || at_or_after(k, plan->end, plan->end_f, Ts)) {
         out[0] = plan->goal;
         out[1] = 0;
         out[2] = 0;
         out[3] = 0;
         return;
     }
-    while (i > 1 && !(k > plan->n[i - 1] || (k == plan->n[i - 1] && plan->f[i - 1] <= 0)))
+    while (i > 1 && !at_or_after(k, plan->n[i - 1], plan->f[i - 1], Ts))
         --i;
     --i;
+    /* k >= n[i] here (the first segment starts at sample 0) */
     t = (sms_real)(k - plan->n[i]) * Ts - plan->f[i];
     if (t < 0)
-        t = 0; /* sample k precedes the first segment's start only by rounding */
+        t = 0;
     out[0] = plan->p[i] + t * (plan->v[i] + t * (plan->a[i] * (sms_real)0.5 +
                                                  t * plan->j[i] * (sms_real)(1.0 / 6.0)));
     out[1] = plan->v[i] + t * (plan->a[i] + t * plan->j[i] * (sms_real)0.5);

@@ -128,8 +128,9 @@ def cmd_generator(args) -> int:
     gen.reset(position=float(via[0]))
     scale = max(float(np.max(np.abs(via))), gen.vmax * gen.Ts)
     limits = (gen.vmax, gen.amax, gen.jmax)
-    Tc = gen.T2 + gen.T3
-    # A move of D takes about D/vmax + Tc (+ a wait of <= Tc before a re-plan or reversal).
+    # A move of D takes about D/vmax + Tc (+ a wait of <= Tc before a re-plan or reversal);
+    # the time-optimal generator's velocity rise lasts at most vmax/amax + amax/jmax.
+    Tc = gen.T2 + gen.T3 if not gen.time_optimal else gen.vmax / gen.amax + gen.amax / gen.jmax
     estimate = sum(abs(b - a) / gen.vmax + 3 * Tc for a, b in zip(via[:-1], via[1:]))
     if args.hold is not None:
         if not (math.isfinite(args.hold) and args.hold >= gen.Ts):

@@ -4,8 +4,8 @@ Written independently of ``c/src/plan.c``: the motion from a state (q, v, a) to 
 rest is built from the same three phases (velocity change to a peak velocity vp with the
 acceleration back at 0, a cruise at +-vmax when the distance allows, the stop), but vp is
 found by ``scipy.optimize.brentq`` and the plan is sampled on absolute float64 times, a
-breakpoint on the grid (within 1e-9 relative of a whole number of samples, as in
-docs/exact-mode.md) deciding the side of its jump by the sample index. Used by the tests and the arrival benchmark; not on any run path.
+breakpoint on the grid (within 8 ulps of its sample count of a whole number) deciding the
+side of its jump by the sample index. Used by the tests and the arrival benchmark; not on any run path.
 """
 from __future__ import annotations
 
@@ -109,13 +109,13 @@ def plan_duration(q, v, a, goal, *, vmax, amax, jmax) -> float:
 
 def _ends(pieces, Ts):
     """End of each piece in samples after the plan's start, snapped onto the grid when within
-    1e-9 relative of a whole number."""
+    8 ulps of its sample count of a whole number (what summing the lengths can round away)."""
     out, total = [], 0.0
     for d, _ in pieces:
         total += d
         b = total / Ts
         r = math.floor(b + 0.5)
-        out.append(float(r) if abs(b - r) <= 1e-9 * max(1.0, b) else b)
+        out.append(float(r) if abs(b - r) <= 8 * np.finfo(float).eps * max(1.0, b) else b)
     return out
 
 
@@ -124,7 +124,7 @@ def _evaluate(pieces, starts, ends, goal, m, Ts):
     begin = 0.0
     for (d, j), (q0, v0, a0), end in zip(pieces, starts, ends):
         if m < end:
-            s = max(m * Ts - begin, 0.0)
+            s = max(m * Ts - begin, 0.0)   # at its start when the breakpoint snapped onto m
             return (q0 + s * (v0 + s * (a0 / 2 + s * j / 6)), v0 + s * (a0 + s * j / 2),
                     a0 + s * j, j)
         begin += d

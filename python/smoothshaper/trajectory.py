@@ -141,7 +141,7 @@ class Generator:
         """Targets ``(n,)`` -> ``(n, 4)`` q, v, a, j; one C call for the whole block."""
         x = _targets("targets", targets)
         dtype = _real_dtype(self.precision)
-        xin = x if dtype == np.float64 else x.astype(dtype)
+        xin = np.ascontiguousarray(x, dtype=dtype)
         out = np.empty((x.size, 4), dtype=dtype)
         if x.size:
             self._lib.sms_generator_process(self._gen, self._ffi.from_buffer("sms_real[]", xin),

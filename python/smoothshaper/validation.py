@@ -129,10 +129,12 @@ def expected_output(stages, t: np.ndarray, u: np.ndarray, *, Ts: float,
 
 def expected_trajectory(t: np.ndarray, target: np.ndarray, *, Ts: float, **limits) -> np.ndarray:
     """What TrajectoryGenerator reports (columns q, v, a, j) at the communication points t,
-    from the NumPy reference of the generator (``trajectory.generator_reference``)."""
+    from the NumPy reference of the generator (``trajectory.generator_reference``). The FMU
+    starts at rest at its parameter q0 (``limits`` may give it; default 0)."""
     from .trajectory import generator_reference
     x, n_at = tick_inputs(t, target, Ts=Ts)
-    rest = float(target[0])
+    limits = dict(limits)
+    rest = float(limits.pop("q0", 0.0))
     rows = generator_reference(x, Ts=Ts, position=rest, **limits) if x.size else np.zeros((0, 4))
     return at_communication_points(rows, n_at, np.array([rest, 0.0, 0.0, 0.0]))
 

@@ -2,6 +2,8 @@
 FMU state, a foreign state refused, bad parameters named."""
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 
@@ -133,3 +135,22 @@ def test_an_fmu_state_of_the_other_model_is_refused_in_process(trajectory_dir, s
     ss.freeFMUstate(state)
     for f in (ss, tg):
         f.freeInstance()
+
+
+def test_starts_at_q0_and_a_target_stepped_at_t0_moves_time_optimally(trajectory_dir):
+    """q0 is where the FMU rests after initialization; a target already there at t = 0 is a
+    move, reaching it on the first tick at or after ruckig's time-optimal duration."""
+    ruckig = pytest.importorskip("ruckig")
+    h = 0.0819                       # default limits v = 1, a = 10, j = 100: 0.297 s
+    otg, inp, traj = ruckig.Ruckig(1), ruckig.InputParameter(1), ruckig.Trajectory(1)
+    inp.current_position, inp.target_position = [0.25], [0.25 + h]
+    inp.max_velocity, inp.max_acceleration, inp.max_jerk = [1.0], [10.0], [100.0]
+    otg.calculate(inp, traj)
+    fmu = slave(trajectory_dir, "q0")
+    start(fmu, target=0.25 + h, q0=0.25, vmax=1.0, amax=10.0, jmax=100.0)
+    assert fmu.getReal([fmu.vr["q"]])[0] == 0.25
+    out = run(fmu, 0.0, [0.25 + h] * 400)
+    arrive = np.flatnonzero((out[:, 0] == 0.25 + h) & (out[:, 1] == 0.0))[0]
+    assert arrive == math.ceil(traj.duration / TS)
+    assert abs(traj.duration - 0.297) < 5e-4
+    fmu.freeInstance()
