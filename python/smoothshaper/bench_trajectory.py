@@ -1,0 +1,149 @@
+"""Trajectory benchmark: what the online generator and the kinematic design cost and how close
+to time-optimal the generator is when targets change mid-motion.
+
+``python -m smoothshaper.bench_trajectory [--quick]`` prints:
+
+- the distribution of arrival time / ruckig's time-optimal duration from the same state, for
+  a target that changes mid-motion (random limits over three orders of magnitude, random
+  switch instants; the state (q, v, a) at the switch is the generator's own output);
+- the same ratio for rest-to-rest moves (1 + at most one sample);
+- ``Generator.process`` per sample on 1e6 samples (double and float, one C call);
+- ``design.kinematic`` from Python against the bare C call through cffi;
+- the price in samples of designing a kinematic chain on the grid (docs/sampled-limits.md).
+
+Nothing asserts a time; the figures are for reading (CPU time, medians of several rounds).
+"""
+from __future__ import annotations
+
+import argparse
+import statistics
+import time
+
+import numpy as np
+
+
+def _ruckig_duration(ruckig, q, v, a, goal, vmax, amax, jmax):
+    otg, inp, traj = ruckig.Ruckig(1), ruckig.InputParameter(1), ruckig.Trajectory(1)
+    inp.current_position, inp.current_velocity, inp.current_acceleration = [q], [v], [a]
+    inp.target_position = [goal]
+    inp.max_velocity, inp.max_acceleration, inp.max_jerk = [vmax], [amax], [jmax]
+    otg.calculate(inp, traj)
+    return traj.duration
+
+
+def arrival_ratios(n_cases: int, seed: int = 1, mid_motion: bool = True) -> np.ndarray:
+    """Arrival / ruckig's optimum from the same state, one per case."""
+    import ruckig
+    from .trajectory import Generator
+    rng = np.random.default_rng(seed)
+    out = []
+    while len(out) < n_cases:
+        vmax = 10.0 ** rng.uniform(-1, 1)
+        amax = vmax * 10.0 ** rng.uniform(-0.5, 1.5)
+        jmax = amax * 10.0 ** rng.uniform(0, 2)
+        first = rng.choice([-1, 1]) * vmax * 10.0 ** rng.uniform(-2, 0.5)
+        T1 = _ruckig_duration(ruckig, 0, 0, 0, first, vmax, amax, jmax)
+        Ts = T1 / 2000
+        g = Generator(vmax=vmax, amax=amax, jmax=jmax, Ts=Ts)
+        k = int(rng.uniform(0.05, 0.95) * T1 / Ts) if mid_motion else 0
+        second = first + rng.normal() * abs(first) if mid_motion else first
+        g.process(np.full(k, first))
+        saved = g.save_state()              # the state at the switch sample k: one more
+        q, v, a = g.process([first])[0, :3] if k else (0.0, 0.0, 0.0)   # step, then undo it
+        g.load_state(saved)
+        T2 = _ruckig_duration(ruckig, q, v, a, second, vmax, amax, jmax)
+        n = int(4 * T2 / Ts) + 10
+        y = g.process(np.full(n, second))
+        at_rest = np.flatnonzero((y[:, 0] == second) & (y[:, 1] == 0) & (y[:, 2] == 0))
+        if T2 <= 50 * Ts or at_rest.size == 0:
+            continue
+        # sample i of this block is i Ts after the switch (sample 0 is the switch itself,
+        # which evaluates the state at the switch instant)
+        out.append(at_rest[0] * Ts / T2)
+    return np.array(out)
+
+
+def _cpu(fn, rounds: int) -> float:
+    times = []
+    for _ in range(rounds):
+        t0 = time.process_time_ns()
+        fn()
+        times.append(time.process_time_ns() - t0)
+    return statistics.median(times)
+
+
+def main(argv=None) -> int:
+    p = argparse.ArgumentParser(prog="python -m smoothshaper.bench_trajectory",
+                                description=__doc__.split("\n\n")[0])
+    p.add_argument("--quick", action="store_true", help="a few-second smoke run")
+    args = p.parse_args(argv)
+    n_cases = 40 if args.quick else 1000
+    rounds = 2 if args.quick else 7
+    n_samples = 10_000 if args.quick else 1_000_000
+
+    from . import design
+    from .filters import _backend
+    from .trajectory import Generator
+
+    try:
+        import ruckig  # noqa: F401
+        for label, mid in (("target changed mid-motion", True), ("rest to rest", False)):
+            r = arrival_ratios(n_cases, mid_motion=mid)
+            q = np.percentile(r, [50, 90, 99])
+            print(f"arrival / ruckig's optimum, {label} ({r.size} cases, Ts = T/2000): "
+                  f"min {r.min():.4f}  median {q[0]:.4f}  p90 {q[1]:.4f}  p99 {q[2]:.4f}  "
+                  f"max {r.max():.4f}")
+    except ImportError:
+        print("(arrival ratios skipped: ruckig is not installed; pip install '.[test]')")
+
+    x = np.concatenate([np.full(n_samples // 4, v) for v in (1.0, -2.0, 0.5, 3.0)])
+    for precision in ("double", "float"):
+        g = Generator(vmax=1, amax=10, jmax=100, Ts=1e-3, precision=precision)
+
+        def run():
+            g.reset()
+            g.process(x)
+        ns = _cpu(run, rounds) / x.size
+        print(f"Generator.process, {precision}: {ns:.2f} ns/sample ({x.size} samples, one C call)")
+
+    ffi, lib = _backend("double")
+    L = ffi.new("double[]", [250.0, 5000.0, 2e5])
+    T = ffi.new("double[3]")
+    cnt = ffi.new("size_t *")
+    reps = 200 if args.quick else 20000
+
+    def c_call():
+        for _ in range(reps):
+            lib.sms_kinematic_design(40.0, L, 3, 0, 0.0, 0.0, 0.0, T, 3, cnt)
+
+    def py_call():
+        for _ in range(reps):
+            design.kinematic(h=40.0, vmax=250.0, amax=5000.0, jmax=2e5)
+
+    def py_grid():
+        for _ in range(reps):
+            design.kinematic(h=40.0, vmax=250.0, amax=5000.0, jmax=2e5, Ts=1e-4)
+    c_ns, py_ns, grid_ns = (_cpu(f, rounds) / reps for f in (c_call, py_call, py_grid))
+    print(f"kinematic design: C through cffi {c_ns / 1e3:.2f} us, design.kinematic "
+          f"{py_ns / 1e3:.2f} us ({py_ns / c_ns:.1f}x), with Ts {grid_ns / 1e3:.2f} us")
+
+    rng = np.random.default_rng(5)
+    for n in (1, 2, 3, 4):
+        prices = []
+        for _ in range(200 if args.quick else 2000):
+            h = 10.0 ** rng.uniform(-3, 3)
+            lim = [10.0 ** rng.uniform(-3, 3) * 10.0 ** i for i in range(n)]
+            kw = dict(vmax=lim[0], amax=lim[1] if n > 1 else None,
+                      jmax=lim[2] if n > 2 else None, higher=tuple(lim[3:]))
+            cont = design.kinematic(h=h, **kw)
+            Ts = design.duration(cont) / 10.0 ** rng.uniform(0.5, 3.5)
+            grid = design.kinematic(h=h, Ts=Ts, **kw)
+            prices.append((design.duration(grid) - design.duration(cont)) / Ts)
+        pr = np.array(prices)
+        print(f"grid price, {n} bound(s): mean {pr.mean():.2f}  median {np.median(pr):.2f}  "
+              f"p99 {np.percentile(pr, 99):.2f}  max {pr.max():.2f} samples")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
