@@ -21,6 +21,8 @@ import time
 
 import numpy as np
 
+__all__ = ["arrival_ratios", "main"]
+
 
 def _ruckig_duration(ruckig, q, v, a, goal, vmax, amax, jmax):
     otg, inp, traj = ruckig.Ruckig(1), ruckig.InputParameter(1), ruckig.Trajectory(1)
@@ -48,9 +50,9 @@ def arrival_ratios(n_cases: int, seed: int = 1, mid_motion: bool = True) -> np.n
         k = int(rng.uniform(0.05, 0.95) * T1 / Ts) if mid_motion else 0
         second = first + rng.normal() * abs(first) if mid_motion else first
         g.process(np.full(k, first))
-        saved = g.save_state()              # the state at the switch sample k: one more
+        saved = g.get_state()              # the state at the switch sample k: one more
         q, v, a = g.process([first])[0, :3] if k else (0.0, 0.0, 0.0)   # step, then undo it
-        g.load_state(saved)
+        g.set_state(saved)
         T2 = _ruckig_duration(ruckig, q, v, a, second, vmax, amax, jmax)
         n = int(4 * T2 / Ts) + 10
         y = g.process(np.full(n, second))

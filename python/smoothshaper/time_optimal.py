@@ -14,6 +14,8 @@ import math
 import numpy as np
 from scipy.optimize import brentq
 
+__all__ = ["plan_to_rest", "plan_duration", "time_optimal_reference"]
+
 
 def _change(v0: float, a0: float, v1: float, A: float, J: float) -> list[tuple[float, float]]:
     """(duration, jerk) pieces that take (v0, a0) to (v1, 0) in the least time within A, J.
