@@ -39,12 +39,14 @@ def test_random_staircases_stay_bounded_and_arrive(spec, lv, la, lj, profile_mod
         g = tr.Generator(vmax=vmax, amax=amax, jmax=jmax, Ts=1e-3, profile=profile,
                          precision=precision, **mode)
     except ParameterError as exc:
-        assume(exc.parameter != "Ts")   # a tail stage shorter than one sample
+        assume(exc.parameter not in ("amax", "jmax"))   # a tail stage shorter than a sample
         raise
     assume(g.tail_samples < 3000)
     # hold long enough for the worst case: finish the running segment (<= 10 units or Nc),
     # stop, wait Nc, travel back (<= 10 units or Nc), and let the tail settle (Nc)
-    hold = 2 * int(10.0 / (vmax * 1e-3)) + 5 * g.tail_samples + 10
+    # (time-optimal: the velocity rise and fall, vmax/amax + amax/jmax each, instead of Nc)
+    hold = 2 * int(10.0 / (vmax * 1e-3)) + 5 * g.tail_samples + 10 + \
+        4 * int((vmax / amax + amax / jmax) / 1e-3)
     x = staircase(spec, hold)
     y = g.process(x)
     tol = 1 + BOUND_RTOL[precision]
@@ -65,6 +67,12 @@ def test_c_matches_numpy_reference(spec, profile):
     y = tr.Generator(**kw).process(x)
     ref = tr.generator_reference(x, **kw)
     scale = np.array([5.0 + kw["vmax"] * 0.2, kw["vmax"], kw["amax"], kw["jmax"]])
+    if profile == "polynomial":
+        # time-optimal: a jerk jump within rounding of a sample may fall on either side in the
+        # two implementations (whole samples plus fractions against float64 seconds)
+        assert np.all(np.abs(y[:, :3] - ref[:, :3]) <= 1e-9 * scale[:3])
+        assert np.mean(np.abs(y[:, 3] - ref[:, 3]) > 1e-9 * scale[3]) <= 0.01
+        return
     assert np.all(np.abs(y - ref) <= 1e-11 * scale)
 
 
