@@ -28,6 +28,8 @@ def variable_table(md: Path) -> str:
     for st in root.iter("SimpleType"):
         items = ", ".join(f"{html.escape(i.get('name'))} = {i.get('value')}" for i in st.iter("Item"))
         enums.append(f"<li><b>{html.escape(st.get('name'))}</b>: {items}</li>")
+    if not enums:   # choices are Integer codes, listed in the variables' descriptions
+        return "\n".join(rows)
     return "\n".join(rows) + "\n<h2>Enumerations</h2>\n<ul>" + "\n".join(enums) + "</ul>"
 
 

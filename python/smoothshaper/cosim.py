@@ -325,7 +325,8 @@ def run(out_dir, *, fmus: dict | None = None, build_dir=None, importers=("libcos
     lines = ["# System co-simulation: TrajectoryGenerator -> SmoothShaper -> ElasticPlant", "",
              f"`ShapedMotion.ssp` (SSP 1.0) connects the three FMUs (fmpy runs it; libcosim runs "
              "`ShapedMotion-libcosim.ssp`, the same system without the system-level input, which "
-             "libcosim cannot connect: its runner sets the generator's target). Move of {MOVE * 1e3:g} mm at "
+             "libcosim cannot connect: its runner sets the generator's target). "
+             f"Move of {MOVE * 1e3:g} mm at "
              f"t = {T_MOVE:g} s, limits {LIMITS}; plant J_l = {PLANT['J_l']:g} kg m2, "
              f"k_t = {PLANT['k_t']:g} N m/rad, b_t = {PLANT['b_t']:g} N m s/rad "
              f"(wn = {wn:.1f} rad/s, zeta = {zeta:.4f}); shaper: ZV for that mode, or every stage "
