@@ -264,6 +264,10 @@ def test_libcosim_sets_every_kind_and_equals_fmpy_bit_for_bit(fmus, name, stages
     assert d_reference <= 4 * validation.REL_TOL  # |y| <= ~4: the reference's rounding
 
 
+def test_the_importer_cases_cover_every_stage_kind():
+    assert {s.kind for _, stages in CASES for s in stages} == set(validation.KIND_VALUES)
+
+
 def test_every_choice_is_an_integer_code_with_bounds_and_names(fmus):
     for path in fmus.values():
         md = read_model_description(str(path))
