@@ -29,6 +29,11 @@ typedef enum fmu_var_class {
 /** FMI 2.0 base types the models use (Enumerations travel as Integers). */
 typedef enum fmu_type { FMU_REAL = 0, FMU_INTEGER = 1 } fmu_type;
 
+/** Largest delay line / table a model allocates, in reals (2^28: 2 GiB in double, as the Python
+ * package's MAX_BUFFER_REALS): beyond it fmu_model_plan() refuses at once, naming the limit,
+ * instead of asking the importer for memory a co-simulation host cannot sensibly give. */
+#define FMU_MAX_REALS ((size_t)1 << 28)
+
 /** Largest message fmu_model_build() may write (including the terminating 0). */
 #define FMU_MESSAGE_LEN 256
 

@@ -262,9 +262,10 @@ static int configure(const ss_model *m, sms_stage_config *configs, size_t *n, si
     }
     if (*n > 0 && sms_chain_buffer_size(configs, *n, m->Ts, need) != SMS_OK)
         return snprintf(msg, len, "the stages do not form a valid chain"), 1;
-    if (*need > (size_t)-1 / sizeof(sms_real))
-        return snprintf(msg, len, "the stages need %lu delay-line samples: more than this "
-                        "platform can address", (unsigned long)*need), 1;
+    if (*need > FMU_MAX_REALS)
+        return snprintf(msg, len, "the stages need %.0f delay-line samples, more than the limit "
+                        "of %lu (2 GiB in double): shorten T/Ts", (double)*need,
+                        (unsigned long)FMU_MAX_REALS), 1;
     return 0;
 }
 

@@ -184,9 +184,10 @@ static int configure(const tg_model *m, sms_generator_config *c, size_t *need, c
     st = sms_generator_buffer_size(c, m->Ts, need);
     if (st != SMS_OK)
         return refuse(m, st, msg, len);
-    if (*need > (size_t)-1 / sizeof(sms_real))
-        return snprintf(msg, len, "the tail needs %lu table reals: more than this platform can "
-                        "address", (unsigned long)*need), 1;
+    if (*need > FMU_MAX_REALS)
+        return snprintf(msg, len, "the tail needs %.0f table reals, more than the limit of %lu "
+                        "(2 GiB in double): raise amax/jmax or Ts", (double)*need,
+                        (unsigned long)FMU_MAX_REALS), 1;
     return 0;
 }
 

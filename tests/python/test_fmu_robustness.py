@@ -234,8 +234,8 @@ def test_the_fmpy_input_benchmark_runs(fmus):  # noqa: F811
 
 def test_an_oversized_chain_is_refused_at_exit_initialization(smoothshaper_dir):
     # T = 1e9 s at Ts = 1 ms needs 1e12 delay-line samples: the size is known in closed form
-    # and the importer's allocator refuses 8 TB at once; the instance stays in initialization
-    # mode and takes a corrected T.
+    # and beyond the 2^28-sample limit (2 GiB) it is refused at once, naming both; the instance
+    # stays in initialization mode and takes a corrected T.
     log = Logged()
     fmu = slave(smoothshaper_dir, logged=log)
     fmu.setupExperiment(startTime=0.0)
@@ -243,7 +243,7 @@ def test_an_oversized_chain_is_refused_at_exit_initialization(smoothshaper_dir):
     fmu.setReal([fmu.vr["stage[0].T"]], [1e9])
     with pytest.raises(FMICallException):
         fmu.exitInitializationMode()
-    assert "8000000000" in log.messages[-1] and "bytes" in log.messages[-1], log.messages[-1]
+    assert "1000000000" in log.messages[-1] and "268435456" in log.messages[-1], log.messages[-1]
     fmu.setReal([fmu.vr["stage[0].T"]], [0.02])
     fmu.exitInitializationMode()
     fmu.doStep(0.0, TS)
