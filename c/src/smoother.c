@@ -146,7 +146,7 @@ typedef sms_real lanes __attribute__((vector_size(16)));
 #endif
 #define LANE(v, i) ((v)[i])
 /* Fast targets: one loop per variant (real or complex pole, with or without corrections). */
-#define SMS_SMOOTHER_SPECIALISE 1
+#define SMS_SMOOTHER_VARIANT_LOOPS 1
 #define ADD(a, b) ((a) + (b))
 #define SUB(a, b) ((a) - (b))
 #define MUL(a, b) ((a) * (b))
@@ -198,7 +198,7 @@ static void finish_sample(sms_real *ring, sms_real *out, size_t i, sms_real x, s
     out[i] = y + base;
 }
 
-#ifdef SMS_SMOOTHER_SPECIALISE
+#ifdef SMS_SMOOTHER_VARIANT_LOOPS
 /* Real pole (rectangular, exponential): Re w. unit_pole: q = 1 exactly (rectangular), so
  * (q - 1) w and q_lo w vanish. */
 static void segment_real(segment *g, const sms_real *in, sms_real *out, size_t n, int emit,
@@ -287,7 +287,7 @@ void sms_smoother_process(sms_smoother *f, const sms_real *in, sms_real *out, si
 {
     const size_t window = f->window;
     const int corrections = f->n_corrections > 0u;
-#ifdef SMS_SMOOTHER_SPECIALISE
+#ifdef SMS_SMOOTHER_VARIANT_LOOPS
     const int unit_pole = f->real_only && f->pole_m1_re == (sms_real)0 && f->pole_lo_re == (sms_real)0;
 #endif
     segment g;
@@ -326,7 +326,7 @@ void sms_smoother_process(sms_smoother *f, const sms_real *in, sms_real *out, si
         if (n < seg)
             seg = n;
         g.head = f->head;
-#ifdef SMS_SMOOTHER_SPECIALISE
+#ifdef SMS_SMOOTHER_VARIANT_LOOPS
         g.w_re = LANES(f->w_re[old], f->w_re[young]);
         g.w_im = LANES(f->w_im[old], f->w_im[young]);
         g.lo_re = LANES(f->lo_re[old], f->lo_re[young]);
