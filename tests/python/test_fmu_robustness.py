@@ -177,7 +177,7 @@ def test_another_models_instance_is_refused_and_untouched(smoothshaper_dir, traj
 
 def test_set_state_given_another_models_instance_never_writes(smoothshaper_dir, trajectory_dir):  # noqa: F811
     ss, tg = slave(smoothshaper_dir, "ss"), slave(trajectory_dir, "tg")
-    start(tg, target=0.2)
+    start(tg, target=0.2, q0=0.2)   # at rest on its target: a step must leave q at 0.2
     state = ss.getFMUstate()
     with pytest.raises(FMICallException):
         ss.fmi2SetFMUstate(tg.component, state)  # used to copy 531,720 bytes over tg's block
