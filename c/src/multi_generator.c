@@ -4,6 +4,7 @@
 #include <float.h>
 #include <math.h>
 #include "smoothshaper/multi_generator.h"
+#include "plan.h"
 
 #ifdef SMS_USE_FLOAT
 #define REAL_EPS ((sms_real)FLT_EPSILON)
@@ -28,27 +29,6 @@ static sms_real ratio(sms_real limit, sms_real d)
 #define MAX_BISECT 200
 /* A duration within this many ulps of a whole number of samples is on the grid. */
 #define GRID_TOL (8 * REAL_EPS)
-
-/* sqrt(x), x >= 0, by Newton after scaling into [1, 4) with exact powers of 2. */
-static sms_real root2(sms_real x)
-{
-    sms_real scale = 1, y;
-    int i;
-    if (!(x > 0))
-        return 0;
-    while (x >= 4) {
-        x *= (sms_real)0.25;
-        scale *= 2;
-    }
-    while (x < 1) {
-        x *= 4;
-        scale *= (sms_real)0.5;
-    }
-    y = (1 + x) * (sms_real)0.5;
-    for (i = 0; i < 7; ++i)
-        y = (y + x / y) * (sms_real)0.5;
-    return y * scale;
-}
 
 /* cbrt(x), x >= 0, by Newton after scaling into [1, 8). */
 static sms_real root3(sms_real x)
@@ -83,7 +63,7 @@ static sms_real unit_time(sms_real A, sms_real J, sms_real *rho)
         T = 1 / A + Tj;
         *rho = Tj / T;
     } else {
-        Tj = 1 / root2(J);
+        Tj = 1 / sms_plan_sqrt(J);
         T = 2 * Tj;
         *rho = (sms_real)0.5;
     }
@@ -142,11 +122,11 @@ static sms_real landing_kappa(const group *G, const sms_real *u, sms_real T1)
         return T1 / 2;
     /* the stop's unit limits are kappa au, kappa ju; acceleration-limited regime first */
     b = (T1 + au / ju) / 2;
-    kh = (b + root2(b * b + 2 / au)) / 2;
+    kh = (b + sms_plan_sqrt(b * b + 2 / au)) / 2;
     if (kh > ju / (au * au)) {
         /* jerk-limited stop: kappa = y^2, y^3 - (T1/2) y - 1/sqrt(ju) = 0; Newton from the
          * right of the root (the cubic is convex there) decreases monotonically */
-        sms_real c = T1 / 2, q = 1 / root2(ju), y = root2(c) + root3(q);
+        sms_real c = T1 / 2, q = 1 / sms_plan_sqrt(ju), y = sms_plan_sqrt(c) + root3(q);
         for (i = 0; i < 100; ++i) {
             sms_real f = (y * y - c) * y - q, y_next = y - f / (3 * y * y - c);
             if (!(y_next < y))
