@@ -3,6 +3,7 @@
  * state save/load, bad input. */
 #include <stdlib.h>
 #include "check.h"
+#include "double_s.h"
 
 #define MAX_TABLE 40000
 static sms_real table[MAX_TABLE];
@@ -346,30 +347,6 @@ static void test_state_and_bad_input(void)
     h = g;
     CHECK_STATUS(sms_generator_init(&g, &c, 1e-3, table, 10), SMS_ERR_BUFFER_TOO_SMALL);
     CHECK(g.n_tail == h.n_tail && g.r == h.r && g.target == h.target);
-}
-
-/* Time-optimal rest-to-rest duration (Biagiotti & Melchiorri, Trajectory Planning for
- * Automatic Machines and Robots, 2008, sec. 3.4), written independently of the generator. */
-static double double_s_duration(double h, double v, double a, double j)
-{
-    double Tj, Ta, Tv;
-    if (v * j >= a * a) {
-        Tj = a / j;
-        Ta = Tj + v / a;
-    } else {
-        Tj = sqrt(v / j);
-        Ta = 2.0 * Tj;
-    }
-    Tv = h / v - Ta;
-    if (Tv >= 0.0)
-        return 2.0 * Ta + Tv;
-    if (h >= 2.0 * a * a * a / (j * j)) {
-        Tj = a / j;
-        Ta = 0.5 * Tj + sqrt(0.25 * Tj * Tj + h / a);
-        return 2.0 * Ta;
-    }
-    Tj = cbrt(h / (2.0 * j));
-    return 4.0 * Tj;
 }
 
 /* A rest-to-rest move of any length arrives on the first sample at or after the
