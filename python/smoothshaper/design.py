@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import itertools
 import math
+import threading
 
 import numpy as np
 
@@ -150,6 +151,53 @@ def kinematic(*, h: float, vmax: float, amax: float | None = None, jmax: float |
     offending parameter: a bound, ``h``, ``wn``, ``zeta``, ``Ts``; extreme combinations
     name the pair whose ratio no duration can carry (e.g. ``h/vmax = 1e+318 s``).
     """
+    # Fast path (plain numbers, no higher bound, no mode): the argument checks the C design
+    # makes anyway are left to it, the ratio check runs only to name a refused argument, and
+    # the Stage objects are built from the C core's values without re-validation.
+    last = _FAST_PROFILES.get(profile) if wn is None and not higher else None
+    if (last is not None and _plain(vmax) and (amax is None or _plain(amax))
+            and (jmax is None or _plain(jmax) and amax is not None)
+            and (_plain(h) or _plain(-h)) and (Ts is None or _plain(Ts))):
+        lim, T, count, lib = _buffers()
+        lim[0] = vmax
+        n = 1
+        if amax is not None:
+            lim[1] = amax
+            n = 2
+            if jmax is not None:
+                lim[2] = jmax
+                n = 3
+        st = lib.sms_kinematic_design(h, lim, n, last, 0.0, 0.0, 0.0 if Ts is None else Ts,
+                                       T, n, count)
+        if st == 0:
+            out = [_stage("rectangular", t) for t in T[0:n - 1]]
+            out.append(_stage(_LAST_KIND[last], T[n - 1]))
+            return out
+    return _kinematic_checked(h, vmax, amax, jmax, higher, profile, wn, zeta, Ts)
+
+
+_FAST_PROFILES = {"polynomial": 0, "trigonometric": 1}
+_LAST_KIND = ("rectangular", "harmonic")
+_BUFFERS = threading.local()   # cffi calls release the GIL: one set of buffers per thread
+
+
+def _plain(x) -> bool:
+    """x is a float or int in (0, 1e308): finite and positive, no conversion needed."""
+    return (type(x) is float or type(x) is int) and 0 < x < 1e308
+
+
+def _buffers():
+    """This thread's limit, length and count buffers for the C design, and the library."""
+    b = getattr(_BUFFERS, "b", None)
+    if b is None:
+        ffi, lib = _backend("double")
+        b = _BUFFERS.b = (ffi.new("double[]", MAX_ORDER), ffi.new("double[]", MAX_ORDER),
+                          ffi.new("size_t *"), lib)
+    return b
+
+
+def _kinematic_checked(h, vmax, amax, jmax, higher, profile, wn, zeta, Ts) -> list[Stage]:
+    """The general path of :func:`kinematic`: every argument checked and named."""
     profile = profile_name(profile)
     h = _finite("h", h)
     if h == 0:
@@ -161,7 +209,6 @@ def kinematic(*, h: float, vmax: float, amax: float | None = None, jmax: float |
             "amax", "amax must be given for profile='damped' (the exponential stage is "
                     "the jerk/acceleration stage)")
     Ts_ = 0.0 if Ts is None else _positive("Ts", Ts)
-    _check_ratios(h, limits, wn_)
     ffi, lib = _backend("double")
     n = len(limits)
     count = ffi.new("size_t *")
@@ -170,25 +217,36 @@ def kinematic(*, h: float, vmax: float, amax: float | None = None, jmax: float |
         st = lib.sms_kinematic_design(h, ffi.new("double[]", limits), n,
                                       PROFILES.index(profile), wn_, zeta_, 0.0, T, n, count)
         if st != 0:
+            _check_ratios(h, limits, wn_)
             _design_error(st, lib, ffi, h=h, limits=limits, Ts=None, wn=wn_)
         return _continuous_stages(list(T), profile, wn_, zeta_, h, limits)
     configs = ffi.new("sms_stage_config[]", n)
     st = lib.sms_kinematic_configs(h, ffi.new("double[]", limits), n, PROFILES.index(profile),
                                    wn_, zeta_, Ts_, configs, n, count)
     if st != 0:
+        _check_ratios(h, limits, wn_)
         _design_error(st, lib, ffi, h=h, limits=limits, Ts=Ts_, wn=wn_)
-    return [_stage(_stages.KINDS[c.kind], c.T, c.sigma, c.k) for c in (configs[i] for i in range(n))]
+    return [_stage(_stages.KINDS[c.kind], float(c.T), float(c.sigma), int(c.k))
+            for c in (configs[i] for i in range(n))]
 
 
-_TEMPLATE = Stage("rectangular", T=1.0)
+_NEW = object.__new__
 
 
 def _stage(kind: str, T: float, sigma: float = 0.0, k: int = 1) -> Stage:
-    """A Stage from the C design's own values (already valid): skips the re-validation, which
-    was two thirds of a design's cost from Python."""
-    s = object.__new__(Stage)
-    s.__dict__.update(_TEMPLATE.__dict__)
-    s.__dict__.update(kind=kind, T=float(T), sigma=float(sigma), k=int(k))
+    """A Stage from the C design's own values (already valid), without re-validation: the
+    fields that differ from the dataclass's class-level defaults go into the instance (order
+    is 1 after validation, its class default is None); equal, hashable and printable as the
+    validated Stage. Skipping the validation was most of a design's cost from Python."""
+    s = _NEW(Stage)
+    d = s.__dict__
+    d["kind"] = kind
+    d["T"] = T
+    d["order"] = 1
+    if sigma:
+        d["sigma"] = sigma
+    if k != 1:
+        d["k"] = k
     return s
 
 

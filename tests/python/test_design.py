@@ -138,3 +138,37 @@ def test_damped_jerk():
 def test_errors_name_the_parameter(kwargs, name):
     with pytest.raises(ValueError, match=rf"^{name}\b"):
         design.kinematic(**kwargs)
+
+
+@given(lh=decades, lv=decades, la=decades, lj=decades, n=st.integers(1, 3),
+       trig=st.booleans(), grid=st.booleans(), as_int=st.booleans())
+def test_fast_path_equals_the_checked_path(lh, lv, la, lj, n, trig, grid, as_int):
+    """Plain numbers take the fast path of design.kinematic; it returns the same stages (equal,
+    same repr) as the fully checked path, for ints and floats, either sign of h."""
+    h = -(10.0 ** lh) if lh < 0 else 10.0 ** lh
+    kw = dict(vmax=10.0 ** lv, amax=10.0 ** la if n > 1 else None,
+              jmax=10.0 ** lj if n > 2 else None,
+              profile="trigonometric" if trig else "polynomial")
+    total = design.duration(design.kinematic(h=h, **kw))
+    Ts = total / 37.3 if grid else None
+    if as_int:
+        h = int(round(h)) or 1
+    fast = design.kinematic(h=h, Ts=Ts, **kw)
+    checked = design._kinematic_checked(h, kw["vmax"], kw["amax"], kw["jmax"], (),
+                                        kw["profile"], None, 0.0, Ts)
+    assert fast == checked and repr(fast) == repr(checked)
+    assert all(hash(a) == hash(b) for a, b in zip(fast, checked))
+
+
+@pytest.mark.parametrize("kwargs, name", [
+    (dict(h=1e300, vmax=1e-250), "vmax"),
+    (dict(h=1.0, vmax=1e200, amax=1e-200), "vmax"),
+    (dict(h=1.0, vmax=1.0, amax=1.0, jmax=1e-70), "jmax"),
+    (dict(h=1.0, vmax=1.0, amax=1e-70, Ts=1e-3), "amax"),
+])
+def test_fast_path_refusals_name_the_bound(kwargs, name):
+    """Extreme ratios pass the fast path's plain-number test; the C design refuses them and
+    the error still names the bound of the offending ratio."""
+    with pytest.raises(ValueError, match=rf"\b{name}\b") as err:
+        design.kinematic(**kwargs)
+    assert err.value.parameter == name
