@@ -10,22 +10,23 @@ int main(void)
     sms_stage_config cfg[2];
     sms_stage stages[2];
     sms_chain chain;
-    static sms_real buffer[512];              /* caller-owned delay lines */
+    static sms_memory_cell memory[512];       /* caller-owned: stages, taps, delay lines */
     size_t need, n;
     sms_status st;
 
     /* A harmonic smoother and a ZV shaper, both placed on the mode wn = 100 rad/s. */
     sms_design_for_mode(SMS_HARMONIC, 100.0, 0.0, 1, &cfg[0]);
     sms_design_for_mode(SMS_SHAPER_ZV, 100.0, 0.05, 1, &cfg[1]);
-    sms_chain_buffer_size(cfg, 2, Ts, &need); /* size query: how many reals the chain needs */
+    sms_chain_memory_size(cfg, 2, Ts, &need); /* size query: how many cells the chain needs */
     if (need > 512)
         return 1;
-    st = sms_chain_init(&chain, stages, cfg, 2, Ts, buffer, 512);
+    st = sms_chain_init(&chain, stages, cfg, 2, Ts, memory, 512);
     if (st != SMS_OK) {                       /* every status names the bad argument */
         fprintf(stderr, "sms_chain_init: %s\n", sms_status_string(st));
         return 1;
     }
-    printf("delay line: %zu reals, FIR length: %zu samples\n", need, sms_chain_length(&chain));
+    printf("memory: %zu bytes, FIR length: %zu samples\n", need * sizeof memory[0],
+           sms_chain_length(&chain));
     for (n = 0; n < 140; n++) {
         sms_real x = 1.0;                     /* a unit step, one sample at a time */
         sms_chain_step(&chain, &x);           /* in place: x is now the output */

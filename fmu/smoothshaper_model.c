@@ -24,8 +24,8 @@ typedef struct ss_params {
     double reals[SS_FIELD_COUNT]; /* T, sigma, wn, zeta, tolerance, notch_pole_zeta, duration */
 } ss_params;
 
-/* Parameters and the chain's descriptors; the delay lines live in the glue's block, sized to
- * the configured chain. */
+/* Parameters and the chain's descriptors; the stages' memory (instances, tap tables, delay
+ * lines) lives in the glue's block, sized to the configured chain. */
 typedef struct ss_model {
     double u, y, Ts;
     ss_params stage[SS_MAX_STAGES];
@@ -33,7 +33,7 @@ typedef struct ss_model {
     size_t n_active;                     /* stages with kind != none, in chain order */
     sms_chain chain;
     sms_stage stages[SS_MAX_STAGES];
-    size_t n_reals;                      /* delay-line samples of all stages (the glue's block) */
+    size_t n_cells;                      /* memory cells of all stages (the glue's block) */
 } ss_model;
 
 static int is_integer_field(unsigned f)
@@ -243,12 +243,15 @@ static int stage_config(const ss_model *m, unsigned k, sms_stage_config *c, char
 
 unsigned fmu_model_real_bytes(void) { return (unsigned)sizeof(sms_real); }
 
-/* Validate every parameter: the configs of the used stages, their count and the delay-line
- * samples they need (the core's size query: closed form). 0, or non-zero with msg. */
+/* Validate every parameter: the configs of the used stages, their count, the delay-line
+ * samples and the memory cells they need (the core's size queries: closed forms). 0, or
+ * non-zero with msg. */
 static int configure(const ss_model *m, sms_stage_config *configs, size_t *n, size_t *need,
                      char *msg, size_t len)
 {
     unsigned k;
+    size_t i;
+    double samples = 0.0;
     *n = 0;
     *need = 0;
     if (!(m->Ts > 0.0))
@@ -260,12 +263,17 @@ static int configure(const ss_model *m, sms_stage_config *configs, size_t *n, si
             return 1;
         ++*n;
     }
-    if (*n > 0 && sms_chain_buffer_size(configs, *n, m->Ts, need) != SMS_OK)
-        return snprintf(msg, len, "the stages do not form a valid chain"), 1;
-    if (*need > FMU_MAX_REALS)
+    for (i = 0; i < *n; ++i) {
+        size_t reals = 0;
+        (void)sms_stage_buffer_size(&configs[i], m->Ts, &reals);
+        samples += (double)reals;
+    }
+    if (samples > (double)FMU_MAX_REALS)
         return snprintf(msg, len, "the stages need %.0f delay-line samples, more than the limit "
-                        "of %lu (2 GiB in double): shorten T/Ts", (double)*need,
+                        "of %lu (2 GiB in double): shorten T/Ts", samples,
                         (unsigned long)FMU_MAX_REALS), 1;
+    if (*n > 0 && sms_chain_memory_size(configs, *n, m->Ts, need) != SMS_OK)
+        return snprintf(msg, len, "the stages do not form a valid chain"), 1;
     return 0;
 }
 
@@ -275,7 +283,7 @@ int fmu_model_plan(const void *model, size_t *bytes, char *msg, size_t len)
     size_t n, need;
     if (configure((const ss_model *)model, configs, &n, &need, msg, len) != 0)
         return 1;
-    *bytes = need * sizeof(sms_real);
+    *bytes = need * sizeof(sms_memory_cell);
     return 0;
 }
 
@@ -286,14 +294,14 @@ int fmu_model_build(void *model, void *mem, size_t bytes, char *msg, size_t len)
     size_t n, need;
     if (configure(m, configs, &n, &need, msg, len) != 0)
         return 1;
-    if (need * sizeof(sms_real) > bytes)
-        return snprintf(msg, len, "the stages need %lu delay-line samples, the block holds %lu",
-                        (unsigned long)need, (unsigned long)(bytes / sizeof(sms_real))), 1;
-    if (n > 0 && sms_chain_init(&m->chain, m->stages, configs, n, m->Ts, (sms_real *)mem,
-                                need) != SMS_OK)
+    if (need > bytes / sizeof(sms_memory_cell))
+        return snprintf(msg, len, "the stages need %lu bytes of memory, the block holds %lu",
+                        (unsigned long)(need * sizeof(sms_memory_cell)), (unsigned long)bytes), 1;
+    if (n > 0 && sms_chain_init(&m->chain, m->stages, configs, n, m->Ts,
+                                (sms_memory_cell *)mem, need) != SMS_OK)
         return snprintf(msg, len, "the chain could not be built"), 1;
     m->n_active = n;
-    m->n_reals = need;
+    m->n_cells = need;
     m->built = 1;
     if (n > 0)
         sms_chain_reset(&m->chain, (sms_real)m->u);
@@ -316,7 +324,7 @@ void fmu_model_rebind(void *model, void *mem)
 {
     ss_model *m = (ss_model *)model;
     if (m->built && m->n_active > 0)
-        sms_chain_rebind(&m->chain, m->stages, (sms_real *)mem);
+        sms_chain_rebind(&m->chain, m->stages, (sms_memory_cell *)mem);
 }
 
 size_t fmu_model_state_count(const void *model)

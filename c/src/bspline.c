@@ -43,7 +43,7 @@ sms_status sms_bspline_buffer_size(unsigned degree, size_t n_axes, double T, dou
     if (st != SMS_OK)
         return st;
     c = stage_config(N, Ts);
-    st = sms_stage_buffer_size(&c, Ts, &one);
+    st = sms_smoother_buffer_size(&c, Ts, &one);
     if (st != SMS_OK)
         return st;
     count = n_axes * degree;
@@ -57,7 +57,7 @@ static void axis_step(sms_bspline *b, size_t axis, sms_real *x)
 {
     size_t i;
     for (i = 0; i < b->degree; ++i)
-        sms_stage_step(&b->stages[axis * b->degree + i], x);
+        sms_smoother_step(&b->stages[axis * b->degree + i], x);
 }
 
 sms_status sms_bspline_init(sms_bspline *b, unsigned degree, size_t n_axes, double T, double Ts,
@@ -72,19 +72,19 @@ sms_status sms_bspline_init(sms_bspline *b, unsigned degree, size_t n_axes, doub
     st = sms_bspline_buffer_size(degree, n_axes, T, Ts, &need);
     if (st != SMS_OK)
         return st;
-    if (buffer == NULL && need > 0)
+    if (buffer == NULL)
         return SMS_ERR_NULL;
     if (n_reals < need)
         return SMS_ERR_BUFFER_TOO_SMALL;
     (void)knot_samples(degree, n_axes, T, Ts, &N);
     c = stage_config(N, Ts);
-    (void)sms_stage_buffer_size(&c, Ts, &one);
+    (void)sms_smoother_buffer_size(&c, Ts, &one);
     built.degree = degree;
     built.n_axes = n_axes;
     built.N = N;
     built.Ts = Ts;
     for (i = 0; i < n_axes * degree; ++i) {
-        st = sms_stage_init(&built.stages[i], &c, Ts, one ? buffer + i * one : NULL, one);
+        st = sms_smoother_init(&built.stages[i], &c, Ts, buffer + i * one, one);
         if (st != SMS_OK)
             return st;
     }
@@ -106,7 +106,7 @@ sms_status sms_bspline_init(sms_bspline *b, unsigned degree, size_t n_axes, doub
         }
     }
     for (i = 0; i < n_axes * degree; ++i)
-        sms_stage_reset(&built.stages[i], 0);
+        sms_smoother_reset(&built.stages[i], 0);
     *b = built;
     return SMS_OK;
 }
@@ -116,7 +116,7 @@ void sms_bspline_reset(sms_bspline *b, const sms_real *rest)
     size_t a, i;
     for (a = 0; a < b->n_axes; ++a)
         for (i = 0; i < b->degree; ++i)
-            sms_stage_reset(&b->stages[a * b->degree + i], rest[a]);
+            sms_smoother_reset(&b->stages[a * b->degree + i], rest[a]);
 }
 
 void sms_bspline_step(sms_bspline *b, const sms_real *in, sms_real *out)
@@ -248,7 +248,7 @@ size_t sms_bspline_state_count(const sms_bspline *b)
 {
     size_t i, total = 0;
     for (i = 0; i < b->n_axes * b->degree; ++i)
-        total += sms_stage_state_count(&b->stages[i]);
+        total += sms_smoother_state_count(&b->stages[i]);
     return total;
 }
 
@@ -256,8 +256,8 @@ void sms_bspline_get_state(const sms_bspline *b, double *dst)
 {
     size_t i;
     for (i = 0; i < b->n_axes * b->degree; ++i) {
-        sms_stage_get_state(&b->stages[i], dst);
-        dst += sms_stage_state_count(&b->stages[i]);
+        sms_smoother_get_state(&b->stages[i], dst);
+        dst += sms_smoother_state_count(&b->stages[i]);
     }
 }
 
@@ -269,15 +269,15 @@ sms_status sms_bspline_set_state(sms_bspline *b, const double *src, size_t n)
     if (n != sms_bspline_state_count(b))
         return SMS_ERR_STATE;
     for (i = 0; i < b->n_axes * b->degree; ++i) {
-        size_t cnt = sms_stage_state_count(&b->stages[i]);
-        sms_status st = sms_stage_check_state(&b->stages[i], src + off, cnt);
+        size_t cnt = sms_smoother_state_count(&b->stages[i]);
+        sms_status st = sms_smoother_check_state(&b->stages[i], src + off, cnt);
         if (st != SMS_OK)
             return st;
         off += cnt;
     }
     for (i = 0, off = 0; i < b->n_axes * b->degree; ++i) {
-        size_t cnt = sms_stage_state_count(&b->stages[i]);
-        (void)sms_stage_set_state(&b->stages[i], src + off, cnt);
+        size_t cnt = sms_smoother_state_count(&b->stages[i]);
+        (void)sms_smoother_set_state(&b->stages[i], src + off, cnt);
         off += cnt;
     }
     return SMS_OK;

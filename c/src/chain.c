@@ -1,35 +1,35 @@
-/* Stages in series over one caller buffer, laid out stage after stage. */
+/* Stages in series over one caller memory block, laid out stage after stage. */
 #include "smoothshaper/chain.h"
 
-/* Validate every config and size its stage (need[i]); the total into *n_reals. */
+/* Validate every config and size its stage (need[i] cells); the total into *n_cells. */
 static sms_status size_stages(const sms_stage_config *configs, size_t n, double Ts,
-                              size_t need[SMS_CHAIN_MAX_STAGES], size_t *n_reals)
+                              size_t need[SMS_CHAIN_MAX_STAGES], size_t *n_cells)
 {
     size_t total = 0, i;
     if (n == 0 || n > SMS_CHAIN_MAX_STAGES)
         return SMS_ERR_ORDER;
     for (i = 0; i < n; ++i) {
-        sms_status st = sms_stage_buffer_size(&configs[i], Ts, &need[i]);
+        sms_status st = sms_stage_memory_size(&configs[i], Ts, &need[i]);
         if (st != SMS_OK)
             return st;
         if (need[i] > (size_t)-1 - total)
             return SMS_ERR_TOO_LONG;
         total += need[i];
     }
-    *n_reals = total;
+    *n_cells = total;
     return SMS_OK;
 }
 
-sms_status sms_chain_buffer_size(const sms_stage_config *configs, size_t n, double Ts, size_t *n_reals)
+sms_status sms_chain_memory_size(const sms_stage_config *configs, size_t n, double Ts, size_t *n_cells)
 {
     size_t need[SMS_CHAIN_MAX_STAGES];
-    if (configs == NULL || n_reals == NULL)
+    if (configs == NULL || n_cells == NULL)
         return SMS_ERR_NULL;
-    return size_stages(configs, n, Ts, need, n_reals);
+    return size_stages(configs, n, Ts, need, n_cells);
 }
 
 sms_status sms_chain_init(sms_chain *chain, sms_stage *stages, const sms_stage_config *configs,
-                          size_t n, double Ts, sms_real *buffer, size_t n_reals)
+                          size_t n, double Ts, sms_memory_cell *memory, size_t n_cells)
 {
     size_t need[SMS_CHAIN_MAX_STAGES], total, offset = 0, i;
     sms_status st;
@@ -38,22 +38,21 @@ sms_status sms_chain_init(sms_chain *chain, sms_stage *stages, const sms_stage_c
     st = size_stages(configs, n, Ts, need, &total);
     if (st != SMS_OK)
         return st;
-    if (total > 0 && buffer == NULL)
+    if (memory == NULL)
         return SMS_ERR_NULL;
-    if (n_reals < total)
+    if (n_cells < total)
         return SMS_ERR_BUFFER_TOO_SMALL;
-    /* Every config is valid and the buffer is large enough: the inits below cannot fail, and
-     * each builds its stage once (the sizes above are kept, not asked again). */
+    /* Every config is valid and the memory is large enough: the inits below cannot fail. */
     for (i = 0; i < n; ++i) {
-        st = sms_stage_init(&stages[i], &configs[i], Ts, need[i] ? buffer + offset : NULL, need[i]);
+        st = sms_stage_init(&stages[i], &configs[i], Ts, memory + offset, need[i]);
         if (st != SMS_OK)
             return st;
         offset += need[i];
     }
     chain->stages = stages;
     chain->n_stages = n;
-    chain->buffer = buffer;
-    chain->buffer_len = total;
+    chain->memory = memory;
+    chain->memory_len = total;
     return SMS_OK;
 }
 
@@ -136,13 +135,13 @@ sms_status sms_chain_set_state(sms_chain *chain, const double *src, size_t n)
     return SMS_OK;
 }
 
-void sms_chain_rebind(sms_chain *chain, sms_stage *stages, sms_real *buffer)
+void sms_chain_rebind(sms_chain *chain, sms_stage *stages, sms_memory_cell *memory)
 {
     size_t i, offset = 0;
     chain->stages = stages;
-    chain->buffer = buffer;
+    chain->memory = memory;
     for (i = 0; i < chain->n_stages; ++i) {
-        sms_stage_rebind(&stages[i], buffer + offset);
-        offset += sms_stage_buffer_len(&stages[i]);
+        sms_stage_rebind(&stages[i], memory + offset);
+        offset += sms_stage_memory_len(&stages[i]);
     }
 }

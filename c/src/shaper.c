@@ -270,41 +270,57 @@ static sms_status build(const sms_stage_config *config, double Ts, sparse *taps)
     return realise(config, Ts, taps);
 }
 
-sms_status sms_shaper_buffer_size(const sms_stage_config *config, double Ts, size_t *n_reals)
+sms_status sms_shaper_sizes(const sms_stage_config *config, double Ts, size_t *n_reals,
+                            size_t *n_taps)
 {
     sparse taps;
     sms_status st;
-    if (n_reals == NULL)
+    if (n_reals == NULL || n_taps == NULL)
         return SMS_ERR_NULL;
     st = build(config, Ts, &taps);
-    if (st == SMS_OK)
+    if (st == SMS_OK) {
         *n_reals = taps.delay[taps.n - 1] + 1u;
+        *n_taps = taps.n;
+    }
     return st;
 }
 
-sms_status sms_shaper_init(sms_shaper *f, const sms_stage_config *config, double Ts,
-                           sms_real *buffer, size_t n_reals)
+sms_status sms_shaper_buffer_size(const sms_stage_config *config, double Ts, size_t *n_reals)
 {
-    sparse taps;
+    size_t n_taps;
+    return sms_shaper_sizes(config, Ts, n_reals, &n_taps);
+}
+
+sms_status sms_shaper_tap_count(const sms_stage_config *config, double Ts, size_t *n_taps)
+{
+    size_t n_reals;
+    return sms_shaper_sizes(config, Ts, &n_reals, n_taps);
+}
+
+sms_status sms_shaper_init(sms_shaper *f, const sms_stage_config *config, double Ts,
+                           sms_shaper_tap *taps, size_t n_taps, sms_real *buffer, size_t n_reals)
+{
+    sparse design;
     sms_shaper built;
     size_t i;
     sms_status st;
     if (f == NULL)
         return SMS_ERR_NULL;
-    st = build(config, Ts, &taps);
+    st = build(config, Ts, &design);
     if (st != SMS_OK)
         return st;
-    if (buffer == NULL)
+    if (taps == NULL || buffer == NULL)
         return SMS_ERR_NULL;
     built.kind = config->kind;
-    built.length = taps.delay[taps.n - 1] + 1u;
-    if (n_reals < built.length)
+    built.length = design.delay[design.n - 1] + 1u;
+    if (n_taps < design.n || n_reals < built.length)
         return SMS_ERR_BUFFER_TOO_SMALL;
-    built.n_taps = taps.n;
-    for (i = 0; i < SMS_SHAPER_MAX_TAPS; ++i) {
-        built.tap_delay[i] = i < taps.n ? taps.delay[i] : 0u;
-        built.tap_gain[i] = i < taps.n ? (sms_real)taps.gain[i] : (sms_real)0;
+    built.n_taps = design.n;
+    for (i = 0; i < design.n; ++i) {
+        taps[i].delay = design.delay[i];
+        taps[i].gain = (sms_real)design.gain[i];
     }
+    built.taps = taps;
     built.history = buffer;
     built.history_len = built.length;
     *f = built;
@@ -326,16 +342,15 @@ void sms_shaper_reset(sms_shaper *f, sms_real rest)
 void sms_shaper_process(sms_shaper *f, const sms_real *in, sms_real *out, size_t n)
 {
     const size_t len = f->history_len, n_taps = f->n_taps;
-    const size_t *delay = f->tap_delay;
-    const sms_real *gain = f->tap_gain;
+    const sms_shaper_tap *taps = f->taps;
     sms_real *ring = f->history;
     size_t i, k, head = f->head;
     for (i = 0; i < n; ++i) {
         sms_real acc = 0;
         ring[head] = in[i];
         for (k = 0; k < n_taps; ++k) {
-            const size_t d = delay[k];
-            acc += gain[k] * ring[head >= d ? head - d : head + len - d];
+            const size_t d = taps[k].delay;
+            acc += taps[k].gain * ring[head >= d ? head - d : head + len - d];
         }
         head = head + 1u == len ? 0u : head + 1u;
         out[i] = acc;

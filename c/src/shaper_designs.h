@@ -16,4 +16,9 @@ int sms_gmzv_undamped(unsigned n, double duration, double *amp, double *units);
  * the number of impulses (<= SMS_SHAPER_MAX_IMPULSES). */
 size_t sms_shaper_design(const sms_stage_config *config, double *amp, double *time);
 
+/* Both sizes of a shaper from one design: delay-line length L and number of taps (the two
+ * public size queries, for callers that need both). Statuses as sms_shaper_buffer_size(). */
+sms_status sms_shaper_sizes(const sms_stage_config *config, double Ts, size_t *n_reals,
+                            size_t *n_taps);
+
 #endif

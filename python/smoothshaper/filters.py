@@ -3,9 +3,10 @@
 Everything here calls the compiled C core (``smoothshaper._core``, or ``_core_float`` with
 ``precision="float"``) through cffi. Arrays in and out are float64 (the float module rounds
 the input to float32, filters in float32 and returns float64). Memory follows the C house
-style: the Python object owns the ``sms_stage`` array and the delay-line buffer (a NumPy
-array); the C ``sms_chain`` holds pointers into them, which stay valid because the object
-keeps both alive and never reallocates them.
+style: the Python object owns the ``sms_stage`` array and the stages' memory (a NumPy array of
+``sms_memory_cell``: each stage's instance, tap table and delay line); the C ``sms_chain``
+holds pointers into them, which stay valid because the object keeps both alive and never
+reallocates them.
 
 Errors: every C status maps to :class:`ParameterError` (a ``ValueError``) whose message starts
 with the offending parameter's name (``Ts``, ``T``, ``sigma``, ``k``, ``wn``, ``zeta``,
@@ -86,6 +87,17 @@ def _backend(precision: str):
                 "install the package with `pip install -e .` from the repository root") from exc
         _backends[precision] = (mod.ffi, mod.lib)
     return _backends[precision]
+
+
+def _cells(ffi, n_cells: int):
+    """Zeroed memory of ``n_cells`` ``sms_memory_cell`` for a chain: the NumPy array that owns
+    it (float64, so aligned for the cell's double, size_t and pointer members) and the C
+    pointer into it."""
+    size = ffi.sizeof("sms_memory_cell")
+    if ffi.alignof("sms_memory_cell") > np.dtype(np.float64).alignment or size % 8:
+        raise RuntimeError("sms_memory_cell needs an alignment float64 arrays do not give")
+    memory = np.zeros(max(1, n_cells) * size // 8, dtype=np.float64)
+    return memory, ffi.cast("sms_memory_cell *", ffi.from_buffer(memory))
 
 
 def _real_dtype(precision: str):
@@ -267,13 +279,16 @@ class Chain:
         total = sum(sizes)
         if total > MAX_BUFFER_REALS:
             self._raise_too_long(sizes, total)
+        cells = ffi.new("size_t *")
+        st = lib.sms_chain_memory_size(configs, n, self.Ts, cells)
+        if st != 0:
+            _raise_status(st, lib, ffi, f"chain of {n} stages, Ts={self.Ts!r}")
         # Owned by this object for its whole life; the C chain points into both.
-        self._buffer = np.zeros(max(1, total), dtype=_real_dtype(precision))
-        self._buffer_c = ffi.from_buffer("sms_real[]", self._buffer)
+        self._memory, self._memory_c = _cells(ffi, cells[0])
         self._stage_mem = ffi.new("sms_stage[]", n)
         self._chain = ffi.new("sms_chain *")
         st = lib.sms_chain_init(self._chain, self._stage_mem, configs, n, self.Ts,
-                                self._buffer_c, total)
+                                self._memory_c, cells[0])
         if st != 0:
             _raise_status(st, lib, ffi, f"chain of {n} stages, Ts={self.Ts!r}")
 
@@ -423,14 +438,14 @@ class Chain:
         ffi, lib = self._ffi, self._lib
         twin = Chain.__new__(Chain)
         twin.__dict__.update(self.__dict__)       # the description; the memory is replaced:
-        twin._buffer = self._buffer.copy()
-        twin._buffer_c = ffi.from_buffer("sms_real[]", twin._buffer)
+        twin._memory, twin._memory_c = _cells(ffi, int(self._chain.memory_len))
+        twin._memory[:] = self._memory
         n = len(self.stages)
         twin._stage_mem = ffi.new("sms_stage[]", n)
         ffi.memmove(twin._stage_mem, self._stage_mem, ffi.sizeof("sms_stage") * n)
         twin._chain = ffi.new("sms_chain *")
         twin._chain[0] = self._chain[0]
-        lib.sms_chain_rebind(twin._chain, twin._stage_mem, twin._buffer_c)
+        lib.sms_chain_rebind(twin._chain, twin._stage_mem, twin._memory_c)
         return twin
 
     __copy__ = copy

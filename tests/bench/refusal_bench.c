@@ -11,7 +11,7 @@ static double seconds(void)
     return (double)clock() / CLOCKS_PER_SEC;
 }
 
-/* Mean time of one sms_chain_buffer_size call over `reps` calls. */
+/* Mean time of one sms_chain_memory_size call over `reps` calls. */
 static double size_time(const sms_stage_config *c, size_t n, double Ts, size_t *need,
                         sms_status *st)
 {
@@ -19,7 +19,7 @@ static double size_time(const sms_stage_config *c, size_t n, double Ts, size_t *
     double t0 = seconds();
     int r;
     for (r = 0; r < reps; ++r)
-        *st = sms_chain_buffer_size(c, n, Ts, need);
+        *st = sms_chain_memory_size(c, n, Ts, need);
     return (seconds() - t0) / reps;
 }
 
@@ -50,7 +50,7 @@ int main(void)
         double t;
         sms_design_for_mode(kinds[k], 100.0, 0.99999999999, 1u, &c);
         t = size_time(&c, 1, 1e-3, &need, &st);
-        printf("  %-16s status %3d, %10lu samples, %8.3f us\n", sms_kind_name(kinds[k]), (int)st,
+        printf("  %-16s status %3d, %10lu cells, %8.3f us\n", sms_kind_name(kinds[k]), (int)st,
                (unsigned long)need, 1e6 * t);
     }
     {
@@ -62,7 +62,7 @@ int main(void)
             chain[k].sigma = -1e-3;
         }
         t = size_time(chain, 4, Ts, &need, &st);
-        printf("\nchain of 4 smoothers of 1e9 samples each: %.3f us (status %d, %lu reals)\n",
+        printf("\nchain of 4 smoothers of 1e9 samples each: %.3f us (status %d, %lu cells)\n",
                1e6 * t, (int)st, (unsigned long)need);
     }
     return 0;

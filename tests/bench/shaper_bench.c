@@ -10,7 +10,7 @@
 #define N_RUN 2000000
 #define MAX_LEN 4096
 
-static sms_real buf[MAX_LEN];
+static sms_memory_cell buf[MAX_LEN];
 static double taps[MAX_LEN], rec[20000];
 
 static double seconds(void)
@@ -37,7 +37,7 @@ static void cost(const char *name, const sms_stage_config *c, double Ts)
     t1 = seconds();
     /* a notch is IIR: 4 coefficients, no delay line */
     printf("%-28s taps %2zu  L %5zu  %6.2f ns/sample  (checksum %g)\n", name,
-           c->kind >= SMS_NOTCH_TUSTIN ? (size_t)4 : stage.u.shaper.n_taps, sms_stage_length(&stage),
+           c->kind >= SMS_NOTCH_TUSTIN ? (size_t)4 : stage.u.shaper->n_taps, sms_stage_length(&stage),
            1e9 * (t1 - t0) / N_RUN, (double)acc);
 }
 

@@ -32,7 +32,7 @@
 #define MAX_ROUNDS 64
 
 static sms_real input[BLOCK], output[BLOCK];
-static sms_real stage_buffer[MAX_RING];
+static sms_memory_cell stage_memory[MAX_RING];
 
 static double cpu_seconds(void)
 {
@@ -226,7 +226,7 @@ static sms_stage stage;
 
 static int init_stage(const sms_stage_config *c, double Ts)
 {
-    sms_status st = sms_stage_init(&stage, c, Ts, stage_buffer, MAX_RING);
+    sms_status st = sms_stage_init(&stage, c, Ts, stage_memory, MAX_RING);
     if (st != SMS_OK) {
         printf("init failed: %s\n", sms_status_string(st));
         return 0;

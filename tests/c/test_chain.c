@@ -56,13 +56,14 @@ static void test_equals_convolution(void)
 {
     static sms_stage_config c[8];
     static sms_stage stages[8];
-    static sms_real buf[MAX_BUF], in[N_IN], out[N_IN];
+    static sms_memory_cell buf[MAX_BUF];
+    static sms_real in[N_IN], out[N_IN];
     static double h[MAX_TAPS], tap[MAX_TAPS], tmp[MAX_TAPS], ref[N_IN];
     sms_chain chain;
     size_t n = mixed_configs(c), need, L = 1, i, j, s, Ls;
     double b[3], a[3], x1 = 0, x2 = 0, y1 = 0, y2 = 0, scale = 0, worst = 0;
     sms_notch probe;
-    CHECK_STATUS(sms_chain_buffer_size(c, n, Ts, &need), SMS_OK);
+    CHECK_STATUS(sms_chain_memory_size(c, n, Ts, &need), SMS_OK);
     CHECK(need <= MAX_BUF);
     CHECK_STATUS(sms_chain_init(&chain, stages, c, n, Ts, buf, MAX_BUF), SMS_OK);
     /* FIR part: convolution of the stages' taps */
@@ -104,7 +105,7 @@ static void test_splits_state_rebind(void)
 {
     static sms_stage_config c[8];
     static sms_stage stages[8], stages2[8], stages_copy[8], saved_stages[8];
-    static sms_real buf[MAX_BUF], buf2[MAX_BUF], buf_copy[MAX_BUF], saved_buf[MAX_BUF];
+    static sms_memory_cell buf[MAX_BUF], buf2[MAX_BUF], buf_copy[MAX_BUF], saved_buf[MAX_BUF];
     static sms_real in[N_IN], one[N_IN], split[N_IN], other[N_IN];
     static double state[MAX_BUF + 200], bad[MAX_BUF + 200];
     sms_chain chain, chain2, copy, saved;
@@ -157,7 +158,7 @@ static void test_splits_state_rebind(void)
     CHECK(memcmp(&saved, &chain2, sizeof chain2) == 0);
     CHECK(memcmp(saved_stages, stages2, sizeof stages2) == 0);
     CHECK(memcmp(saved_buf, buf2, sizeof buf2) == 0);
-    /* rebind: copy the chain, its stages and buffer, rebind the copy, run both */
+    /* rebind: copy the chain, its stages and memory, rebind the copy, run both */
     sms_chain_reset(&chain, (sms_real)1e3);
     sms_chain_process(&chain, in, one, half);
     copy = chain;
@@ -174,17 +175,17 @@ static void test_errors(void)
 {
     static sms_stage_config c[8];
     static sms_stage stages[8], before_stages[8];
-    static sms_real buf[MAX_BUF], before_buf[MAX_BUF];
+    static sms_memory_cell buf[MAX_BUF], before_buf[MAX_BUF];
     sms_chain chain, before;
     size_t n = mixed_configs(c), need, i;
     memset(&chain, 0x42, sizeof chain);
     memset(stages, 0x43, sizeof stages);
     for (i = 0; i < MAX_BUF; ++i)
-        buf[i] = (sms_real)i;
+        buf[i].r = (sms_real)i;
     before = chain;
     memcpy(before_stages, stages, sizeof stages);
     memcpy(before_buf, buf, sizeof buf);
-    CHECK_STATUS(sms_chain_buffer_size(c, n, Ts, &need), SMS_OK);
+    CHECK_STATUS(sms_chain_memory_size(c, n, Ts, &need), SMS_OK);
     CHECK_STATUS(sms_chain_init(&chain, stages, c, n, Ts, buf, need - 1), SMS_ERR_BUFFER_TOO_SMALL);
     CHECK_STATUS(sms_chain_init(&chain, stages, c, n, Ts, NULL, need), SMS_ERR_NULL);
     CHECK_STATUS(sms_chain_init(&chain, stages, c, 0, Ts, buf, MAX_BUF), SMS_ERR_ORDER);
@@ -205,12 +206,55 @@ static void test_errors(void)
     CHECK(memcmp(&chain, &before, sizeof chain) == 0);
     CHECK(memcmp(stages, before_stages, sizeof stages) == 0);
     CHECK(memcmp(buf, before_buf, sizeof buf) == 0);
-    CHECK_STATUS(sms_chain_buffer_size(c, n, Ts, NULL), SMS_ERR_NULL);
+    CHECK_STATUS(sms_chain_memory_size(c, n, Ts, NULL), SMS_ERR_NULL);
     CHECK_STATUS(sms_chain_init(NULL, stages, c, n, Ts, buf, MAX_BUF), SMS_ERR_NULL);
+}
+
+static size_t cells(size_t bytes)
+{
+    return (bytes + sizeof(sms_memory_cell) - 1) / sizeof(sms_memory_cell);
+}
+
+/* Memory follows the family: a stage is a kind and a pointer; its memory holds its own
+ * instance, a shaper's own taps and its delay line, nothing sized for other families. */
+static void test_memory_per_family(void)
+{
+    static sms_stage_config c[8];
+    static sms_memory_cell buf[MAX_BUF];
+    static sms_stage stages[8];
+    const size_t per_cell = sizeof(sms_memory_cell) / sizeof(sms_real);
+    size_t n = mixed_configs(c), i, sum = 0, total, used = 0;
+    sms_chain chain;
+    CHECK(sizeof(sms_stage) <= 2 * sizeof(void *));
+    for (i = 0; i < n; ++i) {
+        size_t need, reals, n_taps, expect;
+        CHECK_STATUS(sms_stage_memory_size(&c[i], Ts, &need), SMS_OK);
+        CHECK_STATUS(sms_stage_buffer_size(&c[i], Ts, &reals), SMS_OK);
+        if (c[i].kind <= SMS_EXPONENTIAL) {
+            expect = cells(sizeof(sms_smoother)) + (reals + per_cell - 1) / per_cell;
+        } else if (c[i].kind >= SMS_NOTCH_TUSTIN && c[i].kind <= SMS_NOTCH_MATCHED) {
+            expect = cells(sizeof(sms_notch));
+            CHECK(reals == 0);
+        } else {
+            CHECK_STATUS(sms_shaper_tap_count(&c[i], Ts, &n_taps), SMS_OK);
+            expect = cells(sizeof(sms_shaper)) + cells(n_taps * sizeof(sms_shaper_tap))
+                     + (reals + per_cell - 1) / per_cell;
+        }
+        CHECK(need == expect);
+        sum += need;
+    }
+    CHECK_STATUS(sms_chain_memory_size(c, n, Ts, &total), SMS_OK);
+    CHECK(total == sum && total <= MAX_BUF);
+    /* exactly the queried memory suffices, and each stage reports the part it uses */
+    CHECK_STATUS(sms_chain_init(&chain, stages, c, n, Ts, buf, total), SMS_OK);
+    for (i = 0; i < n; ++i)
+        used += sms_stage_memory_len(&stages[i]);
+    CHECK(used == total && chain.memory_len == total);
 }
 
 int main(void)
 {
+    test_memory_per_family();
     test_equals_convolution();
     test_splits_state_rebind();
     test_errors();

@@ -58,7 +58,7 @@ static void test_fields(void)
 static void test_cancels(void)
 {
     static double taps[MAX_LEN];
-    static sms_real buf[MAX_LEN];
+    static sms_memory_cell buf[MAX_LEN];
     struct { double wn, zeta, Ts; } modes[] = {
         {123.7129, 0.12654, 500e-6},          /* seed 000: sigma -15.6539, wd 122.7185, T/Ts 153.6 */
         {2 * PI / (200 * 1e-3), 0.0, 1e-3},   /* undamped, integer T/Ts (rectangular N = 200) */
@@ -80,11 +80,11 @@ static void test_cancels(void)
                 if (!is_smoother((sms_kind)kind) && k != 1)
                     continue;
                 CHECK_STATUS(sms_design_for_mode((sms_kind)kind, wn, zeta, k, &c), SMS_OK);
-                CHECK_STATUS(sms_stage_buffer_size(&c, Ts, &need), SMS_OK);
+                CHECK_STATUS(sms_stage_memory_size(&c, Ts, &need), SMS_OK);
                 CHECK(need <= MAX_LEN);
                 CHECK_STATUS(sms_stage_init(&stage, &c, Ts, buf, MAX_LEN), SMS_OK);
                 if (is_notch((sms_kind)kind)) {
-                    const sms_notch *f = &stage.u.notch;
+                    const sms_notch *f = stage.u.notch;
                     /* realised numerator A + (1 - z^-1)(d0 - d2 z^-1) (notch.h) */
                     double complex num = 1.0 + (double)f->a1 / zp + (double)f->a2 / (zp * zp)
                                          + (1.0 - 1.0 / zp) * ((double)f->d0 - (double)f->d2 / zp);

@@ -1,8 +1,8 @@
 /* Seeded random configurations and calls against the public C API (sanitizer build: ASan and
  * UBSan see every call). Assertions for every configuration:
  * - no crash, and no call longer than 100 ms (size queries and refusals are O(1); the only
- *   O(length) work is zeroing a delay line the caller provides, here at most MAX_BUF reals);
- * - a failing init leaves the stage / chain (and the caller's buffer) byte for byte unchanged;
+ *   O(length) work is zeroing a delay line the caller provides, here at most MAX_BUF cells);
+ * - a failing init leaves the stage / chain (and the caller's memory) byte for byte unchanged;
  * - SMS_OK never comes with a non-finite design value, tap, mode or output (inputs up to 1e3;
  *   inputs up to SMS_INPUT_MAX and beyond, NaN and Inf are fed too, checking only that the
  *   state stays loadable: heavily damped smoothers have recursion gains far above 1, see
@@ -23,7 +23,7 @@
 #define MAX_STAGES 4
 #define CALL_LIMIT_S 0.1
 
-static sms_real buffer[MAX_BUF], buffer_copy[MAX_BUF];
+static sms_memory_cell buffer[MAX_BUF], buffer_copy[MAX_BUF];
 static double state[MAX_STATE * MAX_STAGES], taps[MAX_BUF + 1];
 static unsigned long long rng;
 static unsigned long n_ok_init, n_refused, n_chains, n_slow, n_samples;
@@ -145,8 +145,8 @@ static void check_design(const sms_stage_config *c, double Ts, const sms_stage *
         CHECK(finite_all(taps, L));
     }
     if (c->kind == SMS_NOTCH_TUSTIN || c->kind == SMS_NOTCH_MATCHED)
-        CHECK(isfinite((double)s->u.notch.d0) && isfinite((double)s->u.notch.d2)
-              && isfinite((double)s->u.notch.a1) && isfinite((double)s->u.notch.a2));
+        CHECK(isfinite((double)s->u.notch->d0) && isfinite((double)s->u.notch->d2)
+              && isfinite((double)s->u.notch->a1) && isfinite((double)s->u.notch->a2));
 }
 
 /* Run the chain on in-range samples (finite outputs), then on bad ones; every state loads. */
@@ -199,7 +199,7 @@ static void one_configuration(void)
     for (i = 0; i < n; ++i)
         c[i] = any_config();
     /* the single-stage path: size query, validation, init; an error touches nothing */
-    TIMED(st = sms_stage_buffer_size(&c[0], Ts, &one));
+    TIMED(st = sms_stage_memory_size(&c[0], Ts, &one));
     CHECK(st == sms_stage_config_validate(&c[0], Ts));
     memset(&stages[0], 0xA5, sizeof stages[0]);
     memcpy(&before[0], &stages[0], sizeof stages[0]);
@@ -227,7 +227,7 @@ static void one_configuration(void)
         CHECK(memcmp(buffer_copy, buffer, sizeof buffer) == 0);
     }
     /* the chain: all or nothing */
-    TIMED(st = sms_chain_buffer_size(c, n, Ts, &need));
+    TIMED(st = sms_chain_memory_size(c, n, Ts, &need));
     memset(&chain, 0x3C, sizeof chain);
     memset(stages, 0x5A, sizeof stages);
     memcpy(&chain_before, &chain, sizeof chain);
@@ -291,7 +291,9 @@ static void null_arguments(void)
     CHECK(sms_stage_init(NULL, &c, 1e-3, buffer, MAX_BUF) == SMS_ERR_NULL);
     CHECK(sms_stage_init(&s, NULL, 1e-3, buffer, MAX_BUF) == SMS_ERR_NULL);
     CHECK(sms_stage_init(&s, &c, 1e-3, NULL, 10) == SMS_ERR_NULL);
-    CHECK(sms_chain_buffer_size(NULL, 1, 1e-3, &n) == SMS_ERR_NULL);
+    CHECK(sms_stage_memory_size(NULL, 1e-3, &n) == SMS_ERR_NULL);
+    CHECK(sms_stage_memory_size(&c, 1e-3, NULL) == SMS_ERR_NULL);
+    CHECK(sms_chain_memory_size(NULL, 1, 1e-3, &n) == SMS_ERR_NULL);
     CHECK(sms_chain_init(&chain, NULL, &c, 1, 1e-3, buffer, MAX_BUF) == SMS_ERR_NULL);
     CHECK(sms_chain_init(NULL, &s, &c, 1, 1e-3, buffer, MAX_BUF) == SMS_ERR_NULL);
     CHECK(sms_chain_set_state(NULL, state, 1) == SMS_ERR_NULL);

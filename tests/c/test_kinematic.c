@@ -91,9 +91,9 @@ static void test_mode_tuned(void)
         sms_stage stages[3];
         sms_chain chain;
         size_t need;
-        CHECK_STATUS(sms_chain_buffer_size(cfg, 3, 1e-4, &need), SMS_OK);
+        CHECK_STATUS(sms_chain_memory_size(cfg, 3, 1e-4, &need), SMS_OK);
         if (need < 100000) {
-            static sms_real buf[100000];
+            static sms_memory_cell buf[100000];
             CHECK_STATUS(sms_chain_init(&chain, stages, cfg, 3, 1e-4, buf, need), SMS_OK);
         }
     }
@@ -189,14 +189,15 @@ static double sampled_excess(double h, const double *L, size_t n, const sms_stag
     sms_stage stages[SMS_KINEMATIC_MAX_ORDER];
     sms_chain chain;
     size_t need, len = 0, m, i;
-    sms_real *buf, *x;
+    sms_memory_cell *buf;
+    sms_real *x;
     double worst = -1.0, d[SMS_KINEMATIC_MAX_ORDER + 1];
     for (i = 0; i < n; ++i)
         len += (size_t)ceil(cfg[i].T / Ts) + 1u;
     len += 4u;
-    if (sms_chain_buffer_size(cfg, n, Ts, &need) != SMS_OK || need > 2000000u || len > 2000000u)
+    if (sms_chain_memory_size(cfg, n, Ts, &need) != SMS_OK || need > 2000000u || len > 2000000u)
         return -2.0;
-    buf = (sms_real *)malloc((need + 1u) * sizeof(sms_real));
+    buf = (sms_memory_cell *)malloc(need * sizeof(sms_memory_cell));
     x = (sms_real *)malloc(len * sizeof(sms_real));
     if (buf == NULL || x == NULL || sms_chain_init(&chain, stages, cfg, n, Ts, buf, need) != SMS_OK) {
         free(buf);

@@ -7,6 +7,10 @@
 
 #define PI 3.14159265358979323846
 #define MAX_LEN 4096
+#define MAX_TAPS SMS_SHAPER_MAX_TAPS
+
+/* Tap tables of the instances f, g and h of the tests (caller memory, like the delay lines). */
+static sms_shaper_tap taps_f[MAX_TAPS], taps_g[MAX_TAPS], taps_h[MAX_TAPS];
 
 static const sms_kind shaper_kinds[] = {
     SMS_SHAPER_ZV, SMS_SHAPER_ZVD, SMS_SHAPER_ZVDD, SMS_SHAPER_ZVN,
@@ -320,10 +324,15 @@ static void check_engine_matches_taps(const sms_stage_config *c, double Ts, cons
 {
     static sms_real buf[MAX_LEN];
     sms_shaper f;
-    size_t i;
+    size_t i, n_taps = 0, nonzero = 0;
     double scale = 0;
-    CHECK_STATUS(sms_shaper_init(&f, c, Ts, buf, MAX_LEN), SMS_OK);
+    CHECK_STATUS(sms_shaper_init(&f, c, Ts, taps_f, MAX_TAPS, buf, MAX_LEN), SMS_OK);
     CHECK(f.length == L);
+    /* the tap-count query says exactly how many entries init wrote: one per non-zero tap */
+    CHECK_STATUS(sms_shaper_tap_count(c, Ts, &n_taps), SMS_OK);
+    for (i = 0; i < L; ++i)
+        nonzero += taps[i] != 0.0;
+    CHECK(f.n_taps == n_taps && n_taps <= MAX_TAPS && nonzero <= n_taps);
     for (i = 0; i < L; ++i)
         if (fabs(taps[i]) > scale)
             scale = fabs(taps[i]);
@@ -431,7 +440,7 @@ static void test_grid_threshold(void)
     size_t L, i;
     sms_shaper f;
     sms_stage_config c = make(SMS_SHAPER_ZV, PI / (50.0 * Ts * (1.0 + 5e-10)), 0.0, 1, SMS_TIMING_EXACT);
-    CHECK_STATUS(sms_shaper_init(&f, &c, Ts, buf, MAX_LEN), SMS_OK);
+    CHECK_STATUS(sms_shaper_init(&f, &c, Ts, taps_f, MAX_TAPS, buf, MAX_LEN), SMS_OK);
     CHECK(f.n_taps == 2 && f.length == 51);
     CHECK_STATUS(sms_shaper_buffer_size(&c, Ts, &L), SMS_OK);
     CHECK_STATUS(sms_shaper_taps(&c, Ts, exact, MAX_LEN), SMS_OK);
@@ -440,7 +449,7 @@ static void test_grid_threshold(void)
     for (i = 0; i < L; ++i)
         CHECK(exact[i] == paper[i]);
     c = make(SMS_SHAPER_ZV, PI / (50.0 * Ts * (1.0 + 1e-8)), 0.0, 1, SMS_TIMING_EXACT);
-    CHECK_STATUS(sms_shaper_init(&f, &c, Ts, buf, MAX_LEN), SMS_OK);
+    CHECK_STATUS(sms_shaper_init(&f, &c, Ts, taps_f, MAX_TAPS, buf, MAX_LEN), SMS_OK);
     CHECK(f.n_taps == 3 && f.length == 52);
 }
 
@@ -465,8 +474,8 @@ static void test_blocks_state_reset(void)
         sms_shaper f, g, h, saved;
         size_t pos = 0, i, cnt;
         int same = 1;
-        CHECK_STATUS(sms_shaper_init(&f, &c, Ts, b1, MAX_LEN), SMS_OK);
-        CHECK_STATUS(sms_shaper_init(&g, &c, Ts, b2, MAX_LEN), SMS_OK);
+        CHECK_STATUS(sms_shaper_init(&f, &c, Ts, taps_f, MAX_TAPS, b1, MAX_LEN), SMS_OK);
+        CHECK_STATUS(sms_shaper_init(&g, &c, Ts, taps_g, MAX_TAPS, b2, MAX_LEN), SMS_OK);
         sms_shaper_process(&f, in, one, N);
         srand(11);
         while (pos < N) {
@@ -480,13 +489,13 @@ static void test_blocks_state_reset(void)
             same &= memcmp(&one[i], &split[i], sizeof one[i]) == 0;
         CHECK(same);
         /* save mid-run, continue, restore into a fresh instance: identical continuation */
-        CHECK_STATUS(sms_shaper_init(&f, &c, Ts, b1, MAX_LEN), SMS_OK);
+        CHECK_STATUS(sms_shaper_init(&f, &c, Ts, taps_f, MAX_TAPS, b1, MAX_LEN), SMS_OK);
         sms_shaper_process(&f, in, one, N / 2);
         cnt = sms_shaper_state_count(&f);
         CHECK(cnt == f.length + 4);
         sms_shaper_get_state(&f, state);
         sms_shaper_process(&f, in + N / 2, one + N / 2, N - N / 2);
-        CHECK_STATUS(sms_shaper_init(&h, &c, Ts, b3, MAX_LEN), SMS_OK);
+        CHECK_STATUS(sms_shaper_init(&h, &c, Ts, taps_h, MAX_TAPS, b3, MAX_LEN), SMS_OK);
         CHECK_STATUS(sms_shaper_set_state(&h, state, cnt), SMS_OK);
         sms_shaper_process(&h, in + N / 2, split + N / 2, N - N / 2);
         same = 1;
@@ -521,7 +530,7 @@ static void test_blocks_state_reset(void)
         }
         /* the operating point travels with the state */
         sms_shaper_get_state(&h, state);
-        CHECK_STATUS(sms_shaper_init(&g, &c, Ts, b2, MAX_LEN), SMS_OK);
+        CHECK_STATUS(sms_shaper_init(&g, &c, Ts, taps_g, MAX_TAPS, b2, MAX_LEN), SMS_OK);
         CHECK_STATUS(sms_shaper_set_state(&g, state, cnt), SMS_OK);
         CHECK(g.rest == (sms_real)2.5 && g.head == h.head);
     }
@@ -535,7 +544,7 @@ static void test_non_finite_input(void)
     sms_shaper f;
     size_t i, L;
     int bad_after = 0, bad_inside = 0;
-    CHECK_STATUS(sms_shaper_init(&f, &c, 1e-3, buf, MAX_LEN), SMS_OK);
+    CHECK_STATUS(sms_shaper_init(&f, &c, 1e-3, taps_f, MAX_TAPS, buf, MAX_LEN), SMS_OK);
     L = f.length;
     sms_shaper_reset(&f, (sms_real)1);
     for (i = 0; i < 3 * L; ++i) {
@@ -556,14 +565,15 @@ static void test_invalid(void)
     const double Ts = 1e-3;
     sms_shaper f, before;
     sms_stage_config good = make(SMS_SHAPER_EI, 100.0, 0.1, 1, SMS_TIMING_EXACT), c;
-    size_t L, n_small;
+    size_t L, n_small, n_taps;
     double A[9], t[9], taps[8];
     size_t count;
     memset(&f, 0x5a, sizeof f);
     before = f;
 #define EXPECT_BAD(cfg, ts, status) do { \
-        CHECK_STATUS(sms_shaper_init(&f, &(cfg), (ts), buf, MAX_LEN), status); \
+        CHECK_STATUS(sms_shaper_init(&f, &(cfg), (ts), taps_f, MAX_TAPS, buf, MAX_LEN), status); \
         CHECK_STATUS(sms_shaper_buffer_size(&(cfg), (ts), &L), status); \
+        CHECK_STATUS(sms_shaper_tap_count(&(cfg), (ts), &n_taps), status); \
         CHECK(memcmp(&f, &before, sizeof f) == 0); } while (0)
     c = good; c.kind = SMS_RECTANGULAR; EXPECT_BAD(c, Ts, SMS_ERR_KIND);
     c = good; c.kind = SMS_NOTCH_MATCHED; EXPECT_BAD(c, Ts, SMS_ERR_KIND);
@@ -608,11 +618,25 @@ static void test_invalid(void)
     /* buffers */
     CHECK_STATUS(sms_shaper_buffer_size(&good, Ts, &L), SMS_OK);
     n_small = L - 1;
-    CHECK_STATUS(sms_shaper_init(&f, &good, Ts, buf, n_small), SMS_ERR_BUFFER_TOO_SMALL);
-    CHECK_STATUS(sms_shaper_init(&f, &good, Ts, NULL, L), SMS_ERR_NULL);
+    CHECK_STATUS(sms_shaper_init(&f, &good, Ts, taps_f, MAX_TAPS, buf, n_small), SMS_ERR_BUFFER_TOO_SMALL);
+    CHECK_STATUS(sms_shaper_init(&f, &good, Ts, taps_f, MAX_TAPS, NULL, L), SMS_ERR_NULL);
     CHECK(memcmp(&f, &before, sizeof f) == 0);
-    CHECK_STATUS(sms_shaper_init(NULL, &good, Ts, buf, L), SMS_ERR_NULL);
-    CHECK_STATUS(sms_shaper_init(&f, NULL, Ts, buf, L), SMS_ERR_NULL);
+    CHECK_STATUS(sms_shaper_init(NULL, &good, Ts, taps_f, MAX_TAPS, buf, L), SMS_ERR_NULL);
+    CHECK_STATUS(sms_shaper_init(&f, NULL, Ts, taps_f, MAX_TAPS, buf, L), SMS_ERR_NULL);
+    /* the tap table: its size query, too small or missing refused before anything is written */
+    CHECK_STATUS(sms_shaper_tap_count(&good, Ts, &n_taps), SMS_OK);
+    CHECK(n_taps >= 1 && n_taps <= SMS_SHAPER_MAX_TAPS);
+    taps_f[0].delay = 12345u;
+    CHECK_STATUS(sms_shaper_init(&f, &good, Ts, taps_f, n_taps - 1, buf, L), SMS_ERR_BUFFER_TOO_SMALL);
+    CHECK_STATUS(sms_shaper_init(&f, &good, Ts, NULL, n_taps, buf, L), SMS_ERR_NULL);
+    CHECK(memcmp(&f, &before, sizeof f) == 0 && taps_f[0].delay == 12345u);
+    CHECK_STATUS(sms_shaper_tap_count(&good, Ts, NULL), SMS_ERR_NULL);
+    c = good; c.wn = NAN;
+    CHECK_STATUS(sms_shaper_tap_count(&c, Ts, &n_taps), SMS_ERR_WN);
+    /* exactly the queried sizes suffice */
+    CHECK_STATUS(sms_shaper_tap_count(&good, Ts, &n_taps), SMS_OK);
+    CHECK_STATUS(sms_shaper_init(&f, &good, Ts, taps_f, n_taps, buf, L), SMS_OK);
+    CHECK(f.n_taps == n_taps && f.length == L && f.taps == taps_f && taps_f[0].delay == 0u);
     CHECK_STATUS(sms_shaper_buffer_size(&good, Ts, NULL), SMS_ERR_NULL);
     CHECK_STATUS(sms_shaper_taps(&good, Ts, taps, 8), SMS_ERR_BUFFER_TOO_SMALL);
     CHECK_STATUS(sms_shaper_impulses(&good, A, t, 2, &count), SMS_ERR_BUFFER_TOO_SMALL);

@@ -89,14 +89,15 @@ int main(int argc, char **argv)
     sms_stage_config cfg = sms_stage_config_default(SMS_RECTANGULAR);
     sms_chain chain;
     sms_stage stage;
-    sms_real *buffer, x;
+    sms_memory_cell *buffer;
+    sms_real x;
     size_t need = 0;
     long i;
     int r, s;
 
     cfg.T = 10.3 * Ts;
-    sms_chain_buffer_size(&cfg, 1, Ts, &need);
-    buffer = (sms_real *)calloc(need, sizeof *buffer);
+    sms_chain_memory_size(&cfg, 1, Ts, &need);
+    buffer = (sms_memory_cell *)calloc(need, sizeof *buffer);
     if (buffer == NULL || sms_chain_init(&chain, &stage, &cfg, 1, Ts, buffer, need) != SMS_OK)
         return 1;
 

@@ -26,25 +26,25 @@ int main(void)
     /* Each output sums at most N_TAPS terms of size 1/N_TAPS: |error| <= N_TAPS eps. */
     const double tol = 2.0 * N_TAPS * (sizeof(sms_real) == sizeof(float) ? FLT_EPSILON : DBL_EPSILON);
     sms_stage_config config = sms_stage_config_default(SMS_RECTANGULAR);
-    sms_real buffer[64];
-    size_t n_reals = 0;
+    sms_memory_cell memory[64];
+    size_t n_cells = 0;
     sms_stage stage;
     sms_status status;
     int n, failures = check_real_size();
 
     config.T = N_TAPS * Ts;
-    status = sms_stage_buffer_size(&config, Ts, &n_reals);
-    if (status != SMS_OK || n_reals > sizeof buffer / sizeof buffer[0]) {
-        printf("buffer size query: %s, %u reals\n", sms_status_string(status), (unsigned)n_reals);
+    status = sms_stage_memory_size(&config, Ts, &n_cells);
+    if (status != SMS_OK || n_cells > sizeof memory / sizeof memory[0]) {
+        printf("memory size query: %s, %u cells\n", sms_status_string(status), (unsigned)n_cells);
         return 1;
     }
     /* A bad sample period is refused by name. */
-    status = sms_stage_init(&stage, &config, -Ts, buffer, n_reals);
+    status = sms_stage_init(&stage, &config, -Ts, memory, n_cells);
     if (status != SMS_ERR_SAMPLE_PERIOD) {
         printf("init with Ts < 0 returned %s\n", sms_status_string(status));
         return 1;
     }
-    status = sms_stage_init(&stage, &config, Ts, buffer, n_reals);
+    status = sms_stage_init(&stage, &config, Ts, memory, n_cells);
     if (status != SMS_OK) {
         printf("init: %s\n", sms_status_string(status));
         return 1;

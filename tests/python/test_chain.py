@@ -227,7 +227,7 @@ def test_copies_are_independent_and_identical(duplicate):
     chain = _chain()
     chain.process(_signal(250, seed=7))
     twin = duplicate(chain)
-    assert twin._buffer is not chain._buffer
+    assert twin._memory is not chain._memory
     u = _signal(300, seed=8)
     np.testing.assert_array_equal(twin.process(u), chain.process(u))
 

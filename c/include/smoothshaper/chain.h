@@ -2,8 +2,9 @@
  * @file chain.h
  * @brief Stages in series: y = H_{n-1}( ... H_1(H_0(x))).
  *
- * Memory: the caller owns the ::sms_chain, an array of n ::sms_stage and one buffer of
- * sms_chain_buffer_size() reals shared by all stages (laid out stage after stage).
+ * Memory: the caller owns the ::sms_chain, an array of n ::sms_stage and one block of
+ * sms_chain_memory_size() ::sms_memory_cell shared by all stages, laid out stage after stage
+ * (each stage's part as stage.h describes: instance, tap table, delay line).
  */
 #ifndef SMOOTHSHAPER_CHAIN_H
 #define SMOOTHSHAPER_CHAIN_H
@@ -20,19 +21,24 @@ extern "C" {
 typedef struct sms_chain {
     sms_stage *stages;
     size_t n_stages;
-    sms_real *buffer;
-    size_t buffer_len;
+    sms_memory_cell *memory;   /**< the stages' memory, stage after stage */
+    size_t memory_len;         /**< cells of it in use */
 } sms_chain;
 
-/** @brief Reals needed by a chain of these n configs (sum of the stages' needs).
+/** @brief Cells of memory a chain of these n configs needs (the sum of
+ * sms_stage_memory_size() over the stages).
  * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_ORDER (n = 0 or > ::SMS_CHAIN_MAX_STAGES),
- *         ::SMS_ERR_TOO_LONG, or the first failing config's status. */
-SMS_API sms_status sms_chain_buffer_size(const sms_stage_config *configs, size_t n, double Ts,
-                                         size_t *n_reals);
-/** @brief Validate every config, then build all stages at rest at 0. On error nothing is
- * touched (chain, stages and buffer keep their contents). */
+ *         ::SMS_ERR_TOO_LONG (the sum overflows size_t), or the first failing config's status. */
+SMS_API sms_status sms_chain_memory_size(const sms_stage_config *configs, size_t n, double Ts,
+                                         size_t *n_cells);
+/** @brief Validate every config, then build all stages at rest at 0.
+ * @param stages  caller array of n stages
+ * @param memory  caller memory of n_cells >= sms_chain_memory_size() cells
+ * @return ::SMS_OK, ::SMS_ERR_NULL (chain, stages, configs or memory NULL), the statuses of
+ *         sms_chain_memory_size(), ::SMS_ERR_BUFFER_TOO_SMALL. On error nothing is touched
+ *         (chain, stages and memory keep their contents). */
 SMS_API sms_status sms_chain_init(sms_chain *chain, sms_stage *stages, const sms_stage_config *configs,
-                                  size_t n, double Ts, sms_real *buffer, size_t n_reals);
+                                  size_t n, double Ts, sms_memory_cell *memory, size_t n_cells);
 SMS_API void sms_chain_reset(sms_chain *chain, sms_real rest);
 SMS_API void sms_chain_step(sms_chain *chain, sms_real *x);
 /** @brief Filter n samples through all stages; in == out allowed. */
@@ -43,8 +49,9 @@ SMS_API size_t sms_chain_length(const sms_chain *chain);
 SMS_API size_t sms_chain_state_count(const sms_chain *chain);
 SMS_API void sms_chain_get_state(const sms_chain *chain, double *dst);
 SMS_API sms_status sms_chain_set_state(sms_chain *chain, const double *src, size_t n);
-/** @brief After copying chain, stages and buffer elsewhere, point the copy at its own memory. */
-SMS_API void sms_chain_rebind(sms_chain *chain, sms_stage *stages, sms_real *buffer);
+/** @brief After copying chain, stages and memory elsewhere, point the copy at its own stages
+ * and memory. */
+SMS_API void sms_chain_rebind(sms_chain *chain, sms_stage *stages, sms_memory_cell *memory);
 
 #ifdef __cplusplus
 }

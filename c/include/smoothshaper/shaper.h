@@ -4,8 +4,11 @@
  * MZV (docs/filters.md).
  *
  * A shaper is a sparse FIR filter y[n] = sum_k g_k x[n - d_k] (k = 0..n_taps-1) with unit DC
- * gain (sum g_k = 1). Work per sample is O(n_taps) <= ::SMS_SHAPER_MAX_TAPS; the caller owns the
- * delay line (sms_shaper_buffer_size() reals = the impulse-response length L = max d_k + 1).
+ * gain (sum g_k = 1). Work per sample is O(n_taps) <= ::SMS_SHAPER_MAX_TAPS. The caller owns
+ * all memory, like a CMSIS-DSP sparse FIR: the ::sms_shaper instance (a few words), the tap
+ * table (sms_shaper_tap_count() ::sms_shaper_tap, n_taps of them: 3 for ZV, at most
+ * ::SMS_SHAPER_MAX_TAPS) and the delay line (sms_shaper_buffer_size() reals = the
+ * impulse-response length L = max d_k + 1).
  *
  * Mode: wn [rad/s], zeta; wd = wn sqrt(1 - zeta^2), Td = 2 pi / wd, p = -zeta wn + j wd.
  * Continuous designs (amplitudes A_m, sum 1, at times t_m), sources cited in shaper_designs.c:
@@ -61,14 +64,19 @@ extern "C" {
  * a 3-tap ZV (delays 0, m, m+1), i.e. at most (n+1)(n+2)/2 = 45 distinct delays for n = 8. */
 #define SMS_SHAPER_MAX_TAPS 45
 
+/** @brief One non-zero tap of a shaper: y[n] += gain x[n - delay]. */
+typedef struct sms_shaper_tap {
+    size_t delay;   /**< d_k [samples], strictly increasing along the table */
+    sms_real gain;  /**< g_k; the gains of a table sum to 1 */
+} sms_shaper_tap;
+
 /** @brief Instance of one shaper. Fields are public for inspection; change them only through
  * the functions below. */
 typedef struct sms_shaper {
     sms_kind kind;
     size_t length;                        /**< impulse response length L = max delay + 1 [samples] */
     size_t n_taps;                        /**< taps used, 1..::SMS_SHAPER_MAX_TAPS */
-    size_t tap_delay[SMS_SHAPER_MAX_TAPS];/**< increasing delays d_k [samples] */
-    sms_real tap_gain[SMS_SHAPER_MAX_TAPS];/**< g_k, sum 1 */
+    sms_shaper_tap *taps;                 /**< caller table of n_taps taps (written by init) */
     sms_real rest;                        /**< operating point set by the last reset */
     sms_real *history;                    /**< caller buffer: the last L inputs (ring) */
     size_t history_len;                   /**< = length */
@@ -95,14 +103,25 @@ typedef struct sms_shaper {
  */
 SMS_API sms_status sms_shaper_buffer_size(const sms_stage_config *config, double Ts, size_t *n_reals);
 /**
+ * @brief Entries of tap table a shaper of this config needs at period Ts: its number of
+ * non-zero taps, 1..::SMS_SHAPER_MAX_TAPS (e.g. 3 for an exact-timing ZV off the sample grid,
+ * 2 on it; 45 for exact ZV^8).
+ * @return as sms_shaper_buffer_size() (same checks, same order).
+ */
+SMS_API sms_status sms_shaper_tap_count(const sms_stage_config *config, double Ts, size_t *n_taps);
+/**
  * @brief Validate and build a shaper at rest at 0.
  * @param f       instance; untouched on error
+ * @param taps    caller table of n_taps >= sms_shaper_tap_count() entries; init writes the
+ *                taps into it and f keeps the pointer
  * @param buffer  caller memory of n_reals >= L reals (the delay line); kept by f
- * @return as sms_shaper_buffer_size(), or ::SMS_ERR_NULL (f, config or buffer NULL),
- *         ::SMS_ERR_BUFFER_TOO_SMALL (n_reals < L).
+ * @return as sms_shaper_buffer_size(), or ::SMS_ERR_NULL (f, config, taps or buffer NULL),
+ *         ::SMS_ERR_BUFFER_TOO_SMALL (n_taps or n_reals below the size queries). Nothing is
+ *         written on error (neither f, nor the table, nor the buffer).
  */
 SMS_API sms_status sms_shaper_init(sms_shaper *f, const sms_stage_config *config, double Ts,
-                                   sms_real *buffer, size_t n_reals);
+                                   sms_shaper_tap *taps, size_t n_taps, sms_real *buffer,
+                                   size_t n_reals);
 /** @brief Rest at `rest`: as if the input had been `rest` forever (the output is then `rest`). */
 SMS_API void sms_shaper_reset(sms_shaper *f, sms_real rest);
 /** @brief One sample in place: x <- sum_k g_k x[n - d_k]. */

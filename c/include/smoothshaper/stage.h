@@ -2,9 +2,17 @@
  * @file stage.h
  * @brief One stage of any family behind one interface: the building block of a chain.
  *
- * Memory: the caller owns the ::sms_stage and a buffer of sms_stage_buffer_size() reals
- * (the delay line). Nothing is allocated. A stage keeps a pointer to its buffer; if you copy
- * a stage together with its buffer elsewhere, call sms_stage_rebind() on the copy.
+ * Memory: the caller owns a small ::sms_stage (the kind and a pointer) and one block of
+ * sms_stage_memory_size() ::sms_memory_cell. Nothing is allocated. The block holds, in this
+ * order, each part starting on a cell boundary:
+ * | family      | instance            | table                                 | delay line |
+ * |-------------|---------------------|---------------------------------------|------------|
+ * | smoothers   | ::sms_smoother      | -                                     | M reals (sms_smoother_buffer_size()) |
+ * | shapers     | ::sms_shaper        | n_taps ::sms_shaper_tap (sms_shaper_tap_count()) | L reals (sms_shaper_buffer_size()) |
+ * | notches     | ::sms_notch         | -                                     | -          |
+ * so a stage costs what its family needs (a notch no more than its biquad, a shaper no more
+ * than its own taps). A stage points into its block; if you copy a stage together with its
+ * block elsewhere, call sms_stage_rebind() on the copy.
  *
  * Every stage has unit DC gain and realises y[n] = sum_i h[i] x[n-i], i = 0..L-1, with h the
  * family's taps (see the family headers), except the notch, which is the IIR biquad of notch.h.
@@ -21,16 +29,38 @@
 extern "C" {
 #endif
 
+/**
+ * @brief Unit of caller memory for stages and chains: aligned for every object a stage puts
+ * in it (its instance, tap table and delay line). Memory from malloc() is always suitable
+ * (allocate cells * sizeof(sms_memory_cell) bytes); static memory is an array of this type.
+ */
+typedef union sms_memory_cell {
+    double d;
+    sms_real r;
+    size_t z;
+    void *p;
+} sms_memory_cell;
+
+/** @brief One stage: its kind and its instance, which lives in the stage's memory block. */
 typedef struct sms_stage {
     sms_kind kind;
     union {
-        sms_smoother smoother;
-        sms_shaper shaper;
-        sms_notch notch;
+        sms_smoother *smoother;
+        sms_shaper *shaper;
+        sms_notch *notch;
     } u;
 } sms_stage;
 
-/** @brief Number of ::sms_real the stage needs as its buffer (0 for a notch).
+/**
+ * @brief Cells of memory a stage of this config needs (instance, tap table, delay line; see
+ * the table above). O(1) for every family (the smoothers' sizes are closed forms).
+ * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_TOO_LONG (the size overflows size_t), or the
+ *         config's validation status.
+ */
+SMS_API sms_status sms_stage_memory_size(const sms_stage_config *config, double Ts, size_t *n_cells);
+
+/** @brief Reals in the stage's delay line (M for a smoother, L for a shaper, 0 for a notch):
+ * part of sms_stage_memory_size(), for reporting and limits; init needs the memory size.
  * @return ::SMS_OK, ::SMS_ERR_NULL, or the config's validation status. */
 SMS_API sms_status sms_stage_buffer_size(const sms_stage_config *config, double Ts, size_t *n_reals);
 
@@ -39,12 +69,13 @@ SMS_API sms_status sms_stage_buffer_size(const sms_stage_config *config, double 
  * @param stage    instance to fill; untouched on error
  * @param config   the stage description (see config.h for ranges)
  * @param Ts       sample period [s], finite and > 0
- * @param buffer   caller memory of at least sms_stage_buffer_size() reals (may be NULL if 0)
- * @param n_reals  length of buffer
- * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_BUFFER_TOO_SMALL or a config status.
+ * @param memory   caller memory of at least sms_stage_memory_size() cells; the stage keeps it
+ * @param n_cells  length of memory in cells
+ * @return ::SMS_OK, ::SMS_ERR_NULL (stage, config or memory NULL), ::SMS_ERR_BUFFER_TOO_SMALL
+ *         (n_cells below the size query) or a config status. Nothing is written on error.
  */
 SMS_API sms_status sms_stage_init(sms_stage *stage, const sms_stage_config *config, double Ts,
-                                  sms_real *buffer, size_t n_reals);
+                                  sms_memory_cell *memory, size_t n_cells);
 /** @brief Put the stage at rest at `rest`: as if its input had been `rest` forever. */
 SMS_API void sms_stage_reset(sms_stage *stage, sms_real rest);
 /** @brief Filter one sample in place. */
@@ -62,10 +93,10 @@ SMS_API void sms_stage_get_state(const sms_stage *stage, double *dst);
 SMS_API sms_status sms_stage_set_state(sms_stage *stage, const double *src, size_t n);
 /** @brief Would sms_stage_set_state() accept this vector? Writes nothing. */
 SMS_API sms_status sms_stage_check_state(const sms_stage *stage, const double *src, size_t n);
-/** @brief Reals of the caller buffer this stage uses (its delay line; 0 for a notch). */
-SMS_API size_t sms_stage_buffer_len(const sms_stage *stage);
-/** @brief Point a (copied) stage at a buffer holding the same contents as its original's. */
-SMS_API void sms_stage_rebind(sms_stage *stage, sms_real *buffer);
+/** @brief Cells of memory this stage uses (= sms_stage_memory_size() of its config). */
+SMS_API size_t sms_stage_memory_len(const sms_stage *stage);
+/** @brief Point a stage copied together with its memory (cell for cell) at the copy. */
+SMS_API void sms_stage_rebind(sms_stage *stage, sms_memory_cell *memory);
 
 #ifdef __cplusplus
 }

@@ -315,7 +315,8 @@ typedef struct sms_bspline {
     long m_first;          /**< first m with c_m != 0 (<= 0) */
     size_t n_coeff;        /**< number of c_m stored */
     double coeff[SMS_BSPLINE_MAX_DEGREE + 2];
-    sms_stage stages[SMS_BSPLINE_MAX_AXES * SMS_BSPLINE_MAX_DEGREE]; /**< axis a: [a p, a p + p) */
+    sms_smoother stages[SMS_BSPLINE_MAX_AXES * SMS_BSPLINE_MAX_DEGREE]; /**< rectangular, axis a:
+                                                                         [a p, a p + p) */
 } sms_bspline;
 
 /** @brief Reals needed: n_axes p times one rectangular stage of N samples.

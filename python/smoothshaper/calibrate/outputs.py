@@ -50,8 +50,8 @@ def c_config(c: Candidate, Ts: float, axis: str) -> str:
                 lines.append(f"{v}.tolerance = {s.tolerance!r};")
             if s.kind == "gmzv":
                 lines.append(f"{v}.duration = {s.duration!r};  /* damped periods */")
-    lines.append(f"/* then: sms_chain_buffer_size(cfg_{axis}, {n}, Ts, &need); "
-                 f"sms_chain_init(&chain, stages, cfg_{axis}, {n}, Ts, buffer, need); */")
+    lines.append(f"/* then: sms_chain_memory_size(cfg_{axis}, {n}, Ts, &need); "
+                 f"sms_chain_init(&chain, stages, cfg_{axis}, {n}, Ts, memory, need); */")
     return "\n".join(lines) + "\n"
 
 
