@@ -25,11 +25,12 @@ import numpy as np
 
 from . import stages as _stages
 from .cli_common import (EXIT_ERROR, EXIT_UNAVAILABLE, EXIT_USAGE, CliError,  # noqa: F401
-                         Parser as _Parser, Progress, format_table, pyplot as _pyplot)
+                         Parser as _Parser, Progress, decimate, format_table,
+                         pyplot as _pyplot)
 from .errors import ParameterError
 from .stages import Stage
 
-__all__ = ["parse_stage", "stage_rows", "cmd_design", "prv_curve", "prv_surface", "cmd_analyze",
+__all__ = ["parse_stage", "stage_rows", "cmd_design", "cmd_analyze",
            "read_record", "first_two_peaks", "cmd_identify", "cmd_validate", "cmd_report",
            "build_parser", "main"]
 
@@ -207,55 +208,72 @@ def _nominal_mode(args, stages: list[Stage]) -> tuple[float, float]:
     raise CliError("--wn is required: the mode to analyse (no shaper/notch in the chain names one)")
 
 
-def prv_curve(stages, *, wn_hat, zeta, Ts, ratios, progress: Progress) -> np.ndarray:
-    """PRV [%] at wn = ratio*wn_hat, evaluated in chunks so the bar can move."""
-    analysis = _analysis()
-    out = np.empty(len(ratios))
-    for start in range(0, len(ratios), 256):
-        part = ratios[start:start + 256]
-        out[start:start + len(part)] = analysis.prv_curve(stages, wn_hat=wn_hat, ratio=part,
-                                                          zeta=zeta, Ts=Ts)
-        progress.advance(len(part))
-    return out
+#: Points of analyze's magnitude plot and of the grid its insensitivity search starts from.
+SPECTRUM_POINTS = 4000
+BAND_POINTS = 2001
 
 
-def prv_surface(stages, *, wn, zetas, Ts, progress: Progress) -> np.ndarray:
-    """PRV [%] on the grid zetas x wn, one damping row at a time (for the bar)."""
-    analysis = _analysis()
-    rows = []
-    for z in zetas:
-        rows.append(analysis.prv_surface(stages, wn=wn, zeta=[z], Ts=Ts)[0])
-        progress.advance()
-    return np.array(rows)
+def _step_samples(length: int, is_fir: bool, wn_hat: float, Ts: float) -> int:
+    """Samples of analyze's step response: the FIR length and a fifth more, or (with an IIR
+    notch) four periods of the mode."""
+    return (length if is_fir else 0) + max(10, length // 5) + (
+        0 if is_fir else int(round(4 * 2 * math.pi / wn_hat / Ts)))
 
 
 def cmd_analyze(args) -> int:
+    from .cli_cost import PLOT_POINTS, analyze_cost, announce, chain_taps
     stages = _chain_from_args(args)
     if not stages:
         raise CliError("nothing to analyze: give --stage (or --kind with --wn)")
-    from .filters import Chain
-    chain = Chain(stages, Ts=args.Ts)
-    analysis = _analysis()
-    plt = _pyplot()
     wn_hat, zeta = _nominal_mode(args, stages)
     if not 0 < args.ratio_min < args.ratio_max:
         raise CliError("--ratio-min and --ratio-max must satisfy 0 < min < max")
     if args.points < 2:
         raise CliError("--points must be >= 2")
-    os.makedirs(args.out, exist_ok=True)
-    show = args.progress if args.progress is not None else sys.stderr.isatty()
-
+    if args.surface and args.surface_points < 2:
+        raise CliError("--surface-points must be >= 2")
+    if not (math.isfinite(args.Ts) and args.Ts > 0):
+        raise CliError(f"--Ts must be finite and > 0, got {args.Ts!r}")
     ratios = np.linspace(args.ratio_min, args.ratio_max, args.points)
     ratios = ratios[ratios * wn_hat < math.pi / args.Ts]       # modes below Nyquist only
     if ratios.size < 2:
         raise CliError("the swept modes lie above the Nyquist frequency pi/Ts: lower "
                        "--ratio-max or --Ts")
-    bar = Progress(len(ratios), "PRV sweep", show)
-    prv = prv_curve(stages, wn_hat=wn_hat, zeta=zeta, Ts=args.Ts, ratios=ratios, progress=bar)
-    prv_nominal = float(analysis.prv(stages, wn=wn_hat, zeta=zeta, Ts=args.Ts))
+
+    # The cost of every phase from the sizes alone (nothing allocated yet): announce or refuse.
+    taps = chain_taps(stages, args.Ts)
+    is_fir = not any(s.kind in _stages.NOTCHES for s in stages)
+    n_step = _step_samples(taps, is_fir, wn_hat, args.Ts)
+    surface_points = args.surface_points * ratios.size if args.surface else 0
+    cost = analyze_cost(taps=taps, sweep=ratios.size, band=BAND_POINTS + 100,
+                        surface=surface_points, spectrum=SPECTRUM_POINTS, step=n_step,
+                        plotted=ratios.size + SPECTRUM_POINTS + min(n_step, PLOT_POINTS)
+                        + surface_points)
+    if args.estimate:
+        print(f"analyze: chain of {taps} samples, {ratios.size} sweep points"
+              + (f", {surface_points} surface points" if args.surface else "")
+              + f": {cost.describe()}")
+        return 0
+    announce(cost)
+    show = args.progress if args.progress is not None else sys.stderr.isatty()
+    bar = Progress.phased(cost, show)
+
+    from .filters import Chain
+    analysis = _analysis()
+    plt = _pyplot()
+    os.makedirs(args.out, exist_ok=True)
+    bar.phase("taps")
+    chain = Chain(stages, Ts=args.Ts)
+    response = analysis.ChainResponse(stages, Ts=args.Ts, progress=bar.advance)
+    work = max(1, response.taps)
+
+    bar.phase("PRV sweep", ratios.size * work)
+    prv = analysis.prv_curve(response, wn_hat=wn_hat, ratio=ratios, zeta=zeta)
+    bar.phase("band", (BAND_POINTS + 100) * work)
+    prv_nominal = float(analysis.prv(response, wn=wn_hat, zeta=zeta))
     try:
-        band = analysis.insensitivity(stages, wn_hat=wn_hat, zeta=zeta, Ts=args.Ts,
-                                      tolerance=args.tolerance,
+        band = analysis.insensitivity(response, wn_hat=wn_hat, zeta=zeta,
+                                      tolerance=args.tolerance, points=BAND_POINTS,
                                       span=(args.ratio_min, min(args.ratio_max, ratios[-1])))
         band_text = (f"[{band.low / wn_hat:.4g}, {band.high / wn_hat:.4g}] x wn_hat, "
                      f"relative width {band.relative_width:.4g}")
@@ -265,9 +283,8 @@ def cmd_analyze(args) -> int:
 
     if args.surface:
         zetas = np.linspace(0.0, args.zeta_max, args.surface_points)
-        wn_grid = ratios * wn_hat
-        bar = Progress(len(zetas), "PRV surface", show)
-        surface = prv_surface(stages, wn=wn_grid, zetas=zetas, Ts=args.Ts, progress=bar)
+        bar.phase("PRV surface", surface_points * work)
+        surface = analysis.prv_surface(response, wn=ratios * wn_hat, zeta=zetas)
         fig, ax = plt.subplots(figsize=(7, 4.5))
         # Colour bands on a log-like scale, clipped at 200 % (far off the mode PRV runs to
         # 1e4 % and a linear scale would paint 0..100 % one colour); labelled contours at the
@@ -281,7 +298,7 @@ def cmd_analyze(args) -> int:
                            linewidths=0.9)
         ax.clabel(lines, fmt="%g %%", fontsize=8)
         ax.set_xlabel(r"actual / nominal natural frequency $\omega_n/\hat\omega_n$ [-]")
-        ax.set_ylabel(r"damping ratio $\zeta$")
+        ax.set_ylabel(r"damping ratio $\zeta$ [-]")
         ax.set_title("Residual vibration over frequency and damping")
         fig.tight_layout()
         fig.savefig(os.path.join(args.out, "prv_surface.png"), dpi=120)
@@ -301,8 +318,9 @@ def cmd_analyze(args) -> int:
     fig.savefig(os.path.join(args.out, "prv.png"), dpi=120)
     plt.close(fig)
 
-    w = np.geomspace(min(wn_hat, math.pi / args.Ts) / 100, math.pi / args.Ts, 4000)
-    mag = np.abs(np.asarray(analysis.frequency_response(stages, w, Ts=args.Ts)))
+    w = np.geomspace(min(wn_hat, math.pi / args.Ts) / 100, math.pi / args.Ts, SPECTRUM_POINTS)
+    bar.phase("spectrum", w.size * work)
+    mag = np.abs(np.asarray(analysis.frequency_response(response, w)))
     fig, ax = plt.subplots(figsize=(7, 4))
     ax.semilogx(w, 20 * np.log10(np.maximum(mag, 1e-12)))
     ax.axvline(wn_hat, color="gray", ls="--", lw=0.8, label=f"mode {wn_hat:g} rad/s")
@@ -316,12 +334,13 @@ def cmd_analyze(args) -> int:
     fig.savefig(os.path.join(args.out, "spectrum.png"), dpi=120)
     plt.close(fig)
 
-    n = (chain.length if chain.is_fir else 0) + max(10, chain.length // 5) + int(
-        round(4 * 2 * math.pi / wn_hat / args.Ts) if not chain.is_fir else 0)
+    bar.phase("step response")
+    n = _step_samples(chain.length, chain.is_fir, wn_hat, args.Ts)
     y = chain.process(np.ones(n))
     t = np.arange(n) * args.Ts
+    bar.phase("plots")
     fig, ax = plt.subplots(figsize=(7, 4))
-    ax.plot(t, y, label="filtered unit step (C core)")
+    ax.plot(*decimate(t, y, PLOT_POINTS), label="filtered unit step (C core)")
     ax.set_xlabel("time [s]")
     ax.set_ylabel("output [-]")
     ax.set_title("Step response")
@@ -331,6 +350,7 @@ def cmd_analyze(args) -> int:
     fig.savefig(os.path.join(args.out, "step.png"), dpi=120)
     plt.close(fig)
 
+    bar.finish()
     print(format_table(*stage_rows(stages, args.Ts)))
     print(f"Ts: {args.Ts:g} s; chain length: {chain.length} samples "
           f"({chain.length * args.Ts:.6g} s){'' if chain.is_fir else ' plus IIR notch'}")
@@ -541,7 +561,12 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--surface-points", type=int, default=61,
                    help="surface damping rows (default 61)")
     p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
-                   help="show the sweep progress bar (default: when stderr is a terminal)")
+                   help="show a progress bar over the whole run (default: when stderr is a "
+                   "terminal)")
+    p.add_argument("--estimate", action="store_true",
+                   help="print how long the run would take (from the sizes alone) and exit; "
+                   "runs modelled above 10 s print this estimate before they start, above "
+                   "600 s they are refused")
     p.set_defaults(func=cmd_analyze)
 
     p = sub.add_parser("identify", help="mode (wn, zeta) from a CSV record of a free decay",

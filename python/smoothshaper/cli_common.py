@@ -11,7 +11,7 @@ import numpy as np
 
 __all__ = ["EXIT_ERROR", "EXIT_USAGE", "EXIT_UNAVAILABLE", "CliError", "Parser", "format_table",
            "Progress", "pyplot", "numbers", "parse_via_list", "parse_via_points", "write_csv",
-           "save_figure"]
+           "save_figure", "decimate"]
 
 EXIT_ERROR = 1
 EXIT_USAGE = 2
@@ -50,20 +50,69 @@ def format_table(header: list[str], rows: list[list]) -> str:
 
 
 class Progress:
-    """A one-line progress bar on stderr for long sweeps (only when enabled)."""
+    """A one-line progress bar on stderr (drawn only when ``enabled``).
 
-    def __init__(self, total: int, label: str, enabled: bool):
+    Plain use: ``Progress(total, label, enabled)`` and ``advance(n)`` units at a time.
+    Phased use (:meth:`phased`): one bar over every phase of a request, each phase weighted by
+    its modelled seconds (:class:`smoothshaper.cli_cost.Cost`), so the bar covers the whole
+    work and moves at a steady pace; :meth:`phase` starts the next phase with its own unit
+    count and :meth:`finish` draws 100 %.
+    """
+
+    def __init__(self, total: float, label: str, enabled: bool, stream=None):
         self.total, self.label, self.enabled, self.done = max(1, total), label, enabled, 0
+        self.stream = sys.stderr if stream is None else stream
+        self._weights: dict = {}
+        self._base = 0.0            # fraction of the bar covered by finished phases
+        self._span = 1.0            # fraction the current phase covers
+        self._shown = None
 
-    def advance(self, n: int = 1) -> None:
+    @classmethod
+    def phased(cls, cost, enabled: bool, stream=None) -> "Progress":
+        """One bar over the phases of ``cost`` (a :class:`smoothshaper.cli_cost.Cost`)."""
+        bar = cls(1, cost.what, enabled, stream)
+        total = cost.seconds or 1.0
+        bar._weights = {name: sec / total for name, sec in cost.phases.items()}
+        bar._span = 0.0
+        return bar
+
+    def phase(self, name: str, units: float = 1) -> None:
+        """Start phase ``name`` (a key of the cost's phases) made of ``units`` units."""
+        self._base = min(1.0, self._base + self._span)
+        self._span = self._weights.get(name, 0.0)
+        self.label, self.total, self.done = name, max(1, units), 0
+        self._draw()
+
+    def advance(self, n: float = 1) -> None:
+        """Mark ``n`` more units of the current phase done."""
         self.done = min(self.total, self.done + n)
-        if self.enabled:
-            frac = self.done / self.total
-            bar = "#" * int(30 * frac)
-            sys.stderr.write(f"\r{self.label} [{bar:<30}] {100 * frac:5.1f}%")
-            if self.done == self.total:
-                sys.stderr.write("\n")
-            sys.stderr.flush()
+        self._draw()
+
+    def finish(self) -> None:
+        """Draw 100 % and end the line."""
+        self._base, self._span, self.done, self._shown = 1.0, 0.0, self.total, None
+        self._draw()
+
+    @property
+    def fraction(self) -> float:
+        """Fraction of the whole request done (0 to 1)."""
+        if not self._weights:
+            return self.done / self.total
+        return min(1.0, self._base + self._span * self.done / self.total)
+
+    def _draw(self) -> None:
+        if not self.enabled:
+            return
+        frac = self.fraction
+        permille = int(1000 * frac)
+        if (self.label, permille) == self._shown:
+            return
+        self._shown = (self.label, permille)
+        bar = "#" * int(30 * frac)
+        self.stream.write(f"\r{self.label:<14} [{bar:<30}] {100 * frac:5.1f}%")
+        if permille >= 1000 and (not self._weights or self._base >= 1.0):
+            self.stream.write("\n")
+        self.stream.flush()
 
 
 def pyplot(command: str = "analyze"):
@@ -114,13 +163,34 @@ def parse_via_points(text: str, max_axes: int = 3) -> np.ndarray:
     return np.array(points)
 
 
-def write_csv(path: str, header: list[str], columns: list[np.ndarray]) -> None:
-    """Columns as a CSV with a header row, full precision; CliError naming --csv."""
+def write_csv(path: str, header: list[str], columns: list[np.ndarray], progress=None) -> None:
+    """Columns as a CSV with a header row, full precision; CliError naming --csv.
+    ``progress``: None or callable(rows) after every block of rows written."""
     data = np.column_stack(columns)
+    block = 100_000
     try:
-        np.savetxt(path, data, delimiter=",", header=",".join(header), comments="", fmt="%.17g")
+        with open(path, "w", encoding="ascii") as fh:
+            fh.write(",".join(header) + "\n")
+            for start in range(0, data.shape[0], block):
+                np.savetxt(fh, data[start:start + block], delimiter=",", fmt="%.17g")
+                if progress is not None:
+                    progress(min(block, data.shape[0] - start))
     except OSError as exc:
         raise CliError(f"--csv: cannot write {path}: {exc.strerror}") from None
+
+
+def decimate(t: np.ndarray, y: np.ndarray, points: int) -> tuple[np.ndarray, np.ndarray]:
+    """At most about ``points`` samples of ``(t, y)`` for a line plot: the minimum and the
+    maximum of each bin in time order, so peaks and steps stay visible (matplotlib would take
+    minutes and gigabytes for a 1e7-sample line)."""
+    y = np.asarray(y)
+    if y.size <= points:
+        return t, y
+    edges = np.linspace(0, y.size, points // 2 + 1).astype(np.int64)
+    i_lo = np.array([a + np.argmin(y[a:b]) for a, b in zip(edges[:-1], edges[1:])])
+    i_hi = np.array([a + np.argmax(y[a:b]) for a, b in zip(edges[:-1], edges[1:])])
+    idx = np.unique(np.r_[0, i_lo, i_hi, y.size - 1])
+    return t[idx], y[idx]
 
 
 def save_figure(fig, plt, path: str) -> None:

@@ -11,10 +11,13 @@ their limits, and the path in 2-D or 3-D.
 from __future__ import annotations
 
 import math
+import sys
 
 import numpy as np
 
-from .cli_common import EXIT_ERROR, CliError, format_table, numbers as _numbers
+from .cli_common import EXIT_ERROR, CliError, Progress, decimate, format_table
+from .cli_common import numbers as _numbers
+from .cli_cost import PLOT_POINTS, announce, generator_cost
 from .cli_common import parse_via_points, pyplot as _pyplot, save_figure as _save
 from .cli_common import write_csv as _write_csv
 
@@ -120,6 +123,16 @@ def cmd_multi_generator(args) -> int:
     if max_samples > MAX_SAMPLES:
         raise CliError(f"--Ts: about {max_samples} samples would be needed (more than "
                        f"{MAX_SAMPLES}); use a larger sample period")
+    cost = generator_cost(samples=max_samples, axes=axes, csv=bool(args.csv),
+                          plot=bool(args.plot))
+    if getattr(args, "estimate", False):
+        print(f"design generator: at most {max_samples} samples on {axes} axes: "
+              f"{cost.describe()}")
+        return 0
+    announce(cost)
+    flag = getattr(args, "progress", None)
+    bar = Progress.phased(cost, sys.stderr.isatty() if flag is None else flag)
+    bar.phase("generator")
     targets, out, starts, arrivals = run(gen, via, hold_samples, max_samples)
     lim = np.array([v, a, j])                                   # (3, axes)
     names = AXIS_NAMES[:axes]
@@ -164,10 +177,15 @@ def cmd_multi_generator(args) -> int:
         for i, n in enumerate(names):
             cols += [out[:, i, m] for m in range(4)]
             header += [f"{n}_q", f"{n}_v", f"{n}_a", f"{n}_j"]
-        _write_csv(args.csv, header, cols)
+        bar.phase("csv", t.size)
+        _write_csv(args.csv, header, cols, progress=bar.advance)
+    if args.plot:
+        bar.phase("plot")
+        plot(args.plot, out, via, lim, arrivals, Ts, names, u, gen.sync)
+    bar.finish()
+    if args.csv:
         print(f"csv: {args.csv}")
     if args.plot:
-        plot(args.plot, out, via, lim, arrivals, Ts, names, u, gen.sync)
         print(f"plot: {args.plot}")
     return 0 if ok else EXIT_ERROR
 
@@ -177,6 +195,9 @@ def plot(path, out, via, lim, arrivals, Ts, names, u, sync):
     plt = _pyplot("design generator --plot")
     axes = out.shape[1]
     t = np.arange(out.shape[0]) * Ts
+    # the path is smooth: every k-th sample (and the last) draws it at the same resolution
+    drawn = out[np.unique(np.r_[np.arange(0, out.shape[0], max(1, out.shape[0] // PLOT_POINTS)),
+                               out.shape[0] - 1])]
     fig = plt.figure(figsize=(13, 8))
     gs = fig.add_gridspec(4, 2, width_ratios=[1.35, 1])
     left = [fig.add_subplot(gs[0, 0])]
@@ -186,9 +207,9 @@ def plot(path, out, via, lim, arrivals, Ts, names, u, sync):
         for i in range(axes):
             y = out[:, i, m] if m == 0 else out[:, i, m] / lim[m - 1, i]
             if m == 3:
-                ax.step(t, y, where="post", lw=1.0, label=names[i])
+                ax.step(*decimate(t, y, PLOT_POINTS), where="post", lw=1.0, label=names[i])
             else:
-                ax.plot(t, y, lw=1.2, label=names[i])
+                ax.plot(*decimate(t, y, PLOT_POINTS), lw=1.2, label=names[i])
         if m:
             ax.axhline(1, color="red", lw=0.7, ls=":")
             ax.axhline(-1, color="red", lw=0.7, ls=":")
@@ -205,15 +226,15 @@ def plot(path, out, via, lim, arrivals, Ts, names, u, sync):
         ax = fig.add_subplot(gs[:, 1], projection="3d")
         ax.plot(via[:, 0], via[:, 1], via[:, 2], "--", color="gray", lw=0.8,
                 label="straight segments")
-        ax.plot(out[:, 0, 0], out[:, 1, 0], out[:, 2, 0], lw=1.5, label="generated path")
+        ax.plot(drawn[:, 0, 0], drawn[:, 1, 0], drawn[:, 2, 0], lw=1.5, label="generated path")
         ax.scatter(via[:, 0], via[:, 1], via[:, 2], color="red", s=20, label="via-points")
         ax.set_zlabel(f"{names[2]} [{u}]")
     else:
         ax = fig.add_subplot(gs[:, 1])
         y0 = via[:, 1] if axes >= 2 else np.zeros(via.shape[0])
-        y = out[:, 1, 0] if axes >= 2 else np.zeros(out.shape[0])
+        y = drawn[:, 1, 0] if axes >= 2 else np.zeros(drawn.shape[0])
         ax.plot(via[:, 0], y0, "--", color="gray", lw=0.8, label="straight segments")
-        ax.plot(out[:, 0, 0], y, lw=1.5, label="generated path")
+        ax.plot(drawn[:, 0, 0], y, lw=1.5, label="generated path")
         ax.plot(via[:, 0], y0, "o", color="red", ms=4, label="via-points")
         ax.set_aspect("equal", adjustable="datalim")
         ax.grid(True, alpha=0.3)

@@ -15,11 +15,12 @@ import math
 
 import numpy as np
 
-from .cli_common import EXIT_ERROR, CliError, format_table, pyplot as _pyplot
+from .cli_common import EXIT_ERROR, CliError, Progress, decimate, format_table
 from .cli_common import numbers as _numbers, parse_via_list, parse_via_points
-from .cli_common import save_figure as _save, write_csv as _write_csv
+from .cli_common import pyplot as _pyplot, save_figure as _save, write_csv as _write_csv
+from .cli_cost import PLOT_POINTS, announce, bspline_cost, generator_cost
 
-__all__ = ["LIMIT_RTOL", "REST_RTOL", "MAX_SAMPLES", "PROFILES", "parse_via_list",
+__all__ = ["LIMIT_RTOL", "REST_RTOL", "MAX_SAMPLES", "MAX_BSPLINE_VALUES", "PROFILES", "parse_via_list",
            "parse_via_points", "run_until_reached", "run_with_hold", "segment_rows",
            "cmd_generator", "cmd_bspline", "add_design_forms"]
 
@@ -28,8 +29,10 @@ __all__ = ["LIMIT_RTOL", "REST_RTOL", "MAX_SAMPLES", "PROFILES", "parse_via_list
 LIMIT_RTOL = 1e-9
 # Rest on the target: q, v, a, j within this fraction of the move's scale and of the limits.
 REST_RTOL = 1e-9
-# Refuse runs so long that the per-sample Python loop would take minutes.
+# Refuse generator runs so long that their tables and plots would take minutes.
 MAX_SAMPLES = 5_000_000
+# Refuse B-spline outputs above this many values (samples x axes; 160 MB per array).
+MAX_BSPLINE_VALUES = 20_000_000
 PROFILES = ("polynomial", "trigonometric", "damped")
 
 
@@ -111,6 +114,12 @@ def segment_rows(out, starts, arrivals, via, Ts, limits):
     return rows
 
 
+def _show_progress(args) -> bool:
+    flag = getattr(args, "progress", None)
+    import sys
+    return sys.stderr.isatty() if flag is None else flag
+
+
 def _limit(text: str):
     """--vmax/--amax/--jmax: one number, or one per axis ('1,2,3') for multi-axis via-points."""
     values = _numbers("limit", text)
@@ -141,6 +150,13 @@ def cmd_generator(args) -> int:
     if max_samples > MAX_SAMPLES:
         raise CliError(f"--Ts: about {max_samples} samples would be needed (more than "
                        f"{MAX_SAMPLES}); use a larger sample period")
+    cost = generator_cost(samples=max_samples, axes=1, csv=bool(args.csv), plot=bool(args.plot))
+    if args.estimate:
+        print(f"design generator: at most {max_samples} samples: {cost.describe()}")
+        return 0
+    announce(cost)
+    bar = Progress.phased(cost, _show_progress(args))
+    bar.phase("generator")
     if args.hold is None:
         targets, out, starts, arrivals = run_until_reached(gen, via, scale, max_samples)
     else:
@@ -169,11 +185,17 @@ def cmd_generator(args) -> int:
     ok = all(p <= lim * (1 + LIMIT_RTOL) for p, lim in zip(peaks, limits))
     print("sampled peaks within the limits: " + ("yes" if ok else "NO (exceeded)"))
     if args.csv:
+        bar.phase("csv", t.size)
         _write_csv(args.csv, ["time", "target", "position", "velocity", "acceleration", "jerk"],
-                   [t, targets, out[:, 0], out[:, 1], out[:, 2], out[:, 3]])
+                   [t, targets, out[:, 0], out[:, 1], out[:, 2], out[:, 3]],
+                   progress=bar.advance)
+    if args.plot:
+        bar.phase("plot")
+        _plot_generator(args.plot, t, targets, out, starts, arrivals, limits, u, gen.Ts)
+    bar.finish()
+    if args.csv:
         print(f"csv: {args.csv}")
     if args.plot:
-        _plot_generator(args.plot, t, targets, out, starts, arrivals, limits, u, gen.Ts)
         print(f"plot: {args.plot}")
     return 0 if ok else EXIT_ERROR
 
@@ -183,12 +205,13 @@ def _plot_generator(path, t, targets, out, starts, arrivals, limits, u, Ts):
     fig, axes = plt.subplots(4, 1, sharex=True, figsize=(8, 8))
     names = [("position", f"[{u}]"), ("velocity", f"[{u}/s]"),
              ("acceleration", f"[{u}/s$^2$]"), ("jerk", f"[{u}/s$^3$]")]
-    axes[0].step(t, targets, where="post", color="gray", lw=0.8, ls="--", label="target")
+    axes[0].step(*decimate(t, targets, PLOT_POINTS), where="post", color="gray", lw=0.8,
+                 ls="--", label="target")
     for i, (ax, (name, unit)) in enumerate(zip(axes, names)):
         if i == 3:  # jerk: right limits at the samples, piecewise constant between
-            ax.step(t, out[:, i], where="post", lw=1.2, label=name)
+            ax.step(*decimate(t, out[:, i], PLOT_POINTS), where="post", lw=1.2, label=name)
         else:
-            ax.plot(t, out[:, i], lw=1.2, label=name)
+            ax.plot(*decimate(t, out[:, i], PLOT_POINTS), lw=1.2, label=name)
         if i:
             lim = limits[i - 1]
             ax.axhline(lim, color="red", lw=0.7, ls=":", label="limit")
@@ -221,9 +244,26 @@ def cmd_bspline(args) -> int:
                   f"(2 pi/wn = {2 * math.pi / min(modes):.6g} s)")
     else:
         T, origin = args.T, f"requested T = {args.T:g} s"
+    if not (math.isfinite(T) and math.isfinite(args.Ts) and T > 0 and args.Ts > 0):
+        BSpline(degree=args.degree, T=T, Ts=args.Ts, axes=n_axes)    # the named error
+    # The size of the run from T/Ts alone (nothing allocated yet): refuse or announce.
+    N = max(1, round(T / args.Ts))
+    samples = (M - 2) * N + args.degree * (N - 1) + 1
+    if samples * n_axes > MAX_BSPLINE_VALUES:
+        raise CliError(f"--T: the interpolation would produce {samples} samples on {n_axes} "
+                       f"axis(es), more than the limit of {MAX_BSPLINE_VALUES} values "
+                       f"(T/Ts = {T / args.Ts:.4g} samples per knot spacing); use a shorter "
+                       "--T or a larger --Ts")
+    cost = bspline_cost(samples=samples, axes=n_axes, csv=bool(args.csv), plot=bool(args.plot))
+    if args.estimate:
+        print(f"design bspline: {samples} samples on {n_axes} axis(es): {cost.describe()}")
+        return 0
+    announce(cost)
+    bar = Progress.phased(cost, _show_progress(args))
     spline = BSpline(degree=args.degree, T=T, Ts=args.Ts, axes=n_axes)
     ctrl = spline.control_points(via)
-    out = spline.interpolate(via)
+    bar.phase("filter", samples)
+    out = spline.interpolate(via, progress=bar.advance)
     passes = [None] + [int(k) for k in spline.pass_samples(M)] + [spline.end_sample(M)]
     axes = "xyz"[:n_axes]
     print(f"B-spline of degree {spline.degree}, {n_axes} axis(es), {M} via-points")
@@ -246,10 +286,16 @@ def cmd_bspline(args) -> int:
           f"{passes[-1]}); max pass-through error {max(errors):.3g}")
     if args.csv:
         t = np.arange(out.shape[0]) * spline.Ts
-        _write_csv(args.csv, ["time"] + list(axes), [t] + [out[:, a] for a in range(n_axes)])
+        bar.phase("csv", out.shape[0])
+        _write_csv(args.csv, ["time"] + list(axes), [t] + [out[:, a] for a in range(n_axes)],
+                   progress=bar.advance)
+    if args.plot:
+        bar.phase("plot")
+        _plot_bspline(args.plot, spline, via, ctrl, out, passes)
+    bar.finish()
+    if args.csv:
         print(f"csv: {args.csv}")
     if args.plot:
-        _plot_bspline(args.plot, spline, via, ctrl, out, passes)
         print(f"plot: {args.plot}")
     return 0
 
@@ -263,9 +309,9 @@ def _plot_bspline(path, spline, via, ctrl, out, passes):
                              squeeze=False)
     tp = np.array([-spline.Ts if k is None else k * spline.Ts for k in passes])
     for a, ax in enumerate(axes[:, 0]):
-        ax.step(t, held[:, a], where="post", color="gray", lw=0.8, ls="--",
-                label="control points (held)")
-        ax.plot(t, out[:, a], lw=1.2, label="B-spline output")
+        ax.step(*decimate(t, held[:, a], PLOT_POINTS), where="post", color="gray", lw=0.8,
+                ls="--", label="control points (held)")
+        ax.plot(*decimate(t, out[:, a], PLOT_POINTS), lw=1.2, label="B-spline output")
         ax.plot(tp, via[:, a], "o", ms=5, mfc="none", color="red", label="via-points")
         ax.set_ylabel(f"{'xyz'[a]} [unit]")
         ax.grid(True, alpha=0.3)
@@ -290,6 +336,17 @@ def _hinting(parser_class):
             super().error(message)
 
     return FormParser
+
+
+def _add_cost_options(p) -> None:
+    import argparse
+    p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
+                   help="show a progress bar over the whole run (default: when stderr is a "
+                   "terminal)")
+    p.add_argument("--estimate", action="store_true",
+                   help="print how long the run would take (from the sizes alone) and exit; "
+                   "runs modelled above 10 s print this estimate before they start, above "
+                   "600 s they are refused")
 
 
 def add_design_forms(design_parser, parser_class) -> None:
@@ -330,6 +387,7 @@ def add_design_forms(design_parser, parser_class) -> None:
     p.add_argument("--unit", default="unit", help="position unit for labels (default 'unit')")
     p.add_argument("--plot", metavar="PNG", help="write q, v, a, j over time to this PNG")
     p.add_argument("--csv", metavar="CSV", help="write time, target, q, v, a, j to this CSV")
+    _add_cost_options(p)
     p.set_defaults(func=cmd_generator)
 
     p = forms.add_parser("bspline", help="B-spline through via-points",
@@ -345,4 +403,5 @@ def add_design_forms(design_parser, parser_class) -> None:
     p.add_argument("--Ts", type=float, required=True, help="sample period [s]")
     p.add_argument("--plot", metavar="PNG", help="write the axes over time to this PNG")
     p.add_argument("--csv", metavar="CSV", help="write time and the axes to this CSV")
+    _add_cost_options(p)
     p.set_defaults(func=cmd_bspline)

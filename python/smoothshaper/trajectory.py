@@ -453,29 +453,39 @@ class BSpline:
         j = np.minimum(np.arange(n_samples) // self.N + 1, c.shape[0] - 1)
         return c[j]
 
-    def process(self, x, rest=None) -> np.ndarray:
-        """Filter ``x`` ``(n, axes)`` after resting every axis at ``rest`` (default x[0])."""
+    def process(self, x, rest=None, *, progress=None) -> np.ndarray:
+        """Filter ``x`` ``(n, axes)`` after resting every axis at ``rest`` (default x[0]).
+
+        ``progress``: None or a callable called as ``progress(samples)`` after every block of
+        samples. The samples are stepped through ``sms_bspline_step`` one at a time on
+        pointers into one contiguous array (about 1 us per sample)."""
         x = np.ascontiguousarray(_real_array("x", x).reshape(-1, self.axes))
         if not np.all(np.isfinite(x)):
             raise ParameterError("x", "x must be finite")
         rest = x[0] if rest is None else np.asarray(rest, dtype=np.float64).reshape(self.axes)
-        self._lib.sms_bspline_reset(self._b, self._ffi.new("sms_real[]", [float(v) for v in rest]))
-        out = np.empty_like(x)
-        cin = self._ffi.new("sms_real[]", self.axes)
-        cout = self._ffi.new("sms_real[]", self.axes)
-        for k in range(x.shape[0]):
-            for a in range(self.axes):
-                cin[a] = x[k, a]
-            self._lib.sms_bspline_step(self._b, cin, cout)
-            out[k] = [cout[a] for a in range(self.axes)]
-        return out
+        ffi, lib, b, axes = self._ffi, self._lib, self._b, self.axes
+        lib.sms_bspline_reset(b, ffi.new("sms_real[]", [float(v) for v in rest]))
+        work = np.ascontiguousarray(x, dtype=_real_dtype(self.precision))
+        out = np.empty_like(work)
+        pin = ffi.from_buffer("sms_real[]", work)
+        pout = ffi.from_buffer("sms_real[]", out)
+        step = lib.sms_bspline_step
+        block = 1 << 16
+        for start in range(0, work.shape[0], block):
+            stop = min(start + block, work.shape[0])
+            for k in range(start * axes, stop * axes, axes):
+                step(b, pin + k, pout + k)
+            if progress is not None:
+                progress(stop - start)
+        return out.astype(np.float64, copy=False)
 
-    def interpolate(self, via, *, extra: int = 0) -> np.ndarray:
-        """Output ``(end_sample + 1 + extra, axes)`` passing through the via-points."""
+    def interpolate(self, via, *, extra: int = 0, progress=None) -> np.ndarray:
+        """Output ``(end_sample + 1 + extra, axes)`` passing through the via-points
+        (``progress`` as in :meth:`process`)."""
         q = _via("via", via, self.axes)
         ctrl = self.control_points(q)
         n = self.end_sample(q.shape[0]) + 1 + int(extra)
-        return self.process(self.staircase(ctrl, n), rest=q[0])
+        return self.process(self.staircase(ctrl, n), rest=q[0], progress=progress)
 
 
 def bspline_reference(via, *, degree: int, T: float, Ts: float):

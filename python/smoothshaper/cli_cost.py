@@ -1,0 +1,350 @@
+"""How long a ``smoothshaper`` request will take, computed from its sizes before it starts.
+
+Every CLI path whose work grows with numbers the user gives (chain length, sweep points,
+samples of a trajectory, size of a record) builds a :class:`Cost` from those sizes in O(1)
+and calls :func:`announce`: a request modelled above :data:`ANNOUNCE_SECONDS` prints its
+estimate on stderr before it starts, and one above :data:`LIMIT_SECONDS` is refused naming the
+parameter that makes it long. The same model weights the phases of the one progress bar
+(:class:`smoothshaper.cli_common.Progress`) that covers the whole request.
+
+The unit costs below were measured on the reference machine (2 cores shared with other
+jobs, OpenBLAS); ``python -m smoothshaper.cli_cost`` measures them again on yours and prints
+the figures next to the model's.
+"""
+from __future__ import annotations
+
+import math
+import sys
+from dataclasses import dataclass, field
+
+from .cli_common import CliError
+
+__all__ = ["ANNOUNCE_SECONDS", "LIMIT_SECONDS", "UNIT_COSTS", "Cost", "announce", "chain_taps",
+           "analyze_cost", "bspline_cost", "generator_cost", "record_cost", "measure"]
+
+#: A request modelled to take longer than this [s] prints its estimate before it starts.
+ANNOUNCE_SECONDS = 10.0
+#: A request modelled to take longer than this [s] is refused, naming the parameter to change.
+LIMIT_SECONDS = 600.0
+
+#: Seconds per unit of work, measured by :func:`measure` (see the module docstring).
+UNIT_COSTS = {
+    # analysis.ChainResponse at one point: per FIR tap (blocked BLAS sum), per square root of
+    # the taps (the exponentials of the powers of z^-1) and per point
+    "tap_point": 1.5e-10,
+    "sqrt_tap_point": 3.0e-7,
+    "point": 5.0e-5,
+    # the reference taps of a chain (computed once per analyze run), per tap
+    "tap": 8.0e-8,
+    # the C chain filtering a step (analyze's step response), per sample
+    "chain_sample": 6.0e-8,
+    # the C B-spline stepped from Python, per sample and axis
+    "bspline_sample_axis": 4.0e-7,
+    # the C online generator in blocks, per sample and axis
+    "generator_sample_axis": 1.5e-7,
+    # one CSV row written with 17 significant digits, per value
+    "csv_value": 1.2e-6,
+    # plotting one point of a line (matplotlib Agg, after decimation to at most 20k points)
+    "plot_point": 2.0e-6,
+    # reading one byte of a CSV record (parse and checks)
+    "record_byte": 5.0e-8,
+    # the modal fit of calibrate/identify, per sample of the record and mode searched
+    "fit_sample": 2.0e-6,
+}
+
+#: Most points a line plot draws; longer signals are decimated (min/max per bin).
+PLOT_POINTS = 20_000
+
+
+@dataclass
+class Cost:
+    """Modelled seconds of each phase of one request, in the order they run.
+
+    Parameters
+    ----------
+    what : str
+        The request as the user knows it (e.g. ``"analyze"``), used in messages.
+    phases : dict of str to float
+        Phase name -> modelled seconds (>= 0), in the order the phases run.
+    drivers : dict of str to str
+        Option -> why it drives the cost (e.g. ``{"--points": "600 sweep points"}``);
+        the refusal names the first of them.
+    """
+    what: str
+    phases: dict = field(default_factory=dict)
+    drivers: dict = field(default_factory=dict)
+
+    @property
+    def seconds(self) -> float:
+        """Modelled total [s]."""
+        return float(sum(self.phases.values()))
+
+    def describe(self) -> str:
+        """``"about 42 s (sweep 30 s, plots 12 s)"``: the total and its largest phases."""
+        parts = [f"{name} {_fmt_seconds(sec)}" for name, sec in
+                 sorted(self.phases.items(), key=lambda kv: -kv[1])[:4] if sec >= 0.5]
+        return f"about {_fmt_seconds(self.seconds)}" + (f" ({', '.join(parts)})" if parts else "")
+
+
+def _fmt_seconds(seconds: float) -> str:
+    if seconds < 1:
+        return "< 1 s"
+    if seconds < 120:
+        return f"{seconds:.0f} s"
+    return f"{seconds / 60:.1f} min"
+
+
+def announce(cost: Cost, *, stream=None, limit: float = LIMIT_SECONDS) -> None:
+    """Print the estimate of a long request on ``stream`` (stderr) before it starts.
+
+    Parameters
+    ----------
+    cost : Cost
+        The modelled request.
+    stream : file-like or None
+        Where the estimate goes (default ``sys.stderr``).
+    limit : float
+        Refusal threshold [s] (default :data:`LIMIT_SECONDS`).
+
+    Raises
+    ------
+    CliError
+        The modelled time exceeds ``limit``; the message names the option that drives the
+        cost, the estimate and the limit.
+    """
+    stream = sys.stderr if stream is None else stream
+    if cost.seconds > limit:
+        option, why = next(iter(cost.drivers.items()), ("input", "the input's size"))
+        raise CliError(f"{option}: {cost.what} would take {cost.describe()}, more than the "
+                       f"limit of {limit:.0f} s ({why}); reduce {option}"
+                       + _other_drivers(cost))
+    if cost.seconds > ANNOUNCE_SECONDS:
+        stream.write(f"{cost.what}: this will take {cost.describe()}\n")
+        stream.flush()
+
+
+def _other_drivers(cost: Cost) -> str:
+    others = list(cost.drivers)[1:]
+    return f" (or {', '.join(others)})" if others else ""
+
+
+def chain_taps(stages, Ts: float) -> int:
+    """Delay-line length of the chain [samples] from the C size query, in O(1) per stage
+    (nothing is allocated).
+
+    Parameters
+    ----------
+    stages : sequence of Stage
+        The chain.
+    Ts : float
+        Sample period [s].
+
+    Returns
+    -------
+    int
+        Sum of the stages' buffer sizes: each FIR stage's taps (its length, or one more), a
+        notch its few state values.
+
+    Raises
+    ------
+    ParameterError
+        A stage is invalid at ``Ts`` (the same error :class:`smoothshaper.Chain` raises).
+    """
+    from .filters import Chain, _backend, _fill_config
+    ffi, lib = _backend("double")
+    config = ffi.new("sms_stage_config *")
+    need = ffi.new("size_t *")
+    total = 0
+    for stage in stages:
+        _fill_config(config, stage)
+        if lib.sms_stage_buffer_size(config, Ts, need) != 0:
+            Chain([stage], Ts=Ts)           # raises the chain's own, named error
+        total += int(need[0])
+    return total
+
+
+def analyze_cost(*, taps: int, sweep: int, band: int, surface: int, spectrum: int,
+                 step: int, plotted: int) -> Cost:
+    """Model of ``smoothshaper analyze``.
+
+    Parameters
+    ----------
+    taps : int
+        FIR taps of the chain (:func:`chain_taps`).
+    sweep, band, surface, spectrum : int
+        Points evaluated for the PRV curve, the insensitivity band (grid plus about 100
+        bisection steps), the PRV surface (0 without ``--surface``) and the magnitude plot.
+    step : int
+        Samples of the step response.
+    plotted : int
+        Points drawn in all plots together.
+
+    Returns
+    -------
+    Cost
+        Phases ``taps``, ``PRV sweep``, ``band``, ``PRV surface``, ``spectrum``, ``step
+        response``, ``plots``.
+    """
+    c = UNIT_COSTS
+    per_point = _seconds_per_point(taps)
+    return Cost("analyze", {
+        "taps": c["tap"] * taps,
+        "PRV sweep": per_point * sweep,
+        "band": per_point * band,
+        "PRV surface": per_point * surface,
+        "spectrum": per_point * spectrum,
+        "step response": c["chain_sample"] * step,
+        "plots": c["plot_point"] * plotted + 1.0,
+    }, {"--Ts": f"a chain of {taps} samples at this Ts",
+        "--points": f"{sweep} sweep points",
+        "--surface-points": f"{surface} surface points"})
+
+
+def _seconds_per_point(taps: int) -> float:
+    c = UNIT_COSTS
+    return c["tap_point"] * taps + c["sqrt_tap_point"] * math.sqrt(taps) + c["point"]
+
+
+def bspline_cost(*, samples: int, axes: int, csv: bool, plot: bool) -> Cost:
+    """Model of ``smoothshaper design bspline``: ``samples`` output samples on ``axes`` axes,
+    optionally written as CSV and plotted.
+
+    Parameters
+    ----------
+    samples : int
+        Output samples (end sample of the last via-point + 1).
+    axes : int
+        Number of axes (1 to 3).
+    csv, plot : bool
+        Whether ``--csv`` / ``--plot`` were given.
+
+    Returns
+    -------
+    Cost
+        Phases ``filter``, ``csv``, ``plot``.
+    """
+    c = UNIT_COSTS
+    return Cost("design bspline", {
+        "filter": c["bspline_sample_axis"] * samples * axes,
+        "csv": c["csv_value"] * samples * (axes + 1) if csv else 0.0,
+        "plot": c["plot_point"] * min(samples, PLOT_POINTS) * 3 * axes + 1.0 if plot else 0.0,
+    }, {"--T": f"{samples} samples per axis (T/Ts times the number of via-points)",
+        "--Ts": "the samples per knot spacing"})
+
+
+def generator_cost(*, samples: int, axes: int, csv: bool, plot: bool) -> Cost:
+    """Model of ``smoothshaper design generator`` (one or several axes).
+
+    Parameters
+    ----------
+    samples : int
+        Upper bound of the samples run (the refusal bound the command computes).
+    axes : int
+        Number of axes.
+    csv, plot : bool
+        Whether ``--csv`` / ``--plot`` were given.
+
+    Returns
+    -------
+    Cost
+        Phases ``generator``, ``csv``, ``plot``.
+    """
+    c = UNIT_COSTS
+    return Cost("design generator", {
+        "generator": c["generator_sample_axis"] * samples * axes,
+        "csv": c["csv_value"] * samples * (2 + 4 * axes) if csv else 0.0,
+        "plot": c["plot_point"] * min(samples, PLOT_POINTS) * 5 * axes + 1.0 if plot else 0.0,
+    }, {"--Ts": f"about {samples} samples (the moves' duration / Ts)",
+        "--via": "the length of the moves"})
+
+
+def record_cost(what: str, *, nbytes: int, modes: int = 1) -> Cost:
+    """Model of reading and fitting CSV records (``identify``, ``calibrate``).
+
+    Parameters
+    ----------
+    what : str
+        The subcommand.
+    nbytes : int
+        Total size of the files [bytes] (``os.path.getsize``).
+    modes : int
+        Modes searched per record (calibrate: up to 4).
+
+    Returns
+    -------
+    Cost
+        Phases ``read`` and ``fit`` (a record row is taken as about 30 bytes).
+    """
+    c = UNIT_COSTS
+    rows = nbytes / 30.0
+    return Cost(what, {"read": c["record_byte"] * nbytes,
+                       "fit": c["fit_sample"] * rows * max(1, modes)},
+                {"FILE": f"{nbytes / 1e6:.3g} MB of records"})
+
+
+def measure(scale: float = 1.0) -> dict:
+    """Measure the unit costs of the model on this machine.
+
+    Parameters
+    ----------
+    scale : float
+        Size of the measurement runs relative to the default (about 10 s in all at 1).
+
+    Returns
+    -------
+    dict
+        Name -> ``(measured, modelled)`` seconds: one evaluated point of a chain of 1e4, 1e5,
+        1e6 taps, and one unit of every other entry of :data:`UNIT_COSTS`.
+
+    Raises
+    ------
+    ValueError
+        ``scale`` is not finite and > 0.
+    """
+    import io
+    import time
+
+    import numpy as np
+
+    from . import analysis, stages
+    from .filters import Chain
+    from .trajectory import BSpline, Generator
+    if not (math.isfinite(scale) and scale > 0):
+        raise ValueError(f"scale must be finite and > 0, got {scale!r}")
+
+    def timed(fn):
+        t = time.perf_counter()
+        fn()
+        return time.perf_counter() - t
+
+    out = {}
+    c = UNIT_COSTS
+    for L in (10**4, 10**5, 10**6):
+        chain = [stages.harmonic(T=L * 1e-4)]
+        resp = analysis.ChainResponse(chain, Ts=1e-4)
+        s = 1j * np.geomspace(0.1, 3e4, max(2, int(1000 * scale)))
+        out[f"point, {L} taps"] = (timed(lambda: resp(s)) / s.size, _seconds_per_point(L))
+    L = int(1e6 * scale)
+    chain = [stages.harmonic(T=L * 1e-4)]
+    out["tap"] = (timed(lambda: analysis.ChainResponse(chain, Ts=1e-4)) / L, c["tap"])
+    ch = Chain(chain, Ts=1e-4)
+    x = np.ones(4 * L)
+    out["chain_sample"] = (timed(lambda: ch.process(x)) / x.size, c["chain_sample"])
+    n = int(5e5 * scale)
+    b = BSpline(degree=3, T=0.1, Ts=1e-3, axes=2)
+    xb = np.zeros((n, 2))
+    out["bspline_sample_axis"] = (timed(lambda: b.process(xb)) / (2 * n),
+                                  c["bspline_sample_axis"])
+    g = Generator(vmax=1.0, amax=10.0, jmax=100.0, Ts=1e-3)
+    xg = np.ones(4 * n)
+    out["generator_sample_axis"] = (timed(lambda: g.process(xg)) / xg.size,
+                                    c["generator_sample_axis"])
+    rows = np.random.default_rng(0).normal(size=(n // 5, 5))
+    out["csv_value"] = (timed(lambda: np.savetxt(io.StringIO(), rows, delimiter=",",
+                                                 fmt="%.17g")) / rows.size, c["csv_value"])
+    return out
+
+
+if __name__ == "__main__":  # pragma: no cover - a measuring tool
+    for key, (measured, model) in measure().items():
+        print(f"{key:24s} measured {measured:.3g} s, model {model:.3g} s")
