@@ -25,7 +25,7 @@ import numpy as np
 
 from . import stages as _stages
 from .cli_common import (EXIT_ERROR, EXIT_UNAVAILABLE, EXIT_USAGE, CliError,  # noqa: F401
-                         Parser as _Parser, Progress, decimate, format_table,
+                         Parser as _Parser, decimate, format_table,
                          pyplot as _pyplot)
 from .errors import ParameterError
 from .stages import Stage
@@ -221,7 +221,7 @@ def _step_samples(length: int, is_fir: bool, wn_hat: float, Ts: float) -> int:
 
 
 def cmd_analyze(args) -> int:
-    from .cli_cost import PLOT_POINTS, analyze_cost, announce, chain_taps
+    from .cli_cost import PLOT_POINTS, analyze_cost, chain_taps, start
     stages = _chain_from_args(args)
     if not stages:
         raise CliError("nothing to analyze: give --stage (or --kind with --wn)")
@@ -249,14 +249,10 @@ def cmd_analyze(args) -> int:
                         surface=surface_points, spectrum=SPECTRUM_POINTS, step=n_step,
                         plotted=ratios.size + SPECTRUM_POINTS + min(n_step, PLOT_POINTS)
                         + surface_points)
-    if args.estimate:
-        print(f"analyze: chain of {taps} samples, {ratios.size} sweep points"
-              + (f", {surface_points} surface points" if args.surface else "")
-              + f": {cost.describe()}")
+    bar = start(cost, args, f"chain of {taps} samples, {ratios.size} sweep points"
+                + (f", {surface_points} surface points" if args.surface else ""))
+    if bar is None:
         return 0
-    announce(cost)
-    show = args.progress if args.progress is not None else sys.stderr.isatty()
-    bar = Progress.phased(cost, show)
 
     from .filters import Chain
     analysis = _analysis()
@@ -560,13 +556,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--zeta-max", type=float, default=0.3, help="surface damping range (default 0.3)")
     p.add_argument("--surface-points", type=int, default=61,
                    help="surface damping rows (default 61)")
-    p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
-                   help="show a progress bar over the whole run (default: when stderr is a "
-                   "terminal)")
-    p.add_argument("--estimate", action="store_true",
-                   help="print how long the run would take (from the sizes alone) and exit; "
-                   "runs modelled above 10 s print this estimate before they start, above "
-                   "600 s they are refused")
+    from .cli_cost import add_options as add_cost_options
+    add_cost_options(p)
     p.set_defaults(func=cmd_analyze)
 
     p = sub.add_parser("identify", help="mode (wn, zeta) from a CSV record of a free decay",

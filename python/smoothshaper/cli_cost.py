@@ -19,8 +19,9 @@ from dataclasses import dataclass, field
 
 from .cli_common import CliError
 
-__all__ = ["ANNOUNCE_SECONDS", "LIMIT_SECONDS", "UNIT_COSTS", "Cost", "announce", "chain_taps",
-           "analyze_cost", "bspline_cost", "generator_cost", "record_cost", "measure"]
+__all__ = ["ANNOUNCE_SECONDS", "LIMIT_SECONDS", "UNIT_COSTS", "PLOT_POINTS", "Cost",
+           "add_options", "start", "show_progress", "announce", "chain_taps",
+           "analyze_cost", "trajectory_cost", "record_cost", "measure"]
 
 #: A request modelled to take longer than this [s] prints its estimate before it starts.
 ANNOUNCE_SECONDS = 10.0
@@ -92,6 +93,56 @@ def _fmt_seconds(seconds: float) -> str:
     if seconds < 120:
         return f"{seconds:.0f} s"
     return f"{seconds / 60:.1f} min"
+
+
+def add_options(parser) -> None:
+    """Add ``--progress/--no-progress`` and ``--estimate`` to a subcommand's parser."""
+    import argparse
+    parser.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
+                        help="show a progress bar over the whole run (default: when stderr "
+                        "is a terminal)")
+    parser.add_argument("--estimate", action="store_true",
+                        help=f"print how long the run would take (from the sizes alone) and "
+                        f"exit; runs modelled above {ANNOUNCE_SECONDS:g} s print this estimate "
+                        f"before they start, above {LIMIT_SECONDS:g} s they are refused")
+
+
+def start(cost: Cost, args, sizes: str):
+    """The common start of a long request: with ``--estimate`` print ``sizes`` and the
+    estimate on stdout and return None (the caller stops); otherwise :func:`announce` it and
+    return the progress bar over its phases (drawn per :func:`show_progress`).
+
+    Parameters
+    ----------
+    cost : Cost
+        The modelled request.
+    args : argparse.Namespace
+        The parsed options (``estimate``, ``progress``).
+    sizes : str
+        The sizes the estimate comes from, e.g. ``"5000 samples on 2 axes"``.
+
+    Returns
+    -------
+    Progress or None
+        The bar, or None when only the estimate was asked for.
+
+    Raises
+    ------
+    CliError
+        The request is beyond :data:`LIMIT_SECONDS` (see :func:`announce`).
+    """
+    from .cli_common import Progress
+    if getattr(args, "estimate", False):
+        print(f"{cost.what}: {sizes}: {cost.describe()}")
+        return None
+    announce(cost)
+    return Progress.phased(cost, show_progress(args))
+
+
+def show_progress(args) -> bool:
+    """The ``--progress`` choice, or whether stderr is a terminal when it was not given."""
+    flag = getattr(args, "progress", None)
+    return sys.stderr.isatty() if flag is None else bool(flag)
 
 
 def announce(cost: Cost, *, stream=None, limit: float = LIMIT_SECONDS) -> None:
@@ -205,40 +256,16 @@ def _seconds_per_point(taps: int) -> float:
     return c["tap_point"] * taps + c["sqrt_tap_point"] * math.sqrt(taps) + c["point"]
 
 
-def bspline_cost(*, samples: int, axes: int, csv: bool, plot: bool) -> Cost:
-    """Model of ``smoothshaper design bspline``: ``samples`` output samples on ``axes`` axes,
-    optionally written as CSV and plotted.
+def trajectory_cost(form: str, *, samples: int, axes: int, csv: bool, plot: bool) -> Cost:
+    """Model of ``smoothshaper design generator`` and ``design bspline``.
 
     Parameters
     ----------
+    form : {"generator", "bspline"}
+        The design form.
     samples : int
-        Output samples (end sample of the last via-point + 1).
-    axes : int
-        Number of axes (1 to 3).
-    csv, plot : bool
-        Whether ``--csv`` / ``--plot`` were given.
-
-    Returns
-    -------
-    Cost
-        Phases ``filter``, ``csv``, ``plot``.
-    """
-    c = UNIT_COSTS
-    return Cost("design bspline", {
-        "filter": c["bspline_sample_axis"] * samples * axes,
-        "csv": c["csv_value"] * samples * (axes + 1) if csv else 0.0,
-        "plot": c["plot_point"] * min(samples, PLOT_POINTS) * 3 * axes + 1.0 if plot else 0.0,
-    }, {"--T": f"{samples} samples per axis (T/Ts times the number of via-points)",
-        "--Ts": "the samples per knot spacing"})
-
-
-def generator_cost(*, samples: int, axes: int, csv: bool, plot: bool) -> Cost:
-    """Model of ``smoothshaper design generator`` (one or several axes).
-
-    Parameters
-    ----------
-    samples : int
-        Upper bound of the samples run (the refusal bound the command computes).
+        Output samples per axis (bspline: end sample of the last via-point + 1; generator:
+        the upper bound the command refuses beyond).
     axes : int
         Number of axes.
     csv, plot : bool
@@ -247,15 +274,26 @@ def generator_cost(*, samples: int, axes: int, csv: bool, plot: bool) -> Cost:
     Returns
     -------
     Cost
-        Phases ``generator``, ``csv``, ``plot``.
+        Phases ``generator`` or ``filter``, then ``csv`` and ``plot``.
+
+    Raises
+    ------
+    KeyError
+        ``form`` is neither ``"generator"`` nor ``"bspline"``.
     """
     c = UNIT_COSTS
-    return Cost("design generator", {
-        "generator": c["generator_sample_axis"] * samples * axes,
-        "csv": c["csv_value"] * samples * (2 + 4 * axes) if csv else 0.0,
-        "plot": c["plot_point"] * min(samples, PLOT_POINTS) * 5 * axes + 1.0 if plot else 0.0,
-    }, {"--Ts": f"about {samples} samples (the moves' duration / Ts)",
-        "--via": "the length of the moves"})
+    phase, unit, columns, lines, drivers = {
+        "generator": ("generator", "generator_sample_axis", 2 + 4 * axes, 5 * axes,
+                      {"--Ts": f"about {samples} samples (the moves' duration / Ts)",
+                       "--via": "the length of the moves"}),
+        "bspline": ("filter", "bspline_sample_axis", 1 + axes, 3 * axes,
+                    {"--T": f"{samples} samples per axis (T/Ts times the number of via-points)",
+                     "--Ts": "the samples per knot spacing"})}[form]
+    return Cost(f"design {form}", {
+        phase: c[unit] * samples * axes,
+        "csv": c["csv_value"] * samples * columns if csv else 0.0,
+        "plot": c["plot_point"] * min(samples, PLOT_POINTS) * lines + 1.0 if plot else 0.0,
+    }, drivers)
 
 
 def record_cost(what: str, *, nbytes: int, modes: int = 1) -> Cost:

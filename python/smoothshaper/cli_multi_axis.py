@@ -11,13 +11,12 @@ their limits, and the path in 2-D or 3-D.
 from __future__ import annotations
 
 import math
-import sys
 
 import numpy as np
 
-from .cli_common import EXIT_ERROR, CliError, Progress, decimate, format_table
+from .cli_common import EXIT_ERROR, CliError, decimate, format_table
 from .cli_common import numbers as _numbers
-from .cli_cost import PLOT_POINTS, announce, generator_cost
+from .cli_cost import PLOT_POINTS, start, trajectory_cost
 from .cli_common import parse_via_points, pyplot as _pyplot, save_figure as _save
 from .cli_common import write_csv as _write_csv
 
@@ -123,15 +122,11 @@ def cmd_multi_generator(args) -> int:
     if max_samples > MAX_SAMPLES:
         raise CliError(f"--Ts: about {max_samples} samples would be needed (more than "
                        f"{MAX_SAMPLES}); use a larger sample period")
-    cost = generator_cost(samples=max_samples, axes=axes, csv=bool(args.csv),
-                          plot=bool(args.plot))
-    if getattr(args, "estimate", False):
-        print(f"design generator: at most {max_samples} samples on {axes} axes: "
-              f"{cost.describe()}")
+    cost = trajectory_cost("generator", samples=max_samples, axes=axes, csv=bool(args.csv),
+                           plot=bool(args.plot))
+    bar = start(cost, args, f"at most {max_samples} samples on {axes} axes")
+    if bar is None:
         return 0
-    announce(cost)
-    flag = getattr(args, "progress", None)
-    bar = Progress.phased(cost, sys.stderr.isatty() if flag is None else flag)
     bar.phase("generator")
     targets, out, starts, arrivals = run(gen, via, hold_samples, max_samples)
     lim = np.array([v, a, j])                                   # (3, axes)

@@ -15,10 +15,10 @@ import math
 
 import numpy as np
 
-from .cli_common import EXIT_ERROR, CliError, Progress, decimate, format_table
+from .cli_common import EXIT_ERROR, CliError, decimate, format_table
 from .cli_common import numbers as _numbers, parse_via_list, parse_via_points
 from .cli_common import pyplot as _pyplot, save_figure as _save, write_csv as _write_csv
-from .cli_cost import PLOT_POINTS, announce, bspline_cost, generator_cost
+from .cli_cost import PLOT_POINTS, add_options as add_cost_options, start, trajectory_cost
 
 __all__ = ["LIMIT_RTOL", "REST_RTOL", "MAX_SAMPLES", "MAX_BSPLINE_VALUES", "PROFILES", "parse_via_list",
            "parse_via_points", "run_until_reached", "run_with_hold", "segment_rows",
@@ -114,12 +114,6 @@ def segment_rows(out, starts, arrivals, via, Ts, limits):
     return rows
 
 
-def _show_progress(args) -> bool:
-    flag = getattr(args, "progress", None)
-    import sys
-    return sys.stderr.isatty() if flag is None else flag
-
-
 def _limit(text: str):
     """--vmax/--amax/--jmax: one number, or one per axis ('1,2,3') for multi-axis via-points."""
     values = _numbers("limit", text)
@@ -150,12 +144,11 @@ def cmd_generator(args) -> int:
     if max_samples > MAX_SAMPLES:
         raise CliError(f"--Ts: about {max_samples} samples would be needed (more than "
                        f"{MAX_SAMPLES}); use a larger sample period")
-    cost = generator_cost(samples=max_samples, axes=1, csv=bool(args.csv), plot=bool(args.plot))
-    if args.estimate:
-        print(f"design generator: at most {max_samples} samples: {cost.describe()}")
+    cost = trajectory_cost("generator", samples=max_samples, axes=1, csv=bool(args.csv),
+                           plot=bool(args.plot))
+    bar = start(cost, args, f"at most {max_samples} samples")
+    if bar is None:
         return 0
-    announce(cost)
-    bar = Progress.phased(cost, _show_progress(args))
     bar.phase("generator")
     if args.hold is None:
         targets, out, starts, arrivals = run_until_reached(gen, via, scale, max_samples)
@@ -254,12 +247,11 @@ def cmd_bspline(args) -> int:
                        f"axis(es), more than the limit of {MAX_BSPLINE_VALUES} values "
                        f"(T/Ts = {T / args.Ts:.4g} samples per knot spacing); use a shorter "
                        "--T or a larger --Ts")
-    cost = bspline_cost(samples=samples, axes=n_axes, csv=bool(args.csv), plot=bool(args.plot))
-    if args.estimate:
-        print(f"design bspline: {samples} samples on {n_axes} axis(es): {cost.describe()}")
+    cost = trajectory_cost("bspline", samples=samples, axes=n_axes, csv=bool(args.csv),
+                           plot=bool(args.plot))
+    bar = start(cost, args, f"{samples} samples on {n_axes} axis(es)")
+    if bar is None:
         return 0
-    announce(cost)
-    bar = Progress.phased(cost, _show_progress(args))
     spline = BSpline(degree=args.degree, T=T, Ts=args.Ts, axes=n_axes)
     ctrl = spline.control_points(via)
     bar.phase("filter", samples)
@@ -338,17 +330,6 @@ def _hinting(parser_class):
     return FormParser
 
 
-def _add_cost_options(p) -> None:
-    import argparse
-    p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
-                   help="show a progress bar over the whole run (default: when stderr is a "
-                   "terminal)")
-    p.add_argument("--estimate", action="store_true",
-                   help="print how long the run would take (from the sizes alone) and exit; "
-                   "runs modelled above 10 s print this estimate before they start, above "
-                   "600 s they are refused")
-
-
 def add_design_forms(design_parser, parser_class) -> None:
     """Add the ``generator`` and ``bspline`` forms under ``design`` (optional, so the plain
     ``design --kind ...`` / ``design --h ...`` forms keep working)."""
@@ -387,7 +368,7 @@ def add_design_forms(design_parser, parser_class) -> None:
     p.add_argument("--unit", default="unit", help="position unit for labels (default 'unit')")
     p.add_argument("--plot", metavar="PNG", help="write q, v, a, j over time to this PNG")
     p.add_argument("--csv", metavar="CSV", help="write time, target, q, v, a, j to this CSV")
-    _add_cost_options(p)
+    add_cost_options(p)
     p.set_defaults(func=cmd_generator)
 
     p = forms.add_parser("bspline", help="B-spline through via-points",
@@ -403,5 +384,5 @@ def add_design_forms(design_parser, parser_class) -> None:
     p.add_argument("--Ts", type=float, required=True, help="sample period [s]")
     p.add_argument("--plot", metavar="PNG", help="write the axes over time to this PNG")
     p.add_argument("--csv", metavar="CSV", help="write time and the axes to this CSV")
-    _add_cost_options(p)
+    add_cost_options(p)
     p.set_defaults(func=cmd_bspline)
