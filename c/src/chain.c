@@ -63,13 +63,6 @@ void sms_chain_reset(sms_chain *chain, sms_real rest)
         sms_stage_reset(&chain->stages[i], rest);
 }
 
-void sms_chain_step(sms_chain *chain, sms_real *x)
-{
-    size_t i;
-    for (i = 0; i < chain->n_stages; ++i)
-        sms_stage_step(&chain->stages[i], x);
-}
-
 void sms_chain_process(sms_chain *chain, const sms_real *in, sms_real *out, size_t n)
 {
     size_t i;

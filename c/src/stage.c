@@ -168,16 +168,6 @@ void sms_stage_reset(sms_stage *stage, sms_real rest)
     }
 }
 
-void sms_stage_step(sms_stage *stage, sms_real *x)
-{
-    switch (sms_family_of(stage->kind)) {
-    case SMS_FAMILY_SMOOTHER: sms_smoother_step(stage->u.smoother, x); break;
-    case SMS_FAMILY_SHAPER: sms_shaper_step(stage->u.shaper, x); break;
-    case SMS_FAMILY_NOTCH: sms_notch_step(stage->u.notch, x); break;
-    case SMS_FAMILY_NONE: break;
-    }
-}
-
 void sms_stage_process(sms_stage *stage, const sms_real *in, sms_real *out, size_t n)
 {
     switch (sms_family_of(stage->kind)) {

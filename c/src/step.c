@@ -1,9 +1,7 @@
-/* The single-sample entry points of the filter families: each is its family's process() on
- * one sample, kept in a file of its own so that the compiler does not inline a second copy of
- * each per-sample loop into it (one loop per family in a firmware image). */
-#include "smoothshaper/notch.h"
-#include "smoothshaper/shaper.h"
-#include "smoothshaper/smoother.h"
+/* The single-sample entry points: each is its object's process() on one sample, kept in a
+ * file of its own so that the compiler does not inline a second copy of each per-sample loop
+ * or dispatch into it (one loop per family, one dispatch, in a firmware image). */
+#include "smoothshaper/chain.h"
 
 void sms_smoother_step(sms_smoother *f, sms_real *x)
 {
@@ -18,4 +16,14 @@ void sms_shaper_step(sms_shaper *f, sms_real *x)
 void sms_notch_step(sms_notch *f, sms_real *x)
 {
     sms_notch_process(f, x, x, 1u);
+}
+
+void sms_stage_step(sms_stage *stage, sms_real *x)
+{
+    sms_stage_process(stage, x, x, 1u);
+}
+
+void sms_chain_step(sms_chain *chain, sms_real *x)
+{
+    sms_chain_process(chain, x, x, 1u);
 }

@@ -19,6 +19,10 @@ busy machine slows them alike:
 - FMUs (when fmpy and cmake are available): one ``doStep`` of ``SmoothShaper`` and of
   ``TrajectoryGenerator`` per sample period through fmpy, and the per-sample cost inside one
   long ``doStep``.
+- Memory per stage (not a time): the bytes each family's stage takes on this machine, next to
+  the retired layout that sized every stage by the largest shaper; and, when
+  ``arm-none-eabi-gcc`` and cmake are available, ``tests/portability/cortex_m.cmake`` for a
+  Cortex-M4F: the per-sample code size and the bytes of each family's instance there.
 
 Nothing here asserts a time: machines are noisy; the numbers are for reading.
 """
@@ -41,7 +45,8 @@ from pathlib import Path
 import numpy as np
 
 __all__ = ["ROOT", "SPEED_BENCH", "interleaved", "Table", "run_c_bench", "C_ROWS", "c_tables",
-           "python_tables", "trajectory_table", "fmu_table", "main"]
+           "python_tables", "trajectory_table", "fmu_table", "UNION_STAGE_BYTES", "memory_tables",
+           "main"]
 
 ROOT = Path(__file__).resolve().parents[2]
 SPEED_BENCH = ROOT / "tests" / "bench" / "speed_bench.c"
@@ -386,6 +391,106 @@ def fmu_table(quick: bool, build_dir: Path) -> list[Table]:
     return [table]
 
 
+# -- memory per stage -----------------------------------------------------------------------
+
+#: sizeof(sms_stage) of the retired layout, a union of the three families sized by a shaper's
+#: 45-entry tap arrays: every stage took this much plus its delay line, whatever its family.
+#: Measured once with the compilers of the tables (GCC, x86-64; arm-none-eabi-gcc, Cortex-M4F);
+#: the current layout is measured on every run.
+UNION_STAGE_BYTES = {("x86-64", "double"): 784, ("x86-64", "float"): 600,
+                     ("Cortex-M4F", "double"): 584, ("Cortex-M4F", "float"): 392}
+
+#: One example per family (and the largest shaper), Ts = 1 ms.
+_MEMORY_EXAMPLES = (
+    ("rectangular, T = 200 Ts", "rectangular", dict(T=0.2, timing="paper")),
+    ("damped harmonic, T = 200.3 Ts", "damped_harmonic", dict(T=0.2003, sigma=-3.0)),
+    ("ZV, 40 Hz, exact", "zv", dict(wn=2 * math.pi * 40, zeta=0.05)),
+    ("EI, 40 Hz, exact", "ei", dict(wn=2 * math.pi * 40, zeta=0.05)),
+    ("ZV^8, 40 Hz, exact (45 taps)", "zvn", dict(wn=2 * math.pi * 40, zeta=0.05, order=8)),
+    ("notch (Tustin), 40 Hz", "notch_tustin", dict(wn=2 * math.pi * 40, zeta=0.0)),
+)
+
+
+def memory_tables(quick: bool) -> list[Table]:
+    """Bytes per stage by family on this machine (both precisions), against the union layout."""
+    from .filters import _backend, _fill_config
+    from .stages import Stage
+
+    host = "x86-64" if platform.machine() in ("x86_64", "AMD64") else platform.machine()
+    table = Table(
+        "Memory per stage", ["stage", "precision", "bytes now", "instance + taps + delay line",
+                             "union layout", "now / union"],
+        f"{host}, Ts = 1 ms. Bytes now = the sms_stage descriptor + sms_stage_memory_size() "
+        "cells (the family's instance, a shaper's own tap table, the delay line, each padded to "
+        "whole cells). Union layout = the retired sizeof(sms_stage) "
+        "(a union sized by a 45-tap shaper; UNION_STAGE_BYTES) + the same delay line. "
+        "Exact ZV^8, the one shaper with 45 taps, is the case the union was sized for; in the "
+        "float build on a 64-bit host each of its taps (a size_t delay and a float gain) pads "
+        "to 16 B.")
+    for label, kind, params in _MEMORY_EXAMPLES:
+        stage = Stage(kind, **params)
+        for precision in ("double", "float"):
+            ffi, lib = _backend(precision)
+            config = ffi.new("sms_stage_config *")
+            _fill_config(config, stage)
+            cells, reals, n_taps = (ffi.new("size_t *") for _ in range(3))
+            if lib.sms_stage_memory_size(config, 1e-3, cells) != 0 or \
+                    lib.sms_stage_buffer_size(config, 1e-3, reals) != 0:
+                table.add(label, precision, "n/a", "", "", "")
+                continue
+            family = ("sms_smoother" if kind in ("rectangular", "damped_harmonic")
+                      else "sms_notch" if kind.startswith("notch") else "sms_shaper")
+            taps = 0
+            if family == "sms_shaper":
+                lib.sms_shaper_tap_count(config, 1e-3, n_taps)
+                taps = n_taps[0] * ffi.sizeof("sms_shaper_tap")
+            ring = reals[0] * ffi.sizeof("sms_real")
+            now = ffi.sizeof("sms_stage") + cells[0] * ffi.sizeof("sms_memory_cell")
+            union = UNION_STAGE_BYTES.get((host, precision))
+            union_total = union + ring if union else None
+            table.add(label, precision, now,
+                      f"{ffi.sizeof(family)} + {taps} + {ring}",
+                      union_total, _ratio(now, union_total) if union_total else "n/a")
+    return [table] + _cortex_m_tables()
+
+
+def _cortex_m_tables() -> list[Table]:
+    """Code size of the per-sample paths and instance sizes on a Cortex-M4F, from
+    tests/portability/cortex_m.cmake (skipped without arm-none-eabi-gcc or cmake)."""
+    script = ROOT / "tests" / "portability" / "cortex_m.cmake"
+    if not (shutil.which("arm-none-eabi-gcc") and shutil.which("cmake") and script.is_file()):
+        print("\n(Cortex-M4F sizes skipped: needs arm-none-eabi-gcc and cmake)")
+        return []
+    with tempfile.TemporaryDirectory() as tmp:
+        out = subprocess.run(["cmake", f"-DSOURCE_DIR={ROOT}", f"-DWORK_DIR={tmp}/work", "-P",
+                              str(script)], capture_output=True, text=True)
+    text = out.stdout + out.stderr
+    code = Table(
+        "Cortex-M4F per-sample code size", ["probe", "build", "bytes"],
+        "arm-none-eabi-gcc -mcpu=cortex-m4 -mfpu=fpv4-sp-d16 -mfloat-abi=hard, newlib, "
+        "--gc-sections (tests/portability/cortex_m.cmake): text + rodata of a program that "
+        "takes the addresses of the step/process/reset functions of the group (filters: "
+        "stage, chain, smoother, shaper, notch), minus an empty program with the same start-up "
+        "code. Counted: those functions, what they call (dispatch, the per-sample loops) and "
+        "newlib's memset (162 B, called by the smoothers' reset). The double build on this "
+        "single-precision FPU includes libgcc's soft-float routines.")
+    import re
+    for precision, opt, group, size in re.findall(
+            r"cortex-m4 (float|double) (-O[s2]): (\w+) per-sample path (\d+) B", text):
+        code.add(group, f"{precision} {opt}", int(size))
+    sizes = Table("Cortex-M4F instance bytes", ["precision", "sizeof"],
+                  "The stage descriptor, each family's instance, one shaper tap and the memory "
+                  "cell on the target (stage.h: a stage's memory is its instance, a shaper's "
+                  f"taps and its delay line). The union layout took "
+                  f"{UNION_STAGE_BYTES[('Cortex-M4F', 'float')]} B (float) and "
+                  f"{UNION_STAGE_BYTES[('Cortex-M4F', 'double')]} B (double) per stage.")
+    for precision, listing in re.findall(r"cortex-m4 (float|double): sizeof (.*) B", text):
+        sizes.add(precision, listing)
+    if not code.rows:
+        print(f"(cortex_m.cmake printed no sizes; exit {out.returncode})")
+    return [code, sizes]
+
+
 # -- main -----------------------------------------------------------------------------------
 
 def _machine() -> str:
@@ -428,6 +533,7 @@ def main(argv: list[str] | None = None) -> int:
     tables += python_tables(args.quick) + trajectory_table(args.quick, c_figures)
     if not args.no_fmu:
         tables += fmu_table(args.quick, args.fmu_build_dir)
+    tables += memory_tables(args.quick)
     text = ["# Benchmarks", "",
             "Written by `python -m smoothshaper.bench`" + (" --quick (smoke run: figures are "
                                                            "noise)" if args.quick else "")

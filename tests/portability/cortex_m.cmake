@@ -3,7 +3,11 @@ cmake_minimum_required(VERSION 3.16)
 # precisions with the library's strict C99 flags, and prints the code size of each build.
 # Then links per_sample_probe.c (step/process/reset only) against those objects with newlib
 # and --gc-sections, fails if any newlib libm function survives in the image, and prints
-# the size of what the per-sample path keeps.
+# the size of what the per-sample path keeps: the probe's text + rodata minus that of an
+# empty program with the same start-up code, i.e. the library's step/process/reset functions,
+# the dispatch and the newlib memset the smoothers' reset calls. The float filters probe is
+# also built from -Os objects (the size-optimised firmware build), and the bytes of each
+# family's instance on this target are printed (the memory of a stage, stage.h).
 # Variables: SOURCE_DIR (repository root), WORK_DIR (scratch). Prints "SKIPPED: <reason>"
 # (the ctest skip marker) when arm-none-eabi-gcc is not on PATH.
 find_program(ARM_GCC arm-none-eabi-gcc)
@@ -56,6 +60,53 @@ foreach(precision float double)
   set(objects_${precision} ${objects})
 endforeach()
 
+# The float build again at -Os, for the size-optimised figure of the filters probe below.
+set(objects_float_Os)
+foreach(src ${sources})
+  get_filename_component(name ${src} NAME_WE)
+  set(obj ${WORK_DIR}/float_Os/${name}.o)
+  file(MAKE_DIRECTORY ${WORK_DIR}/float_Os)
+  string(REPLACE "-O2" "-Os" os_flags "${strict_flags}")
+  execute_process(COMMAND ${ARM_GCC} ${target_flags} ${os_flags} -DSMS_USE_FLOAT
+    -I${SOURCE_DIR}/c/include -I${SOURCE_DIR}/c/src -c ${src} -o ${obj}
+    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "cortex-m4 float -Os: ${name}.c does not compile:\n${out}${err}")
+  endif()
+  list(APPEND objects_float_Os ${obj})
+endforeach()
+
+# Bytes of each family's instance and of the stage descriptor on this target (nm -S of arrays
+# sized by sizeof: the compiler's own answer, no target run needed).
+foreach(precision float double)
+  set(defines)
+  if(precision STREQUAL "float")
+    set(defines -DSMS_USE_FLOAT)
+  endif()
+  file(WRITE ${WORK_DIR}/sizes.c "#include <smoothshaper/smoothshaper.h>\n"
+    "char size_sms_stage[sizeof(sms_stage)];\nchar size_sms_smoother[sizeof(sms_smoother)];\n"
+    "char size_sms_shaper[sizeof(sms_shaper)];\nchar size_sms_shaper_tap[sizeof(sms_shaper_tap)];\n"
+    "char size_sms_notch[sizeof(sms_notch)];\nchar size_sms_memory_cell[sizeof(sms_memory_cell)];\n")
+  execute_process(COMMAND ${ARM_GCC} ${target_flags} ${strict_flags} ${defines}
+    -I${SOURCE_DIR}/c/include -c ${WORK_DIR}/sizes.c -o ${WORK_DIR}/sizes_${precision}.o
+    RESULT_VARIABLE rc ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "cortex-m4 ${precision}: sizes.c does not compile:\n${err}")
+  endif()
+  execute_process(COMMAND ${ARM_NM} -S ${WORK_DIR}/sizes_${precision}.o OUTPUT_VARIABLE table)
+  string(REGEX MATCHALL "[0-9a-f]+ [BC] size_[a-z_]+" rows "${table}")
+  set(listing)
+  foreach(row ${rows})
+    string(REGEX REPLACE "^([0-9a-f]+) [BC] size_([a-z_]+)$" "\\2 \\1" pair "${row}")
+    string(REGEX REPLACE " .*" "" type "${pair}")
+    string(REGEX REPLACE ".* " "" hex "${pair}")
+    math(EXPR bytes "0x${hex}")
+    list(APPEND listing "${type} ${bytes}")
+  endforeach()
+  list(JOIN listing ", " listing)
+  message(STATUS "cortex-m4 ${precision}: sizeof ${listing} B")
+endforeach()
+
 # Per-sample path on the target: which newlib libm functions does a --gc-sections image of
 # step/process/reset keep? Compared against the functions libm.a defines for this multilib.
 set(link_flags ${target_flags} -O2 --specs=nosys.specs -Wl,--gc-sections)
@@ -91,15 +142,20 @@ elf_text(${WORK_DIR}/empty.elf empty_text)
 set(group 0)
 foreach(group_name filters bspline generator)   # PROBE_GROUP 1, 2, 3
   math(EXPR group "${group} + 1")
-  foreach(precision float double)
+  set(builds float double)
+  if(group_name STREQUAL "filters")
+    list(APPEND builds float_Os)
+  endif()
+  foreach(build ${builds})
+    string(REGEX REPLACE "_Os$" "" precision "${build}")
     set(defines)
     if(precision STREQUAL "float")
       set(defines -DSMS_USE_FLOAT)
     endif()
-    set(elf ${WORK_DIR}/probe_${group_name}_${precision}.elf)
+    set(elf ${WORK_DIR}/probe_${group_name}_${build}.elf)
     execute_process(COMMAND ${ARM_GCC} ${link_flags} ${strict_flags} ${defines}
       -DPROBE_GROUP=${group} -I${SOURCE_DIR}/c/include ${CMAKE_CURRENT_LIST_DIR}/per_sample_probe.c
-      ${objects_${precision}} -lm -o ${elf} RESULT_VARIABLE rc ERROR_VARIABLE err)
+      ${objects_${build}} -lm -o ${elf} RESULT_VARIABLE rc ERROR_VARIABLE err)
     if(NOT rc EQUAL 0)
       message(FATAL_ERROR "cortex-m4 ${precision}: the ${group_name} probe does not link:\n${err}")
     endif()
@@ -134,7 +190,11 @@ foreach(group_name filters bspline generator)   # PROBE_GROUP 1, 2, 3
     # Includes the libgcc soft-float routines the double build needs on this single-precision FPU.
     elf_text(${elf} probe_text)
     math(EXPR path_text "${probe_text} - ${empty_text}")
-    message(STATUS "cortex-m4 ${precision}: ${group_name} per-sample path ${path_text} B text "
-                   "after gc-sections (empty program subtracted), ${libm_note}")
+    set(opt "-O2")
+    if(build MATCHES "_Os$")
+      set(opt "-Os")
+    endif()
+    message(STATUS "cortex-m4 ${precision} ${opt}: ${group_name} per-sample path ${path_text} B "
+                   "text after gc-sections (empty program subtracted), ${libm_note}")
   endforeach()
 endforeach()
