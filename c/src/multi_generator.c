@@ -393,14 +393,16 @@ static int limit_ok(double x)
     return isfinite(x) && x > 0.0 && (sms_real)x > 0 && (double)(sms_real)x < (double)REAL_MAX;
 }
 
-sms_status sms_multi_generator_init(sms_multi_generator *g,
-                                    const sms_multi_generator_config *config, double Ts,
-                                    size_t *bad_axis)
+/* Everything init checks, and the memory the stages need; O(stages). */
+static sms_status check_config(const sms_multi_generator_config *config, double Ts,
+                               size_t *n_structs, size_t *n_cells, size_t *bad_axis)
 {
     size_t i, n;
+    *n_structs = 0;
+    *n_cells = 0;
     if (bad_axis != NULL)
         *bad_axis = 0;
-    if (g == NULL || config == NULL)
+    if (config == NULL)
         return SMS_ERR_NULL;
     n = config->n_axes;
     if (n < 1 || n > SMS_MULTI_MAX_AXES)
@@ -417,6 +419,82 @@ sms_status sms_multi_generator_init(sms_multi_generator *g,
     }
     if ((unsigned)config->sync > (unsigned)SMS_SYNC_INDEPENDENT)
         return SMS_ERR_KIND;
+    for (i = 0; i < n; ++i) {
+        size_t need = 0;
+        sms_status st;
+        if (config->n_stages[i] == 0)
+            continue;
+        if (bad_axis != NULL)
+            *bad_axis = i;
+        if (config->n_stages[i] > SMS_CHAIN_MAX_STAGES)
+            return SMS_ERR_ORDER;
+        if (config->stages[i] == NULL)
+            return SMS_ERR_NULL;
+        st = sms_chain_memory_size(config->stages[i], config->n_stages[i], Ts, &need);
+        if (st != SMS_OK)
+            return st;
+        if (need > ((size_t)-1) / 8 / SMS_MULTI_MAX_AXES)
+            return SMS_ERR_TOO_LONG;
+        *n_structs += SMS_MULTI_SIGNALS * config->n_stages[i];
+        *n_cells += SMS_MULTI_SIGNALS * need;
+    }
+    if (bad_axis != NULL)
+        *bad_axis = 0;
+    return SMS_OK;
+}
+
+sms_status sms_multi_generator_memory(const sms_multi_generator_config *config, double Ts,
+                                      size_t *n_stage_structs, size_t *n_cells, size_t *bad_axis)
+{
+    size_t structs, cells;
+    sms_status st;
+    if (n_stage_structs == NULL || n_cells == NULL)
+        return SMS_ERR_NULL;
+    st = check_config(config, Ts, &structs, &cells, bad_axis);
+    if (st == SMS_OK) {
+        *n_stage_structs = structs;
+        *n_cells = cells;
+    }
+    return st;
+}
+
+sms_status sms_multi_generator_init(sms_multi_generator *g,
+                                    const sms_multi_generator_config *config, double Ts,
+                                    sms_stage *stages, size_t n_stage_structs,
+                                    sms_memory_cell *memory, size_t n_cells, size_t *bad_axis)
+{
+    size_t i, m, n, structs, cells;
+    sms_status st;
+    if (g == NULL) {
+        if (bad_axis != NULL)
+            *bad_axis = 0;
+        return SMS_ERR_NULL;
+    }
+    st = check_config(config, Ts, &structs, &cells, bad_axis);
+    if (st != SMS_OK)
+        return st;
+    if ((structs > 0 && stages == NULL) || (cells > 0 && memory == NULL))
+        return SMS_ERR_NULL;
+    if (n_stage_structs < structs || n_cells < cells)
+        return SMS_ERR_BUFFER_TOO_SMALL;
+    n = config->n_axes;
+    /* the configs were validated above: every chain builds */
+    for (i = 0; i < SMS_MULTI_MAX_AXES; ++i)
+        for (m = 0; m < SMS_MULTI_SIGNALS; ++m) {
+            sms_chain *c = &g->chain[i][m];
+            size_t need = 0;
+            c->stages = NULL;
+            c->n_stages = 0;
+            c->memory = NULL;
+            c->memory_len = 0;
+            if (i >= n || config->n_stages[i] == 0)
+                continue;
+            (void)sms_chain_memory_size(config->stages[i], config->n_stages[i], Ts, &need);
+            (void)sms_chain_init(c, stages, config->stages[i], config->n_stages[i], Ts,
+                                 memory, need);
+            stages += config->n_stages[i];
+            memory += need;
+        }
     g->n_axes = n;
     g->sync = config->sync;
     g->Ts = Ts;
@@ -446,6 +524,12 @@ void sms_multi_generator_reset(sms_multi_generator *g, const sms_real *position)
         g->move[i].k = g->move[i].k_end = 0;
         g->move[i].active = 0;
         g->move[i].pending = 0;
+        if (g->chain[i][0].n_stages > 0) {
+            sms_chain_reset(&g->chain[i][0], x);
+            sms_chain_reset(&g->chain[i][1], 0);
+            sms_chain_reset(&g->chain[i][2], 0);
+            sms_chain_reset(&g->chain[i][3], 0);
+        }
     }
 }
 
@@ -461,6 +545,12 @@ void sms_multi_generator_step(sms_multi_generator *g, const sms_real *target, sm
         for (i = 0; i < g->n_axes; ++i)
             step_group(g, i, 1, &g->move[i], out);
     }
+    for (i = 0; i < g->n_axes; ++i)
+        if (g->chain[i][0].n_stages > 0) {
+            size_t m;
+            for (m = 0; m < SMS_MULTI_SIGNALS; ++m)
+                sms_chain_step(&g->chain[i][m], &out[4 * i + m]);
+        }
 }
 
 void sms_multi_generator_process(sms_multi_generator *g, const sms_real *targets, size_t n,
@@ -528,9 +618,18 @@ static size_t move_count(const sms_multi_generator *g)
     return g->sync == SMS_SYNC_PHASE ? 1u : g->n_axes;
 }
 
+static size_t stages_state_count(const sms_multi_generator *g)
+{
+    size_t i, m, total = 0;
+    for (i = 0; i < g->n_axes; ++i)
+        for (m = 0; m < SMS_MULTI_SIGNALS; ++m)
+            total += sms_chain_state_count(&g->chain[i][m]);
+    return total;
+}
+
 size_t sms_multi_generator_state_count(const sms_multi_generator *g)
 {
-    return AXIS_FIELDS * g->n_axes + MOVE_FIELDS * move_count(g);
+    return AXIS_FIELDS * g->n_axes + MOVE_FIELDS * move_count(g) + stages_state_count(g);
 }
 
 void sms_multi_generator_save_state(const sms_multi_generator *g, double *dst)
@@ -558,6 +657,29 @@ void sms_multi_generator_save_state(const sms_multi_generator *g, double *dst)
         dst[9] = (double)m->active;
         dst[10] = (double)m->pending;
     }
+    for (i = 0; i < n; ++i) {
+        size_t s;
+        for (s = 0; s < SMS_MULTI_SIGNALS; ++s) {
+            sms_chain_get_state(&g->chain[i][s], dst);
+            dst += sms_chain_state_count(&g->chain[i][s]);
+        }
+    }
+}
+
+/* Would every stage of every chain accept its part of src? Writes nothing. */
+static sms_status check_stages_state(const sms_multi_generator *g, const double *src)
+{
+    size_t i, m, k;
+    for (i = 0; i < g->n_axes; ++i)
+        for (m = 0; m < SMS_MULTI_SIGNALS; ++m)
+            for (k = 0; k < g->chain[i][m].n_stages; ++k) {
+                const sms_stage *st = &g->chain[i][m].stages[k];
+                size_t count = sms_stage_state_count(st);
+                if (sms_stage_check_state(st, src, count) != SMS_OK)
+                    return SMS_ERR_STATE;
+                src += count;
+            }
+    return SMS_OK;
 }
 
 static int whole(double x)
@@ -590,6 +712,8 @@ sms_status sms_multi_generator_load_state(sms_multi_generator *g, const double *
             (f[10] != 0.0 && f[10] != 1.0))
             return SMS_ERR_STATE;
     }
+    if (check_stages_state(g, mv + MOVE_FIELDS * move_count(g)) != SMS_OK)
+        return SMS_ERR_STATE;
     for (i = 0; i < na; ++i) {
         g->target[i] = (sms_real)src[i];
         g->goal[i] = (sms_real)src[na + i];
@@ -612,5 +736,30 @@ sms_status sms_multi_generator_load_state(sms_multi_generator *g, const double *
         m->active = (int)f[9];
         m->pending = (int)f[10];
     }
+    mv += MOVE_FIELDS * move_count(g);
+    for (i = 0; i < na; ++i) {
+        size_t s;
+        for (s = 0; s < SMS_MULTI_SIGNALS; ++s) {
+            size_t count = sms_chain_state_count(&g->chain[i][s]);
+            if (count > 0)
+                (void)sms_chain_set_state(&g->chain[i][s], mv, count); /* checked above */
+            mv += count;
+        }
+    }
     return SMS_OK;
+}
+
+void sms_multi_generator_rebind(sms_multi_generator *g, sms_stage *stages,
+                                sms_memory_cell *memory)
+{
+    size_t i, m;
+    for (i = 0; i < g->n_axes; ++i)
+        for (m = 0; m < SMS_MULTI_SIGNALS; ++m) {
+            sms_chain *c = &g->chain[i][m];
+            if (c->n_stages == 0)
+                continue;
+            sms_chain_rebind(c, stages, memory);
+            stages += c->n_stages;
+            memory += c->memory_len;
+        }
 }

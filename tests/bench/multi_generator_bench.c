@@ -37,7 +37,7 @@ int main(void)
             c.jmax[i] = 100.0 + 50.0 * (double)i;
             target[i] = (sms_real)(1000.0 * (1.0 + (double)i)); /* one long move */
         }
-        if (sms_multi_generator_init(&g, &c, 1e-4, NULL) != SMS_OK)
+        if (sms_multi_generator_init(&g, &c, 1e-4, NULL, 0, NULL, 0, NULL) != SMS_OK)
             return 1;
         t0 = now();
         for (k = 0; k < n; ++k) {

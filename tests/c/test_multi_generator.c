@@ -123,7 +123,7 @@ static void rest_to_rest(unsigned trial)
     N = (size_t)ceil(nu - 1e-9 * nu);
     if (N + 2 > MAX_SAMPLES / n)
         return;
-    CHECK_STATUS(sms_multi_generator_init(&g, &c, Ts, NULL), SMS_OK);
+    CHECK_STATUS(sms_multi_generator_init(&g, &c, Ts, NULL, 0, NULL, 0, NULL), SMS_OK);
     sms_multi_generator_reset(&g, start);
     for (k = 0; k < N + 2; ++k)
         sms_multi_generator_step(&g, target, out_buf + 4 * k * n);
@@ -175,7 +175,7 @@ static void staircase(unsigned trial, sms_sync sync)
     sms_real target[SMS_MULTI_MAX_AXES];
     double q0[SMS_MULTI_MAX_AXES] = {0}, Ts = log_uniform(1e-4, 1e-2), scale[SMS_MULTI_MAX_AXES];
     sms_real *o;
-    CHECK_STATUS(sms_multi_generator_init(&g, &c, Ts, NULL), SMS_OK);
+    CHECK_STATUS(sms_multi_generator_init(&g, &c, Ts, NULL, 0, NULL, 0, NULL), SMS_OK);
     for (i = 0; i < n; ++i)
         scale[i] = c.vmax[i] * Ts * log_uniform(1.0, 300.0);
     while (total < 4000) {
@@ -212,15 +212,15 @@ static void independent_equals_single(void)
     size_t i, k;
     int same = 1;
     double Ts = 1e-3;
-    CHECK_STATUS(sms_multi_generator_init(&g, &c, Ts, NULL), SMS_OK);
+    CHECK_STATUS(sms_multi_generator_init(&g, &c, Ts, NULL, 0, NULL, 0, NULL), SMS_OK);
     for (i = 0; i < 3; ++i) {
         memset(&c1, 0, sizeof c1);
         c1.n_axes = 1;
         c1.vmax[0] = c.vmax[i];
         c1.amax[0] = c.amax[i];
         c1.jmax[0] = c.jmax[i];
-        CHECK_STATUS(sms_multi_generator_init(&g1, &c1, Ts, NULL), SMS_OK);
-        CHECK_STATUS(sms_multi_generator_init(&g, &c, Ts, NULL), SMS_OK);
+        CHECK_STATUS(sms_multi_generator_init(&g1, &c1, Ts, NULL, 0, NULL, 0, NULL), SMS_OK);
+        CHECK_STATUS(sms_multi_generator_init(&g, &c, Ts, NULL, 0, NULL, 0, NULL), SMS_OK);
         for (k = 0; k < 5000; ++k) {
             sms_real t1 = target[i];
             if (k == 700) {
@@ -243,23 +243,23 @@ static void bad_input(void)
     size_t bad = 99;
     memset(&g, 0x5a, sizeof g);
     c.amax[1] = 0.0;
-    CHECK_STATUS(sms_multi_generator_init(&g, &c, 1e-3, &bad), SMS_ERR_LIMIT);
+    CHECK_STATUS(sms_multi_generator_init(&g, &c, 1e-3, NULL, 0, NULL, 0, &bad), SMS_ERR_LIMIT);
     CHECK(bad == 1);
     c.amax[1] = 1.0;
     c.jmax[2] = NAN;
-    CHECK_STATUS(sms_multi_generator_init(&g, &c, 1e-3, &bad), SMS_ERR_LIMIT);
+    CHECK_STATUS(sms_multi_generator_init(&g, &c, 1e-3, NULL, 0, NULL, 0, &bad), SMS_ERR_LIMIT);
     CHECK(bad == 2);
     c.jmax[2] = 1.0;
-    CHECK_STATUS(sms_multi_generator_init(&g, &c, 0.0, NULL), SMS_ERR_SAMPLE_PERIOD);
+    CHECK_STATUS(sms_multi_generator_init(&g, &c, 0.0, NULL, 0, NULL, 0, NULL), SMS_ERR_SAMPLE_PERIOD);
     c.n_axes = 0;
-    CHECK_STATUS(sms_multi_generator_init(&g, &c, 1e-3, NULL), SMS_ERR_ORDER);
+    CHECK_STATUS(sms_multi_generator_init(&g, &c, 1e-3, NULL, 0, NULL, 0, NULL), SMS_ERR_ORDER);
     c.n_axes = SMS_MULTI_MAX_AXES + 1;
-    CHECK_STATUS(sms_multi_generator_init(&g, &c, 1e-3, NULL), SMS_ERR_ORDER);
+    CHECK_STATUS(sms_multi_generator_init(&g, &c, 1e-3, NULL, 0, NULL, 0, NULL), SMS_ERR_ORDER);
     c.n_axes = 3;
     c.sync = (sms_sync)7;
-    CHECK_STATUS(sms_multi_generator_init(&g, &c, 1e-3, NULL), SMS_ERR_KIND);
+    CHECK_STATUS(sms_multi_generator_init(&g, &c, 1e-3, NULL, 0, NULL, 0, NULL), SMS_ERR_KIND);
     CHECK(g.n_axes != 3); /* untouched */
-    CHECK_STATUS(sms_multi_generator_init(NULL, &c, 1e-3, NULL), SMS_ERR_NULL);
+    CHECK_STATUS(sms_multi_generator_init(NULL, &c, 1e-3, NULL, 0, NULL, 0, NULL), SMS_ERR_NULL);
 }
 
 /* Non-finite targets are ignored. */
@@ -269,7 +269,7 @@ static void non_finite_target(void)
     sms_multi_generator g;
     sms_real t[2] = {1, 1}, o[8];
     size_t k;
-    CHECK_STATUS(sms_multi_generator_init(&g, &c, 1e-2, NULL), SMS_OK);
+    CHECK_STATUS(sms_multi_generator_init(&g, &c, 1e-2, NULL, 0, NULL, 0, NULL), SMS_OK);
     for (k = 0; k < 100000 && (k < 10 || sms_multi_generator_busy(&g)); ++k) {
         t[1] = (k % 3 == 0) ? (sms_real)NAN : (sms_real)1;
         sms_multi_generator_step(&g, t, o);
@@ -286,7 +286,7 @@ static void tiny_moves(void)
     const double sizes[] = {1e-30, 1e-300, 2.2250738585072014e-311};
     sms_real t[2], o[8];
     size_t s, k;
-    CHECK_STATUS(sms_multi_generator_init(&g, &c, 1e-2, NULL), SMS_OK);
+    CHECK_STATUS(sms_multi_generator_init(&g, &c, 1e-2, NULL, 0, NULL, 0, NULL), SMS_OK);
     for (s = 0; s < sizeof sizes / sizeof sizes[0]; ++s) {
         t[0] = (sms_real)sizes[s];
         t[1] = -(sms_real)sizes[s];
@@ -310,8 +310,8 @@ static void state_round_trip(void)
     int sync, same = 1;
     for (sync = 0; sync < 2; ++sync) {
         c.sync = (sms_sync)sync;
-        CHECK_STATUS(sms_multi_generator_init(&g, &c, 1e-3, NULL), SMS_OK);
-        CHECK_STATUS(sms_multi_generator_init(&h, &c, 1e-3, NULL), SMS_OK);
+        CHECK_STATUS(sms_multi_generator_init(&g, &c, 1e-3, NULL, 0, NULL, 0, NULL), SMS_OK);
+        CHECK_STATUS(sms_multi_generator_init(&h, &c, 1e-3, NULL, 0, NULL, 0, NULL), SMS_OK);
         n = sms_multi_generator_state_count(&g);
         CHECK(n == 15 + (sync == 0 ? 11u : 33u));
         for (k = 0; k < 137; ++k)
@@ -338,6 +338,131 @@ static void state_round_trip(void)
     CHECK(same);
 }
 
+/* Vibration stages: each axis's q, v, a, j equal the stage-free generator's outputs through a
+ * separate chain of the same configs (bit for bit); same stages on every axis keep a phase
+ * move on its straight line; state round trip, copy + rebind, size query and bad stages. */
+static void stages_filter_every_signal(void)
+{
+    sms_multi_generator_config c = random_config(3, SMS_SYNC_PHASE), plain;
+    sms_stage_config zv, m, bad_wn, cfg[3][2];
+    sms_multi_generator g, h, raw;
+    static sms_stage mem[64], mem_h[64], chain_mem[3][4][2];
+    static sms_memory_cell buf[4096], buf_h[4096], chain_buf[3][4][1024];
+    static double state[4096]; /* two vectors of up to 2048 */
+    sms_chain ref[3][4];
+    size_t n_structs = 0, n_cells = 0, bad = 99, i, k, sig, n;
+    sms_real t[3] = {0.4, -0.3, 0.25}, a[12], b[12], r[12];
+    const double Ts = 1e-3;
+    int same = 1, copy_same = 1;
+    double line = 0.0;
+    zv = sms_stage_config_default(SMS_SHAPER_ZV);
+    zv.wn = 60.0;
+    zv.zeta = 0.05;
+    m = sms_stage_config_default(SMS_RECTANGULAR);
+    m.T = 0.0123;
+    for (i = 0; i < 3; ++i) {
+        c.vmax[i] = 0.5 + 0.2 * (double)i;
+        c.amax[i] = 5.0 + (double)i;
+        c.jmax[i] = 100.0 + 30.0 * (double)i;
+        cfg[i][0] = zv;
+        cfg[i][1] = m;
+        c.stages[i] = cfg[i];
+        c.n_stages[i] = 2;
+    }
+    plain = c;
+    memset(plain.n_stages, 0, sizeof plain.n_stages);
+    CHECK_STATUS(sms_multi_generator_memory(&c, Ts, &n_structs, &n_cells, &bad), SMS_OK);
+    CHECK(n_structs == 3 * 4 * 2 && bad == 0);
+    CHECK(n_cells > 0 && n_cells <= sizeof buf / sizeof buf[0]);
+    CHECK_STATUS(sms_multi_generator_init(&g, &c, Ts, mem, n_structs - 1, buf, n_cells, NULL),
+                 SMS_ERR_BUFFER_TOO_SMALL);
+    CHECK_STATUS(sms_multi_generator_init(&g, &c, Ts, mem, n_structs, buf, n_cells - 1, NULL),
+                 SMS_ERR_BUFFER_TOO_SMALL);
+    CHECK_STATUS(sms_multi_generator_init(&g, &c, Ts, NULL, 0, buf, n_cells, NULL), SMS_ERR_NULL);
+    CHECK_STATUS(sms_multi_generator_init(&g, &c, Ts, mem, n_structs, buf, n_cells, NULL), SMS_OK);
+    CHECK_STATUS(sms_multi_generator_init(&raw, &plain, Ts, NULL, 0, NULL, 0, NULL), SMS_OK);
+    for (i = 0; i < 3; ++i)
+        for (sig = 0; sig < 4; ++sig) {
+            size_t need = 0;
+            CHECK_STATUS(sms_chain_memory_size(cfg[i], 2, Ts, &need), SMS_OK);
+            CHECK_STATUS(sms_chain_init(&ref[i][sig], chain_mem[i][sig], cfg[i], 2, Ts,
+                                        chain_buf[i][sig], need), SMS_OK);
+        }
+    for (k = 0; k < 3000; ++k) {
+        if (k == 150)
+            t[0] = -0.2; /* mid-motion change: the corner is cut, not straight */
+        if (k == 1500) {
+            t[0] = 0.1; /* from rest: a straight move */
+            t[1] = 0.2;
+            t[2] = -0.35;
+        }
+        if (k == 1600) { /* copy mid-motion: the copy continues identically after rebind */
+            h = g;
+            memcpy(mem_h, mem, sizeof mem);
+            memcpy(buf_h, buf, sizeof buf);
+            sms_multi_generator_rebind(&h, mem_h, buf_h);
+        }
+        sms_multi_generator_step(&g, t, a);
+        sms_multi_generator_step(&raw, t, r);
+        for (i = 0; i < 3; ++i)
+            for (sig = 0; sig < 4; ++sig)
+                sms_chain_step(&ref[i][sig], &r[4 * i + sig]);
+        if (memcmp(a, r, sizeof a) != 0)
+            same = 0;
+        if (k >= 1600) {
+            sms_multi_generator_step(&h, t, b);
+            if (memcmp(a, b, sizeof a) != 0)
+                copy_same = 0;
+        }
+        if (k >= 1500) { /* filtered q stays on the segment from the rest point to the target */
+            const double p0[3] = {-0.2, -0.3, 0.25}, d[3] = {0.3, 0.5, -0.6};
+            double s = ((double)a[8] - p0[2]) / d[2];
+            for (i = 0; i < 3; ++i) {
+                double dev = fabs((double)a[4 * i] - p0[i] - s * d[i]) / 0.6;
+                if (dev > line)
+                    line = dev;
+            }
+        }
+    }
+    CHECK(same);
+    CHECK(copy_same);
+    CHECK(line <= LINE_TOL);
+    /* state round trip with stages: restored into a fresh generator, continues bit for bit */
+    n = sms_multi_generator_state_count(&g);
+    CHECK(n > 15 + 11 && n <= 2048);
+    t[2] = 0.3;
+    for (k = 0; k < 40; ++k)
+        sms_multi_generator_step(&g, t, a);
+    sms_multi_generator_save_state(&g, state);
+    CHECK_STATUS(sms_multi_generator_init(&h, &c, Ts, mem_h, n_structs, buf_h, n_cells, NULL),
+                 SMS_OK);
+    CHECK_STATUS(sms_multi_generator_load_state(&h, state, n), SMS_OK);
+    same = 1;
+    for (k = 0; k < 800; ++k) {
+        sms_multi_generator_step(&g, t, a);
+        sms_multi_generator_step(&h, t, b);
+        if (memcmp(a, b, sizeof a) != 0)
+            same = 0;
+    }
+    CHECK(same);
+    state[15 + 11 + 2] = -1.0; /* the head of axis 0's first shaper: not in its history */
+    sms_multi_generator_save_state(&h, state + 2048);
+    CHECK_STATUS(sms_multi_generator_load_state(&h, state, n), SMS_ERR_STATE);
+    sms_multi_generator_save_state(&h, state);
+    CHECK(memcmp(state, state + 2048, n * sizeof(double)) == 0); /* nothing written */
+    /* a bad stage on axis 2: its status and axis, nothing built */
+    bad_wn = zv;
+    bad_wn.wn = -1.0;
+    cfg[2][0] = bad_wn;
+    CHECK_STATUS(sms_multi_generator_memory(&c, Ts, &n_structs, &n_cells, &bad), SMS_ERR_WN);
+    CHECK(bad == 2);
+    CHECK_STATUS(sms_multi_generator_init(&h, &c, Ts, mem_h, 64, buf_h, 4096, &bad), SMS_ERR_WN);
+    CHECK(bad == 2);
+    c.n_stages[1] = SMS_CHAIN_MAX_STAGES + 1;
+    CHECK_STATUS(sms_multi_generator_memory(&c, Ts, &n_structs, &n_cells, &bad), SMS_ERR_ORDER);
+    CHECK(bad == 1);
+}
+
 int main(void)
 {
     unsigned trial;
@@ -350,5 +475,6 @@ int main(void)
     non_finite_target();
     tiny_moves();
     state_round_trip();
+    stages_filter_every_signal();
     return check_summary("test_multi_generator");
 }

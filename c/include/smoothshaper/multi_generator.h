@@ -11,7 +11,7 @@
 #ifndef SMOOTHSHAPER_MULTI_GENERATOR_H
 #define SMOOTHSHAPER_MULTI_GENERATOR_H
 
-#include "smoothshaper/types.h"
+#include "smoothshaper/chain.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -19,6 +19,8 @@ extern "C" {
 
 /** @brief Most axes one generator drives. */
 #define SMS_MULTI_MAX_AXES 8
+/** @brief Signals filtered per axis when the axis has vibration stages: q, v, a, j. */
+#define SMS_MULTI_SIGNALS 4
 
 /** @brief How the axes are coordinated (values stable: FMU parameter). */
 typedef enum sms_sync {
@@ -34,6 +36,15 @@ typedef enum sms_sync {
  * | n_axes | 1 .. ::SMS_MULTI_MAX_AXES |
  * | vmax[i], amax[i], jmax[i], i < n_axes | finite, > 0 (units of axis i per s, s^2, s^3) |
  * | sync | an ::sms_sync |
+ * | n_stages[i], i < n_axes | 0 (no filter) .. ::SMS_CHAIN_MAX_STAGES |
+ * | stages[i] | n_stages[i] valid stage configs (config.h), or NULL when n_stages[i] = 0 |
+ *
+ * Vibration stages: axis i filters each of its four outputs q, v, a, j through its own copy
+ * of the chain stages[i][0 .. n_stages[i]) (the stages of sms_chain_init(), the same configs
+ * the single-axis chain takes). A linear filter applied to every coordinate of a straight
+ * move q(t) = p + s(t) d gives p + H(s) d: the same stages on every axis keep a straight move
+ * straight (every axis is delayed and smoothed alike); different stages per axis bend it.
+ * A zero-initialised config has no stages.
  */
 typedef struct sms_multi_generator_config {
     size_t n_axes;
@@ -41,6 +52,8 @@ typedef struct sms_multi_generator_config {
     double amax[SMS_MULTI_MAX_AXES];
     double jmax[SMS_MULTI_MAX_AXES];
     sms_sync sync;
+    const sms_stage_config *stages[SMS_MULTI_MAX_AXES];
+    size_t n_stages[SMS_MULTI_MAX_AXES];
 } sms_multi_generator_config;
 
 /** @brief One running move of a group of axes (all axes in phase mode, one in independent). */
@@ -101,9 +114,11 @@ typedef struct sms_multi_move {
  * limits too. Per-sample work is O(n_axes); a re-plan costs a bounded number (a few hundred)
  * of O(n_axes) evaluations.
  *
- * Vibration stages: filter each axis's q (and v, a, j) with the same stages (e.g. a chain of
- * shapers); identical linear filters on every axis keep straight lines straight, different
- * ones bend them.
+ * Vibration stages (::sms_multi_generator_config): after the profile, axis i's q, v, a, j each
+ * pass through a copy of its chain, y = H(x) per signal; the filtered v, a, j are the
+ * derivatives of the filtered q at the same instants (a filter of samples commutes with the
+ * derivative of the continuous profile). The stage structs and delay lines live in caller
+ * memory sized by sms_multi_generator_memory().
  */
 typedef struct sms_multi_generator {
     size_t n_axes;
@@ -117,34 +132,63 @@ typedef struct sms_multi_generator {
     sms_real V[SMS_MULTI_MAX_AXES];      /**< velocity at its start */
     sms_real W[SMS_MULTI_MAX_AXES];      /**< its cruise velocity */
     sms_multi_move move[SMS_MULTI_MAX_AXES]; /**< phase: move[0]; independent: move[i] */
+    /** vibration stages of axis i, signal m (n_stages 0: none), in caller memory */
+    sms_chain chain[SMS_MULTI_MAX_AXES][SMS_MULTI_SIGNALS];
 } sms_multi_generator;
 
 /**
- * @brief Validate the limits and Ts; the generator rests at 0 on every axis.
+ * @brief Caller memory a configuration needs (size query, O(stages) closed form).
+ * @param config   limits and stages (see ::sms_multi_generator_config)
+ * @param Ts       sample period [s], finite and > 0
+ * @param n_stage_structs receives the ::sms_stage count: 4 sum_i n_stages[i] (0: no stages)
+ * @param n_cells  receives the ::sms_memory_cell count of the stages' instances, tap tables
+ *                 and delay lines: 4 sum_i sms_chain_memory_size(stages[i])
+ * @param bad_axis if not NULL, receives the offending axis (else 0)
+ * @return as sms_multi_generator_init(): the limits and every stage config are validated.
+ */
+SMS_API sms_status sms_multi_generator_memory(const sms_multi_generator_config *config, double Ts,
+                                              size_t *n_stage_structs, size_t *n_cells,
+                                              size_t *bad_axis);
+/**
+ * @brief Validate the limits, Ts and the stages and build the stages into caller memory; the
+ * generator rests at 0 on every axis.
  * @param g       caller-owned generator
- * @param config  limits (see ::sms_multi_generator_config for ranges)
+ * @param config  limits and stages (see ::sms_multi_generator_config for ranges)
  * @param Ts      sample period [s], finite and > 0
- * @param bad_axis if not NULL, receives the offending axis for ::SMS_ERR_LIMIT (else 0)
- * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_ORDER (n_axes out of range),
- *         ::SMS_ERR_SAMPLE_PERIOD, ::SMS_ERR_LIMIT (a limit not finite and > 0, or a limit
- *         ratio that overflows the signal type), ::SMS_ERR_KIND (sync). g untouched on error.
+ * @param stages  caller memory of n_stage_structs ::sms_stage (sms_multi_generator_memory());
+ *                may be NULL when no axis has stages
+ * @param n_stage_structs its length
+ * @param memory  caller memory of n_cells cells for the stages (may be NULL if 0)
+ * @param n_cells its length
+ * @param bad_axis if not NULL, receives the offending axis for ::SMS_ERR_LIMIT and stage
+ *                errors (else 0)
+ * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_ORDER (n_axes out of range, or n_stages[i]
+ *         above ::SMS_CHAIN_MAX_STAGES), ::SMS_ERR_SAMPLE_PERIOD, ::SMS_ERR_LIMIT (a limit not
+ *         finite and > 0, or a limit ratio that overflows the signal type), ::SMS_ERR_KIND
+ *         (sync), the first failing stage config's status (its axis in bad_axis),
+ *         ::SMS_ERR_TOO_LONG, ::SMS_ERR_BUFFER_TOO_SMALL (stages or memory shorter than
+ *         sms_multi_generator_memory() says). g, stages and memory untouched on error.
  */
 SMS_API sms_status sms_multi_generator_init(sms_multi_generator *g,
                                             const sms_multi_generator_config *config, double Ts,
+                                            sms_stage *stages, size_t n_stage_structs,
+                                            sms_memory_cell *memory, size_t n_cells,
                                             size_t *bad_axis);
-/** @brief Rest at position[0 .. n_axes-1] (targets and output there); NULL: rest at 0. */
+/** @brief Rest at position[0 .. n_axes-1] (targets and output there; the stages settled:
+ * q's chain as if its input had been the position forever, v, a, j's at 0); NULL: at 0. */
 SMS_API void sms_multi_generator_reset(sms_multi_generator *g, const sms_real *position);
 /**
  * @brief Advance one sample with the current target vector (n_axes values; a non-finite
  * component keeps that axis's previous target) and write out[4 i + m] = q, q', q'', q''' of
- * axis i at this instant.
+ * axis i at this instant (after the axis's stages, if any).
  */
 SMS_API void sms_multi_generator_step(sms_multi_generator *g, const sms_real *target,
                                       sms_real *out);
 /** @brief n samples: targets[k n_axes + i] in, out[(k n_axes + i) 4 + m] out. */
 SMS_API void sms_multi_generator_process(sms_multi_generator *g, const sms_real *targets,
                                          size_t n, sms_real *out);
-/** @brief 1 while any axis is moving or waiting for a new target, else 0. */
+/** @brief 1 while any axis's profile is moving or waiting for a new target, else 0 (stages'
+ * outputs settle sms_chain_length() samples later; a notch's only asymptotically). */
 SMS_API int sms_multi_generator_busy(const sms_multi_generator *g);
 /**
  * @brief Time-optimal phase-synchronised rest-to-rest duration for a displacement vector:
@@ -157,7 +201,8 @@ SMS_API sms_status sms_multi_phase_duration(const sms_multi_generator_config *co
                                             const double *delta, double *T);
 
 /** @brief Number of doubles sms_multi_generator_save_state() writes:
- * 5 n_axes (target, goal, p, V, W) + 11 per move (n_axes moves, or 1 in phase mode). */
+ * 5 n_axes (target, goal, p, V, W) + 11 per move (n_axes moves, or 1 in phase mode) + the
+ * stages' states (sms_chain_state_count() of each chain: axis by axis, q, v, a, j). */
 SMS_API size_t sms_multi_generator_state_count(const sms_multi_generator *g);
 /** @brief Write the dynamic state (not the limits) as sms_multi_generator_state_count() doubles. */
 SMS_API void sms_multi_generator_save_state(const sms_multi_generator *g, double *dst);
@@ -165,10 +210,15 @@ SMS_API void sms_multi_generator_save_state(const sms_multi_generator *g, double
  * @brief Restore a saved state into a generator with the same configuration.
  * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_STATE (n differs, a value is non-finite, a
  * count is not a whole number, a flag is not 0/1, k > k_end, rho outside (0, 1/2], a duration
- * negative, or a velocity beyond its axis's vmax); nothing written on error.
+ * negative, a velocity beyond its axis's vmax, or a stage state that does not fit its
+ * stage); nothing written on error.
  */
 SMS_API sms_status sms_multi_generator_load_state(sms_multi_generator *g, const double *src,
                                                   size_t n);
+/** @brief After copying g, its stages and its memory elsewhere (same layout), point the
+ * copy's chains at the copy's stages and memory. */
+SMS_API void sms_multi_generator_rebind(sms_multi_generator *g, sms_stage *stages,
+                                        sms_memory_cell *memory);
 
 #ifdef __cplusplus
 }
