@@ -249,13 +249,15 @@ int fmu_build(const fmi2CallbackFunctions *cb, void *model, void **mem, size_t *
 {
     size_t need = 0;
     void *block;
+    int built;
     if (fmu_model_plan(model, &need, msg, len) != 0)
         return 1;
     block = cb->allocateMemory(need > 0 ? need : 1, 1);
     if (block == NULL)
         return snprintf(msg, len, "out of memory: the filters need %lu bytes",
                         (unsigned long)need), 1;
-    if (fmu_model_build(model, block, need, msg, len) != 0) {
+    built = fmu_model_build(model, block, need, msg, len);
+    if (built > 0) {
         cb->freeMemory(block);
         return 1;
     }
@@ -263,7 +265,7 @@ int fmu_build(const fmi2CallbackFunctions *cb, void *model, void **mem, size_t *
         cb->freeMemory(*mem);
     *mem = block;
     *bytes = need;
-    return 0;
+    return built < 0 ? -1 : 0;
 }
 
 fmi2Status fmi2SetupExperiment(fmi2Component comp, fmi2Boolean toleranceDefined, fmi2Real tolerance,
@@ -296,16 +298,22 @@ fmi2Status fmi2ExitInitializationMode(fmi2Component comp)
 {
     fmu_instance *c = checked(comp, "fmi2ExitInitializationMode", IN_INIT);
     char msg[FMU_MESSAGE_LEN];
+    int built;
     if (c == NULL)
         return fmi2Error;
     msg[0] = '\0';
-    if (fmu_build(&c->cb, c->model, &c->mem, &c->mem_bytes, msg, sizeof msg) != 0)
+    built = fmu_build(&c->cb, c->model, &c->mem, &c->mem_bytes, msg, sizeof msg);
+    if (built > 0)
         return FAIL(c, "fmi2ExitInitializationMode: %s", msg);
     c->clock.time = c->clock.start_time;
     c->clock.ticks = 0;
     c->clock.since_tick = 0.0;
     c->clock.steady = 0;
     c->clock.phase = FMU_STEP_COMPLETE;
+    if (built < 0) { /* built, with a warning about the parameters */
+        log_message(c, fmi2Warning, FMU_LOG_WARNING, "fmi2ExitInitializationMode: %s", msg);
+        return fmi2Warning;
+    }
     return fmi2OK;
 }
 

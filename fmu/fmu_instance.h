@@ -75,7 +75,8 @@ typedef struct fmu_snapshot {
 
 /**
  * Plan, allocate (through cb) and build model; on success *mem and *bytes hold the new block and
- * the previous block is freed; on failure nothing changes and msg says why.
+ * the previous block is freed. Returns 0 (built), -1 (built, msg holds a warning about the
+ * parameters) or 1 (failed: nothing changes and msg says why).
  */
 int fmu_build(const fmi2CallbackFunctions *cb, void *model, void **mem, size_t *bytes, char *msg,
               size_t len);

@@ -72,7 +72,8 @@ int fmu_model_plan(const void *model, size_t *bytes, char *msg, size_t len);
 /**
  * @brief Build the filters into mem (bytes from fmu_model_plan, aligned for any type), at rest
  * at the current input.
- * @return 0 on success; otherwise non-zero with msg, and the model untouched.
+ * @return 0 on success; negative: built, with a warning about the parameters in msg (the glue
+ * logs it as fmi2Warning); positive: refused, msg says why, and the model untouched.
  */
 int fmu_model_build(void *model, void *mem, size_t bytes, char *msg, size_t len);
 /** @brief One internal tick: filter the held input, update the outputs. Only after build.

@@ -284,7 +284,7 @@ int fmu_deserialize(const unsigned char *in, size_t size, fmu_snapshot *dst,
     if (fmu_model_sample_period(dst->model) > 0.0
         && check_clock(&dst->clock, fmu_model_sample_period(dst->model), msg, len) != 0)
         return -1;
-    if (fmu_build(cb, dst->model, &dst->mem, &dst->mem_bytes, msg, len) != 0)
+    if (fmu_build(cb, dst->model, &dst->mem, &dst->mem_bytes, msg, len) > 0)
         return -1;
     if (n_state != fmu_model_state_count(dst->model))
         REFUSE("state holds %lu filter values, the parameters need %lu", (unsigned long)n_state,
