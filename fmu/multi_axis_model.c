@@ -2,9 +2,12 @@
  * MultiAxisGenerator: the multi-axis online generator of the smoothshaper library
  * (sms_multi_generator_*, multi_generator.h) as an FMU. Inputs target[i]; outputs q[i], v[i],
  * a[i], j[i] at the internal ticks, every axis within its own vmax[i], amax[i], jmax[i].
- * Parameters: Ts, axes (1..8), sync (0 phase-synchronised, 1 independent), per-axis limits
- * and the rest position q0[i]. At fmi2ExitInitializationMode the generator rests at q0 (so a
- * target that differs from q0 at t = 0 moves from the first tick on).
+ * Parameters: Ts, axes (1..8), sync (0 phase-synchronised, 1 independent), per-axis limits,
+ * the rest position q0[i] and up to MA_MAX_STAGES vibration stages per axis
+ * (stage[k].kind[i], designed for the mode stage[k].wn[i], stage[k].zeta[i]). At
+ * fmi2ExitInitializationMode the generator rests at q0 (so a target that differs from q0 at
+ * t = 0 moves from the first tick on); axes in use with different stages get a warning (they
+ * bend straight moves). The stage structs and delay lines live in the glue's block.
  */
 #include <math.h>
 #include <stddef.h>
@@ -17,17 +20,44 @@
 
 typedef struct ma_model {
     double field[MA_FIELD_COUNT][MA_MAX_AXES]; /* target, q, v, a, j, vmax, amax, jmax, q0 */
+    int kind[MA_MAX_STAGES][MA_MAX_AXES];      /* stage[k].kind[i] */
+    double wn[MA_MAX_STAGES][MA_MAX_AXES], zeta[MA_MAX_STAGES][MA_MAX_AXES];
     double Ts;
     int axes, sync;
     int built;
+    size_t n_cells;                            /* stage memory cells at the block's start,
+                                                  then the sms_stage structs */
     sms_multi_generator gen;
 } ma_model;
+
+/* The stage configs of every axis in use (stages of kind none skipped). */
+typedef struct ma_stages {
+    sms_stage_config config[MA_MAX_AXES][MA_MAX_STAGES];
+    int index[MA_MAX_AXES][MA_MAX_STAGES]; /* k of each config: stage[k] */
+    size_t n[MA_MAX_AXES];
+} ma_stages;
 
 /* Fields in the order of MA_FIELDS (generate.py): index f - 1 of value reference 100 f + i. */
 enum { F_TARGET, F_Q, F_V, F_A, F_J, F_VMAX, F_AMAX, F_JMAX, F_Q0 };
 static const char *const field_names[MA_FIELD_COUNT] = {
     "target", "q", "v", "a", "j", "vmax", "amax", "jmax", "q0"
 };
+
+/* Stage k, field g and axis i of a stage value reference; 0 if it is not one. */
+static int stage_var(fmi2ValueReference vr, int *k, int *g, int *axis)
+{
+    unsigned r;
+    if (vr < MA_STAGE_BASE || vr >= MA_STAGE_BASE + 100u * MA_STAGE_STRIDE * MA_MAX_STAGES ||
+        vr % 100 >= MA_MAX_AXES)
+        return 0;
+    r = (vr - MA_STAGE_BASE) / 100;
+    *k = (int)(r / MA_STAGE_STRIDE);
+    *g = (int)(r % MA_STAGE_STRIDE);
+    *axis = (int)(vr % 100);
+    return 1;
+}
+
+static const char *const stage_field_names[MA_STAGE_STRIDE] = {"kind", "wn", "zeta"};
 
 /* Field and axis of a Real value reference; 0 if it is not an axis variable. */
 static int axis_var(fmi2ValueReference vr, int *field, int *axis)
@@ -49,10 +79,17 @@ void fmu_model_defaults(void *model)
     int i;
     memset(m->field, 0, sizeof m->field);
     for (i = 0; i < MA_MAX_AXES; ++i) {
+        int k;
         m->field[F_VMAX][i] = 1.0;
         m->field[F_AMAX][i] = 10.0;
         m->field[F_JMAX][i] = 100.0;
+        for (k = 0; k < MA_MAX_STAGES; ++k) {
+            m->kind[k][i] = -1;
+            m->wn[k][i] = 100.0;
+            m->zeta[k][i] = 0.0;
+        }
     }
+    m->n_cells = 0;
     m->Ts = 0.001;
     m->axes = 3;
     m->sync = SMS_SYNC_PHASE;
@@ -61,7 +98,10 @@ void fmu_model_defaults(void *model)
 
 fmu_var_class fmu_model_class(fmu_type type, fmi2ValueReference vr)
 {
-    int f, i;
+    int f, i, k;
+    if (stage_var(vr, &k, &f, &i))
+        return (f == MA_STAGE_KIND) == (type == FMU_INTEGER) ? FMU_VAR_PARAMETER
+                                                             : FMU_VAR_UNKNOWN;
     if (type == FMU_INTEGER)
         return vr == MA_VR_AXES || vr == MA_VR_SYNC ? FMU_VAR_PARAMETER : FMU_VAR_UNKNOWN;
     if (vr == MA_VR_TS)
@@ -73,8 +113,10 @@ fmu_var_class fmu_model_class(fmu_type type, fmi2ValueReference vr)
 
 void fmu_model_name(fmu_type type, fmi2ValueReference vr, char *buf, size_t len)
 {
-    int f, i;
-    if (type == FMU_INTEGER && (vr == MA_VR_AXES || vr == MA_VR_SYNC))
+    int f, i, k;
+    if (stage_var(vr, &k, &f, &i))
+        snprintf(buf, len, "stage[%d].%s[%d]", k, stage_field_names[f], i);
+    else if (type == FMU_INTEGER && (vr == MA_VR_AXES || vr == MA_VR_SYNC))
         snprintf(buf, len, "%s", vr == MA_VR_AXES ? "axes" : "sync");
     else if (type == FMU_REAL && vr == MA_VR_TS)
         snprintf(buf, len, "Ts");
@@ -87,46 +129,65 @@ void fmu_model_name(fmu_type type, fmi2ValueReference vr, char *buf, size_t len)
 size_t fmu_model_settable(fmu_type type, fmi2ValueReference *out, size_t cap)
 {
     size_t n = 0;
-    int f, i;
+    int f, i, k;
     if (type == FMU_INTEGER) {
-        if (cap > 0) out[0] = MA_VR_AXES;
-        if (cap > 1) out[1] = MA_VR_SYNC;
-        return 2;
-    }
-    if (n < cap) out[n] = MA_VR_TS;
-    ++n;
-    for (f = 0; f < MA_FIELD_COUNT; ++f) {
-        if (f >= F_Q && f <= F_J)
-            continue;
-        for (i = 0; i < MA_MAX_AXES; ++i) {
-            if (n < cap) out[n] = (fmi2ValueReference)(100 * (f + 1) + i);
-            ++n;
+        if (n < cap) out[n] = MA_VR_AXES;
+        ++n;
+        if (n < cap) out[n] = MA_VR_SYNC;
+        ++n;
+    } else {
+        if (n < cap) out[n] = MA_VR_TS;
+        ++n;
+        for (f = 0; f < MA_FIELD_COUNT; ++f) {
+            if (f >= F_Q && f <= F_J)
+                continue;
+            for (i = 0; i < MA_MAX_AXES; ++i) {
+                if (n < cap) out[n] = (fmi2ValueReference)(100 * (f + 1) + i);
+                ++n;
+            }
         }
     }
+    for (k = 0; k < MA_MAX_STAGES; ++k)
+        for (f = 0; f < MA_STAGE_STRIDE; ++f) {
+            if ((f == MA_STAGE_KIND) != (type == FMU_INTEGER))
+                continue;
+            for (i = 0; i < MA_MAX_AXES; ++i) {
+                if (n < cap)
+                    out[n] = (fmi2ValueReference)(MA_STAGE_BASE + 100 * (MA_STAGE_STRIDE * k + f) + i);
+                ++n;
+            }
+        }
     return n;
 }
 
 double fmu_model_get_real(const void *model, fmi2ValueReference vr)
 {
     const ma_model *m = (const ma_model *)model;
-    int f, i;
+    int f, i, k;
     if (vr == MA_VR_TS)
         return m->Ts;
+    if (stage_var(vr, &k, &f, &i))
+        return f == MA_STAGE_WN ? m->wn[k][i] : m->zeta[k][i];
     return axis_var(vr, &f, &i) ? m->field[f][i] : 0.0;
 }
 
 int fmu_model_get_integer(const void *model, fmi2ValueReference vr)
 {
     const ma_model *m = (const ma_model *)model;
+    int f, i, k;
+    if (stage_var(vr, &k, &f, &i))
+        return m->kind[k][i];
     return vr == MA_VR_AXES ? m->axes : vr == MA_VR_SYNC ? m->sync : 0;
 }
 
 void fmu_model_set_real(void *model, fmi2ValueReference vr, double value)
 {
     ma_model *m = (ma_model *)model;
-    int f, i;
+    int f, i, k;
     if (vr == MA_VR_TS)
         m->Ts = value;
+    else if (stage_var(vr, &k, &f, &i))
+        *(f == MA_STAGE_WN ? &m->wn[k][i] : &m->zeta[k][i]) = value;
     else if (axis_var(vr, &f, &i))
         m->field[f][i] = value;
 }
@@ -134,7 +195,10 @@ void fmu_model_set_real(void *model, fmi2ValueReference vr, double value)
 void fmu_model_set_integer(void *model, fmi2ValueReference vr, int value)
 {
     ma_model *m = (ma_model *)model;
-    if (vr == MA_VR_AXES)
+    int f, i, k;
+    if (stage_var(vr, &k, &f, &i))
+        m->kind[k][i] = value;
+    else if (vr == MA_VR_AXES)
         m->axes = value;
     else if (vr == MA_VR_SYNC)
         m->sync = value;
@@ -144,10 +208,78 @@ double fmu_model_sample_period(const void *model) { return ((const ma_model *)mo
 
 unsigned fmu_model_real_bytes(void) { return (unsigned)sizeof(sms_real); }
 
-/* Validate every parameter into c (O(axes)); 0, or 1 with msg naming the variable. */
-static int configure(const ma_model *m, sms_multi_generator_config *c, char *msg, size_t len)
+/* Config of stage k of axis i (designed for its mode); 0, or 1 with msg naming the variable. */
+static int stage_config(const ma_model *m, int k, int i, sms_stage_config *c, char *msg,
+                        size_t len)
 {
-    sms_multi_generator check;
+    int kind = m->kind[k][i];
+    const char *why;
+    sms_status st;
+    if (kind < 0 || kind >= SMS_KIND_COUNT)
+        return snprintf(msg, len, "stage[%d].kind[%d] = %d is not a stage kind code (-1 = none, "
+                        "0 .. %d)", k, i, kind, SMS_KIND_COUNT - 1), 1;
+    st = sms_design_for_mode((sms_kind)kind, m->wn[k][i], m->zeta[k][i], 1u, c);
+    if (st == SMS_OK)
+        st = sms_stage_config_validate(c, m->Ts);
+    if (st == SMS_OK)
+        return 0;
+    why = sms_status_string(st);
+    switch (st) {
+    case SMS_ERR_ZETA: case SMS_ERR_SIGMA:
+        return snprintf(msg, len, "stage[%d].zeta[%d] = %.17g: %s", k, i, m->zeta[k][i], why), 1;
+    case SMS_ERR_KIND:
+        return snprintf(msg, len, "stage[%d].kind[%d] = %d: %s", k, i, kind, why), 1;
+    default: /* wn, and the durations designed from it */
+        return snprintf(msg, len, "stage[%d].wn[%d] = %.17g: %s", k, i, m->wn[k][i], why), 1;
+    }
+}
+
+/* The stages of every axis in use, their delay lines (4 signals each) within FMU_MAX_REALS;
+ * 0, or 1 with msg. */
+static int stage_configs(const ma_model *m, ma_stages *s, char *msg, size_t len)
+{
+    double samples = 0.0;
+    int i, k;
+    for (i = 0; i < m->axes; ++i) {
+        s->n[i] = 0;
+        for (k = 0; k < MA_MAX_STAGES; ++k) {
+            size_t reals = 0;
+            if (m->kind[k][i] == -1)
+                continue;
+            if (stage_config(m, k, i, &s->config[i][s->n[i]], msg, len) != 0)
+                return 1;
+            (void)sms_stage_buffer_size(&s->config[i][s->n[i]], m->Ts, &reals);
+            samples += 4.0 * (double)reals;
+            if (samples > (double)FMU_MAX_REALS)
+                return snprintf(msg, len, "stage[%d].wn[%d] = %.17g: the stages need more than "
+                                "%lu delay-line samples (2 GiB in double): raise wn or Ts", k, i,
+                                m->wn[k][i], (unsigned long)FMU_MAX_REALS), 1;
+            s->index[i][s->n[i]++] = k;
+        }
+    }
+    return 0;
+}
+
+/* Do axes i and 0 have the same stages (kinds and modes, in order)? */
+static int same_stages(const ma_model *m, const ma_stages *s, int i)
+{
+    size_t n;
+    if (s->n[i] != s->n[0])
+        return 0;
+    for (n = 0; n < s->n[0]; ++n) {
+        int a = s->index[0][n], b = s->index[i][n];
+        if (m->kind[a][0] != m->kind[b][i] || m->wn[a][0] != m->wn[b][i] ||
+            m->zeta[a][0] != m->zeta[b][i])
+            return 0;
+    }
+    return 1;
+}
+
+/* Validate every parameter into c and s (O(axes stages)); sizes of the stages' memory.
+ * 0, or 1 with msg naming the variable. */
+static int configure(const ma_model *m, sms_multi_generator_config *c, ma_stages *s,
+                     size_t *n_structs, size_t *n_cells, char *msg, size_t len)
+{
     size_t bad = 0;
     sms_status st;
     int i, f;
@@ -162,6 +294,14 @@ static int configure(const ma_model *m, sms_multi_generator_config *c, char *msg
             if (!(m->field[f][i] > 0.0))
                 return snprintf(msg, len, "%s[%d] = %.17g: must be > 0", field_names[f], i,
                                 m->field[f][i]), 1;
+    for (i = 0; i < m->axes; ++i) {
+        sms_real q0 = (sms_real)m->field[F_Q0][i]; /* finite in double, maybe not in float */
+        if (q0 - q0 != 0)
+            return snprintf(msg, len, "q0[%d] = %.17g: the rest position must be finite in "
+                            "the signal type", i, m->field[F_Q0][i]), 1;
+    }
+    if (stage_configs(m, s, msg, len) != 0)
+        return 1;
     memset(c, 0, sizeof *c);
     c->n_axes = (size_t)m->axes;
     c->sync = (sms_sync)m->sync;
@@ -169,23 +309,37 @@ static int configure(const ma_model *m, sms_multi_generator_config *c, char *msg
         c->vmax[i] = m->field[F_VMAX][i];
         c->amax[i] = m->field[F_AMAX][i];
         c->jmax[i] = m->field[F_JMAX][i];
+        c->stages[i] = s->n[i] > 0 ? s->config[i] : NULL;
+        c->n_stages[i] = s->n[i];
     }
-    st = sms_multi_generator_init(&check, c, m->Ts, &bad); /* the core's own checks */
+    st = sms_multi_generator_memory(c, m->Ts, n_structs, n_cells, &bad); /* the core's checks */
     if (st == SMS_ERR_LIMIT)
         return snprintf(msg, len, "vmax[%d], amax[%d], jmax[%d] = %.17g, %.17g, %.17g: %s",
                         (int)bad, (int)bad, (int)bad, c->vmax[bad], c->amax[bad], c->jmax[bad],
+                        sms_status_string(st)), 1;
+    if (st != SMS_OK && s->n[bad] > 0)
+        return snprintf(msg, len, "stages of axis %d (stage[k].kind[%d]): %s", (int)bad, (int)bad,
                         sms_status_string(st)), 1;
     if (st != SMS_OK)
         return snprintf(msg, len, "Ts = %.17g: %s", m->Ts, sms_status_string(st)), 1;
     return 0;
 }
 
+/* Bytes of the block: the stage memory cells (aligned for anything a stage holds), then the
+ * stage structs. */
+static size_t block_bytes(size_t n_structs, size_t n_cells)
+{
+    return n_cells * sizeof(sms_memory_cell) + n_structs * sizeof(sms_stage);
+}
+
 int fmu_model_plan(const void *model, size_t *bytes, char *msg, size_t len)
 {
     sms_multi_generator_config c;
-    if (configure((const ma_model *)model, &c, msg, len) != 0)
+    ma_stages s;
+    size_t n_structs, n_cells;
+    if (configure((const ma_model *)model, &c, &s, &n_structs, &n_cells, msg, len) != 0)
         return 1;
-    *bytes = 0; /* everything lives in the model struct */
+    *bytes = block_bytes(n_structs, n_cells);
     return 0;
 }
 
@@ -193,14 +347,20 @@ int fmu_model_build(void *model, void *mem, size_t bytes, char *msg, size_t len)
 {
     ma_model *m = (ma_model *)model;
     sms_multi_generator_config c;
+    ma_stages s;
     sms_real rest[MA_MAX_AXES];
-    int i;
-    (void)mem;
-    (void)bytes;
-    if (configure(m, &c, msg, len) != 0)
+    size_t n_structs, n_cells;
+    int i, differ = -1;
+    if (configure(m, &c, &s, &n_structs, &n_cells, msg, len) != 0)
         return 1;
-    if (sms_multi_generator_init(&m->gen, &c, m->Ts, NULL) != SMS_OK)
+    if (block_bytes(n_structs, n_cells) > bytes)
+        return snprintf(msg, len, "the stages need %lu bytes, the block holds %lu",
+                        (unsigned long)block_bytes(n_structs, n_cells), (unsigned long)bytes), 1;
+    if (sms_multi_generator_init(&m->gen, &c, m->Ts,
+                                 (sms_stage *)((sms_memory_cell *)mem + n_cells), n_structs,
+                                 (sms_memory_cell *)mem, n_cells, NULL) != SMS_OK)
         return snprintf(msg, len, "Ts = %.17g: refused", m->Ts), 1;
+    m->n_cells = n_cells;
     for (i = 0; i < m->axes; ++i)
         rest[i] = (sms_real)m->field[F_Q0][i];
     sms_multi_generator_reset(&m->gen, rest);
@@ -209,6 +369,13 @@ int fmu_model_build(void *model, void *mem, size_t bytes, char *msg, size_t len)
         m->field[F_V][i] = m->field[F_A][i] = m->field[F_J][i] = 0.0;
     }
     m->built = 1;
+    for (i = 1; i < m->axes && differ < 0; ++i)
+        if (!same_stages(m, &s, i))
+            differ = i;
+    if (differ > 0)
+        return snprintf(msg, len, "axes 0 and %d have different vibration stages "
+                        "(stage[k].kind/wn/zeta): straight moves bend, the axes are delayed and "
+                        "smoothed differently", differ), -1;
     return 0;
 }
 
@@ -230,8 +397,9 @@ int fmu_model_tick(void *model)
 
 void fmu_model_rebind(void *model, void *mem)
 {
-    (void)model; /* the generator holds no pointers */
-    (void)mem;
+    ma_model *m = (ma_model *)model;
+    sms_multi_generator_rebind(&m->gen, (sms_stage *)((sms_memory_cell *)mem + m->n_cells),
+                               (sms_memory_cell *)mem);
 }
 
 size_t fmu_model_state_count(const void *model)

@@ -202,6 +202,21 @@ MA_FIELDS = (  # (name, causality, start, description); units: those of axis i (
     ("jmax", "parameter", 100.0, "jerk limit of axis {i} (P/s3); finite, > 0 (axes in use)"),
     ("q0", "parameter", 0.0, "initial rest position of axis {i} (P)"),
 )
+# Vibration stages per axis: stage k of axis i is designed for the mode (wn, zeta) of that
+# axis (the SmoothShaper FMU's kind codes, design = for_mode with k = 1); value reference
+# MA_STAGE_BASE + 100 (MA_STAGE_STRIDE k + g) + i for field g.
+MA_MAX_STAGES = 3
+MA_STAGE_BASE = 1000
+MA_STAGE_FIELDS = (  # (name, type, unit, start, description, choices, min, max)
+    ("kind", "Integer", "", -1, "family of vibration stage {k} of axis {i}, designed for the "
+     "mode (wn, zeta); the same stages on every axis keep straight moves straight", "StageKind",
+     None, None),
+    ("wn", "Real", "rad/s", 100.0, "natural frequency of the mode stage {k} of axis {i} cancels; "
+     "finite, 0 < wn < pi/Ts", "", 0.0, None),
+    ("zeta", "Real", "1", 0.0, "damping ratio of the mode stage {k} of axis {i} cancels; in "
+     "[0, 1)", "", 0.0, 1.0),
+)
+MA_STAGE_STRIDE = len(MA_STAGE_FIELDS)
 CHOICES["Sync"] = [("phase", 0, "one common profile: straight lines, every axis starts and "
                     "arrives on the same sample, time-optimal under every axis's limits"),
                    ("independent", 1, "each axis time-optimal on its own")]
@@ -228,7 +243,20 @@ def multi_axis_generator() -> tuple[list[Var], list[str], str]:
                 extra = dict(variability="discrete", initial_depends_on=[f"q0[{i}]"])
             vs.append(Var(f"{name}[{i}]", 100 * f + i, "Real", causality, desc.format(i=i), "",
                           start, **extra))
-    header = [f"#define MA_MAX_AXES {MA_MAX_AXES}"]
+    for k in range(MA_MAX_STAGES):
+        for g, (name, typ, unit, start, desc, choices, lo, hi) in enumerate(MA_STAGE_FIELDS):
+            if choices:
+                desc = f"{desc}; {choice_text(choices)}"
+            for i in range(MA_MAX_AXES):
+                vs.append(Var(f"stage[{k}].{name}[{i}]",
+                              MA_STAGE_BASE + 100 * (MA_STAGE_STRIDE * k + g) + i, typ,
+                              "parameter", desc.format(k=k, i=i), unit, start, choices, "fixed",
+                              lo, hi))
+    header = [f"#define MA_MAX_AXES {MA_MAX_AXES}", f"#define MA_MAX_STAGES {MA_MAX_STAGES}",
+              f"#define MA_STAGE_BASE {MA_STAGE_BASE}",
+              f"#define MA_STAGE_STRIDE {MA_STAGE_STRIDE}"]
+    header += [f"#define MA_STAGE_{name.upper()} {g}"
+               for g, (name, *_rest) in enumerate(MA_STAGE_FIELDS)]
     header += [f"#define MA_VR_{name.upper()}(i) ({100 * f} + (i))"
                for f, (name, *_rest) in enumerate(MA_FIELDS, 1)]
     header.append(f"#define MA_FIELD_COUNT {len(MA_FIELDS)}")

@@ -1,6 +1,7 @@
 """MultiAxisGenerator.fmu in fmpy (default settings, explicit output_interval) and libcosim:
-equal to the NumPy multi-axis reference for 1 and 3 axes, phase-synchronised and independent;
-FMU state round trip; bad parameters refused with fmi2Error naming the variable."""
+equal to the NumPy multi-axis reference for 1 and 3 axes, phase-synchronised and independent,
+without and with vibration stages per axis; FMU state round trip; bad parameters refused with
+fmi2Error naming the variable; different stages per axis warned about through the logger."""
 from __future__ import annotations
 
 import numpy as np
@@ -42,21 +43,40 @@ def staircase(t: np.ndarray, axes: int) -> np.ndarray:
     return x
 
 
-def start_values(axes: int, sync: int) -> dict:
+# Vibration stages per axis (kind code, wn, zeta) as the FMU's stage[k].kind/wn/zeta[i] take
+# them: two stages on every axis (a ZV shaper and a notch), or one stage that differs by axis.
+KIND = {"zv": 4, "zvd": 5, "notch_matched": 12, "rectangular": 0}
+SAME_STAGES = [("zv", 40.0, 0.05), ("notch_matched", 70.0, 0.02)]
+STAGES = {None: None, "same": {1: [SAME_STAGES], 3: [SAME_STAGES] * 3},
+          "mixed": {1: [[("zvd", 25.0, 0.1)]],
+                    3: [[("zvd", 25.0, 0.1)], [("rectangular", 31.0, 0.0)], SAME_STAGES]}}
+
+
+def stage_list(triples):
+    from smoothshaper import stages
+    return [stages.for_mode(kind, wn=wn, zeta=zeta) for kind, wn, zeta in triples]
+
+
+def start_values(axes: int, sync: int, stages=None) -> dict:
     values = {"Ts": TS, "axes": axes, "sync": sync}
     for name, v in LIMITS[axes].items():
         values.update({f"{name}[{i}]": x for i, x in enumerate(v)})
     values.update({f"q0[{i}]": x for i, x in enumerate(Q0[axes])})
+    for i, triples in enumerate(STAGES[stages][axes] if stages else []):
+        for k, (kind, wn, zeta) in enumerate(triples):
+            values.update({f"stage[{k}].kind[{i}]": KIND[kind], f"stage[{k}].wn[{i}]": wn,
+                           f"stage[{k}].zeta[{i}]": zeta})
     return values
 
 
-def expected(t, target, axes, sync) -> np.ndarray:
+def expected(t, target, axes, sync, stages=None) -> np.ndarray:
     """(n, axes, 4) at the communication points from the reference (fmpy timing: the input
     at t_k drives the ticks in (t_k, t_k+1], the outputs are the last tick's)."""
     x, n_at = validation.tick_inputs(t, np.arange(t.size), Ts=TS)
     ticks = target[x.astype(int)]
+    chains = [stage_list(tr) for tr in STAGES[stages][axes]] if stages else None
     rows = multi_axis_reference(ticks, Ts=TS, sync="phase" if sync == 0 else "independent",
-                                q0=Q0[axes], **LIMITS[axes])
+                                q0=Q0[axes], stages=chains, **LIMITS[axes])
     rest = np.zeros((axes, 4))
     rest[:, 0] = Q0[axes]
     return validation.at_communication_points(rows, n_at, rest)
@@ -66,13 +86,13 @@ def outputs(axes):
     return [f"{n}[{i}]" for i in range(axes) for n in "qvaj"]
 
 
-def simulate_fmpy(fmu, t, target, axes, sync) -> np.ndarray:
+def simulate_fmpy(fmu, t, target, axes, sync, stages=None) -> np.ndarray:
     names = [f"target[{i}]" for i in range(axes)]
     signal = np.zeros(t.size, dtype=[("time", float)] + [(n, float) for n in names])
     signal["time"] = t
     for i, n in enumerate(names):
         signal[n] = target[:, i]
-    r = fmpy.simulate_fmu(str(fmu), start_values=start_values(axes, sync), input=signal,
+    r = fmpy.simulate_fmu(str(fmu), start_values=start_values(axes, sync, stages), input=signal,
                           stop_time=float(t[-1]), output_interval=float(t[1] - t[0]),
                           output=outputs(axes))
     return np.stack([np.asarray(r[n], dtype=float) for n in outputs(axes)],
@@ -101,16 +121,39 @@ def test_fmpy_equals_reference(multi_fmu, axes, sync, step):
 
 
 @pytest.mark.parametrize("axes", [1, 3])
-def test_libcosim_equals_reference(multi_fmu, axes):
+@pytest.mark.parametrize("stages", ["same", "mixed"])
+def test_fmpy_with_stages_equals_reference(multi_fmu, axes, stages):
+    t = validation.communication_points(step=2.5 * TS, stop_time=1.5)
+    target = staircase(t, axes)
+    y = simulate_fmpy(multi_fmu, t, target, axes, 0, stages)
+    assert_matches(y, expected(t, target, axes, 0, stages), axes)
+
+
+def test_same_stages_keep_a_straight_move_straight(multi_fmu):
+    """Same stages on every axis, one rest-to-rest move from q0: q stays on the segment to
+    1e-12 of the move, while moving and while the stages settle."""
+    t = validation.communication_points(step=TS, stop_time=1.0)
+    goal = np.array([0.3, 0.2, -0.25])
+    target = np.tile(goal, (t.size, 1))
+    q = simulate_fmpy(multi_fmu, t, target, 3, 0, "same")[:, :, 0]
+    d = goal - Q0[3]
+    s = (q[:, 0] - Q0[3][0]) / d[0]
+    assert np.abs(q - Q0[3] - np.outer(s, d)).max() <= 1e-12 * np.abs(d).max()
+    assert s.max() > 1.0  # the notch overshoots a little: the test sees the whole filtered move
+
+
+@pytest.mark.parametrize("axes", [1, 3])
+@pytest.mark.parametrize("stages", [None, "same", "mixed"])  # mixed: fmi2Warning, accepted
+def test_libcosim_equals_reference(multi_fmu, axes, stages):
     pytest.importorskip("libcosimpy", reason="libcosimpy is the second importer")
     t = validation.communication_points(step=TS, stop_time=1.0)
     target = staircase(t, axes)
-    y = run_libcosim(str(multi_fmu), t, target, axes)
-    ref = expected(t, target, axes, 0)
+    y = run_libcosim(str(multi_fmu), t, target, axes, stages)
+    ref = expected(t, target, axes, 0, stages)
     assert_matches(y[1:], ref[1:], axes)
 
 
-def run_libcosim(fmu, t, target, axes):
+def run_libcosim(fmu, t, target, axes, stages=None):
     """libcosim (libcosimpy) with every target component overridden before each step."""
     from fmpy import read_model_description
     from libcosimpy.CosimExecution import CosimExecution
@@ -126,7 +169,7 @@ def run_libcosim(fmu, t, target, axes):
     execution.add_manipulator(manipulator=override)
     observer = CosimObserver.create_last_value()
     execution.add_observer(observer=observer)
-    for name, value in start_values(axes, 0).items():
+    for name, value in start_values(axes, 0, stages).items():
         ok = (execution.integer_initial_value(index, vr[name], value) if isinstance(value, int)
               else execution.real_initial_value(index, vr[name], float(value)))
         assert ok, name
@@ -144,7 +187,7 @@ def start(fmu, **values):
     fmu.setupExperiment(startTime=0.0)
     fmu.enterInitializationMode()
     for name, value in values.items():
-        if name in ("axes", "sync"):
+        if isinstance(value, int):
             fmu.setInteger([fmu.vr[name]], [value])
         else:
             fmu.setReal([fmu.vr[name]], [value])
@@ -153,11 +196,16 @@ def start(fmu, **values):
 
 @pytest.mark.parametrize("name,value,expected", [
     ("axes", 0, "axes = 0"), ("axes", 9, "axes = 9"), ("sync", 2, "sync = 2"),
-    ("amax[1]", -2.0, "amax[1]"), ("vmax[2]", 0.0, "vmax[2]"), ("Ts", -1.0, "Ts")])
+    ("amax[1]", -2.0, "amax[1]"), ("vmax[2]", 0.0, "vmax[2]"), ("Ts", -1.0, "Ts"),
+    ("stage[1].kind[2]", 15, "stage[1].kind[2] = 15"),
+    ("stage[1].kind[2]", -2, "stage[1].kind[2] = -2"),
+    ("stage[0].wn[1]", 5000.0, "stage[0].wn[1]"), ("stage[0].wn[1]", 0.0, "stage[0].wn[1]"),
+    ("stage[1].zeta[0]", 1.0, "stage[1].zeta[0]"),
+    ("stage[0].wn[0]", 1e-9, "stage[0].wn[0]")])
 def test_bad_parameters_fail_naming_the_variable(multi_dir, name, value, expected):
     log = Logged()
     fmu = slave(multi_dir, "bad", logged=log)
-    values = start_values(3, 0)
+    values = start_values(3, 0, "same")
     values[name] = value
     with pytest.raises(FMICallException):
         start(fmu, **values)
@@ -173,9 +221,10 @@ def test_unused_axis_limits_are_ignored(multi_dir):
     fmu.freeInstance()
 
 
-def test_state_and_serialisation_round_trip(multi_dir):
+@pytest.mark.parametrize("stages", [None, "mixed"])
+def test_state_and_serialisation_round_trip(multi_dir, stages):
     a = slave(multi_dir, "a")
-    start(a, **start_values(3, 0))
+    start(a, **start_values(3, 0, stages))
     target = staircase(np.arange(900) * TS, 3)
     ins = [a.vr[f"target[{i}]"] for i in range(3)]
     outs = [a.vr[n] for n in outputs(3)]
@@ -199,3 +248,27 @@ def test_state_and_serialisation_round_trip(multi_dir):
     assert np.array_equal(run(b, 0.25, target[250:]), first)
     for f in (a, b):
         f.freeInstance()
+
+
+@pytest.mark.parametrize("stages, warned", [(None, False), ("same", False), ("mixed", True)])
+def test_different_stages_per_axis_warn_through_the_logger(multi_dir, stages, warned):
+    log = Logged()
+    fmu = slave(multi_dir, "warn", logged=log)
+    start(fmu, **start_values(3, 0, stages))  # fmi2Warning is no failure
+    hits = [m for m in log.messages if "different vibration stages" in m]
+    assert bool(hits) == warned, log.messages
+    if warned:
+        assert "axes 0 and 1" in hits[0] and "bend" in hits[0]
+    fmu.doStep(0.0, TS)
+    fmu.freeInstance()
+
+
+def test_unused_axis_stages_are_ignored(multi_dir):
+    values = start_values(3, 0, "same")
+    values.update({"axes": 2, "stage[0].kind[2]": 99, "stage[0].wn[2]": 0.0})
+    log = Logged()
+    fmu = slave(multi_dir, "two", logged=log)
+    start(fmu, **values)
+    assert not [m for m in log.messages if "stage" in m], log.messages
+    fmu.freeInstance()
+
