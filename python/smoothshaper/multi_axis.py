@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .filters import ParameterError, _backend, _real_dtype
+from .filters import ParameterError, _backend, _fill_config, _real_dtype
 from .reference import multi_axis as _ref
 from ._checks import real_array as _real_array
 
@@ -64,9 +64,10 @@ class MultiAxisGenerator:
     Parameters (keyword-only): ``vmax``, ``amax``, ``jmax`` sequences with one limit per axis
     (a scalar applies to every axis; units of each axis per s, s^2, s^3), ``Ts`` sample period
     [s], ``sync`` ("phase" or "independent"), ``q0`` initial rest position (default 0),
-    ``stages`` optional vibration stages (a list of stage configs from
+    ``stages`` optional vibration stages (a list of stage descriptions from
     :mod:`smoothshaper.stages` applied to every axis, or one such list per axis; different
-    lists per axis bend straight lines and give a warning), ``precision``.
+    lists per axis bend straight lines and give a warning), ``precision``. The stages run in
+    the C core: each axis's q, v, a and j pass through its own copy of the chain.
 
     :meth:`process` takes targets of shape (n, axes) and returns (n, axes, 4): q, v, a, j of
     each axis at each sample (the exact values of the continuous profile; after vibration
@@ -90,24 +91,43 @@ class MultiAxisGenerator:
         self.Ts = float(Ts)
         self.sync = _sync(sync)
         self.precision = precision
+        self.stages = self._stage_lists(stages)
         cfg = ffi.new("sms_multi_generator_config *")
         cfg.n_axes = self.axes
         for i in range(self.axes):
             cfg.vmax[i], cfg.amax[i], cfg.jmax[i] = self.vmax[i], self.amax[i], self.jmax[i]
         cfg.sync = SYNC_MODES.index(self.sync)
-        self._gen = ffi.new("sms_multi_generator *")
-        bad = ffi.new("size_t *")
-        st = lib.sms_multi_generator_init(self._gen, cfg, self.Ts, bad)
+        self._configs = []  # kept alive: the config points into them
+        for i, lst in enumerate(self.stages):
+            if lst:
+                configs = ffi.new("sms_stage_config[]", len(lst))
+                for k, stage in enumerate(lst):
+                    _fill_config(configs[k], stage)
+                self._configs.append(configs)
+                cfg.stages[i], cfg.n_stages[i] = configs, len(lst)
+        n_structs, n_cells, bad = ffi.new("size_t *"), ffi.new("size_t *"), ffi.new("size_t *")
+        st = lib.sms_multi_generator_memory(cfg, self.Ts, n_structs, n_cells, bad)
         if st != 0:
             text = ffi.string(lib.sms_status_string(st)).decode()
-            raise ParameterError("vmax" if st == lib.SMS_ERR_LIMIT else "Ts",
-                                 f"limits of axis {bad[0]} rejected: {text}", st)
-        self._stages = self._make_stages(stages)
+            if st == lib.SMS_ERR_LIMIT:
+                raise ParameterError("vmax", f"limits of axis {bad[0]} rejected: {text}", st)
+            if self.stages[bad[0]]:
+                raise ParameterError("stages", f"stages of axis {bad[0]} rejected: {text}", st)
+            raise ParameterError("Ts", f"Ts = {self.Ts!r} rejected: {text}", st)
+        # Owned by this object for its whole life: the C generator points into both.
+        self._stage_mem = ffi.new("sms_stage[]", max(1, n_structs[0]))
+        self._memory = ffi.new("sms_memory_cell[]", max(1, n_cells[0]))
+        self._gen = ffi.new("sms_multi_generator *")
+        st = lib.sms_multi_generator_init(self._gen, cfg, self.Ts, self._stage_mem, n_structs[0],
+                                          self._memory, n_cells[0], bad)
+        if st != 0:  # the size query above validated everything
+            raise ParameterError("stages", ffi.string(lib.sms_status_string(st)).decode(), st)
         self.reset(q0)
 
-    def _make_stages(self, stages):
+    def _stage_lists(self, stages) -> list[list]:
+        """One list of stage descriptions per axis (validated: errors name the parameter)."""
         if stages is None:
-            return None
+            return [[] for _ in range(self.axes)]
         per_axis = (isinstance(stages, (list, tuple)) and len(stages) == self.axes
                     and all(isinstance(s, (list, tuple)) for s in stages))
         lists = [list(s) for s in stages] if per_axis else [list(stages)] * self.axes
@@ -115,8 +135,9 @@ class MultiAxisGenerator:
             warnings.warn("different vibration stages per axis bend straight lines: the axes "
                           "are delayed and smoothed differently", stacklevel=3)
         from .filters import Chain
-        return [[Chain(lst, Ts=self.Ts, precision=self.precision) for _ in range(4)] if lst
-                else None for lst in lists]
+        for lst in {id(lst): lst for lst in lists if lst}.values():
+            Chain(lst, Ts=self.Ts, precision=self.precision)  # validates, naming the parameter
+        return lists
 
     def reset(self, q0=None) -> None:
         """Rest at ``q0`` (sequence of axes values; default 0) on every axis."""
@@ -130,10 +151,6 @@ class MultiAxisGenerator:
         self.q0 = q
         buf = np.ascontiguousarray(q, dtype=_real_dtype(self.precision))
         self._lib.sms_multi_generator_reset(self._gen, self._ffi.from_buffer("sms_real[]", buf))
-        if self._stages is not None:
-            for i, chains in enumerate(self._stages):
-                for m, chain in enumerate(chains or []):
-                    chain.reset(q[i] if m == 0 else 0.0)
 
     def process(self, targets) -> np.ndarray:
         """Targets (n, axes) -> (n, axes, 4) q, v, a, j. A 1-D array is taken as n samples of
@@ -153,12 +170,7 @@ class MultiAxisGenerator:
         out = np.empty((x.shape[0], self.axes, 4), dtype=dtype)
         self._lib.sms_multi_generator_process(self._gen, self._ffi.from_buffer("sms_real[]", xin),
                                               x.shape[0], self._ffi.from_buffer("sms_real[]", out))
-        out = out.astype(np.float64)
-        if self._stages is not None:
-            for i, chains in enumerate(self._stages):
-                for m, chain in enumerate(chains or []):
-                    out[:, i, m] = chain.process(out[:, i, m])
-        return out
+        return out.astype(np.float64)
 
     @property
     def busy(self) -> bool:

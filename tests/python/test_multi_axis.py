@@ -226,3 +226,66 @@ def test_tiny_moves_arrive_and_match_reference(size):
     assert np.all(np.isfinite(out))
     np.testing.assert_array_equal(out[-1, :, 0], [size, -size])
     np.testing.assert_allclose(out, ref, rtol=0, atol=1e-12 * size)
+
+
+def _zv_and_smoother():
+    from smoothshaper import stages
+    return [stages.shaper("zv", wn=40.0, zeta=0.05), stages.rectangular(T=0.0173), stages.notch(wn=70.0, zeta=0.02)]
+
+
+@pytest.mark.parametrize("sync", ["phase", "independent"])
+def test_stages_in_c_equal_reference(sync):
+    """Per-axis vibration stages run in C: q, v, a, j of every axis equal the NumPy reference
+    (profile, then the reference chain per signal) to rounding, with the same stages on every
+    axis and with different ones (which warn)."""
+    from smoothshaper import stages
+    v, a, j = [0.8, 0.5, 1.2], [6.0, 9.0, 4.0], [90.0, 200.0, 60.0]
+    q0 = [0.05, -0.1, 0.0]
+    targets = np.repeat([[0.3, 0.2, -0.25], [0.1, 0.35, 0.1], [-0.2, -0.1, 0.3]], [180, 120, 900],
+                        axis=0)
+    common = _zv_and_smoother()
+    per_axis = [common, [stages.shaper("zvd", wn=25.0, zeta=0.1)], []]
+    for chains in (common, per_axis):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            out = MultiAxisGenerator(vmax=v, amax=a, jmax=j, Ts=1e-3, sync=sync, q0=q0,
+                                     stages=chains).process(targets)
+        ref = multi_axis_reference(targets, vmax=v, amax=a, jmax=j, Ts=1e-3, sync=sync, q0=q0,
+                                   stages=chains)
+        for m, lim in enumerate([np.abs(ref[:, :, 0]).max(), v, a, j]):
+            assert np.all(np.abs(out[:, :, m] - ref[:, :, m]) <= 1e-12 * np.asarray(lim)), m
+
+
+@settings(**SETTINGS)
+@given(data=st.data(), axes=st.integers(2, 6))
+def test_same_stages_keep_lines_straight(data, axes):
+    """The same stages on every axis: a rest-to-rest phase move stays on its segment to 1e-12 of
+    the move, during the move and while the stages settle."""
+    from smoothshaper import stages
+    v, a, j = data.draw(limits(axes))
+    start = np.array(data.draw(st.lists(st.floats(-10, 10), min_size=axes, max_size=axes)))
+    delta = np.array(data.draw(st.lists(st.floats(-10, 10), min_size=axes, max_size=axes)))
+    if np.abs(delta).max() < 1e-3:
+        delta[0] = 1.0
+    T = phase_duration(delta, vmax=v, amax=a, jmax=j)
+    Ts = T / data.draw(st.floats(20.0, 400.0))
+    wn = data.draw(st.floats(0.05, 0.5)) * math.pi / Ts
+    kind = data.draw(st.sampled_from(["zv", "zvd", "ei", "mzv"]))
+    chain = [stages.shaper(kind, wn=wn, zeta=data.draw(st.floats(0.0, 0.3)))]
+    gen = MultiAxisGenerator(vmax=v, amax=a, jmax=j, Ts=Ts, q0=start, stages=chain)
+    target = start + delta
+    out = gen.process(np.tile(target, (int(T / Ts) + 200, 1)))
+    delta = target - start
+    k = np.argmax(np.abs(delta))
+    s = (out[:, k, 0] - start[k]) / delta[k]
+    dev = np.abs(out[:, :, 0] - start - np.outer(s, delta)).max() / np.abs(delta).max()
+    assert dev <= 1e-12
+    np.testing.assert_allclose(out[-1, :, 0], target, rtol=0, atol=1e-12 * np.abs(target).max())
+
+
+def test_stage_errors_name_the_parameter():
+    from smoothshaper import stages
+    with pytest.raises(ParameterError) as e:
+        MultiAxisGenerator(vmax=[1, 1], amax=[1, 1], jmax=[1, 1], Ts=1e-3,
+                           stages=[stages.shaper("zv", wn=5000.0, zeta=0.0)])
+    assert e.value.parameter == "wn"

@@ -16,6 +16,8 @@ import math
 
 import numpy as np
 
+from . import filtering as _filtering
+
 __all__ = ["transition", "phase_duration", "multi_axis_reference"]
 
 _EPS = np.finfo(np.float64).eps
@@ -55,9 +57,10 @@ def phase_duration(delta, *, vmax, amax, jmax) -> float:
     nz = d > 0
     if not nz.any():
         return 0.0
-    V = float(np.min(np.asarray(vmax)[nz] / d[nz]))
-    A = float(np.min(np.asarray(amax)[nz] / d[nz]))
-    J = float(np.min(np.asarray(jmax)[nz] / d[nz]))
+    with np.errstate(over="ignore"):  # a subnormal component: its ratio is inf, not the min
+        V = float(np.min(np.asarray(vmax)[nz] / d[nz]))
+        A = float(np.min(np.asarray(amax)[nz] / d[nz]))
+        J = float(np.min(np.asarray(jmax)[nz] / d[nz]))
     Tv = V / A + A / J if V * J >= A * A else 2.0 * math.sqrt(V / J)
     if V * Tv < 1.0:
         return 1.0 / V + Tv
@@ -184,12 +187,32 @@ def _evaluate(m, t):
 
 
 def multi_axis_reference(targets, *, vmax, amax, jmax, Ts: float, sync: str = "phase",
-                         q0=None) -> np.ndarray:
+                         q0=None, stages=None) -> np.ndarray:
     """Sampled output of the multi-axis generator for a staircase of target vectors.
 
     ``targets`` has shape (n, axes); the result (n, axes, 4) holds q, v, a, j per axis at each
     sample. ``sync`` is "phase" (one common move) or "independent" (one move per axis).
+    ``stages``: None, one list of stage descriptions for every axis, or one list per axis;
+    each axis's q, v, a, j are then filtered by :func:`smoothshaper.reference.filtering.filter`
+    from rest (q at q0, the others at 0).
     """
+    out = _profile(targets, vmax=vmax, amax=amax, jmax=jmax, Ts=Ts, sync=sync, q0=q0)
+    if stages is None:
+        return out
+    axes = out.shape[1]
+    per_axis = (len(stages) == axes and all(isinstance(s, (list, tuple)) for s in stages))
+    lists = [list(s) for s in stages] if per_axis else [list(stages)] * axes
+    rest = np.zeros(axes) if q0 is None else np.asarray(q0, dtype=np.float64)
+    for i, lst in enumerate(lists):
+        for m in range(4):
+            if lst:
+                zi = _filtering.filter_zi(lst, Ts=Ts, x0=rest[i] if m == 0 else 0.0)
+                out[:, i, m] = _filtering.filter(lst, out[:, i, m], Ts=Ts, zi=zi)[0]
+    return out
+
+
+def _profile(targets, *, vmax, amax, jmax, Ts, sync, q0) -> np.ndarray:
+    """The generator's profile before any stage (see :func:`multi_axis_reference`)."""
     x = np.asarray(targets, dtype=np.float64)
     n, axes = x.shape
     vmax, amax, jmax = (np.asarray(v, dtype=np.float64).reshape(axes) for v in (vmax, amax, jmax))
