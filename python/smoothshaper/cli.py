@@ -221,6 +221,7 @@ def _step_samples(length: int, is_fir: bool, wn_hat: float, Ts: float) -> int:
 
 
 def cmd_analyze(args) -> int:
+    from ._plotting import percent_axis, prv_map
     from .cli_cost import PLOT_POINTS, analyze_cost, chain_taps, start
     stages = _chain_from_args(args)
     if not stages:
@@ -282,17 +283,10 @@ def cmd_analyze(args) -> int:
         bar.phase("PRV surface", surface_points * work)
         surface = analysis.prv_surface(response, wn=ratios * wn_hat, zeta=zetas)
         fig, ax = plt.subplots(figsize=(7, 4.5))
-        # Colour bands on a log-like scale, clipped at 200 % (far off the mode PRV runs to
-        # 1e4 % and a linear scale would paint 0..100 % one colour); labelled contours at the
-        # levels users compare against.
-        from matplotlib.colors import BoundaryNorm
-        levels = [0, 1, 2, 5, 10, 20, 50, 100, 200]
-        cs = ax.contourf(ratios, zetas, np.minimum(surface, levels[-1]), levels=levels,
-                         cmap="viridis", norm=BoundaryNorm(levels, 256))
-        fig.colorbar(cs, ax=ax, label="PRV [%] (clipped at 200 %)")
-        lines = ax.contour(ratios, zetas, surface, levels=[1, 5, 20, 100], colors="white",
-                           linewidths=0.9)
-        ax.clabel(lines, fmt="%g %%", fontsize=8)
+        # Colour bands on a log-like scale clipped at 200 % (far off the mode PRV runs to
+        # 1e4 %, and a linear scale would paint 0..100 % one colour), labelled contours at
+        # the levels users compare against.
+        prv_map(ax, ratios, zetas, surface)
         ax.set_xlabel(r"actual / nominal natural frequency $\omega_n/\hat\omega_n$ [-]")
         ax.set_ylabel(r"damping ratio $\zeta$ [-]")
         ax.set_title("Residual vibration over frequency and damping")
@@ -302,11 +296,12 @@ def cmd_analyze(args) -> int:
         plots.append("prv_surface.png")
 
     fig, ax = plt.subplots(figsize=(7, 4))
-    ax.plot(ratios, prv)
+    ax.plot(ratios, prv, label="PRV of the chain")
     ax.axhline(100 * args.tolerance, color="gray", ls="--", lw=0.8,
                label=f"{100 * args.tolerance:g} % tolerance")
-    ax.set_xlabel(r"$\omega_n/\hat\omega_n$")
-    ax.set_ylabel("PRV [%]")
+    percent_axis(ax, top=max(110.0, 1.2 * float(np.max(prv))))
+    ax.set_xlabel(r"actual / nominal natural frequency $\omega_n/\hat\omega_n$ [-]")
+    ax.set_ylabel("PRV [%] (log scale above 1 %)")
     ax.set_title(f"Residual vibration, zeta = {zeta:g}, wn_hat = {wn_hat:g} rad/s")
     ax.grid(True, alpha=0.3)
     ax.legend()
@@ -541,7 +536,8 @@ def build_parser() -> argparse.ArgumentParser:
                        description="Analyse a chain (--stage/--kind) against a vibration mode "
                        "(--wn, --zeta): writes prv.png (percent residual vibration over the "
                        "actual-to-nominal frequency ratio, with the insensitivity band at "
-                       "--tolerance), spectrum.png (spectra of the step response's derivatives) "
+                       "--tolerance), spectrum.png (magnitude of the discrete chain in dB over "
+                       "frequency) "
                        "and step.png (step response), and prints the insensitivity band. "
                        "--surface adds prv_surface.png over frequency ratio and damping. "
                        "Residual vibration and PRV are defined in docs/analysis.md.")

@@ -13,6 +13,7 @@ import os
 
 import numpy as np
 
+from .._plotting import percent_axis
 from .candidates import BOX, chain_taps
 
 __all__ = ["COLORS", "write"]
@@ -89,8 +90,8 @@ def write(cal, out_dir: str) -> list[str]:
                                 else f"T = {s.T:.3g} s" for s in c.stages)
             ax2.plot(f[show], 100 * R, color=col, lw=1.0,
                      label=f"{c.name} @ {design}: {c.vibration:.2g} %, {1e3 * c.length:.3g} ms")
-        ax2.set_ylabel("residual vibration [%] (zeta of the nearest mode)")
-        ax2.set_ylim(0, 110)
+        ax2.set_ylabel("residual vibration [%] (zeta of the nearest mode; log above 1 %)")
+        percent_axis(ax2, top=110.0)
         h1, l1 = ax.get_legend_handles_labels()
         h2, l2 = ax2.get_legend_handles_labels()
         ax.legend(h1 + h2, l1 + l2, fontsize=7.5, loc="upper center", ncol=2,
@@ -101,7 +102,7 @@ def write(cal, out_dir: str) -> list[str]:
     plt.close(fig)
     paths.append(p)
 
-    fig, axes = plt.subplots(n, 1, figsize=(9, 3.8 * n), squeeze=False)
+    fig, axes = plt.subplots(n, 1, figsize=(11, 3.8 * n), squeeze=False)
     for ax, res in zip(axes[:, 0], cal.axes):
         m = res.modes[0]
         half = max(4 * m.wn_std, 0.08 * m.wn)
@@ -116,11 +117,14 @@ def write(cal, out_dir: str) -> list[str]:
                          "rad/s")
         ax.axvline(m.f_hz, color="tab:red", lw=0.8, ls=":")
         ax.set_xlabel("natural frequency of mode 1 [Hz]")
-        ax.set_ylabel(f"remaining vibration [%] (zeta = {m.zeta:.2g})")
-        ax.set_title(f"axis {res.name}: remaining vibration over the uncertainty band")
+        ax.set_ylabel("remaining vibration [%]")
+        ax.set_title(f"axis {res.name}: remaining vibration over the uncertainty band of mode 1 "
+                     f"(zeta = {m.zeta:.2g}; log scale above 1 %)", fontsize=10)
         ax.grid(True, alpha=0.3)
-        ax.set_ylim(bottom=0)
-        ax.legend(fontsize=8)
+        top = max(10.0, 1.2 * max((float(np.max(line.get_ydata())) for line in ax.lines
+                                   if len(line.get_ydata()) > 2), default=10.0))
+        percent_axis(ax, top=top)
+        ax.legend(fontsize=8, loc="center left", bbox_to_anchor=(1.01, 0.5))
     fig.tight_layout()
     p = os.path.join(out_dir, "calibrate_band.png")
     fig.savefig(p, dpi=110)

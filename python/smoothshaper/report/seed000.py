@@ -35,6 +35,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import analysis, plants
+from .._plotting import difference_map, prv_map
 from .. import reference as ref
 from .. import stages as st
 from .claims import Claim, Section
@@ -591,11 +592,14 @@ def _figures(sec, fig_dir, d):
                     "PRV of S_sigma (left), absolute residual for a unit step (middle), PRV of "
                     "M_sigma1 M_sigma2 minus S_sigma (right; > 0 where S_sigma is better)",
                     sec.figures, ncols=3, size=(15, 4.2)) as (f, ax):
-            surface(ax[0], X, Y, np.minimum(P, 200), levels=np.linspace(0, 200, 21),
-                    label="PRV [%] (clipped at 200)")
+            prv_map(ax[0], X, Y, P, label="PRV of S_sigma [%] (clipped at 200 %)")
+            ax[0].set_title("S_sigma: percent residual vibration", fontsize=9)
             surface(ax[1], X, Y, A, levels=20, label="residual [m per m of step]")
-            surface(ax[2], X, Y, np.clip(Q - P, -50, 50), levels=np.linspace(-50, 50, 21),
-                    cmap="RdBu", label="PRV difference [%]")
+            ax[1].set_title("S_sigma: residual amplitude for a unit step", fontsize=9)
+            difference_map(ax[2], X, Y, Q - P, label="PRV(M_sigma1 M_sigma2) - PRV(S_sigma) "
+                           "[%]")
+            ax[2].set_title("M_sigma1 M_sigma2 minus S_sigma (> 0: S_sigma better)",
+                            fontsize=9)
             for a in ax:
                 a.plot([1], [1], "r+", ms=10, label="nominal mode")
                 a.set_xlabel("wn / wn_hat [-]")

@@ -338,7 +338,9 @@ def _figures(sec, fig_dir, d):
                                  ("double-S", COLORS["rect_chain"])):
                 _, t, eps, _, t_end = r[(cname, case)]
                 ax[k].plot(t, eps, color=color, lw=0.9, label=cname)
-            ax[k].set_title(case, fontsize=9)
+            ax[k].set_title({"nominal": "nominal plant (Table 1)",
+                             "two modes": "plus a second mode at 350 rad/s",
+                             "wr = 300": "resonance moved to wr = 300 rad/s"}[case], fontsize=9)
             ax[k].set_xlabel("time [s]")
             ax[k].set_ylabel("tracking error [rad]")
     t, targets, out = d["multipoint"]
@@ -349,7 +351,9 @@ def _figures(sec, fig_dir, d):
         ax[0].plot(t, targets, color="0.6", ls="--", label="target (staircase)")
         for k, lab in enumerate(("position [rad]", "velocity [rad/s]", "acceleration [rad/s^2]",
                                  "jerk [rad/s^3]")):
-            ax[k].plot(t, out[:, k], color=COLORS["harmonic"], label="generator output")
+            # one curve per panel: only the position panel (with the target) needs a legend
+            ax[k].plot(t, out[:, k], color=COLORS["harmonic"],
+                       label="generator output" if k == 0 else "_")
             ax[k].set_xlabel("time [s]")
             ax[k].set_ylabel(lab)
     w, Vm, Vd = d["spectra"]

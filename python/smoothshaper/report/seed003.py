@@ -155,5 +155,7 @@ def _figures(sec, fig_dir, d):
             a.set_xlabel("wn / w0 [-]")
             a.set_ylabel("percent residual vibration [%]")
             a.set_ylim(0, 100)
+        # the ZV^p curves fill the whole panel: the legend goes beside it
+        ax[1].legend(fontsize=8, loc="center left", bbox_to_anchor=(1.01, 0.5))
     d["via"]["figures"](sec, fig_dir)
     d["multi"]["figures"](sec, fig_dir)

@@ -166,5 +166,7 @@ def _figures(sec, fig_dir):
             ax.plot(r, analysis.prv([stage], wn=r), color=COLORS[kind], label=LABEL[kind])
         ax.axhline(100 * TOL, color="k", ls="--", lw=0.8, label="5 % tolerance")
         ax.set_ylim(0, 40)
+        # the V-shaped curves cross the whole panel: the legend goes beside it
+        ax.legend(fontsize=8, loc="center left", bbox_to_anchor=(1.01, 0.5))
         ax.set_xlabel("true wn / design wn [-]")
         ax.set_ylabel("percent residual vibration [%]")
