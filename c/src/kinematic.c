@@ -169,11 +169,163 @@ static double solve_from(const sms_kin_plan *p, const double *C, size_t k, doubl
     }
 }
 
-/* D(h) and lengths for the whole chain. */
+/*
+ * The same recursion in plain arithmetic, for problems of moderate size (plan_is_moderate:
+ * n <= 4 and every input within [1e-30, 1e30]). There every intermediate stays far inside
+ * double's range (levels X_j within 1e-150..1e210, S^d with d <= 3, products cap_j C_j below
+ * 1e90), so no logarithm is needed: a design costs a few divisions and at most one or two
+ * roots (sqrt, cbrt) instead of tens of log/exp calls. Decisions and tolerances are the
+ * logarithmic ones: bad <= KIN_TOL there is ratio <= e^KIN_TOL = 1 + KIN_TOL here.
+ */
+#define KIN_RATIO_TOL (1.0 + KIN_TOL)
+#define KIN_MODERATE_MAX 1e30
+#define KIN_MODERATE_MIN 1e-30
+
+static int moderate(double v)
+{
+    return v >= KIN_MODERATE_MIN && v <= KIN_MODERATE_MAX;
+}
+
+static int plan_is_moderate(const sms_kin_plan *p, double h)
+{
+    size_t i;
+    if (p->n > 4u || !moderate(h))
+        return 0;
+    for (i = 0; i < p->n; ++i)
+        if (!moderate(p->L[i]))
+            return 0;
+    return !p->fixed || (moderate(p->T_fixed) && moderate(p->rho_fixed));
+}
+
+/* v^(1/e) for e = 1..4 (the free last stage below d = e - 1 tight stages). */
+static double root_of(double v, unsigned e)
+{
+    switch (e) {
+    case 1u: return v;
+    case 2u: return sqrt(v);
+    case 3u: return cbrt(v);
+    default: return sqrt(sqrt(v));
+    }
+}
+
+/* Root S >= C of S^d (S - C) = K (d <= 2 here). d = 0, 1: closed forms. d = 2: Newton on the
+ * increasing convex G(S) = S^2 (S - C) - K from S0 = C + K^(1/3) >= the root: the iterates
+ * fall monotonically to it, quadratically. Then, as tight_root(), S moves up by ulps until
+ * G(S) >= 0. */
+static double tight_root_plain(unsigned d, double C, double K)
+{
+    double S;
+    int it;
+    if (d == 0u) {
+        S = C + K;
+    } else if (d == 1u) {
+        S = 0.5 * (C + sqrt(C * C + 4.0 * K));
+    } else {
+        S = C + cbrt(K);
+        for (it = 0; it < 100; ++it) {
+            double g = S * S * (S - C) - K;
+            double step = g / (S * (3.0 * S - 2.0 * C));
+            if (!(step > 0.0) || step <= 1e-16 * S)
+                break;
+            S -= step;
+        }
+    }
+    if (S <= C)
+        S = nextafter(C, HUGE_VAL);
+    for (it = 0; it < 8; ++it) {
+        double lhs = d == 0u ? S - C : d == 1u ? S * (S - C) : S * S * (S - C);
+        if (!(lhs < K))
+            break;
+        S = nextafter(S, HUGE_VAL);
+    }
+    return S;
+}
+
+/* solve_from() in plain arithmetic (moderate problems only). */
+static double solve_from_plain(const sms_kin_plan *p, const double *C, size_t k, double X,
+                               double *T)
+{
+    size_t m, best_m = p->n - 1, j;
+    double best_S = 0.0, best_bad = HUGE_VAL, S, Sd, Xm, Tm, rest, cap, c2;
+    for (m = k; m < p->n; ++m) {
+        unsigned d = (unsigned)(m - k), i;
+        double bad = 1.0, lx;
+        c2 = ldexp(1.0, (int)(d * (d - (d > 0u)) / 2u));   /* 2^(d(d-1)/2) */
+        if (m + 1 == p->n)
+            S = p->fixed ? p->T_fixed : root_of(p->c_last * X / (c2 * p->L[m]), d + 1u);
+        else
+            S = tight_root_plain(d, C[m], X / (c2 * level_cap(p, m)));
+        for (i = 0, Sd = 1.0; i < d; ++i)
+            Sd *= S;
+        Xm = X / (c2 * Sd);
+        /* the recursion's decisions: stages k..m-1 below their bound, m at it */
+        lx = X;
+        for (j = k; j < m; ++j) {
+            double excess = lx / (level_cap(p, j) * C[j]);
+            if (excess > bad)
+                bad = excess;
+            lx /= ldexp(S, (int)(m - 1 - j));
+        }
+        if (m + 1 < p->n) {
+            double deficit = C[m] * level_cap(p, m) / Xm;
+            if (deficit > bad)
+                bad = deficit;
+        }
+        if (bad <= KIN_RATIO_TOL || bad < best_bad) {
+            best_bad = bad;
+            best_m = m;
+            best_S = S;
+            if (bad <= KIN_RATIO_TOL)
+                break;
+        }
+    }
+    m = best_m;
+    S = best_S;
+    if (T != NULL)
+        for (j = k; j < m; ++j)
+            T[j] = ldexp(S, (int)(m - 1 - j));
+    if (m + 1 == p->n) {
+        if (T != NULL)
+            T[m] = S;
+        return ldexp(S, (int)(m - k));
+    }
+    /* stage m at its bound, then the problem from the level cap_m */
+    {
+        unsigned d = (unsigned)(m - k), i;
+        c2 = ldexp(1.0, (int)(d * (d - (d > 0u)) / 2u));
+        for (i = 0, Sd = 1.0; i < d; ++i)
+            Sd *= S;
+    }
+    cap = level_cap(p, m);
+    rest = solve_from_plain(p, C, m + 1, cap, T);
+    Tm = X / (c2 * Sd) / cap;
+    if (Tm < rest) /* rounding at a regime boundary: keep the structure exact */
+        Tm = rest;
+    if (T != NULL) {
+        T[m] = Tm;
+        if (m > k) {
+            double below = Tm + rest;
+            size_t i;
+            for (i = m; i-- > k;) {
+                T[i] = below;
+                below += T[i];
+            }
+        }
+    }
+    return m > k ? ldexp(Tm + rest, (int)(m - k)) : Tm + rest;
+}
+
+/* D(h) and lengths for the whole chain: in plain arithmetic when the problem is moderate,
+ * else in logarithms (any accepted input, ratios up to 1e60, up to 8 stages). */
 static double solve_plan(const sms_kin_plan *p, double h, double *T)
 {
     double C[SMS_KINEMATIC_MAX_ORDER];
     size_t m;
+    if (plan_is_moderate(p, h)) {
+        for (m = p->n - 1; m-- > 0;)
+            C[m] = solve_from_plain(p, C, m + 1, level_cap(p, m), NULL);
+        return solve_from_plain(p, C, 0, h, T);
+    }
     for (m = p->n - 1; m-- > 0;)
         C[m] = solve_from(p, C, m + 1, level_cap(p, m), NULL);
     return solve_from(p, C, 0, h, T);

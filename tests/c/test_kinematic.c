@@ -303,6 +303,33 @@ static void test_sampled_limits_examples(void)
     }
 }
 
+/* Scaling positions and every bound by the same factor leaves the durations unchanged. A
+ * factor of 1e40 moves a moderate problem (solved in plain arithmetic) out of that range
+ * (solved in logarithms): both solutions agree, in every regime, tuned or not. */
+static void test_position_scaling(void)
+{
+    const double s = 1e40;
+    int trial;
+    srand(29);
+    for (trial = 0; trial < 3000; ++trial) {
+        double L[4], Ls[4], T[4], Tb[4], h = pow(10.0, -3.0 + 5.0 * rand() / RAND_MAX), total = 0;
+        size_t n = 1 + (size_t)(rand() % 4), cnt, i;
+        sms_profile profile = (sms_profile)(rand() % 2);
+        double wn = (rand() % 3 == 0 && n >= 2) ? 20.0 + 200.0 * rand() / RAND_MAX : 0.0;
+        for (i = 0; i < n; ++i) {
+            L[i] = pow(10.0, (double)i + 3.0 * rand() / RAND_MAX);
+            Ls[i] = L[i] * s;
+        }
+        if (sms_kinematic_design(h, L, n, profile, wn, 0.0, 0.0, T, 4, &cnt) != SMS_OK)
+            continue;
+        CHECK_STATUS(sms_kinematic_design(h * s, Ls, n, profile, wn, 0.0, 0.0, Tb, 4, &cnt), SMS_OK);
+        for (i = 0; i < n; ++i)
+            total += T[i];
+        for (i = 0; i < n; ++i)
+            CHECK_CLOSE(Tb[i], T[i], 1e-12, total);
+    }
+}
+
 /* Finite but extreme bounds: a status in O(1), never OK with a non-finite length. */
 static void test_extreme_bounds(void)
 {
@@ -331,6 +358,7 @@ static void test_extreme_bounds(void)
 
 int main(void)
 {
+    test_position_scaling();
     test_sampled_limits_examples();
     test_sampled_limits_random();
     test_extreme_bounds();
