@@ -414,7 +414,13 @@ def first_two_peaks(x: np.ndarray, Ts: float) -> tuple[float, float, float, floa
 
 
 def cmd_identify(args) -> int:
+    from .cli_cost import record_cost, start
     from .filters import identify_from_peaks, identify_from_record
+    nbytes = os.path.getsize(args.csv) if os.path.isfile(args.csv) else 0
+    bar = start(record_cost("identify", nbytes=nbytes), args, f"a record of {nbytes} bytes")
+    if bar is None:
+        return 0
+    bar.phase("read and fit")
     x, Ts = read_record(args.csv, args.column, args.time_column, args.Ts)
     if args.start is not None:
         x = x[int(round(args.start / Ts)):]
@@ -428,6 +434,7 @@ def cmd_identify(args) -> int:
         print(f"peaks about the final value: ({t1:.6g} s, {p1:.6g}) and ({t2:.6g} s, {p2:.6g})")
     else:
         mode = identify_from_record(x, Ts=Ts)
+    bar.finish()
     print(f"record: {x.size} samples at Ts = {Ts:.6g} s")
     print(format_table(["wn [rad/s]", "zeta", "wd [rad/s]", "sigma [1/s]", "Td [s]"],
                        [[mode.wn, mode.zeta, mode.wd, mode.sigma, 2 * math.pi / mode.wd]]))
@@ -443,10 +450,16 @@ def cmd_identify(args) -> int:
     return 0
 
 
-def _run_module(name: str, module_name: str, out_dir: str, **options) -> int:
-    """Call smoothshaper.<module_name>.run(out_dir) for the subcommand ``name``; a missing
-    module is reported (exit 3), not a crash."""
+def _run_module(name: str, module_name: str, out_dir: str, args, cost, sizes: str,
+                **options) -> int:
+    """Call smoothshaper.<module_name>.run(out_dir) for the subcommand ``name``: a missing
+    module is reported (exit 3), not a crash; then the request's estimate (``cost(module)``,
+    see :func:`smoothshaper.cli_cost.start`) and a bar whose phases the module names through
+    ``run(..., progress=)``."""
     import importlib
+    import inspect
+
+    from .cli_cost import start
     modname = f"smoothshaper.{module_name}"
     try:
         module = importlib.import_module(modname)
@@ -459,7 +472,15 @@ def _run_module(name: str, module_name: str, out_dir: str, **options) -> int:
     run = getattr(module, "run", None)
     if run is None:
         raise CliError(f"{name} is unavailable: {modname} has no run(out_dir)", EXIT_UNAVAILABLE)
-    result = run(out_dir, **options)
+    bar = start(cost(module), args, sizes)
+    if bar is None:
+        return 0
+    if "progress" in inspect.signature(run).parameters:
+        options["progress"] = lambda phase: bar.phase(phase)
+    try:
+        result = run(out_dir, **options)
+    finally:
+        bar.finish()
     if result is False or (isinstance(result, int) and not isinstance(result, bool) and result):
         return EXIT_ERROR
     print(f"{name}: results written to {out_dir}")
@@ -467,13 +488,29 @@ def _run_module(name: str, module_name: str, out_dir: str, **options) -> int:
 
 
 def cmd_validate(args) -> int:
+    from .cli_cost import validate_cost
+    build = args.build_dir or os.path.join(args.out, "build")
+    built = os.path.isdir(os.path.join(build, "fmus"))
     options = {"build_dir": args.build_dir} if args.build_dir else {}
-    return _run_module("validate", "validation", args.out, **options)
+    return _run_module("validate", "validation", args.out, args,
+                       lambda module: validate_cost(built=built),
+                       "FMUs already built" if built else "the FMUs to build first", **options)
 
 
 def cmd_report(args) -> int:
+    from .cli_cost import report_cost
+
+    def cost(module):
+        sections = getattr(module, "SECTIONS", ())
+        unknown = [k for k in args.only or () if k not in sections]
+        if unknown:
+            raise CliError(f"--only: unknown section {unknown[0]!r} (sections: "
+                           f"{', '.join(sections)})")
+        return report_cost(list(args.only or sections))
+
     options = {"only": args.only} if args.only else {}
-    return _run_module("report", "report", args.out, **options)
+    return _run_module("report", "report", args.out, args, cost,
+                       f"{len(args.only)} section(s)" if args.only else "all sections", **options)
 
 
 # -- parser --------------------------------------------------------------------------------
@@ -506,6 +543,7 @@ def _add_chain_options(p, *, with_kind: bool = True) -> None:
 
 
 def build_parser() -> argparse.ArgumentParser:
+    from .cli_cost import add_options as add_cost_options
     parser = _Parser(prog="smoothshaper", description=__doc__,
                      formatter_class=argparse.RawDescriptionHelpFormatter)
     from . import __version__
@@ -552,7 +590,6 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--zeta-max", type=float, default=0.3, help="surface damping range (default 0.3)")
     p.add_argument("--surface-points", type=int, default=61,
                    help="surface damping rows (default 61)")
-    from .cli_cost import add_options as add_cost_options
     add_cost_options(p)
     p.set_defaults(func=cmd_analyze)
 
@@ -571,6 +608,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="record: least-squares fit of the whole decay, any constant offset "
                    "included (default); peaks: two successive peaks, measured about the "
                    "final value (the mean of the record's last tenth)")
+    add_cost_options(p)
     p.set_defaults(func=cmd_identify)
 
     from .cli_calibrate import add_parser as add_calibrate
@@ -597,6 +635,7 @@ def build_parser() -> argparse.ArgumentParser:
         if name == "report":
             p.add_argument("--only", nargs="+", metavar="SECTION",
                            help="build only these sections (e.g. seed000 seed004)")
+        add_cost_options(p)
         p.set_defaults(func=func)
     return parser
 

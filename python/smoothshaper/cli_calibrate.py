@@ -11,11 +11,11 @@ shaper; ``--json`` writes everything (docs/calibrate.md).
 """
 from __future__ import annotations
 
-import argparse
 import json
 import os
-import sys
 import time
+
+from .cli_cost import add_options as add_cost_options
 
 __all__ = ["add_parser", "cmd_calibrate"]
 
@@ -51,22 +51,27 @@ def add_parser(sub) -> None:
                    help="sample period the filter will run at [s] (default 1e-4)")
     p.add_argument("--out", metavar="DIR", help="write figures and config files here")
     p.add_argument("--json", metavar="FILE", help="write all results as JSON")
-    p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
-                   help="progress bar (default: when stderr is a terminal)")
+    add_cost_options(p)
     p.set_defaults(func=cmd_calibrate)
 
 
 def cmd_calibrate(args) -> int:
     from . import calibrate
     from .calibrate import outputs
-    from .cli_common import Progress
-    enabled = sys.stderr.isatty() if args.progress is None else args.progress
-    bar = {}
+    from .cli_cost import record_cost, start as start_request
+    nbytes = sum(os.path.getsize(f) for f in args.files if os.path.isfile(f))
+    # columns to tune: one with --axis x/y/z, up to three per file with --axis all
+    axes = len(args.files) * (3 if args.axis == "all" else 1)
+    bar = start_request(record_cost("calibrate", nbytes=nbytes, axes=axes), args,
+                        f"{len(args.files)} file(s), {nbytes} bytes")
+    if bar is None:
+        return 0
+    bar.phase("read and fit")
 
     def progress(done, total):
-        if "bar" not in bar:
-            bar["bar"] = Progress(total, "tuning candidates", enabled)
-        bar["bar"].advance(done - bar["bar"].done)
+        if bar.label != "tune":
+            bar.phase("tune", total)
+        bar.advance(done - bar.done)
 
     ref = calibrate.Reference(Ts=args.Ts, accel=args.accel,
                               corner_velocity=args.corner_velocity, distance=args.distance)
@@ -75,6 +80,7 @@ def cmd_calibrate(args) -> int:
                         band=tuple(args.band) if args.band else None, reference=ref,
                         max_delay=args.max_delay, max_smoothing=args.max_smoothing,
                         spread=args.spread, progress=progress)
+    bar.finish()
     elapsed = time.process_time() - start
     print(outputs.report_text(cal), end="")
     print(f"analysis: {elapsed:.2f} s of CPU time")

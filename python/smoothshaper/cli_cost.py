@@ -21,7 +21,8 @@ from .cli_common import CliError
 
 __all__ = ["ANNOUNCE_SECONDS", "LIMIT_SECONDS", "UNIT_COSTS", "PLOT_POINTS", "Cost",
            "add_options", "start", "show_progress", "announce", "chain_taps",
-           "analyze_cost", "trajectory_cost", "record_cost", "measure"]
+           "analyze_cost", "trajectory_cost", "record_cost", "REPORT_SECONDS", "report_cost",
+           "VALIDATE_SECONDS", "validate_cost", "measure"]
 
 #: A request modelled to take longer than this [s] prints its estimate before it starts.
 ANNOUNCE_SECONDS = 10.0
@@ -45,12 +46,14 @@ UNIT_COSTS = {
     "generator_sample_axis": 1.5e-7,
     # one CSV row written with 17 significant digits, per value
     "csv_value": 1.2e-6,
+    # identify: reading a CSV record and the least-squares fit of the whole decay, per byte
+    "identify_byte": 1.2e-6,
+    # calibrate: reading a CSV record, Welch spectra and modal fits, per byte
+    "calibrate_byte": 3.0e-7,
+    # calibrate: tuning every filter family to the modes of one axis
+    "calibrate_axis": 1.5,
     # plotting one point of a line (matplotlib Agg, after decimation to at most 20k points)
     "plot_point": 2.0e-6,
-    # reading one byte of a CSV record (parse and checks)
-    "record_byte": 5.0e-8,
-    # the modal fit of calibrate/identify, per sample of the record and mode searched
-    "fit_sample": 2.0e-6,
 }
 
 #: Most points a line plot draws; longer signals are decimated (min/max per bin).
@@ -166,17 +169,23 @@ def announce(cost: Cost, *, stream=None, limit: float = LIMIT_SECONDS) -> None:
     stream = sys.stderr if stream is None else stream
     if cost.seconds > limit:
         option, why = next(iter(cost.drivers.items()), ("input", "the input's size"))
+        advice = ("use a shorter record (fewer samples)" if option == "FILE"
+                  else f"{_verb(option)} {option}" + _other_drivers(cost))
         raise CliError(f"{option}: {cost.what} would take {cost.describe()}, more than the "
-                       f"limit of {limit:.0f} s ({why}); reduce {option}"
-                       + _other_drivers(cost))
+                       f"limit of {limit:.0f} s ({why}); {advice}")
     if cost.seconds > ANNOUNCE_SECONDS:
         stream.write(f"{cost.what}: this will take {cost.describe()}\n")
         stream.flush()
 
 
+def _verb(option: str) -> str:
+    """A longer sample period shortens the work; every other driver is a count to lower."""
+    return "raise" if option == "--Ts" else "reduce"
+
+
 def _other_drivers(cost: Cost) -> str:
     others = list(cost.drivers)[1:]
-    return f" (or {', '.join(others)})" if others else ""
+    return (" (or " + ", ".join(f"{_verb(o)} {o}" for o in others) + ")") if others else ""
 
 
 def chain_taps(stages, Ts: float) -> int:
@@ -296,28 +305,87 @@ def trajectory_cost(form: str, *, samples: int, axes: int, csv: bool, plot: bool
     }, drivers)
 
 
-def record_cost(what: str, *, nbytes: int, modes: int = 1) -> Cost:
+def record_cost(what: str, *, nbytes: int, axes: int = 1) -> Cost:
     """Model of reading and fitting CSV records (``identify``, ``calibrate``).
 
     Parameters
     ----------
-    what : str
-        The subcommand.
+    what : {"identify", "calibrate"}
+        The subcommand: identify fits the whole decay by least squares (cost per sample),
+        calibrate estimates spectra (cheaper per sample) and then tunes every filter family per
+        axis.
     nbytes : int
         Total size of the files [bytes] (``os.path.getsize``).
-    modes : int
-        Modes searched per record (calibrate: up to 4).
+    axes : int
+        Signal columns that will be tuned (calibrate).
 
     Returns
     -------
     Cost
-        Phases ``read`` and ``fit`` (a record row is taken as about 30 bytes).
+        Phases ``read and fit`` and (calibrate) ``tune``.
+
+    Raises
+    ------
+    KeyError
+        ``what`` is neither ``"identify"`` nor ``"calibrate"``.
     """
     c = UNIT_COSTS
-    rows = nbytes / 30.0
-    return Cost(what, {"read": c["record_byte"] * nbytes,
-                       "fit": c["fit_sample"] * rows * max(1, modes)},
-                {"FILE": f"{nbytes / 1e6:.3g} MB of records"})
+    phases = {"read and fit": c[f"{what}_byte"] * nbytes + 1.0}
+    if what == "calibrate":
+        phases["tune"] = c["calibrate_axis"] * max(1, axes)
+    return Cost(what, phases, {"FILE": f"{nbytes / 1e6:.3g} MB of records"})
+
+
+#: Seconds each report section took on the reference machine (the report prints its own).
+REPORT_SECONDS = {"seed000": 12.0, "seed001": 10.0, "seed002": 4.0, "seed003": 16.0,
+                  "seed004": 3.0, "shapers": 1.0}
+
+
+def report_cost(sections) -> Cost:
+    """Model of ``smoothshaper report``: the measured time of each section to build.
+
+    Parameters
+    ----------
+    sections : sequence of str
+        Section keys (:data:`smoothshaper.report.SECTIONS`).
+
+    Returns
+    -------
+    Cost
+        One phase per section.
+
+    Raises
+    ------
+    KeyError
+        A key is not a report section.
+    """
+    return Cost("report", {key: REPORT_SECONDS[key] for key in sections},
+                {"--only": "the sections built"})
+
+
+#: Seconds of each step of ``smoothshaper validate`` on the reference machine (building the
+#: FMUs only when the build folder does not hold them yet).
+VALIDATE_SECONDS = {"build": 60.0, "checks": 8.0, "importers": 15.0, "SmoothShaper": 20.0,
+                    "TrajectoryGenerator": 4.0}
+
+
+def validate_cost(*, built: bool) -> Cost:
+    """Model of ``smoothshaper validate``.
+
+    Parameters
+    ----------
+    built : bool
+        Whether the build folder already holds the FMUs (CMake then has nothing to do).
+
+    Returns
+    -------
+    Cost
+        One phase per step of :data:`smoothshaper.validation.RUN_STEPS`.
+    """
+    phases = dict(VALIDATE_SECONDS)
+    if built:
+        phases["build"] = 2.0
+    return Cost("validate", phases, {"--build-dir": "building the FMUs"})
 
 
 def measure(scale: float = 1.0) -> dict:

@@ -32,7 +32,7 @@ from . import reference
 from .stages import damped_harmonic, exponential, for_mode, harmonic, notch, rectangular, shaper
 from .errors import ParameterError
 
-__all__ = ["REL_TOL", "ModeStage", "start_values", "reference_stages", "communication_points",
+__all__ = ["REL_TOL", "RUN_STEPS", "ModeStage", "start_values", "reference_stages", "communication_points",
            "tick_inputs", "at_communication_points", "expected_output", "expected_trajectory",
            "simulate", "validation_cases", "build_fmus", "fmpy_problems", "fmutool_problems",
            "simulate_libcosim", "compare_importers", "compare_importers_trajectory", "compare",
@@ -398,13 +398,23 @@ def _plot_trajectory(path: Path, t, target, y, ref) -> None:
     plt.close(fig)
 
 
+#: The steps of :func:`run`, in order, for a progress display.
+RUN_STEPS = ("build", "checks", "importers", "SmoothShaper", "TrajectoryGenerator")
+
+
 def run(out_dir, *, build_dir=None, fmus: dict | None = None, Ts: float = 1e-3,
-        stop_time: float = 0.42, plots: bool = True) -> bool:
-    """Build, validate and compare; write README.md and PNGs to out_dir. True if all pass."""
+        stop_time: float = 0.42, plots: bool = True, progress=None) -> bool:
+    """Build, validate and compare; write README.md and PNGs to out_dir. True if all pass.
+
+    ``progress``: None or a callable called as ``progress(step)`` when each step of
+    :data:`RUN_STEPS` starts."""
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
+    step = progress or (lambda name: None)
+    step("build")
     if fmus is None:
         fmus = build_fmus(Path(build_dir) if build_dir else out / "build")
+    step("checks")
     lines = ["# FMU validation", "",
              "Built with CMake; checked with fmpy; simulated with fmpy and compared with the "
              "NumPy reference `smoothshaper.reference.filter` (independent of the C code).", "",
@@ -422,6 +432,7 @@ def run(out_dir, *, build_dir=None, fmus: dict | None = None, Ts: float = 1e-3,
                                 if n.startswith("binaries/") and n.count("/") == 2 and not n.endswith("/")})
         lines.append(f"| {model}.fmu | {', '.join(platforms)} | {'; '.join(problems) or 'no problem'} | "
                      f"{'; '.join(checks) or 'passed'} |")
+    step("importers")
     if "SmoothShaper" in fmus or "TrajectoryGenerator" in fmus:
         lines += ["", "## Second importer (libcosim via libcosimpy)", "",
                   "Every parameter set in libcosim (choices as Integer codes), h = Ts; libcosim "
@@ -439,6 +450,7 @@ def run(out_dir, *, build_dir=None, fmus: dict | None = None, Ts: float = 1e-3,
             ok &= d_tg == 0.0
             lines.append(f"| TrajectoryGenerator | profile {name} | {d_tg:.1e} | "
                          f"{'yes' if d_tg == 0.0 else 'NO'} |")
+    step("SmoothShaper")
     if "SmoothShaper" in fmus:
         steps = (("Ts", Ts), ("7 Ts", 7 * Ts), ("2.5 Ts", 2.5 * Ts), ("0.4 Ts", 0.4 * Ts))
         lines += ["", f"## SmoothShaper vs reference (Ts = {Ts:g} s, 0 to {stop_time:g} s, "
@@ -458,6 +470,7 @@ def run(out_dir, *, build_dir=None, fmus: dict | None = None, Ts: float = 1e-3,
             lines.append(f"| {name} | " + " | ".join(cells) + f" | {'yes' if passed else 'NO'} |")
         lines += ["", "Cells: max |y_FMU - y_ref| / max |y_ref| over the run. Plots (h = Ts): "
                   "`smoothshaper_NN.png` in table order."]
+    step("TrajectoryGenerator")
     if "TrajectoryGenerator" in fmus:
         lines += ["", "## TrajectoryGenerator vs reference (`trajectory.generator_reference`, "
                   f"limits {TRAJECTORY_LIMITS}, Ts = {Ts:g} s)", "",

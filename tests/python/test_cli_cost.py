@@ -59,7 +59,8 @@ def test_a_request_beyond_the_limit_is_refused_naming_the_parameter(tmp_path, ca
                        "--wn", "1", "--surface", "--out", tmp_path / "x")
     assert code == cli.EXIT_ERROR
     assert err.startswith("smoothshaper: error: --Ts:") and "600 s" in err, err
-    assert "--surface-points" in err and err.count("\n") == 1
+    assert "raise --Ts (or reduce --points, reduce --surface-points)" in err
+    assert err.count("\n") == 1
     assert not (tmp_path / "x").exists()
 
 
@@ -183,3 +184,44 @@ def test_chain_response_reports_its_work_and_is_reused_by_the_analysis_functions
     with pytest.raises(sms.ParameterError) as e:
         analysis.prv(resp, wn=10.0, Ts=2e-3)
     assert e.value.parameter == "Ts"
+
+
+# -- records, report, validate ------------------------------------------------------------------
+
+EXAMPLES = __import__("pathlib").Path(__file__).resolve().parents[2] / "examples"
+
+
+def test_identify_calibrate_report_validate_estimates_do_not_run(tmp_path, capsys):
+    for argv, head in (
+            (["identify", EXAMPLES / "decay.csv"], "identify: a record of"),
+            (["calibrate", EXAMPLES / "resonance_xy.csv", "--out", tmp_path / "c"],
+             "calibrate: 1 file(s)"),
+            (["report", "--out", tmp_path / "r"], "report: all sections"),
+            (["validate", "--out", tmp_path / "v"], "validate: the FMUs to build first")):
+        code, out, err = run(capsys, *argv, "--estimate")
+        assert code == 0 and out.startswith(head) and "about" in out, (argv, out, err)
+    assert not any(tmp_path.iterdir())                          # nothing ran
+    # validate without a build costs the CMake build on top
+    assert (cli_cost.validate_cost(built=False).seconds
+            > cli_cost.validate_cost(built=True).seconds + 30)
+
+
+def test_a_huge_record_is_refused_naming_the_file():
+    cost = cli_cost.record_cost("identify", nbytes=2 * 10**9)
+    with pytest.raises(cli.CliError, match=r"^FILE: identify would take .*2e\+03 MB of records\); use a shorter"):
+        cli_cost.announce(cost)
+
+
+def test_calibrate_and_report_progress_cover_their_phases(tmp_path, capsys):
+    code, _, err = run(capsys, "calibrate", EXAMPLES / "resonance_xy.csv", "--axis", "x",
+                       "--progress")
+    assert code == 0, err
+    states = _bar_states(err)
+    assert list(dict.fromkeys(label for label, _ in states)) == ["read and fit", "tune"]
+    assert [p for _, p in states] == sorted(p for _, p in states) and states[-1][1] == 100.0
+    code, out, err = run(capsys, "report", "--only", "seed004", "shapers", "--out", tmp_path,
+                         "--progress")
+    assert code == 0, err
+    states = _bar_states(err)
+    assert list(dict.fromkeys(label for label, _ in states)) == ["seed004", "shapers"]
+    assert states[-1][1] == 100.0 and err.endswith("100.0%\n")

@@ -49,11 +49,13 @@ def _render(section: Section, out_dir: Path) -> str:
     return "\n".join(parts)
 
 
-def run(out_dir, *, only=None) -> Path:
+def run(out_dir, *, only=None, progress=None) -> Path:
     """Write the report into ``out_dir`` (created if needed) and return the README path.
 
-    ``only``: section keys to build (default: all, in :data:`SECTIONS` order). Raises
-    RuntimeError after writing the report if a section failed to build or a claim does not hold.
+    ``only``: section keys to build (default: all, in :data:`SECTIONS` order); ``progress``:
+    None or a callable called as ``progress(key)`` when each section starts. Raises
+    ParameterError naming ``only`` for an unknown section, and RuntimeError after writing the
+    report if a section failed to build or a claim does not hold.
     """
     out_dir = Path(out_dir)
     keys = list(SECTIONS if only is None else only)
@@ -64,6 +66,8 @@ def run(out_dir, *, only=None) -> Path:
     out_dir.mkdir(parents=True, exist_ok=True)
     rendered, summary, failures = [], [], []
     for key in keys:
+        if progress is not None:
+            progress(key)
         try:
             section = build_section(key, out_dir / "figures" / key)
         except Exception:  # a broken section is reported, the others still build
