@@ -29,13 +29,13 @@ sms_real sms_plan_sqrt(sms_real x)
 /* Up to three constant-jerk pieces. */
 typedef struct pieces {
     int count;
-    sms_real d[3], j[3];
+    sms_real d[4], j[4];
 } pieces;
 
 /* Time-optimal change of (v0, a0) to (v1, 0) within amax, jmax (a0 within amax and the
  * change possible without passing the velocity bound: the caller's precondition). */
 static void velocity_change(sms_real v0, sms_real a0, sms_real v1, sms_real A, sms_real J,
-                            pieces *out)
+                            int shape, pieces *out)
 {
     sms_real after = v0 + a0 * (a0 < 0 ? -a0 : a0) / (2 * J); /* a0 -> 0 at once */
     sms_real s, a0s, dv, ap, hold;
@@ -50,6 +50,23 @@ static void velocity_change(sms_real v0, sms_real a0, sms_real v1, sms_real A, s
     }
     s = v1 > after ? 1 : -1; /* the direction of the acceleration peak */
     a0s = s * a0;
+    if (shape == SMS_PLAN_COSINE && a0s < 0) {
+        /* a half-cosine transition across zero would linger near a0 (its jerk starts at 0)
+         * and take v beyond the brake velocity `after`: bring a0 to zero first, then start
+         * from (after, 0) */
+        velocity_change(after, 0, v1, A, J, shape, out);
+        {
+            int i;
+            for (i = out->count; i > 0; --i) {
+                out->d[i] = out->d[i - 1];
+                out->j[i] = out->j[i - 1];
+            }
+        }
+        out->d[0] = -a0s / J;
+        out->j[0] = s * J;
+        out->count += 1;
+        return;
+    }
     dv = s * (v1 - v0);
     /* a: a0 -> ap (jerk s J), hold ap, ap -> 0 (jerk -s J):
      * dv = (ap^2 - a0^2)/(2J) + ap hold + ap^2/(2J) */
@@ -72,29 +89,41 @@ static void velocity_change(sms_real v0, sms_real a0, sms_real v1, sms_real A, s
     out->count = 3;
 }
 
-/* Advance (p, v, a) by d seconds at jerk j. */
-static void advance(sms_real *p, sms_real *v, sms_real *a, sms_real j, sms_real d)
+/* Position coefficient of a whole transition of duration d and mean jerk j (the change of a
+ * over it is j d): dq = v d + a d^2/2 + c3 j d^3 with c3 = 1/6 for a linear ramp and
+ * 1/4 - 1/pi^2 for a half-cosine one (a(t) = a0 + j d (1 - cos(pi t/d))/2). */
+#define PLAN_C3_RAMP ((sms_real)(1.0 / 6.0))
+#define PLAN_C3_COSINE ((sms_real)0.14867881635766024) /* 1/4 - 1/pi^2 */
+
+/* Advance (p, v, a) by one whole transition of d seconds at mean jerk j (coefficient c3). */
+static void advance(sms_real *p, sms_real *v, sms_real *a, sms_real j, sms_real d, sms_real c3)
 {
-    *p += d * (*v + d * (*a * (sms_real)0.5 + d * j * (sms_real)(1.0 / 6.0)));
+    *p += d * (*v + d * (*a * (sms_real)0.5 + d * j * c3));
     *v += d * (*a + d * j * (sms_real)0.5);
     *a += d * j;
 }
 
 /* Distance of the velocity change to vp plus the stop from vp, and the two piece lists. */
-static sms_real distance(sms_real v0, sms_real a0, sms_real vp, const sms_plan_limits *lim,
-                         pieces *first, pieces *stop)
+static sms_real distance(sms_real v0, sms_real a0, sms_real vp, sms_real A, sms_real J,
+                         int shape, pieces *first, pieces *stop)
 {
-    sms_real p = 0, v = v0, a = a0;
+    sms_real p = 0, v = v0, a = a0, c3 = shape == SMS_PLAN_COSINE ? PLAN_C3_COSINE : PLAN_C3_RAMP;
     int i;
-    velocity_change(v0, a0, vp, lim->amax, lim->jmax, first);
-    velocity_change(vp, 0, 0, lim->amax, lim->jmax, stop);
+    velocity_change(v0, a0, vp, A, J, shape, first);
+    velocity_change(vp, 0, 0, A, J, shape, stop);
     for (i = 0; i < first->count; ++i)
-        advance(&p, &v, &a, first->j[i], first->d[i]);
+        advance(&p, &v, &a, first->j[i], first->d[i], c3);
     v = vp;
     a = 0;
     for (i = 0; i < stop->count; ++i)
-        advance(&p, &v, &a, stop->j[i], stop->d[i]);
+        advance(&p, &v, &a, stop->j[i], stop->d[i], c3);
     return p;
+}
+
+sms_real sms_plan_mean_jerk(const sms_plan_limits *lim, int shape)
+{
+    /* a half-cosine transition of peak jerk J changes a by J d 2/pi over d */
+    return shape == SMS_PLAN_COSINE ? lim->jmax * (sms_real)0.63661977236758134 : lim->jmax;
 }
 
 /* Add a segment starting at time (n, f) and move (n, f) to its end. */
@@ -131,11 +160,20 @@ static void push(sms_plan *plan, sms_real Ts, size_t *n, sms_real *f, sms_real p
 void sms_plan_to_rest(sms_plan *plan, const sms_plan_limits *lim, sms_real Ts, sms_real q,
                       sms_real v, sms_real a, sms_real goal)
 {
-    sms_real D = goal - q, vp, cruise = 0, V = lim->vmax, p, vv, aa, f = 0;
+    sms_plan_to_rest_shaped(plan, lim, SMS_PLAN_RAMP, Ts, q, v, a, goal);
+}
+
+void sms_plan_to_rest_shaped(sms_plan *plan, const sms_plan_limits *lim, int shape, sms_real Ts,
+                             sms_real q, sms_real v, sms_real a, sms_real goal)
+{
+    sms_real D = goal - q, vp, cruise = 0, V = lim->vmax, A = lim->amax, p, vv, aa, f = 0;
+    sms_real J = sms_plan_mean_jerk(lim, shape);
+    sms_real c3 = shape == SMS_PLAN_COSINE ? PLAN_C3_COSINE : PLAN_C3_RAMP;
     pieces first, stop;
     size_t n = 0;
     int i;
     plan->count = 0;
+    plan->shape = shape;
     plan->goal = goal;
     plan->duration = 0;
     if (D == 0 && v == 0 && a == 0) {
@@ -143,27 +181,38 @@ void sms_plan_to_rest(sms_plan *plan, const sms_plan_limits *lim, sms_real Ts, s
         plan->end_f = 0;
         return;
     }
-    if (D >= distance(v, a, V, lim, &first, &stop)) {
+    if (D >= distance(v, a, V, A, J, shape, &first, &stop)) {
         vp = V;
-        cruise = (D - distance(v, a, V, lim, &first, &stop)) / V;
-    } else if (D <= distance(v, a, -V, lim, &first, &stop)) {
+        cruise = (D - distance(v, a, V, A, J, shape, &first, &stop)) / V;
+    } else if (D <= distance(v, a, -V, A, J, shape, &first, &stop)) {
         vp = -V;
-        cruise = (D - distance(v, a, -V, lim, &first, &stop)) / -V;
+        cruise = (D - distance(v, a, -V, A, J, shape, &first, &stop)) / -V;
     } else {
-        /* distance increases with vp: bisection to the last bit */
-        sms_real lo = -V, hi = V;
+        /* Bisection to the last bit on the side of `after` (the velocity when a returns to
+         * zero at once) where the root lies. Above it the distance increases with vp (more
+         * acceleration first); below it a plan decelerates to vp and then stops, and just
+         * below `after` that split deceleration covers more distance than stopping at once,
+         * so a target a little beyond the direct stop would have a second, slower root
+         * there. Searching [after, V] when D >= distance(after) takes the faster one. */
+        sms_real after = v + a * (a < 0 ? -a : a) / (2 * J), lo = -V, hi = V;
         int it;
+        if (after > -V && after < V) {
+            if (D >= distance(v, a, after, A, J, shape, &first, &stop))
+                lo = after;
+            else
+                hi = after;
+        }
         for (it = 0; it < 200; ++it) {
             sms_real mid = (sms_real)0.5 * (lo + hi);
             if (!(mid > lo && mid < hi))
                 break;
-            if (distance(v, a, mid, lim, &first, &stop) < D)
+            if (distance(v, a, mid, A, J, shape, &first, &stop) < D)
                 lo = mid;
             else
                 hi = mid;
         }
         vp = (sms_real)0.5 * (lo + hi);
-        (void)distance(v, a, vp, lim, &first, &stop);
+        (void)distance(v, a, vp, A, J, shape, &first, &stop);
     }
     if (cruise < 0)
         cruise = 0;
@@ -173,13 +222,13 @@ void sms_plan_to_rest(sms_plan *plan, const sms_plan_limits *lim, sms_real Ts, s
     aa = a;
     for (i = 0; i < first.count; ++i) {
         push(plan, Ts, &n, &f, p, vv, aa, first.j[i], first.d[i]);
-        advance(&p, &vv, &aa, first.j[i], first.d[i]);
+        advance(&p, &vv, &aa, first.j[i], first.d[i], c3);
     }
     /* the stop, anchored on the goal: it starts where its own distance before the goal is */
     {
         sms_real ps = 0, vs = vp, as = 0;
         for (i = 0; i < stop.count; ++i)
-            advance(&ps, &vs, &as, stop.j[i], stop.d[i]);
+            advance(&ps, &vs, &as, stop.j[i], stop.d[i], c3);
         if (cruise > 0)
             push(plan, Ts, &n, &f, p, vp, 0, 0, cruise);
         p = goal - ps;
@@ -187,7 +236,7 @@ void sms_plan_to_rest(sms_plan *plan, const sms_plan_limits *lim, sms_real Ts, s
         aa = 0;
         for (i = 0; i < stop.count; ++i) {
             push(plan, Ts, &n, &f, p, vv, aa, stop.j[i], stop.d[i]);
-            advance(&p, &vv, &aa, stop.j[i], stop.d[i]);
+            advance(&p, &vv, &aa, stop.j[i], stop.d[i], c3);
         }
     }
     plan->end = n;
@@ -210,10 +259,41 @@ static int at_or_after(size_t k, size_t n, sms_real f, sms_real Ts)
     return f <= tol * Ts;
 }
 
+/* Terms of a half-cosine transition at phase x = pi t/d in [0, pi]: sin x, 1 - cos x,
+ * x - sin x and x^2/2 - 1 + cos x, each summed from its leading Taylor term x^n/n! (so each
+ * keeps its relative accuracy near x = 0, where the closed forms cancel), without libm.
+ * Terms up to x^29/29! (double: pi^30/30! < 4e-18) or x^19/19! (float: pi^20/20! < 4e-9). */
+#define PLAN_COSINE_TERMS (sizeof(sms_real) == sizeof(double) ? 29 : 19)
+
+static void cosine_terms(sms_real x, sms_real out[4])
+{
+    sms_real t = x, s = 0, c1 = 0, s3 = 0, c4 = 0;
+    int n;
+    for (n = 1; n <= PLAN_COSINE_TERMS; ++n) {
+        /* t = x^n / n!; signs: sin +x -x^3/3! ..., 1 - cos +x^2/2 -x^4/4! ...,
+         * x - sin +x^3/3! -x^5/5! ..., x^2/2 - 1 + cos +x^4/4! -x^6/6! ... */
+        int odd = n & 1, plus = ((n + 1) / 2) & 1; /* n = 1, 2: +; 3, 4: -; 5, 6: + */
+        if (odd) {
+            s += plus ? t : -t;
+            if (n >= 3)
+                s3 += plus ? -t : t;
+        } else {
+            c1 += plus ? t : -t;
+            if (n >= 4)
+                c4 += plus ? -t : t;
+        }
+        t *= x / (sms_real)(n + 1);
+    }
+    out[0] = s;
+    out[1] = c1;
+    out[2] = s3;
+    out[3] = c4;
+}
+
 void sms_plan_eval(const sms_plan *plan, sms_real Ts, size_t k, sms_real out[4])
 {
     size_t i = plan->count;
-    sms_real t;
+    sms_real t, d, j;
     /* at or after the end: exactly at rest on the goal */
     if (i == 0 || at_or_after(k, plan->end, plan->end_f, Ts)) {
         out[0] = plan->goal;
@@ -229,9 +309,24 @@ void sms_plan_eval(const sms_plan *plan, sms_real Ts, size_t k, sms_real out[4])
     t = (sms_real)(k - plan->n[i]) * Ts - plan->f[i];
     if (t < 0)
         t = 0;
+    j = plan->j[i];
+    d = plan->d[i];
+    if (plan->shape == SMS_PLAN_COSINE && j != 0) {
+        /* a(t) = a0 + (j d/2)(1 - cos x), x = pi t/d, and its integrals; jerk (pi/2) j sin x */
+        sms_real w = d * (sms_real)0.31830988618379067, /* d/pi */
+                 x = t < d ? t / w : (sms_real)3.14159265358979323846, half = j * d * (sms_real)0.5,
+                 c[4];
+        cosine_terms(x, c);
+        out[0] = plan->p[i] + t * (plan->v[i] + t * plan->a[i] * (sms_real)0.5) +
+                 half * w * w * c[3];
+        out[1] = plan->v[i] + t * plan->a[i] + half * w * c[2];
+        out[2] = plan->a[i] + half * c[1];
+        out[3] = half / w * c[0];
+        return;
+    }
     out[0] = plan->p[i] + t * (plan->v[i] + t * (plan->a[i] * (sms_real)0.5 +
-                                                 t * plan->j[i] * (sms_real)(1.0 / 6.0)));
-    out[1] = plan->v[i] + t * (plan->a[i] + t * plan->j[i] * (sms_real)0.5);
-    out[2] = plan->a[i] + t * plan->j[i];
-    out[3] = plan->j[i];
+                                                 t * j * (sms_real)(1.0 / 6.0)));
+    out[1] = plan->v[i] + t * (plan->a[i] + t * j * (sms_real)0.5);
+    out[2] = plan->a[i] + t * j;
+    out[3] = j;
 }

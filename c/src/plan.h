@@ -17,7 +17,26 @@
 void sms_plan_to_rest(sms_plan *plan, const sms_plan_limits *lim, sms_real Ts, sms_real q,
                       sms_real v, sms_real a, sms_real goal);
 
-/* q, v, a, j at sample k after the plan's first sample (jerk: right limit at a jump). */
+/* Shapes of the acceleration transitions: linear ramps (constant jerk +-jmax) or half-cosine
+ * ones (jerk jmax sin(pi t/d), continuous, zero at both ends: the trigonometric profile). */
+#define SMS_PLAN_RAMP 0
+#define SMS_PLAN_COSINE 1
+
+/* As sms_plan_to_rest() with transitions of the given shape. A half-cosine transition of
+ * duration d and peak jerk jmax changes a by (2/pi) jmax d and v by d times the mean of its
+ * end accelerations, exactly as a linear ramp at the mean jerk (2/pi) jmax: the plan's
+ * durations are those of the ramp plan at that jerk (rest to rest: ruckig's duration with
+ * jmax 2/pi, which is the trigonometric kinematic design's), only the positions differ
+ * (a whole transition moves q by (1/4 - 1/pi^2) instead of 1/6 times j d^3). The brake
+ * precondition uses the mean jerk. Plan segments store the mean jerk in j[]. */
+void sms_plan_to_rest_shaped(sms_plan *plan, const sms_plan_limits *lim, int shape, sms_real Ts,
+                             sms_real q, sms_real v, sms_real a, sms_real goal);
+
+/* The jerk the planner uses for a shape: jmax (ramps) or (2/pi) jmax (half-cosine). */
+sms_real sms_plan_mean_jerk(const sms_plan_limits *lim, int shape);
+
+/* q, v, a, j at sample k after the plan's first sample (jerk: right limit at a jump; a
+ * half-cosine transition is evaluated by its own series, no libm). */
 void sms_plan_eval(const sms_plan *plan, sms_real Ts, size_t k, sms_real out[4]);
 
 /* sqrt(x) for x >= 0 in sms_real without libm (Newton after scaling by powers of 4). */

@@ -7,6 +7,8 @@ to time-optimal the generator is when targets change mid-motion.
   a target that changes mid-motion (random limits over three orders of magnitude, random
   switch instants; the state (q, v, a) at the switch is the generator's own output);
 - the same ratio for rest-to-rest moves (1 + at most one sample);
+- the other profiles rest to rest: the trigonometric one against its kinematic design, a
+  mode-tuned one against ruckig + its stage and against the offline design with that mode;
 - ``Generator.process`` per sample on 1e6 samples (double and float, one C call);
 - ``design.kinematic`` from Python against the bare C call through cffi;
 - the price in samples of designing a kinematic chain on the grid (docs/sampled-limits.md).
@@ -21,7 +23,7 @@ import time
 
 import numpy as np
 
-__all__ = ["arrival_ratios", "main", "RUCKIG_RELAX"]
+__all__ = ["arrival_ratios", "profile_prices", "main", "RUCKIG_RELAX"]
 
 
 # ruckig's duration is discontinuous at states whose braking velocity v + a|a|/(2 jmax) equals
@@ -80,6 +82,48 @@ def arrival_ratios(n_cases: int, seed: int = 1, mid_motion: bool = True,
     return np.array(out)
 
 
+def profile_prices(n_cases: int, seed: int = 3) -> dict[str, np.ndarray]:
+    """Rest-to-rest arrival of the other profiles against their continuous optimum:
+
+    - ``"trigonometric"``: arrival / the trigonometric kinematic design's duration (the
+      shortest motion with half-cosine transitions; at most one sample over 1);
+    - ``"mode"``: arrival / (ruckig's duration + the tuned stage), the generator's own
+      promise (at most a sample or two over 1: the plan's rounding and the stage's taps);
+    - ``"mode vs design"``: arrival / the continuous kinematic design with the same mode,
+      which lets the tuned stage shape the jerk instead of adding it after the plan (the
+      price of the online structure; polynomial profile, wn with Tm from 0.3 to 3 times
+      amax/jmax)."""
+    import ruckig
+    from . import design
+    from .trajectory import Generator
+    rng = np.random.default_rng(seed)
+    out = {"trigonometric": [], "mode": [], "mode vs design": []}
+    for _ in range(n_cases):
+        vmax = 10.0 ** rng.uniform(-1, 1)
+        amax = vmax * 10.0 ** rng.uniform(-0.5, 1.5)
+        jmax = amax * 10.0 ** rng.uniform(0, 2)
+        h = vmax * (vmax / amax + amax / jmax) * 10.0 ** rng.uniform(-1.5, 1.5)
+        lim = dict(vmax=vmax, amax=amax, jmax=jmax)
+        T_trig = design.duration(design.kinematic(h=h, profile="trigonometric", **lim))
+        wn = 2 * np.pi / (amax / jmax * 10.0 ** rng.uniform(-0.5, 0.5))
+        T_design = design.duration(design.kinematic(h=h, wn=wn, **lim))
+        T_ruckig = _ruckig_duration(ruckig, 0.0, 0.0, 0.0, h, vmax, amax, jmax)
+        for key, profile, mode, T_ref in (
+                ("trigonometric", "trigonometric", {}, T_trig),
+                ("mode", "polynomial", dict(wn=wn), None)):
+            Ts = min((T_ref or T_ruckig) / 500, 2 * np.pi / wn / 20)
+            g = Generator(Ts=Ts, profile=profile, **mode, **lim)
+            y = g.process(np.full(int(3 * (T_ref or T_design + T_ruckig) / Ts) + 10, h))
+            # y[i] is i Ts after the step (sample 0 sees the new target)
+            arrive = np.flatnonzero((y[:, 0] == h) & (y[:, 1] == 0))[0] * Ts
+            if key == "trigonometric":
+                out[key].append(arrive / T_trig)
+            else:
+                out[key].append(arrive / (T_ruckig + g.stage_duration))
+                out["mode vs design"].append(arrive / T_design)
+    return {k: np.array(v) for k, v in out.items()}
+
+
 def _cpu(fn, rounds: int) -> float:
     times = []
     for _ in range(rounds):
@@ -115,6 +159,10 @@ def main(argv=None) -> int:
             print(f"  ruckig with vmax exactly (not relaxed by {RUCKIG_RELAX:g}) was slower "
                   f"from {slower} of these states (braking velocity on vmax; smallest ratio "
                   f"against it {min(exact):.4f})")
+        for key, r in profile_prices(n_cases // 4).items():
+            q = np.percentile(r, [50, 99])
+            print(f"rest to rest, {key}: arrival / optimum ({r.size} cases, Ts <= T/500): "
+                  f"min {r.min():.4f}  median {q[0]:.4f}  p99 {q[1]:.4f}  max {r.max():.4f}")
     except ImportError:
         print("(arrival ratios skipped: ruckig is not installed; pip install '.[test]')")
 

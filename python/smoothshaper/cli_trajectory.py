@@ -53,7 +53,7 @@ def run_until_reached(gen, via: np.ndarray, scale: float, max_samples: int):
     saved before it is restored and only the samples up to the arrival are replayed, so the
     result is exactly what per-sample stepping would give."""
     limits = (gen.vmax, gen.amax, gen.jmax)
-    chunk = max(64, gen.tail_samples)
+    chunk = max(64, gen.tail_samples)   # tail_samples: the tuned stage's taps (0: none)
     targets, outs, starts, arrivals = [], [], [], []
     k = 0
     for p in via[1:]:
@@ -131,9 +131,9 @@ def cmd_generator(args) -> int:
     gen.reset(position=float(via[0]))
     scale = max(float(np.max(np.abs(via))), gen.vmax * gen.Ts)
     limits = (gen.vmax, gen.amax, gen.jmax)
-    # A move of D takes about D/vmax + Tc (+ a wait of <= Tc before a re-plan or reversal);
-    # the time-optimal generator's velocity rise lasts at most vmax/amax + amax/jmax.
-    Tc = gen.T2 + gen.T3 if not gen.time_optimal else gen.vmax / gen.amax + gen.amax / gen.jmax
+    # A move of D takes at most D/vmax + Tc: the velocity rise (vmax/amax + amax/jmax, times
+    # pi/2 for the half-cosine transitions) and the stage tuned to a mode.
+    Tc = gen.vmax / gen.amax + math.pi / 2 * gen.amax / gen.jmax + gen.stage_duration
     estimate = sum(abs(b - a) / gen.vmax + 3 * Tc for a, b in zip(via[:-1], via[1:]))
     if args.hold is not None:
         if not (math.isfinite(args.hold) and args.hold >= gen.Ts):
@@ -161,8 +161,11 @@ def cmd_generator(args) -> int:
     print(f"online generator: vmax = {gen.vmax:g} {u}/s, amax = {gen.amax:g} {u}/s^2, "
           f"jmax = {gen.jmax:g} {u}/s^3, profile {gen.profile}"
           + (f", mode wn = {gen.wn:g} rad/s, zeta = {gen.zeta:g}" if gen.wn else ""))
-    print(f"tail: T2 = {gen.T2:.6g} s, T3 = {gen.T3:.6g} s (Nc = {gen.tail_samples} samples "
-          f"at Ts = {gen.Ts:g} s); start at rest at {via[0]:g} {u}")
+    print("time-optimal plan to each target"
+          + (f", then the stage tuned to the mode: {gen.stage_duration:.6g} s "
+             f"({gen.tail_samples} samples at Ts = {gen.Ts:g} s)" if gen.wn else
+             f" (Ts = {gen.Ts:g} s)")
+          + f"; start at rest at {via[0]:g} {u}")
     print("each via-point held until the output rests on it" if args.hold is None else
           f"each via-point held {hold_samples} samples ({hold_samples * gen.Ts:g} s), "
           "the last until the output rests on it")

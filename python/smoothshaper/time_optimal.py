@@ -1,4 +1,4 @@
-"""NumPy reference of the time-optimal online generator (the polynomial profile without a mode).
+"""NumPy reference of the time-optimal online generator's plan.
 
 Written independently of ``c/src/plan.c``: the motion from a state (q, v, a) to a target at
 rest is built from the same three phases (velocity change to a peak velocity vp with the
@@ -6,6 +6,13 @@ acceleration back at 0, a cruise at +-vmax when the distance allows, the stop), 
 found by ``scipy.optimize.brentq`` and the plan is sampled on absolute float64 times, a
 breakpoint on the grid (within 8 ulps of its sample count of a whole number) deciding the
 side of its jump by the sample index. Used by the tests and the arrival benchmark; not on any run path.
+
+``shape="cosine"`` (the trigonometric profile): every transition of the acceleration is a
+half cosine, a(t) = a0 + da (1 - cos(pi t/d))/2 with peak jerk jmax, evaluated here with
+NumPy's sin/cos. Its durations and velocity changes are those of a linear ramp at the mean
+jerk 2 jmax/pi; a transition that would take the acceleration across zero is split at zero
+(a cosine lingers near its start and would carry v past the brake velocity), and a re-plan
+waits for a state from which a fresh transition to zero keeps |v| <= vmax.
 """
 from __future__ import annotations
 
@@ -14,10 +21,20 @@ import math
 import numpy as np
 from scipy.optimize import brentq
 
-__all__ = ["plan_to_rest", "plan_duration", "time_optimal_reference"]
+__all__ = ["plan_to_rest", "plan_duration", "time_optimal_reference", "mean_jerk", "C3"]
 
 
-def _change(v0: float, a0: float, v1: float, A: float, J: float) -> list[tuple[float, float]]:
+C3 = {"ramp": 1.0 / 6.0, "cosine": 0.25 - 1.0 / math.pi ** 2}
+
+
+def mean_jerk(jmax: float, shape: str) -> float:
+    """The jerk the planner works with: jmax (ramps) or 2 jmax/pi (half-cosine transitions,
+    whose change of a over a duration d is 2 jmax d/pi)."""
+    return jmax * 2.0 / math.pi if shape == "cosine" else jmax
+
+
+def _change(v0: float, a0: float, v1: float, A: float, J: float,
+            shape: str = "ramp") -> list[tuple[float, float]]:
     """(duration, jerk) pieces that take (v0, a0) to (v1, 0) in the least time within A, J.
 
     The acceleration first moves towards a peak ap of the sign of the remaining change, holds
@@ -28,6 +45,8 @@ def _change(v0: float, a0: float, v1: float, A: float, J: float) -> list[tuple[f
         return [(abs(a0) / J, -math.copysign(J, a0))] if a0 else []
     s = 1.0 if v1 > settle else -1.0
     b0, dv = s * a0, s * (v1 - v0)
+    if shape == "cosine" and b0 < 0:
+        return [(-b0 / J, s * J)] + _change(settle, 0.0, v1, A, J, shape)
     peak = math.sqrt(max(J * dv + 0.5 * b0 * b0, 0.0))
     hold = 0.0
     if peak > A:
@@ -37,29 +56,33 @@ def _change(v0: float, a0: float, v1: float, A: float, J: float) -> list[tuple[f
     return [((peak - b0) / J, s * J), (hold, 0.0), (peak / J, -s * J)]
 
 
-def _integrate(pieces, q, v, a):
-    """End state after the pieces from (q, v, a): the integrals of a constant jerk."""
+def _integrate(pieces, q, v, a, c3=1.0 / 6.0):
+    """End state after whole pieces from (q, v, a): dq = v d + a d^2/2 + c3 j d^3 (c3 = 1/6
+    for a constant jerk j, 1/4 - 1/pi^2 for a half cosine of mean jerk j)."""
     for d, j in pieces:
         if d <= 0:
             continue
-        q, v, a = q + d * v + d * d * a / 2 + d ** 3 * j / 6, v + d * a + d * d * j / 2, a + d * j
+        q, v, a = q + d * v + d * d * a / 2 + c3 * d ** 3 * j, v + d * a + d * d * j / 2, a + d * j
     return q, v, a
 
 
 def plan_to_rest(q: float, v: float, a: float, goal: float, *, vmax: float, amax: float,
-                 jmax: float):
+                 jmax: float, shape: str = "ramp"):
     """Pieces [(duration, jerk), ...] and the start states of the time-optimal motion from
     (q, v, a) to goal at rest. Returns (pieces, starts) with starts[i] = (q, v, a) of piece i;
-    the stop is anchored on the goal (its start is the goal minus its own distance)."""
+    the stop is anchored on the goal (its start is the goal minus its own distance). For
+    ``shape="cosine"`` the jerk of a piece is its mean jerk (peak: pi/2 times it)."""
     D = goal - q
     if D == 0 and v == 0 and a == 0:
         return [], []
+    c3 = C3[shape]
+    jmax = mean_jerk(jmax, shape)
 
     def dist(vp):
-        first = _change(v, a, vp, amax, jmax)
-        stop = _change(vp, 0.0, 0.0, amax, jmax)
-        q1, _, _ = _integrate(first, 0.0, v, a)
-        q2, _, _ = _integrate(stop, 0.0, vp, 0.0)
+        first = _change(v, a, vp, amax, jmax, shape)
+        stop = _change(vp, 0.0, 0.0, amax, jmax, shape)
+        q1, _, _ = _integrate(first, 0.0, v, a, c3)
+        q2, _, _ = _integrate(stop, 0.0, vp, 0.0, c3)
         return q1 + q2
 
     cruise = 0.0
@@ -70,42 +93,48 @@ def plan_to_rest(q: float, v: float, a: float, goal: float, *, vmax: float, amax
         vp = -vmax
         cruise = (D - dist(-vmax)) / -vmax
     else:
+        # the root on the side of `after` (v when a returns to zero at once) where it lies:
+        # above it the distance increases with vp; just below it a split deceleration (to vp,
+        # then the stop) covers more than stopping at once, a second, slower root
+        after = v + a * abs(a) / (2 * jmax)
+        lo, hi = -vmax, vmax
+        if -vmax < after < vmax:
+            lo, hi = (after, vmax) if D >= dist(after) else (-vmax, after)
         try:
-            vp = brentq(lambda x: dist(x) - D, -vmax, vmax, xtol=1e-300, rtol=8.9e-16,
+            vp = brentq(lambda x: dist(x) - D, lo, hi, xtol=1e-300, rtol=8.9e-16,
                         maxiter=1000)
-        except RuntimeError:       # a tiny D: the root sits in a flat corner; bisect
-            lo, hi = -vmax, vmax
+        except (RuntimeError, ValueError):   # a flat corner or a sign lost to rounding: bisect
             for _ in range(3000):
                 mid = 0.5 * (lo + hi)
                 if not lo < mid < hi:
                     break
                 lo, hi = (mid, hi) if dist(mid) < D else (lo, mid)
             vp = 0.5 * (lo + hi)
-    first = _change(v, a, vp, amax, jmax)
-    stop = _change(vp, 0.0, 0.0, amax, jmax)
+    first = _change(v, a, vp, amax, jmax, shape)
+    stop = _change(vp, 0.0, 0.0, amax, jmax, shape)
     pieces, starts = [], []
     state = (q, v, a)
     for d, j in first:
         if d > 0:
             pieces.append((d, j))
             starts.append(state)
-            state = _integrate([(d, j)], *state)
+            state = _integrate([(d, j)], *state, c3)
     if cruise > 0:
         pieces.append((cruise, 0.0))
         starts.append((state[0], vp, 0.0))
-    qs, _, _ = _integrate(stop, 0.0, vp, 0.0)
+    qs, _, _ = _integrate(stop, 0.0, vp, 0.0, c3)
     state = (goal - qs, vp, 0.0)
     for d, j in stop:
         if d > 0:
             pieces.append((d, j))
             starts.append(state)
-            state = _integrate([(d, j)], *state)
+            state = _integrate([(d, j)], *state, c3)
     return pieces, starts
 
 
-def plan_duration(q, v, a, goal, *, vmax, amax, jmax) -> float:
+def plan_duration(q, v, a, goal, *, vmax, amax, jmax, shape="ramp") -> float:
     """Duration [s] of :func:`plan_to_rest`."""
-    pieces, _ = plan_to_rest(q, v, a, goal, vmax=vmax, amax=amax, jmax=jmax)
+    pieces, _ = plan_to_rest(q, v, a, goal, vmax=vmax, amax=amax, jmax=jmax, shape=shape)
     return float(sum(d for d, _ in pieces))
 
 
@@ -121,34 +150,48 @@ def _ends(pieces, Ts):
     return out
 
 
-def _evaluate(pieces, starts, ends, goal, m, Ts):
+def _evaluate(pieces, starts, ends, goal, m, Ts, shape="ramp"):
     """q, v, a, j at sample m >= 0 after the plan's start (jerk: right limit at a jump)."""
     begin = 0.0
     for (d, j), (q0, v0, a0), end in zip(pieces, starts, ends):
         if m < end:
             s = max(m * Ts - begin, 0.0)   # at its start when the breakpoint snapped onto m
+            if shape == "cosine" and j != 0:
+                x, w, half = math.pi * min(s / d, 1.0), d / math.pi, j * d / 2
+                return (q0 + s * v0 + s * s * a0 / 2 + half * w * w * (x * x / 2 - 1 + math.cos(x)),
+                        v0 + s * a0 + half * w * (x - math.sin(x)),
+                        a0 + half * (1 - math.cos(x)), half / w * math.sin(x))
             return (q0 + s * (v0 + s * (a0 / 2 + s * j / 6)), v0 + s * (a0 + s * j / 2),
                     a0 + s * j, j)
         begin += d
     return goal, 0.0, 0.0, 0.0
 
 
-def time_optimal_reference(targets, *, vmax, amax, jmax, Ts, q0=0.0) -> np.ndarray:
+def _can_start(v, a, vmax, jmax, shape):
+    """A fresh transition of a to zero keeps |v| <= vmax (always, to rounding, for ramps)."""
+    if shape != "cosine":
+        return True
+    return abs(v + a * abs(a) / (2 * mean_jerk(jmax, shape))) <= vmax * (1 + 1e-12)
+
+
+def time_optimal_reference(targets, *, vmax, amax, jmax, Ts, q0=0.0,
+                           shape="ramp") -> np.ndarray:
     """``(n, 4)`` q, v, a, j of the time-optimal online generator for a staircase of targets.
 
     Sample i is at time i Ts; before sample 0 the generator rests at ``q0``. On every sample
     whose target differs from the running plan's goal, a new plan starts from the exact state
-    of the running one at that instant."""
+    of the running one at that instant (half-cosine transitions: from the first such sample
+    whose state allows it)."""
     x = np.asarray(targets, dtype=np.float64)
     out = np.empty((x.size, 4))
     pieces, starts, ends, goal, i0 = [], [], [], float(q0), 0
     for i, target in enumerate(x):
-        state = _evaluate(pieces, starts, ends, goal, i - i0, Ts)
-        if target != goal:
+        state = _evaluate(pieces, starts, ends, goal, i - i0, Ts, shape)
+        if target != goal and _can_start(state[1], state[2], vmax, jmax, shape):
             pieces, starts = plan_to_rest(state[0], state[1], state[2], float(target),
-                                          vmax=vmax, amax=amax, jmax=jmax)
+                                          vmax=vmax, amax=amax, jmax=jmax, shape=shape)
             ends = _ends(pieces, Ts)
             goal, i0 = float(target), i
-            state = _evaluate(pieces, starts, ends, goal, 0, Ts)
+            state = _evaluate(pieces, starts, ends, goal, 0, Ts, shape)
         out[i] = state
     return out

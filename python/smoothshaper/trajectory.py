@@ -1,11 +1,11 @@
 """Online multi-point generator and B-spline interpolation: C-backed classes and NumPy references.
 
-* :class:`Generator` wraps ``sms_generator`` (docs/design.md): a staircase of targets in, position,
-  velocity, acceleration and jerk out, never beyond ``vmax``, ``amax``, ``jmax`` (the argument
-  is in ``c/include/smoothshaper/trajectory.h``); :func:`generator_reference` recomputes the
-  same trajectory independently (it sums the tail response of *every* change of the first
-  stage's velocity, instead of relying on only the last one being active, and evaluates the
-  tail in closed form instead of tables).
+* :class:`Generator` wraps ``sms_generator`` (docs/design.md, docs/sampled-limits.md): a
+  staircase of targets in, position, velocity, acceleration and jerk out, never beyond
+  ``vmax``, ``amax``, ``jmax``, each new target reached in the profile's time-optimal duration
+  (the argument is in ``c/include/smoothshaper/trajectory.h``); :func:`generator_reference`
+  recomputes the same trajectory independently (the plan of :mod:`smoothshaper.time_optimal`,
+  then the tuned stage as a convolution with the reference taps).
 * :class:`BSpline` wraps ``sms_bspline`` (Biagiotti & Melchiorri 2011b); :func:`bspline_reference` is
   the NumPy version (dense solve, ``np.convolve``). :func:`bspline_period` picks the knot
   spacing from the modes, ``T >= 2*pi/min(wn)``.
@@ -21,35 +21,21 @@ from .filters import ParameterError, _backend, _raise_status, _real_dtype, check
 from ._checks import (finite as _finite, finite_signal as _targets, integer as _integer,
                       real_array as _real_array)
 
-__all__ = ["Generator", "generator_reference", "BSpline", "bspline_reference", "bspline_period",
-           "GEN_MAX_SEGMENT", "BSPLINE_MAX_DEGREE", "BSPLINE_MAX_AXES", "MultiAxisGenerator",
+__all__ = ["Generator", "generator_reference", "tuned_stage", "BSpline", "bspline_reference",
+           "bspline_period", "BSPLINE_MAX_DEGREE", "BSPLINE_MAX_AXES", "MultiAxisGenerator",
            "MultiAxisMove", "multi_axis_move", "phase_duration", "multi_axis_reference"]
 
-GEN_MAX_SEGMENT = 4194304.0  # 2**22 samples, as the C core
 BSPLINE_MAX_DEGREE = 7
 BSPLINE_MAX_AXES = 3
 
 
 def _generator_error(st, lib, ffi, cfg, Ts, profile):
     """ParameterError naming the cause of a refused generator config, with the values."""
-    if st == -4:
-        # the tail realisation: its stages T2 (about vmax/amax) and T3 (about amax/jmax, or
-        # the mode period) must each last a sample
-        T = ffi.new("double[2]")
-        cnt = ffi.new("size_t *")
-        lim = ffi.new("double[]", [cfg.vmax, cfg.amax, cfg.jmax])
-        lib.sms_kinematic_design(cfg.vmax, lim + 1, 2, cfg.profile, cfg.wn, cfg.zeta, 0.0, T, 2,
-                                 cnt)
-        short = "amax" if T[0] < Ts else "jmax"
-        raise ParameterError(
-            short, f"{short}: the {profile} profile's tail stages last T2 = {T[0]:.6g} s and "
-                   f"T3 = {T[1]:.6g} s (from vmax={cfg.vmax!r}, amax={cfg.amax!r}, "
-                   f"jmax={cfg.jmax!r}{f', wn={cfg.wn!r}' if cfg.wn else ''}), shorter than "
-                   f"Ts={Ts!r}; lower {short}, use a shorter Ts, or the polynomial profile "
-                   "without a mode (time-optimal, any Ts)", st)
-    if st == -16:
-        raise ParameterError("wn", f"wn={cfg.wn!r} rad/s is at or above the Nyquist frequency "
-                                   f"pi/Ts = {math.pi / Ts:.6g} rad/s", st)
+    if st in (-16, -4, -15) and cfg.wn:
+        raise ParameterError("wn", f"wn={cfg.wn!r} rad/s: the stage tuned to the mode cannot be "
+                                   f"placed on the grid Ts={Ts!r} s (the mode is at or above "
+                                   f"the Nyquist frequency pi/Ts = {math.pi / Ts:.6g} rad/s, or "
+                                   "the stage spans too many samples)", st)
     if st == -17:
         raise ParameterError("jmax", f"vmax={cfg.vmax!r}, amax={cfg.amax!r}, jmax={cfg.jmax!r}: "
                                      "their ratios are out of the range this precision can "
@@ -81,11 +67,13 @@ class Generator:
     :meth:`process` takes the target (staircase) per sample and returns an ``(n, 4)`` array of
     position, velocity, acceleration and jerk: the exact values and derivatives of the
     continuous output at the sample instants, so the backward differences of the samples keep
-    the bounds too (docs/sampled-limits.md). The polynomial profile without a mode is
-    time-optimal: every new target is reached in ruckig's time-optimal jerk-limited duration
-    from the current state, rounded up to the sample grid, for any ``Ts``. The other profiles
-    (a harmonic or mode-tuned last stage) use a fixed tail of stages T2, T3 and need both to
-    last at least ``Ts``. Errors: :class:`~smoothshaper.filters.ParameterError` naming the
+    the bounds too (docs/sampled-limits.md). Every new target is planned time-optimally from
+    the current state, for any ``Ts``: the polynomial profile in ruckig's jerk-limited
+    duration, the trigonometric one with half-cosine transitions of the acceleration (jerk
+    continuous, peak ``jmax``; rest to rest the trigonometric kinematic design's duration),
+    both rounded up to the sample grid. With a mode ``wn`` the plan runs through the shortest
+    stage tuned to it (exact zero, every bound kept), which adds its length
+    :attr:`stage_duration`. Errors: :class:`~smoothshaper.filters.ParameterError` naming the
     parameter.
     """
 
@@ -102,7 +90,7 @@ class Generator:
         st = lib.sms_generator_buffer_size(cfg, self.Ts, need)
         if st != 0:
             _generator_error(st, lib, ffi, cfg, self.Ts, profile)
-        check_memory("Ts", need[0], f"the generator's delay line at Ts={self.Ts!r}")
+        check_memory("Ts", need[0], f"the generator's stage tuned to wn at Ts={self.Ts!r}")
         self._buffer = np.zeros(max(need[0], 1), dtype=_real_dtype(precision))
         self._gen = ffi.new("sms_generator *")
         st = lib.sms_generator_init(self._gen, cfg, self.Ts,
@@ -116,21 +104,20 @@ class Generator:
 
     @property
     def time_optimal(self) -> bool:
-        """True for the time-optimal realisation (polynomial profile, no mode)."""
+        """True: every profile plans each new target time-optimally (kept for inspection)."""
         return bool(self._gen.time_optimal)
 
     @property
-    def T2(self) -> float:
-        return self._gen.T2
-
-    @property
-    def T3(self) -> float:
-        return self._gen.T3
+    def stage_duration(self) -> float:
+        """Length [s] of the stage tuned to the mode (0 without a mode): the output rests on
+        a target that long (rounded up to whole samples) after the plan does."""
+        return float(self._gen.stage_T)
 
     @property
     def tail_samples(self) -> int:
-        """Nc: samples between changes of the first stage's velocity (>= (T2 + T3)/Ts)."""
-        return int(self._gen.n_tail)
+        """Taps L of the stage tuned to the mode (0 without one): the output rests exactly on
+        the target L - 1 samples after the plan does."""
+        return int(self._gen.stage_length)
 
     def reset(self, position: float | None = None) -> None:
         """Rest at ``position`` (default: ``q0``)."""
@@ -174,181 +161,58 @@ class Generator:
 # NumPy reference of the generator
 # ----------------------------------------------------------------------------------------------
 
-class _Tail:
-    """The fixed tail M(T2) * L(T3) in closed form (moments of L, no tables)."""
-
-    def __init__(self, T2, last):
-        self.T2, self.T3, self.kind, self.sigma = T2, last.T, last.kind, last.sigma
-        self.mu = 0.5 * T2 + self._M(1, np.array(self.T3))
-        self.Tc = T2 + self.T3
-
-    def _M(self, j, u):
-        """int_0^u tau^j l(tau) dtau for u in [0, T3]."""
-        T, u = self.T3, np.asarray(u, dtype=float)
-        if self.kind == "rectangular":
-            return u ** (j + 1) / ((j + 1) * T)
-        if self.kind == "harmonic":
-            A, w = math.pi / (2 * T), math.pi / T
-            c, s = np.cos(w * u), np.sin(w * u)
-            if j == 0:
-                return A * (1 - c) / w
-            if j == 1:
-                return A * (s / w ** 2 - u * c / w)
-            return A * (2 * u * s / w ** 2 + (2 / w ** 3 - u ** 2 / w) * c - 2 / w ** 3)
-        sg = self.sigma
-        A = sg / math.expm1(sg * T)
-        e = np.exp(sg * u)
-        if j == 0:
-            return A * np.expm1(sg * u) / sg
-        if j == 1:
-            return A * (e * (u / sg - 1 / sg ** 2) + 1 / sg ** 2)
-        return A * (e * (u ** 2 / sg - 2 * u / sg ** 2 + 2 / sg ** 3) - 2 / sg ** 3)
-
-    def _density(self, s, inside):
-        """l(s) where ``inside`` (the caller decides the support), else 0."""
-        T = self.T3
-        s = np.clip(s, 0.0, T)
-        if self.kind == "rectangular":
-            val = np.full_like(s, 1 / T)
-        elif self.kind == "harmonic":
-            val = math.pi / (2 * T) * np.sin(math.pi * s / T)
-        else:
-            val = self.sigma / math.expm1(self.sigma * T) * np.exp(self.sigma * s)
-        return np.where(inside, val, 0.0)
-
-    def _P(self, k, s):
-        u = np.clip(s, 0.0, self.T3)
-        M0, M1 = self._M(0, u), self._M(1, u)
-        if k == 1:
-            out = M0
-        elif k == 2:
-            out = s * M0 - M1
-        else:
-            out = 0.5 * (s * s * M0 - 2 * s * M1 + self._M(2, u))
-        return np.where(s > 0, out, 0.0)
-
-    def responses(self, m, Ts):
-        """Ramp G, step F, impulse x2 and its derivative x2' of the tail at s = m Ts.
-
-        x2' = (l(s) - l(s - T2)) / T2 jumps where a copy of l starts or ends; at a jump on a
-        sample instant it takes the right limit. Which side a sample is on is decided on the
-        integer sample index m against the breakpoint in samples (:func:`_breakpoint_samples`),
-        not on m Ts - T2, which rounds either way when the breakpoint is on the grid.
-        """
-        T2 = self.T2
-        s = m * Ts
-        off1 = _breakpoint_samples(self.T3, Ts)
-        on2 = _breakpoint_samples(T2, Ts)
-        off2 = _breakpoint_samples(self.Tc, Ts)
-        settled = m >= off2          # the change has passed through the whole tail
-        G = (self._P(3, s) - self._P(3, s - T2)) / T2
-        G = np.where(settled, s - self.mu, G)
-        F = np.where(settled, 1.0, (self._P(2, s) - self._P(2, s - T2)) / T2)
-        x2 = np.where(settled, 0.0, (self._P(1, s) - self._P(1, s - T2)) / T2)
-        x2d = (self._density(s, m < off1) - self._density(s - T2, (m >= on2) & (m < off2))) / T2
-        return G, F, x2, x2d
-
-
-def _breakpoint_samples(b, Ts):
-    """A breakpoint b [s] in samples: round(b/Ts) if it passes the integer test of
-    docs/exact-mode.md (within 1e-9 * max(1, b/Ts)), else b/Ts."""
-    nu = b / Ts
-    n = math.floor(nu + 0.5)
-    return float(n) if abs(nu - n) <= 1e-9 * max(nu, 1.0) else nu
-
-
-def _tail_samples(Tc, Ts):
-    nu = _breakpoint_samples(Tc, Ts)
-    return int(nu) if nu == int(nu) else int(math.ceil(nu))
+def tuned_stage(profile: str, wn: float, zeta: float):
+    """The shortest stage whose zero cancels the mode (as the C generator builds it): a
+    rectangular (polynomial) or exponential (damped, sigma = -zeta wn) stage of one damped
+    period 2 pi/wd, or a half sine (trigonometric; damped half sine when zeta > 0) of
+    3 pi/wd, wd = wn sqrt(1 - zeta^2), exact timing, k = 1."""
+    from .stages import Stage
+    wd = wn * math.sqrt(1.0 - zeta * zeta)
+    if profile == "trigonometric":
+        kind = "damped_harmonic" if zeta > 0 else "harmonic"
+        return Stage(kind, T=3 * math.pi / wd, sigma=-zeta * wn if zeta > 0 else 0.0)
+    if profile == "damped":
+        return Stage("exponential", T=2 * math.pi / wd, sigma=-zeta * wn)
+    return Stage("rectangular", T=2 * math.pi / wd)
 
 
 def generator_reference(targets, *, vmax, amax, jmax, Ts, profile="polynomial", wn=None,
                         zeta=0.0, position=0.0) -> np.ndarray:
-    """NumPy reference of :class:`Generator`: ``(n, 4)`` array of q, q', q'', q'''.
+    """NumPy reference of :class:`Generator`: ``(n, 4)`` array of q, v, a and j.
 
-    The polynomial profile without a mode is the time-optimal realisation: its reference is
-    :func:`smoothshaper.time_optimal.time_optimal_reference` (``position`` is the initial
-    rest). The other profiles: the schedule of the first stage (scheme of trajectory.h: velocity changes on
-    samples, >= Nc samples apart, of at most vmax, segments of >= Nc samples ending exactly on
-    the target) is replayed; the output is then the sum over all changes dV_i of
-    dV_i * (ramp, step, impulse, impulse') responses of the tail at t - t_i.
-
-    Jumps of the jerk on a sample instant (the jerk response jumps at s = 0, T3, T2, T2 + T3
-    after each change): the output is the right limit, the value over [t_n, t_n + Ts) that a
-    zero-order hold applies next, as documented for ``sms_generator`` in trajectory.h. A
-    breakpoint b is on the grid when b/Ts passes the integer test of docs/exact-mode.md
-    (within 1e-9 * max(1, b/Ts) of an integer); the side is then decided on the integer sample
-    index, so stage lengths that are whole multiples of Ts give the right limit whatever the
-    rounding of T2, T3 and Ts (a change's last jump at T2 + T3 gives 0 there).
+    The plan is :func:`smoothshaper.time_optimal.time_optimal_reference` (linear ramps of the
+    acceleration, or half-cosine transitions for the trigonometric profile; ``position`` is
+    the initial rest). With a mode, q, v, a, j are the plan's convolved with the taps of
+    :func:`tuned_stage` from the reference filters (``reference.filtering.impulse_response``,
+    independent of the C smoother), the plan resting at ``position`` before sample 0; once
+    the plan has rested on the target for all L taps, the output is the target exactly.
     """
+    from .time_optimal import time_optimal_reference
+    from .reference.filtering import impulse_response
     x = _targets("targets", targets)
     vmax = _design._positive("vmax", vmax)
+    amax = _design._positive("amax", amax)
+    jmax = _design._positive("jmax", jmax)
     Ts = _design._positive("Ts", Ts)
-    if profile == "polynomial" and wn is None:
-        from .time_optimal import time_optimal_reference
-        return time_optimal_reference(x, vmax=vmax, amax=_design._positive("amax", amax),
-                                      jmax=_design._positive("jmax", jmax), Ts=Ts,
-                                      q0=_finite("position", position))
-    tail_stages = _design.kinematic_reference(h=vmax, vmax=amax, amax=jmax, profile=profile,
-                                              wn=wn, zeta=zeta)
-    tail = _Tail(tail_stages[0].T, tail_stages[1])
-    Nc = _tail_samples(tail.Tc, Ts)
-    # replay the schedule
-    r = start = goal = float(position)
-    target = float(position)
-    V = 0.0
-    seg_len = seg_pos = 0
-    age = Nc
-    changes = []  # (sample index, dV)
-
-    def plan(k):
-        nonlocal V, start, goal, seg_len, seg_pos, age
-        d = target - r
-        if V != 0 and (d == 0 or (d > 0) != (V > 0)):
-            changes.append((k, -V))
-            V, seg_len, seg_pos, start, goal, age = 0.0, 0, 0, r, r, 0
-            return
-        samples = abs(d) / (vmax * Ts)
-        if samples > GEN_MAX_SEGMENT:
-            samples = GEN_MAX_SEGMENT
-            d = math.copysign(GEN_MAX_SEGMENT * vmax * Ts, d)
-        m = float(math.floor(samples))
-        if m < samples:
-            m += 1.0
-        m = max(m, float(Nc))
-        Vn = d / (m * Ts)
-        start, goal, seg_len, seg_pos = r, r + d, int(m), 0
-        if Vn != V:
-            changes.append((k, Vn - V))
-            V, age = Vn, 0
-
-    for k, tk in enumerate(x):
-        target = tk
-        if age < Nc:
-            age += 1
-        if seg_len > 0:
-            seg_pos += 1
-            if seg_pos >= seg_len:
-                r, seg_len, seg_pos, start = goal, 0, 0, goal
-                if age >= Nc and target != r:
-                    plan(k)
-                else:
-                    changes.append((k, -V))
-                    V, age = 0.0, 0
-            else:
-                r = start + V * (seg_pos * Ts)
-        if age >= Nc and target != (goal if seg_len > 0 else r):
-            plan(k)
-    # the output: every change through the tail
-    n = x.size
-    out = np.zeros((n, 4))
-    out[:, 0] = position
-    for k0, dv in changes:
-        G, F, x2, x2d = tail.responses(np.arange(n - k0), Ts)
-        out[k0:, 0] += dv * G
-        out[k0:, 1] += dv * F
-        out[k0:, 2] += dv * x2
-        out[k0:, 3] += dv * x2d
+    position = _finite("position", position)
+    profile = _design.profile_name(profile)
+    wn_, zeta_ = _design._mode(profile, wn, zeta)
+    plan = time_optimal_reference(x, vmax=vmax, amax=amax, jmax=jmax, Ts=Ts, q0=position,
+                                  shape="cosine" if profile == "trigonometric" else "ramp")
+    if not wn_:
+        return plan
+    taps = impulse_response(tuned_stage(profile, wn_, zeta_), Ts=Ts)
+    L = taps.size
+    out = np.empty_like(plan)
+    for ch in range(4):
+        before = np.full(L - 1, position if ch == 0 else 0.0)
+        out[:, ch] = np.convolve(np.r_[before, plan[:, ch]], taps, mode="valid")
+    rest = (plan[:, 0] == x) & np.all(plan[:, 1:] == 0.0, axis=1)
+    quiet = L
+    for m in range(x.size):
+        quiet = min(quiet + 1, L) if rest[m] else 0
+        if quiet >= L:
+            out[m] = (plan[m, 0], 0.0, 0.0, 0.0)
     return out
 
 

@@ -134,16 +134,18 @@ def test_q0_start_and_a_step_at_the_first_sample_moves():
         tr.Generator(vmax=1, amax=10, jmax=100, Ts=1e-3, q0=float("nan"))
 
 
-def test_limits_shorter_than_a_sample_are_fine_and_tail_profiles_name_the_cause():
-    """Generator(vmax=250, amax=5000, jmax=1e7, Ts=1e-3) was refused as 'Ts invalid'; the
-    time-optimal generator needs no stage of a sample, the tail profiles name amax/jmax."""
-    g = tr.Generator(vmax=250, amax=5000, jmax=1e7, Ts=1e-3)
-    y = g.process(np.full(400, 40.0))
-    assert y[-1, 0] == 40.0
-    for i, L in enumerate((250, 5000, 1e7), 1):
-        assert np.max(np.abs(np.diff(np.r_[0, 0, 0, y[:, 0]], i))) / 1e-3 ** i <= L * (1 + 1e-9)
+def test_limits_shorter_than_a_sample_are_fine_for_every_profile():
+    """Generator(vmax=250, amax=5000, jmax=1e7, Ts=1e-3) was refused as 'Ts invalid'; no
+    profile needs a stage of a sample now (the trigonometric one included, where the former
+    tail named jmax); a mode the grid cannot place names wn."""
+    for profile in ("polynomial", "trigonometric"):
+        g = tr.Generator(vmax=250, amax=5000, jmax=1e7, Ts=1e-3, profile=profile)
+        y = g.process(np.full(400, 40.0))
+        assert y[-1, 0] == 40.0
+        for i, L in enumerate((250, 5000, 1e7), 1):
+            assert np.max(np.abs(np.diff(np.r_[0, 0, 0, y[:, 0]], i))) / 1e-3 ** i <= L * (1 + 1e-9)
     with pytest.raises(ParameterError) as exc:
-        tr.Generator(vmax=250, amax=5000, jmax=1e7, Ts=1e-3, profile="trigonometric")
-    assert exc.value.parameter == "jmax"
-    for word in ("T3 = ", "Ts=0.001", "jmax=10000000.0", "amax=5000"):
+        tr.Generator(vmax=250, amax=5000, jmax=1e7, Ts=1e-3, profile="trigonometric", wn=4000.0)
+    assert exc.value.parameter == "wn"
+    for word in ("wn=4000.0", "Ts=0.001", "Nyquist"):
         assert word in str(exc.value)

@@ -1,6 +1,7 @@
 """Online generator: never beyond v/a/j for random staircases (reversals, steps every few
-samples, tiny steps), exact arrival, C == NumPy reference (q, v, a and j, also with every jerk
-jump on a sample instant, where both give the right limit), state round trip, errors."""
+samples, tiny steps), exact arrival, C == NumPy reference for every profile with and without a
+mode, the tuned stage (arrival, the mode's zero), the trigonometric rest-to-rest duration,
+state round trip, errors."""
 import math
 
 import numpy as np
@@ -39,14 +40,12 @@ def test_random_staircases_stay_bounded_and_arrive(spec, lv, la, lj, profile_mod
         g = tr.Generator(vmax=vmax, amax=amax, jmax=jmax, Ts=1e-3, profile=profile,
                          precision=precision, **mode)
     except ParameterError as exc:
-        assume(exc.parameter not in ("amax", "jmax"))   # a tail stage shorter than a sample
+        assume(exc.parameter != "wn")   # a mode the grid cannot place
         raise
-    assume(g.tail_samples < 3000)
-    # hold long enough for the worst case: finish the running segment (<= 10 units or Nc),
-    # stop, wait Nc, travel back (<= 10 units or Nc), and let the tail settle (Nc)
-    # (time-optimal: the velocity rise and fall, vmax/amax + amax/jmax each, instead of Nc)
-    hold = 2 * int(10.0 / (vmax * 1e-3)) + 5 * g.tail_samples + 10 + \
-        4 * int((vmax / amax + amax / jmax) / 1e-3)
+    # hold long enough for the worst case: stop, travel back (<= 10 units), the velocity rise
+    # and fall (vmax/amax + (pi/2) amax/jmax each) and the stage (tail_samples)
+    hold = 2 * int(10.0 / (vmax * 1e-3)) + 2 * g.tail_samples + 10 + \
+        4 * int((vmax / amax + 2 * amax / jmax) / 1e-3)
     x = staircase(spec, hold)
     y = g.process(x)
     tol = 1 + BOUND_RTOL[precision]
@@ -67,13 +66,10 @@ def test_c_matches_numpy_reference(spec, profile):
     y = tr.Generator(**kw).process(x)
     ref = tr.generator_reference(x, **kw)
     scale = np.array([5.0 + kw["vmax"] * 0.2, kw["vmax"], kw["amax"], kw["jmax"]])
-    if profile == "polynomial":
-        # time-optimal: a jerk jump within rounding of a sample may fall on either side in the
-        # two implementations (whole samples plus fractions against float64 seconds)
-        assert np.all(np.abs(y[:, :3] - ref[:, :3]) <= 1e-9 * scale[:3])
-        assert np.mean(np.abs(y[:, 3] - ref[:, 3]) > 1e-9 * scale[3]) <= 0.01
-        return
-    assert np.all(np.abs(y - ref) <= 1e-11 * scale)
+    # a jerk jump within rounding of a sample may fall on either side in the two
+    # implementations (whole samples plus fractions against float64 seconds)
+    assert np.all(np.abs(y[:, :3] - ref[:, :3]) <= 1e-9 * scale[:3])
+    assert np.mean(np.abs(y[:, 3] - ref[:, 3]) > 1e-9 * scale[3]) <= 0.01
 
 
 def test_single_move_is_time_optimal_and_reaches_the_bounds():
@@ -111,8 +107,7 @@ def test_state_round_trip():
     (dict(vmax=1, amax=float("nan"), jmax=1, Ts=1e-3), "amax"),
     (dict(vmax=1, amax=1, jmax=-1, Ts=1e-3), "jmax"),
     (dict(vmax=1, amax=1, jmax=1, Ts=0.0), "Ts"),
-    (dict(vmax=1, amax=1e4, jmax=1e9, Ts=1e-3, profile="trigonometric"), "amax"),
-    (dict(vmax=1, amax=1, jmax=1e9, Ts=1e-3, profile="trigonometric"), "jmax"),
+    (dict(vmax=1, amax=1, jmax=1, Ts=1e-3, profile="cubic"), "profile"),
     (dict(vmax=1, amax=1, jmax=1, Ts=1e-3, profile="damped"), "wn"),
     (dict(vmax=1, amax=1, jmax=1, Ts=1e-3, wn=5000.0), "wn"),
     (dict(vmax=1, amax=1, jmax=1, Ts=1e-3, wn=50.0, zeta=2.0), "zeta"),
@@ -130,34 +125,25 @@ def test_non_finite_targets_rejected():
     assert np.array_equal(g.get_state(), before)
 
 
-# Stage lengths that are whole multiples of Ts: every jump of the jerk falls on a sample
-# instant, where both implementations must report the right limit (trajectory.h). (vmax, amax,
-# jmax, Ts, n2, n3) with T2 = vmax/amax = n2 Ts, T3 = amax/jmax = n3 Ts; amax or jmax None:
-# computed as vmax/(n2 Ts), amax/(n3 Ts), which round T2 or T3 an ulp off n Ts.
-ON_GRID = [
-    (1.0, 10.0, 200.0, 1e-3, 100, 50),            # validation.TRAJECTORY_LIMITS
-    (1.0, 10.0, 100.0, 1e-3, 100, 100),           # T2 = T3
-    (2.0, 8.0, 64.0, 1e-3, 250, 125),
-    (1.0, 10.0, None, 1e-3, 100, 7),
-    (1.0, None, None, 1e-4, 76, 25),
-    (0.3, 30.0, None, 1e-4, 100, 33),
-]
-
-
-def on_grid_limits(vmax, amax, jmax, Ts, n2, n3):
-    """The tail realisation (a rectangular last stage tuned to a mode of period T3 = n3 Ts)."""
-    amax = vmax / (n2 * Ts) if amax is None else amax
-    jmax = amax / (n3 * Ts) if jmax is None else jmax
-    return dict(vmax=vmax, amax=amax, jmax=jmax, Ts=Ts, wn=2 * math.pi / (n3 * Ts))
-
-
 def assert_c_equals_reference(kw, x):
+    """C against the NumPy reference: q, v, a to 1e-9 of their scale; the jerk may differ where
+    a jump lies within rounding of a sample instant (the two implementations may then take
+    opposite sides), on at most 1 % of the samples; through a tuned stage such a sample is
+    spread over its taps: each output jerk then differs by at most 2 jmax times a tap for
+    each of at most two such jumps in the stage's window."""
+    from smoothshaper.reference.filtering import impulse_response
     g = tr.Generator(**kw)
     y = g.process(x)
     ref = tr.generator_reference(x, **kw)
     scale = np.array([5.0 + kw["vmax"] * 0.2, kw["vmax"], kw["amax"], kw["jmax"]])
     err = np.abs(y - ref) / scale
-    assert np.all(err <= 1e-11), (np.max(err, axis=0), np.flatnonzero(err[:, 3] > 1e-11))
+    assert np.all(err[:, :3] <= 1e-9), np.max(err, axis=0)
+    if kw.get("wn"):
+        taps = impulse_response(tr.tuned_stage(kw["profile"], kw["wn"], kw.get("zeta", 0.0)),
+                                Ts=kw["Ts"])
+        assert np.all(err[:, 3] <= 4 * taps.max() + 1e-9)
+    else:
+        assert np.mean(err[:, 3] > 1e-9) <= 0.01
     return g, y, ref
 
 
@@ -169,34 +155,63 @@ def test_validation_staircase_c_equals_reference_on_q_v_a_and_j():
     assert g.time_optimal
 
 
-def jerk_right_limit(k, K, V, n2, n3, Ts):
-    """Closed form of a single move of a polynomial tail: changes +V at tick 0 and -V at tick
-    K; after a change, (l(s) - l(s - T2)) / T2 with l = 1/T3 on [0, T3), right limits."""
-    def shape(m):
-        return (((m >= 0) & (m < n3)).astype(float) - ((m >= n2) & (m < n2 + n3))) / (n2 * n3 * Ts * Ts)
-    return V * (shape(k) - shape(k - K))
+MODES = [("polynomial", 40.0, 0.0), ("polynomial", 61.3, 0.0), ("damped", 60.0, 0.05),
+         ("trigonometric", 90.0, 0.02), ("trigonometric", 70.0, 0.0)]
 
 
-@pytest.mark.parametrize("case", ON_GRID)
-def test_jerk_at_jumps_on_the_grid_is_the_right_limit(case):
-    kw = on_grid_limits(*case)
-    n2, n3, Ts = case[4], case[5], kw["Ts"]
-    D = 0.7 * kw["vmax"]
-    K = math.ceil(D / (kw["vmax"] * Ts))          # the segment length the generator rounds to
-    x = np.full(K + n2 + n3 + 20, D)
-    g, y, ref = assert_c_equals_reference(kw, x)
-    assert g.tail_samples == n2 + n3
-    k = np.arange(x.size)
-    V = D / (K * Ts)
-    expected = jerk_right_limit(k, K, V, n2, n3, Ts)
-    left = jerk_right_limit(k - 1, K, V, n2, n3, Ts)    # the value just before each tick
-    jumps = np.flatnonzero(np.abs(expected - left) > 0.1 * kw["jmax"])
-    assert set(jumps) == {0, n3, n2, n2 + n3, K, K + n3, K + n2, K + n2 + n3}
-    for out in (y, ref):
-        assert np.all(np.abs(out[:, 3] - expected) <= 1e-12 * kw["jmax"])
+@given(spec=steps, mode=st.sampled_from(MODES), Ts=st.sampled_from([1e-3, 0.37e-3]))
+def test_mode_stage_c_equals_reference(spec, mode, Ts):
+    profile, wn, zeta = mode
+    kw = dict(vmax=1.0, amax=10.0, jmax=300.0, Ts=Ts, profile=profile, wn=wn, zeta=zeta)
+    assert_c_equals_reference(kw, staircase(spec, 800))
 
 
-@given(spec=steps, case=st.sampled_from(ON_GRID))
-def test_c_matches_numpy_reference_with_stage_lengths_on_the_grid(spec, case):
-    kw = on_grid_limits(*case)
-    assert_c_equals_reference(kw, staircase(spec, 2 * (case[4] + case[5])))
+@pytest.mark.parametrize("profile, wn, zeta", MODES)
+def test_mode_stage_rest_to_rest_zero_and_price(profile, wn, zeta):
+    """A move through the tuned stage: the output rests exactly on the target L - 1 samples
+    after the plan (the same generator without the mode) does; the stage's zero cancels the
+    mode (the transform of the output's differences at z* = exp(s* Ts) vanishes to rounding,
+    s* = -zeta wn + j wd); every bound holds and the taps are an average (non-negative, sum 1)."""
+    from smoothshaper.reference.filtering import impulse_response
+    Ts, H = 1e-3, 0.37
+    kw = dict(vmax=1.0, amax=10.0, jmax=300.0, Ts=Ts, profile=profile)
+    g = tr.Generator(wn=wn, zeta=zeta, **kw)
+    g0 = tr.Generator(**dict(kw, profile="polynomial" if profile == "damped" else profile))
+    taps = impulse_response(tr.tuned_stage(profile, wn, zeta), Ts=Ts)
+    assert np.all(taps >= 0) and abs(taps.sum() - 1) <= 1e-14
+    assert g.tail_samples == taps.size
+    wd = wn * math.sqrt(1 - zeta ** 2)
+    assert g.stage_duration == pytest.approx((3 if profile == "trigonometric" else 2) * math.pi / wd,
+                                             rel=1e-15)
+    x = np.full(3000, H)
+    y, y0 = g.process(x), g0.process(x)
+
+    def arrival(out):
+        return np.flatnonzero((out[:, 0] == H) & np.all(out[:, 1:] == 0, axis=1))[0]
+    assert arrival(y) == arrival(y0) + taps.size - 1
+    assert np.all(y[arrival(y):, 0] == H)
+    dq = np.diff(np.r_[0.0, y[:, 0]])
+    s = complex(-zeta * wn, wd)
+    z = np.exp(-s * Ts * np.arange(dq.size))
+    assert abs(np.sum(dq * z)) <= 1e-12 * np.sum(np.abs(dq * z))
+    assert np.all(np.max(np.abs(y[:, 1:]), axis=0) <= np.array([1.0, 10.0, 300.0]) * (1 + 1e-12))
+
+
+def test_trigonometric_rest_to_rest_is_the_trigonometric_design():
+    """Half-cosine transitions: a rest-to-rest move arrives on the first sample at or after
+    the continuous trigonometric kinematic design's duration (h = 40, v = 250, a = 5000,
+    j = 2e5: 0.16 + 0.05 + (pi/2) 0.025 s); the jerk peaks at jmax and never jumps."""
+    from smoothshaper import design
+    Ts = 1e-5
+    T = design.duration(design.kinematic(h=40.0, vmax=250.0, amax=5000.0, jmax=2e5,
+                                         profile="trigonometric"))
+    assert T == pytest.approx(0.16 + 0.05 + math.pi / 2 * 0.025, rel=1e-12)
+    g = tr.Generator(vmax=250.0, amax=5000.0, jmax=2e5, Ts=Ts, profile="trigonometric")
+    y = g.process(np.full(30000, 40.0))
+    arrive = np.flatnonzero((y[:, 0] == 40.0) & (y[:, 1] == 0))[0]
+    assert arrive == math.ceil(T / Ts - 1e-9)
+    assert np.max(np.abs(y[:, 1:3]), axis=0) == pytest.approx([250, 5000], rel=1e-9)
+    # the jerk jmax sin(pi t/d) sampled: its peak within (pi Ts/d)^2/8 of jmax
+    assert np.max(np.abs(y[:, 3])) == pytest.approx(2e5, rel=1e-6)
+    d = math.pi / 2 * 5000.0 / 2e5           # the shortest full transition
+    assert np.max(np.abs(np.diff(y[:, 3]))) <= 2e5 * math.pi * Ts / d * (1 + 1e-9)

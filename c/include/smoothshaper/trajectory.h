@@ -115,9 +115,9 @@ SMS_API sms_status sms_kinematic_configs(double h, const double *limits, size_t 
 /* Online multi-point generator                                                                */
 /* ------------------------------------------------------------------------------------------ */
 
-/** @brief Most constant-jerk segments of a time-optimal plan: velocity change (3), cruise (1),
- * stop (3). */
-#define SMS_PLAN_MAX_SEGMENTS 7
+/** @brief Most segments of a time-optimal plan: velocity change (3, or 4 when a half-cosine
+ * plan first brings an opposite acceleration to zero), cruise (1), stop (3). */
+#define SMS_PLAN_MAX_SEGMENTS 8
 
 /** @brief Bounds of a time-optimal plan: |v| <= vmax, |a| <= amax, |j| <= jmax (finite, > 0). */
 typedef struct sms_plan_limits {
@@ -126,11 +126,13 @@ typedef struct sms_plan_limits {
 
 /** @brief The generator's running time-optimal plan (read-only; built by the generator).
  * Segment i starts n[i] samples plus f[i] (in [0, Ts)) seconds after the plan's first
- * sample, in state (p, v, a), and applies jerk j for d seconds. From `end` samples + `end_f`
+ * sample, in state (p, v, a), and applies jerk j for d seconds (shape 1: j is the mean jerk
+ * of a half-cosine transition of a, whose peak jerk is (pi/2) j). From `end` samples + `end_f`
  * on the output rests exactly at `goal`. Times split into whole samples and a fraction keep
  * a float build exact over any number of samples (a float time in seconds would not). */
 typedef struct sms_plan {
     size_t count;                      /* segments in use (0: at rest at goal) */
+    int shape;                         /* 0: linear ramps of a; 1: half-cosine transitions */
     size_t n[SMS_PLAN_MAX_SEGMENTS];
     sms_real f[SMS_PLAN_MAX_SEGMENTS];
     sms_real p[SMS_PLAN_MAX_SEGMENTS], v[SMS_PLAN_MAX_SEGMENTS], a[SMS_PLAN_MAX_SEGMENTS];
@@ -146,7 +148,7 @@ typedef struct sms_plan {
  *
  * | field   | valid range |
  * |---------|-------------|
- * | vmax, amax, jmax | finite, > 0 |
+ * | vmax, amax, jmax | finite, > 0 (and products like amax^2/jmax finite in ::sms_real) |
  * | profile | an ::sms_profile (::SMS_PROFILE_DAMPED needs wn > 0) |
  * | wn      | 0 (no mode) or finite > 0 and below pi/Ts [rad/s] |
  * | zeta    | [0, 1) |
@@ -161,100 +163,83 @@ typedef struct sms_generator_config {
 /**
  * @brief Online generator: a staircase of targets in, a bounded smooth trajectory out.
  *
- * Two realisations, chosen by the config:
+ * **The plan.** Whenever the target differs from the goal of the running plan, the
+ * generator re-plans on that sample from its exact state (q, v, a) there: the time-optimal
+ * motion to the target at rest within vmax, amax, jmax, made of a velocity change
+ * (v, a) -> (vp, 0) (a transition of the acceleration towards +-amax, a hold there if
+ * reached, a transition back to 0), a cruise at vp = +-vmax when the distance allows, and
+ * the stop (vp, 0) -> (0, 0); vp solves "distance of the two changes = target - q", which
+ * increases with vp (bisection, in ::sms_real, no libm). The transitions' shape is the
+ * profile's:
+ * - ::SMS_PROFILE_POLYNOMIAL (and ::SMS_PROFILE_DAMPED): linear ramps at jerk +-jmax. Rest
+ *   to rest this is ruckig's time-optimal duration (h = 0.0819, v = 1, a = 10, j = 100:
+ *   0.297 s).
+ * - ::SMS_PROFILE_TRIGONOMETRIC: half-cosine transitions, a(t) = a0 + da (1 - cos(pi t/d))/2
+ *   with peak jerk jmax, so the jerk is continuous and zero at both ends of a transition (the
+ *   modified double-S). A transition of da lasts (pi/2) da/jmax: the durations are those of
+ *   the ramp plan at jerk (2/pi) jmax. Rest to rest this is the shortest motion of this
+ *   family: the trigonometric kinematic design's duration (sms_kinematic_design()).
+ * q, v, a stay continuous across a re-plan; the jerk may jump there (within +-jmax). Once
+ * the target holds, the plan rests exactly on it from the first sample at or after its
+ * continuous end: a rest-to-rest move takes its time-optimal duration rounded up to the grid.
  *
- * **Time-optimal** (::SMS_PROFILE_POLYNOMIAL without a mode, wn = 0). Whenever the target
- * differs from the goal of the running plan, the generator re-plans on that sample from its
- * exact state (q, v, a) there: the time-optimal jerk-limited motion to the target at rest
- * (ruckig's duration for this single-axis problem): a velocity change (v, a) -> (vp, 0) with
- * jerk +-jmax and the acceleration held at +-amax if reached, a cruise at vp = +-vmax when the
- * distance allows, and the stop (vp, 0) -> (0, 0); vp solves "distance of the two changes =
- * target - q", which increases with vp (bisection, in ::sms_real, no libm). q, v, a stay
- * continuous across a re-plan, the jerk jumps. The output is the exact closed form at each
- * sample instant (jerk: the right limit at a jump), so every sampled difference dq/Ts,
- * d2q/Ts^2, d3q/Ts^3 is an average of v, a, j and keeps the bounds (docs/sampled-limits.md).
- * Once the target holds, q equals it exactly from the first sample at or after the plan's
- * continuous end on: a rest-to-rest move of any length takes its time-optimal duration
- * rounded up to the sample grid (h = 0.1, v = 1, a = 10, j = 1000 from rest: 0.297 s). Any
- * Ts works (no stage has to be longer than a sample). Times are kept as whole samples plus a
- * fraction and every segment is anchored on its own start (the stop on the target), so a
- * float build keeps its error at the rounding of the positions for any move and run length.
- * Per sample: O(1); a re-plan: about 60 (double) or 30 (float) evaluations of the distance.
+ * **The mode** (wn > 0). The plan then runs through the stage tuned to the mode, the
+ * shortest one whose zero cancels it: rectangular (polynomial) or exponential with sigma =
+ * -zeta wn (damped) of length Tm = 2 pi/wd, harmonic of length 3 pi/wd (trigonometric),
+ * wd = wn sqrt(1 - zeta^2), with exact timing (its zero lies exactly on the mode for any Ts,
+ * docs/exact-mode.md): q = h * p, and v, a, j are the same taps applied to the plan's v, a,
+ * j. The taps are non-negative and sum to 1, so every output and every backward difference
+ * of the output is an average of the plan's and keeps its bound; the vibration zero is the
+ * stage's. Both hold; what is given up is time: the stage adds Tm (rounded up to whole
+ * samples) after the plan, where the offline design (sms_kinematic_design()) lets the tuned
+ * stage shape the jerk itself (docs/sampled-limits.md). Once the plan has rested on the
+ * target for the stage's length, the output is the target exactly.
  *
- * **Tail** (a trigonometric or damped profile, or a mode wn > 0: the last stage must have
- * that family or be tuned to the mode). Structure: a variable first stage followed by a fixed
- * tail X = M(T2) * L(T3), where T2, T3 and the family L of the last stage come from
- * sms_kinematic_design() for a move long enough to reach vmax with the limits
- * {vmax, amax, jmax} (so T2 >= T3, the tail lasts Tc = T2 + T3). The first stage is the
- * moving average of length T1 = |segment| / V applied to each segment, realised as its output
- * r(t): a ramp at velocity V towards the current target. V is re-planned per segment
- * (|V| <= vmax, T1 >= Tc so short moves use V < vmax), the tail is fixed.
- *
- * Why it never exceeds a bound, for any target sequence: r'(t) is piecewise constant and is
- * changed only (i) on sample instants, (ii) at least Nc = ceil(Tc/Ts) samples after its
- * previous change, (iii) by at most vmax (a reversal first stops: V -> 0, then after Nc
- * samples starts the other way), and |r'| <= vmax always. The output is q = r * X. Since X
- * has support [0, Tc] and changes are >= Tc apart, at any instant at most the last change
- * dV is still inside the tail's window, so exactly:
- *   q'(t)   = r'(t) - dV (1 - F(s)),   |q'|   <= max|r'|           <= vmax,
- *   q''(t)  = dV x2(s),                |q''|  <= vmax / T2         <= amax,
- *   q'''(t) = dV x2'(s),               |q'''| <= vmax peak(L) / T2 <= jmax,
- * with s the time since that change, x2 the tail's impulse response (peak 1/T2 because
- * T2 >= T3) and F its integral; the last inequality of each line is the kinematic design.
- * Reaching: once the target holds, r ends its last segment exactly on it and q equals the
- * target exactly Nc samples later. Outputs are the exact values at the sample instants
- * (tables of the tail's responses filled at init), so the sampled differences keep the bounds
- * here too. The jerk at a jump on a sample instant is the right limit, decided on sample
- * indices (|b/Ts - round(b/Ts)| <= 1e-9 max(1, b/Ts) puts a breakpoint b on the grid).
- * Time: a segment from rest of length D >= vmax Tc takes D/vmax + Tc rounded up to the grid;
- * shorter moves take 2 Tc (bounded, not time-optimal). A target that arrives while a change
- * is still inside the tail waits (at most Nc samples); a reversal stops first and waits Nc.
- * Needs T2, T3 >= Ts (::SMS_ERR_DURATION_BELOW_TS otherwise).
- *
- * Both: per-sample work O(1), no libm, ::sms_real only; a non-finite target is ignored.
+ * **Samples.** Outputs are the exact values at the sample instants (jerk: the right limit at
+ * a jump), so every sampled difference dq/Ts, d2q/Ts^2, d3q/Ts^3 is a weighted average of v,
+ * a, j and keeps the bounds (docs/sampled-limits.md). Any Ts works (no stage has to be longer
+ * than a sample; the tuned stage needs its mode below pi/Ts). Times are whole samples plus a
+ * fraction and every segment is anchored on its own start (the stop on the target); the
+ * tuned stage is the drift-free smoother of smoother.h. A float build keeps its error at the
+ * rounding of the positions for any move and run length.
+ * Per sample: O(1), no libm (a half-cosine transition sums its own series, about 30 terms);
+ * a re-plan: about 60 (double) or 30 (float) evaluations of the distance; a non-finite
+ * target is ignored.
  */
 typedef struct sms_generator {
     double Ts;
     double vmax;
-    double T2, T3;        /**< tail stage lengths [s] */
-    sms_kind last_kind;   /**< family of the tail's last stage */
-    double sigma;         /**< its sigma (exponential), else 0 */
-    size_t n_tail;        /**< Nc: samples from a change until the tail has absorbed it */
-    double mean_delay;    /**< mean of the tail's impulse response [s] */
-    sms_real Ts_signal;   /**< Ts and mean_delay in signal precision, so that the float */
-    sms_real mean_delay_signal; /**< build's per-sample path uses no double arithmetic */
-    sms_real step_distance; /**< vmax Ts: the farthest the first stage moves in one sample */
-    sms_real *table;      /**< caller buffer: 4 (Nc + 1) reals: E, F, x2, x2' at s = m Ts */
+    int shape;            /**< the plan's transitions: 0 linear ramps, 1 half-cosine */
+    double stage_T;       /**< length of the tuned stage [s] (0: no mode) */
+    size_t stage_length;  /**< its taps L: the output rests L samples after the plan (0: none) */
+    size_t stage_window;  /**< its ring length M (reals per channel in the buffer) */
+    sms_smoother stage[4]; /**< the tuned stage on q, v, a, j (rings in the caller buffer) */
+    size_t quiet;         /**< samples the plan has rested on its goal, saturated at L */
+    sms_real Ts_signal;   /**< Ts in signal precision (no double on a float build's path) */
+    sms_real *buffer;     /**< caller buffer: 4 M reals (NULL without a mode) */
+    int time_optimal;     /**< 1: the plan is time-optimal for the profile (every config) */
+    sms_plan_limits limits; /**< vmax, amax, jmax in signal precision */
     /* dynamic state */
     sms_real target;      /**< latest valid target */
-    sms_real start;       /**< r at the start of the running segment */
-    sms_real goal;        /**< where the running segment ends */
-    sms_real r;           /**< first-stage output at the current sample */
-    sms_real velocity;    /**< r' (V) */
-    sms_real change;      /**< the last change of r' (dV) */
-    size_t seg_len;       /**< samples of the running segment (0: at rest) */
-    size_t seg_pos;       /**< samples elapsed in it */
-    size_t age;           /**< samples since the last change, saturated at Nc */
-    /* time-optimal realisation */
-    int time_optimal;     /**< 1: time-optimal plan (polynomial, no mode); 0: tail */
-    sms_plan_limits limits; /**< vmax, amax, jmax in signal precision */
     sms_real plan_q, plan_v, plan_a; /**< state the running plan started from */
     sms_plan plan;        /**< the running plan (its goal is the target it heads for) */
     size_t k;             /**< samples since the plan's first sample */
 } sms_generator;
 
-/** @brief Reals the generator's buffer needs: 4 (Nc + 1) for the tail, 0 for the
- * time-optimal realisation (which needs no buffer: init then accepts buffer NULL).
- * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_SAMPLE_PERIOD, ::SMS_ERR_LIMIT, ::SMS_ERR_KIND,
- *         ::SMS_ERR_WN, ::SMS_ERR_ZETA, ::SMS_ERR_ABOVE_NYQUIST, ::SMS_ERR_DURATION_BELOW_TS
- *         (a tail stage shorter than Ts), ::SMS_ERR_TOO_LONG. */
+/** @brief Reals the generator's buffer needs: 4 M for the tuned stage's rings (M its ring
+ * length, about Tm/Ts), 0 without a mode (init then accepts buffer NULL).
+ * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_SAMPLE_PERIOD, ::SMS_ERR_LIMIT (a bound not
+ *         finite/positive or out of the range the plan can form products in), ::SMS_ERR_KIND
+ *         (profile), ::SMS_ERR_WN (wn < 0, NaN/Inf, or 0 with DAMPED), ::SMS_ERR_ZETA,
+ *         ::SMS_ERR_ABOVE_NYQUIST (wn >= pi/Ts), ::SMS_ERR_DURATION_BELOW_TS (the tuned
+ *         stage shorter than a sample), ::SMS_ERR_TOO_LONG (the tuned stage too long). */
 SMS_API sms_status sms_generator_buffer_size(const sms_generator_config *config, double Ts,
                                              size_t *n_reals);
-/** @brief Validate, design the tail, fill the tables; the generator rests at 0.
+/** @brief Validate, design the tuned stage if any; the generator rests at 0.
  * @return as sms_generator_buffer_size(), plus ::SMS_ERR_BUFFER_TOO_SMALL. Untouched on error. */
 SMS_API sms_status sms_generator_init(sms_generator *g, const sms_generator_config *config,
                                       double Ts, sms_real *buffer, size_t n_reals);
-/** @brief Rest at `position` (target, output and first stage all there). */
+/** @brief Rest at `position` (target, plan and stage all there). O(M). */
 SMS_API void sms_generator_reset(sms_generator *g, sms_real position);
 /**
  * @brief Advance one sample with the current target (the staircase value) and write
@@ -266,18 +251,18 @@ SMS_API void sms_generator_step(sms_generator *g, sms_real target, sms_real out[
  * Equal, bit for bit, to n calls of sms_generator_step() and to any split into blocks. */
 SMS_API void sms_generator_process(sms_generator *g, const sms_real *targets, size_t n,
                                    sms_real *out);
-/** @brief Tail: its duration Tc = T2 + T3 [s] (the output lags r by this at most).
- * Time-optimal: 0 (there is no tail). */
+/** @brief Length of the tuned stage [s]: the output lags the plan by it (0 without a mode). */
 SMS_API double sms_generator_tail_duration(const sms_generator *g);
-/** @brief Number of doubles sms_generator_get_state() writes: 9 (tail) or 6 (time-optimal:
- * target, goal, the plan's start q, v, a and the samples since it; loading re-plans from
- * these, so a saved state can also move the generator to any sample of its plan). */
+/** @brief Number of doubles sms_generator_get_state() writes: 6 (target, goal, the start
+ * q, v, a of the running plan and the samples since it; loading re-plans from these, so a
+ * saved state can also move the generator to any sample of its plan), and with a mode 1
+ * more (the quiet samples) plus the four stage states (4 (M + 14)). */
 SMS_API size_t sms_generator_state_count(const sms_generator *g);
 SMS_API void sms_generator_get_state(const sms_generator *g, double *dst);
 /** @brief Restore a saved state; ::SMS_ERR_STATE (nothing written) if n or a field is invalid. */
 SMS_API sms_status sms_generator_set_state(sms_generator *g, const double *src, size_t n);
 SMS_API sms_status sms_generator_check_state(const sms_generator *g, const double *src, size_t n);
-/** @brief Point a copied generator at a buffer holding the same tables. */
+/** @brief Point a copied generator at a buffer holding the same stage rings. */
 SMS_API void sms_generator_rebind(sms_generator *g, sms_real *buffer);
 
 /* ------------------------------------------------------------------------------------------ */
