@@ -13,3 +13,6 @@ exclude_patterns = ["_build"]
 # descriptions) are not errors.
 nitpicky = False
 suppress_warnings = ["ref.python"]
+# Dataclass fields are listed in the class docstring's Attributes section: render them as
+# fields of the class description, not as attribute entries autodoc also creates.
+napoleon_use_ivar = True

@@ -27,13 +27,38 @@ from ._checks import (finite as _finite, finite_signal as _finite_signal, intege
 from .errors import ParameterError
 from .reference._checks import as_stage_list, check_Ts
 
-__all__ = ["transfer", "ChainResponse", "frequency_response", "mode_poles", "residual_vibration", "prv",
-           "prv_curve", "prv_surface", "Insensitivity", "insensitivity", "step_spectrum",
+__all__ = ["transfer", "ChainResponse", "frequency_response", "mode_poles", "residual_vibration",
+           "prv", "prv_curve", "prv_surface", "Insensitivity", "insensitivity", "step_spectrum",
            "signal_spectrum"]
 
 
 def transfer(stages, s, *, Ts: float | None = None) -> np.ndarray:
-    """Chain transfer at complex ``s`` [1/s] (any shape): continuous, or discrete at e^{s Ts}."""
+    """Transfer function of the chain at complex frequencies ``s``.
+
+    ``H(s) = prod_k H_k(s)``: the continuous filters, or (``Ts`` given) the discrete ones at
+    ``z = e^{s Ts}`` (docs/analysis.md).
+
+    Parameters
+    ----------
+    stages : Stage, sequence of Stage or ChainResponse
+        The chain, first stage first (a :class:`ChainResponse` reuses its taps).
+    s : array_like of complex
+        Laplace variable [1/s], any shape.
+    Ts : float or None, keyword-only
+        Sample period [s]: the discrete chain at ``z = e^{s Ts}``; None (default): the
+        continuous filters.
+
+    Returns
+    -------
+    ndarray of complex128
+        ``H(s)``, the shape of ``s``.
+
+    Raises
+    ------
+    ParameterError
+        An invalid stage or chain at ``Ts``, ``Ts`` not finite and > 0, or a ChainResponse
+        given with a different ``Ts``.
+    """
     return _response(stages, Ts)(s)
 
 
@@ -107,7 +132,23 @@ class ChainResponse:
         self.taps = sum(p[0].size for p in self._polys)
 
     def __call__(self, s) -> np.ndarray:
-        """``H(s)`` at complex ``s`` [1/s] (any shape), same shape, complex128."""
+        """``H(s)`` at complex ``s`` [1/s].
+
+        Parameters
+        ----------
+        s : array_like of complex
+            Laplace variable [1/s], any shape.
+
+        Returns
+        -------
+        ndarray of complex128
+            ``H(s)``, the shape of ``s``.
+
+        Raises
+        ------
+        ValueError
+            ``s`` cannot be converted to complex numbers.
+        """
         s = np.asarray(s, dtype=complex)
         if self.Ts is None:
             out = np.ones(s.shape, dtype=complex)
@@ -145,7 +186,29 @@ def _response(stages, Ts) -> ChainResponse:
 
 
 def frequency_response(stages, w, *, Ts: float | None = None) -> np.ndarray:
-    """Complex response of the chain at angular frequencies ``w`` [rad/s]."""
+    """Complex frequency response ``H(jw)`` of the chain.
+
+    Parameters
+    ----------
+    stages : Stage, sequence of Stage or ChainResponse
+        The chain, first stage first (a :class:`ChainResponse` reuses its taps).
+    w : array_like of float
+        Angular frequencies [rad/s], any shape, finite.
+    Ts : float or None, keyword-only
+        Sample period [s]: the discrete chain at ``z = e^{s Ts}``; None (default): the
+        continuous filters.
+
+    Returns
+    -------
+    ndarray of complex128
+        ``H(j w)`` (discrete: ``H_d(e^{j w Ts})``), the shape of ``w``.
+
+    Raises
+    ------
+    ParameterError
+        An invalid stage or chain at ``Ts``, ``Ts`` not finite and > 0; ``w`` not real or not
+        finite (``parameter == "w"``).
+    """
     w = _real_array("w", w)
     if not np.all(np.isfinite(w)):
         raise ParameterError("w", "w must be finite")
@@ -153,7 +216,25 @@ def frequency_response(stages, w, *, Ts: float | None = None) -> np.ndarray:
 
 
 def mode_poles(wn, zeta) -> np.ndarray:
-    """``p = -zeta wn + j wn sqrt(1 - zeta^2)`` (broadcast); ParameterError naming wn or zeta."""
+    """Poles ``p = -zeta wn + j wn sqrt(1 - zeta^2)`` of lightly damped modes.
+
+    Parameters
+    ----------
+    wn : array_like of float
+        Natural frequencies [rad/s], finite and > 0.
+    zeta : array_like of float
+        Damping ratios in [0, 1); broadcast against ``wn``.
+
+    Returns
+    -------
+    ndarray of complex128
+        The upper-half-plane pole of each mode [1/s], the broadcast shape.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``wn`` or ``zeta`` when a value is outside its range, complex or not numeric.
+    """
     wn = _real_array("wn", wn)
     zeta = _real_array("zeta", zeta)
     if not np.all(np.isfinite(wn)) or np.any(wn <= 0):
@@ -164,23 +245,128 @@ def mode_poles(wn, zeta) -> np.ndarray:
 
 
 def residual_vibration(stages, *, wn, zeta=0.0, Ts: float | None = None) -> np.ndarray:
-    """``|H(p)|`` for the modes (wn [rad/s], zeta), broadcast over array arguments."""
+    """Residual vibration ``|H(p)|`` of the modes ``(wn, zeta)`` after the chain.
+
+    The amplitude of the oscillation a filtered unit step leaves on the mode, divided by the
+    unfiltered step's (Biagiotti, Melchiorri and Moriello, "Damped Harmonic Smoother for
+    Trajectory Planning and Vibration Suppression", 2020, footnote 2; docs/analysis.md). Discrete:
+    ``|H_d(e^{p Ts})|``, the command held by a zero-order hold.
+
+    Parameters
+    ----------
+    stages : Stage, sequence of Stage or ChainResponse
+        The chain, first stage first (a :class:`ChainResponse` reuses its taps).
+    wn : array_like of float, keyword-only
+        Natural frequencies [rad/s], > 0.
+    zeta : array_like of float, keyword-only
+        Damping ratios in [0, 1) (default 0), broadcast against ``wn``.
+    Ts : float or None, keyword-only
+        Sample period [s]: the discrete chain at ``z = e^{s Ts}``; None (default): the
+        continuous filters.
+
+    Returns
+    -------
+    ndarray of float64
+        ``|H(p)|`` (1 = no reduction), the broadcast shape of ``wn`` and ``zeta``.
+
+    Raises
+    ------
+    ParameterError
+        An invalid stage or chain at ``Ts``, ``Ts`` not finite and > 0; ``wn`` or ``zeta`` out of
+        range.
+    """
     return np.abs(transfer(stages, mode_poles(wn, zeta), Ts=Ts))
 
 
 def prv(stages, *, wn, zeta=0.0, Ts: float | None = None) -> np.ndarray:
-    """Percent residual vibration, ``100 |H(p)|``."""
+    """Percent residual vibration ``100 |H(p)|`` (see :func:`residual_vibration`).
+
+    Parameters
+    ----------
+    stages : Stage, sequence of Stage or ChainResponse
+        The chain, first stage first (a :class:`ChainResponse` reuses its taps).
+    wn : array_like of float, keyword-only
+        Natural frequencies [rad/s], > 0.
+    zeta : array_like of float, keyword-only
+        Damping ratios in [0, 1) (default 0).
+    Ts : float or None, keyword-only
+        Sample period [s]: the discrete chain at ``z = e^{s Ts}``; None (default): the
+        continuous filters.
+
+    Returns
+    -------
+    ndarray of float64
+        PRV [%], the broadcast shape of ``wn`` and ``zeta``.
+
+    Raises
+    ------
+    ParameterError
+        An invalid stage or chain at ``Ts``, ``Ts`` not finite and > 0; ``wn`` or ``zeta`` out of
+        range.
+    """
     return 100.0 * residual_vibration(stages, wn=wn, zeta=zeta, Ts=Ts)
 
 
 def prv_curve(stages, *, wn_hat: float, ratio, zeta=0.0, Ts: float | None = None) -> np.ndarray:
-    """PRV at ``wn = ratio * wn_hat`` (the curves of seed 000 Fig. 4)."""
+    """PRV [%] at ``wn = ratio * wn_hat``: the insensitivity curve of a chain designed for
+    ``wn_hat`` (Biagiotti, Melchiorri and Moriello, "Damped Harmonic Smoother for Trajectory
+    Planning and Vibration Suppression", 2020, Fig. 4).
+
+    Parameters
+    ----------
+    stages : Stage, sequence of Stage or ChainResponse
+        The chain, first stage first (a :class:`ChainResponse` reuses its taps).
+    wn_hat : float, keyword-only
+        Nominal natural frequency [rad/s], > 0.
+    ratio : array_like of float, keyword-only
+        Actual-to-nominal frequency ratios (> 0), any shape.
+    zeta : array_like of float, keyword-only
+        Damping ratio of the actual mode, in [0, 1) (default 0).
+    Ts : float or None, keyword-only
+        Sample period [s]: the discrete chain at ``z = e^{s Ts}``; None (default): the
+        continuous filters.
+
+    Returns
+    -------
+    ndarray of float64
+        PRV [%], the shape of ``ratio``.
+
+    Raises
+    ------
+    ParameterError
+        An invalid stage or chain at ``Ts``, ``Ts`` not finite and > 0; ``wn_hat`` not > 0,
+        ``ratio`` or ``zeta`` out of range.
+    """
     wn_hat = _positive("wn_hat", wn_hat)
     return prv(stages, wn=_real_array("ratio", ratio) * wn_hat, zeta=zeta, Ts=Ts)
 
 
 def prv_surface(stages, *, wn, zeta, Ts: float | None = None) -> np.ndarray:
-    """PRV on the grid ``zeta x wn``: result[i, j] is at (zeta[i], wn[j])."""
+    """PRV [%] on the grid ``zeta x wn``.
+
+    Parameters
+    ----------
+    stages : Stage, sequence of Stage or ChainResponse
+        The chain, first stage first (a :class:`ChainResponse` reuses its taps).
+    wn : array_like of float, keyword-only
+        Natural frequencies [rad/s], > 0, 1-D (a scalar counts as one).
+    zeta : array_like of float, keyword-only
+        Damping ratios in [0, 1), 1-D.
+    Ts : float or None, keyword-only
+        Sample period [s]: the discrete chain at ``z = e^{s Ts}``; None (default): the
+        continuous filters.
+
+    Returns
+    -------
+    ndarray of float64, shape (len(zeta), len(wn))
+        ``result[i, j]`` is the PRV at ``(zeta[i], wn[j])``.
+
+    Raises
+    ------
+    ParameterError
+        An invalid stage or chain at ``Ts``, ``Ts`` not finite and > 0; ``wn`` or ``zeta`` out of
+        range.
+    """
     wn = np.atleast_1d(_real_array("wn", wn))
     zeta = np.atleast_1d(_real_array("zeta", zeta))
     return prv(stages, wn=wn[None, :], zeta=zeta[:, None], Ts=Ts)
@@ -188,7 +374,20 @@ def prv_surface(stages, *, wn, zeta, Ts: float | None = None) -> np.ndarray:
 
 @dataclass(frozen=True)
 class Insensitivity:
-    """Band ``[low, high]`` [rad/s] around wn_hat where PRV <= 100 tolerance."""
+    """Band of natural frequencies around ``wn_hat`` where the PRV stays at or below the
+    tolerance (:func:`insensitivity`).
+
+    Attributes
+    ----------
+    low, high : float
+        Band edges [rad/s].
+    width : float
+        ``high - low`` [rad/s].
+    relative_width : float
+        ``width / wn_hat``, the nondimensional insensitivity of Singhose, Seering and
+        Singer, "Residual vibration reduction using vector diagrams to generate shaped
+        inputs", 1994.
+    """
     low: float
     high: float
     width: float
@@ -199,10 +398,40 @@ def insensitivity(stages, *, wn_hat: float, zeta: float = 0.0, tolerance: float 
                   Ts: float | None = None, span=(0.05, 4.0), points: int = 8001) -> Insensitivity:
     """The connected band of ``wn`` containing ``wn_hat`` where ``residual <= tolerance``.
 
-    Searched on ``points`` ratios ``wn/wn_hat`` spanning ``span``, edges refined by bisection
-    to 1e-12. ``tolerance`` gets a relative slack of 1e-9 so that a design whose residual at
-    wn_hat equals the tolerance by construction (EI) counts as inside. Width 0 if the
-    residual at wn_hat exceeds the tolerance; ParameterError if the band reaches ``span``.
+    Searched on ``points`` ratios ``wn/wn_hat`` spanning ``span``, the edges refined by
+    bisection (Brent) to 1e-12 in the ratio. ``tolerance`` gets a relative slack of 1e-9 so
+    that a design whose residual at ``wn_hat`` equals the tolerance by construction (EI) counts
+    as inside. The damping ``zeta`` is held fixed.
+
+    Parameters
+    ----------
+    stages : Stage, sequence of Stage or ChainResponse
+        The chain, first stage first (a :class:`ChainResponse` reuses its taps).
+    wn_hat : float, keyword-only
+        Nominal natural frequency [rad/s], > 0.
+    zeta : float, keyword-only
+        Damping ratio of the mode, in [0, 1) (default 0).
+    tolerance : float, keyword-only
+        Accepted residual vibration as a fraction, in (0, 1) (default 0.05 = 5 %).
+    Ts : float or None, keyword-only
+        Sample period [s]: the discrete chain at ``z = e^{s Ts}``; None (default): the
+        continuous filters.
+    span : (float, float), keyword-only
+        Ratios ``wn/wn_hat`` searched, ``0 < span[0] < 1 < span[1]`` (default (0.05, 4)).
+    points : int, keyword-only
+        Grid points of the search (default 8001).
+
+    Returns
+    -------
+    Insensitivity
+        The band; width 0 (``low == high == wn_hat``) when the residual at ``wn_hat``
+        exceeds the tolerance.
+
+    Raises
+    ------
+    ParameterError
+        ``wn_hat``, ``tolerance`` or ``span`` out of range, or ``span`` too narrow (the band
+        reaches its edge); an invalid chain or ``Ts``.
     """
     from scipy.optimize import brentq
 
@@ -244,10 +473,38 @@ def insensitivity(stages, *, wn_hat: float, zeta: float = 0.0, tolerance: float 
 
 def step_spectrum(stages, w, *, h: float = 1.0, derivative: int = 1,
                   Ts: float | None = None) -> np.ndarray:
-    """Fourier transform of the ``derivative``-th time derivative (>= 1) of the chain's
-    response to a step of height ``h``: ``h (jw)^(d-1) H(jw)``; discrete (Ts given): the
-    d-th backward difference over Ts of the sampled response, times Ts,
-    ``h ((1 - e^{-jw Ts})/Ts)^(d-1) H_d(e^{jw Ts})``."""
+    """Fourier transform of the ``derivative``-th time derivative of the chain's step response.
+
+    Continuous: ``h (jw)^(d-1) H(jw)``; discrete (``Ts`` given): the d-th backward difference
+    over Ts of the sampled response, times Ts, ``h ((1 - e^{-jw Ts})/Ts)^(d-1)
+    H_d(e^{jw Ts})``: the spectra of Biagiotti and Melchiorri, "Online Planning of
+    Multi-Segment Trajectories with Trigonometric Blends", 2011, Fig. 10b and 13.
+
+    Parameters
+    ----------
+    stages : Stage, sequence of Stage or ChainResponse
+        The chain, first stage first (a :class:`ChainResponse` reuses its taps).
+    w : array_like of float
+        Angular frequencies [rad/s], any shape.
+    h : float, keyword-only
+        Step height (default 1) [units of position].
+    derivative : int, keyword-only
+        Order d >= 1 of the derivative (1: velocity, 2: acceleration, ...).
+    Ts : float or None, keyword-only
+        Sample period [s]: the discrete chain at ``z = e^{s Ts}``; None (default): the
+        continuous filters.
+
+    Returns
+    -------
+    ndarray of complex128
+        The spectrum [position units / s^(d-1)], the shape of ``w``.
+
+    Raises
+    ------
+    ParameterError
+        An invalid stage or chain at ``Ts``, ``Ts`` not finite and > 0; ``derivative`` not an
+        integer >= 1, ``w`` not finite.
+    """
     derivative = _integer("derivative", derivative, 1)
     w = _real_array("w", w)
     H = frequency_response(stages, w, Ts=Ts)
@@ -259,8 +516,29 @@ def step_spectrum(stages, w, *, h: float = 1.0, derivative: int = 1,
 
 
 def signal_spectrum(x, *, Ts: float) -> tuple[np.ndarray, np.ndarray]:
-    """``(w, X)``: ``X(w) = Ts * sum_n x[n] e^{-j w n Ts}`` on the rfft grid (w in rad/s),
-    the sampled approximation of the continuous Fourier transform of x."""
+    """Sampled approximation of the continuous Fourier transform of a signal.
+
+    ``X(w) = Ts * sum_n x[n] e^{-j w n Ts}`` on the rfft grid.
+
+    Parameters
+    ----------
+    x : array_like of float, shape (n,)
+        Samples, finite.
+    Ts : float, keyword-only
+        Sample period [s], > 0.
+
+    Returns
+    -------
+    w : ndarray of float64, shape (n // 2 + 1,)
+        Angular frequencies [rad/s].
+    X : ndarray of complex128, shape (n // 2 + 1,)
+        The transform [units of x times s].
+
+    Raises
+    ------
+    ParameterError
+        ``Ts`` not finite and > 0, or ``x`` not a finite real 1-D signal.
+    """
     Ts = check_Ts(Ts)
     x = _finite_signal("x", x)
     X = Ts * np.fft.rfft(x)

@@ -34,13 +34,42 @@ MAX_IMPULSES = MAX_ZVN_ORDER + 1
 
 @dataclass(frozen=True)
 class Stage:
-    """One stage. Fields mirror ``sms_stage_config`` (see ``c/include/smoothshaper/config.h``).
+    """One stage of a chain: the physical parameters of a filter, validated on construction.
 
-    Smoothers use ``T`` [s], ``sigma`` [1/s] (damped families) and ``k`` (the zero pinned by
-    exact timing); shapers and notches use ``wn`` [rad/s] and ``zeta``; ``order`` is the n of
-    ZV^n and the number of impulses of ``gmzv`` (3..9; ``None`` means 1, or 3 for gmzv);
-    ``tolerance`` the EI vibration tolerance (ei, ei2, ei3); ``duration`` the span of ``gmzv``
-    in damped periods (0.75 with order 3 is MZV); ``notch_pole_zeta`` the notch pole damping.
+    Data only, like the C ``sms_stage_config`` (``c/include/smoothshaper/config.h``); checks
+    that need the sample period (``T >= Ts``, a mode below Nyquist) happen where ``Ts`` is
+    known. The families and their sources are in docs/filters.md and docs/references.md.
+
+    Attributes
+    ----------
+    kind : str
+        One of :data:`KINDS` (any case on input; ``"notch"`` means ``"notch_matched"``).
+    T : float
+        Smoothers: duration [s], > 0.
+    sigma : float
+        Damped smoothers: decay rate [1/s], <= 0.
+    k : int
+        Smoothers: the multiple of the zero pinned by exact timing (>= 1; odd for the
+        harmonic families).
+    wn : float
+        Shapers and notches: natural frequency of the mode [rad/s], > 0.
+    zeta : float
+        Shapers and notches: damping ratio of the mode, in [0, 1).
+    order : int or None
+        n of ZV^n (1..8), number of impulses of gmzv (3..9); None means 1 (3 for gmzv).
+    tolerance : float
+        Vibration tolerance V of ei, ei2, ei3, in (0, 1) (default 0.05).
+    notch_pole_zeta : float
+        Damping of the notch's poles, > ``zeta`` (default 0.7).
+    timing : {"exact", "paper"}
+        Discretisation of smoothers and shapers (docs/exact-mode.md).
+    duration : float
+        Span of gmzv in damped periods, in (0, (order - 1)/2) (0.75 with order 3 is MZV).
+
+    Raises
+    ------
+    ParameterError
+        Naming the field that is out of range, not finite, complex, boolean or not numeric.
     """
 
     kind: str
@@ -105,66 +134,263 @@ class Stage:
         return KINDS.index(self.kind)
 
     def with_(self, **changes) -> "Stage":
-        """A copy with some fields changed (validated again)."""
+        """A copy with some fields changed, validated again.
+
+        Parameters
+        ----------
+        **changes
+            Field names and new values (see the class attributes).
+
+        Returns
+        -------
+        Stage
+            The new stage; this one is unchanged.
+
+        Raises
+        ------
+        ParameterError
+            A new value is out of range (naming the field).
+        TypeError
+            A name is not a field.
+        """
         return replace(self, **changes)
 
 
 def kind_name(kind, allowed=KINDS, parameter: str = "kind") -> str:
-    """The canonical (lower-case) name of a stage kind: names compare case-insensitively,
-    and ``"notch"`` means ``"notch_matched"``. Raises ParameterError naming ``parameter``."""
+    """The canonical (lower-case) name of a stage kind.
+
+    Names compare case-insensitively and ``"notch"`` means ``"notch_matched"``.
+
+    Parameters
+    ----------
+    kind : str
+        The name as written by the user.
+    allowed : sequence of str
+        The kinds accepted here (default :data:`KINDS`).
+    parameter : str
+        The parameter name an error reports (default ``"kind"``).
+
+    Returns
+    -------
+    str
+        The name as it appears in ``allowed``.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``parameter`` when ``kind`` is not a string among ``allowed``.
+    """
     if isinstance(kind, str) and kind.strip().lower() == "notch" and "notch_matched" in allowed:
         return "notch_matched"
     return _choice(parameter, kind, allowed)
 
 
 def rectangular(*, T: float, k: int = 1, timing: str = "exact") -> Stage:
-    """Moving average of duration ``T`` [s] (docs/filters.md).
+    """Moving average of duration ``T``: ``m(t) = 1/T`` on ``[0, T)`` (docs/filters.md).
 
-    ``k`` selects the zero ``2 pi k / T`` that exact timing keeps on the sample grid when ``T``
-    is not a whole number of samples; ``timing`` is ``"exact"`` or ``"paper"``
-    (docs/exact-mode.md). Raises ParameterError naming ``T``, ``k`` or ``timing``."""
+    Its zeros lie at ``2 pi k / T`` [rad/s]; a chain of rectangular stages is the classic
+    trapezoidal / double-S planner (Biagiotti and Melchiorri, *Trajectory Planning for
+    Automatic Machines and Robots*, 2008).
+
+    Parameters
+    ----------
+    T : float, keyword-only
+        Duration of the impulse response [s], > 0 (and >= Ts where it is run).
+    k : int, keyword-only
+        Which zero exact timing keeps on the sample grid when ``T`` is not a whole number
+        of samples (>= 1, default 1; docs/exact-mode.md).
+    timing : {"exact", "paper"}, keyword-only
+        ``"exact"`` (default): taps adjusted so the pinned zero stays exact for any Ts;
+        ``"paper"``: the sampled continuous response, as the papers discretise it.
+
+    Returns
+    -------
+    Stage
+        The validated description (no C memory is allocated until a Chain is built).
+
+    Raises
+    ------
+    ParameterError
+        Naming ``T``, ``k`` or ``timing``.
+    """
     return Stage("rectangular", T=T, k=k, timing=timing)
 
 
 def harmonic(*, T: float, k: int = 1, timing: str = "exact") -> Stage:
-    """Sinusoidal smoother of duration ``T`` [s] (Biagiotti & Melchiorri 2011a, sec. 3.2).
+    """Harmonic smoother ``s(t) = pi/(2T) sin(pi t / T)`` on ``[0, T]``.
 
-    ``k`` (odd) selects the zero ``3 pi k / T`` kept by exact timing. Raises ParameterError."""
+    Biagiotti and Melchiorri, "Online Planning of Multi-Segment Trajectories with
+    Trigonometric Blends", 2011, sec. 3.2; zeros at ``3 pi k / T`` for odd k
+    (docs/filters.md).
+
+    Parameters
+    ----------
+    T : float, keyword-only
+        Duration of the impulse response [s], > 0 (and >= Ts where it is run).
+    k : int, keyword-only
+        Which zero exact timing keeps on the sample grid when ``T`` is not a whole number
+        of samples (>= 1, default 1; docs/exact-mode.md).
+    timing : {"exact", "paper"}, keyword-only
+        ``"exact"`` (default): taps adjusted so the pinned zero stays exact for any Ts;
+        ``"paper"``: the sampled continuous response, as the papers discretise it.
+
+    Returns
+    -------
+    Stage
+        The validated description (no C memory is allocated until a Chain is built).
+
+    Raises
+    ------
+    ParameterError
+        Naming ``T``, ``k`` (must be odd) or ``timing``.
+    """
     return Stage("harmonic", T=T, k=k, timing=timing)
 
 
 def damped_harmonic(*, T: float, sigma: float, k: int = 1, timing: str = "exact") -> Stage:
-    """Damped sinusoidal smoother of duration ``T`` [s], ``sigma`` <= 0 [1/s]
-    (Biagiotti et al. 2020, eq. 10). Raises ParameterError."""
+    """Damped harmonic smoother ``s_sigma(t) ~ e^(sigma t) sin(pi t / T)`` on ``[0, T]``,
+    normalised to unit gain.
+
+    Biagiotti, Melchiorri and Moriello, "Damped Harmonic Smoother for Trajectory Planning and
+    Vibration Suppression", 2020, eq. 10: with ``sigma = -zeta wn`` and ``T = 3 pi k / wd`` it
+    cancels a damped mode exactly (docs/filters.md).
+
+    Parameters
+    ----------
+    T : float, keyword-only
+        Duration of the impulse response [s], > 0 (and >= Ts where it is run).
+    k : int, keyword-only
+        Which zero exact timing keeps on the sample grid when ``T`` is not a whole number
+        of samples (>= 1, default 1; docs/exact-mode.md).
+    timing : {"exact", "paper"}, keyword-only
+        ``"exact"`` (default): taps adjusted so the pinned zero stays exact for any Ts;
+        ``"paper"``: the sampled continuous response, as the papers discretise it.
+    sigma : float, keyword-only
+        Decay rate [1/s], <= 0.
+
+    Returns
+    -------
+    Stage
+        The validated description (no C memory is allocated until a Chain is built).
+
+    Raises
+    ------
+    ParameterError
+        Naming ``T``, ``sigma``, ``k`` (must be odd) or ``timing``.
+    """
     return Stage("damped_harmonic", T=T, sigma=sigma, k=k, timing=timing)
 
 
 def exponential(*, T: float, sigma: float, k: int = 1, timing: str = "exact") -> Stage:
-    """Exponential (damped rectangular) smoother of duration ``T`` [s], ``sigma`` <= 0 [1/s]
-    (docs/filters.md; Béarée 2014). Raises ParameterError."""
+    """Exponential (damped rectangular) smoother ``m_sigma(t) ~ e^(sigma t)`` on ``[0, T)``,
+    normalised to unit gain.
+
+    The damped counterpart of the moving average (Biagiotti, Melchiorri and Moriello 2020;
+    the jerk stage of Béarée, "New Damped-Jerk trajectory for vibration reduction", 2014); with ``sigma = -zeta wn`` and ``T = k Td`` its zeros sit on the damped
+    mode (docs/filters.md).
+
+    Parameters
+    ----------
+    T : float, keyword-only
+        Duration of the impulse response [s], > 0 (and >= Ts where it is run).
+    k : int, keyword-only
+        Which zero exact timing keeps on the sample grid when ``T`` is not a whole number
+        of samples (>= 1, default 1; docs/exact-mode.md).
+    timing : {"exact", "paper"}, keyword-only
+        ``"exact"`` (default): taps adjusted so the pinned zero stays exact for any Ts;
+        ``"paper"``: the sampled continuous response, as the papers discretise it.
+    sigma : float, keyword-only
+        Decay rate [1/s], <= 0.
+
+    Returns
+    -------
+    Stage
+        The validated description (no C memory is allocated until a Chain is built).
+
+    Raises
+    ------
+    ParameterError
+        Naming ``T``, ``sigma``, ``k`` or ``timing``.
+    """
     return Stage("exponential", T=T, sigma=sigma, k=k, timing=timing)
 
 
 def shaper(kind: str, *, wn: float, zeta: float = 0.0, order: int | None = None,
            tolerance: float = 0.05, duration: float = 0.75, timing: str = "exact") -> Stage:
-    """Input shaper for the mode (``wn`` [rad/s], ``zeta``).
+    """Input shaper for the mode (``wn``, ``zeta``): a few impulses whose responses cancel on
+    the mode.
 
-    ``kind`` is one of zv, zvd, zvdd, zvn, ei, ei2, ei3, mzv, gmzv (any case); ``order`` is the
-    n of ZV^n (zvn, 1..8) or the number of impulses of gmzv (3..9); ``tolerance`` the vibration
-    tolerance V of the EI family (0 < V < 1); ``duration`` the span of gmzv in damped periods.
-    Impulse amplitudes and times: docs/filters.md. Raises ParameterError naming the parameter.
+    ZV, ZVD, ZVDD and ZV^n (Singer and Seering 1990; Singhose, Seering and Singer, "Residual
+    vibration reduction using vector diagrams to generate shaped inputs", 1994), EI and
+    two-/three-hump EI (Singhose, Porter, Tuttle and Singer, "Vibration reduction using
+    multi-hump input shapers", 1997), MZV as Klipper defines it, and the generalised MZV
+    (n impulses over ``duration`` damped periods). Amplitudes and times: docs/filters.md.
+
+    Parameters
+    ----------
+    kind : str
+        One of zv, zvd, zvdd, zvn, ei, ei2, ei3, mzv, gmzv (any case).
+    wn : float, keyword-only
+        Natural frequency of the mode [rad/s], > 0.
+    zeta : float, keyword-only
+        Damping ratio of the mode, in [0, 1) (default 0).
+    order : int or None, keyword-only
+        n of ZV^n (zvn, 1..8) or the number of impulses of gmzv (3..9).
+    tolerance : float, keyword-only
+        Vibration tolerance V of the EI family, in (0, 1) (default 0.05).
+    duration : float, keyword-only
+        Span of gmzv in damped periods (default 0.75).
+    timing : {"exact", "paper"}, keyword-only
+        Impulses placed between samples by linear interpolation (exact) or rounded to the
+        nearest sample (paper).
+
+    Returns
+    -------
+    Stage
+        The validated description (no C memory is allocated until a Chain is built).
+
+    Raises
+    ------
+    ParameterError
+        Naming ``kind``, ``wn``, ``zeta``, ``order``, ``tolerance``, ``duration`` or
+        ``timing``.
     """
     kind = kind_name(kind, SHAPERS)
     return Stage(kind, wn=wn, zeta=zeta, order=order, tolerance=tolerance, duration=duration,
                  timing=timing)
+
+
 def notch(*, wn: float, zeta: float = 0.0, notch_pole_zeta: float = 0.7,
           discretization: str = "matched", pole_zeta: float | None = None) -> Stage:
-    """Notch at ``wn`` [rad/s] with zero damping ``zeta`` and pole damping ``notch_pole_zeta``
-    (> zeta), Bascetta's notch filter (docs/filters.md).
+    """Notch filter ``(s^2 + 2 zeta wn s + wn^2) / (s^2 + 2 notch_pole_zeta wn s + wn^2)``.
 
-    ``discretization`` is ``"matched"`` (pole-zero matching: zeros exactly at the sampled mode)
-    or ``"tustin"`` (bilinear, pre-warped at wn). ``pole_zeta`` is the old name of
-    ``notch_pole_zeta`` (deprecated). Raises ParameterError naming the parameter."""
+    Bascetta, "Motion control: advanced control techniques" (lecture notes, notch filter);
+    discretised by pole-zero matching (zeros exactly on the sampled mode) or Tustin pre-warped
+    at ``wn`` (docs/filters.md).
+
+    Parameters
+    ----------
+    wn : float, keyword-only
+        Frequency of the notch [rad/s], > 0 and below the Nyquist frequency where it is run.
+    zeta : float, keyword-only
+        Damping of the zeros (the mode's damping ratio), in [0, 1) (default 0).
+    notch_pole_zeta : float, keyword-only
+        Damping of the poles, > ``zeta`` (default 0.7): sets the notch's width.
+    discretization : {"matched", "tustin"}, keyword-only
+        Discretisation (default ``"matched"``).
+    pole_zeta : float or None, keyword-only
+        Deprecated name of ``notch_pole_zeta`` (a DeprecationWarning).
+
+    Returns
+    -------
+    Stage
+        The validated description (no C memory is allocated until a Chain is built).
+
+    Raises
+    ------
+    ParameterError
+        Naming ``wn``, ``zeta``, ``notch_pole_zeta`` or ``discretization``.
+    """
     if pole_zeta is not None:
         warnings.warn("notch(pole_zeta=) is deprecated; use notch_pole_zeta=",
                       DeprecationWarning, stacklevel=2)
@@ -174,13 +400,34 @@ def notch(*, wn: float, zeta: float = 0.0, notch_pole_zeta: float = 0.7,
 
 
 def for_mode(kind: str, *, wn: float, zeta: float = 0.0, k: int = 1) -> Stage:
-    """A stage of ``kind`` (any case) that cancels the mode (``wn`` [rad/s], ``zeta``), per
-    docs/design.md.
+    """A stage of ``kind`` that cancels the mode (``wn``, ``zeta``), as ``sms_design_for_mode``.
 
-    Mirrors ``sms_design_for_mode``: rectangular T = k 2pi/wd; harmonic T = k 3pi/wd (k odd);
-    damped harmonic sigma = -zeta wn, T = k 3pi/wd (k odd); exponential sigma = -zeta wn,
-    T = k Td; shapers and notches take the mode itself (k must be 1). Raises ParameterError
-    naming ``kind``, ``wn``, ``zeta`` or ``k``.
+    With ``wd = wn sqrt(1 - zeta^2)``: rectangular ``T = k 2 pi / wd``; harmonic
+    ``T = k 3 pi / wd`` (k odd); damped harmonic ``sigma = -zeta wn``, ``T = k 3 pi / wd``
+    (Biagiotti, Melchiorri and Moriello 2020); exponential ``sigma = -zeta wn``,
+    ``T = k 2 pi / wd``; shapers and notches take the mode itself (docs/design.md).
+
+    Parameters
+    ----------
+    kind : str
+        Any kind of :data:`KINDS` (any case).
+    wn : float, keyword-only
+        Natural frequency [rad/s], > 0.
+    zeta : float, keyword-only
+        Damping ratio, in [0, 1) (default 0).
+    k : int, keyword-only
+        Multiple of the zero placed on the mode (>= 1; odd for the harmonic families; 1 for
+        shapers and notches).
+
+    Returns
+    -------
+    Stage
+        The validated description (no C memory is allocated until a Chain is built).
+
+    Raises
+    ------
+    ParameterError
+        Naming ``kind``, ``wn``, ``zeta`` or ``k``.
     """
     kind = kind_name(kind)
     wn = _finite("wn", wn)
