@@ -286,7 +286,8 @@ def exponential(*, T: float, sigma: float, k: int = 1, timing: str = "exact") ->
     normalised to unit gain.
 
     The damped counterpart of the moving average (Biagiotti, Melchiorri and Moriello 2020;
-    the jerk stage of Béarée, "New Damped-Jerk trajectory for vibration reduction", 2014); with ``sigma = -zeta wn`` and ``T = k Td`` its zeros sit on the damped
+    the jerk stage of Béarée, "New Damped-Jerk trajectory for vibration reduction", 2014); with
+    ``sigma = -zeta wn`` and ``T = k Td`` its zeros sit on the damped
     mode (docs/filters.md).
 
     Parameters
@@ -365,7 +366,8 @@ def notch(*, wn: float, zeta: float = 0.0, notch_pole_zeta: float = 0.7,
     """Notch filter ``(s^2 + 2 zeta wn s + wn^2) / (s^2 + 2 notch_pole_zeta wn s + wn^2)``.
 
     Bascetta, "Motion control: advanced control techniques" (lecture notes, notch filter);
-    discretised by pole-zero matching (zeros exactly on the sampled mode) or Tustin pre-warped
+    discretised (Franklin, Powell and Workman, *Digital Control of Dynamic Systems*, 1998) by
+    pole-zero matching (zeros exactly on the sampled mode) or Tustin pre-warped
     at ``wn`` (docs/filters.md).
 
     Parameters

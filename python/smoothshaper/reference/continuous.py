@@ -61,7 +61,27 @@ def _smoother_laplace(stage: Stage, a: np.ndarray) -> np.ndarray:
 
 
 def continuous_transfer(stage: Stage, s) -> np.ndarray:
-    """``H_c(s)`` of one stage (DC gain 1) at complex ``s`` [1/s], any array shape."""
+    """``H_c(s)`` of one stage (DC gain 1) at complex ``s``: the closed forms of the module
+    docstring (smoothers as Laplace transforms of their normalised impulse responses,
+    shapers as impulse trains, notches as rational functions).
+
+    Parameters
+    ----------
+    stage : Stage
+        Any stage.
+    s : array_like of complex
+        Laplace variable [1/s], any shape.
+
+    Returns
+    -------
+    ndarray of complex128
+        ``H_c(s)``, the shape of ``s``.
+
+    Raises
+    ------
+    ParameterError
+        ``stage`` is not a valid Stage.
+    """
     stage = check_stage(stage)
     s = np.asarray(s, dtype=complex)
     if stage.kind in SHAPERS:
@@ -74,9 +94,26 @@ def continuous_transfer(stage: Stage, s) -> np.ndarray:
 
 
 def continuous_impulse_response(stage: Stage, t) -> np.ndarray:
-    """Normalised impulse response ``h(t)`` (integral 1) of a smoother at times ``t`` [s];
-    0 outside ``[0, T)``. Shapers are impulse trains (use ``shaper_impulses``) and notches
-    have a Dirac part, so both raise ParameterError naming ``stage``."""
+    """Normalised impulse response ``h(t)`` (integral 1) of a smoother, 0 outside ``[0, T)``.
+
+    Parameters
+    ----------
+    stage : Stage
+        A smoother stage (rectangular, harmonic, damped_harmonic, exponential).
+    t : array_like of float
+        Times [s], any shape.
+
+    Returns
+    -------
+    ndarray of float64
+        ``h(t)`` [1/s], the shape of ``t``.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``stage`` for shapers (impulse trains: use ``shaper_impulses``) and notches
+        (they have a Dirac part).
+    """
     stage = check_stage(stage)
     if stage.kind in SHAPERS or stage.kind in NOTCHES:
         raise ParameterError(

@@ -27,8 +27,26 @@ from ..errors import ParameterError
 def impulse_response(stage: Stage, *, Ts: float, length: int | None = None) -> np.ndarray:
     """Discrete impulse response of one stage (DC gain 1).
 
-    Smoothers and shapers: their FIR taps (``length`` None gives all L taps; a larger length
-    pads zeros, a smaller one truncates). Notches: the first ``length`` samples (required).
+    Parameters
+    ----------
+    stage : Stage
+        Any stage.
+    Ts : float, keyword-only
+        Sample period [s], > 0.
+    length : int or None, keyword-only
+        Smoothers and shapers: None (default) gives all L FIR taps, a larger length pads
+        zeros, a smaller one truncates. Notches (infinite response): required, >= 0.
+
+    Returns
+    -------
+    ndarray of float64, shape (L,) or (length,)
+        The response ``h[n]``.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``length`` (missing for a notch, negative, not an integer or too large) or the
+        stage parameter that is invalid at ``Ts``.
     """
     stage = check_stage(stage)
     if stage.kind in NOTCHES:
@@ -53,8 +71,28 @@ def _check_length(length) -> int:
 
 
 def discrete_transfer(stage: Stage, z, *, Ts: float) -> np.ndarray:
-    """``H(z)`` of one discrete stage at complex ``z`` (any shape): ``sum_i h[i] z^-i`` for
-    FIR stages, ``b(z^-1)/a(z^-1)`` for notches."""
+    """``H(z)`` of one discrete stage: ``sum_i h[i] z^-i`` for FIR stages, ``b(z^-1)/a(z^-1)``
+    for notches.
+
+    Parameters
+    ----------
+    stage : Stage
+        Any stage.
+    z : array_like of complex
+        Points of the z-plane, any shape, non-zero.
+    Ts : float, keyword-only
+        Sample period [s], > 0.
+
+    Returns
+    -------
+    ndarray of complex128
+        ``H(z)``, the shape of ``z``.
+
+    Raises
+    ------
+    ParameterError
+        A stage parameter invalid at ``Ts``, or ``Ts`` not > 0.
+    """
     stage = check_stage(stage)
     zinv = 1.0 / np.asarray(z, dtype=complex)
     if stage.kind in NOTCHES:
@@ -64,7 +102,28 @@ def discrete_transfer(stage: Stage, z, *, Ts: float) -> np.ndarray:
 
 
 def filter_zi(stages, *, Ts: float, x0: float = 0.0) -> list[np.ndarray]:
-    """State of the chain at rest at the value ``x0`` (see the module docstring)."""
+    """State of the chain at rest at the value ``x0``, in the layout :func:`filter` takes.
+
+    Parameters
+    ----------
+    stages : Stage or sequence of Stage
+        The chain.
+    Ts : float, keyword-only
+        Sample period [s], > 0.
+    x0 : float, keyword-only
+        The rest value (default 0).
+
+    Returns
+    -------
+    list of ndarray of float64
+        One array per stage: the last ``L - 1`` inputs of a FIR stage of length L, or
+        ``[x1, x2, y1, y2]`` of a notch, all equal to ``x0``.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``x0`` when it is not finite, or a stage parameter invalid at ``Ts``.
+    """
     x0 = _finite("x0", x0)
     out = []
     for stage in as_stage_list(stages):
@@ -77,12 +136,36 @@ def filter_zi(stages, *, Ts: float, x0: float = 0.0) -> list[np.ndarray]:
 
 
 def filter(stages, x, *, Ts: float, zi=None):
-    """Filter ``x`` through the chain ``stages`` (a Stage or a sequence) at period ``Ts`` [s].
+    """Filter ``x`` through the chain ``stages`` at period ``Ts``: the independent NumPy oracle
+    of :class:`smoothshaper.Chain` (it never calls the C code).
 
     Each FIR stage is a direct convolution with its taps, each notch a direct-form-I biquad.
-    Returns ``y`` (float64, same length as x) when ``zi`` is None (chain at rest at 0), else
-    ``(y, zf)`` with ``zf`` the state after the last sample, in the ``zi`` layout, so that
-    filtering blocks one after the other with the returned state equals filtering at once.
+
+    Parameters
+    ----------
+    stages : Stage or sequence of Stage
+        The chain, first stage first.
+    x : array_like of float, shape (n,)
+        Input samples, finite.
+    Ts : float, keyword-only
+        Sample period [s], > 0.
+    zi : list of ndarray or None, keyword-only
+        None (default): the chain starts at rest at 0; else the state from
+        :func:`filter_zi` or from a previous call.
+
+    Returns
+    -------
+    y : ndarray of float64, shape (n,)
+        The output (alone when ``zi`` is None).
+    zf : list of ndarray of float64
+        With ``zi`` given: the state after the last sample, so that filtering blocks one
+        after the other with the returned state equals filtering at once.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``x`` (not a finite real 1-D signal), ``zi`` / ``zi[k]`` (wrong layout),
+        ``Ts`` or a stage parameter invalid at ``Ts``.
     """
     stages = as_stage_list(stages)
     Ts = check_Ts(Ts)

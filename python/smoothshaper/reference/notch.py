@@ -19,7 +19,7 @@ import math
 import numpy as np
 
 from ..stages import NOTCHES, Stage
-from ._checks import check_Ts
+from ._checks import check_stage, check_Ts
 from ..errors import ParameterError
 
 __all__ = ["notch_coefficients", "notch_continuous_transfer", "biquad"]
@@ -43,7 +43,34 @@ def _matched_quadratic(xi: float, wn: float, Ts: float) -> np.ndarray:
 
 
 def notch_coefficients(stage: Stage, *, Ts: float) -> tuple[np.ndarray, np.ndarray]:
-    """``(b, a)`` of the discrete notch (``a[0] = 1``, DC gain 1); ``wn < pi/Ts`` required."""
+    """``(b, a)`` of the discrete notch biquad, in powers of ``z^-1``, ``a[0] = 1``, DC gain 1.
+
+    The notch of Bascetta, "Motion control: advanced control techniques" (lecture notes),
+    discretised as in Franklin, Powell and Workman, *Digital Control of Dynamic Systems*, 3rd
+    ed., 1998: Tustin pre-warped at ``wn`` (``s = c (z-1)/(z+1)``, ``c = wn/tan(wn Ts/2)``)
+    or matched pole-zero mapping (``z = e^(s Ts)`` for every root; module docstring).
+
+    Parameters
+    ----------
+    stage : Stage
+        A notch stage (:class:`smoothshaper.stages.Stage`).
+    Ts : float, keyword-only
+        Sample period [s], finite and > 0.
+
+    Returns
+    -------
+    b : ndarray of float64, shape (3,)
+        Numerator ``[b0, b1, b2]``.
+    a : ndarray of float64, shape (3,)
+        Denominator ``[1, a1, a2]``: ``y[n] = b0 x[n] + b1 x[n-1] + b2 x[n-2] - a1 y[n-1] -
+        a2 y[n-2]``.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``wn`` when it is at or above the Nyquist frequency ``pi/Ts``, ``Ts`` when it
+        is not > 0, ``kind`` for a non-notch.
+    """
     Ts = check_Ts(Ts)
     if stage.kind not in NOTCHES:
         raise ParameterError(
@@ -64,15 +91,57 @@ def notch_coefficients(stage: Stage, *, Ts: float) -> tuple[np.ndarray, np.ndarr
 
 
 def notch_continuous_transfer(stage: Stage, s) -> np.ndarray:
+    """``(s^2 + 2 zeta wn s + wn^2) / (s^2 + 2 notch_pole_zeta wn s + wn^2)`` at complex ``s``.
+
+    Parameters
+    ----------
+    stage : Stage
+        A notch stage (:class:`smoothshaper.stages.Stage`).
+    s : array_like of complex
+        Laplace variable [1/s], any shape.
+
+    Returns
+    -------
+    ndarray of complex128
+        The transfer function, the shape of ``s``.
+
+    Raises
+    ------
+    ParameterError
+        ``stage`` is not a valid Stage.
+    """
+    stage = check_stage(stage)
     s = np.asarray(s, dtype=complex)
     wn, xi1, xi2 = stage.wn, stage.zeta, stage.notch_pole_zeta
     return (s * s + 2 * xi1 * wn * s + wn * wn) / (s * s + 2 * xi2 * wn * s + wn * wn)
 
 
 def biquad(b: np.ndarray, a: np.ndarray, x: np.ndarray, state: np.ndarray):
-    """Direct form I over ``x`` from ``state = [x1, x2, y1, y2]``; returns ``(y, new_state)``.
+    """Direct form I biquad over ``x``, a plain loop in the difference equation's order (no
+    hidden filter state).
 
-    A plain loop: same operation order as the difference equation, no hidden filter state.
+    Parameters
+    ----------
+    b : array_like of float, shape (3,)
+        Numerator ``[b0, b1, b2]``.
+    a : array_like of float, shape (3,)
+        Denominator ``[1, a1, a2]`` (``a[0]`` is not used).
+    x : ndarray of float64, shape (n,)
+        Input samples.
+    state : array_like of float, shape (4,)
+        ``[x[-1], x[-2], y[-1], y[-2]]`` before the first sample.
+
+    Returns
+    -------
+    y : ndarray of float64, shape (n,)
+        Output samples.
+    state : ndarray of float64, shape (4,)
+        The state after the last sample, in the same layout.
+
+    Raises
+    ------
+    ValueError
+        ``b``, ``a`` or ``state`` hold too few values (unpacking).
     """
     b0, b1, b2 = (float(v) for v in b)
     a1, a2 = float(a[1]), float(a[2])

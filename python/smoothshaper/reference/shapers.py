@@ -38,7 +38,7 @@ import math
 import numpy as np
 
 from ..stages import SHAPERS, Stage
-from ._checks import check_Ts, check_samples, on_grid, round_half_up
+from ._checks import check_Ts, check_samples, check_stage, on_grid, round_half_up
 from ..errors import ParameterError
 
 __all__ = ["zvn_order", "mode_pole", "shaper_impulses", "shaper_continuous_transfer", "shaper_taps"]
@@ -47,7 +47,24 @@ _ZVN_ORDER = {"zv": 1, "zvd": 2, "zvdd": 3}
 
 
 def zvn_order(stage: Stage) -> int:
-    """n of ZV^n for the ZV family (zv, zvd, zvdd, zvn)."""
+    """n of ZV^n for the ZV family: 1 for zv, 2 for zvd, 3 for zvdd, ``stage.order`` for zvn.
+
+    Parameters
+    ----------
+    stage : Stage
+        A shaper stage (:class:`smoothshaper.stages.Stage`).
+
+    Returns
+    -------
+    int
+        The power n of the ZV shaper the stage equals (``stage.order`` for other kinds).
+
+    Raises
+    ------
+    ParameterError
+        ``stage`` is not a valid Stage.
+    """
+    stage = check_stage(stage)
     return _ZVN_ORDER.get(stage.kind, stage.order)
 
 
@@ -80,9 +97,35 @@ def _undamped_design(stage: Stage) -> tuple[np.ndarray, np.ndarray]:
 
 
 def gmzv_undamped(n: int, duration: float) -> tuple[np.ndarray, np.ndarray]:
-    """Undamped generalised MZV: amplitudes (sum 1) and times in damped periods for ``n``
-    impulses over ``duration`` periods. Raises ParameterError (naming ``duration``) when the
-    least-squares amplitudes go negative (in practice duration < 0.5)."""
+    """Undamped generalised MZV: amplitudes and times of ``n`` impulses over ``duration``
+    damped periods.
+
+    Equally spaced impulses whose amplitudes solve, in the least-squares sense, unit gain and
+    zero vibration at the mode and its neighbourhood (the construction behind Klipper's MZV,
+    which this equals for n = 3, duration = 0.75; ZV^n insensitivity as in Singhose, Seering
+    and Singer, "Residual vibration reduction using vector diagrams to generate shaped
+    inputs", 1994).
+
+    Parameters
+    ----------
+    n : int
+        Number of impulses, 3..9.
+    duration : float
+        Span in damped periods, in (0.5, (n - 1)/2).
+
+    Returns
+    -------
+    amplitudes : ndarray of float64, shape (n,)
+        Non-negative, summing to 1.
+    times : ndarray of float64, shape (n,)
+        Impulse times in damped periods, from 0 to ``duration``.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``duration`` when the least-squares amplitudes go negative (in practice
+        duration < 0.5).
+    """
     units = duration * np.arange(n) / (n - 1.0)
     tau = duration * (n - 2.0) / (n - 2.0 * duration - 1.0)
     w = 2.0 * math.pi * (1.0 + np.arange(n - 1)[:, None] / tau) * units[None, :]
@@ -98,13 +141,59 @@ def gmzv_undamped(n: int, duration: float) -> tuple[np.ndarray, np.ndarray]:
 
 
 def mode_pole(wn: float, zeta: float) -> complex:
-    """``p = -zeta wn + j wn sqrt(1 - zeta^2)``."""
+    """The pole ``p = -zeta wn + j wn sqrt(1 - zeta^2)`` of a lightly damped mode.
+
+    Parameters
+    ----------
+    wn : float
+        Natural frequency [rad/s], > 0.
+    zeta : float
+        Damping ratio, in [0, 1).
+
+    Returns
+    -------
+    complex
+        The upper-half-plane pole [1/s].
+
+    Raises
+    ------
+    ParameterError
+        Naming ``wn`` or ``zeta`` when out of range.
+    """
+    if not (isinstance(wn, (int, float)) and math.isfinite(wn) and wn > 0):
+        raise ParameterError("wn", f"wn must be finite and > 0 rad/s, got {wn!r}")
+    if not (isinstance(zeta, (int, float)) and 0.0 <= zeta < 1.0):
+        raise ParameterError("zeta", f"zeta must be in [0, 1), got {zeta!r}")
     return complex(-zeta * wn, wn * math.sqrt(1.0 - zeta * zeta))
 
 
 def shaper_impulses(stage: Stage) -> tuple[np.ndarray, np.ndarray]:
-    """The continuous shaper: ``(amplitudes, times)``, amplitudes summing to 1, times [s]
-    ascending from 0 (see the module docstring for the formulas)."""
+    """The continuous shaper as impulses: amplitudes summing to 1 at times [s] from 0.
+
+    ZV, ZVD, ZVDD, ZV^n (Singer and Seering, "Preshaping command inputs to reduce system
+    vibration", 1990; Singhose, Seering and Singer 1994), EI, two- and three-hump EI
+    (Singhose, Porter, Tuttle and Singer, "Vibration reduction using multi-hump input
+    shapers", 1997), MZV and the generalised MZV; damping enters as amplitudes scaled by
+    ``e^(-zeta wn t)`` and times in damped periods (module docstring, docs/filters.md).
+
+    Parameters
+    ----------
+    stage : Stage
+        A shaper stage (:class:`smoothshaper.stages.Stage`).
+
+    Returns
+    -------
+    amplitudes : ndarray of float64, shape (m,)
+        Impulse amplitudes, summing to 1.
+    times : ndarray of float64, shape (m,)
+        Impulse times [s], ascending from 0.
+
+    Raises
+    ------
+    ParameterError
+        ``stage`` is not a valid shaper stage.
+    """
+    stage = check_stage(stage)
     B, units = _undamped_design(stage)
     p = mode_pole(stage.wn, stage.zeta)
     t = units * (2.0 * math.pi / p.imag)
@@ -113,7 +202,26 @@ def shaper_impulses(stage: Stage) -> tuple[np.ndarray, np.ndarray]:
 
 
 def shaper_continuous_transfer(stage: Stage, s) -> np.ndarray:
-    """``H_c(s) = sum_m A_m e^{-s t_m}`` at complex ``s`` (any shape)."""
+    """``H_c(s) = sum_m A_m e^(-s t_m)`` of a shaper (see :func:`shaper_impulses`).
+
+    Parameters
+    ----------
+    stage : Stage
+        A shaper stage (:class:`smoothshaper.stages.Stage`).
+    s : array_like of complex
+        Laplace variable [1/s], any shape.
+
+    Returns
+    -------
+    ndarray of complex128
+        ``H_c(s)``, the shape of ``s``.
+
+    Raises
+    ------
+    ParameterError
+        ``stage`` is not a valid shaper stage.
+    """
+    stage = check_stage(stage)
     A, t = shaper_impulses(stage)
     s = np.asarray(s, dtype=complex)
     return np.tensordot(np.exp(-s[..., None] * t), A, axes=([-1], [0]))
@@ -164,7 +272,32 @@ def _exact_taps(A: np.ndarray, t: np.ndarray, target: complex, zp: complex,
 
 
 def shaper_taps(stage: Stage, *, Ts: float) -> np.ndarray:
-    """Discrete shaper taps (sum 1) at sample period ``Ts`` [s]; ``wn < pi/Ts`` required."""
+    """Discrete shaper taps (sum 1) at sample period ``Ts``.
+
+    Paper timing rounds each impulse of :func:`shaper_impulses` to the nearest sample (as
+    Singer and Seering, 1990, apply shapers in discrete time); exact timing splits each
+    impulse linearly between its two neighbouring samples and adds the least-norm correction
+    that keeps the residual at the sampled mode exactly at the continuous design's (zero, or
+    V for EI) (module docstring, docs/exact-mode.md).
+
+    Parameters
+    ----------
+    stage : Stage
+        A shaper stage (:class:`smoothshaper.stages.Stage`).
+    Ts : float, keyword-only
+        Sample period [s], finite and > 0.
+
+    Returns
+    -------
+    ndarray of float64, shape (L,)
+        Taps summing to 1; ``L - 1`` is the last impulse time in samples, rounded up.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``wn`` when the mode is at or above the Nyquist frequency ``pi/Ts``, ``Ts``
+        when it is not > 0, ``kind`` for a non-shaper.
+    """
     Ts = check_Ts(Ts)
     if stage.kind not in SHAPERS:
         raise ParameterError(

@@ -26,7 +26,7 @@ import math
 import numpy as np
 
 from ..stages import SMOOTHERS, Stage
-from ._checks import check_Ts, check_samples, on_grid, round_half_up
+from ._checks import check_Ts, check_samples, check_stage, on_grid, round_half_up
 from ..errors import ParameterError
 
 __all__ = ["pinned_frequency", "smoother_taps"]
@@ -45,7 +45,25 @@ def _shape(kind: str, t: np.ndarray, T: float, sigma: float) -> np.ndarray:
 
 
 def pinned_frequency(stage: Stage) -> float:
-    """``w*`` [rad/s], the imaginary part of the zero that exact timing pins."""
+    """``w*`` [rad/s], the imaginary part of the zero that exact timing pins: ``k 2 pi / T``
+    (rectangular, exponential) or ``k 3 pi / T`` (harmonic families).
+
+    Parameters
+    ----------
+    stage : Stage
+        A smoother stage (:class:`smoothshaper.stages.Stage`).
+
+    Returns
+    -------
+    float
+        ``w*`` [rad/s].
+
+    Raises
+    ------
+    ParameterError
+        ``stage`` is not a valid Stage.
+    """
+    stage = check_stage(stage)
     per = 2.0 if stage.kind in ("rectangular", "exponential") else 3.0
     return stage.k * per * math.pi / stage.T
 
@@ -72,11 +90,35 @@ def _sampled(stage: Stage, N: int, Ts: float) -> np.ndarray:
 
 
 def smoother_taps(stage: Stage, *, Ts: float) -> np.ndarray:
-    """Normalised FIR taps (DC gain 1) of a smoother stage at sample period ``Ts`` [s].
+    """Normalised FIR taps (DC gain 1) of a smoother stage at sample period ``Ts``.
 
-    Raises ParameterError naming ``T`` when ``T < Ts`` (beyond the integer test: ``T`` within
-    1e-9 of ``Ts`` is one sample, anything shorter is refused, never a pass-through) or the pinned
-    zero cannot be placed, ``Ts`` when it is not > 0, ``kind`` for a non-smoother.
+    The sampled continuous responses of docs/filters.md: rectangular and harmonic
+    (Biagiotti and Melchiorri, "Online Planning of Multi-Segment Trajectories with
+    Trigonometric Blends", 2011), damped harmonic and exponential (Biagiotti, Melchiorri and
+    Moriello, "Damped Harmonic Smoother for Trajectory Planning and Vibration Suppression",
+    2020, eq. 10); off the sample grid, exact timing corrects the last two taps so the zero
+    ``w*`` stays exact (module docstring, docs/exact-mode.md).
+
+    Parameters
+    ----------
+    stage : Stage
+        A smoother stage (:class:`smoothshaper.stages.Stage`).
+    Ts : float, keyword-only
+        Sample period [s], finite and > 0.
+
+    Returns
+    -------
+    ndarray of float64, shape (L,)
+        Taps ``h[0..L-1]`` summing to 1, ``L = T/Ts`` on the grid, ``floor(T/Ts) + 1`` with
+        exact timing off it, ``round(T/Ts)`` with paper timing.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``T`` when ``T < Ts`` (``T`` within 1e-9 of ``Ts`` is one sample; anything
+        shorter is refused, never a pass-through), when a harmonic stage is shorter than
+        2 Ts, or when the pinned zero lies at or above the Nyquist frequency; ``Ts`` when it
+        is not > 0; ``kind`` for a non-smoother.
     """
     Ts = check_Ts(Ts)
     if stage.kind not in SMOOTHERS:
