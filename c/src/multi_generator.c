@@ -24,9 +24,10 @@ static sms_real ratio(sms_real limit, sms_real d)
     return r < RATIO_CAP ? r : RATIO_CAP;
 }
 
-/* Bisection stops at this relative bracket or after MAX_BISECT halvings. */
-#define BRACKET_TOL (4 * REAL_EPS)
-#define MAX_BISECT 200
+/* The root search for T1 stops when the bracket is this narrow (neighbouring reals, relative)
+ * or after MAX_ROOT_STEPS evaluations (a bound never reached: every fourth step bisects). */
+#define BRACKET_TOL (2 * REAL_EPS)
+#define MAX_ROOT_STEPS 200
 /* A duration within this many ulps of a whole number of samples is on the grid. */
 #define GRID_TOL (8 * REAL_EPS)
 
@@ -142,7 +143,7 @@ static sms_real landing_kappa(const group *G, const sms_real *u, sms_real T1)
 typedef struct candidate {
     sms_real W[SMS_MULTI_MAX_AXES];
     sms_real kappa, tau, T2, rho2, rho1;
-    int feasible;
+    sms_real excess; /* T(W - V) - T1: feasible when <= 0 */
 } candidate;
 
 static void try_T1(const group *G, const sms_real *D, const sms_real *V, sms_real T1,
@@ -161,7 +162,53 @@ static void try_T1(const group *G, const sms_real *D, const sms_real *V, sms_rea
     c->tau = c->kappa - T1 / 2 - c->T2 / 2;
     if (c->tau < 0)
         c->tau = 0; /* rounding: kappa solves tau = 0 to an ulp */
-    c->feasible = transition_time(G, dW, &c->rho1) <= T1;
+    c->excess = transition_time(G, dW, &c->rho1) - T1;
+}
+
+/* Smallest T1 in [lo, hi] with excess(T1) <= 0, given excess(lo) > 0 >= excess(hi) (excess is
+ * continuous in T1): Illinois regula falsi (Dowell and Jarratt 1971, BIT 11, "A modified
+ * regula falsi method for computing the root of an equation": the end kept twice in a row has
+ * its value halved, which makes the convergence superlinear) with a bisection every fourth
+ * step and the new point kept at least a quarter bracket tolerance inside, so the bracket
+ * shrinks to neighbouring reals in a few steps. Returns the feasible end hi; c holds its move. */
+static sms_real first_transition(const group *G, const sms_real *D, const sms_real *V,
+                                 sms_real lo, sms_real e_lo, sms_real hi, candidate *c)
+{
+    sms_real e_hi, x, margin;
+    int kept = 0; /* +1: lo kept last time, -1: hi kept last time */
+    size_t it;
+    try_T1(G, D, V, hi, c);
+    e_hi = c->excess;
+    if (!(e_hi <= 0))
+        return hi; /* the bound 2 vmax is feasible by construction; rounding only */
+    for (it = 0; it < MAX_ROOT_STEPS && hi - lo > BRACKET_TOL * hi; ++it) {
+        candidate t;
+        margin = (sms_real)0.25 * BRACKET_TOL * hi;
+        if (it % 4 == 3)
+            x = lo + (hi - lo) / 2;
+        else
+            x = lo + (hi - lo) * (e_lo / (e_lo - e_hi));
+        if (x < lo + margin)
+            x = lo + margin;
+        if (x > hi - margin)
+            x = hi - margin;
+        try_T1(G, D, V, x, &t);
+        if (t.excess <= 0) {
+            hi = x;
+            e_hi = t.excess;
+            *c = t;
+            if (kept == 1)
+                e_lo *= (sms_real)0.5;
+            kept = 1;
+        } else {
+            lo = x;
+            e_lo = t.excess;
+            if (kept == -1)
+                e_hi *= (sms_real)0.5;
+            kept = -1;
+        }
+    }
+    return hi;
 }
 
 /* Plan a move from (p, V, a = 0) at move time 0 towards target; the first sample of the new
@@ -173,7 +220,7 @@ static void plan(sms_multi_generator *g, size_t first, const group *G, sms_multi
     sms_real lo, hi, T1, rho, total, nu, n_round, delta, kappa;
     const sms_real Ts = g->Ts_signal;
     candidate c;
-    size_t i, k_end, it;
+    size_t i, k_end;
     int moving = 0, any_move = 0;
     for (i = 0; i < G->n; ++i) { /* p and V may alias the generator's own arrays */
         g->p[first + i] = p[i];
@@ -198,11 +245,11 @@ static void plan(sms_multi_generator *g, size_t first, const group *G, sms_multi
             g->W[first + i] = 0;
         return;
     }
-    /* smallest feasible first transition: bisection on [T(V), T(2 vmax)] */
+    /* smallest feasible first transition in [T(V), T(2 vmax)] (the upper end is feasible) */
     lo = transition_time(G, V, &rho);
     try_T1(G, D, V, lo, &c);
-    if (!c.feasible) {
-        sms_real A = REAL_MAX, J = REAL_MAX;
+    if (c.excess > 0) {
+        sms_real A = REAL_MAX, J = REAL_MAX, e_lo = c.excess;
         for (i = 0; i < G->n; ++i) {
             sms_real a = G->amax[i] / (2 * G->vmax[i]), j = G->jmax[i] / (2 * G->vmax[i]);
             if (a < A)
@@ -213,16 +260,7 @@ static void plan(sms_multi_generator *g, size_t first, const group *G, sms_multi
         hi = unit_time(A, J, &rho) * (1 + 16 * REAL_EPS);
         if (hi < lo)
             hi = lo;
-        for (it = 0; it < MAX_BISECT && hi - lo > BRACKET_TOL * hi; ++it) {
-            sms_real mid = lo + (hi - lo) / 2;
-            try_T1(G, D, V, mid, &c);
-            if (c.feasible)
-                hi = mid;
-            else
-                lo = mid;
-        }
-        lo = hi;
-        try_T1(G, D, V, lo, &c);
+        lo = first_transition(G, D, V, lo, e_lo, hi, &c);
     }
     T1 = lo;
     /* arrival on the grid: lengthen the cruise by delta, W = u / (kappa + delta) */

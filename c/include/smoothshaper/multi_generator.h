@@ -88,8 +88,11 @@ typedef struct sms_multi_move {
  *   W kappa = B - p - V T1/2,
  * so W is parallel to u = B - p - V T1/2. Given T1, kappa is the smallest value with
  * |W_i| <= vmax_i and tau >= 0 (T2 = the shortest stop transition of W); the move is feasible
- * when the shortest transition V -> W fits in T1. T1 is the smallest feasible length, found
- * by bisection on [T(V), T(2 vmax)] (the upper end is always feasible). The arrival is then
+ * when the shortest transition V -> W fits in T1, i.e. when the excess T(W - V) - T1 (a
+ * continuous function of T1) is <= 0. T1 is the feasible root of the excess in
+ * [T(V), T(2 vmax)] (the upper end is always feasible), found by the Illinois variant of
+ * regula falsi (Dowell and Jarratt 1971) with a bisection every fourth step, down to
+ * neighbouring reals: about 5 evaluations per re-plan on random moves. The arrival is then
  * moved onto the next sample by lengthening the cruise (W shrinks towards 0, which keeps
  * every bound), and the output is set exactly to B at the arrival sample.
  *
@@ -111,8 +114,8 @@ typedef struct sms_multi_move {
  * for the arrival and then starts from rest. Every output q, v, a, j is the exact value of
  * this continuous profile at the sample instant (the jerk at a jump is the right limit), so
  * the backward differences dq/Ts, d2q/Ts^2, d3q/Ts^3 are averages of v, a, j and keep the
- * limits too. Per-sample work is O(n_axes); a re-plan costs a bounded number (a few hundred)
- * of O(n_axes) evaluations.
+ * limits too. Per-sample work is O(n_axes); a re-plan costs a bounded number (at most 200,
+ * typically 5) of O(n_axes) evaluations.
  *
  * Vibration stages (::sms_multi_generator_config): after the profile, axis i's q, v, a, j each
  * pass through a copy of its chain, y = H(x) per signal; the filtered v, a, j are the
