@@ -3,8 +3,16 @@
 Written from the planning rules stated in ``c/include/smoothshaper/multi_generator.h`` and
 ``docs/multi-axis.md``; it never calls the C core. The structure differs on purpose: moves are
 kept as absolute-time records (start time, start state, phases) and evaluated through a
-generic velocity-transition formula, the roots come from ``math.sqrt``/``math.cbrt``, and the
-bisection is written over a feasibility predicate on whole vectors.
+generic velocity-transition formula, and the search for the first transition is written over
+whole vectors. What must match to the last bit does: the arithmetic of the plan and of the
+evaluation follows the C core's order, and the planner's square and cube roots are the C
+core's Newton iterations (:func:`newton_sqrt`, :func:`newton_cbrt`; the C core uses no libm
+while stepping). A sample in the last jerk phase of a transition moves its acceleration by
+``jerk * dT`` when the transition's end moves by ``dT``: relative to amax, ``dT / Tj``, with
+``Tj`` the jerk phase, which can be a small fraction ``rho`` of the transition. A plan that
+differs in its last bits (one ulp of a root, amplified by the root search) therefore shows up
+at ``eps / rho`` (up to 3.5e-13 with libm roots); with the same roots the plans agree to the
+last bit and the outputs to rounding (the tests: 1e-12 of the move and of each limit).
 
 * :func:`transition` -- shortest S-curve velocity change under per-axis limits;
 * :func:`phase_duration` -- time-optimal phase-synchronised rest-to-rest duration;
@@ -18,9 +26,45 @@ import numpy as np
 
 from . import filtering as _filtering
 
-__all__ = ["transition", "phase_duration", "multi_axis_reference"]
+__all__ = ["transition", "phase_duration", "multi_axis_reference", "newton_sqrt", "newton_cbrt"]
 
 _EPS = np.finfo(np.float64).eps
+
+
+def newton_sqrt(x: float) -> float:
+    """sqrt(x) as the C planner computes it: scaled into [1, 4) by powers of 4, 7 Newton
+    steps from (1 + x)/2, scaled back (within an ulp of math.sqrt); 0 for x <= 0."""
+    if not x > 0:
+        return 0.0
+    scale = 1.0
+    while x >= 4:
+        x *= 0.25
+        scale *= 2
+    while x < 1:
+        x *= 4
+        scale *= 0.5
+    y = (1 + x) * 0.5
+    for _ in range(7):
+        y = (y + x / y) * 0.5
+    return y * scale
+
+
+def newton_cbrt(x: float) -> float:
+    """cbrt(x), x >= 0, as the C planner computes it: scaled into [1, 8) by powers of 8, 8
+    Newton steps from 1 + x/7, scaled back (within an ulp of math.cbrt); 0 for x <= 0."""
+    if not x > 0:
+        return 0.0
+    scale = 1.0
+    while x >= 8:
+        x *= 0.125
+        scale *= 2
+    while x < 1:
+        x *= 8
+        scale *= 0.5
+    y = 1 + x * (1.0 / 7.0)
+    for _ in range(8):
+        y = (2 * y + x / (y * y)) * (1.0 / 3.0)
+    return y * scale
 _CAP = 2.0 ** 60  # limit/|change| ratios are capped (a conservative, lower limit)
 
 
@@ -37,7 +81,7 @@ def _unit_time(A: float, J: float) -> tuple[float, float]:
         Tj = A / J
         T = 1.0 / A + Tj
         return T, Tj / T
-    Tj = 1.0 / math.sqrt(J)
+    Tj = 1.0 / newton_sqrt(J)
     return 2.0 * Tj, 0.5
 
 
@@ -80,10 +124,10 @@ def _kappa(u, T1, vmax, amax, jmax) -> float:
     ju = _ratio(jmax[nz], d[nz])
     kv = float(np.max(d[nz] / vmax[nz]))
     b = (T1 + au / ju) / 2
-    kh = (b + math.sqrt(b * b + 2.0 / au)) / 2
+    kh = (b + newton_sqrt(b * b + 2.0 / au)) / 2
     if kh > ju / (au * au):
-        c, q = T1 / 2, 1.0 / math.sqrt(ju)
-        y = math.sqrt(c) + math.cbrt(q)
+        c, q = T1 / 2, 1.0 / newton_sqrt(ju)
+        y = newton_sqrt(c) + newton_cbrt(q)
         for _ in range(100):
             y_next = y - ((y * y - c) * y - q) / (3 * y * y - c)
             if not y_next < y:
@@ -94,13 +138,46 @@ def _kappa(u, T1, vmax, amax, jmax) -> float:
 
 
 def _candidate(D, V, T1, lim):
+    """The move with first transition T1: (excess, W, tau, T2, rho2), where excess =
+    T(W - V) - T1 <= 0 when the velocity change fits in T1."""
     u = D - V * (T1 / 2)
     kappa = _kappa(u, T1, *lim)
     W = u / kappa
     T2, rho2 = transition(W, *lim)
     tau = max(kappa - T1 / 2 - T2 / 2, 0.0)
-    feasible = transition(W - V, *lim)[0] <= T1
-    return feasible, W, tau, T2, rho2
+    excess = transition(W - V, *lim)[0] - T1
+    return excess, W, tau, T2, rho2
+
+
+_ROOT_TOL = 2 * _EPS  # the bracket ends as neighbouring doubles
+
+
+def _smallest_feasible(D, V, lo, e_lo, hi, lim) -> float:
+    """Smallest T1 in [lo, hi] with excess <= 0 (excess(lo) > 0): Illinois regula falsi
+    (Dowell and Jarratt 1971) with a bisection every fourth step, each new point at least a
+    quarter of the tolerance inside the bracket; returns the feasible end."""
+    e_hi = _candidate(D, V, hi, lim)[0]
+    if not e_hi <= 0:
+        return hi
+    last = None  # which end moved last
+    for step in range(200):
+        if not hi - lo > _ROOT_TOL * hi:
+            break
+        x = lo + (hi - lo) / 2 if step % 4 == 3 else lo + (hi - lo) * (e_lo / (e_lo - e_hi))
+        margin = 0.25 * _ROOT_TOL * hi
+        x = min(max(x, lo + margin), hi - margin)
+        e = _candidate(D, V, x, lim)[0]
+        if e <= 0:
+            hi, e_hi = x, e
+            if last == "hi":
+                e_lo *= 0.5
+            last = "hi"
+        else:
+            lo, e_lo = x, e
+            if last == "lo":
+                e_hi *= 0.5
+            last = "lo"
+    return hi
 
 
 def _plan(p, V, B, off, Ts, lim):
@@ -109,21 +186,12 @@ def _plan(p, V, B, off, Ts, lim):
     if not V.any() and not D.any():
         return None
     lo = transition(V, *lim)[0]
-    ok = _candidate(D, V, lo, lim)[0]
-    if not ok:
+    e_lo = _candidate(D, V, lo, lim)[0]
+    if e_lo > 0:
         vmax, amax, jmax = lim
         hi = _unit_time(float(np.min(amax / (2 * vmax))),
                         float(np.min(jmax / (2 * vmax))))[0] * (1 + 16 * _EPS)
-        hi = max(hi, lo)
-        for _ in range(200):
-            if not hi - lo > 4 * _EPS * hi:
-                break
-            mid = lo + (hi - lo) / 2
-            if _candidate(D, V, mid, lim)[0]:
-                hi = mid
-            else:
-                lo = mid
-        lo = hi
+        lo = _smallest_feasible(D, V, lo, e_lo, max(hi, lo), lim)
     T1 = lo
     _, W, tau, T2, rho2 = _candidate(D, V, T1, lim)
     nu = max((T1 + tau + T2 - off) / Ts, 0.0)
@@ -142,20 +210,21 @@ def _s_curve(x: float, rho: float):
     """(G, F, F', F'') of the normalised transition at x in [0, 1] (beyond 1: finished)."""
     ap = 1.0 / (1.0 - rho)
     if x < rho:
-        return ap * x ** 3 / (6 * rho), ap * x * x / (2 * rho), ap * x / rho, ap / rho
+        return ap * x * x * x / (6 * rho), ap * x * x / (2 * rho), ap * x / rho, ap / rho
     if x < 1 - rho:
         return ap * (x * x / 2 - rho * x / 2 + rho * rho / 6), ap * (x - rho / 2), ap, 0.0
     if x < 1:
         y = 1 - x
-        return x - 0.5 + ap * y ** 3 / (6 * rho), 1 - ap * y * y / (2 * rho), ap * y / rho, -ap / rho
+        return x - 0.5 + ap * y * y * y / (6 * rho), 1 - ap * y * y / (2 * rho), ap * y / rho, -ap / rho
     return x - 0.5, 1.0, 0.0, 0.0
 
 
 def _transition_state(Va, Vb, T, rho, t):
-    """Displacement, velocity, acceleration, jerk t into the transition Va -> Vb of length T."""
+    """t into the transition Va -> Vb of length T: the displacement as its two terms (Va t and
+    the S-curve's part), velocity, acceleration, jerk."""
     G, F, dF, ddF = _s_curve(_snap(t / T, rho, 1 - rho, 1.0), rho)
     dV = Vb - Va
-    return Va * t + dV * (T * G), Va + dV * F, dV * (dF / T), dV * (ddF / (T * T))
+    return Va * t, dV * (T * G), Va + dV * F, dV * (dF / T), dV * (ddF / (T * T))
 
 
 _SNAP = 64 * _EPS
@@ -174,16 +243,17 @@ def _evaluate(m, t):
     T1, tau, T2 = m["T1"], m["tau"], m["T2"]
     p, V, W = m["p"], m["V"], m["W"]
     t = _snap(t, T1, T1 + tau, tol=_SNAP * (T1 + tau + T2))
+    # sums in the C core's order, left to right (so the two round alike)
     if t < T1:
-        dq, v, a, j = _transition_state(V, W, T1, m["rho1"], t)
-        return np.stack([p + dq, v, a, j], axis=-1)
+        lin, curve, v, a, j = _transition_state(V, W, T1, m["rho1"], t)
+        return np.stack([p + lin + curve, v, a, j], axis=-1)
     q1 = p + (V + W) * (T1 / 2)
     if t < T1 + tau or not T2 > 0:
         z = np.zeros_like(W)
         return np.stack([q1 + W * (t - T1), W, z, z], axis=-1)
     c = t - T1 - tau
-    dq, v, a, j = _transition_state(W, np.zeros_like(W), T2, m["rho2"], c)
-    return np.stack([q1 + W * tau + dq, v, a, j], axis=-1)
+    lin, curve, v, a, j = _transition_state(W, np.zeros_like(W), T2, m["rho2"], c)
+    return np.stack([q1 + W * tau + lin + curve, v, a, j], axis=-1)
 
 
 def multi_axis_reference(targets, *, vmax, amax, jmax, Ts: float, sync: str = "phase",
