@@ -11,7 +11,11 @@ to time-optimal the generator is when targets change mid-motion.
   mode-tuned one against ruckig + its stage and against the offline design with that mode;
 - ``Generator.process`` per sample on 1e6 samples (double and float, one C call);
 - ``design.kinematic`` from Python against the bare C call through cffi;
-- the price in samples of designing a kinematic chain on the grid (docs/sampled-limits.md).
+- the price in samples of designing a kinematic chain on the grid (docs/sampled-limits.md);
+- multi-axis: the phase-synchronised duration against ruckig's ``Synchronization.Phase``
+  (how often ruckig falls back to a curved move, how much shorter and how far off the line
+  it then is), and the C cost of a multi-axis re-plan (``tests/bench/multi_generator_bench.c``
+  compiled here; docs/multi-axis.md).
 
 Nothing asserts a time; the figures are for reading (CPU time, medians of several rounds).
 """
@@ -23,7 +27,7 @@ import time
 
 import numpy as np
 
-__all__ = ["arrival_ratios", "profile_prices", "main", "RUCKIG_RELAX"]
+__all__ = ["arrival_ratios", "profile_prices", "phase_comparison", "main", "RUCKIG_RELAX"]
 
 
 # ruckig's duration is discontinuous at states whose braking velocity v + a|a|/(2 jmax) equals
@@ -122,6 +126,55 @@ def profile_prices(n_cases: int, seed: int = 3) -> dict[str, np.ndarray]:
                 out[key].append(arrive / (T_ruckig + g.stage_duration))
                 out["mode vs design"].append(arrive / T_design)
     return {k: np.array(v) for k, v in out.items()}
+def phase_comparison(n_cases: int, seed: int = 3) -> dict:
+    """Rest-to-rest moves of 2 to 6 axes (limits over 4 orders of magnitude, displacements in
+    [-10, 10]): our time-optimal straight duration T against ruckig's Synchronization.Phase.
+
+    Returns arrays over the cases: ``T``, ``T_ruckig``, ``straight`` (ruckig's move stays on
+    the line to 1e-9 of the move, sampled at 201 instants) and ``deviation`` (its largest
+    distance from the line, relative to the largest displacement)."""
+    import ruckig
+    from .multi_axis import phase_duration
+    rng = np.random.default_rng(seed)
+    rows = []
+    for _ in range(n_cases):
+        n = int(rng.integers(2, 7))
+        v = 10.0 ** rng.uniform(-2, 2, n)
+        a = v * 10.0 ** rng.uniform(-2, 2, n)
+        j = a * 10.0 ** rng.uniform(-2, 2, n)
+        d = rng.uniform(-10, 10, n)
+        inp = ruckig.InputParameter(n)
+        inp.current_position = [0.0] * n
+        inp.target_position = list(d)
+        inp.max_velocity, inp.max_acceleration, inp.max_jerk = list(v), list(a), list(j)
+        inp.synchronization = ruckig.Synchronization.Phase
+        traj = ruckig.Trajectory(n)
+        ruckig.Ruckig(n).calculate(inp, traj)
+        pos = np.array([traj.at_time(t)[0] for t in np.linspace(0, traj.duration, 201)])
+        k = int(np.argmax(np.abs(d)))
+        dev = np.abs(pos - np.outer(pos[:, k] / d[k], d)).max() / np.abs(d).max()
+        rows.append((phase_duration(d, vmax=v, amax=a, jmax=j), traj.duration, dev))
+    T, T_r, dev = (np.array(c) for c in zip(*rows))
+    return dict(T=T, T_ruckig=T_r, deviation=dev, straight=dev < 1e-9)
+
+
+def _multi_replan_bench(quick: bool) -> str:
+    """Compile and run tests/bench/multi_generator_bench.c; its printed table."""
+    import subprocess
+    import tempfile
+    from .bench import ROOT, _compiler
+    cc = _compiler()
+    if cc is None:
+        return "(multi-axis re-plan cost skipped: no C compiler)"
+    with tempfile.TemporaryDirectory() as tmp:
+        exe = f"{tmp}/multi_generator_bench"
+        subprocess.run([cc, "-std=c99", "-O2", "-I", str(ROOT / "c" / "include"),
+                        "-I", str(ROOT / "c" / "src"),
+                        str(ROOT / "tests" / "bench" / "multi_generator_bench.c"),
+                        *map(str, sorted((ROOT / "c" / "src").glob("*.c"))), "-lm", "-o", exe],
+                       check=True)
+        return subprocess.run([exe] + (["--quick"] if quick else []), check=True,
+                              capture_output=True, text=True).stdout.rstrip()
 
 
 def _cpu(fn, rounds: int) -> float:
@@ -219,6 +272,24 @@ def main(argv=None) -> int:
         pr = np.array(prices)
         print(f"grid price, {n} bound(s): mean {pr.mean():.2f}  median {np.median(pr):.2f}  "
               f"p99 {np.percentile(pr, 99):.2f}  max {pr.max():.2f} samples")
+
+    try:
+        c = phase_comparison(n_cases)
+        st, fb = c["straight"], ~c["straight"]
+        print(f"multi-axis rest to rest vs ruckig Synchronization.Phase ({st.size} moves, 2-6 "
+              f"axes): ruckig straight in {st.sum()}, fell back to a curved time-synchronised "
+              f"move in {fb.sum()}")
+        if st.any():
+            rel = np.abs(c["T_ruckig"][st] / c["T"][st] - 1)
+            print(f"  straight: |T_ruckig / T_ours - 1| max {rel.max():.1e}")
+        if fb.any():
+            r, dev = c["T_ruckig"][fb] / c["T"][fb], c["deviation"][fb]
+            print(f"  fallback: T_ruckig / T_ours min {r.min():.4f}  median {np.median(r):.4f}  "
+                  f"max {r.max():.4f}; distance from the straight line / move: median "
+                  f"{np.median(dev):.1e}  max {dev.max():.1e}")
+    except ImportError:
+        print("(multi-axis comparison skipped: ruckig is not installed)")
+    print(_multi_replan_bench(args.quick))
     return 0
 
 
