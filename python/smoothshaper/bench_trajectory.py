@@ -27,7 +27,8 @@ import time
 
 import numpy as np
 
-__all__ = ["arrival_ratios", "profile_prices", "phase_comparison", "main", "RUCKIG_RELAX"]
+__all__ = ["arrival_ratios", "profile_prices", "ruckig_phase", "phase_comparison", "main",
+           "RUCKIG_RELAX"]
 
 
 # ruckig's duration is discontinuous at states whose braking velocity v + a|a|/(2 jmax) equals
@@ -126,6 +127,29 @@ def profile_prices(n_cases: int, seed: int = 3) -> dict[str, np.ndarray]:
                 out[key].append(arrive / (T_ruckig + g.stage_duration))
                 out["mode vs design"].append(arrive / T_design)
     return {k: np.array(v) for k, v in out.items()}
+
+
+def ruckig_phase(delta, vmax, amax, jmax, samples: int = 201) -> tuple[float, float]:
+    """ruckig's Synchronization.Phase rest-to-rest move by ``delta`` (one entry per axis):
+    its duration [s] and its largest distance from the straight line over ``samples`` instants,
+    relative to the largest displacement (0 when ruckig found a phase-synchronised move; when
+    it did not, it falls back to a curved time-synchronised one)."""
+    import ruckig
+    d = np.asarray(delta, dtype=float)
+    n = d.size
+    inp = ruckig.InputParameter(n)
+    inp.current_position = [0.0] * n
+    inp.target_position = list(d)
+    inp.max_velocity, inp.max_acceleration, inp.max_jerk = list(vmax), list(amax), list(jmax)
+    inp.synchronization = ruckig.Synchronization.Phase
+    traj = ruckig.Trajectory(n)
+    ruckig.Ruckig(n).calculate(inp, traj)
+    pos = np.array([traj.at_time(t)[0] for t in np.linspace(0, traj.duration, samples)])
+    k = int(np.argmax(np.abs(d)))
+    return traj.duration, float(np.abs(pos - np.outer(pos[:, k] / d[k], d)).max()
+                                / np.abs(d).max())
+
+
 def phase_comparison(n_cases: int, seed: int = 3) -> dict:
     """Rest-to-rest moves of 2 to 6 axes (limits over 4 orders of magnitude, displacements in
     [-10, 10]): our time-optimal straight duration T against ruckig's Synchronization.Phase.
@@ -133,7 +157,6 @@ def phase_comparison(n_cases: int, seed: int = 3) -> dict:
     Returns arrays over the cases: ``T``, ``T_ruckig``, ``straight`` (ruckig's move stays on
     the line to 1e-9 of the move, sampled at 201 instants) and ``deviation`` (its largest
     distance from the line, relative to the largest displacement)."""
-    import ruckig
     from .multi_axis import phase_duration
     rng = np.random.default_rng(seed)
     rows = []
@@ -143,17 +166,7 @@ def phase_comparison(n_cases: int, seed: int = 3) -> dict:
         a = v * 10.0 ** rng.uniform(-2, 2, n)
         j = a * 10.0 ** rng.uniform(-2, 2, n)
         d = rng.uniform(-10, 10, n)
-        inp = ruckig.InputParameter(n)
-        inp.current_position = [0.0] * n
-        inp.target_position = list(d)
-        inp.max_velocity, inp.max_acceleration, inp.max_jerk = list(v), list(a), list(j)
-        inp.synchronization = ruckig.Synchronization.Phase
-        traj = ruckig.Trajectory(n)
-        ruckig.Ruckig(n).calculate(inp, traj)
-        pos = np.array([traj.at_time(t)[0] for t in np.linspace(0, traj.duration, 201)])
-        k = int(np.argmax(np.abs(d)))
-        dev = np.abs(pos - np.outer(pos[:, k] / d[k], d)).max() / np.abs(d).max()
-        rows.append((phase_duration(d, vmax=v, amax=a, jmax=j), traj.duration, dev))
+        rows.append((phase_duration(d, vmax=v, amax=a, jmax=j), *ruckig_phase(d, v, a, j)))
     T, T_r, dev = (np.array(c) for c in zip(*rows))
     return dict(T=T, T_ruckig=T_r, deviation=dev, straight=dev < 1e-9)
 

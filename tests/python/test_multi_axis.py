@@ -11,6 +11,7 @@ from hypothesis import HealthCheck, given, settings, strategies as st
 
 from smoothshaper.filters import ParameterError
 from smoothshaper.reference.multi_axis import multi_axis_reference, phase_duration
+from smoothshaper.bench_trajectory import ruckig_phase
 from smoothshaper.trajectory import MultiAxisGenerator, multi_axis_move
 
 ruckig = pytest.importorskip("ruckig")
@@ -44,24 +45,6 @@ def assert_within_limits(out, vmax, amax, jmax, Ts, q_before):
         assert np.all(np.abs(d) <= allowed), (order, (np.abs(d) / allowed).max())
 
 
-def ruckig_phase(delta, v, a, j):
-    """(duration, straight): ruckig's Synchronization.Phase rest-to-rest move and whether it
-    found a phase-synchronised one (else it falls back to a curved time-synchronised move)."""
-    n = len(delta)
-    inp = ruckig.InputParameter(n)
-    inp.current_position = [0.0] * n
-    inp.target_position = list(delta)
-    inp.max_velocity, inp.max_acceleration, inp.max_jerk = list(v), list(a), list(j)
-    inp.synchronization = ruckig.Synchronization.Phase
-    traj = ruckig.Trajectory(n)
-    ruckig.Ruckig(n).calculate(inp, traj)
-    ts = np.linspace(0, traj.duration, 41)
-    pos = np.array([traj.at_time(t)[0] for t in ts])
-    k = np.argmax(np.abs(delta))
-    dev = np.abs(pos - np.outer(pos[:, k] / delta[k], delta)).max() / np.abs(delta).max()
-    return traj.duration, dev < 1e-9
-
-
 @settings(**SETTINGS)
 @given(data=st.data(), axes=st.integers(2, 6))
 def test_phase_rest_to_rest_matches_ruckig(data, axes):
@@ -87,7 +70,8 @@ def test_phase_rest_to_rest_matches_ruckig(data, axes):
     near_integer = abs(nu - round(nu)) <= 1e-9 * nu
     assert N == math.ceil(nu) or (near_integer and abs(N - round(nu)) <= 1), (N, nu)
     # ruckig: same duration when it finds a phase-synchronised move, shorter (curved) otherwise
-    T_ruckig, straight = ruckig_phase(delta, v, a, j)
+    T_ruckig, deviation = ruckig_phase(delta, v, a, j, samples=41)
+    straight = deviation < 1e-9
     if straight:
         assert T == pytest.approx(T_ruckig, rel=1e-12, abs=0)
         assert N == math.ceil(T_ruckig / Ts) or near_integer
