@@ -7,6 +7,8 @@ sms_real sms_plan_sqrt(sms_real x)
     int i;
     if (!(x > 0))
         return 0;
+    if (x - x != 0)
+        return x; /* +Inf (an overflowed product): the loop below would never end */
     while (x >= 4) {
         x *= (sms_real)0.25;
         scale *= 2;
