@@ -13,6 +13,9 @@
  * Ad = e^{A Ts}, Bd = A^-1 (Ad - I) B, computed once at fmi2ExitInitializationMode from the
  * closed form of the matrix exponential of an underdamped mode (the only libm calls); each
  * tick is four multiply-adds. At initialization the plant rests at the input (y = u).
+ * The state is kept scaled, z = (wn^2 x0, wn x1) (a position and a velocity over wn, both of
+ * the size of y), so every matrix entry is of order one and the recursion stays finite for
+ * any input up to SMS_INPUT_MAX, whatever wn (x0 = u/wn^2 itself overflows for a slow mode).
  */
 #include <math.h>
 #include <stddef.h>
@@ -25,8 +28,8 @@
 typedef struct ep_model {
     double u, y, Ts, J_l, k_t, b_t;
     int built;
-    double ad[2][2], bd[2], c[2];   /* exact ZOH matrices and the output row */
-    double x[2];                    /* state: x[0] (position-like), x[1] = x[0]' */
+    double ad[2][2], bd[2], c[2];   /* exact ZOH matrices and the output row, scaled */
+    double x[2];                    /* scaled state: wn^2 x0 and wn x0' (see above) */
 } ep_model;
 
 size_t fmu_model_size(void) { return sizeof(ep_model); }
@@ -125,6 +128,9 @@ static int mode(const ep_model *m, double *wn, double *zeta, char *msg, size_t l
     if (!(*zeta < 1.0))
         return snprintf(msg, len, "b_t = %.17g: gives zeta = %.6g, the mode must be underdamped "
                         "(zeta < 1)", m->b_t, *zeta), 1;
+    if (!(*wn > 0.0))
+        return snprintf(msg, len, "k_t / J_l = %.17g: the mode's wn^2 underflows to 0",
+                        m->k_t / m->J_l), 1;
     if (!isfinite(*wn) || !(*wn * m->Ts < 1e3))
         return snprintf(msg, len, "k_t / J_l = %.17g: wn * Ts must be finite and < 1000",
                         m->k_t / m->J_l), 1;
@@ -141,31 +147,32 @@ int fmu_model_plan(const void *model, size_t *bytes, char *msg, size_t len)
 int fmu_model_build(void *model, void *mem, size_t bytes, char *msg, size_t len)
 {
     ep_model *m = (ep_model *)model;
-    double wn, zeta, sigma, wd, e, co, si, a0, a1, d01, d11;
+    double wn, zeta, sigma, wd, e, co, si, a1, d01, d11;
     (void)mem;
     (void)bytes;
     if (mode(m, &wn, &zeta, msg, len) != 0)
         return 1;
-    a0 = wn * wn;
     a1 = 2.0 * zeta * wn;
     sigma = -zeta * wn;
     wd = wn * sqrt(1.0 - zeta * zeta);
     /* e^{A h} = e^{sigma h} (cos(wd h) I + sin(wd h)/wd (A - sigma I)) for an underdamped pair */
     e = exp(sigma * m->Ts);
     co = cos(wd * m->Ts);
-    si = sin(wd * m->Ts) / wd;
+    si = wd > 0.0 ? sin(wd * m->Ts) / wd : m->Ts;   /* wd = 0: zeta^2 rounds to 1, the limit */
     m->ad[0][0] = e * (co - sigma * si);
     m->ad[0][1] = e * si;
-    m->ad[1][0] = -a0 * e * si;
+    m->ad[1][0] = -wn * e * si;   /* -a0 e si / wn: scaled below, wn^2 never formed */
     m->ad[1][1] = e * (co + (-a1 - sigma) * si);
-    /* Bd = A^-1 (Ad - I) B with B = [0; 1] and A^-1 = [-a1 -1; a0 0] / a0 */
+    /* Bd = A^-1 (Ad - I) B with B = [0; 1] and A^-1 = [-a1 -1; a0 0] / a0 (unscaled Ad) */
     d01 = m->ad[0][1];
     d11 = m->ad[1][1] - 1.0;
-    m->bd[0] = (-a1 * d01 - d11) / a0;
-    m->bd[1] = d01;
-    m->c[0] = a0;
-    m->c[1] = a1;
-    m->x[0] = m->u / a0;   /* at rest at u: A x + B u = 0 */
+    /* The scaled state z = S x, S = diag(a0, wn): Ad S^-1 conjugated, S Bd, C S^-1. */
+    m->ad[0][1] *= wn;
+    m->bd[0] = -a1 * d01 - d11;
+    m->bd[1] = wn * d01;
+    m->c[0] = 1.0;
+    m->c[1] = 2.0 * zeta;
+    m->x[0] = m->u;   /* at rest at u: A x + B u = 0 */
     m->x[1] = 0.0;
     m->y = m->u;
     m->built = 1;
