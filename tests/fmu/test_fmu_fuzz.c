@@ -1,7 +1,7 @@
 /*
- * Seeded random FMI 2.0 call sequences against SmoothShaper, or TrajectoryGenerator when built
- * with FMU_TEST_TRAJECTORY, linked in-process (the sanitizer build runs them under ASan and
- * UBSan). Unlike test_fmu_call_sequence.c, which walks the state machine with a few fixed
+ * Seeded random FMI 2.0 call sequences against one model linked in-process: SmoothShaper, or
+ * TrajectoryGenerator (FMU_TEST_TRAJECTORY), MultiAxisGenerator (FMU_TEST_MULTI_AXIS) or
+ * ElasticPlant (FMU_TEST_ELASTIC_PLANT); the sanitizer build runs them under ASan and UBSan. Unlike test_fmu_call_sequence.c, which walks the state machine with a few fixed
  * values, the parameters here are drawn so that about half of the initialisations succeed
  * (random stage chains / limits, with NULL, NaN, Inf, huge, subnormal and negative values
  * mixed in), and every call is checked for:
@@ -10,9 +10,12 @@
  *   same before and after the failing call);
  * - no fmi2OK with a non-finite output (fmi2GetReal after every successful step);
  * - every FMU state saved loads again (fmi2SetFMUstate, and serialise -> deserialise -> set).
- * Usage: test_fmu_fuzz_<Model> [sequences [seed [huge]]]; default 1000 sequences (seconds).
- * Steps are up to 2000 ticks long; "huge" adds steps of up to 1e12 s. The long campaign:
- * build/sanitize/fmu/test_fmu_fuzz_SmoothShaper 100000 (tests/README.md).
+ * Usage: test_fmu_fuzz_<Model> [sequences [seed [huge] [from=S]]]; default 1000 sequences
+ * (seconds). Steps are up to 2000 ticks long; "huge" adds steps of up to 1e12 s. Every sequence
+ * draws from its own generator seeded by (seed, sequence number), and a failure or a slow call
+ * names its sequence, so `test_fmu_fuzz_<Model> 1 <seed> from=<S> trace` replays sequence S alone
+ * and prints every call.
+ * The long campaign: build/release/fmu/test_fmu_fuzz_SmoothShaper 100000 (tests/README.md).
  */
 #include <float.h>
 #include <math.h>
@@ -23,8 +26,12 @@
 #include <time.h>
 
 #include "fmi2Functions.h"
-#ifdef FMU_TEST_TRAJECTORY
+#if defined(FMU_TEST_TRAJECTORY)
 #include "TrajectoryGenerator_variables.h"
+#elif defined(FMU_TEST_MULTI_AXIS)
+#include "MultiAxisGenerator_variables.h"
+#elif defined(FMU_TEST_ELASTIC_PLANT)
+#include "ElasticPlant_variables.h"
 #else
 #include "SmoothShaper_variables.h"
 #endif
@@ -33,14 +40,16 @@
 #define MAX_SLOTS 3
 
 static unsigned long failures, n_calls, n_errors, n_steps, n_inits, n_restores, n_slow;
+static unsigned long n_nonfinite, n_unloadable, sequence;
 static double slowest;
 static unsigned long long rng;
 static char last_message[1024];
 static int huge_steps;   /* third argument "huge": steps of up to 1e12 s (O(1) over held input) */
+static int trace;        /* argument "trace": print every call (to replay one sequence) */
 
 #define CHECK(cond) do { if (!(cond)) { ++failures; \
-    fprintf(stderr, "%s:%d: check failed: %s (last message: %s)\n", __FILE__, __LINE__, #cond, \
-            last_message); } } while (0)
+    fprintf(stderr, "%s:%d: sequence %lu: check failed: %s (last message: %s)\n", __FILE__, \
+            __LINE__, sequence, #cond, last_message); } } while (0)
 
 static void logger(fmi2ComponentEnvironment env, fmi2String name, fmi2Status status,
                    fmi2String category, fmi2String message, ...)
@@ -90,6 +99,7 @@ static double any_real(double lo, double hi)
     return pow(10.0, lo + (hi - lo) * uniform());
 }
 
+#ifndef FMU_TEST_MULTI_AXIS
 /* Damping ratios: near 1 a mode designs delay lines of 1e7+ samples, which the FMUs accept and
  * allocate (no cap but memory): kept to invalid edges and plausible values. */
 static double any_zeta(void)
@@ -99,6 +109,7 @@ static double any_zeta(void)
         return 0.1 * uniform();
     return pick(4) ? pow(10.0, -12.0 + 11.5 * uniform()) : edge[pick(7)];
 }
+#endif
 
 static double seconds(void)
 {
@@ -122,16 +133,27 @@ static size_t fingerprint(fmi2Component c, unsigned char **blob)
     return size;
 }
 
-#ifdef FMU_TEST_TRAJECTORY
+static fmi2Real any_input(void)
+{
+    switch (pick(6)) {
+    case 0: return any_real(-5, 308) * (pick(2) ? 1.0 : -1.0);
+    case 1: return pick(2) ? 1e305 : -1e305;
+    default: return 10.0 * uniform() - 5.0;
+    }
+}
+
+#if defined(FMU_TEST_TRAJECTORY)
 static const fmi2ValueReference outputs[] = { TG_VR_Q, TG_VR_V, TG_VR_A, TG_VR_J };
-#define INPUT_VR TG_VR_TARGET
+#define N_OUTPUTS 4
 #define TS_VR TG_VR_TS
+
+static fmi2ValueReference input_vr(void) { return TG_VR_TARGET; }
 
 static void random_parameters(fmi2Component c)
 {
-    fmi2ValueReference vr[6] = { TG_VR_TS, TG_VR_VMAX, TG_VR_AMAX, TG_VR_JMAX, TG_VR_WN,
-                                 TG_VR_ZETA };
-    fmi2Real v[6];
+    fmi2ValueReference vr[7] = { TG_VR_TS, TG_VR_VMAX, TG_VR_AMAX, TG_VR_JMAX, TG_VR_WN,
+                                 TG_VR_ZETA, TG_VR_Q0 };
+    fmi2Real v[7];
     fmi2Integer profile = (fmi2Integer)pick(4) - (pick(8) == 0 ? 2 : 0);
     fmi2ValueReference pvr = TG_VR_PROFILE;
     v[0] = pick(6) ? pow(10.0, -4.0 + 2.0 * uniform()) : any_real(-4, 2);
@@ -142,13 +164,62 @@ static void random_parameters(fmi2Component c)
     v[3] = v[2] * any_real(-1, 2);
     v[4] = any_real(0, 3);
     v[5] = pick(2) ? 0.0 : any_zeta();
-    fmi2SetReal(c, vr, 6, v);
+    v[6] = pick(2) ? 0.0 : any_input();
+    fmi2SetReal(c, vr, 7, v);
     fmi2SetInteger(c, &pvr, 1, &profile);
+}
+#elif defined(FMU_TEST_MULTI_AXIS)
+/* q, v, a, j of every axis (unused axes read 0) */
+static fmi2ValueReference outputs[4 * MA_MAX_AXES];
+#define N_OUTPUTS (4 * MA_MAX_AXES)
+#define TS_VR MA_VR_TS
+
+static fmi2ValueReference input_vr(void) { return MA_VR_TARGET(pick(MA_MAX_AXES)); }
+
+static void random_parameters(fmi2Component c)
+{
+    fmi2ValueReference ivr[2] = { MA_VR_AXES, MA_VR_SYNC };
+    fmi2Integer iv[2];
+    fmi2ValueReference ts = MA_VR_TS;
+    fmi2Real Ts = pick(6) ? pow(10.0, -4.0 + 2.0 * uniform()) : any_real(-4, 2);
+    unsigned i;
+    iv[0] = pick(10) ? 1 + (fmi2Integer)pick(MA_MAX_AXES) : (fmi2Integer)pick(12) - 2;
+    iv[1] = pick(10) ? (fmi2Integer)pick(2) : (fmi2Integer)pick(6) - 2;
+    fmi2SetInteger(c, ivr, 2, iv);
+    fmi2SetReal(c, &ts, 1, &Ts);
+    for (i = 0; i < MA_MAX_AXES; ++i) {
+        fmi2ValueReference vr[4] = { MA_VR_VMAX(i), MA_VR_AMAX(i), MA_VR_JMAX(i), MA_VR_Q0(i) };
+        fmi2Real v[4];
+        v[0] = any_real(-2, 2);
+        v[1] = v[0] * any_real(-1, 2);
+        v[2] = v[1] * any_real(-1, 2);
+        v[3] = pick(2) ? 0.0 : any_input();
+        fmi2SetReal(c, vr, 4, v);
+    }
+}
+#elif defined(FMU_TEST_ELASTIC_PLANT)
+static const fmi2ValueReference outputs[] = { EP_VR_Y };
+#define N_OUTPUTS 1
+#define TS_VR EP_VR_TS
+
+static fmi2ValueReference input_vr(void) { return EP_VR_U; }
+
+static void random_parameters(fmi2Component c)
+{
+    fmi2ValueReference vr[4] = { EP_VR_TS, EP_VR_J_L, EP_VR_K_T, EP_VR_B_T };
+    fmi2Real v[4];
+    v[0] = pick(6) ? pow(10.0, -4.0 + 2.0 * uniform()) : any_real(-4, 2);
+    v[1] = any_real(-7, 1);
+    v[2] = any_real(-3, 3);
+    v[3] = pick(4) ? 2.0 * sqrt(v[1] * v[2]) * any_zeta() : any_real(-8, 2);
+    fmi2SetReal(c, vr, 4, v);
 }
 #else
 static const fmi2ValueReference outputs[] = { SS_VR_Y };
-#define INPUT_VR SS_VR_U
+#define N_OUTPUTS 1
 #define TS_VR SS_VR_TS
+
+static fmi2ValueReference input_vr(void) { return SS_VR_U; }
 
 static void random_parameters(fmi2Component c)
 {
@@ -188,25 +259,17 @@ static void random_parameters(fmi2Component c)
 }
 #endif
 
-#define N_OUTPUTS (sizeof outputs / sizeof outputs[0])
-
 /* After a successful step or initialisation every output must be finite. */
 static void outputs_finite(fmi2Component c)
 {
-    fmi2Real y[4];
+    fmi2Real y[N_OUTPUTS];
     size_t i;
+    int finite = 1;
     CHECK(fmi2GetReal(c, outputs, N_OUTPUTS, y) == fmi2OK);
     for (i = 0; i < N_OUTPUTS; ++i)
-        CHECK(isfinite(y[i]));
-}
-
-static fmi2Real any_input(void)
-{
-    switch (pick(6)) {
-    case 0: return any_real(-5, 308) * (pick(2) ? 1.0 : -1.0);
-    case 1: return pick(2) ? 1e305 : -1e305;
-    default: return 10.0 * uniform() - 5.0;
-    }
+        finite = finite && isfinite(y[i]);
+    CHECK(finite);
+    n_nonfinite += !finite;
 }
 
 static void run_sequence(unsigned length)
@@ -227,7 +290,7 @@ static void run_sequence(unsigned length)
         double t0, dt;
         int compare = pick(8) == 0;
         fmi2FMUstate *slot = &slots[pick(MAX_SLOTS)];
-        fmi2ValueReference vr = INPUT_VR;
+        fmi2ValueReference vr = input_vr();
         fmi2Real value;
         if (compare)
             n_before = fingerprint(c, &before);
@@ -266,6 +329,7 @@ static void run_sequence(unsigned length)
         case 13: if (*slot != NULL) {
                 st = fmi2SetFMUstate(c, *slot);
                 CHECK(st == fmi2OK);   /* every state saved loads again */
+                n_unloadable += st != fmi2OK;
                 ++n_restores;
                 if (st == fmi2OK) { fmi2GetRealStatus(c, fmi2LastSuccessfulTime, &t); }
             }
@@ -279,6 +343,7 @@ static void run_sequence(unsigned length)
                 CHECK(fmi2SerializeFMUstate(c, *slot, (fmi2Byte *)blob, size) == fmi2OK);
                 st = fmi2DeSerializeFMUstate(c, (fmi2Byte *)blob, size, &back);
                 CHECK(st == fmi2OK);
+                n_unloadable += st != fmi2OK;
                 if (st == fmi2OK) {
                     CHECK(fmi2SetFMUstate(c, back) == fmi2OK);
                     fmi2GetRealStatus(c, fmi2LastSuccessfulTime, &t);
@@ -291,11 +356,13 @@ static void run_sequence(unsigned length)
         case 15: st = fmi2FreeFMUstate(c, slot); break;
         case 16: st = fmi2Terminate(c); break;
         case 17: if (pick(4) == 0) { st = fmi2Reset(c); t = 0.0; } break;
-        case 18: { fmi2Real y[4];
+        case 18: { fmi2Real y[N_OUTPUTS];
             size_t k, ny = pick(8) ? N_OUTPUTS : 0;
             st = fmi2GetReal(c, outputs, ny, pick(20) ? y : NULL);
-            for (k = 0; st == fmi2OK && k < ny; ++k)
+            for (k = 0; st == fmi2OK && k < ny; ++k) {
                 CHECK(isfinite(y[k]));
+                n_nonfinite += !isfinite(y[k]);
+            }
             break; }
         default: { fmi2ValueReference ts = TS_VR;
             value = pick(2) ? any_real(-4, 2) : 1e-3;   /* as random_parameters: see there */
@@ -303,11 +370,25 @@ static void run_sequence(unsigned length)
             break; }
         }
         dt = seconds() - t0;
+        if (trace) {
+            fmi2Real y[N_OUTPUTS];
+            fmi2ValueReference vrs[1];
+            fmi2Real in = 0.0;
+            vrs[0] = vr;
+            fprintf(stderr, "op %2u -> %d", op, (int)st);
+            if (fmi2GetReal(c, outputs, N_OUTPUTS, y) == fmi2OK
+                && fmi2GetReal(c, vrs, 1, &in) == fmi2OK)
+                fprintf(stderr, "  input %.17g, output[0] %.17g", in, y[0]);
+            fprintf(stderr, "  | %s\n", last_message);
+        }
         ++n_calls;
         if (dt > slowest) slowest = dt;
         if (dt > CALL_LIMIT_S) {
+            unsigned char *blob = NULL;
             ++n_slow;
-            fprintf(stderr, "call %u took %.3f s\n", op, dt);
+            fprintf(stderr, "sequence %lu: call %u took %.3f s (serialised state now %lu bytes)\n",
+                    sequence, op, dt, (unsigned long)fingerprint(c, &blob));
+            free(blob);
         }
         CHECK(st == fmi2OK || st == fmi2Error);
         if (st == fmi2Error) {
@@ -328,18 +409,48 @@ static void run_sequence(unsigned length)
     fmi2FreeInstance(c);
 }
 
+/* The sequence's own generator: splitmix64 of (seed, sequence), never 0 (xorshift's fixed point). */
+static unsigned long long sequence_seed(unsigned long long seed, unsigned long s)
+{
+    unsigned long long z = seed * 0x9E3779B97F4A7C15ull + (unsigned long long)s + 1ull;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    z ^= z >> 31;
+    return z != 0 ? z : 0x2545F4914F6CDD1Dull;
+}
+
 int main(int argc, char **argv)
 {
-    unsigned long n = argc > 1 ? strtoul(argv[1], NULL, 10) : 1000ul, s;
-    rng = 0x2545F4914F6CDD1Dull ^ (argc > 2 ? strtoull(argv[2], NULL, 10) : 1ull);
-    huge_steps = argc > 3 && strcmp(argv[3], "huge") == 0;
-    for (s = 0; s < n; ++s)
+    unsigned long n = argc > 1 ? strtoul(argv[1], NULL, 10) : 1000ul, first = 0, s;
+    unsigned long long seed = argc > 2 ? strtoull(argv[2], NULL, 10) : 1ull;
+    int a;
+    for (a = 3; a < argc; ++a) {
+        if (strcmp(argv[a], "huge") == 0)
+            huge_steps = 1;
+        else if (strcmp(argv[a], "trace") == 0)
+            trace = 1;
+        else if (strncmp(argv[a], "from=", 5) == 0)
+            first = strtoul(argv[a] + 5, NULL, 10);
+    }
+#ifdef FMU_TEST_MULTI_AXIS
+    for (a = 0; a < MA_MAX_AXES; ++a) {
+        outputs[a] = MA_VR_Q(a);
+        outputs[MA_MAX_AXES + a] = MA_VR_V(a);
+        outputs[2 * MA_MAX_AXES + a] = MA_VR_A(a);
+        outputs[3 * MA_MAX_AXES + a] = MA_VR_J(a);
+    }
+#endif
+    for (s = first; s < first + n; ++s) {
+        sequence = s;
+        rng = sequence_seed(seed, s);
         run_sequence(20 + pick(120));
+    }
     CHECK(n_slow == 0);
     CHECK(n < 200 || (n_inits > n / 4 && n_steps > n && n_restores > n / 4));
-    printf("fmu_fuzz %s: %lu sequences, %lu calls (%lu errors), %lu initialisations, %lu steps, "
-           "%lu states restored, %lu calls over %.0f ms (slowest %.3f ms), %lu failures\n",
-           FMU_MODEL_IDENTIFIER, n, n_calls, n_errors, n_inits, n_steps, n_restores, n_slow,
-           1e3 * CALL_LIMIT_S, 1e3 * slowest, failures);
+    printf("fmu_fuzz %s: %lu sequences (seed %llu), %lu calls (%lu errors), %lu initialisations, "
+           "%lu steps, %lu states restored; %lu calls over %.0f ms (slowest %.3f ms), "
+           "%lu non-finite outputs after fmi2OK, %lu saved states not loadable, %lu failures\n",
+           FMU_MODEL_IDENTIFIER, n, seed, n_calls, n_errors, n_inits, n_steps, n_restores, n_slow,
+           1e3 * CALL_LIMIT_S, 1e3 * slowest, n_nonfinite, n_unloadable, failures);
     return failures == 0 ? 0 : 1;
 }
