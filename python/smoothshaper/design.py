@@ -9,7 +9,8 @@ continuous optimum. ``kinematic_reference`` is an independent pure-Python implem
 the same design (nested bisection instead of the C core's closed forms per regime), used as
 the test oracle.
 
-Bounds: ``vmax`` on ``|q'|``, ``amax`` on ``|q''|``, ``jmax`` on ``|q'''|``, then ``higher`` for the 4th,
+Bounds: ``vmax`` on ``|q'|``, ``amax`` on ``|q''|``, ``jmax`` on ``|q'''|``, then ``higher`` for
+the 4th,
 5th, ... derivatives (at most 8 in all). Profiles:
 
 * ``"polynomial"``: rectangular stages (trapezoid, double-S, ...);
@@ -62,7 +63,23 @@ def _limits(vmax, amax, jmax, higher) -> list[float]:
 
 
 def profile_name(profile) -> str:
-    """The canonical (lower-case) profile name; ParameterError naming ``profile``."""
+    """The canonical (lower-case) profile name.
+
+    Parameters
+    ----------
+    profile : str
+        ``"polynomial"``, ``"trigonometric"`` or ``"damped"``, any case.
+
+    Returns
+    -------
+    str
+        The name as in :data:`PROFILES`.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``profile``.
+    """
     return _choice("profile", profile, PROFILES)
 
 
@@ -131,25 +148,60 @@ def _design_error(st: int, lib, ffi, *, h, limits, Ts, wn) -> None:
 def kinematic(*, h: float, vmax: float, amax: float | None = None, jmax: float | None = None,
               higher=(), profile: str = "polynomial", wn: float | None = None,
               zeta: float = 0.0, Ts: float | None = None) -> list[Stage]:
-    """Stages of the shortest rest-to-rest chain for displacement ``h`` within the bounds.
+    """Stages of the shortest rest-to-rest chain for displacement ``h`` within the bounds
+    (computed by the C ``sms_kinematic_design``).
 
-    Returns one stage per bound (first ones rectangular, the last per ``profile``); their
-    ``T`` sum to the trajectory's duration. For three bounds and ``profile="polynomial"`` this
-    is the time-optimal jerk-limited trajectory (e.g. h=40, vmax=250, amax=5000, jmax=2e5:
-    T = 0.16, 0.05, 0.025 s).
+    One stage per bound, the first ones rectangular, the last per ``profile``; their ``T``
+    sum to the trajectory's duration. For three bounds and ``profile="polynomial"`` this is
+    the time-optimal jerk-limited (double-S) trajectory, equal to ruckig's durations
+    (e.g. h=40, vmax=250, amax=5000, jmax=2e5: T = 0.16, 0.05, 0.025 s, the values of
+    Biagiotti and Melchiorri, "Online Planning of Multi-Segment Trajectories with
+    Trigonometric Blends", 2011; the construction as a cascade of moving averages:
+    Biagiotti and Melchiorri, *Trajectory Planning for Automatic Machines and Robots*, 2008).
 
-    ``Ts`` [s]: the sample period the chain will run at. With it every stage (except a last
-    stage tuned to a mode, which keeps its exact length and zero) lasts a whole number of
-    samples, at least its continuous length and at least the samples of the stages after it,
-    so that a step of ``h`` through ``Chain(stages, Ts=Ts)`` has backward differences
-    ``|diff(q, i)| / Ts**i`` within the i-th bound at every sample (docs/sampled-limits.md;
-    the price is under one sample per stage for up to three bounds). Without ``Ts`` the
-    lengths are the continuous optimum, for analysis; run at a ``Ts`` off their grid, exact
-    timing can exceed a bound between samples' differences by up to about 13 %.
+    Parameters
+    ----------
+    h : float, keyword-only
+        Displacement [position units], non-zero (its sign is the direction).
+    vmax : float, keyword-only
+        Bound on ``|q'|`` [units/s], > 0.
+    amax : float or None, keyword-only
+        Bound on ``|q''|`` [units/s^2], > 0; None: velocity bound only.
+    jmax : float or None, keyword-only
+        Bound on ``|q'''|`` [units/s^3], > 0 (needs ``amax``).
+    higher : sequence of float, keyword-only
+        Bounds on the 4th, 5th, ... derivatives (at most 8 bounds in all).
+    profile : {"polynomial", "trigonometric", "damped"}, keyword-only
+        Family of the last stage: rectangular (trapezoid, double-S, ...), harmonic (modified
+        trapezoid / double-S; Biagiotti and Melchiorri, "Online Planning of Multi-Segment
+        Trajectories with Trigonometric Blends", 2011) or exponential tuned to the damped
+        mode (Damped-Jerk; Béarée, "New Damped-Jerk trajectory for vibration reduction",
+        2014).
+    wn : float or None, keyword-only
+        Mode the last stage is tuned to [rad/s] (required for ``"damped"``): its length
+        becomes ``k 2 pi/wd`` (harmonic: ``k 3 pi/wd``, k odd), k the multiple giving the
+        shortest trajectory within every bound.
+    zeta : float, keyword-only
+        Damping ratio of that mode, in [0, 1) (default 0).
+    Ts : float or None, keyword-only
+        Sample period the chain will run at [s]: every stage (except one tuned to a mode)
+        then lasts a whole number of samples, at least its continuous length and at least the
+        samples of the stages after it, so a step of ``h`` through ``Chain(stages, Ts=Ts)``
+        has backward differences ``|diff(q, i)| / Ts**i`` within the i-th bound at every
+        sample (docs/sampled-limits.md). None: the continuous optimum, for analysis.
 
-    Raises :class:`~smoothshaper.filters.ParameterError` (a ``ValueError``) naming the
-    offending parameter: a bound, ``h``, ``wn``, ``zeta``, ``Ts``; extreme combinations
-    name the pair whose ratio no duration can carry (e.g. ``h/vmax = 1e+318 s``).
+    Returns
+    -------
+    list of Stage
+        The chain, largest stage first; run at ``Ts`` off their grid (``Ts`` not given),
+        exact timing can exceed a bound between samples' differences by up to about 13 %.
+
+    Raises
+    ------
+    ParameterError
+        Naming the offending parameter: a bound, ``h``, ``wn``, ``zeta``, ``profile``,
+        ``Ts``; extreme combinations name the pair whose ratio no duration can carry (e.g.
+        ``h/vmax = 1e+318 s``).
     """
     # Fast path (plain numbers, no higher bound, no mode): the argument checks the C design
     # makes anyway are left to it, the ratio check runs only to name a refused argument, and
@@ -388,7 +440,50 @@ def _on_grid(T: list[float], Ts: float, h: float, limits: list[float], tuned_tap
 
 def kinematic_reference(*, h, vmax, amax=None, jmax=None, higher=(), profile="polynomial",
                         wn=None, zeta=0.0, Ts=None) -> list[Stage]:
-    """Pure-Python reference of :func:`kinematic` (same contract, independent code)."""
+    """Pure-Python reference of :func:`kinematic` (same contract, independent code: nested
+    bisection instead of the C core's closed forms per regime), the test oracle.
+
+    Parameters
+    ----------
+    h : float, keyword-only
+        Displacement [position units], non-zero (its sign is the direction).
+    vmax : float, keyword-only
+        Bound on ``|q'|`` [units/s], > 0.
+    amax : float or None, keyword-only
+        Bound on ``|q''|`` [units/s^2], > 0; None: velocity bound only.
+    jmax : float or None, keyword-only
+        Bound on ``|q'''|`` [units/s^3], > 0 (needs ``amax``).
+    higher : sequence of float, keyword-only
+        Bounds on the 4th, 5th, ... derivatives (at most 8 bounds in all).
+    profile : {"polynomial", "trigonometric", "damped"}, keyword-only
+        Family of the last stage: rectangular (trapezoid, double-S, ...), harmonic (modified
+        trapezoid / double-S; Biagiotti and Melchiorri, "Online Planning of Multi-Segment
+        Trajectories with Trigonometric Blends", 2011) or exponential tuned to the damped
+        mode (Damped-Jerk; Béarée, "New Damped-Jerk trajectory for vibration reduction",
+        2014).
+    wn : float or None, keyword-only
+        Mode the last stage is tuned to [rad/s] (required for ``"damped"``): its length
+        becomes ``k 2 pi/wd`` (harmonic: ``k 3 pi/wd``, k odd), k the multiple giving the
+        shortest trajectory within every bound.
+    zeta : float, keyword-only
+        Damping ratio of that mode, in [0, 1) (default 0).
+    Ts : float or None, keyword-only
+        Sample period the chain will run at [s]: every stage (except one tuned to a mode)
+        then lasts a whole number of samples, at least its continuous length and at least the
+        samples of the stages after it, so a step of ``h`` through ``Chain(stages, Ts=Ts)``
+        has backward differences ``|diff(q, i)| / Ts**i`` within the i-th bound at every
+        sample (docs/sampled-limits.md). None: the continuous optimum, for analysis.
+
+    Returns
+    -------
+    list of Stage
+        The same chain :func:`kinematic` returns, to rounding.
+
+    Raises
+    ------
+    ParameterError
+        Naming the offending parameter, as :func:`kinematic`.
+    """
     from .reference.filtering import impulse_response
 
     profile = profile_name(profile)
@@ -441,5 +536,21 @@ def kinematic_reference(*, h, vmax, amax=None, jmax=None, higher=(), profile="po
 
 
 def duration(stages) -> float:
-    """Total duration of a designed chain (sum of its stage lengths) [s]."""
+    """Total duration of a designed chain: the sum of its stage lengths.
+
+    Parameters
+    ----------
+    stages : sequence of Stage
+        Smoother stages (their ``T``).
+
+    Returns
+    -------
+    float
+        The duration [s].
+
+    Raises
+    ------
+    AttributeError
+        An item is not a Stage.
+    """
     return float(sum(s.T for s in stages))

@@ -132,7 +132,25 @@ def _stage_fields(stage: Stage) -> tuple[float, ...]:
 
 
 def status_string(status: int, precision: str = "double") -> str:
-    """The C library's one-line description of a status code."""
+    """The C library's one-line description of a status code (``sms_status_string``).
+
+    Parameters
+    ----------
+    status : int
+        An ``sms_status`` value (0 is ``SMS_OK``, errors are negative).
+    precision : {"double", "float"}
+        Which build of the C core to ask (default ``"double"``).
+
+    Returns
+    -------
+    str
+        The message, e.g. ``"Ts must be finite and > 0"``.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``precision`` when it is neither ``"double"`` nor ``"float"``.
+    """
     ffi, lib = _backend(precision)
     return ffi.string(lib.sms_status_string(int(status))).decode()
 
@@ -149,9 +167,28 @@ def _raise_status(status: int, lib, ffi, context: str, parameter: str | None = N
 
 def raise_for_status(status: int, *, context: str, parameter: str | None = None, value=None,
                      precision: str = "double") -> None:
-    """For other C-backed wrappers: do nothing on ``SMS_OK`` (0), else raise
-    :class:`ParameterError` naming ``parameter`` (default: the one the status names, e.g.
-    ``SMS_ERR_LIMIT`` -> ``limits``), with the C message, ``value`` and ``context``."""
+    """For C-backed wrappers: do nothing on ``SMS_OK`` (0), else raise.
+
+    Parameters
+    ----------
+    status : int
+        The ``sms_status`` a C call returned.
+    context : str, keyword-only
+        What was being done, appended to the message.
+    parameter : str or None, keyword-only
+        The parameter to name (default: the one the status names, e.g. ``SMS_ERR_LIMIT``
+        -> ``limits``).
+    value : object, keyword-only
+        The offending value, shown in the message.
+    precision : {"double", "float"}, keyword-only
+        Which build of the C core produced the status.
+
+    Raises
+    ------
+    ParameterError
+        For any non-zero status, naming ``parameter``, with the C message, ``value`` and
+        ``context``.
+    """
     if status != 0:
         ffi, lib = _backend(precision)
         _raise_status(int(status), lib, ffi, context, parameter, value)
@@ -304,11 +341,24 @@ class Chain:
     # -- filtering ------------------------------------------------------------------------
 
     def process(self, u) -> np.ndarray:
-        """Filter the 1-D signal ``u`` (any length, samples at Ts) and return ``y`` (float64,
-        same length). Continues from the current state; ``u`` is not modified.
+        """Filter a block of samples, continuing from the current state.
 
-        Raises ParameterError naming ``u`` if it is not 1-D real or holds NaN/Inf, or a
-        sample beyond :func:`input_max`; the state is then untouched."""
+        Parameters
+        ----------
+        u : array_like of float, shape (n,)
+            Input samples at ``Ts`` (any length, 0 included); not modified.
+
+        Returns
+        -------
+        ndarray of float64, shape (n,)
+            The output ``y[n] = sum_i h[i] u[n-i]`` of the chain (notches: their biquads).
+
+        Raises
+        ------
+        ParameterError
+            Naming ``u`` if it is not 1-D real (complex, boolean and text are refused, not cast),
+            holds NaN/Inf, or a sample beyond :func:`input_max`; the state is then untouched.
+        """
         # The output: u is copied once (complex, boolean or text input is refused, not cast).
         y = np.array(_real_array("u", u, ndim=1), dtype=np.float64)
         if y.size:
@@ -321,7 +371,24 @@ class Chain:
         return y
 
     def step(self, x: float) -> float:
-        """Filter one sample and return the output sample."""
+        """Filter one sample.
+
+        Parameters
+        ----------
+        x : float
+            The input sample.
+
+        Returns
+        -------
+        float
+            The output sample.
+
+        Raises
+        ------
+        ParameterError
+            Naming ``x`` if it is not a finite real number or beyond :func:`input_max`; the
+            state is then untouched.
+        """
         v = _finite("x", x)
         if abs(v) > self._lib.SMS_INPUT_MAX:      # the scalar test first: NumPy costs ~2 us
             _check_input("x", np.float64(v), self.precision)
@@ -330,7 +397,18 @@ class Chain:
         return float(cell[0])
 
     def reset(self, rest: float = 0.0) -> None:
-        """Put every stage at rest at ``rest``, as if the input had been ``rest`` forever."""
+        """Put every stage at rest at ``rest``, as if the input had been ``rest`` forever.
+
+        Parameters
+        ----------
+        rest : float
+            The rest value (default 0).
+
+        Raises
+        ------
+        ParameterError
+            Naming ``rest`` if it is not finite or beyond :func:`input_max`.
+        """
         v = _finite("rest", rest)
         _check_input("rest", np.float64(v), self.precision)
         self._lib.sms_chain_reset(self._chain, v)
@@ -358,13 +436,18 @@ class Chain:
         return np.array(head, dtype=np.float64)
 
     def get_state(self) -> np.ndarray:
-        """The full dynamic state as a float64 array (a copy), tagged with the configuration
-        it belongs to. Restoring it with :meth:`set_state` into this chain or an identically
-        configured one continues the filtering bit-exactly.
+        """The full dynamic state, tagged with the configuration it belongs to.
 
-        Layout: ``[STATE_TAG, STATE_VERSION, precision (0 double, 1 float), Ts, n_stages]``,
-        then per stage the :data:`STATE_STAGE_FIELDS` (kind and timing as indices), then the C
-        core's state (``sms_chain_get_state``: delay lines, recursion states, indices)."""
+        Restoring it with :meth:`set_state` into this chain or an identically configured one
+        continues the filtering bit-exactly.
+
+        Returns
+        -------
+        ndarray of float64, shape (state_size,)
+            A copy: ``[STATE_TAG, STATE_VERSION, precision (0 double, 1 float), Ts, n_stages]``,
+            then per stage the :data:`STATE_STAGE_FIELDS` (kind and timing as indices), then the
+            C core's state (``sms_chain_get_state``: delay lines, recursion states, indices).
+        """
         out = np.zeros(self.state_size, dtype=np.float64)
         head = self._header()
         out[:head.size] = head
@@ -407,10 +490,20 @@ class Chain:
         return None
 
     def set_state(self, state) -> None:
-        """Restore a state from :meth:`get_state`. Raises :class:`ParameterError` naming
-        ``state`` if it has the wrong shape, comes from another configuration (the message
-        says which field differs: precision, Ts, a stage's kind, T, sigma, ...), or does not
-        fit this chain; then nothing is changed."""
+        """Restore a state saved by :meth:`get_state`.
+
+        Parameters
+        ----------
+        state : array_like of float, shape (state_size,)
+            A state of this chain or of an identically configured one.
+
+        Raises
+        ------
+        ParameterError
+            Naming ``state`` if it has the wrong shape, comes from another configuration (the
+            message says which field differs: precision, Ts, a stage's kind, T, sigma, ...), or
+            does not fit this chain; then nothing is changed.
+        """
         s = np.array(_real_array("state", state), dtype=np.float64, order="C", copy=True)
         if s.ndim != 1:
             raise ParameterError("state", f"state must be a 1-D array, got shape {s.shape}")
@@ -433,8 +526,15 @@ class Chain:
     state = property(get_state, set_state, doc="The dynamic state (see get_state/set_state).")
 
     def copy(self) -> "Chain":
-        """An independent chain with the same stages and the same current state: a copy of
-        the C instances and their delay lines (nothing is designed again)."""
+        """An independent chain with the same stages and the same current state.
+
+        A copy of the C instances and their delay lines (nothing is designed again).
+
+        Returns
+        -------
+        Chain
+            The copy; filtering one does not affect the other.
+        """
         ffi, lib = self._ffi, self._lib
         twin = Chain.__new__(Chain)
         twin.__dict__.update(self.__dict__)       # the description; the memory is replaced:
@@ -471,9 +571,26 @@ class Chain:
         return all(s.kind not in _stages.NOTCHES for s in self.stages)
 
     def impulse_response(self, n: int | None = None) -> np.ndarray:
-        """The first ``n`` samples of the impulse response, computed by the C core on a fresh
-        copy of the chain (this chain's state is not touched). ``n`` defaults to
-        :attr:`length` for an FIR chain and is required when the chain contains a notch."""
+        """The first ``n`` samples of the impulse response, computed by the C core on a fresh copy
+        at rest (this chain's state is not touched).
+
+        Parameters
+        ----------
+        n : int or None
+            Number of samples, >= 0; None means :attr:`length` (required when the chain contains
+            a notch).
+
+        Returns
+        -------
+        ndarray of float64, shape (n,)
+            ``h[0..n-1]``.
+
+        Raises
+        ------
+        ParameterError
+            Naming ``n`` when it is missing for an IIR chain, negative, not an integer or too
+            large to allocate.
+        """
         if n is None:
             if not self.is_fir:
                 raise ParameterError("n", "n is required: the chain contains an IIR notch")
@@ -486,7 +603,18 @@ class Chain:
         return twin.process(impulse)
 
     def taps(self) -> np.ndarray:
-        """The FIR taps of the whole chain (:attr:`length` values, DC gain 1)."""
+        """The FIR taps of the whole chain.
+
+        Returns
+        -------
+        ndarray of float64, shape (length,)
+            The impulse response of the FIR chain (DC gain 1).
+
+        Raises
+        ------
+        ParameterError
+            The chain contains a notch (IIR: use :meth:`impulse_response` with ``n``).
+        """
         if not self.is_fir:
             raise ParameterError("stages", "stages: taps() needs an FIR chain; it contains an "
                                  "IIR notch (use impulse_response(n))")
@@ -513,9 +641,34 @@ frequency wd = wn sqrt(1 - zeta^2) [rad/s], decay rate sigma = -zeta wn [1/s].""
 def design_for_mode(kind: str, *, wn: float, zeta: float = 0.0, k: int = 1) -> Stage:
     """The C ``sms_design_for_mode``: a stage of ``kind`` that cancels the mode (wn, zeta).
 
-    rectangular T = k 2pi/wd; harmonic T = k 3pi/wd (k odd); damped harmonic sigma = -zeta wn,
-    T = k 3pi/wd (k odd); exponential sigma = -zeta wn, T = k Td; shapers and notches take the
-    mode (k = 1). Same result as :func:`smoothshaper.stages.for_mode`, computed in C."""
+    With ``wd = wn sqrt(1 - zeta^2)``: rectangular ``T = k 2 pi/wd``; harmonic
+    ``T = k 3 pi/wd`` (k odd); damped harmonic ``sigma = -zeta wn``, ``T = k 3 pi/wd`` (k odd;
+    Biagiotti, Melchiorri and Moriello, "Damped Harmonic Smoother for Trajectory Planning and
+    Vibration Suppression", 2020); exponential ``sigma = -zeta wn``, ``T = k Td``; shapers and
+    notches take the mode (k = 1). Same result as :func:`smoothshaper.stages.for_mode`,
+    computed in C.
+
+    Parameters
+    ----------
+    kind : str
+        Any stage kind (any case).
+    wn : float, keyword-only
+        Natural frequency [rad/s], > 0.
+    zeta : float, keyword-only
+        Damping ratio, in [0, 1) (default 0).
+    k : int, keyword-only
+        Multiple of the zero placed on the mode (>= 1, default 1).
+
+    Returns
+    -------
+    Stage
+        The designed stage.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``kind``, ``wn``, ``zeta`` or ``k``.
+    """
     kind = _stages.kind_name(kind)
     wn_v, zeta_v = _finite("wn", wn), _finite("zeta", zeta)
     k = _integer("k", k, 1)
@@ -536,9 +689,30 @@ def _mode(m) -> Mode:
 
 
 def identify_from_peaks(*, t1: float, p1: float, t2: float, p2: float) -> Mode:
-    """Mode from two successive peaks (t1, p1), (t2, p2) of a free decay (Biagiotti et al. 2020, eq. 16):
-    ``T0 = t2 - t1``, ``sigma = ln(p2/p1)/T0``, ``wd = 2 pi/T0``. Needs t2 > t1 and
-    p1 > p2 > 0 (measured about the final value)."""
+    """Mode from two successive peaks of a free decay, measured about its final value.
+
+    ``T0 = t2 - t1``, ``sigma = ln(p2/p1)/T0``, ``wd = 2 pi/T0`` (Biagiotti, Melchiorri and
+    Moriello, "Damped Harmonic Smoother for Trajectory Planning and Vibration Suppression",
+    2020, eq. 16); computed by the C ``sms_identify_from_peaks``.
+
+    Parameters
+    ----------
+    t1, t2 : float, keyword-only
+        Times of the two peaks [s], ``t2 > t1``.
+    p1, p2 : float, keyword-only
+        Their heights above the final value, ``p1 > p2 > 0``.
+
+    Returns
+    -------
+    Mode
+        ``(wn [rad/s], zeta, wd [rad/s], sigma [1/s])``.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``t2`` (not later than ``t1``, or so close that the rates overflow), ``p2``
+        (not ``p1 > p2 > 0``), or a value that is not finite.
+    """
     values = {n: _finite(n, v) for n, v in (("t1", t1), ("p1", p1), ("t2", t2), ("p2", p2))}
     if not values["t2"] > values["t1"]:
         raise ParameterError("t2", f"t2 must be later than t1, got t1={values['t1']!r}, "
@@ -557,8 +731,26 @@ def identify_from_peaks(*, t1: float, p1: float, t2: float, p2: float) -> Mode:
 
 
 def identify_from_record(x: Sequence[float], *, Ts: float) -> Mode:
-    """Mode of a sampled free decay ``x`` (about its final value) at sample period ``Ts``, by
-    the C least-squares fit over the whole record (n >= 8, at least one visible oscillation)."""
+    """Mode of a sampled free decay by the C least-squares fit over the whole record
+    (``sms_identify_from_record``; docs/design.md).
+
+    Parameters
+    ----------
+    x : array_like of float, shape (n,)
+        The decay, ``n >= 8``, at least one visible oscillation; any constant offset is fitted.
+    Ts : float, keyword-only
+        Sample period [s], > 0.
+
+    Returns
+    -------
+    Mode
+        ``(wn [rad/s], zeta, wd [rad/s], sigma [1/s])``.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``x`` (too short, not finite, no oscillation found) or ``Ts``.
+    """
     Ts_v = _positive("Ts", Ts)
     data = np.ascontiguousarray(_signal("x", x))
     ffi, lib = _backend("double")
@@ -571,8 +763,28 @@ def identify_from_record(x: Sequence[float], *, Ts: float) -> Mode:
 
 
 def notch_pole_zeta_from_bandwidth(*, wn: float, zeta: float = 0.0, bandwidth: float) -> float:
-    """Pole damping xi2 of a notch at ``wn`` (zero damping ``zeta``) whose -3 dB band is
-    ``bandwidth`` rad/s wide (C ``sms_notch_pole_zeta_from_bandwidth``)."""
+    """Pole damping of a notch at ``wn`` whose -3 dB band is ``bandwidth`` wide
+    (C ``sms_notch_pole_zeta_from_bandwidth``).
+
+    Parameters
+    ----------
+    wn : float, keyword-only
+        Notch frequency [rad/s], > 0.
+    zeta : float, keyword-only
+        Damping of the zeros, in [0, 1) (default 0).
+    bandwidth : float, keyword-only
+        Width of the -3 dB band [rad/s], > 0.
+
+    Returns
+    -------
+    float
+        ``notch_pole_zeta`` (> ``zeta``) for :func:`smoothshaper.stages.notch`.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``wn``, ``zeta`` or ``bandwidth``.
+    """
     args = (_finite("wn", wn), _finite("zeta", zeta), _finite("bandwidth", bandwidth))
     ffi, lib = _backend("double")
     out = ffi.new("double *")

@@ -30,7 +30,21 @@ __all__ = ["Plant", "tracking_error", "mode", "two_mass", "cartesian_axis", "ser
 
 @dataclass(frozen=True)
 class Plant:
-    """``x' = A x + B u``, ``y = C x + D u`` (single input, single output)."""
+    """A single-input single-output linear plant ``x' = A x + B u``, ``y = C x + D u``.
+
+    Attributes
+    ----------
+    A : ndarray of float64, shape (n, n)
+        State matrix [1/s].
+    B : ndarray of float64, shape (n,)
+        Input vector.
+    C : ndarray of float64, shape (n,)
+        Output vector.
+    D : float
+        Feed-through.
+    name : str
+        What the model is (for reports).
+    """
     A: np.ndarray
     B: np.ndarray
     C: np.ndarray
@@ -39,16 +53,40 @@ class Plant:
 
     @property
     def order(self) -> int:
+        """The state dimension n."""
         return self.A.shape[0]
 
     def transfer(self, s) -> np.ndarray:
-        """``C (sI - A)^-1 B + D`` at complex ``s`` (any shape)."""
+        """``G(s) = C (sI - A)^-1 B + D`` at complex ``s``.
+
+        Parameters
+        ----------
+        s : array_like of complex
+            Laplace variable [1/s], any shape (not a pole).
+
+        Returns
+        -------
+        ndarray of complex128
+            ``G(s)``, the shape of ``s``.
+
+        Raises
+        ------
+        numpy.linalg.LinAlgError
+            ``s`` is a pole of the plant (``sI - A`` is singular).
+        """
         s = np.asarray(s, dtype=complex)
         eye = np.eye(self.order)
         flat = [self.C @ np.linalg.solve(v * eye - self.A, self.B) + self.D for v in s.ravel()]
         return np.array(flat, dtype=complex).reshape(s.shape)
 
     def poles(self) -> np.ndarray:
+        """The eigenvalues of ``A``.
+
+        Returns
+        -------
+        ndarray of complex128, shape (n,)
+            The poles [1/s].
+        """
         return np.linalg.eigvals(self.A)
 
 
@@ -56,6 +94,13 @@ def _second_order(b1: float, b0: float, a1: float, a0: float, D: float, name: st
     """D + (b1 s + b0)/(s^2 + a1 s + a0) in controllable canonical form."""
     A = np.array([[0.0, 1.0], [-a0, -a1]])
     return Plant(A, np.array([0.0, 1.0]), np.array([b0, b1]), float(D), name)
+
+
+def _check_plant(plant, parameter: str = "plant") -> "Plant":
+    if not isinstance(plant, Plant):
+        raise ParameterError(parameter, f"{parameter} must be a smoothshaper.plants.Plant, got "
+                             f"{type(plant).__name__}")
+    return plant
 
 
 def _mode_args(wn, zeta) -> tuple[float, float]:
@@ -67,20 +112,81 @@ def _mode_args(wn, zeta) -> tuple[float, float]:
 
 
 def tracking_error(*, wn: float, zeta: float = 0.0) -> Plant:
-    """``-s^2/(s^2 + 2 zeta wn s + wn^2) = -1 + (2 zeta wn s + wn^2)/(...)``."""
+    """Tracking error of one mode, ``e/q = -s^2/(s^2 + 2 zeta wn s + wn^2)``: load position
+    minus command for the command ``q`` (the error plotted by Biagiotti, Melchiorri and
+    Moriello, "Damped Harmonic Smoother for Trajectory Planning and Vibration Suppression",
+    2020, Fig. 6-8).
+
+    Parameters
+    ----------
+    wn : float, keyword-only
+        Natural frequency [rad/s], > 0.
+    zeta : float, keyword-only
+        Damping ratio, in [0, 1) (default 0).
+
+    Returns
+    -------
+    Plant
+        The state-space model (second order, controllable canonical form).
+
+    Raises
+    ------
+    ParameterError
+        Naming ``wn`` or ``zeta``.
+    """
     wn, zeta = _mode_args(wn, zeta)
     return _second_order(2 * zeta * wn, wn * wn, 2 * zeta * wn, wn * wn, -1.0, "tracking_error")
 
 
 def mode(*, wn: float, zeta: float = 0.0) -> Plant:
-    """``(2 zeta wn s + wn^2)/(s^2 + 2 zeta wn s + wn^2)``: load position of one mode."""
+    """Load position of one mode, ``(2 zeta wn s + wn^2)/(s^2 + 2 zeta wn s + wn^2)`` (a mass on
+    a spring and damper driven at its base; unit DC gain).
+
+    Parameters
+    ----------
+    wn : float, keyword-only
+        Natural frequency [rad/s], > 0.
+    zeta : float, keyword-only
+        Damping ratio, in [0, 1) (default 0).
+
+    Returns
+    -------
+    Plant
+        The state-space model (second order, controllable canonical form).
+
+    Raises
+    ------
+    ParameterError
+        Naming ``wn`` or ``zeta``.
+    """
     wn, zeta = _mode_args(wn, zeta)
     return _second_order(2 * zeta * wn, wn * wn, 2 * zeta * wn, wn * wn, 0.0, "mode")
 
 
 def two_mass(*, J_l: float, k_t: float, b_t: float) -> Plant:
-    """Elastic transmission G_ml (seed 001 eq. 12): load inertia ``J_l`` [kg m^2], torsional
-    stiffness ``k_t`` [N m/rad], damping ``b_t`` [N m s/rad]; must be underdamped."""
+    """Elastic transmission from motor to load position, ``G_ml`` of Biagiotti and Melchiorri,
+    "Online Planning of Multi-Segment Trajectories with Trigonometric Blends", 2011, eq. 12:
+    ``wn = sqrt(k_t/J_l)``, ``zeta = b_t / (2 sqrt(k_t J_l))``.
+
+    Parameters
+    ----------
+    J_l : float, keyword-only
+        Load inertia [kg m^2], > 0.
+    k_t : float, keyword-only
+        Torsional stiffness [N m/rad], > 0.
+    b_t : float, keyword-only
+        Torsional damping [N m s/rad], >= 0, giving an underdamped mode.
+
+    Returns
+    -------
+    Plant
+        The state-space model (second order, controllable canonical form).
+
+    Raises
+    ------
+    ParameterError
+        Naming ``J_l``, ``k_t`` or ``b_t`` (also when the mode would not be underdamped).
+    """
     J_l, k_t = _positive("J_l", J_l), _positive("k_t", k_t)
     b_t = _nonnegative("b_t", b_t)
     zeta = b_t / (2.0 * math.sqrt(k_t * J_l))
@@ -92,16 +198,55 @@ def two_mass(*, J_l: float, k_t: float, b_t: float) -> Plant:
 
 
 def cartesian_axis(*, m: float, d: float, k: float) -> Plant:
-    """One robot axis, ``(d s + k)/(m s^2 + d s + k)`` (seed 003)."""
+    """One axis of a Cartesian robot, ``(d s + k)/(m s^2 + d s + k)`` (Biagiotti and
+    Melchiorri, "Input Shaping via B-spline Filters for 3-D Trajectory Planning", 2011).
+
+    Parameters
+    ----------
+    m : float, keyword-only
+        Moving mass [kg], > 0.
+    d : float, keyword-only
+        Damping [N s/m], >= 0.
+    k : float, keyword-only
+        Stiffness [N/m], > 0.
+
+    Returns
+    -------
+    Plant
+        The state-space model (second order, controllable canonical form).
+
+    Raises
+    ------
+    ParameterError
+        Naming ``m``, ``d`` or ``k``.
+    """
     m, k = _positive("m", m), _positive("k", k)
     d = _nonnegative("d", d)
     return _second_order(d / m, k / m, d / m, k / m, 0.0, "cartesian_axis")
 
 
 def series(*plants: Plant) -> Plant:
-    """The plants in series, ``plants[0]`` first: ``G = G_last ... G_0``."""
+    """Plants in series, ``plants[0]`` first: ``G = G_last ... G_0``.
+
+    Parameters
+    ----------
+    *plants : Plant
+        At least one plant.
+
+    Returns
+    -------
+    Plant
+        The series connection (order: the sum of the orders).
+
+    Raises
+    ------
+    ParameterError
+        Naming ``plants`` when none is given or one is not a Plant.
+    """
     if not plants:
         raise ParameterError("plants", "plants must hold at least one Plant")
+    for p in plants:
+        _check_plant(p, "plants")
     out = plants[0]
     for nxt in plants[1:]:
         n1, n2 = out.order, nxt.order
@@ -113,12 +258,55 @@ def series(*plants: Plant) -> Plant:
 
 
 def rest_state(plant: Plant, u0: float) -> np.ndarray:
-    """Equilibrium ``x`` for the constant input ``u0`` (``A x + B u0 = 0``)."""
+    """Equilibrium state for a constant input: ``A x + B u0 = 0``.
+
+    Parameters
+    ----------
+    plant : Plant
+        A plant with a non-singular ``A`` (no integrator).
+    u0 : float
+        The constant input.
+
+    Returns
+    -------
+    ndarray of float64, shape (n,)
+        The rest state ``x``.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``plant`` when it is not a Plant.
+    numpy.linalg.LinAlgError
+        ``A`` is singular.
+    """
+    plant = _check_plant(plant)
     return -np.linalg.solve(plant.A, plant.B * float(u0))
 
 
 def zoh_matrices(plant: Plant, Ts: float) -> tuple[np.ndarray, np.ndarray]:
-    """``(Ad, Bd)`` of the exact zero-order-hold discretisation."""
+    """``(Ad, Bd)`` of the exact zero-order-hold discretisation, from the matrix exponential of
+    ``[[A, B], [0, 0]] Ts``.
+
+    Parameters
+    ----------
+    plant : Plant
+        The plant.
+    Ts : float
+        Sample period [s], > 0.
+
+    Returns
+    -------
+    Ad : ndarray of float64, shape (n, n)
+        ``e^(A Ts)``.
+    Bd : ndarray of float64, shape (n,)
+        ``int_0^Ts e^(A t) dt B``.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``plant`` or ``Ts``.
+    """
+    plant = _check_plant(plant)
     Ts = _positive("Ts", Ts)
     n = plant.order
     M = np.zeros((n + 1, n + 1))
@@ -129,11 +317,35 @@ def zoh_matrices(plant: Plant, Ts: float) -> tuple[np.ndarray, np.ndarray]:
 
 
 def simulate_zoh(plant: Plant, u, *, Ts: float, x0=None, oversample: int = 1):
-    """Response to ``u[n]`` held over ``[n Ts, (n+1) Ts)``.
+    """Response of the plant to the command ``u[n]`` held over ``[n Ts, (n+1) Ts)``, exact up to
+    rounding (zero-order-hold discretisation).
 
-    Returns ``(t, y)`` with ``y`` at ``t = j Ts/oversample``, ``j = 0 .. len(u)*oversample - 1``
-    (``y = C x(t) + D u``), exact up to rounding. ``x0`` is the initial state (default 0).
+    Parameters
+    ----------
+    plant : Plant
+        The plant.
+    u : array_like of float, shape (N,)
+        The command, finite.
+    Ts : float, keyword-only
+        Sample period of the command [s], > 0.
+    x0 : array_like of float, shape (n,), keyword-only
+        Initial state (default 0).
+    oversample : int, keyword-only
+        Output points per command sample (>= 1, default 1).
+
+    Returns
+    -------
+    t : ndarray of float64, shape (N * oversample,)
+        Times ``j Ts / oversample`` [s].
+    y : ndarray of float64, shape (N * oversample,)
+        The output ``C x(t) + D u`` at those times.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``plant``, ``u``, ``Ts``, ``x0`` (wrong shape) or ``oversample``.
     """
+    plant = _check_plant(plant)
     u = _finite_signal("u", u)
     m = _integer("oversample", oversample, 1)
     Ts = _positive("Ts", Ts)
@@ -154,10 +366,33 @@ def simulate_zoh(plant: Plant, u, *, Ts: float, x0=None, oversample: int = 1):
 def residual_amplitude(t, y, *, wn: float, zeta: float = 0.0, t_start: float) -> float:
     """Amplitude of the mode's oscillation in ``y`` after ``t_start``, referred to t = 0.
 
-    Least-squares fit of ``y = c + e^{sigma t} (a cos(wd t) + b sin(wd t))`` on
-    ``t >= t_start`` (sigma = -zeta wn, wd = wn sqrt(1 - zeta^2)); returns ``hypot(a, b)``.
-    The ratio of this for a filtered and an unfiltered step is the residual vibration
-    ``|H(p)|`` of the filter (``analysis.residual_vibration``).
+    Least-squares fit of ``y = c + e^(sigma t) (a cos(wd t) + b sin(wd t))`` on
+    ``t >= t_start`` (``sigma = -zeta wn``, ``wd = wn sqrt(1 - zeta^2)``). The ratio of this
+    for a filtered and an unfiltered step is the residual vibration ``|H(p)|`` of the filter
+    (:func:`smoothshaper.analysis.residual_vibration`).
+
+    Parameters
+    ----------
+    t : array_like of float, shape (N,)
+        Times [s].
+    y : array_like of float, shape (N,)
+        The response at those times.
+    wn : float, keyword-only
+        Natural frequency of the mode [rad/s], > 0.
+    zeta : float, keyword-only
+        Its damping ratio, in [0, 1) (default 0).
+    t_start : float, keyword-only
+        Start of the fit [s] (after the command has settled).
+
+    Returns
+    -------
+    float
+        ``hypot(a, b)`` [units of y].
+
+    Raises
+    ------
+    ParameterError
+        Naming ``wn``, ``zeta``, ``t``, ``y`` or ``t_start`` (fewer than 8 samples left).
     """
     wn, zeta = _mode_args(wn, zeta)
     t = _real_array("t", t)
