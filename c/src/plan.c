@@ -199,7 +199,14 @@ void sms_plan_to_rest_shaped(sms_plan *plan, const sms_plan_limits *lim, int sha
         sms_real after = v + a * (a < 0 ? -a : a) / (2 * J), lo = -V, hi = V;
         int it;
         if (after > -V && after < V) {
-            if (D >= distance(v, a, after, A, J, shape, &first, &stop))
+            /* a target at the direct stop to within the rounding of the positions (a running
+             * plan's own goal, or one moved by less than an ulp): vp = after, no search (the
+             * side would be decided by rounding, and each side's plan differs) */
+            sms_real dA = distance(v, a, after, A, J, shape, &first, &stop), e = D - dA;
+            sms_real scale = (q < 0 ? -q : q) + (goal < 0 ? -goal : goal) + (dA < 0 ? -dA : dA);
+            if ((e < 0 ? -e : e) <= (sms_real)PLAN_GRID_TOL * scale)
+                lo = hi = after;
+            else if (e > 0)
                 lo = after;
             else
                 hi = after;

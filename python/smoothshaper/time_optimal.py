@@ -99,10 +99,15 @@ def plan_to_rest(q: float, v: float, a: float, goal: float, *, vmax: float, amax
         after = v + a * abs(a) / (2 * jmax)
         lo, hi = -vmax, vmax
         if -vmax < after < vmax:
-            lo, hi = (after, vmax) if D >= dist(after) else (-vmax, after)
+            # a target at the direct stop to within the rounding of the positions: vp = after
+            dA = dist(after)
+            if abs(D - dA) <= 8 * np.finfo(float).eps * (abs(q) + abs(goal) + abs(dA)):
+                lo = hi = after
+            else:
+                lo, hi = (after, vmax) if D > dA else (-vmax, after)
         try:
-            vp = brentq(lambda x: dist(x) - D, lo, hi, xtol=1e-300, rtol=8.9e-16,
-                        maxiter=1000)
+            vp = after if lo == hi else brentq(lambda x: dist(x) - D, lo, hi, xtol=1e-300,
+                                               rtol=8.9e-16, maxiter=1000)
         except (RuntimeError, ValueError):   # a flat corner or a sign lost to rounding: bisect
             for _ in range(3000):
                 mid = 0.5 * (lo + hi)
