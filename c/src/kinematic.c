@@ -85,6 +85,25 @@ static double tight_root(unsigned d, double C, double logK)
     return S;
 }
 
+/* The end of a solve from stage k whose stage m is at its bound with length Tm and whose
+ * stages below m last `rest`: the tight stages k..m-1 above m are each exactly the sum of
+ * those below them. Lengths into T[k..m] when T != NULL; returns the duration from k. */
+static double at_bound(size_t k, size_t m, double Tm, double rest, double *T)
+{
+    if (Tm < rest) /* rounding at a regime boundary: keep the structure exact */
+        Tm = rest;
+    if (T != NULL) {
+        double below = Tm + rest;
+        size_t i;
+        T[m] = Tm;
+        for (i = m; i-- > k;) {
+            T[i] = below;
+            below += T[i];
+        }
+    }
+    return m > k ? ldexp(Tm + rest, (int)(m - k)) : Tm + rest;
+}
+
 /* Duration D_k(X) of stages k..n-1; lengths into T[k..] when T != NULL. C[j] = D_{j+1}(cap_j)
  * must be known for j >= k. */
 static double solve_from(const sms_kin_plan *p, const double *C, size_t k, double X, double *T)
@@ -131,7 +150,7 @@ static double solve_from(const sms_kin_plan *p, const double *C, size_t k, doubl
     }
     m = best_m;
     {
-        double S = best_S, total, Tm;
+        double S = best_S, total;
         if (T != NULL)
             for (j = k; j < m; ++j)
                 T[j] = ldexp(S, (int)(m - 1 - j));
@@ -147,24 +166,7 @@ static double solve_from(const sms_kin_plan *p, const double *C, size_t k, doubl
                              0.69314718055994530942 - (double)(m - k) * log(S));
             double cap = level_cap(p, m), rest;
             rest = solve_from(p, C, m + 1, cap, T);
-            Tm = X_m / cap;
-            if (Tm < rest) /* rounding at a regime boundary: keep the structure exact */
-                Tm = rest;
-            if (T != NULL) {
-                T[m] = Tm;
-                /* tight stages above m: each exactly the sum of those below it */
-                if (m > k) {
-                    double below = Tm + rest;
-                    size_t i;
-                    for (i = m; i-- > k;) {
-                        T[i] = below;
-                        below += T[i];
-                    }
-                }
-            }
-            if (m > k)
-                return ldexp(Tm + rest, (int)(m - k));
-            return Tm + rest;
+            return at_bound(k, m, X_m / cap, rest, T);
         }
     }
 }
@@ -246,7 +248,7 @@ static double solve_from_plain(const sms_kin_plan *p, const double *C, size_t k,
                                double *T)
 {
     size_t m, best_m = p->n - 1, j;
-    double best_S = 0.0, best_bad = HUGE_VAL, S, Sd, Xm, Tm, rest, cap, c2;
+    double best_S = 0.0, best_bad = HUGE_VAL, S, Sd, Xm, rest, cap, c2;
     for (m = k; m < p->n; ++m) {
         unsigned d = (unsigned)(m - k), i;
         double bad = 1.0, lx;
@@ -298,21 +300,7 @@ static double solve_from_plain(const sms_kin_plan *p, const double *C, size_t k,
     }
     cap = level_cap(p, m);
     rest = solve_from_plain(p, C, m + 1, cap, T);
-    Tm = X / (c2 * Sd) / cap;
-    if (Tm < rest) /* rounding at a regime boundary: keep the structure exact */
-        Tm = rest;
-    if (T != NULL) {
-        T[m] = Tm;
-        if (m > k) {
-            double below = Tm + rest;
-            size_t i;
-            for (i = m; i-- > k;) {
-                T[i] = below;
-                below += T[i];
-            }
-        }
-    }
-    return m > k ? ldexp(Tm + rest, (int)(m - k)) : Tm + rest;
+    return at_bound(k, m, X / (c2 * Sd) / cap, rest, T);
 }
 
 /* D(h) and lengths for the whole chain: in plain arithmetic when the problem is moderate,
