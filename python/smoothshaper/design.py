@@ -9,9 +9,8 @@ continuous optimum. ``kinematic_reference`` is an independent pure-Python implem
 the same design (nested bisection instead of the C core's closed forms per regime), used as
 the test oracle.
 
-Bounds: ``vmax`` on ``|q'|``, ``amax`` on ``|q''|``, ``jmax`` on ``|q'''|``, then ``higher`` for
-the 4th,
-5th, ... derivatives (at most 8 in all). Profiles:
+Bounds: ``vmax`` on ``|q'|``, ``amax`` on ``|q''|``, ``jmax`` on ``|q'''|``, then ``higher``
+for the 4th, 5th, ... derivatives (at most 8 in all). Profiles:
 
 * ``"polynomial"``: rectangular stages (trapezoid, double-S, ...);
 * ``"trigonometric"``: the last stage harmonic (modified trapezoid / double-S, seed 000 eq. 6);

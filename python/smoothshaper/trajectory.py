@@ -6,8 +6,8 @@
   (the argument is in ``c/include/smoothshaper/trajectory.h``); :func:`generator_reference`
   recomputes the same trajectory independently (the plan of :mod:`smoothshaper.time_optimal`,
   then the tuned stage as a convolution with the reference taps).
-* :class:`BSpline` wraps ``sms_bspline`` (Biagiotti & Melchiorri 2011b); :func:`bspline_reference` is
-  the NumPy version (dense solve, ``np.convolve``). :func:`bspline_period` picks the knot
+* :class:`BSpline` wraps ``sms_bspline`` (Biagiotti & Melchiorri 2011b);
+  :func:`bspline_reference` is the NumPy version (dense solve, ``np.convolve``). :func:`bspline_period` picks the knot
   spacing from the modes, ``T >= 2*pi/min(wn)``.
 """
 from __future__ import annotations
@@ -252,9 +252,36 @@ def _via(name, via, axes=None) -> np.ndarray:
 
 
 class BSpline:
-    """Uniform B-spline filter of degree ``degree``, knot spacing ``T`` (rounded to ``N`` whole
-    samples), on ``axes`` axes (C core). See ``sms_bspline`` in trajectory.h for the timing:
-    via-point i (1 <= i <= M-2) is passed at sample ``(i-1) N + k0`` after the start."""
+    """Uniform B-spline interpolating filter on one to three axes, run by the C core
+    (``sms_bspline``): a staircase of control points held ``N`` samples each, through
+    ``degree`` moving averages of ``N`` samples (Biagiotti and Melchiorri, "Input Shaping via
+    B-spline Filters for 3-D Trajectory
+    Planning", 2011).
+
+    Via-point i (1 <= i <= M-2) is passed at sample ``(i-1) N + k0`` after the start; the
+    output rests on the last via-point from :meth:`end_sample`. Zeros of the filter lie at
+    the multiples of ``2 pi / T``, so ``T = 2 pi / wn`` cancels the mode wn
+    (:func:`bspline_period`).
+
+    Parameters
+    ----------
+    degree : int, keyword-only
+        Spline degree, 1..7.
+    T : float, keyword-only
+        Knot spacing [s], >= Ts; rounded to ``N`` whole samples.
+    Ts : float, keyword-only
+        Sample period [s], > 0.
+    axes : int, keyword-only
+        Number of axes, 1..3 (default 1).
+    precision : {"double", "float"}, keyword-only
+        Which build of the C core runs the filter.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``degree``, ``T``, ``Ts``, ``axes`` or ``precision``; ``T`` also when the
+        delay lines would exceed :data:`smoothshaper.filters.MAX_BUFFER_REALS`.
+    """
 
     def __init__(self, *, degree: int, T: float, Ts: float, axes: int = 1,
                  precision: str = "double"):
@@ -277,6 +304,7 @@ class BSpline:
 
     @property
     def N(self) -> int:
+        """The knot spacing in samples, ``round(T/Ts)`` (>= 1)."""
         return int(self._b.N)
 
     @property
@@ -286,10 +314,28 @@ class BSpline:
 
     @property
     def k0(self) -> int:
+        """Delay [samples] from a control point's step to the output passing its via-point."""
         return int(self._b.k0)
 
     def control_points(self, via) -> np.ndarray:
-        """Control points ``(M, axes)`` for via-points ``(M, axes)`` (or ``(M,)`` for one axis)."""
+        """Control points that make the output pass through the via-points (a banded linear solve in
+        the C core, ``sms_bspline_control_points``).
+
+        Parameters
+        ----------
+        via : array_like of float, shape (M, axes) or (M,)
+            Via-points, M >= 2, finite.
+
+        Returns
+        -------
+        ndarray of float64, shape (M, axes)
+            The control points (first and last equal the first and last via-point).
+
+        Raises
+        ------
+        ParameterError
+            Naming ``via`` (shape, axes or non-finite values).
+        """
         q = _via("via", via, self.axes)
         M = q.shape[0]
         ctrl = np.empty_like(q)
@@ -303,26 +349,96 @@ class BSpline:
         return ctrl
 
     def pass_samples(self, M: int) -> np.ndarray:
-        """Samples at which via-points 1 .. M-2 are passed."""
+        """Samples at which the via-points 1 .. M-2 are passed.
+
+        Parameters
+        ----------
+        M : int
+            Number of via-points.
+
+        Returns
+        -------
+        ndarray of int64, shape (M - 2,)
+            ``(i - 1) N + k0`` for i = 1 .. M-2.
+
+        Raises
+        ------
+        TypeError
+            ``M`` is not an integer.
+        """
         return np.array([self._lib.sms_bspline_pass_sample(self._b, i) for i in range(1, M - 1)],
                         dtype=np.int64)
 
     def end_sample(self, M: int) -> int:
-        """First sample from which the output rests on the last via-point."""
+        """First sample from which the output rests on the last via-point.
+
+        Parameters
+        ----------
+        M : int
+            Number of via-points.
+
+        Returns
+        -------
+        int
+            ``(M - 2) N + degree (N - 1)``.
+
+        Raises
+        ------
+        TypeError
+            ``M`` is not a number.
+        """
         return (M - 2) * self.N + self.degree * (self.N - 1)
 
     def staircase(self, control, n_samples: int) -> np.ndarray:
-        """The held control points of the feeding protocol, ``(n_samples, axes)``."""
+        """The held control points of the feeding protocol: control point ``j`` from sample
+        ``(j - 1) N``, the last one held to the end.
+
+        Parameters
+        ----------
+        control : array_like of float, shape (M, axes)
+            Control points (:meth:`control_points`).
+        n_samples : int
+            Length of the staircase.
+
+        Returns
+        -------
+        ndarray of float64, shape (n_samples, axes)
+            The filter's input.
+
+        Raises
+        ------
+        ValueError
+            ``n_samples`` is negative.
+        """
         c = np.asarray(control, dtype=np.float64)
         j = np.minimum(np.arange(n_samples) // self.N + 1, c.shape[0] - 1)
         return c[j]
 
     def process(self, x, rest=None, *, progress=None) -> np.ndarray:
-        """Filter ``x`` ``(n, axes)`` after resting every axis at ``rest`` (default x[0]).
+        """Filter ``x`` after resting every axis at ``rest``.
 
-        ``progress``: None or a callable called as ``progress(samples)`` after every block of
-        samples. The samples are stepped through ``sms_bspline_step`` one at a time on
-        pointers into one contiguous array (about 1 us per sample)."""
+        The samples are stepped through ``sms_bspline_step`` one at a time on pointers into one
+        contiguous array (about 1 us per sample).
+
+        Parameters
+        ----------
+        x : array_like of float, shape (n, axes) or (n,) for one axis
+            Input samples, finite.
+        rest : array_like of float, shape (axes,) or None
+            Rest value of every axis before the first sample (default ``x[0]``).
+        progress : callable or None, keyword-only
+            Called as ``progress(samples)`` after every block of samples.
+
+        Returns
+        -------
+        ndarray of float64, shape (n, axes)
+            The output.
+
+        Raises
+        ------
+        ParameterError
+            Naming ``x`` when it is not real or not finite.
+        """
         x = np.ascontiguousarray(_real_array("x", x).reshape(-1, self.axes))
         if not np.all(np.isfinite(x)):
             raise ParameterError("x", "x must be finite")
@@ -344,8 +460,28 @@ class BSpline:
         return out.astype(np.float64, copy=False)
 
     def interpolate(self, via, *, extra: int = 0, progress=None) -> np.ndarray:
-        """Output ``(end_sample + 1 + extra, axes)`` passing through the via-points
-        (``progress`` as in :meth:`process`)."""
+        """The output passing through the via-points: control points, staircase and filter in one
+        call.
+
+        Parameters
+        ----------
+        via : array_like of float, shape (M, axes) or (M,)
+            Via-points, M >= 2.
+        extra : int, keyword-only
+            Samples appended after the output comes to rest (default 0).
+        progress : callable or None, keyword-only
+            As in :meth:`process`.
+
+        Returns
+        -------
+        ndarray of float64, shape (end_sample + 1 + extra, axes)
+            The interpolating trajectory; via-point i is met at ``pass_samples(M)[i-1]``.
+
+        Raises
+        ------
+        ParameterError
+            Naming ``via``.
+        """
         q = _via("via", via, self.axes)
         ctrl = self.control_points(q)
         n = self.end_sample(q.shape[0]) + 1 + int(extra)
@@ -353,10 +489,36 @@ class BSpline:
 
 
 def bspline_reference(via, *, degree: int, T: float, Ts: float):
-    """NumPy reference: ``(control, output, pass_samples)`` for via-points ``(M, axes)``.
+    """NumPy reference of the B-spline filter: ``(control, output, pass_samples)``.
 
-    Discrete response d of one control point held N samples then p moving averages of N
-    samples (np.convolve), k0 = floor(len(d) - 1) / 2, c_m = d[k0 + m N], dense solve.
+    The discrete response d of one control point held N samples then ``degree`` moving
+    averages of N samples (``np.convolve``), ``k0 = floor((len(d) - 1) / 2)``,
+    ``c_m = d[k0 + m N]``, and a dense solve for the control points.
+
+    Parameters
+    ----------
+    via : array_like of float, shape (M, axes) or (M,)
+        Via-points, M >= 2.
+    degree : int, keyword-only
+        Spline degree, 1..7.
+    T : float, keyword-only
+        Knot spacing [s], >= Ts.
+    Ts : float, keyword-only
+        Sample period [s], > 0.
+
+    Returns
+    -------
+    control : ndarray of float64, shape (M, axes)
+        Control points.
+    output : ndarray of float64, shape (end_sample + 1, axes)
+        The trajectory.
+    pass_samples : ndarray of int64, shape (M - 2,)
+        Where the inner via-points are passed.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``via``, ``degree``, ``T`` or ``Ts``.
     """
     q = _via("via", via)
     degree, T, Ts, _ = _bspline_args(degree, T, Ts, min(q.shape[1], BSPLINE_MAX_AXES))
@@ -399,7 +561,28 @@ def bspline_reference(via, *, degree: int, T: float, Ts: float):
 
 
 def bspline_period(*, wn, Ts: float) -> float:
-    """Shortest knot spacing ``N Ts >= 2 pi / min(wn)`` (Biagiotti & Melchiorri 2011b, sec. IV)."""
+    """Shortest knot spacing ``N Ts >= 2 pi / min(wn)``: the B-spline filter then has a zero on
+    the lowest mode and input-shapes it (Biagiotti and Melchiorri, "Input Shaping via B-spline
+    Filters for 3-D Trajectory
+    Planning", 2011, sec. IV).
+
+    Parameters
+    ----------
+    wn : float or array_like of float, keyword-only
+        Mode(s) to cancel [rad/s], each finite and > 0.
+    Ts : float, keyword-only
+        Sample period [s], > 0.
+
+    Returns
+    -------
+    float
+        The knot spacing ``T`` [s], a whole number of samples.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``wn`` or ``Ts``.
+    """
     w = np.atleast_1d(np.asarray(wn, dtype=np.float64))
     if w.size == 0 or not np.all(np.isfinite(w)) or np.any(w <= 0):
         raise ParameterError(

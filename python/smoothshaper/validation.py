@@ -52,7 +52,19 @@ KIND_VALUES = {k: i for i, k in enumerate(
 
 @dataclass(frozen=True)
 class ModeStage:
-    """A stage the FMU designs itself for a mode (stage[k].design = for_mode)."""
+    """A stage the SmoothShaper FMU designs itself for a mode (``stage[k].design = for_mode``).
+
+    Attributes
+    ----------
+    kind : str
+        A stage kind (:data:`smoothshaper.stages.KINDS`).
+    wn : float
+        Natural frequency of the mode [rad/s].
+    zeta : float
+        Its damping ratio (default 0).
+    k : int
+        Multiple of the zero placed on the mode (default 1).
+    """
     kind: str
     wn: float
     zeta: float = 0.0
@@ -60,7 +72,25 @@ class ModeStage:
 
 
 def start_values(stages, *, Ts: float) -> dict:
-    """fmpy start values of SmoothShaper for a chain of Stage or ModeStage (at most 8)."""
+    """fmpy start values of the SmoothShaper FMU for a chain.
+
+    Parameters
+    ----------
+    stages : sequence of Stage or ModeStage
+        At most 8 stages; unused slots get ``stage[k].kind = -1``.
+    Ts : float, keyword-only
+        The FMU's sample period [s].
+
+    Returns
+    -------
+    dict
+        Variable name -> value (kinds and choices as Integer codes).
+
+    Raises
+    ------
+    ParameterError
+        Naming ``stages`` when there are more than 8.
+    """
     stages = list(stages)
     if len(stages) > 8:
         raise ParameterError("stages", f"stages must hold at most 8 stages, got {len(stages)}")
@@ -81,21 +111,79 @@ def start_values(stages, *, Ts: float) -> dict:
 
 
 def reference_stages(stages) -> list[Stage]:
-    """The Stage list the reference filters: a ModeStage becomes stages.for_mode(...)."""
+    """The Stage list the NumPy reference filters: a ModeStage becomes
+    :func:`smoothshaper.stages.for_mode`.
+
+    Parameters
+    ----------
+    stages : sequence of Stage or ModeStage
+        The chain given to the FMU.
+
+    Returns
+    -------
+    list of Stage
+        The same chain as plain stages.
+
+    Raises
+    ------
+    ParameterError
+        A ModeStage's mode is invalid (naming ``kind``, ``wn``, ``zeta`` or ``k``).
+    """
     return [for_mode(s.kind, wn=s.wn, zeta=s.zeta, k=s.k) if isinstance(s, ModeStage) else s
             for s in stages]
 
 
 def communication_points(*, step: float, stop_time: float) -> np.ndarray:
-    """t_k = k*step, k = 0..round(stop_time/step) (as fmpy computes them)."""
+    """``t_k = k step``, ``k = 0 .. round(stop_time/step)``, as fmpy computes them.
+
+    Parameters
+    ----------
+    step : float, keyword-only
+        Communication step [s], > 0.
+    stop_time : float, keyword-only
+        Last point [s].
+
+    Returns
+    -------
+    ndarray of float64, shape (K,)
+        The points [s].
+
+    Raises
+    ------
+    ZeroDivisionError
+        ``step`` is 0.
+    """
     n = int(round(stop_time / step))
     return np.arange(n + 1) * step
 
 
 def tick_inputs(t: np.ndarray, u: np.ndarray, *, Ts: float) -> tuple[np.ndarray, np.ndarray]:
-    """(x, n_at): the input of every tick (x[n-1] for tick n) and the ticks done by each t_k.
+    """The input of every tick of the FMU's internal sample period and the ticks done by each
+    communication point (the timing of the module docstring).
 
-    Tick n is computed in the step from t_k with n_at[k] < n <= n_at[k+1] and filters u[k].
+    Tick n is computed in the step from ``t_k`` with ``n_at[k] < n <= n_at[k+1]`` and filters
+    ``u[k]`` (set at ``t_k``).
+
+    Parameters
+    ----------
+    t : ndarray of float64, shape (K,)
+        Communication points [s].
+    u : ndarray of float64, shape (K,) or (K, m)
+        Inputs set at them.
+    Ts : float, keyword-only
+        The FMU's sample period [s].
+
+    Returns
+    -------
+    x : ndarray of float64, shape (N,) or (N, m)
+        The input of ticks 1..N.
+    n_at : ndarray of int64, shape (K,)
+        Ticks done by each ``t_k``.
+
+    Raises
+    ------
+    IndexError
+        ``u`` is shorter than ``t``.
     """
     t = np.asarray(t, dtype=float)
     u = np.asarray(u, dtype=float)
@@ -106,7 +194,27 @@ def tick_inputs(t: np.ndarray, u: np.ndarray, *, Ts: float) -> tuple[np.ndarray,
 
 
 def at_communication_points(y_ticks: np.ndarray, n_at: np.ndarray, rest) -> np.ndarray:
-    """Outputs read at the communication points: the last tick's, the rest value before any."""
+    """Outputs read at the communication points: the last tick's, the rest value before any.
+
+    Parameters
+    ----------
+    y_ticks : ndarray of float64, shape (N,) or (N, m)
+        Output of every tick.
+    n_at : ndarray of int64, shape (K,)
+        Ticks done by each communication point (:func:`tick_inputs`).
+    rest : float or ndarray
+        The output before the first tick.
+
+    Returns
+    -------
+    ndarray of float64, shape (K,) or (K, m)
+        The outputs fmpy records.
+
+    Raises
+    ------
+    IndexError
+        ``n_at`` counts more ticks than ``y_ticks`` holds.
+    """
     out = np.empty((n_at.size,) + y_ticks.shape[1:])
     out[...] = rest
     done = n_at > 0
@@ -116,10 +224,31 @@ def at_communication_points(y_ticks: np.ndarray, n_at: np.ndarray, rest) -> np.n
 
 def expected_output(stages, t: np.ndarray, u: np.ndarray, *, Ts: float,
                     rest: float | None = None) -> np.ndarray:
-    """What SmoothShaper reports at the communication points t, given the inputs u set at them.
+    """What the SmoothShaper FMU reports at the communication points, computed with the NumPy
+    reference (the chain starts at rest at ``rest``; the timing of the module docstring).
 
-    Implements the timing of the module docstring with the NumPy reference: the chain starts at
-    rest at ``rest`` (default u[0]: the input at initialization).
+    Parameters
+    ----------
+    stages : sequence of Stage or ModeStage
+        The chain.
+    t : ndarray of float64, shape (K,)
+        Communication points [s] (:func:`communication_points`).
+    u : ndarray of float64, shape (K,)
+        Inputs set at ``t``.
+    Ts : float, keyword-only
+        The FMU's sample period [s].
+    rest : float or None, keyword-only
+        Rest value (default ``u[0]``, the input at initialization).
+
+    Returns
+    -------
+    ndarray of float64, shape (K,)
+        The expected output ``y`` at ``t``.
+
+    Raises
+    ------
+    ParameterError
+        An invalid stage at ``Ts``.
     """
     x, n_at = tick_inputs(t, u, Ts=Ts)
     rest = float(u[0]) if rest is None else float(rest)
@@ -128,9 +257,32 @@ def expected_output(stages, t: np.ndarray, u: np.ndarray, *, Ts: float,
 
 
 def expected_trajectory(t: np.ndarray, target: np.ndarray, *, Ts: float, **limits) -> np.ndarray:
-    """What TrajectoryGenerator reports (columns q, v, a, j) at the communication points t,
-    from the NumPy reference of the generator (``trajectory.generator_reference``). The FMU
-    starts at rest at its parameter q0 (``limits`` may give it; default 0)."""
+    """What the TrajectoryGenerator FMU reports (columns q, v, a, j) at the communication points,
+    from the NumPy reference of the generator
+    (:func:`smoothshaper.trajectory.generator_reference`).
+
+    Parameters
+    ----------
+    t : ndarray of float64, shape (K,)
+        Communication points [s] (:func:`communication_points`).
+    target : ndarray of float64, shape (K,)
+        Targets set at ``t``.
+    Ts : float, keyword-only
+        The FMU's sample period [s].
+    **limits
+        ``vmax``, ``amax``, ``jmax``, ``profile``, ``wn``, ``zeta`` and ``q0`` (the rest
+        position, default 0) as the FMU's parameters.
+
+    Returns
+    -------
+    ndarray of float64, shape (K, 4)
+        q, v, a, j at ``t``.
+
+    Raises
+    ------
+    ParameterError
+        Invalid limits.
+    """
     from .trajectory import generator_reference
     x, n_at = tick_inputs(t, target, Ts=Ts)
     limits = dict(limits)
@@ -140,7 +292,32 @@ def expected_trajectory(t: np.ndarray, target: np.ndarray, *, Ts: float, **limit
 
 
 def simulate(fmu: str, stages, t: np.ndarray, u: np.ndarray, *, Ts: float) -> np.ndarray:
-    """y of SmoothShaper.fmu simulated by fmpy at the communication points t (inputs u at t)."""
+    """Output of the SmoothShaper FMU simulated by fmpy with default settings and
+    ``output_interval`` = the communication step.
+
+    Parameters
+    ----------
+    fmu : str or Path
+        Path of the FMU file.
+    stages : sequence of Stage or ModeStage
+        The chain, set as start values.
+    t : ndarray of float64, shape (K,)
+        Communication points [s] (:func:`communication_points`).
+    u : ndarray of float64, shape (K,)
+        Inputs set at ``t``.
+    Ts : float, keyword-only
+        The FMU's sample period [s].
+
+    Returns
+    -------
+    ndarray of float64, shape (K,)
+        ``y`` at ``t``.
+
+    Raises
+    ------
+    RuntimeError
+        fmpy returned other points than ``t``.
+    """
     import fmpy
     step = float(t[1] - t[0])
     signal = np.zeros(t.size, dtype=[("time", float), ("u", float)])
@@ -164,7 +341,24 @@ def test_input(t: np.ndarray, *, seed: int = 1) -> np.ndarray:
 
 
 def validation_cases(Ts: float) -> list[tuple[str, list]]:
-    """Every family (raw and designed for a mode, exact and paper timing) and a few chains."""
+    """The validation cases: every family (raw and designed for a mode, exact and paper timing)
+    and a few chains, with durations and a mode off the sample grid.
+
+    Parameters
+    ----------
+    Ts : float
+        Sample period [s] the durations are scaled to.
+
+    Returns
+    -------
+    list of (str, list)
+        ``(name, stages)`` pairs.
+
+    Raises
+    ------
+    ParameterError
+        ``Ts`` so large that a stage is invalid.
+    """
     wn, zeta = 2 * math.pi * 7.3, 0.08            # Td ~ 137 Ts at Ts = 1 ms: off the grid
     T = 21.37 * Ts
     cases = [
@@ -210,7 +404,27 @@ FMU_MODELS = {"SmoothShaper": "smoothshaper_model.c", "TrajectoryGenerator": "tr
 
 
 def build_fmus(build_dir: Path, *, source_dir: Path | None = None) -> dict[str, Path]:
-    """Configure and build the FMUs with CMake into build_dir; returns {model: path}."""
+    """Configure and build the FMUs with CMake.
+
+    Parameters
+    ----------
+    build_dir : Path
+        CMake build folder (an existing build is reused).
+    source_dir : Path or None, keyword-only
+        Source checkout (default: the repository this package is installed from).
+
+    Returns
+    -------
+    dict of str to Path
+        Model name -> FMU file, for the FMUs that were built.
+
+    Raises
+    ------
+    RuntimeError
+        No FMU sources under ``source_dir``, or CMake not on PATH.
+    subprocess.CalledProcessError
+        CMake failed.
+    """
     source_dir = Path(source_dir) if source_dir else repo_root()
     if not (source_dir / "fmu" / "CMakeLists.txt").is_file():
         raise RuntimeError(f"no FMU sources under {source_dir} (run from a source checkout)")
@@ -229,13 +443,45 @@ def build_fmus(build_dir: Path, *, source_dir: Path | None = None) -> dict[str, 
 
 
 def fmpy_problems(fmu: Path) -> list[str]:
-    """fmpy's validation of the model description (an empty list means no problem)."""
+    """fmpy's validation of the FMU's model description.
+
+    Parameters
+    ----------
+    fmu : str or Path
+        Path of the FMU file.
+
+    Returns
+    -------
+    list of str
+        The problems found (empty: none).
+
+    Raises
+    ------
+    ImportError
+        fmpy is not installed.
+    """
     from fmpy.validation import validate_fmu
     return list(validate_fmu(str(fmu)))
 
 
 def fmutool_problems(fmu: Path) -> list[str]:
-    """`fmutool -input FMU -check` (fmu-manipulation-toolbox); an empty list means it passed."""
+    """``fmutool -input FMU -check`` (fmu-manipulation-toolbox).
+
+    Parameters
+    ----------
+    fmu : str or Path
+        Path of the FMU file.
+
+    Returns
+    -------
+    list of str
+        The problems reported (empty: it passed; one entry if fmutool is not installed).
+
+    Raises
+    ------
+    OSError
+        fmutool cannot be started.
+    """
     exe = shutil.which("fmutool") or str(Path(sys.executable).with_name("fmutool"))
     if not Path(exe).is_file():
         return ["fmutool not found (pip install fmu-manipulation-toolbox)"]
@@ -249,10 +495,38 @@ def fmutool_problems(fmu: Path) -> list[str]:
 
 def simulate_libcosim(fmu: str, t: np.ndarray, u: np.ndarray, params: dict, *, input_name: str = "u",
                       outputs=("y",)) -> np.ndarray:
-    """Outputs (columns) of an FMU in libcosim (libcosimpy): fixed step t[1]-t[0], the input
-    overridden before every step (as fmpy sets it), outputs read after the step; row 0 is the
-    rest point (libcosim observes only after steps) and is left NaN. ``params``: start values
-    (int values are set as Integers, the FMUs' choice codes; the others as Reals)."""
+    """Outputs of an FMU in libcosim (libcosimpy), the second importer.
+
+    Fixed step ``t[1] - t[0]``, the input overridden before every step (as fmpy sets it),
+    outputs read after the step; row 0 is the rest point (libcosim observes only after steps)
+    and is left NaN.
+
+    Parameters
+    ----------
+    fmu : str or Path
+        Path of the FMU file.
+    t : ndarray of float64, shape (K,)
+        Communication points [s] (:func:`communication_points`).
+    u : ndarray of float64, shape (K,)
+        Inputs set at ``t``.
+    params : dict
+        Start values: int values are set as Integers (the FMUs' choice codes), the others as
+        Reals.
+    input_name : str, keyword-only
+        The input variable (default ``"u"``).
+    outputs : sequence of str, keyword-only
+        Output variables, one column each (default ``("y",)``).
+
+    Returns
+    -------
+    ndarray of float64, shape (K, len(outputs))
+        The outputs at ``t`` (row 0 NaN).
+
+    Raises
+    ------
+    RuntimeError
+        libcosim refused an initial value or a step failed.
+    """
     from fmpy import read_model_description
     from libcosimpy.CosimExecution import CosimExecution
     from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
@@ -287,8 +561,30 @@ def simulate_libcosim(fmu: str, t: np.ndarray, u: np.ndarray, params: dict, *, i
 
 def compare_importers(fmu: Path, stages, *, Ts: float = 1e-3,
                       stop_time: float = 0.3) -> tuple[float, float]:
-    """SmoothShaper with the chain ``stages`` (every parameter set, kinds as Integer codes):
-    (``max |y_libcosim - y_fmpy|``, ``max |y_fmpy - reference|``)."""
+    """The SmoothShaper FMU with the chain ``stages`` in libcosim and in fmpy, and fmpy against
+    the NumPy reference.
+
+    Parameters
+    ----------
+    fmu : str or Path
+        Path of the FMU file.
+    stages : sequence of Stage or ModeStage
+        The chain.
+    Ts : float, keyword-only
+        Sample period and communication step [s] (default 1e-3).
+    stop_time : float, keyword-only
+        Length of the run [s] (default 0.3).
+
+    Returns
+    -------
+    tuple of float
+        ``(max |y_libcosim - y_fmpy|, max |y_fmpy - reference|)``.
+
+    Raises
+    ------
+    RuntimeError
+        An importer failed.
+    """
     t = communication_points(step=Ts, stop_time=stop_time)
     u = test_input(t)
     y_cosim = simulate_libcosim(str(fmu), t, u, start_values(stages, Ts=Ts))[1:, 0]
@@ -299,8 +595,33 @@ def compare_importers(fmu: Path, stages, *, Ts: float = 1e-3,
 
 def compare_importers_trajectory(fmu: Path, *, Ts: float = 1e-3, stop_time: float = 1.0,
                                  profile: int = 0, wn: float = 0.0, zeta: float = 0.0) -> float:
-    """TrajectoryGenerator: ``max |(q, v, a, j)_libcosim - (q, v, a, j)_fmpy|`` for one profile
-    (its Integer code, 0 polynomial, 1 trigonometric, 2 damped with the mode wn, zeta)."""
+    """The TrajectoryGenerator FMU in libcosim and in fmpy for one profile.
+
+    Parameters
+    ----------
+    fmu : str or Path
+        Path of the FMU file.
+    Ts : float, keyword-only
+        Sample period and communication step [s] (default 1e-3).
+    stop_time : float, keyword-only
+        Length of the run [s] (default 1).
+    profile : int, keyword-only
+        Integer code: 0 polynomial, 1 trigonometric, 2 damped (with the mode wn, zeta).
+    wn : float, keyword-only
+        Mode of the damped profile [rad/s].
+    zeta : float, keyword-only
+        Its damping ratio.
+
+    Returns
+    -------
+    float
+        ``max |(q, v, a, j)_libcosim - (q, v, a, j)_fmpy|``.
+
+    Raises
+    ------
+    RuntimeError
+        An importer failed.
+    """
     t = communication_points(step=Ts, stop_time=stop_time)
     target = target_staircase(t)
     params = {"Ts": Ts, **TRAJECTORY_LIMITS, "profile": int(profile), "wn": wn, "zeta": zeta}
@@ -318,6 +639,32 @@ TRAJECTORY_PROFILES = (("polynomial", dict(profile=0)), ("trigonometric", dict(p
 # ---------------------------------------------------------------- report
 
 def compare(fmu: Path, stages, *, Ts: float, step: float, stop_time: float):
+    """One SmoothShaper run by fmpy against the NumPy reference.
+
+    Parameters
+    ----------
+    fmu : str or Path
+        Path of the FMU file.
+    stages : sequence of Stage or ModeStage
+        The chain.
+    Ts : float, keyword-only
+        The FMU's sample period [s].
+    step : float, keyword-only
+        Communication step [s] (any multiple or fraction of Ts).
+    stop_time : float, keyword-only
+        Length of the run [s].
+
+    Returns
+    -------
+    tuple
+        ``(t, u, y, y_ref, err, rel)``: points, inputs, FMU and reference outputs, the
+        maximum absolute error and the error relative to ``max |y_ref|``.
+
+    Raises
+    ------
+    RuntimeError
+        fmpy returned other points than ``t``.
+    """
     t = communication_points(step=step, stop_time=stop_time)
     u = test_input(t)
     y = simulate(str(fmu), stages, t, u, Ts=Ts)
@@ -331,7 +678,24 @@ TRAJECTORY_LIMITS = dict(vmax=1.0, amax=10.0, jmax=200.0)
 
 
 def target_staircase(t: np.ndarray) -> np.ndarray:
-    """Via-points with a reversal mid-motion, a target arriving mid-motion and a tiny step."""
+    """Targets for the TrajectoryGenerator runs: via-points with a reversal mid-motion, a target
+    arriving mid-motion and a tiny step.
+
+    Parameters
+    ----------
+    t : ndarray of float64, shape (K,)
+        Communication points [s].
+
+    Returns
+    -------
+    ndarray of float64, shape (K,)
+        The target at each point [m].
+
+    Raises
+    ------
+    IndexError
+        ``t`` is empty.
+    """
     x = np.full(t.shape, 0.1)
     for at, value in ((0.05, 0.4), (0.4, 0.0), (0.45, 0.35), (1.0, 0.3501)):
         x[t >= at] = value
@@ -339,7 +703,32 @@ def target_staircase(t: np.ndarray) -> np.ndarray:
 
 
 def simulate_trajectory(fmu: str, t: np.ndarray, target: np.ndarray, *, Ts: float, **limits):
-    """(n, 4) outputs q, v, a, j of TrajectoryGenerator.fmu simulated by fmpy."""
+    """Outputs q, v, a, j of the TrajectoryGenerator FMU simulated by fmpy.
+
+    Parameters
+    ----------
+    fmu : str or Path
+        Path of the FMU file.
+    t : ndarray of float64, shape (K,)
+        Communication points [s] (:func:`communication_points`).
+    target : ndarray of float64, shape (K,)
+        Targets set at ``t``.
+    Ts : float, keyword-only
+        The FMU's sample period [s].
+    **limits
+        The FMU's parameters (``vmax``, ``amax``, ``jmax``, ``profile``, ``wn``, ``zeta``,
+        ``q0``).
+
+    Returns
+    -------
+    ndarray of float64, shape (K, 4)
+        q, v, a, j at ``t``.
+
+    Raises
+    ------
+    RuntimeError
+        fmpy returned other points than ``t``.
+    """
     import fmpy
     step = float(t[1] - t[0])
     signal = np.zeros(t.size, dtype=[("time", float), ("target", float)])
@@ -351,7 +740,32 @@ def simulate_trajectory(fmu: str, t: np.ndarray, target: np.ndarray, *, Ts: floa
 
 
 def compare_trajectory(fmu: Path, *, Ts: float, step: float, stop_time: float, **limits):
-    """The runs and the relative max errors of q, v, a and j (FMU vs reference)."""
+    """One TrajectoryGenerator run by fmpy against the NumPy reference.
+
+    Parameters
+    ----------
+    fmu : str or Path
+        Path of the FMU file.
+    Ts : float, keyword-only
+        The FMU's sample period [s].
+    step : float, keyword-only
+        Communication step [s].
+    stop_time : float, keyword-only
+        Length of the run [s].
+    **limits
+        The FMU's parameters.
+
+    Returns
+    -------
+    tuple
+        ``(t, target, y, ref, rel)``: points, targets, FMU and reference outputs (K, 4) and
+        the relative maximum errors of q, v, a, j.
+
+    Raises
+    ------
+    RuntimeError
+        fmpy returned other points than ``t``.
+    """
     limits = limits or TRAJECTORY_LIMITS
     t = communication_points(step=step, stop_time=stop_time)
     target = target_staircase(t)
@@ -404,10 +818,37 @@ RUN_STEPS = ("build", "checks", "importers", "SmoothShaper", "TrajectoryGenerato
 
 def run(out_dir, *, build_dir=None, fmus: dict | None = None, Ts: float = 1e-3,
         stop_time: float = 0.42, plots: bool = True, progress=None) -> bool:
-    """Build, validate and compare; write README.md and PNGs to out_dir. True if all pass.
+    """Build the FMUs, check them (fmpy, fmutool), compare both importers and compare every
+    validation case with the NumPy reference; write ``README.md`` and the plots to
+    ``out_dir``.
 
-    ``progress``: None or a callable called as ``progress(step)`` when each step of
-    :data:`RUN_STEPS` starts."""
+    Parameters
+    ----------
+    out_dir : str or Path
+        Output folder (created).
+    build_dir : str or Path or None, keyword-only
+        CMake build folder (default ``out_dir/build``).
+    fmus : dict or None, keyword-only
+        Model name -> FMU path, to skip the build.
+    Ts : float, keyword-only
+        Sample period of the cases [s] (default 1e-3).
+    stop_time : float, keyword-only
+        Length of the SmoothShaper runs [s] (default 0.42).
+    plots : bool, keyword-only
+        Write the PNG plots (default True).
+    progress : callable or None, keyword-only
+        Called as ``progress(step)`` when each step of :data:`RUN_STEPS` starts.
+
+    Returns
+    -------
+    bool
+        True if every check and comparison passed.
+
+    Raises
+    ------
+    RuntimeError
+        The FMUs cannot be built (no sources, no CMake) or an importer failed.
+    """
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     step = progress or (lambda name: None)

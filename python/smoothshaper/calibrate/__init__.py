@@ -16,6 +16,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from ..errors import ParameterError
 from .candidates import (Candidate, Objective, Reference, evaluate, families,
                          recommend, tune)
 from .modes import Mode, Spectrum, decay_modes, spectral_modes, welch
@@ -27,7 +28,30 @@ __all__ = ["run", "Calibration", "AxisResult", "Mode", "Candidate", "Reference",
 
 @dataclass
 class AxisResult:
-    """Everything found for one axis (one signal column) of one record."""
+    """Everything found for one axis (one signal column) of one record.
+
+    Attributes
+    ----------
+    name : str
+        The column (``"x"``, ``"accel_y"``, ...; ``"file:column"`` with several files).
+    record : Record
+        The parsed record it came from.
+    modes : list of Mode
+        The identified modes, lowest first, each with its frequency, damping and standard
+        deviations.
+    band : (float, float)
+        Frequency band searched [Hz].
+    resolution : float
+        Frequency resolution of the spectrum [Hz].
+    spectrum : Spectrum or None
+        What the modes were fitted on (None for free decays).
+    candidates : list of Candidate
+        Every tuned filter, least remaining vibration first.
+    recommended : Candidate or None
+        The best candidate within the limits (None if none meets them).
+    fit_r2 : float or None
+        Free decays: the fraction of the signal's variance the fit explains.
+    """
     name: str
     record: Record
     modes: list[Mode]
@@ -41,6 +65,21 @@ class AxisResult:
 
 @dataclass
 class Calibration:
+    """The result of :func:`run`: one :class:`AxisResult` per axis and the limits applied.
+
+    Attributes
+    ----------
+    axes : list of AxisResult
+        The axes with a resonance.
+    reference : Reference
+        Sample period of the filters and the reference move.
+    max_delay : float or None
+        Longest impulse response allowed [s].
+    max_smoothing : float or None
+        Largest corner rounding allowed (length units of the reference move).
+    skipped : list of str
+        Axes without a resonance, and why.
+    """
     axes: list[AxisResult]
     reference: Reference
     max_delay: float | None
@@ -115,27 +154,60 @@ def run(paths, *, kind: str = "auto", axis: str = "all", band=None,
         reference: Reference | None = None, max_delay: float | None = None,
         max_smoothing: float | None = None, spread: float = 0.0,
         progress=None) -> Calibration:
-    """Identify the modes in every record of ``paths`` and rank every candidate filter.
+    """Identify the modes in every record and rank every candidate filter.
 
-    ``kind``: auto, raw, decay, psd or frf; ``axis``: x, y, z (a column name) or all;
-    ``band``: (low, high) [Hz] to search; ``reference``: sample period of the filters and the
-    reference move (:class:`Reference`); ``max_delay`` [s]: longest impulse response allowed;
-    ``max_smoothing``: largest corner rounding allowed (length units of ``reference``);
-    ``spread``: how much the modes' natural frequencies vary over the machine's workspace, as a
-    fraction (e.g. 0.05), added in quadrature to each fit's standard deviation of wn, so the
-    candidates are tuned to stay good over that range; ``progress``: callable(done, total) or None. Raises :class:`RecordError` (a ValueError)
-    naming the file, row or column and the reason.
+    Modes come from Welch PSD estimates with least-squares modal fits (raw accelerometer
+    records, PSD tables, frequency responses) or from a least-squares fit of the whole free
+    decay; every filter family is then tuned to the modes and scored by its remaining
+    vibration over the modes' uncertainty (docs/calibrate.md).
+
+    Parameters
+    ----------
+    paths : sequence of str
+        CSV records.
+    kind : {"auto", "raw", "decay", "psd", "frf"}, keyword-only
+        Record kind (default ``"auto"``: from the header and the signal).
+    axis : str, keyword-only
+        ``"x"``, ``"y"``, ``"z"`` (a column name) or ``"all"`` (default).
+    band : (float, float) or None, keyword-only
+        Frequency band to search [Hz] (default: the part of the spectrum a resonance test
+        excited, the table's range for a frequency response).
+    reference : Reference or None, keyword-only
+        Sample period of the filters and the reference move (default ``Reference()``).
+    max_delay : float or None, keyword-only
+        Longest impulse response allowed [s], > 0.
+    max_smoothing : float or None, keyword-only
+        Largest corner rounding allowed (length units of ``reference``), > 0.
+    spread : float, keyword-only
+        Expected variation of the natural frequencies over the workspace as a fraction in
+        [0, 0.5), added in quadrature to each fit's standard deviation (default 0).
+    progress : callable or None, keyword-only
+        Called as ``progress(done, total)`` after each filter family is tuned.
+
+    Returns
+    -------
+    Calibration
+        The axes, their modes, candidates and recommendations.
+
+    Raises
+    ------
+    RecordError
+        (a ValueError) naming the file, row or column and the reason the record cannot be
+        used.
+    ParameterError
+        Naming ``max_delay``, ``max_smoothing``, ``spread``, ``Ts`` or ``accel`` when out of
+        range, or ``Ts`` when a mode lies at or above the filters' Nyquist frequency.
     """
     reference = reference or Reference()
     for name, value in (("max_delay", max_delay), ("max_smoothing", max_smoothing)):
         if value is not None and not (math.isfinite(value) and value > 0):
-            raise ValueError(f"{name} must be finite and > 0, got {value!r}")
+            raise ParameterError(name, f"{name} must be finite and > 0, got {value!r}")
     if not (math.isfinite(spread) and 0 <= spread < 0.5):
-        raise ValueError(f"spread must be in [0, 0.5), got {spread!r}")
+        raise ParameterError("spread", f"spread must be in [0, 0.5), got {spread!r}")
     if not (math.isfinite(reference.Ts) and reference.Ts > 0):
-        raise ValueError(f"Ts must be finite and > 0, got {reference.Ts!r}")
+        raise ParameterError("Ts", f"Ts must be finite and > 0, got {reference.Ts!r}")
     if not (math.isfinite(reference.accel) and reference.accel > 0):
-        raise ValueError(f"accel must be finite and > 0, got {reference.accel!r}")
+        raise ParameterError("accel", f"accel must be finite and > 0, got {reference.accel!r}")
     records = [load(p, kind) for p in paths]
     axes, skipped = [], []
     for rec in records:
@@ -163,7 +235,7 @@ def run(paths, *, kind: str = "auto", axis: str = "all", band=None,
     for res in axes:
         fast = [m for m in res.modes if m.wn < 0.95 * math.pi / reference.Ts]
         if len(fast) < len(res.modes):
-            raise ValueError(f"Ts = {reference.Ts:g} s: a mode at {res.modes[0].wn:.4g} rad/s "
+            raise ParameterError("Ts", f"Ts = {reference.Ts:g} s: a mode at {res.modes[0].wn:.4g} rad/s "
                              "is at or above the filters' Nyquist frequency; use a smaller --Ts")
         objective = Objective(res.modes, reference.Ts)
         h0 = np.ones(1)

@@ -25,14 +25,60 @@ __all__ = ["harmonic_trajectory", "damped_harmonic_trajectory", "exponential_tra
 
 
 def harmonic_trajectory(t, *, T: float, h: float = 1.0) -> np.ndarray:
-    """Step of height ``h`` through the harmonic smoother of duration ``T`` [s]."""
+    """Closed-form step of height ``h`` through the harmonic smoother: ``h/2 (1 - cos(pi t/T))``
+    on ``[0, T]`` (Biagiotti and Melchiorri, "Online Planning of Multi-Segment Trajectories
+    with Trigonometric Blends", 2011).
+
+    Parameters
+    ----------
+    t : array_like of float
+        Times [s], any shape (the step is applied at t = 0).
+    T : float, keyword-only
+        Duration [s], > 0.
+    h : float, keyword-only
+        Step height [position units] (default 1).
+
+    Returns
+    -------
+    ndarray of float64
+        Position at ``t``, the shape of ``t`` (0 before 0, ``h`` after ``T``).
+
+    Raises
+    ------
+    ParameterError
+        Naming ``t``, ``T`` or ``h``.
+    """
     T, h = _positive("T", T), _finite("h", h)
     tc = np.clip(_real_array("t", t), 0.0, T)
     return 0.5 * h * (1.0 - np.cos(math.pi * tc / T))
 
 
 def damped_harmonic_trajectory(t, *, T: float, sigma: float, h: float = 1.0) -> np.ndarray:
-    """Step of height ``h`` through the damped harmonic smoother (``sigma`` <= 0 [1/s])."""
+    """Closed-form step of height ``h`` through the damped harmonic smoother (Biagiotti,
+    Melchiorri and Moriello, "Damped Harmonic Smoother for Trajectory Planning and Vibration
+    Suppression", 2020): the integral of the normalised ``e^(sigma t) sin(pi t/T)``.
+
+    Parameters
+    ----------
+    t : array_like of float
+        Times [s], any shape (the step is applied at t = 0).
+    T : float, keyword-only
+        Duration [s], > 0.
+    sigma : float, keyword-only
+        Decay rate [1/s], <= 0.
+    h : float, keyword-only
+        Step height [position units] (default 1).
+
+    Returns
+    -------
+    ndarray of float64
+        Position at ``t``, the shape of ``t`` (0 before 0, ``h`` after ``T``).
+
+    Raises
+    ------
+    ParameterError
+        Naming ``t``, ``T``, ``sigma`` or ``h``.
+    """
     T, h, sigma = _positive("T", T), _finite("h", h), _finite("sigma", sigma)
     tc = np.clip(_real_array("t", t), 0.0, T)
     x = math.pi * tc / T
@@ -41,7 +87,30 @@ def damped_harmonic_trajectory(t, *, T: float, sigma: float, h: float = 1.0) -> 
 
 
 def exponential_trajectory(t, *, T: float, sigma: float, h: float = 1.0) -> np.ndarray:
-    """Step of height ``h`` through the exponential smoother (``sigma`` <= 0 [1/s])."""
+    """Closed-form step of height ``h`` through the exponential smoother:
+    ``h (e^(sigma t) - 1)/(e^(sigma T) - 1)`` on ``[0, T]`` (a ramp for sigma = 0).
+
+    Parameters
+    ----------
+    t : array_like of float
+        Times [s], any shape (the step is applied at t = 0).
+    T : float, keyword-only
+        Duration [s], > 0.
+    sigma : float, keyword-only
+        Decay rate [1/s], <= 0.
+    h : float, keyword-only
+        Step height [position units] (default 1).
+
+    Returns
+    -------
+    ndarray of float64
+        Position at ``t``, the shape of ``t`` (0 before 0, ``h`` after ``T``).
+
+    Raises
+    ------
+    ParameterError
+        Naming ``t``, ``T``, ``sigma`` or ``h``.
+    """
     T, h, sigma = _positive("T", T), _finite("h", h), _finite("sigma", sigma)
     tc = np.clip(_real_array("t", t), 0.0, T)
     if sigma == 0.0:
@@ -50,8 +119,33 @@ def exponential_trajectory(t, *, T: float, sigma: float, h: float = 1.0) -> np.n
 
 
 def rectangular_chain_trajectory(t, *, T, h: float = 1.0, derivative: int = 0) -> np.ndarray:
-    """Step of height ``h`` through rectangular smoothers of lengths ``T`` (a sequence) [s],
-    or its ``derivative``-th time derivative (0 <= derivative < len(T))."""
+    """Closed-form step of height ``h`` through a chain of moving averages of lengths ``T``, or
+    its ``derivative``-th time derivative: the piecewise polynomial
+    ``h sum_S (-1)^|S| max(t - sum(S), 0)^(n-d) / ((n-d)! prod T)`` over the subsets S of
+    ``T`` (the trapezoidal / double-S trajectory as a cascade of moving averages; Biagiotti
+    and Melchiorri, *Trajectory Planning for Automatic Machines and Robots*, 2008).
+
+    Parameters
+    ----------
+    t : array_like of float
+        Times [s], any shape (the step is applied at t = 0).
+    T : sequence of float, keyword-only
+        Lengths of the n moving averages [s], each > 0.
+    h : float, keyword-only
+        Step height [position units] (default 1).
+    derivative : int, keyword-only
+        d in 0..n-1 (0: position, 1: velocity, ...).
+
+    Returns
+    -------
+    ndarray of float64
+        The d-th derivative [units/s^d] at ``t``, the shape of ``t``.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``t``, ``T`` / ``T[i]``, ``h`` or ``derivative``.
+    """
     Ts = [_positive(f"T[{i}]", v) for i, v in enumerate(np.atleast_1d(T))]
     if not Ts:
         raise ParameterError("T", "T must hold at least one duration")
