@@ -3,6 +3,8 @@ and the report: the levels users compare against (1 %, 5 %, 20 %, 100 %) must st
 every plot, which a linear scale up to the hundreds of percent far off a mode cannot do."""
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 __all__ = ["PRV_LEVELS", "PRV_CONTOURS", "percent_axis", "prv_map", "difference_map"]
@@ -20,7 +22,12 @@ def percent_axis(ax, *, top: float = 110.0) -> None:
     from matplotlib.ticker import FixedLocator, FormatStrFormatter, NullLocator
     ax.set_yscale("symlog", linthresh=1.0, linscale=0.6)
     ax.set_ylim(0, top)
-    ticks = [t for t in (0, 1, 2, 5, 10, 20, 50, 100, 200, 500, 1000) if t <= top]
+    if top <= 2000:
+        ticks = [t for t in (0, 1, 2, 5, 10, 20, 50, 100, 200, 500, 1000) if t <= top]
+    else:       # far beyond 100 %: decades only, at most about eight labels
+        top_decade = int(math.floor(math.log10(top)))
+        every = max(1, math.ceil((top_decade - 2) / 6))
+        ticks = [0] + [10.0 ** k for k in range(2, top_decade + 1, every)]
     ax.yaxis.set_major_locator(FixedLocator(ticks))
     ax.yaxis.set_minor_locator(NullLocator())
     ax.yaxis.set_major_formatter(FormatStrFormatter("%g"))

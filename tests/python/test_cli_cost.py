@@ -225,3 +225,26 @@ def test_calibrate_and_report_progress_cover_their_phases(tmp_path, capsys):
     states = _bar_states(err)
     assert list(dict.fromkeys(label for label, _ in states)) == ["seed004", "shapers"]
     assert states[-1][1] == 100.0 and err.endswith("100.0%\n")
+
+
+# -- the scales of the figures ---------------------------------------------------------------
+
+def test_percent_scales_keep_1_5_20_100_apart():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from smoothshaper._plotting import PRV_CONTOURS, percent_axis, prv_map
+    fig, (a, b, c) = plt.subplots(1, 3)
+    percent_axis(a, top=110.0)
+    ticks = list(a.get_yticks())
+    assert {1, 5, 20, 100} <= set(ticks) and a.get_yscale() == "symlog"
+    # on the axis, 1 %, 5 %, 20 % and 100 % are at least a tenth of the height apart
+    pos = [a.transLimits.transform(a.transScale.transform((0, v)))[1] for v in (1, 5, 20, 100)]
+    assert min(b - a_ for a_, b in zip(pos, pos[1:])) > 0.1
+    percent_axis(b, top=1e20)
+    assert 3 <= len(b.get_yticks()) <= 9
+    x, y = np.linspace(0.5, 2, 30), np.linspace(0, 0.3, 20)
+    cs = prv_map(c, x, y, 150 * np.abs(np.subtract.outer(y, x - 1)) * 3)
+    assert {1, 5, 20, 100} <= set(cs.levels) and len(c.collections or c.get_children()) > 0
+    assert set(PRV_CONTOURS) == {1, 5, 20, 100}
+    plt.close(fig)
