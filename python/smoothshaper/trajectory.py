@@ -57,24 +57,47 @@ def _generator_config(ffi, vmax, amax, jmax, profile, wn, zeta):
 
 
 class Generator:
-    """Online multi-point trajectory generator (C core).
+    """Online multi-point trajectory generator (C core, ``sms_generator``).
 
-    Parameters (keyword-only): ``vmax``, ``amax``, ``jmax`` (> 0), ``Ts`` sample period [s],
-    ``profile`` ("polynomial", "trigonometric", "damped"), optional mode ``wn`` [rad/s] and
-    ``zeta``, ``q0`` the initial position (the generator starts at rest there, default 0),
-    ``precision`` ("double" or "float").
+    :meth:`process` takes the target (a staircase) per sample and returns position,
+    velocity, acceleration and jerk: the exact values and derivatives of the continuous
+    output at the sample instants, so the backward differences of the samples keep the
+    bounds too (docs/sampled-limits.md). Every new target is planned time-optimally from the
+    current state, for any ``Ts``: the polynomial profile in ruckig's jerk-limited duration,
+    the trigonometric one with half-cosine transitions of the acceleration (jerk continuous,
+    peak ``jmax``), both rounded up to the sample grid. With a mode ``wn`` the plan runs
+    through the shortest stage tuned to it (exact zero, every bound kept), which adds its
+    length :attr:`stage_duration`.
 
-    :meth:`process` takes the target (staircase) per sample and returns an ``(n, 4)`` array of
-    position, velocity, acceleration and jerk: the exact values and derivatives of the
-    continuous output at the sample instants, so the backward differences of the samples keep
-    the bounds too (docs/sampled-limits.md). Every new target is planned time-optimally from
-    the current state, for any ``Ts``: the polynomial profile in ruckig's jerk-limited
-    duration, the trigonometric one with half-cosine transitions of the acceleration (jerk
-    continuous, peak ``jmax``; rest to rest the trigonometric kinematic design's duration),
-    both rounded up to the sample grid. With a mode ``wn`` the plan runs through the shortest
-    stage tuned to it (exact zero, every bound kept), which adds its length
-    :attr:`stage_duration`. Errors: :class:`~smoothshaper.filters.ParameterError` naming the
-    parameter.
+    Parameters
+    ----------
+    vmax : float, keyword-only
+        Velocity bound [units/s], > 0.
+    amax : float, keyword-only
+        Acceleration bound [units/s^2], > 0.
+    jmax : float, keyword-only
+        Jerk bound [units/s^3], > 0.
+    Ts : float, keyword-only
+        Sample period [s], > 0.
+    profile : {"polynomial", "trigonometric", "damped"}, keyword-only
+        Jerk-limited (linear acceleration ramps), half-cosine acceleration transitions
+        (Biagiotti and Melchiorri, "Online Planning of Multi-Segment Trajectories with
+        Trigonometric Blends", 2011) or the Damped-Jerk stage (Béarée, "New Damped-Jerk
+        trajectory for vibration reduction", 2014; needs ``wn``).
+    wn : float or None, keyword-only
+        Mode [rad/s] the plan is filtered for (a stage tuned to it, :func:`tuned_stage`).
+    zeta : float, keyword-only
+        Its damping ratio, in [0, 1) (default 0).
+    q0 : float, keyword-only
+        Initial position: the generator starts at rest there (default 0).
+    precision : {"double", "float"}, keyword-only
+        Which build of the C core runs it.
+
+    Raises
+    ------
+    ParameterError
+        Naming the parameter out of range (a bound, ``Ts``, ``profile``, ``wn``, ``zeta``,
+        ``q0``, ``precision``) or the pair of bounds whose ratio no duration can carry.
     """
 
     def __init__(self, *, vmax: float, amax: float, jmax: float, Ts: float,
@@ -120,12 +143,40 @@ class Generator:
         return int(self._gen.stage_length)
 
     def reset(self, position: float | None = None) -> None:
-        """Rest at ``position`` (default: ``q0``)."""
+        """Rest at ``position``: q = position, v = a = j = 0.
+
+        Parameters
+        ----------
+        position : float or None
+            The rest position (default: ``q0``).
+
+        Raises
+        ------
+        ParameterError
+            Naming ``position`` when it is not finite.
+        """
         position = self.q0 if position is None else _finite("position", position)
         self._lib.sms_generator_reset(self._gen, position)
 
     def process(self, targets) -> np.ndarray:
-        """Targets ``(n,)`` -> ``(n, 4)`` q, v, a, j; one C call for the whole block."""
+        """Run a block of targets, one C call for the whole block.
+
+        Parameters
+        ----------
+        targets : array_like of float, shape (n,)
+            The target at every sample, finite.
+
+        Returns
+        -------
+        ndarray of float64, shape (n, 4)
+            Columns q [units], v [units/s], a [units/s^2], j [units/s^3] at the samples.
+
+        Raises
+        ------
+        ParameterError
+            Naming ``targets`` when it is not a finite real 1-D array; the state is then
+            untouched.
+        """
         x = _targets("targets", targets)
         dtype = _real_dtype(self.precision)
         xin = np.ascontiguousarray(x, dtype=dtype)
@@ -137,14 +188,31 @@ class Generator:
 
     def get_state(self) -> np.ndarray:
         """The dynamic state as a float64 array (a copy); :meth:`set_state` on this or an
-        identically configured generator continues bit-exactly."""
+        identically configured generator continues bit-exactly.
+
+        Returns
+        -------
+        ndarray of float64
+            The state (``sms_generator_get_state``).
+        """
         out = np.empty(self._lib.sms_generator_state_count(self._gen), dtype=np.float64)
         self._lib.sms_generator_get_state(self._gen, self._ffi.from_buffer("double[]", out))
         return out
 
     def set_state(self, state) -> None:
-        """Restore a state from :meth:`get_state`. Raises ParameterError naming ``state`` if it
-        does not fit this generator; then nothing is changed."""
+        """Restore a state saved by :meth:`get_state`.
+
+        Parameters
+        ----------
+        state : array_like of float
+            A state of this generator or of an identically configured one.
+
+        Raises
+        ------
+        ParameterError
+            Naming ``state`` if it has the wrong size, comes from another configuration or is
+            not a valid state; then nothing is changed.
+        """
         s = np.ascontiguousarray(_real_array("state", state, ndim=1), dtype=np.float64)
         st = self._lib.sms_generator_set_state(self._gen, self._ffi.from_buffer("double[]", s),
                                                s.size)
@@ -162,10 +230,34 @@ class Generator:
 # ----------------------------------------------------------------------------------------------
 
 def tuned_stage(profile: str, wn: float, zeta: float):
-    """The shortest stage whose zero cancels the mode (as the C generator builds it): a
-    rectangular (polynomial) or exponential (damped, sigma = -zeta wn) stage of one damped
-    period 2 pi/wd, or a half sine (trigonometric; damped half sine when zeta > 0) of
-    3 pi/wd, wd = wn sqrt(1 - zeta^2), exact timing, k = 1."""
+    """The shortest stage whose zero cancels the mode, as the C generator builds it: a
+    rectangular (polynomial) or exponential (damped, ``sigma = -zeta wn``) stage of one damped
+    period ``2 pi/wd``, or a half sine (trigonometric; damped half sine when zeta > 0) of
+    ``3 pi/wd``, ``wd = wn sqrt(1 - zeta^2)``, exact timing, k = 1 (Biagiotti, Melchiorri and
+    Moriello, "Damped Harmonic Smoother for Trajectory Planning and Vibration Suppression",
+    2020).
+
+    Parameters
+    ----------
+    profile : {"polynomial", "trigonometric", "damped"}
+        The generator's profile.
+    wn : float
+        Natural frequency [rad/s], > 0.
+    zeta : float
+        Damping ratio, in [0, 1).
+
+    Returns
+    -------
+    Stage
+        The tuned stage.
+
+    Raises
+    ------
+    ParameterError
+        The resulting stage is invalid (``wn`` not > 0 gives an invalid ``T``).
+    ValueError
+        ``zeta`` > 1 (square root of a negative number).
+    """
     from .stages import Stage
     wd = wn * math.sqrt(1.0 - zeta * zeta)
     if profile == "trigonometric":
@@ -178,14 +270,48 @@ def tuned_stage(profile: str, wn: float, zeta: float):
 
 def generator_reference(targets, *, vmax, amax, jmax, Ts, profile="polynomial", wn=None,
                         zeta=0.0, position=0.0) -> np.ndarray:
-    """NumPy reference of :class:`Generator`: ``(n, 4)`` array of q, v, a and j.
+    """NumPy reference of :class:`Generator`.
 
     The plan is :func:`smoothshaper.time_optimal.time_optimal_reference` (linear ramps of the
-    acceleration, or half-cosine transitions for the trigonometric profile; ``position`` is
-    the initial rest). With a mode, q, v, a, j are the plan's convolved with the taps of
-    :func:`tuned_stage` from the reference filters (``reference.filtering.impulse_response``,
-    independent of the C smoother), the plan resting at ``position`` before sample 0; once
-    the plan has rested on the target for all L taps, the output is the target exactly.
+    acceleration, or half-cosine transitions for the trigonometric profile). With a mode,
+    q, v, a, j are the plan's convolved with the taps of :func:`tuned_stage` from the
+    reference filters (independent of the C smoother), the plan resting at ``position``
+    before sample 0; once the plan has rested on the target for all L taps, the output is
+    the target exactly.
+
+    Parameters
+    ----------
+    targets : array_like of float, shape (n,)
+        The target at every sample.
+    vmax : float, keyword-only
+        Velocity bound [units/s], > 0.
+    amax : float, keyword-only
+        Acceleration bound [units/s^2], > 0.
+    jmax : float, keyword-only
+        Jerk bound [units/s^3], > 0.
+    Ts : float, keyword-only
+        Sample period [s], > 0.
+    profile : {"polynomial", "trigonometric", "damped"}, keyword-only
+        Jerk-limited (linear acceleration ramps), half-cosine acceleration transitions
+        (Biagiotti and Melchiorri, "Online Planning of Multi-Segment Trajectories with
+        Trigonometric Blends", 2011) or the Damped-Jerk stage (Béarée, "New Damped-Jerk
+        trajectory for vibration reduction", 2014; needs ``wn``).
+    wn : float or None, keyword-only
+        Mode [rad/s] the plan is filtered for (a stage tuned to it, :func:`tuned_stage`).
+    zeta : float, keyword-only
+        Its damping ratio, in [0, 1) (default 0).
+    position : float, keyword-only
+        Initial rest position (default 0).
+
+    Returns
+    -------
+    ndarray of float64, shape (n, 4)
+        q, v, a, j at the samples.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``targets``, a bound, ``Ts``, ``profile``, ``wn`` or ``zeta``.
     """
     from .time_optimal import time_optimal_reference
     from .reference.filtering import impulse_response

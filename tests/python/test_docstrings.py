@@ -32,7 +32,7 @@ CITING = {"smoothshaper.reference.smoothers.smoother_taps",
 
 #: Modules of the reference still to be brought to this standard (each must fail the audit;
 #: strict xfail turns a fixed module into a failure until it is removed from this list).
-NOT_YET = {"smoothshaper.trajectory", "smoothshaper.multi_axis",
+NOT_YET = {"smoothshaper.multi_axis",
            "smoothshaper.reference.multi_axis"}
 
 
