@@ -59,20 +59,38 @@ def _sync(sync: str) -> str:
 
 
 class MultiAxisGenerator:
-    """Online multi-axis generator (C core, up to ``MAX_AXES`` axes).
-
-    Parameters (keyword-only): ``vmax``, ``amax``, ``jmax`` sequences with one limit per axis
-    (a scalar applies to every axis; units of each axis per s, s^2, s^3), ``Ts`` sample period
-    [s], ``sync`` ("phase" or "independent"), ``q0`` initial rest position (default 0),
-    ``stages`` optional vibration stages (a list of stage descriptions from
-    :mod:`smoothshaper.stages` applied to every axis, or one such list per axis; different
-    lists per axis bend straight lines and give a warning), ``precision``. The stages run in
-    the C core: each axis's q, v, a and j pass through its own copy of the chain.
+    """Online multi-axis generator (C core ``sms_multi_generator``, up to ``MAX_AXES`` axes).
 
     :meth:`process` takes targets of shape (n, axes) and returns (n, axes, 4): q, v, a, j of
     each axis at each sample (the exact values of the continuous profile; after vibration
-    stages, the filtered ones). Raises :class:`ParameterError` naming the offending argument,
-    e.g. ``vmax[2]``.
+    stages, the filtered ones). With ``sync="phase"`` every move is the time-optimal
+    jerk-limited straight line whose path parameter obeys ``min_i limit_i/|delta_i|``, all
+    axes arriving together (the phase synchronisation ruckig offers); ``"independent"``
+    moves each axis time-optimally on its own (docs/multi-axis.md).
+
+    Parameters
+    ----------
+    vmax, amax, jmax : float or sequence of float, keyword-only
+        Velocity [units/s], acceleration [units/s^2] and jerk [units/s^3] bounds, one per
+        axis (a scalar applies to every axis), each > 0.
+    Ts : float, keyword-only
+        Sample period [s], > 0.
+    sync : {"phase", "independent"}, keyword-only
+        Coordination of the axes (default ``"phase"``).
+    q0 : sequence of float or None, keyword-only
+        Initial rest position per axis (default 0).
+    stages : list of Stage, list of lists of Stage, or None, keyword-only
+        Vibration stages applied to every axis, or one list per axis (different lists bend
+        straight lines and give a warning); each axis's q, v, a, j pass through its own copy
+        of the chain in the C core.
+    precision : {"double", "float"}, keyword-only
+        Which build of the C core runs it.
+
+    Raises
+    ------
+    ParameterError
+        Naming the offending argument, e.g. ``vmax[2]``, ``Ts``, ``sync``, ``q0`` or a
+        stage's parameter.
     """
 
     MAX_AXES = 8
@@ -140,11 +158,26 @@ class MultiAxisGenerator:
         return lists
 
     def reset(self, q0=None) -> None:
-        """Rest at ``q0`` (sequence of axes values; default 0) on every axis."""
+        """Rest at ``q0`` on every axis (v = a = j = 0).
+
+        Parameters
+        ----------
+        q0 : sequence of float or None
+            One position per axis (default 0).
+
+        Raises
+        ------
+        ParameterError
+            Naming ``q0`` (wrong length or not finite).
+        """
         if q0 is None:
             q = np.zeros(self.axes)
         else:
-            q = np.broadcast_to(np.asarray(q0, dtype=np.float64), (self.axes,)).copy()
+            q = np.atleast_1d(_real_array("q0", q0)).astype(np.float64)
+            if q.ndim != 1 or q.size not in (1, self.axes):
+                raise ParameterError("q0", f"q0 must hold one value or one per axis "
+                                     f"({self.axes}), got shape {q.shape}")
+            q = np.broadcast_to(q, (self.axes,)).copy()
             bad = np.flatnonzero(~np.isfinite(q))
             if bad.size:
                 raise ParameterError("q0", f"q0[{bad[0]}] must be finite, got {q[bad[0]]!r}")
@@ -153,8 +186,24 @@ class MultiAxisGenerator:
         self._lib.sms_multi_generator_reset(self._gen, self._ffi.from_buffer("sms_real[]", buf))
 
     def process(self, targets) -> np.ndarray:
-        """Targets (n, axes) -> (n, axes, 4) q, v, a, j. A 1-D array is taken as n samples of
-        one axis (axes == 1) or one sample of every axis."""
+        """Run a block of target vectors.
+
+        Parameters
+        ----------
+        targets : array_like of float, shape (n, axes)
+            The target of every axis at every sample; a 1-D array is n samples of one axis
+            (axes == 1) or one sample of every axis.
+
+        Returns
+        -------
+        ndarray of float64, shape (n, axes, 4)
+            q, v, a, j of each axis at each sample.
+
+        Raises
+        ------
+        ParameterError
+            Naming ``targets`` (shape or non-finite values); the state is then untouched.
+        """
         x = np.asarray(targets, dtype=np.float64)
         if x.ndim == 1:
             x = x.reshape(-1, 1) if self.axes == 1 else x.reshape(1, -1)
@@ -180,9 +229,19 @@ class MultiAxisGenerator:
 
 @dataclass(frozen=True)
 class MultiAxisMove:
-    """An offline rest-to-rest move: ``T`` continuous time-optimal duration [s], ``N`` samples
-    until arrival (``ceil(T/Ts)`` for sync="phase"), ``profile`` (N + 1, axes, 4) from the
-    step at which the target is applied to the arrival (q, v, a, j)."""
+    """An offline rest-to-rest move (:func:`multi_axis_move`).
+
+    Attributes
+    ----------
+    T : float
+        Continuous time-optimal duration [s].
+    N : int
+        Samples until arrival (``ceil(T/Ts)`` for sync="phase").
+    Ts : float
+        Sample period [s].
+    profile : ndarray of float64, shape (N + 1, axes, 4)
+        q, v, a, j from the step at which the target is applied to the arrival.
+    """
     T: float
     N: int
     Ts: float
@@ -190,9 +249,30 @@ class MultiAxisMove:
 
 
 def phase_duration(delta, *, vmax, amax, jmax) -> float:
-    """Time-optimal phase-synchronised rest-to-rest duration [s] for a displacement vector
+    """Time-optimal phase-synchronised rest-to-rest duration for a displacement vector
     (continuous time): the jerk-limited straight move whose path parameter has the limits
-    ``min_i vmax_i/|delta_i|``, ``min_i amax_i/|delta_i|``, ``min_i jmax_i/|delta_i|``."""
+    ``min_i vmax_i/|delta_i|``, ``min_i amax_i/|delta_i|``, ``min_i jmax_i/|delta_i|`` (the
+    double-S of Biagiotti and Melchiorri, *Trajectory Planning for Automatic Machines and
+    Robots*, 2008).
+
+    Parameters
+    ----------
+    delta : array_like of float, shape (axes,)
+        Displacement of every axis.
+    vmax, amax, jmax : float or sequence of float, keyword-only
+        Velocity [units/s], acceleration [units/s^2] and jerk [units/s^3] bounds, one per
+        axis (a scalar applies to every axis), each > 0.
+
+    Returns
+    -------
+    float
+        The duration [s] (0 for no displacement).
+
+    Raises
+    ------
+    ParameterError
+        Naming a bound (``vmax[i]``, ...) or ``delta``.
+    """
     d = np.atleast_1d(np.asarray(delta, dtype=np.float64))
     v, a, j = _limits(vmax, amax, jmax, d.size)
     bad = np.flatnonzero(~np.isfinite(d))
@@ -203,9 +283,34 @@ def phase_duration(delta, *, vmax, amax, jmax) -> float:
 
 def multi_axis_move(start, target, *, vmax, amax, jmax, Ts: float, sync: str = "phase",
                     precision: str = "double") -> MultiAxisMove:
-    """Rest-to-rest design from ``start`` to ``target`` (vectors of the axes): the sampled
-    phase-synchronised (or independent) time-optimal move. Raises ParameterError naming the
-    argument."""
+    """Rest-to-rest design from ``start`` to ``target``: the sampled phase-synchronised (or
+    independent) time-optimal move, run through :class:`MultiAxisGenerator`.
+
+    Parameters
+    ----------
+    start, target : array_like of float, shape (axes,)
+        Rest positions before and after.
+    vmax, amax, jmax : float or sequence of float, keyword-only
+        Velocity [units/s], acceleration [units/s^2] and jerk [units/s^3] bounds, one per
+        axis (a scalar applies to every axis), each > 0.
+    Ts : float, keyword-only
+        Sample period [s], > 0.
+    sync : {"phase", "independent"}, keyword-only
+        Coordination of the axes (default ``"phase"``).
+    precision : {"double", "float"}, keyword-only
+        Which build of the C core runs it.
+
+    Returns
+    -------
+    MultiAxisMove
+        Duration, samples and profile of the move.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``target`` (not a vector the length of ``start``) or a bound, ``Ts``,
+        ``sync``.
+    """
     s = np.atleast_1d(np.asarray(start, dtype=np.float64))
     t = np.atleast_1d(np.asarray(target, dtype=np.float64))
     if s.shape != t.shape or s.ndim != 1:

@@ -30,12 +30,6 @@ CITING = {"smoothshaper.reference.smoothers.smoother_taps",
           "smoothshaper.stages.shaper", "smoothshaper.stages.notch",
           "smoothshaper.design.kinematic", "smoothshaper.filters.design_for_mode"}
 
-#: Modules of the reference still to be brought to this standard (each must fail the audit;
-#: strict xfail turns a fixed module into a failure until it is removed from this list).
-NOT_YET = {"smoothshaper.multi_axis",
-           "smoothshaper.reference.multi_axis"}
-
-
 def api_modules() -> list[str]:
     names = []
     for rst in sorted(API_DIR.glob("*.rst")):
@@ -165,9 +159,7 @@ def audit_module(name: str) -> list[str]:
     return problems
 
 
-@pytest.mark.parametrize("name", [
-    pytest.param(n, marks=pytest.mark.xfail(strict=True, reason="docstrings not yet audited"))
-    if n in NOT_YET else n for n in api_modules()])
+@pytest.mark.parametrize("name", api_modules())
 def test_public_api_docstrings(name):
     problems = audit_module(name)
     assert not problems, "\n".join(problems)

@@ -32,8 +32,24 @@ _EPS = np.finfo(np.float64).eps
 
 
 def newton_sqrt(x: float) -> float:
-    """sqrt(x) as the C planner computes it: scaled into [1, 4) by powers of 4, 7 Newton
-    steps from (1 + x)/2, scaled back (within an ulp of math.sqrt); 0 for x <= 0."""
+    """``sqrt(x)`` as the C planner computes it: scaled into [1, 4) by powers of 4, 7 Newton
+    steps from (1 + x)/2, scaled back (within an ulp of ``math.sqrt``).
+
+    Parameters
+    ----------
+    x : float
+        The argument (<= 0 gives 0).
+
+    Returns
+    -------
+    float
+        The square root.
+
+    Raises
+    ------
+    TypeError
+        ``x`` is not a real number.
+    """
     if not x > 0:
         return 0.0
     scale = 1.0
@@ -50,8 +66,24 @@ def newton_sqrt(x: float) -> float:
 
 
 def newton_cbrt(x: float) -> float:
-    """cbrt(x), x >= 0, as the C planner computes it: scaled into [1, 8) by powers of 8, 8
-    Newton steps from 1 + x/7, scaled back (within an ulp of math.cbrt); 0 for x <= 0."""
+    """``cbrt(x)`` as the C planner computes it: scaled into [1, 8) by powers of 8, 8 Newton
+    steps from 1 + x/7, scaled back (within an ulp of ``math.cbrt``).
+
+    Parameters
+    ----------
+    x : float
+        The argument (<= 0 gives 0).
+
+    Returns
+    -------
+    float
+        The cube root.
+
+    Raises
+    ------
+    TypeError
+        ``x`` is not a real number.
+    """
     if not x > 0:
         return 0.0
     scale = 1.0
@@ -86,7 +118,26 @@ def _unit_time(A: float, J: float) -> tuple[float, float]:
 
 
 def transition(dV, vmax, amax, jmax) -> tuple[float, float]:
-    """Duration and jerk fraction rho of the shortest straight velocity change dV."""
+    """Duration and jerk fraction of the shortest straight velocity change ``dV``.
+
+    Parameters
+    ----------
+    dV : ndarray of float64, shape (axes,)
+        The velocity change of every axis.
+    vmax, amax, jmax : ndarray of float64, shape (axes,)
+        Per-axis bounds.
+
+    Returns
+    -------
+    tuple of float
+        ``(duration [s], rho)``: rho is the fraction of the transition spent at constant
+        jerk (0.5 for no change).
+
+    Raises
+    ------
+    ValueError
+        The arrays do not have the same shape.
+    """
     d = np.abs(dV)
     nz = d > 0
     if not nz.any():
@@ -95,8 +146,27 @@ def transition(dV, vmax, amax, jmax) -> tuple[float, float]:
 
 
 def phase_duration(delta, *, vmax, amax, jmax) -> float:
-    """Time-optimal jerk-limited straight rest-to-rest duration [s] for displacement ``delta``
-    (path parameter limits ``min_i limit_i/|delta_i|``; closed form of the double-S)."""
+    """Time-optimal jerk-limited straight rest-to-rest duration for displacement ``delta``
+    (path parameter limits ``min_i limit_i/|delta_i|``; closed form of the double-S,
+    Biagiotti and Melchiorri, *Trajectory Planning for Automatic Machines and Robots*, 2008).
+
+    Parameters
+    ----------
+    delta : array_like of float, shape (axes,)
+        Displacement of every axis.
+    vmax, amax, jmax : ndarray of float64, shape (axes,), keyword-only
+        Per-axis bounds, > 0.
+
+    Returns
+    -------
+    float
+        The duration [s] (0 for no displacement).
+
+    Raises
+    ------
+    ValueError
+        The arrays do not broadcast.
+    """
     d = np.abs(np.asarray(delta, dtype=np.float64))
     nz = d > 0
     if not nz.any():
@@ -258,13 +328,37 @@ def _evaluate(m, t):
 
 def multi_axis_reference(targets, *, vmax, amax, jmax, Ts: float, sync: str = "phase",
                          q0=None, stages=None) -> np.ndarray:
-    """Sampled output of the multi-axis generator for a staircase of target vectors.
+    """Sampled output of the multi-axis generator for a staircase of target vectors, written
+    independently of the C code (the same plan in NumPy, then the reference filters).
 
-    ``targets`` has shape (n, axes); the result (n, axes, 4) holds q, v, a, j per axis at each
-    sample. ``sync`` is "phase" (one common move) or "independent" (one move per axis).
-    ``stages``: None, one list of stage descriptions for every axis, or one list per axis;
-    each axis's q, v, a, j are then filtered by :func:`smoothshaper.reference.filtering.filter`
-    from rest (q at q0, the others at 0).
+    Parameters
+    ----------
+    targets : array_like of float, shape (n, axes)
+        The target of every axis at every sample.
+    vmax, amax, jmax : float or sequence of float, keyword-only
+        Per-axis bounds, > 0.
+    Ts : float, keyword-only
+        Sample period [s], > 0.
+    sync : {"phase", "independent"}, keyword-only
+        One common straight move, or one move per axis.
+    q0 : sequence of float or None, keyword-only
+        Initial rest position per axis (default 0).
+    stages : list of Stage, list of lists of Stage, or None, keyword-only
+        Vibration stages for every axis or per axis; each axis's q, v, a, j are filtered by
+        :func:`smoothshaper.reference.filtering.filter` from rest (q at q0, the others at 0).
+
+    Returns
+    -------
+    ndarray of float64, shape (n, axes, 4)
+        q, v, a, j per axis at each sample.
+
+    Raises
+    ------
+    ValueError
+        ``targets`` is not (n, axes) or a bound, ``q0`` or ``stages`` does not match the axes.
+        The oracle checks no ranges (a bound or ``Ts`` <= 0 gives no meaningful result); the
+        C-backed :class:`smoothshaper.multi_axis.MultiAxisGenerator` validates everything and
+        names the parameter.
     """
     out = _profile(targets, vmax=vmax, amax=amax, jmax=jmax, Ts=Ts, sync=sync, q0=q0)
     if stages is None:
