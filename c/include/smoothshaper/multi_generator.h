@@ -4,7 +4,8 @@
  * every axis within its own vmax, amax, jmax at every sample; phase-synchronised (straight
  * lines, common arrival) or independent axes.
  *
- * Everything lives in the caller's ::sms_multi_generator (no buffer, no allocation); the
+ * The profile lives in the caller's ::sms_multi_generator; optional vibration stages per axis
+ * live in caller memory sized by sms_multi_generator_memory(); nothing is allocated. The
  * per-sample path uses ::sms_real only and no libm (square and cube roots are Newton
  * iterations), so a float build needs no double arithmetic.
  */

@@ -6,7 +6,7 @@ kept as absolute-time records (start time, start state, phases) and evaluated th
 generic velocity-transition formula, and the search for the first transition is written over
 whole vectors. What must match to the last bit does: the arithmetic of the plan and of the
 evaluation follows the C core's order, and the planner's square and cube roots are the C
-core's Newton iterations (:func:`newton_sqrt`, :func:`newton_cbrt`; the C core uses no libm
+core's Newton iterations (:func:`_newton_sqrt`, :func:`_newton_cbrt`; the C core uses no libm
 while stepping). A sample in the last jerk phase of a transition moves its acceleration by
 ``jerk * dT`` when the transition's end moves by ``dT``: relative to amax, ``dT / Tj``, with
 ``Tj`` the jerk phase, which can be a small fraction ``rho`` of the transition. A plan that
@@ -25,31 +25,17 @@ import math
 import numpy as np
 
 from . import filtering as _filtering
+from ._checks import check_Ts
+from ..errors import ParameterError
 
-__all__ = ["transition", "phase_duration", "multi_axis_reference", "newton_sqrt", "newton_cbrt"]
+__all__ = ["transition", "phase_duration", "multi_axis_reference"]
 
 _EPS = np.finfo(np.float64).eps
 
 
-def newton_sqrt(x: float) -> float:
-    """``sqrt(x)`` as the C planner computes it: scaled into [1, 4) by powers of 4, 7 Newton
-    steps from (1 + x)/2, scaled back (within an ulp of ``math.sqrt``).
-
-    Parameters
-    ----------
-    x : float
-        The argument (<= 0 gives 0).
-
-    Returns
-    -------
-    float
-        The square root.
-
-    Raises
-    ------
-    TypeError
-        ``x`` is not a real number.
-    """
+def _newton_sqrt(x: float) -> float:
+    """sqrt(x) as the C planner computes it: scaled into [1, 4) by powers of 4, 7 Newton
+    steps from (1 + x)/2, scaled back (within an ulp of math.sqrt); 0 for x <= 0."""
     if not x > 0:
         return 0.0
     scale = 1.0
@@ -65,25 +51,9 @@ def newton_sqrt(x: float) -> float:
     return y * scale
 
 
-def newton_cbrt(x: float) -> float:
-    """``cbrt(x)`` as the C planner computes it: scaled into [1, 8) by powers of 8, 8 Newton
-    steps from 1 + x/7, scaled back (within an ulp of ``math.cbrt``).
-
-    Parameters
-    ----------
-    x : float
-        The argument (<= 0 gives 0).
-
-    Returns
-    -------
-    float
-        The cube root.
-
-    Raises
-    ------
-    TypeError
-        ``x`` is not a real number.
-    """
+def _newton_cbrt(x: float) -> float:
+    """cbrt(x), x >= 0, as the C planner computes it: scaled into [1, 8) by powers of 8, 8
+    Newton steps from 1 + x/7, scaled back (within an ulp of math.cbrt); 0 for x <= 0."""
     if not x > 0:
         return 0.0
     scale = 1.0
@@ -113,31 +83,75 @@ def _unit_time(A: float, J: float) -> tuple[float, float]:
         Tj = A / J
         T = 1.0 / A + Tj
         return T, Tj / T
-    Tj = 1.0 / newton_sqrt(J)
+    Tj = 1.0 / _newton_sqrt(J)
     return 2.0 * Tj, 0.5
 
 
+def _limits(vmax, amax, jmax, axes: int):
+    """Per-axis limits as float64 vectors of length ``axes`` (a scalar applies to every axis);
+    ParameterError naming ``vmax[i]`` etc."""
+    out = []
+    for name, value in (("vmax", vmax), ("amax", amax), ("jmax", jmax)):
+        v = np.asarray(value, dtype=np.float64)
+        if v.ndim == 0:
+            v = np.full(axes, float(v))
+        if v.shape != (axes,):
+            raise ParameterError(name, f"{name} must hold {axes} values, got shape {v.shape}")
+        bad = np.flatnonzero(~(np.isfinite(v) & (v > 0)))
+        if bad.size:
+            raise ParameterError(f"{name}[{bad[0]}]", f"{name}[{bad[0]}] must be finite and > 0, "
+                                 f"got {v[bad[0]]!r}")
+        out.append(v)
+    return out
+
+
+def _vector(name: str, value) -> np.ndarray:
+    """A finite 1-D float64 vector; ParameterError naming ``name`` otherwise."""
+    v = np.atleast_1d(np.asarray(value, dtype=np.float64))
+    if v.ndim != 1 or v.size == 0:
+        raise ParameterError(name, f"{name} must be a non-empty vector, got shape {v.shape}")
+    bad = np.flatnonzero(~np.isfinite(v))
+    if bad.size:
+        raise ParameterError(name, f"{name}[{bad[0]}] must be finite, got {v[bad[0]]!r}")
+    return v
+
+
 def transition(dV, vmax, amax, jmax) -> tuple[float, float]:
-    """Duration and jerk fraction of the shortest straight velocity change ``dV``.
+    """Shortest straight velocity change ``dV`` under per-axis limits.
+
+    Every axis follows ``v_i(t) = V_i + dV_i F(t/T)`` with one normalised S-curve ``F`` (jerk
+    ``+c, 0, -c`` over the fractions ``rho, 1 - 2 rho, rho`` of ``T``); with the scaled limits
+    ``A = min_i amax_i/|dV_i|``, ``J = min_i jmax_i/|dV_i|``: ``T = 1/A + A/J``,
+    ``rho = (A/J)/T`` if ``A^2 <= J``, else ``T = 2/sqrt(J)``, ``rho = 1/2`` (the double-S
+    velocity ramp, Biagiotti and Melchiorri 2008, "Trajectory Planning for Automatic Machines
+    and Robots", section 3.4, applied to the path parameter).
 
     Parameters
     ----------
-    dV : ndarray of float64, shape (axes,)
-        The velocity change of every axis.
-    vmax, amax, jmax : ndarray of float64, shape (axes,)
-        Per-axis bounds.
+    dV : array_like, shape (axes,)
+        Velocity change per axis [units of axis i per s]; finite.
+    vmax, amax, jmax : array_like, shape (axes,) or scalar
+        Per-axis limits (finite, > 0); vmax is checked but does not enter.
 
     Returns
     -------
-    tuple of float
-        ``(duration [s], rho)``: rho is the fraction of the transition spent at constant
-        jerk (0.5 for no change).
+    T : float
+        Duration [s] (0 when dV is zero).
+    rho : float
+        Jerk-phase fraction in (0, 1/2].
 
     Raises
     ------
-    ValueError
-        The arrays do not have the same shape.
+    ParameterError
+        Naming ``dV`` or the offending limit, e.g. ``amax[2]``.
     """
+    dV = _vector("dV", dV)
+    _, amax, jmax = _limits(vmax, amax, jmax, dV.size)
+    return _transition(dV, None, amax, jmax)
+
+
+def _transition(dV, vmax, amax, jmax) -> tuple[float, float]:
+    """:func:`transition` without the checks (the planner's inner loop)."""
     d = np.abs(dV)
     nz = d > 0
     if not nz.any():
@@ -146,27 +160,38 @@ def transition(dV, vmax, amax, jmax) -> tuple[float, float]:
 
 
 def phase_duration(delta, *, vmax, amax, jmax) -> float:
-    """Time-optimal jerk-limited straight rest-to-rest duration for displacement ``delta``
-    (path parameter limits ``min_i limit_i/|delta_i|``; closed form of the double-S,
-    Biagiotti and Melchiorri, *Trajectory Planning for Automatic Machines and Robots*, 2008).
+    """Time-optimal jerk-limited straight (phase-synchronised) rest-to-rest duration.
+
+    The path parameter ``s`` in [0, 1] of ``q = start + s delta`` has the limits
+    ``min_i vmax_i/|delta_i|``, ``min_i amax_i/|delta_i|``, ``min_i jmax_i/|delta_i|``; the
+    duration is the closed form of the double-S for them (Biagiotti and Melchiorri 2008,
+    "Trajectory Planning for Automatic Machines and Robots", section 3.4, double S velocity
+    profile).
 
     Parameters
     ----------
-    delta : array_like of float, shape (axes,)
-        Displacement of every axis.
-    vmax, amax, jmax : ndarray of float64, shape (axes,), keyword-only
-        Per-axis bounds, > 0.
+    delta : array_like, shape (axes,)
+        Displacement per axis; finite (all zero gives 0).
+    vmax, amax, jmax : array_like, shape (axes,) or scalar
+        Per-axis limits, finite and > 0 (units of axis i per s, s^2, s^3).
 
     Returns
     -------
     float
-        The duration [s] (0 for no displacement).
+        Duration [s] in continuous time.
 
     Raises
     ------
-    ValueError
-        The arrays do not broadcast.
+    ParameterError
+        Naming ``delta`` or the offending limit, e.g. ``jmax[1]``.
     """
+    d = _vector("delta", delta)
+    vmax, amax, jmax = _limits(vmax, amax, jmax, d.size)
+    return _phase_duration(d, vmax, amax, jmax)
+
+
+def _phase_duration(delta, vmax, amax, jmax) -> float:
+    """:func:`phase_duration` without the checks."""
     d = np.abs(np.asarray(delta, dtype=np.float64))
     nz = d > 0
     if not nz.any():
@@ -194,10 +219,10 @@ def _kappa(u, T1, vmax, amax, jmax) -> float:
     ju = _ratio(jmax[nz], d[nz])
     kv = float(np.max(d[nz] / vmax[nz]))
     b = (T1 + au / ju) / 2
-    kh = (b + newton_sqrt(b * b + 2.0 / au)) / 2
+    kh = (b + _newton_sqrt(b * b + 2.0 / au)) / 2
     if kh > ju / (au * au):
-        c, q = T1 / 2, 1.0 / newton_sqrt(ju)
-        y = newton_sqrt(c) + newton_cbrt(q)
+        c, q = T1 / 2, 1.0 / _newton_sqrt(ju)
+        y = _newton_sqrt(c) + _newton_cbrt(q)
         for _ in range(100):
             y_next = y - ((y * y - c) * y - q) / (3 * y * y - c)
             if not y_next < y:
@@ -213,9 +238,9 @@ def _candidate(D, V, T1, lim):
     u = D - V * (T1 / 2)
     kappa = _kappa(u, T1, *lim)
     W = u / kappa
-    T2, rho2 = transition(W, *lim)
+    T2, rho2 = _transition(W, *lim)
     tau = max(kappa - T1 / 2 - T2 / 2, 0.0)
-    excess = transition(W - V, *lim)[0] - T1
+    excess = _transition(W - V, *lim)[0] - T1
     return excess, W, tau, T2, rho2
 
 
@@ -255,7 +280,7 @@ def _plan(p, V, B, off, Ts, lim):
     D = B - p
     if not V.any() and not D.any():
         return None
-    lo = transition(V, *lim)[0]
+    lo = _transition(V, *lim)[0]
     e_lo = _candidate(D, V, lo, lim)[0]
     if e_lo > 0:
         vmax, amax, jmax = lim
@@ -271,7 +296,7 @@ def _plan(p, V, B, off, Ts, lim):
     kappa = T1 / 2 + tau + T2 / 2
     u = D - V * (T1 / 2)
     W = u / kappa if kappa > 0 else np.zeros_like(u)
-    rho1 = transition(W - V, *lim)[1]
+    rho1 = _transition(W - V, *lim)[1]
     return dict(p=p.copy(), V=V.copy(), W=W, goal=B.copy(), T1=T1, rho1=rho1, tau=tau, T2=T2,
                 rho2=rho2, off=off, k_end=k_end)
 
@@ -331,36 +356,51 @@ def multi_axis_reference(targets, *, vmax, amax, jmax, Ts: float, sync: str = "p
     """Sampled output of the multi-axis generator for a staircase of target vectors, written
     independently of the C code (the same plan in NumPy, then the reference filters).
 
+    The planning rules are those of ``c/include/smoothshaper/multi_generator.h`` (moves of
+    velocity transitions, cruise and stop; blending of targets that change mid-motion;
+    arrival on the sample grid), written here over whole vectors.
+
     Parameters
     ----------
-    targets : array_like of float, shape (n, axes)
-        The target of every axis at every sample.
-    vmax, amax, jmax : float or sequence of float, keyword-only
-        Per-axis bounds, > 0.
-    Ts : float, keyword-only
-        Sample period [s], > 0.
-    sync : {"phase", "independent"}, keyword-only
-        One common straight move, or one move per axis.
-    q0 : sequence of float or None, keyword-only
-        Initial rest position per axis (default 0).
-    stages : list of Stage, list of lists of Stage, or None, keyword-only
-        Vibration stages for every axis or per axis; each axis's q, v, a, j are filtered by
-        :func:`smoothshaper.reference.filtering.filter` from rest (q at q0, the others at 0).
+    targets : array_like, shape (n, axes)
+        Target vector at each sample; finite.
+    vmax, amax, jmax : array_like, shape (axes,) or scalar
+        Per-axis limits, finite and > 0 (units of axis i per s, s^2, s^3).
+    Ts : float
+        Sample period [s], finite and > 0.
+    sync : {"phase", "independent"}
+        One common straight move for all axes, or one move per axis.
+    q0 : array_like, shape (axes,), optional
+        Rest position before the first sample (default 0).
+    stages : list of Stage, or list of lists of Stage, optional
+        Vibration stages for every axis, or one list per axis; each axis's q, v, a, j are
+        filtered by :func:`smoothshaper.reference.filtering.filter` from rest (q at q0, the
+        others at 0).
 
     Returns
     -------
-    ndarray of float64, shape (n, axes, 4)
-        q, v, a, j per axis at each sample.
+    ndarray, shape (n, axes, 4)
+        q, v, a, j of every axis at every sample.
 
     Raises
     ------
-    ValueError
-        ``targets`` is not (n, axes) or a bound, ``q0`` or ``stages`` does not match the axes.
-        The oracle checks no ranges (a bound or ``Ts`` <= 0 gives no meaningful result); the
-        C-backed :class:`smoothshaper.multi_axis.MultiAxisGenerator` validates everything and
-        names the parameter.
+    ParameterError
+        Naming the offending argument (``targets``, ``vmax[i]``, ``Ts``, ``sync``, ``q0``,
+        or a stage's parameter).
     """
-    out = _profile(targets, vmax=vmax, amax=amax, jmax=jmax, Ts=Ts, sync=sync, q0=q0)
+    x = np.asarray(targets, dtype=np.float64)
+    if x.ndim != 2 or x.shape[1] == 0 or not np.all(np.isfinite(x)):
+        raise ParameterError("targets", f"targets must be a finite array of shape (n, axes), "
+                                        f"got shape {x.shape}")
+    vmax, amax, jmax = _limits(vmax, amax, jmax, x.shape[1])
+    Ts = check_Ts(Ts)
+    if sync not in ("phase", "independent"):
+        raise ParameterError("sync", f"sync must be 'phase' or 'independent', got {sync!r}")
+    if q0 is not None:
+        q0 = _vector("q0", q0)
+        if q0.size != x.shape[1]:
+            raise ParameterError("q0", f"q0 must hold {x.shape[1]} values, got {q0.size}")
+    out = _profile(x, vmax=vmax, amax=amax, jmax=jmax, Ts=Ts, sync=sync, q0=q0)
     if stages is None:
         return out
     axes = out.shape[1]
