@@ -38,6 +38,8 @@ static sms_real root3(sms_real x)
     int i;
     if (!(x > 0))
         return 0;
+    if (x - x != 0)
+        return x; /* +Inf: the scaling loop would never end */
     while (x >= 8) {
         x *= (sms_real)0.125;
         scale *= 2;
@@ -211,84 +213,109 @@ static sms_real first_transition(const group *G, const sms_real *D, const sms_re
     return hi;
 }
 
-/* Plan a move from (p, V, a = 0) at move time 0 towards target; the first sample of the new
- * move is at move time off. */
-static void plan(sms_multi_generator *g, size_t first, const group *G, sms_multi_move *m,
-                 const sms_real *p, const sms_real *V, sms_real off)
+/* A move longer than this many samples is not planned (the saved state keeps sample counts
+ * exact in double; about 1.4e5 years at 1 ms). */
+#define MAX_MOVE_SAMPLES ((sms_real)4503599627370496.0) /* 2^52 */
+
+static int real_finite(sms_real x)
 {
-    sms_real D[SMS_MULTI_MAX_AXES], u[SMS_MULTI_MAX_AXES], dW[SMS_MULTI_MAX_AXES];
-    sms_real lo, hi, T1, rho, total, nu, n_round, delta, kappa;
+    return x - x == 0;
+}
+
+/* Plan a move from (p, V, a = 0) at move time 0 towards the target; the first sample of the
+ * new move is at move time off. Returns 1 when planned; 0 when the move cannot be represented
+ * in sms_real (a displacement, duration or velocity not finite, or more than MAX_MOVE_SAMPLES
+ * samples: e.g. |d| = 1e300 with jmax = 1e-300), and then the generator is untouched. */
+static int plan(sms_multi_generator *g, size_t first, const group *G, sms_multi_move *m,
+                const sms_real *p, const sms_real *V, sms_real off)
+{
+    sms_real P0[SMS_MULTI_MAX_AXES], V0[SMS_MULTI_MAX_AXES], D[SMS_MULTI_MAX_AXES];
+    sms_real u[SMS_MULTI_MAX_AXES], W[SMS_MULTI_MAX_AXES], dW[SMS_MULTI_MAX_AXES] = {0};
+    sms_real lo, hi, T1, rho, rho1, total, nu, n_round, delta, kappa, tau;
     const sms_real Ts = g->Ts_signal;
     candidate c;
-    size_t i, k_end;
-    int moving = 0, any_move = 0;
+    size_t i, k_end = 0;
+    int moving = 0, any_move = 0, ok = 1;
     for (i = 0; i < G->n; ++i) { /* p and V may alias the generator's own arrays */
-        g->p[first + i] = p[i];
-        g->V[first + i] = V[i];
-    }
-    p = g->p + first;
-    V = g->V + first;
-    for (i = 0; i < G->n; ++i) {
-        D[i] = g->target[first + i] - p[i];
-        if (V[i] != 0)
+        P0[i] = p[i];
+        V0[i] = V[i];
+        D[i] = g->target[first + i] - P0[i];
+        if (V0[i] != 0)
             moving = 1;
         if (D[i] != 0)
             any_move = 1;
+        ok &= real_finite(D[i]);
+        W[i] = 0;
+    }
+    T1 = tau = 0;
+    rho1 = (sms_real)0.5;
+    c.T2 = 0;
+    c.rho2 = (sms_real)0.5;
+    if (ok && (moving || any_move)) {
+        /* smallest feasible first transition in [T(V), T(2 vmax)] (the upper end is feasible) */
+        lo = transition_time(G, V0, &rho);
+        try_T1(G, D, V0, lo, &c);
+        if (c.excess > 0) {
+            sms_real A = REAL_MAX, J = REAL_MAX, e_lo = c.excess;
+            for (i = 0; i < G->n; ++i) {
+                sms_real a = G->amax[i] / (2 * G->vmax[i]), j = G->jmax[i] / (2 * G->vmax[i]);
+                if (a < A)
+                    A = a;
+                if (j < J)
+                    J = j;
+            }
+            hi = unit_time(A, J, &rho) * (1 + 16 * REAL_EPS);
+            if (hi < lo)
+                hi = lo;
+            lo = first_transition(G, D, V0, lo, e_lo, hi, &c);
+        }
+        T1 = lo;
+        /* arrival on the grid: lengthen the cruise by delta, W = u / (kappa + delta) */
+        total = T1 + c.tau + c.T2;
+        nu = (total - off) / Ts;
+        if (!(nu > 0))
+            nu = 0;
+        ok = real_finite(total) && nu <= MAX_MOVE_SAMPLES; /* also refuses NaN */
+        if (ok) {
+            n_round = (sms_real)(size_t)(nu + (sms_real)0.5);
+            if ((n_round >= nu ? n_round - nu : nu - n_round) <= GRID_TOL * (nu > 1 ? nu : 1))
+                k_end = (size_t)n_round;
+            else
+                k_end = (size_t)nu + 1u; /* ceil: nu is not on the grid */
+            delta = (sms_real)k_end * Ts + off - total;
+            tau = c.tau + delta;
+            if (tau < 0)
+                tau = 0;
+            kappa = T1 / 2 + tau + c.T2 / 2;
+            for (i = 0; i < G->n; ++i) {
+                u[i] = D[i] - V0[i] * (T1 / 2);
+                W[i] = kappa > 0 ? u[i] / kappa : 0;
+                dW[i] = W[i] - V0[i];
+                ok &= real_finite(W[i]) && real_finite(dW[i]);
+            }
+            (void)transition_time(G, dW, &rho1); /* its length fits T1 (header) */
+            ok &= real_finite(tau) && real_finite(rho1) && real_finite(c.rho2);
+        }
+    }
+    if (!ok)
+        return 0;
+    for (i = 0; i < G->n; ++i) {
+        g->p[first + i] = P0[i];
+        g->V[first + i] = V0[i];
+        g->W[first + i] = W[i];
         g->goal[first + i] = g->target[first + i];
     }
     m->pending = 0;
     m->k = 0;
     m->off = off;
-    if (!moving && !any_move) {
-        m->active = 0; /* already there at rest */
-        for (i = 0; i < G->n; ++i)
-            g->W[first + i] = 0;
-        return;
-    }
-    /* smallest feasible first transition in [T(V), T(2 vmax)] (the upper end is feasible) */
-    lo = transition_time(G, V, &rho);
-    try_T1(G, D, V, lo, &c);
-    if (c.excess > 0) {
-        sms_real A = REAL_MAX, J = REAL_MAX, e_lo = c.excess;
-        for (i = 0; i < G->n; ++i) {
-            sms_real a = G->amax[i] / (2 * G->vmax[i]), j = G->jmax[i] / (2 * G->vmax[i]);
-            if (a < A)
-                A = a;
-            if (j < J)
-                J = j;
-        }
-        hi = unit_time(A, J, &rho) * (1 + 16 * REAL_EPS);
-        if (hi < lo)
-            hi = lo;
-        lo = first_transition(G, D, V, lo, e_lo, hi, &c);
-    }
-    T1 = lo;
-    /* arrival on the grid: lengthen the cruise by delta, W = u / (kappa + delta) */
-    total = T1 + c.tau + c.T2;
-    nu = (total - off) / Ts;
-    if (!(nu > 0))
-        nu = 0;
-    n_round = (sms_real)(size_t)(nu + (sms_real)0.5);
-    if ((n_round >= nu ? n_round - nu : nu - n_round) <= GRID_TOL * (nu > 1 ? nu : 1))
-        k_end = (size_t)n_round;
-    else
-        k_end = (size_t)nu + 1u; /* ceil: nu is not on the grid */
-    delta = (sms_real)k_end * Ts + off - total;
-    m->tau = c.tau + delta;
-    if (m->tau < 0)
-        m->tau = 0;
-    kappa = T1 / 2 + m->tau + c.T2 / 2;
-    for (i = 0; i < G->n; ++i) {
-        u[i] = D[i] - V[i] * (T1 / 2);
-        g->W[first + i] = kappa > 0 ? u[i] / kappa : 0;
-        dW[i] = g->W[first + i] - V[i];
-    }
     m->T1 = T1;
-    (void)transition_time(G, dW, &m->rho1); /* its length fits T1 (header) */
+    m->rho1 = rho1;
+    m->tau = tau;
     m->T2 = c.T2;
     m->rho2 = c.rho2;
     m->k_end = k_end;
-    m->active = k_end > 0; /* 0: it ends by this very sample */
+    m->active = k_end > 0; /* 0: already there at rest, or it ends by this very sample */
+    return 1;
 }
 
 /* Normalised S-curve (header): F'(x) (acceleration), F(x), G(x) = int_0^x F; and F''. */
@@ -370,6 +397,16 @@ static void evaluate(const sms_multi_generator *g, size_t first, size_t n,
     }
 }
 
+/* A target vector whose move cannot be represented is dropped like a non-finite component:
+ * the group keeps the goal it has. */
+static void drop_target(sms_multi_generator *g, size_t first, size_t n, sms_multi_move *m)
+{
+    size_t i;
+    for (i = first; i < first + n; ++i)
+        g->target[i] = g->goal[i];
+    m->pending = 0;
+}
+
 static void step_group(sms_multi_generator *g, size_t first, size_t n, sms_multi_move *m,
                        sms_real *out)
 {
@@ -396,7 +433,8 @@ static void step_group(sms_multi_generator *g, size_t first, size_t n, sms_multi
     if (m->pending) {
         if (!m->active) {
             sms_real zero[SMS_MULTI_MAX_AXES] = {0};
-            plan(g, first, &G, m, g->goal + first, zero, 0);
+            if (!plan(g, first, &G, m, g->goal + first, zero, 0))
+                drop_target(g, first, n, m);
             t = 0;
         } else if (t >= m->T1 - SNAP * (m->T1 + m->tau + m->T2)) {
             sms_real tr = m->seen > m->T1 ? m->seen : m->T1;
@@ -409,8 +447,10 @@ static void step_group(sms_multi_generator *g, size_t first, size_t n, sms_multi
                            W * (tr - m->T1);
                     V[i] = W;
                 }
-                plan(g, first, &G, m, p, V, t > tr ? t - tr : 0);
-                t = m->off;
+                if (plan(g, first, &G, m, p, V, t > tr ? t - tr : 0))
+                    t = m->off;
+                else
+                    drop_target(g, first, n, m); /* the running move goes on */
             }
         }
     }

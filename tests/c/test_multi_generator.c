@@ -463,6 +463,42 @@ static void stages_filter_every_signal(void)
     CHECK(bad == 1);
 }
 
+/* A move the signal type cannot represent (|d| = 1e300 with jmax = 1e-300: the limit ratios
+ * underflow to 0) is dropped at rest and mid-motion: outputs stay finite and within the
+ * limits, the previous target is kept, and a representable target moves as usual. */
+static void unrepresentable_move_dropped(void)
+{
+#ifdef SMS_USE_FLOAT
+    const double big = 1e38, tiny = 1e-38;
+#else
+    const double big = 1e300, tiny = 1e-300;
+#endif
+    sms_multi_generator_config c = random_config(2, SMS_SYNC_PHASE);
+    sms_multi_generator g;
+    sms_real t[2], o[8];
+    size_t k;
+    int finite_ok = 1, within = 1;
+    c.vmax[0] = 1.0;
+    c.amax[0] = 1e-30;
+    c.jmax[0] = tiny;
+    c.vmax[1] = c.amax[1] = c.jmax[1] = 1.0;
+    CHECK_STATUS(sms_multi_generator_init(&g, &c, 1e-3, NULL, 0, NULL, 0, NULL), SMS_OK);
+    for (k = 0; k < 3000; ++k) {
+        t[0] = (sms_real)(k < 30 || (k >= 40 && k < 60) ? big : 0.0);
+        t[1] = (sms_real)(k < 30 ? -big : k < 100 ? 0.5 : 0.25);
+        sms_multi_generator_step(&g, t, o);
+        if (!(o[0] - o[0] == 0 && o[1] - o[1] == 0 && o[2] - o[2] == 0 && o[3] - o[3] == 0 &&
+              o[4] - o[4] == 0 && o[5] - o[5] == 0 && o[6] - o[6] == 0 && o[7] - o[7] == 0))
+            finite_ok = 0;
+        if (k < 30 && (o[0] != 0 || o[4] != 0))
+            within = 0; /* dropped at rest: still at 0 */
+        if (fabs((double)o[1]) > 1.0 * (1 + LIMIT_TOL) || fabs((double)o[5]) > 1.0 * (1 + LIMIT_TOL))
+            within = 0;
+    }
+    CHECK(finite_ok);
+    CHECK(within);
+}
+
 int main(void)
 {
     unsigned trial;
@@ -476,5 +512,6 @@ int main(void)
     tiny_moves();
     state_round_trip();
     stages_filter_every_signal();
+    unrepresentable_move_dropped();
     return check_summary("test_multi_generator");
 }

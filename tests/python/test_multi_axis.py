@@ -272,3 +272,24 @@ def test_stage_errors_name_the_parameter():
         MultiAxisGenerator(vmax=[1, 1], amax=[1, 1], jmax=[1, 1], Ts=1e-3,
                            stages=[stages.shaper("zv", wn=5000.0, zeta=0.0)])
     assert e.value.parameter == "wn"
+
+
+@pytest.mark.parametrize("precision", ["double", "float"])
+def test_unrepresentable_moves_are_dropped(precision):
+    """A target whose move overflows the signal type (|d| = 1e300 with jmax = 1e-300: the
+    limit ratios underflow to 0) is dropped like a non-finite one: every output stays finite,
+    the axes keep their previous target, and the next representable target moves as usual;
+    the reference drops it alike."""
+    big = 1e300 if precision == "double" else 1e38
+    tiny = 1e-300 if precision == "double" else 1e-38
+    args = dict(vmax=[1.0, 1.0], amax=[1e-30, 1.0], jmax=[tiny, 1.0], Ts=1e-3)
+    targets = np.array([[big, -big]] * 30 + [[0.0, 0.5]] * 5 + [[big, 0.5]] * 20
+                       + [[0.0, 0.25]] * 4000)
+    out = MultiAxisGenerator(precision=precision, **args).process(targets)
+    assert np.all(np.isfinite(out))
+    np.testing.assert_array_equal(out[:30], 0.0)   # dropped at rest: still at q0
+    assert np.all(np.abs(out[:, :, 1:]) <= np.array([[1.0, 1e-30, tiny], [1, 1, 1]])[None]
+                  * (1 + 1e-5))
+    if precision == "double":
+        ref = multi_axis_reference(targets, **args)
+        np.testing.assert_array_equal(out, ref)

@@ -184,7 +184,10 @@ SMS_API void sms_multi_generator_reset(sms_multi_generator *g, const sms_real *p
 /**
  * @brief Advance one sample with the current target vector (n_axes values; a non-finite
  * component keeps that axis's previous target) and write out[4 i + m] = q, q', q'', q''' of
- * axis i at this instant (after the axis's stages, if any).
+ * axis i at this instant (after the axis's stages, if any). A target vector whose move cannot
+ * be represented in ::sms_real (a displacement, duration or velocity that overflows or
+ * underflows to 0, e.g. |d| = 1e300 with jmax = 1e-300, or more than 2^52 samples) is
+ * dropped: the axes (of the group) keep their previous target, so every output stays finite.
  */
 SMS_API void sms_multi_generator_step(sms_multi_generator *g, const sms_real *target,
                                       sms_real *out);

@@ -37,7 +37,9 @@ def _newton_sqrt(x: float) -> float:
     """sqrt(x) as the C planner computes it: scaled into [1, 4) by powers of 4, 7 Newton
     steps from (1 + x)/2, scaled back (within an ulp of math.sqrt); 0 for x <= 0."""
     if not x > 0:
-        return 0.0
+        return np.float64(0.0)  # 1/0 is then inf, as in C
+    if x == math.inf:
+        return x
     scale = 1.0
     while x >= 4:
         x *= 0.25
@@ -55,7 +57,9 @@ def _newton_cbrt(x: float) -> float:
     """cbrt(x), x >= 0, as the C planner computes it: scaled into [1, 8) by powers of 8, 8
     Newton steps from 1 + x/7, scaled back (within an ulp of math.cbrt); 0 for x <= 0."""
     if not x > 0:
-        return 0.0
+        return np.float64(0.0)  # 1/0 is then inf, as in C
+    if x == math.inf:
+        return x
     scale = 1.0
     while x >= 8:
         x *= 0.125
@@ -71,12 +75,15 @@ _CAP = 2.0 ** 60  # limit/|change| ratios are capped (a conservative, lower limi
 
 
 def _ratio(lim, d) -> float:
-    with np.errstate(over="ignore"):
-        return float(min(np.min(lim / d), _CAP))
+    """min(lim/d, 2^60) as a NumPy scalar: a ratio that underflows to 0 divides like C (inf or
+    nan, the plan then refuses the move) instead of raising ZeroDivisionError."""
+    with np.errstate(over="ignore", under="ignore"):
+        return np.float64(min(np.min(lim / d), _CAP))
 
 
 def _unit_time(A: float, J: float) -> tuple[float, float]:
     """Shortest unit velocity change with acceleration A and jerk J: (duration, rho)."""
+    A, J = np.float64(A), np.float64(J)  # IEEE division by an underflowed 0, as in C
     if not (A < np.finfo(np.float64).max and J < np.finfo(np.float64).max):
         return 0.0, 0.5
     if A * A <= J:
@@ -275,9 +282,22 @@ def _smallest_feasible(D, V, lo, e_lo, hi, lim) -> float:
     return hi
 
 
+_REFUSED = "refused"               # _plan: the move cannot be represented in double
+_MAX_MOVE_SAMPLES = 2.0 ** 52       # longer moves are refused (exact sample counts)
+
+
 def _plan(p, V, B, off, Ts, lim):
-    """A move from (p, V, a = 0) to B; its first sample at move time ``off``. None: at rest."""
+    """A move from (p, V, a = 0) to B; its first sample at move time ``off``. None: at rest;
+    _REFUSED: a displacement, duration or velocity is not finite, or the move is longer than
+    2^52 samples (the target is then dropped)."""
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        return _plan_unchecked(p, V, B, off, Ts, lim)
+
+
+def _plan_unchecked(p, V, B, off, Ts, lim):
     D = B - p
+    if not np.all(np.isfinite(D)):
+        return _REFUSED
     if not V.any() and not D.any():
         return None
     lo = _transition(V, *lim)[0]
@@ -289,7 +309,11 @@ def _plan(p, V, B, off, Ts, lim):
         lo = _smallest_feasible(D, V, lo, e_lo, max(hi, lo), lim)
     T1 = lo
     _, W, tau, T2, rho2 = _candidate(D, V, T1, lim)
-    nu = max((T1 + tau + T2 - off) / Ts, 0.0)
+    total = T1 + tau + T2
+    nu = (total - off) / Ts
+    nu = nu if nu > 0 else 0.0
+    if not (math.isfinite(total) and nu <= _MAX_MOVE_SAMPLES):
+        return _REFUSED
     n_round = math.floor(nu + 0.5)
     k_end = n_round if abs(n_round - nu) <= 8 * _EPS * max(nu, 1.0) else math.floor(nu) + 1
     tau = max(tau + (k_end * Ts + off - (T1 + tau + T2)), 0.0)
@@ -297,6 +321,9 @@ def _plan(p, V, B, off, Ts, lim):
     u = D - V * (T1 / 2)
     W = u / kappa if kappa > 0 else np.zeros_like(u)
     rho1 = _transition(W - V, *lim)[1]
+    if not (np.all(np.isfinite(W)) and np.all(np.isfinite(W - V)) and math.isfinite(tau)
+            and math.isfinite(rho1) and math.isfinite(rho2)):
+        return _REFUSED
     return dict(p=p.copy(), V=V.copy(), W=W, goal=B.copy(), T1=T1, rho1=rho1, tau=tau, T2=T2,
                 rho2=rho2, off=off, k_end=k_end)
 
@@ -443,21 +470,26 @@ def _profile(targets, *, vmax, amax, jmax, Ts, sync, q0) -> np.ndarray:
                 pending, seen = True, t
             if pending:
                 if move is None:
-                    move, k, pending = _plan(position, np.zeros(len(idx)), B, 0.0, Ts, lim), 0, False
-                    if move is None:
-                        position = B.copy()
+                    new = _plan(position, np.zeros(len(idx)), B, 0.0, Ts, lim)
+                    if new is not _REFUSED:  # refused: the target is dropped
+                        move, k = new, 0
+                        if move is None:
+                            position = B.copy()
+                    pending = False
                     t = 0.0
                 elif t >= move["T1"] - _SNAP * (move["T1"] + move["tau"] + move["T2"]):
                     tr = max(seen, move["T1"])
                     if tr <= move["T1"] + move["tau"]:
                         state = _evaluate(move, tr)
                         new = _plan(state[:, 0], move["W"].copy(), B, max(t - tr, 0.0), Ts, lim)
-                        move, k, pending = new, 0, False
-                        if move is None:
-                            position = B.copy()
-                        elif move["k_end"] == 0:
-                            position, move = move["goal"], None
-                        t = 0.0 if move is None else move["off"]
+                        pending = False
+                        if new is not _REFUSED:  # refused: the running move goes on
+                            move, k = new, 0
+                            if move is None:
+                                position = B.copy()
+                            elif move["k_end"] == 0:
+                                position, move = move["goal"], None
+                            t = 0.0 if move is None else move["off"]
             if move is not None and move["k_end"] == 0:
                 position, move = move["goal"], None
             if move is None:
