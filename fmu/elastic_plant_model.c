@@ -36,6 +36,8 @@ size_t fmu_model_size(void) { return sizeof(ep_model); }
 const char *fmu_model_identifier(void) { return FMU_MODEL_IDENTIFIER; }
 const char *fmu_model_guid(void) { return FMU_MODEL_GUID; }
 unsigned fmu_model_real_bytes(void) { return (unsigned)sizeof(double); }
+/* The scaled realisation keeps any input up to SMS_INPUT_MAX finite (see the top). */
+double fmu_model_input_max(const void *model) { (void)model; return HUGE_VAL; }
 
 void fmu_model_defaults(void *model)
 {

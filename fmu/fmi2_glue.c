@@ -368,6 +368,13 @@ static fmi2Status get_values(fmi2Component comp, const char *func, fmu_type type
     return fmi2OK;
 }
 
+/* Largest |input| accepted now: SMS_INPUT_MAX, or the built configuration's own range. */
+static double input_max(const fmu_instance *c)
+{
+    const double own = fmu_model_input_max(c->model);
+    return own < SMS_INPUT_MAX ? own : SMS_INPUT_MAX;
+}
+
 /* The message for a value set_values refuses (formatted only here, never on the hot path). */
 static fmi2Status refuse_value(fmu_instance *c, const char *func, fmu_type type, fmu_var_class cls,
                                fmi2ValueReference vr, const void *value, size_t i)
@@ -380,9 +387,10 @@ static fmi2Status refuse_value(fmu_instance *c, const char *func, fmu_type type,
         return FAIL(c, "%s: %s is a fixed parameter: set it before fmi2ExitInitializationMode",
                     func, name);
     if (cls == FMU_VAR_INPUT && isfinite(((const fmi2Real *)value)[i]))
-        return FAIL(c, "%s: %s = %g is beyond %g, the input range (SMS_INPUT_MAX) within which "
-                    "the filters' internal sums stay finite", func, name,
-                    ((const fmi2Real *)value)[i], SMS_INPUT_MAX);
+        return FAIL(c, "%s: %s = %g is beyond %.17g, the input range within which the filters' "
+                    "internal sums stay finite (SMS_INPUT_MAX, or less for a configuration with "
+                    "a large internal gain)", func, name, ((const fmi2Real *)value)[i],
+                    input_max(c));
     return FAIL(c, "%s: %s must be finite, got %g", func, name, ((const fmi2Real *)value)[i]);
 }
 
@@ -401,7 +409,7 @@ static fmi2Status set_values(fmi2Component comp, const char *func, fmu_type type
             || (cls == FMU_VAR_PARAMETER && c->clock.phase == FMU_STEP_COMPLETE)
             || (type == FMU_REAL && !isfinite(((const fmi2Real *)value)[i]))
             || (type == FMU_REAL && cls == FMU_VAR_INPUT
-                && fabs(((const fmi2Real *)value)[i]) > SMS_INPUT_MAX))
+                && fabs(((const fmi2Real *)value)[i]) > input_max(c)))
             return refuse_value(c, func, type, cls, vr[i], value, i);
     }
     for (i = 0; i < nvr; ++i) {

@@ -63,6 +63,10 @@ void fmu_model_set_integer(void *model, fmi2ValueReference vr, int value);
 double fmu_model_sample_period(const void *model);
 /** @return sizeof(sms_real) of this build (a saved state of the other precision is refused). */
 unsigned fmu_model_real_bytes(void);
+/** @return the largest |input| the model keeps every output and state finite for, from its
+ * current parameters (O(1); valid after fmu_model_build, and fmu_model_build refuses an input
+ * beyond it naming the variable), or HUGE_VAL when only the glue's SMS_INPUT_MAX applies. */
+double fmu_model_input_max(const void *model);
 /**
  * @brief Validate every parameter; O(1) in the size of the filters.
  * @param bytes  out: bytes of memory fmu_model_build() needs (may be 0).

@@ -207,6 +207,7 @@ void fmu_model_set_integer(void *model, fmi2ValueReference vr, int value)
 double fmu_model_sample_period(const void *model) { return ((const ma_model *)model)->Ts; }
 
 unsigned fmu_model_real_bytes(void) { return (unsigned)sizeof(sms_real); }
+double fmu_model_input_max(const void *model) { (void)model; return HUGE_VAL; }
 
 /* Config of stage k of axis i (designed for its mode); 0, or 1 with msg naming the variable. */
 static int stage_config(const ma_model *m, int k, int i, sms_stage_config *c, char *msg,

@@ -4,6 +4,7 @@
  * Only the public smoothshaper API is used. At fmi2ExitInitializationMode the chain is put at
  * rest at the current value of u (as if u had held that value forever), so y starts at u.
  */
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -34,6 +35,7 @@ typedef struct ss_model {
     sms_chain chain;
     sms_stage stages[SS_MAX_STAGES];
     size_t n_cells;                      /* memory cells of all stages (the glue's block) */
+    double input_max;                    /* sms_chain_input_max() of the built chain */
 } ss_model;
 
 static int is_integer_field(unsigned f)
@@ -243,6 +245,14 @@ static int stage_config(const ss_model *m, unsigned k, sms_stage_config *c, char
 
 unsigned fmu_model_real_bytes(void) { return (unsigned)sizeof(sms_real); }
 
+/* The chain's finite input range (sms_chain_input_max(): below SMS_INPUT_MAX for heavily
+ * damped harmonic smoothers and large-gain stages). */
+double fmu_model_input_max(const void *model)
+{
+    const ss_model *m = (const ss_model *)model;
+    return m->built && m->n_active > 0 ? m->input_max : HUGE_VAL;
+}
+
 /* Validate every parameter: the configs of the used stages, their count, the delay-line
  * samples and the memory cells they need (the core's size queries: closed forms). 0, or
  * non-zero with msg. */
@@ -297,9 +307,23 @@ int fmu_model_build(void *model, void *mem, size_t bytes, char *msg, size_t len)
     if (need > bytes / sizeof(sms_memory_cell))
         return snprintf(msg, len, "the stages need %lu bytes of memory, the block holds %lu",
                         (unsigned long)(need * sizeof(sms_memory_cell)), (unsigned long)bytes), 1;
-    if (n > 0 && sms_chain_init(&m->chain, m->stages, configs, n, m->Ts,
-                                (sms_memory_cell *)mem, need) != SMS_OK)
-        return snprintf(msg, len, "the chain could not be built"), 1;
+    if (n > 0) {
+        sms_chain chain;
+        sms_stage stages[SS_MAX_STAGES];
+        double bound;
+        if (sms_chain_init(&chain, stages, configs, n, m->Ts, (sms_memory_cell *)mem, need)
+            != SMS_OK)
+            return snprintf(msg, len, "the chain could not be built"), 1;
+        bound = sms_chain_input_max(&chain);
+        if (fabs(m->u) > bound)
+            return snprintf(msg, len, "u = %.17g is beyond %.17g, the finite input range of these "
+                            "stages (sms_chain_input_max: the internal sums of a heavily damped "
+                            "or high-gain stage would overflow)", m->u, bound), 1;
+        memcpy(m->stages, stages, sizeof stages);
+        m->chain = chain;
+        m->chain.stages = m->stages;
+        m->input_max = bound;
+    }
     m->n_active = n;
     m->n_cells = need;
     m->built = 1;

@@ -155,6 +155,7 @@ static int refuse(const tg_model *m, sms_status st, char *msg, size_t len)
 }
 
 unsigned fmu_model_real_bytes(void) { return (unsigned)sizeof(sms_real); }
+double fmu_model_input_max(const void *model) { (void)model; return HUGE_VAL; }
 
 /* Validate every parameter into c; need = table reals (the core's size query). 0 or 1 + msg. */
 static int configure(const tg_model *m, sms_generator_config *c, size_t *need, char *msg,

@@ -95,6 +95,7 @@ sms_status sms_smoother_init(sms_smoother *f, const sms_stage_config *config, do
         built.correction_delay[j] = j < d.n_corrections ? d.correction_delay[j] : 0u;
         built.correction_gain[j] = (sms_real)(j < d.n_corrections ? d.correction_gain[j] : 0.0);
     }
+    built.input_limit = d.input_limit;
     built.history = buffer;
     built.history_len = d.window;
     sms_smoother_reset(&built, (sms_real)0);
@@ -385,6 +386,11 @@ void sms_smoother_process(sms_smoother *f, const sms_real *in, sms_real *out, si
         out += seg;
         n -= seg;
     }
+}
+
+double sms_smoother_input_max(const sms_smoother *f)
+{
+    return f->input_limit < SMS_INPUT_MAX ? f->input_limit : SMS_INPUT_MAX;
 }
 
 size_t sms_smoother_state_count(const sms_smoother *f)

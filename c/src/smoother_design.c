@@ -206,6 +206,32 @@ static long double exact_correction(const sms_smoother_design *d, size_t n0, dou
     return sum + *a_out + *b_out;
 }
 
+/* Largest |x| (and |rest|) for which every sum on the per-sample path stays below the
+ * overflow threshold of sms_real, in closed form (O(1)); sms_smoother_input_max() caps it at
+ * SMS_INPUT_MAX. With |x|, |rest| <= X a copy filters
+ * u = x - rest - ref, |u| <= 4X; its state is w = sum_{i<M} c q^i u[n-i] (fewer terms after a
+ * restart), so |w| <= 4X |c| S, S = sum_{i<M} r^i = (1 - r^M)/(1 - r); the increment
+ * (q - 1) w + c u - c q^M u[n-M] and w + increment stay below 5 |w| + 8X|c| <= 28 X |c| S
+ * (S >= 1), and the direct taps add at most 8X (|d0| + |d1|). For most filters |c| S is of
+ * order one (1 rectangular and exponential, about pi/2 harmonic) and the bound is
+ * far above SMS_INPUT_MAX; a heavily damped harmonic smoother has c ~ e^{-sigma Ts}/sin(pi/N) (its
+ * first taps are tiny) and a proportionally smaller range. */
+static double input_bound(const sms_smoother_design *d)
+{
+    double S, gain, bound;
+    if (d->decay == 0.0)
+        S = (double)d->window;
+    else
+        S = expm1(d->decay * (double)d->window) / expm1(d->decay); /* (1 - r^M)/(1 - r) */
+    if (S < 1.0)
+        S = 1.0;
+    gain = 32.0 * fabs(d->gain) * S + 8.0;
+    if (d->n_corrections > 0)
+        gain += 8.0 * (fabs(d->correction_gain[0]) + fabs(d->correction_gain[1]));
+    bound = (double)SMS_REAL_MAX / gain;
+    return bound;
+}
+
 sms_status sms_smoother_design_make(const sms_stage_config *config, double Ts,
                                     sms_smoother_design *design)
 {
@@ -305,6 +331,10 @@ sms_status sms_smoother_design_make(const sms_stage_config *config, double Ts,
     /* Only an extreme sigma (the response decays below the range of sms_real within the
      * filter) can make a constant overflow. */
     if (!(fits_real(d.gain) && fits_real(d.tail_re) && fits_real(d.tail_im)))
+        return SMS_ERR_SIGMA;
+    d.input_limit = input_bound(&d);
+    /* A response so damped that inputs of order one already overflow a recursion sum. */
+    if (!(d.input_limit >= 1.0))
         return SMS_ERR_SIGMA;
     *design = d;
     return SMS_OK;

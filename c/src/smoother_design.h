@@ -38,6 +38,7 @@ typedef struct sms_smoother_design {
     size_t n_corrections;  /* 0 or 2 */
     size_t correction_delay[SMS_SMOOTHER_CORRECTION_TAPS];
     double correction_gain[SMS_SMOOTHER_CORRECTION_TAPS];
+    double input_limit;    /* |x|, |rest| below it keep every sum finite (uncapped) */
 } sms_smoother_design;
 
 /* Validate config for Ts (in the order of the table in config.h) and design the filter.

@@ -9,7 +9,8 @@ const char *sms_status_string(sms_status status)
     case SMS_ERR_SAMPLE_PERIOD: return "Ts must be finite and > 0";
     case SMS_ERR_DURATION: return "T must be finite and > 0";
     case SMS_ERR_DURATION_BELOW_TS: return "T must be >= Ts";
-    case SMS_ERR_SIGMA: return "sigma must be finite and <= 0";
+    case SMS_ERR_SIGMA: return "sigma must be finite and <= 0, and not so negative that the "
+                               "smoother's internal gain (about e^(-sigma Ts)) overflows";
     case SMS_ERR_WN: return "wn must be finite and > 0";
     case SMS_ERR_ZETA: return "zeta must be finite and in [0, 1)";
     case SMS_ERR_MULTIPLE: return "k must be >= 1 (and 1 for shapers and notches)";

@@ -129,10 +129,9 @@ _GLUE_SOURCE = r"""
 #include <stddef.h>
 #include "smoothshaper/smoothshaper.h"
 
-/* Index of the first sample that is NaN/Inf or beyond SMS_INPUT_MAX (types.h), or -1. */
-static ptrdiff_t smspy_first_bad_sample(const double *in, size_t n)
+/* Index of the first sample that is NaN/Inf or beyond limit (the chain's input range), or -1. */
+static ptrdiff_t smspy_first_bad_sample(const double *in, size_t n, double limit)
 {
-    const double limit = SMS_INPUT_MAX;
     size_t i;
     for (i = 0; i < n; ++i)
         if (!(in[i] >= -limit && in[i] <= limit))
@@ -144,7 +143,7 @@ static ptrdiff_t smspy_first_bad_sample(const double *in, size_t n)
  * and nothing filtered. */
 static ptrdiff_t smspy_chain_process_f64(sms_chain *chain, const double *in, double *out, size_t n)
 {
-    const ptrdiff_t bad = smspy_first_bad_sample(in, n);
+    const ptrdiff_t bad = smspy_first_bad_sample(in, n, sms_chain_input_max(chain));
     if (bad >= 0)
         return bad;
 #ifdef SMS_USE_FLOAT

@@ -111,18 +111,20 @@ def input_max(precision: str = "double") -> float:
     return float(lib.SMS_INPUT_MAX)
 
 
-def _check_input(name: str, x: np.ndarray, precision: str) -> None:
-    """ParameterError naming ``name[i]`` for the first sample beyond :func:`input_max`."""
-    bound = input_max(precision)
-    bad = np.flatnonzero(np.abs(x) > bound)
+def _check_input(name: str, x: np.ndarray, precision: str, bound: float | None = None) -> None:
+    """ParameterError naming ``name[i]`` for the first sample beyond ``bound`` (default
+    :func:`input_max`; a chain passes its own :attr:`Chain.input_max`)."""
+    limit = input_max(precision) if bound is None else bound
+    bad = np.flatnonzero(np.abs(x) > limit)
     if bad.size:
         i = bad[0]
         where = f"{name}[{i}]" if x.ndim else name
         value = x[i] if x.ndim else x
+        what = (f"SMS_INPUT_MAX for precision={precision!r}" if limit == input_max(precision)
+                else "this chain's input_max: a heavily damped or high-gain stage")
         raise ParameterError(
-            name, f"{name} out of range: {where} = {float(value)!r} exceeds {bound:g} "
-            f"(SMS_INPUT_MAX for precision={precision!r}), beyond which internal sums of the "
-            f"filters could overflow")
+            name, f"{name} out of range: {where} = {float(value)!r} exceeds {limit:g} "
+            f"({what}), beyond which internal sums of the filters could overflow")
 
 
 def _stage_fields(stage: Stage) -> tuple[float, ...]:
@@ -328,6 +330,16 @@ class Chain:
                                 self._memory_c, cells[0])
         if st != 0:
             _raise_status(st, lib, ffi, f"chain of {n} stages, Ts={self.Ts!r}")
+        self._input_max = float(lib.sms_chain_input_max(self._chain))
+
+    @property
+    def input_max(self) -> float:
+        """Largest ``|x|`` (input sample or ``rest``) this chain keeps every output and state
+        finite for (C ``sms_chain_input_max``): :func:`input_max` (``SMS_INPUT_MAX``) for most
+        chains, less for a heavily damped harmonic smoother (its internal gain is about
+        ``exp(-sigma*Ts)/sin(pi/N)``) or stages with large gains. :meth:`process`,
+        :meth:`step` and :meth:`reset` refuse values beyond it."""
+        return self._input_max
 
     def _raise_too_long(self, sizes: list, total: int):
         i = max(range(len(sizes)), key=sizes.__getitem__)
@@ -357,7 +369,7 @@ class Chain:
         ------
         ParameterError
             Naming ``u`` if it is not 1-D real (complex, boolean and text are refused, not cast),
-            holds NaN/Inf, or a sample beyond :func:`input_max`; the state is then untouched.
+            holds NaN/Inf, or a sample beyond :attr:`input_max`; the state is then untouched.
         """
         # The output: u is copied once (complex, boolean or text input is refused, not cast).
         y = np.array(_real_array("u", u, ndim=1), dtype=np.float64)
@@ -366,7 +378,7 @@ class Chain:
             bad = self._lib.smspy_chain_process_f64(self._chain, data, data, y.size)
             if bad >= 0:
                 if math.isfinite(y[bad]):
-                    _check_input("u", y, self.precision)
+                    _check_input("u", y, self.precision, self._input_max)
                 raise ParameterError("u", f"u must be finite: u[{bad}] = {float(y[bad])!r}")
         return y
 
@@ -386,12 +398,12 @@ class Chain:
         Raises
         ------
         ParameterError
-            Naming ``x`` if it is not a finite real number or beyond :func:`input_max`; the
+            Naming ``x`` if it is not a finite real number or beyond :attr:`input_max`; the
             state is then untouched.
         """
         v = _finite("x", x)
-        if abs(v) > self._lib.SMS_INPUT_MAX:      # the scalar test first: NumPy costs ~2 us
-            _check_input("x", np.float64(v), self.precision)
+        if abs(v) > self._input_max:      # the scalar test first: NumPy costs ~2 us
+            _check_input("x", np.float64(v), self.precision, self._input_max)
         cell = self._ffi.new("sms_real *", v)
         self._lib.sms_chain_step(self._chain, cell)
         return float(cell[0])
@@ -407,10 +419,10 @@ class Chain:
         Raises
         ------
         ParameterError
-            Naming ``rest`` if it is not finite or beyond :func:`input_max`.
+            Naming ``rest`` if it is not finite or beyond :attr:`input_max`.
         """
         v = _finite("rest", rest)
-        _check_input("rest", np.float64(v), self.precision)
+        _check_input("rest", np.float64(v), self.precision, self._input_max)
         self._lib.sms_chain_reset(self._chain, v)
 
     # -- state ----------------------------------------------------------------------------

@@ -193,6 +193,97 @@ static void tiny_durations(void)
     }
 }
 
+/* Heavily damped harmonic smoothers (sigma Ts from -6 to -200, first taps ~e^{sigma Ts}) have
+ * an internal gain ~e^{-sigma Ts}/sin(pi/N): their finite input range sms_smoother_input_max()
+ * is below SMS_INPUT_MAX, and at it (inputs and rest alternating +-bound, the worst swing)
+ * every output stays finite and every saved state loads. The FMU fuzz campaign found NaN
+ * outputs for inputs below SMS_INPUT_MAX in exactly this class. */
+#define DAMPED_MAX_CELLS 4096
+static void damped_input_range(void)
+{
+#ifdef SMS_USE_FLOAT
+    const double decays[] = { -3.0, -6.0, -19.0, -40.0, -80.0 };
+#else
+    const double decays[] = { -6.0, -19.0, -50.0, -200.0, -700.0 };
+#endif
+    const double Ts = 1e-3, nus[] = { 2.0, 3.0, 10.0, 37.5, 200.0 };
+    static sms_memory_cell memory[DAMPED_MAX_CELLS];
+    static double state[DAMPED_MAX_CELLS];
+    size_t i, j, t, k;
+    for (i = 0; i < sizeof decays / sizeof decays[0]; ++i)
+        for (j = 0; j < sizeof nus / sizeof nus[0]; ++j)
+            for (t = 0; t < 2; ++t) {
+                sms_stage_config c[2];
+                sms_chain chain;
+                sms_stage stages[2];
+                size_t cells, n_state;
+                double bound, chain_bound;
+                int finite = 1;
+                c[0] = sms_stage_config_default(SMS_DAMPED_HARMONIC);
+                c[0].T = nus[j] * Ts;
+                c[0].sigma = decays[i] / Ts;
+                c[0].k = 1u;
+                c[0].timing = t ? SMS_TIMING_PAPER : SMS_TIMING_EXACT;
+                if (nus[j] == 37.5 && !t)
+                    c[0].k = 3u;
+                c[1] = sms_stage_config_default(SMS_RECTANGULAR);
+                c[1].T = 5.0 * Ts;
+                CHECK_STATUS(sms_chain_memory_size(c, 2, Ts, &cells), SMS_OK);
+                CHECK(cells <= DAMPED_MAX_CELLS);
+                if (cells > DAMPED_MAX_CELLS)
+                    continue;
+                CHECK_STATUS(sms_chain_init(&chain, stages, c, 2, Ts, memory, cells), SMS_OK);
+                bound = sms_stage_input_max(&stages[0]);
+                chain_bound = sms_chain_input_max(&chain);
+                CHECK(bound >= 1.0 && bound <= SMS_INPUT_MAX);
+                CHECK(chain_bound <= bound && chain_bound >= bound / 3.0);
+                /* the range is a bound, not a guess: it is below SMS_INPUT_MAX exactly when the
+                 * internal gain e^{-sigma Ts}/sin(pi/N) is large */
+                if (decays[i] <= -19.0)
+                    CHECK(bound < SMS_INPUT_MAX);
+                sms_chain_reset(&chain, (sms_real)(-chain_bound));
+                for (k = 0; k < 4000u && finite; ++k) {
+                    sms_real x = (sms_real)((k / 3u) % 2u ? chain_bound : -chain_bound);
+                    sms_chain_step(&chain, &x);
+                    finite = isfinite((double)x);
+                    if (k % 997u == 0u) {
+                        n_state = sms_chain_state_count(&chain);
+                        CHECK(n_state <= DAMPED_MAX_CELLS);
+                        sms_chain_get_state(&chain, state);
+                        CHECK_STATUS(sms_chain_set_state(&chain, state, n_state), SMS_OK);
+                    }
+                }
+                CHECK(finite);
+                if (!finite)
+                    fprintf(stderr, "  sigma Ts = %g, T/Ts = %g, timing %d: NaN at sample %lu "
+                            "for inputs of %g\n", decays[i], nus[j], (int)t, (unsigned long)k,
+                            chain_bound);
+            }
+    /* ordinary smoothers keep the whole range */
+    for (j = 0; j < 4; ++j) {
+        sms_stage_config c = sms_stage_config_default(smoothers[j]);
+        sms_stage stage;
+        size_t cells;
+        c.T = 0.0375;
+        c.sigma = -20.0;
+        CHECK_STATUS(sms_stage_memory_size(&c, Ts, &cells), SMS_OK);
+        CHECK_STATUS(sms_stage_init(&stage, &c, Ts, memory, cells), SMS_OK);
+        CHECK(sms_stage_input_max(&stage) == SMS_INPUT_MAX);
+    }
+    /* a sigma so negative that inputs of order one would overflow is refused at init */
+    {
+        sms_stage_config c = sms_stage_config_default(SMS_DAMPED_HARMONIC);
+        size_t cells;
+        c.T = 2.0 * Ts;
+#ifdef SMS_USE_FLOAT
+        c.sigma = -86.0 / Ts;
+#else
+        c.sigma = -708.0 / Ts;
+#endif
+        CHECK_STATUS(sms_stage_memory_size(&c, Ts, &cells), SMS_ERR_SIGMA);
+    }
+}
+
 int main(void)
 {
     long_smoother_sizes();
@@ -202,5 +293,6 @@ int main(void)
     peaks_extremes();
     matched_notch_low_mode();
     tiny_durations();
+    damped_input_range();
     return check_summary("test_bounded");
 }

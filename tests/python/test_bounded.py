@@ -113,10 +113,13 @@ def test_peaks_too_close_for_double_name_t2():
 
 @pytest.mark.parametrize("precision", filters.PRECISIONS)
 def test_inputs_at_the_stated_bound_stay_finite_and_the_state_loads(precision):
-    m = input_max(precision)
     chain = Chain([stages.damped_harmonic(T=0.0173, sigma=-3.0), stages.rectangular(T=0.0101),
                    stages.shaper("ei2", wn=90.0, zeta=0.1), stages.notch(wn=300.0, zeta=0.01),
                    stages.exponential(T=0.02, sigma=-50.0)], Ts=1e-3, precision=precision)
+    m = chain.input_max
+    # no stage here has a large internal gain; in float the notch's gain bound (about 20)
+    # takes a little off the exponential smoother's range behind it
+    assert input_max(precision) / 10 < m <= input_max(precision)
     rng = np.random.default_rng(7)
     chain.reset(-m)
     for u in (np.where(np.arange(3000) % 7 < 3, m, -m), rng.choice([m, -m], 3000),
@@ -126,9 +129,34 @@ def test_inputs_at_the_stated_bound_stay_finite_and_the_state_loads(precision):
         chain.set_state(chain.get_state())          # every state a run produces loads again
     with pytest.raises(ParameterError, match=r"^u ") as info:
         chain.process([0.0, np.nextafter(m, math.inf) * 1.000001])
-    assert "SMS_INPUT_MAX" in str(info.value)
+    assert "input_max" in str(info.value).lower()
     with pytest.raises(ParameterError, match=r"^x "):
         chain.step(-2.0 * m)
+
+
+@pytest.mark.parametrize("precision", filters.PRECISIONS)
+@pytest.mark.parametrize("decay,N", [(-19.0, 2), (-19.0, 7), (-50.0, 40), (-80.0, 2)])
+def test_heavily_damped_harmonic_smoothers_state_a_finite_range_and_keep_it(precision, decay, N):
+    """The class the FMI fuzz campaign found (NaN after fmi2OK, a state that did not load):
+    recursion gain about e^(-sigma Ts)/sin(pi/N), far above the margin SMS_INPUT_MAX leaves."""
+    Ts = 1e-3
+    chain = Chain([stages.damped_harmonic(T=N * Ts, sigma=decay / Ts),
+                   stages.rectangular(T=5 * Ts)], Ts=Ts, precision=precision)
+    m = chain.input_max
+    assert 1.0 <= m < input_max(precision)
+    chain.reset(-m)
+    y = chain.process(np.where(np.arange(400) % 6 < 3, m, -m))
+    assert np.isfinite(y).all()
+    chain.set_state(chain.get_state())
+    with pytest.raises(ParameterError, match=r"^u ") as info:
+        chain.process([min(1.01 * m, input_max(precision))])
+    assert "input_max" in str(info.value)
+
+
+def test_a_sigma_leaving_no_unit_input_range_is_refused_naming_sigma():
+    with pytest.raises(ParameterError, match=r"^sigma ") as info:
+        Chain([stages.damped_harmonic(T=2e-3, sigma=-720e3)], Ts=1e-3)
+    assert "internal gain" in str(info.value)
 
 
 # ---------------------------------------------------------------- state identity

@@ -46,6 +46,15 @@ SMS_API void sms_chain_process(sms_chain *chain, const sms_real *in, sms_real *o
 /** @brief Sum of the stages' impulse-response lengths minus (stages - 1): the chain's FIR
  * length in samples (IIR notches count 0). */
 SMS_API size_t sms_chain_length(const sms_chain *chain);
+/**
+ * @brief The chain's finite input range: inputs and reset values with |x| at most this keep
+ * every stage's output and state finite. All stages rest at the same value and map x - rest
+ * to y - rest through their taps, so stage i sees at most R_i |x|, R_0 = 1,
+ * R_i = 1 + 2 G_0 ... G_{i-1} with G_j = sms_stage_gain_bound(); the bound is
+ * min_i L_i / R_i, at most ::SMS_INPUT_MAX, L_i the stage's range before that cap (the
+ * REAL_MAX-over-gain figure of sms_stage_input_max()). O(stages).
+ */
+SMS_API double sms_chain_input_max(const sms_chain *chain);
 SMS_API size_t sms_chain_state_count(const sms_chain *chain);
 SMS_API void sms_chain_get_state(const sms_chain *chain, double *dst);
 SMS_API sms_status sms_chain_set_state(sms_chain *chain, const double *src, size_t n);

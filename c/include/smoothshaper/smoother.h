@@ -91,6 +91,8 @@ typedef struct sms_smoother {
     sms_real *history;          /**< caller buffer: the last M inputs minus rest (ring) */
     size_t history_len;         /**< M */
     size_t head;                /**< ring slot of x[n-M] (the oldest), 0..M-1 */
+    double input_limit;         /**< |x| keeping every internal sum finite, before the cap
+                                     at ::SMS_INPUT_MAX of sms_smoother_input_max() */
 } sms_smoother;
 
 /**
@@ -115,7 +117,8 @@ SMS_API sms_status sms_smoother_buffer_size(const sms_stage_config *config, doub
  * - ::SMS_ERR_DURATION_BELOW_TS: T < Ts (beyond the 1e-9 integer test), or a harmonic family
  *   with N < 2 samples (integer or paper timing: its only sample, sin(0), is zero);
  * - ::SMS_ERR_SIGMA: damped families: sigma is NaN/Inf or > 0; also a sigma so negative that
- *   a design constant overflows ::sms_real;
+ *   a design constant overflows ::sms_real or that the finite input range
+ *   (sms_smoother_input_max()) falls below 1;
  * - ::SMS_ERR_MULTIPLE: k < 1;
  * - ::SMS_ERR_EVEN_MULTIPLE: k even for ::SMS_HARMONIC or ::SMS_DAMPED_HARMONIC;
  * - ::SMS_ERR_ABOVE_NYQUIST: exact timing with T/Ts off the grid and the pinned zero w* at or
@@ -138,6 +141,24 @@ SMS_API sms_status sms_smoother_init(sms_smoother *f, const sms_stage_config *co
  * @param rest finite; a NaN/Inf rest makes every output NaN until the next finite reset.
  */
 SMS_API void sms_smoother_reset(sms_smoother *f, sms_real rest);
+
+/**
+ * @brief The finite input range of this smoother: inputs and reset values with
+ * |x| <= sms_smoother_input_max() keep every output and state finite (beyond it, or for
+ * NaN/Inf, see "Non-finite input" above). Computed at init in closed form from the designed
+ * constants: with c the weight of the newest input, r = e^{sigma Ts} and
+ * S = (1 - r^M)/(1 - r) (S = M when sigma = 0), the recursion state is at most 4 |c| S times
+ * the input range, and the bound is
+ *   min(::SMS_INPUT_MAX, REAL_MAX / (32 |c| max(S, 1) + 8 + 8 (|d_0| + |d_1|))),
+ * REAL_MAX the overflow threshold of ::sms_real and d_j the exact-timing direct taps. It is
+ * ::SMS_INPUT_MAX for every rectangular, harmonic and exponential smoother (|c| S is 1, or
+ * about pi/2) and for lightly damped harmonic ones. A heavily damped harmonic smoother
+ * (c ~ e^{-sigma Ts}/sin(pi/N), beyond about 50 in double or 30 in float) has a smaller range,
+ * e.g. in double 3.1e298 at sigma Ts = -19, N = 2 and 7.8e219 at sigma Ts = -200, N = 2
+ * (docs/numerics.md has a table). sms_smoother_init() refuses with ::SMS_ERR_SIGMA a sigma for
+ * which the range would fall below 1 (sigma Ts below about -706 in double, -85 in float).
+ */
+SMS_API double sms_smoother_input_max(const sms_smoother *f);
 
 /** @brief Filter one sample in place: *x = y[n] for input x[n]. O(1), no libm. */
 SMS_API void sms_smoother_step(sms_smoother *f, sms_real *x);

@@ -82,6 +82,21 @@ SMS_API void sms_stage_reset(sms_stage *stage, sms_real rest);
 SMS_API void sms_stage_step(sms_stage *stage, sms_real *x);
 /** @brief Filter n samples; in == out is allowed (in place), other overlaps are not. */
 SMS_API void sms_stage_process(sms_stage *stage, const sms_real *in, sms_real *out, size_t n);
+/**
+ * @brief The stage's finite input range: inputs and reset values with |x| at most this keep
+ * every output and state finite: min(::SMS_INPUT_MAX, L) with L = REAL_MAX over the stage's
+ * internal gain. Smoothers: sms_smoother_input_max(); shapers: L = REAL_MAX / (2 sum |g_k|);
+ * notches: L = REAL_MAX (an overflow restarts the notch, notch.h). O(1).
+ */
+SMS_API double sms_stage_input_max(const sms_stage *stage);
+/**
+ * @brief An upper bound G on the l1 norm of the stage's impulse response (its largest gain
+ * from input to output in the time domain): |y - rest| <= G max |x - rest|. Smoothers:
+ * 1 + 2 (|d_0| + |d_1|) (the base taps are non-negative and sum with the direct taps to 1);
+ * shapers: sum |g_k|; notches: 1 + 2 (|d0| + |d2|)/((1 - |p1|)(1 - |p2|)) with p1, p2 the
+ * poles (a bound, not the norm). O(1).
+ */
+SMS_API double sms_stage_gain_bound(const sms_stage *stage);
 /** @brief Impulse-response length L in samples (notch: 0, it is IIR). */
 SMS_API size_t sms_stage_length(const sms_stage *stage);
 /** @brief Number of doubles sms_stage_get_state() writes. */

@@ -32,12 +32,14 @@ typedef double sms_real;  /**< signal and state type (double build) */
  * 2^13) to the overflow threshold of ::sms_real: inputs and reset values with
  * |x| <= SMS_INPUT_MAX keep every output and state finite for stages whose internal gain is
  * below that factor (all undamped smoothers, notches and shapers away from zeta -> 1).
- * Heavily damped smoothers (sigma Ts below about -7: recursion gain e^{-sigma Ts}) and
- * exact-timing shapers with large correction taps have a smaller finite range. Larger or
- * non-finite inputs are not refused on the per-sample path (it has no status): they can make
- * outputs non-finite for a while (see each family's header for how it recovers), and the state
- * saved then still loads (save/load accept whatever a run produces; tests/c/test_fuzz_api.c
- * checks it). The Python wrappers refuse inputs beyond this bound before they reach the core.
+ * A configuration with a larger internal gain (a heavily damped harmonic smoother: about
+ * e^{-sigma Ts}/sin(pi/N); a shaper with large correction taps) has a smaller finite range,
+ * computed in closed form when it is built: sms_smoother_input_max(), sms_stage_input_max(),
+ * sms_chain_input_max() (docs/numerics.md). Larger or non-finite inputs are not refused on the
+ * per-sample path (it has no status): they can make outputs non-finite for a while (see each
+ * family's header for how it recovers), and the state saved then still loads (save/load
+ * accept whatever a run produces; tests/c/test_fuzz_api.c checks it). The Python wrappers and
+ * the FMUs refuse inputs beyond the configuration's range before they reach the core.
  */
 #ifdef SMS_USE_FLOAT
 #define SMS_INPUT_MAX 3.0e35
