@@ -271,9 +271,9 @@ def main(argv=None) -> int:
           f"({grid_ns / cg_ns:.1f}x)")
 
     rng = np.random.default_rng(5)
-    for n in (1, 2, 3, 4):
-        prices = []
-        for _ in range(200 if args.quick else 2000):
+    for n in (1, 2, 3, 4, 5, 6):
+        prices = {True: [], False: []}   # every continuous stage >= Ts, or not
+        for _ in range(200 if args.quick else 3000):
             h = 10.0 ** rng.uniform(-3, 3)
             lim = [10.0 ** rng.uniform(-3, 3) * 10.0 ** i for i in range(n)]
             kw = dict(vmax=lim[0], amax=lim[1] if n > 1 else None,
@@ -281,10 +281,15 @@ def main(argv=None) -> int:
             cont = design.kinematic(h=h, **kw)
             Ts = design.duration(cont) / 10.0 ** rng.uniform(0.5, 3.5)
             grid = design.kinematic(h=h, Ts=Ts, **kw)
-            prices.append((design.duration(grid) - design.duration(cont)) / Ts)
-        pr = np.array(prices)
-        print(f"grid price, {n} bound(s): mean {pr.mean():.2f}  median {np.median(pr):.2f}  "
-              f"p99 {np.percentile(pr, 99):.2f}  max {pr.max():.2f} samples")
+            prices[min(s.T for s in cont) >= Ts].append(
+                (design.duration(grid) - design.duration(cont)) / Ts)
+        parts = []
+        for key, label in ((True, "every stage >= Ts"), (False, "a stage < Ts")):
+            pr = np.array(prices[key])
+            if pr.size:
+                parts.append(f"{label} ({pr.size}): mean {pr.mean():.2f}  p99 "
+                             f"{np.percentile(pr, 99):.2f}  max {pr.max():.2f}")
+        print(f"grid price in samples, {n} bound(s): " + "; ".join(parts))
 
     try:
         c = phase_comparison(n_cases)

@@ -434,6 +434,18 @@ def _on_grid(T: list[float], Ts: float, h: float, limits: list[float], tuned_tap
         key = (sum(cand), [-x for x in cand])
         if key < best and ok(cand + ([0] if tuned else [])):
             best, N[:m] = key, cand
+    # more than one sample per stage over the continuous lengths (tight stages double the
+    # rounding below them): each stage +1 .. -2 samples from its ceiling, lifted by the structure
+    if m >= 2 and best[0] - sum(T[i] / Ts for i in range(m)) > m:
+        for offsets in itertools.product((1, 0, -1, -2), repeat=m):
+            cand, after = [0] * m, tuned_support if tuned else 0
+            for i in range(m - 1, -1, -1):
+                cand[i] = max(base[i] + offsets[i], 1)
+                if i + 1 < n:
+                    cand[i] = max(cand[i], after)
+                after += cand[i]
+            if sum(cand) < best[0] and ok(cand + ([0] if tuned else [])):
+                best, N[:m] = (sum(cand), [-x for x in cand]), cand
     return [N[i] * Ts if N[i] else T[i] for i in range(n)]
 
 

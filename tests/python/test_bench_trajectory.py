@@ -9,7 +9,7 @@ def test_quick_run_prints_every_figure(capsys):
     assert bench_trajectory.main(["--quick"]) == 0
     out = capsys.readouterr().out
     for line in ("target changed mid-motion", "rest to rest", "Generator.process, double",
-                 "Generator.process, float", "kinematic design", "grid price, 3 bound(s)",
+                 "Generator.process, float", "kinematic design", "grid price in samples, 3 bound(s)",
                  "Synchronization.Phase", "us/re-plan blended"):
         assert line in out
 

@@ -115,3 +115,82 @@ def test_extreme_bounds_answer_at_once():
         stages = design.kinematic(h=1e-20, vmax=1.0, amax=1e7, jmax=1e14,
                                   higher=[10.0 ** (7 * i) for i in range(3, n)])
         assert all(math.isfinite(s.T) and s.T > 0 for s in stages)
+
+
+def _grid_price(h, lim, Ts):
+    n = len(lim)
+    kw = dict(vmax=lim[0], amax=lim[1] if n > 1 else None, jmax=lim[2] if n > 2 else None,
+              higher=tuple(lim[3:]))
+    cont = design.kinematic(h=h, **kw)
+    grid = design.kinematic(h=h, Ts=Ts, **kw)
+    return (design.duration(grid) - design.duration(cont)) / Ts, cont, grid
+
+
+@settings(max_examples=60, deadline=None)
+@given(lh=st.floats(-3, 3), ls=st.lists(st.floats(-3, 3), min_size=5, max_size=5),
+       n=st.integers(1, 5), lt=st.floats(0.0, 1.0))
+def test_grid_price_at_most_one_sample_per_stage(lh, ls, n, lt):
+    """Designed on the grid, a chain costs at most one sample per stage over the continuous
+    optimum: for up to three bounds at any Ts, for four and five whenever every continuous
+    stage lasts at least a sample (shorter stages cost a whole sample each and the structure
+    doubles them: test_sub_sample_stages_cost_more_than_a_sample_each)."""
+    h = 10.0 ** lh
+    lim = [10.0 ** ls[i] * 10.0 ** i for i in range(n)]
+    _, cont, _ = _grid_price(h, lim, 1.0)
+    T = [s.T for s in cont]
+    shortest = min(T)
+    # Ts from the whole move (any Ts up to three bounds) or within the shortest stage
+    Ts = (design.duration(cont) / 10.0 ** (0.5 + 3 * lt) if n <= 3
+          else shortest / 10.0 ** (3 * lt))
+    price, _, grid = _grid_price(h, lim, Ts)
+    assert -1e-9 <= price <= n + 1e-9, (price, [t / Ts for t in T], [g.T / Ts for g in grid])
+
+
+def test_sub_sample_stages_cost_more_than_a_sample_each():
+    """Four bounds where the last three stages last 1e-5 of a sample: each whole-sample stage
+    lasts at least one sample and each is at least as long as the stages after it (1, 1, 2
+    samples), so the chain costs about five samples over the continuous optimum, and no
+    chain of this structure within three samples of the ceilings does better (exhaustive)."""
+    import itertools
+    h = 100.71119125350725
+    lim = [0.006020693715312491, 9.538809140168473, 50.1540522121824, 1430.6710659883863]
+    Ts = 2090.7316420179104
+    price, cont, grid = _grid_price(h, lim, Ts)
+    assert 4.99 < price < 5.0
+    N = [round(g.T / Ts) for g in grid]
+    assert N[1:] == [2, 1, 1]
+
+    def feasible(M):
+        below = M[-1]
+        for i in range(2, -1, -1):
+            if M[i] < below:
+                return False
+            below += M[i]
+        prod = 1.0
+        for i in range(3):
+            prod *= M[i]
+            if h / (prod * Ts ** (i + 1)) > lim[i] * (1 + 1e-12):
+                return False
+        return h / (prod * Ts ** 3) / M[3] / Ts <= lim[3] * (1 + 1e-12)
+    base = [math.ceil(s.T / Ts) for s in cont]
+    shorter = [M for M in itertools.product(*(range(1, b + 4) for b in base))
+               if sum(M) < sum(N) and feasible(M)]
+    assert shorter == []
+
+
+def test_five_bounds_tight_stages_round_together():
+    """Five bounds, three tight stages above a stage at its bound: rounding each stage on its
+    own (ceilings lifted by the structure) cost 13.7 samples; the second search moves the bound
+    stage a sample under its ceiling and keeps 1.7, every sampled difference within its bound,
+    the NumPy reference agreeing sample for sample."""
+    h = 0.8359411203020277
+    lim = [1.3938247390973661, 297.17187056386626, 42.27817492302489, 7.027818042549363,
+           1323.3393628839408]
+    Ts = 0.0010035394681245516
+    price, cont, grid = _grid_price(h, lim, Ts)
+    assert [round(g.T / Ts) for g in grid] == [1398, 699, 350, 343, 6]
+    assert price == pytest.approx(1.66, abs=0.01)
+    assert max(sampled_ratios(grid, Ts, h, lim)) <= 1 + 1e-9
+    ref = design.kinematic_reference(h=h, vmax=lim[0], amax=lim[1], jmax=lim[2],
+                                     higher=tuple(lim[3:]), Ts=Ts)
+    assert [round(r.T / Ts) for r in ref] == [1398, 699, 350, 343, 6]

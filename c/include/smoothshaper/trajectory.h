@@ -69,9 +69,12 @@ typedef enum sms_profile {
  * on the mode, exact timing) and the design bounds the top derivative with its largest
  * sampled tap / Ts instead of the continuous peak density: both are satisfied. Then every
  * backward difference of the sampled output (chain fed with a step of h at a sample) obeys
- * the bounds: |D^i q[m]| / Ts^i <= limits[i-1] for i = 1..n (to rounding). Price: the
- * duration grows by less than one sample per stage for n <= 3 (at most 2^(n-1) - 1 + 1
- * samples over ceil for longer chains), see docs/sampled-limits.md for measured figures.
+ * the bounds: |D^i q[m]| / Ts^i <= limits[i-1] for i = 1..n (to rounding). Price: at most
+ * one sample per stage over the continuous optimum for n <= 3, and for n = 4, 5 when every
+ * continuous stage lasts at least a sample; a stage shorter than a sample costs a whole one
+ * and the structure doubles such stages (docs/sampled-limits.md, measured figures). The
+ * search: each stage's ceiling +-1 (3^m chains), then, when that leaves more than one sample
+ * per stage over, +1 .. -2 with each stage lifted to the samples after it (4^m chains).
  *
  * @param h         displacement, finite and != 0 (the sign is irrelevant to the lengths)
  * @param limits    n bounds, each finite and > 0
