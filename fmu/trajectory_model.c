@@ -145,9 +145,9 @@ static int refuse(const tg_model *m, sms_status st, char *msg, size_t len)
     case SMS_ERR_WN: case SMS_ERR_ABOVE_NYQUIST:
         return snprintf(msg, len, "wn = %.17g: %s", m->wn, why), 1;
     case SMS_ERR_ZETA: return snprintf(msg, len, "zeta = %.17g: %s", m->zeta, why), 1;
-    case SMS_ERR_DURATION_BELOW_TS:
-        return snprintf(msg, len, "amax = %.17g, jmax = %.17g (a tail stage is shorter than Ts): "
-                        "%s", m->amax, m->jmax, why), 1;
+    case SMS_ERR_DURATION_BELOW_TS: case SMS_ERR_TOO_LONG:
+        return snprintf(msg, len, "wn = %.17g (the stage tuned to the mode on the grid of "
+                        "Ts = %.17g): %s", m->wn, m->Ts, why), 1;
     default:
         return snprintf(msg, len, "vmax = %.17g, amax = %.17g, jmax = %.17g: %s", m->vmax, m->amax,
                         m->jmax, why), 1;
@@ -186,9 +186,9 @@ static int configure(const tg_model *m, sms_generator_config *c, size_t *need, c
     if (st != SMS_OK)
         return refuse(m, st, msg, len);
     if (*need > FMU_MAX_REALS)
-        return snprintf(msg, len, "the tail needs %.0f table reals, more than the limit of %lu "
-                        "(2 GiB in double): raise amax/jmax or Ts", (double)*need,
-                        (unsigned long)FMU_MAX_REALS), 1;
+        return snprintf(msg, len, "wn = %.17g: the stage tuned to the mode needs %.0f reals, "
+                        "more than the limit of %lu (2 GiB in double): raise wn or Ts", m->wn,
+                        (double)*need, (unsigned long)FMU_MAX_REALS), 1;
     return 0;
 }
 

@@ -362,7 +362,9 @@ def add_design_forms(design_parser, parser_class) -> None:
                    "each axis time-optimal on its own (independent)")
     p.add_argument("--Ts", type=float, required=True, help="sample period [s]")
     p.add_argument("--profile", default="polynomial", choices=PROFILES,
-                   help="family of the tail's last stage (default polynomial)")
+                   help="shape of the acceleration's transitions: polynomial (linear ramps), "
+                        "trigonometric (half cosines) or damped (ramps, with the exponential "
+                        "stage tuned to --wn); default polynomial")
     p.add_argument("--wn", type=float, help="mode to cancel [rad/s] (needed by damped)")
     p.add_argument("--zeta", type=float, default=0.0, help="damping ratio of the mode (default 0)")
     p.add_argument("--hold", type=float, metavar="SECONDS",
