@@ -94,9 +94,11 @@ CHOICES = {
                     ("for_mode", 1, "design T and sigma for the mode (wn, zeta) with multiple k")],
     "Timing": [("exact", 0, "zeros exactly on the sampled continuous design for any Ts"),
                ("paper", 1, "N = round(T/Ts), as in the source papers")],
-    "Profile": [("polynomial", 0, "rectangular chain: double-S (jerk-limited) profile"),
-                ("trigonometric", 1, "harmonic last stage (modified double-S)"),
-                ("damped", 2, "exponential jerk stage cancelling the mode (damped-jerk)")],
+    "Profile": [("polynomial", 0, "linear ramps of the acceleration: time-optimal double-S"),
+                ("trigonometric", 1, "half-cosine transitions, continuous jerk (modified "
+                                     "double-S)"),
+                ("damped", 2, "linear ramps through the exponential stage cancelling the "
+                              "damped mode wn, zeta (damped-jerk)")],
 }
 
 
@@ -154,7 +156,7 @@ def trajectory_generator() -> tuple[list[Var], list[str], str]:
             variability="fixed", min=0.0, c_name="AMAX"),
         Var("jmax", 13, "Real", "parameter", "jerk bound (P/s3); finite, > 0", "", 100.0,
             variability="fixed", min=0.0, c_name="JMAX"),
-        Var("profile", 14, "Integer", "parameter", "shape of the last stage; "
+        Var("profile", 14, "Integer", "parameter", "shape of the acceleration's transitions; "
             + choice_text("Profile"), "", 0, "Profile", "fixed", c_name="PROFILE"),
         Var("wn", 15, "Real", "parameter", "natural frequency of a mode to cancel; 0 = none, else "
             "finite, 0 < wn < pi/Ts", "rad/s", 0.0, variability="fixed", min=0.0, c_name="WN"),
