@@ -108,8 +108,20 @@ sms_status sms_chain_set_state(sms_chain *chain, const double *src, size_t n)
     size_t i, offset = 0;
     if (chain == NULL || src == NULL)
         return SMS_ERR_NULL;
-    if (n != sms_chain_state_count(chain))
+    if (n != sms_chain_state_count(chain)) {
+        /* A state of another configuration has another length, often: name the field of the
+         * first stage whose identity differs (the stages before it match, and so their
+         * lengths). */
+        for (i = 0; i < chain->n_stages && offset + SMS_STATE_IDENTITY_COUNT <= n; ++i) {
+            size_t count = sms_stage_state_count(&chain->stages[i]);
+            sms_status st = sms_stage_check_state(&chain->stages[i], src + offset,
+                                                  n - offset < count ? n - offset : count);
+            if (st <= SMS_ERR_STATE_FORMAT)
+                return st;
+            offset += count;
+        }
         return SMS_ERR_STATE;
+    }
     /* Check every stage before writing any, so a bad vector leaves the whole chain as it was. */
     for (i = 0; i < chain->n_stages; ++i) {
         size_t count = sms_stage_state_count(&chain->stages[i]);

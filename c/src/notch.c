@@ -3,6 +3,7 @@
 #include <float.h>
 #include <math.h>
 #include "smoothshaper/notch.h"
+#include "state_identity.h"
 
 static const double pi = 3.14159265358979323846;
 
@@ -101,6 +102,7 @@ sms_status sms_notch_init(sms_notch *f, const sms_stage_config *config, double T
     built.d2 = (sms_real)d2;
     built.a1 = (sms_real)a1;
     built.a2 = (sms_real)a2;
+    sms_state_identity(config, Ts, built.identity);
     *f = built;
     sms_notch_reset(f, (sms_real)0);
     return SMS_OK;
@@ -149,11 +151,15 @@ void sms_notch_process(sms_notch *f, const sms_real *in, sms_real *out, size_t n
 size_t sms_notch_state_count(const sms_notch *f)
 {
     (void)f;
-    return 6u;
+    return SMS_STATE_IDENTITY_COUNT + 6u;
 }
 
 void sms_notch_get_state(const sms_notch *f, double *dst)
 {
+    size_t i;
+    for (i = 0; i < SMS_STATE_IDENTITY_COUNT; ++i)
+        dst[i] = f->identity[i];
+    dst += SMS_STATE_IDENTITY_COUNT;
     dst[0] = (double)f->kind;
     dst[1] = (double)f->x1;
     dst[2] = (double)f->x2;
@@ -164,9 +170,13 @@ void sms_notch_get_state(const sms_notch *f, double *dst)
 
 sms_status sms_notch_check_state(const sms_notch *f, const double *src, size_t n)
 {
+    sms_status id;
     if (f == NULL || src == NULL)
         return SMS_ERR_NULL;
-    if (n != 6u || src[0] != (double)f->kind)
+    if (n >= SMS_STATE_IDENTITY_COUNT
+        && (id = sms_state_identity_check(f->identity, src)) != SMS_OK)
+        return id;
+    if (n != sms_notch_state_count(f) || src[SMS_STATE_IDENTITY_COUNT] != (double)f->kind)
         return SMS_ERR_STATE;
     return SMS_OK;
 }
@@ -176,6 +186,7 @@ sms_status sms_notch_set_state(sms_notch *f, const double *src, size_t n)
     sms_status st = sms_notch_check_state(f, src, n);
     if (st != SMS_OK)
         return st;
+    src += SMS_STATE_IDENTITY_COUNT;
     f->x1 = (sms_real)src[1];
     f->x2 = (sms_real)src[2];
     f->w1 = (sms_real)src[3];

@@ -3,6 +3,7 @@
 #include <math.h>
 #include <string.h>
 #include "shaper_designs.h"
+#include "state_identity.h"
 
 static const double pi = 3.14159265358979323846;
 /* Longest accepted shaper: state indices are saved as doubles and must stay exact. */
@@ -323,6 +324,7 @@ sms_status sms_shaper_init(sms_shaper *f, const sms_stage_config *config, double
     built.taps = taps;
     built.history = buffer;
     built.history_len = built.length;
+    sms_state_identity(config, Ts, built.identity);
     *f = built;
     sms_shaper_reset(f, (sms_real)0);
     return SMS_OK;
@@ -360,12 +362,15 @@ void sms_shaper_process(sms_shaper *f, const sms_real *in, sms_real *out, size_t
 
 size_t sms_shaper_state_count(const sms_shaper *f)
 {
-    return f->history_len + 4u;
+    return SMS_STATE_IDENTITY_COUNT + f->history_len + 4u;
 }
 
 void sms_shaper_get_state(const sms_shaper *f, double *dst)
 {
     size_t i;
+    for (i = 0; i < SMS_STATE_IDENTITY_COUNT; ++i)
+        dst[i] = f->identity[i];
+    dst += SMS_STATE_IDENTITY_COUNT;
     dst[0] = (double)f->kind;
     dst[1] = (double)f->history_len;
     dst[2] = (double)f->head;
@@ -376,9 +381,16 @@ void sms_shaper_get_state(const sms_shaper *f, double *dst)
 
 sms_status sms_shaper_check_state(const sms_shaper *f, const double *src, size_t n)
 {
+    sms_status id;
     if (f == NULL || src == NULL)
         return SMS_ERR_NULL;
-    if (n != f->history_len + 4u || src[0] != (double)f->kind
+    if (n >= SMS_STATE_IDENTITY_COUNT
+        && (id = sms_state_identity_check(f->identity, src)) != SMS_OK)
+        return id;
+    if (n != sms_shaper_state_count(f))
+        return SMS_ERR_STATE;
+    src += SMS_STATE_IDENTITY_COUNT;
+    if (src[0] != (double)f->kind
         || src[1] != (double)f->history_len)
         return SMS_ERR_STATE;
     /* head: an integer in [0, L) (the negated test also rejects NaN) */
@@ -393,6 +405,7 @@ sms_status sms_shaper_set_state(sms_shaper *f, const double *src, size_t n)
     sms_status st = sms_shaper_check_state(f, src, n);
     if (st != SMS_OK)
         return st;
+    src += SMS_STATE_IDENTITY_COUNT;
     f->head = (size_t)src[2];
     f->rest = (sms_real)src[3];
     for (i = 0; i < f->history_len; ++i)

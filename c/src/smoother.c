@@ -4,6 +4,7 @@
 #include <math.h>
 #include "smoothshaper/smoother.h"
 #include "smoother_design.h"
+#include "state_identity.h"
 
 #ifdef SMS_USE_FLOAT
 #define SMS_REAL_MAX FLT_MAX
@@ -96,6 +97,7 @@ sms_status sms_smoother_init(sms_smoother *f, const sms_stage_config *config, do
         built.correction_gain[j] = (sms_real)(j < d.n_corrections ? d.correction_gain[j] : 0.0);
     }
     built.input_limit = d.input_limit;
+    sms_state_identity(config, Ts, built.identity);
     built.history = buffer;
     built.history_len = d.window;
     sms_smoother_reset(&built, (sms_real)0);
@@ -395,12 +397,15 @@ double sms_smoother_input_max(const sms_smoother *f)
 
 size_t sms_smoother_state_count(const sms_smoother *f)
 {
-    return (size_t)STATE_FIXED + f->window;
+    return SMS_STATE_IDENTITY_COUNT + (size_t)STATE_FIXED + f->window;
 }
 
 void sms_smoother_get_state(const sms_smoother *f, double *dst)
 {
     size_t i;
+    for (i = 0; i < SMS_STATE_IDENTITY_COUNT; ++i)
+        dst[i] = f->identity[i];
+    dst += SMS_STATE_IDENTITY_COUNT;
     dst[STATE_HEAD] = (double)f->head;
     dst[STATE_AGE0] = (double)f->age[0];
     dst[STATE_AGE1] = (double)f->age[1];
@@ -434,10 +439,16 @@ sms_status sms_smoother_check_state(const sms_smoother *f, const double *src, si
 {
     const double window = (double)(f != NULL ? f->window : 0u);
     size_t i;
+    sms_status id;
     if (f == NULL || src == NULL)
         return SMS_ERR_NULL;
+    if (n >= SMS_STATE_IDENTITY_COUNT
+        && (id = sms_state_identity_check(f->identity, src)) != SMS_OK)
+        return id;
     if (n != sms_smoother_state_count(f))
         return SMS_ERR_STATE;
+    src += SMS_STATE_IDENTITY_COUNT;
+    n -= SMS_STATE_IDENTITY_COUNT;
     if (!is_index(src[STATE_HEAD], window - 1.0))
         return SMS_ERR_STATE;
     if (!is_index(src[STATE_AGE0], 2.0 * window) || !is_index(src[STATE_AGE1], 2.0 * window)
@@ -459,6 +470,7 @@ sms_status sms_smoother_set_state(sms_smoother *f, const double *src, size_t n)
     sms_status st = sms_smoother_check_state(f, src, n);
     if (st != SMS_OK)
         return st;
+    src += SMS_STATE_IDENTITY_COUNT;
     f->head = (size_t)src[STATE_HEAD];
     f->age[0] = (size_t)src[STATE_AGE0];
     f->age[1] = (size_t)src[STATE_AGE1];

@@ -28,6 +28,20 @@ const char *sms_status_string(sms_status status)
     case SMS_ERR_BANDWIDTH: return "bandwidth must be finite, > 0 and narrower than the notch allows";
     case SMS_ERR_SHAPER_DURATION:
         return "duration must lie in (0, (order-1)/2) damped periods and give no negative impulse";
+    case SMS_ERR_STATE_FORMAT: return "saved state is not a stage state of this format version";
+    case SMS_ERR_STATE_PRECISION: return "saved state is from the other precision (float/double)";
+    case SMS_ERR_STATE_KIND: return "saved state is from another kind of stage";
+    case SMS_ERR_STATE_TS: return "saved state is from another sample period Ts";
+    case SMS_ERR_STATE_TIMING: return "saved state is from another timing";
+    case SMS_ERR_STATE_T: return "saved state is from another duration T";
+    case SMS_ERR_STATE_SIGMA: return "saved state is from another sigma";
+    case SMS_ERR_STATE_K: return "saved state is from another multiple k";
+    case SMS_ERR_STATE_WN: return "saved state is from another wn";
+    case SMS_ERR_STATE_ZETA: return "saved state is from another zeta";
+    case SMS_ERR_STATE_ORDER: return "saved state is from another order";
+    case SMS_ERR_STATE_TOLERANCE: return "saved state is from another tolerance";
+    case SMS_ERR_STATE_NOTCH_POLE_ZETA: return "saved state is from another notch_pole_zeta";
+    case SMS_ERR_STATE_DURATION: return "saved state is from another duration";
     }
     return "unknown status";
 }

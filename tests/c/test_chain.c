@@ -152,7 +152,7 @@ static void test_splits_state_rebind(void)
     {   /* the ZVD stage (third) state: head out of range */
         size_t off = sms_stage_state_count(&stages2[0]) + sms_stage_state_count(&stages2[1]);
         memcpy(bad, state, cnt * sizeof *state);
-        bad[off + 2] = 1e9;
+        bad[off + SMS_STATE_IDENTITY_COUNT + 2] = 1e9;
         CHECK_STATUS(sms_chain_set_state(&chain2, bad, cnt), SMS_ERR_STATE);
     }
     CHECK(memcmp(&saved, &chain2, sizeof chain2) == 0);

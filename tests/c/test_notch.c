@@ -221,7 +221,7 @@ static void test_blocks_and_state(void)
 {
     enum { N = 2000 };
     static sms_real in[N], one[N], split[N];
-    double st[6], st2[6];
+    double st[SMS_STATE_IDENTITY_COUNT + 6], st2[SMS_STATE_IDENTITY_COUNT + 6];
     sms_stage_config c = make(SMS_NOTCH_TUSTIN, 250.0, 0.0, 0.5);
     sms_notch f, g, saved;
     size_t pos = 0, i;
@@ -242,13 +242,13 @@ static void test_blocks_and_state(void)
     for (i = 0; i < N; ++i)
         same &= memcmp(&one[i], &split[i], sizeof one[i]) == 0;
     CHECK(same);
-    CHECK(sms_notch_state_count(&f) == 6);
+    CHECK(sms_notch_state_count(&f) == SMS_STATE_IDENTITY_COUNT + 6);
     CHECK_STATUS(sms_notch_init(&f, &c, 1e-3), SMS_OK);
     sms_notch_process(&f, in, one, N / 2);
     sms_notch_get_state(&f, st);
     sms_notch_process(&f, in + N / 2, one + N / 2, N - N / 2);
     CHECK_STATUS(sms_notch_init(&g, &c, 1e-3), SMS_OK);
-    CHECK_STATUS(sms_notch_set_state(&g, st, 6), SMS_OK);
+    CHECK_STATUS(sms_notch_set_state(&g, st, SMS_STATE_IDENTITY_COUNT + 6), SMS_OK);
     sms_notch_process(&g, in + N / 2, split + N / 2, N - N / 2);
     same = 1;
     for (i = N / 2; i < N; ++i)
@@ -256,19 +256,19 @@ static void test_blocks_and_state(void)
     CHECK(same);
     saved = g;
     memcpy(st2, st, sizeof st);
-    st2[0] = (double)SMS_NOTCH_MATCHED;
-    CHECK_STATUS(sms_notch_set_state(&g, st2, 6), SMS_ERR_STATE);
-    CHECK_STATUS(sms_notch_set_state(&g, st, 5), SMS_ERR_STATE);
-    CHECK_STATUS(sms_notch_check_state(&g, st, 7), SMS_ERR_STATE);
-    CHECK_STATUS(sms_notch_set_state(&g, NULL, 6), SMS_ERR_NULL);
+    st2[SMS_STATE_IDENTITY_COUNT] = (double)SMS_NOTCH_MATCHED;
+    CHECK_STATUS(sms_notch_set_state(&g, st2, SMS_STATE_IDENTITY_COUNT + 6), SMS_ERR_STATE);
+    CHECK_STATUS(sms_notch_set_state(&g, st, SMS_STATE_IDENTITY_COUNT + 5), SMS_ERR_STATE);
+    CHECK_STATUS(sms_notch_check_state(&g, st, SMS_STATE_IDENTITY_COUNT + 7), SMS_ERR_STATE);
+    CHECK_STATUS(sms_notch_set_state(&g, NULL, SMS_STATE_IDENTITY_COUNT + 6), SMS_ERR_NULL);
     CHECK(memcmp(&saved, &g, sizeof g) == 0);
     {   /* a non-finite state (e.g. loaded) restarts at rest at the next finite input */
-        double poisoned[6];
+        double poisoned[SMS_STATE_IDENTITY_COUNT + 6];
         sms_real x = (sms_real)2;
         memcpy(poisoned, st, sizeof st);
-        poisoned[3] = NAN;
-        poisoned[4] = INFINITY;
-        CHECK_STATUS(sms_notch_set_state(&g, poisoned, 6), SMS_OK);
+        poisoned[SMS_STATE_IDENTITY_COUNT + 3] = NAN;
+        poisoned[SMS_STATE_IDENTITY_COUNT + 4] = INFINITY;
+        CHECK_STATUS(sms_notch_set_state(&g, poisoned, SMS_STATE_IDENTITY_COUNT + 6), SMS_OK);
         sms_notch_step(&g, &x);
         CHECK(x == (sms_real)2);
         for (i = 0; i < 10; ++i) {

@@ -465,7 +465,8 @@ static void test_blocks_state_reset(void)
 {
     enum { N = 3000 };
     static sms_real in[N], one[N], split[N], b1[MAX_LEN], b2[MAX_LEN], b3[MAX_LEN];
-    static double state[MAX_LEN + 4], state2[MAX_LEN + 4];
+    static double state[SMS_STATE_IDENTITY_COUNT + MAX_LEN + 4];
+    static double state2[SMS_STATE_IDENTITY_COUNT + MAX_LEN + 4];
     const double Ts = 500e-6;
     size_t ik;
     fill_random(in, N, 7);
@@ -492,7 +493,7 @@ static void test_blocks_state_reset(void)
         CHECK_STATUS(sms_shaper_init(&f, &c, Ts, taps_f, MAX_TAPS, b1, MAX_LEN), SMS_OK);
         sms_shaper_process(&f, in, one, N / 2);
         cnt = sms_shaper_state_count(&f);
-        CHECK(cnt == f.length + 4);
+        CHECK(cnt == SMS_STATE_IDENTITY_COUNT + f.length + 4);
         sms_shaper_get_state(&f, state);
         sms_shaper_process(&f, in + N / 2, one + N / 2, N - N / 2);
         CHECK_STATUS(sms_shaper_init(&h, &c, Ts, taps_h, MAX_TAPS, b3, MAX_LEN), SMS_OK);
@@ -508,15 +509,15 @@ static void test_blocks_state_reset(void)
         saved = h;
         memcpy(b2, b3, h.length * sizeof *b3);
         CHECK_STATUS(sms_shaper_set_state(&h, state, cnt - 1), SMS_ERR_STATE);
-        state2[0] = (double)SMS_SHAPER_ZV + (c.kind == SMS_SHAPER_ZV ? 1 : 0);
+        state2[SMS_STATE_IDENTITY_COUNT + 0] = (double)SMS_SHAPER_ZV + (c.kind == SMS_SHAPER_ZV ? 1 : 0);
         CHECK_STATUS(sms_shaper_set_state(&h, state2, cnt), SMS_ERR_STATE);
-        state2[0] = state[0];
-        state2[2] = (double)h.length;
+        state2[SMS_STATE_IDENTITY_COUNT + 0] = state[SMS_STATE_IDENTITY_COUNT + 0];
+        state2[SMS_STATE_IDENTITY_COUNT + 2] = (double)h.length;
         CHECK_STATUS(sms_shaper_set_state(&h, state2, cnt), SMS_ERR_STATE);
-        state2[2] = 0.5;
+        state2[SMS_STATE_IDENTITY_COUNT + 2] = 0.5;
         CHECK_STATUS(sms_shaper_check_state(&h, state2, cnt), SMS_ERR_STATE);
-        state2[2] = state[2];
-        state2[1] += 1;
+        state2[SMS_STATE_IDENTITY_COUNT + 2] = state[SMS_STATE_IDENTITY_COUNT + 2];
+        state2[SMS_STATE_IDENTITY_COUNT + 1] += 1;
         CHECK_STATUS(sms_shaper_set_state(&h, state2, cnt), SMS_ERR_STATE);
         CHECK_STATUS(sms_shaper_set_state(&h, NULL, cnt), SMS_ERR_NULL);
         CHECK(memcmp(&saved, &h, sizeof h) == 0);

@@ -3,6 +3,8 @@
  * configuration rejected with its status and the instance untouched. */
 #include <string.h>
 #include "check.h"
+
+#define ID SMS_STATE_IDENTITY_COUNT   /* a saved state starts with its configuration identity */
 #include "smoother_fixtures.h"
 
 #define MAX_LEN 4096
@@ -86,7 +88,8 @@ static void test_reset_rest(const sms_stage_config *c, double Ts)
 /* Save mid-run, load into a fresh instance: both continue bit-exactly; bad vectors rejected. */
 static void test_state(const sms_stage_config *c, double Ts)
 {
-    static double saved[MAX_LEN + 16], bad[MAX_LEN + 16];
+    static double saved[SMS_STATE_IDENTITY_COUNT + MAX_LEN + 16];
+    static double bad[ID + MAX_LEN + 16];
     sms_smoother a, b, before;
     size_t n = 2 * MAX_LEN, i, count;
     for (i = 0; i < n; ++i)
@@ -96,7 +99,7 @@ static void test_state(const sms_stage_config *c, double Ts)
     sms_smoother_reset(&a, (sms_real)2);
     sms_smoother_process(&a, sig_in, sig_out, 1234);
     count = sms_smoother_state_count(&a);
-    CHECK(count == a.window + 14u);
+    CHECK(count == SMS_STATE_IDENTITY_COUNT + a.window + 14u);
     sms_smoother_get_state(&a, saved);
     CHECK_STATUS(sms_smoother_check_state(&b, saved, count), SMS_OK);
     CHECK_STATUS(sms_smoother_set_state(&b, saved, count), SMS_OK);
@@ -108,14 +111,14 @@ static void test_state(const sms_stage_config *c, double Ts)
     for (i = 0; i < 9; ++i) {
         memcpy(bad, saved, count * sizeof(double));
         switch (i) {
-        case 0: bad[0] = (double)a.window; break;        /* head out of range */
-        case 1: bad[0] = 0.5; break;                     /* head not integral */
-        case 2: bad[1] = bad[2] + 1.0; break;            /* ages not M apart */
-        case 3: bad[1] = 2.0 * (double)a.window + 1.0; break; /* age out of range */
-        case 4: bad[2] = -1.0; break;
-        case 5: bad[3] = NAN; break;                     /* rest not finite */
-        case 6: bad[0] = NAN; break;
-        case 7: bad[8] = 1e300; break;                   /* ring value (rejected in float only) */
+        case 0: bad[ID + 0] = (double)a.window; break;        /* head out of range */
+        case 1: bad[ID + 0] = 0.5; break;                     /* head not integral */
+        case 2: bad[ID + 1] = bad[ID + 2] + 1.0; break;            /* ages not M apart */
+        case 3: bad[ID + 1] = 2.0 * (double)a.window + 1.0; break; /* age out of range */
+        case 4: bad[ID + 2] = -1.0; break;
+        case 5: bad[ID + 3] = NAN; break;                     /* rest not finite */
+        case 6: bad[ID + 0] = NAN; break;
+        case 7: bad[ID + 8] = 1e300; break;                   /* ring value (rejected in float only) */
         default: break;
         }
         memcpy(&before, &b, sizeof b);
@@ -153,7 +156,7 @@ static void test_non_finite(const sms_stage_config *c, double Ts, double bad_val
     /* Through the bad sample, then a state round trip (NaN/Inf in the state is accepted). */
     sms_smoother_process(&f, sig_in, sig_out, hit + 1);
     {
-        static double saved[MAX_LEN + 16];
+        static double saved[SMS_STATE_IDENTITY_COUNT + MAX_LEN + 16];
         sms_smoother g;
         CHECK_STATUS(sms_smoother_init(&g, c, Ts, ring_b, MAX_LEN), SMS_OK);
         sms_smoother_get_state(&f, saved);

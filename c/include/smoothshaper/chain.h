@@ -57,6 +57,12 @@ SMS_API size_t sms_chain_length(const sms_chain *chain);
 SMS_API double sms_chain_input_max(const sms_chain *chain);
 SMS_API size_t sms_chain_state_count(const sms_chain *chain);
 SMS_API void sms_chain_get_state(const sms_chain *chain, double *dst);
+/** @brief Restore a state written by sms_chain_get_state() (the stages' states one after the
+ * other, each starting with its configuration identity, config.h). Checks every stage before
+ * writing any: on error nothing changes.
+ * @return ::SMS_OK, ::SMS_ERR_NULL; ::SMS_ERR_STATE_FORMAT .. ::SMS_ERR_STATE_DURATION naming the
+ * first field that differs in the first stage saved by another configuration (also when the
+ * lengths differ); ::SMS_ERR_STATE if n or a value does not fit. */
 SMS_API sms_status sms_chain_set_state(sms_chain *chain, const double *src, size_t n);
 /** @brief After copying chain, stages and memory elsewhere, point the copy at its own stages
  * and memory. */

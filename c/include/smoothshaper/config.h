@@ -14,6 +14,23 @@
 extern "C" {
 #endif
 
+/**
+ * @brief Doubles of configuration identity at the start of every saved stage state
+ * (sms_smoother_get_state(), sms_shaper_get_state(), sms_notch_get_state(), and so of
+ * sms_stage_get_state() and each stage's part of sms_chain_get_state()), in this order:
+ * ::SMS_STATE_TAG, ::SMS_STATE_VERSION, sizeof(::sms_real) of the build, kind, Ts, timing, T,
+ * sigma, k, wn, zeta, order, tolerance, notch_pole_zeta, duration, the fields a kind does not
+ * read being 0. Loading a state compares them with the object's own (exact equality) and
+ * refuses, writing nothing, with the status naming the first field that differs
+ * (::SMS_ERR_STATE_FORMAT, ::SMS_ERR_STATE_PRECISION, ::SMS_ERR_STATE_KIND, ::SMS_ERR_STATE_TS,
+ * ::SMS_ERR_STATE_TIMING ... ::SMS_ERR_STATE_DURATION).
+ */
+#define SMS_STATE_IDENTITY_COUNT 15
+/** @brief First double of a saved stage state ("SMS" read as a 24-bit integer). */
+#define SMS_STATE_TAG 5459283.0
+/** @brief Format version of saved stage states. */
+#define SMS_STATE_VERSION 1.0
+
 /** @brief Most ZV^n order accepted (ZV^n has n+1 impulses). */
 #define SMS_SHAPER_MAX_ORDER 8
 

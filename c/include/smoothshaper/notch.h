@@ -47,6 +47,7 @@ typedef struct sms_notch {
     sms_real x1, x2;              /**< past inputs */
     sms_real w1, w2;              /**< past w = y - x */
     sms_real rest;                /**< operating point set by the last reset */
+    double identity[SMS_STATE_IDENTITY_COUNT]; /**< config and Ts it was built for (config.h) */
 } sms_notch;
 
 /**
@@ -65,7 +66,8 @@ SMS_API void sms_notch_reset(sms_notch *f, sms_real rest);
 SMS_API void sms_notch_step(sms_notch *f, sms_real *x);
 /** @brief n samples; in == out allowed. Same result as n calls of step. */
 SMS_API void sms_notch_process(sms_notch *f, const sms_real *in, sms_real *out, size_t n);
-/** @brief Doubles in a saved state: 6 (kind, x1, x2, w1, w2, rest). */
+/** @brief Doubles in a saved state: ::SMS_STATE_IDENTITY_COUNT + 6 (the configuration identity
+ * of config.h, then kind, x1, x2, w1, w2, rest). */
 SMS_API size_t sms_notch_state_count(const sms_notch *f);
 /** @brief Write sms_notch_state_count() doubles to dst. */
 SMS_API void sms_notch_get_state(const sms_notch *f, double *dst);

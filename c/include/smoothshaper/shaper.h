@@ -81,6 +81,7 @@ typedef struct sms_shaper {
     sms_real *history;                    /**< caller buffer: the last L inputs (ring) */
     size_t history_len;                   /**< = length */
     size_t head;                          /**< ring index the next input is written to */
+    double identity[SMS_STATE_IDENTITY_COUNT]; /**< config and Ts it was built for (config.h) */
 } sms_shaper;
 
 /**
@@ -128,7 +129,8 @@ SMS_API void sms_shaper_reset(sms_shaper *f, sms_real rest);
 SMS_API void sms_shaper_step(sms_shaper *f, sms_real *x);
 /** @brief n samples; in == out allowed, other overlaps not. Same result as n calls of step. */
 SMS_API void sms_shaper_process(sms_shaper *f, const sms_real *in, sms_real *out, size_t n);
-/** @brief Doubles in a saved state: L + 4 (kind, L, head, rest, the delay line in ring order). */
+/** @brief Doubles in a saved state: ::SMS_STATE_IDENTITY_COUNT + L + 4 (the configuration
+ * identity of config.h, then kind, L, head, rest, the delay line in ring order). */
 SMS_API size_t sms_shaper_state_count(const sms_shaper *f);
 /** @brief Write sms_shaper_state_count() doubles to dst. */
 SMS_API void sms_shaper_get_state(const sms_shaper *f, double *dst);

@@ -93,6 +93,7 @@ typedef struct sms_smoother {
     size_t head;                /**< ring slot of x[n-M] (the oldest), 0..M-1 */
     double input_limit;         /**< |x| keeping every internal sum finite, before the cap
                                      at ::SMS_INPUT_MAX of sms_smoother_input_max() */
+    double identity[SMS_STATE_IDENTITY_COUNT]; /**< config and Ts it was built for (config.h) */
 } sms_smoother;
 
 /**
@@ -167,8 +168,9 @@ SMS_API void sms_smoother_step(sms_smoother *f, sms_real *x);
  * Equal, bit for bit, to n calls of sms_smoother_step() and to any split into blocks. */
 SMS_API void sms_smoother_process(sms_smoother *f, const sms_real *in, sms_real *out, size_t n);
 
-/** @brief Number of doubles of the dynamic state: M + 14 (head, two ages, rest, the two
- * copies as four complex numbers, their two references, the ring). */
+/** @brief Number of doubles of the saved state: ::SMS_STATE_IDENTITY_COUNT + M + 14 (the
+ * configuration identity of config.h, then head, two ages, rest, the two copies as four
+ * complex numbers, their two references, the ring). */
 SMS_API size_t sms_smoother_state_count(const sms_smoother *f);
 
 /** @brief Write the dynamic state, sms_smoother_state_count() doubles, into dst. Loading it
@@ -177,7 +179,9 @@ SMS_API void sms_smoother_get_state(const sms_smoother *f, double *dst);
 
 /**
  * @brief Restore a saved state; validates first and writes nothing on error.
- * @return ::SMS_OK; ::SMS_ERR_NULL; ::SMS_ERR_STATE if n != sms_smoother_state_count(), the
+ * @return ::SMS_OK; ::SMS_ERR_NULL; ::SMS_ERR_STATE_FORMAT .. ::SMS_ERR_STATE_DURATION if it was
+ * saved by another configuration (the status names the first field of the identity that
+ * differs, config.h); ::SMS_ERR_STATE if n != sms_smoother_state_count(), the
  * head is not an integer in [0, M), the ages are not integers in [0, 2M] that differ by M,
  * rest or a reference is not finite, or a finite value lies outside the range of ::sms_real (NaN/Inf in the
  * ring and the copies are accepted: they are what a non-finite input leaves behind).

@@ -101,10 +101,13 @@ SMS_API double sms_stage_gain_bound(const sms_stage *stage);
 SMS_API size_t sms_stage_length(const sms_stage *stage);
 /** @brief Number of doubles sms_stage_get_state() writes. */
 SMS_API size_t sms_stage_state_count(const sms_stage *stage);
-/** @brief Write the dynamic state (delay line, recursion state, indices) as doubles. */
+/** @brief Write the state: the configuration identity (config.h), then the delay line,
+ * recursion state and indices, sms_stage_state_count() doubles. */
 SMS_API void sms_stage_get_state(const sms_stage *stage, double *dst);
 /** @brief Restore a state written by sms_stage_get_state() of an identically configured stage.
- * @return ::SMS_OK, ::SMS_ERR_NULL, or ::SMS_ERR_STATE if n or any index does not fit. */
+ * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_STATE_FORMAT .. ::SMS_ERR_STATE_DURATION (saved
+ * by another configuration: the status names the first field of the identity that differs,
+ * config.h), or ::SMS_ERR_STATE if n or any index does not fit. */
 SMS_API sms_status sms_stage_set_state(sms_stage *stage, const double *src, size_t n);
 /** @brief Would sms_stage_set_state() accept this vector? Writes nothing. */
 SMS_API sms_status sms_stage_check_state(const sms_stage *stage, const double *src, size_t n);

@@ -74,8 +74,24 @@ typedef enum sms_status {
     SMS_ERR_RECORD = -18,           /**< a measured record is too short, non-finite or not a decay */
     SMS_ERR_STATE = -19,            /**< a saved state vector does not match this object */
     SMS_ERR_BANDWIDTH = -20,        /**< notch bandwidth is NaN/Inf, <= 0 or too wide */
-    SMS_ERR_SHAPER_DURATION = -21   /**< generalised MZV duration outside (0, (order-1)/2) or
+    SMS_ERR_SHAPER_DURATION = -21,  /**< generalised MZV duration outside (0, (order-1)/2) or
                                          giving a negative impulse */
+    /* A saved state of another configuration (config.h, SMS_STATE_IDENTITY_COUNT): the first
+     * field of its identity that differs from the object's. */
+    SMS_ERR_STATE_FORMAT = -22,     /**< not a saved stage state, or another format version */
+    SMS_ERR_STATE_PRECISION = -23,  /**< saved by the other precision (float/double) */
+    SMS_ERR_STATE_KIND = -24,       /**< saved by another kind of stage */
+    SMS_ERR_STATE_TS = -25,         /**< saved at another sample period Ts */
+    SMS_ERR_STATE_TIMING = -26,     /**< saved with another timing */
+    SMS_ERR_STATE_T = -27,          /**< saved with another duration T */
+    SMS_ERR_STATE_SIGMA = -28,      /**< saved with another sigma */
+    SMS_ERR_STATE_K = -29,          /**< saved with another multiple k */
+    SMS_ERR_STATE_WN = -30,         /**< saved with another wn */
+    SMS_ERR_STATE_ZETA = -31,       /**< saved with another zeta */
+    SMS_ERR_STATE_ORDER = -32,      /**< saved with another order */
+    SMS_ERR_STATE_TOLERANCE = -33,  /**< saved with another tolerance */
+    SMS_ERR_STATE_NOTCH_POLE_ZETA = -34, /**< saved with another notch_pole_zeta */
+    SMS_ERR_STATE_DURATION = -35    /**< saved with another (GMZV) duration */
 } sms_status;
 
 /** @brief Stage families. Values are stable (the FMU enumeration and saved states use them). */
