@@ -205,10 +205,15 @@ def kinematic(*, h: float, vmax: float, amax: float | None = None, jmax: float |
     # Fast path (plain numbers, no higher bound, no mode): the argument checks the C design
     # makes anyway are left to it, the ratio check runs only to name a refused argument, and
     # the Stage objects are built from the C core's values without re-validation.
+    # (plain: a float, int or NumPy float64 strictly between 0 and 1e308, tested inline: this
+    # path is what design loops call)
     last = _FAST_PROFILES.get(profile) if wn is None and not higher else None
-    if (last is not None and _plain(vmax) and (amax is None or _plain(amax))
-            and (jmax is None or _plain(jmax) and amax is not None)
-            and (_plain(h) or _plain(-h)) and (Ts is None or _plain(Ts))):
+    if (last is not None and type(vmax) in _PLAIN and 0 < vmax < 1e308
+            and (amax is None or type(amax) in _PLAIN and 0 < amax < 1e308)
+            and (jmax is None or type(jmax) in _PLAIN and 0 < jmax < 1e308
+                 and amax is not None)
+            and type(h) in _PLAIN and 0 < abs(h) < 1e308
+            and (Ts is None or type(Ts) in _PLAIN and 0 < Ts < 1e308)):
         lim, T, count, lib = _buffers()
         lim[0] = vmax
         n = 1
@@ -218,23 +223,24 @@ def kinematic(*, h: float, vmax: float, amax: float | None = None, jmax: float |
             if jmax is not None:
                 lim[2] = jmax
                 n = 3
-        st = lib.sms_kinematic_design(h, lim, n, last, 0.0, 0.0, 0.0 if Ts is None else Ts,
-                                       T, n, count)
-        if st == 0:
-            out = [_stage("rectangular", t) for t in T[0:n - 1]]
-            out.append(_stage(_LAST_KIND[last], T[n - 1]))
+        if lib.sms_kinematic_design(h, lim, n, last, 0.0, 0.0, 0.0 if Ts is None else Ts,
+                                    T, n, count) == 0:
+            out = []
+            for i in range(n):
+                s = _NEW(Stage)
+                d = s.__dict__
+                d["kind"] = "rectangular" if i + 1 < n else _LAST_KIND[last]
+                d["T"] = T[i]
+                d["order"] = 1
+                out.append(s)
             return out
     return _kinematic_checked(h, vmax, amax, jmax, higher, profile, wn, zeta, Ts)
 
 
 _FAST_PROFILES = {"polynomial": 0, "trigonometric": 1}
+_PLAIN = (float, int, np.float64)
 _LAST_KIND = ("rectangular", "harmonic")
 _BUFFERS = threading.local()   # cffi calls release the GIL: one set of buffers per thread
-
-
-def _plain(x) -> bool:
-    """x is a float or int in (0, 1e308): finite and positive, no conversion needed."""
-    return (type(x) is float or type(x) is int) and 0 < x < 1e308
 
 
 def _buffers():
