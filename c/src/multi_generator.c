@@ -289,7 +289,9 @@ static int plan(sms_multi_generator *g, size_t first, const group *G, sms_multi_
             kappa = T1 / 2 + tau + c.T2 / 2;
             for (i = 0; i < G->n; ++i) {
                 u[i] = D[i] - V0[i] * (T1 / 2);
-                W[i] = kappa > 0 ? u[i] / kappa : 0;
+                /* k_end = 0: the move ends within this sample (Ts longer than the move); the
+                 * goal is output at once and no cruise velocity is kept */
+                W[i] = kappa > 0 && k_end > 0 ? u[i] / kappa : 0;
                 dW[i] = W[i] - V0[i];
                 ok &= real_finite(W[i]) && real_finite(dW[i]);
             }
@@ -397,14 +399,12 @@ static void evaluate(const sms_multi_generator *g, size_t first, size_t n,
     }
 }
 
-/* A target vector whose move cannot be represented is dropped like a non-finite component:
- * the group keeps the goal it has. */
-static void drop_target(sms_multi_generator *g, size_t first, size_t n, sms_multi_move *m)
+/* A target vector whose move cannot be represented is dropped: the group keeps the goal it
+ * has and does not try that target again until it changes (sms_multi_generator_step). */
+static void drop_target(sms_multi_move *m)
 {
-    size_t i;
-    for (i = first; i < first + n; ++i)
-        g->target[i] = g->goal[i];
     m->pending = 0;
+    m->refused = 1;
 }
 
 static void step_group(sms_multi_generator *g, size_t first, size_t n, sms_multi_move *m,
@@ -424,6 +424,8 @@ static void step_group(sms_multi_generator *g, size_t first, size_t n, sms_multi
     for (i = first; i < first + n; ++i)
         if (g->target[i] != g->goal[i])
             differs = 1;
+    if (m->refused)
+        differs = 0; /* the held target was refused: nothing to do until it changes */
     if (!differs) {
         m->pending = 0;
     } else if (!m->pending) {
@@ -434,7 +436,7 @@ static void step_group(sms_multi_generator *g, size_t first, size_t n, sms_multi
         if (!m->active) {
             sms_real zero[SMS_MULTI_MAX_AXES] = {0};
             if (!plan(g, first, &G, m, g->goal + first, zero, 0))
-                drop_target(g, first, n, m);
+                drop_target(m);
             t = 0;
         } else if (t >= m->T1 - SNAP * (m->T1 + m->tau + m->T2)) {
             sms_real tr = m->seen > m->T1 ? m->seen : m->T1;
@@ -450,7 +452,7 @@ static void step_group(sms_multi_generator *g, size_t first, size_t n, sms_multi
                 if (plan(g, first, &G, m, p, V, t > tr ? t - tr : 0))
                     t = m->off;
                 else
-                    drop_target(g, first, n, m); /* the running move goes on */
+                    drop_target(m); /* the running move goes on */
             }
         }
     }
@@ -602,6 +604,7 @@ void sms_multi_generator_reset(sms_multi_generator *g, const sms_real *position)
         g->move[i].k = g->move[i].k_end = 0;
         g->move[i].active = 0;
         g->move[i].pending = 0;
+        g->move[i].refused = 0;
         if (g->chain[i][0].n_stages > 0) {
             sms_chain_reset(&g->chain[i][0], x);
             sms_chain_reset(&g->chain[i][1], 0);
@@ -615,8 +618,10 @@ void sms_multi_generator_step(sms_multi_generator *g, const sms_real *target, sm
 {
     size_t i;
     for (i = 0; i < g->n_axes; ++i)
-        if (target[i] - target[i] == 0) /* finite (NaN and Inf give NaN) */
+        if (target[i] - target[i] == 0 && target[i] != g->target[i]) { /* finite and new */
             g->target[i] = target[i];
+            g->move[g->sync == SMS_SYNC_PHASE ? 0 : i].refused = 0;
+        }
     if (g->sync == SMS_SYNC_PHASE) {
         step_group(g, 0, g->n_axes, &g->move[0], out);
     } else {
@@ -686,10 +691,10 @@ sms_status sms_multi_phase_duration(const sms_multi_generator_config *config,
     return SMS_OK;
 }
 
-/* ---- state vector: per axis target, goal, p, V, W; per move its 11 fields ---------------- */
+/* ---- state vector: per axis target, goal, p, V, W; per move its 12 fields ---------------- */
 
 #define AXIS_FIELDS 5u
-#define MOVE_FIELDS 11u
+#define MOVE_FIELDS 12u
 
 static size_t move_count(const sms_multi_generator *g)
 {
@@ -734,6 +739,7 @@ void sms_multi_generator_save_state(const sms_multi_generator *g, double *dst)
         dst[8] = (double)m->k_end;
         dst[9] = (double)m->active;
         dst[10] = (double)m->pending;
+        dst[11] = (double)m->refused;
     }
     for (i = 0; i < n; ++i) {
         size_t s;
@@ -787,7 +793,7 @@ sms_status sms_multi_generator_load_state(sms_multi_generator *g, const double *
         if (f[0] < 0.0 || f[2] < 0.0 || f[3] < 0.0 || f[5] < 0.0 || f[6] < 0.0 ||
             !(f[1] > 0.0 && f[1] <= 0.5) || !(f[4] > 0.0 && f[4] <= 0.5) || !whole(f[7]) ||
             !whole(f[8]) || f[7] > f[8] || (f[9] != 0.0 && f[9] != 1.0) ||
-            (f[10] != 0.0 && f[10] != 1.0))
+            (f[10] != 0.0 && f[10] != 1.0) || (f[11] != 0.0 && f[11] != 1.0))
             return SMS_ERR_STATE;
     }
     if (check_stages_state(g, mv + MOVE_FIELDS * move_count(g)) != SMS_OK)
@@ -813,6 +819,7 @@ sms_status sms_multi_generator_load_state(sms_multi_generator *g, const double *
         m->k_end = (size_t)f[8];
         m->active = (int)f[9];
         m->pending = (int)f[10];
+        m->refused = (int)f[11];
     }
     mv += MOVE_FIELDS * move_count(g);
     for (i = 0; i < na; ++i) {

@@ -68,6 +68,8 @@ typedef struct sms_multi_move {
     size_t k_end;      /**< sample of arrival */
     int active;        /**< 1 while moving */
     int pending;       /**< 1 while the target differs from the move's goal */
+    int refused;       /**< 1 while the held target is one whose move could not be represented
+                            (it is not tried again until the target changes) */
 } sms_multi_move;
 
 /**
@@ -187,7 +189,8 @@ SMS_API void sms_multi_generator_reset(sms_multi_generator *g, const sms_real *p
  * axis i at this instant (after the axis's stages, if any). A target vector whose move cannot
  * be represented in ::sms_real (a displacement, duration or velocity that overflows or
  * underflows to 0, e.g. |d| = 1e300 with jmax = 1e-300, or more than 2^52 samples) is
- * dropped: the axes (of the group) keep their previous target, so every output stays finite.
+ * dropped: the axes (of the group) keep their previous goal, so every output stays finite,
+ * and it is not tried again until the target vector changes (one attempt, not one per sample).
  */
 SMS_API void sms_multi_generator_step(sms_multi_generator *g, const sms_real *target,
                                       sms_real *out);
@@ -208,7 +211,7 @@ SMS_API sms_status sms_multi_phase_duration(const sms_multi_generator_config *co
                                             const double *delta, double *T);
 
 /** @brief Number of doubles sms_multi_generator_save_state() writes:
- * 5 n_axes (target, goal, p, V, W) + 11 per move (n_axes moves, or 1 in phase mode) + the
+ * 5 n_axes (target, goal, p, V, W) + 12 per move (n_axes moves, or 1 in phase mode) + the
  * stages' states (sms_chain_state_count() of each chain: axis by axis, q, v, a, j). */
 SMS_API size_t sms_multi_generator_state_count(const sms_multi_generator *g);
 /** @brief Write the dynamic state (not the limits) as sms_multi_generator_state_count() doubles. */

@@ -454,8 +454,11 @@ def _profile(targets, *, vmax, amax, jmax, Ts, sync, q0) -> np.ndarray:
         lim = (vmax[idx], amax[idx], jmax[idx])
         position = rest[idx].copy()  # where the group rests when no move runs
         move, k, seen, pending = None, 0, 0.0, False
+        refused = None  # a target whose move was refused: not tried again while it is held
         for s in range(n):
             B = x[s, idx]
+            if refused is not None and not np.array_equal(B, refused):
+                refused = None
             t = 0.0
             if move is not None:
                 k += 1
@@ -464,14 +467,16 @@ def _profile(targets, *, vmax, amax, jmax, Ts, sync, q0) -> np.ndarray:
                 else:
                     t = move["off"] + k * Ts
             goal = position if move is None else move["goal"]
-            if np.array_equal(B, goal):
+            if np.array_equal(B, goal) or refused is not None:
                 pending = False
             elif not pending:
                 pending, seen = True, t
             if pending:
                 if move is None:
                     new = _plan(position, np.zeros(len(idx)), B, 0.0, Ts, lim)
-                    if new is not _REFUSED:  # refused: the target is dropped
+                    if new is _REFUSED:  # the target is dropped
+                        refused = B.copy()
+                    else:
                         move, k = new, 0
                         if move is None:
                             position = B.copy()
@@ -483,7 +488,9 @@ def _profile(targets, *, vmax, amax, jmax, Ts, sync, q0) -> np.ndarray:
                         state = _evaluate(move, tr)
                         new = _plan(state[:, 0], move["W"].copy(), B, max(t - tr, 0.0), Ts, lim)
                         pending = False
-                        if new is not _REFUSED:  # refused: the running move goes on
+                        if new is _REFUSED:  # the running move goes on
+                            refused = B.copy()
+                        else:
                             move, k = new, 0
                             if move is None:
                                 position = B.copy()
