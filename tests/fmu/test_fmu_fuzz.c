@@ -174,6 +174,9 @@ static void random_parameters(fmi2Component c)
     v[6] = pick(2) ? 0.0 : any_input();
     fmi2SetReal(c, vr, 7, v);
     fmi2SetInteger(c, &pvr, 1, &profile);
+    if (trace)
+        fprintf(stderr, "  Ts %.17g vmax %.17g amax %.17g jmax %.17g wn %.17g zeta %.17g q0 %.17g "
+                "profile %d\n", v[0], v[1], v[2], v[3], v[4], v[5], v[6], (int)profile);
 }
 #elif defined(FMU_TEST_MULTI_AXIS)
 /* q, v, a, j of every axis (unused axes read 0) */
@@ -308,6 +311,22 @@ static void run_sequence(unsigned length)
         case 2: random_parameters(c); st = fmi2OK; compare = 0; break;
         case 3: case 4: st = fmi2ExitInitializationMode(c);
             if (st == fmi2OK) { ++n_inits; t = 0.0; outputs_finite(c); }
+#ifdef FMU_TEST_TRAJECTORY
+            if (trace && st == fmi2OK) {
+                const fmi2ValueReference vr7[8] = { TG_VR_TS, TG_VR_VMAX, TG_VR_AMAX, TG_VR_JMAX,
+                                                    TG_VR_WN, TG_VR_ZETA, TG_VR_Q0, TG_VR_TARGET };
+                fmi2Real p7[8], y4[4];
+                fmi2ValueReference pvr = TG_VR_PROFILE;
+                fmi2Integer prof = 0;
+                fmi2GetReal(c, vr7, 8, p7);
+                fmi2GetInteger(c, &pvr, 1, &prof);
+                fmi2GetReal(c, outputs, 4, y4);
+                fprintf(stderr, "  built: Ts %.17g vmax %.17g amax %.17g jmax %.17g wn %.17g zeta "
+                        "%.17g q0 %.17g target %.17g profile %d -> q v a j %g %g %g %g\n", p7[0],
+                        p7[1], p7[2], p7[3], p7[4], p7[5], p7[6], p7[7], (int)prof, y4[0], y4[1],
+                        y4[2], y4[3]);
+            }
+#endif
             break;
         case 5: case 6: case 7: case 8: {
             /* Up to 2000 ticks (the model's own Ts), sometimes arbitrary sizes that the FMU
