@@ -26,26 +26,38 @@ static double shaper_abs_sum(const sms_shaper *f)
     return sum;
 }
 
-/* Upper bound on the l1 norm of the notch's impulse response H = 1 + D/A,
- * D = (1 - z^-1)(d0 - d2 z^-1): ||h||_1 <= 1 + 2 (|d0| + |d2|) ||1/A||_1, and the impulse
- * response of 1/A = 1/((1 - p1 z^-1)(1 - p2 z^-1)) is bounded term by term by the
- * convolution of |p1|^n and |p2|^n, whose sum is 1/((1 - |p1|)(1 - |p2|)). */
+/* Upper bound on the l1 norm of the notch's impulse response H = 1 + D/A with
+ * D = (1 - z^-1)(d0 - d2 z^-1): ||h||_1 <= 1 + (|d0| + |d2|) E, E a bound on the l1 norm of
+ * (1 - z^-1)/A. Keeping the difference 1 - z^-1 with 1/A matters: d0 and d2 are of the order
+ * of wn Ts, and so is the distance of the poles from 1, so E (d0, d2) stays of order one where
+ * ||1/A||_1 alone would grow like 1/(wn Ts)^2.
+ * - complex poles r e^{+-j theta}: 1/A has g[n] = r^n sin((n+1) theta)/sin(theta), and
+ *   |g[n] - g[n-1]| <= r^(n-1) (2 sin(theta/2) + 1 - r)/sin(theta) for n >= 1, g[0] = 1;
+ * - real poles p_s (the one nearer 1) and p_f: (1 - z^-1)/(1 - p_s z^-1) has l1 norm 2 for
+ *   p_s >= 0 (also when p_s rounds onto 1) and 1 + (1 - p_s)/(1 + p_s) below 0, and
+ *   1/(1 - p_f z^-1) has 1/(1 - |p_f|).
+ * The bound is HUGE_VAL only when a pole's magnitude rounds to 1 or more where that matters. */
 static double notch_gain(const sms_notch *f)
 {
     const double a1 = (double)f->a1, a2 = (double)f->a2;
     const double disc = a1 * a1 - 4.0 * a2;
-    double m1, m2, bound;
+    double e;
     if (disc < 0.0) {
-        m1 = m2 = sqrt(a2);
+        const double r = sqrt(a2), c = -a1 / (2.0 * r);   /* cos(theta) */
+        const double s = sqrt(1.0 - c * c), half = sqrt(0.5 * (1.0 - c)); /* sin, sin(theta/2) */
+        if (!(r < 1.0 && s > 0.0))
+            return HUGE_VAL;
+        e = 1.0 + (2.0 * half + 1.0 - r) / ((1.0 - r) * s);
     } else {
-        const double s = sqrt(disc);
-        m1 = fabs(-a1 + s) * 0.5;
-        m2 = fabs(-a1 - s) * 0.5;
+        const double q = sqrt(disc);
+        const double p1 = 0.5 * (-a1 + q), p2 = 0.5 * (-a1 - q);
+        const double ps = p1 >= p2 ? p1 : p2, pf = p1 >= p2 ? p2 : p1;  /* nearer 1 first */
+        const double first = ps >= 0.0 ? 2.0 : 1.0 + (1.0 - ps) / (1.0 + ps);
+        if (!(fabs(pf) < 1.0 && ps > -1.0))
+            return HUGE_VAL;
+        e = first / (1.0 - fabs(pf));
     }
-    if (!(m1 < 1.0 && m2 < 1.0))
-        return HUGE_VAL;
-    bound = 1.0 + 2.0 * (fabs((double)f->d0) + fabs((double)f->d2)) / ((1.0 - m1) * (1.0 - m2));
-    return bound;
+    return 1.0 + (fabs((double)f->d0) + fabs((double)f->d2)) * e;
 }
 
 /* Largest |x| keeping every sum of the stage finite, before the cap at SMS_INPUT_MAX. */

@@ -3,10 +3,10 @@
  * - no crash, and no call longer than 100 ms (size queries and refusals are O(1); the only
  *   O(length) work is zeroing a delay line the caller provides, here at most MAX_BUF cells);
  * - a failing init leaves the stage / chain (and the caller's memory) byte for byte unchanged;
- * - SMS_OK never comes with a non-finite design value, tap, mode or output (inputs up to 1e3;
- *   inputs up to SMS_INPUT_MAX and beyond, NaN and Inf are fed too, checking only that the
- *   state stays loadable: heavily damped smoothers have recursion gains far above 1, see
- *   types.h);
+ * - SMS_OK never comes with a non-finite design value, tap, mode or output (inputs up to 1e3,
+ *   then inputs and rest at and within the chain's finite input range sms_chain_input_max();
+ *   inputs beyond it up to SMS_INPUT_MAX and DBL_MAX, NaN and Inf are fed too, checking only
+ *   that the state stays loadable);
  * - every state saved (also after NaN/Inf and out-of-range inputs) loads again.
  * Usage: test_fuzz_api_<precision> [configurations [seed]] (default 3000, seed 1). The long
  * campaign: build/sanitize/tests/test_fuzz_api_double 100000 (see tests/README.md). */
@@ -26,7 +26,9 @@
 static sms_memory_cell buffer[MAX_BUF], buffer_copy[MAX_BUF];
 static double state[MAX_STATE * MAX_STAGES], taps[MAX_BUF + 1];
 static unsigned long long rng;
-static unsigned long n_ok_init, n_refused, n_chains, n_slow, n_samples;
+static unsigned long n_ok_init, n_refused, n_chains, n_slow, n_samples, n_range_samples;
+static unsigned long n_below_input_max;   /* chains whose range is below SMS_INPUT_MAX */
+static unsigned long n_zero_range;        /* chains whose range is 0 */
 static double slowest;
 
 static unsigned long long next64(void)
@@ -114,9 +116,9 @@ static sms_real in_range_sample(void)
     return (sms_real)((2.0 * uniform() - 1.0) * (pick(2) ? 1e3 : 1.0));
 }
 
-static sms_real extreme_sample(void)
+/* A sample at or within +-m, often at the ends (the largest swing). */
+static sms_real extreme_sample(double m)
 {
-    const double m = SMS_INPUT_MAX;
     return (sms_real)(pick(2) ? (pick(2) ? m : -m) : (2.0 * uniform() - 1.0) * m);
 }
 
@@ -165,6 +167,25 @@ static void exercise(sms_chain *chain)
             CHECK(!"output finite for ordinary inputs");
             break;
         }
+    {   /* inputs and rest at the ends of the chain's finite input range: finite outputs */
+        double bound;
+        TIMED(bound = sms_chain_input_max(chain));
+        /* a stage's own range is >= 1; a chain's is 0 behind a notch whose poles round onto
+         * the unit circle (its gain bound is then infinite) */
+        CHECK(bound >= 0.0 && bound <= SMS_INPUT_MAX);
+        n_zero_range += bound == 0.0;
+        n_below_input_max += bound < SMS_INPUT_MAX;
+        TIMED(sms_chain_reset(chain, (sms_real)(pick(2) ? bound : -bound)));
+        for (i = 0; i < N_SAMPLES; ++i)
+            x[i] = extreme_sample(bound);
+        TIMED(sms_chain_process(chain, x, x, N_SAMPLES));
+        n_range_samples += N_SAMPLES;
+        for (i = 0; i < N_SAMPLES; ++i)
+            if (!isfinite((double)x[i])) {
+                CHECK(!"output finite for inputs within sms_chain_input_max");
+                break;
+            }
+    }
     n = sms_chain_state_count(chain);
     if (n > sizeof state / sizeof state[0])
         return;
@@ -172,7 +193,7 @@ static void exercise(sms_chain *chain)
     TIMED(st = sms_chain_set_state(chain, state, n));
     CHECK(st == SMS_OK);
     for (i = 0; i < N_SAMPLES; ++i)
-        x[i] = pick(4) == 0 ? out_of_range_sample() : extreme_sample();
+        x[i] = pick(4) == 0 ? out_of_range_sample() : extreme_sample(SMS_INPUT_MAX);
     sms_chain_process(chain, x, x, N_SAMPLES);
     sms_chain_get_state(chain, state);
     TIMED(st = sms_chain_set_state(chain, state, n));
@@ -320,7 +341,9 @@ int main(int argc, char **argv)
     /* the generator reached every outcome often enough to mean something */
     CHECK(n < 1000 || (n_ok_init > n / 20 && n_refused > n / 20 && n_chains > n / 50));
     printf("fuzz_api: %lu configurations: %lu stages built, %lu refused, %lu chains run "
-           "(%lu samples), %lu calls over %.0f ms, slowest %.3f ms\n", n, n_ok_init, n_refused,
-           n_chains, n_samples, n_slow, 1e3 * CALL_LIMIT_S, 1e3 * slowest);
+           "(%lu ordinary samples, %lu at the input range, %lu chains with a range below "
+           "SMS_INPUT_MAX, %lu of them 0), %lu calls over %.0f ms, slowest %.3f ms\n", n,
+           n_ok_init, n_refused, n_chains, n_samples, n_range_samples, n_below_input_max,
+           n_zero_range, n_slow, 1e3 * CALL_LIMIT_S, 1e3 * slowest);
     return check_summary("test_fuzz_api");
 }

@@ -93,8 +93,9 @@ SMS_API double sms_stage_input_max(const sms_stage *stage);
  * @brief An upper bound G on the l1 norm of the stage's impulse response (its largest gain
  * from input to output in the time domain): |y - rest| <= G max |x - rest|. Smoothers:
  * 1 + 2 (|d_0| + |d_1|) (the base taps are non-negative and sum with the direct taps to 1);
- * shapers: sum |g_k|; notches: 1 + 2 (|d0| + |d2|)/((1 - |p1|)(1 - |p2|)) with p1, p2 the
- * poles (a bound, not the norm). O(1).
+ * shapers: sum |g_k|; notches: 1 + (|d0| + |d2|) E, E a closed-form bound on the l1 norm of
+ * (1 - z^-1)/A(z) from the poles (a bound, not the norm: about 3 to 5 for ordinary notches,
+ * HUGE_VAL if a pole rounds onto the unit circle). O(1).
  */
 SMS_API double sms_stage_gain_bound(const sms_stage *stage);
 /** @brief Impulse-response length L in samples (notch: 0, it is IIR). */
