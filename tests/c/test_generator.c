@@ -506,10 +506,61 @@ static void test_long_moves(void)
     }
 }
 
+/* A mode on a long move, float and double: the plan jumps (through a saved state) to 2^24 and
+ * 2^30 samples into a cruise at vmax; after the tuned stage's rings have refilled (L + 5
+ * samples) the output is the plan through the stage's taps, in a cruise the line
+ * v (t - Ts sum i h_i) - v rise/2: within 64 ulps of the move (the drift-free smoother's
+ * error stays at the rounding of its input's variation, whatever the run length). */
+static void test_long_moves_through_the_stage(void)
+{
+    static const double n_samples[2] = {16777216.0, 1073741824.0};
+    static double taps[2000];
+    int m;
+    for (m = 0; m < 2; ++m) {
+        double Ts = 1e-4, v = 1.0, a = 10.0, j = 1000.0, wn = 40.0;
+        double rise = v / a + a / j, T = n_samples[m] * Ts, h = v * (T - rise), lag = 0.0;
+        sms_generator g;
+        sms_generator_config c = make_config(v, a, j, SMS_PROFILE_POLYNOMIAL, wn, 0.0);
+        sms_stage_config sc = sms_stage_config_default(SMS_RECTANGULAR);
+        static double state[8000];
+        sms_real out[4];
+        size_t L = 0, i, n_state;
+        long k, start_k;
+        double err = 0.0;
+        sc.T = 2.0 * 3.14159265358979323846 / wn;
+        CHECK_STATUS(sms_smoother_length(&sc, Ts, &L), SMS_OK);
+        CHECK_STATUS(sms_smoother_taps(&sc, Ts, taps, L), SMS_OK);
+        for (i = 0; i < L; ++i)
+            lag += (double)i * taps[i] * Ts;
+        if (!build(&g, &c, Ts))
+            continue;
+        sms_generator_step(&g, (sms_real)h, out); /* the plan starts at sample 0 */
+        n_state = sms_generator_state_count(&g);
+        CHECK(n_state <= sizeof state / sizeof state[0]);
+        sms_generator_get_state(&g, state);
+        start_k = (long)floor(0.5 * n_samples[m]);
+        state[5] = (double)(start_k - (long)L - 5);
+        CHECK_STATUS(sms_generator_set_state(&g, state, n_state), SMS_OK);
+        for (k = 0; k < (long)L + 5; ++k)
+            sms_generator_step(&g, (sms_real)h, out);
+        for (k = 0; k < 10000; ++k) {
+            double t = (double)(start_k + 1 + k) * Ts, exact = v * (t - lag - 0.5 * rise);
+            sms_generator_step(&g, (sms_real)h, out);
+            if (fabs((double)out[0] - exact) > err)
+                err = fabs((double)out[0] - exact);
+            CHECK_CLOSE(out[1], v, 64 * SAMPLE_EPS, v);
+        }
+        CHECK(err <= 64.0 * SAMPLE_EPS * h);
+        if (err > 64.0 * SAMPLE_EPS * h)
+            fprintf(stderr, "long move through the stage %g: error %g\n", n_samples[m], err);
+    }
+}
+
 int main(void)
 {
     test_time_optimal_arrival();
     test_long_moves();
+    test_long_moves_through_the_stage();
     test_bounds_random();
     test_trigonometric();
     test_mode_stage();

@@ -259,7 +259,7 @@ SMS_API double sms_generator_tail_duration(const sms_generator *g);
 /** @brief Number of doubles sms_generator_get_state() writes: 6 (target, goal, the start
  * q, v, a of the running plan and the samples since it; loading re-plans from these, so a
  * saved state can also move the generator to any sample of its plan), and with a mode 1
- * more (the quiet samples) plus the four stage states (4 (M + 14)). */
+ * more (the quiet samples) plus the four stage states (sms_smoother_state_count() each). */
 SMS_API size_t sms_generator_state_count(const sms_generator *g);
 SMS_API void sms_generator_get_state(const sms_generator *g, double *dst);
 /** @brief Restore a saved state; ::SMS_ERR_STATE (nothing written) if n or a field is invalid. */
