@@ -152,6 +152,7 @@ void sms_generator_reset(sms_generator *g, sms_real position)
     g->plan.end_f = 0;
     g->plan.duration = 0;
     g->target = position;
+    g->refused = 0;
     g->quiet = g->stage_length;
     if (g->stage_length > 0)
         for (i = 0; i < 4; ++i)
@@ -179,18 +180,25 @@ static int can_start(const sms_generator *g, sms_real v, sms_real a)
  * from the plan's goal (and the state allows it, can_start()). */
 static void step_plan(sms_generator *g, sms_real target, sms_real out[4])
 {
-    if (target - target == 0) /* finite (NaN and Inf give NaN) */
+    if (target - target == 0 && target != g->target) { /* finite (NaN, Inf give NaN), new */
         g->target = target;
+        g->refused = 0;
+    }
     ++g->k;
     sms_plan_eval(&g->plan, g->Ts_signal, g->k, out);
-    if (g->target != g->plan.goal && can_start(g, out[1], out[2])) {
-        g->plan_q = out[0];
-        g->plan_v = out[1];
-        g->plan_a = out[2];
-        g->k = 0;
-        sms_plan_to_rest_shaped(&g->plan, &g->limits, g->shape, g->Ts_signal, out[0], out[1],
-                                out[2], g->target);
-        sms_plan_eval(&g->plan, g->Ts_signal, 0, out); /* the same q, v, a; the new jerk */
+    if (g->target != g->plan.goal && !g->refused && can_start(g, out[1], out[2])) {
+        /* a move that cannot be represented (sms_plan_to_rest_shaped() returns 0) is dropped:
+         * the running plan goes on, and the target is not tried again until it changes */
+        if (sms_plan_to_rest_shaped(&g->plan, &g->limits, g->shape, g->Ts_signal, out[0],
+                                    out[1], out[2], g->target)) {
+            g->plan_q = out[0];
+            g->plan_v = out[1];
+            g->plan_a = out[2];
+            g->k = 0;
+            sms_plan_eval(&g->plan, g->Ts_signal, 0, out); /* the same q, v, a; the new jerk */
+        } else {
+            g->refused = 1;
+        }
     }
 }
 
@@ -281,6 +289,14 @@ sms_status sms_generator_check_state(const sms_generator *g, const double *src, 
         return SMS_ERR_STATE;
     if (!is_count(src[5], 9007199254740992.0)) /* 2^53 */
         return SMS_ERR_STATE;
+    {
+        /* the running plan must be one the generator can form again */
+        sms_plan plan;
+        if (!sms_plan_to_rest_shaped(&plan, &g->limits, g->shape, g->Ts_signal,
+                                     (sms_real)src[2], (sms_real)src[3], (sms_real)src[4],
+                                     (sms_real)src[1]))
+            return SMS_ERR_STATE;
+    }
     if (g->stage_length == 0)
         return SMS_OK;
     if (!is_count(src[6], (double)g->stage_length))
@@ -304,8 +320,9 @@ sms_status sms_generator_set_state(sms_generator *g, const double *src, size_t n
     g->plan_v = (sms_real)src[3];
     g->plan_a = (sms_real)src[4];
     g->k = (size_t)src[5];
-    sms_plan_to_rest_shaped(&g->plan, &g->limits, g->shape, g->Ts_signal, g->plan_q, g->plan_v,
-                            g->plan_a, (sms_real)src[1]);
+    g->refused = 0; /* a dropped target is tried (and dropped) again on the next sample */
+    (void)sms_plan_to_rest_shaped(&g->plan, &g->limits, g->shape, g->Ts_signal, g->plan_q,
+                                  g->plan_v, g->plan_a, (sms_real)src[1]); /* checked above */
     if (g->stage_length == 0)
         return SMS_OK;
     g->quiet = (size_t)src[6];

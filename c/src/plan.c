@@ -28,6 +28,9 @@ sms_real sms_plan_sqrt(sms_real x)
 #define PLAN_GRID_TOL (sizeof(sms_real) == sizeof(double) ? 8.0 * 2.220446049250313e-16 \
                                                           : 8.0 * 1.1920929e-7)
 
+/* Most halvings of the vp search: both exponent ranges plus the mantissa of sms_real. */
+#define PLAN_SEARCH_STEPS (sizeof(sms_real) == sizeof(double) ? 2 * 1075 + 60 : 2 * 150 + 30)
+
 /* Up to three constant-jerk pieces. */
 typedef struct pieces {
     int count;
@@ -159,15 +162,55 @@ static void push(sms_plan *plan, sms_real Ts, size_t *n, sms_real *f, sms_real p
         *f = 0;
 }
 
-void sms_plan_to_rest(sms_plan *plan, const sms_plan_limits *lim, sms_real Ts, sms_real q,
-                      sms_real v, sms_real a, sms_real goal)
+int sms_plan_to_rest(sms_plan *plan, const sms_plan_limits *lim, sms_real Ts, sms_real q,
+                     sms_real v, sms_real a, sms_real goal)
 {
-    sms_plan_to_rest_shaped(plan, lim, SMS_PLAN_RAMP, Ts, q, v, a, goal);
+    return sms_plan_to_rest_shaped(plan, lim, SMS_PLAN_RAMP, Ts, q, v, a, goal);
 }
 
-void sms_plan_to_rest_shaped(sms_plan *plan, const sms_plan_limits *lim, int shape, sms_real Ts,
-                             sms_real q, sms_real v, sms_real a, sms_real goal)
+/* A plan longer than this many samples is not formed: its sample counts must stay exact in
+ * size_t and in the double of a saved state (2^52: about 1.4e5 years at 1 ms). */
+static sms_real max_samples(void)
 {
+    sms_real m = (sms_real)4503599627370496.0, s = (sms_real)((size_t)-1) * (sms_real)0.5;
+    return s < m ? s : m;
+}
+
+static int finite(sms_real x)
+{
+    return x - x == 0; /* NaN and +-Inf give NaN */
+}
+
+static sms_real mag(sms_real x)
+{
+    return x < 0 ? -x : x;
+}
+
+/* Can every value the plan evaluates be formed? Each segment's start values and the bound
+ * |p| + d (|v| + d (|a|/2 + d |j|/4)) of every term sms_plan_eval() forms within it (the
+ * half-cosine position term is at most |j| d^3/4, the ramp's |j| d^3/6) are finite. */
+static int plan_finite(const sms_plan *plan)
+{
+    size_t i;
+    for (i = 0; i < plan->count; ++i) {
+        sms_real d = plan->d[i];
+        if (!finite(plan->p[i]) || !finite(plan->v[i]) || !finite(plan->a[i]) ||
+            !finite(plan->j[i]) || !finite(d) || !finite(plan->f[i]))
+            return 0;
+        if (!finite(mag(plan->p[i]) + d * (mag(plan->v[i]) +
+                                           d * (mag(plan->a[i]) * (sms_real)0.5 +
+                                                d * mag(plan->j[i]) * (sms_real)0.25))) ||
+            !finite(mag(plan->v[i]) + d * (mag(plan->a[i]) + d * mag(plan->j[i]))))
+            return 0;
+    }
+    return finite(plan->goal) && finite(plan->end_f) && finite(plan->duration);
+}
+
+int sms_plan_to_rest_shaped(sms_plan *out, const sms_plan_limits *lim, int shape, sms_real Ts,
+                            sms_real q, sms_real v, sms_real a, sms_real goal)
+{
+    sms_plan tmp, *plan = &tmp;
+    sms_real total;
     sms_real D = goal - q, vp, cruise = 0, V = lim->vmax, A = lim->amax, p, vv, aa, f = 0;
     sms_real J = sms_plan_mean_jerk(lim, shape);
     sms_real c3 = shape == SMS_PLAN_COSINE ? PLAN_C3_COSINE : PLAN_C3_RAMP;
@@ -181,8 +224,11 @@ void sms_plan_to_rest_shaped(sms_plan *plan, const sms_plan_limits *lim, int sha
     if (D == 0 && v == 0 && a == 0) {
         plan->end = 0;
         plan->end_f = 0;
-        return;
+        *out = tmp;
+        return 1;
     }
+    if (!finite(D) || !finite(q) || !finite(v) || !finite(a) || !finite(goal))
+        return 0;
     if (D >= distance(v, a, V, A, J, shape, &first, &stop)) {
         vp = V;
         cruise = (D - distance(v, a, V, A, J, shape, &first, &stop)) / V;
@@ -211,7 +257,10 @@ void sms_plan_to_rest_shaped(sms_plan *plan, const sms_plan_limits *lim, int sha
             else
                 hi = after;
         }
-        for (it = 0; it < 200; ++it) {
+        /* to the last bit even when the root is many binades below V (a short move at a huge
+         * vmax): each halving takes at most one binade or one bit off, so the exponent range
+         * plus the mantissa bound it; a typical search stops after about 60 (double) */
+        for (it = 0; it < PLAN_SEARCH_STEPS; ++it) {
             sms_real mid = (sms_real)0.5 * (lo + hi);
             if (!(mid > lo && mid < hi))
                 break;
@@ -223,8 +272,16 @@ void sms_plan_to_rest_shaped(sms_plan *plan, const sms_plan_limits *lim, int sha
         vp = (sms_real)0.5 * (lo + hi);
         (void)distance(v, a, vp, A, J, shape, &first, &stop);
     }
-    if (cruise < 0)
+    if (!(cruise >= 0)) /* also NaN */
         cruise = 0;
+    /* the whole plan on the grid: finite and few enough samples, before any is counted */
+    total = cruise;
+    for (i = 0; i < first.count; ++i)
+        total += first.d[i];
+    for (i = 0; i < stop.count; ++i)
+        total += stop.d[i];
+    if (!finite(vp) || !finite(total) || !(total / Ts + 2 <= max_samples()))
+        return 0;
     /* the velocity change from the current state */
     p = q;
     vv = v;
@@ -238,9 +295,15 @@ void sms_plan_to_rest_shaped(sms_plan *plan, const sms_plan_limits *lim, int sha
         sms_real ps = 0, vs = vp, as = 0;
         for (i = 0; i < stop.count; ++i)
             advance(&ps, &vs, &as, stop.j[i], stop.d[i], c3);
+        sms_real reach = p + cruise * vp, start = goal - ps, gap = reach - start;
+        sms_real scale = mag(q) + mag(goal) + mag(p - q) + mag(ps) + mag(cruise * vp);
+        /* the parts meet to the rounding of the positions (the search converged): where
+         * the distances underflow or overflow they need not, and the plan would jump */
+        if (!(mag(gap) <= 16 * (sms_real)PLAN_GRID_TOL * scale))
+            return 0;
         if (cruise > 0)
             push(plan, Ts, &n, &f, p, vp, 0, 0, cruise);
-        p = goal - ps;
+        p = start;
         vv = vp;
         aa = 0;
         for (i = 0; i < stop.count; ++i) {
@@ -250,6 +313,10 @@ void sms_plan_to_rest_shaped(sms_plan *plan, const sms_plan_limits *lim, int sha
     }
     plan->end = n;
     plan->end_f = f;
+    if (!plan_finite(plan))
+        return 0;
+    *out = tmp;
+    return 1;
 }
 
 /* Is sample k at or after the breakpoint (n, f)? A breakpoint within the rounding of its

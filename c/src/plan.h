@@ -13,9 +13,13 @@
  * Structure: a velocity change (v, a) -> (vp, 0) (jerk +-jmax, hold +-amax if reached,
  * jerk -+jmax), a cruise at vp = +-vmax when the distance allows, and the stop (vp, 0) ->
  * (0, 0). vp solves "distance of the two changes = goal - q", the distance being increasing
- * in vp; bisection in sms_real. */
-void sms_plan_to_rest(sms_plan *plan, const sms_plan_limits *lim, sms_real Ts, sms_real q,
-                      sms_real v, sms_real a, sms_real goal);
+ * in vp; bisection in sms_real.
+ * Returns 1 when planned; 0 when the plan cannot be represented in sms_real (a value it
+ * would evaluate not finite, e.g. amax/jmax or the distance overflowing, or more than 2^52
+ * samples long, e.g. 1e300 at vmax 1, or its parts not meeting where the distances
+ * underflow); plan is then untouched. */
+int sms_plan_to_rest(sms_plan *plan, const sms_plan_limits *lim, sms_real Ts, sms_real q,
+                     sms_real v, sms_real a, sms_real goal);
 
 /* Shapes of the acceleration transitions: linear ramps (constant jerk +-jmax) or half-cosine
  * ones (jerk jmax sin(pi t/d), continuous, zero at both ends: the trigonometric profile). */
@@ -28,9 +32,10 @@ void sms_plan_to_rest(sms_plan *plan, const sms_plan_limits *lim, sms_real Ts, s
  * durations are those of the ramp plan at that jerk (rest to rest: ruckig's duration with
  * jmax 2/pi, which is the trigonometric kinematic design's), only the positions differ
  * (a whole transition moves q by (1/4 - 1/pi^2) instead of 1/6 times j d^3). The brake
- * precondition uses the mean jerk. Plan segments store the mean jerk in j[]. */
-void sms_plan_to_rest_shaped(sms_plan *plan, const sms_plan_limits *lim, int shape, sms_real Ts,
-                             sms_real q, sms_real v, sms_real a, sms_real goal);
+ * precondition uses the mean jerk. Plan segments store the mean jerk in j[]. Returns as
+ * sms_plan_to_rest(). */
+int sms_plan_to_rest_shaped(sms_plan *plan, const sms_plan_limits *lim, int shape, sms_real Ts,
+                            sms_real q, sms_real v, sms_real a, sms_real goal);
 
 /* The jerk the planner uses for a shape: jmax (ramps) or (2/pi) jmax (half-cosine). */
 sms_real sms_plan_mean_jerk(const sms_plan_limits *lim, int shape);

@@ -170,6 +170,10 @@ class Generator:
         -------
         ndarray of float64, shape (n, 4)
             Columns q [units], v [units/s], a [units/s^2], j [units/s^3] at the samples.
+            A target whose move cannot be represented in the build's floats (a value of the
+            plan would overflow, or the move would last more than 2^52 samples, e.g. 1e300
+            at ``vmax=1``) is dropped: the running motion goes on and the target is not tried
+            again until it changes, so the outputs stay finite and within the limits.
 
         Raises
         ------

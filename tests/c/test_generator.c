@@ -556,8 +556,110 @@ static void test_long_moves_through_the_stage(void)
     }
 }
 
+/* Extreme but finite limits and targets (found by the FMI fuzzer): a move whose plan cannot be
+ * represented (a product overflowing, or more than 2^52 samples long) is dropped. Every output
+ * stays finite, within vmax, amax, jmax and the sampled velocity bound at every sample, and
+ * every saved state loads again and continues bit for bit. */
+static void test_extreme_limits_and_targets(void)
+{
+    static const double limits[][3] = {
+        {1.7976931348623157e308, 9e-16, 3e-14}, /* vmax = DBL_MAX, tiny amax, jmax */
+        {1.0, 10.0, 9e307},                     /* jmax near DBL_MAX */
+        {1e300, 1e100, 1e5},                    /* vmax 1e300, targets 1e305 */
+        {1.0, 1e-30, 1e-300},                   /* a move to 1e300 would jump 1e149 a sample */
+        {1e-100, 1e-100, 1e-100},
+        {1e150, 1e-150, 1e150},
+    };
+    static const double targets[] = {1e305, 1.0, -1e305, 1e300, 1.7976931348623157e308,
+                                     -1.7976931348623157e308, 1e-300, 0.0, 3.5};
+    static double state[64];
+    size_t ci, ti, i, n_state;
+    const double Ts = 1e-3;
+    for (ci = 0; ci < sizeof limits / sizeof limits[0]; ++ci) {
+        sms_generator g, h;
+        sms_real out[4], prev = 0, o2[4];
+        size_t need = 1;
+        int profile;
+        for (profile = 0; profile < 2; ++profile) {
+            sms_generator_config c = make_config(limits[ci][0], limits[ci][1], limits[ci][2],
+                                                 profile ? SMS_PROFILE_TRIGONOMETRIC
+                                                         : SMS_PROFILE_POLYNOMIAL, 0.0, 0.0);
+            sms_status st = sms_generator_buffer_size(&c, Ts, &need);
+            /* double forms every product of these limits; float refuses the ones it cannot */
+            CHECK(st == SMS_OK || (sizeof(sms_real) == sizeof(float) && st == SMS_ERR_LIMIT));
+            if (st != SMS_OK)
+                continue;
+            CHECK_STATUS(sms_generator_init(&g, &c, Ts, NULL, 0), SMS_OK);
+            h = g;
+            prev = 0;
+            for (ti = 0; ti < sizeof targets / sizeof targets[0]; ++ti) {
+                sms_real x = (sms_real)targets[ti];
+                if (x - x != 0)
+                    continue; /* beyond a float build's range: ignored anyway */
+                for (i = 0; i < 40; ++i) {
+                    double dq, q;
+                    sms_generator_step(&g, x, out);
+                    q = (double)out[0];
+                    CHECK(out[0] - out[0] == 0 && out[1] - out[1] == 0 &&
+                          out[2] - out[2] == 0 && out[3] - out[3] == 0);
+                    CHECK(fabs((double)out[1]) <= c.vmax * (1.0 + BOUND_TOL));
+                    CHECK(fabs((double)out[2]) <= c.amax * (1.0 + BOUND_TOL));
+                    CHECK(fabs((double)out[3]) <= c.jmax * (1.0 + BOUND_TOL));
+                    dq = fabs(q - (double)prev);
+                    CHECK(dq <= c.vmax * Ts * (1.0 + BOUND_TOL) +
+                                    4.0 * SAMPLE_EPS * (fabs(q) + fabs((double)prev)));
+                    prev = out[0];
+                    /* save, load into a copy, and both go on bit for bit */
+                    if (i % 7 == 3) {
+                        n_state = sms_generator_state_count(&g);
+                        CHECK(n_state <= sizeof state / sizeof state[0]);
+                        sms_generator_get_state(&g, state);
+                        CHECK_STATUS(sms_generator_set_state(&h, state, n_state), SMS_OK);
+                        sms_generator_step(&g, x, out);
+                        sms_generator_step(&h, x, o2);
+                        CHECK(out[0] == o2[0] && out[1] == o2[1] && out[2] == o2[2] &&
+                              out[3] == o2[3]);
+                        CHECK(fabs((double)out[0] - (double)prev) <=
+                              c.vmax * Ts * (1.0 + BOUND_TOL) +
+                                  4.0 * SAMPLE_EPS * (fabs((double)out[0]) + fabs((double)prev)));
+                        prev = out[0];
+                    }
+                }
+            }
+        }
+    }
+    {
+        /* vmax 1, amax 1e-30, jmax 1e-300: the move to 1e300 would last about 1e270 s; it is
+         * dropped and the output rests */
+        sms_generator g;
+        sms_generator_config c = make_config(1.0, 1e-30, 1e-300, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0);
+        sms_generator_config c2 = make_config(1e300, 1e100, 1e5, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0);
+        sms_real out[4] = {0, 0, 0, 0};
+        if (sms_generator_init(&g, &c, Ts, NULL, 0) == SMS_OK) {
+            for (i = 0; i < 100; ++i) {
+                sms_generator_step(&g, (sms_real)1e300, out);
+                CHECK(out[0] == 0 && out[1] == 0 && out[2] == 0 && out[3] == 0);
+            }
+            CHECK(g.refused == 1);
+        }
+        /* vmax 1e300: 1e305 (1e200 s to reach amax) is dropped, then 1000 moves there */
+        if (sms_generator_init(&g, &c2, Ts, NULL, 0) == SMS_OK) {
+            for (i = 0; i < 10; ++i) {
+                sms_generator_step(&g, (sms_real)1e300 * (sms_real)1e5, out);
+                CHECK(out[0] == 0 && out[1] == 0);
+            }
+            for (i = 0; i < 2000 && !(out[0] == 1000 && out[1] == 0); ++i) {
+                sms_generator_step(&g, 1000, out);
+                CHECK(fabs((double)out[3]) <= c2.jmax * (1.0 + BOUND_TOL));
+            }
+            CHECK(out[0] == 1000 && out[1] == 0 && i > 100);
+        }
+    }
+}
+
 int main(void)
 {
+    test_extreme_limits_and_targets();
     test_time_optimal_arrival();
     test_long_moves();
     test_long_moves_through_the_stage();

@@ -213,3 +213,38 @@ def test_trigonometric_rest_to_rest_is_the_trigonometric_design():
     assert np.max(np.abs(y[:, 3])) == pytest.approx(2e5, rel=1e-6)
     d = math.pi / 2 * 5000.0 / 2e5           # the shortest full transition
     assert np.max(np.abs(np.diff(y[:, 3]))) <= 2e5 * math.pi * Ts / d * (1 + 1e-9)
+
+
+@pytest.mark.parametrize("profile", ["polynomial", "trigonometric"])
+def test_unrepresentable_move_is_dropped(profile):
+    """vmax 1, amax 1e-30, jmax 1e-300: the move to 1e300 would last about 1e270 s (it used to
+    jump 1.7e149 in one sample); it is dropped, the output rests, and the state round-trips."""
+    g = tr.Generator(vmax=1.0, amax=1e-30, jmax=1e-300, Ts=1e-3, profile=profile)
+    y = g.process(np.full(50, 1e300))
+    assert np.all(y == 0.0)
+    h = tr.Generator(vmax=1.0, amax=1e-30, jmax=1e-300, Ts=1e-3, profile=profile)
+    h.set_state(g.get_state())
+    np.testing.assert_array_equal(h.process(np.full(5, 1e300)), g.process(np.full(5, 1e300)))
+
+
+@pytest.mark.parametrize("vmax, amax, jmax, target", [
+    (1.7976931348623157e308, 9e-16, 3e-14, 1e305),
+    (1.0, 10.0, 9e307, 1e305),
+    (1e300, 1e100, 1e5, 1e305),
+    (1e300, 1e100, 1e5, 1000.0),
+])
+def test_extreme_limits_keep_every_bound(vmax, amax, jmax, target):
+    """Finite outputs within vmax, amax, jmax and the sampled velocity bound at every sample,
+    for extreme limits and targets, whether the move is planned or dropped."""
+    Ts = 1e-3
+    g = tr.Generator(vmax=vmax, amax=amax, jmax=jmax, Ts=Ts)
+    y = g.process(np.concatenate([np.full(400, target), np.full(400, -target)]))
+    assert np.all(np.isfinite(y))
+    tol = 1 + 1e-9
+    assert np.all(np.abs(y[:, 1]) <= vmax * tol)
+    assert np.all(np.abs(y[:, 2]) <= amax * tol)
+    assert np.all(np.abs(y[:, 3]) <= jmax * tol)
+    q = np.concatenate([[0.0], y[:, 0]])
+    eps = np.finfo(float).eps
+    dq = np.abs(np.diff(q))
+    assert np.all(dq <= vmax * Ts * tol + 4 * eps * (np.abs(q[1:]) + np.abs(q[:-1])))

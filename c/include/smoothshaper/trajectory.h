@@ -206,8 +206,16 @@ typedef struct sms_generator_config {
  * tuned stage is the drift-free smoother of smoother.h. A float build keeps its error at the
  * rounding of the positions for any move and run length.
  * Per sample: O(1), no libm (a half-cosine transition sums its own series, about 30 terms);
- * a re-plan: about 60 (double) or 30 (float) evaluations of the distance; a non-finite
- * target is ignored.
+ * a re-plan: about 60 (double) or 30 (float) evaluations of the distance (at most about
+ * 2200 or 330 when vp lies many binades below vmax); a non-finite target is ignored.
+ *
+ * **Extreme limits and targets.** Every finite limit that passes init is accepted, but some
+ * moves cannot be represented in ::sms_real: a value of the plan (a distance, a duration
+ * such as amax/jmax, a position on the way) would overflow, or the move would last more than
+ * 2^52 samples (e.g. a target of 1e300 with vmax = 1, or amax = 1e-30 with jmax = 1e-300).
+ * Such a target is dropped: the running plan goes on (or the output rests where it is) and
+ * the target is not tried again until the input changes. So every output is finite, vmax,
+ * amax and jmax hold at every sample, and every saved state loads again.
  */
 typedef struct sms_generator {
     double Ts;
@@ -224,6 +232,7 @@ typedef struct sms_generator {
     sms_plan_limits limits; /**< vmax, amax, jmax in signal precision */
     /* dynamic state */
     sms_real target;      /**< latest valid target */
+    int refused;          /**< 1: target's move could not be represented; dropped until it changes */
     sms_real plan_q, plan_v, plan_a; /**< state the running plan started from */
     sms_plan plan;        /**< the running plan (its goal is the target it heads for) */
     size_t k;             /**< samples since the plan's first sample */
