@@ -426,7 +426,9 @@ def memory_tables(quick: bool) -> list[Table]:
         "(a union sized by a 45-tap shaper; UNION_STAGE_BYTES) + the same delay line. "
         "Exact ZV^8, the one shaper with 45 taps, is the case the union was sized for; in the "
         "float build on a 64-bit host each of its taps (a size_t delay and a float gain) pads "
-        "to 16 B.")
+        "to 16 B. Each instance also keeps its configuration identity (15 doubles, 120 B: kind, "
+        "precision, Ts and the design parameters) so that a saved state from another "
+        "configuration is refused.")
     for label, kind, params in _MEMORY_EXAMPLES:
         stage = Stage(kind, **params)
         for precision in ("double", "float"):
