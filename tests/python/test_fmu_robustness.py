@@ -191,7 +191,7 @@ def test_set_state_given_another_models_instance_never_writes(smoothshaper_dir, 
 # ---------------------------------------------------------------- held input over a huge step
 
 @pytest.mark.parametrize("stages", [CHAIN, [rectangular(T=2000 * TS), harmonic(T=9 * TS)],
-                                    [notch(wn=300.0, zeta=0.0, pole_zeta=0.1)]],
+                                    [notch(wn=300.0, zeta=0.0, notch_pole_zeta=0.1)]],
                          ids=["M*S*ZVD*notch", "long M*S", "notch"])
 def test_a_huge_step_over_a_held_input_equals_ticking_through_it(smoothshaper_dir, stages):
     # doStep(h = 1e9 s) is 1e12 ticks: once the chain has absorbed the held input its state is
