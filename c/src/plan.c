@@ -28,6 +28,11 @@ sms_real sms_plan_sqrt(sms_real x)
 #define PLAN_GRID_TOL (sizeof(sms_real) == sizeof(double) ? 8.0 * 2.220446049250313e-16 \
                                                           : 8.0 * 1.1920929e-7)
 
+/* Below the smallest normal number a relative tolerance underflows: a gap there is a
+ * subnormal position step (a move to 2.2e-313 is planned, not dropped). */
+#define PLAN_MIN_NORMAL (sizeof(sms_real) == sizeof(double) ? (sms_real)2.2250738585072014e-308 \
+                                                            : (sms_real)1.17549435e-38f)
+
 /* Most halvings of the vp search: both exponent ranges plus the mantissa of sms_real. */
 #define PLAN_SEARCH_STEPS (sizeof(sms_real) == sizeof(double) ? 2 * 1075 + 60 : 2 * 150 + 30)
 
@@ -299,7 +304,7 @@ int sms_plan_to_rest_shaped(sms_plan *out, const sms_plan_limits *lim, int shape
         sms_real scale = mag(q) + mag(goal) + mag(p - q) + mag(ps) + mag(cruise * vp);
         /* the parts meet to the rounding of the positions (the search converged): where
          * the distances underflow or overflow they need not, and the plan would jump */
-        if (!(mag(gap) <= 16 * (sms_real)PLAN_GRID_TOL * scale))
+        if (!(mag(gap) <= 16 * (sms_real)PLAN_GRID_TOL * scale || mag(gap) < PLAN_MIN_NORMAL))
             return 0;
         if (cruise > 0)
             push(plan, Ts, &n, &f, p, vp, 0, 0, cruise);

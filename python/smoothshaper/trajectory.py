@@ -209,13 +209,15 @@ class Generator:
         Parameters
         ----------
         state : array_like of float
-            A state of this generator or of an identically configured one.
+            A state of this generator or of an identically configured one. The generator's
+            state does not yet record its configuration (a chain's does): a valid state of a
+            generator with other limits is accepted and continues under this one's limits.
 
         Raises
         ------
         ParameterError
-            Naming ``state`` if it has the wrong size, comes from another configuration or is
-            not a valid state; then nothing is changed.
+            Naming ``state`` if it has the wrong size, non-finite fields or counts out of
+            range; then nothing is changed.
         """
         s = np.ascontiguousarray(_real_array("state", state, ndim=1), dtype=np.float64)
         st = self._lib.sms_generator_set_state(self._gen, self._ffi.from_buffer("double[]", s),

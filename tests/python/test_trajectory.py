@@ -248,3 +248,15 @@ def test_extreme_limits_keep_every_bound(vmax, amax, jmax, target):
     eps = np.finfo(float).eps
     dq = np.abs(np.diff(q))
     assert np.all(dq <= vmax * Ts * tol + 4 * eps * (np.abs(q[1:]) + np.abs(q[:-1])))
+
+
+@pytest.mark.parametrize("target", [2.2250738585e-313, 5e-324, -3e-310])
+@pytest.mark.parametrize("profile,mode", [("polynomial", {}), ("trigonometric", {}),
+                                          ("damped", dict(wn=50.0, zeta=0.05))])
+def test_a_subnormal_target_is_reached_not_dropped(target, profile, mode):
+    # Below the smallest normal number the planner's relative meeting check underflows; such a
+    # move is a subnormal position step (well within every bound), not an unrepresentable plan.
+    g = tr.Generator(vmax=1.0, amax=10.0, jmax=100.0, Ts=1e-3, profile=profile, **mode)
+    y = g.process(np.full(3000, target))
+    assert y[-1, 0] == target
+    assert np.all(np.isfinite(y))
