@@ -33,6 +33,19 @@ __all__ = ["transition", "phase_duration", "multi_axis_reference"]
 _EPS = np.finfo(np.float64).eps
 
 
+def _reduce(x: float, base: float) -> tuple[float, float]:
+    """x scaled into [1, base) by powers of base (4 for sqrt, 8 for cbrt; exact in binary
+    floating point) and the factor 2^k the root is scaled back by, as the C planner does."""
+    scale = 1.0
+    while x >= base:
+        x *= 1.0 / base
+        scale *= 2
+    while x < 1:
+        x *= base
+        scale *= 0.5
+    return x, scale
+
+
 def _newton_sqrt(x: float) -> float:
     """sqrt(x) as the C planner computes it: scaled into [1, 4) by powers of 4, 7 Newton
     steps from (1 + x)/2, scaled back (within an ulp of math.sqrt); 0 for x <= 0."""
@@ -40,13 +53,7 @@ def _newton_sqrt(x: float) -> float:
         return np.float64(0.0)  # 1/0 is then inf, as in C
     if x == math.inf:
         return x
-    scale = 1.0
-    while x >= 4:
-        x *= 0.25
-        scale *= 2
-    while x < 1:
-        x *= 4
-        scale *= 0.5
+    x, scale = _reduce(x, 4.0)
     y = (1 + x) * 0.5
     for _ in range(7):
         y = (y + x / y) * 0.5
@@ -60,13 +67,7 @@ def _newton_cbrt(x: float) -> float:
         return np.float64(0.0)  # 1/0 is then inf, as in C
     if x == math.inf:
         return x
-    scale = 1.0
-    while x >= 8:
-        x *= 0.125
-        scale *= 2
-    while x < 1:
-        x *= 8
-        scale *= 0.5
+    x, scale = _reduce(x, 8.0)
     y = 1 + x * (1.0 / 7.0)
     for _ in range(8):
         y = (2 * y + x / (y * y)) * (1.0 / 3.0)
