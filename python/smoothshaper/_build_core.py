@@ -120,9 +120,13 @@ def _sources() -> list[str]:
 # Binding glue compiled into each module (not part of the C library): Chain.process in one
 # call. It checks every input sample first (the state stays untouched on a bad one), then
 # filters float64 to float64; the float build converts through a small block on the stack,
-# so the float path makes no full-size copy of the signal.
+# so the float path makes no full-size copy of the signal. design.kinematic's fast path passes
+# up to three bounds as scalars: each element written into a cffi array from Python costs
+# more than the C design's own arithmetic.
 _GLUE_CDEF = """
 ptrdiff_t smspy_chain_process_f64(sms_chain *chain, const double *in, double *out, size_t n);
+int smspy_kinematic3(double h, double vmax, double amax, double jmax, size_t n, int profile,
+                     double Ts, double *T);
 """
 _GLUE_SOURCE = r"""
 #include <float.h>
@@ -163,6 +167,19 @@ static ptrdiff_t smspy_chain_process_f64(sms_chain *chain, const double *in, dou
     sms_chain_process(chain, in, out, n);
 #endif
     return -1;
+}
+
+/* sms_kinematic_design() without a mode for n <= 3 bounds given as scalars (the unused ones
+ * ignored); T receives n lengths. Returns the sms_status. */
+static int smspy_kinematic3(double h, double vmax, double amax, double jmax, size_t n,
+                            int profile, double Ts, double *T)
+{
+    const double limits[3] = {vmax, amax, jmax};
+    size_t count;
+    if (n > 3)
+        return (int)SMS_ERR_ORDER;
+    return (int)sms_kinematic_design(h, limits, n, (sms_profile)profile, 0.0, 0.0, Ts, T, 3,
+                                     &count);
 }
 """
 

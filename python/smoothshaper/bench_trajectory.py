@@ -190,6 +190,57 @@ def _multi_replan_bench(quick: bool) -> str:
                               capture_output=True, text=True).stdout.rstrip()
 
 
+def design_call_costs(n_cases: int, rounds: int, seed: int = 11) -> dict:
+    """CPU ns per three-bound kinematic design from Python, each call on a different random
+    problem (h, limits over four decades; with ``Ts``: the duration / 10^U(0.5, 3.5), as in
+    the grid price), so no call repeats another's work. ``{with_Ts: {...}}`` with keys
+    ``"raw"`` (``sms_kinematic_design`` through cffi, the bounds written into a prepared cffi
+    array per call, as a caller of the C API from Python does), ``"scalar"`` (the binding
+    glue with the bounds as scalar arguments, which the fast path calls), ``"python"``
+    (``design.kinematic``) and ``"cases"``; an empty loop over the same cases is subtracted."""
+    from . import design
+    from .filters import _backend
+    ffi, lib = _backend("double")
+    rng = np.random.default_rng(seed)
+    lim = 10.0 ** rng.uniform(-2, 2, (n_cases, 4)) * [1.0, 250.0, 5000.0, 2e5]
+    cases = [tuple(map(float, row)) for row in lim]
+    spans = [design.duration(design.kinematic(h=h, vmax=v, amax=a, jmax=j))
+             for h, v, a, j in cases]
+    grid = [c + (T / 10.0 ** rng.uniform(0.5, 3.5),) for c, T in zip(cases, spans)]
+    cont = [c + (0.0,) for c in cases]
+    L, T, count = ffi.new("double[3]"), ffi.new("double[3]"), ffi.new("size_t *")
+    c_design, scalar, kinematic = lib.sms_kinematic_design, lib.smspy_kinematic3, design.kinematic
+    out = {}
+    for with_Ts, rows in ((False, cont), (True, grid)):
+        def empty():
+            for h, v, a, j, ts in rows:
+                pass
+
+        def raw():
+            for h, v, a, j, ts in rows:
+                L[0] = v
+                L[1] = a
+                L[2] = j
+                c_design(h, L, 3, 0, 0.0, 0.0, ts, T, 3, count)
+
+        def glue():
+            for h, v, a, j, ts in rows:
+                scalar(h, v, a, j, 3, 0, ts, T)
+
+        def python():
+            if with_Ts:
+                for h, v, a, j, ts in rows:
+                    kinematic(h=h, vmax=v, amax=a, jmax=j, Ts=ts)
+            else:
+                for h, v, a, j, ts in rows:
+                    kinematic(h=h, vmax=v, amax=a, jmax=j)
+        loop = _cpu(empty, rounds)
+        out[with_Ts] = {name: (_cpu(fn, rounds) - loop) / len(rows)
+                        for name, fn in (("raw", raw), ("scalar", glue), ("python", python))}
+        out[with_Ts]["cases"] = len(rows)
+    return out
+
+
 def _cpu(fn, rounds: int) -> float:
     times = []
     for _ in range(rounds):
@@ -209,7 +260,6 @@ def main(argv=None) -> int:
     n_samples = 10_000 if args.quick else 1_000_000
 
     from . import design
-    from .filters import _backend
     from .trajectory import Generator
 
     try:
@@ -242,33 +292,14 @@ def main(argv=None) -> int:
         ns = _cpu(run, rounds) / x.size
         print(f"Generator.process, {precision}: {ns:.2f} ns/sample ({x.size} samples, one C call)")
 
-    ffi, lib = _backend("double")
-    L = ffi.new("double[]", [250.0, 5000.0, 2e5])
-    T = ffi.new("double[3]")
-    cnt = ffi.new("size_t *")
-    reps = 200 if args.quick else 20000
-
-    def c_call():
-        for _ in range(reps):
-            lib.sms_kinematic_design(40.0, L, 3, 0, 0.0, 0.0, 0.0, T, 3, cnt)
-
-    def c_grid():
-        for _ in range(reps):
-            lib.sms_kinematic_design(40.0, L, 3, 0, 0.0, 0.0, 1e-4, T, 3, cnt)
-
-    def py_call():
-        for _ in range(reps):
-            design.kinematic(h=40.0, vmax=250.0, amax=5000.0, jmax=2e5)
-
-    def py_grid():
-        for _ in range(reps):
-            design.kinematic(h=40.0, vmax=250.0, amax=5000.0, jmax=2e5, Ts=1e-4)
-    c_ns, cg_ns, py_ns, grid_ns = (_cpu(f, rounds) / reps
-                                   for f in (c_call, c_grid, py_call, py_grid))
-    print(f"kinematic design (3 bounds): raw C call through cffi {c_ns / 1e3:.2f} us, "
-          f"design.kinematic {py_ns / 1e3:.2f} us ({py_ns / c_ns:.1f}x); with Ts: C "
-          f"{cg_ns / 1e3:.2f} us, design.kinematic {grid_ns / 1e3:.2f} us "
-          f"({grid_ns / cg_ns:.1f}x)")
+    cost = design_call_costs(200 if args.quick else 5000, rounds)
+    for key, label in ((False, "kinematic design (3 bounds)"), (True, "  with Ts")):
+        c = cost[key]
+        print(f"{label}: raw C call through cffi {c['raw'] / 1e3:.3f} us (bounds written into "
+              f"a prepared array; {c['scalar'] / 1e3:.3f} us with them as scalar arguments), "
+              f"design.kinematic {c['python'] / 1e3:.3f} us ({c['python'] / c['raw']:.2f}x the "
+              f"raw call, {c['python'] / c['scalar']:.2f}x the scalar one); {c['cases']} "
+              "different random designs, loop overhead subtracted")
 
     rng = np.random.default_rng(5)
     for n in (1, 2, 3, 4, 5, 6):

@@ -202,55 +202,65 @@ def kinematic(*, h: float, vmax: float, amax: float | None = None, jmax: float |
         ``Ts``; extreme combinations name the pair whose ratio no duration can carry (e.g.
         ``h/vmax = 1e+318 s``).
     """
-    # Fast path (plain numbers, no higher bound, no mode): the argument checks the C design
-    # makes anyway are left to it, the ratio check runs only to name a refused argument, and
-    # the Stage objects are built from the C core's values without re-validation.
-    # (plain: a float, int or NumPy float64 strictly between 0 and 1e308, tested inline: this
-    # path is what design loops call)
-    last = _FAST_PROFILES.get(profile) if wn is None and not higher else None
-    if (last is not None and type(vmax) in _PLAIN and 0 < vmax < 1e308
-            and (amax is None or type(amax) in _PLAIN and 0 < amax < 1e308)
-            and (jmax is None or type(jmax) in _PLAIN and 0 < jmax < 1e308
-                 and amax is not None)
-            and type(h) in _PLAIN and 0 < abs(h) < 1e308
-            and (Ts is None or type(Ts) in _PLAIN and 0 < Ts < 1e308)):
-        lim, T, count, lib = _buffers()
-        lim[0] = vmax
+    # Fast path (plain numbers, at most three bounds, no mode): the C design checks the values
+    # (finite, > 0, ratios in range) anyway, so only the types are tested here; a refused
+    # design, or a huge int cffi cannot convert, goes to the checked path, which names the
+    # argument. The Stage objects are built from the C core's values without re-validation.
+    # What is left is mostly CPython's own cost: the keyword call, the cffi call and three
+    # object creations (docs/sampled-limits.md, "What it costs").
+    if (wn is None and type(higher) is tuple and not higher and type(profile) is str
+            and type(h) in _PLAIN and type(vmax) in _PLAIN):
+        last = _FAST_PROFILES.get(profile)
         n = 1
-        if amax is not None:
-            lim[1] = amax
-            n = 2
+        if amax is None:
             if jmax is not None:
-                lim[2] = jmax
+                last = None   # jmax without amax: the checked path names amax
+        elif type(amax) in _PLAIN:
+            if jmax is None:
+                n = 2
+            elif type(jmax) in _PLAIN:
                 n = 3
-        if lib.sms_kinematic_design(h, lim, n, last, 0.0, 0.0, 0.0 if Ts is None else Ts,
-                                    T, n, count) == 0:
-            out = []
-            for i in range(n):
-                s = _NEW(Stage)
-                d = s.__dict__
-                d["kind"] = "rectangular" if i + 1 < n else _LAST_KIND[last]
-                d["T"] = T[i]
-                d["order"] = 1
-                out.append(s)
-            return out
+            else:
+                last = None
+        else:
+            last = None
+        if last is not None and (Ts is None or type(Ts) in _PLAIN and Ts > 0):
+            try:
+                T, design3, unpack = _THREAD.b
+            except AttributeError:
+                T, design3, unpack = _THREAD.b = _fast_buffers()
+            try:
+                st = design3(h, vmax, amax or 0.0, jmax or 0.0, n, last, Ts or 0.0, T)
+            except OverflowError:
+                st = -1
+            if st == 0:
+                out = []
+                for t in unpack(T, n):
+                    s = _NEW(Stage)
+                    d = s.__dict__
+                    d["kind"] = "rectangular"
+                    d["T"] = t
+                    d["order"] = 1
+                    out.append(s)
+                if last:
+                    d["kind"] = "harmonic"
+                return out
     return _kinematic_checked(h, vmax, amax, jmax, higher, profile, wn, zeta, Ts)
 
 
-_FAST_PROFILES = {"polynomial": 0, "trigonometric": 1}
-_PLAIN = (float, int, np.float64)
-_LAST_KIND = ("rectangular", "harmonic")
-_BUFFERS = threading.local()   # cffi calls release the GIL: one set of buffers per thread
+_FAST_PROFILES = {"polynomial": 0, "trigonometric": 1}   # the C sms_profile values
+# Types cffi converts to a double exactly as float() does (bool, complex, str and other
+# number types take the checked path, which refuses or converts them by name).
+_PLAIN = (float, int, np.float64, np.int64, np.float32)
+_THREAD = threading.local()   # cffi calls release the GIL: one length buffer per thread
+_NEW = object.__new__
 
 
-def _buffers():
-    """This thread's limit, length and count buffers for the C design, and the library."""
-    b = getattr(_BUFFERS, "b", None)
-    if b is None:
-        ffi, lib = _backend("double")
-        b = _BUFFERS.b = (ffi.new("double[]", MAX_ORDER), ffi.new("double[]", MAX_ORDER),
-                          ffi.new("size_t *"), lib)
-    return b
+def _fast_buffers():
+    """This thread's length buffer, the scalar-bounds design of the double module (binding
+    glue around ``sms_kinematic_design``) and ``ffi.unpack``."""
+    ffi, lib = _backend("double")
+    return ffi.new("double[]", 3), lib.smspy_kinematic3, ffi.unpack
 
 
 def _kinematic_checked(h, vmax, amax, jmax, higher, profile, wn, zeta, Ts) -> list[Stage]:
@@ -285,9 +295,6 @@ def _kinematic_checked(h, vmax, amax, jmax, higher, profile, wn, zeta, Ts) -> li
         _design_error(st, lib, ffi, h=h, limits=limits, Ts=Ts_, wn=wn_)
     return [_stage(_stages.KINDS[c.kind], float(c.T), float(c.sigma), int(c.k))
             for c in (configs[i] for i in range(n))]
-
-
-_NEW = object.__new__
 
 
 def _stage(kind: str, T: float, sigma: float = 0.0, k: int = 1) -> Stage:

@@ -5,7 +5,7 @@ from fractions import Fraction
 
 import numpy as np
 import pytest
-from hypothesis import given, strategies as st
+from hypothesis import given, settings, strategies as st
 
 ruckig = pytest.importorskip("ruckig")
 from smoothshaper import design  # noqa: E402
@@ -140,24 +140,97 @@ def test_errors_name_the_parameter(kwargs, name):
         design.kinematic(**kwargs)
 
 
+def _outcome(fn, *args, **kwargs):
+    """What a call gives: its stages (with repr and hashes), or its exception's type,
+    message and parameter."""
+    try:
+        out = fn(*args, **kwargs)
+    except Exception as e:  # noqa: BLE001 - compared, not swallowed
+        return ("raised", type(e), str(e), getattr(e, "parameter", None))
+    return ("ok", out, repr(out), [hash(s) for s in out], [type(s.T) for s in out])
+
+
+_NUMBER_TYPES = (float, int, np.float64, np.float32, np.int64)
+
+
+def _typed(value, kind):
+    """``value`` as one of the number types users pass, where that type can hold it."""
+    if kind is int:
+        return int(round(value)) if math.isfinite(value) else value
+    if kind is np.float32:
+        return np.float32(value) if abs(value) < 1e38 else value
+    if kind is np.int64:
+        return np.int64(round(value)) if abs(value) < 9e18 else value
+    return kind(value)
+
+
+# Valid magnitudes over 12 decades, and every kind of invalid value the checks refuse.
+valid = st.floats(-6.0, 6.0).map(lambda e: 10.0 ** e)
+special = st.sampled_from([0.0, float("nan"), float("inf"), -float("inf"), 1e308, 1e-320,
+                           -1.0])
+numbers = st.one_of(valid, valid, valid, special) \
+    .flatmap(lambda v: st.sampled_from(_NUMBER_TYPES).map(lambda k: _typed(v, k)))
+odd = st.sampled_from([True, False, np.bool_(True), 1 + 0j, "1.0", 10 ** 400, -10 ** 400,
+                       np.array(2.0), np.complex128(1.0), None, Fraction(1, 3)])
+arguments = st.one_of(numbers, numbers, numbers, odd)
+
+
+@settings(max_examples=400)
+@given(h=st.one_of(numbers, numbers.map(lambda v: -v), odd), vmax=arguments,
+       amax=st.one_of(st.none(), arguments), jmax=st.one_of(st.none(), arguments),
+       profile=st.sampled_from(["polynomial", "trigonometric"] * 3
+                               + ["Polynomial", "damped", "cubic", ["polynomial"]]),
+       Ts=st.one_of(st.none(), st.none(), arguments),
+       higher=st.sampled_from([()] * 6 + [[], np.array([]), np.array([1e9, 1e12])]))
+def test_fast_path_equals_the_checked_path(h, vmax, amax, jmax, profile, Ts, higher):
+    """design.kinematic takes a fast path for plain numbers (float, int, NumPy float64,
+    float32, int64) without a mode; for any argument whatever (valid, out of range, not
+    finite, huge ints, booleans, complex, text, arrays) it gives exactly what the fully
+    checked path gives: equal stages with the same repr, hash and float lengths, or the same
+    error with the same message and parameter."""
+    fast = _outcome(design.kinematic, h=h, vmax=vmax, amax=amax, jmax=jmax, profile=profile,
+                    Ts=Ts, higher=higher)
+    checked = _outcome(design._kinematic_checked, h, vmax, amax, jmax, higher, profile, None,
+                       0.0, Ts)
+    assert fast == checked
+
+
 @given(lh=decades, lv=decades, la=decades, lj=decades, n=st.integers(1, 3),
-       trig=st.booleans(), grid=st.booleans(), as_int=st.booleans())
-def test_fast_path_equals_the_checked_path(lh, lv, la, lj, n, trig, grid, as_int):
-    """Plain numbers take the fast path of design.kinematic; it returns the same stages (equal,
-    same repr) as the fully checked path, for ints and floats, either sign of h."""
-    h = -(10.0 ** lh) if lh < 0 else 10.0 ** lh
+       trig=st.booleans(), grid=st.booleans(), kind=st.sampled_from(_NUMBER_TYPES))
+def test_fast_path_is_taken_and_exact(lh, lv, la, lj, n, trig, grid, kind):
+    """Valid plain numbers never reach the checked path (so the comparison above covers the
+    fast path), and the stages equal those of the checked path with every argument as a
+    float: the C design sees the same doubles."""
+    h = 10.0 ** lh
     kw = dict(vmax=10.0 ** lv, amax=10.0 ** la if n > 1 else None,
-              jmax=10.0 ** lj if n > 2 else None,
-              profile="trigonometric" if trig else "polynomial")
-    total = design.duration(design.kinematic(h=h, **kw))
-    Ts = total / 37.3 if grid else None
-    if as_int:
-        h = int(round(h)) or 1
-    fast = design.kinematic(h=h, Ts=Ts, **kw)
-    checked = design._kinematic_checked(h, kw["vmax"], kw["amax"], kw["jmax"], (),
-                                        kw["profile"], None, 0.0, Ts)
-    assert fast == checked and repr(fast) == repr(checked)
-    assert all(hash(a) == hash(b) for a, b in zip(fast, checked))
+              jmax=10.0 ** lj if n > 2 else None)
+    Ts = design.duration(design.kinematic(h=h, **kw)) / 37.3 if grid else None
+    profile = "trigonometric" if trig else "polynomial"
+    typed = {k: None if v is None else _typed(v, kind) or kind(1) for k, v in kw.items()}
+    h_typed = _typed(h, kind) or kind(1)
+    expected = design._kinematic_checked(float(h_typed), *(None if v is None else float(v)
+                                                           for v in typed.values()),
+                                         (), profile, None, 0.0, Ts)
+    with pytest.MonkeyPatch.context() as m:
+        m.setattr(design, "_kinematic_checked", None)   # calling it would raise TypeError
+        fast = design.kinematic(h=h_typed, profile=profile, Ts=Ts, **typed)
+    assert fast == expected and repr(fast) == repr(expected)
+
+
+def test_fast_path_threads():
+    """Each thread has its own length buffer (cffi releases the GIL during the C call)."""
+    import concurrent.futures
+    rng = np.random.default_rng(7)
+    cases = [dict(h=float(h), vmax=float(v), amax=float(a), jmax=float(j))
+             for h, v, a, j in 10.0 ** rng.uniform(-2, 2, (400, 4))]
+    expected = [design._kinematic_checked(c["h"], c["vmax"], c["amax"], c["jmax"], (),
+                                          "polynomial", None, 0.0, None) for c in cases]
+
+    def run(offset):
+        return all(design.kinematic(**cases[(i + offset) % len(cases)])
+                   == expected[(i + offset) % len(cases)] for i in range(4 * len(cases)))
+    with concurrent.futures.ThreadPoolExecutor(4) as pool:
+        assert all(pool.map(run, range(0, 400, 100)))
 
 
 @pytest.mark.parametrize("kwargs, name", [
