@@ -1,31 +1,104 @@
 /* Online multi-point generator (trajectory.h, docs/sampled-limits.md): the time-optimal plan of
  * the profile's shape from the current state on every new target (plan.c), run through the
  * stage tuned to the mode when there is one. init may use libm; step is O(1) without it. */
+#include <float.h>
 #include <math.h>
+#include <string.h>
 #include "smoothshaper/trajectory.h"
 #include "plan.h"
 
 #define GEN_PLAN_STATE_COUNT 6u
 
-/* Every limit, Ts and the products the plan forms (a^2/j, v j) must be finite non-zero reals
- * of the build. */
+/* The feasible limit sets (trajectory.h, sms_generator_reach()). For a move from any state
+ * within the bounds the planner forms velocity changes J dv with |dv| <= 2 vmax (J the shape's
+ * mean jerk), squares of accelerations up to the peak ap = min(amax, sqrt(vmax J)), durations
+ * up to about those of the move that reaches vmax from rest and stops, T = 2 (vmax/ap + ap/J),
+ * and distances up to a few times its distance h = vmax T/2. Each must stay finite with room
+ * for a reversal (GEN_MARGIN) and well above the smallest normal number (GEN_REAL_TINY), and
+ * T must fit the plan's sample counts with the same room (2^50 of the plan's 2^52). */
+#define GEN_REAL_MAX (sizeof(sms_real) == sizeof(double) ? DBL_MAX : (double)FLT_MAX)
+#define GEN_REAL_MIN (sizeof(sms_real) == sizeof(double) ? DBL_MIN : (double)FLT_MIN)
+/* the smallest normal number over the machine epsilon: products at least this large keep the
+ * shorter moves' own products (down to about eps^1.5 of h) normal */
+#define GEN_REAL_TINY (sizeof(sms_real) == sizeof(double) ? DBL_MIN / DBL_EPSILON \
+                                                          : (double)FLT_MIN / (double)FLT_EPSILON)
+#define GEN_MARGIN 16.0
+#define GEN_MAX_REACH_SAMPLES 1125899906842624.0 /* 2^50 */
+
+/* Record the first quantity out of range; returns SMS_ERR_LIMIT. */
+static sms_status out_of_range(sms_generator_reach_info *r, const char *quantity, const char *args,
+                               double value, double bound)
+{
+    r->quantity = quantity;
+    r->arguments = args;
+    r->value = value;
+    r->bound = bound;
+    return SMS_ERR_LIMIT;
+}
+
+sms_status sms_generator_reach(const sms_generator_config *c, double Ts,
+                               sms_generator_reach_info *reach)
+{
+    sms_generator_reach_info local, *r = reach != NULL ? reach : &local;
+    double V, A, J, ap, tv, tj, big = GEN_REAL_MAX, tiny = GEN_REAL_TINY;
+    int reached;
+    memset(r, 0, sizeof *r);
+    if (c == NULL)
+        return SMS_ERR_NULL;
+    if (!isfinite(Ts) || !(Ts > 0.0) || !((sms_real)Ts > 0) || !(Ts <= big)) {
+        (void)out_of_range(r, "Ts", "Ts", Ts, big);
+        return SMS_ERR_SAMPLE_PERIOD;
+    }
+    V = c->vmax;
+    A = c->amax;
+    J = c->jmax;
+    if (!isfinite(V) || !(V >= GEN_REAL_MIN) || !(V <= big / GEN_MARGIN))
+        return out_of_range(r, "vmax", "vmax", V, V >= GEN_REAL_MIN ? big / GEN_MARGIN : GEN_REAL_MIN);
+    if (!isfinite(A) || !(A >= GEN_REAL_MIN) || !(A <= big / GEN_MARGIN))
+        return out_of_range(r, "amax", "amax", A, A >= GEN_REAL_MIN ? big / GEN_MARGIN : GEN_REAL_MIN);
+    if (!isfinite(J) || !(J >= GEN_REAL_MIN) || !(J <= big / GEN_MARGIN))
+        return out_of_range(r, "jmax", "jmax", J, J >= GEN_REAL_MIN ? big / GEN_MARGIN : GEN_REAL_MIN);
+    if (c->profile == SMS_PROFILE_TRIGONOMETRIC)
+        J *= 0.63661977236758134; /* the half-cosine transitions' mean jerk, 2/pi jmax */
+    if (!(V * J * GEN_MARGIN <= big)) /* J dv, |dv| <= 2 vmax */
+        return out_of_range(r, "vmax*jmax", "vmax, jmax", c->vmax * c->jmax, big / GEN_MARGIN);
+    ap = sqrt(V) * sqrt(J);
+    reached = A < ap;
+    if (reached)
+        ap = A;
+    r->peak_acceleration = ap;
+    tv = V / ap; /* vmax/amax, or sqrt(vmax/J) when amax is not reached */
+    tj = ap / J; /* amax/J, or the same sqrt(vmax/J) */
+    r->duration = 2.0 * (tv + tj);
+    r->samples = r->duration / Ts;
+    r->distance = V * (tv + tj);
+    if (!(r->samples <= GEN_MAX_REACH_SAMPLES)) {
+        double per_term = GEN_MAX_REACH_SAMPLES * Ts / (reached ? 2.0 : 4.0);
+        /* amax reached (amax^2 < vmax J) makes amax/J < vmax/amax: the longer term */
+        if (reached)
+            return out_of_range(r, "vmax/amax", "vmax, amax", tv, per_term);
+        return out_of_range(r, c->profile == SMS_PROFILE_TRIGONOMETRIC ? "sqrt(pi vmax/(2 jmax))"
+                                                                       : "sqrt(vmax/jmax)",
+                            "vmax, jmax", tv, per_term);
+    }
+    if (!(ap * ap >= tiny)) /* a^2 of the peak and of every state on the way */
+        return reached ? out_of_range(r, "amax^2", "amax", A * A, tiny)
+                       : out_of_range(r, "vmax*jmax", "vmax, jmax", c->vmax * c->jmax, tiny);
+    if (!(r->duration >= GEN_REAL_MIN))
+        return out_of_range(r, "the duration to reach vmax", "vmax, amax, jmax", r->duration,
+                            GEN_REAL_MIN);
+    if (!(r->distance * GEN_MARGIN <= big))
+        return out_of_range(r, "the distance to reach vmax", "vmax, amax, jmax", r->distance,
+                            big / GEN_MARGIN);
+    if (!(r->distance >= tiny))
+        return out_of_range(r, "the distance to reach vmax", "vmax, amax, jmax", r->distance,
+                            tiny);
+    return SMS_OK;
+}
+
 static sms_status check_limits(const sms_generator_config *c, double Ts)
 {
-    sms_real v, a, j, t;
-    if (!isfinite(Ts) || !(Ts > 0.0))
-        return SMS_ERR_SAMPLE_PERIOD;
-    if (!isfinite(c->vmax) || !(c->vmax > 0.0) || !isfinite(c->amax) || !(c->amax > 0.0) ||
-        !isfinite(c->jmax) || !(c->jmax > 0.0))
-        return SMS_ERR_LIMIT;
-    v = (sms_real)c->vmax;
-    a = (sms_real)c->amax;
-    j = (sms_real)c->jmax;
-    t = (sms_real)Ts;
-    if (!(v > 0) || !(a > 0) || !(j > 0) || !(t > 0) || v - v != 0 || a - a != 0 || j - j != 0)
-        return SMS_ERR_LIMIT;
-    if (!((a * a) / j - (a * a) / j == 0) || !(v * j - v * j == 0) || !(a * a > 0))
-        return SMS_ERR_LIMIT;
-    return SMS_OK;
+    return sms_generator_reach(c, Ts, NULL);
 }
 
 /* Validate the config; with a mode, the stage tuned to it (the shortest whose zero cancels
@@ -153,6 +226,7 @@ void sms_generator_reset(sms_generator *g, sms_real position)
     g->plan.duration = 0;
     g->target = position;
     g->refused = 0;
+    g->dropped = 0;
     g->quiet = g->stage_length;
     if (g->stage_length > 0)
         for (i = 0; i < 4; ++i)
@@ -198,6 +272,7 @@ static void step_plan(sms_generator *g, sms_real target, sms_real out[4])
             sms_plan_eval(&g->plan, g->Ts_signal, 0, out); /* the same q, v, a; the new jerk */
         } else {
             g->refused = 1;
+            ++g->dropped;
         }
     }
 }

@@ -13,6 +13,7 @@
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 
@@ -21,12 +22,18 @@ from .filters import ParameterError, _backend, _raise_status, _real_dtype, check
 from ._checks import (finite as _finite, finite_signal as _targets, integer as _integer,
                       real_array as _real_array)
 
-__all__ = ["Generator", "generator_reference", "tuned_stage", "BSpline", "bspline_reference",
+__all__ = ["Generator", "DroppedTargetWarning", "generator_reference", "tuned_stage", "BSpline", "bspline_reference",
            "bspline_period", "BSPLINE_MAX_DEGREE", "BSPLINE_MAX_AXES", "MultiAxisGenerator",
            "MultiAxisMove", "multi_axis_move", "phase_duration", "multi_axis_reference"]
 
 BSPLINE_MAX_DEGREE = 7
 BSPLINE_MAX_AXES = 3
+
+
+class DroppedTargetWarning(RuntimeWarning):
+    """A target of :meth:`Generator.process` was dropped: its move cannot be represented in
+    the build's floats (it would last more than 2^52 samples, or a value on the way would
+    overflow). The generator keeps its previous goal until the target changes."""
 
 
 def _generator_error(st, lib, ffi, cfg, Ts, profile):
@@ -37,10 +44,40 @@ def _generator_error(st, lib, ffi, cfg, Ts, profile):
                                    f"the Nyquist frequency pi/Ts = {math.pi / Ts:.6g} rad/s, or "
                                    "the stage spans too many samples)", st)
     if st == -17:
-        raise ParameterError("jmax", f"vmax={cfg.vmax!r}, amax={cfg.amax!r}, jmax={cfg.jmax!r}: "
-                                     "their ratios are out of the range this precision can "
-                                     "plan with (a^2/j or v j overflows)", st)
+        raise _infeasible(lib, ffi, cfg, Ts, st)
     _raise_status(st, lib, ffi, "online generator")
+
+
+def _infeasible(lib, ffi, cfg, Ts, st):
+    """ParameterError for limits with which no plan can reach vmax (``sms_generator_reach``):
+    the arguments and their values, the derived quantity out of range, its bound."""
+    info = ffi.new("sms_generator_reach_info *")
+    lib.sms_generator_reach(cfg, Ts, info)
+    if info.quantity == ffi.NULL:  # pragma: no cover - init and the check are one function
+        return ParameterError("vmax", "vmax, amax, jmax: refused by the C core", st)
+    quantity = ffi.string(info.quantity).decode()
+    names = ffi.string(info.arguments).decode().split(", ")
+    values = ", ".join(f"{n}={getattr(cfg, n)!r}" for n in names)
+    value, bound = info.value, info.bound
+    real = "float" if ffi.sizeof("sms_real") == 4 else "double"
+    parameter = "vmax" if quantity.startswith("the distance") else names[-1]
+    if quantity in names:
+        msg = (f"{values}: below {bound:.6g}, the smallest normal {real}" if value < bound else
+               f"{values}: above {bound:.6g}, the largest {real} over 16 (room for a reversal)")
+    elif "/" in quantity:   # a duration: reaching vmax does not fit the plan's sample counts
+        if info.duration <= 1e9:   # a plausible machine (vmax within 30 years): Ts is extreme
+            parameter = "Ts"
+        msg = (f"{values}, Ts={Ts!r}: {quantity} = {value:.6g} s, so reaching vmax from rest takes "
+               f"{info.duration:.6g} s = {info.samples:.6g} samples of Ts, more than "
+               f"the 2^50 a plan can hold with room for a reversal (its limit is 2^52): no move "
+               f"that reaches vmax can be planned")
+    elif value < bound:
+        msg = (f"{values}: {quantity} = {value:.6g} is below {bound:.6g} (the smallest normal "
+               f"{real} over its epsilon): the planner's products would underflow")
+    else:
+        msg = (f"{values}: {quantity} = {value:.6g} exceeds {bound:.6g} (the largest {real} "
+               f"over 16, room for a reversal): the planner's values would overflow")
+    return ParameterError(parameter, msg, st)
 
 
 def _generator_config(ffi, vmax, amax, jmax, profile, wn, zeta):
@@ -97,7 +134,19 @@ class Generator:
     ------
     ParameterError
         Naming the parameter out of range (a bound, ``Ts``, ``profile``, ``wn``, ``zeta``,
-        ``q0``, ``precision``) or the pair of bounds whose ratio no duration can carry.
+        ``q0``, ``precision``), or limits with which no plan can reach ``vmax``: the message
+        names the arguments, their values and the derived quantity out of range (e.g.
+        ``sqrt(vmax/jmax) = 1e+150 s`` for ``vmax=1, jmax=1e-300``: reaching vmax would take
+        more than the 2^50 samples a plan holds with room for a reversal; or a product that
+        would overflow or underflow the build's floats). The feasible region is documented at
+        ``sms_generator_reach`` (trajectory.h) and in docs/sampled-limits.md.
+
+    Attributes
+    ----------
+    refused : bool
+        True while the held target is dropped (see :meth:`process`).
+    dropped : int
+        Targets dropped since construction or the last :meth:`reset`.
     """
 
     def __init__(self, *, vmax: float, amax: float, jmax: float, Ts: float,
@@ -180,15 +229,49 @@ class Generator:
         ParameterError
             Naming ``targets`` when it is not a finite real 1-D array; the state is then
             untouched.
+
+        Warns
+        -----
+        DroppedTargetWarning
+            Once per call in which targets were dropped, naming the last one, the position
+            it was to be reached from and the count (also in :attr:`dropped`).
         """
         x = _targets("targets", targets)
+        before = self._gen.dropped
         dtype = _real_dtype(self.precision)
         xin = np.ascontiguousarray(x, dtype=dtype)
         out = np.empty((x.size, 4), dtype=dtype)
         if x.size:
             self._lib.sms_generator_process(self._gen, self._ffi.from_buffer("sms_real[]", xin),
                                             x.size, self._ffi.from_buffer("sms_real[]", out))
+        if self._gen.dropped != before:
+            self._warn_dropped(self._gen.dropped - before)
         return out if dtype == np.float64 else out.astype(np.float64)
+
+    @property
+    def refused(self) -> bool:
+        """True while the held target is dropped: its move cannot be represented (it would
+        last more than 2^52 samples, or a value on the way would overflow the build's
+        floats); the generator heads for its previous goal until the target changes."""
+        return bool(self._gen.refused)
+
+    @property
+    def dropped(self) -> int:
+        """Targets dropped since construction or the last :meth:`reset` (a diagnostic count;
+        not part of the saved state)."""
+        return int(self._gen.dropped)
+
+    def _warn_dropped(self, count: int) -> None:
+        g = self._gen
+        target, q, goal = float(g.target), float(g.plan_q), float(g.plan.goal)
+        span = abs(target - goal) / self.vmax / self.Ts if math.isfinite(target - goal) else math.inf
+        what = "target" if count == 1 else f"{count} targets dropped in this block; the last"
+        warnings.warn(DroppedTargetWarning(
+            f"{what} {target!r}: its move cannot be represented in {self.precision} "
+            f"(|target - goal|/vmax alone is {span:.3g} samples of Ts, a plan holds at most "
+            f"2^52, and every value on the way must stay finite); the generator keeps its goal "
+            f"{goal!r} (the running plan started at q={q!r}) until the target changes"),
+            stacklevel=3)
 
     def get_state(self) -> np.ndarray:
         """The dynamic state as a float64 array (a copy); :meth:`set_state` on this or an

@@ -2,6 +2,7 @@
  * time-optimal single moves for every profile, the tuned stage (convolution, arrival, the
  * mode's zero), state save/load, bad input. */
 #include <stdlib.h>
+#include <string.h>
 #include "check.h"
 #include "double_s.h"
 
@@ -556,10 +557,12 @@ static void test_long_moves_through_the_stage(void)
     }
 }
 
-/* Extreme but finite limits and targets (found by the FMI fuzzer): a move whose plan cannot be
- * represented (a product overflowing, or more than 2^52 samples long) is dropped. Every output
- * stays finite, within vmax, amax, jmax and the sampled velocity bound at every sample, and
- * every saved state loads again and continues bit for bit. */
+/* Extreme but finite limits and targets (found by the FMI fuzzer): limits with which no plan
+ * can reach vmax are refused at init (sms_generator_reach() says which quantity); within
+ * feasible limits a move whose plan cannot be represented (a value overflowing, or more than
+ * 2^52 samples long) is dropped. Every output stays finite, within vmax, amax, jmax and the
+ * sampled velocity bound at every sample, and every saved state loads again and continues bit
+ * for bit. */
 static void test_extreme_limits_and_targets(void)
 {
     static const double limits[][3] = {
@@ -585,10 +588,16 @@ static void test_extreme_limits_and_targets(void)
                                                  profile ? SMS_PROFILE_TRIGONOMETRIC
                                                          : SMS_PROFILE_POLYNOMIAL, 0.0, 0.0);
             sms_status st = sms_generator_buffer_size(&c, Ts, &need);
-            /* double forms every product of these limits; float refuses the ones it cannot */
-            CHECK(st == SMS_OK || (sizeof(sms_real) == sizeof(float) && st == SMS_ERR_LIMIT));
-            if (st != SMS_OK)
+            sms_generator_reach_info r;
+            CHECK_STATUS(sms_generator_reach(&c, Ts, &r), st);
+            CHECK(st == SMS_OK || st == SMS_ERR_LIMIT);
+            CHECK((st == SMS_OK) == (r.quantity == NULL));
+            if (st != SMS_OK) {
+                g.refused = 7; /* untouched on error */
+                CHECK_STATUS(sms_generator_init(&g, &c, Ts, NULL, 0), SMS_ERR_LIMIT);
+                CHECK(g.refused == 7);
                 continue;
+            }
             CHECK_STATUS(sms_generator_init(&g, &c, Ts, NULL, 0), SMS_OK);
             h = g;
             prev = 0;
@@ -629,36 +638,166 @@ static void test_extreme_limits_and_targets(void)
         }
     }
     {
-        /* vmax 1, amax 1e-30, jmax 1e-300: the move to 1e300 would last about 1e270 s; it is
-         * dropped and the output rests */
+        /* feasible limits, a target 1e300 units away: a cruise of 1e294 s, more than 2^52
+         * samples; it is dropped (counted once, the output rests), then a move to 1000 runs */
         sms_generator g;
-        sms_generator_config c = make_config(1.0, 1e-30, 1e-300, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0);
-        sms_generator_config c2 = make_config(1e300, 1e100, 1e5, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0);
+        sms_generator_config c2 = make_config(1e6, 1e8, 1e10, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0);
         sms_real out[4] = {0, 0, 0, 0};
-        if (sms_generator_init(&g, &c, Ts, NULL, 0) == SMS_OK) {
-            for (i = 0; i < 100; ++i) {
-                sms_generator_step(&g, (sms_real)1e300, out);
-                CHECK(out[0] == 0 && out[1] == 0 && out[2] == 0 && out[3] == 0);
-            }
-            CHECK(g.refused == 1);
+        CHECK_STATUS(sms_generator_init(&g, &c2, Ts, NULL, 0), SMS_OK);
+        for (i = 0; i < 10; ++i) {
+            sms_generator_step(&g, (sms_real)1e30, out); /* 1e30: also a float's */
+            CHECK(out[0] == 0 && out[1] == 0 && out[2] == 0 && out[3] == 0);
+            CHECK(g.refused == 1 && g.dropped == 1);
         }
-        /* vmax 1e300: 1e305 (1e200 s to reach amax) is dropped, then 1000 moves there */
-        if (sms_generator_init(&g, &c2, Ts, NULL, 0) == SMS_OK) {
-            for (i = 0; i < 10; ++i) {
-                sms_generator_step(&g, (sms_real)1e300 * (sms_real)1e5, out);
-                CHECK(out[0] == 0 && out[1] == 0);
-            }
-            for (i = 0; i < 2000 && !(out[0] == 1000 && out[1] == 0); ++i) {
-                sms_generator_step(&g, 1000, out);
-                CHECK(fabs((double)out[3]) <= c2.jmax * (1.0 + BOUND_TOL));
-            }
-            CHECK(out[0] == 1000 && out[1] == 0 && i > 100);
+        for (i = 0; i < 2000 && !(out[0] == 1000 && out[1] == 0); ++i) {
+            sms_generator_step(&g, 1000, out);
+            CHECK(g.refused == 0 && g.dropped == 1);
+            CHECK(fabs((double)out[3]) <= c2.jmax * (1.0 + BOUND_TOL));
         }
+        CHECK(out[0] == 1000 && out[1] == 0 && i > 10);
+        /* a second dropped target counts again; reset clears both */
+        sms_generator_step(&g, (sms_real)-1e30, out);
+        CHECK(g.refused == 1 && g.dropped == 2 && out[0] == 1000);
+        sms_generator_reset(&g, 0);
+        CHECK(g.refused == 0 && g.dropped == 0);
     }
+}
+
+/* The largest and smallest normal numbers and the epsilon of sms_real (the test's own copy of
+ * the documented region, trajectory.h sms_generator_reach()). */
+#ifdef SMS_USE_FLOAT
+#define R_MAX 3.4028234663852886e38
+#define R_MIN 1.1754943508222875e-38
+#define R_EPS 1.1920928955078125e-7
+#else
+#define R_MAX 1.7976931348623157e308
+#define R_MIN 2.2250738585072014e-308
+#define R_EPS 2.220446049250313e-16
+#endif
+
+/* Plan the move that reaches vmax from rest (and a reversal from full speed): both must be
+ * planned (not dropped) with limits just inside the region. */
+static void check_plans(const sms_generator_config *c, double Ts)
+{
+    sms_generator g;
+    sms_generator_reach_info r;
+    sms_real out[4];
+    double st[6];
+    CHECK_STATUS(sms_generator_reach(c, Ts, &r), SMS_OK);
+    CHECK_STATUS(sms_generator_init(&g, c, Ts, NULL, 0), SMS_OK);
+    sms_generator_step(&g, (sms_real)r.distance, out);
+    CHECK(g.refused == 0 && g.dropped == 0);
+    /* it lasts its duration: the plan's end sample is duration/Ts rounded up (to rounding) */
+    CHECK(fabs((double)g.plan.end + (double)g.plan.end_f / Ts - r.samples) <=
+          1.0 + 1e-3 * r.samples);
+    sms_generator_reset(&g, 0);
+    sms_generator_step(&g, (sms_real)(r.distance * (sizeof(sms_real) == sizeof(float) ? 3e-10
+                                                                                       : 1e-22)),
+                       out);
+    CHECK(g.refused == 0);
+    /* cruising at +vmax towards 2 h, the target jumps to -2 h */
+    st[0] = st[1] = 2.0 * (double)(sms_real)r.distance;
+    st[2] = 0.0;
+    st[3] = (double)g.limits.vmax;
+    st[4] = st[5] = 0.0;
+    CHECK_STATUS(sms_generator_set_state(&g, st, 6), SMS_OK);
+    sms_generator_step(&g, (sms_real)(-2.0 * r.distance), out);
+    CHECK(g.refused == 0);
+}
+
+/* Expect a refusal naming `quantity`. */
+static void check_refused(const sms_generator_config *c, double Ts, const char *quantity)
+{
+    sms_generator g;
+    sms_generator_reach_info r;
+    size_t need;
+    CHECK_STATUS(sms_generator_reach(c, Ts, &r), SMS_ERR_LIMIT);
+    CHECK(r.quantity != NULL && strcmp(r.quantity, quantity) == 0);
+    if (r.quantity == NULL || strcmp(r.quantity, quantity) != 0)
+        fprintf(stderr, "refused for %s, expected %s (vmax %g amax %g jmax %g Ts %g)\n",
+                r.quantity != NULL ? r.quantity : "nothing", quantity, c->vmax, c->amax, c->jmax,
+                Ts);
+    CHECK_STATUS(sms_generator_init(&g, c, Ts, NULL, 0), SMS_ERR_LIMIT);
+    CHECK_STATUS(sms_generator_buffer_size(c, Ts, &need), SMS_ERR_LIMIT);
+}
+
+/* The feasible region on both sides of each of its bounds, in this build's precision: just
+ * inside, the move that reaches vmax and a reversal are planned; just outside, init refuses
+ * and names the quantity. */
+static void test_feasible_limits(void)
+{
+    const double in = 1.0 - 1e-6, out = 1.0 + 1e-6, big = R_MAX / 16.0;
+    sms_generator_config c = make_config(1.0, 10.0, 100.0, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0);
+    double T, x;
+    int profile;
+    for (profile = 0; profile < 2; ++profile) {
+        double J = profile ? 100.0 * 2.0 / 3.14159265358979323846 : 100.0;
+        c.profile = profile ? SMS_PROFILE_TRIGONOMETRIC : SMS_PROFILE_POLYNOMIAL;
+        c.vmax = 1.0;
+        c.amax = 5.0;
+        c.jmax = 100.0;
+        /* the duration to reach vmax: 2 (vmax/amax + amax/J) against 2^50 samples of Ts */
+        T = 2.0 * (c.vmax / c.amax + c.amax / J);
+        check_plans(&c, T / 1125899906842624.0 * out);
+        check_refused(&c, T / 1125899906842624.0 * in, "vmax/amax");
+        c.amax = 7.9; /* just reached, amax/J close to vmax/amax */
+        T = 2.0 * (c.vmax / c.amax + c.amax / J);
+        check_plans(&c, T / 1125899906842624.0 * out);
+        check_refused(&c, T / 1125899906842624.0 * in, "vmax/amax");
+        c.amax = 1e10; /* amax not reached: 4 sqrt(vmax/J) */
+        T = 4.0 * sqrt(c.vmax / J);
+        check_plans(&c, T / 1125899906842624.0 * out);
+        check_refused(&c, T / 1125899906842624.0 * in,
+                      profile ? "sqrt(pi vmax/(2 jmax))" : "sqrt(vmax/jmax)");
+        /* the velocity changes: 16 vmax J <= MAX */
+        c.vmax = 4.0;
+        c.amax = 1.0;
+        c.jmax = R_MAX / 64.0 / (J / 100.0) * in;
+        check_plans(&c, 1e-3);
+        c.jmax = R_MAX / 64.0 / (J / 100.0) * out;
+        check_refused(&c, 1e-3, "vmax*jmax");
+        /* the squares of accelerations: amax^2 >= MIN/eps (Ts long enough for vmax/amax) */
+        x = sqrt(R_MIN / R_EPS);
+        c.vmax = 1.0;
+        c.jmax = 1.0;
+        c.amax = x * out;
+        T = 2.0 * (c.vmax / c.amax + c.amax / (J / 100.0));
+        check_plans(&c, T * 1e-6);
+        c.amax = x * in;
+        check_refused(&c, T * 1e-6, "amax^2");
+        /* the distance: vmax (vmax/amax + amax/J) <= MAX/16 (vmax = sqrt(MAX/16), amax = 1) */
+        x = sqrt(big);
+        c.amax = 1.0;
+        c.jmax = 1e3;
+        c.vmax = x * in * in;
+        T = 2.0 * (c.vmax / c.amax + c.amax / (J * 10.0));
+        check_plans(&c, T * 1e-6);
+        c.vmax = x * out;
+        check_refused(&c, T * 1e-6, "the distance to reach vmax");
+        /* each limit within [MIN, MAX/16] */
+        c = make_config(1.0, 10.0, 100.0, c.profile, 0.0, 0.0);
+        c.jmax = big * out;
+        check_refused(&c, 1e-3, "jmax");
+        c.jmax = 100.0;
+        c.vmax = R_MIN * in;
+        check_refused(&c, 1e-3, "vmax");
+    }
+    /* the example of the documentation: vmax 1, amax 1e-30, jmax 1e-300 (amax never reached:
+     * vmax takes 4 sqrt(vmax/jmax) = 4e150 s); in float jmax itself is below MIN */
+    c = make_config(1.0, 1e-30, 1e-300, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0);
+    check_refused(&c, 1e-3, sizeof(sms_real) == sizeof(double) ? "sqrt(vmax/jmax)" : "jmax");
+    c = make_config(1.0, 1e-30, 1e-20, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0); /* vmax/amax 1e30 s */
+    check_refused(&c, 1e-3, "vmax/amax");
+    /* Ts itself */
+    c = make_config(1.0, 10.0, 100.0, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0);
+    CHECK_STATUS(sms_generator_reach(&c, 1e-300, NULL), sizeof(sms_real) == sizeof(double)
+                                                          ? SMS_ERR_LIMIT : SMS_ERR_SAMPLE_PERIOD);
+    CHECK_STATUS(sms_generator_reach(NULL, 1e-3, NULL), SMS_ERR_NULL);
 }
 
 int main(void)
 {
+    test_feasible_limits();
     test_extreme_limits_and_targets();
     test_time_optimal_arrival();
     test_long_moves();

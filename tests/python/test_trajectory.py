@@ -3,6 +3,7 @@ samples, tiny steps), exact arrival, C == NumPy reference for every profile with
 mode, the tuned stage (arrival, the mode's zero), the trigonometric rest-to-rest duration,
 state round trip, errors."""
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -217,28 +218,83 @@ def test_trigonometric_rest_to_rest_is_the_trigonometric_design():
 
 @pytest.mark.parametrize("profile", ["polynomial", "trigonometric"])
 def test_unrepresentable_move_is_dropped(profile):
-    """vmax 1, amax 1e-30, jmax 1e-300: the move to 1e300 would last about 1e270 s (it used to
-    jump 1.7e149 in one sample); it is dropped, the output rests, and the state round-trips."""
-    g = tr.Generator(vmax=1.0, amax=1e-30, jmax=1e-300, Ts=1e-3, profile=profile)
-    y = g.process(np.full(50, 1e300))
-    assert np.all(y == 0.0)
-    h = tr.Generator(vmax=1.0, amax=1e-30, jmax=1e-300, Ts=1e-3, profile=profile)
+    """vmax 1e6: a target 1e300 away would cruise 1e294 s, more than 2^52 samples; it is
+    dropped (refused, counted once, one warning naming it), the output rests, the state
+    round-trips; the next target runs and a new dropped one counts again."""
+    kw = dict(vmax=1e6, amax=1e8, jmax=1e10, Ts=1e-3, profile=profile)
+    g = tr.Generator(**kw)
+    with pytest.warns(tr.DroppedTargetWarning, match=r"target 1e\+300: .*goal 0\.0"):
+        y = g.process(np.full(50, 1e300))
+    assert np.all(y == 0.0) and g.refused and g.dropped == 1
+    h = tr.Generator(**kw)
     h.set_state(g.get_state())
-    np.testing.assert_array_equal(h.process(np.full(5, 1e300)), g.process(np.full(5, 1e300)))
+    with pytest.warns(tr.DroppedTargetWarning):
+        np.testing.assert_array_equal(h.process(np.full(5, 1e300)), g.process(np.full(5, 1e300)))
+    assert g.dropped == 1       # still the same held target: not dropped again
+    y = g.process(np.full(100, 5.0))
+    assert y[-1, 0] == 5.0 and not g.refused and g.dropped == 1
+    with pytest.warns(tr.DroppedTargetWarning, match="2 targets dropped in this block"):
+        g.process(np.r_[np.full(3, -1e300), np.full(3, 1e300)])
+    assert g.dropped == 3
+    g.reset()
+    assert not g.refused and g.dropped == 0
+
+
+@pytest.mark.parametrize("kw, parameter, words", [
+    (dict(vmax=1.0, amax=1e-30, jmax=1e-300), "jmax",
+     ["vmax=1.0, jmax=1e-300", "sqrt(vmax/jmax) = 1e+150 s", "4e+150 s", "2^50"]),
+    (dict(vmax=1.0, amax=1e-30, jmax=1e-300, profile="trigonometric"), "jmax",
+     ["sqrt(pi vmax/(2 jmax)) = 1.25331e+150 s"]),
+    (dict(vmax=1e300, amax=1e100, jmax=1e5), "amax", ["vmax/amax = 1e+200 s"]),
+    (dict(vmax=1.0, amax=10.0, jmax=100.0, Ts=1e-300), "Ts", ["Ts=1e-300", "4e+299 samples"]),
+    (dict(vmax=1.7976931348623157e308, amax=9e-16, jmax=3e-14), "vmax", ["above 1.12356e+307"]),
+    (dict(vmax=4.0, amax=1.0, jmax=1e307), "jmax", ["vmax*jmax = 4e+307 exceeds"]),
+    (dict(vmax=1e150, amax=1e-150, jmax=1e150, Ts=1e300), "amax", ["amax^2 = 1e-300 is below"]),
+    (dict(vmax=1e-100, amax=1e-100, jmax=1e-100, precision="float"), "vmax",
+     ["below 1.17549e-38, the smallest normal float"]),
+    (dict(vmax=1e13, amax=1.0, jmax=1.0, precision="float"), "amax", ["vmax/amax = 1e+13 s"]),
+])
+def test_infeasible_limits_are_refused_naming_the_quantity(kw, parameter, words):
+    """Limits with which no plan can reach vmax: a ParameterError naming the arguments, their
+    values and the derived quantity, in O(1)."""
+    kw.setdefault("Ts", 1e-3)
+    with pytest.raises(ParameterError) as info:
+        tr.Generator(**kw)
+    assert info.value.parameter == parameter
+    for w in words:
+        assert w in str(info.value), (w, str(info.value))
+
+
+@pytest.mark.parametrize("precision", ["double", "float"])
+def test_feasible_region_boundary(precision):
+    """Both sides of the duration bound: reaching vmax takes 2 (vmax/amax + amax/jmax) =
+    0.4 s; at Ts = 0.4 s / 2^50 (1 + 1e-6) the limits are accepted and that move (0.2 units)
+    is planned, not dropped; at (1 - 1e-6) they are refused naming vmax/amax."""
+    T = 2 * (1.0 / 5.0 + 5.0 / 100.0)
+    g = tr.Generator(vmax=1.0, amax=5.0, jmax=100.0, Ts=T / 2.0 ** 50 * (1 + 1e-6),
+                     precision=precision)
+    g.process([1.0 * (1.0 / 5.0 + 5.0 / 100.0)])
+    assert not g.refused and g.dropped == 0
+    with pytest.raises(ParameterError, match="vmax/amax = 0.2 s"):
+        tr.Generator(vmax=1.0, amax=5.0, jmax=100.0, Ts=T / 2.0 ** 50 * (1 - 1e-6),
+                     precision=precision)
 
 
 @pytest.mark.parametrize("vmax, amax, jmax, target", [
-    (1.7976931348623157e308, 9e-16, 3e-14, 1e305),
-    (1.0, 10.0, 9e307, 1e305),
-    (1e300, 1e100, 1e5, 1e305),
-    (1e300, 1e100, 1e5, 1000.0),
+    (1e30, 1e32, 1e34, 1e305),
+    (1.0, 10.0, 1e306, 1e305),
+    (1e150, 1e152, 1e154, -1e307),
+    (1e150, 1e152, 1e154, 1000.0),
+    (1e-140, 1e-140, 1e-140, 1e-100),
 ])
 def test_extreme_limits_keep_every_bound(vmax, amax, jmax, target):
     """Finite outputs within vmax, amax, jmax and the sampled velocity bound at every sample,
-    for extreme limits and targets, whether the move is planned or dropped."""
+    for extreme but feasible limits and targets, whether the move is planned or dropped."""
     Ts = 1e-3
     g = tr.Generator(vmax=vmax, amax=amax, jmax=jmax, Ts=Ts)
-    y = g.process(np.concatenate([np.full(400, target), np.full(400, -target)]))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", tr.DroppedTargetWarning)
+        y = g.process(np.concatenate([np.full(400, target), np.full(400, -target)]))
     assert np.all(np.isfinite(y))
     tol = 1 + 1e-9
     assert np.all(np.abs(y[:, 1]) <= vmax * tol)

@@ -151,7 +151,7 @@ typedef struct sms_plan {
  *
  * | field   | valid range |
  * |---------|-------------|
- * | vmax, amax, jmax | finite, > 0 (and products like amax^2/jmax finite in ::sms_real) |
+ * | vmax, amax, jmax | finite, > 0, and a plan can reach vmax (sms_generator_reach()) |
  * | profile | an ::sms_profile (::SMS_PROFILE_DAMPED needs wn > 0) |
  * | wn      | 0 (no mode) or finite > 0 and below pi/Ts [rad/s] |
  * | zeta    | [0, 1) |
@@ -209,13 +209,21 @@ typedef struct sms_generator_config {
  * a re-plan: about 60 (double) or 30 (float) evaluations of the distance (at most about
  * 2200 or 330 when vp lies many binades below vmax); a non-finite target is ignored.
  *
- * **Extreme limits and targets.** Every finite limit that passes init is accepted, but some
- * moves cannot be represented in ::sms_real: a value of the plan (a distance, a duration
- * such as amax/jmax, a position on the way) would overflow, or the move would last more than
- * 2^52 samples (e.g. a target of 1e300 with vmax = 1, or amax = 1e-30 with jmax = 1e-300).
- * Such a target is dropped: the running plan goes on (or the output rests where it is) and
- * the target is not tried again until the input changes. So every output is finite, vmax,
- * amax and jmax hold at every sample, and every saved state loads again.
+ * **Feasible limits.** init accepts a limit set only if the plan can reach vmax: the move
+ * from rest that reaches vmax and stops (sms_generator_reach()) must be representable in
+ * ::sms_real with room for a reversal, and last at most 2^50 samples. Otherwise no move that
+ * reaches vmax could ever be planned (e.g. vmax = 1, amax = 1e-30, jmax = 1e-300 at Ts = 1 ms:
+ * reaching vmax takes 4 sqrt(vmax/jmax) = 4e150 s), so the limits are refused in O(1) with
+ * ::SMS_ERR_LIMIT and sms_generator_reach() names the quantity out of range.
+ *
+ * **Dropped targets.** Within feasible limits some targets still cannot be planned: the move
+ * would last more than 2^52 samples (a cruise of distance/vmax; e.g. a target of 1e300 with
+ * vmax = 1), or a value on the way (a distance, a position) would overflow ::sms_real. Such
+ * a target is dropped: the running plan goes on to its goal (or the output rests where it
+ * is), `refused` is 1 and `dropped` counts it, and the target is not tried again until the
+ * input changes. So every output is finite, vmax, amax and jmax hold at every sample, and
+ * every saved state loads again. Exactly the targets whose move is non-finite or longer than
+ * 2^52 samples are dropped (docs/sampled-limits.md).
  */
 typedef struct sms_generator {
     double Ts;
@@ -232,16 +240,72 @@ typedef struct sms_generator {
     sms_plan_limits limits; /**< vmax, amax, jmax in signal precision */
     /* dynamic state */
     sms_real target;      /**< latest valid target */
-    int refused;          /**< 1: target's move could not be represented; dropped until it changes */
+    int refused;          /**< 1 while the held target is dropped (its move cannot be represented);
+                               cleared when the target changes, by reset and set_state */
+    size_t dropped;       /**< targets dropped since init or the last reset (read-only; not part
+                               of the saved state: a diagnostic count) */
     sms_real plan_q, plan_v, plan_a; /**< state the running plan started from */
     sms_plan plan;        /**< the running plan (its goal is the target it heads for) */
     size_t k;             /**< samples since the plan's first sample */
 } sms_generator;
 
+/**
+ * @brief The move that reaches vmax from rest, and which derived quantity of a refused limit
+ * set is out of range (sms_generator_reach()).
+ *
+ * J is jmax, or the mean jerk (2/pi) jmax of the trigonometric profile's half-cosine
+ * transitions; ap = min(amax, sqrt(vmax J)) is the peak acceleration of that move; it lasts
+ * duration = 2 (vmax/ap + ap/J) and covers distance = vmax (vmax/ap + ap/J).
+ */
+typedef struct sms_generator_reach_info {
+    double peak_acceleration; /**< ap [units/s^2] */
+    double duration;          /**< [s] */
+    double distance;          /**< [units] */
+    double samples;           /**< duration/Ts */
+    const char *quantity;     /**< NULL when feasible; else the quantity out of range:
+                                   "vmax/amax", "sqrt(vmax/jmax)", "vmax*jmax",
+                                   "amax^2", "the distance to reach vmax", or a single
+                                   argument ("vmax", "Ts") that is itself out of range */
+    const char *arguments;    /**< the arguments it is formed from, e.g. "amax, jmax" */
+    double value;             /**< its value (in its unit: s for a duration) */
+    double bound;             /**< the bound it exceeds (or falls below) */
+} sms_generator_reach_info;
+
+/**
+ * @brief Check that a plan can reach vmax with these limits at Ts, in O(1) (what init checks).
+ *
+ * The planner forms, for a move from any state within the bounds, the products J dv
+ * (|dv| <= 2 vmax), squares of accelerations up to ap, durations up to about `duration` and
+ * distances up to a few times `distance`. With M = 16 (room for a reversal and the stop),
+ * MAX and MIN the largest and the smallest normal number of ::sms_real and eps its machine
+ * epsilon (float: 3.4e38, 1.2e-38, 1.2e-7; double: 1.8e308, 2.2e-308, 2.2e-16), the limits
+ * are feasible (::SMS_OK) when, checked in this order:
+ * 1. Ts is finite and > 0 in ::sms_real; vmax, amax, jmax are finite and in [MIN, MAX/M];
+ * 2. M vmax J <= MAX (the velocity changes J dv stay finite);
+ * 3. duration/Ts <= 2^50: reaching vmax fits the plan's 2^52 samples with room for a
+ *    reversal. The quantity named is the longer term: vmax/amax when amax is reached
+ *    (amax^2 < vmax J, which makes amax/J the shorter one: a long amax/jmax means amax is
+ *    never reached), sqrt(vmax/J) when it is not (J = (2/pi) jmax for the trigonometric
+ *    profile, named "sqrt(pi vmax/(2 jmax))");
+ * 4. ap^2 >= MIN/eps (squares of accelerations, and the products of moves down to about
+ *    eps^1.5 `distance`, stay normal): "amax^2" or "vmax*jmax";
+ * 5. duration >= MIN and MIN/eps <= distance <= MAX/M.
+ * Inside this region every rest-to-rest move from about eps^1.5 `distance` up to `distance`,
+ * a reversal from full speed, and any longer move whose plan stays within 2^52 samples and
+ * finite is planned; outside it no move that reaches vmax can be (3: beyond 2^52 samples
+ * once the margin is used; 1, 2, 4, 5: a product overflows or loses its bits).
+ * @param reach  out (may be NULL): the move, and on ::SMS_ERR_LIMIT the first quantity out
+ *               of range with its value and bound.
+ * @return ::SMS_OK, ::SMS_ERR_NULL (config), ::SMS_ERR_SAMPLE_PERIOD, ::SMS_ERR_LIMIT.
+ */
+SMS_API sms_status sms_generator_reach(const sms_generator_config *config, double Ts,
+                                       sms_generator_reach_info *reach);
+
 /** @brief Reals the generator's buffer needs: 4 M for the tuned stage's rings (M its ring
  * length, about Tm/Ts), 0 without a mode (init then accepts buffer NULL).
  * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_SAMPLE_PERIOD, ::SMS_ERR_LIMIT (a bound not
- *         finite/positive or out of the range the plan can form products in), ::SMS_ERR_KIND
+ *         finite/positive, or limits with which no plan can reach vmax: sms_generator_reach()
+ *         says which quantity), ::SMS_ERR_KIND
  *         (profile), ::SMS_ERR_WN (wn < 0, NaN/Inf, or 0 with DAMPED), ::SMS_ERR_ZETA,
  *         ::SMS_ERR_ABOVE_NYQUIST (wn >= pi/Ts), ::SMS_ERR_DURATION_BELOW_TS (the tuned
  *         stage shorter than a sample), ::SMS_ERR_TOO_LONG (the tuned stage too long). */
