@@ -708,6 +708,15 @@ fmi2Status fmi2DoStep(fmi2Component comp, fmi2Real currentCommunicationPoint,
      * (Sterbenz), fma rounds once for many. */
     c->clock.since_tick = n == 1.0 ? advanced - Ts : fma(-n, Ts, advanced);
     c->clock.time = currentCommunicationPoint + communicationStepSize;
+    {
+        char msg[FMU_MESSAGE_LEN];
+        msg[0] = '\0';
+        if (fmu_model_warning(c->model, msg, sizeof msg)) {
+            log_message(c, fmi2Warning, FMU_LOG_WARNING, "fmi2DoStep at t = %.17g: %s",
+                        c->clock.time, msg);
+            return fmi2Warning;
+        }
+    }
     return fmi2OK;
 }
 

@@ -83,6 +83,11 @@ int fmu_model_build(void *model, void *mem, size_t bytes, char *msg, size_t len)
 /** @brief One internal tick: filter the held input, update the outputs. Only after build.
  * @return non-zero if an output changed (bitwise), 0 if all kept their values. */
 int fmu_model_tick(void *model);
+/** @brief After fmi2DoStep's ticks: a warning about something the model did with the inputs
+ * (e.g. a target it dropped), once per cause: the glue logs msg as fmi2Warning and the step
+ * returns fmi2Warning. Only after build.
+ * @return 1 with msg written, 0 when there is nothing to report. */
+int fmu_model_warning(void *model, char *msg, size_t len);
 /** @brief After a bytewise copy of a built model and its block, point it at its own block. */
 void fmu_model_rebind(void *model, void *mem);
 /** @brief Number of doubles of dynamic state (outputs and filter state) of a built model: a

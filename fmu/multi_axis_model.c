@@ -25,6 +25,8 @@ typedef struct ma_model {
     double Ts;
     int axes, sync;
     int built;
+    int warned[MA_MAX_AXES];                   /* 1: move i's dropped target was logged */
+    double dropped[MA_MAX_AXES];               /* the target of axis i when it was */
     size_t n_cells;                            /* stage memory cells at the block's start,
                                                   then the sms_stage structs */
     sms_multi_generator gen;
@@ -78,6 +80,7 @@ void fmu_model_defaults(void *model)
     ma_model *m = (ma_model *)model;   /* the start values of modelDescription.xml */
     int i;
     memset(m->field, 0, sizeof m->field);
+    memset(m->warned, 0, sizeof m->warned);
     for (i = 0; i < MA_MAX_AXES; ++i) {
         int k;
         m->field[F_VMAX][i] = 1.0;
@@ -394,6 +397,43 @@ int fmu_model_tick(void *model)
             m->field[F_Q + k][i] = (double)out[4 * i + k];
         }
     return changed;
+}
+
+/* A dropped target vector (a move's `refused`), once per target: the group's axes (all in
+ * phase synchronisation, axis i alone when independent) are named with their targets. */
+int fmu_model_warning(void *model, char *msg, size_t len)
+{
+    ma_model *m = (ma_model *)model;
+    int g, i, n, groups = m->sync == SMS_SYNC_PHASE ? 1 : m->axes, found = -1;
+    for (g = 0; g < groups && m->built; ++g) {
+        int first = m->sync == SMS_SYNC_PHASE ? 0 : g, last = m->sync == SMS_SYNC_PHASE
+                                                              ? m->axes : g + 1, same = 1;
+        if (!m->gen.move[g].refused) {
+            m->warned[g] = 0;
+            continue;
+        }
+        for (i = first; i < last; ++i)
+            same &= m->dropped[i] == (double)m->gen.target[i];
+        if (m->warned[g] && same)
+            continue;
+        m->warned[g] = 1;
+        for (i = first; i < last; ++i)
+            m->dropped[i] = (double)m->gen.target[i];
+        if (found < 0)
+            found = g;
+    }
+    if (found < 0)
+        return 0;
+    n = 0;
+    for (i = m->sync == SMS_SYNC_PHASE ? 0 : found;
+         i < (m->sync == SMS_SYNC_PHASE ? m->axes : found + 1) && n >= 0 && (size_t)n < len; ++i)
+        n += snprintf(msg + n, len - (size_t)n, "%starget[%d] = %.17g", n > 0 ? ", " : "", i,
+                      m->dropped[i]);
+    if (n >= 0 && (size_t)n < len)
+        snprintf(msg + n, len - (size_t)n, " dropped: the move cannot be represented (more "
+                 "than 2^52 samples, or a value that overflows); the axes keep their goals "
+                 "until the target changes");
+    return 1;
 }
 
 void fmu_model_rebind(void *model, void *mem)

@@ -19,6 +19,8 @@ typedef struct tg_model {
     double Ts, vmax, amax, jmax, wn, zeta, q0;
     int profile;
     int built;
+    int warned;                                /* 1: the dropped target `dropped` was logged */
+    double dropped;
     sms_generator gen;                         /* tables in the glue's block */
 } tg_model;
 
@@ -66,6 +68,8 @@ void fmu_model_defaults(void *model)
     m->zeta = 0.0;
     m->q0 = 0.0;
     m->built = 0;
+    m->warned = 0;
+    m->dropped = 0.0;
 }
 
 fmu_var_class fmu_model_class(fmu_type type, fmi2ValueReference vr)
@@ -135,6 +139,49 @@ void fmu_model_set_integer(void *model, fmi2ValueReference vr, int value)
 
 double fmu_model_sample_period(const void *model) { return ((const tg_model *)model)->Ts; }
 
+/* Limits with which no plan can reach vmax: the variables, their values and the derived
+ * quantity out of range (sms_generator_reach()); returns 1. */
+static int refuse_limits(const tg_model *m, char *msg, size_t len)
+{
+    sms_generator_config c;
+    sms_generator_reach_info r;
+    char names[96];
+    const char *args;
+    int n = 0;
+    c.vmax = m->vmax;
+    c.amax = m->amax;
+    c.jmax = m->jmax;
+    c.profile = (sms_profile)m->profile;
+    c.wn = m->wn;
+    c.zeta = m->zeta;
+    (void)sms_generator_reach(&c, m->Ts, &r);
+    if (r.quantity == NULL) /* not expected: init and the check are one function */
+        return snprintf(msg, len, "vmax = %.17g, amax = %.17g, jmax = %.17g: %s", m->vmax,
+                        m->amax, m->jmax, sms_status_string(SMS_ERR_LIMIT)), 1;
+    args = r.arguments;
+    names[0] = '\0';
+    if (strstr(args, "vmax") != NULL)
+        n += snprintf(names + n, sizeof names - (size_t)n, "vmax = %.17g, ", m->vmax);
+    if (strstr(args, "amax") != NULL)
+        n += snprintf(names + n, sizeof names - (size_t)n, "amax = %.17g, ", m->amax);
+    if (strstr(args, "jmax") != NULL)
+        n += snprintf(names + n, sizeof names - (size_t)n, "jmax = %.17g, ", m->jmax);
+    if (strchr(r.quantity, '/') != NULL) /* a duration beyond the plan's sample counts */
+        return snprintf(msg, len, "%sTs = %.17g: %s = %.6g s, so reaching vmax from rest takes "
+                        "%.6g s = %.6g samples, more than the 2^50 a plan holds: no move that "
+                        "reaches vmax can be planned", names, m->Ts, r.quantity, r.value,
+                        r.duration, r.samples), 1;
+    if (n >= 2)
+        names[n - 2] = '\0';
+    if (strcmp(r.quantity, args) == 0) /* a limit itself out of range */
+        return snprintf(msg, len, r.value < r.bound ? "%s: below %.6g, the smallest normal number "
+                        "of this precision" : "%s: above %.6g, the largest number of this "
+                        "precision over 16 (room for a reversal)", names, r.bound), 1;
+    return snprintf(msg, len, "%s: %s = %.6g %s %.6g: the planner's values would %s", names,
+                    r.quantity, r.value, r.value < r.bound ? "is below" : "exceeds", r.bound,
+                    r.value < r.bound ? "underflow" : "overflow"), 1;
+}
+
 /* "name = value: <status>" for the parameter a core status points at; returns 1. */
 static int refuse(const tg_model *m, sms_status st, char *msg, size_t len)
 {
@@ -148,6 +195,7 @@ static int refuse(const tg_model *m, sms_status st, char *msg, size_t len)
     case SMS_ERR_DURATION_BELOW_TS: case SMS_ERR_TOO_LONG:
         return snprintf(msg, len, "wn = %.17g (the stage tuned to the mode on the grid of "
                         "Ts = %.17g): %s", m->wn, m->Ts, why), 1;
+    case SMS_ERR_LIMIT: return refuse_limits(m, msg, len);
     default:
         return snprintf(msg, len, "vmax = %.17g, amax = %.17g, jmax = %.17g: %s", m->vmax, m->amax,
                         m->jmax, why), 1;
@@ -231,6 +279,29 @@ int fmu_model_tick(void *model)
         m->out[i] = (double)out[i];
     }
     return changed;
+}
+
+/* A dropped target (sms_generator `refused`), once per target: a target that stays dropped
+ * over many steps, or comes back after a state is restored, is reported once. */
+int fmu_model_warning(void *model, char *msg, size_t len)
+{
+    tg_model *m = (tg_model *)model;
+    double goal, span;
+    if (!m->built || !m->gen.refused) {
+        m->warned = 0;
+        return 0;
+    }
+    if (m->warned && m->dropped == (double)m->gen.target)
+        return 0;
+    m->warned = 1;
+    m->dropped = (double)m->gen.target;
+    goal = (double)m->gen.plan.goal;
+    span = fabs(m->dropped - goal) / m->vmax / m->Ts;
+    snprintf(msg, len, "target = %.17g dropped: its move cannot be represented "
+             "(|target - goal|/vmax alone is %.3g samples of Ts, a plan holds at most 2^52; "
+             "every value must stay finite); the generator keeps its goal %.17g until target "
+             "changes", m->dropped, span, goal);
+    return 1;
 }
 
 void fmu_model_rebind(void *model, void *mem)

@@ -117,6 +117,8 @@ static void run_sequence(unsigned length)
             break;
         case 4: case 5: case 6: st = fmi2DoStep(c, t, rnd(4) ? 0.00037 * (1 + rnd(30)) : r, fmi2True);
             CHECK(st == fmi2Error || s == S_STEP);
+            if (st == fmi2Warning) /* a step done, with a warning (a dropped target) */
+                st = fmi2OK;
             if (st == fmi2OK) {
                 fmi2Real now = 0.0;
                 ++n_steps_ok;

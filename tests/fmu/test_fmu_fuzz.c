@@ -50,7 +50,7 @@
 #endif
 #define MAX_SLOTS 3
 
-static unsigned long failures, n_calls, n_errors, n_steps, n_inits, n_restores, n_slow;
+static unsigned long failures, n_calls, n_errors, n_steps, n_inits, n_restores, n_slow, n_warnings;
 static unsigned long n_nonfinite, n_unloadable, sequence, n_over_100ms;
 static double worst_per_byte;   /* slowest call over 100 ms, seconds per byte of its state */
 static double slowest;
@@ -344,7 +344,9 @@ static void run_sequence(unsigned length)
             if (pick(10) == 0)
                 h = huge_steps ? any_real(-9, 12) : -any_real(-9, 1);
             st = fmi2DoStep(c, pick(20) ? t : t + any_real(-6, 6), h, fmi2True);
-            if (st == fmi2OK) {
+            if (st == fmi2Warning) /* a step done, with a warning (a dropped target) */
+                ++n_warnings;
+            if (st == fmi2OK || st == fmi2Warning) {
                 fmi2Real now = 0.0;
                 ++n_steps;
                 CHECK(fmi2GetRealStatus(c, fmi2LastSuccessfulTime, &now) == fmi2OK);
@@ -426,7 +428,9 @@ static void run_sequence(unsigned length)
             fprintf(stderr, "sequence %lu: call %u took %.3f s (serialised state now %lu bytes)%s\n",
                     sequence, op, dt, (unsigned long)bytes, slow ? ": SLOW" : "");
         }
-        CHECK(st == fmi2OK || st == fmi2Error);
+        CHECK(st == fmi2OK || st == fmi2Error || (st == fmi2Warning && op >= 5 && op <= 8));
+        if (st == fmi2Warning)
+            st = fmi2OK;
         if (st == fmi2Error) {
             ++n_errors;
             if (compare && n_before > 0) {
@@ -484,11 +488,11 @@ int main(int argc, char **argv)
     CHECK(n_slow == 0);
     CHECK(n < 200 || (n_inits > n / 4 && n_steps > n && n_restores > n / 4));
     printf("fmu_fuzz %s: %lu sequences (seed %llu), %lu calls (%lu errors), %lu initialisations, "
-           "%lu steps, %lu states restored; %lu calls over %.0f ms (slowest %.3f ms; %.2f ns per "
+           "%lu steps (%lu with a warning), %lu states restored; %lu calls over %.0f ms (slowest %.3f ms; %.2f ns per "
            "byte of state at worst), %lu of them slow beyond %.0f ns per byte of state, "
            "%lu non-finite outputs after fmi2OK, %lu saved states not loadable, %lu failures\n",
-           FMU_MODEL_IDENTIFIER, n, seed, n_calls, n_errors, n_inits, n_steps, n_restores,
-           n_over_100ms, 1e3 * CALL_LIMIT_S, 1e3 * slowest, 1e9 * worst_per_byte, n_slow,
+           FMU_MODEL_IDENTIFIER, n, seed, n_calls, n_errors, n_inits, n_steps, n_warnings,
+           n_restores, n_over_100ms, 1e3 * CALL_LIMIT_S, 1e3 * slowest, 1e9 * worst_per_byte, n_slow,
            1e9 * CALL_LIMIT_S_PER_BYTE, n_nonfinite, n_unloadable, failures);
     return failures == 0 ? 0 : 1;
 }

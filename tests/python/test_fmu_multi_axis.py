@@ -272,3 +272,31 @@ def test_unused_axis_stages_are_ignored(multi_dir):
     assert not [m for m in log.messages if "stage" in m], log.messages
     fmu.freeInstance()
 
+
+
+@pytest.mark.parametrize("sync", [0, 1], ids=["phase", "independent"])
+def test_a_dropped_target_vector_is_logged_once_and_the_step_warns(multi_dir, sync):
+    """As the TrajectoryGenerator: a target 1e300 away on axis 1 (more than 2^52 ticks at
+    vmax) is dropped; that doStep returns fmi2Warning and the logger names the target, once;
+    the next steps under the same target are OK and quiet."""
+    from fmpy.fmi2 import fmi2True
+    log = Logged()
+    fmu = slave(multi_dir, "ma", logged=log)
+    fmu.setupExperiment(startTime=0.0)
+    fmu.enterInitializationMode()
+    for name, value in start_values(3, sync).items():
+        if name in ("axes", "sync"):
+            fmu.setInteger([fmu.vr[name]], [value])
+        else:
+            fmu.setReal([fmu.vr[name]], [value])
+    fmu.exitInitializationMode()
+    statuses = []
+    for i in range(4):
+        fmu.setReal([fmu.vr[f"target[{k}]"] for k in range(3)], [0.1, 1e300, 0.0])
+        statuses.append(fmu.fmi2DoStep(fmu.component, i * TS, TS, fmi2True))
+    assert statuses == [1, 0, 0, 0]
+    steps = [m for m in log.messages if m.startswith("fmi2DoStep")]
+    assert len(steps) == 1 and "target[1] = 1.0000000000000001e+300" in steps[0], steps
+    assert ("target[0] = 0.10000000000000001" in steps[0]) == (sync == 0)
+    assert np.all(np.isfinite(fmu.getReal([fmu.vr[n] for n in outputs(3)])))
+    fmu.freeInstance()

@@ -10,6 +10,7 @@ import pytest
 fmpy = pytest.importorskip("fmpy", reason="fmpy is needed to import the FMUs")
 from fmpy import extract  # noqa: E402
 from fmpy.fmi1 import FMICallException  # noqa: E402
+from fmpy.fmi2 import fmi2True  # noqa: E402
 
 from smoothshaper import validation  # noqa: E402
 from test_fmu_smoothshaper import Logged, fmus, slave, smoothshaper_dir  # noqa: E402,F401
@@ -154,3 +155,67 @@ def test_starts_at_q0_and_a_target_stepped_at_t0_moves_time_optimally(trajectory
     assert arrive == math.ceil(traj.duration / TS)
     assert abs(traj.duration - 0.297) < 5e-4
     fmu.freeInstance()
+
+
+@pytest.mark.parametrize("limits, words", [
+    (dict(vmax=1.0, amax=1e-30, jmax=1e-300),
+     ["vmax = 1, jmax = 1e-300, Ts = 0.001", "sqrt(vmax/jmax) = 1e+150 s", "2^50"]),
+    (dict(vmax=1e300, amax=1e100, jmax=1e5), ["vmax = 1.0000000000000001e+300, amax = 1e+100", "vmax/amax = 1e+200 s"]),
+    (dict(vmax=4.0, amax=1.0, jmax=1e307), ["vmax = 4, jmax = 9.9999999999999999e+306", "vmax*jmax = 4e+307 exceeds"]),
+])
+def test_infeasible_limits_fail_at_exit_initialization_naming_the_quantity(trajectory_dir, limits,
+                                                                           words):
+    """Limits with which no plan can reach vmax: fmi2ExitInitializationMode fails and the
+    logger names the variables, their values and the derived quantity."""
+    log = Logged()
+    fmu = slave(trajectory_dir, logged=log)
+    with pytest.raises(FMICallException):
+        start(fmu, **limits)
+    for w in words:
+        assert w in log.messages[-1], log.messages[-1]
+    fmu.freeInstance()
+
+
+def test_a_dropped_target_is_logged_once_and_the_step_warns(trajectory_dir):
+    """A target 1e300 away (a cruise of 1e297 s at vmax 1e3: more than 2^52 ticks) is dropped:
+    the doStep that drops it returns fmi2Warning and logs the target once; later steps under
+    the same target are OK and quiet; a reachable target then moves; a new dropped target is
+    logged again, and a restored state does not repeat the message."""
+    log = Logged()
+    fmu = slave(trajectory_dir, logged=log)
+    start(fmu, vmax=1e3, amax=1e5, jmax=1e7)
+    vr = [fmu.vr[n] for n in "qvaj"]
+    statuses = []
+    for i, x in enumerate([1e300] * 5 + [2.0] * 200 + [-1e300] * 3):
+        fmu.setReal([fmu.vr["target"]], [x])
+        statuses.append(fmu.fmi2DoStep(fmu.component, i * TS, TS, fmi2True))
+        assert np.all(np.isfinite(fmu.getReal(vr)))
+        if i == 4:
+            assert fmu.getReal(vr) == [0.0, 0.0, 0.0, 0.0]
+    assert statuses[0] == 1 and statuses[205] == 1          # fmi2Warning
+    assert statuses.count(1) == 2 and statuses.count(0) == len(statuses) - 2
+    assert fmu.getReal([fmu.vr["q"]]) == [2.0]
+    dropped = [m for m in log.messages if m.startswith("fmi2DoStep")]
+    assert len(dropped) == 2
+    assert "t = 0.001: target = 1.0000000000000001e+300 dropped" in dropped[0]
+    assert "goal 0 " in dropped[0]
+    assert "target = -1.0000000000000001e+300 dropped" in dropped[1] and "goal 2 " in dropped[1]
+    state = fmu.getFMUstate()
+    fmu.setFMUstate(state)
+    assert fmu.fmi2DoStep(fmu.component, 208 * TS, TS, fmi2True) == 0
+    assert len([m for m in log.messages if m.startswith("fmi2DoStep")]) == 2
+    fmu.freeInstance()
+
+
+def test_fmpy_default_settings_with_a_dropped_target(fmus):  # noqa: F811
+    """fmpy.simulate_fmu with its default settings: a target step to 1e300 (dropped) and back
+    to 0.5 runs to the end, every output finite, within the limits, at rest on 0.5."""
+    sig = np.array([(0.0, 0.0), (0.01, 0.0), (0.01, 1e300), (0.05, 1e300), (0.05, 0.5),
+                    (2.0, 0.5)], dtype=[("time", float), ("target", float)])
+    r = fmpy.simulate_fmu(str(fmus["TrajectoryGenerator"]), start_values=LIMITS, input=sig,
+                          stop_time=2.0, output_interval=TS)
+    y = np.column_stack([r[n] for n in "qvaj"])
+    assert np.all(np.isfinite(y))
+    assert np.all(np.max(np.abs(y[:, 1:]), axis=0) <= np.array(list(LIMITS.values())) * (1 + 1e-12))
+    assert np.all(y[(r["time"] > 0.01) & (r["time"] <= 0.05), 0] == 0.0)
+    assert y[-1, 0] == 0.5 and np.all(y[-1, 1:] == 0.0)
