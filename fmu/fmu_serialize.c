@@ -24,7 +24,8 @@
 
 #include "fmu_instance.h"
 
-#define FMU_STATE_VERSION 3u   /* 3: the filter states start with their configuration identity */
+#define FMU_STATE_VERSION 4u   /* 3: the filter states start with their configuration identity;
+                                  4: so do the generators' states */
 /* Relative disagreement of t and t0 + ticks*Ts allowed: a host doing t += h drifts by about
  * 2e-8 t over 1e9 steps of 1 ms. */
 #define CLOCK_REL_SLACK 1e-6

@@ -456,7 +456,7 @@ void fmu_model_save_state(const void *model, double *dst)
     for (k = 0; k < 4; ++k)
         for (i = 0; i < m->axes; ++i)
             *dst++ = m->field[F_Q + k][i];
-    sms_multi_generator_save_state(&m->gen, dst);
+    sms_multi_generator_get_state(&m->gen, dst);
 }
 
 int fmu_model_load_state(void *model, const double *src, size_t n)
@@ -469,7 +469,7 @@ int fmu_model_load_state(void *model, const double *src, size_t n)
     for (i = 0; i < (int)own; ++i)
         if (!isfinite(src[i]))
             return 1;
-    if (sms_multi_generator_load_state(&m->gen, src + own, n - own) != SMS_OK)
+    if (sms_multi_generator_set_state(&m->gen, src + own, n - own) != SMS_OK)
         return 1;
     for (k = 0; k < 4; ++k)
         for (i = 0; i < m->axes; ++i)

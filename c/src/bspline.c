@@ -3,6 +3,10 @@
  * basis is totally positive, for which elimination without pivoting is stable). */
 #include <math.h>
 #include "smoothshaper/trajectory.h"
+#include "state_identity.h"
+
+/* The identity fields after the common head, in this order (trajectory.h). */
+enum { ID_DEGREE = SMS_STATE_IDENTITY_HEAD, ID_AXES, ID_T };
 
 static sms_status knot_samples(unsigned degree, size_t n_axes, double T, double Ts, size_t *N)
 {
@@ -107,6 +111,10 @@ sms_status sms_bspline_init(sms_bspline *b, unsigned degree, size_t n_axes, doub
     }
     for (i = 0; i < n_axes * degree; ++i)
         sms_smoother_reset(&built.stages[i], 0);
+    sms_state_identity_head(built.identity, SMS_STATE_KIND_BSPLINE, Ts);
+    built.identity[ID_DEGREE] = (double)degree;
+    built.identity[ID_AXES] = (double)n_axes;
+    built.identity[ID_T] = (double)N * Ts;
     *b = built;
     return SMS_OK;
 }
@@ -246,7 +254,7 @@ sms_status sms_bspline_period_for_modes(const double *wn, size_t n, double Ts, d
 
 size_t sms_bspline_state_count(const sms_bspline *b)
 {
-    size_t i, total = 0;
+    size_t i, total = SMS_BSPLINE_IDENTITY_COUNT;
     for (i = 0; i < b->n_axes * b->degree; ++i)
         total += sms_smoother_state_count(&b->stages[i]);
     return total;
@@ -255,27 +263,48 @@ size_t sms_bspline_state_count(const sms_bspline *b)
 void sms_bspline_get_state(const sms_bspline *b, double *dst)
 {
     size_t i;
+    for (i = 0; i < SMS_BSPLINE_IDENTITY_COUNT; ++i)
+        dst[i] = b->identity[i];
+    dst += SMS_BSPLINE_IDENTITY_COUNT;
     for (i = 0; i < b->n_axes * b->degree; ++i) {
         sms_smoother_get_state(&b->stages[i], dst);
         dst += sms_smoother_state_count(&b->stages[i]);
     }
 }
 
-sms_status sms_bspline_set_state(sms_bspline *b, const double *src, size_t n)
+sms_status sms_bspline_check_state(const sms_bspline *b, const double *src, size_t n)
 {
-    size_t i, off = 0;
+    static const sms_status field_status[SMS_BSPLINE_IDENTITY_COUNT - SMS_STATE_IDENTITY_HEAD] = {
+        SMS_ERR_STATE_DEGREE, SMS_ERR_STATE_AXES, SMS_ERR_STATE_T
+    };
+    size_t i, off = SMS_BSPLINE_IDENTITY_COUNT;
+    sms_status st;
     if (b == NULL || src == NULL)
         return SMS_ERR_NULL;
+    /* another configuration first, whatever the length: its state often has another one */
+    if (n >= SMS_BSPLINE_IDENTITY_COUNT
+        && (st = sms_state_identity_compare(b->identity, src,
+                                            SMS_BSPLINE_IDENTITY_COUNT - SMS_STATE_IDENTITY_HEAD,
+                                            field_status)) != SMS_OK)
+        return st;
     if (n != sms_bspline_state_count(b))
         return SMS_ERR_STATE;
     for (i = 0; i < b->n_axes * b->degree; ++i) {
         size_t cnt = sms_smoother_state_count(&b->stages[i]);
-        sms_status st = sms_smoother_check_state(&b->stages[i], src + off, cnt);
-        if (st != SMS_OK)
-            return st;
+        if (sms_smoother_check_state(&b->stages[i], src + off, cnt) != SMS_OK)
+            return SMS_ERR_STATE;
         off += cnt;
     }
-    for (i = 0, off = 0; i < b->n_axes * b->degree; ++i) {
+    return SMS_OK;
+}
+
+sms_status sms_bspline_set_state(sms_bspline *b, const double *src, size_t n)
+{
+    size_t i, off = SMS_BSPLINE_IDENTITY_COUNT;
+    sms_status st = sms_bspline_check_state(b, src, n);
+    if (st != SMS_OK)
+        return st;
+    for (i = 0; i < b->n_axes * b->degree; ++i) {
         size_t cnt = sms_smoother_state_count(&b->stages[i]);
         (void)sms_smoother_set_state(&b->stages[i], src + off, cnt);
         off += cnt;

@@ -6,8 +6,28 @@
 #include <string.h>
 #include "smoothshaper/trajectory.h"
 #include "plan.h"
+#include "state_identity.h"
 
+/* A saved state: the identity (SMS_GENERATOR_IDENTITY_COUNT), then target, goal, the plan's
+ * start q, v, a and k (GEN_PLAN_STATE_COUNT), then with a mode quiet and the stage states. */
 #define GEN_PLAN_STATE_COUNT 6u
+#define GEN_PLAN (SMS_GENERATOR_IDENTITY_COUNT)
+#define GEN_STAGES (GEN_PLAN + GEN_PLAN_STATE_COUNT)
+
+/* The identity fields after the common head, in this order (trajectory.h). */
+enum { ID_VMAX = SMS_STATE_IDENTITY_HEAD, ID_AMAX, ID_JMAX, ID_PROFILE, ID_WN, ID_ZETA };
+
+static void generator_identity(const sms_generator_config *c, double Ts,
+                               double id[SMS_GENERATOR_IDENTITY_COUNT])
+{
+    sms_state_identity_head(id, SMS_STATE_KIND_GENERATOR, Ts);
+    id[ID_VMAX] = c->vmax;
+    id[ID_AMAX] = c->amax;
+    id[ID_JMAX] = c->jmax;
+    id[ID_PROFILE] = (double)c->profile;
+    id[ID_WN] = c->wn;
+    id[ID_ZETA] = c->zeta;
+}
 
 /* The feasible limit sets (trajectory.h, sms_generator_reach()). For a move from any state
  * within the bounds the planner forms velocity changes J dv with |dv| <= 2 vmax (J the shape's
@@ -205,6 +225,7 @@ sms_status sms_generator_init(sms_generator *g, const sms_generator_config *conf
     g->limits.vmax = (sms_real)config->vmax;
     g->limits.amax = (sms_real)config->amax;
     g->limits.jmax = (sms_real)config->jmax;
+    generator_identity(config, Ts, g->identity);
     sms_generator_reset(g, 0);
     return SMS_OK;
 }
@@ -316,25 +337,27 @@ double sms_generator_tail_duration(const sms_generator *g)
 size_t sms_generator_state_count(const sms_generator *g)
 {
     if (g->stage_length == 0)
-        return GEN_PLAN_STATE_COUNT;
-    return GEN_PLAN_STATE_COUNT + 1u + 4u * sms_smoother_state_count(&g->stage[0]);
+        return GEN_STAGES;
+    return GEN_STAGES + 1u + 4u * sms_smoother_state_count(&g->stage[0]);
 }
 
 void sms_generator_get_state(const sms_generator *g, double *dst)
 {
     size_t i, per;
-    dst[0] = (double)g->target;
-    dst[1] = (double)g->plan.goal;
-    dst[2] = (double)g->plan_q;
-    dst[3] = (double)g->plan_v;
-    dst[4] = (double)g->plan_a;
-    dst[5] = (double)g->k;
+    for (i = 0; i < SMS_GENERATOR_IDENTITY_COUNT; ++i)
+        dst[i] = g->identity[i];
+    dst[GEN_PLAN + 0] = (double)g->target;
+    dst[GEN_PLAN + 1] = (double)g->plan.goal;
+    dst[GEN_PLAN + 2] = (double)g->plan_q;
+    dst[GEN_PLAN + 3] = (double)g->plan_v;
+    dst[GEN_PLAN + 4] = (double)g->plan_a;
+    dst[GEN_PLAN + 5] = (double)g->k;
     if (g->stage_length == 0)
         return;
-    dst[6] = (double)g->quiet;
+    dst[GEN_STAGES] = (double)g->quiet;
     per = sms_smoother_state_count(&g->stage[0]);
     for (i = 0; i < 4; ++i)
-        sms_smoother_get_state(&g->stage[i], dst + GEN_PLAN_STATE_COUNT + 1u + i * per);
+        sms_smoother_get_state(&g->stage[i], dst + GEN_STAGES + 1u + i * per);
 }
 
 static int is_count(double x, double max)
@@ -342,44 +365,60 @@ static int is_count(double x, double max)
     return x >= 0.0 && x <= max && x == (double)(size_t)x;
 }
 
+static sms_status check_identity(const sms_generator *g, const double *src)
+{
+    static const sms_status field_status[SMS_GENERATOR_IDENTITY_COUNT - SMS_STATE_IDENTITY_HEAD] = {
+        SMS_ERR_STATE_VMAX, SMS_ERR_STATE_AMAX, SMS_ERR_STATE_JMAX, SMS_ERR_STATE_PROFILE,
+        SMS_ERR_STATE_WN, SMS_ERR_STATE_ZETA
+    };
+    return sms_state_identity_compare(g->identity, src,
+                                      SMS_GENERATOR_IDENTITY_COUNT - SMS_STATE_IDENTITY_HEAD,
+                                      field_status);
+}
+
 sms_status sms_generator_check_state(const sms_generator *g, const double *src, size_t n)
 {
     double V, A, J, brake;
+    const double *p;
     size_t i, per;
+    sms_status st;
     if (g == NULL || src == NULL)
         return SMS_ERR_NULL;
+    /* another configuration first, whatever the length: its state often has another one */
+    if (n >= SMS_GENERATOR_IDENTITY_COUNT && (st = check_identity(g, src)) != SMS_OK)
+        return st;
     if (n != sms_generator_state_count(g))
         return SMS_ERR_STATE;
+    p = src + GEN_PLAN;
     for (i = 0; i < 5; ++i)
-        if (!isfinite(src[i]) || (sms_real)src[i] - (sms_real)src[i] != 0)
+        if (!isfinite(p[i]) || (sms_real)p[i] - (sms_real)p[i] != 0)
             return SMS_ERR_STATE;
     /* a state a plan can start from: within the bounds, and able to bring its acceleration
      * to zero (at the shape's mean jerk) without passing vmax */
     V = (double)g->limits.vmax;
     A = (double)g->limits.amax;
     J = (double)sms_plan_mean_jerk(&g->limits, g->shape);
-    brake = src[3] + src[4] * fabs(src[4]) / (2.0 * J);
-    if (fabs(src[3]) > V * (1.0 + 1e-6) || fabs(src[4]) > A * (1.0 + 1e-6) ||
+    brake = p[3] + p[4] * fabs(p[4]) / (2.0 * J);
+    if (fabs(p[3]) > V * (1.0 + 1e-6) || fabs(p[4]) > A * (1.0 + 1e-6) ||
         fabs(brake) > V * (1.0 + 1e-6))
         return SMS_ERR_STATE;
-    if (!is_count(src[5], 9007199254740992.0)) /* 2^53 */
+    if (!is_count(p[5], 9007199254740992.0)) /* 2^53 */
         return SMS_ERR_STATE;
     {
         /* the running plan must be one the generator can form again */
         sms_plan plan;
         if (!sms_plan_to_rest_shaped(&plan, &g->limits, g->shape, g->Ts_signal,
-                                     (sms_real)src[2], (sms_real)src[3], (sms_real)src[4],
-                                     (sms_real)src[1]))
+                                     (sms_real)p[2], (sms_real)p[3], (sms_real)p[4],
+                                     (sms_real)p[1]))
             return SMS_ERR_STATE;
     }
     if (g->stage_length == 0)
         return SMS_OK;
-    if (!is_count(src[6], (double)g->stage_length))
+    if (!is_count(src[GEN_STAGES], (double)g->stage_length))
         return SMS_ERR_STATE;
     per = sms_smoother_state_count(&g->stage[0]);
     for (i = 0; i < 4; ++i)
-        if (sms_smoother_check_state(&g->stage[i], src + GEN_PLAN_STATE_COUNT + 1u + i * per,
-                                     per) != SMS_OK)
+        if (sms_smoother_check_state(&g->stage[i], src + GEN_STAGES + 1u + i * per, per) != SMS_OK)
             return SMS_ERR_STATE;
     return SMS_OK;
 }
@@ -387,23 +426,25 @@ sms_status sms_generator_check_state(const sms_generator *g, const double *src, 
 sms_status sms_generator_set_state(sms_generator *g, const double *src, size_t n)
 {
     size_t i, per;
+    const double *p;
     sms_status st = sms_generator_check_state(g, src, n);
     if (st != SMS_OK)
         return st;
-    g->target = (sms_real)src[0];
-    g->plan_q = (sms_real)src[2];
-    g->plan_v = (sms_real)src[3];
-    g->plan_a = (sms_real)src[4];
-    g->k = (size_t)src[5];
+    p = src + GEN_PLAN;
+    g->target = (sms_real)p[0];
+    g->plan_q = (sms_real)p[2];
+    g->plan_v = (sms_real)p[3];
+    g->plan_a = (sms_real)p[4];
+    g->k = (size_t)p[5];
     g->refused = 0; /* a dropped target is tried (and dropped) again on the next sample */
     (void)sms_plan_to_rest_shaped(&g->plan, &g->limits, g->shape, g->Ts_signal, g->plan_q,
-                                  g->plan_v, g->plan_a, (sms_real)src[1]); /* checked above */
+                                  g->plan_v, g->plan_a, (sms_real)p[1]); /* checked above */
     if (g->stage_length == 0)
         return SMS_OK;
-    g->quiet = (size_t)src[6];
+    g->quiet = (size_t)src[GEN_STAGES];
     per = sms_smoother_state_count(&g->stage[0]);
     for (i = 0; i < 4; ++i)
-        (void)sms_smoother_set_state(&g->stage[i], src + GEN_PLAN_STATE_COUNT + 1u + i * per, per);
+        (void)sms_smoother_set_state(&g->stage[i], src + GEN_STAGES + 1u + i * per, per);
     return SMS_OK;
 }
 

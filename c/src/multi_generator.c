@@ -5,6 +5,7 @@
 #include <math.h>
 #include "smoothshaper/multi_generator.h"
 #include "plan.h"
+#include "state_identity.h"
 
 #ifdef SMS_USE_FLOAT
 #define REAL_EPS ((sms_real)FLT_EPSILON)
@@ -538,6 +539,45 @@ sms_status sms_multi_generator_memory(const sms_multi_generator_config *config, 
     return st;
 }
 
+/* The configuration identity of a saved state (multi_generator.h, SMS_MULTI_IDENTITY_COUNT):
+ * the common head, n_axes, sync, then per axis slot vmax, amax, jmax, n_stages (0 beyond
+ * n_axes). The stages' configs are in their own stage states. */
+enum { ID_AXES = SMS_STATE_IDENTITY_HEAD, ID_SYNC, ID_AXIS, ID_AXIS_FIELDS = 4 };
+
+static void write_identity(const sms_multi_generator_config *c, double Ts,
+                           double id[SMS_MULTI_IDENTITY_COUNT])
+{
+    size_t i;
+    sms_state_identity_head(id, SMS_STATE_KIND_MULTI_GENERATOR, Ts);
+    id[ID_AXES] = (double)c->n_axes;
+    id[ID_SYNC] = (double)c->sync;
+    for (i = 0; i < SMS_MULTI_MAX_AXES; ++i) {
+        double *axis = id + ID_AXIS + ID_AXIS_FIELDS * i;
+        axis[0] = i < c->n_axes ? c->vmax[i] : 0.0;
+        axis[1] = i < c->n_axes ? c->amax[i] : 0.0;
+        axis[2] = i < c->n_axes ? c->jmax[i] : 0.0;
+        axis[3] = i < c->n_axes ? (double)c->n_stages[i] : 0.0;
+    }
+}
+
+static sms_status check_identity(const sms_multi_generator *g, const double *src)
+{
+    sms_status field_status[SMS_MULTI_IDENTITY_COUNT - SMS_STATE_IDENTITY_HEAD];
+    size_t i;
+    field_status[ID_AXES - SMS_STATE_IDENTITY_HEAD] = SMS_ERR_STATE_AXES;
+    field_status[ID_SYNC - SMS_STATE_IDENTITY_HEAD] = SMS_ERR_STATE_SYNC;
+    for (i = 0; i < SMS_MULTI_MAX_AXES; ++i) {
+        sms_status *axis = field_status + ID_AXIS - SMS_STATE_IDENTITY_HEAD + ID_AXIS_FIELDS * i;
+        axis[0] = SMS_ERR_STATE_VMAX;
+        axis[1] = SMS_ERR_STATE_AMAX;
+        axis[2] = SMS_ERR_STATE_JMAX;
+        axis[3] = SMS_ERR_STATE_STAGES;
+    }
+    return sms_state_identity_compare(g->identity, src,
+                                      SMS_MULTI_IDENTITY_COUNT - SMS_STATE_IDENTITY_HEAD,
+                                      field_status);
+}
+
 sms_status sms_multi_generator_init(sms_multi_generator *g,
                                     const sms_multi_generator_config *config, double Ts,
                                     sms_stage *stages, size_t n_stage_structs,
@@ -584,6 +624,7 @@ sms_status sms_multi_generator_init(sms_multi_generator *g,
         g->amax[i] = i < n ? (sms_real)config->amax[i] : 1;
         g->jmax[i] = i < n ? (sms_real)config->jmax[i] : 1;
     }
+    write_identity(config, Ts, g->identity);
     sms_multi_generator_reset(g, NULL);
     return SMS_OK;
 }
@@ -691,7 +732,8 @@ sms_status sms_multi_phase_duration(const sms_multi_generator_config *config,
     return SMS_OK;
 }
 
-/* ---- state vector: per axis target, goal, p, V, W; per move its 12 fields ---------------- */
+/* ---- state vector: the identity; per axis target, goal, p, V, W; per move its 12 fields;
+ * the stages' states ---- */
 
 #define AXIS_FIELDS 5u
 #define MOVE_FIELDS 12u
@@ -712,12 +754,16 @@ static size_t stages_state_count(const sms_multi_generator *g)
 
 size_t sms_multi_generator_state_count(const sms_multi_generator *g)
 {
-    return AXIS_FIELDS * g->n_axes + MOVE_FIELDS * move_count(g) + stages_state_count(g);
+    return SMS_MULTI_IDENTITY_COUNT + AXIS_FIELDS * g->n_axes + MOVE_FIELDS * move_count(g)
+           + stages_state_count(g);
 }
 
-void sms_multi_generator_save_state(const sms_multi_generator *g, double *dst)
+void sms_multi_generator_get_state(const sms_multi_generator *g, double *dst)
 {
     size_t i, n = g->n_axes;
+    for (i = 0; i < SMS_MULTI_IDENTITY_COUNT; ++i)
+        dst[i] = g->identity[i];
+    dst += SMS_MULTI_IDENTITY_COUNT;
     for (i = 0; i < n; ++i) {
         dst[i] = (double)g->target[i];
         dst[n + i] = (double)g->goal[i];
@@ -750,8 +796,10 @@ void sms_multi_generator_save_state(const sms_multi_generator *g, double *dst)
     }
 }
 
-/* Would every stage of every chain accept its part of src? Writes nothing. */
-static sms_status check_stages_state(const sms_multi_generator *g, const double *src)
+/* Would every stage of every chain accept its part of src (n doubles)? Writes nothing. A stage
+ * saved by another stage configuration gets the status naming the field (its stage identity),
+ * also when that made the vector longer or shorter. */
+static sms_status check_stages_state(const sms_multi_generator *g, const double *src, size_t n)
 {
     size_t i, m, k;
     for (i = 0; i < g->n_axes; ++i)
@@ -759,11 +807,16 @@ static sms_status check_stages_state(const sms_multi_generator *g, const double 
             for (k = 0; k < g->chain[i][m].n_stages; ++k) {
                 const sms_stage *st = &g->chain[i][m].stages[k];
                 size_t count = sms_stage_state_count(st);
-                if (sms_stage_check_state(st, src, count) != SMS_OK)
+                sms_status status;
+                if (n < SMS_STATE_IDENTITY_COUNT)
                     return SMS_ERR_STATE;
+                status = sms_stage_check_state(st, src, n < count ? n : count);
+                if (status != SMS_OK)
+                    return status <= SMS_ERR_STATE_FORMAT ? status : SMS_ERR_STATE;
                 src += count;
+                n -= count;
             }
-    return SMS_OK;
+    return n == 0 ? SMS_OK : SMS_ERR_STATE;
 }
 
 static int whole(double x)
@@ -771,15 +824,29 @@ static int whole(double x)
     return x >= 0.0 && x <= 9007199254740992.0 && x == (double)(size_t)x;
 }
 
-sms_status sms_multi_generator_load_state(sms_multi_generator *g, const double *src, size_t n)
+sms_status sms_multi_generator_check_state(const sms_multi_generator *g, const double *src,
+                                           size_t n)
 {
     size_t i, na;
     const double *mv;
+    sms_status st;
     if (g == NULL || src == NULL)
         return SMS_ERR_NULL;
-    if (n != sms_multi_generator_state_count(g))
-        return SMS_ERR_STATE;
+    /* another configuration first, whatever the length: its state often has another one */
+    if (n >= SMS_MULTI_IDENTITY_COUNT && (st = check_identity(g, src)) != SMS_OK)
+        return st;
     na = g->n_axes;
+    if (n != sms_multi_generator_state_count(g)) {
+        /* the same limits, another length: a stage of another configuration, named by the
+         * first stage identity that differs */
+        const size_t fixed = SMS_MULTI_IDENTITY_COUNT + AXIS_FIELDS * na
+                             + MOVE_FIELDS * move_count(g);
+        if (n > fixed && (st = check_stages_state(g, src + fixed, n - fixed)) <= SMS_ERR_STATE_FORMAT)
+            return st;
+        return SMS_ERR_STATE;
+    }
+    src += SMS_MULTI_IDENTITY_COUNT;
+    n -= SMS_MULTI_IDENTITY_COUNT;
     for (i = 0; i < n; ++i)
         if (!isfinite(src[i]))
             return SMS_ERR_STATE;
@@ -796,8 +863,20 @@ sms_status sms_multi_generator_load_state(sms_multi_generator *g, const double *
             (f[10] != 0.0 && f[10] != 1.0) || (f[11] != 0.0 && f[11] != 1.0))
             return SMS_ERR_STATE;
     }
-    if (check_stages_state(g, mv + MOVE_FIELDS * move_count(g)) != SMS_OK)
-        return SMS_ERR_STATE;
+    return check_stages_state(g, mv + MOVE_FIELDS * move_count(g),
+                              n - AXIS_FIELDS * na - MOVE_FIELDS * move_count(g));
+}
+
+sms_status sms_multi_generator_set_state(sms_multi_generator *g, const double *src, size_t n)
+{
+    size_t i, na;
+    const double *mv;
+    sms_status st = sms_multi_generator_check_state(g, src, n);
+    if (st != SMS_OK)
+        return st;
+    src += SMS_MULTI_IDENTITY_COUNT;
+    na = g->n_axes;
+    mv = src + AXIS_FIELDS * na;
     for (i = 0; i < na; ++i) {
         g->target[i] = (sms_real)src[i];
         g->goal[i] = (sms_real)src[na + i];

@@ -1,24 +1,45 @@
-/* The identity header of saved stage states (config.h): tag, format version, precision, kind,
- * Ts and the configuration fields the kind reads. */
+/* The identity header of saved states (config.h): tag, format version, precision, kind, Ts,
+ * then the configuration fields of the object (for a stage: those its kind reads). */
 #include "state_identity.h"
 #include "kind.h"
 
+/* A stage's fields after the common head. */
 enum {
-    ID_TAG, ID_VERSION, ID_PRECISION, ID_KIND, ID_TS, ID_TIMING, ID_T, ID_SIGMA, ID_K, ID_WN,
-    ID_ZETA, ID_ORDER, ID_TOLERANCE, ID_NOTCH_POLE_ZETA, ID_DURATION
+    ID_TIMING = SMS_STATE_IDENTITY_HEAD, ID_T, ID_SIGMA, ID_K, ID_WN, ID_ZETA, ID_ORDER,
+    ID_TOLERANCE, ID_NOTCH_POLE_ZETA, ID_DURATION
 };
+
+void sms_state_identity_head(double *id, double kind, double Ts)
+{
+    id[SMS_ID_TAG] = SMS_STATE_TAG;
+    id[SMS_ID_VERSION] = SMS_STATE_VERSION;
+    id[SMS_ID_PRECISION] = (double)sizeof(sms_real);
+    id[SMS_ID_KIND] = kind;
+    id[SMS_ID_TS] = Ts;
+}
+
+sms_status sms_state_identity_compare(const double *id, const double *saved, size_t n_fields,
+                                      const sms_status *field_status)
+{
+    static const sms_status head_status[SMS_STATE_IDENTITY_HEAD] = {
+        SMS_ERR_STATE_FORMAT, SMS_ERR_STATE_FORMAT, SMS_ERR_STATE_PRECISION, SMS_ERR_STATE_KIND,
+        SMS_ERR_STATE_TS
+    };
+    size_t i;
+    for (i = 0; i < SMS_STATE_IDENTITY_HEAD + n_fields; ++i)
+        if (!(saved[i] == id[i]))   /* NaN differs too */
+            return i < SMS_STATE_IDENTITY_HEAD ? head_status[i]
+                                               : field_status[i - SMS_STATE_IDENTITY_HEAD];
+    return SMS_OK;
+}
 
 void sms_state_identity(const sms_stage_config *c, double Ts, double id[SMS_STATE_IDENTITY_COUNT])
 {
     const sms_family fam = sms_family_of(c->kind);
     size_t i;
-    for (i = 0; i < SMS_STATE_IDENTITY_COUNT; ++i)
+    for (i = SMS_STATE_IDENTITY_HEAD; i < SMS_STATE_IDENTITY_COUNT; ++i)
         id[i] = 0.0;
-    id[ID_TAG] = SMS_STATE_TAG;
-    id[ID_VERSION] = SMS_STATE_VERSION;
-    id[ID_PRECISION] = (double)sizeof(sms_real);
-    id[ID_KIND] = (double)c->kind;
-    id[ID_TS] = Ts;
+    sms_state_identity_head(id, (double)c->kind, Ts);
     if (fam == SMS_FAMILY_SMOOTHER) {
         id[ID_TIMING] = (double)c->timing;
         id[ID_T] = c->T;
@@ -41,15 +62,11 @@ void sms_state_identity(const sms_stage_config *c, double Ts, double id[SMS_STAT
 
 sms_status sms_state_identity_check(const double id[SMS_STATE_IDENTITY_COUNT], const double *saved)
 {
-    static const sms_status field_status[SMS_STATE_IDENTITY_COUNT] = {
-        SMS_ERR_STATE_FORMAT, SMS_ERR_STATE_FORMAT, SMS_ERR_STATE_PRECISION, SMS_ERR_STATE_KIND,
-        SMS_ERR_STATE_TS, SMS_ERR_STATE_TIMING, SMS_ERR_STATE_T, SMS_ERR_STATE_SIGMA,
-        SMS_ERR_STATE_K, SMS_ERR_STATE_WN, SMS_ERR_STATE_ZETA, SMS_ERR_STATE_ORDER,
-        SMS_ERR_STATE_TOLERANCE, SMS_ERR_STATE_NOTCH_POLE_ZETA, SMS_ERR_STATE_DURATION
+    static const sms_status field_status[SMS_STATE_IDENTITY_COUNT - SMS_STATE_IDENTITY_HEAD] = {
+        SMS_ERR_STATE_TIMING, SMS_ERR_STATE_T, SMS_ERR_STATE_SIGMA, SMS_ERR_STATE_K,
+        SMS_ERR_STATE_WN, SMS_ERR_STATE_ZETA, SMS_ERR_STATE_ORDER, SMS_ERR_STATE_TOLERANCE,
+        SMS_ERR_STATE_NOTCH_POLE_ZETA, SMS_ERR_STATE_DURATION
     };
-    size_t i;
-    for (i = 0; i < SMS_STATE_IDENTITY_COUNT; ++i)
-        if (!(saved[i] == id[i]))   /* NaN differs too */
-            return field_status[i];
-    return SMS_OK;
+    return sms_state_identity_compare(id, saved, SMS_STATE_IDENTITY_COUNT - SMS_STATE_IDENTITY_HEAD,
+                                      field_status);
 }

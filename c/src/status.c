@@ -28,9 +28,9 @@ const char *sms_status_string(sms_status status)
     case SMS_ERR_BANDWIDTH: return "bandwidth must be finite, > 0 and narrower than the notch allows";
     case SMS_ERR_SHAPER_DURATION:
         return "duration must lie in (0, (order-1)/2) damped periods and give no negative impulse";
-    case SMS_ERR_STATE_FORMAT: return "saved state is not a stage state of this format version";
+    case SMS_ERR_STATE_FORMAT: return "saved state is not a state of this format version";
     case SMS_ERR_STATE_PRECISION: return "saved state is from the other precision (float/double)";
-    case SMS_ERR_STATE_KIND: return "saved state is from another kind of stage";
+    case SMS_ERR_STATE_KIND: return "saved state is from another kind of stage or object";
     case SMS_ERR_STATE_TS: return "saved state is from another sample period Ts";
     case SMS_ERR_STATE_TIMING: return "saved state is from another timing";
     case SMS_ERR_STATE_T: return "saved state is from another duration T";
@@ -42,6 +42,14 @@ const char *sms_status_string(sms_status status)
     case SMS_ERR_STATE_TOLERANCE: return "saved state is from another tolerance";
     case SMS_ERR_STATE_NOTCH_POLE_ZETA: return "saved state is from another notch_pole_zeta";
     case SMS_ERR_STATE_DURATION: return "saved state is from another duration";
+    case SMS_ERR_STATE_VMAX: return "saved state is from another vmax";
+    case SMS_ERR_STATE_AMAX: return "saved state is from another amax";
+    case SMS_ERR_STATE_JMAX: return "saved state is from another jmax";
+    case SMS_ERR_STATE_PROFILE: return "saved state is from another profile";
+    case SMS_ERR_STATE_DEGREE: return "saved state is from another degree";
+    case SMS_ERR_STATE_AXES: return "saved state is from another number of axes";
+    case SMS_ERR_STATE_SYNC: return "saved state is from another sync";
+    case SMS_ERR_STATE_STAGES: return "saved state is from another number of stages on an axis";
     }
     return "unknown status";
 }

@@ -346,9 +346,9 @@ static void test_state_and_bad_input(void)
     long k;
     int realisation;
     for (realisation = 0; realisation < 2; ++realisation) {
-        /* 0: no mode (6 values: k is index 5); 1: a mode (the quiet count is index 6, then
-         * the four stage states) */
-        size_t count_index = realisation == 0 ? 5u : 6u;
+        /* after the identity: 0: no mode (6 values: k is the last); 1: a mode (the quiet
+         * count follows k, then the four stage states) */
+        size_t count_index = SMS_GENERATOR_IDENTITY_COUNT + (realisation == 0 ? 5u : 6u);
         c.profile = realisation == 0 ? SMS_PROFILE_POLYNOMIAL : SMS_PROFILE_TRIGONOMETRIC;
         c.wn = realisation == 0 ? 0.0 : 90.0;
         if (!build(&g, &c, 1e-3))
@@ -357,8 +357,9 @@ static void test_state_and_bad_input(void)
             sms_generator_step(&g, 1, a);
         n_state = sms_generator_state_count(&g);
         CHECK(n_state <= sizeof state / sizeof state[0]);
-        CHECK(n_state == (realisation == 0 ? 6u
-                                           : 7u + 4u * sms_smoother_state_count(&g.stage[0])));
+        CHECK(n_state == SMS_GENERATOR_IDENTITY_COUNT
+                         + (realisation == 0 ? 6u
+                                             : 7u + 4u * sms_smoother_state_count(&g.stage[0])));
         sms_generator_get_state(&g, state);
         h = g;
         for (i = 0; realisation == 1 && i < 4u * g.stage_window; ++i)
@@ -376,7 +377,7 @@ static void test_state_and_bad_input(void)
         bad[count_index] = 1.5;
         CHECK_STATUS(sms_generator_set_state(&h, bad, n_state), SMS_ERR_STATE);
         bad[count_index] = state[count_index];
-        bad[4] = NAN;
+        bad[SMS_GENERATOR_IDENTITY_COUNT + 4] = NAN;
         CHECK_STATUS(sms_generator_check_state(&h, bad, n_state), SMS_ERR_STATE);
         CHECK_STATUS(sms_generator_set_state(&h, state, n_state - 1u), SMS_ERR_STATE);
     }
@@ -466,21 +467,22 @@ static void test_long_moves(void)
         sms_generator g;
         sms_generator_config c = make_config(v, a, j, trig ? SMS_PROFILE_TRIGONOMETRIC
                                                            : SMS_PROFILE_POLYNOMIAL, 0.0, 0.0);
-        double state[6], start_k;
+        double state[SMS_GENERATOR_IDENTITY_COUNT + 6], start_k;
         sms_real out[4], prev = 0;
         long k, arrive = -1;
         int probe;
         if (!build(&g, &c, Ts))
             continue;
         sms_generator_step(&g, (sms_real)h, out); /* the plan starts at sample 0 */
-        CHECK(sms_generator_state_count(&g) == 6u);
+        CHECK(sms_generator_state_count(&g) == SMS_GENERATOR_IDENTITY_COUNT + 6u);
         sms_generator_get_state(&g, state);
         for (probe = 0; probe < 3; ++probe) {
             /* probes: 1 s windows mid-cruise, a window 1 s before arrival, the arrival */
             start_k = probe == 0 ? floor(0.5 * n_samples[m % 2])
                                  : n_samples[m % 2] - (probe == 1 ? 20000.0 : 10000.0);
-            state[5] = start_k;
-            CHECK_STATUS(sms_generator_set_state(&g, state, 6), SMS_OK);
+            state[SMS_GENERATOR_IDENTITY_COUNT + 5] = start_k;
+            CHECK_STATUS(sms_generator_set_state(&g, state, SMS_GENERATOR_IDENTITY_COUNT + 6),
+                         SMS_OK);
             sms_generator_step(&g, (sms_real)h, out);
             prev = out[0];
             for (k = 1; k <= (probe == 2 ? 20000 : 10000); ++k) {
@@ -540,7 +542,7 @@ static void test_long_moves_through_the_stage(void)
         CHECK(n_state <= sizeof state / sizeof state[0]);
         sms_generator_get_state(&g, state);
         start_k = (long)floor(0.5 * n_samples[m]);
-        state[5] = (double)(start_k - (long)L - 5);
+        state[SMS_GENERATOR_IDENTITY_COUNT + 5] = (double)(start_k - (long)L - 5);
         CHECK_STATUS(sms_generator_set_state(&g, state, n_state), SMS_OK);
         for (k = 0; k < (long)L + 5; ++k)
             sms_generator_step(&g, (sms_real)h, out);

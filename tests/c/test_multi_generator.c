@@ -304,7 +304,7 @@ static void state_round_trip(void)
 {
     sms_multi_generator_config c = random_config(3, SMS_SYNC_PHASE);
     sms_multi_generator g, h;
-    double state[128], bad[128];
+    double state[128 + SMS_MULTI_IDENTITY_COUNT], bad[128 + SMS_MULTI_IDENTITY_COUNT];
     sms_real t[3] = {1, -2, 3}, a[12], b[12];
     size_t k, n;
     int sync, same = 1;
@@ -313,13 +313,13 @@ static void state_round_trip(void)
         CHECK_STATUS(sms_multi_generator_init(&g, &c, 1e-3, NULL, 0, NULL, 0, NULL), SMS_OK);
         CHECK_STATUS(sms_multi_generator_init(&h, &c, 1e-3, NULL, 0, NULL, 0, NULL), SMS_OK);
         n = sms_multi_generator_state_count(&g);
-        CHECK(n == 15 + (sync == 0 ? 12u : 36u));
+        CHECK(n == SMS_MULTI_IDENTITY_COUNT + 15 + (sync == 0 ? 12u : 36u));
         for (k = 0; k < 137; ++k)
             sms_multi_generator_step(&g, t, a);
         t[1] = 5; /* pending change */
         sms_multi_generator_step(&g, t, a);
-        sms_multi_generator_save_state(&g, state);
-        CHECK_STATUS(sms_multi_generator_load_state(&h, state, n), SMS_OK);
+        sms_multi_generator_get_state(&g, state);
+        CHECK_STATUS(sms_multi_generator_set_state(&h, state, n), SMS_OK);
         for (k = 0; k < 3000; ++k) {
             sms_multi_generator_step(&g, t, a);
             sms_multi_generator_step(&h, t, b);
@@ -328,11 +328,11 @@ static void state_round_trip(void)
         }
         memcpy(bad, state, n * sizeof(double));
         bad[n - 1] = 2.0; /* a flag that is not 0/1 */
-        CHECK_STATUS(sms_multi_generator_load_state(&h, bad, n), SMS_ERR_STATE);
+        CHECK_STATUS(sms_multi_generator_set_state(&h, bad, n), SMS_ERR_STATE);
         memcpy(bad, state, n * sizeof(double));
-        bad[0] = NAN;
-        CHECK_STATUS(sms_multi_generator_load_state(&h, bad, n), SMS_ERR_STATE);
-        CHECK_STATUS(sms_multi_generator_load_state(&h, state, n - 1), SMS_ERR_STATE);
+        bad[SMS_MULTI_IDENTITY_COUNT] = NAN;
+        CHECK_STATUS(sms_multi_generator_set_state(&h, bad, n), SMS_ERR_STATE);
+        CHECK_STATUS(sms_multi_generator_set_state(&h, state, n - 1), SMS_ERR_STATE);
         t[1] = -2;
     }
     CHECK(same);
@@ -429,14 +429,14 @@ static void stages_filter_every_signal(void)
     CHECK(line <= LINE_TOL);
     /* state round trip with stages: restored into a fresh generator, continues bit for bit */
     n = sms_multi_generator_state_count(&g);
-    CHECK(n > 15 + 12 && n <= 2048);
+    CHECK(n > SMS_MULTI_IDENTITY_COUNT + 15 + 12 && n <= 2048);
     t[2] = 0.3;
     for (k = 0; k < 40; ++k)
         sms_multi_generator_step(&g, t, a);
-    sms_multi_generator_save_state(&g, state);
+    sms_multi_generator_get_state(&g, state);
     CHECK_STATUS(sms_multi_generator_init(&h, &c, Ts, mem_h, n_structs, buf_h, n_cells, NULL),
                  SMS_OK);
-    CHECK_STATUS(sms_multi_generator_load_state(&h, state, n), SMS_OK);
+    CHECK_STATUS(sms_multi_generator_set_state(&h, state, n), SMS_OK);
     same = 1;
     for (k = 0; k < 800; ++k) {
         sms_multi_generator_step(&g, t, a);
@@ -445,10 +445,11 @@ static void stages_filter_every_signal(void)
             same = 0;
     }
     CHECK(same);
-    state[15 + 12 + 2] = -1.0; /* the head of axis 0's first shaper: not in its history */
-    sms_multi_generator_save_state(&h, state + 2048);
-    CHECK_STATUS(sms_multi_generator_load_state(&h, state, n), SMS_ERR_STATE);
-    sms_multi_generator_save_state(&h, state);
+    /* the head of axis 0's first shaper (after its stage identity, kind, L): not in its history */
+    state[SMS_MULTI_IDENTITY_COUNT + 15 + 12 + SMS_STATE_IDENTITY_COUNT + 2] = -1.0;
+    sms_multi_generator_get_state(&h, state + 2048);
+    CHECK_STATUS(sms_multi_generator_set_state(&h, state, n), SMS_ERR_STATE);
+    sms_multi_generator_get_state(&h, state);
     CHECK(memcmp(state, state + 2048, n * sizeof(double)) == 0); /* nothing written */
     /* a bad stage on axis 2: its status and axis, nothing built */
     bad_wn = zv;

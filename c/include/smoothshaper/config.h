@@ -26,10 +26,24 @@ extern "C" {
  * ::SMS_ERR_STATE_TIMING ... ::SMS_ERR_STATE_DURATION).
  */
 #define SMS_STATE_IDENTITY_COUNT 15
-/** @brief First double of a saved stage state ("SMS" read as a 24-bit integer). */
+/**
+ * @brief Doubles of the head every saved state starts with, whatever the object: ::SMS_STATE_TAG,
+ * ::SMS_STATE_VERSION, sizeof(::sms_real), kind, Ts. The kind is an ::sms_kind for a stage, or
+ * ::SMS_STATE_KIND_GENERATOR, ::SMS_STATE_KIND_BSPLINE, ::SMS_STATE_KIND_MULTI_GENERATOR; the
+ * object's own configuration fields follow (trajectory.h, multi_generator.h), so a state loaded
+ * into another kind of object is refused with ::SMS_ERR_STATE_KIND.
+ */
+#define SMS_STATE_IDENTITY_HEAD 5
+/** @brief First double of a saved state ("SMS" read as a 24-bit integer). */
 #define SMS_STATE_TAG 5459283.0
-/** @brief Format version of saved stage states. */
+/** @brief Format version of saved states. */
 #define SMS_STATE_VERSION 1.0
+/** @brief Kind field of a saved ::sms_generator state (beyond every ::sms_kind). */
+#define SMS_STATE_KIND_GENERATOR 100.0
+/** @brief Kind field of a saved ::sms_bspline state. */
+#define SMS_STATE_KIND_BSPLINE 101.0
+/** @brief Kind field of a saved ::sms_multi_generator state. */
+#define SMS_STATE_KIND_MULTI_GENERATOR 102.0
 
 /** @brief Most ZV^n order accepted (ZV^n has n+1 impulses). */
 #define SMS_SHAPER_MAX_ORDER 8

@@ -22,6 +22,20 @@ extern "C" {
 #define SMS_MULTI_MAX_AXES 8
 /** @brief Signals filtered per axis when the axis has vibration stages: q, v, a, j. */
 #define SMS_MULTI_SIGNALS 4
+/**
+ * @brief Doubles of configuration identity at the start of a saved state
+ * (sms_multi_generator_get_state()), in this order: the head of config.h (::SMS_STATE_TAG,
+ * ::SMS_STATE_VERSION, sizeof(::sms_real), ::SMS_STATE_KIND_MULTI_GENERATOR, Ts), n_axes,
+ * sync, then for each of the ::SMS_MULTI_MAX_AXES axis slots vmax, amax, jmax (as given to
+ * init) and n_stages (0 for the slots beyond n_axes). Loading compares them with the
+ * generator's own (exact equality) and refuses a state of another configuration, writing
+ * nothing, with the status naming the first field that differs (::SMS_ERR_STATE_FORMAT,
+ * ::SMS_ERR_STATE_PRECISION, ::SMS_ERR_STATE_KIND, ::SMS_ERR_STATE_TS, ::SMS_ERR_STATE_AXES,
+ * ::SMS_ERR_STATE_SYNC, ::SMS_ERR_STATE_VMAX, ::SMS_ERR_STATE_AMAX, ::SMS_ERR_STATE_JMAX,
+ * ::SMS_ERR_STATE_STAGES); a stage of another stage configuration is named by its own
+ * stage identity (config.h: ::SMS_ERR_STATE_KIND, ::SMS_ERR_STATE_WN, ...).
+ */
+#define SMS_MULTI_IDENTITY_COUNT (7 + 4 * SMS_MULTI_MAX_AXES)
 
 /** @brief How the axes are coordinated (values stable: FMU parameter). */
 typedef enum sms_sync {
@@ -140,6 +154,7 @@ typedef struct sms_multi_generator {
     sms_multi_move move[SMS_MULTI_MAX_AXES]; /**< phase: move[0]; independent: move[i] */
     /** vibration stages of axis i, signal m (n_stages 0: none), in caller memory */
     sms_chain chain[SMS_MULTI_MAX_AXES][SMS_MULTI_SIGNALS];
+    double identity[SMS_MULTI_IDENTITY_COUNT]; /**< configuration and Ts it was built for */
 } sms_multi_generator;
 
 /**
@@ -210,21 +225,27 @@ SMS_API int sms_multi_generator_busy(const sms_multi_generator *g);
 SMS_API sms_status sms_multi_phase_duration(const sms_multi_generator_config *config,
                                             const double *delta, double *T);
 
-/** @brief Number of doubles sms_multi_generator_save_state() writes:
- * 5 n_axes (target, goal, p, V, W) + 12 per move (n_axes moves, or 1 in phase mode) + the
- * stages' states (sms_chain_state_count() of each chain: axis by axis, q, v, a, j). */
+/** @brief Number of doubles sms_multi_generator_get_state() writes:
+ * ::SMS_MULTI_IDENTITY_COUNT (the configuration identity) + 5 n_axes (target, goal, p, V, W)
+ * + 12 per move (n_axes moves, or 1 in phase mode) + the stages' states (sms_chain_state_count()
+ * of each chain: axis by axis, q, v, a, j; every stage state with its own stage identity). */
 SMS_API size_t sms_multi_generator_state_count(const sms_multi_generator *g);
-/** @brief Write the dynamic state (not the limits) as sms_multi_generator_state_count() doubles. */
-SMS_API void sms_multi_generator_save_state(const sms_multi_generator *g, double *dst);
+/** @brief Write the state (sms_multi_generator_state_count() doubles, layout above) to dst. */
+SMS_API void sms_multi_generator_get_state(const sms_multi_generator *g, double *dst);
 /**
  * @brief Restore a saved state into a generator with the same configuration.
- * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_STATE (n differs, a value is non-finite, a
- * count is not a whole number, a flag is not 0/1, k > k_end, rho outside (0, 1/2], a duration
- * negative, a velocity beyond its axis's vmax, or a stage state that does not fit its
- * stage); nothing written on error.
+ * @return ::SMS_OK, ::SMS_ERR_NULL; ::SMS_ERR_STATE_FORMAT .. ::SMS_ERR_STATE_STAGES (see
+ * ::SMS_MULTI_IDENTITY_COUNT) if it was saved by another configuration (checked first, whatever
+ * n), or a stage's identity status for a stage of another configuration; ::SMS_ERR_STATE (n
+ * differs, a value is non-finite, a count is not a whole number, a flag is not 0/1,
+ * k > k_end, rho outside (0, 1/2], a duration negative, a velocity beyond its axis's vmax, or
+ * a stage state that does not fit its stage); nothing written on error.
  */
-SMS_API sms_status sms_multi_generator_load_state(sms_multi_generator *g, const double *src,
-                                                  size_t n);
+SMS_API sms_status sms_multi_generator_set_state(sms_multi_generator *g, const double *src,
+                                                 size_t n);
+/** @brief What sms_multi_generator_set_state() would return, writing nothing. */
+SMS_API sms_status sms_multi_generator_check_state(const sms_multi_generator *g,
+                                                   const double *src, size_t n);
 /** @brief After copying g, its stages and its memory elsewhere (same layout), point the
  * copy's chains at the copy's stages and memory. */
 SMS_API void sms_multi_generator_rebind(sms_multi_generator *g, sms_stage *stages,

@@ -164,6 +164,19 @@ typedef struct sms_generator_config {
 } sms_generator_config;
 
 /**
+ * @brief Doubles of configuration identity at the start of a saved generator state
+ * (sms_generator_get_state()), in this order: the head of config.h (::SMS_STATE_TAG,
+ * ::SMS_STATE_VERSION, sizeof(::sms_real), ::SMS_STATE_KIND_GENERATOR, Ts), then vmax, amax,
+ * jmax, profile, wn, zeta exactly as given to sms_generator_init(). Loading compares them with
+ * the generator's own (exact equality) and refuses a state of another configuration, writing
+ * nothing, with the status naming the first field that differs (::SMS_ERR_STATE_FORMAT,
+ * ::SMS_ERR_STATE_PRECISION, ::SMS_ERR_STATE_KIND, ::SMS_ERR_STATE_TS, ::SMS_ERR_STATE_VMAX,
+ * ::SMS_ERR_STATE_AMAX, ::SMS_ERR_STATE_JMAX, ::SMS_ERR_STATE_PROFILE, ::SMS_ERR_STATE_WN,
+ * ::SMS_ERR_STATE_ZETA).
+ */
+#define SMS_GENERATOR_IDENTITY_COUNT 11
+
+/**
  * @brief Online generator: a staircase of targets in, a bounded smooth trajectory out.
  *
  * **The plan.** Whenever the target differs from the goal of the running plan, the
@@ -238,6 +251,7 @@ typedef struct sms_generator {
     sms_real *buffer;     /**< caller buffer: 4 M reals (NULL without a mode) */
     int time_optimal;     /**< 1: the plan is time-optimal for the profile (every config) */
     sms_plan_limits limits; /**< vmax, amax, jmax in signal precision */
+    double identity[SMS_GENERATOR_IDENTITY_COUNT]; /**< config and Ts it was built for */
     /* dynamic state */
     sms_real target;      /**< latest valid target */
     int refused;          /**< 1 while the held target is dropped (its move cannot be represented);
@@ -329,14 +343,23 @@ SMS_API void sms_generator_process(sms_generator *g, const sms_real *targets, si
                                    sms_real *out);
 /** @brief Length of the tuned stage [s]: the output lags the plan by it (0 without a mode). */
 SMS_API double sms_generator_tail_duration(const sms_generator *g);
-/** @brief Number of doubles sms_generator_get_state() writes: 6 (target, goal, the start
- * q, v, a of the running plan and the samples since it; loading re-plans from these, so a
- * saved state can also move the generator to any sample of its plan), and with a mode 1
- * more (the quiet samples) plus the four stage states (sms_smoother_state_count() each). */
+/** @brief Number of doubles sms_generator_get_state() writes:
+ * ::SMS_GENERATOR_IDENTITY_COUNT + 6 without a mode (the configuration identity, then target,
+ * goal, the start q, v, a of the running plan and the samples since it; loading re-plans from
+ * these, so a saved state can also move the generator to any sample of its plan), and with a
+ * mode 1 more (the quiet samples) plus the four stage states (sms_smoother_state_count()
+ * each, every one with its own stage identity). */
 SMS_API size_t sms_generator_state_count(const sms_generator *g);
+/** @brief Write the state (sms_generator_state_count() doubles, layout above) to dst. */
 SMS_API void sms_generator_get_state(const sms_generator *g, double *dst);
-/** @brief Restore a saved state; ::SMS_ERR_STATE (nothing written) if n or a field is invalid. */
+/** @brief Restore a saved state.
+ * @return ::SMS_OK; ::SMS_ERR_NULL; ::SMS_ERR_STATE_FORMAT .. ::SMS_ERR_STATE_ZETA (see
+ *         ::SMS_GENERATOR_IDENTITY_COUNT) if it was saved by another configuration (checked
+ *         first, whatever n); ::SMS_ERR_STATE if n differs or a field is invalid (non-finite,
+ *         beyond the limits, a count out of range, a plan the generator cannot form). Nothing
+ *         is written on error. */
 SMS_API sms_status sms_generator_set_state(sms_generator *g, const double *src, size_t n);
+/** @brief What sms_generator_set_state() would return, writing nothing. */
 SMS_API sms_status sms_generator_check_state(const sms_generator *g, const double *src, size_t n);
 /** @brief Point a copied generator at a buffer holding the same stage rings. */
 SMS_API void sms_generator_rebind(sms_generator *g, sms_real *buffer);
@@ -347,6 +370,17 @@ SMS_API void sms_generator_rebind(sms_generator *g, sms_real *buffer);
 
 #define SMS_BSPLINE_MAX_DEGREE 7
 #define SMS_BSPLINE_MAX_AXES 3
+
+/**
+ * @brief Doubles of configuration identity at the start of a saved B-spline state
+ * (sms_bspline_get_state()): the head of config.h (::SMS_STATE_TAG, ::SMS_STATE_VERSION,
+ * sizeof(::sms_real), ::SMS_STATE_KIND_BSPLINE, Ts), then degree, n_axes and the knot
+ * spacing N Ts (T as realised: two T that round to the same N give the same filter). Loading
+ * refuses a state of another configuration, writing nothing, with the status naming the first
+ * field that differs (::SMS_ERR_STATE_FORMAT, ::SMS_ERR_STATE_PRECISION, ::SMS_ERR_STATE_KIND,
+ * ::SMS_ERR_STATE_TS, ::SMS_ERR_STATE_DEGREE, ::SMS_ERR_STATE_AXES, ::SMS_ERR_STATE_T).
+ */
+#define SMS_BSPLINE_IDENTITY_COUNT 8
 
 /**
  * @brief Uniform B-spline of degree p, knot spacing T = N Ts, on up to 3 axes (docs/filters.md).
@@ -378,6 +412,7 @@ typedef struct sms_bspline {
     double coeff[SMS_BSPLINE_MAX_DEGREE + 2];
     sms_smoother stages[SMS_BSPLINE_MAX_AXES * SMS_BSPLINE_MAX_DEGREE]; /**< rectangular, axis a:
                                                                          [a p, a p + p) */
+    double identity[SMS_BSPLINE_IDENTITY_COUNT]; /**< configuration it was built for */
 } sms_bspline;
 
 /** @brief Reals needed: n_axes p times one rectangular stage of N samples.
@@ -413,9 +448,20 @@ SMS_API size_t sms_bspline_pass_sample(const sms_bspline *b, size_t i);
  * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_ORDER (n = 0), ::SMS_ERR_WN, ::SMS_ERR_SAMPLE_PERIOD.
  */
 SMS_API sms_status sms_bspline_period_for_modes(const double *wn, size_t n, double Ts, double *T);
+/** @brief Doubles sms_bspline_get_state() writes: ::SMS_BSPLINE_IDENTITY_COUNT (the
+ * configuration identity) + n_axes p stage states (sms_smoother_state_count() each, axis by
+ * axis, stage by stage, every one with its own stage identity). */
 SMS_API size_t sms_bspline_state_count(const sms_bspline *b);
+/** @brief Write the state (sms_bspline_state_count() doubles, layout above) to dst. */
 SMS_API void sms_bspline_get_state(const sms_bspline *b, double *dst);
+/** @brief Restore a saved state.
+ * @return ::SMS_OK; ::SMS_ERR_NULL; ::SMS_ERR_STATE_FORMAT .. ::SMS_ERR_STATE_T (see
+ *         ::SMS_BSPLINE_IDENTITY_COUNT) if it was saved by another configuration (checked
+ *         first, whatever n); ::SMS_ERR_STATE if n differs or a stage state does not fit its
+ *         stage. Nothing is written on error. */
 SMS_API sms_status sms_bspline_set_state(sms_bspline *b, const double *src, size_t n);
+/** @brief What sms_bspline_set_state() would return, writing nothing. */
+SMS_API sms_status sms_bspline_check_state(const sms_bspline *b, const double *src, size_t n);
 
 #ifdef __cplusplus
 }

@@ -78,9 +78,9 @@ typedef enum sms_status {
                                          giving a negative impulse */
     /* A saved state of another configuration (config.h, SMS_STATE_IDENTITY_COUNT): the first
      * field of its identity that differs from the object's. */
-    SMS_ERR_STATE_FORMAT = -22,     /**< not a saved stage state, or another format version */
+    SMS_ERR_STATE_FORMAT = -22,     /**< not a saved state, or another format version */
     SMS_ERR_STATE_PRECISION = -23,  /**< saved by the other precision (float/double) */
-    SMS_ERR_STATE_KIND = -24,       /**< saved by another kind of stage */
+    SMS_ERR_STATE_KIND = -24,       /**< saved by another kind of stage or object */
     SMS_ERR_STATE_TS = -25,         /**< saved at another sample period Ts */
     SMS_ERR_STATE_TIMING = -26,     /**< saved with another timing */
     SMS_ERR_STATE_T = -27,          /**< saved with another duration T */
@@ -91,7 +91,16 @@ typedef enum sms_status {
     SMS_ERR_STATE_ORDER = -32,      /**< saved with another order */
     SMS_ERR_STATE_TOLERANCE = -33,  /**< saved with another tolerance */
     SMS_ERR_STATE_NOTCH_POLE_ZETA = -34, /**< saved with another notch_pole_zeta */
-    SMS_ERR_STATE_DURATION = -35    /**< saved with another (GMZV) duration */
+    SMS_ERR_STATE_DURATION = -35,   /**< saved with another (GMZV) duration */
+    SMS_ERR_STATE_VMAX = -36,       /**< saved with another vmax (generators) */
+    SMS_ERR_STATE_AMAX = -37,       /**< saved with another amax (generators) */
+    SMS_ERR_STATE_JMAX = -38,       /**< saved with another jmax (generators) */
+    SMS_ERR_STATE_PROFILE = -39,    /**< saved with another profile (generator) */
+    SMS_ERR_STATE_DEGREE = -40,     /**< saved with another degree (B-spline) */
+    SMS_ERR_STATE_AXES = -41,       /**< saved with another number of axes */
+    SMS_ERR_STATE_SYNC = -42,       /**< saved with another sync (multi-axis generator) */
+    SMS_ERR_STATE_STAGES = -43      /**< saved with another number of vibration stages on an
+                                         axis (multi-axis generator) */
 } sms_status;
 
 /** @brief Stage families. Values are stable (the FMU enumeration and saved states use them). */
@@ -151,6 +160,8 @@ SMS_API const char *sms_kind_name(sms_kind kind);
 #define sms_generator_load_state sms_generator_set_state
 #define sms_bspline_save_state sms_bspline_get_state
 #define sms_bspline_load_state sms_bspline_set_state
+#define sms_multi_generator_save_state sms_multi_generator_get_state
+#define sms_multi_generator_load_state sms_multi_generator_set_state
 
 #ifdef __cplusplus
 }

@@ -1,0 +1,305 @@
+/* Saved states of the generator, the B-spline and the multi-axis generator carry their
+ * configuration's identity (trajectory.h, multi_generator.h): a state of another configuration
+ * is refused, writing nothing, with the status naming the first field that differs; a state of
+ * the same configuration loads into another instance and continues bit for bit (a run split
+ * by save/load equals the one-shot run). */
+#include <math.h>
+#include <string.h>
+#include "check.h"
+#include "smoothshaper/multi_generator.h"
+
+#define REALS 8192
+#define STEPS 400
+#define SPLIT 150
+static sms_real buf_a[REALS], buf_b[REALS], buf_b_before[REALS];
+static double state[REALS], bad[REALS];
+static const double Ts = 1e-3;
+
+static sms_real target_at(size_t k)
+{
+    return (sms_real)(k < 60 ? 0.02 : k < 200 ? -0.015 : 0.01 * (double)(k % 3));
+}
+
+/* ------------------------------------------------------------------ generator */
+
+static int gen_build(sms_generator *g, const sms_generator_config *c, double ts, sms_real *buf)
+{
+    size_t need = 0;
+    CHECK_STATUS(sms_generator_buffer_size(c, ts, &need), SMS_OK);
+    if (need > REALS) {
+        CHECK(0);
+        return 0;
+    }
+    CHECK_STATUS(sms_generator_init(g, c, ts, buf, need), SMS_OK);
+    return 1;
+}
+
+/* Save a state of (a, Ts_a) mid-motion, load it into (b, Ts_b): expect `want`; on an error b
+ * (struct and rings) untouched; on OK the split run equals a's one-shot run bit for bit. */
+static void gen_across(const sms_generator_config *a, double Ts_a, const sms_generator_config *b,
+                       double Ts_b, sms_status want)
+{
+    sms_generator ga, gb, gb_before;
+    sms_real one_shot[STEPS][4], out[4];
+    size_t k, n;
+    if (!gen_build(&ga, a, Ts_a, buf_a) || !gen_build(&gb, b, Ts_b, buf_b))
+        return;
+    for (k = 0; k < STEPS; ++k)
+        sms_generator_step(&ga, target_at(k), one_shot[k]);
+    CHECK(gen_build(&ga, a, Ts_a, buf_a));
+    for (k = 0; k < SPLIT; ++k)
+        sms_generator_step(&ga, target_at(k), out);
+    n = sms_generator_state_count(&ga);
+    CHECK(n <= REALS && n > SMS_GENERATOR_IDENTITY_COUNT);
+    sms_generator_get_state(&ga, state);
+    sms_generator_reset(&gb, 3);
+    gb_before = gb;
+    memcpy(buf_b_before, buf_b, sizeof buf_b);
+    CHECK_STATUS(sms_generator_check_state(&gb, state, n), want);
+    CHECK_STATUS(sms_generator_set_state(&gb, state, n), want);
+    if (want != SMS_OK) {
+        CHECK(memcmp(&gb, &gb_before, sizeof gb) == 0);
+        CHECK(memcmp(buf_b, buf_b_before, sizeof buf_b) == 0);
+        return;
+    }
+    for (k = SPLIT; k < STEPS; ++k) {
+        sms_generator_step(&gb, target_at(k), out);
+        CHECK(memcmp(out, one_shot[k], sizeof out) == 0);
+    }
+}
+
+static void generator_fields(void)
+{
+    const sms_generator_config a = {1.0, 10.0, 100.0, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0};
+    const sms_generator_config m = {1.0, 10.0, 100.0, SMS_PROFILE_POLYNOMIAL, 60.0, 0.1};
+    sms_generator_config b;
+    gen_across(&a, Ts, &a, Ts, SMS_OK);
+    gen_across(&m, Ts, &m, Ts, SMS_OK);
+    b = a; b.vmax = 2.0; gen_across(&a, Ts, &b, Ts, SMS_ERR_STATE_VMAX);
+    b = a; b.amax = 11.0; gen_across(&a, Ts, &b, Ts, SMS_ERR_STATE_AMAX);
+    b = a; b.jmax = 100.0 * (1.0 + 2e-16); gen_across(&a, Ts, &b, Ts, SMS_ERR_STATE_JMAX);
+    b = a; b.profile = SMS_PROFILE_TRIGONOMETRIC; gen_across(&a, Ts, &b, Ts, SMS_ERR_STATE_PROFILE);
+    b = a; gen_across(&a, Ts, &b, 2e-3, SMS_ERR_STATE_TS);
+    /* with and without a mode: another length too, still named */
+    gen_across(&a, Ts, &m, Ts, SMS_ERR_STATE_WN);
+    gen_across(&m, Ts, &a, Ts, SMS_ERR_STATE_WN);
+    b = m; b.wn = 61.0; gen_across(&m, Ts, &b, Ts, SMS_ERR_STATE_WN);
+    b = m; b.zeta = 0.2; gen_across(&m, Ts, &b, Ts, SMS_ERR_STATE_ZETA);
+    b = m; b.profile = SMS_PROFILE_DAMPED; gen_across(&m, Ts, &b, Ts, SMS_ERR_STATE_PROFILE);
+    b = m; b.profile = SMS_PROFILE_TRIGONOMETRIC; gen_across(&m, Ts, &b, Ts, SMS_ERR_STATE_PROFILE);
+    /* zeta without a mode is part of the configuration as given */
+    b = a; b.zeta = 0.3; gen_across(&a, Ts, &b, Ts, SMS_ERR_STATE_ZETA);
+}
+
+/* Tag, version, precision and kind: a vector that is not a generator state of this build. */
+static void generator_format(void)
+{
+    const sms_generator_config a = {1.0, 10.0, 100.0, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0};
+    sms_generator g;
+    sms_stage_config sc = sms_stage_config_default(SMS_RECTANGULAR);
+    sms_stage s;
+    size_t n, cells, i;
+    static sms_memory_cell cell[1024];
+    if (!gen_build(&g, &a, Ts, NULL))
+        return;
+    n = sms_generator_state_count(&g);
+    sms_generator_get_state(&g, state);
+    CHECK(state[0] == SMS_STATE_TAG && state[1] == SMS_STATE_VERSION);
+    CHECK(state[2] == (double)sizeof(sms_real) && state[3] == SMS_STATE_KIND_GENERATOR);
+    CHECK(state[4] == Ts && state[5] == 1.0 && state[6] == 10.0 && state[7] == 100.0);
+    for (i = 0; i < 4; ++i) {
+        memcpy(bad, state, n * sizeof *state);
+        bad[i] = i == 2 ? (sizeof(sms_real) == sizeof(double) ? 4.0 : 8.0) : bad[i] + 1.0;
+        CHECK_STATUS(sms_generator_set_state(&g, bad, n),
+                     i < 2 ? SMS_ERR_STATE_FORMAT
+                           : i == 2 ? SMS_ERR_STATE_PRECISION : SMS_ERR_STATE_KIND);
+    }
+    memcpy(bad, state, n * sizeof *state);
+    bad[5] = NAN; /* NaN never equals */
+    CHECK_STATUS(sms_generator_set_state(&g, bad, n), SMS_ERR_STATE_VMAX);
+    /* a stage's state is not a generator's, and the other way round */
+    sc.T = 0.05;
+    CHECK_STATUS(sms_stage_memory_size(&sc, Ts, &cells), SMS_OK);
+    CHECK(cells <= 1024);
+    CHECK_STATUS(sms_stage_init(&s, &sc, Ts, cell, cells), SMS_OK);
+    sms_stage_get_state(&s, bad);
+    CHECK_STATUS(sms_generator_set_state(&g, bad, sms_stage_state_count(&s)), SMS_ERR_STATE_KIND);
+    CHECK_STATUS(sms_stage_set_state(&s, state, n), SMS_ERR_STATE_KIND);
+    CHECK_STATUS(sms_generator_set_state(&g, state, n - 1), SMS_ERR_STATE);
+    CHECK_STATUS(sms_generator_set_state(&g, state, 3), SMS_ERR_STATE);
+    CHECK_STATUS(sms_generator_set_state(&g, state, n), SMS_OK);
+    CHECK(strstr(sms_status_string(SMS_ERR_STATE_VMAX), "vmax") != NULL);
+    CHECK(strstr(sms_status_string(SMS_ERR_STATE_PROFILE), "profile") != NULL);
+}
+
+/* ------------------------------------------------------------------ B-spline */
+
+static void bspline_across(unsigned pa, size_t axa, double Ta, double Tsa, unsigned pb,
+                           size_t axb, double Tb, double Tsb, sms_status want)
+{
+    sms_bspline a, b, b_before;
+    size_t na, nb, n, k;
+    sms_real one_shot[STEPS][SMS_BSPLINE_MAX_AXES], x[SMS_BSPLINE_MAX_AXES], y[SMS_BSPLINE_MAX_AXES];
+    CHECK_STATUS(sms_bspline_buffer_size(pa, axa, Ta, Tsa, &na), SMS_OK);
+    CHECK_STATUS(sms_bspline_buffer_size(pb, axb, Tb, Tsb, &nb), SMS_OK);
+    if (na > REALS || nb > REALS) {
+        CHECK(0);
+        return;
+    }
+    CHECK_STATUS(sms_bspline_init(&a, pa, axa, Ta, Tsa, buf_a, na), SMS_OK);
+    CHECK_STATUS(sms_bspline_init(&b, pb, axb, Tb, Tsb, buf_b, nb), SMS_OK);
+    for (k = 0; k < STEPS; ++k) {
+        x[0] = target_at(k);
+        x[1] = x[2] = (sms_real)(k % 7);
+        sms_bspline_step(&a, x, one_shot[k]);
+    }
+    CHECK_STATUS(sms_bspline_init(&a, pa, axa, Ta, Tsa, buf_a, na), SMS_OK);
+    for (k = 0; k < SPLIT; ++k) {
+        x[0] = target_at(k);
+        x[1] = x[2] = (sms_real)(k % 7);
+        sms_bspline_step(&a, x, y);
+    }
+    n = sms_bspline_state_count(&a);
+    CHECK(n <= REALS && n > SMS_BSPLINE_IDENTITY_COUNT);
+    sms_bspline_get_state(&a, state);
+    b_before = b;
+    memcpy(buf_b_before, buf_b, sizeof buf_b);
+    CHECK_STATUS(sms_bspline_check_state(&b, state, n), want);
+    CHECK_STATUS(sms_bspline_set_state(&b, state, n), want);
+    if (want != SMS_OK) {
+        CHECK(memcmp(&b, &b_before, sizeof b) == 0);
+        CHECK(memcmp(buf_b, buf_b_before, sizeof buf_b) == 0);
+        return;
+    }
+    for (k = SPLIT; k < STEPS; ++k) {
+        x[0] = target_at(k);
+        x[1] = x[2] = (sms_real)(k % 7);
+        sms_bspline_step(&b, x, y);
+        CHECK(memcmp(y, one_shot[k], axa * sizeof y[0]) == 0);
+    }
+}
+
+static void bspline_fields(void)
+{
+    bspline_across(3, 2, 0.05, Ts, 3, 2, 0.05, Ts, SMS_OK);
+    /* T is the knot spacing as realised, N Ts: 0.0501 s rounds to the same 50 samples */
+    bspline_across(3, 2, 0.05, Ts, 3, 2, 0.0501, Ts, SMS_OK);
+    bspline_across(3, 2, 0.05, Ts, 3, 2, 0.06, Ts, SMS_ERR_STATE_T);
+    bspline_across(3, 2, 0.05, Ts, 2, 2, 0.05, Ts, SMS_ERR_STATE_DEGREE);
+    bspline_across(3, 2, 0.05, Ts, 3, 3, 0.05, Ts, SMS_ERR_STATE_AXES);
+    bspline_across(3, 2, 0.05, Ts, 3, 2, 0.05, 2.5e-3, SMS_ERR_STATE_TS);
+}
+
+/* ------------------------------------------------------------------ multi-axis generator */
+
+static sms_stage mg_structs_a[64], mg_structs_b[64], mg_structs_before[64];
+static sms_memory_cell mg_cells_a[REALS], mg_cells_b[REALS], mg_cells_before[REALS];
+
+static sms_multi_generator_config mg_config(size_t n_axes)
+{
+    sms_multi_generator_config c;
+    size_t i;
+    memset(&c, 0, sizeof c);
+    c.n_axes = n_axes;
+    c.sync = SMS_SYNC_PHASE;
+    for (i = 0; i < n_axes; ++i) {
+        c.vmax[i] = 1.0 + 0.25 * (double)i;
+        c.amax[i] = 10.0 - (double)i;
+        c.jmax[i] = 100.0 + 10.0 * (double)i;
+    }
+    return c;
+}
+
+static int mg_build(sms_multi_generator *g, const sms_multi_generator_config *c, double ts,
+                    sms_stage *structs, sms_memory_cell *cells)
+{
+    size_t ns = 0, nc = 0;
+    CHECK_STATUS(sms_multi_generator_memory(c, ts, &ns, &nc, NULL), SMS_OK);
+    if (ns > 64 || nc > REALS) {
+        CHECK(0);
+        return 0;
+    }
+    CHECK_STATUS(sms_multi_generator_init(g, c, ts, structs, ns, cells, nc, NULL), SMS_OK);
+    return 1;
+}
+
+static void mg_targets(size_t k, size_t n_axes, sms_real *t)
+{
+    size_t i;
+    for (i = 0; i < n_axes; ++i)
+        t[i] = (sms_real)((double)target_at(k) * (1.0 + (double)i));
+}
+
+static void multi_across(const sms_multi_generator_config *a, double Ts_a,
+                         const sms_multi_generator_config *b, double Ts_b, sms_status want)
+{
+    static sms_multi_generator ga, gb, gb_before;
+    static sms_real one_shot[STEPS][4 * SMS_MULTI_MAX_AXES];
+    sms_real t[SMS_MULTI_MAX_AXES], out[4 * SMS_MULTI_MAX_AXES];
+    size_t k, n;
+    if (!mg_build(&ga, a, Ts_a, mg_structs_a, mg_cells_a)
+        || !mg_build(&gb, b, Ts_b, mg_structs_b, mg_cells_b))
+        return;
+    for (k = 0; k < STEPS; ++k) {
+        mg_targets(k, a->n_axes, t);
+        sms_multi_generator_step(&ga, t, one_shot[k]);
+    }
+    CHECK(mg_build(&ga, a, Ts_a, mg_structs_a, mg_cells_a));
+    for (k = 0; k < SPLIT; ++k) {
+        mg_targets(k, a->n_axes, t);
+        sms_multi_generator_step(&ga, t, out);
+    }
+    n = sms_multi_generator_state_count(&ga);
+    CHECK(n <= REALS && n > SMS_MULTI_IDENTITY_COUNT);
+    sms_multi_generator_get_state(&ga, state);
+    gb_before = gb;
+    memcpy(mg_structs_before, mg_structs_b, sizeof mg_structs_b);
+    memcpy(mg_cells_before, mg_cells_b, sizeof mg_cells_b);
+    CHECK_STATUS(sms_multi_generator_check_state(&gb, state, n), want);
+    CHECK_STATUS(sms_multi_generator_set_state(&gb, state, n), want);
+    if (want != SMS_OK) {
+        CHECK(memcmp(&gb, &gb_before, sizeof gb) == 0);
+        CHECK(memcmp(mg_structs_b, mg_structs_before, sizeof mg_structs_b) == 0);
+        CHECK(memcmp(mg_cells_b, mg_cells_before, sizeof mg_cells_b) == 0);
+        return;
+    }
+    for (k = SPLIT; k < STEPS; ++k) {
+        mg_targets(k, a->n_axes, t);
+        sms_multi_generator_step(&gb, t, out);
+        CHECK(memcmp(out, one_shot[k], 4 * a->n_axes * sizeof out[0]) == 0);
+    }
+}
+
+static void multi_fields(void)
+{
+    sms_multi_generator_config a = mg_config(2), b;
+    sms_stage_config zv = sms_stage_config_default(SMS_SHAPER_ZV), zv2;
+    multi_across(&a, Ts, &a, Ts, SMS_OK);
+    b = mg_config(3); multi_across(&a, Ts, &b, Ts, SMS_ERR_STATE_AXES);
+    b = a; b.sync = SMS_SYNC_INDEPENDENT; multi_across(&a, Ts, &b, Ts, SMS_ERR_STATE_SYNC);
+    b = a; b.vmax[1] = 2.0; multi_across(&a, Ts, &b, Ts, SMS_ERR_STATE_VMAX);
+    b = a; b.amax[0] = 9.5; multi_across(&a, Ts, &b, Ts, SMS_ERR_STATE_AMAX);
+    b = a; b.jmax[1] = 111.0; multi_across(&a, Ts, &b, Ts, SMS_ERR_STATE_JMAX);
+    b = a; multi_across(&a, Ts, &b, 2e-3, SMS_ERR_STATE_TS);
+    /* stages: their number per axis, then a stage's own field */
+    zv.wn = 60.0;
+    zv2 = zv;
+    zv2.wn = 61.0;
+    a.stages[1] = &zv;
+    a.n_stages[1] = 1;
+    multi_across(&a, Ts, &a, Ts, SMS_OK);
+    b = a; b.n_stages[1] = 0; b.stages[1] = NULL;
+    multi_across(&a, Ts, &b, Ts, SMS_ERR_STATE_STAGES);
+    b = a; b.stages[1] = &zv2; multi_across(&a, Ts, &b, Ts, SMS_ERR_STATE_WN);
+    a.sync = SMS_SYNC_INDEPENDENT;
+    multi_across(&a, Ts, &a, Ts, SMS_OK);
+}
+
+int main(void)
+{
+    generator_fields();
+    generator_format();
+    bspline_fields();
+    multi_fields();
+    return check_summary("test_trajectory_state");
+}
