@@ -43,7 +43,7 @@ _STATUS_PARAMETER = {
     -14: "tolerance", -15: "T", -16: "wn", -17: "limits", -18: "x", -19: "state",
     -20: "bandwidth", -21: "duration",
     # a saved C state of another configuration: the status names the field, the argument is the state
-    **{code: "state" for code in range(-35, -21)},
+    **{code: "state" for code in range(-43, -21)},
 }
 #: Saved Chain states start with this tag and format version, then the configuration they
 #: belong to (see :meth:`Chain.get_state`).

@@ -17,6 +17,7 @@ import warnings
 
 import numpy as np
 
+from . import _state_identity
 from . import design as _design
 from .filters import ParameterError, _backend, _raise_status, _real_dtype, check_memory
 from ._checks import (finite as _finite, finite_signal as _targets, integer as _integer,
@@ -28,6 +29,8 @@ __all__ = ["Generator", "DroppedTargetWarning", "generator_reference", "tuned_st
 
 BSPLINE_MAX_DEGREE = 7
 BSPLINE_MAX_AXES = 3
+# The fields of a saved state's identity after the common head (trajectory.h).
+_GENERATOR_IDENTITY_FIELDS = ("vmax", "amax", "jmax", "profile", "wn", "zeta")
 
 
 class DroppedTargetWarning(RuntimeWarning):
@@ -274,40 +277,108 @@ class Generator:
             stacklevel=3)
 
     def get_state(self) -> np.ndarray:
-        """The dynamic state as a float64 array (a copy); :meth:`set_state` on this or an
-        identically configured generator continues bit-exactly.
+        """The dynamic state, tagged with the configuration it belongs to (a copy);
+        :meth:`set_state` on this or an identically configured generator continues bit-exactly.
 
         Returns
         -------
-        ndarray of float64
-            The state (``sms_generator_get_state``).
+        ndarray of float64, shape (n,)
+            ``sms_generator_get_state``: first the configuration identity
+            (``SMS_GENERATOR_IDENTITY_COUNT`` = 11 values: state tag, format version,
+            ``sizeof(sms_real)`` (8 double, 4 float), kind (100, a generator), ``Ts``, ``vmax``,
+            ``amax``, ``jmax``, profile index in :data:`~smoothshaper.design.PROFILES`, ``wn``
+            (0 without a mode), ``zeta``); then target, goal, the running plan's start q, v, a
+            and the samples since it (n = 17 without a mode); with a mode also the samples the
+            plan has rested and the four states of the tuned stage (each with its own stage
+            identity).
         """
         out = np.empty(self._lib.sms_generator_state_count(self._gen), dtype=np.float64)
         self._lib.sms_generator_get_state(self._gen, self._ffi.from_buffer("double[]", out))
         return out
+
+    def _identity(self) -> list[float]:
+        return list(self._gen.identity)
 
     def set_state(self, state) -> None:
         """Restore a state saved by :meth:`get_state`.
 
         Parameters
         ----------
-        state : array_like of float
-            A state of this generator or of an identically configured one. The generator's
-            state does not yet record its configuration (a chain's does): a valid state of a
-            generator with other limits is accepted and continues under this one's limits.
+        state : array_like of float, shape (n,)
+            A state of this generator or of an identically configured one: same ``vmax``,
+            ``amax``, ``jmax``, ``profile``, ``wn``, ``zeta``, ``Ts`` and ``precision`` (compared
+            exactly). ``q0`` is not part of it: it is only where :meth:`reset` returns to.
 
         Raises
         ------
         ParameterError
-            Naming ``state`` if it has the wrong size, non-finite fields or counts out of
-            range; then nothing is changed.
+            Naming ``state`` if it comes from another configuration (the message says which
+            field differs, e.g. ``"state is from vmax=2.0 (this Generator: vmax=1.0)"``), has
+            the wrong size, non-finite fields, counts out of range, or a motion beyond this
+            generator's limits; then nothing is changed.
         """
         s = np.ascontiguousarray(_real_array("state", state, ndim=1), dtype=np.float64)
         st = self._lib.sms_generator_set_state(self._gen, self._ffi.from_buffer("double[]", s),
                                                s.size)
+        if st == 0:
+            return
+        why = _state_identity.mismatch(s, self._identity(), _GENERATOR_IDENTITY_FIELDS,
+                                       "Generator", {"profile": _design.PROFILES})
+        if why is not None:
+            raise ParameterError("state", why, st)
+        raise ParameterError("state", "state does not match this generator (wrong length, "
+                             "non-finite, counts out of range, or a motion beyond its limits)",
+                             st)
+
+    def start_from(self, q: float, v: float = 0.0, a: float = 0.0, *,
+                   target: float | None = None) -> None:
+        """Continue from the motion state (q, v, a): the next sample plans afresh from there.
+
+        A state set through :meth:`set_state` (its plan fields), so the generator continues
+        exactly as if its own plan had brought it to (q, v, a) at the previous sample: the
+        next :meth:`process` re-plans from there to its first target (the time-optimal motion
+        of the profile). A tuned stage (``wn``) keeps its history: it filters the new plan
+        from the next sample on, as it would after a re-plan.
+
+        Parameters
+        ----------
+        q : float
+            Position [units], finite.
+        v : float
+            Velocity [units/s], ``|v| <= vmax``.
+        a : float
+            Acceleration [units/s^2], ``|a| <= amax``, and able to reach zero without passing
+            ``vmax``: ``|v + a|a| / (2 jmax_mean)| <= vmax`` (``jmax_mean`` = ``jmax``, or
+            ``(2/pi) jmax`` for the trigonometric profile's half-cosine transitions).
+        target : float or None
+            The goal the motion heads for until the next target arrives (default: q).
+
+        Raises
+        ------
+        ParameterError
+            Naming ``q``, ``v``, ``a`` or ``target`` when one is not finite or the state is
+            one no plan of this generator can start from; then nothing is changed.
+        """
+        q = _finite("q", q)
+        v = _finite("v", v)
+        a = _finite("a", a)
+        target = q if target is None else _finite("target", target)
+        if abs(v) > self.vmax:
+            raise ParameterError("v", f"v={v!r} exceeds vmax={self.vmax!r}")
+        if abs(a) > self.amax:
+            raise ParameterError("a", f"a={a!r} exceeds amax={self.amax!r}")
+        s = self.get_state()
+        plan = int(self._lib.SMS_GENERATOR_IDENTITY_COUNT)
+        s[plan:plan + 6] = (target, target, q, v, a, 0.0)
+        if self.tail_samples:
+            s[plan + 6] = 0.0       # the plan has not rested on its goal yet
+        st = self._lib.sms_generator_set_state(self._gen, self._ffi.from_buffer("double[]", s),
+                                               s.size)
         if st != 0:
-            raise ParameterError("state", "state does not match this generator (wrong length, "
-                                 "non-finite, or counts out of range)", st)
+            raise ParameterError(
+                "a", f"(q, v, a) = ({q!r}, {v!r}, {a!r}) towards target={target!r} is not a "
+                "state a plan of this generator can start from: bringing a to zero would pass "
+                f"vmax={self.vmax!r}, or a value of the plan cannot be represented", st)
 
     # Old names (deprecated): one name per concept, as Chain.get_state / set_state.
     save_state = get_state

@@ -36,7 +36,7 @@ def test_ruckig_is_relaxed_where_its_duration_jumps():
     # the generator started in that state arrives on the first sample at or after it
     Ts = 1e-3
     g = Generator(vmax=V, amax=A, jmax=J, Ts=Ts)
-    g.set_state([goal, goal, q, v, a, 0.0])
+    g.start_from(q, v, a, target=goal)
     y = g.process(np.full(int(ours / Ts) + 5, goal))   # y[i] is (i + 1) Ts after that state
     rest = np.flatnonzero((y[:, 0] == goal) & (y[:, 1] == 0) & (y[:, 2] == 0))
     assert rest[0] + 1 == int(np.ceil(ours / Ts - 1e-9))

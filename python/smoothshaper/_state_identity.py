@@ -1,0 +1,82 @@
+"""Messages for saved C states of another configuration.
+
+Every saved state of the C core starts with its configuration identity (``config.h``,
+``trajectory.h``, ``multi_generator.h``): the state tag, the format version, the precision
+(``sizeof(sms_real)``), the kind of object, ``Ts``, then the object's own fields. The C core
+refuses a state whose identity differs from the object's with a status naming the field;
+:func:`mismatch` turns the two identities into the message the Python wrappers raise, e.g.
+``"state is from vmax=2.0 (this Generator: vmax=1.0)"``.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+#: The common head of every identity, in order.
+HEAD_FIELDS = ("tag", "version", "precision", "kind", "Ts")
+#: Kind field of the objects that are not stages (``SMS_STATE_KIND_...``).
+OBJECT_KINDS = {100.0: "Generator", 101.0: "BSpline", 102.0: "MultiAxisGenerator"}
+_PRECISIONS = {8.0: "double", 4.0: "float"}
+
+
+def _show(field: str, value: float, choices: dict[str, tuple[str, ...]]):
+    """A field's value for the message: names for enumerations, ints for counts."""
+    base = field.split("[")[0]
+    if field == "precision":
+        return repr(_PRECISIONS.get(value, value))
+    if field == "kind":
+        if value in OBJECT_KINDS:
+            return f"a {OBJECT_KINDS[value]}"
+        from .stages import KINDS
+        return (f"a stage of kind {KINDS[int(value)]!r}"
+                if value == int(value) and 0 <= value < len(KINDS) else repr(float(value)))
+    if base in choices:
+        names = choices[base]
+        return (repr(names[int(value)]) if value == int(value) and 0 <= value < len(names)
+                else repr(float(value)))
+    if base in ("degree", "axes", "n_stages") and value == int(value):
+        return str(int(value))
+    return repr(float(value))
+
+
+def mismatch(saved: np.ndarray, mine, fields: tuple[str, ...], owner: str,
+             choices: dict[str, tuple[str, ...]] | None = None) -> str | None:
+    """Why ``saved`` is not a state of the object whose identity is ``mine``, or None.
+
+    Parameters
+    ----------
+    saved : ndarray of float64, shape (n,)
+        The state offered to ``set_state``.
+    mine : sequence of float
+        The object's identity (``HEAD_FIELDS`` then ``fields``).
+    fields : tuple of str
+        Names of the object's own identity fields, after the head.
+    owner : str
+        The class name for the message (``"Generator"``).
+    choices : dict, optional
+        For enumerated fields, the names of their values (``{"profile": PROFILES}``).
+
+    Returns
+    -------
+    str or None
+        ``"state is from vmax=2.0 (this Generator: vmax=1.0)"`` for the first field that
+        differs (the order the C core checks them in), None when the identity matches.
+    """
+    mine = np.asarray(mine, dtype=np.float64)
+    names = HEAD_FIELDS + tuple(fields)
+    choices = choices or {}
+    if saved.size < 2 or saved[0] != mine[0]:
+        return (f"state is not a saved {owner} state: it does not start with the state tag "
+                f"{float(mine[0])!r} (was it saved by {owner}.get_state?)")
+    if saved[1] != mine[1]:
+        return (f"state has format version {float(saved[1])!r}, this library reads version "
+                f"{float(mine[1])!r}")
+    for i in range(2, mine.size):
+        if i >= saved.size:
+            return f"state is truncated inside its configuration identity ({saved.size} values)"
+        if not saved[i] == mine[i]:
+            name = names[i]
+            theirs, ours = _show(name, saved[i], choices), _show(name, mine[i], choices)
+            if name == "kind":
+                return f"state is from {theirs} (this is a {owner})"
+            return f"state is from {name}={theirs} (this {owner}: {name}={ours})"
+    return None
