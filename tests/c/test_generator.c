@@ -684,7 +684,7 @@ static void check_plans(const sms_generator_config *c, double Ts)
     sms_generator g;
     sms_generator_reach_info r;
     sms_real out[4];
-    double st[6];
+    double st[SMS_GENERATOR_IDENTITY_COUNT + 6], *plan = st + SMS_GENERATOR_IDENTITY_COUNT;
     CHECK_STATUS(sms_generator_reach(c, Ts, &r), SMS_OK);
     CHECK_STATUS(sms_generator_init(&g, c, Ts, NULL, 0), SMS_OK);
     sms_generator_step(&g, (sms_real)r.distance, out);
@@ -697,12 +697,15 @@ static void check_plans(const sms_generator_config *c, double Ts)
                                                                                        : 1e-22)),
                        out);
     CHECK(g.refused == 0);
-    /* cruising at +vmax towards 2 h, the target jumps to -2 h */
-    st[0] = st[1] = 2.0 * (double)(sms_real)r.distance;
-    st[2] = 0.0;
-    st[3] = (double)g.limits.vmax;
-    st[4] = st[5] = 0.0;
-    CHECK_STATUS(sms_generator_set_state(&g, st, 6), SMS_OK);
+    /* cruising at +vmax towards 2 h, the target jumps to -2 h (a state of this generator: its
+     * identity, then the plan fields) */
+    CHECK(sms_generator_state_count(&g) == SMS_GENERATOR_IDENTITY_COUNT + 6);
+    sms_generator_get_state(&g, st);
+    plan[0] = plan[1] = 2.0 * (double)(sms_real)r.distance;
+    plan[2] = 0.0;
+    plan[3] = (double)g.limits.vmax;
+    plan[4] = plan[5] = 0.0;
+    CHECK_STATUS(sms_generator_set_state(&g, st, SMS_GENERATOR_IDENTITY_COUNT + 6), SMS_OK);
     sms_generator_step(&g, (sms_real)(-2.0 * r.distance), out);
     CHECK(g.refused == 0);
 }
