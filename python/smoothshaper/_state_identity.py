@@ -80,3 +80,34 @@ def mismatch(saved: np.ndarray, mine, fields: tuple[str, ...], owner: str,
                 return f"state is from {theirs} (this is a {owner})"
             return f"state is from {name}={theirs} (this {owner}: {name}={ours})"
     return None
+
+
+def restore(owner: str, ffi, lib, setter: str, c_obj, state, fields: tuple[str, ...],
+            choices: dict[str, tuple[str, ...]] | None = None) -> None:
+    """``set_state`` of a C-backed object: load ``state`` through ``lib.<setter>(c_obj, ptr, n)``.
+
+    The object's identity is read from ``c_obj.identity`` (its C struct field).
+
+    Raises
+    ------
+    ParameterError
+        Naming ``state``: the field that differs for a state of another configuration (see
+        :func:`mismatch`), else why the C core refused it; the object is then untouched.
+    """
+    from ._checks import real_array
+    from .errors import ParameterError
+    s = np.ascontiguousarray(real_array("state", state, ndim=1), dtype=np.float64)
+    st = getattr(lib, setter)(c_obj, ffi.from_buffer("double[]", s), s.size)
+    if st == 0:
+        return
+    why = mismatch(s, list(c_obj.identity), fields, owner, choices)
+    if why is not None:
+        raise ParameterError("state", why, st)
+    if lib.SMS_ERR_STATE_STAGES <= st <= lib.SMS_ERR_STATE_FORMAT:
+        # the object's own identity matches: a vibration stage saved by another configuration
+        text = ffi.string(lib.sms_status_string(st)).decode()
+        raise ParameterError("state", f"state does not match this {owner}: a vibration stage "
+                             f"differs ({text})", st)
+    raise ParameterError("state", f"state does not match this {owner} (wrong length, "
+                         "non-finite values, counts out of range, or a motion beyond its limits)",
+                         st)

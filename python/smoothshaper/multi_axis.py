@@ -17,6 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import _state_identity
 from .filters import ParameterError, _backend, _fill_config, _real_dtype
 from .reference import multi_axis as _ref
 from ._checks import real_array as _real_array
@@ -24,6 +25,9 @@ from ._checks import real_array as _real_array
 __all__ = ["SYNC_MODES", "MultiAxisGenerator", "MultiAxisMove", "phase_duration", "multi_axis_move"]
 
 SYNC_MODES = ("phase", "independent")
+# The fields of a saved state's identity after the common head (multi_generator.h).
+_MULTI_IDENTITY_FIELDS = ("axes", "sync") + tuple(
+    f"{name}[{i}]" for i in range(8) for name in ("vmax", "amax", "jmax", "n_stages"))
 
 
 def _limit_vector(name: str, values, axes: int | None) -> np.ndarray:
@@ -220,6 +224,47 @@ class MultiAxisGenerator:
         self._lib.sms_multi_generator_process(self._gen, self._ffi.from_buffer("sms_real[]", xin),
                                               x.shape[0], self._ffi.from_buffer("sms_real[]", out))
         return out.astype(np.float64)
+
+    def get_state(self) -> np.ndarray:
+        """The dynamic state, tagged with the configuration it belongs to (a copy);
+        :meth:`set_state` on this or an identically configured generator continues bit-exactly.
+
+        Returns
+        -------
+        ndarray of float64, shape (n,)
+            ``sms_multi_generator_get_state``: first the configuration identity
+            (``SMS_MULTI_IDENTITY_COUNT`` = 39 values: state tag, format version,
+            ``sizeof(sms_real)``, kind (102), ``Ts``, the number of axes, the sync index in
+            :data:`SYNC_MODES`, then for each of the 8 axis slots ``vmax``, ``amax``, ``jmax``
+            and the number of vibration stages, 0 beyond ``axes``); then per axis target,
+            goal, start position, start and cruise velocity, the running moves and the
+            vibration stages' states.
+        """
+        out = np.empty(self._lib.sms_multi_generator_state_count(self._gen), dtype=np.float64)
+        self._lib.sms_multi_generator_get_state(self._gen, self._ffi.from_buffer("double[]", out))
+        return out
+
+    def set_state(self, state) -> None:
+        """Restore a state saved by :meth:`get_state`.
+
+        Parameters
+        ----------
+        state : array_like of float, shape (n,)
+            A state of this generator or of an identically configured one: same axes,
+            ``vmax``, ``amax``, ``jmax``, ``sync``, vibration stages, ``Ts`` and ``precision``
+            (compared exactly; ``q0`` is only where :meth:`reset` returns to).
+
+        Raises
+        ------
+        ParameterError
+            Naming ``state`` if it comes from another configuration (the message says which
+            field differs, e.g. ``"state is from vmax[1]=2.0 (this MultiAxisGenerator:
+            vmax[1]=1.0)"``, or which field of a vibration stage), has the wrong size,
+            non-finite values or counts out of range; then nothing is changed.
+        """
+        _state_identity.restore("MultiAxisGenerator", self._ffi, self._lib,
+                                "sms_multi_generator_set_state", self._gen, state,
+                                _MULTI_IDENTITY_FIELDS, {"sync": SYNC_MODES})
 
     @property
     def busy(self) -> bool:

@@ -296,9 +296,6 @@ class Generator:
         self._lib.sms_generator_get_state(self._gen, self._ffi.from_buffer("double[]", out))
         return out
 
-    def _identity(self) -> list[float]:
-        return list(self._gen.identity)
-
     def set_state(self, state) -> None:
         """Restore a state saved by :meth:`get_state`.
 
@@ -317,18 +314,9 @@ class Generator:
             the wrong size, non-finite fields, counts out of range, or a motion beyond this
             generator's limits; then nothing is changed.
         """
-        s = np.ascontiguousarray(_real_array("state", state, ndim=1), dtype=np.float64)
-        st = self._lib.sms_generator_set_state(self._gen, self._ffi.from_buffer("double[]", s),
-                                               s.size)
-        if st == 0:
-            return
-        why = _state_identity.mismatch(s, self._identity(), _GENERATOR_IDENTITY_FIELDS,
-                                       "Generator", {"profile": _design.PROFILES})
-        if why is not None:
-            raise ParameterError("state", why, st)
-        raise ParameterError("state", "state does not match this generator (wrong length, "
-                             "non-finite, counts out of range, or a motion beyond its limits)",
-                             st)
+        _state_identity.restore("Generator", self._ffi, self._lib, "sms_generator_set_state",
+                                self._gen, state, _GENERATOR_IDENTITY_FIELDS,
+                                {"profile": _design.PROFILES})
 
     def start_from(self, q: float, v: float = 0.0, a: float = 0.0, *,
                    target: float | None = None) -> None:

@@ -163,3 +163,65 @@ def test_start_from_refuses_a_state_no_plan_starts_from():
             g.start_from(**kwargs)
         assert err.value.parameter == name
         assert np.array_equal(g.get_state(), before)
+
+
+# -- MultiAxisGenerator ----------------------------------------------------------------------
+
+def _multi(**change):
+    from smoothshaper.multi_axis import MultiAxisGenerator
+    return MultiAxisGenerator(**dict(dict(vmax=[1.0, 2.0], amax=10.0, jmax=100.0, Ts=1e-3),
+                                     **change))
+
+
+def _zv(wn):
+    from smoothshaper import stages
+    return stages.shaper("zv", wn=wn, zeta=0.0)
+
+
+def _multi_targets(n=600):
+    t = _targets(n)
+    return np.stack([t, -2.0 * t], axis=1)
+
+
+@pytest.mark.parametrize("change", [{}, dict(sync="independent"), dict(stages=[_zv(60.0)]),
+                                    dict(stages=[[_zv(60.0)], []], precision="float")])
+def test_multi_axis_continues_bit_for_bit(change, split=230):
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")           # different stages per axis warn
+        x = _multi_targets()
+        one_shot = _multi(**change).process(x)
+        first = _multi(**change)
+        first.process(x[:split])
+        second = _multi(**change, q0=[0.5, -1.0])
+        second.set_state(first.get_state())
+        assert np.array_equal(second.process(x[split:]), one_shot[split:])
+
+
+@pytest.mark.parametrize("base, change, expected", [
+    ({}, dict(vmax=[1.0, 3.0]), "state is from vmax[1]=2.0 (this MultiAxisGenerator: vmax[1]=3.0)"),
+    ({}, dict(amax=[10.0, 9.0]), "state is from amax[1]=10.0 (this MultiAxisGenerator: amax[1]=9.0)"),
+    ({}, dict(jmax=[101.0, 100.0]), "state is from jmax[0]=100.0 (this MultiAxisGenerator: jmax[0]=101.0)"),
+    ({}, dict(sync="independent"),
+     "state is from sync='phase' (this MultiAxisGenerator: sync='independent')"),
+    ({}, dict(vmax=[1.0, 2.0, 3.0]), "state is from axes=2 (this MultiAxisGenerator: axes=3)"),
+    ({}, dict(Ts=2e-3), "state is from Ts=0.001 (this MultiAxisGenerator: Ts=0.002)"),
+    ({}, dict(precision="float"),
+     "state is from precision='double' (this MultiAxisGenerator: precision='float')"),
+    ({}, dict(stages=[_zv(60.0)]),
+     "state is from n_stages[0]=0 (this MultiAxisGenerator: n_stages[0]=1)"),
+    (dict(stages=[_zv(60.0)]), dict(stages=[_zv(61.0)]),
+     "state does not match this MultiAxisGenerator: a vibration stage differs (saved state is "
+     "from another wn)"),
+])
+def test_multi_axis_refuses_another_configuration(base, change, expected):
+    source = _multi(**base)
+    source.process(_multi_targets(150))
+    target = _multi(**change)
+    before = target.get_state()
+    with pytest.raises(ParameterError) as err:
+        target.set_state(source.get_state())
+    assert err.value.parameter == "state" and str(err.value) == expected
+    assert np.array_equal(target.get_state(), before)
+    with pytest.raises(ParameterError, match="^state does not match"):
+        source.set_state(source.get_state()[:-1])
