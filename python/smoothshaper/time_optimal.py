@@ -7,6 +7,12 @@ found by ``scipy.optimize.brentq`` and the plan is sampled on absolute float64 t
 breakpoint on the grid (within 8 ulps of its sample count of a whole number) deciding the
 side of its jump by the sample index. Used by the tests and the arrival benchmark; not on any run path.
 
+Limits and dropped targets follow the generator's documented rules, derived here from the
+formulas, not from the C code: :func:`reach` is the move that reaches vmax from rest and the
+feasible region of the limits (``sms_generator_reach`` in trajectory.h); a target whose plan
+has a non-finite value or lasts more than 2^52 samples is dropped (:func:`representable`): the
+running plan goes on and the target is not tried again until it changes.
+
 ``shape="cosine"`` (the trigonometric profile): every transition of the acceleration is a
 half cosine, a(t) = a0 + da (1 - cos(pi t/d))/2 with peak jerk jmax, evaluated here with
 NumPy's sin/cos. Its durations and velocity changes are those of a linear ramp at the mean
@@ -21,7 +27,15 @@ import math
 import numpy as np
 from scipy.optimize import brentq
 
-__all__ = ["plan_to_rest", "plan_duration", "time_optimal_reference", "mean_jerk", "C3"]
+__all__ = ["plan_to_rest", "plan_duration", "time_optimal_reference", "mean_jerk", "C3", "reach",
+           "representable", "MAX_PLAN_SAMPLES"]
+
+#: The longest plan in samples: its sample counts stay exact in a double (a saved state).
+MAX_PLAN_SAMPLES = 2.0 ** 52
+#: Reaching vmax may take at most this many samples: room for a reversal within a plan.
+MAX_REACH_SAMPLES = 2.0 ** 50
+#: Room for a reversal and the stop in the products and distances of a plan.
+MARGIN = 16.0
 
 
 C3 = {"ramp": 1.0 / 6.0, "cosine": 0.25 - 1.0 / math.pi ** 2}
@@ -54,6 +68,71 @@ def _change(v0: float, a0: float, v1: float, A: float, J: float,
         hold = max((dv - (2 * A * A - b0 * b0) / (2 * J)) / A, 0.0)
     peak = max(peak, b0)
     return [((peak - b0) / J, s * J), (hold, 0.0), (peak / J, -s * J)]
+
+
+def reach(vmax: float, amax: float, jmax: float, Ts: float, shape: str = "ramp",
+          precision: str = "double") -> dict:
+    """The move that reaches vmax from rest and stops, and whether the limits are feasible.
+
+    J is the planner's jerk (:func:`mean_jerk`); the move's peak acceleration is
+    ap = min(amax, sqrt(vmax J)), it lasts T = 2 (vmax/ap + ap/J) and covers
+    h = vmax (vmax/ap + ap/J). For a move from any state within the bounds the planner forms
+    J dv (|dv| <= 2 vmax), squares of accelerations up to ap^2, durations up to about T and
+    distances up to a few times h, so the limits are feasible when, with MAX and MIN the
+    largest and smallest normal numbers of the precision and eps its epsilon: every limit is
+    in [MIN, MAX/16]; 16 vmax J <= MAX; T/Ts <= 2^50 (a reversal fits the plan's 2^52
+    samples); ap^2 >= MIN/eps; T >= MIN; MIN/eps <= h <= MAX/16.
+
+    Returns
+    -------
+    dict
+        ``peak``, ``duration`` [s], ``distance``, ``samples`` (duration/Ts) and ``quantity``:
+        None when feasible, else the first quantity out of range ("vmax", "vmax*jmax",
+        "vmax/amax", "sqrt(vmax/jmax)" or "sqrt(pi vmax/(2 jmax))", "amax^2",
+        "the duration to reach vmax", "the distance to reach vmax").
+    """
+    vmax, amax, jmax, Ts = float(vmax), float(amax), float(jmax), float(Ts)
+    info = np.finfo(np.float32 if precision == "float" else np.float64)
+    big, least, tiny = float(info.max), float(info.tiny), float(info.tiny) / float(info.eps)
+    out = dict(peak=0.0, duration=0.0, distance=0.0, samples=0.0, quantity=None)
+    for name, x in (("vmax", vmax), ("amax", amax), ("jmax", jmax)):
+        if not least <= x <= big / MARGIN:
+            out["quantity"] = name
+            return out
+    J = mean_jerk(jmax, shape)
+    if not vmax * J * MARGIN <= big:
+        out["quantity"] = "vmax*jmax"
+        return out
+    ap = math.sqrt(vmax) * math.sqrt(J)
+    reached = amax < ap
+    ap = amax if reached else ap
+    tv, tj = vmax / ap, ap / J
+    out.update(peak=ap, duration=2 * (tv + tj), distance=vmax * (tv + tj),
+               samples=2 * (tv + tj) / Ts)
+    if not out["samples"] <= MAX_REACH_SAMPLES:
+        out["quantity"] = ("vmax/amax" if reached else
+                           "sqrt(pi vmax/(2 jmax))" if shape == "cosine" else "sqrt(vmax/jmax)")
+    elif not ap * ap >= tiny:
+        out["quantity"] = "amax^2" if reached else "vmax*jmax"
+    elif not out["duration"] >= least:
+        out["quantity"] = "the duration to reach vmax"
+    elif not tiny <= out["distance"] <= big / MARGIN:
+        out["quantity"] = "the distance to reach vmax"
+    return out
+
+
+def representable(pieces, starts, Ts: float) -> bool:
+    """Can the plan be formed: every duration and start value finite, each piece's values
+    bounded by |q| + d (|v| + d (|a|/2 + d |j|/4)) finite, and at most 2^52 samples long?"""
+    total = 0.0
+    for (d, j), (q, v, a) in zip(pieces, starts):
+        if not all(math.isfinite(x) for x in (d, j, q, v, a)):
+            return False
+        bound = abs(q) + d * (abs(v) + d * (abs(a) / 2 + d * abs(j) / 4))
+        if not (math.isfinite(bound) and math.isfinite(abs(v) + d * (abs(a) + d * abs(j)))):
+            return False
+        total += d
+    return math.isfinite(total) and total / Ts + 2 <= MAX_PLAN_SAMPLES
 
 
 def _integrate(pieces, q, v, a, c3=1.0 / 6.0):
@@ -179,6 +258,40 @@ def _can_start(v, a, vmax, jmax, shape):
     return abs(v + a * abs(a) / (2 * mean_jerk(jmax, shape))) <= vmax * (1 + 1e-12)
 
 
+def _run(targets, *, vmax, amax, jmax, Ts, q0=0.0, shape="ramp"):
+    """(out, goal, dropped): the samples, the running plan's goal at each sample, and 1 at
+    each sample where a target was dropped."""
+    x = np.asarray(targets, dtype=np.float64)
+    out = np.empty((x.size, 4))
+    goals = np.empty(x.size)
+    dropped = np.zeros(x.size, dtype=bool)
+    pieces, starts, ends, goal, i0 = [], [], [], float(q0), 0
+    held, refused = float(q0), False
+    for i, target in enumerate(x):
+        if math.isfinite(target) and target != held:   # a new target (non-finite: ignored)
+            held, refused = float(target), False
+        state = _evaluate(pieces, starts, ends, goal, i - i0, Ts, shape)
+        if held != goal and not refused and _can_start(state[1], state[2], vmax, jmax, shape):
+            try:
+                with np.errstate(all="ignore"):
+                    new, new_starts = plan_to_rest(state[0], state[1], state[2], held,
+                                                   vmax=vmax, amax=amax, jmax=jmax, shape=shape)
+                ok = representable(new, new_starts, Ts)
+            except (OverflowError, ValueError, ZeroDivisionError):
+                ok = False
+            if ok:
+                pieces, starts = new, new_starts
+                ends = _ends(pieces, Ts)
+                goal, i0 = held, i
+                state = _evaluate(pieces, starts, ends, goal, 0, Ts, shape)
+            else:   # dropped: the running plan goes on; not tried again until it changes
+                refused = True
+                dropped[i] = True
+        out[i] = state
+        goals[i] = goal
+    return out, goals, dropped
+
+
 def time_optimal_reference(targets, *, vmax, amax, jmax, Ts, q0=0.0,
                            shape="ramp") -> np.ndarray:
     """``(n, 4)`` q, v, a, j of the time-optimal online generator for a staircase of targets.
@@ -186,17 +299,7 @@ def time_optimal_reference(targets, *, vmax, amax, jmax, Ts, q0=0.0,
     Sample i is at time i Ts; before sample 0 the generator rests at ``q0``. On every sample
     whose target differs from the running plan's goal, a new plan starts from the exact state
     of the running one at that instant (half-cosine transitions: from the first such sample
-    whose state allows it)."""
-    x = np.asarray(targets, dtype=np.float64)
-    out = np.empty((x.size, 4))
-    pieces, starts, ends, goal, i0 = [], [], [], float(q0), 0
-    for i, target in enumerate(x):
-        state = _evaluate(pieces, starts, ends, goal, i - i0, Ts, shape)
-        if target != goal and _can_start(state[1], state[2], vmax, jmax, shape):
-            pieces, starts = plan_to_rest(state[0], state[1], state[2], float(target),
-                                          vmax=vmax, amax=amax, jmax=jmax, shape=shape)
-            ends = _ends(pieces, Ts)
-            goal, i0 = float(target), i
-            state = _evaluate(pieces, starts, ends, goal, 0, Ts, shape)
-        out[i] = state
-    return out
+    whose state allows it). A target whose plan cannot be represented (:func:`representable`:
+    a non-finite value, or more than 2^52 samples) is dropped: the running plan goes on and
+    the target is not tried again until it changes; a non-finite target is ignored."""
+    return _run(targets, vmax=vmax, amax=amax, jmax=jmax, Ts=Ts, q0=q0, shape=shape)[0]

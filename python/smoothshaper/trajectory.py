@@ -424,8 +424,10 @@ def generator_reference(targets, *, vmax, amax, jmax, Ts, profile="polynomial", 
     acceleration, or half-cosine transitions for the trigonometric profile). With a mode,
     q, v, a, j are the plan's convolved with the taps of :func:`tuned_stage` from the
     reference filters (independent of the C smoother), the plan resting at ``position``
-    before sample 0; once the plan has rested on the target for all L taps, the output is
-    the target exactly.
+    before sample 0; once the plan has rested on its goal for all L taps, the output is
+    the goal exactly. Limits and dropped targets follow the generator's documented rules as
+    the reference states them (:func:`smoothshaper.time_optimal.reach`, a target whose plan
+    is not representable is dropped until it changes).
 
     Parameters
     ----------
@@ -459,9 +461,10 @@ def generator_reference(targets, *, vmax, amax, jmax, Ts, profile="polynomial", 
     Raises
     ------
     ParameterError
-        Naming ``targets``, a bound, ``Ts``, ``profile``, ``wn`` or ``zeta``.
+        Naming ``targets``, a bound, ``Ts``, ``profile``, ``wn`` or ``zeta``, or limits
+        outside the feasible region (no move that reaches vmax can be planned).
     """
-    from .time_optimal import time_optimal_reference
+    from .time_optimal import _run, reach
     from .reference.filtering import impulse_response
     x = _targets("targets", targets)
     vmax = _design._positive("vmax", vmax)
@@ -471,8 +474,14 @@ def generator_reference(targets, *, vmax, amax, jmax, Ts, profile="polynomial", 
     position = _finite("position", position)
     profile = _design.profile_name(profile)
     wn_, zeta_ = _design._mode(profile, wn, zeta)
-    plan = time_optimal_reference(x, vmax=vmax, amax=amax, jmax=jmax, Ts=Ts, q0=position,
-                                  shape="cosine" if profile == "trigonometric" else "ramp")
+    shape = "cosine" if profile == "trigonometric" else "ramp"
+    feasible = reach(vmax, amax, jmax, Ts, shape)
+    if feasible["quantity"] is not None:
+        raise ParameterError("jmax" if "jmax" in feasible["quantity"] else "vmax",
+                             f"vmax={vmax!r}, amax={amax!r}, jmax={jmax!r}, Ts={Ts!r}: "
+                             f"{feasible['quantity']} is out of the feasible range: no move "
+                             "that reaches vmax can be planned")
+    plan, goals, _ = _run(x, vmax=vmax, amax=amax, jmax=jmax, Ts=Ts, q0=position, shape=shape)
     if not wn_:
         return plan
     taps = impulse_response(tuned_stage(profile, wn_, zeta_), Ts=Ts)
@@ -481,7 +490,7 @@ def generator_reference(targets, *, vmax, amax, jmax, Ts, profile="polynomial", 
     for ch in range(4):
         before = np.full(L - 1, position if ch == 0 else 0.0)
         out[:, ch] = np.convolve(np.r_[before, plan[:, ch]], taps, mode="valid")
-    rest = (plan[:, 0] == x) & np.all(plan[:, 1:] == 0.0, axis=1)
+    rest = (plan[:, 0] == goals) & np.all(plan[:, 1:] == 0.0, axis=1)   # on its goal
     quiet = L
     for m in range(x.size):
         quiet = min(quiet + 1, L) if rest[m] else 0

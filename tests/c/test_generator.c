@@ -693,9 +693,9 @@ static void check_plans(const sms_generator_config *c, double Ts)
     CHECK(fabs((double)g.plan.end + (double)g.plan.end_f / Ts - r.samples) <=
           1.0 + 1e-3 * r.samples);
     sms_generator_reset(&g, 0);
-    sms_generator_step(&g, (sms_real)(r.distance * (sizeof(sms_real) == sizeof(float) ? 3e-10
-                                                                                       : 1e-22)),
-                       out);
+    sms_generator_step(&g, (sms_real)(r.distance * (sizeof(sms_real) == sizeof(float) ? 1.7e-10
+                                                                                       : 1.3e-23)),
+                       out); /* about 4 eps^1.5 h */
     CHECK(g.refused == 0);
     /* cruising at +vmax towards 2 h, the target jumps to -2 h (a state of this generator: its
      * identity, then the plan fields) */
@@ -708,6 +708,41 @@ static void check_plans(const sms_generator_config *c, double Ts)
     CHECK_STATUS(sms_generator_set_state(&g, st, SMS_GENERATOR_IDENTITY_COUNT + 6), SMS_OK);
     sms_generator_step(&g, (sms_real)(-2.0 * r.distance), out);
     CHECK(g.refused == 0);
+}
+
+/* Random limits and sample periods over the build's whole range (log-uniform): whenever init
+ * accepts them, the move that reaches vmax, h/2, 3 h, 1e-9 h, eps^1.5 h and the reversal from
+ * full speed are all planned (the documented promise of the region). */
+static void test_feasible_random(void)
+{
+    const double span = sizeof(sms_real) == sizeof(double) ? 300.0 : 37.0;
+    size_t i, accepted = 0;
+    for (i = 0; i < 4000; ++i) {
+        double e[4];
+        size_t k;
+        sms_generator_config c;
+        sms_generator_reach_info r;
+        for (k = 0; k < 4; ++k)
+            e[k] = pow(10.0, span * (2.0 * urand() - 1.0));
+        c = make_config(e[0], e[1], e[2], urand() < 0.5 ? SMS_PROFILE_TRIGONOMETRIC
+                                                         : SMS_PROFILE_POLYNOMIAL, 0.0, 0.0);
+        if (sms_generator_reach(&c, e[3], &r) != SMS_OK)
+            continue;
+        ++accepted;
+        check_plans(&c, e[3]);
+        {
+            static const double part[] = {0.5, 3.0, 1e-9};
+            sms_generator g;
+            sms_real out[4];
+            CHECK_STATUS(sms_generator_init(&g, &c, e[3], NULL, 0), SMS_OK);
+            for (k = 0; k < 3; ++k) {
+                sms_generator_reset(&g, 0);
+                sms_generator_step(&g, (sms_real)(part[k] * r.distance), out);
+                CHECK(g.refused == 0);
+            }
+        }
+    }
+    CHECK(accepted > 200);
 }
 
 /* Expect a refusal naming `quantity`. */
@@ -803,6 +838,7 @@ static void test_feasible_limits(void)
 int main(void)
 {
     test_feasible_limits();
+    test_feasible_random();
     test_extreme_limits_and_targets();
     test_time_optimal_arrival();
     test_long_moves();
