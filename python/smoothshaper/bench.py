@@ -281,16 +281,21 @@ def trajectory_table(quick: bool, c_figures: dict) -> list[Table]:
     except ImportError:
         print("\n(kinematic design against ruckig skipped: ruckig is not installed)")
         return []
+    from . import design as kinematic_design
     from .filters import _backend
 
     ffi, lib = _backend("double")
     table = Table("Kinematic design against ruckig",
-                  ["regime", "smoothshaper C ns", "smoothshaper via cffi ns", "ruckig ns",
-                   "C / ruckig", "cffi / ruckig", "same duration"],
+                  ["regime", "smoothshaper C ns", "smoothshaper via cffi ns",
+                   "design.kinematic ns", "ruckig ns", "C / ruckig", "cffi / ruckig",
+                   "design.kinematic / ruckig", "same duration"],
                   "One rest-to-rest move within {vmax, amax, jmax}. ruckig: Ruckig.calculate "
                   "through its Python binding (the C++ core plus the binding's call), objects "
-                  "prepared beforehand. smoothshaper: sms_kinematic_design in C (double, -O2) "
-                  "and through cffi (the call itself costs about 0.2 us).")
+                  "prepared beforehand. smoothshaper: sms_kinematic_design in C (double, -O2), "
+                  "through cffi (the call itself costs about 0.2 us), and design.kinematic "
+                  "(the Python API: the call, the C design and three Stage objects; "
+                  "design.kinematic_lengths designs many problems in one call at about the C "
+                  "cost each, `python -m smoothshaper.bench_trajectory`).")
     cases = {"vmax reached": (1.0, 0.5, 5.0, 100.0),
              "amax reached, vmax not": (0.1, 2.0, 5.0, 100.0),
              "jmax only": (0.001, 2.0, 5.0, 100.0)}
@@ -305,15 +310,18 @@ def trajectory_table(quick: bool, c_figures: dict) -> list[Table]:
         inp.current_position, inp.target_position = [0.0], [h]
         inp.max_velocity, inp.max_acceleration, inp.max_jerk = [v], [a], [j]
         traj = ruckig.Trajectory(1)
+        kinematic = kinematic_design.kinematic
         t = interleaved({
             "sms": lambda: design(h, limits, 3, poly, 0.0, 0.0, 0.0, T, 3, count),
+            "python": lambda: kinematic(h=h, vmax=v, amax=a, jmax=j),
             "ruckig": lambda: otg.calculate(inp, traj),
         }, rounds=3 if quick else 15, repeat=200 if quick else 5000)
         same = abs(sum(T[i] for i in range(count[0])) - traj.duration) <= 1e-12 * traj.duration
         in_c = c_figures.get(("-O2", "double"), {}).get(("design", regime, ""))
-        table.add(regime, in_c, t["sms"] * 1e9, t["ruckig"] * 1e9,
+        table.add(regime, in_c, t["sms"] * 1e9, t["python"] * 1e9, t["ruckig"] * 1e9,
                   _ratio(in_c * 1e-9 if in_c else None, t["ruckig"]),
-                  _ratio(t["sms"], t["ruckig"]), "yes" if same else "NO")
+                  _ratio(t["sms"], t["ruckig"]), _ratio(t["python"], t["ruckig"]),
+                  "yes" if same else "NO")
     return [table]
 
 

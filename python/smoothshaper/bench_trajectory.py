@@ -192,12 +192,15 @@ def _multi_replan_bench(quick: bool) -> str:
 
 def design_call_costs(n_cases: int, rounds: int, seed: int = 11) -> dict:
     """CPU ns per three-bound kinematic design from Python, each call on a different random
-    problem (h, limits over four decades; with ``Ts``: the duration / 10^U(0.5, 3.5), as in
-    the grid price), so no call repeats another's work. ``{with_Ts: {...}}`` with keys
-    ``"raw"`` (``sms_kinematic_design`` through cffi, the bounds written into a prepared cffi
-    array per call, as a caller of the C API from Python does), ``"scalar"`` (the binding
-    glue with the bounds as scalar arguments, which the fast path calls), ``"python"``
-    (``design.kinematic``) and ``"cases"``; an empty loop over the same cases is subtracted."""
+    problem (h, limits over four decades), so no call repeats another's work. With ``Ts``
+    (1 ms for all) each problem is first rescaled in time so that its duration is
+    10^U(0.5, 3.5) samples, as in the grid price. ``{with_Ts: {...}}`` with keys ``"raw"``
+    (``sms_kinematic_design`` through cffi, the bounds written into a prepared cffi array per
+    call, as a caller of the C API from Python does), ``"scalar"`` (the binding glue with the
+    bounds as scalar arguments, which the fast path calls), ``"python"``
+    (``design.kinematic``), ``"batch"`` (``design.kinematic_lengths`` on all the problems at
+    once, per problem) and ``"cases"``; an empty loop over the same cases is subtracted from
+    the loops."""
     from . import design
     from .filters import _backend
     ffi, lib = _backend("double")
@@ -206,7 +209,9 @@ def design_call_costs(n_cases: int, rounds: int, seed: int = 11) -> dict:
     cases = [tuple(map(float, row)) for row in lim]
     spans = [design.duration(design.kinematic(h=h, vmax=v, amax=a, jmax=j))
              for h, v, a, j in cases]
-    grid = [c + (T / 10.0 ** rng.uniform(0.5, 3.5),) for c, T in zip(cases, spans)]
+    # time scaled by c: (h, v/c, a/c^2, j/c^3) lasts c times as long
+    scale = [10.0 ** rng.uniform(0.5, 3.5) * 1e-3 / T for T in spans]
+    grid = [(h, v / c, a / c ** 2, j / c ** 3, 1e-3) for (h, v, a, j), c in zip(cases, scale)]
     cont = [c + (0.0,) for c in cases]
     L, T, count = ffi.new("double[3]"), ffi.new("double[3]"), ffi.new("size_t *")
     c_design, scalar, kinematic = lib.sms_kinematic_design, lib.smspy_kinematic3, design.kinematic
@@ -234,11 +239,52 @@ def design_call_costs(n_cases: int, rounds: int, seed: int = 11) -> dict:
             else:
                 for h, v, a, j, ts in rows:
                     kinematic(h=h, vmax=v, amax=a, jmax=j)
+        columns = np.array(rows).T
+
+        def batch():
+            design.kinematic_lengths(h=columns[0], vmax=columns[1], amax=columns[2],
+                                     jmax=columns[3], Ts=1e-3 if with_Ts else None)
         loop = _cpu(empty, rounds)
         out[with_Ts] = {name: (_cpu(fn, rounds) - loop) / len(rows)
                         for name, fn in (("raw", raw), ("scalar", glue), ("python", python))}
+        out[with_Ts]["batch"] = _cpu(batch, rounds) / len(rows)
         out[with_Ts]["cases"] = len(rows)
+    out["floor"] = _python_floor(cont, rounds)
     return out
+
+
+def _python_floor(rows, rounds: int) -> dict:
+    """CPU ns of what any ``design.kinematic`` pays besides the C call: the keyword call
+    itself (a function with its signature and no body) and three Stage objects with their
+    list, built as its fast path builds them (no validation); an empty loop subtracted."""
+    from .stages import Stage
+
+    def signature(*, h, vmax, amax=None, jmax=None, higher=(), profile="polynomial", wn=None,
+                  zeta=0.0, Ts=None):
+        return None
+    new = object.__new__
+
+    def empty():
+        for h, v, a, j, ts in rows:
+            pass
+
+    def call():
+        for h, v, a, j, ts in rows:
+            signature(h=h, vmax=v, amax=a, jmax=j)
+
+    def stages():
+        for row in rows:
+            out = []
+            for t in row[1:4]:
+                s = new(Stage)
+                d = s.__dict__
+                d["kind"] = "rectangular"
+                d["T"] = t
+                d["order"] = 1
+                out.append(s)
+    loop = _cpu(empty, rounds)
+    return {name: (_cpu(fn, rounds) - loop) / len(rows)
+            for name, fn in (("call", call), ("stages", stages))}
 
 
 def _cpu(fn, rounds: int) -> float:
@@ -298,8 +344,16 @@ def main(argv=None) -> int:
         print(f"{label}: raw C call through cffi {c['raw'] / 1e3:.3f} us (bounds written into "
               f"a prepared array; {c['scalar'] / 1e3:.3f} us with them as scalar arguments), "
               f"design.kinematic {c['python'] / 1e3:.3f} us ({c['python'] / c['raw']:.2f}x the "
-              f"raw call, {c['python'] / c['scalar']:.2f}x the scalar one); {c['cases']} "
-              "different random designs, loop overhead subtracted")
+              f"raw call, {c['python'] / c['scalar']:.2f}x the scalar one), "
+              f"design.kinematic_lengths {c['batch'] / 1e3:.3f} us per problem "
+              f"({c['batch'] / c['raw']:.2f}x the raw call); {c['cases']} different random "
+              "designs, loop overhead subtracted")
+    f, c = cost["floor"], cost[False]
+    low = f["call"] + f["stages"] + c["scalar"]
+    print(f"  design.kinematic's floor: the keyword call {f['call'] / 1e3:.3f} us + three Stage "
+          f"objects and their list {f['stages'] / 1e3:.3f} us + the scalar C call "
+          f"{c['scalar'] / 1e3:.3f} us = {low / 1e3:.3f} us ({low / c['raw']:.2f}x the raw "
+          "call)")
 
     rng = np.random.default_rng(5)
     for n in (1, 2, 3, 4, 5, 6):

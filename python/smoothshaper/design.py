@@ -5,7 +5,9 @@
 :class:`~smoothshaper.stages.Stage` objects whose durations sum to the trajectory's duration.
 With ``Ts`` the lengths lie on that sample grid and the chain run at ``Ts`` keeps every bound
 at every sample (its backward differences, docs/sampled-limits.md); without it they are the
-continuous optimum. ``kinematic_reference`` is an independent pure-Python implementation of
+continuous optimum. ``kinematic_lengths`` designs many problems (arrays of ``h`` and bounds)
+in one C call (``sms_kinematic_design_batch``) and returns their stage lengths, bit for bit
+those of ``kinematic``. ``kinematic_reference`` is an independent pure-Python implementation of
 the same design (nested bisection instead of the C core's closed forms per regime), used as
 the test oracle.
 
@@ -34,7 +36,7 @@ from .stages import Stage
 from ._checks import choice as _choice, finite as _finite, positive as _positive
 
 __all__ = ["PROFILES", "profile_name", "MAX_ORDER", "MAX_MULTIPLE", "kinematic",
-           "kinematic_reference", "duration"]
+           "kinematic_lengths", "kinematic_reference", "duration"]
 
 PROFILES = ("polynomial", "trigonometric", "damped")
 MAX_ORDER = 8
@@ -324,6 +326,151 @@ def _continuous_stages(T, profile, wn, zeta, h, limits) -> list[Stage]:
         Tm = (3 * math.pi if last == "harmonic" else 2 * math.pi) / wd
         k = max(1, int(round(T[-1] / Tm)))
     return [_stage("rectangular", t) for t in T[:-1]] + [_stage(last, T[-1], sigma, k)]
+
+
+def kinematic_lengths(*, h, vmax, amax=None, jmax=None, higher=(), profile: str = "polynomial",
+                      wn: float | None = None, zeta: float = 0.0,
+                      Ts: float | None = None) -> np.ndarray:
+    """Stage lengths of many kinematic designs in one C call (``sms_kinematic_design_batch``),
+    for design loops and sweeps.
+
+    ``h`` and the bounds are arrays that broadcast together (NumPy rules; a scalar is shared by
+    every problem); problem ``i`` is the design :func:`kinematic` makes for the i-th element
+    of each, and its lengths equal that design's ``[s.T for s in stages]`` bit for bit.
+    ``profile``, ``wn``, ``zeta`` and ``Ts`` are shared. One problem costs about what the C
+    design itself costs, not a Python call and three Stage objects (docs/sampled-limits.md,
+    "What it costs").
+
+    Parameters
+    ----------
+    h : array_like of float, keyword-only
+        Displacements [position units], each finite and non-zero.
+    vmax, amax, jmax : array_like of float, keyword-only
+        Bounds on the first, second and third derivative [units/s, units/s^2, units/s^3],
+        each finite and > 0; ``amax`` and ``jmax`` may be None (as in :func:`kinematic`).
+    higher : sequence of array_like, keyword-only
+        Bounds on the 4th, 5th, ... derivatives (at most 8 bounds in all).
+    profile : {"polynomial", "trigonometric", "damped"}, keyword-only
+        Family of the last stage, as in :func:`kinematic`.
+    wn : float or None, keyword-only
+        Mode the last stage is tuned to [rad/s]: its length is then a multiple of the mode's
+        period, as in :func:`kinematic` (the multiple is not returned).
+    zeta : float, keyword-only
+        Damping ratio of that mode, in [0, 1).
+    Ts : float or None, keyword-only
+        Sample period [s]: lengths on its grid, as in :func:`kinematic`; None: continuous.
+
+    Returns
+    -------
+    ndarray of float64, shape ``broadcast(h, bounds).shape + (n,)``
+        The n stage lengths [s] of each problem, largest stage first (n = number of bounds).
+
+    Raises
+    ------
+    ParameterError
+        Naming the parameter: a bound, ``h``, ``higher``, ``profile``, ``wn``, ``zeta``,
+        ``Ts``; arrays that are not real numbers or do not broadcast; for a refused problem,
+        the message :func:`kinematic` gives for it followed by the problem's position
+        (``(row 12)``, or ``(index (3, 4))`` for several dimensions).
+    """
+    profile = profile_name(profile)
+    wn_, zeta_ = _mode(profile, wn, zeta)
+    h_arr = _real_array("h", h)
+    bounds = _bound_arrays(vmax, amax, jmax, higher)
+    n = len(bounds)
+    if profile == "damped" and n < 2:
+        raise ParameterError(
+            "amax", "amax must be given for profile='damped' (the exponential stage is "
+                    "the jerk/acceleration stage)")
+    Ts_ = 0.0 if Ts is None else _positive("Ts", Ts)
+    try:
+        shape = np.broadcast_shapes(h_arr.shape, *(b.shape for b in bounds))
+    except ValueError:
+        shape = ()
+        for name, a in zip(["h"] + _names(n), [h_arr] + bounds):
+            try:
+                shape = np.broadcast_shapes(shape, a.shape)
+            except ValueError:
+                raise ParameterError(name, f"{name}: shape {a.shape} does not broadcast with "
+                                     f"the shape {shape} of the arguments before it") from None
+    out = np.empty(shape + (n,))
+    m = out.size // n
+    if m == 0:
+        return out
+    # A scalar h, or bounds that are all scalars, are shared through a stride of 0.
+    h_stride = 0 if h_arr.ndim == 0 else 1
+    H = np.ascontiguousarray(np.broadcast_to(h_arr, shape if h_stride else ())).reshape(-1)
+    if all(b.ndim == 0 for b in bounds):
+        L, l_stride = np.array(bounds, dtype=np.float64), 0
+    else:
+        L, l_stride = np.empty((m, n)), n
+        for k, b in enumerate(bounds):
+            L[:, k] = np.broadcast_to(b, shape).reshape(-1)
+    ffi, lib = _backend("double")
+    index = ffi.new("size_t *")
+    st = lib.sms_kinematic_design_batch(
+        m, ffi.from_buffer("double[]", H), h_stride, ffi.from_buffer("double[]", L), l_stride,
+        n, PROFILES.index(profile), wn_, zeta_, Ts_, ffi.from_buffer("double[]", out),
+        out.size, index)
+    if st != 0:
+        _batch_error(st, int(index[0]), shape, float(H[index[0] * h_stride]),
+                     [float(x) for x in L.reshape(-1)[index[0] * l_stride:][:n]],
+                     profile, wn, zeta, Ts)
+    return out
+
+
+def _batch_error(st: int, i: int, shape: tuple, h: float, row: list[float], profile, wn, zeta,
+                 Ts) -> None:
+    """The error :func:`kinematic` raises for problem ``i`` of a batch, with its position."""
+    where = (f"row {i}" if len(shape) == 1
+             else f"index {tuple(int(k) for k in np.unravel_index(i, shape))}")
+    n = len(row)
+    try:
+        _kinematic_checked(h, row[0], row[1] if n > 1 else None, row[2] if n > 2 else None,
+                           tuple(row[3:]), profile, wn, zeta, Ts)
+    except ParameterError as e:
+        raise ParameterError(e.parameter, f"{e} ({where})", e.status) from None
+    ffi, lib = _backend("double")
+    _raise_status(st, lib, ffi, f"kinematic design ({where})")
+
+
+def _real_array(name: str, value) -> np.ndarray:
+    """``value`` as a float64 array; ParameterError naming ``name`` unless it holds real
+    numbers (not booleans, complex numbers, text or other objects)."""
+    try:
+        a = np.asarray(value)
+    except ValueError as e:   # ragged nesting
+        raise ParameterError(name, f"{name} must be a number or an array of numbers ({e})") \
+            from None
+    if a.dtype.kind not in "iuf":
+        text = repr(value)
+        raise ParameterError(name, f"{name} must be real numbers, got an array of {a.dtype} "
+                             f"({text if len(text) <= 60 else text[:57] + '...'})")
+    return a.astype(np.float64, copy=False)
+
+
+def _bound_arrays(vmax, amax, jmax, higher) -> list[np.ndarray]:
+    """The bounds as float64 arrays in derivative order, with the rules of :func:`kinematic`
+    (consecutive derivatives, at most MAX_ORDER in all)."""
+    try:
+        higher = list(higher)
+    except TypeError:
+        raise ParameterError("higher", f"higher must be a sequence of bounds, got "
+                             f"{type(higher).__name__}") from None
+    names = ["vmax", "amax", "jmax"] + [f"higher[{i}]" for i in range(len(higher))]
+    out, missing = [], None
+    for name, value in zip(names, [vmax, amax, jmax] + higher):
+        if value is None and name != "vmax":
+            missing = missing or name
+            continue
+        if missing is not None:
+            raise ParameterError(
+                missing, f"{missing} must be given when {name} is (bounds are consecutive "
+                         "derivatives)")
+        out.append(_real_array(name, value))
+    if len(out) > MAX_ORDER:
+        raise ParameterError("higher", f"higher: at most {MAX_ORDER} bounds in all, got {len(out)}")
+    return out
 
 
 # ----------------------------------------------------------------------------------------------

@@ -1,11 +1,12 @@
 """Kinematic design: ruckig's time-optimal duration, bounds of the sampled trajectory, seed 001
 check values, C vs the independent reference, parameter errors."""
 import math
+import re
 from fractions import Fraction
 
 import numpy as np
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import event, given, settings, strategies as st
 
 ruckig = pytest.importorskip("ruckig")
 from smoothshaper import design  # noqa: E402
@@ -245,3 +246,105 @@ def test_fast_path_refusals_name_the_bound(kwargs, name):
     with pytest.raises(ValueError, match=rf"\b{name}\b") as err:
         design.kinematic(**kwargs)
     assert err.value.parameter == name
+
+
+# ----------------------------------------------------------------------------------------------
+# Batch design
+# ----------------------------------------------------------------------------------------------
+
+def _lengths(**kw):
+    return np.array([s.T for s in design.kinematic(**kw)])
+
+
+@given(m=st.integers(1, 12), n=st.integers(1, 4), data=st.data(),
+       profile=st.sampled_from(["polynomial", "trigonometric", "damped"]),
+       grid=st.booleans(), mode=st.booleans(), lw=st.floats(-1.0, 2.0))
+def test_batch_equals_the_scalar_design_bit_for_bit(m, n, data, profile, grid, mode, lw):
+    """Every row of kinematic_lengths is the scalar design's lengths to the last bit, for
+    every profile, with and without a mode and a grid, any sign of h; a problem the scalar
+    design refuses is refused with the same error and its row."""
+    n = max(n, 2) if profile == "damped" else n
+    logs = np.array(data.draw(st.lists(st.lists(decades, min_size=n + 1, max_size=n + 1),
+                                       min_size=m, max_size=m)))
+    signs = np.array(data.draw(st.lists(st.sampled_from([-1.0, 1.0]), min_size=m, max_size=m)))
+    h = signs * 10.0 ** logs[:, 0]
+    bounds = 10.0 ** (logs[:, 1:] + 2 * np.arange(n))
+    wn = 2 * math.pi * 10.0 ** lw if mode or profile == "damped" else None
+    Ts = 10.0 ** lw / 1000.0 if grid else None
+
+    def scalar(i):
+        return dict(h=h[i], vmax=bounds[i, 0], amax=bounds[i, 1] if n > 1 else None,
+                    jmax=bounds[i, 2] if n > 2 else None, higher=tuple(bounds[i, 3:]),
+                    profile=profile, wn=wn, Ts=Ts)
+    try:
+        batch = design.kinematic_lengths(
+            h=h, vmax=bounds[:, 0], amax=bounds[:, 1] if n > 1 else None,
+            jmax=bounds[:, 2] if n > 2 else None, higher=list(bounds[:, 3:].T),
+            profile=profile, wn=wn, Ts=Ts)
+    except ValueError as e:
+        i = int(re.search(r"\(row (\d+)\)$", str(e)).group(1))
+        for k in range(i):                       # the rows before it are designed
+            design.kinematic(**scalar(k))
+        with pytest.raises(ValueError) as refused:
+            design.kinematic(**scalar(i))
+        assert str(e) == f"{refused.value} (row {i})"
+        assert e.parameter == refused.value.parameter
+        event("a problem refused")
+        return
+    assert batch.shape == (m, n) and batch.dtype == np.float64 and batch.flags.c_contiguous
+    for i in range(m):
+        assert batch[i].tobytes() == _lengths(**scalar(i)).tobytes()
+
+
+def test_batch_broadcasts():
+    """Scalars are shared, arrays broadcast (NumPy rules); the result has one row of n
+    lengths per problem; ints and float32 are taken as their float64 values."""
+    h = np.array([1.0, 10.0, 40.0])
+    vmax = np.array([[100.0], [250.0]])
+    out = design.kinematic_lengths(h=h, vmax=vmax, amax=5000, jmax=np.float32(2e5))
+    assert out.shape == (2, 3, 3)
+    for a in range(2):
+        for b in range(3):
+            assert out[a, b].tolist() == _lengths(h=h[b], vmax=vmax[a, 0], amax=5000.0,
+                                                  jmax=float(np.float32(2e5))).tolist()
+    assert design.kinematic_lengths(h=40, vmax=250, amax=5000, jmax=2e5).tolist() == \
+        [0.16, 0.05, 0.025]
+    assert design.kinematic_lengths(h=[], vmax=1.0, amax=2.0).shape == (0, 2)
+    same = design.kinematic_lengths(h=[40, 40], vmax=[250, 250], amax=[5000, 5000],
+                                    jmax=2e5, Ts=1e-3)
+    assert (same == _lengths(h=40, vmax=250, amax=5000, jmax=2e5, Ts=1e-3)).all()
+    h_in = np.array([1.0, 2.0])
+    design.kinematic_lengths(h=h_in, vmax=1.0)
+    assert h_in.tolist() == [1.0, 2.0]
+
+
+@pytest.mark.parametrize("kwargs, name, text", [
+    (dict(h=[1.0, 2.0, 3.0], vmax=[1.0, -1.0, 1.0]), "vmax", r"vmax must be > 0, got -1\.0 \(row 1\)$"),
+    (dict(h=[1.0, 0.0], vmax=1.0), "h", r"^h must be non-zero.* \(row 1\)$"),
+    (dict(h=[[1.0, float("nan")]], vmax=1.0), "h", r"^h must be finite, got nan \(index \(0, 1\)\)$"),
+    (dict(h=[1.0, 1e300], vmax=1e-50, amax=1.0), "vmax", r"^h/vmax = .* \(row 1\)$"),
+    (dict(h=1.0, vmax=[1.0, 1.0], amax=[1.0, float("inf")]), "amax", r"^amax must be finite.*\(row 1\)$"),
+    (dict(h=[1.0, 2.0], vmax=[1.0, 2.0, 3.0]), "vmax", r"^vmax: shape \(3,\) does not broadcast"),
+    (dict(h=[True], vmax=1.0), "h", r"^h must be real numbers, got an array of bool"),
+    (dict(h=[1.0], vmax=[1 + 1j]), "vmax", "complex"),
+    (dict(h=["1"], vmax=1.0), "h", "real numbers"),
+    (dict(h=[[1.0], [1.0, 2.0]], vmax=1.0), "h", "array of numbers"),
+    (dict(h=1.0, vmax=1.0, jmax=[1.0]), "amax", r"^amax must be given when jmax is"),
+    (dict(h=1.0, vmax=1.0, amax=1.0, jmax=1.0, higher=[1.0] * 6), "higher", "at most 8"),
+    (dict(h=1.0, vmax=1.0, amax=1.0, higher=3.0), "higher", "sequence"),
+    (dict(h=1.0, vmax=None), "vmax", "real numbers"),
+    (dict(h=1.0, vmax=1.0, profile="cubic"), "profile", ""),
+    (dict(h=1.0, vmax=1.0, amax=1.0, profile="damped"), "wn", ""),
+    (dict(h=1.0, vmax=1.0, profile="damped", wn=3.0), "amax", ""),
+    (dict(h=1.0, vmax=1.0, amax=1.0, wn=3.0, zeta=1.0), "zeta", ""),
+    (dict(h=[1.0, 2.0], vmax=1.0, Ts=0.0), "Ts", r"^Ts must be > 0"),
+    (dict(h=[1.0, 1e16], vmax=1.0, Ts=1e-3), "Ts", r"2\^52 samples.*\(row 1\)$"),
+    (dict(h=[1.0, 2.0], vmax=1.0, amax=1.0, wn=1e4, Ts=1e-3), "wn", r"Nyquist.*\(row 0\)$"),
+])
+def test_batch_errors_name_the_parameter_and_the_problem(kwargs, name, text):
+    """Each error names its parameter first (a ratio names the pair), and a refused problem
+    its position."""
+    with pytest.raises(ValueError, match=text or rf"^{name}\b") as err:
+        design.kinematic_lengths(**kwargs)
+    assert err.value.parameter == name
+    assert re.match(rf"(h/)?{re.escape(name)}\b", str(err.value))

@@ -114,6 +114,41 @@ SMS_API sms_status sms_kinematic_configs(double h, const double *limits, size_t 
                                          sms_stage_config *configs, size_t capacity,
                                          size_t *count);
 
+/**
+ * @brief sms_kinematic_design() for m problems in one call (design loops, sweeps over h or
+ * the bounds), each design exactly as sms_kinematic_design() gives it alone (the same
+ * arithmetic: bit for bit).
+ *
+ * Problem i has displacement h[i * h_stride] and the n bounds
+ * limits[i * limits_stride] .. limits[i * limits_stride + n - 1]; a stride of 0 shares one
+ * value (h) or one row of bounds among all problems, h_stride = 1 and limits_stride = n read
+ * one per problem. profile, wn, zeta and Ts are shared. Problem i's n lengths go to
+ * T[i * n] .. T[i * n + n - 1].
+ *
+ * @param m              number of problems (0: nothing to do)
+ * @param h              displacements, each finite and != 0 (NULL allowed when m == 0)
+ * @param h_stride       0 or any step between successive problems' h
+ * @param limits         rows of n bounds, each finite and > 0 (NULL allowed when m == 0)
+ * @param limits_stride  0 or any step between successive problems' rows
+ * @param n              bounds per problem, 1 .. ::SMS_KINEMATIC_MAX_ORDER
+ * @param profile, wn, zeta, Ts  as for sms_kinematic_design(), shared by every problem
+ * @param T              receives m * n lengths [s]
+ * @param capacity       length of T (>= m * n)
+ * @param index          receives the index of the problem whose status is returned when a
+ *                       problem is refused, else m
+ * @return ::SMS_OK; ::SMS_ERR_NULL (T or index NULL, or h or limits NULL with m > 0),
+ *         ::SMS_ERR_ORDER (n out of range), ::SMS_ERR_BUFFER_TOO_SMALL (capacity < m * n):
+ *         checked first, T untouched (*index = m unless index is NULL); else the status of the first
+ *         problem sms_kinematic_design() refuses (its index in *index; the rows before it
+ *         hold their designs, the rest of T is untouched). Cost: m designs, each O(n^2)
+ *         closed-form steps (with Ts, the grid search of sms_kinematic_design()).
+ */
+SMS_API sms_status sms_kinematic_design_batch(size_t m, const double *h, size_t h_stride,
+                                              const double *limits, size_t limits_stride,
+                                              size_t n, sms_profile profile, double wn,
+                                              double zeta, double Ts, double *T,
+                                              size_t capacity, size_t *index);
+
 /* ------------------------------------------------------------------------------------------ */
 /* Online multi-point generator                                                                */
 /* ------------------------------------------------------------------------------------------ */
