@@ -43,13 +43,19 @@ MAX_ORDER = 8
 MAX_MULTIPLE = 10000
 
 
-def _limits(vmax, amax, jmax, higher) -> list[float]:
-    """The bounds in derivative order; a bound may be given only if all lower ones are."""
-    out = [_positive("vmax", vmax)]
-    names = ["amax", "jmax"] + [f"higher[{i}]" for i in range(len(tuple(higher)))]
-    values = [amax, jmax] + list(higher)
+def _limits(vmax, amax, jmax, higher, convert=_positive) -> list:
+    """The bounds in derivative order, each through ``convert(name, value)`` (a positive
+    float; :func:`kinematic_lengths`: an array); a bound may be given only if all lower ones
+    are, and there are at most MAX_ORDER."""
+    try:
+        higher = list(higher)
+    except TypeError:
+        raise ParameterError("higher", "higher must be a sequence of bounds, got "
+                             f"{type(higher).__name__}") from None
+    out = [convert("vmax", vmax)]
+    names = ["amax", "jmax"] + [f"higher[{i}]" for i in range(len(higher))]
     missing = None
-    for name, value in zip(names, values):
+    for name, value in zip(names, [amax, jmax] + higher):
         if value is None:
             missing = missing or name
             continue
@@ -57,7 +63,7 @@ def _limits(vmax, amax, jmax, higher) -> list[float]:
             raise ParameterError(
                 missing, f"{missing} must be given when {name} is (bounds are consecutive "
                          "derivatives)")
-        out.append(_positive(name, value))
+        out.append(convert(name, value))
     if len(out) > MAX_ORDER:
         raise ParameterError("higher", f"higher: at most {MAX_ORDER} bounds in all, got {len(out)}")
     return out
@@ -376,7 +382,7 @@ def kinematic_lengths(*, h, vmax, amax=None, jmax=None, higher=(), profile: str 
     profile = profile_name(profile)
     wn_, zeta_ = _mode(profile, wn, zeta)
     h_arr = _real_array("h", h)
-    bounds = _bound_arrays(vmax, amax, jmax, higher)
+    bounds = _limits(vmax, amax, jmax, higher, convert=_real_array)
     n = len(bounds)
     if profile == "damped" and n < 2:
         raise ParameterError(
@@ -447,30 +453,6 @@ def _real_array(name: str, value) -> np.ndarray:
         raise ParameterError(name, f"{name} must be real numbers, got an array of {a.dtype} "
                              f"({text if len(text) <= 60 else text[:57] + '...'})")
     return a.astype(np.float64, copy=False)
-
-
-def _bound_arrays(vmax, amax, jmax, higher) -> list[np.ndarray]:
-    """The bounds as float64 arrays in derivative order, with the rules of :func:`kinematic`
-    (consecutive derivatives, at most MAX_ORDER in all)."""
-    try:
-        higher = list(higher)
-    except TypeError:
-        raise ParameterError("higher", f"higher must be a sequence of bounds, got "
-                             f"{type(higher).__name__}") from None
-    names = ["vmax", "amax", "jmax"] + [f"higher[{i}]" for i in range(len(higher))]
-    out, missing = [], None
-    for name, value in zip(names, [vmax, amax, jmax] + higher):
-        if value is None and name != "vmax":
-            missing = missing or name
-            continue
-        if missing is not None:
-            raise ParameterError(
-                missing, f"{missing} must be given when {name} is (bounds are consecutive "
-                         "derivatives)")
-        out.append(_real_array(name, value))
-    if len(out) > MAX_ORDER:
-        raise ParameterError("higher", f"higher: at most {MAX_ORDER} bounds in all, got {len(out)}")
-    return out
 
 
 # ----------------------------------------------------------------------------------------------

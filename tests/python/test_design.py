@@ -135,6 +135,7 @@ def test_damped_jerk():
     (dict(h=1, vmax=1, amax=1, wn=-3), "wn"),
     (dict(h=1, vmax=1, amax=1, wn=3, zeta=1.0), "zeta"),
     (dict(h=1, vmax=1, amax=1, jmax=1, higher=(1,) * 6), "higher"),
+    (dict(h=1, vmax=1, amax=1, jmax=1, higher=3.0), "higher"),
 ])
 def test_errors_name_the_parameter(kwargs, name):
     with pytest.raises(ValueError, match=rf"^{name}\b"):
