@@ -132,6 +132,58 @@ static void generator_format(void)
     CHECK(strstr(sms_status_string(SMS_ERR_STATE_PROFILE), "profile") != NULL);
 }
 
+/* Seeded random configurations: the same one continues bit for bit from the split; one
+ * field moved to its neighbouring double (or the next profile) is refused naming it. */
+static unsigned long rng_state = 2463534242ul;
+
+static double uniform(void)
+{
+    rng_state ^= (rng_state << 13) & 0xFFFFFFFFul;
+    rng_state ^= rng_state >> 17;
+    rng_state ^= (rng_state << 5) & 0xFFFFFFFFul;
+    return (double)(rng_state & 0xFFFFFFul) / 16777216.0;
+}
+
+static void generator_random(void)
+{
+    static const sms_status field_status[7] = {
+        SMS_ERR_STATE_VMAX, SMS_ERR_STATE_AMAX, SMS_ERR_STATE_JMAX, SMS_ERR_STATE_PROFILE,
+        SMS_ERR_STATE_WN, SMS_ERR_STATE_ZETA, SMS_ERR_STATE_TS
+    };
+    int trial, tried = 0;
+    for (trial = 0; trial < 200; ++trial) {
+        sms_generator_config a, b;
+        double Ts_b = Ts;
+        size_t need, field = (size_t)(uniform() * 7.0);
+        a.vmax = pow(10.0, 2.0 * uniform() - 1.0);
+        a.amax = a.vmax * pow(10.0, 2.0 * uniform() - 0.5);
+        a.jmax = a.amax * pow(10.0, 2.0 * uniform());
+        a.profile = (sms_profile)(int)(uniform() * 3.0);
+        a.wn = a.profile == SMS_PROFILE_DAMPED || uniform() < 0.3 ? 20.0 + 200.0 * uniform() : 0.0;
+        a.zeta = a.wn > 0.0 ? 0.3 * uniform() : 0.0;
+        b = a;
+        switch (field) {
+        case 0: b.vmax = nextafter(a.vmax, 1e300); break;
+        case 1: b.amax = nextafter(a.amax, 0.0); break;
+        case 2: b.jmax = nextafter(a.jmax, 1e300); break;
+        case 3: b.profile = a.profile == SMS_PROFILE_POLYNOMIAL ? SMS_PROFILE_TRIGONOMETRIC
+                                                                : SMS_PROFILE_POLYNOMIAL; break;
+        case 4: b.wn = a.wn > 0.0 ? nextafter(a.wn, 1e300) : 50.0; break;
+        case 5: b.zeta = nextafter(a.zeta, 1.0); break;
+        default: Ts_b = nextafter(Ts, 1.0); break;
+        }
+        if (field == 4 && a.wn == 0.0 && b.profile == SMS_PROFILE_DAMPED)
+            continue;
+        if (sms_generator_buffer_size(&a, Ts, &need) != SMS_OK || need > REALS
+            || sms_generator_buffer_size(&b, Ts_b, &need) != SMS_OK || need > REALS)
+            continue; /* limits the generator refuses at init */
+        ++tried;
+        gen_across(&a, Ts, &a, Ts, SMS_OK);
+        gen_across(&a, Ts, &b, Ts_b, field_status[field]);
+    }
+    CHECK(tried >= 150);
+}
+
 /* ------------------------------------------------------------------ B-spline */
 
 static void bspline_across(unsigned pa, size_t axa, double Ta, double Tsa, unsigned pb,
@@ -299,6 +351,7 @@ int main(void)
 {
     generator_fields();
     generator_format();
+    generator_random();
     bspline_fields();
     multi_fields();
     return check_summary("test_trajectory_state");
