@@ -225,3 +225,28 @@ def test_multi_axis_refuses_another_configuration(base, change, expected):
     assert np.array_equal(target.get_state(), before)
     with pytest.raises(ParameterError, match="^state does not match"):
         source.set_state(source.get_state()[:-1])
+
+
+@settings(max_examples=20, deadline=None)
+@given(axes=st.integers(min_value=1, max_value=4), data=st.data(),
+       sync=st.sampled_from(["phase", "independent"]), split=st.integers(1, 300))
+def test_multi_axis_random_configurations(axes, data, sync, split):
+    """Random per-axis limits: the same configuration continues bit for bit; one axis's limit
+    nudged by a relative 1e-9 is refused naming that axis and limit."""
+    from smoothshaper.multi_axis import MultiAxisGenerator
+    lims = {name: np.array(data.draw(st.lists(_limits, min_size=axes, max_size=axes)))
+            for name in ("vmax", "amax", "jmax")}
+    config = dict(lims, Ts=1e-3, sync=sync)
+    x = np.outer(np.where(np.arange(400) < 150, 0.3, -0.1), lims["vmax"])
+    one_shot = MultiAxisGenerator(**config).process(x)
+    g = MultiAxisGenerator(**config)
+    g.process(x[:split])
+    h = MultiAxisGenerator(**config)
+    h.set_state(g.get_state())
+    assert np.array_equal(h.process(x[split:]), one_shot[split:])
+    name = data.draw(st.sampled_from(["vmax", "amax", "jmax"]))
+    axis = data.draw(st.integers(0, axes - 1))
+    nudged = lims[name].copy()
+    nudged[axis] *= 1 + 1e-9
+    with pytest.raises(ParameterError, match=rf"^state is from {name}\[{axis}\]="):
+        MultiAxisGenerator(**dict(config, **{name: nudged})).set_state(g.get_state())
