@@ -192,15 +192,16 @@ def _multi_replan_bench(quick: bool) -> str:
 
 def design_call_costs(n_cases: int, rounds: int, seed: int = 11) -> dict:
     """CPU ns per three-bound kinematic design from Python, each call on a different random
-    problem (h, limits over four decades), so no call repeats another's work. With ``Ts``
-    (1 ms for all) each problem is first rescaled in time so that its duration is
-    10^U(0.5, 3.5) samples, as in the grid price. ``{with_Ts: {...}}`` with keys ``"raw"``
-    (``sms_kinematic_design`` through cffi, the bounds written into a prepared cffi array per
-    call, as a caller of the C API from Python does), ``"scalar"`` (the binding glue with the
-    bounds as scalar arguments, which the fast path calls), ``"python"``
-    (``design.kinematic``), ``"batch"`` (``design.kinematic_lengths`` on all the problems at
-    once, per problem) and ``"cases"``; an empty loop over the same cases is subtracted from
-    the loops."""
+    problem (h, limits over four decades), so no call repeats another's work. Variants:
+    ``"continuous"``; ``"Ts"`` (1 ms for all, each problem first rescaled in time so that its
+    duration is 10^U(0.5, 3.5) samples, as in the grid price); ``"mode"`` (continuous, the
+    last stage tuned to a mode of zeta 0.05 whose period is 10^U(-0.5, 0.5) times
+    amax/jmax). Each maps to ``"raw"`` (``sms_kinematic_design`` through cffi, the bounds
+    written into a prepared cffi array per call, as a caller of the C API from Python does),
+    ``"scalar"`` (the binding glue with the bounds as scalar arguments, which the fast path
+    calls), ``"python"`` (``design.kinematic``), ``"batch"`` (``design.kinematic_lengths`` on
+    all the problems at once, per problem) and ``"cases"``; an empty loop over the same cases
+    is subtracted from the loops. ``"floor"``: see :func:`_python_floor`."""
     from . import design
     from .filters import _backend
     ffi, lib = _backend("double")
@@ -211,45 +212,55 @@ def design_call_costs(n_cases: int, rounds: int, seed: int = 11) -> dict:
              for h, v, a, j in cases]
     # time scaled by c: (h, v/c, a/c^2, j/c^3) lasts c times as long
     scale = [10.0 ** rng.uniform(0.5, 3.5) * 1e-3 / T for T in spans]
-    grid = [(h, v / c, a / c ** 2, j / c ** 3, 1e-3) for (h, v, a, j), c in zip(cases, scale)]
-    cont = [c + (0.0,) for c in cases]
-    L, T, count = ffi.new("double[3]"), ffi.new("double[3]"), ffi.new("size_t *")
+    variants = {
+        "continuous": [c + (0.0, 0.0) for c in cases],
+        "Ts": [(h, v / c, a / c ** 2, j / c ** 3, 1e-3, 0.0)
+               for (h, v, a, j), c in zip(cases, scale)],
+        "mode": [(h, v, a, j, 0.0, float(2 * np.pi / (a / j * 10.0 ** rng.uniform(-0.5, 0.5))))
+                 for h, v, a, j in cases]}
+    L, T, count = ffi.new("double[3]"), ffi.new("double[6]"), ffi.new("size_t *")
     c_design, scalar, kinematic = lib.sms_kinematic_design, lib.smspy_kinematic3, design.kinematic
     out = {}
-    for with_Ts, rows in ((False, cont), (True, grid)):
+    for name, rows in variants.items():
+        zeta = 0.05 if name == "mode" else 0.0
+
         def empty():
-            for h, v, a, j, ts in rows:
+            for h, v, a, j, ts, wn in rows:
                 pass
 
         def raw():
-            for h, v, a, j, ts in rows:
+            for h, v, a, j, ts, wn in rows:
                 L[0] = v
                 L[1] = a
                 L[2] = j
-                c_design(h, L, 3, 0, 0.0, 0.0, ts, T, 3, count)
+                c_design(h, L, 3, 0, wn, zeta, ts, T, 3, count)
 
         def glue():
-            for h, v, a, j, ts in rows:
-                scalar(h, v, a, j, 3, 0, ts, T)
+            for h, v, a, j, ts, wn in rows:
+                scalar(h, v, a, j, 3, 0, wn, zeta, ts, T)
 
         def python():
-            if with_Ts:
-                for h, v, a, j, ts in rows:
+            if name == "Ts":
+                for h, v, a, j, ts, wn in rows:
                     kinematic(h=h, vmax=v, amax=a, jmax=j, Ts=ts)
+            elif name == "mode":
+                for h, v, a, j, ts, wn in rows:
+                    kinematic(h=h, vmax=v, amax=a, jmax=j, wn=wn, zeta=0.05)
             else:
-                for h, v, a, j, ts in rows:
+                for h, v, a, j, ts, wn in rows:
                     kinematic(h=h, vmax=v, amax=a, jmax=j)
         columns = np.array(rows).T
 
         def batch():
             design.kinematic_lengths(h=columns[0], vmax=columns[1], amax=columns[2],
-                                     jmax=columns[3], Ts=1e-3 if with_Ts else None)
+                                     jmax=columns[3], Ts=1e-3 if name == "Ts" else None)
         loop = _cpu(empty, rounds)
-        out[with_Ts] = {name: (_cpu(fn, rounds) - loop) / len(rows)
-                        for name, fn in (("raw", raw), ("scalar", glue), ("python", python))}
-        out[with_Ts]["batch"] = _cpu(batch, rounds) / len(rows)
-        out[with_Ts]["cases"] = len(rows)
-    out["floor"] = _python_floor(cont, rounds)
+        out[name] = {key: (_cpu(fn, rounds) - loop) / len(rows)
+                     for key, fn in (("raw", raw), ("scalar", glue), ("python", python))}
+        # the batch takes one mode for all problems: timed without one
+        out[name]["batch"] = _cpu(batch, rounds) / len(rows) if name != "mode" else None
+        out[name]["cases"] = len(rows)
+    out["floor"] = _python_floor(variants["continuous"], rounds)
     return out
 
 
@@ -265,11 +276,11 @@ def _python_floor(rows, rounds: int) -> dict:
     new = object.__new__
 
     def empty():
-        for h, v, a, j, ts in rows:
+        for h, v, a, j, ts, wn in rows:
             pass
 
     def call():
-        for h, v, a, j, ts in rows:
+        for h, v, a, j, ts, wn in rows:
             signature(h=h, vmax=v, amax=a, jmax=j)
 
     def stages():
@@ -339,16 +350,18 @@ def main(argv=None) -> int:
         print(f"Generator.process, {precision}: {ns:.2f} ns/sample ({x.size} samples, one C call)")
 
     cost = design_call_costs(200 if args.quick else 5000, rounds)
-    for key, label in ((False, "kinematic design (3 bounds)"), (True, "  with Ts")):
+    for key, label in (("continuous", "kinematic design (3 bounds)"), ("Ts", "  with Ts"),
+                       ("mode", "  with a mode")):
         c = cost[key]
+        batch = "" if c["batch"] is None else (
+            f", design.kinematic_lengths {c['batch'] / 1e3:.3f} us per problem "
+            f"({c['batch'] / c['raw']:.2f}x the raw call)")
         print(f"{label}: raw C call through cffi {c['raw'] / 1e3:.3f} us (bounds written into "
               f"a prepared array; {c['scalar'] / 1e3:.3f} us with them as scalar arguments), "
               f"design.kinematic {c['python'] / 1e3:.3f} us ({c['python'] / c['raw']:.2f}x the "
-              f"raw call, {c['python'] / c['scalar']:.2f}x the scalar one), "
-              f"design.kinematic_lengths {c['batch'] / 1e3:.3f} us per problem "
-              f"({c['batch'] / c['raw']:.2f}x the raw call); {c['cases']} different random "
-              "designs, loop overhead subtracted")
-    f, c = cost["floor"], cost[False]
+              f"raw call, {c['python'] / c['scalar']:.2f}x the scalar one){batch}; "
+              f"{c['cases']} different random designs, loop overhead subtracted")
+    f, c = cost["floor"], cost["continuous"]
     low = f["call"] + f["stages"] + c["scalar"]
     print(f"  design.kinematic's floor: the keyword call {f['call'] / 1e3:.3f} us + three Stage "
           f"objects and their list {f['stages'] / 1e3:.3f} us + the scalar C call "

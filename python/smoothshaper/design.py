@@ -210,13 +210,13 @@ def kinematic(*, h: float, vmax: float, amax: float | None = None, jmax: float |
         ``Ts``; extreme combinations name the pair whose ratio no duration can carry (e.g.
         ``h/vmax = 1e+318 s``).
     """
-    # Fast path (plain numbers, at most three bounds, no mode): the C design checks the values
-    # (finite, > 0, ratios in range) anyway, so only the types are tested here; a refused
-    # design, or a huge int cffi cannot convert, goes to the checked path, which names the
-    # argument. The Stage objects are built from the C core's values without re-validation.
-    # What is left is mostly CPython's own cost: the keyword call, the cffi call and three
-    # object creations (docs/sampled-limits.md, "What it costs").
-    if (wn is None and type(higher) is tuple and not higher and type(profile) is str
+    # Fast path (plain numbers, at most three bounds): the C design checks the values (finite,
+    # > 0, ratios in range, zeta in [0, 1)) anyway, so only the types are tested here; a
+    # refused design, or a huge int cffi cannot convert, goes to the checked path, which names
+    # the argument. The Stage objects are built from the C core's values without
+    # re-validation. What is left is mostly CPython's own cost: the keyword call, the cffi call
+    # and three object creations (docs/sampled-limits.md, "What it costs").
+    if (type(higher) is tuple and not higher and type(profile) is str
             and type(h) in _PLAIN and type(vmax) in _PLAIN):
         last = _FAST_PROFILES.get(profile)
         n = 1
@@ -232,13 +232,20 @@ def kinematic(*, h: float, vmax: float, amax: float | None = None, jmax: float |
                 last = None
         else:
             last = None
+        if wn is None:
+            wn_ = zeta_ = 0.0   # zeta is ignored without a mode
+        elif type(wn) in _PLAIN and wn > 0 and type(zeta) in _PLAIN:
+            wn_, zeta_ = wn, zeta
+        else:
+            last = None
         if last is not None and (Ts is None or type(Ts) in _PLAIN and Ts > 0):
             try:
                 T, design3, unpack = _THREAD.b
             except AttributeError:
                 T, design3, unpack = _THREAD.b = _fast_buffers()
             try:
-                st = design3(h, vmax, amax or 0.0, jmax or 0.0, n, last, Ts or 0.0, T)
+                st = design3(h, vmax, amax or 0.0, jmax or 0.0, n, last, wn_, zeta_, Ts or 0.0,
+                             T)
             except OverflowError:
                 st = -1
             if st == 0:
@@ -250,25 +257,33 @@ def kinematic(*, h: float, vmax: float, amax: float | None = None, jmax: float |
                     d["T"] = t
                     d["order"] = 1
                     out.append(s)
-                if last:
+                if wn is not None:   # the last stage's family, decay and mode multiple
+                    kind, sigma, k = unpack(T + 3, 3)
+                    d["kind"] = _stages.KINDS[int(kind)]
+                    if sigma:
+                        d["sigma"] = sigma
+                    if k != 1:
+                        d["k"] = int(k)
+                elif last:
                     d["kind"] = "harmonic"
                 return out
     return _kinematic_checked(h, vmax, amax, jmax, higher, profile, wn, zeta, Ts)
 
 
-_FAST_PROFILES = {"polynomial": 0, "trigonometric": 1}   # the C sms_profile values
+_FAST_PROFILES = {p: i for i, p in enumerate(PROFILES)}   # the C sms_profile values
 # Types cffi converts to a double exactly as float() does (bool, complex, str and other
 # number types take the checked path, which refuses or converts them by name).
 _PLAIN = (float, int, np.float64, np.int64, np.float32)
-_THREAD = threading.local()   # cffi calls release the GIL: one length buffer per thread
+_THREAD = threading.local()   # cffi calls release the GIL: one output buffer per thread
 _NEW = object.__new__
 
 
 def _fast_buffers():
-    """This thread's length buffer, the scalar-bounds design of the double module (binding
-    glue around ``sms_kinematic_design``) and ``ffi.unpack``."""
+    """This thread's output buffer (three lengths, then the last stage's kind, sigma and k),
+    the scalar-bounds design of the double module (binding glue around the solve of
+    ``sms_kinematic_design``) and ``ffi.unpack``."""
     ffi, lib = _backend("double")
-    return ffi.new("double[]", 3), lib.smspy_kinematic3, ffi.unpack
+    return ffi.new("double[]", 6), lib.smspy_kinematic3, ffi.unpack
 
 
 def _kinematic_checked(h, vmax, amax, jmax, higher, profile, wn, zeta, Ts) -> list[Stage]:

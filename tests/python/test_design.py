@@ -177,45 +177,56 @@ odd = st.sampled_from([True, False, np.bool_(True), 1 + 0j, "1.0", 10 ** 400, -1
 arguments = st.one_of(numbers, numbers, numbers, odd)
 
 
-@settings(max_examples=400)
+@settings(max_examples=500)
 @given(h=st.one_of(numbers, numbers.map(lambda v: -v), odd), vmax=arguments,
        amax=st.one_of(st.none(), arguments), jmax=st.one_of(st.none(), arguments),
-       profile=st.sampled_from(["polynomial", "trigonometric"] * 3
-                               + ["Polynomial", "damped", "cubic", ["polynomial"]]),
+       profile=st.sampled_from(["polynomial", "trigonometric", "damped"] * 3
+                               + ["Polynomial", "cubic", ["polynomial"]]),
+       wn=st.one_of(st.none(), st.none(), arguments),
+       zeta=st.one_of(st.floats(0.0, 0.99), st.sampled_from([0, 1.0, -0.1, np.float32(0.5)]),
+                      odd),
        Ts=st.one_of(st.none(), st.none(), arguments),
        higher=st.sampled_from([()] * 6 + [[], np.array([]), np.array([1e9, 1e12])]))
-def test_fast_path_equals_the_checked_path(h, vmax, amax, jmax, profile, Ts, higher):
+def test_fast_path_equals_the_checked_path(h, vmax, amax, jmax, profile, wn, zeta, Ts, higher):
     """design.kinematic takes a fast path for plain numbers (float, int, NumPy float64,
-    float32, int64) without a mode; for any argument whatever (valid, out of range, not
-    finite, huge ints, booleans, complex, text, arrays) it gives exactly what the fully
+    float32, int64) and at most three bounds; for any argument whatever (valid, out of range,
+    not finite, huge ints, booleans, complex, text, arrays) it gives exactly what the fully
     checked path gives: equal stages with the same repr, hash and float lengths, or the same
     error with the same message and parameter."""
     fast = _outcome(design.kinematic, h=h, vmax=vmax, amax=amax, jmax=jmax, profile=profile,
-                    Ts=Ts, higher=higher)
-    checked = _outcome(design._kinematic_checked, h, vmax, amax, jmax, higher, profile, None,
-                       0.0, Ts)
+                    wn=wn, zeta=zeta, Ts=Ts, higher=higher)
+    checked = _outcome(design._kinematic_checked, h, vmax, amax, jmax, higher, profile, wn,
+                       zeta, Ts)
     assert fast == checked
 
 
 @given(lh=decades, lv=decades, la=decades, lj=decades, n=st.integers(1, 3),
-       trig=st.booleans(), grid=st.booleans(), kind=st.sampled_from(_NUMBER_TYPES))
-def test_fast_path_is_taken_and_exact(lh, lv, la, lj, n, trig, grid, kind):
+       profile=st.sampled_from(design.PROFILES), grid=st.booleans(), mode=st.booleans(),
+       lw=st.floats(-1.0, 3.0), zeta=st.floats(0.0, 0.9), kind=st.sampled_from(_NUMBER_TYPES))
+def test_fast_path_is_taken_and_exact(lh, lv, la, lj, n, profile, grid, mode, lw, zeta, kind):
     """Valid plain numbers never reach the checked path (so the comparison above covers the
-    fast path), and the stages equal those of the checked path with every argument as a
-    float: the C design sees the same doubles."""
+    fast path, with and without a mode), and the stages equal those of the checked path with
+    every argument as a float: the C design sees the same doubles."""
     h = 10.0 ** lh
     kw = dict(vmax=10.0 ** lv, amax=10.0 ** la if n > 1 else None,
               jmax=10.0 ** lj if n > 2 else None)
-    Ts = design.duration(design.kinematic(h=h, **kw)) / 37.3 if grid else None
-    profile = "trigonometric" if trig else "polynomial"
+    mode = mode or profile == "damped"
     typed = {k: None if v is None else _typed(v, kind) or kind(1) for k, v in kw.items()}
     h_typed = _typed(h, kind) or kind(1)
-    expected = design._kinematic_checked(float(h_typed), *(None if v is None else float(v)
-                                                           for v in typed.values()),
-                                         (), profile, None, 0.0, Ts)
+    wn = _typed(10.0 ** lw, kind) or kind(1) if mode else None
+    zeta = _typed(zeta, kind) if mode and kind not in (int, np.int64) else 0.0
+    floats = [None if v is None else float(v) for v in typed.values()]
+    try:
+        Ts = design.duration(design._kinematic_checked(
+            float(h_typed), *floats, (), profile, wn and float(wn), float(zeta), None)) / 37.3 \
+            if grid else None
+        expected = design._kinematic_checked(float(h_typed), *floats, (), profile,
+                                             wn and float(wn), float(zeta), Ts)
+    except ValueError:   # no such design (damped with one bound, a mode above Nyquist, ...)
+        return
     with pytest.MonkeyPatch.context() as m:
         m.setattr(design, "_kinematic_checked", None)   # calling it would raise TypeError
-        fast = design.kinematic(h=h_typed, profile=profile, Ts=Ts, **typed)
+        fast = design.kinematic(h=h_typed, profile=profile, wn=wn, zeta=zeta, Ts=Ts, **typed)
     assert fast == expected and repr(fast) == repr(expected)
 
 
