@@ -240,9 +240,9 @@ def kinematic(*, h: float, vmax: float, amax: float | None = None, jmax: float |
             last = None
         if last is not None and (Ts is None or type(Ts) in _PLAIN and Ts > 0):
             try:
-                T, design3, unpack = _THREAD.b
+                T, last_stage, design3, unpack = _THREAD.b
             except AttributeError:
-                T, design3, unpack = _THREAD.b = _fast_buffers()
+                T, last_stage, design3, unpack = _THREAD.b = _fast_buffers()
             try:
                 st = design3(h, vmax, amax or 0.0, jmax or 0.0, n, last, wn_, zeta_, Ts or 0.0,
                              T)
@@ -258,8 +258,8 @@ def kinematic(*, h: float, vmax: float, amax: float | None = None, jmax: float |
                     d["order"] = 1
                     out.append(s)
                 if wn is not None:   # the last stage's family, decay and mode multiple
-                    kind, sigma, k = unpack(T + 3, 3)
-                    d["kind"] = _stages.KINDS[int(kind)]
+                    kind, sigma, k = unpack(last_stage, 3)
+                    d["kind"] = _KINDS[int(kind)]
                     if sigma:
                         d["sigma"] = sigma
                     if k != 1:
@@ -276,14 +276,16 @@ _FAST_PROFILES = {p: i for i, p in enumerate(PROFILES)}   # the C sms_profile va
 _PLAIN = (float, int, np.float64, np.int64, np.float32)
 _THREAD = threading.local()   # cffi calls release the GIL: one output buffer per thread
 _NEW = object.__new__
+_KINDS = _stages.KINDS
 
 
 def _fast_buffers():
     """This thread's output buffer (three lengths, then the last stage's kind, sigma and k),
-    the scalar-bounds design of the double module (binding glue around the solve of
-    ``sms_kinematic_design``) and ``ffi.unpack``."""
+    a pointer to its last three, the scalar-bounds design of the double module (binding glue
+    around the solve of ``sms_kinematic_design``) and ``ffi.unpack``."""
     ffi, lib = _backend("double")
-    return ffi.new("double[]", 6), lib.smspy_kinematic3, ffi.unpack
+    out = ffi.new("double[]", 6)
+    return out, out + 3, lib.smspy_kinematic3, ffi.unpack
 
 
 def _kinematic_checked(h, vmax, amax, jmax, higher, profile, wn, zeta, Ts) -> list[Stage]:
