@@ -69,15 +69,18 @@ sms_status sms_generator_reach(const sms_generator_config *c, double Ts,
         (void)out_of_range(r, "Ts", "Ts", Ts, big);
         return SMS_ERR_SAMPLE_PERIOD;
     }
+    {
+        static const char *const names[3] = {"vmax", "amax", "jmax"};
+        const double limit[3] = {c->vmax, c->amax, c->jmax};
+        int i;
+        for (i = 0; i < 3; ++i) /* each a normal number with room for 2 x and 16 x */
+            if (!(limit[i] >= GEN_REAL_MIN) || !(limit[i] <= big / GEN_MARGIN)) /* also NaN */
+                return out_of_range(r, names[i], names[i], limit[i],
+                                    limit[i] >= GEN_REAL_MIN ? big / GEN_MARGIN : GEN_REAL_MIN);
+    }
     V = c->vmax;
     A = c->amax;
     J = c->jmax;
-    if (!isfinite(V) || !(V >= GEN_REAL_MIN) || !(V <= big / GEN_MARGIN))
-        return out_of_range(r, "vmax", "vmax", V, V >= GEN_REAL_MIN ? big / GEN_MARGIN : GEN_REAL_MIN);
-    if (!isfinite(A) || !(A >= GEN_REAL_MIN) || !(A <= big / GEN_MARGIN))
-        return out_of_range(r, "amax", "amax", A, A >= GEN_REAL_MIN ? big / GEN_MARGIN : GEN_REAL_MIN);
-    if (!isfinite(J) || !(J >= GEN_REAL_MIN) || !(J <= big / GEN_MARGIN))
-        return out_of_range(r, "jmax", "jmax", J, J >= GEN_REAL_MIN ? big / GEN_MARGIN : GEN_REAL_MIN);
     if (c->profile == SMS_PROFILE_TRIGONOMETRIC)
         J *= 0.63661977236758134; /* the half-cosine transitions' mean jerk, 2/pi jmax */
     if (!(V * J * GEN_MARGIN <= big)) /* J dv, |dv| <= 2 vmax */
