@@ -402,10 +402,11 @@ static void evaluate(const sms_multi_generator *g, size_t first, size_t n,
 
 /* A target vector whose move cannot be represented is dropped: the group keeps the goal it
  * has and does not try that target again until it changes (sms_multi_generator_step). */
-static void drop_target(sms_multi_move *m)
+static void drop_target(sms_multi_generator *g, sms_multi_move *m)
 {
     m->pending = 0;
     m->refused = 1;
+    ++g->dropped;
 }
 
 static void step_group(sms_multi_generator *g, size_t first, size_t n, sms_multi_move *m,
@@ -437,7 +438,7 @@ static void step_group(sms_multi_generator *g, size_t first, size_t n, sms_multi
         if (!m->active) {
             sms_real zero[SMS_MULTI_MAX_AXES] = {0};
             if (!plan(g, first, &G, m, g->goal + first, zero, 0))
-                drop_target(m);
+                drop_target(g, m);
             t = 0;
         } else if (t >= m->T1 - SNAP * (m->T1 + m->tau + m->T2)) {
             sms_real tr = m->seen > m->T1 ? m->seen : m->T1;
@@ -453,7 +454,7 @@ static void step_group(sms_multi_generator *g, size_t first, size_t n, sms_multi
                 if (plan(g, first, &G, m, p, V, t > tr ? t - tr : 0))
                     t = m->off;
                 else
-                    drop_target(m); /* the running move goes on */
+                    drop_target(g, m); /* the running move goes on */
             }
         }
     }
@@ -632,6 +633,7 @@ sms_status sms_multi_generator_init(sms_multi_generator *g,
 void sms_multi_generator_reset(sms_multi_generator *g, const sms_real *position)
 {
     size_t i;
+    g->dropped = 0;
     for (i = 0; i < SMS_MULTI_MAX_AXES; ++i) {
         sms_real x = (position != NULL && i < g->n_axes) ? position[i] : 0;
         g->target[i] = x;

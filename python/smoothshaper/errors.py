@@ -1,4 +1,5 @@
-"""The one exception type of the package for invalid arguments.
+"""The one exception type of the package for invalid arguments, and the one warning of the
+online generators (a target they dropped).
 
 Every function and class that validates its arguments raises :class:`ParameterError`, a
 ``ValueError`` subclass, so ``except ValueError`` keeps working. Its message starts with the
@@ -7,7 +8,7 @@ files, the CLI adds the file and row).
 """
 from __future__ import annotations
 
-__all__ = ["ParameterError"]
+__all__ = ["ParameterError", "DroppedTargetWarning"]
 
 
 class ParameterError(ValueError):
@@ -25,3 +26,10 @@ class ParameterError(ValueError):
         super().__init__(message)
         self.parameter = parameter
         self.status = status
+
+
+class DroppedTargetWarning(RuntimeWarning):
+    """A target of an online generator's ``process`` was dropped: its move cannot be
+    represented in the build's floats (it would last more than 2^52 samples, or a value on
+    the way would overflow). The generator keeps its previous goal until the target changes;
+    ``refused`` and ``dropped`` on the generator say the same."""

@@ -18,6 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import _state_identity
+from .errors import DroppedTargetWarning
 from .filters import ParameterError, _backend, _fill_config, _real_dtype
 from .reference import multi_axis as _ref
 from ._checks import real_array as _real_array
@@ -203,10 +204,20 @@ class MultiAxisGenerator:
         ndarray of float64, shape (n, axes, 4)
             q, v, a, j of each axis at each sample.
 
+            A target vector whose move cannot be represented (more than 2^52 samples, or a
+            value that overflows) is dropped: the axes (of its group) keep their goals and it
+            is not tried again until it changes (:attr:`refused`, :attr:`dropped`).
+
         Raises
         ------
         ParameterError
             Naming ``targets`` (shape or non-finite values); the state is then untouched.
+
+        Warns
+        -----
+        DroppedTargetWarning
+            Once per call in which targets were dropped, naming the count and the held
+            targets of the axes that are refused.
         """
         x = np.asarray(targets, dtype=np.float64)
         if x.ndim == 1:
@@ -221,9 +232,31 @@ class MultiAxisGenerator:
         dtype = _real_dtype(self.precision)
         xin = np.ascontiguousarray(x, dtype=dtype)
         out = np.empty((x.shape[0], self.axes, 4), dtype=dtype)
+        before = self._gen.dropped
         self._lib.sms_multi_generator_process(self._gen, self._ffi.from_buffer("sms_real[]", xin),
                                               x.shape[0], self._ffi.from_buffer("sms_real[]", out))
+        if self._gen.dropped != before:
+            held = {f"target[{i}]": float(self._gen.target[i])
+                    for i, r in enumerate(self.refused) if r}
+            warnings.warn(DroppedTargetWarning(
+                f"{self._gen.dropped - before} target vector(s) dropped in this block (a move "
+                f"longer than 2^52 samples or a value that overflows {self.precision}); "
+                f"refused now: {held or 'none'}; the axes keep their goals until the target "
+                "changes"), stacklevel=2)
         return out.astype(np.float64)
+
+    @property
+    def refused(self) -> tuple:
+        """Per axis, True while its held target is dropped (all axes together in phase
+        synchronisation, each axis alone when independent)."""
+        phase = self.sync == "phase"
+        return tuple(bool(self._gen.move[0 if phase else i].refused) for i in range(self.axes))
+
+    @property
+    def dropped(self) -> int:
+        """Target vectors (of a group) dropped since construction or the last :meth:`reset`
+        (a diagnostic count; not part of the saved state)."""
+        return int(self._gen.dropped)
 
     def get_state(self) -> np.ndarray:
         """The dynamic state, tagged with the configuration it belongs to (a copy);

@@ -19,24 +19,19 @@ import numpy as np
 
 from . import _state_identity
 from . import design as _design
+from .errors import DroppedTargetWarning
 from .filters import ParameterError, _backend, _raise_status, _real_dtype, check_memory
 from ._checks import (finite as _finite, finite_signal as _targets, integer as _integer,
                       real_array as _real_array)
 
-__all__ = ["Generator", "DroppedTargetWarning", "generator_reference", "tuned_stage", "BSpline", "bspline_reference",
-           "bspline_period", "BSPLINE_MAX_DEGREE", "BSPLINE_MAX_AXES", "MultiAxisGenerator",
+__all__ = ["Generator", "DroppedTargetWarning", "generator_reference", "tuned_stage", "BSpline",
+           "bspline_reference", "bspline_period", "BSPLINE_MAX_DEGREE", "BSPLINE_MAX_AXES", "MultiAxisGenerator",
            "MultiAxisMove", "multi_axis_move", "phase_duration", "multi_axis_reference"]
 
 BSPLINE_MAX_DEGREE = 7
 BSPLINE_MAX_AXES = 3
 # The fields of a saved state's identity after the common head (trajectory.h).
 _GENERATOR_IDENTITY_FIELDS = ("vmax", "amax", "jmax", "profile", "wn", "zeta")
-
-
-class DroppedTargetWarning(RuntimeWarning):
-    """A target of :meth:`Generator.process` was dropped: its move cannot be represented in
-    the build's floats (it would last more than 2^52 samples, or a value on the way would
-    overflow). The generator keeps its previous goal until the target changes."""
 
 
 def _generator_error(st, lib, ffi, cfg, Ts, profile):

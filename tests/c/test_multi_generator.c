@@ -493,11 +493,21 @@ static void unrepresentable_move_dropped(void)
             finite_ok = 0;
         if (k < 30 && (o[0] != 0 || o[4] != 0 || sms_multi_generator_busy(&g)))
             within = 0; /* dropped at rest: still at 0, not waiting to try it again */
+        if (k < 30)
+            CHECK(g.move[0].refused == 1 && g.dropped == 1); /* once, not per sample */
+        if (k >= 30 && k < 40)
+            CHECK(g.move[0].refused == 0);
         if (fabs((double)o[1]) > 1.0 * (1 + LIMIT_TOL) || fabs((double)o[5]) > 1.0 * (1 + LIMIT_TOL))
             within = 0;
     }
     CHECK(finite_ok);
     CHECK(within);
+    /* counted once: the second target 1e300 (k = 40 .. 59) arrives in the first velocity
+     * transition of axis 1's move and changes before the move may blend, so it is never
+     * tried (nor dropped) */
+    CHECK(g.dropped == 1);
+    sms_multi_generator_reset(&g, NULL);
+    CHECK(g.dropped == 0 && g.move[0].refused == 0);
 }
 
 int main(void)

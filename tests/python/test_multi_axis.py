@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings, strategies as st
 
+from smoothshaper.errors import DroppedTargetWarning
 from smoothshaper.filters import ParameterError
 from smoothshaper.reference.multi_axis import multi_axis_reference, phase_duration
 from smoothshaper.bench_trajectory import ruckig_phase
@@ -285,7 +286,17 @@ def test_unrepresentable_moves_are_dropped(precision):
     args = dict(vmax=[1.0, 1.0], amax=[1e-30, 1.0], jmax=[tiny, 1.0], Ts=1e-3)
     targets = np.array([[big, -big]] * 30 + [[0.0, 0.5]] * 5 + [[big, 0.5]] * 20
                        + [[0.0, 0.25]] * 4000)
-    out = MultiAxisGenerator(precision=precision, **args).process(targets)
+    g = MultiAxisGenerator(precision=precision, **args)
+    # counted once: the second [big, 0.5] arrives in the first velocity transition of axis
+    # 1's move and changes before the move may blend, so it is never tried
+    with pytest.warns(DroppedTargetWarning, match=r"1 target vector\(s\) dropped"):
+        out = g.process(targets)
+    assert g.dropped == 1 and g.refused == (False, False)
+    with pytest.warns(DroppedTargetWarning, match=r"refused now: \{'target\[0\]'"):
+        g.process(np.tile([big, 0.25], (3000, 1)))
+    assert g.dropped == 2 and g.refused == (True, True)   # phase: the group together
+    g.reset()
+    assert g.dropped == 0 and g.refused == (False, False)
     assert np.all(np.isfinite(out))
     np.testing.assert_array_equal(out[:30], 0.0)   # dropped at rest: still at q0
     assert np.all(np.abs(out[:, :, 1:]) <= np.array([[1.0, 1e-30, tiny], [1, 1, 1]])[None]

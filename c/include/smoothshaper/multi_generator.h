@@ -152,6 +152,8 @@ typedef struct sms_multi_generator {
     sms_real V[SMS_MULTI_MAX_AXES];      /**< velocity at its start */
     sms_real W[SMS_MULTI_MAX_AXES];      /**< its cruise velocity */
     sms_multi_move move[SMS_MULTI_MAX_AXES]; /**< phase: move[0]; independent: move[i] */
+    size_t dropped; /**< target vectors (of a group) dropped since init or the last reset
+                         (read-only; a diagnostic count, not part of the saved state) */
     /** vibration stages of axis i, signal m (n_stages 0: none), in caller memory */
     sms_chain chain[SMS_MULTI_MAX_AXES][SMS_MULTI_SIGNALS];
     double identity[SMS_MULTI_IDENTITY_COUNT]; /**< configuration and Ts it was built for */
@@ -206,6 +208,8 @@ SMS_API void sms_multi_generator_reset(sms_multi_generator *g, const sms_real *p
  * underflows to 0, e.g. |d| = 1e300 with jmax = 1e-300, or more than 2^52 samples) is
  * dropped: the axes (of the group) keep their previous goal, so every output stays finite,
  * and it is not tried again until the target vector changes (one attempt, not one per sample).
+ * The group's `move[].refused` is 1 while its held target is dropped, and `dropped` counts
+ * the drops.
  */
 SMS_API void sms_multi_generator_step(sms_multi_generator *g, const sms_real *target,
                                       sms_real *out);
