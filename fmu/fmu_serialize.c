@@ -18,6 +18,7 @@
  * (t != t0 + ticks*Ts + since_tick beyond the rounding of an accumulating host) is refused with
  * a message, so a crafted state can never make the next doStep run a huge number of ticks.
  */
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -228,13 +229,16 @@ static int read_values(reader *r, fmu_type type, void *model, char *msg, size_t 
     return r->bad ? (snprintf(msg, len, "truncated state"), -1) : 0;
 }
 
-/* The clock of a built state: ticks below the limit, since_tick in [-slack Ts, Ts), and the time
- * where the ticks put it (within an accumulating host's drift). 0, or -1 with msg. */
+/* The clock of a built state: ticks below the limit, since_tick in [-slack Ts, Ts) widened by
+ * the rounding of a tick count computed in double (one step of h counts floor(h/Ts) ticks, off
+ * by up to a few ulp of h/Ts: 1e-4 Ts after a step of 1e12 ticks), and the time where the ticks
+ * put it (within an accumulating host's drift). 0, or -1 with msg. */
 static int check_clock(const fmu_clock *k, double Ts, char *msg, size_t len)
 {
     double ticks = (double)k->ticks, at = k->start_time + ticks * Ts + k->since_tick;
-    if (!(ticks < 4.0e15) || !(k->since_tick >= -2.0 * FMU_TICK_SLACK * Ts)
-        || !(k->since_tick < Ts))
+    double rounding = 4.0 * DBL_EPSILON * (ticks + 1.0) * Ts;
+    if (!(ticks < 4.0e15) || !(k->since_tick >= -2.0 * FMU_TICK_SLACK * Ts - rounding)
+        || !(k->since_tick < Ts + rounding))
         REFUSE("the state's clock is inconsistent (ticks %.17g, time since the last tick %.17g s, "
                "Ts %.17g s)", ticks, k->since_tick, Ts);
     if (!(fabs(k->time - at) <= FMU_TICK_SLACK * Ts + CLOCK_REL_SLACK * fabs(k->time)))

@@ -10,6 +10,9 @@
  * 400,000 steps contiguously (through step 334,586) and fresh instances run windows of steps
  * starting at the accumulated clock of steps 1e7, 1e8 and 1e9 - 4000. With the environment
  * variable SMS_FMU_CLOCK_FULL=1 one instance runs all 1e9 steps contiguously (about a minute).
+ * Steps of up to 1e12 s (1e15 ticks) leave a clock whose serialised state loads again: the
+ * tick count floor(h/Ts) of one long step is off by a few ulp of h/Ts, so the time since the
+ * last tick may fall slightly outside [0, Ts) and the reader must allow that rounding.
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -97,11 +100,50 @@ static long window(long first, long n, double t0)
     return bad;
 }
 
+/* After steps of 1 s .. 1e12 s over new inputs, every serialised state loads again. Returns the
+ * number of states refused. */
+static long long_steps_reload(void)
+{
+    const fmi2ValueReference vr_u = SS_VR_U;
+    static const double lengths[] = { 1.0, 1e6, 1e9, 1e11 / 3.0, 1e12 };
+    fmi2Component c = probe(0.0, 0.0);
+    double t = 0.0, u;
+    long bad = 0;
+    size_t i;
+    if (c == NULL)
+        return 1;
+    for (i = 0; i < sizeof lengths / sizeof lengths[0]; ++i) {
+        fmi2FMUstate s = NULL, back = NULL;
+        size_t size = 0;
+        unsigned char *blob;
+        u = (double)(i + 1);
+        if (fmi2SetReal(c, &vr_u, 1, &u) != fmi2OK || fmi2DoStep(c, t, lengths[i], fmi2True) != fmi2OK
+            || fmi2GetRealStatus(c, fmi2LastSuccessfulTime, &t) != fmi2OK
+            || fmi2GetFMUstate(c, &s) != fmi2OK || fmi2SerializedFMUstateSize(c, s, &size) != fmi2OK
+            || (blob = (unsigned char *)malloc(size)) == NULL) {
+            fmi2FreeInstance(c);
+            return bad + 1;
+        }
+        if (fmi2SerializeFMUstate(c, s, (fmi2Byte *)blob, size) != fmi2OK
+            || fmi2DeSerializeFMUstate(c, (fmi2Byte *)blob, size, &back) != fmi2OK
+            || fmi2SetFMUstate(c, back) != fmi2OK) {
+            fprintf(stderr, "FAILED: the state after a step of %.17g s does not load\n",
+                    lengths[i]);
+            ++bad;
+        }
+        free(blob);
+        fmi2FreeFMUstate(c, &back);
+        fmi2FreeFMUstate(c, &s);
+    }
+    fmi2FreeInstance(c);
+    return bad;
+}
+
 int main(void)
 {
     const long total = 1000000000L, windows[] = { 10000000L, 100000000L, 1000000000L - 4000 };
     const char *full = getenv("SMS_FMU_CLOCK_FULL");
-    long bad = 0, step;
+    long bad = 0, step, unloadable = long_steps_reload();
     size_t w = 0;
     double t = 0.0;
     if (full != NULL && strcmp(full, "1") == 0)
@@ -113,8 +155,9 @@ int main(void)
         t += h;   /* the host's accumulated clock */
     }
     printf("host clock at step %ld: %.17g (k*h = %.17g)\n", step, t, (double)step * h);
-    if (bad != 0) {
-        fprintf(stderr, "FAILED: %ld steps lost or doubled a tick\n", bad);
+    if (bad != 0 || unloadable != 0) {
+        fprintf(stderr, "FAILED: %ld steps lost or doubled a tick, %ld states after long steps "
+                "do not load\n", bad, unloadable);
         return 1;
     }
     return 0;
