@@ -6,12 +6,12 @@ from __future__ import annotations
 import ctypes
 import math
 import struct
-import zlib
 
 import numpy as np
 import pytest
 
 fmpy = pytest.importorskip("fmpy", reason="fmpy is needed to import the FMUs")
+xxhash = pytest.importorskip("xxhash", reason="xxhash recomputes the states' checksum")
 from fmpy.fmi1 import FMICallException  # noqa: E402
 from fmpy.fmi2 import (FMU2Slave, fmi2CallbackAllocateMemoryTYPE,  # noqa: E402
                        fmi2CallbackFreeMemoryTYPE)
@@ -101,11 +101,28 @@ def clock_offset(blob: bytes) -> int:
 
 
 def patched(blob: bytes, offset: int, fmt: str, value) -> bytes:
-    """The blob with one field replaced and the CRC-32 recomputed (a well-formed forgery)."""
+    """The blob with one field replaced and the XXH64 checksum recomputed (a well-formed forgery)."""
     b = bytearray(blob)
     struct.pack_into(fmt, b, offset, value)
-    struct.pack_into("<I", b, len(b) - 4, zlib.crc32(bytes(b[:-4])))
+    struct.pack_into("<Q", b, len(b) - 8, xxhash.xxh64_intdigest(bytes(b[:-8])))
     return bytes(b)
+
+
+def test_the_checksum_is_xxh64_of_the_bytes_before_it(stepped):
+    """The format's checksum, computed by the FMU's own XXH64, equals the xxHash library's."""
+    _, _, blob = stepped
+    assert struct.unpack_from("<Q", blob, len(blob) - 8)[0] == xxhash.xxh64_intdigest(blob[:-8])
+    # The dynamic part, u32 nS, zero bytes, nS doubles, puts the doubles at a multiple of 8.
+    assert len(blob) % 8 == 0
+
+    def dynamic_part_at(n):   # offset of the doubles if the blob holds n of them, else None
+        at = len(blob) - 8 - 8 * n
+        for start in range(at - 11, at - 3):   # u32 nS, then 0 to 7 zero bytes
+            if start >= 0 and struct.unpack_from("<I", blob, start)[0] == n \
+                    and not any(blob[start + 4:at]):
+                return at
+        return None
+    assert any(dynamic_part_at(n) is not None for n in range(1, len(blob) // 8))
 
 
 @pytest.fixture
