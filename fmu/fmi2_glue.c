@@ -244,6 +244,15 @@ void fmi2FreeInstance(fmi2Component comp)
     release(c);
 }
 
+int fmu_refuse_size(char *msg, size_t len, const char *parameters, double need, const char *fix)
+{
+    snprintf(msg, len, "%s: needs %.0f reals of delay lines and tables (%.1f MiB in double), more "
+             "than the limit of %lu reals (%lu MiB) per instance that keeps every call on the "
+             "state well under 100 ms: %s", parameters, need, need * 8.0 / 1048576.0,
+             (unsigned long)FMU_MAX_REALS, (unsigned long)(FMU_MAX_REALS * 8u >> 20), fix);
+    return 1;
+}
+
 int fmu_build(const fmi2CallbackFunctions *cb, void *model, void **mem, size_t *bytes, char *msg,
               size_t len)
 {

@@ -29,13 +29,29 @@ typedef enum fmu_var_class {
 /** FMI 2.0 base types the models use (Enumerations travel as Integers). */
 typedef enum fmu_type { FMU_REAL = 0, FMU_INTEGER = 1 } fmu_type;
 
-/** Largest delay line / table a model allocates, in reals (2^28: 2 GiB in double, as the Python
- * package's MAX_BUFFER_REALS): beyond it fmu_model_plan() refuses at once, naming the limit,
- * instead of asking the importer for memory a co-simulation host cannot sensibly give. */
-#define FMU_MAX_REALS ((size_t)1 << 28)
+/** The per-instance limit on an FMU's state: all its delay lines and tables together, in reals
+ * (2^22 = 4,194,304: 32 MiB in double, and the serialised state is then at most 32 MiB plus a
+ * few hundred bytes). Every FMI call that touches the whole state (fmi2ExitInitializationMode,
+ * fmi2Get/SetFMUstate, fmi2(De)SerializeFMUstate, fmi2Reset, fmi2FreeInstance) costs at most
+ * about 0.7 ns per byte of it in the release build (tests/fmu/bench_fmu_state_size.c), so at
+ * this limit the slowest takes about 25 ms, a fourth of the 100 ms any call is allowed. Beyond
+ * it fmu_model_plan() refuses at once (closed forms, O(1)) through fmu_refuse_size(). The Python
+ * package has its own, larger limit for arrays it holds (smoothshaper.filters.MAX_BUFFER_REALS). */
+#define FMU_MAX_REALS ((size_t)1 << 22)
 
 /** Largest message fmu_model_build() may write (including the terminating 0). */
-#define FMU_MESSAGE_LEN 256
+#define FMU_MESSAGE_LEN 512
+
+/**
+ * @brief The refusal of a configuration whose delay lines and tables need more than
+ * FMU_MAX_REALS reals (provided by the glue: one wording for every model).
+ * @param parameters  the variables that set the size, with their values ("stage[0].T = 20, Ts =
+ *                    1e-06")
+ * @param need        reals the configuration needs (all delay lines and tables together)
+ * @param fix         what to change ("shorten the stage or raise Ts")
+ * @return 1 (the plan fails), msg holding the message.
+ */
+int fmu_refuse_size(char *msg, size_t len, const char *parameters, double need, const char *fix);
 
 /** @return sizeof the model's data struct. */
 size_t fmu_model_size(void);

@@ -238,12 +238,13 @@ static int stage_config(const ma_model *m, int k, int i, sms_stage_config *c, ch
     }
 }
 
-/* The stages of every axis in use, their delay lines (4 signals each) within FMU_MAX_REALS;
- * 0, or 1 with msg. */
+/* The stages of every axis in use, their delay lines (4 signals each) within FMU_MAX_REALS
+ * together; 0, or 1 with msg. */
 static int stage_configs(const ma_model *m, ma_stages *s, char *msg, size_t len)
 {
     double samples = 0.0;
-    int i, k;
+    size_t most = 0;
+    int i, k, longest_k = 0, longest_i = 0;
     for (i = 0; i < m->axes; ++i) {
         s->n[i] = 0;
         for (k = 0; k < MA_MAX_STAGES; ++k) {
@@ -254,12 +255,22 @@ static int stage_configs(const ma_model *m, ma_stages *s, char *msg, size_t len)
                 return 1;
             (void)sms_stage_buffer_size(&s->config[i][s->n[i]], m->Ts, &reals);
             samples += 4.0 * (double)reals;
-            if (samples > (double)FMU_MAX_REALS)
-                return snprintf(msg, len, "stage[%d].wn[%d] = %.17g: the stages need more than "
-                                "%lu delay-line samples (2 GiB in double): raise wn or Ts", k, i,
-                                m->wn[k][i], (unsigned long)FMU_MAX_REALS), 1;
+            if (reals > most) {
+                most = reals;
+                longest_k = k;
+                longest_i = i;
+            }
             s->index[i][s->n[i]++] = k;
         }
+    }
+    if (samples > (double)FMU_MAX_REALS) {
+        char names[256];
+        snprintf(names, sizeof names, "stage[%d].wn[%d] = %.17g, stage[%d].zeta[%d] = %.17g, "
+                 "Ts = %.17g (the longest stage, 4 signals each)", longest_k, longest_i,
+                 m->wn[longest_k][longest_i], longest_k, longest_i,
+                 m->zeta[longest_k][longest_i], m->Ts);
+        return fmu_refuse_size(msg, len, names, samples,
+                               "raise the stages' wn or Ts, or use fewer stages or axes");
     }
     return 0;
 }

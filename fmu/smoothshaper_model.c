@@ -254,13 +254,13 @@ double fmu_model_input_max(const void *model)
 }
 
 /* Validate every parameter: the configs of the used stages, their count, the delay-line
- * samples and the memory cells they need (the core's size queries: closed forms). 0, or
- * non-zero with msg. */
+ * reals they need together (within FMU_MAX_REALS) and the memory cells (the core's size
+ * queries: closed forms). 0, or non-zero with msg. */
 static int configure(const ss_model *m, sms_stage_config *configs, size_t *n, size_t *need,
                      char *msg, size_t len)
 {
-    unsigned k;
-    size_t i;
+    unsigned k, used[SS_MAX_STAGES], longest = 0;
+    size_t i, most = 0;
     double samples = 0.0;
     *n = 0;
     *need = 0;
@@ -271,17 +271,32 @@ static int configure(const ss_model *m, sms_stage_config *configs, size_t *n, si
             continue;
         if (stage_config(m, k, &configs[*n], msg, len) != 0)
             return 1;
-        ++*n;
+        used[(*n)++] = k;
     }
     for (i = 0; i < *n; ++i) {
         size_t reals = 0;
         (void)sms_stage_buffer_size(&configs[i], m->Ts, &reals);
         samples += (double)reals;
+        if (reals > most) {
+            most = reals;
+            longest = used[i];
+        }
     }
-    if (samples > (double)FMU_MAX_REALS)
-        return snprintf(msg, len, "the stages need %.0f delay-line samples, more than the limit "
-                        "of %lu (2 GiB in double): shorten T/Ts", samples,
-                        (unsigned long)FMU_MAX_REALS), 1;
+    if (samples > (double)FMU_MAX_REALS) {
+        /* name what sets the longest stage's length: T, or the mode it is designed for */
+        const ss_params *p = &m->stage[longest];
+        char names[256];
+        if (p->ints[SS_FIELD_DESIGN] == 1 || p->ints[SS_FIELD_KIND] >= SMS_SHAPER_ZV)
+            snprintf(names, sizeof names, "stage[%u].wn = %.17g, stage[%u].zeta = %.17g, "
+                     "Ts = %.17g", longest, p->reals[SS_FIELD_WN], longest,
+                     p->reals[SS_FIELD_ZETA], m->Ts);
+        else
+            snprintf(names, sizeof names, "stage[%u].T = %.17g, Ts = %.17g", longest,
+                     p->reals[SS_FIELD_T], m->Ts);
+        return fmu_refuse_size(msg, len, names, samples, *n > 1
+                               ? "shorten the stages (this one is the longest) or raise Ts"
+                               : "shorten the stage or raise Ts");
+    }
     if (*n > 0 && sms_chain_memory_size(configs, *n, m->Ts, need) != SMS_OK)
         return snprintf(msg, len, "the stages do not form a valid chain"), 1;
     return 0;

@@ -233,10 +233,13 @@ static int configure(const tg_model *m, sms_generator_config *c, size_t *need, c
     st = sms_generator_buffer_size(c, m->Ts, need);
     if (st != SMS_OK)
         return refuse(m, st, msg, len);
-    if (*need > FMU_MAX_REALS)
-        return snprintf(msg, len, "wn = %.17g: the stage tuned to the mode needs %.0f reals, "
-                        "more than the limit of %lu (2 GiB in double): raise wn or Ts", m->wn,
-                        (double)*need, (unsigned long)FMU_MAX_REALS), 1;
+    if (*need > FMU_MAX_REALS) {
+        char names[256];
+        snprintf(names, sizeof names, "wn = %.17g, zeta = %.17g, Ts = %.17g (the stage tuned to "
+                 "the mode, 4 signals)", m->wn, m->zeta, m->Ts);
+        return fmu_refuse_size(msg, len, names, (double)*need,
+                               "raise wn or Ts, or set wn = 0 (no mode)");
+    }
     return 0;
 }
 

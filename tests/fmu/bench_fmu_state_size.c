@@ -11,6 +11,7 @@
  * printed in ms and in ns per byte of the serialised state, with the slowest call per size.
  * The limit is chosen from these figures: the slowest call at N = FMU_MAX_REALS must stay well
  * under the 100 ms the fuzz test (test_fmu_fuzz.c) allows any call.
+ * The last size, twice the limit, shows the refusal (its time and, on stderr, its message).
  * Usage: bench_fmu_state_size_<Model> [--quick] [log2 of the largest N, default: the limit's]
  */
 #include <math.h>
@@ -207,13 +208,14 @@ int main(int argc, char **argv)
            FMU_MODEL_IDENTIFIER, config_name, TS, (unsigned long)FMU_MAX_REALS);
     printf("CPU time per call, median of %d rounds: ms (ns per byte of serialised state)\n",
            ROUNDS);
-    for (e = first; e <= top; e += e < top - 2 ? 2 : 1) {
+    for (e = first; e <= top + 1; e += e < top - 2 ? 2 : 1) {   /* top + 1: refused */
         double cost[N_CALLS][ROUNDS], worst = 0.0;
         size_t bytes = 0;
         int st = measure(ldexp(1.0, e), cost, &bytes);
         printf("N = 2^%d reals: ", e);
         if (st == 1) {
-            printf("refused at initialisation (beyond the limit)\n");
+            printf("refused by fmi2ExitInitializationMode in %.3f ms (beyond the limit)\n",
+                   1e3 * cost[C_EXIT][0]);
             continue;
         }
         if (st != 0) {

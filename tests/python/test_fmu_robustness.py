@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import ctypes
 import math
+import re
 import struct
 
 import numpy as np
@@ -22,6 +23,7 @@ from smoothshaper.stages import harmonic, notch, rectangular, shaper  # noqa: E4
 from test_fmu_smoothshaper import (CHAIN, Logged, configure, fmus, run, slave,  # noqa: E402,F401
                                    smoothshaper_dir)
 from test_fmu_trajectory import start, trajectory_dir  # noqa: E402,F401
+from test_fmu_multi_axis import multi_dir, multi_fmu  # noqa: E402,F401
 
 TS = 1e-3
 
@@ -249,19 +251,63 @@ def test_the_fmpy_input_benchmark_runs(fmus):  # noqa: F811
     assert bench.main(["--quick", "--build-dir", str(build_dir)]) == 0
 
 
-def test_an_oversized_chain_is_refused_at_exit_initialization(smoothshaper_dir):
-    # T = 1e9 s at Ts = 1 ms needs 1e12 delay-line samples: the size is known in closed form
-    # and beyond the 2^28-sample limit (2 GiB) it is refused at once, naming both; the instance
-    # stays in initialization mode and takes a corrected T.
+def fmu_max_reals() -> int:
+    """FMU_MAX_REALS, the per-instance state limit, read from its one definition (fmu_model.h)."""
+    from pathlib import Path
+    header = (Path(__file__).resolve().parents[2] / "fmu" / "fmu_model.h").read_text()
+    shift = re.search(r"#define FMU_MAX_REALS \(\(size_t\)1 << (\d+)\)", header)
+    assert shift, "FMU_MAX_REALS is no longer a power of two: update this test"
+    return 1 << int(shift.group(1))
+
+
+@pytest.mark.parametrize("T_over_Ts", [1e12, None], ids=["1e12 samples", "just over the limit"])
+def test_an_oversized_chain_is_refused_at_exit_initialization(smoothshaper_dir, T_over_Ts):
+    # The delay-line size is known in closed form: beyond the per-instance limit the chain is
+    # refused at once, naming the parameter, the size and the limit; the instance stays in
+    # initialization mode and takes a corrected T.
+    limit = fmu_max_reals()
+    T = (T_over_Ts or limit + 16) * TS
     log = Logged()
     fmu = slave(smoothshaper_dir, logged=log)
     fmu.setupExperiment(startTime=0.0)
     fmu.enterInitializationMode()
-    fmu.setReal([fmu.vr["stage[0].T"]], [1e9])
+    fmu.setReal([fmu.vr["stage[0].T"]], [T])
     with pytest.raises(FMICallException):
         fmu.exitInitializationMode()
-    assert "1000000000" in log.messages[-1] and "268435456" in log.messages[-1], log.messages[-1]
-    fmu.setReal([fmu.vr["stage[0].T"]], [0.02])
+    message = log.messages[-1]
+    assert "stage[0].T = " in message and f"limit of {limit} reals" in message, message
+    assert "shorten the stages" in message, message
+    fmu.setReal([fmu.vr["stage[0].T"]], [(limit - 4096) * TS])   # under (with stage 1): accepted
     fmu.exitInitializationMode()
     fmu.doStep(0.0, TS)
     fmu.freeInstance()
+
+
+def test_generators_beyond_the_state_limit_are_refused_naming_the_mode(trajectory_dir,  # noqa: F811
+                                                                        multi_dir):
+    # TrajectoryGenerator: the stage tuned to the mode holds 4 signals of one period 2 pi/wn.
+    limit = fmu_max_reals()
+    wn_over = 2 * math.pi / ((limit / 4 + 64) * TS)
+    log = Logged()
+    tg = slave(trajectory_dir, "tg", logged=log)
+    with pytest.raises(FMICallException):
+        start(tg, wn=wn_over)
+    assert log.messages[-1].startswith("fmi2ExitInitializationMode: wn = "), log.messages[-1]
+    assert f"limit of {limit} reals" in log.messages[-1] and "raise wn or Ts" in log.messages[-1]
+    tg.freeInstance()
+    # MultiAxisGenerator: every axis's stages count together (4 signals each); two axes with a
+    # rectangular stage of half the limit each are one too many.
+    ma = slave(multi_dir, "ma", logged=log)
+    ma.setupExperiment(startTime=0.0)
+    ma.enterInitializationMode()
+    wn_half = 2 * math.pi / ((limit / 8 + 64) * TS)
+    ma.setReal([ma.vr["Ts"]], [TS])
+    ma.setInteger([ma.vr["axes"]], [2])
+    for i in range(2):
+        ma.setInteger([ma.vr[f"stage[0].kind[{i}]"]], [0])
+        ma.setReal([ma.vr[f"stage[0].wn[{i}]"]], [wn_half])
+    with pytest.raises(FMICallException):
+        ma.exitInitializationMode()
+    assert "stage[0].wn[0]" in log.messages[-1], log.messages[-1]
+    assert f"limit of {limit} reals" in log.messages[-1] and "fewer stages or axes" in log.messages[-1]
+    ma.freeInstance()
