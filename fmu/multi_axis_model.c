@@ -210,7 +210,24 @@ void fmu_model_set_integer(void *model, fmi2ValueReference vr, int value)
 double fmu_model_sample_period(const void *model) { return ((const ma_model *)model)->Ts; }
 
 unsigned fmu_model_real_bytes(void) { return (unsigned)sizeof(sms_real); }
-double fmu_model_input_max(const void *model) { (void)model; return HUGE_VAL; }
+/* The finite input range of the stages, the smallest over the axes in use (sms_chain_input_max of
+ * each axis's chain, the same for its four signals): targets beyond it are refused at set, as
+ * q0, vmax, amax and jmax beyond it are at initialisation. HUGE_VAL without stages. */
+static double stages_input_max(const ma_model *m)
+{
+    double bound = HUGE_VAL;
+    int i;
+    for (i = 0; i < m->axes; ++i)
+        if (m->gen.chain[i][0].n_stages > 0 && sms_chain_input_max(&m->gen.chain[i][0]) < bound)
+            bound = sms_chain_input_max(&m->gen.chain[i][0]);
+    return bound;
+}
+
+double fmu_model_input_max(const void *model)
+{
+    const ma_model *m = (const ma_model *)model;
+    return m->built ? stages_input_max(m) : HUGE_VAL;
+}
 
 /* Config of stage k of axis i (designed for its mode); 0, or 1 with msg naming the variable. */
 static int stage_config(const ma_model *m, int k, int i, sms_stage_config *c, char *msg,
@@ -362,6 +379,7 @@ int fmu_model_build(void *model, void *mem, size_t bytes, char *msg, size_t len)
 {
     ma_model *m = (ma_model *)model;
     sms_multi_generator_config c;
+    sms_multi_generator g;   /* the model changes only once the build succeeds */
     ma_stages s;
     sms_real rest[MA_MAX_AXES];
     size_t n_structs, n_cells;
@@ -371,10 +389,25 @@ int fmu_model_build(void *model, void *mem, size_t bytes, char *msg, size_t len)
     if (block_bytes(n_structs, n_cells) > bytes)
         return snprintf(msg, len, "the stages need %lu bytes, the block holds %lu",
                         (unsigned long)block_bytes(n_structs, n_cells), (unsigned long)bytes), 1;
-    if (sms_multi_generator_init(&m->gen, &c, m->Ts,
+    if (sms_multi_generator_init(&g, &c, m->Ts,
                                  (sms_stage *)((sms_memory_cell *)mem + n_cells), n_structs,
                                  (sms_memory_cell *)mem, n_cells, NULL) != SMS_OK)
         return snprintf(msg, len, "Ts = %.17g: refused", m->Ts), 1;
+    for (i = 0; i < m->axes; ++i) {   /* what the stages filter must keep them finite */
+        static const int fields[4] = { F_Q0, F_VMAX, F_AMAX, F_JMAX };
+        double bound;
+        int f;
+        if (g.chain[i][0].n_stages == 0)
+            continue;
+        bound = sms_chain_input_max(&g.chain[i][0]);
+        for (f = 0; f < 4; ++f)
+            if (fabs(m->field[fields[f]][i]) > bound)
+                return snprintf(msg, len, "%s[%d] = %.17g is beyond %.17g, the finite input range "
+                                "of axis %d's stages (sms_chain_input_max: their internal sums "
+                                "would overflow)", field_names[fields[f]], i,
+                                m->field[fields[f]][i], bound, i), 1;
+    }
+    m->gen = g;
     m->n_cells = n_cells;
     for (i = 0; i < m->axes; ++i)
         rest[i] = (sms_real)m->field[F_Q0][i];
