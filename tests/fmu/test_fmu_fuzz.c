@@ -226,7 +226,7 @@ static void random_parameters(fmi2Component c)
     fmi2Integer iv[2];
     fmi2ValueReference ts = MA_VR_TS;
     fmi2Real Ts = pick(6) ? pow(10.0, -4.0 + 2.0 * uniform()) : any_real(-4, 2);
-    unsigned i;
+    unsigned i, staged;
     iv[0] = pick(10) ? 1 + (fmi2Integer)pick(MA_MAX_AXES) : (fmi2Integer)pick(12) - 2;
     iv[1] = pick(10) ? (fmi2Integer)pick(2) : (fmi2Integer)pick(6) - 2;
     fmi2SetInteger(c, ivr, 2, iv);
@@ -243,13 +243,14 @@ static void random_parameters(fmi2Component c)
     /* Vibration stages (kind -1 = none) designed for random modes; or one rectangular stage
      * per axis in use whose delay lines (4 signals) share a large state. */
     drew_large = pick(LARGE_ODDS) == 0;
+    staged = pick(2);   /* half the draws have no stages at all */
     for (i = 0; i < MA_MAX_AXES; ++i) {
         unsigned k;
         for (k = 0; k < MA_MAX_STAGES; ++k) {
             const fmi2ValueReference base = MA_STAGE_BASE + 100u * MA_STAGE_STRIDE * k + i;
             fmi2ValueReference kvr = base + 100u * MA_STAGE_KIND;
             fmi2ValueReference rvr[2] = { base + 100u * MA_STAGE_WN, base + 100u * MA_STAGE_ZETA };
-            fmi2Integer kind = pick(3) ? -1 : (fmi2Integer)pick(SMS_KIND_COUNT + 2) - 1;
+            fmi2Integer kind = !staged || pick(3) ? -1 : (fmi2Integer)pick(SMS_KIND_COUNT + 2) - 1;
             fmi2Real mode[2];
             mode[0] = any_real(1, 3.5);
             mode[1] = any_zeta();
