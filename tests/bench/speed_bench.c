@@ -24,6 +24,7 @@
 #include <string.h>
 #include <time.h>
 #include "smoothshaper/smoothshaper.h"
+#include "cpu_time.h"
 
 #define PI 3.14159265358979323846
 #define BLOCK 4096
@@ -33,16 +34,6 @@
 
 static sms_real input[BLOCK], output[BLOCK];
 static sms_memory_cell stage_memory[MAX_RING];
-
-static double cpu_seconds(void)
-{
-#if defined(CLOCK_PROCESS_CPUTIME_ID)
-    struct timespec t;
-    if (clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t) == 0)
-        return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-#endif
-    return (double)clock() / CLOCKS_PER_SEC;
-}
 
 /* ---- plain references ---------------------------------------------------------------- */
 

@@ -17,6 +17,7 @@
 #include "fmi2Functions.h"
 #include "SmoothShaper_variables.h"
 #include "smoothshaper/smoothshaper.h"
+#include "../bench/cpu_time.h"
 
 #define ROUNDS 7
 
@@ -29,28 +30,6 @@ static void logger(fmi2ComponentEnvironment env, fmi2String name, fmi2Status sta
 
 static const fmi2CallbackFunctions callbacks = { logger, calloc, free, NULL, NULL };
 static const double Ts = 1e-3;
-
-static double cpu_seconds(void)
-{
-#if defined(CLOCK_PROCESS_CPUTIME_ID)
-    struct timespec t;
-    if (clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t) == 0)
-        return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-#endif
-    return (double)clock() / CLOCKS_PER_SEC;
-}
-
-static int cmp(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp);
-    return v[n / 2];
-}
 
 /* An instance with stage 0 a moving average of T (T = 0: no stage at all), at rest at 0. */
 static fmi2Component instance(double T)

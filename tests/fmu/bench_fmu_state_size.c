@@ -29,6 +29,7 @@
 #else
 #include "SmoothShaper_variables.h"
 #endif
+#include "../bench/cpu_time.h"
 
 #define ROUNDS 5
 #define TS 1e-3
@@ -44,28 +45,6 @@ static void logger(fmi2ComponentEnvironment env, fmi2String name, fmi2Status sta
 }
 
 static const fmi2CallbackFunctions callbacks = { logger, calloc, free, NULL, NULL };
-
-static double cpu_seconds(void)
-{
-#if defined(CLOCK_PROCESS_CPUTIME_ID)
-    struct timespec t;
-    if (clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t) == 0)
-        return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-#endif
-    return (double)clock() / CLOCKS_PER_SEC;
-}
-
-static int cmp(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp);
-    return v[n / 2];
-}
 
 /* Parameters that make the model allocate about n reals (sample period TS); the input to move. */
 #if defined(FMU_TEST_TRAJECTORY)
