@@ -463,6 +463,152 @@ static int grid_feasible(const sms_kin_plan *p, double logh, double logTs, const
     return logprod - logtap >= logh - log(p->L[n - 1]) - (double)n * logTs - 1e-12;
 }
 
+/*
+ * The sampled differences of a chain of whole-sample moving averages, exactly. In samples, a
+ * step of h through boxes of N_0 .. N_{n-1} samples has the i-th backward difference
+ *   h / (N_0 ... N_{n-1}) * p(z) / (1 - z^-1)^(n-i+1),   p(z) = prod_j (1 - z^-N_j),
+ * which depends on the multiset of lengths only. Split p = p_A p_B with A the i largest
+ * lengths: p_A / (1 - z^-1) is a running count c_A (the signed number of subsets of A whose
+ * sum is at most m) and p_B / (1 - z^-1)^(n-i) is a chain of n-i boxes, non-negative and
+ * summing to prod_B N. Hence
+ *   |i-th difference| <= h * max|c_A| / prod_A N,
+ * equal to the non-overlap value h / (N_0 ... N_{i-1}) when max|c_A| = 1. Copies that overlap
+ * with opposite signs cancel in c_A, so chains shorter than the "each stage at least the
+ * stages after it" rule pass this test (at the top difference, i = n, it is exact).
+ */
+
+/* Budget of level tests of the search below (each O(2^i), i <= n <= 8). */
+#define KIN_OVERLAP_NODES 300u
+
+typedef struct {
+    const sms_kin_plan *p;
+    double logh, logTs, c[SMS_KINEMATIC_MAX_ORDER], rest_min[SMS_KINEMATIC_MAX_ORDER + 1];
+    double N[SMS_KINEMATIC_MAX_ORDER], best[SMS_KINEMATIC_MAX_ORDER], best_sum;
+    /* subset sums of the k largest lengths, sorted, with their signs: list k at 2^k - 1 */
+    double sums[2u << SMS_KINEMATIC_MAX_ORDER];
+    signed char signs[2u << SMS_KINEMATIC_MAX_ORDER];
+    unsigned nodes;
+    int found;
+} kin_overlap;
+
+/* Adds length x to list k (the subset sums of N[0..k-1]) giving list k+1, and returns the
+ * largest |running count| over it (taken at the end of each run of equal sums). */
+static double overlap_count_peak(kin_overlap *s, size_t k, double x)
+{
+    size_t len = (size_t)1 << k, a = 0, b = 0, o = 0;
+    const double *in = s->sums + (len - 1u);
+    const signed char *sg = s->signs + (len - 1u);
+    double *out = s->sums + (2u * len - 1u);
+    signed char *osg = s->signs + (2u * len - 1u);
+    long run = 0, peak = 0;
+    while (a < len || b < len) {
+        if (b >= len || (a < len && in[a] <= in[b] + x)) {
+            out[o] = in[a];
+            osg[o++] = sg[a++];
+        } else {
+            out[o] = in[b] + x;
+            osg[o++] = (signed char)-sg[b++];
+        }
+    }
+    for (o = 0; o < 2u * len; ++o) {
+        run += osg[o];
+        if (o + 1u == 2u * len || out[o + 1u] != out[o]) {
+            long r = run < 0 ? -run : run;
+            if (r > peak)
+                peak = r;
+        }
+    }
+    return (double)peak;
+}
+
+static void overlap_dfs(kin_overlap *s, size_t k, double logprod, double psum)
+{
+    size_t n = s->p->n, nx = 0, j, q;
+    double xs[7];
+    if (k == n) {
+        if (psum < s->best_sum) {
+            s->best_sum = psum;
+            for (j = 0; j < n; ++j)
+                s->best[j] = s->N[j];
+            s->found = 1;
+        }
+        return;
+    }
+    if (k + 1u == n) {
+        /* the last length: the fewest samples its level allows, and a few more */
+        double x0 = ceil(exp(s->logh - log(s->p->L[k]) - (double)n * s->logTs - logprod) *
+                         (1.0 - 1e-12));
+        if (!(x0 >= 1.0))
+            x0 = 1.0;
+        for (j = 0; j < 4u; ++j)
+            xs[nx++] = x0 + (double)j;
+    } else {
+        /* the ceiling moved by -1 .. +2 (one sample less first where an odd number of stages
+         * follows: there the overlap with the next copy cancels), then the structure's lift */
+        static const double odd[4] = {-1.0, 0.0, 1.0, 2.0}, even[4] = {0.0, -1.0, 1.0, 2.0};
+        const double *off = ((n - 1u - k) % 2u) ? odd : even;
+        double lift = 0.0;
+        for (j = 0; j < 4u; ++j)
+            xs[nx++] = s->c[k] + off[j];
+        for (j = k + 1u; j < n; ++j)
+            lift += s->c[j];
+        for (j = 0; j < 3u; ++j) {
+            double x = lift - 1.0 + (double)j;
+            int seen = 0;
+            for (q = 0; q < nx; ++q)
+                seen |= xs[q] == x;
+            if (!seen)
+                xs[nx++] = x;
+        }
+    }
+    for (j = 0; j < nx; ++j) {
+        double x = xs[j], peak, lp;
+        if (x < 1.0 || (k > 0u && x > s->N[k - 1u]))
+            continue;
+        if (psum + x + s->rest_min[k + 1u] >= s->best_sum)
+            continue;
+        if (s->nodes >= KIN_OVERLAP_NODES)
+            return;
+        ++s->nodes;
+        peak = overlap_count_peak(s, k, x);
+        lp = logprod + log(x);
+        if (s->logh + log(peak) > log(s->p->L[k]) + (double)(k + 1u) * s->logTs + lp + 1e-12)
+            continue;
+        s->N[k] = x;
+        overlap_dfs(s, k + 1u, lp, psum + x);
+    }
+}
+
+/* Rectangular chains still more than a sample per stage over the continuous optimum: a depth
+ * first search, largest stage first, of non-increasing whole-sample lengths that pass the
+ * exact test above level by level (each level needs only the lengths chosen so far), within
+ * KIN_OVERLAP_NODES level tests; replaces N when it finds a shorter chain. */
+static void overlap_search(const sms_kin_plan *p, double logh, double logTs, const double *T,
+                           double Ts, double *best, double *N)
+{
+    kin_overlap s;
+    size_t n = p->n, i;
+    s.p = p;
+    s.logh = logh;
+    s.logTs = logTs;
+    s.rest_min[n] = 0.0;
+    for (i = n; i-- > 0;) {
+        s.c[i] = grid_ceil(T[i] / Ts);
+        s.rest_min[i] = s.rest_min[i + 1u] + (s.c[i] > 2.0 ? s.c[i] - 1.0 : 1.0);
+    }
+    s.best_sum = *best;
+    s.nodes = 0u;
+    s.found = 0;
+    s.sums[0] = 0.0;
+    s.signs[0] = 1;
+    overlap_dfs(&s, 0u, 0.0, 0.0);
+    if (s.found) {
+        *best = s.best_sum;
+        for (i = 0; i < n; ++i)
+            N[i] = s.best[i];
+    }
+}
+
 /* Whole-sample lengths: the shortest total among N[i] = ceil(T[i]/Ts) + {-1, 0, 1} that
  * meets grid_feasible() (ties: longer early stages), with the greedy rounding (each N[i]
  * the larger of its ceiling and the samples after it, which is always feasible) as the
@@ -544,7 +690,9 @@ static sms_status on_grid(const sms_kin_plan *p, double h, const double *T, sms_
      * samples over the continuous optimum (13.7 samples for 5 bounds where 1.7 exist). When it
      * is more than one sample per rounded stage over: move each stage by +1 .. -2 samples
      * from its ceiling and let the structure lift it (N_k = max(that, the samples after k)),
-     * keeping the shortest feasible chain; 4^m chains, only on this path. */
+     * keeping the shortest feasible chain; 4^m chains, only on this path. A rectangular chain
+     * still over then tries the search that lets copies overlap where they cancel
+     * (overlap_search; its node budget goes further with this chain as the bound to beat). */
     {
         double cont = 0.0;
         for (i = 0; i < m; ++i)
@@ -576,6 +724,8 @@ static sms_status on_grid(const sms_kin_plan *p, double h, const double *T, sms_
                     N[i] = cand[i];
             }
         }
+        if (!tuned && last_kind != SMS_HARMONIC && n >= 2 && best - cont > (double)m)
+            overlap_search(p, logh, logTs, T, Ts, &best, N);
     }
     return SMS_OK;
 }

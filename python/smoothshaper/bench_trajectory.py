@@ -368,26 +368,9 @@ def main(argv=None) -> int:
           f"{c['scalar'] / 1e3:.3f} us = {low / 1e3:.3f} us ({low / c['raw']:.2f}x the raw "
           "call)")
 
-    rng = np.random.default_rng(5)
-    for n in (1, 2, 3, 4, 5, 6):
-        prices = {True: [], False: []}   # every continuous stage >= Ts, or not
-        for _ in range(200 if args.quick else 3000):
-            h = 10.0 ** rng.uniform(-3, 3)
-            lim = [10.0 ** rng.uniform(-3, 3) * 10.0 ** i for i in range(n)]
-            kw = dict(vmax=lim[0], amax=lim[1] if n > 1 else None,
-                      jmax=lim[2] if n > 2 else None, higher=tuple(lim[3:]))
-            cont = design.kinematic(h=h, **kw)
-            Ts = design.duration(cont) / 10.0 ** rng.uniform(0.5, 3.5)
-            grid = design.kinematic(h=h, Ts=Ts, **kw)
-            prices[min(s.T for s in cont) >= Ts].append(
-                (design.duration(grid) - design.duration(cont)) / Ts)
-        parts = []
-        for key, label in ((True, "every stage >= Ts"), (False, "a stage < Ts")):
-            pr = np.array(prices[key])
-            if pr.size:
-                parts.append(f"{label} ({pr.size}): mean {pr.mean():.2f}  p99 "
-                             f"{np.percentile(pr, 99):.2f}  max {pr.max():.2f}")
-        print(f"grid price in samples, {n} bound(s): " + "; ".join(parts))
+    from .bench_grid_price import report
+    for n in range(1, 9):   # more cases and an adversarial search: bench_grid_price
+        print(report(n, 200 if args.quick else 3000))
 
     try:
         c = phase_comparison(n_cases)

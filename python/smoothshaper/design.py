@@ -594,7 +594,8 @@ def _on_grid(T: list[float], Ts: float, h: float, limits: list[float], tuned_tap
         if key < best and ok(cand + ([0] if tuned else [])):
             best, N[:m] = key, cand
     # more than one sample per stage over the continuous lengths (tight stages double the
-    # rounding below them): each stage +1 .. -2 samples from its ceiling, lifted by the structure
+    # rounding below them): each stage +1 .. -2 samples from its ceiling, lifted by the
+    # structure; a rectangular chain still over then lets its copies overlap where they cancel
     if m >= 2 and best[0] - sum(T[i] / Ts for i in range(m)) > m:
         for offsets in itertools.product((1, 0, -1, -2), repeat=m):
             cand, after = [0] * m, tuned_support if tuned else 0
@@ -605,7 +606,78 @@ def _on_grid(T: list[float], Ts: float, h: float, limits: list[float], tuned_tap
                 after += cand[i]
             if sum(cand) < best[0] and ok(cand + ([0] if tuned else [])):
                 best, N[:m] = (sum(cand), [-x for x in cand]), cand
+    if not tuned and not harmonic_last and n >= 2 and \
+            best[0] - sum(T[i] / Ts for i in range(m)) > m:
+        found = _overlap_search([_grid_samples(t / Ts) for t in T], Ts, h, limits, best[0])
+        if found is not None:
+            N[:] = found
     return [N[i] * Ts if N[i] else T[i] for i in range(n)]
+
+
+#: Level tests the search for overlapping rectangular chains may spend.
+_OVERLAP_NODES = 300
+
+
+def _running_count_peak(lengths) -> int:
+    """Largest |c(m)|, c(m) = sum over the subsets S of lengths with sum(S) <= m of
+    (-1)^|S|: the running sum of the coefficients of prod (1 - z^-N)."""
+    coeff = {0: 1}
+    for x in lengths:
+        nxt = dict(coeff)
+        for s, v in coeff.items():
+            nxt[s + x] = nxt.get(s + x, 0) - v
+        coeff = nxt
+    run = peak = 0
+    for s in sorted(coeff):
+        run += coeff[s]
+        peak = max(peak, abs(run))
+    return peak
+
+
+def _overlap_search(c, Ts, h, limits, best_sum):
+    """Reference of the C core's search for rectangular chains whose stages may overlap
+    (docs/sampled-limits.md): whole-sample lengths, largest first and non-increasing, each
+    level i passing h * max|count of the i largest| <= L_i Ts^i * (product of the i largest);
+    depth first within _OVERLAP_NODES level tests; the lengths if shorter than best_sum."""
+    n = len(c)
+    logh, logTs = math.log(h), math.log(Ts)
+    logL = [math.log(x) for x in limits]
+    rest_min = [0] * (n + 1)
+    for k in range(n - 1, -1, -1):
+        rest_min[k] = rest_min[k + 1] + max(1, c[k] - 1)
+    state = {"best": best_sum, "N": None, "nodes": 0}
+    N = [0] * n
+
+    def candidates(k, logprod):
+        if k == n - 1:
+            e = logh - logL[k] - n * logTs - logprod
+            if e > 709.0:
+                return []
+            x0 = max(1, math.ceil(math.exp(e) * (1 - 1e-12)))
+            return [x0 + j for j in range(4)]
+        xs = [c[k] + o for o in ((-1, 0, 1, 2) if (n - 1 - k) % 2 else (0, -1, 1, 2))]
+        lift = sum(c[k + 1:])
+        return xs + [x for x in (lift - 1, lift, lift + 1) if x not in xs]
+
+    def visit(k, logprod, psum):
+        if k == n:
+            if psum < state["best"]:
+                state["best"], state["N"] = psum, list(N)
+            return
+        for x in candidates(k, logprod):
+            if x < 1 or (k and x > N[k - 1]) or psum + x + rest_min[k + 1] >= state["best"]:
+                continue
+            if state["nodes"] >= _OVERLAP_NODES:
+                return
+            state["nodes"] += 1
+            N[k] = x
+            lp = logprod + math.log(x)
+            peak = _running_count_peak(N[:k + 1])
+            if logh + math.log(peak) <= logL[k] + (k + 1) * logTs + lp + 1e-12:
+                visit(k + 1, lp, psum + x)
+
+    visit(0, 0.0, 0)
+    return state["N"]
 
 
 def kinematic_reference(*, h, vmax, amax=None, jmax=None, higher=(), profile="polynomial",

@@ -283,6 +283,43 @@ static void test_sampled_limits_random(void)
     CHECK(tested > 300);
 }
 
+/* Five to eight bounds (the search that lets copies of stages overlap where they cancel):
+ * every sampled difference within its bound, and with five bounds the chain at most a sample
+ * per stage over the continuous optimum (docs/sampled-limits.md gives the measured prices of
+ * six to eight bounds, which can exceed it). */
+static void test_sampled_limits_high_orders(void)
+{
+    unsigned seed = 977u;
+    int trial, tested = 0;
+    for (trial = 0; trial < 400; ++trial) {
+        double L[8], Tc[8], h = log_uniform(&seed, 1e-3, 1e3), total = 0.0;
+        double Ts, excess, grid = 0.0;
+        size_t n = 5u + (size_t)(trial % 4), i, cnt;
+        sms_stage_config cfg[8];
+        for (i = 0; i < n; ++i)
+            L[i] = log_uniform(&seed, 1e-3, 1e3) * pow(10.0, (double)i);
+        if (sms_kinematic_design(h, L, n, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, 0.0, Tc, 8, &cnt) != SMS_OK)
+            continue;
+        for (i = 0; i < n; ++i)
+            total += Tc[i];
+        Ts = total / log_uniform(&seed, 3.0, 3000.0);
+        CHECK_STATUS(sms_kinematic_configs(h, L, n, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, Ts, cfg, 8, &cnt), SMS_OK);
+        for (i = 0; i < n; ++i)
+            grid += cfg[i].T;
+        if (n == 5u)
+            CHECK((grid - total) / Ts <= (double)n + 1e-9);
+        excess = sampled_excess(h, L, n, cfg, Ts, NULL);
+        if (excess == -2.0)
+            continue;
+        ++tested;
+        CHECK(excess <= 1e-9);
+        if (excess > 1e-9)
+            fprintf(stderr, "high orders, trial %d: n %lu h %g Ts %g: excess %g\n", trial,
+                    (unsigned long)n, h, Ts, excess);
+    }
+    CHECK(tested > 300);
+}
+
 /* The reported cases: h = 40, v = 250, a = 5000, j = 2e5 at T/Ts = 10.5 and 1000.5. */
 static void test_sampled_limits_examples(void)
 {
@@ -361,6 +398,7 @@ int main(void)
     test_position_scaling();
     test_sampled_limits_examples();
     test_sampled_limits_random();
+    test_sampled_limits_high_orders();
     test_extreme_bounds();
     test_seed_values();
     test_mode_tuned();

@@ -130,37 +130,38 @@ def _grid_price(h, lim, Ts):
 @given(lh=st.floats(-3, 3), ls=st.lists(st.floats(-3, 3), min_size=5, max_size=5),
        n=st.integers(1, 5), lt=st.floats(0.0, 1.0))
 def test_grid_price_at_most_one_sample_per_stage(lh, ls, n, lt):
-    """Designed on the grid, a chain costs at most one sample per stage over the continuous
-    optimum: for up to three bounds at any Ts, for four and five whenever every continuous
-    stage lasts at least a sample (shorter stages cost a whole sample each and the structure
-    doubles them: test_sub_sample_stages_cost_more_than_a_sample_each)."""
+    """Designed on the grid, a chain of up to five bounds costs at most one sample per stage
+    over the continuous optimum, at any Ts (stages shorter than a sample included;
+    docs/sampled-limits.md gives the measured prices of six to eight bounds, which can
+    exceed it)."""
     h = 10.0 ** lh
     lim = [10.0 ** ls[i] * 10.0 ** i for i in range(n)]
     _, cont, _ = _grid_price(h, lim, 1.0)
-    T = [s.T for s in cont]
-    shortest = min(T)
-    # Ts from the whole move (any Ts up to three bounds) or within the shortest stage
-    Ts = (design.duration(cont) / 10.0 ** (0.5 + 3 * lt) if n <= 3
-          else shortest / 10.0 ** (3 * lt))
+    Ts = design.duration(cont) / 10.0 ** (0.5 + 3 * lt)
     price, _, grid = _grid_price(h, lim, Ts)
-    assert -1e-9 <= price <= n + 1e-9, (price, [t / Ts for t in T], [g.T / Ts for g in grid])
+    assert price <= n + 1e-9, (price, [s.T / Ts for s in cont], [g.T / Ts for g in grid])
 
 
-def test_sub_sample_stages_cost_more_than_a_sample_each():
-    """Four bounds where the last three stages last 1e-5 of a sample: each whole-sample stage
-    lasts at least one sample and each is at least as long as the stages after it (1, 1, 2
-    samples), so the chain costs about five samples over the continuous optimum, and no
-    chain of this structure within three samples of the ceilings does better (exhaustive)."""
+def test_sub_sample_stages_overlap_within_the_bar():
+    """Four bounds where the last three stages last 1e-5 of a sample. Under the rule "each
+    stage at least as long as the stages after it" every chain costs about five samples over
+    the continuous optimum (exhaustive over every chain within three samples of the
+    ceilings); letting copies of the stages overlap where they cancel (the exact count test of
+    docs/sampled-limits.md) the design costs four, one per stage, and every sampled difference
+    stays within its bound (checked through the Chain, not through the test)."""
     import itertools
     h = 100.71119125350725
     lim = [0.006020693715312491, 9.538809140168473, 50.1540522121824, 1430.6710659883863]
     Ts = 2090.7316420179104
     price, cont, grid = _grid_price(h, lim, Ts)
-    assert 4.99 < price < 5.0
+    assert price <= 4.0
+    assert max(sampled_ratios(grid, Ts, h, lim)) <= 1 + 1e-9
     N = [round(g.T / Ts) for g in grid]
-    assert N[1:] == [2, 1, 1]
+    ref = design.kinematic_reference(h=h, vmax=lim[0], amax=lim[1], jmax=lim[2],
+                                     higher=(lim[3],), Ts=Ts)
+    assert [round(r.T / Ts) for r in ref] == N
 
-    def feasible(M):
+    def structured(M):
         below = M[-1]
         for i in range(2, -1, -1):
             if M[i] < below:
@@ -173,9 +174,28 @@ def test_sub_sample_stages_cost_more_than_a_sample_each():
                 return False
         return h / (prod * Ts ** 3) / M[3] / Ts <= lim[3] * (1 + 1e-12)
     base = [math.ceil(s.T / Ts) for s in cont]
-    shorter = [M for M in itertools.product(*(range(1, b + 4) for b in base))
-               if sum(M) < sum(N) and feasible(M)]
-    assert shorter == []
+    best = min(sum(M) for M in itertools.product(*(range(1, b + 4) for b in base))
+               if structured(M))
+    assert best - design.duration(cont) / Ts > 4.99
+    assert sum(N) < best
+
+
+@settings(max_examples=25, deadline=None)
+@given(lh=st.floats(-3, 3), ls=st.lists(st.floats(-3, 3), min_size=8, max_size=8),
+       n=st.integers(5, 8), lsamples=st.floats(0.5, 2.0))
+def test_five_to_eight_bounds_every_sample_within_bounds(lh, ls, n, lsamples):
+    """Five to eight bounds: every sampled difference within its bound (the chains of the
+    overlap search included); the reference's placement on the grid (design._on_grid, from
+    the C core's continuous lengths: the reference's nested bisection is too slow for many
+    tight stages) gives the same samples."""
+    h = 10.0 ** lh
+    lim = [10.0 ** ls[i] * 10.0 ** i for i in range(n)]
+    _, cont, _ = _grid_price(h, lim, 1.0)
+    Ts = design.duration(cont) / 10.0 ** lsamples
+    price, cont, grid = _grid_price(h, lim, Ts)
+    assert max(sampled_ratios(grid, Ts, h, lim)) <= 1 + 1e-9
+    ref = design._on_grid([s.T for s in cont], Ts, h, lim)
+    assert [round(g.T / Ts) for g in grid] == [round(t / Ts) for t in ref]
 
 
 def test_five_bounds_tight_stages_round_together():
