@@ -192,10 +192,11 @@ def kinematic(*, h: float, vmax: float, amax: float | None = None, jmax: float |
         Damping ratio of that mode, in [0, 1) (default 0).
     Ts : float or None, keyword-only
         Sample period the chain will run at [s]: every stage (except one tuned to a mode)
-        then lasts a whole number of samples, at least its continuous length and at least the
-        samples of the stages after it, so a step of ``h`` through ``Chain(stages, Ts=Ts)``
-        has backward differences ``|diff(q, i)| / Ts**i`` within the i-th bound at every
-        sample (docs/sampled-limits.md). None: the continuous optimum, for analysis.
+        then lasts a whole number of samples, the lengths chosen together so that a step of
+        ``h`` through ``Chain(stages, Ts=Ts)`` has backward differences
+        ``|diff(q, i)| / Ts**i`` within the i-th bound at every sample (an exact bound on the
+        sampled differences; docs/sampled-limits.md, with the price in duration). None: the
+        continuous optimum, for analysis.
 
     Returns
     -------
@@ -538,7 +539,9 @@ def _on_grid(T: list[float], Ts: float, h: float, limits: list[float], tuned_tap
     longer early stages), else the greedy N_k = max(ceil(T_k/Ts), samples below). Sufficient
     conditions, each checked directly: N_k >= sum of the samples after it (copies in the
     differences never overlap), h / (N_0 ... N_i Ts^(i+1)) <= L_i, and the top derivative
-    h / (N_0 ... N_(n-2) Ts^(n-1)) * (largest tap of the last stage) / Ts <= L_(n-1)."""
+    h / (N_0 ... N_(n-2) Ts^(n-1)) * (largest tap of the last stage) / Ts <= L_(n-1).
+    Still over a sample per stage: +1 .. -2 from the ceilings lifted by the structure, then
+    (rectangular chains) _overlap_search, whose exact test lets copies overlap."""
     n = len(T)
     tuned = tuned_tap is not None
 
@@ -711,10 +714,11 @@ def kinematic_reference(*, h, vmax, amax=None, jmax=None, higher=(), profile="po
         Damping ratio of that mode, in [0, 1) (default 0).
     Ts : float or None, keyword-only
         Sample period the chain will run at [s]: every stage (except one tuned to a mode)
-        then lasts a whole number of samples, at least its continuous length and at least the
-        samples of the stages after it, so a step of ``h`` through ``Chain(stages, Ts=Ts)``
-        has backward differences ``|diff(q, i)| / Ts**i`` within the i-th bound at every
-        sample (docs/sampled-limits.md). None: the continuous optimum, for analysis.
+        then lasts a whole number of samples, the lengths chosen together so that a step of
+        ``h`` through ``Chain(stages, Ts=Ts)`` has backward differences
+        ``|diff(q, i)| / Ts**i`` within the i-th bound at every sample (an exact bound on the
+        sampled differences; docs/sampled-limits.md, with the price in duration). None: the
+        continuous optimum, for analysis.
 
     Returns
     -------
