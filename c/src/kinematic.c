@@ -477,8 +477,9 @@ static int grid_feasible(const sms_kin_plan *p, double logh, double logTs, const
  * stages after it" rule pass this test (at the top difference, i = n, it is exact).
  */
 
-/* Budget of level tests of the search below (each O(2^i), i <= n <= 8). */
-#define KIN_OVERLAP_NODES 300u
+/* Budget of level tests of the search below per first length (at most 7 of them; each test
+ * O(2^i), i <= n <= 8): 4 * 2^n, 1024 for eight bounds. */
+#define KIN_OVERLAP_NODES(n) (4u << (n))
 
 typedef struct {
     const sms_kin_plan *p;
@@ -543,11 +544,23 @@ static void overlap_dfs(kin_overlap *s, size_t k, double logprod, double psum)
         for (j = 0; j < 4u; ++j)
             xs[nx++] = x0 + (double)j;
     } else {
-        /* the ceiling moved by -1 .. +2 (one sample less first where an odd number of stages
-         * follows: there the overlap with the next copy cancels), then the structure's lift */
+        /* the ceiling moved by -1 .. +2, then the structure's lift. Order: after a stage one
+         * sample off its ceiling, the other way first (pairs of +1/-1 keep the sums and break
+         * the collisions of tight stages); the first stage -1, +1; else one sample less
+         * first where an odd number of stages follows (there the overlap with the next copy
+         * cancels) */
         static const double odd[4] = {-1.0, 0.0, 1.0, 2.0}, even[4] = {0.0, -1.0, 1.0, 2.0};
+        static const double first[4] = {-1.0, 1.0, 0.0, 2.0};
+        static const double after_down[4] = {1.0, 0.0, -1.0, 2.0};
+        static const double after_up[4] = {-1.0, 0.0, 1.0, 2.0};
         const double *off = ((n - 1u - k) % 2u) ? odd : even;
-        double lift = 0.0;
+        double lift = 0.0, prev = k > 0u ? s->N[k - 1u] - s->c[k - 1u] : 0.0;
+        if (prev == -1.0)
+            off = after_down;
+        else if (prev == 1.0)
+            off = after_up;
+        else if (k == 0u)
+            off = first;
         for (j = 0; j < 4u; ++j)
             xs[nx++] = s->c[k] + off[j];
         for (j = k + 1u; j < n; ++j)
@@ -567,7 +580,9 @@ static void overlap_dfs(kin_overlap *s, size_t k, double logprod, double psum)
             continue;
         if (psum + x + s->rest_min[k + 1u] >= s->best_sum)
             continue;
-        if (s->nodes >= KIN_OVERLAP_NODES)
+        if (k == 0u)
+            s->nodes = 0u; /* each first length gets its own budget */
+        if (s->nodes >= KIN_OVERLAP_NODES(n))
             return;
         ++s->nodes;
         peak = overlap_count_peak(s, k, x);
@@ -582,7 +597,7 @@ static void overlap_dfs(kin_overlap *s, size_t k, double logprod, double psum)
 /* Rectangular chains still more than a sample per stage over the continuous optimum: a depth
  * first search, largest stage first, of non-increasing whole-sample lengths that pass the
  * exact test above level by level (each level needs only the lengths chosen so far), within
- * KIN_OVERLAP_NODES level tests; replaces N when it finds a shorter chain. */
+ * KIN_OVERLAP_NODES(n) level tests per first length; replaces N when it finds a shorter chain. */
 static void overlap_search(const sms_kin_plan *p, double logh, double logTs, const double *T,
                            double Ts, double *best, double *N)
 {

@@ -617,8 +617,9 @@ def _on_grid(T: list[float], Ts: float, h: float, limits: list[float], tuned_tap
     return [N[i] * Ts if N[i] else T[i] for i in range(n)]
 
 
-#: Level tests the search for overlapping rectangular chains may spend.
-_OVERLAP_NODES = 300
+#: Level tests the search for overlapping rectangular chains may spend per first length,
+#: times 2^n for n bounds.
+_OVERLAP_NODES = 4
 
 
 def _running_count_peak(lengths) -> int:
@@ -641,7 +642,8 @@ def _overlap_search(c, Ts, h, limits, best_sum):
     """Reference of the C core's search for rectangular chains whose stages may overlap
     (docs/sampled-limits.md): whole-sample lengths, largest first and non-increasing, each
     level i passing h * max|count of the i largest| <= L_i Ts^i * (product of the i largest);
-    depth first within _OVERLAP_NODES level tests; the lengths if shorter than best_sum."""
+    depth first within _OVERLAP_NODES * 2^n level tests per first length; the lengths if
+    shorter than best_sum."""
     n = len(c)
     logh, logTs = math.log(h), math.log(Ts)
     logL = [math.log(x) for x in limits]
@@ -658,7 +660,14 @@ def _overlap_search(c, Ts, h, limits, best_sum):
                 return []
             x0 = max(1, math.ceil(math.exp(e) * (1 - 1e-12)))
             return [x0 + j for j in range(4)]
-        xs = [c[k] + o for o in ((-1, 0, 1, 2) if (n - 1 - k) % 2 else (0, -1, 1, 2))]
+        prev = N[k - 1] - c[k - 1] if k else 0
+        if prev in (-1, 1):
+            offs = (-prev, 0, prev, 2)
+        elif k == 0:
+            offs = (-1, 1, 0, 2)
+        else:
+            offs = (-1, 0, 1, 2) if (n - 1 - k) % 2 else (0, -1, 1, 2)
+        xs = [c[k] + o for o in offs]
         lift = sum(c[k + 1:])
         return xs + [x for x in (lift - 1, lift, lift + 1) if x not in xs]
 
@@ -670,7 +679,9 @@ def _overlap_search(c, Ts, h, limits, best_sum):
         for x in candidates(k, logprod):
             if x < 1 or (k and x > N[k - 1]) or psum + x + rest_min[k + 1] >= state["best"]:
                 continue
-            if state["nodes"] >= _OVERLAP_NODES:
+            if k == 0:
+                state["nodes"] = 0     # each first length gets its own budget
+            if state["nodes"] >= _OVERLAP_NODES << n:
                 return
             state["nodes"] += 1
             N[k] = x
