@@ -292,9 +292,10 @@ static void test_sampled_limits_random(void)
 }
 
 /* Five to eight bounds (the search that lets copies of stages overlap where they cancel):
- * every sampled difference within its bound, and with five bounds the chain at most a sample
- * per stage over the continuous optimum (docs/sampled-limits.md gives the measured prices of
- * six to eight bounds, which can exceed it). */
+ * every sampled difference within its bound, and up to seven bounds the chain at most a
+ * sample per stage over the continuous optimum (measured, the search being bounded;
+ * docs/sampled-limits.md gives the measured prices, and those of eight bounds, which can
+ * exceed it). */
 static void test_sampled_limits_high_orders(void)
 {
     unsigned seed = 977u;
@@ -314,7 +315,7 @@ static void test_sampled_limits_high_orders(void)
         CHECK_STATUS(sms_kinematic_configs(h, L, n, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, Ts, cfg, 8, &cnt), SMS_OK);
         for (i = 0; i < n; ++i)
             grid += cfg[i].T;
-        if (n == 5u)
+        if (n <= 7u)
             CHECK((grid - total) / Ts <= (double)n + 1e-9);
         tested += check_sampled(h, L, n, cfg, Ts, trial, SMS_PROFILE_POLYNOMIAL, 0.0);
     }

@@ -127,13 +127,13 @@ def _grid_price(h, lim, Ts):
 
 
 @settings(max_examples=60, deadline=None)
-@given(lh=st.floats(-3, 3), ls=st.lists(st.floats(-3, 3), min_size=5, max_size=5),
-       n=st.integers(1, 5), lt=st.floats(0.0, 1.0))
+@given(lh=st.floats(-3, 3), ls=st.lists(st.floats(-3, 3), min_size=7, max_size=7),
+       n=st.integers(1, 7), lt=st.floats(0.0, 1.0))
 def test_grid_price_at_most_one_sample_per_stage(lh, ls, n, lt):
-    """Designed on the grid, a chain of up to five bounds costs at most one sample per stage
-    over the continuous optimum, at any Ts (stages shorter than a sample included;
-    docs/sampled-limits.md gives the measured prices of six to eight bounds, which can
-    exceed it)."""
+    """Designed on the grid, a chain of up to seven bounds costs at most one sample per stage
+    over the continuous optimum, at any Ts (stages shorter than a sample included; measured,
+    not proven, for six and seven: the search is bounded. docs/sampled-limits.md gives the
+    measured prices, and those of eight bounds, which can exceed it)."""
     h = 10.0 ** lh
     lim = [10.0 ** ls[i] * 10.0 ** i for i in range(n)]
     _, cont, _ = _grid_price(h, lim, 1.0)

@@ -71,14 +71,14 @@ typedef enum sms_profile {
  * are satisfied. The search: each stage's ceiling +-1 (3^m chains), then, when that leaves
  * more than one sample per stage over the continuous optimum, +1 .. -2 with each stage lifted
  * to the samples after it (4^m chains). A rectangular chain still over then gets a depth-first
- * search (at most 300 level tests of O(2^i) each) with an exact bound on the sampled
- * differences, h max|c_A| / (Ts^i prod_A N) with A the i largest lengths and c_A the running
+ * search (at most 4 * 2^n level tests of O(2^i) each per first length) with an exact bound
+ * on the sampled differences, h max|c_A| / (Ts^i prod_A N) with A the i largest lengths and c_A the running
  * count of their signed subset sums, which lets copies of stages overlap where they cancel.
  * Then every backward difference of the sampled output (chain fed with a step of h at a
  * sample) obeys the bounds: |D^i q[m]| / Ts^i <= limits[i-1] for i = 1..n (to rounding).
- * Price: at most one sample per stage over the continuous optimum for n <= 5 (measured over
- * 1e5 random designs per n and an adversarial search); more for some designs with 6 to 8
- * bounds (docs/sampled-limits.md, measured figures). A grid chain may also be shorter than the
+ * Price: at most one sample per stage over the continuous optimum for n <= 7 (measured over
+ * 1e5 random designs per n and an adversarial search; the search is bounded, so this is not
+ * a proof); up to 20 samples for some designs with 8 bounds (docs/sampled-limits.md). A grid chain may also be shorter than the
  * continuous optimum: the bounds are on sampled differences.
  *
  * @param h         displacement, finite and != 0 (the sign is irrelevant to the lengths)
