@@ -114,9 +114,9 @@ static double uniform(void)
 /* A plausible value 10^[lo, hi], or (one time in five) an edge of double. */
 static double any_real(double lo, double hi);
 
-/* Sample periods: 1e-4 s and up (plus the edges), because both FMUs allocate the delay lines a
- * configuration needs (no cap but memory), and 1e-9 s with a 1 s mode is 1e9 samples: accepted
- * sizes must stay small for the 100 ms bound to be about the FMU's own work. */
+/* Sample periods: 1e-4 s and up (plus the edges): the FMUs allocate the delay lines a
+ * configuration needs up to FMU_MAX_REALS, and the plain draws keep states small so that most
+ * sequences are quick; the large states come from the LARGE_ODDS draws. */
 static double any_real(double lo, double hi)
 {
     static const double edge[] = { 0.0, -1.0, NAN, INFINITY, -INFINITY, DBL_MAX, -DBL_MAX,
@@ -126,8 +126,8 @@ static double any_real(double lo, double hi)
     return pow(10.0, lo + (hi - lo) * uniform());
 }
 
-/* Damping ratios: near 1 a mode designs delay lines of 1e7+ samples, which the FMUs accept and
- * allocate (no cap but memory): kept to invalid edges and plausible values. */
+/* Damping ratios: near 1 a mode designs delay lines of 1e7+ samples (beyond FMU_MAX_REALS,
+ * refused): kept to invalid edges and plausible values. */
 static double any_zeta(void)
 {
     static const double edge[] = { -1.0, 1.0, 1.5, NAN, INFINITY, -0.0, 1e300 };
@@ -313,7 +313,7 @@ static void random_parameters(fmi2Component c)
         iv[2] = (fmi2Integer)(pick(10) == 0 ? pick(4) : pick(2));
         iv[3] = pick(4) ? 1 : (fmi2Integer)pick(6) - 1;
         iv[4] = pick(3) ? 1 : (fmi2Integer)pick(12) - 1;
-        /* delay lines up to ~2e4 samples per stage (the FMUs allocate what a chain needs, so
+        /* delay lines up to ~2e4 samples per stage (large states come from LARGE_ODDS, so
          * accepted sizes stay small here); the edges of double are refused in O(1) */
         rv[0] = Ts * (pick(3) ? 2.0 + 200.0 * uniform() : any_real(-3, 4.3));
         rv[1] = pick(2) ? 0.0 : -any_real(-2, 3);
