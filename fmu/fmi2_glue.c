@@ -699,6 +699,9 @@ fmi2Status fmi2DoStep(fmi2Component comp, fmi2Real currentCommunicationPoint,
         return FAIL(c, "fmi2DoStep: currentCommunicationPoint must be finite and "
                        "communicationStepSize finite and > 0 (got %g, %g)",
                     currentCommunicationPoint, communicationStepSize);
+    if (!isfinite(currentCommunicationPoint + communicationStepSize))
+        return FAIL(c, "fmi2DoStep: the step would end beyond the largest double (t = %.17g, "
+                       "h = %.17g)", currentCommunicationPoint, communicationStepSize);
     Ts = fmu_model_sample_period(c->model);
     /* Importers compute t + h in their own rounding: accept that, refuse a jump. */
     if (fabs(currentCommunicationPoint - c->clock.time) > TICK_SLACK * Ts + 1e-9 * fabs(c->clock.time))

@@ -12,7 +12,8 @@
  * variable SMS_FMU_CLOCK_FULL=1 one instance runs all 1e9 steps contiguously (about a minute).
  * Steps of up to 1e12 s (1e15 ticks) leave a clock whose serialised state loads again: the
  * tick count floor(h/Ts) of one long step is off by a few ulp of h/Ts, so the time since the
- * last tick may fall slightly outside [0, Ts) and the reader must allow that rounding.
+ * last tick may fall slightly outside [0, Ts) and the reader must allow that rounding; a step
+ * that would end beyond the largest double is refused.
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -139,11 +140,48 @@ static long long_steps_reload(void)
     return bad;
 }
 
+/* With Ts = 1e306 two steps of 1.5e308 s would end beyond the largest double: the second is
+ * refused (its end time would be inf, and no saved state could hold that clock), and the state
+ * after the first loads again. Returns the number of failed checks. */
+static long step_beyond_the_largest_double(void)
+{
+    const fmi2ValueReference vr_ts = SS_VR_TS, vr_T = SS_STAGE_BASE + SS_FIELD_T;
+    const fmi2ValueReference vr_kind1 = SS_STAGE_BASE + SS_STAGE_STRIDE + SS_FIELD_KIND;
+    const fmi2Integer none = SS_KIND_NONE;   /* stage 0 a moving average of 2 Ts, no stage 1 */
+    const double Ts = 1e306, T = 2e306;
+    fmi2Component c = fmi2Instantiate("clock", fmi2CoSimulation, FMU_MODEL_GUID, "", &callbacks,
+                                      fmi2False, fmi2False);
+    fmi2FMUstate s = NULL, back = NULL;
+    unsigned char blob[4096];
+    size_t size = 0;
+    long bad = 0;
+    if (c == NULL || fmi2SetupExperiment(c, fmi2False, 0.0, 0.0, fmi2False, 0.0) != fmi2OK
+        || fmi2EnterInitializationMode(c) != fmi2OK
+        || fmi2SetInteger(c, &vr_kind1, 1, &none) != fmi2OK
+        || fmi2SetReal(c, &vr_ts, 1, &Ts) != fmi2OK
+        || fmi2SetReal(c, &vr_T, 1, &T) != fmi2OK || fmi2ExitInitializationMode(c) != fmi2OK
+        || fmi2DoStep(c, 0.0, 1.5e308, fmi2True) != fmi2OK) {
+        fmi2FreeInstance(c);
+        return 1;
+    }
+    bad += fmi2DoStep(c, 1.5e308, 1.5e308, fmi2True) != fmi2Error;
+    bad += fmi2GetFMUstate(c, &s) != fmi2OK || fmi2SerializedFMUstateSize(c, s, &size) != fmi2OK
+           || size > sizeof blob || fmi2SerializeFMUstate(c, s, (fmi2Byte *)blob, size) != fmi2OK
+           || fmi2DeSerializeFMUstate(c, (fmi2Byte *)blob, size, &back) != fmi2OK;
+    if (bad != 0)
+        fprintf(stderr, "FAILED: a step ending beyond the largest double was taken, or the state "
+                "before it does not load\n");
+    fmi2FreeFMUstate(c, &back);
+    fmi2FreeFMUstate(c, &s);
+    fmi2FreeInstance(c);
+    return bad;
+}
+
 int main(void)
 {
     const long total = 1000000000L, windows[] = { 10000000L, 100000000L, 1000000000L - 4000 };
     const char *full = getenv("SMS_FMU_CLOCK_FULL");
-    long bad = 0, step, unloadable = long_steps_reload();
+    long bad = 0, step, unloadable = long_steps_reload() + step_beyond_the_largest_double();
     size_t w = 0;
     double t = 0.0;
     if (full != NULL && strcmp(full, "1") == 0)
