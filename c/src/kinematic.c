@@ -706,12 +706,17 @@ static sms_status on_grid(const sms_kin_plan *p, double h, const double *T, sms_
      * is more than one sample per rounded stage over: move each stage by +1 .. -2 samples
      * from its ceiling and let the structure lift it (N_k = max(that, the samples after k)),
      * keeping the shortest feasible chain; 4^m chains, only on this path. A rectangular chain
-     * still over then tries the search that lets copies overlap where they cancel
-     * (overlap_search; its node budget goes further with this chain as the bound to beat). */
+     * first tries the search that lets copies overlap where they cancel (overlap_search):
+     * cheaper, usually shorter, and when it lands within the bar the 4^m chains are skipped. */
     {
         double cont = 0.0;
         for (i = 0; i < m; ++i)
             cont += T[i] / Ts;
+        int rect = !tuned && last_kind != SMS_HARMONIC && n >= 2;
+        double before4;
+        if (rect && best - cont > (double)m)
+            overlap_search(p, logh, logTs, T, Ts, &best, N);
+        before4 = best;
         if (m >= 2 && best - cont > (double)m) {
             size_t combos4 = 1;
             for (i = 0; i < m; ++i)
@@ -739,7 +744,8 @@ static sms_status on_grid(const sms_kin_plan *p, double h, const double *T, sms_
                     N[i] = cand[i];
             }
         }
-        if (!tuned && last_kind != SMS_HARMONIC && n >= 2 && best - cont > (double)m)
+        /* still over, with a shorter chain to beat: the overlap search prunes harder */
+        if (rect && best < before4 && best - cont > (double)m)
             overlap_search(p, logh, logTs, T, Ts, &best, N);
     }
     return SMS_OK;

@@ -540,8 +540,8 @@ def _on_grid(T: list[float], Ts: float, h: float, limits: list[float], tuned_tap
     conditions, each checked directly: N_k >= sum of the samples after it (copies in the
     differences never overlap), h / (N_0 ... N_i Ts^(i+1)) <= L_i, and the top derivative
     h / (N_0 ... N_(n-2) Ts^(n-1)) * (largest tap of the last stage) / Ts <= L_(n-1).
-    Still over a sample per stage: +1 .. -2 from the ceilings lifted by the structure, then
-    (rectangular chains) _overlap_search, whose exact test lets copies overlap."""
+    Still over a sample per stage: (rectangular chains) _overlap_search, whose exact test
+    lets copies overlap, then +1 .. -2 from the ceilings lifted by the structure."""
     n = len(T)
     tuned = tuned_tap is not None
 
@@ -597,8 +597,19 @@ def _on_grid(T: list[float], Ts: float, h: float, limits: list[float], tuned_tap
         if key < best and ok(cand + ([0] if tuned else [])):
             best, N[:m] = key, cand
     # more than one sample per stage over the continuous lengths (tight stages double the
-    # rounding below them): each stage +1 .. -2 samples from its ceiling, lifted by the
-    # structure; a rectangular chain still over then lets its copies overlap where they cancel
+    # rounding below them): a rectangular chain lets its copies overlap where they cancel;
+    # still over, each stage +1 .. -2 samples from its ceiling, lifted by the structure
+    rect = not tuned and not harmonic_last and n >= 2
+
+    def overlap(best):
+        if rect and best[0] - sum(T[i] / Ts for i in range(m)) > m:
+            found = _overlap_search([_grid_samples(t / Ts) for t in T], Ts, h, limits, best[0])
+            if found is not None:
+                N[:] = found
+                return sum(found), [-x for x in found]
+        return best
+    best = overlap(best)
+    before4 = best[0]
     if m >= 2 and best[0] - sum(T[i] / Ts for i in range(m)) > m:
         for offsets in itertools.product((1, 0, -1, -2), repeat=m):
             cand, after = [0] * m, tuned_support if tuned else 0
@@ -609,11 +620,8 @@ def _on_grid(T: list[float], Ts: float, h: float, limits: list[float], tuned_tap
                 after += cand[i]
             if sum(cand) < best[0] and ok(cand + ([0] if tuned else [])):
                 best, N[:m] = (sum(cand), [-x for x in cand]), cand
-    if not tuned and not harmonic_last and n >= 2 and \
-            best[0] - sum(T[i] / Ts for i in range(m)) > m:
-        found = _overlap_search([_grid_samples(t / Ts) for t in T], Ts, h, limits, best[0])
-        if found is not None:
-            N[:] = found
+    if best[0] < before4:      # still over, with a shorter chain to beat: prunes harder
+        best = overlap(best)
     return [N[i] * Ts if N[i] else T[i] for i in range(n)]
 
 
