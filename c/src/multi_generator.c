@@ -3,6 +3,7 @@
  * step (roots by Newton), so a float build stays single precision. */
 #include <float.h>
 #include <math.h>
+#include <string.h>
 #include "smoothshaper/multi_generator.h"
 #include "plan.h"
 #include "state_identity.h"
@@ -475,6 +476,92 @@ static int limit_ok(double x)
     return isfinite(x) && x > 0.0 && (sms_real)x > 0 && (double)(sms_real)x < (double)REAL_MAX;
 }
 
+/* Every axis's limits must let a move reach its vmax (multi_generator.h): the planner forms,
+ * per axis, the same quantities as the single-axis planner with linear jerk ramps (J dv, a^2,
+ * durations and distances of the move to vmax), so axis i is checked by the single-axis
+ * region (sms_generator_reach() on its vmax, amax, jmax with the polynomial profile). */
+/* The planner caps the ratios limit/|dv| at RATIO_CAP (ratio()), which lengthens a transition
+ * of dv whose true ratio is larger. For the move to vmax (dv = vmax) and its stop and reversal
+ * (|dv| up to 2 vmax) not to be lengthened, amax/vmax and jmax/vmax stay a factor 16 below the
+ * cap; then every capped transition (a smaller move) lasts at most about 2/sqrt(RATIO_CAP) s,
+ * within a few times the duration to reach vmax, so it fits the plan's sample count too. */
+#define MAX_LIMIT_RATIO (1152921504606846976.0 / 16.0) /* 2^56 */
+
+/* Moves up to MOVE_SPAN times the distance h to reach vmax (and durations up to MOVE_SPAN
+ * times its duration) keep the unit limits' products normal and finite. */
+#define MOVE_SPAN 16.0
+#ifdef SMS_USE_FLOAT
+#define UNIT_TINY ((double)FLT_MIN / (double)FLT_EPSILON)
+#else
+#define UNIT_TINY (DBL_MIN / DBL_EPSILON)
+#endif
+
+static sms_status reach_refused(sms_generator_reach_info *r, const char *quantity,
+                                const char *args, double value)
+{
+    r->quantity = quantity;
+    r->arguments = args;
+    r->value = value;
+    r->bound = MAX_LIMIT_RATIO;
+    return SMS_ERR_LIMIT;
+}
+
+sms_status sms_multi_generator_reach(const sms_multi_generator_config *config, double Ts,
+                                     sms_generator_reach_info *reach, size_t *axis)
+{
+    sms_generator_reach_info local, *r = reach != NULL ? reach : &local;
+    sms_generator_config one;
+    size_t i;
+    sms_status st = SMS_OK;
+    if (axis != NULL)
+        *axis = 0;
+    memset(r, 0, sizeof *r);
+    if (config == NULL)
+        return SMS_ERR_NULL;
+    if (config->n_axes < 1 || config->n_axes > SMS_MULTI_MAX_AXES)
+        return SMS_ERR_ORDER;
+    memset(&one, 0, sizeof one);
+    one.profile = SMS_PROFILE_POLYNOMIAL;
+    for (i = 0; i < config->n_axes; ++i) {
+        one.vmax = config->vmax[i];
+        one.amax = config->amax[i];
+        one.jmax = config->jmax[i];
+        st = sms_generator_reach(&one, Ts, r);
+        if (st == SMS_OK && !(one.amax <= MAX_LIMIT_RATIO * one.vmax))
+            st = reach_refused(r, "amax/vmax", "vmax, amax", one.amax / one.vmax);
+        if (st == SMS_OK && !(one.jmax <= MAX_LIMIT_RATIO * one.vmax))
+            st = reach_refused(r, "jmax/vmax", "vmax, jmax", one.jmax / one.vmax);
+        if (st == SMS_OK && !(one.amax <= MAX_LIMIT_RATIO * r->distance))
+            st = reach_refused(r, "amax/h", "vmax, amax, jmax", one.amax / r->distance);
+        if (st == SMS_OK && !(one.jmax <= MAX_LIMIT_RATIO * r->distance))
+            st = reach_refused(r, "jmax/h", "vmax, amax, jmax", one.jmax / r->distance);
+        if (st == SMS_OK) {
+            /* the unit limits of a displacement up to MOVE_SPAN h and the square of the
+             * durations (landing_kappa(): b^2, au^2, ju) */
+            const double h = MOVE_SPAN * r->distance, T = MOVE_SPAN * r->duration;
+            const double au = one.amax / h, ju = one.jmax / h;
+            if (!(T * T <= (double)REAL_MAX))
+                st = reach_refused(r, "the duration to reach vmax, squared", "vmax, amax, jmax",
+                                   r->duration * r->duration);
+            else if (!(au * au >= UNIT_TINY))
+                st = reach_refused(r, "(amax/h)^2", "vmax, amax, jmax",
+                                   one.amax / r->distance * (one.amax / r->distance));
+            else if (!(ju >= UNIT_TINY))
+                st = reach_refused(r, "jmax/h", "vmax, amax, jmax", one.jmax / r->distance);
+            if (st != SMS_OK)
+                r->bound = r->quantity[0] == 't' ? (double)REAL_MAX / (MOVE_SPAN * MOVE_SPAN)
+                           : r->quantity[0] == '(' ? UNIT_TINY * MOVE_SPAN * MOVE_SPAN
+                                                   : UNIT_TINY * MOVE_SPAN;
+        }
+        if (st != SMS_OK) {
+            if (axis != NULL && st == SMS_ERR_LIMIT)
+                *axis = i;
+            return st;
+        }
+    }
+    return SMS_OK;
+}
+
 /* Everything init checks, and the memory the stages need; O(stages). */
 static sms_status check_config(const sms_multi_generator_config *config, double Ts,
                                size_t *n_structs, size_t *n_cells, size_t *bad_axis)
@@ -497,6 +584,15 @@ static sms_status check_config(const sms_multi_generator_config *config, double 
             if (bad_axis != NULL)
                 *bad_axis = i;
             return SMS_ERR_LIMIT;
+        }
+    }
+    {
+        size_t axis = 0;
+        sms_status st = sms_multi_generator_reach(config, Ts, NULL, &axis);
+        if (st != SMS_OK) {
+            if (bad_axis != NULL)
+                *bad_axis = axis;
+            return st;
         }
     }
     if ((unsigned)config->sync > (unsigned)SMS_SYNC_INDEPENDENT)

@@ -464,15 +464,15 @@ static void stages_filter_every_signal(void)
     CHECK(bad == 1);
 }
 
-/* A move the signal type cannot represent (|d| = 1e300 with jmax = 1e-300: the limit ratios
- * underflow to 0) is dropped at rest and mid-motion: outputs stay finite and within the
- * limits, the previous target is kept, and a representable target moves as usual. */
+/* Within feasible limits, a move that cannot be planned (|d| = 1e300 with vmax = 1: a cruise
+ * of 1e300 s, beyond 2^52 samples) is dropped at rest and mid-motion: outputs stay finite and
+ * within the limits, the previous target is kept, and a representable target moves as usual. */
 static void unrepresentable_move_dropped(void)
 {
 #ifdef SMS_USE_FLOAT
-    const double big = 1e38, tiny = 1e-38;
+    const double big = 1e38;
 #else
-    const double big = 1e300, tiny = 1e-300;
+    const double big = 1e300;
 #endif
     sms_multi_generator_config c = random_config(2, SMS_SYNC_PHASE);
     sms_multi_generator g;
@@ -480,8 +480,8 @@ static void unrepresentable_move_dropped(void)
     size_t k;
     int finite_ok = 1, within = 1;
     c.vmax[0] = 1.0;
-    c.amax[0] = 1e-30;
-    c.jmax[0] = tiny;
+    c.amax[0] = 1e-3;
+    c.jmax[0] = 1e-3;
     c.vmax[1] = c.amax[1] = c.jmax[1] = 1.0;
     CHECK_STATUS(sms_multi_generator_init(&g, &c, 1e-3, NULL, 0, NULL, 0, NULL), SMS_OK);
     for (k = 0; k < 3000; ++k) {
@@ -510,6 +510,282 @@ static void unrepresentable_move_dropped(void)
     CHECK(g.dropped == 0 && g.move[0].refused == 0);
 }
 
+/* The largest and smallest normal numbers and the epsilon of sms_real (the test's own copy of
+ * the documented region, trajectory.h sms_generator_reach()). */
+#ifdef SMS_USE_FLOAT
+#define R_MAX 3.4028234663852886e38
+#define R_MIN 1.1754943508222875e-38
+#define R_EPS 1.1920928955078125e-7
+#define R_SPAN 37.0
+#define R_TINY 1.7e-10 /* about 4 eps^1.5 */
+#else
+#define R_MAX 1.7976931348623157e308
+#define R_MIN 2.2250738585072014e-308
+#define R_EPS 2.220446049250313e-16
+#define R_SPAN 300.0
+#define R_TINY 1.3e-23
+#endif
+#define REACH_SAMPLES 1125899906842624.0 /* 2^50 */
+#define RATIO_BOUND 72057594037927936.0    /* 2^56 */
+
+/* One sample towards `target` from rest at 0; 1 when no target was dropped. */
+static int plans_from_rest(sms_multi_generator *g, const double *target)
+{
+    sms_real t[SMS_MULTI_MAX_AXES], o[4 * SMS_MULTI_MAX_AXES];
+    size_t i, k;
+    int finite = 1;
+    sms_multi_generator_reset(g, NULL);
+    for (i = 0; i < g->n_axes; ++i)
+        t[i] = (sms_real)target[i];
+    for (k = 0; k < 3; ++k)
+        sms_multi_generator_step(g, t, o);
+    for (i = 0; i < 4 * g->n_axes; ++i)
+        finite &= o[i] - o[i] == 0;
+    return g->dropped == 0 && finite;
+}
+
+/* Cruising towards 2 h (every axis), the target jumps to -2 h: the move is put into its
+ * cruise through a saved state (sample k in the middle of the cruise), then re-planned. */
+static int plans_reversal(sms_multi_generator *g, const double *h)
+{
+    static double st[SMS_MULTI_IDENTITY_COUNT + 17 * SMS_MULTI_MAX_AXES];
+    double target[SMS_MULTI_MAX_AXES];
+    sms_real t[SMS_MULTI_MAX_AXES], o[4 * SMS_MULTI_MAX_AXES];
+    size_t i, n = g->n_axes, moves = g->sync == SMS_SYNC_PHASE ? 1 : n, count;
+    for (i = 0; i < n; ++i)
+        target[i] = 2.0 * h[i];
+    if (!plans_from_rest(g, target))
+        return 0;
+    count = sms_multi_generator_state_count(g);
+    CHECK(count <= sizeof st / sizeof st[0]);
+    sms_multi_generator_get_state(g, st);
+    for (i = 0; i < n; ++i) { /* cruise at vmax exactly (a float W may round a few ulps over) */
+        double *W = st + SMS_MULTI_IDENTITY_COUNT + 4 * n + i;
+        double vmax = st[SMS_MULTI_IDENTITY_COUNT - 4 * SMS_MULTI_MAX_AXES + 4 * i];
+        if (fabs(*W) > vmax)
+            *W = *W > 0 ? vmax : -vmax;
+    }
+    for (i = 0; i < moves; ++i) {
+        double *m = st + SMS_MULTI_IDENTITY_COUNT + 5 * n + 12 * i;
+        double k = floor((m[0] + m[2] / 2.0 - m[5]) / g->Ts);
+        if (m[9] == 1.0 && k > m[7] && k < m[8])
+            m[7] = k;
+    }
+    CHECK_STATUS(sms_multi_generator_set_state(g, st, count), SMS_OK);
+    for (i = 0; i < n; ++i)
+        t[i] = (sms_real)(-2.0 * h[i]);
+    for (i = 0; i < 3; ++i)
+        sms_multi_generator_step(g, t, o);
+    for (i = 0; i < 4 * n; ++i)
+        if (!(o[i] - o[i] == 0))
+            return 0;
+    return g->dropped == 0;
+}
+
+/* Random limit sets over the build's whole range (log-uniform per axis, so the axes' limits
+ * and their moves' durations differ by up to the whole range), both sync modes: whenever init
+ * accepts them, every axis's move that reaches vmax (h_i), h_i/2, 3 h_i, 1e-9 h_i and about
+ * eps^1.5 h_i, all axes together and each alone, mixed sizes, and the reversal from full
+ * speed are planned (no target dropped). Each axis is drawn until sms_generator_reach()
+ * accepts it alone; the set is then accepted as a whole (the region is per axis). */
+static void feasible_random(void)
+{
+    size_t trial, accepted = 0;
+    for (trial = 0; trial < 1500; ++trial) {
+        sms_multi_generator_config c;
+        sms_multi_generator g;
+        sms_generator_reach_info r;
+        double h[SMS_MULTI_MAX_AXES], x[SMS_MULTI_MAX_AXES], Ts = pow(10.0, R_SPAN * (2.0 * urand() - 1.0));
+        size_t i, j, axis = 99, tries = 0;
+        int ok = 1;
+        memset(&c, 0, sizeof c);
+        c.n_axes = 1 + trial % 3;
+        c.sync = urand() < 0.5 ? SMS_SYNC_PHASE : SMS_SYNC_INDEPENDENT;
+        for (i = 0; i < c.n_axes; ++i) {
+            sms_multi_generator_config one;
+            memset(&one, 0, sizeof one);
+            one.n_axes = 1;
+            do {
+                one.vmax[0] = pow(10.0, R_SPAN * (2.0 * urand() - 1.0));
+                one.amax[0] = pow(10.0, R_SPAN * (2.0 * urand() - 1.0));
+                one.jmax[0] = pow(10.0, R_SPAN * (2.0 * urand() - 1.0));
+            } while (sms_multi_generator_reach(&one, Ts, &r, NULL) != SMS_OK && ++tries < 100000);
+            c.vmax[i] = one.vmax[0];
+            c.amax[i] = one.amax[0];
+            c.jmax[i] = one.jmax[0];
+            h[i] = r.distance;
+        }
+        if (sms_multi_generator_reach(&c, Ts, &r, &axis) != SMS_OK)
+            continue; /* Ts itself out of range, or an axis not found feasible */
+        CHECK(axis == 0);
+        CHECK_STATUS(sms_multi_generator_init(&g, &c, Ts, NULL, 0, NULL, 0, NULL), SMS_OK);
+        ++accepted;
+        {
+            static const double part[] = {1.0, 0.5, 3.0, 1e-9, R_TINY};
+            for (j = 0; j < sizeof part / sizeof part[0]; ++j) {
+                for (i = 0; i < c.n_axes; ++i)
+                    x[i] = part[j] * h[i];
+                ok &= plans_from_rest(&g, x);
+                for (i = 0; i < c.n_axes; ++i) { /* mixed: one axis at this size, others h */
+                    size_t k;
+                    for (k = 0; k < c.n_axes; ++k)
+                        x[k] = k == i ? part[j] * h[k] : (k % 2 ? -h[k] : h[k]);
+                    ok &= plans_from_rest(&g, x);
+                    for (k = 0; k < c.n_axes; ++k) /* alone */
+                        x[k] = k == i ? part[j] * h[k] : 0.0;
+                    ok &= plans_from_rest(&g, x);
+                }
+            }
+            ok &= plans_reversal(&g, h);
+        }
+        CHECK(ok);
+        if (!ok)
+            fprintf(stderr, "dropped: n %u sync %d Ts %g axis0 %g %g %g axis1 %g %g %g\n",
+                    (unsigned)c.n_axes, (int)c.sync, Ts, c.vmax[0], c.amax[0], c.jmax[0],
+                    c.vmax[1], c.amax[1], c.jmax[1]);
+    }
+    CHECK(accepted > 500);
+}
+
+/* Expect init (and the memory query) to refuse axis `axis` naming `quantity`. */
+static void check_refused(const sms_multi_generator_config *c, double Ts, size_t axis,
+                          const char *quantity)
+{
+    sms_multi_generator g;
+    sms_generator_reach_info r;
+    size_t bad = 99, n_structs, n_cells;
+    memset(&g, 0x5a, sizeof g);
+    CHECK_STATUS(sms_multi_generator_reach(c, Ts, &r, &bad), SMS_ERR_LIMIT);
+    CHECK(bad == axis);
+    CHECK(r.quantity != NULL && strcmp(r.quantity, quantity) == 0);
+    if (r.quantity == NULL || strcmp(r.quantity, quantity) != 0 || bad != axis)
+        fprintf(stderr, "refused axis %u for %s, expected axis %u, %s\n", (unsigned)bad,
+                r.quantity != NULL ? r.quantity : "nothing", (unsigned)axis, quantity);
+    bad = 99;
+    CHECK_STATUS(sms_multi_generator_init(&g, c, Ts, NULL, 0, NULL, 0, &bad), SMS_ERR_LIMIT);
+    CHECK(bad == axis);
+    CHECK(g.n_axes == (size_t)0x5a5a5a5a5a5a5a5aull); /* untouched on error */
+    CHECK_STATUS(sms_multi_generator_memory(c, Ts, &n_structs, &n_cells, &bad), SMS_ERR_LIMIT);
+}
+
+/* Expect init to accept the limits and plan h and the reversal for every axis. */
+static void check_accepted(const sms_multi_generator_config *c, double Ts)
+{
+    sms_multi_generator g;
+    sms_generator_reach_info r;
+    sms_generator_config one;
+    double h[SMS_MULTI_MAX_AXES];
+    size_t i;
+    memset(&one, 0, sizeof one);
+    CHECK_STATUS(sms_multi_generator_reach(c, Ts, &r, NULL), SMS_OK);
+    CHECK_STATUS(sms_multi_generator_init(&g, c, Ts, NULL, 0, NULL, 0, NULL), SMS_OK);
+    if (r.quantity != NULL) {
+        fprintf(stderr, "refused for %s (axis 1: %g %g %g, Ts %g)\n", r.quantity, c->vmax[1],
+                c->amax[1], c->jmax[1], Ts);
+        return;
+    }
+    for (i = 0; i < c->n_axes; ++i) {
+        one.vmax = c->vmax[i];
+        one.amax = c->amax[i];
+        one.jmax = c->jmax[i];
+        CHECK_STATUS(sms_generator_reach(&one, Ts, &r), SMS_OK);
+        h[i] = r.distance;
+    }
+    CHECK(plans_from_rest(&g, h));
+    CHECK(plans_reversal(&g, h));
+}
+
+/* Both sides of every bound of the region, on axis 1 of two (axis 0 an ordinary machine),
+ * both sync modes: just inside, h and the reversal are planned; just outside, init refuses
+ * axis 1 and names the quantity. */
+static void feasible_limits(void)
+{
+    const double in = 1.0 - 1e-6, out = 1.0 + 1e-6, big = R_MAX / 16.0;
+    sms_multi_generator_config c;
+    double T, x;
+    int sync;
+    for (sync = 0; sync < 2; ++sync) {
+        memset(&c, 0, sizeof c);
+        c.n_axes = 2;
+        c.sync = sync ? SMS_SYNC_INDEPENDENT : SMS_SYNC_PHASE;
+        c.vmax[0] = 1.0;
+        c.amax[0] = 100.0;
+        c.jmax[0] = 1e4;
+        /* the duration to reach vmax: 2 (vmax/amax + amax/jmax) against 2^50 samples */
+        c.vmax[1] = 1.0;
+        c.amax[1] = 5.0;
+        c.jmax[1] = 100.0;
+        T = 2.0 * (1.0 / 5.0 + 5.0 / 100.0);
+        check_accepted(&c, T / REACH_SAMPLES * out);
+        check_refused(&c, T / REACH_SAMPLES * in, 1, "vmax/amax");
+        c.amax[1] = 1e10; /* amax not reached: 4 sqrt(vmax/jmax) */
+        T = 4.0 * sqrt(1.0 / 100.0);
+        check_accepted(&c, T / REACH_SAMPLES * out);
+        check_refused(&c, T / REACH_SAMPLES * in, 1, "sqrt(vmax/jmax)");
+        /* the velocity changes: 16 vmax jmax <= MAX (jmax = 2^40 vmax, amax 1, Ts = vmax):
+         * outside, refused; inside, the unit limits of the displacement already fail */
+        x = sqrt(R_MAX / 16.0 / 1099511627776.0);
+        c.vmax[1] = x;
+        c.amax[1] = 1.0;
+        c.jmax[1] = x * 1099511627776.0 * out;
+        check_refused(&c, x, 1, "vmax*jmax");
+        /* the planner's ratios limit/|dv| (capped at 2^60): amax/vmax, jmax/vmax <= 2^56 */
+        c.vmax[1] = 1.0;
+        c.jmax[1] = 1.0;
+        c.amax[1] = RATIO_BOUND * in;
+        check_accepted(&c, 1e-3);
+        c.amax[1] = RATIO_BOUND * out;
+        check_refused(&c, 1e-3, 1, "amax/vmax");
+        c.amax[1] = 1.0;
+        c.jmax[1] = RATIO_BOUND * in;
+        check_accepted(&c, 1e-3);
+        c.jmax[1] = RATIO_BOUND * out;
+        check_refused(&c, 1e-3, 1, "jmax/vmax");
+        /* the ratios limit/|d| of the displacement h to reach vmax: amax/h, jmax/h <= 2^56 */
+        c.vmax[1] = 1.0;
+        c.jmax[1] = 1e10;
+        x = 2.0 * sqrt(1.0 / 1e10); /* h = 2 vmax sqrt(vmax/jmax): amax not reached */
+        c.amax[1] = RATIO_BOUND * x * in;
+        check_accepted(&c, 1e-3);
+        c.amax[1] = RATIO_BOUND * x * out;
+        check_refused(&c, 1e-3, 1, "amax/h");
+        c.amax[1] = 100.0;
+        c.jmax[1] = RATIO_BOUND * 0.01;
+        x = 0.01 + 100.0 / c.jmax[1]; /* h = vmax (vmax/amax + amax/jmax) */
+        c.jmax[1] = RATIO_BOUND * x * in;
+        check_accepted(&c, 1e-3);
+        c.jmax[1] = RATIO_BOUND * x * out;
+        check_refused(&c, 1e-3, 1, "jmax/h");
+        /* the unit accelerations' squares: (amax/(16 h))^2 >= MIN/eps, with vmax = jmax = 1,
+         * h = 1/amax + amax: amax^2 = 16 s/(1 - 16 s), s = sqrt(MIN/eps) */
+        x = 16.0 * sqrt(R_MIN / R_EPS);
+        x = sqrt(x / (1.0 - x));
+        c.vmax[1] = 1.0;
+        c.jmax[1] = 1.0;
+        c.amax[1] = x * out;
+        T = 2.0 * (1.0 / c.amax[1] + c.amax[1]);
+        check_accepted(&c, T * 1e-6);
+        c.amax[1] = x * in;
+        check_refused(&c, T * 1e-6, 1, "(amax/h)^2");
+        /* each limit in [MIN, MAX/16] */
+        c.vmax[1] = 1.0;
+        c.amax[1] = 10.0;
+        c.jmax[1] = big * out;
+        check_refused(&c, 1e-3, 1, "jmax");
+        c.jmax[1] = 100.0;
+        c.vmax[1] = R_MIN * in;
+        check_refused(&c, 1e-3, 1, "vmax");
+    }
+    /* the documented example, on axis 1: reaching vmax takes 4e150 s */
+    memset(&c, 0, sizeof c);
+    c.n_axes = 2;
+    c.vmax[0] = c.amax[0] = c.jmax[0] = 1.0;
+    c.vmax[1] = 1.0;
+    c.amax[1] = 1e-30;
+    c.jmax[1] = 1e-300; /* in float jmax itself is below MIN */
+    check_refused(&c, 1e-3, 1, sizeof(sms_real) == sizeof(double) ? "sqrt(vmax/jmax)" : "jmax");
+}
+
 int main(void)
 {
     unsigned trial;
@@ -524,5 +800,7 @@ int main(void)
     state_round_trip();
     stages_filter_every_signal();
     unrepresentable_move_dropped();
+    feasible_limits();
+    feasible_random();
     return check_summary("test_multi_generator");
 }

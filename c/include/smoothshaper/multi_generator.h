@@ -13,6 +13,7 @@
 #define SMOOTHSHAPER_MULTI_GENERATOR_H
 
 #include "smoothshaper/chain.h"
+#include "smoothshaper/trajectory.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -49,7 +50,7 @@ typedef enum sms_sync {
  * | field | valid range |
  * |-------|-------------|
  * | n_axes | 1 .. ::SMS_MULTI_MAX_AXES |
- * | vmax[i], amax[i], jmax[i], i < n_axes | finite, > 0 (units of axis i per s, s^2, s^3) |
+ * | vmax[i], amax[i], jmax[i], i < n_axes | finite, > 0 (units of axis i per s, s^2, s^3), and a move of axis i can reach vmax[i] (sms_multi_generator_reach()) |
  * | sync | an ::sms_sync |
  * | n_stages[i], i < n_axes | 0 (no filter) .. ::SMS_CHAIN_MAX_STAGES |
  * | stages[i] | n_stages[i] valid stage configs (config.h), or NULL when n_stages[i] = 0 |
@@ -160,6 +161,33 @@ typedef struct sms_multi_generator {
 } sms_multi_generator;
 
 /**
+ * @brief Check, in O(n_axes), that every axis's limits let a move reach its vmax at Ts (what
+ * init checks after each limit is finite and > 0).
+ *
+ * Per axis the planner forms the quantities of the single-axis planner with linear jerk
+ * ramps: velocity changes J dv (|dv| <= 2 vmax_i), squares of accelerations up to
+ * ap = min(amax_i, sqrt(vmax_i jmax_i)), durations up to about that of the move of axis i
+ * from rest to vmax_i and back to rest, distances up to a few times its distance. A
+ * phase-synchronised move scales every axis's limits by the same path direction
+ * (limit_i/|d_i|), so its sums and products stay within the range of its slowest axis's
+ * move (docs/multi-axis.md: a random search over the whole range of the type found no
+ * accepted limit set that drops such a move). Axis i is therefore feasible when
+ * sms_generator_reach() accepts vmax[i], amax[i], jmax[i] with ::SMS_PROFILE_POLYNOMIAL
+ * (its conditions 1 to 5: each limit in [MIN, MAX/16], 16 vmax jmax <= MAX, the move to
+ * vmax within 2^50 samples, ap^2 >= MIN/eps, duration >= MIN and distance in
+ * [MIN/eps, MAX/16]). Outside that region no move of that axis that reaches vmax[i] can be
+ * planned, e.g. vmax = 1, amax = 1e-30, jmax = 1e-300 at Ts = 1 ms: reaching vmax takes
+ * 4 sqrt(vmax/jmax) = 4e150 s.
+ * @param reach  out (may be NULL): for the first refused axis, the quantity out of range,
+ *               its arguments (e.g. "vmax, jmax", of that axis), value and bound; for an
+ *               accepted set, the move of the last axis
+ * @param axis   out (may be NULL): the refused axis (else 0)
+ * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_ORDER (n_axes), ::SMS_ERR_SAMPLE_PERIOD,
+ *         ::SMS_ERR_LIMIT.
+ */
+SMS_API sms_status sms_multi_generator_reach(const sms_multi_generator_config *config, double Ts,
+                                             sms_generator_reach_info *reach, size_t *axis);
+/**
  * @brief Caller memory a configuration needs (size query, O(stages) closed form).
  * @param config   limits and stages (see ::sms_multi_generator_config)
  * @param Ts       sample period [s], finite and > 0
@@ -187,7 +215,8 @@ SMS_API sms_status sms_multi_generator_memory(const sms_multi_generator_config *
  *                errors (else 0)
  * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_ORDER (n_axes out of range, or n_stages[i]
  *         above ::SMS_CHAIN_MAX_STAGES), ::SMS_ERR_SAMPLE_PERIOD, ::SMS_ERR_LIMIT (a limit not
- *         finite and > 0, or a limit ratio that overflows the signal type), ::SMS_ERR_KIND
+ *         finite and > 0, or limits with which no move of an axis can reach its vmax:
+ *         sms_multi_generator_reach() names the axis and the quantity), ::SMS_ERR_KIND
  *         (sync), the first failing stage config's status (its axis in bad_axis),
  *         ::SMS_ERR_TOO_LONG, ::SMS_ERR_BUFFER_TOO_SMALL (stages or memory shorter than
  *         sms_multi_generator_memory() says). g, stages and memory untouched on error.
