@@ -277,13 +277,12 @@ def test_stage_errors_name_the_parameter():
 
 @pytest.mark.parametrize("precision", ["double", "float"])
 def test_unrepresentable_moves_are_dropped(precision):
-    """A target whose move overflows the signal type (|d| = 1e300 with jmax = 1e-300: the
-    limit ratios underflow to 0) is dropped like a non-finite one: every output stays finite,
-    the axes keep their previous target, and the next representable target moves as usual;
-    the reference drops it alike."""
+    """Within feasible limits, a target whose move cannot be planned (|d| = 1e300 with
+    vmax = 1: a cruise beyond 2^52 samples) is dropped like a non-finite one: every output
+    stays finite, the axes keep their previous target, and the next representable target
+    moves as usual; the reference drops it alike."""
     big = 1e300 if precision == "double" else 1e38
-    tiny = 1e-300 if precision == "double" else 1e-38
-    args = dict(vmax=[1.0, 1.0], amax=[1e-30, 1.0], jmax=[tiny, 1.0], Ts=1e-3)
+    args = dict(vmax=[1.0, 1.0], amax=[1e-3, 1.0], jmax=[1e-3, 1.0], Ts=1e-3)
     targets = np.array([[big, -big]] * 30 + [[0.0, 0.5]] * 5 + [[big, 0.5]] * 20
                        + [[0.0, 0.25]] * 4000)
     g = MultiAxisGenerator(precision=precision, **args)
@@ -299,8 +298,41 @@ def test_unrepresentable_moves_are_dropped(precision):
     assert g.dropped == 0 and g.refused == (False, False)
     assert np.all(np.isfinite(out))
     np.testing.assert_array_equal(out[:30], 0.0)   # dropped at rest: still at q0
-    assert np.all(np.abs(out[:, :, 1:]) <= np.array([[1.0, 1e-30, tiny], [1, 1, 1]])[None]
+    assert np.all(np.abs(out[:, :, 1:]) <= np.array([[1.0, 1e-3, 1e-3], [1, 1, 1]])[None]
                   * (1 + 1e-5))
     if precision == "double":
         ref = multi_axis_reference(targets, **args)
         np.testing.assert_array_equal(out, ref)
+
+
+@pytest.mark.parametrize("precision", ["double", "float"])
+def test_limits_with_which_no_move_reaches_vmax_are_refused(precision):
+    """Limits with which no move of an axis can reach its vmax are refused at construction,
+    naming the axis, its limits and the quantity out of range (sms_multi_generator_reach);
+    just inside each bound the limits are accepted."""
+    def refused(**kw):
+        with pytest.raises(ParameterError) as e:
+            MultiAxisGenerator(precision=precision, **{"Ts": 1e-3, **kw})
+        return e.value
+    # the documented example on axis 1: reaching vmax takes 4 sqrt(vmax/jmax) = 4e150 s
+    e = refused(vmax=[1.0, 1.0], amax=[1.0, 1e-30], jmax=[1.0, 1e-300])
+    assert e.parameter == "jmax[1]" and "axis 1" in str(e) and "jmax[1]=1e-300" in str(e)
+    if precision == "double":
+        assert "sqrt(vmax/jmax) = 1e+150 s" in str(e) and "4e+150 s" in str(e)
+    else:
+        assert "smallest normal float" in str(e)
+    # the planner's ratios (capped at 2^60) must stay below 2^56: both sides of the bound
+    ratio = 2.0 ** 56
+    for kw, name, quantity in [(dict(amax=[1.0, ratio], jmax=[1.0, 1.0]), "amax[1]", "amax/vmax"),
+                               (dict(amax=[1.0, 1.0], jmax=[1.0, ratio]), "jmax[1]", "jmax/vmax")]:
+        MultiAxisGenerator(precision=precision, vmax=[1.0, 1.0], Ts=1e-3,
+                           **{k: [v[0], v[1] * (1 - 1e-6)] for k, v in kw.items()})
+        e = refused(vmax=[1.0, 1.0], **{k: [v[0], v[1] * (1 + 1e-6)] for k, v in kw.items()})
+        assert e.parameter == name and f"{quantity} = " in str(e) and "axis 1" in str(e)
+    # the duration to reach vmax against 2^50 samples of Ts: Ts is named
+    T = 2.0 * (1.0 / 5.0 + 5.0 / 100.0)
+    MultiAxisGenerator(precision=precision, vmax=[1.0], amax=[5.0], jmax=[100.0],
+                       Ts=T / 2.0 ** 50 * (1 + 1e-6))
+    if precision == "double":
+        e = refused(vmax=[1.0], amax=[5.0], jmax=[100.0], Ts=T / 2.0 ** 50 * (1 - 1e-6))
+        assert e.parameter == "Ts" and "vmax/amax" in str(e) and "axis 0" in str(e)
