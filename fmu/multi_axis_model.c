@@ -345,10 +345,23 @@ static int configure(const ma_model *m, sms_multi_generator_config *c, ma_stages
         c->n_stages[i] = s->n[i];
     }
     st = sms_multi_generator_memory(c, m->Ts, n_structs, n_cells, &bad); /* the core's checks */
-    if (st == SMS_ERR_LIMIT)
-        return snprintf(msg, len, "vmax[%d], amax[%d], jmax[%d] = %.17g, %.17g, %.17g: %s",
-                        (int)bad, (int)bad, (int)bad, c->vmax[bad], c->amax[bad], c->jmax[bad],
-                        sms_status_string(st)), 1;
+    if (st == SMS_ERR_LIMIT) {
+        sms_generator_reach_info r;
+        (void)sms_multi_generator_reach(c, m->Ts, &r, &bad);
+        if (r.quantity == NULL) /* a limit not finite and > 0 */
+            return snprintf(msg, len, "vmax[%d], amax[%d], jmax[%d] = %.17g, %.17g, %.17g: %s",
+                            (int)bad, (int)bad, (int)bad, c->vmax[bad], c->amax[bad],
+                            c->jmax[bad], sms_status_string(st)), 1;
+        /* limits with which no move of axis `bad` can reach its vmax: the quantity out of
+         * range, formed from the arguments r.arguments of that axis */
+        return snprintf(msg, len, "axis %d: vmax[%d] = %.17g, amax[%d] = %.17g, jmax[%d] = "
+                        "%.17g, Ts = %.17g: %s (of %s) = %.6g is %s its bound %.6g, so no move "
+                        "of axis %d that reaches vmax[%d] can be planned "
+                        "(sms_multi_generator_reach())", (int)bad, (int)bad, c->vmax[bad],
+                        (int)bad, c->amax[bad], (int)bad, c->jmax[bad], m->Ts, r.quantity,
+                        r.arguments, r.value, r.value < r.bound ? "below" : "above", r.bound,
+                        (int)bad, (int)bad), 1;
+    }
     if (st != SMS_OK && s->n[bad] > 0)
         return snprintf(msg, len, "stages of axis %d (stage[k].kind[%d]): %s", (int)bad, (int)bad,
                         sms_status_string(st)), 1;

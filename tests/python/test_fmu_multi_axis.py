@@ -274,6 +274,25 @@ def test_unused_axis_stages_are_ignored(multi_dir):
 
 
 
+@pytest.mark.parametrize("limits,quantity", [
+    ({"vmax[1]": 1.0, "amax[1]": 1e-30, "jmax[1]": 1e-300}, "sqrt(vmax/jmax) (of vmax, jmax)"),
+    ({"vmax[1]": 1.0, "amax[1]": 2.0 ** 57, "jmax[1]": 1.0}, "amax/vmax (of vmax, amax)")])
+def test_limits_with_which_no_move_reaches_vmax_fail_naming_axis_and_quantity(
+        multi_dir, limits, quantity):
+    """Limits with which no move of axis 1 can reach its vmax (sms_multi_generator_reach)
+    fail exitInitializationMode; the logger names the axis, its limits and the quantity."""
+    log = Logged()
+    fmu = slave(multi_dir, "reach", logged=log)
+    values = start_values(3, 0, "same")
+    values.update(limits)
+    with pytest.raises(FMICallException):
+        start(fmu, **values)
+    message = log.messages[-1]
+    assert "axis 1: vmax[1] = 1, amax[1] = " in message and quantity in message, message
+    assert "no move of axis 1 that reaches vmax[1] can be planned" in message, message
+    fmu.freeInstance()
+
+
 @pytest.mark.parametrize("sync", [0, 1], ids=["phase", "independent"])
 def test_a_dropped_target_vector_is_logged_once_and_the_step_warns(multi_dir, sync):
     """As the TrajectoryGenerator: a target 1e300 away on axis 1 (more than 2^52 ticks at
