@@ -147,7 +147,9 @@ class MultiAxisGenerator:
     ------
     ParameterError
         Naming the offending argument, e.g. ``vmax[2]``, ``Ts``, ``sync``, ``q0`` or a
-        stage's parameter.
+        stage's parameter; also for limits with which no move of an axis can reach its vmax
+        (``sms_multi_generator_reach``, docs/multi-axis.md "Feasible limits"), naming the
+        axis, its values and the quantity out of range.
     """
 
     MAX_AXES = 8

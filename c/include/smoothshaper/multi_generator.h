@@ -167,16 +167,24 @@ typedef struct sms_multi_generator {
  * Per axis the planner forms the quantities of the single-axis planner with linear jerk
  * ramps: velocity changes J dv (|dv| <= 2 vmax_i), squares of accelerations up to
  * ap = min(amax_i, sqrt(vmax_i jmax_i)), durations up to about that of the move of axis i
- * from rest to vmax_i and back to rest, distances up to a few times its distance. A
- * phase-synchronised move scales every axis's limits by the same path direction
- * (limit_i/|d_i|), so its sums and products stay within the range of its slowest axis's
- * move (docs/multi-axis.md: a random search over the whole range of the type found no
- * accepted limit set that drops such a move). Axis i is therefore feasible when
- * sms_generator_reach() accepts vmax[i], amax[i], jmax[i] with ::SMS_PROFILE_POLYNOMIAL
- * (its conditions 1 to 5: each limit in [MIN, MAX/16], 16 vmax jmax <= MAX, the move to
- * vmax within 2^50 samples, ap^2 >= MIN/eps, duration >= MIN and distance in
- * [MIN/eps, MAX/16]). Outside that region no move of that axis that reaches vmax[i] can be
- * planned, e.g. vmax = 1, amax = 1e-30, jmax = 1e-300 at Ts = 1 ms: reaching vmax takes
+ * from rest to vmax_i and back to rest, distances up to a few times its distance.
+ * With h and T the distance and duration of that move, axis i is feasible when, in this
+ * order:
+ * 1. sms_generator_reach() accepts vmax[i], amax[i], jmax[i] with ::SMS_PROFILE_POLYNOMIAL
+ *    (each limit in [MIN, MAX/16], 16 vmax jmax <= MAX, T/Ts <= 2^50, ap^2 >= MIN/eps,
+ *    T >= MIN and h in [MIN/eps, MAX/16]);
+ * 2. amax/vmax, jmax/vmax, amax/h, jmax/h <= 2^56 ("amax/vmax", ..., "jmax/h"): the planner
+ *    caps its unit limits amax/|dV|, jmax/|d| at 2^60, which would lengthen the move to
+ *    vmax, its stop or its reversal beyond the plan;
+ * 3. (16 T)^2 <= MAX ("the duration to reach vmax, squared"), (amax/(16 h))^2 >= MIN/eps
+ *    ("(amax/h)^2") and jmax/(16 h) >= MIN/eps ("jmax/h"): the landing squares durations and
+ *    unit accelerations of displacements up to 16 h.
+ * A phase-synchronised move scales every axis's limits by the same path direction
+ * (limit_i/|d_i|, the minimum over axes), so it adds no condition: a random search over the
+ * whole range of the type, both sync modes, found no accepted set that drops the move of any
+ * axis to h, h/2, 3 h, 1e-9 h, eps^1.5 h (together, alone, mixed) or the reversal from full
+ * speed (docs/multi-axis.md). Outside the region no move of that axis that reaches vmax[i]
+ * can be planned, e.g. vmax = 1, amax = 1e-30, jmax = 1e-300 at Ts = 1 ms: reaching vmax takes
  * 4 sqrt(vmax/jmax) = 4e150 s.
  * @param reach  out (may be NULL): for the first refused axis, the quantity out of range,
  *               its arguments (e.g. "vmax, jmax", of that axis), value and bound; for an
@@ -234,7 +242,7 @@ SMS_API void sms_multi_generator_reset(sms_multi_generator *g, const sms_real *p
  * component keeps that axis's previous target) and write out[4 i + m] = q, q', q'', q''' of
  * axis i at this instant (after the axis's stages, if any). A target vector whose move cannot
  * be represented in ::sms_real (a displacement, duration or velocity that overflows or
- * underflows to 0, e.g. |d| = 1e300 with jmax = 1e-300, or more than 2^52 samples) is
+ * underflows to 0, or more than 2^52 samples, e.g. |d| = 1e300 with vmax = 1) is
  * dropped: the axes (of the group) keep their previous goal, so every output stays finite,
  * and it is not tried again until the target vector changes (one attempt, not one per sample).
  * The group's `move[].refused` is 1 while its held target is dropped, and `dropped` counts
