@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import _state_identity
+from . import _reach, _state_identity
 from .errors import DroppedTargetWarning
 from .filters import ParameterError, _backend, _fill_config, _real_dtype
 from .reference import multi_axis as _ref
@@ -63,10 +63,6 @@ def _sync(sync: str) -> str:
     return s
 
 
-_DURATIONS = ("vmax/amax", "sqrt(vmax/jmax)")   # reaching vmax does not fit the plan's samples
-_RATIOS = ("amax/vmax", "jmax/vmax", "amax/h", "jmax/h")   # the planner's capped ratios
-
-
 def _infeasible(lib, ffi, cfg, Ts, st):
     """ParameterError for an axis whose limits let no move reach its vmax
     (``sms_multi_generator_reach``): the axis's arguments as ``vmax[i]=...``, the derived
@@ -74,45 +70,8 @@ def _infeasible(lib, ffi, cfg, Ts, st):
     info, axis = ffi.new("sms_generator_reach_info *"), ffi.new("size_t *")
     lib.sms_multi_generator_reach(cfg, Ts, info, axis)
     i = axis[0]
-    if info.quantity == ffi.NULL:  # a limit not finite and > 0 (checked before the region)
-        return ParameterError("vmax", f"limits of axis {i} rejected: vmax[{i}]={cfg.vmax[i]!r}, "
-                              f"amax[{i}]={cfg.amax[i]!r}, jmax[{i}]={cfg.jmax[i]!r} must be "
-                              "finite and > 0", st)
-    quantity = ffi.string(info.quantity).decode()
-    names = ffi.string(info.arguments).decode().split(", ")
-    values = ", ".join(f"{n}[{i}]={getattr(cfg, n)[i]!r}" for n in names)
-    value, bound = info.value, info.bound
-    real = "float" if ffi.sizeof("sms_real") == 4 else "double"
-    if quantity.startswith("the distance"):
-        parameter = "vmax"
-    elif quantity in _DURATIONS or quantity == "vmax*jmax":
-        parameter = names[-1]
-    else:
-        parameter = min(("vmax", "amax", "jmax"), key=lambda n: quantity.find(n) % 1000)
-    head = f"axis {i}: {values}"
-    if quantity in names:
-        msg = (f"{head}: below {bound:.6g}, the smallest normal {real}" if value < bound else
-               f"{head}: above {bound:.6g}, the largest {real} over 16 (room for a reversal)")
-    elif quantity in _DURATIONS:
-        if info.duration <= 1e9:   # a plausible machine (vmax within 30 years): Ts is extreme
-            parameter = "Ts"
-        msg = (f"{head}, Ts={Ts!r}: {quantity} = {value:.6g} s, so reaching vmax[{i}] from rest "
-               f"takes {info.duration:.6g} s = {info.samples:.6g} samples of Ts, more than the "
-               f"2^50 a plan can hold with room for a reversal: no move of axis {i} that "
-               f"reaches vmax[{i}] can be planned")
-    elif quantity in _RATIOS and value > bound:
-        msg = (f"{head}: {quantity} = {value:.6g} exceeds {bound:.6g} = 2^56 (h = "
-               f"{info.distance:.6g}, the distance to reach vmax[{i}]): the planner caps its "
-               f"ratios limit/change at 2^60, so axis {i}'s moves would be lengthened beyond "
-               "their plan")
-    elif value < bound:
-        msg = (f"{head}: {quantity} = {value:.6g} is below {bound:.6g} (h = "
-               f"{info.distance:.6g}, the distance to reach vmax[{i}]): the planner's products "
-               "would underflow")
-    else:
-        msg = (f"{head}: {quantity} = {value:.6g} exceeds {bound:.6g}: the planner's values "
-               "would overflow")
-    return ParameterError(parameter if parameter == "Ts" else f"{parameter}[{i}]", msg, st)
+    return _reach.refused(ffi, info, dict(vmax=cfg.vmax[i], amax=cfg.amax[i], jmax=cfg.jmax[i]),
+                          Ts, st, axis=i)
 
 
 class MultiAxisGenerator:

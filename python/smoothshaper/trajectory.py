@@ -17,7 +17,7 @@ import warnings
 
 import numpy as np
 
-from . import _state_identity
+from . import _reach, _state_identity
 from . import design as _design
 from .errors import DroppedTargetWarning
 from .filters import ParameterError, _backend, _raise_status, _real_dtype, check_memory
@@ -51,31 +51,7 @@ def _infeasible(lib, ffi, cfg, Ts, st):
     the arguments and their values, the derived quantity out of range, its bound."""
     info = ffi.new("sms_generator_reach_info *")
     lib.sms_generator_reach(cfg, Ts, info)
-    if info.quantity == ffi.NULL:  # pragma: no cover - init and the check are one function
-        return ParameterError("vmax", "vmax, amax, jmax: refused by the C core", st)
-    quantity = ffi.string(info.quantity).decode()
-    names = ffi.string(info.arguments).decode().split(", ")
-    values = ", ".join(f"{n}={getattr(cfg, n)!r}" for n in names)
-    value, bound = info.value, info.bound
-    real = "float" if ffi.sizeof("sms_real") == 4 else "double"
-    parameter = "vmax" if quantity.startswith("the distance") else names[-1]
-    if quantity in names:
-        msg = (f"{values}: below {bound:.6g}, the smallest normal {real}" if value < bound else
-               f"{values}: above {bound:.6g}, the largest {real} over 16 (room for a reversal)")
-    elif "/" in quantity:   # a duration: reaching vmax does not fit the plan's sample counts
-        if info.duration <= 1e9:   # a plausible machine (vmax within 30 years): Ts is extreme
-            parameter = "Ts"
-        msg = (f"{values}, Ts={Ts!r}: {quantity} = {value:.6g} s, so reaching vmax from rest takes "
-               f"{info.duration:.6g} s = {info.samples:.6g} samples of Ts, more than "
-               f"the 2^50 a plan can hold with room for a reversal (its limit is 2^52): no move "
-               f"that reaches vmax can be planned")
-    elif value < bound:
-        msg = (f"{values}: {quantity} = {value:.6g} is below {bound:.6g} (the smallest normal "
-               f"{real} over its epsilon): the planner's products would underflow")
-    else:
-        msg = (f"{values}: {quantity} = {value:.6g} exceeds {bound:.6g} (the largest {real} "
-               f"over 16, room for a reversal): the planner's values would overflow")
-    return ParameterError(parameter, msg, st)
+    return _reach.refused(ffi, info, dict(vmax=cfg.vmax, amax=cfg.amax, jmax=cfg.jmax), Ts, st)
 
 
 def _generator_config(ffi, vmax, amax, jmax, profile, wn, zeta):

@@ -336,3 +336,7 @@ def test_limits_with_which_no_move_reaches_vmax_are_refused(precision):
     if precision == "double":
         e = refused(vmax=[1.0], amax=[5.0], jmax=[100.0], Ts=T / 2.0 ** 50 * (1 - 1e-6))
         assert e.parameter == "Ts" and "vmax/amax" in str(e) and "axis 0" in str(e)
+    # a Ts beyond the precision's range next to a limit out of range: named, no crash
+    if precision == "float":
+        e = refused(vmax=[1.0, 1e-320], amax=[1.0, 1.0], jmax=[1.0, 1.0], Ts=1e300)
+        assert e.parameter == "Ts" and str(e).startswith("Ts=1e+300: above 3.40282e+38")

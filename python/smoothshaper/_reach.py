@@ -1,0 +1,97 @@
+"""The message for limits with which no move can reach vmax, for both online generators.
+
+``sms_generator_reach`` (trajectory.h) and ``sms_multi_generator_reach`` (multi_generator.h)
+fill one ``sms_generator_reach_info``: the first derived quantity out of range, the arguments
+it is formed from, its value and bound. :func:`refused` turns it into the ParameterError the
+Generator and the MultiAxisGenerator raise: the user's arguments with their values first
+(``vmax=1.0, jmax=1e-300`` or, for an axis, ``axis 1: vmax[1]=1.0, jmax[1]=1e-300``), then the
+quantity as explanation.
+"""
+from __future__ import annotations
+
+from .errors import ParameterError
+
+#: Durations: reaching vmax does not fit the plan's samples.
+DURATIONS = ("vmax/amax", "sqrt(vmax/jmax)", "sqrt(pi vmax/(2 jmax))")
+#: The multi-axis planner's capped ratios limit/change.
+RATIOS = ("amax/vmax", "jmax/vmax", "amax/h", "jmax/h")
+
+
+def refused(ffi, info, limits: dict, Ts: float, st: int, axis: int | None = None):
+    """ParameterError for limits outside the feasible region.
+
+    Parameters
+    ----------
+    ffi : cffi.FFI
+        The module's FFI (strings, ``sizeof(sms_real)``).
+    info : sms_generator_reach_info *
+        Filled by ``sms_generator_reach`` or ``sms_multi_generator_reach``.
+    limits : dict
+        The user's ``vmax``, ``amax``, ``jmax`` (of the refused axis).
+    Ts : float
+        The sample period [s].
+    st : int
+        The status of the refused init.
+    axis : int or None
+        The refused axis of a MultiAxisGenerator (arguments named ``vmax[axis]``), None for
+        the Generator.
+
+    Returns
+    -------
+    ParameterError
+        Naming the argument to change: ``Ts`` when reaching vmax takes more samples than a
+        plan holds although it lasts at most 1e9 s, else the limit the quantity is formed
+        from (``vmax[1]`` for an axis).
+    """
+    sub = "" if axis is None else f"[{axis}]"
+    head = "" if axis is None else f"axis {axis}: "
+    vmax = f"vmax{sub}"
+    if info.quantity == ffi.NULL:  # a limit not finite and > 0 (checked before the region)
+        values = ", ".join(f"{n}{sub}={limits[n]!r}" for n in ("vmax", "amax", "jmax"))
+        where = "limits" if axis is None else f"limits of axis {axis}"
+        return ParameterError(vmax, f"{where} rejected: {values} must be finite and > 0", st)
+    quantity = ffi.string(info.quantity).decode()
+    names = ffi.string(info.arguments).decode().split(", ")
+    if quantity == "Ts":   # refused for every axis (the C core checks the limits first)
+        head = ""
+    values = head + ", ".join(f"{n}={Ts!r}" if n == "Ts" else f"{n}{sub}={limits[n]!r}"
+                              for n in names)
+    value, bound = info.value, info.bound
+    real = "float" if ffi.sizeof("sms_real") == 4 else "double"
+    if quantity.startswith("the "):     # the duration or the distance to reach vmax
+        parameter = "vmax"
+    elif quantity in DURATIONS or quantity == "vmax*jmax":
+        parameter = names[-1]
+    else:                               # the first limit the quantity names
+        parameter = min((n for n in ("vmax", "amax", "jmax") if n in quantity),
+                        key=quantity.find, default=names[-1])
+    if quantity in names:
+        msg = (f"{values}: below {bound:.6g}, the smallest normal {real}" if value < bound else
+               f"{values}: above {bound:.6g}, the largest {real}" if quantity == "Ts" else
+               f"{values}: above {bound:.6g}, the largest {real} over 16 (room for a reversal)")
+    elif quantity in DURATIONS:
+        if info.duration <= 1e9:   # a plausible machine (vmax within 30 years): Ts is extreme
+            parameter = "Ts"
+        move = "move" if axis is None else f"move of axis {axis}"
+        msg = (f"{values}, Ts={Ts!r}: {quantity} = {value:.6g} s, so reaching {vmax} from rest "
+               f"takes {info.duration:.6g} s = {info.samples:.6g} samples of Ts, more than "
+               f"the 2^50 a plan can hold with room for a reversal (its limit is 2^52): no "
+               f"{move} that reaches {vmax} can be planned")
+    elif quantity in RATIOS and value > bound:
+        whose = "the" if axis is None else f"axis {axis}'s"
+        msg = (f"{values}: {quantity} = {value:.6g} exceeds {bound:.6g} = 2^56 (h = "
+               f"{info.distance:.6g}, the distance to reach {vmax}): the planner caps its "
+               f"ratios limit/change at 2^60, so {whose} moves would be lengthened beyond "
+               "their plan")
+    elif value < bound:
+        why = (f"h = {info.distance:.6g}, the distance to reach {vmax}" if "/h" in quantity
+               else f"the smallest normal {real}" if quantity == "the duration to reach vmax"
+               else f"the smallest normal {real} over its epsilon")
+        msg = (f"{values}: {quantity} = {value:.6g} is below {bound:.6g} ({why}): the "
+               "planner's products would underflow")
+    else:
+        why = ("over 16^2, for moves up to 16 times as long" if "squared" in quantity
+               else "over 16, room for a reversal")
+        msg = (f"{values}: {quantity} = {value:.6g} exceeds {bound:.6g} (the largest {real} "
+               f"{why}): the planner's values would overflow")
+    return ParameterError(parameter if parameter == "Ts" else parameter + sub, msg, st)
