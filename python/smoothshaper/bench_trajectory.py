@@ -284,6 +284,8 @@ def _python_floor(rows, rounds: int) -> dict:
             signature(h=h, vmax=v, amax=a, jmax=j)
 
     def stages():
+        # a copy of the fast path's loop in design.kinematic, kept in step by hand: a builder
+        # both called would add a Python call to the design it measures the floor of
         for row in rows:
             out = []
             for t in row[1:4]:

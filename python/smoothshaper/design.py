@@ -250,6 +250,8 @@ def kinematic(*, h: float, vmax: float, amax: float | None = None, jmax: float |
             except OverflowError:
                 st = -1
             if st == 0:
+                # inline rather than a builder function (one call more per design);
+                # bench_trajectory._python_floor times a copy of this loop as the floor
                 out = []
                 for t in unpack(T, n):
                     s = _NEW(Stage)
