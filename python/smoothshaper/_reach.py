@@ -17,6 +17,21 @@ DURATIONS = ("vmax/amax", "sqrt(vmax/jmax)", "sqrt(pi vmax/(2 jmax))")
 RATIOS = ("amax/vmax", "jmax/vmax", "amax/h", "jmax/h")
 
 
+def named(quantity: str, arguments, duration: float) -> str:
+    """The argument a refused limit set names, from the quantity out of range, the arguments
+    it is formed from (in the order vmax, amax, jmax) and the duration to reach vmax [s]:
+    ``Ts`` when reaching vmax takes more samples than a plan holds although it lasts at most
+    1e9 s (a plausible machine: Ts is extreme), else the limit to change."""
+    if quantity.startswith("the "):     # the duration or the distance to reach vmax
+        return "vmax"
+    if quantity in DURATIONS:
+        return "Ts" if duration <= 1e9 else arguments[-1]
+    if quantity == "vmax*jmax":
+        return arguments[-1]
+    return min((n for n in ("vmax", "amax", "jmax") if n in quantity), key=quantity.find,
+               default=arguments[-1])         # the first limit the quantity names
+
+
 def refused(ffi, info, limits: dict, Ts: float, st: int, axis: int | None = None):
     """ParameterError for limits outside the feasible region.
 
@@ -58,20 +73,12 @@ def refused(ffi, info, limits: dict, Ts: float, st: int, axis: int | None = None
                               for n in names)
     value, bound = info.value, info.bound
     real = "float" if ffi.sizeof("sms_real") == 4 else "double"
-    if quantity.startswith("the "):     # the duration or the distance to reach vmax
-        parameter = "vmax"
-    elif quantity in DURATIONS or quantity == "vmax*jmax":
-        parameter = names[-1]
-    else:                               # the first limit the quantity names
-        parameter = min((n for n in ("vmax", "amax", "jmax") if n in quantity),
-                        key=quantity.find, default=names[-1])
+    parameter = named(quantity, names, info.duration)
     if quantity in names:
         msg = (f"{values}: below {bound:.6g}, the smallest normal {real}" if value < bound else
                f"{values}: above {bound:.6g}, the largest {real}" if quantity == "Ts" else
                f"{values}: above {bound:.6g}, the largest {real} over 16 (room for a reversal)")
     elif quantity in DURATIONS:
-        if info.duration <= 1e9:   # a plausible machine (vmax within 30 years): Ts is extreme
-            parameter = "Ts"
         move = "move" if axis is None else f"move of axis {axis}"
         msg = (f"{values}, Ts={Ts!r}: {quantity} = {value:.6g} s, so reaching {vmax} from rest "
                f"takes {info.duration:.6g} s = {info.samples:.6g} samples of Ts, more than "

@@ -447,10 +447,12 @@ def generator_reference(targets, *, vmax, amax, jmax, Ts, profile="polynomial", 
     wn_, zeta_ = _design._mode(profile, wn, zeta)
     shape = "cosine" if profile == "trigonometric" else "ramp"
     feasible = reach(vmax, amax, jmax, Ts, shape)
-    if feasible["quantity"] is not None:
-        raise ParameterError("jmax" if "jmax" in feasible["quantity"] else "vmax",
+    quantity = feasible["quantity"]
+    if quantity is not None:   # the argument named as the Generator names it
+        arguments = [n for n in ("vmax", "amax", "jmax") if n in quantity]
+        raise ParameterError(_reach.named(quantity, arguments, feasible["duration"]),
                              f"vmax={vmax!r}, amax={amax!r}, jmax={jmax!r}, Ts={Ts!r}: "
-                             f"{feasible['quantity']} is out of the feasible range: no move "
+                             f"{quantity} is out of the feasible range: no move "
                              "that reaches vmax can be planned")
     plan, goals, _ = _run(x, vmax=vmax, amax=amax, jmax=jmax, Ts=Ts, q0=position, shape=shape)
     if not wn_:

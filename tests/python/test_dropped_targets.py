@@ -101,3 +101,25 @@ def test_c_and_the_reference_refuse_the_same_limits(ev, ea, ej, ets, profile, pr
 def test_the_reference_refuses_infeasible_limits_too():
     with pytest.raises(ParameterError, match=r"sqrt\(vmax/jmax\)"):
         tr.generator_reference(np.zeros(3), vmax=1.0, amax=1e-30, jmax=1e-300, Ts=1e-3)
+
+
+@settings(max_examples=200, deadline=None)
+@given(ev=exponents, ea=exponents, ej=exponents, ets=st.floats(-300, 300),
+       profile=st.sampled_from(["polynomial", "trigonometric"]))
+def test_the_reference_names_the_argument_the_generator_names(ev, ea, ej, ets, profile):
+    """Refused limits: generator_reference names the same argument as the Generator (the
+    limit the quantity is formed from, or Ts), e.g. amax for amax=1e-320, not vmax."""
+    kw = dict(vmax=10.0 ** ev, amax=10.0 ** ea, jmax=10.0 ** ej, Ts=10.0 ** ets,
+              profile=profile)
+    if not all(0 < v < math.inf for k, v in kw.items() if k != "profile"):
+        return
+    try:
+        tr.Generator(**kw)
+        return
+    except ParameterError as exc:
+        expected = exc.parameter
+    with pytest.raises(ParameterError) as got:
+        tr.generator_reference(np.zeros(2), **kw)
+    assert got.value.parameter == expected, (str(got.value), expected)
+    for name in ("vmax", "amax", "jmax", "Ts"):
+        assert f"{name}={kw[name]!r}" in str(got.value)
