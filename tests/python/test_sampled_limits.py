@@ -133,7 +133,8 @@ def test_grid_price_at_most_one_sample_per_stage(lh, ls, n, lt):
     """Designed on the grid, a chain of up to seven bounds costs at most one sample per stage
     over the continuous optimum, at any Ts (stages shorter than a sample included; measured,
     not proven, for six and seven: the search is bounded. docs/sampled-limits.md gives the
-    measured prices, and those of eight bounds, which can exceed it)."""
+    measured prices, and those of eight bounds, which can exceed it). No lower bound: a chain
+    whose copies overlap can be shorter than the continuous optimum (a negative price)."""
     h = 10.0 ** lh
     lim = [10.0 ** ls[i] * 10.0 ** i for i in range(n)]
     _, cont, _ = _grid_price(h, lim, 1.0)
