@@ -33,7 +33,8 @@ import numpy as np
 from . import stages as _stages
 from .filters import ParameterError, _backend, _raise_status
 from .stages import Stage
-from ._checks import choice as _choice, finite as _finite, positive as _positive
+from ._checks import (choice as _choice, finite as _finite, positive as _positive,
+                      real_array as _real_array)
 
 __all__ = ["PROFILES", "profile_name", "MAX_ORDER", "MAX_MULTIPLE", "kinematic",
            "kinematic_lengths", "kinematic_reference", "duration"]
@@ -458,21 +459,6 @@ def _batch_error(st: int, i: int, shape: tuple, h: float, row: list[float], prof
         raise ParameterError(e.parameter, f"{e} ({where})", e.status) from None
     ffi, lib = _backend("double")
     _raise_status(st, lib, ffi, f"kinematic design ({where})")
-
-
-def _real_array(name: str, value) -> np.ndarray:
-    """``value`` as a float64 array; ParameterError naming ``name`` unless it holds real
-    numbers (not booleans, complex numbers, text or other objects)."""
-    try:
-        a = np.asarray(value)
-    except ValueError as e:   # ragged nesting
-        raise ParameterError(name, f"{name} must be a number or an array of numbers ({e})") \
-            from None
-    if a.dtype.kind not in "iuf":
-        text = repr(value)
-        raise ParameterError(name, f"{name} must be real numbers, got an array of {a.dtype} "
-                             f"({text if len(text) <= 60 else text[:57] + '...'})")
-    return a.astype(np.float64, copy=False)
 
 
 # ----------------------------------------------------------------------------------------------
