@@ -8,17 +8,21 @@ each continuously and on the grid (the C design, ``sms_kinematic_design``), and 
 99th percentile and largest price, split by whether every continuous stage lasts at least one
 sample. With K > 0 it then walks K random steps (in the logarithms of h, the bounds and Ts)
 from the worst problem of each class, keeping a step when the price grows: an adversarial
-search near the worst seen. Nothing asserts; the figures are for reading.
+search near the worst seen. With ``--cost M`` it also prints what the grid design costs per
+bound count: CPU time of ``sms_kinematic_design`` with Ts on M of these problems, each timed
+in one C loop of 20 repeats (``sms_kinematic_design_batch``, stride 0; best of three), so the
+binding's call is not counted. Nothing asserts; the figures are for reading.
 """
 from __future__ import annotations
 
 import argparse
+import time
 
 import numpy as np
 
 from .filters import _backend
 
-__all__ = ["grid_price", "grid_prices", "main"]
+__all__ = ["grid_price", "grid_prices", "grid_design_costs", "main"]
 
 
 def _designer():
@@ -78,6 +82,37 @@ def grid_prices(n: int, cases: int, seed: int = 5, adversarial: int = 0) -> dict
     return {True: np.array(prices[True]), False: np.array(prices[False]), "worst": worst}
 
 
+def grid_design_costs(n: int, cases: int, seed: int = 5, repeats: int = 20) -> np.ndarray:
+    """CPU ns of one grid design (``sms_kinematic_design`` with Ts) for `cases` random problems
+    with n bounds, drawn as in :func:`grid_prices`: each problem designed `repeats` times in one
+    C loop (the batch call with stride 0), best of three loops, divided by `repeats`."""
+    rng = np.random.default_rng(seed)
+    design = _designer()
+    ffi, lib = _backend("double")
+    H, L = ffi.new("double[1]"), ffi.new("double[8]")
+    T, index = ffi.new("double[]", 8 * repeats), ffi.new("size_t *")
+    out = []
+    while len(out) < cases:
+        h = 10.0 ** rng.uniform(-3, 3)
+        lim = [10.0 ** rng.uniform(-3, 3) * 10.0 ** i for i in range(n)]
+        cont = design(h, lim, 0.0)
+        if cont is None:
+            continue
+        Ts = sum(cont) / 10.0 ** rng.uniform(0.5, 3.5)
+        H[0] = h
+        for i, v in enumerate(lim):
+            L[i] = v
+        best = np.inf
+        for _ in range(3):
+            t0 = time.process_time_ns()
+            st = lib.sms_kinematic_design_batch(repeats, H, 0, L, 0, n, 0, 0.0, 0.0, Ts, T,
+                                                8 * repeats, index)
+            best = min(best, time.process_time_ns() - t0)
+        if st == 0:
+            out.append(best / repeats)
+    return np.array(out)
+
+
 def report(n: int, cases: int, adversarial: int = 0, seed: int = 5) -> str:
     """One line per bound count, as the benchmark prints it."""
     res = grid_prices(n, cases, seed, adversarial)
@@ -101,9 +136,16 @@ def main(argv=None) -> int:
                    help="local-search steps from the worst problem of each class")
     p.add_argument("--bounds", type=int, nargs="*", default=list(range(1, 9)))
     p.add_argument("--seed", type=int, default=5)
+    p.add_argument("--cost", type=int, default=0, metavar="M",
+                   help="also time the grid design on M problems per bound count")
     args = p.parse_args(argv)
-    for n in args.bounds:
+    for n in args.bounds if args.cases else ():
         print(report(n, args.cases, args.adversarial, args.seed), flush=True)
+    for n in args.bounds if args.cost else ():
+        us = grid_design_costs(n, args.cost, args.seed) / 1e3
+        print(f"grid design cost, {n} bound(s) ({us.size} problems, CPU time in C): median "
+              f"{np.median(us):.2f} us  p99 {np.percentile(us, 99):.2f} us  max {us.max():.2f} us",
+              flush=True)
     return 0
 
 
