@@ -33,7 +33,7 @@ typedef enum fmu_type { FMU_REAL = 0, FMU_INTEGER = 1 } fmu_type;
  * (2^22 = 4,194,304: 32 MiB in double, and the serialised state is then at most 32 MiB plus a
  * few hundred bytes). Every FMI call that touches the whole state (fmi2ExitInitializationMode,
  * fmi2Get/SetFMUstate, fmi2(De)SerializeFMUstate, fmi2Reset, fmi2FreeInstance) costs at most
- * about 0.7 ns per byte of it in the release build (tests/fmu/bench_fmu_state_size.c), so at
+ * about 0.8 ns per byte of it in the release build (tests/fmu/bench_fmu_state_size.c), so at
  * this limit the slowest takes about 25 ms, a fourth of the 100 ms any call is allowed. Beyond
  * it fmu_model_plan() refuses at once (closed forms, O(1)) through fmu_refuse_size(). The Python
  * package has its own, larger limit for arrays it holds (smoothshaper.filters.MAX_BUFFER_REALS). */
