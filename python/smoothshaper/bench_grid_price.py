@@ -25,7 +25,8 @@ from .filters import _backend
 __all__ = ["grid_price", "grid_prices", "grid_design_costs", "main"]
 
 
-def _designer():
+def _designer(profile: int = 0):
+    """sms_kinematic_design of (h, bounds, Ts) with `profile` (0 polynomial, 1 trigonometric)."""
     ffi, lib = _backend("double")
     L, T, cnt = ffi.new("double[8]"), ffi.new("double[8]"), ffi.new("size_t *")
 
@@ -33,7 +34,7 @@ def _designer():
         n = len(lim)
         for i, v in enumerate(lim):
             L[i] = v
-        if lib.sms_kinematic_design(h, L, n, 0, 0.0, 0.0, Ts, T, n, cnt) != 0:
+        if lib.sms_kinematic_design(h, L, n, profile, 0.0, 0.0, Ts, T, n, cnt) != 0:
             return None
         return [T[i] for i in range(n)]
     return design
@@ -48,12 +49,14 @@ def grid_price(h: float, lim, Ts: float, design=None):
     return (sum(grid) - sum(cont)) / Ts, min(cont) >= Ts
 
 
-def grid_prices(n: int, cases: int, seed: int = 5, adversarial: int = 0) -> dict:
+def grid_prices(n: int, cases: int, seed: int = 5, adversarial: int = 0,
+                profile: int = 0) -> dict:
     """Prices of `cases` random problems with n bounds: {True: array, False: array} (True:
     every continuous stage lasts at least a sample) and the worst problem of each class
-    (after `adversarial` steps of the local search) as {key: (price, h, limits, Ts)}."""
+    (after `adversarial` steps of the local search) as {key: (price, h, limits, Ts)}.
+    `profile`: 0 polynomial, 1 trigonometric (a harmonic last stage)."""
     rng = np.random.default_rng(seed)
-    design = _designer()
+    design = _designer(profile)
     prices = {True: [], False: []}
     worst = {}
     for _ in range(cases):
@@ -113,9 +116,9 @@ def grid_design_costs(n: int, cases: int, seed: int = 5, repeats: int = 20) -> n
     return np.array(out)
 
 
-def report(n: int, cases: int, adversarial: int = 0, seed: int = 5) -> str:
+def report(n: int, cases: int, adversarial: int = 0, seed: int = 5, profile: int = 0) -> str:
     """One line per bound count, as the benchmark prints it."""
-    res = grid_prices(n, cases, seed, adversarial)
+    res = grid_prices(n, cases, seed, adversarial, profile)
     parts = []
     for key, label in ((True, "every stage >= Ts"), (False, "a stage < Ts")):
         pr = res[key]
@@ -125,7 +128,8 @@ def report(n: int, cases: int, adversarial: int = 0, seed: int = 5) -> str:
             if adversarial and key in res["worst"]:
                 part += f"  adversarial {res['worst'][key][0]:.2f}"
             parts.append(part)
-    return f"grid price in samples, {n} bound(s): " + "; ".join(parts)
+    name = " (trigonometric)" if profile else ""
+    return f"grid price in samples{name}, {n} bound(s): " + "; ".join(parts)
 
 
 def main(argv=None) -> int:
@@ -136,11 +140,14 @@ def main(argv=None) -> int:
                    help="local-search steps from the worst problem of each class")
     p.add_argument("--bounds", type=int, nargs="*", default=list(range(1, 9)))
     p.add_argument("--seed", type=int, default=5)
+    p.add_argument("--profile", choices=("polynomial", "trigonometric"), default="polynomial",
+                   help="the design's profile (prices; the cost is timed for polynomial)")
     p.add_argument("--cost", type=int, default=0, metavar="M",
                    help="also time the grid design on M problems per bound count")
     args = p.parse_args(argv)
     for n in args.bounds if args.cases else ():
-        print(report(n, args.cases, args.adversarial, args.seed), flush=True)
+        print(report(n, args.cases, args.adversarial, args.seed,
+                     int(args.profile == "trigonometric")), flush=True)
     for n in args.bounds if args.cost else ():
         us = grid_design_costs(n, args.cost, args.seed) / 1e3
         print(f"grid design cost, {n} bound(s) ({us.size} problems, CPU time in C): median "
