@@ -49,6 +49,18 @@ def grid_price(h: float, lim, Ts: float, design=None):
     return (sum(grid) - sum(cont)) / Ts, min(cont) >= Ts
 
 
+def _draw(n: int, rng, design):
+    """One random problem (h, n bounds, Ts), or None when the continuous design refuses it:
+    h and every bound over six orders of magnitude, the i-th bound scaled by 10^i, Ts from 1/3
+    to 1/3000 of the continuous duration."""
+    h = 10.0 ** rng.uniform(-3, 3)
+    lim = [10.0 ** rng.uniform(-3, 3) * 10.0 ** i for i in range(n)]
+    cont = design(h, lim, 0.0)
+    if cont is None:
+        return None
+    return h, lim, sum(cont) / 10.0 ** rng.uniform(0.5, 3.5)
+
+
 def grid_prices(n: int, cases: int, seed: int = 5, adversarial: int = 0,
                 profile: int = 0) -> dict:
     """Prices of `cases` random problems with n bounds: {True: array, False: array} (True:
@@ -60,12 +72,10 @@ def grid_prices(n: int, cases: int, seed: int = 5, adversarial: int = 0,
     prices = {True: [], False: []}
     worst = {}
     for _ in range(cases):
-        h = 10.0 ** rng.uniform(-3, 3)
-        lim = [10.0 ** rng.uniform(-3, 3) * 10.0 ** i for i in range(n)]
-        cont = design(h, lim, 0.0)
-        if cont is None:
+        problem = _draw(n, rng, design)
+        if problem is None:
             continue
-        Ts = sum(cont) / 10.0 ** rng.uniform(0.5, 3.5)
+        h, lim, Ts = problem
         r = grid_price(h, lim, Ts, design)
         if r is None:
             continue
@@ -96,12 +106,10 @@ def grid_design_costs(n: int, cases: int, seed: int = 5, repeats: int = 20) -> n
     T, index = ffi.new("double[]", 8 * repeats), ffi.new("size_t *")
     out = []
     while len(out) < cases:
-        h = 10.0 ** rng.uniform(-3, 3)
-        lim = [10.0 ** rng.uniform(-3, 3) * 10.0 ** i for i in range(n)]
-        cont = design(h, lim, 0.0)
-        if cont is None:
+        problem = _draw(n, rng, design)
+        if problem is None:
             continue
-        Ts = sum(cont) / 10.0 ** rng.uniform(0.5, 3.5)
+        h, lim, Ts = problem
         H[0] = h
         for i, v in enumerate(lim):
             L[i] = v
