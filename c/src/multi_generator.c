@@ -32,6 +32,11 @@ static sms_real ratio(sms_real limit, sms_real d)
 #define MAX_ROOT_STEPS 200
 /* A duration within this many ulps of a whole number of samples is on the grid. */
 #define GRID_TOL (8 * REAL_EPS)
+/* How far a planned cruise velocity W (and so a move's start velocity V, an earlier W) may
+ * round over vmax: W = u/kappa with kappa >= |u|/vmax, but the arrival's rounding onto the grid
+ * (plan()) may shorten the move by GRID_TOL of its duration, at most 2 kappa, and kappa with
+ * it; the rest is the roundings of kappa and u/kappa. A saved state is checked to this. */
+#define CRUISE_TOL (2 * GRID_TOL + 8 * REAL_EPS)
 
 /* cbrt(x), x >= 0, by Newton after scaling into [1, 8). */
 static sms_real root3(sms_real x)
@@ -948,10 +953,11 @@ sms_status sms_multi_generator_check_state(const sms_multi_generator *g, const d
     for (i = 0; i < n; ++i)
         if (!isfinite(src[i]))
             return SMS_ERR_STATE;
-    for (i = 0; i < na; ++i)
-        if (fabs(src[3 * na + i]) > (double)g->vmax[i] * (1.0 + 1e-6) ||
-            fabs(src[4 * na + i]) > (double)g->vmax[i] * (1.0 + 1e-6))
+    for (i = 0; i < na; ++i) {
+        const double vmax = (double)g->vmax[i] * (1.0 + (double)CRUISE_TOL);
+        if (fabs(src[3 * na + i]) > vmax || fabs(src[4 * na + i]) > vmax)
             return SMS_ERR_STATE;
+    }
     mv = src + AXIS_FIELDS * na;
     for (i = 0; i < move_count(g); ++i) {
         const double *f = mv + MOVE_FIELDS * i;
