@@ -7,6 +7,7 @@
 #include "smoothshaper/trajectory.h"
 #include "plan.h"
 #include "state_identity.h"
+#include "trajectory_internal.h"
 
 /* A saved state: the identity (SMS_GENERATOR_IDENTITY_COUNT), then target, goal, the plan's
  * start q, v, a and k (GEN_PLAN_STATE_COUNT), then with a mode quiet and the stage states. */
@@ -45,12 +46,11 @@ static void generator_identity(const sms_generator_config *c, double Ts,
 #define GEN_MARGIN 16.0
 #define GEN_MAX_REACH_SAMPLES 1125899906842624.0 /* 2^50 */
 
-/* Record the first quantity out of range; returns SMS_ERR_LIMIT. */
-static sms_status out_of_range(sms_generator_reach_info *r, const char *quantity, const char *args,
-                               double value, double bound)
+sms_status sms_reach_refused(sms_generator_reach_info *r, const char *quantity,
+                             const char *arguments, double value, double bound)
 {
     r->quantity = quantity;
-    r->arguments = args;
+    r->arguments = arguments;
     r->value = value;
     r->bound = bound;
     return SMS_ERR_LIMIT;
@@ -66,7 +66,7 @@ sms_status sms_generator_reach(const sms_generator_config *c, double Ts,
     if (c == NULL)
         return SMS_ERR_NULL;
     if (!isfinite(Ts) || !(Ts > 0.0) || !((sms_real)Ts > 0) || !(Ts <= big)) {
-        (void)out_of_range(r, "Ts", "Ts", Ts, big);
+        (void)sms_reach_refused(r, "Ts", "Ts", Ts, big);
         return SMS_ERR_SAMPLE_PERIOD;
     }
     {
@@ -75,8 +75,9 @@ sms_status sms_generator_reach(const sms_generator_config *c, double Ts,
         int i;
         for (i = 0; i < 3; ++i) /* each a normal number with room for 2 x and 16 x */
             if (!(limit[i] >= GEN_REAL_MIN) || !(limit[i] <= big / GEN_MARGIN)) /* also NaN */
-                return out_of_range(r, names[i], names[i], limit[i],
-                                    limit[i] >= GEN_REAL_MIN ? big / GEN_MARGIN : GEN_REAL_MIN);
+                return sms_reach_refused(r, names[i], names[i], limit[i],
+                                         limit[i] >= GEN_REAL_MIN ? big / GEN_MARGIN
+                                                                  : GEN_REAL_MIN);
     }
     V = c->vmax;
     A = c->amax;
@@ -84,7 +85,8 @@ sms_status sms_generator_reach(const sms_generator_config *c, double Ts,
     if (c->profile == SMS_PROFILE_TRIGONOMETRIC)
         J *= 0.63661977236758134; /* the half-cosine transitions' mean jerk, 2/pi jmax */
     if (!(V * J * GEN_MARGIN <= big)) /* J dv, |dv| <= 2 vmax */
-        return out_of_range(r, "vmax*jmax", "vmax, jmax", c->vmax * c->jmax, big / GEN_MARGIN);
+        return sms_reach_refused(r, "vmax*jmax", "vmax, jmax", c->vmax * c->jmax,
+                                 big / GEN_MARGIN);
     ap = sqrt(V) * sqrt(J);
     reached = A < ap;
     if (reached)
@@ -99,23 +101,23 @@ sms_status sms_generator_reach(const sms_generator_config *c, double Ts,
         double per_term = GEN_MAX_REACH_SAMPLES * Ts / (reached ? 2.0 : 4.0);
         /* amax reached (amax^2 < vmax J) makes amax/J < vmax/amax: the longer term */
         if (reached)
-            return out_of_range(r, "vmax/amax", "vmax, amax", tv, per_term);
-        return out_of_range(r, c->profile == SMS_PROFILE_TRIGONOMETRIC ? "sqrt(pi vmax/(2 jmax))"
-                                                                       : "sqrt(vmax/jmax)",
-                            "vmax, jmax", tv, per_term);
+            return sms_reach_refused(r, "vmax/amax", "vmax, amax", tv, per_term);
+        return sms_reach_refused(r, c->profile == SMS_PROFILE_TRIGONOMETRIC
+                                        ? "sqrt(pi vmax/(2 jmax))" : "sqrt(vmax/jmax)",
+                                 "vmax, jmax", tv, per_term);
     }
     if (!(ap * ap >= tiny)) /* a^2 of the peak and of every state on the way */
-        return reached ? out_of_range(r, "amax^2", "amax", A * A, tiny)
-                       : out_of_range(r, "vmax*jmax", "vmax, jmax", c->vmax * c->jmax, tiny);
+        return reached ? sms_reach_refused(r, "amax^2", "amax", A * A, tiny)
+                       : sms_reach_refused(r, "vmax*jmax", "vmax, jmax", c->vmax * c->jmax, tiny);
     if (!(r->duration >= GEN_REAL_MIN))
-        return out_of_range(r, "the duration to reach vmax", "vmax, amax, jmax", r->duration,
-                            GEN_REAL_MIN);
+        return sms_reach_refused(r, "the duration to reach vmax", "vmax, amax, jmax",
+                                 r->duration, GEN_REAL_MIN);
     if (!(r->distance * GEN_MARGIN <= big))
-        return out_of_range(r, "the distance to reach vmax", "vmax, amax, jmax", r->distance,
-                            big / GEN_MARGIN);
+        return sms_reach_refused(r, "the distance to reach vmax", "vmax, amax, jmax",
+                                 r->distance, big / GEN_MARGIN);
     if (!(r->distance >= tiny))
-        return out_of_range(r, "the distance to reach vmax", "vmax, amax, jmax", r->distance,
-                            tiny);
+        return sms_reach_refused(r, "the distance to reach vmax", "vmax, amax, jmax",
+                                 r->distance, tiny);
     return SMS_OK;
 }
 

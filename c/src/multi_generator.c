@@ -7,6 +7,7 @@
 #include "smoothshaper/multi_generator.h"
 #include "plan.h"
 #include "state_identity.h"
+#include "trajectory_internal.h"
 
 #ifdef SMS_USE_FLOAT
 #define REAL_EPS ((sms_real)FLT_EPSILON)
@@ -501,16 +502,6 @@ static int limit_ok(double x)
 #define UNIT_TINY (DBL_MIN / DBL_EPSILON)
 #endif
 
-static sms_status reach_refused(sms_generator_reach_info *r, const char *quantity,
-                                const char *args, double value)
-{
-    r->quantity = quantity;
-    r->arguments = args;
-    r->value = value;
-    r->bound = MAX_LIMIT_RATIO;
-    return SMS_ERR_LIMIT;
-}
-
 sms_status sms_multi_generator_reach(const sms_multi_generator_config *config, double Ts,
                                      sms_generator_reach_info *reach, size_t *axis)
 {
@@ -533,30 +524,33 @@ sms_status sms_multi_generator_reach(const sms_multi_generator_config *config, d
         one.jmax = config->jmax[i];
         st = sms_generator_reach(&one, Ts, r);
         if (st == SMS_OK && !(one.amax <= MAX_LIMIT_RATIO * one.vmax))
-            st = reach_refused(r, "amax/vmax", "vmax, amax", one.amax / one.vmax);
+            st = sms_reach_refused(r, "amax/vmax", "vmax, amax", one.amax / one.vmax,
+                                   MAX_LIMIT_RATIO);
         if (st == SMS_OK && !(one.jmax <= MAX_LIMIT_RATIO * one.vmax))
-            st = reach_refused(r, "jmax/vmax", "vmax, jmax", one.jmax / one.vmax);
+            st = sms_reach_refused(r, "jmax/vmax", "vmax, jmax", one.jmax / one.vmax,
+                                   MAX_LIMIT_RATIO);
         if (st == SMS_OK && !(one.amax <= MAX_LIMIT_RATIO * r->distance))
-            st = reach_refused(r, "amax/h", "vmax, amax, jmax", one.amax / r->distance);
+            st = sms_reach_refused(r, "amax/h", "vmax, amax, jmax", one.amax / r->distance,
+                                   MAX_LIMIT_RATIO);
         if (st == SMS_OK && !(one.jmax <= MAX_LIMIT_RATIO * r->distance))
-            st = reach_refused(r, "jmax/h", "vmax, amax, jmax", one.jmax / r->distance);
+            st = sms_reach_refused(r, "jmax/h", "vmax, amax, jmax", one.jmax / r->distance,
+                                   MAX_LIMIT_RATIO);
         if (st == SMS_OK) {
             /* the unit limits of a displacement up to MOVE_SPAN h and the square of the
              * durations (landing_kappa(): b^2, au^2, ju) */
             const double h = MOVE_SPAN * r->distance, T = MOVE_SPAN * r->duration;
             const double au = one.amax / h, ju = one.jmax / h;
             if (!(T * T <= (double)REAL_MAX))
-                st = reach_refused(r, "the duration to reach vmax, squared", "vmax, amax, jmax",
-                                   r->duration * r->duration);
+                st = sms_reach_refused(r, "the duration to reach vmax, squared",
+                                       "vmax, amax, jmax", r->duration * r->duration,
+                                       (double)REAL_MAX / (MOVE_SPAN * MOVE_SPAN));
             else if (!(au * au >= UNIT_TINY))
-                st = reach_refused(r, "(amax/h)^2", "vmax, amax, jmax",
-                                   one.amax / r->distance * (one.amax / r->distance));
+                st = sms_reach_refused(r, "(amax/h)^2", "vmax, amax, jmax",
+                                       one.amax / r->distance * (one.amax / r->distance),
+                                       UNIT_TINY * MOVE_SPAN * MOVE_SPAN);
             else if (!(ju >= UNIT_TINY))
-                st = reach_refused(r, "jmax/h", "vmax, amax, jmax", one.jmax / r->distance);
-            if (st != SMS_OK)
-                r->bound = r->quantity[0] == 't' ? (double)REAL_MAX / (MOVE_SPAN * MOVE_SPAN)
-                           : r->quantity[0] == '(' ? UNIT_TINY * MOVE_SPAN * MOVE_SPAN
-                                                   : UNIT_TINY * MOVE_SPAN;
+                st = sms_reach_refused(r, "jmax/h", "vmax, amax, jmax", one.jmax / r->distance,
+                                       UNIT_TINY * MOVE_SPAN);
         }
         if (st != SMS_OK) {
             if (axis != NULL && st == SMS_ERR_LIMIT)

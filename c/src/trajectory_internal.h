@@ -1,4 +1,5 @@
-/* Internal: the kinematic design shared by kinematic.c and generator.c. */
+/* Internal: the kinematic design shared by kinematic.c and generator.c; the report of a
+ * refused limit set shared by the single- and the multi-axis generator's reach checks. */
 #ifndef SMS_TRAJECTORY_INTERNAL_H
 #define SMS_TRAJECTORY_INTERNAL_H
 
@@ -29,5 +30,10 @@ sms_status sms_kin_solve_sampled(double h, const double *limits, size_t n, sms_p
                                  double wn, double zeta, double Ts, double *T, sms_kin_last *last);
 /* Peak of the normalised impulse response of a rectangular, harmonic or exponential stage. */
 double sms_kin_peak_density(sms_kind kind, double T, double sigma);
+
+/* Record in r the first quantity out of range (sms_generator_reach_info: quantity, the
+ * arguments it is formed from, its value and the bound it broke); returns SMS_ERR_LIMIT. */
+sms_status sms_reach_refused(sms_generator_reach_info *r, const char *quantity,
+                             const char *arguments, double value, double bound);
 
 #endif
