@@ -121,11 +121,6 @@ sms_status sms_generator_reach(const sms_generator_config *c, double Ts,
     return SMS_OK;
 }
 
-static sms_status check_limits(const sms_generator_config *c, double Ts)
-{
-    return sms_generator_reach(c, Ts, NULL);
-}
-
 /* Validate the config; with a mode, the stage tuned to it (the shortest whose zero cancels
  * it: k = 1) and its ring length. */
 static sms_status design(const sms_generator_config *c, double Ts, sms_stage_config *stage,
@@ -135,7 +130,7 @@ static sms_status design(const sms_generator_config *c, double Ts, sms_stage_con
     double wd;
     if (c == NULL)
         return SMS_ERR_NULL;
-    st = check_limits(c, Ts);
+    st = sms_generator_reach(c, Ts, NULL);
     if (st != SMS_OK)
         return st;
     if ((unsigned)c->profile > (unsigned)SMS_PROFILE_DAMPED)
