@@ -6,15 +6,8 @@
 #define _POSIX_C_SOURCE 199309L
 #include <stdio.h>
 #include <string.h>
-#include <time.h>
 #include "smoothshaper/smoothshaper.h"
-
-static double now(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
+#include "cpu_time.h"
 
 /* Median-free but robust enough: the least of 5 rounds of m steps on copies of *from, each
  * copy stepped once with targets[c % n_targets] (ns per step). */
@@ -26,14 +19,14 @@ static double copy_step(const sms_multi_generator *from, sms_real targets[][SMS_
     for (round = 0; round < 5; ++round) {
         sms_multi_generator g;
         sms_real out[4 * SMS_MULTI_MAX_AXES];
-        double t0 = now(), t;
+        double t0 = cpu_seconds(), t;
         long c;
         for (c = 0; c < m; ++c) {
             memcpy(&g, from, sizeof g);
             sms_multi_generator_step(&g, targets[(size_t)c % n_targets], out);
             *sink += out[0];
         }
-        t = (now() - t0) / (double)m * 1e9;
+        t = (cpu_seconds() - t0) / (double)m * 1e9;
         if (t < best)
             best = t;
     }
@@ -71,12 +64,12 @@ int main(int argc, char **argv)
         }
         if (sms_multi_generator_init(&g, &cfg, 1e-4, NULL, 0, NULL, 0, NULL) != SMS_OK)
             return 1;
-        t0 = now();
+        t0 = cpu_seconds();
         for (k = 0; k < n; ++k) {
             sms_multi_generator_step(&g, start[0], out);
             sink += out[0];
         }
-        per_sample = (now() - t0) / (double)n * 1e9;
+        per_sample = (cpu_seconds() - t0) / (double)n * 1e9;
 
         /* at rest at 0; cruising towards the long move's target (the first transition done) */
         sms_multi_generator_reset(&g, NULL);

@@ -3,24 +3,19 @@
  * T/Ts. Run: build/release/tests/refusal_bench_double */
 #include <math.h>
 #include <stdio.h>
-#include <time.h>
 #include "smoothshaper/smoothshaper.h"
-
-static double seconds(void)
-{
-    return (double)clock() / CLOCKS_PER_SEC;
-}
+#include "cpu_time.h"
 
 /* Mean time of one sms_chain_memory_size call over `reps` calls. */
 static double size_time(const sms_stage_config *c, size_t n, double Ts, size_t *need,
                         sms_status *st)
 {
     const int reps = 1000;
-    double t0 = seconds();
+    double t0 = cpu_seconds();
     int r;
     for (r = 0; r < reps; ++r)
         *st = sms_chain_memory_size(c, n, Ts, need);
-    return (seconds() - t0) / reps;
+    return (cpu_seconds() - t0) / reps;
 }
 
 int main(void)

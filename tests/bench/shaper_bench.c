@@ -3,8 +3,8 @@
 #include <complex.h>
 #include <math.h>
 #include <stdio.h>
-#include <time.h>
 #include "smoothshaper/smoothshaper.h"
+#include "cpu_time.h"
 
 #define PI 3.14159265358979323846
 #define N_RUN 2000000
@@ -12,11 +12,6 @@
 
 static sms_memory_cell buf[MAX_LEN];
 static double taps[MAX_LEN], rec[20000];
-
-static double seconds(void)
-{
-    return (double)clock() / CLOCKS_PER_SEC;
-}
 
 static void cost(const char *name, const sms_stage_config *c, double Ts)
 {
@@ -28,13 +23,13 @@ static void cost(const char *name, const sms_stage_config *c, double Ts)
         printf("%-28s init failed\n", name);
         return;
     }
-    t0 = seconds();
+    t0 = cpu_seconds();
     for (i = 0; i < N_RUN; ++i) {
         x = (sms_real)(i & 1023);
         sms_stage_step(&stage, &x);
         acc += x;
     }
-    t1 = seconds();
+    t1 = cpu_seconds();
     /* a notch is IIR: 4 coefficients, no delay line */
     printf("%-28s taps %2zu  L %5zu  %6.2f ns/sample  (checksum %g)\n", name,
            c->kind >= SMS_NOTCH_TUSTIN ? (size_t)4 : stage.u.shaper->n_taps, sms_stage_length(&stage),
@@ -101,10 +96,10 @@ int main(void)
                 rec[k] = 3.0 + exp(sigma * t) * (2.0 * cos(wd * t) + 0.5 * sin(wd * t))
                          + noises[j] * sqrt(-2 * log(u1)) * cos(2 * PI * u2);
             }
-            t0 = seconds();
+            t0 = cpu_seconds();
             if (sms_identify_from_record(rec, n, Ts, &m) == SMS_OK)
                 printf("  s = %-5g  wd %.6f (err %.2e)  sigma %.6f (err %.2e)  %.1f ms\n", noises[j],
-                       m.wd, m.wd - wd, m.sigma, m.sigma - sigma, 1e3 * (seconds() - t0));
+                       m.wd, m.wd - wd, m.sigma, m.sigma - sigma, 1e3 * (cpu_seconds() - t0));
             else
                 printf("  s = %-5g  rejected\n", noises[j]);
         }
