@@ -6,9 +6,10 @@
  * (random stage chains / limits, with NULL, NaN, Inf, huge, subnormal and negative values
  * mixed in), and every call is checked for:
  * - no crash, and no call longer than 100 ms (scaled under ASan or without optimisation, see
- *   CALL_LIMIT_S): the FMUs refuse states beyond FMU_MAX_REALS, and one time in about 2000 the
- *   parameters ask for a state between a quarter of that limit and twice it (accepted and
- *   refused), so the largest accepted states go through every call;
+ *   CALL_LIMIT_S): the FMUs refuse states beyond FMU_MAX_REALS, and in one sequence in
+ *   LARGE_EVERY (and one other draw in about 2000) the parameters ask for a state between a
+ *   quarter of that limit and twice it (accepted and refused), so the largest accepted states
+ *   go through every call (checked: the run fails if none was built and serialised);
  * - an fmi2Error leaves the instance unchanged (its serialised state is byte for byte the
  *   same before and after the failing call);
  * - no fmi2OK with a non-finite output (fmi2GetReal after every successful step);
@@ -68,11 +69,18 @@ static char last_message[1024];
 static int huge_steps;   /* third argument "huge": steps of up to 1e12 s (O(1) over held input) */
 static int trace;        /* argument "trace": print every call (to replay one sequence) */
 static int drew_large;   /* the last parameter draw asked for a large state */
+#ifndef FMU_TEST_ELASTIC_PLANT   /* (no delay lines) */
+static int large_sequence;   /* every parameter draw of this sequence asks for a large state */
+#endif
 
 /* One parameter draw in LARGE_ODDS asks for a state of FMU_MAX_REALS * 2^[-2, 1] reals, from a
  * quarter of the limit to twice it (about half accepted, the rest refused at once), so the
- * largest accepted states go through every call; the other draws keep states small. */
+ * largest accepted states go through every call; the other draws keep states small. Those odds
+ * alone give about two large draws in 1000 sequences, too few for a large state to be saved and
+ * serialised; so every LARGE_EVERY-th sequence draws only large states, and main() checks that
+ * large states were built and serialised (the time rule is not met by never meeting them). */
 #define LARGE_ODDS 2000u
+#define LARGE_EVERY 100ul
 
 #define CHECK(cond) do { if (!(cond)) { ++failures; \
     fprintf(stderr, "%s:%d: sequence %lu: check failed: %s (last message: %s)\n", __FILE__, \
@@ -197,7 +205,7 @@ static void random_parameters(fmi2Component c)
     v[4] = any_real(0, 3);
     v[5] = pick(2) ? 0.0 : any_zeta();
     v[6] = pick(2) ? 0.0 : any_input();
-    drew_large = pick(LARGE_ODDS) == 0;
+    drew_large = pick(LARGE_ODDS) == 0 || large_sequence;
     if (drew_large) {   /* the tail tuned to the mode: 4 rings of one period 2 pi/wn */
         v[0] = 1e-3;
         v[1] = 1.0;
@@ -243,7 +251,7 @@ static void random_parameters(fmi2Component c)
     }
     /* Vibration stages (kind -1 = none) designed for random modes; or one rectangular stage
      * per axis in use whose delay lines (4 signals) share a large state. */
-    drew_large = pick(LARGE_ODDS) == 0;
+    drew_large = pick(LARGE_ODDS) == 0 || large_sequence;
     staged = pick(2);   /* half the draws have no stages at all */
     for (i = 0; i < MA_MAX_AXES; ++i) {
         unsigned k;
@@ -325,7 +333,7 @@ static void random_parameters(fmi2Component c)
         fmi2SetInteger(c, ivr, 5, iv);
         fmi2SetReal(c, rvr, 7, rv);
     }
-    drew_large = pick(LARGE_ODDS) == 0;
+    drew_large = pick(LARGE_ODDS) == 0 || large_sequence;
     if (drew_large) {   /* one moving average or harmonic smoother of a large state */
         for (k = 0; k < SS_MAX_STAGES; ++k) {
             fmi2ValueReference base = SS_STAGE_BASE + SS_STAGE_STRIDE * k;
@@ -355,6 +363,17 @@ static void outputs_finite(fmi2Component c)
         finite = finite && isfinite(y[i]);
     CHECK(finite);
     n_nonfinite += !finite;
+}
+
+/* The calls that close a sequence, under the same time rule as the others. */
+static void closing_call(double dt, const char *call)
+{
+    ++n_calls;
+    if (dt > CALL_LIMIT_S) {
+        ++n_slow;
+        fprintf(stderr, "sequence %lu: %s took %.3f s, over %.0f ms\n", sequence, call, dt,
+                1e3 * CALL_LIMIT_S);
+    }
 }
 
 static void run_sequence(unsigned length)
@@ -535,10 +554,18 @@ static void run_sequence(unsigned length)
     }
     {
         unsigned k;
-        for (k = 0; k < MAX_SLOTS; ++k)
-            CHECK(fmi2FreeFMUstate(c, &slots[k]) == fmi2OK);
+        double t0;
+        fmi2Status st;
+        for (k = 0; k < MAX_SLOTS; ++k) {
+            t0 = seconds();
+            st = fmi2FreeFMUstate(c, &slots[k]);
+            closing_call(seconds() - t0, "fmi2FreeFMUstate");
+            CHECK(st == fmi2OK);
+        }
+        t0 = seconds();
+        fmi2FreeInstance(c);
+        closing_call(seconds() - t0, "fmi2FreeInstance");
     }
-    fmi2FreeInstance(c);
 }
 
 /* The sequence's own generator: splitmix64 of (seed, sequence), never 0 (xorshift's fixed point). */
@@ -575,9 +602,18 @@ int main(int argc, char **argv)
     for (s = first; s < first + n; ++s) {
         sequence = s;
         rng = sequence_seed(seed, s);
+#ifndef FMU_TEST_ELASTIC_PLANT
+        large_sequence = s % LARGE_EVERY == LARGE_EVERY - 1;
+#endif
         run_sequence(20 + pick(120));
     }
     CHECK(n_slow == 0);
+#ifndef FMU_TEST_ELASTIC_PLANT
+    /* From 10 large sequences on: large states were built, and one of at least a quarter of the
+     * limit went through the state calls (serialised size: 8 bytes per real). */
+    CHECK(n < 10 * LARGE_EVERY
+          || (n_big_inits > 0 && largest_state >= FMU_MAX_REALS / 4 * 8));
+#endif
     CHECK(n < 200 || (n_inits > n / 4 && n_steps > n && n_restores > n / 4));
     printf("fmu_fuzz %s: %lu sequences (seed %llu), %lu calls (%lu errors), %lu initialisations "
            "(%lu right after a draw of a large state), %lu steps (%lu with a warning), %lu "
