@@ -81,6 +81,11 @@ typedef struct fmu_snapshot {
 int fmu_build(const fmi2CallbackFunctions *cb, void *model, void **mem, size_t *bytes, char *msg,
               size_t len);
 
+/** XXH64 (seed 0) of p[0..n-1], the states' checksum: the reference algorithm of Y. Collet's
+ * xxHash (64-bit variant), any n (tests/fmu/test_fmu_checksum.c compares it with the xxHash
+ * library's values, every tail length). */
+uint64_t fmu_xxh64(const unsigned char *p, size_t n);
+
 /** Bytes fmu_serialize() writes for this snapshot. */
 size_t fmu_serialized_size(const fmu_snapshot *s);
 /** Write the snapshot into out[0..size-1] (size from fmu_serialized_size); the model's state

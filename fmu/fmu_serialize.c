@@ -84,8 +84,12 @@ static uint64_t xxh_merge(uint64_t h, uint64_t acc)
     return (h ^ xxh_round(0, acc)) * P1 + P4;
 }
 
-/* XXH64 of p[0..n-1] with seed 0 (the reference algorithm, xxhash.h of the xxHash project). */
-static uint64_t xxh64(const unsigned char *p, size_t n)
+/* XXH64 of p[0..n-1] with seed 0: the reference algorithm (xxhash.h and doc/xxhash_spec.md of
+ * Y. Collet's xxHash project): 32-byte stripes into four lanes, the lanes merged, then the tail
+ * 8, 4 and 1 bytes at a time and the final avalanche. The states' lengths are multiples of 8,
+ * so the 4- and 1-byte tails run only in tests/fmu/test_fmu_checksum.c, kept for a hash that
+ * equals the library's for every length. */
+uint64_t fmu_xxh64(const unsigned char *p, size_t n)
 {
     const unsigned char *end = p + n;
     uint64_t h;
@@ -239,7 +243,7 @@ int fmu_serialize(const fmu_snapshot *s, const fmi2CallbackFunctions *cb, unsign
         }
         w.n = (size_t)(at - out) + 8 * n;
     }
-    sum = xxh64(out, w.n);
+    sum = fmu_xxh64(out, w.n);
     put_u32(&w, (uint32_t)(sum & 0xffffffffu));
     put_u32(&w, (uint32_t)(sum >> 32));
     return 0;
@@ -344,7 +348,7 @@ int fmu_deserialize(const unsigned char *in, size_t size, fmu_snapshot *dst,
     r.bad = 0;
     if (get_u32(&r) != FMU_STATE_VERSION)
         REFUSE("unsupported state format version");
-    if (xxh64(in, size - 8) != le64(in + size - 8))
+    if (fmu_xxh64(in, size - 8) != le64(in + size - 8))
         REFUSE("checksum mismatch: the state is truncated or corrupted");
     glen = get_u32(&r);
     if (r.bad || glen != strlen(guid) || r.n - r.pos < glen || memcmp(in + r.pos, guid, glen) != 0)
