@@ -89,7 +89,9 @@ uint64_t fmu_xxh64(const unsigned char *p, size_t n);
 /** Bytes fmu_serialize() writes for this snapshot. */
 size_t fmu_serialized_size(const fmu_snapshot *s);
 /** Write the snapshot into out[0..size-1] (size from fmu_serialized_size); the model's state
- * vector passes through scratch memory from cb. @return 0, or non-zero when out of memory. */
+ * vector is written in place when the host stores doubles as the format does and out puts them
+ * at an address aligned for double, else it passes through scratch memory from cb.
+ * @return 0, or non-zero when out of memory. */
 int fmu_serialize(const fmu_snapshot *s, const fmi2CallbackFunctions *cb, unsigned char *out);
 /**
  * Parse a serialised state into dst (whose model struct is allocated, fmu_model_size() bytes;

@@ -269,15 +269,13 @@ static uint32_t get_u32(reader *r)
 
 static double get_f64(reader *r)
 {
-    uint64_t v = 0;
+    uint64_t v;
     double d;
-    int i;
     if (r->bad || r->n - r->pos < 8) {
         r->bad = 1;
         return 0.0;
     }
-    for (i = 0; i < 8; ++i)
-        v |= (uint64_t)r->p[r->pos + (size_t)i] << (8 * i);
+    v = le64(r->p + r->pos);   /* the same byte order as the checksum's reads */
     r->pos += 8;
     memcpy(&d, &v, sizeof d);
     return d;
