@@ -43,7 +43,8 @@ static const char *const category_names[FMU_LOG_CATEGORIES] = {
 
 static void log_message(const fmu_instance *c, fmi2Status status, int category, const char *fmt, ...)
 {
-    char buf[512], escaped[1024];
+    /* a model's message (up to FMU_MESSAGE_LEN) after the call's prefix ("fmi2DoStep at t = ...: ") */
+    char buf[FMU_MESSAGE_LEN + 128], escaped[2 * (FMU_MESSAGE_LEN + 128)];
     size_t i, j = 0;
     va_list ap;
     /* Errors and warnings always reach the logger; only the debug categories obey loggingOn
