@@ -39,8 +39,9 @@ typedef enum fmu_type { FMU_REAL = 0, FMU_INTEGER = 1 } fmu_type;
  * package has its own, larger limit for arrays it holds (smoothshaper.filters.MAX_BUFFER_REALS). */
 #define FMU_MAX_REALS ((size_t)1 << 22)
 
-/** Largest message fmu_model_build() may write (including the terminating 0). */
-#define FMU_MESSAGE_LEN 512
+/** Largest message fmu_model_build() or fmu_model_warning() may write (including the
+ * terminating 0): room for a MultiAxisGenerator warning naming 8 targets and the limits. */
+#define FMU_MESSAGE_LEN 768
 
 /**
  * @brief The refusal of a configuration whose delay lines and tables need more than

@@ -456,12 +456,16 @@ int fmu_model_tick(void *model)
     return changed;
 }
 
-/* A dropped target vector (a move's `refused`), once per target: the group's axes (all in
- * phase synchronisation, axis i alone when independent) are named with their targets. */
+/* A dropped target vector (a move's `refused`), once per target: the axes of every group that
+ * dropped a new target in this step (all axes in phase synchronisation, each axis alone when
+ * independent, so two axes dropping in one step are both named) with their targets, and the
+ * user's limits of the farthest of them. */
 int fmu_model_warning(void *model, char *msg, size_t len)
 {
     ma_model *m = (ma_model *)model;
-    int g, i, n, groups = m->sync == SMS_SYNC_PHASE ? 1 : m->axes, found = -1;
+    int g, i, n, groups = m->sync == SMS_SYNC_PHASE ? 1 : m->axes, far = -1;
+    int fresh[MA_MAX_AXES] = { 0 };   /* 1: axis i is in a group that dropped a new target */
+    double farthest = -1.0;
     for (g = 0; g < groups && m->built; ++g) {
         int first = m->sync == SMS_SYNC_PHASE ? 0 : g, last = m->sync == SMS_SYNC_PHASE
                                                               ? m->axes : g + 1, same = 1;
@@ -474,22 +478,33 @@ int fmu_model_warning(void *model, char *msg, size_t len)
         if (m->warned[g] && same)
             continue;
         m->warned[g] = 1;
-        for (i = first; i < last; ++i)
+        for (i = first; i < last; ++i) {
             m->dropped[i] = (double)m->gen.target[i];
-        if (found < 0)
-            found = g;
+            fresh[i] = 1;
+        }
     }
-    if (found < 0)
-        return 0;
     n = 0;
-    for (i = m->sync == SMS_SYNC_PHASE ? 0 : found;
-         i < (m->sync == SMS_SYNC_PHASE ? m->axes : found + 1) && n >= 0 && (size_t)n < len; ++i)
+    for (i = 0; i < m->axes && n >= 0 && (size_t)n < len; ++i) {
+        double span;
+        if (!fresh[i])
+            continue;
+        span = fabs(m->dropped[i] - (double)m->gen.goal[i]) / m->field[F_VMAX][i] / m->Ts;
         n += snprintf(msg + n, len - (size_t)n, "%starget[%d] = %.17g", n > 0 ? ", " : "", i,
                       m->dropped[i]);
-    if (n >= 0 && (size_t)n < len)
-        snprintf(msg + n, len - (size_t)n, " dropped: the move cannot be represented (more "
-                 "than 2^52 samples, or a value that overflows); the axes keep their goals "
-                 "until the target changes");
+        if (far < 0 || !(span <= farthest)) {   /* the cruise alone, in samples (may be inf) */
+            farthest = span;
+            far = i;
+        }
+    }
+    if (far < 0)
+        return 0;
+    if (n >= 0 && (size_t)n < len)   /* the user's limits of the farthest axis, and Ts */
+        snprintf(msg + n, len - (size_t)n, " dropped: the move cannot be represented with "
+                 "Ts = %.17g (farthest, axis %d: |target - goal|/vmax[%d] alone is %.3g samples "
+                 "of Ts with vmax[%d] = %.17g, amax[%d] = %.17g, jmax[%d] = %.17g; a plan holds "
+                 "at most 2^52 and every value must stay finite); the axes keep their goals "
+                 "until the target changes", m->Ts, far, far, farthest, far,
+                 m->field[F_VMAX][far], far, m->field[F_AMAX][far], far, m->field[F_JMAX][far]);
     return 1;
 }
 

@@ -300,10 +300,11 @@ int fmu_model_warning(void *model, char *msg, size_t len)
     m->dropped = (double)m->gen.target;
     goal = (double)m->gen.plan.goal;
     span = fabs(m->dropped - goal) / m->vmax / m->Ts;
-    snprintf(msg, len, "target = %.17g dropped: its move cannot be represented "
-             "(|target - goal|/vmax alone is %.3g samples of Ts, a plan holds at most 2^52; "
-             "every value must stay finite); the generator keeps its goal %.17g until target "
-             "changes", m->dropped, span, goal);
+    snprintf(msg, len, "target = %.17g dropped: its move cannot be represented with vmax = "
+             "%.17g, amax = %.17g, jmax = %.17g, Ts = %.17g (|target - goal|/vmax alone is %.3g "
+             "samples of Ts, a plan holds at most 2^52; every value must stay finite); the "
+             "generator keeps its goal %.17g until target changes", m->dropped, m->vmax, m->amax,
+             m->jmax, m->Ts, span, goal);
     return 1;
 }
 

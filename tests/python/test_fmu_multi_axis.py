@@ -317,5 +317,35 @@ def test_a_dropped_target_vector_is_logged_once_and_the_step_warns(multi_dir, sy
     steps = [m for m in log.messages if m.startswith("fmi2DoStep")]
     assert len(steps) == 1 and "target[1] = 1.0000000000000001e+300" in steps[0], steps
     assert ("target[0] = 0.10000000000000001" in steps[0]) == (sync == 0)
+    # the farthest axis's limits and Ts, as the user set them
+    assert "Ts = 0.001 (farthest, axis 1:" in steps[0], steps
+    assert "vmax[1] = 0.5, amax[1] = 9, jmax[1] = 200;" in steps[0], steps
     assert np.all(np.isfinite(fmu.getReal([fmu.vr[n] for n in outputs(3)])))
+    fmu.freeInstance()
+
+
+@pytest.mark.parametrize("sync", [0, 1], ids=["phase", "independent"])
+def test_two_axes_dropping_in_one_step_are_both_named(multi_dir, sync):
+    """Axes 0 and 1 at rest both get a target 1e300 away: one warning names both targets (two
+    moves when independent, one when phase-synchronised), and the farthest axis's limits."""
+    from fmpy.fmi2 import fmi2True
+    log = Logged()
+    fmu = slave(multi_dir, "ma", logged=log)
+    fmu.setupExperiment(startTime=0.0)
+    fmu.enterInitializationMode()
+    for name, value in start_values(3, sync).items():
+        if name in ("axes", "sync"):
+            fmu.setInteger([fmu.vr[name]], [value])
+        else:
+            fmu.setReal([fmu.vr[name]], [value])
+    fmu.exitInitializationMode()
+    fmu.setReal([fmu.vr[f"target[{k}]"] for k in range(3)], [-1e300, 1e300, 0.0])
+    assert fmu.fmi2DoStep(fmu.component, 0.0, TS, fmi2True) == 1
+    steps = [m for m in log.messages if m.startswith("fmi2DoStep")]
+    assert len(steps) == 1, steps
+    assert "target[0] = -1.0000000000000001e+300, target[1] = 1.0000000000000001e+300" \
+        in steps[0], steps
+    # vmax[1] = 0.5 < vmax[0] = 0.8: axis 1's cruise is the longer
+    assert "(farthest, axis 1: " in steps[0] and "vmax[1] = 0.5, amax[1] = 9, jmax[1] = 200;" \
+        in steps[0], steps
     fmu.freeInstance()

@@ -199,6 +199,8 @@ def test_a_dropped_target_is_logged_once_and_the_step_warns(trajectory_dir):
     assert len(dropped) == 2
     assert "t = 0.001: target = 1.0000000000000001e+300 dropped" in dropped[0]
     assert "goal 0 " in dropped[0]
+    # the limits and Ts the user set, with which the move cannot be represented
+    assert "vmax = 1000, amax = 100000, jmax = 10000000, Ts = 0.001" in dropped[0]
     assert "target = -1.0000000000000001e+300 dropped" in dropped[1] and "goal 2 " in dropped[1]
     state = fmu.getFMUstate()
     fmu.setFMUstate(state)
