@@ -18,17 +18,10 @@
 #include "SmoothShaper_variables.h"
 #include "smoothshaper/smoothshaper.h"
 #include "../bench/cpu_time.h"
+#include "bench_callbacks.h"
 
 #define ROUNDS 7
 
-static void logger(fmi2ComponentEnvironment env, fmi2String name, fmi2Status status,
-                   fmi2String category, fmi2String message, ...)
-{
-    (void)env; (void)status; (void)category;
-    fprintf(stderr, "[%s] %s\n", name, message);
-}
-
-static const fmi2CallbackFunctions callbacks = { logger, calloc, free, NULL, NULL };
 static const double Ts = 1e-3;
 
 /* An instance with stage 0 a moving average of T (T = 0: no stage at all), at rest at 0. */

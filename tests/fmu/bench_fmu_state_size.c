@@ -30,21 +30,13 @@
 #include "SmoothShaper_variables.h"
 #endif
 #include "../bench/cpu_time.h"
+#include "bench_callbacks.h"
 
 #define ROUNDS 5
 #define TS 1e-3
 /* The step of 1e9 s over a new input runs ticks until the outputs have held for
  * FMU_STEADY_TICKS(state count) ticks: linear in the state, and seconds beyond this size. */
 #define ABSORB_MAX 1048576.0
-
-static void logger(fmi2ComponentEnvironment env, fmi2String name, fmi2Status status,
-                   fmi2String category, fmi2String message, ...)
-{
-    (void)env; (void)status; (void)category;
-    fprintf(stderr, "[%s] %s\n", name, message);
-}
-
-static const fmi2CallbackFunctions callbacks = { logger, calloc, free, NULL, NULL };
 
 /* Parameters that make the model allocate about n reals (sample period TS); the input to move. */
 #if defined(FMU_TEST_TRAJECTORY)
