@@ -26,9 +26,10 @@ from ._checks import real_array as _real_array
 __all__ = ["SYNC_MODES", "MultiAxisGenerator", "MultiAxisMove", "phase_duration", "multi_axis_move"]
 
 SYNC_MODES = ("phase", "independent")
+_MAX_AXES = 8   # SMS_MULTI_MAX_AXES: the identity has a slot for each, used or not
 # The fields of a saved state's identity after the common head (multi_generator.h).
 _MULTI_IDENTITY_FIELDS = ("axes", "sync") + tuple(
-    f"{name}[{i}]" for i in range(8) for name in ("vmax", "amax", "jmax", "n_stages"))
+    f"{name}[{i}]" for i in range(_MAX_AXES) for name in ("vmax", "amax", "jmax", "n_stages"))
 
 
 def _limit_vector(name: str, values, axes: int | None) -> np.ndarray:
@@ -111,7 +112,7 @@ class MultiAxisGenerator:
         axis, its values and the quantity out of range.
     """
 
-    MAX_AXES = 8
+    MAX_AXES = _MAX_AXES
 
     def __init__(self, *, vmax, amax, jmax, Ts: float, sync: str = "phase", q0=None,
                  stages=None, precision: str = "double"):

@@ -340,3 +340,14 @@ def test_limits_with_which_no_move_reaches_vmax_are_refused(precision):
     if precision == "float":
         e = refused(vmax=[1.0, 1e-320], amax=[1.0, 1.0], jmax=[1.0, 1.0], Ts=1e300)
         assert e.parameter == "Ts" and str(e).startswith("Ts=1e+300: above 3.40282e+38")
+
+
+def test_axis_count_and_state_identity_match_the_c_core():
+    """The Python side's axis limit and the identity field names it reports a differing
+    saved state by have one slot per C identity value (multi_generator.h)."""
+    from smoothshaper import multi_axis
+    from smoothshaper._state_identity import HEAD_FIELDS
+    from smoothshaper.filters import _backend
+    _, lib = _backend("double")
+    assert MultiAxisGenerator.MAX_AXES == lib.SMS_MULTI_MAX_AXES
+    assert len(HEAD_FIELDS + multi_axis._MULTI_IDENTITY_FIELDS) == lib.SMS_MULTI_IDENTITY_COUNT
