@@ -591,7 +591,7 @@ def _on_grid(T: list[float], Ts: float, h: float, limits: list[float], tuned_tap
 
     def overlap(best):
         if rect and best[0] - sum(T[i] / Ts for i in range(m)) > m:
-            found = _overlap_search([_grid_samples(t / Ts) for t in T], Ts, h, limits, best[0])
+            found = _overlap_search(base, Ts, h, limits, best[0])   # rect: m == n
             if found is not None:
                 N[:] = found
                 return sum(found), [-x for x in found]
