@@ -301,14 +301,7 @@ def test_a_dropped_target_vector_is_logged_once_and_the_step_warns(multi_dir, sy
     from fmpy.fmi2 import fmi2True
     log = Logged()
     fmu = slave(multi_dir, "ma", logged=log)
-    fmu.setupExperiment(startTime=0.0)
-    fmu.enterInitializationMode()
-    for name, value in start_values(3, sync).items():
-        if name in ("axes", "sync"):
-            fmu.setInteger([fmu.vr[name]], [value])
-        else:
-            fmu.setReal([fmu.vr[name]], [value])
-    fmu.exitInitializationMode()
+    start(fmu, **start_values(3, sync))
     statuses = []
     for i in range(4):
         fmu.setReal([fmu.vr[f"target[{k}]"] for k in range(3)], [0.1, 1e300, 0.0])
@@ -331,14 +324,7 @@ def test_two_axes_dropping_in_one_step_are_both_named(multi_dir, sync):
     from fmpy.fmi2 import fmi2True
     log = Logged()
     fmu = slave(multi_dir, "ma", logged=log)
-    fmu.setupExperiment(startTime=0.0)
-    fmu.enterInitializationMode()
-    for name, value in start_values(3, sync).items():
-        if name in ("axes", "sync"):
-            fmu.setInteger([fmu.vr[name]], [value])
-        else:
-            fmu.setReal([fmu.vr[name]], [value])
-    fmu.exitInitializationMode()
+    start(fmu, **start_values(3, sync))
     fmu.setReal([fmu.vr[f"target[{k}]"] for k in range(3)], [-1e300, 1e300, 0.0])
     assert fmu.fmi2DoStep(fmu.component, 0.0, TS, fmi2True) == 1
     steps = [m for m in log.messages if m.startswith("fmi2DoStep")]
