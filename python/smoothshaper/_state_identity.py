@@ -9,6 +9,9 @@ refuses a state whose identity differs from the object's with a status naming th
 """
 from __future__ import annotations
 
+import textwrap
+import types
+
 import numpy as np
 
 #: The common head of every identity, in order.
@@ -111,3 +114,90 @@ def restore(owner: str, ffi, lib, setter: str, c_obj, state, fields: tuple[str, 
     raise ParameterError("state", f"state does not match this {owner} (wrong length, "
                          "non-finite values, counts out of range, or a motion beyond its limits)",
                          st)
+
+
+# The docstrings of SavedState's methods, one paragraph a line, wrapped for each class.
+_GET_STATE_DOC = """The dynamic state, tagged with the configuration it belongs to (a copy); \
+:meth:`set_state` on this or an identically configured {what} continues bit-exactly.
+
+Returns
+-------
+ndarray of float64, shape (n,)
+    {layout}
+"""
+
+_SET_STATE_DOC = """Restore a state saved by :meth:`get_state`.
+
+Parameters
+----------
+state : array_like of float, shape (n,)
+    A state of this {what} or of an identically configured one: same {same}, ``Ts`` and \
+``precision`` (compared exactly). ``q0`` is not part of it: it is only where :meth:`reset` \
+returns to.
+
+Raises
+------
+ParameterError
+    Naming ``state`` if it comes from another configuration (the message says which field \
+differs, e.g. {example}), has the wrong size, non-finite fields, counts out of range, or a \
+motion beyond this {what}'s limits; then nothing is changed.
+"""
+
+
+def _wrapped(text: str) -> str:
+    """Each line of ``text`` filled to 88 columns, continuation lines at its indent."""
+    out = []
+    for line in text.splitlines():
+        indent = line[:len(line) - len(line.lstrip())]
+        out.append(textwrap.fill(line, 88, subsequent_indent=indent,
+                                   break_on_hyphens=False) if line else line)
+    return "\n".join(out) + "\n"
+
+
+class SavedState:
+    """``get_state`` / ``set_state`` of a C-backed generator (one implementation for all).
+
+    A subclass holds its C object in ``self._gen`` (with ``self._ffi``, ``self._lib``) and
+    sets, as class attributes: ``_STATE_C``, the C prefix (``"sms_generator"``: the functions
+    ``<prefix>_state_count``, ``_get_state``, ``_set_state``); ``_STATE_FIELDS`` and
+    ``_STATE_CHOICES``, its identity fields after the head and the names of enumerated ones
+    (:func:`mismatch`); and for the two docstrings ``_STATE_DOC``: ``what`` (``"generator"``),
+    ``layout`` (the saved values, in order), ``same`` (the configuration that must match) and
+    ``example`` (a mismatch message); optionally ``_STATE_ALIASES``, old names of the two.
+    """
+
+    _STATE_C: str
+    _STATE_FIELDS: tuple[str, ...]
+    _STATE_CHOICES: dict[str, tuple[str, ...]]
+    _STATE_DOC: dict[str, str]
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        doc = cls.__dict__.get("_STATE_DOC")
+        if doc is None:
+            return
+        for name, template in (("get_state", _GET_STATE_DOC), ("set_state", _SET_STATE_DOC)):
+            shared = getattr(SavedState, name)
+            # a copy of the shared function, so that each class documents its own layout
+            method = types.FunctionType(shared.__code__, shared.__globals__, name,
+                                        shared.__defaults__, shared.__closure__)
+            method.__annotations__ = dict(shared.__annotations__)
+            method.__qualname__ = f"{cls.__qualname__}.{name}"
+            method.__module__ = cls.__module__
+            method.__doc__ = _wrapped(template.format(**doc))
+            setattr(cls, name, method)
+        for alias, name in cls.__dict__.get("_STATE_ALIASES", {}).items():
+            setattr(cls, alias, getattr(cls, name))
+
+    def get_state(self) -> np.ndarray:
+        """The dynamic state, tagged with the configuration it belongs to (a copy)."""
+        out = np.empty(getattr(self._lib, self._STATE_C + "_state_count")(self._gen),
+                       dtype=np.float64)
+        getattr(self._lib, self._STATE_C + "_get_state")(
+            self._gen, self._ffi.from_buffer("double[]", out))
+        return out
+
+    def set_state(self, state) -> None:
+        """Restore a state saved by :meth:`get_state`."""
+        restore(type(self).__name__, self._ffi, self._lib, self._STATE_C + "_set_state",
+                self._gen, state, self._STATE_FIELDS, self._STATE_CHOICES)

@@ -75,7 +75,7 @@ def _infeasible(lib, ffi, cfg, Ts, st):
                           Ts, st, axis=i)
 
 
-class MultiAxisGenerator:
+class MultiAxisGenerator(_state_identity.SavedState):
     """Online multi-axis generator (C core ``sms_multi_generator``, up to ``MAX_AXES`` axes).
 
     :meth:`process` takes targets of shape (n, axes) and returns (n, axes, 4): q, v, a, j of
@@ -111,6 +111,21 @@ class MultiAxisGenerator:
         (``sms_multi_generator_reach``, docs/multi-axis.md "Feasible limits"), naming the
         axis, its values and the quantity out of range.
     """
+
+    _STATE_C = "sms_multi_generator"
+    _STATE_FIELDS = _MULTI_IDENTITY_FIELDS
+    _STATE_CHOICES = {"sync": SYNC_MODES}
+    _STATE_DOC = dict(
+        what="generator", same="axes, ``vmax``, ``amax``, ``jmax``, ``sync``, vibration stages",
+        example='``"state is from vmax[1]=2.0 (this MultiAxisGenerator: vmax[1]=1.0)"``, or '
+        "which field of a vibration stage",
+        layout="``sms_multi_generator_get_state``: first the configuration identity "
+        "(``SMS_MULTI_IDENTITY_COUNT`` = 39 values: state tag, format version, "
+        "``sizeof(sms_real)``, kind (102), ``Ts``, the number of axes, the sync index in "
+        ":data:`SYNC_MODES`, then for each of the 8 axis slots ``vmax``, ``amax``, ``jmax`` "
+        "and the number of vibration stages, 0 beyond ``axes``); then per axis target, "
+        "goal, start position, start and cruise velocity, the running moves and the "
+        "vibration stages' states.")
 
     MAX_AXES = _MAX_AXES
 
@@ -271,47 +286,6 @@ class MultiAxisGenerator:
         """Target vectors (of a group) dropped since construction or the last :meth:`reset`
         (a diagnostic count; not part of the saved state)."""
         return int(self._gen.dropped)
-
-    def get_state(self) -> np.ndarray:
-        """The dynamic state, tagged with the configuration it belongs to (a copy);
-        :meth:`set_state` on this or an identically configured generator continues bit-exactly.
-
-        Returns
-        -------
-        ndarray of float64, shape (n,)
-            ``sms_multi_generator_get_state``: first the configuration identity
-            (``SMS_MULTI_IDENTITY_COUNT`` = 39 values: state tag, format version,
-            ``sizeof(sms_real)``, kind (102), ``Ts``, the number of axes, the sync index in
-            :data:`SYNC_MODES`, then for each of the 8 axis slots ``vmax``, ``amax``, ``jmax``
-            and the number of vibration stages, 0 beyond ``axes``); then per axis target,
-            goal, start position, start and cruise velocity, the running moves and the
-            vibration stages' states.
-        """
-        out = np.empty(self._lib.sms_multi_generator_state_count(self._gen), dtype=np.float64)
-        self._lib.sms_multi_generator_get_state(self._gen, self._ffi.from_buffer("double[]", out))
-        return out
-
-    def set_state(self, state) -> None:
-        """Restore a state saved by :meth:`get_state`.
-
-        Parameters
-        ----------
-        state : array_like of float, shape (n,)
-            A state of this generator or of an identically configured one: same axes,
-            ``vmax``, ``amax``, ``jmax``, ``sync``, vibration stages, ``Ts`` and ``precision``
-            (compared exactly; ``q0`` is only where :meth:`reset` returns to).
-
-        Raises
-        ------
-        ParameterError
-            Naming ``state`` if it comes from another configuration (the message says which
-            field differs, e.g. ``"state is from vmax[1]=2.0 (this MultiAxisGenerator:
-            vmax[1]=1.0)"``, or which field of a vibration stage), has the wrong size,
-            non-finite values or counts out of range; then nothing is changed.
-        """
-        _state_identity.restore("MultiAxisGenerator", self._ffi, self._lib,
-                                "sms_multi_generator_set_state", self._gen, state,
-                                _MULTI_IDENTITY_FIELDS, {"sync": SYNC_MODES})
 
     @property
     def busy(self) -> bool:

@@ -67,7 +67,7 @@ def _generator_config(ffi, vmax, amax, jmax, profile, wn, zeta):
     return cfg
 
 
-class Generator:
+class Generator(_state_identity.SavedState):
     """Online multi-point trajectory generator (C core, ``sms_generator``).
 
     :meth:`process` takes the target (a staircase) per sample and returns position,
@@ -122,6 +122,23 @@ class Generator:
     dropped : int
         Targets dropped since construction or the last :meth:`reset`.
     """
+
+    _STATE_C = "sms_generator"
+    _STATE_FIELDS = _GENERATOR_IDENTITY_FIELDS
+    _STATE_CHOICES = {"profile": _design.PROFILES}
+    # Old names (deprecated): one name per concept, as Chain.get_state / set_state.
+    _STATE_ALIASES = {"save_state": "get_state", "load_state": "set_state"}
+    _STATE_DOC = dict(
+        what="generator", same="``vmax``, ``amax``, ``jmax``, ``profile``, ``wn``, ``zeta``",
+        example='``"state is from vmax=2.0 (this Generator: vmax=1.0)"``',
+        layout="``sms_generator_get_state``: first the configuration identity "
+        "(``SMS_GENERATOR_IDENTITY_COUNT`` = 11 values: state tag, format version, "
+        "``sizeof(sms_real)`` (8 double, 4 float), kind (100, a generator), ``Ts``, ``vmax``, "
+        "``amax``, ``jmax``, profile index in :data:`~smoothshaper.design.PROFILES`, ``wn`` "
+        "(0 without a mode), ``zeta``); then target, goal, the running plan's start q, v, a "
+        "and the samples since it (n = 17 without a mode); with a mode also the samples the "
+        "plan has rested and the four states of the tuned stage (each with its own stage "
+        "identity).")
 
     def __init__(self, *, vmax: float, amax: float, jmax: float, Ts: float,
                  profile: str = "polynomial", wn: float | None = None, zeta: float = 0.0,
@@ -247,48 +264,6 @@ class Generator:
             f"{goal!r} (the running plan started at q={q!r}) until the target changes"),
             stacklevel=3)
 
-    def get_state(self) -> np.ndarray:
-        """The dynamic state, tagged with the configuration it belongs to (a copy);
-        :meth:`set_state` on this or an identically configured generator continues bit-exactly.
-
-        Returns
-        -------
-        ndarray of float64, shape (n,)
-            ``sms_generator_get_state``: first the configuration identity
-            (``SMS_GENERATOR_IDENTITY_COUNT`` = 11 values: state tag, format version,
-            ``sizeof(sms_real)`` (8 double, 4 float), kind (100, a generator), ``Ts``, ``vmax``,
-            ``amax``, ``jmax``, profile index in :data:`~smoothshaper.design.PROFILES`, ``wn``
-            (0 without a mode), ``zeta``); then target, goal, the running plan's start q, v, a
-            and the samples since it (n = 17 without a mode); with a mode also the samples the
-            plan has rested and the four states of the tuned stage (each with its own stage
-            identity).
-        """
-        out = np.empty(self._lib.sms_generator_state_count(self._gen), dtype=np.float64)
-        self._lib.sms_generator_get_state(self._gen, self._ffi.from_buffer("double[]", out))
-        return out
-
-    def set_state(self, state) -> None:
-        """Restore a state saved by :meth:`get_state`.
-
-        Parameters
-        ----------
-        state : array_like of float, shape (n,)
-            A state of this generator or of an identically configured one: same ``vmax``,
-            ``amax``, ``jmax``, ``profile``, ``wn``, ``zeta``, ``Ts`` and ``precision`` (compared
-            exactly). ``q0`` is not part of it: it is only where :meth:`reset` returns to.
-
-        Raises
-        ------
-        ParameterError
-            Naming ``state`` if it comes from another configuration (the message says which
-            field differs, e.g. ``"state is from vmax=2.0 (this Generator: vmax=1.0)"``), has
-            the wrong size, non-finite fields, counts out of range, or a motion beyond this
-            generator's limits; then nothing is changed.
-        """
-        _state_identity.restore("Generator", self._ffi, self._lib, "sms_generator_set_state",
-                                self._gen, state, _GENERATOR_IDENTITY_FIELDS,
-                                {"profile": _design.PROFILES})
-
     def start_from(self, q: float, v: float = 0.0, a: float = 0.0, *,
                    target: float | None = None) -> None:
         """Continue from the motion state (q, v, a): the next sample plans afresh from there.
@@ -338,10 +313,6 @@ class Generator:
                 "a", f"(q, v, a) = ({q!r}, {v!r}, {a!r}) towards target={target!r} is not a "
                 "state a plan of this generator can start from: bringing a to zero would pass "
                 f"vmax={self.vmax!r}, or a value of the plan cannot be represented", st)
-
-    # Old names (deprecated): one name per concept, as Chain.get_state / set_state.
-    save_state = get_state
-    load_state = set_state
 
 
 # ----------------------------------------------------------------------------------------------

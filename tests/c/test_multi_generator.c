@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "check.h"
+#include "multi_config.h"
 
 #ifdef SMS_USE_FLOAT
 #define LIMIT_TOL 1e-4   /* float rounding of q differences over a few samples */
@@ -34,19 +35,18 @@ static double log_uniform(double lo, double hi)
     return lo * pow(hi / lo, urand());
 }
 
+/* Limits log-uniform over four decades each, amax/vmax and jmax/amax too. */
+static void random_limits(size_t axis, double lim[3])
+{
+    (void)axis;
+    lim[0] = log_uniform(0.1, 1000.0);
+    lim[1] = log_uniform(0.1, 1000.0) * lim[0];
+    lim[2] = log_uniform(0.1, 1000.0) * lim[1];
+}
+
 static sms_multi_generator_config random_config(size_t n, sms_sync sync)
 {
-    sms_multi_generator_config c;
-    size_t i;
-    memset(&c, 0, sizeof c);
-    c.n_axes = n;
-    c.sync = sync;
-    for (i = 0; i < n; ++i) {
-        c.vmax[i] = log_uniform(0.1, 1000.0);
-        c.amax[i] = log_uniform(0.1, 1000.0) * c.vmax[i];
-        c.jmax[i] = log_uniform(0.1, 1000.0) * c.amax[i];
-    }
-    return c;
+    return multi_config(n, sync, random_limits);
 }
 
 /* Every reported v, a, j and every backward difference within the limits; returns the

@@ -6,12 +6,13 @@
 #include <math.h>
 #include <string.h>
 #include "check.h"
-#include "smoothshaper/multi_generator.h"
+#include "multi_config.h"
 
 #define REALS 8192
 #define STEPS 400
 #define SPLIT 150
-static sms_real buf_a[REALS], buf_b[REALS], buf_b_before[REALS];
+#define WIDTH (4 * SMS_MULTI_MAX_AXES) /* the most values one step writes */
+static sms_real buf_a[REALS], buf_b[REALS];
 static double state[REALS], bad[REALS];
 static const double Ts = 1e-3;
 
@@ -20,52 +21,113 @@ static sms_real target_at(size_t k)
     return (sms_real)(k < 60 ? 0.02 : k < 200 ? -0.015 : 0.01 * (double)(k % 3));
 }
 
+/* ------------------------------------------------------------------ one test for all */
+
+/* One kind of object: its two instances (a saves, b loads), how to build and step them, its
+ * state functions, and the memory a refused load must leave untouched (b and its buffers). */
+typedef struct memory_region {
+    void *at;
+    size_t size;
+} memory_region;
+
+typedef struct object_kind {
+    void *a, *b;
+    size_t identity_count;
+    int (*build)(void *g, const void *config, double ts, int is_b); /* 1 when built */
+    size_t (*step)(void *g, size_t k, sms_real *out);               /* values written */
+    size_t (*count)(const void *g);
+    void (*get)(const void *g, double *dst);
+    sms_status (*check)(const void *g, const double *src, size_t n);
+    sms_status (*set)(void *g, const double *src, size_t n);
+    memory_region b_memory[3];
+} object_kind;
+
+/* The state functions of sms_<name> (instances of type) behind void pointers. */
+#define STATE_FUNCTIONS(name, type)                                                         \
+    static size_t name##_count(const void *g) { return sms_##name##_state_count(g); }       \
+    static void name##_get(const void *g, double *dst) { sms_##name##_get_state(g, dst); }  \
+    static sms_status name##_check(const void *g, const double *src, size_t n)              \
+    {                                                                                       \
+        return sms_##name##_check_state((const type *)g, src, n);                           \
+    }                                                                                       \
+    static sms_status name##_set(void *g, const double *src, size_t n)                      \
+    {                                                                                       \
+        return sms_##name##_set_state((type *)g, src, n);                                   \
+    }
+
+static unsigned char before[3][REALS * 64];
+
+/* Save a state of (a, Ts_a) mid-motion, load it into (b, Ts_b): expect `want`; on an error b
+ * (struct and buffers) untouched; on OK the split run equals a's one-shot run bit for bit. */
+static void across(const object_kind *o, const void *a, double Ts_a, const void *b,
+                   double Ts_b, sms_status want)
+{
+    static sms_real one_shot[STEPS][WIDTH];
+    sms_real out[WIDTH];
+    size_t k, n, i, width = 0;
+    if (!o->build(o->a, a, Ts_a, 0) || !o->build(o->b, b, Ts_b, 1))
+        return;
+    for (k = 0; k < STEPS; ++k)
+        width = o->step(o->a, k, one_shot[k]);
+    CHECK(o->build(o->a, a, Ts_a, 0));
+    for (k = 0; k < SPLIT; ++k)
+        o->step(o->a, k, out);
+    n = o->count(o->a);
+    CHECK(n <= REALS && n > o->identity_count);
+    o->get(o->a, state);
+    for (i = 0; i < 3; ++i) {
+        CHECK(o->b_memory[i].size <= sizeof before[i]);
+        if (o->b_memory[i].size <= sizeof before[i])
+            memcpy(before[i], o->b_memory[i].at, o->b_memory[i].size);
+    }
+    CHECK_STATUS(o->check(o->b, state, n), want);
+    CHECK_STATUS(o->set(o->b, state, n), want);
+    if (want != SMS_OK) {
+        for (i = 0; i < 3; ++i)
+            CHECK(memcmp(before[i], o->b_memory[i].at, o->b_memory[i].size) == 0);
+        return;
+    }
+    for (k = SPLIT; k < STEPS; ++k) {
+        o->step(o->b, k, out);
+        CHECK(memcmp(out, one_shot[k], width * sizeof out[0]) == 0);
+    }
+}
+
 /* ------------------------------------------------------------------ generator */
 
-static int gen_build(sms_generator *g, const sms_generator_config *c, double ts, sms_real *buf)
+static sms_generator gen_a, gen_b;
+
+static int gen_build(void *g, const void *config, double ts, int is_b)
 {
     size_t need = 0;
-    CHECK_STATUS(sms_generator_buffer_size(c, ts, &need), SMS_OK);
+    CHECK_STATUS(sms_generator_buffer_size(config, ts, &need), SMS_OK);
     if (need > REALS) {
         CHECK(0);
         return 0;
     }
-    CHECK_STATUS(sms_generator_init(g, c, ts, buf, need), SMS_OK);
+    CHECK_STATUS(sms_generator_init(g, config, ts, is_b ? buf_b : buf_a, need), SMS_OK);
+    if (is_b)
+        sms_generator_reset(g, 3); /* somewhere else: a refused load must leave it there */
     return 1;
 }
 
-/* Save a state of (a, Ts_a) mid-motion, load it into (b, Ts_b): expect `want`; on an error b
- * (struct and rings) untouched; on OK the split run equals a's one-shot run bit for bit. */
+static size_t gen_step(void *g, size_t k, sms_real *out)
+{
+    sms_generator_step(g, target_at(k), out);
+    return 4;
+}
+
+STATE_FUNCTIONS(generator, sms_generator)
+
+static const object_kind generator = {
+    &gen_a, &gen_b, SMS_GENERATOR_IDENTITY_COUNT, gen_build, gen_step, generator_count,
+    generator_get, generator_check, generator_set,
+    {{&gen_b, sizeof gen_b}, {buf_b, sizeof buf_b}, {NULL, 0}}};
+
 static void gen_across(const sms_generator_config *a, double Ts_a, const sms_generator_config *b,
                        double Ts_b, sms_status want)
 {
-    sms_generator ga, gb, gb_before;
-    sms_real one_shot[STEPS][4], out[4];
-    size_t k, n;
-    if (!gen_build(&ga, a, Ts_a, buf_a) || !gen_build(&gb, b, Ts_b, buf_b))
-        return;
-    for (k = 0; k < STEPS; ++k)
-        sms_generator_step(&ga, target_at(k), one_shot[k]);
-    CHECK(gen_build(&ga, a, Ts_a, buf_a));
-    for (k = 0; k < SPLIT; ++k)
-        sms_generator_step(&ga, target_at(k), out);
-    n = sms_generator_state_count(&ga);
-    CHECK(n <= REALS && n > SMS_GENERATOR_IDENTITY_COUNT);
-    sms_generator_get_state(&ga, state);
-    sms_generator_reset(&gb, 3);
-    gb_before = gb;
-    memcpy(buf_b_before, buf_b, sizeof buf_b);
-    CHECK_STATUS(sms_generator_check_state(&gb, state, n), want);
-    CHECK_STATUS(sms_generator_set_state(&gb, state, n), want);
-    if (want != SMS_OK) {
-        CHECK(memcmp(&gb, &gb_before, sizeof gb) == 0);
-        CHECK(memcmp(buf_b, buf_b_before, sizeof buf_b) == 0);
-        return;
-    }
-    for (k = SPLIT; k < STEPS; ++k) {
-        sms_generator_step(&gb, target_at(k), out);
-        CHECK(memcmp(out, one_shot[k], sizeof out) == 0);
-    }
+    across(&generator, a, Ts_a, b, Ts_b, want);
 }
 
 static void generator_fields(void)
@@ -100,7 +162,7 @@ static void generator_format(void)
     sms_stage s;
     size_t n, cells, i;
     static sms_memory_cell cell[1024];
-    if (!gen_build(&g, &a, Ts, NULL))
+    if (!gen_build(&g, &a, Ts, 0))
         return;
     n = sms_generator_state_count(&g);
     sms_generator_get_state(&g, state);
@@ -186,49 +248,50 @@ static void generator_random(void)
 
 /* ------------------------------------------------------------------ B-spline */
 
+/* A B-spline configuration: degree, axes, knot spacing T [s]. */
+typedef struct bspline_config {
+    unsigned degree;
+    size_t axes;
+    double T;
+} bspline_config;
+
+static sms_bspline bspline_a, bspline_b;
+
+static int bspline_build(void *g, const void *config, double ts, int is_b)
+{
+    const bspline_config *c = config;
+    size_t need = 0;
+    CHECK_STATUS(sms_bspline_buffer_size(c->degree, c->axes, c->T, ts, &need), SMS_OK);
+    if (need > REALS) {
+        CHECK(0);
+        return 0;
+    }
+    CHECK_STATUS(sms_bspline_init(g, c->degree, c->axes, c->T, ts, is_b ? buf_b : buf_a, need),
+                 SMS_OK);
+    return 1;
+}
+
+static size_t bspline_step(void *g, size_t k, sms_real *out)
+{
+    sms_real x[SMS_BSPLINE_MAX_AXES];
+    x[0] = target_at(k);
+    x[1] = x[2] = (sms_real)(k % 7);
+    sms_bspline_step(g, x, out);
+    return ((sms_bspline *)g)->n_axes;
+}
+
+STATE_FUNCTIONS(bspline, sms_bspline)
+
+static const object_kind bspline = {
+    &bspline_a, &bspline_b, SMS_BSPLINE_IDENTITY_COUNT, bspline_build, bspline_step,
+    bspline_count, bspline_get, bspline_check, bspline_set,
+    {{&bspline_b, sizeof bspline_b}, {buf_b, sizeof buf_b}, {NULL, 0}}};
+
 static void bspline_across(unsigned pa, size_t axa, double Ta, double Tsa, unsigned pb,
                            size_t axb, double Tb, double Tsb, sms_status want)
 {
-    sms_bspline a, b, b_before;
-    size_t na, nb, n, k;
-    sms_real one_shot[STEPS][SMS_BSPLINE_MAX_AXES], x[SMS_BSPLINE_MAX_AXES], y[SMS_BSPLINE_MAX_AXES];
-    CHECK_STATUS(sms_bspline_buffer_size(pa, axa, Ta, Tsa, &na), SMS_OK);
-    CHECK_STATUS(sms_bspline_buffer_size(pb, axb, Tb, Tsb, &nb), SMS_OK);
-    if (na > REALS || nb > REALS) {
-        CHECK(0);
-        return;
-    }
-    CHECK_STATUS(sms_bspline_init(&a, pa, axa, Ta, Tsa, buf_a, na), SMS_OK);
-    CHECK_STATUS(sms_bspline_init(&b, pb, axb, Tb, Tsb, buf_b, nb), SMS_OK);
-    for (k = 0; k < STEPS; ++k) {
-        x[0] = target_at(k);
-        x[1] = x[2] = (sms_real)(k % 7);
-        sms_bspline_step(&a, x, one_shot[k]);
-    }
-    CHECK_STATUS(sms_bspline_init(&a, pa, axa, Ta, Tsa, buf_a, na), SMS_OK);
-    for (k = 0; k < SPLIT; ++k) {
-        x[0] = target_at(k);
-        x[1] = x[2] = (sms_real)(k % 7);
-        sms_bspline_step(&a, x, y);
-    }
-    n = sms_bspline_state_count(&a);
-    CHECK(n <= REALS && n > SMS_BSPLINE_IDENTITY_COUNT);
-    sms_bspline_get_state(&a, state);
-    b_before = b;
-    memcpy(buf_b_before, buf_b, sizeof buf_b);
-    CHECK_STATUS(sms_bspline_check_state(&b, state, n), want);
-    CHECK_STATUS(sms_bspline_set_state(&b, state, n), want);
-    if (want != SMS_OK) {
-        CHECK(memcmp(&b, &b_before, sizeof b) == 0);
-        CHECK(memcmp(buf_b, buf_b_before, sizeof buf_b) == 0);
-        return;
-    }
-    for (k = SPLIT; k < STEPS; ++k) {
-        x[0] = target_at(k);
-        x[1] = x[2] = (sms_real)(k % 7);
-        sms_bspline_step(&b, x, y);
-        CHECK(memcmp(y, one_shot[k], axa * sizeof y[0]) == 0);
-    }
+    const bspline_config a = {pa, axa, Ta}, b = {pb, axb, Tb};
+    across(&bspline, &a, Tsa, &b, Tsb, want);
 }
 
 static void bspline_fields(void)
@@ -244,90 +307,60 @@ static void bspline_fields(void)
 
 /* ------------------------------------------------------------------ multi-axis generator */
 
-static sms_stage mg_structs_a[64], mg_structs_b[64], mg_structs_before[64];
-static sms_memory_cell mg_cells_a[REALS], mg_cells_b[REALS], mg_cells_before[REALS];
+static sms_stage mg_structs_a[64], mg_structs_b[64];
+static sms_memory_cell mg_cells_a[REALS], mg_cells_b[REALS];
+static sms_multi_generator mg_a, mg_b;
 
-static sms_multi_generator_config mg_config(size_t n_axes)
+static void mg_limits(size_t i, double lim[3])
 {
-    sms_multi_generator_config c;
-    size_t i;
-    memset(&c, 0, sizeof c);
-    c.n_axes = n_axes;
-    c.sync = SMS_SYNC_PHASE;
-    for (i = 0; i < n_axes; ++i) {
-        c.vmax[i] = 1.0 + 0.25 * (double)i;
-        c.amax[i] = 10.0 - (double)i;
-        c.jmax[i] = 100.0 + 10.0 * (double)i;
-    }
-    return c;
+    lim[0] = 1.0 + 0.25 * (double)i;
+    lim[1] = 10.0 - (double)i;
+    lim[2] = 100.0 + 10.0 * (double)i;
 }
 
-static int mg_build(sms_multi_generator *g, const sms_multi_generator_config *c, double ts,
-                    sms_stage *structs, sms_memory_cell *cells)
+static int mg_build(void *g, const void *config, double ts, int is_b)
 {
     size_t ns = 0, nc = 0;
-    CHECK_STATUS(sms_multi_generator_memory(c, ts, &ns, &nc, NULL), SMS_OK);
+    CHECK_STATUS(sms_multi_generator_memory(config, ts, &ns, &nc, NULL), SMS_OK);
     if (ns > 64 || nc > REALS) {
         CHECK(0);
         return 0;
     }
-    CHECK_STATUS(sms_multi_generator_init(g, c, ts, structs, ns, cells, nc, NULL), SMS_OK);
+    CHECK_STATUS(sms_multi_generator_init(g, config, ts, is_b ? mg_structs_b : mg_structs_a, ns,
+                                          is_b ? mg_cells_b : mg_cells_a, nc, NULL),
+                 SMS_OK);
     return 1;
 }
 
-static void mg_targets(size_t k, size_t n_axes, sms_real *t)
+static size_t mg_step(void *g, size_t k, sms_real *out)
 {
-    size_t i;
+    sms_real t[SMS_MULTI_MAX_AXES];
+    size_t i, n_axes = ((sms_multi_generator *)g)->n_axes;
     for (i = 0; i < n_axes; ++i)
         t[i] = (sms_real)((double)target_at(k) * (1.0 + (double)i));
+    sms_multi_generator_step(g, t, out);
+    return 4 * n_axes;
 }
+
+STATE_FUNCTIONS(multi_generator, sms_multi_generator)
+
+static const object_kind multi_generator = {
+    &mg_a, &mg_b, SMS_MULTI_IDENTITY_COUNT, mg_build, mg_step, multi_generator_count,
+    multi_generator_get, multi_generator_check, multi_generator_set,
+    {{&mg_b, sizeof mg_b}, {mg_structs_b, sizeof mg_structs_b}, {mg_cells_b, sizeof mg_cells_b}}};
 
 static void multi_across(const sms_multi_generator_config *a, double Ts_a,
                          const sms_multi_generator_config *b, double Ts_b, sms_status want)
 {
-    static sms_multi_generator ga, gb, gb_before;
-    static sms_real one_shot[STEPS][4 * SMS_MULTI_MAX_AXES];
-    sms_real t[SMS_MULTI_MAX_AXES], out[4 * SMS_MULTI_MAX_AXES];
-    size_t k, n;
-    if (!mg_build(&ga, a, Ts_a, mg_structs_a, mg_cells_a)
-        || !mg_build(&gb, b, Ts_b, mg_structs_b, mg_cells_b))
-        return;
-    for (k = 0; k < STEPS; ++k) {
-        mg_targets(k, a->n_axes, t);
-        sms_multi_generator_step(&ga, t, one_shot[k]);
-    }
-    CHECK(mg_build(&ga, a, Ts_a, mg_structs_a, mg_cells_a));
-    for (k = 0; k < SPLIT; ++k) {
-        mg_targets(k, a->n_axes, t);
-        sms_multi_generator_step(&ga, t, out);
-    }
-    n = sms_multi_generator_state_count(&ga);
-    CHECK(n <= REALS && n > SMS_MULTI_IDENTITY_COUNT);
-    sms_multi_generator_get_state(&ga, state);
-    gb_before = gb;
-    memcpy(mg_structs_before, mg_structs_b, sizeof mg_structs_b);
-    memcpy(mg_cells_before, mg_cells_b, sizeof mg_cells_b);
-    CHECK_STATUS(sms_multi_generator_check_state(&gb, state, n), want);
-    CHECK_STATUS(sms_multi_generator_set_state(&gb, state, n), want);
-    if (want != SMS_OK) {
-        CHECK(memcmp(&gb, &gb_before, sizeof gb) == 0);
-        CHECK(memcmp(mg_structs_b, mg_structs_before, sizeof mg_structs_b) == 0);
-        CHECK(memcmp(mg_cells_b, mg_cells_before, sizeof mg_cells_b) == 0);
-        return;
-    }
-    for (k = SPLIT; k < STEPS; ++k) {
-        mg_targets(k, a->n_axes, t);
-        sms_multi_generator_step(&gb, t, out);
-        CHECK(memcmp(out, one_shot[k], 4 * a->n_axes * sizeof out[0]) == 0);
-    }
+    across(&multi_generator, a, Ts_a, b, Ts_b, want);
 }
 
 static void multi_fields(void)
 {
-    sms_multi_generator_config a = mg_config(2), b;
+    sms_multi_generator_config a = multi_config(2, SMS_SYNC_PHASE, mg_limits), b;
     sms_stage_config zv = sms_stage_config_default(SMS_SHAPER_ZV), zv2;
     multi_across(&a, Ts, &a, Ts, SMS_OK);
-    b = mg_config(3); multi_across(&a, Ts, &b, Ts, SMS_ERR_STATE_AXES);
+    b = multi_config(3, SMS_SYNC_PHASE, mg_limits); multi_across(&a, Ts, &b, Ts, SMS_ERR_STATE_AXES);
     b = a; b.sync = SMS_SYNC_INDEPENDENT; multi_across(&a, Ts, &b, Ts, SMS_ERR_STATE_SYNC);
     b = a; b.vmax[1] = 2.0; multi_across(&a, Ts, &b, Ts, SMS_ERR_STATE_VMAX);
     b = a; b.amax[0] = 9.5; multi_across(&a, Ts, &b, Ts, SMS_ERR_STATE_AMAX);
