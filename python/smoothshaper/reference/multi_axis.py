@@ -14,6 +14,7 @@ differs in its last bits (one ulp of a root, amplified by the root search) there
 at ``eps / rho`` (up to 3.5e-13 with libm roots); with the same roots the plans agree to the
 last bit and the outputs to rounding (the tests: 1e-12 of the move and of each limit).
 
+* :func:`reach` -- the limit sets the generator can plan with (its feasible region), per axis;
 * :func:`transition` -- shortest S-curve velocity change under per-axis limits;
 * :func:`phase_duration` -- time-optimal phase-synchronised rest-to-rest duration;
 * :func:`multi_axis_reference` -- the sampled generator output for a staircase of targets.
@@ -26,9 +27,11 @@ import numpy as np
 
 from . import filtering as _filtering
 from ._checks import check_Ts
+from .. import time_optimal as _single
+from .._reach import named as _named
 from ..errors import ParameterError
 
-__all__ = ["transition", "phase_duration", "multi_axis_reference"]
+__all__ = ["reach", "transition", "phase_duration", "multi_axis_reference"]
 
 _EPS = np.finfo(np.float64).eps
 
@@ -93,6 +96,103 @@ def _unit_time(A: float, J: float) -> tuple[float, float]:
         return T, Tj / T
     Tj = 1.0 / _newton_sqrt(J)
     return 2.0 * Tj, 0.5
+
+
+#: Ratios limit/change the planner forms stay this far below its cap 2^60 for the moves that
+#: reach vmax, stop and reverse (|dV| up to 2 vmax, displacements up to a few h).
+RATIO_BOUND = 2.0 ** 56
+#: The landing is exact for displacements up to this many times h (and durations up to this
+#: many times T): their unit accelerations squared stay normal, the durations squared finite.
+MOVE_SPAN = 16.0
+
+
+def reach(vmax, amax, jmax, Ts: float, precision: str = "double") -> dict:
+    """The feasible region of the multi-axis generator: can every axis's move reach its vmax?
+
+    Derived from the planner's arithmetic, axis by axis (the first axis out of range is
+    named). With h and T the distance and the duration of axis i's move from rest to vmax_i
+    and back to rest (the single-axis move with linear jerk ramps,
+    :func:`smoothshaper.time_optimal.reach`), and MAX, MIN, eps the largest and smallest normal
+    number of the precision and its epsilon, axis i is feasible when, in this order:
+
+    1. the single-axis region holds (the planner forms the same products: J dv, squares of
+       accelerations, durations and distances of the move to vmax);
+    2. amax/vmax, jmax/vmax, amax/h, jmax/h <= 2^56: the planner turns a velocity change dV
+       or a displacement d into unit limits amax/|dV|, jmax/|d|, capped at 2^60; the move to
+       vmax, its stop and its reversal (|dV| <= 2 vmax, |d| up to a few h) stay a factor 16
+       below the cap, so they are never lengthened;
+    3. (16 T)^2 <= MAX, (amax/(16 h))^2 >= MIN/eps and jmax/(16 h) >= MIN/eps: the landing
+       squares durations and unit accelerations, and divides by the unit jerk, for
+       displacements up to 16 h.
+
+    A phase-synchronised move takes the minimum of the axes' ratios, so it adds no condition.
+    Ts must be a positive number of the precision (not 0 once rounded, at most MAX).
+
+    Parameters
+    ----------
+    vmax, amax, jmax : array_like, shape (axes,) or scalar
+        Per-axis limits, finite and > 0 (units of axis i per s, s^2, s^3).
+    Ts : float
+        Sample period [s], finite and > 0.
+    precision : {"double", "float"}
+        The build whose numbers bound the region.
+
+    Returns
+    -------
+    dict
+        ``axis`` (the first refused axis, None when feasible or when ``Ts`` is refused),
+        ``quantity`` (None when feasible, else the quantity out of range: ``"Ts"``, a
+        quantity of :func:`smoothshaper.time_optimal.reach`, ``"amax/vmax"``,
+        ``"jmax/vmax"``, ``"amax/h"``, ``"jmax/h"``, ``"the duration to reach vmax,
+        squared"``, ``"(amax/h)^2"``), ``parameter`` (the argument to change: ``"Ts"`` or
+        e.g. ``"jmax[1]"``, the one the MultiAxisGenerator names) and the refused axis's
+        ``distance`` h and ``duration`` T (0 before they are formed).
+
+    Raises
+    ------
+    ParameterError
+        Naming a limit (``vmax[i]``) that is not finite and > 0, ``Ts``, or ``precision``.
+    """
+    if precision not in ("double", "float"):
+        raise ParameterError("precision", f"precision must be 'double' or 'float', got "
+                                          f"{precision!r}")
+    Ts = check_Ts(Ts)
+    axes = max(np.size(vmax), np.size(amax), np.size(jmax))
+    vmax, amax, jmax = _limits(vmax, amax, jmax, axes)
+    info = np.finfo(np.float32 if precision == "float" else np.float64)
+    big, unit_tiny = float(info.max), float(info.tiny) / float(info.eps)
+    out = dict(axis=None, quantity=None, parameter=None, distance=0.0, duration=0.0)
+    with np.errstate(over="ignore", under="ignore"):
+        rounded = float(np.float32(Ts)) if precision == "float" else Ts
+    if not (rounded > 0 and Ts <= big):
+        out.update(quantity="Ts", parameter="Ts")
+        return out
+    for i in range(axes):
+        v, a, j = float(vmax[i]), float(amax[i]), float(jmax[i])
+        single = _single.reach(v, a, j, Ts, "ramp", precision)
+        h, T = single["distance"], single["duration"]
+        quantity = single["quantity"]
+        if quantity is None:
+            au, ju = a / (MOVE_SPAN * h), j / (MOVE_SPAN * h)
+            for name, holds in (("amax/vmax", a <= RATIO_BOUND * v),
+                                ("jmax/vmax", j <= RATIO_BOUND * v),
+                                ("amax/h", a <= RATIO_BOUND * h),
+                                ("jmax/h", j <= RATIO_BOUND * h),
+                                ("the duration to reach vmax, squared",
+                                 (MOVE_SPAN * T) * (MOVE_SPAN * T) <= big),
+                                ("(amax/h)^2", au * au >= unit_tiny),
+                                ("jmax/h", ju >= unit_tiny)):
+                if not holds:
+                    quantity = name
+                    break
+        if quantity is not None:
+            arguments = [n for n in ("vmax", "amax", "jmax") if n in quantity] or \
+                ["vmax", "amax", "jmax"]
+            parameter = _named(quantity, arguments, T)
+            out.update(axis=i, quantity=quantity, distance=h, duration=T,
+                       parameter=parameter if parameter == "Ts" else f"{parameter}[{i}]")
+            return out
+    return out
 
 
 def _limits(vmax, amax, jmax, axes: int):
@@ -422,6 +522,15 @@ def multi_axis_reference(targets, *, vmax, amax, jmax, Ts: float, sync: str = "p
                                         f"got shape {x.shape}")
     vmax, amax, jmax = _limits(vmax, amax, jmax, x.shape[1])
     Ts = check_Ts(Ts)
+    feasible = reach(vmax, amax, jmax, Ts)
+    if feasible["quantity"] is not None:
+        i = feasible["axis"]
+        where = "" if i is None else (f"axis {i}: vmax[{i}]={float(vmax[i])!r}, "
+                                      f"amax[{i}]={float(amax[i])!r}, jmax[{i}]={float(jmax[i])!r}, ")
+        raise ParameterError(feasible["parameter"],
+                             f"{where}Ts={Ts!r}: {feasible['quantity']} is out of the feasible "
+                             f"range: no move of {'the axes' if i is None else f'axis {i}'} "
+                             "that reaches its vmax can be planned")
     if sync not in ("phase", "independent"):
         raise ParameterError("sync", f"sync must be 'phase' or 'independent', got {sync!r}")
     if q0 is not None:

@@ -1,0 +1,175 @@
+"""The multi-axis generator's feasible limits: the C core (sms_multi_generator_reach) and the
+independent NumPy reference (smoothshaper.reference.multi_axis.reach, derived from the
+planner's arithmetic) accept the same limit sets and name the same axis and quantity when
+they refuse, over the whole range of the type, in double and float, and at the bounds to
+the neighbouring double; MultiAxisGenerator and multi_axis_reference then name the same
+argument."""
+import math
+from collections import Counter
+
+import numpy as np
+import pytest
+
+from smoothshaper.errors import ParameterError
+from smoothshaper.filters import _backend
+from smoothshaper.multi_axis import MultiAxisGenerator
+from smoothshaper.reference.multi_axis import multi_axis_reference, reach
+
+#: Every quantity the region can name (the single-axis region's, then the planner's own);
+#: "the duration to reach vmax" (T >= MIN) needs limits that the others refuse first.
+QUANTITIES = {"vmax", "amax", "jmax", "vmax*jmax", "vmax/amax", "sqrt(vmax/jmax)", "amax^2",
+              "the distance to reach vmax", "amax/vmax", "jmax/vmax", "amax/h", "jmax/h",
+              "the duration to reach vmax, squared", "(amax/h)^2"}
+
+
+def c_reach(lim, Ts, precision):
+    """(quantity or None, axis) from sms_multi_generator_reach."""
+    ffi, lib = _backend(precision)
+    cfg = ffi.new("sms_multi_generator_config *")
+    cfg.n_axes = lim.shape[1]
+    for i in range(lim.shape[1]):
+        cfg.vmax[i], cfg.amax[i], cfg.jmax[i] = lim[:, i]
+    info, axis = ffi.new("sms_generator_reach_info *"), ffi.new("size_t *")
+    if lib.sms_multi_generator_reach(cfg, Ts, info, axis) == 0:
+        return None, None
+    quantity = ffi.string(info.quantity).decode()
+    return quantity, None if quantity == "Ts" else int(axis[0])
+
+
+def ref_reach(lim, Ts, precision):
+    r = reach(lim[0], lim[1], lim[2], Ts, precision)
+    return r["quantity"], r["axis"]
+
+
+def draw(rng):
+    """Limits (3, axes) and Ts: over the whole double range, over the float range, a
+    plausible vmax with amax/vmax and jmax/vmax over many decades, or a plausible machine."""
+    n = int(rng.integers(1, 5))
+    mode = int(rng.integers(0, 4))
+    if mode == 0:
+        return 10.0 ** rng.uniform(-320, 308, size=(3, n)), 10.0 ** rng.uniform(-300, 300)
+    if mode == 1:
+        return 10.0 ** rng.uniform(-45, 40, size=(3, n)), 10.0 ** rng.uniform(-45, 40)
+    v = 10.0 ** rng.uniform(-3, 3, n)
+    if mode == 2:
+        return (np.array([v, v * 10.0 ** rng.uniform(-20, 25, n),
+                          v * 10.0 ** rng.uniform(-40, 45, n)]), 10.0 ** rng.uniform(-12, 1))
+    a = v * 10.0 ** rng.uniform(-2, 4, n)
+    return np.array([v, a, a * 10.0 ** rng.uniform(-2, 4, n)]), 10.0 ** rng.uniform(-6, -2)
+
+
+def feasible(rng, axes, precision):
+    """A random feasible set of ``axes`` axes (a plausible machine)."""
+    while True:
+        v = 10.0 ** rng.uniform(-3, 3, axes)
+        a = v * 10.0 ** rng.uniform(-2, 4, axes)
+        lim, Ts = np.array([v, a, a * 10.0 ** rng.uniform(-2, 4, axes)]), 10.0 ** rng.uniform(-6, -2)
+        if c_reach(lim, Ts, precision)[0] is None:
+            return lim, Ts
+
+
+def usable(lim, Ts):
+    return bool(np.all(np.isfinite(lim)) and np.all(lim > 0) and 0 < Ts < math.inf)
+
+
+@pytest.mark.parametrize("precision", ["double", "float"])
+def test_c_and_the_reference_refuse_the_same_limit_sets(precision):
+    """4000 random limit sets of 1 to 4 axes: the same verdict, axis and quantity; every
+    quantity of the region occurs (a sample that missed one would not test it)."""
+    rng = np.random.default_rng(20261201 + (precision == "float"))
+    seen, disagree = Counter(), []
+    while sum(seen.values()) < 4000:
+        lim, Ts = draw(rng)
+        if not usable(lim, Ts):
+            continue
+        got, want = c_reach(lim, Ts, precision), ref_reach(lim, Ts, precision)
+        seen[got[0]] += 1
+        if got != want:
+            disagree.append((lim.tolist(), Ts, got, want))
+    assert not disagree, disagree[:5]
+    assert seen[None] >= 100        # accepted sets too
+    missing = QUANTITIES - set(seen)
+    assert not missing, missing
+
+
+@pytest.mark.parametrize("precision", ["double", "float"])
+def test_the_verdicts_agree_at_the_bounds(precision):
+    """A limit (or Ts) moved by bisection in log space from a refused to an accepted value
+    until the two are neighbouring doubles: C and the reference agree on both, so each bound
+    is the same to the last bit, whichever quantity it is."""
+    rng = np.random.default_rng(7 + (precision == "float"))
+    found = Counter()
+    for _ in range(400):
+        lim, Ts = draw(rng)
+        if not usable(lim, Ts):
+            continue
+        ok_lim, ok_Ts = feasible(rng, lim.shape[1], precision)   # to move towards
+        which = int(rng.integers(0, lim.size + 1))
+        if c_reach(lim, Ts, precision)[0] is None:
+            continue
+
+        def at(x):
+            if which == lim.size:
+                return ok_lim, x
+            m = ok_lim.copy()
+            m.flat[which] = x
+            return m, ok_Ts
+        bad = Ts if which == lim.size else float(lim.flat[which])
+        good = ok_Ts if which == lim.size else float(ok_lim.flat[which])
+        if c_reach(*at(bad), precision)[0] is None:
+            continue
+        lo, hi = math.log(bad), math.log(good)
+        for _ in range(200):
+            mid = math.exp(0.5 * (lo + hi))
+            x_lo, x_hi = math.exp(lo), math.exp(hi)
+            if not min(x_lo, x_hi) < mid < max(x_lo, x_hi):
+                break
+            if c_reach(*at(mid), precision)[0] is None:
+                hi = math.log(mid)
+            else:
+                lo = math.log(mid)
+        x_bad, x_good = math.exp(lo), math.exp(hi)
+        # walk to the neighbouring doubles of the switch
+        step = math.inf if x_good > x_bad else -math.inf
+        while math.nextafter(x_bad, step) != x_good and c_reach(*at(math.nextafter(
+                x_bad, step)), precision)[0] is not None:
+            x_bad = math.nextafter(x_bad, step)
+        x_good = math.nextafter(x_bad, step)
+        for x in (x_bad, x_good):
+            assert c_reach(*at(x), precision) == ref_reach(*at(x), precision), (which, x)
+        found[c_reach(*at(x_bad), precision)[0]] += 1
+    assert len(found) >= 5, found     # bounds of at least five different quantities
+
+
+@pytest.mark.parametrize("precision", ["double", "float"])
+def test_the_generator_and_the_reference_name_the_same_argument(precision):
+    """Refused random sets: MultiAxisGenerator and multi_axis_reference (double) raise
+    ParameterError naming the same argument (``jmax[1]``, ``Ts``, ...)."""
+    rng = np.random.default_rng(99)
+    tried = 0
+    while tried < 300:
+        lim, Ts = draw(rng)
+        if not usable(lim, Ts) or c_reach(lim, Ts, precision)[0] is None:
+            continue
+        tried += 1
+        kw = dict(vmax=lim[0], amax=lim[1], jmax=lim[2], Ts=Ts)
+        with pytest.raises(ParameterError) as c_error:
+            MultiAxisGenerator(precision=precision, **kw)
+        assert c_error.value.parameter == reach(**kw, precision=precision)["parameter"]
+        if precision == "double":
+            with pytest.raises(ParameterError) as ref_error:
+                multi_axis_reference(np.zeros((2, lim.shape[1])), **kw)
+            assert ref_error.value.parameter == c_error.value.parameter
+
+
+def test_the_documented_example():
+    """Reaching vmax on axis 1 takes 4 sqrt(vmax/jmax) = 4e150 s: both refuse, naming
+    jmax[1] and the quantity."""
+    kw = dict(vmax=[1.0, 1.0], amax=[1.0, 1e-30], jmax=[1.0, 1e-300], Ts=1e-3)
+    r = reach(**kw)
+    assert (r["axis"], r["quantity"], r["parameter"]) == (1, "sqrt(vmax/jmax)", "jmax[1]")
+    assert r["duration"] == pytest.approx(4e150, rel=1e-12)
+    with pytest.raises(ParameterError, match=r"axis 1: .*sqrt\(vmax/jmax\)") as e:
+        multi_axis_reference(np.zeros((3, 2)), **kw)
+    assert e.value.parameter == "jmax[1]"
+    assert reach(vmax=[1.0, 2.0], amax=10.0, jmax=100.0, Ts=1e-3)["quantity"] is None
