@@ -110,27 +110,42 @@ static sms_real transition_time(const group *G, const sms_real *dV, sms_real *rh
     return unit_time(A, J, rho);
 }
 
-/* Smallest kappa with kappa >= T1/2 + T(u/kappa)/2 (tau >= 0) and |u_i|/kappa <= vmax_i. */
+/* Smallest kappa with kappa >= T1/2 + T(u/kappa)/2 (tau >= 0) and |u_i|/kappa <= vmax_i. The
+ * right side decreases with kappa, so when kv = max_i |u_i|/vmax_i satisfies it (the move
+ * reaches a vmax: every long move) kappa = kv. That is decided on the cruise velocity u/kv,
+ * whose unit limits stay in range, before the closed form, whose unit limits amax_i/|u_i| and
+ * jmax_i/|u_i| (and their squares) underflow for displacements far beyond the distance to
+ * reach vmax, which would drop a move that plainly fits the sample count. */
 static sms_real landing_kappa(const group *G, const sms_real *u, sms_real T1)
 {
-    sms_real au = REAL_MAX, ju = REAL_MAX, kv = 0, kh, b;
+    sms_real au = REAL_MAX, ju = REAL_MAX, kv = 0, kh, b, rho, W[SMS_MULTI_MAX_AXES];
     size_t i;
     int any = 0;
     for (i = 0; i < G->n; ++i) {
         sms_real d = u[i] < 0 ? -u[i] : u[i];
         if (d > 0) {
-            sms_real a = ratio(G->amax[i], d), j = ratio(G->jmax[i], d), k = d / G->vmax[i];
+            sms_real k = d / G->vmax[i];
             any = 1;
-            if (a < au)
-                au = a;
-            if (j < ju)
-                ju = j;
             if (k > kv)
                 kv = k;
         }
     }
     if (!any)
         return T1 / 2;
+    for (i = 0; i < G->n; ++i)
+        W[i] = u[i] / kv;
+    if (kv >= T1 / 2 + transition_time(G, W, &rho) / 2)
+        return kv;
+    for (i = 0; i < G->n; ++i) {
+        sms_real d = u[i] < 0 ? -u[i] : u[i];
+        if (d > 0) {
+            sms_real a = ratio(G->amax[i], d), j = ratio(G->jmax[i], d);
+            if (a < au)
+                au = a;
+            if (j < ju)
+                ju = j;
+        }
+    }
     /* the stop's unit limits are kappa au, kappa ju; acceleration-limited regime first */
     b = (T1 + au / ju) / 2;
     kh = (b + sms_plan_sqrt(b * b + 2 / au)) / 2;

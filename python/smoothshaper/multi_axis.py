@@ -233,9 +233,11 @@ class MultiAxisGenerator(_state_identity.SavedState):
         ndarray of float64, shape (n, axes, 4)
             q, v, a, j of each axis at each sample.
 
-            A target vector whose move cannot be represented (more than 2^52 samples, or a
-            value that overflows) is dropped: the axes (of its group) keep their goals and it
-            is not tried again until it changes (:attr:`refused`, :attr:`dropped`).
+            A target vector whose move cannot be represented (a displacement that is not
+            finite, more than 2^52 samples, or a duration in seconds that overflows the
+            precision) is dropped: the axes (of its group) keep their goals and it is not
+            tried again until it changes (:attr:`refused`, :attr:`dropped`). Nothing else
+            drops a move within feasible limits, however long (docs/multi-axis.md).
 
         Raises
         ------

@@ -510,6 +510,37 @@ static void unrepresentable_move_dropped(void)
     CHECK(g.dropped == 0 && g.move[0].refused == 0);
 }
 
+/* A move far beyond the distance to reach vmax whose unit limit jmax/|d| underflows to 0 but
+ * which lasts about 1e10 (double) or 2e8 (float) samples: planned, at vmax after the first
+ * transition, in both sync modes (it was dropped while the landing formed the unit limits
+ * before trying the cruise bound). */
+static void long_move_planned(void)
+{
+#ifdef SMS_USE_FLOAT
+    const double jmax = 1e-7, Ts = 1e30, far = 2e38;
+#else
+    const double jmax = 1e-190, Ts = 1e130, far = 1e140;
+#endif
+    sms_multi_generator_config c = random_config(2, SMS_SYNC_PHASE);
+    sms_multi_generator g;
+    sms_real t[2], o[8];
+    int sync;
+    for (sync = 0; sync < 2; ++sync) {
+        c.sync = sync ? SMS_SYNC_INDEPENDENT : SMS_SYNC_PHASE;
+        c.vmax[0] = 1.0;
+        c.vmax[1] = 2.0;
+        c.amax[0] = c.amax[1] = 1.0;
+        c.jmax[0] = c.jmax[1] = jmax;
+        CHECK_STATUS(sms_multi_generator_init(&g, &c, Ts, NULL, 0, NULL, 0, NULL), SMS_OK);
+        t[0] = (sms_real)far;
+        t[1] = (sms_real)-far;
+        sms_multi_generator_step(&g, t, o);
+        sms_multi_generator_step(&g, t, o);
+        CHECK(g.dropped == 0 && g.move[0].refused == 0 && sms_multi_generator_busy(&g));
+        CHECK(o[1] == 1 && o[5] == (sync ? -2 : -1)); /* cruising at vmax (phase: axis 0's) */
+    }
+}
+
 /* The largest and smallest normal numbers and the epsilon of sms_real (the test's own copy of
  * the documented region, trajectory.h sms_generator_reach()). */
 #ifdef SMS_USE_FLOAT
@@ -852,6 +883,7 @@ int main(void)
     state_round_trip();
     stages_filter_every_signal();
     unrepresentable_move_dropped();
+    long_move_planned();
     feasible_limits();
     feasible_random();
     own_states_reload();

@@ -1,19 +1,23 @@
-"""The multi-axis generator's feasible limits: the C core (sms_multi_generator_reach) and the
+"""The multi-axis generator's feasible limits and its drop rule. Limits: the C core (sms_multi_generator_reach) and the
 independent NumPy reference (smoothshaper.reference.multi_axis.reach, derived from the
 planner's arithmetic) accept the same limit sets and name the same axis and quantity when
 they refuse, over the whole range of the type, in double and float, and at the bounds to
 the neighbouring double; MultiAxisGenerator and multi_axis_reference then name the same
-argument."""
+argument. Dropped targets: exactly the moves that cannot be represented (more than 2^52
+samples, or a duration that overflows the precision), however far beyond the distance to
+reach vmax they go."""
 import math
+import warnings
 from collections import Counter
 
 import numpy as np
 import pytest
 
-from smoothshaper.errors import ParameterError
+from smoothshaper.errors import DroppedTargetWarning, ParameterError
 from smoothshaper.filters import _backend
 from smoothshaper.multi_axis import MultiAxisGenerator
 from smoothshaper.reference.multi_axis import multi_axis_reference, reach
+from smoothshaper.time_optimal import reach as single_reach
 
 #: Every quantity the region can name (the single-axis region's, then the planner's own);
 #: "the duration to reach vmax" (T >= MIN) needs limits that the others refuse first.
@@ -173,3 +177,79 @@ def test_the_documented_example():
         multi_axis_reference(np.zeros((3, 2)), **kw)
     assert e.value.parameter == "jmax[1]"
     assert reach(vmax=[1.0, 2.0], amax=10.0, jmax=100.0, Ts=1e-3)["quantity"] is None
+
+
+# ---------------------------------------------------------------- the drop rule
+
+def run(x, precision="double", **kw):
+    g = MultiAxisGenerator(precision=precision, **kw)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DroppedTargetWarning)
+        return g.process(x), g
+
+
+@pytest.mark.parametrize("sync", ["phase", "independent"])
+def test_a_long_move_whose_unit_limits_underflow_is_planned(sync):
+    """jmax/|d| = 1e-330 underflows to 0, but the move lasts 1e10 samples of Ts: planned (it
+    was dropped while the landing formed the unit limits before deciding that the cruise
+    reaches vmax), in C and in the reference alike."""
+    kw = dict(vmax=[1.0, 2.0], amax=[1.0, 1.0], jmax=[1e-190, 1e-190], Ts=1e130, sync=sync)
+    x = np.tile([1e140, -1e140], (3, 1))
+    y, g = run(x, **kw)
+    assert g.dropped == 0 and g.busy
+    assert y[1, 0, 1] == 1.0 and y[1, 1, 1] == (-1.0 if sync == "phase" else -2.0)
+    np.testing.assert_array_equal(y, multi_axis_reference(x, **kw))
+
+
+@pytest.mark.parametrize("precision", ["double", "float"])
+@pytest.mark.parametrize("factor, dropped", [(0.99, False), (1.01, True)])
+def test_the_2_52_sample_boundary(precision, factor, dropped):
+    """A move whose cruise alone lasts 0.99 or 1.01 times 2^52 samples: planned below,
+    dropped above; the reference (double) alike."""
+    kw = dict(vmax=[1.0, 2.0], amax=[10.0, 10.0], jmax=[100.0, 100.0], Ts=1e-3)
+    x = np.tile([factor * 2.0 ** 52 * 1e-3, 0.0], (4, 1))
+    y, g = run(x, precision, **kw)
+    assert g.dropped == int(dropped) and (y[-1, 0, 1] > 0) != dropped
+    if precision == "double":
+        np.testing.assert_array_equal(y, multi_axis_reference(x, **kw))
+
+
+@pytest.mark.parametrize("precision", ["double", "float"])
+def test_only_unrepresentable_moves_are_dropped(precision):
+    """Random feasible limit sets (over the whole range of the type) and rest-to-rest moves
+    of h 2^k on every axis (h the axis's distance to reach vmax), k = 0 to as far as the
+    displacement stays finite: a move is dropped exactly when it cannot be represented, i.e.
+    when its cruise alone lasts more than 2^52 samples or its duration in seconds overflows
+    the precision; every shorter move is planned, however far beyond h it goes."""
+    rng = np.random.default_rng(5 + (precision == "float"))
+    big = float(np.finfo(np.float32 if precision == "float" else np.float64).max)
+    sets = planned = refused = 0
+    while sets < 60:
+        n = int(rng.integers(1, 4))
+        span = 300 if precision == "double" else 36
+        lim, Ts = 10.0 ** rng.uniform(-span, span, (3, n)), 10.0 ** rng.uniform(-span, span)
+        if reach(lim[0], lim[1], lim[2], Ts, precision)["quantity"] is not None:
+            continue
+        sets += 1
+        kw = dict(vmax=lim[0], amax=lim[1], jmax=lim[2], Ts=Ts,
+                  sync=["phase", "independent"][sets % 2])
+        one = [single_reach(*lim[:, i], Ts, "ramp", precision) for i in range(n)]
+        h = np.array([r["distance"] for r in one])
+        reach_time = max(r["duration"] for r in one)
+        sign = rng.choice([-1.0, 1.0], n)
+        for k in range(0, 1024, 3):
+            with np.errstate(over="ignore"):
+                d = h * math.ldexp(1.0, k) * sign
+            if not np.all(np.abs(d) <= big):
+                break
+            cruise = float(np.max(np.abs(d) / lim[0]))      # seconds: a lower bound
+            if cruise / Ts > 2.0 ** 55:   # the last step lands in (2^52, 2^55]
+                break
+            _, g = run(np.tile(d, (2, 1)), precision, **kw)
+            if g.dropped:
+                refused += 1
+                assert cruise / Ts > 2.0 ** 52 or cruise > big, (kw, k)
+            else:
+                planned += 1
+                assert (cruise + 2 * reach_time) / Ts <= 2.0 ** 52 * (1 + 1e-6), (kw, k)
+    assert planned > 1000 and refused >= 30

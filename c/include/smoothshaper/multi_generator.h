@@ -241,11 +241,15 @@ SMS_API void sms_multi_generator_reset(sms_multi_generator *g, const sms_real *p
  * @brief Advance one sample with the current target vector (n_axes values; a non-finite
  * component keeps that axis's previous target) and write out[4 i + m] = q, q', q'', q''' of
  * axis i at this instant (after the axis's stages, if any). A target vector whose move cannot
- * be represented in ::sms_real (a displacement, duration or velocity that overflows or
- * underflows to 0, or more than 2^52 samples, e.g. |d| = 1e300 with vmax = 1) is
- * dropped: the axes (of the group) keep their previous goal, so every output stays finite,
- * and it is not tried again until the target vector changes (one attempt, not one per sample).
- * The group's `move[].refused` is 1 while its held target is dropped, and `dropped` counts
+ * be represented in ::sms_real is dropped: a displacement B - p that is not finite, a move
+ * that lasts more than 2^52 samples (e.g. |d| = 1e300 with vmax = 1) or whose duration in
+ * seconds overflows ::sms_real (float: |d_i|/vmax_i above FLT_MAX). Within feasible limits
+ * (sms_multi_generator_reach()) nothing else drops a move, however far beyond the distance
+ * to reach vmax it goes: a move whose cruise reaches vmax is landed on kappa = max_i
+ * |u_i|/vmax_i without forming the unit limits amax_i/|u_i|, jmax_i/|u_i|, which underflow
+ * for long moves. A dropped target leaves the axes (of the group) at their previous goal, so
+ * every output stays finite, and it is not tried again until the target vector changes (one
+ * attempt, not one per sample). The group's `move[].refused` is 1 while its held target is dropped, and `dropped` counts
  * the drops.
  */
 SMS_API void sms_multi_generator_step(sms_multi_generator *g, const sms_real *target,

@@ -318,14 +318,21 @@ def _phase_duration(delta, vmax, amax, jmax) -> float:
 
 
 def _kappa(u, T1, vmax, amax, jmax) -> float:
-    """Smallest kappa = T1/2 + tau + T2/2 with tau >= 0 and |u/kappa| <= vmax."""
+    """Smallest kappa = T1/2 + tau + T2/2 with tau >= 0 and |u/kappa| <= vmax: kv =
+    max |u_i|/vmax_i when the cruise at u/kv leaves room for its stop (the right side
+    T1/2 + T(u/kappa)/2 decreases with kappa), else the closed form of tau = 0."""
     d = np.abs(u)
     nz = d > 0
     if not nz.any():
         return T1 / 2
+    kv = np.max(d[nz] / vmax[nz])
+    # kv when the cruise at u/kv leaves room for the stop (tau >= 0: the move reaches a
+    # vmax); decided before the unit limits limit/|u|, which underflow for long moves
+    if kv >= T1 / 2 + _transition(u / kv, vmax, amax, jmax)[0] / 2:
+        return kv
+    kv = float(kv)
     au = _ratio(amax[nz], d[nz])
     ju = _ratio(jmax[nz], d[nz])
-    kv = float(np.max(d[nz] / vmax[nz]))
     b = (T1 + au / ju) / 2
     kh = (b + _newton_sqrt(b * b + 2.0 / au)) / 2
     if kh > ju / (au * au):
@@ -389,8 +396,10 @@ _MAX_MOVE_SAMPLES = 2.0 ** 52       # longer moves are refused (exact sample cou
 
 def _plan(p, V, B, off, Ts, lim):
     """A move from (p, V, a = 0) to B; its first sample at move time ``off``. None: at rest;
-    _REFUSED: a displacement, duration or velocity is not finite, or the move is longer than
-    2^52 samples (the target is then dropped)."""
+    _REFUSED: the displacement or the duration is not finite, or the move is longer than
+    2^52 samples (the target is then dropped). Within feasible limits (:func:`reach`) nothing
+    else refuses a move: the landing (:func:`_kappa`) decides on the cruise bound before it
+    forms the displacement's unit limits, which underflow for long moves."""
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
         return _plan_unchecked(p, V, B, off, Ts, lim)
 
