@@ -39,7 +39,7 @@ typedef struct object_kind {
     void (*get)(const void *g, double *dst);
     sms_status (*check)(const void *g, const double *src, size_t n);
     sms_status (*set)(void *g, const double *src, size_t n);
-    memory_region b_memory[3];
+    memory_region b_memory[3]; /* the unused ones at NULL */
 } object_kind;
 
 /* The state functions of sms_<name> (instances of type) behind void pointers. */
@@ -75,7 +75,7 @@ static void across(const object_kind *o, const void *a, double Ts_a, const void 
     n = o->count(o->a);
     CHECK(n <= REALS && n > o->identity_count);
     o->get(o->a, state);
-    for (i = 0; i < 3; ++i) {
+    for (i = 0; i < 3 && o->b_memory[i].at != NULL; ++i) {
         CHECK(o->b_memory[i].size <= sizeof before[i]);
         if (o->b_memory[i].size <= sizeof before[i])
             memcpy(before[i], o->b_memory[i].at, o->b_memory[i].size);
@@ -83,7 +83,7 @@ static void across(const object_kind *o, const void *a, double Ts_a, const void 
     CHECK_STATUS(o->check(o->b, state, n), want);
     CHECK_STATUS(o->set(o->b, state, n), want);
     if (want != SMS_OK) {
-        for (i = 0; i < 3; ++i)
+        for (i = 0; i < 3 && o->b_memory[i].at != NULL; ++i)
             CHECK(memcmp(before[i], o->b_memory[i].at, o->b_memory[i].size) == 0);
         return;
     }
