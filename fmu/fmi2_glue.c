@@ -18,9 +18,8 @@
  * filters the input value set before the call (the input is held over the step). The outputs
  * after the call are those of the last tick computed; a step that contains no tick leaves the
  * outputs unchanged. Before the first tick the outputs are the rest point: the input value at
- * fmi2ExitInitializationMode. Once the held input has been absorbed (outputs unchanged for
- * several chain lengths of ticks, see run_ticks) the remaining ticks of a step are skipped: a
- * step of any length costs at most a few chain lengths of ticks.
+ * fmi2ExitInitializationMode. A step of many ticks costs a bounded time: the model holds the
+ * input over them in closed form where it can (fmu_model_hold()), see run_ticks.
  *
  * Identity: every entry point first checks that the instance (and any FMU state) was made by
  * this binary (same model, same precision); another model's instance gets fmi2Error and is
@@ -251,6 +250,15 @@ int fmu_refuse_size(char *msg, size_t len, const char *parameters, double need, 
              "than the limit of %lu reals (%lu MiB) per instance that keeps every call on the "
              "state well under 100 ms: %s", parameters, need, need * 8.0 / 1048576.0,
              (unsigned long)FMU_MAX_REALS, (unsigned long)(FMU_MAX_REALS * 8u >> 20), fix);
+    return 1;
+}
+
+int fmu_refuse_hold(char *msg, size_t len, const char *parameters, double need,
+                    const char *slowest, const char *fix)
+{
+    snprintf(msg, len, "%s: absorbing a held input needs %.4g stage-samples of filtering (%s), "
+             "more than the limit of %.0f that keeps a fmi2DoStep of any length well under "
+             "100 ms: %s", parameters, need, slowest, FMU_MAX_HOLD_SAMPLES, fix);
     return 1;
 }
 
@@ -665,7 +673,9 @@ fmi2Status fmi2GetRealOutputDerivatives(fmi2Component comp, const fmi2ValueRefer
     return FAIL(c, "fmi2GetRealOutputDerivatives: not provided (maxOutputDerivativeOrder=0)");
 }
 
-/* Run n ticks with the held input. Once the outputs have not changed for
+/* Run n ticks with the held input: first the model's own hold (fmu_model_hold(): closed forms
+ * under a constant input, bit for bit the ticks), then one tick after another for what it
+ * leaves. For those, once the outputs have not changed for
  * FMU_STEADY_TICKS(state count) ticks in a row under the same input, the held input is absorbed:
  * every delay line and restart cycle of the filters has been filled with it (their lengths are
  * bounded by the state count) and the state repeats with outputs that no longer change, so the
@@ -673,7 +683,10 @@ fmi2Status fmi2GetRealOutputDerivatives(fmi2Component comp, const fmi2ValueRefer
 static void run_ticks(fmu_instance *c, uint64_t n)
 {
     uint64_t i, limit = 0;   /* computed once the outputs have held for 16 ticks */
-    for (i = 0; i < n; ++i) {
+    i = fmu_model_hold(c->model, n);
+    if (i > 0)
+        c->clock.steady = 0;
+    for (; i < n; ++i) {
         if (c->clock.steady >= 16) {
             if (limit == 0)
                 limit = FMU_STEADY_TICKS(fmu_model_state_count(c->model));

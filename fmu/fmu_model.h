@@ -16,6 +16,7 @@
 #define FMU_MODEL_H
 
 #include <stddef.h>
+#include <stdint.h>
 #include "fmi2Functions.h"
 
 /** What a value reference of a given base type is. */
@@ -38,6 +39,27 @@ typedef enum fmu_type { FMU_REAL = 0, FMU_INTEGER = 1 } fmu_type;
  * it fmu_model_plan() refuses at once (closed forms, O(1)) through fmu_refuse_size(). The Python
  * package has its own, larger limit for arrays it holds (smoothshaper.filters.MAX_BUFFER_REALS). */
 #define FMU_MAX_REALS ((size_t)1 << 22)
+
+/** The limit on the filtering a long fmi2DoStep may need, in stage-samples (2^24): a held input
+ * is absorbed by a model's filters in a bounded number of samples, after which closed forms
+ * take over (fmu_model_hold()); until then each filter stage is run, at about 1.5 to 4 ns per
+ * stage-sample (release build, x86-64), so a step of any length costs at most about 25 to
+ * 70 ms. A single stage at FMU_MAX_REALS needs 2^23 + 2 (a smoother absorbs in at most twice
+ * its ring length). Beyond it fmu_model_plan() refuses at once (closed forms, O(1)) through
+ * fmu_refuse_hold(). */
+#define FMU_MAX_HOLD_SAMPLES ((double)(1u << 24))
+
+/**
+ * @brief The refusal of a configuration whose filters would need more than
+ * FMU_MAX_HOLD_SAMPLES stage-samples to absorb a held input (provided by the glue).
+ * @param parameters  the variables that set the slowest stage, with their values
+ * @param need        the stage-samples the configuration needs (sms_chain_hold_cost())
+ * @param slowest     what the slowest stage needs alone, and why ("a notch decaying in ...")
+ * @param fix         what to change
+ * @return 1 (the plan fails), msg holding the message.
+ */
+int fmu_refuse_hold(char *msg, size_t len, const char *parameters, double need,
+                    const char *slowest, const char *fix);
 
 /** Largest message fmu_model_build() or fmu_model_warning() may write (including the
  * terminating 0): room for a MultiAxisGenerator warning naming 8 targets and the limits. */
@@ -100,6 +122,15 @@ int fmu_model_build(void *model, void *mem, size_t bytes, char *msg, size_t len)
 /** @brief One internal tick: filter the held input, update the outputs. Only after build.
  * @return non-zero if an output changed (bitwise), 0 if all kept their values. */
 int fmu_model_tick(void *model);
+/**
+ * @brief fmi2DoStep's n ticks under the held input, at a cost bounded whatever n: the first k of
+ * them computed with the state and outputs of k calls of fmu_model_tick(), bit for bit (closed
+ * forms of the model's filters under a constant input: the model's file says how); the glue
+ * ticks the remaining n - k one by one until the outputs have held (FMU_STEADY_TICKS). Only
+ * after build.
+ * @return k (n when the model holds any step itself).
+ */
+uint64_t fmu_model_hold(void *model, uint64_t n);
 /** @brief After fmi2DoStep's ticks: a warning about something the model did with the inputs
  * (e.g. a target it dropped), once per cause: the glue logs msg as fmi2Warning and the step
  * returns fmi2Warning. Only after build.

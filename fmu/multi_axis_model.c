@@ -456,6 +456,14 @@ int fmu_model_tick(void *model)
     return changed;
 }
 
+/* No closed form yet: the glue ticks the step until the outputs have held (FMU_STEADY_TICKS). */
+uint64_t fmu_model_hold(void *model, uint64_t n)
+{
+    (void)model;
+    (void)n;
+    return 0;
+}
+
 /* A dropped target vector (a move's `refused`), once per target: the axes of every group that
  * dropped a new target in this step (all axes in phase synchronisation, each axis alone when
  * independent, so two axes dropping in one step are both named) with their targets, and the

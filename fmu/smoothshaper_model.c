@@ -253,6 +253,42 @@ double fmu_model_input_max(const void *model)
     return m->built && m->n_active > 0 ? m->input_max : HUGE_VAL;
 }
 
+/* The filtering a long step needs to absorb a new input (sms_chain_hold_cost()) within
+ * FMU_MAX_HOLD_SAMPLES; else 1 with msg naming the stage that takes longest alone. */
+static int hold_too_long(const ss_model *m, const sms_stage_config *configs,
+                         const unsigned *used, size_t n, char *msg, size_t len)
+{
+    double cost, worst = -1.0;
+    size_t i, slowest = 0;
+    char names[256], why[160];
+    const ss_params *p;
+    if (sms_chain_hold_cost(configs, n, m->Ts, &cost) != SMS_OK || cost <= FMU_MAX_HOLD_SAMPLES)
+        return 0;
+    for (i = 0; i < n; ++i) {
+        double alone;
+        (void)sms_chain_hold_cost(&configs[i], 1, m->Ts, &alone);
+        if (alone > worst) {
+            worst = alone;
+            slowest = i;
+        }
+    }
+    p = &m->stage[used[slowest]];
+    if (configs[slowest].kind == SMS_NOTCH_TUSTIN || configs[slowest].kind == SMS_NOTCH_MATCHED) {
+        snprintf(names, sizeof names, "stage[%u].wn = %.17g, stage[%u].notch_pole_zeta = %.17g, "
+                 "Ts = %.17g", used[slowest], p->reals[SS_FIELD_WN], used[slowest],
+                 p->reals[SS_FIELD_NOTCH_POLE_ZETA], m->Ts);
+        snprintf(why, sizeof why, "the notch's transient lasts up to %.4g samples "
+                 "(sms_notch_settle_bound: its slowest pole decays too slowly)", worst);
+        return fmu_refuse_hold(msg, len, names, cost, why, "raise stage[k].wn, its "
+                               "notch_pole_zeta or Ts, or use fewer stages");
+    }
+    snprintf(names, sizeof names, "stage[%u].kind = %d (the longest stage), Ts = %.17g",
+             used[slowest], p->ints[SS_FIELD_KIND], m->Ts);
+    snprintf(why, sizeof why, "each stage is filtered until every stage before it has absorbed "
+             "the input; the longest alone needs %.4g", worst);
+    return fmu_refuse_hold(msg, len, names, cost, why, "shorten the stages or use fewer of them");
+}
+
 /* Validate every parameter: the configs of the used stages, their count, the delay-line
  * reals they need together (within FMU_MAX_REALS) and the memory cells (the core's size
  * queries: closed forms). 0, or non-zero with msg. */
@@ -297,6 +333,8 @@ static int configure(const ss_model *m, sms_stage_config *configs, size_t *n, si
                                ? "shorten the stages (this one is the longest) or raise Ts"
                                : "shorten the stage or raise Ts");
     }
+    if (*n > 0 && hold_too_long(m, configs, used, *n, msg, len))
+        return 1;
     if (*n > 0 && sms_chain_memory_size(configs, *n, m->Ts, need) != SMS_OK)
         return snprintf(msg, len, "the stages do not form a valid chain"), 1;
     return 0;
@@ -357,6 +395,23 @@ int fmu_model_tick(void *model)
         sms_chain_step(&m->chain, &x);
     m->y = (double)x;
     return m->y != before;
+}
+
+/* The chain's closed forms under a constant input (sms_chain_hold()): bit for bit the ticks,
+ * bounded by the chain's hold cost, which configure() keeps within FMU_MAX_HOLD_SAMPLES. */
+uint64_t fmu_model_hold(void *model, uint64_t n)
+{
+    ss_model *m = (ss_model *)model;
+    sms_real y;
+    if (n == 0)
+        return 0;
+    if (m->n_active == 0) {
+        m->y = (double)(sms_real)m->u;
+        return n;
+    }
+    sms_chain_hold(&m->chain, (sms_real)m->u, n, &y);
+    m->y = (double)y;
+    return n;
 }
 
 int fmu_model_warning(void *model, char *msg, size_t len)

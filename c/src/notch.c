@@ -7,6 +7,16 @@
 
 static const double pi = 3.14159265358979323846;
 
+/* Below this |w| the transient counts as over (notch.h): the smallest normal number over the
+ * machine epsilon, so products of normal operands never reach the subnormals first. */
+#ifdef SMS_USE_FLOAT
+#define TINY ((sms_real)(FLT_MIN / FLT_EPSILON))
+#define LOG_RANGE 160.0   /* ln(FLT_MAX / TINY) */
+#else
+#define TINY ((sms_real)(DBL_MIN / DBL_EPSILON))
+#define LOG_RANGE 1382.0  /* ln(DBL_MAX / TINY) */
+#endif
+
 static int is_finite(double v)
 {
     return v - v == 0.0;
@@ -123,8 +133,17 @@ void sms_notch_process(sms_notch *f, const sms_real *in, sms_real *out, size_t n
     size_t i;
     for (i = 0; i < n; ++i) {
         const sms_real v = in[i];
-        const sms_real w = d0 * (v - x1) + d2 * (x2 - x1) - a1 * w1 - a2 * w2;
-        const sms_real y = v + w;
+        sms_real w = d0 * (v - x1) + d2 * (x2 - x1) - a1 * w1 - a2 * w2;
+        sms_real y;
+        /* The transient ends exactly: once w and its previous value are both below TINY, the
+         * recursion state is set to zero (a fixed point under a constant input), so a held
+         * input is absorbed in a bounded number of samples instead of decaying through the
+         * subnormals, where rounding to a fixed quantum can sustain a cycle. */
+        if (w < TINY && w > -TINY && w1 < TINY && w1 > -TINY) {
+            w = 0;
+            w1 = 0;
+        }
+        y = v + w;
         if (y - y != 0) {
             /* Non-finite: a bad input sample is skipped (passed through, state kept); a finite
              * input with a non-finite result (overflow, bad loaded state) restarts at rest
@@ -214,4 +233,28 @@ sms_status sms_notch_pole_zeta_from_bandwidth(double wn, double zeta, double ban
         return SMS_ERR_BANDWIDTH;
     *pole_zeta = xi2;
     return SMS_OK;
+}
+
+double sms_notch_settle_bound(const sms_notch *f)
+{
+    const double a1 = (double)f->a1, a2 = (double)f->a2, disc = a1 * a1 - 4.0 * a2;
+    double decay; /* -ln of the largest pole radius */
+    if (disc < 0.0) {
+        decay = -0.5 * log(a2);
+    } else {
+        const double root = sqrt(disc);
+        const double big = fabs(-a1 + (a1 < 0.0 ? root : -root)) / 2.0;
+        decay = -log(big);
+    }
+    if (!(decay > 0.0))
+        return HUGE_VAL;
+    /* r^n takes LOG_RANGE/decay samples from the largest number to TINY; twice that covers
+     * the factor (n + 1) of two close poles and the rounding of the recursion */
+    return 2.0 * LOG_RANGE / decay + 4.0;
+}
+
+int sms_notch_is_settled(const sms_notch *f, sms_real x)
+{
+    return f->x1 == x && f->x2 == x && f->w1 == 0 && f->w2 == 0 && !signbit(f->w1)
+           && !signbit(f->w2);
 }

@@ -390,6 +390,56 @@ void sms_smoother_process(sms_smoother *f, const sms_real *in, sms_real *out, si
     }
 }
 
+/* The phase of the two copies: the one in use (the elder) has consumed M + s samples,
+ * s in [0, M] (s = 0 only right after a reset; the elder restarts on the next sample when
+ * s = M). */
+static size_t elder_of(const sms_smoother *f)
+{
+    return f->age[0] >= f->age[1] ? 0u : 1u;
+}
+
+uint64_t sms_smoother_settle_length(const sms_smoother *f)
+{
+    const uint64_t M = f->window, s = f->age[elder_of(f)] - f->window;
+    /* the elder restarts on sample M - s + 1, the other M samples later */
+    return 2u * M - s + 2u;
+}
+
+void sms_smoother_advance(sms_smoother *f, uint64_t n)
+{
+    const uint64_t M = f->window;
+    size_t elder = elder_of(f);
+    uint64_t s, restarts;
+    if (n == 0u)
+        return;
+    s = f->age[elder] - f->window;
+    /* a restart on each sample that starts with the elder at 2M (s = M): after n samples
+     * (s + n - 1)/M of them, and the elder has consumed M + s' samples */
+    restarts = (s + n - 1u) / M;
+    s = (s + n - 1u) % M + 1u;
+    if (restarts % 2u == 1u)
+        elder = 1u - elder;
+    f->age[elder] = (size_t)(M + s);
+    f->age[1u - elder] = (size_t)s;
+    f->head = (size_t)((f->head + n % M) % M);
+}
+
+sms_real sms_smoother_settle(sms_smoother *f, sms_real x, uint64_t n)
+{
+    const sms_real v = x - f->rest;   /* what the ring and a restarted reference hold */
+    size_t i;
+    for (i = 0; i < f->window; ++i)
+        f->history[i] = v;
+    for (i = 0; i < 2u; ++i) {
+        f->w_re[i] = f->w_im[i] = (sms_real)0;
+        f->lo_re[i] = f->lo_im[i] = (sms_real)0;
+        f->ref[i] = v;
+    }
+    sms_smoother_advance(f, n - 1u);
+    sms_smoother_step(f, &x);
+    return x;
+}
+
 double sms_smoother_input_max(const sms_smoother *f)
 {
     return f->input_limit < SMS_INPUT_MAX ? f->input_limit : SMS_INPUT_MAX;

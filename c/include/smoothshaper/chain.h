@@ -55,6 +55,37 @@ SMS_API size_t sms_chain_length(const sms_chain *chain);
  * REAL_MAX-over-gain figure of sms_stage_input_max()). O(stages).
  */
 SMS_API double sms_chain_input_max(const sms_chain *chain);
+/**
+ * @brief Filter n samples of the constant input x: the state and the last output (into *y)
+ * are those of n calls of sms_chain_step() with x, bit for bit, at a cost bounded whatever n.
+ *
+ * Each stage absorbs a constant input in a bounded number of samples, after which its values
+ * stop changing and only its phase moves: a smoother once both its restarted copies began
+ * under the input (sms_smoother_settle_length(), at most 2M + 2 samples), a shaper once its
+ * delay line holds only the input (L + 1), a notch once its transient has ended exactly
+ * (sms_notch_is_settled(), about sms_notch_settle_bound() samples). Stage i sees a constant
+ * input once stage i - 1 has absorbed its own. The stages are filtered in blocks until they
+ * have absorbed (from then on only their phase is advanced, in O(1)); stages that are all FIR
+ * and absorb within the remaining samples are put straight into their absorbed state at the
+ * end (sms_smoother_settle(): O(M) writes, no filtering). So the cost is at most the
+ * filtering of each stage i for T_i samples, T_i = B_0 + ... + B_i with B_j the bounds above
+ * (sms_chain_hold_cost() sums them from the configs), plus O(memory); a chain of FIR stages
+ * held longer than T costs only its memory writes (about 1 ns per real), whatever n.
+ * @param n  samples (0: nothing changes, *y untouched)
+ * @param x  finite, |x| <= sms_chain_input_max()
+ */
+SMS_API void sms_chain_hold(sms_chain *chain, sms_real x, uint64_t n, sms_real *y);
+/**
+ * @brief Worst-case filtering work of sms_chain_hold() for a chain of these configs: the sum
+ * over the stages of T_i = B_0 + ... + B_i samples, B_j = 2 M_j + 2 for a smoother (M_j its ring
+ * length), L_j + 1 for a shaper, sms_notch_settle_bound() for a notch (HUGE_VAL when its poles
+ * do not decay). Multiply by the cost of a stage-sample (about 1.5 to 4 ns, x86-64) for a
+ * time. O(stages).
+ * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_ORDER (n = 0 or > ::SMS_CHAIN_MAX_STAGES), or the
+ *         first failing config's status.
+ */
+SMS_API sms_status sms_chain_hold_cost(const sms_stage_config *configs, size_t n, double Ts,
+                                       double *samples);
 SMS_API size_t sms_chain_state_count(const sms_chain *chain);
 SMS_API void sms_chain_get_state(const sms_chain *chain, double *dst);
 /** @brief Restore a state written by sms_chain_get_state() (the stages' states one after the

@@ -23,6 +23,13 @@
  * input exactly after the transient, whatever the rounding of d0, d2, a1, a2 (a direct-form
  * biquad in float would miss unit DC gain by ~4 eps/(wn Ts)^2, e.g. 3e-5 at wn Ts = 0.05).
  *
+ * The transient ends exactly: when w and the previous w are both below TINY in magnitude
+ * (the smallest normal ::sms_real over its machine epsilon: 1.0e-292 in double, 9.9e-32 in
+ * float), both are set to +0. Under a constant input that state is a fixed point (the input
+ * differences are exactly 0), so a held input is absorbed after finitely many samples, about
+ * ln(|w|/TINY) over the decay rate of the slowest pole (sms_notch_settle_bound()), never
+ * cycling in the subnormals; the outputs differ from the plain recursion by less than TINY.
+ *
  * Non-finite input: such a sample is passed to the output unchanged and does not enter the
  * state (the filter continues as if it had not been there). If the output is non-finite while
  * the input is finite (overflow, or a non-finite state loaded by sms_notch_set_state()), the
@@ -66,6 +73,19 @@ SMS_API void sms_notch_reset(sms_notch *f, sms_real rest);
 SMS_API void sms_notch_step(sms_notch *f, sms_real *x);
 /** @brief n samples; in == out allowed. Same result as n calls of step. */
 SMS_API void sms_notch_process(sms_notch *f, const sms_real *in, sms_real *out, size_t n);
+/**
+ * @brief An estimate of the samples of a constant input after which the notch has absorbed it
+ * from any finite state (w = 0 exactly, sms_notch_is_settled()): 2 ln(R)/s + 4, s = -ln rho
+ * the decay rate of the slowest pole rho = max |z_p| of 1 + a1 z^-1 + a2 z^-2 (from the
+ * coefficients in use), R = REAL_MAX/TINY (ln R = 1382 in double, 160 in float); the factor 2
+ * covers the (n + 1) rho^n of two close poles and rounding. E.g. Tustin, xi2 = 0.7,
+ * wn Ts = 0.01: s = 0.007, about 395,000 samples. HUGE_VAL when a pole rounds onto the unit
+ * circle (s <= 0: no decay). For sizing the work of a long hold (sms_chain_hold()); O(1).
+ */
+SMS_API double sms_notch_settle_bound(const sms_notch *f);
+/** @brief 1 when the notch rests at the constant input x: x1 = x2 = x and w1 = w2 = +0, a
+ * fixed point of the recursion (every further sample of x outputs x + 0); else 0. O(1). */
+SMS_API int sms_notch_is_settled(const sms_notch *f, sms_real x);
 /** @brief Doubles in a saved state: ::SMS_STATE_IDENTITY_COUNT + 6 (the configuration identity
  * of config.h, then kind, x1, x2, w1, w2, rest). */
 SMS_API size_t sms_notch_state_count(const sms_notch *f);

@@ -59,6 +59,7 @@
 #ifndef SMOOTHSHAPER_SMOOTHER_H
 #define SMOOTHSHAPER_SMOOTHER_H
 
+#include <stdint.h>
 #include "smoothshaper/config.h"
 
 #ifdef __cplusplus
@@ -167,6 +168,38 @@ SMS_API void sms_smoother_step(sms_smoother *f, sms_real *x);
 /** @brief Filter n samples; in == out (in place) is allowed, other overlaps are not.
  * Equal, bit for bit, to n calls of sms_smoother_step() and to any split into blocks. */
 SMS_API void sms_smoother_process(sms_smoother *f, const sms_real *in, sms_real *out, size_t n);
+
+/**
+ * @brief Samples of a constant input after which this smoother has absorbed it: from the
+ * current phase, the sample on which the second of the two copies restarts (each restarts
+ * every 2M samples, the two M apart; a copy restarted on a constant input x keeps w = lo = 0
+ * and ref = x - rest for ever) plus one, so it lies in [M + 2, 2M + 2] (M the ring length).
+ * After that many samples of x the state is the absorbed one: the ring holds x - rest, both
+ * copies w = lo = 0 and ref = x - rest, and only head and the ages still move (period 2M).
+ * O(1).
+ */
+SMS_API uint64_t sms_smoother_settle_length(const sms_smoother *f);
+
+/**
+ * @brief Filter n samples of the constant input x in O(M) time, with the state and output of
+ * n calls of sms_smoother_step() with x, bit for bit: valid when n >= sms_smoother_settle_length()
+ * (as then the absorbed state above is reached one sample before the end); the last sample is
+ * computed by sms_smoother_step() from the absorbed state, with head and the ages advanced by
+ * n - 1 in closed form (head + n mod M; one copy restarts every M samples).
+ * @param x  finite, |x| <= sms_smoother_input_max()
+ * @param n  samples, >= sms_smoother_settle_length() (fewer: the state is undefined)
+ * @return the output of the last sample.
+ */
+SMS_API sms_real sms_smoother_settle(sms_smoother *f, sms_real x, uint64_t n);
+
+/**
+ * @brief Advance head and the ages by n samples as n samples would, leaving every value (ring,
+ * copies, references) as it is. On an absorbed state (above) this is exactly n samples of
+ * the absorbed input; on any other it is the phase of n samples later with stale values, which
+ * the next sms_smoother_settle_length() samples replace entirely (the generator jumps along a
+ * plan this way, then filters the last samples). O(1).
+ */
+SMS_API void sms_smoother_advance(sms_smoother *f, uint64_t n);
 
 /** @brief Number of doubles of the saved state: ::SMS_STATE_IDENTITY_COUNT + M + 14 (the
  * configuration identity of config.h, then head, two ages, rest, the two copies as four
