@@ -19,6 +19,7 @@ from __future__ import annotations
 import argparse
 import math
 import os
+import re
 import sys
 
 import numpy as np
@@ -238,8 +239,10 @@ def cmd_analyze(args) -> int:
     ratios = np.linspace(args.ratio_min, args.ratio_max, args.points)
     ratios = ratios[ratios * wn_hat < math.pi / args.Ts]       # modes below Nyquist only
     if ratios.size < 2:
-        raise CliError("the swept modes lie above the Nyquist frequency pi/Ts: lower "
-                       "--ratio-max or --Ts")
+        raise CliError(f"--wn={wn_hat:.3g}, --ratio-max={args.ratio_max:.3g}, --Ts={args.Ts:.3g}: "
+                       f"the swept modes (from {args.ratio_min:.3g} to {args.ratio_max:.3g} "
+                       f"times wn) lie above the Nyquist frequency pi/Ts = "
+                       f"{math.pi / args.Ts:.3g} rad/s: lower --wn, --ratio-max or --Ts")
 
     # The cost of every phase from the sizes alone (nothing allocated yet): announce or refuse.
     taps = chain_taps(stages, args.Ts)
@@ -421,19 +424,32 @@ def cmd_identify(args) -> int:
     if bar is None:
         return 0
     bar.phase("read and fit")
+    if args.Ts is not None and not (math.isfinite(args.Ts) and args.Ts > 0):
+        raise CliError(f"--Ts must be finite and > 0, got {args.Ts:.3g}")
     x, Ts = read_record(args.csv, args.column, args.time_column, args.Ts)
     if args.start is not None:
+        duration = x.size * Ts
+        if not (math.isfinite(args.start) and 0 <= args.start < duration):
+            raise CliError(f"--start must be a time within the record [0, {duration:.3g}) s, "
+                           f"got {args.start:.3g}")
         x = x[int(round(args.start / Ts)):]
     # a sweep or noise must not yield a confident mode: the whole record has to be explained
     # by damped oscillations (calibrate.modes.decay_modes); it also gives the uncertainties
     from .calibrate.modes import decay_modes
-    fitted, r2 = decay_modes(x, Ts, path=args.csv, column=args.column or "signal")
+    try:
+        fitted, r2 = decay_modes(x, Ts, path=args.csv, column=args.column or "signal")
+        if args.method == "peaks":
+            t1, p1, t2, p2 = first_two_peaks(x, Ts)
+            mode = identify_from_peaks(t1=t1, p1=p1, t2=t2, p2=p2)
+        else:
+            mode = identify_from_record(x, Ts=Ts)
+    except (CliError, ValueError) as exc:
+        if args.Ts is None:
+            raise
+        # the record's own time scale was overridden: name the option with the failure
+        raise CliError(f"{exc} (with --Ts={args.Ts:.3g})") from None
     if args.method == "peaks":
-        t1, p1, t2, p2 = first_two_peaks(x, Ts)
-        mode = identify_from_peaks(t1=t1, p1=p1, t2=t2, p2=p2)
         print(f"peaks about the final value: ({t1:.6g} s, {p1:.6g}) and ({t2:.6g} s, {p2:.6g})")
-    else:
-        mode = identify_from_record(x, Ts=Ts)
     bar.finish()
     print(f"record: {x.size} samples at Ts = {Ts:.6g} s")
     print(format_table(["wn [rad/s]", "zeta", "wd [rad/s]", "sigma [1/s]", "Td [s]"],
@@ -640,8 +656,89 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _given(argv: list[str]) -> list[tuple[str, str]]:
+    """(option, value) pairs as the user wrote them (--x=v or --x v)."""
+    pairs = []
+    for i, a in enumerate(argv):
+        if a.startswith("--"):
+            name, eq, value = a.partition("=")
+            if not eq and i + 1 < len(argv) and not argv[i + 1].startswith("--"):
+                value = argv[i + 1]
+            pairs.append((name, value))
+    return pairs
+
+
+def _option_for(parameter: str, message: str, argv: list[str]) -> str | None:
+    """The options the user gave that a library ParameterError comes from: those whose values
+    the message shows (``vmax[1]=...`` -> ``--vmax=1,2 (axis 1)``), else the option of
+    ``parameter`` itself (or of the same name with a prefix, ``--shaper-tolerance``); a
+    stage's field (``stages[0]``, ``T``) -> its ``--stage``/``--kind``; None if none."""
+    given = _given(argv)
+    options = {name: value for name, value in given}
+
+    def shown(name, index=""):
+        return f"{name}={options[name]}" + (f" (axis {index})" if index else "")
+    found = []
+    for m in re.finditer(r"(?<![\w\[-])([A-Za-z_]+)(?:\[(\d+)\])? ?=", message):
+        name = "--" + m.group(1).replace("_", "-")
+        if name in options and not any(f.startswith(name + "=") for f in found):
+            found.append(shown(name, m.group(2) or ""))
+    base, _, index = parameter.partition("[")
+    base, index = base.replace("_", "-"), index.rstrip("]")
+    if not found:
+        same = [n for n in options if n == f"--{base}" or n.endswith(f"-{base}")]
+        # of two options for one parameter (--tolerance, --shaper-tolerance): the one whose
+        # value the message quotes
+        quoted = [n for n in same if any(_quotes(message, v) for v in options[n].split(","))]
+        if quoted or same:
+            found.append(shown((quoted or same)[-1], index if index.isdigit() else ""))
+    if not found:
+        spec = next((v for n, v in given if n == "--stage" and f"{base}=" in v), None)
+        if spec is not None:
+            found.append(f"--stage {spec}")
+    stage = re.search(r"stages\[(\d+)\]", message + " " + parameter)
+    if stage and "--h" in options and not any(n in options for n in ("--stage", "--kind")):
+        # the stages of a kinematic design come from its bounds
+        found = [shown(n) for n in ("--h", "--vmax", "--amax", "--jmax") if n in options] + [
+            f for f in found if f.startswith("--Ts=")]
+    specs = [f"{n} {v}" for n, v in given if n in ("--stage", "--kind")]
+    if stage and specs and not any(f.startswith(("--stage", "--kind")) for f in found):
+        i = int(stage.group(1))
+        found.insert(0, specs[i] if i < len(specs) else specs[-1])
+    if not found and base in ("targets", "via") and "--via" in options:
+        found.append("--via")
+    if found and "--Ts" in options and not any(f.startswith("--Ts=") for f in found) and (
+            " Ts=" in message or "T/Ts" in message):
+        found.append(shown("--Ts"))      # a duration in samples: set by the two together
+    return ", ".join(found) or None
+
+
+def _quotes(message: str, text: str) -> bool:
+    """Does the message quote the number the user wrote as ``text`` (in any usual form)?"""
+    try:
+        x = float(text)
+    except ValueError:
+        return False
+    return any(form in message for form in (repr(x), f"{x:g}", f"{x:.6g}", text))
+
+
+def _readable(message: str) -> str:
+    """Numbers with more than 6 significant digits as %.6g (integers of 10 or more digits as
+    %.3g): an error line stays readable whatever the value."""
+    def short(m):
+        text = m.group(0)
+        digits = len(re.sub(r"[^0-9]", "", text.split("e")[0].split("E")[0]).lstrip("0"))
+        if "." not in text and "e" not in text.lower():
+            return f"{float(text):.3g}" if digits >= 10 else text
+        return f"{float(text):.6g}" if digits > 7 else text
+    return re.sub(r"(?<![\w.])\d+(?:\.\d*)?(?:[eE][-+]?\d+)?", short, message)
+
+
 def main(argv: list[str] | None = None) -> int:
-    """Run the CLI; returns the exit code (errors: one line on stderr, no traceback)."""
+    """Run the CLI; returns the exit code (errors: one line on stderr, no traceback). A
+    library ParameterError is prefixed with the option the user gave for it (``--jmax=...``)
+    and every number in an error is printed readably (at most 7 significant digits)."""
+    argv = sys.argv[1:] if argv is None else list(argv)
     try:
         args = build_parser().parse_args(argv)
         return args.func(args)
@@ -659,13 +756,20 @@ def main(argv: list[str] | None = None) -> int:
         code, message = EXIT_UNAVAILABLE, (
             f"this command needs the Python package {exc.name.split('.')[0]!r}: "
             f"pip install 'smoothshaper[{extra}]'")
+    except ParameterError as exc:
+        if os.environ.get("SMOOTHSHAPER_DEBUG"):
+            raise
+        code, message = EXIT_ERROR, str(exc)
+        option = _option_for(exc.parameter, message, argv)
+        if option is not None and not message.startswith(option):
+            message = f"{option}: {message}"
     except (ValueError, OSError, RuntimeError, ImportError) as exc:
         if os.environ.get("SMOOTHSHAPER_DEBUG"):
             raise
         code, message = EXIT_ERROR, str(exc)
     except KeyboardInterrupt:
         code, message = 130, "interrupted"
-    message = " ".join(message.split())
+    message = _readable(" ".join(message.split()))
     if not message.startswith("smoothshaper"):
         message = f"smoothshaper: error: {message}"
     sys.stderr.write(message + "\n")

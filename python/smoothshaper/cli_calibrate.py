@@ -12,9 +12,11 @@ shaper; ``--json`` writes everything (docs/calibrate.md).
 from __future__ import annotations
 
 import json
+import math
 import os
 import time
 
+from .cli_common import CliError
 from .cli_cost import add_options as add_cost_options
 
 __all__ = ["add_parser", "cmd_calibrate"]
@@ -55,10 +57,44 @@ def add_parser(sub) -> None:
     p.set_defaults(func=cmd_calibrate)
 
 
+#: The reference rest-to-rest move is sampled at Ts: at most this many samples.
+MAX_REFERENCE_SAMPLES = 1 << 24
+
+
+def _check_options(args) -> None:
+    """Every number of the reference move and the limits, in O(1); CliError naming the
+    option (numbers as %.3g)."""
+    positive = [("--Ts", args.Ts), ("--accel", args.accel),
+                ("--corner-velocity", args.corner_velocity), ("--distance", args.distance),
+                ("--max-delay", args.max_delay), ("--max-smoothing", args.max_smoothing)]
+    for option, value in positive:
+        if value is not None and not (math.isfinite(value) and value > 0):
+            raise CliError(f"{option} must be finite and > 0, got {value:.3g}")
+    if not (math.isfinite(args.spread) and 0 <= args.spread < 1):
+        raise CliError(f"--spread must be a fraction in [0, 1), got {args.spread:.3g}")
+    if args.band is not None:
+        fmin, fmax = args.band
+        if not (math.isfinite(fmin) and math.isfinite(fmax) and 0 < fmin < fmax):
+            raise CliError(f"--band must be two frequencies 0 < FMIN < FMAX [Hz], got "
+                           f"{fmin:.3g} {fmax:.3g}")
+        if not fmax < 0.5 / args.Ts:
+            raise CliError(f"--band={fmin:.3g},{fmax:.3g}, --Ts={args.Ts:.3g}: FMAX lies at or "
+                           f"above the Nyquist frequency 1/(2 Ts) = {0.5 / args.Ts:.3g} Hz")
+    # the reference move: 2 sqrt(distance/accel) long, sampled at Ts
+    move = 2 * math.sqrt(args.distance / args.accel)
+    if not move / args.Ts <= MAX_REFERENCE_SAMPLES:
+        option = (f"--Ts={args.Ts:.3g}" if move / 1e-4 <= MAX_REFERENCE_SAMPLES else
+                  f"--distance={args.distance:.3g}, --accel={args.accel:.3g}")
+        raise CliError(f"{option}: the reference move lasts {move:.3g} s = {move / args.Ts:.3g} "
+                       f"samples of Ts, more than {MAX_REFERENCE_SAMPLES:.3g}; shorten "
+                       "--distance, raise --accel or use a larger --Ts")
+
+
 def cmd_calibrate(args) -> int:
     from . import calibrate
     from .calibrate import outputs
     from .cli_cost import record_cost, start as start_request
+    _check_options(args)
     nbytes = sum(os.path.getsize(f) for f in args.files if os.path.isfile(f))
     # columns to tune: one with --axis x/y/z, up to three per file with --axis all
     axes = len(args.files) * (3 if args.axis == "all" else 1)
@@ -76,10 +112,16 @@ def cmd_calibrate(args) -> int:
     ref = calibrate.Reference(Ts=args.Ts, accel=args.accel,
                               corner_velocity=args.corner_velocity, distance=args.distance)
     start = time.process_time()
-    cal = calibrate.run(args.files, kind=args.kind, axis=args.axis,
-                        band=tuple(args.band) if args.band else None, reference=ref,
-                        max_delay=args.max_delay, max_smoothing=args.max_smoothing,
-                        spread=args.spread, progress=progress)
+    try:
+        cal = calibrate.run(args.files, kind=args.kind, axis=args.axis,
+                            band=tuple(args.band) if args.band else None, reference=ref,
+                            max_delay=args.max_delay, max_smoothing=args.max_smoothing,
+                            spread=args.spread, progress=progress)
+    except (MemoryError, ValueError) as exc:
+        if isinstance(exc, ValueError) and "Maximum allowed size" not in str(exc):
+            raise            # numpy's refusal of an array too large to index
+        raise CliError(f"--Ts={args.Ts:.3g}: the filters' impulse responses at this sample "
+                       "period do not fit in memory; use a larger --Ts") from None
     bar.finish()
     elapsed = time.process_time() - start
     print(outputs.report_text(cal), end="")

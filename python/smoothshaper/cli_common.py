@@ -10,7 +10,7 @@ import sys
 import numpy as np
 
 __all__ = ["EXIT_ERROR", "EXIT_USAGE", "EXIT_UNAVAILABLE", "CliError", "Parser", "format_table",
-           "Progress", "pyplot", "numbers", "parse_via_list", "parse_via_points", "write_csv",
+           "run_samples", "Progress", "pyplot", "numbers", "parse_via_list", "parse_via_points", "write_csv",
            "save_figure", "decimate"]
 
 EXIT_ERROR = 1
@@ -137,6 +137,26 @@ def numbers(option: str, text: str) -> list[float]:
     if bad:
         raise CliError(f"{option} must be finite, got {bad[0]!r}")
     return values
+
+
+def run_samples(terms, Ts: float, limit: int, extra: int = 0) -> int:
+    """Samples a run needs (an upper bound), or CliError naming the option that makes it long.
+
+    ``terms`` are (option, seconds, advice) triples whose sum bounds the run's duration: a
+    via-point's move (``"--via point 2 (1e+300)"``), the holds, the limits' rise times. When
+    the whole run would fit ``limit`` samples at Ts = 1 ms, the sample period is what is
+    extreme and ``--Ts`` is named; else the largest term. O(len(terms)), numbers as %.3g.
+    """
+    total = math.fsum(t[1] for t in terms)
+    samples = total / Ts + extra
+    if samples <= limit:
+        return int(math.ceil(samples))
+    if total / 1e-3 <= limit:
+        option, advice = f"--Ts={Ts:.3g}", "use a larger --Ts"
+    else:
+        option, _, advice = max(terms, key=lambda t: t[1])
+    raise CliError(f"{option}: the run would take about {total:.3g} s = {samples:.3g} samples "
+                   f"of Ts = {Ts:.3g} s, more than the {limit:.3g} a run may hold; {advice}")
 
 
 def parse_via_list(text: str) -> np.ndarray:

@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 
-from .cli_common import EXIT_ERROR, CliError, decimate, format_table
+from .cli_common import EXIT_ERROR, CliError, decimate, format_table, run_samples
 from .cli_common import numbers as _numbers
 from .cli_cost import PLOT_POINTS, start, trajectory_cost
 from .cli_common import parse_via_points, pyplot as _pyplot, save_figure as _save
@@ -111,17 +111,28 @@ def cmd_multi_generator(args) -> int:
     sync = getattr(args, "sync", None) or "phase"
     gen = MultiAxisGenerator(vmax=v, amax=a, jmax=j, Ts=args.Ts, sync=sync, q0=via[0])
     Ts = gen.Ts
+    optimum = [phase_duration(q1 - q0, vmax=v, amax=a, jmax=j) for q0, q1 in zip(via[:-1], via[1:])]
+    # each move within 3 times its optimum: the cruise part charged to its via-point, the rest
+    # (the axes' rise times) to the limit that makes it long, so a refusal names the option
+    cruise = [float(np.max(np.abs(q1 - q0) / v)) for q0, q1 in zip(via[:-1], via[1:])]
+    rise = math.fsum(3 * max(t - c, 0.0) for t, c in zip(optimum, cruise))
+    by_amax, by_jmax = v / a, a / j        # each axis's rise: vmax/amax + amax/jmax
+    slow, k = (("--amax", int(np.argmax(by_amax))) if np.max(by_amax) >= np.max(by_jmax)
+               else ("--jmax", int(np.argmax(by_jmax))))
+    terms = [("--via point {} ({})".format(i + 1, ",".join(f"{x:.3g}" for x in q)), 3 * c,
+              "bring it closer or raise --vmax") for i, (q, c) in enumerate(zip(via[1:], cruise))]
+    pair = ((f"--vmax={v[k]:.3g}, --amax={a[k]:.3g}", "raise --amax or lower --vmax")
+            if slow == "--amax" else
+            (f"--amax={a[k]:.3g}, --jmax={j[k]:.3g}", "raise --jmax or lower --amax"))
+    terms.append((f"{pair[0]} (axis {AXIS_NAMES[k]})", rise, pair[1]))
     hold_samples = None
     if args.hold is not None:
         if not (math.isfinite(args.hold) and args.hold >= Ts):
-            raise CliError(f"--hold must be a time >= Ts = {Ts:g} s, got {args.hold!r}")
+            raise CliError(f"--hold must be a time >= Ts = {Ts:.3g} s, got {args.hold:.3g}")
+        terms.append((f"--hold={args.hold:.3g}", args.hold * len(optimum), "shorten --hold"))
+    max_samples = run_samples(terms, Ts, MAX_SAMPLES, extra=10 * (len(optimum) + 1) + 4096)
+    if args.hold is not None:
         hold_samples = int(round(args.hold / Ts))
-    optimum = [phase_duration(q1 - q0, vmax=v, amax=a, jmax=j) for q0, q1 in zip(via[:-1], via[1:])]
-    estimate = sum(optimum) * 3 + (hold_samples or 0) * Ts * len(optimum)
-    max_samples = int(math.ceil(estimate / Ts)) + 10 * (len(optimum) + 1) + 4096
-    if max_samples > MAX_SAMPLES:
-        raise CliError(f"--Ts: about {max_samples} samples would be needed (more than "
-                       f"{MAX_SAMPLES}); use a larger sample period")
     cost = trajectory_cost("generator", samples=max_samples, axes=axes, csv=bool(args.csv),
                            plot=bool(args.plot))
     bar = start(cost, args, f"at most {max_samples} samples on {axes} axes")

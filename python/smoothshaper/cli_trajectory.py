@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 
-from .cli_common import EXIT_ERROR, CliError, decimate, format_table
+from .cli_common import EXIT_ERROR, CliError, decimate, format_table, run_samples
 from .cli_common import numbers as _numbers, parse_via_list, parse_via_points
 from .cli_common import pyplot as _pyplot, save_figure as _save, write_csv as _write_csv
 from .cli_cost import PLOT_POINTS, add_options as add_cost_options, start, trajectory_cost
@@ -114,10 +114,13 @@ def segment_rows(out, starts, arrivals, via, Ts, limits):
     return rows
 
 
-def _limit(text: str):
-    """--vmax/--amax/--jmax: one number, or one per axis ('1,2,3') for multi-axis via-points."""
-    values = _numbers("limit", text)
-    return values[0] if len(values) == 1 else text
+def _limit(option: str):
+    """The argument type of --vmax/--amax/--jmax: one number, or one per axis ('1,2,3') for
+    multi-axis via-points; errors name ``option``."""
+    def parse(text: str):
+        values = _numbers(option, text)
+        return values[0] if len(values) == 1 else text
+    return parse
 
 
 def cmd_generator(args) -> int:
@@ -132,18 +135,24 @@ def cmd_generator(args) -> int:
     scale = max(float(np.max(np.abs(via))), gen.vmax * gen.Ts)
     limits = (gen.vmax, gen.amax, gen.jmax)
     # A move of D takes at most D/vmax + Tc: the velocity rise (vmax/amax + amax/jmax, times
-    # pi/2 for the half-cosine transitions) and the stage tuned to a mode.
-    Tc = gen.vmax / gen.amax + math.pi / 2 * gen.amax / gen.jmax + gen.stage_duration
-    estimate = sum(abs(b - a) / gen.vmax + 3 * Tc for a, b in zip(via[:-1], via[1:]))
+    # pi/2 for the half-cosine transitions) and the stage tuned to a mode; each term is
+    # charged to the option it comes from, so a refusal names the one that makes the run long.
+    moves = via.size - 1
+    terms = [(f"--via point {i + 1} ({b:.3g})", abs(b - a) / gen.vmax,
+              "bring it closer or raise --vmax") for i, (a, b) in enumerate(zip(via[:-1], via[1:]))]
+    terms += [(f"--vmax={gen.vmax:.3g}, --amax={gen.amax:.3g}", 3 * moves * gen.vmax / gen.amax,
+               "raise --amax or lower --vmax"),
+              (f"--amax={gen.amax:.3g}, --jmax={gen.jmax:.3g}",
+               3 * moves * math.pi / 2 * gen.amax / gen.jmax, "raise --jmax or lower --amax"),
+              (f"--wn={gen.wn or 0:.3g}", 3 * moves * gen.stage_duration, "raise --wn")]
+    hold_samples = None
     if args.hold is not None:
         if not (math.isfinite(args.hold) and args.hold >= gen.Ts):
-            raise CliError(f"--hold must be a time >= Ts = {gen.Ts:g} s, got {args.hold!r}")
+            raise CliError(f"--hold must be a time >= Ts = {gen.Ts:.3g} s, got {args.hold:.3g}")
+        terms.append((f"--hold={args.hold:.3g}", (via.size - 2) * args.hold, "shorten --hold"))
+    max_samples = run_samples(terms, gen.Ts, MAX_SAMPLES, extra=10 * (via.size + 1))
+    if args.hold is not None:
         hold_samples = int(round(args.hold / gen.Ts))
-        estimate += (via.size - 2) * hold_samples * gen.Ts
-    max_samples = int(math.ceil(estimate / gen.Ts)) + 10 * (via.size + 1)
-    if max_samples > MAX_SAMPLES:
-        raise CliError(f"--Ts: about {max_samples} samples would be needed (more than "
-                       f"{MAX_SAMPLES}); use a larger sample period")
     cost = trajectory_cost("generator", samples=max_samples, axes=1, csv=bool(args.csv),
                            plot=bool(args.plot))
     bar = start(cost, args, f"at most {max_samples} samples")
@@ -242,14 +251,20 @@ def cmd_bspline(args) -> int:
         T, origin = args.T, f"requested T = {args.T:g} s"
     if not (math.isfinite(T) and math.isfinite(args.Ts) and T > 0 and args.Ts > 0):
         BSpline(degree=args.degree, T=T, Ts=args.Ts, axes=n_axes)    # the named error
-    # The size of the run from T/Ts alone (nothing allocated yet): refuse or announce.
-    N = max(1, round(T / args.Ts))
+    # The size of the run from T/Ts alone (nothing allocated yet): refuse or announce. The
+    # refusal names --Ts when the run would fit at Ts = 1 ms, else the knot spacing's source.
+    ratio = T / args.Ts
+    N = max(1, round(ratio)) if ratio < 2.0 ** 62 else ratio
     samples = (M - 2) * N + args.degree * (N - 1) + 1
     if samples * n_axes > MAX_BSPLINE_VALUES:
-        raise CliError(f"--T: the interpolation would produce {samples} samples on {n_axes} "
-                       f"axis(es), more than the limit of {MAX_BSPLINE_VALUES} values "
-                       f"(T/Ts = {T / args.Ts:.4g} samples per knot spacing); use a shorter "
-                       "--T or a larger --Ts")
+        at_1ms = ((M - 2) + args.degree) * max(1.0, T / 1e-3) * n_axes
+        option = (f"--Ts={args.Ts:.3g}" if at_1ms <= MAX_BSPLINE_VALUES else
+                  f"--wn={args.wn}" if args.wn is not None else f"--T={T:.3g}")
+        raise CliError(f"{option}: the interpolation would produce {samples:.3g} samples on "
+                       f"{n_axes} axis(es), more than the limit of {MAX_BSPLINE_VALUES:.3g} "
+                       f"values (knot spacing T = {T:.3g} s from "
+                       f"{'--wn' if args.wn is not None else '--T'}, T/Ts = {ratio:.3g}); use a "
+                       "shorter knot spacing (--T, or a higher --wn) or a larger --Ts")
     cost = trajectory_cost("bspline", samples=samples, axes=n_axes, csv=bool(args.csv),
                            plot=bool(args.plot))
     bar = start(cost, args, f"{samples} samples on {n_axes} axis(es)")
@@ -351,11 +366,11 @@ def add_design_forms(design_parser, parser_class) -> None:
     p.add_argument("--via", required=True, metavar="P0,P1,... | X,Y,Z;X,Y,Z;...",
                    help="positions: start, then the targets in order (e.g. 0,20,40,100,60,0); "
                    "for several axes points separated by ';'")
-    p.add_argument("--vmax", type=_limit, required=True,
+    p.add_argument("--vmax", type=_limit("--vmax"), required=True,
                    help="velocity limit [unit/s] (one per axis: V1,V2,...)")
-    p.add_argument("--amax", type=_limit, required=True,
+    p.add_argument("--amax", type=_limit("--amax"), required=True,
                    help="acceleration limit [unit/s^2] (one per axis: A1,A2,...)")
-    p.add_argument("--jmax", type=_limit, required=True,
+    p.add_argument("--jmax", type=_limit("--jmax"), required=True,
                    help="jerk limit [unit/s^3] (one per axis: J1,J2,...)")
     p.add_argument("--sync", choices=("phase", "independent"), default="phase",
                    help="several axes: straight lines and common arrival (phase, default) or "

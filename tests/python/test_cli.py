@@ -84,7 +84,7 @@ def test_design_zvn_order_and_ei_tolerance(capsys):
     assert rows[0][1] == "zvn" and rows[0][7] == "3"
     assert float(rows[0][2]) == pytest.approx(3 * math.pi / 50, rel=1e-5)   # 3 half periods
     code, _, err = run(capsys, "design", "--kind", "zvn", "--order", "13", "--wn", "50")
-    assert code == cli.EXIT_ERROR and err.startswith("smoothshaper: error: order")
+    assert code == cli.EXIT_ERROR and err.startswith("smoothshaper: error: --order=13: order")
 
 
 def test_design_from_stage_specs(capsys):
@@ -259,7 +259,8 @@ def test_python_dash_m_runs_the_cli_without_traceback():
     bad = subprocess.run([sys.executable, "-m", "smoothshaper", "design", "--stage",
                           "zv:wn=-3"], capture_output=True, text=True, env=env, timeout=60)
     assert bad.returncode == cli.EXIT_ERROR
-    assert bad.stderr.count("\n") == 1 and bad.stderr.startswith("smoothshaper: error: wn")
+    assert bad.stderr.count("\n") == 1
+    assert bad.stderr.startswith("smoothshaper: error: --stage zv:wn=-3: wn")
 
 
 def test_console_script_is_declared():

@@ -269,7 +269,7 @@ BS = ["design", "bspline"]
     (GEN + ["--via", "0,1", "--profile", "damped"] + LIM, "wn"),
     (GEN + ["--via", "0,1", "--wn", "5000"] + LIM, "wn"),
     (GEN + ["--via", "0,1", "--hold", "0"] + LIM, "--hold"),
-    (GEN + ["--via", "0,1e9"] + LIM, "--Ts"),
+    (GEN + ["--via", "0,1e9"] + LIM, "--via point 1 (1e+09): the run would take about 4e+06 s"),
     (GEN + LIM, "required: --via"),
     (GEN + ["--via", "-5,10"] + LIM, "--via=-5,10"),
     (GEN + ["--via", "0,1", "--profile", "cubic"] + LIM, "invalid choice"),
@@ -313,4 +313,4 @@ def test_python_dash_m_runs_the_forms():
                           "--via", "0,1"] + LIM[:-2] + ["--Ts", "0"], capture_output=True,
                          text=True, env=dict(os.environ), timeout=60)
     assert bad.returncode == cli.EXIT_ERROR and bad.stderr.count("\n") == 1
-    assert bad.stderr.startswith("smoothshaper: error: Ts")
+    assert bad.stderr.startswith("smoothshaper: error: --Ts=0: Ts")

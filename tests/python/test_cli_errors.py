@@ -1,0 +1,139 @@
+"""Every CLI error names the argument the user gave that causes it, with readable numbers,
+at once: each subcommand run with extreme, NaN, negative and huge values of each numeric
+option (and of a via-point) either succeeds or fails with one line on stderr that names that
+option (a via-point with its index, a stage by its spec), holds no number of 10 or more
+digits, and comes back within a few seconds (sizes are refused from closed forms, before any
+work)."""
+import re
+import time
+from pathlib import Path
+
+import pytest
+
+from smoothshaper import cli
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+VALUES = ["1e300", "-1e300", "-1", "0", "nan", "inf", "1e-300", "1e20", "1e-20", "3"]
+
+# (base argv, options to vary); VIA1 varies the first target of --via, "STAGE:key" a key of
+# the --stage spec; --estimate keeps the accepted runs short
+CASES = {
+    "mode": (["design", "--kind", "zv", "--wn", "100", "--zeta", "0.05", "--Ts", "1e-3"],
+             ["--wn", "--zeta", "--Ts", "--k", "--tolerance"]),
+    "ei": (["design", "--kind", "ei", "--wn", "100", "--tolerance", "0.05", "--Ts", "1e-3"],
+           ["--shaper-tolerance"]),
+    "kinematic": (["design", "--h", "0.1", "--vmax", "1", "--amax", "10", "--jmax", "100",
+                   "--Ts", "1e-3"], ["--h", "--vmax", "--amax", "--jmax", "--Ts"]),
+    "generator": (["design", "generator", "--via=0,1,0.5", "--vmax", "1", "--amax", "10",
+                   "--jmax", "100", "--Ts", "1e-3", "--estimate"],
+                  ["--vmax", "--amax", "--jmax", "--Ts", "--hold", "VIA1"]),
+    "damped": (["design", "generator", "--via=0,1,0.5", "--vmax", "1", "--amax", "10",
+                "--jmax", "100", "--Ts", "1e-3", "--profile", "damped", "--wn", "50",
+                "--estimate"], ["--wn", "--zeta"]),
+    "multi-axis": (["design", "generator", "--via=0,0;1,2;0.5,1", "--vmax", "1,2", "--amax",
+                    "10,10", "--jmax", "100,100", "--Ts", "1e-3", "--estimate"],
+                   ["--vmax", "--amax", "--jmax", "--Ts", "--hold", "VIA1"]),
+    "bspline": (["design", "bspline", "--via=0;1;0.5", "--T", "0.05", "--Ts", "1e-3",
+                 "--estimate"], ["--T", "--Ts", "--degree", "VIA1"]),
+    "bspline-wn": (["design", "bspline", "--via=0;1;0.5", "--wn", "60", "--Ts", "1e-3",
+                    "--estimate"], ["--wn"]),
+    "analyze": (["analyze", "--kind", "zv", "--wn", "100", "--Ts", "1e-3", "--out", "never",
+                 "--estimate"], ["--wn", "--Ts", "--ratio-max", "--points", "--zeta"]),
+    "identify": (["identify", str(EXAMPLES / "decay.csv"), "--no-progress"], ["--Ts", "--start"]),
+    "calibrate": (["calibrate", str(EXAMPLES / "resonance_psd.csv"), "--estimate"],
+                  ["--accel", "--corner-velocity", "--distance", "--spread", "--Ts",
+                   "--max-delay"]),
+    "stage": (["design", "--stage", "harmonic:T=0.05", "--Ts", "1e-3"],
+              ["STAGE:T", "STAGE:wn", "STAGE:sigma"]),
+}
+
+
+def vary(argv, option, value):
+    """argv with option set to value; the name the error must show."""
+    argv = list(argv)
+    if option == "VIA1":
+        i = next(k for k, a in enumerate(argv) if a.startswith("--via="))
+        sep = ";" if ";" in argv[i] and "," not in argv[i] else ","
+        points = argv[i][6:].split(";") if ";" in argv[i] and sep == "," else None
+        if points:      # multi-axis: the last coordinate of the first target
+            first = points[1].split(",")
+            first[-1] = value
+            points[1] = ",".join(first)
+            argv[i] = "--via=" + ";".join(points)
+        else:
+            parts = argv[i][6:].split(sep)
+            parts[1] = value
+            argv[i] = "--via=" + sep.join(parts)
+        return argv, "--via"
+    if option.startswith("STAGE:"):
+        key = option[6:]
+        spec = {"T": f"harmonic:T={value}", "wn": f"harmonic:wn={value}",
+                "sigma": f"exponential:T=0.05,sigma={value}"}[key]
+        argv[argv.index("--stage") + 1] = spec
+        return argv, f"--stage {spec}"
+    if option in argv:
+        i = argv.index(option) + 1
+        argv[i] = argv[i].rsplit(",", 1)[0] + "," + value if "," in argv[i] else value
+    else:
+        argv.append(f"{option}={value}")
+    return argv, option
+
+
+@pytest.mark.parametrize("case", sorted(CASES))
+def test_every_error_names_the_option_readably_and_at_once(case, capsys, tmp_path,
+                                                          monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    base, options = CASES[case]
+    failures = []
+    for option in options:
+        for value in VALUES:
+            argv, name = vary(base, option, value)
+            start = time.process_time()
+            code = cli.main(argv)
+            seconds = time.process_time() - start
+            _, err = capsys.readouterr()
+            why = []
+            if code not in (0, cli.EXIT_ERROR, cli.EXIT_USAGE):
+                why.append(f"exit {code}")
+            if code != 0 and (err.count("\n") != 1 or name not in err):
+                why.append("does not name it on one line")
+            if re.search(r"\d{10}", err):
+                why.append("a number of 10 or more digits")
+            if seconds > 5:
+                why.append(f"{seconds:.1f} s")
+            if why:
+                failures.append(f"{' '.join(argv)}: {', '.join(why)}: {err.strip()}")
+    assert not failures, "\n".join(failures)
+
+
+def test_a_far_via_point_is_named_with_its_index(capsys):
+    """A via-point 1e300 away: the error names that point (not --Ts, the old message with a
+    300-digit sample count), the run's length in seconds and samples as %.3g."""
+    code = cli.main(["design", "generator", "--via=0,1,1e300", "--vmax", "1", "--amax", "10",
+                     "--jmax", "100", "--Ts", "1e-3"])
+    err = capsys.readouterr().err
+    assert code == cli.EXIT_ERROR
+    assert err.startswith("smoothshaper: error: --via point 2 (1e+300): the run would take "
+                          "about 1e+300 s = 1e+303 samples of Ts = 0.001 s"), err
+    code = cli.main(["design", "generator", "--via=0,0;1,1;2,-1e300", "--vmax", "1,1",
+                     "--amax", "10", "--jmax", "100", "--Ts", "1e-3"])
+    err = capsys.readouterr().err
+    assert code == cli.EXIT_ERROR and "--via point 2 (2,-1e+300)" in err, err
+
+
+def test_a_plausible_run_at_an_extreme_sample_period_names_ts(capsys):
+    """The run would fit at Ts = 1 ms: the sample period is what is extreme."""
+    code = cli.main(["design", "generator", "--via=0,1,2", "--vmax", "1", "--amax", "10",
+                     "--jmax", "100", "--Ts", "1e-9"])
+    err = capsys.readouterr().err
+    assert code == cli.EXIT_ERROR and err.startswith("smoothshaper: error: --Ts=1e-09:"), err
+
+
+def test_library_errors_name_the_option_and_the_axis(capsys):
+    code = cli.main(["design", "generator", "--via=0,0;1,2", "--vmax", "1,1", "--amax",
+                     "1,1e-30", "--jmax", "1,1e-300", "--Ts", "1e-3"])
+    err = capsys.readouterr().err
+    assert code == cli.EXIT_ERROR and "--jmax=1,1e-300 (axis 1)" in err, err
+    code = cli.main(["design", "--kind", "zv", "--wn", "100", "--zeta", "3"])
+    err = capsys.readouterr().err
+    assert code == cli.EXIT_ERROR and err.startswith("smoothshaper: error: --zeta=3:"), err
