@@ -477,8 +477,10 @@ static int grid_feasible(const sms_kin_plan *p, double logh, double logTs, const
  * stages after it" rule pass this test (at the top difference, i = n, it is exact).
  */
 
-/* Budget of level tests of the search below per first length (at most 7 of them; each test
- * O(2^i), i <= n <= 8): 4 * 2^n, 1024 for eight bounds. */
+/* Budget of level tests of the search below per pair of first two lengths (at most 7 * 7 of
+ * them; each test O(2^i), i <= n <= 8): 4 * 2^n, 1024 for eight bounds. One budget per first
+ * length let a second length that cannot work use it all up (eight bounds cost up to 20
+ * samples, seven with a half sine 29). */
 #define KIN_OVERLAP_NODES(n) (4u << (n))
 
 typedef struct {
@@ -489,7 +491,7 @@ typedef struct {
     double sums[2u << SMS_KINEMATIC_MAX_ORDER];
     signed char signs[2u << SMS_KINEMATIC_MAX_ORDER];
     unsigned nodes;
-    int found;
+    int found, harmonic; /* harmonic: the last stage is a half sine (harmonic_fits) */
 } kin_overlap;
 
 /* Adds length x to list k (the subset sums of N[0..k-1]) giving list k+1, and returns the
@@ -522,6 +524,68 @@ static double overlap_count_peak(kin_overlap *s, size_t k, double x)
     return (double)peak;
 }
 
+/*
+ * A half-sine last stage of N samples (taps tan(pi/2N) sin(pi j/N), j = 0..N-1) after boxes
+ * whose signed subset sums sigma_S are list n-1: the top difference exactly. In samples it is
+ *   h / prod(boxes) * tan(pi/2N) * f(m),   f(m) = sum_S sign_S sin(pi (m - sigma_S)/N),
+ * each copy S taken over m in [sigma_S, sigma_S + N] (zero at both ends). Between two events
+ * (a copy starting at sigma_S or ending at sigma_S + N) the live copies share one frequency:
+ * with C = sum_live sign_S e^(i pi (b - sigma_S)/N) at the interval's start b,
+ * f(b + t) = Im(e^(i pi t/N) C). A start adds sign_S to C (e^0); an end removes
+ * sign_S e^(i pi), i.e. adds sign_S too. So one sweep over the 2^n sorted events, rotating C
+ * between them, gives f; an interval is accepted on |C| <= lim when it can, else f is
+ * evaluated at its ends and at the samples next to the sinusoid's extremes. lim: the allowed
+ * max|f|. Returns 1 when it holds. (The level below needs no such test: there the half sine
+ * is a ramp of non-negative weights summing to one, so the running count of the boxes bounds
+ * it.)
+ */
+static int interval_fits(double cr, double ci, double dt, double N, double lim)
+{
+    double w = KIN_PI / N, t0, ts[6];
+    size_t q;
+    if (hypot(cr, ci) <= lim)
+        return 1;
+    /* |f| peaks where pi t/N + arg C = pi/2 (mod pi): t0 + k N */
+    t0 = N * (0.5 - atan2(ci, cr) / KIN_PI);
+    t0 -= N * floor(t0 / N);
+    ts[0] = 0.0;
+    ts[1] = dt;
+    ts[2] = floor(t0);
+    ts[3] = ts[2] + 1.0;
+    ts[4] = ts[2] + N;
+    ts[5] = ts[3] + N;
+    for (q = 0; q < 6u; ++q)
+        if (ts[q] >= 0.0 && ts[q] <= dt &&
+            fabs(ci * cos(w * ts[q]) + cr * sin(w * ts[q])) > lim)
+            return 0;
+    return 1;
+}
+
+static int harmonic_fits(const kin_overlap *s, double N, double lim)
+{
+    size_t len = (size_t)1 << (s->p->n - 1u), a = 0, e = 0;
+    const double *st = s->sums + (len - 1u);
+    const signed char *sg = s->signs + (len - 1u);
+    double cr = 0.0, ci = 0.0, b = st[0];
+    while (a < len || e < len) {
+        double pos = e >= len || (a < len && st[a] <= st[e] + N) ? st[a] : st[e] + N;
+        if (pos > b) {
+            double x = KIN_PI * (pos - b) / N, c = cos(x), sn = sin(x), r;
+            if (!interval_fits(cr, ci, pos - b, N, lim))
+                return 0;
+            r = cr * c - ci * sn;
+            ci = cr * sn + ci * c;
+            cr = r;
+            b = pos;
+        }
+        while (a < len && st[a] == pos)
+            cr += sg[a++];
+        while (e < len && st[e] + N == pos)
+            cr += sg[e++];
+    }
+    return 1;
+}
+
 static void overlap_dfs(kin_overlap *s, size_t k, double logprod, double psum)
 {
     size_t n = s->p->n, nx = 0, j, q;
@@ -535,14 +599,31 @@ static void overlap_dfs(kin_overlap *s, size_t k, double logprod, double psum)
         }
         return;
     }
-    if (k + 1u == n) {
-        /* the last length: the fewest samples its level allows, and a few more */
-        double x0 = ceil(exp(s->logh - log(s->p->L[k]) - (double)n * s->logTs - logprod) *
-                         (1.0 - 1e-12));
+    if (k + 1u == n && s->harmonic) {
+        /* a half sine: the fewest samples whose largest tap (about pi/2N) keeps the top
+         * level without overlaps, from two less (overlapping copies can lower the peak) to
+         * three more */
+        double x0 = ceil(0.5 * KIN_PI * exp(s->logh - log(s->p->L[k]) - (double)n * s->logTs -
+                                             logprod) * (1.0 - 1e-12));
+        if (!(x0 >= 2.0))
+            x0 = 2.0;
+        for (j = 0; j < 6u; ++j)
+            if (x0 - 2.0 + (double)j >= 2.0)
+                xs[nx++] = x0 - 2.0 + (double)j;
+    } else if (k + 1u == n || (s->harmonic && k + 2u == n)) {
+        /* the last box: the fewest samples its level allows without overlaps, and a few
+         * more; before a half sine also the ceiling -1 .. +1 */
+        double x0 = ceil(exp(s->logh - log(s->p->L[k]) - (double)(k + 1u) * s->logTs -
+                             logprod) * (1.0 - 1e-12));
         if (!(x0 >= 1.0))
             x0 = 1.0;
         for (j = 0; j < 4u; ++j)
             xs[nx++] = x0 + (double)j;
+        for (j = 0; j < 3u && k + 1u < n; ++j) {
+            double x = s->c[k] - 1.0 + (double)j;
+            if (x < x0 || x > x0 + 3.0)
+                xs[nx++] = x;
+        }
     } else {
         /* the ceiling moved by -1 .. +2, then the structure's lift. Order: after a stage one
          * sample off its ceiling, the other way first (pairs of +1/-1 keep the sums and break
@@ -576,15 +657,26 @@ static void overlap_dfs(kin_overlap *s, size_t k, double logprod, double psum)
     }
     for (j = 0; j < nx; ++j) {
         double x = xs[j], peak, lp;
-        if (x < 1.0 || (k > 0u && x > s->N[k - 1u]))
+        int last_sine = s->harmonic && k + 1u == n;
+        if (x < 1.0 || (k > 0u && x > s->N[k - 1u] && !last_sine))
             continue;
         if (psum + x + s->rest_min[k + 1u] >= s->best_sum)
             continue;
-        if (k == 0u)
-            s->nodes = 0u; /* each first length gets its own budget */
+        if (k <= 1u)
+            s->nodes = 0u; /* each pair of first two lengths gets its own budget */
         if (s->nodes >= KIN_OVERLAP_NODES(n))
             return;
         ++s->nodes;
+        if (last_sine) {
+            /* the top level exactly (harmonic_fits), against the boxes' product */
+            double lt = log(s->p->L[k]) + (double)n * s->logTs + logprod - s->logh -
+                        log(tan(0.5 * KIN_PI / x));
+            if (!harmonic_fits(s, x, lt > 60.0 ? HUGE_VAL : exp(lt) * (1.0 + 1e-12)))
+                continue;
+            s->N[k] = x;
+            overlap_dfs(s, k + 1u, logprod, psum + x);
+            continue;
+        }
         peak = overlap_count_peak(s, k, x);
         lp = logprod + log(x);
         if (s->logh + log(peak) > log(s->p->L[k]) + (double)(k + 1u) * s->logTs + lp + 1e-12)
@@ -594,16 +686,19 @@ static void overlap_dfs(kin_overlap *s, size_t k, double logprod, double psum)
     }
 }
 
-/* Rectangular chains still more than a sample per stage over the continuous optimum: a depth
- * first search, largest stage first, of non-increasing whole-sample lengths that pass the
- * exact test above level by level (each level needs only the lengths chosen so far), within
- * KIN_OVERLAP_NODES(n) level tests per first length; replaces N when it finds a shorter chain. */
+/* Chains without a tuned stage still more than a sample per stage over the continuous
+ * optimum: a depth first search, largest stage first, of non-increasing whole-sample box
+ * lengths that pass the exact test above level by level (each level needs only the lengths
+ * chosen so far), then a half sine (harmonic) of any length whose top level harmonic_fits(),
+ * within KIN_OVERLAP_NODES(n) level tests per pair of first two lengths; replaces N when it
+ * finds a shorter chain. */
 static void overlap_search(const sms_kin_plan *p, double logh, double logTs, const double *T,
-                           double Ts, double *best, double *N)
+                           double Ts, int harmonic, double *best, double *N)
 {
     kin_overlap s;
     size_t n = p->n, i;
     s.p = p;
+    s.harmonic = harmonic;
     s.logh = logh;
     s.logTs = logTs;
     s.rest_min[n] = 0.0;
@@ -712,10 +807,10 @@ static sms_status on_grid(const sms_kin_plan *p, double h, const double *T, sms_
         double cont = 0.0;
         for (i = 0; i < m; ++i)
             cont += T[i] / Ts;
-        int rect = !tuned && last_kind != SMS_HARMONIC && n >= 2;
+        int free_last = !tuned && n >= 2, harmonic = last_kind == SMS_HARMONIC;
         double before4;
-        if (rect && best - cont > (double)m)
-            overlap_search(p, logh, logTs, T, Ts, &best, N);
+        if (free_last && best - cont > (double)m)
+            overlap_search(p, logh, logTs, T, Ts, harmonic, &best, N);
         before4 = best;
         if (m >= 2 && best - cont > (double)m) {
             size_t combos4 = 1;
@@ -745,8 +840,8 @@ static sms_status on_grid(const sms_kin_plan *p, double h, const double *T, sms_
             }
         }
         /* still over, with a shorter chain to beat: the overlap search prunes harder */
-        if (rect && best < before4 && best - cont > (double)m)
-            overlap_search(p, logh, logTs, T, Ts, &best, N);
+        if (free_last && best < before4 && best - cont > (double)m)
+            overlap_search(p, logh, logTs, T, Ts, harmonic, &best, N);
     }
     return SMS_OK;
 }

@@ -95,12 +95,14 @@ def grid_prices(n: int, cases: int, seed: int = 5, adversarial: int = 0,
     return {True: np.array(prices[True]), False: np.array(prices[False]), "worst": worst}
 
 
-def grid_design_costs(n: int, cases: int, seed: int = 5, repeats: int = 20) -> np.ndarray:
+def grid_design_costs(n: int, cases: int, seed: int = 5, repeats: int = 20,
+                      profile: int = 0) -> np.ndarray:
     """CPU ns of one grid design (``sms_kinematic_design`` with Ts) for `cases` random problems
     with n bounds, drawn as in :func:`grid_prices`: each problem designed `repeats` times in one
-    C loop (the batch call with stride 0), best of three loops, divided by `repeats`."""
+    C loop (the batch call with stride 0), best of three loops, divided by `repeats`.
+    `profile`: 0 polynomial, 1 trigonometric."""
     rng = np.random.default_rng(seed)
-    design = _designer()
+    design = _designer(profile)
     ffi, lib = _backend("double")
     H, L = ffi.new("double[1]"), ffi.new("double[8]")
     T, index = ffi.new("double[]", 8 * repeats), ffi.new("size_t *")
@@ -116,7 +118,7 @@ def grid_design_costs(n: int, cases: int, seed: int = 5, repeats: int = 20) -> n
         best = np.inf
         for _ in range(3):
             t0 = time.process_time_ns()
-            st = lib.sms_kinematic_design_batch(repeats, H, 0, L, 0, n, 0, 0.0, 0.0, Ts, T,
+            st = lib.sms_kinematic_design_batch(repeats, H, 0, L, 0, n, profile, 0.0, 0.0, Ts, T,
                                                 8 * repeats, index)
             best = min(best, time.process_time_ns() - t0)
         if st == 0:
@@ -149,16 +151,17 @@ def main(argv=None) -> int:
     p.add_argument("--bounds", type=int, nargs="*", default=list(range(1, 9)))
     p.add_argument("--seed", type=int, default=5)
     p.add_argument("--profile", choices=("polynomial", "trigonometric"), default="polynomial",
-                   help="the design's profile (prices; the cost is timed for polynomial)")
+                   help="the design's profile")
     p.add_argument("--cost", type=int, default=0, metavar="M",
                    help="also time the grid design on M problems per bound count")
     args = p.parse_args(argv)
+    profile = int(args.profile == "trigonometric")
     for n in args.bounds if args.cases else ():
-        print(report(n, args.cases, args.adversarial, args.seed,
-                     int(args.profile == "trigonometric")), flush=True)
+        print(report(n, args.cases, args.adversarial, args.seed, profile), flush=True)
     for n in args.bounds if args.cost else ():
-        us = grid_design_costs(n, args.cost, args.seed) / 1e3
-        print(f"grid design cost, {n} bound(s) ({us.size} problems, CPU time in C): median "
+        us = grid_design_costs(n, args.cost, args.seed, profile=profile) / 1e3
+        name = " (trigonometric)" if profile else ""
+        print(f"grid design cost{name}, {n} bound(s) ({us.size} problems, CPU time in C): median "
               f"{np.median(us):.2f} us  p99 {np.percentile(us, 99):.2f} us  max {us.max():.2f} us",
               flush=True)
     return 0

@@ -24,6 +24,7 @@ bound. Seed 001 sec. 5.2 (T3 = 2*pi/wn) is ``jmax >= amax * wn / (2*pi)`` with `
 """
 from __future__ import annotations
 
+import cmath
 import itertools
 import math
 import threading
@@ -390,7 +391,8 @@ def kinematic_lengths(*, h, vmax, amax=None, jmax=None, higher=(), profile: str 
     Returns
     -------
     ndarray of float64, shape ``broadcast(h, bounds).shape + (n,)``
-        The n stage lengths [s] of each problem, largest stage first (n = number of bounds).
+        The n stage lengths [s] of each problem, in chain order (the stage of vmax first; n =
+        number of bounds).
 
     Raises
     ------
@@ -528,8 +530,8 @@ def _on_grid(T: list[float], Ts: float, h: float, limits: list[float], tuned_tap
     conditions, each checked directly: N_k >= sum of the samples after it (copies in the
     differences never overlap), h / (N_0 ... N_i Ts^(i+1)) <= L_i, and the top derivative
     h / (N_0 ... N_(n-2) Ts^(n-1)) * (largest tap of the last stage) / Ts <= L_(n-1).
-    Still over a sample per stage: (rectangular chains) _overlap_search, whose exact test
-    lets copies overlap, then +1 .. -2 from the ceilings lifted by the structure."""
+    Still over a sample per stage: _overlap_search, whose exact tests let copies overlap,
+    then +1 .. -2 from the ceilings lifted by the structure."""
     n = len(T)
     tuned = tuned_tap is not None
 
@@ -585,13 +587,14 @@ def _on_grid(T: list[float], Ts: float, h: float, limits: list[float], tuned_tap
         if key < best and ok(cand + ([0] if tuned else [])):
             best, N[:m] = key, cand
     # more than one sample per stage over the continuous lengths (tight stages double the
-    # rounding below them): a rectangular chain lets its copies overlap where they cancel;
-    # still over, each stage +1 .. -2 samples from its ceiling, lifted by the structure
-    rect = not tuned and not harmonic_last and n >= 2
+    # rounding below them): a chain without a tuned stage lets its copies overlap where the
+    # exact tests allow (boxes cancelling, a half sine's top difference); still over, each
+    # stage +1 .. -2 samples from its ceiling, lifted by the structure
+    free_last = not tuned and n >= 2
 
     def overlap(best):
-        if rect and best[0] - sum(T[i] / Ts for i in range(m)) > m:
-            found = _overlap_search(base, Ts, h, limits, best[0])   # rect: m == n
+        if free_last and best[0] - sum(T[i] / Ts for i in range(m)) > m:
+            found = _overlap_search(base, Ts, h, limits, best[0], harmonic_last)   # m == n
             if found is not None:
                 N[:] = found
                 return sum(found), [-x for x in found]
@@ -613,7 +616,7 @@ def _on_grid(T: list[float], Ts: float, h: float, limits: list[float], tuned_tap
     return [N[i] * Ts if N[i] else T[i] for i in range(n)]
 
 
-#: Level tests the search for overlapping rectangular chains may spend per first length,
+#: Level tests the search for overlapping chains may spend per pair of first two lengths,
 #: times 2^n for n bounds.
 _OVERLAP_NODES = 4
 
@@ -621,12 +624,7 @@ _OVERLAP_NODES = 4
 def _running_count_peak(lengths) -> int:
     """Largest |c(m)|, c(m) = sum over the subsets S of lengths with sum(S) <= m of
     (-1)^|S|: the running sum of the coefficients of prod (1 - z^-N)."""
-    coeff = {0: 1}
-    for x in lengths:
-        nxt = dict(coeff)
-        for s, v in coeff.items():
-            nxt[s + x] = nxt.get(s + x, 0) - v
-        coeff = nxt
+    coeff = _signed_sums(lengths)
     run = peak = 0
     for s in sorted(coeff):
         run += coeff[s]
@@ -634,12 +632,49 @@ def _running_count_peak(lengths) -> int:
     return peak
 
 
-def _overlap_search(c, Ts, h, limits, best_sum):
-    """Reference of the C core's search for rectangular chains whose stages may overlap
-    (docs/sampled-limits.md): whole-sample lengths, largest first and non-increasing, each
+def _signed_sums(lengths) -> dict:
+    """{s: sum over the subsets S of lengths with sum(S) = s of (-1)^|S|}: the coefficients
+    of prod (1 - z^-N)."""
+    coeff = {0: 1}
+    for x in lengths:
+        nxt = dict(coeff)
+        for s, v in coeff.items():
+            nxt[s + x] = nxt.get(s + x, 0) - v
+        coeff = nxt
+    return coeff
+
+
+def _half_sine_peak(boxes, N: int) -> float:
+    """max |f(m)| over the samples, f(m) = sum_S sign_S sin(pi (m - sigma_S)/N) over the
+    signed subset sums sigma_S of the boxes: the top difference of boxes followed by a half
+    sine of N samples, in units of h tan(pi/2N) / prod(boxes) (docs/sampled-limits.md). Each
+    copy's sinusoid lives from sigma_S to sigma_S + N; between consecutive such points f is one
+    sinusoid, whose largest magnitude on the integers of the interval lies at its ends or next
+    to its extremum."""
+    coeff = {s: v for s, v in _signed_sums(boxes).items() if v}
+    points = sorted(set(coeff) | {s + N for s in coeff})
+    w = math.pi / N
+    best = 0.0
+    for a, b in zip(points, points[1:]):
+        # phasor of the live copies at a: f(a + t) = Im(e^(i w t) Z)
+        Z = sum(v * cmath.exp(1j * w * (a - s)) for s, v in coeff.items()
+                if s <= a and s + N >= b)
+        t0 = N * (0.5 - cmath.phase(Z) / math.pi)
+        t0 -= N * math.floor(t0 / N)
+        for t in {0, b - a, math.floor(t0), math.floor(t0) + 1, math.floor(t0) + N,
+                  math.floor(t0) + N + 1}:
+            if 0 <= t <= b - a:
+                best = max(best, abs((cmath.exp(1j * w * t) * Z).imag))
+    return best
+
+
+def _overlap_search(c, Ts, h, limits, best_sum, harmonic_last=False):
+    """Reference of the C core's search for chains whose stages may overlap
+    (docs/sampled-limits.md): whole-sample box lengths, largest first and non-increasing, each
     level i passing h * max|count of the i largest| <= L_i Ts^i * (product of the i largest);
-    depth first within _OVERLAP_NODES * 2^n level tests per first length; the lengths if
-    shorter than best_sum."""
+    a half-sine last stage (harmonic_last) of any length, the top level checked exactly
+    (_half_sine_peak); depth first within _OVERLAP_NODES * 2^n level tests per pair of first two
+    lengths; the lengths if shorter than best_sum."""
     n = len(c)
     logh, logTs = math.log(h), math.log(Ts)
     logL = [math.log(x) for x in limits]
@@ -650,12 +685,21 @@ def _overlap_search(c, Ts, h, limits, best_sum):
     N = [0] * n
 
     def candidates(k, logprod):
-        if k == n - 1:
+        if k == n - 1 and harmonic_last:
             e = logh - logL[k] - n * logTs - logprod
             if e > 709.0:
                 return []
+            x0 = max(2, math.ceil(math.pi / 2 * math.exp(e) * (1 - 1e-12)))
+            return [x for x in range(x0 - 2, x0 + 4) if x >= 2]
+        if k == n - 1 or (harmonic_last and k == n - 2):
+            e = logh - logL[k] - (k + 1) * logTs - logprod
+            if e > 709.0:
+                return []
             x0 = max(1, math.ceil(math.exp(e) * (1 - 1e-12)))
-            return [x0 + j for j in range(4)]
+            xs = [x0 + j for j in range(4)]
+            if k < n - 1:     # before a half sine: also the ceiling -1 .. +1
+                xs += [x for x in (c[k] - 1, c[k], c[k] + 1) if not x0 <= x <= x0 + 3]
+            return xs
         prev = N[k - 1] - c[k - 1] if k else 0
         if prev in (-1, 1):
             offs = (-prev, 0, prev, 2)
@@ -672,15 +716,23 @@ def _overlap_search(c, Ts, h, limits, best_sum):
             if psum < state["best"]:
                 state["best"], state["N"] = psum, list(N)
             return
+        sine = harmonic_last and k == n - 1
         for x in candidates(k, logprod):
-            if x < 1 or (k and x > N[k - 1]) or psum + x + rest_min[k + 1] >= state["best"]:
+            if (x < 1 or (k and x > N[k - 1] and not sine)
+                    or psum + x + rest_min[k + 1] >= state["best"]):
                 continue
-            if k == 0:
-                state["nodes"] = 0     # each first length gets its own budget
+            if k <= 1:
+                state["nodes"] = 0     # each pair of first two lengths gets its own budget
             if state["nodes"] >= _OVERLAP_NODES << n:
                 return
             state["nodes"] += 1
             N[k] = x
+            if sine:
+                f = _half_sine_peak(N[:k], x)
+                if (logh + math.log(max(f, 1e-300)) + math.log(math.tan(math.pi / (2 * x)))
+                        <= logL[k] + n * logTs + logprod + 1e-12):
+                    visit(k + 1, logprod, psum + x)
+                continue
             lp = logprod + math.log(x)
             peak = _running_count_peak(N[:k + 1])
             if logh + math.log(peak) <= logL[k] + (k + 1) * logTs + lp + 1e-12:

@@ -291,35 +291,42 @@ static void test_sampled_limits_random(void)
     CHECK(tested > 300);
 }
 
-/* Five to eight bounds (the search that lets copies of stages overlap where they cancel):
- * every sampled difference within its bound, and up to seven bounds the chain at most a
- * sample per stage over the continuous optimum (measured, the search being bounded;
- * docs/sampled-limits.md gives the measured prices, and those of eight bounds, which can
- * exceed it). */
+/* Five to eight bounds (the search that lets copies of stages overlap where they cancel),
+ * both profiles: every sampled difference within its bound, and the chain at most a sample
+ * per stage over the continuous optimum; a trigonometric chain up to the floor of sampled
+ * half sines more (one sample when a continuous stage is shorter than a sample, else
+ * 2 - pi/2: a sampled half sine starts with a zero tap; docs/sampled-limits.md proves that
+ * floor and gives the measured prices). Measured, the search being bounded. */
 static void test_sampled_limits_high_orders(void)
 {
     unsigned seed = 977u;
     int trial, tested = 0;
-    for (trial = 0; trial < 400; ++trial) {
-        double L[8], Tc[8], h = log_uniform(&seed, 1e-3, 1e3), total = 0.0;
-        double Ts, grid = 0.0;
+    for (trial = 0; trial < 600; ++trial) {
+        double L[8], Tc[8], h = log_uniform(&seed, 1e-3, 1e3), total = 0.0, shortest = HUGE_VAL;
+        double Ts, grid = 0.0, bar;
         size_t n = 5u + (size_t)(trial % 4), i, cnt;
+        sms_profile profile = trial % 3 == 2 ? SMS_PROFILE_TRIGONOMETRIC : SMS_PROFILE_POLYNOMIAL;
         sms_stage_config cfg[8];
         for (i = 0; i < n; ++i)
             L[i] = log_uniform(&seed, 1e-3, 1e3) * pow(10.0, (double)i);
-        if (sms_kinematic_design(h, L, n, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, 0.0, Tc, 8, &cnt) != SMS_OK)
+        if (sms_kinematic_design(h, L, n, profile, 0.0, 0.0, 0.0, Tc, 8, &cnt) != SMS_OK)
             continue;
-        for (i = 0; i < n; ++i)
+        for (i = 0; i < n; ++i) {
             total += Tc[i];
+            if (Tc[i] < shortest)
+                shortest = Tc[i];
+        }
         Ts = total / log_uniform(&seed, 3.0, 3000.0);
-        CHECK_STATUS(sms_kinematic_configs(h, L, n, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, Ts, cfg, 8, &cnt), SMS_OK);
+        CHECK_STATUS(sms_kinematic_configs(h, L, n, profile, 0.0, 0.0, Ts, cfg, 8, &cnt), SMS_OK);
         for (i = 0; i < n; ++i)
             grid += cfg[i].T;
-        if (n <= 7u)
-            CHECK((grid - total) / Ts <= (double)n + 1e-9);
-        tested += check_sampled(h, L, n, cfg, Ts, trial, SMS_PROFILE_POLYNOMIAL, 0.0);
+        bar = (double)n;
+        if (profile == SMS_PROFILE_TRIGONOMETRIC)
+            bar += shortest < Ts ? 1.0 : 2.0 - 0.5 * PI;
+        CHECK((grid - total) / Ts <= bar + 1e-9);
+        tested += check_sampled(h, L, n, cfg, Ts, trial, profile, 0.0);
     }
-    CHECK(tested > 300);
+    CHECK(tested > 450);
 }
 
 /* The reported cases: h = 40, v = 250, a = 5000, j = 2e5 at T/Ts = 10.5 and 1000.5. */

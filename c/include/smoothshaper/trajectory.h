@@ -71,20 +71,23 @@ typedef enum sms_profile {
  * exact length (its zero stays on the mode, exact timing) and the design bounds the top
  * derivative with its largest sampled tap / Ts instead of the continuous peak density: both
  * are satisfied. The search: each stage's ceiling +-1 (3^m chains); when that leaves more
- * than one sample per stage over the continuous optimum, a rectangular chain gets a
- * depth-first search (at most 4 * 2^n level tests of O(2^i) each per first length) with an
- * exact bound on the sampled differences, h max|c_A| / (Ts^i prod_A N) with A the i largest
- * lengths and c_A the running count of their signed subset sums, which lets copies of
- * stages overlap where they cancel; still over, +1 .. -2 from the ceilings with each stage
- * lifted to the samples after it (4^m chains), and the depth-first search again when those
- * found a shorter chain.
+ * than one sample per stage over the continuous optimum, a chain without a tuned stage gets
+ * a depth-first search (at most 4 * 2^n level tests of O(2^i) each per pair of first two
+ * lengths) with an exact bound on the sampled differences, h max|c_A| / (Ts^i prod_A N) with
+ * A the i largest boxes and c_A the running count of their signed subset sums, which lets
+ * copies of stages overlap where they cancel; a harmonic last stage enters only the top
+ * difference, which the search evaluates exactly (one phasor sweep over the copies' ends);
+ * still over, +1 .. -2 from the ceilings with each stage lifted to the samples after it (4^m
+ * chains), and the depth-first search again when those found a shorter chain. O(1) for any
+ * input: two searches of at most 49 * 4 * 2^n level tests, and 4^m chains.
  * Then every backward difference of the sampled output (chain fed with a step of h at a
  * sample) obeys the bounds: |D^i q[m]| / Ts^i <= limits[i-1] for i = 1..n (to rounding).
- * Price: at most one sample per stage over the continuous optimum for n <= 7 (measured over
+ * Price: at most one sample per stage over the continuous optimum for every n (measured over
  * 1e5 random designs per n and an adversarial search; the search is bounded, so this is not
- * a proof); with 8 bounds the worst found costs 20.3 samples (docs/sampled-limits.md). A grid
- * chain may also be shorter than the continuous optimum: the bounds are on sampled
- * differences.
+ * a proof); a harmonic last stage one sample more when a continuous stage is shorter than a
+ * sample (a sampled half sine starts with a zero tap: docs/sampled-limits.md proves that
+ * floor). A grid chain may also be shorter than the continuous optimum: the bounds are on
+ * sampled differences.
  *
  * @param h         displacement, finite and != 0 (the sign is irrelevant to the lengths)
  * @param limits    n bounds, each finite and > 0
