@@ -1,16 +1,17 @@
 """What designing a kinematic chain on the sample grid costs: the grid duration minus the
 continuous optimum, in samples, per number of bounds (docs/sampled-limits.md).
 
-``python -m smoothshaper.bench_grid_price [--cases N] [--adversarial K] [--bounds 1 .. 8]``
-draws N random problems per bound count (h and every bound over six orders of magnitude, the
-i-th bound scaled by 10^i so every stage matters, Ts from 1/3 to 1/3000 of the move), designs
-each continuously and on the grid (the C design, ``sms_kinematic_design``), and prints mean,
-99th percentile and largest price, split by whether every continuous stage lasts at least one
-sample. With K > 0 it then walks K random steps (in the logarithms of h, the bounds and Ts)
-from the worst problem of each class, keeping a step when the price grows: an adversarial
-search near the worst seen. With ``--cost M`` it also prints what the grid design costs per
-bound count: CPU time of ``sms_kinematic_design`` with Ts on M of these problems, each timed
-in one C loop of 20 repeats (``sms_kinematic_design_batch``, stride 0; best of three), so the
+``python -m smoothshaper.bench_grid_price [--cases N] [--adversarial K] [--bounds 1 .. 8]
+[--profile polynomial|trigonometric] [--cost M]`` draws N random problems per bound count (h
+and every bound over six orders of magnitude, the i-th bound scaled by 10^i so every stage
+matters, Ts from 1/3 to 1/3000 of the move), designs each continuously and on the grid (the C
+design, ``sms_kinematic_design``, of the profile), and prints mean, 99th percentile and
+largest price, split by whether every continuous stage lasts at least one sample. With K > 0
+it then walks K random steps (in the logarithms of h, the bounds and Ts) from the worst
+problem of each class, keeping a step when the price grows: an adversarial search near the
+worst seen. With ``--cost M`` it also prints what the grid design costs per bound count: CPU
+time of ``sms_kinematic_design`` with Ts on M of these problems, each timed in one C loop of
+20 repeats (``sms_kinematic_design_batch``, stride 0; best of three), so the
 binding's call is not counted. Nothing asserts; the figures are for reading.
 """
 from __future__ import annotations
