@@ -118,9 +118,9 @@ def reach(vmax, amax, jmax, Ts: float, precision: str = "double") -> dict:
     1. the single-axis region holds (the planner forms the same products: J dv, squares of
        accelerations, durations and distances of the move to vmax);
     2. amax/vmax, jmax/vmax, amax/h, jmax/h <= 2^56: the planner turns a velocity change dV
-       or a displacement d into unit limits amax/|dV|, jmax/|d|, capped at 2^60; the move to
-       vmax, its stop and its reversal (|dV| <= 2 vmax, |d| up to a few h) stay a factor 16
-       below the cap, so they are never lengthened;
+       or a displacement d into unit limits ``amax/|dV|``, ``jmax/|d|``, capped at 2^60; the
+       move to vmax, its stop and its reversal (``|dV| <= 2 vmax``, ``|d|`` up to a few h)
+       stay a factor 16 below the cap, so they are never lengthened;
     3. (16 T)^2 <= MAX, (amax/(16 h))^2 >= MIN/eps and jmax/(16 h) >= MIN/eps: the landing
        squares durations and unit accelerations, and divides by the unit jerk, for
        displacements up to 16 h.
