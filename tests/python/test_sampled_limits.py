@@ -293,3 +293,28 @@ def test_five_bounds_tight_stages_round_together():
     ref = design.kinematic_reference(h=h, vmax=lim[0], amax=lim[1], jmax=lim[2],
                                      higher=tuple(lim[3:]), Ts=Ts)
     assert [round(r.T / Ts) for r in ref] == [1398, 698, 350, 344, 6]
+
+
+@pytest.mark.parametrize("profile, h, lim, Ts, N, price", [
+    ("polynomial", 0.051266164244901845,
+     [0.022735659897553082, 0.08488369518529298, 31730.21889887176, 2752.7354035772173,
+      23.009295194656396, 80743151.27571084, 4997.3472255695115, 280481.3685582115],
+     0.002296086096794187, [983, 309, 153, 78, 38, 21, 11, 8], 3.105),
+    ("trigonometric", 0.007317046314114021,
+     [0.0038359527609021183, 705.6354308976337, 65776.35312034035, 156350.93389273074,
+      134414.15849044826, 4836.294157042807, 44558973.113622],
+     0.0007434929427981372, [2566, 283, 142, 71, 36, 34, 2], 3.423)])
+def test_a_search_budget_per_pair_of_first_two_lengths(profile, h, lim, Ts, N, price):
+    """Tight stages below the first (eight polynomial bounds: 982, 308, 154, 77, 38, 19, 11.5,
+    7.8 samples; seven trigonometric ones) where a second length one sample short of its
+    ceiling cannot work: with one budget per first length the search spent it all below that
+    choice and the design cost 9.1 samples (the polynomial one) and 11.4 (the trigonometric
+    one, the half sine's overlap test without that budget); with one per pair of first two
+    lengths 3.1 and 3.4, every sampled difference within its bound, the reference agreeing."""
+    got, cont, grid = _grid_price(h, lim, Ts, profile)
+    assert [round(g.T / Ts) for g in grid] == N
+    assert got == pytest.approx(price, abs=1e-3)
+    assert max(sampled_ratios(grid, Ts, h, lim)) <= 1 + 1e-9
+    ref = design._on_grid([s.T for s in cont], Ts, h, lim,
+                          harmonic_last=profile == "trigonometric")
+    assert [round(t / Ts) for t in ref] == N
