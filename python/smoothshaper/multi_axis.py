@@ -27,6 +27,9 @@ __all__ = ["SYNC_MODES", "MultiAxisGenerator", "MultiAxisMove", "phase_duration"
 
 SYNC_MODES = ("phase", "independent")
 _MAX_AXES = 8   # SMS_MULTI_MAX_AXES: the identity has a slot for each, used or not
+#: The most values (samples x axes x 4) a multi_axis_move profile holds: 1 GiB of float64.
+_MAX_MOVE_VALUES = 2 ** 27
+
 # The fields of a saved state's identity after the common head (multi_generator.h).
 _MULTI_IDENTITY_FIELDS = ("axes", "sync") + tuple(
     f"{name}[{i}]" for i in range(_MAX_AXES) for name in ("vmax", "amax", "jmax", "n_stages"))
@@ -376,14 +379,15 @@ def multi_axis_move(start, target, *, vmax, amax, jmax, Ts: float, sync: str = "
     Raises
     ------
     ParameterError
-        Naming ``target`` (not a vector the length of ``start``) or a bound, ``Ts``,
-        ``sync``.
+        Naming ``target`` (not a vector the length of ``start``, or a move whose profile
+        would hold more than 2^27 values), a bound, ``Ts``, ``sync``.
     """
     s = np.atleast_1d(np.asarray(start, dtype=np.float64))
     t = np.atleast_1d(np.asarray(target, dtype=np.float64))
     if s.shape != t.shape or s.ndim != 1:
         raise ParameterError("target", f"start and target must be vectors of the same length, "
                                        f"got {s.shape} and {t.shape}")
+    vmax, amax, jmax = _limits(vmax, amax, jmax, s.size)   # a scalar: every axis
     gen = MultiAxisGenerator(vmax=vmax, amax=amax, jmax=jmax, Ts=Ts, sync=sync, q0=s,
                              precision=precision)
     d = t - s
@@ -392,7 +396,12 @@ def multi_axis_move(start, target, *, vmax, amax, jmax, Ts: float, sync: str = "
     else:
         T = max(phase_duration([d[i]], vmax=gen.vmax[i], amax=gen.amax[i], jmax=gen.jmax[i])
                 for i in range(d.size))
-    n = int(math.ceil(T / Ts * (1 + 1e-12))) + 2
+    samples = T / Ts * (1 + 1e-12)
+    if not samples * d.size * 4 <= _MAX_MOVE_VALUES:      # O(1), before any array
+        raise ParameterError("target", f"target: the move from start lasts {T:.3g} s = "
+                             f"{samples:.3g} samples of Ts = {Ts:.3g} s; its profile of "
+                             f"{d.size} axes would hold more than {_MAX_MOVE_VALUES:.3g} values")
+    n = int(math.ceil(samples)) + 2
     prof = gen.process(np.tile(t, (n, 1)))
     arrived = np.all(prof[:, :, 0] == t, axis=1) & np.all(prof[:, :, 1:] == 0, axis=(1, 2))
     N = int(np.argmax(arrived))

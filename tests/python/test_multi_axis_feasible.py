@@ -253,3 +253,28 @@ def test_only_unrepresentable_moves_are_dropped(precision):
                 planned += 1
                 assert (cruise + 2 * reach_time) / Ts <= 2.0 ** 52 * (1 + 1e-6), (kw, k)
     assert planned > 1000 and refused >= 30
+
+
+# ---------------------------------------------------------------- durations at the extremes
+
+@pytest.mark.parametrize("delta, v, a, j, T", [
+    ([1e300], 1.0, 1e-300, 1e-300, 2e300),       # A = 1e-600 underflows: V reached at 1e300 s
+    ([1e-300], 1.0, 1.0, 1.0, 4 * 0.5 ** (1 / 3) * 1e-100),   # jerk-limited: 4 cbrt(d/(2 j))
+    ([1.0], 1e300, 1e300, 1e-300, 4 * 0.5 ** (1 / 3) * 1e100),
+    ([1.0, 0.0], 1.0, 1.0, 1.0, 4 * 0.5 ** (1 / 3)),
+])
+def test_phase_duration_over_the_whole_range(delta, v, a, j, T):
+    """The closed form in the path's time scales: finite whenever the duration is (it raised
+    ZeroDivisionError or OverflowError when A^4/J^2 left the range of a double)."""
+    from smoothshaper.reference.multi_axis import phase_duration
+    assert phase_duration(delta, vmax=v, amax=a, jmax=j) == pytest.approx(T, rel=1e-14)
+    assert phase_duration([1e300], vmax=1e-300, amax=1.0, jmax=1.0) == math.inf
+
+
+def test_multi_axis_move_broadcasts_limits_and_refuses_huge_moves_at_once():
+    from smoothshaper.multi_axis import multi_axis_move
+    m = multi_axis_move([0.0, 0.0], [1.0, 1.0], vmax=1.0, amax=10.0, jmax=100.0, Ts=1e-3)
+    assert m.profile.shape == (m.N + 1, 2, 4) and np.all(m.profile[-1, :, 0] == 1.0)
+    with pytest.raises(ParameterError, match=r"1e\+303 samples") as e:
+        multi_axis_move([0.0, 0.0], [1e300, 1.0], vmax=1.0, amax=10.0, jmax=100.0, Ts=1e-3)
+    assert e.value.parameter == "target"

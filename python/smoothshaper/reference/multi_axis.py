@@ -286,7 +286,8 @@ def phase_duration(delta, *, vmax, amax, jmax) -> float:
     Returns
     -------
     float
-        Duration [s] in continuous time.
+        Duration [s] in continuous time; inf only when it exceeds the largest double
+        (computed from the path's time scales, finite for any finite duration).
 
     Raises
     ------
@@ -299,22 +300,33 @@ def phase_duration(delta, *, vmax, amax, jmax) -> float:
 
 
 def _phase_duration(delta, vmax, amax, jmax) -> float:
-    """:func:`phase_duration` without the checks."""
+    """:func:`phase_duration` without the checks.
+
+    Written in the path's time scales tv = 1/V, ta = 1/sqrt(A), tj = 1/cbrt(J) (each the
+    largest over the moving axes: |d_i|/vmax_i, sqrt(|d_i|/amax_i), cbrt(|d_i|/jmax_i)),
+    which stay finite whenever the duration does; the double-S in units of ta then has A = 1,
+    V = 1/x, J = 1/y^3 with x = tv/ta, y = tj/ta. The limits V, A, J themselves under- or
+    overflow for displacements and limits far apart (|d| = 1e300 with amax = 1e-300)."""
     d = np.abs(np.asarray(delta, dtype=np.float64))
     nz = d > 0
     if not nz.any():
         return 0.0
-    with np.errstate(over="ignore"):  # a subnormal component: its ratio is inf, not the min
-        V = float(np.min(np.asarray(vmax)[nz] / d[nz]))
-        A = float(np.min(np.asarray(amax)[nz] / d[nz]))
-        J = float(np.min(np.asarray(jmax)[nz] / d[nz]))
-    Tv = V / A + A / J if V * J >= A * A else 2.0 * math.sqrt(V / J)
-    if V * Tv < 1.0:
-        return 1.0 / V + Tv
-    c = 0.5 * (-A * A / J + math.sqrt(A ** 4 / J ** 2 + 4.0 * A))
-    if c * J >= A * A:
-        return 2.0 * (c / A + A / J)
-    return 4.0 * math.cbrt(0.5 / J)
+    with np.errstate(over="ignore", under="ignore", divide="ignore", invalid="ignore"):
+        dn = d[nz]
+        tv = np.max(dn / np.asarray(vmax, dtype=np.float64)[nz])
+        ta = np.max(np.sqrt(dn) / np.sqrt(np.asarray(amax, dtype=np.float64)[nz]))
+        tj = np.max(np.cbrt(dn) / np.cbrt(np.asarray(jmax, dtype=np.float64)[nz]))
+        x, y = tv / ta, tj / ta
+        y3 = y * y * y                        # A/J in units of ta (= A^2/J, A = 1)
+        Tv = 1.0 / x + y3 if x * y3 <= 1.0 else 2.0 * np.sqrt(y3 / x)
+        if Tv < x:                            # V is reached: cruise for the rest
+            return float((x + Tv) * ta)
+        # V not reached: the peak velocity c solves c^2 + c A^2/J = A (acceleration limit
+        # held), as 2/(r + sqrt(r^2 + 4)) with r = A^2/J; else the jerk-limited move
+        c = 2.0 / (y3 + np.hypot(y3, 2.0))
+        if c >= y3:
+            return float(2.0 * (c + y3) * ta)
+        return float(4.0 * np.cbrt(0.5) * y * ta)
 
 
 def _kappa(u, T1, vmax, amax, jmax) -> float:
