@@ -212,6 +212,9 @@ def _nominal_mode(args, stages: list[Stage]) -> tuple[float, float]:
 #: Points of analyze's magnitude plot and of the grid its insensitivity search starts from.
 SPECTRUM_POINTS = 4000
 BAND_POINTS = 2001
+#: Most points of the PRV sweep (and of each axis of the surface): 8 MB per array, checked
+#: before any is allocated (the cost model refuses long runs well below it).
+MAX_SWEEP_POINTS = 1_000_000
 
 
 def _step_samples(length: int, is_fir: bool, wn_hat: float, Ts: float) -> int:
@@ -223,17 +226,18 @@ def _step_samples(length: int, is_fir: bool, wn_hat: float, Ts: float) -> int:
 
 def cmd_analyze(args) -> int:
     from ._plotting import percent_axis, prv_map
-    from .cli_cost import PLOT_POINTS, analyze_cost, chain_taps, start
+    from .cli_cost import LIMIT_SECONDS, PLOT_POINTS, analyze_cost, chain_taps, start
     stages = _chain_from_args(args)
     if not stages:
         raise CliError("nothing to analyze: give --stage (or --kind with --wn)")
     wn_hat, zeta = _nominal_mode(args, stages)
     if not 0 < args.ratio_min < args.ratio_max:
         raise CliError("--ratio-min and --ratio-max must satisfy 0 < min < max")
-    if args.points < 2:
-        raise CliError("--points must be >= 2")
-    if args.surface and args.surface_points < 2:
-        raise CliError("--surface-points must be >= 2")
+    if not 2 <= args.points <= MAX_SWEEP_POINTS:
+        raise CliError(f"--points must be in 2..{MAX_SWEEP_POINTS}, got {args.points:.3g}")
+    if args.surface and not 2 <= args.surface_points <= MAX_SWEEP_POINTS:
+        raise CliError(f"--surface-points must be in 2..{MAX_SWEEP_POINTS}, got "
+                       f"{args.surface_points:.3g}")
     if not (math.isfinite(args.Ts) and args.Ts > 0):
         raise CliError(f"--Ts must be finite and > 0, got {args.Ts!r}")
     ratios = np.linspace(args.ratio_min, args.ratio_max, args.points)
@@ -249,10 +253,15 @@ def cmd_analyze(args) -> int:
     is_fir = not any(s.kind in _stages.NOTCHES for s in stages)
     n_step = _step_samples(taps, is_fir, wn_hat, args.Ts)
     surface_points = args.surface_points * ratios.size if args.surface else 0
-    cost = analyze_cost(taps=taps, sweep=ratios.size, band=BAND_POINTS + 100,
-                        surface=surface_points, spectrum=SPECTRUM_POINTS, step=n_step,
-                        plotted=ratios.size + SPECTRUM_POINTS + min(n_step, PLOT_POINTS)
-                        + surface_points)
+
+    def model(sweep, surface):
+        return analyze_cost(taps=taps, sweep=sweep, band=BAND_POINTS + 100, surface=surface,
+                            spectrum=SPECTRUM_POINTS, step=n_step,
+                            plotted=sweep + SPECTRUM_POINTS + min(n_step, PLOT_POINTS) + surface)
+    cost = model(ratios.size, surface_points)
+    if model(min(ratios.size, 600), 61 * min(ratios.size, 600) if args.surface else 0
+             ).seconds > LIMIT_SECONDS:
+        cost.blame = {}   # too long at the default counts too: the chain (--Ts) is to blame
     bar = start(cost, args, f"chain of {taps} samples, {ratios.size} sweep points"
                 + (f", {surface_points} surface points" if args.surface else ""))
     if bar is None:

@@ -72,11 +72,15 @@ class Cost:
         Phase name -> modelled seconds (>= 0), in the order the phases run.
     drivers : dict of str to str
         Option -> why it drives the cost (e.g. ``{"--points": "600 sweep points"}``);
-        the refusal names the first of them.
+        the refusal names the option of the longest phase (``blame``), else the first.
+    blame : dict of str to str
+        Phase name -> the option of ``drivers`` that sets its size (``{"PRV surface":
+        "--surface-points"}``); phases not listed are charged to the first driver.
     """
     what: str
     phases: dict = field(default_factory=dict)
     drivers: dict = field(default_factory=dict)
+    blame: dict = field(default_factory=dict)
 
     @property
     def seconds(self) -> float:
@@ -169,8 +173,12 @@ def announce(cost: Cost, *, stream=None, limit: float = LIMIT_SECONDS) -> None:
     stream = sys.stderr if stream is None else stream
     if cost.seconds > limit:
         option, why = next(iter(cost.drivers.items()), ("input", "the input's size"))
+        longest = max(cost.phases, key=cost.phases.get) if cost.phases else None
+        if cost.blame.get(longest) in cost.drivers:
+            option = cost.blame[longest]
+            why = cost.drivers[option]
         advice = ("use a shorter record (fewer samples)" if option == "FILE"
-                  else f"{_verb(option)} {option}" + _other_drivers(cost))
+                  else f"{_verb(option)} {option}" + _other_drivers(cost, option))
         raise CliError(f"{option}: {cost.what} would take {cost.describe()}, more than the "
                        f"limit of {limit:.0f} s ({why}); {advice}")
     if cost.seconds > ANNOUNCE_SECONDS:
@@ -183,8 +191,8 @@ def _verb(option: str) -> str:
     return "raise" if option == "--Ts" else "reduce"
 
 
-def _other_drivers(cost: Cost) -> str:
-    others = list(cost.drivers)[1:]
+def _other_drivers(cost: Cost, named: str) -> str:
+    others = [o for o in cost.drivers if o != named]
     return (" (or " + ", ".join(f"{_verb(o)} {o}" for o in others) + ")") if others else ""
 
 
@@ -257,7 +265,8 @@ def analyze_cost(*, taps: int, sweep: int, band: int, surface: int, spectrum: in
         "plots": c["plot_point"] * plotted + 1.0,
     }, {"--Ts": f"a chain of {taps} samples at this Ts",
         "--points": f"{sweep} sweep points",
-        "--surface-points": f"{surface} surface points"})
+        "--surface-points": f"{surface} surface points"},
+        {"PRV sweep": "--points", "PRV surface": "--surface-points"})
 
 
 def _seconds_per_point(taps: int) -> float:

@@ -240,6 +240,8 @@ def cmd_bspline(args) -> int:
     from .trajectory import BSpline, bspline_period
     via = parse_via_points(args.via)
     M, n_axes = via.shape
+    if not 1 <= args.degree <= 7:
+        raise CliError(f"--degree must be 1..7, got {args.degree:.3g}")
     if args.wn is not None:
         modes = _numbers("--wn", args.wn)
         if any(w <= 0 for w in modes):

@@ -137,3 +137,21 @@ def test_library_errors_name_the_option_and_the_axis(capsys):
     code = cli.main(["design", "--kind", "zv", "--wn", "100", "--zeta", "3"])
     err = capsys.readouterr().err
     assert code == cli.EXIT_ERROR and err.startswith("smoothshaper: error: --zeta=3:"), err
+
+
+@pytest.mark.parametrize("argv, start", [
+    (["analyze", "--kind", "zv", "--wn", "100", "--Ts", "1e-3", "--out", "never", "--points",
+      "2000000000"], "--points must be in 2..1000000, got 2e+09"),
+    (["analyze", "--kind", "zv", "--wn", "100", "--Ts", "1e-3", "--out", "never", "--surface",
+      "--surface-points", "200000"], "--surface-points: analyze would take about"),
+    (["design", "bspline", "--via=0;1", "--T", "0.05", "--Ts", "1e-3", "--degree",
+      "100000000000"], "--degree must be 1..7, got 1e+11"),
+])
+def test_counts_are_refused_naming_them_before_any_work(argv, start, capsys):
+    """Counts that would allocate gigabytes (--points 2e9 was killed for memory) or run for
+    hours are refused at once, naming the count, not --Ts or --T."""
+    t = time.process_time()
+    code = cli.main(argv)
+    err = capsys.readouterr().err
+    assert code == cli.EXIT_ERROR and err.startswith("smoothshaper: error: " + start), err
+    assert time.process_time() - t < 2
