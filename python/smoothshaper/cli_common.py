@@ -10,7 +10,7 @@ import sys
 import numpy as np
 
 __all__ = ["EXIT_ERROR", "EXIT_USAGE", "EXIT_UNAVAILABLE", "CliError", "Parser", "format_table",
-           "run_samples", "Progress", "pyplot", "numbers", "parse_via_list", "parse_via_points", "write_csv",
+           "run_samples", "Progress", "pyplot", "numbers", "parse_via_list", "parse_via_points", "write_csv", "write_outputs",
            "save_figure", "decimate"]
 
 EXIT_ERROR = 1
@@ -197,6 +197,24 @@ def write_csv(path: str, header: list[str], columns: list[np.ndarray], progress=
                     progress(min(block, data.shape[0] - start))
     except OSError as exc:
         raise CliError(f"--csv: cannot write {path}: {exc.strerror}") from None
+
+
+def write_outputs(args, bar, columns, draw) -> None:
+    """The common end of a trajectory run: the CSV of ``columns()`` (header, list of arrays)
+    with ``--csv``, the figure ``draw(path)`` with ``--plot``, each a phase of ``bar``; then
+    the bar finished and the files written named on stdout."""
+    if args.csv:
+        header, cols = columns()
+        bar.phase("csv", cols[0].size)
+        write_csv(args.csv, header, cols, progress=bar.advance)
+    if args.plot:
+        bar.phase("plot")
+        draw(args.plot)
+    bar.finish()
+    if args.csv:
+        print(f"csv: {args.csv}")
+    if args.plot:
+        print(f"plot: {args.plot}")
 
 
 def decimate(t: np.ndarray, y: np.ndarray, points: int) -> tuple[np.ndarray, np.ndarray]:

@@ -18,7 +18,7 @@ from .cli_common import EXIT_ERROR, CliError, decimate, format_table, run_sample
 from .cli_common import numbers as _numbers
 from .cli_cost import PLOT_POINTS, start, trajectory_cost
 from .cli_common import parse_via_points, pyplot as _pyplot, save_figure as _save
-from .cli_common import write_csv as _write_csv
+from .cli_common import write_outputs
 
 __all__ = ["LIMIT_RTOL", "MAX_SAMPLES", "AXIS_NAMES", "parse_points", "parse_limit", "run",
            "cmd_multi_generator", "plot"]
@@ -176,23 +176,16 @@ def cmd_multi_generator(args) -> int:
     print(f"total time: {total:.6g} s ({arrivals[-1] + 1} samples)")
     ok = bool(np.all(np.abs(out[:, :, 1:]) <= lim.T[None] * (1 + LIMIT_RTOL)))
     print("every axis within its limits at every sample: " + ("yes" if ok else "NO (exceeded)"))
-    if args.csv:
-        t = np.arange(out.shape[0]) * Ts
-        cols = [t] + [targets[:, i] for i in range(axes)]
+
+    def columns():
+        cols = [np.arange(out.shape[0]) * Ts] + [targets[:, i] for i in range(axes)]
         header = ["time"] + [f"target_{n}" for n in names]
         for i, n in enumerate(names):
             cols += [out[:, i, m] for m in range(4)]
             header += [f"{n}_q", f"{n}_v", f"{n}_a", f"{n}_j"]
-        bar.phase("csv", t.size)
-        _write_csv(args.csv, header, cols, progress=bar.advance)
-    if args.plot:
-        bar.phase("plot")
-        plot(args.plot, out, via, lim, arrivals, Ts, names, u, gen.sync)
-    bar.finish()
-    if args.csv:
-        print(f"csv: {args.csv}")
-    if args.plot:
-        print(f"plot: {args.plot}")
+        return header, cols
+    write_outputs(args, bar, columns,
+                  lambda path: plot(path, out, via, lim, arrivals, Ts, names, u, gen.sync))
     return 0 if ok else EXIT_ERROR
 
 

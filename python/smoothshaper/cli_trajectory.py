@@ -17,7 +17,7 @@ import numpy as np
 
 from .cli_common import EXIT_ERROR, CliError, decimate, format_table, run_samples
 from .cli_common import numbers as _numbers, parse_via_list, parse_via_points
-from .cli_common import pyplot as _pyplot, save_figure as _save, write_csv as _write_csv
+from .cli_common import pyplot as _pyplot, save_figure as _save, write_outputs
 from .cli_cost import PLOT_POINTS, add_options as add_cost_options, start, trajectory_cost
 
 __all__ = ["LIMIT_RTOL", "REST_RTOL", "MAX_SAMPLES", "MAX_BSPLINE_VALUES", "PROFILES", "parse_via_list",
@@ -189,19 +189,10 @@ def cmd_generator(args) -> int:
     peaks = np.max(np.abs(out[:, 1:4]), axis=0)
     ok = all(p <= lim * (1 + LIMIT_RTOL) for p, lim in zip(peaks, limits))
     print("sampled peaks within the limits: " + ("yes" if ok else "NO (exceeded)"))
-    if args.csv:
-        bar.phase("csv", t.size)
-        _write_csv(args.csv, ["time", "target", "position", "velocity", "acceleration", "jerk"],
-                   [t, targets, out[:, 0], out[:, 1], out[:, 2], out[:, 3]],
-                   progress=bar.advance)
-    if args.plot:
-        bar.phase("plot")
-        _plot_generator(args.plot, t, targets, out, starts, arrivals, limits, u, gen.Ts)
-    bar.finish()
-    if args.csv:
-        print(f"csv: {args.csv}")
-    if args.plot:
-        print(f"plot: {args.plot}")
+    write_outputs(args, bar, lambda: (
+        ["time", "target", "position", "velocity", "acceleration", "jerk"],
+        [t, targets, out[:, 0], out[:, 1], out[:, 2], out[:, 3]]),
+        lambda path: _plot_generator(path, t, targets, out, starts, arrivals, limits, u, gen.Ts))
     return 0 if ok else EXIT_ERROR
 
 
@@ -296,19 +287,10 @@ def cmd_bspline(args) -> int:
                        + ["|error|"], rows))
     print(f"duration: {passes[-1] * spline.Ts:.6g} s (rest on the last via-point from sample "
           f"{passes[-1]}); max pass-through error {max(errors):.3g}")
-    if args.csv:
-        t = np.arange(out.shape[0]) * spline.Ts
-        bar.phase("csv", out.shape[0])
-        _write_csv(args.csv, ["time"] + list(axes), [t] + [out[:, a] for a in range(n_axes)],
-                   progress=bar.advance)
-    if args.plot:
-        bar.phase("plot")
-        _plot_bspline(args.plot, spline, via, ctrl, out, passes)
-    bar.finish()
-    if args.csv:
-        print(f"csv: {args.csv}")
-    if args.plot:
-        print(f"plot: {args.plot}")
+    write_outputs(args, bar, lambda: (
+        ["time"] + list(axes),
+        [np.arange(out.shape[0]) * spline.Ts] + [out[:, a] for a in range(n_axes)]),
+        lambda path: _plot_bspline(path, spline, via, ctrl, out, passes))
     return 0
 
 
