@@ -11,8 +11,9 @@ it then walks K random steps (in the logarithms of h, the bounds and Ts) from th
 problem of each class, keeping a step when the price grows: an adversarial search near the
 worst seen. With ``--cost M`` it also prints what the grid design costs per bound count: CPU
 time of ``sms_kinematic_design`` with Ts on M of these problems, each timed in one C loop of
-20 repeats (``sms_kinematic_design_batch``, stride 0; best of three), so the
-binding's call is not counted. Nothing asserts; the figures are for reading.
+20 repeats (``sms_kinematic_design_batch``, stride 0; best of three), so the binding's call is
+not counted; with K > 0 also the slowest design that K such steps from the slowest drawn
+find. Nothing asserts; the figures are for reading.
 """
 from __future__ import annotations
 
@@ -96,23 +97,14 @@ def grid_prices(n: int, cases: int, seed: int = 5, adversarial: int = 0,
     return {True: np.array(prices[True]), False: np.array(prices[False]), "worst": worst}
 
 
-def grid_design_costs(n: int, cases: int, seed: int = 5, repeats: int = 20,
-                      profile: int = 0) -> np.ndarray:
-    """CPU ns of one grid design (``sms_kinematic_design`` with Ts) for `cases` random problems
-    with n bounds, drawn as in :func:`grid_prices`: each problem designed `repeats` times in one
-    C loop (the batch call with stride 0), best of three loops, divided by `repeats`.
-    `profile`: 0 polynomial, 1 trigonometric."""
-    rng = np.random.default_rng(seed)
-    design = _designer(profile)
+def _timer(n: int, profile: int, repeats: int):
+    """CPU ns of one grid design of (h, bounds, Ts): `repeats` designs in one C loop (the batch
+    call with stride 0), best of three loops, divided by `repeats`; None if refused."""
     ffi, lib = _backend("double")
     H, L = ffi.new("double[1]"), ffi.new("double[8]")
     T, index = ffi.new("double[]", 8 * repeats), ffi.new("size_t *")
-    out = []
-    while len(out) < cases:
-        problem = _draw(n, rng, design)
-        if problem is None:
-            continue
-        h, lim, Ts = problem
+
+    def time_one(h, lim, Ts):
         H[0] = h
         for i, v in enumerate(lim):
             L[i] = v
@@ -122,9 +114,40 @@ def grid_design_costs(n: int, cases: int, seed: int = 5, repeats: int = 20,
             st = lib.sms_kinematic_design_batch(repeats, H, 0, L, 0, n, profile, 0.0, 0.0, Ts, T,
                                                 8 * repeats, index)
             best = min(best, time.process_time_ns() - t0)
-        if st == 0:
-            out.append(best / repeats)
-    return np.array(out)
+        return best / repeats if st == 0 else None
+    return time_one
+
+
+def grid_design_costs(n: int, cases: int, seed: int = 5, repeats: int = 20,
+                      profile: int = 0, adversarial: int = 0):
+    """CPU ns of one grid design (``sms_kinematic_design`` with Ts) for `cases` random problems
+    with n bounds, drawn as in :func:`grid_prices`, each timed by :func:`_timer`. With
+    `adversarial` > 0 also the slowest design found by that many random steps from the
+    slowest problem drawn (kept when slower, as the price search does). Returns (array of
+    ns, slowest ns after the steps). `profile`: 0 polynomial, 1 trigonometric."""
+    rng = np.random.default_rng(seed)
+    design = _designer(profile)
+    time_one = _timer(n, profile, repeats)
+    out, slowest = [], (-np.inf, None)
+    while len(out) < cases:
+        problem = _draw(n, rng, design)
+        if problem is None:
+            continue
+        ns = time_one(*problem)
+        if ns is not None:
+            out.append(ns)
+            if ns > slowest[0]:
+                slowest = (ns, problem)
+    if slowest[1] is not None and adversarial:
+        worst, (h, lim, Ts) = slowest
+        x = np.log10([h, *lim, Ts])
+        for step in range(adversarial):
+            y = x + rng.normal(0.0, 0.3 if step % 2 else 0.01, x.size)
+            ns = time_one(10.0 ** y[0], list(10.0 ** y[1:-1]), 10.0 ** y[-1])
+            if ns is not None and ns > worst:
+                worst, x = ns, y
+        slowest = (worst, None)
+    return np.array(out), slowest[0]
 
 
 def report(n: int, cases: int, adversarial: int = 0, seed: int = 5, profile: int = 0) -> str:
@@ -148,7 +171,8 @@ def main(argv=None) -> int:
                                 description=__doc__.split("\n\n")[0])
     p.add_argument("--cases", type=int, default=3000, help="random problems per bound count")
     p.add_argument("--adversarial", type=int, default=0,
-                   help="local-search steps from the worst problem of each class")
+                   help="local-search steps from the worst problem of each class (with --cost "
+                        "also from the slowest design)")
     p.add_argument("--bounds", type=int, nargs="*", default=list(range(1, 9)))
     p.add_argument("--seed", type=int, default=5)
     p.add_argument("--profile", choices=("polynomial", "trigonometric"), default="polynomial",
@@ -160,11 +184,14 @@ def main(argv=None) -> int:
     for n in args.bounds if args.cases else ():
         print(report(n, args.cases, args.adversarial, args.seed, profile), flush=True)
     for n in args.bounds if args.cost else ():
-        us = grid_design_costs(n, args.cost, args.seed, profile=profile) / 1e3
+        ns, slowest = grid_design_costs(n, args.cost, args.seed, profile=profile,
+                                        adversarial=args.adversarial)
+        us = ns / 1e3
         name = " (trigonometric)" if profile else ""
+        extra = f"  adversarial {slowest / 1e3:.2f} us" if args.adversarial else ""
         print(f"grid design cost{name}, {n} bound(s) ({us.size} problems, CPU time in C): median "
-              f"{np.median(us):.2f} us  p99 {np.percentile(us, 99):.2f} us  max {us.max():.2f} us",
-              flush=True)
+              f"{np.median(us):.2f} us  p99 {np.percentile(us, 99):.2f} us  max {us.max():.2f} us"
+              + extra, flush=True)
     return 0
 
 
