@@ -49,6 +49,11 @@ typedef enum fmu_type { FMU_REAL = 0, FMU_INTEGER = 1 } fmu_type;
  * fmu_refuse_hold(). */
 #define FMU_MAX_HOLD_SAMPLES ((double)(1u << 24))
 
+/** The limit on the whole-model steps a long fmi2DoStep may take one by one (2^20, about 40 ns
+ * each for a generator: 40 ms): the trigonometric profile waits, sample by sample, for a state
+ * a new plan can start from, at most one acceleration transition of pi amax/jmax. */
+#define FMU_MAX_HOLD_STEPS ((double)(1u << 20))
+
 /**
  * @brief The refusal of a configuration whose filters would need more than
  * FMU_MAX_HOLD_SAMPLES stage-samples to absorb a held input (provided by the glue).

@@ -223,6 +223,16 @@ static int configure(const tg_model *m, sms_generator_config *c, size_t *need, c
         return snprintf(msg, len, "wn = %.17g: must be 0 (no mode) or > 0", m->wn), 1;
     if (!isfinite(m->q0) || (sms_real)m->q0 - (sms_real)m->q0 != 0)
         return snprintf(msg, len, "q0 = %.17g: the initial position must be finite", m->q0), 1;
+    if (m->profile == SMS_PROFILE_TRIGONOMETRIC
+        && !(3.14159265358979323846 * m->amax / m->jmax / m->Ts <= FMU_MAX_HOLD_STEPS))
+        return snprintf(msg, len, "amax = %.17g, jmax = %.17g, Ts = %.17g: with the "
+                        "trigonometric profile a new target may wait for the end of an "
+                        "acceleration transition of up to pi amax/jmax = %.6g samples, stepped "
+                        "one by one, more than the %.0f that keep a fmi2DoStep of any length "
+                        "well under 100 ms: raise jmax or Ts, or lower amax",
+                        m->amax, m->jmax, m->Ts,
+                        3.14159265358979323846 * m->amax / m->jmax / m->Ts,
+                        FMU_MAX_HOLD_STEPS), 1;
     c->vmax = m->vmax;
     c->amax = m->amax;
     c->jmax = m->jmax;
@@ -286,12 +296,19 @@ int fmu_model_tick(void *model)
 
 /* A dropped target (sms_generator `refused`), once per target: a target that stays dropped
  * over many steps, or comes back after a state is restored, is reported once. */
-/* No closed form yet: the glue ticks the step until the outputs have held (FMU_STEADY_TICKS). */
+/* The generator's closed form under a held target (sms_generator_hold()): bit for bit the
+ * ticks; at most one acceleration transition and 2M + 2 samples of the tuned stage stepped. */
 uint64_t fmu_model_hold(void *model, uint64_t n)
 {
-    (void)model;
-    (void)n;
-    return 0;
+    tg_model *m = (tg_model *)model;
+    sms_real out[4];
+    int i;
+    if (n == 0)
+        return 0;
+    sms_generator_hold(&m->gen, (sms_real)m->target, n, out);
+    for (i = 0; i < 4; ++i)
+        m->out[i] = (double)out[i];
+    return n;
 }
 
 int fmu_model_warning(void *model, char *msg, size_t len)

@@ -322,6 +322,99 @@ void sms_generator_step(sms_generator *g, sms_real target, sms_real out[4])
     }
 }
 
+/* n samples of a fixed plan (no re-plan to come) through the tuned stage, in blocks: the
+ * plan's samples first, then each signal's stage over the block; what n calls of
+ * sms_generator_step() do, bit for bit (the stage's process is its step on a block). */
+static void hold_plan_through_stage(sms_generator *g, uint64_t n, sms_real out[4])
+{
+    sms_real x[4][64], o[4];
+    size_t i, c, b = 0;
+    while (n > 0u) {
+        b = n < 64u ? (size_t)n : 64u;
+        for (i = 0; i < b; ++i) {
+            sms_plan_eval(&g->plan, g->Ts_signal, ++g->k, o);
+            if (o[0] == g->plan.goal && o[1] == 0 && o[2] == 0 && o[3] == 0) {
+                if (g->quiet < g->stage_length)
+                    ++g->quiet;
+            } else {
+                g->quiet = 0;
+            }
+            for (c = 0; c < 4; ++c)
+                x[c][i] = o[c];
+        }
+        for (c = 0; c < 4; ++c)
+            sms_smoother_process(&g->stage[c], x[c], x[c], b);
+        n -= b;
+    }
+    if (b == 0)
+        return;
+    for (c = 0; c < 4; ++c)
+        out[c] = g->quiet >= g->stage_length ? (c == 0 ? g->plan.goal : (sms_real)0)
+                                             : x[c][b - 1];
+}
+
+/* A re-plan still to come under the held target (a new target, or one waiting for a state
+ * the plan can start from, can_start()). */
+static int replan_pending(const sms_generator *g, sms_real target)
+{
+    if (target - target == 0 && target != g->target)
+        return 1;
+    return g->target != g->plan.goal && !g->refused;
+}
+
+void sms_generator_hold(sms_generator *g, sms_real target, uint64_t n, sms_real out[4])
+{
+    uint64_t window, rest_at;
+    size_t i;
+    /* until the held target has been planned (or dropped): from then on the plan is fixed */
+    while (n > 0u && replan_pending(g, target)) {
+        sms_generator_step(g, target, out);
+        --n;
+    }
+    if (n == 0u)
+        return;
+    /* the plan in closed form: sample k of it is sms_plan_eval(k) */
+    if (g->stage_length == 0) {
+        g->k += (size_t)(n - 1u);
+        sms_generator_step(g, target, out);
+        return;
+    }
+    /* With the tuned stage: a stage's state depends only on its last 2M + 2 inputs (both
+     * copies restart within them and the ring is refilled; quiet saturates within L <= M + 1). */
+    window = 2u * (uint64_t)g->stage_window + 2u;
+    rest_at = sms_plan_rest_sample(&g->plan, g->Ts_signal);
+    rest_at = rest_at > g->k ? rest_at - g->k : 0u;   /* samples of this hold before the rest */
+    if (n - 1u >= rest_at + window + 1u) {
+        /* the stages see the rest (goal, 0, 0, 0) for their last 2M + 3 inputs: absorbed */
+        sms_real x[4];
+        x[0] = g->plan.goal;
+        x[1] = x[2] = x[3] = 0;
+        for (i = 0; i < 4; ++i)
+            (void)sms_smoother_settle(&g->stage[i], x[i], n - 1u);
+        g->k += (size_t)(n - 1u);
+        g->quiet = g->stage_length;
+        sms_generator_step(g, target, out);
+        return;
+    }
+    {
+        /* At the end the elder copy will have consumed M + s samples (s in [1, M], from the
+         * phase now), so the stage's state depends on the last M + s inputs alone. */
+        const uint64_t M = g->stage_window;
+        const uint64_t s_now = g->stage[0].age[g->stage[0].age[0] >= g->stage[0].age[1] ? 0 : 1] - M;
+        window = M + (s_now + n - 1u) % M + 1u + 2u;
+    }
+    if (n > window) {
+        /* jump to the last M + s + 2 samples: the plan by its index, the stages by their phase
+         * (the values they hold then are replaced by the samples below) */
+        g->k += (size_t)(n - window);
+        for (i = 0; i < 4; ++i)
+            sms_smoother_advance(&g->stage[i], n - window);
+        g->quiet = 0;
+        n = window;
+    }
+    hold_plan_through_stage(g, n, out);
+}
+
 void sms_generator_process(sms_generator *g, const sms_real *targets, size_t n, sms_real *out)
 {
     size_t i;

@@ -411,3 +411,10 @@ void sms_plan_eval(const sms_plan *plan, sms_real Ts, size_t k, sms_real out[4])
     out[2] = plan->a[i] + t * j;
     out[3] = j;
 }
+
+size_t sms_plan_rest_sample(const sms_plan *plan, sms_real Ts)
+{
+    if (plan->count == 0)
+        return 0;
+    return at_or_after(plan->end, plan->end, plan->end_f, Ts) ? plan->end : plan->end + 1u;
+}

@@ -44,6 +44,10 @@ sms_real sms_plan_mean_jerk(const sms_plan_limits *lim, int shape);
  * half-cosine transition is evaluated by its own series, no libm). */
 void sms_plan_eval(const sms_plan *plan, sms_real Ts, size_t k, sms_real out[4]);
 
+/* The first sample k at which sms_plan_eval() gives the rest on the goal (q = goal, v = a =
+ * j = 0 exactly), as every later one does. */
+size_t sms_plan_rest_sample(const sms_plan *plan, sms_real Ts);
+
 /* sqrt(x) for x >= 0 in sms_real without libm (Newton after scaling by powers of 4). */
 sms_real sms_plan_sqrt(sms_real x);
 

@@ -389,6 +389,21 @@ SMS_API void sms_generator_step(sms_generator *g, sms_real target, sms_real out[
  * Equal, bit for bit, to n calls of sms_generator_step() and to any split into blocks. */
 SMS_API void sms_generator_process(sms_generator *g, const sms_real *targets, size_t n,
                                    sms_real *out);
+/**
+ * @brief n steps with the same target: the state and the last output (out[0..3]) of n calls
+ * of sms_generator_step() with `target`, bit for bit, at a cost bounded whatever n.
+ *
+ * The generator is stepped until the target has been planned (or dropped): one sample, or for
+ * the trigonometric profile until a state the plan can start from, at most one acceleration
+ * transition, (pi/2) 2 amax/jmax. From then on the plan is fixed and sample k of it is
+ * closed form: without a mode the index jumps, O(1). With a mode the tuned stage's state
+ * depends only on its last 2M + 2 inputs (M its ring length: both restarted copies begin and
+ * the ring refills within them): when those all lie at the plan's rest, the stages are put
+ * in their absorbed state (sms_smoother_settle(), O(M) writes); otherwise the plan index and
+ * the stages' phase jump to the last 2M + 2 samples, which are stepped.
+ * @param n  steps (0: nothing changes, out untouched)
+ */
+SMS_API void sms_generator_hold(sms_generator *g, sms_real target, uint64_t n, sms_real out[4]);
 /** @brief Length of the tuned stage [s]: the output lags the plan by it (0 without a mode). */
 SMS_API double sms_generator_tail_duration(const sms_generator *g);
 /** @brief Number of doubles sms_generator_get_state() writes:
