@@ -255,6 +255,42 @@ static int stage_config(const ma_model *m, int k, int i, sms_stage_config *c, ch
     }
 }
 
+/* A long step filters every stage of every axis and signal for the last S + 2 samples, S the
+ * largest chain's settle bound (sms_chain_settle_bound(): sum of 2 M + 2, L + 1, a notch's
+ * decay): within FMU_MAX_HOLD_SAMPLES stage-samples, else 1 with msg naming the axis whose
+ * chain is slowest. */
+static int hold_too_long(const ma_model *m, const ma_stages *s, char *msg, size_t len)
+{
+    double worst = 0.0, stages = 0.0;
+    int i, slowest = 0;
+    size_t k;
+    for (i = 0; i < m->axes; ++i) {
+        double bound = 0.0;
+        for (k = 0; k < s->n[i]; ++k) {
+            double b;
+            if (sms_chain_hold_cost(&s->config[i][k], 1, m->Ts, &b) != SMS_OK)
+                return 0;   /* an invalid stage: refused by its own check */
+            bound += b;
+        }
+        stages += 4.0 * (double)s->n[i];
+        if (bound > worst) {
+            worst = bound;
+            slowest = i;
+        }
+    }
+    if (!((worst + 2.0) * stages > FMU_MAX_HOLD_SAMPLES))
+        return 0;
+    {
+        char names[160], why[200];
+        snprintf(names, sizeof names, "the stages of axis %d (stage[k].kind[%d], stage[k].wn[%d]),"
+                 " Ts = %.17g", slowest, slowest, slowest, m->Ts);
+        snprintf(why, sizeof why, "%.0f stages (4 signals per axis) over the last %.4g samples, "
+                 "the slowest chain's settle bound", stages, worst + 2.0);
+        return fmu_refuse_hold(msg, len, names, (worst + 2.0) * stages, why,
+                               "raise the stages' wn or Ts, or use fewer stages or axes");
+    }
+}
+
 /* The stages of every axis in use, their delay lines (4 signals each) within FMU_MAX_REALS
  * together; 0, or 1 with msg. */
 static int stage_configs(const ma_model *m, ma_stages *s, char *msg, size_t len)
@@ -289,7 +325,7 @@ static int stage_configs(const ma_model *m, ma_stages *s, char *msg, size_t len)
         return fmu_refuse_size(msg, len, names, samples,
                                "raise the stages' wn or Ts, or use fewer stages or axes");
     }
-    return 0;
+    return hold_too_long(m, s, msg, len);
 }
 
 /* Do axes i and 0 have the same stages (kinds and modes, in order)? */
@@ -456,12 +492,23 @@ int fmu_model_tick(void *model)
     return changed;
 }
 
-/* No closed form yet: the glue ticks the step until the outputs have held (FMU_STEADY_TICKS). */
+/* The generator's closed form under held targets (sms_multi_generator_hold()), bit for bit the
+ * ticks; where it has none (a notch stage while the profile still moves near the step's end)
+ * it returns 0 and the glue ticks. */
 uint64_t fmu_model_hold(void *model, uint64_t n)
 {
-    (void)model;
-    (void)n;
-    return 0;
+    ma_model *m = (ma_model *)model;
+    sms_real target[MA_MAX_AXES], out[4 * MA_MAX_AXES];
+    uint64_t done;
+    int i, k;
+    for (i = 0; i < m->axes; ++i)
+        target[i] = (sms_real)m->field[F_TARGET][i];
+    done = sms_multi_generator_hold(&m->gen, target, n, out);
+    if (done > 0)
+        for (i = 0; i < m->axes; ++i)
+            for (k = 0; k < 4; ++k)
+                m->field[F_Q + k][i] = (double)out[4 * i + k];
+    return done;
 }
 
 /* A dropped target vector (a move's `refused`), once per target: the axes of every group that

@@ -319,3 +319,51 @@ sms_status sms_chain_hold_cost(const sms_stage_config *configs, size_t n, double
     *samples = total;
     return SMS_OK;
 }
+
+double sms_chain_settle_bound(const sms_chain *chain)
+{
+    double total = 0.0;
+    size_t i;
+    for (i = 0; i < chain->n_stages; ++i) {
+        const sms_stage *st = &chain->stages[i];
+        switch (sms_family_of(st->kind)) {
+        case SMS_FAMILY_SMOOTHER: total += 2.0 * (double)st->u.smoother->window + 2.0; break;
+        case SMS_FAMILY_SHAPER: total += (double)st->u.shaper->length + 1.0; break;
+        default: total += sms_notch_settle_bound(st->u.notch); break;
+        }
+    }
+    return total;
+}
+
+int sms_chain_is_fir(const sms_chain *chain)
+{
+    size_t i;
+    for (i = 0; i < chain->n_stages; ++i)
+        if (sms_family_of(chain->stages[i].kind) == SMS_FAMILY_NOTCH)
+            return 0;
+    return 1;
+}
+
+void sms_chain_advance(sms_chain *chain, uint64_t n)
+{
+    size_t i;
+    for (i = 0; i < chain->n_stages; ++i)
+        advance_absorbed(&chain->stages[i], n);
+}
+
+sms_real sms_chain_settle(sms_chain *chain, sms_real x, uint64_t n)
+{
+    size_t i;
+    for (i = 0; i < chain->n_stages; ++i) {
+        sms_stage *st = &chain->stages[i];
+        if (sms_family_of(st->kind) == SMS_FAMILY_NOTCH) {
+            sms_notch *f = st->u.notch;   /* settled: the fixed point, then one sample */
+            f->x1 = f->x2 = x;
+            f->w1 = f->w2 = (sms_real)0;
+            sms_notch_step(f, &x);
+        } else {
+            x = fir_settle(st, x, n);
+        }
+    }
+    return x;
+}

@@ -53,9 +53,9 @@ static void configure(fmi2Component c, double n)
 }
 #elif defined(FMU_TEST_MULTI_AXIS)
 static const char *config_name = "8 axes, 3 rectangular stages each (4 signals per stage)";
-/* the longest step after a new target that still steps: the stages' last samples while the
- * move still runs inside them (3 stages of M = N/96 each, 2M + 2 per stage) */
-static double medium_ticks(double n) { return n / 16.0; }
+/* the longest step after a new target that is still filtered: just under the largest chain's
+ * settle bound (3 stages of M = N/96 to N/99 each, 2M + 2 per stage), stepped in blocks */
+static double medium_ticks(double n) { return n / 16.5; }
 static const fmi2ValueReference input_vr = MA_VR_TARGET(0);
 static void configure(fmi2Component c, double n)
 {

@@ -16,10 +16,8 @@
  * - every FMU state saved loads again (fmi2SetFMUstate, and serialise -> deserialise -> set).
  * Usage: test_fmu_fuzz_<Model> [sequences [seed [huge] [from=S]]]; default 1000 sequences
  * (seconds). Steps are up to 2000 ticks long; "huge" adds steps of up to 1e12 s, which the
- * models hold in bounded time (fmu_model_hold(): SmoothShaper and TrajectoryGenerator in
- * closed form; MultiAxisGenerator ticks until its outputs have held for
- * FMU_STEADY_TICKS(state count), over 100 ms for large states, so its "huge" campaigns
- * report such steps). Every sequence
+ * models hold in bounded time (fmu_model_hold(): closed forms of every model under a held
+ * input, so "huge" campaigns keep every call under 100 ms too). Every sequence
  * draws from its own generator seeded by (seed, sequence number), and a failure or a slow call
  * names its sequence, so `test_fmu_fuzz_<Model> 1 <seed> from=<S> trace` replays sequence S alone
  * and prints every call.

@@ -86,6 +86,27 @@ SMS_API void sms_chain_hold(sms_chain *chain, sms_real x, uint64_t n, sms_real *
  */
 SMS_API sms_status sms_chain_hold_cost(const sms_stage_config *configs, size_t n, double Ts,
                                        double *samples);
+/**
+ * @brief Samples of a constant input after which the chain has absorbed it from any state:
+ * the sum over the stages of 2 M + 2 (smoother), L + 1 (shaper) and sms_notch_settle_bound()
+ * (notch: an estimate for the largest state). For a chain without a notch
+ * (sms_chain_is_fir()) it also bounds how many of the latest inputs its state depends on: the
+ * stages' states are the same after that many samples whatever they held before. O(stages).
+ */
+SMS_API double sms_chain_settle_bound(const sms_chain *chain);
+/** @brief 1 when the chain has no notch (every stage FIR), else 0. */
+SMS_API int sms_chain_is_fir(const sms_chain *chain);
+/** @brief Advance every stage's phase (ring heads, smoother copy ages) by n samples, keeping
+ * their values: exactly n samples of an absorbed input; on any other state the phase of n
+ * samples later with stale values, which the next sms_chain_settle_bound() samples of a FIR
+ * chain replace entirely. O(stages). */
+SMS_API void sms_chain_advance(sms_chain *chain, uint64_t n);
+/** @brief The state and last output after n samples whose last sms_chain_settle_bound() (or
+ * more) were the constant x: every stage put into its absorbed state (sms_smoother_settle(),
+ * shapers' delay lines filled, notches at their fixed point), phase advanced by n, whatever
+ * the earlier inputs; bit for bit n samples (for a notch, as far as its bound holds). O(memory).
+ * @param n  >= 2 and > sms_chain_settle_bound() */
+SMS_API sms_real sms_chain_settle(sms_chain *chain, sms_real x, uint64_t n);
 SMS_API size_t sms_chain_state_count(const sms_chain *chain);
 SMS_API void sms_chain_get_state(const sms_chain *chain, double *dst);
 /** @brief Restore a state written by sms_chain_get_state() (the stages' states one after the

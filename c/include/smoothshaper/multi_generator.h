@@ -261,6 +261,22 @@ SMS_API void sms_multi_generator_process(sms_multi_generator *g, const sms_real 
  * outputs settle sms_chain_length() samples later; a notch's only asymptotically). */
 SMS_API int sms_multi_generator_busy(const sms_multi_generator *g);
 /**
+ * @brief Up to n steps with the same targets (target[0 .. n_axes-1]), at a cost bounded
+ * whatever n: the state and last output (out, 4 n_axes values) of that many calls of
+ * sms_multi_generator_step(), bit for bit.
+ *
+ * The profile alone is advanced in closed form between the samples on which a move changes
+ * (a new target, its plan or drop: at most two per group; a move's sample is a function of
+ * its index), O(groups log n). With vibration stages, S = the largest
+ * sms_chain_settle_bound() of the axes' chains: when the profile rests for the last S + 2
+ * samples, the stages are put into their absorbed state (sms_chain_settle(), O(memory));
+ * otherwise, with FIR stages only, the profile and the stages' phase jump to the last S + 2
+ * samples, which are stepped. With a notch and a profile still moving then, nothing is done.
+ * @return the steps done: n, or 0 (the notch case, or a notch that does not decay).
+ */
+SMS_API uint64_t sms_multi_generator_hold(sms_multi_generator *g, const sms_real *target,
+                                          uint64_t n, sms_real *out);
+/**
  * @brief Time-optimal phase-synchronised rest-to-rest duration for a displacement vector:
  * the jerk-limited straight move under every axis's limits (continuous time, no grid).
  * @param delta  n_axes displacements (finite; all zero gives 0)
