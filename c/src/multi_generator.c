@@ -344,25 +344,30 @@ static int plan(sms_multi_generator *g, size_t first, const group *G, sms_multi_
     return 1;
 }
 
-/* Normalised S-curve (header): F'(x) (acceleration), F(x), G(x) = int_0^x F; and F''. */
-static void s_curve(sms_real x, sms_real rho, sms_real *G, sms_real *F, sms_real *dF,
-                    sms_real *ddF)
+/* Normalised S-curve (header) on the piece that contains xs (a breakpoint within SNAP of x,
+ * see evaluate()): F'(xs) (acceleration) and F''(xs) (jerk) there, and that piece's F(x) and
+ * G(x) = int_0^x F at x itself. The pieces continue each other to second order at every
+ * breakpoint, so choosing the piece by xs moves F and G by the square and the cube of
+ * |x - xs| <= SNAP, and the position keeps the rounding of the sample's own time: snapping x
+ * itself would move it by v SNAP T, 64 eps of the transition's distance. */
+static void s_curve(sms_real x, sms_real xs, sms_real rho, sms_real *G, sms_real *F,
+                    sms_real *dF, sms_real *ddF)
 {
     const sms_real ap = 1 / (1 - rho);
-    if (x < rho) {
+    if (xs < rho) {
         *ddF = ap / rho;
-        *dF = ap * x / rho;
+        *dF = ap * xs / rho;
         *F = ap * x * x / (2 * rho);
         *G = ap * x * x * x / (6 * rho);
-    } else if (x < 1 - rho) {
+    } else if (xs < 1 - rho) {
         *ddF = 0;
         *dF = ap;
         *F = ap * (x - rho / 2);
         *G = ap * (x * x / 2 - rho * x / 2 + rho * rho / 6);
-    } else if (x < 1) {
+    } else if (xs < 1) {
         sms_real y = 1 - x;
         *ddF = -ap / rho;
-        *dF = ap * y / rho;
+        *dF = ap * (1 - xs) / rho;
         *F = 1 - ap * y * y / (2 * rho);
         *G = x - (sms_real)0.5 + ap * y * y * y / (6 * rho);
     } else {
@@ -373,8 +378,9 @@ static void s_curve(sms_real x, sms_real rho, sms_real *G, sms_real *F, sms_real
     }
 }
 
-/* Breakpoints (phase ends, jerk jumps) within SNAP of a sample instant count as on it, and
- * the sample takes the right limit there; the decision then does not hang on the last ulp. */
+/* Breakpoints (phase ends, jerk jumps) within SNAP of a sample instant, relative to the
+ * length of their own phase, count as on it, and the sample takes the right limit there; the
+ * decision then does not hang on the last ulp. */
 #define SNAP (64 * REAL_EPS)
 
 static sms_real snap(sms_real x, sms_real b, sms_real tol)
@@ -382,17 +388,42 @@ static sms_real snap(sms_real x, sms_real b, sms_real tol)
     return (x - b <= tol && b - x <= tol) ? b : x;
 }
 
-/* Output of the axes [first, first + n) at move time t (k < k_end). */
+/* Time left from the sample k of move m to the end of its stop transition. With a cruise the
+ * plan ends on the arrival sample (plan(): tau takes up the rounding onto the grid), so the
+ * time left is (k_end - k) Ts, a whole number of samples: it carries no rounding of the move
+ * time off + k Ts, which in float is about 6e-8 of the move (at 1000 s and Ts = 1 ms, 0.06 of
+ * a sample; at 10^5 s, 6 samples). Without a cruise the stop follows the first transition
+ * directly, the arrival may be rounded before T1 + T2 by the grid snap, and the time is
+ * counted from T1 (the move is then as long as its transitions, so its rounding is theirs). */
+static sms_real time_left(const sms_multi_move *m, sms_real t, sms_real Ts)
+{
+    if (m->tau > 0)
+        return (sms_real)(m->k_end - m->k) * Ts;
+    return m->T2 - (t - m->T1);
+}
+
+/* Is the sample in the stop transition? (Its time left is within the stop, to SNAP of T2.) */
+static int in_stop(const sms_multi_move *m, sms_real left)
+{
+    return m->T2 > 0 && left <= m->T2 + SNAP * m->T2;
+}
+
+/* Output of the axes [first, first + n) at sample k = m->k (k < k_end), move time t. Each
+ * phase is located and evaluated by its own time: the first transition by t (there t <= T1),
+ * the cruise by t - T1, the stop by the time left to its end (time_left()), and each
+ * breakpoint is snapped within SNAP of its own phase's length, never of the whole move's:
+ * a tolerance of 64 eps of the move spans 7.6 samples of a 1000 s move at Ts = 1 ms in float,
+ * and the positions stood still there, then jumped by 8 vmax. */
 static void evaluate(const sms_multi_generator *g, size_t first, size_t n,
                      const sms_multi_move *m, sms_real t, sms_real *out)
 {
     sms_real G, F, dF, ddF;
-    const sms_real tol = SNAP * (m->T1 + m->tau + m->T2);
+    const sms_real left = time_left(m, t, g->Ts_signal);
     size_t i;
-    t = snap(snap(t, m->T1, tol), m->T1 + m->tau, tol);
-    if (t < m->T1) {
-        sms_real x = snap(snap(t / m->T1, m->rho1, SNAP), 1 - m->rho1, SNAP);
-        s_curve(x, m->rho1, &G, &F, &dF, &ddF);
+    if (t < m->T1 - SNAP * m->T1) {
+        sms_real x = t / m->T1;
+        sms_real xs = snap(snap(x, m->rho1, SNAP), 1 - m->rho1, SNAP);
+        s_curve(x, xs, m->rho1, &G, &F, &dF, &ddF);
         for (i = first; i < first + n; ++i) {
             sms_real dV = g->W[i] - g->V[i];
             out[4 * i + 0] = g->p[i] + g->V[i] * t + dV * (m->T1 * G);
@@ -400,8 +431,8 @@ static void evaluate(const sms_multi_generator *g, size_t first, size_t n,
             out[4 * i + 2] = dV * (dF / m->T1);
             out[4 * i + 3] = dV * (ddF / (m->T1 * m->T1));
         }
-    } else if (t < m->T1 + m->tau || !(m->T2 > 0)) {
-        sms_real c = t - m->T1;
+    } else if (!in_stop(m, left)) {
+        sms_real c = t - m->T1; /* may be below 0 by SNAP T1: the cruise continues T1's end */
         for (i = first; i < first + n; ++i) {
             out[4 * i + 0] = g->p[i] + (g->V[i] + g->W[i]) * (m->T1 / 2) + g->W[i] * c;
             out[4 * i + 1] = g->W[i];
@@ -409,14 +440,18 @@ static void evaluate(const sms_multi_generator *g, size_t first, size_t n,
             out[4 * i + 3] = 0;
         }
     } else {
-        sms_real c = t - m->T1 - m->tau;
-        sms_real x = snap(snap(snap(c / m->T2, m->rho2, SNAP), 1 - m->rho2, SNAP), 1, SNAP);
-        s_curve(x, m->rho2, &G, &F, &dF, &ddF);
+        /* x = 1 - y of the stop, y = left / T2 the fraction left: the S-curve is point-
+         * symmetric, so the distance still to go is W T2 G(y), and the position is counted
+         * back from the goal the move lands on */
+        sms_real y = left / m->T2, Gy, Fy, dFy, ddFy;
+        sms_real xs = snap(snap(snap(snap(1 - y, 0, SNAP), m->rho2, SNAP), 1 - m->rho2, SNAP),
+                           1, SNAP);
+        s_curve(xs, xs, m->rho2, &G, &F, &dF, &ddF);
+        s_curve(y, y, m->rho2, &Gy, &Fy, &dFy, &ddFy);
         for (i = first; i < first + n; ++i) {
             sms_real W = g->W[i];
-            out[4 * i + 0] = g->p[i] + (g->V[i] + W) * (m->T1 / 2) + W * m->tau + W * c -
-                             W * (m->T2 * G);
-            out[4 * i + 1] = W - W * F;
+            out[4 * i + 0] = g->goal[i] - W * (m->T2 * Gy);
+            out[4 * i + 1] = W * Fy;
             out[4 * i + 2] = -W * (dF / m->T2);
             out[4 * i + 3] = -W * (ddF / (m->T2 * m->T2));
         }
@@ -463,9 +498,19 @@ static void step_group(sms_multi_generator *g, size_t first, size_t n, sms_multi
             if (!plan(g, first, &G, m, g->goal + first, zero, 0))
                 drop_target(g, m);
             t = 0;
-        } else if (t >= m->T1 - SNAP * (m->T1 + m->tau + m->T2)) {
+        } else if (t >= m->T1 - SNAP * m->T1) {
+            /* blend at tr: the end of the first transition, or the instant the target came
+             * during the cruise (at this very sample: when the stop has not begun there by
+             * the rule evaluate() uses) */
             sms_real tr = m->seen > m->T1 ? m->seen : m->T1;
-            if (tr <= m->T1 + m->tau) {
+            int before_stop;
+            if (!(m->seen > m->T1))
+                before_stop = 1;
+            else if (m->seen < t)
+                before_stop = m->seen <= m->T1 + m->tau;
+            else
+                before_stop = !in_stop(m, time_left(m, t, g->Ts_signal));
+            if (before_stop) {
                 /* zero acceleration at tr: blend into a new move from there */
                 sms_real p[SMS_MULTI_MAX_AXES], V[SMS_MULTI_MAX_AXES];
                 for (i = 0; i < n; ++i) {

@@ -450,25 +450,21 @@ def _plan_unchecked(p, V, B, off, Ts, lim):
                 rho2=rho2, off=off, k_end=k_end)
 
 
-def _s_curve(x: float, rho: float):
-    """(G, F, F', F'') of the normalised transition at x in [0, 1] (beyond 1: finished)."""
+def _s_curve(x: float, xs: float, rho: float):
+    """(G, F, F', F'') of the normalised transition on the piece that contains xs (x with its
+    breakpoints snapped): F' and F'' at xs, that piece's G and F at x itself (beyond 1:
+    finished). The pieces continue each other to second order, so the position keeps the
+    rounding of the sample's own time while the acceleration and jerk take the right limit."""
     ap = 1.0 / (1.0 - rho)
-    if x < rho:
-        return ap * x * x * x / (6 * rho), ap * x * x / (2 * rho), ap * x / rho, ap / rho
-    if x < 1 - rho:
+    if xs < rho:
+        return ap * x * x * x / (6 * rho), ap * x * x / (2 * rho), ap * xs / rho, ap / rho
+    if xs < 1 - rho:
         return ap * (x * x / 2 - rho * x / 2 + rho * rho / 6), ap * (x - rho / 2), ap, 0.0
-    if x < 1:
+    if xs < 1:
         y = 1 - x
-        return x - 0.5 + ap * y * y * y / (6 * rho), 1 - ap * y * y / (2 * rho), ap * y / rho, -ap / rho
+        return (x - 0.5 + ap * y * y * y / (6 * rho), 1 - ap * y * y / (2 * rho),
+                ap * (1 - xs) / rho, -ap / rho)
     return x - 0.5, 1.0, 0.0, 0.0
-
-
-def _transition_state(Va, Vb, T, rho, t):
-    """t into the transition Va -> Vb of length T: the displacement as its two terms (Va t and
-    the S-curve's part), velocity, acceleration, jerk."""
-    G, F, dF, ddF = _s_curve(_snap(t / T, rho, 1 - rho, 1.0), rho)
-    dV = Vb - Va
-    return Va * t, dV * (T * G), Va + dV * F, dV * (dF / T), dV * (ddF / (T * T))
 
 
 _SNAP = 64 * _EPS
@@ -482,22 +478,49 @@ def _snap(x, *breaks, tol=_SNAP):
     return x
 
 
-def _evaluate(m, t):
-    """(axes, 4) output of move m at move time t."""
-    T1, tau, T2 = m["T1"], m["tau"], m["T2"]
+def _time_left(m, k, t, Ts):
+    """Time from sample k (move time t) to the end of the stop. With a cruise the plan ends on
+    the arrival sample, so it is the whole number of samples left times Ts (no rounding of
+    a long move's time); without one the stop follows the first transition and is counted
+    from T1 (the arrival may be rounded before T1 + T2)."""
+    if m["tau"] > 0:
+        return (m["k_end"] - k) * Ts
+    return m["T2"] - (t - m["T1"])
+
+
+def _in_stop(m, left) -> bool:
+    return m["T2"] > 0 and left <= m["T2"] + _SNAP * m["T2"]
+
+
+def _cruise_position(m, t):
+    """Position at move time t >= T1 - SNAP T1 on the cruise (or its continuation)."""
+    q1 = m["p"] + (m["V"] + m["W"]) * (m["T1"] / 2)
+    return q1 + m["W"] * (t - m["T1"])
+
+
+def _evaluate(m, t, left):
+    """(axes, 4) output of move m at move time t, time ``left`` to its end (:func:`_time_left`).
+    Each phase is located by its own time and each breakpoint snapped within SNAP of its own
+    phase's length; the stop is counted back from the goal, W T2 G(y) before it with y the
+    fraction of the stop left (the S-curve is point-symmetric)."""
+    T1, T2 = m["T1"], m["T2"]
     p, V, W = m["p"], m["V"], m["W"]
-    t = _snap(t, T1, T1 + tau, tol=_SNAP * (T1 + tau + T2))
     # sums in the C core's order, left to right (so the two round alike)
-    if t < T1:
-        lin, curve, v, a, j = _transition_state(V, W, T1, m["rho1"], t)
-        return np.stack([p + lin + curve, v, a, j], axis=-1)
-    q1 = p + (V + W) * (T1 / 2)
-    if t < T1 + tau or not T2 > 0:
+    if t < T1 - _SNAP * T1:
+        x = t / T1
+        G, F, dF, ddF = _s_curve(x, _snap(x, m["rho1"], 1 - m["rho1"]), m["rho1"])
+        dV = W - V
+        return np.stack([p + V * t + dV * (T1 * G), V + dV * F, dV * (dF / T1),
+                         dV * (ddF / (T1 * T1))], axis=-1)
+    if not _in_stop(m, left):
         z = np.zeros_like(W)
-        return np.stack([q1 + W * (t - T1), W, z, z], axis=-1)
-    c = t - T1 - tau
-    lin, curve, v, a, j = _transition_state(W, np.zeros_like(W), T2, m["rho2"], c)
-    return np.stack([q1 + W * tau + lin + curve, v, a, j], axis=-1)
+        return np.stack([_cruise_position(m, t), W, z, z], axis=-1)
+    y = left / T2
+    xs = _snap(1 - y, 0.0, m["rho2"], 1 - m["rho2"], 1.0)
+    _, _, dF, ddF = _s_curve(xs, xs, m["rho2"])
+    Gy, Fy, _, _ = _s_curve(y, y, m["rho2"])
+    return np.stack([m["goal"] - W * (T2 * Gy), W * Fy, -W * (dF / T2),
+                     -W * (ddF / (T2 * T2))], axis=-1)
 
 
 def multi_axis_reference(targets, *, vmax, amax, jmax, Ts: float, sync: str = "phase",
@@ -613,11 +636,19 @@ def _profile(targets, *, vmax, amax, jmax, Ts, sync, q0) -> np.ndarray:
                             position = B.copy()
                     pending = False
                     t = 0.0
-                elif t >= move["T1"] - _SNAP * (move["T1"] + move["tau"] + move["T2"]):
+                elif t >= move["T1"] - _SNAP * move["T1"]:
+                    # blend at the end of the first transition, or where the target came in
+                    # the cruise (at this very sample: before the stop by _evaluate's rule)
                     tr = max(seen, move["T1"])
-                    if tr <= move["T1"] + move["tau"]:
-                        state = _evaluate(move, tr)
-                        new = _plan(state[:, 0], move["W"].copy(), B, max(t - tr, 0.0), Ts, lim)
+                    if not seen > move["T1"]:
+                        before_stop = True
+                    elif seen < t:
+                        before_stop = seen <= move["T1"] + move["tau"]
+                    else:
+                        before_stop = not _in_stop(move, _time_left(move, k, t, Ts))
+                    if before_stop:
+                        new = _plan(_cruise_position(move, tr), move["W"].copy(), B,
+                                    max(t - tr, 0.0), Ts, lim)
                         pending = False
                         if new is _REFUSED:  # the running move goes on
                             refused = B.copy()
@@ -634,5 +665,5 @@ def _profile(targets, *, vmax, amax, jmax, Ts, sync, q0) -> np.ndarray:
                 out[s, idx, 0] = position
                 out[s, idx, 1:] = 0.0
             else:
-                out[s, idx] = _evaluate(move, t)
+                out[s, idx] = _evaluate(move, t, _time_left(move, k, t, Ts))
     return out
