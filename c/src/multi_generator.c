@@ -846,8 +846,10 @@ static uint64_t group_event(const sms_multi_generator *g, const sms_multi_move *
     tr = m->seen > m->T1 ? m->seen : m->T1;
     if (tr > m->T1 + m->tau)
         return hi;
-    /* the first sample whose move time reaches T1 - tol: t = off + k Ts grows with k */
-    tol = SNAP * (m->T1 + m->tau + m->T2);
+    /* the first sample whose move time reaches T1 - tol (step_group()'s blend test): t =
+     * off + k Ts grows with k. A target seen at a sample that time_left() already counted in
+     * the stop while seen <= T1 + tau (a rounding apart) blends on the next one, as there */
+    tol = SNAP * m->T1;
     lo = 1u;
     while (lo < hi) {
         const uint64_t mid = lo + (hi - lo) / 2u;
