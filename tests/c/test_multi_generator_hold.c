@@ -71,13 +71,13 @@ int main(void)
     static const sms_kind kinds[4] = {SMS_RECTANGULAR, SMS_HARMONIC, SMS_SHAPER_ZVD,
                                       SMS_NOTCH_TUSTIN};
     int trial;
-    for (trial = 0; trial < 120; ++trial) {
+    for (trial = 0; trial < 60; ++trial) {
         sms_multi_generator_config c;
         sms_stage_config st[2];
         sms_real target[8];
         size_t j, hist = (size_t)(uniform() * 900.0);
         int k, with = trial % 3;   /* 0: no stages, 1: FIR, 2: with a notch */
-        uint64_t ns[7];
+        uint64_t ns[6];
         memset(&c, 0, sizeof c);
         c.n_axes = 1u + (size_t)(uniform() * 4.0) % 4u;
         c.sync = uniform() < 0.5 ? SMS_SYNC_PHASE : SMS_SYNC_INDEPENDENT;
@@ -101,11 +101,10 @@ int main(void)
         ns[3] = (uint64_t)(uniform() * 2000.0) + 1u;
         ns[4] = (uint64_t)(uniform() * 6000.0) + 1u;
         ns[5] = 20000u + (uint64_t)(uniform() * 100.0);
-        ns[6] = 60000u + (uint64_t)(uniform() * 100.0);
-        for (k = 0; k < 7; ++k)
+        for (k = 0; k < 6; ++k)
             one_case(&c, ns[k], target, hist);
     }
-    CHECK(cases > 700);
+    CHECK(cases > 300);
     printf("multi-axis generator hold: %d cases (%d left to stepping)\n", cases, refused_holds);
     return check_summary("test_multi_generator_hold");
 }
