@@ -132,7 +132,9 @@ typedef struct sms_multi_move {
  * for the arrival and then starts from rest. Every output q, v, a, j is the exact value of
  * this continuous profile at the sample instant (the jerk at a jump is the right limit), so
  * the backward differences dq/Ts, d2q/Ts^2, d3q/Ts^3 are averages of v, a, j and keep the
- * limits too. Per-sample work is O(n_axes); a re-plan costs a bounded number (at most 200,
+ * limits too, to the rounding of the positions for any move length (each phase is evaluated
+ * by its own time, the stop by the whole samples left; the rule and its numbers are in
+ * docs/multi-axis.md). Per-sample work is O(n_axes); a re-plan costs a bounded number (at most 200,
  * typically 5) of O(n_axes) evaluations.
  *
  * Vibration stages (::sms_multi_generator_config): after the profile, axis i's q, v, a, j each
