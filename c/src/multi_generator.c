@@ -498,10 +498,13 @@ static void step_group(sms_multi_generator *g, size_t first, size_t n, sms_multi
             if (!plan(g, first, &G, m, g->goal + first, zero, 0))
                 drop_target(g, m);
             t = 0;
-        } else if (t >= m->T1 - SNAP * m->T1) {
+        } else if (t >= m->T1) {
             /* blend at tr: the end of the first transition, or the instant the target came
              * during the cruise (at this very sample: when the stop has not begun there by
-             * the rule evaluate() uses) */
+             * the rule evaluate() uses). Not before T1, not even by a rounding: the new move
+             * starts at tr and its first sample is off = t - tr >= 0 after it; a sample a
+             * little before T1 taken as on it would shift all that follows by T1 - t (in
+             * float up to 64 eps of T1, a jump of 7e-5 in a position of 9 in the tests) */
             sms_real tr = m->seen > m->T1 ? m->seen : m->T1;
             int before_stop;
             if (!(m->seen > m->T1))
@@ -836,7 +839,7 @@ static void step_profile(sms_multi_generator *g, const sms_real *target, sms_rea
  * during the stop). UINT64_MAX when nothing is pending. */
 static uint64_t group_event(const sms_multi_generator *g, const sms_multi_move *m)
 {
-    sms_real tr, tol;
+    sms_real tr;
     uint64_t lo, hi;
     if (!m->pending)
         return UINT64_MAX;
@@ -846,15 +849,14 @@ static uint64_t group_event(const sms_multi_generator *g, const sms_multi_move *
     tr = m->seen > m->T1 ? m->seen : m->T1;
     if (tr > m->T1 + m->tau)
         return hi;
-    /* the first sample whose move time reaches T1 - tol (step_group()'s blend test): t =
-     * off + k Ts grows with k. A target seen at a sample that time_left() already counted in
-     * the stop while seen <= T1 + tau (a rounding apart) blends on the next one, as there */
-    tol = SNAP * m->T1;
+    /* the first sample whose move time reaches T1 (step_group()'s blend test): t = off + k Ts
+     * grows with k. A target seen at a sample that time_left() already counted in the stop
+     * while seen <= T1 + tau (a rounding apart) blends on the next one, as there */
     lo = 1u;
     while (lo < hi) {
         const uint64_t mid = lo + (hi - lo) / 2u;
         const sms_real t = m->off + (sms_real)(size_t)(m->k + mid) * g->Ts_signal;
-        if (t >= m->T1 - tol)
+        if (t >= m->T1)
             hi = mid;
         else
             lo = mid + 1u;

@@ -7,17 +7,16 @@
 #include "multi_config.h"
 
 #ifdef SMS_USE_FLOAT
-#define LIMIT_TOL 1e-4   /* float rounding of q differences over a few samples */
+#define LIMIT_TOL 3.8147e-6 /* 32 eps: the planner's cruise tolerance and unit-limit rounding */
 #define LINE_TOL 1e-5
-#define DIFF_TOL 1e-2
-/* second and third differences of float positions are rounding, not motion: not checked */
-#define HIGHER_DIFFS 0
+#define UNIT_ROUNDOFF 5.9604644775390625e-8
 #else
 #define LIMIT_TOL 1e-9
 #define LINE_TOL 1e-12
+#define UNIT_ROUNDOFF 1.1102230246251565e-16
+#endif
 #define DIFF_TOL 1e-9
 #define HIGHER_DIFFS 1
-#endif
 
 #define MAX_SAMPLES 60000
 static sms_real out_buf[MAX_SAMPLES * SMS_MULTI_MAX_AXES * 4];
@@ -63,8 +62,9 @@ static double check_limits(const sms_multi_generator_config *c, const sms_real *
         for (k = 0; k < n; ++k)
             if (fabs((double)out[4 * (k * na + i)]) > qmax)
                 qmax = fabs((double)out[4 * (k * na + i)]);
-        /* rounding of q (a few ulps of the largest position the record reaches) */
-        e = 4.0 * qmax * (SMS_TEST_PRECISION[0] == 'f' ? 6e-8 : 1.2e-16);
+        /* rounding of q: 8 u of the largest position the record reaches per sample, the
+         * single-axis rule (docs/multi-axis.md) */
+        e = 8.0 * UNIT_ROUNDOFF * qmax;
         for (k = 0; k < n; ++k) {
             const sms_real *o = out + 4 * (k * na + i);
             double d1, d2, d3;

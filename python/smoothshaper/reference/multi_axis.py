@@ -636,9 +636,10 @@ def _profile(targets, *, vmax, amax, jmax, Ts, sync, q0) -> np.ndarray:
                             position = B.copy()
                     pending = False
                     t = 0.0
-                elif t >= move["T1"] - _SNAP * move["T1"]:
+                elif t >= move["T1"]:
                     # blend at the end of the first transition, or where the target came in
-                    # the cruise (at this very sample: before the stop by _evaluate's rule)
+                    # the cruise (at this very sample: before the stop by _evaluate's rule);
+                    # never before T1, or the new move's first sample would be taken at tr
                     tr = max(seen, move["T1"])
                     if not seen > move["T1"]:
                         before_stop = True
