@@ -92,7 +92,7 @@ static void long_move(double T, sms_sync sync)
     sms_multi_generator_config c;
     sms_multi_generator g;
     sms_multi_move saved[SMS_MULTI_MAX_AXES];
-    sms_real start[SMS_MULTI_MAX_AXES], target[SMS_MULTI_MAX_AXES];
+    sms_real start[SMS_MULTI_MAX_AXES], target[SMS_MULTI_MAX_AXES], turn[SMS_MULTI_MAX_AXES];
     double delta[SMS_MULTI_MAX_AXES], Q[SMS_MULTI_MAX_AXES], Ts = 1e-3, Tp = 0.0;
     size_t n = 3, i, k, w, groups = sync == SMS_SYNC_PHASE ? 1 : n;
     memset(&c, 0, sizeof c);
@@ -108,7 +108,9 @@ static void long_move(double T, sms_sync sync)
         target[i] = (sms_real)((double)start[i] +
                                (i == 0 ? 1.0 : 2.0 * urand() - 1.0) * c.vmax[i] * T);
         delta[i] = (double)target[i] - (double)start[i];
-        Q[i] = fmax(fabs((double)start[i]), fabs((double)target[i]));
+        /* a target that replaces it mid-cruise (the blend window) */
+        turn[i] = (sms_real)((double)start[i] + (2.0 * urand() - 1.0) * c.vmax[i] * T);
+        Q[i] = fmax(fabs((double)start[i]), fmax(fabs((double)target[i]), fabs((double)turn[i])));
     }
     Ts = real(Ts);
     CHECK_STATUS(sms_multi_generator_init(&g, &c, Ts, NULL, 0, NULL, 0, NULL), SMS_OK);
@@ -142,6 +144,16 @@ static void long_move(double T, sms_sync sync)
             for (i = 0; i < n; ++i)
                 CHECK(out[WIN - 1][4 * i] == target[i] && out[WIN - 1][4 * i + 1] == 0);
     }
+    /* a new target 100 samples into a window at 30 % of the move: the move blends into one
+     * towards it from the cruise, at a move time of up to 10^5 s */
+    for (i = 0; i < groups; ++i) {
+        g.move[i] = saved[i];
+        g.move[i].k = (size_t)(0.3 * (double)saved[i].k_end);
+    }
+    for (k = 0; k < WIN; ++k)
+        sms_multi_generator_step(&g, k < 100 ? target : turn, out[k]);
+    CHECK(g.dropped == 0);
+    check_window(&c, Ts, Q);
 }
 
 int main(void)
