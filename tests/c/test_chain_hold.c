@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "check.h"
+#include "xorshift.h"
 
 #define MAX_CELLS 4096
 #define MAX_STATE 4096
@@ -16,10 +17,7 @@
 static uint64_t rng = 0x9E3779B97F4A7C15ull;
 static double uniform(void)
 {
-    rng ^= rng << 13;
-    rng ^= rng >> 7;
-    rng ^= rng << 17;
-    return (double)(rng >> 11) / 9007199254740992.0;
+    return xorshift_uniform(&rng);
 }
 
 static const sms_kind kinds[] = {

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "check.h"
+#include "xorshift.h"
 
 #define MAX_RING 2000
 #define MAX_STATE (4 * MAX_RING + 200)
@@ -20,10 +21,7 @@ static double st_a[MAX_STATE], st_b[MAX_STATE];
 static uint64_t rng = 0x2545F4914F6CDD1Dull;
 static double uniform(void)
 {
-    rng ^= rng << 13;
-    rng ^= rng >> 7;
-    rng ^= rng << 17;
-    return (double)(rng >> 11) / 9007199254740992.0;
+    return xorshift_uniform(&rng);
 }
 
 /* The index of k in the saved state (trajectory.h: identity, target, goal, q, v, a, k). */

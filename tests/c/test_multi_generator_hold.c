@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "check.h"
+#include "xorshift.h"
 
 #define TS 1e-3
 #define MAX_STAGES 64
@@ -21,10 +22,7 @@ static double st_a[MAX_STATE], st_b[MAX_STATE];
 static uint64_t rng = 0x853C49E6748FEA9Bull;
 static double uniform(void)
 {
-    rng ^= rng << 13;
-    rng ^= rng >> 7;
-    rng ^= rng << 17;
-    return (double)(rng >> 11) / 9007199254740992.0;
+    return xorshift_uniform(&rng);
 }
 
 static int cases, refused_holds;

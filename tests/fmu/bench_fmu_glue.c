@@ -18,7 +18,7 @@
 #include "SmoothShaper_variables.h"
 #include "smoothshaper/smoothshaper.h"
 #include "../bench/cpu_time.h"
-#include "bench_callbacks.h"
+#include "fmu_test_callbacks.h"
 
 #define ROUNDS 7
 

@@ -31,7 +31,7 @@
 #include "SmoothShaper_variables.h"
 #endif
 #include "../bench/cpu_time.h"
-#include "bench_callbacks.h"
+#include "fmu_test_callbacks.h"
 
 #define ROUNDS 5
 #define TS 1e-3

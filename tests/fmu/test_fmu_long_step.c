@@ -14,19 +14,12 @@
 #include "fmu_instance.h"
 #include "smoothshaper/smoothshaper.h"
 #include "SmoothShaper_variables.h"
+#include "fmu_test_callbacks.h"
 
 #define TS 1e-3
 
 static int failures;
 
-static void logger(fmi2ComponentEnvironment env, fmi2String name, fmi2Status status,
-                   fmi2String category, fmi2String message, ...)
-{
-    (void)env; (void)status; (void)category;
-    fprintf(stderr, "[%s] %s\n", name, message);
-}
-
-static const fmi2CallbackFunctions callbacks = { logger, calloc, free, NULL, NULL };
 
 typedef struct stage_spec {
     int kind;

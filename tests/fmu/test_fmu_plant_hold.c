@@ -15,19 +15,12 @@
 #include "fmi2Functions.h"
 #include "fmu_instance.h"
 #include "ElasticPlant_variables.h"
+#include "fmu_test_callbacks.h"
 
 #define TS 1e-3
 
 static int failures;
 
-static void logger(fmi2ComponentEnvironment env, fmi2String name, fmi2Status status,
-                   fmi2String category, fmi2String message, ...)
-{
-    (void)env; (void)status; (void)category;
-    fprintf(stderr, "[%s] %s\n", name, message);
-}
-
-static const fmi2CallbackFunctions callbacks = { logger, calloc, free, NULL, NULL };
 
 /* A plant of mode wn [rad/s] and damping zeta (J_l = 1, k_t = wn^2, b_t = 2 zeta wn), moved
  * by a few random inputs, then given the input 2.5. */

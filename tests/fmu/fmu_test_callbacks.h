@@ -1,10 +1,10 @@
 /*
- * The FMI callbacks of the FMU benchmarks (bench_fmu_*.c, each one binary including this once):
- * memory from calloc/free, as a plain importer gives it, and a logger that prints every message
- * on stderr, so a refusal a benchmark provokes is shown with its text.
+ * The FMI callbacks of the FMU benchmarks and of the FMU tests that need no logger of their own
+ * (each binary includes this once): memory from calloc/free, as a plain importer gives it, and a
+ * logger that prints every message on stderr, so a refusal a run provokes is shown with its text.
  */
-#ifndef SMS_TESTS_FMU_BENCH_CALLBACKS_H
-#define SMS_TESTS_FMU_BENCH_CALLBACKS_H
+#ifndef SMS_TESTS_FMU_TEST_CALLBACKS_H
+#define SMS_TESTS_FMU_TEST_CALLBACKS_H
 
 #include <stdio.h>
 #include <stdlib.h>
