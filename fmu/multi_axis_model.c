@@ -492,9 +492,9 @@ int fmu_model_tick(void *model)
     return changed;
 }
 
-/* The generator's closed form under held targets (sms_multi_generator_hold()), bit for bit the
- * ticks; where it has none (a notch stage while the profile still moves near the step's end)
- * it returns 0 and the glue ticks. */
+/* The generator's closed form under held targets (sms_multi_generator_hold()), the ticks to
+ * rounding; it returns 0 (the glue then ticks) only for a notch that does not decay, which
+ * fmi2ExitInitializationMode refuses through the hold limit. */
 uint64_t fmu_model_hold(void *model, uint64_t n)
 {
     ma_model *m = (ma_model *)model;

@@ -923,7 +923,6 @@ uint64_t sms_multi_generator_hold(sms_multi_generator *g, const sms_real *target
                                   sms_real *out)
 {
     double bound = 0.0;
-    int fir = 1;
     uint64_t window, k, total = n;
     size_t i, m;
     sms_real scratch[4 * SMS_MULTI_MAX_AXES];
@@ -935,7 +934,6 @@ uint64_t sms_multi_generator_hold(sms_multi_generator *g, const sms_real *target
             const double b = sms_chain_settle_bound(&g->chain[i][0]);
             if (b > bound)
                 bound = b;
-            fir &= sms_chain_is_fir(&g->chain[i][0]);
         }
     if (bound == 0.0) {                   /* no stages: the profile alone */
         hold_profile(g, target, n, out);
@@ -959,10 +957,9 @@ uint64_t sms_multi_generator_hold(sms_multi_generator *g, const sms_real *target
             sms_multi_generator_step(g, target, out);
             return n;
         }
-        if (!fir)
-            return 0u;                     /* a notch's state depends on every input */
         /* FIR stages depend only on their last `window` inputs: the profile and the stages'
-         * phase jump there, and those samples are stepped */
+         * phase jump there, and those samples are stepped. A notch starts them from its stale
+         * state, whose transient the window (its settle bound) decays past rounding */
         *g = probe;
         for (i = 0; i < g->n_axes; ++i)
             if (g->chain[i][0].n_stages > 0)

@@ -272,9 +272,12 @@ SMS_API int sms_multi_generator_busy(const sms_multi_generator *g);
  * its index), O(groups log n). With vibration stages, S = the largest
  * sms_chain_settle_bound() of the axes' chains: when the profile rests for the last S + 2
  * samples, the stages are put into their absorbed state (sms_chain_settle(), O(memory));
- * otherwise, with FIR stages only, the profile and the stages' phase jump to the last S + 2
- * samples, which are stepped. With a notch and a profile still moving then, nothing is done.
- * @return the steps done: n, or 0 (the notch case, or a notch that does not decay).
+ * otherwise the profile and the stages' phase jump to the last S + 2 samples, which are
+ * stepped: FIR stages then hold exactly their last inputs; a notch enters those samples from
+ * its stale state, a transient its settle bound decays from the largest state past the
+ * smallest subnormal, so the result is n steps to rounding (bit for bit in the tests, which
+ * allow 8 eps of each value's scale).
+ * @return the steps done: n, or 0 (a notch that does not decay, S >= 1e15).
  */
 SMS_API uint64_t sms_multi_generator_hold(sms_multi_generator *g, const sms_real *target,
                                           uint64_t n, sms_real *out);
