@@ -21,6 +21,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "check.h"
+#include "xorshift.h"
 #include "smoothshaper/multi_generator.h"
 
 #ifdef SMS_USE_FLOAT
@@ -31,13 +32,10 @@
 #define REPORT_TOL (64.0 * UNIT_ROUNDOFF) /* 32 eps */
 #define WIN 1500
 
-static unsigned long rng = 2463534242ul;
+static uint64_t rng = 2463534242u;
 static double urand(void)
 {
-    rng ^= (rng << 13) & 0xFFFFFFFFul;
-    rng ^= rng >> 17;
-    rng ^= (rng << 5) & 0xFFFFFFFFul;
-    return (double)(rng & 0xFFFFFFul) / 16777216.0;
+    return xorshift_uniform(&rng);
 }
 static double log_uniform(double lo, double hi)
 {
