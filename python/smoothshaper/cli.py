@@ -231,8 +231,9 @@ def cmd_analyze(args) -> int:
     if not stages:
         raise CliError("nothing to analyze: give --stage (or --kind with --wn)")
     wn_hat, zeta = _nominal_mode(args, stages)
-    if not 0 < args.ratio_min < args.ratio_max:
-        raise CliError("--ratio-min and --ratio-max must satisfy 0 < min < max")
+    if not 0 < args.ratio_min < args.ratio_max < math.inf:
+        raise CliError(f"--ratio-min={args.ratio_min:.3g} and --ratio-max={args.ratio_max:.3g} "
+                       f"must be finite with 0 < min < max")
     if not 2 <= args.points <= MAX_SWEEP_POINTS:
         raise CliError(f"--points must be in 2..{MAX_SWEEP_POINTS}, got {args.points:.3g}")
     if args.surface and not 2 <= args.surface_points <= MAX_SWEEP_POINTS:

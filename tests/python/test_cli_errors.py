@@ -12,6 +12,10 @@ import pytest
 
 from smoothshaper import cli
 
+# Refused before any arithmetic on the bad value: an overflow or NaN warning means a value got
+# into the computation first.
+pytestmark = pytest.mark.filterwarnings("error::RuntimeWarning")
+
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 VALUES = ["1e300", "-1e300", "-1", "0", "nan", "inf", "1e-300", "1e20", "1e-20", "3"]
 

@@ -381,10 +381,13 @@ def decay_modes(x: np.ndarray, Ts: float, *, path: str, column: str,
                           "--kind raw", column=column)
     s2 = ssr / max(1, x.size - k)
     try:
-        cov = np.linalg.inv(res.jac.T @ res.jac) * s2
+        with np.errstate(over="ignore", invalid="ignore"):   # a diverged fit: refused below
+            cov = np.linalg.inv(res.jac.T @ res.jac) * s2
     except np.linalg.LinAlgError:
-        raise RecordError(path, "the decay fit is degenerate (no oscillation?)",
-                          column=column) from None
+        cov = None
+    if cov is None or not np.all(np.isfinite(cov)):
+        raise RecordError(path, "the decay fit is degenerate (no oscillation, or one that "
+                          "grows past the double range?)", column=column)
     modes = []
     for i in range(n_modes):
         A, B, sigma, wd = res.x[1 + 4 * i: 5 + 4 * i]
