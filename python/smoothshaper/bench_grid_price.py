@@ -2,11 +2,12 @@
 continuous optimum, in samples, per number of bounds (docs/sampled-limits.md).
 
 ``python -m smoothshaper.bench_grid_price [--cases N] [--adversarial K] [--bounds 1 .. 8]
-[--profile polynomial|trigonometric] [--cost M]`` draws N random problems per bound count (h
+[--profile polynomial|trigonometric] [--mode RATIO] [--cost M]`` draws N random problems per bound count (h
 and every bound over six orders of magnitude, the i-th bound scaled by 10^i so every stage
 matters, Ts from 1/3 to 1/3000 of the move), designs each continuously and on the grid (the C
 design, ``sms_kinematic_design``, of the profile), and prints mean, 99th percentile and
-largest price, split by whether every continuous stage lasts at least one sample. With K > 0
+largest price, split by whether every continuous stage lasts at least one sample; with
+``--mode`` the last stage is tuned to a mode (see ``_designer``). With K > 0
 it then walks K random steps (in the logarithms of h, the bounds and Ts) from the worst
 problem of each class, keeping a step when the price grows: an adversarial search near the
 worst seen. With ``--cost M`` it also prints what the grid design costs per bound count: CPU
@@ -27,8 +28,11 @@ from .filters import _backend
 __all__ = ["grid_price", "grid_prices", "grid_design_costs", "main"]
 
 
-def _designer(profile: int = 0):
-    """sms_kinematic_design of (h, bounds, Ts) with `profile` (0 polynomial, 1 trigonometric)."""
+def _designer(profile: int = 0, mode_ratio: float | None = None):
+    """sms_kinematic_design of (h, bounds, Ts) with `profile` (0 polynomial, 1 trigonometric).
+    With `mode_ratio`, the last stage is tuned to a mode of damping ratio 0.05 whose period is
+    mode_ratio times that stage's continuous length without a mode (the design picks the
+    multiple k)."""
     ffi, lib = _backend("double")
     L, T, cnt = ffi.new("double[8]"), ffi.new("double[8]"), ffi.new("size_t *")
 
@@ -36,7 +40,12 @@ def _designer(profile: int = 0):
         n = len(lim)
         for i, v in enumerate(lim):
             L[i] = v
-        if lib.sms_kinematic_design(h, L, n, profile, 0.0, 0.0, Ts, T, n, cnt) != 0:
+        wn = zeta = 0.0
+        if mode_ratio is not None:
+            if lib.sms_kinematic_design(h, L, n, profile, 0.0, 0.0, 0.0, T, n, cnt) != 0:
+                return None
+            wn, zeta = 2.0 * np.pi / (mode_ratio * T[n - 1]), 0.05
+        if lib.sms_kinematic_design(h, L, n, profile, wn, zeta, Ts, T, n, cnt) != 0:
             return None
         return [T[i] for i in range(n)]
     return design
@@ -64,13 +73,14 @@ def _draw(n: int, rng, design):
 
 
 def grid_prices(n: int, cases: int, seed: int = 5, adversarial: int = 0,
-                profile: int = 0) -> dict:
+                profile: int = 0, mode_ratio: float | None = None) -> dict:
     """Prices of `cases` random problems with n bounds: {True: array, False: array} (True:
     every continuous stage lasts at least a sample) and the worst problem of each class
     (after `adversarial` steps of the local search) as {key: (price, h, limits, Ts)}.
-    `profile`: 0 polynomial, 1 trigonometric (a harmonic last stage)."""
+    `profile`: 0 polynomial, 1 trigonometric (a harmonic last stage); `mode_ratio`: see
+    :func:`_designer`."""
     rng = np.random.default_rng(seed)
-    design = _designer(profile)
+    design = _designer(profile, mode_ratio)
     prices = {True: [], False: []}
     worst = {}
     for _ in range(cases):
@@ -150,9 +160,10 @@ def grid_design_costs(n: int, cases: int, seed: int = 5, repeats: int = 20,
     return np.array(out), slowest[0]
 
 
-def report(n: int, cases: int, adversarial: int = 0, seed: int = 5, profile: int = 0) -> str:
+def report(n: int, cases: int, adversarial: int = 0, seed: int = 5, profile: int = 0,
+           mode_ratio: float | None = None) -> str:
     """One line per bound count, as the benchmark prints it."""
-    res = grid_prices(n, cases, seed, adversarial, profile)
+    res = grid_prices(n, cases, seed, adversarial, profile, mode_ratio)
     parts = []
     for key, label in ((True, "every stage >= Ts"), (False, "a stage < Ts")):
         pr = res[key]
@@ -163,6 +174,8 @@ def report(n: int, cases: int, adversarial: int = 0, seed: int = 5, profile: int
                 part += f"  adversarial {res['worst'][key][0]:.2f}"
             parts.append(part)
     name = " (trigonometric)" if profile else ""
+    if mode_ratio is not None:
+        name += f" (last stage tuned to a mode of period {mode_ratio:g} times its length)"
     return f"grid price in samples{name}, {n} bound(s): " + "; ".join(parts)
 
 
@@ -177,12 +190,15 @@ def main(argv=None) -> int:
     p.add_argument("--seed", type=int, default=5)
     p.add_argument("--profile", choices=("polynomial", "trigonometric"), default="polynomial",
                    help="the design's profile")
+    p.add_argument("--mode", type=float, default=None, metavar="RATIO",
+                   help="tune the last stage to a mode (zeta 0.05) whose period is RATIO times "
+                        "that stage's length without a mode")
     p.add_argument("--cost", type=int, default=0, metavar="M",
                    help="also time the grid design on M problems per bound count")
     args = p.parse_args(argv)
     profile = int(args.profile == "trigonometric")
     for n in args.bounds if args.cases else ():
-        print(report(n, args.cases, args.adversarial, args.seed, profile), flush=True)
+        print(report(n, args.cases, args.adversarial, args.seed, profile, args.mode), flush=True)
     for n in args.bounds if args.cost else ():
         ns, slowest = grid_design_costs(n, args.cost, args.seed, profile=profile,
                                         adversarial=args.adversarial)
