@@ -335,15 +335,6 @@ double sms_chain_settle_bound(const sms_chain *chain)
     return total;
 }
 
-int sms_chain_is_fir(const sms_chain *chain)
-{
-    size_t i;
-    for (i = 0; i < chain->n_stages; ++i)
-        if (sms_family_of(chain->stages[i].kind) == SMS_FAMILY_NOTCH)
-            return 0;
-    return 1;
-}
-
 void sms_chain_advance(sms_chain *chain, uint64_t n)
 {
     size_t i;

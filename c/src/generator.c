@@ -298,20 +298,26 @@ static void step_plan(sms_generator *g, sms_real target, sms_real out[4])
     }
 }
 
+/* The plan at rest on its goal for the stage's whole length: the average of equal values is
+ * that value, so the output is the goal exactly (the rings keep running). Counts the samples
+ * of the plan's output o at rest, up to the stage's length. */
+static void count_quiet(sms_generator *g, const sms_real o[4])
+{
+    if (o[0] == g->plan.goal && o[1] == 0 && o[2] == 0 && o[3] == 0) {
+        if (g->quiet < g->stage_length)
+            ++g->quiet;
+    } else {
+        g->quiet = 0;
+    }
+}
+
 void sms_generator_step(sms_generator *g, sms_real target, sms_real out[4])
 {
     size_t i;
     step_plan(g, target, out);
     if (g->stage_length == 0)
         return;
-    /* the plan at rest on its goal for the stage's whole length: the average of equal values
-     * is that value, so the output is the goal exactly (the rings keep running) */
-    if (out[0] == g->plan.goal && out[1] == 0 && out[2] == 0 && out[3] == 0) {
-        if (g->quiet < g->stage_length)
-            ++g->quiet;
-    } else {
-        g->quiet = 0;
-    }
+    count_quiet(g, out);
     for (i = 0; i < 4; ++i)
         sms_smoother_step(&g->stage[i], &out[i]);
     if (g->quiet >= g->stage_length) {
@@ -333,12 +339,7 @@ static void hold_plan_through_stage(sms_generator *g, uint64_t n, sms_real out[4
         b = n < 64u ? (size_t)n : 64u;
         for (i = 0; i < b; ++i) {
             sms_plan_eval(&g->plan, g->Ts_signal, ++g->k, o);
-            if (o[0] == g->plan.goal && o[1] == 0 && o[2] == 0 && o[3] == 0) {
-                if (g->quiet < g->stage_length)
-                    ++g->quiet;
-            } else {
-                g->quiet = 0;
-            }
+            count_quiet(g, o);
             for (c = 0; c < 4; ++c)
                 x[c][i] = o[c];
         }

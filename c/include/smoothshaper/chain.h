@@ -89,13 +89,11 @@ SMS_API sms_status sms_chain_hold_cost(const sms_stage_config *configs, size_t n
 /**
  * @brief Samples of a constant input after which the chain has absorbed it from any state:
  * the sum over the stages of 2 M + 2 (smoother), L + 1 (shaper) and sms_notch_settle_bound()
- * (notch: an estimate for the largest state). For a chain without a notch
- * (sms_chain_is_fir()) it also bounds how many of the latest inputs its state depends on: the
- * stages' states are the same after that many samples whatever they held before. O(stages).
+ * (notch: an estimate for the largest state). For a chain without a notch it also bounds how
+ * many of the latest inputs its state depends on: the stages' states are the same after that
+ * many samples whatever they held before (with a notch, the same to rounding). O(stages).
  */
 SMS_API double sms_chain_settle_bound(const sms_chain *chain);
-/** @brief 1 when the chain has no notch (every stage FIR), else 0. */
-SMS_API int sms_chain_is_fir(const sms_chain *chain);
 /** @brief Advance every stage's phase (ring heads, smoother copy ages) by n samples, keeping
  * their values: exactly n samples of an absorbed input; on any other state the phase of n
  * samples later with stale values, which the next sms_chain_settle_bound() samples of a FIR
