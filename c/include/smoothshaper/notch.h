@@ -29,6 +29,8 @@
  * differences are exactly 0), so a held input is absorbed after finitely many samples, about
  * ln(|w|/TINY) over the decay rate of the slowest pole (sms_notch_settle_bound()), never
  * cycling in the subnormals; the outputs differ from the plain recursion by less than TINY.
+ * So the notch acts on swings of the input well above TINY: a signal whose differences are
+ * themselves near TINY (1e-292 units in double, 1e-31 in float) passes unfiltered.
  *
  * Non-finite input: such a sample is passed to the output unchanged and does not enter the
  * state (the filter continues as if it had not been there). If the output is non-finite while
