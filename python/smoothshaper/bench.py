@@ -15,7 +15,9 @@ busy machine slows them alike:
   ``scipy.signal.lfilter`` (the plain recursion, and the FIR taps) and ``oaconvolve``, the peak
   memory of ``Chain.process`` in double and float, the cost of building, copying, pickling a
   chain and of its taps.
-- Trajectory: ``design.kinematic`` against ``ruckig`` (both called from Python), per regime.
+- Trajectory: ``design.kinematic`` against ``ruckig`` (both called from Python), per regime;
+  ``design.kinematic`` against the raw C call through cffi for one to three bounds, with and
+  without ``Ts`` and a mode, and what its floor is made of.
 - FMUs (when fmpy and cmake are available): one ``doStep`` of ``SmoothShaper`` and of
   ``TrajectoryGenerator`` per sample period through fmpy, and the per-sample cost inside one
   long ``doStep``.
@@ -45,7 +47,7 @@ from pathlib import Path
 import numpy as np
 
 __all__ = ["ROOT", "SPEED_BENCH", "interleaved", "Table", "run_c_bench", "C_ROWS", "c_tables",
-           "python_tables", "trajectory_table", "fmu_table", "UNION_STAGE_BYTES", "memory_tables",
+           "python_tables", "trajectory_table", "kinematic_call_table", "fmu_table", "UNION_STAGE_BYTES", "memory_tables",
            "main"]
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -325,6 +327,106 @@ def trajectory_table(quick: bool, c_figures: dict) -> list[Table]:
     return [table]
 
 
+def kinematic_call_table(quick: bool) -> list[Table]:
+    """``design.kinematic`` against ``sms_kinematic_design`` called through cffi with its
+    arrays prepared beforehand (the bare C call from Python), per common case; and the floor
+    of any Python function returning Stage objects: the keyword call, the scalar C call its
+    fast path makes, three Stage objects (built as the fast path builds them) and the list."""
+    from . import design as kinematic_design
+    from .filters import _backend
+    from .stages import Stage, _UncheckedStage as blank
+
+    ffi, lib = _backend("double")
+    kinematic = kinematic_design.kinematic
+    rounds, repeat = (3, 200) if quick else (15, 5000)
+    table = Table("Kinematic design from Python against the raw C call",
+                  ["case", "raw C call via cffi ns", "design.kinematic ns", "ratio"],
+                  "A rest-to-rest move, h=1, vmax=0.5, amax=5, jmax=100 (as many bounds as "
+                  "the case says; Ts=1 ms, wn=30 rad/s with zeta=0.05 where given). Raw: "
+                  "sms_kinematic_design through cffi, its bounds and output arrays prepared "
+                  "beforehand. design.kinematic: the public call, its argument types checked, "
+                  "the C design, the Stage objects. The floor below is what any function "
+                  "returning Stage objects pays.")
+    cases = {"1 bound": dict(vmax=0.5), "2 bounds": dict(vmax=0.5, amax=5.0),
+             "3 bounds": dict(vmax=0.5, amax=5.0, jmax=100.0),
+             "3 bounds, int arguments": dict(vmax=2, amax=5, jmax=100),
+             "3 bounds, trigonometric": dict(vmax=0.5, amax=5.0, jmax=100.0,
+                                             profile="trigonometric"),
+             "3 bounds, Ts": dict(vmax=0.5, amax=5.0, jmax=100.0, Ts=1e-3),
+             "3 bounds, wn": dict(vmax=0.5, amax=5.0, jmax=100.0, wn=30.0, zeta=0.05),
+             "3 bounds, wn and Ts": dict(vmax=0.5, amax=5.0, jmax=100.0, wn=30.0, zeta=0.05,
+                                         Ts=1e-3)}
+    T, count = ffi.new("double[]", 3), ffi.new("size_t *")
+    raw_design = lib.sms_kinematic_design
+    for name, kw in cases.items():
+        kw = dict(h=1.0, **kw)
+        bounds = [kw[b] for b in ("vmax", "amax", "jmax") if b in kw]
+        limits, n = ffi.new("double[]", bounds), len(bounds)
+        profile = kinematic_design.PROFILES.index(kw.get("profile", "polynomial"))
+        wn, zeta, Ts = kw.get("wn", 0.0), kw.get("zeta", 0.0), kw.get("Ts", 0.0)
+        # the keywords written out, as a caller writes them (a ** dict costs extra)
+        call = eval("lambda: kinematic(" + ", ".join(f"{k}={k}" for k in kw) + ")",
+                    {"kinematic": kinematic, **kw})
+        t = interleaved({
+            "raw": lambda: raw_design(1.0, limits, n, profile, wn, zeta, Ts, T, n, count),
+            "python": call}, rounds=rounds, repeat=repeat)
+        table.add(name, t["raw"] * 1e9, t["python"] * 1e9, _ratio(t["python"], t["raw"]))
+
+    def signature(*, h, vmax, amax=None, jmax=None, higher=(), profile="polynomial", wn=None,
+                  zeta=0.0, Ts=None):
+        return None
+    out = ffi.new("double[]", 6)
+    glue = lib.smspy_kinematic3
+    limits = ffi.new("double[]", [0.5, 5.0, 100.0])
+
+    def three_stages():
+        # the fast path's stage building in design.kinematic, copied
+        s = blank()
+        s.kind = "rectangular"
+        s.T = 0.5
+        s.order = 1
+        out = [s]
+        s.__class__ = Stage
+        s = blank()
+        s.kind = "rectangular"
+        s.T = 0.1
+        s.order = 1
+        out.append(s)
+        s.__class__ = Stage
+        s = blank()
+        s.kind = "rectangular"
+        s.T = 0.05
+        s.order = 1
+        out.append(s)
+        s.__class__ = Stage
+        return out
+    t = interleaved({
+        "raw": lambda: raw_design(1.0, limits, 3, 0, 0.0, 0.0, 0.0, T, 3, count),
+        "empty": lambda: None,
+        "call": lambda: signature(h=1.0, vmax=0.5, amax=5.0, jmax=100.0),
+        "glue": lambda: glue(1.0, 0.5, 5.0, 100.0, 3, 0, 0.0, 0.0, 0.0, out),
+        "stages": three_stages,
+        "python": lambda: kinematic(h=1.0, vmax=0.5, amax=5.0, jmax=100.0)},
+        rounds=rounds, repeat=repeat)
+    e = t["empty"]
+    parts = {"the keyword call (an empty function with its signature)": t["call"] - e,
+             "the C design through the scalar glue the fast path calls": t["glue"] - e,
+             "three Stage objects and their list": t["stages"] - e}
+    floor = Table("design.kinematic's floor (3 bounds)",
+                  ["part", "ns", "ratio to the raw C call"],
+                  "Each part timed on its own (an empty lambda's cost subtracted); their sum is "
+                  "the least any Python function returning the three Stage objects pays. The "
+                  "rest of design.kinematic is the type checks, the thread's output buffer and "
+                  "reading the lengths.")
+    raw = t["raw"] - e
+    for part, sec in parts.items():
+        floor.add(part, sec * 1e9, _ratio(sec, raw))
+    floor.add("sum: the floor", sum(parts.values()) * 1e9, _ratio(sum(parts.values()), raw))
+    floor.add("design.kinematic", (t["python"] - e) * 1e9, _ratio(t["python"] - e, raw))
+    floor.add("raw C call via cffi", raw * 1e9, "1.00x")
+    return [table, floor]
+
+
 # -- FMUs -----------------------------------------------------------------------------------
 
 def fmu_table(quick: bool, build_dir: Path) -> list[Table]:
@@ -544,6 +646,7 @@ def main(argv: list[str] | None = None) -> int:
     print(f"machine: {machine}")
     tables, c_figures = c_tables(args.quick)
     tables += python_tables(args.quick) + trajectory_table(args.quick, c_figures)
+    tables += kinematic_call_table(args.quick)
     if not args.no_fmu:
         tables += fmu_table(args.quick, args.fmu_build_dir)
     tables += memory_tables(args.quick)

@@ -268,12 +268,11 @@ def _python_floor(rows, rounds: int) -> dict:
     """CPU ns of what any ``design.kinematic`` pays besides the C call: the keyword call
     itself (a function with its signature and no body) and three Stage objects with their
     list, built as its fast path builds them (no validation); an empty loop subtracted."""
-    from .stages import Stage
+    from .stages import Stage, _UncheckedStage as blank
 
     def signature(*, h, vmax, amax=None, jmax=None, higher=(), profile="polynomial", wn=None,
                   zeta=0.0, Ts=None):
         return None
-    new = object.__new__
 
     def empty():
         for h, v, a, j, ts, wn in rows:
@@ -284,17 +283,27 @@ def _python_floor(rows, rounds: int) -> dict:
             signature(h=h, vmax=v, amax=a, jmax=j)
 
     def stages():
-        # a copy of the fast path's loop in design.kinematic, kept in step by hand: a builder
-        # both called would add a Python call to the design it measures the floor of
-        for row in rows:
-            out = []
-            for t in row[1:4]:
-                s = new(Stage)
-                d = s.__dict__
-                d["kind"] = "rectangular"
-                d["T"] = t
-                d["order"] = 1
-                out.append(s)
+        # a copy of the fast path's stage building in design.kinematic, kept in step by hand:
+        # a builder both called would add a Python call to the design it measures the floor of
+        for h, v, a, j, ts, wn in rows:
+            s = blank()
+            s.kind = "rectangular"
+            s.T = v
+            s.order = 1
+            out = [s]
+            s.__class__ = Stage
+            s = blank()
+            s.kind = "rectangular"
+            s.T = a
+            s.order = 1
+            out.append(s)
+            s.__class__ = Stage
+            s = blank()
+            s.kind = "rectangular"
+            s.T = j
+            s.order = 1
+            out.append(s)
+            s.__class__ = Stage
     loop = _cpu(empty, rounds)
     return {name: (_cpu(fn, rounds) - loop) / len(rows)
             for name, fn in (("call", call), ("stages", stages))}

@@ -24,6 +24,7 @@ bound. Seed 001 sec. 5.2 (T3 = 2*pi/wn) is ``jmax >= amax * wn / (2*pi)`` with `
 """
 from __future__ import annotations
 
+import array
 import cmath
 import itertools
 import math
@@ -33,7 +34,7 @@ import numpy as np
 
 from . import stages as _stages
 from .filters import ParameterError, _backend, _raise_status
-from .stages import Stage
+from .stages import Stage, _unchecked_stage
 from ._checks import (choice as _choice, finite as _finite, positive as _positive,
                       real_array as _real_array)
 
@@ -217,80 +218,78 @@ def kinematic(*, h: float, vmax: float, amax: float | None = None, jmax: float |
     # > 0, ratios in range, zeta in [0, 1)) anyway, so only the types are tested here; a
     # refused design, or a huge int cffi cannot convert, goes to the checked path, which names
     # the argument. The Stage objects are built from the C core's values without
-    # re-validation. What is left is mostly CPython's own cost: the keyword call, the cffi call
-    # and three object creations (docs/sampled-limits.md, "What it costs").
-    if (type(higher) is tuple and not higher and type(profile) is str
-            and type(h) in _PLAIN and type(vmax) in _PLAIN):
-        last = _FAST_PROFILES.get(profile)
-        n = 1
-        if amax is None:
-            if jmax is not None:
-                last = None   # jmax without amax: the checked path names amax
-        elif type(amax) in _PLAIN:
-            if jmax is None:
-                n = 2
-            elif type(jmax) in _PLAIN:
-                n = 3
-            else:
-                last = None
-        else:
-            last = None
-        if wn is None:
-            wn_ = zeta_ = 0.0   # zeta is ignored without a mode
-        elif type(wn) in _PLAIN and wn > 0 and type(zeta) in _PLAIN:
-            wn_, zeta_ = wn, zeta
-        else:
-            last = None
-        if last is not None and (Ts is None or type(Ts) in _PLAIN and Ts > 0):
-            try:
-                T, last_stage, design3, unpack = _THREAD.b
-            except AttributeError:
-                T, last_stage, design3, unpack = _THREAD.b = _fast_buffers()
-            try:
-                st = design3(h, vmax, amax or 0.0, jmax or 0.0, n, last, wn_, zeta_, Ts or 0.0,
-                             T)
-            except OverflowError:
-                st = -1
-            if st == 0:
-                # inline rather than a builder function (one call more per design);
-                # bench_trajectory._python_floor times a copy of this loop as the floor
-                out = []
-                for t in unpack(T, n):
-                    s = _NEW(Stage)
-                    d = s.__dict__
-                    d["kind"] = "rectangular"
-                    d["T"] = t
-                    d["order"] = 1
-                    out.append(s)
-                if wn is not None:   # the last stage's family, decay and mode multiple
-                    kind, sigma, k = unpack(last_stage, 3)
-                    d["kind"] = _KINDS[int(kind)]
-                    if sigma:
-                        d["sigma"] = sigma
-                    if k != 1:
-                        d["k"] = int(k)
-                elif last:
-                    d["kind"] = "harmonic"
-                return out
+    # re-validation (stages._UncheckedStage), written out per stage: a loop or a builder
+    # call costs more than a stage does. What is left is mostly CPython's own cost: the
+    # keyword call, the cffi call and the objects (docs/sampled-limits.md, "What it costs").
+    if (higher is _NO_HIGHER and type(h) in _PLAIN and type(vmax) in _PLAIN
+            and (amax is None and jmax is None
+                 or type(amax) in _PLAIN and (jmax is None or type(jmax) in _PLAIN))
+            and (wn is None or type(wn) in _PLAIN and type(zeta) in _PLAIN and wn > 0)
+            and (Ts is None or type(Ts) in _PLAIN and Ts > 0)
+            and type(profile) is str and profile in _FAST_PROFILES):
+        try:
+            out, T, design3 = _THREAD.buffers
+        except AttributeError:
+            out, T, design3 = _THREAD.buffers = _fast_buffers()
+        n = 1 if amax is None else 2 if jmax is None else 3
+        last = _FAST_PROFILES[profile]
+        try:   # zeta is ignored without a mode
+            st = design3(h, vmax, amax or 0.0, jmax or 0.0, n, last, wn or 0.0,
+                         zeta if wn else 0.0, Ts or 0.0, out)
+        except OverflowError:
+            st = -1
+        if st == 0:
+            s = _UNCHECKED()
+            s.kind = "rectangular"
+            s.T = T[0]
+            s.order = 1
+            stages = [s]
+            if n > 1:
+                s.__class__ = Stage
+                s = _UNCHECKED()
+                s.kind = "rectangular"
+                s.T = T[1]
+                s.order = 1
+                stages.append(s)
+                if n > 2:
+                    s.__class__ = Stage
+                    s = _UNCHECKED()
+                    s.kind = "rectangular"
+                    s.T = T[2]
+                    s.order = 1
+                    stages.append(s)
+            if wn is not None:   # the last stage's family, decay and mode multiple
+                s.kind = _KINDS[int(T[3])]
+                sigma, k = T[4], T[5]
+                if sigma:
+                    s.sigma = sigma
+                if k != 1:
+                    s.k = int(k)
+            elif last:
+                s.kind = "harmonic"
+            s.__class__ = Stage
+            return stages
     return _kinematic_checked(h, vmax, amax, jmax, higher, profile, wn, zeta, Ts)
 
 
 _FAST_PROFILES = {p: i for i, p in enumerate(PROFILES)}   # the C sms_profile values
 # Types cffi converts to a double exactly as float() does (bool, complex, str and other
 # number types take the checked path, which refuses or converts them by name).
-_PLAIN = (float, int, np.float64, np.int64, np.float32)
+_PLAIN = frozenset((float, int, np.float64, np.int64, np.float32))
+_NO_HIGHER = ()   # the default of ``higher``: the empty tuple is a single object
 _THREAD = threading.local()   # cffi calls release the GIL: one output buffer per thread
-_NEW = object.__new__
+_UNCHECKED = _stages._UncheckedStage
 _KINDS = _stages.KINDS
 
 
 def _fast_buffers():
-    """This thread's output buffer (three lengths, then the last stage's kind, sigma and k),
-    a pointer to its last three, the scalar-bounds design of the double module (binding glue
-    around the solve of ``sms_kinematic_design``) and ``ffi.unpack``."""
+    """This thread's output buffer for the fast path as a C pointer and as an array.array
+    of six doubles (reading an array element costs less than reading a cffi one): three
+    lengths, then the last stage's kind, sigma and k; with the scalar-bounds design of the
+    double module (binding glue around the solve of ``sms_kinematic_design``)."""
     ffi, lib = _backend("double")
-    out = ffi.new("double[]", 6)
-    return out, out + 3, lib.smspy_kinematic3, ffi.unpack
+    T = array.array("d", bytes(6 * 8))
+    return ffi.from_buffer("double[]", T), T, lib.smspy_kinematic3
 
 
 def _kinematic_checked(h, vmax, amax, jmax, higher, profile, wn, zeta, Ts) -> list[Stage]:
@@ -323,25 +322,8 @@ def _kinematic_checked(h, vmax, amax, jmax, higher, profile, wn, zeta, Ts) -> li
     if st != 0:
         _check_ratios(h, limits, wn_)
         _design_error(st, lib, ffi, h=h, limits=limits, Ts=Ts_, wn=wn_)
-    return [_stage(_stages.KINDS[c.kind], float(c.T), float(c.sigma), int(c.k))
+    return [_unchecked_stage(_stages.KINDS[c.kind], float(c.T), float(c.sigma), int(c.k))
             for c in (configs[i] for i in range(n))]
-
-
-def _stage(kind: str, T: float, sigma: float = 0.0, k: int = 1) -> Stage:
-    """A Stage from the C design's own values (already valid), without re-validation: the
-    fields that differ from the dataclass's class-level defaults go into the instance (order
-    is 1 after validation, its class default is None); equal, hashable and printable as the
-    validated Stage. Skipping the validation was most of a design's cost from Python."""
-    s = _NEW(Stage)
-    d = s.__dict__
-    d["kind"] = kind
-    d["T"] = T
-    d["order"] = 1
-    if sigma:
-        d["sigma"] = sigma
-    if k != 1:
-        d["k"] = k
-    return s
 
 
 def _continuous_stages(T, profile, wn, zeta, h, limits) -> list[Stage]:
@@ -353,7 +335,8 @@ def _continuous_stages(T, profile, wn, zeta, h, limits) -> list[Stage]:
             last, sigma = "exponential", -zeta * wn
         Tm = (3 * math.pi if last == "harmonic" else 2 * math.pi) / wd
         k = max(1, int(round(T[-1] / Tm)))
-    return [_stage("rectangular", t) for t in T[:-1]] + [_stage(last, T[-1], sigma, k)]
+    return ([_unchecked_stage("rectangular", t) for t in T[:-1]]
+            + [_unchecked_stage(last, T[-1], sigma, k)])
 
 
 def kinematic_lengths(*, h, vmax, amax=None, jmax=None, higher=(), profile: str = "polynomial",

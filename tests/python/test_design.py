@@ -1,6 +1,9 @@
 """Kinematic design: ruckig's time-optimal duration, bounds of the sampled trajectory, seed 001
 check values, C vs the independent reference, parameter errors."""
+import copy
+import dataclasses
 import math
+import pickle
 import re
 from fractions import Fraction
 
@@ -9,7 +12,7 @@ import pytest
 from hypothesis import event, given, settings, strategies as st
 
 ruckig = pytest.importorskip("ruckig")
-from smoothshaper import design  # noqa: E402
+from smoothshaper import design, stages  # noqa: E402
 
 
 def ruckig_duration(h, v, a, j):
@@ -228,6 +231,8 @@ def test_fast_path_is_taken_and_exact(lh, lv, la, lj, n, profile, grid, mode, lw
         m.setattr(design, "_kinematic_checked", None)   # calling it would raise TypeError
         fast = design.kinematic(h=h_typed, profile=profile, wn=wn, zeta=zeta, Ts=Ts, **typed)
     assert fast == expected and repr(fast) == repr(expected)
+    # and both equal what the validating constructor builds from the same values
+    assert fast == [stages.Stage(s.kind, T=s.T, sigma=s.sigma, k=s.k) for s in fast]
 
 
 def test_fast_path_threads():
@@ -244,6 +249,31 @@ def test_fast_path_threads():
                    == expected[(i + offset) % len(cases)] for i in range(4 * len(cases)))
     with concurrent.futures.ThreadPoolExecutor(4) as pool:
         assert all(pool.map(run, range(0, 400, 100)))
+
+
+@given(kind=st.sampled_from(stages.SMOOTHERS), T=st.floats(1e-9, 1e9),
+       sigma=st.one_of(st.just(0.0), st.floats(-1e6, -1e-9)), k=st.integers(0, 50))
+def test_unchecked_stage_is_the_validated_stage(kind, T, sigma, k):
+    """The Stage the design builds without re-validation (stages._UncheckedStage) is the one
+    the constructor builds from the same values: same type, equal both ways, same hash, repr,
+    every field with its type, frozen, and the same after pickle, copy, asdict and with_."""
+    k = 2 * k + 1 if kind in ("harmonic", "damped_harmonic") else k + 1
+    fast = stages._unchecked_stage(kind, T, sigma, k)
+    ref = stages.Stage(kind, T=T, sigma=sigma, k=k)
+    assert type(fast) is stages.Stage
+    assert fast == ref and ref == fast and hash(fast) == hash(ref) and repr(fast) == repr(ref)
+    for f in dataclasses.fields(stages.Stage):
+        assert getattr(fast, f.name) == getattr(ref, f.name)
+        assert type(getattr(fast, f.name)) is type(getattr(ref, f.name))
+    assert fast.kind_index == ref.kind_index
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        fast.T = 2 * T
+    for twin in (pickle.loads(pickle.dumps(fast)), copy.copy(fast), copy.deepcopy(fast)):
+        assert type(twin) is stages.Stage and twin == ref and repr(twin) == repr(ref)
+    assert dataclasses.asdict(fast) == dataclasses.asdict(ref)
+    assert fast.with_(T=2 * T) == ref.with_(T=2 * T)
+    with pytest.raises(ValueError, match="T must be > 0"):   # with_ validates again
+        fast.with_(T=-T)
 
 
 @pytest.mark.parametrize("kwargs, name", [
