@@ -239,28 +239,32 @@ def kinematic(*, h: float, vmax: float, amax: float | None = None, jmax: float |
         except OverflowError:
             st = -1
         if st == 0:
+            # every value read before the first allocation: a collection it triggers may run
+            # finalizers, which could design on this thread's buffer
+            t0, t1, t2 = T[0], T[1], T[2]
+            if wn is not None:   # the last stage's family, decay and mode multiple
+                kind, sigma, k = T[3], T[4], T[5]
             s = _UNCHECKED()
             s.kind = "rectangular"
-            s.T = T[0]
+            s.T = t0
             s.order = 1
             stages = [s]
             if n > 1:
                 s.__class__ = Stage
                 s = _UNCHECKED()
                 s.kind = "rectangular"
-                s.T = T[1]
+                s.T = t1
                 s.order = 1
                 stages.append(s)
                 if n > 2:
                     s.__class__ = Stage
                     s = _UNCHECKED()
                     s.kind = "rectangular"
-                    s.T = T[2]
+                    s.T = t2
                     s.order = 1
                     stages.append(s)
-            if wn is not None:   # the last stage's family, decay and mode multiple
-                s.kind = _KINDS[int(T[3])]
-                sigma, k = T[4], T[5]
+            if wn is not None:
+                s.kind = _KINDS[int(kind)]
                 if sigma:
                     s.sigma = sigma
                 if k != 1:

@@ -251,6 +251,39 @@ def test_fast_path_threads():
         assert all(pool.map(run, range(0, 400, 100)))
 
 
+def test_fast_path_reads_the_design_before_allocating():
+    """The fast path's first allocation can trigger a collection whose finalizers design on
+    the same thread's output buffer: the lengths are read before it, so each design keeps
+    its own (and a design with a mode its own last stage)."""
+    import gc
+    other = dict(h=3.0, vmax=7.0, amax=11.0, jmax=13.0, wn=5.0, zeta=0.2, profile="damped")
+
+    class Designer:
+        def __del__(self):
+            finalized.append(design.kinematic(**other))
+
+    def garbage():
+        d = Designer()
+        d.cycle = d   # only the collector frees it
+    cases = [dict(h=1.0, vmax=0.5, amax=5.0, jmax=100.0),
+             dict(h=1.0, vmax=0.5, amax=5.0, jmax=100.0, wn=30.0, zeta=0.05)]
+    expected = [design._kinematic_checked(c["h"], c["vmax"], c["amax"], c["jmax"], (),
+                                          "polynomial", c.get("wn"), c.get("zeta", 0.0), None)
+                for c in cases]
+    finalized = []
+    threshold = gc.get_threshold()
+    gc.collect()
+    gc.set_threshold(1)
+    try:
+        for _ in range(20):
+            for c, e in zip(cases, expected):
+                garbage()
+                assert design.kinematic(**c) == e
+    finally:
+        gc.set_threshold(*threshold)
+    assert finalized   # the finalizers did design in between
+
+
 @given(kind=st.sampled_from(stages.SMOOTHERS), T=st.floats(1e-9, 1e9),
        sigma=st.one_of(st.just(0.0), st.floats(-1e6, -1e-9)), k=st.integers(0, 50))
 def test_unchecked_stage_is_the_validated_stage(kind, T, sigma, k):
