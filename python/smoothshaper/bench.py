@@ -47,7 +47,8 @@ from pathlib import Path
 import numpy as np
 
 __all__ = ["ROOT", "SPEED_BENCH", "interleaved", "Table", "run_c_bench", "C_ROWS", "c_tables",
-           "python_tables", "trajectory_table", "kinematic_call_table", "fmu_table", "UNION_STAGE_BYTES", "memory_tables",
+           "python_tables", "trajectory_table", "kinematic_call_table", "kinematic_floor",
+           "fmu_table", "UNION_STAGE_BYTES", "memory_tables",
            "main"]
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -334,7 +335,6 @@ def kinematic_call_table(quick: bool) -> list[Table]:
     fast path makes, three Stage objects (built as the fast path builds them) and the list."""
     from . import design as kinematic_design
     from .filters import _backend
-    from .stages import Stage, _UncheckedStage as blank
 
     ffi, lib = _backend("double")
     kinematic = kinematic_design.kinematic
@@ -372,15 +372,48 @@ def kinematic_call_table(quick: bool) -> list[Table]:
             "python": call}, rounds=rounds, repeat=repeat)
         table.add(name, t["raw"] * 1e9, t["python"] * 1e9, _ratio(t["python"], t["raw"]))
 
+    f = kinematic_floor(rounds, repeat)
+    floor = Table("design.kinematic's floor (3 bounds)",
+                  ["part", "ns", "ratio to the raw C call"],
+                  "Each part timed on its own, an empty lambda's cost subtracted from every "
+                  "row so that the parts add up (the table above keeps it in both columns, "
+                  "hence its smaller ratios); their sum is the least any Python function "
+                  "returning the three Stage objects pays. The rest of design.kinematic is the "
+                  "type checks, the thread's output buffer and reading the lengths, and the "
+                  "parts running slower together than each alone.")
+    for key, part in (("call", "the keyword call (an empty function with its signature)"),
+                      ("glue", "the C design through the scalar glue the fast path calls"),
+                      ("stages", "three Stage objects and their list"),
+                      ("floor", "sum: the floor"), ("python", "design.kinematic"),
+                      ("raw", "raw C call via cffi")):
+        floor.add(part, f[key], _ratio(f[key], f["raw"]))
+    return [table, floor]
+
+
+def kinematic_floor(rounds: int, repeat: int) -> dict:
+    """CPU ns per call (an empty lambda's cost subtracted) of a three-bound design: ``"raw"``
+    (``sms_kinematic_design`` through cffi, arrays prepared), ``"python"``
+    (``design.kinematic``), and the parts any Python function returning the Stage objects
+    pays: ``"call"`` (the keyword call of a function with its signature and no body),
+    ``"glue"`` (the scalar C call the fast path makes), ``"stages"`` (three Stage objects and
+    their list, built as the fast path builds them) and their sum ``"floor"``."""
+    from . import design as kinematic_design
+    from .filters import _backend
+    from .stages import Stage, _UncheckedStage as blank
+
+    ffi, lib = _backend("double")
+    raw_design, glue, kinematic = (lib.sms_kinematic_design, lib.smspy_kinematic3,
+                                   kinematic_design.kinematic)
+    limits, T = ffi.new("double[]", [0.5, 5.0, 100.0]), ffi.new("double[]", 6)
+    count = ffi.new("size_t *")
+
     def signature(*, h, vmax, amax=None, jmax=None, higher=(), profile="polynomial", wn=None,
                   zeta=0.0, Ts=None):
         return None
-    out = ffi.new("double[]", 6)
-    glue = lib.smspy_kinematic3
-    limits = ffi.new("double[]", [0.5, 5.0, 100.0])
 
     def three_stages():
-        # the fast path's stage building in design.kinematic, copied
+        # a copy of the fast path's stage building in design.kinematic, kept in step by hand:
+        # a builder both called would add a Python call to the design it measures the floor of
         s = blank()
         s.kind = "rectangular"
         s.T = 0.5
@@ -404,27 +437,13 @@ def kinematic_call_table(quick: bool) -> list[Table]:
         "raw": lambda: raw_design(1.0, limits, 3, 0, 0.0, 0.0, 0.0, T, 3, count),
         "empty": lambda: None,
         "call": lambda: signature(h=1.0, vmax=0.5, amax=5.0, jmax=100.0),
-        "glue": lambda: glue(1.0, 0.5, 5.0, 100.0, 3, 0, 0.0, 0.0, 0.0, out),
+        "glue": lambda: glue(1.0, 0.5, 5.0, 100.0, 3, 0, 0.0, 0.0, 0.0, T),
         "stages": three_stages,
         "python": lambda: kinematic(h=1.0, vmax=0.5, amax=5.0, jmax=100.0)},
         rounds=rounds, repeat=repeat)
-    e = t["empty"]
-    parts = {"the keyword call (an empty function with its signature)": t["call"] - e,
-             "the C design through the scalar glue the fast path calls": t["glue"] - e,
-             "three Stage objects and their list": t["stages"] - e}
-    floor = Table("design.kinematic's floor (3 bounds)",
-                  ["part", "ns", "ratio to the raw C call"],
-                  "Each part timed on its own (an empty lambda's cost subtracted); their sum is "
-                  "the least any Python function returning the three Stage objects pays. The "
-                  "rest of design.kinematic is the type checks, the thread's output buffer and "
-                  "reading the lengths.")
-    raw = t["raw"] - e
-    for part, sec in parts.items():
-        floor.add(part, sec * 1e9, _ratio(sec, raw))
-    floor.add("sum: the floor", sum(parts.values()) * 1e9, _ratio(sum(parts.values()), raw))
-    floor.add("design.kinematic", (t["python"] - e) * 1e9, _ratio(t["python"] - e, raw))
-    floor.add("raw C call via cffi", raw * 1e9, "1.00x")
-    return [table, floor]
+    out = {name: (sec - t["empty"]) * 1e9 for name, sec in t.items() if name != "empty"}
+    out["floor"] = out["call"] + out["glue"] + out["stages"]
+    return out
 
 
 # -- FMUs -----------------------------------------------------------------------------------

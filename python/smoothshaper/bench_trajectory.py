@@ -201,7 +201,7 @@ def design_call_costs(n_cases: int, rounds: int, seed: int = 11) -> dict:
     ``"scalar"`` (the binding glue with the bounds as scalar arguments, which the fast path
     calls), ``"python"`` (``design.kinematic``), ``"batch"`` (``design.kinematic_lengths`` on
     all the problems at once, per problem) and ``"cases"``; an empty loop over the same cases
-    is subtracted from the loops. ``"floor"``: see :func:`_python_floor`."""
+    is subtracted from the loops."""
     from . import design
     from .filters import _backend
     ffi, lib = _backend("double")
@@ -260,53 +260,7 @@ def design_call_costs(n_cases: int, rounds: int, seed: int = 11) -> dict:
         # the batch takes one mode for all problems: timed without one
         out[name]["batch"] = _cpu(batch, rounds) / len(rows) if name != "mode" else None
         out[name]["cases"] = len(rows)
-    out["floor"] = _python_floor(variants["continuous"], rounds)
     return out
-
-
-def _python_floor(rows, rounds: int) -> dict:
-    """CPU ns of what any ``design.kinematic`` pays besides the C call: the keyword call
-    itself (a function with its signature and no body) and three Stage objects with their
-    list, built as its fast path builds them (no validation); an empty loop subtracted."""
-    from .stages import Stage, _UncheckedStage as blank
-
-    def signature(*, h, vmax, amax=None, jmax=None, higher=(), profile="polynomial", wn=None,
-                  zeta=0.0, Ts=None):
-        return None
-
-    def empty():
-        for h, v, a, j, ts, wn in rows:
-            pass
-
-    def call():
-        for h, v, a, j, ts, wn in rows:
-            signature(h=h, vmax=v, amax=a, jmax=j)
-
-    def stages():
-        # a copy of the fast path's stage building in design.kinematic, kept in step by hand:
-        # a builder both called would add a Python call to the design it measures the floor of
-        for h, v, a, j, ts, wn in rows:
-            s = blank()
-            s.kind = "rectangular"
-            s.T = v
-            s.order = 1
-            out = [s]
-            s.__class__ = Stage
-            s = blank()
-            s.kind = "rectangular"
-            s.T = a
-            s.order = 1
-            out.append(s)
-            s.__class__ = Stage
-            s = blank()
-            s.kind = "rectangular"
-            s.T = j
-            s.order = 1
-            out.append(s)
-            s.__class__ = Stage
-    loop = _cpu(empty, rounds)
-    return {name: (_cpu(fn, rounds) - loop) / len(rows)
-            for name, fn in (("call", call), ("stages", stages))}
 
 
 def _cpu(fn, rounds: int) -> float:
@@ -372,12 +326,14 @@ def main(argv=None) -> int:
               f"design.kinematic {c['python'] / 1e3:.3f} us ({c['python'] / c['raw']:.2f}x the "
               f"raw call, {c['python'] / c['scalar']:.2f}x the scalar one){batch}; "
               f"{c['cases']} different random designs, loop overhead subtracted")
-    f, c = cost["floor"], cost["continuous"]
-    low = f["call"] + f["stages"] + c["scalar"]
-    print(f"  design.kinematic's floor: the keyword call {f['call'] / 1e3:.3f} us + three Stage "
-          f"objects and their list {f['stages'] / 1e3:.3f} us + the scalar C call "
-          f"{c['scalar'] / 1e3:.3f} us = {low / 1e3:.3f} us ({low / c['raw']:.2f}x the raw "
-          "call)")
+    from .bench import kinematic_floor
+    f = kinematic_floor(3 if args.quick else 15, 200 if args.quick else 5000)
+    print(f"  design.kinematic's floor (h=1, vmax=0.5, amax=5, jmax=100): the keyword call "
+          f"{f['call'] / 1e3:.3f} us + the scalar C call {f['glue'] / 1e3:.3f} us + three Stage "
+          f"objects and their list {f['stages'] / 1e3:.3f} us = {f['floor'] / 1e3:.3f} us, "
+          f"{f['floor'] / f['raw']:.2f}x the raw call with its arrays prepared "
+          f"({f['raw'] / 1e3:.3f} us); design.kinematic {f['python'] / 1e3:.3f} us "
+          f"({f['python'] / f['raw']:.2f}x)")
 
     from .bench_grid_price import report
     for n in range(1, 9):   # more cases and an adversarial search: bench_grid_price
