@@ -32,13 +32,19 @@ static sms_real ratio(sms_real limit, sms_real d)
  * or after MAX_ROOT_STEPS evaluations (a bound never reached: every fourth step bisects). */
 #define BRACKET_TOL (2 * REAL_EPS)
 #define MAX_ROOT_STEPS 200
-/* A duration within this many ulps of a whole number of samples is on the grid. */
-#define GRID_TOL (8 * REAL_EPS)
+/* A planned duration within this many ulps above a whole number of samples arrives on that
+ * sample (plan()). The plan's duration carries the root search's bracket (2 eps of T1) and a
+ * few roundings: a move whose exact duration is a whole number of samples (limits and Ts of
+ * round values: 0.475 s at 1 ms) comes out up to 1.3 eps above it (measured), and rounding
+ * it up would cost a whole sample. Shortening the move by GRID_TOL of its duration (at most
+ * 2 kappa) raises W = u/kappa, and with it v, a, j, by up to 2 GRID_TOL = 4 eps; a wider
+ * tolerance costs that much more (8 eps raised them by 16 eps). */
+#define GRID_TOL (2 * REAL_EPS)
 /* How far a planned cruise velocity W (and so a move's start velocity V, an earlier W) may
- * round over vmax: W = u/kappa with kappa >= |u|/vmax, but the arrival's rounding onto the grid
- * (plan()) may shorten the move by GRID_TOL of its duration, at most 2 kappa, and kappa with
- * it; the rest is the roundings of kappa and u/kappa. A saved state is checked to this. */
-#define CRUISE_TOL (2 * GRID_TOL + 8 * REAL_EPS)
+ * round over vmax: W = u/kappa with kappa >= |u|/vmax, the arrival's rounding onto the grid
+ * (2 GRID_TOL), the roundings of kappa and u/kappa (8 eps). A saved state is checked to
+ * 24 eps: what a planner with GRID_TOL = 8 eps saved. */
+#define CRUISE_TOL (24 * REAL_EPS)
 
 /* cbrt(x), x >= 0, by Newton after scaling into [1, 8). */
 static sms_real root3(sms_real x)
@@ -294,7 +300,9 @@ static int plan(sms_multi_generator *g, size_t first, const group *G, sms_multi_
             lo = first_transition(G, D, V0, lo, e_lo, hi, &c);
         }
         T1 = lo;
-        /* arrival on the grid: lengthen the cruise by delta, W = u / (kappa + delta) */
+        /* arrival on the grid: lengthen the cruise by delta, W = u / (kappa + delta); a move
+         * that ends within GRID_TOL after a sample arrives on it (delta < 0, W grows by up to
+         * 2 GRID_TOL) */
         total = T1 + c.tau + c.T2;
         nu = (total - off) / Ts;
         if (!(nu > 0))
@@ -344,37 +352,43 @@ static int plan(sms_multi_generator *g, size_t first, const group *G, sms_multi_
     return 1;
 }
 
-/* Normalised S-curve (header) on the piece that contains xs (a breakpoint within SNAP of x,
- * see evaluate()): F'(xs) (acceleration) and F''(xs) (jerk) there, and that piece's F(x) and
- * G(x) = int_0^x F at x itself. The pieces continue each other to second order at every
- * breakpoint, so choosing the piece by xs moves F and G by the square and the cube of
- * |x - xs| <= SNAP, and the position keeps the rounding of the sample's own time: snapping x
- * itself would move it by v SNAP T, 64 eps of the transition's distance. */
-static void s_curve(sms_real x, sms_real xs, sms_real rho, sms_real *G, sms_real *F,
-                    sms_real *dF, sms_real *ddF)
+/* Normalised S-curve (header) on the piece that contains the sample, chosen by xs and ys
+ * (x and the fraction left 1 - x with their breakpoints snapped within SNAP, see
+ * evaluate()): F'(xs) or F'(1 - ys) (acceleration) and F'' (jerk) there, and that piece's
+ * F(x) and G(x) = int_0^x F at x itself. The last jerk phase is located and evaluated by
+ * the fraction left, never by x against 1 - rho: 1 - rho rounds by up to half an ulp of 1,
+ * which is eps/(4 rho) of that phase (rho is as small as amax^2/(jmax |dV|)), and a sample
+ * at or snapped onto fl(1 - rho) then reported F' = ap (1 - fl(1 - rho))/rho, more than the
+ * peak ap (in float up to 4.8e-5 of amax on random staircases). With ys <= rho decided on the
+ * value the acceleration uses, F' <= ap up to its own rounding. The pieces continue each other to
+ * second order at every breakpoint, so choosing the piece by xs, ys moves F and G by the
+ * square and the cube of the snap, and the position keeps the rounding of the sample's own
+ * time: snapping x itself would move it by v SNAP T, 64 eps of the transition's distance. */
+static void s_curve(sms_real x, sms_real xs, sms_real ys, sms_real rho, sms_real *G,
+                    sms_real *F, sms_real *dF, sms_real *ddF)
 {
     const sms_real ap = 1 / (1 - rho);
-    if (xs < rho) {
-        *ddF = ap / rho;
-        *dF = ap * xs / rho;
-        *F = ap * x * x / (2 * rho);
-        *G = ap * x * x * x / (6 * rho);
-    } else if (xs < 1 - rho) {
-        *ddF = 0;
-        *dF = ap;
-        *F = ap * (x - rho / 2);
-        *G = ap * (x * x / 2 - rho * x / 2 + rho * rho / 6);
-    } else if (xs < 1) {
-        sms_real y = 1 - x;
-        *ddF = -ap / rho;
-        *dF = ap * (1 - xs) / rho;
-        *F = 1 - ap * y * y / (2 * rho);
-        *G = x - (sms_real)0.5 + ap * y * y * y / (6 * rho);
-    } else {
+    if (!(ys > 0)) {
         *ddF = 0;
         *dF = 0;
         *F = 1;
         *G = x - (sms_real)0.5;
+    } else if (xs < rho) {
+        *ddF = ap / rho;
+        *dF = ap * xs / rho;
+        *F = ap * x * x / (2 * rho);
+        *G = ap * x * x * x / (6 * rho);
+    } else if (ys > rho) {
+        *ddF = 0;
+        *dF = ap;
+        *F = ap * (x - rho / 2);
+        *G = ap * (x * x / 2 - rho * x / 2 + rho * rho / 6);
+    } else {
+        sms_real y = 1 - x;
+        *ddF = -ap / rho;
+        *dF = ap * ys / rho;
+        *F = 1 - ap * y * y / (2 * rho);
+        *G = x - (sms_real)0.5 + ap * y * y * y / (6 * rho);
     }
 }
 
@@ -422,8 +436,8 @@ static void evaluate(const sms_multi_generator *g, size_t first, size_t n,
     size_t i;
     if (t < m->T1 - SNAP * m->T1) {
         sms_real x = t / m->T1;
-        sms_real xs = snap(snap(x, m->rho1, SNAP), 1 - m->rho1, SNAP);
-        s_curve(x, xs, m->rho1, &G, &F, &dF, &ddF);
+        s_curve(x, snap(x, m->rho1, SNAP), snap(1 - x, m->rho1, SNAP), m->rho1, &G, &F, &dF,
+                &ddF);
         for (i = first; i < first + n; ++i) {
             sms_real dV = g->W[i] - g->V[i];
             out[4 * i + 0] = g->p[i] + g->V[i] * t + dV * (m->T1 * G);
@@ -444,10 +458,9 @@ static void evaluate(const sms_multi_generator *g, size_t first, size_t n,
          * symmetric, so the distance still to go is W T2 G(y), and the position is counted
          * back from the goal the move lands on */
         sms_real y = left / m->T2, Gy, Fy, dFy, ddFy;
-        sms_real xs = snap(snap(snap(snap(1 - y, 0, SNAP), m->rho2, SNAP), 1 - m->rho2, SNAP),
-                           1, SNAP);
-        s_curve(xs, xs, m->rho2, &G, &F, &dF, &ddF);
-        s_curve(y, y, m->rho2, &Gy, &Fy, &dFy, &ddFy);
+        sms_real xs = snap(snap(1 - y, 0, SNAP), m->rho2, SNAP);
+        s_curve(xs, xs, snap(snap(y, m->rho2, SNAP), 0, SNAP), m->rho2, &G, &F, &dF, &ddF);
+        s_curve(y, y, 1 - y, m->rho2, &Gy, &Fy, &dFy, &ddFy);
         for (i = first; i < first + n; ++i) {
             sms_real W = g->W[i];
             out[4 * i + 0] = g->goal[i] - W * (m->T2 * Gy);

@@ -8,13 +8,14 @@
  *   backward differences |d^i q| / Ts^i <= L_i (1 + 1e-9) + 2^i 8 u Q / Ts^i (i = 1, 2, 3),
  * the rule of the single-axis generator's tests: each sample carries at most 8 u Q of
  * rounding, and a difference of order i sums 2^i of them;
- *   reported |v|, |a|, |j| <= L (1 + 32 eps): the cruise velocity may round over vmax by the
- * planner's CRUISE_TOL (24 eps: the arrival's rounding onto the grid may shorten the move by
- * 8 eps of its length, and kappa with it) and the transitions' unit limits by a few eps more;
+ *   reported |v|, |a|, |j| <= L (1 + 32 u): every plan keeps the limits in its own arithmetic
+ * but for the arrival's rounding onto a sample at most 2 eps of the move earlier (the cruise
+ * velocity grows by up to 4 eps) and the roundings of the plan and of the evaluation
+ * (docs/multi-axis.md);
  *   phase-synchronised arrival on sample n = T/Ts of the time-optimal duration T (the limits
  * are numbers of sms_real, so T is the duration the float build plans), to its rounding: the
- * arrival is the nearest sample when within 8 eps of n, else the next one, so
- * n - 16 u n <= k_end <= n + 1 + 16 u n; the output is exactly the target from there.
+ * arrival is the nearest sample when the planned end is within 2 eps after it, else the next
+ * one, so n - 16 u n <= k_end <= n + 1 + 16 u n; the output is exactly the target from there.
  * Before positions were evaluated per phase, a breakpoint snapped within 64 eps of the whole
  * move: 7.6 samples of a 1000 s move in float, and the differences reached 8 vmax (77 at
  * 10^4 s, 770 at 10^5 s). */
@@ -29,7 +30,7 @@
 #else
 #define UNIT_ROUNDOFF 1.1102230246251565e-16
 #endif
-#define REPORT_TOL (64.0 * UNIT_ROUNDOFF) /* 32 eps */
+#define REPORT_TOL (32.0 * UNIT_ROUNDOFF) /* 16 eps */
 #define WIN 1500
 
 static uint64_t rng = 2463534242u;

@@ -160,8 +160,36 @@ def test_float_build_keeps_limits():
     targets = np.repeat([[1.0, -2.0], [-0.5, 2.0], [0.3, 0.3]], [300, 700, 5000], axis=0)
     out = MultiAxisGenerator(vmax=v, amax=a, jmax=j, Ts=1e-3, precision="float").process(targets)
     lim = np.array([v, a, j]).T
-    assert (np.abs(out[:, :, 1:]) / lim[None]).max() <= 1 + 1e-5
+    # the arrival's rounding onto the grid and the roundings of the plan and of the evaluation:
+    # 32 u (docs/multi-axis.md)
+    assert (np.abs(out[:, :, 1:]) / lim[None]).max() <= 1 + 32 * 2.0 ** -24
     np.testing.assert_array_equal(out[-1, :, 0], np.float32([0.3, 0.3]))
+
+
+@pytest.mark.parametrize("precision, u", [("double", 2.0 ** -53), ("float", 2.0 ** -24)])
+def test_last_jerk_phase_on_a_sample_keeps_amax(precision, u):
+    """A sample on the start of a transition's last jerk phase (fraction 1 - rho, which rounds
+    by up to u/(2 rho) of that phase) reports at most amax, to the 32 u of the plan's and the
+    evaluation's rounding. vmax = 1, amax = 10, jmax = 100 R, Ts = amax/jmax (the jerk phase,
+    rho = 1/(R + 1)): the first transition's last jerk phase starts on sample R, the stop's one
+    sample before the arrival, and the move lasts N samples less 8 u (no slack from the grid).
+    With R = 1001, 1 - fl(1 - rho) exceeds rho by 130 eps in float and 112 eps in double: the
+    evaluation by x against fl(1 - rho) reported amax (1 + 1.6e-5) and (1 + 2.6e-14) there."""
+    R, N = 1001, 12000
+    Ts = 10.0 / (100.0 * R)
+    D = (N * Ts - (0.1 + Ts)) * (1 - 8 * u)
+    targets = np.full((N + 2, 1), D)
+    gen = MultiAxisGenerator(vmax=1.0, amax=10.0, jmax=100.0 * R, Ts=Ts, precision=precision)
+    out = gen.process(targets)
+    a = np.abs(out[:, 0, 2]) / 10.0
+    assert a.max() <= 1 + 32 * u, a.max() - 1
+    assert a[R] >= 1 - 1e-6 and a[N - 1] >= 1 - 1e-6  # on the peak, at both breakpoints
+    assert np.all(out[N:, 0, 1:] == 0) and np.all(out[N:, 0, 0] == out[-1, 0, 0])  # arrival: N
+    if precision == "double":
+        ref = multi_axis_reference(targets, vmax=1.0, amax=10.0, jmax=100.0 * R, Ts=Ts)
+        assert np.abs(ref[:, 0, 2]).max() / 10.0 <= 1 + 32 * u
+        for m, lim in enumerate([abs(D), 1.0, 10.0, 100.0 * R]):
+            assert np.all(np.abs(out[:, 0, m] - ref[:, 0, m]) <= 1e-12 * lim), m
 
 
 @pytest.mark.parametrize("kwargs, parameter", [

@@ -436,8 +436,9 @@ def _plan_unchecked(p, V, B, off, Ts, lim):
     nu = nu if nu > 0 else 0.0
     if not (math.isfinite(total) and nu <= _MAX_MOVE_SAMPLES):
         return _REFUSED
+    # a planned end within 2 eps after a sample arrives on it (multi_generator.c GRID_TOL)
     n_round = math.floor(nu + 0.5)
-    k_end = n_round if abs(n_round - nu) <= 8 * _EPS * max(nu, 1.0) else math.floor(nu) + 1
+    k_end = n_round if abs(n_round - nu) <= 2 * _EPS * max(nu, 1.0) else math.floor(nu) + 1
     tau = max(tau + (k_end * Ts + off - (T1 + tau + T2)), 0.0)
     kappa = T1 / 2 + tau + T2 / 2
     u = D - V * (T1 / 2)
@@ -450,21 +451,25 @@ def _plan_unchecked(p, V, B, off, Ts, lim):
                 rho2=rho2, off=off, k_end=k_end)
 
 
-def _s_curve(x: float, xs: float, rho: float):
-    """(G, F, F', F'') of the normalised transition on the piece that contains xs (x with its
-    breakpoints snapped): F' and F'' at xs, that piece's G and F at x itself (beyond 1:
-    finished). The pieces continue each other to second order, so the position keeps the
-    rounding of the sample's own time while the acceleration and jerk take the right limit."""
+def _s_curve(x: float, xs: float, ys: float, rho: float):
+    """(G, F, F', F'') of the normalised transition on the piece that contains the sample,
+    chosen by xs and ys (x and the fraction left 1 - x, each with its breakpoints snapped):
+    F' and F'' there, that piece's G and F at x itself (ys <= 0: finished). The last jerk
+    phase is located and evaluated by the fraction left, never by x against ``1 - rho``,
+    which rounds by half an ulp of 1, ``eps / (4 rho)`` of that phase: a sample on the
+    rounded breakpoint reported F' above the peak ``ap``. The pieces continue each other to
+    second order, so the position keeps the rounding of the sample's own time while the
+    acceleration and jerk take the right limit."""
     ap = 1.0 / (1.0 - rho)
+    if not ys > 0:
+        return x - 0.5, 1.0, 0.0, 0.0
     if xs < rho:
         return ap * x * x * x / (6 * rho), ap * x * x / (2 * rho), ap * xs / rho, ap / rho
-    if xs < 1 - rho:
+    if ys > rho:
         return ap * (x * x / 2 - rho * x / 2 + rho * rho / 6), ap * (x - rho / 2), ap, 0.0
-    if xs < 1:
-        y = 1 - x
-        return (x - 0.5 + ap * y * y * y / (6 * rho), 1 - ap * y * y / (2 * rho),
-                ap * (1 - xs) / rho, -ap / rho)
-    return x - 0.5, 1.0, 0.0, 0.0
+    y = 1 - x
+    return (x - 0.5 + ap * y * y * y / (6 * rho), 1 - ap * y * y / (2 * rho),
+            ap * ys / rho, -ap / rho)
 
 
 _SNAP = 64 * _EPS
@@ -508,7 +513,7 @@ def _evaluate(m, t, left):
     # sums in the C core's order, left to right (so the two round alike)
     if t < T1 - _SNAP * T1:
         x = t / T1
-        G, F, dF, ddF = _s_curve(x, _snap(x, m["rho1"], 1 - m["rho1"]), m["rho1"])
+        G, F, dF, ddF = _s_curve(x, _snap(x, m["rho1"]), _snap(1 - x, m["rho1"]), m["rho1"])
         dV = W - V
         return np.stack([p + V * t + dV * (T1 * G), V + dV * F, dV * (dF / T1),
                          dV * (ddF / (T1 * T1))], axis=-1)
@@ -516,9 +521,9 @@ def _evaluate(m, t, left):
         z = np.zeros_like(W)
         return np.stack([_cruise_position(m, t), W, z, z], axis=-1)
     y = left / T2
-    xs = _snap(1 - y, 0.0, m["rho2"], 1 - m["rho2"], 1.0)
-    _, _, dF, ddF = _s_curve(xs, xs, m["rho2"])
-    Gy, Fy, _, _ = _s_curve(y, y, m["rho2"])
+    xs = _snap(1 - y, 0.0, m["rho2"])
+    _, _, dF, ddF = _s_curve(xs, xs, _snap(y, m["rho2"], 0.0), m["rho2"])
+    Gy, Fy, _, _ = _s_curve(y, y, 1 - y, m["rho2"])
     return np.stack([m["goal"] - W * (T2 * Gy), W * Fy, -W * (dF / T2),
                      -W * (ddF / (T2 * T2))], axis=-1)
 
