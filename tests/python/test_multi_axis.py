@@ -64,7 +64,9 @@ def test_phase_rest_to_rest_matches_ruckig(data, axes):
     out = gen.process(np.tile(target, (n, 1)))
     # every axis arrives exactly, on the same sample, ceil(T/Ts) samples after the step
     at = (out[:, :, 0] == target) & np.all(out[:, :, 1:] == 0, axis=2)
-    moving = delta != 0
+    # a subnormal displacement moves below the resolution: its v underflows to 0 and q rounds
+    # onto the target before the arrival (delta = [2, 5e-324] at T/Ts = 3: sample 2)
+    moving = np.abs(delta) >= np.finfo(float).tiny
     first = [int(np.argmax(at[:, i])) for i in np.flatnonzero(moving)]
     assert len(set(first)) == 1 and np.all(at[first[0]:])
     N = first[0]
@@ -326,8 +328,9 @@ def test_unrepresentable_moves_are_dropped(precision):
     assert g.dropped == 0 and g.refused == (False, False)
     assert np.all(np.isfinite(out))
     np.testing.assert_array_equal(out[:30], 0.0)   # dropped at rest: still at q0
+    u = 2.0 ** -24 if precision == "float" else 2.0 ** -53
     assert np.all(np.abs(out[:, :, 1:]) <= np.array([[1.0, 1e-3, 1e-3], [1, 1, 1]])[None]
-                  * (1 + 1e-5))
+                  * (1 + 32 * u))
     if precision == "double":
         ref = multi_axis_reference(targets, **args)
         np.testing.assert_array_equal(out, ref)
