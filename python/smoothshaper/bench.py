@@ -378,13 +378,15 @@ def kinematic_call_table(quick: bool) -> list[Table]:
                   "Each part timed on its own, an empty lambda's cost subtracted from every "
                   "row so that the parts add up (the table above keeps it in both columns, "
                   "hence its smaller ratios); their sum is the least any Python function "
-                  "returning the three Stage objects pays. The rest of design.kinematic is the "
-                  "type checks, the thread's output buffer and reading the lengths, and the "
-                  "parts running slower together than each alone.")
+                  "returning the three Stage objects pays; run in one function they take "
+                  "longer than the sum. The rest of design.kinematic is the type checks, the "
+                  "thread's output buffer and reading the lengths.")
     for key, part in (("call", "the keyword call (an empty function with its signature)"),
                       ("glue", "the C design through the scalar glue the fast path calls"),
                       ("stages", "three Stage objects and their list"),
-                      ("floor", "sum: the floor"), ("python", "design.kinematic"),
+                      ("floor", "sum: the floor"),
+                      ("together", "the three in one function, no check"),
+                      ("python", "design.kinematic"),
                       ("raw", "raw C call via cffi")):
         floor.add(part, f[key], _ratio(f[key], f["raw"]))
     return [table, floor]
@@ -396,7 +398,9 @@ def kinematic_floor(rounds: int, repeat: int) -> dict:
     (``design.kinematic``), and the parts any Python function returning the Stage objects
     pays: ``"call"`` (the keyword call of a function with its signature and no body),
     ``"glue"`` (the scalar C call the fast path makes), ``"stages"`` (three Stage objects and
-    their list, built as the fast path builds them) and their sum ``"floor"``."""
+    their list, built as the fast path builds them), their sum ``"floor"``, and
+    ``"together"``: one function with the signature doing only those (no check, no buffer
+    of its own; one call more, to the stage builder), slower than the sum of its parts."""
     from . import design as kinematic_design
     from .filters import _backend
     from .stages import Stage, _UncheckedStage as blank
@@ -433,12 +437,18 @@ def kinematic_floor(rounds: int, repeat: int) -> dict:
         out.append(s)
         s.__class__ = Stage
         return out
+
+    def together(*, h, vmax, amax=None, jmax=None, higher=(), profile="polynomial", wn=None,
+                 zeta=0.0, Ts=None):
+        glue(h, vmax, amax, jmax, 3, 0, 0.0, 0.0, 0.0, T)
+        return three_stages()
     t = interleaved({
         "raw": lambda: raw_design(1.0, limits, 3, 0, 0.0, 0.0, 0.0, T, 3, count),
         "empty": lambda: None,
         "call": lambda: signature(h=1.0, vmax=0.5, amax=5.0, jmax=100.0),
         "glue": lambda: glue(1.0, 0.5, 5.0, 100.0, 3, 0, 0.0, 0.0, 0.0, T),
         "stages": three_stages,
+        "together": lambda: together(h=1.0, vmax=0.5, amax=5.0, jmax=100.0),
         "python": lambda: kinematic(h=1.0, vmax=0.5, amax=5.0, jmax=100.0)},
         rounds=rounds, repeat=repeat)
     out = {name: (sec - t["empty"]) * 1e9 for name, sec in t.items() if name != "empty"}
