@@ -218,8 +218,8 @@ def kinematic(*, h: float, vmax: float, amax: float | None = None, jmax: float |
     # > 0, ratios in range, zeta in [0, 1)) anyway, so only the types are tested here; a
     # refused design, or a huge int cffi cannot convert, goes to the checked path, which names
     # the argument. The Stage objects are built from the C core's values without
-    # re-validation (stages._UncheckedStage), written out per stage: a loop or a builder
-    # call costs more than a stage does. What is left is mostly CPython's own cost: the
+    # re-validation (stages._UncheckedStage), written out per stage (a loop or a builder
+    # call adds about a fifth to each). What is left is mostly CPython's own cost: the
     # keyword call, the cffi call and the objects (docs/sampled-limits.md, "What it costs").
     if (higher is _NO_HIGHER and type(h) in _PLAIN and type(vmax) in _PLAIN
             and (amax is None and jmax is None
