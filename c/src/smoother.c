@@ -186,16 +186,20 @@ typedef struct segment {
     size_t head, window;
 } segment;
 
-/* The old copy's sample i of a segment: add the exact-timing direct taps on x[n-M+1] (the
- * ring slot after this one; `wrap` is the segment's sample where that slot is ring[0]) and
+/* Direct taps: none, on x[n-M+1] and x[n-M] (exact timing), on x[n] and x[n-M] (bounded). */
+enum { TAPS_NONE, TAPS_EXACT, TAPS_BOUNDED };
+
+/* The old copy's sample i of a segment: add the direct taps (on x[n-M+1], the ring slot after
+ * this one, `wrap` being the segment's sample where that slot is ring[0]; or on x itself) and
  * x[n-M], store x in the ring, write the output. */
 static void finish_sample(sms_real *ring, sms_real *out, size_t i, sms_real x, sms_real oldest,
                           sms_real y, sms_real ref0, sms_real base, int corrections,
                           const sms_real *ring0, size_t wrap, sms_real corr0, sms_real corr1)
 {
-    if (corrections) {
-        const sms_real next = i == wrap ? ring0[0] : ring[i + 1u];
-        y += corr0 * (next - ref0) + corr1 * (oldest - ref0);
+    if (corrections != TAPS_NONE) {
+        const sms_real first = corrections == TAPS_BOUNDED ? x
+                             : i == wrap ? ring0[0] : ring[i + 1u];
+        y += corr0 * (first - ref0) + corr1 * (oldest - ref0);
     }
     ring[i] = x;
     out[i] = y + base;
@@ -289,7 +293,8 @@ static void segment_complex(segment *g, const sms_real *in, sms_real *out, size_
 void sms_smoother_process(sms_smoother *f, const sms_real *in, sms_real *out, size_t n)
 {
     const size_t window = f->window;
-    const int corrections = f->n_corrections > 0u;
+    const int corrections = f->n_corrections == 0u ? TAPS_NONE
+                          : f->correction_delay[0] == 0u ? TAPS_BOUNDED : TAPS_EXACT;
 #ifdef SMS_SMOOTHER_VARIANT_LOOPS
     const int unit_pole = f->real_only && f->pole_m1_re == (sms_real)0 && f->pole_lo_re == (sms_real)0;
 #endif
@@ -301,7 +306,7 @@ void sms_smoother_process(sms_smoother *f, const sms_real *in, sms_real *out, si
     g.gain = f->gain_re;
     g.tail_re = f->tail_re;
     g.tail_im = f->tail_im;
-    /* exact timing: the direct taps sit on delays M-1 and M (see the design) */
+    /* the direct taps sit on delays M-1 and M, or 0 and M (see the design) */
     g.corr0 = corrections ? f->correction_gain[0] : (sms_real)0;
     g.corr1 = corrections ? f->correction_gain[1] : (sms_real)0;
     g.rest = f->rest;
@@ -337,16 +342,18 @@ void sms_smoother_process(sms_smoother *f, const sms_real *in, sms_real *out, si
         g.ref = LANES(f->ref[old], f->ref[young]);
         /* Constant flags per call: the compiler drops the unused branches from each loop. */
         if (f->real_only) {
-            if (corrections)
-                segment_real(&g, in, out, seg, 1, 1, unit_pole);
+            if (corrections == TAPS_BOUNDED)
+                segment_real(&g, in, out, seg, 1, TAPS_BOUNDED, unit_pole);
+            else if (corrections == TAPS_EXACT)
+                segment_real(&g, in, out, seg, 1, TAPS_EXACT, unit_pole);
             else if (unit_pole)
-                segment_real(&g, in, out, seg, 1, 0, 1);
+                segment_real(&g, in, out, seg, 1, TAPS_NONE, 1);
             else
-                segment_real(&g, in, out, seg, 1, 0, 0);
-        } else if (corrections) {
-            segment_complex(&g, in, out, seg, 1, 1, 0);
+                segment_real(&g, in, out, seg, 1, TAPS_NONE, 0);
+        } else if (corrections) { /* half-sine families: exact timing only */
+            segment_complex(&g, in, out, seg, 1, TAPS_EXACT, 0);
         } else {
-            segment_complex(&g, in, out, seg, 1, 0, 0);
+            segment_complex(&g, in, out, seg, 1, TAPS_NONE, 0);
         }
         f->w_re[old] = LANE(g.w_re, 0);
         f->w_re[young] = LANE(g.w_re, 1);
@@ -371,7 +378,8 @@ void sms_smoother_process(sms_smoother *f, const sms_real *in, sms_real *out, si
                 /* One loop for every family (smaller code): a real pole has Im q = 0 and
                  * Im c = Im t = Im q_lo = 0, so Im w stays 0 and Re w follows exactly the
                  * real recursion (the extra terms add exact zeros). */
-                segment_complex(&g, in, out, seg, pass, corrections && pass, f->real_only);
+                segment_complex(&g, in, out, seg, pass, pass ? corrections : TAPS_NONE,
+                                f->real_only);
                 f->w_re[c] = g.w_re;
                 f->w_im[c] = g.w_im;
                 f->lo_re[c] = g.lo_re;

@@ -206,6 +206,23 @@ static long double exact_correction(const sms_smoother_design *d, size_t n0, dou
     return sum + *a_out + *b_out;
 }
 
+/* Bounded timing (docs/exact-mode.md): taps u, q, q^2 .. q^N0, u q^(N0+1) (before scaling to
+ * sum 1), q = e^{sigma Ts}, N0 = floor(nu), f = nu - N0. The zero at z* = q e^{j phi},
+ * phi = w* Ts = 2 pi x0 with x0 = k zero_turns/(2 nu), takes one real unknown: the damping
+ * cancels in every term t_i z*^-i, and the imaginary part of the condition (times
+ * e^{j phi (N0+1)/2}) forces the same u on both ends. The real part gives
+ *   u = (1 - tan(pi x0 (N0+1))/tan(pi x0))/2 = sin(pi x0 f)/(2 sin(pi x0) cos(pi x0 (1 - f)))
+ * (x0 nu = k zero_turns/2 is a whole number for the real-pole families, so x0 (N0+1) is
+ * x0 (1 - f) modulo 1; the second form has no cancellation). 0 < u < 1/2 for nu > 2k, and the
+ * largest tap is at most the continuous response's peak density times Ts: that is what these
+ * taps are for (a stage that is also a kinematic bound). */
+static long double bounded_end_tap(double nu, double zero_turns_k)
+{
+    const long double x0 = 0.5L * (long double)zero_turns_k / (long double)nu;
+    const long double f = (long double)nu - floorl((long double)nu);
+    return sin_pi_long(x0 * f) / (2.0L * sin_pi_long(x0) * cos_pi_long(x0 * (1.0L - f)));
+}
+
 /* Largest |x| (and |rest|) for which every sum on the per-sample path stays below the
  * overflow threshold of sms_real, in closed form (O(1)); sms_smoother_input_max() caps it at
  * SMS_INPUT_MAX. With |x|, |rest| <= X a copy filters
@@ -245,7 +262,11 @@ sms_status sms_smoother_design_make(const sms_stage_config *config, double Ts,
         return SMS_ERR_SAMPLE_PERIOD;
     if (!describe(config->kind, &d.family))
         return SMS_ERR_KIND;
-    if (config->timing != SMS_TIMING_EXACT && config->timing != SMS_TIMING_PAPER)
+    if (config->timing != SMS_TIMING_EXACT && config->timing != SMS_TIMING_PAPER
+        && config->timing != SMS_TIMING_BOUNDED)
+        return SMS_ERR_KIND;
+    /* bounded taps are the real-pole families' (a half sine peaks mid-window, not at an end) */
+    if (config->timing == SMS_TIMING_BOUNDED && d.family.half_sine)
         return SMS_ERR_KIND;
     if (!(isfinite(config->T) && config->T > 0.0))
         return SMS_ERR_DURATION;
@@ -265,7 +286,7 @@ sms_status sms_smoother_design_make(const sms_stage_config *config, double Ts,
     if (d.family.half_sine && config->k % 2u == 0u)
         return SMS_ERR_EVEN_MULTIPLE;
     /* Exact timing off the grid pins w* = k zero_turns pi/T: it must lie below pi/Ts. */
-    if (!integer && config->timing == SMS_TIMING_EXACT
+    if (!integer && config->timing != SMS_TIMING_PAPER
         && (double)config->k * d.family.zero_turns >= nu)
         return SMS_ERR_ABOVE_NYQUIST;
     /* Lengths, ring indices and ages (up to 2L) must be exact in size_t and in a double. */
@@ -281,6 +302,11 @@ sms_status sms_smoother_design_make(const sms_stage_config *config, double Ts,
         d.nu = rounded; /* >= 1: nu >= 1 - 1e-9 here */
         d.window = (size_t)rounded;
         d.length = d.window;
+    } else if (config->timing == SMS_TIMING_BOUNDED) {
+        /* Taps 0..N0 from the recursion, end taps on 0 and N0 + 1 as direct taps. */
+        d.nu = nu;
+        d.window = (size_t)floor(nu) + 1u;
+        d.length = d.window + 1u;
     } else {
         /* Taps 0..N0-1 from the recursion, tap N0 (fractional, corrected) and the correction
          * on N0-1 as direct taps. N0 >= 2 here: the Nyquist check needs nu > 2k. */
@@ -292,7 +318,19 @@ sms_status sms_smoother_design_make(const sms_stage_config *config, double Ts,
     if (d.family.half_sine && d.window < 2u)
         return SMS_ERR_DURATION_BELOW_TS;
 
-    if (d.length > d.window) {
+    if (d.length > d.window && config->timing == SMS_TIMING_BOUNDED) {
+        /* the end taps are the only taps that are not c q^i: write them as corrections */
+        const size_t m = d.window;
+        const long double u = bounded_end_tap(nu, (double)config->k * d.family.zero_turns);
+        const long double u_last = u * expl((long double)d.decay * (long double)m);
+        const long double scale = 1.0L / (base_tap_sum(&d, m) + (u - 1.0L) + u_last);
+        d.gain = (double)scale;
+        d.n_corrections = 2;
+        d.correction_delay[0] = 0u;
+        d.correction_delay[1] = m;
+        d.correction_gain[0] = (double)(scale * (u - 1.0L));
+        d.correction_gain[1] = (double)(scale * u_last);
+    } else if (d.length > d.window) {
         const size_t n0 = d.window;
         const double fraction = nu - floor(nu);
         long double a, b, last = (long double)fraction * expl((long double)d.decay * (long double)n0);

@@ -54,11 +54,15 @@ static void run_case(void)
     c.T = nu * Ts;
     c.sigma = -exp(uniform01() * 20.0 - 8.0); /* -3e-4 .. -8e4 1/s */
     c.k = 1u + (unsigned)(uniform01() * 4.0);
-    c.timing = uniform01() < 0.3 ? SMS_TIMING_PAPER : SMS_TIMING_EXACT;
+    {
+        const double t = uniform01();
+        c.timing = t < 0.3 ? SMS_TIMING_PAPER : t < 0.5 ? SMS_TIMING_BOUNDED : SMS_TIMING_EXACT;
+    }
     st = sms_smoother_init(&f, &c, Ts, ring, MAX_LEN);
     if (st != SMS_OK) {
         int explained = (st == SMS_ERR_EVEN_MULTIPLE && is_harmonic(c.kind) && c.k % 2u == 0u)
-            || (st == SMS_ERR_ABOVE_NYQUIST && !on_grid && c.timing == SMS_TIMING_EXACT
+            || (st == SMS_ERR_KIND && c.timing == SMS_TIMING_BOUNDED && is_harmonic(c.kind))
+            || (st == SMS_ERR_ABOVE_NYQUIST && !on_grid && c.timing != SMS_TIMING_PAPER
                 && (double)c.k * (is_harmonic(c.kind) ? 3.0 : 2.0) >= nu)
             || (st == SMS_ERR_SIGMA && c.sigma * Ts < -30.0); /* constants beyond sms_real */
         CHECK(explained);
@@ -82,7 +86,7 @@ static void run_case(void)
             worst = e;
     }
     CHECK(worst <= SMS_TEST_REL_TOL * scale);
-    if (c.timing == SMS_TIMING_EXACT && fabs(nu - floor(nu + 0.5)) > 1e-9 * nu) {
+    if (c.timing != SMS_TIMING_PAPER && fabs(nu - floor(nu + 0.5)) > 1e-9 * nu) {
         double dc, residual = pinned_residual(&c, Ts, L, &dc);
         /* (sigma T below about -700: the zero's neighbourhood is beyond a double; skip) */
         CHECK(residual <= 1e-9 || (residual == INFINITY && c.sigma * c.T < -700.0));

@@ -254,6 +254,10 @@ static void test_invalid(void)
     CHECK_STATUS(sms_smoother_buffer_size(&c, Ts, &need), SMS_OK);
     c = smoother(SMS_HARMONIC, 8.5e-3, 0.0, 3u, SMS_TIMING_EXACT);
     expect_rejected(&c, Ts, SMS_ERR_ABOVE_NYQUIST);
+    c.timing = SMS_TIMING_BOUNDED; /* bounded taps: real-pole families only */
+    expect_rejected(&c, Ts, SMS_ERR_KIND);
+    c = smoother(SMS_EXPONENTIAL, 3.5e-3, -1.0, 2u, SMS_TIMING_BOUNDED);
+    expect_rejected(&c, Ts, SMS_ERR_ABOVE_NYQUIST);
     c.timing = SMS_TIMING_PAPER; /* paper timing pins nothing */
     CHECK_STATUS(sms_smoother_buffer_size(&c, Ts, &need), SMS_OK);
     c = smoother(SMS_EXPONENTIAL, 1e300, -1.0, 1u, SMS_TIMING_EXACT);
@@ -298,6 +302,14 @@ int main(void)
         test_non_finite(&grid, Ts, NAN);
         test_non_finite(&off, Ts, INFINITY);
         test_non_finite(&tiny, Ts, -INFINITY);
+        if (!is_harmonic(kinds[f])) { /* bounded timing: direct taps on x[n] and x[n-M] */
+            off.timing = tiny.timing = SMS_TIMING_BOUNDED;
+            test_blocks(&off, Ts);
+            test_reset_rest(&off, Ts);
+            test_state(&off, Ts);
+            test_non_finite(&off, Ts, NAN);
+            test_non_finite(&tiny, Ts, INFINITY);
+        }
     }
     test_invalid();
     return check_summary("test_smoother_stream");

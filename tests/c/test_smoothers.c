@@ -202,6 +202,98 @@ static void step_response(sms_smoother *f, double *out, size_t n)
     }
 }
 
+/* Continuous peak density of a real-pole smoother over [0, T): the largest value of its
+ * normalised impulse response, 1/T (rectangular) or -sigma/(1 - e^{sigma T}) at t = 0. */
+static double peak_density(double T, double sigma)
+{
+    return sigma == 0.0 ? 1.0 / T : -sigma / -expm1(sigma * T);
+}
+
+/* Bounded timing (docs/exact-mode.md) over random T/Ts off the grid, multiples and damping:
+ * L = floor(nu) + 2 taps, all in [0, peak density Ts (1 + 1e-12)], summing to 1, the zero
+ * pinned as exact timing pins it, the realisation equal to the taps; on the grid the same
+ * filter as exact timing; refused where it has no meaning. */
+static void test_bounded_timing(void)
+{
+    unsigned long long rng = 0x9e3779b97f4a7c15ull;
+    const double Ts = 1e-3;
+    double worst = -1.0;
+    int trial;
+    for (trial = 0; trial < 400; ++trial) {
+        const sms_kind kind = trial % 2 ? SMS_EXPONENTIAL : SMS_RECTANGULAR;
+        const unsigned k = 1u + (unsigned)(4.0 * xorshift_uniform(&rng));
+        /* nu from just above 2k (a mode near Nyquist) to about 2k + 3000 */
+        const double nu = 2.0 * k + 1e-3 + pow(10.0, 3.5 * xorshift_uniform(&rng));
+        const double zeta = kind == SMS_EXPONENTIAL ? 0.9 * xorshift_uniform(&rng) : 0.0;
+        const double w = (double)k * 2.0 * PI / (nu * Ts);
+        const double sigma = -zeta / sqrt(1.0 - zeta * zeta) * w / (double)k;
+        sms_stage_config c = smoother(kind, nu * Ts, sigma, k, SMS_TIMING_BOUNDED);
+        double dc, residual, top, bound, lowest = 1.0;
+        size_t L, M, i;
+        if (fabs(nu - floor(nu + 0.5)) <= 1e-9 * nu)
+            continue;
+        CHECK_STATUS(sms_smoother_length(&c, Ts, &L), SMS_OK);
+        CHECK_STATUS(sms_smoother_buffer_size(&c, Ts, &M), SMS_OK);
+        CHECK(L == (size_t)floor(nu) + 2u && M == L - 1u);
+        CHECK_STATUS(sms_smoother_taps(&c, Ts, taps, MAX_LEN), SMS_OK);
+        top = max_abs(taps, L);
+        for (i = 0; i < L; ++i)
+            if (taps[i] < lowest)
+                lowest = taps[i];
+        bound = peak_density(c.T, sigma) * Ts;
+        CHECK(lowest >= 0.0);
+        CHECK(top <= bound * (1.0 + 1e-12));
+        if (top / bound - 1.0 > worst)
+            worst = top / bound - 1.0;
+        residual = response_at(taps, L, sigma, w, Ts, &dc);
+        CHECK_CLOSE(dc, 1.0, 1e-12, 1.0);
+        CHECK(residual <= 1e-9);
+        if (L + 8 <= MAX_LEN)
+            test_realised_equals_taps(&c, Ts);
+    }
+    printf("bounded timing: largest tap / (peak density Ts) - 1 = %.3g (400 designs)\n", worst);
+    /* one sample off a mode near Nyquist, and the limits of u: f -> 0 and f -> 1 */
+    {
+        static const double ratios[5] = {2.08, 10.5, 20.000001, 20.999999, 1000.5};
+        int r;
+        for (r = 0; r < 5; ++r) {
+            sms_stage_config c = smoother(SMS_RECTANGULAR, ratios[r] * Ts, 0.0, 1u,
+                                          SMS_TIMING_BOUNDED);
+            double dc;
+            size_t L;
+            CHECK_STATUS(sms_smoother_length(&c, Ts, &L), SMS_OK);
+            CHECK_STATUS(sms_smoother_taps(&c, Ts, taps, MAX_LEN), SMS_OK);
+            CHECK(max_abs(taps, L) <= (1.0 + 1e-12) / ratios[r]);
+            /* symmetric: the undamped end taps are equal */
+            CHECK_CLOSE(taps[0], taps[L - 1u], 1e-12, taps[1]);
+            CHECK(response_at(taps, L, 0.0, 2.0 * PI / (ratios[r] * Ts), Ts, &dc) <= 1e-9);
+            test_realised_equals_taps(&c, Ts);
+        }
+    }
+    /* on the grid: the integer-N filter, as exact timing gives */
+    {
+        sms_stage_config c = smoother(SMS_EXPONENTIAL, 40.0 * Ts, -7.0, 1u, SMS_TIMING_BOUNDED);
+        size_t L, i;
+        CHECK_STATUS(sms_smoother_taps(&c, Ts, taps, MAX_LEN), SMS_OK);
+        c.timing = SMS_TIMING_EXACT;
+        CHECK_STATUS(sms_smoother_taps(&c, Ts, expect, MAX_LEN), SMS_OK);
+        CHECK_STATUS(sms_smoother_length(&c, Ts, &L), SMS_OK);
+        CHECK(L == 40u);
+        for (i = 0; i < L; ++i)
+            CHECK(taps[i] == expect[i]);
+    }
+    /* refused: a half sine (its peak is mid-window), above Nyquist */
+    {
+        sms_stage_config c = smoother(SMS_HARMONIC, 10.5 * Ts, 0.0, 1u, SMS_TIMING_BOUNDED);
+        size_t L;
+        CHECK_STATUS(sms_smoother_length(&c, Ts, &L), SMS_ERR_KIND);
+        c = smoother(SMS_DAMPED_HARMONIC, 10.0 * Ts, -1.0, 1u, SMS_TIMING_BOUNDED);
+        CHECK_STATUS(sms_smoother_length(&c, Ts, &L), SMS_ERR_KIND);
+        c = smoother(SMS_RECTANGULAR, 3.9 * Ts, 0.0, 2u, SMS_TIMING_BOUNDED);
+        CHECK_STATUS(sms_smoother_length(&c, Ts, &L), SMS_ERR_ABOVE_NYQUIST);
+    }
+}
+
 /* Step responses: discrete closed forms (exact) and the continuous trajectories (O(Ts)). */
 static void test_step_rectangular(void)
 {
@@ -344,6 +436,7 @@ int main(void)
     test_exact_zero(SMS_EXPONENTIAL, 2.5 * Ts, -100.0, 1u, Ts);
     test_paper_timing();
     test_exact_no_overshoot();
+    test_bounded_timing();
 
     test_step_rectangular();
     test_step_exponential();

@@ -21,13 +21,19 @@
  * a correction on taps N0-1 and N0 puts the zero s* = sigma + j w* exactly on z* = e^{s* Ts}, w* = k 2 pi/T (rectangular,
  * exponential) or k 3 pi/T (harmonic families); then all taps are scaled to sum 1.
  * L = N0 + 1. The correction is small, so the taps stay non-negative and a step never
- * overshoots.
+ * overshoots. Exact timing's largest tap can reach about 1.14/nu for a rectangular stage.
+ * ::SMS_TIMING_BOUNDED (rectangular, exponential) keeps w* and T with L = N0 + 2 taps
+ *   u, r, r^2, ..., r^N0, u r^(N0+1)  (scaled to sum 1),
+ *   u = sin(pi x0 f)/(2 sin(pi x0) cos(pi x0 (1 - f))),  x0 = k/nu,
+ * in (0, 1/2): the largest tap is at most the continuous peak density times Ts (1/nu for the
+ * rectangular stage), the density a kinematic design budgets for (docs/exact-mode.md).
  *
- * Realisation (O(1) per sample, no libm): the first M taps (M = N, or N0) are
+ * Realisation (O(1) per sample, no libm): the first M taps (M = N, N0, or N0 + 1 bounded) are
  * Re or Im of c q^i with the pole q = r (rectangular, exponential) or q = r e^{j pi/nu}
  * (harmonic families), computed by the complex first-order recursion
  *   w[n] = q w[n-1] + c x[n] - c q^M x[n-M],   y[n] = Re/Im w[n] + sum_j d_j x[n-j],
- * where d_j are the (at most 2) exact-timing taps N0-1 and N0. A rotation is used rather than the
+ * where d_j are the (at most 2) direct taps: on N0-1 and N0 (exact timing), or on 0 and
+ * N0 + 1 (bounded timing). A rotation is used rather than the
  * real second-order resonator 1 - 2 r cos(pi/N) z^-1 + r^2 z^-2, whose rounding is amplified
  * about N^2 times. The recursion cancels its own pole, so on its own it would accumulate
  * rounding for ever (docs/numerics.md). Hence:
@@ -66,7 +72,8 @@
 extern "C" {
 #endif
 
-/** @brief Most direct taps of exact timing (floor(nu)-1 and floor(nu)). */
+/** @brief Most direct taps: floor(nu)-1 and floor(nu) (exact timing), or 0 and floor(nu)+1
+ * (bounded timing). */
 #define SMS_SMOOTHER_MAX_CORRECTIONS 2
 
 /** @brief Instance of one smoother. Fields are public for inspection; change them only
@@ -81,8 +88,8 @@ typedef struct sms_smoother {
     sms_real tail_re, tail_im;  /**< -c q^M, weight of x[n-M] */
     int imag_out;               /**< 1: output Im w (harmonic families); 0: Re w */
     int real_only;              /**< 1: q, c, -c q^M are real (rectangular, exponential) */
-    size_t n_corrections;       /**< exact-timing direct taps in use (0 or 2) */
-    size_t correction_delay[SMS_SMOOTHER_MAX_CORRECTIONS];  /**< in 0..M */
+    size_t n_corrections;       /**< direct taps in use (0 or 2) */
+    size_t correction_delay[SMS_SMOOTHER_MAX_CORRECTIONS];  /**< {M-1, M}, or {0, M} (bounded) */
     sms_real correction_gain[SMS_SMOOTHER_MAX_CORRECTIONS];
     sms_real w_re[2], w_im[2];  /**< state of the two restarted copies (main part) */
     sms_real lo_re[2], lo_im[2]; /**< their small parts: rounding of the increments, q_lo w */
@@ -102,7 +109,7 @@ typedef struct sms_smoother {
  * @param config  a smoother config (kind ::SMS_RECTANGULAR .. ::SMS_EXPONENTIAL)
  * @param Ts      sample period [s], finite and > 0
  * @param n_reals receives M, the ring length in ::sms_real (M = N, or floor(T/Ts) for
- *                exact timing off the grid)
+ *                exact timing off the grid, floor(T/Ts) + 1 for bounded timing off it)
  * @return ::SMS_OK or the status sms_smoother_init() would return for a large enough buffer.
  */
 SMS_API sms_status sms_smoother_buffer_size(const sms_stage_config *config, double Ts, size_t *n_reals);
@@ -114,7 +121,8 @@ SMS_API sms_status sms_smoother_buffer_size(const sms_stage_config *config, doub
  * Checks, first failure wins (the order of the table in config.h):
  * - ::SMS_ERR_NULL: f or config is NULL;
  * - ::SMS_ERR_SAMPLE_PERIOD: Ts is NaN/Inf or <= 0;
- * - ::SMS_ERR_KIND: config->kind is not a smoother, or config->timing is unknown;
+ * - ::SMS_ERR_KIND: config->kind is not a smoother, or config->timing is unknown, or
+ *   ::SMS_TIMING_BOUNDED for a harmonic family;
  * - ::SMS_ERR_DURATION: T is NaN/Inf or <= 0;
  * - ::SMS_ERR_DURATION_BELOW_TS: T < Ts (beyond the 1e-9 integer test), or a harmonic family
  *   with N < 2 samples (integer or paper timing: its only sample, sin(0), is zero);
@@ -123,7 +131,7 @@ SMS_API sms_status sms_smoother_buffer_size(const sms_stage_config *config, doub
  *   (sms_smoother_input_max()) falls below 1;
  * - ::SMS_ERR_MULTIPLE: k < 1;
  * - ::SMS_ERR_EVEN_MULTIPLE: k even for ::SMS_HARMONIC or ::SMS_DAMPED_HARMONIC;
- * - ::SMS_ERR_ABOVE_NYQUIST: exact timing with T/Ts off the grid and the pinned zero w* at or
+ * - ::SMS_ERR_ABOVE_NYQUIST: exact or bounded timing with T/Ts off the grid and the pinned zero w* at or
  *   above pi/Ts (k 2 >= T/Ts rectangular/exponential, k 3 >= T/Ts harmonic families);
  * - ::SMS_ERR_TOO_LONG: T/Ts + 2 exceeds min(2^52, SIZE_MAX/32);
  * - ::SMS_ERR_NULL: buffer is NULL; ::SMS_ERR_BUFFER_TOO_SMALL: n_reals < M.
@@ -228,7 +236,7 @@ SMS_API sms_status sms_smoother_check_state(const sms_smoother *f, const double 
  * @brief Write the L impulse-response taps (normalised, DC gain 1) of a config, computed in
  * double, into taps[0..L-1]; the instance realises exactly these (to rounding).
  * @param n_taps length of taps; must be >= L (L = N, or floor(T/Ts) + 1 for exact timing off
- *               the grid); entries past L are left alone
+ *               the grid, floor(T/Ts) + 2 for bounded timing); entries past L are left alone
  * @return ::SMS_OK, ::SMS_ERR_NULL (config or taps), ::SMS_ERR_BUFFER_TOO_SMALL (n_taps < L),
  *         or a validation status of sms_smoother_init().
  */

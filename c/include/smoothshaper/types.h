@@ -131,11 +131,16 @@ typedef enum sms_kind {
  * ::SMS_TIMING_EXACT (default) keeps the continuous design and corrects the end taps so that the
  * discrete zero sits exactly on the sampled continuous zero e^{s Ts} (see docs/exact-mode.md).
  * ::SMS_TIMING_PAPER reproduces the seeds: N = round(T/Ts) and the integer-N formulas.
- * When T/Ts is an integer (to 1e-9 relative) both give the same filter.
+ * ::SMS_TIMING_BOUNDED (rectangular and exponential smoothers only) pins the same zero with one
+ * more tap, chosen so that no tap exceeds the continuous response's peak density times Ts:
+ * what a stage that is both tuned to a mode and a kinematic bound needs
+ * (docs/sampled-limits.md).
+ * When T/Ts is an integer (to 1e-9 relative) all three give the same filter.
  */
 typedef enum sms_timing {
     SMS_TIMING_EXACT = 0,
-    SMS_TIMING_PAPER = 1
+    SMS_TIMING_PAPER = 1,
+    SMS_TIMING_BOUNDED = 2
 } sms_timing;
 
 /** @brief Human-readable one-line description of a status (static storage, never NULL). */
