@@ -210,9 +210,14 @@ static int stage_config(const ss_model *m, unsigned k, sms_stage_config *c, char
     if (p->ints[SS_FIELD_DESIGN] != 0 && !for_mode)
         return snprintf(msg, len, "stage[%u].design = %d is not raw (0) or for_mode (1)", k,
                         p->ints[SS_FIELD_DESIGN]), 1;
-    if (p->ints[SS_FIELD_TIMING] != SMS_TIMING_EXACT && p->ints[SS_FIELD_TIMING] != SMS_TIMING_PAPER)
-        return snprintf(msg, len, "stage[%u].timing = %d is not exact (0) or paper (1)", k,
-                        p->ints[SS_FIELD_TIMING]), 1;
+    if (p->ints[SS_FIELD_TIMING] != SMS_TIMING_EXACT && p->ints[SS_FIELD_TIMING] != SMS_TIMING_PAPER
+        && p->ints[SS_FIELD_TIMING] != SMS_TIMING_BOUNDED)
+        return snprintf(msg, len, "stage[%u].timing = %d is not exact (0), paper (1) or "
+                        "bounded (2)", k, p->ints[SS_FIELD_TIMING]), 1;
+    if (p->ints[SS_FIELD_TIMING] == SMS_TIMING_BOUNDED && kind != SMS_RECTANGULAR
+        && kind != SMS_EXPONENTIAL)
+        return snprintf(msg, len, "stage[%u].timing = 2 (bounded) is for the rectangular (0) and "
+                        "exponential (3) smoothers; stage[%u].kind = %d", k, k, kind), 1;
     if (p->ints[SS_FIELD_K] < 1 || p->ints[SS_FIELD_ORDER] < 1)
         return snprintf(msg, len, "stage[%u].%s = %d: must be >= 1", k,
                         p->ints[SS_FIELD_K] < 1 ? "k" : "order",

@@ -93,7 +93,9 @@ CHOICES = {
     "StageDesign": [("raw", 0, "use T, sigma, k as given"),
                     ("for_mode", 1, "design T and sigma for the mode (wn, zeta) with multiple k")],
     "Timing": [("exact", 0, "zeros exactly on the sampled continuous design for any Ts"),
-               ("paper", 1, "N = round(T/Ts), as in the source papers")],
+               ("paper", 1, "N = round(T/Ts), as in the source papers"),
+               ("bounded", 2, "the exact zero with one more tap, no tap above the continuous "
+                              "peak density (rectangular, exponential)")],
     "Profile": [("polynomial", 0, "linear ramps of the acceleration: time-optimal double-S"),
                 ("trigonometric", 1, "half-cosine transitions, continuous jerk (modified "
                                      "double-S)"),

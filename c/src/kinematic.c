@@ -388,9 +388,17 @@ static double grid_ceil(double nu)
     return ceil(nu);
 }
 
-/* Largest tap of the exact-timing stage tuned to the mode, and its length in samples. */
+/* The timing of a stage tuned to the mode on a grid: bounded taps (no tap above the peak
+ * density the design budgets for), which only the half sine does not need. */
+static sms_timing tuned_timing(sms_kind kind)
+{
+    return kind == SMS_HARMONIC ? SMS_TIMING_EXACT : SMS_TIMING_BOUNDED;
+}
+
+/* Largest tap of the stage tuned to the mode, its length in samples and the sum of its
+ * first and last taps. */
 static sms_status tuned_taps(sms_kind kind, double T, double sigma, unsigned k, double Ts,
-                             double *peak, double *support)
+                             double *peak, double *support, double *ends)
 {
     sms_stage_config c = sms_stage_config_default(kind);
     sms_smoother_design d;
@@ -400,6 +408,7 @@ static sms_status tuned_taps(sms_kind kind, double T, double sigma, unsigned k, 
     c.T = T;
     c.sigma = sigma;
     c.k = k;
+    c.timing = tuned_timing(kind);
     st = sms_smoother_design_make(&c, Ts, &d);
     if (st != SMS_OK)
         return st;
@@ -419,6 +428,7 @@ static sms_status tuned_taps(sms_kind kind, double T, double sigma, unsigned k, 
         }
     *peak = best;
     *support = (double)d.length;
+    *ends = sms_smoother_design_tap(&d, 0u) + sms_smoother_design_tap(&d, d.length - 1u);
     return SMS_OK;
 }
 
@@ -866,6 +876,7 @@ sms_status sms_kin_solve_sampled(double h, const double *limits, size_t n, sms_p
     h = fabs(h);
     last->sigma = 0.0;
     last->k = 1u;
+    last->timing = SMS_TIMING_EXACT;
     last->kind = profile == SMS_PROFILE_TRIGONOMETRIC ? SMS_HARMONIC : SMS_RECTANGULAR;
     if (wn == 0.0) {
         p.fixed = 0;
@@ -919,20 +930,30 @@ sms_status sms_kin_solve_sampled(double h, const double *limits, size_t n, sms_p
         if (Ts > 0.0) {
             /* k is chosen on the continuous design (O(1) per multiple); its sampled taps
              * (O(length), once) then set the density that bounds the top derivative */
-            double tap;
+            double tap, ends;
             p.T_fixed = kbest * Tm;
             p.rho_fixed = peak_density(last->kind, p.T_fixed, last->sigma);
-            st = tuned_taps(last->kind, p.T_fixed, last->sigma, kbest, Ts, &tap, &supp_best);
+            st = tuned_taps(last->kind, p.T_fixed, last->sigma, kbest, Ts, &tap, &supp_best,
+                            &ends);
             if (st != SMS_OK)
                 return st;
-            if (tap / Ts > p.rho_fixed) {
+            if (tap / Ts > p.rho_fixed * (1.0 + 1e-12)) { /* beyond the taps' rounding */
                 p.rho_fixed = tap / Ts;
                 if (n == 1 && h * p.rho_fixed > p.L[0])
                     return SMS_ERR_TOO_LONG;
                 (void)solve_plan(&p, h, Tbest);
             }
+            /* Copies of the stage one sample closer than its length overlap only where the
+             * last tap of one meets the first tap of the next: with the taps non-negative,
+             * that sample is at most their sum (same signs) or their difference, so the
+             * structure may count one sample less when the sum is within the bound
+             * (docs/sampled-limits.md). */
+            if (ends <= p.rho_fixed * Ts)
+                supp_best -= 1.0;
         }
         last->k = kbest;
+        if (Ts > 0.0)
+            last->timing = tuned_timing(last->kind);
         support_last = supp_best;
         for (i = 0; i < n; ++i)
             T[i] = Tbest[i];
@@ -1012,6 +1033,7 @@ sms_status sms_kinematic_configs(double h, const double *limits, size_t n, sms_p
     configs[n - 1].kind = last.kind;
     configs[n - 1].sigma = last.sigma;
     configs[n - 1].k = last.k;
+    configs[n - 1].timing = last.timing;
     *count = n;
     return SMS_OK;
 }

@@ -20,6 +20,7 @@ typedef struct sms_kin_last {
     sms_kind kind;
     double sigma;
     unsigned k;
+    sms_timing timing; /* bounded for a mode-tuned rectangular/exponential stage on a grid */
 } sms_kin_last;
 
 /* Validate and design: T[0..n-1] (continuous lengths) and the last stage's family. */

@@ -32,9 +32,11 @@ def _designer(profile: int = 0, mode_ratio: float | None = None):
     """sms_kinematic_design of (h, bounds, Ts) with `profile` (0 polynomial, 1 trigonometric).
     With `mode_ratio`, the last stage is tuned to a mode of damping ratio 0.05 whose period is
     mode_ratio times that stage's continuous length without a mode (the design picks the
-    multiple k)."""
+    multiple k); on the grid that stage counts with its taps (L Ts, one to two samples over
+    k Tm), not its length."""
     ffi, lib = _backend("double")
     L, T, cnt = ffi.new("double[8]"), ffi.new("double[8]"), ffi.new("size_t *")
+    configs, taps = ffi.new("sms_stage_config[8]"), ffi.new("size_t *")
 
     def design(h, lim, Ts):
         n = len(lim)
@@ -45,6 +47,14 @@ def _designer(profile: int = 0, mode_ratio: float | None = None):
             if lib.sms_kinematic_design(h, L, n, profile, 0.0, 0.0, 0.0, T, n, cnt) != 0:
                 return None
             wn, zeta = 2.0 * np.pi / (mode_ratio * T[n - 1]), 0.05
+            if Ts > 0.0:
+                # the tuned stage keeps its length k Tm; what the chain takes is its taps
+                if lib.sms_kinematic_configs(h, L, n, profile, wn, zeta, Ts, configs, n,
+                                             cnt) != 0:
+                    return None
+                if lib.sms_smoother_length(configs + (n - 1), Ts, taps) != 0:
+                    return None
+                return [configs[i].T for i in range(n - 1)] + [taps[0] * Ts]
         if lib.sms_kinematic_design(h, L, n, profile, wn, zeta, Ts, T, n, cnt) != 0:
             return None
         return [T[i] for i in range(n)]

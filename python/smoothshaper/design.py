@@ -269,6 +269,8 @@ def kinematic(*, h: float, vmax: float, amax: float | None = None, jmax: float |
                     s.sigma = sigma
                 if k != 1:
                     s.k = int(k)
+                if Ts and kind != _HARMONIC:   # on a grid: bounded taps (sms_kin_last)
+                    s.timing = "bounded"
             elif last:
                 s.kind = "harmonic"
             s.__class__ = Stage
@@ -284,6 +286,7 @@ _NO_HIGHER = ()   # the default of ``higher``: the empty tuple is a single objec
 _THREAD = threading.local()   # cffi calls release the GIL: one output buffer per thread
 _UNCHECKED = _stages._UncheckedStage
 _KINDS = _stages.KINDS
+_HARMONIC = float(_KINDS.index("harmonic"))
 
 
 def _fast_buffers():
@@ -326,7 +329,8 @@ def _kinematic_checked(h, vmax, amax, jmax, higher, profile, wn, zeta, Ts) -> li
     if st != 0:
         _check_ratios(h, limits, wn_)
         _design_error(st, lib, ffi, h=h, limits=limits, Ts=Ts_, wn=wn_)
-    return [_unchecked_stage(_stages.KINDS[c.kind], float(c.T), float(c.sigma), int(c.k))
+    return [_unchecked_stage(_stages.KINDS[c.kind], float(c.T), float(c.sigma), int(c.k),
+                             _stages.TIMINGS[c.timing])
             for c in (configs[i] for i in range(n))]
 
 
@@ -568,7 +572,7 @@ def _on_grid(T: list[float], Ts: float, h: float, limits: list[float], tuned_tap
     best = (sum(N[:m]), [-x for x in N[:m]])
     for offsets in itertools.product((-1, 0, 1), repeat=m):
         cand = [b + o for b, o in zip(base, offsets)]
-        if min(cand) < 1:
+        if any(c < 1 for c in cand):
             continue
         key = (sum(cand), [-x for x in cand])
         if key < best and ok(cand + ([0] if tuned else [])):
@@ -816,15 +820,28 @@ def kinematic_reference(*, h, vmax, amax=None, jmax=None, higher=(), profile="po
         raise ParameterError(
             "wn", f"wn: no multiple k <= {MAX_MULTIPLE} of the mode period meets the bounds")
     k, T = best
+    timing = "exact"
     if Ts is not None:
-        # the tuned stage keeps its exact taps; its largest tap / Ts bounds the top derivative
+        # the tuned stage keeps its length, so its zero stays on the mode; bounded taps keep
+        # its largest tap / Ts at the density the design used (a half sine's exact taps may
+        # exceed it: then the design runs again with the sampled density)
         Ts = _positive("Ts", Ts)
-        taps = impulse_response(Stage(last_kind, T=k * Tm, sigma=sigma, k=k), Ts=Ts)
-        rho = max(_peak_density(last_kind, k * Tm, sigma), float(np.max(np.abs(taps))) / Ts)
-        T = _Problem(limits, T_fixed=k * Tm, rho=rho).lengths(0, h)
-        T = _on_grid(T, Ts, h, limits, tuned_tap=rho * Ts, tuned_support=len(taps))
+        timing = "exact" if last_kind == "harmonic" else "bounded"
+        taps = impulse_response(Stage(last_kind, T=k * Tm, sigma=sigma, k=k, timing=timing),
+                                Ts=Ts)
+        rho = _peak_density(last_kind, k * Tm, sigma)
+        if float(np.max(np.abs(taps))) / Ts > rho * (1 + 1e-12):   # beyond rounding
+            rho = float(np.max(np.abs(taps))) / Ts
+            if len(limits) == 1 and h * rho > limits[0]:
+                raise ParameterError("Ts", f"Ts = {Ts!r} s: the sampled stage tuned to the mode "
+                                     "exceeds vmax")
+            T = _Problem(limits, T_fixed=k * Tm, rho=rho).lengths(0, h)
+        # copies one sample closer than the taps overlap only in end taps: allowed when the
+        # first and last tap together stay within the bound
+        support = len(taps) - (1 if taps[0] + taps[-1] <= rho * Ts else 0)
+        T = _on_grid(T, Ts, h, limits, tuned_tap=rho * Ts, tuned_support=support)
     return ([Stage("rectangular", T=t) for t in T[:-1]] +
-            [Stage(last_kind, T=T[-1], sigma=sigma, k=k)])
+            [Stage(last_kind, T=T[-1], sigma=sigma, k=k, timing=timing)])
 
 
 def duration(stages) -> float:

@@ -26,7 +26,7 @@ KINDS = (
 SMOOTHERS = KINDS[:4]
 SHAPERS = KINDS[4:11] + KINDS[13:15]
 NOTCHES = KINDS[11:13]
-TIMINGS = ("exact", "paper")
+TIMINGS = ("exact", "paper", "bounded")
 MAX_ZVN_ORDER = 8
 #: Most impulses of a shaper design (ZV^8; the generalised MZV takes 3..MAX_IMPULSES).
 MAX_IMPULSES = MAX_ZVN_ORDER + 1
@@ -61,8 +61,10 @@ class Stage:
         Vibration tolerance V of ei, ei2, ei3, in (0, 1) (default 0.05).
     notch_pole_zeta : float
         Damping of the notch's poles, > ``zeta`` (default 0.7).
-    timing : {"exact", "paper"}
-        Discretisation of smoothers and shapers (docs/exact-mode.md).
+    timing : {"exact", "paper", "bounded"}
+        Discretisation of smoothers and shapers (docs/exact-mode.md); ``"bounded"`` (the
+        rectangular and exponential smoothers only) pins the zero like ``"exact"`` with one
+        more tap, none above the continuous response's peak density times ``Ts``.
     duration : float
         Span of gmzv in damped periods, in (0, (order - 1)/2) (0.75 with order 3 is MZV).
 
@@ -93,6 +95,11 @@ class Stage:
             object.__setattr__(self, name, _finite(name, getattr(self, name)))
         object.__setattr__(self, "k", _integer("k", self.k, 1))
         object.__setattr__(self, "order", _integer("order", self.order))
+        if self.timing == "bounded" and self.kind not in ("rectangular", "exponential"):
+            raise ParameterError(
+                "timing", f"timing='bounded' is for the rectangular and exponential smoothers "
+                f"(a half sine peaks mid-window; shapers and notches have no such taps), got "
+                f"kind={self.kind!r}")
         if self.kind in SMOOTHERS:
             if self.T <= 0:
                 raise ParameterError("T", f"T must be > 0 s, got {self.T!r}")
@@ -171,9 +178,11 @@ class _UncheckedStage:
     (a call per stage costs more than the saving)."""
 
 
-def _unchecked_stage(kind: str, T: float, sigma: float = 0.0, k: int = 1) -> Stage:
+def _unchecked_stage(kind: str, T: float, sigma: float = 0.0, k: int = 1,
+                     timing: str = "exact") -> Stage:
     """A smoother Stage from valid values (``kind`` canonical, ``T`` > 0 finite float,
-    ``sigma`` <= 0 float, ``k`` >= 1 int, odd for the harmonic kinds), not re-validated."""
+    ``sigma`` <= 0 float, ``k`` >= 1 int, odd for the harmonic kinds, ``timing`` one of
+    :data:`TIMINGS` that the kind has), not re-validated."""
     s = _UncheckedStage()
     s.kind = kind
     s.T = T
@@ -182,6 +191,8 @@ def _unchecked_stage(kind: str, T: float, sigma: float = 0.0, k: int = 1) -> Sta
         s.sigma = sigma
     if k != 1:
         s.k = k
+    if timing != "exact":
+        s.timing = timing
     s.__class__ = Stage
     return s
 
@@ -229,9 +240,11 @@ def rectangular(*, T: float, k: int = 1, timing: str = "exact") -> Stage:
     k : int, keyword-only
         Which zero exact timing keeps on the sample grid when ``T`` is not a whole number
         of samples (>= 1, default 1; docs/exact-mode.md).
-    timing : {"exact", "paper"}, keyword-only
+    timing : {"exact", "paper", "bounded"}, keyword-only
         ``"exact"`` (default): taps adjusted so the pinned zero stays exact for any Ts;
-        ``"paper"``: the sampled continuous response, as the papers discretise it.
+        ``"paper"``: the sampled continuous response, as the papers discretise it;
+        ``"bounded"``: the exact zero with one more tap, none above the continuous peak
+        density times Ts (for a stage that also bounds a derivative, docs/exact-mode.md).
 
     Returns
     -------
@@ -327,9 +340,11 @@ def exponential(*, T: float, sigma: float, k: int = 1, timing: str = "exact") ->
     k : int, keyword-only
         Which zero exact timing keeps on the sample grid when ``T`` is not a whole number
         of samples (>= 1, default 1; docs/exact-mode.md).
-    timing : {"exact", "paper"}, keyword-only
+    timing : {"exact", "paper", "bounded"}, keyword-only
         ``"exact"`` (default): taps adjusted so the pinned zero stays exact for any Ts;
-        ``"paper"``: the sampled continuous response, as the papers discretise it.
+        ``"paper"``: the sampled continuous response, as the papers discretise it;
+        ``"bounded"``: the exact zero with one more tap, none above the continuous peak
+        density times Ts (for a stage that also bounds a derivative, docs/exact-mode.md).
     sigma : float, keyword-only
         Decay rate [1/s], <= 0.
 

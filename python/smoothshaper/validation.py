@@ -29,7 +29,8 @@ from pathlib import Path
 import numpy as np
 
 from . import reference
-from .stages import damped_harmonic, exponential, for_mode, harmonic, notch, rectangular, shaper
+from .stages import (TIMINGS, damped_harmonic, exponential, for_mode, harmonic, notch,
+                     rectangular, shaper)
 from .errors import ParameterError
 
 __all__ = ["REL_TOL", "RUN_STEPS", "ModeStage", "start_values", "reference_stages", "communication_points",
@@ -103,7 +104,7 @@ def start_values(stages, *, Ts: float) -> dict:
         if isinstance(s, ModeStage):
             values[p + "design"] = 1
         else:
-            values.update({p + "design": 0, p + "timing": 0 if s.timing == "exact" else 1,
+            values.update({p + "design": 0, p + "timing": TIMINGS.index(s.timing),
                            p + "T": s.T, p + "sigma": s.sigma, p + "order": s.order,
                            p + "tolerance": s.tolerance, p + "notch_pole_zeta": s.notch_pole_zeta,
                            p + "duration": s.duration})

@@ -206,6 +206,8 @@ def test_state_header_layout_and_version():
 @pytest.mark.parametrize("kind", stages.SMOOTHERS)
 @pytest.mark.parametrize("timing", stages.TIMINGS)
 def test_T_below_Ts_is_refused_by_C_and_reference(kind, timing, ratio):
+    if timing == "bounded" and "harmonic" in kind:
+        return      # no such stage (Stage refuses it, naming timing)
     stage = Stage(kind, T=ratio * 1e-3, timing=timing)
     with pytest.raises(ParameterError, match=r"^T ") as info:
         Chain(stage, Ts=1e-3)

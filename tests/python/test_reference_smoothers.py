@@ -221,6 +221,43 @@ def test_exact_timing_correction_touches_only_the_last_two_taps(kind, nu):
     assert np.abs(diff[-2:]).max() < h.max()
 
 
+@given(kind=st.sampled_from(["rectangular", "exponential"]), nu=st.floats(2.001, 3000.0),
+       zeta=st.floats(0.0, 0.95), k=st.sampled_from([1, 2, 3]))
+def test_bounded_timing_pins_the_zero_with_no_tap_above_the_peak_density(kind, nu, zeta, k):
+    """Bounded timing: the zero of exact timing, one more tap, every tap in [0, rho Ts] with rho
+    the continuous response's peak density (1/T, or -sigma/(1 - e^{sigma T})), so a stage that
+    is also a kinematic bound keeps it between samples."""
+    Ts = 1e-3
+    if 2 * k >= nu:
+        k = 1
+    T = nu * Ts
+    sigma = -zeta / math.sqrt(1 - zeta ** 2) * 2 * math.pi * k / T if kind == "exponential" else 0.0
+    stage = family(kind, T, sigma=sigma, k=k, timing="bounded")
+    h = ref.impulse_response(stage, Ts=Ts)
+    rho = 1 / T if sigma == 0 else -sigma / -math.expm1(sigma * T)
+    zs = pinned_zero(stage, Ts)
+    assert abs(h.sum() - 1) < 1e-12
+    assert h.min() >= 0
+    assert h.max() <= rho * Ts * (1 + 1e-12)
+    assert abs(ref.discrete_transfer(stage, zs, Ts=Ts)) < 1e-11 * max(1.0, abs(zs) ** -(h.size - 1))
+    n = on_grid(nu)
+    assert h.size == (n if n is not None else math.floor(nu) + 2)
+
+
+def test_bounded_timing_is_exact_timing_on_the_grid_and_refused_for_a_half_sine():
+    Ts = 1e-3
+    for kind in ("rectangular", "exponential"):
+        a = ref.impulse_response(family(kind, 40 * Ts, timing="bounded"), Ts=Ts)
+        b = ref.impulse_response(family(kind, 40 * Ts, timing="exact"), Ts=Ts)
+        assert np.array_equal(a, b)
+    for make in (lambda: sm.harmonic(T=0.01, timing="bounded"),
+                 lambda: sm.damped_harmonic(T=0.01, sigma=-1.0, timing="bounded"),
+                 lambda: sm.Stage("zv", wn=10.0, timing="bounded")):
+        with pytest.raises(sm.ParameterError, match="^timing") as err:
+            make()
+        assert err.value.parameter == "timing"
+
+
 def test_paper_timing_rounds_half_up_like_c():
     Ts = 1e-3
     h = ref.impulse_response(sm.rectangular(T=10.5e-3, timing="paper"), Ts=Ts)

@@ -17,7 +17,13 @@ Discrete taps (``nu = T/Ts``):
   ``d[N0-1] z*^{-(N0-1)} + d[N0] z*^{-N0} = -G(z*)`` where ``z* = exp((sigma + j w*) Ts)``,
   ``w* = k 2 pi/T`` (rectangular, exponential) or ``k 3 pi/T`` (harmonic families); then
   ``h = (g + d)/sum(g + d)``. The result has ``H(1) = 1`` and ``H(z*) = 0`` to rounding,
-  non-negative taps, and length ``N0 + 1``.
+  non-negative taps, and length ``N0 + 1``;
+* **bounded timing** (rectangular, exponential): taps ``u, q, q^2, ..., q^N0, u q^(N0+1)``
+  (``q = e^{sigma Ts}``) scaled to sum 1, length ``N0 + 2``. With ``z* = q e^{j phi}`` every
+  term ``q^i z*^{-i}`` is ``e^{-j phi i}``, so ``H(z*) = 0`` reads
+  ``u (1 + e^{-j phi (N0+1)}) = -sum_{i=1..N0} e^{-j phi i}``: one complex equation whose
+  solution ``u`` is real (the end taps are the same multiple of the base shape). No tap then
+  exceeds the continuous response's peak density times ``Ts``.
 """
 from __future__ import annotations
 
@@ -110,7 +116,8 @@ def smoother_taps(stage: Stage, *, Ts: float) -> np.ndarray:
     -------
     ndarray of float64, shape (L,)
         Taps ``h[0..L-1]`` summing to 1, ``L = T/Ts`` on the grid, ``floor(T/Ts) + 1`` with
-        exact timing off it, ``round(T/Ts)`` with paper timing.
+        exact timing off it, ``floor(T/Ts) + 2`` with bounded timing off it, ``round(T/Ts)``
+        with paper timing.
 
     Raises
     ------
@@ -133,7 +140,25 @@ def smoother_taps(stage: Stage, *, Ts: float) -> np.ndarray:
         return _sampled(stage, N, Ts)
     if stage.timing == "paper":
         return _sampled(stage, max(1, round_half_up(nu)), Ts)
+    if stage.timing == "bounded":
+        return _bounded_taps(stage, nu, Ts)
     return _exact_taps(stage, nu, Ts)
+
+
+def _bounded_taps(stage: Stage, nu: float, Ts: float) -> np.ndarray:
+    N0 = int(math.floor(nu))
+    w_star = pinned_frequency(stage)
+    if w_star * Ts >= math.pi:
+        raise ParameterError(
+            "T", f"T = {stage.T!r} s cannot pin its zero w* = {w_star!r} rad/s at Ts = {Ts!r} s: "
+                 f"w* Ts must lie below pi (choose a longer T or a smaller k)")
+    phi = w_star * Ts
+    i = np.arange(1, N0 + 1, dtype=float)
+    rest = complex(math.fsum(np.cos(phi * i)), -math.fsum(np.sin(phi * i)))
+    u = (-rest / (1.0 + complex(math.cos(phi * (N0 + 1)), -math.sin(phi * (N0 + 1))))).real
+    q = math.exp(_sigma(stage) * Ts)
+    h = np.concatenate(([u], q ** i, [u * q ** (N0 + 1)]))
+    return h / math.fsum(h)
 
 
 def _exact_taps(stage: Stage, nu: float, Ts: float) -> np.ndarray:
