@@ -4,8 +4,8 @@ A stage is written KIND:key=value,key=value (--stage, repeatable; stages chain i
 order). KIND is one of rectangular, harmonic, damped_harmonic, exponential, zv, zvd, zvdd, zvn,
 ei, ei2, ei3, mzv, gmzv, notch_tustin, notch_matched ('notch' means notch_matched). Keys:
 T [s], sigma [1/s], k, wn [rad/s], zeta, order, tolerance, duration (gmzv, in damped periods),
-notch_pole_zeta, timing (exact or paper). A smoother given wn (and optionally zeta, k) instead
-of T is designed for that mode. Examples: harmonic:T=0.05, zv:wn=100,zeta=0.05, damped_harmonic:wn=125,zeta=0.12.
+notch_pole_zeta, timing (exact, paper, or bounded for rectangular and exponential). A
+smoother given wn (and optionally zeta, k) instead of T is designed for that mode. Examples: harmonic:T=0.05, zv:wn=100,zeta=0.05, damped_harmonic:wn=125,zeta=0.12.
 
 Trajectory forms: 'design generator' runs via-points through the online generator, 'design
 bspline' interpolates them with a B-spline (see 'smoothshaper design generator --help' and
