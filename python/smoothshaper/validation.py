@@ -342,7 +342,7 @@ def test_input(t: np.ndarray, *, seed: int = 1) -> np.ndarray:
 
 
 def validation_cases(Ts: float) -> list[tuple[str, list]]:
-    """The validation cases: every family (raw and designed for a mode, exact and paper timing)
+    """The validation cases: every family (raw and designed for a mode, every timing)
     and a few chains, with durations and a mode off the sample grid.
 
     Parameters
@@ -365,6 +365,8 @@ def validation_cases(Ts: float) -> list[tuple[str, list]]:
     cases = [
         ("rectangular", [rectangular(T=T)]),
         ("rectangular (paper)", [rectangular(T=T, timing="paper")]),
+        ("rectangular (bounded)", [rectangular(T=T, timing="bounded")]),
+        ("exponential (bounded)", [exponential(T=T, sigma=-9.0, timing="bounded")]),
         ("harmonic", [harmonic(T=T)]),
         ("damped_harmonic", [damped_harmonic(T=T, sigma=-12.0)]),
         ("exponential", [exponential(T=T, sigma=-9.0)]),

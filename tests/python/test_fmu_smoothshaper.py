@@ -319,6 +319,8 @@ def test_setting_u_does_not_change_y_before_the_next_step(smoothshaper_dir):
     ({"Ts": -0.001}, "Ts = -0.001"),
     ({"stage[1].zeta": 1.5}, "stage[1].zeta = 1.5"),
     ({"stage[0].kind": 99}, "stage[0].kind = 99"),
+    ({"stage[1].timing": 2}, "stage[1].timing = 2 (bounded) is for the rectangular (0) and"),
+    ({"stage[0].timing": 3}, "stage[0].timing = 3 is not exact (0), paper (1) or bounded (2)"),
 ])
 def test_errors_reach_the_logger_with_logging_off(fmus, capfd, values, expected):
     # fmpy's default simulate_fmu: debug logging off, its own logger prints to stdout.
