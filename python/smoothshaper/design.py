@@ -194,9 +194,10 @@ def kinematic(*, h: float, vmax: float, amax: float | None = None, jmax: float |
     zeta : float, keyword-only
         Damping ratio of that mode, in [0, 1) (default 0).
     Ts : float or None, keyword-only
-        Sample period the chain will run at [s]: every stage (except one tuned to a mode)
-        then lasts a whole number of samples, the lengths chosen together so that a step of
-        ``h`` through ``Chain(stages, Ts=Ts)`` has backward differences
+        Sample period the chain will run at [s]: every stage (except one tuned to a mode,
+        which keeps ``k`` mode periods and, rectangular or exponential, gets
+        ``timing="bounded"``) then lasts a whole number of samples, the lengths chosen together
+        so that a step of ``h`` through ``Chain(stages, Ts=Ts)`` has backward differences
         ``|diff(q, i)| / Ts**i`` within the i-th bound at every sample (an exact bound on the
         sampled differences; docs/sampled-limits.md, with the price in duration). None: the
         continuous optimum, for analysis.
@@ -763,9 +764,10 @@ def kinematic_reference(*, h, vmax, amax=None, jmax=None, higher=(), profile="po
     zeta : float, keyword-only
         Damping ratio of that mode, in [0, 1) (default 0).
     Ts : float or None, keyword-only
-        Sample period the chain will run at [s]: every stage (except one tuned to a mode)
-        then lasts a whole number of samples, the lengths chosen together so that a step of
-        ``h`` through ``Chain(stages, Ts=Ts)`` has backward differences
+        Sample period the chain will run at [s]: every stage (except one tuned to a mode,
+        which keeps ``k`` mode periods and, rectangular or exponential, gets
+        ``timing="bounded"``) then lasts a whole number of samples, the lengths chosen together
+        so that a step of ``h`` through ``Chain(stages, Ts=Ts)`` has backward differences
         ``|diff(q, i)| / Ts**i`` within the i-th bound at every sample (an exact bound on the
         sampled differences; docs/sampled-limits.md, with the price in duration). None: the
         continuous optimum, for analysis.

@@ -65,12 +65,15 @@ typedef enum sms_profile {
  *
  * On a sample grid (Ts > 0; docs/sampled-limits.md): every stage except a mode-tuned last one
  * lasts a whole number of samples N[k] Ts, the lengths chosen together. First rule: N[k] >=
- * N[k+1] + ... + N[n-1] (samples of the stages after it; a tuned stage counts its
- * floor(T/Ts) + 1 taps), each level within its bound; a harmonic last stage takes the next odd
+ * N[k+1] + ... + N[n-1] (samples of the stages after it; a tuned stage counts its L taps,
+ * less one when its first and last tap together stay within the top bound: copies then meet
+ * only in those), each level within its bound; a harmonic last stage takes the next odd
  * N when the largest sampled tap would exceed (pi/2)/(T/Ts). A tuned last stage keeps its
- * exact length (its zero stays on the mode, exact timing) and the design bounds the top
- * derivative with its largest sampled tap / Ts instead of the continuous peak density: both
- * are satisfied. The search: each stage's ceiling +-1 (3^m chains); when that leaves more
+ * exact length (its zero stays on the mode): rectangular and exponential with
+ * ::SMS_TIMING_BOUNDED (L = floor(T/Ts) + 2 taps, none above the continuous peak density
+ * times Ts, so the continuous design's density holds), the half sine with exact timing
+ * (L = floor(T/Ts) + 1), the design bounding the top derivative with its largest sampled
+ * tap / Ts when that exceeds the continuous peak density: both are satisfied. The search: each stage's ceiling +-1 (3^m chains); when that leaves more
  * than one sample per stage over the continuous optimum, a chain without a tuned stage gets
  * a depth-first search (at most 4 * 2^n level tests of O(2^i) each per pair of first two
  * lengths) with an exact bound on the sampled differences, h max|c_A| / (Ts^i prod_A N) with
@@ -117,7 +120,8 @@ SMS_API sms_status sms_kinematic_design(double h, const double *limits, size_t n
 /**
  * @brief As sms_kinematic_design() on the grid of Ts (> 0), but fills ready-to-use stage
  * configs (kind, T, sigma, and k = the mode multiple for a tuned stage, else 1; timing
- * ::SMS_TIMING_EXACT, which for the lengths on the grid is the plain integer-N filter), so that
+ * ::SMS_TIMING_EXACT, which for the lengths on the grid is the plain integer-N filter, and
+ * ::SMS_TIMING_BOUNDED for a tuned rectangular or exponential stage), so that
  * sms_chain_init() with the same Ts builds the chain directly and its sampled output keeps
  * every bound. Same arguments and statuses; Ts = 0 gives ::SMS_ERR_SAMPLE_PERIOD (a chain
  * always runs at a sample period).
