@@ -286,6 +286,22 @@ static void test_sampled_limits_random(void)
             double nu = cfg[i].T / Ts;
             CHECK(fabs(nu - floor(nu + 0.5)) <= 1e-9 * nu); /* on the grid */
         }
+        if (wn > 0.0) {
+            /* a tuned bound stage: bounded taps (a half sine: exact timing); the price, its
+             * taps counted, at most 2 - f for the stage and the doubled rounding above it */
+            double Tcm[4], grid = 0.0, cont = 0.0;
+            size_t taps, c2;
+            CHECK(cfg[n - 1].timing == (cfg[n - 1].kind == SMS_HARMONIC ? SMS_TIMING_EXACT
+                                                                          : SMS_TIMING_BOUNDED));
+            CHECK_STATUS(sms_kinematic_design(h, L, n, profile, wn, zeta, 0.0, Tcm, 4, &c2),
+                         SMS_OK);
+            CHECK_STATUS(sms_smoother_length(&cfg[n - 1], Ts, &taps), SMS_OK);
+            for (i = 0; i < n; ++i) {
+                grid += i + 1 < n ? cfg[i].T : (double)taps * Ts;
+                cont += Tcm[i];
+            }
+            CHECK((grid - cont) / Ts < ldexp(1.0, (int)n - 1) + 1.0 + 1e-9);
+        }
         tested += check_sampled(h, L, n, cfg, Ts, trial, profile, wn);
     }
     CHECK(tested > 300);
