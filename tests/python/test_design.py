@@ -232,7 +232,8 @@ def test_fast_path_is_taken_and_exact(lh, lv, la, lj, n, profile, grid, mode, lw
         fast = design.kinematic(h=h_typed, profile=profile, wn=wn, zeta=zeta, Ts=Ts, **typed)
     assert fast == expected and repr(fast) == repr(expected)
     # and both equal what the validating constructor builds from the same values
-    assert fast == [stages.Stage(s.kind, T=s.T, sigma=s.sigma, k=s.k) for s in fast]
+    assert fast == [stages.Stage(s.kind, T=s.T, sigma=s.sigma, k=s.k, timing=s.timing)
+                    for s in fast]
 
 
 def test_fast_path_threads():
