@@ -166,6 +166,9 @@ def cmd_design(args) -> int:
     if any(v is not None for v in kinematic):
         if args.h is None or args.vmax is None:
             raise CliError("kinematic design needs at least --h and --vmax")
+        if args.jmax is not None and args.amax is None:
+            raise CliError("--jmax needs --amax (the bounds are consecutive derivatives: "
+                           "--vmax, --amax, --jmax)")
         try:
             from .design import kinematic as design_kinematic
         except ImportError as exc:
@@ -584,14 +587,21 @@ def build_parser() -> argparse.ArgumentParser:
                        "'generator' runs via-points through the online generator, 'bspline' "
                        "interpolates them; see 'smoothshaper design FORM --help'.")
     _add_chain_options(p)
-    p.add_argument("--Ts", type=float, help="sample period [s]: also print lengths in samples")
-    g = p.add_argument_group("kinematic limits")
+    p.add_argument("--Ts", type=float, help="sample period [s]: also print lengths in samples; "
+                   "a kinematic design is then made on this grid (see below)")
+    g = p.add_argument_group(
+        "kinematic limits", "A step of --h through the chain keeps |v| <= vmax, |a| <= amax, "
+        "|j| <= jmax. With --Ts every stage lasts a whole number of samples, chosen so that the "
+        "sampled differences keep every bound (docs/sampled-limits.md); without it, the "
+        "continuous optimum. With --wn (and --zeta) the last stage is also tuned to that mode.")
     g.add_argument("--h", type=float, help="displacement")
     g.add_argument("--vmax", type=float, help="velocity limit")
     g.add_argument("--amax", type=float, help="acceleration limit")
-    g.add_argument("--jmax", type=float, help="jerk limit")
+    g.add_argument("--jmax", type=float, help="jerk limit (needs --amax)")
     g.add_argument("--profile", default="polynomial",
-                   choices=("polynomial", "trigonometric", "damped"), help="last-stage profile")
+                   choices=("polynomial", "trigonometric", "damped"),
+                   help="last stage: polynomial = moving average, trigonometric = half sine, "
+                   "damped = exponential for the mode --wn/--zeta (default polynomial)")
     p.set_defaults(func=cmd_design)
     from .cli_trajectory import add_design_forms
     add_design_forms(p, _Parser)
