@@ -228,6 +228,7 @@ def plot(path, out, via, lim, arrivals, Ts, names, u, sync):
         ax.plot(drawn[:, 0, 0], drawn[:, 1, 0], drawn[:, 2, 0], lw=1.5, label="generated path")
         ax.scatter(via[:, 0], via[:, 1], via[:, 2], color="red", s=20, label="via-points")
         ax.set_zlabel(f"{names[2]} [{u}]")
+        ax.set_box_aspect(None, zoom=0.88)   # room for the z label inside the figure
     else:
         ax = fig.add_subplot(gs[:, 1])
         y0 = via[:, 1] if axes >= 2 else np.zeros(via.shape[0])

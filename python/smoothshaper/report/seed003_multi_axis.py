@@ -235,7 +235,7 @@ def _figures(sec, fig_dir, via, pts, cmd, shaped, stream, bcmd, loads, rvs):
             a.set_ylabel(f"{name} [m]")
     with figure(fig_dir / "robot_multi_axis_rv.png", "Seed 003 robot: load minus final point "
                 "after the command stops, per axis, for the four commands (mm)", sec.figures,
-                ncols=3, size=(14, 4)) as (f, ax):
+                ncols=3, size=(14, 5)) as (f, ax):
         for key, (load, stop) in loads.items():
             final = via[-1] if key in ("stream", "bspline") else pts[-1]
             t = (np.arange(load.shape[0] - stop)) * TS
@@ -243,6 +243,7 @@ def _figures(sec, fig_dir, via, pts, cmd, shaped, stream, bcmd, loads, rvs):
                 ax[i].plot(t, 1000 * (load[stop:, i] - final[i]), lw=0.9,
                            label=f"{NAMES[key]}: RV {1000 * rvs[key][i]:.2g} mm")
         for i in range(3):
-            ax[i].legend(loc="lower right", fontsize=7, framealpha=0.9)
+            # under the plot: inside it would hide the largest swings
+            ax[i].legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), fontsize=7)
             ax[i].set_xlabel("time after the command stops [s]")
             ax[i].set_ylabel(f"{AXES[i]}: load - final [mm]")
