@@ -259,7 +259,9 @@ void sms_generator_reset(sms_generator *g, sms_real position)
  * plan's own states always satisfy it (to rounding, which the planner absorbs). A half-cosine
  * transition that brings a to zero starts with zero jerk, so early in it the fresh estimate
  * exceeds vmax although the transition itself ends on vmax: the re-plan then waits for a
- * sample where it holds (at the latest the end of that transition). */
+ * sample where it holds (at the latest the end of that transition, whose next segment starts
+ * on vmax with a = 0 exactly). No tolerance: a plan started from a state whose estimate is
+ * over vmax takes v that far over it (a relative 1e-5 in float reported v 1e-5 above vmax). */
 static int can_start(const sms_generator *g, sms_real v, sms_real a)
 {
     sms_real brake, V = g->limits.vmax;
@@ -268,7 +270,7 @@ static int can_start(const sms_generator *g, sms_real v, sms_real a)
     brake = v + a * (a < 0 ? -a : a) / (2 * sms_plan_mean_jerk(&g->limits, g->shape));
     if (brake < 0)
         brake = -brake;
-    return brake <= V + V * (sms_real)(sizeof(sms_real) == sizeof(double) ? 1e-12 : 1e-5);
+    return brake <= V;
 }
 
 /* Advance the plan one sample; re-plan from the exact state there when the target differs

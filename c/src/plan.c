@@ -215,13 +215,13 @@ int sms_plan_to_rest_shaped(sms_plan *out, const sms_plan_limits *lim, int shape
                             sms_real q, sms_real v, sms_real a, sms_real goal)
 {
     sms_plan tmp, *plan = &tmp;
-    sms_real total;
+    sms_real total, start, reach, gap, size;
     sms_real D = goal - q, vp, cruise = 0, V = lim->vmax, A = lim->amax, p, vv, aa, f = 0;
     sms_real J = sms_plan_mean_jerk(lim, shape);
     sms_real c3 = shape == SMS_PLAN_COSINE ? PLAN_C3_COSINE : PLAN_C3_RAMP;
     pieces first, stop;
     size_t n = 0;
-    int i;
+    int i, on_stop = 0;
     plan->count = 0;
     plan->shape = shape;
     plan->goal = goal;
@@ -236,10 +236,8 @@ int sms_plan_to_rest_shaped(sms_plan *out, const sms_plan_limits *lim, int shape
         return 0;
     if (D >= distance(v, a, V, A, J, shape, &first, &stop)) {
         vp = V;
-        cruise = (D - distance(v, a, V, A, J, shape, &first, &stop)) / V;
     } else if (D <= distance(v, a, -V, A, J, shape, &first, &stop)) {
         vp = -V;
-        cruise = (D - distance(v, a, -V, A, J, shape, &first, &stop)) / -V;
     } else {
         /* Bisection to the last bit on the side of `after` (the velocity when a returns to
          * zero at once) where the root lies. Above it the distance increases with vp (more
@@ -255,8 +253,10 @@ int sms_plan_to_rest_shaped(sms_plan *out, const sms_plan_limits *lim, int shape
              * side would be decided by rounding, and each side's plan differs) */
             sms_real dA = distance(v, a, after, A, J, shape, &first, &stop), e = D - dA;
             sms_real scale = (q < 0 ? -q : q) + (goal < 0 ? -goal : goal) + (dA < 0 ? -dA : dA);
-            if ((e < 0 ? -e : e) <= (sms_real)PLAN_GRID_TOL * scale)
+            if ((e < 0 ? -e : e) <= (sms_real)PLAN_GRID_TOL * scale) {
                 lo = hi = after;
+                on_stop = 1;
+            }
             else if (e > 0)
                 lo = after;
             else
@@ -274,11 +274,46 @@ int sms_plan_to_rest_shaped(sms_plan *out, const sms_plan_limits *lim, int shape
             else
                 hi = mid;
         }
-        vp = (sms_real)0.5 * (lo + hi);
-        (void)distance(v, a, vp, A, J, shape, &first, &stop);
+        /* The bracket's end on the side that leaves the parts a distance to cover at vp:
+         * the one whose distance falls short of D when vp > 0, the one beyond it when
+         * vp < 0. When a opposes the move, the distance grows like the square root of
+         * vp - after just above `after` (the peak acceleration of the bump does), so
+         * neighbouring vp differ in distance by up to 2 |vp| sqrt(ulp(vp)/J), far more than
+         * the rounding of the positions: the parts cannot meet by vp alone. The stop anchored
+         * on the goal then started that far from where the velocity change ended (a jump of
+         * q that the sampled differences amplify by 1/Ts^i: a third difference up to 2000
+         * jmax over its rounding floor in float, 2.5e-5 jmax in double, on random
+         * staircases), or beyond the meeting check below, and the target was dropped. The
+         * cruise at vp below covers what is left. */
+        vp = lo > 0 ? lo : hi < 0 ? hi : (sms_real)0.5 * (lo + hi);
     }
-    if (!(cruise >= 0)) /* also NaN */
-        cruise = 0;
+    (void)distance(v, a, vp, A, J, shape, &first, &stop);
+    /* the velocity change from the current state, and where the stop anchored on the goal
+     * starts (its own distance before the goal); the cruise at vp covers what lies between,
+     * so the parts meet to the rounding of the positions (a distance on the wrong side of
+     * vp, or vp = 0, is rounding too: no cruise) */
+    p = q;
+    vv = v;
+    aa = a;
+    for (i = 0; i < first.count; ++i)
+        advance(&p, &vv, &aa, first.j[i], first.d[i], c3);
+    {
+        sms_real ps = 0, vs = vp, as = 0;
+        for (i = 0; i < stop.count; ++i)
+            advance(&ps, &vs, &as, stop.j[i], stop.d[i], c3);
+        start = goal - ps;
+        /* (vp = after, a target at the direct stop to rounding: what is left is rounding, and
+         * at a small `after` covering it would crawl) */
+        if (vp != 0 && (start - p) / vp > 0 && !on_stop)
+            cruise = (start - p) / vp;
+        reach = p + cruise * vp;
+        gap = reach - start;
+        size = mag(q) + mag(goal) + mag(p - q) + mag(ps) + mag(cruise * vp);
+    }
+    /* the parts meet to the rounding of the positions (the search converged): where the
+     * distances underflow or overflow they need not, and the plan would jump */
+    if (!(mag(gap) <= 16 * (sms_real)PLAN_GRID_TOL * size || mag(gap) < PLAN_MIN_NORMAL))
+        return 0;
     /* the whole plan on the grid: finite and few enough samples, before any is counted */
     total = cruise;
     for (i = 0; i < first.count; ++i)
@@ -287,7 +322,6 @@ int sms_plan_to_rest_shaped(sms_plan *out, const sms_plan_limits *lim, int shape
         total += stop.d[i];
     if (!finite(vp) || !finite(total) || !(total / Ts + 2 <= max_samples()))
         return 0;
-    /* the velocity change from the current state */
     p = q;
     vv = v;
     aa = a;
@@ -295,26 +329,14 @@ int sms_plan_to_rest_shaped(sms_plan *out, const sms_plan_limits *lim, int shape
         push(plan, Ts, &n, &f, p, vv, aa, first.j[i], first.d[i]);
         advance(&p, &vv, &aa, first.j[i], first.d[i], c3);
     }
-    /* the stop, anchored on the goal: it starts where its own distance before the goal is */
-    {
-        sms_real ps = 0, vs = vp, as = 0;
-        for (i = 0; i < stop.count; ++i)
-            advance(&ps, &vs, &as, stop.j[i], stop.d[i], c3);
-        sms_real reach = p + cruise * vp, start = goal - ps, gap = reach - start;
-        sms_real scale = mag(q) + mag(goal) + mag(p - q) + mag(ps) + mag(cruise * vp);
-        /* the parts meet to the rounding of the positions (the search converged): where
-         * the distances underflow or overflow they need not, and the plan would jump */
-        if (!(mag(gap) <= 16 * (sms_real)PLAN_GRID_TOL * scale || mag(gap) < PLAN_MIN_NORMAL))
-            return 0;
-        if (cruise > 0)
-            push(plan, Ts, &n, &f, p, vp, 0, 0, cruise);
-        p = start;
-        vv = vp;
-        aa = 0;
-        for (i = 0; i < stop.count; ++i) {
-            push(plan, Ts, &n, &f, p, vv, aa, stop.j[i], stop.d[i]);
-            advance(&p, &vv, &aa, stop.j[i], stop.d[i], c3);
-        }
+    if (cruise > 0)
+        push(plan, Ts, &n, &f, p, vp, 0, 0, cruise);
+    p = start;
+    vv = vp;
+    aa = 0;
+    for (i = 0; i < stop.count; ++i) {
+        push(plan, Ts, &n, &f, p, vv, aa, stop.j[i], stop.d[i]);
+        advance(&p, &vv, &aa, stop.j[i], stop.d[i], c3);
     }
     plan->end = n;
     plan->end_f = f;

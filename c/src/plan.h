@@ -11,9 +11,12 @@
  * Precondition (what any plan's own state satisfies): |v| <= vmax, |a| <= amax and
  * |v + a|a|/(2 jmax)| <= vmax (the velocity after bringing a to 0 as fast as possible).
  * Structure: a velocity change (v, a) -> (vp, 0) (jerk +-jmax, hold +-amax if reached,
- * jerk -+jmax), a cruise at vp = +-vmax when the distance allows, and the stop (vp, 0) ->
- * (0, 0). vp solves "distance of the two changes = goal - q", the distance being increasing
- * in vp; bisection in sms_real.
+ * jerk -+jmax), a cruise at vp, and the stop (vp, 0) -> (0, 0) anchored on the goal. vp is
+ * +-vmax when the distance allows (the cruise covers the rest), else it solves "distance of
+ * the two changes = goal - q" by bisection in sms_real, taking the neighbour that leaves a
+ * distance to cover at vp (a cruise of a rounding's length), so the parts meet to the
+ * rounding of the positions; a target at the direct stop to rounding takes vp = `after`
+ * and no cruise (the parts then meet to 8 eps of |q| + |goal| + the distance).
  * Returns 1 when planned; 0 when the plan cannot be represented in sms_real (a value it
  * would evaluate not finite, e.g. amax/jmax or the distance overflowing, or more than 2^52
  * samples long, e.g. 1e300 at vmax 1, or its parts not meeting where the distances

@@ -164,13 +164,11 @@ def plan_to_rest(q: float, v: float, a: float, goal: float, *, vmax: float, amax
         q2, _, _ = _integrate(stop, 0.0, vp, 0.0, c3)
         return q1 + q2
 
-    cruise = 0.0
+    on_stop = False
     if D >= dist(vmax):
         vp = vmax
-        cruise = (D - dist(vmax)) / vmax
     elif D <= dist(-vmax):
         vp = -vmax
-        cruise = (D - dist(-vmax)) / -vmax
     else:
         # the root on the side of `after` (v when a returns to zero at once) where it lies:
         # above it the distance increases with vp; just below it a split deceleration (to vp,
@@ -182,6 +180,7 @@ def plan_to_rest(q: float, v: float, a: float, goal: float, *, vmax: float, amax
             dA = dist(after)
             if abs(D - dA) <= 8 * np.finfo(float).eps * (abs(q) + abs(goal) + abs(dA)):
                 lo = hi = after
+                on_stop = True
             else:
                 lo, hi = (after, vmax) if D > dA else (-vmax, after)
         try:
@@ -194,6 +193,19 @@ def plan_to_rest(q: float, v: float, a: float, goal: float, *, vmax: float, amax
                     break
                 lo, hi = (mid, hi) if dist(mid) < D else (lo, mid)
             vp = 0.5 * (lo + hi)
+        # The root's neighbour on the side that leaves a distance to cover at vp (short of D
+        # for vp > 0, beyond it for vp < 0). Near `after` the distance grows like the square
+        # root of vp - after, so neighbouring vp differ in distance by far more than the
+        # rounding of the positions: the parts cannot meet by vp alone, and the stop
+        # anchored on the goal would start that far from where the velocity change ends (a
+        # jump of q). The cruise at vp below covers what is left.
+        for _ in range(8):
+            if vp > 0 and dist(vp) > D and vp > lo:
+                vp = max(math.nextafter(vp, -math.inf), lo)
+            elif vp < 0 and dist(vp) < D and vp < hi:
+                vp = min(math.nextafter(vp, math.inf), hi)
+            else:
+                break
     first = _change(v, a, vp, amax, jmax, shape)
     stop = _change(vp, 0.0, 0.0, amax, jmax, shape)
     pieces, starts = [], []
@@ -203,10 +215,15 @@ def plan_to_rest(q: float, v: float, a: float, goal: float, *, vmax: float, amax
             pieces.append((d, j))
             starts.append(state)
             state = _integrate([(d, j)], *state, c3)
+    # the stop starts its own distance before the goal; the cruise at vp covers the distance
+    # from the end of the velocity change to there (none when it lies on the wrong side of vp,
+    # which is rounding, or when vp = after for a target at the direct stop to rounding: at a
+    # small `after` covering that would crawl)
+    qs, _, _ = _integrate(stop, 0.0, vp, 0.0, c3)
+    cruise = (goal - qs - state[0]) / vp if vp != 0 and not on_stop else 0.0
     if cruise > 0:
         pieces.append((cruise, 0.0))
         starts.append((state[0], vp, 0.0))
-    qs, _, _ = _integrate(stop, 0.0, vp, 0.0, c3)
     state = (goal - qs, vp, 0.0)
     for d, j in stop:
         if d > 0:
@@ -252,10 +269,11 @@ def _evaluate(pieces, starts, ends, goal, m, Ts, shape="ramp"):
 
 
 def _can_start(v, a, vmax, jmax, shape):
-    """A fresh transition of a to zero keeps |v| <= vmax (always, to rounding, for ramps)."""
+    """A fresh transition of a to zero keeps |v| <= vmax (always, to rounding, for ramps). No
+    tolerance: a plan from a state whose estimate is over vmax takes v that far over it."""
     if shape != "cosine":
         return True
-    return abs(v + a * abs(a) / (2 * mean_jerk(jmax, shape))) <= vmax * (1 + 1e-12)
+    return abs(v + a * abs(a) / (2 * mean_jerk(jmax, shape))) <= vmax
 
 
 def _run(targets, *, vmax, amax, jmax, Ts, q0=0.0, shape="ramp"):

@@ -12,8 +12,24 @@ from hypothesis import assume, given, strategies as st
 from smoothshaper import trajectory as tr
 from smoothshaper.filters import ParameterError
 
-# Rounding allowance on the bounds: the output is a few products of numbers within the bounds.
-BOUND_RTOL = {"double": 1e-12, "float": 1e-5}
+# Reported v, a, j: within the limits to 32 u (u the unit roundoff of the build), the rounding
+# of the plan's own values and of the tuned stage's average (docs/sampled-limits.md).
+UNIT_ROUNDOFF = {"double": 2.0 ** -53, "float": 2.0 ** -24}
+BOUND_RTOL = {p: 32 * u for p, u in UNIT_ROUNDOFF.items()}
+
+
+def assert_sampled_limits(y, x, limits, Ts, precision, at_rest_before=True):
+    """Backward differences of the sampled q over Ts^i within the limits (1 + 1e-9) beyond the
+    rounding of the positions: 16 u S per sample, S the largest |q| or target, 2^i of them in
+    a difference of order i (docs/sampled-limits.md). at_rest_before: the generator rested on
+    y[0]'s plan start before the first sample (q = 0 there), else only differences within y."""
+    u = UNIT_ROUNDOFF[precision]
+    S = max(np.max(np.abs(y[:, 0])), np.max(np.abs(x)))
+    q = np.r_[np.zeros(3), y[:, 0]] if at_rest_before else y[:, 0]
+    for i, L in enumerate(limits, 1):
+        d = np.abs(np.diff(q, i)[3 - i if at_rest_before else 0:]) / Ts ** i
+        excess = np.max(d - 2.0 ** i * 16 * u * S / Ts ** i)
+        assert excess <= L * (1 + 1e-9), (i, excess / L)
 
 steps = st.lists(st.tuples(st.floats(-5.0, 5.0), st.integers(1, 40),
                            st.booleans()), min_size=1, max_size=60)
@@ -53,6 +69,7 @@ def test_random_staircases_stay_bounded_and_arrive(spec, lv, la, lj, profile_mod
     assert np.max(np.abs(y[:, 1])) <= vmax * tol
     assert np.max(np.abs(y[:, 2])) <= amax * tol
     assert np.max(np.abs(y[:, 3])) <= jmax * tol
+    assert_sampled_limits(y, x, (vmax, amax, jmax), 1e-3, precision)
     last = np.float32(x[-1]) if precision == "float" else x[-1]
     assert y[-1, 0] == last                      # exactly on the last via-point
     assert np.all(y[-1, 1:] == 0.0)
@@ -73,6 +90,59 @@ def test_single_move_is_time_optimal_and_reaches_the_bounds():
     arrive = np.flatnonzero((y[:, 0] == 40.0) & (y[:, 1] == 0.0))[0]
     assert arrive == 2350                       # 0.235 s, the ruckig duration of this move
     assert np.max(np.abs(y[:, 1:]), axis=0) == pytest.approx([250, 5000, 200000], rel=1e-9)
+
+
+def _direct_stop(v0, a0, jmax, shape):
+    """Distance of the fastest stop from (v0, a0 < 0 <= v0 + a0|a0|/(2 J)) without reaching
+    amax: a to zero at the mean jerk J, then the symmetric stop from `after`."""
+    from smoothshaper.time_optimal import C3, mean_jerk
+    J = mean_jerk(jmax, shape)
+    d, after = -a0 / J, v0 + a0 * abs(a0) / (2 * J)
+    return v0 * d + a0 * d * d / 2 + C3[shape] * J * d ** 3 + after * math.sqrt(J * after) / J
+
+
+@pytest.mark.parametrize("precision", ["double", "float"])
+@pytest.mark.parametrize("profile", ["polynomial", "trigonometric"])
+def test_replan_just_beyond_the_direct_stop_is_continuous(profile, precision):
+    """From v = 0.5, a = -2 (vmax 1, amax 10, jmax 100) to targets 2^-k beyond the direct stop:
+    the peak velocity lies just above `after` = v + a|a|/(2 J), where the distance grows like
+    the square root of vp - after, so neighbouring vp differ in distance by far more than the
+    positions' rounding. The stop, anchored on the target, started that far from where the
+    velocity change ended (a jump of q), or the target was dropped; a cruise at vp now covers
+    it: nothing is dropped, every sample keeps the limits and the move lands."""
+    shape = "cosine" if profile == "trigonometric" else "ramp"
+    dA = _direct_stop(0.5, -2.0, 100.0, shape)
+    for k in range(8, 53 if precision == "double" else 25, 2):
+        target = dA * (1 + 2.0 ** -k)
+        g = tr.Generator(vmax=1.0, amax=10.0, jmax=100.0, Ts=1e-3, profile=profile,
+                         precision=precision)
+        g.start_from(0.0, 0.5, -2.0, target=dA)
+        x = np.full(600, target)
+        y = g.process(x)
+        assert g.dropped == 0, k
+        tol = 1 + BOUND_RTOL[precision]
+        assert np.all(np.max(np.abs(y[:, 1:]), axis=0) <= np.array([1.0, 10.0, 100.0]) * tol)
+        assert_sampled_limits(y, x, (1.0, 10.0, 100.0), 1e-3, precision, at_rest_before=False)
+        last = np.float32(target) if precision == "float" else target
+        assert y[-1, 0] == last and np.all(y[-1, 1:] == 0)
+
+
+def test_reference_plan_parts_meet_just_beyond_the_direct_stop():
+    """The NumPy reference's plan from the same state: each piece starts where the one before
+    ends, to 8 u of the target (the jump was up to 1.3e8 u there)."""
+    from smoothshaper.time_optimal import C3, _integrate, plan_to_rest
+    for shape in ("ramp", "cosine"):
+        dA = _direct_stop(0.5, -2.0, 100.0, shape)
+        for k in range(8, 45, 2):
+            goal = dA * (1 + 2.0 ** -k)
+            pieces, starts = plan_to_rest(0.0, 0.5, -2.0, goal, vmax=1.0, amax=10.0,
+                                          jmax=100.0, shape=shape)
+            for i in range(1, len(pieces)):
+                end = _integrate([pieces[i - 1]], *starts[i - 1], C3[shape])
+                assert abs(end[0] - starts[i][0]) <= 8 * 2.0 ** -53 * goal, (shape, k, i)
+                assert abs(end[1] - starts[i][1]) <= 8 * 2.0 ** -53, (shape, k, i)
+            end = _integrate([pieces[-1]], *starts[-1], C3[shape])
+            assert abs(end[0] - goal) <= 8 * 2.0 ** -53 * goal
 
 
 def test_reversal_waits_instead_of_doubling_acceleration():
