@@ -5,7 +5,8 @@ order). KIND is one of rectangular, harmonic, damped_harmonic, exponential, zv, 
 ei, ei2, ei3, mzv, gmzv, notch_tustin, notch_matched ('notch' means notch_matched). Keys:
 T [s], sigma [1/s], k, wn [rad/s], zeta, order, tolerance, duration (gmzv, in damped periods),
 notch_pole_zeta, timing (exact, paper, or bounded for rectangular and exponential). A
-smoother given wn (and optionally zeta, k) instead of T is designed for that mode. Examples: harmonic:T=0.05, zv:wn=100,zeta=0.05, damped_harmonic:wn=125,zeta=0.12.
+smoother given wn (and optionally zeta, k) instead of T is designed for that mode. Examples:
+harmonic:T=0.05, zv:wn=100,zeta=0.05, damped_harmonic:wn=125,zeta=0.12.
 
 Trajectory forms: 'design generator' runs via-points through the online generator, 'design
 bspline' interpolates them with a B-spline (see 'smoothshaper design generator --help' and
@@ -661,7 +662,8 @@ def build_parser() -> argparse.ArgumentParser:
                   "closed form or published value within a stated tolerance, and listed with "
                   "figures in --out/README.md; exit code 1 if a claim fails."}
     for name, func, what in (("validate", cmd_validate, "build and validate the FMUs with fmpy"),
-                             ("report", cmd_report, "reproduce the seed papers' claims")):
+                             ("report", cmd_report, "reproduce the source papers' claims "
+                              "(docs/references.md)")):
         p = sub.add_parser(name, help=what, description=descriptions[name])
         p.add_argument("--out", default=os.path.join("out", name),
                        help=f"output folder (default ./out/{name})")
