@@ -85,6 +85,8 @@ def run(out_dir, *, only=None, progress=None) -> Path:
                        f"| {n_ok}/{len(section.claims)} | {n_dis} | {section.seconds:.1f} s |")
         rendered.append(_render(section, out_dir))
     head = ["# smoothshaper: reproduction of the seed papers", "",
+            "The seed papers are the five source papers the library implements (seed 000 to "
+            "004; authors, titles and years in the repository's `docs/references.md`). "
             "Every number below is computed by `smoothshaper` (stages, NumPy reference, analysis "
             "and plant models) when this report is built, and the same numbers are asserted by "
             "`tests/python/test_report*.py` and `tests/python/test_seed*.py`. Each row gives the "
