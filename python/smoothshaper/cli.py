@@ -678,6 +678,17 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _os_error(exc: OSError, argv: list[str]) -> str:
+    """A failed file operation named by the option the user gave for the path (``--out=x:
+    File exists (not a folder)``) instead of Python's ``[Errno 17] File exists: 'x'``."""
+    if exc.filename is None or not exc.strerror:
+        return str(exc)
+    path = os.fsdecode(exc.filename)
+    given = [f"{name}={value}" for name, value in _given(argv) if value == path]
+    why = exc.strerror + (" (not a folder)" if isinstance(exc, FileExistsError) else "")
+    return f"{given[0] if given else path}: {why}"
+
+
 def _given(argv: list[str]) -> list[tuple[str, str]]:
     """(option, value) pairs as the user wrote them (--x=v or --x v)."""
     pairs = []
@@ -785,7 +796,11 @@ def main(argv: list[str] | None = None) -> int:
         option = _option_for(exc.parameter, message, argv)
         if option is not None and not message.startswith(option):
             message = f"{option}: {message}"
-    except (ValueError, OSError, RuntimeError, ImportError) as exc:
+    except OSError as exc:
+        if os.environ.get("SMOOTHSHAPER_DEBUG"):
+            raise
+        code, message = EXIT_ERROR, _os_error(exc, argv)
+    except (ValueError, RuntimeError, ImportError) as exc:
         if os.environ.get("SMOOTHSHAPER_DEBUG"):
             raise
         code, message = EXIT_ERROR, str(exc)

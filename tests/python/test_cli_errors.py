@@ -159,3 +159,21 @@ def test_counts_are_refused_naming_them_before_any_work(argv, start, capsys):
     err = capsys.readouterr().err
     assert code == cli.EXIT_ERROR and err.startswith("smoothshaper: error: " + start), err
     assert time.process_time() - t < 2
+
+
+def test_an_output_folder_that_is_a_file_names_out(capsys, tmp_path):
+    taken = tmp_path / "taken"
+    taken.write_text("")
+    for argv in (["analyze", "--kind", "zv", "--wn", "100", "--out", str(taken)],
+                 ["analyze", "--kind", "zv", "--wn", "100", "--out", str(taken / "sub")],
+                 ["calibrate", str(EXAMPLES / "decay.csv"), "--out", str(taken)]):
+        assert cli.main(argv) == cli.EXIT_ERROR
+        err = capsys.readouterr().err.strip()
+        assert err.startswith(f"smoothshaper: error: --out={argv[-1]}: "), err
+        assert "Errno" not in err and "\n" not in err, err
+
+
+def test_jmax_without_amax_names_both(capsys):
+    assert cli.main(["design", "--h", "1", "--vmax", "1", "--jmax", "1"]) == cli.EXIT_ERROR
+    err = capsys.readouterr().err
+    assert "--jmax needs --amax" in err, err
