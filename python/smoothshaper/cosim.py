@@ -1,11 +1,14 @@
-"""``smoothshaper cosim``: a system co-simulation of the three FMUs, connected by an SSP file.
+"""System co-simulation: three FMUs connected by an SSP file, run in libcosim and fmpy.
+
+Run ``python -m smoothshaper.cosim --out DIR`` (``scripts/main.sh`` does, into out/cosim).
 
 The system (``ShapedMotion.ssp``, SSP 1.0)::
 
     target --> Generator (TrajectoryGenerator) --q--> Shaper (SmoothShaper) --y--> Plant (ElasticPlant)
 
 A jerk-limited move of height ``MOVE`` drives the two-mass elastic transmission of Biagiotti and
-Melchiorri (2012, eq. 12, Table 1: wn = 260.4 rad/s, zeta = 0.0083) through a ZV input shaper
+Melchiorri ("FIR filters for online trajectory planning with time- and frequency-domain
+specifications", 2012, eq. 12, Table 1: wn = 260.4 rad/s, zeta = 0.0083) through a ZV input shaper
 designed for that mode, or (run "without shaper") through a shaper whose stages are all ``none``.
 The system runs in two importers, libcosim (libcosimpy loads the SSP file) and fmpy
 (``fmpy.ssp.simulate_ssp``, whose master accumulates ``t += h``), and the residual vibration of
