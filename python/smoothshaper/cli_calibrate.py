@@ -37,9 +37,10 @@ def add_parser(sub) -> None:
                    help="frequency band to search [Hz] (default: the part of the spectrum a "
                    "resonance test excited, the table's range for a frequency response)")
     p.add_argument("--max-delay", type=float, metavar="S",
-                   help="longest filter impulse response allowed [s]")
+                   help="longest filter impulse response allowed [s] (default: no limit)")
     p.add_argument("--max-smoothing", type=float, metavar="D",
-                   help="largest corner rounding allowed (length unit of --accel)")
+                   help="largest corner rounding allowed (length unit of --accel; default: no "
+                   "limit)")
     p.add_argument("--accel", type=float, default=3000.0, metavar="A",
                    help="acceleration of the reference move (default 3000, e.g. mm/s^2)")
     p.add_argument("--corner-velocity", type=float, default=5.0, metavar="V",
