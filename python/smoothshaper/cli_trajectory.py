@@ -192,11 +192,14 @@ def cmd_generator(args) -> int:
     write_outputs(args, bar, lambda: (
         ["time", "target", "position", "velocity", "acceleration", "jerk"],
         [t, targets, out[:, 0], out[:, 1], out[:, 2], out[:, 3]]),
-        lambda path: _plot_generator(path, t, targets, out, starts, arrivals, limits, u, gen.Ts))
+        lambda path: _plot_generator(path, t, targets, out, starts, arrivals, limits, u, gen.Ts,
+                                     f"{gen.profile} profile" + (
+                                         f", mode {gen.wn:g} rad/s, zeta {gen.zeta:g}"
+                                         if gen.wn else "")))
     return 0 if ok else EXIT_ERROR
 
 
-def _plot_generator(path, t, targets, out, starts, arrivals, limits, u, Ts):
+def _plot_generator(path, t, targets, out, starts, arrivals, limits, u, Ts, what=""):
     plt = _pyplot("design generator --plot")
     fig, axes = plt.subplots(4, 1, sharex=True, figsize=(8, 8))
     names = [("position", f"[{u}]"), ("velocity", f"[{u}/s]"),
@@ -220,7 +223,8 @@ def _plot_generator(path, t, targets, out, starts, arrivals, limits, u, Ts):
     axes[0].legend(loc="best", fontsize=8)
     axes[1].legend(loc="best", fontsize=8)
     axes[-1].set_xlabel("time [s]")
-    axes[0].set_title("Online multi-point generator (green: arrivals)")
+    axes[0].set_title("Online multi-point generator (green: arrivals)"
+                      + (f"\n{what}" if what else ""))
     fig.tight_layout()
     _save(fig, plt, path)
 
