@@ -778,15 +778,16 @@ def compare_trajectory(fmu: Path, *, Ts: float, step: float, stop_time: float, *
     return t, target, y, ref, rel
 
 
-def _plot(path: Path, name: str, t, u, y, y_ref) -> None:
+def _plot(path: Path, name: str, t, u, y, y_ref, Ts: float) -> None:
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, (a0, a1) = plt.subplots(2, 1, figsize=(7, 4.5), sharex=True)
+    fig, (a0, a1) = plt.subplots(2, 1, figsize=(7, 4.8), sharex=True)
     a0.step(t, u, where="post", color="0.6", label="u (held)")
     a0.plot(t, y_ref, "k-", lw=2.5, alpha=0.4, label="reference")
     a0.plot(t, y, "C1--", lw=1, label="FMU (fmpy)")
-    a0.set_title(f"SmoothShaper.fmu vs reference: {name}")
+    a0.set_title(f"SmoothShaper.fmu vs reference: {name}\ncommunication step h = Ts = {Ts:g} s",
+                 fontsize=10)
     a0.set_ylabel("input u, output y [-]")
     a0.legend(loc="best", fontsize=8)
     a1.plot(t, y - y_ref, "C3")
@@ -909,7 +910,7 @@ def run(out_dir, *, build_dir=None, fmus: dict | None = None, Ts: float = 1e-3,
                 passed &= rel <= REL_TOL
                 cells.append(f"{rel:.2e}")
                 if plots and j == 0:
-                    _plot(out / f"smoothshaper_{i:02d}.png", name, t, u, y, y_ref)
+                    _plot(out / f"smoothshaper_{i:02d}.png", name, t, u, y, y_ref, Ts)
             ok &= passed
             lines.append(f"| {name} | " + " | ".join(cells) + f" | {'yes' if passed else 'NO'} |")
         lines += ["", "Cells: max |y_FMU - y_ref| / max |y_ref| over the run. Plots (h = Ts): "
@@ -917,7 +918,9 @@ def run(out_dir, *, build_dir=None, fmus: dict | None = None, Ts: float = 1e-3,
     step("TrajectoryGenerator")
     if "TrajectoryGenerator" in fmus:
         lines += ["", "## TrajectoryGenerator vs reference (`trajectory.generator_reference`, "
-                  f"limits {TRAJECTORY_LIMITS}, Ts = {Ts:g} s)", "",
+                  f"vmax = {TRAJECTORY_LIMITS['vmax']:g} m/s, "
+                  f"amax = {TRAJECTORY_LIMITS['amax']:g} m/s2, "
+                  f"jmax = {TRAJECTORY_LIMITS['jmax']:g} m/s3, Ts = {Ts:g} s)", "",
                   "| step | q | v | a | j | pass |", "|---|---|---|---|---|---|"]
         for label, h in (("Ts", Ts), ("7 Ts", 7 * Ts), ("2.5 Ts", 2.5 * Ts)):
             t, target, y, ref, rel = compare_trajectory(
