@@ -5,6 +5,7 @@
 #include <string.h>
 #include "check.h"
 #include "double_s.h"
+#include "generator_campaign.h"
 
 #define MAX_TABLE 40000
 static sms_real table[MAX_TABLE];
@@ -17,8 +18,8 @@ static sms_real table2[MAX_TABLE];
 #endif
 
 /* Reported v, a, j: within the limits to 32 u, the rounding of the plan's own values and of
- * the tuned stage's average (docs/sampled-limits.md; measured at most 9.2 u in float and 8 u
- * in double over 77,000 random staircases and moves). */
+ * the tuned stage's average (docs/sampled-limits.md, "What rounding adds"; at most 20.6 u in
+ * float and 10 u in double over 38,626 cases of tests/bench/generator_rounding_bench.c). */
 #define BOUND_TOL (32.0 * SAMPLE_EPS)
 
 static unsigned rng = 1u;
@@ -108,6 +109,32 @@ static void staircase(const sms_generator_config *c, double Ts, int style, unsig
         sms_generator_step(&g, (sms_real)target, out);
     CHECK(out[0] == (sms_real)target);
     CHECK(out[1] == 0 && out[2] == 0 && out[3] == 0);
+}
+
+/* The random cases of generator_campaign.h (random limits, Ts coarse, fine and on the phase
+ * grid, every profile, a mode on about half, adversarial targets): every reported v, a, j
+ * within 32 u of its limit and every backward difference within its limit (1 + 1e-9) beyond
+ * the positions' rounding, 2^i 16 u S / Ts^i (docs/sampled-limits.md, "What rounding adds";
+ * tests/bench/generator_rounding_bench.c runs 100 times as many). */
+static void test_bounds_random_limits(int trials)
+{
+    int trial, i;
+    rng = 4242u;
+    for (trial = 0; trial < trials; ++trial) {
+        campaign_case k;
+        double reported[4], beyond[4];
+        campaign_draw(&k, urand, trial % 2);
+        if (!campaign_run(&k, urand, SAMPLE_EPS, table, MAX_TABLE, reported, beyond))
+            continue;
+        for (i = 1; i < 4; ++i) {
+            CHECK(reported[i] <= 1.0 + BOUND_TOL);
+            CHECK(beyond[i] <= 1.0 + 1e-9);
+            if (!(reported[i] <= 1.0 + BOUND_TOL && beyond[i] <= 1.0 + 1e-9))
+                fprintf(stderr, "random limits, trial %d, order %d: reported %.17g, sampled %.17g"
+                                " of the limit (profile %d wn %g style %d)\n", trial, i,
+                        reported[i], beyond[i], (int)k.config.profile, k.config.wn, k.style);
+        }
+    }
 }
 
 static void test_bounds_random(void)
@@ -926,6 +953,7 @@ int main(void)
     test_long_moves();
     test_long_moves_through_the_stage();
     test_bounds_random();
+    test_bounds_random_limits(400);
     test_trigonometric();
     test_mode_stage();
     test_single_move();

@@ -235,10 +235,11 @@ typedef struct sms_generator_config {
  * generator re-plans on that sample from its exact state (q, v, a) there: the time-optimal
  * motion to the target at rest within vmax, amax, jmax, made of a velocity change
  * (v, a) -> (vp, 0) (a transition of the acceleration towards +-amax, a hold there if
- * reached, a transition back to 0), a cruise at vp = +-vmax when the distance allows, and
- * the stop (vp, 0) -> (0, 0); vp solves "distance of the two changes = target - q", which
- * increases with vp (bisection, in ::sms_real, no libm). The transitions' shape is the
- * profile's:
+ * reached, a transition back to 0), a cruise at vp, and the stop (vp, 0) -> (0, 0)
+ * anchored on the target. vp = +-vmax when the distance allows; else vp solves "distance of
+ * the two changes = target - q", which increases with vp (bisection, in ::sms_real, no
+ * libm), and the cruise covers what the last bit of vp leaves, so the parts meet to the
+ * rounding of the positions. The transitions' shape is the profile's:
  * - ::SMS_PROFILE_POLYNOMIAL (and ::SMS_PROFILE_DAMPED): linear ramps at jerk +-jmax. Rest
  *   to rest this is ruckig's time-optimal duration (h = 0.0819, v = 1, a = 10, j = 100:
  *   0.297 s).
@@ -269,7 +270,9 @@ typedef struct sms_generator_config {
  * than a sample; the tuned stage needs its mode below pi/Ts). Times are whole samples plus a
  * fraction and every segment is anchored on its own start (the stop on the target); the
  * tuned stage is the drift-free smoother of smoother.h. A float build keeps its error at the
- * rounding of the positions for any move and run length.
+ * rounding of the positions for any move and run length. With u the unit roundoff of
+ * ::sms_real: reported |v|, |a|, |j| <= limit (1 + 32 u); each sample's q carries at most
+ * 16 u of the largest |position| or |target| (docs/sampled-limits.md, "What rounding adds").
  * Per sample: O(1), no libm (a half-cosine transition sums its own series, about 30 terms);
  * a re-plan: about 60 (double) or 30 (float) evaluations of the distance (at most about
  * 2200 or 330 when vp lies many binades below vmax); a non-finite target is ignored.
