@@ -388,6 +388,13 @@ static double grid_ceil(double nu)
     return ceil(nu);
 }
 
+/* The taps of a bounded tuned stage as the exact top-level test reads them: tap0 on 0, gain q^i
+ * on 1 .. L-2, tapL on L-1 (q = e^decay); `bounded` 0 when the stage is not of this form. */
+typedef struct {
+    int bounded;
+    double tap0, tapL, gain, decay, L;
+} kin_tuned;
+
 /* The timing of a stage tuned to the mode on a grid: bounded taps (no tap above the peak
  * density the design budgets for), which only the half sine does not need. */
 static sms_timing tuned_timing(sms_kind kind)
@@ -398,7 +405,7 @@ static sms_timing tuned_timing(sms_kind kind)
 /* Largest tap of the stage tuned to the mode, its length in samples and the sum of its
  * first and last taps. */
 static sms_status tuned_taps(sms_kind kind, double T, double sigma, unsigned k, double Ts,
-                             double *peak, double *support, double *ends)
+                             double *peak, double *support, double *ends, kin_tuned *form)
 {
     sms_stage_config c = sms_stage_config_default(kind);
     sms_smoother_design d;
@@ -429,6 +436,12 @@ static sms_status tuned_taps(sms_kind kind, double T, double sigma, unsigned k, 
     *peak = best;
     *support = (double)d.length;
     *ends = sms_smoother_design_tap(&d, 0u) + sms_smoother_design_tap(&d, d.length - 1u);
+    form->bounded = c.timing == SMS_TIMING_BOUNDED && d.length >= 3u;
+    form->tap0 = sms_smoother_design_tap(&d, 0u);
+    form->tapL = sms_smoother_design_tap(&d, d.length - 1u);
+    form->gain = d.gain;
+    form->decay = d.decay;
+    form->L = (double)d.length;
     return SMS_OK;
 }
 
@@ -502,6 +515,7 @@ typedef struct {
     signed char signs[2u << SMS_KINEMATIC_MAX_ORDER];
     unsigned nodes;
     int found, harmonic; /* harmonic: the last stage is a half sine (harmonic_fits) */
+    const kin_tuned *tuned; /* a fixed bounded last stage (tuned_fits), or NULL */
 } kin_overlap;
 
 /* Adds length x to list k (the subset sums of N[0..k-1]) giving list k+1, and returns the
@@ -596,11 +610,63 @@ static int harmonic_fits(const kin_overlap *s, double N, double lim)
     return 1;
 }
 
+/*
+ * A fixed bounded last stage (taps tap0, gain q^i for i = 1 .. L-2, tapL) after boxes whose
+ * signed subset sums sigma_S are list n-1: the top difference exactly. In samples it is
+ * h / prod(boxes) * F(m), F(m) = sum_S sign_S t(m - sigma_S). F changes only where a copy
+ * starts (sigma_S: tap0), enters its interior (+1), leaves it (L-1: tapL) or ends (L);
+ * between those the interior part is K q^t (constant for a box, decaying for q < 1), so
+ * |F| peaks at one of them. One sweep over the four shifted lists of sums, carrying K.
+ * Returns 1 when max |F| <= lim.
+ */
+static int tuned_fits(const kin_overlap *s, double lim)
+{
+    const kin_tuned *t = s->tuned;
+    const size_t len = (size_t)1 << (s->p->n - 1u);
+    const double *st = s->sums + (len - 1u);
+    const signed char *sg = s->signs + (len - 1u);
+    const double off[4] = {0.0, 1.0, t->L - 1.0, t->L};
+    const double q_in = t->gain * exp(t->decay), q_out = t->gain * exp(t->decay * (t->L - 1.0));
+    size_t at[4] = {0u, 0u, 0u, 0u}, e;
+    double K = 0.0, b = st[0];
+    for (;;) {
+        double pos = HUGE_VAL, spike = 0.0;
+        for (e = 0; e < 4u; ++e)
+            if (at[e] < len && st[at[e]] + off[e] < pos)
+                pos = st[at[e]] + off[e];
+        if (pos == HUGE_VAL)
+            return 1;
+        if (t->decay != 0.0)
+            K *= exp(t->decay * (pos - b));
+        b = pos;
+        for (e = 0; e < 4u; ++e)
+            while (at[e] < len && st[at[e]] + off[e] == pos) {
+                const double sign = (double)sg[at[e]++];
+                if (e == 0u) {          /* a copy starts: its first tap */
+                    spike += sign * t->tap0;
+                } else if (e == 1u) {   /* its interior begins */
+                    K += sign * q_in;
+                } else if (e == 2u) {   /* its interior ends, its last tap */
+                    K -= sign * q_out;
+                    spike += sign * t->tapL;
+                }                       /* e == 3: it has ended (only evaluated) */
+            }
+        if (fabs(K + spike) > lim)
+            return 0;
+    }
+}
+
 static void overlap_dfs(kin_overlap *s, size_t k, double logprod, double psum)
 {
-    size_t n = s->p->n, nx = 0, j, q;
+    size_t n = s->p->n, nx = 0, j, q, boxes = s->tuned ? n - 1u : n;
     double xs[7];
-    if (k == n) {
+    if (k == boxes) {
+        if (s->tuned) {
+            /* the top level through the fixed stage, exactly (tuned_fits) */
+            double lt = log(s->p->L[n - 1u]) + (double)n * s->logTs + logprod - s->logh;
+            if (!tuned_fits(s, lt > 60.0 ? HUGE_VAL : exp(lt) * (1.0 + 1e-12)))
+                return;
+        }
         if (psum < s->best_sum) {
             s->best_sum = psum;
             for (j = 0; j < n; ++j)
@@ -620,9 +686,9 @@ static void overlap_dfs(kin_overlap *s, size_t k, double logprod, double psum)
         for (j = 0; j < 6u; ++j)
             if (x0 - 2.0 + (double)j >= 2.0)
                 xs[nx++] = x0 - 2.0 + (double)j;
-    } else if (k + 1u == n || (s->harmonic && k + 2u == n)) {
+    } else if (k + 1u == n || ((s->harmonic || s->tuned) && k + 2u == n)) {
         /* the last box: the fewest samples its level allows without overlaps, and a few
-         * more; before a half sine also the ceiling -1 .. +1 */
+         * more; before a half sine or a fixed tuned stage also the ceiling -1 .. +1 */
         double x0 = ceil(exp(s->logh - log(s->p->L[k]) - (double)(k + 1u) * s->logTs -
                              logprod) * (1.0 - 1e-12));
         if (!(x0 >= 1.0))
@@ -703,18 +769,23 @@ static void overlap_dfs(kin_overlap *s, size_t k, double logprod, double psum)
  * within KIN_OVERLAP_NODES(n) level tests per pair of first two lengths; replaces N when it
  * finds a shorter chain. */
 static void overlap_search(const sms_kin_plan *p, double logh, double logTs, const double *T,
-                           double Ts, int harmonic, double *best, double *N)
+                           double Ts, int harmonic, const kin_tuned *tuned, double *best,
+                           double *N)
 {
     kin_overlap s;
-    size_t n = p->n, i;
+    size_t n = p->n, boxes = tuned != NULL ? n - 1u : n, i;
     s.p = p;
     s.harmonic = harmonic;
+    s.tuned = tuned;
     s.logh = logh;
     s.logTs = logTs;
-    s.rest_min[n] = 0.0;
+    for (i = 0; i < SMS_KINEMATIC_MAX_ORDER; ++i)
+        s.N[i] = s.c[i] = 0.0;
+    s.rest_min[boxes] = 0.0;
     for (i = n; i-- > 0;) {
-        s.c[i] = grid_ceil(T[i] / Ts);
-        s.rest_min[i] = s.rest_min[i + 1u] + (s.c[i] > 2.0 ? s.c[i] - 1.0 : 1.0);
+        s.c[i] = grid_ceil(T[i] / Ts); /* a tuned stage's only enters the lift */
+        if (i < boxes)
+            s.rest_min[i] = s.rest_min[i + 1u] + (s.c[i] > 2.0 ? s.c[i] - 1.0 : 1.0);
     }
     s.best_sum = *best;
     s.nodes = 0u;
@@ -724,7 +795,7 @@ static void overlap_search(const sms_kin_plan *p, double logh, double logTs, con
     overlap_dfs(&s, 0u, 0.0, 0.0);
     if (s.found) {
         *best = s.best_sum;
-        for (i = 0; i < n; ++i)
+        for (i = 0; i < boxes; ++i)
             N[i] = s.best[i];
     }
 }
@@ -734,7 +805,8 @@ static void overlap_search(const sms_kin_plan *p, double logh, double logTs, con
  * the larger of its ceiling and the samples after it, which is always feasible) as the
  * fallback. N[n-1] = 0 for a tuned last stage (it keeps its exact length). */
 static sms_status on_grid(const sms_kin_plan *p, double h, const double *T, sms_kind last_kind,
-                          int tuned, double supp_last, double Ts, double *N)
+                          int tuned, double supp_last, const kin_tuned *form, double Ts,
+                          double *N)
 {
     size_t n = p->n, m = tuned ? n - 1 : n, i, combos = 1, c;
     double base[SMS_KINEMATIC_MAX_ORDER], cand[SMS_KINEMATIC_MAX_ORDER], below, total, best;
@@ -820,7 +892,7 @@ static sms_status on_grid(const sms_kin_plan *p, double h, const double *T, sms_
         int free_last = !tuned && n >= 2, harmonic = last_kind == SMS_HARMONIC;
         double before4;
         if (free_last && best - cont > (double)m)
-            overlap_search(p, logh, logTs, T, Ts, harmonic, &best, N);
+            overlap_search(p, logh, logTs, T, Ts, harmonic, NULL, &best, N);
         before4 = best;
         if (m >= 2 && best - cont > (double)m) {
             size_t combos4 = 1;
@@ -851,7 +923,11 @@ static sms_status on_grid(const sms_kin_plan *p, double h, const double *T, sms_
         }
         /* still over, with a shorter chain to beat: the overlap search prunes harder */
         if (free_last && best < before4 && best - cont > (double)m)
-            overlap_search(p, logh, logTs, T, Ts, harmonic, &best, N);
+            overlap_search(p, logh, logTs, T, Ts, harmonic, NULL, &best, N);
+        /* a bounded tuned stage costs up to two samples of its own: its boxes get the search
+         * that lets copies overlap once they are more than a sample per box over */
+        if (tuned && form->bounded && m >= 1u && best - cont > 0.0)
+            overlap_search(p, logh, logTs, T, Ts, 0, form, &best, N);
     }
     return SMS_OK;
 }
@@ -863,6 +939,7 @@ sms_status sms_kin_solve_sampled(double h, const double *limits, size_t n, sms_p
                                  double wn, double zeta, double Ts, double *T, sms_kin_last *last)
 {
     sms_kin_plan p;
+    kin_tuned form = {0, 0.0, 0.0, 0.0, 0.0, 0.0};
     size_t i;
     double support_last = 0.0;
     sms_status st = validate(h, limits, n, profile, wn, zeta);
@@ -907,6 +984,8 @@ sms_status sms_kin_solve_sampled(double h, const double *limits, size_t n, sms_p
             double Tk[SMS_KINEMATIC_MAX_ORDER], dur;
             int uncapped;
             p.T_fixed = k * Tm;
+            if (p.T_fixed >= best)
+                break; /* the chain lasts at least its tuned stage: no longer multiple wins */
             p.rho_fixed = peak_density(last->kind, p.T_fixed, last->sigma);
             if (n == 1) {
                 if (h * p.rho_fixed > p.L[0])
@@ -934,7 +1013,7 @@ sms_status sms_kin_solve_sampled(double h, const double *limits, size_t n, sms_p
             p.T_fixed = kbest * Tm;
             p.rho_fixed = peak_density(last->kind, p.T_fixed, last->sigma);
             st = tuned_taps(last->kind, p.T_fixed, last->sigma, kbest, Ts, &tap, &supp_best,
-                            &ends);
+                            &ends, &form);
             if (st != SMS_OK)
                 return st;
             if (tap / Ts > p.rho_fixed * (1.0 + 1e-12)) { /* beyond the taps' rounding */
@@ -960,7 +1039,7 @@ sms_status sms_kin_solve_sampled(double h, const double *limits, size_t n, sms_p
     }
     if (Ts > 0.0) {
         double N[SMS_KINEMATIC_MAX_ORDER];
-        st = on_grid(&p, h, T, last->kind, wn > 0.0, support_last, Ts, N);
+        st = on_grid(&p, h, T, last->kind, wn > 0.0, support_last, &form, Ts, N);
         if (st != SMS_OK)
             return st;
         for (i = 0; i < n; ++i)

@@ -515,7 +515,7 @@ def _grid_samples(nu: float) -> int:
 
 
 def _on_grid(T: list[float], Ts: float, h: float, limits: list[float], tuned_tap=None,
-             tuned_support=None, harmonic_last=False):
+             tuned_support=None, harmonic_last=False, tuned_taps=None):
     """Reference rounding to whole samples: the shortest total among
     N_k = ceil(T_k/Ts) + {-1, 0, 1} whose chain keeps every bound at every sample (ties:
     longer early stages), else the greedy N_k = max(ceil(T_k/Ts), samples below). Sufficient
@@ -605,6 +605,13 @@ def _on_grid(T: list[float], Ts: float, h: float, limits: list[float], tuned_tap
                 best, N[:m] = (sum(cand), [-x for x in cand]), cand
     if best[0] < before4:      # still over, with a shorter chain to beat: prunes harder
         best = overlap(best)
+    # bounded taps of a tuned stage (tuned_taps) cost up to two samples of their own: its
+    # boxes get the search that lets copies overlap as soon as they are over at all
+    if tuned_taps is not None and m >= 1 and best[0] - sum(T[i] / Ts for i in range(m)) > 0:
+        c = [_grid_samples(t / Ts) for t in T]
+        found = _overlap_search(c, Ts, h, limits, best[0], tuned_taps=tuned_taps)
+        if found is not None:
+            N[:m] = found
     return [N[i] * Ts if N[i] else T[i] for i in range(n)]
 
 
@@ -636,6 +643,23 @@ def _signed_sums(lengths) -> dict:
     return coeff
 
 
+def _tuned_peak(boxes, taps) -> float:
+    """max |F(m)| over the samples, F(m) = sum_S sign_S taps[m - sigma_S] over the signed subset
+    sums sigma_S of the boxes: the top difference of boxes followed by a fixed stage, in units
+    of h / prod(boxes). A copy's taps are an end tap, a geometric run and an end tap, so F only
+    jumps where a copy starts, enters or leaves its run, or ends, and decays (or holds) in
+    between: evaluated there, directly."""
+    coeff = _signed_sums(boxes)
+    sums = np.array(sorted(coeff), dtype=float)
+    signs = np.array([coeff[x] for x in sorted(coeff)], dtype=float)
+    L = len(taps)
+    at = np.unique(np.concatenate([sums + d for d in (0, 1, L - 1, L)]))
+    lag = at[:, None] - sums[None, :]
+    inside = (lag >= 0) & (lag < L)
+    values = np.where(inside, np.asarray(taps)[np.clip(lag, 0, L - 1).astype(np.int64)], 0.0)
+    return float(np.abs(values @ signs).max())
+
+
 def _half_sine_peak(boxes, N: int) -> float:
     """max |f(m)| over the samples, f(m) = sum_S sign_S sin(pi (m - sigma_S)/N) over the
     signed subset sums sigma_S of the boxes: the top difference of boxes followed by a half
@@ -660,18 +684,21 @@ def _half_sine_peak(boxes, N: int) -> float:
     return best
 
 
-def _overlap_search(c, Ts, h, limits, best_sum, harmonic_last=False):
+def _overlap_search(c, Ts, h, limits, best_sum, harmonic_last=False, tuned_taps=None):
     """Reference of the C core's search for chains whose stages may overlap
     (docs/sampled-limits.md): whole-sample box lengths, largest first and non-increasing, each
     level i passing h * max|count of the i largest| <= L_i Ts^i * (product of the i largest);
     a half-sine last stage (harmonic_last) of any length, the top level checked exactly
-    (_half_sine_peak); depth first within _OVERLAP_NODES * 2^n level tests per pair of first two
-    lengths; the lengths if shorter than best_sum."""
+    (_half_sine_peak), or a fixed last stage of non-negative taps (tuned_taps, the boxes'
+    sum compared with best_sum) whose top level is checked exactly (_tuned_peak); depth first
+    within _OVERLAP_NODES * 2^n level tests per pair of first two lengths; the box lengths if
+    shorter than best_sum."""
     n = len(c)
+    boxes = n - 1 if tuned_taps is not None else n
     logh, logTs = math.log(h), math.log(Ts)
     logL = [math.log(x) for x in limits]
-    rest_min = [0] * (n + 1)
-    for k in range(n - 1, -1, -1):
+    rest_min = [0] * (boxes + 1)
+    for k in range(boxes - 1, -1, -1):
         rest_min[k] = rest_min[k + 1] + max(1, c[k] - 1)
     state = {"best": best_sum, "N": None, "nodes": 0}
     N = [0] * n
@@ -683,7 +710,7 @@ def _overlap_search(c, Ts, h, limits, best_sum, harmonic_last=False):
                 return []
             x0 = max(2, math.ceil(math.pi / 2 * math.exp(e) * (1 - 1e-12)))
             return [x for x in range(x0 - 2, x0 + 4) if x >= 2]
-        if k == n - 1 or (harmonic_last and k == n - 2):
+        if k == n - 1 or ((harmonic_last or tuned_taps is not None) and k == n - 2):
             e = logh - logL[k] - (k + 1) * logTs - logprod
             if e > 709.0:
                 return []
@@ -704,7 +731,11 @@ def _overlap_search(c, Ts, h, limits, best_sum, harmonic_last=False):
         return xs + [x for x in (lift - 1, lift, lift + 1) if x not in xs]
 
     def visit(k, logprod, psum):
-        if k == n:
+        if k == boxes:
+            if tuned_taps is not None:
+                f = _tuned_peak(N[:k], tuned_taps)
+                if logh + math.log(max(f, 1e-300)) > logL[n - 1] + n * logTs + logprod + 1e-12:
+                    return
             if psum < state["best"]:
                 state["best"], state["N"] = psum, list(N)
             return
@@ -731,7 +762,7 @@ def _overlap_search(c, Ts, h, limits, best_sum, harmonic_last=False):
                 visit(k + 1, lp, psum + x)
 
     visit(0, 0.0, 0)
-    return state["N"]
+    return None if state["N"] is None else state["N"][:boxes]
 
 
 def kinematic_reference(*, h, vmax, amax=None, jmax=None, higher=(), profile="polynomial",
@@ -806,6 +837,8 @@ def kinematic_reference(*, h, vmax, amax=None, jmax=None, higher=(), profile="po
     best = None
     for k in range(1, MAX_MULTIPLE + 1, 2 if last_kind == "harmonic" else 1):
         Tf = k * Tm
+        if best is not None and Tf >= sum(best[1]):
+            break     # the chain lasts at least its tuned stage: no longer multiple wins
         rho = _peak_density(last_kind, Tf, sigma)
         if len(limits) == 1:
             if h * rho > limits[0]:
@@ -841,7 +874,8 @@ def kinematic_reference(*, h, vmax, amax=None, jmax=None, higher=(), profile="po
         # copies one sample closer than the taps overlap only in end taps: allowed when the
         # first and last tap together stay within the bound
         support = len(taps) - (1 if taps[0] + taps[-1] <= rho * Ts else 0)
-        T = _on_grid(T, Ts, h, limits, tuned_tap=rho * Ts, tuned_support=support)
+        T = _on_grid(T, Ts, h, limits, tuned_tap=rho * Ts, tuned_support=support,
+                     tuned_taps=taps if timing == "bounded" and len(taps) >= 3 else None)
     return ([Stage("rectangular", T=t) for t in T[:-1]] +
             [Stage(last_kind, T=T[-1], sigma=sigma, k=k, timing=timing)])
 

@@ -73,16 +73,20 @@ typedef enum sms_profile {
  * ::SMS_TIMING_BOUNDED (L = floor(T/Ts) + 2 taps, none above the continuous peak density
  * times Ts, so the continuous design's density holds), the half sine with exact timing
  * (L = floor(T/Ts) + 1), the design bounding the top derivative with its largest sampled
- * tap / Ts when that exceeds the continuous peak density: both are satisfied. The search: each stage's ceiling +-1 (3^m chains); when that leaves more
- * than one sample per stage over the continuous optimum, a chain without a tuned stage gets
+ * tap / Ts when that exceeds the continuous peak density: both are satisfied. The search:
+ * each stage's ceiling +-1 (3^m chains); when that leaves more than one sample per stage over
+ * the continuous optimum, a chain without a tuned stage gets
  * a depth-first search (at most 4 * 2^n level tests of O(2^i) each per pair of first two
  * lengths) with an exact bound on the sampled differences, h max|c_A| / (Ts^i prod_A N) with
  * A the i largest boxes and c_A the running count of their signed subset sums, which lets
  * copies of stages overlap where they cancel; a harmonic last stage enters only the top
  * difference, which the search evaluates exactly (one phasor sweep over the copies' ends);
  * still over, +1 .. -2 from the ceilings with each stage lifted to the samples after it (4^m
- * chains), and the depth-first search again when those found a shorter chain. O(1) for any
- * input: two searches of at most 49 * 4 * 2^n level tests, and 4^m chains.
+ * chains), and the depth-first search again when those found a shorter chain. A bounded
+ * tuned stage's boxes get the same depth-first search whenever they are over the continuous
+ * lengths at all, its top difference evaluated exactly (one sweep over where the copies
+ * start, enter and leave their geometric run, and end). O(1) for any input: at most three
+ * searches of at most 49 * 4 * 2^n level tests, and 4^m chains.
  * Then every backward difference of the sampled output (chain fed with a step of h at a
  * sample) obeys the bounds: |D^i q[m]| / Ts^i <= limits[i-1] for i = 1..n (to rounding).
  * Price: at most one sample per stage over the continuous optimum for every n (measured over
