@@ -325,7 +325,9 @@ static double peak_density(sms_kind kind, double T, double sigma)
     case SMS_HARMONIC:
         return 0.5 * KIN_PI / T;
     case SMS_EXPONENTIAL:
-        if (sigma < 0.0)
+        /* 1/T (1 + |sigma T|/2 + ...): below 1e-15 that is 1/T to rounding, and a subnormal
+         * sigma T would carry too few bits for the quotient */
+        if (sigma * T < -1e-15)
             return -sigma / -expm1(sigma * T);
         return 1.0 / T;
     default:

@@ -462,7 +462,7 @@ def _batch_error(st: int, i: int, shape: tuple, h: float, row: list[float], prof
 def _peak_density(kind: str, T: float, sigma: float) -> float:
     if kind == "harmonic":
         return math.pi / (2.0 * T)
-    if kind == "exponential" and sigma < 0:
+    if kind == "exponential" and sigma * T < -1e-15:   # else 1/T to rounding
         return -sigma / -math.expm1(sigma * T)
     return 1.0 / T
 

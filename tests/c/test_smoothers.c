@@ -206,7 +206,7 @@ static void step_response(sms_smoother *f, double *out, size_t n)
  * normalised impulse response, 1/T (rectangular) or -sigma/(1 - e^{sigma T}) at t = 0. */
 static double peak_density(double T, double sigma)
 {
-    return sigma == 0.0 ? 1.0 / T : -sigma / -expm1(sigma * T);
+    return sigma * T > -1e-15 ? 1.0 / T : -sigma / -expm1(sigma * T); /* 1/T to rounding */
 }
 
 /* Bounded timing (docs/exact-mode.md) over random T/Ts off the grid, multiples and damping:
