@@ -181,7 +181,7 @@ static sms_real max_samples(void)
     return s < m ? s : m;
 }
 
-static int finite(sms_real x)
+static int is_finite(sms_real x)
 {
     return x - x == 0; /* NaN and +-Inf give NaN */
 }
@@ -199,16 +199,16 @@ static int plan_finite(const sms_plan *plan)
     size_t i;
     for (i = 0; i < plan->count; ++i) {
         sms_real d = plan->d[i];
-        if (!finite(plan->p[i]) || !finite(plan->v[i]) || !finite(plan->a[i]) ||
-            !finite(plan->j[i]) || !finite(d) || !finite(plan->f[i]))
+        if (!is_finite(plan->p[i]) || !is_finite(plan->v[i]) || !is_finite(plan->a[i]) ||
+            !is_finite(plan->j[i]) || !is_finite(d) || !is_finite(plan->f[i]))
             return 0;
-        if (!finite(mag(plan->p[i]) + d * (mag(plan->v[i]) +
+        if (!is_finite(mag(plan->p[i]) + d * (mag(plan->v[i]) +
                                            d * (mag(plan->a[i]) * (sms_real)0.5 +
                                                 d * mag(plan->j[i]) * (sms_real)0.25))) ||
-            !finite(mag(plan->v[i]) + d * (mag(plan->a[i]) + d * mag(plan->j[i]))))
+            !is_finite(mag(plan->v[i]) + d * (mag(plan->a[i]) + d * mag(plan->j[i]))))
             return 0;
     }
-    return finite(plan->goal) && finite(plan->end_f) && finite(plan->duration);
+    return is_finite(plan->goal) && is_finite(plan->end_f) && is_finite(plan->duration);
 }
 
 int sms_plan_to_rest_shaped(sms_plan *out, const sms_plan_limits *lim, int shape, sms_real Ts,
@@ -232,7 +232,7 @@ int sms_plan_to_rest_shaped(sms_plan *out, const sms_plan_limits *lim, int shape
         *out = tmp;
         return 1;
     }
-    if (!finite(D) || !finite(q) || !finite(v) || !finite(a) || !finite(goal))
+    if (!is_finite(D) || !is_finite(q) || !is_finite(v) || !is_finite(a) || !is_finite(goal))
         return 0;
     if (D >= distance(v, a, V, A, J, shape, &first, &stop)) {
         vp = V;
@@ -320,7 +320,7 @@ int sms_plan_to_rest_shaped(sms_plan *out, const sms_plan_limits *lim, int shape
         total += first.d[i];
     for (i = 0; i < stop.count; ++i)
         total += stop.d[i];
-    if (!finite(vp) || !finite(total) || !(total / Ts + 2 <= max_samples()))
+    if (!is_finite(vp) || !is_finite(total) || !(total / Ts + 2 <= max_samples()))
         return 0;
     p = q;
     vv = v;
