@@ -1010,20 +1010,31 @@ sms_status sms_kin_solve_sampled(double h, const double *limits, size_t n, sms_p
             return SMS_ERR_TOO_LONG;
         if (Ts > 0.0) {
             /* k is chosen on the continuous design (O(1) per multiple); its sampled taps
-             * (O(length), once) then set the density that bounds the top derivative */
+             * (the few that can be largest, O(1)) then set the density that bounds the top
+             * derivative */
             double tap, ends;
-            p.T_fixed = kbest * Tm;
-            p.rho_fixed = peak_density(last->kind, p.T_fixed, last->sigma);
-            st = tuned_taps(last->kind, p.T_fixed, last->sigma, kbest, Ts, &tap, &supp_best,
-                            &ends, &form);
-            if (st != SMS_OK)
-                return st;
-            if (tap / Ts > p.rho_fixed * (1.0 + 1e-12)) { /* beyond the taps' rounding */
+            int changed = 0; /* density raised or multiple moved: the lengths are solved again */
+            for (;;) {
+                p.T_fixed = kbest * Tm;
+                p.rho_fixed = peak_density(last->kind, p.T_fixed, last->sigma);
+                st = tuned_taps(last->kind, p.T_fixed, last->sigma, kbest, Ts, &tap,
+                                &supp_best, &ends, &form);
+                if (st != SMS_OK)
+                    return st;
+                if (!(tap / Ts > p.rho_fixed * (1.0 + 1e-12))) /* within the taps' rounding */
+                    break;
                 p.rho_fixed = tap / Ts;
-                if (n == 1 && h * p.rho_fixed > p.L[0])
+                changed = 1;
+                if (n > 1 || h * p.rho_fixed <= p.L[0])
+                    break;
+                /* alone, the stage is the velocity stage: a half sine's sampled peak over
+                 * vmax takes the next multiple (its peak falls as it grows) */
+                kbest += step;
+                if (kbest > SMS_KINEMATIC_MAX_MULTIPLE)
                     return SMS_ERR_TOO_LONG;
-                (void)solve_plan(&p, h, Tbest);
             }
+            if (changed)
+                (void)solve_plan(&p, h, Tbest);
             /* Copies of the stage one sample closer than its length overlap only where the
              * last tap of one meets the first tap of the next: with the taps non-negative,
              * that sample is at most their sum (same signs) or their difference, so the

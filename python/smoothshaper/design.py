@@ -862,14 +862,23 @@ def kinematic_reference(*, h, vmax, amax=None, jmax=None, higher=(), profile="po
         # exceed it: then the design runs again with the sampled density)
         Ts = _positive("Ts", Ts)
         timing = "exact" if last_kind == "harmonic" else "bounded"
-        taps = impulse_response(Stage(last_kind, T=k * Tm, sigma=sigma, k=k, timing=timing),
-                                Ts=Ts)
-        rho = _peak_density(last_kind, k * Tm, sigma)
-        if float(np.max(np.abs(taps))) / Ts > rho * (1 + 1e-12):   # beyond rounding
-            rho = float(np.max(np.abs(taps))) / Ts
-            if len(limits) == 1 and h * rho > limits[0]:
-                raise ParameterError("Ts", f"Ts = {Ts!r} s: the sampled stage tuned to the mode "
-                                     "exceeds vmax")
+        k0 = k
+        while True:
+            taps = impulse_response(Stage(last_kind, T=k * Tm, sigma=sigma, k=k, timing=timing),
+                                    Ts=Ts)
+            rho = _peak_density(last_kind, k * Tm, sigma)
+            peak = float(np.max(np.abs(taps))) / Ts
+            raised = peak > rho * (1 + 1e-12)     # beyond rounding
+            if raised:
+                rho = peak
+            if not (raised and len(limits) == 1 and h * rho > limits[0]):
+                break
+            # alone it is the velocity stage: the next multiple, whose peak is lower
+            k += 2 if last_kind == "harmonic" else 1
+            if k > MAX_MULTIPLE:
+                raise ParameterError("wn", f"wn: no multiple k <= {MAX_MULTIPLE} of the mode "
+                                     "period keeps vmax on the grid")
+        if raised or k != k0:
             T = _Problem(limits, T_fixed=k * Tm, rho=rho).lengths(0, h)
         # copies one sample closer than the taps overlap only in end taps: allowed when the
         # first and last tap together stay within the bound

@@ -103,6 +103,17 @@ static void test_mode_tuned(void)
             CHECK_STATUS(sms_chain_init(&chain, stages, cfg, 3, 1e-4, buf, need), SMS_OK);
         }
     }
+    /* one bound, a tuned half sine whose sampled peak exceeds vmax: the next odd multiple */
+    {
+        double L1 = 1.0, T1 = 0.5 * PI, excess; /* h = 1, vmax = 1: T = pi/2 h/vmax */
+        sms_stage_config one[1];
+        size_t c1;
+        CHECK_STATUS(sms_kinematic_configs(1.0, &L1, 1, SMS_PROFILE_TRIGONOMETRIC, 3.0 * PI / T1,
+                                           0.0, T1 / 23.7, one, 1, &c1), SMS_OK);
+        CHECK(one[0].k == 3u);
+        excess = sampled_excess(1.0, &L1, 1, one, T1 / 23.7, NULL);
+        CHECK(excess > -1.5 && excess <= 1e-9);
+    }
     /* trigonometric tuned: odd multiples of 3 pi / wd only */
     CHECK_STATUS(sms_kinematic_configs(40.0, L, 3, SMS_PROFILE_TRIGONOMETRIC, 300.0, 0.0, 1e-4, cfg, 3, &n), SMS_OK);
     CHECK(cfg[2].kind == SMS_HARMONIC);

@@ -149,8 +149,21 @@ def test_mode_tuned_bound_stage_reported_case():
                                kw["zeta"], Ts)
     cont = design.kinematic(**kw)
     assert [round(g.T / Ts, 1) for g in cont[:2]] == [951.9, 945.7]
-    assert price < 5
+    assert price < 4      # n + 1 for three bounds
     assert max(sampled_ratios(grid, Ts, kw["h"], [7693, 611.1, 9.139e5])) <= 1 + 1e-9
+
+
+@pytest.mark.parametrize("samples", [23.7, 100.3])
+def test_one_bound_tuned_half_sine_takes_the_next_multiple(samples):
+    """Alone, a tuned half sine is the velocity stage: where its sampled peak (exact timing)
+    exceeds vmax, the design takes the next odd multiple instead of refusing (it named Ts and
+    2^52 samples before), in C and in the reference."""
+    T1 = design.kinematic(h=1.0, vmax=1.0, profile="trigonometric")[0].T
+    kw = dict(h=1.0, vmax=1.0, profile="trigonometric", wn=3 * math.pi / T1, Ts=T1 / samples)
+    grid = design.kinematic(**kw)
+    assert grid[0].k == 3
+    assert max(sampled_ratios(grid, kw["Ts"], 1.0, [1.0])) <= 1 + 1e-9
+    assert design.kinematic_reference(**kw) == grid
 
 
 @pytest.mark.parametrize("nu", [2.08, 2.5, 3.3, 5.5, 10.5, 20.2, 50.5])
