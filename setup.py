@@ -1,8 +1,17 @@
 """Builds the cffi extensions smoothshaper._core (double) and smoothshaper._core_float (float)
-from c/src/*.c; all other metadata lives in pyproject.toml."""
+from c/src/*.c, and the CPython extension smoothshaper._kinematic_fastpath (design.kinematic's
+fast path); all other metadata lives in pyproject.toml."""
+import os
+import sys
+
 from setuptools import setup
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "python",
+                                "smoothshaper"))
+from _build_core import kinematic_fastpath_extension  # noqa: E402
+
 setup(
+    ext_modules=[kinematic_fastpath_extension()],
     cffi_modules=[
         "python/smoothshaper/_build_core.py:ffibuilder",
         "python/smoothshaper/_build_core.py:ffibuilder_float",

@@ -120,20 +120,14 @@ def _sources() -> list[str]:
 # Binding glue compiled into each module (not part of the C library): Chain.process in one
 # call. It checks every input sample first (the state stays untouched on a bad one), then
 # filters float64 to float64; the float build converts through a small block on the stack,
-# so the float path makes no full-size copy of the signal. design.kinematic's fast path passes
-# up to three bounds as scalars (each element written into a cffi array from Python costs more
-# than the C design's own arithmetic) and gets the last stage's family and mode multiple with
-# the lengths.
+# so the float path makes no full-size copy of the signal.
 _GLUE_CDEF = """
 ptrdiff_t smspy_chain_process_f64(sms_chain *chain, const double *in, double *out, size_t n);
-int smspy_kinematic3(double h, double vmax, double amax, double jmax, size_t n, int profile,
-                     double wn, double zeta, double Ts, double *out);
 """
 _GLUE_SOURCE = r"""
 #include <float.h>
 #include <stddef.h>
 #include "smoothshaper/smoothshaper.h"
-#include "trajectory_internal.h"
 
 /* Index of the first sample that is NaN/Inf or beyond limit (the chain's input range), or -1. */
 static ptrdiff_t smspy_first_bad_sample(const double *in, size_t n, double limit)
@@ -170,32 +164,6 @@ static ptrdiff_t smspy_chain_process_f64(sms_chain *chain, const double *in, dou
 #endif
     return -1;
 }
-
-/* The design of sms_kinematic_design() / sms_kinematic_configs() (the solve both call) for
- * n <= 3 bounds given as scalars (the unused ones ignored): out[0..n-1] receive the lengths,
- * out[3], out[4], out[5] the last stage's kind, sigma and mode multiple k. Returns the
- * sms_status; out is meaningful only on SMS_OK. */
-static int smspy_kinematic3(double h, double vmax, double amax, double jmax, size_t n,
-                            int profile, double wn, double zeta, double Ts, double *out)
-{
-    const double limits[3] = {vmax, amax, jmax};
-    double lengths[SMS_KINEMATIC_MAX_ORDER];
-    sms_kin_last last;
-    sms_status st;
-    size_t i;
-    if (n > 3)
-        return (int)SMS_ERR_ORDER;
-    st = sms_kin_solve_sampled(h, limits, n, (sms_profile)profile, wn, zeta, Ts, lengths,
-                               &last);
-    if (st != SMS_OK)
-        return (int)st;
-    for (i = 0; i < n; ++i)
-        out[i] = lengths[i];
-    out[3] = (double)last.kind;
-    out[4] = last.sigma;
-    out[5] = (double)last.k;
-    return (int)SMS_OK;
-}
 """
 
 
@@ -219,6 +187,24 @@ def make_builder(module: str, defines: list[str]) -> FFI:
         extra_compile_args=[] if sys.platform == "win32" else ["-fvisibility=hidden"],
     )
     return ffi
+
+
+def kinematic_fastpath_extension():
+    """The CPython extension ``smoothshaper._kinematic_fastpath`` (design.kinematic's fast
+    path, ``_kinematic_fastpath.c``): the C design and the Stage objects in one C function,
+    which cffi cannot return. Compiled from the same C sources, symbols kept private."""
+    from setuptools import Extension
+    return Extension(
+        "smoothshaper._kinematic_fastpath",
+        sources=[os.path.relpath(os.path.join(HERE, "_kinematic_fastpath.c"), ROOT)]
+        + _sources(),
+        depends=[os.path.relpath(p, ROOT) for p in sorted(
+            glob.glob(os.path.join(INCLUDE_DIR, "smoothshaper", "*.h"))
+            + glob.glob(os.path.join(SRC_DIR, "*.h")))],
+        include_dirs=[os.path.relpath(INCLUDE_DIR, ROOT), os.path.relpath(SRC_DIR, ROOT)],
+        libraries=[] if sys.platform == "win32" else ["m"],
+        extra_compile_args=[] if sys.platform == "win32" else ["-fvisibility=hidden"],
+    )
 
 
 ffibuilder = make_builder("smoothshaper._core", [])

@@ -47,7 +47,7 @@ from pathlib import Path
 import numpy as np
 
 __all__ = ["ROOT", "SPEED_BENCH", "interleaved", "Table", "run_c_bench", "C_ROWS", "c_tables",
-           "python_tables", "trajectory_table", "kinematic_call_table", "kinematic_floor",
+           "python_tables", "trajectory_table", "kinematic_call_table", "kinematic_parts",
            "fmu_table", "UNION_STAGE_BYTES", "memory_tables",
            "main"]
 
@@ -330,9 +330,9 @@ def trajectory_table(quick: bool, c_figures: dict) -> list[Table]:
 
 def kinematic_call_table(quick: bool) -> list[Table]:
     """``design.kinematic`` against ``sms_kinematic_design`` called through cffi with its
-    arrays prepared beforehand (the bare C call from Python), per common case; and the floor
-    of any Python function returning Stage objects: the keyword call, the scalar C call its
-    fast path makes, three Stage objects (built as the fast path builds them) and the list."""
+    arrays prepared beforehand (the bare C call from Python), per common case; and where a
+    three-bound call's time goes: the keyword call, the fast path (the C function that tests
+    the types, runs the C design and builds the Stage objects) and its objects."""
     from . import design as kinematic_design
     from .filters import _backend
 
@@ -345,8 +345,7 @@ def kinematic_call_table(quick: bool) -> list[Table]:
                   "the case says; Ts=1 ms, wn=30 rad/s with zeta=0.05 where given). Raw: "
                   "sms_kinematic_design through cffi, its bounds and output arrays prepared "
                   "beforehand. design.kinematic: the public call, its argument types checked, "
-                  "the C design, the Stage objects. The floor below is what any function "
-                  "returning Stage objects pays.")
+                  "the C design, the Stage objects.")
     cases = {"1 bound": dict(vmax=0.5), "2 bounds": dict(vmax=0.5, amax=5.0),
              "3 bounds": dict(vmax=0.5, amax=5.0, jmax=100.0),
              "3 bounds, int arguments": dict(vmax=2, amax=5, jmax=100),
@@ -372,87 +371,47 @@ def kinematic_call_table(quick: bool) -> list[Table]:
             "python": call}, rounds=rounds, repeat=repeat)
         table.add(name, t["raw"] * 1e9, t["python"] * 1e9, _ratio(t["python"], t["raw"]))
 
-    f = kinematic_floor(rounds, repeat)
-    floor = Table("design.kinematic's floor (3 bounds)",
+    parts = kinematic_parts(rounds, repeat)
+    split = Table("Where design.kinematic's time goes (3 bounds)",
                   ["part", "ns", "ratio to the raw C call"],
                   "Each part timed on its own, an empty lambda's cost subtracted from every "
-                  "row so that the parts add up (the table above keeps it in both columns, "
-                  "hence its smaller ratios); their sum is the least any Python function "
-                  "returning the three Stage objects pays; run in one function they take "
-                  "longer than the sum. The rest of design.kinematic is the type checks, the "
-                  "thread's output buffer and reading the lengths.")
+                  "row (the table above keeps it in both columns, hence its smaller ratios). "
+                  "The fast path is the C function design.kinematic calls: the argument types "
+                  "tested, the C design, three Stage objects and their list.")
     for key, part in (("call", "the keyword call (an empty function with its signature)"),
-                      ("glue", "the C design through the scalar glue the fast path calls"),
-                      ("stages", "three Stage objects and their list"),
-                      ("floor", "sum: the floor"),
-                      ("together", "the three in one function, no check"),
+                      ("fastpath", "the fast path, called directly"),
                       ("python", "design.kinematic"),
                       ("raw", "raw C call via cffi")):
-        floor.add(part, f[key], _ratio(f[key], f["raw"]))
-    return [table, floor]
+        split.add(part, parts[key], _ratio(parts[key], parts["raw"]))
+    return [table, split]
 
 
-def kinematic_floor(rounds: int, repeat: int) -> dict:
-    """CPU ns per call (an empty lambda's cost subtracted) of a three-bound design: ``"raw"``
-    (``sms_kinematic_design`` through cffi, arrays prepared), ``"python"``
-    (``design.kinematic``), and the parts any Python function returning the Stage objects
-    pays: ``"call"`` (the keyword call of a function with its signature and no body),
-    ``"glue"`` (the scalar C call the fast path makes), ``"stages"`` (three Stage objects and
-    their list, built as the fast path builds them), their sum ``"floor"``, and
-    ``"together"``: one function with the signature doing only those (no check, no buffer
-    of its own; one call more, to the stage builder), slower than the sum of its parts."""
+def kinematic_parts(rounds: int, repeat: int) -> dict:
+    """CPU ns per call (an empty lambda's cost subtracted) of a three-bound design:
+    ``"raw"`` (``sms_kinematic_design`` through cffi, arrays prepared), ``"python"``
+    (``design.kinematic``), ``"call"`` (the keyword call of a function with its signature and
+    no body) and ``"fastpath"`` (the C function design.kinematic calls, with positional
+    arguments)."""
     from . import design as kinematic_design
     from .filters import _backend
-    from .stages import Stage, _UncheckedStage as blank
 
     ffi, lib = _backend("double")
-    raw_design, glue, kinematic = (lib.sms_kinematic_design, lib.smspy_kinematic3,
-                                   kinematic_design.kinematic)
-    limits, T = ffi.new("double[]", [0.5, 5.0, 100.0]), ffi.new("double[]", 6)
+    raw_design, kinematic = lib.sms_kinematic_design, kinematic_design.kinematic
+    fastpath = kinematic_design._fastpath
+    limits, T = ffi.new("double[]", [0.5, 5.0, 100.0]), ffi.new("double[]", 3)
     count = ffi.new("size_t *")
 
     def signature(*, h, vmax, amax=None, jmax=None, higher=(), profile="polynomial", wn=None,
                   zeta=0.0, Ts=None):
         return None
-
-    def three_stages():
-        # a copy of the fast path's stage building in design.kinematic, kept in step by hand:
-        # a builder both called would add a Python call to the design it measures the floor of
-        s = blank()
-        s.kind = "rectangular"
-        s.T = 0.5
-        s.order = 1
-        out = [s]
-        s.__class__ = Stage
-        s = blank()
-        s.kind = "rectangular"
-        s.T = 0.1
-        s.order = 1
-        out.append(s)
-        s.__class__ = Stage
-        s = blank()
-        s.kind = "rectangular"
-        s.T = 0.05
-        s.order = 1
-        out.append(s)
-        s.__class__ = Stage
-        return out
-
-    def together(*, h, vmax, amax=None, jmax=None, higher=(), profile="polynomial", wn=None,
-                 zeta=0.0, Ts=None):
-        glue(h, vmax, amax, jmax, 3, 0, 0.0, 0.0, 0.0, T)
-        return three_stages()
     t = interleaved({
         "raw": lambda: raw_design(1.0, limits, 3, 0, 0.0, 0.0, 0.0, T, 3, count),
         "empty": lambda: None,
         "call": lambda: signature(h=1.0, vmax=0.5, amax=5.0, jmax=100.0),
-        "glue": lambda: glue(1.0, 0.5, 5.0, 100.0, 3, 0, 0.0, 0.0, 0.0, T),
-        "stages": three_stages,
-        "together": lambda: together(h=1.0, vmax=0.5, amax=5.0, jmax=100.0),
+        "fastpath": lambda: fastpath(1.0, 0.5, 5.0, 100.0, (), "polynomial", None, 0.0, None),
         "python": lambda: kinematic(h=1.0, vmax=0.5, amax=5.0, jmax=100.0)},
         rounds=rounds, repeat=repeat)
     out = {name: (sec - t["empty"]) * 1e9 for name, sec in t.items() if name != "empty"}
-    out["floor"] = out["call"] + out["glue"] + out["stages"]
     return out
 
 

@@ -198,8 +198,7 @@ def design_call_costs(n_cases: int, rounds: int, seed: int = 11) -> dict:
     last stage tuned to a mode of zeta 0.05 whose period is 10^U(-0.5, 0.5) times
     amax/jmax). Each maps to ``"raw"`` (``sms_kinematic_design`` through cffi, the bounds
     written into a prepared cffi array per call, as a caller of the C API from Python does),
-    ``"scalar"`` (the binding glue with the bounds as scalar arguments, which the fast path
-    calls), ``"python"`` (``design.kinematic``), ``"batch"`` (``design.kinematic_lengths`` on
+    ``"python"`` (``design.kinematic``), ``"batch"`` (``design.kinematic_lengths`` on
     all the problems at once, per problem) and ``"cases"``; an empty loop over the same cases
     is subtracted from the loops."""
     from . import design
@@ -219,7 +218,7 @@ def design_call_costs(n_cases: int, rounds: int, seed: int = 11) -> dict:
         "mode": [(h, v, a, j, 0.0, float(2 * np.pi / (a / j * 10.0 ** rng.uniform(-0.5, 0.5))))
                  for h, v, a, j in cases]}
     L, T, count = ffi.new("double[3]"), ffi.new("double[6]"), ffi.new("size_t *")
-    c_design, scalar, kinematic = lib.sms_kinematic_design, lib.smspy_kinematic3, design.kinematic
+    c_design, kinematic = lib.sms_kinematic_design, design.kinematic
     out = {}
     for name, rows in variants.items():
         zeta = 0.05 if name == "mode" else 0.0
@@ -234,10 +233,6 @@ def design_call_costs(n_cases: int, rounds: int, seed: int = 11) -> dict:
                 L[1] = a
                 L[2] = j
                 c_design(h, L, 3, 0, wn, zeta, ts, T, 3, count)
-
-        def glue():
-            for h, v, a, j, ts, wn in rows:
-                scalar(h, v, a, j, 3, 0, wn, zeta, ts, T)
 
         def python():
             if name == "Ts":
@@ -256,7 +251,7 @@ def design_call_costs(n_cases: int, rounds: int, seed: int = 11) -> dict:
                                      jmax=columns[3], Ts=1e-3 if name == "Ts" else None)
         loop = _cpu(empty, rounds)
         out[name] = {key: (_cpu(fn, rounds) - loop) / len(rows)
-                     for key, fn in (("raw", raw), ("scalar", glue), ("python", python))}
+                     for key, fn in (("raw", raw), ("python", python))}
         # the batch takes one mode for all problems: timed without one
         out[name]["batch"] = _cpu(batch, rounds) / len(rows) if name != "mode" else None
         out[name]["cases"] = len(rows)
@@ -322,18 +317,16 @@ def main(argv=None) -> int:
             f", design.kinematic_lengths {c['batch'] / 1e3:.3f} us per problem "
             f"({c['batch'] / c['raw']:.2f}x the raw call)")
         print(f"{label}: raw C call through cffi {c['raw'] / 1e3:.3f} us (bounds written into "
-              f"a prepared array; {c['scalar'] / 1e3:.3f} us with them as scalar arguments), "
-              f"design.kinematic {c['python'] / 1e3:.3f} us ({c['python'] / c['raw']:.2f}x the "
-              f"raw call, {c['python'] / c['scalar']:.2f}x the scalar one){batch}; "
+              f"a prepared array), design.kinematic {c['python'] / 1e3:.3f} us "
+              f"({c['python'] / c['raw']:.2f}x the raw call){batch}; "
               f"{c['cases']} different random designs, loop overhead subtracted")
-    from .bench import kinematic_floor
-    f = kinematic_floor(3 if args.quick else 15, 200 if args.quick else 5000)
-    print(f"  design.kinematic's floor (h=1, vmax=0.5, amax=5, jmax=100): the keyword call "
-          f"{f['call'] / 1e3:.3f} us + the scalar C call {f['glue'] / 1e3:.3f} us + three Stage "
-          f"objects and their list {f['stages'] / 1e3:.3f} us = {f['floor'] / 1e3:.3f} us, "
-          f"{f['floor'] / f['raw']:.2f}x the raw call with its arrays prepared "
-          f"({f['raw'] / 1e3:.3f} us); design.kinematic {f['python'] / 1e3:.3f} us "
-          f"({f['python'] / f['raw']:.2f}x)")
+    from .bench import kinematic_parts
+    f = kinematic_parts(3 if args.quick else 15, 200 if args.quick else 5000)
+    print(f"  one design (h=1, vmax=0.5, amax=5, jmax=100): design.kinematic "
+          f"{f['python'] / 1e3:.3f} us ({f['python'] / f['raw']:.2f}x the raw call with its "
+          f"arrays prepared, {f['raw'] / 1e3:.3f} us) = the keyword call {f['call'] / 1e3:.3f} "
+          f"us + the fast path (types, C design, three Stage objects) "
+          f"{f['fastpath'] / 1e3:.3f} us")
 
     from .bench_grid_price import report
     for n in range(1, 9):   # more cases and an adversarial search: bench_grid_price

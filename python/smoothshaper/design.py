@@ -24,15 +24,13 @@ bound. Seed 001 sec. 5.2 (T3 = 2*pi/wn) is ``jmax >= amax * wn / (2*pi)`` with `
 """
 from __future__ import annotations
 
-import array
 import cmath
 import itertools
 import math
-import threading
 
 import numpy as np
 
-from . import stages as _stages
+from . import _kinematic_fastpath, stages as _stages
 from .filters import ParameterError, _backend, _raise_status
 from .stages import Stage, _unchecked_stage
 from ._checks import (choice as _choice, finite as _finite, positive as _positive,
@@ -215,89 +213,23 @@ def kinematic(*, h: float, vmax: float, amax: float | None = None, jmax: float |
         ``Ts``; extreme combinations name the pair whose ratio no duration can carry (e.g.
         ``h/vmax = 1e+318 s``).
     """
-    # Fast path (plain numbers, at most three bounds): the C design checks the values (finite,
-    # > 0, ratios in range, zeta in [0, 1)) anyway, so only the types are tested here; a
-    # refused design, or a huge int cffi cannot convert, goes to the checked path, which names
-    # the argument. The Stage objects are built from the C core's values without
-    # re-validation (stages._UncheckedStage), written out per stage (a loop or a builder
-    # call adds about a fifth to each). What is left is mostly CPython's own cost: the
-    # keyword call, the cffi call and the objects (docs/sampled-limits.md, "What it costs").
-    if (higher is _NO_HIGHER and type(h) in _PLAIN and type(vmax) in _PLAIN
-            and (amax is None and jmax is None
-                 or type(amax) in _PLAIN and (jmax is None or type(jmax) in _PLAIN))
-            and (wn is None or type(wn) in _PLAIN and type(zeta) in _PLAIN and wn > 0)
-            and (Ts is None or type(Ts) in _PLAIN and Ts > 0)
-            and type(profile) is str and profile in _FAST_PROFILES):
-        try:
-            out, T, design3 = _THREAD.buffers
-        except AttributeError:
-            out, T, design3 = _THREAD.buffers = _fast_buffers()
-        n = 1 if amax is None else 2 if jmax is None else 3
-        last = _FAST_PROFILES[profile]
-        try:   # zeta is ignored without a mode
-            st = design3(h, vmax, amax or 0.0, jmax or 0.0, n, last, wn or 0.0,
-                         zeta if wn else 0.0, Ts or 0.0, out)
-        except OverflowError:
-            st = -1
-        if st == 0:
-            # every value read before the first allocation: a collection it triggers may run
-            # finalizers, which could design on this thread's buffer
-            t0, t1, t2 = T[0], T[1], T[2]
-            if wn is not None:   # the last stage's family, decay and mode multiple
-                kind, sigma, k = T[3], T[4], T[5]
-            s = _UNCHECKED()
-            s.kind = "rectangular"
-            s.T = t0
-            s.order = 1
-            stages = [s]
-            if n > 1:
-                s.__class__ = Stage
-                s = _UNCHECKED()
-                s.kind = "rectangular"
-                s.T = t1
-                s.order = 1
-                stages.append(s)
-                if n > 2:
-                    s.__class__ = Stage
-                    s = _UNCHECKED()
-                    s.kind = "rectangular"
-                    s.T = t2
-                    s.order = 1
-                    stages.append(s)
-            if wn is not None:
-                s.kind = _KINDS[int(kind)]
-                if sigma:
-                    s.sigma = sigma
-                if k != 1:
-                    s.k = int(k)
-                if Ts and kind != _HARMONIC:   # on a grid: bounded taps (sms_kin_last)
-                    s.timing = "bounded"
-            elif last:
-                s.kind = "harmonic"
-            s.__class__ = Stage
-            return stages
+    # Fast path (plain numbers, at most three bounds; _kinematic_fastpath.c): the argument
+    # types tested, the C design and the Stage objects built in one C function; None where
+    # it does not apply or the C design refuses, and the checked path names the argument.
+    stages = _fastpath(h, vmax, amax, jmax, higher, profile, wn, zeta, Ts)
+    if stages is not None:
+        return stages
     return _kinematic_checked(h, vmax, amax, jmax, higher, profile, wn, zeta, Ts)
 
 
-_FAST_PROFILES = {p: i for i, p in enumerate(PROFILES)}   # the C sms_profile values
-# Types cffi converts to a double exactly as float() does (bool, complex, str and other
-# number types take the checked path, which refuses or converts them by name).
-_PLAIN = frozenset((float, int, np.float64, np.int64, np.float32))
-_NO_HIGHER = ()   # the default of ``higher``: the empty tuple is a single object
-_THREAD = threading.local()   # cffi calls release the GIL: one output buffer per thread
-_UNCHECKED = _stages._UncheckedStage
-_KINDS = _stages.KINDS
-_HARMONIC = float(_KINDS.index("harmonic"))
-
-
-def _fast_buffers():
-    """This thread's output buffer for the fast path as a C pointer and as an array.array
-    of six doubles (reading an array element costs less than reading a cffi one): three
-    lengths, then the last stage's kind, sigma and k; with the scalar-bounds design of the
-    double module (binding glue around the solve of ``sms_kinematic_design``)."""
-    ffi, lib = _backend("double")
-    T = array.array("d", bytes(6 * 8))
-    return ffi.from_buffer("double[]", T), T, lib.smspy_kinematic3
+# The fast path's Python objects: the stage type and names (index == C enumeration value),
+# the profiles, and the number types besides float and int that convert exactly as float()
+# does (bool, complex, str and other types take the checked path, which refuses or converts
+# them by name).
+_kinematic_fastpath.configure(Stage, _stages.KINDS, _stages.TIMINGS,
+                              {p: i for i, p in enumerate(PROFILES)},
+                              (np.float64, np.int64, np.float32))
+_fastpath = _kinematic_fastpath.design
 
 
 def _kinematic_checked(h, vmax, amax, jmax, higher, profile, wn, zeta, Ts) -> list[Stage]:

@@ -237,13 +237,18 @@ def test_fast_path_is_taken_and_exact(lh, lv, la, lj, n, profile, grid, mode, lw
 
 
 def test_fast_path_threads():
-    """Each thread has its own length buffer (cffi releases the GIL during the C call)."""
+    """Designs in four threads at once equal the checked path's, with and without a mode on
+    a grid (the fast path lets other threads run during that longer design)."""
     import concurrent.futures
     rng = np.random.default_rng(7)
     cases = [dict(h=float(h), vmax=float(v), amax=float(a), jmax=float(j))
              for h, v, a, j in 10.0 ** rng.uniform(-2, 2, (400, 4))]
+    for c in cases[::4]:
+        T = design.duration(design.kinematic(**c))
+        c.update(wn=float(2 * np.pi / T * rng.uniform(2, 20)), zeta=0.05, Ts=T / 300)
     expected = [design._kinematic_checked(c["h"], c["vmax"], c["amax"], c["jmax"], (),
-                                          "polynomial", None, 0.0, None) for c in cases]
+                                          "polynomial", c.get("wn"), c.get("zeta", 0.0),
+                                          c.get("Ts")) for c in cases]
 
     def run(offset):
         return all(design.kinematic(**cases[(i + offset) % len(cases)])
@@ -252,10 +257,9 @@ def test_fast_path_threads():
         assert all(pool.map(run, range(0, 400, 100)))
 
 
-def test_fast_path_reads_the_design_before_allocating():
-    """The fast path's first allocation can trigger a collection whose finalizers design on
-    the same thread's output buffer: the lengths are read before it, so each design keeps
-    its own (and a design with a mode its own last stage)."""
+def test_fast_path_reentrant_from_finalizers():
+    """An allocation of the fast path can trigger a collection whose finalizers design on
+    the same thread: each design keeps its own lengths and last stage."""
     import gc
     other = dict(h=3.0, vmax=7.0, amax=11.0, jmax=13.0, wn=5.0, zeta=0.2, profile="damped")
 
@@ -283,6 +287,33 @@ def test_fast_path_reads_the_design_before_allocating():
     finally:
         gc.set_threshold(*threshold)
     assert finalized   # the finalizers did design in between
+
+
+def test_fast_path_keeps_reference_counts():
+    """The C fast path neither leaks nor over-releases a reference: after many designs of
+    every outcome (stages with each last-stage field, a fallback to the checked path, a
+    refused design) the objects it uses and returns have their reference counts back."""
+    import gc
+    import sys
+    watched = [stages.Stage, *stages.KINDS, *stages.TIMINGS, "polynomial", "damped", 0.05]
+    calls = [dict(h=1.0, vmax=0.5, amax=5.0, jmax=100.0),
+             dict(h=1.0, vmax=0.5, amax=5.0, jmax=100.0, wn=30.0, zeta=0.05, Ts=1e-3,
+                  profile="damped"),
+             dict(h=1.0, vmax=0.5, amax=5.0, jmax=100.0, wn=30.0, zeta=0.05,
+                  profile="trigonometric"),
+             dict(h=1.0, vmax=np.float32(0.5), amax=np.int64(5), jmax=100),
+             dict(h=1.0, vmax=0.5, amax=5.0, jmax=100.0, higher=(1e4,))]
+    for c in calls:   # warm every path (caches, interned names) before counting
+        design.kinematic(**c)
+    gc.collect()   # earlier tests' garbage holds Stage objects
+    before = [sys.getrefcount(o) for o in watched]
+    kept = [design.kinematic(**c) for c in calls for _ in range(1000)]
+    del kept
+    for _ in range(1000):
+        with pytest.raises(design.ParameterError):
+            design.kinematic(h=1.0, vmax=-0.5)
+    gc.collect()
+    assert [sys.getrefcount(o) for o in watched] == before
 
 
 @given(kind=st.sampled_from(stages.SMOOTHERS), T=st.floats(1e-9, 1e9),

@@ -1,0 +1,236 @@
+/* design.kinematic's fast path as a CPython function: plain numbers in, Stage objects out.
+ *
+ * design.kinematic is called once per move in online planning, where its cost beside the C
+ * design matters. Through cffi, a Python function that returns Stage objects pays the keyword
+ * call, the cffi call and the objects from Python code: 3x the raw C call at least. Here the
+ * argument types are tested, the C design (the solve of sms_kinematic_design /
+ * sms_kinematic_configs) runs and the Stage objects are built in one C function.
+ *
+ * It returns None whenever the fast path does not apply (a type other than a plain number,
+ * more than three bounds, a design the C core refuses); design.kinematic then runs its fully
+ * checked path, which names the offending argument. The C core checks every value (finite,
+ * > 0, ratios in range, zeta in [0, 1)), so only the types are tested here. The Stage objects
+ * get the C core's values without re-validation: they equal what Stage(...) builds from the
+ * same values (tests/python/test_design.py compares them field by field). */
+#define PY_SSIZE_T_CLEAN
+#include <Python.h>
+
+#include "smoothshaper/smoothshaper.h"
+#include "trajectory_internal.h"
+
+/* Set once by configure() (design.py at import): Stage, the kind and timing names indexed by
+ * the C enumerations, the profile names mapped to sms_profile, the extra number types that
+ * convert exactly like float() (NumPy float64, float32, int64). */
+static PyObject *stage_type, *kind_names, *timing_names, *profile_index, *extra_numbers;
+static PyObject *name_kind, *name_T, *name_order, *name_sigma, *name_k, *name_timing;
+static PyObject *one, *no_arguments;
+
+/* 1 and *x = its value if o is a plain number cffi would pass as float(o); 0 otherwise,
+ * with no exception set (an int too large for a double included: the checked path names it). */
+static int plain_number(PyObject *o, double *x)
+{
+    if (PyFloat_CheckExact(o)) {
+        *x = PyFloat_AS_DOUBLE(o);
+        return 1;
+    }
+    if (PyLong_CheckExact(o) ||
+        PySequence_Contains(extra_numbers, (PyObject *)Py_TYPE(o)) == 1) {
+        *x = PyFloat_AsDouble(o);
+        if (*x == -1.0 && PyErr_Occurred()) {
+            PyErr_Clear();
+            return 0;
+        }
+        return 1;
+    }
+    return 0;
+}
+
+/* A Stage as Stage(kind, T=T, ...) would build it, from valid values, without running its
+ * validation; object.__new__ then the fields written past the frozen dataclass's
+ * __setattr__ (which only raises). Only fields that differ from the class defaults are set,
+ * and order (the constructor turns None into 1 for smoothers). New reference or NULL. */
+static PyObject *new_stage(PyObject *kind, double T)
+{
+    PyObject *s, *t;
+    s = PyBaseObject_Type.tp_new((PyTypeObject *)stage_type, no_arguments, NULL);
+    if (s == NULL)
+        return NULL;
+    t = PyFloat_FromDouble(T);
+    if (t == NULL || PyObject_GenericSetAttr(s, name_kind, kind) < 0 ||
+        PyObject_GenericSetAttr(s, name_T, t) < 0 ||
+        PyObject_GenericSetAttr(s, name_order, one) < 0) {
+        Py_XDECREF(t);
+        Py_DECREF(s);
+        return NULL;
+    }
+    Py_DECREF(t);
+    return s;
+}
+
+/* Sets a field from a new reference (stolen); -1 on failure. */
+static int set_new(PyObject *s, PyObject *name, PyObject *value)
+{
+    int r;
+    if (value == NULL)
+        return -1;
+    r = PyObject_GenericSetAttr(s, name, value);
+    Py_DECREF(value);
+    return r;
+}
+
+/* design(h, vmax, amax, jmax, higher, profile, wn, zeta, Ts): the stages, or None. */
+static PyObject *design(PyObject *self, PyObject *const *args, Py_ssize_t nargs)
+{
+    PyObject *amax_o, *jmax_o, *higher, *profile, *wn_o, *Ts_o, *prof, *stages;
+    double h, limits[3] = {0.0, 0.0, 0.0}, wn = 0.0, zeta = 0.0, Ts = 0.0;
+    double lengths[SMS_KINEMATIC_MAX_ORDER];
+    sms_kin_last last;
+    sms_status st;
+    size_t n, i;
+    long profile_value;
+    (void)self;
+    if (nargs != 9) {
+        PyErr_SetString(PyExc_TypeError, "design() takes 9 positional arguments");
+        return NULL;
+    }
+    if (stage_type == NULL) {
+        PyErr_SetString(PyExc_RuntimeError, "configure() has not been called");
+        return NULL;
+    }
+    amax_o = args[2];
+    jmax_o = args[3];
+    higher = args[4];
+    profile = args[5];
+    wn_o = args[6];
+    Ts_o = args[8];
+    /* more bounds than three, or another profile than the three names: the checked path */
+    if (!PyTuple_CheckExact(higher) || PyTuple_GET_SIZE(higher) != 0 ||
+        !PyUnicode_CheckExact(profile))
+        Py_RETURN_NONE;
+    prof = PyDict_GetItemWithError(profile_index, profile);
+    if (prof == NULL) {
+        if (PyErr_Occurred())
+            return NULL;
+        Py_RETURN_NONE;
+    }
+    profile_value = PyLong_AsLong(prof);
+    if (!plain_number(args[0], &h) || !plain_number(args[1], &limits[0]))
+        Py_RETURN_NONE;
+    n = 1;
+    if (amax_o != Py_None) {
+        if (!plain_number(amax_o, &limits[1]))
+            Py_RETURN_NONE;
+        n = 2;
+        if (jmax_o != Py_None) {
+            if (!plain_number(jmax_o, &limits[2]))
+                Py_RETURN_NONE;
+            n = 3;
+        }
+    } else if (jmax_o != Py_None) {
+        Py_RETURN_NONE; /* jmax without amax: the checked path names it */
+    }
+    /* zeta is ignored without a mode */
+    if (wn_o != Py_None && (!plain_number(wn_o, &wn) || !plain_number(args[7], &zeta) ||
+                            !(wn > 0.0)))
+        Py_RETURN_NONE;
+    if (Ts_o != Py_None && (!plain_number(Ts_o, &Ts) || !(Ts > 0.0)))
+        Py_RETURN_NONE;
+    if (wn > 0.0 && Ts > 0.0) {
+        /* a tuned stage on a grid searches mode multiples (microseconds, up to about 0.1 ms
+         * with three bounds): let other threads run */
+        Py_BEGIN_ALLOW_THREADS
+        st = sms_kin_solve_sampled(h, limits, n, (sms_profile)profile_value, wn, zeta, Ts,
+                                   lengths, &last);
+        Py_END_ALLOW_THREADS
+    } else {
+        st = sms_kin_solve_sampled(h, limits, n, (sms_profile)profile_value, wn, zeta, Ts,
+                                   lengths, &last);
+    }
+    if (st != SMS_OK)
+        Py_RETURN_NONE; /* the checked path re-runs the design and names the cause */
+    stages = PyList_New((Py_ssize_t)n);
+    if (stages == NULL)
+        return NULL;
+    for (i = 0; i < n; ++i) {
+        PyObject *s = new_stage(PyTuple_GET_ITEM(kind_names, SMS_RECTANGULAR),
+                                lengths[i]);
+        if (s == NULL) {
+            Py_DECREF(stages);
+            return NULL;
+        }
+        PyList_SET_ITEM(stages, (Py_ssize_t)i, s);
+    }
+    {
+        /* the last stage: its family, decay, mode multiple and timing */
+        PyObject *s = PyList_GET_ITEM(stages, (Py_ssize_t)(n - 1));
+        if ((last.kind != SMS_RECTANGULAR &&
+             PyObject_GenericSetAttr(s, name_kind, PyTuple_GET_ITEM(kind_names, last.kind)) < 0)
+            || (last.sigma != 0.0 && set_new(s, name_sigma, PyFloat_FromDouble(last.sigma)) < 0)
+            || (last.k != 1u && set_new(s, name_k, PyLong_FromUnsignedLong(last.k)) < 0)
+            || (last.timing != SMS_TIMING_EXACT &&
+                PyObject_GenericSetAttr(s, name_timing,
+                                        PyTuple_GET_ITEM(timing_names, last.timing)) < 0)) {
+            Py_DECREF(stages);
+            return NULL;
+        }
+    }
+    return stages;
+}
+
+/* configure(Stage, KINDS, TIMINGS, profiles, extra_numbers): see the variables above. */
+static PyObject *configure(PyObject *self, PyObject *args)
+{
+    PyObject *stage, *kinds, *timings, *profiles, *numbers;
+    (void)self;
+    if (!PyArg_ParseTuple(args, "OO!O!O!O!:configure", &stage, &PyTuple_Type, &kinds,
+                          &PyTuple_Type, &timings, &PyDict_Type, &profiles, &PyTuple_Type,
+                          &numbers))
+        return NULL;
+    if (!PyType_Check(stage) || PyTuple_GET_SIZE(kinds) != SMS_KIND_COUNT ||
+        PyTuple_GET_SIZE(timings) != SMS_TIMING_BOUNDED + 1) {
+        PyErr_SetString(PyExc_ValueError, "configure(): Stage, KINDS and TIMINGS expected");
+        return NULL;
+    }
+    Py_INCREF(stage);
+    Py_INCREF(kinds);
+    Py_INCREF(timings);
+    Py_INCREF(profiles);
+    Py_INCREF(numbers);
+    Py_XSETREF(stage_type, stage);
+    Py_XSETREF(kind_names, kinds);
+    Py_XSETREF(timing_names, timings);
+    Py_XSETREF(profile_index, profiles);
+    Py_XSETREF(extra_numbers, numbers);
+    Py_RETURN_NONE;
+}
+
+static PyMethodDef methods[] = {
+    {"design", (PyCFunction)(void (*)(void))design, METH_FASTCALL,
+     "design(h, vmax, amax, jmax, higher, profile, wn, zeta, Ts) -> list of Stage or None\n\n"
+     "design.kinematic's fast path: the stages for plain numbers and at most three bounds,\n"
+     "None where the fully checked path must run (other types, a refused design)."},
+    {"configure", configure, METH_VARARGS,
+     "configure(Stage, KINDS, TIMINGS, profiles, extra_numbers): the Python objects used."},
+    {NULL, NULL, 0, NULL}};
+
+static struct PyModuleDef module = {PyModuleDef_HEAD_INIT, "_kinematic_fastpath",
+                                    "design.kinematic's fast path (see design.py).", -1,
+                                    methods, NULL, NULL, NULL, NULL};
+
+PyMODINIT_FUNC PyInit__kinematic_fastpath(void)
+{
+    if (name_kind == NULL) {
+        name_kind = PyUnicode_InternFromString("kind");
+        name_T = PyUnicode_InternFromString("T");
+        name_order = PyUnicode_InternFromString("order");
+        name_sigma = PyUnicode_InternFromString("sigma");
+        name_k = PyUnicode_InternFromString("k");
+        name_timing = PyUnicode_InternFromString("timing");
+        one = PyLong_FromLong(1);
+        no_arguments = PyTuple_New(0);
+        if (no_arguments == NULL || name_kind == NULL || name_T == NULL || name_order == NULL || name_sigma == NULL ||
+            name_k == NULL || name_timing == NULL || one == NULL)
+            return NULL;
+    }
+    return PyModule_Create(&module);
+}
