@@ -35,7 +35,8 @@ static int plain_number(PyObject *o, double *x)
     }
     if (PyLong_CheckExact(o) ||
         PySequence_Contains(extra_numbers, (PyObject *)Py_TYPE(o)) == 1) {
-        *x = PyFloat_AsDouble(o);
+        /* an int directly: through __float__ it would make and free a float object */
+        *x = PyLong_CheckExact(o) ? PyLong_AsDouble(o) : PyFloat_AsDouble(o);
         if (*x == -1.0 && PyErr_Occurred()) {
             PyErr_Clear();
             return 0;
