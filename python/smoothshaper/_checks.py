@@ -36,7 +36,11 @@ def real(name: str, value) -> float:
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (numbers.Real, np.number)) \
             or isinstance(value, (complex, np.complexfloating)):
         raise ParameterError(name, f"{name} must be a real number, got {_type_text(value)}")
-    return float(value)
+    try:
+        return float(value)
+    except OverflowError:   # an int beyond the largest float (about 1.8e308)
+        raise ParameterError(name, f"{name} must be finite, got an int of {int(value).bit_length()} "
+                             "bits, beyond the largest float (about 1.8e308)") from None
 
 
 def finite(name: str, value) -> float:

@@ -65,6 +65,18 @@ def test_scalars_refuse_bool_complex_and_text(value):
     assert "must be a real number" in str(exc)
 
 
+@pytest.mark.parametrize("call, parameter", [
+    (lambda h: sms.harmonic(T=h), "T"),
+    (lambda h: sms.design.kinematic(h=h, vmax=1.0), "h"),
+    (lambda h: sms.design.kinematic(h=1.0, vmax=1.0, amax=2, jmax=3, Ts=h), "Ts"),
+    (lambda h: sms.Chain(sms.harmonic(T=0.1), Ts=h), "Ts")])
+def test_an_int_beyond_the_largest_float_is_named(call, parameter):
+    """float(10**400) raises OverflowError; every scalar check turns it into the parameter's
+    error (the int's size in bits, never its 400 digits)."""
+    exc = raises(parameter, call, 10 ** 400)
+    assert "1329 bits" in str(exc) and len(str(exc)) < 200
+
+
 def test_integers_refuse_bool_and_fractions():
     raises("k", sms.harmonic, T=0.1, k=True)
     raises("k", sms.harmonic, T=0.1, k=1.5)
