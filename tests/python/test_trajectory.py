@@ -386,3 +386,48 @@ def test_a_subnormal_target_is_reached_not_dropped(target, profile, mode):
     y = g.process(np.full(3000, target))
     assert y[-1, 0] == target
     assert np.all(np.isfinite(y))
+
+
+@pytest.mark.parametrize("precision", ["double", "float"])
+def test_a_1000_s_move_arrives_on_time_within_vmax_over_every_second(precision):
+    """Generator(vmax=1, amax=10, jmax=1000, Ts=1e-4) from 0 to 1000: about 1e7 samples. In
+    float it used to arrive at 1004.08 s instead of 1000.11 s, and its mean speed over 1 s
+    windows reached 1.22 vmax (a float time losing whole samples, a position summed sample by
+    sample). Now every sample is computed afresh from the plan (docs/sampled-limits.md, "Float,
+    any move length"): double arrives on ruckig's duration rounded up to the grid, float within
+    the rounding of the duration itself (the C test's rule: |k - n| <= 1 + 8 u n for n = T/Ts
+    samples, tests/c/test_generator.c), and both land exactly on the target."""
+    vmax, amax, jmax, Ts, h = 1.0, 10.0, 1000.0, 1e-4, 1000.0
+    # vmax and amax are reached (h >= vmax (vmax/amax + amax/jmax), vmax/amax >= amax/jmax):
+    # the double-S duration is h/vmax + vmax/amax + amax/jmax = 1000.11 s
+    T = h / vmax + vmax / amax + amax / jmax
+    try:
+        import ruckig
+    except ImportError:
+        pass
+    else:
+        otg, inp, traj = ruckig.Ruckig(1), ruckig.InputParameter(1), ruckig.Trajectory(1)
+        inp.current_position, inp.target_position = [0.0], [h]
+        inp.max_velocity, inp.max_acceleration, inp.max_jerk = [vmax], [amax], [jmax]
+        otg.calculate(inp, traj)
+        assert traj.duration == pytest.approx(T, rel=1e-12)
+        T = traj.duration
+    n = T / Ts
+    expect = math.ceil(n * (1 - 1e-12))            # 10,001,100
+    u = UNIT_ROUNDOFF[precision]
+    y = tr.Generator(vmax=vmax, amax=amax, jmax=jmax, Ts=Ts, precision=precision).process(
+        np.full(expect + 2000, h))
+    arrive = np.flatnonzero((y[:, 0] == h) & (y[:, 1] == 0) & (y[:, 2] == 0))[0]
+    if precision == "double":
+        assert arrive == expect, (arrive, expect)
+    else:
+        assert n - 8 * u * n <= arrive <= n + 1 + 8 * u * n, (arrive, n)
+    assert np.all(y[arrive:, 0] == h) and np.all(y[arrive:, 1:] == 0)
+    tol = 1 + BOUND_RTOL[precision]
+    assert np.all(np.max(np.abs(y[:, 1:]), axis=0) <= np.array([vmax, amax, jmax]) * tol)
+    # mean speed over every window of 1 s (the generator rests at 0 before the first sample):
+    # the exact trajectory's is within vmax; two stored positions of |q| <= h add u h each
+    w = round(1.0 / Ts)
+    q = np.r_[0.0, y[:, 0]]
+    speed = np.abs(q[w:] - q[:-w]) / (w * Ts)
+    assert np.max(speed) <= vmax + 2 * u * h / (w * Ts), (np.max(speed) - vmax) / u
