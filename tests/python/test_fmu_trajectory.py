@@ -1,11 +1,13 @@
 """TrajectoryGenerator.fmu through fmpy: agreement with the NumPy generator reference, bounds,
-FMU state, a foreign state refused, bad parameters named."""
+the sampled limits and equality with the Python Generator on random staircases, FMU state, a
+foreign state refused, bad parameters named."""
 from __future__ import annotations
 
 import math
 
 import numpy as np
 import pytest
+from hypothesis import assume, given, settings, strategies as st
 
 fmpy = pytest.importorskip("fmpy", reason="fmpy is needed to import the FMUs")
 from fmpy import extract  # noqa: E402
@@ -13,7 +15,10 @@ from fmpy.fmi1 import FMICallException  # noqa: E402
 from fmpy.fmi2 import fmi2True  # noqa: E402
 
 from smoothshaper import validation  # noqa: E402
+from smoothshaper.filters import ParameterError  # noqa: E402
+from smoothshaper.trajectory import Generator  # noqa: E402
 from test_fmu_smoothshaper import Logged, fmus, slave, smoothshaper_dir  # noqa: E402,F401
+from test_trajectory import BOUND_RTOL, assert_sampled_limits  # noqa: E402
 
 TS = 1e-3
 LIMITS = validation.TRAJECTORY_LIMITS
@@ -223,3 +228,77 @@ def test_fmpy_default_settings_with_a_dropped_target(fmus):  # noqa: F811
                   <= np.array(list(LIMITS.values())) * (1 + 32 * 2.0 ** -53))
     assert np.all(y[(r["time"] > 0.01) & (r["time"] <= 0.05), 0] == 0.0)
     assert y[-1, 0] == 0.5 and np.all(y[-1, 1:] == 0.0)
+
+
+PROFILE_CODES = {"polynomial": 0, "trigonometric": 1, "damped": 2}
+
+
+@st.composite
+def fmu_staircases(draw, with_mode):
+    """Limits over several decades, a sample period from three times the time to reach vmax
+    (every phase shorter than a sample) to 1/300 of it, q0 and a staircase of targets on the
+    scale of that move, held from 2 % to 3 times its time (most change mid-motion); with a
+    mode from a third to three times that time (at least four samples) and a damping ratio."""
+    vmax = 10.0 ** draw(st.floats(-2, 2))
+    amax = vmax * 10.0 ** draw(st.floats(-1, 2))
+    jmax = amax * 10.0 ** draw(st.floats(0, 3))
+    ap = min(amax, math.sqrt(vmax * jmax))
+    rise = vmax / ap + ap / jmax                  # from rest to vmax
+    Ts = rise / 10.0 ** draw(st.floats(-0.5, 2.5))
+    scale = vmax * rise
+    q0 = scale * draw(st.floats(-3, 3))
+    steps = draw(st.lists(st.tuples(st.floats(-3, 3), st.floats(0.02, 3)), min_size=1,
+                          max_size=6))
+    targets = [(q0 + scale * value, max(1, round(hold * rise / Ts))) for value, hold in steps]
+    params = dict(vmax=vmax, amax=amax, jmax=jmax, q0=q0)
+    if with_mode:
+        params["wn"] = 2 * math.pi / max(rise * 10.0 ** draw(st.floats(-0.5, 0.5)), 4 * Ts)
+        params["zeta"] = draw(st.floats(0.0, 0.2))
+    return Ts, params, targets
+
+
+@pytest.mark.parametrize("profile, with_mode", [
+    ("polynomial", False), ("polynomial", True), ("trigonometric", False),
+    ("trigonometric", True), ("damped", True)])       # the damped profile needs a mode
+@settings(max_examples=30, deadline=None)
+@given(data=st.data())
+def test_random_staircases_keep_the_sampled_limits_and_equal_the_python_generator(
+        trajectory_dir, profile, with_mode, data):
+    """fmpy (default settings, output_interval = Ts) on random staircases, every profile,
+    with and without a mode: (a) the backward differences of q over Ts^i within vmax, amax,
+    jmax to 1e-9 plus the rounding of the positions (16 u S per sample, 2^i of them in a
+    difference of order i; docs/sampled-limits.md), (b) the reported v, a, j within the limits
+    to 32 u, (c) q, v, a, j equal to the Python Generator on the inputs the FMU's ticks see
+    (the target set at t_k drives the tick recorded at t_(k+1)), (d) exactly on the last
+    target, at rest, once it has held long enough."""
+    Ts, params, targets = data.draw(fmu_staircases(with_mode))
+    limits = (params["vmax"], params["amax"], params["jmax"])
+    try:
+        gen = Generator(Ts=Ts, profile=profile, **params)
+    except ParameterError as exc:
+        assume(exc.parameter != "wn")             # a mode the grid cannot place
+        raise
+    values = [v for v, _ in targets] + [params["q0"]]
+    # the last target held for the worst case: the stop, the way back across the staircase,
+    # the velocity rise and fall ((pi/2) amax/jmax for half cosines) and the tuned stage
+    ap = min(params["amax"], math.sqrt(params["vmax"] * params["jmax"]))
+    move = 2 * np.ptp(values) / params["vmax"] + 4 * (params["vmax"] / ap + 2 * ap / params["jmax"])
+    hold = int(move / Ts) + gen.tail_samples + 10
+    target = np.concatenate([np.full(n, v) for v, n in targets] + [np.full(hold, targets[-1][0])])
+    t = validation.communication_points(step=Ts, stop_time=(target.size - 1) * Ts)
+    assert t.size == target.size
+    y = validation.simulate_trajectory(str(trajectory_dir), t, target, Ts=Ts,
+                                       profile=PROFILE_CODES[profile], **params)
+    # (c) the Python Generator (the same C core, another build) on the ticks' inputs
+    x, n_at = validation.tick_inputs(t, target, Ts=Ts)
+    expected = validation.at_communication_points(
+        gen.process(x), n_at, np.array([params["q0"], 0.0, 0.0, 0.0]))
+    assert np.array_equal(y, expected), np.max(np.abs(y - expected), axis=0)
+    # (a) fmpy's first row is the rest at q0 after initialization, where it rested before
+    rest = np.tile(y[:1], (2, 1))
+    assert_sampled_limits(np.vstack([rest, y]), target, limits, Ts, "double",
+                          at_rest_before=False)
+    # (b)
+    assert np.all(np.max(np.abs(y[:, 1:]), axis=0) <= np.array(limits) * (1 + BOUND_RTOL["double"]))
+    # (d)
+    assert y[-1, 0] == target[-1] and np.all(y[-1, 1:] == 0.0)
