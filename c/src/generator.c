@@ -474,7 +474,7 @@ static sms_status check_identity(const sms_generator *g, const double *src)
 
 sms_status sms_generator_check_state(const sms_generator *g, const double *src, size_t n)
 {
-    double V, A, J, brake;
+    double V, A, J, v, a, brake;
     const double *p;
     size_t i, per;
     sms_status st;
@@ -489,14 +489,17 @@ sms_status sms_generator_check_state(const sms_generator *g, const double *src, 
     for (i = 0; i < 5; ++i)
         if (!isfinite(p[i]) || (sms_real)p[i] - (sms_real)p[i] != 0)
             return SMS_ERR_STATE;
-    /* a state a plan can start from: within the bounds, and able to bring its acceleration
-     * to zero (at the shape's mean jerk) without passing vmax */
-    V = (double)g->limits.vmax;
-    A = (double)g->limits.amax;
+    /* a state a plan can start from, as the generator itself leaves them: v and a within
+     * the bounds, and able to bring a to zero (at the shape's mean jerk) without passing vmax,
+     * each to the reported values' 32 u (SMS_LIMIT_RTOL; the generator's own states stay
+     * within 15 u, tests/c/test_generator.c), checked on the values as sms_real holds them */
+    V = (double)g->limits.vmax * (1.0 + SMS_LIMIT_RTOL);
+    A = (double)g->limits.amax * (1.0 + SMS_LIMIT_RTOL);
     J = (double)sms_plan_mean_jerk(&g->limits, g->shape);
-    brake = p[3] + p[4] * fabs(p[4]) / (2.0 * J);
-    if (fabs(p[3]) > V * (1.0 + 1e-6) || fabs(p[4]) > A * (1.0 + 1e-6) ||
-        fabs(brake) > V * (1.0 + 1e-6))
+    v = (double)(sms_real)p[3];
+    a = (double)(sms_real)p[4];
+    brake = v + a * fabs(a) / (2.0 * J);
+    if (!(fabs(v) <= V) || !(fabs(a) <= A) || !(fabs(brake) <= V))
         return SMS_ERR_STATE;
     if (!is_count(p[5], 9007199254740992.0)) /* 2^53 */
         return SMS_ERR_STATE;

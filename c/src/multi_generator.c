@@ -42,9 +42,8 @@ static sms_real ratio(sms_real limit, sms_real d)
 #define GRID_TOL (2 * REAL_EPS)
 /* How far a planned cruise velocity W (and so a move's start velocity V, an earlier W) may
  * round over vmax: W = u/kappa with kappa >= |u|/vmax, the arrival's rounding onto the grid
- * (2 GRID_TOL), the roundings of kappa and u/kappa (8 eps). A saved state is checked to
- * 24 eps: what a planner with GRID_TOL = 8 eps saved. */
-#define CRUISE_TOL (24 * REAL_EPS)
+ * (2 GRID_TOL), the roundings of kappa and u/kappa (8 eps): 12 eps, within the reported
+ * values' 32 u = 16 eps (SMS_LIMIT_RTOL), to which a saved state is checked. */
 
 /* cbrt(x), x >= 0, by Newton after scaling into [1, 8). */
 static sms_real root3(sms_real x)
@@ -1189,8 +1188,11 @@ sms_status sms_multi_generator_check_state(const sms_multi_generator *g, const d
         if (!isfinite(src[i]))
             return SMS_ERR_STATE;
     for (i = 0; i < na; ++i) {
-        const double vmax = (double)g->vmax[i] * (1.0 + (double)CRUISE_TOL);
-        if (fabs(src[3 * na + i]) > vmax || fabs(src[4 * na + i]) > vmax)
+        /* as sms_real holds them: the start and cruise velocities within the tolerance of
+         * the reported values (the planner's own within 12 eps, above) */
+        const double vmax = (double)g->vmax[i] * (1.0 + SMS_LIMIT_RTOL);
+        if (!(fabs((double)(sms_real)src[3 * na + i]) <= vmax) ||
+            !(fabs((double)(sms_real)src[4 * na + i]) <= vmax))
             return SMS_ERR_STATE;
     }
     mv = src + AXIS_FIELDS * na;

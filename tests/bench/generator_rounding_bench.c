@@ -48,7 +48,8 @@ int main(int argc, char **argv)
         campaign_case k;
         double reported[4], beyond[4], x[6];
         campaign_draw(&k, urand, t % 2 == 1);
-        if (!campaign_run(&k, urand, U, ring, sizeof ring / sizeof ring[0], reported, beyond))
+        if (!campaign_run(&k, urand, U, ring, sizeof ring / sizeof ring[0], reported, beyond,
+                          NULL, NULL))
             continue;
         m = k.config.wn > 0.0;
         ++cases[m];

@@ -63,12 +63,17 @@ static void campaign_draw(campaign_case *k, campaign_uniform u, int grid)
     k->scale = v * campaign_log_uniform(u, 1e-3, grid ? 3.0 : 1.0);
 }
 
+/* Called after every sample of campaign_run() with the generator (e.g. to save its state). */
+typedef void (*campaign_observer)(const sms_generator *g, void *context);
+
 /* Run a case from rest at 0 with the ring (ring_len reals); for i = 1..3: reported[i] the
  * largest |out[i]|/L_i, beyond[i] the largest (|d^i q| - 2^i 16 unit S)/Ts^i/L_i (S the largest
- * |q| or target so far, unit the build's unit roundoff). Returns 0 when the generator does
- * not take the case (its stage needs more than ring_len reals). */
+ * |q| or target so far, unit the build's unit roundoff); observe (if not NULL) after every
+ * sample. Returns 0 when the generator does not take the case (its stage needs more than
+ * ring_len reals). */
 static int campaign_run(const campaign_case *k, campaign_uniform u, double unit, sms_real *ring,
-                        size_t ring_len, double reported[4], double beyond[4])
+                        size_t ring_len, double reported[4], double beyond[4],
+                        campaign_observer observe, void *context)
 {
     sms_generator g;
     sms_real out[4];
@@ -102,6 +107,8 @@ static int campaign_run(const campaign_case *k, campaign_uniform u, double unit,
         if (m == retarget)
             target = (u() - 0.5) * 4.0 * k->scale;
         sms_generator_step(&g, (sms_real)target, out);
+        if (observe != NULL)
+            observe(&g, context);
         q = (double)out[0];
         S = fabs(q) > S ? fabs(q) : S;
         S = fabs(target) > S ? fabs(target) : S;

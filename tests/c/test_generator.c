@@ -124,7 +124,8 @@ static void test_bounds_random_limits(int trials)
         campaign_case k;
         double reported[4], beyond[4];
         campaign_draw(&k, urand, trial % 2);
-        if (!campaign_run(&k, urand, SAMPLE_EPS, table, MAX_TABLE, reported, beyond))
+        if (!campaign_run(&k, urand, SAMPLE_EPS, table, MAX_TABLE, reported, beyond, NULL,
+                          NULL))
             continue;
         for (i = 1; i < 4; ++i) {
             CHECK(reported[i] <= 1.0 + BOUND_TOL);
@@ -944,6 +945,146 @@ static void test_feasible_limits(void)
     CHECK_STATUS(sms_generator_reach(NULL, 1e-3, NULL), SMS_ERR_NULL);
 }
 
+/* ------------------------------------------------------------ saved states and the limits */
+
+/* The tolerance of a saved state's v, a and brake velocity: the one of the reported values,
+ * 32 u of the limits as the generator holds them (trajectory.h, SMS_LIMIT_RTOL). */
+#define STATE_TOL (32.0 * SAMPLE_EPS)
+
+/* What a saved state's plan fields are, relative to the limits as sms_real, minus 1, in u:
+ * |v|/vmax, |a|/amax, |v + a|a|/(2 J)|/vmax with J the shape's mean jerk. */
+typedef struct own_states {
+    double *state;
+    size_t capacity;
+    long samples, saved, refused;
+    double worst[3];
+} own_states;
+
+static void plan_excess(const sms_generator *g, const double *plan, double excess[3])
+{
+    const double V = (double)g->limits.vmax, A = (double)g->limits.amax;
+    const double J = g->shape == 1 ? (double)(g->limits.jmax * (sms_real)0.63661977236758134)
+                                   : (double)g->limits.jmax;
+    const double v = plan[3], a = plan[4];
+    excess[0] = (fabs(v) / V - 1.0) / SAMPLE_EPS;
+    excess[1] = (fabs(a) / A - 1.0) / SAMPLE_EPS;
+    excess[2] = (fabs(v + a * fabs(a) / (2.0 * J)) / V - 1.0) / SAMPLE_EPS;
+}
+
+/* Save the state on every re-plan (the plan's start moves to the sample's q, v, a, often
+ * mid-transition or at the peak velocity) and on every 61st sample otherwise; each must pass
+ * check_state. */
+static void observe_own_state(const sms_generator *g, void *context)
+{
+    own_states *o = (own_states *)context;
+    size_t n = sms_generator_state_count(g);
+    double e[3];
+    int i;
+    ++o->samples;
+    if ((g->k != 0 && o->samples % 61 != 0) || n > o->capacity)
+        return;
+    sms_generator_get_state(g, o->state);
+    ++o->saved;
+    if (sms_generator_check_state(g, o->state, n) != SMS_OK) {
+        ++o->refused;
+        plan_excess(g, o->state + SMS_GENERATOR_IDENTITY_COUNT, e);
+        if (o->refused <= 5)
+            fprintf(stderr, "own state refused: v %.3g u, a %.3g u, brake %.3g u over the limits"
+                            " (vmax %.17g amax %.17g jmax %.17g Ts %.17g)\n", e[0], e[1], e[2],
+                    (double)g->limits.vmax, (double)g->limits.amax, (double)g->limits.jmax,
+                    g->Ts_signal);
+    }
+    plan_excess(g, o->state + SMS_GENERATOR_IDENTITY_COUNT, e);
+    for (i = 0; i < 3; ++i)
+        if (e[i] > o->worst[i])
+            o->worst[i] = e[i];
+}
+
+/* Every state the generator saves over the random campaign (random limits and Ts, all
+ * profiles, modes, reversals, targets every 1 to 200 samples, tiny steps) loads again: the
+ * state check is not tighter than the generator's own rounding. Prints the worst v, a and
+ * brake velocity of those states over the limits in u. */
+static void test_own_states_are_accepted(int trials)
+{
+    static double buffer[MAX_TABLE + 1000];
+    own_states o;
+    int trial;
+    memset(&o, 0, sizeof o);
+    o.state = buffer;
+    o.capacity = sizeof buffer / sizeof buffer[0];
+    o.worst[0] = o.worst[1] = o.worst[2] = -1e300;
+    rng = 777u;
+    for (trial = 0; trial < trials; ++trial) {
+        campaign_case k;
+        double reported[4], beyond[4];
+        campaign_draw(&k, urand, trial % 2);
+        (void)campaign_run(&k, urand, SAMPLE_EPS, table, MAX_TABLE, reported, beyond,
+                           observe_own_state, &o);
+    }
+    CHECK(o.saved > 1000);
+    CHECK(o.refused == 0);
+    CHECK(o.worst[0] <= 32.0 && o.worst[1] <= 32.0 && o.worst[2] <= 32.0);
+    printf("own states [%s]: %ld saved, %ld refused; worst over the limits: v %.3g u, a %.3g u,"
+           " brake velocity %.3g u\n", SMS_TEST_PRECISION, o.saved, o.refused, o.worst[0],
+           o.worst[1], o.worst[2]);
+}
+
+/* Set the plan fields (v, a) of a state saved at rest, expect `want` from check_state and
+ * set_state; refused: the generator (struct and saved state) untouched. Accepted: the restored
+ * generator reports v, a within the limits (1 + STATE_TOL) on its way to a far target. */
+static void restore_plan_state(sms_generator *g, double v, double a, sms_status want)
+{
+    enum { n = SMS_GENERATOR_IDENTITY_COUNT + 6 };
+    static double state[n], before[n];
+    sms_generator copy;
+    sms_real out[4];
+    double peak[2] = {0.0, 0.0};
+    long k;
+    CHECK(sms_generator_state_count(g) == n);
+    sms_generator_reset(g, 0);
+    sms_generator_get_state(g, before);
+    sms_generator_get_state(g, state);
+    state[SMS_GENERATOR_IDENTITY_COUNT + 3] = v;
+    state[SMS_GENERATOR_IDENTITY_COUNT + 4] = a;
+    copy = *g;
+    CHECK_STATUS(sms_generator_check_state(g, state, n), want);
+    CHECK_STATUS(sms_generator_set_state(g, state, n), want);
+    if (want != SMS_OK) {
+        CHECK(memcmp(&copy, g, sizeof copy) == 0);
+        sms_generator_get_state(g, state);
+        CHECK(memcmp(state, before, sizeof state) == 0);
+        return;
+    }
+    for (k = 0; k < 4000; ++k) {
+        sms_generator_step(g, (sms_real)(v >= 0 ? 5.0 : -5.0), out);
+        peak[0] = fabs((double)out[1]) > peak[0] ? fabs((double)out[1]) : peak[0];
+        peak[1] = fabs((double)out[2]) > peak[1] ? fabs((double)out[2]) : peak[1];
+    }
+    CHECK(peak[0] <= (double)g->limits.vmax * (1.0 + STATE_TOL));
+    CHECK(peak[1] <= (double)g->limits.amax * (1.0 + STATE_TOL));
+}
+
+/* A state beyond the limits by twice the tolerance is refused (v, a, brake velocity, each
+ * sign), one at the tolerance is accepted and keeps the limits. The limits are powers of two,
+ * so every value below is exact in float too: a = amax/2 brakes over amax^2/(8 jmax) = 1/8. */
+static void test_state_beyond_the_limits(void)
+{
+    sms_generator g;
+    const sms_generator_config c = make_config(1.0, 8.0, 64.0, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0);
+    int sign;
+    CHECK(SMS_LIMIT_RTOL == ldexp(32.0, sizeof(sms_real) == sizeof(double) ? -53 : -24));
+    CHECK_STATUS(sms_generator_init(&g, &c, 1e-3, NULL, 0), SMS_OK);
+    for (sign = -1; sign <= 1; sign += 2) {
+        const double s = sign, tol = SMS_LIMIT_RTOL;
+        restore_plan_state(&g, s * (1.0 + 2.0 * tol), 0.0, SMS_ERR_STATE);
+        restore_plan_state(&g, 0.0, s * 8.0 * (1.0 + 2.0 * tol), SMS_ERR_STATE);
+        restore_plan_state(&g, s * (0.875 + 2.0 * tol), s * 4.0, SMS_ERR_STATE);
+        restore_plan_state(&g, s * (1.0 + tol), 0.0, SMS_OK);
+        restore_plan_state(&g, 0.0, s * 8.0 * (1.0 + tol), SMS_OK);
+        restore_plan_state(&g, s * (0.875 + tol), s * 4.0, SMS_OK);
+    }
+}
+
 int main(void)
 {
     test_feasible_limits();
@@ -959,5 +1100,7 @@ int main(void)
     test_single_move();
     replan_beyond_the_direct_stop();
     test_state_and_bad_input();
+    test_own_states_are_accepted(400);
+    test_state_beyond_the_limits();
     return check_summary("test_generator");
 }

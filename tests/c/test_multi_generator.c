@@ -931,6 +931,45 @@ static void feasible_limits(void)
     check_refused(&c, 1e-3, 1, sizeof(sms_real) == sizeof(double) ? "sqrt(vmax/jmax)" : "jmax");
 }
 
+/* A saved start or cruise velocity beyond vmax by 1.25 or 2 times the tolerance of the
+ * reported values (SMS_LIMIT_RTOL, 32 u) is refused, writing nothing; one at the tolerance
+ * loads. */
+static void state_beyond_vmax(void)
+{
+    static double st[SMS_MULTI_IDENTITY_COUNT + 17 * SMS_MULTI_MAX_AXES];
+    static double before[SMS_MULTI_IDENTITY_COUNT + 17 * SMS_MULTI_MAX_AXES];
+    static double after[SMS_MULTI_IDENTITY_COUNT + 17 * SMS_MULTI_MAX_AXES];
+    sms_multi_generator_config c = random_config(3, SMS_SYNC_PHASE);
+    sms_multi_generator g;
+    sms_real t[3] = {1, -2, 3}, o[12];
+    size_t k, count, field, axis;
+    c.vmax[1] = 2.0; /* a power of two: vmax (1 + tol) is exact in float too */
+    CHECK_STATUS(sms_multi_generator_init(&g, &c, 1e-3, NULL, 0, NULL, 0, NULL), SMS_OK);
+    CHECK(SMS_LIMIT_RTOL == 32.0 * UNIT_ROUNDOFF);
+    for (k = 0; k < 50; ++k)
+        sms_multi_generator_step(&g, t, o);
+    count = sms_multi_generator_state_count(&g);
+    CHECK(count <= sizeof st / sizeof st[0]);
+    sms_multi_generator_get_state(&g, before);
+    axis = 1;
+    for (field = 3; field <= 4; ++field) { /* V (start), W (cruise) */
+        double sign, *v = st + SMS_MULTI_IDENTITY_COUNT + field * 3 + axis;
+        for (sign = -1.0; sign <= 1.0; sign += 2.0) {
+            double over;
+            memcpy(st, before, count * sizeof(double));
+            for (over = 1.25; over <= 2.0; over += 0.75) { /* 40 u: 48 u was allowed before */
+                *v = sign * 2.0 * (1.0 + over * SMS_LIMIT_RTOL);
+                CHECK_STATUS(sms_multi_generator_check_state(&g, st, count), SMS_ERR_STATE);
+                CHECK_STATUS(sms_multi_generator_set_state(&g, st, count), SMS_ERR_STATE);
+                sms_multi_generator_get_state(&g, after);
+                CHECK(memcmp(after, before, count * sizeof(double)) == 0);
+            }
+            *v = sign * 2.0 * (1.0 + SMS_LIMIT_RTOL);
+            CHECK_STATUS(sms_multi_generator_check_state(&g, st, count), SMS_OK);
+        }
+    }
+}
+
 int main(void)
 {
     unsigned trial;
@@ -950,5 +989,6 @@ int main(void)
     feasible_limits();
     feasible_random();
     own_states_reload();
+    state_beyond_vmax();
     return check_summary("test_multi_generator");
 }

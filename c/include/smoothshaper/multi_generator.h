@@ -307,7 +307,8 @@ SMS_API void sms_multi_generator_get_state(const sms_multi_generator *g, double 
  * ::SMS_MULTI_IDENTITY_COUNT) if it was saved by another configuration (checked first, whatever
  * n), or a stage's identity status for a stage of another configuration; ::SMS_ERR_STATE (n
  * differs, a value is non-finite, a count is not a whole number, a flag is not 0/1,
- * k > k_end, rho outside (0, 1/2], a duration negative, a velocity beyond its axis's vmax, or
+ * k > k_end, rho outside (0, 1/2], a duration negative, a start or cruise velocity beyond its
+ * axis's vmax (1 + ::SMS_LIMIT_RTOL), the tolerance of the reported values, or
  * a stage state that does not fit its stage); nothing written on error.
  */
 SMS_API sms_status sms_multi_generator_set_state(sms_multi_generator *g, const double *src,

@@ -233,6 +233,19 @@ typedef struct sms_generator_config {
 #define SMS_GENERATOR_IDENTITY_COUNT 11
 
 /**
+ * @brief How far, relative, the generators' reported |v|, |a|, |j| may exceed vmax, amax,
+ * jmax: 32 u, u the unit roundoff of ::sms_real (2^-53 double, 2^-24 float; the rounding of
+ * the plan's own values and of the tuned stage's average, docs/sampled-limits.md and
+ * docs/multi-axis.md). A saved state is checked to the same: its velocities, accelerations
+ * and brake velocity within limit (1 + SMS_LIMIT_RTOL), the limits as ::sms_real.
+ */
+#ifdef SMS_USE_FLOAT
+#define SMS_LIMIT_RTOL 1.9073486328125e-6 /* 2^-19 */
+#else
+#define SMS_LIMIT_RTOL 3.5527136788005009e-15 /* 2^-48 */
+#endif
+
+/**
  * @brief Online generator: a staircase of targets in, a bounded smooth trajectory out.
  *
  * **The plan.** Whenever the target differs from the goal of the running plan, the
@@ -433,7 +446,14 @@ SMS_API void sms_generator_get_state(const sms_generator *g, double *dst);
  *         beyond the limits, a count out of range, a plan the generator cannot form). Nothing
  *         is written on error. */
 SMS_API sms_status sms_generator_set_state(sms_generator *g, const double *src, size_t n);
-/** @brief What sms_generator_set_state() would return, writing nothing. */
+/** @brief What sms_generator_set_state() would return, writing nothing.
+ *
+ * "Beyond the limits": the running plan's start v and a (as ::sms_real holds them) must keep
+ * |v| <= vmax (1 + ::SMS_LIMIT_RTOL), |a| <= amax (1 + ::SMS_LIMIT_RTOL) and the brake velocity
+ * |v + a|a|/(2 J)| <= vmax (1 + ::SMS_LIMIT_RTOL), J the shape's mean jerk (jmax, or (2/pi)
+ * jmax for half-cosine transitions), the limits as ::sms_real: the tolerance of the reported
+ * values, so a restored state is one the generator could have reached itself (its own saved
+ * states stay within 15 u, tests/c/test_generator.c) and reports nothing beyond it. */
 SMS_API sms_status sms_generator_check_state(const sms_generator *g, const double *src, size_t n);
 /** @brief Point a copied generator at a buffer holding the same stage rings. */
 SMS_API void sms_generator_rebind(sms_generator *g, sms_real *buffer);
