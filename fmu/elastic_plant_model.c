@@ -270,8 +270,10 @@ void fmu_model_save_state(const void *model, double *dst)
     dst[2] = m->x[1];
 }
 
-int fmu_model_load_state(void *model, const double *src, size_t n)
+int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, size_t len)
 {
+    (void)msg;
+    (void)len;
     ep_model *m = (ep_model *)model;
     if (n != 3 || !isfinite(src[0]) || !isfinite(src[1]) || !isfinite(src[2]))
         return 1;

@@ -147,7 +147,8 @@ void fmu_model_rebind(void *model, void *mem);
  * complete description (loading it continues bit for bit). */
 size_t fmu_model_state_count(const void *model);
 void fmu_model_save_state(const void *model, double *dst);
-/** @return 0 if accepted (model updated), non-zero if the vector does not fit (untouched). */
-int fmu_model_load_state(void *model, const double *src, size_t n);
+/** @return 0 if accepted (model updated), non-zero if the vector does not fit (untouched); then
+ * msg (len bytes, empty on entry) may say why, else the caller's generic message stands. */
+int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, size_t len);
 
 #endif

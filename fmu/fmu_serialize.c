@@ -338,6 +338,8 @@ int fmu_deserialize(const unsigned char *in, size_t size, fmu_snapshot *dst,
     uint32_t glen, real_bytes, phase, lo, hi, lo2, n_state;
     size_t i;
     int rc;
+    char why[FMU_MESSAGE_LEN / 2];
+    why[0] = '\0';
     if (size < 16 || memcmp(in, "SMSF", 4) != 0)
         REFUSE("not a smoothshaper FMU state (bad magic)");
     r.p = in;
@@ -391,7 +393,8 @@ int fmu_deserialize(const unsigned char *in, size_t size, fmu_snapshot *dst,
         REFUSE("state holds %lu filter values, the parameters need %lu", (unsigned long)n_state,
                (unsigned long)fmu_model_state_count(dst->model));
     if (native_doubles() && double_aligned(in + r.pos)) {
-        rc = fmu_model_load_state(dst->model, (const double *)(const void *)(in + r.pos), n_state);
+        rc = fmu_model_load_state(dst->model, (const double *)(const void *)(in + r.pos), n_state,
+                                  why, sizeof why);
     } else {
         double *state = (double *)cb->allocateMemory(n_state > 0 ? n_state : 1, sizeof(double));
         if (state == NULL)
@@ -401,10 +404,11 @@ int fmu_deserialize(const unsigned char *in, size_t size, fmu_snapshot *dst,
         else
             for (i = 0; i < n_state; ++i)
                 state[i] = get_f64(&r);
-        rc = fmu_model_load_state(dst->model, state, n_state);
+        rc = fmu_model_load_state(dst->model, state, n_state, why, sizeof why);
         cb->freeMemory(state);
     }
     if (rc != 0)
-        REFUSE("the filter state does not fit the parameters");
+        REFUSE("the filter state does not fit the parameters%s%s", why[0] != '\0' ? ": " : "",
+               why);
     return 0;
 }

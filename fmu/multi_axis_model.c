@@ -586,8 +586,10 @@ void fmu_model_save_state(const void *model, double *dst)
     sms_multi_generator_get_state(&m->gen, dst);
 }
 
-int fmu_model_load_state(void *model, const double *src, size_t n)
+int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, size_t len)
 {
+    (void)msg;
+    (void)len;
     ma_model *m = (ma_model *)model;
     size_t own = 4u * (size_t)m->axes;
     int i, k;

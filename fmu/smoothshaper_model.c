@@ -446,8 +446,10 @@ void fmu_model_save_state(const void *model, double *dst)
         sms_chain_get_state(&m->chain, dst + 1);
 }
 
-int fmu_model_load_state(void *model, const double *src, size_t n)
+int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, size_t len)
 {
+    (void)msg;
+    (void)len;
     ss_model *m = (ss_model *)model;
     if (n != fmu_model_state_count(m) || src[0] != src[0])
         return 1;

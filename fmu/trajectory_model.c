@@ -352,17 +352,42 @@ void fmu_model_save_state(const void *model, double *dst)
     sms_generator_get_state(&m->gen, dst + 4);
 }
 
-int fmu_model_load_state(void *model, const double *src, size_t n)
+/* The saved outputs v, a, j are reported until the next tick, and the generator's state is
+ * where its plan starts: both must be ones the generator could have produced, within the
+ * limits to the reported values' tolerance, SMS_LIMIT_RTOL (32 u: trajectory.h). */
+int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, size_t len)
 {
+    static const char *const names[4] = {"q", "v", "a", "j"};
     tg_model *m = (tg_model *)model;
+    const double limit[4] = {0.0, (double)m->gen.limits.vmax, (double)m->gen.limits.amax,
+                             (double)m->gen.limits.jmax};
+    const double *plan = src + 4 + SMS_GENERATOR_IDENTITY_COUNT; /* target, goal, q, v, a, k */
+    sms_status st;
     int i;
     if (n != fmu_model_state_count(m))
         return 1;
     for (i = 0; i < 4; ++i)
         if (!isfinite(src[i]))
             return 1;
-    if (sms_generator_set_state(&m->gen, src + 4, n - 4) != SMS_OK)
+    for (i = 1; i < 4; ++i)
+        if (!(fabs(src[i]) <= limit[i] * (1.0 + SMS_LIMIT_RTOL))) {
+            snprintf(msg, len, "its output %s = %.17g is beyond %smax = %.17g by more than the "
+                     "reported values' relative %.3g", names[i], src[i], names[i], limit[i],
+                     SMS_LIMIT_RTOL);
+            return 1;
+        }
+    st = sms_generator_set_state(&m->gen, src + 4, n - 4);
+    if (st != SMS_OK) {
+        if (st == SMS_ERR_STATE)
+            snprintf(msg, len, "the generator refuses its state (%s): a value non-finite or "
+                     "out of range, a plan it cannot form, or the plan's start v = %.17g, "
+                     "a = %.17g beyond vmax = %.17g, amax = %.17g (v, a and the brake velocity "
+                     "v + a|a|/(2 J) within them to a relative %.3g)", sms_status_string(st),
+                     plan[3], plan[4], limit[1], limit[2], SMS_LIMIT_RTOL);
+        else
+            snprintf(msg, len, "the generator's state: %s", sms_status_string(st));
         return 1;
+    }
     memcpy(m->out, src, sizeof m->out);
     return 0;
 }

@@ -163,6 +163,50 @@ def test_a_state_of_the_other_precision_is_refused(stepped):
     assert "other precision" in log.messages[-1]
 
 
+def test_a_generator_state_beyond_its_limits_is_refused_with_the_reason(trajectory_dir):  # noqa: F811
+    """A TrajectoryGenerator state whose saved output v or a, or whose plan's start v, a or
+    brake velocity, lies beyond the limits by twice the reported values' tolerance
+    (SMS_LIMIT_RTOL, 32 u) is refused by fmi2DeSerializeFMUstate, the logger saying why; the
+    instance runs on as its twin. At the tolerance the state loads. Limits of powers of two:
+    a = amax/2 brakes over amax^2/(8 jmax) = 1/8."""
+    from smoothshaper import trajectory as tr
+    from test_fmu_trajectory import run as run_tg
+    limits = dict(vmax=1.0, amax=8.0, jmax=64.0)
+    log = Logged()
+    tg, twin = slave(trajectory_dir, "tg", logged=log), slave(trajectory_dir, "twin")
+    for f in (tg, twin):
+        start(f, target=0.3, **limits)
+        run_tg(f, 0.0, [0.3] * 40)
+    blob = tg.serializeFMUstate(tg.getFMUstate())
+    g = tr.Generator(Ts=TS, **limits)
+    tol, plan = float(g._lib.SMS_LIMIT_RTOL), 4 + int(g._lib.SMS_GENERATOR_IDENTITY_COUNT)
+    at = len(blob) - 8 - 8 * (4 + g.get_state().size)   # q, v, a, j, the generator's state
+    assert struct.unpack_from("<d", blob, at + 8 * 4)[0] == g.get_state()[0]   # its state tag
+    assert struct.unpack_from("<d", blob, at + 8)[0] == tg.getReal([tg.vr["v"]])[0]
+    cases = [("its output v = ", {1: lambda o: 1 + o}),
+             ("its output a = ", {2: lambda o: 8 * (1 + o)}),
+             ("start v = ", {plan + 3: lambda o: 1 + o, plan + 4: lambda o: 0.0}),
+             ("start v = ", {plan + 3: lambda o: 0.0, plan + 4: lambda o: 8 * (1 + o)}),
+             ("start v = ", {plan + 3: lambda o: 0.875 + o, plan + 4: lambda o: 4.0})]
+    for words, fields in cases:
+        for over in (2 * tol, tol):
+            forged = blob
+            for index, value in fields.items():
+                forged = patched(forged, at + 8 * index, "<d", value(over))
+            if over == tol:
+                tg.freeFMUstate(tg.deSerializeFMUstate(forged))
+                continue
+            with pytest.raises(FMICallException):
+                tg.deSerializeFMUstate(forged)
+            message = log.messages[-1]
+            assert "does not fit" in message and words in message, message
+            assert f"relative {tol:.3g}" in message, message
+    targets = np.repeat([0.2, -0.5, 0.1], 150)
+    assert np.array_equal(run_tg(tg, 0.04, targets), run_tg(twin, 0.04, targets))
+    for f in (tg, twin):
+        f.freeInstance()
+
+
 ENTRY_POINTS = [
     ("fmi2DoStep", lambda f, c: f.fmi2DoStep(c, 0.05, TS, 1)),
     ("fmi2SetReal", lambda f, c: f.fmi2SetReal(c, (ctypes.c_uint32 * 1)(0), 1,
