@@ -283,7 +283,11 @@ class Generator(_state_identity.SavedState):
         a : float
             Acceleration [units/s^2], ``|a| <= amax``, and able to reach zero without passing
             ``vmax``: ``|v + a|a| / (2 jmax_mean)| <= vmax`` (``jmax_mean`` = ``jmax``, or
-            ``(2/pi) jmax`` for the trigonometric profile's half-cosine transitions).
+            ``(2/pi) jmax`` for the trigonometric profile's half-cosine transitions). Each
+            bound holds to the generator's own rounding, the relative ``SMS_LIMIT_RTOL`` (32 u
+            of the precision, 2^-48 in double and 2^-19 in float) to which its reported v, a, j
+            keep the limits, with v and a rounded to the precision: a sample the generator
+            reported is always accepted.
         target : float or None
             The goal the motion heads for until the next target arrives (default: q).
 
@@ -297,10 +301,18 @@ class Generator(_state_identity.SavedState):
         v = _finite("v", v)
         a = _finite("a", a)
         target = q if target is None else _finite("target", target)
-        if abs(v) > self.vmax:
-            raise ParameterError("v", f"v={v!r} exceeds vmax={self.vmax!r}")
-        if abs(a) > self.amax:
-            raise ParameterError("a", f"a={a!r} exceeds amax={self.amax!r}")
+        # as the C check (sms_generator_check_state): the values as sms_real holds them,
+        # against the limits as sms_real, to the reported values' tolerance
+        real = _real_dtype(self.precision)
+        tol = float(self._lib.SMS_LIMIT_RTOL)
+        with np.errstate(over="ignore"):     # beyond float's range: inf, refused below
+            v_real, a_real = float(real(v)), float(real(a))
+        if not abs(v_real) <= float(real(self.vmax)) * (1 + tol):
+            raise ParameterError("v", f"v={v!r} exceeds vmax={self.vmax!r} (beyond the "
+                                 f"generator's own rounding, a relative {tol:.3g})")
+        if not abs(a_real) <= float(real(self.amax)) * (1 + tol):
+            raise ParameterError("a", f"a={a!r} exceeds amax={self.amax!r} (beyond the "
+                                 f"generator's own rounding, a relative {tol:.3g})")
         s = self.get_state()
         plan = int(self._lib.SMS_GENERATOR_IDENTITY_COUNT)
         s[plan:plan + 6] = (target, target, q, v, a, 0.0)

@@ -166,6 +166,110 @@ def test_state_round_trip():
         h.set_state(s[:-1])
 
 
+def plan_excess(g, state):
+    """The saved plan's start |v|/vmax, |a|/amax and brake velocity |v + a|a|/(2 J)|/vmax
+    (J the shape's mean jerk), minus 1, in units of the precision's u; the limits as the
+    precision holds them, as the C check compares them."""
+    real = np.float32 if g.precision == "float" else np.float64
+    plan = int(g._lib.SMS_GENERATOR_IDENTITY_COUNT)
+    v, a = float(state[plan + 3]), float(state[plan + 4])
+    V, A = float(real(g.vmax)), float(real(g.amax))
+    J = float(real(g.jmax) * real(0.63661977236758134)) if g.profile == "trigonometric" \
+        else float(real(g.jmax))
+    u = UNIT_ROUNDOFF[g.precision]
+    return ((abs(v) / V - 1) / u, (abs(a) / A - 1) / u, (abs(v + a * abs(a) / (2 * J)) / V - 1) / u)
+
+
+@given(spec=st.lists(st.tuples(st.floats(-5.0, 5.0), st.integers(1, 200), st.booleans()),
+                    min_size=10, max_size=60),
+       lv=st.floats(-1, 1), la=st.floats(0, 2), lj=st.floats(1, 3),
+       Ts=st.sampled_from([1e-3, 1.3e-4, 4.7e-3]),
+       profile_mode=st.sampled_from([("polynomial", {}), ("trigonometric", {}),
+                                     ("damped", dict(wn=50.0, zeta=0.05)),
+                                     ("trigonometric", dict(wn=90.0, zeta=0.02))]),
+       chunks=st.lists(st.integers(1, 9), min_size=1, max_size=20),
+       precision=st.sampled_from(["double", "float"]))
+def test_every_state_the_generator_saves_loads_again(spec, lv, la, lj, Ts, profile_mode,
+                                                     chunks, precision):
+    """States saved after every few samples of a random staircase (mid-transition, at the peak
+    velocity, in reversals) load into a twin: the state check (v, a and the brake velocity
+    within the limits to 32 u, SMS_LIMIT_RTOL) is not tighter than the generator's rounding."""
+    vmax, amax, jmax = 10 ** lv, 10 ** la, 10 ** lj
+    profile, mode = profile_mode
+    kw = dict(vmax=vmax, amax=amax, jmax=jmax, Ts=Ts, profile=profile, precision=precision,
+              **mode)
+    try:
+        g, h = tr.Generator(**kw), tr.Generator(**kw)
+    except ParameterError as exc:
+        assume(exc.parameter != "wn")   # a mode the grid cannot place
+        raise
+    x = staircase(spec, 0)
+    start, k, worst = 0, 0, (-np.inf,) * 3
+    while start < x.size:
+        n = chunks[k % len(chunks)]
+        g.process(x[start:start + n])
+        start, k = start + n, k + 1
+        s = g.get_state()
+        h.set_state(s)                           # raises ParameterError if refused
+        assert np.array_equal(h.get_state(), s)
+        worst = np.maximum(worst, plan_excess(g, s))
+    assert np.all(worst <= 32), worst
+
+
+@pytest.mark.parametrize("precision", ["double", "float"])
+@pytest.mark.parametrize("profile", ["polynomial", "trigonometric"])
+def test_a_state_beyond_the_limits_is_refused_and_the_generator_untouched(precision, profile):
+    """v, a or the brake velocity beyond the limits by twice SMS_LIMIT_RTOL (32 u): set_state
+    raises naming the state and changes nothing, start_from names v or a; at SMS_LIMIT_RTOL
+    both accept. Limits of powers of two keep every value exact in float: a = amax/2 brakes
+    over amax^2/(8 J) = 1/8 (polynomial, J = jmax)."""
+    g = tr.Generator(vmax=1.0, amax=8.0, jmax=64.0, Ts=1e-3, profile=profile,
+                     precision=precision)
+    tol = float(g._lib.SMS_LIMIT_RTOL)
+    assert tol == 32 * UNIT_ROUNDOFF[precision]
+    g.process(np.full(30, 0.01))
+    before = g.get_state()
+    plan = int(g._lib.SMS_GENERATOR_IDENTITY_COUNT)
+    for sign in (1.0, -1.0):
+        for over, ok in ((2 * tol, False), (tol, True)):
+            cases = [(sign * (1 + over), 0.0, "v"), (0.0, sign * 8.0 * (1 + over), "a")]
+            if profile == "polynomial":
+                cases.append((sign * (0.875 + over), sign * 4.0, "a"))
+            for v, a, name in cases:
+                s = before.copy()
+                s[plan + 3], s[plan + 4] = v, a
+                if ok:
+                    g.set_state(s)
+                    g.start_from(0.0, v, a)
+                else:
+                    with pytest.raises(ParameterError, match="^state") as exc:
+                        g.set_state(s)
+                    assert exc.value.parameter == "state"
+                    assert np.array_equal(g.get_state(), before)
+                    with pytest.raises(ParameterError) as exc:
+                        g.start_from(0.0, v, a)
+                    assert exc.value.parameter == name
+                    assert np.array_equal(g.get_state(), before)
+                g.set_state(before)
+
+
+@pytest.mark.parametrize("precision", ["double", "float"])
+def test_start_from_accepts_every_reported_sample(precision):
+    """(q, v, a) of any sample the generator reported is a state start_from accepts, also where
+    rounding put v or a above the limit (reversals every few samples at random limits)."""
+    rng = np.random.default_rng(5)
+    for _ in range(20):
+        vmax, amax, jmax = (float(x) for x in 10 ** rng.uniform(-1, 1, 3) * [1, 10, 100])
+        g = tr.Generator(vmax=vmax, amax=amax, jmax=jmax, Ts=rng.uniform(1e-4, 5e-3),
+                         precision=precision)
+        x = np.repeat(rng.uniform(-3, 3, 200) * vmax, rng.integers(1, 30, 200))
+        y = g.process(x)
+        h = tr.Generator(vmax=vmax, amax=amax, jmax=jmax, Ts=g.Ts, precision=precision)
+        for i in np.argsort(-np.abs(y[:, 1]))[:10].tolist() + \
+                np.argsort(-np.abs(y[:, 2]))[:10].tolist():
+            h.start_from(*y[i, :3], target=x[i])
+
+
 @pytest.mark.parametrize("kwargs, name", [
     (dict(vmax=0.0, amax=1, jmax=1, Ts=1e-3), "vmax"),
     (dict(vmax=1, amax=float("nan"), jmax=1, Ts=1e-3), "amax"),
