@@ -93,27 +93,56 @@ typedef struct group {
     const sms_real *vmax, *amax, *jmax;
 } group;
 
-/* Shortest transition for the change dV (0 for no change; rho 1/2 then). */
-static sms_real transition_time(const group *G, const sms_real *dV, sms_real *rho)
+/* The unit limits of the change dV, A = min_i amax_i/|dV_i| and J = min_i jmax_i/|dV_i|;
+ * 0 when dV is 0. */
+static int unit_limits(const group *G, const sms_real *dV, sms_real *A, sms_real *J)
 {
-    sms_real A = REAL_MAX, J = REAL_MAX;
     size_t i;
     int any = 0;
+    *A = *J = REAL_MAX;
     for (i = 0; i < G->n; ++i) {
         sms_real d = dV[i] < 0 ? -dV[i] : dV[i];
         if (d > 0) {
             sms_real a = ratio(G->amax[i], d), j = ratio(G->jmax[i], d);
             any = 1;
-            if (a < A)
-                A = a;
-            if (j < J)
-                J = j;
+            if (a < *A)
+                *A = a;
+            if (j < *J)
+                *J = j;
         }
     }
+    return any;
+}
+
+/* Shortest transition for the change dV (0 for no change; rho 1/2 then). */
+static sms_real transition_time(const group *G, const sms_real *dV, sms_real *rho)
+{
+    sms_real A, J;
     *rho = (sms_real)0.5;
-    if (!any)
+    if (!unit_limits(G, dV, &A, &J))
         return 0;
     return unit_time(A, J, rho);
+}
+
+/* Jerk fraction of the first transition, the change dV over T1. When the shortest transition
+ * fits (T <= T1: every arrival rounded up, docs/multi-axis.md) its own rho, stretched. When it
+ * does not (the arrival rounded onto an earlier sample raised W by up to 2 GRID_TOL, and the
+ * change by up to twice that when V and W - V both fill T1) the rho that minimises the larger
+ * of the peak ratios |a_i|/amax_i = 1/(A (1 - rho) T1) and |j_i|/jmax_i = 1/(J rho (1 - rho)
+ * T1^2): rho = A/(J T1), at most 1/2, which keeps the jerk phase A/J of the shortest
+ * transition and raises a and j alike by T(dV)/T1 - A/J over T1 - A/J. The stretched rho
+ * raised the jerk by the square of T(dV)/T1: 40 u over jmax in double and in float in the
+ * case of tests/c/test_multi_generator.c (snapped_arrival_from_a_cruise). */
+static sms_real first_rho(const group *G, const sms_real *dV, sms_real T1)
+{
+    sms_real A, J, rho, T, fit;
+    if (!unit_limits(G, dV, &A, &J))
+        return (sms_real)0.5;
+    T = unit_time(A, J, &rho);
+    if (T <= T1)
+        return rho;
+    fit = A / (J * T1);
+    return fit < (sms_real)0.5 ? fit : (sms_real)0.5;
 }
 
 /* Smallest kappa with kappa >= T1/2 + T(u/kappa)/2 (tau >= 0) and |u_i|/kappa <= vmax_i. The
@@ -326,7 +355,7 @@ static int plan(sms_multi_generator *g, size_t first, const group *G, sms_multi_
                 dW[i] = W[i] - V0[i];
                 ok &= real_finite(W[i]) && real_finite(dW[i]);
             }
-            (void)transition_time(G, dW, &rho1); /* its length fits T1 (header) */
+            rho1 = first_rho(G, dW, T1); /* its length fits T1 (header) but for the snap */
             ok &= real_finite(tau) && real_finite(rho1) && real_finite(c.rho2);
         }
     }

@@ -970,6 +970,106 @@ static void state_beyond_vmax(void)
     }
 }
 
+/* Put g (one group) into a cruise at V0 with p = 0 at the next sample's blend, and step it
+ * towards target: the move planned from (0, V0) with zero acceleration. Returns its first
+ * sample in out (4 n values). */
+static void plan_from_cruise(sms_multi_generator *g, const double *V0, const sms_real *target,
+                             sms_real *out)
+{
+    static double st[SMS_MULTI_IDENTITY_COUNT + 17 * SMS_MULTI_MAX_AXES];
+    const size_t n = g->n_axes, count = sms_multi_generator_state_count(g);
+    double *axis = st + SMS_MULTI_IDENTITY_COUNT, *m = axis + 5 * n;
+    size_t i;
+    CHECK(count <= sizeof st / sizeof st[0]);
+    sms_multi_generator_get_state(g, st);
+    for (i = 0; i < n; ++i) {
+        const sms_real v = (sms_real)V0[i];
+        const double p0 = -(double)(v * g->Ts_signal); /* the blend adds V0 Ts: p = 0 */
+        axis[i] = (double)target[i];
+        axis[n + i] = axis[2 * n + i] = p0; /* goal (differs from the target) and p */
+        axis[3 * n + i] = axis[4 * n + i] = (double)v;
+    }
+    /* a cruise at V0: T1 = 0, rho1, tau, T2 = 0, rho2, off, seen, k, k_end, active, ... */
+    m[0] = 0.0, m[1] = 0.5, m[2] = 1e9, m[3] = 0.0, m[4] = 0.5, m[5] = 0.0, m[6] = 0.0;
+    m[7] = 0.0, m[8] = 1125899906842624.0, m[9] = 1.0, m[10] = 0.0, m[11] = 0.0;
+    CHECK_STATUS(sms_multi_generator_set_state(g, st, count), SMS_OK);
+    sms_multi_generator_step(g, target, out);
+}
+
+/* The arrival rounded onto an earlier sample (a planned end within GRID_TOL = 2 eps after
+ * it) raises the cruise velocity W by up to 2 GRID_TOL, and with it the first transition's
+ * change W - V. From a cruise at V0 = vmax/2 to a cruise at vmax, V0 and W - V0 both need the
+ * whole first transition (T1 = T(V0) = T(W - V0)), so the change grows by twice as much, and
+ * the stretched jerk fraction raised the jerk by the square of that: 40 u over jmax in both
+ * precisions (1 axis, vmax 1, amax 1, jmax 1000, 42 u reported in double and 39 u in float;
+ * docs/multi-axis.md). The targets here put the candidate's cruise a few ulps long and Ts so
+ * that its end lies just after sample N; every reported v, a, j of the first transition stays
+ * within the limits to 32 u, the best-fitting jerk fraction bounding a and j by 2 (s - 1)
+ * <= 4 GRID_TOL = 16 u over their limits (s - 1 the rise of W). */
+static void snapped_arrival_from_a_cruise(void)
+{
+    const double V0 = 0.5, eps = 2.0 * UNIT_ROUNDOFF;
+    sms_multi_generator_config c;
+    sms_multi_generator g;
+    double worst[4] = {0, 0, 0, 0};
+    size_t snapped = 0, N, k, f, i;
+    static const double fracs[4] = {0.3, 0.6, 0.9, 0.99};
+    memset(&c, 0, sizeof c);
+    c.n_axes = 1;
+    c.sync = SMS_SYNC_PHASE;
+    c.vmax[0] = 1.0;
+    c.amax[0] = 1.0;
+    c.jmax[0] = 1000.0;
+    for (N = 1000; N <= 10000; N *= 10)
+        for (k = 0; k < 24; ++k) {
+            sms_real target, T1, T2, u, tau_c, total, base;
+            sms_real out[4];
+            /* the candidate's T1, T2 from a probe; the target k ulps beyond the one with no
+             * cruise, V0 T1/2 + T1/2 + T2/2 */
+            CHECK_STATUS(sms_multi_generator_init(&g, &c, 1e-3, NULL, 0, NULL, 0, NULL), SMS_OK);
+            target = (sms_real)(V0 * (0.501 / 2.0) + 0.501 / 2.0 + 1.001 / 2.0);
+            plan_from_cruise(&g, &V0, &target, out);
+            T1 = g.move[0].T1;
+            T2 = g.move[0].T2;
+            base = (sms_real)V0 * (T1 / 2) + T1 / 2 + T2 / 2;
+            target = base + (sms_real)k * (sms_real)(2.0 * eps) * base;
+            u = target - (sms_real)V0 * (T1 / 2);
+            tau_c = u / (sms_real)c.vmax[0] - T1 / 2 - T2 / 2; /* plan(): kappa = |u|/vmax */
+            if (!(tau_c > 0))
+                continue;
+            total = T1 + tau_c + T2;
+            for (f = 0; f < 4; ++f) {
+                const double Ts = (double)total / ((double)N * (1.0 + fracs[f] * 4.0 * eps));
+                size_t n_first;
+                CHECK_STATUS(sms_multi_generator_init(&g, &c, Ts, NULL, 0, NULL, 0, NULL),
+                             SMS_OK);
+                plan_from_cruise(&g, &V0, &target, out);
+                if (g.move[0].k_end == N && g.move[0].tau < tau_c)
+                    ++snapped; /* the arrival moved onto the earlier sample N */
+                n_first = (size_t)((double)g.move[0].T1 / Ts) + 1;
+                for (i = 0; i < n_first; ++i) {
+                    const double limit[4] = {0.0, (double)(sms_real)c.vmax[0],
+                                             (double)(sms_real)c.amax[0],
+                                             (double)(sms_real)c.jmax[0]};
+                    int o;
+                    if (i > 0)
+                        sms_multi_generator_step(&g, &target, out);
+                    for (o = 1; o < 4; ++o)
+                        if (fabs((double)out[o]) / limit[o] > worst[o])
+                            worst[o] = fabs((double)out[o]) / limit[o];
+                }
+            }
+        }
+    CHECK(snapped >= 10);
+    CHECK(worst[1] <= 1.0 + LIMIT_TOL);
+    CHECK(worst[2] <= 1.0 + LIMIT_TOL);
+    CHECK(worst[3] <= 1.0 + LIMIT_TOL);
+    printf("snapped arrival from a cruise: %lu snapped moves; first transition v, a, j at most "
+           "%.1f, %.1f, %.1f u over the limits\n", (unsigned long)snapped,
+           (worst[1] - 1.0) / UNIT_ROUNDOFF, (worst[2] - 1.0) / UNIT_ROUNDOFF,
+           (worst[3] - 1.0) / UNIT_ROUNDOFF);
+}
+
 int main(void)
 {
     unsigned trial;
@@ -990,5 +1090,6 @@ int main(void)
     feasible_random();
     own_states_reload();
     state_beyond_vmax();
+    snapped_arrival_from_a_cruise();
     return check_summary("test_multi_generator");
 }

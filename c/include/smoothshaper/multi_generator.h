@@ -112,10 +112,13 @@ typedef struct sms_multi_move {
  * regula falsi (Dowell and Jarratt 1971) with a bisection every fourth step, down to
  * neighbouring reals: about 5 evaluations per re-plan on random moves. The arrival is then
  * moved onto the next sample by lengthening the cruise (W shrinks towards 0, which keeps
- * every bound), and the output is set exactly to B at the arrival sample. A planned end
- * within 2 eps of the duration after a sample arrives on that sample instead (a whole number
- * of samples computed a rounding above: it raises W, v, a, j by up to 4 eps), so reported
- * v, a, j stay within L (1 + 16 eps) (docs/multi-axis.md).
+ * every bound: the new change W - V is a convex combination of two that fit T1, and what fits
+ * T1 is a convex set, docs/multi-axis.md), and the output is set exactly to B at the arrival
+ * sample. A planned end within 2 eps of the duration after a sample arrives on that sample
+ * instead (a whole number of samples computed a rounding above): it raises W, v and the
+ * stop's a, j by up to 4 eps, and the first transition's a, j by up to 8 eps, its jerk
+ * fraction then chosen to fit T1 (rho = min(1/2, A/(J T1)) when the shortest transition of
+ * W - V is longer than T1), so reported v, a, j stay within L (1 + 16 eps).
  *
  * From rest (V = 0) this is the time-optimal jerk-limited straight move, u = B - p and the
  * path parameter s in [0, 1] has the limits min_i vmax_i/|d_i|, min_i amax_i/|d_i|,

@@ -267,6 +267,22 @@ def _transition(dV, vmax, amax, jmax) -> tuple[float, float]:
     return _unit_time(_ratio(amax[nz], d[nz]), _ratio(jmax[nz], d[nz]))
 
 
+def _first_rho(dV, T1, amax, jmax) -> float:
+    """Jerk fraction of the first transition, the change dV over T1 (multi_generator.c
+    first_rho): the shortest transition's own rho when it fits T1, else the rho that
+    minimises the larger of the peak ratios, A/(J T1) (at most 1/2: the shortest
+    transition's jerk phase kept), for an arrival rounded onto an earlier sample."""
+    d = np.abs(dV)
+    nz = d > 0
+    if not nz.any():
+        return 0.5
+    A, J = _ratio(amax[nz], d[nz]), _ratio(jmax[nz], d[nz])
+    T, rho = _unit_time(A, J)
+    if T <= T1:
+        return rho
+    return min(A / (J * T1), 0.5)
+
+
 def phase_duration(delta, *, vmax, amax, jmax) -> float:
     """Time-optimal jerk-limited straight (phase-synchronised) rest-to-rest duration.
 
@@ -443,7 +459,7 @@ def _plan_unchecked(p, V, B, off, Ts, lim):
     kappa = T1 / 2 + tau + T2 / 2
     u = D - V * (T1 / 2)
     W = u / kappa if kappa > 0 else np.zeros_like(u)
-    rho1 = _transition(W - V, *lim)[1]
+    rho1 = _first_rho(W - V, T1, lim[1], lim[2])
     if not (np.all(np.isfinite(W)) and np.all(np.isfinite(W - V)) and math.isfinite(tau)
             and math.isfinite(rho1) and math.isfinite(rho2)):
         return _REFUSED
