@@ -7,7 +7,7 @@ import warnings
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, settings, strategies as st
+from hypothesis import HealthCheck, assume, given, settings, strategies as st
 
 from smoothshaper.errors import DroppedTargetWarning
 from smoothshaper.filters import ParameterError
@@ -382,3 +382,48 @@ def test_axis_count_and_state_identity_match_the_c_core():
     _, lib = _backend("double")
     assert MultiAxisGenerator.MAX_AXES == lib.SMS_MULTI_MAX_AXES
     assert len(HEAD_FIELDS + multi_axis._MULTI_IDENTITY_FIELDS) == lib.SMS_MULTI_IDENTITY_COUNT
+
+
+def _first_transition_search():
+    """tests/bench/multi_first_transition_search.py as a module (its planner from a crafted
+    cruise and its adversarial families)."""
+    import importlib.util
+    path = os.path.join(os.path.dirname(__file__), "..", "bench",
+                        "multi_first_transition_search.py")
+    spec = importlib.util.spec_from_file_location("multi_first_transition_search", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+SEARCH = _first_transition_search()
+
+
+@settings(suppress_health_check=[HealthCheck.filter_too_much, HealthCheck.too_slow])
+@given(n=st.integers(1, 4), precision=st.sampled_from(["double", "float"]), data=st.data())
+def test_first_transition_keeps_the_limits_when_the_arrival_snaps_from_a_cruise(n, precision,
+                                                                               data):
+    """A move from a cruise at V (1 to 4 axes) whose candidate cruises at W, one axis at vmax,
+    for a few eps of the move, with Ts putting the planned end just after a sample (rounded
+    onto it: W rises by up to 2 GRID_TOL) or just before it (rounded up). The planned first
+    transition's peaks stay within the limits to 2 (s - 1) <= 4 GRID_TOL = 16 u and rounding,
+    and its first reported sample (the jerk phase) within 32 u (docs/multi-axis.md); they
+    reached 40 u with the stretched jerk fraction (tests/c/test_multi_generator.c)."""
+    bounds = SEARCH.snap_bounds(n)
+    x = np.array([data.draw(st.floats(lo, hi), label=f"x{i}")
+                  for i, (lo, hi) in enumerate(bounds)])
+    try:
+        case = SEARCH.snap_case(x, n, precision)
+    except ParameterError:
+        case = None
+    assume(case is not None)
+    planner, V0, target = case
+    f = planner.plan(V0, target)
+    assume(f is not None)
+    v, a, j = planner.peaks(f)
+    assert a <= 32 and j <= 32, (v, a, j)
+    u = SEARCH.UNIT[precision]
+    limits = [np.asarray(L, dtype=SEARCH.REAL[precision]).astype(float)
+              for L in (planner.g.vmax, planner.g.amax, planner.g.jmax)]
+    for i in range(3):
+        assert np.all(np.abs(f["first"][:, i + 1]) <= limits[i] * (1 + 32 * u))
