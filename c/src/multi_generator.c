@@ -37,13 +37,15 @@ static sms_real ratio(sms_real limit, sms_real d)
  * few roundings: a move whose exact duration is a whole number of samples (limits and Ts of
  * round values: 0.475 s at 1 ms) comes out up to 1.3 eps above it (measured), and rounding
  * it up would cost a whole sample. Shortening the move by GRID_TOL of its duration (at most
- * 2 kappa) raises W = u/kappa, and with it v, a, j, by up to 2 GRID_TOL = 4 eps; a wider
- * tolerance costs that much more (8 eps raised them by 16 eps). */
+ * 2 kappa) raises W = u/kappa, and with it v and the stop's a, j, by up to 2 GRID_TOL =
+ * 4 eps, the first transition's a, j by up to twice that (first_rho()); a wider tolerance
+ * costs that much more (8 eps raised them by 16 eps).
+ *
+ * So a planned cruise velocity W (and a move's start velocity V, an earlier W) may round
+ * over vmax by the arrival's 2 GRID_TOL and the roundings of kappa and u/kappa (8 eps):
+ * 12 eps, within the reported values' 32 u = 16 eps (SMS_LIMIT_RTOL), to which a saved
+ * state's V and W are checked (sms_multi_generator_check_state()). */
 #define GRID_TOL (2 * REAL_EPS)
-/* How far a planned cruise velocity W (and so a move's start velocity V, an earlier W) may
- * round over vmax: W = u/kappa with kappa >= |u|/vmax, the arrival's rounding onto the grid
- * (2 GRID_TOL), the roundings of kappa and u/kappa (8 eps): 12 eps, within the reported
- * values' 32 u = 16 eps (SMS_LIMIT_RTOL), to which a saved state is checked. */
 
 /* cbrt(x), x >= 0, by Newton after scaling into [1, 8). */
 static sms_real root3(sms_real x)
