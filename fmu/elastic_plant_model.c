@@ -272,9 +272,9 @@ void fmu_model_save_state(const void *model, double *dst)
 
 int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, size_t len)
 {
+    ep_model *m = (ep_model *)model;
     (void)msg;
     (void)len;
-    ep_model *m = (ep_model *)model;
     if (n != 3 || !isfinite(src[0]) || !isfinite(src[1]) || !isfinite(src[2]))
         return 1;
     m->y = src[0];

@@ -588,18 +588,22 @@ void fmu_model_save_state(const void *model, double *dst)
 
 int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, size_t len)
 {
-    (void)msg;
-    (void)len;
     ma_model *m = (ma_model *)model;
     size_t own = 4u * (size_t)m->axes;
+    sms_status st;
     int i, k;
     if (n != fmu_model_state_count(m))
         return 1;
     for (i = 0; i < (int)own; ++i)
         if (!isfinite(src[i]))
             return 1;
-    if (sms_multi_generator_set_state(&m->gen, src + own, n - own) != SMS_OK)
+    st = sms_multi_generator_set_state(&m->gen, src + own, n - own);
+    if (st != SMS_OK) {
+        snprintf(msg, len, "the generator refuses its state (%s): a value non-finite or out of "
+                 "range, or an axis's start or cruise velocity beyond its vmax by more than "
+                 "the reported values' relative %.3g", sms_status_string(st), SMS_LIMIT_RTOL);
         return 1;
+    }
     for (k = 0; k < 4; ++k)
         for (i = 0; i < m->axes; ++i)
             m->field[F_Q + k][i] = *src++;

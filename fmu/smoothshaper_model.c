@@ -448,9 +448,9 @@ void fmu_model_save_state(const void *model, double *dst)
 
 int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, size_t len)
 {
+    ss_model *m = (ss_model *)model;
     (void)msg;
     (void)len;
-    ss_model *m = (ss_model *)model;
     if (n != fmu_model_state_count(m) || src[0] != src[0])
         return 1;
     if (m->n_active > 0 && sms_chain_set_state(&m->chain, src + 1, n - 1) != SMS_OK)

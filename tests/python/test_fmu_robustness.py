@@ -207,6 +207,33 @@ def test_a_generator_state_beyond_its_limits_is_refused_with_the_reason(trajecto
         f.freeInstance()
 
 
+def test_a_multi_axis_state_beyond_vmax_is_refused_with_the_reason(multi_dir):  # noqa: F811
+    """A MultiAxisGenerator state whose axis's cruise velocity lies beyond its vmax by twice
+    SMS_LIMIT_RTOL (32 u) is refused by fmi2DeSerializeFMUstate, the logger saying why; at the
+    tolerance it loads."""
+    from smoothshaper.multi_axis import MultiAxisGenerator
+    from test_fmu_multi_axis import LIMITS, start as start_ma, start_values
+    log = Logged()
+    fmu = slave(multi_dir, "ma", logged=log)
+    start_ma(fmu, **start_values(3, 0))
+    for k in range(60):
+        fmu.setReal([fmu.vr[f"target[{i}]"] for i in range(3)], [0.3, -0.2, 0.1])
+        fmu.doStep(k * TS, TS)
+    blob = fmu.serializeFMUstate(fmu.getFMUstate())
+    g = MultiAxisGenerator(Ts=TS, **LIMITS[3])
+    tol, identity = float(g._lib.SMS_LIMIT_RTOL), int(g._lib.SMS_MULTI_IDENTITY_COUNT)
+    at = len(blob) - 8 - 8 * (4 * 3 + g.get_state().size)   # outputs, the generator's state
+    W1 = at + 8 * (4 * 3 + identity + 4 * 3 + 1)             # axis 1's cruise velocity
+    assert struct.unpack_from("<d", blob, at + 8 * 12)[0] == g.get_state()[0]   # state tag
+    vmax = LIMITS[3]["vmax"][1]
+    with pytest.raises(FMICallException):
+        fmu.deSerializeFMUstate(patched(blob, W1, "<d", -vmax * (1 + 2 * tol)))
+    message = log.messages[-1]
+    assert "cruise velocity" in message and f"relative {tol:.3g}" in message, message
+    fmu.freeFMUstate(fmu.deSerializeFMUstate(patched(blob, W1, "<d", -vmax * (1 + tol))))
+    fmu.freeInstance()
+
+
 ENTRY_POINTS = [
     ("fmi2DoStep", lambda f, c: f.fmi2DoStep(c, 0.05, TS, 1)),
     ("fmi2SetReal", lambda f, c: f.fmi2SetReal(c, (ctypes.c_uint32 * 1)(0), 1,
