@@ -969,6 +969,7 @@ sms_status sms_kin_solve_sampled(double h, const double *limits, size_t n, sms_p
          * sampled peak density (largest tap / Ts) bounds the top derivative. */
         double wd = wn * sqrt(1.0 - zeta * zeta);
         double Tm, best = HUGE_VAL, Tbest[SMS_KINEMATIC_MAX_ORDER], supp_best = 0.0;
+        const double reach = h / p.L[0]; /* h/vmax */
         unsigned k, step = 1u, kbest = 0u;
         if (profile == SMS_PROFILE_DAMPED) {
             last->kind = SMS_EXPONENTIAL;
@@ -988,6 +989,23 @@ sms_status sms_kin_solve_sampled(double h, const double *limits, size_t n, sms_p
             p.T_fixed = k * Tm;
             if (p.T_fixed >= best)
                 break; /* the chain lasts at least its tuned stage: no longer multiple wins */
+            if (last->kind == SMS_RECTANGULAR && n > 1 && p.T_fixed < reach &&
+                (p.T_fixed + reach) * (1.0 - 1e-12) >= best) {
+                /* A tuned box F < h/vmax leaves the velocity to the other boxes: their
+                 * convolution r (support R) is unimodal, so some window of length F holds at
+                 * least F/R of its mass, and the chain's velocity peak h max(r over F)/F is at
+                 * least h/R: within vmax, R >= h/vmax and the chain lasts at least
+                 * F + h/vmax (docs/sampled-limits.md). That grows with F: no multiple below
+                 * h/vmax wins; go on from the first one at or above it (the margin covers
+                 * the durations' rounding). */
+                double first = ceil(reach / Tm);
+                if (first <= (double)k)
+                    first = (double)k + 1.0; /* F rounded below h/vmax: still move on */
+                if (first > (double)SMS_KINEMATIC_MAX_MULTIPLE)
+                    break;
+                k = (unsigned)first - 1u; /* the loop's increment lands on it (step 1) */
+                continue;
+            }
             p.rho_fixed = peak_density(last->kind, p.T_fixed, last->sigma);
             if (n == 1) {
                 if (h * p.rho_fixed > p.L[0])

@@ -2,7 +2,8 @@
 continuous optimum, in samples, per number of bounds (docs/sampled-limits.md).
 
 ``python -m smoothshaper.bench_grid_price [--cases N] [--adversarial K] [--bounds 1 .. 8]
-[--profile polynomial|trigonometric] [--mode RATIO] [--cost M]`` draws N random problems per bound count (h
+[--profile polynomial|trigonometric] [--mode RATIO] [--cost M [--cost-mode-range LOW HIGH]]``
+draws N random problems per bound count (h
 and every bound over six orders of magnitude, the i-th bound scaled by 10^i so every stage
 matters, Ts from 1/3 to 1/3000 of the move), designs each continuously and on the grid (the C
 design, ``sms_kinematic_design``, of the profile), and prints mean, 99th percentile and
@@ -13,8 +14,8 @@ problem of each class, keeping a step when the price grows: an adversarial searc
 worst seen. With ``--cost M`` it also prints what the grid design costs per bound count: CPU
 time of ``sms_kinematic_design`` with Ts on M of these problems, each timed in one C loop of
 20 repeats (``sms_kinematic_design_batch``, stride 0; best of three), so the binding's call is
-not counted; with K > 0 also the slowest design that K such steps from the slowest drawn
-find. Nothing asserts; the figures are for reading.
+not counted (with ``--mode``, the tuned designs); with K > 0 also the slowest design that K
+such steps from the slowest drawn find. Nothing asserts; the figures are for reading.
 """
 from __future__ import annotations
 
@@ -117,37 +118,52 @@ def grid_prices(n: int, cases: int, seed: int = 5, adversarial: int = 0,
     return {True: np.array(prices[True]), False: np.array(prices[False]), "worst": worst}
 
 
-def _timer(n: int, profile: int, repeats: int):
+def _timer(n: int, profile: int, repeats: int, mode_ratio=None, seed: int = 5):
     """CPU ns of one grid design of (h, bounds, Ts): `repeats` designs in one C loop (the batch
-    call with stride 0), best of three loops, divided by `repeats`; None if refused."""
+    call with stride 0), best of three loops, divided by `repeats`, whether the design
+    succeeds or is refused. With `mode_ratio`, the last stage tuned to a mode as in
+    :func:`_designer` (None when the design without the mode is refused); a pair (low, high)
+    draws the ratio per problem, log-uniformly."""
     ffi, lib = _backend("double")
+    rng = np.random.default_rng(seed)
     H, L = ffi.new("double[1]"), ffi.new("double[8]")
     T, index = ffi.new("double[]", 8 * repeats), ffi.new("size_t *")
+    cnt = ffi.new("size_t *")
 
     def time_one(h, lim, Ts):
         H[0] = h
         for i, v in enumerate(lim):
             L[i] = v
+        wn = zeta = 0.0
+        if mode_ratio is not None:
+            if lib.sms_kinematic_design(h, L, n, profile, 0.0, 0.0, 0.0, T, n, cnt) != 0:
+                return None
+            ratio = (10.0 ** rng.uniform(*np.log10(mode_ratio)) if isinstance(mode_ratio, tuple)
+                     else mode_ratio)
+            wn, zeta = 2.0 * np.pi / (ratio * T[n - 1]), 0.05
         best = np.inf
         for _ in range(3):
             t0 = time.process_time_ns()
-            st = lib.sms_kinematic_design_batch(repeats, H, 0, L, 0, n, profile, 0.0, 0.0, Ts, T,
+            st = lib.sms_kinematic_design_batch(repeats, H, 0, L, 0, n, profile, wn, zeta, Ts, T,
                                                 8 * repeats, index)
             best = min(best, time.process_time_ns() - t0)
-        return best / repeats if st == 0 else None
+        del st   # a refusal is timed too
+        return best / repeats
     return time_one
 
 
 def grid_design_costs(n: int, cases: int, seed: int = 5, repeats: int = 20,
-                      profile: int = 0, adversarial: int = 0):
+                      profile: int = 0, adversarial: int = 0, mode_ratio: float | None = None):
     """CPU ns of one grid design (``sms_kinematic_design`` with Ts) for `cases` random problems
     with n bounds, drawn as in :func:`grid_prices`, each timed by :func:`_timer`. With
     `adversarial` > 0 also the slowest design found by that many random steps from the
     slowest problem drawn (kept when slower, as the price search does). Returns (array of
-    ns, slowest ns after the steps). `profile`: 0 polynomial, 1 trigonometric."""
+    ns, slowest ns after the steps). `profile`: 0 polynomial, 1 trigonometric; `mode_ratio`:
+    the last stage tuned to a mode (:func:`_designer`). A refused design is timed as well:
+    the caller waits for its status."""
     rng = np.random.default_rng(seed)
     design = _designer(profile)
-    time_one = _timer(n, profile, repeats)
+    time_one = _timer(n, profile, repeats, mode_ratio, seed)
     out, slowest = [], (-np.inf, None)
     while len(out) < cases:
         problem = _draw(n, rng, design)
@@ -205,15 +221,25 @@ def main(argv=None) -> int:
                         "that stage's length without a mode")
     p.add_argument("--cost", type=int, default=0, metavar="M",
                    help="also time the grid design on M problems per bound count")
+    p.add_argument("--cost-mode-range", type=float, nargs=2, default=None,
+                   metavar=("LOW", "HIGH"),
+                   help="with --cost: tune each timed design to a mode whose period is a "
+                        "log-uniform random LOW..HIGH times the last stage (instead of --mode)")
     args = p.parse_args(argv)
     profile = int(args.profile == "trigonometric")
     for n in args.bounds if args.cases else ():
         print(report(n, args.cases, args.adversarial, args.seed, profile, args.mode), flush=True)
     for n in args.bounds if args.cost else ():
+        mode = tuple(args.cost_mode_range) if args.cost_mode_range else args.mode
         ns, slowest = grid_design_costs(n, args.cost, args.seed, profile=profile,
-                                        adversarial=args.adversarial)
+                                        adversarial=args.adversarial, mode_ratio=mode)
         us = ns / 1e3
         name = " (trigonometric)" if profile else ""
+        if isinstance(mode, tuple):
+            name += (f" (tuned to a mode of period {mode[0]:g} to {mode[1]:g} times the last "
+                     "stage)")
+        elif mode is not None:
+            name += f" (tuned to a mode of period {mode:g} times the last stage)"
         extra = f"  adversarial {slowest / 1e3:.2f} us" if args.adversarial else ""
         print(f"grid design cost{name}, {n} bound(s) ({us.size} problems, CPU time in C): median "
               f"{np.median(us):.2f} us  p99 {np.percentile(us, 99):.2f} us  max {us.max():.2f} us"

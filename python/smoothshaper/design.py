@@ -127,7 +127,8 @@ def _check_ratios(h: float, limits: list[float], wn: float) -> None:
         if not RATIO_RANGE[0] <= r <= RATIO_RANGE[1]:
             what = "longer than 1e60 s" if not r <= RATIO_RANGE[1] else "shorter than 1e-60 s"
             raise ParameterError(
-                den_name, f"{num_name}/{den_name} = {r:.6g} s: a stage of the design would be "
+                den_name, f"{num_name}/{den_name} = {_quotient_text(num, den)} s: a stage of "
+                f"the design would be "
                 f"{what} ({num_name}={num!r}, {den_name}={den!r}); bring {den_name} and "
                 f"{num_name} closer together", -15 if r > 1 else -17)
     if wn and not RATIO_RANGE[0] <= 1.0 / wn <= RATIO_RANGE[1]:
@@ -135,14 +136,25 @@ def _check_ratios(h: float, limits: list[float], wn: float) -> None:
                              "[1e-60, 1e60] s", -6)
 
 
+def _quotient_text(num: float, den: float) -> str:
+    """num/den as text, also where the quotient overflows or underflows a double (1e+318)."""
+    r = num / den
+    if r != 0.0 and math.isfinite(r):
+        return f"{r:.6g}"
+    e = math.log10(num) - math.log10(den)
+    p = math.floor(e)
+    return f"{10.0 ** (e - p):.6g}e{p:+d}"
+
+
 def _design_error(st: int, lib, ffi, *, h, limits, Ts, wn) -> None:
     names = _names(len(limits))
     given = ", ".join(f"{n}={v!r}" for n, v in zip(["h"] + names, [h] + limits))
     if st == -15:
         if Ts:
+            modes = (f" (or no mode multiple k <= {MAX_MULTIPLE} meets the bounds)" if wn
+                     else "")
             raise ParameterError("Ts", f"Ts = {Ts!r} s: the design ({given}) spans more than "
-                                 f"2^52 samples (or no mode multiple k <= {MAX_MULTIPLE} meets "
-                                 "the bounds)", st)
+                                 f"2^52 samples{modes}", st)
         raise ParameterError("wn", f"wn: no multiple k <= {MAX_MULTIPLE} of the mode period "
                              f"meets the bounds ({given})", st)
     if st in (-16, -4) and wn:

@@ -91,6 +91,27 @@ def test_c_matches_reference_any_order(lh, lv, la, lj, ls, profile):
     assert c == pytest.approx(ref, rel=1e-9)
 
 
+@settings(max_examples=15, deadline=None)   # the reference tries all 10,000 multiples
+@given(lv=st.floats(-4, -2), la=st.floats(1, 4), lj=st.floats(0, 3), n=st.integers(2, 3),
+       lp=st.floats(-2.5, 0.5), zeta=st.sampled_from([0.0, 0.05]), grid=st.booleans())
+def test_mode_multiple_search_skips_only_multiples_that_cannot_win(lv, la, lj, n, lp, zeta,
+                                                                    grid):
+    """With a rectangular stage tuned to a mode, the C search skips the multiples whose chain
+    must last at least k Tm + h/vmax (longer than the best found; a short tuned box leaves
+    the velocity to the other boxes). Where that skips the most, h/vmax far above the other
+    stages and a mode period far below the last stage, the multiple and the lengths equal
+    those of the reference, which tries every multiple."""
+    kw = dict(h=1.0, vmax=10 ** lv, amax=10 ** la, jmax=10 ** lj if n == 3 else None)
+    last = design.kinematic(**kw)[-1].T
+    kw.update(wn=2 * math.pi / (last * 10 ** lp), zeta=zeta)
+    if grid:
+        kw["Ts"] = last * 10 ** lp / 7.3   # seven samples and a fraction per mode period
+    c = design.kinematic(**kw)
+    ref = design.kinematic_reference(**kw)
+    assert [s.k for s in c] == [s.k for s in ref]
+    assert [s.T for s in c] == pytest.approx([s.T for s in ref], rel=1e-9)
+
+
 def test_seed_001_check_values():
     T = [s.T for s in design.kinematic(h=40, vmax=250, amax=5000, jmax=200000)]
     assert T == pytest.approx([0.16, 0.05, 0.025], rel=1e-14)

@@ -59,9 +59,12 @@ typedef enum sms_profile {
  * n <= 3 (polynomial) this is the time-optimal bounded-jerk trajectory (ruckig's duration,
  * e.g. h = 40, v = 250, a = 5000, j = 200000 gives 0.16 + 0.05 + 0.025 = 0.235 s); for n >= 4
  * it is the shortest chain of this structure, which need not be the unconstrained optimum.
- * Cost: O(n^2) closed-form steps for any input (no nested iteration); with Ts > 0 the grid
- * search below adds a bounded number of chain tests (median CPU time from about 0.1 us for
- * one bound to 48 us for eight, largest about 0.6 ms; docs/sampled-limits.md).
+ * Cost: O(n^2) closed-form steps for any input (no nested iteration); with a mode, one such
+ * solve per multiple k tried, at most ::SMS_KINEMATIC_MAX_MULTIPLE (a rectangular tuned
+ * stage skips the multiples whose chain must last k Tm + |h|/vmax or more, longer than the
+ * best found; measured up to about 27 ms for eight bounds, 1 ms for three); with Ts > 0
+ * the grid search below adds a bounded number of chain tests (median CPU time from about
+ * 0.1 us for one bound to 48 us for eight, largest about 0.6 ms; docs/sampled-limits.md).
  *
  * On a sample grid (Ts > 0; docs/sampled-limits.md): every stage except a mode-tuned last one
  * lasts a whole number of samples N[k] Ts, the lengths chosen together. First rule: N[k] >=
