@@ -40,6 +40,9 @@ def test_reported_cases_keep_every_bound():
             assert abs(g.T / Ts - round(g.T / Ts)) <= 1e-9 * g.T / Ts
         price = (design.duration(grid) - design.duration(cont)) / Ts
         assert 0 <= price < len(L)       # under one sample per stage
+        if Ts == 0.025 / 10.5:   # the numbers docs/sampled-limits.md quotes for this case
+            assert [round(g.T / Ts) for g in grid] == [68, 22, 10]
+            assert np.round(sampled_ratios(grid, Ts, 40, L), 3).tolist() == [0.988, 0.943, 0.99]
 
 
 limits_strategy = st.tuples(
