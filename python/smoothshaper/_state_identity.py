@@ -21,6 +21,11 @@ OBJECT_KINDS = {100.0: "Generator", 101.0: "BSpline", 102.0: "MultiAxisGenerator
 _PRECISIONS = {8.0: "double", 4.0: "float"}
 
 
+def _whole(value: float) -> bool:
+    """``value`` is a finite integral number (int() of NaN or inf raises)."""
+    return bool(np.isfinite(value)) and value == int(value)
+
+
 def _show(field: str, value: float, choices: dict[str, tuple[str, ...]]):
     """A field's value for the message: names for enumerations, ints for counts."""
     base = field.split("[")[0]
@@ -31,12 +36,12 @@ def _show(field: str, value: float, choices: dict[str, tuple[str, ...]]):
             return f"a {OBJECT_KINDS[value]}"
         from .stages import KINDS
         return (f"a stage of kind {KINDS[int(value)]!r}"
-                if value == int(value) and 0 <= value < len(KINDS) else repr(float(value)))
+                if _whole(value) and 0 <= value < len(KINDS) else f"kind={float(value)!r}")
     if base in choices:
         names = choices[base]
-        return (repr(names[int(value)]) if value == int(value) and 0 <= value < len(names)
+        return (repr(names[int(value)]) if _whole(value) and 0 <= value < len(names)
                 else repr(float(value)))
-    if base in ("degree", "axes", "n_stages") and value == int(value):
+    if base in ("degree", "axes", "n_stages") and _whole(value):
         return str(int(value))
     return repr(float(value))
 

@@ -94,6 +94,22 @@ def test_not_a_generator_state():
         g.set_state(s[:-1])
 
 
+@pytest.mark.parametrize("field", [3, 8])          # kind, profile: enumerations
+@pytest.mark.parametrize("value", [np.nan, np.inf, -np.inf])
+def test_a_non_finite_enumeration_field_is_named(field, value):
+    """A NaN or inf in the kind or profile field of a saved state raised ValueError (or
+    OverflowError) from int() while the message was being written."""
+    g = Generator(**BASE)
+    g.process(np.full(30, 0.5))
+    s = g.get_state()
+    bad = s.copy()
+    bad[field] = value
+    with pytest.raises(ParameterError, match="^state is from ") as info:
+        g.set_state(bad)
+    assert info.value.parameter == "state"
+    assert np.array_equal(g.get_state(), s)
+
+
 def test_layout_is_documented():
     g = Generator(**dict(BASE, profile="trigonometric"))
     s = g.get_state()
