@@ -14,9 +14,12 @@ from .errors import ParameterError
 
 
 def show(value) -> str:
-    """``value`` for an error message: NumPy scalars as plain Python numbers."""
+    """``value`` for an error message: NumPy scalars as plain Python numbers, and an int of
+    more than 64 bits by its size (``10**400`` would be 401 digits)."""
     if isinstance(value, np.generic):
         value = value.item()
+    if isinstance(value, int) and not isinstance(value, bool) and value.bit_length() > 64:
+        return f"{'a negative' if value < 0 else 'an'} int of {value.bit_length()} bits"
     return repr(value)
 
 
@@ -83,7 +86,7 @@ def integer(name: str, value, minimum: int | None = None) -> int:
             raise ParameterError(name, f"{name} must be an integer, got {v!r}")
         n = int(v)
     if minimum is not None and n < minimum:
-        raise ParameterError(name, f"{name} must be an integer >= {minimum}, got {n}")
+        raise ParameterError(name, f"{name} must be an integer >= {minimum}, got {show(n)}")
     return n
 
 
@@ -112,7 +115,8 @@ def real_array(name: str, values, ndim: int | None = None) -> np.ndarray:
     if raw.dtype.kind not in "iuf":
         raise ParameterError(name, f"{name} must be an array of real numbers, "
                              f"got dtype {raw.dtype}")
-    x = raw.astype(np.float64, copy=False)
+    with np.errstate(over="ignore"):    # a longdouble beyond 1.8e308 becomes inf: callers
+        x = raw.astype(np.float64, copy=False)   # that need finite values name it then
     if ndim is not None and x.ndim != ndim:
         what = {1: "one-dimensional", 2: "two-dimensional"}.get(ndim, f"{ndim}-dimensional")
         raise ParameterError(name, f"{name} must be {what}, got shape {x.shape}")

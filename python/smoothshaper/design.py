@@ -31,7 +31,7 @@ import math
 import numpy as np
 
 from . import _kinematic_fastpath, stages as _stages
-from .filters import ParameterError, _backend, _raise_status
+from .filters import ParameterError, _as_stage_list, _backend, _raise_status
 from .stages import Stage, _unchecked_stage
 from ._checks import (choice as _choice, finite as _finite, positive as _positive,
                       real_array as _real_array)
@@ -838,7 +838,7 @@ def duration(stages) -> float:
 
     Parameters
     ----------
-    stages : sequence of Stage
+    stages : Stage or sequence of Stage
         Smoother stages (their ``T``).
 
     Returns
@@ -848,7 +848,7 @@ def duration(stages) -> float:
 
     Raises
     ------
-    AttributeError
-        An item is not a Stage.
+    ParameterError
+        Naming ``stages`` (or ``stages[i]``) when it is not a Stage or a sequence of them.
     """
-    return float(sum(s.T for s in stages))
+    return float(sum(s.T for s in _as_stage_list(stages)))

@@ -24,7 +24,8 @@ import numpy as np
 from . import stages as _stages
 from .stages import Stage
 from ._checks import (choice as _choice, finite as _finite, finite_signal as _signal,
-                      integer as _integer, positive as _positive, real_array as _real_array)
+                      integer as _integer, positive as _positive, real_array as _real_array,
+                      show as _show)
 from .errors import ParameterError
 
 __all__ = ["Chain", "Mode", "ParameterError", "PRECISIONS", "MAX_BUFFER_REALS", "status_string",
@@ -63,8 +64,12 @@ def check_memory(parameter: str, n_reals, what: str) -> int:
     :data:`MAX_BUFFER_REALS`: a request too large is refused in O(1) with the limit stated,
     never by numpy's MemoryError (or hours of swapping)."""
     if not n_reals <= MAX_BUFFER_REALS:
+        try:
+            need = f"{float(n_reals):.4g}"
+        except OverflowError:     # an int beyond the largest float
+            need = f"more than 2^{int(n_reals).bit_length() - 1}"
         raise ParameterError(
-            parameter, f"{parameter} out of range: {what} would need {float(n_reals):.4g} values, "
+            parameter, f"{parameter} out of range: {what} would need {need} values, "
             f"more than the limit of {MAX_BUFFER_REALS} (smoothshaper.filters.MAX_BUFFER_REALS)")
     return int(n_reals)
 
@@ -165,7 +170,7 @@ def _raise_status(status: int, lib, ffi, context: str, parameter: str | None = N
     text = ffi.string(lib.sms_status_string(status)).decode()
     if not text.startswith(parameter + " "):
         text = f"{parameter} invalid: {text}"
-    got = "" if value is None else f" (got {parameter}={value!r})"
+    got = "" if value is None else f" (got {parameter}={_show(value)})"
     raise ParameterError(parameter, f"{text}{got}; {context}", status)
 
 
@@ -210,7 +215,7 @@ def _stage_parameter(stage: Stage, status: int) -> tuple[str, object]:
 
 def _unsigned(name: str, value: int) -> int:
     if not 0 <= value <= 0xFFFFFFFF:
-        raise ParameterError(name, f"{name} must fit an unsigned 32-bit integer, got {value!r}")
+        raise ParameterError(name, f"{name} must fit an unsigned 32-bit integer, got {_show(value)}")
     return value
 
 
@@ -245,11 +250,11 @@ def _as_stage_list(stages) -> tuple[Stage, ...]:
         out = tuple(stages)
     except TypeError:
         raise ParameterError(
-            "stages", f"stages must be a Stage or a sequence of Stage, got {stages!r}") from None
+            "stages", f"stages must be a Stage or a sequence of Stage, got {_show(stages)}") from None
     for i, s in enumerate(out):
         if not isinstance(s, Stage):
             raise ParameterError(
-                f"stages[{i}]", f"stages[{i}] must be a smoothshaper.Stage, got {s!r}")
+                f"stages[{i}]", f"stages[{i}] must be a smoothshaper.Stage, got {_show(s)}")
     return out
 
 
@@ -687,7 +692,7 @@ def design_for_mode(kind: str, *, wn: float, zeta: float = 0.0, k: int = 1) -> S
     wn_v, zeta_v = _finite("wn", wn), _finite("zeta", zeta)
     k = _integer("k", k, 1)
     if k > 0xFFFFFFFF:
-        raise ParameterError("k", f"k must fit an unsigned 32-bit integer, got {k}")
+        raise ParameterError("k", f"k must fit an unsigned 32-bit integer, got {_show(k)}")
     ffi, lib = _backend("double")
     config = ffi.new("sms_stage_config *")
     st = lib.sms_design_for_mode(_stages.KINDS.index(kind), wn_v, zeta_v, int(k), config)

@@ -10,7 +10,7 @@ import math
 import warnings
 from dataclasses import dataclass, replace
 
-from ._checks import choice as _choice, finite as _finite, integer as _integer
+from ._checks import choice as _choice, finite as _finite, integer as _integer, show as _show
 from .errors import ParameterError
 
 __all__ = ["KINDS", "SMOOTHERS", "SHAPERS", "NOTCHES", "TIMINGS", "MAX_ZVN_ORDER", "MAX_IMPULSES",
@@ -109,7 +109,7 @@ class Stage:
             if self.kind in ("harmonic", "damped_harmonic") and self.k % 2 == 0:
                 raise ParameterError(
                     "k", f"k must be odd for the {self.kind} family: zeros sit at odd multiples "
-                    f"of pi/T, so T = k*3*pi/wn with even k={self.k} puts no zero on wn")
+                    f"of pi/T, so T = k*3*pi/wn with even k={_show(self.k)} puts no zero on wn")
         else:
             if self.wn <= 0:
                 raise ParameterError("wn", f"wn must be > 0 rad/s, got {self.wn!r}")
@@ -446,6 +446,24 @@ def notch(*, wn: float, zeta: float = 0.0, notch_pole_zeta: float = 0.7,
     return Stage(f"notch_{discretization}", wn=wn, zeta=zeta, notch_pole_zeta=notch_pole_zeta)
 
 
+def _mode_length(k: int, half_periods: int, wn: float, wd: float) -> float:
+    """``k half_periods pi / wd``, the smoother length :func:`for_mode` places on the mode;
+    ParameterError naming ``wn`` (the period itself is beyond a float) or ``k`` (the multiple
+    is) when it is not a finite float, instead of an OverflowError or a message about ``T``,
+    which the caller did not give."""
+    try:
+        T = k * half_periods * math.pi / wd
+    except (OverflowError, ZeroDivisionError):
+        T = math.inf
+    if math.isfinite(T):
+        return T
+    if wd == 0 or not math.isfinite(half_periods * math.pi / wd):
+        raise ParameterError("wn", f"wn = {wn!r} rad/s is too low: the mode's period is beyond "
+                             "the largest float")
+    raise ParameterError("k", f"k = {_show(k)}: k times the mode's period is beyond the "
+                         "largest float")
+
+
 def for_mode(kind: str, *, wn: float, zeta: float = 0.0, k: int = 1) -> Stage:
     """A stage of ``kind`` that cancels the mode (``wn``, ``zeta``), as ``sms_design_for_mode``.
 
@@ -486,13 +504,13 @@ def for_mode(kind: str, *, wn: float, zeta: float = 0.0, k: int = 1) -> Stage:
     k = _integer("k", k, 1)
     wd = wn * math.sqrt(1.0 - zeta * zeta)
     if kind == "rectangular":
-        return Stage(kind, T=k * 2 * math.pi / wd, k=k)
+        return Stage(kind, T=_mode_length(k, 2, wn, wd), k=k)
     if kind == "harmonic":
-        return Stage(kind, T=k * 3 * math.pi / wd, k=k)
+        return Stage(kind, T=_mode_length(k, 3, wn, wd), k=k)
     if kind == "damped_harmonic":
-        return Stage(kind, T=k * 3 * math.pi / wd, sigma=-zeta * wn, k=k)
+        return Stage(kind, T=_mode_length(k, 3, wn, wd), sigma=-zeta * wn, k=k)
     if kind == "exponential":
-        return Stage(kind, T=k * 2 * math.pi / wd, sigma=-zeta * wn, k=k)
+        return Stage(kind, T=_mode_length(k, 2, wn, wd), sigma=-zeta * wn, k=k)
     if k != 1:
         raise ParameterError(
             "k", f"k must be 1 for {kind}: shapers and notches are placed on the mode itself")

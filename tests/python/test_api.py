@@ -77,6 +77,59 @@ def test_an_int_beyond_the_largest_float_is_named(call, parameter):
     assert "1329 bits" in str(exc) and len(str(exc)) < 200
 
 
+@pytest.mark.parametrize("call, parameter", [
+    (lambda n: sms.harmonic(T=0.1, k=n), "k"),
+    (lambda n: sms.harmonic(T=0.1, k=-n), "k"),
+    (lambda n: sms.Chain(sms.rectangular(T=0.1, k=n), Ts=Ts), "k"),
+    (lambda n: sms.design_for_mode("harmonic", wn=100.0, k=n), "k"),
+    (lambda n: sms.for_mode("rectangular", wn=100.0, k=n), "k"),
+    (lambda n: sms.Chain(sms.harmonic(T=0.1), Ts=Ts).impulse_response(n), "n")])
+def test_a_huge_int_is_shown_by_its_size(call, parameter):
+    """An integer parameter of 10**400 is refused with its size in bits, not its 401 digits
+    (for_mode and impulse_response raised OverflowError from float())."""
+    exc = raises(parameter, call, 10 ** 400)
+    assert ("1329 bits" in str(exc) or "2^1328" in str(exc)) and len(str(exc)) < 200, str(exc)
+
+
+def test_for_mode_names_wn_when_the_period_is_beyond_a_float():
+    """The length for_mode derives from wn is not a parameter the caller gave: a mode too slow
+    for a float period names wn, not T."""
+    exc = raises("wn", sms.for_mode, "harmonic", wn=1e-308)
+    assert "1e-308" in str(exc)
+    raises("wn", sms.for_mode, "rectangular", wn=5e-324, zeta=0.9)     # wd underflows to 0
+    raises("k", sms.for_mode, "rectangular", wn=1e-300, k=10 ** 10)
+    assert sms.for_mode("harmonic", wn=100.0, k=3).T == 3 * 3 * np.pi / 100.0
+
+
+@pytest.mark.parametrize("bad", [np.array([0.0, np.longdouble("1e4000")], dtype=np.longdouble),
+                                 np.array([0.0, np.inf], dtype=np.float16)])
+def test_extended_and_half_precision_overflow_is_named(bad):
+    """A longdouble beyond the largest double is the parameter's error, with no RuntimeWarning
+    from the cast on the way."""
+    chain = sms.Chain(sms.harmonic(T=0.01), Ts=Ts)
+    chain.process(np.linspace(0.0, 1.0, 20))
+    before = chain.get_state()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        exc = raises("u", chain.process, bad)
+        raises("x", sms.identify_from_record, bad, Ts=Ts)
+    assert "u[1] = inf" in str(exc)
+    assert np.array_equal(chain.get_state(), before)
+
+
+def test_duration_names_what_is_not_a_stage():
+    """design.duration summed ``.T`` of anything: a float16 array (whose .T is itself) gave
+    inf, other values an AttributeError or TypeError."""
+    stages = [sms.harmonic(T=0.1), sms.rectangular(T=0.2)]
+    assert sms.design.duration(stages) == pytest.approx(0.3)
+    assert sms.design.duration(stages[0]) == 0.1
+    raises("stages[1]", sms.design.duration, [stages[0], 0.2])
+    raises("stages[0]", sms.design.duration, np.array([1.0, np.inf], dtype=np.float16))
+    raises("stages", sms.design.duration, None)
+    exc = raises("stages[0]", sms.Chain, [np.float16(1.0)], Ts=Ts)
+    assert "got 1.0" in str(exc)
+
+
 def test_integers_refuse_bool_and_fractions():
     raises("k", sms.harmonic, T=0.1, k=True)
     raises("k", sms.harmonic, T=0.1, k=1.5)
