@@ -158,11 +158,16 @@ def _design_error(st: int, lib, ffi, *, h, limits, Ts, wn) -> None:
         raise ParameterError("wn", f"wn: no multiple k <= {MAX_MULTIPLE} of the mode period "
                              f"meets the bounds ({given})", st)
     if st in (-16, -4) and wn:
-        raise ParameterError("wn", f"wn = {wn!r} rad/s: the stage tuned to the mode cannot be "
-                             f"placed on the grid Ts = {Ts!r} s (its zero is at or above the "
-                             f"Nyquist frequency pi/Ts = {math.pi / Ts:.6g} rad/s, or the stage "
-                             "is shorter than one sample)", st)
+        raise _off_grid(wn, Ts, st)
     _raise_status(st, lib, ffi, f"kinematic design ({given})")
+
+
+def _off_grid(wn: float, Ts: float, st: int) -> ParameterError:
+    """The error for a mode whose tuned stage the grid Ts cannot hold."""
+    return ParameterError("wn", f"wn = {wn!r} rad/s: the stage tuned to the mode cannot be "
+                          f"placed on the grid Ts = {Ts!r} s (its zero is at or above the "
+                          f"Nyquist frequency pi/Ts = {math.pi / Ts:.6g} rad/s, or the stage "
+                          "is shorter than one sample)", st)
 
 
 def kinematic(*, h: float, vmax: float, amax: float | None = None, jmax: float | None = None,
@@ -709,6 +714,18 @@ def _overlap_search(c, Ts, h, limits, best_sum, harmonic_last=False, tuned_taps=
     return None if state["N"] is None else state["N"][:boxes]
 
 
+def _grid_span(T: list[float], Ts: float, h: float, limits: list[float]) -> float:
+    """``Ts``, or the ParameterError :func:`kinematic` raises when the design would span more
+    than :data:`MAX_SAMPLES` samples of it (before the reference allocates any)."""
+    span = sum(T) / Ts
+    if not span <= MAX_SAMPLES:
+        given = ", ".join(f"{n}={v!r}" for n, v in zip(["h"] + _names(len(limits)),
+                                                       [h] + limits))
+        raise ParameterError("Ts", f"Ts = {Ts!r} s: the design ({given}) spans more than "
+                             f"2^52 samples ({span:.4g})", -15)
+    return Ts
+
+
 def kinematic_reference(*, h, vmax, amax=None, jmax=None, higher=(), profile="polynomial",
                         wn=None, zeta=0.0, Ts=None) -> list[Stage]:
     """Pure-Python reference of :func:`kinematic` (same contract, independent code: nested
@@ -765,13 +782,14 @@ def kinematic_reference(*, h, vmax, amax=None, jmax=None, higher=(), profile="po
         raise ParameterError("h", "h must be non-zero")
     limits = _limits(vmax, amax, jmax, higher)
     wn_, zeta_ = _mode(profile, wn, zeta)
+    _check_ratios(h, limits, wn_)       # the C design's range, refused alike before any work
     last_kind = "harmonic" if profile == "trigonometric" else "rectangular"
     if wn_ == 0.0:
         prob = _Problem(limits, c_last=math.pi / 2 if last_kind == "harmonic" else 1.0)
         T = prob.lengths(0, h)
         if Ts is not None:
-            T = _on_grid(T, _positive("Ts", Ts), h, limits,
-                         harmonic_last=last_kind == "harmonic")
+            Ts = _grid_span(T, _positive("Ts", Ts), h, limits)
+            T = _on_grid(T, Ts, h, limits, harmonic_last=last_kind == "harmonic")
         return [Stage("rectangular", T=t) for t in T[:-1]] + [Stage(last_kind, T=T[-1])]
     sigma = 0.0
     if profile == "damped":
@@ -804,12 +822,17 @@ def kinematic_reference(*, h, vmax, amax=None, jmax=None, higher=(), profile="po
         # the tuned stage keeps its length, so its zero stays on the mode; bounded taps keep
         # its largest tap / Ts at the density the design used (a half sine's exact taps may
         # exceed it: then the design runs again with the sampled density)
-        Ts = _positive("Ts", Ts)
+        Ts = _grid_span(T, _positive("Ts", Ts), h, limits)
         timing = "exact" if last_kind == "harmonic" else "bounded"
         k0 = k
         while True:
-            taps = impulse_response(Stage(last_kind, T=k * Tm, sigma=sigma, k=k, timing=timing),
-                                    Ts=Ts)
+            try:
+                taps = impulse_response(Stage(last_kind, T=k * Tm, sigma=sigma, k=k,
+                                              timing=timing), Ts=Ts)
+            except ParameterError as exc:   # the stage's T is derived from wn, not given
+                if exc.parameter != "T":
+                    raise
+                raise _off_grid(wn_, Ts, -16) from None
             rho = _peak_density(last_kind, k * Tm, sigma)
             peak = float(np.max(np.abs(taps))) / Ts
             raised = peak > rho * (1 + 1e-12)     # beyond rounding

@@ -476,3 +476,24 @@ def test_batch_errors_name_the_parameter_and_the_problem(kwargs, name, text):
         design.kinematic_lengths(**kwargs)
     assert err.value.parameter == name
     assert re.match(rf"(h/)?{re.escape(name)}\b", str(err.value))
+
+
+@pytest.mark.parametrize("kwargs, name", [
+    (dict(vmax=1e308), "vmax"),        # ZeroDivisionError
+    (dict(amax=5e-324), "amax"),       # ZeroDivisionError
+    (dict(jmax=1e-308), "jmax"),       # ZeroDivisionError
+    (dict(vmax=5e-324), "vmax"),       # named T
+    (dict(Ts=5e-324), "Ts"),           # OverflowError from int(inf)
+    (dict(Ts=1e-20), "Ts"),            # returned lengths off any grid of Ts
+    (dict(wn=1e20, Ts=1e-3), "wn"),    # named T: the tuned stage's length, derived from wn
+    (dict(wn=50.0, Ts=1e308), "wn"),
+])
+def test_the_reference_refuses_what_the_c_design_refuses(kwargs, name):
+    """kinematic_reference has kinematic's contract: the same out-of-range arguments are the
+    same parameter's error, at once, instead of a ZeroDivisionError or OverflowError."""
+    kw = dict(h=0.1, vmax=1.0, amax=10.0, jmax=100.0)
+    kw.update(kwargs)
+    for func in (design.kinematic, design.kinematic_reference):
+        with pytest.raises(design.ParameterError) as info:
+            func(**kw)
+        assert info.value.parameter == name, (func.__name__, str(info.value))
