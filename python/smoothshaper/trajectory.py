@@ -20,9 +20,10 @@ import numpy as np
 from . import _reach, _state_identity
 from . import design as _design
 from .errors import DroppedTargetWarning
-from .filters import ParameterError, _backend, _raise_status, _real_dtype, check_memory
+from .filters import (ParameterError, _backend, _raise_status, _real_dtype, check_memory,
+                      input_max)
 from ._checks import (finite as _finite, finite_signal as _targets, integer as _integer,
-                      real_array as _real_array)
+                      real_array as _real_array, show as _show)
 
 __all__ = ["Generator", "DroppedTargetWarning", "generator_reference", "tuned_stage", "BSpline",
            "bspline_reference", "bspline_period", "BSPLINE_MAX_DEGREE", "BSPLINE_MAX_AXES", "MultiAxisGenerator",
@@ -36,7 +37,7 @@ _GENERATOR_IDENTITY_FIELDS = ("vmax", "amax", "jmax", "profile", "wn", "zeta")
 
 def _generator_error(st, lib, ffi, cfg, Ts, profile):
     """ParameterError naming the cause of a refused generator config, with the values."""
-    if st in (-16, -4, -15) and cfg.wn:
+    if st in (-16, -4, -15, -3) and cfg.wn:
         raise ParameterError("wn", f"wn={cfg.wn!r} rad/s: the stage tuned to the mode cannot be "
                                    f"placed on the grid Ts={Ts!r} s (the mode is at or above "
                                    f"the Nyquist frequency pi/Ts = {math.pi / Ts:.6g} rad/s, or "
@@ -356,12 +357,19 @@ def tuned_stage(profile: str, wn: float, zeta: float):
     Raises
     ------
     ParameterError
-        The resulting stage is invalid (``wn`` not > 0 gives an invalid ``T``).
-    ValueError
-        ``zeta`` > 1 (square root of a negative number).
+        Naming ``profile``, ``wn`` (not finite and > 0, or a period beyond a float) or
+        ``zeta`` (not in [0, 1)).
     """
     from .stages import Stage
+    profile = _design.profile_name(profile)
+    wn = _design._positive("wn", wn)
+    zeta = _finite("zeta", zeta)
+    if not 0.0 <= zeta < 1.0:
+        raise ParameterError("zeta", f"zeta must be in [0, 1), got {zeta!r}")
     wd = wn * math.sqrt(1.0 - zeta * zeta)
+    if not wd > 0 or not math.isfinite(3 * math.pi / wd):
+        raise ParameterError("wn", f"wn = {wn!r} rad/s is too low: the mode's period is beyond "
+                             "the largest float")
     if profile == "trigonometric":
         kind = "damped_harmonic" if zeta > 0 else "harmonic"
         return Stage(kind, T=3 * math.pi / wd, sigma=-zeta * wn if zeta > 0 else 0.0)
@@ -585,6 +593,13 @@ class BSpline:
             self._ffi.from_buffer("double[]", ctrl), self._ffi.from_buffer("double[]", work), nwork)
         if st != 0:  # pragma: no cover - validated above
             _raise_status(st, self._lib, self._ffi, "B-spline control points")
+        limit = input_max(self.precision)
+        bad = np.flatnonzero(~(np.abs(ctrl).max(axis=1) <= limit))
+        if bad.size:    # the solve amplifies the via-points (by up to ~8 at degree 7)
+            raise ParameterError(
+                "via", f"via out of range: control point {int(bad[0])} through these via-points "
+                f"would be {float(np.abs(ctrl[bad[0]]).max()):.4g}, beyond {limit:g} (the "
+                f"filter's input bound for precision={self.precision!r})")
         return ctrl
 
     def pass_samples(self, M: int) -> np.ndarray:
@@ -602,9 +617,12 @@ class BSpline:
 
         Raises
         ------
-        TypeError
-            ``M`` is not an integer.
+        ParameterError
+            Naming ``M`` when it is not an integer >= 2 or the array would exceed
+            :data:`smoothshaper.filters.MAX_BUFFER_REALS`.
         """
+        M = _integer("M", M, 2)
+        check_memory("M", M - 2, "the pass samples")
         return np.array([self._lib.sms_bspline_pass_sample(self._b, i) for i in range(1, M - 1)],
                         dtype=np.int64)
 
@@ -623,9 +641,10 @@ class BSpline:
 
         Raises
         ------
-        TypeError
-            ``M`` is not a number.
+        ParameterError
+            Naming ``M`` when it is not an integer >= 2.
         """
+        M = _integer("M", M, 2)
         return (M - 2) * self.N + self.degree * (self.N - 1)
 
     def staircase(self, control, n_samples: int) -> np.ndarray:
@@ -646,10 +665,13 @@ class BSpline:
 
         Raises
         ------
-        ValueError
-            ``n_samples`` is negative.
+        ParameterError
+            Naming ``control`` (shape or non-finite values) or ``n_samples`` (not an integer
+            >= 0, or beyond :data:`smoothshaper.filters.MAX_BUFFER_REALS` values).
         """
-        c = np.asarray(control, dtype=np.float64)
+        c = _via("control", control, self.axes)
+        n_samples = _integer("n_samples", n_samples, 0)
+        check_memory("n_samples", n_samples * self.axes, "the staircase")
         j = np.minimum(np.arange(n_samples) // self.N + 1, c.shape[0] - 1)
         return c[j]
 
@@ -676,12 +698,38 @@ class BSpline:
         Raises
         ------
         ParameterError
-            Naming ``x`` when it is not real or not finite.
+            Naming ``x`` when it is not real, not finite, empty or not of ``axes`` columns, or
+            ``rest`` when it is not ``axes`` finite real values.
         """
-        x = np.ascontiguousarray(_real_array("x", x).reshape(-1, self.axes))
+        x = _real_array("x", x)
+        if x.ndim == 1 and self.axes == 1:
+            x = x[:, None]
+        if x.ndim != 2 or x.shape[1] != self.axes or x.shape[0] == 0:
+            raise ParameterError("x", f"x must have shape (n,) or (n, axes) with n >= 1 and "
+                                 f"axes = {self.axes}, got {x.shape}")
+        x = np.ascontiguousarray(x)
         if not np.all(np.isfinite(x)):
             raise ParameterError("x", "x must be finite")
-        rest = x[0] if rest is None else np.asarray(rest, dtype=np.float64).reshape(self.axes)
+        if rest is None:
+            rest = x[0]
+        else:
+            rest = _real_array("rest", rest)
+            if rest.size != self.axes or rest.ndim > 1:
+                raise ParameterError("rest", f"rest must hold {self.axes} value(s), one per "
+                                     f"axis, got shape {rest.shape}")
+            rest = rest.reshape(self.axes)
+            if not np.all(np.isfinite(rest)):
+                raise ParameterError("rest", "rest must be finite")
+        # beyond the C core's input bound a difference of two samples (or the float cast)
+        # overflows, and the output would be inf or NaN
+        limit = input_max(self.precision)
+        for name, values in (("x", x), ("rest", rest)):
+            bad = np.flatnonzero(np.abs(np.reshape(values, (-1, self.axes))).max(axis=1) > limit)
+            if bad.size:
+                where = f"x[{int(bad[0])}]" if name == "x" else "rest"
+                raise ParameterError(
+                    name, f"{name} out of range: {where} exceeds {limit:g} in magnitude (the "
+                    f"filter's input bound for precision={self.precision!r})")
         ffi, lib, b, axes = self._ffi, self._lib, self._b, self.axes
         lib.sms_bspline_reset(b, ffi.new("sms_real[]", [float(v) for v in rest]))
         work = np.ascontiguousarray(x, dtype=_real_dtype(self.precision))
@@ -719,11 +767,13 @@ class BSpline:
         Raises
         ------
         ParameterError
-            Naming ``via``.
+            Naming ``via``, or ``extra`` (not an integer >= 0, or too many samples).
         """
         q = _via("via", via, self.axes)
+        extra = _integer("extra", extra, 0)
+        n = self.end_sample(q.shape[0]) + 1 + extra
+        check_memory("extra", n * self.axes, "the interpolated trajectory")
         ctrl = self.control_points(q)
-        n = self.end_sample(q.shape[0]) + 1 + int(extra)
         return self.process(self.staircase(ctrl, n), rest=q[0], progress=progress)
 
 
@@ -761,9 +811,10 @@ def bspline_reference(via, *, degree: int, T: float, Ts: float):
     """
     q = _via("via", via)
     degree, T, Ts, _ = _bspline_args(degree, T, Ts, min(q.shape[1], BSPLINE_MAX_AXES))
+    what = f"the reference B-spline with T/Ts = {T / Ts:.6g}"
+    check_memory("T", (degree + 1) * (T / Ts + 0.5) * (q.shape[0] + degree), what)  # before int()
     N = max(1, int(math.floor(T / Ts + 0.5)))
-    check_memory("T", (degree + 1) * N * (q.shape[0] + degree), f"the reference B-spline with "
-                 f"T/Ts = {T / Ts:.6g}")
+    check_memory("T", (degree + 1) * N * (q.shape[0] + degree), what)
     d = np.ones(N)
     for _ in range(degree):
         d = np.convolve(d, np.full(N, 1.0 / N))
@@ -822,12 +873,19 @@ def bspline_period(*, wn, Ts: float) -> float:
     ParameterError
         Naming ``wn`` or ``Ts``.
     """
-    w = np.atleast_1d(np.asarray(wn, dtype=np.float64))
+    w = np.atleast_1d(_real_array("wn", wn))
     if w.size == 0 or not np.all(np.isfinite(w)) or np.any(w <= 0):
         raise ParameterError(
-            "wn", f"wn must be one or more finite frequencies > 0 rad/s, got {wn!r}")
+            "wn", "wn must be one or more finite frequencies > 0 rad/s, got "
+                  f"{_show(w.item()) if w.size == 1 else w.tolist()}")
     Ts = _design._positive("Ts", Ts)
-    return max(1.0, math.ceil(2 * math.pi / (w.min() * Ts) * (1 - 1e-12))) * Ts
+    knot = float(w.min()) * Ts          # Python floats: overflow gives inf, not a warning
+    samples = 2 * math.pi / knot * (1 - 1e-12) if knot > 0 else math.inf
+    if not samples <= _design.MAX_SAMPLES:
+        raise ParameterError(
+            "wn", f"wn = {float(w.min())!r} rad/s at Ts = {Ts!r} s: its period spans "
+                  f"{samples:.4g} samples, more than the 2^52 a count holds exactly")
+    return max(1.0, math.ceil(samples)) * Ts
 
 
 # Coordinated multi-axis motion lives in its own module; exposed here with the other generators.

@@ -124,3 +124,60 @@ def test_bad_via_points():
         b.control_points([[0.0, 1.0], [float("nan"), 2.0]])
     with pytest.raises(ValueError, match="^via"):
         b.control_points([0.0, 1.0, 2.0])
+
+
+def _refused(parameter, func, *args, **kwargs):
+    from smoothshaper import ParameterError
+    with pytest.raises(ParameterError) as info:
+        func(*args, **kwargs)
+    assert info.value.parameter == parameter, (info.value.parameter, str(info.value))
+    assert str(info.value).startswith(parameter)
+    return info.value
+
+
+def test_bad_arguments_of_the_helpers_are_named():
+    """pass_samples, end_sample, staircase, process(rest=) and interpolate(extra=) took any
+    value: a TypeError, an IndexError, a hang building 10**400 pass samples, or NaN/inf
+    output returned as a result."""
+    b = tr.BSpline(degree=3, T=0.05, Ts=TS)
+    for M in (np.nan, 1.5, "3", None, 1):
+        _refused("M", b.pass_samples, M)
+        _refused("M", b.end_sample, M)
+    _refused("M", b.pass_samples, 10 ** 400)                     # refused at once, not built
+    _refused("n_samples", b.staircase, [[0.0], [1.0]], -1)
+    _refused("n_samples", b.staircase, [[0.0], [1.0]], np.inf)
+    _refused("n_samples", b.staircase, [[0.0], [1.0]], 10 ** 400)
+    _refused("control", b.staircase, [[0.0], [np.nan]], 10)
+    _refused("control", b.staircase, [], 10)
+    _refused("x", b.process, [])
+    _refused("rest", b.process, np.ones(5), rest=np.nan)
+    _refused("rest", b.process, np.ones(5), rest=[1.0, 2.0])
+    _refused("extra", b.interpolate, [0.0, 1.0], extra=np.nan)
+    _refused("extra", b.interpolate, [0.0, 1.0], extra=10 ** 400)
+    assert np.array_equal(b.pass_samples(4), [b.k0, b.k0 + b.N])
+    assert b.end_sample(np.int64(4)) == 2 * b.N + 3 * (b.N - 1)
+
+
+@pytest.mark.parametrize("precision, big", [("double", 1.7e308), ("float", 1e39)])
+def test_inputs_beyond_the_bound_are_refused_not_returned_as_nan(precision, big):
+    b = tr.BSpline(degree=3, T=0.05, Ts=TS, precision=precision)
+    exc = _refused("x", b.process, np.r_[np.full(100, -big), np.full(100, big)])
+    assert "x[0]" in str(exc)
+    _refused("via", b.interpolate, [0.0, big / 2, -big / 2, 0.0])
+    y = b.process(np.r_[np.zeros(5), np.full(200, 1e30)])
+    assert np.all(np.isfinite(y))
+
+
+def test_bspline_period_and_reference_name_their_arguments():
+    """bspline_period raised OverflowError/TypeError (10**400, complex) or warned on overflow;
+    bspline_reference raised OverflowError from int(inf) for T/Ts beyond a float."""
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        _refused("wn", tr.bspline_period, wn=10 ** 400, Ts=TS)
+        _refused("wn", tr.bspline_period, wn=1 + 1j, Ts=TS)
+        _refused("wn", tr.bspline_period, wn=1e-308, Ts=TS)
+        _refused("wn", tr.bspline_period, wn=5e-324, Ts=1e-300)
+        _refused("T", tr.bspline_reference, [0.0, 1.0], degree=3, T=1e308, Ts=TS)
+        _refused("T", tr.bspline_reference, [0.0, 1.0], degree=3, T=0.05, Ts=5e-324)
+    assert tr.bspline_period(wn=[60.0, 200.0], Ts=TS) == 105 * TS

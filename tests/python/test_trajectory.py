@@ -279,10 +279,34 @@ def test_start_from_accepts_every_reported_sample(precision):
     (dict(vmax=1, amax=1, jmax=1, Ts=1e-3, profile="damped"), "wn"),
     (dict(vmax=1, amax=1, jmax=1, Ts=1e-3, wn=5000.0), "wn"),
     (dict(vmax=1, amax=1, jmax=1, Ts=1e-3, wn=50.0, zeta=2.0), "zeta"),
+    # the tuned stage's length is derived from wn: a period beyond a float named T
+    (dict(vmax=1, amax=1, jmax=1, Ts=1e-3, wn=1e-308), "wn"),
+    (dict(vmax=1, amax=1, jmax=1, Ts=1e-3, wn=5e-324, profile="damped"), "wn"),
 ])
 def test_errors_name_the_parameter(kwargs, name):
     with pytest.raises(ValueError, match=rf"^{name}\b"):
         tr.Generator(**kwargs)
+
+
+@pytest.mark.parametrize("kwargs, name", [
+    (dict(profile="damped", wn=0.0, zeta=0.1), "wn"),              # ZeroDivisionError
+    (dict(profile="damped", wn=10 ** 400, zeta=0.1), "wn"),        # OverflowError
+    (dict(profile="damped", wn="50", zeta=0.1), "wn"),             # TypeError
+    (dict(profile="damped", wn=1e-308, zeta=0.1), "wn"),           # named T
+    (dict(profile="damped", wn=50.0, zeta=2.0), "zeta"),           # math domain error
+    (dict(profile="damped", wn=50.0, zeta=np.nan), "zeta"),        # named T
+    (dict(profile="cubic", wn=50.0, zeta=0.1), "profile"),         # silently rectangular
+])
+def test_tuned_stage_names_its_arguments(kwargs, name):
+    with pytest.raises(ParameterError, match=rf"^{name}\b") as info:
+        tr.tuned_stage(**kwargs)
+    assert info.value.parameter == name
+
+
+def test_tuned_stage_is_unchanged_for_valid_modes():
+    assert tr.tuned_stage("Polynomial", 50.0, 0.0).T == 2 * math.pi / 50.0
+    stage = tr.tuned_stage("trigonometric", 50.0, 0.1)
+    assert stage.kind == "damped_harmonic" and stage.T == 3 * math.pi / (50.0 * math.sqrt(0.99))
 
 
 def test_non_finite_targets_rejected():
