@@ -21,7 +21,7 @@ from . import _reach, _state_identity
 from .errors import DroppedTargetWarning
 from .filters import ParameterError, _backend, _fill_config, _real_dtype
 from .reference import multi_axis as _ref
-from ._checks import real_array as _real_array
+from ._checks import positive as _positive, real_array as _real_array, show as _show
 
 __all__ = ["SYNC_MODES", "MultiAxisGenerator", "MultiAxisMove", "phase_duration", "multi_axis_move"]
 
@@ -38,8 +38,9 @@ _MULTI_IDENTITY_FIELDS = ("axes", "sync") + tuple(
 def _limit_vector(name: str, values, axes: int | None) -> np.ndarray:
     """Per-axis limits as a float64 vector; ParameterError naming ``name[i]``."""
     v = np.atleast_1d(_real_array(name, values))
-    if v.ndim != 1:
-        raise ParameterError(name, f"{name} must be one-dimensional, got shape {v.shape}")
+    if v.ndim != 1 or v.size == 0:
+        raise ParameterError(name, f"{name} must be a value or a non-empty vector, got shape "
+                             f"{v.shape}")
     if axes is not None and v.size == 1:
         v = np.full(axes, v[0])
     if axes is not None and v.size != axes:
@@ -51,12 +52,14 @@ def _limit_vector(name: str, values, axes: int | None) -> np.ndarray:
 
 
 def _limits(vmax, amax, jmax, axes=None):
-    sizes = [np.size(x) for x in (vmax, amax, jmax)]
+    # each checked alone first, so that a malformed bound is named, not the axis count it implies
+    v, a, j = (_limit_vector(name, value, None)
+               for name, value in (("vmax", vmax), ("amax", amax), ("jmax", jmax)))
     if axes is None:
-        axes = max(sizes)
-    v = _limit_vector("vmax", vmax, axes)
-    a = _limit_vector("amax", amax, axes)
-    j = _limit_vector("jmax", jmax, axes)
+        axes = max(x.size for x in (v, a, j))
+    v = _limit_vector("vmax", v, axes)
+    a = _limit_vector("amax", a, axes)
+    j = _limit_vector("jmax", j, axes)
     return v, a, j
 
 
@@ -141,9 +144,7 @@ class MultiAxisGenerator(_state_identity.SavedState):
         if not 1 <= self.axes <= lib.SMS_MULTI_MAX_AXES:
             raise ParameterError("vmax", f"1 to {lib.SMS_MULTI_MAX_AXES} axes supported, "
                                          f"got {self.axes}")
-        if not (isinstance(Ts, (int, float)) and math.isfinite(Ts) and Ts > 0):
-            raise ParameterError("Ts", f"Ts must be finite and > 0, got {Ts!r}")
-        self.Ts = float(Ts)
+        self.Ts = _positive("Ts", Ts)
         self.sync = _sync(sync)
         self.precision = precision
         self.stages = self._stage_lists(stages)
@@ -183,6 +184,15 @@ class MultiAxisGenerator(_state_identity.SavedState):
         """One list of stage descriptions per axis (validated: errors name the parameter)."""
         if stages is None:
             return [[] for _ in range(self.axes)]
+        from .stages import Stage
+        if isinstance(stages, Stage):
+            stages = [stages]
+        if not isinstance(stages, (list, tuple)):
+            try:
+                stages = list(stages)
+            except TypeError:
+                raise ParameterError("stages", "stages must be a sequence of Stage, or one "
+                                     f"per axis, got {_show(stages)}") from None
         per_axis = (isinstance(stages, (list, tuple)) and len(stages) == self.axes
                     and all(isinstance(s, (list, tuple)) for s in stages))
         lists = [list(s) for s in stages] if per_axis else [list(stages)] * self.axes
@@ -217,7 +227,7 @@ class MultiAxisGenerator(_state_identity.SavedState):
             q = np.broadcast_to(q, (self.axes,)).copy()
             bad = np.flatnonzero(~np.isfinite(q))
             if bad.size:
-                raise ParameterError("q0", f"q0[{bad[0]}] must be finite, got {q[bad[0]]!r}")
+                raise ParameterError("q0", f"q0[{bad[0]}] must be finite, got {float(q[bad[0]])!r}")
         self.q0 = q
         buf = np.ascontiguousarray(q, dtype=_real_dtype(self.precision))
         self._lib.sms_multi_generator_reset(self._gen, self._ffi.from_buffer("sms_real[]", buf))
@@ -253,7 +263,7 @@ class MultiAxisGenerator(_state_identity.SavedState):
             Once per call in which targets were dropped, naming the count and the held
             targets of the axes that are refused.
         """
-        x = np.asarray(targets, dtype=np.float64)
+        x = _real_array("targets", targets)
         if x.ndim == 1:
             x = x.reshape(-1, 1) if self.axes == 1 else x.reshape(1, -1)
         if x.ndim != 2 or x.shape[1] != self.axes:
@@ -262,7 +272,7 @@ class MultiAxisGenerator(_state_identity.SavedState):
         bad = np.argwhere(~np.isfinite(x))
         if bad.size:
             raise ParameterError("targets", f"targets must be finite: targets[{bad[0][0]}, "
-                                            f"{bad[0][1]}] = {x[tuple(bad[0])]!r}")
+                                            f"{bad[0][1]}] = {float(x[tuple(bad[0])])!r}")
         dtype = _real_dtype(self.precision)
         xin = np.ascontiguousarray(x, dtype=dtype)
         out = np.empty((x.shape[0], self.axes, 4), dtype=dtype)
@@ -344,11 +354,14 @@ def phase_duration(delta, *, vmax, amax, jmax) -> float:
     ParameterError
         Naming a bound (``vmax[i]``, ...) or ``delta``.
     """
-    d = np.atleast_1d(np.asarray(delta, dtype=np.float64))
-    v, a, j = _limits(vmax, amax, jmax, d.size)
+    d = np.atleast_1d(_real_array("delta", delta))
+    if d.ndim != 1 or d.size == 0:
+        raise ParameterError("delta", f"delta must be a value or a non-empty vector, got shape "
+                             f"{d.shape}")
     bad = np.flatnonzero(~np.isfinite(d))
     if bad.size:
         raise ParameterError("delta", f"delta[{bad[0]}] must be finite")
+    v, a, j = _limits(vmax, amax, jmax, d.size)
     return _ref.phase_duration(d, vmax=v, amax=a, jmax=j)
 
 
@@ -382,9 +395,17 @@ def multi_axis_move(start, target, *, vmax, amax, jmax, Ts: float, sync: str = "
         Naming ``target`` (not a vector the length of ``start``, or a move whose profile
         would hold more than 2^27 values), a bound, ``Ts``, ``sync``.
     """
-    s = np.atleast_1d(np.asarray(start, dtype=np.float64))
-    t = np.atleast_1d(np.asarray(target, dtype=np.float64))
-    if s.shape != t.shape or s.ndim != 1:
+    s = np.atleast_1d(_real_array("start", start))
+    t = np.atleast_1d(_real_array("target", target))
+    for name, v in (("start", s), ("target", t)):
+        if v.ndim != 1 or v.size == 0:
+            raise ParameterError(name, f"{name} must be a value or a non-empty vector, got "
+                                 f"shape {v.shape}")
+        bad = np.flatnonzero(~np.isfinite(v))
+        if bad.size:
+            raise ParameterError(name, f"{name}[{bad[0]}] must be finite, got "
+                                 f"{float(v[bad[0]])!r}")
+    if s.shape != t.shape:
         raise ParameterError("target", f"start and target must be vectors of the same length, "
                                        f"got {s.shape} and {t.shape}")
     vmax, amax, jmax = _limits(vmax, amax, jmax, s.size)   # a scalar: every axis
@@ -396,6 +417,7 @@ def multi_axis_move(start, target, *, vmax, amax, jmax, Ts: float, sync: str = "
     else:
         T = max(phase_duration([d[i]], vmax=gen.vmax[i], amax=gen.amax[i], jmax=gen.jmax[i])
                 for i in range(d.size))
+    Ts = gen.Ts
     samples = T / Ts * (1 + 1e-12)
     if not samples * d.size * 4 <= _MAX_MOVE_VALUES:      # O(1), before any array
         raise ParameterError("target", f"target: the move from start lasts {T:.3g} s = "
@@ -405,4 +427,4 @@ def multi_axis_move(start, target, *, vmax, amax, jmax, Ts: float, sync: str = "
     prof = gen.process(np.tile(t, (n, 1)))
     arrived = np.all(prof[:, :, 0] == t, axis=1) & np.all(prof[:, :, 1:] == 0, axis=(1, 2))
     N = int(np.argmax(arrived))
-    return MultiAxisMove(T=T, N=N, Ts=float(Ts), profile=prof[:N + 1])
+    return MultiAxisMove(T=T, N=N, Ts=Ts, profile=prof[:N + 1])

@@ -278,3 +278,49 @@ def test_multi_axis_move_broadcasts_limits_and_refuses_huge_moves_at_once():
     with pytest.raises(ParameterError, match=r"1e\+303 samples") as e:
         multi_axis_move([0.0, 0.0], [1e300, 1.0], vmax=1.0, amax=10.0, jmax=100.0, Ts=1e-3)
     assert e.value.parameter == "target"
+
+
+# -- malformed arguments: the shared checks, named, nothing changed ---------------------------
+
+_LIMITS = dict(vmax=[1.0, 2.0], amax=[10.0, 10.0], jmax=[100.0, 100.0])
+
+
+def _named(parameter, func, *args, **kwargs):
+    with pytest.raises(ParameterError) as info:
+        func(*args, **kwargs)
+    assert info.value.parameter == parameter, (info.value.parameter, str(info.value))
+    assert str(info.value).startswith(parameter) and "np." not in str(info.value)
+
+
+@pytest.mark.parametrize("bad", ["a", [1 + 1j, 2.0], [[1.0], [1.0, 2.0]], {"a": 1},
+                                 [1, 10 ** 400], np.ones(2, dtype=bool)])
+def test_multi_axis_arrays_go_through_the_shared_check(bad):
+    """Text, complex, ragged, dict and 10**400 raised ValueError, TypeError or OverflowError
+    from np.asarray(..., float64), or were cast (booleans as 0/1)."""
+    from smoothshaper import multi_axis as ma
+    g = MultiAxisGenerator(**_LIMITS, Ts=1e-3)
+    g.process(np.ones((20, 2)))
+    before = g.get_state()
+    _named("targets", g.process, bad)
+    assert np.array_equal(g.get_state(), before)
+    _named("delta", ma.phase_duration, bad, **_LIMITS)
+    _named("start", ma.multi_axis_move, bad, [1.0, 2.0], **_LIMITS, Ts=1e-3)
+    _named("target", ma.multi_axis_move, [0.0, 0.0], bad, **_LIMITS, Ts=1e-3)
+    _named("vmax", MultiAxisGenerator, vmax=bad, amax=1.0, jmax=1.0, Ts=1e-3)
+    _named("targets", multi_axis_reference, bad, **_LIMITS, Ts=1e-3)
+    _named("q0", multi_axis_reference, np.ones((5, 2)), **_LIMITS, Ts=1e-3, q0=bad)
+
+
+def test_multi_axis_scalars_and_stages_are_named():
+    from smoothshaper import multi_axis as ma
+    for Ts in (10 ** 400, True, np.float32("nan"), "1e-3"):
+        _named("Ts", MultiAxisGenerator, **_LIMITS, Ts=Ts)            # OverflowError; True was 1 s
+    _named("amax", MultiAxisGenerator, vmax=[1.0, 2.0], amax=np.ones((3, 3)), jmax=1.0,
+           Ts=1e-3)                                                  # named vmax ("9 axes")
+    _named("stages", MultiAxisGenerator, **_LIMITS, Ts=1e-3, stages=0.5)   # TypeError
+    _named("start", ma.multi_axis_move, [0.0, np.inf], [1.0, 2.0], **_LIMITS, Ts=1e-3)  # was q0
+    _named("target", ma.multi_axis_move, [0.0, 0.0], [1.0, np.nan], **_LIMITS, Ts=1e-3)  # delta
+    assert MultiAxisGenerator(**_LIMITS, Ts=np.float32(1e-3)).Ts == float(np.float32(1e-3))
+    from smoothshaper import harmonic
+    one = MultiAxisGenerator(**_LIMITS, Ts=1e-3, stages=harmonic(T=0.01))
+    assert one.stages == [[harmonic(T=0.01)]] * 2

@@ -29,6 +29,7 @@ from . import filtering as _filtering
 from ._checks import check_Ts
 from .. import time_optimal as _single
 from .._reach import named as _named
+from .._checks import real_array as _real_array
 from ..errors import ParameterError
 
 __all__ = ["reach", "transition", "phase_duration", "multi_axis_reference"]
@@ -200,7 +201,7 @@ def _limits(vmax, amax, jmax, axes: int):
     ParameterError naming ``vmax[i]`` etc."""
     out = []
     for name, value in (("vmax", vmax), ("amax", amax), ("jmax", jmax)):
-        v = np.asarray(value, dtype=np.float64)
+        v = _real_array(name, value)
         if v.ndim == 0:
             v = np.full(axes, float(v))
         if v.shape != (axes,):
@@ -208,19 +209,19 @@ def _limits(vmax, amax, jmax, axes: int):
         bad = np.flatnonzero(~(np.isfinite(v) & (v > 0)))
         if bad.size:
             raise ParameterError(f"{name}[{bad[0]}]", f"{name}[{bad[0]}] must be finite and > 0, "
-                                 f"got {v[bad[0]]!r}")
+                                 f"got {float(v[bad[0]])!r}")
         out.append(v)
     return out
 
 
 def _vector(name: str, value) -> np.ndarray:
     """A finite 1-D float64 vector; ParameterError naming ``name`` otherwise."""
-    v = np.atleast_1d(np.asarray(value, dtype=np.float64))
+    v = np.atleast_1d(_real_array(name, value))
     if v.ndim != 1 or v.size == 0:
         raise ParameterError(name, f"{name} must be a non-empty vector, got shape {v.shape}")
     bad = np.flatnonzero(~np.isfinite(v))
     if bad.size:
-        raise ParameterError(name, f"{name}[{bad[0]}] must be finite, got {v[bad[0]]!r}")
+        raise ParameterError(name, f"{name}[{bad[0]}] must be finite, got {float(v[bad[0]])!r}")
     return v
 
 
@@ -581,7 +582,7 @@ def multi_axis_reference(targets, *, vmax, amax, jmax, Ts: float, sync: str = "p
         Naming the offending argument (``targets``, ``vmax[i]``, ``Ts``, ``sync``, ``q0``,
         or a stage's parameter).
     """
-    x = np.asarray(targets, dtype=np.float64)
+    x = _real_array("targets", targets)
     if x.ndim != 2 or x.shape[1] == 0 or not np.all(np.isfinite(x)):
         raise ParameterError("targets", f"targets must be a finite array of shape (n, axes), "
                                         f"got shape {x.shape}")
