@@ -131,3 +131,33 @@ def finite_signal(name: str, values) -> np.ndarray:
         raise ParameterError(name, f"{name} must be finite: {name}[{bad[0]}] = "
                              f"{float(x[bad[0]])!r}")
     return x
+
+
+def complex_array(name: str, values) -> np.ndarray:
+    """``values`` as a complex128 array of finite numbers (any shape); ParameterError naming
+    ``name`` for text, objects, booleans, NaN or inf."""
+    try:
+        raw = np.asarray(values)
+    except (TypeError, ValueError):
+        raise ParameterError(name, f"{name} must be an array of numbers") from None
+    if raw.dtype.kind == "b":
+        raise ParameterError(name, f"{name} must hold numbers, got a boolean array")
+    if raw.dtype.kind not in "iufc":
+        raise ParameterError(name, f"{name} must be an array of numbers, got dtype {raw.dtype}")
+    with np.errstate(over="ignore"):
+        x = raw.astype(np.complex128, copy=False)
+    bad = np.flatnonzero(~np.isfinite(x.ravel()))
+    if bad.size:
+        raise ParameterError(name, f"{name} must be finite: {name}[{bad[0]}] = "
+                             f"{complex(x.ravel()[bad[0]])!r} (flat index)")
+    return x
+
+
+def representable(name: str, values, what: str) -> np.ndarray:
+    """``values``, or ParameterError naming ``name`` when an entry is NaN or inf: a result of
+    finite arguments beyond the range of a float is refused, never returned."""
+    bad = np.flatnonzero(~np.isfinite(np.ravel(values)))
+    if bad.size:
+        raise ParameterError(name, f"{name}: {what} at (flat) index {bad[0]} is beyond the "
+                             "range of a float for these arguments (it came out NaN or inf)")
+    return values

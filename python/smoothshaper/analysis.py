@@ -22,8 +22,10 @@ import numpy as np
 
 from .reference import continuous_transfer, impulse_response, notch_coefficients
 from .stages import NOTCHES
-from ._checks import (finite as _finite, finite_signal as _finite_signal, integer as _integer,
-                      positive as _positive, real_array as _real_array)
+from ._checks import (complex_array as _complex_array, finite as _finite,
+                      finite_signal as _finite_signal, integer as _integer, positive as _positive,
+                      real_array as _real_array, representable as _representable)
+from .reference._checks import check_samples as _check_samples
 from .errors import ParameterError
 from .reference._checks import as_stage_list, check_Ts
 
@@ -57,7 +59,8 @@ def transfer(stages, s, *, Ts: float | None = None) -> np.ndarray:
     ------
     ParameterError
         An invalid stage or chain at ``Ts``, ``Ts`` not finite and > 0, or a ChainResponse
-        given with a different ``Ts``.
+        given with a different ``Ts``; ``s`` not finite numbers, or where ``H(s)`` is beyond
+        the range of a float.
     """
     return _response(stages, Ts)(s)
 
@@ -146,10 +149,19 @@ class ChainResponse:
 
         Raises
         ------
-        ValueError
-            ``s`` cannot be converted to complex numbers.
+        ParameterError
+            Naming ``s`` when it is not finite numbers, or where ``H(s)`` is beyond the range
+            of a float (NaN or inf, never returned).
         """
-        s = np.asarray(s, dtype=complex)
+        return _representable("s", self._evaluate(_complex_array("s", s)), "H(s)")
+
+    def _evaluate(self, s: np.ndarray) -> np.ndarray:
+        """``H(s)`` at a checked complex array, unchecked result (overflow gives inf or NaN,
+        without warnings: the callers refuse it naming their argument)."""
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore", under="ignore"):
+            return self._evaluate_raw(s)
+
+    def _evaluate_raw(self, s: np.ndarray) -> np.ndarray:
         if self.Ts is None:
             out = np.ones(s.shape, dtype=complex)
             for stage in self.stages:
@@ -212,7 +224,7 @@ def frequency_response(stages, w, *, Ts: float | None = None) -> np.ndarray:
     w = _real_array("w", w)
     if not np.all(np.isfinite(w)):
         raise ParameterError("w", "w must be finite")
-    return transfer(stages, 1j * w, Ts=Ts)
+    return _representable("w", _response(stages, Ts)._evaluate(1j * w), "H(jw)")
 
 
 def mode_poles(wn, zeta) -> np.ndarray:
@@ -275,7 +287,9 @@ def residual_vibration(stages, *, wn, zeta=0.0, Ts: float | None = None) -> np.n
         An invalid stage or chain at ``Ts``, ``Ts`` not finite and > 0; ``wn`` or ``zeta`` out of
         range.
     """
-    return np.abs(transfer(stages, mode_poles(wn, zeta), Ts=Ts))
+    p = mode_poles(wn, zeta)
+    H = _response(stages, Ts)
+    return _representable("wn", np.abs(H._evaluate(p)), "the residual |H(p)| of the mode")
 
 
 def prv(stages, *, wn, zeta=0.0, Ts: float | None = None) -> np.ndarray:
@@ -338,7 +352,15 @@ def prv_curve(stages, *, wn_hat: float, ratio, zeta=0.0, Ts: float | None = None
         ``ratio`` or ``zeta`` out of range.
     """
     wn_hat = _positive("wn_hat", wn_hat)
-    return prv(stages, wn=_real_array("ratio", ratio) * wn_hat, zeta=zeta, Ts=Ts)
+    ratio = _real_array("ratio", ratio)
+    if not np.all(np.isfinite(ratio) & (ratio > 0)):
+        raise ParameterError("ratio", "ratio must be finite and > 0")
+    with np.errstate(over="ignore", under="ignore"):
+        wn = ratio * wn_hat
+    if not np.all(np.isfinite(wn) & (wn > 0)):
+        raise ParameterError("wn_hat", f"wn_hat = {wn_hat!r} rad/s: ratio * wn_hat is beyond the "
+                             "range of a float")
+    return prv(stages, wn=wn, zeta=zeta, Ts=Ts)
 
 
 def prv_surface(stages, *, wn, zeta, Ts: float | None = None) -> np.ndarray:
@@ -369,6 +391,10 @@ def prv_surface(stages, *, wn, zeta, Ts: float | None = None) -> np.ndarray:
     """
     wn = np.atleast_1d(_real_array("wn", wn))
     zeta = np.atleast_1d(_real_array("zeta", zeta))
+    for name, v in (("wn", wn), ("zeta", zeta)):
+        if v.ndim != 1:
+            raise ParameterError(name, f"{name} must be a number or one-dimensional, got shape "
+                                 f"{v.shape}")
     return prv(stages, wn=wn[None, :], zeta=zeta[:, None], Ts=Ts)
 
 
@@ -444,6 +470,10 @@ def insensitivity(stages, *, wn_hat: float, zeta: float = 0.0, tolerance: float 
         raise ParameterError("span", "span must be two numbers with 0 < span[0] < 1 < span[1], "
                              f"got {span_v.tolist()}")
     lo_r, hi_r = float(span_v[0]), float(span_v[1])
+    if not math.isfinite(hi_r * wn_hat):
+        raise ParameterError("wn_hat", f"wn_hat = {wn_hat!r} rad/s: span[1] * wn_hat is beyond "
+                             "the range of a float")
+    points = _check_samples("points", _integer("points", points, 3), "the grid of ratios")
     limit = tolerance * (1 + 1e-9)
 
     H = _response(stages, Ts)
@@ -506,13 +536,20 @@ def step_spectrum(stages, w, *, h: float = 1.0, derivative: int = 1,
         integer >= 1, ``w`` not finite.
     """
     derivative = _integer("derivative", derivative, 1)
+    h = _finite("h", h)
     w = _real_array("w", w)
     H = frequency_response(stages, w, Ts=Ts)
-    if Ts is None:
-        d = 1j * w
-    else:
-        d = (1 - np.exp(-1j * w * Ts)) / Ts
-    return h * d ** (int(derivative) - 1) * H
+    with np.errstate(over="ignore", invalid="ignore", under="ignore"):
+        if Ts is None:
+            d = 1j * w
+        else:
+            d = (1 - np.exp(-1j * w * Ts)) / Ts
+        try:
+            dk = d ** (int(derivative) - 1)
+        except OverflowError:     # an exponent beyond a float
+            dk = np.full(np.shape(d), np.inf, dtype=complex)
+        _representable("derivative", dk, "the derivative's factor (jw)^(derivative - 1)")
+        return _representable("h", h * dk * H, "the spectrum")
 
 
 def signal_spectrum(x, *, Ts: float) -> tuple[np.ndarray, np.ndarray]:
@@ -541,6 +578,12 @@ def signal_spectrum(x, *, Ts: float) -> tuple[np.ndarray, np.ndarray]:
     """
     Ts = check_Ts(Ts)
     x = _finite_signal("x", x)
-    X = Ts * np.fft.rfft(x)
-    w = 2 * math.pi * np.fft.rfftfreq(x.size, Ts)
+    if x.size == 0:
+        raise ParameterError("x", "x must hold at least one sample")
+    Ts = _positive("Ts", Ts)
+    with np.errstate(over="ignore", invalid="ignore", under="ignore"):
+        X = _representable("x", np.fft.rfft(x), "the DFT of x")
+        X = _representable("Ts", Ts * X, "Ts times the DFT of x")
+        w = _representable("Ts", 2 * math.pi * np.fft.rfftfreq(x.size, Ts),
+                           "the frequency grid 2 pi k / (n Ts)")
     return w, X

@@ -170,3 +170,66 @@ def test_continuous_step_spectrum_is_h_times_H():
 def test_bad_arguments_raise_value_error_naming_the_parameter(call, name):
     with pytest.raises(ValueError, match=rf"^{name} "):
         call()
+
+
+# -- bad arguments: named at once, never NaN or inf returned -----------------------------------
+
+def _named(parameter, func, *args, **kwargs):
+    from smoothshaper import ParameterError
+    with pytest.raises(ParameterError) as info:
+        func(*args, **kwargs)
+    assert info.value.parameter == parameter, (info.value.parameter, str(info.value))
+    assert str(info.value).startswith(parameter)
+
+
+_CHAIN = [sm.harmonic(T=0.05), sm.shaper("zv", wn=100.0, zeta=0.05)]
+
+
+@pytest.mark.parametrize("bad", [["a"], [None, 1j], [np.nan], [1j, np.inf], {"a": 1},
+                                 [True, False], [[1j], [1j, 2j]]])
+def test_transfer_refuses_what_is_not_finite_numbers(bad):
+    """s went through np.asarray(s, complex): text was a ValueError, None and NaN gave NaN
+    output (with a RuntimeWarning), a dict a TypeError, booleans were cast."""
+    _named("s", an.transfer, _CHAIN, bad)
+    _named("s", an.ChainResponse(_CHAIN, Ts=1e-3), bad)
+
+
+def test_results_beyond_a_float_are_refused_not_returned():
+    """Finite arguments whose result overflows came back as NaN: H(s) far in the left half
+    plane, the residual of a heavily damped mode far above the filter, a notch at a sample
+    period so short that z = e^(s Ts) rounds to 1, (jw)^(d-1) for a huge d, Ts * DFT."""
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        _named("s", an.transfer, _CHAIN, [-1e300])
+        _named("wn", an.residual_vibration, _CHAIN, wn=[100.0, 1e20], zeta=0.05)
+        _named("s", an.transfer, [sm.notch(wn=100.0)], [1j], Ts=1e-20)
+        _named("derivative", an.step_spectrum, _CHAIN, [1e3], derivative=10 ** 400)
+        _named("h", an.step_spectrum, _CHAIN, [1.0], h=np.nan)
+        _named("Ts", an.signal_spectrum, [1.0, 2.0], Ts=1e308)
+        _named("x", an.signal_spectrum, [], Ts=1e-3)
+    assert np.all(np.isfinite(an.residual_vibration(_CHAIN, wn=[50.0, 100.0, 1e4])))
+
+
+def test_grid_arguments_are_named():
+    """points was handed to np.linspace (TypeError for a float, 'argmin of an empty sequence'
+    for 0, 'Maximum allowed size exceeded' for 10**400); a NaN ratio was blamed on wn; a 2-D
+    wn of prv_surface failed to broadcast; Ts of a denormal raised OverflowError in int()."""
+    for points in (0, 2.5, np.nan, None, 10 ** 400):
+        _named("points", an.insensitivity, _CHAIN, wn_hat=100.0, points=points)
+    _named("ratio", an.prv_curve, _CHAIN, wn_hat=100.0, ratio=[1.0, np.nan])
+    _named("wn_hat", an.prv_curve, _CHAIN, wn_hat=1e308, ratio=[2.0])
+    _named("wn", an.prv_surface, _CHAIN, wn=np.ones((2, 2)) * 100, zeta=[0.0])
+    _named("T", an.transfer, _CHAIN, [1j], Ts=5e-324)
+    _named("wn", an.transfer, [sm.shaper("zv", wn=100.0)], [1j], Ts=5e-324)
+
+
+def test_reference_notch_far_below_the_sample_rate_is_finite():
+    """The matched notch's DC gain a(1)/b(1) cancelled to 0/0 for wn Ts below ~1e-8: the
+    reference returned NaN taps where the C chain passes the signal."""
+    stage = sm.notch(wn=100.0)
+    for Ts in (1e-12, 1e-20, 1e-300):
+        y = sm.reference.filter(stage, [1.0, 2.0], Ts=Ts)
+        assert np.all(np.isfinite(y)) and np.allclose(y, [1.0, 2.0])
+    b, a = sm.reference.notch_coefficients(stage, Ts=1e-3)      # unchanged where it was finite
+    assert b.sum() == pytest.approx(a.sum(), rel=1e-12)

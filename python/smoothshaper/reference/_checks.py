@@ -23,8 +23,12 @@ MAX_SAMPLES = 1 << 28
 def check_samples(parameter: str, n, what: str) -> int:
     """``n`` as an int; ParameterError naming ``parameter`` when it exceeds :data:`MAX_SAMPLES`."""
     if not n <= MAX_SAMPLES:
+        try:
+            count = f"{float(n):.4g}"
+        except OverflowError:     # an int beyond the largest float
+            count = f"more than 2^{int(n).bit_length() - 1}"
         raise ParameterError(
-            parameter, f"{parameter} out of range: {what} would hold {float(n):.4g} samples, "
+            parameter, f"{parameter} out of range: {what} would hold {count} samples, "
             f"more than the limit of {MAX_SAMPLES} (2 GiB of float64)")
     return int(n)
 
@@ -35,7 +39,10 @@ def round_half_up(x: float) -> int:
 
 
 def on_grid(nu: float) -> int | None:
-    """``round(nu)`` if ``nu`` passes the integer test, else None."""
+    """``round(nu)`` if ``nu`` passes the integer test, else None (also for inf or NaN: the
+    caller's sample-count check names the parameter)."""
+    if not math.isfinite(nu):
+        return None
     n = round_half_up(nu)
     return n if abs(nu - n) <= GRID_TOLERANCE * max(1.0, nu) else None
 

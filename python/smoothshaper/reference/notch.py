@@ -87,7 +87,24 @@ def notch_coefficients(stage: Stage, *, Ts: float) -> tuple[np.ndarray, np.ndarr
         return b / a[0], a / a[0]
     b = _matched_quadratic(xi1, wn, Ts)
     a = _matched_quadratic(xi2, wn, Ts)
-    return b * (a.sum() / b.sum()), a
+    gain = a.sum() / b.sum() if b.sum() != 0.0 else math.nan
+    if not math.isfinite(gain):
+        # wn Ts so small that 1 - 2 r cos(th) + r^2 cancels to 0 (0/0 gave NaN taps): the
+        # same ratio as |expm1(s Ts)|^2 of the roots, scaled by (wn Ts)^2, without cancellation
+        gain = _matched_dc_scaled(xi2, wn, Ts) / _matched_dc_scaled(xi1, wn, Ts)
+    return b * gain, a
+
+
+def _matched_dc_scaled(xi: float, wn: float, Ts: float) -> float:
+    """``(1 - z1)(1 - z2) / (wn Ts)^2`` of :func:`_matched_quadratic`, from expm1 of the roots
+    ``s Ts`` (no cancellation, no underflow for a mode far below the sample rate)."""
+    e = wn * Ts
+    if xi < 1.0:
+        root = complex(-xi, math.sqrt(1.0 - xi * xi)) * e
+        m = complex(np.expm1(root)) / e
+        return (m * m.conjugate()).real
+    q = xi + math.sqrt((xi - 1.0) * (xi + 1.0))
+    return (math.expm1(-e / q) / e) * (math.expm1(-e * q) / e)
 
 
 def notch_continuous_transfer(stage: Stage, s) -> np.ndarray:

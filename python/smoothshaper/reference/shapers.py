@@ -303,7 +303,8 @@ def shaper_taps(stage: Stage, *, Ts: float) -> np.ndarray:
         raise ParameterError(
             "kind", f"kind must be a shaper ({', '.join(SHAPERS)}), got {stage.kind!r}")
     _check_mode(stage, Ts)
-    span = shaper_impulses(stage)[1][-1] / Ts      # ZV^n: already the n-fold span
+    with np.errstate(over="ignore"):               # a span beyond a float: refused below
+        span = shaper_impulses(stage)[1][-1] / Ts  # ZV^n: already the n-fold span
     check_samples("wn", span + 2.0, f"the taps of a {stage.kind} shaper at wn Ts = "
                   f"{stage.wn * Ts:.6g}")
     if stage.timing == "paper":
