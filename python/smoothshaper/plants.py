@@ -20,9 +20,12 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.linalg import expm
-from ._checks import (finite_signal as _finite_signal, integer as _integer,
-                      nonnegative as _nonnegative, positive as _positive, real_array as _real_array)
+from ._checks import (complex_array as _complex_array, finite as _finite,
+                      finite_signal as _finite_signal, integer as _integer,
+                      nonnegative as _nonnegative, positive as _positive, real_array as _real_array,
+                      representable as _representable)
 from .errors import ParameterError
+from .reference._checks import check_samples
 
 __all__ = ["Plant", "tracking_error", "mode", "two_mass", "cartesian_axis", "series", "rest_state",
            "zoh_matrices", "simulate_zoh", "residual_amplitude"]
@@ -51,6 +54,25 @@ class Plant:
     D: float
     name: str = ""
 
+    def __post_init__(self):
+        # A malformed model (text, NaN, a B of the wrong length) failed later inside
+        # numpy.linalg or simulated NaN; refuse it here, naming the field.
+        A = _real_array("A", self.A)
+        if A.ndim != 2 or A.shape[0] != A.shape[1] or A.shape[0] == 0:
+            raise ParameterError("A", f"A must be a square matrix, got shape {A.shape}")
+        n = A.shape[0]
+        fields = {"A": A}
+        for name in ("B", "C"):
+            v = _real_array(name, getattr(self, name))
+            if v.shape != (n,):
+                raise ParameterError(name, f"{name} must have shape ({n},), got {v.shape}")
+            fields[name] = v
+        for name, v in fields.items():
+            if not np.all(np.isfinite(v)):
+                raise ParameterError(name, f"{name} must be finite")
+            object.__setattr__(self, name, v)
+        object.__setattr__(self, "D", _finite("D", self.D))
+
     @property
     def order(self) -> int:
         """The state dimension n."""
@@ -71,13 +93,18 @@ class Plant:
 
         Raises
         ------
+        ParameterError
+            Naming ``s`` when it is not finite numbers, or where ``G(s)`` is beyond the range
+            of a float.
         numpy.linalg.LinAlgError
             ``s`` is a pole of the plant (``sI - A`` is singular).
         """
-        s = np.asarray(s, dtype=complex)
+        s = _complex_array("s", s)
         eye = np.eye(self.order)
-        flat = [self.C @ np.linalg.solve(v * eye - self.A, self.B) + self.D for v in s.ravel()]
-        return np.array(flat, dtype=complex).reshape(s.shape)
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore", under="ignore"):
+            flat = [self.C @ np.linalg.solve(v * eye - self.A, self.B) + self.D
+                    for v in s.ravel()]
+        return _representable("s", np.array(flat, dtype=complex).reshape(s.shape), "G(s)")
 
     def poles(self) -> np.ndarray:
         """The eigenvalues of ``A``.
@@ -90,8 +117,13 @@ class Plant:
         return np.linalg.eigvals(self.A)
 
 
-def _second_order(b1: float, b0: float, a1: float, a0: float, D: float, name: str) -> Plant:
-    """D + (b1 s + b0)/(s^2 + a1 s + a0) in controllable canonical form."""
+def _second_order(b1: float, b0: float, a1: float, a0: float, D: float, name: str,
+                  parameter: str) -> Plant:
+    """D + (b1 s + b0)/(s^2 + a1 s + a0) in controllable canonical form; ParameterError naming
+    ``parameter`` when a coefficient is beyond the range of a float."""
+    if not all(math.isfinite(c) for c in (b1, b0, a1, a0)):
+        raise ParameterError(parameter, f"{parameter}: the model's coefficients (b1, b0, a1, a0) = "
+                             f"({b1!r}, {b0!r}, {a1!r}, {a0!r}) are beyond the range of a float")
     A = np.array([[0.0, 1.0], [-a0, -a1]])
     return Plant(A, np.array([0.0, 1.0]), np.array([b0, b1]), float(D), name)
 
@@ -135,7 +167,8 @@ def tracking_error(*, wn: float, zeta: float = 0.0) -> Plant:
         Naming ``wn`` or ``zeta``.
     """
     wn, zeta = _mode_args(wn, zeta)
-    return _second_order(2 * zeta * wn, wn * wn, 2 * zeta * wn, wn * wn, -1.0, "tracking_error")
+    return _second_order(2 * zeta * wn, wn * wn, 2 * zeta * wn, wn * wn, -1.0, "tracking_error",
+                         "wn")
 
 
 def mode(*, wn: float, zeta: float = 0.0) -> Plant:
@@ -160,7 +193,7 @@ def mode(*, wn: float, zeta: float = 0.0) -> Plant:
         Naming ``wn`` or ``zeta``.
     """
     wn, zeta = _mode_args(wn, zeta)
-    return _second_order(2 * zeta * wn, wn * wn, 2 * zeta * wn, wn * wn, 0.0, "mode")
+    return _second_order(2 * zeta * wn, wn * wn, 2 * zeta * wn, wn * wn, 0.0, "mode", "wn")
 
 
 def two_mass(*, J_l: float, k_t: float, b_t: float) -> Plant:
@@ -222,7 +255,7 @@ def cartesian_axis(*, m: float, d: float, k: float) -> Plant:
     """
     m, k = _positive("m", m), _positive("k", k)
     d = _nonnegative("d", d)
-    return _second_order(d / m, k / m, d / m, k / m, 0.0, "cartesian_axis")
+    return _second_order(d / m, k / m, d / m, k / m, 0.0, "cartesian_axis", "m")
 
 
 def series(*plants: Plant) -> Plant:
@@ -280,7 +313,10 @@ def rest_state(plant: Plant, u0: float) -> np.ndarray:
         ``A`` is singular.
     """
     plant = _check_plant(plant)
-    return -np.linalg.solve(plant.A, plant.B * float(u0))
+    u0 = _finite("u0", u0)
+    with np.errstate(over="ignore", invalid="ignore"):
+        x = -np.linalg.solve(plant.A, plant.B * u0)
+    return _representable("u0", x, "the rest state")
 
 
 def zoh_matrices(plant: Plant, Ts: float) -> tuple[np.ndarray, np.ndarray]:
@@ -312,7 +348,9 @@ def zoh_matrices(plant: Plant, Ts: float) -> tuple[np.ndarray, np.ndarray]:
     M = np.zeros((n + 1, n + 1))
     M[:n, :n] = plant.A
     M[:n, n] = plant.B
-    E = expm(M * Ts)
+    with np.errstate(over="ignore", invalid="ignore"):
+        E = expm(M * Ts)
+    _representable("Ts", E, "e^(A Ts)")
     return E[:n, :n], E[:n, n]
 
 
@@ -348,12 +386,15 @@ def simulate_zoh(plant: Plant, u, *, Ts: float, x0=None, oversample: int = 1):
     plant = _check_plant(plant)
     u = _finite_signal("u", u)
     m = _integer("oversample", oversample, 1)
+    check_samples("oversample", u.size * m, "the simulated output")
     Ts = _positive("Ts", Ts)
     h = Ts / m
     Ad, Bd = zoh_matrices(plant, h)
     x = np.zeros(plant.order) if x0 is None else _real_array("x0", x0).copy()
     if x.shape != (plant.order,):
         raise ParameterError("x0", f"x0 must have shape ({plant.order},), got {x.shape}")
+    if not np.all(np.isfinite(x)):
+        raise ParameterError("x0", "x0 must be finite")
     uu = np.repeat(u, m)
     y = np.empty(uu.size)
     C, D = plant.C, plant.D
@@ -395,8 +436,11 @@ def residual_amplitude(t, y, *, wn: float, zeta: float = 0.0, t_start: float) ->
         Naming ``wn``, ``zeta``, ``t``, ``y`` or ``t_start`` (fewer than 8 samples left).
     """
     wn, zeta = _mode_args(wn, zeta)
-    t = _real_array("t", t)
-    y = _real_array("y", y)
+    t = _finite_signal("t", t)
+    y = _finite_signal("y", y)
+    if y.shape != t.shape:
+        raise ParameterError("y", f"y must have the shape of t {t.shape}, got {y.shape}")
+    t_start = _finite("t_start", t_start)
     keep = t >= t_start
     if keep.sum() < 8:
         raise ParameterError("t_start", "t_start leaves fewer than 8 samples to fit")

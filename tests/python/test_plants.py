@@ -131,3 +131,48 @@ def test_time_domain_residual_equals_the_transfer_for_random_filters(kind, detun
     n = L + int(8 * 2 * math.pi / (wn * Ts))              # eight periods after settling
     got = measured_residual([stage], (wn, zeta), Ts, n=n)
     assert got == pytest.approx(expected, rel=1e-6, abs=1e-9)
+
+
+def _named(parameter, func, *args, **kwargs):
+    from smoothshaper import ParameterError
+    with pytest.raises(ParameterError) as info:
+        func(*args, **kwargs)
+    assert info.value.parameter == parameter, (info.value.parameter, str(info.value))
+    assert str(info.value).startswith(parameter)
+
+
+def test_a_plant_is_checked_when_it_is_made():
+    """Plant took anything (None, text, NaN, a B of the wrong length): the failure came later
+    from numpy.linalg, or a simulation of NaN."""
+    A, B, C = np.array([[0.0, 1.0], [-1.0, -0.1]]), np.array([0.0, 1.0]), np.array([1.0, 0.0])
+    _named("A", plants.Plant, None, B, C, 0.0)
+    _named("A", plants.Plant, [1.0, 2.0], B, C, 0.0)
+    _named("A", plants.Plant, A * np.nan, B, C, 0.0)
+    _named("B", plants.Plant, A, [0.0, 1.0, 2.0], C, 0.0)
+    _named("C", plants.Plant, A, B, ["a", "b"], 0.0)
+    _named("D", plants.Plant, A, B, C, np.nan)
+    _named("D", plants.Plant, A, B, C, None)
+    p = plants.Plant(A.astype(int), B, C, 0)
+    assert p.A.dtype == np.float64 and p.D == 0.0
+
+
+def test_plant_functions_name_their_arguments():
+    """NaN in, NaN out (rest_state, transfer), OverflowError or TypeError from float(), an
+    IndexError for a y of another length, inf in A for wn = 1e308."""
+    p = plants.mode(wn=10.0, zeta=0.1)
+    for u0 in (np.nan, 10 ** 400, None, 1j):
+        _named("u0", plants.rest_state, p, u0)
+    for s in ([np.nan], [None], ["a"], [1j, np.inf]):
+        _named("s", p.transfer, s)
+    _named("wn", plants.mode, wn=1e308)
+    _named("wn", plants.tracking_error, wn=1e308)
+    _named("m", plants.cartesian_axis, m=1e-308, d=1.0, k=100.0)
+    _named("Ts", plants.zoh_matrices, p, 1e308)
+    _named("x0", plants.simulate_zoh, p, np.ones(5), Ts=1e-3, x0=[np.inf, 0.0])
+    _named("oversample", plants.simulate_zoh, p, np.ones(5), Ts=1e-3, oversample=10 ** 400)
+    t = np.arange(100) * 1e-2
+    y = np.sin(10 * t)
+    _named("y", plants.residual_amplitude, t, y[:50], wn=10.0, t_start=0.0)
+    _named("t", plants.residual_amplitude, np.ones((10, 10)), y, wn=10.0, t_start=0.0)
+    _named("t_start", plants.residual_amplitude, t, y, wn=10.0, t_start=None)
+    assert plants.residual_amplitude(t, y, wn=10.0, t_start=0.0) == pytest.approx(1.0)
