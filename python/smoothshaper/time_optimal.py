@@ -27,6 +27,11 @@ import math
 import numpy as np
 from scipy.optimize import brentq
 
+from . import _reach
+from ._checks import (choice as _choice, finite as _finite, positive as _positive,
+                      real_array as _real_array)
+from .errors import ParameterError
+
 __all__ = ["plan_to_rest", "plan_duration", "time_optimal_reference", "mean_jerk", "C3", "reach",
            "representable", "MAX_PLAN_SAMPLES"]
 
@@ -39,11 +44,19 @@ MARGIN = 16.0
 
 
 C3 = {"ramp": 1.0 / 6.0, "cosine": 0.25 - 1.0 / math.pi ** 2}
+SHAPES = tuple(C3)
 
 
 def mean_jerk(jmax: float, shape: str) -> float:
     """The jerk the planner works with: jmax (ramps) or 2 jmax/pi (half-cosine transitions,
-    whose change of a over a duration d is 2 jmax d/pi)."""
+    whose change of a over a duration d is 2 jmax d/pi). ParameterError naming ``jmax`` (not
+    finite and > 0) or ``shape`` (not "ramp" or "cosine")."""
+    jmax = _positive("jmax", jmax)
+    return jmax * 2.0 / math.pi if _choice("shape", shape, SHAPES) == "cosine" else jmax
+
+
+def _mean_jerk(jmax: float, shape: str) -> float:
+    """:func:`mean_jerk` of checked arguments (the planner's inner loops)."""
     return jmax * 2.0 / math.pi if shape == "cosine" else jmax
 
 
@@ -91,7 +104,10 @@ def reach(vmax: float, amax: float, jmax: float, Ts: float, shape: str = "ramp",
         "vmax/amax", "sqrt(vmax/jmax)" or "sqrt(pi vmax/(2 jmax))", "amax^2",
         "the duration to reach vmax", "the distance to reach vmax").
     """
-    vmax, amax, jmax, Ts = float(vmax), float(amax), float(jmax), float(Ts)
+    vmax, amax, jmax, Ts = (_positive(name, value) for name, value in
+                            (("vmax", vmax), ("amax", amax), ("jmax", jmax), ("Ts", Ts)))
+    shape = _choice("shape", shape, SHAPES)
+    precision = _choice("precision", precision, ("double", "float"))
     info = np.finfo(np.float32 if precision == "float" else np.float64)
     big, least, tiny = float(info.max), float(info.tiny), float(info.tiny) / float(info.eps)
     out = dict(peak=0.0, duration=0.0, distance=0.0, samples=0.0, quantity=None)
@@ -99,7 +115,7 @@ def reach(vmax: float, amax: float, jmax: float, Ts: float, shape: str = "ramp",
         if not least <= x <= big / MARGIN:
             out["quantity"] = name
             return out
-    J = mean_jerk(jmax, shape)
+    J = _mean_jerk(jmax, shape)
     if not vmax * J * MARGIN <= big:
         out["quantity"] = "vmax*jmax"
         return out
@@ -150,12 +166,45 @@ def plan_to_rest(q: float, v: float, a: float, goal: float, *, vmax: float, amax
     """Pieces [(duration, jerk), ...] and the start states of the time-optimal motion from
     (q, v, a) to goal at rest. Returns (pieces, starts) with starts[i] = (q, v, a) of piece i;
     the stop is anchored on the goal (its start is the goal minus its own distance). For
-    ``shape="cosine"`` the jerk of a piece is its mean jerk (peak: pi/2 times it)."""
+    ``shape="cosine"`` the jerk of a piece is its mean jerk (peak: pi/2 times it).
+
+    ParameterError naming the argument: ``q``, ``v``, ``a``, ``goal`` not finite; a bound not
+    finite and > 0; ``|v| > vmax`` or ``|a| > amax``; ``shape``; or ``goal`` when the motion
+    to it is beyond the range of a float."""
+    q, v, a, goal = (_finite(name, value) for name, value in
+                     (("q", q), ("v", v), ("a", a), ("goal", goal)))
+    vmax, amax, jmax = (_positive(name, value) for name, value in
+                        (("vmax", vmax), ("amax", amax), ("jmax", jmax)))
+    shape = _choice("shape", shape, SHAPES)
+    if abs(v) > vmax:
+        raise ParameterError("v", f"v={v!r} exceeds vmax={vmax!r}")
+    if abs(a) > amax:
+        raise ParameterError("a", f"a={a!r} exceeds amax={amax!r}")
+    try:
+        with np.errstate(all="ignore"):
+            return _plan_to_rest(q, v, a, goal, vmax=vmax, amax=amax, jmax=jmax, shape=shape)
+    except (OverflowError, ZeroDivisionError):
+        # limits out of the generator's feasible region name the limit (Ts plays no part)
+        quantity = reach(vmax, amax, jmax, 1e300, shape)["quantity"]
+        if quantity is not None:
+            name = _reach.named(quantity, [n for n in ("vmax", "amax", "jmax") if n in quantity],
+                                0.0)
+            raise ParameterError(
+                name, f"{name}: vmax={vmax!r}, amax={amax!r}, jmax={jmax!r}: {quantity} is out "
+                "of the feasible range: no motion can be planned within them") from None
+        raise ParameterError(
+            "goal", f"goal={goal!r}: the motion from (q, v, a) = ({q!r}, {v!r}, {a!r}) within "
+            f"vmax={vmax!r}, amax={amax!r}, jmax={jmax!r} is beyond the range of a float") from None
+
+
+def _plan_to_rest(q: float, v: float, a: float, goal: float, *, vmax: float, amax: float,
+                  jmax: float, shape: str = "ramp"):
+    """:func:`plan_to_rest` of checked arguments (the reference generator's re-plans)."""
     D = goal - q
     if D == 0 and v == 0 and a == 0:
         return [], []
     c3 = C3[shape]
-    jmax = mean_jerk(jmax, shape)
+    jmax = _mean_jerk(jmax, shape)
 
     def dist(vp):
         first = _change(v, a, vp, amax, jmax, shape)
@@ -273,7 +322,7 @@ def _can_start(v, a, vmax, jmax, shape):
     tolerance: a plan from a state whose estimate is over vmax takes v that far over it."""
     if shape != "cosine":
         return True
-    return abs(v + a * abs(a) / (2 * mean_jerk(jmax, shape))) <= vmax
+    return abs(v + a * abs(a) / (2 * _mean_jerk(jmax, shape))) <= vmax
 
 
 def _run(targets, *, vmax, amax, jmax, Ts, q0=0.0, shape="ramp"):
@@ -292,8 +341,8 @@ def _run(targets, *, vmax, amax, jmax, Ts, q0=0.0, shape="ramp"):
         if held != goal and not refused and _can_start(state[1], state[2], vmax, jmax, shape):
             try:
                 with np.errstate(all="ignore"):
-                    new, new_starts = plan_to_rest(state[0], state[1], state[2], held,
-                                                   vmax=vmax, amax=amax, jmax=jmax, shape=shape)
+                    new, new_starts = _plan_to_rest(state[0], state[1], state[2], held,
+                                                    vmax=vmax, amax=amax, jmax=jmax, shape=shape)
                 ok = representable(new, new_starts, Ts)
             except (OverflowError, ValueError, ZeroDivisionError):
                 ok = False
@@ -319,5 +368,19 @@ def time_optimal_reference(targets, *, vmax, amax, jmax, Ts, q0=0.0,
     of the running one at that instant (half-cosine transitions: from the first such sample
     whose state allows it). A target whose plan cannot be represented (:func:`representable`:
     a non-finite value, or more than 2^52 samples) is dropped: the running plan goes on and
-    the target is not tried again until it changes; a non-finite target is ignored."""
-    return _run(targets, vmax=vmax, amax=amax, jmax=jmax, Ts=Ts, q0=q0, shape=shape)[0]
+    the target is not tried again until it changes; a non-finite target is ignored.
+
+    ParameterError naming ``targets`` (not a one-dimensional array of real numbers), a bound,
+    ``Ts``, ``q0``, ``shape``, or the limits :func:`reach` finds infeasible."""
+    x = _real_array("targets", targets, ndim=1)
+    q0 = _finite("q0", q0)
+    feasible = reach(vmax, amax, jmax, Ts, shape)     # checks the limits, Ts and shape
+    quantity = feasible["quantity"]
+    if quantity is not None:
+        arguments = [n for n in ("vmax", "amax", "jmax") if n in quantity]
+        name = _reach.named(quantity, arguments, feasible["duration"])
+        raise ParameterError(name, f"{name}: vmax={vmax!r}, amax={amax!r}, jmax={jmax!r}, "
+                             f"Ts={Ts!r}: {quantity} is out of the feasible range: no move "
+                             "that reaches vmax can be planned")
+    return _run(x, vmax=float(vmax), amax=float(amax), jmax=float(jmax), Ts=float(Ts), q0=q0,
+                shape=_choice("shape", shape, SHAPES))[0]

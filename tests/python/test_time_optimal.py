@@ -149,3 +149,37 @@ def test_limits_shorter_than_a_sample_are_fine_for_every_profile():
     assert exc.value.parameter == "wn"
     for word in ("wn=4000.0", "Ts=0.001", "Nyquist"):
         assert word in str(exc.value)
+
+
+def _named(parameter, func, *args, **kwargs):
+    from smoothshaper import ParameterError
+    with pytest.raises(ParameterError) as info:
+        func(*args, **kwargs)
+    assert info.value.parameter == parameter, (info.value.parameter, str(info.value))
+    assert str(info.value).startswith(parameter)
+
+
+def test_public_entry_points_name_bad_arguments():
+    """plan_to_rest, mean_jerk, reach and time_optimal_reference checked nothing: a None or
+    text raised TypeError, amax=0 ZeroDivisionError, v=1e308 OverflowError, an unknown shape
+    KeyError or ran as ramps."""
+    from smoothshaper import time_optimal as to
+    lim = dict(vmax=1.0, amax=10.0, jmax=100.0)
+    for name in ("q", "v", "a", "goal"):
+        args = dict(q=0.0, v=0.0, a=0.0, goal=1.0)
+        for bad in (None, "1", np.nan, 10 ** 400):
+            _named(name, to.plan_to_rest, **{**args, name: bad}, **lim)
+    for name in ("vmax", "amax", "jmax"):
+        _named(name, to.plan_to_rest, 0.0, 0.0, 0.0, 1.0, **{**lim, name: 0.0})
+    _named("v", to.plan_to_rest, 0.0, 2.0, 0.0, 1.0, **lim)
+    _named("amax", to.plan_to_rest, 0.0, 0.0, 0.0, 1.0, vmax=1.0, amax=1e-308, jmax=100.0)
+    _named("shape", to.plan_to_rest, 0.0, 0.0, 0.0, 1.0, **lim, shape="sine")
+    _named("jmax", to.mean_jerk, None, "ramp")
+    _named("shape", to.mean_jerk, 1.0, "sine")
+    _named("Ts", to.reach, 1.0, 10.0, 100.0, np.nan)
+    _named("targets", to.time_optimal_reference, ["a"], **lim, Ts=1e-3)
+    _named("q0", to.time_optimal_reference, [1.0], **lim, Ts=1e-3, q0=None)
+    _named("amax", to.time_optimal_reference, [1.0], vmax=1.0, amax=1e-300, jmax=1.0, Ts=1e-3)
+    assert to.plan_duration(0, 0, 0, 1.0, **lim) > 0
+    out = to.time_optimal_reference([0.0, np.nan, 1.0], **lim, Ts=1e-3)   # NaN: ignored
+    assert np.all(np.isfinite(out))
