@@ -375,7 +375,7 @@ def read_record(path: str, column: str | None, time_column: str | None,
     """(x, Ts) from a CSV: optional header row (also a '#time,accel_x,...' comment line right
     above the data), comma/semicolon/tab/space separated; errors name the file and row."""
     from .calibrate.records import read_table
-    header, data, _ = read_table(path)
+    header, data, rows = read_table(path)
 
     def index(name, default):
         if name is None:
@@ -396,18 +396,25 @@ def read_record(path: str, column: str | None, time_column: str | None,
     if Ts is None:
         if data.shape[1] < 2 and time_column is None:
             raise CliError(f"{path}: one column only: give --Ts (the sample period)")
-        t = data[:, index(time_column, 0)]
+        ti = index(time_column, 0) % data.shape[1]
+        t = data[:, ti]
         dt = np.diff(t)
-        if dt.size == 0 or not np.all(dt > 0):
-            raise CliError(f"{path}: the time column must increase")
+        if dt.size == 0:
+            raise CliError(f"{path}: a single data row: a record needs at least two samples")
+        bad = np.flatnonzero(~(dt > 0))
+        if bad.size:
+            i = int(bad[0]) + 1
+            raise CliError(f"{path}, row {int(rows[i])}, column {ti}: time {t[i]:.6g} s does "
+                           f"not increase (previous {t[i - 1]:.6g} s): time stamps must be "
+                           "strictly increasing")
         Ts = float(np.mean(dt))
         if np.max(np.abs(dt - Ts)) > 1e-6 * Ts + 1e-12:
             # jittered time stamps (real accelerometer logs): resample onto a uniform grid
             from scipy.interpolate import CubicSpline
             if np.max(dt) > 5 * Ts:
                 i = int(np.argmax(dt)) + 1
-                raise CliError(f"{path}: a gap of {dt[i - 1]:.6g} s before time {t[i]:.6g} s: "
-                               "the record is not contiguous")
+                raise CliError(f"{path}, row {int(rows[i])}: a gap of {dt[i - 1]:.6g} s before "
+                               f"time {t[i]:.6g} s: the record is not contiguous")
             x = CubicSpline(t - t[0], x)(np.arange(t.size) * Ts)
     return x, Ts
 

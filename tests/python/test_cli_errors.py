@@ -177,3 +177,48 @@ def test_jmax_without_amax_names_both(capsys):
     assert cli.main(["design", "--h", "1", "--vmax", "1", "--jmax", "1"]) == cli.EXIT_ERROR
     err = capsys.readouterr().err
     assert "--jmax needs --amax" in err, err
+
+
+def _decay_rows():
+    lines = (EXAMPLES / "decay.csv").read_text().splitlines()
+    return lines[:2], lines[2:]
+
+
+def _malformed(tmp_path):
+    """(file name, text, what the one-line error must contain) of broken data files."""
+    head, rows = _decay_rows()
+    swapped = rows[:]
+    swapped[200], swapped[201] = rows[201], rows[200]          # data row 202 is line 204
+    return [
+        ("swapped.csv", head + swapped, "row 204, column 0: time 0.2 s does not increase"),
+        ("single.csv", head + rows[:1], "a single data row"),
+        ("wide_cell.csv", head + rows[:10] + ["0.01," + "1" * 200_000] + rows[11:],
+         "row 13: cannot split the line"),
+        ("long_header.csv", ["time_s," + "y" * 300_000] + rows, "row 1: cannot split the line"),
+        ("huge_values.csv", head + [r.split(",")[0] + ",1e200" for r in rows],
+         "row 3, column 1: value 1e+200 is beyond 1e+150"),
+        ("long_text.csv", head + rows[:5] + ["0.005," + "x" * 5000] + rows[6:],
+         "row 8, column 1: non-numeric value 'xxx"),
+    ]
+
+
+@pytest.mark.parametrize("command", [["identify"], ["identify", "--method", "peaks"],
+                                     ["calibrate"]])
+def test_malformed_data_files_name_the_file_and_row(command, capsys, tmp_path):
+    """A field over csv's 131072-character limit raised csv.Error with a traceback; a time
+    column that does not increase named no row (identify); values near 1e306 went on to a NaN
+    spectrum and 'no resonance'; a text cell was quoted whole in the message."""
+    for name, lines, expected in _malformed(tmp_path):
+        path = tmp_path / name
+        path.write_text("\n".join(lines) + "\n")
+        argv = [command[0], str(path), "--no-progress", *command[1:]]
+        if command[0] == "calibrate":
+            argv += ["--out", str(tmp_path / "out")]
+        t = time.process_time()
+        code = cli.main(argv)
+        err = capsys.readouterr().err
+        assert code == cli.EXIT_ERROR, (name, code, err)
+        assert f"{path}, {expected}" in err or (expected.startswith("a single")
+                                               and f"{path}:" in err), (name, err)
+        assert err.count("\n") == 1 and len(err) < 400, (name, err[:500])
+        assert time.process_time() - t < 2, name

@@ -79,6 +79,19 @@ def _sniff_delimiter(line: str) -> str | None:
     return None
 
 
+#: Largest magnitude a data value may have: squares and sums of squares (spectra, fits) of
+#: larger values overflow a double. Measured data never come near it; beyond it a file is
+#: refused naming the row, instead of a NaN spectrum or a misleading "no resonance".
+MAX_VALUE = 1e150
+#: Longest text of a cell or a line quoted in an error message.
+_QUOTE = 60
+
+
+def _quote(text: str) -> str:
+    """``text`` for an error message, shortened to about :data:`_QUOTE` characters."""
+    return repr(text if len(text) <= _QUOTE else text[:_QUOTE] + "...")
+
+
 def _is_number(v: str) -> bool:
     try:
         float(v)
@@ -105,12 +118,18 @@ def read_table(path: str) -> tuple[list[str] | None, np.ndarray, np.ndarray]:
             continue
         if delimiter is None and not rows:
             delimiter = _sniff_delimiter(line)
-        values = _split(line, delimiter)
+        try:
+            values = _split(line, delimiter)
+        except csv.Error as exc:     # e.g. a field beyond csv's limit of 131072 characters
+            raise RecordError(path, f"cannot split the line into values ({exc})", row=no) from None
         if not rows and header is None and not all(_is_number(v) for v in values if v):
             header = values
             continue
         if not rows and header is None and last_comment:
-            names = _split(last_comment, delimiter)
+            try:
+                names = _split(last_comment, delimiter)
+            except csv.Error:
+                names = []
             if len(names) == len(values) and not any(_is_number(v) for v in names):
                 header = names
         rows.append(values)
@@ -127,12 +146,19 @@ def read_table(path: str) -> tuple[list[str] | None, np.ndarray, np.ndarray]:
             try:
                 data[i, j] = float(v)
             except ValueError:
-                raise RecordError(path, f"non-numeric value {v!r}", row=no, column=j) from None
+                raise RecordError(path, f"non-numeric value {_quote(v)}", row=no,
+                                  column=j) from None
     bad = ~np.isfinite(data)
     if bad.any():
         i, j = np.argwhere(bad)[0]
-        raise RecordError(path, f"non-finite value ({lines[numbers[i] - 1].strip()!r}); "
+        raise RecordError(path, f"non-finite value ({_quote(lines[numbers[i] - 1].strip())}); "
                           "remove or repair the row", row=int(numbers[i]), column=int(j))
+    big = np.abs(data) > MAX_VALUE
+    if big.any():
+        i, j = np.argwhere(big)[0]
+        raise RecordError(path, f"value {float(data[i, j]):.6g} is beyond {MAX_VALUE:g} in "
+                          "magnitude (its square would overflow in a spectrum); rescale the "
+                          "column", row=int(numbers[i]), column=int(j))
     if header is not None and len(header) != width:
         header = None
     return header, data, np.asarray(numbers)
