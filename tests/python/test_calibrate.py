@@ -313,3 +313,19 @@ def test_spread_tunes_for_a_wider_band():
         p = -m0.zeta * wn + 1j * wn * math.sqrt(1 - m0.zeta ** 2)
         return np.max(np.abs(np.exp(-np.outer(p, np.arange(h.size)) * 1e-4) @ h))
     assert worst(wide.recommended) < worst(tight.recommended)
+
+
+def test_a_mode_too_slow_for_ts_is_refused_before_tuning(capsys):
+    """A free decay read as a PSD table puts a 'mode' at 0.04 Hz: 243000 samples a period at
+    Ts = 1e-4 s, whose filters took hours to score (np.convolve is quadratic in their length).
+    Refused at once, naming Ts and the mode."""
+    import time
+    path = ROOT / "examples" / "decay.csv"
+    t = time.process_time()
+    with pytest.raises(sms.ParameterError) as info:
+        calibrate.run([str(path)], kind="psd")
+    assert info.value.parameter == "Ts" and "0.04119 Hz" in str(info.value)
+    assert main(["calibrate", str(path), "--kind", "psd", "--no-progress"]) == 1
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "a period, more than 16384" in err, err
+    assert time.process_time() - t < 10

@@ -150,6 +150,11 @@ def _band_decay(record, band):
     return (0.0, hi) if band is None else (max(0.0, band[0]), min(hi, band[1]))
 
 
+#: Most samples of Ts one period of the slowest mode may span (the filters' length, whose
+#: square the tuning costs: a 47 Hz mode at Ts = 3e-6 s, 7100 samples, tunes in about 20 s).
+MAX_PERIOD_SAMPLES = 1 << 14
+
+
 def run(paths, *, kind: str = "auto", axis: str = "all", band=None,
         reference: Reference | None = None, max_delay: float | None = None,
         max_smoothing: float | None = None, spread: float = 0.0,
@@ -237,6 +242,17 @@ def run(paths, *, kind: str = "auto", axis: str = "all", band=None,
         if len(fast) < len(res.modes):
             raise ParameterError("Ts", f"Ts = {reference.Ts:g} s: a mode at {res.modes[0].wn:.4g} rad/s "
                              "is at or above the filters' Nyquist frequency; use a smaller --Ts")
+        # the filters span a few periods of the slowest mode, and scoring a filter costs the
+        # square of its length: refused here, before hours of tuning (a record read as the
+        # wrong kind puts a "mode" at a fraction of a hertz)
+        slowest = min(m.wn for m in res.modes)
+        period = 2 * math.pi / (slowest * reference.Ts)
+        if not period <= MAX_PERIOD_SAMPLES:
+            raise ParameterError(
+                "Ts", f"Ts = {reference.Ts:g} s: the mode at {slowest:.4g} rad/s "
+                f"({slowest / (2 * math.pi):.4g} Hz, axis {res.name}) lasts {period:.4g} samples "
+                f"a period, more than {MAX_PERIOD_SAMPLES}: tuning its filters would take hours; "
+                "use a larger --Ts, or check the record's kind and --band")
         objective = Objective(res.modes, reference.Ts)
         h0 = np.ones(1)
         res.candidates.append(evaluate("none", [], h0, objective, reference, max_delay,
