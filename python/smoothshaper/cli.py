@@ -239,10 +239,10 @@ def cmd_analyze(args) -> int:
         raise CliError(f"--ratio-min={args.ratio_min:.3g} and --ratio-max={args.ratio_max:.3g} "
                        f"must be finite with 0 < min < max")
     if not 2 <= args.points <= MAX_SWEEP_POINTS:
-        raise CliError(f"--points must be in 2..{MAX_SWEEP_POINTS}, got {args.points:.3g}")
+        raise CliError(f"--points must be in 2..{MAX_SWEEP_POINTS}, got {args.points}")
     if args.surface and not 2 <= args.surface_points <= MAX_SWEEP_POINTS:
         raise CliError(f"--surface-points must be in 2..{MAX_SWEEP_POINTS}, got "
-                       f"{args.surface_points:.3g}")
+                       f"{args.surface_points}")
     if not (math.isfinite(args.Ts) and args.Ts > 0):
         raise CliError(f"--Ts must be finite and > 0, got {args.Ts!r}")
     ratios = np.linspace(args.ratio_min, args.ratio_max, args.points)
@@ -774,6 +774,10 @@ def _readable(message: str) -> str:
     return re.sub(r"(?<![\w.])\d+(?:\.\d*)?(?:[eE][-+]?\d+)?", short, message)
 
 
+#: Longest error line (longer ones keep their start and end around " [...] ").
+MAX_MESSAGE = 600
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run the CLI; returns the exit code (errors: one line on stderr, no traceback). A
     library ParameterError is prefixed with the option the user gave for it (``--jmax=...``)
@@ -814,6 +818,8 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         code, message = 130, "interrupted"
     message = _readable(" ".join(message.split()))
+    if len(message) > MAX_MESSAGE:     # an echoed argument of 100 kB (--stage xxx...)
+        message = message[:MAX_MESSAGE - 100] + " [...] " + message[-93:]
     if not message.startswith("smoothshaper"):
         message = f"smoothshaper: error: {message}"
     sys.stderr.write(message + "\n")

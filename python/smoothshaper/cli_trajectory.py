@@ -236,7 +236,7 @@ def cmd_bspline(args) -> int:
     via = parse_via_points(args.via)
     M, n_axes = via.shape
     if not 1 <= args.degree <= 7:
-        raise CliError(f"--degree must be 1..7, got {args.degree:.3g}")
+        raise CliError(f"--degree must be 1..7, got {args.degree}")
     if args.wn is not None:
         modes = _numbers("--wn", args.wn)
         if any(w <= 0 for w in modes):

@@ -222,3 +222,19 @@ def test_malformed_data_files_name_the_file_and_row(command, capsys, tmp_path):
                                                and f"{path}:" in err), (name, err)
         assert err.count("\n") == 1 and len(err) < 400, (name, err[:500])
         assert time.process_time() - t < 2, name
+
+
+@pytest.mark.parametrize("argv, start", [
+    (["design", "bspline", "--via=0;1", "--T", "0.05", "--Ts", "1e-3", "--degree", "9" * 400],
+     "--degree must be 1..7, got inf"),
+    (["analyze", "--kind", "zv", "--wn", "100", "--Ts", "1e-3", "--out", "never", "--points",
+      "9" * 400], "--points must be in 2..1000000, got inf"),
+    (["design", "--stage", "x" * 100_000], "--stage=xxxx"),
+])
+def test_huge_counts_and_long_arguments_give_one_short_line(argv, start, capsys):
+    """A count of 400 digits raised OverflowError from '%.3g' (a traceback); a 100 kB --stage
+    was echoed whole, twice, in the error line."""
+    code = cli.main(argv)
+    err = capsys.readouterr().err
+    assert code == cli.EXIT_ERROR and err.startswith("smoothshaper: error: " + start), err[:300]
+    assert err.count("\n") == 1 and len(err) <= 700, len(err)
