@@ -123,6 +123,17 @@ def real_array(name: str, values, ndim: int | None = None) -> np.ndarray:
     return x
 
 
+def finite_array(name: str, values) -> np.ndarray:
+    """A float64 array of finite real values, any shape (times, frequencies); the first
+    non-finite entry is named by its flat index."""
+    x = real_array(name, values)
+    bad = np.flatnonzero(~np.isfinite(x.ravel()))
+    if bad.size:
+        raise ParameterError(name, f"{name} must be finite: {name}[{bad[0]}] = "
+                             f"{float(x.ravel()[bad[0]])!r}" + (" (flat index)" if x.ndim > 1 else ""))
+    return x
+
+
 def finite_signal(name: str, values) -> np.ndarray:
     """A one-dimensional float64 array of finite real values."""
     x = real_array(name, values, ndim=1)

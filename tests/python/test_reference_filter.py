@@ -102,3 +102,40 @@ def test_bad_state_leaves_the_callers_state_untouched():
     for a, b in zip(zi, before):
         np.testing.assert_array_equal(a, b)                  # zi is copied, never mutated
     assert zf[0][-1] == 1.0
+
+
+def _named_ref(parameter, func, *args, **kwargs):
+    import warnings
+    from smoothshaper import ParameterError
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(ParameterError) as info:
+            func(*args, **kwargs)
+    assert info.value.parameter == parameter, (info.value.parameter, str(info.value))
+
+
+def test_reference_functions_name_bad_arguments():
+    """s, z and t went through np.asarray (text a ValueError, None or NaN gave NaN); mode_pole
+    raised OverflowError for 10**400 and took True as 1 rad/s; a t of NaN or a positive sigma
+    returned NaN or overflowed; 40 moving averages summed 2^40 terms (a hang); a ragged T was a
+    ValueError."""
+    import smoothshaper as sms
+    from smoothshaper import reference as ref
+    st = sms.harmonic(T=0.05)
+    for s in (["a"], [None], [np.nan], [1j, np.inf]):
+        _named_ref("s", ref.continuous_transfer, st, s)
+        _named_ref("z", ref.discrete_transfer, st, s, Ts=1e-3)
+    _named_ref("z", ref.discrete_transfer, st, [0.0], Ts=1e-3)
+    _named_ref("s", ref.continuous_transfer, st, [-1e300])
+    _named_ref("wn", ref.mode_pole, 10 ** 400, 0.1)
+    _named_ref("wn", ref.mode_pole, True, 0.1)
+    _named_ref("t", ref.continuous_impulse_response, st, ["a"])
+    _named_ref("t", ref.harmonic_trajectory, [0.0, np.nan], T=0.1)
+    _named_ref("sigma", ref.exponential_trajectory, [0.0, 0.1], T=0.1, sigma=1e308)
+    _named_ref("sigma", ref.damped_harmonic_trajectory, [0.0, 0.1], T=0.1, sigma=5.0)
+    _named_ref("T", ref.rectangular_chain_trajectory, [0.1], T=[0.1] * 40)
+    _named_ref("T", ref.rectangular_chain_trajectory, [0.1], T=[[0.1], [0.1, 0.2]])
+    with np.errstate(all="raise"):                   # overflow on the way: no warning
+        assert np.all(ref.rectangular_chain_trajectory([-1e300, 1e300], T=[0.1, 0.2]) >= 0)
+    assert ref.mode_pole(np.float32(100.0), 0) == 100j
+    assert ref.rectangular_chain_trajectory([0.05, 1.0], T=[0.1, 0.2])[1] == 1.0

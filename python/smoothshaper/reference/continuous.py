@@ -20,6 +20,8 @@ import numpy as np
 
 from ..stages import NOTCHES, SHAPERS, Stage
 from ._checks import check_stage
+from .._checks import (complex_array as _complex_array, finite_array as _finite_array,
+                       representable as _representable)
 from .notch import notch_continuous_transfer
 from .shapers import shaper_continuous_transfer
 from ..errors import ParameterError
@@ -83,7 +85,15 @@ def continuous_transfer(stage: Stage, s) -> np.ndarray:
         ``stage`` is not a valid Stage.
     """
     stage = check_stage(stage)
-    s = np.asarray(s, dtype=complex)
+    s = _complex_array("s", s)
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore", under="ignore"):
+        H = transfer_unchecked(stage, s)
+    return _representable("s", H, "H(s)")
+
+
+def transfer_unchecked(stage: Stage, s: np.ndarray) -> np.ndarray:
+    """:func:`continuous_transfer` of a checked stage at a finite complex array, its result
+    not checked (a caller that refuses NaN or inf names its own argument)."""
     if stage.kind in SHAPERS:
         return shaper_continuous_transfer(stage, s)
     if stage.kind in NOTCHES:
@@ -119,7 +129,7 @@ def continuous_impulse_response(stage: Stage, t) -> np.ndarray:
         raise ParameterError(
             "stage", f"stage must be a smoother for continuous_impulse_response; {stage.kind} "
                      "has impulses (see shaper_impulses / continuous_transfer)")
-    t = np.asarray(t, dtype=float)
+    t = _finite_array("t", t)
     sigma, T = _sigma(stage), stage.T
     inside = (t >= 0) & (t < T)
     tc = np.where(inside, t, 0.0)

@@ -19,8 +19,9 @@ from ._checks import as_stage_list, check_samples, check_stage, check_Ts
 from .notch import biquad, notch_coefficients
 from .shapers import shaper_taps
 from .smoothers import smoother_taps
-from .._checks import (finite as _finite, finite_signal as _finite_signal, integer as _integer,
-                       real_array as _real_array)
+from .._checks import (complex_array as _complex_array, finite as _finite,
+                       finite_signal as _finite_signal, integer as _integer,
+                       real_array as _real_array, representable as _representable)
 from ..errors import ParameterError
 
 
@@ -94,11 +95,17 @@ def discrete_transfer(stage: Stage, z, *, Ts: float) -> np.ndarray:
         A stage parameter invalid at ``Ts``, or ``Ts`` not > 0.
     """
     stage = check_stage(stage)
-    zinv = 1.0 / np.asarray(z, dtype=complex)
-    if stage.kind in NOTCHES:
-        b, a = notch_coefficients(stage, Ts=Ts)
-        return np.polyval(b[::-1], zinv) / np.polyval(a[::-1], zinv)
-    return np.polyval(impulse_response(stage, Ts=Ts)[::-1], zinv)
+    z = _complex_array("z", z)
+    if np.any(z == 0):
+        raise ParameterError("z", "z must be non-zero (the transfer is in powers of 1/z)")
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        zinv = 1.0 / z
+        if stage.kind in NOTCHES:
+            b, a = notch_coefficients(stage, Ts=Ts)
+            H = np.polyval(b[::-1], zinv) / np.polyval(a[::-1], zinv)
+        else:
+            H = np.polyval(impulse_response(stage, Ts=Ts)[::-1], zinv)
+    return _representable("z", H, "H(z)")
 
 
 def filter_zi(stages, *, Ts: float, x0: float = 0.0) -> list[np.ndarray]:

@@ -40,6 +40,7 @@ import numpy as np
 from ..stages import SHAPERS, Stage
 from ._checks import check_Ts, check_samples, check_stage, on_grid, round_half_up
 from ..errors import ParameterError
+from .._checks import finite as _finite, positive as _positive
 
 __all__ = ["zvn_order", "mode_pole", "shaper_impulses", "shaper_continuous_transfer", "shaper_taps"]
 
@@ -160,9 +161,8 @@ def mode_pole(wn: float, zeta: float) -> complex:
     ParameterError
         Naming ``wn`` or ``zeta`` when out of range.
     """
-    if not (isinstance(wn, (int, float)) and math.isfinite(wn) and wn > 0):
-        raise ParameterError("wn", f"wn must be finite and > 0 rad/s, got {wn!r}")
-    if not (isinstance(zeta, (int, float)) and 0.0 <= zeta < 1.0):
+    wn, zeta = _positive("wn", wn), _finite("zeta", zeta)
+    if not 0.0 <= zeta < 1.0:
         raise ParameterError("zeta", f"zeta must be in [0, 1), got {zeta!r}")
     return complex(-zeta * wn, wn * math.sqrt(1.0 - zeta * zeta))
 

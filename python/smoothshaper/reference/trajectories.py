@@ -16,12 +16,25 @@ import itertools
 import math
 
 import numpy as np
-from .._checks import (finite as _finite, integer as _integer, positive as _positive,
-                       real_array as _real_array)
+from .._checks import (finite as _finite, finite_array as _real_array, integer as _integer,
+                       positive as _positive, real_array as _any_real_array,
+                       representable as _representable)
 from ..errors import ParameterError
 
 __all__ = ["harmonic_trajectory", "damped_harmonic_trajectory", "exponential_trajectory",
            "rectangular_chain_trajectory"]
+
+
+#: Most moving averages :func:`rectangular_chain_trajectory` takes (a Chain's limit too).
+MAX_CHAIN = 16
+
+
+def _sigma(sigma) -> float:
+    """A decay rate: finite and <= 0 (a stage's sigma), else ParameterError naming sigma."""
+    sigma = _finite("sigma", sigma)
+    if sigma > 0:
+        raise ParameterError("sigma", f"sigma must be <= 0 1/s (a decaying mode), got {sigma!r}")
+    return sigma
 
 
 def harmonic_trajectory(t, *, T: float, h: float = 1.0) -> np.ndarray:
@@ -79,7 +92,7 @@ def damped_harmonic_trajectory(t, *, T: float, sigma: float, h: float = 1.0) -> 
     ParameterError
         Naming ``t``, ``T``, ``sigma`` or ``h``.
     """
-    T, h, sigma = _positive("T", T), _finite("h", h), _finite("sigma", sigma)
+    T, h, sigma = _positive("T", T), _finite("h", h), _sigma(sigma)
     tc = np.clip(_real_array("t", t), 0.0, T)
     x = math.pi * tc / T
     inner = np.exp(sigma * tc) * (sigma * T / math.pi * np.sin(x) - np.cos(x))
@@ -111,7 +124,7 @@ def exponential_trajectory(t, *, T: float, sigma: float, h: float = 1.0) -> np.n
     ParameterError
         Naming ``t``, ``T``, ``sigma`` or ``h``.
     """
-    T, h, sigma = _positive("T", T), _finite("h", h), _finite("sigma", sigma)
+    T, h, sigma = _positive("T", T), _finite("h", h), _sigma(sigma)
     tc = np.clip(_real_array("t", t), 0.0, T)
     if sigma == 0.0:
         return h * tc / T
@@ -146,10 +159,17 @@ def rectangular_chain_trajectory(t, *, T, h: float = 1.0, derivative: int = 0) -
     ParameterError
         Naming ``t``, ``T`` / ``T[i]``, ``h`` or ``derivative``.
     """
-    Ts = [_positive(f"T[{i}]", v) for i, v in enumerate(np.atleast_1d(T))]
+    T_arr = np.atleast_1d(_any_real_array("T", T))
+    if T_arr.ndim != 1:
+        raise ParameterError("T", f"T must be one duration or a sequence of them, got shape "
+                             f"{T_arr.shape}")
+    Ts = [_positive(f"T[{i}]", v) for i, v in enumerate(T_arr)]
     if not Ts:
         raise ParameterError("T", "T must hold at least one duration")
     n = len(Ts)
+    if n > MAX_CHAIN:      # the closed form sums 2^n terms
+        raise ParameterError("T", f"T: at most {MAX_CHAIN} moving averages (the closed form sums "
+                             f"2^n terms), got {n}")
     if _integer("derivative", derivative, 0) >= n:
         raise ParameterError(
             "derivative", f"derivative must be an integer in 0..{n - 1}, got {derivative!r}")
@@ -157,12 +177,13 @@ def rectangular_chain_trajectory(t, *, T, h: float = 1.0, derivative: int = 0) -
     t = _real_array("t", t)
     power = n - int(derivative)
     acc = np.zeros(t.shape)
-    for r in range(n + 1):
-        for subset in itertools.combinations(Ts, r):
-            acc += (-1) ** r * np.maximum(t - sum(subset), 0.0) ** power
-    out = h * acc / (math.factorial(power) * math.prod(Ts))
+    with np.errstate(over="ignore", invalid="ignore"):     # refused below if not finite
+        for r in range(n + 1):
+            for subset in itertools.combinations(Ts, r):
+                acc += (-1) ** r * np.maximum(t - sum(subset), 0.0) ** power
+        out = h * acc / (math.factorial(power) * math.prod(Ts))
     if derivative == 0:
         out = np.where(t >= sum(Ts), h, out)
     else:
         out = np.where(t >= sum(Ts), 0.0, out)
-    return out
+    return _representable("t", out, "the trajectory (a power of t overflows)")
