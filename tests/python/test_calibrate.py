@@ -329,3 +329,31 @@ def test_a_mode_too_slow_for_ts_is_refused_before_tuning(capsys):
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "a period, more than 16384" in err, err
     assert time.process_time() - t < 10
+
+
+def test_api_arguments_are_named():
+    """load(1) opened file descriptor 1 (stdout) as the record and closed it; run('a.csv')
+    read the files 'a', '.', ...; Reference took None or NaN to the figures; max_delay=True
+    passed as 1 s, spread=10**400 raised OverflowError, an unknown kind a plain ValueError."""
+    import os
+    path = str(ROOT / "examples" / "resonance_psd.csv")
+    cases = [
+        ("path", lambda: calibrate.load(1)),
+        ("kind", lambda: calibrate.load(path, kind="bogus")),
+        ("Ts", lambda: calibrate.Reference(Ts=None)),
+        ("accel", lambda: calibrate.Reference(accel=np.nan)),
+        ("distance", lambda: calibrate.Reference(distance=-1.0)),
+        ("max_delay", lambda: calibrate.run([path], max_delay=True)),
+        ("max_smoothing", lambda: calibrate.run([path], max_smoothing="1")),
+        ("spread", lambda: calibrate.run([path], spread=10 ** 400)),
+        ("reference", lambda: calibrate.run([path], reference=1e-4)),
+        ("paths", lambda: calibrate.run(5)),
+        ("paths", lambda: calibrate.run([])),
+    ]
+    for parameter, call in cases:
+        with pytest.raises(sms.ParameterError) as info:
+            call()
+        assert info.value.parameter == parameter, (parameter, str(info.value))
+    os.fstat(1)                                      # stdout still open
+    one = calibrate.run(path, axis="x")              # one file name as a str
+    assert one.axes[0].name == "x" and one.axes[0].recommended is not None

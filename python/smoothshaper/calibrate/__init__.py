@@ -12,10 +12,12 @@ then plots (:mod:`.plots`) and ready-to-use outputs (:mod:`.outputs`).
 from __future__ import annotations
 
 import math
+import os
 from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from .._checks import finite as _finite, positive as _positive
 from ..errors import ParameterError
 from .candidates import (Candidate, Objective, Reference, evaluate, families,
                          recommend, tune)
@@ -203,16 +205,30 @@ def run(paths, *, kind: str = "auto", axis: str = "all", band=None,
         Naming ``max_delay``, ``max_smoothing``, ``spread``, ``Ts`` or ``accel`` when out of
         range, or ``Ts`` when a mode lies at or above the filters' Nyquist frequency.
     """
-    reference = reference or Reference()
-    for name, value in (("max_delay", max_delay), ("max_smoothing", max_smoothing)):
-        if value is not None and not (math.isfinite(value) and value > 0):
-            raise ParameterError(name, f"{name} must be finite and > 0, got {value!r}")
-    if not (math.isfinite(spread) and 0 <= spread < 0.5):
+    if reference is None:
+        reference = Reference()
+    elif not isinstance(reference, Reference):
+        raise ParameterError("reference", "reference must be a calibrate.Reference, got "
+                             f"{type(reference).__name__}")
+    # the shared checks: bool, text, 10**400 and NumPy scalars named, not a TypeError
+    max_delay = None if max_delay is None else _positive("max_delay", max_delay)
+    max_smoothing = None if max_smoothing is None else _positive("max_smoothing", max_smoothing)
+    spread = _finite("spread", spread)
+    if not 0 <= spread < 0.5:
         raise ParameterError("spread", f"spread must be in [0, 0.5), got {spread!r}")
     if not (math.isfinite(reference.Ts) and reference.Ts > 0):
         raise ParameterError("Ts", f"Ts must be finite and > 0, got {reference.Ts!r}")
     if not (math.isfinite(reference.accel) and reference.accel > 0):
         raise ParameterError("accel", f"accel must be finite and > 0, got {reference.accel!r}")
+    if isinstance(paths, (str, os.PathLike)):
+        paths = [paths]            # one file (a str is not a sequence of file names)
+    try:
+        paths = list(paths)
+    except TypeError:
+        raise ParameterError("paths", "paths must be a sequence of file names, got "
+                             f"{type(paths).__name__}") from None
+    if not paths:
+        raise ParameterError("paths", "paths must name at least one record")
     records = [load(p, kind) for p in paths]
     axes, skipped = [], []
     for rec in records:

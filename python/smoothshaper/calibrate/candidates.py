@@ -20,9 +20,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..reference import continuous_transfer, impulse_response, shaper_impulses
+from ..reference import impulse_response, shaper_impulses
+from ..reference.continuous import transfer_unchecked
 from ..stages import Stage, for_mode, shaper
 from .modes import Mode
+from .._checks import positive as _positive
 
 __all__ = ["FIRMWARE_NAMES", "BOX", "Reference", "Candidate", "chain_taps", "Objective",
            "duration", "Family", "families", "continuity", "smoothing", "move_peaks", "class_name",
@@ -48,6 +50,11 @@ class Reference:
     accel: float = 3000.0
     corner_velocity: float = 5.0
     distance: float = 10.0
+
+    def __post_init__(self):
+        # each a finite number > 0, named (None or NaN reached run() or the figures)
+        for name in ("Ts", "accel", "corner_velocity", "distance"):
+            object.__setattr__(self, name, _positive(name, getattr(self, name)))
 
 
 @dataclass
@@ -129,7 +136,7 @@ class Objective:
         O((wn Ts)^2) of the discrete filter, which the reported figures use)."""
         H = np.ones(self.poles.size, dtype=complex)
         for s in stages:
-            H *= continuous_transfer(s, self.poles)
+            H *= transfer_unchecked(s, self.poles)    # valid stages, finite poles
         per = np.bincount(self.idx, np.abs(H) ** 2 * self.gw, minlength=self.n)
         return 100 * math.sqrt(float(self.w @ per))
 

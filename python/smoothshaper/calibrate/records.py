@@ -23,10 +23,14 @@ from __future__ import annotations
 
 import csv
 import math
+import os
 import re
 from dataclasses import dataclass, field
 
 import numpy as np
+
+from .._checks import choice as _choice
+from ..errors import ParameterError
 
 __all__ = ["KINDS", "AXIS_NAMES", "RecordError", "Record", "read_table", "detect_kind", "load"]
 
@@ -102,6 +106,10 @@ def _is_number(v: str) -> bool:
 
 def read_table(path: str) -> tuple[list[str] | None, np.ndarray, np.ndarray]:
     """(header or None, data (n, m), line numbers (n,)) of a numeric CSV table."""
+    if not isinstance(path, (str, os.PathLike)):
+        # open() takes an int as a file descriptor: load(1) read and closed stdout
+        raise ParameterError("path", f"path must be a file name (str or os.PathLike), got "
+                             f"{type(path).__name__}")
     try:
         with open(path, encoding="utf-8", errors="replace") as fh:
             lines = fh.read().splitlines()
@@ -241,7 +249,7 @@ def _check_clipping(path, x, numbers, names):
 def load(path: str, kind: str = "auto") -> Record:
     """Read and check ``path`` as a record of ``kind`` (see the module docstring)."""
     if kind not in KINDS:
-        raise ValueError(f"kind must be one of {', '.join(KINDS)}, got {kind!r}")
+        kind = _choice("kind", kind, KINDS)
     header, data, numbers = read_table(path)
     if data.shape[1] < 2:
         raise RecordError(path, "one column only: a record needs a time (or frequency) column "
