@@ -103,7 +103,11 @@ def choice(name: str, value, options) -> str:
 
 def real_array(name: str, values, ndim: int | None = None) -> np.ndarray:
     """``values`` as a float64 array; ParameterError naming ``name`` if it holds anything but
-    real numbers (complex, boolean, strings or objects are refused, not cast)."""
+    real numbers (complex, boolean, strings or objects are refused, not cast), or is a masked
+    array with masked entries (np.asarray would take the values under the mask)."""
+    if isinstance(values, np.ma.MaskedArray) and np.ma.is_masked(values):
+        raise ParameterError(name, f"{name} has masked entries: fill or drop them first "
+                             "(numpy.ma.filled or .compressed())")
     try:
         raw = np.asarray(values)
     except (TypeError, ValueError):

@@ -326,3 +326,16 @@ def test_every_subcommand_has_a_description_without_markup():
         assert p.description and len(p.description) > 40, name
         for text in (p.description, p.format_help(), parser.format_help()):
             assert ":class:" not in text and "``" not in text and "issue " not in text, name
+
+
+def test_masked_entries_are_refused_not_read_under_the_mask():
+    """np.asarray of a masked array takes the values under the mask: a masked sample was
+    filtered as if it were data."""
+    chain = sms.Chain(sms.harmonic(T=0.01), Ts=Ts)
+    before = chain.get_state()
+    raises("u", chain.process, np.ma.array([1.0, 2.0, 3.0], mask=[0, 1, 0]))
+    assert np.array_equal(chain.get_state(), before)
+    raises("w", sms.analysis.frequency_response, sms.harmonic(T=0.1),
+           np.ma.array([1.0, 2.0], mask=[1, 0]))
+    y = chain.process(np.ma.array([1.0, 2.0], mask=[0, 0]))      # nothing masked: accepted
+    assert y.shape == (2,)
