@@ -34,6 +34,11 @@ from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
+from ._checks import (finite_array as _finite_array, finite_signal as _finite_signal,
+                      integer as _integer)
+from .errors import ParameterError
+from .reference._checks import check_samples
+
 __all__ = ["TS", "STOP_TIME", "T_MOVE", "MOVE", "PLANT", "LIMITS", "SSD_NS", "plant_mode",
            "parameters", "WITHOUT_SHAPER", "COMPONENTS", "CONNECTIONS", "system_structure",
            "write_ssp", "target_signal", "ssp_parameters", "run_fmpy", "run_libcosim", "reference",
@@ -149,7 +154,7 @@ def write_ssp(out_dir: Path, fmus: dict[str, Path]) -> tuple[Path, Path]:
 
 def target_signal(t: np.ndarray) -> np.ndarray:
     """The system input: 0, then MOVE from T_MOVE on."""
-    return np.where(np.asarray(t) >= T_MOVE - 1e-9 * TS, MOVE, 0.0)
+    return np.where(_finite_array("t", t) >= T_MOVE - 1e-9 * TS, MOVE, 0.0)
 
 
 def ssp_parameters(ssp: Path) -> dict[str, float | int]:
@@ -228,6 +233,10 @@ def run_libcosim(ssp: Path, *, shaper: bool, n_steps: int):
 
 def reference(n_steps: int, *, shaper: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The NumPy reference of the system, rows as the importers report them (after step k)."""
+    n_steps = _integer("n_steps", n_steps, 1)
+    check_samples("n_steps", n_steps, "the reference run")
+    if not isinstance(shaper, (bool, np.bool_)):
+        raise ParameterError("shaper", f"shaper must be True or False, got {type(shaper).__name__}")
     from . import plants, reference as filters_reference
     from .stages import shaper as shaper_stage
     from .trajectory import generator_reference
@@ -246,6 +255,9 @@ def reference(n_steps: int, *, shaper: bool) -> tuple[np.ndarray, np.ndarray, np
 
 def residual_vibration(s: np.ndarray, p: np.ndarray) -> float:
     """max |load - target| once the command into the plant stays within 1e-12 of the target."""
+    s, p = _finite_signal("s", s), _finite_signal("p", p)
+    if p.shape != s.shape:
+        raise ParameterError("p", f"p must have the shape of s {s.shape}, got {p.shape}")
     off = np.nonzero(np.abs(s - MOVE) > 1e-12 * MOVE)[0]
     settled = off[-1] + 1 if off.size else 0
     if settled >= s.size - 10:

@@ -32,6 +32,10 @@ from . import reference
 from .stages import (TIMINGS, damped_harmonic, exponential, for_mode, harmonic, notch,
                      rectangular, shaper)
 from .errors import ParameterError
+from ._checks import (finite as _finite, finite_array as _finite_array,
+                      finite_signal as _finite_signal, nonnegative as _nonnegative,
+                      positive as _positive)
+from .reference._checks import check_samples
 
 __all__ = ["REL_TOL", "RUN_STEPS", "ModeStage", "start_values", "reference_stages", "communication_points",
            "tick_inputs", "at_communication_points", "expected_output", "expected_trajectory",
@@ -93,6 +97,7 @@ def start_values(stages, *, Ts: float) -> dict:
         Naming ``stages`` when there are more than 8.
     """
     stages = list(stages)
+    Ts = _positive("Ts", Ts)
     if len(stages) > 8:
         raise ParameterError("stages", f"stages must hold at most 8 stages, got {len(stages)}")
     values = {"Ts": float(Ts)}
@@ -154,6 +159,8 @@ def communication_points(*, step: float, stop_time: float) -> np.ndarray:
     ZeroDivisionError
         ``step`` is 0.
     """
+    step, stop_time = _positive("step", step), _nonnegative("stop_time", stop_time)
+    check_samples("step", stop_time / step + 1, "the communication points")
     n = int(round(stop_time / step))
     return np.arange(n + 1) * step
 
@@ -186,8 +193,14 @@ def tick_inputs(t: np.ndarray, u: np.ndarray, *, Ts: float) -> tuple[np.ndarray,
     IndexError
         ``u`` is shorter than ``t``.
     """
-    t = np.asarray(t, dtype=float)
-    u = np.asarray(u, dtype=float)
+    t, u, Ts = _finite_signal("t", t), _finite_signal("u", u), _positive("Ts", Ts)
+    if t.size == 0 or np.any(t < 0) or np.any(np.diff(t) < 0):
+        raise ParameterError("t", "t must be communication points: non-empty, >= 0 and "
+                             "non-decreasing")
+    if u.size < t.size:
+        raise ParameterError("u", f"u must hold a value for each of the {t.size} points of t, "
+                             f"got {u.size}")
+    check_samples("Ts", t[-1] / Ts + 1, "the ticks up to the last communication point")
     n_at = np.floor(t / Ts + TICK_SLACK).astype(np.int64)
     ticks = np.arange(1, int(n_at[-1]) + 1)
     step_of_tick = np.searchsorted(n_at, ticks, side="left") - 1
@@ -252,7 +265,7 @@ def expected_output(stages, t: np.ndarray, u: np.ndarray, *, Ts: float,
         An invalid stage at ``Ts``.
     """
     x, n_at = tick_inputs(t, u, Ts=Ts)
-    rest = float(u[0]) if rest is None else float(rest)
+    rest = float(np.asarray(u, dtype=float)[0]) if rest is None else _finite("rest", rest)
     y_ticks = reference.filter(reference_stages(stages), x - rest, Ts=Ts) + rest  # unit DC gain
     return at_communication_points(y_ticks, n_at, rest)
 
@@ -287,7 +300,7 @@ def expected_trajectory(t: np.ndarray, target: np.ndarray, *, Ts: float, **limit
     from .trajectory import generator_reference
     x, n_at = tick_inputs(t, target, Ts=Ts)
     limits = dict(limits)
-    rest = float(limits.pop("q0", 0.0))
+    rest = _finite("q0", limits.pop("q0", 0.0))
     rows = generator_reference(x, Ts=Ts, position=rest, **limits) if x.size else np.zeros((0, 4))
     return at_communication_points(rows, n_at, np.array([rest, 0.0, 0.0, 0.0]))
 
@@ -699,6 +712,7 @@ def target_staircase(t: np.ndarray) -> np.ndarray:
     IndexError
         ``t`` is empty.
     """
+    t = _finite_array("t", t)
     x = np.full(t.shape, 0.1)
     for at, value in ((0.05, 0.4), (0.4, 0.0), (0.45, 0.35), (1.0, 0.3501)):
         x[t >= at] = value

@@ -52,3 +52,39 @@ def test_run_writes_a_passing_report(tmp_path):
     report = (tmp_path / "README.md").read_text()
     assert "**Result: PASS**" in report and "| NO |" not in report
     assert (tmp_path / "smoothshaper_00.png").stat().st_size > 1000
+
+
+def test_validation_and_cosim_helpers_name_bad_arguments():
+    """They took anything: step=0 was a ZeroDivisionError, NaN a ValueError from int(),
+    Ts='1' passed as 1 s, Ts=NaN into the FMU's start values, a u shorter than t an
+    IndexError, a NaN rest or t went on to NaN expectations."""
+    import numpy as np
+    import pytest
+    import smoothshaper as sms
+    from smoothshaper import cosim, validation as v
+    t = v.communication_points(step=1e-3, stop_time=0.01)
+    cases = [
+        ("Ts", lambda: v.start_values([sms.harmonic(T=0.05)], Ts=np.nan)),
+        ("Ts", lambda: v.start_values([sms.harmonic(T=0.05)], Ts="1")),
+        ("step", lambda: v.communication_points(step=0.0, stop_time=1.0)),
+        ("step", lambda: v.communication_points(step=np.nan, stop_time=1.0)),
+        ("step", lambda: v.communication_points(step=1e-300, stop_time=1.0)),
+        ("stop_time", lambda: v.communication_points(step=1e-3, stop_time=None)),
+        ("u", lambda: v.tick_inputs(t, np.ones(3), Ts=1e-4)),
+        ("t", lambda: v.tick_inputs([], [], Ts=1e-4)),
+        ("t", lambda: v.tick_inputs(t[::-1], np.ones(t.size), Ts=1e-4)),
+        ("Ts", lambda: v.tick_inputs(t, np.ones(t.size), Ts=True)),
+        ("rest", lambda: v.expected_output([sms.harmonic(T=0.05)], t, np.ones(t.size),
+                                           Ts=1e-4, rest=np.nan)),
+        ("t", lambda: v.target_staircase([0.0, np.nan])),
+        ("t", lambda: cosim.target_signal(["a"])),
+        ("n_steps", lambda: cosim.reference(10 ** 400, shaper=True)),
+        ("shaper", lambda: cosim.reference(10, shaper="yes")),
+        ("p", lambda: cosim.residual_vibration(np.ones(50), np.ones(40))),
+    ]
+    for parameter, call in cases:
+        with pytest.raises(sms.ParameterError) as info:
+            call()
+        assert info.value.parameter == parameter, (parameter, str(info.value))
+    x, n_at = v.tick_inputs(t, np.ones(t.size), Ts=1e-4)
+    assert n_at[-1] == 100 and x.size == 100
