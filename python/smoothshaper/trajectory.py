@@ -321,6 +321,17 @@ class Generator(_state_identity.SavedState):
             s[plan + 6] = 0.0       # the plan has not rested on its goal yet
         st = self._lib.sms_generator_set_state(self._gen, self._ffi.from_buffer("double[]", s),
                                                s.size)
+        if st != 0 and target != q:
+            # the state itself is one a plan starts from (towards q): the target is what
+            # cannot be reached in the build's floats (sms_generator_check_state writes nothing)
+            probe = s.copy()
+            probe[plan:plan + 2] = (q, q)
+            if self._lib.sms_generator_check_state(
+                    self._gen, self._ffi.from_buffer("double[]", probe), probe.size) == 0:
+                raise ParameterError(
+                    "target", f"target={target!r}: the move from (q, v, a) = ({q!r}, {v!r}, "
+                    f"{a!r}) cannot be represented in {self.precision} (more than 2^52 samples "
+                    "of Ts, or a value beyond the range of a float)", st)
         if st != 0:
             raise ParameterError(
                 "a", f"(q, v, a) = ({q!r}, {v!r}, {a!r}) towards target={target!r} is not a "

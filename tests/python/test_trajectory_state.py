@@ -174,7 +174,11 @@ def test_start_from_refuses_a_state_no_plan_starts_from():
     before = g.get_state()
     for kwargs, name in [(dict(q=0.0, v=1.5), "v"), (dict(q=0.0, a=-11.0), "a"),
                          (dict(q=float("nan")), "q"), (dict(q=0.0, target=float("inf")), "target"),
-                         (dict(q=0.0, v=0.99, a=9.0), "a")]:     # brakes beyond vmax
+                         (dict(q=0.0, v=0.99, a=9.0), "a"),      # brakes beyond vmax
+                         # a state at rest heading for a target no plan reaches in a double:
+                         # the target, not a (it was named a)
+                         (dict(q=0.0, target=1e308), "target"), (dict(q=0.0, target=1e20), "target"),
+                         (dict(q=0.0, v=0.99, a=9.0, target=1e20), "a")]:
         with pytest.raises(ParameterError) as err:
             g.start_from(**kwargs)
         assert err.value.parameter == name
