@@ -392,16 +392,17 @@ def kinematic_lengths(*, h, vmax, amax=None, jmax=None, higher=(), profile: str 
 def _batch_error(st: int, i: int, shape: tuple, h: float, row: list[float], profile, wn, zeta,
                  Ts) -> None:
     """The error :func:`kinematic` raises for problem ``i`` of a batch, with its position."""
-    where = (f"row {i}" if len(shape) == 1
+    where = ("" if not shape else f"row {i}" if len(shape) == 1     # scalars: one problem
              else f"index {tuple(int(k) for k in np.unravel_index(i, shape))}")
     n = len(row)
     try:
         _kinematic_checked(h, row[0], row[1] if n > 1 else None, row[2] if n > 2 else None,
                            tuple(row[3:]), profile, wn, zeta, Ts)
     except ParameterError as e:
-        raise ParameterError(e.parameter, f"{e} ({where})", e.status) from None
+        raise ParameterError(e.parameter, f"{e} ({where})" if where else str(e),
+                             e.status) from None
     ffi, lib = _backend("double")
-    _raise_status(st, lib, ffi, f"kinematic design ({where})")
+    _raise_status(st, lib, ffi, f"kinematic design ({where})" if where else "kinematic design")
 
 
 # ----------------------------------------------------------------------------------------------
