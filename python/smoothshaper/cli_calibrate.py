@@ -128,7 +128,10 @@ def cmd_calibrate(args) -> int:
     print(outputs.report_text(cal), end="")
     print(f"analysis: {elapsed:.2f} s of CPU time")
     if args.json:
-        outputs.write_json(cal, args.json)
+        try:
+            outputs.write_json(cal, args.json)
+        except OSError as exc:     # a failed write (a full disk) carries no file name
+            raise CliError(f"--json={args.json}: {exc.strerror or exc}") from None
         print(f"wrote {args.json}")
     if args.out:
         from .calibrate import plots

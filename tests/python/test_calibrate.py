@@ -357,3 +357,13 @@ def test_api_arguments_are_named():
     os.fstat(1)                                      # stdout still open
     one = calibrate.run(path, axis="x")              # one file name as a str
     assert one.axes[0].name == "x" and one.axes[0].recommended is not None
+
+
+@pytest.mark.skipif(not Path("/dev/full").exists(), reason="needs /dev/full")
+def test_a_failed_json_write_names_json(capsys):
+    """A full disk raised OSError without a file name: the line read '[Errno 28] No space
+    left on device', naming no option."""
+    path = str(ROOT / "examples" / "resonance_psd.csv")
+    assert main(["calibrate", path, "--axis", "x", "--no-progress", "--json", "/dev/full"]) == 1
+    err = capsys.readouterr().err
+    assert err.startswith("smoothshaper: error: --json=/dev/full: No space left"), err
