@@ -238,3 +238,14 @@ def test_huge_counts_and_long_arguments_give_one_short_line(argv, start, capsys)
     err = capsys.readouterr().err
     assert code == cli.EXIT_ERROR and err.startswith("smoothshaper: error: " + start), err[:300]
     assert err.count("\n") == 1 and len(err) <= 700, len(err)
+
+
+@pytest.mark.skipif(not Path("/dev/zero").exists(), reason="needs /dev/zero")
+@pytest.mark.parametrize("command", ["identify", "calibrate"])
+def test_a_device_is_refused_not_read_until_memory_runs_out(command, capsys):
+    """identify /dev/zero read the endless device into memory (a hang, then the OOM killer)."""
+    t = time.process_time()
+    assert cli.main([command, "/dev/zero", "--no-progress"]) == cli.EXIT_ERROR
+    err = capsys.readouterr().err
+    assert err == "smoothshaper: error: /dev/zero: not a file of records but a device\n", err
+    assert time.process_time() - t < 2

@@ -24,6 +24,7 @@ from __future__ import annotations
 import csv
 import math
 import os
+import stat
 import re
 from dataclasses import dataclass, field
 
@@ -111,6 +112,9 @@ def read_table(path: str) -> tuple[list[str] | None, np.ndarray, np.ndarray]:
         raise ParameterError("path", f"path must be a file name (str or os.PathLike), got "
                              f"{type(path).__name__}")
     try:
+        if stat.S_ISCHR(os.stat(path).st_mode) or stat.S_ISBLK(os.stat(path).st_mode):
+            # /dev/zero or /dev/urandom would be read until memory runs out
+            raise RecordError(path, "not a file of records but a device")
         with open(path, encoding="utf-8", errors="replace") as fh:
             lines = fh.read().splitlines()
     except OSError as exc:
