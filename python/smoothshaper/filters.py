@@ -808,6 +808,14 @@ def notch_pole_zeta_from_bandwidth(*, wn: float, zeta: float = 0.0, bandwidth: f
     ffi, lib = _backend("double")
     out = ffi.new("double *")
     st = lib.sms_notch_pole_zeta_from_bandwidth(*args, out)
+    wn_v, zeta_v, bw = args
+    if st == -20 and bw > 0 and wn_v > 0 and 0 <= zeta_v < 1:
+        # a finite, positive band refused for its size relative to wn: say which way
+        wide = bw > wn_v
+        raise ParameterError(
+            "bandwidth", f"bandwidth = {bw!r} rad/s is too {'wide' if wide else 'narrow'} for "
+            f"wn = {wn_v!r} rad/s: the pole damping (bandwidth/(2 wn), with zeta = {zeta_v!r}) "
+            + ("exceeds the notch's limit" if wide else "rounds onto zeta"), st)
     if st != 0:
         parameter = _STATUS_PARAMETER.get(st, "argument")
         value = dict(zip(("wn", "zeta", "bandwidth"), args)).get(parameter)

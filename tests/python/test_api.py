@@ -339,3 +339,13 @@ def test_masked_entries_are_refused_not_read_under_the_mask():
            np.ma.array([1.0, 2.0], mask=[1, 0]))
     y = chain.process(np.ma.array([1.0, 2.0], mask=[0, 0]))      # nothing masked: accepted
     assert y.shape == (2,)
+
+
+def test_a_notch_band_refused_for_its_size_says_which_way():
+    """A band 20 rad/s wide at wn = 1e308 rounds onto zeta (too narrow); the message said the
+    bandwidth must be 'narrower than the notch allows'."""
+    exc = raises("bandwidth", sms.notch_pole_zeta_from_bandwidth, wn=1e308, bandwidth=20.0)
+    assert "too narrow" in str(exc)
+    exc = raises("bandwidth", sms.notch_pole_zeta_from_bandwidth, wn=100.0, bandwidth=1e300)
+    assert "too wide" in str(exc)
+    assert sms.notch_pole_zeta_from_bandwidth(wn=100.0, bandwidth=20.0) == pytest.approx(0.1)
