@@ -161,7 +161,14 @@ def status_string(status: int, precision: str = "double") -> str:
         Naming ``precision`` when it is neither ``"double"`` nor ``"float"``.
     """
     ffi, lib = _backend(precision)
-    return ffi.string(lib.sms_status_string(int(status))).decode()
+    return ffi.string(lib.sms_status_string(_status_code(status))).decode()
+
+
+def _status_code(status) -> int:
+    """``status`` as a C int (ParameterError naming it unless an integer); a value beyond the
+    C enum's range is passed as one that is "unknown status" too (cffi raised OverflowError)."""
+    n = _integer("status", status)
+    return n if -2 ** 31 <= n < 2 ** 31 else -2 ** 31
 
 
 def _raise_status(status: int, lib, ffi, context: str, parameter: str | None = None,
@@ -198,9 +205,10 @@ def raise_for_status(status: int, *, context: str, parameter: str | None = None,
         For any non-zero status, naming ``parameter``, with the C message, ``value`` and
         ``context``.
     """
+    status = _status_code(status)
     if status != 0:
         ffi, lib = _backend(precision)
-        _raise_status(int(status), lib, ffi, context, parameter, value)
+        _raise_status(status, lib, ffi, context, parameter, value)
 
 
 def _stage_parameter(stage: Stage, status: int) -> tuple[str, object]:

@@ -349,3 +349,15 @@ def test_a_notch_band_refused_for_its_size_says_which_way():
     exc = raises("bandwidth", sms.notch_pole_zeta_from_bandwidth, wn=100.0, bandwidth=1e300)
     assert "too wide" in str(exc)
     assert sms.notch_pole_zeta_from_bandwidth(wn=100.0, bandwidth=20.0) == pytest.approx(0.1)
+
+
+def test_status_helpers_name_a_status_that_is_not_an_integer():
+    """status_string(10**40) raised cffi's OverflowError, 'x' a ValueError from int(), 1.5
+    was truncated to 1 and True taken as 1."""
+    from smoothshaper import filters
+    for bad in ("x", None, np.nan, 1.5, True):
+        raises("status", filters.status_string, bad)
+        raises("status", filters.raise_for_status, bad, context="here")
+    assert filters.status_string(10 ** 40) == "unknown status"
+    assert filters.status_string(np.int8(-3)) == filters.status_string(-3)
+    filters.raise_for_status(0, context="here")
