@@ -36,14 +36,22 @@ def real(name: str, value) -> float:
     (int, float, NumPy real scalar or 0-d real array; not bool, complex or str)."""
     if isinstance(value, np.ndarray) and value.ndim == 0:
         value = value[()]
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (numbers.Real, np.number)) \
+    if isinstance(value, (bool, np.bool_, np.timedelta64)) \
+            or not isinstance(value, (numbers.Real, np.number)) \
             or isinstance(value, (complex, np.complexfloating)):
         raise ParameterError(name, f"{name} must be a real number, got {_type_text(value)}")
     try:
         return float(value)
-    except OverflowError:   # an int beyond the largest float (about 1.8e308)
-        raise ParameterError(name, f"{name} must be finite, got an int of {int(value).bit_length()} "
-                             "bits, beyond the largest float (about 1.8e308)") from None
+    except OverflowError:   # an int (or a Fraction) beyond the largest float (about 1.8e308)
+        if isinstance(value, numbers.Integral):
+            raise ParameterError(name, f"{name} must be finite, got an int of "
+                                 f"{int(value).bit_length()} bits, beyond the largest float "
+                                 "(about 1.8e308)") from None
+        raise ParameterError(name, f"{name} must be finite, got a {type(value).__name__} beyond "
+                             "the largest float (about 1.8e308)") from None
+    except (TypeError, ValueError):     # a Real whose __float__ fails
+        raise ParameterError(name, f"{name} must be a real number, got "
+                             f"{_type_text(value)}") from None
 
 
 def finite(name: str, value) -> float:
@@ -75,13 +83,14 @@ def integer(name: str, value, minimum: int | None = None) -> int:
     ``>= minimum``; never a bool."""
     if isinstance(value, np.ndarray) and value.ndim == 0:
         value = value[()]
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (numbers.Real, np.number)) \
+    if isinstance(value, (bool, np.bool_, np.timedelta64)) \
+            or not isinstance(value, (numbers.Real, np.number)) \
             or isinstance(value, (complex, np.complexfloating)):
         raise ParameterError(name, f"{name} must be an integer, got {_type_text(value)}")
     if isinstance(value, (numbers.Integral, np.integer)):
         n = int(value)
     else:
-        v = float(value)
+        v = real(name, value)
         if not math.isfinite(v) or v != int(v):
             raise ParameterError(name, f"{name} must be an integer, got {v!r}")
         n = int(v)

@@ -361,3 +361,17 @@ def test_status_helpers_name_a_status_that_is_not_an_integer():
     assert filters.status_string(10 ** 40) == "unknown status"
     assert filters.status_string(np.int8(-3)) == filters.status_string(-3)
     filters.raise_for_status(0, context="here")
+
+
+def test_timedelta_and_huge_fractions_are_named():
+    """np.timedelta64 is a NumPy integer whose float() raises TypeError (it escaped the shared
+    check); a Fraction beyond the largest float was reported as 'an int of 1328 bits'."""
+    from fractions import Fraction
+    exc = raises("T", sms.harmonic, T=np.timedelta64(5, "ms"))
+    assert "real number" in str(exc)
+    raises("k", sms.harmonic, T=0.1, k=np.timedelta64(3, "ms"))
+    raises("h", sms.design.kinematic, h=np.timedelta64(5, "ms"), vmax=1.0)
+    exc = raises("T", sms.harmonic, T=Fraction(10 ** 400, 3))
+    assert "Fraction beyond the largest float" in str(exc)
+    raises("k", sms.harmonic, T=0.1, k=Fraction(10 ** 400, 3))
+    assert sms.harmonic(T=Fraction(1, 10)).T == 0.1
