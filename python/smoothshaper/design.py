@@ -49,7 +49,9 @@ def _limits(vmax, amax, jmax, higher, convert=_positive) -> list:
     float; :func:`kinematic_lengths`: an array); a bound may be given only if all lower ones
     are, and there are at most MAX_ORDER."""
     try:
-        higher = list(higher)
+        # at most one bound beyond the limit is read: an endless iterator is refused, not
+        # drained forever (itertools.repeat(1.0) hung)
+        higher = list(itertools.islice(iter(higher), MAX_ORDER))
     except TypeError:
         raise ParameterError("higher", "higher must be a sequence of bounds, got "
                              f"{type(higher).__name__}") from None
@@ -66,7 +68,9 @@ def _limits(vmax, amax, jmax, higher, convert=_positive) -> list:
                          "derivatives)")
         out.append(convert(name, value))
     if len(out) > MAX_ORDER:
-        raise ParameterError("higher", f"higher: at most {MAX_ORDER} bounds in all, got {len(out)}")
+        more = " or more" if len(higher) == MAX_ORDER else ""    # read no further
+        raise ParameterError("higher", f"higher: at most {MAX_ORDER} bounds in all, got "
+                             f"{len(out)}{more}")
     return out
 
 

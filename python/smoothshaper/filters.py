@@ -15,6 +15,7 @@ it writes, and so does this module, so a failed call leaves the object as it was
 """
 from __future__ import annotations
 
+import itertools
 import math
 from collections import namedtuple
 from typing import Iterable, Sequence
@@ -73,6 +74,9 @@ def check_memory(parameter: str, n_reals, what: str) -> int:
             f"more than the limit of {MAX_BUFFER_REALS} (smoothshaper.filters.MAX_BUFFER_REALS)")
     return int(n_reals)
 
+
+#: Most stages a stage list may hold (a Chain takes 16; an iterator is read no further).
+MAX_STAGE_LIST = 1 << 16
 
 _backends: dict = {}
 
@@ -255,10 +259,13 @@ def _as_stage_list(stages) -> tuple[Stage, ...]:
     if isinstance(stages, Stage):
         stages = [stages]
     try:
-        out = tuple(stages)
+        # more than any chain holds is refused below; an endless iterator is not drained
+        out = tuple(itertools.islice(iter(stages), MAX_STAGE_LIST + 1))
     except TypeError:
         raise ParameterError(
             "stages", f"stages must be a Stage or a sequence of Stage, got {_show(stages)}") from None
+    if len(out) > MAX_STAGE_LIST:
+        raise ParameterError("stages", f"stages: more than {MAX_STAGE_LIST} stages")
     for i, s in enumerate(out):
         if not isinstance(s, Stage):
             raise ParameterError(

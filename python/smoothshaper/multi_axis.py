@@ -11,6 +11,7 @@
 """
 from __future__ import annotations
 
+import itertools
 import math
 import warnings
 from dataclasses import dataclass
@@ -19,7 +20,7 @@ import numpy as np
 
 from . import _reach, _state_identity
 from .errors import DroppedTargetWarning
-from .filters import ParameterError, _backend, _fill_config, _real_dtype
+from .filters import MAX_STAGE_LIST, ParameterError, _backend, _fill_config, _real_dtype
 from .reference import multi_axis as _ref
 from ._checks import positive as _positive, real_array as _real_array, show as _show
 
@@ -189,7 +190,7 @@ class MultiAxisGenerator(_state_identity.SavedState):
             stages = [stages]
         if not isinstance(stages, (list, tuple)):
             try:
-                stages = list(stages)
+                stages = list(itertools.islice(iter(stages), MAX_STAGE_LIST + 1))
             except TypeError:
                 raise ParameterError("stages", "stages must be a sequence of Stage, or one "
                                      f"per axis, got {_show(stages)}") from None

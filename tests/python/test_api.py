@@ -375,3 +375,22 @@ def test_timedelta_and_huge_fractions_are_named():
     assert "Fraction beyond the largest float" in str(exc)
     raises("k", sms.harmonic, T=0.1, k=Fraction(10 ** 400, 3))
     assert sms.harmonic(T=Fraction(1, 10)).T == 0.1
+
+
+def test_an_endless_iterator_is_refused_not_drained():
+    """higher=itertools.repeat(1.0) and stages=itertools.repeat(stage) were read forever."""
+    import itertools
+    import time
+    t = time.process_time()
+    exc = raises("higher", sms.design.kinematic, h=1.0, vmax=1.0, amax=1.0, jmax=1.0,
+                 higher=itertools.repeat(1.0))
+    assert "or more" in str(exc)
+    raises("higher", sms.design.kinematic_lengths, h=1.0, vmax=1.0, amax=1.0, jmax=1.0,
+           higher=itertools.count(1))
+    stage = sms.harmonic(T=0.01)
+    raises("stages", sms.Chain, itertools.repeat(stage), Ts=Ts)
+    raises("stages", sms.design.duration, itertools.repeat(stage))
+    raises("stages", sms.multi_axis.MultiAxisGenerator, vmax=1.0, amax=1.0, jmax=1.0, Ts=Ts,
+           stages=itertools.repeat(stage))
+    assert time.process_time() - t < 5
+    assert sms.Chain(iter([stage, stage]), Ts=Ts).length > 0
