@@ -182,7 +182,13 @@ def plan_to_rest(q: float, v: float, a: float, goal: float, *, vmax: float, amax
         raise ParameterError("a", f"a={a!r} exceeds amax={amax!r}")
     try:
         with np.errstate(all="ignore"):
-            return _plan_to_rest(q, v, a, goal, vmax=vmax, amax=amax, jmax=jmax, shape=shape)
+            pieces, starts = _plan_to_rest(q, v, a, goal, vmax=vmax, amax=amax, jmax=jmax,
+                                           shape=shape)
+        if not (all(math.isfinite(x) for piece in pieces for x in piece)
+                and math.isfinite(sum(d for d, _ in pieces))
+                and all(math.isfinite(x) for state in starts for x in state)):
+            raise OverflowError("a duration or a state of the plan is not finite")
+        return pieces, starts
     except (OverflowError, ZeroDivisionError):
         # limits out of the generator's feasible region name the limit (Ts plays no part)
         quantity = reach(vmax, amax, jmax, 1e300, shape)["quantity"]

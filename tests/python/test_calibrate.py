@@ -349,6 +349,12 @@ def test_api_arguments_are_named():
         ("reference", lambda: calibrate.run([path], reference=1e-4)),
         ("paths", lambda: calibrate.run(5)),
         ("paths", lambda: calibrate.run([])),
+        # band went unchecked: unpacking errors, a TypeError for None, text compared
+        ("band", lambda: calibrate.run([path], band=[])),
+        ("band", lambda: calibrate.run([path], band=["a", "b"])),
+        ("band", lambda: calibrate.run([path], band=[80.0, 20.0])),
+        ("band", lambda: calibrate.run([path], band=[np.nan, 20.0])),
+        ("axis", lambda: calibrate.run([path], axis=np.nan)),
     ]
     for parameter, call in cases:
         with pytest.raises(sms.ParameterError) as info:

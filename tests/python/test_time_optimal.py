@@ -180,6 +180,7 @@ def test_public_entry_points_name_bad_arguments():
     _named("targets", to.time_optimal_reference, ["a"], **lim, Ts=1e-3)
     _named("q0", to.time_optimal_reference, [1.0], **lim, Ts=1e-3, q0=None)
     _named("amax", to.time_optimal_reference, [1.0], vmax=1.0, amax=1e-300, jmax=1.0, Ts=1e-3)
+    _named("vmax", to.plan_duration, 0.0, 0.0, 0.0, 1.0, vmax=5e-324, amax=10.0, jmax=100.0)
     assert to.plan_duration(0, 0, 0, 1.0, **lim) > 0
     out = to.time_optimal_reference([0.0, np.nan, 1.0], **lim, Ts=1e-3)   # NaN: ignored
     assert np.all(np.isfinite(out))

@@ -17,7 +17,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from .._checks import finite as _finite, positive as _positive
+from .._checks import finite as _finite, positive as _positive, real_array as _real_array
 from ..errors import ParameterError
 from .candidates import (Candidate, Objective, Reference, evaluate, families,
                          recommend, tune)
@@ -229,6 +229,15 @@ def run(paths, *, kind: str = "auto", axis: str = "all", band=None,
                              f"{type(paths).__name__}") from None
     if not paths:
         raise ParameterError("paths", "paths must name at least one record")
+    if not isinstance(axis, str):
+        raise ParameterError("axis", f"axis must be a column name or 'all', got "
+                             f"{type(axis).__name__}")
+    if band is not None:
+        b = _real_array("band", band, ndim=1)
+        if b.size != 2 or not (np.all(np.isfinite(b)) and b[0] < b[1] and b[1] > 0):
+            raise ParameterError("band", "band must be two finite frequencies FMIN < FMAX [Hz] "
+                                 f"with FMAX > 0, got {b.tolist()}")
+        band = (float(b[0]), float(b[1]))
     records = [load(p, kind) for p in paths]
     axes, skipped = [], []
     for rec in records:
