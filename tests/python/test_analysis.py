@@ -8,6 +8,7 @@ from scipy.ndimage import maximum_filter1d
 import smoothshaper as sm
 from smoothshaper import analysis as an
 from smoothshaper import reference as ref
+from test_api import raises as _named  # noqa: E402
 
 
 @pytest.mark.parametrize("k", [1, 2, 3])
@@ -174,12 +175,6 @@ def test_bad_arguments_raise_value_error_naming_the_parameter(call, name):
 
 # -- bad arguments: named at once, never NaN or inf returned -----------------------------------
 
-def _named(parameter, func, *args, **kwargs):
-    from smoothshaper import ParameterError
-    with pytest.raises(ParameterError) as info:
-        func(*args, **kwargs)
-    assert info.value.parameter == parameter, (info.value.parameter, str(info.value))
-    assert str(info.value).startswith(parameter)
 
 
 _CHAIN = [sm.harmonic(T=0.05), sm.shaper("zv", wn=100.0, zeta=0.05)]

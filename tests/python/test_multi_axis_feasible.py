@@ -18,6 +18,7 @@ from smoothshaper.filters import _backend
 from smoothshaper.multi_axis import MultiAxisGenerator
 from smoothshaper.reference.multi_axis import multi_axis_reference, reach
 from smoothshaper.time_optimal import reach as single_reach
+from test_api import raises as _named  # noqa: E402
 
 #: Every quantity the region can name (the single-axis region's, then the planner's own);
 #: "the duration to reach vmax" (T >= MIN) needs limits that the others refuse first.
@@ -285,11 +286,6 @@ def test_multi_axis_move_broadcasts_limits_and_refuses_huge_moves_at_once():
 _LIMITS = dict(vmax=[1.0, 2.0], amax=[10.0, 10.0], jmax=[100.0, 100.0])
 
 
-def _named(parameter, func, *args, **kwargs):
-    with pytest.raises(ParameterError) as info:
-        func(*args, **kwargs)
-    assert info.value.parameter == parameter, (info.value.parameter, str(info.value))
-    assert str(info.value).startswith(parameter) and "np." not in str(info.value)
 
 
 @pytest.mark.parametrize("bad", ["a", [1 + 1j, 2.0], [[1.0], [1.0, 2.0]], {"a": 1},

@@ -11,6 +11,7 @@ import smoothshaper as sm
 from smoothshaper import analysis as an
 from smoothshaper import plants
 from smoothshaper import reference as ref
+from test_api import raises as _named  # noqa: E402
 
 # seed 000 experiment mode
 SIGMA, WD, TS = -15.6539, 122.7185, 500e-6
@@ -133,12 +134,6 @@ def test_time_domain_residual_equals_the_transfer_for_random_filters(kind, detun
     assert got == pytest.approx(expected, rel=1e-6, abs=1e-9)
 
 
-def _named(parameter, func, *args, **kwargs):
-    from smoothshaper import ParameterError
-    with pytest.raises(ParameterError) as info:
-        func(*args, **kwargs)
-    assert info.value.parameter == parameter, (info.value.parameter, str(info.value))
-    assert str(info.value).startswith(parameter)
 
 
 def test_a_plant_is_checked_when_it_is_made():

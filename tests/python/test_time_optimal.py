@@ -11,6 +11,7 @@ from hypothesis import example, given, settings, strategies as st
 from smoothshaper import trajectory as tr
 from smoothshaper.filters import ParameterError
 from smoothshaper.time_optimal import plan_duration, time_optimal_reference
+from test_api import raises as _named  # noqa: E402
 
 ruckig = pytest.importorskip("ruckig")
 EPS = {"double": np.finfo(np.float64).eps, "float": np.finfo(np.float32).eps}
@@ -155,12 +156,6 @@ def test_limits_shorter_than_a_sample_are_fine_for_every_profile():
         assert word in str(exc.value)
 
 
-def _named(parameter, func, *args, **kwargs):
-    from smoothshaper import ParameterError
-    with pytest.raises(ParameterError) as info:
-        func(*args, **kwargs)
-    assert info.value.parameter == parameter, (info.value.parameter, str(info.value))
-    assert str(info.value).startswith(parameter)
 
 
 def test_public_entry_points_name_bad_arguments():
