@@ -371,22 +371,12 @@ def tuned_stage(profile: str, wn: float, zeta: float):
         Naming ``profile``, ``wn`` (not finite and > 0, or a period beyond a float) or
         ``zeta`` (not in [0, 1)).
     """
-    from .stages import Stage
+    from .stages import for_mode
     profile = _design.profile_name(profile)
-    wn = _design._positive("wn", wn)
     zeta = _finite("zeta", zeta)
-    if not 0.0 <= zeta < 1.0:
-        raise ParameterError("zeta", f"zeta must be in [0, 1), got {zeta!r}")
-    wd = wn * math.sqrt(1.0 - zeta * zeta)
-    if not wd > 0 or not math.isfinite(3 * math.pi / wd):
-        raise ParameterError("wn", f"wn = {wn!r} rad/s is too low: the mode's period is beyond "
-                             "the largest float")
-    if profile == "trigonometric":
-        kind = "damped_harmonic" if zeta > 0 else "harmonic"
-        return Stage(kind, T=3 * math.pi / wd, sigma=-zeta * wn if zeta > 0 else 0.0)
-    if profile == "damped":
-        return Stage("exponential", T=2 * math.pi / wd, sigma=-zeta * wn)
-    return Stage("rectangular", T=2 * math.pi / wd)
+    kind = {"polynomial": "rectangular", "damped": "exponential",
+            "trigonometric": "damped_harmonic" if zeta > 0 else "harmonic"}[profile]
+    return for_mode(kind, wn=wn, zeta=zeta)   # checks wn, zeta and the period's range
 
 
 def generator_reference(targets, *, vmax, amax, jmax, Ts, profile="polynomial", wn=None,
@@ -822,10 +812,10 @@ def bspline_reference(via, *, degree: int, T: float, Ts: float):
     """
     q = _via("via", via)
     degree, T, Ts, _ = _bspline_args(degree, T, Ts, min(q.shape[1], BSPLINE_MAX_AXES))
-    what = f"the reference B-spline with T/Ts = {T / Ts:.6g}"
-    check_memory("T", (degree + 1) * (T / Ts + 0.5) * (q.shape[0] + degree), what)  # before int()
+    # checked before int(), on T/Ts + 0.5 >= N (an overflowing N would raise there)
+    check_memory("T", (degree + 1) * (T / Ts + 0.5) * (q.shape[0] + degree),
+                 f"the reference B-spline with T/Ts = {T / Ts:.6g}")
     N = max(1, int(math.floor(T / Ts + 0.5)))
-    check_memory("T", (degree + 1) * N * (q.shape[0] + degree), what)
     d = np.ones(N)
     for _ in range(degree):
         d = np.convolve(d, np.full(N, 1.0 / N))
