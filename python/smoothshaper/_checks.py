@@ -147,6 +147,19 @@ def finite_array(name: str, values) -> np.ndarray:
     return x
 
 
+def finite_vector(name: str, values) -> np.ndarray:
+    """A non-empty one-dimensional float64 vector of finite values (a scalar is one value,
+    as for per-axis quantities); the first non-finite entry is named by its index."""
+    v = np.atleast_1d(real_array(name, values))
+    if v.ndim != 1 or v.size == 0:
+        raise ParameterError(name, f"{name} must be a value or a non-empty vector, got shape "
+                             f"{v.shape}")
+    bad = np.flatnonzero(~np.isfinite(v))
+    if bad.size:
+        raise ParameterError(name, f"{name}[{bad[0]}] must be finite, got {float(v[bad[0]])!r}")
+    return v
+
+
 def finite_signal(name: str, values) -> np.ndarray:
     """A one-dimensional float64 array of finite real values."""
     x = real_array(name, values, ndim=1)

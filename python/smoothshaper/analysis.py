@@ -581,7 +581,6 @@ def signal_spectrum(x, *, Ts: float) -> tuple[np.ndarray, np.ndarray]:
     x = _finite_signal("x", x)
     if x.size == 0:
         raise ParameterError("x", "x must hold at least one sample")
-    Ts = _positive("Ts", Ts)
     with np.errstate(over="ignore", invalid="ignore", under="ignore"):
         X = _representable("x", np.fft.rfft(x), "the DFT of x")
         X = _representable("Ts", Ts * X, "Ts times the DFT of x")

@@ -22,7 +22,8 @@ from . import _reach, _state_identity
 from .errors import DroppedTargetWarning
 from .filters import MAX_STAGE_LIST, ParameterError, _backend, _fill_config, _real_dtype
 from .reference import multi_axis as _ref
-from ._checks import positive as _positive, real_array as _real_array, show as _show
+from ._checks import (finite_vector as _finite_vector, positive as _positive,
+                      real_array as _real_array, show as _show)
 
 __all__ = ["SYNC_MODES", "MultiAxisGenerator", "MultiAxisMove", "phase_duration", "multi_axis_move"]
 
@@ -355,13 +356,7 @@ def phase_duration(delta, *, vmax, amax, jmax) -> float:
     ParameterError
         Naming a bound (``vmax[i]``, ...) or ``delta``.
     """
-    d = np.atleast_1d(_real_array("delta", delta))
-    if d.ndim != 1 or d.size == 0:
-        raise ParameterError("delta", f"delta must be a value or a non-empty vector, got shape "
-                             f"{d.shape}")
-    bad = np.flatnonzero(~np.isfinite(d))
-    if bad.size:
-        raise ParameterError("delta", f"delta[{bad[0]}] must be finite")
+    d = _finite_vector("delta", delta)
     v, a, j = _limits(vmax, amax, jmax, d.size)
     return _ref.phase_duration(d, vmax=v, amax=a, jmax=j)
 
@@ -396,16 +391,7 @@ def multi_axis_move(start, target, *, vmax, amax, jmax, Ts: float, sync: str = "
         Naming ``target`` (not a vector the length of ``start``, or a move whose profile
         would hold more than 2^27 values), a bound, ``Ts``, ``sync``.
     """
-    s = np.atleast_1d(_real_array("start", start))
-    t = np.atleast_1d(_real_array("target", target))
-    for name, v in (("start", s), ("target", t)):
-        if v.ndim != 1 or v.size == 0:
-            raise ParameterError(name, f"{name} must be a value or a non-empty vector, got "
-                                 f"shape {v.shape}")
-        bad = np.flatnonzero(~np.isfinite(v))
-        if bad.size:
-            raise ParameterError(name, f"{name}[{bad[0]}] must be finite, got "
-                                 f"{float(v[bad[0]])!r}")
+    s, t = _finite_vector("start", start), _finite_vector("target", target)
     if s.shape != t.shape:
         raise ParameterError("target", f"start and target must be vectors of the same length, "
                                        f"got {s.shape} and {t.shape}")

@@ -62,7 +62,7 @@ typedef enum sms_profile {
  * Cost: O(n^2) closed-form steps for any input (no nested iteration); with a mode, one such
  * solve per multiple k tried, at most ::SMS_KINEMATIC_MAX_MULTIPLE (a rectangular tuned
  * stage skips the multiples whose chain must last k Tm + |h|/vmax or more, longer than the
- * best found; measured up to about 27 ms for eight bounds, 1 ms for three); with Ts > 0
+ * best found; measured up to about 27 ms for eight bounds, 0.5 ms for three); with Ts > 0
  * the grid search below adds a bounded number of chain tests (median CPU time from about
  * 0.1 us for one bound to 48 us for eight, largest about 0.6 ms; docs/sampled-limits.md).
  *

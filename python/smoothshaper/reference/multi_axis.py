@@ -29,7 +29,7 @@ from . import filtering as _filtering
 from ._checks import check_Ts
 from .. import time_optimal as _single
 from .._reach import named as _named
-from .._checks import real_array as _real_array
+from .._checks import finite_vector as _finite_vector, real_array as _real_array
 from ..errors import ParameterError
 
 __all__ = ["reach", "transition", "phase_duration", "multi_axis_reference"]
@@ -214,17 +214,6 @@ def _limits(vmax, amax, jmax, axes: int):
     return out
 
 
-def _vector(name: str, value) -> np.ndarray:
-    """A finite 1-D float64 vector; ParameterError naming ``name`` otherwise."""
-    v = np.atleast_1d(_real_array(name, value))
-    if v.ndim != 1 or v.size == 0:
-        raise ParameterError(name, f"{name} must be a non-empty vector, got shape {v.shape}")
-    bad = np.flatnonzero(~np.isfinite(v))
-    if bad.size:
-        raise ParameterError(name, f"{name}[{bad[0]}] must be finite, got {float(v[bad[0]])!r}")
-    return v
-
-
 def transition(dV, vmax, amax, jmax) -> tuple[float, float]:
     """Shortest straight velocity change ``dV`` under per-axis limits.
 
@@ -254,7 +243,7 @@ def transition(dV, vmax, amax, jmax) -> tuple[float, float]:
     ParameterError
         Naming ``dV`` or the offending limit, e.g. ``amax[2]``.
     """
-    dV = _vector("dV", dV)
+    dV = _finite_vector("dV", dV)
     _, amax, jmax = _limits(vmax, amax, jmax, dV.size)
     return _transition(dV, None, amax, jmax)
 
@@ -311,7 +300,7 @@ def phase_duration(delta, *, vmax, amax, jmax) -> float:
     ParameterError
         Naming ``delta`` or the offending limit, e.g. ``jmax[1]``.
     """
-    d = _vector("delta", delta)
+    d = _finite_vector("delta", delta)
     vmax, amax, jmax = _limits(vmax, amax, jmax, d.size)
     return _phase_duration(d, vmax, amax, jmax)
 
@@ -600,7 +589,7 @@ def multi_axis_reference(targets, *, vmax, amax, jmax, Ts: float, sync: str = "p
     if sync not in ("phase", "independent"):
         raise ParameterError("sync", f"sync must be 'phase' or 'independent', got {sync!r}")
     if q0 is not None:
-        q0 = _vector("q0", q0)
+        q0 = _finite_vector("q0", q0)
         if q0.size != x.shape[1]:
             raise ParameterError("q0", f"q0 must hold {x.shape[1]} values, got {q0.size}")
     out = _profile(x, vmax=vmax, amax=amax, jmax=jmax, Ts=Ts, sync=sync, q0=q0)
