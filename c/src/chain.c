@@ -198,7 +198,7 @@ static sms_real fir_settle(sms_stage *st, sms_real x, uint64_t n)
         for (i = 0; i < f->history_len; ++i)
             f->history[i] = x;
         advance_absorbed(st, n - 1u);
-        sms_shaper_step(f, &x);
+        sms_shaper_process(f, &x, &x, 1u);
         return x;
     }
 }
@@ -351,7 +351,7 @@ sms_real sms_chain_settle(sms_chain *chain, sms_real x, uint64_t n)
             sms_notch *f = st->u.notch;   /* settled: the fixed point, then one sample */
             f->x1 = f->x2 = x;
             f->w1 = f->w2 = (sms_real)0;
-            sms_notch_step(f, &x);
+            sms_notch_process(f, &x, &x, 1u);
         } else {
             x = fir_settle(st, x, n);
         }

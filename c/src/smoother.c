@@ -444,7 +444,7 @@ sms_real sms_smoother_settle(sms_smoother *f, sms_real x, uint64_t n)
         f->ref[i] = v;
     }
     sms_smoother_advance(f, n - 1u);
-    sms_smoother_step(f, &x);
+    sms_smoother_process(f, &x, &x, 1u);
     return x;
 }
 

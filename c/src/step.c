@@ -1,6 +1,8 @@
 /* The single-sample entry points: each is its object's process() on one sample, kept in a
  * file of its own so that the compiler does not inline a second copy of each per-sample loop
- * or dispatch into it (one loop per family, one dispatch, in a firmware image). */
+ * or dispatch into it (one loop per family, one dispatch, in a firmware image). They sit above
+ * every filter: the filters' own one-sample calls (a settle's last sample) call process() on
+ * one sample directly, so no filter depends on this file. */
 #include "smoothshaper/chain.h"
 
 void sms_smoother_step(sms_smoother *f, sms_real *x)
