@@ -1,5 +1,5 @@
 /* The time-optimal single-axis plan (plan.h). Every operation is in sms_real. */
-#include "plan.h"
+#include "trajectory/plan.h"
 
 sms_real sms_plan_sqrt(sms_real x)
 {

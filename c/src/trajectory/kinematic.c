@@ -3,8 +3,8 @@
  * Design-time code: libm is allowed here (not in any per-sample path). */
 #include <math.h>
 #include "smoothshaper/trajectory.h"
-#include "trajectory_internal.h"
-#include "smoother_design.h"
+#include "trajectory/trajectory_internal.h"
+#include "filter/smoother_design.h"
 
 #define KIN_PI 3.14159265358979323846
 

@@ -3,7 +3,7 @@
 #include <float.h>
 #include <math.h>
 #include "smoothshaper/chain.h"
-#include "kind.h"
+#include "core/kind.h"
 
 #ifdef SMS_USE_FLOAT
 #define SMS_REAL_MAX FLT_MAX

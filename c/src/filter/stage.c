@@ -2,8 +2,8 @@
  * tap table, delay line, each on a cell boundary) and dispatch; no filtering here. */
 #include <stdint.h>
 #include "smoothshaper/stage.h"
-#include "kind.h"
-#include "shaper_designs.h"
+#include "core/kind.h"
+#include "filter/shaper_designs.h"
 
 sms_stage_config sms_stage_config_default(sms_kind kind)
 {

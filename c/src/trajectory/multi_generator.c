@@ -6,9 +6,9 @@
 #include <stdint.h>
 #include <string.h>
 #include "smoothshaper/multi_generator.h"
-#include "plan.h"
-#include "state_identity.h"
-#include "trajectory_internal.h"
+#include "trajectory/plan.h"
+#include "core/state_identity.h"
+#include "trajectory/trajectory_internal.h"
 
 #ifdef SMS_USE_FLOAT
 #define REAL_EPS ((sms_real)FLT_EPSILON)

@@ -3,7 +3,7 @@
 #include <float.h>
 #include <math.h>
 #include "smoothshaper/notch.h"
-#include "state_identity.h"
+#include "core/state_identity.h"
 
 static const double pi = 3.14159265358979323846;
 

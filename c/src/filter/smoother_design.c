@@ -3,7 +3,7 @@
 #include <float.h>
 #include <math.h>
 #include <stdint.h>
-#include "smoother_design.h"
+#include "filter/smoother_design.h"
 
 #ifdef SMS_USE_FLOAT
 #define SMS_REAL_MAX FLT_MAX

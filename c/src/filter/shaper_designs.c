@@ -1,7 +1,7 @@
 /* Continuous input-shaper designs: amplitudes (normalised to sum 1) and impulse times.
  * Mode: wn, zeta; wd = wn sqrt(1 - zeta^2), Td = 2 pi / wd. Each formula cites its source. */
 #include <math.h>
-#include "shaper_designs.h"
+#include "filter/shaper_designs.h"
 
 static const double pi = 3.14159265358979323846;
 

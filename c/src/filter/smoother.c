@@ -3,8 +3,8 @@
 #include <float.h>
 #include <math.h>
 #include "smoothshaper/smoother.h"
-#include "smoother_design.h"
-#include "state_identity.h"
+#include "filter/smoother_design.h"
+#include "core/state_identity.h"
 
 #ifdef SMS_USE_FLOAT
 #define SMS_REAL_MAX FLT_MAX

@@ -3,7 +3,7 @@
  * basis is totally positive, for which elimination without pivoting is stable). */
 #include <math.h>
 #include "smoothshaper/trajectory.h"
-#include "state_identity.h"
+#include "core/state_identity.h"
 
 /* The identity fields after the common head, in this order (trajectory.h). */
 enum { ID_DEGREE = SMS_STATE_IDENTITY_HEAD, ID_AXES, ID_T };

@@ -2,8 +2,8 @@
  * correction, docs/exact-mode.md) and the sparse FIR engine. */
 #include <math.h>
 #include <string.h>
-#include "shaper_designs.h"
-#include "state_identity.h"
+#include "filter/shaper_designs.h"
+#include "core/state_identity.h"
 
 static const double pi = 3.14159265358979323846;
 /* Longest accepted shaper: state indices are saved as doubles and must stay exact. */

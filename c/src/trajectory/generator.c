@@ -5,9 +5,9 @@
 #include <math.h>
 #include <string.h>
 #include "smoothshaper/trajectory.h"
-#include "plan.h"
-#include "state_identity.h"
-#include "trajectory_internal.h"
+#include "trajectory/plan.h"
+#include "core/state_identity.h"
+#include "trajectory/trajectory_internal.h"
 
 /* A saved state: the identity (SMS_GENERATOR_IDENTITY_COUNT), then target, goal, the plan's
  * start q, v, a and k (GEN_PLAN_STATE_COUNT), then with a mode quiet and the stage states. */

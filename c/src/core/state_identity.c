@@ -1,7 +1,7 @@
 /* The identity header of saved states (config.h): tag, format version, precision, kind, Ts,
  * then the configuration fields of the object (for a stage: those its kind reads). */
-#include "state_identity.h"
-#include "kind.h"
+#include "core/state_identity.h"
+#include "core/kind.h"
 
 /* A stage's fields after the common head. */
 enum {

@@ -1,7 +1,7 @@
 /* Stages in series over one caller memory block, laid out stage after stage. */
 #include <math.h>
 #include "smoothshaper/chain.h"
-#include "kind.h"
+#include "core/kind.h"
 
 /* Validate every config and size its stage (need[i] cells); the total into *n_cells. */
 static sms_status size_stages(const sms_stage_config *configs, size_t n, double Ts,
