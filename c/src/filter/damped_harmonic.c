@@ -5,7 +5,7 @@
  * K = (1 - 2 r cos(pi/N) + r^2)/(1 + r^N). Zeros at s = sigma + j(2m+1) pi/T; the mode
  * design sigma = -zeta wn, T = k 3 pi/wd (k odd) puts one on the mode, and exact timing pins
  * s* = sigma + j 3 pi k/T. The recursion runs on the complex pole r e^{j pi/N}. */
-#include "filter/smoother_design.h"
+#include "filter/smoother_family.h"
 
 void sms_damped_harmonic_describe(sms_smoother_family *family)
 {

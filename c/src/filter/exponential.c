@@ -5,7 +5,7 @@
  * times the gain. Zeros at s = sigma + j 2 pi k/T for every k >= 1 (the mode design
  * sigma = -zeta wn, T = k Td); exact timing pins s* = sigma + j 2 pi k/T. With sigma = 0 it is
  * the rectangular smoother. */
-#include "filter/smoother_design.h"
+#include "filter/smoother_family.h"
 
 void sms_exponential_describe(sms_smoother_family *family)
 {

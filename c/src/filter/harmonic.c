@@ -6,7 +6,7 @@
  * mode design T = k 3 pi/wn needs k odd (even k leaves ~2.9 % residual, docs/errata.md) and exact
  * timing pins w* = 3 pi k/T. The recursion runs on the complex pole e^{j pi/N} (a rotation,
  * better conditioned than the real second-order resonator, whose rounding grows like N^2). */
-#include "filter/smoother_design.h"
+#include "filter/smoother_family.h"
 
 void sms_harmonic_describe(sms_smoother_family *family)
 {

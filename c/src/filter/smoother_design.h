@@ -7,18 +7,7 @@
 #define SMS_SMOOTHER_DESIGN_INTERNAL_H
 
 #include "smoothshaper/config.h"
-
-/* What distinguishes one smoother family from another. */
-typedef struct sms_smoother_family {
-    int damped;        /* uses config->sigma (else sigma = 0 and the field is ignored) */
-    int half_sine;     /* impulse response carries sin(pi t/T): k must be odd, tap 0 is 0 */
-    double zero_turns; /* pinned zero at w* = k * zero_turns * pi / T (2 or 3) */
-} sms_smoother_family;
-
-void sms_rectangular_describe(sms_smoother_family *family);
-void sms_harmonic_describe(sms_smoother_family *family);
-void sms_damped_harmonic_describe(sms_smoother_family *family);
-void sms_exponential_describe(sms_smoother_family *family);
+#include "filter/smoother_family.h"
 
 /* Direct taps of exact timing: the correction on N0-1 and the corrected fractional tap N0. */
 #define SMS_SMOOTHER_CORRECTION_TAPS 2

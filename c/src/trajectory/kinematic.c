@@ -5,7 +5,7 @@
  * kinematic_overlap.c. Design-time code: libm is allowed here (not in any per-sample path). */
 #include <math.h>
 #include "smoothshaper/trajectory.h"
-#include "trajectory/kinematic_internal.h"
+#include "trajectory/kinematic_parts.h"
 
 /* Every duration the design can produce is a combination of these ratios (h/vmax, vmax/amax,
  * ...); keeping each within [KIN_RATIO_MIN, KIN_RATIO_MAX] keeps every intermediate of the

@@ -2,7 +2,7 @@
 /* Kinematic design, continuous part (docs/design.md): the lengths of the shortest rest-to-rest
  * chain within n derivative bounds, by the recursion's closed forms, in plain arithmetic or in
  * logarithms. Design-time code: libm is allowed here. */
-#include "trajectory/kinematic_internal.h"
+#include "trajectory/kinematic_parts.h"
 
 /*
  * The recursion. A chain M(T0) * C' turns a step of X into a motion whose velocity is
@@ -299,7 +299,7 @@ static double solve_from_plain(const sms_kin_plan *p, const double *C, size_t k,
     return at_bound(k, m, X / (c2 * Sd) / cap, rest, T);
 }
 
-/* The contract is in kinematic_internal.h. */
+/* The contract is in kinematic_parts.h. */
 double sms_kin_solve_plan(const sms_kin_plan *p, double h, double *T)
 {
     double C[SMS_KINEMATIC_MAX_ORDER];

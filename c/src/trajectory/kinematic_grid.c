@@ -3,7 +3,7 @@
  * every bound at every sample, and the taps of a stage tuned to a mode as the grid samples
  * it. Design-time code: libm is allowed here. */
 #include "filter/smoother_design.h"
-#include "trajectory/kinematic_internal.h"
+#include "trajectory/kinematic_parts.h"
 
 /* The timing of a stage tuned to the mode on a grid: bounded taps (no tap above the peak
  * density the design budgets for), which only the half sine does not need. */

@@ -3,7 +3,7 @@
  * stages whose shifted copies overlap where they cancel (docs/sampled-limits.md), which the
  * rounding in kinematic_grid.c calls when its chain is more than a sample per stage over the
  * continuous optimum. Design-time code: libm is allowed here. */
-#include "trajectory/kinematic_internal.h"
+#include "trajectory/kinematic_parts.h"
 
 /*
  * The sampled differences of a chain of whole-sample moving averages, exactly. In samples, a

@@ -1,11 +1,11 @@
 /* Online multi-axis generator: the configuration (what init checks, the memory it needs, the
  * reach of every axis's limits), init and reset, and the phase-synchronised move's duration.
  * Planning, sampling, holding and the saved state are in multi_plan.c, multi_step.c,
- * multi_hold.c and multi_state.c (multi_generator_internal.h). */
+ * multi_hold.c and multi_state.c (multi_parts.h). */
 #include <float.h>
 #include <math.h>
 #include <string.h>
-#include "trajectory/multi_generator_internal.h"
+#include "trajectory/multi_parts.h"
 #include "trajectory/trajectory_internal.h"
 
 static int limit_ok(double x)

@@ -3,7 +3,7 @@
  * profile in closed form between the samples where a move changes, the stages absorbed or
  * jumped to their last window (sms_multi_generator_hold(), multi_generator.h). */
 #include <stdint.h>
-#include "trajectory/multi_generator_internal.h"
+#include "trajectory/multi_parts.h"
 
 /* Samples until a group's move changes other than by its index: a pending target is planned
  * (or dropped) on that sample (multi_step.c: when not moving at once; while moving once the

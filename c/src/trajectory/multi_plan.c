@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* Planning one move of the multi-axis generator: the shortest first transition from the
  * current velocity, the cruise and the stop, landed on the sample grid (multi_generator.h). */
-#include "trajectory/multi_generator_internal.h"
+#include "trajectory/multi_parts.h"
 #include "trajectory/plan.h"
 
 /* Ratios limit/|change| are capped here (conservative: a lower limit), so that tiny or
@@ -262,7 +262,7 @@ static int real_finite(sms_real x)
     return x - x == 0;
 }
 
-/* The contract is in multi_generator_internal.h. */
+/* The contract is in multi_parts.h. */
 int sms_multi_plan(sms_multi_generator *g, size_t first, const sms_multi_group *G,
                    sms_multi_move *m, const sms_real *p, const sms_real *V, sms_real off)
 {

@@ -3,7 +3,7 @@
  * the stages' states, checked before anything is written (multi_generator.h). */
 #include <math.h>
 #include "core/state_identity.h"
-#include "trajectory/multi_generator_internal.h"
+#include "trajectory/multi_parts.h"
 
 /* The configuration identity of a saved state (multi_generator.h, SMS_MULTI_IDENTITY_COUNT):
  * the common head, n_axes, sync, then per axis slot vmax, amax, jmax, n_stages (0 beyond

@@ -2,7 +2,7 @@
 /* One sample of the multi-axis generator: each group of axes follows its move, takes a new
  * target (planned from rest, or blended in at zero acceleration), and is evaluated exactly at
  * the sample instant; then each axis's stages filter the profile. */
-#include "trajectory/multi_generator_internal.h"
+#include "trajectory/multi_parts.h"
 
 /* Normalised S-curve (header) on the piece that contains the sample, chosen by xs and ys
  * (x and the fraction left 1 - x with their breakpoints snapped within SNAP, see

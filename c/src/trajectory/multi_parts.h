@@ -8,8 +8,8 @@
  *   multi_state.c      the configuration identity and the state vector
  * All in sms_real without libm on the per-sample path (roots by Newton), so a float build
  * stays single precision. */
-#ifndef SMS_MULTI_GENERATOR_INTERNAL_H
-#define SMS_MULTI_GENERATOR_INTERNAL_H
+#ifndef SMS_MULTI_PARTS_H
+#define SMS_MULTI_PARTS_H
 
 #include <float.h>
 #include "smoothshaper/multi_generator.h"

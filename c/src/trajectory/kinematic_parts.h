@@ -6,8 +6,8 @@
  *   kinematic_grid.c        whole-sample lengths that keep every bound at every sample
  *   kinematic_overlap.c     the exact search for chains whose copies overlap where they cancel
  */
-#ifndef SMS_KINEMATIC_INTERNAL_H
-#define SMS_KINEMATIC_INTERNAL_H
+#ifndef SMS_KINEMATIC_PARTS_H
+#define SMS_KINEMATIC_PARTS_H
 
 #include <math.h>
 #include "trajectory/trajectory_internal.h"
