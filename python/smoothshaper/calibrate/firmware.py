@@ -1,0 +1,532 @@
+# SPDX-License-Identifier: Apache-2.0
+"""What 3-D printer firmware runs: its own input shaper definitions, the maximum acceleration
+their smoothing allows, and its configuration lines (``smoothshaper calibrate --firmware``).
+
+>>> from smoothshaper.calibrate import firmware
+>>> ei = firmware.by_name("klipper", "ei")
+>>> A, t = ei.impulses(50.0, 0.1)            # Klipper's own EI, amplitudes summing to 1
+>>> round(firmware.max_accel(A, t))          # Klipper's rule: smoothing <= 0.12 mm
+4552
+
+Each firmware's shapers are re-derived from its source (:mod:`.firmware_defs` cites project,
+file and commit); where a firmware differs from the papers or from this library (Klipper's
+fitted EI family, Marlin's MZV damping and 1 ms time grid, RepRapFirmware's reversed MZV),
+the firmware's formula is what is implemented, since it is what the printer runs.
+docs/calibrate.md, "Firmware shaper definitions", tabulates them.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Callable, Mapping, NamedTuple
+
+import numpy as np
+
+from .._checks import choice, finite, finite_signal, nonnegative, positive, real
+from ..errors import ParameterError
+from . import firmware_defs as defs
+
+__all__ = ["FIRMWARES", "FirmwareShaper", "Pick", "ConfigText", "shapers", "by_name",
+           "rrf_custom", "max_accel", "config_text", "TARGET_SMOOTHING", "SCV"]
+
+FIRMWARES = ("klipper", "marlin", "rrf", "prusa", "none")
+#: Klipper's find_shaper_max_accel: the smoothing [mm] a suggested max_accel may cause, and the
+#: square_corner_velocity [mm/s] it assumes (shaper_calibrate.py).
+TARGET_SMOOTHING = 0.12
+SCV = 5.0
+
+
+@dataclass(frozen=True)
+class FirmwareShaper:
+    """One input shaper as a firmware defines it.
+
+    Attributes
+    ----------
+    firmware : str
+        One of :data:`FIRMWARES` (not ``"none"``).
+    name : str
+        The firmware's own name (Klipper ``shaper_type``, Marlin ``M493`` mode name or
+        ``"M593 ZV"`` for classic input shaping, RepRapFirmware ``M593 P`` name, Prusa ``M593 T``
+        type name).
+    min_freq, max_freq : float
+        Frequencies the firmware accepts for it [Hz] (inclusive; a frequency must also be > 0).
+    suggested_min_freq : float or None
+        Klipper only: the lowest frequency its own calibration proposes (shaper_defs.py
+        ``min_freq``, "chosen to have projected max_accel ~= 1500"); the firmware runs lower ones.
+    source : str
+        Project, file and commit of the definition.
+    """
+    firmware: str
+    name: str
+    min_freq: float
+    max_freq: float
+    damping_limits: tuple = field(default=(0.0, defs.BELOW_ONE), repr=False)
+    formula: Callable = field(default=None, repr=False, compare=False)
+    suggested_min_freq: float | None = None
+    source: str = ""
+
+    def damping_range(self) -> tuple[float, float]:
+        """(lo, hi): the damping ratios the firmware accepts for this shaper, inclusive."""
+        return self.damping_limits
+
+    def impulses(self, freq, damping) -> tuple[np.ndarray, np.ndarray]:
+        """The firmware's impulse sequence for a shaper tuned to ``freq`` [Hz] and ``damping``.
+
+        Returns
+        -------
+        A : ndarray, shape (n,)
+            Amplitudes, summing to 1 (every firmware normalises them before use).
+        t : ndarray, shape (n,)
+            Times [s], ``t[0] = 0``, non-decreasing; on the firmware's time grid where it has
+            one (Marlin FT Motion: whole 1 ms samples; RepRapFirmware: whole step clocks).
+
+        Raises
+        ------
+        ParameterError
+            ``freq`` unless a finite number in [min_freq, max_freq] and > 0; ``damping``
+            unless a finite number in :meth:`damping_range`.
+        """
+        f = positive("freq", freq)
+        if not self.min_freq <= f <= self.max_freq:
+            raise ParameterError("freq", f"freq must be in [{self.min_freq:g}, "
+                                 f"{self.max_freq:g}] Hz for {self.firmware} {self.name}, "
+                                 f"got {f!r}")
+        z = finite("damping", damping)
+        lo, hi = self.damping_limits
+        if not lo <= z <= hi:
+            raise ParameterError("damping", f"damping must be in [{lo:g}, {hi:.6g}] for "
+                                 f"{self.firmware} {self.name}, got {z!r}")
+        a, t = self.formula(f, z)
+        A = np.asarray(a, dtype=np.float64)
+        return A / A.sum(), np.asarray(t, dtype=np.float64)
+
+
+def _build(firmware, table, source, suggested=False):
+    return tuple(FirmwareShaper(firmware, name, lo if not suggested else 0.0, hi, damp, func,
+                                lo if suggested else None, source)
+                 for name, func, lo, hi, damp in table)
+
+
+_SHAPERS = {
+    "klipper": _build("klipper", defs.KLIPPER, "Klipper3d/klipper klippy/extras/shaper_defs.py "
+                      "(84104bb, 2026-08-07)", suggested=True),
+    "marlin": _build("marlin", defs.MARLIN, "MarlinFirmware/Marlin src/module/ft_motion/"
+                     "shaping.cpp and src/module/stepper.cpp (bugfix-2.1.x, 2025)"),
+    "rrf": _build("rrf", defs.RRF, "Duet3D/RepRapFirmware src/Movement/AxisShaper.cpp "
+                  "(3.6-dev, 8875b7e, 2024-10-24)"),
+    "prusa": _build("prusa", defs.PRUSA, "prusa3d/Prusa-Firmware-Buddy lib/Marlin/Marlin/src/"
+                    "feature/input_shaper/input_shaper.cpp (818d812, 2025-03-28)"),
+    "none": (),
+}
+
+
+def _firmware(firmware) -> str:
+    return choice("firmware", firmware, FIRMWARES)
+
+
+def shapers(firmware: str) -> tuple[FirmwareShaper, ...]:
+    """Every shaper ``firmware`` runs under its own name; ``"none"`` gives ``()``, meaning no
+    firmware restriction: every family and chain of the library.
+
+    RepRapFirmware's user-defined ``custom`` shaper is not listed (it has no formula of its
+    own): :func:`rrf_custom` makes one from any impulse sequence of at most 5 impulses.
+
+    Raises
+    ------
+    ParameterError
+        ``firmware`` unless one of :data:`FIRMWARES` (case-insensitive).
+    """
+    return _SHAPERS[_firmware(firmware)]
+
+
+def by_name(firmware: str, name: str) -> FirmwareShaper:
+    """The shaper ``firmware`` calls ``name`` (case-insensitive); ParameterError naming
+    ``firmware`` or ``name`` otherwise."""
+    options = {s.name.lower(): s for s in shapers(firmware)}
+    if not isinstance(name, str) or name.strip().lower() not in options:
+        raise ParameterError("name", f"name must be one of {', '.join(s.name for s in options.values())}"
+                             f" for {_firmware(firmware)}, got {name!r}")
+    return options[name.strip().lower()]
+
+
+def rrf_custom(A, t=None) -> FirmwareShaper:
+    """RepRapFirmware's ``M593 P"custom"``: the impulse sequence ``A`` (at most 5 amplitudes,
+    normalised to sum 1) at times ``t`` [s] (``t[0] = 0``, increasing), or, without ``t``, at
+    multiples of half the damped period of the frequency and damping passed to
+    :meth:`FirmwareShaper.impulses` (as the firmware does without ``T``).
+
+    Raises
+    ------
+    ParameterError
+        ``A`` unless 2 to 5 finite amplitudes with a positive sum; ``t`` unless as many finite
+        times as ``A``, starting at 0 and increasing.
+    """
+    a = finite_signal("A", A)
+    if not 2 <= a.size <= 5 or not a.sum() > 0:
+        raise ParameterError("A", f"A must be 2 to 5 amplitudes with a positive sum (the "
+                             f"firmware's MaxImpulses is 5), got {a.size} summing to {a.sum():g}")
+    a = a / a.sum()
+    delays = None
+    if t is not None:
+        tt = finite_signal("t", t)
+        if tt.size != a.size or tt[0] != 0 or np.any(np.diff(tt) <= 0):
+            raise ParameterError("t", f"t must be {a.size} increasing times starting at 0, "
+                                 f"got {tt.tolist()}")
+        delays = tt[1:].tolist()
+    lo, hi = defs.RRF_MIN_FREQ, 1000.0
+    return FirmwareShaper("rrf", "custom", lo, hi, (0.0, 0.99),
+                          defs.rrf_custom(a[:-1].tolist(), delays),
+                          source=_SHAPERS["rrf"][0].source)
+
+
+def _smoothing_terms(A, t, scv):
+    """Klipper's _get_shaper_smoothing is max(c90 + accel k90, accel k180): returns the three."""
+    D = A.sum()
+    ts = float(np.dot(A, t)) / D
+    dt = t - ts
+    late = t >= ts
+    c90 = math.sqrt(2.0) * scv * float(np.sum(A[late] * dt[late])) / D
+    k90 = math.sqrt(2.0) * 0.5 * float(np.sum(A[late] * dt[late] ** 2)) / D
+    k180 = 0.5 * float(np.sum(A * dt * dt)) / D
+    return c90, k90, k180
+
+
+def max_accel(A, t, *, scv=SCV, target_smoothing=TARGET_SMOOTHING) -> float:
+    """The largest acceleration [mm/s^2] whose smoothing stays within ``target_smoothing``:
+    Klipper's suggested ``max_accel`` (shaper_calibrate.py ``find_shaper_max_accel``), in
+    closed form for any impulse sequence.
+
+    Rule: with D = sum(A), the shift ts = sum(A t) / D and accel a, Klipper's smoothing is
+    ``max(sqrt(2) / D * sum over t_i >= ts of A_i (scv + a/2 (t_i - ts)) (t_i - ts),
+    1 / D * sum of A_i a/2 (t_i - ts)^2)`` [mm] (the corner offsets of a 90 and a 180 degree
+    turn), affine in a; the suggestion is the largest a keeping it <= ``target_smoothing``
+    (0.12 mm at scv = 5 mm/s by default, as in Klipper), 0 if the scv term alone exceeds it,
+    and inf for a sequence without spread (a single impulse). Klipper bisects to 1e-8 mm/s^2;
+    this is the exact root.
+
+    Parameters
+    ----------
+    A, t : array_like, shape (n,)
+        Amplitudes (any scale, positive sum) and times [s].
+    scv : float, keyword-only
+        Square corner velocity [mm/s], >= 0.
+    target_smoothing : float, keyword-only
+        Smoothing allowed [mm], > 0.
+
+    Raises
+    ------
+    ParameterError
+        ``A`` or ``t`` unless finite, one-dimensional, of one length >= 1, ``sum(A) > 0``;
+        ``scv``, ``target_smoothing`` when out of range.
+    """
+    a = finite_signal("A", A)
+    tt = finite_signal("t", t)
+    if a.size == 0 or tt.size != a.size:
+        raise ParameterError("t" if a.size else "A", f"A and t must have one length >= 1, got "
+                             f"{a.size} and {tt.size}")
+    if not a.sum() > 0:
+        raise ParameterError("A", f"A must have a positive sum, got {a.sum():g}")
+    v = nonnegative("scv", scv)
+    target = positive("target_smoothing", target_smoothing)
+    c90, k90, k180 = _smoothing_terms(a, tt, v)
+    if c90 > target:
+        return 0.0
+    a90 = (target - c90) / k90 if k90 > 0 else math.inf
+    a180 = target / k180 if k180 > 0 else math.inf
+    return max(0.0, min(a90, a180))
+
+
+class Pick(NamedTuple):
+    """One axis's choice: a firmware shaper (None if nothing the firmware runs suits the
+    axis), its frequency [Hz] and damping ratio, and the suggested max acceleration [mm/s^2]."""
+    shaper: FirmwareShaper | None
+    freq: float
+    damping: float
+    max_accel: float
+
+
+class ConfigText(str):
+    """The configuration text; ``warnings`` lists (as plain sentences) every pick the firmware
+    cannot express as given, each also written into the text as a comment."""
+    warnings: tuple[str, ...]
+
+    def __new__(cls, text: str, warnings=()):
+        obj = super().__new__(cls, text)
+        obj.warnings = tuple(warnings)
+        return obj
+
+
+# Axes each firmware shapes separately (Marlin FT Motion: X, Y, Z with FTM_SHAPER_Z; classic:
+# X, Y, Z; RepRapFirmware: one shaper for all axes)
+_AXES = {"klipper": ("x", "y", "z"), "marlin": ("x", "y", "z"), "prusa": ("x", "y", "z")}
+_COMMENT = {"klipper": "#", "marlin": ";", "rrf": ";", "prusa": ";"}
+
+
+def _axis(name: str) -> str:
+    """The machine axis a record column names: "x", "accel_x", "psd_x", "file.csv:x" -> "x"."""
+    key = name.rsplit(":", 1)[-1].strip().lower()
+    for prefix in ("accel_", "psd_", "acc_"):
+        if key.startswith(prefix):
+            key = key[len(prefix):]
+    return key
+
+
+def _line_axis(name: str, axes) -> str:
+    """The axis to write a not-applied pick's lines for: its own, or <axis> when the firmware
+    has no such axis (the user puts it where it was measured)."""
+    axis = _axis(name)
+    return axis if axis in axes else "<axis>"
+
+
+def _num(x: float) -> str:
+    return f"{x:.6g}"
+
+
+def _accel_text(x: float) -> str:
+    """A max_accel suggestion rounded down to 100 mm/s^2 (never above the rule)."""
+    return "unlimited" if math.isinf(x) else f"{int(x // 100) * 100}"
+
+
+def _check_pick(firmware, axis, pick):
+    if not isinstance(axis, str) or not axis.strip():
+        raise ParameterError("picks", f"picks must map axis names (text) to picks, got key "
+                             f"{axis!r}")
+    try:
+        shaper, freq, damping, accel = pick
+    except (TypeError, ValueError):
+        raise ParameterError(f"picks[{axis}]", f"picks[{axis}] must be (shaper, freq, damping, "
+                             f"max_accel), got {pick!r}") from None
+    if shaper is not None:
+        if not isinstance(shaper, FirmwareShaper):
+            raise ParameterError(f"picks[{axis}].shaper", f"picks[{axis}].shaper must be a "
+                                 f"FirmwareShaper or None, got {type(shaper).__name__}")
+        if shaper.firmware != firmware:
+            raise ParameterError(f"picks[{axis}].shaper", f"picks[{axis}].shaper is "
+                                 f"{shaper.firmware}'s {shaper.name}, not {firmware}'s")
+    freq = positive(f"picks[{axis}].freq", freq)
+    damping = nonnegative(f"picks[{axis}].damping", damping)
+    accel = real(f"picks[{axis}].max_accel", accel)
+    if not accel >= 0:      # inf: no limit from smoothing (a pick without spread)
+        raise ParameterError(f"picks[{axis}].max_accel", f"picks[{axis}].max_accel must be "
+                             f">= 0 (inf allowed), got {accel!r}")
+    return Pick(shaper, freq, damping, accel)
+
+
+def _limits_problem(p: Pick) -> str | None:
+    s = p.shaper
+    if not s.min_freq <= p.freq <= s.max_freq:
+        return (f"{s.name} at {_num(p.freq)} Hz is outside the {_num(s.min_freq)} to "
+                f"{_num(s.max_freq)} Hz the firmware takes (it refuses or clamps others)")
+    lo, hi = s.damping_range()
+    if not lo <= p.damping <= hi:
+        return (f"{s.name} with damping ratio {_num(p.damping)} is outside the {_num(lo)} to "
+                f"{hi:.6g} the firmware accepts")
+    return None
+
+
+def config_text(firmware: str, picks: Mapping[str, Pick]) -> ConfigText:
+    """The firmware's configuration lines for every analysed axis.
+
+    Parameters
+    ----------
+    firmware : {"klipper", "marlin", "rrf", "prusa"}
+        ``"none"`` has no configuration lines and is refused.
+    picks : mapping of str to Pick
+        Axis name (``"x"``, ``"accel_y"``, ``"file.csv:x"``, ...) to its :class:`Pick`.
+
+    Returns
+    -------
+    ConfigText
+        A ``str``: Klipper's ``[input_shaper]`` section, Marlin's ``M493`` (FT Motion) or
+        ``M593`` (classic) lines, RepRapFirmware's ``M593 P"name" F.. S..``, Prusa's
+        ``M593 X T.. F.. D..``; each axis's suggested max acceleration as a comment. A pick the
+        firmware cannot express as given (an axis it has no shaper for, two picks for one
+        axis, different picks where it has one shaper for all axes, a frequency or damping it
+        refuses or clamps, no shaper at all) is written as a comment saying why, never
+        dropped, and listed in ``.warnings``.
+
+    Raises
+    ------
+    ParameterError
+        ``firmware`` unless one of the four; ``picks`` unless a non-empty mapping of text to
+        (FirmwareShaper of that firmware or None, freq > 0, damping >= 0, max_accel >= 0).
+    """
+    fw = _firmware(firmware)
+    if fw == "none":
+        raise ParameterError("firmware", "firmware 'none' has no configuration lines: choose "
+                             "klipper, marlin, rrf or prusa")
+    if not isinstance(picks, Mapping) or not picks:
+        raise ParameterError("picks", "picks must be a non-empty mapping of axis name to Pick")
+    checked = {axis: _check_pick(fw, axis, p) for axis, p in picks.items()}
+    writer = _WRITERS[fw]
+    lines, warnings = writer(checked)
+    c = _COMMENT[fw]
+    accels = [(a, p.max_accel) for a, p in checked.items() if p.shaper is not None]
+    if accels:
+        lines.append(f"{c} suggested max acceleration (smoothing <= {TARGET_SMOOTHING:g} mm at a "
+                     f"square corner velocity of {SCV:g} mm/s, Klipper's rule), mm/s^2: "
+                     + ", ".join(f"{a} <= {_accel_text(x)}" for a, x in accels))
+    for w in warnings:
+        lines.append(f"{c} WARNING: {w}")
+    return ConfigText("\n".join(lines) + "\n", warnings)
+
+
+def _assign(fw, picks, axes):
+    """Split picks into (axis, pick) the firmware takes and warnings for the rest."""
+    taken, rest, warnings = {}, [], []
+    for name, p in picks.items():
+        axis = _axis(name)
+        if p.shaper is None:
+            warnings.append(f"axis {name}: no {fw} shaper suits it (nothing written)")
+            continue
+        problem = _limits_problem(p)
+        if axis not in axes:
+            rest.append((name, p, f"axis {name}: {fw} has no axis '{axis}' (its axes: "
+                                  f"{', '.join(axes)}); set it on the axis it was measured on"))
+        elif axis in taken:
+            rest.append((name, p, f"axis {name}: {fw} has one shaper per axis and axis "
+                                  f"{axis} already takes {taken[axis][0]}'s pick"))
+        elif problem:
+            rest.append((name, p, f"axis {name}: {problem}"))
+        else:
+            taken[axis] = (name, p)
+    return taken, rest, warnings
+
+
+def _m201(taken):
+    """The suggested max accelerations as a (commented) M201, for the axes applied."""
+    acc = [(axis, p.max_accel) for axis, (_, p) in taken.items() if math.isfinite(p.max_accel)]
+    if not acc:
+        return []
+    return ["; to limit acceleration as suggested: M201 "
+            + " ".join(f"{axis.upper()}{_accel_text(x)}" for axis, x in acc)]
+
+
+def _klipper(picks):
+    taken, rest, warnings = _assign("klipper", picks, _AXES["klipper"])
+    lines = ["# Klipper input shaping (printer.cfg), shapers as defined in",
+             "# klippy/extras/shaper_defs.py", "[input_shaper]"]
+
+    def entry(axis, p):
+        return [f"shaper_type_{axis}: {p.shaper.name}", f"shaper_freq_{axis}: {_num(p.freq)}",
+                f"damping_ratio_{axis}: {_num(p.damping)}"]
+    for axis, (name, p) in taken.items():
+        s = p.shaper
+        lines += entry(axis, p)
+        if s.suggested_min_freq is not None and p.freq < s.suggested_min_freq:
+            lines.append(f"#   {_num(p.freq)} Hz is below {_num(s.suggested_min_freq)} Hz, "
+                         f"the lowest Klipper's own calibration proposes for {s.name} "
+                         "(Klipper runs it; mind the max_accel below)")
+    for name, p, why in rest:
+        warnings.append(why)
+        lines.append(f"# not applied: {why}:")
+        lines += ["#   " + line for line in entry(_line_axis(name, _AXES["klipper"]), p)]
+    accels = [p.max_accel for _, p in taken.values()]
+    if accels and math.isfinite(min(accels)):
+        lines.append(f"# [printer] max_accel applies to every axis: max_accel: "
+                     f"{_accel_text(min(accels))}")
+    return lines, warnings
+
+
+def _marlin(picks):
+    classic = {n: p for n, p in picks.items() if p.shaper is not None
+               and p.shaper.name == "M593 ZV"}
+    ftm = {n: p for n, p in picks.items() if n not in classic}
+    # FT Motion replaces the classic stepper path: both cannot shape at once
+    use_ftm = len(ftm) >= len(classic)
+    active, inactive = (ftm, classic) if use_ftm else (classic, ftm)
+    taken, rest, warnings = _assign("marlin", active, _AXES["marlin"])
+    for name, p in inactive.items():
+        if p.shaper is None:
+            warnings.append(f"axis {name}: no marlin shaper suits it (nothing written)")
+        else:
+            rest.append((name, p, f"axis {name}: {p.shaper.name} needs "
+                                  f"{'FT Motion (M493)' if use_ftm else 'classic M593'}"
+                                  f" off, while the other axes use "
+                                  f"{'FT Motion' if use_ftm else 'classic input shaping'}"))
+
+    def line(axis, p):
+        s = p.shaper
+        if s.name == "M593 ZV":
+            return f"M593 {axis.upper()} F{_num(p.freq)} D{_num(p.damping)}"
+        q = f" Q{defs.EI_TOLERANCE:g}" if s.name in ("EI", "2HEI", "3HEI") else ""
+        return (f"M493 {axis.upper()} C{defs.MARLIN_FTM_CODES[s.name]} A{_num(p.freq)} "
+                f"I{_num(p.damping)}{q} ; {s.name}")
+    if use_ftm:
+        lines = ["; Marlin Fixed-Time Motion input shaping (M493, FT Motion version 2),",
+                 "; shapers as defined in src/module/ft_motion/shaping.cpp", "M493 S1"]
+    else:
+        lines = ["; Marlin input shaping (M593, ZV; src/module/stepper.cpp)"]
+    for axis, (name, p) in taken.items():
+        lines.append(line(axis, p))
+        if p.shaper.name == "M593 ZV":
+            lines.append(f";   needs SHAPING_MIN_FREQ <= {_num(p.freq)} in Configuration_adv.h")
+    for name, p, why in rest:
+        warnings.append(why)
+        lines += [f"; not applied: {why}:", "; " + line(_line_axis(name, _AXES["marlin"]), p)]
+    lines += _m201(taken)
+    lines.append("; M500 stores the settings")
+    return lines, warnings
+
+
+def _rrf_line(p):
+    s = p.shaper
+    if s.name != "custom":
+        return f'M593 P"{s.name}" F{_num(p.freq)} S{_num(p.damping)}'
+    A, t = s.impulses(p.freq, p.damping)
+    h = ":".join(f"{a:.6g}" for a in A[:-1])
+    return f'M593 P"custom" H{h} T' + ":".join(f"{x:.7g}" for x in t[1:])
+
+
+def _rrf(picks):
+    lines = ['; RepRapFirmware input shaping (config.g), shapers as defined in',
+             '; src/Movement/AxisShaper.cpp: one shaper for all axes']
+    warnings, active = [], None
+    for name, p in picks.items():
+        if p.shaper is None:
+            warnings.append(f"axis {name}: no rrf shaper suits it (nothing written)")
+            continue
+        problem = _limits_problem(p)
+        same = active is not None and _rrf_line(p) == _rrf_line(active[1])
+        if problem:
+            why = f"axis {name}: {problem}"
+        elif active is None or same:
+            if active is None:
+                active = (name, p)
+                lines.append(_rrf_line(p) + f" ; for {name}")
+            else:
+                lines.append(f"; axis {name} takes the same shaper")
+            continue
+        else:
+            why = (f"axis {name}: RepRapFirmware has one input shaper for all axes and it is "
+                   f"set for {active[0]}")
+        warnings.append(why)
+        lines += [f"; not applied: {why}:", "; " + _rrf_line(p)]
+    if active is not None and math.isfinite(active[1].max_accel):
+        x = _accel_text(active[1].max_accel)
+        lines.append(f"; to limit acceleration as suggested (the shaper acts on every axis): "
+                     f"M201 X{x} Y{x}")
+    return lines, warnings
+
+
+def _prusa(picks):
+    taken, rest, warnings = _assign("prusa", picks, _AXES["prusa"])
+
+    def line(axis, p):
+        s = p.shaper
+        r = f" R{1 / defs.EI_TOLERANCE:g}" if s.name.startswith("EI") else ""
+        return (f"M593 {axis.upper()} T{defs.PRUSA_CODES[s.name]} F{_num(p.freq)} "
+                f"D{_num(p.damping)}{r} ; {s.name}")
+    lines = ["; Prusa input shaping (M593), shapers as defined in",
+             "; lib/Marlin/Marlin/src/feature/input_shaper/input_shaper.cpp"]
+    for axis, (name, p) in taken.items():
+        lines.append(line(axis, p))
+    for name, p, why in rest:
+        warnings.append(why)
+        lines += [f"; not applied: {why}:", "; " + line(_line_axis(name, _AXES["prusa"]), p)]
+    lines += _m201(taken)
+    lines.append("; M593 W stores the settings")
+    return lines, warnings
+
+
+_WRITERS = {"klipper": _klipper, "marlin": _marlin, "rrf": _rrf, "prusa": _prusa}
