@@ -50,6 +50,11 @@ class FirmwareShaper:
         type name).
     min_freq, max_freq : float
         Frequencies the firmware accepts for it [Hz] (inclusive; a frequency must also be > 0).
+    damping_limits : (float, float)
+        The damping ratios the firmware accepts (inclusive); see :meth:`damping_range`.
+    formula : callable
+        ``formula(freq, damping) -> (amplitudes, times)``, the firmware's equations
+        (:mod:`.firmware_defs`), before normalisation.
     suggested_min_freq : float or None
         Klipper only: the lowest frequency its own calibration proposes (shaper_defs.py
         ``min_freq``, "chosen to have projected max_accel ~= 1500"); the firmware runs lower ones.
@@ -66,11 +71,27 @@ class FirmwareShaper:
     source: str = ""
 
     def damping_range(self) -> tuple[float, float]:
-        """(lo, hi): the damping ratios the firmware accepts for this shaper, inclusive."""
+        """The damping ratios the firmware accepts for this shaper.
+
+        Returns
+        -------
+        (float, float)
+            (lo, hi), inclusive. Klipper caps EI at 0.4, 2-hump EI at 0.3, 3-hump EI at 0.2
+            (max_damping_ratio), the others at 0.99; Marlin's M493 takes 0.01 to below 1, its
+            M593 0 to 1; RepRapFirmware 0 to 0.99 (ei2 / ei3: 0.4 / 0.3, where their fitted
+            coefficients stay a valid sequence); Prusa 0 to below 1.
+        """
         return self.damping_limits
 
     def impulses(self, freq, damping) -> tuple[np.ndarray, np.ndarray]:
-        """The firmware's impulse sequence for a shaper tuned to ``freq`` [Hz] and ``damping``.
+        """The firmware's impulse sequence for a shaper tuned to ``freq`` and ``damping``.
+
+        Parameters
+        ----------
+        freq : float
+            Shaper frequency [Hz], as the firmware's configuration takes it.
+        damping : float
+            Damping ratio, as the firmware's configuration takes it.
 
         Returns
         -------
@@ -125,11 +146,21 @@ def _firmware(firmware) -> str:
 
 
 def shapers(firmware: str) -> tuple[FirmwareShaper, ...]:
-    """Every shaper ``firmware`` runs under its own name; ``"none"`` gives ``()``, meaning no
-    firmware restriction: every family and chain of the library.
+    """Every shaper ``firmware`` runs, under its own name.
 
     RepRapFirmware's user-defined ``custom`` shaper is not listed (it has no formula of its
     own): :func:`rrf_custom` makes one from any impulse sequence of at most 5 impulses.
+
+    Parameters
+    ----------
+    firmware : {"klipper", "marlin", "rrf", "prusa", "none"}
+        Case-insensitive.
+
+    Returns
+    -------
+    tuple of FirmwareShaper
+        Its shapers; ``()`` for ``"none"``, meaning no firmware restriction: every family and
+        chain of the library.
 
     Raises
     ------
@@ -140,8 +171,24 @@ def shapers(firmware: str) -> tuple[FirmwareShaper, ...]:
 
 
 def by_name(firmware: str, name: str) -> FirmwareShaper:
-    """The shaper ``firmware`` calls ``name`` (case-insensitive); ParameterError naming
-    ``firmware`` or ``name`` otherwise."""
+    """The shaper ``firmware`` calls ``name``.
+
+    Parameters
+    ----------
+    firmware : {"klipper", "marlin", "rrf", "prusa"}
+        Case-insensitive.
+    name : str
+        The firmware's name of the shaper (:attr:`FirmwareShaper.name`), case-insensitive.
+
+    Returns
+    -------
+    FirmwareShaper
+
+    Raises
+    ------
+    ParameterError
+        Naming ``firmware`` or ``name`` when unknown.
+    """
     options = {s.name.lower(): s for s in shapers(firmware)}
     if not isinstance(name, str) or name.strip().lower() not in options:
         raise ParameterError("name", f"name must be one of {', '.join(s.name for s in options.values())}"
@@ -150,10 +197,22 @@ def by_name(firmware: str, name: str) -> FirmwareShaper:
 
 
 def rrf_custom(A, t=None) -> FirmwareShaper:
-    """RepRapFirmware's ``M593 P"custom"``: the impulse sequence ``A`` (at most 5 amplitudes,
-    normalised to sum 1) at times ``t`` [s] (``t[0] = 0``, increasing), or, without ``t``, at
-    multiples of half the damped period of the frequency and damping passed to
-    :meth:`FirmwareShaper.impulses` (as the firmware does without ``T``).
+    """RepRapFirmware's ``M593 P"custom"`` shaper for a given impulse sequence.
+
+    Parameters
+    ----------
+    A : array_like, shape (n,)
+        Amplitudes, 2 <= n <= 5 (the firmware's MaxImpulses), any scale with a positive sum.
+    t : array_like, shape (n,), optional
+        Times [s], ``t[0] = 0``, increasing. Without it the impulses fall at multiples of half
+        the damped period of the frequency and damping passed to
+        :meth:`FirmwareShaper.impulses`, as the firmware places them without ``T``.
+
+    Returns
+    -------
+    FirmwareShaper
+        Named ``"custom"``; its impulses are ``A`` normalised to sum 1, at ``t`` rounded to
+        step clocks; :func:`config_text` writes ``M593 P"custom" H.. T..``.
 
     Raises
     ------
@@ -184,6 +243,8 @@ def _smoothing_terms(A, t, scv):
     D = A.sum()
     ts = float(np.dot(A, t)) / D
     dt = t - ts
+    # impulses at one time: ts carries rounding, not spread (else a 1e35 mm/s^2 "limit")
+    dt[np.abs(dt) <= 8 * np.finfo(float).eps * np.abs(t).max()] = 0.0
     late = t >= ts
     c90 = math.sqrt(2.0) * scv * float(np.sum(A[late] * dt[late])) / D
     k90 = math.sqrt(2.0) * 0.5 * float(np.sum(A[late] * dt[late] ** 2)) / D
@@ -213,6 +274,11 @@ def max_accel(A, t, *, scv=SCV, target_smoothing=TARGET_SMOOTHING) -> float:
     target_smoothing : float, keyword-only
         Smoothing allowed [mm], > 0.
 
+    Returns
+    -------
+    float
+        The suggested maximum acceleration [mm/s^2], >= 0, or inf.
+
     Raises
     ------
     ParameterError
@@ -221,9 +287,11 @@ def max_accel(A, t, *, scv=SCV, target_smoothing=TARGET_SMOOTHING) -> float:
     """
     a = finite_signal("A", A)
     tt = finite_signal("t", t)
-    if a.size == 0 or tt.size != a.size:
-        raise ParameterError("t" if a.size else "A", f"A and t must have one length >= 1, got "
-                             f"{a.size} and {tt.size}")
+    if a.size == 0:
+        raise ParameterError("A", "A must hold at least one amplitude")
+    if tt.size != a.size:
+        raise ParameterError("t", f"t must have as many times as A has amplitudes ({a.size}), "
+                             f"got {tt.size}")
     if not a.sum() > 0:
         raise ParameterError("A", f"A must have a positive sum, got {a.sum():g}")
     v = nonnegative("scv", scv)
@@ -315,12 +383,13 @@ def _check_pick(firmware, axis, pick):
 def _limits_problem(p: Pick) -> str | None:
     s = p.shaper
     if not s.min_freq <= p.freq <= s.max_freq:
-        return (f"{s.name} at {_num(p.freq)} Hz is outside the {_num(s.min_freq)} to "
-                f"{_num(s.max_freq)} Hz the firmware takes (it refuses or clamps others)")
+        return (f"{s.name} at {_num(p.freq)} Hz is outside its frequency range, "
+                f"{_num(s.min_freq)} to {_num(s.max_freq)} Hz (the firmware refuses or clamps "
+                "others)")
     lo, hi = s.damping_range()
     if not lo <= p.damping <= hi:
-        return (f"{s.name} with damping ratio {_num(p.damping)} is outside the {_num(lo)} to "
-                f"{hi:.6g} the firmware accepts")
+        return (f"{s.name} with damping ratio {_num(p.damping)} is outside its damping range, "
+                f"{_num(lo)} to {hi:.6g}")
     return None
 
 

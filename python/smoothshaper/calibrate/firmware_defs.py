@@ -269,15 +269,17 @@ def rrf_custom(amplitudes, delays=None):
 
 
 #: RRF's M593 takes F in [StepClockRate / (2 * 65535), 1000] Hz (5.72 Hz on Duet 3) and S in
-#: [0, 0.99]; it has no plain ZV or single-hump EI.
+#: [0, 0.99]; it has no plain ZV or single-hump EI. Its ei2 / ei3 are Klipper's fitted
+#: polynomials (which Klipper caps at zeta 0.3 / 0.2) on the damped period: from zeta 0.413 /
+#: 0.304 on they give negative amplitudes or out-of-order times, so they are capped at 0.4 / 0.3.
 RRF_MIN_FREQ = RRF_STEP_CLOCK / (2 * 65535)
 RRF = (
     ("zvd", rrf_zvdn(2), RRF_MIN_FREQ, 1000.0, (0.0, 0.99)),
     ("zvdd", rrf_zvdn(3), RRF_MIN_FREQ, 1000.0, (0.0, 0.99)),
     ("zvddd", rrf_zvdn(4), RRF_MIN_FREQ, 1000.0, (0.0, 0.99)),
     ("mzv", rrf_mzv, RRF_MIN_FREQ, 1000.0, (0.0, 0.99)),
-    ("ei2", _rrf_ei(EI2_T, EI2_A), RRF_MIN_FREQ, 1000.0, (0.0, 0.99)),
-    ("ei3", _rrf_ei(EI3_T, EI3_A), RRF_MIN_FREQ, 1000.0, (0.0, 0.99)),
+    ("ei2", _rrf_ei(EI2_T, EI2_A), RRF_MIN_FREQ, 1000.0, (0.0, 0.4)),
+    ("ei3", _rrf_ei(EI3_T, EI3_A), RRF_MIN_FREQ, 1000.0, (0.0, 0.3)),
 )
 
 
