@@ -598,3 +598,67 @@ def test_invalid_inputs_name_the_parameter():
     raises("picks[x].damping", fw.config_text, "klipper", {"x": good._replace(damping=-0.1)})
     raises("picks[x].max_accel", fw.config_text, "klipper",
            {"x": good._replace(max_accel=float("nan"))})
+
+
+# Klipper at the same commit, parameterised shapers: init_shaper(spec, freq, damping) and
+# find_shaper_max_accel, run from its files
+KLIPPER_PARAMETERISED = {
+    ('mzv(n=4, t=0.9)', 45.0, 0.1): (
+        [0.1909830056250527, 0.25568625036953674, 0.21155942818054108, 0.10818567384361166],
+        [0.0, 0.00670025210172808, 0.01340050420345616, 0.020100756305184243],
+        5376.7626028856375),
+    ('mzv(n=5, t=1.6)', 60.0, 0.05): (
+        [0.06986162259770075, 0.22018605732555158, 0.2805768267855882, 0.1711997052818991,
+         0.04223427697202066],
+        [0.0, 0.006675015657623452, 0.013350031315246903, 0.020025046972870355,
+         0.026700062630493807],
+        5113.545954314949),
+    ('mzv(n=6, t=2.2)', 38.0, 0.0): (
+        [0.03267656642114567, 0.15763592171096602, 0.3096875121328388, 0.30968751196086053,
+         0.15763592144613264, 0.032676566328056184],
+        [0.0, 0.011578947368421053, 0.023157894736842106, 0.034736842105263156,
+         0.04631578947368421, 0.05789473684210526],
+        1347.2370584793716),
+    ('ei(v_tol=0.1)', 50.0, 0.1): (
+        [0.37511486000000005, 0.41740318, 0.20748195999999997],
+        [0.0, 0.010252131674811205, 0.02010075630518424],
+        4262.623291110332),
+    ('ei(v_tol=0.02)', 41.0, 0.3): (
+        [0.552446668, 0.36518444400000005, 0.08236888799999997],
+        [0.0, 0.013091966331571727, 0.025567922846876055],
+        3075.7682034325408),
+}
+
+
+@pytest.mark.parametrize("key", list(KLIPPER_PARAMETERISED))
+def test_klipper_parameterised_shapers_are_klippers_own(key):
+    """mzv(n, t) amplitudes to 1e-9: Klipper solves the normal equations M'M A = M'F, which
+    squares the system's condition number (its n = 6 result is asymmetric by 1.7e-10; ours,
+    a least-squares solve of M A = F, is symmetric to rounding); the rest as above."""
+    spec, freq, damping = key
+    A_k, T_k, accel_k = KLIPPER_PARAMETERISED[key]
+    args = dict(kv.split("=") for kv in spec[spec.index("(") + 1:-1].replace(" ", "").split(","))
+    s = fw.klipper_mzv(int(args["n"]), float(args["t"])) if spec.startswith("mzv") \
+        else fw.klipper_ei(float(args["v_tol"]))
+    assert s.name == spec
+    A, t = s.impulses(freq, damping)
+    np.testing.assert_allclose(A, np.array(A_k) / sum(A_k), rtol=0, atol=1e-9)
+    np.testing.assert_allclose(t, T_k, rtol=0, atol=1e-16)
+    assert abs(fw.max_accel(A, t) - accel_k) <= 1e-8 + 1e-9 * accel_k
+    assert klipper_section(fw.config_text("klipper", {"x": fw.Pick(s, freq, damping, 1e3)})) \
+        ["shaper_type_x"] == spec
+
+
+def test_klipper_parameterised_refusals_are_klippers():
+    """Klipper raises ShaperError for n < 3, t >= (n-1)/2 and negative amplitudes
+    (mzv(n=3, t=0.2)); mzv(n=3, t=0.75) is its plain mzv."""
+    raises("n", fw.klipper_mzv, 2, 0.5)
+    raises("t", fw.klipper_mzv, 4, 1.5)
+    raises("t", fw.klipper_mzv, 3, 0.2)
+    raises("t", fw.klipper_mzv, 4, -1.0)
+    raises("v_tol", fw.klipper_ei, 1.0)
+    raises("v_tol", fw.klipper_ei, 1e-9)
+    A, t = fw.klipper_mzv(3, 0.75).impulses(52.0, 0.2)
+    B, u = fw.by_name("klipper", "mzv").impulses(52.0, 0.2)
+    np.testing.assert_allclose(A, B, rtol=0, atol=1e-15)
+    np.testing.assert_allclose(t, u, rtol=0, atol=1e-18)

@@ -22,12 +22,13 @@ from typing import Callable, Mapping, NamedTuple
 
 import numpy as np
 
-from .._checks import choice, finite, finite_signal, nonnegative, positive, real
+from .._checks import choice, finite, finite_signal, integer, nonnegative, positive, real
 from ..errors import ParameterError
 from . import firmware_defs as defs
 
 __all__ = ["FIRMWARES", "FirmwareShaper", "Pick", "ConfigText", "shapers", "by_name",
-           "rrf_custom", "max_accel", "config_text", "TARGET_SMOOTHING", "SCV"]
+           "klipper_mzv", "klipper_ei", "rrf_custom", "max_accel", "config_text",
+           "TARGET_SMOOTHING", "SCV"]
 
 FIRMWARES = ("klipper", "marlin", "rrf", "prusa", "none")
 #: Klipper's find_shaper_max_accel: the smoothing [mm] a suggested max_accel may cause, and the
@@ -194,6 +195,77 @@ def by_name(firmware: str, name: str) -> FirmwareShaper:
         raise ParameterError("name", f"name must be one of {', '.join(s.name for s in options.values())}"
                              f" for {_firmware(firmware)}, got {name!r}")
     return options[name.strip().lower()]
+
+
+def _plain(x: float) -> str:
+    """x with at most 6 decimals and no exponent: Klipper reads shaper arguments as [0-9.]+."""
+    return f"{x:.6f}".rstrip("0").rstrip(".")
+
+
+def klipper_mzv(n, t) -> FirmwareShaper:
+    """Klipper's generalised MZV, ``shaper_type: mzv(n=N, t=T)`` (shaper_defs.py
+    get_mzv_shaper, since 2026-03; this library's ``gmzv`` with ``order`` n and ``duration`` t).
+
+    Parameters
+    ----------
+    n : int
+        Number of impulses, >= 3.
+    t : float
+        Duration in damped periods, 0 < t < (n - 1)/2; ``mzv(n=3, t=0.75)`` is the plain mzv.
+
+    Returns
+    -------
+    FirmwareShaper
+        Named ``"mzv(n=N, t=T)"``, as Klipper's configuration takes it; damping 0 to 0.99,
+        suggested minimum 23 Hz (Klipper's mzv entry).
+
+    Raises
+    ------
+    ParameterError
+        ``n`` or ``t`` where Klipper refuses them (n < 3, t >= (n-1)/2, or amplitudes that come
+        out negative).
+    """
+    nn = integer("n", n, minimum=3)
+    tt = float(_plain(positive("t", t)))     # the t written is the t modelled
+    try:
+        formula = defs.klipper_gmzv(nn, tt)
+    except ValueError as exc:
+        raise ParameterError("t", f"t: Klipper refuses mzv(n={nn}, t={tt:g}): {exc}") from None
+    base = by_name("klipper", "mzv")
+    return FirmwareShaper("klipper", f"mzv(n={nn}, t={_plain(tt)})", 0.0, math.inf,
+                          base.damping_limits, formula, base.suggested_min_freq, base.source)
+
+
+def klipper_ei(v_tol) -> FirmwareShaper:
+    """Klipper's EI with its own vibration tolerance, ``shaper_type: ei(v_tol=V)``
+    (get_ei_shaper's fitted polynomials in V and the damping ratio).
+
+    Parameters
+    ----------
+    v_tol : float
+        Vibration tolerance, 0 < v_tol < 1 (Klipper's default 0.05 is :func:`by_name`'s ei).
+
+    Returns
+    -------
+    FirmwareShaper
+        Named ``"ei(v_tol=V)"``; damping 0 to 0.4, suggested minimum 29 Hz.
+
+    Raises
+    ------
+    ParameterError
+        ``v_tol`` unless in (0, 1).
+    """
+    v = positive("v_tol", v_tol)
+    if not v < 1:
+        raise ParameterError("v_tol", f"v_tol must be in (0, 1), got {v!r}")
+    v = float(_plain(v))
+    if v == 0:
+        raise ParameterError("v_tol", f"v_tol must be at least 1e-6 (it is written with 6 "
+                             f"decimals), got {v_tol!r}")
+    base = by_name("klipper", "ei")
+    return FirmwareShaper("klipper", f"ei(v_tol={_plain(v)})", 0.0, math.inf, base.damping_limits,
+                          lambda f, z: defs.klipper_ei(f, z, v), base.suggested_min_freq,
+                          base.source)
 
 
 def rrf_custom(A, t=None) -> FirmwareShaper:

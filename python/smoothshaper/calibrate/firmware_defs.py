@@ -71,6 +71,35 @@ def klipper_mzv(f, zeta):
     return [a1, (math.sqrt(2.0) - 1.0) * K, a1 * K * K], [0.0, 0.375 * td, 0.75 * td]
 
 
+def klipper_gmzv(n, t):
+    """get_mzv_shaper(n, t): n impulses over t damped periods, amplitudes the least-squares
+    solution (get_mzv_coeffs: sum A = 1 and zeros at 1 + i/tau, i < n - 1,
+    tau = t (n - 2)/(n - 2t - 1)), impulse j damped by K^j with K = exp(-2 t zeta pi/((n-1) df));
+    ValueError where Klipper raises ShaperError (n < 3, t >= (n-1)/2, a negative amplitude)."""
+    if n < 3:
+        raise ValueError(f"n must be at least 3, got {n}")
+    if n <= 2 * t + 1 + 1e-7:
+        raise ValueError(f"t must be less than {0.5 * (n - 1):g} for n = {n}, got {t:g}")
+    tau = t * (n - 2.0) / (n - 2.0 * t - 1.0)
+    T = [i * t / (n - 1.0) for i in range(n)]
+    rows, rhs = [[1.0] * n], [1.0]
+    for i in range(n - 1):
+        w = [2.0 * math.pi * (1.0 + i / tau) * tj for tj in T]
+        rows += [[math.cos(x) for x in w], [math.sin(x) for x in w]]
+        rhs += [0.0, 0.0]
+    import numpy as np                  # the linear solve only
+    A0 = np.linalg.lstsq(np.array(rows), np.array(rhs), rcond=None)[0].tolist()
+    if any(a < -0.00001 for a in A0):
+        raise ValueError(f"mzv(n={n}, t={t:g}) has a negative amplitude")
+
+    def gmzv(f, zeta):
+        df = math.sqrt(1.0 - zeta * zeta)
+        K = math.exp(-2.0 * t * zeta * math.pi / ((n - 1.0) * df))
+        td = 1.0 / (f * df)
+        return [a * K ** j for j, a in enumerate(A0)], [x * td for x in T]
+    return gmzv
+
+
 def klipper_ei(f, zeta, v=EI_TOLERANCE):
     # get_ei_shaper: amplitudes and middle time fitted in zeta and v_tol; the ends at 0 and td
     td = 1.0 / (f * math.sqrt(1.0 - zeta * zeta))
