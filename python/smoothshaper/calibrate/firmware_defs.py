@@ -24,6 +24,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 __all__ = ["KLIPPER", "MARLIN", "RRF", "PRUSA", "MARLIN_FTM_FS", "RRF_STEP_CLOCK",
            "EI_TOLERANCE", "rrf_custom"]
 
@@ -87,7 +89,6 @@ def klipper_gmzv(n, t):
         w = [2.0 * math.pi * (1.0 + i / tau) * tj for tj in T]
         rows += [[math.cos(x) for x in w], [math.sin(x) for x in w]]
         rhs += [0.0, 0.0]
-    import numpy as np                  # the linear solve only
     A0 = np.linalg.lstsq(np.array(rows), np.array(rhs), rcond=None)[0].tolist()
     if any(a < -0.00001 for a in A0):
         raise ValueError(f"mzv(n={n}, t={t:g}) has a negative amplitude")
