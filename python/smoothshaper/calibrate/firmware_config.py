@@ -105,6 +105,15 @@ def _m201(taken):
             + " ".join(f"{axis.upper()}{_accel_text(x)}" for axis, x in acc)]
 
 
+def _gcode_rest(lines, warnings, taken, rest, line, fw, store):
+    """A G-code configuration's end: the picks not applied as comments with their warnings,
+    the suggested M201, how to store the settings."""
+    for name, p, why in rest:
+        warnings.append(why)
+        lines += [f"; not applied: {why}:", "; " + line(_line_axis(name, _AXES[fw]), p)]
+    return lines + _m201(taken) + [store], warnings
+
+
 def _klipper(picks):
     taken, rest, warnings = _assign("klipper", picks, _AXES["klipper"])
     lines = ["# Klipper input shaping (printer.cfg), shapers as defined in",
@@ -168,12 +177,7 @@ def _marlin(picks):
         lines.append(line(axis, p))
         if p.shaper.name == "M593 ZV":
             lines.append(f";   needs SHAPING_MIN_FREQ <= {_num(p.freq)} in Configuration_adv.h")
-    for name, p, why in rest:
-        warnings.append(why)
-        lines += [f"; not applied: {why}:", "; " + line(_line_axis(name, _AXES["marlin"]), p)]
-    lines += _m201(taken)
-    lines.append("; M500 stores the settings")
-    return lines, warnings
+    return _gcode_rest(lines, warnings, taken, rest, line, "marlin", "; M500 stores the settings")
 
 
 def _rrf_line(p):
@@ -228,12 +232,7 @@ def _prusa(picks):
              "; lib/Marlin/Marlin/src/feature/input_shaper/input_shaper.cpp"]
     for axis, (name, p) in taken.items():
         lines.append(line(axis, p))
-    for name, p, why in rest:
-        warnings.append(why)
-        lines += [f"; not applied: {why}:", "; " + line(_line_axis(name, _AXES["prusa"]), p)]
-    lines += _m201(taken)
-    lines.append("; M593 W stores the settings")
-    return lines, warnings
+    return _gcode_rest(lines, warnings, taken, rest, line, "prusa", "; M593 W stores the settings")
 
 
 _WRITERS = {"klipper": _klipper, "marlin": _marlin, "rrf": _rrf, "prusa": _prusa}

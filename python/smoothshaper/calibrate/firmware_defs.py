@@ -171,33 +171,39 @@ def _ftm_K(zeta):
     return math.exp(-zeta * math.pi / math.sqrt(1.0 - zeta * zeta))
 
 
-def marlin_zvn(n):
-    def zvn(f, zeta):
-        return _ftm(_binomial(_ftm_K(zeta), n), 0.5, f, zeta)
-    return zvn
+def weighted_ei(K, v=EI_TOLERANCE):
+    """EI: (1 + V)/4, (1 - V)K/2, (1 + V)K^2/4 (Singhose, Seering and Singer 1990), the
+    K-weighted closed form of Marlin, Prusa (and Klipper before 2025)."""
+    a1 = 0.25 * (1.0 + v)
+    return [a1, 0.5 * (1.0 - v) * K, a1 * K * K]
 
 
-def marlin_ei(f, zeta, v=EI_TOLERANCE):
-    K = _ftm_K(zeta)
-    a0 = 0.25 * (1.0 + v)
-    return _ftm([a0, 0.5 * (1.0 - v) * K, a0 * K * K], 0.5, f, zeta)
-
-
-def marlin_2hei(f, zeta, v=EI_TOLERANCE):
-    K = _ftm_K(zeta)
+def weighted_ei2(K, v=EI_TOLERANCE):
+    """2-hump EI (Singhose, Porter, Tuttle and Singer 1997), K-weighted."""
     v2 = v * v
     X = (v2 * (math.sqrt(1.0 - v2) + 1.0)) ** (1.0 / 3.0)
-    a0 = (3.0 * X * X + 2.0 * X + 3.0 * v2) / (16.0 * X)
-    a1 = (0.5 - a0) * K
-    return _ftm([a0, a1, a1 * K, a0 * K ** 3], 0.5, f, zeta)
+    a1 = (3.0 * X * X + 2.0 * X + 3.0 * v2) / (16.0 * X)
+    a2 = (0.5 - a1) * K
+    return [a1, a2, a2 * K, a1 * K ** 3]
 
 
-def marlin_3hei(f, zeta, v=EI_TOLERANCE):
-    K = _ftm_K(zeta)
-    a0 = 0.0625 * (1.0 + 3.0 * v + 2.0 * math.sqrt(2.0 * (v + 1.0) * v))
-    a1 = 0.25 * (1.0 - v) * K
-    a2 = (0.5 * (1.0 + v) - 2.0 * a0) * K * K
-    return _ftm([a0, a1, a2, a1 * K * K, a0 * K ** 4], 0.5, f, zeta)
+def weighted_ei3(K, v=EI_TOLERANCE):
+    """3-hump EI (Singhose et al. 1997), K-weighted."""
+    a1 = 0.0625 * (1.0 + 3.0 * v + 2.0 * math.sqrt(2.0 * (v + 1.0) * v))
+    a2 = 0.25 * (1.0 - v) * K
+    return [a1, a2, (0.5 * (1.0 + v) - 2.0 * a1) * K * K, a2 * K * K, a1 * K ** 4]
+
+
+def marlin_weighted(amplitudes):
+    """A K-weighted family on FT Motion's grid, impulses half a damped period apart."""
+    def shaper(f, zeta):
+        return _ftm(amplitudes(_ftm_K(zeta)), 0.5, f, zeta)
+    return shaper
+
+
+def marlin_zvn(n):
+    """ZV^n: binomial (1 + K)^n amplitudes (ZV, ZVD, ZVDD, ZVDDD)."""
+    return marlin_weighted(lambda K: _binomial(K, n))
 
 
 def marlin_mzv(f, zeta):
@@ -229,9 +235,9 @@ MARLIN = (
     ("ZVD", marlin_zvn(2), 20.0, MARLIN_FTM_FS / 2, (0.01, BELOW_ONE)),
     ("ZVDD", marlin_zvn(3), 20.0, MARLIN_FTM_FS / 2, (0.01, BELOW_ONE)),
     ("ZVDDD", marlin_zvn(4), 20.0, MARLIN_FTM_FS / 2, (0.01, BELOW_ONE)),
-    ("EI", marlin_ei, 20.0, MARLIN_FTM_FS / 2, (0.01, BELOW_ONE)),
-    ("2HEI", marlin_2hei, 20.0, MARLIN_FTM_FS / 2, (0.01, BELOW_ONE)),
-    ("3HEI", marlin_3hei, 20.0, MARLIN_FTM_FS / 2, (0.01, BELOW_ONE)),
+    ("EI", marlin_weighted(weighted_ei), 20.0, MARLIN_FTM_FS / 2, (0.01, BELOW_ONE)),
+    ("2HEI", marlin_weighted(weighted_ei2), 20.0, MARLIN_FTM_FS / 2, (0.01, BELOW_ONE)),
+    ("3HEI", marlin_weighted(weighted_ei3), 20.0, MARLIN_FTM_FS / 2, (0.01, BELOW_ONE)),
     ("MZV", marlin_mzv, 20.0, MARLIN_FTM_FS / 2, (0.01, BELOW_ONE)),
     ("M593 ZV", marlin_classic_zv, 0.0, math.inf, (0.0, 1.0)),
 )
@@ -314,27 +320,13 @@ RRF = (
 
 
 # ------------------------------------ Prusa Buddy (feature/input_shaper/input_shaper.cpp)
-def prusa_ei(f, zeta, v=EI_TOLERANCE):
-    _, K, td = _damped(f, zeta)
-    a1 = 0.25 * (1.0 + v)
-    return [a1, 0.5 * (1.0 - v) * K, a1 * K * K], [0.0, 0.5 * td, td]
-
-
-def prusa_2hump_ei(f, zeta, v=EI_TOLERANCE):
-    _, K, td = _damped(f, zeta)
-    v2 = v * v
-    X = (v2 * (math.sqrt(1.0 - v2) + 1.0)) ** (1.0 / 3.0)
-    a1 = (3.0 * X * X + 2.0 * X + 3.0 * v2) / (16.0 * X)
-    a2 = (0.5 - a1) * K
-    return [a1, a2, a2 * K, a1 * K ** 3], [0.0, 0.5 * td, td, 1.5 * td]
-
-
-def prusa_3hump_ei(f, zeta, v=EI_TOLERANCE):
-    _, K, td = _damped(f, zeta)
-    a1 = 0.0625 * (1.0 + 3.0 * v + 2.0 * math.sqrt(2.0 * (v + 1.0) * v))
-    a2 = 0.25 * (1.0 - v) * K
-    a3 = (0.5 * (1.0 + v) - 2.0 * a1) * K * K
-    return [a1, a2, a3, a2 * K * K, a1 * K ** 4], [0.0, 0.5 * td, td, 1.5 * td, 2.0 * td]
+def prusa_weighted(amplitudes):
+    """A K-weighted family as input_shaper::get places it: half a damped period apart."""
+    def shaper(f, zeta):
+        _, K, td = _damped(f, zeta)
+        a = amplitudes(K)
+        return a, [0.5 * i * td for i in range(len(a))]
+    return shaper
 
 
 #: Prusa clamps the frequency to [10, 100] Hz (150 Hz on the MINI; clamp_frequency_to_safe_values)
@@ -343,9 +335,9 @@ PRUSA = (
     ("ZV", klipper_zv, 10.0, 100.0, (0.0, BELOW_ONE)),
     ("ZVD", klipper_zvd, 10.0, 100.0, (0.0, BELOW_ONE)),
     ("MZV", klipper_mzv, 10.0, 100.0, (0.0, BELOW_ONE)),
-    ("EI", prusa_ei, 10.0, 100.0, (0.0, BELOW_ONE)),
-    ("EI_2HUMP", prusa_2hump_ei, 10.0, 100.0, (0.0, BELOW_ONE)),
-    ("EI_3HUMP", prusa_3hump_ei, 10.0, 100.0, (0.0, BELOW_ONE)),
+    ("EI", prusa_weighted(weighted_ei), 10.0, 100.0, (0.0, BELOW_ONE)),
+    ("EI_2HUMP", prusa_weighted(weighted_ei2), 10.0, 100.0, (0.0, BELOW_ONE)),
+    ("EI_3HUMP", prusa_weighted(weighted_ei3), 10.0, 100.0, (0.0, BELOW_ONE)),
 )
 #: M593 T<type> codes (input_shaper_config.hpp input_shaper::Type).
 PRUSA_CODES = {"ZV": 0, "ZVD": 1, "MZV": 2, "EI": 3, "EI_2HUMP": 4, "EI_3HUMP": 5}
