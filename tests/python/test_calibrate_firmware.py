@@ -602,7 +602,7 @@ def test_invalid_inputs_name_the_parameter():
            {"x": good._replace(max_accel=float("nan"))})
 
 
-# Klipper at the same commit, parameterised shapers: init_shaper(spec, freq, damping) and
+# Klipper at the same commit, parameterised shapers: init_shaper(shaper_type, freq, damping) and
 # find_shaper_max_accel, run from its files
 KLIPPER_PARAMETERISED = {
     ('mzv(n=4, t=0.9)', 45.0, 0.1): (
@@ -637,18 +637,18 @@ def test_klipper_parameterised_shapers_are_klippers_own(key):
     """mzv(n, t) amplitudes to 1e-9: Klipper solves the normal equations M'M A = M'F, which
     squares the system's condition number (its n = 6 result is asymmetric by 1.7e-10; ours,
     a least-squares solve of M A = F, is symmetric to rounding); the rest as above."""
-    spec, freq, damping = key
+    shaper_type, freq, damping = key
     A_k, T_k, accel_k = KLIPPER_PARAMETERISED[key]
-    args = dict(kv.split("=") for kv in spec[spec.index("(") + 1:-1].replace(" ", "").split(","))
-    s = fw.klipper_mzv(int(args["n"]), float(args["t"])) if spec.startswith("mzv") \
+    args = dict(kv.split("=") for kv in shaper_type[shaper_type.index("(") + 1:-1].replace(" ", "").split(","))
+    s = fw.klipper_mzv(int(args["n"]), float(args["t"])) if shaper_type.startswith("mzv") \
         else fw.klipper_ei(float(args["v_tol"]))
-    assert s.name == spec
+    assert s.name == shaper_type
     A, t = s.impulses(freq, damping)
     np.testing.assert_allclose(A, np.array(A_k) / sum(A_k), rtol=0, atol=1e-9)
     np.testing.assert_allclose(t, T_k, rtol=0, atol=1e-16)
     assert abs(fw.max_accel(A, t) - accel_k) <= 1e-8 + 1e-9 * accel_k
     assert klipper_section(fw.config_text("klipper", {"x": fw.Pick(s, freq, damping, 1e3)})) \
-        ["shaper_type_x"] == spec
+        ["shaper_type_x"] == shaper_type
 
 
 def test_klipper_parameterised_refusals_are_klippers():
