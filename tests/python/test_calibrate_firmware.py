@@ -602,8 +602,8 @@ def test_invalid_inputs_name_the_parameter():
            {"x": good._replace(max_accel=float("nan"))})
 
 
-# Klipper at the same commit, parameterised shapers: init_shaper(shaper_type, freq, damping) and
-# find_shaper_max_accel, run from its files
+# Klipper at the same commit, parameterised shapers: init_shaper(shaper_type, freq, damping)
+# and find_shaper_max_accel, run from its files
 KLIPPER_PARAMETERISED = {
     ('mzv(n=4, t=0.9)', 45.0, 0.1): (
         [0.1909830056250527, 0.25568625036953674, 0.21155942818054108, 0.10818567384361166],
@@ -639,7 +639,8 @@ def test_klipper_parameterised_shapers_are_klippers_own(key):
     a least-squares solve of M A = F, is symmetric to rounding); the rest as above."""
     shaper_type, freq, damping = key
     A_k, T_k, accel_k = KLIPPER_PARAMETERISED[key]
-    args = dict(kv.split("=") for kv in shaper_type[shaper_type.index("(") + 1:-1].replace(" ", "").split(","))
+    inside = shaper_type[shaper_type.index("(") + 1:-1].replace(" ", "")
+    args = dict(kv.split("=") for kv in inside.split(","))
     s = fw.klipper_mzv(int(args["n"]), float(args["t"])) if shaper_type.startswith("mzv") \
         else fw.klipper_ei(float(args["v_tol"]))
     assert s.name == shaper_type
