@@ -193,8 +193,9 @@ def by_name(firmware: str, name: str) -> FirmwareShaper:
     """
     options = {s.name.lower(): s for s in shapers(firmware)}
     if not isinstance(name, str) or name.strip().lower() not in options:
-        raise ParameterError("name", f"name must be one of {', '.join(s.name for s in options.values())}"
-                             f" for {_firmware(firmware)}, got {name!r}")
+        known = ", ".join(s.name for s in options.values())
+        raise ParameterError("name", f"name must be one of {known} for {_firmware(firmware)}, "
+                             f"got {name!r}")
     return options[name.strip().lower()]
 
 
