@@ -23,8 +23,8 @@ from .plant import (NOTES, DiscretePlant, ServoPlant, discretize, elastic_servo,
                     rigid_servo, servo_from_modes)
 from .controllers import LQG, PID, TDO, PolePlacement
 from .loop import INPUTS, OUTPUTS, Drive
-from . import design
+from . import design, presets
 
 __all__ = ["NOTES", "ServoPlant", "DiscretePlant", "elastic_servo", "rigid_servo",
            "servo_from_modes", "discretize", "locked_frequency", "PID", "TDO", "PolePlacement",
-           "LQG", "Drive", "INPUTS", "OUTPUTS", "design"]
+           "LQG", "Drive", "INPUTS", "OUTPUTS", "design", "presets"]
