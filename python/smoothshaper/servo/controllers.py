@@ -29,7 +29,13 @@ __all__ = ["PID", "TDO", "PolePlacement", "LQG", "Controller", "build"]
 class TDO:
     """Torque disturbance observer with ``Q(s) = 1/(1 + s Tf)`` on ``P_n = 1/(Jn s + Dn)``.
 
-    ``Jn``, ``Dn`` default to the motor's ``J_m``, ``D_m`` (the notes' rigid nominal model).
+    Attributes
+    ----------
+    Tf : float
+        Time constant of ``Q`` [s], > 0.
+    Jn, Dn : float or None
+        Nominal inertia [kg m^2] and friction [N m s/rad]; None: the motor's ``J_m``, ``D_m``
+        (the notes' rigid nominal model).
     """
     Tf: float
     Jn: float | None = None
@@ -45,6 +51,19 @@ class PID:
     sized for (default ``J_m + J_l/n^2``, or ``J_m`` behind a TDO). ``notch`` (a library notch
     stage) filters the PI output (``notch_at="loop"``) or the velocity reference
     (``"reference"``); ``tdo`` adds the torque disturbance observer.
+
+    Attributes
+    ----------
+    wcv, wcp : float
+        Velocity and position loop crossover [rad/s].
+    Ti : float
+        Velocity integral time [s].
+    J : float or None
+        Inertia for the velocity gain [kg m^2].
+    notch : Stage or None
+        A notch stage (``smoothshaper.notch``), run as its reference biquad.
+    notch_at : {"loop", "reference"}
+    tdo : TDO or None
     """
     wcv: float
     Ti: float
@@ -62,6 +81,15 @@ class PolePlacement:
     ``poles``: ``nx + 1`` continuous closed-loop poles [1/s] of the integral-action model;
     ``observer_poles``: ``nx`` poles of ``A + L C``; ``wf``: bandwidth of the reference model
     ``F^o(s) = wf^3/(s + wf)^3`` [rad/s] (None: no feed-forward, the integrator tracks ``r``).
+
+    Attributes
+    ----------
+    poles : sequence of complex
+        Closed-loop poles [1/s].
+    observer_poles : sequence of complex
+        Observer poles [1/s].
+    wf : float or None
+        Reference model bandwidth [rad/s].
     """
     poles: tuple
     observer_poles: tuple
@@ -75,6 +103,19 @@ class LQG:
     ``Q`` (``nx + 1`` diagonal weights or a matrix) and ``R`` weight ``z' Q z + R u^2``
     (:func:`.design.lq_gain`); the noise standard deviations set the Kalman filter
     (:func:`.design.kalman_gain`); ``wf`` as :class:`PolePlacement`.
+
+    Attributes
+    ----------
+    Q : sequence of float or array
+        State weight of ``[q_m, q_m', n q_l, n q_l', x_I]``.
+    R : float
+        Torque weight [1/(N m)^2].
+    torque_noise, load_torque_noise : float
+        Torque noise standard deviations [N m] (motor, load side).
+    encoder_noise : float
+        Encoder noise standard deviation [rad].
+    wf : float or None
+        Reference model bandwidth [rad/s].
     """
     Q: tuple
     R: float
@@ -86,7 +127,20 @@ class LQG:
 
 @dataclass
 class Controller:
-    """A built controller: ``step(state, r, qm, wm) -> (state, u)`` and its design numbers."""
+    """A built controller.
+
+    Attributes
+    ----------
+    kind : str
+        ``"pid"``, ``"pid+tdo"``, ``"pole placement"`` or ``"lqg"``.
+    n_states : int
+        Length of its state vector.
+    step : callable
+        ``step(state, r, qm, wm) -> (state, u)``: one sample (``r`` motor side [rad], ``u``
+        [N m]).
+    gains : dict
+        The design's numbers (gains, filter coefficients, the reference model).
+    """
     kind: str
     n_states: int
     step: Callable
@@ -95,6 +149,17 @@ class Controller:
 
 def build(config, dp: DiscretePlant) -> Controller:
     """The discrete controller for ``config`` on the sampled plant ``dp``.
+
+    Parameters
+    ----------
+    config : PID, PolePlacement or LQG
+        The tuning.
+    dp : DiscretePlant
+        The sampled plant.
+
+    Returns
+    -------
+    Controller
 
     Raises
     ------

@@ -106,13 +106,25 @@ def tdo_coefficients(*, Jn: float, Dn: float, Tf: float, Ts: float) -> dict:
 def augmented(dp: DiscretePlant) -> tuple[np.ndarray, np.ndarray]:
     """The integral-action model of the notes, discrete: ``x_I[k+1] = x_I[k] + Ts (ybar - q_m)``.
 
+    Parameters
+    ----------
+    dp : DiscretePlant
+        The sampled plant.
+
     Returns
     -------
     F : ndarray, shape (nx + 1, nx + 1)
         ``[[Ad, 0], [-Ts C, 1]]`` with ``C = [1, 0, ...]`` (the motor encoder).
     G : ndarray, shape (nx + 1,)
         ``[Bu; 0]``.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``dp`` when it is not a DiscretePlant.
     """
+    if not isinstance(dp, DiscretePlant):
+        raise ParameterError("dp", f"dp must be a DiscretePlant, got {type(dp).__name__}")
     nx = dp.Ad.shape[0]
     F = np.zeros((nx + 1, nx + 1))
     F[:nx, :nx] = dp.Ad
@@ -122,8 +134,27 @@ def augmented(dp: DiscretePlant) -> tuple[np.ndarray, np.ndarray]:
 
 
 def discrete_poles(poles, Ts: float) -> np.ndarray:
-    """``e^{p Ts}``: where the continuous poles ``p`` [1/s] land in the sampled loop."""
-    return np.exp(np.asarray(poles, dtype=complex) * Ts)
+    """``e^{p Ts}``: where the continuous poles ``p`` [1/s] land in the sampled loop.
+
+    Parameters
+    ----------
+    poles : array_like of complex
+        Continuous poles [1/s], any shape.
+    Ts : float
+        Sample period [s], > 0.
+
+    Returns
+    -------
+    ndarray of complex128
+        ``e^{p Ts}``, the shape of ``poles``.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``poles`` (not finite numbers) or ``Ts``.
+    """
+    from .._checks import complex_array
+    return np.exp(complex_array("poles", poles) * _positive("Ts", Ts))
 
 
 def _check_poles(name: str, poles, n: int) -> np.ndarray:
@@ -178,7 +209,29 @@ def place(dp: DiscretePlant, *, poles, observer_poles) -> dict:
 
 
 def eigenvector_condition(M: np.ndarray) -> float:
-    """2-norm condition number of the eigenvector matrix of ``M`` (columns of unit length)."""
+    """2-norm condition number of the eigenvector matrix of ``M`` (columns of unit length): the
+    notes' robustness measure (Bauer-Fike: a perturbation ``E`` moves each eigenvalue by at most
+    ``cond(V) |E|``).
+
+    Parameters
+    ----------
+    M : array_like, shape (n, n)
+        A closed-loop matrix.
+
+    Returns
+    -------
+    float
+        ``cond(V)`` (inf for a defective ``M``).
+
+    Raises
+    ------
+    ParameterError
+        Naming ``M`` when it is not a finite square matrix.
+    """
+    from .._checks import finite_array
+    M = finite_array("M", M)
+    if M.ndim != 2 or M.shape[0] != M.shape[1]:
+        raise ParameterError("M", f"M must be a square matrix, got shape {M.shape}")
     _, V = np.linalg.eig(M)
     return float(np.linalg.cond(V / np.linalg.norm(V, axis=0)))
 
@@ -285,6 +338,25 @@ class ReferenceModel:
     referred to the motor side, ``n q_l^d``). Then ``n q_l = F^o(s) r`` and
     ``q_m = C_1(s) r``; with a state feedback ``K`` the feed-forward torque
     ``u_ff = u_d - K x_d`` is the notes' ``C_2(s) r`` (:meth:`compensators`).
+
+    Attributes
+    ----------
+    Phi : ndarray, shape (m, m)
+        Sampled state matrix (``m`` = 4 elastic, 3 rigid).
+    Gam : ndarray, shape (m,)
+        Sampled input vector.
+    M : ndarray, shape (nx, m)
+        Desired plant state ``x_d = M xi``.
+    N : ndarray, shape (m,)
+        Torque row: ``u_d = N xi + N0 r`` [N m].
+    N0 : float
+        Torque feed-through [N m/rad].
+    wf : float
+        Bandwidth of ``F^o`` [rad/s].
+    Ac : ndarray, shape (m, m)
+        Continuous state matrix (for the closed forms).
+    Bc : ndarray, shape (m,)
+        Continuous input vector.
     """
     Phi: np.ndarray
     Gam: np.ndarray
@@ -292,17 +364,40 @@ class ReferenceModel:
     N: np.ndarray
     N0: float
     wf: float
-    Ac: np.ndarray     # the continuous realisation (for the closed forms)
+    Ac: np.ndarray
     Bc: np.ndarray
 
     def compensators(self, s, K) -> tuple[np.ndarray, np.ndarray]:
-        """``C_1(s)`` and ``C_2(s) = (u_d - K x_d)/r`` of the continuous realisation at ``s``."""
-        s = np.atleast_1d(np.asarray(s, dtype=complex))
+        """The notes' compensators of the continuous realisation: ``C_1(s) = q_m^d/r`` and
+        ``C_2(s) = (u_d - K x_d)/r``.
+
+        Parameters
+        ----------
+        s : array_like of complex
+            Laplace variable [1/s] (not a pole of ``F^o``).
+        K : array_like of float, shape (nx,)
+            State feedback (the notes' sign, ``u = K x``).
+
+        Returns
+        -------
+        C1 : ndarray of complex128, shape (len(s),)
+        C2 : ndarray of complex128, shape (len(s),) [N m/rad]
+
+        Raises
+        ------
+        ParameterError
+            Naming ``s`` or ``K``.
+        """
+        from .._checks import complex_array, finite_array
+        s = np.atleast_1d(complex_array("s", s)).ravel()
+        K = finite_array("K", K)
+        if K.shape != (self.M.shape[0],):
+            raise ParameterError("K", f"K must have shape ({self.M.shape[0]},), got {K.shape}")
         n = self.Ac.shape[0]
         X = np.array([np.linalg.solve(v * np.eye(n) - self.Ac, self.Bc) for v in s])
         xd = X @ self.M.T
         ud = X @ self.N + self.N0
-        return xd[:, 0], ud - xd @ np.asarray(K, dtype=float)
+        return xd[:, 0], ud - xd @ K
 
 
 def reference_model(plant: ServoPlant, *, wf: float, Ts: float) -> ReferenceModel:

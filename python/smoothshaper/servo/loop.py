@@ -104,14 +104,38 @@ class Drive:
 
     @property
     def order(self) -> int:
+        """The loop's state dimension N (plant and controller states)."""
         return self.A.shape[0]
 
     def poles(self) -> np.ndarray:
-        """Eigenvalues of the closed loop (plant, observer, integrator, filters), shape (N,)."""
+        """Eigenvalues of the closed loop (plant, observer, integrator, filters).
+
+        Returns
+        -------
+        ndarray of complex128, shape (N,)
+            Discrete poles (``e^{s Ts}`` of the continuous ones they stand for); unused
+            controller states show as poles at 0.
+        """
         return np.linalg.eigvals(self.A)
 
     def rest_state(self, r0: float = 0.0) -> np.ndarray:
-        """The loop's state at rest at the load reference ``r0`` [rad] (no load torque)."""
+        """The loop's state at rest at the load reference ``r0`` (no load torque).
+
+        Parameters
+        ----------
+        r0 : float
+            Load position [rad].
+
+        Returns
+        -------
+        ndarray of float64, shape (N,)
+            ``X`` with ``X = A X + B [r0, 0]``.
+
+        Raises
+        ------
+        ParameterError
+            Naming ``r0`` when it is not finite.
+        """
         from .._checks import finite
         r0 = finite("r0", r0)
         M = np.eye(self.order) - self.A
@@ -173,6 +197,11 @@ class Drive:
         Returns
         -------
         ndarray of complex128, the shape of ``w``
+
+        Raises
+        ------
+        ParameterError
+            Naming ``w``, ``input`` or ``output``.
         """
         from .._checks import choice, finite_array
         i = INPUTS.index(choice("input", input, INPUTS))

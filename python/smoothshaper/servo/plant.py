@@ -64,6 +64,7 @@ class ServoPlant:
 
     @property
     def order(self) -> int:
+        """The state dimension ``nx`` (4 elastic, 2 rigid)."""
         return self.A.shape[0]
 
     def modes(self) -> dict:
@@ -265,6 +266,25 @@ def discretize(plant: ServoPlant, *, Ts: float) -> DiscretePlant:
 
 
 def locked_frequency(plant: ServoPlant) -> float:
-    """``sqrt(K_el / J_lr)`` [rad/s]: the load's mode when the motor is held still."""
+    """``sqrt(K_el / J_lr)`` [rad/s]: the load's mode when the motor is held still (the
+    anti-resonance of ``q_m / tau_m``).
+
+    Parameters
+    ----------
+    plant : ServoPlant
+        An elastic model.
+
+    Returns
+    -------
+    float
+        The locked frequency [rad/s].
+
+    Raises
+    ------
+    ParameterError
+        Naming ``plant`` when it is not an elastic ServoPlant.
+    """
+    if not isinstance(plant, ServoPlant) or plant.kind != "elastic":
+        raise ParameterError("plant", "plant must be an elastic ServoPlant")
     p = plant.params
     return math.sqrt(p["Kel"] * p["n"] ** 2 / p["Jl"])

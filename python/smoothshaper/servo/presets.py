@@ -38,20 +38,87 @@ PP_OBSERVER = (complex(-420, 420), complex(-420, -420), -800.0, -1000.0)
 
 def pid(plant: ServoPlant, **kw) -> PID:
     """The notes' normalised P/PI rule on ``w_z = sqrt(K_el/J_lr)``: ``w_cv = w_z``,
-    ``T_Iv = 10/w_z``, ``w_cp = 0.1 w_z``."""
+    ``T_Iv = 10/w_z``, ``w_cp = 0.1 w_z``.
+
+    Parameters
+    ----------
+    plant : ServoPlant
+        An elastic model.
+    **kw
+        Further :class:`PID` fields (``notch``, ``notch_at``, ``tdo``, ``J``).
+
+    Returns
+    -------
+    PID
+
+    Raises
+    ------
+    ParameterError
+        Naming ``plant``.
+    """
     wz = locked_frequency(plant)
     return PID(wcv=wz, Ti=10.0 / wz, wcp=0.1 * wz, **kw)
 
 
 def pid_tdo(plant: ServoPlant, *, Tf: float = 2 * TS) -> PID:
-    """:func:`pid` with a TDO on the motor's rigid model (velocity gain sized on ``J_m``)."""
+    """:func:`pid` with a TDO on the motor's rigid model (velocity gain sized on ``J_m``).
+
+    Parameters
+    ----------
+    plant : ServoPlant
+        An elastic model.
+    Tf : float, keyword-only
+        The TDO's time constant [s] (default ``2 TS``).
+
+    Returns
+    -------
+    PID
+
+    Raises
+    ------
+    ParameterError
+        Naming ``plant``.
+    """
     return pid(plant, tdo=TDO(Tf=Tf))
 
 
 def pole_placement(wf: float | None = WF) -> PolePlacement:
+    """:data:`PP_POLES` and :data:`PP_OBSERVER` with the reference model of bandwidth ``wf``
+    [rad/s] (None: none).
+
+    Parameters
+    ----------
+    wf : float or None
+
+    Returns
+    -------
+    PolePlacement
+
+    Raises
+    ------
+    ParameterError
+        Never here: ``wf`` is checked when a Drive is built.
+    """
     return PolePlacement(poles=PP_POLES, observer_poles=PP_OBSERVER, wf=wf)
 
 
 def lqg(wf: float | None = WF) -> LQG:
+    """Bryson's weights :data:`LQ_Q`, :data:`LQ_R` and the noise :data:`TORQUE_NOISE`,
+    :data:`LOAD_TORQUE_NOISE`, :data:`ENCODER_NOISE`, with the reference model of bandwidth
+    ``wf`` [rad/s].
+
+    Parameters
+    ----------
+    wf : float or None
+
+    Returns
+    -------
+    LQG
+
+    Raises
+    ------
+    ParameterError
+        Never here: everything is checked when a Drive is built.
+    """
     return LQG(Q=LQ_Q, R=LQ_R, torque_noise=TORQUE_NOISE, load_torque_noise=LOAD_TORQUE_NOISE,
                encoder_noise=ENCODER_NOISE, wf=wf)
