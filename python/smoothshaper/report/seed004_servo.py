@@ -131,9 +131,7 @@ def _tdo_rigid(sec, keep) -> str:
     w = np.geomspace(1.0, 0.1 / TS, 40)
     ratio = d1.frequency_response(w, input="tau_load", output="w_m") / \
         d0.frequency_response(w, input="tau_load", output="w_m")
-    z = np.exp(1j * w * TS)
-    alpha = math.exp(-TS / Tf)
-    gfd = (1 - 1 / z) / (1 - alpha / z)
+    gfd = servo.design.tdo_high_pass(w, Tf=Tf, Ts=TS)
     gf = 1j * w * Tf / (1 + 1j * w * Tf)
     sec.add(Claim("servo.tdo.rigid.exact", "TDO on the rigid model: max |H_TDO/H - G_f(z)| of the "
                   "load-torque-to-velocity response, 1 to 200 rad/s",

@@ -29,7 +29,7 @@ from .._checks import positive as _positive
 from ..errors import ParameterError
 from .plant import DiscretePlant, ServoPlant
 
-__all__ = ["pid_gains", "tdo_coefficients", "augmented", "place", "lq_gain", "kalman_gain",
+__all__ = ["pid_gains", "tdo_coefficients", "tdo_high_pass", "augmented", "place", "lq_gain", "kalman_gain",
            "ReferenceModel", "reference_model", "discrete_poles", "eigenvector_condition"]
 
 
@@ -101,6 +101,34 @@ def tdo_coefficients(*, Jn: float, Dn: float, Tf: float, Ts: float) -> dict:
     a = math.exp(-Dn * Ts / Jn)
     b = -math.expm1(-Dn * Ts / Jn) / Dn if Dn > 0 else Ts / Jn
     return {"a": a, "b": b, "alpha": math.exp(-Ts / Tf)}
+
+
+def tdo_high_pass(w, *, Tf: float, Ts: float) -> np.ndarray:
+    """``G_f(z) = (1 - z^-1)/(1 - alpha z^-1)`` at ``z = e^{j w Ts}``, ``alpha = e^{-Ts/T_f}``:
+    what the sampled TDO (:func:`tdo_coefficients`) leaves of a disturbance on an exact nominal
+    model; the notes' ``s T_f/(1 + s T_f)`` as ``Ts -> 0``.
+
+    Parameters
+    ----------
+    w : array_like of float
+        Frequencies [rad/s].
+    Tf, Ts : float, keyword-only
+        Filter time constant and sample period [s], > 0.
+
+    Returns
+    -------
+    ndarray of complex128, the shape of ``w``
+
+    Raises
+    ------
+    ParameterError
+        Naming ``w``, ``Tf`` or ``Ts``.
+    """
+    from .._checks import finite_array
+    w = finite_array("w", w)
+    Tf, Ts = _positive("Tf", Tf), _positive("Ts", Ts)
+    zi = np.exp(-1j * w * Ts)
+    return (1 - zi) / (1 - math.exp(-Ts / Tf) * zi)
 
 
 def augmented(dp: DiscretePlant) -> tuple[np.ndarray, np.ndarray]:
