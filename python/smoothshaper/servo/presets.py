@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: Apache-2.0
-"""The tunings the report, the docs and the ServoDrive FMU's defaults use for the notes' servo.
+"""The tunings the report and the docs use for the notes' servo.
 
 The notes give the P/PI rules of their notch example in normalised form (``T_Iv = 10/w_z``,
 ``w_cv = 1``, ``w_cp = 0.1`` in units of the anti-resonance ``w_z``) and no numbers for the TDO,
