@@ -59,7 +59,8 @@ def test_zoh_is_exact():
 def test_pole_placement_puts_every_pole_where_placed():
     cfg = presets.pole_placement(None)
     drive = servo.Drive(PLANT, cfg, Ts=TS)
-    want = np.r_[design.discrete_poles(cfg.poles, TS), design.discrete_poles(cfg.observer_poles, TS)]
+    want = np.r_[design.discrete_poles(cfg.poles, TS),
+                 design.discrete_poles(cfg.observer_poles, TS)]
     assert match(drive.poles(), want, bauer_fike(drive.A))   # the loop is ill-conditioned:
     g = drive.controller.gains                                 # the blocks are checked tighter
     F, G = design.augmented(drive.discrete)

@@ -68,15 +68,15 @@ def error_corners():
 
 def build(fig_dir=None) -> Section:
     sec = Section(
-        key="seed004", title="Seed 004: input shaping, the notch filter and the servo in closed loop",
+        key="seed004",
+        title="Seed 004: input shaping, the notch filter and the servo in closed loop",
         claim=("A ZV shaper (two positive impulses, the second half a damped period later) "
                "cancels the mode it is designed for; with 10 % error on wn and 20 % on xi it "
                "leaves an oscillation, which the three-impulse ZVD shaper largely removes. A "
                "notch cancels a pair of lightly damped poles; digitising it distorts its "
                "frequency unless the bilinear transform is pre-warped. In closed loop, a torque "
-               "disturbance observer rejects load torque on the rigid model (high-pass sT_f/(1+sT_f)) "
-               "but leaves the elastic load oscillating at "
-               "the locked frequency; observer-based pole placement with integral action and "
+               "disturbance observer rejects load torque on the rigid model (high-pass "
+               "sT_f/(1+sT_f)) but leaves the elastic load oscillating at the locked frequency; observer-based pole placement with integral action and "
                "feed-forward, and LQG, act on every state, and LQG beats PID on three "
                "trapezoidal moves."),
         command=COMMAND)

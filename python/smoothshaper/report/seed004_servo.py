@@ -291,11 +291,14 @@ def _cont(z):
 
 
 def _fmt_pole(s) -> str:
-    return f"{abs(s):.0f}" if abs(s.imag) < 1e-9 * abs(s) else f"{abs(s):.0f}/{-s.real / abs(s):.2f}"
+    if abs(s.imag) < 1e-9 * abs(s):
+        return f"{abs(s):.0f}"
+    return f"{abs(s):.0f}/{-s.real / abs(s):.2f}"
 
 
 def _notch_loop(sec) -> str:
-    """The notch example: wz = 200 rad/s, rho = 1, xi_z = 0.1, T_Iv = 10/wz, wcv = wz, wcp = 0.1 wz."""
+    """The notch example: wz = 200 rad/s, rho = 1, xi_z = 0.1; T_Iv = 10/wz, wcv = wz,
+    wcp = 0.1 wz."""
     Ts = 1e-4
     plant = servo.servo_from_modes(wz=200.0, rho=1.0, zeta_z=0.1)
     m = plant.modes()

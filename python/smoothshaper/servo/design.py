@@ -29,7 +29,8 @@ from .._checks import positive as _positive
 from ..errors import ParameterError
 from .plant import DiscretePlant, ServoPlant
 
-__all__ = ["pid_gains", "tdo_coefficients", "tdo_high_pass", "augmented", "place", "lq_gain", "kalman_gain",
+__all__ = ["pid_gains", "tdo_coefficients", "tdo_high_pass", "augmented", "place", "lq_gain",
+           "kalman_gain",
            "ReferenceModel", "reference_model", "discrete_poles", "eigenvector_condition"]
 
 
