@@ -76,7 +76,8 @@ def build(fig_dir=None) -> Section:
                "notch cancels a pair of lightly damped poles; digitising it distorts its "
                "frequency unless the bilinear transform is pre-warped. In closed loop, a torque "
                "disturbance observer rejects load torque on the rigid model (high-pass "
-               "sT_f/(1+sT_f)) but leaves the elastic load oscillating at the locked frequency; observer-based pole placement with integral action and "
+               "sT_f/(1+sT_f)) but leaves the elastic load oscillating at the locked "
+               "frequency; observer-based pole placement with integral action and "
                "feed-forward, and LQG, act on every state, and LQG beats PID on three "
                "trapezoidal moves."),
         command=COMMAND)
