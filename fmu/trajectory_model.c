@@ -319,10 +319,10 @@ int fmu_model_warning(void *model, char *msg, size_t len)
         m->warned = 0;
         return 0;
     }
-    if (m->warned && m->dropped == (double)m->gen.target)
+    if (m->warned && m->dropped == (double)m->gen.target.position)
         return 0;
     m->warned = 1;
-    m->dropped = (double)m->gen.target;
+    m->dropped = (double)m->gen.target.position;
     goal = (double)m->gen.plan.goal;
     span = fabs(m->dropped - goal) / m->vmax / m->Ts;
     snprintf(msg, len, "target = %.17g dropped: its move cannot be represented with vmax = "
