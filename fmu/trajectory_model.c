@@ -361,7 +361,7 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
     tg_model *m = (tg_model *)model;
     const double limit[4] = {0.0, (double)m->gen.limits.vmax, (double)m->gen.limits.amax,
                              (double)m->gen.limits.jmax};
-    const double *plan = src + 4 + SMS_GENERATOR_IDENTITY_COUNT; /* target, goal, q, v, a, k */
+    const double *plan = src + 4 + SMS_GENERATOR_IDENTITY_COUNT; /* trajectory.h's layout */
     sms_status st;
     int i;
     if (n != fmu_model_state_count(m))
@@ -383,7 +383,8 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
                      "out of range, a plan it cannot form, or the plan's start v = %.17g, "
                      "a = %.17g beyond vmax = %.17g, amax = %.17g (v, a and the brake velocity "
                      "v + a|a|/(2 J) within them to a relative %.3g)", sms_status_string(st),
-                     plan[3], plan[4], limit[1], limit[2], SMS_LIMIT_RTOL);
+                     plan[SMS_GENERATOR_STATE_V], plan[SMS_GENERATOR_STATE_A], limit[1],
+                     limit[2], SMS_LIMIT_RTOL);
         else
             snprintf(msg, len, "the generator's state: %s", sms_status_string(st));
         return 1;

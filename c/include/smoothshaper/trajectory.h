@@ -494,6 +494,11 @@ SMS_API void sms_generator_hold(sms_generator *g, sms_real target, uint64_t n, s
  *         the trigonometric profile). The limits are compared as ::sms_real holds them.
  */
 SMS_API sms_status sms_generator_check_target(const sms_generator *g, const sms_target *target);
+/** @brief sms_generator_check_target() of n targets: ::SMS_OK, or the status of the first
+ * refused one and its index in *index (n when all pass; index may be NULL). O(n), writes
+ * nothing else. ::SMS_ERR_NULL when g is NULL, or targets is NULL with n > 0. */
+SMS_API sms_status sms_generator_check_targets(const sms_generator *g, const sms_target *targets,
+                                               size_t n, size_t *index);
 /**
  * @brief Advance one sample towards `target` and write out[0..3] = q, q', q'', q''' at this
  * instant (sms_generator_step() is this with a position target at rest).

@@ -331,6 +331,25 @@ sms_status sms_generator_check_target(const sms_generator *g, const sms_target *
     return sms_generator_canonical(g, target, &t);
 }
 
+sms_status sms_generator_check_targets(const sms_generator *g, const sms_target *targets,
+                                       size_t n, size_t *index)
+{
+    size_t i;
+    if (index != NULL)
+        *index = n;
+    if (g == NULL || (targets == NULL && n > 0))
+        return SMS_ERR_NULL;
+    for (i = 0; i < n; ++i) {
+        sms_status st = sms_generator_check_target(g, &targets[i]);
+        if (st != SMS_OK) {
+            if (index != NULL)
+                *index = i;
+            return st;
+        }
+    }
+    return SMS_OK;
+}
+
 static int same_target(const sms_target *a, const sms_target *b)
 {
     return a->interface == b->interface && a->position == b->position &&
