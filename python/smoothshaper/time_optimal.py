@@ -421,7 +421,8 @@ def _ramp_plan(state, goal, vmax, amax, jmax, Ts):
             # on the grid: the first whole number of samples at or after the optimum (or past
             # a blocked duration, the next member's) at which a motion exists
             for Tr in durations:
-                if Tr < T or not math.isfinite(Tr / Ts) or Tr / Ts + 2 > MAX_PLAN_SAMPLES:
+                Tr = max(Tr, T)   # every member lasts the optimum at least, but for rounding
+                if not math.isfinite(Tr / Ts) or Tr / Ts + 2 > MAX_PLAN_SAMPLES:
                     continue
                 for n in (_grid_ceil(Tr, Ts), _grid_ceil(Tr, Ts) + 1):
                     hi = _to.farthest(v, a, vf, af, lim, n * Ts, 1)

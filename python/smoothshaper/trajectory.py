@@ -337,10 +337,10 @@ class Generator(_state_identity.SavedState):
             self._gen, self._ffi.cast("sms_target *", self._ffi.from_buffer(block)), n, index)
         if st != 0:
             i = int(index[0])
-            field = {-44: ("targets", pos[i]), -45: ("velocity", vel[i]),
-                     -46: ("acceleration", acc[i]), -47: ("interface", codes[i])}[st]
-            raise ParameterError(field[0], _target_message(self, field[0], i, pos[i], vel[i],
-                                                           acc[i], codes[i]), st)
+            field = {-44: ("targets",), -45: ("velocity",), -46: ("acceleration",),
+                     -47: ("interface",)}[st]
+            raise ParameterError(field[0], _target_message(
+                self, field[0], i, float(pos[i]), float(vel[i]), float(acc[i]), int(codes[i])), st)
         return block
 
     @property
@@ -454,8 +454,9 @@ class Generator(_state_identity.SavedState):
                 st)
         if st in (-45, -46, -47):
             name = {-45: "velocity", -46: "acceleration", -47: "interface"}[st]
-            raise ParameterError(name, _target_message(self, name, None, t.position, t.velocity,
-                                                       t.acceleration, t.interface), st)
+            raise ParameterError(name, _target_message(
+                self, name, None, float(t.position), float(t.velocity), float(t.acceleration),
+                int(t.interface)), st)
         raise ParameterError(
             "target", f"target: the move from (q, v, a) = ({q!r}, {v!r}, {a!r}) cannot be "
             f"represented in {self.precision} (more than 2^52 samples of Ts, or a value beyond "

@@ -223,8 +223,8 @@ int sms_plan_to_rest_shaped(sms_plan *out, const sms_plan_limits *lim, int shape
     plan->drift = 0;
     plan->duration = 0;
     if (D == 0 && v == 0 && a == 0) {
-        plan->end = 0;
-        plan->end_f = 0;
+        plan->end = plan->arrive = 0;
+        plan->end_f = plan->arrive_f = 0;
         *out = tmp;
         return 1;
     }
@@ -334,8 +334,8 @@ int sms_plan_to_rest_shaped(sms_plan *out, const sms_plan_limits *lim, int shape
         sms_plan_push(plan, Ts, &n, &f, p, vv, aa, stop.j[i], stop.d[i]);
         advance(&p, &vv, &aa, stop.j[i], stop.d[i], c3);
     }
-    plan->end = n;
-    plan->end_f = f;
+    plan->end = plan->arrive = n;
+    plan->end_f = plan->arrive_f = f;
     if (!sms_plan_finite(plan))
         return 0;
     *out = tmp;
@@ -365,8 +365,8 @@ int sms_plan_velocity_shaped(sms_plan *out, const sms_plan_limits *lim, int shap
         sms_plan_push(plan, Ts, &n, &f, p, vv, aa, change.j[i], change.d[i]);
         advance(&p, &vv, &aa, change.j[i], change.d[i], c3);
     }
-    plan->end = n;
-    plan->end_f = f;
+    plan->end = plan->arrive = n;
+    plan->end_f = plan->arrive_f = f;
     plan->goal = p;
     plan->drift = velocity;
     if (!sms_plan_finite(plan))

@@ -32,6 +32,8 @@ static void plan_begin(sms_plan *plan)
 static void move_on(sms_plan *plan, sms_real Ts, size_t n, sms_real f, sms_real p, sms_real v,
                     sms_real a, sms_real J)
 {
+    plan->arrive = n;
+    plan->arrive_f = f;
     if (a != 0) {
         sms_real d = mag(a) / J, j = a > 0 ? -J : J;
         sms_plan_push(plan, Ts, &n, &f, p, v, a, j, d);
@@ -203,7 +205,8 @@ int sms_plan_to_state(sms_plan *plan, const sms_to_limits *lim, sms_real Ts, sms
      * at which a motion exists (past a blocked interval: after the next member's duration) */
     for (i = 0; i < n_roots; ++i) {
         size_t N, extra;
-        if (roots[i] < best.duration || !grid_ceil(roots[i], Ts, &N))
+        /* (every root is at or above the optimum's duration, but for the rounding of its sum) */
+        if (!grid_ceil(roots[i] > best.duration ? roots[i] : best.duration, Ts, &N))
             continue;
         for (extra = 0; extra < 2; ++extra) {
             sms_real T = (sms_real)(N + extra) * Ts, dhi, dlo, D = pf - q, tol, lambda;
