@@ -428,11 +428,11 @@ def fmu_table(quick: bool, build_dir: Path) -> list[Table]:
     if shutil.which("cmake") is None:
         print("\n(FMU benchmark skipped: cmake is needed to build the FMUs)")
         return []
-    from .. import validation
+    from .. import fmi
     from ..filters import Chain
     from ..stages import Stage
 
-    fmus = validation.build_fmus(build_dir)
+    fmus = fmi.build_fmus(build_dir)
     Ts = 1e-3
     steps = 2_000 if quick else 50_000
     table = Table("FMU paths (fmpy, one instance)",
@@ -441,7 +441,7 @@ def fmu_table(quick: bool, build_dir: Path) -> list[Table]:
                   "(per-sample cost inside the FMU).")
     chain = Chain([Stage("damped_harmonic", T=0.0531, sigma=-10.0)], Ts=Ts)
     t_chain = interleaved({"step": lambda: chain.step(1.0)}, rounds=3, repeat=steps // 10)["step"]
-    for model, start in (("SmoothShaper", validation.start_values(
+    for model, start in (("SmoothShaper", fmi.start_values(
             [Stage("damped_harmonic", T=0.0531, sigma=-10.0)], Ts=Ts)),
             ("TrajectoryGenerator", dict(Ts=Ts, vmax=1.0, amax=10.0, jmax=1000.0))):
         if model not in fmus:
