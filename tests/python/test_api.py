@@ -1,9 +1,8 @@
 """One consistent Python API: ParameterError everywhere, plain numbers in messages, no silent
 casts of complex/boolean/text input, case-insensitive names, lazy submodules, ``__all__`` in
-every public module, one name per concept, no import cycles."""
+every public module, one name per concept (import cycles and layers: test_layers_python.py)."""
 from __future__ import annotations
 
-import ast
 import importlib
 import pathlib
 import subprocess
@@ -257,57 +256,6 @@ def test_every_public_module_declares_all(name):
         assert hasattr(module, item), (name, item)
     leaked = {"np", "math", "dataclass", "os", "sys", "annotations"} & set(module.__all__)
     assert not leaked, (name, leaked)
-
-
-def _imports(path: pathlib.Path, module: str, modules: set[str]) -> set[str]:
-    """Package modules imported anywhere in ``path`` (top level or inside functions)."""
-    is_pkg = path.name == "__init__.py"
-    base = module.split(".") if is_pkg else module.split(".")[:-1]
-    found = set()
-    for node in ast.walk(ast.parse(path.read_text())):
-        if isinstance(node, ast.ImportFrom):
-            if node.level:
-                anchor = base[:len(base) - node.level + 1]
-                target = ".".join(anchor + ([node.module] if node.module else []))
-            else:
-                target = node.module or ""
-            for alias in node.names:
-                sub = f"{target}.{alias.name}"
-                found.add(sub if sub in modules else target)
-        elif isinstance(node, ast.Import):
-            found.update(a.name for a in node.names)
-    return {m for m in found if m in modules and m != module}
-
-
-def test_no_import_cycles():
-    modules = set(_modules())
-    paths = {}
-    for path in PACKAGE.rglob("*.py"):
-        rel = path.relative_to(PACKAGE.parent).with_suffix("")
-        parts = list(rel.parts)
-        if parts[-1] == "__init__":
-            parts = parts[:-1]
-        paths[".".join(parts)] = path
-    # A package's __init__ importing its own submodules is not a cycle worth reporting, and a
-    # submodule importing a sibling through the package (``from . import x``) resolves to x.
-    graph = {m: {d for d in _imports(p, m, modules) if not m.startswith(d + ".")}
-             for m, p in paths.items()}
-    cycles = []
-    state: dict[str, int] = {}
-
-    def visit(node, stack):
-        state[node] = 1
-        for nxt in sorted(graph[node]):
-            if state.get(nxt) == 1:
-                cycles.append(stack[stack.index(nxt):] + [nxt])
-            elif nxt not in state:
-                visit(nxt, stack + [nxt])
-        state[node] = 2
-
-    for m in sorted(graph):
-        if m not in state:
-            visit(m, [m])
-    assert not cycles, cycles
 
 
 def test_package_import_emits_no_warnings():
