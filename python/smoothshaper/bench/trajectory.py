@@ -329,7 +329,7 @@ def main(argv=None) -> int:
           f"{f['fastpath'] / 1e3:.3f} us")
 
     from .grid_price import report
-    for n in range(1, 9):   # more cases and an adversarial search: bench_grid_price
+    for n in range(1, 9):   # more cases and an adversarial search: bench.grid_price
         print(report(n, 200 if args.quick else 3000))
 
     try:
