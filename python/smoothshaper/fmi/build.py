@@ -11,6 +11,18 @@ __all__ = ["repo_root", "FMU_MODELS", "build_fmus", "fmpy_problems", "fmutool_pr
 
 
 def repo_root() -> Path:
+    """The source checkout this package runs from (where ``fmu/`` and ``c/`` are).
+
+    Returns
+    -------
+    Path
+        The folder three levels above this file (``python/smoothshaper/fmi/``).
+
+    Raises
+    ------
+    OSError
+        The path of this file cannot be resolved.
+    """
     return Path(__file__).resolve().parents[3]
 
 

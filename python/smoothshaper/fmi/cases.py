@@ -15,7 +15,26 @@ __all__ = ["test_input", "validation_cases", "TRAJECTORY_LIMITS", "TRAJECTORY_PR
 
 
 def test_input(t: np.ndarray, *, seed: int = 1) -> np.ndarray:
-    """A staircase with steps of several sizes and both signs, then holding still."""
+    """A staircase with steps of several sizes and both signs, then holding still.
+
+    Parameters
+    ----------
+    t : ndarray of float64, shape (K,)
+        Communication points [s], ascending (the steps fall between 5 % and 60 % of
+        ``t[-1]``).
+    seed : int, keyword-only
+        Seed of the step heights (default 1).
+
+    Returns
+    -------
+    ndarray of float64, shape (K,)
+        The input at ``t``, starting at the rest value 0.5.
+
+    Raises
+    ------
+    IndexError
+        ``t`` is empty.
+    """
     rng = np.random.default_rng(seed)
     u = np.zeros_like(t)
     edges = np.linspace(0.05, 0.6, 6) * t[-1]
