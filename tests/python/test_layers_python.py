@@ -1,53 +1,21 @@
 # SPDX-License-Identifier: Apache-2.0
-"""The Python package keeps the layers docs/architecture.md declares: no import cycle, no
-import the table does not allow, no module outside the table. The checker is unit-tested on
-small synthetic packages (a cycle, an upward import, a stray module), so a pass means
-something."""
+"""The Python package keeps the layers docs/architecture.md declares (section "Python
+package"): no import circle, no import the table does not allow, no module in no layer or in
+two. The table is read, and the rules applied, by test_layers_c.py's code (one parser for both
+tables); this file finds the Python imports. The import reader is unit-tested on small
+synthetic packages (a circle, one through a package's ``__init__``, an upward import, a stray
+module), so a pass means something."""
 from __future__ import annotations
 
 import ast
 import pathlib
-import re
 
-import pytest
+from test_layers_c import check_dependencies, read_layers
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 PACKAGE = ROOT / "python" / "smoothshaper"
 ARCHITECTURE = ROOT / "docs" / "architecture.md"
 SECTION = "Python package"
-NOTHING = {"", "-", "—", "nothing", "none"}
-
-
-# -- the checker ---------------------------------------------------------------------------
-
-def layer_table(markdown: str, section: str) -> list[tuple[str, list[str], set[str]]]:
-    """The first table under the heading ``section``, columns ``layer | folders/modules | may
-    import``: ``(layer, paths, allowed layers)`` per row, top layer first. Paths and layer
-    names are the backticked words of a cell (or its comma-separated words)."""
-    lines = markdown.splitlines()
-    start = next((i for i, line in enumerate(lines)
-                  if re.fullmatch(r"#+\s*" + re.escape(section) + r"\s*", line.strip())), None)
-    assert start is not None, f"no heading {section!r}"
-    rows = []
-    for line in lines[start + 1:]:
-        if line.startswith("#"):
-            break
-        if not line.strip().startswith("|"):
-            if rows:
-                break
-            continue
-        cells = [c.strip() for c in line.strip().strip("|").split("|")]
-        if set("".join(cells)) <= set("-: "):
-            continue                                   # the header rule
-        rows.append(cells)
-    assert rows, f"no table under {section!r}"
-    header, body = rows[0], rows[1:]
-    assert [h.lower() for h in header] == ["layer", "folders/modules", "may import"], header
-
-    def words(cell):
-        found = re.findall(r"`([^`]+)`", cell) or [w.strip() for w in cell.split(",")]
-        return [w for w in found if w.lower() not in NOTHING]
-    return [(name.strip("`* "), words(paths), set(words(allowed))) for name, paths, allowed in body]
 
 
 def _module_name(path: pathlib.Path, package: pathlib.Path) -> str:
@@ -68,8 +36,8 @@ def _top_level_names(tree: ast.Module) -> set[str]:
     return names
 
 
-def import_graph(package: pathlib.Path) -> tuple[dict[str, set[str]], dict[str, str]]:
-    """``({module: modules of the package it imports}, {module: path relative to package})``.
+def import_graph(package: pathlib.Path) -> tuple[dict[str, set[str]], dict[str, pathlib.Path]]:
+    """``({module: modules of the package it imports}, {module: its file})``.
 
     Every import counts, also inside functions. ``from P import x`` is an import of the
     module ``P.x`` when that is a module of the package, of ``P`` when ``P``'s ``__init__``
@@ -98,182 +66,107 @@ def import_graph(package: pathlib.Path) -> tuple[dict[str, set[str]], dict[str, 
                                               defined.get(target, {alias.name})):
                         found.add(target)
         graph[module] = found - {module}
-    return graph, {m: p.relative_to(package).as_posix() for m, p in paths.items()}
+    return graph, paths
 
 
-def assign_layers(files: dict[str, str], table) -> tuple[dict[str, str], list[str]]:
-    """``({module: layer}, [modules no row names])``: a file row wins over its folder, a
-    deeper folder over a shallower one."""
-    rules = [(path, layer) for layer, paths, _ in table for path in paths]
-    layer_of, unassigned = {}, []
-    for module, rel in files.items():
-        matches = [(path.endswith("/"), -len(path), layer) for path, layer in rules
-                   if rel == path or (path.endswith("/") and rel.startswith(path))]
-        if matches:
-            layer_of[module] = min(matches)[2]
-        else:
-            unassigned.append(rel)
-    return layer_of, sorted(unassigned)
-
-
-def import_cycles(graph: dict[str, set[str]]) -> list[list[str]]:
-    """The strongly connected components with more than one module (Tarjan), sorted."""
-    index, low, on_stack, stack, found = {}, {}, set(), [], []
-
-    def visit(v):
-        index[v] = low[v] = len(index)
-        stack.append(v)
-        on_stack.add(v)
-        for w in sorted(graph.get(v, ())):
-            if w not in index:
-                visit(w)
-                low[v] = min(low[v], low[w])
-            elif w in on_stack:
-                low[v] = min(low[v], index[w])
-        if low[v] == index[v]:
-            component = []
-            while True:
-                w = stack.pop()
-                on_stack.discard(w)
-                component.append(w)
-                if w == v:
-                    break
-            if len(component) > 1:
-                found.append(sorted(component))
-
-    for v in sorted(graph):
-        if v not in index:
-            visit(v)
-    return sorted(found)
-
-
-def forbidden_imports(graph, layer_of, table) -> list[str]:
-    """Imports from one layer into another that its row does not allow, as
-    ``"a (layer) -> b (layer)"``."""
-    allowed = {layer: may for layer, _, may in table}
-    return sorted(f"{a} ({layer_of[a]}) -> {b} ({layer_of[b]})"
-                  for a in graph for b in graph[a]
-                  if a in layer_of and b in layer_of and layer_of[a] != layer_of[b]
-                  and layer_of[b] not in allowed[layer_of[a]])
-
-
-def table_problems(table) -> list[str]:
-    """A row that may import its own layer's name, an unknown layer or a layer above it (the
-    table is ordered top to bottom: imports point down)."""
-    names = [layer for layer, _, _ in table]
-    problems = [f"layer {name!r} twice" for name in set(names) if names.count(name) > 1]
-    for i, (layer, _, may) in enumerate(table):
-        problems += [f"{layer} may import {m!r}, which is not a layer below it"
-                     for m in sorted(may) if m not in names[i + 1:]]
-    return problems
-
-
-def check(package: pathlib.Path, markdown: str, section: str = SECTION) -> dict[str, list]:
-    table = layer_table(markdown, section)
-    graph, files = import_graph(package)
-    layer_of, unassigned = assign_layers(files, table)
-    return {"table": table_problems(table), "unassigned": unassigned,
-            "cycles": import_cycles(graph), "forbidden": forbidden_imports(graph, layer_of, table)}
+def check(package: pathlib.Path, markdown: str, root: pathlib.Path = ROOT):
+    """test_layers_c's report for the package's modules (paths relative to ``root``) and the
+    imports between them, against the table of ``markdown``'s section "Python package"."""
+    graph, paths = import_graph(package)
+    rel = {m: p.relative_to(root).as_posix() for m, p in paths.items()}
+    edges = {(rel[a], rel[b]) for a in graph for b in graph[a]}
+    return check_dependencies(sorted(rel.values()), edges, read_layers(markdown, SECTION))
 
 
 # -- the package ---------------------------------------------------------------------------
 
 def test_the_package_keeps_its_declared_layers():
-    problems = check(PACKAGE, ARCHITECTURE.read_text(encoding="utf-8"))
-    assert problems == {"table": [], "unassigned": [], "cycles": [], "forbidden": []}, problems
+    report = check(PACKAGE, ARCHITECTURE.read_text(encoding="utf-8"))
+    assert report.problems() == [], "\n".join(report.problems())
+    assert report.files > 60 and len(report.dependencies) > 200     # the whole package read
 
 
 def test_the_graph_sees_the_imports_that_matter():
-    """Guards the parser itself on the real package: lazy imports inside functions, relative
-    imports two levels up, names from a package's __init__, compiled extensions skipped."""
-    graph, files = import_graph(PACKAGE)
-    assert "smoothshaper.fmi" in graph["smoothshaper.calibrate.outputs"] \
-        or "smoothshaper.validation" in graph["smoothshaper.calibrate.outputs"]   # lazy
-    assert "smoothshaper.filters" in graph["smoothshaper.cli.chain"]                 # from ..
-    assert "smoothshaper" in graph["smoothshaper.cli"]                    # __version__
+    """Guards the reader on the real package: lazy imports inside functions, relative imports
+    two levels up, names from a package's __init__, compiled extensions skipped."""
+    graph, paths = import_graph(PACKAGE)
+    assert graph["smoothshaper.calibrate.outputs"] & {"smoothshaper.fmi",        # lazy
+                                                      "smoothshaper.validation"}
+    assert "smoothshaper.filters" in graph["smoothshaper.cli.chain"]              # from ..
+    assert "smoothshaper" in graph["smoothshaper.cli"]                     # __version__
     assert "smoothshaper.cli.trajectory" in graph["smoothshaper.cli.design"]
     assert not any(m.endswith("_core") for m in graph["smoothshaper.filters"])
-    assert files["smoothshaper.cli"] == "cli/__init__.py"
+    assert paths["smoothshaper.cli"].name == "__init__.py"
 
 
-# -- the checker on synthetic packages -----------------------------------------------------
+# -- the reader and the rules on synthetic packages ----------------------------------------
 
 TABLE = """# Title
 
+## Layers
+
+| layer | paths | may use | what it holds |
+|---|---|---|---|
+| other | `x/*` | — | |
+
 ## Python package
 
-| layer | folders/modules | may import |
-|---|---|---|
-| top | `app/`, `__main__.py` | `low` |
-| low | `__init__.py`, `util.py`, `sub/` | nothing |
-
-## Next section
-
-| layer | folders/modules | may import |
-|---|---|---|
-| other | `x/` | nothing |
+| layer | paths | may use | what it holds |
+|---|---|---|---|
+| top | `pkg/app/*`, `pkg/__main__.py` | low | |
+| low | `pkg/__init__.py`, `pkg/util.py`, `pkg/sub/*` | — | |
 """
 
 
-def _package(tmp_path: pathlib.Path, files: dict[str, str]) -> pathlib.Path:
+def _check(tmp_path: pathlib.Path, files: dict[str, str]):
     package = tmp_path / "pkg"
     for rel, text in {"__init__.py": "", **files}.items():
         (package / rel).parent.mkdir(parents=True, exist_ok=True)
         (package / rel).write_text(text)
-    return package
+    return check(package, TABLE, root=tmp_path)
 
 
-def test_checker_reads_only_its_section_and_orders_layers():
-    table = layer_table(TABLE, SECTION)
-    assert table == [("top", ["app/", "__main__.py"], {"low"}),
-                     ("low", ["__init__.py", "util.py", "sub/"], set())]
-    assert table_problems(table) == []
-    assert table_problems([("a", [], {"b"}), ("b", [], {"a"})]) == \
-        ["b may import 'a', which is not a layer below it"]
-    with pytest.raises(AssertionError):
-        layer_table("## Python package\n\nno table here\n", SECTION)
-
-
-def test_checker_passes_a_clean_package(tmp_path):
-    package = _package(tmp_path, {
+def test_a_clean_synthetic_package_passes(tmp_path):
+    report = _check(tmp_path, {
         "util.py": "import math\n",
         "sub/__init__.py": "from .leaf import f\n",
         "sub/leaf.py": "from .. import util\n\ndef f():\n    from ..util import math\n",
         "app/__init__.py": "from ..sub import f\nfrom . import cmd\n",
         "app/cmd.py": "from .. import _core\n",          # a compiled extension: no module
         "__main__.py": "from .app import cmd\n"})
-    assert check(package, TABLE) == {"table": [], "unassigned": [], "cycles": [],
-                                     "forbidden": []}
+    assert report.problems() == []
+    assert ("pkg/__main__.py", "pkg/app/cmd.py") in report.dependencies
+    assert ("pkg/sub/leaf.py", "pkg/util.py") in report.dependencies      # also lazily
+    assert not any(b.endswith("_core") for _, b in report.dependencies)
 
 
-def test_checker_finds_a_cycle(tmp_path):
-    package = _package(tmp_path, {
+def test_a_lazy_import_circle_fails(tmp_path):
+    report = _check(tmp_path, {
         "util.py": "def g():\n    from .sub import leaf\n",     # lazy: still a dependency
         "sub/__init__.py": "",
         "sub/leaf.py": "from ..util import g\n"})
-    assert check(package, TABLE)["cycles"] == [["pkg.sub.leaf", "pkg.util"]]
+    assert report.cycles == [["pkg/sub/leaf.py", "pkg/util.py"]]
 
 
-def test_checker_finds_a_cycle_through_a_package_init(tmp_path):
-    package = _package(tmp_path, {
+def test_a_circle_through_a_package_init_fails(tmp_path):
+    report = _check(tmp_path, {
         "__init__.py": "from .util import VERSION\n",
         "util.py": "VERSION = 1\n\ndef g():\n    from . import VERSION\n"})
-    assert check(package, TABLE)["cycles"] == [["pkg", "pkg.util"]]
+    assert report.cycles == [["pkg/__init__.py", "pkg/util.py"]]
 
 
-def test_checker_finds_an_upward_import(tmp_path):
-    package = _package(tmp_path, {
+def test_an_upward_import_fails(tmp_path):
+    report = _check(tmp_path, {
         "util.py": "import pkg.app.cmd\n",
         "app/__init__.py": "",
         "app/cmd.py": "from ..util import x\n",
         "sub/__init__.py": "",
         "sub/leaf.py": "def f():\n    from ..app import cmd\n"})
-    result = check(package, TABLE)
-    assert result["forbidden"] == ["pkg.sub.leaf (low) -> pkg.app.cmd (top)",
-                                   "pkg.util (low) -> pkg.app.cmd (top)"]
-    assert result["cycles"] == [["pkg.app.cmd", "pkg.util"]]
+    assert report.upward == [("pkg/sub/leaf.py", "pkg/app/cmd.py", "low", "top"),
+                             ("pkg/util.py", "pkg/app/cmd.py", "low", "top")]
+    assert report.cycles == [["pkg/app/cmd.py", "pkg/util.py"]]
 
 
-def test_checker_finds_a_module_no_row_names(tmp_path):
-    package = _package(tmp_path, {"util.py": "", "stray.py": "", "extra/mod.py": ""})
-    assert check(package, TABLE)["unassigned"] == ["extra/mod.py", "stray.py"]
+def test_a_module_in_no_layer_fails(tmp_path):
+    report = _check(tmp_path, {"util.py": "", "stray.py": "", "extra/mod.py": ""})
+    assert report.unassigned == ["pkg/extra/mod.py", "pkg/stray.py"]
