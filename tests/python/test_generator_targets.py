@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """The generator's targets beyond rest, against ruckig and the NumPy reference.
 
-Campaigns (smoothshaper.bench_targets) per feature, from random states (rest targets, moving
+Campaigns (smoothshaper.bench.targets) per feature, from random states (rest targets, moving
 targets, the velocity interface, the stop), double and float: the arrival at most one sample
 after ruckig's duration rounded up to the grid (a moving target past a blocked duration:
 within a sample of ruckig's discrete duration), every reported value within the limits to
@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from smoothshaper import bench_targets as bt
+from smoothshaper.bench import targets as bt
 from smoothshaper.errors import ParameterError
 from smoothshaper.trajectory import Generator, generator_reference
 

@@ -17,7 +17,7 @@ position over its bound after the rounding floor of docs/sampled-limits.md, the 
 landing, and the cases where ruckig errs or is slower than our continuous optimum (not time
 optimal): those are counted, not compared.
 
-``python -m smoothshaper.bench_targets [--cases N] [--precision double|float] [--seed S]``
+``python -m smoothshaper.bench.targets [--cases N] [--precision double|float] [--seed S]``
 prints the table; tests/python/test_generator_targets.py asserts it on fixed-seed draws.
 """
 from __future__ import annotations
@@ -96,7 +96,7 @@ def run_case(case: dict, *, precision: str = "double", samples: float | None = N
              reference_T: float | None = None) -> dict:
     """Run the case through the C generator. ``samples``: Ts as a fraction of the motion
     (T/Ts), default drawn from the case's own duration (10 to 2000 samples)."""
-    from .trajectory import Generator
+    from ..trajectory import Generator
     T = reference_T if reference_T is not None else _ruckig(case)
     if T is None:
         return dict(ruckig=None)
@@ -210,7 +210,7 @@ def _row(s) -> str:
 
 
 def main(argv=None) -> int:
-    p = argparse.ArgumentParser(prog="python -m smoothshaper.bench_targets",
+    p = argparse.ArgumentParser(prog="python -m smoothshaper.bench.targets",
                                 description=__doc__.split("\n\n")[0])
     p.add_argument("--cases", type=int, default=1000, help="cases per feature (default 1000)")
     p.add_argument("--precision", choices=("double", "float"), default="double")
