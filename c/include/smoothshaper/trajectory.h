@@ -201,17 +201,17 @@ typedef struct sms_plan_limits {
 typedef struct sms_plan {
     size_t count;                      /* segments in use (0: at rest at goal) */
     int shape;                         /* 0: linear ramps of a; 1: half-cosine transitions */
-    size_t n[SMS_PLAN_MAX_SEGMENTS];
-    sms_real f[SMS_PLAN_MAX_SEGMENTS];
-    sms_real p[SMS_PLAN_MAX_SEGMENTS], v[SMS_PLAN_MAX_SEGMENTS], a[SMS_PLAN_MAX_SEGMENTS];
-    sms_real j[SMS_PLAN_MAX_SEGMENTS], d[SMS_PLAN_MAX_SEGMENTS];
-    size_t end;
+    size_t end;                        /* (what every sample after the plan reads first) */
     sms_real end_f;
     sms_real goal;
     sms_real drift;                    /* velocity after the end (0: at rest on goal) */
     size_t arrive;
     sms_real arrive_f;
     sms_real duration;                 /* sum of d [s] (continuous, before the grid) */
+    size_t n[SMS_PLAN_MAX_SEGMENTS];
+    sms_real f[SMS_PLAN_MAX_SEGMENTS];
+    sms_real p[SMS_PLAN_MAX_SEGMENTS], v[SMS_PLAN_MAX_SEGMENTS], a[SMS_PLAN_MAX_SEGMENTS];
+    sms_real j[SMS_PLAN_MAX_SEGMENTS], d[SMS_PLAN_MAX_SEGMENTS];
 } sms_plan;
 
 /** @brief What a target asks for (values stable: FMU enumeration and saved states). */
@@ -381,6 +381,10 @@ typedef struct sms_generator {
     sms_target target;    /**< latest valid target (a stop as velocity 0, acceleration 0; the
                                position of a velocity target as 0) */
     sms_target goal;      /**< the target the running plan heads for */
+    sms_target request;   /**< the last target given, as given: a sample whose target equals it
+                               field for field takes no other look at it */
+    int pending;          /**< 1 while the target differs from the goal and is not dropped: a
+                               re-plan is due (at the first sample a plan can start from) */
     int refused;          /**< 1 while the held target is dropped (its move cannot be represented);
                                cleared when the target changes, by reset and set_state */
     size_t dropped;       /**< targets dropped since init or the last reset (read-only; not part

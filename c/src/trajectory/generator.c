@@ -250,6 +250,8 @@ void sms_generator_reset(sms_generator *g, sms_real position)
     g->target.acceleration = 0;
     g->target.interface = SMS_INTERFACE_POSITION;
     g->goal = g->target;
+    g->request = g->target;
+    g->pending = 0;
     g->refused = 0;
     g->dropped = 0;
     g->quiet = g->stage_length;
@@ -402,24 +404,35 @@ static int can_start(const sms_generator *g, sms_real v, sms_real a)
     return brake <= V;
 }
 
-/* Take a new valid target (an invalid one is ignored, the previous kept). */
+/* Take a new valid target (an invalid one is ignored, the previous kept). The same target
+ * as on the sample before, field for field, is the common case and costs four compares. */
 static void take_target(sms_generator *g, const sms_target *target)
 {
     sms_target t;
+    if (same_target(target, &g->request))
+        return;
+    g->request = *target;
     if (sms_generator_canonical(g, target, &t) == SMS_OK && !same_target(&t, &g->target)) {
         g->target = t;
         g->refused = 0;
+        g->pending = !same_target(&t, &g->goal);
     }
 }
 
-/* Advance the plan one sample; re-plan from the exact state there when the target differs
- * from the plan's goal (and the state allows it, can_start()). */
-static void step_plan(sms_generator *g, const sms_target *target, sms_real out[4])
+/* Advance the plan one sample under the held target; re-plan from the exact state there when
+ * the target differs from the plan's goal (and the state allows it, can_start()). */
+static void step_plan(sms_generator *g, sms_real out[4])
 {
-    take_target(g, target);
     ++g->k;
+    if (g->k > g->plan.end && g->plan.drift == 0 && !g->pending) {
+        /* resting on the goal (what sms_plan_eval() gives past the end), the common case */
+        out[0] = g->plan.goal;
+        out[1] = out[2] = out[3] = 0;
+        return;
+    }
     sms_plan_eval(&g->plan, g->Ts_signal, g->k, out);
-    if (!same_target(&g->target, &g->goal) && !g->refused && can_start(g, out[1], out[2])) {
+    if (g->pending && can_start(g, out[1], out[2])) {
+        g->pending = 0;
         /* a move that cannot be represented (the planner returns 0) is dropped: the running
          * plan goes on, and the target is not tried again until it changes */
         if (sms_generator_replan(g, &g->plan, out[0], out[1], out[2], &g->target)) {
@@ -449,10 +462,11 @@ static void count_quiet(sms_generator *g, const sms_real o[4])
     }
 }
 
-void sms_generator_step_target(sms_generator *g, const sms_target *target, sms_real out[4])
+/* One sample under the held target: the plan, then the tuned stage if any. */
+static void step_held(sms_generator *g, sms_real out[4])
 {
     size_t i;
-    step_plan(g, target, out);
+    step_plan(g, out);
     if (g->stage_length == 0)
         return;
     count_quiet(g, out);
@@ -464,6 +478,12 @@ void sms_generator_step_target(sms_generator *g, const sms_target *target, sms_r
         out[2] = 0;
         out[3] = 0;
     }
+}
+
+void sms_generator_step_target(sms_generator *g, const sms_target *target, sms_real out[4])
+{
+    take_target(g, target);
+    step_held(g, out);
 }
 
 /* A position target at rest, as sms_generator_step() takes it (non-finite: the held one). */
@@ -481,7 +501,13 @@ static sms_target rest_target(const sms_generator *g, sms_real position)
 
 void sms_generator_step(sms_generator *g, sms_real target, sms_real out[4])
 {
-    sms_target t = rest_target(g, target);
+    sms_target t;
+    if (target == g->request.position && g->request.interface == SMS_INTERFACE_POSITION &&
+        g->request.velocity == 0 && g->request.acceleration == 0) {
+        step_held(g, out); /* the held target, as on the sample before */
+        return;
+    }
+    t = rest_target(g, target);
     sms_generator_step_target(g, &t, out);
 }
 
@@ -516,9 +542,10 @@ static void hold_plan_through_stage(sms_generator *g, uint64_t n, sms_real out[4
 static int replan_pending(const sms_generator *g, const sms_target *target)
 {
     sms_target t;
-    if (sms_generator_canonical(g, target, &t) == SMS_OK && !same_target(&t, &g->target))
+    if (!same_target(target, &g->request) && sms_generator_canonical(g, target, &t) == SMS_OK &&
+        !same_target(&t, &g->target))
         return 1;
-    return !same_target(&g->target, &g->goal) && !g->refused;
+    return g->pending;
 }
 
 void sms_generator_hold_target(sms_generator *g, const sms_target *target, uint64_t n,
@@ -627,6 +654,8 @@ sms_status sms_generator_start(sms_generator *g, sms_real q, sms_real v, sms_rea
     g->k = 0;
     g->target = t;
     g->goal = t;
+    g->request = t;
+    g->pending = 0;
     g->refused = 0;
     g->quiet = 0;
     return SMS_OK;

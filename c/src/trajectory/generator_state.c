@@ -139,12 +139,17 @@ sms_status sms_generator_set_state(sms_generator *g, const double *src, size_t n
     p = src + GEN_PLAN;
     (void)get_target(g, p, &g->target);
     (void)get_target(g, p + GEN_TARGET_COUNT, &g->goal);
+    g->request = g->target;
     p += 2u * GEN_TARGET_COUNT;
     g->plan_q = (sms_real)p[0];
     g->plan_v = (sms_real)p[1];
     g->plan_a = (sms_real)p[2];
     g->k = (size_t)p[3];
     g->refused = 0; /* a dropped target is tried (and dropped) again on the next sample */
+    g->pending = g->target.interface != g->goal.interface ||
+                 g->target.position != g->goal.position ||
+                 g->target.velocity != g->goal.velocity ||
+                 g->target.acceleration != g->goal.acceleration;
     (void)sms_generator_replan(g, &g->plan, g->plan_q, g->plan_v, g->plan_a, &g->goal);
     if (g->stage_length == 0)
         return SMS_OK;
