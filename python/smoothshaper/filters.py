@@ -46,7 +46,7 @@ _STATUS_PARAMETER = {
     -20: "bandwidth", -21: "duration",
     # a saved C state of another configuration: the status names the field, the argument is the state
     **{code: "state" for code in range(-43, -21)},
-    -44: "target", -45: "velocity", -46: "acceleration", -47: "interface",
+    -46: "target", -47: "velocity", -48: "acceleration", -49: "interface",
 }
 #: Saved Chain states start with this tag and format version, then the configuration they
 #: belong to (see :meth:`Chain.get_state`).

@@ -337,8 +337,8 @@ class Generator(_state_identity.SavedState):
             self._gen, self._ffi.cast("sms_target *", self._ffi.from_buffer(block)), n, index)
         if st != 0:
             i = int(index[0])
-            field = {-44: ("targets",), -45: ("velocity",), -46: ("acceleration",),
-                     -47: ("interface",)}[st]
+            field = {-46: ("targets",), -47: ("velocity",), -48: ("acceleration",),
+                     -49: ("interface",)}[st]
             raise ParameterError(field[0], _target_message(
                 self, field[0], i, float(pos[i]), float(vel[i]), float(acc[i]), int(codes[i])), st)
         return block
@@ -441,19 +441,19 @@ class Generator(_state_identity.SavedState):
         if st == 0:
             return
         tol = float(lib.SMS_LIMIT_RTOL)
-        if st == -44:
+        if st == -46:
             raise ParameterError("q", f"q={q!r} must be finite", st)
-        if st == -45 and not lib.sms_generator_check_target(self._gen, t) == -45:
+        if st == -47 and not lib.sms_generator_check_target(self._gen, t) == -47:
             raise ParameterError("v", f"v={v!r} exceeds vmax={self.vmax!r} (beyond the "
                                  f"generator's own rounding, a relative {tol:.3g})", st)
-        if st == -46 and not lib.sms_generator_check_target(self._gen, t) == -46:
+        if st == -48 and not lib.sms_generator_check_target(self._gen, t) == -48:
             raise ParameterError(
                 "a", f"(q, v, a) = ({q!r}, {v!r}, {a!r}) is not a state a plan of this generator "
                 f"can start from: |a| beyond amax={self.amax!r}, or bringing a to zero would pass "
                 f"vmax={self.vmax!r} (beyond the generator's own rounding, a relative {tol:.3g})",
                 st)
-        if st in (-45, -46, -47):
-            name = {-45: "velocity", -46: "acceleration", -47: "interface"}[st]
+        if st in (-47, -48, -49):
+            name = {-47: "velocity", -48: "acceleration", -49: "interface"}[st]
             raise ParameterError(name, _target_message(
                 self, name, None, float(t.position), float(t.velocity), float(t.acceleration),
                 int(t.interface)), st)

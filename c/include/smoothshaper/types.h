@@ -101,14 +101,14 @@ typedef enum sms_status {
     SMS_ERR_STATE_SYNC = -42,       /**< saved with another sync (multi-axis generator) */
     SMS_ERR_STATE_STAGES = -43,     /**< saved with another number of vibration stages on an
                                          axis (multi-axis generator) */
-    SMS_ERR_TARGET_POSITION = -44,  /**< a target position is NaN/Inf */
-    SMS_ERR_TARGET_VELOCITY = -45,  /**< a target velocity is NaN/Inf, beyond the velocity
+    SMS_ERR_TARGET_POSITION = -46,  /**< a target position is NaN/Inf */
+    SMS_ERR_TARGET_VELOCITY = -47,  /**< a target velocity is NaN/Inf, beyond the velocity
                                          bounds, or not 0 where the profile plans to rest only */
-    SMS_ERR_TARGET_ACCELERATION = -46, /**< a target acceleration is NaN/Inf, beyond the
+    SMS_ERR_TARGET_ACCELERATION = -48, /**< a target acceleration is NaN/Inf, beyond the
                                          acceleration bounds, takes the velocity beyond its
                                          bounds before or after the target (v -+ a|a|/(2 jmax)),
                                          or is not 0 where the profile cannot hold one */
-    SMS_ERR_INTERFACE = -47         /**< unknown control interface (::sms_interface) */
+    SMS_ERR_INTERFACE = -49         /**< unknown control interface (::sms_interface) */
 } sms_status;
 
 /** @brief Stage families. Values are stable (the FMU enumeration and saved states use them). */
