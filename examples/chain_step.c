@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The README's C example as a complete program: a harmonic smoother and a ZV shaper, both
  * placed on the mode wn = 100 rad/s, filter a unit step sampled at 1 kHz. Built and run by
  * ctest (test "example_chain_step"), which also checks what it prints. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * The contract between the shared FMI 2.0 Co-Simulation glue (fmi2_glue.c) and one model file.
  *

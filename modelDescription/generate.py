@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Generate an FMU's modelDescription.xml and the matching C header of value references.
 
 One source of truth for every variable: the model tables below. The C model files include the

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # The main job: set up, build the FMUs, validate them against the NumPy reference with fmpy,
 # reproduce the seed papers' claims and run the system co-simulation. Results land in
 # out/validation, out/report and out/cosim.

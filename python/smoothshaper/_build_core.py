@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """cffi builder for ``smoothshaper._core`` (double) and ``smoothshaper._core_float`` (float).
 
 API mode, out of line: the extension compiles every C source of ``c/src`` (all its areas:

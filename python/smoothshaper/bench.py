@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Speed benchmark: every path of the library next to what it replaces, in one run.
 
 ``python -m smoothshaper.bench`` prints the tables and writes them to ``docs/benchmarks.md``

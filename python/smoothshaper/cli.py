@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The smoothshaper command line: design, analyze, identify, calibrate, validate, report.
 
 A stage is written KIND:key=value,key=value (--stage, repeatable; stages chain in the given

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """``smoothshaper calibrate``: from measured records to a recommended filter.
 
     smoothshaper calibrate FILE... [--kind auto|raw|decay|psd|frf] [--axis x|y|z|all]

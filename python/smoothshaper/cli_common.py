@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """What every ``smoothshaper`` subcommand module shares: exit codes, the one-line error, the
 argument parser, tables, the progress bar and the matplotlib import. Kept apart from
 :mod:`smoothshaper.cli` so subcommand modules import it without importing the CLI (no cycle)."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """How long a ``smoothshaper`` request will take, computed from its sizes before it starts.
 
 Every CLI path whose work grows with numbers the user gives (chain length, sweep points,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """System co-simulation: three FMUs connected by an SSP file, run in libcosim and fmpy.
 
 Run ``python -m smoothshaper.cosim --out DIR`` (``scripts/main.sh`` does, into out/cosim).

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """C-backed filters: :class:`Chain` and the C design / identification functions.
 
 Everything here calls the compiled C core (``smoothshaper._core``, or ``_core_float`` with

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """``smoothshaper validate``: build the FMUs, check them with fmpy, compare them with the reference.
 
 ``run(out_dir)`` builds ``SmoothShaper.fmu`` and ``TrajectoryGenerator.fmu`` with CMake, runs

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Per-sample cost of every filter next to the plain recursion of the same filter, measured in
  * one run: contenders interleaved round by round, CPU time, median over the rounds.
  *

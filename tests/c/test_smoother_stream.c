@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The smoothers as streams: one block == random splits == in place == sample by sample (bit
  * for bit), reset to a rest value, state save/load, NaN/Inf input recovery, and every invalid
  * configuration rejected with its status and the instance untouched. */

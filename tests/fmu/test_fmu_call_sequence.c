@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * Random sequences of FMI 2.0 calls against SmoothShaper, or TrajectoryGenerator when built with
  * FMU_TEST_TRAJECTORY (each linked in-process, so ASan/UBSan see

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * Seeded random FMI 2.0 call sequences against one model linked in-process: SmoothShaper, or
  * TrajectoryGenerator (FMU_TEST_TRAJECTORY), MultiAxisGenerator (FMU_TEST_MULTI_AXIS) or

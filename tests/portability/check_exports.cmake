@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 cmake_minimum_required(VERSION 3.16)
 # The shared library must export exactly the functions the public headers mark SMS_API:
 # nothing else (hidden visibility works, no helper or libc symbol leaks) and none missing.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 cmake_minimum_required(VERSION 3.16)
 # Fails if a program linked with --gc-sections (per_sample_probe.c: only step/process/reset
 # referenced) still imports a symbol that the C math library defines: the per-sample path

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 cmake_minimum_required(VERSION 3.16)
 # Cross-compiles every C source under c/src (all areas) for a Cortex-M4F (hard float,
 # single-precision FPU) in both precisions with the library's strict C99 flags, and prints the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Takes the address of every per-sample function (step, process, reset) of one group
  * (PROBE_GROUP) and nothing else, so that a --gc-sections link keeps exactly the code those
  * functions can reach. Never run: check_no_libm.cmake and cortex_m.cmake inspect which libm

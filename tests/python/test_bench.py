@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The benchmark command runs end to end (a smoke test: --quick, no timing is asserted) and
 writes every table the docs quote."""
 import shutil

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """smoothshaper calibrate: synthetic records of plants with known modes (simulated exactly) in
 all four input kinds, the recommendation checked on the true plant and against the established
 3-D printer calibration's pick, outputs, and bad input."""

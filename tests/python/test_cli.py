@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The smoothshaper command line: tables, plots, identification, errors, lazy subcommands."""
 import math
 import os

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The system co-simulation (TrajectoryGenerator -> SmoothShaper -> ElasticPlant, SSP) in
 libcosim and fmpy against the NumPy reference, and the ElasticPlant FMU against the exact ZOH
 plant for several communication steps."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Every Python example in docs/ runs as written.
 
 The blocks of a page run in order in one namespace, from a scratch folder laid out like a

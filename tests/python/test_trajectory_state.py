@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Saved generator states carry their configuration's identity: a state of another
 configuration is refused with a ParameterError naming the field that differs, the state of the
 same configuration continues bit for bit (a run split by get_state/set_state equals the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """smoothshaper.validation: the co-simulation timing model, checked on hand-computed cases, and
 the report of a full run (the FMUs built by the FMU tests' fixture)."""
 from __future__ import annotations

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /**
  * @file chain.h
  * @brief Stages in series: y = H_{n-1}( ... H_1(H_0(x))).

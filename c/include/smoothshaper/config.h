@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /**
  * @file config.h
  * @brief ::sms_stage_config, the plain description of one stage of any family.

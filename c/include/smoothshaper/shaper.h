@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /**
  * @file shaper.h
  * @brief Input shapers: ZV^n (ZV, ZVD, ZVDD, ...), EI, two- and three-hump EI, MZV, generalised

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /**
  * @file smoother.h
  * @brief FIR smoothers in O(1), drift-free recursive form: rectangular, harmonic, damped

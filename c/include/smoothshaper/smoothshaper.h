@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /**
  * @file smoothshaper.h
  * @brief Umbrella header: include this one.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /**
  * @file trajectory.h
  * @brief Kinematic design (limits, optionally mixed with a mode), the online multi-point

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /**
  * @file types.h
  * @brief Scalar type, status codes and stage kinds shared by every smoothshaper module.

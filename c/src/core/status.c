@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Status and kind names: constant tables, no state. */
 #include "smoothshaper/types.h"
 

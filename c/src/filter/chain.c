@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Stages in series over one caller memory block, laid out stage after stage. */
 #include <math.h>
 #include "smoothshaper/chain.h"

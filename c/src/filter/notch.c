@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Notch biquad: Tustin (pre-warped at wn) or pole-zero matched coefficients, and the
  * direct-form-I recursion with non-finite recovery (notch.h). */
 #include <float.h>

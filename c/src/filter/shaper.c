@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Input shapers: validation, discretisation (paper rounding or exact split + least-norm
  * correction, docs/exact-mode.md) and the sparse FIR engine. */
 #include <math.h>

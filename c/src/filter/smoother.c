@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The O(1) drift-free engine shared by the four smoothers: two restarted copies of a complex
  * first-order recursion plus at most two direct taps (exact timing) (see smoother.h). */
 #include <float.h>

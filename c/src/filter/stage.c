@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* One interface over the three implementation families: each stage's memory layout (instance,
  * tap table, delay line, each on a cell boundary) and dispatch; no filtering here. */
 #include <stdint.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The single-sample entry points: each is its object's process() on one sample, kept in a
  * file of its own so that the compiler does not inline a second copy of each per-sample loop
  * or dispatch into it (one loop per family, one dispatch, in a firmware image). They sit above

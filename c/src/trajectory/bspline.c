@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* B-spline filters (Biagiotti & Melchiorri 2011b): p rectangular stages per axis, control
  * points from via-points by a banded solve (no pivoting: the collocation matrix of a B-spline
  * basis is totally positive, for which elimination without pivoting is stable). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Online multi-point generator (trajectory.h, docs/sampled-limits.md): the time-optimal plan of
  * the profile's shape from the current state on every new target (plan.c), run through the
  * stage tuned to the mode when there is one. init may use libm; step is O(1) without it. */

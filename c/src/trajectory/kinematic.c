@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Kinematic design (docs/design.md, docs/sampled-limits.md): lengths of the shortest
  * rest-to-rest chain within n derivative bounds, as a continuous design and on a sample grid:
  * what is valid, which multiple of a mode the tuned last stage takes, and the public designs.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Ready-to-use outputs of a calibration: table, JSON, C config, FMU start values, firmware lines.
 
 * ``recommended.stages``: dicts that ``smoothshaper.Stage(**d)`` accepts, so
