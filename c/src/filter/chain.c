@@ -173,7 +173,7 @@ static uint64_t fir_settle_after(const sms_stage *st, uint64_t offset)
 }
 
 /* Advance an absorbed FIR stage by n samples (its values no longer change: only the ring
- * head and the copies' ages move); a settled notch is a fixed point. */
+ * head moves); a settled notch is a fixed point. */
 static void advance_absorbed(sms_stage *st, uint64_t n)
 {
     switch (sms_family_of(st->kind)) {

@@ -168,6 +168,11 @@ void sms_notch_process(sms_notch *f, const sms_real *in, sms_real *out, size_t n
     f->w2 = w2;
 }
 
+void sms_notch_step(sms_notch *f, sms_real *x)
+{
+    sms_notch_process(f, x, x, 1u);
+}
+
 size_t sms_notch_state_count(const sms_notch *f)
 {
     (void)f;
