@@ -126,42 +126,47 @@ void sms_notch_reset(sms_notch *f, sms_real rest)
     f->rest = rest;
 }
 
+/* One sample of the state (x1, x2, w1, w2); the output. */
+static inline sms_real notch_sample(sms_real d0, sms_real d2, sms_real a1, sms_real a2,
+                                    sms_real *x1, sms_real *x2, sms_real *w1, sms_real *w2,
+                                    sms_real v)
+{
+    sms_real w = d0 * (v - *x1) + d2 * (*x2 - *x1) - a1 * *w1 - a2 * *w2;
+    sms_real y;
+    /* The transient ends exactly: once w and its previous value are both below TINY, the
+     * recursion state is set to zero (a fixed point under a constant input), so a held
+     * input is absorbed in a bounded number of samples instead of decaying through the
+     * subnormals, where rounding to a fixed quantum can sustain a cycle. */
+    if (w < TINY && w > -TINY && *w1 < TINY && *w1 > -TINY) {
+        w = 0;
+        *w1 = 0;
+    }
+    y = v + w;
+    if (y - y != 0) {
+        /* Non-finite: a bad input sample is skipped (passed through, state kept); a finite
+         * input with a non-finite result (overflow, bad loaded state) restarts at rest
+         * there. */
+        if (v - v == 0) {
+            *x1 = *x2 = v;
+            *w1 = *w2 = 0;
+        }
+        return v;
+    }
+    *x2 = *x1;
+    *x1 = v;
+    *w2 = *w1;
+    *w1 = w;
+    return y;
+}
+
 /* The state lives in locals for the whole block (the instance is read and written once). */
 void sms_notch_process(sms_notch *f, const sms_real *in, sms_real *out, size_t n)
 {
     const sms_real d0 = f->d0, d2 = f->d2, a1 = f->a1, a2 = f->a2;
     sms_real x1 = f->x1, x2 = f->x2, w1 = f->w1, w2 = f->w2;
     size_t i;
-    for (i = 0; i < n; ++i) {
-        const sms_real v = in[i];
-        sms_real w = d0 * (v - x1) + d2 * (x2 - x1) - a1 * w1 - a2 * w2;
-        sms_real y;
-        /* The transient ends exactly: once w and its previous value are both below TINY, the
-         * recursion state is set to zero (a fixed point under a constant input), so a held
-         * input is absorbed in a bounded number of samples instead of decaying through the
-         * subnormals, where rounding to a fixed quantum can sustain a cycle. */
-        if (w < TINY && w > -TINY && w1 < TINY && w1 > -TINY) {
-            w = 0;
-            w1 = 0;
-        }
-        y = v + w;
-        if (y - y != 0) {
-            /* Non-finite: a bad input sample is skipped (passed through, state kept); a finite
-             * input with a non-finite result (overflow, bad loaded state) restarts at rest
-             * there. */
-            if (v - v == 0) {
-                x1 = x2 = v;
-                w1 = w2 = 0;
-            }
-            out[i] = v;
-            continue;
-        }
-        x2 = x1;
-        x1 = v;
-        w2 = w1;
-        w1 = w;
-        out[i] = y;
-    }
+    for (i = 0; i < n; ++i)
+        out[i] = notch_sample(d0, d2, a1, a2, &x1, &x2, &w1, &w2, in[i]);
     f->x1 = x1;
     f->x2 = x2;
     f->w1 = w1;
@@ -170,7 +175,7 @@ void sms_notch_process(sms_notch *f, const sms_real *in, sms_real *out, size_t n
 
 void sms_notch_step(sms_notch *f, sms_real *x)
 {
-    sms_notch_process(f, x, x, 1u);
+    *x = notch_sample(f->d0, f->d2, f->a1, f->a2, &f->x1, &f->x2, &f->w1, &f->w2, *x);
 }
 
 size_t sms_notch_state_count(const sms_notch *f)

@@ -291,6 +291,7 @@ static inline void store_copies(sms_smoother *f, const copies *s, int c, int pol
 
 /* One sample of the recursion in both lanes; the old lane's w + lo (Re w for a real pole, Im w
  * for a complex one). `oldest` is x[n-M] (for the young lane its reference stands in). */
+#ifdef SMS_SMOOTHER_VARIANT_LOOPS
 static inline sms_real recur_real(const constants *k, copies *s, sms_real x, sms_real oldest,
                                   int pole)
 {
@@ -310,8 +311,10 @@ static inline sms_real recur_real(const constants *k, copies *s, sms_real x, sms
     s->w_re = w;
     return LANE(s->w_re, 0) + LANE(s->lo_re, 0);
 }
+#endif
 
-static inline sms_real recur_complex(const constants *k, copies *s, sms_real x, sms_real oldest)
+static inline sms_real recur_complex(const constants *k, copies *s, sms_real x, sms_real oldest,
+                                     int real_out)
 {
     const lanes o = SUB(LANES(oldest, LANE(s->ref, 1)), s->ref);
     const lanes d_re = ADD(SUB(MUL(k->pm1, s->w_re), MUL(k->pim, s->w_im)),
@@ -330,12 +333,22 @@ static inline sms_real recur_complex(const constants *k, copies *s, sms_real x, 
     s->w_im = s_im;
     /* Tap 0 of the half-sine families is 0: x reaches Im w a sample later. 0 x (0, or NaN
      * for a non-finite x) gives the output the NaN that the convolution's 0 x[n] has. */
-    return LANE(s->w_im, 0) + LANE(s->lo_im, 0) + (sms_real)0 * x;
+    return real_out ? LANE(s->w_re, 0) + LANE(s->lo_re, 0)
+                    : LANE(s->w_im, 0) + LANE(s->lo_im, 0) + (sms_real)0 * x;
 }
 
+/* The vector path runs each pole type's own recursion; the portable path runs the complex one
+ * for every pole (smaller code): a real pole has Im q = 0 and Im c = Im t = Im q_lo = 0, so
+ * Im w stays 0 and Re w follows the real recursion's general form (the extra terms add exact
+ * zeros; the rectangular stage's c (x - x[n-M]) is the vector path's shortcut). */
 static inline sms_real recur(const constants *k, copies *s, sms_real x, sms_real oldest, int pole)
 {
-    return pole == POLE_COMPLEX ? recur_complex(k, s, x, oldest) : recur_real(k, s, x, oldest, pole);
+#ifdef SMS_SMOOTHER_VARIANT_LOOPS
+    return pole == POLE_COMPLEX ? recur_complex(k, s, x, oldest, 0)
+                                : recur_real(k, s, x, oldest, pole);
+#else
+    return recur_complex(k, s, x, oldest, pole != POLE_COMPLEX);
+#endif
 }
 
 /* The run of equal inputs up to x (at most L) and the output: x itself once the last L inputs
@@ -398,34 +411,33 @@ static inline void segment(sms_smoother *f, const sms_real *in, sms_real *out, s
     f->run = run;
 }
 
+#ifdef SMS_SMOOTHER_VARIANT_LOOPS
 /* 1 when none of the n inputs equals the one before it (prev before in[0]), and L >= 2; a
- * few lanes at a time where there are vectors. */
+ * vector of inputs at a time. (The portable path does not look ahead: smaller code.) */
 static int all_varied(const sms_smoother *f, const sms_real *in, size_t n)
 {
-    size_t i = 1;
+    enum { W = sizeof(lanes) / sizeof(sms_real) };
+    lanes a = {0}, b = {0};
+    __typeof__(a == b) equal = a != a;   /* all lanes false */
+    size_t i = 1, j;
     if (f->length < 2u || in[0] == f->history[(f->head == 0u ? f->window : f->head) - 1u])
         return 0;
-#ifdef SMS_SMOOTHER_VARIANT_LOOPS
-    {
-        enum { W = sizeof(lanes) / sizeof(sms_real) };
-        lanes a = {0}, b = {0};
-        __typeof__(a == b) equal = a != a;   /* all lanes false */
-        size_t j;
-        for (; i + W <= n; i += W) {
-            memcpy(&a, in + i, sizeof a);
-            memcpy(&b, in + i - 1u, sizeof b);
-            equal |= a == b;
-        }
-        for (j = 0; j < W; ++j)
-            if (equal[j])
-                return 0;
+    for (; i + W <= n; i += W) {
+        memcpy(&a, in + i, sizeof a);
+        memcpy(&b, in + i - 1u, sizeof b);
+        equal |= a == b;
     }
-#endif
+    for (j = 0; j < W; ++j)
+        if (equal[j])
+            return 0;
     for (; i < n; ++i)
         if (in[i] == in[i - 1u])
             return 0;
     return 1;
 }
+#else
+#define all_varied(f, in, n) 0
+#endif
 
 #ifndef SMS_SMOOTHER_VARIANT_LOOPS
 /* The young copy alone over a segment (portable path): it only reads the input. */
@@ -450,10 +462,21 @@ static void young_segment(sms_smoother *f, const sms_real *in, size_t n, int pol
     } while (0)
 #endif
 
-/* n samples from head, n <= M - head; varied as segment() (0 when not known). */
-static inline void run_segment(sms_smoother *f, const sms_real *in, sms_real *out, size_t n,
+/* Inlined into process() and step() where there are vectors (speed); one copy of the loops
+ * on the portable path (firmware: code size). */
+#ifdef SMS_SMOOTHER_VARIANT_LOOPS
+#define SEGMENT_LINKAGE static inline
+#else
+#define SEGMENT_LINKAGE static
+#endif
+
+/* n samples from head, n <= M - head (the old copy retires first when head is 0); varied as
+ * segment() (0 when not known). */
+SEGMENT_LINKAGE void run_segment(sms_smoother *f, const sms_real *in, sms_real *out, size_t n,
                                int varied)
 {
+    if (f->head == 0u)
+        retire_old_copy(f);
 #ifdef SMS_SMOOTHER_VARIANT_LOOPS
     /* Constant flags per loop: the compiler drops the unused branches from each. */
     switch (f->variant) {
@@ -480,8 +503,6 @@ void sms_smoother_process(sms_smoother *f, const sms_real *in, sms_real *out, si
 {
     while (n > 0u) {
         size_t seg = f->window - f->head;
-        if (f->head == 0u)
-            retire_old_copy(f);
         if (n < seg)
             seg = n;
         run_segment(f, in, out, seg, all_varied(f, in, seg));
@@ -493,8 +514,6 @@ void sms_smoother_process(sms_smoother *f, const sms_real *in, sms_real *out, si
 
 void sms_smoother_step(sms_smoother *f, sms_real *x)
 {
-    if (f->head == 0u)
-        retire_old_copy(f);
     run_segment(f, x, x, 1u, 0);
 }
 
