@@ -47,6 +47,7 @@ _STATUS_PARAMETER = {
     -20: "bandwidth", -21: "duration",
     # a saved C state of another configuration: the status names the field, the argument is the state
     **{code: "state" for code in range(-43, -21)},
+    -44: "coeffs",
 }
 #: Saved Chain states start with this tag and format version, then the configuration they
 #: belong to (see :meth:`Chain.get_state`).

@@ -3,7 +3,8 @@
  * direct-form-I recursion with non-finite recovery (notch.h). */
 #include <float.h>
 #include <math.h>
-#include "smoothshaper/notch.h"
+#include "smoothshaper/coeffs.h"
+#include "filter/coeffs_check.h"
 #include "core/state_identity.h"
 
 static const double pi = 3.14159265358979323846;
@@ -78,14 +79,11 @@ static double matched_dc_scaled(double wn, double xi, double Ts)
     }
 }
 
-sms_status sms_notch_init(sms_notch *f, const sms_stage_config *config, double Ts)
+sms_status sms_notch_coeffs_make(const sms_stage_config *config, double Ts,
+                                 sms_stage_coeffs *coeffs)
 {
     double d0, d2, a1, a2;
-    sms_notch built;
-    sms_status st;
-    if (f == NULL || config == NULL)
-        return SMS_ERR_NULL;
-    st = check(config, Ts);
+    sms_status st = check(config, Ts);
     if (st != SMS_OK)
         return st;
     if (config->kind == SMS_NOTCH_TUSTIN) {
@@ -108,15 +106,58 @@ sms_status sms_notch_init(sms_notch *f, const sms_stage_config *config, double T
         d2 = g * n2 - a2;
     }
     /* H = 1 + (1 - z^-1)(d0 - d2 z^-1)/A: unit DC gain by structure (notch.h) */
-    built.kind = config->kind;
-    built.d0 = (sms_real)d0;
-    built.d2 = (sms_real)d2;
-    built.a1 = (sms_real)a1;
-    built.a2 = (sms_real)a2;
-    sms_state_identity(config, Ts, built.identity);
+    coeffs->kind = config->kind;
+    sms_state_identity(config, Ts, coeffs->identity);
+    coeffs->u.notch.d0 = (sms_real)d0;
+    coeffs->u.notch.d2 = (sms_real)d2;
+    coeffs->u.notch.a1 = (sms_real)a1;
+    coeffs->u.notch.a2 = (sms_real)a2;
+    return SMS_OK;
+}
+
+/* What sms_notch_coeffs_make() can write (sms_real tests only). */
+sms_status sms_notch_coeffs_check(const sms_stage_coeffs *coeffs)
+{
+    const sms_notch_coeffs *c = &coeffs->u.notch;
+    if (coeffs->kind != SMS_NOTCH_TUSTIN && coeffs->kind != SMS_NOTCH_MATCHED)
+        return SMS_ERR_KIND;
+    if (c->d0 - c->d0 != 0 || c->d2 - c->d2 != 0 || c->a1 - c->a1 != 0 || c->a2 - c->a2 != 0)
+        return SMS_ERR_COEFFS;
+    return SMS_OK;
+}
+
+sms_status sms_notch_init_coeffs(sms_notch *f, const sms_stage_coeffs *coeffs)
+{
+    sms_notch built;
+    size_t i;
+    sms_status st;
+    if (f == NULL || coeffs == NULL)
+        return SMS_ERR_NULL;
+    st = sms_notch_coeffs_check(coeffs);
+    if (st != SMS_OK)
+        return st;
+    built.kind = coeffs->kind;
+    built.d0 = coeffs->u.notch.d0;
+    built.d2 = coeffs->u.notch.d2;
+    built.a1 = coeffs->u.notch.a1;
+    built.a2 = coeffs->u.notch.a2;
+    for (i = 0; i < SMS_STATE_IDENTITY_COUNT; ++i)
+        built.identity[i] = coeffs->identity[i];
     *f = built;
     sms_notch_reset(f, (sms_real)0);
     return SMS_OK;
+}
+
+sms_status sms_notch_init(sms_notch *f, const sms_stage_config *config, double Ts)
+{
+    sms_stage_coeffs coeffs;
+    sms_status st;
+    if (f == NULL || config == NULL)
+        return SMS_ERR_NULL;
+    st = sms_notch_coeffs_make(config, Ts, &coeffs);
+    if (st != SMS_OK)
+        return st;
+    return sms_notch_init_coeffs(f, &coeffs);
 }
 
 void sms_notch_reset(sms_notch *f, sms_real rest)

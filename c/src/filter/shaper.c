@@ -4,6 +4,7 @@
 #include <math.h>
 #include <string.h>
 #include "filter/shaper_designs.h"
+#include "filter/coeffs_check.h"
 #include "core/state_identity.h"
 
 static const double pi = 3.14159265358979323846;
@@ -299,12 +300,98 @@ sms_status sms_shaper_tap_count(const sms_stage_config *config, double Ts, size_
     return sms_shaper_sizes(config, Ts, &n_reals, n_taps);
 }
 
+/* A design's taps into the caller's table and its coefficients pointing at them. */
+static void coeffs_of_design(const sms_stage_config *config, double Ts, const sparse *design,
+                             sms_stage_coeffs *coeffs, sms_shaper_tap *taps)
+{
+    size_t i;
+    for (i = 0; i < design->n; ++i) {
+        taps[i].delay = design->delay[i];
+        taps[i].gain = (sms_real)design->gain[i];
+    }
+    coeffs->kind = config->kind;
+    sms_state_identity(config, Ts, coeffs->identity);
+    coeffs->u.shaper.length = design->delay[design->n - 1] + 1u;
+    coeffs->u.shaper.n_taps = design->n;
+    coeffs->u.shaper.taps = taps;
+}
+
+sms_status sms_shaper_coeffs_make(const sms_stage_config *config, double Ts,
+                                  sms_stage_coeffs *coeffs, sms_shaper_tap *taps, size_t n_taps)
+{
+    sparse design;
+    sms_status st = build(config, Ts, &design);
+    if (st != SMS_OK)
+        return st;
+    if (taps == NULL)
+        return SMS_ERR_NULL;
+    if (n_taps < design.n)
+        return SMS_ERR_BUFFER_TOO_SMALL;
+    coeffs_of_design(config, Ts, &design, coeffs, taps);
+    return SMS_OK;
+}
+
+/* What sms_shaper_coeffs_make() can write (integer and sms_real tests only). */
+sms_status sms_shaper_coeffs_check(const sms_stage_coeffs *coeffs)
+{
+    const sms_shaper_coeffs *c = &coeffs->u.shaper;
+    size_t i;
+    if (!is_shaper(coeffs->kind))
+        return SMS_ERR_KIND;
+    if (c->taps == NULL || c->n_taps < 1u || c->n_taps > SMS_SHAPER_MAX_TAPS)
+        return SMS_ERR_COEFFS;
+    for (i = 0; i < c->n_taps; ++i) {
+        if (i > 0u && c->taps[i].delay <= c->taps[i - 1u].delay)
+            return SMS_ERR_COEFFS;
+        if (c->taps[i].gain - c->taps[i].gain != (sms_real)0)
+            return SMS_ERR_COEFFS;
+    }
+    /* the longest design is below 2^40 samples (saved indices stay exact doubles) */
+    if (c->taps[c->n_taps - 1u].delay >= ((size_t)1 << 20) * ((size_t)1 << 20) - 1u
+        || c->length != c->taps[c->n_taps - 1u].delay + 1u)
+        return SMS_ERR_COEFFS;
+    return SMS_OK;
+}
+
+sms_status sms_shaper_init_coeffs(sms_shaper *f, const sms_stage_coeffs *coeffs,
+                                  sms_shaper_tap *taps, size_t n_taps, sms_real *buffer,
+                                  size_t n_reals)
+{
+    const sms_shaper_coeffs *c;
+    sms_shaper built;
+    size_t i;
+    sms_status st;
+    if (f == NULL || coeffs == NULL)
+        return SMS_ERR_NULL;
+    st = sms_shaper_coeffs_check(coeffs);
+    if (st != SMS_OK)
+        return st;
+    c = &coeffs->u.shaper;
+    if (taps == NULL || buffer == NULL)
+        return SMS_ERR_NULL;
+    if (n_taps < c->n_taps || n_reals < c->length)
+        return SMS_ERR_BUFFER_TOO_SMALL;
+    if (taps != c->taps)
+        for (i = 0; i < c->n_taps; ++i)
+            taps[i] = c->taps[i];
+    built.kind = coeffs->kind;
+    built.length = c->length;
+    built.n_taps = c->n_taps;
+    built.taps = taps;
+    built.history = buffer;
+    built.history_len = c->length;
+    for (i = 0; i < SMS_STATE_IDENTITY_COUNT; ++i)
+        built.identity[i] = coeffs->identity[i];
+    *f = built;
+    sms_shaper_reset(f, (sms_real)0);
+    return SMS_OK;
+}
+
 sms_status sms_shaper_init(sms_shaper *f, const sms_stage_config *config, double Ts,
                            sms_shaper_tap *taps, size_t n_taps, sms_real *buffer, size_t n_reals)
 {
+    sms_stage_coeffs coeffs;
     sparse design;
-    sms_shaper built;
-    size_t i;
     sms_status st;
     if (f == NULL)
         return SMS_ERR_NULL;
@@ -313,22 +400,10 @@ sms_status sms_shaper_init(sms_shaper *f, const sms_stage_config *config, double
         return st;
     if (taps == NULL || buffer == NULL)
         return SMS_ERR_NULL;
-    built.kind = config->kind;
-    built.length = design.delay[design.n - 1] + 1u;
-    if (n_taps < design.n || n_reals < built.length)
+    if (n_taps < design.n || n_reals < design.delay[design.n - 1] + 1u)
         return SMS_ERR_BUFFER_TOO_SMALL;
-    built.n_taps = design.n;
-    for (i = 0; i < design.n; ++i) {
-        taps[i].delay = design.delay[i];
-        taps[i].gain = (sms_real)design.gain[i];
-    }
-    built.taps = taps;
-    built.history = buffer;
-    built.history_len = built.length;
-    sms_state_identity(config, Ts, built.identity);
-    *f = built;
-    sms_shaper_reset(f, (sms_real)0);
-    return SMS_OK;
+    coeffs_of_design(config, Ts, &design, &coeffs, taps);
+    return sms_shaper_init_coeffs(f, &coeffs, taps, n_taps, buffer, n_reals);
 }
 
 void sms_shaper_reset(sms_shaper *f, sms_real rest)

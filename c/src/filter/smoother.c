@@ -4,7 +4,8 @@
 #include <float.h>
 #include <math.h>
 #include <string.h>
-#include "smoothshaper/smoother.h"
+#include "smoothshaper/coeffs.h"
+#include "filter/coeffs_check.h"
 #include "filter/smoother_design.h"
 #include "core/state_identity.h"
 
@@ -75,53 +76,140 @@ sms_status sms_smoother_taps(const sms_stage_config *config, double Ts, double *
     return SMS_OK;
 }
 
-sms_status sms_smoother_init(sms_smoother *f, const sms_stage_config *config, double Ts,
-                             sms_real *buffer, size_t n_reals)
+/* The design's constants in sms_real: what the instance runs on (host side). */
+static void coeffs_of_design(const sms_smoother_design *d, sms_smoother_coeffs *c)
+{
+    size_t j;
+    c->length = d->length;
+    c->window = d->window;
+    c->pole_m1_re = (sms_real)d->pole_m1_re;
+    c->pole_im = (sms_real)d->pole_im;
+    /* What rounding to sms_real lost (exact in double for float), plus the long double part. */
+    c->pole_lo_re = (sms_real)((d->pole_m1_re - (double)c->pole_m1_re) + d->pole_m1_lo_re);
+    c->pole_lo_im = (sms_real)((d->pole_im - (double)c->pole_im) + d->pole_lo_im);
+    c->gain = (sms_real)d->gain;
+    c->tail_re = (sms_real)d->tail_re;
+    c->tail_im = (sms_real)d->tail_im;
+    c->n_corrections = d->n_corrections;
+    for (j = 0; j < SMS_SMOOTHER_MAX_CORRECTIONS; ++j) {
+        c->correction_delay[j] = j < d->n_corrections ? d->correction_delay[j] : 0u;
+        c->correction_gain[j] = (sms_real)(j < d->n_corrections ? d->correction_gain[j] : 0.0);
+    }
+    c->input_limit = d->input_limit;
+}
+
+sms_status sms_smoother_coeffs_make(const sms_stage_config *config, double Ts,
+                                    sms_stage_coeffs *coeffs)
 {
     sms_smoother_design d;
+    sms_status st = sms_smoother_design_make(config, Ts, &d);
+    if (st != SMS_OK)
+        return st;
+    coeffs->kind = config->kind;
+    sms_state_identity(config, Ts, coeffs->identity);
+    coeffs_of_design(&d, &coeffs->u.smoother);
+    return SMS_OK;
+}
+
+static int is_smoother_kind(sms_kind kind)
+{
+    return kind == SMS_RECTANGULAR || kind == SMS_HARMONIC || kind == SMS_DAMPED_HARMONIC
+           || kind == SMS_EXPONENTIAL;
+}
+
+static int finite_real(sms_real v)
+{
+    return v - v == (sms_real)0;
+}
+
+/* What sms_smoother_coeffs_make() can write (integer and sms_real tests only). */
+sms_status sms_smoother_coeffs_check(const sms_stage_coeffs *coeffs)
+{
+    const sms_smoother_coeffs *c = &coeffs->u.smoother;
+    size_t j;
+    if (!is_smoother_kind(coeffs->kind))
+        return SMS_ERR_KIND;
+    if (c->window < 1u || c->window > (size_t)-1 / 32u)
+        return SMS_ERR_COEFFS;
+    if (c->n_corrections == 0u) {
+        if (c->length != c->window)
+            return SMS_ERR_COEFFS;
+    } else if (c->n_corrections != SMS_SMOOTHER_MAX_CORRECTIONS || c->length != c->window + 1u
+               || c->correction_delay[1] != c->window
+               || (c->correction_delay[0] != 0u && c->correction_delay[0] != c->window - 1u)) {
+        return SMS_ERR_COEFFS;
+    }
+    if (!finite_real(c->pole_m1_re) || !finite_real(c->pole_im) || !finite_real(c->pole_lo_re)
+        || !finite_real(c->pole_lo_im) || !finite_real(c->gain) || !finite_real(c->tail_re)
+        || !finite_real(c->tail_im))
+        return SMS_ERR_COEFFS;
+    for (j = 0; j < SMS_SMOOTHER_MAX_CORRECTIONS; ++j)
+        if (!finite_real(c->correction_gain[j]))
+            return SMS_ERR_COEFFS;
+    return SMS_OK;
+}
+
+sms_status sms_smoother_init_coeffs(sms_smoother *f, const sms_stage_coeffs *coeffs,
+                                    sms_real *buffer, size_t n_reals)
+{
+    const sms_smoother_coeffs *c;
     sms_smoother built;
     sms_status st;
     size_t j;
-    if (f == NULL || config == NULL)
+    if (f == NULL || coeffs == NULL)
         return SMS_ERR_NULL;
-    st = sms_smoother_design_make(config, Ts, &d);
+    st = sms_smoother_coeffs_check(coeffs);
     if (st != SMS_OK)
         return st;
+    c = &coeffs->u.smoother;
     if (buffer == NULL)
         return SMS_ERR_NULL;
-    if (n_reals < d.window)
+    if (n_reals < c->window)
         return SMS_ERR_BUFFER_TOO_SMALL;
-    built.kind = config->kind;
-    built.length = d.length;
-    built.window = d.window;
-    built.pole_m1_re = (sms_real)d.pole_m1_re;
-    built.pole_im = (sms_real)d.pole_im;
-    /* What rounding to sms_real lost (exact in double for float), plus the long double part. */
-    built.pole_lo_re = (sms_real)((d.pole_m1_re - (double)built.pole_m1_re) + d.pole_m1_lo_re);
-    built.pole_lo_im = (sms_real)((d.pole_im - (double)built.pole_im) + d.pole_lo_im);
-    built.gain_re = (sms_real)d.gain;
+    built.kind = coeffs->kind;
+    built.length = c->length;
+    built.window = c->window;
+    built.pole_m1_re = c->pole_m1_re;
+    built.pole_im = c->pole_im;
+    built.pole_lo_re = c->pole_lo_re;
+    built.pole_lo_im = c->pole_lo_im;
+    built.gain_re = c->gain;
     built.gain_im = (sms_real)0;
-    built.tail_re = (sms_real)d.tail_re;
-    built.tail_im = (sms_real)d.tail_im;
-    built.imag_out = d.family.half_sine;
-    built.real_only = !d.family.half_sine;
-    built.n_corrections = d.n_corrections;
+    built.tail_re = c->tail_re;
+    built.tail_im = c->tail_im;
+    built.imag_out = coeffs->kind == SMS_HARMONIC || coeffs->kind == SMS_DAMPED_HARMONIC;
+    built.real_only = !built.imag_out;
+    built.n_corrections = c->n_corrections;
     for (j = 0; j < SMS_SMOOTHER_MAX_CORRECTIONS; ++j) {
-        built.correction_delay[j] = j < d.n_corrections ? d.correction_delay[j] : 0u;
-        built.correction_gain[j] = (sms_real)(j < d.n_corrections ? d.correction_gain[j] : 0.0);
+        built.correction_delay[j] = c->correction_delay[j];
+        built.correction_gain[j] = c->correction_gain[j];
     }
     built.variant = 3u * (unsigned)(!built.real_only ? POLE_COMPLEX
                                     : built.pole_m1_re == (sms_real)0
                                       && built.pole_lo_re == (sms_real)0
                                       && built.tail_re == -built.gain_re ? POLE_UNIT : POLE_REAL)
                     + (unsigned)taps_of(&built);
-    built.input_limit = d.input_limit;
-    sms_state_identity(config, Ts, built.identity);
+    built.input_limit = c->input_limit;
+    for (j = 0; j < SMS_STATE_IDENTITY_COUNT; ++j)
+        built.identity[j] = coeffs->identity[j];
     built.history = buffer;
-    built.history_len = d.window;
+    built.history_len = c->window;
     sms_smoother_reset(&built, (sms_real)0);
     *f = built;
     return SMS_OK;
+}
+
+sms_status sms_smoother_init(sms_smoother *f, const sms_stage_config *config, double Ts,
+                             sms_real *buffer, size_t n_reals)
+{
+    sms_stage_coeffs coeffs;
+    sms_status st;
+    if (f == NULL || config == NULL)
+        return SMS_ERR_NULL;
+    st = sms_smoother_coeffs_make(config, Ts, &coeffs);
+    if (st != SMS_OK)
+        return st;
+    return sms_smoother_init_coeffs(f, &coeffs, buffer, n_reals);
 }
 
 void sms_smoother_reset(sms_smoother *f, sms_real rest)
@@ -400,7 +488,8 @@ static inline void segment(sms_smoother *f, const sms_real *in, sms_real *out, s
         const sms_real x = in[i], oldest = ring[i];
         sms_real y = recur(&k, &s, x, oldest, pole);
         if (taps != TAPS_NONE) {
-            const sms_real first = taps == TAPS_BOUNDED ? x : i == last ? f->history[0] : ring[i + 1u];
+            const sms_real first = taps == TAPS_BOUNDED ? x
+                                   : i == last ? f->history[0] : ring[i + 1u];
             y += corr0 * (first - ref0) + corr1 * (oldest - ref0);
         }
         ring[i] = x;
