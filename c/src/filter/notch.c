@@ -168,9 +168,9 @@ void sms_notch_reset(sms_notch *f, sms_real rest)
 }
 
 /* One sample of the state (x1, x2, w1, w2); the output. */
-static inline sms_real notch_sample(sms_real d0, sms_real d2, sms_real a1, sms_real a2,
-                                    sms_real *x1, sms_real *x2, sms_real *w1, sms_real *w2,
-                                    sms_real v)
+static sms_real notch_sample(sms_real d0, sms_real d2, sms_real a1, sms_real a2,
+                             sms_real *x1, sms_real *x2, sms_real *w1, sms_real *w2,
+                             sms_real v)
 {
     sms_real w = d0 * (v - *x1) + d2 * (*x2 - *x1) - a1 * *w1 - a2 * *w2;
     sms_real y;

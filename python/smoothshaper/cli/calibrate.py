@@ -148,6 +148,10 @@ def cmd_calibrate(args) -> int:
             with open(path, "w", encoding="utf-8") as fh:
                 fh.write(outputs.c_config(c, ref.Ts, ident))
             written.append(path)
+            path = os.path.join(args.out, f"coeffs_{ident}.c")   # the firmware path, coeffs.h
+            with open(path, "w", encoding="utf-8") as fh:
+                fh.write(outputs.c_coeffs(c, ref.Ts, ident))
+            written.append(path)
             path = os.path.join(args.out, f"fmu_start_values_{ident}.json")
             with open(path, "w", encoding="utf-8") as fh:
                 json.dump(outputs.fmu_start_values(c, ref.Ts), fh, indent=1)
