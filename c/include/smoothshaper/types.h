@@ -7,13 +7,15 @@
  * `SMS_USE_FLOAT` (the `smoothshaper_float` CMake target does it for you, also for its
  * consumers) to make ::sms_real a `float`; otherwise it is a `double`. Design quantities
  * (durations, frequencies, damping) are always `double`: only the signal path and the filter
- * state use ::sms_real.
+ * state use ::sms_real. The float build's functions link under the suffix `_f32`
+ * (precision.h), so code compiled for one precision does not link against the other library.
  */
 #ifndef SMOOTHSHAPER_TYPES_H
 #define SMOOTHSHAPER_TYPES_H
 
 #include <stddef.h>
 #include "smoothshaper/export.h"
+#include "smoothshaper/precision.h"
 
 #ifdef __cplusplus
 extern "C" {
