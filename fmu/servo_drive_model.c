@@ -224,7 +224,7 @@ static int check_plant(const sv_vars *p, char *msg, size_t len)
         if (fabs(A[i]) > fastest)
             fastest = fabs(A[i]);
     }
-    if (!isfinite(Bd[3]) || !(A[13] != 0.0) || !(A[4] != 0.0))
+    if (!isfinite(Bd[3]) || !(A[12] != 0.0) || !(A[4] != 0.0))   /* K/J_lr, K/J_m underflow */
         REFUSE("Jl = %.17g, n = %.17g: the plant's coefficients are beyond the range of a double",
                p->jl, p->n);
     if (!(fastest * p->ts <= 50.0))
