@@ -31,10 +31,12 @@ from ..errors import ParameterError
 from ..stages import notch as _notch
 from .timing import tick_inputs
 
-__all__ = ["CONTROLLERS", "OUTPUTS", "FLOOR_FACTOR", "default_parameters", "testbed",
+__all__ = ["TS", "CONTROLLERS", "OUTPUTS", "FLOOR_FACTOR", "default_parameters", "testbed",
            "reference_input", "expected", "simulate_servo", "simulate_servo_libcosim",
            "rounding_floor", "ServoComparison", "compare", "VALIDATION_CASES"]
 
+#: The FMU's default sample period [s] (the testbed's, servo.presets.TS).
+TS = _servo.presets.TS
 #: The ``controller`` codes, in order.
 CONTROLLERS = ("pid", "pid_tdo", "pole_placement", "lqg")
 #: The FMU's outputs.
@@ -139,7 +141,7 @@ def testbed(values: dict) -> _servo.Drive:
 
 
 def reference_input(t: np.ndarray, *, move: float = 0.5, t_move: float = 0.05,
-                    torque: float = 5.0, t_torque: float = 1.0, Ts: float = 5e-4):
+                    torque: float = 5.0, t_torque: float = 1.0, Ts: float = TS):
     """The comparison's inputs: a load move of ``move`` [rad] from ``t_move`` shaped by two
     moving averages (0.3 s and 0.05 s: a trapezoidal velocity), and a load torque step of
     ``torque`` [N m] at ``t_torque``.
@@ -361,7 +363,7 @@ class ServoComparison:
         return max(self.error[n] / self.tolerance[n] for n in OUTPUTS)
 
 
-def compare(fmu, overrides: dict | None = None, *, step: float = 5e-4,
+def compare(fmu, overrides: dict | None = None, *, step: float = TS,
             stop_time: float = 1.5) -> ServoComparison:
     """The FMU in fmpy against the testbed with the same parameters.
 
