@@ -746,7 +746,7 @@ static double largest(const double *a, int n, double best)
 /* The bounds (file's top): with H = sup ||Acl^k|| + sum ||Acl^k|| ||Bcl|| + 1, every state
  * reached from |Z| <= state_max under inputs |w| <= input_max stays below H^2 input_max, and
  * every product the tick forms below c (loop + 2) times that, c its largest coefficient. */
-static void bounds(sv_model *m, const sd_bounds *b)
+static int bounds(sv_model *m, const sd_bounds *b)
 {
     sv_design *d = &m->d;
     const int nl = d->loop;
@@ -773,6 +773,7 @@ static void bounds(sv_model *m, const sd_bounds *b)
     lim = DBL_MAX / (64.0 * (double)(nl + 2) * c * H * H);
     d->input_max = lim < SMS_INPUT_MAX ? lim : SMS_INPUT_MAX;
     d->state_max = 2.0 * H * lim;
+    return !(isfinite(H) && lim > 0.0 && isfinite(d->state_max));
 }
 
 /* The rest at the held inputs: Z* = rest [q_ref, tau_load]. */
@@ -846,7 +847,10 @@ int fmu_model_build(void *model, void *mem, size_t bytes, char *msg, size_t len)
     if (sd_solve(nl, IA, d->rest, 2) != 0)
         REFUSE("controller = %d: the closed loop has no rest (I - Acl is singular)",
                p->controller);
-    bounds(&t, &b);
+    if (bounds(&t, &b) != 0)
+        REFUSE("controller = %d: the closed loop is too slow or its gain too large to bound in "
+               "double (sum of ||Acl^k|| about %.3g, spectral radius %.17g)", p->controller,
+               b.sum, b.rho);
     if (!(fabs(p->q_ref) <= d->input_max))
         REFUSE("q_ref = %.17g: beyond %.3g, the largest input this loop keeps finite", p->q_ref,
                d->input_max);

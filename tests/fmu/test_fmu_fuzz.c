@@ -374,9 +374,13 @@ static void random_parameters(fmi2Component c)
     fmi2SetReal(c, rvr, NR, v);
     fmi2SetInteger(c, ivr, 3, iv);
     drew_large = 0;
-    if (trace)
-        fprintf(stderr, "  controller %d notch %d/%d Ts %.17g\n", (int)iv[0], (int)iv[1],
-                (int)iv[2], v[0]);
+    if (trace) {
+        fprintf(stderr, "  controller %d notch %d/%d, reals by value reference:", (int)iv[0],
+                (int)iv[1], (int)iv[2]);
+        for (i = 0; i < NR; ++i)
+            fprintf(stderr, " %u=%.17g", (unsigned)rvr[i], v[i]);
+        fprintf(stderr, "\n");
+    }
 }
 #else
 static const fmi2ValueReference outputs[] = { SS_VR_Y };
