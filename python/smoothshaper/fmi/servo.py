@@ -337,11 +337,11 @@ class ServoComparison:
     fmu, reference : dict of str to ndarray
         The FMU's outputs and the testbed's.
     error : dict of str to float
-        max |FMU - testbed| per output.
+        ``max |FMU - testbed|`` per output.
     tolerance : dict of str to float
         :data:`FLOOR_FACTOR` times :func:`rounding_floor`.
     scale : dict of str to float
-        max |testbed| per output (for relative figures).
+        ``max |testbed|`` per output (for relative figures).
     """
     t: np.ndarray
     q_ref: np.ndarray

@@ -163,15 +163,15 @@ class ServoRun:
     overshoot : float
         Load velocity overshoot over vmax [%].
     residual : float
-        max |q_l - MOVE| once the command has settled [rad].
+        ``max |q_l - MOVE|`` once the command has settled [rad].
     reference_overshoot, reference_residual : float
         The same of the reference.
     error : float
-        max |q_l - reference| [rad].
+        ``max |q_l - reference|`` [rad].
     tolerance : float
         Ten times the drive's rounding sensitivity plus 1e-11 MOVE for the command's rounding.
     command_error : float
-        max |command - reference command|.
+        ``max |command - reference command|``.
     """
     importer: str
     shaper: bool
