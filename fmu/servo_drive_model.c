@@ -912,17 +912,10 @@ uint64_t fmu_model_hold(void *model, uint64_t n)
     return n;
 }
 
+/* Every input is taken as it is (nothing to warn about); the model holds no pointers. */
 int fmu_model_warning(void *model, char *msg, size_t len)
-{
-    (void)model; (void)msg; (void)len;
-    return 0;   /* every input is taken as it is: nothing to report */
-}
-
-void fmu_model_rebind(void *model, void *mem)
-{
-    (void)model;
-    (void)mem;   /* no pointers inside */
-}
+{ (void)model, (void)msg, (void)len; return 0; }
+void fmu_model_rebind(void *model, void *mem) { (void)model, (void)mem; }
 
 size_t fmu_model_state_count(const void *model)
 {

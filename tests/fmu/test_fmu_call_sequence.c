@@ -1,7 +1,7 @@
 /*
  * Random sequences of FMI 2.0 calls against SmoothShaper, or TrajectoryGenerator when built with
- * FMU_TEST_TRAJECTORY, or ServoDrive with FMU_TEST_SERVO_DRIVE (each linked in-process, so ASan/UBSan see
- * everything): wrong orders, NULL pointers, bad value references, NaN and out-of-range
+ * FMU_TEST_TRAJECTORY, or ServoDrive with FMU_TEST_SERVO_DRIVE (each linked in-process, so
+ * ASan/UBSan see everything): wrong orders, NULL pointers, bad value references, NaN and out-of-range
  * parameters, FMU states and corrupted serialised states. A shadow of the FMI state machine
  * predicts which state-changing calls must succeed; every call must return fmi2OK or fmi2Error
  * (the only statuses this FMU uses) and never crash or leak.

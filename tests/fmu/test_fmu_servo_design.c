@@ -141,7 +141,8 @@ static void test_place(void)
     /* open loop: 1, 1 (the integrator and the rigid body), 0.98 +- 0.05j, 0.9; desired:
      * 0.91 +- 0.08j, 0.95 +- 0.05j, 0.985 (the servo's shape) */
     const double ore[5] = { 0.98, 0.98, 1.0, 1.0, 0.9 }, oim[5] = { 0.05, -0.05, 0, 0, 0 };
-    const double dre[5] = { 0.91, 0.91, 0.95, 0.95, 0.985 }, dim[5] = { 0.08, -0.08, 0.05, -0.05, 0 };
+    const double dre[5] = { 0.91, 0.91, 0.95, 0.95, 0.985 };
+    const double dim[5] = { 0.08, -0.08, 0.05, -0.05, 0 };
     double A[25], a[6], Ad[25], d[6], K[5], b[5] = { 0, 0, 0, 0, 1 };
     int i;
     companion(5, ore, oim, A, a);
@@ -183,7 +184,8 @@ static void test_dare(void)
     for (c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
         const double a = cases[c][0], b = cases[c][1], q = cases[c][2], r = cases[c][3];
         const double B = r * (1.0 - a * a) - q * b * b;
-        const double want = 2.0 * q * r / (B + sqrt(B * B + 4.0 * b * b * q * r));  /* -B+sqrt, rationalised */
+        /* the positive root (-B + sqrt(B^2 + 4 b^2 q r)) / (2 b^2), rationalised */
+        const double want = 2.0 * q * r / (B + sqrt(B * B + 4.0 * b * b * q * r));
         double P;
         CHECK(sd_dare(1, &a, &b, &q, r, &P) > 0);
         CHECK_CLOSE(P, want, 64.0 * U, want);

@@ -87,7 +87,7 @@ def test_libcosim_equals_fmpy_bit_for_bit(fmu, code):
     q_ref, tau = fs.reference_input(t, Ts=TS, t_torque=0.4)
     start = {"controller": code}
     a = fs.simulate_servo(fmu, t, q_ref, tau, start)
-    b = fs.simulate_servo_libcosim(fmu, t, q_ref, tau, start)
+    b = fs.simulate_servo(fmu, t, q_ref, tau, start, importer="libcosim")
     for name in fs.OUTPUTS:
         assert np.array_equal(a[name][1:], b[name][1:]), name
 

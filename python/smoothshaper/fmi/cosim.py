@@ -38,8 +38,8 @@ from . import ssp as _ssp
 from .ssp import SSD_NS, ssp_parameters
 
 __all__ = ["TS", "STOP_TIME", "T_MOVE", "MOVE", "PLANT", "LIMITS", "SSD_NS", "plant_mode",
-           "parameters", "WITHOUT_SHAPER", "COMPONENTS", "CONNECTIONS", "SYSTEM", "system_structure",
-           "write_ssp", "target_signal", "ssp_parameters", "run_fmpy", "run_libcosim", "reference",
+           "parameters", "WITHOUT_SHAPER", "COMPONENTS", "CONNECTIONS", "SYSTEM",
+           "system_structure", "write_ssp", "target_signal", "ssp_parameters", "run_fmpy", "run_libcosim", "reference",
            "residual_vibration", "Run", "run_all", "plot", "run", "main"]
 
 #: Sample period of every FMU and the communication step [s].
@@ -147,11 +147,7 @@ def residual_vibration(s: np.ndarray, p: np.ndarray) -> float:
     s, p = _finite_signal("s", s), _finite_signal("p", p)
     if p.shape != s.shape:
         raise ParameterError("p", f"p must have the shape of s {s.shape}, got {p.shape}")
-    off = np.nonzero(np.abs(s - MOVE) > 1e-12 * MOVE)[0]
-    settled = off[-1] + 1 if off.size else 0
-    if settled >= s.size - 10:
-        raise RuntimeError("the command did not settle within the run: lengthen STOP_TIME")
-    return float(np.max(np.abs(p[settled:] - MOVE)))
+    return _ssp.settled_residual(s, p, MOVE)
 
 
 @dataclass

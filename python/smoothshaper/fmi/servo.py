@@ -5,10 +5,11 @@
 Timing. Tick ``n`` of the FMU is the drive's sample at ``(n - 1) Ts``: the reference and load
 torque it holds are the inputs set at the last communication point before ``n Ts``
 (:func:`~smoothshaper.fmi.timing.tick_inputs`), and after it the FMU reports the plant at
-``n Ts`` and the torque of sample ``n - 1``. The testbed's :meth:`~smoothshaper.servo.Drive.simulate`
-fed the same per-sample inputs reports the plant at ``k Ts`` and the torque of sample ``k``, so
-the FMU after tick ``n`` is the testbed's row ``n`` (positions, velocities) and row ``n - 1``
-(torque); before the first tick both rest at the inputs of initialization.
+``n Ts`` and the torque of sample ``n - 1``. The testbed's
+:meth:`~smoothshaper.servo.Drive.simulate` fed the same per-sample inputs reports the plant at
+``k Ts`` and the torque of sample ``k``, so the FMU after tick ``n`` is the testbed's row ``n``
+(positions, velocities) and row ``n - 1`` (torque); before the first tick both rest at the
+inputs of initialization.
 
 Tolerance. The FMU designs its controller in C (Pade matrix exponential, eigenvector pole
 placement, doubling Riccati solver; fmu/README.md) and the testbed in scipy, and each sums in
@@ -32,8 +33,8 @@ from ..stages import notch as _notch
 from .timing import tick_inputs
 
 __all__ = ["TS", "CONTROLLERS", "OUTPUTS", "FLOOR_FACTOR", "default_parameters", "testbed",
-           "reference_input", "expected", "simulate_servo", "simulate_servo_libcosim",
-           "rounding_floor", "ServoComparison", "compare", "VALIDATION_CASES"]
+           "reference_input", "expected", "simulate_servo", "rounding_floor", "ServoComparison",
+           "compare", "VALIDATION_CASES"]
 
 #: The FMU's default sample period [s] (the testbed's, servo.presets.TS).
 TS = _servo.presets.TS
@@ -218,8 +219,10 @@ def _signal(t, q_ref, tau_load):
 
 
 def simulate_servo(fmu, t: np.ndarray, q_ref: np.ndarray, tau_load: np.ndarray,
-                   start_values: dict) -> dict:
-    """The FMU in fmpy (default settings, ``output_interval`` = the communication step).
+                   start_values: dict, *, importer: str = "fmpy") -> dict:
+    """The FMU in fmpy (default settings, ``output_interval`` = the communication step) or in
+    libcosim (the second importer: the inputs overridden before every step, row 0 NaN because
+    libcosim observes only after steps).
 
     Parameters
     ----------
@@ -230,7 +233,8 @@ def simulate_servo(fmu, t: np.ndarray, q_ref: np.ndarray, tau_load: np.ndarray,
     q_ref, tau_load : ndarray of float64, shape (K,)
         Inputs set at them.
     start_values : dict
-        Parameters to set (name -> value).
+        Parameters to set (name -> value; int values are Integers).
+    importer : {"fmpy", "libcosim"}, keyword-only
 
     Returns
     -------
@@ -239,9 +243,18 @@ def simulate_servo(fmu, t: np.ndarray, q_ref: np.ndarray, tau_load: np.ndarray,
 
     Raises
     ------
+    ParameterError
+        Naming ``importer``.
     RuntimeError
-        fmpy returned other points than ``t``.
+        The importer failed or fmpy returned other points than ``t``.
     """
+    from .._checks import choice
+    if choice("importer", importer, ("fmpy", "libcosim")) == "libcosim":
+        from .simulate import simulate_libcosim
+        y = simulate_libcosim(str(fmu), t, np.column_stack([q_ref, tau_load]),
+                              dict(start_values), input_name=("q_ref", "tau_load"),
+                              outputs=OUTPUTS)
+        return {name: y[:, i] for i, name in enumerate(OUTPUTS)}
     import fmpy
     step = float(t[1] - t[0])
     r = fmpy.simulate_fmu(str(fmu), start_values=dict(start_values),
@@ -251,37 +264,6 @@ def simulate_servo(fmu, t: np.ndarray, q_ref: np.ndarray, tau_load: np.ndarray,
     if r.size != t.size or not np.allclose(r["time"], t, rtol=0, atol=1e-9 * step):
         raise RuntimeError(f"fmpy returned {r.size} samples, expected {t.size}")
     return {name: np.asarray(r[name], dtype=float) for name in OUTPUTS}
-
-
-def simulate_servo_libcosim(fmu, t: np.ndarray, q_ref: np.ndarray, tau_load: np.ndarray,
-                            start_values: dict) -> dict:
-    """The FMU in libcosim (the second importer), rows after each step (row 0 NaN).
-
-    Parameters
-    ----------
-    fmu : str or Path
-        Path of ServoDrive.fmu.
-    t : ndarray of float64, shape (K,)
-        Communication points [s].
-    q_ref, tau_load : ndarray of float64, shape (K,)
-        Inputs set at them.
-    start_values : dict
-        Parameters to set (int values as Integers).
-
-    Returns
-    -------
-    dict of str to ndarray of float64, shape (K,)
-        :data:`OUTPUTS`.
-
-    Raises
-    ------
-    RuntimeError
-        libcosim refused a value or a step failed.
-    """
-    from .simulate import simulate_libcosim
-    y = simulate_libcosim(str(fmu), t, np.column_stack([q_ref, tau_load]), dict(start_values),
-                          input_name=("q_ref", "tau_load"), outputs=OUTPUTS)
-    return {name: y[:, i] for i, name in enumerate(OUTPUTS)}
 
 
 def rounding_floor(drive: _servo.Drive, t: np.ndarray, q_ref: np.ndarray, tau_load: np.ndarray,

@@ -4,7 +4,8 @@ fmpy (``python -m smoothshaper.cosim`` runs it after ShapedMotion).
 
 The system (``ShapedServo.ssp``, SSP 1.0)::
 
-    target --> Generator (TrajectoryGenerator) --q--> Shaper (SmoothShaper) --y--> Drive (ServoDrive)
+    target --> Generator (TrajectoryGenerator) --q--> Shaper (SmoothShaper) --y-->
+        Drive (ServoDrive)
 
 A jerk-limited load move of 40 deg (the notes' first experiment's size, limits of the same
 order) goes through a ZV shaper on the drive's locked-motor mode (107.2 rad/s, zeta 0.038), or
@@ -46,15 +47,35 @@ KIND_ZV, KIND_NONE = 4, -1
 
 
 def shaper_mode() -> tuple[float, float]:
-    """(wn, zeta) of the drive's locked-motor mode: ``sqrt(K_el/J_lr)`` and
-    ``D_el / (2 sqrt(K_el J_lr))`` of the notes' plant (the anti-resonance)."""
+    """The drive's locked-motor mode (the anti-resonance of the notes' plant).
+
+    Returns
+    -------
+    tuple of float
+        ``wn = sqrt(K_el/J_lr)`` [rad/s] and ``zeta = D_el / (2 sqrt(K_el J_lr))``.
+    """
     p = _servo.NOTES
     Jr = p["Jl"] / p["n"] ** 2
     return math.sqrt(p["Kel"] / Jr), p["Del"] / (2.0 * math.sqrt(p["Kel"] * Jr))
 
 
 def target_signal(t: np.ndarray) -> np.ndarray:
-    """The system input: 0, then MOVE from T_MOVE on."""
+    """The system input: 0, then MOVE from T_MOVE on.
+
+    Parameters
+    ----------
+    t : array_like of float
+        Times [s].
+
+    Returns
+    -------
+    ndarray of float64, the shape of ``t``
+
+    Raises
+    ------
+    ParameterError
+        Naming ``t`` when it is not finite.
+    """
     return np.where(_finite_array("t", t) >= T_MOVE - 1e-9 * TS, MOVE, 0.0)
 
 
@@ -81,7 +102,8 @@ SYSTEM = _ssp.System(
 
 
 def write_ssp(out_dir: Path, fmus: dict[str, Path]) -> tuple[Path, Path]:
-    """``ShapedServo.ssp`` and ``ShapedServo-libcosim.ssp`` (:func:`~smoothshaper.fmi.ssp.write_ssp`).
+    """``ShapedServo.ssp`` and ``ShapedServo-libcosim.ssp``
+    (:func:`~smoothshaper.fmi.ssp.write_ssp`).
 
     Parameters
     ----------
@@ -119,7 +141,8 @@ def reference(n_steps: int, *, shaper: bool) -> tuple[np.ndarray, dict, dict]:
     drive : dict of str to ndarray, shape (n_steps,)
         The drive's outputs (:data:`smoothshaper.fmi.servo.OUTPUTS`).
     floor : dict of str to float
-        The drive's rounding sensitivity on this input (:func:`~smoothshaper.fmi.servo.rounding_floor`).
+        The drive's rounding sensitivity on this input
+        (:func:`~smoothshaper.fmi.servo.rounding_floor`).
 
     Raises
     ------
@@ -139,15 +162,6 @@ def reference(n_steps: int, *, shaper: bool) -> tuple[np.ndarray, dict, dict]:
     q_ref, tau = np.r_[0.0, command], np.zeros(n_steps + 1)   # the drive sees the step before
     out = _fs.expected(drive, t, q_ref, tau)
     return command, {k: v[1:] for k, v in out.items()}, _fs.rounding_floor(drive, t, q_ref, tau)
-
-
-def _residual(command: np.ndarray, q_l: np.ndarray) -> float:
-    """max |q_l - MOVE| once the command stays within 1e-12 of MOVE."""
-    off = np.nonzero(np.abs(command - MOVE) > 1e-12 * MOVE)[0]
-    settled = off[-1] + 1 if off.size else 0
-    if settled >= command.size - 10:
-        raise RuntimeError("the command did not settle within the run: lengthen STOP_TIME")
-    return float(np.max(np.abs(q_l[settled:] - MOVE)))
 
 
 @dataclass
@@ -218,7 +232,7 @@ def run_all(ssp: Path, ssp_libcosim: Path, *, importers=("libcosim", "fmpy")) ->
         command_ref, drive_ref, floor = reference(n, shaper=shaper)
         tol = _fs.FLOOR_FACTOR * floor["q_l"] + 1e-11 * MOVE
         ref_over = 100.0 * (np.max(drive_ref["w_l"]) / LIMITS["vmax"] - 1.0)
-        ref_residual = _residual(command_ref, drive_ref["q_l"])
+        ref_residual = _ssp.settled_residual(command_ref, drive_ref["q_l"], MOVE)
         for importer in importers:
             if importer == "fmpy":
                 t, command, q_l, w_l = _ssp.run_fmpy(SYSTEM, ssp, shaper=shaper)
@@ -229,7 +243,7 @@ def run_all(ssp: Path, ssp_libcosim: Path, *, importers=("libcosim", "fmpy")) ->
                 raise RuntimeError(f"{importer} returned {q_l.size} steps, expected {n}")
             runs.append(ServoRun(importer, shaper, t, command, q_l, w_l,
                                  100.0 * (np.max(w_l) / LIMITS["vmax"] - 1.0),
-                                 _residual(command, q_l), ref_over, ref_residual,
+                                 _ssp.settled_residual(command, q_l, MOVE), ref_over, ref_residual,
                                  float(np.max(np.abs(q_l - drive_ref["q_l"]))), tol,
                                  float(np.max(np.abs(command - command_ref)))))
     return runs
@@ -243,6 +257,11 @@ def plot(path: Path, runs: list[ServoRun]) -> None:
     path : Path
         The PNG file.
     runs : list of ServoRun
+
+    Raises
+    ------
+    OSError
+        The file cannot be written.
     """
     import matplotlib
     matplotlib.use("Agg")
@@ -295,8 +314,9 @@ def section(out_dir: Path, fmus: dict, *, plots: bool = True) -> tuple[bool, lis
     ssp, ssp_libcosim = write_ssp(out, fmus)
     runs = run_all(ssp, ssp_libcosim)
     wn, zeta = shaper_mode()
-    header = ("| importer | shaper | load velocity overshoot [%] | reference [%] | residual [rad] | "
-              "reference [rad] | max abs(q_l - reference) [rad] | tolerance [rad] | equal |")
+    header = ("| importer | shaper | load velocity overshoot [%] | reference [%] | "
+              "residual [rad] | reference [rad] | max abs(q_l - reference) [rad] | "
+              "tolerance [rad] | equal |")
     lines = ["", "# System co-simulation: TrajectoryGenerator -> SmoothShaper -> ServoDrive", "",
              "`ShapedServo.ssp` (SSP 1.0; libcosim runs `ShapedServo-libcosim.ssp`, without the "
              f"system-level input): a load move of {math.degrees(MOVE):g} deg at t = {T_MOVE:g} s "

@@ -21,7 +21,7 @@ from xml.sax.saxutils import quoteattr
 import numpy as np
 
 __all__ = ["SSD_NS", "System", "system_structure", "write_ssp", "ssp_parameters", "run_fmpy",
-           "run_libcosim", "generator_shaper_reference"]
+           "run_libcosim", "generator_shaper_reference", "settled_residual"]
 
 SSD_NS = ('xmlns:ssc="http://ssp-standard.org/SSP1/SystemStructureCommon" '
           'xmlns:ssd="http://ssp-standard.org/SSP1/SystemStructureDescription" '
@@ -90,6 +90,11 @@ def system_structure(system: System, *, system_input: bool = True) -> str:
     -------
     str
         The XML.
+
+    Raises
+    ------
+    KeyError
+        A component without its parameters in ``system.parameters``.
     """
     connector, element, element_connector = system.system_input
     lines = ['<?xml version="1.0" encoding="UTF-8"?>',
@@ -176,6 +181,13 @@ def ssp_parameters(ssp: Path) -> dict[str, float | int]:
     -------
     dict
         Real parameters as float, Integers as int.
+
+    Raises
+    ------
+    OSError
+        The file cannot be read.
+    zipfile.BadZipFile
+        It is not an SSP (zip) file.
     """
     import xml.etree.ElementTree as ET
     ns = {"ssd": "http://ssp-standard.org/SSP1/SystemStructureDescription",
@@ -207,6 +219,11 @@ def run_fmpy(system: System, ssp: Path, *, shaper: bool) -> tuple[np.ndarray, ..
     -------
     tuple of ndarray
         The times and one array per ``system.recorded``.
+
+    Raises
+    ------
+    StopIteration
+        fmpy's result lacks a recorded variable.
     """
     from fmpy.ssp.simulation import simulate_ssp
     values = ssp_parameters(ssp)
@@ -302,6 +319,11 @@ def generator_shaper_reference(system: System, n_steps: int, *, limits: dict,
     Returns
     -------
     ndarray of float64, shape (n_steps,)
+
+    Raises
+    ------
+    ParameterError
+        Invalid limits or stages.
     """
     from .. import reference as filters_reference
     from ..trajectory import generator_reference
@@ -311,3 +333,30 @@ def generator_shaper_reference(system: System, n_steps: int, *, limits: dict,
     if not stages:
         return q[:n_steps]
     return filters_reference.filter(list(stages), q[:n_steps], Ts=Ts)
+
+
+def settled_residual(command: np.ndarray, output: np.ndarray, target: float) -> float:
+    """``max |output - target|`` once the command stays within 1e-12 of the target (the
+    residual a system leaves after its move).
+
+    Parameters
+    ----------
+    command, output : ndarray of float64, shape (K,)
+        The command into the last component and its output.
+    target : float
+        Where the move ends.
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    RuntimeError
+        The command did not settle before the last ten samples.
+    """
+    off = np.nonzero(np.abs(command - target) > 1e-12 * abs(target))[0]
+    settled = off[-1] + 1 if off.size else 0
+    if settled >= command.size - 10:
+        raise RuntimeError("the command did not settle within the run: lengthen STOP_TIME")
+    return float(np.max(np.abs(output[settled:] - target)))

@@ -177,8 +177,8 @@ def run(out_dir, *, build_dir=None, fmus: dict | None = None, Ts: float = 1e-3,
         q_ref, tau = servo.reference_input(t, t_torque=0.4)
         for code, name in enumerate(servo.CONTROLLERS):
             a = servo.simulate_servo(fmus["ServoDrive"], t, q_ref, tau, {"controller": code})
-            b = servo.simulate_servo_libcosim(fmus["ServoDrive"], t, q_ref, tau,
-                                              {"controller": code})
+            b = servo.simulate_servo(fmus["ServoDrive"], t, q_ref, tau, {"controller": code},
+                                     importer="libcosim")
             d_sd = max(float(np.max(np.abs(a[n][1:] - b[n][1:]))) for n in servo.OUTPUTS)
             ok &= d_sd == 0.0
             lines.append(f"| ServoDrive | controller {code} ({name}) | {d_sd:.1e} | "
@@ -247,8 +247,8 @@ def run(out_dir, *, build_dir=None, fmus: dict | None = None, Ts: float = 1e-3,
             ok &= passed
             lines.append(f"| {name} | " + " | ".join(cells) + f" | {'yes' if passed else 'NO'} |")
         lines += ["", "Cells: max over q_m, w_m, q_l, w_l, tau_m of max |FMU - testbed| / max "
-                  "|testbed|, and in brackets the largest error over its tolerance. Plots (h = Ts): "
-                  "`servo_drive_pid.png`, `servo_drive_lqg.png`."]
+                  "|testbed|, and in brackets the largest error over its tolerance. Plots "
+                  "(h = Ts): `servo_drive_pid.png`, `servo_drive_lqg.png`."]
     lines += ["", f"**Result: {'PASS' if ok else 'FAIL'}**", ""]
     (out / "README.md").write_text("\n".join(lines))
     print(f"validation {'passed' if ok else 'FAILED'}: report in {out / 'README.md'}")
