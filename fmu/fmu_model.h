@@ -20,6 +20,10 @@
 #include <stdint.h>
 #include "fmi2Functions.h"
 
+/** A value reference (the variable's number in modelDescription.xml): model files name it so
+ * and never an FMI type. */
+typedef fmi2ValueReference fmu_vr;
+
 /** What a value reference of a given base type is. */
 typedef enum fmu_var_class {
     FMU_VAR_UNKNOWN = 0,  /**< no variable of this type has this value reference */
