@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * TrajectoryGenerator: the online generator of the smoothshaper library (sms_generator_*,
  * trajectory.h) as an FMU. Inputs: the target (position, velocity and acceleration at arrival,

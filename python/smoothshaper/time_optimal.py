@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """NumPy reference of the time-optimal online generator's plan.
 
 Linear ramps of the acceleration (the polynomial and damped profiles) plan from any state to

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Online multi-point generator (trajectory.h, docs/sampled-limits.md): on every new target
  * the time-optimal plan of the profile's shape from the current state (plan.c for half-cosine
  * transitions, plan_target.c for ramps to any target state), run through the stage tuned to
@@ -587,7 +588,7 @@ void sms_generator_hold_target(sms_generator *g, const sms_target *target, uint6
         /* At the end the elder copy will have consumed M + s samples (s in [1, M], from the
          * phase now), so the stage's state depends on the last M + s inputs alone. */
         const uint64_t M = g->stage_window;
-        const uint64_t s_now = g->stage[0].age[g->stage[0].age[0] >= g->stage[0].age[1] ? 0 : 1] - M;
+        const uint64_t s_now = g->stage[0].head;   /* the elder has consumed M + head (mod M) */
         window = M + (s_now + n - 1u) % M + 1u + 2u;
     }
     if (n > window) {
