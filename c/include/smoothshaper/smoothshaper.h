@@ -12,6 +12,7 @@
 #include "smoothshaper/notch.h"
 #include "smoothshaper/stage.h"
 #include "smoothshaper/chain.h"
+#include "smoothshaper/tunable.h"
 #include "smoothshaper/design.h"
 #include "smoothshaper/trajectory.h"
 #include "smoothshaper/multi_generator.h"

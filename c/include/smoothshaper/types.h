@@ -99,8 +99,10 @@ typedef enum sms_status {
     SMS_ERR_STATE_DEGREE = -40,     /**< saved with another degree (B-spline) */
     SMS_ERR_STATE_AXES = -41,       /**< saved with another number of axes */
     SMS_ERR_STATE_SYNC = -42,       /**< saved with another sync (multi-axis generator) */
-    SMS_ERR_STATE_STAGES = -43      /**< saved with another number of vibration stages on an
+    SMS_ERR_STATE_STAGES = -43,     /**< saved with another number of vibration stages on an
                                          axis (multi-axis generator) */
+    SMS_ERR_RETUNE_BUSY = -44       /**< a retune while the previous switch of the stage is
+                                         still in progress (tunable.h) */
 } sms_status;
 
 /** @brief Stage families. Values are stable (the FMU enumeration and saved states use them). */

@@ -50,6 +50,8 @@ const char *sms_status_string(sms_status status)
     case SMS_ERR_STATE_AXES: return "saved state is from another number of axes";
     case SMS_ERR_STATE_SYNC: return "saved state is from another sync";
     case SMS_ERR_STATE_STAGES: return "saved state is from another number of stages on an axis";
+    case SMS_ERR_RETUNE_BUSY:
+        return "stage is still switching from its previous retune (the old filter is fading out)";
     }
     return "unknown status";
 }
