@@ -46,6 +46,7 @@ _STATUS_PARAMETER = {
     -20: "bandwidth", -21: "duration",
     # a saved C state of another configuration: the status names the field, the argument is the state
     **{code: "state" for code in range(-43, -21)},
+    -44: "index",   # a retune of a stage whose previous switch is still in progress
 }
 #: Saved Chain states start with this tag and format version, then the configuration they
 #: belong to (see :meth:`Chain.get_state`).
@@ -273,6 +274,58 @@ def _as_stage_list(stages) -> tuple[Stage, ...]:
     return out
 
 
+def _validated_configs(stages: tuple, Ts: float, ffi, lib):
+    """The C configs of ``stages`` at ``Ts``, each validated and sized by the C core, and the
+    delay-line reals each needs; ParameterError naming the offending field and stage (a delay
+    line beyond :data:`MAX_BUFFER_REALS` in total names ``T`` or ``wn``)."""
+    n = len(stages)
+    configs = ffi.new("sms_stage_config[]", n)
+    need = ffi.new("size_t *")
+    sizes = []
+    for i, stage in enumerate(stages):
+        if stage.kind in _stages.SMOOTHERS and stage.T / Ts > MAX_BUFFER_REALS:
+            # Checked here because sizing a billion-sample smoother in C takes seconds.
+            raise ParameterError(
+                "T", f"T too long for Ts={Ts!r}: T/Ts = {stage.T / Ts:.4g} samples "
+                f"exceeds {MAX_BUFFER_REALS}; stages[{i}] is {stage.kind} with T={stage.T!r}")
+        try:
+            _fill_config(configs[i], stage)
+        except ParameterError as exc:
+            raise ParameterError(exc.parameter, f"{exc}; stages[{i}] is {stage.kind}") from None
+        # Validates and sizes the stage (its design is closed-form, O(1)).
+        st = lib.sms_stage_buffer_size(ffi.addressof(configs, i), Ts, need)
+        sizes.append(need[0])
+        if st != 0:
+            parameter, value = _stage_parameter(stage, st)
+            hint = ""
+            if st == _SMS_ERR_DURATION_BELOW_TS and "harmonic" in stage.kind:
+                hint = " (the harmonic families need T >= 2 Ts)"
+            if st == _SMS_ERR_ABOVE_NYQUIST and stage.kind in _stages.SMOOTHERS:
+                zero = f"{stage.k}*{'3' if 'harmonic' in stage.kind else '2'}*pi/T"
+                raise ParameterError(
+                    "T", f"T too short for exact timing: off the sample grid it pins a zero "
+                    f"at k*{zero.split('*', 1)[1]} = {zero}, which must lie below the "
+                    f"Nyquist frequency pi/Ts (got T={stage.T!r}); stages[{i}] is "
+                    f"{stage.kind}, Ts={Ts!r} (use a longer T, k=1, or timing='paper')",
+                    st)
+            _raise_status(st, lib, ffi, f"stages[{i}] is {stage.kind}, Ts={Ts!r}{hint}",
+                          parameter, value)
+    total = sum(sizes)
+    if total > MAX_BUFFER_REALS:
+        _raise_too_long(stages, Ts, sizes, total)
+    return configs, sizes
+
+
+def _raise_too_long(stages, Ts: float, sizes: list, total: int):
+    i = max(range(len(sizes)), key=sizes.__getitem__)
+    parameter = "T" if stages[i].kind in _stages.SMOOTHERS else "wn"
+    raise ParameterError(
+        parameter, f"{parameter} {'too long' if parameter == 'T' else 'too low'} for "
+        f"Ts={Ts!r}: the chain would need a delay line of {total} samples "
+        f"(more than {MAX_BUFFER_REALS}); stages[{i}] is {stages[i].kind} with "
+        f"{parameter}={getattr(stages[i], parameter)!r}")
+
+
 class Chain:
     """Stages in series, filtered by the C core: ``y = H_{n-1}(...H_1(H_0(u)))``.
 
@@ -306,40 +359,7 @@ class Chain:
         if not 1 <= n <= lib.SMS_CHAIN_MAX_STAGES:
             raise ParameterError(
                 "stages", f"stages: a chain needs 1 to {lib.SMS_CHAIN_MAX_STAGES} stages, got {n}")
-        configs = ffi.new("sms_stage_config[]", n)
-        need = ffi.new("size_t *")
-        sizes = []
-        for i, stage in enumerate(self.stages):
-            if stage.kind in _stages.SMOOTHERS and stage.T / self.Ts > MAX_BUFFER_REALS:
-                # Checked here because sizing a billion-sample smoother in C takes seconds.
-                raise ParameterError(
-                    "T", f"T too long for Ts={self.Ts!r}: T/Ts = {stage.T / self.Ts:.4g} samples "
-                    f"exceeds {MAX_BUFFER_REALS}; stages[{i}] is {stage.kind} with T={stage.T!r}")
-            try:
-                _fill_config(configs[i], stage)
-            except ParameterError as exc:
-                raise ParameterError(exc.parameter, f"{exc}; stages[{i}] is {stage.kind}") from None
-            # Validates and sizes the stage (its design is closed-form, O(1)).
-            st = lib.sms_stage_buffer_size(ffi.addressof(configs, i), self.Ts, need)
-            sizes.append(need[0])
-            if st != 0:
-                parameter, value = _stage_parameter(stage, st)
-                hint = ""
-                if st == _SMS_ERR_DURATION_BELOW_TS and "harmonic" in stage.kind:
-                    hint = " (the harmonic families need T >= 2 Ts)"
-                if st == _SMS_ERR_ABOVE_NYQUIST and stage.kind in _stages.SMOOTHERS:
-                    zero = f"{stage.k}*{'3' if 'harmonic' in stage.kind else '2'}*pi/T"
-                    raise ParameterError(
-                        "T", f"T too short for exact timing: off the sample grid it pins a zero "
-                        f"at k*{zero.split('*', 1)[1]} = {zero}, which must lie below the "
-                        f"Nyquist frequency pi/Ts (got T={stage.T!r}); stages[{i}] is "
-                        f"{stage.kind}, Ts={self.Ts!r} (use a longer T, k=1, or timing='paper')",
-                        st)
-                _raise_status(st, lib, ffi, f"stages[{i}] is {stage.kind}, Ts={self.Ts!r}{hint}",
-                              parameter, value)
-        total = sum(sizes)
-        if total > MAX_BUFFER_REALS:
-            self._raise_too_long(sizes, total)
+        configs, sizes = _validated_configs(self.stages, self.Ts, ffi, lib)
         cells = ffi.new("size_t *")
         st = lib.sms_chain_memory_size(configs, n, self.Ts, cells)
         if st != 0:
@@ -362,15 +382,6 @@ class Chain:
         ``exp(-sigma*Ts)/sin(pi/N)``) or stages with large gains. :meth:`process`,
         :meth:`step` and :meth:`reset` refuse values beyond it."""
         return self._input_max
-
-    def _raise_too_long(self, sizes: list, total: int):
-        i = max(range(len(sizes)), key=sizes.__getitem__)
-        parameter = "T" if self.stages[i].kind in _stages.SMOOTHERS else "wn"
-        raise ParameterError(
-            parameter, f"{parameter} {'too long' if parameter == 'T' else 'too low'} for "
-            f"Ts={self.Ts!r}: the chain would need a delay line of {total} samples "
-            f"(more than {MAX_BUFFER_REALS}); stages[{i}] is {self.stages[i].kind} with "
-            f"{parameter}={getattr(self.stages[i], parameter)!r}")
 
     # -- filtering ------------------------------------------------------------------------
 

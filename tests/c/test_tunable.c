@@ -359,37 +359,46 @@ static void test_refusals(void)
     }
 }
 
-/* A notch's switch ends by itself, within the bound sms_tunable_switch_left() gave. */
+/* A notch's switch ends by itself, within the bound sms_tunable_switch_left() gave, and
+ * long before the exact settling for complex, repeated and distinct real poles. */
 static void test_notch_fade_ends(void)
 {
-    sms_stage_config a = sms_stage_config_default(SMS_NOTCH_TUSTIN), b = a;
-    sms_tunable t;
-    size_t cells = 0, i;
-    double bound;
-    a.wn = 200.0;
-    b.wn = 260.0;
-    CHECK_STATUS(sms_tunable_slot_cells(&a, 1, Ts, &cells), SMS_OK);
-    CHECK_STATUS(sms_tunable_init(&t, &a, Ts, cells, mem_a, 2 * cells), SMS_OK);
-    for (i = 0; i < 200; ++i) {
-        sms_real v = (sms_real)(0.01 * (double)i + 5.0);
-        sms_tunable_step(&t, &v);
+    static const double pole_zeta[4] = {0.7, 1.0, 1.0 + 1e-9, 3.0};
+    int p;
+    for (p = 0; p < 4; ++p) {
+        sms_stage_config a = sms_stage_config_default(SMS_NOTCH_TUSTIN), b = a;
+        sms_tunable t;
+        size_t cells = 0, i;
+        double bound, settle;
+        a.wn = 200.0;
+        a.notch_pole_zeta = pole_zeta[p];
+        b.wn = 260.0;
+        CHECK_STATUS(sms_tunable_slot_cells(&a, 1, Ts, &cells), SMS_OK);
+        CHECK_STATUS(sms_tunable_init(&t, &a, Ts, cells, mem_a, 2 * cells), SMS_OK);
+        for (i = 0; i < 200; ++i) {
+            sms_real v = (sms_real)(0.01 * (double)i + 5.0);
+            sms_tunable_step(&t, &v);
+        }
+        CHECK_STATUS(sms_tunable_retune(&t, &b), SMS_OK);
+        CHECK(sms_tunable_switching(&t));
+        {
+            sms_real v = (sms_real)7.0;
+            sms_tunable_step(&t, &v);
+            sms_tunable_step(&t, &v);
+        }
+        bound = sms_tunable_switch_left(&t);
+        settle = sms_notch_settle_bound(t.slot[1u - t.active].u.notch);
+        for (i = 0; i < 100000 && sms_tunable_switching(&t); ++i) {
+            sms_real v = (sms_real)7.0;
+            sms_tunable_step(&t, &v);
+        }
+        CHECK(!sms_tunable_switching(&t));
+        CHECK((double)i <= bound + 1.0);
+        CHECK((double)i < settle / 4.0);
+        printf("notch switch (wn 200 -> 260 rad/s, pole damping %.9g, Ts 1 ms): ended after %lu "
+               "samples (bound %.0f, exact settling bound %.0f)\n", pole_zeta[p],
+               (unsigned long)(i + 2), bound + 2.0, settle);
     }
-    CHECK_STATUS(sms_tunable_retune(&t, &b), SMS_OK);
-    CHECK(sms_tunable_switching(&t));
-    {
-        sms_real v = (sms_real)7.0;
-        sms_tunable_step(&t, &v);
-        sms_tunable_step(&t, &v);
-    }
-    bound = sms_tunable_switch_left(&t);
-    for (i = 0; i < 100000 && sms_tunable_switching(&t); ++i) {
-        sms_real v = (sms_real)7.0;
-        sms_tunable_step(&t, &v);
-    }
-    CHECK(!sms_tunable_switching(&t));
-    CHECK((double)i <= bound + 1.0);
-    printf("notch switch (wn 200 -> 260 rad/s, Ts 1 ms): ended after %lu samples (bound %.0f)\n",
-           (unsigned long)(i + 2), bound + 2.0);
 }
 
 /* Many switches leave no drift: after each switch has passed both lengths, the output is the

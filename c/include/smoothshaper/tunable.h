@@ -26,7 +26,8 @@
  * - notches (IIR): the same two slots; the old notch's share is its free response, which
  *   decays with its poles. It is dropped once what it can still add is provably below a quarter
  *   of the unit roundoff of |h| (a bound from its state and its poles, computed in O(1)), or
- *   once it has settled exactly (sms_notch_is_settled()).
+ *   once it has settled exactly (sms_notch_is_settled()). With h = 0 only the exact settling
+ *   ends it (the limit is relative to |h|).
  * While a switch is in progress (sms_tunable_switching()) a further retune is refused with
  * ::SMS_ERR_RETUNE_BUSY: at most two filters run, whatever the caller does. The per-sample work
  * is that of the active filter (plus one test per block); during a switch, that of both.
@@ -70,11 +71,12 @@ typedef struct sms_tunable {
     uint64_t fade;              /**< FIR: samples the old filter still runs; notch: its age */
     sms_real last;              /**< last finite input (the rest value after a reset) */
     sms_real hold;              /**< h: the old filter's constant input during a switch */
-    /* Old notch: its remaining free response is at most sqrt(e1^2 + e2^2)/pole_im (complex
-     * poles) or (|e1| + |e2|)/pole_gap (real), e_i linear in its last two w's. */
+    /* Old notch: bounds on its remaining free response from its last two w's and its poles
+     * (tunable.c). */
     int fade_real_poles;        /**< old notch: 1 for real poles, 0 complex */
     sms_real fade_c1, fade_c2;  /**< complex: Re p, Im p; real: the two poles */
     sms_real fade_scale;        /**< complex: Im p; real: |p1 - p2| */
+    sms_real fade_k;            /**< max over k >= 1 of k rho^(k-1), rho the pole radius */
 } sms_tunable;
 
 /**
@@ -113,9 +115,10 @@ SMS_API sms_status sms_tunable_retune(sms_tunable *t, const sms_stage_config *co
 /** @brief 1 while a switch is in progress (a retune would be refused), else 0. O(1). */
 SMS_API int sms_tunable_switching(const sms_tunable *t);
 /**
- * @brief Samples until the switch in progress ends, at most: exactly the samples left for a
- * FIR old filter; for an old notch a bound from its decay rate and its current free response
- * (0 when no switch is in progress). Not for the per-sample path (uses libm).
+ * @brief Samples until the switch in progress ends (0 when none is): exactly the samples left
+ * for a FIR old filter; for an old notch an upper bound from its poles and its current free
+ * response (tunable.c), at most its exact settling bound (sms_notch_settle_bound()). Not for
+ * the per-sample path (uses libm).
  */
 SMS_API double sms_tunable_switch_left(const sms_tunable *t);
 /** @brief Put the stage at rest at rest (any switch in progress ends; the active filter stays). */

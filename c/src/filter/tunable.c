@@ -91,16 +91,20 @@ sms_status sms_tunable_init(sms_tunable *t, const sms_stage_config *config, doub
     built.fade = 0;
     built.last = built.hold = (sms_real)0;
     built.fade_real_poles = 0;
-    built.fade_c1 = built.fade_c2 = built.fade_scale = (sms_real)0;
+    built.fade_c1 = built.fade_c2 = built.fade_scale = built.fade_k = (sms_real)0;
     *t = built;
     return SMS_OK;
 }
 
 /* How the old filter's share ends (tunable.h). FIR: it equals h from L - 2 samples after the
- * switch on. Notch: its free response w[m] = -a1 w[m-1] - a2 w[m-2] (once its last two inputs
- * are h) is, for poles p, conj(p), 2 Re(alpha p^(m+2)) with alpha = (w1 - conj(p) w2)/(p -
- * conj(p)), so |w[m]| <= |w1 - conj(p) w2| / Im p for every later m; for real poles p1 != p2,
- * (|w1 - p2 w2| + |w1 - p1 w2|) / |p1 - p2|. */
+ * switch on. Notch: once its last two inputs are h, its share is the free response
+ * w[m] = -a1 w[m-1] - a2 w[m-2] from w1 = w[-1], w2 = w[-2]. With p, q its poles and
+ * D_k = (p^k - q^k)/(p - q) = sum_{i<k} p^i q^(k-1-i), w[m] = q^(m+2) w2 + D_(m+2) (w1 - q w2),
+ * and |D_k| <= k rho^(k-1) <= K = max_k k rho^(k-1), rho = max(|p|, |q|): so
+ *   |w[m]| <= |w2| + K |w1 - q w2|   for every later m (any poles, equal ones too);
+ * and for complex poles (q = conj p) also |w[m]| <= |w1 - q w2| / Im p (w[m] = 2 Re(c p^m)),
+ * for distinct real ones (|w1 - q w2| + |w1 - p w2|) / |p - q|. The fade ends when either bound
+ * is below the limit. */
 void sms_tunable_begin_fade(sms_tunable *t, const sms_stage *old)
 {
     t->fade = 0;
@@ -114,18 +118,25 @@ void sms_tunable_begin_fade(sms_tunable *t, const sms_stage *old)
     {
         const double a1 = (double)old->u.notch->a1, a2 = (double)old->u.notch->a2;
         const double disc = a1 * a1 - 4.0 * a2;
+        double rho, k;
         if (disc < 0.0) {
             t->fade_real_poles = 0;
             t->fade_c1 = (sms_real)(-0.5 * a1);
             t->fade_c2 = (sms_real)(0.5 * sqrt(-disc));
             t->fade_scale = t->fade_c2;
+            rho = sqrt(a2);
         } else {
             const double q = sqrt(disc);
             t->fade_real_poles = 1;
             t->fade_c1 = (sms_real)(0.5 * (-a1 + q));
             t->fade_c2 = (sms_real)(0.5 * (-a1 - q));
             t->fade_scale = (sms_real)q;
+            rho = fabs((double)t->fade_c1) > fabs((double)t->fade_c2) ? fabs((double)t->fade_c1)
+                                                                      : fabs((double)t->fade_c2);
         }
+        /* k rho^(k-1) peaks near k = 1/ln(1/rho) at most 1/(e rho ln(1/rho)); at least 1 */
+        k = rho < 1.0 && rho > 0.0 ? 1.0 / (2.718281828459045 * rho * -log(rho)) : HUGE_VAL;
+        t->fade_k = (sms_real)(k > 1.0 ? k : 1.0);
         t->switching = !sms_notch_is_settled(old->u.notch, t->hold);
     }
 }
@@ -165,22 +176,33 @@ static sms_real magnitude(sms_real v)
 }
 
 /* 1 once the old notch's remaining share is below a quarter of the unit roundoff of |h|
- * (eps/8 |h|) for every later sample, or it has settled exactly. */
+ * (eps/8 |h|) for every later sample (the bounds of sms_tunable_begin_fade()), or it has
+ * settled exactly. */
 static int notch_faded(const sms_tunable *t, const sms_notch *f)
 {
     const sms_real h = t->hold, limit = magnitude(h) * (REAL_EPS / (sms_real)8);
-    const sms_real w1 = f->w1, w2 = f->w2;
+    const sms_real w1 = f->w1, w2 = f->w2, k = t->fade_k;
+    sms_real e1, e2, e_sq, rest;
     if (sms_notch_is_settled(f, h))
         return 1;
     if (!(f->x1 == h && f->x2 == h))   /* its input differences are not yet all zero */
         return 0;
-    if (t->fade_real_poles)
-        return magnitude(w1 - t->fade_c2 * w2) + magnitude(w1 - t->fade_c1 * w2)
-               <= limit * t->fade_scale;
-    {
-        const sms_real e1 = w1 - t->fade_c1 * w2, e2 = t->fade_c2 * w2, s = limit * t->fade_scale;
-        return e1 * e1 + e2 * e2 <= s * s;
+    if (t->fade_real_poles) {
+        e1 = w1 - t->fade_c2 * w2;
+        e2 = (sms_real)0;
+        if (magnitude(e1) + magnitude(w1 - t->fade_c1 * w2) <= limit * t->fade_scale)
+            return 1;
+    } else {
+        const sms_real s = limit * t->fade_scale;
+        e1 = w1 - t->fade_c1 * w2;
+        e2 = t->fade_c2 * w2;
+        if (e1 * e1 + e2 * e2 <= s * s)
+            return 1;
     }
+    /* |w2| + K |w1 - q w2| <= limit */
+    rest = limit - magnitude(w2);
+    e_sq = e1 * e1 + e2 * e2;
+    return rest >= 0 && e_sq * k * k <= rest * rest;
 }
 
 /* Add the old filter's share y_A - h to out[0 .. m), the old filter running on h. */
@@ -273,7 +295,7 @@ double sms_tunable_switch_left(const sms_tunable *t)
 {
     const sms_stage *old;
     const sms_notch *f;
-    double limit, bound, rate;
+    double limit, settle;
     if (!t->switching)
         return 0.0;
     old = &t->slot[1u - t->active];
@@ -281,27 +303,35 @@ double sms_tunable_switch_left(const sms_tunable *t)
         return (double)t->fade;
     f = old->u.notch;
     limit = fabs((double)t->hold) * (double)REAL_EPS / 8.0;
-    if (t->fade_real_poles) {
-        const double p1 = fabs((double)t->fade_c1), p2 = fabs((double)t->fade_c2);
-        rate = p1 > p2 ? p1 : p2;
-        bound = (fabs((double)f->w1 - (double)t->fade_c2 * (double)f->w2)
-                 + fabs((double)f->w1 - (double)t->fade_c1 * (double)f->w2))
-                / (double)t->fade_scale;
-    } else {
-        const double e1 = (double)f->w1 - (double)t->fade_c1 * (double)f->w2;
-        const double e2 = (double)t->fade_c2 * (double)f->w2;
-        rate = sqrt((double)t->fade_c1 * (double)t->fade_c1
-                    + (double)t->fade_c2 * (double)t->fade_c2);
-        bound = sqrt(e1 * e1 + e2 * e2) / (double)t->fade_scale;
+    settle = sms_notch_settle_bound(f);
+    {
+        const double w1 = (double)f->w1, w2 = (double)f->w2, k = (double)t->fade_k;
+        const double c1 = (double)t->fade_c1, c2 = (double)t->fade_c2;
+        double rho, e, m = 0.0;
+        int i;
+        if (t->fade_real_poles) {
+            rho = fabs(c1) > fabs(c2) ? fabs(c1) : fabs(c2);
+            e = fabs(w1 - c2 * w2);
+        } else {
+            rho = sqrt(c1 * c1 + c2 * c2);
+            e = sqrt((w1 - c1 * w2) * (w1 - c1 * w2) + (c2 * w2) * (c2 * w2));
+        }
+        /* |w[j]| <= (|w2| + e (j + 2)) rho^(j+1) (the D_k form of sms_tunable_begin_fade()),
+         * and the end test's bound is at most (1 + K (1 + rho)) times the larger of the last
+         * two: it passes once that is below the limit, which the fixed point m of
+         * m = 2 + ln((1 + K (1 + rho)) (|w2| + e (m + 2)) / limit) / ln(1/rho) bounds (two
+         * samples more for the input differences) */
+        if (!(limit > 0.0) || !(rho < 1.0) || !(e < HUGE_VAL) || !(k < HUGE_VAL))
+            return settle;
+        for (i = 0; i < 60; ++i) {
+            const double need = (1.0 + k * (1.0 + rho)) * (fabs(w2) + e * (m + 2.0)) / limit;
+            const double next = need <= 1.0 ? 0.0 : 2.0 + log(need) / -log(rho);
+            if (next <= m + 0.5)
+                break;
+            m = next;
+        }
+        return m + 2.0 < settle ? m + 2.0 : settle;
     }
-    /* bound rate^m reaches the limit after log(bound/limit)/(-log rate) samples; two more for
-     * the input differences; the exact settling otherwise */
-    if (limit > 0.0 && bound == bound && rate < 1.0 && bound <= HUGE_VAL) {
-        const double m = bound <= limit ? 0.0 : log(bound / limit) / -log(rate);
-        const double settle = sms_notch_settle_bound(f);
-        return (m + 2.0 < settle ? m + 2.0 : settle);
-    }
-    return sms_notch_settle_bound(f);
 }
 
 double sms_tunable_input_max(const sms_tunable *t)
