@@ -1,5 +1,6 @@
 /* Per-sample cost of every filter next to the plain recursion of the same filter, measured in
- * one run: contenders interleaved round by round, CPU time, median over the rounds.
+ * one run: contenders interleaved round by round, CPU time, median over the rounds. A
+ * retunable stage (tunable.h) next to the fixed stage of the same configuration.
  *
  * The plain references are the textbook realisations, in sms_real like the library:
  * - rectangular: running sum s += x[n] - x[n-N], y = s/N (drifts: its rounding never leaves);
@@ -168,11 +169,37 @@ typedef struct contender {
     const char *name;
     void (*plain_run)(plain *, const sms_real *, sms_real *, size_t);
     sms_stage *stage;
+    sms_tunable *tunable;              /* a retunable stage instead of stage */
+    const sms_stage_config *alt;       /* with alt: retuned to alt[0], alt[1], ... in turn as
+                                          soon as each switch ends (always switching) */
 } contender;
+
+static unsigned next_alt;
+
+/* A tunable that keeps switching: filtered in pieces, retuned whenever its switch has ended. */
+static void run_switching(const contender *c, size_t n)
+{
+    size_t done = 0;
+    while (done < n) {
+        size_t m = n - done;
+        if (!sms_tunable_switching(c->tunable)) {
+            next_alt ^= 1u;
+            (void)sms_tunable_retune(c->tunable, &c->alt[next_alt]);
+        }
+        if (sms_tunable_switching(c->tunable) && c->tunable->fade < (uint64_t)m)
+            m = (size_t)c->tunable->fade;
+        sms_tunable_process(c->tunable, input + done, output + done, m);
+        done += m;
+    }
+}
 
 static void run(const contender *c, size_t n)
 {
-    if (c->stage != NULL)
+    if (c->tunable != NULL && c->alt != NULL)
+        run_switching(c, n);
+    else if (c->tunable != NULL)
+        sms_tunable_process(c->tunable, input, output, n);
+    else if (c->stage != NULL)
         sms_stage_process(c->stage, input, output, n);
     else
         c->plain_run(&plain_state, input, output, n);
@@ -238,6 +265,7 @@ static void smoother_row(const char *path, sms_kind kind, double T, double sigma
     contender list[3];
     size_t n_c = 0, N;
     double r, cs;
+    memset(list, 0, sizeof list);
     c.T = T;
     c.sigma = sigma;
     c.timing = SMS_TIMING_PAPER;
@@ -282,6 +310,7 @@ static void direct_fir_row(const char *path, sms_kind kind, double T, double Ts,
     sms_stage_config c = sms_stage_config_default(kind);
     contender list[2];
     size_t i;
+    memset(list, 0, sizeof list);
     c.T = T;
     c.timing = SMS_TIMING_PAPER;
     if (!init_stage(&c, Ts))
@@ -304,6 +333,7 @@ static void notch_row(const char *path, double wn, double Ts, int rounds, int bl
     sms_stage_config c = sms_stage_config_default(SMS_NOTCH_TUSTIN);
     contender list[2];
     double t, a0, xi1, xi2;
+    memset(list, 0, sizeof list);
     c.wn = wn;
     c.zeta = 0.0;
     c.notch_pole_zeta = 0.7;
@@ -334,6 +364,7 @@ static void shaper_row(const char *path, sms_kind kind, double wn, double zeta, 
     sms_stage_config c = sms_stage_config_default(kind);
     contender list[2];
     size_t L, i;
+    memset(list, 0, sizeof list);
     c.wn = wn;
     c.zeta = zeta;
     if (!init_stage(&c, Ts))
@@ -354,6 +385,37 @@ static void shaper_row(const char *path, sms_kind kind, double wn, double zeta, 
     list[1].stage = NULL;
     list[1].plain_run = plain_sparse_fir;
     measure(path, list, 2, rounds, blocks);
+}
+
+static sms_tunable tunable;
+static sms_memory_cell tunable_memory[2 * MAX_RING];
+
+/* A fixed stage of config a, the same in a retunable stage (not switching), and a retunable
+ * stage switching between a and b all the time (each retune as soon as the previous switch
+ * has ended: its design, the zeroing of its delay line and both filters running). */
+static void tunable_row(const char *path, const sms_stage_config *ab, double Ts, int rounds,
+                        int blocks)
+{
+    static sms_tunable switching;
+    static sms_memory_cell switching_memory[2 * MAX_RING];
+    contender list[3];
+    size_t cells = 0;
+    memset(list, 0, sizeof list);
+    if (!init_stage(&ab[0], Ts) || sms_tunable_slot_cells(ab, 2, Ts, &cells) != SMS_OK
+        || sms_tunable_init(&tunable, &ab[0], Ts, cells, tunable_memory, 2 * MAX_RING) != SMS_OK
+        || sms_tunable_init(&switching, &ab[0], Ts, cells, switching_memory, 2 * MAX_RING)
+               != SMS_OK) {
+        printf("tunable init failed\n");
+        return;
+    }
+    list[0].name = "fixed";
+    list[0].stage = &stage;
+    list[1].name = "tunable";
+    list[1].tunable = &tunable;
+    list[2].name = "tunable, switching";
+    list[2].tunable = &switching;
+    list[2].alt = ab;
+    measure(path, list, 3, rounds, blocks);
 }
 
 static sms_real generator_table[1 << 16];
@@ -444,6 +506,21 @@ int main(int argc, char **argv)
     shaper_row("ZV shaper", SMS_SHAPER_ZV, wn, zeta, Ts, rounds, blocks);
     shaper_row("ZVD shaper", SMS_SHAPER_ZVD, wn, zeta, Ts, rounds, blocks);
     shaper_row("EI shaper", SMS_SHAPER_EI, wn, zeta, Ts, rounds, blocks);
+    {
+        sms_stage_config ab[2];
+        ab[0] = sms_stage_config_default(SMS_SHAPER_ZVD);
+        ab[0].wn = wn;
+        ab[0].zeta = zeta;
+        ab[1] = ab[0];
+        ab[1].wn = 0.8 * wn;
+        tunable_row("ZVD shaper, retunable", ab, Ts, rounds, blocks);
+        ab[0] = sms_stage_config_default(SMS_RECTANGULAR);
+        ab[0].T = T;
+        ab[0].timing = SMS_TIMING_PAPER;
+        ab[1] = ab[0];
+        ab[1].T = 0.8 * T;
+        tunable_row("rectangular, retunable", ab, Ts, rounds, blocks);
+    }
     generator_row(rounds);
     design_rows(rounds);
     return 0;

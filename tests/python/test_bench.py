@@ -18,12 +18,15 @@ def test_quick_run_writes_every_table(tmp_path, capsys):
         args.append("--no-fmu")
     assert bench.main(args) == 0
     text = out.read_text()
-    for title in ("C per-sample cost against the plain realisation", "C trajectory paths",
+    for title in ("C per-sample cost against the plain realisation",
+                  "C per-sample cost of stages that follow the machine, next to the fixed stage",
+                  "C trajectory paths",
                   "Python call floor", "Python throughput", "Python peak memory",
                   "Design cost of a chain"):
         assert f"## {title}" in text
     for path in ("rectangular", "harmonic", "damped harmonic", "exponential", "notch",
-                 "ZV shaper", "generator step", "vmax reached", "oaconvolve"):
+                 "ZV shaper", "generator step", "vmax reached", "oaconvolve",
+                 "ZVD shaper, retunable", "rectangular, retunable"):
         assert f"| {path}" in text
     assert "| n/a" not in text.split("## Python call floor")[0]   # every C figure measured
     printed = capsys.readouterr().out
