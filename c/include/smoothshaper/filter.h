@@ -3,7 +3,8 @@
  * @file filter.h
  * @brief The filter area: the four smoother families (smoother.h), the input shapers
  * (shaper.h), the notch (notch.h), one stage over all of them (stage.h), stages in series
- * (chain.h), stages retuned while they run (tunable.h) and the design of a stage for a vibration mode (design.h).
+ * (chain.h), stages retuned while they run (tunable.h), lags and the
+ * fractional delay that aligns them (align.h) and the design of a stage for a vibration mode (design.h).
  *
  * Builds on the core area only (core.h; docs/architecture.md). design.h also declares the
  * mode identification, whose area header is identify.h.
@@ -18,6 +19,7 @@
 #include "smoothshaper/stage.h"
 #include "smoothshaper/chain.h"
 #include "smoothshaper/tunable.h"
+#include "smoothshaper/align.h"
 #include "smoothshaper/design.h"
 
 #endif

@@ -13,6 +13,7 @@
 #include "smoothshaper/stage.h"
 #include "smoothshaper/chain.h"
 #include "smoothshaper/tunable.h"
+#include "smoothshaper/align.h"
 #include "smoothshaper/design.h"
 #include "smoothshaper/trajectory.h"
 #include "smoothshaper/multi_generator.h"

@@ -16,7 +16,4 @@ sms_status sms_tunable_fits(const sms_stage_config *config, double Ts, size_t sl
 /* Start the old filter's fade (tunable.h): t->hold set, old the filter being replaced. */
 void sms_tunable_begin_fade(sms_tunable *t, const sms_stage *old);
 
-/* The configuration identity (config.h) a built stage carries. */
-const double *sms_tunable_stage_identity(const sms_stage *stage);
-
 #endif

@@ -6,6 +6,7 @@
 #include "filter/tunable_internal.h"
 #include "core/kind.h"
 #include "core/state_identity.h"
+#include "filter/identity_config.h"
 
 /* Offsets in a saved state. */
 enum {
@@ -15,67 +16,15 @@ enum {
     ST_STAGES = ST_OLD_ID + SMS_STATE_IDENTITY_COUNT
 };
 
-/* Identity fields after the common head, in the order of config.h. */
-enum {
-    ID_TIMING = SMS_STATE_IDENTITY_HEAD, ID_T, ID_SIGMA, ID_K, ID_WN, ID_ZETA, ID_ORDER,
-    ID_TOLERANCE, ID_NOTCH_POLE_ZETA, ID_DURATION
-};
-
-const double *sms_tunable_stage_identity(const sms_stage *stage)
-{
-    switch (sms_family_of(stage->kind)) {
-    case SMS_FAMILY_SMOOTHER: return stage->u.smoother->identity;
-    case SMS_FAMILY_SHAPER: return stage->u.shaper->identity;
-    case SMS_FAMILY_NOTCH: return stage->u.notch->identity;
-    case SMS_FAMILY_NONE: break;
-    }
-    return NULL;
-}
-
 static int whole(double v, double most)
 {
     return v >= 0.0 && v <= most && v == (double)(unsigned long)v;
 }
 
-/* The configuration an identity describes: the fields its kind reads, the others at their
- * defaults. 0 if the kind is no stage kind or an integer field does not fit. */
-static int identity_config(const double *id, sms_stage_config *out)
-{
-    sms_stage_config c;
-    sms_family fam;
-    if (!whole(id[SMS_ID_KIND], (double)(SMS_KIND_COUNT - 1)) || !whole(id[ID_TIMING], 2.0)
-        || !whole(id[ID_K], 4294967295.0) || !whole(id[ID_ORDER], 4294967295.0))
-        return 0;
-    c = sms_stage_config_default((sms_kind)(unsigned)id[SMS_ID_KIND]);
-    fam = sms_family_of(c.kind);
-    if (fam == SMS_FAMILY_SMOOTHER) {
-        c.timing = (sms_timing)(unsigned)id[ID_TIMING];
-        c.T = id[ID_T];
-        c.sigma = id[ID_SIGMA];
-        c.k = (unsigned)id[ID_K];
-    } else {
-        c.wn = id[ID_WN];
-        c.zeta = id[ID_ZETA];
-        if (fam == SMS_FAMILY_NOTCH) {
-            c.notch_pole_zeta = id[ID_NOTCH_POLE_ZETA];
-        } else {
-            c.timing = (sms_timing)(unsigned)id[ID_TIMING];
-            if (c.kind == SMS_SHAPER_ZVN || c.kind == SMS_SHAPER_GMZV)
-                c.order = (unsigned)id[ID_ORDER];
-            if (c.kind == SMS_SHAPER_EI || c.kind == SMS_SHAPER_EI2 || c.kind == SMS_SHAPER_EI3)
-                c.tolerance = id[ID_TOLERANCE];
-            if (c.kind == SMS_SHAPER_GMZV)
-                c.duration = id[ID_DURATION];
-        }
-    }
-    *out = c;
-    return 1;
-}
-
 sms_stage_config sms_tunable_config(const sms_tunable *t)
 {
     sms_stage_config c = sms_stage_config_default(t->slot[t->active].kind);
-    (void)identity_config(sms_tunable_stage_identity(&t->slot[t->active]), &c);
+    (void)sms_identity_config(sms_stage_identity(&t->slot[t->active]), &c);
     return c;
 }
 
@@ -102,7 +51,7 @@ size_t sms_tunable_state_count(const sms_tunable *t)
 void sms_tunable_get_state(const sms_tunable *t, double *dst)
 {
     const sms_stage *old = old_stage(t);
-    const double *id = sms_tunable_stage_identity(&t->slot[t->active]);
+    const double *id = sms_stage_identity(&t->slot[t->active]);
     size_t i;
     sms_state_identity_head(dst, SMS_STATE_KIND_TUNABLE, t->Ts);
     dst[ST_SLOT_CELLS] = (double)t->slot_cells;
@@ -112,7 +61,7 @@ void sms_tunable_get_state(const sms_tunable *t, double *dst)
     dst[ST_HOLD] = (double)t->hold;
     for (i = 0; i < SMS_STATE_IDENTITY_COUNT; ++i) {
         dst[ST_ACTIVE_ID + i] = id[i];
-        dst[ST_OLD_ID + i] = old != NULL ? sms_tunable_stage_identity(old)[i] : 0.0;
+        dst[ST_OLD_ID + i] = old != NULL ? sms_stage_identity(old)[i] : 0.0;
     }
     sms_stage_get_state(&t->slot[t->active], dst + ST_STAGES);
     if (old != NULL)
@@ -149,7 +98,7 @@ sms_status sms_tunable_state_configs(const double *src, size_t n, sms_stage_conf
     if (st != SMS_OK)
         return st;
     sw = src[ST_SWITCHING] == 1.0;
-    if (!identity_config(src + ST_ACTIVE_ID, &a) || (sw && !identity_config(src + ST_OLD_ID, &b)))
+    if (!sms_identity_config(src + ST_ACTIVE_ID, &a) || (sw && !sms_identity_config(src + ST_OLD_ID, &b)))
         return SMS_ERR_STATE;
     *active = a;
     if (sw && old != NULL)
