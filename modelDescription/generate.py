@@ -235,6 +235,13 @@ def multi_axis_generator() -> tuple[list[Var], list[str], str]:
             max=MA_MAX_AXES, c_name="AXES"),
         Var("sync", 3, "Integer", "parameter", "coordination of the axes; " + choice_text("Sync"),
             "", 0, "Sync", "fixed", c_name="SYNC"),
+        Var("align", 4, "Integer", "parameter", "1: pad every axis with a delay to the common lag "
+            "of the axes' stages, so straight moves stay on the line at constant speed whatever "
+            "stages the axes carry; 0: off", "", 0, variability="fixed", min=0, max=1,
+            c_name="ALIGN"),
+        Var("lag", 5, "Real", "output", "lag of the outputs behind the profile: with align = 1 "
+            "every axis's, else the largest axis's (fixed at initialisation; 0 without stages)",
+            "s", variability="discrete", c_name="LAG"),
     ]
     for f, (name, causality, start, desc) in enumerate(MA_FIELDS, 1):
         for i in range(MA_MAX_AXES):

@@ -383,6 +383,13 @@ class Chain:
         :meth:`step` and :meth:`reset` refuse values beyond it."""
         return self._input_max
 
+    @property
+    def lag(self) -> float:
+        """The chain's lag [s]: the delay it gives a constant-speed motion (its DC group
+        delay, the sum of the stages' centroids; C ``sms_chain_lag``). See
+        :mod:`smoothshaper.align` for centring and aligning."""
+        return float(self._lib.sms_chain_lag(self._chain)) * self.Ts
+
     # -- filtering ------------------------------------------------------------------------
 
     def process(self, u) -> np.ndarray:

@@ -169,6 +169,13 @@ class TunableChain:
         return float(self._lib.sms_tunable_chain_input_max(self._chain))
 
     @property
+    def lag(self) -> float:
+        """The lag of the active stages [s] (C ``sms_chain_lag`` of them): what a
+        constant-speed motion is delayed by once every switch has passed."""
+        from .align import lag
+        return lag(self.stages, Ts=self.Ts)
+
+    @property
     def length(self) -> int:
         """FIR length of the active stages in series (notches count 0)."""
         return int(self._lib.sms_tunable_chain_length(self._chain))
