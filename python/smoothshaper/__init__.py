@@ -25,8 +25,8 @@ __all__ = ["KINDS", "Stage", "rectangular", "harmonic", "damped_harmonic", "expo
 __version__ = "0.1.0"
 
 #: Public submodules, imported lazily on attribute access (as SciPy does).
-SUBMODULES = ("align", "analysis", "cli", "design", "errors", "filters", "multi_axis", "plants",
-              "reference", "report", "stages", "trajectory", "tunable", "validation")
+SUBMODULES = ("align", "analysis", "cli", "design", "errors", "filters", "fmi", "multi_axis",
+              "plants", "reference", "report", "stages", "trajectory", "tunable", "validation")
 
 
 def __getattr__(name):
