@@ -4,7 +4,7 @@
  * @brief The filter area: the four smoother families (smoother.h), the input shapers
  * (shaper.h), the notch (notch.h), one stage over all of them (stage.h), stages in series
  * (chain.h), stages retuned while they run (tunable.h), lags and the
- * fractional delay that aligns them (align.h) and the design of a stage for a vibration mode (design.h).
+ * fractional delay that aligns them (align.h), the scheduled ZV^n shaper (scheduled.h) and the design of a stage for a vibration mode (design.h).
  *
  * Builds on the core area only (core.h; docs/architecture.md). design.h also declares the
  * mode identification, whose area header is identify.h.
@@ -20,6 +20,7 @@
 #include "smoothshaper/chain.h"
 #include "smoothshaper/tunable.h"
 #include "smoothshaper/align.h"
+#include "smoothshaper/scheduled.h"
 #include "smoothshaper/design.h"
 
 #endif

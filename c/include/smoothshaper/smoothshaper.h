@@ -14,6 +14,7 @@
 #include "smoothshaper/chain.h"
 #include "smoothshaper/tunable.h"
 #include "smoothshaper/align.h"
+#include "smoothshaper/scheduled.h"
 #include "smoothshaper/design.h"
 #include "smoothshaper/trajectory.h"
 #include "smoothshaper/multi_generator.h"
