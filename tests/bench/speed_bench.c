@@ -1,6 +1,6 @@
 /* Per-sample cost of every filter next to the plain recursion of the same filter, measured in
  * one run: contenders interleaved round by round, CPU time, median over the rounds. A
- * retunable stage (tunable.h) next to the fixed stage of the same configuration.
+ * retunable stage (tunable.h) and a scheduled shaper (scheduled.h) next to the fixed stage.
  *
  * The plain references are the textbook realisations, in sms_real like the library:
  * - rectangular: running sum s += x[n] - x[n-N], y = s/N (drifts: its rounding never leaves);
@@ -172,7 +172,10 @@ typedef struct contender {
     sms_tunable *tunable;              /* a retunable stage instead of stage */
     const sms_stage_config *alt;       /* with alt: retuned to alt[0], alt[1], ... in turn as
                                           soon as each switch ends (always switching) */
+    sms_scheduled *scheduled;          /* a scheduled shaper, driven by `schedule` */
 } contender;
+
+static double schedule[BLOCK];
 
 static unsigned next_alt;
 
@@ -195,7 +198,9 @@ static void run_switching(const contender *c, size_t n)
 
 static void run(const contender *c, size_t n)
 {
-    if (c->tunable != NULL && c->alt != NULL)
+    if (c->scheduled != NULL)
+        sms_scheduled_process(c->scheduled, input, schedule, output, n);
+    else if (c->tunable != NULL && c->alt != NULL)
         run_switching(c, n);
     else if (c->tunable != NULL)
         sms_tunable_process(c->tunable, input, output, n);
@@ -418,6 +423,48 @@ static void tunable_row(const char *path, const sms_stage_config *ab, double Ts,
     measure(path, list, 3, rounds, blocks);
 }
 
+/* A fixed ZVD at the table's middle mode, and the scheduled ZVD over a 9-point table from
+ * 0.8 to 1.2 of that mode, its schedule sweeping the table (every sample, and every 16). */
+static void scheduled_row(const char *path, double wn, double zeta, double Ts, int rounds,
+                          int blocks)
+{
+    static sms_scheduled every1, every16;
+    static sms_real ring1[MAX_RING], ring16[MAX_RING];
+    sms_schedule_point points[9];
+    sms_scheduled_config sc;
+    sms_stage_config c = sms_stage_config_default(SMS_SHAPER_ZVD);
+    contender list[3];
+    size_t i;
+    memset(list, 0, sizeof list);
+    for (i = 0; i < 9; ++i) {
+        points[i].value = (double)i;
+        points[i].wn = wn * (0.8 + 0.05 * (double)i);
+        points[i].zeta = zeta;
+    }
+    for (i = 0; i < BLOCK; ++i)
+        schedule[i] = 4.0 + 4.0 * sin(2.0 * PI * (double)i / (double)BLOCK);
+    sc.kind = SMS_SHAPER_ZVD;
+    sc.order = 2;
+    sc.points = points;
+    sc.n_points = 9;
+    sc.update_every = 1;
+    c.wn = wn;
+    c.zeta = zeta;
+    if (!init_stage(&c, Ts) || sms_scheduled_init(&every1, &sc, Ts, ring1, MAX_RING) != SMS_OK) {
+        printf("scheduled init failed\n");
+        return;
+    }
+    sc.update_every = 16;
+    (void)sms_scheduled_init(&every16, &sc, Ts, ring16, MAX_RING);
+    list[0].name = "fixed";
+    list[0].stage = &stage;
+    list[1].name = "scheduled, every sample";
+    list[1].scheduled = &every1;
+    list[2].name = "scheduled, every 16";
+    list[2].scheduled = &every16;
+    measure(path, list, 3, rounds, blocks);
+}
+
 static sms_real generator_table[1 << 16];
 
 static void generator_row(int rounds)
@@ -521,6 +568,7 @@ int main(int argc, char **argv)
         ab[1].T = 0.8 * T;
         tunable_row("rectangular, retunable", ab, Ts, rounds, blocks);
     }
+    scheduled_row("ZVD shaper, scheduled", wn, zeta, Ts, rounds, blocks);
     generator_row(rounds);
     design_rows(rounds);
     return 0;

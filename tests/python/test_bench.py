@@ -27,7 +27,7 @@ def test_quick_run_writes_every_table(tmp_path, capsys):
         assert f"## {title}" in text
     for path in ("rectangular", "harmonic", "damped harmonic", "exponential", "notch",
                  "ZV shaper", "generator step", "vmax reached", "oaconvolve",
-                 "ZVD shaper, retunable", "rectangular, retunable"):
+                 "ZVD shaper, retunable", "rectangular, retunable", "ZVD shaper, scheduled"):
         assert f"| {path}" in text
     assert "| n/a" not in text.split("## Python call floor")[0]   # every C figure measured
     printed = capsys.readouterr().out

@@ -7,7 +7,7 @@
 
 static const double pi = 3.14159265358979323846;
 
-static int finite(double v)
+static int is_finite(double v)
 {
     return v - v == 0.0;
 }
@@ -170,7 +170,7 @@ static void update(sms_scheduled *f, double s)
     sparse taps;
     double sigma_ts, wd_ts;
     size_t i;
-    if (!finite(s))
+    if (!is_finite(s))
         return;
     pole_at(f, s, &sigma_ts, &wd_ts);
     design(sigma_ts, wd_ts, f->order, &taps);
@@ -191,7 +191,7 @@ static sms_status check(const sms_scheduled_config *c, double Ts, size_t *len)
     unsigned order;
     if (c == NULL || len == NULL)
         return SMS_ERR_NULL;
-    if (!finite(Ts) || Ts <= 0.0)
+    if (!is_finite(Ts) || Ts <= 0.0)
         return SMS_ERR_SAMPLE_PERIOD;
     if (c->kind != SMS_SHAPER_ZV && c->kind != SMS_SHAPER_ZVD && c->kind != SMS_SHAPER_ZVDD
         && c->kind != SMS_SHAPER_ZVN)
@@ -207,7 +207,7 @@ static sms_status check(const sms_scheduled_config *c, double Ts, size_t *len)
         sms_stage_config one = sms_stage_config_default(c->kind);
         size_t L;
         sms_status st;
-        if (!finite(c->points[i].value) || (i > 0 && !(c->points[i].value > c->points[i - 1].value)))
+        if (!is_finite(c->points[i].value) || (i > 0 && !(c->points[i].value > c->points[i - 1].value)))
             return SMS_ERR_STATE;
         one.wn = c->points[i].wn;
         one.zeta = c->points[i].zeta;
@@ -312,7 +312,7 @@ void sms_scheduled_step(sms_scheduled *f, sms_real *x, double s)
 void sms_scheduled_mode(const sms_scheduled *f, double s, double *wn, double *zeta)
 {
     double sigma_ts, wd_ts, w;
-    pole_at(f, finite(s) ? s : f->schedule, &sigma_ts, &wd_ts);
+    pole_at(f, is_finite(s) ? s : f->schedule, &sigma_ts, &wd_ts);
     w = sqrt(sigma_ts * sigma_ts + wd_ts * wd_ts);
     *wn = w / f->Ts;
     *zeta = -sigma_ts / w;
@@ -369,7 +369,7 @@ sms_status sms_scheduled_set_state(sms_scheduled *f, const double *src, size_t n
         return SMS_ERR_NULL;
     if (n != sms_scheduled_state_count(f) || src[0] != (double)f->order
         || src[1] != (double)f->update_every || !(src[2] >= 1.0 && src[2] <= src[1])
-        || src[2] != floor(src[2]) || !finite(src[3]) || !(src[4] >= 0.0 && src[4] < (double)f->len)
+        || src[2] != floor(src[2]) || !is_finite(src[3]) || !(src[4] >= 0.0 && src[4] < (double)f->len)
         || src[4] != floor(src[4]))
         return SMS_ERR_STATE;
     update(f, src[3]);

@@ -107,7 +107,7 @@ sms_status sms_tunable_state_configs(const double *src, size_t n, sms_stage_conf
     return SMS_OK;
 }
 
-static int finite(double v)
+static int is_finite(double v)
 {
     return v - v == 0.0;
 }
@@ -125,7 +125,7 @@ sms_status sms_tunable_check_state(const sms_tunable *t, const double *src, size
         return st;
     old = src[ST_SWITCHING] == 1.0 ? other_slot(t) : NULL;
     if (src[ST_SLOT_CELLS] != (double)t->slot_cells || (src[ST_SWITCHING] == 1.0 && old == NULL)
-        || !finite(src[ST_LAST]) || !finite(src[ST_HOLD]))
+        || !is_finite(src[ST_LAST]) || !is_finite(src[ST_HOLD]))
         return SMS_ERR_STATE;
     n_active = sms_stage_state_count(active);
     n_old = old != NULL ? sms_stage_state_count(old) : 0u;

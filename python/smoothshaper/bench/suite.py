@@ -157,6 +157,7 @@ C_ROWS = [  # path, reference contender, target ratio (what the library promises
 FOLLOW_ROWS = [
     ("ZVD shaper, retunable", ["fixed", "tunable", "tunable, switching"]),
     ("rectangular, retunable", ["fixed", "tunable", "tunable, switching"]),
+    ("ZVD shaper, scheduled", ["fixed", "scheduled, every sample", "scheduled, every 16"]),
 ]
 
 
@@ -193,7 +194,9 @@ def c_tables(quick: bool) -> tuple[list[Table], dict]:
         "rectangular N = 200, paper timing). tunable: a retunable stage (tunable.h) between "
         "switches; switching: retuned (to 0.8 wn or 0.8 T and back) as soon as each switch "
         "has ended, so always switching: the retune's design and delay-line zeroing and both "
-        "filters running. The fixed path is the stage of the table above, unchanged.")
+        "filters running. scheduled: the ZVD whose mode follows a schedule sweeping a 9-point "
+        "table (0.8 to 1.2 of the 40 Hz mode), its taps redesigned every sample or every 16. "
+        "The fixed path is the stage of the table above, unchanged.")
     for path, contenders in FOLLOW_ROWS:
         for contender in contenders:
             cells = [path, contender]
