@@ -312,9 +312,16 @@ static void test_refusals(void)
     CHECK_STATUS(sms_tunable_slot_cells(&bad, 1, Ts, &cells), SMS_ERR_DURATION);
     CHECK_STATUS(sms_tunable_slot_cells(&a, 1, Ts, &cells), SMS_OK);
     CHECK_STATUS(sms_tunable_init(&t, &big, Ts, cells, mem_a, 2 * cells), SMS_ERR_BUFFER_TOO_SMALL);
-    CHECK_STATUS(sms_tunable_init(&t, &a, Ts, cells, mem_a, 2 * cells - 1), SMS_ERR_BUFFER_TOO_SMALL);
+    CHECK_STATUS(sms_tunable_init(&t, &a, Ts, cells, mem_a, cells - 1), SMS_ERR_BUFFER_TOO_SMALL);
     CHECK_STATUS(sms_tunable_init(&t, &a, Ts, cells, NULL, 2 * cells), SMS_ERR_NULL);
+    /* one slot: a fixed stage, every retune refused and nothing changed */
+    CHECK_STATUS(sms_tunable_init(&t, &a, Ts, cells, mem_a, cells), SMS_OK);
+    CHECK(t.n_slots == 1u);
+    CHECK_STATUS(sms_tunable_retune(&t, &a), SMS_ERR_BUFFER_TOO_SMALL);
+    CHECK(!sms_tunable_switching(&t));
+    sms_tunable_rebind(&t, mem_a);
     CHECK_STATUS(sms_tunable_init(&t, &a, Ts, cells, mem_a, 2 * cells), SMS_OK);
+    CHECK(t.n_slots == 2u);
     for (i = 0; i < 30; ++i) {
         sms_real v = (sms_real)(0.1 * (double)i);
         sms_tunable_step(&t, &v);

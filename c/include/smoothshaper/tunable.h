@@ -65,6 +65,7 @@ typedef struct sms_tunable {
     sms_stage slot[2];          /**< slot[active] filters; the other fades out during a switch */
     sms_memory_cell *memory;    /**< 2 * slot_cells cells: slot 0, then slot 1 */
     size_t slot_cells;          /**< cells of one slot */
+    unsigned n_slots;           /**< 2, or 1 for a stage built without room to switch */
     double Ts;                  /**< sample period [s] */
     unsigned active;            /**< 0 or 1 */
     int switching;              /**< 1 while the old filter still adds to the output */
@@ -97,9 +98,12 @@ SMS_API sms_status sms_tunable_memory_size(size_t slot_cells, size_t *n_cells);
 /**
  * @brief Validate and build a tunable stage at rest at 0, filtering with config.
  * @param slot_cells  from sms_tunable_slot_cells(); config must fit (its memory size at most)
- * @param memory      caller memory of n_cells >= 2 slot_cells cells; the tunable keeps it
+ * @param memory      caller memory of n_cells >= 2 slot_cells cells; the tunable keeps it.
+ *                    With slot_cells <= n_cells < 2 slot_cells it has one slot: a stage that
+ *                    is never retuned (every retune refused with ::SMS_ERR_BUFFER_TOO_SMALL),
+ *                    for callers that build fixed and retunable stages alike.
  * @return ::SMS_OK, ::SMS_ERR_NULL, the config's status, ::SMS_ERR_BUFFER_TOO_SMALL (config
- *         needs more than slot_cells, or n_cells < 2 slot_cells), ::SMS_ERR_TOO_LONG. Nothing
+ *         needs more than slot_cells, or n_cells < slot_cells), ::SMS_ERR_TOO_LONG. Nothing
  *         is written on error.
  */
 SMS_API sms_status sms_tunable_init(sms_tunable *t, const sms_stage_config *config, double Ts,
@@ -108,8 +112,8 @@ SMS_API sms_status sms_tunable_init(sms_tunable *t, const sms_stage_config *conf
  * @brief Switch to config from the next sample on (the rule above). O(design + delay line).
  * @return ::SMS_OK; ::SMS_ERR_NULL; ::SMS_ERR_RETUNE_BUSY (the previous switch is still in
  *         progress: see sms_tunable_switching()); the config's status at the tunable's Ts;
- *         ::SMS_ERR_BUFFER_TOO_SMALL (it needs more memory than a slot holds). On error
- *         nothing changes.
+ *         ::SMS_ERR_BUFFER_TOO_SMALL (it needs more memory than a slot holds, or the tunable
+ *         has one slot). On error nothing changes.
  */
 SMS_API sms_status sms_tunable_retune(sms_tunable *t, const sms_stage_config *config);
 /** @brief 1 while a switch is in progress (a retune would be refused), else 0. O(1). */
@@ -225,7 +229,8 @@ SMS_API void sms_tunable_chain_get_state(const sms_tunable_chain *chain, double 
  * sms_tunable_set_state(); all checked before any is written). */
 SMS_API sms_status sms_tunable_chain_set_state(sms_tunable_chain *chain, const double *src,
                                                size_t n);
-/** @brief After copying chain, stages and memory elsewhere, point the copy at them. */
+/** @brief After copying chain, stages and memory elsewhere, point the copy at them (the
+ * stages' memory one after the other, n_slots slot_cells cells each). */
 SMS_API void sms_tunable_chain_rebind(sms_tunable_chain *chain, sms_tunable *stages,
                                       sms_memory_cell *memory);
 

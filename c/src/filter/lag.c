@@ -8,6 +8,47 @@
 #include "filter/shaper_designs.h"
 #include "filter/smoother_design.h"
 
+/* S0 = sum_{i<n} q^i and S1 = sum_{i<n} i q^i of the complex q = (qr, qi), in O(log n) by
+ * binary doubling (S1(2m) = S1(m) + q^m (S1(m) + m S0(m)), S0(2m) = S0(m)(1 + q^m)) and
+ * single steps, in long double: no closed form's cancellation for q near 1. */
+static void moment_sums(long double qr, long double qi, size_t n, long double s0[2],
+                        long double s1[2])
+{
+    long double a0r = 0.0L, a0i = 0.0L, a1r = 0.0L, a1i = 0.0L, pr = 1.0L, pi_ = 0.0L;
+    size_t m = 0, bit = (size_t)1;
+    while (bit <= n / 2u)
+        bit <<= 1;
+    for (; n > 0u && bit > 0u; bit >>= 1) {
+        /* m -> 2 m */
+        const long double tr = a1r + (long double)m * a0r, ti = a1i + (long double)m * a0i;
+        const long double nr = a0r + (pr * a0r - pi_ * a0i), ni = a0i + (pr * a0i + pi_ * a0r);
+        a1r += pr * tr - pi_ * ti;
+        a1i += pr * ti + pi_ * tr;
+        a0r = nr;
+        a0i = ni;
+        {
+            const long double sr = pr * pr - pi_ * pi_, si = 2.0L * pr * pi_;
+            pr = sr;
+            pi_ = si;
+        }
+        m *= 2u;
+        if (n & bit) {   /* m -> m + 1 */
+            const long double sr = pr * qr - pi_ * qi, si = pr * qi + pi_ * qr;
+            a0r += pr;
+            a0i += pi_;
+            a1r += (long double)m * pr;
+            a1i += (long double)m * pi_;
+            pr = sr;
+            pi_ = si;
+            ++m;
+        }
+    }
+    s0[0] = a0r;
+    s0[1] = a0i;
+    s1[0] = a1r;
+    s1[1] = a1i;
+}
+
 sms_status sms_stage_config_lag(const sms_stage_config *config, double Ts, double *lag)
 {
     sms_status st;
@@ -15,19 +56,23 @@ sms_status sms_stage_config_lag(const sms_stage_config *config, double Ts, doubl
         return SMS_ERR_NULL;
     switch (sms_family_of(config->kind)) {
     case SMS_FAMILY_SMOOTHER: {
-        /* the normalised taps one by one: sum h = 1 */
+        /* the taps are c Re q^i (c Im q^i for the half-sine families) for i < M, and the
+         * direct taps: the moments of the geometric series in O(log M) */
         sms_smoother_design d;
-        double moment = 0.0, sum = 0.0;
-        size_t i;
+        long double s0[2], s1[2], moment, sum;
+        size_t j;
         st = sms_smoother_design_make(config, Ts, &d);
         if (st != SMS_OK)
             return st;
-        for (i = 0; i < d.length; ++i) {
-            const double h = sms_smoother_design_tap(&d, i);
-            sum += h;
-            moment += (double)i * h;
+        moment_sums(1.0L + (long double)d.pole_m1_re + (long double)d.pole_m1_lo_re,
+                    (long double)d.pole_im + (long double)d.pole_lo_im, d.window, s0, s1);
+        moment = (long double)d.gain * s1[d.family.half_sine ? 1 : 0];
+        sum = (long double)d.gain * s0[d.family.half_sine ? 1 : 0];
+        for (j = 0; j < d.n_corrections; ++j) {
+            moment += (long double)d.correction_delay[j] * (long double)d.correction_gain[j];
+            sum += (long double)d.correction_gain[j];
         }
-        *lag = moment / sum;
+        *lag = (double)(moment / sum);
         return SMS_OK;
     }
     case SMS_FAMILY_SHAPER:

@@ -76,10 +76,11 @@ sms_status sms_tunable_init(sms_tunable *t, const sms_stage_config *config, doub
         return st;
     if (memory == NULL)
         return SMS_ERR_NULL;
-    if (n_cells < total)
+    if (n_cells < slot_cells)
         return SMS_ERR_BUFFER_TOO_SMALL;
     built.memory = memory;
     built.slot_cells = slot_cells;
+    built.n_slots = n_cells >= total ? 2u : 1u;
     built.Ts = Ts;
     built.active = 0;
     st = sms_stage_init(&built.slot[0], config, Ts, memory, slot_cells);
@@ -150,6 +151,8 @@ sms_status sms_tunable_retune(sms_tunable *t, const sms_stage_config *config)
     if (t->switching)
         return SMS_ERR_RETUNE_BUSY;
     st = sms_tunable_fits(config, t->Ts, t->slot_cells);
+    if (st == SMS_OK && t->n_slots < 2u)
+        st = SMS_ERR_BUFFER_TOO_SMALL;   /* no room to switch */
     if (st != SMS_OK)
         return st;
     next = 1u - t->active;

@@ -213,6 +213,6 @@ void sms_tunable_chain_rebind(sms_tunable_chain *chain, sms_tunable *stages,
     chain->memory = memory;
     for (i = 0; i < chain->n_stages; ++i) {
         sms_tunable_rebind(&stages[i], memory + offset);
-        offset += 2u * stages[i].slot_cells;
+        offset += (size_t)stages[i].n_slots * stages[i].slot_cells;
     }
 }

@@ -183,7 +183,7 @@ void sms_tunable_rebind(sms_tunable *t, sms_memory_cell *memory)
 {
     unsigned s;
     t->memory = memory;
-    for (s = 0; s < 2u; ++s)
+    for (s = 0; s < t->n_slots; ++s)
         if (sms_family_of(t->slot[s].kind) != SMS_FAMILY_NONE)
             sms_stage_rebind(&t->slot[s], sms_tunable_slot_memory(t, s));
 }
