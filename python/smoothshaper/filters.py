@@ -274,6 +274,22 @@ def _as_stage_list(stages) -> tuple[Stage, ...]:
     return out
 
 
+def _process_checked(ffi, process_f64, chain, u, precision: str, limit: float) -> np.ndarray:
+    """``u`` through a chain's glue ``process_f64`` (smspy_*_process_f64, which checks every
+    sample first); ParameterError naming ``u`` for a non-finite sample or one beyond ``limit``
+    (then nothing is filtered)."""
+    # The output: u is copied once (complex, boolean or text input is refused, not cast).
+    y = np.array(_real_array("u", u, ndim=1), dtype=np.float64)
+    if y.size:
+        data = ffi.from_buffer("double[]", y)
+        bad = process_f64(chain, data, data, y.size)
+        if bad >= 0:
+            if math.isfinite(y[bad]):
+                _check_input("u", y, precision, limit)
+            raise ParameterError("u", f"u must be finite: u[{bad}] = {float(y[bad])!r}")
+    return y
+
+
 def _validated_configs(stages: tuple, Ts: float, ffi, lib):
     """The C configs of ``stages`` at ``Ts``, each validated and sized by the C core, and the
     delay-line reals each needs; ParameterError naming the offending field and stage (a delay
@@ -411,16 +427,8 @@ class Chain:
             Naming ``u`` if it is not 1-D real (complex, boolean and text are refused, not cast),
             holds NaN/Inf, or a sample beyond :attr:`input_max`; the state is then untouched.
         """
-        # The output: u is copied once (complex, boolean or text input is refused, not cast).
-        y = np.array(_real_array("u", u, ndim=1), dtype=np.float64)
-        if y.size:
-            data = self._ffi.from_buffer("double[]", y)
-            bad = self._lib.smspy_chain_process_f64(self._chain, data, data, y.size)
-            if bad >= 0:
-                if math.isfinite(y[bad]):
-                    _check_input("u", y, self.precision, self._input_max)
-                raise ParameterError("u", f"u must be finite: u[{bad}] = {float(y[bad])!r}")
-        return y
+        return _process_checked(self._ffi, self._lib.smspy_chain_process_f64, self._chain, u,
+                                self.precision, self._input_max)
 
     def step(self, x: float) -> float:
         """Filter one sample.

@@ -14,14 +14,13 @@ configuration it is declared for (``capacity``); a retune to anything larger is 
 """
 from __future__ import annotations
 
-import math
 from typing import Iterable, Sequence
 
 import numpy as np
 
 from . import filters as _filters
 from .filters import (PRECISIONS, ParameterError, _backend, _cells, _check_input,
-                      _raise_status, _validated_configs, check_memory)
+                      _process_checked, _raise_status, _validated_configs, check_memory)
 from .stages import Stage
 from ._checks import (choice as _choice, finite as _finite, integer as _integer,
                       positive as _positive, real_array as _real_array, show as _show)
@@ -256,15 +255,8 @@ class TunableChain:
             Naming ``u`` if it is not 1-D real, holds NaN/Inf, or a sample beyond
             :attr:`input_max`; the state is then untouched.
         """
-        y = np.array(_real_array("u", u, ndim=1), dtype=np.float64)
-        if y.size:
-            data = self._ffi.from_buffer("double[]", y)
-            bad = self._lib.smspy_tunable_chain_process_f64(self._chain, data, data, y.size)
-            if bad >= 0:
-                if math.isfinite(y[bad]):
-                    _check_input("u", y, self.precision, self.input_max)
-                raise ParameterError("u", f"u must be finite: u[{bad}] = {float(y[bad])!r}")
-        return y
+        return _process_checked(self._ffi, self._lib.smspy_tunable_chain_process_f64,
+                                self._chain, u, self.precision, self.input_max)
 
     def step(self, x: float) -> float:
         """Filter one sample.

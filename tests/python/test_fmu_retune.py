@@ -16,6 +16,7 @@ from fmpy.fmi1 import FMICallException  # noqa: E402
 
 import smoothshaper as sms  # noqa: E402
 from smoothshaper.scheduled import ScheduledShaper  # noqa: E402
+from test_fmu_multi_axis import start as base_start  # noqa: E402
 from test_fmu_smoothshaper import Logged, fmus, slave  # noqa: E402,F401
 
 TS = 1e-3
@@ -32,15 +33,7 @@ def ss_dir(fmus, tmp_path_factory):  # noqa: F811
 
 
 def start(fmu, values, u0=0.0):
-    fmu.setupExperiment(startTime=0.0)
-    fmu.enterInitializationMode()
-    for name, value in values.items():
-        if isinstance(value, int):
-            fmu.setInteger([fmu.vr[name]], [value])
-        else:
-            fmu.setReal([fmu.vr[name]], [float(value)])
-    fmu.setReal([fmu.vr["u"]], [u0])
-    fmu.exitInitializationMode()
+    base_start(fmu, **{**values, "u": float(u0)})
 
 
 def move(n=900):

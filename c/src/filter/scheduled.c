@@ -72,40 +72,61 @@ static void cos_sin_series(double b, double *c, double *s)
 
 /* ---- the taps of one pole ------------------------------------------------------------- */
 
-typedef struct sparse {
+/* The taps of ZV^n: (a0 + a1 z^-m + a2 z^-(m+1))^n expanded by the multinomial theorem, the
+ * term a0^(n-i) a1^(i-j) a2^j n!/((n-i)! (i-j)! j!) on delay i m + j (0 <= j <= i <= n). For
+ * m > n the delays increase with (i, j) and are distinct; for m <= n (a half period of at
+ * most 8 samples) they collide and are summed on a dense grid of at most n (m + 1) + 1. */
+typedef struct zv_taps {
     size_t n;
     size_t delay[SMS_SHAPER_MAX_TAPS];
     double gain[SMS_SHAPER_MAX_TAPS];
-} sparse;
+} zv_taps;
 
-static void sparse_add(sparse *s, size_t d, double g)
+static void expand(const double a[3], size_t m, unsigned order, zv_taps *out)
 {
-    size_t i = 0, j;
-    while (i < s->n && s->delay[i] < d)
-        ++i;
-    if (i < s->n && s->delay[i] == d) {
-        s->gain[i] += g;
-        return;
+    double binom[SMS_SHAPER_MAX_ORDER + 1][SMS_SHAPER_MAX_ORDER + 1];
+    double dense[(SMS_SHAPER_MAX_ORDER + 1) * (SMS_SHAPER_MAX_ORDER + 1)];
+    double p0[SMS_SHAPER_MAX_ORDER + 1], p1[SMS_SHAPER_MAX_ORDER + 1], p2[SMS_SHAPER_MAX_ORDER + 1];
+    unsigned i, j;
+    size_t d;
+    for (i = 0; i <= order; ++i) {
+        binom[i][0] = binom[i][i] = 1.0;
+        for (j = 1; j < i; ++j)
+            binom[i][j] = binom[i - 1][j - 1] + binom[i - 1][j];
+        p0[i] = i == 0 ? 1.0 : p0[i - 1] * a[0];
+        p1[i] = i == 0 ? 1.0 : p1[i - 1] * a[1];
+        p2[i] = i == 0 ? 1.0 : p2[i - 1] * a[2];
     }
-    for (j = s->n; j > i; --j) {
-        s->delay[j] = s->delay[j - 1];
-        s->gain[j] = s->gain[j - 1];
-    }
-    s->delay[i] = d;
-    s->gain[i] = g;
-    ++s->n;
+    out->n = 0;
+    if (m <= order)
+        for (d = 0; d <= order * (m + 1u); ++d)
+            dense[d] = 0.0;
+    for (i = 0; i <= order; ++i)
+        for (j = 0; j <= i; ++j) {
+            const double g = binom[order][i] * binom[i][j] * p0[order - i] * p1[i - j] * p2[j];
+            const size_t at = (size_t)i * m + j;
+            if (m <= order) {
+                dense[at] += g;
+            } else if (g != 0.0 || at == 0u) {
+                out->delay[out->n] = at;
+                out->gain[out->n++] = g;
+            }
+        }
+    if (m <= order)
+        for (d = 0; d <= order * (m + 1u); ++d)
+            if (dense[d] != 0.0 || d == 0u) {
+                out->delay[out->n] = d;
+                out->gain[out->n++] = dense[d];
+            }
 }
 
 /* The exact ZV^order of the pole sigma Ts + j wd Ts (scheduled.h) into out. */
-static void design(double sigma_ts, double wd_ts, unsigned order, sparse *out)
+static void design(double sigma_ts, double wd_ts, unsigned order, zv_taps *out)
 {
     const double mu = pi / wd_ts;
     const size_t m = (size_t)mu;
     const double f = mu - (double)m, inv_k = exp_series(-sigma_ts * mu);
     double c, s, ur, ui, vr, vi, e, den, a[3];
-    sparse zv, acc, next;
-    size_t d[3], i, j, k;
-    unsigned p;
     e = exp_series(sigma_ts * f);
     cos_sin_series(wd_ts * f, &c, &s);
     ur = -inv_k * e * c;
@@ -118,22 +139,7 @@ static void design(double sigma_ts, double wd_ts, unsigned order, sparse *out)
     a[1] = vi / den;
     a[2] = -ui / den;
     a[0] = 1.0 - a[1] - a[2];
-    d[0] = 0;
-    d[1] = m;
-    d[2] = m + 1u;
-    zv.n = 0;
-    for (i = 0; i < 3; ++i)
-        if (a[i] != 0.0 || i == 0)
-            sparse_add(&zv, d[i], a[i]);
-    acc = zv;
-    for (p = 1; p < order; ++p) {
-        next.n = 0;
-        for (j = 0; j < acc.n; ++j)
-            for (k = 0; k < zv.n; ++k)
-                sparse_add(&next, acc.delay[j] + zv.delay[k], acc.gain[j] * zv.gain[k]);
-        acc = next;
-    }
-    *out = acc;
+    expand(a, m, order, out);
 }
 
 /* The interpolated pole (sigma Ts, wd Ts) at s: linear between the points, the end points'
@@ -167,7 +173,7 @@ static void pole_at(const sms_scheduled *f, double s, double *sigma_ts, double *
 /* Recompute the taps for schedule value s (a non-finite s keeps them). */
 static void update(sms_scheduled *f, double s)
 {
-    sparse taps;
+    zv_taps taps;
     double sigma_ts, wd_ts;
     size_t i;
     if (!is_finite(s))
