@@ -107,6 +107,8 @@ typedef enum sms_status {
     SMS_ERR_COEFFS = -44,           /**< precomputed coefficients (coeffs.h) that no design
                                          writes: a length, tap or delay out of range, a
                                          non-finite value */
+    SMS_ERR_RETUNE_BUSY = -45,      /**< a retune while the previous switch of the stage is
+                                         still in progress (tunable.h) */
     SMS_ERR_TARGET_POSITION = -46,  /**< a target position is NaN/Inf */
     SMS_ERR_TARGET_VELOCITY = -47,  /**< a target velocity is NaN/Inf, beyond the velocity
                                          bounds, or not 0 where the profile plans to rest only */
