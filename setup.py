@@ -1,6 +1,6 @@
 """Builds the cffi extensions smoothshaper._core (double) and smoothshaper._core_float (float)
-from c/src/*.c, and the CPython extension smoothshaper._kinematic_fastpath (design.kinematic's
-fast path); all other metadata lives in pyproject.toml."""
+from the C sources under c/src, and the CPython extension smoothshaper._kinematic_fastpath
+(design.kinematic's fast path); all other metadata lives in pyproject.toml."""
 import os
 import sys
 

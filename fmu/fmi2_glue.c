@@ -31,6 +31,7 @@
 #include <string.h>
 
 #include "fmu_instance.h"
+#include "fmu_serialize.h"
 #include "smoothshaper/types.h"
 
 #define TICK_SLACK FMU_TICK_SLACK
@@ -242,48 +243,6 @@ void fmi2FreeInstance(fmi2Component comp)
     release(c->model);
     release(c->name);
     release(c);
-}
-
-int fmu_refuse_size(char *msg, size_t len, const char *parameters, double need, const char *fix)
-{
-    snprintf(msg, len, "%s: needs %.0f reals of delay lines and tables (%.1f MiB in double), more "
-             "than the limit of %lu reals (%lu MiB) per instance that keeps every call on the "
-             "state well under 100 ms: %s", parameters, need, need * 8.0 / 1048576.0,
-             (unsigned long)FMU_MAX_REALS, (unsigned long)(FMU_MAX_REALS * 8u >> 20), fix);
-    return 1;
-}
-
-int fmu_refuse_hold(char *msg, size_t len, const char *parameters, double need,
-                    const char *slowest, const char *fix)
-{
-    snprintf(msg, len, "%s: absorbing a held input needs %.4g stage-samples of filtering (%s), "
-             "more than the limit of %.0f that keeps a fmi2DoStep of any length well under "
-             "100 ms: %s", parameters, need, slowest, FMU_MAX_HOLD_SAMPLES, fix);
-    return 1;
-}
-
-int fmu_build(const fmi2CallbackFunctions *cb, void *model, void **mem, size_t *bytes, char *msg,
-              size_t len)
-{
-    size_t need = 0;
-    void *block;
-    int built;
-    if (fmu_model_plan(model, &need, msg, len) != 0)
-        return 1;
-    block = cb->allocateMemory(need > 0 ? need : 1, 1);
-    if (block == NULL)
-        return snprintf(msg, len, "out of memory: the filters need %lu bytes",
-                        (unsigned long)need), 1;
-    built = fmu_model_build(model, block, need, msg, len);
-    if (built > 0) {
-        cb->freeMemory(block);
-        return 1;
-    }
-    if (*mem != NULL)
-        cb->freeMemory(*mem);
-    *mem = block;
-    *bytes = need;
-    return built < 0 ? -1 : 0;
 }
 
 fmi2Status fmi2SetupExperiment(fmi2Component comp, fmi2Boolean toleranceDefined, fmi2Real tolerance,

@@ -1,6 +1,7 @@
 /*
  * Internal types of the shared FMI 2.0 glue: the instance, the FMU state snapshot, and the
- * serialisation entry points (fmu_serialize.c).
+ * build of a model into an instance's block (fmu_build.c). The serialised state has its own
+ * header (fmu_serialize.h).
  */
 #ifndef FMU_INSTANCE_H
 #define FMU_INSTANCE_H
@@ -80,27 +81,5 @@ typedef struct fmu_snapshot {
  */
 int fmu_build(const fmi2CallbackFunctions *cb, void *model, void **mem, size_t *bytes, char *msg,
               size_t len);
-
-/** XXH64 (seed 0) of p[0..n-1], the states' checksum: the reference algorithm of Y. Collet's
- * xxHash (64-bit variant), any n (tests/fmu/test_fmu_checksum.c compares it with the xxHash
- * library's values, every tail length). */
-uint64_t fmu_xxh64(const unsigned char *p, size_t n);
-
-/** Bytes fmu_serialize() writes for this snapshot. */
-size_t fmu_serialized_size(const fmu_snapshot *s);
-/** Write the snapshot into out[0..size-1] (size from fmu_serialized_size); the model's state
- * vector is written in place when the host stores doubles as the format does and out puts them
- * at an address aligned for double, else it passes through scratch memory from cb.
- * @return 0, or non-zero when out of memory. */
-int fmu_serialize(const fmu_snapshot *s, const fmi2CallbackFunctions *cb, unsigned char *out);
-/**
- * Parse a serialised state into dst (whose model struct is allocated, fmu_model_size() bytes;
- * its block is allocated here through cb).
- * @return 0 on success, else non-zero with msg saying why (foreign, other precision, truncated,
- *         corrupted, clock and tick count disagreeing, invalid parameters); dst then holds no
- *         block and must only be freed.
- */
-int fmu_deserialize(const unsigned char *in, size_t size, fmu_snapshot *dst,
-                    const fmi2CallbackFunctions *cb, char *msg, size_t len);
 
 #endif

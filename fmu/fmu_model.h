@@ -56,7 +56,7 @@ typedef enum fmu_type { FMU_REAL = 0, FMU_INTEGER = 1 } fmu_type;
 
 /**
  * @brief The refusal of a configuration whose filters would need more than
- * FMU_MAX_HOLD_SAMPLES stage-samples to absorb a held input (provided by the glue).
+ * FMU_MAX_HOLD_SAMPLES stage-samples to absorb a held input (fmu_refuse.c).
  * @param parameters  the variables that set the slowest stage, with their values
  * @param need        the stage-samples the configuration needs (sms_chain_hold_cost())
  * @param slowest     what the slowest stage needs alone, and why ("a notch decaying in ...")
@@ -72,7 +72,7 @@ int fmu_refuse_hold(char *msg, size_t len, const char *parameters, double need,
 
 /**
  * @brief The refusal of a configuration whose delay lines and tables need more than
- * FMU_MAX_REALS reals (provided by the glue: one wording for every model).
+ * FMU_MAX_REALS reals (fmu_refuse.c: one wording for every model).
  * @param parameters  the variables that set the size, with their values ("stage[0].T = 20, Ts =
  *                    1e-06")
  * @param need        reals the configuration needs (all delay lines and tables together)

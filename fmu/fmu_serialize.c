@@ -35,6 +35,7 @@
 #include <string.h>
 
 #include "fmu_instance.h"
+#include "fmu_serialize.h"
 
 #define FMU_STATE_VERSION 5u   /* 3: the filter states start with their configuration identity;
                                   4: so do the generators' states;

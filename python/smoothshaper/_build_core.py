@@ -1,6 +1,7 @@
 """cffi builder for ``smoothshaper._core`` (double) and ``smoothshaper._core_float`` (float).
 
-API mode, out of line: the extension compiles every ``c/src/*.c`` straight into the module,
+API mode, out of line: the extension compiles every C source of ``c/src`` (all its areas:
+``core/``, ``filter/``, ``identify/``, ``trajectory/``) straight into the module,
 so ``pip install .`` needs only a C compiler. The cdef is generated from the public headers,
 never written by hand: the C preprocessor expands ``c/include/smoothshaper/smoothshaper.h``
 (``SMS_API`` defined empty, the C library headers replaced by empty stand-ins because cffi
@@ -111,10 +112,17 @@ def cdef_text(defines: list[str] | None = None) -> str:
 
 def _sources() -> list[str]:
     # setuptools wants paths relative to the setup.py directory (the repository root).
-    paths = sorted(glob.glob(os.path.join(SRC_DIR, "*.c")))
+    paths = sorted(glob.glob(os.path.join(SRC_DIR, "**", "*.c"), recursive=True))
     if not paths:
         raise RuntimeError(f"no C sources found in {SRC_DIR}")
     return [os.path.relpath(p, ROOT) for p in paths]
+
+
+def _headers() -> list[str]:
+    """Every header a build reads (public and internal): a change rebuilds the modules."""
+    return [os.path.relpath(p, ROOT) for p in sorted(
+        glob.glob(os.path.join(INCLUDE_DIR, "smoothshaper", "*.h"))
+        + glob.glob(os.path.join(SRC_DIR, "**", "*.h"), recursive=True))]
 
 
 # Binding glue compiled into each module (not part of the C library): Chain.process in one
@@ -176,9 +184,7 @@ def make_builder(module: str, defines: list[str]) -> FFI:
         _GLUE_SOURCE,
         sources=_sources(),
         # Rebuild when any header changes, not only when a .c file does.
-        depends=[os.path.relpath(p, ROOT) for p in sorted(
-            glob.glob(os.path.join(INCLUDE_DIR, "smoothshaper", "*.h"))
-            + glob.glob(os.path.join(SRC_DIR, "*.h")))],
+        depends=_headers(),
         include_dirs=[os.path.relpath(INCLUDE_DIR, ROOT), os.path.relpath(SRC_DIR, ROOT)],
         define_macros=macros,
         libraries=[] if sys.platform == "win32" else ["m"],
@@ -198,9 +204,7 @@ def kinematic_fastpath_extension():
         "smoothshaper._kinematic_fastpath",
         sources=[os.path.relpath(os.path.join(HERE, "_kinematic_fastpath.c"), ROOT)]
         + _sources(),
-        depends=[os.path.relpath(p, ROOT) for p in sorted(
-            glob.glob(os.path.join(INCLUDE_DIR, "smoothshaper", "*.h"))
-            + glob.glob(os.path.join(SRC_DIR, "*.h")))],
+        depends=_headers(),
         include_dirs=[os.path.relpath(INCLUDE_DIR, ROOT), os.path.relpath(SRC_DIR, ROOT)],
         libraries=[] if sys.platform == "win32" else ["m"],
         extra_compile_args=[] if sys.platform == "win32" else ["-fvisibility=hidden"],

@@ -16,7 +16,7 @@
 #include <Python.h>
 
 #include "smoothshaper/smoothshaper.h"
-#include "trajectory_internal.h"
+#include "trajectory/trajectory_internal.h"
 
 /* Set once by configure() (design.py at import): Stage, the kind and timing names indexed by
  * the C enumerations, the profile names mapped to sms_profile, the extra number types that

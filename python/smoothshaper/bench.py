@@ -119,7 +119,7 @@ def _compiler() -> str | None:
 def run_c_bench(flags: list[str], precision: str, workdir: Path, quick: bool) -> dict:
     """Compile speed_bench.c with the library sources and run it; {(kind, path, contender): ns}."""
     cc = _compiler()
-    sources = sorted((ROOT / "c" / "src").glob("*.c"))
+    sources = sorted((ROOT / "c" / "src").rglob("*.c"))
     exe = workdir / f"speed_bench_{precision}_{'_'.join(f.strip('-') for f in flags)}"
     defines = ["-DSMS_USE_FLOAT"] if precision == "float" else []
     cmd = [cc, "-std=c99", *flags, *defines, "-I", str(ROOT / "c" / "include"),

@@ -184,7 +184,7 @@ def _multi_replan_bench(quick: bool) -> str:
         subprocess.run([cc, "-std=c99", "-O2", "-I", str(ROOT / "c" / "include"),
                         "-I", str(ROOT / "c" / "src"),
                         str(ROOT / "tests" / "bench" / "multi_generator_bench.c"),
-                        *map(str, sorted((ROOT / "c" / "src").glob("*.c"))), "-lm", "-o", exe],
+                        *map(str, sorted((ROOT / "c" / "src").rglob("*.c"))), "-lm", "-o", exe],
                        check=True)
         return subprocess.run([exe] + (["--quick"] if quick else []), check=True,
                               capture_output=True, text=True).stdout.rstrip()

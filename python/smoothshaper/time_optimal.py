@@ -1,6 +1,6 @@
 """NumPy reference of the time-optimal online generator's plan.
 
-Written independently of ``c/src/plan.c``: the motion from a state (q, v, a) to a target at
+Written independently of ``c/src/trajectory/plan.c``: the motion from a state (q, v, a) to a target at
 rest is built from the same three phases (velocity change to a peak velocity vp with the
 acceleration back at 0, a cruise at +-vmax when the distance allows, the stop), but vp is
 found by ``scipy.optimize.brentq`` and the plan is sampled on absolute float64 times, a

@@ -10,7 +10,7 @@
  */
 #include <stdio.h>
 
-#include "fmu_instance.h"
+#include "fmu_serialize.h"
 
 static const struct { size_t n; uint64_t xxh64; } expected[] = {
     { 0, 0xef46db3751d8e999u },  { 1, 0xad10cd9780ac4ff7u },  { 3, 0x40626d96276e4594u },

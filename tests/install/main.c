@@ -3,6 +3,11 @@
 #include <float.h>
 #include <stdio.h>
 #include <smoothshaper/smoothshaper.h>
+/* the area headers are installed beside it and agree with it */
+#include <smoothshaper/core.h>
+#include <smoothshaper/filter.h>
+#include <smoothshaper/identify.h>
+#include <smoothshaper/motion.h>
 
 #define N_TAPS 8
 #define N_SAMPLES 20

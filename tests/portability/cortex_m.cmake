@@ -1,6 +1,7 @@
 cmake_minimum_required(VERSION 3.16)
-# Cross-compiles every c/src/*.c for a Cortex-M4F (hard float, single-precision FPU) in both
-# precisions with the library's strict C99 flags, and prints the code size of each build.
+# Cross-compiles every C source under c/src (all areas) for a Cortex-M4F (hard float,
+# single-precision FPU) in both precisions with the library's strict C99 flags, and prints the
+# code size of each build.
 # Then links per_sample_probe.c (step/process/reset only) against those objects with newlib
 # and --gc-sections, fails if any newlib libm function survives in the image, and prints
 # the size of what the per-sample path keeps: the probe's text + rodata minus that of an
@@ -22,7 +23,7 @@ if(NOT ARM_SIZE OR NOT ARM_NM)
   message(FATAL_ERROR "arm-none-eabi-gcc found but not arm-none-eabi-size / -nm next to it")
 endif()
 
-file(GLOB sources ${SOURCE_DIR}/c/src/*.c)
+file(GLOB_RECURSE sources ${SOURCE_DIR}/c/src/*.c)
 set(target_flags -mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16)
 # -ffreestanding: no hosted-library assumptions; <math.h>/<string.h> come from newlib.
 set(strict_flags -std=c99 -Wall -Wextra -Werror -pedantic -Wshadow -Wstrict-prototypes

@@ -1,4 +1,6 @@
-"""Seed 004 (Bascetta, "Motion control: advanced control techniques"): input shaping and notch.
+"""Seed 004 (Bascetta, "Motion control: advanced control techniques"): input shaping and notch;
+the closed-loop part (TDO, pole placement, LQG vs PID, shaping on the drive) is
+:mod:`.seed004_servo`.
 
 Claims and numbers extracted from the seed (it prints formulas and figures, no residual values):
 
@@ -66,12 +68,18 @@ def error_corners():
 
 def build(fig_dir=None) -> Section:
     sec = Section(
-        key="seed004", title="Seed 004: ZV / ZVD input shaping and the notch filter",
+        key="seed004",
+        title="Seed 004: input shaping, the notch filter and the servo in closed loop",
         claim=("A ZV shaper (two positive impulses, the second half a damped period later) "
                "cancels the mode it is designed for; with 10 % error on wn and 20 % on xi it "
                "leaves an oscillation, which the three-impulse ZVD shaper largely removes. A "
                "notch cancels a pair of lightly damped poles; digitising it distorts its "
-               "frequency unless the bilinear transform is pre-warped."),
+               "frequency unless the bilinear transform is pre-warped. In closed loop, a torque "
+               "disturbance observer rejects load torque on the rigid model (high-pass "
+               "sT_f/(1+sT_f)) but leaves the elastic load oscillating at the locked "
+               "frequency; observer-based pole placement with integral action and "
+               "feed-forward, and LQG, act on every state, and LQG beats PID on three "
+               "trapezoidal moves."),
         command=COMMAND)
     zv = st.shaper("zv", wn=WN, zeta=XI)
     zvd = st.shaper("zvd", wn=WN, zeta=XI)
@@ -114,7 +122,9 @@ def build(fig_dir=None) -> Section:
 
     _pulse_simulation(sec, zv, zvd)
     notch_rows = _notch(sec)
-    sec.body = _body(rows, notch_rows)
+    from . import seed004_servo
+    servo_body = seed004_servo.run(sec, fig_dir)
+    sec.body = _body(rows, notch_rows) + "\n\n" + servo_body
     if fig_dir is not None:
         _figures(sec, fig_dir, zv, zvd)
     return sec

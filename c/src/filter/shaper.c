@@ -1,0 +1,463 @@
+/* Input shapers: validation, discretisation (paper rounding or exact split + least-norm
+ * correction, docs/exact-mode.md) and the sparse FIR engine. */
+#include <math.h>
+#include <string.h>
+#include "filter/shaper_designs.h"
+#include "core/state_identity.h"
+
+static const double pi = 3.14159265358979323846;
+/* Longest accepted shaper: state indices are saved as doubles and must stay exact. */
+static const double max_length = 1099511627776.0; /* 2^40 */
+
+/* A sparse impulse response, delays strictly increasing. */
+typedef struct sparse {
+    size_t n;
+    size_t delay[SMS_SHAPER_MAX_TAPS];
+    double gain[SMS_SHAPER_MAX_TAPS];
+} sparse;
+
+static int is_shaper(sms_kind kind)
+{
+    return (kind >= SMS_SHAPER_ZV && kind <= SMS_SHAPER_MZV) || kind == SMS_SHAPER_EI3
+           || kind == SMS_SHAPER_GMZV;
+}
+
+static int is_finite(double v)
+{
+    return v - v == 0.0;
+}
+
+/* Checks that do not need Ts (shared with sms_shaper_impulses). */
+static sms_status check_fields(const sms_stage_config *c)
+{
+    if (!is_finite(c->wn) || c->wn <= 0.0)
+        return SMS_ERR_WN;
+    if (!is_finite(c->zeta) || c->zeta < 0.0 || c->zeta >= 1.0)
+        return SMS_ERR_ZETA;
+    if (c->kind == SMS_SHAPER_ZVN && (c->order < 1u || c->order > SMS_SHAPER_MAX_ORDER))
+        return SMS_ERR_ORDER;
+    if (c->kind == SMS_SHAPER_GMZV && (c->order < 3u || c->order > SMS_SHAPER_MAX_IMPULSES))
+        return SMS_ERR_ORDER;
+    if ((c->kind == SMS_SHAPER_EI || c->kind == SMS_SHAPER_EI2 || c->kind == SMS_SHAPER_EI3)
+        && (!is_finite(c->tolerance) || c->tolerance <= 0.0 || c->tolerance >= 1.0))
+        return SMS_ERR_TOLERANCE;
+    if (c->kind == SMS_SHAPER_GMZV) {
+        double amp[SMS_SHAPER_MAX_IMPULSES], units[SMS_SHAPER_MAX_IMPULSES];
+        if (!is_finite(c->duration) || !sms_gmzv_undamped(c->order, c->duration, amp, units))
+            return SMS_ERR_SHAPER_DURATION;
+    }
+    return SMS_OK;
+}
+
+static sms_status check_config(const sms_stage_config *c, double Ts)
+{
+    sms_status st;
+    if (!is_finite(Ts) || Ts <= 0.0)
+        return SMS_ERR_SAMPLE_PERIOD;
+    if (!is_shaper(c->kind) || (c->timing != SMS_TIMING_EXACT && c->timing != SMS_TIMING_PAPER))
+        return SMS_ERR_KIND;
+    if (!is_finite(c->wn) || c->wn <= 0.0)
+        return SMS_ERR_WN;
+    if (c->wn * Ts >= pi)
+        return SMS_ERR_ABOVE_NYQUIST;
+    st = check_fields(c);
+    if (st != SMS_OK)
+        return st;
+    return SMS_OK;
+}
+
+/* Add g at delay d, keeping delays sorted and merging equal ones. Capacity is guaranteed by
+ * the tap-count bound in shaper.h. */
+static void sparse_add(sparse *s, size_t d, double g)
+{
+    size_t i = 0, j;
+    while (i < s->n && s->delay[i] < d)
+        ++i;
+    if (i < s->n && s->delay[i] == d) {
+        s->gain[i] += g;
+        return;
+    }
+    for (j = s->n; j > i; --j) {
+        s->delay[j] = s->delay[j - 1];
+        s->gain[j] = s->gain[j - 1];
+    }
+    s->delay[i] = d;
+    s->gain[i] = g;
+    ++s->n;
+}
+
+/* docs/exact-mode.md integer test: mu is on the grid when within 1e-9 max(1, mu) of round(mu). */
+static int on_grid(double mu, double *rounded)
+{
+    double r = floor(mu + 0.5);
+    *rounded = r;
+    return fabs(mu - r) <= 1e-9 * (mu > 1.0 ? mu : 1.0);
+}
+
+/* z^{-i} at z = exp(p Ts), p = -zeta wn + j wd: e^{zeta wn i Ts} (cos(wd i Ts) - j sin(wd i Ts)). */
+static void z_inv_power(double sigma_ts, double wd_ts, size_t i, double *re, double *im)
+{
+    double mag = exp(-sigma_ts * (double)i), arg = wd_ts * (double)i;
+    *re = mag * cos(arg);
+    *im = -mag * sin(arg);
+}
+
+/* Solve the 3x3 system M y = r by Gaussian elimination with partial pivoting. */
+static void solve3(double M[3][3], double r[3], double y[3])
+{
+    int i, j, k;
+    for (k = 0; k < 3; ++k) {
+        int p = k;
+        for (i = k + 1; i < 3; ++i)
+            if (fabs(M[i][k]) > fabs(M[p][k]))
+                p = i;
+        if (p != k) {
+            double t;
+            for (j = 0; j < 3; ++j) {
+                t = M[k][j]; M[k][j] = M[p][j]; M[p][j] = t;
+            }
+            t = r[k]; r[k] = r[p]; r[p] = t;
+        }
+        for (i = k + 1; i < 3; ++i) {
+            double f = M[i][k] / M[k][k];
+            for (j = k; j < 3; ++j)
+                M[i][j] -= f * M[k][j];
+            r[i] -= f * r[k];
+        }
+    }
+    for (i = 2; i >= 0; --i) {
+        double acc = r[i];
+        for (j = i + 1; j < 3; ++j)
+            acc -= M[i][j] * y[j];
+        y[i] = acc / M[i][i];
+    }
+}
+
+/* Exact timing of one continuous design: linear split of off-grid impulses, then the
+ * least-norm correction d on S = {0} + split indices with sum d = 0 and
+ * sum d_i z^{-i} = H_c(p) - G(z_p), d = C^T (C C^T)^{-1} r. */
+static void realise_exact(const double *amp, const double *time, size_t n_imp, double Ts,
+                          double sigma, double wd, sparse *out)
+{
+    size_t support[2 * SMS_SHAPER_MAX_IMPULSES + 1], n_s = 1, m, i, j;
+    double cr[2 * SMS_SHAPER_MAX_IMPULSES + 1], ci[2 * SMS_SHAPER_MAX_IMPULSES + 1];
+    double hc_re = 0.0, hc_im = 0.0, g_re = 0.0, g_im = 0.0;
+    double M[3][3], r[3], y[3];
+    double sigma_ts = sigma * Ts, wd_ts = wd * Ts;
+    out->n = 0;
+    support[0] = 0;
+    for (m = 0; m < n_imp; ++m) {
+        double mu = time[m] / Ts, rounded;
+        /* continuous H_c(p) = sum A e^{-p t} */
+        double mag = exp(-sigma * time[m]), arg = wd * time[m];
+        hc_re += amp[m] * mag * cos(arg);
+        hc_im -= amp[m] * mag * sin(arg);
+        if (on_grid(mu, &rounded)) {
+            sparse_add(out, (size_t)rounded, amp[m]);
+        } else {
+            double m0 = floor(mu), f = mu - m0;
+            size_t k0 = (size_t)m0;
+            sparse_add(out, k0, amp[m] * (1.0 - f));
+            sparse_add(out, k0 + 1u, amp[m] * f);
+            for (j = 0; j < 2; ++j) {
+                size_t idx = k0 + j;
+                for (i = 0; i < n_s && support[i] != idx; ++i)
+                    ;
+                if (i == n_s)
+                    support[n_s++] = idx;
+            }
+        }
+    }
+    /* No split: no correction. A split at m0 >= 1 gives |S| = 3. m0 = 0 (t < Ts) only happens
+     * when the impulse spacing is below Ts (MZV's middle impulse when Td < 8/3 Ts, GMZV with
+     * many impulses near Nyquist); the last impulse lies at >= Td/2 > Ts, so either it splits
+     * at m0 >= 1 or it sits on a sample m >= 2 and the one before it, less than Ts earlier,
+     * splits onto {m-1, m}: |S| >= 3 always, so C C^T is invertible. */
+    if (n_s == 1)
+        return;
+    for (i = 0; i < out->n; ++i) {
+        double re, im;
+        z_inv_power(sigma_ts, wd_ts, out->delay[i], &re, &im);
+        g_re += out->gain[i] * re;
+        g_im += out->gain[i] * im;
+    }
+    for (i = 0; i < n_s; ++i)
+        z_inv_power(sigma_ts, wd_ts, support[i], &cr[i], &ci[i]);
+    for (i = 0; i < 3; ++i)
+        for (j = 0; j < 3; ++j)
+            M[i][j] = 0.0;
+    for (i = 0; i < n_s; ++i) {
+        double row[3];
+        row[0] = 1.0;
+        row[1] = cr[i];
+        row[2] = ci[i];
+        for (m = 0; m < 3; ++m)
+            for (j = 0; j < 3; ++j)
+                M[m][j] += row[m] * row[j];
+    }
+    r[0] = 0.0;
+    r[1] = hc_re - g_re;
+    r[2] = hc_im - g_im;
+    solve3(M, r, y);
+    for (i = 0; i < n_s; ++i)
+        sparse_add(out, support[i], y[0] + y[1] * cr[i] + y[2] * ci[i]);
+}
+
+static void realise_paper(const double *amp, const double *time, size_t n_imp, double Ts,
+                          sparse *out)
+{
+    size_t m;
+    out->n = 0;
+    for (m = 0; m < n_imp; ++m)
+        sparse_add(out, (size_t)floor(time[m] / Ts + 0.5), amp[m]);
+}
+
+static void convolve(const sparse *a, const sparse *b, sparse *out)
+{
+    size_t i, j;
+    out->n = 0;
+    for (i = 0; i < a->n; ++i)
+        for (j = 0; j < b->n; ++j)
+            sparse_add(out, a->delay[i] + b->delay[j], a->gain[i] * b->gain[j]);
+}
+
+/* The discrete taps of a config already validated by check_config. */
+static sms_status realise(const sms_stage_config *c, double Ts, sparse *out)
+{
+    double amp[SMS_SHAPER_MAX_IMPULSES], time[SMS_SHAPER_MAX_IMPULSES];
+    double sigma = -c->zeta * c->wn, wd = c->wn * sqrt(1.0 - c->zeta * c->zeta);
+    unsigned order = sms_shaper_zv_order(c);
+    size_t n_imp = sms_shaper_design(c, amp, time);
+    if (time[n_imp - 1] / Ts + 2.0 > max_length)
+        return SMS_ERR_TOO_LONG;
+    if (c->timing == SMS_TIMING_PAPER) {
+        realise_paper(amp, time, n_imp, Ts, out);
+    } else if (order > 0u) {
+        /* ZV^n: n-fold convolution of the exact ZV, a zero of multiplicity n at e^{p Ts}. */
+        sms_stage_config zv = *c;
+        sparse single, acc;
+        unsigned m;
+        zv.kind = SMS_SHAPER_ZV;
+        n_imp = sms_shaper_design(&zv, amp, time);
+        realise_exact(amp, time, n_imp, Ts, sigma, wd, &single);
+        *out = single;
+        for (m = 1; m < order; ++m) {
+            acc = *out;
+            convolve(&acc, &single, out);
+        }
+    } else {
+        realise_exact(amp, time, n_imp, Ts, sigma, wd, out);
+    }
+    /* Exact timing weighs the impulses with z^-i = e^{zeta wn i Ts}...: for zeta near 1 over a
+     * long span that overflows (while K^m underflows), and the correction is not a number.
+     * Refuse the mode instead of returning NaN taps (paper timing still realises it). */
+    {
+        size_t i;
+        for (i = 0; i < out->n; ++i)
+            if (!is_finite(out->gain[i]))
+                return SMS_ERR_ZETA;
+    }
+    return SMS_OK;
+}
+
+static sms_status build(const sms_stage_config *config, double Ts, sparse *taps)
+{
+    sms_status st;
+    if (config == NULL)
+        return SMS_ERR_NULL;
+    st = check_config(config, Ts);
+    if (st != SMS_OK)
+        return st;
+    return realise(config, Ts, taps);
+}
+
+sms_status sms_shaper_sizes(const sms_stage_config *config, double Ts, size_t *n_reals,
+                            size_t *n_taps)
+{
+    sparse taps;
+    sms_status st;
+    if (n_reals == NULL || n_taps == NULL)
+        return SMS_ERR_NULL;
+    st = build(config, Ts, &taps);
+    if (st == SMS_OK) {
+        *n_reals = taps.delay[taps.n - 1] + 1u;
+        *n_taps = taps.n;
+    }
+    return st;
+}
+
+sms_status sms_shaper_buffer_size(const sms_stage_config *config, double Ts, size_t *n_reals)
+{
+    size_t n_taps;
+    return sms_shaper_sizes(config, Ts, n_reals, &n_taps);
+}
+
+sms_status sms_shaper_tap_count(const sms_stage_config *config, double Ts, size_t *n_taps)
+{
+    size_t n_reals;
+    return sms_shaper_sizes(config, Ts, &n_reals, n_taps);
+}
+
+sms_status sms_shaper_init(sms_shaper *f, const sms_stage_config *config, double Ts,
+                           sms_shaper_tap *taps, size_t n_taps, sms_real *buffer, size_t n_reals)
+{
+    sparse design;
+    sms_shaper built;
+    size_t i;
+    sms_status st;
+    if (f == NULL)
+        return SMS_ERR_NULL;
+    st = build(config, Ts, &design);
+    if (st != SMS_OK)
+        return st;
+    if (taps == NULL || buffer == NULL)
+        return SMS_ERR_NULL;
+    built.kind = config->kind;
+    built.length = design.delay[design.n - 1] + 1u;
+    if (n_taps < design.n || n_reals < built.length)
+        return SMS_ERR_BUFFER_TOO_SMALL;
+    built.n_taps = design.n;
+    for (i = 0; i < design.n; ++i) {
+        taps[i].delay = design.delay[i];
+        taps[i].gain = (sms_real)design.gain[i];
+    }
+    built.taps = taps;
+    built.history = buffer;
+    built.history_len = built.length;
+    sms_state_identity(config, Ts, built.identity);
+    *f = built;
+    sms_shaper_reset(f, (sms_real)0);
+    return SMS_OK;
+}
+
+void sms_shaper_reset(sms_shaper *f, sms_real rest)
+{
+    size_t i;
+    for (i = 0; i < f->history_len; ++i)
+        f->history[i] = rest;
+    f->rest = rest;
+    f->head = 0;
+}
+
+/* The ring index and the tap table stay in locals for the whole block. A tap's sample sits
+ * d_k slots behind the head, wrapped once. */
+void sms_shaper_process(sms_shaper *f, const sms_real *in, sms_real *out, size_t n)
+{
+    const size_t len = f->history_len, n_taps = f->n_taps;
+    const sms_shaper_tap *taps = f->taps;
+    sms_real *ring = f->history;
+    size_t i, k, head = f->head;
+    for (i = 0; i < n; ++i) {
+        sms_real acc = 0;
+        ring[head] = in[i];
+        for (k = 0; k < n_taps; ++k) {
+            const size_t d = taps[k].delay;
+            acc += taps[k].gain * ring[head >= d ? head - d : head + len - d];
+        }
+        head = head + 1u == len ? 0u : head + 1u;
+        out[i] = acc;
+    }
+    f->head = head;
+}
+
+size_t sms_shaper_state_count(const sms_shaper *f)
+{
+    return SMS_STATE_IDENTITY_COUNT + f->history_len + 4u;
+}
+
+void sms_shaper_get_state(const sms_shaper *f, double *dst)
+{
+    size_t i;
+    for (i = 0; i < SMS_STATE_IDENTITY_COUNT; ++i)
+        dst[i] = f->identity[i];
+    dst += SMS_STATE_IDENTITY_COUNT;
+    dst[0] = (double)f->kind;
+    dst[1] = (double)f->history_len;
+    dst[2] = (double)f->head;
+    dst[3] = (double)f->rest;
+    for (i = 0; i < f->history_len; ++i)
+        dst[4 + i] = (double)f->history[i];
+}
+
+sms_status sms_shaper_check_state(const sms_shaper *f, const double *src, size_t n)
+{
+    sms_status id;
+    if (f == NULL || src == NULL)
+        return SMS_ERR_NULL;
+    if (n >= SMS_STATE_IDENTITY_COUNT
+        && (id = sms_state_identity_check(f->identity, src)) != SMS_OK)
+        return id;
+    if (n != sms_shaper_state_count(f))
+        return SMS_ERR_STATE;
+    src += SMS_STATE_IDENTITY_COUNT;
+    if (src[0] != (double)f->kind
+        || src[1] != (double)f->history_len)
+        return SMS_ERR_STATE;
+    /* head: an integer in [0, L) (the negated test also rejects NaN) */
+    if (!(src[2] >= 0.0 && src[2] < (double)f->history_len) || src[2] != floor(src[2]))
+        return SMS_ERR_STATE;
+    return SMS_OK;
+}
+
+sms_status sms_shaper_set_state(sms_shaper *f, const double *src, size_t n)
+{
+    size_t i;
+    sms_status st = sms_shaper_check_state(f, src, n);
+    if (st != SMS_OK)
+        return st;
+    src += SMS_STATE_IDENTITY_COUNT;
+    f->head = (size_t)src[2];
+    f->rest = (sms_real)src[3];
+    for (i = 0; i < f->history_len; ++i)
+        f->history[i] = (sms_real)src[4 + i];
+    return SMS_OK;
+}
+
+sms_status sms_shaper_impulses(const sms_stage_config *config, double *amplitudes,
+                               double *times, size_t capacity, size_t *count)
+{
+    double amp[SMS_SHAPER_MAX_IMPULSES], time[SMS_SHAPER_MAX_IMPULSES];
+    size_t n, i;
+    sms_status st;
+    if (config == NULL || amplitudes == NULL || times == NULL || count == NULL)
+        return SMS_ERR_NULL;
+    if (!is_shaper(config->kind) || (config->timing != SMS_TIMING_EXACT
+                                     && config->timing != SMS_TIMING_PAPER))
+        return SMS_ERR_KIND;
+    st = check_fields(config);
+    if (st != SMS_OK)
+        return st;
+    n = sms_shaper_design(config, amp, time);
+    if (capacity < n)
+        return SMS_ERR_BUFFER_TOO_SMALL;
+    /* A period beyond double (wn sqrt(1 - zeta^2) below ~1e-308) has no finite impulse times. */
+    for (i = 0; i < n; ++i)
+        if (!is_finite(time[i]))
+            return SMS_ERR_TOO_LONG;
+    for (i = 0; i < n; ++i) {
+        amplitudes[i] = amp[i];
+        times[i] = time[i];
+    }
+    *count = n;
+    return SMS_OK;
+}
+
+sms_status sms_shaper_taps(const sms_stage_config *config, double Ts, double *taps, size_t n_taps)
+{
+    sparse s;
+    size_t i, len;
+    sms_status st;
+    if (taps == NULL)
+        return SMS_ERR_NULL;
+    st = build(config, Ts, &s);
+    if (st != SMS_OK)
+        return st;
+    len = s.delay[s.n - 1] + 1u;
+    if (n_taps < len)
+        return SMS_ERR_BUFFER_TOO_SMALL;
+    for (i = 0; i < len; ++i)
+        taps[i] = 0.0;
+    for (i = 0; i < s.n; ++i)
+        taps[s.delay[i]] = s.gain[i];
+    return SMS_OK;
+}

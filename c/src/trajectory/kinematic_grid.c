@@ -1,0 +1,229 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* Kinematic design on a sample grid (docs/sampled-limits.md): whole-sample lengths that keep
+ * every bound at every sample, and the taps of a stage tuned to a mode as the grid samples
+ * it. Design-time code: libm is allowed here. */
+#include "filter/smoother_design.h"
+#include "trajectory/kinematic_parts.h"
+
+/* The timing of a stage tuned to the mode on a grid: bounded taps (no tap above the peak
+ * density the design budgets for), which only the half sine does not need. */
+sms_timing sms_kin_tuned_timing(sms_kind kind)
+{
+    return kind == SMS_HARMONIC ? SMS_TIMING_EXACT : SMS_TIMING_BOUNDED;
+}
+
+/* Largest tap of the stage tuned to the mode, its length in samples and the sum of its
+ * first and last taps. */
+sms_status sms_kin_tuned_taps(sms_kind kind, double T, double sigma, unsigned k, double Ts,
+                              double *peak, double *support, double *ends, sms_kin_tuned *form)
+{
+    sms_stage_config c = sms_stage_config_default(kind);
+    sms_smoother_design d;
+    size_t cand[6], i;
+    double best = 0.0;
+    sms_status st;
+    c.T = T;
+    c.sigma = sigma;
+    c.k = k;
+    c.timing = sms_kin_tuned_timing(kind);
+    st = sms_smoother_design_make(&c, Ts, &d);
+    if (st != SMS_OK)
+        return st;
+    /* base taps are constant, decaying or one half sine: the peak is at an end, at the
+     * corrected taps or at the middle of the sine */
+    cand[0] = 0u;
+    cand[1] = 1u;
+    cand[2] = (size_t)(0.5 * d.nu);
+    cand[3] = cand[2] + 1u;
+    cand[4] = d.length >= 2u ? d.length - 2u : 0u;
+    cand[5] = d.length - 1u;
+    for (i = 0; i < 6; ++i)
+        if (cand[i] < d.length) {
+            double t = fabs(sms_smoother_design_tap(&d, cand[i]));
+            if (t > best)
+                best = t;
+        }
+    *peak = best;
+    *support = (double)d.length;
+    *ends = sms_smoother_design_tap(&d, 0u) + sms_smoother_design_tap(&d, d.length - 1u);
+    form->bounded = c.timing == SMS_TIMING_BOUNDED && d.length >= 3u;
+    form->tap0 = sms_smoother_design_tap(&d, 0u);
+    form->tapL = sms_smoother_design_tap(&d, d.length - 1u);
+    form->gain = d.gain;
+    form->decay = d.decay;
+    form->L = (double)d.length;
+    return SMS_OK;
+}
+
+/* Largest tap of the integer-N harmonic stage: tan(pi/2N) (N even) or sin(pi/2N) (N odd). */
+static double harmonic_peak_tap(double N)
+{
+    double x = 0.5 * KIN_PI / N;
+    return fmod(N, 2.0) == 0.0 ? tan(x) : sin(x);
+}
+
+/* The sampled bounds of a chain of whole-sample stages N[0..n-1] (the last one may be tuned:
+ * fixed taps of largest value tap_last over supp_last samples), all in logarithms:
+ *  - structure: N[i] >= samples of the stages after it, so that the shifted copies in each
+ *    backward difference never overlap (the discrete form of T_k >= T_k+1 + ... + T_n-1);
+ *  - level i < n-1: h / (N[0] ... N[i] Ts^(i+1)) <= L[i];
+ *  - top: h / (N[0] ... N[n-2] Ts^(n-1)) * (largest tap of the last stage) / Ts <= L[n-1].
+ * Returns 1 when all hold (to 1e-12 relative). */
+static int grid_feasible(const sms_kin_plan *p, double logh, double logTs, const double *N,
+                         sms_kind last_kind, int tuned, double tap_last, double supp_last)
+{
+    size_t n = p->n, i;
+    double below = tuned ? supp_last : N[n - 1], logprod = 0.0, logtap;
+    for (i = n - 1; i-- > 0;) {
+        if (N[i] < below)
+            return 0;
+        below += N[i];
+    }
+    for (i = 0; i + 1 < n; ++i) {
+        logprod += log(N[i]);
+        if (logprod < logh - log(p->L[i]) - (double)(i + 1) * logTs - 1e-12)
+            return 0;
+    }
+    if (tuned)
+        logtap = log(tap_last);
+    else if (last_kind == SMS_HARMONIC) {
+        if (N[n - 1] < 2.0)
+            return 0; /* one sample of a half sine is its zero: not a stage */
+        logtap = log(harmonic_peak_tap(N[n - 1]));
+    }
+    else
+        logtap = -log(N[n - 1]);
+    return logprod - logtap >= logh - log(p->L[n - 1]) - (double)n * logTs - 1e-12;
+}
+
+/* Whole-sample lengths: the shortest total among N[i] = ceil(T[i]/Ts) + {-1, 0, 1} that
+ * meets grid_feasible() (ties: longer early stages), with the greedy rounding (each N[i]
+ * the larger of its ceiling and the samples after it, which is always feasible) as the
+ * fallback. N[n-1] = 0 for a tuned last stage (it keeps its exact length). */
+sms_status sms_kin_on_grid(const sms_kin_plan *p, double h, const double *T, sms_kind last_kind,
+                           int tuned, double supp_last, const sms_kin_tuned *form, double Ts,
+                           double *N)
+{
+    size_t n = p->n, m = tuned ? n - 1 : n, i, combos = 1, c;
+    double base[SMS_KINEMATIC_MAX_ORDER], cand[SMS_KINEMATIC_MAX_ORDER], below, total, best;
+    double logh = log(h), logTs = log(Ts), tap_last = 0.0;
+    for (i = 0; i < n; ++i)
+        if (!(T[i] / Ts <= 4503599627370496.0)) /* 2^52 samples */
+            return SMS_ERR_TOO_LONG;
+    if (tuned)
+        tap_last = p->rho_fixed * Ts; /* >= the largest tap: the density the design used */
+    /* greedy */
+    if (tuned) {
+        N[n - 1] = 0.0;
+        below = supp_last;
+    } else {
+        double nu = T[n - 1] / Ts;
+        N[n - 1] = sms_kin_grid_ceil(nu);
+        if (last_kind == SMS_HARMONIC) {
+            if (N[n - 1] < 2.0)
+                N[n - 1] = 2.0;
+            if (harmonic_peak_tap(N[n - 1]) > 0.5 * KIN_PI / nu)
+                N[n - 1] += 1.0; /* an odd N always has peak sin(pi/2N) < pi/2N */
+        }
+        below = N[n - 1];
+    }
+    total = tuned ? 0.0 : N[n - 1];
+    for (i = n - 1; i-- > 0;) {
+        double Ni = sms_kin_grid_ceil(T[i] / Ts);
+        if (Ni < below)
+            Ni = below;
+        N[i] = Ni;
+        below += Ni;
+        total += Ni;
+    }
+    if (!(total <= 4503599627370496.0))
+        return SMS_ERR_TOO_LONG;
+    best = total;
+    /* neighbourhood search */
+    for (i = 0; i < m; ++i) {
+        base[i] = sms_kin_grid_ceil(T[i] / Ts);
+        combos *= 3u;
+    }
+    cand[n - 1] = 0.0;
+    for (c = 0; c < combos; ++c) {
+        size_t code = c;
+        double sum = 0.0;
+        int ok = 1, better;
+        for (i = 0; i < m; ++i) {
+            cand[i] = base[i] + (double)(code % 3u) - 1.0;
+            code /= 3u;
+            if (cand[i] < 1.0)
+                ok = 0;
+            sum += cand[i];
+        }
+        if (!ok || sum > best)
+            continue;
+        if (!grid_feasible(p, logh, logTs, cand, last_kind, tuned, tap_last, supp_last))
+            continue;
+        better = sum < best;
+        for (i = 0; i < m && !better && sum == best; ++i) {
+            if (cand[i] != N[i]) {
+                better = cand[i] > N[i];
+                break;
+            }
+        }
+        if (better) {
+            best = sum;
+            for (i = 0; i < m; ++i)
+                N[i] = cand[i];
+        }
+    }
+    /* Tight stages (each as long as the stages after it) double the rounding of the stages
+     * below them, so with five or more bounds the neighbourhood can leave the chain many
+     * samples over the continuous optimum (13.7 samples for 5 bounds where 1.7 exist). When it
+     * is more than one sample per rounded stage over: move each stage by +1 .. -2 samples
+     * from its ceiling and let the structure lift it (N_k = max(that, the samples after k)),
+     * keeping the shortest feasible chain; 4^m chains, only on this path. A rectangular chain
+     * first tries the search that lets copies overlap where they cancel (overlap_search):
+     * cheaper, usually shorter, and when it lands within the bar the 4^m chains are skipped. */
+    {
+        double cont = 0.0;
+        for (i = 0; i < m; ++i)
+            cont += T[i] / Ts;
+        int free_last = !tuned && n >= 2, harmonic = last_kind == SMS_HARMONIC;
+        double before4;
+        if (free_last && best - cont > (double)m)
+            sms_kin_overlap_search(p, logh, logTs, T, Ts, harmonic, NULL, &best, N);
+        before4 = best;
+        if (m >= 2 && best - cont > (double)m) {
+            size_t combos4 = 1;
+            for (i = 0; i < m; ++i)
+                combos4 *= 4u;
+            for (c = 0; c < combos4; ++c) {
+                size_t code = c;
+                double sum = 0.0, after = tuned ? supp_last : 0.0;
+                for (i = m; i-- > 0;) {
+                    double Ni = base[i] + 1.0 - (double)(code % 4u);
+                    code /= 4u;
+                    if (Ni < 1.0)
+                        Ni = 1.0;
+                    if (i + 1 < n && Ni < after)
+                        Ni = after; /* the structure: at least the samples after it */
+                    cand[i] = Ni;
+                    after += Ni;
+                    sum += Ni;
+                }
+                if (sum >= best)
+                    continue;
+                if (!grid_feasible(p, logh, logTs, cand, last_kind, tuned, tap_last, supp_last))
+                    continue;
+                best = sum;
+                for (i = 0; i < m; ++i)
+                    N[i] = cand[i];
+            }
+        }
+        /* still over, with a shorter chain to beat: the overlap search prunes harder */
+        if (free_last && best < before4 && best - cont > (double)m)
+            sms_kin_overlap_search(p, logh, logTs, T, Ts, harmonic, NULL, &best, N);
+        /* a bounded tuned stage costs up to two samples of its own: its boxes get the search
+         * that lets copies overlap once they are more than a sample per box over */
+        if (tuned && form->bounded && m >= 1u && best - cont > 0.0)
+            sms_kin_overlap_search(p, logh, logTs, T, Ts, 0, form, &best, N);
+    }
+    return SMS_OK;
+}

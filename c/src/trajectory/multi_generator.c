@@ -1,0 +1,281 @@
+/* Online multi-axis generator: the configuration (what init checks, the memory it needs, the
+ * reach of every axis's limits), init and reset, and the phase-synchronised move's duration.
+ * Planning, sampling, holding and the saved state are in multi_plan.c, multi_step.c,
+ * multi_hold.c and multi_state.c (multi_parts.h). */
+#include <float.h>
+#include <math.h>
+#include <string.h>
+#include "trajectory/multi_parts.h"
+#include "trajectory/trajectory_internal.h"
+
+static int limit_ok(double x)
+{
+    return isfinite(x) && x > 0.0 && (sms_real)x > 0 && (double)(sms_real)x < (double)REAL_MAX;
+}
+
+/* Every axis's limits must let a move reach its vmax (multi_generator.h): the planner forms,
+ * per axis, the same quantities as the single-axis planner with linear jerk ramps (J dv, a^2,
+ * durations and distances of the move to vmax), so axis i is checked by the single-axis
+ * region (sms_generator_reach() on its vmax, amax, jmax with the polynomial profile). */
+/* The planner caps the ratios limit/|dv| at RATIO_CAP (multi_plan.c), which lengthens a transition
+ * of dv whose true ratio is larger. For the move to vmax (dv = vmax) and its stop and reversal
+ * (|dv| up to 2 vmax) not to be lengthened, amax/vmax and jmax/vmax stay a factor 16 below the
+ * cap; then every capped transition (a smaller move) lasts at most about 2/sqrt(RATIO_CAP) s,
+ * within a few times the duration to reach vmax, so it fits the plan's sample count too. */
+#define MAX_LIMIT_RATIO (1152921504606846976.0 / 16.0) /* 2^56 */
+
+/* Moves up to MOVE_SPAN times the distance h to reach vmax (and durations up to MOVE_SPAN
+ * times its duration) keep the unit limits' products normal and finite. */
+#define MOVE_SPAN 16.0
+#ifdef SMS_USE_FLOAT
+#define UNIT_TINY ((double)FLT_MIN / (double)FLT_EPSILON)
+#else
+#define UNIT_TINY (DBL_MIN / DBL_EPSILON)
+#endif
+
+sms_status sms_multi_generator_reach(const sms_multi_generator_config *config, double Ts,
+                                     sms_generator_reach_info *reach, size_t *axis)
+{
+    sms_generator_reach_info local, *r = reach != NULL ? reach : &local;
+    sms_generator_config one;
+    size_t i;
+    sms_status st = SMS_OK;
+    if (axis != NULL)
+        *axis = 0;
+    memset(r, 0, sizeof *r);
+    if (config == NULL)
+        return SMS_ERR_NULL;
+    if (config->n_axes < 1 || config->n_axes > SMS_MULTI_MAX_AXES)
+        return SMS_ERR_ORDER;
+    memset(&one, 0, sizeof one);
+    one.profile = SMS_PROFILE_POLYNOMIAL;
+    for (i = 0; i < config->n_axes; ++i) {
+        one.vmax = config->vmax[i];
+        one.amax = config->amax[i];
+        one.jmax = config->jmax[i];
+        st = sms_generator_reach(&one, Ts, r);
+        if (st == SMS_OK && !(one.amax <= MAX_LIMIT_RATIO * one.vmax))
+            st = sms_reach_refused(r, "amax/vmax", "vmax, amax", one.amax / one.vmax,
+                                   MAX_LIMIT_RATIO);
+        if (st == SMS_OK && !(one.jmax <= MAX_LIMIT_RATIO * one.vmax))
+            st = sms_reach_refused(r, "jmax/vmax", "vmax, jmax", one.jmax / one.vmax,
+                                   MAX_LIMIT_RATIO);
+        if (st == SMS_OK && !(one.amax <= MAX_LIMIT_RATIO * r->distance))
+            st = sms_reach_refused(r, "amax/h", "vmax, amax, jmax", one.amax / r->distance,
+                                   MAX_LIMIT_RATIO);
+        if (st == SMS_OK && !(one.jmax <= MAX_LIMIT_RATIO * r->distance))
+            st = sms_reach_refused(r, "jmax/h", "vmax, amax, jmax", one.jmax / r->distance,
+                                   MAX_LIMIT_RATIO);
+        if (st == SMS_OK) {
+            /* the unit limits of a displacement up to MOVE_SPAN h and the square of the
+             * durations (multi_plan.c, landing_kappa(): b^2, au^2, ju) */
+            const double h = MOVE_SPAN * r->distance, T = MOVE_SPAN * r->duration;
+            const double au = one.amax / h, ju = one.jmax / h;
+            if (!(T * T <= (double)REAL_MAX))
+                st = sms_reach_refused(r, "the duration to reach vmax, squared",
+                                       "vmax, amax, jmax", r->duration * r->duration,
+                                       (double)REAL_MAX / (MOVE_SPAN * MOVE_SPAN));
+            else if (!(au * au >= UNIT_TINY))
+                st = sms_reach_refused(r, "(amax/h)^2", "vmax, amax, jmax",
+                                       one.amax / r->distance * (one.amax / r->distance),
+                                       UNIT_TINY * MOVE_SPAN * MOVE_SPAN);
+            else if (!(ju >= UNIT_TINY))
+                st = sms_reach_refused(r, "jmax/h", "vmax, amax, jmax", one.jmax / r->distance,
+                                       UNIT_TINY * MOVE_SPAN);
+        }
+        if (st != SMS_OK) {
+            if (axis != NULL && st == SMS_ERR_LIMIT)
+                *axis = i;
+            return st;
+        }
+    }
+    return SMS_OK;
+}
+
+/* Everything init checks, and the memory the stages need; O(stages). */
+static sms_status check_config(const sms_multi_generator_config *config, double Ts,
+                               size_t *n_structs, size_t *n_cells, size_t *bad_axis)
+{
+    size_t i, n;
+    *n_structs = 0;
+    *n_cells = 0;
+    if (bad_axis != NULL)
+        *bad_axis = 0;
+    if (config == NULL)
+        return SMS_ERR_NULL;
+    n = config->n_axes;
+    if (n < 1 || n > SMS_MULTI_MAX_AXES)
+        return SMS_ERR_ORDER;
+    if (!isfinite(Ts) || !(Ts > 0.0) || !((sms_real)Ts > 0))
+        return SMS_ERR_SAMPLE_PERIOD;
+    for (i = 0; i < n; ++i) {
+        if (!limit_ok(config->vmax[i]) || !limit_ok(config->amax[i]) ||
+            !limit_ok(config->jmax[i])) {
+            if (bad_axis != NULL)
+                *bad_axis = i;
+            return SMS_ERR_LIMIT;
+        }
+    }
+    {
+        size_t axis = 0;
+        sms_status st = sms_multi_generator_reach(config, Ts, NULL, &axis);
+        if (st != SMS_OK) {
+            if (bad_axis != NULL)
+                *bad_axis = axis;
+            return st;
+        }
+    }
+    if ((unsigned)config->sync > (unsigned)SMS_SYNC_INDEPENDENT)
+        return SMS_ERR_KIND;
+    for (i = 0; i < n; ++i) {
+        size_t need = 0;
+        sms_status st;
+        if (config->n_stages[i] == 0)
+            continue;
+        if (bad_axis != NULL)
+            *bad_axis = i;
+        if (config->n_stages[i] > SMS_CHAIN_MAX_STAGES)
+            return SMS_ERR_ORDER;
+        if (config->stages[i] == NULL)
+            return SMS_ERR_NULL;
+        st = sms_chain_memory_size(config->stages[i], config->n_stages[i], Ts, &need);
+        if (st != SMS_OK)
+            return st;
+        if (need > ((size_t)-1) / 8 / SMS_MULTI_MAX_AXES)
+            return SMS_ERR_TOO_LONG;
+        *n_structs += SMS_MULTI_SIGNALS * config->n_stages[i];
+        *n_cells += SMS_MULTI_SIGNALS * need;
+    }
+    if (bad_axis != NULL)
+        *bad_axis = 0;
+    return SMS_OK;
+}
+
+sms_status sms_multi_generator_memory(const sms_multi_generator_config *config, double Ts,
+                                      size_t *n_stage_structs, size_t *n_cells, size_t *bad_axis)
+{
+    size_t structs, cells;
+    sms_status st;
+    if (n_stage_structs == NULL || n_cells == NULL)
+        return SMS_ERR_NULL;
+    st = check_config(config, Ts, &structs, &cells, bad_axis);
+    if (st == SMS_OK) {
+        *n_stage_structs = structs;
+        *n_cells = cells;
+    }
+    return st;
+}
+sms_status sms_multi_generator_init(sms_multi_generator *g,
+                                    const sms_multi_generator_config *config, double Ts,
+                                    sms_stage *stages, size_t n_stage_structs,
+                                    sms_memory_cell *memory, size_t n_cells, size_t *bad_axis)
+{
+    size_t i, m, n, structs, cells;
+    sms_status st;
+    if (g == NULL) {
+        if (bad_axis != NULL)
+            *bad_axis = 0;
+        return SMS_ERR_NULL;
+    }
+    st = check_config(config, Ts, &structs, &cells, bad_axis);
+    if (st != SMS_OK)
+        return st;
+    if ((structs > 0 && stages == NULL) || (cells > 0 && memory == NULL))
+        return SMS_ERR_NULL;
+    if (n_stage_structs < structs || n_cells < cells)
+        return SMS_ERR_BUFFER_TOO_SMALL;
+    n = config->n_axes;
+    /* the configs were validated above: every chain builds */
+    for (i = 0; i < SMS_MULTI_MAX_AXES; ++i)
+        for (m = 0; m < SMS_MULTI_SIGNALS; ++m) {
+            sms_chain *c = &g->chain[i][m];
+            size_t need = 0;
+            c->stages = NULL;
+            c->n_stages = 0;
+            c->memory = NULL;
+            c->memory_len = 0;
+            if (i >= n || config->n_stages[i] == 0)
+                continue;
+            (void)sms_chain_memory_size(config->stages[i], config->n_stages[i], Ts, &need);
+            (void)sms_chain_init(c, stages, config->stages[i], config->n_stages[i], Ts,
+                                 memory, need);
+            stages += config->n_stages[i];
+            memory += need;
+        }
+    g->n_axes = n;
+    g->sync = config->sync;
+    g->Ts = Ts;
+    g->Ts_signal = (sms_real)Ts;
+    for (i = 0; i < SMS_MULTI_MAX_AXES; ++i) {
+        g->vmax[i] = i < n ? (sms_real)config->vmax[i] : 1;
+        g->amax[i] = i < n ? (sms_real)config->amax[i] : 1;
+        g->jmax[i] = i < n ? (sms_real)config->jmax[i] : 1;
+    }
+    sms_multi_identity_write(config, Ts, g->identity);
+    sms_multi_generator_reset(g, NULL);
+    return SMS_OK;
+}
+
+void sms_multi_generator_reset(sms_multi_generator *g, const sms_real *position)
+{
+    size_t i;
+    g->dropped = 0;
+    for (i = 0; i < SMS_MULTI_MAX_AXES; ++i) {
+        sms_real x = (position != NULL && i < g->n_axes) ? position[i] : 0;
+        g->target[i] = x;
+        g->goal[i] = x;
+        g->p[i] = x;
+        g->V[i] = 0;
+        g->W[i] = 0;
+        g->move[i].T1 = g->move[i].tau = g->move[i].T2 = 0;
+        g->move[i].rho1 = g->move[i].rho2 = (sms_real)0.5;
+        g->move[i].off = g->move[i].seen = 0;
+        g->move[i].k = g->move[i].k_end = 0;
+        g->move[i].active = 0;
+        g->move[i].pending = 0;
+        g->move[i].refused = 0;
+        if (g->chain[i][0].n_stages > 0) {
+            sms_chain_reset(&g->chain[i][0], x);
+            sms_chain_reset(&g->chain[i][1], 0);
+            sms_chain_reset(&g->chain[i][2], 0);
+            sms_chain_reset(&g->chain[i][3], 0);
+        }
+    }
+}
+/* Time-optimal unit rest-to-rest move under path limits V, A, J (closed form). */
+static double unit_move_time(double V, double A, double J)
+{
+    double Tv = V * J >= A * A ? V / A + A / J : 2.0 * sqrt(V / J), c;
+    if (V * Tv < 1.0)
+        return 1.0 / V + Tv; /* reaches V: cruise 1/V - Tv */
+    /* peak velocity c below V: c T(c) = 1 */
+    c = 0.5 * (-A * A / J + sqrt(A * A * A * A / (J * J) + 4.0 * A));
+    if (c * J >= A * A)
+        return 2.0 * (c / A + A / J);
+    return 4.0 * cbrt(0.5 / J); /* c = J Tj^2, 2 J Tj^3 = 1, T = 4 Tj */
+}
+
+sms_status sms_multi_phase_duration(const sms_multi_generator_config *config,
+                                    const double *delta, double *T)
+{
+    double V = HUGE_VAL, A = HUGE_VAL, J = HUGE_VAL;
+    size_t i;
+    if (config == NULL || delta == NULL || T == NULL)
+        return SMS_ERR_NULL;
+    if (config->n_axes < 1 || config->n_axes > SMS_MULTI_MAX_AXES)
+        return SMS_ERR_ORDER;
+    for (i = 0; i < config->n_axes; ++i) {
+        double d = fabs(delta[i]);
+        if (!isfinite(delta[i]) || !(isfinite(config->vmax[i]) && config->vmax[i] > 0.0) ||
+            !(isfinite(config->amax[i]) && config->amax[i] > 0.0) ||
+            !(isfinite(config->jmax[i]) && config->jmax[i] > 0.0))
+            return SMS_ERR_LIMIT;
+        if (d > 0.0) {
+            V = fmin(V, config->vmax[i] / d);
+            A = fmin(A, config->amax[i] / d);
+            J = fmin(J, config->jmax[i] / d);
+        }
+    }
+    *T = V == HUGE_VAL ? 0.0 : unit_move_time(V, A, J);
+    return SMS_OK;
+}
