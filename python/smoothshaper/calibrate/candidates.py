@@ -24,7 +24,7 @@ from ..stages import Stage, for_mode, shaper
 from .._checks import positive as _positive
 from .objectives import BOX, impulses_R2, stages_R2, taps_R2
 
-__all__ = ["FIRMWARE_NAMES", "BOX", "Reference", "Candidate", "chain_taps", "impulse_taps",
+__all__ = ["FIRMWARE_NAMES", "BOX", "Reference", "Candidate", "chain_taps", "candidate_taps", "impulse_taps",
            "duration", "Family", "register", "families", "continuity", "smoothing", "move_peaks",
            "class_name", "tune", "evaluate", "recommend", "firmware_lines"]
 
@@ -96,6 +96,14 @@ def chain_taps(stages: list[Stage], Ts: float) -> np.ndarray:
     for s in stages:
         h = np.convolve(h, impulse_response(s, Ts=Ts))
     return h
+
+
+def candidate_taps(c, Ts: float) -> np.ndarray:
+    """Taps at Ts of a candidate: its chain, or its firmware shaper's impulses."""
+    if c.firmware is not None:
+        shaper, freq, damping = c.firmware
+        return impulse_taps(*shaper.impulses(freq, damping), Ts)
+    return chain_taps(c.stages, Ts) if c.stages else np.ones(1)
 
 
 def impulse_taps(A, t, Ts: float) -> np.ndarray:

@@ -178,6 +178,12 @@ def read_table(path) -> tuple[list[str] | None, np.ndarray, Lines]:
         header, data, lines = _read_slow(path)
     else:
         lines = Lines(str(path), first, data.shape[0], delimiter)
+        try:
+            _check_values(path, data, lines)
+        except RecordError:
+            # the line-by-line reader names what the fast one only saw as a bad number (a
+            # cell past csv's limit, a number beyond the double range)
+            header, data, lines = _read_slow(path)
     _check_values(path, data, lines)
     if header is not None and len(header) != data.shape[1]:
         header = None
@@ -252,7 +258,7 @@ def _check_values(path, data, lines) -> None:
     finite = np.isfinite(data)
     if not finite.all():
         i, j = np.argwhere(~finite)[0]
-        raise RecordError(path, f"non-finite value ({data[i, j]!r}); remove or repair the row",
+        raise RecordError(path, f"non-finite value ({float(data[i, j])!r}); remove or repair the row",
                          row=lines[i], column=int(j))
     big = np.abs(data) > MAX_VALUE
     if big.any():
