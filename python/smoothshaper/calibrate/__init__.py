@@ -97,6 +97,7 @@ class AxisResult:
     firmware_axis: str = "x"
     objectives: dict = field(default_factory=dict, repr=False)
     user_band: bool = False
+    figure_spectrum: Spectrum | None = field(default=None, repr=False)
 
 
 @dataclass
@@ -306,6 +307,14 @@ def identify(rec: Record, name: str, signal: str, cols, band=None,
                      signal=signal)
     res.notes = list(rec.notes)
     res.user_band = band is not None
+    if rec.kind == "raw":
+        # the spectral figure at the established tool's resolution (segments of 0.5 s): a
+        # spectrum resolved finer than the modes move over a print rewards shapers too narrow
+        n = 1 << int(0.5 / rec.Ts - 1).bit_length()
+        res.figure_spectrum = spectra.welch(
+            rec.signals[:, cols] if not isinstance(cols, np.ndarray) else
+            rec.signals[:, : cols.size] @ cols[: rec.signals.shape[1]], rec.Ts,
+            segments=rec.segments, nperseg=n)
     fit = fit_modes(spec, b)
     modes = []
     if fit is not None:
@@ -348,7 +357,8 @@ def _objectives(res: AxisResult, ranking: str):
         spec = modal
         spec_obj = _ModalAsSpectral(modal)
         return {"spectrum": spec_obj, "modal": modal}, "modal"
-    f = res.spectrum.f
+    fig = res.figure_spectrum if res.figure_spectrum is not None else res.spectrum
+    f = fig.f
     # the figure's bins: the user's band, else everything up to 1.5 x the excited band's top
     # (a twentieth of the peak is the figure's floor; the test's slow back-and-forth below
     # 10 Hz is attenuated by the normalisation)
@@ -359,7 +369,7 @@ def _objectives(res: AxisResult, ranking: str):
         if res.record.kind not in ("raw", "psd"):
             inb &= f >= res.band[0]
     nodes, width = _zeta_nodes(f[inb], res.modes, res.explains)
-    P = res.spectrum.P[inb]
+    P = fig.P[inb]
     if res.record.kind in ("raw", "psd") and not res.record.marked:
         P = spectra.normalize_to_excitation(f[inb], P)
     spec_obj = SpectralObjective(f[inb], P, nodes, width=width, group_hz=0.5)

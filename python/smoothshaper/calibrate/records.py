@@ -303,6 +303,19 @@ def _raw(path, header, data, lines, kind, names) -> Record:
     return rec
 
 
+def _has_marker(path) -> bool:
+    """Whether the header line has Klipper's ``,shapers:`` marker (its empty column is dropped
+    with the column it heads, so it is looked for in the file itself)."""
+    try:
+        with open(path, encoding="utf-8", errors="replace") as fh:
+            for line in fh:
+                if line.strip() and not line.startswith("#"):
+                    return ",shapers:" in line
+    except OSError:
+        pass
+    return False
+
+
 def _psd_columns(names):
     """Indices (into the value columns) of the PSD columns and their names: Klipper's shaper
     columns and everything after ``shapers:`` are dropped."""
@@ -350,7 +363,7 @@ def load(path: str, kind: str = "auto") -> Record:
         normalized = False
         if header is not None:
             low = _lower(names)
-            normalized = "shapers:" in low or any(_is_shaper_column(n) for n in low)
+            normalized = _has_marker(path) or any(_is_shaper_column(n) for n in low)
             cols, names = _psd_columns(names)
             if not cols:
                 raise RecordError(path, "no PSD column (only shaper columns)", column=1)
@@ -361,7 +374,7 @@ def load(path: str, kind: str = "auto") -> Record:
             raise RecordError(path, f"PSD value {float(P[i, j]):g} is negative: a power spectral "
                               "density is >= 0", row=lines[i], column=int(cols[j]) + 1)
         rec = Record(path, kind, names, f=f, signals=P, normalized=normalized,
-                     marked=header is not None and "shapers:" in _lower(header))
+                     marked=_has_marker(path))
         rec.direction, rec.test_axis = test_direction(path)
         return rec
     # frequency response: magnitude, optional phase
