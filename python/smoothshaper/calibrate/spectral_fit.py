@@ -70,7 +70,9 @@ def fit_modes(spec: Spectrum, band) -> ModalFit:
     M = np.zeros(fi.size)
     for d in fits:
         a, fn, z, q, b = d["peak"]
-        M = np.maximum(M, a * _shape(fi, fn, z, q) + b)
+        # each single fit holds near its own peak only (its power law r^q is local)
+        near = (fi > fn / (1 + 6 * z)) & (fi < fn * (1 + 6 * z))
+        M[near] = np.maximum(M[near], a * _shape(fi[near], fn, z, q) + b)
     model[inb] = M
     S_meas = vibration_content(fi, spec.P[inb], band)
     S_mod = vibration_content(fi, M, band)
