@@ -161,8 +161,13 @@ def test_cli_writes_json_figures_and_configs(tmp_path, capsys):
                  "fmu_start_values_x.json"):
         assert (out / name).stat().st_size > 0
     assert "sms_stage_config_default(" in (out / "config_x.c").read_text()
-    if doc["recommended"]["input_shaper"]:
-        assert "shaper_type_x" in (out / "input_shaper.cfg").read_text()
+    assert doc["firmware"] == "none" and doc["firmware_config"] is None
+    # --firmware klipper: Klipper's own shapers, its configuration printed and written
+    code = main(["calibrate", str(path), "--axis", "x", "--max-delay", "0.03", "--out",
+                 str(out), "--firmware", "klipper", "--no-progress"])
+    text = capsys.readouterr().out
+    assert code == 0 and "[input_shaper]" in text and "shaper_type_x:" in text
+    assert "shaper_type_x:" in (out / "firmware_klipper.txt").read_text()
 
 
 def test_nothing_meets_the_limits_is_said(tmp_path, capsys):

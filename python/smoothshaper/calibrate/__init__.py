@@ -98,6 +98,7 @@ class AxisResult:
     objectives: dict = field(default_factory=dict, repr=False)
     user_band: bool = False
     figure_spectrum: Spectrum | None = field(default=None, repr=False)
+    hull_hi: float | None = None
 
 
 @dataclass
@@ -286,6 +287,7 @@ def identify(rec: Record, name: str, signal: str, cols, band=None,
         raise RecordError(rec.path, f"the spectrum of {signal} is zero everywhere: no motion "
                           "recorded", column=name)
     full = (float(pos[0]), float(f[-1]))
+    hull_hi = None
     if band is not None:
         b = (max(band[0], full[0]), min(band[1], full[1]))
         if not b[0] < b[1]:
@@ -298,6 +300,11 @@ def identify(rec: Record, name: str, signal: str, cols, band=None,
             lo = max(lo, MIN_TEST_FREQ)
         hi = full[1] if rec.kind != "raw" else min(full[1], 0.45 / rec.Ts)
         b = excited_band(spec, lo, hi)
+        hull_hi = b[1]
+        if rec.kind in ("raw", "psd") and b[1] / 1.15 > b[0] * 1.5:
+            # the steep end of a sweep is no resonance: the fit stops 15 % short of it (a mode
+            # there is marked); the spectral figure still reaches past it
+            b = (b[0], b[1] / 1.15)
     inb = (f >= b[0]) & (f <= b[1]) & (f > 0)
     if np.count_nonzero(inb) < 3:                # a band of one or two bins: widen to three
         i = int(np.argmin(np.abs(f - 0.5 * (b[0] + b[1]))))
@@ -305,6 +312,7 @@ def identify(rec: Record, name: str, signal: str, cols, band=None,
         b = (float(f[max(lo_i, int(np.argmax(f > 0)))]), float(f[hi_i]))
     res = AxisResult(name, rec, [], b, float(np.median(np.diff(f))) if f.size > 1 else 0.0, spec,
                      signal=signal)
+    res.hull_hi = hull_hi if band is None else b[1]
     res.notes = list(rec.notes)
     res.user_band = band is not None
     if rec.kind == "raw":
@@ -365,7 +373,7 @@ def _objectives(res: AxisResult, ranking: str):
     if res.user_band:
         inb = (f >= res.band[0]) & (f <= res.band[1]) & (f > 0)
     else:
-        inb = (f > 0) & (f <= 1.5 * res.band[1])
+        inb = (f > 0) & (f <= 1.5 * (res.hull_hi or res.band[1]))
         if res.record.kind not in ("raw", "psd"):
             inb &= f >= res.band[0]
     nodes, width = _zeta_nodes(f[inb], res.modes, res.explains)

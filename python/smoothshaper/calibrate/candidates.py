@@ -213,6 +213,16 @@ def families(n_modes: int, firmware: str = "none") -> list[Family]:
 
 # ---------------------------------------------------------------- figures of merit
 
+def _convolve(a: np.ndarray, h: np.ndarray) -> np.ndarray:
+    """np.convolve(a, h), by FFT when both are long (the figures of merit convolve moves of
+    thousands of samples with filters of hundreds: a direct sum costs seconds)."""
+    if min(a.size, h.size) < 64:
+        return np.convolve(a, h)
+    n = a.size + h.size - 1
+    m = 1 << (n - 1).bit_length()
+    return np.fft.irfft(np.fft.rfft(a, m) * np.fft.rfft(h, m), m)[:n]
+
+
 def continuity(stages: list[Stage]) -> int:
     """Continuity class of a filtered step: -1 (position jumps), 0, 1, ..."""
     return -1 + sum(_SMOOTHING_ORDER.get(s.kind, 0) for s in stages)
@@ -227,14 +237,14 @@ def smoothing(h: np.ndarray, ref: Reference) -> float:
     t = (np.arange(-2 * L - 2, 2 * L + 2)) * Ts
     x = np.where(t < 0, vc * t - 0.5 * A * t * t, 0.0)
     y = np.where(t < 0, 0.0, vc * t + 0.5 * A * t * t)
-    xf = np.convolve(x, h)[: t.size]
-    yf = np.convolve(y, h)[: t.size]
+    xf = _convolve(x, h)[: t.size]
+    yf = _convolve(y, h)[: t.size]
     sl = slice(L, None)                     # past the start-up transient of the window
     d1 = np.hypot(np.maximum(xf[sl], 0.0), yf[sl])
     d2 = np.hypot(xf[sl], np.minimum(yf[sl], 0.0))
     dev90 = float(np.max(np.minimum(d1, d2)))
     r = -0.5 * A * t * t
-    rf = np.convolve(r, h)[: t.size]
+    rf = _convolve(r, h)[: t.size]
     dev180 = float(-np.max(rf[sl]))
     return max(dev90, dev180)
 
@@ -249,7 +259,7 @@ def move_peaks(h: np.ndarray, stages: list[Stage], ref: Reference) -> tuple[floa
     t = np.arange(n + h.size + 4) * Ts
     q = np.where(t < T, 0.5 * A * t * t,
                  np.where(t < 2 * T, ref.distance - 0.5 * A * (2 * T - t) ** 2, ref.distance))
-    qf = np.convolve(q, h)[: t.size]
+    qf = _convolve(q, h)[: t.size]
     acc = np.diff(qf, 2) / Ts ** 2
     peak_a = float(np.max(np.abs(acc)))
     if continuity(stages) + 2 < 2:

@@ -133,7 +133,7 @@ def _fit_peak(spec: Spectrum, i_peak: int, lo: int, hi: int, zeta0: float):
     th0 = np.clip(th0, np.array(lower) + 1e-9, np.array(upper) - 1e-9)
     with np.errstate(all="ignore"):
         res = least_squares(lambda th: model(th) - y, th0, bounds=(lower, upper), method="trf",
-                            x_scale="jac")
+                            x_scale="jac", max_nfev=100 * th0.size)
     n, k = y.size, th0.size
     ssr = float(np.sum(res.fun ** 2))
     s2 = ssr / max(1, n - k)
