@@ -259,15 +259,29 @@ def test_jittered_klipper_style_header_is_read(tmp_path):
 @pytest.mark.parametrize("name,make,expect", [
     ("short.csv", lambda: "time,accel_x\n" + "".join(f"{0.001 * i},{math.sin(i)}\n"
                                                       for i in range(30)), "too short"),
-    ("clipped.csv", lambda: "time,accel_x\n" + "".join(
-        f"{0.001 * i},{max(-0.5, min(0.5, math.sin(0.05 * i)))}\n" for i in range(2000)),
-     "clipped"),
+    ("slow.csv", lambda: "#time,accel_x,accel_y\n" + "".join(
+        f"{1e12 * i:.6g},{math.sin(0.5 * i):.6f},{math.cos(0.3 * i):.6f}\n"
+        for i in range(4000)), "no vibration in the band"),
 ])
 def test_records_that_cannot_support_an_estimate(tmp_path, capsys, name, make, expect):
     p = _bad(tmp_path, name, make())
     assert main(["calibrate", str(p), "--no-progress"]) == 1
     err = capsys.readouterr().err
     assert str(p) in err and expect in err and err.count("\n") == 1, err
+
+
+def test_a_mostly_clipped_record_is_reconstructed_and_said(tmp_path, capsys):
+    """Two thirds of the samples on the rails: their values are reconstructed from the
+    oscillation around them, the note says so, and a filter is still recommended for the
+    8 Hz oscillation."""
+    p = _bad(tmp_path, "clipped.csv", "time,accel_x\n" + "".join(
+        f"{0.001 * i},{max(-0.5, min(0.5, math.sin(0.05 * i)))}\n" for i in range(2000)))
+    assert main(["calibrate", str(p), "--no-progress"]) == 0
+    out = capsys.readouterr().out
+    assert "1341 clipped samples (67 %, column x)" in out and "reconstructed" in out
+    res = calibrate.run([str(p)]).axes[0]
+    assert res.recommended is not None
+    assert res.recommended.stages[0].wn / TWO_PI == pytest.approx(0.05 * 1000 / TWO_PI, rel=0.1)
 
 
 def test_max_smoothing_is_met(tmp_path):

@@ -78,6 +78,16 @@ class AxisResult:
     firmware_axis : str
         The firmware axis the recommendation is for (``"x"``, ``"y"``, ``"xy"`` for a
         diagonal or unknown direction).
+    objectives : dict
+        The figures of merit the candidates were scored by (``"spectrum"``, and ``"modal"``
+        where the fit explains the spectrum or the modal ranking was asked for).
+    user_band : bool
+        Whether ``band`` is the user's (it then replaces the automatic band).
+    figure_spectrum : Spectrum or None
+        Raw records: the spectrum the spectral figure scores, at the established tool's
+        resolution (0.5 s windows); None when it is ``spectrum`` itself.
+    hull_hi : float or None
+        Top of the excited band [Hz] (the spectral figure's bins reach 1.5 times it).
     """
     name: str
     record: Record
@@ -255,11 +265,11 @@ def _energy_note(rec: Record, band) -> str | None:
     if len(cols) < 2:
         return None
     sub = Record(rec.path, rec.kind, [rec.names[j] for j in cols], t=rec.t, Ts=rec.Ts, f=rec.f,
-                 signals=rec.signals[:, cols], segments=rec.segments)
+                 signals=rec.signals[:, cols], segments=rec.segments,
+                 grid_starts=rec.grid_starts)
     share = spectra.energy_shares(sub, band)
     d = np.array([abs(rec.direction[AXIS_NAMES.index(rec.names[j])]) for j in cols])
-    expected = float(share @ (d ** 2) / max(float(np.sum(d ** 2 * 0 + 1) / len(d)), 1e-12)) \
-        if False else float(share[d > 0.3].sum())
+    expected = float(share[d > 0.3].sum())
     top = int(np.argmax(share))
     if expected < 0.4 and d[top] < 0.3 and share[top] > 0.5:
         return (f"{100 * share[top]:.0f} % of the vibration energy is on the "
@@ -315,14 +325,15 @@ def identify(rec: Record, name: str, signal: str, cols, band=None,
     res.hull_hi = hull_hi if band is None else b[1]
     res.notes = list(rec.notes)
     res.user_band = band is not None
-    if rec.kind == "raw":
+    n = 1 << max(0, int(0.5 / rec.Ts - 1)).bit_length() if rec.kind == "raw" else 0
+    if n >= 64:
         # the spectral figure at the established tool's resolution (segments of 0.5 s): a
         # spectrum resolved finer than the modes move over a print rewards shapers too narrow
-        n = 1 << int(0.5 / rec.Ts - 1).bit_length()
+        # (a record sampled too slowly for that keeps its own spectrum)
         res.figure_spectrum = spectra.welch(
             rec.signals[:, cols] if not isinstance(cols, np.ndarray) else
             rec.signals[:, : cols.size] @ cols[: rec.signals.shape[1]], rec.Ts,
-            segments=rec.segments, nperseg=n)
+            segments=rec.segments, starts=rec.grid_starts, nperseg=n)
     fit = fit_modes(spec, b)
     modes = []
     if fit is not None:
@@ -380,6 +391,10 @@ def _objectives(res: AxisResult, ranking: str):
     P = fig.P[inb]
     if res.record.kind in ("raw", "psd") and not res.record.marked:
         P = spectra.normalize_to_excitation(f[inb], P)
+    if P.size < 3 or not float(np.max(P)) > 0.0:
+        raise RecordError(res.record.path, f"no vibration in the band {res.band[0]:.4g} to "
+                          f"{res.band[1]:.4g} Hz ({P.size} frequencies, none with power): "
+                          "nothing to score a filter against")
     spec_obj = SpectralObjective(f[inb], P, nodes, width=width, group_hz=0.5)
     modal = None
     if res.modes and (res.explains or ranking == "modal"):

@@ -5,9 +5,11 @@ Four kinds of file are understood (CSV as :mod:`.tables` reads them):
 * ``raw``: a resonance-test record: a time column [s] and 1 to 3 acceleration columns
   (Klipper's and Shake&Tune's ``#time,accel_x,accel_y,accel_z``). Real accelerometer logs have
   gaps where the sensor's FIFO overflowed and samples where it clipped: the record is cut into
-  contiguous segments at every gap (a step longer than 1.5 median sample periods) and around
-  every clipped run, the spectra are estimated from the segments, and the fraction excluded is
-  stated. Time stamps that jitter by more than 5 % of the period are interpolated onto a
+  contiguous segments at every gap (a step longer than 1.5 median sample periods), each placed
+  on the uniform time grid where its first stamp falls, the spectra are estimated from the
+  samples the segments hold (:func:`.spectra.welch`), and the fraction excluded is stated.
+  Clipped samples' values are excluded and reconstructed from the oscillation around them
+  (:mod:`.clipping`). Time stamps that jitter by more than 5 % of the period are interpolated onto a
   uniform grid per segment; below that they are taken as uniform (the phase error, 2 pi f x
   jitter, is under 1e-3 at a tenth of the sample rate). A constant offset (gravity) is allowed.
 * ``decay``: a free decay: a time column [s] and one signal column; any constant offset.
@@ -41,6 +43,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .._checks import choice as _choice
+from .clipping import clipped_samples, reconstruct
 from .tables import MAX_VALUE, RecordError, read_table
 
 __all__ = ["KINDS", "AXIS_NAMES", "RecordError", "Record", "read_table", "detect_kind", "load",
@@ -61,10 +64,11 @@ class Record:
     """A parsed record.
 
     Time-domain kinds: ``t`` [s] (the stamps, from 0), ``signals`` (n, k), ``Ts`` (median
-    sample period), ``segments`` ([(start, stop)] index ranges of contiguous, unclipped
-    samples), ``excluded`` (fraction of the record's span not in a segment: gaps and clipped
-    runs). Frequency-domain kinds: ``f`` [Hz] and ``signals`` (PSD columns, or the magnitude)
-    with ``phase`` [rad] for a frequency response; ``normalized`` when a PSD table was already
+    sample period), ``segments`` ([(start, stop)] index ranges of contiguous samples),
+    ``grid_starts`` (the index on the uniform time grid of each segment's first sample),
+    ``excluded`` (fraction of the record's span not in a segment: the gaps), ``clipped``
+    (samples whose values were reconstructed). Frequency-domain kinds: ``f`` [Hz] and
+    ``signals`` (PSD columns, or the magnitude) with ``phase`` [rad] for a frequency response; ``normalized`` when a PSD table was already
     divided by the frequency (Klipper's calibration tables), ``marked`` when its header says so
     with the ``shapers:`` marker: the established tool divides every other table by the
     frequency, the older calibration tables a second time, and the spectral figure reads a
@@ -84,7 +88,8 @@ class Record:
     segments: list = field(default_factory=list)
     excluded: float = 0.0
     gaps: int = 0
-    clipped: int = 0               # samples excluded as clipped
+    clipped: int = 0               # samples reconstructed as clipped
+    grid_starts: list = field(default_factory=list)
     normalized: bool = False
     marked: bool = False           # the table's header has Klipper's ",shapers:" marker
     direction: np.ndarray | None = None
@@ -176,58 +181,14 @@ def _segments(path, t, lines):
     return segs, Ts, jitter, int(gap.size)
 
 
-def _clipped(x: np.ndarray) -> tuple[np.ndarray, list[int]]:
-    """(samples sitting on a rail, columns clipped): a column's extreme value held in runs
-    with more samples on it than on the whole next 2 % of the range (a quantised but unclipped
-    signal thins out towards its extremes; a clipped one piles up there). Columns spanning
-    fewer than 20 quantisation steps (a quiet axis of a 3.9 mg/LSB sensor) are not judged."""
-    mask = np.zeros(x.shape[0], dtype=bool)
-    cols = []
-    for j in range(x.shape[1]):
-        col = x[:, j]
-        lo, hi = float(col.min()), float(col.max())
-        span = hi - lo
-        steps = np.diff(np.unique(col[:20000]))
-        q = float(steps.min()) if steps.size else 0.0
-        if span <= 0 or span < 20 * q:
-            continue
-        band = max(0.02 * span, 2.5 * q)
-        hit = False
-        for value, near in ((hi, col >= hi - band), (lo, col <= lo + band)):
-            at = col == value
-            n_at = int(np.count_nonzero(at))
-            if n_at < 5:
-                continue
-            idx = np.flatnonzero(at)
-            starts = np.flatnonzero(np.diff(np.r_[-2, idx]) != 1)
-            longest = int(np.max(np.diff(np.r_[starts, idx.size])))
-            if longest >= 2 and n_at > np.count_nonzero(near) - n_at:
-                mask |= at
-                hit = True
-        if hit:
-            cols.append(j)
-    return mask, cols
-
-
-def _cut_clipped(segs, mask, min_len):
-    """Segments with every clipped sample (and one on each side) taken out."""
-    bad = np.flatnonzero(mask)
-    if bad.size == 0:
-        return segs
-    drop = np.zeros(mask.size, dtype=bool)
-    drop[bad] = True
-    drop[np.maximum(bad - 1, 0)] = True
-    drop[np.minimum(bad + 1, mask.size - 1)] = True
-    out = []
+def _grid_starts(t, segs, Ts) -> list[int]:
+    """Index on the uniform grid k Ts of each segment's first sample (a segment never lands on
+    samples of the one before it)."""
+    out, end = [], 0
     for a, b in segs:
-        d = drop[a:b]
-        if not d.any():
-            out.append((a, b))
-            continue
-        edges = np.flatnonzero(np.diff(np.r_[True, d, True].astype(np.int8)))
-        for s, e in zip(edges[::2], edges[1::2]):
-            if e - s >= min_len:
-                out.append((a + int(s), a + int(e)))
+        g = max(int(round(float(t[a]) / Ts)), end)
+        out.append(g)
+        end = g + (b - a)
     return out
 
 
@@ -266,26 +227,28 @@ def _raw(path, header, data, lines, kind, names) -> Record:
         if len(constant) == x.shape[1]:
             raise RecordError(path, f"column {names[0]!r} is constant: no motion recorded",
                               column=1)
-        clip, cols = _clipped(x)
-        rec.clipped = int(np.count_nonzero(clip))
+        clip, cols = clipped_samples(x)
+        rec.clipped = int(np.count_nonzero(clip.any(axis=1)))
         if rec.clipped:
-            segs = _cut_clipped(segs, clip, 64)
+            x = x.copy()
+            for j in cols:
+                x[:, j] = reconstruct(x[:, j], clip[:, j])
             notes.append(f"{rec.clipped} clipped samples ({100 * rec.clipped / x.shape[0]:.2g} %"
                          f", column {', '.join(names[j] for j in cols)}) sit on the sensor's "
-                         "range and are "
-                         "excluded: the spectrum comes from the samples between them; lower the "
-                         "test's accel_per_hz or raise the sensor's range for a cleaner record")
+                         "range: their values are excluded and reconstructed from the "
+                         "oscillation around them; lower the test's "
+                         "accel_per_hz or raise the sensor's range for a cleaner record")
     segs = [(a, b) for a, b in segs if b - a >= 16]
     valid = sum(b - a for a, b in segs)
     if valid < 64:
-        raise RecordError(path, f"only {valid} contiguous samples between gaps and clipped "
-                          "runs: too short to estimate a mode (need at least 64)")
+        raise RecordError(path, f"only {valid} contiguous samples between gaps: too short to "
+                          "estimate a mode (need at least 64)")
     rec.excluded = max(0.0, 1.0 - valid / span)
     if gaps:
         notes.insert(0, f"{gaps} gaps in the time stamps (the sensor's FIFO overflowed): "
                      f"{100 * rec.excluded:.2g} % of the record's span is excluded and the "
                      f"spectrum is estimated from {len(segs)} contiguous segments")
-    elif rec.excluded > 0.001 and not rec.clipped:
+    elif rec.excluded > 0.001:
         notes.append(f"{100 * rec.excluded:.2g} % of the record excluded")
     if jitter > RESAMPLE_JITTER:
         x = x.copy()
@@ -298,6 +261,7 @@ def _raw(path, header, data, lines, kind, names) -> Record:
     rec.t = t - t[0]
     rec.signals = x
     rec.segments = segs
+    rec.grid_starts = _grid_starts(rec.t, segs, Ts)
     rec.notes = notes
     rec.direction, rec.test_axis = test_direction(path)
     return rec

@@ -16,7 +16,7 @@ import numpy as np
 from .. import plants
 
 __all__ = ["plant", "sweep_input", "resonance_record", "decay_record", "psd_table", "CATEGORIES",
-           "klipper_sweep", "category_record", "true_remaining",
+           "klipper_sweep", "category_record", "modal_energies", "true_remaining",
            "frequency_response", "write_csv"]
 
 
@@ -130,7 +130,7 @@ TWO_PI = 2 * math.pi
 #: The synthetic campaign's categories: (modes [(f Hz, zeta)], options).
 CATEGORIES = {
     "adxl345 quantised": ([(48.0, 0.05)], {"quantise": True}),
-    "clipped": ([(45.0, 0.03)], {"quantise": True, "gain": 40.0}),
+    "clipped": ([(45.0, 0.03)], {"quantise": True, "overshoot": 1.5}),
     "fifo gaps": ([(52.0, 0.06)], {"gaps": True}),
     "klipper sweep": ([(41.0, 0.07)], {}),
     "three modes": ([(35.0, 0.04), (58.0, 0.06), (92.0, 0.05)], {}),
@@ -176,11 +176,45 @@ def _response(modes_hz, u, fs, rng, jitter=0.01):
     return _at_jittered_times(p, u, 1.0 / fs, jitter, rng)
 
 
+def _normalised_excitation(f):
+    """The test's excitation in the spectrum the figures score: Klipper's sweep commands an
+    acceleration of accel_per_hz f at a constant rate (power ~ f^2 per Hz), then divided by
+    f + 0.1 and cut below 10 Hz (:func:`.spectra.normalize_to_excitation`)."""
+    out = f * f / (f + 0.1)
+    low = f < 10.0
+    out[low] *= np.exp(1.0 - (10.0 / (f[low] + 0.1)) ** 2)
+    return out
+
+
+def modal_energies(modes_hz, gain2: float = 1.0) -> list[float]:
+    """Each mode's energy in the normalised spectrum a resonance test of the series plant of
+    ``modes_hz`` measures: the plant's transfer split into its modes by partial fractions,
+    ``G(s) = sum_i r_i/(s - p_i) + conj``, and ``gain2 int E(f) |G_i(j 2 pi f)|^2 df`` with E
+    the test's normalised excitation. A mode in series behind another is seen through the
+    other's roll-off: its energy is what the plant's output actually carries, not that of the
+    mode alone."""
+    p = plant([(TWO_PI * f, z) for f, z in modes_hz])
+    lam, V = np.linalg.eig(p.A)
+    res = (p.C @ V) * np.linalg.solve(V, p.B)
+    fmax = 4.0 * max(f for f, _ in modes_hz)
+    f = np.linspace(fmax / 40000.0, fmax, 40000)
+    s = 2j * math.pi * f
+    E = _normalised_excitation(f)
+    out = []
+    for fn, z in modes_hz:
+        target = complex(-z * TWO_PI * fn, TWO_PI * fn * math.sqrt(1 - z * z))
+        i = int(np.argmin(np.abs(lam - target)))
+        Gi = res[i] / (s - lam[i]) + np.conj(res[i]) / (s - np.conj(lam[i]))
+        out.append(gain2 * float(np.sum(E * np.abs(Gi) ** 2)) * (f[1] - f[0]))
+    return out
+
+
 def category_record(name: str, seed: int = 0, fs: float = 1600.0):
-    """(t, accel (n, 3) [mm/s^2], true modes [(f Hz, zeta)], frequency shift of the modes over
-    the record) of the campaign's category ``name`` (:data:`CATEGORIES`): Klipper's sweep
+    """(t, accel (n, 3) [mm/s^2], true modes [(f Hz, zeta, energy)], frequency shift of the
+    modes over the record) of the campaign's category ``name`` (:data:`CATEGORIES`): Klipper's sweep
     from 5 Hz (10 Hz for the mode at the sweep start) to 133 Hz at 1 Hz/s, 1 % time-stamp
-    jitter, noise at 0.3 % of the signal; each category adds what it names. The modes are
+    jitter, noise at 0.3 % of the signal; each category adds what it names (clipped: the
+    resonance drives the sensor to 1.5 times its range). The modes are
     perturbed by the seed (+-4 % in frequency, +-20 % in damping)."""
     base, opt = CATEGORIES[name]
     rng = np.random.default_rng(seed)
@@ -188,7 +222,7 @@ def category_record(name: str, seed: int = 0, fs: float = 1600.0):
              for f, z in base]
     if name == "two modes 2 Hz apart":
         modes[1] = (modes[0][0] + 2.0, modes[1][1])
-    u = klipper_sweep(fs, f0=opt.get("f0", 5.0)) * opt.get("gain", 1.0)
+    u = klipper_sweep(fs, f0=opt.get("f0", 5.0))
     shift = 0.0
     if opt.get("softening"):
         # stiffness falling with the amplitude: the record is simulated in pieces, each mode's
@@ -210,17 +244,23 @@ def category_record(name: str, seed: int = 0, fs: float = 1600.0):
         t, y = _response(modes, u, fs, rng)
     x = y
     cols = [x, 0.05 * x, 0.02 * x]
+    truth = [(f, z, w) for (f, z), w in zip(modes, modal_energies(modes, 1 + 0.05 ** 2
+                                                                    + 0.02 ** 2))]
     if opt.get("cross"):
         fc, zc, gain = opt["cross"]
         fc *= 1 + rng.uniform(-0.04, 0.04)
         _, yc = _response([(fc, zc)], u, fs, rng)
         cols = [x + gain * (yc - u), 0.05 * x + (yc - u), cols[2]]
-        modes = modes + [(fc, zc)]
+        # the relative acceleration yc - u has the mode's poles and residues
+        truth.append((fc, zc, modal_energies([(fc, zc)], gain ** 2 + 1.0)[0]))
     A = np.column_stack(cols)
     if opt.get("rotate"):
         r = math.radians(opt["rotate"])
         R = np.array([[math.cos(r), -math.sin(r), 0], [math.sin(r), math.cos(r), 0], [0, 0, 1]])
         A = A @ R.T
+    if opt.get("overshoot"):
+        # the resonance drives the sensor past its range: the peak is `overshoot` times it
+        A = A * (opt["overshoot"] * ADXL_RANGE / float(np.max(np.abs(A))))
     A = A + rng.normal(0.0, 0.003 * float(np.sqrt(np.mean(A[:, 0] ** 2))), A.shape)
     A[:, 2] += 9806.65                                   # gravity on z
     if opt.get("quantise"):
@@ -232,21 +272,20 @@ def category_record(name: str, seed: int = 0, fs: float = 1600.0):
             a = int(rng.integers(0, t.size))
             keep[a: a + int(rng.uniform(0.010, 0.050) * fs)] = False
         t, A = t[keep], A[keep]
-    return t, A, modes, shift
+    return t, A, truth, shift
 
 
-def true_remaining(A_imp, t_imp, modes_hz, shift=0.0, excitation=2.0) -> float:
+def true_remaining(A_imp, t_imp, modes, shift=0.0) -> float:
     """The remaining vibration [%] impulses (A, t [s]) leave on the true plant: the PRV
     e^{-zeta wn t_n} |sum A e^{-p t}| of each true mode (Singer and Seering), the RMS over the
-    modes weighted by each one's energy in the test's normalised PSD (peak area of a mode of
-    the base-excited form under an excitation growing as f^excitation, divided by f), and for a
+    modes weighted by each one's energy in the test's normalised spectrum (``modes``: (f [Hz],
+    zeta, energy) as :func:`category_record` returns them, :func:`modal_energies`), and for a
     mode whose frequency moved by up to ``shift`` over the record, the RMS over that range."""
     A = np.asarray(A_imp, dtype=float) / float(np.sum(A_imp))
     t = np.asarray(t_imp, dtype=float)
     L = float(t[np.flatnonzero(A)[-1]])
     num = den = 0.0
-    for f, z in modes_hz:
-        w = f ** (excitation - 1) * f / z         # peak height ~ 1/zeta^2 times width ~ zeta f
+    for f, z, w in modes:
         fs = np.linspace(f * (1 - shift), f, 9) if shift else np.array([f])
         wn = TWO_PI * fs
         p = -z * wn + 1j * wn * math.sqrt(1 - z * z)
