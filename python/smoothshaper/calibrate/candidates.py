@@ -24,16 +24,12 @@ from ..stages import Stage, for_mode, shaper
 from .._checks import positive as _positive
 from .objectives import BOX, impulses_R2, stages_R2, taps_R2
 
-__all__ = ["FIRMWARE_NAMES", "BOX", "Reference", "Candidate", "chain_taps", "candidate_taps", "impulse_taps",
+__all__ = ["BOX", "Reference", "Candidate", "chain_taps", "candidate_taps", "impulse_taps",
            "duration", "Family", "register", "families", "continuity", "smoothing", "move_peaks",
-           "class_name", "tune", "evaluate", "recommend", "firmware_lines"]
+           "class_name", "tune", "evaluate", "recommend"]
 
 #: Stage families whose impulse response integrates a step once (+1) or twice (+2).
 _SMOOTHING_ORDER = {"rectangular": 1, "exponential": 1, "harmonic": 2, "damped_harmonic": 2}
-#: Shaper kinds 3-D printer firmware knows (Klipper [input_shaper] shaper_type names).
-FIRMWARE_NAMES = {"zv": "zv", "mzv": "mzv", "zvd": "zvd", "ei": "ei", "ei2": "2hump_ei",
-                  "ei3": "3hump_ei"}
-
 
 @dataclass
 class Reference:
@@ -505,22 +501,3 @@ def recommend(candidates: list[Candidate]) -> Candidate | None:
     best = min(c.vibration for c in ok)
     close = [c for c in ok if c.vibration <= best + 0.05]
     return min(close, key=lambda c: (c.length, c.vibration))
-
-def firmware_lines(c: Candidate, axis: str) -> list[str] | None:
-    """[input_shaper] lines for a single shaper 3-D printer firmware knows, else None."""
-    if len(c.stages) != 1:
-        return None
-    s = c.stages[0]
-    name = FIRMWARE_NAMES.get(s.kind)
-    if s.kind in ("ei", "ei2", "ei3") and abs(s.tolerance - 0.05) > 1e-12:
-        return None
-    if s.kind == "gmzv":
-        name = f"mzv(n={s.order}, t={s.duration:.6g})"
-    if name is None:
-        return None
-    lines = [f"shaper_type_{axis}: {name}", f"shaper_freq_{axis}: {s.wn / (2 * math.pi):.6g}",
-             f"damping_ratio_{axis}: {s.zeta:.6g}"]
-    if s.kind == "gmzv":
-        lines.insert(0, "# generalised MZV: understood by firmware with D. Butyugin's "
-                        "shaper_defs.py (e.g. Kalico); others take shaper_type mzv only")
-    return lines
