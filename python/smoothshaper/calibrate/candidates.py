@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Candidate filters for a measured record: the registry of families, tuning, figures of merit,
 recommendation.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Modes (wn, zeta, uncertainty, weight): the dataclass, and the fit of a free decay.
 
 Spectra (resonance tests, PSD tables, frequency responses) are fitted in :mod:`.spectral_fit`.

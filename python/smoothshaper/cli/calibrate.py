@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """``smoothshaper calibrate``: from measured records to a recommended filter.
 
     smoothshaper calibrate FILE... [--kind auto|raw|decay|psd|frf] [--axis auto|xyz|all|x|y|z|DIR]
@@ -6,7 +7,8 @@
         [--Ts S] [--out DIR] [--json FILE]
 
 Prints the identified modes and the ranked candidates per axis; ``--out`` writes the two
-figures, ``config_<axis>.c``, ``fmu_start_values_<axis>.json`` (for
+figures, ``config_<axis>.c``, ``coeffs_<axis>.c`` (precomputed coefficients for
+``sms_chain_init_coeffs``), ``fmu_start_values_<axis>.json`` (for
 ``fmpy.simulate_fmu(start_values=...)``) and, with ``--firmware``, the firmware's configuration
 for every analysed axis (``firmware_<name>.txt``); ``--json`` writes everything
 (docs/calibrate.md).
@@ -163,6 +165,10 @@ def cmd_calibrate(args) -> int:
             path = os.path.join(args.out, f"config_{ident}.c")
             with open(path, "w", encoding="utf-8") as fh:
                 fh.write(outputs.c_config(c, ref.Ts, ident))
+            written.append(path)
+            path = os.path.join(args.out, f"coeffs_{ident}.c")   # the firmware path, coeffs.h
+            with open(path, "w", encoding="utf-8") as fh:
+                fh.write(outputs.c_coeffs(c, ref.Ts, ident))
             written.append(path)
             path = os.path.join(args.out, f"fmu_start_values_{ident}.json")
             with open(path, "w", encoding="utf-8") as fh:
