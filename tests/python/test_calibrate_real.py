@@ -18,6 +18,7 @@ from smoothshaper.calibrate import synthetic as syn
 from smoothshaper.calibrate.candidates import candidate_taps
 from smoothshaper.cli import main
 
+import calibrate_campaign
 import klipper_pick
 
 
@@ -29,29 +30,14 @@ def _write(tmp_path, name, t, A):
 
 
 def _campaign(tmp_path, seeds, fs=800.0):
-    """(win rate, coverage, rows) over the categories: a win when the pick leaves no more
-    vibration on the true plant than the established tool's pick at its delay, covered when
-    the stated +-3 sd range holds the true value."""
-    rows = []
-    for name in syn.CATEGORIES:
-        for seed in seeds:
-            t, A, modes, shift = syn.category_record(name, seed, fs=fs)
-            p = _write(tmp_path, "raw_data_x_rec.csv", t, A)
-            pick = klipper_pick.best_shaper(klipper_pick.load(p))
-            cal = calibrate.run([str(p)], max_delay=pick["duration"])
-            c = cal.axes[0].recommended
-            assert c is not None and c.length <= pick["duration"] * (1 + 1e-9), name
-            h = candidate_taps(c, cal.reference.Ts)
-            ours = syn.true_remaining(h, np.arange(h.size) * cal.reference.Ts, modes, shift)
-            theirs = syn.true_remaining(pick["A"], pick["T"], modes, shift)
-            lo, hi = c.vibration_range
-            rows.append((name, seed, ours, theirs, lo, hi))
-            print(f"{name:30s} {seed}: ours {c.name} {ours:.3g} % [{lo:.3g}, {hi:.3g}], "
-                  f"established {pick['name']} {theirs:.3g} %")
-    wins = sum(r[2] <= r[3] + 1e-9 for r in rows) / len(rows)
-    cover = sum(r[4] <= r[2] <= r[5] for r in rows) / len(rows)
-    print(f"win rate {100 * wins:.0f} %, coverage {100 * cover:.0f} % over {len(rows)} records")
-    return wins, cover, rows
+    """(win rate, coverage, draws) over the categories (:mod:`calibrate_campaign`): a win when
+    the pick leaves no more vibration on the true plant than the established tool's pick at
+    its delay, covered when the stated +-3 sd range holds the true value."""
+    draws = calibrate_campaign.run(seeds, str(tmp_path), fs=fs)
+    wins = sum(d.win for d in draws) / len(draws)
+    cover = sum(d.covered for d in draws) / len(draws)
+    print(calibrate_campaign.table(draws))
+    return wins, cover, draws
 
 
 #: The default suite's draw of the campaign: a clean sweep and the two sensor defects.
@@ -103,12 +89,13 @@ def test_spectral_ranking_within_the_established_estimate(tmp_path):
 def test_every_category_gets_a_pick_within_the_established_delay(tmp_path):
     """One record of each category (seed 0): no refusal, a pick no longer than the established
     tool's, figures printed; the modal fit recognises the single clean modes."""
-    wins, cover, rows = _campaign(tmp_path, [0])
-    assert len(rows) == len(syn.CATEGORIES)
-    assert all(math.isfinite(r[2]) for r in rows)
+    wins, cover, draws = _campaign(tmp_path, [0])
+    assert len(draws) == len(syn.CATEGORIES)
+    assert all(math.isfinite(d.ours) for d in draws)
     # where the modal fit explains a clean single mode, the pick leaves less on the true plant
-    clean = [r for r in rows if r[0] in ("klipper sweep", "sensor rotated 45 deg", "zeta 0.25")]
-    assert all(r[2] <= r[3] for r in clean), clean
+    clean = [d for d in draws if d.category in ("klipper sweep", "sensor rotated 45 deg",
+                                                "zeta 0.25")]
+    assert all(d.win for d in clean), [d.line() for d in clean]
 
 
 @pytest.mark.long
