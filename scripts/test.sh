@@ -34,6 +34,8 @@ else
 fi
 
 step "API reference (sphinx, warnings as errors)" bash scripts/docs.sh
+# What `pip install .` gives a user: the wheel in a fresh venv with the base dependencies only.
+step "wheel in a fresh venv" bash tests/install/fresh_venv.sh
 
 if [ ${#failed[@]} -gt 0 ]; then
     printf 'test.sh: FAILED: %s\n' "${failed[@]}" >&2

@@ -282,7 +282,8 @@ def trajectory_table(quick: bool, c_figures: dict) -> list[Table]:
     try:
         import ruckig
     except ImportError:
-        print("\n(kinematic design against ruckig skipped: ruckig is not installed)")
+        print("\n(kinematic design against ruckig skipped: ruckig is not installed; "
+              "pip install 'smoothshaper[bench]')")
         return []
     from .. import design as kinematic_design
     from ..filters import _backend
@@ -423,7 +424,8 @@ def fmu_table(quick: bool, build_dir: Path) -> list[Table]:
         from fmpy import extract, read_model_description
         from fmpy.fmi2 import FMU2Slave
     except ImportError:
-        print("\n(FMU benchmark skipped: fmpy is not installed)")
+        print("\n(FMU benchmark skipped: fmpy is not installed; "
+              "pip install 'smoothshaper[validate]')")
         return []
     if shutil.which("cmake") is None:
         print("\n(FMU benchmark skipped: cmake is needed to build the FMUs)")

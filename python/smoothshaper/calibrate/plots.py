@@ -13,6 +13,7 @@ import os
 
 import numpy as np
 
+from .. import _optional
 from .._plotting import percent_axis
 from .candidates import BOX, chain_taps
 
@@ -45,9 +46,7 @@ def _top(res, n):
 
 
 def write(cal, out_dir: str) -> list[str]:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = _optional.pyplot("calibrate's figures (--out)")
     os.makedirs(out_dir, exist_ok=True)
     Ts = cal.reference.Ts
     n = len(cal.axes)
