@@ -4,6 +4,7 @@
 # Needs: python3 >= 3.10 (with venv), a C compiler, cmake >= 3.16. Idempotent: reuses .venv.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+start=$SECONDS
 
 python3 -c 'import sys; sys.exit(0 if sys.version_info >= (3, 10) else "python3 >= 3.10 is required")'
 [ -x .venv/bin/python ] || python3 -m venv .venv
@@ -12,9 +13,14 @@ python -m pip install -q --upgrade pip
 # Editable install: builds the cffi extensions smoothshaper._core/_core_float from c/src.
 python -m pip install -q -e ".[test,docs]"
 
-# Every suite runs even if an earlier one fails, so one report shows all failures.
+# Every suite runs even if an earlier one fails, so one report shows all failures. Each step
+# prints the time since the start.
 failed=()
-step() { local name=$1; shift; echo "== $name"; "$@" || failed+=("$name"); }
+step() {
+    local name=$1; shift
+    printf '== [%4d s] %s\n' $((SECONDS - start)) "$name"
+    "$@" || failed+=("$name")
+}
 
 step "C build (release)" cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release
 step "C build (release)" cmake --build build/release -j2
@@ -38,7 +44,7 @@ step "API reference (sphinx, warnings as errors)" bash scripts/docs.sh
 step "wheel in a fresh venv" bash tests/install/fresh_venv.sh
 
 if [ ${#failed[@]} -gt 0 ]; then
-    printf 'test.sh: FAILED: %s\n' "${failed[@]}" >&2
+    printf 'test.sh: FAILED after %d s: %s\n' $((SECONDS - start)) "${failed[@]}" >&2
     exit 1
 fi
-echo "test.sh: all suites passed"
+echo "test.sh: all suites passed in $((SECONDS - start)) s"
