@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import _reach, _state_identity
+from . import _kinematic_fastpath, _reach, _state_identity
 from ._shared import Twins, locked, new_lock
 from .errors import DroppedTargetWarning
 from .filters import MAX_STAGE_LIST, ParameterError, _backend, _fill_config, _real_dtype
@@ -387,10 +387,23 @@ def phase_duration(delta, *, vmax, amax, jmax) -> float:
     ------
     ParameterError
         Naming a bound (``vmax[i]``, ...) or ``delta``.
+
+    Notes
+    -----
+    The C core's ``sms_multi_phase_duration``. Plain numbers (a list or tuple per argument,
+    or one number for every axis) take a fast path that checks them in C (about as long as
+    ruckig's ``calculate`` of the same move, ``python -m smoothshaper.bench``); anything else,
+    and every refused value, runs the checks that name the argument. Limits more than 2^200
+    away from the displacement use the NumPy reference's time-scale form instead, which
+    stays finite there.
     """
+    T = _kinematic_fastpath.phase_duration(delta, vmax, amax, jmax)
+    if T is not None:
+        return T
     d = _finite_vector("delta", delta)
     v, a, j = _limits(vmax, amax, jmax, d.size)
-    return _ref._phase_duration(d, v, a, j)
+    T = _kinematic_fastpath.phase_duration(d.tolist(), v.tolist(), a.tolist(), j.tolist())
+    return T if T is not None else _ref._phase_duration(d, v, a, j)
 
 
 def multi_axis_move(start, target, *, vmax, amax, jmax, Ts: float, sync: str = "phase",
