@@ -296,6 +296,25 @@ static void multi_phase_scaling(void)
                 CHECK_CLOSE(Td, T0, 8.0 * DBL_EPSILON, T0);
         }
     }
+    /* closed forms at the ends of the range, where a unit limit under- or overflows:
+     * cruising at vmax for 1e300 s (amax/|d| = 1e-600), the jerk-limited 4 cbrt(|d|/(2 jmax))
+     * of 1e-100 s and of 1e100 s */
+    {
+        const double d[3] = {1e300, 1e-300, 1.0}, v[3] = {1.0, 1.0, 1e300};
+        const double a[3] = {1e-300, 1.0, 1e300}, j[3] = {1e-300, 1.0, 1e-300};
+        const double expect[3] = {2e300, 0.79370052598409974 * 4e-100, 0.79370052598409974 * 4e100};
+        for (set = 0; set < 3; ++set) {
+            sms_multi_generator_config c;
+            double T = 0.0;
+            memset(&c, 0, sizeof c);
+            c.n_axes = 1;
+            c.vmax[0] = v[set];
+            c.amax[0] = a[set];
+            c.jmax[0] = j[set];
+            CHECK_STATUS(sms_multi_phase_duration(&c, &d[set], &T), SMS_OK);
+            CHECK_CLOSE(T, expect[set], 8.0 * DBL_EPSILON, expect[set]);
+        }
+    }
     /* the reported case: vmax = 4.9e-324 over 1e-6 lasts 2e317 s, more than a double holds */
     {
         sms_multi_generator_config c;
