@@ -53,6 +53,8 @@ def test_run_writes_a_passing_report(tmp_path):
     report = (tmp_path / "README.md").read_text()
     assert "**Result: PASS**" in report and "| NO |" not in report
     assert (tmp_path / "smoothshaper_00.png").stat().st_size > 1000
+    assert "| ServoDrive | controller 3 (lqg) | 0.0e+00 | yes |" in report
+    assert (tmp_path / "servo_drive_lqg.png").stat().st_size > 1000
 
 
 def test_validation_and_cosim_helpers_name_bad_arguments():

@@ -8,7 +8,8 @@
 Steps (docs/calibrate.md): read and recognise the record (:mod:`.records`), estimate the
 spectrum (Welch) or fit the decay and identify every significant mode with its uncertainty
 (:mod:`.modes`), tune every candidate family to the modes and rank them (:mod:`.candidates`),
-then plots (:mod:`.plots`) and ready-to-use outputs (:mod:`.outputs`).
+then plots (:mod:`.plots`) and ready-to-use outputs (:mod:`.outputs`). A scheduled shaper's
+table from one record per point: :func:`.schedule.schedule_table`.
 """
 from __future__ import annotations
 

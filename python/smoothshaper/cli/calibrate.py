@@ -4,11 +4,13 @@
     smoothshaper calibrate FILE... [--kind auto|raw|decay|psd|frf] [--axis x|y|z|all]
         [--band FMIN FMAX] [--max-delay S] [--max-smoothing D] [--accel A]
         [--corner-velocity V] [--spread FRAC] [--Ts S] [--out DIR] [--json FILE]
+        [--schedule V1,V2,...]
 
 Prints the identified modes and the ranked candidates per axis; ``--out`` writes the two
 figures, ``config_<axis>.c``, ``fmu_start_values_<axis>.json`` (for
 ``fmpy.simulate_fmu(start_values=...)``) and ``input_shaper.cfg`` when firmware knows the
-shaper; ``--json`` writes everything (docs/calibrate.md).
+shaper; ``--json`` writes everything (docs/calibrate.md). ``--schedule`` (one value per
+record) prints the schedule table of a scheduled shaper instead (docs/scheduled.md).
 """
 from __future__ import annotations
 
@@ -55,6 +57,11 @@ def add_parser(sub) -> None:
                    help="sample period the filter will run at [s] (default 1e-4)")
     p.add_argument("--out", metavar="DIR", help="write figures and config files here")
     p.add_argument("--json", metavar="FILE", help="write all results as JSON")
+    p.add_argument("--schedule", metavar="V1,V2,...",
+                   help="one scheduling value per FILE (its position, load, ...): print the "
+                   "table (value, wn, zeta) of the dominant mode of --axis (default x) for a "
+                   "scheduled shaper instead of recommending a filter; with --out, write it "
+                   "as schedule.csv (docs/scheduled.md)")
     add_cost_options(p)
     p.set_defaults(func=cmd_calibrate)
 
@@ -92,11 +99,44 @@ def _check_options(args) -> None:
                        "--distance, raise --accel or use a larger --Ts")
 
 
+def _schedule_values(args) -> list:
+    try:
+        values = [float(v) for v in args.schedule.split(",")]
+    except ValueError:
+        raise CliError(f"--schedule must be numbers separated by commas, got "
+                       f"{args.schedule!r}") from None
+    if len(values) != len(args.files):
+        raise CliError(f"--schedule gives {len(values)} value(s) for {len(args.files)} FILE(s): "
+                       "one per record")
+    return values
+
+
+def cmd_schedule(args) -> int:
+    """--schedule: the table of the dominant mode per record."""
+    from ..calibrate import schedule
+    values = _schedule_values(args)
+    axis = "x" if args.axis == "all" else args.axis
+    table = schedule.schedule_table(args.files, values, axis=axis, kind=args.kind,
+                                    band=tuple(args.band) if args.band else None)
+    print(schedule.format_table(table), end="")
+    if args.out:
+        os.makedirs(args.out, exist_ok=True)
+        path = os.path.join(args.out, "schedule.csv")
+        with open(path, "w", encoding="utf-8") as f:
+            f.write("value,wn,zeta\n")
+            for value, wn, zeta in table:
+                f.write(f"{float(value)!r},{float(wn)!r},{float(zeta)!r}\n")
+        print(f"wrote {path}")
+    return 0
+
+
 def cmd_calibrate(args) -> int:
     from .. import calibrate
     from ..calibrate import outputs
     from .cost import record_cost, start as start_request
     _check_options(args)
+    if args.schedule is not None:
+        return cmd_schedule(args)
     nbytes = sum(os.path.getsize(f) for f in args.files if os.path.isfile(f))
     # columns to tune: one with --axis x/y/z, up to three per file with --axis all
     axes = len(args.files) * (3 if args.axis == "all" else 1)
