@@ -405,7 +405,8 @@ def phase_duration(delta, *, vmax, amax, jmax) -> float:
     Raises
     ------
     ParameterError
-        Naming a bound (``vmax[i]``, ...) or ``delta``.
+        Naming a bound (``vmax[i]``, ...) or ``delta``; ``delta`` also when the duration
+        exceeds the largest double (``delta = [1e300]`` with ``vmax = 1e-300``).
 
     Notes
     -----
@@ -422,7 +423,12 @@ def phase_duration(delta, *, vmax, amax, jmax) -> float:
     d = _finite_vector("delta", delta)
     v, a, j = _limits(vmax, amax, jmax, d.size)
     T = _kinematic_fastpath.phase_duration(d.tolist(), v.tolist(), a.tolist(), j.tolist())
-    return T if T is not None else _ref._phase_duration(d, v, a, j)
+    if T is None:
+        T = _ref._phase_duration(d, v, a, j)
+    if not math.isfinite(T):
+        raise ParameterError("delta", "delta is too long for these limits: the move lasts more "
+                             "than the largest double (1.8e308 s)")
+    return T
 
 
 def multi_axis_move(start, target, *, vmax, amax, jmax, Ts: float, sync: str = "phase",
