@@ -55,7 +55,7 @@ typedef double sms_real;  /**< signal and state type (double build) */
  * names the offending argument. On any error the object passed in is left untouched.
  */
 typedef enum sms_status {
-    SMS_OK = 0,
+    SMS_OK = 0,                     /**< success */
     SMS_ERR_NULL = -1,              /**< a required pointer argument is NULL */
     SMS_ERR_SAMPLE_PERIOD = -2,     /**< Ts is NaN/Inf or <= 0 */
     SMS_ERR_DURATION = -3,          /**< T is NaN/Inf or <= 0 */
