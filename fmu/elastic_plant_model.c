@@ -56,20 +56,20 @@ static const size_t offsets[] = {
 };
 #define N_REALS (sizeof offsets / sizeof offsets[0])
 
-static const char *field_name(fmi2ValueReference vr)
+static const char *field_name(fmu_vr vr)
 {
     static const char *const names[N_REALS] = { "u", "y", "Ts", "J_l", "k_t", "b_t" };
     return vr < N_REALS ? names[vr] : NULL;
 }
 
-fmu_var_class fmu_model_class(fmu_type type, fmi2ValueReference vr)
+fmu_var_class fmu_model_class(fmu_type type, fmu_vr vr)
 {
     if (type != FMU_REAL || field_name(vr) == NULL)
         return FMU_VAR_UNKNOWN;
     return vr == EP_VR_U ? FMU_VAR_INPUT : vr == EP_VR_Y ? FMU_VAR_OUTPUT : FMU_VAR_PARAMETER;
 }
 
-void fmu_model_name(fmu_type type, fmi2ValueReference vr, char *buf, size_t len)
+void fmu_model_name(fmu_type type, fmu_vr vr, char *buf, size_t len)
 {
     const char *name = type == FMU_REAL ? field_name(vr) : NULL;
     if (name != NULL)
@@ -78,34 +78,34 @@ void fmu_model_name(fmu_type type, fmi2ValueReference vr, char *buf, size_t len)
         snprintf(buf, len, "vr %lu", (unsigned long)vr);
 }
 
-size_t fmu_model_settable(fmu_type type, fmi2ValueReference *out, size_t cap)
+size_t fmu_model_settable(fmu_type type, fmu_vr *out, size_t cap)
 {
-    static const fmi2ValueReference vrs[] = { EP_VR_U, EP_VR_TS, EP_VR_J_L, EP_VR_K_T, EP_VR_B_T };
+    static const fmu_vr vrs[] = { EP_VR_U, EP_VR_TS, EP_VR_J_L, EP_VR_K_T, EP_VR_B_T };
     size_t i, n = type == FMU_REAL ? sizeof vrs / sizeof vrs[0] : 0;
     for (i = 0; i < n && i < cap; ++i)
         out[i] = vrs[i];
     return n;
 }
 
-double fmu_model_get_real(const void *model, fmi2ValueReference vr)
+double fmu_model_get_real(const void *model, fmu_vr vr)
 {
     return vr < N_REALS ? *(const double *)(const void *)((const char *)model + offsets[vr]) : 0.0;
 }
 
-int fmu_model_get_integer(const void *model, fmi2ValueReference vr)
+int fmu_model_get_integer(const void *model, fmu_vr vr)
 {
     (void)model;
     (void)vr;
     return 0;
 }
 
-void fmu_model_set_real(void *model, fmi2ValueReference vr, double value)
+void fmu_model_set_real(void *model, fmu_vr vr, double value)
 {
     if (vr < N_REALS)
         *(double *)(void *)((char *)model + offsets[vr]) = value;
 }
 
-void fmu_model_set_integer(void *model, fmi2ValueReference vr, int value)
+void fmu_model_set_integer(void *model, fmu_vr vr, int value)
 {
     (void)model;
     (void)vr;

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * The serialised FMU state: a versioned, portable byte format with no pointers.
  *
@@ -40,9 +41,6 @@
 #define FMU_STATE_VERSION 5u   /* 3: the filter states start with their configuration identity;
                                   4: so do the generators' states;
                                   5: XXH64 checksum, dynamic part aligned to 8 bytes */
-/* Relative disagreement of t and t0 + ticks*Ts allowed: a host doing t += h drifts by about
- * 2e-8 t over 1e9 steps of 1 ms. */
-#define CLOCK_REL_SLACK 1e-6
 #define MAX_SETTABLE 1024u
 
 /* Does this host store a double as the format does (IEEE binary64, little-endian)? Decided by
@@ -174,7 +172,7 @@ static int is_built(const fmu_snapshot *s)
 
 static void write_all(const fmu_snapshot *s, writer *w)
 {
-    fmi2ValueReference vrs[MAX_SETTABLE];
+    fmu_vr vrs[MAX_SETTABLE];
     const char *guid = fmu_model_guid();
     size_t n, i;
     put_bytes(w, "SMSF", 4);
@@ -215,7 +213,7 @@ size_t fmu_serialized_size(const fmu_snapshot *s)
     return w.n + padding(w.n) + 8 * n + 8;   /* + the state doubles, the checksum */
 }
 
-int fmu_serialize(const fmu_snapshot *s, const fmi2CallbackFunctions *cb, unsigned char *out)
+int fmu_serialize(const fmu_snapshot *s, const fmu_host *host, unsigned char *out)
 {
     writer w;
     size_t n = is_built(s) ? fmu_model_state_count(s->model) : 0, i;
@@ -231,7 +229,7 @@ int fmu_serialize(const fmu_snapshot *s, const fmi2CallbackFunctions *cb, unsign
         if (native_doubles() && double_aligned(at)) {
             fmu_model_save_state(s->model, (double *)(void *)at);
         } else {
-            double *state = (double *)cb->allocateMemory(n, sizeof(double));
+            double *state = (double *)host->alloc(n, sizeof(double));
             if (state == NULL)
                 return -1;
             fmu_model_save_state(s->model, state);
@@ -240,7 +238,7 @@ int fmu_serialize(const fmu_snapshot *s, const fmi2CallbackFunctions *cb, unsign
             else
                 for (i = 0; i < n; ++i)
                     put_f64(&w, state[i]);
-            cb->freeMemory(state);
+            host->release(state);
         }
         w.n = (size_t)(at - out) + 8 * n;
     }
@@ -294,7 +292,7 @@ static int read_values(reader *r, fmu_type type, void *model, char *msg, size_t 
         REFUSE("state holds %lu %s variables, this model has %lu", (unsigned long)n,
                type == FMU_REAL ? "Real" : "Integer", (unsigned long)fmu_model_settable(type, NULL, 0));
     for (i = 0; i < n; ++i) {
-        fmi2ValueReference vr = get_u32(r);
+        fmu_vr vr = get_u32(r);
         fmu_var_class cls = fmu_model_class(type, vr);
         if (r->bad)
             REFUSE("truncated state");
@@ -313,26 +311,8 @@ static int read_values(reader *r, fmu_type type, void *model, char *msg, size_t 
     return r->bad ? (snprintf(msg, len, "truncated state"), -1) : 0;
 }
 
-/* The clock of a built state: ticks below the limit, since_tick in [-slack Ts, Ts) widened by
- * the rounding of a tick count computed in double (one step of h counts floor(h/Ts) ticks, off
- * by up to a few ulp of h/Ts: 1e-4 Ts after a step of 1e12 ticks), and the time where the ticks
- * put it (within an accumulating host's drift). 0, or -1 with msg. */
-static int check_clock(const fmu_clock *k, double Ts, char *msg, size_t len)
-{
-    double ticks = (double)k->ticks, at = k->start_time + ticks * Ts + k->since_tick;
-    double rounding = 4.0 * DBL_EPSILON * (ticks + 1.0) * Ts;
-    if (!(ticks < 4.0e15) || !(k->since_tick >= -2.0 * FMU_TICK_SLACK * Ts - rounding)
-        || !(k->since_tick < Ts + rounding))
-        REFUSE("the state's clock is inconsistent (ticks %.17g, time since the last tick %.17g s, "
-               "Ts %.17g s)", ticks, k->since_tick, Ts);
-    if (!(fabs(k->time - at) <= FMU_TICK_SLACK * Ts + CLOCK_REL_SLACK * fabs(k->time)))
-        REFUSE("the state's time %.17g s disagrees with its tick count (%.17g ticks of %.17g s "
-               "from t0 = %.17g s end at %.17g s)", k->time, ticks, Ts, k->start_time, at);
-    return 0;
-}
-
 int fmu_deserialize(const unsigned char *in, size_t size, fmu_snapshot *dst,
-                    const fmi2CallbackFunctions *cb, char *msg, size_t len)
+                    const fmu_host *host, char *msg, size_t len)
 {
     reader r;
     const char *guid = fmu_model_guid();
@@ -386,9 +366,9 @@ int fmu_deserialize(const unsigned char *in, size_t size, fmu_snapshot *dst,
         return n_state == 0 ? 0 : (snprintf(msg, len, "state of an unbuilt FMU holds filter state"), -1);
     /* The clock before any work proportional to the filters (Ts itself is checked by the build). */
     if (fmu_model_sample_period(dst->model) > 0.0
-        && check_clock(&dst->clock, fmu_model_sample_period(dst->model), msg, len) != 0)
+        && fmu_clock_check(&dst->clock, fmu_model_sample_period(dst->model), msg, len) != 0)
         return -1;
-    if (fmu_build(cb, dst->model, &dst->mem, &dst->mem_bytes, msg, len) > 0)
+    if (fmu_build(host, dst->model, &dst->mem, &dst->mem_bytes, msg, len) > 0)
         return -1;
     if (n_state != fmu_model_state_count(dst->model))
         REFUSE("state holds %lu filter values, the parameters need %lu", (unsigned long)n_state,
@@ -397,7 +377,7 @@ int fmu_deserialize(const unsigned char *in, size_t size, fmu_snapshot *dst,
         rc = fmu_model_load_state(dst->model, (const double *)(const void *)(in + r.pos), n_state,
                                   why, sizeof why);
     } else {
-        double *state = (double *)cb->allocateMemory(n_state > 0 ? n_state : 1, sizeof(double));
+        double *state = (double *)host->alloc(n_state > 0 ? n_state : 1, sizeof(double));
         if (state == NULL)
             REFUSE("out of memory");
         if (native_doubles())
@@ -406,7 +386,7 @@ int fmu_deserialize(const unsigned char *in, size_t size, fmu_snapshot *dst,
             for (i = 0; i < n_state; ++i)
                 state[i] = get_f64(&r);
         rc = fmu_model_load_state(dst->model, state, n_state, why, sizeof why);
-        cb->freeMemory(state);
+        host->release(state);
     }
     if (rc != 0)
         REFUSE("the filter state does not fit the parameters%s%s", why[0] != '\0' ? ": " : "",

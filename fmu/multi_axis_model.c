@@ -46,7 +46,7 @@ static const char *const field_names[MA_FIELD_COUNT] = {
 };
 
 /* Stage k, field g and axis i of a stage value reference; 0 if it is not one. */
-static int stage_var(fmi2ValueReference vr, int *k, int *g, int *axis)
+static int stage_var(fmu_vr vr, int *k, int *g, int *axis)
 {
     unsigned r;
     if (vr < MA_STAGE_BASE || vr >= MA_STAGE_BASE + 100u * MA_STAGE_STRIDE * MA_MAX_STAGES ||
@@ -62,7 +62,7 @@ static int stage_var(fmi2ValueReference vr, int *k, int *g, int *axis)
 static const char *const stage_field_names[MA_STAGE_STRIDE] = {"kind", "wn", "zeta"};
 
 /* Field and axis of a Real value reference; 0 if it is not an axis variable. */
-static int axis_var(fmi2ValueReference vr, int *field, int *axis)
+static int axis_var(fmu_vr vr, int *field, int *axis)
 {
     if (vr < 100 || vr >= 100u * (MA_FIELD_COUNT + 1) || vr % 100 >= MA_MAX_AXES)
         return 0;
@@ -99,7 +99,7 @@ void fmu_model_defaults(void *model)
     m->built = 0;
 }
 
-fmu_var_class fmu_model_class(fmu_type type, fmi2ValueReference vr)
+fmu_var_class fmu_model_class(fmu_type type, fmu_vr vr)
 {
     int f, i, k;
     if (stage_var(vr, &k, &f, &i))
@@ -114,7 +114,7 @@ fmu_var_class fmu_model_class(fmu_type type, fmi2ValueReference vr)
     return f == F_TARGET ? FMU_VAR_INPUT : f <= F_J ? FMU_VAR_OUTPUT : FMU_VAR_PARAMETER;
 }
 
-void fmu_model_name(fmu_type type, fmi2ValueReference vr, char *buf, size_t len)
+void fmu_model_name(fmu_type type, fmu_vr vr, char *buf, size_t len)
 {
     int f, i, k;
     if (stage_var(vr, &k, &f, &i))
@@ -129,7 +129,7 @@ void fmu_model_name(fmu_type type, fmi2ValueReference vr, char *buf, size_t len)
         snprintf(buf, len, "vr %lu", (unsigned long)vr);
 }
 
-size_t fmu_model_settable(fmu_type type, fmi2ValueReference *out, size_t cap)
+size_t fmu_model_settable(fmu_type type, fmu_vr *out, size_t cap)
 {
     size_t n = 0;
     int f, i, k;
@@ -145,7 +145,7 @@ size_t fmu_model_settable(fmu_type type, fmi2ValueReference *out, size_t cap)
             if (f >= F_Q && f <= F_J)
                 continue;
             for (i = 0; i < MA_MAX_AXES; ++i) {
-                if (n < cap) out[n] = (fmi2ValueReference)(100 * (f + 1) + i);
+                if (n < cap) out[n] = (fmu_vr)(100 * (f + 1) + i);
                 ++n;
             }
         }
@@ -156,14 +156,14 @@ size_t fmu_model_settable(fmu_type type, fmi2ValueReference *out, size_t cap)
                 continue;
             for (i = 0; i < MA_MAX_AXES; ++i) {
                 if (n < cap)
-                    out[n] = (fmi2ValueReference)(MA_STAGE_BASE + 100 * (MA_STAGE_STRIDE * k + f) + i);
+                    out[n] = (fmu_vr)(MA_STAGE_BASE + 100 * (MA_STAGE_STRIDE * k + f) + i);
                 ++n;
             }
         }
     return n;
 }
 
-double fmu_model_get_real(const void *model, fmi2ValueReference vr)
+double fmu_model_get_real(const void *model, fmu_vr vr)
 {
     const ma_model *m = (const ma_model *)model;
     int f, i, k;
@@ -174,7 +174,7 @@ double fmu_model_get_real(const void *model, fmi2ValueReference vr)
     return axis_var(vr, &f, &i) ? m->field[f][i] : 0.0;
 }
 
-int fmu_model_get_integer(const void *model, fmi2ValueReference vr)
+int fmu_model_get_integer(const void *model, fmu_vr vr)
 {
     const ma_model *m = (const ma_model *)model;
     int f, i, k;
@@ -183,7 +183,7 @@ int fmu_model_get_integer(const void *model, fmi2ValueReference vr)
     return vr == MA_VR_AXES ? m->axes : vr == MA_VR_SYNC ? m->sync : 0;
 }
 
-void fmu_model_set_real(void *model, fmi2ValueReference vr, double value)
+void fmu_model_set_real(void *model, fmu_vr vr, double value)
 {
     ma_model *m = (ma_model *)model;
     int f, i, k;
@@ -195,7 +195,7 @@ void fmu_model_set_real(void *model, fmi2ValueReference vr, double value)
         m->field[f][i] = value;
 }
 
-void fmu_model_set_integer(void *model, fmi2ValueReference vr, int value)
+void fmu_model_set_integer(void *model, fmu_vr vr, int value)
 {
     ma_model *m = (ma_model *)model;
     int f, i, k;

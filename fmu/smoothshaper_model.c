@@ -45,7 +45,7 @@ static int is_integer_field(unsigned f)
 }
 
 /* Split a stage value reference into (stage, field); 0 if it is not one. */
-static int stage_field(fmi2ValueReference vr, unsigned *k, unsigned *f)
+static int stage_field(fmu_vr vr, unsigned *k, unsigned *f)
 {
     if (vr < SS_STAGE_BASE || vr >= SS_STAGE_BASE + SS_STAGE_STRIDE * SS_MAX_STAGES)
         return 0;
@@ -81,7 +81,7 @@ void fmu_model_defaults(void *model)
     }
 }
 
-fmu_var_class fmu_model_class(fmu_type type, fmi2ValueReference vr)
+fmu_var_class fmu_model_class(fmu_type type, fmu_vr vr)
 {
     unsigned k, f;
     if (type == FMU_REAL && vr == SS_VR_U) return FMU_VAR_INPUT;
@@ -92,7 +92,7 @@ fmu_var_class fmu_model_class(fmu_type type, fmi2ValueReference vr)
     return FMU_VAR_UNKNOWN;
 }
 
-void fmu_model_name(fmu_type type, fmi2ValueReference vr, char *buf, size_t len)
+void fmu_model_name(fmu_type type, fmu_vr vr, char *buf, size_t len)
 {
     unsigned k, f;
     (void)type;
@@ -104,7 +104,7 @@ void fmu_model_name(fmu_type type, fmi2ValueReference vr, char *buf, size_t len)
         snprintf(buf, len, "vr %lu", (unsigned long)vr);
 }
 
-size_t fmu_model_settable(fmu_type type, fmi2ValueReference *out, size_t cap)
+size_t fmu_model_settable(fmu_type type, fmu_vr *out, size_t cap)
 {
     size_t n = 0;
     unsigned k, f;
@@ -123,7 +123,7 @@ size_t fmu_model_settable(fmu_type type, fmi2ValueReference *out, size_t cap)
     return n;
 }
 
-double fmu_model_get_real(const void *model, fmi2ValueReference vr)
+double fmu_model_get_real(const void *model, fmu_vr vr)
 {
     const ss_model *m = (const ss_model *)model;
     unsigned k, f;
@@ -133,13 +133,13 @@ double fmu_model_get_real(const void *model, fmi2ValueReference vr)
     return stage_field(vr, &k, &f) ? m->stage[k].reals[f] : 0.0;
 }
 
-int fmu_model_get_integer(const void *model, fmi2ValueReference vr)
+int fmu_model_get_integer(const void *model, fmu_vr vr)
 {
     unsigned k, f;
     return stage_field(vr, &k, &f) ? ((const ss_model *)model)->stage[k].ints[f] : 0;
 }
 
-void fmu_model_set_real(void *model, fmi2ValueReference vr, double value)
+void fmu_model_set_real(void *model, fmu_vr vr, double value)
 {
     ss_model *m = (ss_model *)model;
     unsigned k, f;
@@ -148,7 +148,7 @@ void fmu_model_set_real(void *model, fmi2ValueReference vr, double value)
     else if (stage_field(vr, &k, &f)) m->stage[k].reals[f] = value;
 }
 
-void fmu_model_set_integer(void *model, fmi2ValueReference vr, int value)
+void fmu_model_set_integer(void *model, fmu_vr vr, int value)
 {
     unsigned k, f;
     if (stage_field(vr, &k, &f))

@@ -25,7 +25,7 @@ typedef struct tg_model {
 } tg_model;
 
 /* Real value references and the field each one is, in modelDescription order. */
-static const fmi2ValueReference real_vrs[] = {
+static const fmu_vr real_vrs[] = {
     TG_VR_TARGET, TG_VR_Q, TG_VR_V, TG_VR_A, TG_VR_J, TG_VR_TS, TG_VR_VMAX, TG_VR_AMAX, TG_VR_JMAX,
     TG_VR_WN, TG_VR_ZETA, TG_VR_Q0
 };
@@ -42,7 +42,7 @@ static const size_t real_offsets[] = {
 };
 
 /* Index of a Real value reference in real_vrs, or N_REALS. */
-static size_t real_index(fmi2ValueReference vr)
+static size_t real_index(fmu_vr vr)
 {
     size_t i;
     for (i = 0; i < N_REALS && real_vrs[i] != vr; ++i)
@@ -72,7 +72,7 @@ void fmu_model_defaults(void *model)
     m->dropped = 0.0;
 }
 
-fmu_var_class fmu_model_class(fmu_type type, fmi2ValueReference vr)
+fmu_var_class fmu_model_class(fmu_type type, fmu_vr vr)
 {
     size_t i;
     if (type == FMU_INTEGER)
@@ -83,7 +83,7 @@ fmu_var_class fmu_model_class(fmu_type type, fmi2ValueReference vr)
     return FMU_VAR_UNKNOWN;
 }
 
-void fmu_model_name(fmu_type type, fmi2ValueReference vr, char *buf, size_t len)
+void fmu_model_name(fmu_type type, fmu_vr vr, char *buf, size_t len)
 {
     size_t i;
     if (type == FMU_INTEGER && vr == TG_VR_PROFILE) {
@@ -98,7 +98,7 @@ void fmu_model_name(fmu_type type, fmi2ValueReference vr, char *buf, size_t len)
     snprintf(buf, len, "vr %lu", (unsigned long)vr);
 }
 
-size_t fmu_model_settable(fmu_type type, fmi2ValueReference *out, size_t cap)
+size_t fmu_model_settable(fmu_type type, fmu_vr *out, size_t cap)
 {
     size_t i, n = 0;
     if (type == FMU_INTEGER) {
@@ -113,25 +113,25 @@ size_t fmu_model_settable(fmu_type type, fmi2ValueReference *out, size_t cap)
     return n;
 }
 
-double fmu_model_get_real(const void *model, fmi2ValueReference vr)
+double fmu_model_get_real(const void *model, fmu_vr vr)
 {
     size_t i = real_index(vr);
     return i < N_REALS ? *(const double *)(const void *)((const char *)model + real_offsets[i]) : 0.0;
 }
 
-int fmu_model_get_integer(const void *model, fmi2ValueReference vr)
+int fmu_model_get_integer(const void *model, fmu_vr vr)
 {
     return vr == TG_VR_PROFILE ? ((const tg_model *)model)->profile : 0;
 }
 
-void fmu_model_set_real(void *model, fmi2ValueReference vr, double value)
+void fmu_model_set_real(void *model, fmu_vr vr, double value)
 {
     size_t i = real_index(vr);
     if (i < N_REALS)
         *(double *)(void *)((char *)model + real_offsets[i]) = value;
 }
 
-void fmu_model_set_integer(void *model, fmi2ValueReference vr, int value)
+void fmu_model_set_integer(void *model, fmu_vr vr, int value)
 {
     if (vr == TG_VR_PROFILE)
         ((tg_model *)model)->profile = value;
@@ -228,7 +228,7 @@ static int configure(const tg_model *m, sms_generator_config *c, size_t *need, c
         return snprintf(msg, len, "amax = %.17g, jmax = %.17g, Ts = %.17g: with the "
                         "trigonometric profile a new target may wait for the end of an "
                         "acceleration transition of up to pi amax/jmax = %.6g samples, stepped "
-                        "one by one, more than the %.0f that keep a fmi2DoStep of any length "
+                        "one by one, more than the %.0f that keep a doStep of any length "
                         "well under 100 ms: raise jmax or Ts, or lower amax",
                         m->amax, m->jmax, m->Ts,
                         3.14159265358979323846 * m->amax / m->jmax / m->Ts,
