@@ -5,7 +5,17 @@
  * serialiser, below both.
  *
  * A step of length h advances the time since the last tick to s + h and contains the ticks
- * n = floor((s + h)/Ts + 1e-6): a tick up to 1e-6 Ts after the step's end belongs to it.
+ * n = floor((s + h + slack) / Ts): a tick up to `slack` after the step's end belongs to it, so
+ * the rounding of the importer's times never loses or doubles one. That rounding has two
+ * sources. A host that accumulates t += h passes exact step lengths: their sum is exact here,
+ * whatever its t does. A host that computes t_k = t0 + k h passes steps t_k+1 - t_k, each off
+ * by the rounding of two times: |t_k - (t0 + k h)| <= 2^-53 (|t_k| + |k h|) <= 2^-53 3 M with
+ * M = max(|t_k|, |t0|), which telescopes (the time advanced over k steps is off by one such
+ * error, never their sum). So slack = 1e-6 Ts + 2^-51 M covers it with room; near 1.7e9 s one
+ * ulp of t is 2.4e-7 s (2.4e-4 Ts at Ts = 1 ms) and the steps alternate between 0.99993 and
+ * 1.00017 ms, near 1e12 s the steps are multiples of 1.2e-4 s. The slack is at most Ts/2, so a
+ * step of h = Ts exact never holds two ticks; beyond M = 2^50 Ts (about 1.1e12 s at 1 ms) the
+ * importer's times cannot place a tick and only exact step lengths keep one tick per step.
  */
 #include <float.h>
 #include <math.h>
@@ -19,9 +29,9 @@
 
 double fmu_clock_slack(double Ts, double t0, double t)
 {
-    (void)t0;
-    (void)t;
-    return FMU_TICK_SLACK * Ts;
+    const double m = fabs(t) > fabs(t0) ? fabs(t) : fabs(t0);
+    const double slack = FMU_TICK_SLACK * Ts + 0x1p-51 * m;
+    return slack < 0.5 * Ts ? slack : 0.5 * Ts;
 }
 
 int fmu_clock_check(const fmu_clock *k, double Ts, char *msg, size_t len)

@@ -15,9 +15,10 @@
  * Time: internal ticks happen at t0 + n*Ts (n = 1, 2, ... an integer counter, so no drift).
  * doStep(t, h) computes every tick in (t, t+h]: the instance counts the ticks done and the time
  * advanced since the last one (fmu_clock), and a step of length h computes
- * floor((since_tick + h)/Ts + 1e-6) ticks (fmu_clock.c). So the tick count follows the step
- * lengths, not the importer's accumulated t: a host doing t += h (whose t drifts from k*h by
- * many ticks over 1e9 steps) gets exactly one tick per step of h = Ts.
+ * floor((since_tick + h + slack)/Ts) ticks, the slack covering the rounding of the importer's
+ * times (fmu_clock.c). So the tick count follows the step lengths, not the importer's
+ * accumulated t: a host doing t += h (whose t drifts from k*h by many ticks over 1e9 steps)
+ * gets exactly one tick per step of h = Ts, and so does a host with t = t0 + k*h whatever t0.
  * Each of those ticks filters the input value set before the call (the input is held over the
  * step). The outputs after the call are those of the last tick computed; a step that contains
  * no tick leaves the outputs unchanged. Before the first tick the outputs are the rest point:
@@ -571,7 +572,7 @@ fmu_status fmu_do_step(fmu_instance *c, const char *func, double t, double h)
         return FAIL(c, "%s: currentCommunicationPoint %.17g is not the end of the last step "
                     "%.17g", func, t, c->clock.time);
     advanced = c->clock.since_tick + h;
-    n = floor(advanced / Ts + fmu_clock_slack(Ts, c->clock.start_time, end) / Ts);
+    n = floor((advanced + fmu_clock_slack(Ts, c->clock.start_time, end)) / Ts);
     if (n < 0.0)
         n = 0.0;
     if (!((double)c->clock.ticks + n < FMU_MAX_TICK_INDEX))

@@ -109,7 +109,8 @@ typedef struct fmu_snapshot {
 #define FMU_MAX_TICK_INDEX 4.0e15
 
 /** The slack [s] by which a tick may follow the end of a step ending at t (start time t0) and
- * still belong to it: FMU_TICK_SLACK Ts (fmu_clock.c). */
+ * still belong to it: FMU_TICK_SLACK Ts + 2^-51 max(|t|, |t0|), the rounding of an importer's
+ * t0 + k h, at most Ts/2 (fmu_clock.c). */
 double fmu_clock_slack(double Ts, double t0, double t);
 /** Is a loaded clock one a run could have reached (ticks in range, the time since the last tick
  * within the slack, the time where the ticks put it)? 0, or -1 with msg saying why. */
