@@ -296,6 +296,12 @@ static fmu_status check_arrays(fmu_instance *c, const char *func, const fmu_vr v
     return FMU_OK;
 }
 
+/* The independent variable time, where the interface declares it (FMI 3.0). */
+static int is_time(const fmu_instance *c, fmu_type type, fmu_vr vr)
+{
+    return c->has_time && type == FMU_REAL && vr == c->time_vr;
+}
+
 fmu_status fmu_get(fmu_instance *c, const char *func, fmu_type type, const fmu_vr vr[],
                    size_t nvr, void *value)
 {
@@ -303,11 +309,12 @@ fmu_status fmu_get(fmu_instance *c, const char *func, fmu_type type, const fmu_v
     if (check_arrays(c, func, vr, nvr, value) != FMU_OK)
         return FMU_ERROR;
     for (i = 0; i < nvr; ++i)   /* check all first: an error writes nothing */
-        if (fmu_model_class(type, vr[i]) == FMU_VAR_UNKNOWN)
+        if (fmu_model_class(type, vr[i]) == FMU_VAR_UNKNOWN && !is_time(c, type, vr[i]))
             return FAIL(c, "%s: unknown value reference %lu", func, (unsigned long)vr[i]);
     for (i = 0; i < nvr; ++i) {
         if (type == FMU_REAL)
-            ((double *)value)[i] = fmu_model_get_real(c->model, vr[i]);
+            ((double *)value)[i] = is_time(c, type, vr[i]) ? c->clock.time
+                                                           : fmu_model_get_real(c->model, vr[i]);
         else
             ((int32_t *)value)[i] = (int32_t)fmu_model_get_integer(c->model, vr[i]);
     }
@@ -349,7 +356,10 @@ fmu_status fmu_set(fmu_instance *c, const char *func, fmu_type type, const fmu_v
     for (i = 0; i < nvr; ++i) {   /* check all first: an error writes nothing */
         fmu_var_class cls = fmu_model_class(type, vr[i]);
         if (cls == FMU_VAR_UNKNOWN)
-            return FAIL(c, "%s: unknown value reference %lu", func, (unsigned long)vr[i]);
+            return is_time(c, type, vr[i])
+                   ? FAIL(c, "%s: time (value reference %lu) is the independent variable and "
+                          "cannot be set", func, (unsigned long)vr[i])
+                   : FAIL(c, "%s: unknown value reference %lu", func, (unsigned long)vr[i]);
         if (cls == FMU_VAR_OUTPUT
             || (cls == FMU_VAR_PARAMETER && c->clock.phase == FMU_STEP_COMPLETE)
             || (type == FMU_REAL && !isfinite(((const double *)value)[i]))

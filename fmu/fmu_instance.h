@@ -83,6 +83,8 @@ typedef struct fmu_instance {
     fmu_host host;
     char *name;
     int log_on[FMU_LOG_CATEGORIES];
+    int has_time;        /**< 1: the interface declares the independent variable time (FMI 3.0) */
+    fmu_vr time_vr;      /**< its value reference: reads the communication point reached */
     fmu_clock clock;
     void *model;         /**< fmu_model_size() bytes */
     void *mem;           /**< the filters' block (NULL before build) */
