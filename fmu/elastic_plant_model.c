@@ -17,6 +17,7 @@
  * the size of y), so every matrix entry is of order one and the recursion stays finite for
  * any input up to SMS_INPUT_MAX, whatever wn (x0 = u/wn^2 itself overflows for a slow mode).
  */
+#include <float.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -275,7 +276,10 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
     ep_model *m = (ep_model *)model;
     (void)msg;
     (void)len;
-    if (n != 3 || !isfinite(src[0]) || !isfinite(src[1]) || !isfinite(src[2]))
+    /* finite, and below a quarter of the largest double: a tick at most doubles |z| (Ad's rows
+     * sum to at most about 2 in magnitude), so a larger state could overflow on the next one */
+    if (n != 3 || !(fabs(src[0]) <= 0.25 * DBL_MAX) || !(fabs(src[1]) <= 0.25 * DBL_MAX)
+        || !(fabs(src[2]) <= 0.25 * DBL_MAX))
         return 1;
     m->y = src[0];
     m->x[0] = src[1];

@@ -20,7 +20,9 @@
  * fmu_model_plan() / fmu_model_build(), then loads the dynamic state: a blob from another model,
  * version or precision, truncated or altered, or whose clock disagrees with its tick count
  * (t != t0 + ticks*Ts + since_tick beyond the rounding of an accumulating host) is refused with
- * a message, so a crafted state can never make the next doStep run a huge number of ticks.
+ * a message, so a crafted state can never make the next doStep run a huge number of ticks; so is
+ * a dynamic state with a NaN or an infinity, or one beyond what the parameters' ranges allow
+ * (the model's fmu_model_load_state()), which would reach the outputs.
  *
  * Speed: the dynamic part is nearly all of a large state (delay lines of up to FMU_MAX_REALS),
  * so on a host whose doubles are stored as the format stores them (little-endian binary64,
@@ -311,6 +313,21 @@ static int read_values(reader *r, fmu_type type, void *model, char *msg, size_t 
     return r->bad ? (snprintf(msg, len, "truncated state"), -1) : 0;
 }
 
+/* The dynamic state into the model: no value may be NaN or infinite (the FMU refuses
+ * non-finite inputs and parameters, so no run produces one, and a forged one would reach the
+ * outputs), then the model's own checks (ranges, limits). 0, or non-zero with why. */
+static int load_state(void *model, const double *v, size_t n, char *why, size_t len)
+{
+    size_t i;
+    for (i = 0; i < n; ++i)
+        if (!isfinite(v[i])) {
+            snprintf(why, len, "value %lu of %lu is %s, which no run of the FMU produces",
+                     (unsigned long)i, (unsigned long)n, v[i] != v[i] ? "NaN" : "infinite");
+            return 1;
+        }
+    return fmu_model_load_state(model, v, n, why, len);
+}
+
 int fmu_deserialize(const unsigned char *in, size_t size, fmu_snapshot *dst,
                     const fmu_host *host, char *msg, size_t len)
 {
@@ -374,8 +391,8 @@ int fmu_deserialize(const unsigned char *in, size_t size, fmu_snapshot *dst,
         REFUSE("state holds %lu filter values, the parameters need %lu", (unsigned long)n_state,
                (unsigned long)fmu_model_state_count(dst->model));
     if (native_doubles() && double_aligned(in + r.pos)) {
-        rc = fmu_model_load_state(dst->model, (const double *)(const void *)(in + r.pos), n_state,
-                                  why, sizeof why);
+        rc = load_state(dst->model, (const double *)(const void *)(in + r.pos), n_state, why,
+                        sizeof why);
     } else {
         double *state = (double *)host->alloc(n_state > 0 ? n_state : 1, sizeof(double));
         if (state == NULL)
@@ -385,7 +402,7 @@ int fmu_deserialize(const unsigned char *in, size_t size, fmu_snapshot *dst,
         else
             for (i = 0; i < n_state; ++i)
                 state[i] = get_f64(&r);
-        rc = fmu_model_load_state(dst->model, state, n_state, why, sizeof why);
+        rc = load_state(dst->model, state, n_state, why, sizeof why);
         host->release(state);
     }
     if (rc != 0)

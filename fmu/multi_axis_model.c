@@ -446,9 +446,13 @@ int fmu_model_build(void *model, void *mem, size_t bytes, char *msg, size_t len)
         static const int fields[4] = { F_Q0, F_VMAX, F_AMAX, F_JMAX };
         double bound;
         int f;
-        if (g.chain[i][0].n_stages == 0)
+        bound = g.chain[i][0].n_stages > 0 ? sms_chain_input_max(&g.chain[i][0]) : SMS_INPUT_MAX;
+        if (g.chain[i][0].n_stages == 0) {   /* the positions within the glue's input range */
+            if (fabs(m->field[F_Q0][i]) > bound)
+                return snprintf(msg, len, "q0[%d] = %.17g is beyond %.17g, the input range "
+                                "(SMS_INPUT_MAX)", i, m->field[F_Q0][i], bound), 1;
             continue;
-        bound = sms_chain_input_max(&g.chain[i][0]);
+        }
         for (f = 0; f < 4; ++f)
             if (fabs(m->field[fields[f]][i]) > bound)
                 return snprintf(msg, len, "%s[%d] = %.17g is beyond %.17g, the finite input range "
@@ -586,17 +590,46 @@ void fmu_model_save_state(const void *model, double *dst)
     sms_multi_generator_get_state(&m->gen, dst);
 }
 
+/* The range of axis i's positions: its stages' finite input range (q0 and the targets are held
+ * to it), or the glue's SMS_INPUT_MAX without stages. */
+static double position_range(const ma_model *m, int i)
+{
+    return m->gen.chain[i][0].n_stages > 0 ? sms_chain_input_max(&m->gen.chain[i][0])
+                                           : SMS_INPUT_MAX;
+}
+
+/* A state must be one a run can reach: besides the generator's own checks (finite, velocities
+ * and the stages' values within the limits), the reported outputs and the positions it holds
+ * (target, goal, start of the running plan) within the axis's limits and position range. */
 int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, size_t len)
 {
+    static const char *const names[4] = {"q", "v", "a", "j"};
     ma_model *m = (ma_model *)model;
-    size_t own = 4u * (size_t)m->axes;
+    const size_t own = 4u * (size_t)m->axes, na = (size_t)m->axes;
+    const double *positions = src + own + SMS_MULTI_IDENTITY_COUNT;   /* target, goal, p */
+    const double margin = 1.0 + 0x1p-20;
     sms_status st;
     int i, k;
-    if (n != fmu_model_state_count(m))
+    if (n != fmu_model_state_count(m) || n < own + SMS_MULTI_IDENTITY_COUNT + 3u * na)
         return 1;
-    for (i = 0; i < (int)own; ++i)
-        if (!isfinite(src[i]))
-            return 1;
+    for (i = 0; i < m->axes; ++i) {
+        const double limit[4] = { position_range(m, i) * margin,
+                                  m->field[F_VMAX][i] * (1.0 + SMS_LIMIT_RTOL),
+                                  m->field[F_AMAX][i] * (1.0 + SMS_LIMIT_RTOL),
+                                  m->field[F_JMAX][i] * (1.0 + SMS_LIMIT_RTOL) };
+        for (k = 0; k < 4; ++k)
+            if (!(fabs(src[(size_t)k * na + (size_t)i]) <= limit[k]))
+                return snprintf(msg, len, "its output %s[%d] = %.17g is beyond %.17g (the axis's "
+                                "%s)", names[k], i, src[(size_t)k * na + (size_t)i], limit[k],
+                                k == 0 ? "position range" : "limit, to the reported values' "
+                                "tolerance"), 1;
+        for (k = 0; k < 3; ++k)
+            if (!(fabs(positions[(size_t)k * na + (size_t)i]) <= position_range(m, i)))
+                return snprintf(msg, len, "its %s of axis %d, %.17g, is beyond the axis's "
+                                "position range %.17g", k == 0 ? "target" : k == 1 ? "goal"
+                                : "plan start", i, positions[(size_t)k * na + (size_t)i],
+                                position_range(m, i)), 1;
+    }
     st = sms_multi_generator_set_state(&m->gen, src + own, n - own);
     if (st != SMS_OK) {
         snprintf(msg, len, "the generator refuses its state (%s): a value non-finite or out of "

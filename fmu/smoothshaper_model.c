@@ -446,13 +446,26 @@ void fmu_model_save_state(const void *model, double *dst)
         sms_chain_get_state(&m->chain, dst + 1);
 }
 
+/* A state must be one a run can reach: inputs within the chain's range X (the glue refuses
+ * others), so every stage's values within what such inputs leave (sms_chain_check_state_range())
+ * and y within (1 + 2 G_0 ... G_{n-1}) X, the chain's output bound. */
 int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, size_t len)
 {
     ss_model *m = (ss_model *)model;
-    (void)msg;
-    (void)len;
-    if (n != fmu_model_state_count(m) || src[0] != src[0])
+    const double x = m->n_active > 0 && m->input_max < SMS_INPUT_MAX ? m->input_max
+                                                                     : SMS_INPUT_MAX;
+    double gain = 1.0;
+    size_t i;
+    if (n != fmu_model_state_count(m))
         return 1;
+    for (i = 0; i < m->n_active; ++i)
+        gain *= sms_stage_gain_bound(&m->stages[i]);
+    if (!(fabs(src[0]) <= (m->n_active > 0 ? 1.0 + 2.0 * gain : 1.0) * x * (1.0 + 0x1p-20)))
+        return snprintf(msg, len, "its output y = %.17g is beyond what inputs within the "
+                        "chain's range %.17g can give", src[0], x), 1;
+    if (m->n_active > 0 && sms_chain_check_state_range(&m->chain, src + 1, n - 1, x) != SMS_OK)
+        return snprintf(msg, len, "a stage's values are beyond what inputs within the chain's "
+                        "range %.17g leave in it (sms_chain_check_state_range)", x), 1;
     if (m->n_active > 0 && sms_chain_set_state(&m->chain, src + 1, n - 1) != SMS_OK)
         return 1;
     m->y = src[0];

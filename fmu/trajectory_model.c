@@ -203,7 +203,19 @@ static int refuse(const tg_model *m, sms_status st, char *msg, size_t len)
 }
 
 unsigned fmu_model_real_bytes(void) { return (unsigned)sizeof(sms_real); }
-double fmu_model_input_max(const void *model) { (void)model; return HUGE_VAL; }
+
+/* The range of the positions (q0, the targets, the plan): the tuned stage's finite input range
+ * with a mode, the glue's SMS_INPUT_MAX without. Only after build. */
+static double position_range(const tg_model *m)
+{
+    return m->gen.stage_length > 0 ? sms_smoother_input_max(&m->gen.stage[0]) : SMS_INPUT_MAX;
+}
+
+double fmu_model_input_max(const void *model)
+{
+    const tg_model *m = (const tg_model *)model;
+    return m->built ? position_range(m) : HUGE_VAL;
+}
 
 /* Validate every parameter into c; need = table reals (the core's size query). 0 or 1 + msg. */
 static int configure(const tg_model *m, sms_generator_config *c, size_t *need, char *msg,
@@ -274,6 +286,10 @@ int fmu_model_build(void *model, void *mem, size_t bytes, char *msg, size_t len)
     st = sms_generator_init(&m->gen, &c, m->Ts, (sms_real *)mem, bytes / sizeof(sms_real));
     if (st != SMS_OK)
         return refuse(m, st, msg, len);
+    if (fabs(m->q0) > position_range(m))
+        return snprintf(msg, len, "q0 = %.17g is beyond %.17g, the input range of the "
+                        "generator's filters (SMS_INPUT_MAX, or the stage tuned to the mode's "
+                        "smaller range)", m->q0, position_range(m)), 1;
     sms_generator_reset(&m->gen, (sms_real)m->q0);
     m->out[0] = (double)(sms_real)m->q0;
     m->out[1] = m->out[2] = m->out[3] = 0.0;
@@ -369,6 +385,14 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
     for (i = 0; i < 4; ++i)
         if (!isfinite(src[i]))
             return 1;
+    if (!(fabs(src[0]) <= position_range(m) * (1.0 + 0x1p-20)))
+        return snprintf(msg, len, "its output q = %.17g is beyond the position range %.17g",
+                        src[0], position_range(m)), 1;
+    for (i = 0; i < 3; ++i)   /* the plan's target, goal and start position */
+        if (!(fabs(plan[i]) <= position_range(m)))
+            return snprintf(msg, len, "its plan's %s %.17g is beyond the position range %.17g",
+                            i == 0 ? "target" : i == 1 ? "goal" : "start", plan[i],
+                            position_range(m)), 1;
     for (i = 1; i < 4; ++i)
         if (!(fabs(src[i]) <= limit[i] * (1.0 + SMS_LIMIT_RTOL))) {
             snprintf(msg, len, "its output %s = %.17g is beyond %smax = %.17g by more than the "
