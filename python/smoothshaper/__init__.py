@@ -23,7 +23,7 @@ __all__ = ["KINDS", "Stage", "rectangular", "harmonic", "damped_harmonic", "expo
 __version__ = "0.1.0"
 
 #: Public submodules, imported lazily on attribute access (as SciPy does).
-SUBMODULES = ("analysis", "cli", "design", "errors", "filters", "multi_axis", "plants",
+SUBMODULES = ("analysis", "cli", "design", "errors", "filters", "fmi", "multi_axis", "plants",
               "reference", "report", "stages", "trajectory", "validation")
 
 

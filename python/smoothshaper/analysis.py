@@ -20,9 +20,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .reference import impulse_response, notch_coefficients
 from .reference.continuous import transfer_unchecked
-from .stages import NOTCHES
+from .reference.filtering import coefficients_unchecked
 from ._checks import (complex_array as _complex_array, finite as _finite,
                       finite_signal as _finite_signal, integer as _integer, positive as _positive,
                       real_array as _real_array, representable as _representable)
@@ -126,12 +125,8 @@ class ChainResponse:
         self.Ts = None if Ts is None else check_Ts(Ts)
         self.progress = progress
         self._polys = []          # (taps or numerator in powers of z^-1, denominator or None)
-        if self.Ts is not None:
-            for stage in self.stages:
-                if stage.kind in NOTCHES:
-                    self._polys.append(notch_coefficients(stage, Ts=self.Ts))
-                else:
-                    self._polys.append((impulse_response(stage, Ts=self.Ts), None))
+        if self.Ts is not None:       # the stages and Ts are checked: build, check no more
+            self._polys = [coefficients_unchecked(stage, self.Ts) for stage in self.stages]
         #: Total number of FIR taps and biquad coefficients summed per point.
         self.taps = sum(p[0].size for p in self._polys)
 
@@ -222,9 +217,18 @@ def frequency_response(stages, w, *, Ts: float | None = None) -> np.ndarray:
         An invalid stage or chain at ``Ts``, ``Ts`` not finite and > 0; ``w`` not real or not
         finite (``parameter == "w"``).
     """
+    return _frequency_response(stages, _frequencies(w), Ts)
+
+
+def _frequencies(w) -> np.ndarray:
     w = _real_array("w", w)
     if not np.all(np.isfinite(w)):
         raise ParameterError("w", "w must be finite")
+    return w
+
+
+def _frequency_response(stages, w: np.ndarray, Ts) -> np.ndarray:
+    """:func:`frequency_response` at checked frequencies."""
     return _representable("w", _response(stages, Ts)._evaluate(1j * w), "H(jw)")
 
 
@@ -248,8 +252,11 @@ def mode_poles(wn, zeta) -> np.ndarray:
     ParameterError
         Naming ``wn`` or ``zeta`` when a value is outside its range, complex or not numeric.
     """
-    wn = _real_array("wn", wn)
-    zeta = _real_array("zeta", zeta)
+    return _poles(_real_array("wn", wn), _real_array("zeta", zeta))
+
+
+def _poles(wn: np.ndarray, zeta: np.ndarray) -> np.ndarray:
+    """:func:`mode_poles` of real arrays: their ranges checked, the poles."""
     if not np.all(np.isfinite(wn)) or np.any(wn <= 0):
         raise ParameterError("wn", "wn must be finite and > 0 rad/s")
     if not np.all(np.isfinite(zeta)) or np.any(zeta < 0) or np.any(zeta >= 1):
@@ -288,7 +295,11 @@ def residual_vibration(stages, *, wn, zeta=0.0, Ts: float | None = None) -> np.n
         An invalid stage or chain at ``Ts``, ``Ts`` not finite and > 0; ``wn`` or ``zeta`` out of
         range.
     """
-    p = mode_poles(wn, zeta)
+    return _residual(stages, mode_poles(wn, zeta), Ts)
+
+
+def _residual(stages, p: np.ndarray, Ts) -> np.ndarray:
+    """:func:`residual_vibration` at checked poles."""
     H = _response(stages, Ts)
     return _representable("wn", np.abs(H._evaluate(p)), "the residual |H(p)| of the mode")
 
@@ -396,7 +407,7 @@ def prv_surface(stages, *, wn, zeta, Ts: float | None = None) -> np.ndarray:
         if v.ndim != 1:
             raise ParameterError(name, f"{name} must be a number or one-dimensional, got shape "
                                  f"{v.shape}")
-    return prv(stages, wn=wn[None, :], zeta=zeta[:, None], Ts=Ts)
+    return 100.0 * _residual(stages, _poles(wn[None, :], zeta[:, None]), Ts)
 
 
 @dataclass(frozen=True)
@@ -478,9 +489,11 @@ def insensitivity(stages, *, wn_hat: float, zeta: float = 0.0, tolerance: float 
     limit = tolerance * (1 + 1e-9)
 
     H = _response(stages, Ts)
+    zeta = _real_array("zeta", zeta)
 
-    def excess(r):
-        return np.abs(H(mode_poles(np.asarray(r) * wn_hat, zeta))) - limit
+    def excess(r):      # the grid's poles (its range checked), H(s) at them refused if not finite
+        p = _poles(np.asarray(r) * wn_hat, zeta)
+        return np.abs(_representable("s", H._evaluate(p), "H(s)")) - limit
 
     if excess(1.0) > 0:
         return Insensitivity(wn_hat, wn_hat, 0.0, 0.0)
@@ -538,8 +551,8 @@ def step_spectrum(stages, w, *, h: float = 1.0, derivative: int = 1,
     """
     derivative = _integer("derivative", derivative, 1)
     h = _finite("h", h)
-    w = _real_array("w", w)
-    H = frequency_response(stages, w, Ts=Ts)
+    w = _frequencies(w)
+    H = _frequency_response(stages, w, Ts)
     with np.errstate(over="ignore", invalid="ignore", under="ignore"):
         if Ts is None:
             d = 1j * w

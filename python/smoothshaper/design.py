@@ -95,8 +95,9 @@ def profile_name(profile) -> str:
     return _choice("profile", profile, PROFILES)
 
 
-def _mode(profile, wn, zeta) -> tuple[float, float]:
-    profile = profile_name(profile)
+def _mode(profile: str, wn, zeta) -> tuple[float, float]:
+    """(wn, zeta) of the mode a design is tuned to ((0, 0): none), for a ``profile`` the
+    caller has checked (:func:`profile_name`)."""
     if wn is None:
         if profile == "damped":
             raise ParameterError(

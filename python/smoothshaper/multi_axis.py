@@ -59,10 +59,17 @@ def _limits(vmax, amax, jmax, axes=None):
                for name, value in (("vmax", vmax), ("amax", amax), ("jmax", jmax)))
     if axes is None:
         axes = max(x.size for x in (v, a, j))
-    v = _limit_vector("vmax", v, axes)
-    a = _limit_vector("amax", a, axes)
-    j = _limit_vector("jmax", j, axes)
-    return v, a, j
+    return tuple(_per_axis(name, x, axes) for name, x in (("vmax", v), ("amax", a), ("jmax", j)))
+
+
+def _per_axis(name: str, v: np.ndarray, axes: int) -> np.ndarray:
+    """A checked limit vector (:func:`_limit_vector`) for ``axes`` axes: a single value
+    applies to every axis."""
+    if v.size == 1:
+        return np.full(axes, v[0])
+    if v.size != axes:
+        raise ParameterError(name, f"{name} has {v.size} values for {axes} axes")
+    return v
 
 
 def _sync(sync: str) -> str:
@@ -358,7 +365,7 @@ def phase_duration(delta, *, vmax, amax, jmax) -> float:
     """
     d = _finite_vector("delta", delta)
     v, a, j = _limits(vmax, amax, jmax, d.size)
-    return _ref.phase_duration(d, vmax=v, amax=a, jmax=j)
+    return _ref._phase_duration(d, v, a, j)
 
 
 def multi_axis_move(start, target, *, vmax, amax, jmax, Ts: float, sync: str = "phase",
@@ -398,12 +405,12 @@ def multi_axis_move(start, target, *, vmax, amax, jmax, Ts: float, sync: str = "
     vmax, amax, jmax = _limits(vmax, amax, jmax, s.size)   # a scalar: every axis
     gen = MultiAxisGenerator(vmax=vmax, amax=amax, jmax=jmax, Ts=Ts, sync=sync, q0=s,
                              precision=precision)
-    d = t - s
-    if _sync(sync) == "phase":
-        T = phase_duration(d, vmax=gen.vmax, amax=gen.amax, jmax=gen.jmax)
+    d = t - s                   # finite: start, target and the limits are checked above
+    if gen.sync == "phase":
+        T = _ref._phase_duration(d, gen.vmax, gen.amax, gen.jmax)
     else:
-        T = max(phase_duration([d[i]], vmax=gen.vmax[i], amax=gen.amax[i], jmax=gen.jmax[i])
-                for i in range(d.size))
+        T = max(_ref._phase_duration(d[i:i + 1], gen.vmax[i:i + 1], gen.amax[i:i + 1],
+                                     gen.jmax[i:i + 1]) for i in range(d.size))
     Ts = gen.Ts
     samples = T / Ts * (1 + 1e-12)
     if not samples * d.size * 4 <= _MAX_MOVE_VALUES:      # O(1), before any array

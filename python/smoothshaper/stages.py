@@ -106,10 +106,7 @@ class Stage:
             if self.sigma > 0:
                 raise ParameterError(
                     "sigma", f"sigma must be <= 0 1/s (a decaying mode), got {self.sigma!r}")
-            if self.kind in ("harmonic", "damped_harmonic") and self.k % 2 == 0:
-                raise ParameterError(
-                    "k", f"k must be odd for the {self.kind} family: zeros sit at odd multiples "
-                    f"of pi/T, so T = k*3*pi/wn with even k={_show(self.k)} puts no zero on wn")
+            _check_odd(self.kind, self.k)
         else:
             if self.wn <= 0:
                 raise ParameterError("wn", f"wn must be > 0 rad/s, got {self.wn!r}")
@@ -446,6 +443,13 @@ def notch(*, wn: float, zeta: float = 0.0, notch_pole_zeta: float = 0.7,
     return Stage(f"notch_{discretization}", wn=wn, zeta=zeta, notch_pole_zeta=notch_pole_zeta)
 
 
+def _check_odd(kind: str, k: int) -> None:
+    if kind in ("harmonic", "damped_harmonic") and k % 2 == 0:
+        raise ParameterError(
+            "k", f"k must be odd for the {kind} family: zeros sit at odd multiples "
+            f"of pi/T, so T = k*3*pi/wn with even k={_show(k)} puts no zero on wn")
+
+
 def _mode_length(k: int, half_periods: int, wn: float, wd: float) -> float:
     """``k half_periods pi / wd``, the smoother length :func:`for_mode` places on the mode;
     ParameterError naming ``wn`` (the period itself is beyond a float) or ``k`` (the multiple
@@ -501,16 +505,22 @@ def for_mode(kind: str, *, wn: float, zeta: float = 0.0, k: int = 1) -> Stage:
         raise ParameterError("wn", f"wn must be > 0 rad/s, got {wn!r}")
     if not 0.0 <= zeta < 1.0:
         raise ParameterError("zeta", f"zeta must be in [0, 1), got {zeta!r}")
-    k = _integer("k", k, 1)
+    return _for_mode(kind, wn, zeta, _integer("k", k, 1))
+
+
+def _for_mode(kind: str, wn: float, zeta: float, k: int) -> Stage:
+    """:func:`for_mode` of checked arguments (``kind`` canonical, ``wn`` finite > 0 and
+    ``zeta`` in [0, 1) floats, ``k`` an int >= 1). A smoother is built without running the
+    Stage's checks again: its T is a finite positive float here and its sigma <= 0; only the
+    odd multiple of the harmonic families is left to check."""
     wd = wn * math.sqrt(1.0 - zeta * zeta)
-    if kind == "rectangular":
-        return Stage(kind, T=_mode_length(k, 2, wn, wd), k=k)
-    if kind == "harmonic":
-        return Stage(kind, T=_mode_length(k, 3, wn, wd), k=k)
-    if kind == "damped_harmonic":
-        return Stage(kind, T=_mode_length(k, 3, wn, wd), sigma=-zeta * wn, k=k)
-    if kind == "exponential":
-        return Stage(kind, T=_mode_length(k, 2, wn, wd), sigma=-zeta * wn, k=k)
+    if kind in SMOOTHERS:
+        T = _mode_length(k, 2 if kind in ("rectangular", "exponential") else 3, wn, wd)
+        _check_odd(kind, k)
+        stage = _unchecked_stage(kind, T, k=k)
+        if kind in ("damped_harmonic", "exponential"):
+            object.__setattr__(stage, "sigma", -zeta * wn)      # -0.0 too, as Stage keeps it
+        return stage
     if k != 1:
         raise ParameterError(
             "k", f"k must be 1 for {kind}: shapers and notches are placed on the mode itself")

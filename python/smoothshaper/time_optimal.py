@@ -108,6 +108,12 @@ def reach(vmax: float, amax: float, jmax: float, Ts: float, shape: str = "ramp",
                             (("vmax", vmax), ("amax", amax), ("jmax", jmax), ("Ts", Ts)))
     shape = _choice("shape", shape, SHAPES)
     precision = _choice("precision", precision, ("double", "float"))
+    return reach_unchecked(vmax, amax, jmax, Ts, shape, precision)
+
+
+def reach_unchecked(vmax: float, amax: float, jmax: float, Ts: float, shape: str,
+                    precision: str = "double") -> dict:
+    """:func:`reach` of checked arguments (finite floats > 0, a shape of :data:`SHAPES`)."""
     info = np.finfo(np.float32 if precision == "float" else np.float64)
     big, least, tiny = float(info.max), float(info.tiny), float(info.tiny) / float(info.eps)
     out = dict(peak=0.0, duration=0.0, distance=0.0, samples=0.0, quantity=None)

@@ -374,9 +374,12 @@ def tuned_stage(profile: str, wn: float, zeta: float):
     from .stages import for_mode
     profile = _design.profile_name(profile)
     zeta = _finite("zeta", zeta)
-    kind = {"polynomial": "rectangular", "damped": "exponential",
+    return for_mode(_tuned_kind(profile, zeta), wn=wn, zeta=zeta)  # checks wn, zeta, period
+
+
+def _tuned_kind(profile: str, zeta: float) -> str:
+    return {"polynomial": "rectangular", "damped": "exponential",
             "trigonometric": "damped_harmonic" if zeta > 0 else "harmonic"}[profile]
-    return for_mode(kind, wn=wn, zeta=zeta)   # checks wn, zeta and the period's range
 
 
 def generator_reference(targets, *, vmax, amax, jmax, Ts, profile="polynomial", wn=None,
@@ -427,8 +430,9 @@ def generator_reference(targets, *, vmax, amax, jmax, Ts, profile="polynomial", 
         Naming ``targets``, a bound, ``Ts``, ``profile``, ``wn`` or ``zeta``, or limits
         outside the feasible region (no move that reaches vmax can be planned).
     """
-    from .time_optimal import _run, reach
-    from .reference.filtering import impulse_response
+    from .time_optimal import _run, reach_unchecked
+    from .reference.filtering import fir_taps_unchecked
+    from .stages import _for_mode
     x = _targets("targets", targets)
     vmax = _design._positive("vmax", vmax)
     amax = _design._positive("amax", amax)
@@ -438,7 +442,7 @@ def generator_reference(targets, *, vmax, amax, jmax, Ts, profile="polynomial", 
     profile = _design.profile_name(profile)
     wn_, zeta_ = _design._mode(profile, wn, zeta)
     shape = "cosine" if profile == "trigonometric" else "ramp"
-    feasible = reach(vmax, amax, jmax, Ts, shape)
+    feasible = reach_unchecked(vmax, amax, jmax, Ts, shape)
     quantity = feasible["quantity"]
     if quantity is not None:   # the argument named as the Generator names it
         arguments = [n for n in ("vmax", "amax", "jmax") if n in quantity]
@@ -449,7 +453,7 @@ def generator_reference(targets, *, vmax, amax, jmax, Ts, profile="polynomial", 
     plan, goals, _ = _run(x, vmax=vmax, amax=amax, jmax=jmax, Ts=Ts, q0=position, shape=shape)
     if not wn_:
         return plan
-    taps = impulse_response(tuned_stage(profile, wn_, zeta_), Ts=Ts)
+    taps = fir_taps_unchecked(_for_mode(_tuned_kind(profile, zeta_), wn_, zeta_, 1), Ts)
     L = taps.size
     out = np.empty_like(plan)
     for ch in range(4):

@@ -21,14 +21,14 @@ import numpy as np
 
 def main(argv=None) -> int:
     import fmpy
-    from smoothshaper import validation
+    from smoothshaper import fmi
     from smoothshaper.stages import rectangular, shaper
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--build-dir", type=Path, default=Path(__file__).resolve().parents[2]
                     / "build-bench-fmu")
     args = ap.parse_args(argv)
-    fmu = str(validation.build_fmus(args.build_dir)["SmoothShaper"])
+    fmu = str(fmi.build_fmus(args.build_dir)["SmoothShaper"])
     unzipped = fmpy.extract(fmu)
     Ts = 1e-3
     stages = [rectangular(T=10.3 * Ts), shaper("zv", wn=150.0, zeta=0.05)]
@@ -41,7 +41,7 @@ def main(argv=None) -> int:
         sig = np.zeros(t.size, dtype=[("time", float), ("u", float)])
         sig["time"], sig["u"] = t, u
         t0 = time.process_time()
-        r = fmpy.simulate_fmu(unzipped, start_values=validation.start_values(stages, Ts=Ts),
+        r = fmpy.simulate_fmu(unzipped, start_values=fmi.start_values(stages, Ts=Ts),
                               input=sig, stop_time=float(t[-1]), output_interval=Ts,
                               output=["y"], validate=False)
         seconds = time.process_time() - t0

@@ -1,9 +1,8 @@
 """One consistent Python API: ParameterError everywhere, plain numbers in messages, no silent
 casts of complex/boolean/text input, case-insensitive names, lazy submodules, ``__all__`` in
-every public module, one name per concept, no import cycles."""
+every public module, one name per concept (import cycles and layers: test_layers_python.py)."""
 from __future__ import annotations
 
-import ast
 import importlib
 import pathlib
 import subprocess
@@ -259,55 +258,51 @@ def test_every_public_module_declares_all(name):
     assert not leaked, (name, leaked)
 
 
-def _imports(path: pathlib.Path, module: str, modules: set[str]) -> set[str]:
-    """Package modules imported anywhere in ``path`` (top level or inside functions)."""
-    is_pkg = path.name == "__init__.py"
-    base = module.split(".") if is_pkg else module.split(".")[:-1]
-    found = set()
-    for node in ast.walk(ast.parse(path.read_text())):
-        if isinstance(node, ast.ImportFrom):
-            if node.level:
-                anchor = base[:len(base) - node.level + 1]
-                target = ".".join(anchor + ([node.module] if node.module else []))
-            else:
-                target = node.module or ""
-            for alias in node.names:
-                sub = f"{target}.{alias.name}"
-                found.add(sub if sub in modules else target)
-        elif isinstance(node, ast.Import):
-            found.update(a.name for a in node.names)
-    return {m for m in found if m in modules and m != module}
+def _check_calls(func) -> dict[str, int]:
+    """How often ``func()`` runs each argument check of the package (by code object, so
+    every module's imported name counts): a stage, a stage list, Ts, a Stage's own
+    validation, a mode's wn and zeta, a limit array."""
+    from smoothshaper import _checks, stages
+    from smoothshaper.reference import _checks as ref_checks, shapers
+    watched = {ref_checks.check_stage.__code__: "stage", ref_checks.as_stage_list.__code__:
+               "stage", ref_checks.check_Ts.__code__: "Ts",
+               stages.Stage.__post_init__.__code__: "Stage.__post_init__",
+               shapers.mode_pole.__code__: "mode_pole", _checks.real_array.__code__: "real_array"}
+    counts = dict.fromkeys(watched.values(), 0)
+
+    def profile(frame, event, arg):
+        if event == "call" and frame.f_code in watched:
+            counts[watched[frame.f_code]] += 1
+    sys.setprofile(profile)
+    try:
+        func()
+    finally:
+        sys.setprofile(None)
+    return counts
 
 
-def test_no_import_cycles():
-    modules = set(_modules())
-    paths = {}
-    for path in PACKAGE.rglob("*.py"):
-        rel = path.relative_to(PACKAGE.parent).with_suffix("")
-        parts = list(rel.parts)
-        if parts[-1] == "__init__":
-            parts = parts[:-1]
-        paths[".".join(parts)] = path
-    # A package's __init__ importing its own submodules is not a cycle worth reporting, and a
-    # submodule importing a sibling through the package (``from . import x``) resolves to x.
-    graph = {m: {d for d in _imports(p, m, modules) if not m.startswith(d + ".")}
-             for m, p in paths.items()}
-    cycles = []
-    state: dict[str, int] = {}
-
-    def visit(node, stack):
-        state[node] = 1
-        for nxt in sorted(graph[node]):
-            if state.get(nxt) == 1:
-                cycles.append(stack[stack.index(nxt):] + [nxt])
-            elif nxt not in state:
-                visit(nxt, stack + [nxt])
-        state[node] = 2
-
-    for m in sorted(graph):
-        if m not in state:
-            visit(m, [m])
-    assert not cycles, cycles
+def test_public_calls_check_their_arguments_once():
+    """The checks are done where a call enters the package; the inner layers trust them.
+    analysis.prv used to check its stage 8 times, Ts twice and the stage's mode 3 times on
+    the way down; reference.filter a chain of three 22, 7 and 6 times."""
+    zv, chain = sms.shaper("zv", wn=100.0, zeta=0.05), [
+        sms.damped_harmonic(T=0.0504, sigma=-3.0), sms.shaper("zvd", wn=100.0), sms.notch(wn=200.0)]
+    once = {"stage": 1, "Ts": 1, "Stage.__post_init__": 0, "mode_pole": 0}
+    for call in (lambda: sms.analysis.prv(zv, wn=100.0, zeta=0.05, Ts=Ts),
+                 lambda: sms.analysis.prv(chain, wn=100.0, Ts=Ts),
+                 lambda: sms.reference.impulse_response(zv, Ts=Ts),
+                 lambda: sms.reference.filter(chain, np.ones(20), Ts=Ts),
+                 lambda: sms.reference.filter_zi(chain, Ts=Ts),
+                 lambda: sms.analysis.ChainResponse(chain, Ts=Ts)):
+        counts = _check_calls(call)
+        assert {k: counts[k] for k in once} == once, counts
+    assert _check_calls(lambda: sms.for_mode("damped_harmonic", wn=100.0, zeta=0.1)
+                        )["Stage.__post_init__"] == 0
+    limits = dict(vmax=[1.0, 2.0], amax=10.0, jmax=[100.0, 300.0])
+    assert _check_calls(lambda: sms.multi_axis.phase_duration([0.1, 0.2], **limits)
+                        )["real_array"] == 4         # delta and each limit, once
+    assert _check_calls(lambda: sms.trajectory.generator_reference(
+        np.ones(5), vmax=1.0, amax=10.0, jmax=200.0, Ts=Ts, wn=100.0))["stage"] == 0
 
 
 def test_package_import_emits_no_warnings():

@@ -6,11 +6,12 @@ from pathlib import Path
 import pytest
 
 from smoothshaper import bench
+from smoothshaper.bench import suite
 
 ROOT = Path(__file__).resolve().parents[2]
 
 
-@pytest.mark.skipif(bench._compiler() is None, reason="needs a C compiler")
+@pytest.mark.skipif(suite._compiler() is None, reason="needs a C compiler")
 def test_quick_run_writes_every_table(tmp_path, capsys):
     out = tmp_path / "benchmarks.md"
     args = ["--quick", "--output", str(out), "--fmu-build-dir", str(ROOT / "build-pytest-fmu")]

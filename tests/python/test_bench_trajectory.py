@@ -8,7 +8,7 @@ pytest.importorskip("ruckig")
 
 
 def test_quick_run_prints_every_figure(capsys):
-    from smoothshaper import bench_trajectory
+    from smoothshaper.bench import trajectory as bench_trajectory
     assert bench_trajectory.main(["--quick"]) == 0
     out = capsys.readouterr().out
     for line in ("target changed mid-motion", "rest to rest", "Generator.process, double",
@@ -24,7 +24,7 @@ def test_ruckig_is_relaxed_where_its_duration_jumps():
     generator reach (the benchmark's former 0.51 ratio was this comparison, not a shortcut)."""
     import ruckig
     import numpy as np
-    from smoothshaper.bench_trajectory import RUCKIG_RELAX, _ruckig_duration
+    from smoothshaper.bench.trajectory import RUCKIG_RELAX, _ruckig_duration
     from smoothshaper.time_optimal import plan_duration
     from smoothshaper.trajectory import Generator
     V, A, J = 0.23607371541684288, 3.4066933365820242, 38.626657267077285
@@ -57,7 +57,7 @@ def test_arrival_after_a_mid_motion_target_meets_the_goal_and_rest_to_rest_is_on
     sample to rounding (ruckig relaxed by 1e-12 of vmax, the plan within rounding of it), so
     the arrival is sample 2000 or 2001 and the ratio within one sample of 1. Seeded: the same
     200 cases every run."""
-    from smoothshaper.bench_trajectory import arrival_ratios
+    from smoothshaper.bench.trajectory import arrival_ratios
     mid = arrival_ratios(200, seed=1, mid_motion=True)
     assert mid.size == 200
     assert np.median(mid) <= 1.05, np.median(mid)

@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from smoothshaper import filters, stages, trajectory, validation
+from smoothshaper import filters, fmi, stages, trajectory
 from smoothshaper.filters import Chain, ParameterError, identify_from_peaks, input_max
 from smoothshaper.reference import filtering as ref_filtering, shapers as ref_shapers
 from smoothshaper.reference import smoothers as ref_smoothers
@@ -232,7 +232,7 @@ def smoothshaper_dir(tmp_path_factory):
     fmpy = pytest.importorskip("fmpy", reason="fmpy is needed to import the FMUs")
     if shutil.which("cmake") is None:
         pytest.skip("cmake is needed to build the FMUs")
-    fmus = validation.build_fmus(ROOT / "build-pytest-fmu")
+    fmus = fmi.build_fmus(ROOT / "build-pytest-fmu")
     return fmpy.extract(str(fmus["SmoothShaper"]), str(tmp_path_factory.mktemp("ssb")))
 
 
@@ -256,7 +256,7 @@ def test_fmu_refuses_a_chain_far_beyond_its_memory_at_once(smoothshaper_dir, nu)
     # 8e13 bytes and more: sized in closed form, refused by the allocator (or the address
     # range) at once, never designed sample by sample.
     from fmpy.fmi1 import FMICallException
-    values = validation.start_values([stages.harmonic(T=nu * 1e-6 + 0.37e-6)], Ts=1e-6)
+    values = fmi.start_values([stages.harmonic(T=nu * 1e-6 + 0.37e-6)], Ts=1e-6)
     fmu, _ = _init(smoothshaper_dir, values)
     t0 = time.perf_counter()
     with pytest.raises(FMICallException):
@@ -268,7 +268,7 @@ def test_fmu_refuses_a_chain_far_beyond_its_memory_at_once(smoothshaper_dir, nu)
 @pytest.mark.parametrize("ratio", [1e-9, 0.5])
 def test_fmu_refuses_T_below_Ts(smoothshaper_dir, ratio):
     from fmpy.fmi1 import FMICallException
-    values = validation.start_values([stages.rectangular(T=ratio * 1e-3)], Ts=1e-3)
+    values = fmi.start_values([stages.rectangular(T=ratio * 1e-3)], Ts=1e-3)
     fmu, _ = _init(smoothshaper_dir, values)
     with pytest.raises(FMICallException):
         fmu.exitInitializationMode()
@@ -276,7 +276,7 @@ def test_fmu_refuses_T_below_Ts(smoothshaper_dir, ratio):
 
 
 def test_fmu_two_hump_ei_with_tiny_tolerance_outputs_finite(smoothshaper_dir):
-    values = validation.start_values([stages.shaper("ei2", wn=200.0, zeta=0.05,
+    values = fmi.start_values([stages.shaper("ei2", wn=200.0, zeta=0.05,
                                                     tolerance=1e-250)], Ts=1e-3)
     fmu, vr = _init(smoothshaper_dir, values)
     fmu.exitInitializationMode()

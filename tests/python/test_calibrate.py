@@ -280,9 +280,9 @@ def test_fmu_start_values_reproduce_the_chain_in_fmpy(tmp_path):
     import shutil
     if shutil.which("cmake") is None:
         pytest.skip("cmake is needed to build the FMUs")
-    from smoothshaper import validation
+    from smoothshaper import fmi
     from smoothshaper.calibrate import outputs
-    fmus = validation.build_fmus(ROOT / "build-pytest-fmu")
+    fmus = fmi.build_fmus(ROOT / "build-pytest-fmu")
     Ts = 1e-3
     c = calibrate.Candidate("two", [sms.shaper("ei3", wn=150.0, zeta=0.05),
                                     sms.shaper("gmzv", wn=260.0, zeta=0.02, order=5,

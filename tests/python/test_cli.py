@@ -222,7 +222,7 @@ def test_errors_are_one_line_with_nonzero_exit(capsys, argv, word):
     assert word in err and err.count("\n") == 1 and "Traceback" not in err
 
 
-@pytest.mark.parametrize("command, module", [("validate", "validation"), ("report", "report")])
+@pytest.mark.parametrize("command, module", [("validate", "fmi"), ("report", "report")])
 def test_lazy_subcommand_unavailable(monkeypatch, capsys, command, module):
     monkeypatch.setitem(sys.modules, f"smoothshaper.{module}", None)   # import fails
     code, _, err = run(capsys, command, "--out", "x")
@@ -230,7 +230,7 @@ def test_lazy_subcommand_unavailable(monkeypatch, capsys, command, module):
     assert "unavailable" in err and err.count("\n") == 1
 
 
-@pytest.mark.parametrize("command, module", [("validate", "validation"), ("report", "report")])
+@pytest.mark.parametrize("command, module", [("validate", "fmi"), ("report", "report")])
 def test_lazy_subcommand_calls_run(monkeypatch, capsys, tmp_path, command, module):
     calls = []
     fake = types.ModuleType(f"smoothshaper.{module}")

@@ -7,8 +7,9 @@ import numpy as np
 import pytest
 
 import smoothshaper as sms
-from smoothshaper import analysis, cli, cli_cost
-from smoothshaper.cli_common import Progress
+from smoothshaper import analysis, cli
+from smoothshaper.cli import cost as cli_cost
+from smoothshaper.cli.common import Progress
 from smoothshaper.reference import impulse_response
 
 

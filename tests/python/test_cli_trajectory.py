@@ -295,7 +295,7 @@ def test_bad_input_is_one_line_and_nonzero_exit(capsys, argv, word):
 def test_a_peak_above_a_limit_fails_the_run(capsys, monkeypatch):
     # The seed 001 run touches every limit (ratios 1); with the check tightened below 1 the
     # same peaks must be reported as exceeded and the run fail.
-    from smoothshaper import cli_trajectory
+    from smoothshaper.cli import trajectory as cli_trajectory
     monkeypatch.setattr(cli_trajectory, "LIMIT_RTOL", -1e-6)
     code, out, _ = run(capsys, *generator_argv())
     assert code == cli.EXIT_ERROR and "within the limits: NO (exceeded)" in out

@@ -9,7 +9,8 @@ import numpy as np
 import pytest
 
 fmpy = pytest.importorskip("fmpy", reason="fmpy is needed to import the FMUs")
-from smoothshaper import cosim, plants, validation  # noqa: E402
+from smoothshaper import fmi, plants  # noqa: E402
+from smoothshaper.fmi import cosim  # noqa: E402
 from test_fmu_smoothshaper import fmus  # noqa: E402,F401
 
 TOL = 1e-12 * cosim.MOVE   # double rounding of a 10 mm move through three FMUs
@@ -56,13 +57,13 @@ def test_the_ssp_files_hold_the_system(fmus, tmp_path):  # noqa: F811
 @pytest.mark.parametrize("step", [1e-3, 2.5e-3, 0.4e-3], ids=["Ts", "2.5Ts", "0.4Ts"])
 def test_elastic_plant_equals_the_exact_zoh_plant(fmus, step):  # noqa: F811
     Ts = 1e-3
-    t = validation.communication_points(step=step, stop_time=0.3)
-    u = validation.test_input(t)
+    t = fmi.communication_points(step=step, stop_time=0.3)
+    u = fmi.test_input(t)
     sig = np.zeros(t.size, dtype=[("time", float), ("u", float)])
     sig["time"], sig["u"] = t, u
     r = fmpy.simulate_fmu(str(fmus["ElasticPlant"]), input=sig, stop_time=float(t[-1]),
                           output_interval=step, output=["y"], start_values={"Ts": Ts})
-    x, n_at = validation.tick_inputs(t, u, Ts=Ts)
+    x, n_at = fmi.tick_inputs(t, u, Ts=Ts)
     plant = plants.two_mass(**cosim.PLANT)
     x0 = plants.rest_state(plant, u[0])
     _, y = plants.simulate_zoh(plant, np.r_[x, x[-1]], Ts=Ts, x0=x0)   # y[n] after n ticks

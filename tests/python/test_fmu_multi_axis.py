@@ -11,7 +11,7 @@ fmpy = pytest.importorskip("fmpy", reason="fmpy is needed to import the FMUs")
 from fmpy import extract  # noqa: E402
 from fmpy.fmi1 import FMICallException  # noqa: E402
 
-from smoothshaper import validation  # noqa: E402
+from smoothshaper import fmi  # noqa: E402
 from smoothshaper.reference.multi_axis import multi_axis_reference  # noqa: E402
 from test_fmu_smoothshaper import Logged, fmus, slave  # noqa: E402,F401
 
@@ -72,14 +72,14 @@ def start_values(axes: int, sync: int, stages=None) -> dict:
 def expected(t, target, axes, sync, stages=None) -> np.ndarray:
     """(n, axes, 4) at the communication points from the reference (fmpy timing: the input
     at t_k drives the ticks in (t_k, t_k+1], the outputs are the last tick's)."""
-    x, n_at = validation.tick_inputs(t, np.arange(t.size), Ts=TS)
+    x, n_at = fmi.tick_inputs(t, np.arange(t.size), Ts=TS)
     ticks = target[x.astype(int)]
     chains = [stage_list(tr) for tr in STAGES[stages][axes]] if stages else None
     rows = multi_axis_reference(ticks, Ts=TS, sync="phase" if sync == 0 else "independent",
                                 q0=Q0[axes], stages=chains, **LIMITS[axes])
     rest = np.zeros((axes, 4))
     rest[:, 0] = Q0[axes]
-    return validation.at_communication_points(rows, n_at, rest)
+    return fmi.at_communication_points(rows, n_at, rest)
 
 
 def outputs(axes):
@@ -110,7 +110,7 @@ def assert_matches(y, ref, axes):
 @pytest.mark.parametrize("sync", [0, 1], ids=["phase", "independent"])
 @pytest.mark.parametrize("step", [TS, 2.5 * TS], ids=["Ts", "2.5Ts"])
 def test_fmpy_equals_reference(multi_fmu, axes, sync, step):
-    t = validation.communication_points(step=step, stop_time=2.0)
+    t = fmi.communication_points(step=step, stop_time=2.0)
     target = staircase(t, axes)
     y = simulate_fmpy(multi_fmu, t, target, axes, sync)
     ref = expected(t, target, axes, sync)
@@ -123,7 +123,7 @@ def test_fmpy_equals_reference(multi_fmu, axes, sync, step):
 @pytest.mark.parametrize("axes", [1, 3])
 @pytest.mark.parametrize("stages", ["same", "mixed"])
 def test_fmpy_with_stages_equals_reference(multi_fmu, axes, stages):
-    t = validation.communication_points(step=2.5 * TS, stop_time=1.5)
+    t = fmi.communication_points(step=2.5 * TS, stop_time=1.5)
     target = staircase(t, axes)
     y = simulate_fmpy(multi_fmu, t, target, axes, 0, stages)
     assert_matches(y, expected(t, target, axes, 0, stages), axes)
@@ -132,7 +132,7 @@ def test_fmpy_with_stages_equals_reference(multi_fmu, axes, stages):
 def test_same_stages_keep_a_straight_move_straight(multi_fmu):
     """Same stages on every axis, one rest-to-rest move from q0: q stays on the segment to
     1e-12 of the move, while moving and while the stages settle."""
-    t = validation.communication_points(step=TS, stop_time=1.0)
+    t = fmi.communication_points(step=TS, stop_time=1.0)
     goal = np.array([0.3, 0.2, -0.25])
     target = np.tile(goal, (t.size, 1))
     q = simulate_fmpy(multi_fmu, t, target, 3, 0, "same")[:, :, 0]
@@ -146,7 +146,7 @@ def test_same_stages_keep_a_straight_move_straight(multi_fmu):
 @pytest.mark.parametrize("stages", [None, "same", "mixed"])  # mixed: fmi2Warning, accepted
 def test_libcosim_equals_reference(multi_fmu, axes, stages):
     pytest.importorskip("libcosimpy", reason="libcosimpy is the second importer")
-    t = validation.communication_points(step=TS, stop_time=1.0)
+    t = fmi.communication_points(step=TS, stop_time=1.0)
     target = staircase(t, axes)
     y = run_libcosim(str(multi_fmu), t, target, axes, stages)
     ref = expected(t, target, axes, 0, stages)

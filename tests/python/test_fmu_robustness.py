@@ -17,7 +17,7 @@ from fmpy.fmi1 import FMICallException  # noqa: E402
 from fmpy.fmi2 import (FMU2Slave, fmi2CallbackAllocateMemoryTYPE,  # noqa: E402
                        fmi2CallbackFreeMemoryTYPE)
 
-from smoothshaper import validation  # noqa: E402
+from smoothshaper import fmi  # noqa: E402
 from smoothshaper.filters import Chain  # noqa: E402
 from smoothshaper.stages import harmonic, notch, rectangular, shaper  # noqa: E402
 from test_fmu_smoothshaper import (CHAIN, Logged, configure, fmus, run, slave,  # noqa: E402,F401
@@ -83,14 +83,14 @@ def test_a_02_hz_shaper_at_10_khz_runs_and_equals_the_library(smoothshaper_dir):
     # delay line held 65,536).
     Ts, step = 1e-4, 0.01
     stages = [shaper("zvdd", wn=2 * math.pi * 0.2)]
-    t = validation.communication_points(step=step, stop_time=12.0)
-    u = validation.test_input(t)
-    y = validation.simulate(smoothshaper_dir, stages, t, u, Ts=Ts)
-    x, n_at = validation.tick_inputs(t, u, Ts=Ts)
+    t = fmi.communication_points(step=step, stop_time=12.0)
+    u = fmi.test_input(t)
+    y = fmi.simulate(smoothshaper_dir, stages, t, u, Ts=Ts)
+    x, n_at = fmi.tick_inputs(t, u, Ts=Ts)
     chain = Chain(stages, Ts=Ts)
     assert chain.state_size > 75000
     chain.reset(u[0])
-    expected = validation.at_communication_points(chain.process(x), n_at, u[0])
+    expected = fmi.at_communication_points(chain.process(x), n_at, u[0])
     assert np.array_equal(y, expected)
 
 

@@ -14,7 +14,7 @@ from fmpy import extract, read_model_description  # noqa: E402
 from fmpy.fmi2 import FMU2Slave, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE  # noqa: E402
 from fmpy.fmi1 import FMICallException  # noqa: E402
 
-from smoothshaper import validation  # noqa: E402
+from smoothshaper import fmi  # noqa: E402
 from smoothshaper.stages import damped_harmonic, harmonic, notch, rectangular, shaper  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -25,7 +25,7 @@ TS = 1e-3
 def fmus():
     if shutil.which("cmake") is None:
         pytest.skip("cmake is needed to build the FMUs")
-    return validation.build_fmus(ROOT / "build-pytest-fmu")
+    return fmi.build_fmus(ROOT / "build-pytest-fmu")
 
 
 @pytest.fixture(scope="session")
@@ -35,18 +35,18 @@ def smoothshaper_dir(fmus, tmp_path_factory):
 
 def test_fmpy_finds_no_problem(fmus):
     for path in fmus.values():
-        assert validation.fmpy_problems(path) == []
+        assert fmi.fmpy_problems(path) == []
 
 
-CASES = validation.validation_cases(TS)
+CASES = fmi.validation_cases(TS)
 
 
 @pytest.mark.parametrize("name,stages", CASES, ids=[c[0] for c in CASES])
 @pytest.mark.parametrize("step", [TS, 7 * TS, 2.5 * TS], ids=["Ts", "7Ts", "2.5Ts"])
 def test_fmu_equals_reference(fmus, name, stages, step):
     # Double rounding only: the FMU and the reference compute the same taps independently.
-    *_, err, rel = validation.compare(fmus["SmoothShaper"], stages, Ts=TS, step=step, stop_time=0.3)
-    assert rel <= validation.REL_TOL, (name, err)
+    *_, err, rel = fmi.compare(fmus["SmoothShaper"], stages, Ts=TS, step=step, stop_time=0.3)
+    assert rel <= fmi.REL_TOL, (name, err)
 
 
 # ---------------------------------------------------------------- low-level driving
@@ -84,7 +84,7 @@ def slave(unzipdir, name="ss", logged: Logged | None = None) -> FMU2Slave:
 def configure(fmu, stages, *, u0=0.0, Ts=TS):
     fmu.setupExperiment(startTime=0.0)
     fmu.enterInitializationMode()
-    for name, value in validation.start_values(stages, Ts=Ts).items():
+    for name, value in fmi.start_values(stages, Ts=Ts).items():
         if isinstance(value, int):
             fmu.setInteger([fmu.vr[name]], [value])
         else:
@@ -169,8 +169,8 @@ def test_two_instances_with_different_parameters_do_not_interact(smoothshaper_di
     t = np.arange(U.size + 1) * TS
     for y, stages, u, rest in ((ya, stages_a, U, 1.0), (yb, stages_b, -U, -1.0)):
         # The value read after the step from t_k is the one recorded at t_{k+1}.
-        ref = validation.expected_output(stages, t, np.r_[u, u[-1]], Ts=TS, rest=rest)
-        assert np.max(np.abs(y - ref[1:])) <= validation.REL_TOL * np.max(np.abs(ref))
+        ref = fmi.expected_output(stages, t, np.r_[u, u[-1]], Ts=TS, rest=rest)
+        assert np.max(np.abs(y - ref[1:])) <= fmi.REL_TOL * np.max(np.abs(ref))
     for f in (a, b):
         f.freeInstance()
 
@@ -219,18 +219,18 @@ def test_sources_rebuild_with_fmpy_compile(fmus, tmp_path, model):
     (tmp_path / "build").mkdir()
     build_platform_binary(unzipdir, build_dir=tmp_path / "build")
     assert binary.is_file()
-    t = validation.communication_points(step=TS, stop_time=0.1)
+    t = fmi.communication_points(step=TS, stop_time=0.1)
     if model == "SmoothShaper":
         stages = [rectangular(T=10 * TS), shaper("zv", wn=100.0)]
-        u = validation.test_input(t)
-        y = validation.simulate(unzipdir, stages, t, u, Ts=TS)
-        ref = validation.expected_output(stages, t, u, Ts=TS)
+        u = fmi.test_input(t)
+        y = fmi.simulate(unzipdir, stages, t, u, Ts=TS)
+        ref = fmi.expected_output(stages, t, u, Ts=TS)
     else:
-        target = validation.target_staircase(t)
-        y = validation.simulate_trajectory(unzipdir, t, target, Ts=TS, **validation.TRAJECTORY_LIMITS)
-        ref = validation.expected_trajectory(t, target, Ts=TS, **validation.TRAJECTORY_LIMITS)
+        target = fmi.target_staircase(t)
+        y = fmi.simulate_trajectory(unzipdir, t, target, Ts=TS, **fmi.TRAJECTORY_LIMITS)
+        ref = fmi.expected_trajectory(t, target, Ts=TS, **fmi.TRAJECTORY_LIMITS)
         y, ref = y[:, :3], ref[:, :3]
-    assert np.max(np.abs(y - ref)) <= validation.REL_TOL * np.max(np.abs(ref))
+    assert np.max(np.abs(y - ref)) <= fmi.REL_TOL * np.max(np.abs(ref))
 
 
 @pytest.mark.parametrize("model", ["SmoothShaper", "TrajectoryGenerator"])
@@ -252,20 +252,20 @@ def test_only_fmi2_symbols_are_exported(fmus, tmp_path, model):
 def test_fmutool_check_passes(fmus):
     pytest.importorskip("fmu_manipulation_toolbox", reason="fmu-manipulation-toolbox provides fmutool")
     for path in fmus.values():
-        assert validation.fmutool_problems(path) == []
+        assert fmi.fmutool_problems(path) == []
 
 
 @pytest.mark.parametrize("name,stages", CASES, ids=[c[0] for c in CASES])
 def test_libcosim_sets_every_kind_and_equals_fmpy_bit_for_bit(fmus, name, stages):
     # libcosim ignores FMI Enumerations: the kinds are Integer codes, so every family is settable.
     pytest.importorskip("libcosimpy", reason="libcosimpy is the second importer")
-    d_importers, d_reference = validation.compare_importers(fmus["SmoothShaper"], stages, Ts=TS)
+    d_importers, d_reference = fmi.compare_importers(fmus["SmoothShaper"], stages, Ts=TS)
     assert d_importers == 0.0                   # same binary, same calls: same bits
-    assert d_reference <= 4 * validation.REL_TOL  # |y| <= ~4: the reference's rounding
+    assert d_reference <= 4 * fmi.REL_TOL  # |y| <= ~4: the reference's rounding
 
 
 def test_the_importer_cases_cover_every_stage_kind():
-    assert {s.kind for _, stages in CASES for s in stages} == set(validation.KIND_VALUES)
+    assert {s.kind for _, stages in CASES for s in stages} == set(fmi.KIND_VALUES)
 
 
 def test_every_choice_is_an_integer_code_with_bounds_and_names(fmus):
@@ -280,8 +280,8 @@ def test_every_choice_is_an_integer_code_with_bounds_and_names(fmus):
                 assert all(f"{c} = " in v.description for c in codes), v.description
     md = read_model_description(str(fmus["SmoothShaper"]))
     kind = next(v for v in md.modelVariables if v.name == "stage[0].kind")
-    assert (int(kind.min), int(kind.max)) == (-1, len(validation.KIND_VALUES) - 1)
-    for name, code in validation.KIND_VALUES.items():
+    assert (int(kind.min), int(kind.max)) == (-1, len(fmi.KIND_VALUES) - 1)
+    for name, code in fmi.KIND_VALUES.items():
         assert f"{code} = {name} " in kind.description
 
 

@@ -14,14 +14,14 @@ from fmpy import extract  # noqa: E402
 from fmpy.fmi1 import FMICallException  # noqa: E402
 from fmpy.fmi2 import fmi2True  # noqa: E402
 
-from smoothshaper import validation  # noqa: E402
+from smoothshaper import fmi  # noqa: E402
 from smoothshaper.filters import ParameterError  # noqa: E402
 from smoothshaper.trajectory import Generator  # noqa: E402
 from test_fmu_smoothshaper import Logged, fmus, slave, smoothshaper_dir  # noqa: E402,F401
 from test_trajectory import BOUND_RTOL, assert_sampled_limits  # noqa: E402
 
 TS = 1e-3
-LIMITS = validation.TRAJECTORY_LIMITS
+LIMITS = fmi.TRAJECTORY_LIMITS
 
 
 @pytest.fixture(scope="session")
@@ -34,9 +34,9 @@ def trajectory_dir(fmus, tmp_path_factory):  # noqa: F811
 @pytest.mark.parametrize("step", [TS, 7 * TS, 2.5 * TS], ids=["Ts", "7Ts", "2.5Ts"])
 def test_q_v_a_j_equal_reference_and_bounds_hold(fmus, trajectory_dir, step):  # noqa: F811
     # the limits put every jerk jump on a tick: FMU and reference both give the right limit
-    t, target, y, ref, rel = validation.compare_trajectory(
+    t, target, y, ref, rel = fmi.compare_trajectory(
         fmus["TrajectoryGenerator"], Ts=TS, step=step, stop_time=1.5)
-    assert np.all(rel <= validation.REL_TOL), rel
+    assert np.all(rel <= fmi.REL_TOL), rel
     # within the limits to 32 u (docs/sampled-limits.md) and exactly on the last target once
     # it holds
     bounds = np.array([LIMITS["vmax"], LIMITS["amax"], LIMITS["jmax"]])
@@ -116,21 +116,21 @@ def test_bad_parameters_fail_at_exit_initialization_naming_them(trajectory_dir, 
     fmu.freeInstance()
 
 
-@pytest.mark.parametrize("name,params", validation.TRAJECTORY_PROFILES,
-                         ids=[p[0] for p in validation.TRAJECTORY_PROFILES])
+@pytest.mark.parametrize("name,params", fmi.TRAJECTORY_PROFILES,
+                         ids=[p[0] for p in fmi.TRAJECTORY_PROFILES])
 def test_libcosim_sets_every_profile_and_equals_fmpy_bit_for_bit(fmus, trajectory_dir, name,  # noqa: F811
                                                                  params):
     pytest.importorskip("libcosimpy", reason="libcosimpy is the second importer")
-    assert validation.compare_importers_trajectory(fmus["TrajectoryGenerator"], **params) == 0.0
+    assert fmi.compare_importers_trajectory(fmus["TrajectoryGenerator"], **params) == 0.0
 
 
 def test_profiles_differ_so_the_profile_code_took_effect(fmus, trajectory_dir):  # noqa: F811
     pytest.importorskip("libcosimpy", reason="libcosimpy is the second importer")
-    t = validation.communication_points(step=TS, stop_time=0.3)
-    target = validation.target_staircase(t)
-    runs = [validation.simulate_libcosim(str(fmus["TrajectoryGenerator"]), t, target,
+    t = fmi.communication_points(step=TS, stop_time=0.3)
+    target = fmi.target_staircase(t)
+    runs = [fmi.simulate_libcosim(str(fmus["TrajectoryGenerator"]), t, target,
                                          {"Ts": TS, **LIMITS, **params}, input_name="target",
-                                         outputs="qvaj")[1:] for _, params in validation.TRAJECTORY_PROFILES]
+                                         outputs="qvaj")[1:] for _, params in fmi.TRAJECTORY_PROFILES]
     assert not np.array_equal(runs[0], runs[1]) and not np.array_equal(runs[1], runs[2])
 
 
@@ -285,13 +285,13 @@ def test_random_staircases_keep_the_sampled_limits_and_equal_the_python_generato
     move = 2 * np.ptp(values) / params["vmax"] + 4 * (params["vmax"] / ap + 2 * ap / params["jmax"])
     hold = int(move / Ts) + gen.tail_samples + 10
     target = np.concatenate([np.full(n, v) for v, n in targets] + [np.full(hold, targets[-1][0])])
-    t = validation.communication_points(step=Ts, stop_time=(target.size - 1) * Ts)
+    t = fmi.communication_points(step=Ts, stop_time=(target.size - 1) * Ts)
     assert t.size == target.size
-    y = validation.simulate_trajectory(str(trajectory_dir), t, target, Ts=Ts,
+    y = fmi.simulate_trajectory(str(trajectory_dir), t, target, Ts=Ts,
                                        profile=PROFILE_CODES[profile], **params)
     # (c) the Python Generator (the same C core, another build) on the ticks' inputs
-    x, n_at = validation.tick_inputs(t, target, Ts=Ts)
-    expected = validation.at_communication_points(
+    x, n_at = fmi.tick_inputs(t, target, Ts=Ts)
+    expected = fmi.at_communication_points(
         gen.process(x), n_at, np.array([params["q0"], 0.0, 0.0, 0.0]))
     assert np.array_equal(y, expected), np.max(np.abs(y - expected), axis=0)
     # (a) fmpy's first row is the rest at q0 after initialization, where it rested before

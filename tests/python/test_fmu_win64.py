@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 pytest.importorskip("fmpy", reason="fmpy is needed to import the FMUs")
-from smoothshaper import validation  # noqa: E402
+from smoothshaper import fmi  # noqa: E402
 from smoothshaper.stages import rectangular, shaper  # noqa: E402
 from test_fmu_smoothshaper import fmus  # noqa: E402,F401
 
@@ -54,8 +54,8 @@ def test_win64_binary_runs_under_wine_through_fmpy_remoting(fmus, tmp_path):  # 
     if path is None:
         pytest.skip("wine64 is not installed (scripts/install-cross-tools.sh installs it)")
     import fmpy
-    t = validation.communication_points(step=1e-3, stop_time=0.08)
-    u = validation.test_input(t)
+    t = fmi.communication_points(step=1e-3, stop_time=0.08)
+    u = fmi.test_input(t)
     out = str(tmp_path / "y.npy")
     np.save(out[:-4] + ".npy.in.npy", np.vstack([t, u]))
     T, wn = 0.012, 180.0   # T/Ts integer: the test is about the binary, not exact timing
@@ -85,5 +85,5 @@ def test_win64_binary_runs_under_wine_through_fmpy_remoting(fmus, tmp_path):  # 
         pytest.fail("fmpy remoting under wine failed five times:\n" + "\n---\n".join(errors))
     y = np.load(out)
     stages = [rectangular(T=T), shaper("zv", wn=wn)]
-    ref = validation.expected_output(stages, t, u, Ts=1e-3)
-    assert np.max(np.abs(y - ref)) <= validation.REL_TOL * np.max(np.abs(ref))
+    ref = fmi.expected_output(stages, t, u, Ts=1e-3)
+    assert np.max(np.abs(y - ref)) <= fmi.REL_TOL * np.max(np.abs(ref))

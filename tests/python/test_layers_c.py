@@ -61,15 +61,16 @@ class Report:
 
 # ---- the declaration --------------------------------------------------------------------------
 
-def read_layers(markdown: str) -> dict[str, Layer]:
-    """The rows of the first table under the heading ``## Layers``: columns layer, paths
-    (backquoted globs), may use (layer names separated by commas; a dash for none)."""
-    section = re.search(r"^## Layers\s*$(.*?)(?=^## |\Z)", markdown, re.M | re.S)
-    if section is None:
-        raise ValueError("docs/architecture.md has no '## Layers' section")
-    rows = [line for line in section.group(1).splitlines() if line.startswith("|")]
+def read_layers(markdown: str, section: str = "Layers") -> dict[str, Layer]:
+    """The rows of the first table under the heading ``## <section>``: columns layer, paths
+    (backquoted globs), may use (layer names separated by commas; a dash for none). The
+    Python package's table (section "Python package") has the same columns."""
+    found = re.search(rf"^## {re.escape(section)}\s*$(.*?)(?=^## |\Z)", markdown, re.M | re.S)
+    if found is None:
+        raise ValueError(f"docs/architecture.md has no '## {section}' section")
+    rows = [line for line in found.group(1).splitlines() if line.startswith("|")]
     if len(rows) < 3:
-        raise ValueError("the Layers section has no table")
+        raise ValueError(f"the {section} section has no table")
     header = [c.strip().lower() for c in rows[0].strip("|").split("|")]
     col = {name: header.index(name) for name in ("layer", "paths", "may use")}
     layers: dict[str, Layer] = {}
@@ -227,6 +228,12 @@ def circles(edges: set[tuple[str, str]]) -> list[list[str]]:
 
 def check(files: dict[str, str], layers: dict[str, Layer],
           include_dirs: tuple[str, ...] = INCLUDE_DIRS) -> Report:
+    return check_dependencies(files, dependencies(files, include_dirs), layers)
+
+
+def check_dependencies(files, edges: set[tuple[str, str]], layers: dict[str, Layer]) -> Report:
+    """The report for ``files`` (paths) and the dependencies ``edges`` between them, whatever
+    found them (C includes and calls here, Python imports in test_layers_python.py)."""
     report = Report(files=len(files))
     for ly in layers.values():
         for u in sorted(ly.may_use - set(layers)):
@@ -240,7 +247,7 @@ def check(files: dict[str, str], layers: dict[str, Layer],
             report.ambiguous.append((path, found))
         else:
             home[path] = found[0]
-    report.dependencies = dependencies(files, include_dirs)
+    report.dependencies = set(edges)
     for a, b in sorted(report.dependencies):
         la, lb = home.get(a), home.get(b)
         if la and lb and la != lb and lb not in layers[la].may_use:

@@ -12,7 +12,7 @@ from hypothesis import HealthCheck, assume, given, settings, strategies as st
 from smoothshaper.errors import DroppedTargetWarning
 from smoothshaper.filters import ParameterError
 from smoothshaper.reference.multi_axis import multi_axis_reference, phase_duration
-from smoothshaper.bench_trajectory import ruckig_phase
+from smoothshaper.bench.trajectory import ruckig_phase
 from smoothshaper.trajectory import MultiAxisGenerator, multi_axis_move
 
 ruckig = pytest.importorskip("ruckig")

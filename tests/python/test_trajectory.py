@@ -345,10 +345,10 @@ def assert_c_equals_reference(kw, x):
 
 
 def test_validation_staircase_c_equals_reference_on_q_v_a_and_j():
-    from smoothshaper import validation
+    from smoothshaper import fmi
     Ts = 1e-3
-    x = validation.target_staircase(validation.communication_points(step=Ts, stop_time=1.5))
-    g, _, _ = assert_c_equals_reference(dict(validation.TRAJECTORY_LIMITS, Ts=Ts), x)
+    x = fmi.target_staircase(fmi.communication_points(step=Ts, stop_time=1.5))
+    g, _, _ = assert_c_equals_reference(dict(fmi.TRAJECTORY_LIMITS, Ts=Ts), x)
     assert g.time_optimal
 
 

@@ -22,8 +22,8 @@ from ..stages import NOTCHES, SHAPERS, Stage
 from ._checks import check_stage
 from .._checks import (complex_array as _complex_array, finite_array as _finite_array,
                        representable as _representable)
-from .notch import notch_continuous_transfer
-from .shapers import shaper_continuous_transfer
+from .notch import notch_transfer_unchecked
+from .shapers import shaper_transfer_unchecked
 from ..errors import ParameterError
 
 __all__ = ["continuous_transfer", "continuous_impulse_response"]
@@ -95,9 +95,9 @@ def transfer_unchecked(stage: Stage, s: np.ndarray) -> np.ndarray:
     """:func:`continuous_transfer` of a checked stage at a finite complex array, its result
     not checked (a caller that refuses NaN or inf names its own argument)."""
     if stage.kind in SHAPERS:
-        return shaper_continuous_transfer(stage, s)
+        return shaper_transfer_unchecked(stage, s)
     if stage.kind in NOTCHES:
-        return notch_continuous_transfer(stage, s)
+        return notch_transfer_unchecked(stage, s)
     sigma = _sigma(stage)
     dc = _smoother_laplace(stage, np.array(-sigma, dtype=complex))
     return _smoother_laplace(stage, s - sigma) / dc

@@ -16,9 +16,9 @@ import numpy as np
 
 from ..stages import NOTCHES, SMOOTHERS, Stage
 from ._checks import as_stage_list, check_samples, check_stage, check_Ts
-from .notch import biquad, notch_coefficients
-from .shapers import shaper_taps
-from .smoothers import smoother_taps
+from .notch import biquad, notch_coefficients_unchecked
+from .shapers import shaper_taps_unchecked
+from .smoothers import smoother_taps_unchecked
 from .._checks import (complex_array as _complex_array, finite as _finite,
                        finite_signal as _finite_signal, integer as _integer,
                        real_array as _real_array, representable as _representable)
@@ -58,13 +58,28 @@ def impulse_response(stage: Stage, *, Ts: float, length: int | None = None) -> n
         x = np.zeros(n)
         if n:
             x[0] = 1.0
-        b, a = notch_coefficients(stage, Ts=Ts)
+        b, a = notch_coefficients_unchecked(stage, check_Ts(Ts))
         return biquad(b, a, x, np.zeros(4))[0]
-    h = smoother_taps(stage, Ts=Ts) if stage.kind in SMOOTHERS else shaper_taps(stage, Ts=Ts)
+    h = fir_taps_unchecked(stage, check_Ts(Ts))
     if length is None:
         return h
     n = _check_length(length)
     return np.concatenate([h, np.zeros(max(0, n - h.size))])[:n]
+
+
+def fir_taps_unchecked(stage: Stage, Ts: float) -> np.ndarray:
+    """All taps of a smoother or shaper Stage at a checked ``Ts`` (what depends on both is
+    checked on the way)."""
+    if stage.kind in SMOOTHERS:
+        return smoother_taps_unchecked(stage, Ts)
+    return shaper_taps_unchecked(stage, Ts)
+
+
+def coefficients_unchecked(stage: Stage, Ts: float):
+    """``(b, a)`` of a notch, else ``(taps, None)``, for a Stage at a checked ``Ts``."""
+    if stage.kind in NOTCHES:
+        return notch_coefficients_unchecked(stage, Ts)
+    return fir_taps_unchecked(stage, Ts), None
 
 
 def _check_length(length) -> int:
@@ -98,13 +113,13 @@ def discrete_transfer(stage: Stage, z, *, Ts: float) -> np.ndarray:
     z = _complex_array("z", z)
     if np.any(z == 0):
         raise ParameterError("z", "z must be non-zero (the transfer is in powers of 1/z)")
+    Ts = check_Ts(Ts)
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
         zinv = 1.0 / z
-        if stage.kind in NOTCHES:
-            b, a = notch_coefficients(stage, Ts=Ts)
-            H = np.polyval(b[::-1], zinv) / np.polyval(a[::-1], zinv)
-        else:
-            H = np.polyval(impulse_response(stage, Ts=Ts)[::-1], zinv)
+        b, a = coefficients_unchecked(stage, Ts)
+        H = np.polyval(b[::-1], zinv)
+        if a is not None:
+            H = H / np.polyval(a[::-1], zinv)
     return _representable("z", H, "H(z)")
 
 
@@ -132,14 +147,14 @@ def filter_zi(stages, *, Ts: float, x0: float = 0.0) -> list[np.ndarray]:
         Naming ``x0`` when it is not finite, or a stage parameter invalid at ``Ts``.
     """
     x0 = _finite("x0", x0)
-    out = []
-    for stage in as_stage_list(stages):
-        if stage.kind in NOTCHES:
-            notch_coefficients(stage, Ts=Ts)          # validates Ts and wn
-            out.append(np.full(4, x0))
-        else:
-            out.append(np.full(impulse_response(stage, Ts=Ts).size - 1, x0))
-    return out
+    stages = as_stage_list(stages)
+    Ts = check_Ts(Ts)
+    return _rest_state([coefficients_unchecked(stage, Ts) for stage in stages], x0)
+
+
+def _rest_state(coefficients, x0: float) -> list[np.ndarray]:
+    """The state at rest at ``x0`` of stages given by their :func:`coefficients_unchecked`."""
+    return [np.full(4 if a is not None else b.size - 1, x0) for b, a in coefficients]
 
 
 def filter(stages, x, *, Ts: float, zi=None):
@@ -178,25 +193,25 @@ def filter(stages, x, *, Ts: float, zi=None):
     Ts = check_Ts(Ts)
     x = _finite_signal("x", x)
     rest = zi is None
-    states = filter_zi(stages, Ts=Ts) if rest else _check_zi(stages, zi, Ts)
+    coefficients = [coefficients_unchecked(stage, Ts) for stage in stages]
+    expected = _rest_state(coefficients, 0.0)
+    states = expected if rest else _check_zi(expected, zi)
     y = x
     final = []
-    for stage, state in zip(stages, states):
-        if stage.kind in NOTCHES:
-            b, a = notch_coefficients(stage, Ts=Ts)
+    for (b, a), state in zip(coefficients, states):
+        if a is not None:
             y, new = biquad(b, a, y, state)
         else:
-            h = impulse_response(stage, Ts=Ts)
             padded = np.concatenate([state, y])
             new = padded[padded.size - state.size:].copy()
             # np.convolve swaps its arguments when the first is shorter (empty block)
-            y = np.convolve(padded, h, mode="valid") if y.size else y.copy()
+            y = np.convolve(padded, b, mode="valid") if y.size else y.copy()
         final.append(new)
     return y if rest else (y, final)
 
 
-def _check_zi(stages: list[Stage], zi, Ts: float) -> list[np.ndarray]:
-    expected = filter_zi(stages, Ts=Ts)
+def _check_zi(expected: list[np.ndarray], zi) -> list[np.ndarray]:
+    """``zi`` as copies of the arrays, the layout of ``expected`` (the rest state)."""
     try:
         items = list(zi)
     except TypeError:

@@ -75,6 +75,12 @@ def notch_coefficients(stage: Stage, *, Ts: float) -> tuple[np.ndarray, np.ndarr
     if stage.kind not in NOTCHES:
         raise ParameterError(
             "kind", f"kind must be a notch ({', '.join(NOTCHES)}), got {stage.kind!r}")
+    return notch_coefficients_unchecked(stage, Ts)
+
+
+def notch_coefficients_unchecked(stage: Stage, Ts: float) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`notch_coefficients` of a notch Stage at a checked ``Ts`` (the Nyquist frequency
+    is checked here)."""
     wn, xi1, xi2 = stage.wn, stage.zeta, stage.notch_pole_zeta
     if wn >= math.pi / Ts:
         raise ParameterError(
@@ -127,7 +133,11 @@ def notch_continuous_transfer(stage: Stage, s) -> np.ndarray:
     ParameterError
         ``stage`` is not a valid Stage.
     """
-    stage = check_stage(stage)
+    return notch_transfer_unchecked(check_stage(stage), s)
+
+
+def notch_transfer_unchecked(stage: Stage, s) -> np.ndarray:
+    """:func:`notch_continuous_transfer` of a notch Stage."""
     s = np.asarray(s, dtype=complex)
     wn, xi1, xi2 = stage.wn, stage.zeta, stage.notch_pole_zeta
     return (s * s + 2 * xi1 * wn * s + wn * wn) / (s * s + 2 * xi2 * wn * s + wn * wn)

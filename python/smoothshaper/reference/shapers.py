@@ -65,17 +65,14 @@ def zvn_order(stage: Stage) -> int:
     ParameterError
         ``stage`` is not a valid Stage.
     """
-    stage = check_stage(stage)
-    return _ZVN_ORDER.get(stage.kind, stage.order)
+    return _ZVN_ORDER.get(check_stage(stage).kind, stage.order)
 
 
 def _undamped_design(stage: Stage) -> tuple[np.ndarray, np.ndarray]:
     """Amplitudes B_m (sum 1) and times in units of the damped period Td."""
     kind = stage.kind
     if kind in ("zv", "zvd", "zvdd", "zvn"):
-        n = zvn_order(stage)
-        B = np.array([math.comb(n, m) for m in range(n + 1)], dtype=float) / 2.0 ** n
-        return B, 0.5 * np.arange(n + 1)
+        return _zvn_design(_ZVN_ORDER.get(kind, stage.order))
     V = stage.tolerance
     if kind == "ei":
         return np.array([(1 + V) / 4, (1 - V) / 2, (1 + V) / 4]), np.array([0.0, 0.5, 1.0])
@@ -95,6 +92,12 @@ def _undamped_design(stage: Stage) -> tuple[np.ndarray, np.ndarray]:
     if kind == "gmzv":
         return gmzv_undamped(stage.order, stage.duration)
     raise ParameterError("kind", f"kind must be a shaper ({', '.join(SHAPERS)}), got {kind!r}")
+
+
+def _zvn_design(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """ZV^n: binomial amplitudes over 2^n, half a damped period apart."""
+    B = np.array([math.comb(n, m) for m in range(n + 1)], dtype=float) / 2.0 ** n
+    return B, 0.5 * np.arange(n + 1)
 
 
 def gmzv_undamped(n: int, duration: float) -> tuple[np.ndarray, np.ndarray]:
@@ -164,6 +167,10 @@ def mode_pole(wn: float, zeta: float) -> complex:
     wn, zeta = _positive("wn", wn), _finite("zeta", zeta)
     if not 0.0 <= zeta < 1.0:
         raise ParameterError("zeta", f"zeta must be in [0, 1), got {zeta!r}")
+    return _pole(wn, zeta)
+
+
+def _pole(wn: float, zeta: float) -> complex:
     return complex(-zeta * wn, wn * math.sqrt(1.0 - zeta * zeta))
 
 
@@ -193,9 +200,16 @@ def shaper_impulses(stage: Stage) -> tuple[np.ndarray, np.ndarray]:
     ParameterError
         ``stage`` is not a valid shaper stage.
     """
-    stage = check_stage(stage)
-    B, units = _undamped_design(stage)
-    p = mode_pole(stage.wn, stage.zeta)
+    return impulses_unchecked(check_stage(stage))
+
+
+def impulses_unchecked(stage: Stage) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`shaper_impulses` of a Stage (whose wn and zeta the Stage validated)."""
+    return _damped(*_undamped_design(stage), _pole(stage.wn, stage.zeta))
+
+
+def _damped(B: np.ndarray, units: np.ndarray, p: complex) -> tuple[np.ndarray, np.ndarray]:
+    """Undamped amplitudes ``B`` at ``units`` damped periods -> the design for the pole p."""
     t = units * (2.0 * math.pi / p.imag)
     A = B * np.exp(p.real * t)
     return A / A.sum(), t
@@ -221,8 +235,12 @@ def shaper_continuous_transfer(stage: Stage, s) -> np.ndarray:
     ParameterError
         ``stage`` is not a valid shaper stage.
     """
-    stage = check_stage(stage)
-    A, t = shaper_impulses(stage)
+    return shaper_transfer_unchecked(check_stage(stage), s)
+
+
+def shaper_transfer_unchecked(stage: Stage, s) -> np.ndarray:
+    """:func:`shaper_continuous_transfer` of a Stage."""
+    A, t = impulses_unchecked(stage)
     s = np.asarray(s, dtype=complex)
     return np.tensordot(np.exp(-s[..., None] * t), A, axes=([-1], [0]))
 
@@ -302,21 +320,27 @@ def shaper_taps(stage: Stage, *, Ts: float) -> np.ndarray:
     if stage.kind not in SHAPERS:
         raise ParameterError(
             "kind", f"kind must be a shaper ({', '.join(SHAPERS)}), got {stage.kind!r}")
+    return shaper_taps_unchecked(stage, Ts)
+
+
+def shaper_taps_unchecked(stage: Stage, Ts: float) -> np.ndarray:
+    """:func:`shaper_taps` of a shaper Stage at a checked ``Ts``; what depends on both (the
+    Nyquist frequency, the number of taps) is checked here."""
     _check_mode(stage, Ts)
     with np.errstate(over="ignore"):               # a span beyond a float: refused below
-        span = shaper_impulses(stage)[1][-1] / Ts  # ZV^n: already the n-fold span
+        A, t = impulses_unchecked(stage)
+        span = t[-1] / Ts                          # ZV^n: already the n-fold span
     check_samples("wn", span + 2.0, f"the taps of a {stage.kind} shaper at wn Ts = "
                   f"{stage.wn * Ts:.6g}")
     if stage.timing == "paper":
-        return _paper_taps(*shaper_impulses(stage), Ts)
-    p = mode_pole(stage.wn, stage.zeta)
+        return _paper_taps(A, t, Ts)
+    p = _pole(stage.wn, stage.zeta)
     zp = np.exp(p * Ts)
     if stage.kind in ("zv", "zvd", "zvdd", "zvn"):
-        zv = _exact_taps(*shaper_impulses(stage.with_(kind="zv")), 0.0, zp, Ts)
+        zv = _exact_taps(*_damped(*_zvn_design(1), p), 0.0, zp, Ts)
         h = np.ones(1)
-        for _ in range(zvn_order(stage)):
+        for _ in range(_ZVN_ORDER.get(stage.kind, stage.order)):
             h = np.convolve(h, zv)
         return h
-    A, t = shaper_impulses(stage)
     target = complex(np.dot(A, np.exp(-p * t)))
     return _exact_taps(A, t, target, zp, Ts)

@@ -69,7 +69,10 @@ def pinned_frequency(stage: Stage) -> float:
     ParameterError
         ``stage`` is not a valid Stage.
     """
-    stage = check_stage(stage)
+    return _pinned(check_stage(stage))
+
+
+def _pinned(stage: Stage) -> float:
     per = 2.0 if stage.kind in ("rectangular", "exponential") else 3.0
     return stage.k * per * math.pi / stage.T
 
@@ -131,6 +134,12 @@ def smoother_taps(stage: Stage, *, Ts: float) -> np.ndarray:
     if stage.kind not in SMOOTHERS:
         raise ParameterError(
             "kind", f"kind must be a smoother ({', '.join(SMOOTHERS)}), got {stage.kind!r}")
+    return smoother_taps_unchecked(stage, Ts)
+
+
+def smoother_taps_unchecked(stage: Stage, Ts: float) -> np.ndarray:
+    """:func:`smoother_taps` of a smoother Stage at a checked ``Ts``; what depends on both
+    (``T >= Ts``, the number of taps, the pinned zero below Nyquist) is checked here."""
     nu = stage.T / Ts
     N = on_grid(nu)
     if nu < 1.0 and not N:   # the one rule for short T: below Ts (beyond the grid test) refused
@@ -147,7 +156,7 @@ def smoother_taps(stage: Stage, *, Ts: float) -> np.ndarray:
 
 def _bounded_taps(stage: Stage, nu: float, Ts: float) -> np.ndarray:
     N0 = int(math.floor(nu))
-    w_star = pinned_frequency(stage)
+    w_star = _pinned(stage)
     if w_star * Ts >= math.pi:
         raise ParameterError(
             "T", f"T = {stage.T!r} s cannot pin its zero w* = {w_star!r} rad/s at Ts = {Ts!r} s: "
@@ -166,10 +175,10 @@ def _exact_taps(stage: Stage, nu: float, Ts: float) -> np.ndarray:
     i = np.arange(N0 + 1, dtype=float)
     g = _shape(stage.kind, i * Ts, stage.T, _sigma(stage))
     g[N0] *= nu - N0
-    s_star = complex(_sigma(stage), pinned_frequency(stage))
+    s_star = complex(_sigma(stage), _pinned(stage))
     # The columns z*^-(N0-1), z*^-N0 are independent unless z* is real, i.e. unless the
     # pinned zero sits on a multiple of pi/Ts.
-    w_star = pinned_frequency(stage)
+    w_star = _pinned(stage)
     if w_star * Ts >= math.pi or abs(math.sin(w_star * Ts)) < 1e-9:
         raise ParameterError(
             "T", f"T = {stage.T!r} s cannot pin its zero w* = {w_star!r} rad/s at Ts = {Ts!r} s: "

@@ -51,7 +51,7 @@ __all__ = ["ROOT", "SPEED_BENCH", "interleaved", "Table", "run_c_bench", "C_ROWS
            "fmu_table", "UNION_STAGE_BYTES", "memory_tables",
            "main"]
 
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[3]
 SPEED_BENCH = ROOT / "tests" / "bench" / "speed_bench.c"
 
 
@@ -193,8 +193,8 @@ def c_tables(quick: bool) -> tuple[list[Table], dict]:
 def python_tables(quick: bool) -> list[Table]:
     import scipy.signal as sps
 
-    from .filters import Chain
-    from .stages import Stage
+    from ..filters import Chain
+    from ..stages import Stage
 
     rounds = 3 if quick else 15
     Ts = 1e-3
@@ -284,8 +284,8 @@ def trajectory_table(quick: bool, c_figures: dict) -> list[Table]:
     except ImportError:
         print("\n(kinematic design against ruckig skipped: ruckig is not installed)")
         return []
-    from . import design as kinematic_design
-    from .filters import _backend
+    from .. import design as kinematic_design
+    from ..filters import _backend
 
     ffi, lib = _backend("double")
     table = Table("Kinematic design against ruckig",
@@ -298,7 +298,7 @@ def trajectory_table(quick: bool, c_figures: dict) -> list[Table]:
                   "through cffi (the call itself costs about 0.2 us), and design.kinematic "
                   "(the Python API: the call, the C design and three Stage objects; "
                   "design.kinematic_lengths designs many problems in one call at about the C "
-                  "cost each, `python -m smoothshaper.bench_trajectory`).")
+                  "cost each, `python -m smoothshaper.bench.trajectory`).")
     cases = {"vmax reached": (1.0, 0.5, 5.0, 100.0),
              "amax reached, vmax not": (0.1, 2.0, 5.0, 100.0),
              "jmax only": (0.001, 2.0, 5.0, 100.0)}
@@ -333,8 +333,8 @@ def kinematic_call_table(quick: bool) -> list[Table]:
     arrays prepared beforehand (the bare C call from Python), per common case; and where a
     three-bound call's time goes: the keyword call, the fast path (the C function that tests
     the types, runs the C design and builds the Stage objects) and its objects."""
-    from . import design as kinematic_design
-    from .filters import _backend
+    from .. import design as kinematic_design
+    from ..filters import _backend
 
     ffi, lib = _backend("double")
     kinematic = kinematic_design.kinematic
@@ -392,8 +392,8 @@ def kinematic_parts(rounds: int, repeat: int) -> dict:
     (``design.kinematic``), ``"call"`` (the keyword call of a function with its signature and
     no body) and ``"fastpath"`` (the C function design.kinematic calls, with positional
     arguments)."""
-    from . import design as kinematic_design
-    from .filters import _backend
+    from .. import design as kinematic_design
+    from ..filters import _backend
 
     ffi, lib = _backend("double")
     raw_design, kinematic = lib.sms_kinematic_design, kinematic_design.kinematic
@@ -428,11 +428,11 @@ def fmu_table(quick: bool, build_dir: Path) -> list[Table]:
     if shutil.which("cmake") is None:
         print("\n(FMU benchmark skipped: cmake is needed to build the FMUs)")
         return []
-    from . import validation
-    from .filters import Chain
-    from .stages import Stage
+    from .. import fmi
+    from ..filters import Chain
+    from ..stages import Stage
 
-    fmus = validation.build_fmus(build_dir)
+    fmus = fmi.build_fmus(build_dir)
     Ts = 1e-3
     steps = 2_000 if quick else 50_000
     table = Table("FMU paths (fmpy, one instance)",
@@ -441,7 +441,7 @@ def fmu_table(quick: bool, build_dir: Path) -> list[Table]:
                   "(per-sample cost inside the FMU).")
     chain = Chain([Stage("damped_harmonic", T=0.0531, sigma=-10.0)], Ts=Ts)
     t_chain = interleaved({"step": lambda: chain.step(1.0)}, rounds=3, repeat=steps // 10)["step"]
-    for model, start in (("SmoothShaper", validation.start_values(
+    for model, start in (("SmoothShaper", fmi.start_values(
             [Stage("damped_harmonic", T=0.0531, sigma=-10.0)], Ts=Ts)),
             ("TrajectoryGenerator", dict(Ts=Ts, vmax=1.0, amax=10.0, jmax=1000.0))):
         if model not in fmus:
@@ -511,8 +511,8 @@ _MEMORY_EXAMPLES = (
 
 def memory_tables(quick: bool) -> list[Table]:
     """Bytes per stage by family on this machine (both precisions), against the union layout."""
-    from .filters import _backend, _fill_config
-    from .stages import Stage
+    from ..filters import _backend, _fill_config
+    from ..stages import Stage
 
     host = "x86-64" if platform.machine() in ("x86_64", "AMD64") else platform.machine()
     table = Table(

@@ -1,7 +1,7 @@
 """What designing a kinematic chain on the sample grid costs: the grid duration minus the
 continuous optimum, in samples, per number of bounds (docs/sampled-limits.md).
 
-``python -m smoothshaper.bench_grid_price [--cases N] [--adversarial K] [--bounds 1 .. 8]
+``python -m smoothshaper.bench.grid_price [--cases N] [--adversarial K] [--bounds 1 .. 8]
 [--profile polynomial|trigonometric] [--mode RATIO] [--cost M [--cost-mode-range LOW HIGH]]``
 draws N random problems per bound count (h
 and every bound over six orders of magnitude, the i-th bound scaled by 10^i so every stage
@@ -24,7 +24,7 @@ import time
 
 import numpy as np
 
-from .filters import _backend
+from ..filters import _backend
 
 __all__ = ["grid_price", "grid_prices", "grid_design_costs", "main"]
 
@@ -206,7 +206,7 @@ def report(n: int, cases: int, adversarial: int = 0, seed: int = 5, profile: int
 
 
 def main(argv=None) -> int:
-    p = argparse.ArgumentParser(prog="python -m smoothshaper.bench_grid_price",
+    p = argparse.ArgumentParser(prog="python -m smoothshaper.bench.grid_price",
                                 description=__doc__.split("\n\n")[0])
     p.add_argument("--cases", type=int, default=3000, help="random problems per bound count")
     p.add_argument("--adversarial", type=int, default=0,

@@ -5,10 +5,10 @@ samples of a trajectory, size of a record) builds a :class:`Cost` from those siz
 and calls :func:`announce`: a request modelled above :data:`ANNOUNCE_SECONDS` prints its
 estimate on stderr before it starts, and one above :data:`LIMIT_SECONDS` is refused naming the
 parameter that makes it long. The same model weights the phases of the one progress bar
-(:class:`smoothshaper.cli_common.Progress`) that covers the whole request.
+(:class:`smoothshaper.cli.common.Progress`) that covers the whole request.
 
 The unit costs below were measured on the reference machine (2 cores shared with other
-jobs, OpenBLAS); ``python -m smoothshaper.cli_cost`` measures them again on yours and prints
+jobs, OpenBLAS); ``python -m smoothshaper.cli.cost`` measures them again on yours and prints
 the figures next to the model's.
 """
 from __future__ import annotations
@@ -17,7 +17,7 @@ import math
 import sys
 from dataclasses import dataclass, field
 
-from .cli_common import CliError
+from .common import CliError
 
 __all__ = ["ANNOUNCE_SECONDS", "LIMIT_SECONDS", "UNIT_COSTS", "PLOT_POINTS", "Cost",
            "add_options", "start", "show_progress", "announce", "chain_taps",
@@ -138,7 +138,7 @@ def start(cost: Cost, args, sizes: str):
     CliError
         The request is beyond :data:`LIMIT_SECONDS` (see :func:`announce`).
     """
-    from .cli_common import Progress
+    from .common import Progress
     if getattr(args, "estimate", False):
         print(f"{cost.what}: {sizes}: {cost.describe()}")
         return None
@@ -218,7 +218,7 @@ def chain_taps(stages, Ts: float) -> int:
     ParameterError
         A stage is invalid at ``Ts`` (the same error :class:`smoothshaper.Chain` raises).
     """
-    from .filters import Chain, _backend, _fill_config
+    from ..filters import Chain, _backend, _fill_config
     ffi, lib = _backend("double")
     config = ffi.new("sms_stage_config *")
     need = ffi.new("size_t *")
@@ -389,7 +389,7 @@ def validate_cost(*, built: bool) -> Cost:
     Returns
     -------
     Cost
-        One phase per step of :data:`smoothshaper.validation.RUN_STEPS`.
+        One phase per step of :data:`smoothshaper.fmi.validate.RUN_STEPS`.
     """
     phases = dict(VALIDATE_SECONDS)
     if built:
@@ -421,9 +421,9 @@ def measure(scale: float = 1.0) -> dict:
 
     import numpy as np
 
-    from . import analysis, stages
-    from .filters import Chain
-    from .trajectory import BSpline, Generator
+    from .. import analysis, stages
+    from ..filters import Chain
+    from ..trajectory import BSpline, Generator
     if not (math.isfinite(scale) and scale > 0):
         raise ValueError(f"scale must be finite and > 0, got {scale!r}")
 
@@ -463,7 +463,7 @@ def measure(scale: float = 1.0) -> dict:
 if __name__ == "__main__":  # pragma: no cover - a measuring tool
     import argparse
     argparse.ArgumentParser(
-        prog="python -m smoothshaper.cli_cost",
+        prog="python -m smoothshaper.cli.cost",
         description="Measure the unit costs of the CLI's time model on this machine and print "
                     "each next to the model's figure (about a minute).").parse_args()
     for key, (measured, model) in measure().items():

@@ -15,10 +15,10 @@ import math
 
 import numpy as np
 
-from .cli_common import EXIT_ERROR, CliError, decimate, format_table, run_samples
-from .cli_common import numbers as _numbers, parse_via_list, parse_via_points
-from .cli_common import pyplot as _pyplot, save_figure as _save, write_outputs
-from .cli_cost import PLOT_POINTS, add_options as add_cost_options, start, trajectory_cost
+from .common import EXIT_ERROR, CliError, decimate, format_table, run_samples
+from .common import numbers as _numbers, parse_via_list, parse_via_points
+from .common import pyplot as _pyplot, save_figure as _save, write_outputs
+from .cost import PLOT_POINTS, add_options as add_cost_options, start, trajectory_cost
 
 __all__ = ["LIMIT_RTOL", "REST_RTOL", "MAX_SAMPLES", "MAX_BSPLINE_VALUES", "PROFILES", "parse_via_list",
            "parse_via_points", "run_until_reached", "run_with_hold", "segment_rows",
@@ -124,9 +124,9 @@ def _limit(option: str):
 
 
 def cmd_generator(args) -> int:
-    from .trajectory import Generator
+    from ..trajectory import Generator
     if ";" in args.via or any(isinstance(x, str) for x in (args.vmax, args.amax, args.jmax)):
-        from .cli_multi_axis import cmd_multi_generator
+        from .multi_axis import cmd_multi_generator
         return cmd_multi_generator(args)
     via = parse_via_list(args.via)
     gen = Generator(vmax=args.vmax, amax=args.amax, jmax=args.jmax, Ts=args.Ts,
@@ -232,7 +232,7 @@ def _plot_generator(path, t, targets, out, starts, arrivals, limits, u, Ts, what
 # -- B-spline ------------------------------------------------------------------------------
 
 def cmd_bspline(args) -> int:
-    from .trajectory import BSpline, bspline_period
+    from ..trajectory import BSpline, bspline_period
     via = parse_via_points(args.via)
     M, n_axes = via.shape
     if not 1 <= args.degree <= 7:

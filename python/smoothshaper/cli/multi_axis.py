@@ -14,11 +14,11 @@ import math
 
 import numpy as np
 
-from .cli_common import EXIT_ERROR, CliError, decimate, format_table, run_samples
-from .cli_common import numbers as _numbers
-from .cli_cost import PLOT_POINTS, start, trajectory_cost
-from .cli_common import parse_via_points, pyplot as _pyplot, save_figure as _save
-from .cli_common import write_outputs
+from .common import EXIT_ERROR, CliError, decimate, format_table, run_samples
+from .common import numbers as _numbers
+from .cost import PLOT_POINTS, start, trajectory_cost
+from .common import parse_via_points, pyplot as _pyplot, save_figure as _save
+from .common import write_outputs
 
 __all__ = ["LIMIT_RTOL", "MAX_SAMPLES", "AXIS_NAMES", "parse_points", "parse_limit", "run",
            "cmd_multi_generator", "plot"]
@@ -102,7 +102,7 @@ def _deviation(q: np.ndarray, a: np.ndarray, b: np.ndarray) -> float:
 
 
 def cmd_multi_generator(args) -> int:
-    from .trajectory import MultiAxisGenerator, phase_duration
+    from ..trajectory import MultiAxisGenerator, phase_duration
     via = parse_points(args.via)
     axes = via.shape[1]
     v = parse_limit("--vmax", args.vmax, axes)

@@ -16,8 +16,8 @@ import math
 import os
 import time
 
-from .cli_common import CliError
-from .cli_cost import add_options as add_cost_options
+from .common import CliError
+from .cost import add_options as add_cost_options
 
 __all__ = ["add_parser", "cmd_calibrate"]
 
@@ -92,9 +92,9 @@ def _check_options(args) -> None:
 
 
 def cmd_calibrate(args) -> int:
-    from . import calibrate
-    from .calibrate import outputs
-    from .cli_cost import record_cost, start as start_request
+    from .. import calibrate
+    from ..calibrate import outputs
+    from .cost import record_cost, start as start_request
     _check_options(args)
     nbytes = sum(os.path.getsize(f) for f in args.files if os.path.isfile(f))
     # columns to tune: one with --axis x/y/z, up to three per file with --axis all
@@ -134,7 +134,7 @@ def cmd_calibrate(args) -> int:
             raise CliError(f"--json={args.json}: {exc.strerror or exc}") from None
         print(f"wrote {args.json}")
     if args.out:
-        from .calibrate import plots
+        from ..calibrate import plots
         os.makedirs(args.out, exist_ok=True)
         written = plots.write(cal, args.out)
         firmware = []

@@ -1,7 +1,7 @@
 """Trajectory benchmark: what the online generator and the kinematic design cost and how close
 to time-optimal the generator is when targets change mid-motion.
 
-``python -m smoothshaper.bench_trajectory [--quick]`` prints:
+``python -m smoothshaper.bench.trajectory [--quick]`` prints:
 
 - the distribution of arrival time / ruckig's time-optimal duration from the same state, for
   a target that changes mid-motion (random limits over three orders of magnitude, random
@@ -55,7 +55,7 @@ def arrival_ratios(n_cases: int, seed: int = 1, mid_motion: bool = True,
     """Arrival / ruckig's optimum from the same state, one per case. ``unrelaxed``, if given,
     receives the same ratio against ruckig asked with vmax exactly (see RUCKIG_RELAX)."""
     import ruckig
-    from .trajectory import Generator
+    from ..trajectory import Generator
     rng = np.random.default_rng(seed)
     out = []
     while len(out) < n_cases:
@@ -99,8 +99,8 @@ def profile_prices(n_cases: int, seed: int = 3) -> dict[str, np.ndarray]:
       price of the online structure; polynomial profile, wn with Tm from 0.3 to 3 times
       amax/jmax)."""
     import ruckig
-    from . import design
-    from .trajectory import Generator
+    from .. import design
+    from ..trajectory import Generator
     rng = np.random.default_rng(seed)
     out = {"trigonometric": [], "mode": [], "mode vs design": []}
     for _ in range(n_cases):
@@ -157,7 +157,7 @@ def phase_comparison(n_cases: int, seed: int = 3) -> dict:
     Returns arrays over the cases: ``T``, ``T_ruckig``, ``straight`` (ruckig's move stays on
     the line to 1e-9 of the move, sampled at 201 instants) and ``deviation`` (its largest
     distance from the line, relative to the largest displacement)."""
-    from .multi_axis import phase_duration
+    from ..multi_axis import phase_duration
     rng = np.random.default_rng(seed)
     rows = []
     for _ in range(n_cases):
@@ -175,7 +175,7 @@ def _multi_replan_bench(quick: bool) -> str:
     """Compile and run tests/bench/multi_generator_bench.c; its printed table."""
     import subprocess
     import tempfile
-    from .bench import ROOT, _compiler
+    from .suite import ROOT, _compiler
     cc = _compiler()
     if cc is None:
         return "(multi-axis re-plan cost skipped: no C compiler)"
@@ -201,8 +201,8 @@ def design_call_costs(n_cases: int, rounds: int, seed: int = 11) -> dict:
     ``"python"`` (``design.kinematic``), ``"batch"`` (``design.kinematic_lengths`` on
     all the problems at once, per problem) and ``"cases"``; an empty loop over the same cases
     is subtracted from the loops."""
-    from . import design
-    from .filters import _backend
+    from .. import design
+    from ..filters import _backend
     ffi, lib = _backend("double")
     rng = np.random.default_rng(seed)
     lim = 10.0 ** rng.uniform(-2, 2, (n_cases, 4)) * [1.0, 250.0, 5000.0, 2e5]
@@ -268,7 +268,7 @@ def _cpu(fn, rounds: int) -> float:
 
 
 def main(argv=None) -> int:
-    p = argparse.ArgumentParser(prog="python -m smoothshaper.bench_trajectory",
+    p = argparse.ArgumentParser(prog="python -m smoothshaper.bench.trajectory",
                                 description=__doc__.split("\n\n")[0])
     p.add_argument("--quick", action="store_true", help="a few-second smoke run")
     args = p.parse_args(argv)
@@ -276,8 +276,8 @@ def main(argv=None) -> int:
     rounds = 2 if args.quick else 7
     n_samples = 10_000 if args.quick else 1_000_000
 
-    from . import design
-    from .trajectory import Generator
+    from .. import design
+    from ..trajectory import Generator
 
     try:
         import ruckig  # noqa: F401
@@ -320,7 +320,7 @@ def main(argv=None) -> int:
               f"a prepared array), design.kinematic {c['python'] / 1e3:.3f} us "
               f"({c['python'] / c['raw']:.2f}x the raw call){batch}; "
               f"{c['cases']} different random designs, loop overhead subtracted")
-    from .bench import kinematic_parts
+    from .suite import kinematic_parts
     f = kinematic_parts(3 if args.quick else 15, 200 if args.quick else 5000)
     print(f"  one design (h=1, vmax=0.5, amax=5, jmax=100): design.kinematic "
           f"{f['python'] / 1e3:.3f} us ({f['python'] / f['raw']:.2f}x the raw call with its "
@@ -328,8 +328,8 @@ def main(argv=None) -> int:
           f"us + the fast path (types, C design, three Stage objects) "
           f"{f['fastpath'] / 1e3:.3f} us")
 
-    from .bench_grid_price import report
-    for n in range(1, 9):   # more cases and an adversarial search: bench_grid_price
+    from .grid_price import report
+    for n in range(1, 9):   # more cases and an adversarial search: bench.grid_price
         print(report(n, 200 if args.quick else 3000))
 
     try:

@@ -1,6 +1,7 @@
 """What every ``smoothshaper`` subcommand module shares: exit codes, the one-line error, the
-argument parser, tables, the progress bar and the matplotlib import. Kept apart from
-:mod:`smoothshaper.cli` so subcommand modules import it without importing the CLI (no cycle)."""
+argument parser, tables, the progress bar and the matplotlib import. Kept apart from the
+package's entry point (:mod:`smoothshaper.cli`, which imports every subcommand module) so that
+they import it without a cycle."""
 from __future__ import annotations
 
 import argparse
@@ -54,7 +55,7 @@ class Progress:
 
     Plain use: ``Progress(total, label, enabled)`` and ``advance(n)`` units at a time.
     Phased use (:meth:`phased`): one bar over every phase of a request, each phase weighted by
-    its modelled seconds (:class:`smoothshaper.cli_cost.Cost`), so the bar covers the whole
+    its modelled seconds (:class:`smoothshaper.cli.cost.Cost`), so the bar covers the whole
     work and moves at a steady pace; :meth:`phase` starts the next phase with its own unit
     count and :meth:`finish` draws 100 %.
     """
@@ -69,7 +70,7 @@ class Progress:
 
     @classmethod
     def phased(cls, cost, enabled: bool, stream=None) -> "Progress":
-        """One bar over the phases of ``cost`` (a :class:`smoothshaper.cli_cost.Cost`)."""
+        """One bar over the phases of ``cost`` (a :class:`smoothshaper.cli.cost.Cost`)."""
         bar = cls(1, cost.what, enabled, stream)
         total = cost.seconds or 1.0
         bar._weights = {name: sec / total for name, sec in cost.phases.items()}

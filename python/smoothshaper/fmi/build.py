@@ -1,0 +1,121 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Build the FMUs with CMake and check their model descriptions (fmpy, fmutool)."""
+from __future__ import annotations
+
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+__all__ = ["repo_root", "FMU_MODELS", "build_fmus", "fmpy_problems", "fmutool_problems"]
+
+
+def repo_root() -> Path:
+    """The source checkout this package runs from (where ``fmu/`` and ``c/`` are).
+
+    Returns
+    -------
+    Path
+        The folder three levels above this file (``python/smoothshaper/fmi/``).
+
+    Raises
+    ------
+    OSError
+        The path of this file cannot be resolved.
+    """
+    return Path(__file__).resolve().parents[3]
+
+
+#: The FMUs and their model files under fmu/.
+FMU_MODELS = {"SmoothShaper": "smoothshaper_model.c", "TrajectoryGenerator": "trajectory_model.c",
+              "ElasticPlant": "elastic_plant_model.c", "MultiAxisGenerator": "multi_axis_model.c"}
+
+
+def build_fmus(build_dir: Path, *, source_dir: Path | None = None) -> dict[str, Path]:
+    """Configure and build the FMUs with CMake.
+
+    Parameters
+    ----------
+    build_dir : Path
+        CMake build folder (an existing build is reused).
+    source_dir : Path or None, keyword-only
+        Source checkout (default: the repository this package is installed from).
+
+    Returns
+    -------
+    dict of str to Path
+        Model name -> FMU file, for the FMUs that were built.
+
+    Raises
+    ------
+    RuntimeError
+        No FMU sources under ``source_dir``, or CMake not on PATH.
+    subprocess.CalledProcessError
+        CMake failed.
+    """
+    source_dir = Path(source_dir) if source_dir else repo_root()
+    if not (source_dir / "fmu" / "CMakeLists.txt").is_file():
+        raise RuntimeError(f"no FMU sources under {source_dir} (run from a source checkout)")
+    cmake = shutil.which("cmake")
+    if cmake is None:
+        raise RuntimeError("cmake is not on PATH: it is needed to build the FMUs")
+    subprocess.run([cmake, "-S", str(source_dir), "-B", str(build_dir), "-DSMS_BUILD_TESTS=OFF",
+                    "-DSMS_BUILD_SHARED=OFF", f"-DPython3_EXECUTABLE={sys.executable}"],
+                   check=True, stdout=subprocess.DEVNULL)
+    targets = [m + "_fmu" for m, src in FMU_MODELS.items()
+               if (source_dir / "fmu" / src).is_file()]
+    subprocess.run([cmake, "--build", str(build_dir), "-j2", "--target", *targets], check=True,
+                   stdout=subprocess.DEVNULL)
+    found = {m: build_dir / "fmus" / f"{m}.fmu" for m in FMU_MODELS}
+    return {m: p for m, p in found.items() if p.is_file()}
+
+
+def fmpy_problems(fmu: Path) -> list[str]:
+    """fmpy's validation of the FMU's model description.
+
+    Parameters
+    ----------
+    fmu : str or Path
+        Path of the FMU file.
+
+    Returns
+    -------
+    list of str
+        The problems found (empty: none).
+
+    Raises
+    ------
+    ImportError
+        fmpy is not installed.
+    """
+    from fmpy.validation import validate_fmu
+    return list(validate_fmu(str(fmu)))
+
+
+def fmutool_problems(fmu: Path) -> list[str]:
+    """``fmutool -input FMU -check`` (fmu-manipulation-toolbox).
+
+    Parameters
+    ----------
+    fmu : str or Path
+        Path of the FMU file.
+
+    Returns
+    -------
+    list of str
+        The problems reported (empty: it passed; one entry if fmutool is not installed).
+
+    Raises
+    ------
+    OSError
+        fmutool cannot be started.
+    """
+    exe = shutil.which("fmutool") or str(Path(sys.executable).with_name("fmutool"))
+    if not Path(exe).is_file():
+        return ["fmutool not found (pip install fmu-manipulation-toolbox)"]
+    run_ = subprocess.run([exe, "-input", str(fmu), "-check"], capture_output=True, text=True)
+    text = run_.stdout + run_.stderr
+    problems = [line.strip() for line in text.splitlines() if "ERROR" in line or "WARNING" in line]
+    if "No semantic error" not in text or "compliant" not in text:
+        problems.append("fmutool did not report the FMU compliant")
+    return problems

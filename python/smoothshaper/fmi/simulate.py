@@ -1,0 +1,152 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Run the FMUs in the two importers: fmpy (``simulate_fmu``, default settings,
+``output_interval`` = the communication step) and libcosim (libcosimpy)."""
+from __future__ import annotations
+
+import numpy as np
+
+from .parameters import start_values
+
+__all__ = ["simulate", "simulate_trajectory", "simulate_libcosim"]
+
+
+def simulate(fmu: str, stages, t: np.ndarray, u: np.ndarray, *, Ts: float) -> np.ndarray:
+    """Output of the SmoothShaper FMU simulated by fmpy with default settings and
+    ``output_interval`` = the communication step.
+
+    Parameters
+    ----------
+    fmu : str or Path
+        Path of the FMU file.
+    stages : sequence of Stage or ModeStage
+        The chain, set as start values.
+    t : ndarray of float64, shape (K,)
+        Communication points [s] (:func:`communication_points`).
+    u : ndarray of float64, shape (K,)
+        Inputs set at ``t``.
+    Ts : float, keyword-only
+        The FMU's sample period [s].
+
+    Returns
+    -------
+    ndarray of float64, shape (K,)
+        ``y`` at ``t``.
+
+    Raises
+    ------
+    RuntimeError
+        fmpy returned other points than ``t``.
+    """
+    import fmpy
+    step = float(t[1] - t[0])
+    signal = np.zeros(t.size, dtype=[("time", float), ("u", float)])
+    signal["time"], signal["u"] = t, u
+    result = fmpy.simulate_fmu(fmu, start_values=start_values(stages, Ts=Ts), input=signal,
+                               start_time=0.0, stop_time=float(t[-1]), output_interval=step,
+                               output=["y"], validate=False)
+    if result.size != t.size or not np.allclose(result["time"], t, rtol=0, atol=1e-9 * step):
+        raise RuntimeError(f"fmpy returned {result.size} samples, expected {t.size}")
+    return np.asarray(result["y"], dtype=float)
+
+
+def simulate_trajectory(fmu: str, t: np.ndarray, target: np.ndarray, *, Ts: float, **limits):
+    """Outputs q, v, a, j of the TrajectoryGenerator FMU simulated by fmpy.
+
+    Parameters
+    ----------
+    fmu : str or Path
+        Path of the FMU file.
+    t : ndarray of float64, shape (K,)
+        Communication points [s] (:func:`communication_points`).
+    target : ndarray of float64, shape (K,)
+        Targets set at ``t``.
+    Ts : float, keyword-only
+        The FMU's sample period [s].
+    **limits
+        The FMU's parameters (``vmax``, ``amax``, ``jmax``, ``profile``, ``wn``, ``zeta``,
+        ``q0``).
+
+    Returns
+    -------
+    ndarray of float64, shape (K, 4)
+        q, v, a, j at ``t``.
+
+    Raises
+    ------
+    RuntimeError
+        fmpy returned other points than ``t``.
+    """
+    import fmpy
+    step = float(t[1] - t[0])
+    signal = np.zeros(t.size, dtype=[("time", float), ("target", float)])
+    signal["time"], signal["target"] = t, target
+    r = fmpy.simulate_fmu(fmu, start_values=dict(Ts=Ts, **limits), input=signal, start_time=0.0,
+                          stop_time=float(t[-1]), output_interval=step, output=list("qvaj"),
+                          validate=False)
+    return np.column_stack([np.asarray(r[c], dtype=float) for c in "qvaj"])
+
+
+def simulate_libcosim(fmu: str, t: np.ndarray, u: np.ndarray, params: dict, *, input_name: str = "u",
+                      outputs=("y",)) -> np.ndarray:
+    """Outputs of an FMU in libcosim (libcosimpy), the second importer.
+
+    Fixed step ``t[1] - t[0]``, the input overridden before every step (as fmpy sets it),
+    outputs read after the step; row 0 is the rest point (libcosim observes only after steps)
+    and is left NaN.
+
+    Parameters
+    ----------
+    fmu : str or Path
+        Path of the FMU file.
+    t : ndarray of float64, shape (K,)
+        Communication points [s] (:func:`communication_points`).
+    u : ndarray of float64, shape (K,)
+        Inputs set at ``t``.
+    params : dict
+        Start values: int values are set as Integers (the FMUs' choice codes), the others as
+        Reals.
+    input_name : str, keyword-only
+        The input variable (default ``"u"``).
+    outputs : sequence of str, keyword-only
+        Output variables, one column each (default ``("y",)``).
+
+    Returns
+    -------
+    ndarray of float64, shape (K, len(outputs))
+        The outputs at ``t`` (row 0 NaN).
+
+    Raises
+    ------
+    RuntimeError
+        libcosim refused an initial value or a step failed.
+    """
+    from fmpy import read_model_description
+    from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+    from libcosimpy.CosimManipulator import CosimManipulator
+    from libcosimpy.CosimObserver import CosimObserver
+    from libcosimpy.CosimSlave import CosimLocalSlave
+    log_output_level(CosimLogLevel.ERROR)
+    vr = {v.name: v.valueReference for v in read_model_description(fmu).modelVariables}
+    step_ns = int(round((t[1] - t[0]) * 1e9))
+    execution = CosimExecution.from_step_size(step_size=step_ns)
+    index = execution.add_local_slave(local_slave=CosimLocalSlave(fmu_path=str(fmu), instance_name="s"))
+    override = CosimManipulator.create_override()
+    execution.add_manipulator(manipulator=override)
+    observer = CosimObserver.create_last_value()
+    execution.add_observer(observer=observer)
+    for name, value in {**params, input_name: float(u[0])}.items():
+        if isinstance(value, (int, np.integer)) and not isinstance(value, bool):
+            accepted = execution.integer_initial_value(index, vr[name], int(value))
+        else:
+            accepted = execution.real_initial_value(index, vr[name], float(value))
+        if not accepted:
+            raise RuntimeError(f"libcosim refused the initial value of {name}")
+    y = np.full((t.size, len(outputs)), np.nan)
+    out_vrs = [vr[n] for n in outputs]
+    for k in range(t.size - 1):
+        override.slave_real_values(index, [vr[input_name]], [float(u[k])])
+        if not execution.step():
+            raise RuntimeError(f"libcosim step {k} failed")
+        y[k + 1] = observer.last_real_values(index, out_vrs)
+    return y
