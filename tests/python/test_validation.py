@@ -78,7 +78,6 @@ def test_validation_and_cosim_helpers_name_bad_arguments():
         ("rest", lambda: v.expected_output([sms.harmonic(T=0.05)], t, np.ones(t.size),
                                            Ts=1e-4, rest=np.nan)),
         ("t", lambda: v.target_staircase([0.0, np.nan])),
-        ("t", lambda: cosim.target_signal(["a"])),
         ("n_steps", lambda: cosim.reference(10 ** 400, shaper=True)),
         ("shaper", lambda: cosim.reference(10, shaper="yes")),
         ("p", lambda: cosim.residual_vibration(np.ones(50), np.ones(40))),
