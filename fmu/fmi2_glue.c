@@ -23,8 +23,8 @@
 /* fmi2Integer and the glue's int32_t are one type on every platform FMI 2.0 binaries exist for;
  * fmi2Status and fmu_status share their values. */
 typedef char fmi2_integer_is_int32[(sizeof(fmi2Integer) == sizeof(int32_t)) ? 1 : -1];
-typedef char fmi2_status_values_match[(fmi2Error == (int)FMU_ERROR && fmi2Warning == (int)FMU_WARNING)
-                                      ? 1 : -1];
+typedef char fmi2_status_values_match[(fmi2Error == (int)FMU_ERROR
+                                       && fmi2Warning == (int)FMU_WARNING) ? 1 : -1];
 
 /* The logger's message is a printf format, but importers written in other languages print it
  * verbatim: pass the finished text with every '%' doubled, which suits both. */
@@ -342,7 +342,8 @@ fmi2Status fmi2GetStringStatus(fmi2Component comp, const fmi2StatusKind s, fmi2S
 fmi2Status fmi2EnterEventMode(fmi2Component c) { ME_ONLY(c, "fmi2EnterEventMode"); }
 fmi2Status fmi2NewDiscreteStates(fmi2Component c, fmi2EventInfo *info)
 { (void)info; ME_ONLY(c, "fmi2NewDiscreteStates"); }
-fmi2Status fmi2EnterContinuousTimeMode(fmi2Component c) { ME_ONLY(c, "fmi2EnterContinuousTimeMode"); }
+fmi2Status fmi2EnterContinuousTimeMode(fmi2Component c)
+{ ME_ONLY(c, "fmi2EnterContinuousTimeMode"); }
 fmi2Status fmi2CompletedIntegratorStep(fmi2Component c, fmi2Boolean noSet, fmi2Boolean *enterEvent,
                                        fmi2Boolean *terminate)
 { (void)noSet; (void)enterEvent; (void)terminate; ME_ONLY(c, "fmi2CompletedIntegratorStep"); }

@@ -30,8 +30,8 @@
 #define IN_GET FMU_IN_ANY
 #define IN_SET (FMU_IN_INSTANTIATED | FMU_IN_INIT | FMU_IN_STEP)
 
-typedef char fmi3_status_values_match[(fmi3Error == (int)FMU_ERROR && fmi3Warning == (int)FMU_WARNING)
-                                      ? 1 : -1];
+typedef char fmi3_status_values_match[(fmi3Error == (int)FMU_ERROR
+                                       && fmi3Warning == (int)FMU_WARNING) ? 1 : -1];
 
 /* The array variables (first element's value reference, element count); the table holds one
  * unused entry when the model has none. */

@@ -460,7 +460,7 @@ fmu_status fmu_get_state(fmu_instance *c, const char *func, void **state)
     }
     s->clock = c->clock;
     memcpy(s->model, c->model, fmu_model_size());
-    fmu_model_rebind(s->model, s->mem);   /* the copy describes its own block (serialise reads it) */
+    fmu_model_rebind(s->model, s->mem);   /* the copy describes its own block (serialise reads) */
     *state = s;
     return FMU_OK;
 }

@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /*
  * The serialised FMU state (fmu_serialize.c, which documents the byte format): what the glue's
- * SerializedFMUstateSize / SerializeFMUstate / DeSerializeFMUstate (FMI 3.0: ...FMUState) call. Reading a
+ * SerializedFMUstateSize / SerializeFMUstate / DeSerializeFMUstate (FMI 3.0: ...FMUState)
+ * call. Reading a
  * state rebuilds the model through fmu_build() (fmu_instance.h), never through the glue.
  */
 #ifndef FMU_SERIALIZE_H

@@ -100,7 +100,8 @@ def build_description(model: str, sources: list[str]) -> str:
 
 
 def main(argv):
-    version, model, stage, template, sources = argv[1], argv[2], Path(argv[3]), Path(argv[4]), argv[5:]
+    version, model, stage, template = argv[1], argv[2], Path(argv[3]), Path(argv[4])
+    sources = argv[5:]
     page = template.read_text()
     if version == "3":
         page = for_fmi3(page)

@@ -396,7 +396,8 @@ def model_description_fmi3(model: str, variables: list[Var], description: str,
     min/max, the independent variable `time`, fixedInternalStepSize = Ts's start value."""
     ts = next((v.start for v in variables if v.name == "Ts"), 0.001)
     out = ['<?xml version="1.0" encoding="UTF-8"?>',
-           f'<fmiModelDescription fmiVersion="3.0" modelName="{model}" instantiationToken="{token}"']
+           f'<fmiModelDescription fmiVersion="3.0" modelName="{model}"',
+           f'  instantiationToken="{token}"']
     out += header_attributes(model, description)
     out += ['  version="0.1.0" variableNamingConvention="structured">',
             f'  <CoSimulation modelIdentifier="{model}" canHandleVariableCommunicationStepSize="true"',
@@ -459,7 +460,8 @@ def fmi3_header(model: str, variables: list[Var], token: str) -> str:
              " * elements' value references follow it one by one). */",
              f"#define FMU_FMI3_ARRAY_COUNT {len(arrays)}"]
     table = ", ".join(f"{{{v.vr}u, {v.dims}u}}" for v in arrays)
-    lines.append(f"#define FMU_FMI3_ARRAYS {{{table}}}" if arrays else "#define FMU_FMI3_ARRAYS {{0u, 0u}}")
+    lines.append(f"#define FMU_FMI3_ARRAYS {{{table}}}" if arrays
+                 else "#define FMU_FMI3_ARRAYS {{0u, 0u}}")
     lines += ["", "#endif", ""]
     return "\n".join(lines)
 

@@ -12,8 +12,10 @@ python3 -c 'import sys; sys.exit(0 if sys.version_info >= (3, 10) else "python3 
 python -m pip install -q --upgrade pip
 python -m pip install -q -e ".[validate]"
 
-# The FMUs (SmoothShaper, TrajectoryGenerator, ElasticPlant) with CMake; validate and the
-# system co-simulation reuse this build.
+# The FMUs (SmoothShaper, TrajectoryGenerator, ElasticPlant, MultiAxisGenerator), FMI 2.0 in
+# build/fmu/fmus and FMI 3.0 in build/fmu/fmus/3.0, with CMake; validate (fmpy validate,
+# fmutool -check and fmpy runs of both versions, the FMI 2.0 importers libcosim and fmpy) and
+# the system co-simulation reuse this build.
 cmake -S . -B build/fmu -DCMAKE_BUILD_TYPE=Release -DSMS_BUILD_TESTS=OFF -DSMS_BUILD_SHARED=OFF
 cmake --build build/fmu -j2
 

@@ -48,9 +48,11 @@ def test_run_writes_a_passing_report(tmp_path):
         pytest.skip("cmake is needed to build the FMUs")
     from test_fmu_smoothshaper import ROOT
     fmus = fmi.build_fmus(ROOT / "build-pytest-fmu")
-    assert fmi.run(tmp_path, fmus=fmus, stop_time=0.2) is True
+    fmus3 = fmi.build_fmus(ROOT / "build-pytest-fmu", fmi_version="3.0")
+    assert fmi.run(tmp_path, fmus=fmus, fmus3=fmus3, stop_time=0.2) is True
     report = (tmp_path / "README.md").read_text()
     assert "**Result: PASS**" in report and "| NO |" not in report
+    assert "## FMI 3.0 against FMI 2.0" in report and "| MultiAxisGenerator | 8 axes |" in report
     assert (tmp_path / "smoothshaper_00.png").stat().st_size > 1000
 
 
