@@ -83,6 +83,13 @@ static fmu_status expand(fmu_instance *c, const char *func, const fmi3ValueRefer
     if (nvr > 0 && (vr == NULL || values == NULL))
         return fmu_fail(c, "%s: valueReferences or values is NULL with nValueReferences = %lu",
                         func, (unsigned long)nvr);
+#if FMU_FMI3_ARRAY_COUNT == 0   /* no arrays: every value reference holds one value */
+    (void)buf; (void)elements; (void)i; (void)n; (void)k;
+    if (nvr != nValues)
+        return fmu_fail(c, "%s: nValues = %lu, but the %lu variables hold %lu values", func,
+                        (unsigned long)nValues, (unsigned long)nvr, (unsigned long)nvr);
+    return FMU_OK;
+#endif
     for (i = 0; i < nvr; ++i) {
         size_t e = values_of(vr[i]);
         if (e == 0)

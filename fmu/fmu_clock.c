@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /*
- * The clock of an instance (fmu_instance.h): which ticks a communication step contains, and
- * whether a loaded clock is one a run could have reached. Used by the glue's doStep and by the
- * serialiser, below both.
+ * The clock of an instance (fmu_instance.h): which ticks a communication step contains (the
+ * slack, fmu_clock_slack() in fmu_instance.h), and whether a loaded clock is one a run could have
+ * reached. Used by the glue's doStep and by the serialiser, below both.
  *
  * A step of length h advances the time since the last tick to s + h and contains the ticks
  * n = floor((s + h + slack) / Ts): a tick up to `slack` after the step's end belongs to it, so
@@ -26,13 +26,6 @@
 /* Relative disagreement of t and t0 + ticks*Ts a loaded state may show: a host doing t += h
  * drifts by about 2e-8 t over 1e9 steps of 1 ms. */
 #define CLOCK_REL_SLACK 1e-6
-
-double fmu_clock_slack(double Ts, double t0, double t)
-{
-    const double m = fabs(t) > fabs(t0) ? fabs(t) : fabs(t0);
-    const double slack = FMU_TICK_SLACK * Ts + 0x1p-51 * m;
-    return slack < 0.5 * Ts ? slack : 0.5 * Ts;
-}
 
 int fmu_clock_check(const fmu_clock *k, double Ts, char *msg, size_t len)
 {

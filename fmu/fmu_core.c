@@ -353,6 +353,16 @@ fmu_status fmu_set(fmu_instance *c, const char *func, fmu_type type, const fmu_v
     size_t i;
     if (check_arrays(c, func, vr, nvr, value) != FMU_OK)
         return FMU_ERROR;
+    if (nvr == 1 && type == FMU_REAL && fmu_model_class(type, vr[0]) == FMU_VAR_INPUT) {
+        /* one input, the call of every step: one pass */
+        const double v = *(const double *)value;
+        if (!(fabs(v) <= input_max(c)))
+            return refuse_value(c, func, type, FMU_VAR_INPUT, vr[0], value, 0);
+        if (c->clock.steady != 0 && fmu_model_get_real(c->model, vr[0]) != v)
+            c->clock.steady = 0;   /* a new input: it has to be absorbed again */
+        fmu_model_set_real(c->model, vr[0], v);
+        return FMU_OK;
+    }
     for (i = 0; i < nvr; ++i) {   /* check all first: an error writes nothing */
         fmu_var_class cls = fmu_model_class(type, vr[i]);
         if (cls == FMU_VAR_UNKNOWN)
@@ -549,6 +559,13 @@ fmu_status fmu_deserialize_state(fmu_instance *c, const char *func, const unsign
 static void run_ticks(fmu_instance *c, uint64_t n)
 {
     uint64_t i, limit = 0;   /* computed once the outputs have held for 16 ticks */
+    if (n == 1) {   /* the usual step of h = Ts: one tick, no closed form to set up */
+        if (fmu_model_tick(c->model))
+            c->clock.steady = 0;
+        else
+            ++c->clock.steady;
+        return;
+    }
     i = fmu_model_hold(c->model, n);
     if (i > 0)
         c->clock.steady = 0;
