@@ -321,11 +321,17 @@ fmu_status fmu_get(fmu_instance *c, const char *func, fmu_type type, const fmu_v
     return FMU_OK;
 }
 
-/* Largest |input| accepted now: SMS_INPUT_MAX, or the built configuration's own range. */
+/* Largest |input| a model accepts: SMS_INPUT_MAX, or its built configuration's own range. */
+static double model_input_max(const void *model)
+{
+    const double own = fmu_model_input_max(model);
+    return own < SMS_INPUT_MAX ? own : SMS_INPUT_MAX;
+}
+
+/* Largest |input| accepted now. */
 static double input_max(const fmu_instance *c)
 {
-    const double own = fmu_model_input_max(c->model);
-    return own < SMS_INPUT_MAX ? own : SMS_INPUT_MAX;
+    return model_input_max(c->model);
 }
 
 /* The message for a value fmu_set refuses (formatted only here, never on the hot path). */
@@ -524,6 +530,29 @@ fmu_status fmu_serialize_state(fmu_instance *c, const char *func, void *state,
     return FMU_OK;
 }
 
+/* The inputs a loaded state holds within the range fmu_set keeps them in (a state of this FMU
+ * never holds others). 1, or 0 with msg. */
+static int inputs_in_range(const fmu_snapshot *s, char *msg, size_t len)
+{
+    fmu_vr vrs[1024];
+    const double bound = model_input_max(s->model);
+    size_t n = fmu_model_settable(FMU_REAL, vrs, 1024), i;
+    for (i = 0; i < n && i < 1024; ++i) {
+        double v;
+        if (fmu_model_class(FMU_REAL, vrs[i]) != FMU_VAR_INPUT)
+            continue;
+        v = fmu_model_get_real(s->model, vrs[i]);
+        if (!(fabs(v) <= bound)) {
+            char name[96];
+            fmu_model_name(FMU_REAL, vrs[i], name, sizeof name);
+            snprintf(msg, len, "the state's input %s = %.17g is beyond %.17g, the input range",
+                     name, v, bound);
+            return 0;
+        }
+    }
+    return 1;
+}
+
 fmu_status fmu_deserialize_state(fmu_instance *c, const char *func, const unsigned char *in,
                                  size_t size, void **state)
 {
@@ -537,7 +566,11 @@ fmu_status fmu_deserialize_state(fmu_instance *c, const char *func, const unsign
     if (s == NULL)
         return FAIL(c, "%s: out of memory", func);
     msg[0] = '\0';
-    if (fmu_deserialize(in, size, s, &c->host, msg, sizeof msg) != 0) {
+    if (fmu_deserialize(in, size, s, c, &c->host, msg, sizeof msg) != 0) {
+        free_snapshot(c, s);
+        return FAIL(c, "%s: %s", func, msg);
+    }
+    if (s->mem != NULL && !inputs_in_range(s, msg, sizeof msg)) {
         free_snapshot(c, s);
         return FAIL(c, "%s: %s", func, msg);
     }

@@ -284,15 +284,27 @@ static double get_f64(reader *r)
 
 #define REFUSE(...) do { snprintf(msg, len, __VA_ARGS__); return -1; } while (0)
 
-static int read_values(reader *r, fmu_type type, void *model, char *msg, size_t len)
+/* What the reader learns about the state's settable values on the way: whether its parameters
+ * are the built instance `like`'s (NULL: there is none) and its inputs. */
+typedef struct settables {
+    const void *like;
+    int same;
+    size_t n_inputs;
+    fmu_vr input_vr[MAX_SETTABLE];
+    double input[MAX_SETTABLE];
+} settables;
+
+static int read_values(reader *r, fmu_type type, void *model, settables *seen, char *msg,
+                       size_t len)
 {
     uint32_t n = get_u32(r), i;
+    const size_t expected = fmu_model_settable(type, NULL, 0);
     char name[96];
     if (r->bad)
         REFUSE("truncated state");
-    if (n != fmu_model_settable(type, NULL, 0))
+    if (n != expected)
         REFUSE("state holds %lu %s variables, this model has %lu", (unsigned long)n,
-               type == FMU_REAL ? "Real" : "Integer", (unsigned long)fmu_model_settable(type, NULL, 0));
+               type == FMU_REAL ? "Real" : "Integer", (unsigned long)expected);
     for (i = 0; i < n; ++i) {
         fmu_vr vr = get_u32(r);
         fmu_var_class cls = fmu_model_class(type, vr);
@@ -301,13 +313,24 @@ static int read_values(reader *r, fmu_type type, void *model, char *msg, size_t 
         if (cls != FMU_VAR_INPUT && cls != FMU_VAR_PARAMETER)
             REFUSE("state names value reference %lu, not a settable variable", (unsigned long)vr);
         if (type == FMU_REAL) {
-            double v = get_f64(r);
-            fmu_model_name(type, vr, name, sizeof name);
-            if (!r->bad && !isfinite(v))
+            double v = get_f64(r), w;
+            if (!r->bad && !isfinite(v)) {
+                fmu_model_name(type, vr, name, sizeof name);
                 REFUSE("state holds a non-finite %s", name);
+            }
             fmu_model_set_real(model, vr, v);
+            if (cls == FMU_VAR_INPUT && seen->n_inputs < MAX_SETTABLE) {
+                seen->input_vr[seen->n_inputs] = vr;
+                seen->input[seen->n_inputs++] = v;
+            } else if (cls == FMU_VAR_PARAMETER && seen->same) {
+                w = fmu_model_get_real(seen->like, vr);
+                seen->same = memcmp(&v, &w, sizeof v) == 0;   /* bit for bit */
+            }
         } else {
-            fmu_model_set_integer(model, vr, (int)(int32_t)get_u32(r));
+            const int v = (int)(int32_t)get_u32(r);
+            fmu_model_set_integer(model, vr, v);
+            if (cls == FMU_VAR_PARAMETER && seen->same)
+                seen->same = fmu_model_get_integer(seen->like, vr) == v;
         }
     }
     return r->bad ? (snprintf(msg, len, "truncated state"), -1) : 0;
@@ -328,8 +351,34 @@ static int load_state(void *model, const double *v, size_t n, char *why, size_t 
     return fmu_model_load_state(model, v, n, why, len);
 }
 
+/* Is `like` an instance whose filters are built? */
+static int built_instance(const fmu_instance *like)
+{
+    return like != NULL && like->mem != NULL
+           && (like->clock.phase == FMU_STEP_COMPLETE || like->clock.phase == FMU_TERMINATED);
+}
+
+/* The model of a state with like's parameters (seen->same): like's built struct and block
+ * copied, the state's inputs set on the copy, which is what a build would give (the designs are
+ * functions of the parameters alone): O(block), no design. 0, or non-zero when out of memory. */
+static int copy_built(fmu_snapshot *dst, const fmu_instance *like, const settables *seen,
+                      const fmu_host *host)
+{
+    size_t i;
+    dst->mem = host->alloc(like->mem_bytes > 0 ? like->mem_bytes : 1, 1);
+    if (dst->mem == NULL)
+        return 1;
+    memcpy(dst->mem, like->mem, like->mem_bytes);
+    dst->mem_bytes = like->mem_bytes;
+    memcpy(dst->model, like->model, fmu_model_size());
+    fmu_model_rebind(dst->model, dst->mem);
+    for (i = 0; i < seen->n_inputs; ++i)
+        fmu_model_set_real(dst->model, seen->input_vr[i], seen->input[i]);
+    return 0;
+}
+
 int fmu_deserialize(const unsigned char *in, size_t size, fmu_snapshot *dst,
-                    const fmu_host *host, char *msg, size_t len)
+                    const fmu_instance *like, const fmu_host *host, char *msg, size_t len)
 {
     reader r;
     const char *guid = fmu_model_guid();
@@ -337,6 +386,7 @@ int fmu_deserialize(const unsigned char *in, size_t size, fmu_snapshot *dst,
     size_t i;
     int rc;
     char why[FMU_MESSAGE_LEN / 2];
+    settables seen;
     why[0] = '\0';
     if (size < 16 || memcmp(in, "SMSF", 4) != 0)
         REFUSE("not a smoothshaper FMU state (bad magic)");
@@ -370,8 +420,11 @@ int fmu_deserialize(const unsigned char *in, size_t size, fmu_snapshot *dst,
     dst->clock.phase = (fmu_phase)phase;
     dst->clock.ticks = (uint64_t)hi << 32 | lo;
     fmu_model_defaults(dst->model);
-    if (read_values(&r, FMU_REAL, dst->model, msg, len) != 0
-        || read_values(&r, FMU_INTEGER, dst->model, msg, len) != 0)
+    seen.like = built_instance(like) && is_built(dst) ? like->model : NULL;
+    seen.same = seen.like != NULL;
+    seen.n_inputs = 0;
+    if (read_values(&r, FMU_REAL, dst->model, &seen, msg, len) != 0
+        || read_values(&r, FMU_INTEGER, dst->model, &seen, msg, len) != 0)
         return -1;
     n_state = get_u32(&r);
     for (i = padding(r.pos); i > 0 && !r.bad; --i)
@@ -385,8 +438,12 @@ int fmu_deserialize(const unsigned char *in, size_t size, fmu_snapshot *dst,
     if (fmu_model_sample_period(dst->model) > 0.0
         && fmu_clock_check(&dst->clock, fmu_model_sample_period(dst->model), msg, len) != 0)
         return -1;
-    if (fmu_build(host, dst->model, &dst->mem, &dst->mem_bytes, msg, len) > 0)
+    if (seen.same) {
+        if (copy_built(dst, like, &seen, host) != 0)
+            REFUSE("out of memory");
+    } else if (fmu_build(host, dst->model, &dst->mem, &dst->mem_bytes, msg, len) > 0) {
         return -1;
+    }
     if (n_state != fmu_model_state_count(dst->model))
         REFUSE("state holds %lu filter values, the parameters need %lu", (unsigned long)n_state,
                (unsigned long)fmu_model_state_count(dst->model));

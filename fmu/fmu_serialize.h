@@ -26,12 +26,15 @@ size_t fmu_serialized_size(const fmu_snapshot *s);
 int fmu_serialize(const fmu_snapshot *s, const fmu_host *host, unsigned char *out);
 /**
  * Parse a serialised state into dst (whose model struct is allocated, fmu_model_size() bytes;
- * its block is allocated here through host).
+ * its block is allocated here through host). The filters are rebuilt from the state's
+ * parameters, unless they equal those of `like` (the instance the state is read for, if built:
+ * NULL for none), whose built filters are copied instead, which a build would give bit for bit
+ * and costs no design: the fixed cost of reading a state of the instance's own configuration.
  * @return 0 on success, else non-zero with msg saying why (foreign, other precision, truncated,
  *         corrupted, clock and tick count disagreeing, invalid parameters); dst then holds no
  *         block and must only be freed.
  */
 int fmu_deserialize(const unsigned char *in, size_t size, fmu_snapshot *dst,
-                    const fmu_host *host, char *msg, size_t len);
+                    const fmu_instance *like, const fmu_host *host, char *msg, size_t len);
 
 #endif

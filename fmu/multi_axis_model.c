@@ -640,5 +640,7 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
     for (k = 0; k < 4; ++k)
         for (i = 0; i < m->axes; ++i)
             m->field[F_Q + k][i] = *src++;
+    memset(m->warned, 0, sizeof m->warned);   /* as a build leaves them */
+    memset(m->dropped, 0, sizeof m->dropped);
     return 0;
 }
