@@ -31,7 +31,8 @@ def repo_root() -> Path:
 
 #: The FMUs and their model files under fmu/.
 FMU_MODELS = {"SmoothShaper": "smoothshaper_model.c", "TrajectoryGenerator": "trajectory_model.c",
-              "ElasticPlant": "elastic_plant_model.c", "MultiAxisGenerator": "multi_axis_model.c"}
+              "ElasticPlant": "elastic_plant_model.c", "MultiAxisGenerator": "multi_axis_model.c",
+              "ServoDrive": "servo_drive_model.c"}
 
 
 #: The FMI versions the FMUs are built for, and where each lands in the build folder.
