@@ -2,7 +2,7 @@
 """The FMI 3.0 FMUs, built from the same model files as the FMI 2.0 ones, in fmpy: both
 versions pass fmpy's validation and carry the licence; FMI 3.0 runs bit for bit as FMI 2.0 and
 within the reference's tolerance of the NumPy reference for every model (MultiAxisGenerator's
-arrays for 1 to 8 axes), without fmpy's "missing input" warnings; the independent variable
+arrays for 1 to 8 axes; ServoDrive for every controller), without fmpy's "missing input" warnings; the independent variable
 time; serialised states move between the two versions; FMI 3.0's refusals."""
 from __future__ import annotations
 
@@ -92,6 +92,19 @@ def test_elastic_plant_fmi3_equals_fmi2(fmus, fmus3):  # noqa: F811
     y2 = _fmpy_run(fmus["ElasticPlant"], t, "u", u, {"Ts": TS}, ["y"])
     y3 = _fmpy_run(fmus3["ElasticPlant"], t, "u", u, {"Ts": TS}, ["y"])
     assert np.array_equal(y2, y3)
+
+
+@pytest.mark.parametrize("controller", range(4))   # pid, pid_tdo, pole_placement, lqg
+def test_servo_drive_fmi3_equals_fmi2_for_every_controller(fmus, fmus3, controller):  # noqa: F811
+    from smoothshaper.fmi import servo
+    t = fmi.communication_points(step=servo.TS, stop_time=0.6)
+    q_ref, tau_load = servo.reference_input(t, Ts=servo.TS)
+    y2, y3 = (servo.simulate_servo(f["ServoDrive"], t, q_ref, tau_load, {"controller": controller})
+              for f in (fmus, fmus3))
+    for name in servo.OUTPUTS:
+        assert np.array_equal(y2[name], y3[name]), name
+    assert servo.default_parameters(fmus3["ServoDrive"]) == servo.default_parameters(
+        fmus["ServoDrive"])
 
 
 def test_multi_axis_arrays_for_1_to_8_axes_equal_fmi2_and_the_reference(  # noqa: F811
