@@ -60,7 +60,8 @@ fmu_status fmu_reset(fmu_instance *c);
 fmu_status fmu_get(fmu_instance *c, const char *func, fmu_type type, const fmu_vr vr[],
                    size_t nvr, void *value);
 /** Write values (all checked before any is written): an output, a fixed parameter after
- * initialization, a non-finite Real or an input beyond the model's range is refused. */
+ * initialization, a non-finite Real, an input beyond the model's range or a tunable parameter's
+ * value that fmu_model_check_tunable() refuses after initialization is refused. */
 fmu_status fmu_set(fmu_instance *c, const char *func, fmu_type type, const fmu_vr vr[],
                    size_t nvr, const void *value);
 /** A base type the model has no variables of: any value reference is unknown. */

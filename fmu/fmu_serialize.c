@@ -310,7 +310,7 @@ static int read_values(reader *r, fmu_type type, void *model, settables *seen, c
         fmu_var_class cls = fmu_model_class(type, vr);
         if (r->bad)
             REFUSE("truncated state");
-        if (cls != FMU_VAR_INPUT && cls != FMU_VAR_PARAMETER)
+        if (cls != FMU_VAR_INPUT && cls != FMU_VAR_PARAMETER && cls != FMU_VAR_TUNABLE)
             REFUSE("state names value reference %lu, not a settable variable", (unsigned long)vr);
         if (type == FMU_REAL) {
             double v = get_f64(r), w;
@@ -322,14 +322,16 @@ static int read_values(reader *r, fmu_type type, void *model, settables *seen, c
             if (cls == FMU_VAR_INPUT && seen->n_inputs < MAX_SETTABLE) {
                 seen->input_vr[seen->n_inputs] = vr;
                 seen->input[seen->n_inputs++] = v;
-            } else if (cls == FMU_VAR_PARAMETER && seen->same) {
+            } else if (cls == FMU_VAR_INPUT) {
+                seen->same = 0;   /* an input copy_built could not set: build instead */
+            } else if (seen->same) {   /* a fixed or tunable parameter: like's own, bit for bit */
                 w = fmu_model_get_real(seen->like, vr);
                 seen->same = memcmp(&v, &w, sizeof v) == 0;   /* bit for bit */
             }
         } else {
             const int v = (int)(int32_t)get_u32(r);
             fmu_model_set_integer(model, vr, v);
-            if (cls == FMU_VAR_PARAMETER && seen->same)
+            if (cls != FMU_VAR_INPUT && seen->same)
                 seen->same = fmu_model_get_integer(seen->like, vr) == v;
         }
     }
@@ -358,9 +360,12 @@ static int built_instance(const fmu_instance *like)
            && (like->clock.phase == FMU_STEP_COMPLETE || like->clock.phase == FMU_TERMINATED);
 }
 
-/* The model of a state with like's parameters (seen->same): like's built struct and block
- * copied, the state's inputs set on the copy, which is what a build would give (the designs are
- * functions of the parameters alone): O(block), no design. 0, or non-zero when out of memory. */
+/* The model of a state with like's parameters, fixed and tunable (seen->same: a tunable value
+ * of like's that differs would be copied over the state's, and with fixed stages it sizes the
+ * block): like's built struct and block copied, the state's inputs set on the copy, which is
+ * what a build would give (the designs are functions of the parameters alone; a stage the
+ * state holds retuned is brought to its saved configuration by the model's load_state):
+ * O(block), no design. 0, or non-zero when out of memory. */
 static int copy_built(fmu_snapshot *dst, const fmu_instance *like, const settables *seen,
                       const fmu_host *host)
 {

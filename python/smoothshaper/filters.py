@@ -48,6 +48,7 @@ _STATUS_PARAMETER = {
     # a saved C state of another configuration: the status names the field, the argument is the state
     **{code: "state" for code in range(-43, -21)},
     -44: "coeffs",
+    -45: "index",   # a retune of a stage whose previous switch is still in progress
 }
 #: Saved Chain states start with this tag and format version, then the configuration they
 #: belong to (see :meth:`Chain.get_state`).
@@ -275,6 +276,74 @@ def _as_stage_list(stages) -> tuple[Stage, ...]:
     return out
 
 
+def _process_checked(ffi, process_f64, chain, u, precision: str, limit: float) -> np.ndarray:
+    """``u`` through a chain's glue ``process_f64`` (smspy_*_process_f64, which checks every
+    sample first); ParameterError naming ``u`` for a non-finite sample or one beyond ``limit``
+    (then nothing is filtered)."""
+    # The output: u is copied once (complex, boolean or text input is refused, not cast).
+    y = np.array(_real_array("u", u, ndim=1), dtype=np.float64)
+    if y.size:
+        data = ffi.from_buffer("double[]", y)
+        bad = process_f64(chain, data, data, y.size)
+        if bad >= 0:
+            if math.isfinite(y[bad]):
+                _check_input("u", y, precision, limit)
+            raise ParameterError("u", f"u must be finite: u[{bad}] = {float(y[bad])!r}")
+    return y
+
+
+def _validated_configs(stages: tuple, Ts: float, ffi, lib):
+    """The C configs of ``stages`` at ``Ts``, each validated and sized by the C core, and the
+    delay-line reals each needs; ParameterError naming the offending field and stage (a delay
+    line beyond :data:`MAX_BUFFER_REALS` in total names ``T`` or ``wn``)."""
+    n = len(stages)
+    configs = ffi.new("sms_stage_config[]", n)
+    need = ffi.new("size_t *")
+    sizes = []
+    for i, stage in enumerate(stages):
+        if stage.kind in _stages.SMOOTHERS and stage.T / Ts > MAX_BUFFER_REALS:
+            # Checked here because sizing a billion-sample smoother in C takes seconds.
+            raise ParameterError(
+                "T", f"T too long for Ts={Ts!r}: T/Ts = {stage.T / Ts:.4g} samples "
+                f"exceeds {MAX_BUFFER_REALS}; stages[{i}] is {stage.kind} with T={stage.T!r}")
+        try:
+            _fill_config(configs[i], stage)
+        except ParameterError as exc:
+            raise ParameterError(exc.parameter, f"{exc}; stages[{i}] is {stage.kind}") from None
+        # Validates and sizes the stage (its design is closed-form, O(1)).
+        st = lib.sms_stage_buffer_size(ffi.addressof(configs, i), Ts, need)
+        sizes.append(need[0])
+        if st != 0:
+            parameter, value = _stage_parameter(stage, st)
+            hint = ""
+            if st == _SMS_ERR_DURATION_BELOW_TS and "harmonic" in stage.kind:
+                hint = " (the harmonic families need T >= 2 Ts)"
+            if st == _SMS_ERR_ABOVE_NYQUIST and stage.kind in _stages.SMOOTHERS:
+                zero = f"{stage.k}*{'3' if 'harmonic' in stage.kind else '2'}*pi/T"
+                raise ParameterError(
+                    "T", f"T too short for exact timing: off the sample grid it pins a zero "
+                    f"at k*{zero.split('*', 1)[1]} = {zero}, which must lie below the "
+                    f"Nyquist frequency pi/Ts (got T={stage.T!r}); stages[{i}] is "
+                    f"{stage.kind}, Ts={Ts!r} (use a longer T, k=1, or timing='paper')",
+                    st)
+            _raise_status(st, lib, ffi, f"stages[{i}] is {stage.kind}, Ts={Ts!r}{hint}",
+                          parameter, value)
+    total = sum(sizes)
+    if total > MAX_BUFFER_REALS:
+        _raise_too_long(stages, Ts, sizes, total)
+    return configs, sizes
+
+
+def _raise_too_long(stages, Ts: float, sizes: list, total: int):
+    i = max(range(len(sizes)), key=sizes.__getitem__)
+    parameter = "T" if stages[i].kind in _stages.SMOOTHERS else "wn"
+    raise ParameterError(
+        parameter, f"{parameter} {'too long' if parameter == 'T' else 'too low'} for "
+        f"Ts={Ts!r}: the chain would need a delay line of {total} samples "
+        f"(more than {MAX_BUFFER_REALS}); stages[{i}] is {stages[i].kind} with "
+        f"{parameter}={getattr(stages[i], parameter)!r}")
+
+
 class Chain:
     """Stages in series, filtered by the C core: ``y = H_{n-1}(...H_1(H_0(u)))``.
 
@@ -308,40 +377,7 @@ class Chain:
         if not 1 <= n <= lib.SMS_CHAIN_MAX_STAGES:
             raise ParameterError(
                 "stages", f"stages: a chain needs 1 to {lib.SMS_CHAIN_MAX_STAGES} stages, got {n}")
-        configs = ffi.new("sms_stage_config[]", n)
-        need = ffi.new("size_t *")
-        sizes = []
-        for i, stage in enumerate(self.stages):
-            if stage.kind in _stages.SMOOTHERS and stage.T / self.Ts > MAX_BUFFER_REALS:
-                # Checked here because sizing a billion-sample smoother in C takes seconds.
-                raise ParameterError(
-                    "T", f"T too long for Ts={self.Ts!r}: T/Ts = {stage.T / self.Ts:.4g} samples "
-                    f"exceeds {MAX_BUFFER_REALS}; stages[{i}] is {stage.kind} with T={stage.T!r}")
-            try:
-                _fill_config(configs[i], stage)
-            except ParameterError as exc:
-                raise ParameterError(exc.parameter, f"{exc}; stages[{i}] is {stage.kind}") from None
-            # Validates and sizes the stage (its design is closed-form, O(1)).
-            st = lib.sms_stage_buffer_size(ffi.addressof(configs, i), self.Ts, need)
-            sizes.append(need[0])
-            if st != 0:
-                parameter, value = _stage_parameter(stage, st)
-                hint = ""
-                if st == _SMS_ERR_DURATION_BELOW_TS and "harmonic" in stage.kind:
-                    hint = " (the harmonic families need T >= 2 Ts)"
-                if st == _SMS_ERR_ABOVE_NYQUIST and stage.kind in _stages.SMOOTHERS:
-                    zero = f"{stage.k}*{'3' if 'harmonic' in stage.kind else '2'}*pi/T"
-                    raise ParameterError(
-                        "T", f"T too short for exact timing: off the sample grid it pins a zero "
-                        f"at k*{zero.split('*', 1)[1]} = {zero}, which must lie below the "
-                        f"Nyquist frequency pi/Ts (got T={stage.T!r}); stages[{i}] is "
-                        f"{stage.kind}, Ts={self.Ts!r} (use a longer T, k=1, or timing='paper')",
-                        st)
-                _raise_status(st, lib, ffi, f"stages[{i}] is {stage.kind}, Ts={self.Ts!r}{hint}",
-                              parameter, value)
-        total = sum(sizes)
-        if total > MAX_BUFFER_REALS:
-            self._raise_too_long(sizes, total)
+        configs, sizes = _validated_configs(self.stages, self.Ts, ffi, lib)
         cells = ffi.new("size_t *")
         st = lib.sms_chain_memory_size(configs, n, self.Ts, cells)
         if st != 0:
@@ -365,14 +401,12 @@ class Chain:
         :meth:`step` and :meth:`reset` refuse values beyond it."""
         return self._input_max
 
-    def _raise_too_long(self, sizes: list, total: int):
-        i = max(range(len(sizes)), key=sizes.__getitem__)
-        parameter = "T" if self.stages[i].kind in _stages.SMOOTHERS else "wn"
-        raise ParameterError(
-            parameter, f"{parameter} {'too long' if parameter == 'T' else 'too low'} for "
-            f"Ts={self.Ts!r}: the chain would need a delay line of {total} samples "
-            f"(more than {MAX_BUFFER_REALS}); stages[{i}] is {self.stages[i].kind} with "
-            f"{parameter}={getattr(self.stages[i], parameter)!r}")
+    @property
+    def lag(self) -> float:
+        """The chain's lag [s]: the delay it gives a constant-speed motion (its DC group
+        delay, the sum of the stages' centroids; C ``sms_chain_lag``). See
+        :mod:`smoothshaper.align` for centring and aligning."""
+        return float(self._lib.sms_chain_lag(self._chain)) * self.Ts
 
     # -- filtering ------------------------------------------------------------------------
 
@@ -395,16 +429,8 @@ class Chain:
             Naming ``u`` if it is not 1-D real (complex, boolean and text are refused, not cast),
             holds NaN/Inf, or a sample beyond :attr:`input_max`; the state is then untouched.
         """
-        # The output: u is copied once (complex, boolean or text input is refused, not cast).
-        y = np.array(_real_array("u", u, ndim=1), dtype=np.float64)
-        if y.size:
-            data = self._ffi.from_buffer("double[]", y)
-            bad = self._lib.smspy_chain_process_f64(self._chain, data, data, y.size)
-            if bad >= 0:
-                if math.isfinite(y[bad]):
-                    _check_input("u", y, self.precision, self._input_max)
-                raise ParameterError("u", f"u must be finite: u[{bad}] = {float(y[bad])!r}")
-        return y
+        return _process_checked(self._ffi, self._lib.smspy_chain_process_f64, self._chain, u,
+                                self.precision, self._input_max)
 
     def step(self, x: float) -> float:
         """Filter one sample.

@@ -116,6 +116,10 @@ class MultiAxisGenerator(_state_identity.SavedState):
         Vibration stages applied to every axis, or one list per axis (different lists bend
         straight lines and give a warning); each axis's q, v, a, j pass through its own copy
         of the chain in the C core.
+    align : bool, keyword-only
+        Pad every axis with a fractional delay to the common lag of the axes' stages (C
+        ``config.align``; :attr:`lag` reports it), so that straight moves stay on the line at
+        constant speed whatever stages the axes carry (docs/align.md); no warning then.
     precision : {"double", "float"}, keyword-only
         Which build of the C core runs it.
 
@@ -146,7 +150,7 @@ class MultiAxisGenerator(_state_identity.SavedState):
     MAX_AXES = _MAX_AXES
 
     def __init__(self, *, vmax, amax, jmax, Ts: float, sync: str = "phase", q0=None,
-                 stages=None, precision: str = "double"):
+                 stages=None, align: bool = False, precision: str = "double"):
         ffi, lib = _backend(precision)
         self._ffi, self._lib = ffi, lib
         self.vmax, self.amax, self.jmax = _limits(vmax, amax, jmax)
@@ -157,12 +161,16 @@ class MultiAxisGenerator(_state_identity.SavedState):
         self.Ts = _positive("Ts", Ts)
         self.sync = _sync(sync)
         self.precision = precision
+        if not isinstance(align, (bool, np.bool_)):
+            raise ParameterError("align", f"align must be True or False, got {_show(align)}")
+        self.align = bool(align)
         self.stages = self._stage_lists(stages)
         cfg = ffi.new("sms_multi_generator_config *")
         cfg.n_axes = self.axes
         for i in range(self.axes):
             cfg.vmax[i], cfg.amax[i], cfg.jmax[i] = self.vmax[i], self.amax[i], self.jmax[i]
         cfg.sync = SYNC_MODES.index(self.sync)
+        cfg.align = int(self.align)
         self._configs = []  # kept alive: the config points into them
         for i, lst in enumerate(self.stages):
             if lst:
@@ -208,7 +216,11 @@ class MultiAxisGenerator(_state_identity.SavedState):
         lists = [list(s) for s in stages] if per_axis else [list(stages)] * self.axes
         if any(lst != lists[0] for lst in lists):
             warnings.warn("different vibration stages per axis bend straight lines: the axes "
-                          "are delayed and smoothed differently", stacklevel=3)
+                          "are smoothed differently (in the accelerations; with align=True "
+                          "constant-speed segments stay on the line)" if self.align else
+                          "different vibration stages per axis bend straight lines: the axes "
+                          "are delayed and smoothed differently (align=True keeps "
+                          "constant-speed segments on the line)", stacklevel=3)
         from .filters import Chain
         for lst in {id(lst): lst for lst in lists if lst}.values():
             Chain(lst, Ts=self.Ts, precision=self.precision)  # validates, naming the parameter
@@ -298,6 +310,12 @@ class MultiAxisGenerator(_state_identity.SavedState):
                 f"refused now: {held or 'none'}; the axes keep their goals until the target "
                 "changes"), stacklevel=2)
         return out.astype(np.float64)
+
+    @property
+    def lag(self) -> float:
+        """The output's lag [s]: the common lag of every axis with ``align=True``, else the
+        largest axis's (C ``sms_multi_generator_lag``); 0 without stages."""
+        return float(self._lib.sms_multi_generator_lag(self._gen))
 
     @property
     def refused(self) -> tuple:

@@ -104,9 +104,11 @@ typedef enum sms_status {
     SMS_ERR_STATE_SYNC = -42,       /**< saved with another sync (multi-axis generator) */
     SMS_ERR_STATE_STAGES = -43,     /**< saved with another number of vibration stages on an
                                          axis (multi-axis generator) */
-    SMS_ERR_COEFFS = -44            /**< precomputed coefficients (coeffs.h) that no design
+    SMS_ERR_COEFFS = -44,           /**< precomputed coefficients (coeffs.h) that no design
                                          writes: a length, tap or delay out of range, a
                                          non-finite value */
+    SMS_ERR_RETUNE_BUSY = -45       /**< a retune while the previous switch of the stage is
+                                         still in progress (tunable.h) */
 } sms_status;
 
 /** @brief Stage families. Values are stable (the FMU enumeration and saved states use them). */

@@ -571,3 +571,19 @@ sms_status sms_shaper_taps(const sms_stage_config *config, double Ts, double *ta
         taps[s.delay[i]] = s.gain[i];
     return SMS_OK;
 }
+
+sms_status sms_shaper_lag(const sms_stage_config *config, double Ts, double *lag)
+{
+    sparse s;
+    double sum = 0.0, moment = 0.0;
+    size_t i;
+    sms_status st = build(config, Ts, &s);
+    if (st != SMS_OK)
+        return st;
+    for (i = 0; i < s.n; ++i) {
+        sum += s.gain[i];
+        moment += (double)s.delay[i] * s.gain[i];
+    }
+    *lag = moment / sum;
+    return SMS_OK;
+}

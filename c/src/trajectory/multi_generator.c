@@ -149,6 +149,15 @@ static sms_status check_config(const sms_multi_generator_config *config, double 
     }
     if (bad_axis != NULL)
         *bad_axis = 0;
+    if (config->align != 0 && config->align != 1)
+        return SMS_ERR_KIND;
+    {
+        size_t align_cells;
+        sms_status st = sms_multi_align_cells(config, Ts, &align_cells);
+        if (st != SMS_OK)
+            return st;
+        *n_cells += align_cells;
+    }
     return SMS_OK;
 }
 
@@ -213,6 +222,7 @@ sms_status sms_multi_generator_init(sms_multi_generator *g,
         g->jmax[i] = i < n ? (sms_real)config->jmax[i] : 1;
     }
     sms_multi_identity_write(config, Ts, g->identity);
+    sms_multi_align_init(g, config, Ts, memory);   /* memory: past the stages' */
     sms_multi_generator_reset(g, NULL);
     return SMS_OK;
 }
@@ -242,6 +252,7 @@ void sms_multi_generator_reset(sms_multi_generator *g, const sms_real *position)
             sms_chain_reset(&g->chain[i][3], 0);
         }
     }
+    sms_multi_align_reset(g, position);
 }
 /* Time-optimal unit rest-to-rest move under path limits V, A, J (closed form). */
 static double unit_move_time(double V, double A, double J)

@@ -10,7 +10,8 @@ busy machine slows them alike:
 
 - C per-sample cost (``tests/bench/speed_bench.c`` compiled here against ``c/src`` at ``-O2``
   and ``-O3 -march=native``, double and float): each filter next to the plain recursion of the
-  same filter, a plain biquad, a sparse FIR with the same taps and a direct-form FIR;
+  same filter, a plain biquad, a sparse FIR with the same taps and a direct-form FIR; a
+  retunable stage next to the fixed one (between switches, and switching all the time);
   the online generator per sample; the kinematic design per regime.
 - Python: the :class:`~smoothshaper.filters.Chain` call floor, throughput against
   ``scipy.signal.lfilter`` (the plain recursion, and the FIR taps) and ``oaconvolve``, the peak
@@ -48,6 +49,7 @@ from pathlib import Path
 import numpy as np
 
 __all__ = ["ROOT", "SPEED_BENCH", "interleaved", "Table", "run_c_bench", "C_ROWS", "C_STEP_ROWS",
+           "FOLLOW_ROWS",
            "c_tables",
            "python_tables", "trajectory_table", "kinematic_call_table", "kinematic_parts",
            "fmu_table", "UNION_STAGE_BYTES", "memory_tables",
@@ -166,6 +168,14 @@ C_STEP_ROWS = [
 ]
 
 
+#: Rows of the retunable and scheduled stages: path, contenders (the first is the fixed stage).
+FOLLOW_ROWS = [
+    ("ZVD shaper, retunable", ["fixed", "tunable", "tunable, switching"]),
+    ("rectangular, retunable", ["fixed", "tunable", "tunable, switching"]),
+    ("ZVD shaper, scheduled", ["fixed", "scheduled, every sample", "scheduled, every 16"]),
+]
+
+
 def c_tables(quick: bool) -> tuple[list[Table], dict]:
     """The C tables, and the figures of every build {(flags, precision): figures}."""
     if _compiler() is None or not SPEED_BENCH.is_file():
@@ -210,6 +220,24 @@ def c_tables(quick: bool) -> tuple[list[Table], dict]:
             loop = figures.get(("speed", path, ref))
             cells += [f"{_fmt(mine)} ({_fmt(theirs)})", _ratio(mine, theirs), _ratio(mine, loop)]
         per_call.add(*cells)
+    follow = Table(
+        "C per-sample cost of stages that follow the machine, next to the fixed stage",
+        ["path", "contender"] + [f"{p} {f}: ns (ratio to fixed)" for f, p in results],
+        "ns per sample, the same configuration as the row above (ZVD for the 40 Hz mode; "
+        "rectangular N = 200, paper timing). tunable: a retunable stage (tunable.h) between "
+        "switches; switching: retuned (to 0.8 wn or 0.8 T and back) as soon as each switch "
+        "has ended, so always switching: the retune's design and delay-line zeroing and both "
+        "filters running. scheduled: the ZVD whose mode follows a schedule sweeping a 9-point "
+        "table (0.8 to 1.2 of the 40 Hz mode), its taps redesigned every sample or every 16. "
+        "The fixed path is the stage of the table above, unchanged.")
+    for path, contenders in FOLLOW_ROWS:
+        for contender in contenders:
+            cells = [path, contender]
+            for figures in results.values():
+                mine = figures.get(("speed", path, contender))
+                fixed = figures.get(("speed", path, "fixed"))
+                cells.append(f"{_fmt(mine)} ({_ratio(mine, fixed)})")
+            follow.add(*cells)
     traj = Table("C trajectory paths", ["path"] + [f"{p} {f}" for f, p in results],
                  "Generator: ns per sample while cruising (vmax 250, amax 5000, jmax 2e5, "
                  "Ts = 0.1 ms). Kinematic design: ns per design of a rest-to-rest move.")
@@ -218,7 +246,7 @@ def c_tables(quick: bool) -> tuple[list[Table], dict]:
     for regime in ("vmax reached", "amax reached, vmax not", "jmax only"):
         traj.add(f"kinematic design, {regime} [ns]",
                  *[r.get(("design", regime, "")) for r in results.values()])
-    return [per_sample, per_call, traj], results
+    return [per_sample, per_call, follow, traj], results
 
 
 # -- Python paths ---------------------------------------------------------------------------

@@ -19,7 +19,7 @@ from ..errors import ParameterError
 from .claims import Claim, Figure, Section, claims_table
 
 #: Section keys in report order (most valuable first), each the name of a module here.
-SECTIONS = ("seed000", "seed001", "seed002", "seed003", "seed004", "shapers")
+SECTIONS = ("seed000", "seed001", "seed002", "seed003", "seed004", "shapers", "scheduled")
 
 __all__ = ["run", "build_section", "SECTIONS", "Claim", "Figure", "Section"]
 
