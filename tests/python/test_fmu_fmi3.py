@@ -205,3 +205,46 @@ def test_fmi3_refusals_name_what_is_wrong(fmus3, tmp_path):
     text = "\n".join(s.messages)
     assert "element of an array variable" in text and "nValues = 2" in text
     assert "no event mode" in text
+
+
+def test_smoothshaper_retune_in_step_mode_equals_fmi2(fmus, fmus3, tmp_path):  # noqa: F811
+    """The stages' tunable parameters are variability="tunable" in FMI 3.0 and set in Step
+    Mode as in FMI 2.0 (checked at set, applied at the next communication point): the FMI 3.0
+    run with two retunes, one of them during the switch of the first, equals the FMI 2.0 run
+    bit for bit, and a retune beyond the stage's memory is refused naming the variable."""
+    from test_fmu_smoothshaper import slave
+    md = read_model_description(str(fmus3["SmoothShaper"]))
+    tunable = {v.name: v.variability for v in md.modelVariables if v.name.startswith("stage[1].")}
+    assert tunable["stage[1].wn"] == "tunable" and tunable["stage[1].kind"] == "fixed"
+    reals = {"retune_max_delay": 0.05, "stage[0].T": 0.0153, "stage[1].wn": 200.0,
+             "stage[1].zeta": 0.05}
+    ints = {"stage[0].kind": 0, "stage[1].kind": 4}
+    s3 = Slave3(fmus3["SmoothShaper"], tmp_path / "3")
+    s2 = slave(extract(str(fmus["SmoothShaper"]), str(tmp_path / "2")))
+    s3.fmu.enterInitializationMode()
+    s2.setupExperiment(startTime=0.0)
+    s2.enterInitializationMode()
+    for name, value in reals.items():
+        s3.fmu.setFloat64([s3.vr[name]], [value])
+        s2.setReal([s3.vr[name]], [value])
+    for name, value in ints.items():
+        s3.fmu.setInt32([s3.vr[name]], [value])
+        s2.setInteger([s3.vr[name]], [value])
+    s3.fmu.exitInitializationMode()
+    s2.exitInitializationMode()
+    u, y, wn = s3.vr["u"], s3.vr["y"], s3.vr["stage[1].wn"]
+    plan = {100: 150.0, 104: 260.0}
+    for k in range(400):
+        x = min(max((k - 20) * 0.004, 0.0), 1.0)
+        if k in plan:
+            s3.fmu.setFloat64([wn], [plan[k]])
+            s2.setReal([wn], [plan[k]])
+        s3.fmu.setFloat64([u], [x])
+        s2.setReal([u], [x])
+        s3.fmu.doStep(k * TS, TS)
+        s2.doStep(k * TS, TS)
+        assert s3.fmu.getFloat64([y, s3.vr["lag"]]) == s2.getReal([y, s3.vr["lag"]])
+    with pytest.raises(Exception):
+        s3.fmu.setFloat64([wn], [1.0])   # a ZV at 1 rad/s lasts far beyond retune_max_delay
+    assert "stage[1].wn" in s3.messages[-1] and "retune_max_delay" in s3.messages[-1]
+    assert s3.fmu.getFloat64([wn]) == [260.0]
