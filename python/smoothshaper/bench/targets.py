@@ -27,6 +27,8 @@ import math
 
 import numpy as np
 
+from .. import _optional
+
 __all__ = ["FEATURES", "draw_case", "run_case", "campaign", "main"]
 
 FEATURES = ("rest", "moving", "velocity", "stop")
@@ -66,7 +68,7 @@ def draw_case(rng, feature: str) -> dict:
 
 def _ruckig(case, Ts=None):
     """ruckig's duration for the case (continuous, or discrete with Ts), None when it errs."""
-    import ruckig
+    ruckig = _optional.require("ruckig", "the campaigns against ruckig")
     otg = ruckig.Ruckig(1, Ts) if Ts else ruckig.Ruckig(1)
     inp, traj = ruckig.InputParameter(1), ruckig.Trajectory(1)
     inp.current_position = [case["q0"]]

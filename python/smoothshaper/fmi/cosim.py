@@ -240,7 +240,7 @@ def run(out_dir, *, fmus: dict | None = None, build_dir=None, importers=("libcos
     ssp = write_ssp(out, fmus)
     applies = "fmpy" not in importers or fmpy_applies_bindings(ssp)
     if not applies:
-        import fmpy
+        fmpy = _optional.require("fmpy", "the system co-simulation in fmpy")
         print(f"fmpy {fmpy.__version__}: fmpy.ssp.simulate_ssp does not apply the SSP's "
               "parameter bindings (run alone, the system did not move); passing them as "
               "parameter_set")

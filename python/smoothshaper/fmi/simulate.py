@@ -213,7 +213,7 @@ def simulate_multi_axis(fmu: str, t: np.ndarray, target: np.ndarray, values: dic
     ParameterError
         A start value names no variable, or ``target`` does not fit.
     """
-    import fmpy
+    fmpy = _optional.require("fmpy", "running MultiAxisGenerator in fmpy")
     md = fmpy.read_model_description(str(fmu))
     axes = int(values["axes"])
     rest = [values.get(f"q0[{i}]", 0.0) for i in range(8)]

@@ -277,6 +277,7 @@ def fmpy_applies_bindings(system: System, ssp: Path) -> bool:
     """
     if system.system_input is not None:
         raise ValueError(f"{system.name} has an input: its move does not show the bindings")
+    _optional.require("fmpy", "checking whether fmpy applies an SSP's bindings")
     from fmpy.ssp.simulation import simulate_ssp
     r = simulate_ssp(str(ssp), stop_time=50.5 * system.Ts, step_size=system.Ts)
     return bool(np.any(np.asarray(r[_recorded_columns(system, r)[0]], float) != 0.0))

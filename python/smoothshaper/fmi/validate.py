@@ -103,7 +103,7 @@ RUN_STEPS = ("build", "checks", "importers", "SmoothShaper", "TrajectoryGenerato
 
 
 def _elastic_plant(fmu, t, u, Ts: float) -> np.ndarray:
-    import fmpy
+    fmpy = _optional.require("fmpy", "running ElasticPlant in fmpy")
     sig = np.zeros(t.size, dtype=[("time", float), ("u", float)])
     sig["time"], sig["u"] = t, u
     r = fmpy.simulate_fmu(str(fmu), start_values={"Ts": Ts}, input=sig, stop_time=float(t[-1]),
