@@ -151,3 +151,25 @@ def test_the_band_and_the_modes_do_not_depend_on_the_sample_rate(tmp_path, categ
     # the band's top moves by at most 5 % between rates (at 1.6 kHz the clipped record holds
     # the third harmonic of its 45 Hz mode, 135 Hz, at the cliff's foot)
     assert abs(tops[0] - tops[1]) <= 0.05 * tops[0]
+
+
+def test_two_modes_2_hz_apart_are_resolved(tmp_path):
+    """Two modes 2 Hz apart in series, each about as wide as their distance, make one flat-topped
+    peak with no dip between them: a single mode fitted it 48.7 Hz with zeta 0.004 (too narrow,
+    and the fit then explained 55 % of the spectrum). The pair is now tried for every mode and
+    kept where it lowers the sum of squares by far more than the noise (an F test): both modes
+    within 3 sd of the truth and the fit explains the spectrum."""
+    from smoothshaper import calibrate
+    from smoothshaper.calibrate import identify, records
+    t, A, truth, _ = syn.category_record("two modes 2 Hz apart", 0, fs=800.0)
+    path = tmp_path / "raw_data_x_0.csv"
+    syn.write_csv(path, [t, A[:, 0], A[:, 1], A[:, 2]], ["time", "accel_x", "accel_y", "accel_z"],
+                  fmt="%.6f")
+    rec = records.load(str(path), "auto")
+    res = identify(rec, *calibrate._analyses(rec, "auto")[0])
+    assert len(res.modes) == 2, [(m.f_hz, m.zeta) for m in res.modes]
+    found = sorted(res.modes, key=lambda m: m.wn)
+    for m, (f, z, _) in zip(found, sorted(truth)):
+        assert abs(m.f_hz - f) <= max(3 * m.wn_std / (2 * np.pi), 0.02), (m, f)
+        assert abs(m.zeta - z) <= max(3 * m.zeta_std, 0.1 * z), (m, z)
+    assert res.explains
