@@ -24,6 +24,7 @@ from typing import Iterable, Sequence
 import numpy as np
 
 from . import stages as _stages
+from ._shared import locked as _locked, new_lock as _new_lock
 from .stages import Stage
 from ._checks import (choice as _choice, finite as _finite, finite_signal as _signal,
                       integer as _integer, positive as _positive, real_array as _real_array,
@@ -49,6 +50,7 @@ _STATUS_PARAMETER = {
     **{code: "state" for code in range(-43, -21)},
     -44: "coeffs",
     -45: "index",   # a retune of a stage whose previous switch is still in progress
+    -46: "target", -47: "velocity", -48: "acceleration", -49: "interface",
 }
 #: Saved Chain states start with this tag and format version, then the configuration they
 #: belong to (see :meth:`Chain.get_state`).
@@ -359,6 +361,11 @@ class Chain:
     The chain starts at rest at 0. Every stage has unit DC gain and realises
     ``y[n] = sum_i h[i] x[n-i]`` (notches: their biquad), so the chain is their product.
 
+    A chain may be shared between threads: its methods hold the chain's lock, so calls run
+    one at a time, each on a consistent state (docs/python.md).
+    ``copy.copy``, ``copy.deepcopy`` and ``pickle`` give independent chains that continue
+    bit-exactly.
+
     Raises
     ------
     ParameterError
@@ -368,6 +375,7 @@ class Chain:
 
     def __init__(self, stages: Stage | Iterable[Stage], *, Ts: float, precision: str = "double"):
         self.Ts = _positive("Ts", Ts)
+        self._lock = _new_lock()
         self.stages = _as_stage_list(stages)
         precision = _choice("precision", precision, PRECISIONS)
         ffi, lib = _backend(precision)
@@ -410,6 +418,7 @@ class Chain:
 
     # -- filtering ------------------------------------------------------------------------
 
+    @_locked
     def process(self, u) -> np.ndarray:
         """Filter a block of samples, continuing from the current state.
 
@@ -432,6 +441,7 @@ class Chain:
         return _process_checked(self._ffi, self._lib.smspy_chain_process_f64, self._chain, u,
                                 self.precision, self._input_max)
 
+    @_locked
     def step(self, x: float) -> float:
         """Filter one sample.
 
@@ -458,6 +468,7 @@ class Chain:
         self._lib.sms_chain_step(self._chain, cell)
         return float(cell[0])
 
+    @_locked
     def reset(self, rest: float = 0.0) -> None:
         """Put every stage at rest at ``rest``, as if the input had been ``rest`` forever.
 
@@ -497,6 +508,7 @@ class Chain:
             head.extend(_stage_fields(stage))
         return np.array(head, dtype=np.float64)
 
+    @_locked
     def get_state(self) -> np.ndarray:
         """The full dynamic state, tagged with the configuration it belongs to.
 
@@ -551,6 +563,7 @@ class Chain:
                             f"this chain has {field}={ours!r}")
         return None
 
+    @_locked
     def set_state(self, state) -> None:
         """Restore a state saved by :meth:`get_state`.
 
@@ -587,6 +600,7 @@ class Chain:
 
     state = property(get_state, set_state, doc="The dynamic state (see get_state/set_state).")
 
+    @_locked
     def copy(self) -> "Chain":
         """An independent chain with the same stages and the same current state.
 
@@ -599,7 +613,8 @@ class Chain:
         """
         ffi, lib = self._ffi, self._lib
         twin = Chain.__new__(Chain)
-        twin.__dict__.update(self.__dict__)       # the description; the memory is replaced:
+        twin.__dict__.update(self.__dict__)       # the description; lock and memory are new:
+        twin._lock = _new_lock()
         twin._memory, twin._memory_c = _cells(ffi, int(self._chain.memory_len))
         twin._memory[:] = self._memory
         n = len(self.stages)

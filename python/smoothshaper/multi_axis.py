@@ -19,7 +19,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import _reach, _state_identity
+from . import _kinematic_fastpath, _reach, _state_identity
+from ._shared import Twins, locked, new_lock
 from .errors import DroppedTargetWarning
 from .filters import MAX_STAGE_LIST, ParameterError, _backend, _fill_config, _real_dtype
 from .reference import multi_axis as _ref
@@ -91,7 +92,7 @@ def _infeasible(lib, ffi, cfg, Ts, st):
                           Ts, st, axis=i)
 
 
-class MultiAxisGenerator(_state_identity.SavedState):
+class MultiAxisGenerator(_state_identity.SavedState, Twins):
     """Online multi-axis generator (C core ``sms_multi_generator``, up to ``MAX_AXES`` axes).
 
     :meth:`process` takes targets of shape (n, axes) and returns (n, axes, 4): q, v, a, j of
@@ -130,6 +131,12 @@ class MultiAxisGenerator(_state_identity.SavedState):
         stage's parameter; also for limits with which no move of an axis can reach its vmax
         (``sms_multi_generator_reach``, docs/multi-axis.md "Feasible limits"), naming the
         axis, its values and the quantity out of range.
+
+    Notes
+    -----
+    A generator may be shared between threads (its methods hold its lock, so calls run one at
+    a time); ``copy.copy``, ``copy.deepcopy`` and ``pickle`` give independent generators that
+    continue bit-exactly (docs/python.md).
     """
 
     _STATE_C = "sms_multi_generator"
@@ -153,6 +160,7 @@ class MultiAxisGenerator(_state_identity.SavedState):
                  stages=None, align: bool = False, precision: str = "double"):
         ffi, lib = _backend(precision)
         self._ffi, self._lib = ffi, lib
+        self._lock = new_lock()
         self.vmax, self.amax, self.jmax = _limits(vmax, amax, jmax)
         self.axes = self.vmax.size
         if not 1 <= self.axes <= lib.SMS_MULTI_MAX_AXES:
@@ -196,7 +204,21 @@ class MultiAxisGenerator(_state_identity.SavedState):
                                           self._memory, n_cells[0], bad)
         if st != 0:  # the size query above validated everything
             raise ParameterError("stages", ffi.string(lib.sms_status_string(st)).decode(), st)
+        self._init_args = dict(vmax=self.vmax, amax=self.amax, jmax=self.jmax, Ts=self.Ts,
+                               sync=self.sync, stages=self.stages, precision=precision)
         self.reset(q0)
+
+    def _full_state(self):
+        # with the diagnostics that are not part of the saved state
+        return self.get_state(), {"dropped": int(self._gen.dropped),
+                                  "refused": [int(self._gen.move[i].refused)
+                                              for i in range(self.axes)]}
+
+    def _set_full_state(self, state, counters) -> None:
+        self.set_state(state)
+        self._gen.dropped = counters["dropped"]
+        for i, refused in enumerate(counters["refused"]):
+            self._gen.move[i].refused = refused
 
     def _stage_lists(self, stages) -> list[list]:
         """One list of stage descriptions per axis (validated: errors name the parameter)."""
@@ -226,6 +248,7 @@ class MultiAxisGenerator(_state_identity.SavedState):
             Chain(lst, Ts=self.Ts, precision=self.precision)  # validates, naming the parameter
         return lists
 
+    @locked
     def reset(self, q0=None) -> None:
         """Rest at ``q0`` on every axis (v = a = j = 0).
 
@@ -251,9 +274,11 @@ class MultiAxisGenerator(_state_identity.SavedState):
             if bad.size:
                 raise ParameterError("q0", f"q0[{bad[0]}] must be finite, got {float(q[bad[0]])!r}")
         self.q0 = q
+        self._init_args["q0"] = q.copy()         # where a copy's reset() returns to
         buf = np.ascontiguousarray(q, dtype=_real_dtype(self.precision))
         self._lib.sms_multi_generator_reset(self._gen, self._ffi.from_buffer("sms_real[]", buf))
 
+    @locked
     def process(self, targets) -> np.ndarray:
         """Run a block of target vectors.
 
@@ -380,11 +405,30 @@ def phase_duration(delta, *, vmax, amax, jmax) -> float:
     Raises
     ------
     ParameterError
-        Naming a bound (``vmax[i]``, ...) or ``delta``.
+        Naming a bound (``vmax[i]``, ...) or ``delta``; ``delta`` also when the duration
+        exceeds the largest double (``delta = [1e300]`` with ``vmax = 1e-300``).
+
+    Notes
+    -----
+    The C core's ``sms_multi_phase_duration``. Plain numbers (a list or tuple per argument,
+    or one number for every axis) take a fast path that checks them in C (about as long as
+    ruckig's ``calculate`` of the same move, ``python -m smoothshaper.bench``); anything else,
+    and every refused value, runs the checks that name the argument. Limits more than 2^200
+    away from the displacement use the NumPy reference's time-scale form instead, which
+    stays finite there.
     """
+    T = _kinematic_fastpath.phase_duration(delta, vmax, amax, jmax)
+    if T is not None:
+        return T
     d = _finite_vector("delta", delta)
     v, a, j = _limits(vmax, amax, jmax, d.size)
-    return _ref._phase_duration(d, v, a, j)
+    T = _kinematic_fastpath.phase_duration(d.tolist(), v.tolist(), a.tolist(), j.tolist())
+    if T is None:
+        T = _ref._phase_duration(d, v, a, j)
+    if not math.isfinite(T):
+        raise ParameterError("delta", "delta is too long for these limits: the move lasts more "
+                             "than the largest double (1.8e308 s)")
+    return T
 
 
 def multi_axis_move(start, target, *, vmax, amax, jmax, Ts: float, sync: str = "phase",

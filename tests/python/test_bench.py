@@ -25,8 +25,11 @@ def test_quick_run_writes_every_table(tmp_path, capsys):
                   "C per-sample cost of stages that follow the machine, next to the fixed stage",
                   "C trajectory paths",
                   "Python call floor", "Python throughput", "Python peak memory",
-                  "Design cost of a chain"):
+                  "Design cost of a chain", "Kinematic design against ruckig",
+                  "Multi-axis duration against ruckig"):
         assert f"## {title}" in text
+    multi = text.split("## Multi-axis duration against ruckig")[1].split("\n## ")[0]
+    assert multi.count("| yes |") == 2, multi      # the same durations as ruckig
     for path in ("rectangular", "harmonic", "damped harmonic", "exponential", "notch",
                  "ZV shaper", "generator step", "vmax reached", "oaconvolve",
                  "ZVD shaper, retunable", "rectangular, retunable", "ZVD shaper, scheduled"):

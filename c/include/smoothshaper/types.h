@@ -55,7 +55,7 @@ typedef double sms_real;  /**< signal and state type (double build) */
  * names the offending argument. On any error the object passed in is left untouched.
  */
 typedef enum sms_status {
-    SMS_OK = 0,
+    SMS_OK = 0,                     /**< success */
     SMS_ERR_NULL = -1,              /**< a required pointer argument is NULL */
     SMS_ERR_SAMPLE_PERIOD = -2,     /**< Ts is NaN/Inf or <= 0 */
     SMS_ERR_DURATION = -3,          /**< T is NaN/Inf or <= 0 */
@@ -107,8 +107,16 @@ typedef enum sms_status {
     SMS_ERR_COEFFS = -44,           /**< precomputed coefficients (coeffs.h) that no design
                                          writes: a length, tap or delay out of range, a
                                          non-finite value */
-    SMS_ERR_RETUNE_BUSY = -45       /**< a retune while the previous switch of the stage is
+    SMS_ERR_RETUNE_BUSY = -45,      /**< a retune while the previous switch of the stage is
                                          still in progress (tunable.h) */
+    SMS_ERR_TARGET_POSITION = -46,  /**< a target position is NaN/Inf */
+    SMS_ERR_TARGET_VELOCITY = -47,  /**< a target velocity is NaN/Inf, beyond the velocity
+                                         bounds, or not 0 where the profile plans to rest only */
+    SMS_ERR_TARGET_ACCELERATION = -48, /**< a target acceleration is NaN/Inf, beyond the
+                                         acceleration bounds, takes the velocity beyond its
+                                         bounds before or after the target (v -+ a|a|/(2 jmax)),
+                                         or is not 0 where the profile cannot hold one */
+    SMS_ERR_INTERFACE = -49         /**< unknown control interface (::sms_interface) */
 } sms_status;
 
 /** @brief Stage families. Values are stable (the FMU enumeration and saved states use them). */

@@ -343,7 +343,8 @@ def trajectory_table(quick: bool, c_figures: dict) -> list[Table]:
     try:
         import ruckig
     except ImportError:
-        print("\n(kinematic design against ruckig skipped: ruckig is not installed)")
+        print("\n(kinematic design against ruckig skipped: ruckig is not installed; "
+              "pip install 'smoothshaper[bench]')")
         return []
     from .. import design as kinematic_design
     from ..filters import _backend
@@ -386,7 +387,37 @@ def trajectory_table(quick: bool, c_figures: dict) -> list[Table]:
                   _ratio(in_c * 1e-9 if in_c else None, t["ruckig"]),
                   _ratio(t["sms"], t["ruckig"]), _ratio(t["python"], t["ruckig"]),
                   "yes" if same else "NO")
-    return [table]
+    return [table, _phase_duration_table(quick, ruckig)]
+
+
+def _phase_duration_table(quick: bool, ruckig) -> Table:
+    """multi_axis.phase_duration against ruckig's phase-synchronised calculate, same moves."""
+    from .. import multi_axis
+    table = Table("Multi-axis duration against ruckig",
+                  ["move", "multi_axis.phase_duration ns", "ruckig ns", "ratio", "same duration"],
+                  "A phase-synchronised rest-to-rest move of three axes with limits per axis. "
+                  "ruckig: Ruckig(3).calculate with Synchronization.Phase through its Python "
+                  "binding, objects prepared beforehand; smoothshaper: "
+                  "multi_axis.phase_duration with the lists as a user writes them (the "
+                  "checks and sms_multi_phase_duration in one C call).")
+    limits = dict(vmax=[0.5, 0.4, 0.2], amax=[5.0, 4.0, 2.0], jmax=[200.0, 150.0, 100.0])
+    cases = {"long move (cruise)": [0.3, 0.1, 0.05], "short move": [0.01, -0.004, 0.002]}
+    for move, delta in cases.items():
+        otg, inp, traj = ruckig.Ruckig(3), ruckig.InputParameter(3), ruckig.Trajectory(3)
+        inp.current_position, inp.target_position = [0.0] * 3, delta
+        inp.max_velocity, inp.max_acceleration = limits["vmax"], limits["amax"]
+        inp.max_jerk = limits["jmax"]
+        inp.synchronization = ruckig.Synchronization.Phase
+        duration = multi_axis.phase_duration
+        t = interleaved({
+            "sms": lambda: duration(delta, **limits),
+            "ruckig": lambda: otg.calculate(inp, traj),
+        }, rounds=3 if quick else 15, repeat=200 if quick else 5000)
+        T = duration(delta, **limits)
+        same = abs(T - traj.duration) <= 1e-9 * traj.duration
+        table.add(move, t["sms"] * 1e9, t["ruckig"] * 1e9, _ratio(t["sms"], t["ruckig"]),
+                  "yes" if same else "NO")
+    return table
 
 
 def kinematic_call_table(quick: bool) -> list[Table]:
@@ -484,7 +515,8 @@ def fmu_table(quick: bool, build_dir: Path) -> list[Table]:
         from fmpy import extract, read_model_description
         from fmpy.fmi2 import FMU2Slave
     except ImportError:
-        print("\n(FMU benchmark skipped: fmpy is not installed)")
+        print("\n(FMU benchmark skipped: fmpy is not installed; "
+              "pip install 'smoothshaper[validate]')")
         return []
     if shutil.which("cmake") is None:
         print("\n(FMU benchmark skipped: cmake is needed to build the FMUs)")

@@ -14,6 +14,7 @@ import os
 
 import numpy as np
 
+from .. import _optional
 from .._plotting import percent_axis
 from .candidates import BOX, candidate_taps
 
@@ -57,9 +58,7 @@ def _modes(res):
 
 
 def write(cal, out_dir: str) -> list[str]:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = _optional.pyplot("calibrate's figures (--out)")
     os.makedirs(out_dir, exist_ok=True)
     Ts = cal.reference.Ts
     n = len(cal.axes)

@@ -31,6 +31,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .. import _optional
 from .._checks import (finite_array as _finite_array, finite_signal as _finite_signal,
                        integer as _integer)
 from ..errors import ParameterError
@@ -182,9 +183,7 @@ def run_all(ssp: Path, ssp_libcosim: Path, *, importers=("libcosim", "fmpy")) ->
 
 
 def plot(path: Path, runs: list[Run]) -> None:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = _optional.pyplot("the system co-simulation (its figure)")
     fig, (a0, a1) = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
     n = runs[0].t.size
     _, _, p_ref_off = reference(n, shaper=False)
@@ -214,8 +213,11 @@ def run(out_dir, *, fmus: dict | None = None, build_dir=None, importers=("libcos
     """Build the FMUs (unless given), write the SSP, run it with and without the shaper in each
     importer, compare with the reference; write README.md, ShapedMotion.ssp and
     system_cosim.png into out_dir; then the same for ShapedServo (:mod:`.servo_cosim`) when
-    ServoDrive.fmu is among the FMUs. True if every run equals the reference."""
+    ServoDrive.fmu is among the FMUs. True if every run equals the reference; MissingDependency
+    (an ImportError naming the extra) before anything is done when an importer is missing."""
     from .build import build_fmus
+    needs = [{"libcosim": "libcosimpy"}.get(imp, imp) for imp in importers]
+    _optional.require_all(needs + ["matplotlib"] * bool(plots), "the system co-simulation")
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     if fmus is None:
