@@ -151,6 +151,7 @@ static int from_blend(sms_plan *out, sms_real Ts, size_t N, sms_real q, sms_real
     plan_begin(&tmp);
     for (k = 0; k + 1 < m; ++k) {
         sms_real pa, va, aa, ja, pb, vb, ab, jb, mid = (sms_real)0.5 * (cut[k] + cut[k + 1]);
+        sms_real vk, ak, jk, dk = cut[k + 1] - cut[k];
         profile_at(A, v, a, cut[k], &pa, &va, &aa, &ja);
         profile_at(B, v, a, cut[k], &pb, &vb, &ab, &jb);
         /* the jerk of the piece each lies in over this interval (its middle) */
@@ -159,8 +160,15 @@ static int from_blend(sms_plan *out, sms_real Ts, size_t N, sms_real q, sms_real
             profile_at(A, v, a, mid, &x0, &x1, &x2, &ja);
             profile_at(B, v, a, mid, &x0, &x1, &x2, &jb);
         }
-        sms_plan_push(&tmp, Ts, &n, &f, q + (lambda * pa + mu * pb), lambda * va + mu * vb,
-                      lambda * aa + mu * ab, lambda * ja + mu * jb, cut[k + 1] - cut[k]);
+        vk = lambda * va + mu * vb;
+        ak = lambda * aa + mu * ab;
+        jk = lambda * ja + mu * jb;
+        /* The position by integrating the blend, not blending the positions: two motions that
+         * end far apart either way (a long minimum duration) travel far, and lambda pa + mu pb
+         * would carry the rounding of their distances into every segment's start (in float
+         * a step of u vmax T between segments, far above the jerk's floor). */
+        sms_plan_push(&tmp, Ts, &n, &f, q, vk, ak, jk, dk);
+        q += dk * (vk + dk * (ak * (sms_real)0.5 + dk * jk * (sms_real)(1.0 / 6.0)));
     }
     /* on the grid: the target state exactly on sample N */
     move_on(&tmp, Ts, N, 0, last[0], last[1], last[2], J);
