@@ -145,9 +145,9 @@ class Generator(_state_identity.SavedState, Twins):
         "``sizeof(sms_real)`` (8 double, 4 float), kind (100, a generator), ``Ts``, ``vmax``, "
         "``amax``, ``jmax``, profile index in :data:`~smoothshaper.design.PROFILES`, ``wn`` "
         "(0 without a mode), ``zeta``); then the target and the goal of the running plan, "
-        "each as position, velocity, acceleration and interface (0 position, 1 velocity; a "
-        "stop is the velocity interface to 0), the running plan's start q, v, a and the "
-        "samples since it (n = 23 without a mode; the offsets are ``SMS_GENERATOR_STATE_*`` "
+        "each as position, velocity, acceleration, interface (0 position, 1 velocity; a "
+        "stop is the velocity interface to 0) and minimum duration, the running plan's start "
+        "q, v, a and the samples since it (n = 25 without a mode; the offsets are ``SMS_GENERATOR_STATE_*`` "
         "of trajectory.h); with a mode also the samples the plan has rested and the four "
         "states of the tuned stage (each with its own stage identity).")
 
