@@ -2,8 +2,8 @@
 /*
  * TrajectoryGenerator: the online generator of the smoothshaper library (sms_generator_*,
  * trajectory.h) as an FMU. Inputs: the target (position, velocity and acceleration at arrival,
- * and the interface: position, velocity or stop), held over each step; outputs: q, v, a, j at
- * the internal ticks, never beyond vmax, amax, jmax for any target sequence. At
+ * the interface: position, velocity or stop, and the move's minimum duration), held over
+ * each step; outputs: q, v, a, j at the internal ticks, never beyond vmax, amax, jmax for any target sequence. At
  * fmi2ExitInitializationMode the generator rests at the parameter q0 (default 0): a target that
  * differs from q0 from the first step on is a move. A target the generator cannot take (a
  * velocity or acceleration beyond the limits) fails fmi2DoStep naming it, nothing changed.
@@ -19,7 +19,7 @@
 
 typedef struct tg_model {
     double target, out[4];                     /* q, v, a, j */
-    double target_velocity, target_acceleration;
+    double target_velocity, target_acceleration, minimum_duration;
     int interface;                             /* sms_interface */
     double Ts, vmax, amax, jmax, wn, zeta, q0;
     int profile;
@@ -29,23 +29,24 @@ typedef struct tg_model {
     sms_generator gen;                         /* tables in the glue's block */
 } tg_model;
 
-/* Real value references and the field each one is, in modelDescription order. */
 /* Real value references and the field each one is, in modelDescription order: the inputs,
  * then the outputs (N_REAL_INPUTS .. N_REAL_INPUTS + 3), then the parameters. */
 static const fmu_vr real_vrs[] = {
-    TG_VR_TARGET, TG_VR_TARGET_VELOCITY, TG_VR_TARGET_ACCELERATION, TG_VR_Q, TG_VR_V, TG_VR_A,
-    TG_VR_J, TG_VR_TS, TG_VR_VMAX, TG_VR_AMAX, TG_VR_JMAX, TG_VR_WN, TG_VR_ZETA, TG_VR_Q0
+    TG_VR_TARGET, TG_VR_TARGET_VELOCITY, TG_VR_TARGET_ACCELERATION, TG_VR_MINIMUM_DURATION,
+    TG_VR_Q, TG_VR_V, TG_VR_A, TG_VR_J, TG_VR_TS, TG_VR_VMAX, TG_VR_AMAX, TG_VR_JMAX, TG_VR_WN,
+    TG_VR_ZETA, TG_VR_Q0
 };
 static const char *const real_names[] = {
-    "target", "target_velocity", "target_acceleration", "q", "v", "a", "j", "Ts", "vmax", "amax",
-    "jmax", "wn", "zeta", "q0"
+    "target", "target_velocity", "target_acceleration", "minimum_duration", "q", "v", "a", "j",
+    "Ts", "vmax", "amax", "jmax", "wn", "zeta", "q0"
 };
 #define N_REALS (sizeof real_vrs / sizeof real_vrs[0])
-#define N_REAL_INPUTS 3u
+#define N_REAL_INPUTS 4u
 
 static const size_t real_offsets[] = {
     offsetof(tg_model, target), offsetof(tg_model, target_velocity),
-    offsetof(tg_model, target_acceleration), offsetof(tg_model, out[0]),
+    offsetof(tg_model, target_acceleration), offsetof(tg_model, minimum_duration),
+    offsetof(tg_model, out[0]),
     offsetof(tg_model, out[1]), offsetof(tg_model, out[2]), offsetof(tg_model, out[3]),
     offsetof(tg_model, Ts), offsetof(tg_model, vmax), offsetof(tg_model, amax),
     offsetof(tg_model, jmax), offsetof(tg_model, wn), offsetof(tg_model, zeta),
@@ -71,6 +72,7 @@ void fmu_model_defaults(void *model)
     m->target = 0.0;
     m->target_velocity = 0.0;
     m->target_acceleration = 0.0;
+    m->minimum_duration = 0.0;
     m->interface = SMS_INTERFACE_POSITION;
     memset(m->out, 0, sizeof m->out);
     m->Ts = 0.001;
@@ -332,6 +334,7 @@ static sms_target held(const tg_model *m)
     t.velocity = (sms_real)m->target_velocity;
     t.acceleration = (sms_real)m->target_acceleration;
     t.interface = m->interface;
+    t.minimum_duration = (sms_real)m->minimum_duration;
     return t;
 }
 
@@ -351,6 +354,12 @@ int fmu_model_check_inputs(const void *model, char *msg, size_t len)
                         m->interface), 1;
     case SMS_ERR_TARGET_POSITION:
         return snprintf(msg, len, "target = %.17g: %s", m->target, sms_status_string(st)), 1;
+    case SMS_ERR_DURATION:
+        if (m->profile == SMS_PROFILE_TRIGONOMETRIC && m->minimum_duration >= 0.0)
+            return snprintf(msg, len, "minimum_duration = %.17g: the trigonometric profile does "
+                            "not stretch a move (minimum_duration 0)", m->minimum_duration), 1;
+        return snprintf(msg, len, "minimum_duration = %.17g must be finite, >= 0 and below 2^50 "
+                        "ticks of Ts = %.17g", m->minimum_duration, m->Ts), 1;
     case SMS_ERR_TARGET_VELOCITY:
         if (m->profile == SMS_PROFILE_TRIGONOMETRIC && fabs(v) <= V)
             return snprintf(msg, len, "target_velocity = %.17g: the trigonometric profile plans "

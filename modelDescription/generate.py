@@ -249,6 +249,12 @@ def trajectory_generator() -> tuple[list[Var], list[str], str]:
             "0 for the trigonometric profile", "", 0.0, c_name="TARGET_ACCELERATION"),
         Var("interface", 7, "Integer", "input", "what the target asks for; "
             + choice_text("Interface"), "", 0, "Interface", "discrete", c_name="INTERFACE"),
+        Var("minimum_duration", 8, "Real", "input", "least duration of the move to this target "
+            "(ruckig's minimum_duration), from the tick it is given on: the target is reached "
+            "exactly on the first tick at or after both this and the time-optimal duration at "
+            "which a motion within the limits exists; 0 = as fast as possible; finite, >= 0 "
+            "(0 for the trigonometric profile; ignored for a stop)", "s", 0.0, min=0.0,
+            c_name="MINIMUM_DURATION"),
     ]
     vs += [
         Var("Ts", 10, "Real", "parameter", "sample period of the internal ticks; finite, > 0", "s",

@@ -305,7 +305,10 @@ def test_inputs_are_continuous_outputs_have_no_direct_feedthrough(fmus):
         assert all(v.min is not None or v.max is not None for v in reals)
         assert all(v.unit in (None, "s", "1/s", "rad/s", "1", "kg.m2", "N.m/rad", "N.m.s/rad",
                               "rad", "N.m") for v in md.modelVariables)
-        signals = [v for v in md.modelVariables if v.causality in ("input", "output")]
+        # (a duration input, TrajectoryGenerator's minimum_duration, is in seconds)
+        signals = [v for v in md.modelVariables if v.causality in ("input", "output")
+                   and v.name != "minimum_duration"]
+        assert all(v.unit == "s" for v in md.modelVariables if v.name == "minimum_duration")
         if md.modelName != "ServoDrive":   # a drive's signals are angles and torques
             assert all(v.unit is None for v in signals)   # any unit: the filters are linear
         else:
