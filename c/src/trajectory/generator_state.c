@@ -123,9 +123,21 @@ sms_status sms_generator_check_state(const sms_generator *g, const double *src, 
     if (!is_count(src[GEN_STAGES], (double)g->stage_length))
         return SMS_ERR_STATE;
     per = sms_smoother_state_count(&g->stage[0]);
-    for (i = 0; i < 4; ++i)
-        if (sms_smoother_check_state(&g->stage[i], src + GEN_STAGES + 1u + i * per, per) != SMS_OK)
-            return SMS_ERR_STATE;
+    {
+        /* each stage's values within what its signal leaves in it: positions within the
+         * stage's input range, v, a, j within the limits to the reported values' tolerance
+         * (a state no run produces, a forged one, would report beyond them) */
+        const double range[4] = {
+            sms_smoother_input_max(&g->stage[0]),
+            (double)g->limits.vmax * (1.0 + SMS_LIMIT_RTOL),
+            (double)g->limits.amax * (1.0 + SMS_LIMIT_RTOL),
+            (double)g->limits.jmax * (1.0 + SMS_LIMIT_RTOL)
+        };
+        for (i = 0; i < 4; ++i)
+            if (sms_smoother_check_state_range(&g->stage[i], src + GEN_STAGES + 1u + i * per, per,
+                                               range[i]) != SMS_OK)
+                return SMS_ERR_STATE;
+    }
     return SMS_OK;
 }
 
