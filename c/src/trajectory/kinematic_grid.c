@@ -111,7 +111,7 @@ sms_status sms_kin_on_grid(const sms_kin_plan *p, double h, const double *T, sms
     size_t n = p->n, m = tuned ? n - 1 : n, i, combos = 1, c;
     double base[SMS_KINEMATIC_MAX_ORDER], cand[SMS_KINEMATIC_MAX_ORDER], below, total, best;
     double logh = log(h), logTs = log(Ts), tap_last = 0.0, rhs[SMS_KINEMATIC_MAX_ORDER];
-    double logcand[SMS_KINEMATIC_MAX_ORDER], logbase[SMS_KINEMATIC_MAX_ORDER][3];
+    double logcand[SMS_KINEMATIC_MAX_ORDER] = {0.0}, logbase[SMS_KINEMATIC_MAX_ORDER][3];
     size_t pick[SMS_KINEMATIC_MAX_ORDER];
     for (i = 0; i < n; ++i)
         rhs[i] = logh - log(p->L[i]) - (double)(i + 1) * logTs - 1e-12;
