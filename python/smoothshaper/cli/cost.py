@@ -348,7 +348,7 @@ def record_cost(what: str, *, nbytes: int, axes: int = 1) -> Cost:
 
 #: Seconds each report section took on the reference machine (the report prints its own).
 REPORT_SECONDS = {"seed000": 12.0, "seed001": 10.0, "seed002": 4.0, "seed003": 16.0,
-                  "seed004": 3.0, "shapers": 1.0, "scheduled": 3.0}
+                  "seed004": 3.0, "shapers": 1.0, "scheduled": 1.5}
 
 
 def report_cost(sections) -> Cost:
