@@ -22,43 +22,8 @@
 
 #include "fmi2Functions.h"
 #include "SmoothShaper_variables.h"
-
-static void logger(fmi2ComponentEnvironment env, fmi2String name, fmi2Status status,
-                   fmi2String category, fmi2String message, ...)
-{
-    (void)env; (void)status; (void)category;
-    fprintf(stderr, "[%s] %s\n", name, message);
-}
-
-static const fmi2CallbackFunctions callbacks = { logger, calloc, free, NULL, NULL };
-static const double h = 1e-3;
-
-/* A SmoothShaper instance with one stage M(T = 2 Ts), at rest at u0, clock at t0. */
-static fmi2Component probe(double t0, double u0)
-{
-    const fmi2ValueReference vr_ts = SS_VR_TS, vr_u = SS_VR_U;
-    fmi2ValueReference kinds[SS_MAX_STAGES], vr_T = SS_STAGE_BASE + SS_FIELD_T;
-    fmi2Integer none[SS_MAX_STAGES];
-    double T = 2 * h;
-    int k;
-    fmi2Component c = fmi2Instantiate("clock", fmi2CoSimulation, FMU_MODEL_GUID, "", &callbacks,
-                                      fmi2False, fmi2False);
-    if (c == NULL)
-        return NULL;
-    for (k = 0; k < SS_MAX_STAGES; ++k) {
-        kinds[k] = SS_STAGE_BASE + SS_STAGE_STRIDE * (unsigned)k + SS_FIELD_KIND;
-        none[k] = k == 0 ? 0 : SS_KIND_NONE;   /* stage 0 rectangular, the others none */
-    }
-    if (fmi2SetupExperiment(c, fmi2False, 0.0, t0, fmi2False, 0.0) != fmi2OK
-        || fmi2EnterInitializationMode(c) != fmi2OK
-        || fmi2SetInteger(c, kinds, SS_MAX_STAGES, none) != fmi2OK
-        || fmi2SetReal(c, &vr_ts, 1, &h) != fmi2OK || fmi2SetReal(c, &vr_T, 1, &T) != fmi2OK
-        || fmi2SetReal(c, &vr_u, 1, &u0) != fmi2OK || fmi2ExitInitializationMode(c) != fmi2OK) {
-        fmi2FreeInstance(c);
-        return NULL;
-    }
-    return c;
-}
+#include "fmu_test_callbacks.h"
+#include "fmu_test_probe.h"
 
 /* Steps k = first .. first + n - 1 with the host clock starting at *t (advanced t += h).
  * Returns the number of steps whose output shows a lost or doubled tick. */
@@ -90,7 +55,7 @@ static long window(long first, long n, double t0)
 {
     double t = t0;
     long bad;
-    fmi2Component c = probe(t0, (double)(first % 1048576L));
+    fmi2Component c = probe_instance("clock", t0, (double)(first % 1048576L));
     if (c == NULL) {
         fprintf(stderr, "could not set up the probe\n");
         return 1;
@@ -108,7 +73,7 @@ static long long_steps_reload(void)
 {
     const fmi2ValueReference vr_u = SS_VR_U;
     static const double lengths[] = { 1.0, 1e6, 1e9, 1e11 / 3.0, 1e12 };
-    fmi2Component c = probe(0.0, 0.0);
+    fmi2Component c = probe_instance("clock", 0.0, 0.0);
     double t = 0.0, u;
     long bad = 0;
     size_t i;

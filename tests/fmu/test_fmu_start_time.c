@@ -22,42 +22,16 @@
 #include "fmi2Functions.h"
 #include "SmoothShaper_variables.h"
 #include "fmu_test_callbacks.h"
+#include "fmu_test_probe.h"
 
 #define STEPS 10000
-static const double h = 1e-3;   /* = Ts */
-
-static fmi2Component probe(double t0)
-{
-    const fmi2ValueReference vr_ts = SS_VR_TS, vr_T = SS_STAGE_BASE + SS_FIELD_T;
-    fmi2ValueReference kinds[SS_MAX_STAGES];
-    fmi2Integer codes[SS_MAX_STAGES];
-    const double T = 2 * h;
-    int k;
-    fmi2Component c = fmi2Instantiate("start", fmi2CoSimulation, FMU_MODEL_GUID, "", &callbacks,
-                                      fmi2False, fmi2False);
-    if (c == NULL)
-        return NULL;
-    for (k = 0; k < SS_MAX_STAGES; ++k) {
-        kinds[k] = SS_STAGE_BASE + SS_STAGE_STRIDE * (unsigned)k + SS_FIELD_KIND;
-        codes[k] = k == 0 ? 0 : SS_KIND_NONE;   /* stage 0 rectangular M(2 Ts) */
-    }
-    if (fmi2SetupExperiment(c, fmi2False, 0.0, t0, fmi2False, 0.0) != fmi2OK
-        || fmi2EnterInitializationMode(c) != fmi2OK
-        || fmi2SetInteger(c, kinds, SS_MAX_STAGES, codes) != fmi2OK
-        || fmi2SetReal(c, &vr_ts, 1, &h) != fmi2OK || fmi2SetReal(c, &vr_T, 1, &T) != fmi2OK
-        || fmi2ExitInitializationMode(c) != fmi2OK) {
-        fmi2FreeInstance(c);
-        return NULL;
-    }
-    return c;
-}
 
 /* STEPS steps from t0 with the clock style (0: t0 + k h, 1: t += h); the outputs into y.
  * Counts lost and doubled ticks; returns -1 if a call failed. */
 static int run(double t0, int accumulate, double *y, long *lost, long *doubled)
 {
     const fmi2ValueReference vr_u = SS_VR_U, vr_y = SS_VR_Y;
-    fmi2Component c = probe(t0);
+    fmi2Component c = probe_instance("start", t0, 0.0);
     double t = t0;
     long k;
     if (c == NULL)

@@ -125,31 +125,53 @@ def _head(path):
     lines = text.splitlines()
     if len(raw) == _HEAD_BYTES and lines:
         lines = lines[:-1]                 # the last line may be cut
-    header, last_comment = None, None
-    for no, line in enumerate(lines, start=1):
-        s = line.strip()
-        if not s:
-            continue
-        if s.startswith("#"):
-            last_comment = s.lstrip("#").strip()
-            continue
+    header = None
+    for no, s, comment in _data_lines(lines):
         d = _sniff(s)
         try:
             values = _split(s, d)
         except csv.Error:
             return None, None, None, None
-        if header is None and not all(_is_number(v) for v in values if v):
+        if header is None and _names_row(values):
             header = values
             continue
-        if header is None and last_comment:
-            try:
-                names = _split(last_comment, d)
-            except csv.Error:
-                names = []
-            if len(names) == len(values) and not any(_is_number(v) for v in names):
-                header = names
+        if header is None:
+            header = _comment_header(comment, values, d)
         return header, no, d, values
     return header, None, None, None
+
+
+def _data_lines(lines):
+    """(line number, the line stripped, the last comment line's text before it or None) of every
+    line that is neither blank nor a ``#`` comment."""
+    last_comment = None
+    for no, raw in enumerate(lines, start=1):
+        line = raw.strip()
+        if not line:
+            continue
+        if line.startswith("#"):
+            last_comment = line.lstrip("#").strip()
+            continue
+        yield no, line, last_comment
+
+
+def _names_row(values) -> bool:
+    """A row that is not all numbers (its empty cells aside): the header."""
+    return not all(_is_number(v) for v in values if v)
+
+
+def _comment_header(comment, values, delimiter):
+    """The column names a comment line just above the first data row gives (as many names as
+    the row has values, none a number), or None."""
+    if not comment:
+        return None
+    try:
+        names = _split(comment, delimiter)
+    except csv.Error:
+        return None
+    if len(names) == len(values) and not any(_is_number(v) for v in names):
+        return names
+    return None
 
 
 def read_table(path) -> tuple[list[str] | None, np.ndarray, Lines]:
@@ -198,30 +220,19 @@ def _read_slow(path):
             lines = fh.read().splitlines()
     except OSError as exc:
         raise RecordError(path, f"cannot read the file ({exc.strerror})") from None
-    header, rows, numbers, delimiter, last_comment = None, [], [], None, None
-    for no, raw in enumerate(lines, start=1):
-        line = raw.strip()
-        if not line:
-            continue
-        if line.startswith("#"):
-            last_comment = line.lstrip("#").strip()
-            continue
+    header, rows, numbers, delimiter = None, [], [], None
+    for no, line, comment in _data_lines(lines):
         if delimiter is None and not rows:
             delimiter = _sniff(line)
         try:
             values = _split(line, delimiter)
         except csv.Error as exc:     # e.g. a field beyond csv's limit of 131072 characters
             raise RecordError(path, f"cannot split the line into values ({exc})", row=no) from None
-        if not rows and header is None and not all(_is_number(v) for v in values if v):
+        if not rows and header is None and _names_row(values):
             header = values
             continue
-        if not rows and header is None and last_comment:
-            try:
-                names = _split(last_comment, delimiter)
-            except csv.Error:
-                names = []
-            if len(names) == len(values) and not any(_is_number(v) for v in names):
-                header = names
+        if not rows and header is None:
+            header = _comment_header(comment, values, delimiter)
         rows.append(values)
         numbers.append(no)
     if not rows:

@@ -198,30 +198,17 @@ def run_all(ssp: Path, *, importers=("libcosim", "fmpy")) -> list[Run]:
 
 
 def plot(path: Path, runs: list[Run]) -> None:
-    plt = _optional.pyplot("the system co-simulation (its figure)")
-    fig, (a0, a1) = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
-    n = runs[0].t.size
-    _, _, p_ref_off = reference(n, shaper=False)
-    t = runs[0].t
-    a0.axhline(MOVE * 1e3, color="0.6", lw=1, label="target")
-    styles = {("libcosim", False): ("C3", "-", 2.5), ("fmpy", False): ("k", ":", 1.2),
-              ("libcosim", True): ("C0", "-", 2.5), ("fmpy", True): ("k", "--", 1.0)}
-    for r in runs:
-        color, ls, lw = styles[(r.importer, r.shaper)]
-        label = f"load, {'ZV shaper' if r.shaper else 'no shaper'} ({r.importer})"
-        a0.plot(r.t, r.p * 1e3, color=color, ls=ls, lw=lw, label=label)
-        a1.plot(r.t, (r.p - MOVE) * 1e6, color=color, ls=ls, lw=lw, label=label)
+    plt, fig, a0, a1 = _ssp.run_figure(
+        "the system co-simulation (its figure)", runs, upper=lambda r: r.p * 1e3,
+        lower=lambda r: (r.p - MOVE) * 1e6,
+        label=lambda r: f"load, {'ZV shaper' if r.shaper else 'no shaper'} ({r.importer})")
+    a0.axhline(MOVE * 1e3, color="0.6", lw=1, label="target", zorder=1.5)   # under the runs
     a0.set_ylabel("position [mm]")
     a0.set_title("TrajectoryGenerator -> SmoothShaper -> ElasticPlant (SSP), h = Ts = 1 ms")
     a0.legend(fontsize=8, loc="lower right")
     a1.set_ylim(-1.2 * max(r.residual for r in runs) * 1e6, 1.2 * max(r.residual for r in runs) * 1e6)
     a1.set_ylabel("load - target [um]")
-    a1.set_xlabel("t [s]")
-    a1.axhline(0.0, color="0.7", lw=0.8)
-    fig.tight_layout()
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
-
+    _ssp.save_run_figure(plt, fig, path)
 
 def run(out_dir, *, fmus: dict | None = None, build_dir=None, importers=("libcosim", "fmpy"),
         plots: bool = True) -> bool:

@@ -213,12 +213,6 @@ def expected(drive: _servo.Drive, t: np.ndarray, q_ref: np.ndarray, tau_load: np
     return out
 
 
-def _signal(t, q_ref, tau_load):
-    sig = np.zeros(t.size, dtype=[("time", float), ("q_ref", float), ("tau_load", float)])
-    sig["time"], sig["q_ref"], sig["tau_load"] = t, q_ref, tau_load
-    return sig
-
-
 def simulate_servo(fmu, t: np.ndarray, q_ref: np.ndarray, tau_load: np.ndarray,
                    start_values: dict, *, importer: str = "fmpy") -> dict:
     """The FMU in fmpy (default settings, ``output_interval`` = the communication step) or in
@@ -256,15 +250,9 @@ def simulate_servo(fmu, t: np.ndarray, q_ref: np.ndarray, tau_load: np.ndarray,
                               dict(start_values), input_name=("q_ref", "tau_load"),
                               outputs=OUTPUTS)
         return {name: y[:, i] for i, name in enumerate(OUTPUTS)}
-    _optional.require("fmpy", "running ServoDrive in fmpy")
-    import fmpy
-    step = float(t[1] - t[0])
-    r = fmpy.simulate_fmu(str(fmu), start_values=dict(start_values),
-                          input=_signal(t, q_ref, tau_load), start_time=0.0,
-                          stop_time=float(t[-1]), output_interval=step, output=list(OUTPUTS),
-                          validate=False)
-    if r.size != t.size or not np.allclose(r["time"], t, rtol=0, atol=1e-9 * step):
-        raise RuntimeError(f"fmpy returned {r.size} samples, expected {t.size}")
+    from .simulate import run_fmpy
+    r = run_fmpy(fmu, t, {"q_ref": q_ref, "tau_load": tau_load}, start_values, OUTPUTS,
+                 what="ServoDrive")
     return {name: np.asarray(r[name], dtype=float) for name in OUTPUTS}
 
 

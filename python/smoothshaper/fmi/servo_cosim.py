@@ -24,7 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .. import _optional, servo as _servo
+from .. import servo as _servo
 from .._checks import finite_array as _finite_array, integer as _integer
 from ..errors import ParameterError
 from ..reference._checks import check_samples
@@ -263,15 +263,10 @@ def plot(path: Path, runs: list[ServoRun]) -> None:
     OSError
         The file cannot be written.
     """
-    plt = _optional.pyplot("the ShapedServo co-simulation figure")
-    fig, (a0, a1) = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
-    styles = {("libcosim", False): ("C3", "-", 2.5), ("fmpy", False): ("k", ":", 1.2),
-              ("libcosim", True): ("C0", "-", 2.5), ("fmpy", True): ("k", "--", 1.0)}
-    for r in runs:
-        color, ls, lw = styles[(r.importer, r.shaper)]
-        label = f"{'ZV on the locked mode' if r.shaper else 'no shaper'} ({r.importer})"
-        a0.plot(r.t, r.w_l, color=color, ls=ls, lw=lw, label=label)
-        a1.plot(r.t, np.degrees(r.q_l - MOVE), color=color, ls=ls, lw=lw, label=label)
+    plt, fig, a0, a1 = _ssp.run_figure(
+        "the ShapedServo co-simulation figure", runs, upper=lambda r: r.w_l,
+        lower=lambda r: np.degrees(r.q_l - MOVE),
+        label=lambda r: f"{'ZV on the locked mode' if r.shaper else 'no shaper'} ({r.importer})")
     a0.axhline(LIMITS["vmax"], color="0.6", lw=0.8)
     a0.set_ylabel("load velocity [rad/s]")
     a0.set_title("TrajectoryGenerator -> SmoothShaper -> ServoDrive (SSP), P/PI drive, "
@@ -279,11 +274,7 @@ def plot(path: Path, runs: list[ServoRun]) -> None:
     a0.legend(fontsize=8, loc="upper right")
     a1.set_ylim(-0.6, 0.6)
     a1.set_ylabel("load - target [deg]")
-    a1.set_xlabel("t [s]")
-    a1.axhline(0.0, color="0.7", lw=0.8)
-    fig.tight_layout()
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
+    _ssp.save_run_figure(plt, fig, path)
 
 
 def section(out_dir: Path, fmus: dict, *, plots: bool = True) -> tuple[bool, list[str]]:

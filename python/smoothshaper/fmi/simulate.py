@@ -10,7 +10,7 @@ from ..errors import ParameterError
 from .parameters import start_values
 
 __all__ = ["simulate", "simulate_trajectory", "simulate_libcosim", "start_values_for",
-           "multi_axis_input", "simulate_multi_axis"]
+           "multi_axis_input", "simulate_multi_axis", "run_fmpy"]
 
 
 def simulate(fmu: str, stages, t: np.ndarray, u: np.ndarray, *, Ts: float) -> np.ndarray:
@@ -40,16 +40,56 @@ def simulate(fmu: str, stages, t: np.ndarray, u: np.ndarray, *, Ts: float) -> np
     RuntimeError
         fmpy returned other points than ``t``.
     """
-    fmpy = _optional.require("fmpy", "running an FMU in fmpy")
+    r = run_fmpy(fmu, t, {"u": u}, start_values(stages, Ts=Ts), ["y"], what="SmoothShaper")
+    return np.asarray(r["y"], dtype=float)
+
+
+def run_fmpy(fmu, t: np.ndarray, inputs, start_values: dict, outputs, *,
+             what: str = "an FMU") -> np.ndarray:
+    """An FMU in fmpy with default settings from 0 to ``t[-1]``, ``output_interval`` = the
+    communication step ``t[1] - t[0]``: the run every fmpy helper of this package makes.
+
+    Parameters
+    ----------
+    fmu : str or Path
+        Path of the FMU file.
+    t : ndarray of float64, shape (K,)
+        Communication points [s] (:func:`communication_points`).
+    inputs : dict or ndarray (structured)
+        Input name -> values at ``t`` (shape (K,) each), or ``fmpy.simulate_fmu``'s ``input``
+        itself (``time`` and the inputs, as :func:`multi_axis_input` makes it).
+    start_values : dict
+        ``fmpy.simulate_fmu``'s start values.
+    outputs : sequence of str
+        The variables to record.
+    what : str, keyword-only
+        What runs, for the error of a missing fmpy.
+
+    Returns
+    -------
+    ndarray (structured)
+        fmpy's result: ``time`` (= ``t``) and the outputs.
+
+    Raises
+    ------
+    RuntimeError
+        fmpy returned other points than ``t``.
+    """
+    fmpy = _optional.require("fmpy", f"running {what} in fmpy")
     step = float(t[1] - t[0])
-    signal = np.zeros(t.size, dtype=[("time", float), ("u", float)])
-    signal["time"], signal["u"] = t, u
-    result = fmpy.simulate_fmu(fmu, start_values=start_values(stages, Ts=Ts), input=signal,
+    if isinstance(inputs, dict):
+        signal = np.zeros(t.size, dtype=[("time", float)] + [(n, float) for n in inputs])
+        for name, values in inputs.items():
+            signal[name] = values
+        signal["time"] = t
+    else:
+        signal = inputs
+    result = fmpy.simulate_fmu(str(fmu), start_values=dict(start_values), input=signal,
                                start_time=0.0, stop_time=float(t[-1]), output_interval=step,
-                               output=["y"], validate=False)
+                               output=list(outputs), validate=False)
     if result.size != t.size or not np.allclose(result["time"], t, rtol=0, atol=1e-9 * step):
         raise RuntimeError(f"fmpy returned {result.size} samples, expected {t.size}")
-    return np.asarray(result["y"], dtype=float)
+    return result
 
 
 def simulate_trajectory(fmu: str, t: np.ndarray, target: np.ndarray, *, Ts: float, **limits):
@@ -79,13 +119,8 @@ def simulate_trajectory(fmu: str, t: np.ndarray, target: np.ndarray, *, Ts: floa
     RuntimeError
         fmpy returned other points than ``t``.
     """
-    fmpy = _optional.require("fmpy", "running an FMU in fmpy")
-    step = float(t[1] - t[0])
-    signal = np.zeros(t.size, dtype=[("time", float), ("target", float)])
-    signal["time"], signal["target"] = t, target
-    r = fmpy.simulate_fmu(fmu, start_values=dict(Ts=Ts, **limits), input=signal, start_time=0.0,
-                          stop_time=float(t[-1]), output_interval=step, output=list("qvaj"),
-                          validate=False)
+    r = run_fmpy(fmu, t, {"target": target}, dict(Ts=Ts, **limits), "qvaj",
+                 what="TrajectoryGenerator")
     return np.column_stack([np.asarray(r[c], dtype=float) for c in "qvaj"])
 
 
@@ -222,9 +257,7 @@ def simulate_multi_axis(fmu: str, t: np.ndarray, target: np.ndarray, values: dic
         names = [f"{c}[{i}]" for i in range(axes) for c in "qvaj"]
     else:
         names = list("qvaj")
-    r = fmpy.simulate_fmu(str(fmu), start_values=start_values_for(md, values), input=signal,
-                          stop_time=float(t[-1]), output_interval=float(t[1] - t[0]),
-                          output=names, validate=False)
+    r = run_fmpy(fmu, t, signal, start_values_for(md, values), names, what="MultiAxisGenerator")
     if md.fmiVersion == "2.0":
         return np.stack([np.asarray(r[n], dtype=float) for n in names],
                         axis=1).reshape(t.size, axes, 4)

@@ -32,7 +32,8 @@ from .. import _optional
 
 __all__ = ["SSD_NS", "System", "system_structure", "write_ssp", "ssp_parameters",
            "ssp_parameter_set", "fmpy_applies_bindings", "run_fmpy", "run_libcosim",
-           "generator_shaper_reference", "settled_residual"]
+           "generator_shaper_reference", "settled_residual", "RUN_STYLES", "run_figure",
+           "save_run_figure"]
 
 SSD_NS = ('xmlns:ssc="http://ssp-standard.org/SSP1/SystemStructureCommon" '
           'xmlns:ssd="http://ssp-standard.org/SSP1/SystemStructureDescription" '
@@ -449,3 +450,62 @@ def settled_residual(command: np.ndarray, output: np.ndarray, target: float) -> 
     if settled >= command.size - 10:
         raise RuntimeError("the command did not settle within the run: lengthen STOP_TIME")
     return float(np.max(np.abs(output[settled:] - target)))
+
+
+#: Line colour, dash and width of a run in the co-simulation figures, by (importer, shaper).
+RUN_STYLES = {("libcosim", False): ("C3", "-", 2.5), ("fmpy", False): ("k", ":", 1.2),
+              ("libcosim", True): ("C0", "-", 2.5), ("fmpy", True): ("k", "--", 1.0)}
+
+
+def run_figure(what: str, runs, *, upper, lower, label):
+    """The co-simulation figure's two panels over ``t``: ``upper(run)`` above, ``lower(run)``
+    (an error, about a zero line) below, every run in its :data:`RUN_STYLES` style.
+
+    Parameters
+    ----------
+    what : str
+        What the figure is for (the error of a missing matplotlib).
+    runs : sequence
+        Runs with ``t``, ``importer`` and ``shaper`` attributes.
+    upper, lower, label : callable, keyword-only
+        Run -> the values drawn above, below, and its legend entry.
+
+    Returns
+    -------
+    tuple
+        ``(plt, fig, upper_axes, lower_axes)``, for :func:`save_run_figure`.
+
+    Raises
+    ------
+    MissingDependency
+        (an ImportError) matplotlib is not installed.
+    """
+    plt = _optional.pyplot(what)
+    fig, (a0, a1) = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
+    for r in runs:
+        color, ls, lw = RUN_STYLES[(r.importer, r.shaper)]
+        a0.plot(r.t, upper(r), color=color, ls=ls, lw=lw, label=label(r))
+        a1.plot(r.t, lower(r), color=color, ls=ls, lw=lw, label=label(r))
+    a1.set_xlabel("t [s]")
+    a1.axhline(0.0, color="0.7", lw=0.8)
+    return plt, fig, a0, a1
+
+
+def save_run_figure(plt, fig, path: Path) -> None:
+    """Write the figure of :func:`run_figure` to the PNG ``path`` and close it.
+
+    Parameters
+    ----------
+    plt, fig
+        The first two items :func:`run_figure` returned.
+    path : Path
+        The PNG file.
+
+    Raises
+    ------
+    OSError
+        The file cannot be written.
+    """
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)

@@ -103,11 +103,8 @@ RUN_STEPS = ("build", "checks", "importers", "SmoothShaper", "TrajectoryGenerato
 
 
 def _elastic_plant(fmu, t, u, Ts: float) -> np.ndarray:
-    fmpy = _optional.require("fmpy", "running ElasticPlant in fmpy")
-    sig = np.zeros(t.size, dtype=[("time", float), ("u", float)])
-    sig["time"], sig["u"] = t, u
-    r = fmpy.simulate_fmu(str(fmu), start_values={"Ts": Ts}, input=sig, stop_time=float(t[-1]),
-                          output_interval=float(t[1] - t[0]), output=["y"], validate=False)
+    from .simulate import run_fmpy
+    r = run_fmpy(fmu, t, {"u": u}, {"Ts": Ts}, ["y"], what="ElasticPlant")
     return np.asarray(r["y"], dtype=float)
 
 
