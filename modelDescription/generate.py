@@ -47,14 +47,23 @@ UNITS = {  # unit name -> SI base-unit exponents. Signals carry no unit: the fil
 }
 
 KINDS = ("rectangular", "harmonic", "damped_harmonic", "exponential", "zv", "zvd", "zvdd", "zvn",
-         "ei", "ei2", "mzv", "notch_tustin", "notch_matched", "ei3", "gmzv")  # == sms_kind 0..14
+         "ei", "ei2", "mzv", "notch_tustin", "notch_matched", "ei3", "gmzv", "smooth_zv",
+         "smooth_mzv", "smooth_ei", "smooth_ei2", "smooth_zvd_ei", "smooth_si", "si",
+         "impulses")  # == sms_kind 0..22
 KIND_TEXT = ("moving average M", "sinusoidal smoother S",
              "damped sinusoidal smoother S_sigma", "exponential smoother M_sigma",
              "ZV input shaper", "ZVD input shaper", "ZVDD input shaper", "ZV^n input shaper (order n)",
              "extra-insensitive shaper", "two-hump extra-insensitive shaper", "modified ZV shaper",
              "notch, Tustin pre-warped at wn", "notch, pole-zero matched",
              "three-hump extra-insensitive shaper",
-             "generalised MZV shaper (order impulses over duration damped periods)")
+             "generalised MZV shaper (order impulses over duration damped periods)",
+             "smooth ZV input smoother (zeta in [0, 0.25])",
+             "smooth MZV input smoother (zeta in [0, 0.25])",
+             "smooth EI input smoother (zeta in [0, 0.25])",
+             "smooth two-hump EI input smoother", "smooth ZVD-EI input smoother",
+             "smooth SI input smoother",
+             "specified-insensitivity shaper (order impulses over duration damped periods)",
+             "user-defined impulses (order of them: stage[k].amplitude[i] at stage[k].time[i])")
 
 # SmoothShaper value references: globals below 100, stage k field f at 100 + 16 k + f.
 SS_MAX_STAGES = 8

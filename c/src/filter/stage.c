@@ -8,6 +8,7 @@
 sms_stage_config sms_stage_config_default(sms_kind kind)
 {
     sms_stage_config c;
+    unsigned m;
     c.kind = kind;
     c.timing = SMS_TIMING_EXACT;
     c.T = 0.0;
@@ -18,7 +19,15 @@ sms_stage_config sms_stage_config_default(sms_kind kind)
     c.order = kind == SMS_SHAPER_GMZV ? 3u : 1u;   /* GMZV: 3 impulses over 0.75 Td = MZV */
     c.tolerance = 0.05;
     c.duration = 0.75;
+    if (kind == SMS_SHAPER_SI) {                  /* 3 impulses over one period: EI */
+        c.order = 3u;
+        c.duration = 1.0;
+    }
+    if (kind == SMS_SHAPER_IMPULSES)
+        c.order = 0u;                             /* the impulses must be set */
     c.notch_pole_zeta = 0.7;
+    for (m = 0; m < SMS_SHAPER_MAX_IMPULSES; ++m)
+        c.amplitudes[m] = c.times[m] = 0.0;
     return c;
 }
 
