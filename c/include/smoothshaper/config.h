@@ -110,7 +110,7 @@ typedef struct sms_stage_config {
  * timing ::SMS_TIMING_EXACT, T = 0 (must be set for smoothers), sigma = 0, k = 1, wn = 0
  * (must be set for shapers and notches), zeta = 0, order = 1 (3 for ::SMS_SHAPER_GMZV and
  * ::SMS_SHAPER_SI, 0 for ::SMS_SHAPER_IMPULSES: its impulses must be set), tolerance = 0.05,
- * notch_pole_zeta = 0.7, duration = 0.75 (1 for ::SMS_SHAPER_SI: with 3 impulses, EI),
+ * notch_pole_zeta = 0.7, duration = 0.75,
  * amplitudes and times all 0. The kind is stored as given (validated only by init).
  */
 SMS_API sms_stage_config sms_stage_config_default(sms_kind kind);

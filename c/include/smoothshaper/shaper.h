@@ -98,6 +98,11 @@ extern "C" {
  * for n = 8. An input smoother has one tap per sample of its window (sms_shaper_tap_count()). */
 #define SMS_SHAPER_MAX_TAPS 45
 
+/** @brief Longest input smoother window L [samples]: every sample is a tap, so the work per
+ * sample and of init grow with L (2^20: about 1 ms of init, 1e6 multiply-adds per sample);
+ * longer ones are refused with ::SMS_ERR_TOO_LONG (at Ts = 10 us that is a 10 s kernel). */
+#define SMS_INPUT_SMOOTHER_MAX_LENGTH 1048576
+
 /** @brief One non-zero tap of a shaper: y[n] += gain x[n - delay]. */
 typedef struct sms_shaper_tap {
     size_t delay;   /**< d_k [samples], strictly increasing along the table */
@@ -139,7 +144,8 @@ typedef struct sms_shaper {
  *         amplitude; SI: outside [(order-1)/4, (order-1)/2]),
  *         ::SMS_ERR_IMPULSE_AMPLITUDE, ::SMS_ERR_IMPULSE_TIME (IMPULSES, in that order, after
  *         the order; wn, zeta and the Nyquist check do not apply),
- *         ::SMS_ERR_TOO_LONG (L above 2^40 samples: state indices must stay exact doubles),
+ *         ::SMS_ERR_TOO_LONG (L above 2^40 samples: state indices must stay exact doubles;
+ *         an input smoother's above ::SMS_INPUT_SMOOTHER_MAX_LENGTH),
  *         ::SMS_ERR_ZETA also when exact timing cannot weigh the impulses in double (zeta so
  *         close to 1 that e^{zeta wn t} overflows over the span; paper timing still works).
  *         The fields T, sigma, k and notch_pole_zeta are not read (duration only by GMZV and

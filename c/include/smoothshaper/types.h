@@ -104,9 +104,9 @@ typedef enum sms_status {
     SMS_ERR_STATE_SYNC = -42,       /**< saved with another sync (multi-axis generator) */
     SMS_ERR_STATE_STAGES = -43,     /**< saved with another number of vibration stages on an
                                          axis (multi-axis generator) */
-    SMS_ERR_IMPULSE_AMPLITUDE = -45, /**< user-defined impulses: an amplitude is NaN/Inf, or
+    SMS_ERR_IMPULSE_AMPLITUDE = -50, /**< user-defined impulses: an amplitude is NaN/Inf, or
                                           they do not sum to > 0 */
-    SMS_ERR_IMPULSE_TIME = -46      /**< user-defined impulses: a time is NaN/Inf or < 0, or
+    SMS_ERR_IMPULSE_TIME = -51      /**< user-defined impulses: a time is NaN/Inf or < 0, or
                                          the times do not strictly increase */
 } sms_status;
 

@@ -184,7 +184,7 @@ sms_status sms_input_smoother_length(const sms_stage_config *c, double Ts, size_
     double q[11], T, mu, r;
     (void)sms_input_smoother_kernel(c, q, &T);
     mu = T / Ts;
-    if (!(mu - mu == 0.0) || mu + 2.0 > 1099511627776.0)      /* 2^40, as the shapers */
+    if (!(mu - mu == 0.0) || mu + 2.0 > (double)SMS_INPUT_SMOOTHER_MAX_LENGTH)
         return SMS_ERR_TOO_LONG;
     if (mu < 4.0)
         return SMS_ERR_ABOVE_NYQUIST;          /* the kernel must span at least 4 samples */

@@ -19,10 +19,8 @@ sms_stage_config sms_stage_config_default(sms_kind kind)
     c.order = kind == SMS_SHAPER_GMZV ? 3u : 1u;   /* GMZV: 3 impulses over 0.75 Td = MZV */
     c.tolerance = 0.05;
     c.duration = 0.75;
-    if (kind == SMS_SHAPER_SI) {                  /* 3 impulses over one period: EI */
+    if (kind == SMS_SHAPER_SI)                    /* 3 impulses, between ZV and EI */
         c.order = 3u;
-        c.duration = 1.0;
-    }
     if (kind == SMS_SHAPER_IMPULSES)
         c.order = 0u;                             /* the impulses must be set */
     c.notch_pole_zeta = 0.7;
