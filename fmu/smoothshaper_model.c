@@ -12,8 +12,10 @@
 #include "SmoothShaper_variables.h"
 #include "fmu_model.h"
 
-/* The generated kind codes are the core's sms_kind values (compile-time check). */
+/* The generated kind codes are the core's sms_kind values, and a stage's impulse parameters
+ * fit a config (compile-time checks). */
 typedef char ss_kind_codes_match_sms_kind[(SS_KIND_COUNT == SMS_KIND_COUNT) ? 1 : -1];
+typedef char ss_impulses_fit_config[(SS_MAX_IMPULSES == SMS_SHAPER_MAX_IMPULSES) ? 1 : -1];
 
 static const char *const field_names[SS_FIELD_COUNT] = {
     "kind", "design", "timing", "T", "sigma", "k", "wn", "zeta", "order", "tolerance",
@@ -23,6 +25,7 @@ static const char *const field_names[SS_FIELD_COUNT] = {
 typedef struct ss_params {
     int ints[SS_FIELD_COUNT];     /* kind, design, timing, k, order (by SS_FIELD_*) */
     double reals[SS_FIELD_COUNT]; /* T, sigma, wn, zeta, tolerance, notch_pole_zeta, duration */
+    double amplitude[SS_MAX_IMPULSES], time[SS_MAX_IMPULSES];   /* kind = impulses */
 } ss_params;
 
 /* Parameters and the chain's descriptors; the stages' memory (instances, tap tables, delay
@@ -54,6 +57,28 @@ static int stage_field(fmi2ValueReference vr, unsigned *k, unsigned *f)
     return *f < SS_FIELD_COUNT;
 }
 
+/* Split an impulse value reference into (stage, impulse, is_time); 0 if it is not one. */
+static int impulse_field(fmi2ValueReference vr, unsigned *k, unsigned *i, int *is_time)
+{
+    unsigned r;
+    if (vr < SS_IMPULSE_BASE || vr >= SS_IMPULSE_BASE + SS_IMPULSE_STRIDE * SS_MAX_STAGES)
+        return 0;
+    *k = (vr - SS_IMPULSE_BASE) / SS_IMPULSE_STRIDE;
+    r = (vr - SS_IMPULSE_BASE) % SS_IMPULSE_STRIDE;
+    *is_time = r >= SS_MAX_IMPULSES;
+    *i = *is_time ? r - SS_MAX_IMPULSES : r;
+    return *i < SS_MAX_IMPULSES;
+}
+
+/* The stored impulse parameter vr names (valid per impulse_field). */
+static double *impulse_slot(ss_model *m, fmi2ValueReference vr)
+{
+    unsigned k, i;
+    int is_time;
+    (void)impulse_field(vr, &k, &i, &is_time);
+    return is_time ? &m->stage[k].time[i] : &m->stage[k].amplitude[i];
+}
+
 size_t fmu_model_size(void) { return sizeof(ss_model); }
 const char *fmu_model_identifier(void) { return FMU_MODEL_IDENTIFIER; }
 const char *fmu_model_guid(void) { return FMU_MODEL_GUID; }
@@ -83,7 +108,9 @@ void fmu_model_defaults(void *model)
 
 fmu_var_class fmu_model_class(fmu_type type, fmi2ValueReference vr)
 {
-    unsigned k, f;
+    unsigned k, f, i;
+    int is_time;
+    if (type == FMU_REAL && impulse_field(vr, &k, &i, &is_time)) return FMU_VAR_PARAMETER;
     if (type == FMU_REAL && vr == SS_VR_U) return FMU_VAR_INPUT;
     if (type == FMU_REAL && vr == SS_VR_Y) return FMU_VAR_OUTPUT;
     if (type == FMU_REAL && vr == SS_VR_TS) return FMU_VAR_PARAMETER;
@@ -94,9 +121,12 @@ fmu_var_class fmu_model_class(fmu_type type, fmi2ValueReference vr)
 
 void fmu_model_name(fmu_type type, fmi2ValueReference vr, char *buf, size_t len)
 {
-    unsigned k, f;
+    unsigned k, f, i;
+    int is_time;
     (void)type;
-    if (vr == SS_VR_U || vr == SS_VR_Y || vr == SS_VR_TS)
+    if (impulse_field(vr, &k, &i, &is_time))
+        snprintf(buf, len, "stage[%u].%s[%u]", k, is_time ? "time" : "amplitude", i);
+    else if (vr == SS_VR_U || vr == SS_VR_Y || vr == SS_VR_TS)
         snprintf(buf, len, "%s", vr == SS_VR_U ? "u" : vr == SS_VR_Y ? "y" : "Ts");
     else if (stage_field(vr, &k, &f))
         snprintf(buf, len, "stage[%u].%s", k, field_names[f]);
@@ -120,13 +150,22 @@ size_t fmu_model_settable(fmu_type type, fmi2ValueReference *out, size_t cap)
                 if (n < cap) out[n] = SS_STAGE_BASE + SS_STAGE_STRIDE * k + f;
                 ++n;
             }
+    if (type == FMU_REAL)
+        for (k = 0; k < SS_MAX_STAGES; ++k)
+            for (f = 0; f < 2u * SS_MAX_IMPULSES; ++f) {
+                if (n < cap) out[n] = SS_IMPULSE_BASE + SS_IMPULSE_STRIDE * k + f;
+                ++n;
+            }
     return n;
 }
 
 double fmu_model_get_real(const void *model, fmi2ValueReference vr)
 {
     const ss_model *m = (const ss_model *)model;
-    unsigned k, f;
+    unsigned k, f, i;
+    int is_time;
+    if (impulse_field(vr, &k, &i, &is_time))
+        return is_time ? m->stage[k].time[i] : m->stage[k].amplitude[i];
     if (vr == SS_VR_U) return m->u;
     if (vr == SS_VR_Y) return m->y;
     if (vr == SS_VR_TS) return m->Ts;
@@ -142,8 +181,10 @@ int fmu_model_get_integer(const void *model, fmi2ValueReference vr)
 void fmu_model_set_real(void *model, fmi2ValueReference vr, double value)
 {
     ss_model *m = (ss_model *)model;
-    unsigned k, f;
-    if (vr == SS_VR_U) m->u = value;
+    unsigned k, f, i;
+    int is_time;
+    if (impulse_field(vr, &k, &i, &is_time)) *impulse_slot(m, vr) = value;
+    else if (vr == SS_VR_U) m->u = value;
     else if (vr == SS_VR_TS) m->Ts = value;
     else if (stage_field(vr, &k, &f)) m->stage[k].reals[f] = value;
 }
@@ -181,6 +222,34 @@ static unsigned offending_field(sms_status st, int design_for_mode, const char *
     case SMS_ERR_SHAPER_DURATION: return SS_FIELD_DURATION;
     default: return SS_FIELD_KIND;
     }
+}
+
+/* User-defined impulses: the first impulse parameter the refusal st is about (the core
+ * checks amplitudes, then times, in order), as the refusal text. */
+static int impulses_error(const ss_model *m, unsigned k, sms_status st, char *msg, size_t len)
+{
+    const ss_params *p = &m->stage[k];
+    unsigned n = (unsigned)p->ints[SS_FIELD_ORDER], i, bad = 0;
+    double sum = 0.0;
+    if (st == SMS_ERR_IMPULSE_AMPLITUDE) {
+        for (i = 0; i < n; ++i) {
+            sum += p->amplitude[i];
+            if (!(p->amplitude[i] - p->amplitude[i] == 0.0))
+                return snprintf(msg, len, "stage[%u].amplitude[%u] = %.17g: %s", k, i,
+                                p->amplitude[i], sms_status_string(st)), 1;
+        }
+        return snprintf(msg, len, "stage[%u].amplitude[0 .. %u] sum to %.17g: %s", k, n - 1u,
+                        sum, sms_status_string(st)), 1;
+    }
+    bad = st == SMS_ERR_TOO_LONG ? n - 1u : 0u;      /* too long: the last time */
+    for (i = 0; i < n && st != SMS_ERR_TOO_LONG; ++i)
+        if (!(p->time[i] - p->time[i] == 0.0) || p->time[i] < 0.0
+            || (i > 0u && !(p->time[i] > p->time[i - 1u]))) {
+            bad = i;
+            break;
+        }
+    return snprintf(msg, len, "stage[%u].time[%u] = %.17g: %s", k, bad, p->time[bad],
+                    sms_status_string(st)), 1;
 }
 
 /* "stage[k].field = value<note>: <status>" into msg; returns 1 (the build fails). */
@@ -240,9 +309,14 @@ static int stage_config(const ss_model *m, unsigned k, sms_stage_config *c, char
     c->tolerance = p->reals[SS_FIELD_TOLERANCE];
     c->notch_pole_zeta = p->reals[SS_FIELD_NOTCH_POLE_ZETA];
     c->duration = p->reals[SS_FIELD_DURATION];
+    memcpy(c->amplitudes, p->amplitude, sizeof c->amplitudes);
+    memcpy(c->times, p->time, sizeof c->times);
     st = sms_stage_config_validate(c, m->Ts);
     if (st == SMS_ERR_SAMPLE_PERIOD)
         return snprintf(msg, len, "Ts = %.17g: must be finite and > 0", m->Ts), 1;
+    if (st == SMS_ERR_IMPULSE_AMPLITUDE || st == SMS_ERR_IMPULSE_TIME
+        || (kind == SMS_SHAPER_IMPULSES && st == SMS_ERR_TOO_LONG))
+        return impulses_error(m, k, st, msg, len);
     if (st != SMS_OK)
         return stage_error(m, k, st, for_mode, msg, len);
     return 0;
@@ -327,7 +401,10 @@ static int configure(const ss_model *m, sms_stage_config *configs, size_t *n, si
         /* name what sets the longest stage's length: T, or the mode it is designed for */
         const ss_params *p = &m->stage[longest];
         char names[256];
-        if (p->ints[SS_FIELD_DESIGN] == 1 || p->ints[SS_FIELD_KIND] >= SMS_SHAPER_ZV)
+        if (p->ints[SS_FIELD_KIND] == SMS_SHAPER_IMPULSES)
+            snprintf(names, sizeof names, "stage[%u].time[%d] = %.17g, Ts = %.17g", longest,
+                     p->ints[SS_FIELD_ORDER] - 1, p->time[p->ints[SS_FIELD_ORDER] - 1], m->Ts);
+        else if (p->ints[SS_FIELD_DESIGN] == 1 || p->ints[SS_FIELD_KIND] >= SMS_SHAPER_ZV)
             snprintf(names, sizeof names, "stage[%u].wn = %.17g, stage[%u].zeta = %.17g, "
                      "Ts = %.17g", longest, p->reals[SS_FIELD_WN], longest,
                      p->reals[SS_FIELD_ZETA], m->Ts);

@@ -12,14 +12,15 @@ attribute names the offending parameter, and whose message starts with that name
 import importlib as _importlib
 
 from .errors import ParameterError
-from .stages import (KINDS, Stage, damped_harmonic, exponential, for_mode, harmonic, notch,
-                     rectangular, shaper)
+from .stages import (KINDS, Stage, damped_harmonic, exponential, for_mode, harmonic,
+                     impulse_shaper, input_smoother, notch, rectangular, shaper)
 from .filters import (Chain, Mode, design_for_mode, identify_from_peaks, identify_from_record,
-                      notch_pole_zeta_from_bandwidth)
+                      notch_pole_zeta_from_bandwidth, si_design, si_insensitivity, si_shaper)
 
 __all__ = ["KINDS", "Stage", "rectangular", "harmonic", "damped_harmonic", "exponential",
-           "shaper", "notch", "for_mode", "Chain", "Mode", "ParameterError", "design_for_mode",
-           "identify_from_peaks", "identify_from_record", "notch_pole_zeta_from_bandwidth"]
+           "shaper", "notch", "input_smoother", "impulse_shaper", "for_mode", "Chain", "Mode",
+           "ParameterError", "design_for_mode", "identify_from_peaks", "identify_from_record",
+           "notch_pole_zeta_from_bandwidth", "si_design", "si_insensitivity", "si_shaper"]
 __version__ = "0.1.0"
 
 #: Public submodules, imported lazily on attribute access (as SciPy does).
