@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Builds the cffi extensions smoothshaper._core (double) and smoothshaper._core_float (float)
 from the C sources under c/src, and the CPython extension smoothshaper._kinematic_fastpath
 (design.kinematic's fast path); all other metadata lives in pyproject.toml."""

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The README's C example as a complete program: a harmonic smoother and a ZV shaper, both
  * placed on the mode wn = 100 rad/s, filter a unit step sampled at 1 kHz. Built and run by
  * ctest (test "example_chain_step"), which also checks what it prints. */
@@ -12,6 +13,7 @@ int main(void)
     sms_chain chain;
     static sms_memory_cell memory[512];       /* caller-owned: stages, taps, delay lines */
     size_t need, n;
+    sms_real x = 0;
     sms_status st;
 
     /* A harmonic smoother and a ZV shaper, both placed on the mode wn = 100 rad/s. */
@@ -28,10 +30,11 @@ int main(void)
     printf("memory: %zu bytes, FIR length: %zu samples\n", need * sizeof memory[0],
            sms_chain_length(&chain));
     for (n = 0; n < 140; n++) {
-        sms_real x = 1.0;                     /* a unit step, one sample at a time */
+        x = 1.0;                              /* a unit step, one sample at a time */
         sms_chain_step(&chain, &x);           /* in place: x is now the output */
         if (n % 20 == 0 || n == 139)
             printf("y[%3zu] = %.6f\n", n, (double)x);
     }
+    printf("at rest on 1 exactly: %s\n", x == 1.0 ? "yes" : "no");
     return 0;
 }

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Regenerate the resonance examples that `smoothshaper calibrate` reads.
 
 Run from the repository's root: ``python examples/make_calibrate_examples.py``. Both files are

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * ElasticPlant: the two-mass elastic transmission of Lambrechts, Boerlage and Steinbuch,
  * "Trajectory planning and feedforward design for electromechanical motion systems" (2005), as

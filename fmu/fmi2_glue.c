@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * FMI 2.0 Co-Simulation, implemented once for every smoothshaper model (see fmu_model.h).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * Internal types of the shared FMI 2.0 glue: the instance, the FMU state snapshot, and the
  * build of a model into an instance's block (fmu_build.c). The serialised state has its own

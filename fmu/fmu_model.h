@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * The contract between the shared FMI 2.0 Co-Simulation glue (fmi2_glue.c) and one model file.
  *
@@ -18,6 +19,10 @@
 #include <stddef.h>
 #include <stdint.h>
 #include "fmi2Functions.h"
+
+/** A value reference (the variable's number in modelDescription.xml): model files name it so
+ * and never an FMI type. */
+typedef fmi2ValueReference fmu_vr;
 
 /** What a value reference of a given base type is. */
 typedef enum fmu_var_class {

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * The serialised FMU state: a versioned, portable byte format with no pointers.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * MultiAxisGenerator: the multi-axis online generator of the smoothshaper library
  * (sms_multi_generator_*, multi_generator.h) as an FMU. Inputs target[i]; outputs q[i], v[i],

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Write the FMU's documentation/index.html and sources/buildDescription.xml.
 
 Usage: package_extras.py MODEL STAGE_DIR DOC_TEMPLATE SOURCE_FILE...

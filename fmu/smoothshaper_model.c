@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * SmoothShaper: y = H_7(...H_0(u)) at the internal ticks, a chain of up to SS_MAX_STAGES
  * stages of any family, set by the parameters stage[k].* (unused stages have kind = none).

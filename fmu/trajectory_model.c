@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * TrajectoryGenerator: the online multi-point generator of the smoothshaper library
  * (sms_generator_*, trajectory.h) as an FMU. Input: target position (a staircase); outputs:

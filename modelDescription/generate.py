@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Generate an FMU's modelDescription.xml and the matching C header of value references.
 
 One source of truth for every variable: the model tables below. The C model files include the
@@ -6,11 +7,12 @@ generated `<Model>_variables.h` (value references, the instantiation token, arra
 XML and the C code cannot disagree. Per-stage variables are produced by a loop, not by hand.
 
 Usage: generate.py MODEL OUT_DIR   (MODEL is SmoothShaper, TrajectoryGenerator,
-ElasticPlant or MultiAxisGenerator)
+ElasticPlant, MultiAxisGenerator or ServoDrive)
 """
 from __future__ import annotations
 
 import hashlib
+import math
 import sys
 import uuid
 from dataclasses import dataclass, field
@@ -44,6 +46,7 @@ UNITS = {  # unit name -> SI base-unit exponents. Signals carry no unit: the fil
     "1": {}, "s": {"s": 1}, "1/s": {"s": -1}, "rad/s": {"rad": 1, "s": -1},
     "kg.m2": {"kg": 1, "m": 2}, "N.m/rad": {"kg": 1, "m": 2, "s": -2, "rad": -1},
     "N.m.s/rad": {"kg": 1, "m": 2, "s": -1, "rad": -1},
+    "rad": {"rad": 1}, "N.m": {"kg": 1, "m": 2, "s": -2},
 }
 
 KINDS = ("rectangular", "harmonic", "damped_harmonic", "exponential", "zv", "zvd", "zvdd", "zvn",
@@ -301,10 +304,143 @@ def multi_axis_generator() -> tuple[list[Var], list[str], str]:
                         "independent axes (smoothshaper)")
 
 
+# ServoDrive: the servomechanism of Bascetta's motion-control notes in closed loop (the Python
+# testbed smoothshaper.servo, whose defaults these are: servo.NOTES and servo.presets).
+SV_NOTES = {"Jm": 0.00015, "Jl": 2.7, "n": 100.0, "Dm": 0.0034, "Kel": 3.1, "Del": 0.0022}
+SV_TS = 5e-4
+SV_WZ = math.sqrt(SV_NOTES["Kel"] * SV_NOTES["n"] ** 2 / SV_NOTES["Jl"])   # presets.pid's rule
+CHOICES["Controller"] = [
+    ("pid", 0, "P position loop, PI velocity loop with velocity feed-forward (pid.*, notch.*)"),
+    ("pid_tdo", 1, "the same with a torque disturbance observer on the motor (tdo.*)"),
+    ("pole_placement", 2, "observer-based pole placement with integral action and the "
+                          "reference model's feed-forward (place.*, observer.*, wf)"),
+    ("lqg", 3, "LQ state feedback with integral action and a steady-state Kalman predictor "
+               "(lq.*, kalman.*, wf)")]
+CHOICES["NotchAt"] = [("none", 0, "no notch"),
+                      ("loop", 1, "on the velocity PI's output (the torque)"),
+                      ("reference", 2, "on the velocity reference")]
+CHOICES["NotchDiscretization"] = [("matched", 0, "pole-zero matched"),
+                                  ("tustin", 1, "Tustin pre-warped at notch.wn")]
+
+
+def _pole(value: complex) -> tuple[float, float]:
+    """(wn, zeta) of a continuous pole."""
+    return abs(value), -value.real / abs(value)
+
+
+def servo_drive() -> tuple[list[Var], list[str], str]:
+    """The variables in value-reference order; servo_drive_model.c reads them through the
+    SV_VARIABLES table of the generated header (its struct fields are the lower-case c_names)."""
+    pp = [_pole(complex(-105, 105)), _pole(complex(-175, 175))]   # presets.PP_POLES
+    obs = _pole(complex(-420, 420))                                # presets.PP_OBSERVER
+    def par(name, vr, desc, unit, start, c_name, lo=0.0, hi=None, typ="Real", choices=""):
+        return Var(name, vr, typ, "parameter", desc, unit, start, choices, "fixed", lo, hi,
+                   c_name)
+
+    def out(name, vr, desc, unit, c_name):
+        return Var(name, vr, "Real", "output", desc, unit, variability="discrete",
+                   c_name=c_name, initial_depends_on=["q_ref", "tau_load"])
+
+    vs = [
+        Var("q_ref", 0, "Real", "input", "load position reference (load side), held over each "
+            "internal tick; its value at the end of initialization is the rest position", "rad",
+            0.0, c_name="Q_REF"),
+        Var("tau_load", 1, "Real", "input", "load torque disturbance (on the load side, opposing "
+            "motion), held over each internal tick", "N.m", 0.0, c_name="TAU_LOAD"),
+        out("q_m", 2, "motor position at the last internal tick", "rad", "Q_M"),
+        out("w_m", 3, "motor velocity at the last internal tick", "rad/s", "W_M"),
+        out("q_l", 4, "load position at the last internal tick", "rad", "Q_L"),
+        out("w_l", 5, "load velocity at the last internal tick", "rad/s", "W_L"),
+        out("tau_m", 6, "motor torque held over the last internal tick", "N.m", "TAU_M"),
+        par("Ts", 10, "sample period of the drive (controller and zero-order hold); finite, > 0",
+            "s", SV_TS, "TS"),
+        par("controller", 11, "the control law; " + choice_text("Controller"), "", 0,
+            "CONTROLLER", None, None, "Integer", "Controller"),
+        par("Jm", 12, "motor inertia; > 0", "kg.m2", SV_NOTES["Jm"], "JM"),
+        par("Jl", 13, "load inertia; > 0", "kg.m2", SV_NOTES["Jl"], "JL"),
+        par("n", 14, "transmission ratio (motor turns per load turn); > 0", "1", SV_NOTES["n"],
+            "N"),
+        par("Dm", 15, "motor viscous friction; >= 0", "N.m.s/rad", SV_NOTES["Dm"], "DM"),
+        par("Kel", 16, "transmission stiffness (motor side); > 0", "N.m/rad", SV_NOTES["Kel"],
+            "KEL"),
+        par("Del", 17, "transmission damping (motor side); >= 0", "N.m.s/rad", SV_NOTES["Del"],
+            "DEL"),
+        par("pid.wcv", 20, "velocity loop crossover: K_pv = J wcv; finite, > pid.wcp", "rad/s",
+            SV_WZ, "PID_WCV"),
+        par("pid.Ti", 21, "velocity loop integral time; finite, > 0", "s", 10.0 / SV_WZ,
+            "PID_TI"),
+        par("pid.wcp", 22, "position loop crossover: K_pp = wcp; finite, > 0", "rad/s",
+            0.1 * SV_WZ, "PID_WCP"),
+        par("pid.J", 23, "inertia the velocity gain is sized for; 0 = the rule: Jm + Jl/n^2, or "
+            "Jm behind the TDO", "kg.m2", 0.0, "PID_J"),
+        par("tdo.Tf", 24, "time constant of the TDO's filter Q(s) = 1/(1 + s Tf); finite, > 0",
+            "s", 2 * SV_TS, "TDO_TF"),
+        par("tdo.Jn", 25, "nominal inertia of the TDO's motor model 1/(Jn s + Dn); > 0", "kg.m2",
+            SV_NOTES["Jm"], "TDO_JN"),
+        par("tdo.Dn", 26, "nominal friction of the TDO's motor model; >= 0", "N.m.s/rad",
+            SV_NOTES["Dm"], "TDO_DN"),
+        par("notch.at", 27, "where the P/PI cascade's notch sits; " + choice_text("NotchAt"), "",
+            0, "NOTCH_AT", None, None, "Integer", "NotchAt"),
+        par("notch.discretization", 28, "the notch's discretisation; "
+            + choice_text("NotchDiscretization"), "", 0, "NOTCH_DISCRETIZATION", None, None,
+            "Integer", "NotchDiscretization"),
+        par("notch.wn", 29, "centre of the notch (default: the resonance of the default plant); "
+            "finite, 0 < wn < pi/Ts", "rad/s", 179.0, "NOTCH_WN"),
+        par("notch.zeta", 30, "damping of the notch's zeros; in [0, 1)", "1", 0.104,
+            "NOTCH_ZETA", 0.0, 1.0),
+        par("notch.pole_zeta", 31, "damping of the notch's poles; > notch.zeta, <= 1e6", "1", 0.7,
+            "NOTCH_POLE_ZETA", 0.0, 1e6),
+    ]
+    for k, (wn, zeta) in enumerate(pp):
+        vs += [par(f"place.wn[{k}]", 32 + 2 * k, f"natural frequency of the closed loop's pole "
+                   f"pair {k}; finite, > 0", "rad/s", wn, f"PLACE_WN{k}"),
+               par(f"place.zeta[{k}]", 33 + 2 * k, f"damping ratio of the closed loop's pole "
+                   f"pair {k}; in (0, 1)", "1", zeta, f"PLACE_ZETA{k}", 0.0, 1.0)]
+    vs += [
+        par("place.real", 36, "the closed loop's real pole is at -place.real; finite, > 0",
+            "1/s", 30.0, "PLACE_REAL"),
+        par("observer.wn", 37, "natural frequency of the observer's pole pair; finite, > 0",
+            "rad/s", obs[0], "OBSERVER_WN"),
+        par("observer.zeta", 38, "damping ratio of the observer's pole pair; in (0, 1)", "1",
+            obs[1], "OBSERVER_ZETA", 0.0, 1.0),
+        par("observer.real[0]", 39, "an observer pole at -observer.real[0]; finite, > 0", "1/s",
+            800.0, "OBSERVER_REAL0"),
+        par("observer.real[1]", 40, "an observer pole at -observer.real[1]; finite, > 0", "1/s",
+            1000.0, "OBSERVER_REAL1"),
+    ]
+    lq_q = (1e2, 0.0, 1e4, 0.0, 1e7)   # presets.LQ_Q (Bryson's rule)
+    state = ("q_m", "q_m'", "n q_l", "n q_l'", "the integrated motor error x_I")
+    vs += [par(f"lq.Q[{i}]", 41 + i, f"LQ weight of {state[i]} in sum (z' Q z + R u^2) Ts; "
+               "finite, >= 0", "", q, f"LQ_Q{i}") for i, q in enumerate(lq_q)]
+    vs += [
+        par("lq.R", 46, "LQ weight of the motor torque; finite, > 0", "", 1.0, "LQ_R"),
+        par("kalman.torque_noise", 47, "standard deviation of the motor torque noise the Kalman "
+            "predictor assumes; >= 0", "N.m", 0.01, "KALMAN_TORQUE_NOISE"),
+        par("kalman.load_torque_noise", 48, "standard deviation of the load torque noise (load "
+            "side); >= 0, not both 0", "N.m", 10.0, "KALMAN_LOAD_TORQUE_NOISE"),
+        par("kalman.encoder_noise", 49, "standard deviation of the encoder noise (default: the "
+            "quantisation of 20 bits); finite, > 0", "rad", 2.0 * math.pi / 2 ** 20
+            / math.sqrt(12.0), "KALMAN_ENCODER_NOISE"),
+        par("wf", 50, "bandwidth of the reference model wf^3/(s + wf)^3 behind the state "
+            "feedback's feed-forward; 0 = none (the integrator tracks q_ref)", "rad/s", 60.0,
+            "WF"),
+    ]
+    rows = [f'    X({v.vr}, "{v.name}", {v.c_name.lower()}, '
+            f"{'INTEGER' if v.type == 'Integer' else 'REAL'}, {v.causality.upper()}, "
+            f"{_fmt(v.start if v.start is not None else 0.0)})" for v in vs]
+    header = ["/* X(vr, name, struct field, type, class, start) for every variable, vr order */",
+              "#define SV_VARIABLES(X) \\", " \\\n".join(rows),
+              f"#define SV_VR_END {vs[-1].vr + 1}   /* every value reference is below */"]
+    return vs, header, ("Servo drive in closed loop: elastic motor-transmission-load plant "
+                        "under P/PI, TDO, pole-placement or LQG control (smoothshaper)")
+
+
+
 MODELS = {"SmoothShaper": smooth_shaper, "TrajectoryGenerator": trajectory_generator,
-          "ElasticPlant": elastic_plant, "MultiAxisGenerator": multi_axis_generator}
+          "ElasticPlant": elastic_plant, "MultiAxisGenerator": multi_axis_generator,
+          "ServoDrive": servo_drive}
 PREFIXES = {"SmoothShaper": "SS", "TrajectoryGenerator": "TG", "ElasticPlant": "EP",
-            "MultiAxisGenerator": "MA"}
+            "MultiAxisGenerator": "MA", "ServoDrive": "SV"}
 
 
 def _fmt(v) -> str:

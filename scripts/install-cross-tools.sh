@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Optional: the mingw-w64 cross compiler (builds binaries/win64 into the FMUs), wine64 (runs
 # that binary through fmpy's remoting in tests/python/test_fmu_win64.py) and the Cortex-M
 # toolchain with newlib (ctest cortex_m_compile). Debian/Ubuntu, as root. Without them the FMUs

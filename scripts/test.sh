@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Set up from scratch and run every test: the C suite under ctest (double and float, then again
 # under AddressSanitizer + UndefinedBehaviorSanitizer) and the Python suite under pytest.
 # Needs: python3 >= 3.10 (with venv), a C compiler, cmake >= 3.16. Idempotent: reuses .venv.

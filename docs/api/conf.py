@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Sphinx configuration of the smoothshaper API reference (built by scripts/docs.sh)."""
 project = "smoothshaper"
 author = "smoothshaper contributors"

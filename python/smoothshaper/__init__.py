@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """smoothshaper: exact, drift-free trajectory smoothers and vibration input shapers.
 
 ``stages`` describes filters (pure Python); ``Chain`` and the functions from ``filters`` run

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """cffi builder for ``smoothshaper._core`` (double) and ``smoothshaper._core_float`` (float).
 
 API mode, out of line: the extension compiles every C source of ``c/src`` (all its areas:
@@ -52,7 +53,10 @@ def _preprocess(defines: list[str]) -> str:
     with tempfile.TemporaryDirectory() as fake_std:
         for name in _STD_HEADERS:
             open(os.path.join(fake_std, name), "w").close()
+        # SMS_NO_PRECISION_SUFFIX: declare the usual names (precision.h); the compiled module
+        # includes the headers without it and so calls the float build's suffixed functions.
         cmd = _compiler() + ["-E", "-P", "-nostdinc", "-I", fake_std, "-I", INCLUDE_DIR,
+                             "-DSMS_NO_PRECISION_SUFFIX",
                              "-DSMS_API=", "-D__attribute__(x)=", "-D__extension__=",
                              "-D__inline=inline", "-D__restrict="]
         cmd += [f"-D{d}" for d in defines] + [UMBRELLA]

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Argument checks shared by every public function: each raises
 :class:`~smoothshaper.errors.ParameterError` naming the parameter, so callers get the same
 message for the same mistake everywhere. Booleans, complex numbers and strings are refused

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* design.kinematic's fast path as a CPython function: plain numbers in, Stage objects out.
  *
  * design.kinematic is called once per move in online planning, where its cost beside the C

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Scales for percentages of residual vibration, shared by the CLI, the calibration figures
 and the report: the levels users compare against (1 %, 5 %, 20 %, 100 %) must stay apart on
 every plot, which a linear scale up to the hundreds of percent far off a mode cannot do."""

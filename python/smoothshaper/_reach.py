@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The message for limits with which no move can reach vmax, for both online generators.
 
 ``sms_generator_reach`` (trajectory.h) and ``sms_multi_generator_reach`` (multi_generator.h)

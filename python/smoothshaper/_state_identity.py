@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Messages for saved C states of another configuration.
 
 Every saved state of the C core starts with its configuration identity (``config.h``,

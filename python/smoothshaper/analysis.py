@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Frequency-domain analysis of stages and chains: responses, residual vibration, PRV,
 insensitivity and trajectory spectra. Pure NumPy/SciPy on top of ``smoothshaper.reference``.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Kinematic design (docs/design.md): the shortest rest-to-rest chain within bounds.
 
 ``kinematic(h=, vmax=, amax=, jmax=, higher=(), profile=, wn=, zeta=, Ts=)`` calls the C design

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The one exception type of the package for invalid arguments, and the one warning of the
 online generators (a target they dropped).
 

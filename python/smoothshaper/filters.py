@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """C-backed filters: :class:`Chain` and the C design / identification functions.
 
 Everything here calls the compiled C core (``smoothshaper._core``, or ``_core_float`` with
@@ -46,6 +47,7 @@ _STATUS_PARAMETER = {
     -20: "bandwidth", -21: "duration",
     # a saved C state of another configuration: the status names the field, the argument is the state
     **{code: "state" for code in range(-43, -21)},
+    -44: "coeffs",
     -50: "amplitudes", -51: "times",
 }
 #: Saved Chain states start with this tag and format version, then the configuration they

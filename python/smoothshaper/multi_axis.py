@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Coordinated multi-axis motion: the C-backed online generator and the offline design.
 
 * :class:`MultiAxisGenerator` wraps ``sms_multi_generator``: target vectors of shape

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Validation plants (docs/analysis.md) as continuous state space, and their exact ZOH simulation.
 
 Models (input: commanded position ``q_ref``):

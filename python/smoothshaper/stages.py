@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Plain stage descriptions shared by the C-backed filters and the NumPy reference.
 
 A :class:`Stage` is data only, like the C ``sms_stage_config``: it holds the physical

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """NumPy reference of the time-optimal online generator's plan.
 
 Written independently of ``c/src/trajectory/plan.c``: the motion from a state (q, v, a) to a target at

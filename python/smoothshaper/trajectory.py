@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Online multi-point generator and B-spline interpolation: C-backed classes and NumPy references.
 
 * :class:`Generator` wraps ``sms_generator`` (docs/design.md, docs/sampled-limits.md): a

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Benchmark: `smoothshaper calibrate` on a 60 s, 3.2 kHz, three-axis resonance record.
 
 Prints the CPU time of each step (one core; the target is under 10 s in total) and the modes

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * CPU time of the process and the median of timed rounds, shared by the C benchmarks
  * (tests/bench/, tests/fmu/bench_*.c): CPU time, so other processes on the machine do not

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Drift benchmark (docs/numerics.md): runs each smoother for many samples of 1e3 + uniform noise and
  * prints, at decade checkpoints, the max |error| against the direct convolution with the
  * taps (over a window of max(1e4, 4L) samples after the checkpoint) and the running max.

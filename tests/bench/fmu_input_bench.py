@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """fmpy's simulate_fmu with an input signal: seconds and microseconds per step for 1e4, 1e5 and
 1e6 steps of SmoothShaper.fmu (h = Ts = 1 ms, a new input value every step).
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Prints the generator's cost: ns per sample on a long move (no re-plan) for each profile,
  * with and without a mode, the re-plan cost (a target that moves every sample, minus the
  * steady cost), and the kinematic design time. Figures only; nothing is asserted. */

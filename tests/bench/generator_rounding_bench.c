@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Rounding campaign of the online generator (docs/sampled-limits.md, "What rounding adds"):
  * the random cases of tests/c/generator_campaign.h, half with Ts on the phase grid; prints the
  * worst reported |v|/vmax - 1, |a|/amax - 1, |j|/jmax - 1 in units of u (the unit roundoff of

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Adversarial search for the multi-axis generator's first transition (docs/multi-axis.md, "What
 is guaranteed at the samples"): how far above amax_i and jmax_i can the planned first
 transition of a move from a cruise go, in units of u (the unit roundoff of the build)?

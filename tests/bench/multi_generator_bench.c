@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Prints the multi-axis generator's cost for 1, 3 and 6 axes (phase-synchronised): ns per
  * sample while moving (no re-plan), and the cost of one re-plan from rest and blended
  * mid-motion (a new target seen during the cruise), each measured on copies of one saved

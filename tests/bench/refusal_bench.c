@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* How long sizing and validating a filter takes, as a function of its length (printed, never
  * asserted): every size query and every refusal is O(1), so the times below must not grow with
  * T/Ts. Run: build/release/tests/refusal_bench_double */

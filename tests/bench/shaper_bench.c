@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Shaper, notch and identification figures (printed, never asserted): cost per sample,
  * residual vibration on the seed 000 mode for paper vs exact timing, identification accuracy. */
 #include <complex.h>

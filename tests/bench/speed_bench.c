@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Per-sample cost of every filter next to the plain recursion of the same filter, measured in
  * one run: contenders interleaved round by round, CPU time, median over the rounds.
  *
@@ -10,6 +11,8 @@
  * - notch: the direct-form-I biquad y = b0 x + b1 x1 + b2 x2 - a1 y1 - a2 y2;
  * - shaper: a sparse FIR sum_k g_k x[n - d_k] over a ring, same taps as the library's;
  * - direct-form FIR: sum_i h[i] x[n-i] over all L taps (what the O(1) smoothers replace).
+ * Each row is measured twice: on blocks (sms_stage_process against the plain loop) and one
+ * call per sample ("<path> step": sms_stage_step against the plain form's one-sample call).
  *
  * Trajectory paths: the online generator's cost per sample (cruise, no re-plan) and the
  * kinematic design's cost in each regime of a velocity/acceleration/jerk move.
@@ -162,20 +165,100 @@ static void plain_direct_fir(plain *p, const sms_real *in, sms_real *out, size_t
     p->head = head;
 }
 
+/* The same plain forms called once per sample, as firmware calls a filter from its sample
+ * interrupt: state in the struct, one call (never inlined into the caller) per sample. These
+ * are what the library's step functions are measured against. */
+#if defined(__GNUC__)
+#define NOINLINE __attribute__((noinline))
+#else
+#define NOINLINE
+#endif
+
+static NOINLINE void plain_running_sum_step(plain *p, sms_real *x)
+{
+    const sms_real v = *x;
+    p->s += v - p->ring[p->head];
+    p->ring[p->head] = v;
+    p->head = p->head + 1 == p->len ? 0 : p->head + 1;
+    *x = p->s * p->g;
+}
+
+static NOINLINE void plain_resonator_step(plain *p, sms_real *x)
+{
+    const sms_real v = *x, oldest = p->ring[p->head];
+    sms_real y;
+    p->ring[p->head] = v;
+    p->head = p->head + 1 == p->len ? 0 : p->head + 1;
+    y = p->a1 * p->y1 - p->a2 * p->y2 + p->g * (p->x1 + p->tail * oldest);
+    p->x1 = v;
+    p->y2 = p->y1;
+    p->y1 = y;
+    *x = y;
+}
+
+static NOINLINE void plain_first_order_step(plain *p, sms_real *x)
+{
+    const sms_real v = *x, oldest = p->ring[p->head];
+    p->ring[p->head] = v;
+    p->head = p->head + 1 == p->len ? 0 : p->head + 1;
+    p->y1 = p->a1 * p->y1 + p->g * (v + p->tail * oldest);
+    *x = p->y1;
+}
+
+static NOINLINE void plain_biquad_step(plain *p, sms_real *x)
+{
+    const sms_real v = *x;
+    const sms_real y = p->b0 * v + p->b1 * p->x1 + p->b2 * p->x2 - p->a1 * p->y1 - p->a2 * p->y2;
+    p->x2 = p->x1;
+    p->x1 = v;
+    p->y2 = p->y1;
+    p->y1 = y;
+    *x = y;
+}
+
+static NOINLINE void plain_sparse_fir_step(plain *p, sms_real *x)
+{
+    const size_t len = p->len, n_taps = p->n_taps, head = p->head;
+    sms_real acc = 0;
+    size_t k;
+    p->ring[head] = *x;
+    for (k = 0; k < n_taps; ++k) {
+        const size_t d = p->delay[k];
+        acc += p->gain[k] * p->ring[head >= d ? head - d : head + len - d];
+    }
+    p->head = head + 1 == len ? 0 : head + 1;
+    *x = acc;
+}
+
 /* ---- contenders ---------------------------------------------------------------------- */
 
 typedef struct contender {
     const char *name;
     void (*plain_run)(plain *, const sms_real *, sms_real *, size_t);
+    void (*plain_step)(plain *, sms_real *);
     sms_stage *stage;
 } contender;
 
+/* 0: each contender filters a block in one call (process); 1: one call per sample (step). */
+static int per_sample;
+
 static void run(const contender *c, size_t n)
 {
-    if (c->stage != NULL)
+    size_t i;
+    if (per_sample) {
+        for (i = 0; i < n; ++i) {
+            sms_real x = input[i];
+            if (c->stage != NULL)
+                sms_stage_step(c->stage, &x);
+            else
+                c->plain_step(&plain_state, &x);
+            output[i] = x;
+        }
+    } else if (c->stage != NULL) {
         sms_stage_process(c->stage, input, output, n);
-    else
+    } else {
         c->plain_run(&plain_state, input, output, n);
+    }
 }
 
 static int compare_double(const void *a, const void *b)
@@ -213,6 +296,17 @@ static void measure(const char *path, contender *c, size_t n_c, int rounds, int 
                samples[0][rounds / 2] / samples[j][rounds / 2]);
 }
 
+/* The block row, then the same contenders one call per sample ("<path> step"). */
+static void measure_both(const char *path, contender *c, size_t n_c, int rounds, int blocks)
+{
+    char step_path[64];
+    measure(path, c, n_c, rounds, blocks);
+    snprintf(step_path, sizeof step_path, "%s step", path);
+    per_sample = 1;
+    measure(step_path, c, n_c, rounds, blocks);
+    per_sample = 0;
+}
+
 static sms_stage stage;
 
 static int init_stage(const sms_stage_config *c, double Ts)
@@ -248,6 +342,7 @@ static void smoother_row(const char *path, sms_kind kind, double T, double sigma
     cs = cos(PI / (double)N);
     list[n_c].name = "smoothshaper";
     list[n_c].stage = &stage;
+    list[n_c].plain_step = NULL;
     list[n_c++].plain_run = NULL;
     list[n_c].name = "plain recursion";
     list[n_c].stage = NULL;
@@ -255,6 +350,7 @@ static void smoother_row(const char *path, sms_kind kind, double T, double sigma
     case SMS_RECTANGULAR:
         reset_plain(N);
         plain_state.g = (sms_real)(1.0 / (double)N);
+        list[n_c].plain_step = plain_running_sum_step;
         list[n_c++].plain_run = plain_running_sum;
         break;
     case SMS_EXPONENTIAL:
@@ -262,6 +358,7 @@ static void smoother_row(const char *path, sms_kind kind, double T, double sigma
         plain_state.a1 = (sms_real)r;
         plain_state.g = (sms_real)((1.0 - r) / (1.0 - pow(r, (double)N)));
         plain_state.tail = (sms_real)(-pow(r, (double)N));
+        list[n_c].plain_step = plain_first_order_step;
         list[n_c++].plain_run = plain_first_order;
         break;
     default: /* harmonic families: the seed's S(z) / S_sigma(z) */
@@ -270,11 +367,12 @@ static void smoother_row(const char *path, sms_kind kind, double T, double sigma
         plain_state.a2 = (sms_real)(r * r);
         plain_state.g = (sms_real)((1.0 - 2.0 * r * cs + r * r) / (1.0 + pow(r, (double)N)));
         plain_state.tail = (sms_real)pow(r, (double)N);
+        list[n_c].plain_step = plain_resonator_step;
         list[n_c++].plain_run = plain_resonator;
         break;
     }
     (void)with_direct;
-    measure(path, list, n_c, rounds, blocks);
+    measure_both(path, list, n_c, rounds, blocks);
 }
 
 static void direct_fir_row(const char *path, sms_kind kind, double T, double Ts, int rounds, int blocks)
@@ -293,9 +391,11 @@ static void direct_fir_row(const char *path, sms_kind kind, double T, double Ts,
     list[0].name = "smoothshaper";
     list[0].stage = &stage;
     list[0].plain_run = NULL;
+    list[0].plain_step = NULL;
     list[1].name = "direct-form FIR";
     list[1].stage = NULL;
     list[1].plain_run = plain_direct_fir;
+    list[1].plain_step = NULL;
     measure(path, list, 2, rounds, blocks);
 }
 
@@ -322,10 +422,12 @@ static void notch_row(const char *path, double wn, double Ts, int rounds, int bl
     list[0].name = "smoothshaper";
     list[0].stage = &stage;
     list[0].plain_run = NULL;
+    list[0].plain_step = NULL;
     list[1].name = "plain biquad";
     list[1].stage = NULL;
     list[1].plain_run = plain_biquad;
-    measure(path, list, 2, rounds, blocks);
+    list[1].plain_step = plain_biquad_step;
+    measure_both(path, list, 2, rounds, blocks);
 }
 
 static void shaper_row(const char *path, sms_kind kind, double wn, double zeta, double Ts,
@@ -350,10 +452,12 @@ static void shaper_row(const char *path, sms_kind kind, double wn, double zeta, 
     list[0].name = "smoothshaper";
     list[0].stage = &stage;
     list[0].plain_run = NULL;
+    list[0].plain_step = NULL;
     list[1].name = "sparse FIR";
     list[1].stage = NULL;
     list[1].plain_run = plain_sparse_fir;
-    measure(path, list, 2, rounds, blocks);
+    list[1].plain_step = plain_sparse_fir_step;
+    measure_both(path, list, 2, rounds, blocks);
 }
 
 static sms_real generator_table[1 << 16];

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Minimal test harness: CHECK macros count failures; a test's main returns check_summary(). */
 #ifndef SMS_TEST_CHECK_H
 #define SMS_TEST_CHECK_H

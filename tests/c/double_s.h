@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Time-optimal rest-to-rest jerk-limited duration (Biagiotti & Melchiorri, Trajectory
  * Planning for Automatic Machines and Robots, 2008, sec. 3.4), written independently of the
  * library's design and generator; the kinematic and generator tests compare against it. */

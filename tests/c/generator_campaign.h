@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The online generator's rounding campaign (docs/sampled-limits.md, "What rounding adds"),
  * shared by tests/c/test_generator.c (a few hundred cases, asserted) and
  * tests/bench/generator_rounding_bench.c (tens of thousands, printed).

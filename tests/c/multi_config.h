@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* A multi-axis generator configuration for the tests: n_axes axes, the sync mode, no
  * vibration stages, and axis i's vmax, amax, jmax from limits(i, lim) (lim[0..2]). */
 #ifndef SMS_TEST_MULTI_CONFIG_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Helpers shared by the smoother tests and the drift benchmark. */
 #ifndef SMS_TEST_SMOOTHER_FIXTURES_H
 #define SMS_TEST_SMOOTHER_FIXTURES_H

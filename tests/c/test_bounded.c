@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Bounded work and finite results: sizes of arbitrarily long filters come from closed forms
  * (exact values checked here; tests/bench/refusal_bench.c prints the times), designs and
  * identifications never return SMS_OK with a non-finite value, and one rule for T below Ts. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* B-spline filters: exact pass-through of via-points at the documented samples, rest at both
  * ends, spectral zeros at k 2 pi / T, period design, state, bad input. */
 #include <stdlib.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Chains of mixed stages: equal to the convolution of their stages' taps (then the notch
  * recursion), block/split invariance, state save/load, untouched-on-error, rebind. */
 #include <string.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* sms_chain_hold(): n samples of a constant input give the state and output of n samples
  * filtered one by one, bit for bit, for random chains (smoothers on and off the grid, shapers,
  * notches), random histories and every n around the stages' absorption (short holds filter,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* sms_design_for_mode: every family placed on a mode cancels it (where the family can), for
  * integer and non-integer T/Ts, through the stage interface; and every bad argument. */
 #include <complex.h>

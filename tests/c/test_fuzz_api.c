@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Seeded random configurations and calls against the public C API (sanitizer build: ASan and
  * UBSan see every call). Assertions for every configuration:
  * - no crash, and no call longer than 100 ms (size queries and refusals are O(1); the only

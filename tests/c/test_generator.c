@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Online generator: bounds under adversarial staircases (fixed seeds), exact arrival,
  * time-optimal single moves for every profile, the tuned stage (convolution, arrival, the
  * mode's zero), state save/load, bad input. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* sms_generator_hold(): n steps with one target give the state and output of n calls of
  * sms_generator_step(), bit for bit, for random limits, every profile, with and without the
  * tuned stage, random histories (moves interrupted by the new target) and every n from one

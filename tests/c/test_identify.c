@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Mode identification: exact on noise-free data, accurate with noise and an offset, and every
  * bad record rejected. */
 #include <string.h>

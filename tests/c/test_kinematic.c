@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Kinematic design: seed check values, time-optimal double-S duration from the textbook
  * closed form, structure and bounds of every design, bad input. */
 #include <stdlib.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Batch kinematic design: every problem's lengths equal the single design's bit for bit (any
  * order, profile, mode, grid and strides); a refused problem reports its index and status,
  * keeps the rows before it and leaves the rest untouched; bad arguments write nothing. */

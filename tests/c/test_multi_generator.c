@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Multi-axis generator: phase-synchronised rest-to-rest moves (common arrival sample, straight
  * line, limits at every sample, time-optimal duration on the grid), staircases with reversals
  * and mid-motion changes (limits, exact arrival), independent axes, bad input. Fixed seeds. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* sms_multi_generator_hold(): n steps with the same targets give the state and output of n calls
  * of sms_multi_generator_step(), bit for bit, for random limits, both synchronisations, 1 to 4
  * axes, no stages, FIR stages (smoothers, shapers) and notches, random histories (moves

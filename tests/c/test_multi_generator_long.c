@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Multi-axis generator on long moves (10^3 to 10^5 s at Ts = 1 ms, 10^6 to 10^8 samples), both
  * sync modes, float and double: windows around every breakpoint of the move (start, end of
  * the first transition, mid-cruise, start of the stop, arrival), reached by setting the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Notch biquads: coefficients against the continuous notch (zeros, poles, pre-warping), the
  * -3 dB bandwidth formula, non-finite recovery, state and errors. */
 #include <complex.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Input shapers: continuous designs against their defining properties, discrete taps against
  * the exact-mode contract (docs/exact-mode.md), the engine against the taps, state and errors. */
 #include <complex.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Drift (docs/numerics.md): 1e7 samples of 1e3 + uniform noise through every recursive smoother.
  * The error against the direct convolution with the taps over the last 1e4 samples must be
  * no larger than over the 1e4 after the first 1e4 (within 2x): rounding does not accumulate with run

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Random smoother configurations (family, T/Ts from 1 to 5000, sigma over 9 decades, k, timing):
  * each is rejected with a status its inputs explain, or its realised impulse response equals
  * sms_smoother_taps() (SMS_TEST_REL_TOL of the largest tap), the taps sum to 1, and exact

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The smoothers as streams: one block == random splits == in place == sample by sample (bit
  * for bit), reset to a rest value, state save/load, NaN/Inf input recovery, and every invalid
  * configuration rejected with its status and the instance untouched. */
@@ -99,7 +100,7 @@ static void test_state(const sms_stage_config *c, double Ts)
     sms_smoother_reset(&a, (sms_real)2);
     sms_smoother_process(&a, sig_in, sig_out, 1234);
     count = sms_smoother_state_count(&a);
-    CHECK(count == SMS_STATE_IDENTITY_COUNT + a.window + 14u);
+    CHECK(count == SMS_STATE_IDENTITY_COUNT + a.window + 13u);
     sms_smoother_get_state(&a, saved);
     CHECK_STATUS(sms_smoother_check_state(&b, saved, count), SMS_OK);
     CHECK_STATUS(sms_smoother_set_state(&b, saved, count), SMS_OK);
@@ -113,12 +114,12 @@ static void test_state(const sms_stage_config *c, double Ts)
         switch (i) {
         case 0: bad[ID + 0] = (double)a.window; break;        /* head out of range */
         case 1: bad[ID + 0] = 0.5; break;                     /* head not integral */
-        case 2: bad[ID + 1] = bad[ID + 2] + 1.0; break;            /* ages not M apart */
-        case 3: bad[ID + 1] = 2.0 * (double)a.window + 1.0; break; /* age out of range */
-        case 4: bad[ID + 2] = -1.0; break;
-        case 5: bad[ID + 3] = NAN; break;                     /* rest not finite */
+        case 2: bad[ID + 1] = (double)a.length + 1.0; break;  /* run beyond L */
+        case 3: bad[ID + 1] = 0.5; break;                     /* run not integral */
+        case 4: bad[ID + 1] = -1.0; break;
+        case 5: bad[ID + 2] = NAN; break;                     /* rest not finite */
         case 6: bad[ID + 0] = NAN; break;
-        case 7: bad[ID + 8] = 1e300; break;                   /* ring value (rejected in float only) */
+        case 7: bad[ID + 8] = 1e300; break;                   /* a copy's value (rejected in float only) */
         default: break;
         }
         memcpy(&before, &b, sizeof b);

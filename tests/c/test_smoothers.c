@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The four FIR smoothers' responses: taps against the sampled continuous responses, step
  * responses against closed forms, exact-timing zeros, paper timing. (Streams, state, invalid
  * configurations: test_smoother_stream.c.) Tolerances: SMS_TEST_REL_TOL (check.h). */

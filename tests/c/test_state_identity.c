@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Saved stage states carry their configuration's identity (config.h, SMS_STATE_IDENTITY_COUNT):
  * loading a state saved by another configuration is refused, writing nothing, with the status
  * that names the first field that differs; a field the kind does not read does not matter. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Saved states of the generator, the B-spline and the multi-axis generator carry their
  * configuration's identity (trajectory.h, multi_generator.h): a state of another configuration
  * is refused, writing nothing, with the status naming the first field that differs; a state of

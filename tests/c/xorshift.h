@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * xorshift64 (Marsaglia, "Xorshift RNGs", 2003): the seeded, portable random stream of the
  * randomised C tests, so a failing case replays the same on every platform.

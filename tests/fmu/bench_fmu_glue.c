@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * What the FMI glue costs on top of the filters (SmoothShaper linked in-process, CPU time,
  * median of interleaved rounds):

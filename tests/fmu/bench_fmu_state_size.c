@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * What each FMI call costs for the largest states an FMU accepts: one model linked in-process
  * (SmoothShaper, or TrajectoryGenerator / MultiAxisGenerator with FMU_TEST_TRAJECTORY /

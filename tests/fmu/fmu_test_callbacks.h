@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * The FMI callbacks of the FMU benchmarks and of the FMU tests that need no logger of their own
  * (each binary includes this once): memory from calloc/free, as a plain importer gives it, and a

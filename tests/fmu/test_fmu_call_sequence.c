@@ -1,7 +1,8 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * Random sequences of FMI 2.0 calls against SmoothShaper, or TrajectoryGenerator when built with
- * FMU_TEST_TRAJECTORY (each linked in-process, so ASan/UBSan see
- * everything): wrong orders, NULL pointers, bad value references, NaN and out-of-range
+ * FMU_TEST_TRAJECTORY, or ServoDrive with FMU_TEST_SERVO_DRIVE (each linked in-process, so
+ * ASan/UBSan see everything): wrong orders, NULL pointers, bad value references, NaN and out-of-range
  * parameters, FMU states and corrupted serialised states. A shadow of the FMI state machine
  * predicts which state-changing calls must succeed; every call must return fmi2OK or fmi2Error
  * (the only statuses this FMU uses) and never crash or leak.
@@ -13,9 +14,12 @@
 #include <string.h>
 
 #include "fmi2Functions.h"
-#ifdef FMU_TEST_TRAJECTORY
+#if defined(FMU_TEST_TRAJECTORY)
 #include "TrajectoryGenerator_variables.h"
 #define VR_OUTPUT TG_VR_Q
+#elif defined(FMU_TEST_SERVO_DRIVE)
+#include "ServoDrive_variables.h"
+#define VR_OUTPUT SV_VR_Q_L
 #else
 #include "SmoothShaper_variables.h"
 #define VR_OUTPUT SS_VR_Y
@@ -68,9 +72,15 @@ static double random_real(void)
 static fmi2ValueReference random_vr(void)
 {
     static const fmi2ValueReference pool[] = {
-#ifdef FMU_TEST_TRAJECTORY
+#if defined(FMU_TEST_TRAJECTORY)
         TG_VR_TARGET, TG_VR_Q, TG_VR_V, TG_VR_A, TG_VR_J, TG_VR_TS, TG_VR_VMAX, TG_VR_AMAX,
         TG_VR_JMAX, TG_VR_PROFILE, TG_VR_WN, TG_VR_ZETA, 5, 9, 17, 100000
+#elif defined(FMU_TEST_SERVO_DRIVE)
+        /* inputs, outputs, the plant, each controller's parameters, gaps and beyond the end */
+        SV_VR_Q_REF, SV_VR_TAU_LOAD, SV_VR_Q_M, SV_VR_TAU_M, SV_VR_TS, SV_VR_CONTROLLER,
+        SV_VR_JM, SV_VR_KEL, SV_VR_DEL, SV_VR_PID_WCV, SV_VR_PID_WCP, SV_VR_TDO_TF,
+        SV_VR_NOTCH_AT, SV_VR_NOTCH_WN, SV_VR_PLACE_ZETA0, SV_VR_OBSERVER_REAL1, SV_VR_LQ_Q4,
+        SV_VR_LQ_R, SV_VR_KALMAN_ENCODER_NOISE, SV_VR_WF, 7, 18, SV_VR_END, 100000
 #else
         SS_VR_U, VR_OUTPUT, SS_VR_TS, 3, 99, 100000,
         SS_STAGE_BASE + SS_FIELD_KIND, SS_STAGE_BASE + SS_FIELD_T, SS_STAGE_BASE + SS_FIELD_ZETA,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * The FMU states' checksum, fmu_xxh64(), against the xxHash library's XXH64 (seed 0) for every
  * path of the algorithm: below and above one 32-byte stripe, and every tail (8-, 4- and 1-byte

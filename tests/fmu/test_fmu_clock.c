@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * Tick accounting against a host that accumulates its clock (t += h, h = Ts = 1 ms), as simple
  * masters and fmpy's SSP runner do. That clock drifts from k*h: at step 334,586 the step ends at

@@ -1,7 +1,9 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * Seeded random FMI 2.0 call sequences against one model linked in-process: SmoothShaper, or
- * TrajectoryGenerator (FMU_TEST_TRAJECTORY), MultiAxisGenerator (FMU_TEST_MULTI_AXIS) or
- * ElasticPlant (FMU_TEST_ELASTIC_PLANT); the sanitizer build runs them under ASan and UBSan.
+ * TrajectoryGenerator (FMU_TEST_TRAJECTORY), MultiAxisGenerator (FMU_TEST_MULTI_AXIS),
+ * ElasticPlant (FMU_TEST_ELASTIC_PLANT) or ServoDrive (FMU_TEST_SERVO_DRIVE); the sanitizer build
+ * runs them under ASan and UBSan.
  * Unlike test_fmu_call_sequence.c, which walks the state machine with a few fixed values, the parameters here are drawn so that about half of the initialisations succeed
  * (random stage chains / limits, with NULL, NaN, Inf, huge, subnormal and negative values
  * mixed in), and every call is checked for:
@@ -41,6 +43,8 @@
 #include "MultiAxisGenerator_variables.h"
 #elif defined(FMU_TEST_ELASTIC_PLANT)
 #include "ElasticPlant_variables.h"
+#elif defined(FMU_TEST_SERVO_DRIVE)
+#include "ServoDrive_variables.h"
 #else
 #include "SmoothShaper_variables.h"
 #endif
@@ -57,6 +61,11 @@
 #endif
 #define CALL_LIMIT_S (0.1 * SANITIZER_SLOWDOWN)
 #define MAX_SLOTS 3
+/* Models without delay lines (their state is a few values in the model's struct): no large
+ * states to draw. */
+#if defined(FMU_TEST_ELASTIC_PLANT) || defined(FMU_TEST_SERVO_DRIVE)
+#define FMU_TEST_NO_DELAY_LINES
+#endif
 
 static unsigned long failures, n_calls, n_errors, n_steps, n_inits, n_restores, n_slow, n_warnings;
 static unsigned long n_nonfinite, n_unloadable, sequence, n_big_inits;
@@ -68,7 +77,7 @@ static char last_message[1024];
 static int huge_steps;   /* third argument "huge": steps of up to 1e12 s (O(1) over held input) */
 static int trace;        /* argument "trace": print every call (to replay one sequence) */
 static int drew_large;   /* the last parameter draw asked for a large state */
-#ifndef FMU_TEST_ELASTIC_PLANT   /* (no delay lines) */
+#ifndef FMU_TEST_NO_DELAY_LINES
 static int large_sequence;   /* every parameter draw of this sequence asks for a large state */
 #endif
 
@@ -143,7 +152,7 @@ static double any_zeta(void)
     return pick(4) ? pow(10.0, -12.0 + 11.5 * uniform()) : edge[pick(7)];
 }
 
-#ifndef FMU_TEST_ELASTIC_PLANT   /* (no delay lines) */
+#ifndef FMU_TEST_NO_DELAY_LINES
 static double large_reals(void)
 {
     return (double)FMU_MAX_REALS * pow(2.0, -2.0 + 3.0 * uniform());
@@ -289,6 +298,90 @@ static void random_parameters(fmi2Component c)
     v[2] = any_real(-3, 3);
     v[3] = pick(4) ? 2.0 * sqrt(v[1] * v[2]) * any_zeta() : any_real(-8, 2);
     fmi2SetReal(c, vr, 4, v);
+}
+#elif defined(FMU_TEST_SERVO_DRIVE)
+static const fmi2ValueReference outputs[] = { SV_VR_Q_M, SV_VR_W_M, SV_VR_Q_L, SV_VR_W_L,
+                                              SV_VR_TAU_M };
+#define N_OUTPUTS 5
+#define TS_VR SV_VR_TS
+
+static fmi2ValueReference input_vr(void) { return pick(2) ? SV_VR_Q_REF : SV_VR_TAU_LOAD; }
+
+/* value * 10^[-spread, spread], or (one time in five, any_real) an edge of double */
+static double around(double value, double spread)
+{
+    return pick(12) ? value * pow(10.0, spread * (2.0 * uniform() - 1.0)) : any_real(-6, 6);
+}
+
+/* The plant and every controller's tuning around the defaults (the notes' servo at 2 kHz), so
+ * that about half the draws build a stable loop; the edges of double mixed in are refused. */
+static void random_parameters(fmi2Component c)
+{
+    const fmi2ValueReference rvr[] = {
+        SV_VR_TS, SV_VR_JM, SV_VR_JL, SV_VR_N, SV_VR_DM, SV_VR_KEL, SV_VR_DEL,
+        SV_VR_PID_WCV, SV_VR_PID_TI, SV_VR_PID_WCP, SV_VR_PID_J, SV_VR_TDO_TF, SV_VR_TDO_JN,
+        SV_VR_TDO_DN, SV_VR_NOTCH_WN, SV_VR_NOTCH_ZETA, SV_VR_NOTCH_POLE_ZETA, SV_VR_PLACE_WN0,
+        SV_VR_PLACE_ZETA0, SV_VR_PLACE_WN1, SV_VR_PLACE_ZETA1, SV_VR_PLACE_REAL, SV_VR_OBSERVER_WN,
+        SV_VR_OBSERVER_ZETA, SV_VR_OBSERVER_REAL0, SV_VR_OBSERVER_REAL1, SV_VR_LQ_Q0, SV_VR_LQ_Q1,
+        SV_VR_LQ_Q2, SV_VR_LQ_Q3, SV_VR_LQ_Q4, SV_VR_LQ_R, SV_VR_KALMAN_TORQUE_NOISE,
+        SV_VR_KALMAN_LOAD_TORQUE_NOISE, SV_VR_KALMAN_ENCODER_NOISE, SV_VR_WF };
+    const fmi2ValueReference ivr[3] = { SV_VR_CONTROLLER, SV_VR_NOTCH_AT,
+                                        SV_VR_NOTCH_DISCRETIZATION };
+    enum { NR = sizeof rvr / sizeof rvr[0] };
+    fmi2Real v[NR];
+    fmi2Integer iv[3];
+    double wz;
+    unsigned i = 0;
+    v[i++] = pick(6) ? 5e-4 * pow(10.0, -1.0 + 1.1 * uniform()) : any_real(-6, 0);   /* Ts */
+    v[i++] = around(0.00015, 0.3);    /* Jm */
+    v[i++] = around(2.7, 0.5);        /* Jl */
+    v[i++] = around(100.0, 0.3);      /* n */
+    v[i++] = pick(4) ? around(0.0034, 1.0) : 0.0;
+    v[i++] = around(3.1, 0.3);        /* Kel */
+    v[i++] = pick(4) ? around(0.0022, 1.0) : 0.0;
+    wz = v[3] * sqrt(v[5] / v[2]);
+    v[i++] = around(isfinite(wz) && wz > 0.0 ? wz : 100.0, 0.3);   /* pid.wcv */
+    v[i++] = around(10.0 / v[7], 0.5);                          /* pid.Ti */
+    v[i++] = v[7] * pow(10.0, -2.0 * uniform()) * (pick(10) ? 1.0 : 2.0);   /* pid.wcp */
+    v[i++] = pick(2) ? 0.0 : around(0.0003, 0.5);                /* pid.J */
+    v[i++] = around(1e-3, 1.0);                                  /* tdo.Tf */
+    v[i++] = around(v[1], 0.2);                                  /* tdo.Jn */
+    v[i++] = pick(3) ? around(0.0034, 1.0) : 0.0;                /* tdo.Dn */
+    v[i++] = around(180.0, 1.0);                                 /* notch.wn */
+    v[i++] = any_zeta();
+    v[i++] = around(0.7, 0.5);
+    v[i++] = around(150.0, 0.5);                                 /* place.wn[0] */
+    v[i++] = pick(10) ? 0.2 + 0.79 * uniform() : any_zeta();
+    v[i++] = around(250.0, 0.5);
+    v[i++] = pick(10) ? 0.2 + 0.79 * uniform() : any_zeta();
+    v[i++] = around(30.0, 0.5);                                  /* place.real */
+    v[i++] = around(600.0, 0.5);                                 /* observer.wn */
+    v[i++] = pick(10) ? 0.2 + 0.79 * uniform() : any_zeta();
+    v[i++] = around(800.0, 0.5);
+    v[i++] = around(1000.0, 0.5);
+    v[i++] = pick(4) ? around(1e2, 2.0) : 0.0;                   /* lq.Q */
+    v[i++] = pick(2) ? around(1e-2, 2.0) : 0.0;
+    v[i++] = pick(4) ? around(1e4, 2.0) : 0.0;
+    v[i++] = pick(2) ? around(1e-2, 2.0) : 0.0;
+    v[i++] = pick(4) ? around(1e7, 2.0) : 0.0;
+    v[i++] = around(1.0, 2.0);                                   /* lq.R */
+    v[i++] = pick(6) ? around(0.01, 1.0) : 0.0;
+    v[i++] = around(10.0, 1.0);
+    v[i++] = around(1.7e-6, 1.0);
+    v[i++] = pick(3) ? around(60.0, 0.7) : 0.0;                  /* wf */
+    iv[0] = pick(10) ? (fmi2Integer)pick(4) : (fmi2Integer)pick(8) - 2;
+    iv[1] = pick(10) ? (fmi2Integer)pick(3) : (fmi2Integer)pick(6) - 2;
+    iv[2] = pick(10) ? (fmi2Integer)pick(2) : (fmi2Integer)pick(6) - 2;
+    fmi2SetReal(c, rvr, NR, v);
+    fmi2SetInteger(c, ivr, 3, iv);
+    drew_large = 0;
+    if (trace) {
+        fprintf(stderr, "  controller %d notch %d/%d, reals by value reference:", (int)iv[0],
+                (int)iv[1], (int)iv[2]);
+        for (i = 0; i < NR; ++i)
+            fprintf(stderr, " %u=%.17g", (unsigned)rvr[i], v[i]);
+        fprintf(stderr, "\n");
+    }
 }
 #else
 static const fmi2ValueReference outputs[] = { SS_VR_Y };
@@ -601,13 +694,13 @@ int main(int argc, char **argv)
     for (s = first; s < first + n; ++s) {
         sequence = s;
         rng = sequence_seed(seed, s);
-#ifndef FMU_TEST_ELASTIC_PLANT
+#ifndef FMU_TEST_NO_DELAY_LINES
         large_sequence = s % LARGE_EVERY == LARGE_EVERY - 1;
 #endif
         run_sequence(20 + pick(120));
     }
     CHECK(n_slow == 0);
-#ifndef FMU_TEST_ELASTIC_PLANT
+#ifndef FMU_TEST_NO_DELAY_LINES
     /* From 10 large sequences on: large states were built, and one of at least a quarter of the
      * limit went through the state calls (serialised size: 8 bytes per real). */
     CHECK(n < 10 * LARGE_EVERY

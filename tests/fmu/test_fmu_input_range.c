@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * SmoothShaper's finite input range (docs/numerics.md): a heavily damped harmonic smoother
  * (sigma Ts = -19 and -200, the class in which the FMI fuzz campaign found outputs that were NaN

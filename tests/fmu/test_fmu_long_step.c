@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * A fmi2DoStep of 1e12 s over a newly held input gives, bit for bit, the outputs and state of
  * ticking every sample (fmu_model_tick(), what the glue did before the closed forms), for

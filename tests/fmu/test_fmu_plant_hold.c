@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * ElasticPlant long steps: a step of more than 65536 ticks advances the deviation from the rest
  * (u, 0) by Ad^(n-1) in closed form, then ticks once (elastic_plant_model.c). Against ticking

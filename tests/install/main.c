@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Consumer of an installed smoothshaper: a unit step through a rectangular stage of
  * N = T/Ts = 8 taps must give the ramp min(n+1, N)/N, in the precision the package says. */
 #include <float.h>

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Installs a smoothshaper build tree into a scratch prefix and builds + runs the consumer in
 # this directory against it. Run with cmake -P; variables:
 #   MODE        cmake: install, then find_package consumers (static double + float, and the

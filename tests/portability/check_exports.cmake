@@ -1,7 +1,10 @@
+# SPDX-License-Identifier: Apache-2.0
 cmake_minimum_required(VERSION 3.16)
 # The shared library must export exactly the functions the public headers mark SMS_API:
 # nothing else (hidden visibility works, no helper or libc symbol leaks) and none missing.
-# Variables: LIB (the .so), NM, HEADERS (directory of the public headers).
+# The float library exports them under their link names, the usual name plus SUFFIX (_f32,
+# precision.h): a function precision.h does not rename shows up here as missing.
+# Variables: LIB (the .so), NM, HEADERS (directory of the public headers), SUFFIX.
 execute_process(COMMAND ${NM} -D --defined-only ${LIB}
   RESULT_VARIABLE rc OUTPUT_VARIABLE table ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
@@ -25,7 +28,7 @@ foreach(header ${headers})
   file(STRINGS ${header} api_lines REGEX "^[ \t]*SMS_API ")
   foreach(line ${api_lines})
     if(line MATCHES "([A-Za-z_][A-Za-z0-9_]*)[ \t]*\\(")
-      list(APPEND declared ${CMAKE_MATCH_1})
+      list(APPEND declared ${CMAKE_MATCH_1}${SUFFIX})
     endif()
   endforeach()
 endforeach()
@@ -45,7 +48,8 @@ foreach(sym ${exported})
 endforeach()
 foreach(sym ${declared})
   if(NOT sym IN_LIST exported)
-    message(SEND_ERROR "${sym} is declared SMS_API but ${LIB} does not export it")
+    message(SEND_ERROR "${sym} is declared SMS_API but ${LIB} does not export it (a float "
+                       "link name missing from precision.h?)")
   endif()
 endforeach()
 message(STATUS "${LIB}: ${n_exported} exported symbols, ${n_declared} SMS_API declarations")

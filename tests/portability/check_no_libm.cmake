@@ -1,7 +1,9 @@
+# SPDX-License-Identifier: Apache-2.0
 cmake_minimum_required(VERSION 3.16)
 # Fails if a program linked with --gc-sections (per_sample_probe.c: only step/process/reset
-# referenced) still imports a symbol that the C math library defines: the per-sample path
-# must not call libm (docs/numerics.md), whatever init does in the same translation unit.
+# referenced, or the init from precomputed coefficients) still imports a symbol that the C
+# math library defines: the per-sample path and the firmware path must not call libm
+# (docs/numerics.md, docs/firmware.md), whatever init does in the same translation unit.
 # Variables: EXE (the linked probe), NM, LIBM (the math library's shared object), GROUP (label).
 execute_process(COMMAND ${NM} -D --defined-only ${LIBM}
   RESULT_VARIABLE rc OUTPUT_VARIABLE libm_table ERROR_VARIABLE err)

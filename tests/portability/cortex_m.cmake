@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 cmake_minimum_required(VERSION 3.16)
 # Cross-compiles every C source under c/src (all areas) for a Cortex-M4F (hard float,
 # single-precision FPU) in both precisions with the library's strict C99 flags, and prints the
@@ -197,5 +198,73 @@ foreach(group_name filters bspline generator)   # PROBE_GROUP 1, 2, 3
     endif()
     message(STATUS "cortex-m4 ${precision} ${opt}: ${group_name} per-sample path ${path_text} B "
                    "text after gc-sections (empty program subtracted), ${libm_note}")
+  endforeach()
+endforeach()
+
+# The firmware path (coeffs.h, docs/firmware.md): one axis filter (the README's chain) linked
+# three ways by firmware_probe.c, float -Os and -O2: per-sample only, built from precomputed
+# coefficients (examples/firmware/), designed on the target. The first two must link no
+# soft-float double routine and no libm function, and the one built from coefficients must
+# stay within 4 kB of code, init included.
+set(firmware_dir ${SOURCE_DIR}/examples/firmware)
+foreach(build float_Os float)
+  set(opt "-O2")
+  set(build_flags ${strict_flags})
+  if(build STREQUAL "float_Os")
+    set(opt "-Os")
+    string(REPLACE "-O2" "-Os" build_flags "${strict_flags}")
+  endif()
+  set(app_objects)
+  foreach(src ${firmware_dir}/axis_filter.c ${firmware_dir}/chain_coeffs.c)
+    get_filename_component(name ${src} NAME_WE)
+    set(obj ${WORK_DIR}/firmware_${build}_${name}.o)
+    execute_process(COMMAND ${ARM_GCC} ${target_flags} ${build_flags} -DSMS_USE_FLOAT
+      -I${SOURCE_DIR}/c/include -I${firmware_dir} -c ${src} -o ${obj}
+      RESULT_VARIABLE rc ERROR_VARIABLE err)
+    if(NOT rc EQUAL 0)
+      message(FATAL_ERROR "cortex-m4 float ${opt}: examples/firmware/${name}.c does not compile:\n${err}")
+    endif()
+    list(APPEND app_objects ${obj})
+  endforeach()
+  set(probe 0)
+  foreach(label "per-sample only" "init from precomputed coefficients" "full on-target design")
+    math(EXPR probe "${probe} + 1")
+    set(extra)
+    if(probe EQUAL 2)
+      set(extra ${app_objects})
+    endif()
+    set(elf ${WORK_DIR}/firmware_${probe}_${build}.elf)
+    execute_process(COMMAND ${ARM_GCC} ${link_flags} ${build_flags} -DSMS_USE_FLOAT
+      -DFIRMWARE_PROBE=${probe} -I${SOURCE_DIR}/c/include -I${firmware_dir}
+      ${CMAKE_CURRENT_LIST_DIR}/firmware_probe.c ${extra} ${objects_${build}} -lm -o ${elf}
+      RESULT_VARIABLE rc ERROR_VARIABLE err)
+    if(NOT rc EQUAL 0)
+      message(FATAL_ERROR "cortex-m4 float ${opt}: firmware probe ${probe} does not link:\n${err}")
+    endif()
+    execute_process(COMMAND ${ARM_NM} --defined-only ${elf} OUTPUT_VARIABLE elf_table)
+    string(REGEX MATCHALL " [TtWw] __aeabi_(d[a-z]+|f2d|[iu]2d|l2d|ul2d|d2[a-z]+)" soft_double "${elf_table}")
+    string(REGEX MATCHALL " [TtWw] [A-Za-z_][A-Za-z0-9_]*" elf_entries "${elf_table}")
+    set(kept_math)
+    foreach(entry ${elf_entries})
+      string(REGEX REPLACE "^ [TtWw] " "" name "${entry}")
+      if(name IN_LIST libm_symbols)
+        list(APPEND kept_math ${name})
+      endif()
+    endforeach()
+    list(LENGTH soft_double n_soft)
+    list(LENGTH kept_math n_math)
+    elf_text(${elf} probe_text)
+    math(EXPR path_text "${probe_text} - ${empty_text}")
+    message(STATUS "cortex-m4 float ${opt}: firmware ${label} ${path_text} B text after "
+                   "gc-sections (empty program subtracted), ${n_soft} soft-double helpers, "
+                   "${n_math} libm functions")
+    if(probe LESS 3 AND (n_soft GREATER 0 OR n_math GREATER 0))
+      message(SEND_ERROR "cortex-m4 float ${opt}: the firmware path (${label}) links "
+                         "soft-float double or libm: ${soft_double} ${kept_math}")
+    endif()
+    if(probe EQUAL 2 AND build STREQUAL "float_Os" AND path_text GREATER 4096)
+      message(SEND_ERROR "cortex-m4 float -Os: the axis filter built from coefficients takes "
+                         "${path_text} B of code, above the 4 kB budget")
+    endif()
   endforeach()
 endforeach()

@@ -1,8 +1,10 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Takes the address of every per-sample function (step, process, reset) of one group
  * (PROBE_GROUP) and nothing else, so that a --gc-sections link keeps exactly the code those
  * functions can reach. Never run: check_no_libm.cmake and cortex_m.cmake inspect which libm
  * symbols the linked program still needs.
- * Groups: 1 filters (stage, chain and the families behind them), 2 B-spline, 3 generator. */
+ * Groups: 1 filters (stage, chain and the families behind them), 2 B-spline, 3 generator,
+ * 4 the firmware path: a chain built from precomputed coefficients (coeffs.h), then stepped. */
 #include <smoothshaper/smoothshaper.h>
 
 /* void (*)(void) is C's generic function pointer; the addresses are only stored, never called. */
@@ -20,8 +22,13 @@ static const probe_fn runtime_functions[] = {
     PROBE(sms_bspline_step), PROBE(sms_bspline_reset)
 #elif PROBE_GROUP == 3
     PROBE(sms_generator_step), PROBE(sms_generator_reset)
+#elif PROBE_GROUP == 4
+    PROBE(sms_chain_coeffs_memory_size), PROBE(sms_chain_init_coeffs),
+    PROBE(sms_stage_coeffs_memory_size), PROBE(sms_stage_init_coeffs),
+    PROBE(sms_smoother_init_coeffs), PROBE(sms_shaper_init_coeffs), PROBE(sms_notch_init_coeffs),
+    PROBE(sms_chain_step), PROBE(sms_chain_process), PROBE(sms_chain_reset)
 #else
-#error "PROBE_GROUP must be 1, 2 or 3"
+#error "PROBE_GROUP must be 1, 2, 3 or 4"
 #endif
 };
 

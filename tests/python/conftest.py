@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Shared pytest setup: hypothesis profiles sized for the 5-minute budget on 2 cores.
 
 ``HYPOTHESIS_PROFILE=thorough`` runs many more examples (use it when changing the C core).

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The established 3-D printer calibration's pick (Klipper's scripts/calibrate_shaper.py and
 klippy/extras/shaper_calibrate.py, as published by K. O'Connor and D. Butyugin), written here
 from its description for the comparison tests:

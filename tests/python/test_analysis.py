@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """analysis: PRV facts of the seeds, insensitivity widths, spectra, discrete vs continuous."""
 import math
 

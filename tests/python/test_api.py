@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """One consistent Python API: ParameterError everywhere, plain numbers in messages, no silent
 casts of complex/boolean/text input, case-insensitive names, lazy submodules, ``__all__`` in
 every public module, one name per concept (import cycles and layers: test_layers_python.py)."""

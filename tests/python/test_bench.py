@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The benchmark command runs end to end (a smoke test: --quick, no timing is asserted) and
 writes every table the docs quote."""
 import shutil
@@ -19,7 +20,9 @@ def test_quick_run_writes_every_table(tmp_path, capsys):
         args.append("--no-fmu")
     assert bench.main(args) == 0
     text = out.read_text()
-    for title in ("C per-sample cost against the plain realisation", "C trajectory paths",
+    for title in ("C per-sample cost against the plain realisation",
+                  "C one call per sample (step) against the plain form called the same way",
+                  "C trajectory paths",
                   "Python call floor", "Python throughput", "Python peak memory",
                   "Design cost of a chain"):
         assert f"## {title}" in text

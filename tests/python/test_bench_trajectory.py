@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The trajectory benchmark: a smoke run (its timings are for reading, never asserted), ruckig's
 discontinuity the benchmark steps around, and the arrival goal it measures (mid-motion and
 rest to rest against ruckig), asserted on a seeded set of cases."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The cffi extension exposes the whole public C API, generated from the headers."""
 import glob
 import os

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Bounded work and finite results through Python and the SmoothShaper FMU: requests too large
 are refused at once naming the parameter and the limit, designs and identifications are finite
 or refused, saved states carry their configuration, and T below Ts is refused everywhere.

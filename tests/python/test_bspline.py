@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """B-spline filters: exact pass-through, C == NumPy reference, spectral zeros at k 2 pi / T,
 and the residual-vibration drop with the degree on the seed 003 Cartesian robot (Table I)."""
 import math

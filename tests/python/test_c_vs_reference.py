@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The C core (through Chain) against the independent NumPy reference, on random stages,
 chains and inputs.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """smoothshaper calibrate: synthetic records of plants with known modes (simulated exactly) in
 all four input kinds, the recommendation checked on the true plant and against the established
 3-D printer calibration's pick, outputs, and bad input."""
@@ -145,10 +146,11 @@ def test_cli_writes_json_figures_and_configs(tmp_path, capsys):
                 "continuity"} <= set(c)
     start = doc["recommended"]["fmu_start_values"]
     assert start["Ts"] == 1e-4 and start["stage[1].kind"] == -1
-    for name in ("calibrate_psd.png", "calibrate_band.png", "config_x.c",
+    for name in ("calibrate_psd.png", "calibrate_band.png", "config_x.c", "coeffs_x.c",
                  "fmu_start_values_x.json"):
         assert (out / name).stat().st_size > 0
     assert "sms_stage_config_default(" in (out / "config_x.c").read_text()
+    assert "const sms_stage_coeffs coeffs_x[" in (out / "coeffs_x.c").read_text()
     if doc["recommended"]["input_shaper"]:
         assert "shaper_type_x" in (out / "input_shaper.cfg").read_text()
 
@@ -273,6 +275,25 @@ def test_c_config_snippet_compiles(tmp_path):
                    + outputs.c_config(c, 1e-4, "x") + "(void)cfg_x;\nreturn 0;\n}\n")
     subprocess.run([cc, "-std=c99", "-Wall", "-Werror", "-pedantic", "-fsyntax-only",
                     "-I", str(ROOT / "c" / "include"), str(src)], check=True)
+
+
+def test_c_coeffs_compile_in_both_precisions(tmp_path):
+    """The calibration's precomputed coefficients (the firmware path) are strict C99 for
+    either build of the library."""
+    import shutil
+    import subprocess
+    from smoothshaper.calibrate import outputs
+    cc = shutil.which("cc") or shutil.which("gcc")
+    if cc is None:
+        pytest.skip("no C compiler")
+    c = calibrate.Candidate("two", [sms.shaper("gmzv", wn=250.0, zeta=0.05, order=4,
+                                               duration=1.1), sms.for_mode("harmonic", wn=400.0)])
+    src = tmp_path / "coeffs_x.c"
+    src.write_text(outputs.c_coeffs(c, 1e-4, "x"))
+    for flags in ([], ["-DSMS_USE_FLOAT"]):
+        subprocess.run([cc, "-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic",
+                        "-fsyntax-only", *flags, "-I", str(ROOT / "c" / "include"), str(src)],
+                       check=True)
 
 
 def test_fmu_start_values_reproduce_the_chain_in_fmpy(tmp_path):

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Chain (C-backed): construction errors, state handling, block/sample equivalence."""
 import copy
 import dataclasses

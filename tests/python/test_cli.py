@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The smoothshaper command line: tables, plots, identification, errors, lazy subcommands."""
 import math
 import os
@@ -93,6 +94,23 @@ def test_design_from_stage_specs(capsys):
     assert code == 0
     _, rows = _rows(out)
     assert [r[1] for r in rows] == ["rectangular", "ei"]
+
+
+def test_design_writes_precomputed_coefficients(capsys, tmp_path):
+    path = tmp_path / "axis.c"
+    code, out, err = run(capsys, "design", "--stage", "harmonic:wn=100",
+                         "--stage", "zv:wn=100,zeta=0.05", "--Ts", "1e-3",
+                         "--c-coeffs", str(path), "--c-name", "axis_y")
+    assert code == 0 and err == ""
+    assert f"wrote {path}" in out
+    text = path.read_text()
+    assert text.startswith("/* Written by: smoothshaper design ")
+    assert "const sms_stage_coeffs axis_y[2]" in text and "const size_t axis_y_stages = 2u;" in text
+    code, _, err = run(capsys, "design", "--stage", "zv:wn=100", "--c-coeffs", str(path))
+    assert code == cli.EXIT_ERROR and "--c-coeffs needs --Ts" in err
+    code, _, err = run(capsys, "design", "--stage", "zv:wn=100", "--Ts", "1e-3",
+                       "--c-coeffs", str(path), "--c-name", "9lives")
+    assert code == cli.EXIT_ERROR and "name must be a C identifier" in err
 
 
 def test_design_kinematic_limits(capsys):

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Long CLI requests: estimates before they start, refusals naming the parameter, one progress
 bar over the whole work, silence when not asked for."""
 import io

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Every CLI error names the argument the user gave that causes it, with readable numbers,
 at once: each subcommand run with extreme, NaN, negative and huge values of each numeric
 option (and of a via-point) either succeeds or fails with one line on stderr that names that

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """`smoothshaper design generator --via "x,y,z;..."`: multi-axis via-points end to end."""
 import csv
 import math

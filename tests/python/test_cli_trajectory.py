@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """`smoothshaper design generator` and `design bspline` end to end.
 
 Printed numbers carry 6 significant digits (format_table): comparisons with the Python API

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Kinematic design: ruckig's time-optimal duration, bounds of the sampled trajectory, seed 001
 check values, C vs the independent reference, parameter errors."""
 import copy

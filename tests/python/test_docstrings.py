@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The public API documents itself: every function and class that a module of the API
 reference (docs/api/*.rst) exports in ``__all__`` has a numpydoc docstring with a Parameters
 section naming every parameter, a Returns section when it returns something and a Raises

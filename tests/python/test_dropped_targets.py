@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Feasible limits and dropped targets: the C generator and the independent NumPy reference
 (smoothshaper.time_optimal) refuse the same limits, naming the same quantity, and drop the
 same targets (a plan with a non-finite value or longer than 2^52 samples), with the same

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """MultiAxisGenerator.fmu in fmpy (default settings, explicit output_interval) and libcosim:
 equal to the NumPy multi-axis reference for 1 and 3 axes, phase-synchronised and independent,
 without and with vibration stages per axis; FMU state round trip; bad parameters refused with

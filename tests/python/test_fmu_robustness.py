@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """What a co-simulation master can throw at the FMUs: memory through its callbacks sized to the
 chain, saved states sized to the chain, crafted or foreign states, another model's instance, a
 held input over an enormous step. (Tick accounting under t += h hosts: tests/fmu/test_fmu_clock.c.)"""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """SmoothShaper.fmu through fmpy: model description, reference agreement for every family and
 three kinds of communication step, FMU state (get/set, serialise), error handling, instances."""
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """TrajectoryGenerator.fmu through fmpy: agreement with the NumPy generator reference, bounds,
 the sampled limits and equality with the Python Generator on random staircases, FMU state, a
 foreign state refused, bad parameters named."""

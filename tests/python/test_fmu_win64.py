@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The win64 binary of SmoothShaper.fmu (cross-compiled with mingw-w64) run through fmpy's
 remoting under wine: same output as the NumPy reference (so as the linux64 binary)."""
 from __future__ import annotations

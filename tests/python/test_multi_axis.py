@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Multi-axis generator: phase-synchronised rest-to-rest moves against ruckig (same arrival
 sample, straight line, limits at every sample, duration), staircases with reversals and
 mid-motion changes (limits, exact arrival, C == NumPy reference), independent axes, errors."""

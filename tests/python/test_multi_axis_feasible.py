@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The multi-axis generator's feasible limits and its drop rule. Limits: the C core (sms_multi_generator_reach) and the
 independent NumPy reference (smoothshaper.reference.multi_axis.reach, derived from the
 planner's arithmetic) accept the same limit sets and name the same axis and quantity when

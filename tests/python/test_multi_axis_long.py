@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Multi-axis generator on long moves (1e3 to 1e5 s at Ts = 1 ms), double and float, both sync
 modes: windows of samples around every breakpoint, reached through a saved state (it carries
 each move's sample count), keep every limit to the rounding of the positions, and a

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """plants: exact ZOH simulation and the time-domain residual equal to |H(p)|."""
 import math
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Every example in README.md runs as written.
 
 The Python blocks run in order in one namespace; every command of the shell blocks runs with

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Reference chain filtering: explicit state, block splitting, rest states, bad input."""
 import math
 

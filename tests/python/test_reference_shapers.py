@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Reference shapers and notches: published designs, exact and paper timing, biquads."""
 import math
 

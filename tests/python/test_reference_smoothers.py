@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Reference smoothers: integer-N sampling, closed-form step responses, exact and paper timing."""
 import math
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Closed-form trajectories: rectangular chains (time-optimal profiles) and their samples."""
 import math
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The report machinery: claims, markdown assembly, figures, failure reporting."""
 import math
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Beyond the seeds (shaper insensitivity): every number of the report's section holds."""
 import math
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Kinematic chains keep their bounds at every sample, for any Ts: the backward differences of
 a step of h through Chain(kinematic(..., Ts=Ts), Ts=Ts) stay within vmax, amax, jmax, ...
 (docs/sampled-limits.md). Tolerance: 1e-9 relative plus the rounding of the samples

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Seed 000 (damped harmonic smoother): every number of the report's section holds, and every
 disagreement with the paper that the report explains is real."""
 import math

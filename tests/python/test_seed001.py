@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Seed 001 (trigonometric blends): every number of the report's section holds, and the
 erratum it explains (printed T3 = 0.0209 s) is a real disagreement."""
 import math

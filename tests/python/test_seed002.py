@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Seed 002 (Damped-Jerk profile): every number of the report's section holds."""
 import math
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Seed 003 (B-spline filters as input shapers): every number of the report's section holds."""
 import math
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Seed 004 (ZV/ZVD shaping, notch): every number of the report's section holds."""
 import pytest
 

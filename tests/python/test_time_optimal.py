@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The time-optimal online generator (polynomial profile, no mode): rest-to-rest moves take
 ruckig's duration rounded up to the grid; any staircase keeps every bound at every sample
 (reported values and backward differences, double and float) and lands exactly; q0; the

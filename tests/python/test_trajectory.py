@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Online generator: never beyond v/a/j for random staircases (reversals, steps every few
 samples, tiny steps), exact arrival, C == NumPy reference for every profile with and without a
 mode, the tuned stage (arrival, the mode's zero), the trigonometric rest-to-rest duration,

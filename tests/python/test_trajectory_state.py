@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Saved generator states carry their configuration's identity: a state of another
 configuration is refused with a ParameterError naming the field that differs, the state of the
 same configuration continues bit for bit (a run split by get_state/set_state equals the
@@ -82,7 +83,7 @@ def test_not_a_generator_state():
         g.set_state(np.concatenate([[1.0], s[1:]]))
     newer = s.copy()
     newer[1] += 1
-    with pytest.raises(ParameterError, match="^state has format version 2.0"):
+    with pytest.raises(ParameterError, match="^state has format version 3.0"):
         g.set_state(newer)
     other = s.copy()
     other[3] = 101.0
@@ -114,7 +115,7 @@ def test_layout_is_documented():
     g = Generator(**dict(BASE, profile="trigonometric"))
     s = g.get_state()
     assert s.size == 17
-    assert list(s[:11]) == [5459283.0, 1.0, 8.0, 100.0, 1e-3, 1.0, 10.0, 100.0, 1.0, 0.0, 0.0]
+    assert list(s[:11]) == [5459283.0, 2.0, 8.0, 100.0, 1e-3, 1.0, 10.0, 100.0, 1.0, 0.0, 0.0]
 
 
 _limits = st.floats(min_value=0.05, max_value=50.0)

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """smoothshaper.fmi: the co-simulation timing model, checked on hand-computed cases, and
 the report of a full run (the FMUs built by the FMU tests' fixture)."""
 from __future__ import annotations
@@ -52,6 +53,8 @@ def test_run_writes_a_passing_report(tmp_path):
     report = (tmp_path / "README.md").read_text()
     assert "**Result: PASS**" in report and "| NO |" not in report
     assert (tmp_path / "smoothshaper_00.png").stat().st_size > 1000
+    assert "| ServoDrive | controller 3 (lqg) | 0.0e+00 | yes |" in report
+    assert (tmp_path / "servo_drive_lqg.png").stat().st_size > 1000
 
 
 def test_validation_and_cosim_helpers_name_bad_arguments():

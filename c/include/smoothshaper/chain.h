@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /**
  * @file chain.h
  * @brief Stages in series: y = H_{n-1}( ... H_1(H_0(x))).
@@ -95,7 +96,7 @@ SMS_API sms_status sms_chain_hold_cost(const sms_stage_config *configs, size_t n
  * many samples whatever they held before (with a notch, the same to rounding). O(stages).
  */
 SMS_API double sms_chain_settle_bound(const sms_chain *chain);
-/** @brief Advance every stage's phase (ring heads, smoother copy ages) by n samples, keeping
+/** @brief Advance every stage's phase (ring heads) by n samples, keeping
  * their values: exactly n samples of an absorbed input; on any other state the phase of n
  * samples later with stale values, which the next sms_chain_settle_bound() samples of a FIR
  * chain replace entirely. O(stages). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /**
  * @file config.h
  * @brief ::sms_stage_config, the plain description of one stage of any family.
@@ -36,8 +37,9 @@ extern "C" {
 #define SMS_STATE_IDENTITY_HEAD 5
 /** @brief First double of a saved state ("SMS" read as a 24-bit integer). */
 #define SMS_STATE_TAG 5459283.0
-/** @brief Format version of saved states. */
-#define SMS_STATE_VERSION 1.0
+/** @brief Format version of saved states (2: a smoother saves its run of equal inputs, and its
+ * ring holds the inputs themselves). */
+#define SMS_STATE_VERSION 2.0
 /** @brief Kind field of a saved ::sms_generator state (beyond every ::sms_kind). */
 #define SMS_STATE_KIND_GENERATOR 100.0
 /** @brief Kind field of a saved ::sms_bspline state. */

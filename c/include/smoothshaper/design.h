@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /**
  * @file design.h
  * @brief Design from a vibration mode and mode identification (docs/design.md).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /**
  * @file export.h
  * @brief Symbol visibility. The shared library is built with hidden visibility and

@@ -3,7 +3,8 @@
  * @file filter.h
  * @brief The filter area: the four smoother families (smoother.h), the input shapers
  * (shaper.h), the notch (notch.h), one stage over all of them (stage.h), stages in series
- * (chain.h) and the design of a stage for a vibration mode (design.h).
+ * (chain.h), the design of a stage for a vibration mode (design.h) and the precomputed
+ * coefficients a firmware target builds its stages from without designing them (coeffs.h).
  *
  * Builds on the core area only (core.h; docs/architecture.md). design.h also declares the
  * mode identification, whose area header is identify.h.
@@ -17,6 +18,7 @@
 #include "smoothshaper/notch.h"
 #include "smoothshaper/stage.h"
 #include "smoothshaper/chain.h"
+#include "smoothshaper/coeffs.h"
 #include "smoothshaper/design.h"
 
 #endif

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /**
  * @file multi_generator.h
  * @brief Online multi-axis generator: a staircase of target vectors in, q, v, a, j per axis out,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /**
  * @file notch.h
  * @brief Notch filter as one biquad (docs/filters.md): Tustin with pre-warping at wn, or pole-zero

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /**
  * @file shaper.h
  * @brief Input shapers: ZV^n (ZV, ZVD, ZVDD, ...), EI, two- and three-hump EI, MZV, generalised
@@ -174,7 +175,10 @@ SMS_API sms_status sms_shaper_init(sms_shaper *f, const sms_stage_config *config
                                    size_t n_reals);
 /** @brief Rest at `rest`: as if the input had been `rest` forever (the output is then `rest`). */
 SMS_API void sms_shaper_reset(sms_shaper *f, sms_real rest);
-/** @brief One sample in place: x <- sum_k g_k x[n - d_k]. */
+/** @brief One sample in place: x <- sum_k g_k x[n - d_k], computed as
+ * x[n] + sum_k g_k (x[n - d_k] - x[n]) (the taps sum to 1): once the last L inputs are equal
+ * the output is that input exactly, and after sms_shaper_reset(f, rest) an input of rest
+ * comes out as rest from the first sample. */
 SMS_API void sms_shaper_step(sms_shaper *f, sms_real *x);
 /** @brief n samples; in == out allowed, other overlaps not. Same result as n calls of step. */
 SMS_API void sms_shaper_process(sms_shaper *f, const sms_real *in, sms_real *out, size_t n);

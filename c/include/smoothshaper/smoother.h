@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /**
  * @file smoother.h
  * @brief FIR smoothers in O(1), drift-free recursive form: rectangular, harmonic, damped
@@ -37,12 +38,13 @@
  * real second-order resonator 1 - 2 r cos(pi/N) z^-1 + r^2 z^-2, whose rounding is amplified
  * about N^2 times. The recursion cancels its own pole, so on its own it would accumulate
  * rounding for ever (docs/numerics.md). Hence:
- * - two copies run side by side, each restarted from zero every 2M samples, M apart; a copy
- *   restarted at t0 ignores inputs before t0 and is exact once it has consumed M samples, and
- *   the output always comes from the copy that has consumed between M and 2M samples;
- * - each copy filters x - ref, ref being its (finite) input at its restart, and adds ref back
- *   (unit DC gain; the corrections, which sum to 0, act on x - ref too), so its rounding
- *   scales with how much the input varies within 2M samples, not with its offset;
+ * - two copies run side by side, each restarted from zero every 2M samples, M apart (on the
+ *   samples where the ring's head is 0); a copy restarted at t0 ignores inputs before t0 and
+ *   is exact once it has consumed M samples, and the output always comes from the copy that
+ *   has consumed between M and 2M samples;
+ * - each copy filters x - ref, ref being the (finite) input just before its restart, and adds
+ *   ref back (unit DC gain; the corrections, which sum to 0, act on x - ref too), so its
+ *   rounding scales with how much the input varies within 2M samples, not with its offset;
  * - each copy's state is w + lo: w takes the increment (q - 1) w + c x - c q^M x[n-M], and lo
  *   (a small state on the same pole) collects what that addition rounds away (Dekker's
  *   Fast2Sum, exact when the increment is below the state, which is when the loss would be
@@ -53,10 +55,15 @@
  * length. Measured (tests/bench/drift_bench.c, L = 71..10005, all families): max |error| over
  * 1e9 samples of 1e3 + U(-1, 1) is 2.4e-16 (double) and 2.2e-7 (float) relative to 1e3; over
  * 1e8 samples of 1e3 U(-1, 1), 2.7e-16 and 1.4e-7.
+ * Exact rest: once the last L inputs are equal the output is that input, bit for bit (the
+ * taps sum to 1; the recursion alone would be within an ulp of it), so a held input comes out
+ * exactly L samples after it was first applied, and after sms_smoother_reset(f, rest) an
+ * input of rest comes out as rest from the first sample.
  * Cost (tests/bench/speed_bench.c, x86-64, -O2): about twice the plain drifting recursion of
  * the same filter; sms_smoother_process() runs blocks with the state in locals and the two
  * copies in the two lanes of one SIMD register (SSE2/NEON with GCC or Clang; elsewhere the
- * copies run one after the other, same arithmetic, smaller code).
+ * copies run one after the other, same arithmetic, smaller code); sms_smoother_step() runs
+ * the same per-sample code on one sample with the state in the instance.
 
  * Non-finite input: a NaN or Inf sample makes the output NaN while it is inside the ring or
  * inside the recursion copy in use; at most 2M + 1 samples after it the output is again the
@@ -91,12 +98,15 @@ typedef struct sms_smoother {
     size_t n_corrections;       /**< direct taps in use (0 or 2) */
     size_t correction_delay[SMS_SMOOTHER_MAX_CORRECTIONS];  /**< {M-1, M}, or {0, M} (bounded) */
     sms_real correction_gain[SMS_SMOOTHER_MAX_CORRECTIONS];
-    sms_real w_re[2], w_im[2];  /**< state of the two restarted copies (main part) */
+    sms_real w_re[2], w_im[2];  /**< state of the two restarted copies (main part): [0] the
+                                     old copy, which gives the output, [1] the young one */
     sms_real lo_re[2], lo_im[2]; /**< their small parts: rounding of the increments, q_lo w */
     sms_real ref[2];            /**< each copy's reference: its (finite) input at restart */
-    size_t age[2];              /**< samples each copy has consumed since its restart, 0..2M */
-    sms_real rest;              /**< operating point set by reset (subtracted on input) */
-    sms_real *history;          /**< caller buffer: the last M inputs minus rest (ring) */
+    size_t run;                 /**< of the latest inputs, how many equal the one before them
+                                     (at most L): from L - 1 on, the output is the input */
+    unsigned variant;           /**< the per-sample loop that runs it (pole, direct taps) */
+    sms_real rest;              /**< operating point set by reset */
+    sms_real *history;          /**< caller buffer: the last M inputs (ring) */
     size_t history_len;         /**< M */
     size_t head;                /**< ring slot of x[n-M] (the oldest), 0..M-1 */
     double input_limit;         /**< |x| keeping every internal sum finite, before the cap
@@ -170,7 +180,8 @@ SMS_API void sms_smoother_reset(sms_smoother *f, sms_real rest);
  */
 SMS_API double sms_smoother_input_max(const sms_smoother *f);
 
-/** @brief Filter one sample in place: *x = y[n] for input x[n]. O(1), no libm. */
+/** @brief Filter one sample in place: *x = y[n] for input x[n]. O(1), no libm; the same bits
+ * as sms_smoother_process() on that sample. */
 SMS_API void sms_smoother_step(sms_smoother *f, sms_real *x);
 
 /** @brief Filter n samples; in == out (in place) is allowed, other overlaps are not.
@@ -179,12 +190,12 @@ SMS_API void sms_smoother_process(sms_smoother *f, const sms_real *in, sms_real 
 
 /**
  * @brief Samples of a constant input after which this smoother has absorbed it: from the
- * current phase, the sample on which the second of the two copies restarts (each restarts
- * every 2M samples, the two M apart; a copy restarted on a constant input x keeps w = lo = 0
- * and ref = x - rest for ever) plus one, so it lies in [M + 2, 2M + 2] (M the ring length).
- * After that many samples of x the state is the absorbed one: the ring holds x - rest, both
- * copies w = lo = 0 and ref = x - rest, and only head and the ages still move (period 2M).
- * O(1).
+ * current phase, one more than the sample on which the second of the two copies in use
+ * restarts under the input (each restarts every 2M samples, the two M apart, referred to the
+ * input before it; a copy restarted on a constant input x keeps w = lo = 0 and ref = x for
+ * ever), and at least L + 2, so it lies in [M + 2, 2M + 2] (M the ring length). After that
+ * many samples of x the state is the absorbed one: the ring holds x, both copies w = lo = 0
+ * and ref = x, run = L, and only head still moves (period M). O(1).
  */
 SMS_API uint64_t sms_smoother_settle_length(const sms_smoother *f);
 
@@ -192,8 +203,8 @@ SMS_API uint64_t sms_smoother_settle_length(const sms_smoother *f);
  * @brief Filter n samples of the constant input x in O(M) time, with the state and output of
  * n calls of sms_smoother_step() with x, bit for bit: valid when n >= sms_smoother_settle_length()
  * (as then the absorbed state above is reached one sample before the end); the last sample is
- * computed by sms_smoother_step() from the absorbed state, with head and the ages advanced by
- * n - 1 in closed form (head + n mod M; one copy restarts every M samples).
+ * computed by sms_smoother_step() from the absorbed state, with head advanced by n - 1 in
+ * closed form (head + n mod M).
  * @param x  finite, |x| <= sms_smoother_input_max()
  * @param n  samples, >= sms_smoother_settle_length() (fewer: the state is undefined)
  * @return the output of the last sample.
@@ -201,17 +212,18 @@ SMS_API uint64_t sms_smoother_settle_length(const sms_smoother *f);
 SMS_API sms_real sms_smoother_settle(sms_smoother *f, sms_real x, uint64_t n);
 
 /**
- * @brief Advance head and the ages by n samples as n samples would, leaving every value (ring,
- * copies, references) as it is. On an absorbed state (above) this is exactly n samples of
+ * @brief Advance head by n samples as n samples would (the copies swap roles on the way, which
+ * an absorbed state's equal copies do not show), leaving every value (ring, copies,
+ * references, run) as it is. On an absorbed state (above) this is exactly n samples of
  * the absorbed input; on any other it is the phase of n samples later with stale values, which
  * the next sms_smoother_settle_length() samples replace entirely (the generator jumps along a
  * plan this way, then filters the last samples). O(1).
  */
 SMS_API void sms_smoother_advance(sms_smoother *f, uint64_t n);
 
-/** @brief Number of doubles of the saved state: ::SMS_STATE_IDENTITY_COUNT + M + 14 (the
- * configuration identity of config.h, then head, two ages, rest, the two copies as four
- * complex numbers, their two references, the ring). */
+/** @brief Number of doubles of the saved state: ::SMS_STATE_IDENTITY_COUNT + M + 13 (the
+ * configuration identity of config.h, then head, run, rest, the two copies' w and lo as four
+ * complex numbers (old copy first), their two references, the ring). */
 SMS_API size_t sms_smoother_state_count(const sms_smoother *f);
 
 /** @brief Write the dynamic state, sms_smoother_state_count() doubles, into dst. Loading it
@@ -223,7 +235,7 @@ SMS_API void sms_smoother_get_state(const sms_smoother *f, double *dst);
  * @return ::SMS_OK; ::SMS_ERR_NULL; ::SMS_ERR_STATE_FORMAT .. ::SMS_ERR_STATE_DURATION if it was
  * saved by another configuration (the status names the first field of the identity that
  * differs, config.h); ::SMS_ERR_STATE if n != sms_smoother_state_count(), the
- * head is not an integer in [0, M), the ages are not integers in [0, 2M] that differ by M,
+ * head is not an integer in [0, M), run is not an integer in [0, L],
  * rest or a reference is not finite, or a finite value lies outside the range of ::sms_real (NaN/Inf in the
  * ring and the copies are accepted: they are what a non-finite input leaves behind).
  */

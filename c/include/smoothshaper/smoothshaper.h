@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /**
  * @file smoothshaper.h
  * @brief Umbrella header: include this one.
@@ -12,6 +13,7 @@
 #include "smoothshaper/notch.h"
 #include "smoothshaper/stage.h"
 #include "smoothshaper/chain.h"
+#include "smoothshaper/coeffs.h"
 #include "smoothshaper/design.h"
 #include "smoothshaper/trajectory.h"
 #include "smoothshaper/multi_generator.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /**
  * @file stage.h
  * @brief One stage of any family behind one interface: the building block of a chain.

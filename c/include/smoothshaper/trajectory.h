@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /**
  * @file trajectory.h
  * @brief Kinematic design (limits, optionally mixed with a mode), the online multi-point
@@ -113,7 +114,8 @@ typedef enum sms_profile {
  *         ::SMS_ERR_LIMIT (h or a limit not finite/positive, or a ratio |h|/vmax,
  *         vmax/amax, amax/jmax, ..., 1/wn below 1e-60: a stage would be shorter than any
  *         usable duration), ::SMS_ERR_TOO_LONG (such a ratio above 1e60, more than 2^52
- *         samples in all, or no multiple k <= ::SMS_KINEMATIC_MAX_MULTIPLE meets the bounds),
+ *         samples in all, a length beyond double (e.g. whole samples of a Ts near DBL_MAX),
+ *         or no multiple k <= ::SMS_KINEMATIC_MAX_MULTIPLE meets the bounds),
  *         ::SMS_ERR_KIND (profile), ::SMS_ERR_WN (wn < 0, NaN/Inf, or 0 with DAMPED),
  *         ::SMS_ERR_ZETA, ::SMS_ERR_SAMPLE_PERIOD (Ts < 0 or not finite),
  *         ::SMS_ERR_ABOVE_NYQUIST (tuned stage on a grid too coarse to place its zero),
@@ -542,7 +544,8 @@ SMS_API size_t sms_bspline_pass_sample(const sms_bspline *b, size_t i);
 /**
  * @brief Shortest knot spacing that puts the first zero of sinc^p at or below every mode:
  * T = N Ts with N = ceil(2 pi / (min wn Ts)) (T >= 2 pi / min wn, docs/filters.md).
- * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_ORDER (n = 0), ::SMS_ERR_WN, ::SMS_ERR_SAMPLE_PERIOD.
+ * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_ORDER (n = 0), ::SMS_ERR_WN, ::SMS_ERR_SAMPLE_PERIOD,
+ *         ::SMS_ERR_TOO_LONG (T beyond double: a mode far below 1/Ts, or Ts near DBL_MAX).
  */
 SMS_API sms_status sms_bspline_period_for_modes(const double *wn, size_t n, double Ts, double *T);
 /** @brief Doubles sms_bspline_get_state() writes: ::SMS_BSPLINE_IDENTITY_COUNT (the

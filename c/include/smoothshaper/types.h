@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /**
  * @file types.h
  * @brief Scalar type, status codes and stage kinds shared by every smoothshaper module.
@@ -6,13 +7,15 @@
  * `SMS_USE_FLOAT` (the `smoothshaper_float` CMake target does it for you, also for its
  * consumers) to make ::sms_real a `float`; otherwise it is a `double`. Design quantities
  * (durations, frequencies, damping) are always `double`: only the signal path and the filter
- * state use ::sms_real.
+ * state use ::sms_real. The float build's functions link under the suffix `_f32`
+ * (precision.h), so code compiled for one precision does not link against the other library.
  */
 #ifndef SMOOTHSHAPER_TYPES_H
 #define SMOOTHSHAPER_TYPES_H
 
 #include <stddef.h>
 #include "smoothshaper/export.h"
+#include "smoothshaper/precision.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -104,6 +107,9 @@ typedef enum sms_status {
     SMS_ERR_STATE_SYNC = -42,       /**< saved with another sync (multi-axis generator) */
     SMS_ERR_STATE_STAGES = -43,     /**< saved with another number of vibration stages on an
                                          axis (multi-axis generator) */
+    SMS_ERR_COEFFS = -44,           /**< precomputed coefficients (coeffs.h) that no design
+                                         writes: a length, tap or delay out of range, a
+                                         non-finite value */
     SMS_ERR_IMPULSE_AMPLITUDE = -50, /**< user-defined impulses: an amplitude is NaN/Inf, or
                                           they do not sum to > 0 */
     SMS_ERR_IMPULSE_TIME = -51      /**< user-defined impulses: a time is NaN/Inf or < 0, or

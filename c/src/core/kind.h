@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Internal: which implementation family a kind belongs to. */
 #ifndef SMS_KIND_INTERNAL_H
 #define SMS_KIND_INTERNAL_H

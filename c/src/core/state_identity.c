@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The identity header of saved states (config.h): tag, format version, precision, kind, Ts,
  * then the configuration fields of the object (for a stage: those its kind reads). */
 #include <stdint.h>

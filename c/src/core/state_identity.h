@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Internal: the configuration identity that starts every saved state (config.h): a common head
  * (tag, format version, precision, object kind, Ts) and then the object's own fields, written
  * at init from the configuration, compared on load. One helper for every stateful object:

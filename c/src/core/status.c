@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Status and kind names: constant tables, no state. */
 #include "smoothshaper/types.h"
 
@@ -53,6 +54,9 @@ const char *sms_status_string(sms_status status)
     case SMS_ERR_STATE_AXES: return "saved state is from another number of axes";
     case SMS_ERR_STATE_SYNC: return "saved state is from another sync";
     case SMS_ERR_STATE_STAGES: return "saved state is from another number of stages on an axis";
+    case SMS_ERR_COEFFS:
+        return "precomputed coefficients out of range (a length, tap or delay no design gives, "
+               "or a non-finite value)";
     case SMS_ERR_IMPULSE_AMPLITUDE:
         return "impulse amplitudes must be finite and sum to > 0";
     case SMS_ERR_IMPULSE_TIME:

@@ -1,6 +1,7 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Stages in series over one caller memory block, laid out stage after stage. */
 #include <math.h>
-#include "smoothshaper/chain.h"
+#include "smoothshaper/coeffs.h"
 #include "core/kind.h"
 
 /* Validate every config and size its stage (need[i] cells); the total into *n_cells. */
@@ -50,6 +51,57 @@ sms_status sms_chain_init(sms_chain *chain, sms_stage *stages, const sms_stage_c
         if (st != SMS_OK)
             return st;
         offset += need[i];
+    }
+    chain->stages = stages;
+    chain->n_stages = n;
+    chain->memory = memory;
+    chain->memory_len = total;
+    return SMS_OK;
+}
+
+sms_status sms_chain_coeffs_memory_size(const sms_stage_coeffs *coeffs, size_t n, size_t *n_cells)
+{
+    size_t total = 0, i;
+    if (coeffs == NULL || n_cells == NULL)
+        return SMS_ERR_NULL;
+    if (n == 0 || n > SMS_CHAIN_MAX_STAGES)
+        return SMS_ERR_ORDER;
+    for (i = 0; i < n; ++i) {
+        size_t need;
+        sms_status st = sms_stage_coeffs_memory_size(&coeffs[i], &need);
+        if (st != SMS_OK)
+            return st;
+        if (need > (size_t)-1 - total)
+            return SMS_ERR_TOO_LONG;
+        total += need;
+    }
+    *n_cells = total;
+    return SMS_OK;
+}
+
+sms_status sms_chain_init_coeffs(sms_chain *chain, sms_stage *stages,
+                                 const sms_stage_coeffs *coeffs, size_t n,
+                                 sms_memory_cell *memory, size_t n_cells)
+{
+    size_t total, offset = 0, i;
+    sms_status st;
+    if (chain == NULL || stages == NULL || coeffs == NULL)
+        return SMS_ERR_NULL;
+    st = sms_chain_coeffs_memory_size(coeffs, n, &total);
+    if (st != SMS_OK)
+        return st;
+    if (memory == NULL)
+        return SMS_ERR_NULL;
+    if (n_cells < total)
+        return SMS_ERR_BUFFER_TOO_SMALL;
+    /* Every stage checked and the memory large enough: the inits below cannot fail. */
+    for (i = 0; i < n; ++i) {
+        size_t need;
+        (void)sms_stage_coeffs_memory_size(&coeffs[i], &need);
+        st = sms_stage_init_coeffs(&stages[i], &coeffs[i], memory + offset, need);
+        if (st != SMS_OK)
+            return st;
+        offset += need;
     }
     chain->stages = stages;
     chain->n_stages = n;
@@ -172,7 +224,7 @@ static uint64_t fir_settle_after(const sms_stage *st, uint64_t offset)
 }
 
 /* Advance an absorbed FIR stage by n samples (its values no longer change: only the ring
- * head and the copies' ages move); a settled notch is a fixed point. */
+ * head moves); a settled notch is a fixed point. */
 static void advance_absorbed(sms_stage *st, uint64_t n)
 {
     switch (sms_family_of(st->kind)) {

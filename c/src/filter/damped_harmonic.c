@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Damped harmonic smoother S_sigma (Biagiotti et al. 2020, eq. 10, 14, 17).
  *
  * Continuous impulse response c e^{sigma t} sin(pi t/T) on [0, T); integer N, r = e^{sigma Ts}:

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* A stage that cancels a given vibration mode (docs/design.md). Mirrors for_mode in
  * python/smoothshaper/stages.py. */
 #include <math.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Exponential (damped rectangular) smoother M_sigma (docs/filters.md; Béarée 2014).
  *
  * Continuous impulse response sigma e^{sigma t}/(e^{sigma T} - 1) on [0, T); integer N,

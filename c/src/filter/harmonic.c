@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Harmonic (sinusoidal) smoother S (Biagiotti & Melchiorri 2011a, sec. 3.2).
  *
  * Continuous impulse response (pi/(2T)) sin(pi t/T) on [0, T); integer N: taps proportional

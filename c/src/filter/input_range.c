@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The finite input range of a stage and of a chain (types.h, SMS_INPUT_MAX), in closed form
  * from the built constants: O(1) per stage, nothing on the per-sample path. */
 #include <float.h>

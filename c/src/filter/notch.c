@@ -1,8 +1,10 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Notch biquad: Tustin (pre-warped at wn) or pole-zero matched coefficients, and the
  * direct-form-I recursion with non-finite recovery (notch.h). */
 #include <float.h>
 #include <math.h>
-#include "smoothshaper/notch.h"
+#include "smoothshaper/coeffs.h"
+#include "filter/coeffs_check.h"
 #include "core/state_identity.h"
 
 static const double pi = 3.14159265358979323846;
@@ -77,14 +79,11 @@ static double matched_dc_scaled(double wn, double xi, double Ts)
     }
 }
 
-sms_status sms_notch_init(sms_notch *f, const sms_stage_config *config, double Ts)
+sms_status sms_notch_coeffs_make(const sms_stage_config *config, double Ts,
+                                 sms_stage_coeffs *coeffs)
 {
     double d0, d2, a1, a2;
-    sms_notch built;
-    sms_status st;
-    if (f == NULL || config == NULL)
-        return SMS_ERR_NULL;
-    st = check(config, Ts);
+    sms_status st = check(config, Ts);
     if (st != SMS_OK)
         return st;
     if (config->kind == SMS_NOTCH_TUSTIN) {
@@ -107,15 +106,58 @@ sms_status sms_notch_init(sms_notch *f, const sms_stage_config *config, double T
         d2 = g * n2 - a2;
     }
     /* H = 1 + (1 - z^-1)(d0 - d2 z^-1)/A: unit DC gain by structure (notch.h) */
-    built.kind = config->kind;
-    built.d0 = (sms_real)d0;
-    built.d2 = (sms_real)d2;
-    built.a1 = (sms_real)a1;
-    built.a2 = (sms_real)a2;
-    sms_state_identity(config, Ts, built.identity);
+    coeffs->kind = config->kind;
+    sms_state_identity(config, Ts, coeffs->identity);
+    coeffs->u.notch.d0 = (sms_real)d0;
+    coeffs->u.notch.d2 = (sms_real)d2;
+    coeffs->u.notch.a1 = (sms_real)a1;
+    coeffs->u.notch.a2 = (sms_real)a2;
+    return SMS_OK;
+}
+
+/* What sms_notch_coeffs_make() can write (sms_real tests only). */
+sms_status sms_notch_coeffs_check(const sms_stage_coeffs *coeffs)
+{
+    const sms_notch_coeffs *c = &coeffs->u.notch;
+    if (coeffs->kind != SMS_NOTCH_TUSTIN && coeffs->kind != SMS_NOTCH_MATCHED)
+        return SMS_ERR_KIND;
+    if (c->d0 - c->d0 != 0 || c->d2 - c->d2 != 0 || c->a1 - c->a1 != 0 || c->a2 - c->a2 != 0)
+        return SMS_ERR_COEFFS;
+    return SMS_OK;
+}
+
+sms_status sms_notch_init_coeffs(sms_notch *f, const sms_stage_coeffs *coeffs)
+{
+    sms_notch built;
+    size_t i;
+    sms_status st;
+    if (f == NULL || coeffs == NULL)
+        return SMS_ERR_NULL;
+    st = sms_notch_coeffs_check(coeffs);
+    if (st != SMS_OK)
+        return st;
+    built.kind = coeffs->kind;
+    built.d0 = coeffs->u.notch.d0;
+    built.d2 = coeffs->u.notch.d2;
+    built.a1 = coeffs->u.notch.a1;
+    built.a2 = coeffs->u.notch.a2;
+    for (i = 0; i < SMS_STATE_IDENTITY_COUNT; ++i)
+        built.identity[i] = coeffs->identity[i];
     *f = built;
     sms_notch_reset(f, (sms_real)0);
     return SMS_OK;
+}
+
+sms_status sms_notch_init(sms_notch *f, const sms_stage_config *config, double Ts)
+{
+    sms_stage_coeffs coeffs;
+    sms_status st;
+    if (f == NULL || config == NULL)
+        return SMS_ERR_NULL;
+    st = sms_notch_coeffs_make(config, Ts, &coeffs);
+    if (st != SMS_OK)
+        return st;
+    return sms_notch_init_coeffs(f, &coeffs);
 }
 
 void sms_notch_reset(sms_notch *f, sms_real rest)
@@ -125,46 +167,56 @@ void sms_notch_reset(sms_notch *f, sms_real rest)
     f->rest = rest;
 }
 
+/* One sample of the state (x1, x2, w1, w2); the output. */
+static sms_real notch_sample(sms_real d0, sms_real d2, sms_real a1, sms_real a2,
+                             sms_real *x1, sms_real *x2, sms_real *w1, sms_real *w2,
+                             sms_real v)
+{
+    sms_real w = d0 * (v - *x1) + d2 * (*x2 - *x1) - a1 * *w1 - a2 * *w2;
+    sms_real y;
+    /* The transient ends exactly: once w and its previous value are both below TINY, the
+     * recursion state is set to zero (a fixed point under a constant input), so a held
+     * input is absorbed in a bounded number of samples instead of decaying through the
+     * subnormals, where rounding to a fixed quantum can sustain a cycle. */
+    if (w < TINY && w > -TINY && *w1 < TINY && *w1 > -TINY) {
+        w = 0;
+        *w1 = 0;
+    }
+    y = v + w;
+    if (y - y != 0) {
+        /* Non-finite: a bad input sample is skipped (passed through, state kept); a finite
+         * input with a non-finite result (overflow, bad loaded state) restarts at rest
+         * there. */
+        if (v - v == 0) {
+            *x1 = *x2 = v;
+            *w1 = *w2 = 0;
+        }
+        return v;
+    }
+    *x2 = *x1;
+    *x1 = v;
+    *w2 = *w1;
+    *w1 = w;
+    return y;
+}
+
 /* The state lives in locals for the whole block (the instance is read and written once). */
 void sms_notch_process(sms_notch *f, const sms_real *in, sms_real *out, size_t n)
 {
     const sms_real d0 = f->d0, d2 = f->d2, a1 = f->a1, a2 = f->a2;
     sms_real x1 = f->x1, x2 = f->x2, w1 = f->w1, w2 = f->w2;
     size_t i;
-    for (i = 0; i < n; ++i) {
-        const sms_real v = in[i];
-        sms_real w = d0 * (v - x1) + d2 * (x2 - x1) - a1 * w1 - a2 * w2;
-        sms_real y;
-        /* The transient ends exactly: once w and its previous value are both below TINY, the
-         * recursion state is set to zero (a fixed point under a constant input), so a held
-         * input is absorbed in a bounded number of samples instead of decaying through the
-         * subnormals, where rounding to a fixed quantum can sustain a cycle. */
-        if (w < TINY && w > -TINY && w1 < TINY && w1 > -TINY) {
-            w = 0;
-            w1 = 0;
-        }
-        y = v + w;
-        if (y - y != 0) {
-            /* Non-finite: a bad input sample is skipped (passed through, state kept); a finite
-             * input with a non-finite result (overflow, bad loaded state) restarts at rest
-             * there. */
-            if (v - v == 0) {
-                x1 = x2 = v;
-                w1 = w2 = 0;
-            }
-            out[i] = v;
-            continue;
-        }
-        x2 = x1;
-        x1 = v;
-        w2 = w1;
-        w1 = w;
-        out[i] = y;
-    }
+    for (i = 0; i < n; ++i)
+        out[i] = notch_sample(d0, d2, a1, a2, &x1, &x2, &w1, &w2, in[i]);
     f->x1 = x1;
     f->x2 = x2;
     f->w1 = w1;
     f->w2 = w2;
+}
+
+void sms_notch_step(sms_notch *f, sms_real *x)
+{
+    *x = notch_sample(f->d0, f->d2, f->a1, f->a2, &f->x1, &f->x2, &f->w1, &f->w2, *x);
 }
 
 size_t sms_notch_state_count(const sms_notch *f)

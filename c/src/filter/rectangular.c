@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Rectangular smoother M (moving average), docs/filters.md.
  *
  * Continuous impulse response 1/T on [0, T); integer N: taps 1/N at delays 0..N-1,

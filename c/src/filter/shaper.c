@@ -1,9 +1,11 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Input shapers: validation, discretisation (paper rounding or exact split + least-norm
  * correction, docs/exact-mode.md) and the sparse FIR engine. */
 #include <math.h>
 #include <string.h>
 #include "filter/shaper_designs.h"
 #include "filter/input_smoother.h"
+#include "filter/coeffs_check.h"
 #include "core/state_identity.h"
 
 static const double pi = 3.14159265358979323846;
@@ -370,49 +372,162 @@ sms_status sms_shaper_tap_count(const sms_stage_config *config, double Ts, size_
     return sms_shaper_sizes(config, Ts, &n_reals, n_taps);
 }
 
+/* A design's taps into the caller's table and its coefficients pointing at them. */
+static void coeffs_of_design(const sms_stage_config *config, double Ts, const sparse *design,
+                             sms_stage_coeffs *coeffs, sms_shaper_tap *taps)
+{
+    size_t i;
+    for (i = 0; i < design->n; ++i) {
+        taps[i].delay = design->delay[i];
+        taps[i].gain = (sms_real)design->gain[i];
+    }
+    coeffs->kind = config->kind;
+    sms_state_identity(config, Ts, coeffs->identity);
+    coeffs->u.shaper.length = design->delay[design->n - 1] + 1u;
+    coeffs->u.shaper.n_taps = design->n;
+    coeffs->u.shaper.taps = taps;
+}
+
+/* An input smoother's L taps (delays 0 .. L-1) into the caller's table and its coefficients
+ * pointing at them; SMS_ERR_ZETA (nothing written) if the correction is not a number. */
+static sms_status smoother_coeffs(const sms_stage_config *config, double Ts, size_t length,
+                                  sms_stage_coeffs *coeffs, sms_shaper_tap *taps)
+{
+    if (!sms_input_smoother_taps(config, Ts, length, taps, NULL))
+        return SMS_ERR_ZETA;
+    coeffs->kind = config->kind;
+    sms_state_identity(config, Ts, coeffs->identity);
+    coeffs->u.shaper.length = length;
+    coeffs->u.shaper.n_taps = length;
+    coeffs->u.shaper.taps = taps;
+    return SMS_OK;
+}
+
+sms_status sms_shaper_coeffs_make(const sms_stage_config *config, double Ts,
+                                  sms_stage_coeffs *coeffs, sms_shaper_tap *taps, size_t n_taps)
+{
+    sparse design;
+    sms_status st;
+    if (config != NULL && sms_is_input_smoother(config->kind)) {
+        size_t length;
+        st = smoother_length(config, Ts, &length);
+        if (st != SMS_OK)
+            return st;
+        if (taps == NULL)
+            return SMS_ERR_NULL;
+        if (n_taps < length)
+            return SMS_ERR_BUFFER_TOO_SMALL;
+        return smoother_coeffs(config, Ts, length, coeffs, taps);
+    }
+    st = build(config, Ts, &design);
+    if (st != SMS_OK)
+        return st;
+    if (taps == NULL)
+        return SMS_ERR_NULL;
+    if (n_taps < design.n)
+        return SMS_ERR_BUFFER_TOO_SMALL;
+    coeffs_of_design(config, Ts, &design, coeffs, taps);
+    return SMS_OK;
+}
+
+/* What sms_shaper_coeffs_make() can write (integer and sms_real tests only). */
+sms_status sms_shaper_coeffs_check(const sms_stage_coeffs *coeffs)
+{
+    const sms_shaper_coeffs *c = &coeffs->u.shaper;
+    size_t i;
+    if (!is_shaper(coeffs->kind))
+        return SMS_ERR_KIND;
+    if (sms_is_input_smoother(coeffs->kind)) {
+        /* every sample of the window a tap: delays 0 .. L-1, 5 <= L <= the cap (the kernel
+         * spans at least 4 samples) */
+        if (c->taps == NULL || c->n_taps < 5u || c->n_taps > SMS_INPUT_SMOOTHER_MAX_LENGTH
+            || c->length != c->n_taps)
+            return SMS_ERR_COEFFS;
+        for (i = 0; i < c->n_taps; ++i)
+            if (c->taps[i].delay != i || c->taps[i].gain - c->taps[i].gain != (sms_real)0)
+                return SMS_ERR_COEFFS;
+        return SMS_OK;
+    }
+    if (c->taps == NULL || c->n_taps < 1u || c->n_taps > SMS_SHAPER_MAX_TAPS)
+        return SMS_ERR_COEFFS;
+    for (i = 0; i < c->n_taps; ++i) {
+        if (i > 0u && c->taps[i].delay <= c->taps[i - 1u].delay)
+            return SMS_ERR_COEFFS;
+        if (c->taps[i].gain - c->taps[i].gain != (sms_real)0)
+            return SMS_ERR_COEFFS;
+    }
+    /* the longest design is below 2^40 samples (saved indices stay exact doubles) */
+    if (c->taps[c->n_taps - 1u].delay >= ((size_t)1 << 20) * ((size_t)1 << 20) - 1u
+        || c->length != c->taps[c->n_taps - 1u].delay + 1u)
+        return SMS_ERR_COEFFS;
+    return SMS_OK;
+}
+
+sms_status sms_shaper_init_coeffs(sms_shaper *f, const sms_stage_coeffs *coeffs,
+                                  sms_shaper_tap *taps, size_t n_taps, sms_real *buffer,
+                                  size_t n_reals)
+{
+    const sms_shaper_coeffs *c;
+    sms_shaper built;
+    size_t i;
+    sms_status st;
+    if (f == NULL || coeffs == NULL)
+        return SMS_ERR_NULL;
+    st = sms_shaper_coeffs_check(coeffs);
+    if (st != SMS_OK)
+        return st;
+    c = &coeffs->u.shaper;
+    if (taps == NULL || buffer == NULL)
+        return SMS_ERR_NULL;
+    if (n_taps < c->n_taps || n_reals < c->length)
+        return SMS_ERR_BUFFER_TOO_SMALL;
+    if (taps != c->taps)
+        for (i = 0; i < c->n_taps; ++i)
+            taps[i] = c->taps[i];
+    built.kind = coeffs->kind;
+    built.length = c->length;
+    built.n_taps = c->n_taps;
+    built.taps = taps;
+    built.history = buffer;
+    built.history_len = c->length;
+    for (i = 0; i < SMS_STATE_IDENTITY_COUNT; ++i)
+        built.identity[i] = coeffs->identity[i];
+    *f = built;
+    sms_shaper_reset(f, (sms_real)0);
+    return SMS_OK;
+}
+
 sms_status sms_shaper_init(sms_shaper *f, const sms_stage_config *config, double Ts,
                            sms_shaper_tap *taps, size_t n_taps, sms_real *buffer, size_t n_reals)
 {
+    sms_stage_coeffs coeffs;
     sparse design;
-    sms_shaper built;
-    size_t i;
     sms_status st;
     if (f == NULL)
         return SMS_ERR_NULL;
     if (config != NULL && sms_is_input_smoother(config->kind)) {
-        st = smoother_length(config, Ts, &built.length);
+        size_t length;
+        st = smoother_length(config, Ts, &length);
         if (st != SMS_OK)
             return st;
         if (taps == NULL || buffer == NULL)
             return SMS_ERR_NULL;
-        if (n_taps < built.length || n_reals < built.length)
+        if (n_taps < length || n_reals < length)
             return SMS_ERR_BUFFER_TOO_SMALL;
-        if (!sms_input_smoother_taps(config, Ts, built.length, taps, NULL))
-            return SMS_ERR_ZETA;
-        built.n_taps = built.length;
-    } else {
-        st = build(config, Ts, &design);
+        st = smoother_coeffs(config, Ts, length, &coeffs, taps);
         if (st != SMS_OK)
             return st;
-        if (taps == NULL || buffer == NULL)
-            return SMS_ERR_NULL;
-        built.length = design.delay[design.n - 1] + 1u;
-        if (n_taps < design.n || n_reals < built.length)
-            return SMS_ERR_BUFFER_TOO_SMALL;
-        built.n_taps = design.n;
-        for (i = 0; i < design.n; ++i) {
-            taps[i].delay = design.delay[i];
-            taps[i].gain = (sms_real)design.gain[i];
-        }
+        return sms_shaper_init_coeffs(f, &coeffs, taps, n_taps, buffer, n_reals);
     }
-    built.kind = config->kind;
-    built.taps = taps;
-    built.history = buffer;
-    built.history_len = built.length;
-    sms_state_identity(config, Ts, built.identity);
-    *f = built;
-    sms_shaper_reset(f, (sms_real)0);
-    return SMS_OK;
+    st = build(config, Ts, &design);
+    if (st != SMS_OK)
+        return st;
+    if (taps == NULL || buffer == NULL)
+        return SMS_ERR_NULL;
+    if (n_taps < design.n || n_reals < design.delay[design.n - 1] + 1u)
+        return SMS_ERR_BUFFER_TOO_SMALL;
+    coeffs_of_design(config, Ts, &design, &coeffs, taps);
+    return sms_shaper_init_coeffs(f, &coeffs, taps, n_taps, buffer, n_reals);
 }
 
 void sms_shaper_reset(sms_shaper *f, sms_real rest)
@@ -424,25 +539,44 @@ void sms_shaper_reset(sms_shaper *f, sms_real rest)
     f->head = 0;
 }
 
-/* The ring index and the tap table stay in locals for the whole block. A tap's sample sits
- * d_k slots behind the head, wrapped once. */
+/* One sample: y = x + sum_k g_k (x[n - d_k] - x), the sparse FIR sum_k g_k x[n - d_k] with
+ * the newest input taken out. The taps sum to 1, so the two agree to rounding, but this one is
+ * exact at rest: once the last L inputs are equal every difference is 0 and y is x, bit for
+ * bit (the plain sum of rounded products is not: a ZVD fed 3.7 gives 3.6999999999999993). A
+ * tap on delay 0 (the first, for every design) contributes x - x = 0 and is skipped. A tap's
+ * sample sits d_k slots behind the head, wrapped once. */
+static inline sms_real shaper_sample(const sms_shaper_tap *taps, size_t n_taps, sms_real *ring,
+                                     size_t head, size_t len, sms_real x)
+{
+    sms_real acc = 0;
+    size_t k;
+    ring[head] = x;
+    for (k = taps[0].delay == 0u; k < n_taps; ++k) {
+        const size_t d = taps[k].delay, wrapped = head + len - d;
+        acc += taps[k].gain * (ring[head >= d ? head - d : wrapped] - x);
+    }
+    return x + acc;
+}
+
+/* The ring index and the tap table stay in locals for the whole block. */
 void sms_shaper_process(sms_shaper *f, const sms_real *in, sms_real *out, size_t n)
 {
     const size_t len = f->history_len, n_taps = f->n_taps;
     const sms_shaper_tap *taps = f->taps;
     sms_real *ring = f->history;
-    size_t i, k, head = f->head;
+    size_t i, head = f->head;
     for (i = 0; i < n; ++i) {
-        sms_real acc = 0;
-        ring[head] = in[i];
-        for (k = 0; k < n_taps; ++k) {
-            const size_t d = taps[k].delay;
-            acc += taps[k].gain * ring[head >= d ? head - d : head + len - d];
-        }
+        out[i] = shaper_sample(taps, n_taps, ring, head, len, in[i]);
         head = head + 1u == len ? 0u : head + 1u;
-        out[i] = acc;
     }
     f->head = head;
+}
+
+void sms_shaper_step(sms_shaper *f, sms_real *x)
+{
+    const size_t head = f->head;
+    *x = shaper_sample(f->taps, f->n_taps, f->history, head, f->history_len, *x);
+    f->head = head + 1u == f->history_len ? 0u : head + 1u;
 }
 
 size_t sms_shaper_state_count(const sms_shaper *f)

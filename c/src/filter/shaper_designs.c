@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Continuous input-shaper designs: amplitudes (normalised to sum 1) and impulse times.
  * Mode: wn, zeta; wd = wn sqrt(1 - zeta^2), Td = 2 pi / wd. Each formula cites its source. */
 #include <math.h>

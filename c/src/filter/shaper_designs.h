@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Internal: continuous shaper designs (amplitudes and times), see shaper_designs.c. */
 #ifndef SMS_SHAPER_DESIGNS_H
 #define SMS_SHAPER_DESIGNS_H

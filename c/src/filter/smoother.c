@@ -1,8 +1,11 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The O(1) drift-free engine shared by the four smoothers: two restarted copies of a complex
  * first-order recursion plus at most two direct taps (exact timing) (see smoother.h). */
 #include <float.h>
 #include <math.h>
-#include "smoothshaper/smoother.h"
+#include <string.h>
+#include "smoothshaper/coeffs.h"
+#include "filter/coeffs_check.h"
 #include "filter/smoother_design.h"
 #include "core/state_identity.h"
 
@@ -14,11 +17,23 @@
 
 /* Fixed part of the saved state, before the ring. */
 enum {
-    STATE_HEAD, STATE_AGE0, STATE_AGE1, STATE_REST,
+    STATE_HEAD, STATE_RUN, STATE_REST,
     STATE_W0_RE, STATE_W0_IM, STATE_W1_RE, STATE_W1_IM,
     STATE_LO0_RE, STATE_LO0_IM, STATE_LO1_RE, STATE_LO1_IM,
     STATE_REF0, STATE_REF1, STATE_FIXED
 };
+
+/* Direct taps: none, on x[n-M+1] and x[n-M] (exact timing), on x[n] and x[n-M] (bounded). */
+enum { TAPS_NONE, TAPS_EXACT, TAPS_BOUNDED };
+
+/* sms_smoother::variant, 3 * pole + taps: the pole q = 1 (rectangular), real, complex. */
+enum { POLE_UNIT, POLE_REAL, POLE_COMPLEX };
+
+static int taps_of(const sms_smoother *f)
+{
+    return f->n_corrections == 0u ? TAPS_NONE
+           : f->correction_delay[0] == 0u ? TAPS_BOUNDED : TAPS_EXACT;
+}
 
 sms_status sms_smoother_buffer_size(const sms_stage_config *config, double Ts, size_t *n_reals)
 {
@@ -61,79 +76,180 @@ sms_status sms_smoother_taps(const sms_stage_config *config, double Ts, double *
     return SMS_OK;
 }
 
-sms_status sms_smoother_init(sms_smoother *f, const sms_stage_config *config, double Ts,
-                             sms_real *buffer, size_t n_reals)
+/* The design's constants in sms_real: what the instance runs on (host side). */
+static void coeffs_of_design(const sms_smoother_design *d, sms_smoother_coeffs *c)
+{
+    size_t j;
+    c->length = d->length;
+    c->window = d->window;
+    c->pole_m1_re = (sms_real)d->pole_m1_re;
+    c->pole_im = (sms_real)d->pole_im;
+    /* What rounding to sms_real lost (exact in double for float), plus the long double part. */
+    c->pole_lo_re = (sms_real)((d->pole_m1_re - (double)c->pole_m1_re) + d->pole_m1_lo_re);
+    c->pole_lo_im = (sms_real)((d->pole_im - (double)c->pole_im) + d->pole_lo_im);
+    c->gain = (sms_real)d->gain;
+    c->tail_re = (sms_real)d->tail_re;
+    c->tail_im = (sms_real)d->tail_im;
+    c->n_corrections = d->n_corrections;
+    for (j = 0; j < SMS_SMOOTHER_MAX_CORRECTIONS; ++j) {
+        c->correction_delay[j] = j < d->n_corrections ? d->correction_delay[j] : 0u;
+        c->correction_gain[j] = (sms_real)(j < d->n_corrections ? d->correction_gain[j] : 0.0);
+    }
+    c->input_limit = d->input_limit;
+}
+
+sms_status sms_smoother_coeffs_make(const sms_stage_config *config, double Ts,
+                                    sms_stage_coeffs *coeffs)
 {
     sms_smoother_design d;
+    sms_status st = sms_smoother_design_make(config, Ts, &d);
+    if (st != SMS_OK)
+        return st;
+    coeffs->kind = config->kind;
+    sms_state_identity(config, Ts, coeffs->identity);
+    coeffs_of_design(&d, &coeffs->u.smoother);
+    return SMS_OK;
+}
+
+static int is_smoother_kind(sms_kind kind)
+{
+    return kind == SMS_RECTANGULAR || kind == SMS_HARMONIC || kind == SMS_DAMPED_HARMONIC
+           || kind == SMS_EXPONENTIAL;
+}
+
+static int finite_real(sms_real v)
+{
+    return v - v == (sms_real)0;
+}
+
+/* What sms_smoother_coeffs_make() can write (integer and sms_real tests only). */
+sms_status sms_smoother_coeffs_check(const sms_stage_coeffs *coeffs)
+{
+    const sms_smoother_coeffs *c = &coeffs->u.smoother;
+    size_t j;
+    if (!is_smoother_kind(coeffs->kind))
+        return SMS_ERR_KIND;
+    if (c->window < 1u || c->window > (size_t)-1 / 32u)
+        return SMS_ERR_COEFFS;
+    if (c->n_corrections == 0u) {
+        if (c->length != c->window)
+            return SMS_ERR_COEFFS;
+    } else if (c->n_corrections != SMS_SMOOTHER_MAX_CORRECTIONS || c->length != c->window + 1u
+               || c->correction_delay[1] != c->window
+               || (c->correction_delay[0] != 0u && c->correction_delay[0] != c->window - 1u)) {
+        return SMS_ERR_COEFFS;
+    }
+    if (!finite_real(c->pole_m1_re) || !finite_real(c->pole_im) || !finite_real(c->pole_lo_re)
+        || !finite_real(c->pole_lo_im) || !finite_real(c->gain) || !finite_real(c->tail_re)
+        || !finite_real(c->tail_im))
+        return SMS_ERR_COEFFS;
+    for (j = 0; j < SMS_SMOOTHER_MAX_CORRECTIONS; ++j)
+        if (!finite_real(c->correction_gain[j]))
+            return SMS_ERR_COEFFS;
+    return SMS_OK;
+}
+
+sms_status sms_smoother_init_coeffs(sms_smoother *f, const sms_stage_coeffs *coeffs,
+                                    sms_real *buffer, size_t n_reals)
+{
+    const sms_smoother_coeffs *c;
     sms_smoother built;
     sms_status st;
     size_t j;
-    if (f == NULL || config == NULL)
+    if (f == NULL || coeffs == NULL)
         return SMS_ERR_NULL;
-    st = sms_smoother_design_make(config, Ts, &d);
+    st = sms_smoother_coeffs_check(coeffs);
     if (st != SMS_OK)
         return st;
+    c = &coeffs->u.smoother;
     if (buffer == NULL)
         return SMS_ERR_NULL;
-    if (n_reals < d.window)
+    if (n_reals < c->window)
         return SMS_ERR_BUFFER_TOO_SMALL;
-    built.kind = config->kind;
-    built.length = d.length;
-    built.window = d.window;
-    built.pole_m1_re = (sms_real)d.pole_m1_re;
-    built.pole_im = (sms_real)d.pole_im;
-    /* What rounding to sms_real lost (exact in double for float), plus the long double part. */
-    built.pole_lo_re = (sms_real)((d.pole_m1_re - (double)built.pole_m1_re) + d.pole_m1_lo_re);
-    built.pole_lo_im = (sms_real)((d.pole_im - (double)built.pole_im) + d.pole_lo_im);
-    built.gain_re = (sms_real)d.gain;
+    built.kind = coeffs->kind;
+    built.length = c->length;
+    built.window = c->window;
+    built.pole_m1_re = c->pole_m1_re;
+    built.pole_im = c->pole_im;
+    built.pole_lo_re = c->pole_lo_re;
+    built.pole_lo_im = c->pole_lo_im;
+    built.gain_re = c->gain;
     built.gain_im = (sms_real)0;
-    built.tail_re = (sms_real)d.tail_re;
-    built.tail_im = (sms_real)d.tail_im;
-    built.imag_out = d.family.half_sine;
-    built.real_only = !d.family.half_sine;
-    built.n_corrections = d.n_corrections;
+    built.tail_re = c->tail_re;
+    built.tail_im = c->tail_im;
+    built.imag_out = coeffs->kind == SMS_HARMONIC || coeffs->kind == SMS_DAMPED_HARMONIC;
+    built.real_only = !built.imag_out;
+    built.n_corrections = c->n_corrections;
     for (j = 0; j < SMS_SMOOTHER_MAX_CORRECTIONS; ++j) {
-        built.correction_delay[j] = j < d.n_corrections ? d.correction_delay[j] : 0u;
-        built.correction_gain[j] = (sms_real)(j < d.n_corrections ? d.correction_gain[j] : 0.0);
+        built.correction_delay[j] = c->correction_delay[j];
+        built.correction_gain[j] = c->correction_gain[j];
     }
-    built.input_limit = d.input_limit;
-    sms_state_identity(config, Ts, built.identity);
+    built.variant = 3u * (unsigned)(!built.real_only ? POLE_COMPLEX
+                                    : built.pole_m1_re == (sms_real)0
+                                      && built.pole_lo_re == (sms_real)0
+                                      && built.tail_re == -built.gain_re ? POLE_UNIT : POLE_REAL)
+                    + (unsigned)taps_of(&built);
+    built.input_limit = c->input_limit;
+    for (j = 0; j < SMS_STATE_IDENTITY_COUNT; ++j)
+        built.identity[j] = coeffs->identity[j];
     built.history = buffer;
-    built.history_len = d.window;
+    built.history_len = c->window;
     sms_smoother_reset(&built, (sms_real)0);
     *f = built;
     return SMS_OK;
+}
+
+sms_status sms_smoother_init(sms_smoother *f, const sms_stage_config *config, double Ts,
+                             sms_real *buffer, size_t n_reals)
+{
+    sms_stage_coeffs coeffs;
+    sms_status st;
+    if (f == NULL || config == NULL)
+        return SMS_ERR_NULL;
+    st = sms_smoother_coeffs_make(config, Ts, &coeffs);
+    if (st != SMS_OK)
+        return st;
+    return sms_smoother_init_coeffs(f, &coeffs, buffer, n_reals);
 }
 
 void sms_smoother_reset(sms_smoother *f, sms_real rest)
 {
     size_t i;
     for (i = 0; i < f->window; ++i)
-        f->history[i] = (sms_real)0;
+        f->history[i] = rest;
     f->head = 0;
     f->rest = rest;
     f->w_re[0] = f->w_re[1] = f->w_im[0] = f->w_im[1] = (sms_real)0;
     f->lo_re[0] = f->lo_re[1] = f->lo_im[0] = f->lo_im[1] = (sms_real)0;
-    f->ref[0] = f->ref[1] = (sms_real)0;
-    /* All past inputs are zero (relative to rest), so a zero copy is exact at any age: copy 0
-     * is in use now, copy 1 takes over after M samples. */
-    f->age[0] = f->window;
-    f->age[1] = 0;
+    /* Every past input was rest: a zero copy referred to rest is exact at any age, and the
+     * last L inputs are equal (the output is rest until the input changes). */
+    f->ref[0] = f->ref[1] = rest;
+    f->run = f->length;
 }
 
-/* The per-sample engine. Between two events (a copy restarts, the ring head wraps) the roles
- * are fixed: the "old" copy has consumed M..2M samples, takes x[n-M] and gives the output; the
- * "young" one has consumed fewer than M and takes no x[n-M] (its inputs before the restart
- * must not reach it, so that a NaN there cannot either). sms_smoother_process() therefore
- * runs segments: the state goes into locals, a tight loop runs the segment, the state goes
- * back. The two copies do the same arithmetic on different data, so they run as the two lanes
- * of one small vector (lane 0 old, lane 1 young; the young lane sees x[n-M] replaced by its
- * reference, i.e. 0, and a zero tail weight). Each copy's state is w + lo, updated for the
- * input u = c (x - ref) + t (x[n-M] - ref) as
+/* The per-sample engine. The two copies have fixed roles: copy 0, the old one, has consumed
+ * M + head samples (at least M, so it is exact), takes x[n-M] and gives the output; copy 1,
+ * the young one, has consumed head samples and takes no x[n-M] (its inputs before its restart
+ * must not reach it, so that a NaN there cannot either). On the sample where head is 0 the
+ * old copy retires: the young one (M samples now) becomes the old one and a new young copy
+ * starts from zero, its reference the sample's input. Between two such samples nothing
+ * changes roles, so sms_smoother_process() runs segments up to the ring's end with the state
+ * in locals; the two copies do the same arithmetic on different data and run as the two
+ * lanes of one small vector (lane 0 old, lane 1 young; the young lane sees x[n-M] replaced by
+ * its reference, i.e. 0, and a zero tail weight). Each copy's state is w + lo, updated for
+ * the input u = c (x - ref) + t (x[n-M] - ref) as
  *   d = (q - 1) w + u,  w' + e = w + d (Fast2Sum),  lo' = lo + ((q - 1) lo + q_lo w + e):
  * lo collects what the addition rounds away and what the rounded pole misses, and rotates on
- * the same pole. Fast2Sum needs IEEE evaluation in sms_real: no -ffast-math reassociation,
- * no x87 excess precision (FLT_EVAL_METHOD 0). */
+ * the same pole. For the rectangular stage (q = 1, t = -c) u is c (x - x[n-M]) in the old
+ * copy. Fast2Sum needs IEEE evaluation in sms_real: no -ffast-math reassociation, no x87
+ * excess precision (FLT_EVAL_METHOD 0).
+ *
+ * Exact rest: run counts the latest inputs equal to the one before them (at most L). When
+ * the last L inputs are equal (run >= L - 1) the convolution with taps summing to 1 is that
+ * input, and it is output as it is; the recursion's rounding (below an ulp of the input's
+ * variation, but not zero) would otherwise leave y one ulp off x until both copies restart
+ * under it. The copies are not touched: their state stays a function of the last M + head
+ * inputs. */
 
 #if defined(__GNUC__) && (defined(__SSE2__) || defined(__ARM_NEON)) \
     && !defined(SMS_NO_VECTOR_EXTENSIONS)
@@ -148,22 +264,19 @@ typedef sms_real lanes __attribute__((vector_size(16)));
 #define LANES(a, b) ((lanes){(a), (b)})
 #endif
 #define LANE(v, i) ((v)[i])
-/* Fast targets: one loop per variant (real or complex pole, with or without corrections). */
+/* Fast targets: one loop per variant (real or complex pole, with or without direct taps). */
 #define SMS_SMOOTHER_VARIANT_LOOPS 1
-#define ADD(a, b) ((a) + (b))
-#define SUB(a, b) ((a) - (b))
-#define MUL(a, b) ((a) * (b))
 #else
 /* Elsewhere (no SIMD, e.g. Cortex-M): scalar lanes, and the two copies run one after the
- * other over each segment (young first: it only reads the input, which the old one may
- * overwrite in place). One loop per pole type keeps the code small. */
+ * other (young first: it only reads the input, which the old one may overwrite in place).
+ * One loop for every family keeps the code small. */
 typedef sms_real lanes;
 #define LANES(a, b) ((void)(b), (a))
 #define LANE(v, i) ((void)(i), (v))
+#endif
 #define ADD(a, b) ((a) + (b))
 #define SUB(a, b) ((a) - (b))
 #define MUL(a, b) ((a) * (b))
-#endif
 
 /* Dekker's Fast2Sum (3 operations instead of TwoSum's 6): s + e == a + b exactly when
  * |a| >= |b|, a the state and b its increment. That is the case where the lost part is
@@ -178,273 +291,353 @@ typedef sms_real lanes;
         (s) = s_;                                                                    \
     } while (0)
 
-/* Both copies of one segment, by role (lane 0 old, lane 1 young), and the constants. */
-typedef struct segment {
+/* The recursion's constants by lane (lane 0 old, lane 1 young: no tail). */
+typedef struct constants {
+    lanes pm1, pim, plo_re, plo_im, gain, tail_re, tail_im;
+} constants;
+
+/* Both copies' state by lane. */
+typedef struct copies {
     lanes w_re, w_im, lo_re, lo_im, ref;
-    sms_real pm1_re, p_im, plo_re, plo_im, gain, tail_re, tail_im, corr0, corr1, rest;
-    sms_real *ring;
-    size_t head, window;
-} segment;
+} copies;
 
-/* Direct taps: none, on x[n-M+1] and x[n-M] (exact timing), on x[n] and x[n-M] (bounded). */
-enum { TAPS_NONE, TAPS_EXACT, TAPS_BOUNDED };
 
-/* The old copy's sample i of a segment: add the direct taps (on x[n-M+1], the ring slot after
- * this one, `wrap` being the segment's sample where that slot is ring[0]; or on x itself) and
- * x[n-M], store x in the ring, write the output. */
-static void finish_sample(sms_real *ring, sms_real *out, size_t i, sms_real x, sms_real oldest,
-                          sms_real y, sms_real ref0, sms_real base, int corrections,
-                          const sms_real *ring0, size_t wrap, sms_real corr0, sms_real corr1)
+/* With_tail 0: the constants of a copy that takes no x[n-M] (the young one, portable path). */
+static inline constants constants_of(const sms_smoother *f, int with_tail)
 {
-    if (corrections != TAPS_NONE) {
-        const sms_real first = corrections == TAPS_BOUNDED ? x
-                             : i == wrap ? ring0[0] : ring[i + 1u];
-        y += corr0 * (first - ref0) + corr1 * (oldest - ref0);
+    constants k;
+    k.pm1 = LANES(f->pole_m1_re, f->pole_m1_re);
+    k.pim = LANES(f->pole_im, f->pole_im);
+    k.plo_re = LANES(f->pole_lo_re, f->pole_lo_re);
+    k.plo_im = LANES(f->pole_lo_im, f->pole_lo_im);
+    k.gain = LANES(f->gain_re, f->gain_re);
+    k.tail_re = LANES(with_tail ? f->tail_re : (sms_real)0, (sms_real)0);
+    k.tail_im = LANES(with_tail ? f->tail_im : (sms_real)0, (sms_real)0);
+    return k;
+}
+
+/* The copies' state: on the vector path both (one load per field: the two copies of a field
+ * are adjacent), on the portable one copy c. */
+#ifdef SMS_SMOOTHER_VARIANT_LOOPS
+static inline lanes load_pair(const sms_real *pair)
+{
+    lanes v = {0};
+    memcpy(&v, pair, 2u * sizeof(sms_real));
+    return v;
+}
+
+static inline void store_pair(sms_real *pair, lanes v)
+{
+    memcpy(pair, &v, 2u * sizeof(sms_real));
+}
+
+static inline copies copies_of(const sms_smoother *f, int c)
+{
+    copies s;
+    (void)c;
+    s.w_re = load_pair(f->w_re);
+    s.w_im = load_pair(f->w_im);
+    s.lo_re = load_pair(f->lo_re);
+    s.lo_im = load_pair(f->lo_im);
+    s.ref = load_pair(f->ref);
+    return s;
+}
+
+/* A real pole leaves Im w and Im lo alone: only what the pole changes is written back. */
+static inline void store_copies(sms_smoother *f, const copies *s, int c, int pole)
+{
+    (void)c;
+    store_pair(f->w_re, s->w_re);
+    store_pair(f->lo_re, s->lo_re);
+    if (pole == POLE_COMPLEX) {
+        store_pair(f->w_im, s->w_im);
+        store_pair(f->lo_im, s->lo_im);
     }
-    ring[i] = x;
-    out[i] = y + base;
+}
+#else
+static inline copies copies_of(const sms_smoother *f, int c)
+{
+    copies s;
+    s.w_re = f->w_re[c];
+    s.w_im = f->w_im[c];
+    s.lo_re = f->lo_re[c];
+    s.lo_im = f->lo_im[c];
+    s.ref = f->ref[c];
+    return s;
+}
+
+static inline void store_copies(sms_smoother *f, const copies *s, int c, int pole)
+{
+    f->w_re[c] = s->w_re;
+    f->lo_re[c] = s->lo_re;
+    if (pole == POLE_COMPLEX) {
+        f->w_im[c] = s->w_im;
+        f->lo_im[c] = s->lo_im;
+    }
+}
+#endif
+
+/* One sample of the recursion in both lanes; the old lane's w + lo (Re w for a real pole, Im w
+ * for a complex one). `oldest` is x[n-M] (for the young lane its reference stands in). */
+#ifdef SMS_SMOOTHER_VARIANT_LOOPS
+static inline sms_real recur_real(const constants *k, copies *s, sms_real x, sms_real oldest,
+                                  int pole)
+{
+    lanes u, d, e, w;
+    if (pole == POLE_UNIT) {
+        /* q = 1, t = -c: c (x - x[n-M]) in the old lane, c (x - ref) in the young one */
+        u = MUL(k->gain, SUB(LANES(x, x), LANES(oldest, LANE(s->ref, 1))));
+        FAST_TWO_SUM(w, e, s->w_re, u);
+        s->lo_re = ADD(s->lo_re, e);
+    } else {
+        u = ADD(MUL(k->gain, SUB(LANES(x, x), s->ref)),
+                MUL(k->tail_re, SUB(LANES(oldest, LANE(s->ref, 1)), s->ref)));
+        d = ADD(MUL(k->pm1, s->w_re), u);
+        FAST_TWO_SUM(w, e, s->w_re, d);
+        s->lo_re = ADD(s->lo_re, ADD(ADD(MUL(k->pm1, s->lo_re), MUL(k->plo_re, s->w_re)), e));
+    }
+    s->w_re = w;
+    return LANE(s->w_re, 0) + LANE(s->lo_re, 0);
+}
+#endif
+
+static inline sms_real recur_complex(const constants *k, copies *s, sms_real x, sms_real oldest,
+                                     int real_out)
+{
+    const lanes o = SUB(LANES(oldest, LANE(s->ref, 1)), s->ref);
+    const lanes d_re = ADD(SUB(MUL(k->pm1, s->w_re), MUL(k->pim, s->w_im)),
+                           ADD(MUL(k->gain, SUB(LANES(x, x), s->ref)), MUL(k->tail_re, o)));
+    const lanes d_im = ADD(ADD(MUL(k->pm1, s->w_im), MUL(k->pim, s->w_re)), MUL(k->tail_im, o));
+    lanes s_re, s_im, e_re, e_im, r_re, r_im;
+    FAST_TWO_SUM(s_re, e_re, s->w_re, d_re);
+    FAST_TWO_SUM(s_im, e_im, s->w_im, d_im);
+    r_re = ADD(ADD(SUB(MUL(k->pm1, s->lo_re), MUL(k->pim, s->lo_im)),
+                   SUB(MUL(k->plo_re, s->w_re), MUL(k->plo_im, s->w_im))), e_re);
+    r_im = ADD(ADD(ADD(MUL(k->pm1, s->lo_im), MUL(k->pim, s->lo_re)),
+                   ADD(MUL(k->plo_re, s->w_im), MUL(k->plo_im, s->w_re))), e_im);
+    s->lo_re = ADD(s->lo_re, r_re);
+    s->lo_im = ADD(s->lo_im, r_im);
+    s->w_re = s_re;
+    s->w_im = s_im;
+    /* Tap 0 of the half-sine families is 0: x reaches Im w a sample later. 0 x (0, or NaN
+     * for a non-finite x) gives the output the NaN that the convolution's 0 x[n] has. */
+    return real_out ? LANE(s->w_re, 0) + LANE(s->lo_re, 0)
+                    : LANE(s->w_im, 0) + LANE(s->lo_im, 0) + (sms_real)0 * x;
+}
+
+/* The vector path runs each pole type's own recursion; the portable path runs the complex one
+ * for every pole (smaller code): a real pole has Im q = 0 and Im c = Im t = Im q_lo = 0, so
+ * Im w stays 0 and Re w follows the real recursion's general form (the extra terms add exact
+ * zeros; the rectangular stage's c (x - x[n-M]) is the vector path's shortcut). */
+static inline sms_real recur(const constants *k, copies *s, sms_real x, sms_real oldest, int pole)
+{
+#ifdef SMS_SMOOTHER_VARIANT_LOOPS
+    return pole == POLE_COMPLEX ? recur_complex(k, s, x, oldest, 0)
+                                : recur_real(k, s, x, oldest, pole);
+#else
+    return recur_complex(k, s, x, oldest, pole != POLE_COMPLEX);
+#endif
+}
+
+/* The run of equal inputs up to x (at most L) and the output: x itself once the last L inputs
+ * are equal, else y. */
+static inline sms_real rest_exactly(size_t *run, size_t length, sms_real x, sms_real prev,
+                                    sms_real y)
+{
+    const size_t r = x == prev ? *run + (*run < length) : 0u;
+    *run = r;
+    return r + 1u >= length ? x : y;
+}
+
+/* On the sample where head is 0 the old copy retires, the young one takes over and a new
+ * young copy starts from zero referred to the latest input, x[n-1] (the input level, so that
+ * the copy's rounding scales with how much the input varies, not with its offset; right after
+ * a reset it is the rest, as every past input; a NaN/Inf must not become a reference). */
+static void retire_old_copy(sms_smoother *f)
+{
+    const sms_real x = f->history[f->window - 1u];
+    f->w_re[0] = f->w_re[1];
+    f->w_im[0] = f->w_im[1];
+    f->lo_re[0] = f->lo_re[1];
+    f->lo_im[0] = f->lo_im[1];
+    f->ref[0] = f->ref[1];
+    f->w_re[1] = f->w_im[1] = (sms_real)0;
+    f->lo_re[1] = f->lo_im[1] = (sms_real)0;
+    f->ref[1] = x - x == (sms_real)0 ? x : f->rest;
+}
+
+/* Samples head .. head + n - 1 (n <= M - head: no copy retires within) through the old copy
+ * (lane 0) and, on the vector path, the young one (lane 1): the recursion, the direct taps
+ * (on x[n-M+1], the ring slot after this one, ring[0] on the ring's last slot; or on x
+ * itself) and x[n-M], the reference, the ring, the exact rest. Each instance loads only the
+ * constants its variant reads. varied: no input equals the one before it (so run stays 0 and
+ * the output is never the input itself, L >= 2), known beforehand, which a block usually is:
+ * its loop then skips the bookkeeping of runs. */
+static inline void segment(sms_smoother *f, const sms_real *in, sms_real *out, size_t n,
+                           int pole, int taps, int varied)
+{
+    const constants k = constants_of(f, 1);
+    const sms_real corr0 = f->correction_gain[0], corr1 = f->correction_gain[1];
+    const size_t length = f->length, last = f->window - f->head - 1u;
+    sms_real *ring = f->history + f->head;
+    sms_real prev = f->history[(f->head == 0u ? f->window : f->head) - 1u];
+    copies s = copies_of(f, 0);
+    const sms_real ref0 = LANE(s.ref, 0);
+    size_t i, run = varied ? 0u : f->run;
+    for (i = 0; i < n; ++i) {
+        const sms_real x = in[i], oldest = ring[i];
+        sms_real y = recur(&k, &s, x, oldest, pole);
+        if (taps != TAPS_NONE) {
+            const sms_real first = taps == TAPS_BOUNDED ? x
+                                   : i == last ? f->history[0] : ring[i + 1u];
+            y += corr0 * (first - ref0) + corr1 * (oldest - ref0);
+        }
+        ring[i] = x;
+        out[i] = varied ? y + ref0 : rest_exactly(&run, length, x, prev, y + ref0);
+        prev = x;
+    }
+    store_copies(f, &s, 0, pole);
+    f->run = run;
 }
 
 #ifdef SMS_SMOOTHER_VARIANT_LOOPS
-/* Real pole (rectangular, exponential): Re w. unit_pole: q = 1 exactly (rectangular), so
- * (q - 1) w and q_lo w vanish. */
-static void segment_real(segment *g, const sms_real *in, sms_real *out, size_t n, int emit,
-                         int corrections, int unit_pole)
+/* 1 when none of the n inputs equals the one before it (prev before in[0]), and L >= 2; a
+ * vector of inputs at a time. (The portable path does not look ahead: smaller code.) */
+static int all_varied(const sms_smoother *f, const sms_real *in, size_t n)
 {
-    const lanes pm1 = LANES(g->pm1_re, g->pm1_re), plo = LANES(g->plo_re, g->plo_re);
-    const lanes gain = LANES(g->gain, g->gain), tail = LANES(g->tail_re, (sms_real)0);
-    const lanes ref = g->ref;
-    const sms_real ref0 = LANE(ref, 0), ref1 = LANE(ref, 1), rest = g->rest;
-    const sms_real base = ref0 + rest; /* added back to the output: the reference, the rest */
-    const sms_real corr0 = g->corr0, corr1 = g->corr1;
-    const size_t wrap = g->window - g->head - 1u;
-    sms_real *ring = g->ring + g->head;
-    lanes w = g->w_re, lo = g->lo_re;
-    size_t i;
-    for (i = 0; i < n; ++i) {
-        const sms_real x = in[i] - rest, oldest = emit ? ring[i] : ref0;
-        const lanes u = ADD(MUL(gain, SUB(LANES(x, x), ref)),
-                            MUL(tail, SUB(LANES(oldest, ref1), ref)));
-        const lanes d = unit_pole ? u : ADD(MUL(pm1, w), u);
-        lanes s, e;
-        sms_real y;
-        FAST_TWO_SUM(s, e, w, d);
-        lo = unit_pole ? ADD(lo, e) : ADD(lo, ADD(ADD(MUL(pm1, lo), MUL(plo, w)), e));
-        w = s;
-        y = LANE(w, 0) + LANE(lo, 0);
-        if (emit)
-            finish_sample(ring, out, i, x, oldest, y, ref0, base, corrections, g->ring, wrap,
-                              corr0, corr1);
+    enum { W = sizeof(lanes) / sizeof(sms_real) };
+    lanes a = {0}, b = {0};
+    __typeof__(a == b) equal = a != a;   /* all lanes false */
+    size_t i = 1, j;
+    if (f->length < 2u || in[0] == f->history[(f->head == 0u ? f->window : f->head) - 1u])
+        return 0;
+    for (; i + W <= n; i += W) {
+        memcpy(&a, in + i, sizeof a);
+        memcpy(&b, in + i - 1u, sizeof b);
+        equal |= a == b;
     }
-    g->w_re = w;
-    g->lo_re = lo;
+    for (j = 0; j < W; ++j)
+        if (equal[j])
+            return 0;
+    for (; i < n; ++i)
+        if (in[i] == in[i - 1u])
+            return 0;
+    return 1;
 }
-
+#else
+#define all_varied(f, in, n) 0
 #endif
 
-/* Complex pole (harmonic families): Im w (real_out: Re w, for the portable path). */
-static void segment_complex(segment *g, const sms_real *in, sms_real *out, size_t n, int emit,
-                            int corrections, int real_out)
+#ifndef SMS_SMOOTHER_VARIANT_LOOPS
+/* The young copy alone over a segment (portable path): it only reads the input. */
+static void young_segment(sms_smoother *f, const sms_real *in, size_t n, int pole)
 {
-    const lanes pm1 = LANES(g->pm1_re, g->pm1_re), pim = LANES(g->p_im, g->p_im);
-    const lanes plo_re = LANES(g->plo_re, g->plo_re), plo_im = LANES(g->plo_im, g->plo_im);
-    const lanes gain = LANES(g->gain, g->gain);
-    const lanes tail_re = LANES(g->tail_re, (sms_real)0), tail_im = LANES(g->tail_im, (sms_real)0);
-    const lanes ref = g->ref;
-    const sms_real ref0 = LANE(ref, 0), ref1 = LANE(ref, 1), rest = g->rest;
-    const sms_real base = ref0 + rest; /* added back to the output: the reference, the rest */
-    const sms_real corr0 = g->corr0, corr1 = g->corr1;
-    const size_t wrap = g->window - g->head - 1u;
-    sms_real *ring = g->ring + g->head;
-    lanes w_re = g->w_re, w_im = g->w_im, lo_re = g->lo_re, lo_im = g->lo_im;
+    const constants k = constants_of(f, 0);
+    copies s = copies_of(f, 1);
     size_t i;
-    for (i = 0; i < n; ++i) {
-        const sms_real x = in[i] - rest, oldest = emit ? ring[i] : ref0;
-        const lanes o = SUB(LANES(oldest, ref1), ref);
-        const lanes d_re = ADD(SUB(MUL(pm1, w_re), MUL(pim, w_im)),
-                               ADD(MUL(gain, SUB(LANES(x, x), ref)), MUL(tail_re, o)));
-        const lanes d_im = ADD(ADD(MUL(pm1, w_im), MUL(pim, w_re)), MUL(tail_im, o));
-        lanes s_re, s_im, e_re, e_im, r_re, r_im;
-        sms_real y;
-        FAST_TWO_SUM(s_re, e_re, w_re, d_re);
-        FAST_TWO_SUM(s_im, e_im, w_im, d_im);
-        r_re = ADD(ADD(SUB(MUL(pm1, lo_re), MUL(pim, lo_im)),
-                       SUB(MUL(plo_re, w_re), MUL(plo_im, w_im))), e_re);
-        r_im = ADD(ADD(ADD(MUL(pm1, lo_im), MUL(pim, lo_re)),
-                       ADD(MUL(plo_re, w_im), MUL(plo_im, w_re))), e_im);
-        lo_re = ADD(lo_re, r_re);
-        lo_im = ADD(lo_im, r_im);
-        w_re = s_re;
-        w_im = s_im;
-        /* Tap 0 of the half-sine families is 0: x reaches Im w a sample later. 0 x (0, or NaN
-         * for a non-finite x) gives the output the NaN that the convolution's 0 x[n] has. */
-        y = real_out ? LANE(w_re, 0) + LANE(lo_re, 0)
-                     : LANE(w_im, 0) + LANE(lo_im, 0) + (sms_real)0 * x;
-        if (emit)
-            finish_sample(ring, out, i, x, oldest, y, ref0, base, corrections, g->ring, wrap,
-                              corr0, corr1);
+    for (i = 0; i < n; ++i)
+        (void)recur(&k, &s, in[i], f->ref[1], pole);
+    store_copies(f, &s, 1, pole);
+}
+#endif
+
+#ifdef SMS_SMOOTHER_VARIANT_LOOPS
+#define SEGMENT(pole, taps)                                                                 \
+    do {                                                                                    \
+        if (varied)                                                                         \
+            segment(f, in, out, n, pole, taps, 1);                                          \
+        else                                                                                \
+            segment(f, in, out, n, pole, taps, 0);                                          \
+    } while (0)
+#endif
+
+/* Inlined into process() and step() where there are vectors (speed); one copy of the loops
+ * on the portable path (firmware: code size). */
+#ifdef SMS_SMOOTHER_VARIANT_LOOPS
+#define SEGMENT_LINKAGE static inline
+#else
+#define SEGMENT_LINKAGE static
+#endif
+
+/* n samples from head, n <= M - head (the old copy retires first when head is 0); varied as
+ * segment() (0 when not known). */
+SEGMENT_LINKAGE void run_segment(sms_smoother *f, const sms_real *in, sms_real *out, size_t n,
+                               int varied)
+{
+    if (f->head == 0u)
+        retire_old_copy(f);
+#ifdef SMS_SMOOTHER_VARIANT_LOOPS
+    /* Constant flags per loop: the compiler drops the unused branches from each. */
+    switch (f->variant) {
+    case 3 * POLE_UNIT + TAPS_NONE: SEGMENT(POLE_UNIT, TAPS_NONE); break;
+    case 3 * POLE_UNIT + TAPS_EXACT: SEGMENT(POLE_UNIT, TAPS_EXACT); break;
+    case 3 * POLE_UNIT + TAPS_BOUNDED: SEGMENT(POLE_UNIT, TAPS_BOUNDED); break;
+    case 3 * POLE_REAL + TAPS_NONE: SEGMENT(POLE_REAL, TAPS_NONE); break;
+    case 3 * POLE_REAL + TAPS_EXACT: SEGMENT(POLE_REAL, TAPS_EXACT); break;
+    case 3 * POLE_REAL + TAPS_BOUNDED: SEGMENT(POLE_REAL, TAPS_BOUNDED); break;
+    case 3 * POLE_COMPLEX + TAPS_EXACT: SEGMENT(POLE_COMPLEX, TAPS_EXACT); break;
+    default: SEGMENT(POLE_COMPLEX, TAPS_NONE); break;
     }
-    g->w_re = w_re;
-    g->w_im = w_im;
-    g->lo_re = lo_re;
-    g->lo_im = lo_im;
+#else
+    /* One loop for every variant (smaller code), the same arithmetic. */
+    young_segment(f, in, n, (int)(f->variant / 3u));
+    segment(f, in, out, n, (int)(f->variant / 3u), (int)(f->variant % 3u), varied);
+#endif
+    f->head += n;
+    if (f->head == f->window)
+        f->head = 0;
 }
 
 void sms_smoother_process(sms_smoother *f, const sms_real *in, sms_real *out, size_t n)
 {
-    const size_t window = f->window;
-    const int corrections = f->n_corrections == 0u ? TAPS_NONE
-                          : f->correction_delay[0] == 0u ? TAPS_BOUNDED : TAPS_EXACT;
-#ifdef SMS_SMOOTHER_VARIANT_LOOPS
-    const int unit_pole = f->real_only && f->pole_m1_re == (sms_real)0 && f->pole_lo_re == (sms_real)0;
-#endif
-    segment g;
-    g.pm1_re = f->pole_m1_re;
-    g.p_im = f->pole_im;
-    g.plo_re = f->pole_lo_re;
-    g.plo_im = f->pole_lo_im;
-    g.gain = f->gain_re;
-    g.tail_re = f->tail_re;
-    g.tail_im = f->tail_im;
-    /* the direct taps sit on delays M-1 and M, or 0 and M (see the design) */
-    g.corr0 = corrections ? f->correction_gain[0] : (sms_real)0;
-    g.corr1 = corrections ? f->correction_gain[1] : (sms_real)0;
-    g.rest = f->rest;
-    g.ring = f->history;
-    g.window = window;
     while (n > 0u) {
-        int old, young;
-        size_t seg;
-        /* The old copy has consumed 2M samples: it restarts on this sample and the young one,
-         * exact now (M samples), takes over. A finite input (x - x == 0) becomes the
-         * restarted copy's reference; NaN/Inf must not. */
-        old = f->age[0] >= f->age[1] ? 0 : 1;
-        if (f->age[old] == 2u * window) {
-            const sms_real x = in[0] - f->rest;
-            f->w_re[old] = f->w_im[old] = (sms_real)0;
-            f->lo_re[old] = f->lo_im[old] = (sms_real)0;
-            f->ref[old] = x - x == (sms_real)0 ? x : (sms_real)0;
-            f->age[old] = 0;
-            old = 1 - old;
-        }
-        young = 1 - old;
-        seg = window - f->age[young];
-        if (window - f->head < seg)
-            seg = window - f->head;
+        size_t seg = f->window - f->head;
         if (n < seg)
             seg = n;
-        g.head = f->head;
-#ifdef SMS_SMOOTHER_VARIANT_LOOPS
-        g.w_re = LANES(f->w_re[old], f->w_re[young]);
-        g.w_im = LANES(f->w_im[old], f->w_im[young]);
-        g.lo_re = LANES(f->lo_re[old], f->lo_re[young]);
-        g.lo_im = LANES(f->lo_im[old], f->lo_im[young]);
-        g.ref = LANES(f->ref[old], f->ref[young]);
-        /* Constant flags per call: the compiler drops the unused branches from each loop. */
-        if (f->real_only) {
-            if (corrections == TAPS_BOUNDED)
-                segment_real(&g, in, out, seg, 1, TAPS_BOUNDED, unit_pole);
-            else if (corrections == TAPS_EXACT)
-                segment_real(&g, in, out, seg, 1, TAPS_EXACT, unit_pole);
-            else if (unit_pole)
-                segment_real(&g, in, out, seg, 1, TAPS_NONE, 1);
-            else
-                segment_real(&g, in, out, seg, 1, TAPS_NONE, 0);
-        } else if (corrections) { /* half-sine families: exact timing only */
-            segment_complex(&g, in, out, seg, 1, TAPS_EXACT, 0);
-        } else {
-            segment_complex(&g, in, out, seg, 1, TAPS_NONE, 0);
-        }
-        f->w_re[old] = LANE(g.w_re, 0);
-        f->w_re[young] = LANE(g.w_re, 1);
-        f->w_im[old] = LANE(g.w_im, 0);
-        f->w_im[young] = LANE(g.w_im, 1);
-        f->lo_re[old] = LANE(g.lo_re, 0);
-        f->lo_re[young] = LANE(g.lo_re, 1);
-        f->lo_im[old] = LANE(g.lo_im, 0);
-        f->lo_im[young] = LANE(g.lo_im, 1);
-#else
-        {
-            int pass;
-            for (pass = 0; pass < 2; ++pass) {
-                const int c = pass == 0 ? young : old;
-                g.w_re = f->w_re[c];
-                g.w_im = f->w_im[c];
-                g.lo_re = f->lo_re[c];
-                g.lo_im = f->lo_im[c];
-                g.ref = f->ref[c];
-                g.tail_re = pass == 0 ? (sms_real)0 : f->tail_re;
-                g.tail_im = pass == 0 ? (sms_real)0 : f->tail_im;
-                /* One loop for every family (smaller code): a real pole has Im q = 0 and
-                 * Im c = Im t = Im q_lo = 0, so Im w stays 0 and Re w follows exactly the
-                 * real recursion (the extra terms add exact zeros). */
-                segment_complex(&g, in, out, seg, pass, pass ? corrections : TAPS_NONE,
-                                f->real_only);
-                f->w_re[c] = g.w_re;
-                f->w_im[c] = g.w_im;
-                f->lo_re[c] = g.lo_re;
-                f->lo_im[c] = g.lo_im;
-            }
-        }
-#endif
-        f->age[old] += seg;
-        f->age[young] += seg;
-        f->head += seg;
-        if (f->head == window)
-            f->head = 0;
+        run_segment(f, in, out, seg, all_varied(f, in, seg));
         in += seg;
         out += seg;
         n -= seg;
     }
 }
 
-/* The phase of the two copies: the one in use (the elder) has consumed M + s samples,
- * s in [0, M] (s = 0 only right after a reset; the elder restarts on the next sample when
- * s = M). */
-static size_t elder_of(const sms_smoother *f)
+void sms_smoother_step(sms_smoother *f, sms_real *x)
 {
-    return f->age[0] >= f->age[1] ? 0u : 1u;
+    run_segment(f, x, x, 1u, 0);
 }
 
+/* After n samples of a constant input x from now, the state depends on x alone (the
+ * absorbed state: ring all x, both copies zero referred to x, run saturated at L) once both
+ * copies in use have restarted under x (on samples where head is 0, M apart, each referred to
+ * the input before it: the first such sample from the second one on) and run has counted L
+ * equal inputs after the first; one more sample, as settle() computes the last one. */
 uint64_t sms_smoother_settle_length(const sms_smoother *f)
 {
-    const uint64_t M = f->window, s = f->age[elder_of(f)] - f->window;
-    /* the elder restarts on sample M - s + 1, the other M samples later */
-    return 2u * M - s + 2u;
+    const uint64_t M = f->window, L = f->length;
+    const uint64_t first = (M - f->head) % M + 1u;
+    const uint64_t second = (first >= 2u ? first : first + M) + M;
+    return (second > L + 1u ? second : L + 1u) + 1u;
 }
 
 void sms_smoother_advance(sms_smoother *f, uint64_t n)
 {
-    const uint64_t M = f->window;
-    size_t elder = elder_of(f);
-    uint64_t s, restarts;
-    if (n == 0u)
-        return;
-    s = f->age[elder] - f->window;
-    /* a restart on each sample that starts with the elder at 2M (s = M): after n samples
-     * (s + n - 1)/M of them, and the elder has consumed M + s' samples */
-    restarts = (s + n - 1u) / M;
-    s = (s + n - 1u) % M + 1u;
-    if (restarts % 2u == 1u)
-        elder = 1u - elder;
-    f->age[elder] = (size_t)(M + s);
-    f->age[1u - elder] = (size_t)s;
-    f->head = (size_t)((f->head + n % M) % M);
+    /* The roles swap on every retirement, but an absorbed state's two copies are equal. */
+    f->head = (size_t)((f->head + n % f->window) % f->window);
 }
 
 sms_real sms_smoother_settle(sms_smoother *f, sms_real x, uint64_t n)
 {
-    const sms_real v = x - f->rest;   /* what the ring and a restarted reference hold */
     size_t i;
     for (i = 0; i < f->window; ++i)
-        f->history[i] = v;
+        f->history[i] = x;
     for (i = 0; i < 2u; ++i) {
         f->w_re[i] = f->w_im[i] = (sms_real)0;
         f->lo_re[i] = f->lo_im[i] = (sms_real)0;
-        f->ref[i] = v;
+        f->ref[i] = x;
     }
+    f->run = f->length;
     sms_smoother_advance(f, n - 1u);
-    sms_smoother_process(f, &x, &x, 1u);
+    sms_smoother_step(f, &x);
     return x;
 }
 
@@ -465,8 +658,7 @@ void sms_smoother_get_state(const sms_smoother *f, double *dst)
         dst[i] = f->identity[i];
     dst += SMS_STATE_IDENTITY_COUNT;
     dst[STATE_HEAD] = (double)f->head;
-    dst[STATE_AGE0] = (double)f->age[0];
-    dst[STATE_AGE1] = (double)f->age[1];
+    dst[STATE_RUN] = (double)f->run;
     dst[STATE_REST] = (double)f->rest;
     dst[STATE_W0_RE] = (double)f->w_re[0];
     dst[STATE_W0_IM] = (double)f->w_im[0];
@@ -509,12 +701,12 @@ sms_status sms_smoother_check_state(const sms_smoother *f, const double *src, si
     n -= SMS_STATE_IDENTITY_COUNT;
     if (!is_index(src[STATE_HEAD], window - 1.0))
         return SMS_ERR_STATE;
-    if (!is_index(src[STATE_AGE0], 2.0 * window) || !is_index(src[STATE_AGE1], 2.0 * window)
-        || fabs(src[STATE_AGE0] - src[STATE_AGE1]) != window)
+    if (!is_index(src[STATE_RUN], (double)f->length))
         return SMS_ERR_STATE;
     if (!isfinite(src[STATE_REST]) || !fits_real_or_nonfinite(src[STATE_REST]))
         return SMS_ERR_STATE;
-    if (!isfinite(src[STATE_REF0]) || !isfinite(src[STATE_REF1]))
+    if (!isfinite(src[STATE_REF0]) || !isfinite(src[STATE_REF1])
+        || !fits_real_or_nonfinite(src[STATE_REF0]) || !fits_real_or_nonfinite(src[STATE_REF1]))
         return SMS_ERR_STATE;
     for (i = STATE_W0_RE; i < n; ++i)
         if (!fits_real_or_nonfinite(src[i]))
@@ -530,8 +722,7 @@ sms_status sms_smoother_set_state(sms_smoother *f, const double *src, size_t n)
         return st;
     src += SMS_STATE_IDENTITY_COUNT;
     f->head = (size_t)src[STATE_HEAD];
-    f->age[0] = (size_t)src[STATE_AGE0];
-    f->age[1] = (size_t)src[STATE_AGE1];
+    f->run = (size_t)src[STATE_RUN];
     f->rest = (sms_real)src[STATE_REST];
     f->w_re[0] = (sms_real)src[STATE_W0_RE];
     f->w_im[0] = (sms_real)src[STATE_W0_IM];

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Design of the FIR smoothers (docs/exact-mode.md): validation, taps, recursive constants.
  * Runs once per init in double with libm; nothing here is on the per-sample path. */
 #include <float.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Internal: design of the four FIR smoothers (taps and recursive constants), in double.
  *
  * Every smoother's continuous impulse response on [0, T) is Re or Im of e^{(sigma + j*omega) t}

@@ -1,9 +1,12 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* One interface over the three implementation families: each stage's memory layout (instance,
  * tap table, delay line, each on a cell boundary) and dispatch; no filtering here. */
 #include <stdint.h>
-#include "smoothshaper/stage.h"
+#include "smoothshaper/coeffs.h"
+#include "filter/coeffs_check.h"
 #include "core/kind.h"
 #include "filter/shaper_designs.h"
+#include "filter/input_smoother.h"
 
 sms_stage_config sms_stage_config_default(sms_kind kind)
 {
@@ -52,7 +55,8 @@ static int plan(sms_family fam, size_t n_taps, size_t n_reals, layout *out)
     case SMS_FAMILY_SHAPER: instance = cells_of_bytes(sizeof(sms_shaper)); break;
     default: instance = cells_of_bytes(sizeof(sms_notch)); break;
     }
-    table = cells_of_bytes(n_taps * sizeof(sms_shaper_tap)); /* n_taps <= SMS_SHAPER_MAX_TAPS */
+    /* n_taps <= SMS_SHAPER_MAX_TAPS, or an input smoother's <= 2^20: no overflow */
+    table = cells_of_bytes(n_taps * sizeof(sms_shaper_tap));
     ring = n_reals / per_cell + (n_reals % per_cell != 0);
     if (ring > SIZE_MAX - instance - table)
         return 0;
@@ -126,37 +130,124 @@ sms_status sms_stage_config_validate(const sms_stage_config *config, double Ts)
 sms_status sms_stage_init(sms_stage *stage, const sms_stage_config *config, double Ts,
                           sms_memory_cell *memory, size_t n_cells)
 {
-    sms_stage built;
-    layout lay;
+    sms_shaper_tap taps[SMS_SHAPER_MAX_TAPS], *table = taps;
+    size_t n_taps = SMS_SHAPER_MAX_TAPS;
+    sms_stage_coeffs coeffs;
     sms_status st;
     if (stage == NULL || config == NULL)
         return SMS_ERR_NULL;
-    st = stage_layout(config, Ts, &lay);
+    if (sms_is_input_smoother(config->kind)) {
+        /* A tap per sample of the window, up to 2^20: designed straight into the stage's own
+         * tap table, which sms_shaper_init_coeffs then keeps in place. */
+        layout lay;
+        st = stage_layout(config, Ts, &lay);
+        if (st != SMS_OK)
+            return st;
+        if (memory == NULL)
+            return SMS_ERR_NULL;
+        if (n_cells < lay.total)
+            return SMS_ERR_BUFFER_TOO_SMALL;
+        table = (sms_shaper_tap *)(void *)&memory[lay.table];
+        n_taps = (lay.ring - lay.table) * sizeof(sms_memory_cell) / sizeof(sms_shaper_tap);
+    }
+    /* Design once, then build the stage from its coefficients as a target does. */
+    st = sms_stage_coeffs_make(config, Ts, &coeffs, table, n_taps);
+    if (st != SMS_OK)
+        return st;
+    return sms_stage_init_coeffs(stage, &coeffs, memory, n_cells);
+}
+
+/* ---- the firmware path (coeffs.h) ---- */
+
+sms_status sms_stage_coeffs_make(const sms_stage_config *config, double Ts,
+                                 sms_stage_coeffs *coeffs, sms_shaper_tap *taps, size_t n_taps)
+{
+    sms_stage_coeffs made;
+    sms_status st;
+    if (config == NULL || coeffs == NULL)
+        return SMS_ERR_NULL;
+    switch (sms_family_of(config->kind)) {
+    case SMS_FAMILY_SMOOTHER: st = sms_smoother_coeffs_make(config, Ts, &made); break;
+    case SMS_FAMILY_SHAPER: st = sms_shaper_coeffs_make(config, Ts, &made, taps, n_taps); break;
+    case SMS_FAMILY_NOTCH: st = sms_notch_coeffs_make(config, Ts, &made); break;
+    default: return stage_sizes(config, Ts, &n_taps, &n_taps); /* the status of a bad config */
+    }
+    if (st == SMS_OK)
+        *coeffs = made;
+    return st;
+}
+
+/* Check coefficients and lay out the stage built from them. */
+static sms_status coeffs_layout(const sms_stage_coeffs *coeffs, layout *out)
+{
+    const sms_family fam = sms_family_of(coeffs->kind);
+    sms_status st;
+    size_t n_taps = 0, n_reals = 0;
+    switch (fam) {
+    case SMS_FAMILY_SMOOTHER:
+        st = sms_smoother_coeffs_check(coeffs);
+        n_reals = coeffs->u.smoother.window;
+        break;
+    case SMS_FAMILY_SHAPER:
+        st = sms_shaper_coeffs_check(coeffs);
+        n_taps = coeffs->u.shaper.n_taps;
+        n_reals = coeffs->u.shaper.length;
+        break;
+    case SMS_FAMILY_NOTCH: st = sms_notch_coeffs_check(coeffs); break;
+    default: return SMS_ERR_KIND;
+    }
+    if (st != SMS_OK)
+        return st;
+    return plan(fam, n_taps, n_reals, out) ? SMS_OK : SMS_ERR_TOO_LONG;
+}
+
+sms_status sms_stage_coeffs_memory_size(const sms_stage_coeffs *coeffs, size_t *n_cells)
+{
+    layout lay;
+    sms_status st;
+    if (coeffs == NULL || n_cells == NULL)
+        return SMS_ERR_NULL;
+    st = coeffs_layout(coeffs, &lay);
+    if (st == SMS_OK)
+        *n_cells = lay.total;
+    return st;
+}
+
+sms_status sms_stage_init_coeffs(sms_stage *stage, const sms_stage_coeffs *coeffs,
+                                 sms_memory_cell *memory, size_t n_cells)
+{
+    sms_stage built;
+    layout lay;
+    size_t ring_reals;
+    sms_status st;
+    if (stage == NULL || coeffs == NULL)
+        return SMS_ERR_NULL;
+    st = coeffs_layout(coeffs, &lay);
     if (st != SMS_OK)
         return st;
     if (memory == NULL)
         return SMS_ERR_NULL;
     if (n_cells < lay.total)
         return SMS_ERR_BUFFER_TOO_SMALL;
-    /* The config is valid and the memory large enough: the family init below succeeds. */
-    built.kind = config->kind;
-    switch (sms_family_of(config->kind)) {
+    /* Checked and large enough: the family init below succeeds. */
+    built.kind = coeffs->kind;
+    ring_reals = (lay.total - lay.ring) * (sizeof(sms_memory_cell) / sizeof(sms_real));
+    switch (sms_family_of(coeffs->kind)) {
     case SMS_FAMILY_SMOOTHER:
         built.u.smoother = (sms_smoother *)(void *)memory;
-        st = sms_smoother_init(built.u.smoother, config, Ts, &memory[lay.ring].r,
-                               (lay.total - lay.ring) * (sizeof(sms_memory_cell) / sizeof(sms_real)));
+        st = sms_smoother_init_coeffs(built.u.smoother, coeffs, &memory[lay.ring].r, ring_reals);
         break;
     case SMS_FAMILY_SHAPER:
         built.u.shaper = (sms_shaper *)(void *)memory;
-        st = sms_shaper_init(built.u.shaper, config, Ts,
-                             (sms_shaper_tap *)(void *)&memory[lay.table],
-                             (lay.ring - lay.table) * sizeof(sms_memory_cell) / sizeof(sms_shaper_tap),
-                             &memory[lay.ring].r,
-                             (lay.total - lay.ring) * (sizeof(sms_memory_cell) / sizeof(sms_real)));
+        st = sms_shaper_init_coeffs(built.u.shaper, coeffs,
+                                    (sms_shaper_tap *)(void *)&memory[lay.table],
+                                    (lay.ring - lay.table) * sizeof(sms_memory_cell)
+                                        / sizeof(sms_shaper_tap),
+                                    &memory[lay.ring].r, ring_reals);
         break;
     default:
         built.u.notch = (sms_notch *)(void *)memory;
-        st = sms_notch_init(built.u.notch, config, Ts);
+        st = sms_notch_init_coeffs(built.u.notch, coeffs);
         break;
     }
     if (st != SMS_OK)

@@ -1,31 +1,23 @@
-/* The single-sample entry points: each is its object's process() on one sample, kept in a
- * file of its own so that the compiler does not inline a second copy of each per-sample loop
- * or dispatch into it (one loop per family, one dispatch, in a firmware image). They sit above
- * every filter: the filters' own one-sample calls (a settle's last sample) call process() on
- * one sample directly, so no filter depends on this file. */
+/* SPDX-License-Identifier: Apache-2.0 */
+/* The single-sample entry points of the stage and the chain: each calls its stages' own step
+ * functions (smoother.c, shaper.c, notch.c), the per-sample path firmware calls from its
+ * sample interrupt. They sit above every filter and no filter calls them. */
 #include "smoothshaper/chain.h"
-
-void sms_smoother_step(sms_smoother *f, sms_real *x)
-{
-    sms_smoother_process(f, x, x, 1u);
-}
-
-void sms_shaper_step(sms_shaper *f, sms_real *x)
-{
-    sms_shaper_process(f, x, x, 1u);
-}
-
-void sms_notch_step(sms_notch *f, sms_real *x)
-{
-    sms_notch_process(f, x, x, 1u);
-}
+#include "core/kind.h"
 
 void sms_stage_step(sms_stage *stage, sms_real *x)
 {
-    sms_stage_process(stage, x, x, 1u);
+    switch (sms_family_of(stage->kind)) {
+    case SMS_FAMILY_SMOOTHER: sms_smoother_step(stage->u.smoother, x); break;
+    case SMS_FAMILY_SHAPER: sms_shaper_step(stage->u.shaper, x); break;
+    case SMS_FAMILY_NOTCH: sms_notch_step(stage->u.notch, x); break;
+    case SMS_FAMILY_NONE: break;
+    }
 }
 
 void sms_chain_step(sms_chain *chain, sms_real *x)
 {
-    sms_chain_process(chain, x, x, 1u);
+    size_t i;
+    for (i = 0; i < chain->n_stages; ++i)
+        sms_stage_step(&chain->stages[i], x);
 }

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Mode identification (docs/design.md): from two peaks, and from a sampled free decay by a
  * least-squares fit of c + e^{sigma t}(A cos wd t + B sin wd t) over the whole record. */
 #include <math.h>

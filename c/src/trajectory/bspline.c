@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* B-spline filters (Biagiotti & Melchiorri 2011b): p rectangular stages per axis, control
  * points from via-points by a banded solve (no pivoting: the collocation matrix of a B-spline
  * basis is totally positive, for which elimination without pivoting is stable). */
@@ -248,6 +249,10 @@ sms_status sms_bspline_period_for_modes(const double *wn, size_t n, double Ts, d
     N = ceil(2.0 * 3.14159265358979323846 / (wmin * Ts) * (1.0 - 1e-12));
     if (N < 1.0)
         N = 1.0;
+    /* a period beyond double (a mode far below 1/Ts, or Ts itself near DBL_MAX) is refused,
+     * never returned as inf */
+    if (!isfinite(N * Ts))
+        return SMS_ERR_TOO_LONG;
     *T = N * Ts;
     return SMS_OK;
 }

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Online multi-point generator (trajectory.h, docs/sampled-limits.md): the time-optimal plan of
  * the profile's shape from the current state on every new target (plan.c), run through the
  * stage tuned to the mode when there is one. init may use libm; step is O(1) without it. */
@@ -403,7 +404,7 @@ void sms_generator_hold(sms_generator *g, sms_real target, uint64_t n, sms_real 
         /* At the end the elder copy will have consumed M + s samples (s in [1, M], from the
          * phase now), so the stage's state depends on the last M + s inputs alone. */
         const uint64_t M = g->stage_window;
-        const uint64_t s_now = g->stage[0].age[g->stage[0].age[0] >= g->stage[0].age[1] ? 0 : 1] - M;
+        const uint64_t s_now = g->stage[0].head;   /* the elder has consumed M + head (mod M) */
         window = M + (s_now + n - 1u) % M + 1u + 2u;
     }
     if (n > window) {

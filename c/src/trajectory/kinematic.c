@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Kinematic design (docs/design.md, docs/sampled-limits.md): lengths of the shortest
  * rest-to-rest chain within n derivative bounds, as a continuous design and on a sample grid:
  * what is valid, which multiple of a mode the tuned last stage takes, and the public designs.
@@ -195,6 +196,11 @@ sms_status sms_kin_solve_sampled(double h, const double *limits, size_t n, sms_p
             if (N[i] > 0.0)
                 T[i] = N[i] * Ts;
     }
+    /* A length beyond double (a whole number of samples of a Ts near DBL_MAX, pi/2 of a huge
+     * ratio) is no design: refused rather than returned as inf. */
+    for (i = 0; i < n; ++i)
+        if (!isfinite(T[i]))
+            return SMS_ERR_TOO_LONG;
     return SMS_OK;
 }
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Many kinematic designs in one call: a loop over sms_kinematic_design(), so each problem's
  * lengths are the ones the single design gives, and a caller from an interpreted language
  * pays the call overhead once instead of per problem. */

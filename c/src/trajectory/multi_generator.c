@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Online multi-axis generator: the configuration (what init checks, the memory it needs, the
  * reach of every axis's limits), init and reset, and the phase-synchronised move's duration.
  * Planning, sampling, holding and the saved state are in multi_plan.c, multi_step.c,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The time-optimal single-axis plan (plan.h). Every operation is in sms_real. */
 #include "trajectory/plan.h"
 

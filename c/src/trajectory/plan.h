@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Internal: the time-optimal jerk-limited single-axis plan from a state (q, v, a) to a target
  * at rest, evaluated exactly at sample instants. In ::sms_real, no libm: the online generator
  * re-plans on its per-sample path, and a float build must not pull in double arithmetic.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Internal: the kinematic design shared by kinematic.c and generator.c; the report of a
  * refused limit set shared by the single- and the multi-axis generator's reach checks. */
 #ifndef SMS_TRAJECTORY_INTERNAL_H

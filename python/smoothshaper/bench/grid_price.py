@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """What designing a kinematic chain on the sample grid costs: the grid duration minus the
 continuous optimum, in samples, per number of bounds (docs/sampled-limits.md).
 

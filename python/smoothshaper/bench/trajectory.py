@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Trajectory benchmark: what the online generator and the kinematic design cost and how close
 to time-optimal the generator is when targets change mid-motion.
 

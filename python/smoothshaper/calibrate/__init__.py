@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """From a measured record to a recommended, verified filter (``smoothshaper calibrate``).
 
 >>> from smoothshaper import calibrate

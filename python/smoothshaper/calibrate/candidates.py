@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Candidate filters for a set of measured modes: tuning, figures of merit, recommendation.
 
 Remaining vibration (docs/calibrate.md). A filter with taps h at sample period Ts leaves, of a

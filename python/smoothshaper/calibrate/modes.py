@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Modes (wn, zeta, uncertainty, weight) from a spectrum or a free decay.
 
 Spectra (resonance tests, PSD tables, frequency responses): every significant peak of the

@@ -1,8 +1,11 @@
+# SPDX-License-Identifier: Apache-2.0
 """Ready-to-use outputs of a calibration: table, JSON, C config, FMU start values, firmware lines.
 
 * ``recommended.stages``: dicts that ``smoothshaper.Stage(**d)`` accepts, so
   ``Chain([Stage(**d) for d in stages], Ts=...)`` builds the filter.
 * ``c_config``: C code filling ``sms_stage_config`` values for ``sms_chain_init``.
+* ``c_coeffs``: the chain's precomputed coefficients for ``sms_chain_init_coeffs`` (a firmware
+  target builds it without designing it: no double arithmetic, no libm).
 * ``fmu_start_values``: ``fmpy.simulate_fmu(start_values=...)`` values for SmoothShaper.fmu.
 * ``input_shaper``: ``[input_shaper]`` lines when 3-D printer firmware knows the shaper.
 """
@@ -15,8 +18,8 @@ from dataclasses import asdict
 
 from .candidates import Candidate, firmware_lines
 
-__all__ = ["C_KIND", "c_config", "fmu_start_values", "axis_json", "to_json", "write_json",
-           "report_text"]
+__all__ = ["C_KIND", "c_config", "c_coeffs", "fmu_start_values", "axis_json", "to_json",
+           "write_json", "report_text"]
 
 C_KIND = {"rectangular": "SMS_RECTANGULAR", "harmonic": "SMS_HARMONIC",
           "damped_harmonic": "SMS_DAMPED_HARMONIC", "exponential": "SMS_EXPONENTIAL",
@@ -53,6 +56,31 @@ def c_config(c: Candidate, Ts: float, axis: str) -> str:
     lines.append(f"/* then: sms_chain_memory_size(cfg_{axis}, {n}, Ts, &need); "
                  f"sms_chain_init(&chain, stages, cfg_{axis}, {n}, Ts, memory, need); */")
     return "\n".join(lines) + "\n"
+
+
+def c_coeffs(c: Candidate, Ts: float, axis: str) -> str:
+    """C source of the recommended chain's precomputed coefficients for ``axis``
+    (``coeffs_<axis>[]``, :func:`smoothshaper.coeffs.c_source`): a firmware target builds the
+    chain from them with ``sms_chain_init_coeffs``, without designing it.
+
+    Parameters
+    ----------
+    c : Candidate
+        The recommended filter.
+    Ts : float
+        The target's sample period [s].
+    axis : str
+        The axis, a C identifier (``_ident`` of its name).
+
+    Returns
+    -------
+    str
+        The C source, headed by what the chain is for.
+    """
+    from ..coeffs import c_source
+    return (f"/* smoothshaper calibrate, axis {axis}: {c.name}, remaining vibration "
+            f"{c.vibration:.3g} %, delay {c.length:.4g} s */\n"
+            + c_source(list(c.stages), Ts=Ts, name=f"coeffs_{axis}"))
 
 
 def fmu_start_values(c: Candidate, Ts: float) -> dict:

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The two calibration figures (matplotlib, Agg).
 
 ``calibrate_psd.png``: per axis, the measured PSD (frequency axis in Hz, rad/s in the legend),

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Reading measured records and telling their kind apart.
 
 Four kinds of file are understood (CSV: comma, semicolon, tab or space separated; ``#`` lines

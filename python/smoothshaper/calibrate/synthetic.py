@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Synthetic records of plants with known modes, in all four input kinds (for tests, the
 benchmark and the shipped examples).
 

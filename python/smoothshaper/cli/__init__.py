@@ -72,6 +72,7 @@ def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
     try:
         args = build_parser().parse_args(argv)
+        args.argv = argv        # the command line, for files that say how they were written
         return args.func(args)
     except BrokenPipeError:
         # The reader went away (e.g. `| head`): not an error worth a message.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """``smoothshaper calibrate``: from measured records to a recommended filter.
 
     smoothshaper calibrate FILE... [--kind auto|raw|decay|psd|frf] [--axis x|y|z|all]
@@ -146,6 +147,10 @@ def cmd_calibrate(args) -> int:
             path = os.path.join(args.out, f"config_{ident}.c")
             with open(path, "w", encoding="utf-8") as fh:
                 fh.write(outputs.c_config(c, ref.Ts, ident))
+            written.append(path)
+            path = os.path.join(args.out, f"coeffs_{ident}.c")   # the firmware path, coeffs.h
+            with open(path, "w", encoding="utf-8") as fh:
+                fh.write(outputs.c_coeffs(c, ref.Ts, ident))
             written.append(path)
             path = os.path.join(args.out, f"fmu_start_values_{ident}.json")
             with open(path, "w", encoding="utf-8") as fh:

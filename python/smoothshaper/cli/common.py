@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """What every ``smoothshaper`` subcommand module shares: exit codes, the one-line error, the
 argument parser, tables, the progress bar and the matplotlib import. Kept apart from the
 package's entry point (:mod:`smoothshaper.cli`, which imports every subcommand module) so that

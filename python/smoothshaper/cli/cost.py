@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """How long a ``smoothshaper`` request will take, computed from its sizes before it starts.
 
 Every CLI path whose work grows with numbers the user gives (chain length, sweep points,
@@ -374,8 +375,8 @@ def report_cost(sections) -> Cost:
 
 #: Seconds of each step of ``smoothshaper validate`` on the reference machine (building the
 #: FMUs only when the build folder does not hold them yet).
-VALIDATE_SECONDS = {"build": 60.0, "checks": 8.0, "importers": 15.0, "SmoothShaper": 20.0,
-                    "TrajectoryGenerator": 4.0}
+VALIDATE_SECONDS = {"build": 60.0, "checks": 8.0, "importers": 18.0, "SmoothShaper": 20.0,
+                    "TrajectoryGenerator": 4.0, "ServoDrive": 12.0}
 
 
 def validate_cost(*, built: bool) -> Cost:

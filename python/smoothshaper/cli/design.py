@@ -9,7 +9,7 @@ from .chain import add_chain_options, chain_from_args, duration, stage_rows
 from .common import EXIT_UNAVAILABLE, CliError, Parser, format_table
 from .trajectory import add_design_forms
 
-__all__ = ["cmd_design", "add_parser"]
+__all__ = ["cmd_design", "add_parser", "write_c_coeffs"]
 
 
 def cmd_design(args) -> int:
@@ -42,7 +42,27 @@ def cmd_design(args) -> int:
         chain = Chain(stages, Ts=args.Ts)
         print(f"chain FIR length at Ts={args.Ts:g} s: {chain.length} samples"
               + ("" if chain.is_fir else " (plus IIR notch)"))
+    if args.c_coeffs:
+        write_c_coeffs(args.c_coeffs, stages, args.Ts, args.c_name, getattr(args, "argv", []))
     return 0
+
+
+def write_c_coeffs(path: str, stages, Ts, name: str, argv: list[str]) -> None:
+    """Write the chain's precomputed coefficients as C source (smoothshaper.coeffs), headed by
+    the command line (``argv``, without the program) that wrote them."""
+    import shlex
+
+    from ..coeffs import c_source
+    if Ts is None:
+        raise CliError("--c-coeffs needs --Ts: the coefficients are for one sample period")
+    text = c_source(stages, Ts=Ts, name=name)
+    line = " ".join(shlex.quote(a) for a in argv) or "design"
+    try:
+        with open(path, "w", encoding="utf-8") as fh:
+            fh.write(f"/* Written by: smoothshaper {line} */\n" + text)
+    except OSError as exc:
+        raise CliError(f"--c-coeffs={path}: {exc.strerror or exc}") from None
+    print(f"wrote {path} (precomputed coefficients {name}[], coeffs.h)")
 
 
 def add_parser(sub) -> None:
@@ -69,5 +89,12 @@ def add_parser(sub) -> None:
                    choices=("polynomial", "trigonometric", "damped"),
                    help="last stage: polynomial = moving average, trigonometric = half sine, "
                    "damped = exponential for the mode --wn/--zeta (default polynomial)")
+    f = p.add_argument_group(
+        "firmware", "The chain as precomputed coefficients: C source that a target builds its "
+        "stages from with sms_chain_init_coeffs, no design on the target, no double arithmetic, "
+        "no libm (docs/firmware.md).")
+    f.add_argument("--c-coeffs", metavar="FILE", help="write the coefficients (needs --Ts)")
+    f.add_argument("--c-name", default="smoothshaper_chain", metavar="NAME",
+                   help="C name of the coefficient array (default smoothshaper_chain)")
     p.set_defaults(func=cmd_design)
     add_design_forms(p, Parser)

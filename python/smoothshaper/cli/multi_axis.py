@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """``smoothshaper design generator --via "x,y,z;x,y,z;..."``: multi-axis via-points.
 
 Runs the via-points through the C-backed multi-axis generator

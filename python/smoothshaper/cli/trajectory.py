@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """``smoothshaper design generator`` and ``smoothshaper design bspline``.
 
 * ``generator``: a staircase of via-points through the C-backed online generator

@@ -28,7 +28,8 @@ def repo_root() -> Path:
 
 #: The FMUs and their model files under fmu/.
 FMU_MODELS = {"SmoothShaper": "smoothshaper_model.c", "TrajectoryGenerator": "trajectory_model.c",
-              "ElasticPlant": "elastic_plant_model.c", "MultiAxisGenerator": "multi_axis_model.c"}
+              "ElasticPlant": "elastic_plant_model.c", "MultiAxisGenerator": "multi_axis_model.c",
+              "ServoDrive": "servo_drive_model.c"}
 
 
 def build_fmus(build_dir: Path, *, source_dir: Path | None = None) -> dict[str, Path]:

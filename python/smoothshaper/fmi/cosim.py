@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """System co-simulation: three FMUs connected by an SSP file, run in libcosim and fmpy.
 
 Run ``python -m smoothshaper.cosim --out DIR`` (``scripts/main.sh`` does, into out/cosim).
@@ -25,12 +26,8 @@ and each connection adds one step of delay. :func:`reference` builds exactly thi
 from __future__ import annotations
 
 import math
-import shutil
-import zipfile
 from dataclasses import dataclass
 from pathlib import Path
-from types import SimpleNamespace
-from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
@@ -38,10 +35,12 @@ from .._checks import (finite_array as _finite_array, finite_signal as _finite_s
                        integer as _integer)
 from ..errors import ParameterError
 from ..reference._checks import check_samples
+from . import ssp as _ssp
+from .ssp import SSD_NS, ssp_parameters
 
 __all__ = ["TS", "STOP_TIME", "T_MOVE", "MOVE", "PLANT", "LIMITS", "SSD_NS", "plant_mode",
-           "parameters", "WITHOUT_SHAPER", "COMPONENTS", "CONNECTIONS", "system_structure",
-           "write_ssp", "target_signal", "ssp_parameters", "run_fmpy", "run_libcosim", "reference",
+           "parameters", "WITHOUT_SHAPER", "COMPONENTS", "CONNECTIONS", "SYSTEM",
+           "system_structure", "write_ssp", "target_signal", "ssp_parameters", "run_fmpy", "run_libcosim", "reference",
            "residual_vibration", "Run", "run_all", "plot", "run", "main"]
 
 #: Sample period of every FMU and the communication step [s].
@@ -56,11 +55,6 @@ PLANT = {"J_l": 0.23e-5, "k_t": 0.156, "b_t": 1.0e-5}
 LIMITS = {"vmax": 0.1, "amax": 4.0, "jmax": 400.0}
 #: Shaper stage codes (SmoothShaper's stage[k].kind): zv and none.
 KIND_ZV, KIND_NONE = 4, -1
-
-SSD_NS = ('xmlns:ssc="http://ssp-standard.org/SSP1/SystemStructureCommon" '
-          'xmlns:ssd="http://ssp-standard.org/SSP1/SystemStructureDescription" '
-          'xmlns:ssv="http://ssp-standard.org/SSP1/SystemStructureParameterValues"')
-
 
 def plant_mode() -> tuple[float, float]:
     """(wn, zeta) of the plant: wn = sqrt(k_t/J_l), zeta = b_t/(2 sqrt(k_t J_l))."""
@@ -86,51 +80,25 @@ COMPONENTS = (("Generator", "TrajectoryGenerator", (("target", "input"), ("q", "
 CONNECTIONS = (("Generator", "q", "Shaper", "u"), ("Shaper", "y", "Plant", "u"))
 
 
-def _ssv_value(value) -> str:
-    if isinstance(value, int):
-        return f'<ssv:Integer value="{value}"/>'
-    return f'<ssv:Real value="{value!r}"/>'
+def target_signal(t: np.ndarray) -> np.ndarray:
+    """The system input: 0, then MOVE from T_MOVE on."""
+    return np.where(_finite_array("t", t) >= T_MOVE - 1e-9 * TS, MOVE, 0.0)
+
+
+#: The system (fmi.ssp): target -> Generator -> Shaper -> Plant.
+SYSTEM = _ssp.System(
+    name="ShapedMotion", description="jerk-limited move, input shaper, two-mass elastic plant",
+    components=COMPONENTS, connections=CONNECTIONS, parameters=parameters(),
+    without_shaper=WITHOUT_SHAPER, system_input=("target", "Generator", "target"),
+    recorded=(("Shaper", "y"), ("Plant", "y")), Ts=TS, stop_time=STOP_TIME,
+    target=target_signal)
 
 
 def system_structure(*, system_input: bool = True) -> str:
     """SystemStructure.ssd of the system (SSP 1.0; parameters inline as ssv parameter sets).
     ``system_input=False`` leaves out the system's input connector ``target`` and its
     connection to the generator (libcosim refuses connections without a start element)."""
-    params = parameters()
-    lines = ['<?xml version="1.0" encoding="UTF-8"?>',
-             f'<ssd:SystemStructureDescription {SSD_NS} version="1.0" name="ShapedMotion">',
-             '  <ssd:System name="ShapedMotion" description="jerk-limited move, input shaper, '
-             'two-mass elastic plant">']
-    if system_input:
-        lines += ['    <ssd:Connectors>',
-                  '      <ssd:Connector name="target" kind="input"><ssc:Real/></ssd:Connector>',
-                  '    </ssd:Connectors>']
-    lines.append('    <ssd:Elements>')
-    for name, model, connectors in COMPONENTS:
-        lines.append(f'      <ssd:Component name="{name}" type="application/x-fmu-sharedlibrary" '
-                     f'source="resources/{model}.fmu">')
-        lines.append('        <ssd:Connectors>')
-        lines += [f'          <ssd:Connector name="{c}" kind="{kind}"><ssc:Real/></ssd:Connector>'
-                  for c, kind in connectors]
-        lines += ['        </ssd:Connectors>', '        <ssd:ParameterBindings>',
-                  '          <ssd:ParameterBinding>', '            <ssd:ParameterValues>',
-                  f'              <ssv:ParameterSet version="1.0" name="{name}">',
-                  '                <ssv:Parameters>']
-        lines += [f'                  <ssv:Parameter name={quoteattr(p)}>{_ssv_value(v)}'
-                  '</ssv:Parameter>' for p, v in params[name].items()]
-        lines += ['                </ssv:Parameters>', '              </ssv:ParameterSet>',
-                  '            </ssd:ParameterValues>', '          </ssd:ParameterBinding>',
-                  '        </ssd:ParameterBindings>', '      </ssd:Component>']
-    lines += ['    </ssd:Elements>', '    <ssd:Connections>']
-    if system_input:
-        lines.append('      <ssd:Connection startConnector="target" endElement="Generator" '
-                     'endConnector="target"/>')
-    lines += [f'      <ssd:Connection startElement="{a}" startConnector="{ac}" endElement="{b}" '
-              f'endConnector="{bc}"/>' for a, ac, b, bc in CONNECTIONS]
-    lines += ['    </ssd:Connections>', '  </ssd:System>',
-              f'  <ssd:DefaultExperiment startTime="0.0" stopTime="{STOP_TIME!r}"/>',
-              '</ssd:SystemStructureDescription>', '']
-    return "\n".join(lines)
+    return _ssp.system_structure(SYSTEM, system_input=system_input)
 
 
 def write_ssp(out_dir: Path, fmus: dict[str, Path]) -> tuple[Path, Path]:
@@ -138,39 +106,7 @@ def write_ssp(out_dir: Path, fmus: dict[str, Path]) -> tuple[Path, Path]:
     system with its input ``target``, and ``ShapedMotion-libcosim.ssp``, the same without the
     system-level input (libcosim cannot connect it; its runner sets the generator's target).
     Returns both paths."""
-    out_dir = Path(out_dir)
-    out_dir.mkdir(parents=True, exist_ok=True)
-    missing = [m for _, m, _ in COMPONENTS if m not in fmus]
-    if missing:
-        raise RuntimeError(f"the system needs {', '.join(missing)}.fmu (build the FMUs first)")
-    paths = out_dir / "ShapedMotion.ssp", out_dir / "ShapedMotion-libcosim.ssp"
-    for path, system_input in zip(paths, (True, False)):
-        with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED) as z:
-            z.writestr("SystemStructure.ssd", system_structure(system_input=system_input))
-            for _, model, _ in COMPONENTS:
-                z.write(fmus[model], f"resources/{model}.fmu")
-    return paths
-
-
-def target_signal(t: np.ndarray) -> np.ndarray:
-    """The system input: 0, then MOVE from T_MOVE on."""
-    return np.where(_finite_array("t", t) >= T_MOVE - 1e-9 * TS, MOVE, 0.0)
-
-
-def ssp_parameters(ssp: Path) -> dict[str, float | int]:
-    """{"Component.variable": value} read back from the SSP's inline parameter bindings."""
-    import xml.etree.ElementTree as ET
-    ns = {"ssd": "http://ssp-standard.org/SSP1/SystemStructureDescription",
-          "ssv": "http://ssp-standard.org/SSP1/SystemStructureParameterValues"}
-    with zipfile.ZipFile(ssp) as z:
-        root = ET.fromstring(z.read("SystemStructure.ssd"))
-    values = {}
-    for comp in root.iterfind(".//ssd:Component", ns):
-        for p in comp.iterfind(".//ssv:Parameter", ns):
-            real, integer = p.find("ssv:Real", ns), p.find("ssv:Integer", ns)
-            value = float(real.get("value")) if real is not None else int(integer.get("value"))
-            values[f"{comp.get('name')}.{p.get('name')}"] = value
-    return values
+    return _ssp.write_ssp(SYSTEM, out_dir, fmus)
 
 
 # ---------------------------------------------------------------- the two importers
@@ -178,17 +114,7 @@ def ssp_parameters(ssp: Path) -> dict[str, float | int]:
 def run_fmpy(ssp: Path, *, shaper: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(t, shaped command, load position) from fmpy's SSP master (t += h, step TS): row k is
     the state after step k, i.e. at t_(k+1)."""
-    from fmpy.ssp.simulation import simulate_ssp
-    values = ssp_parameters(ssp)
-    if not shaper:
-        values.update(WITHOUT_SHAPER)
-    pset = SimpleNamespace(parameters=[SimpleNamespace(name=n, value=v) for n, v in values.items()])
-    r = simulate_ssp(str(ssp), stop_time=STOP_TIME - 0.5 * TS, step_size=TS, parameter_set=pset,
-                     input={"target": lambda t: float(target_signal(t))})
-    names = r.dtype.names
-    s_col = next(n for n in names if n.endswith("Shaper.y"))
-    p_col = next(n for n in names if n.endswith("Plant.y"))
-    return np.asarray(r["time"]) + TS, np.asarray(r[s_col], float), np.asarray(r[p_col], float)
+    return _ssp.run_fmpy(SYSTEM, ssp, shaper=shaper)
 
 
 def run_libcosim(ssp: Path, *, shaper: bool, n_steps: int):
@@ -196,37 +122,7 @@ def run_libcosim(ssp: Path, *, shaper: bool, n_steps: int):
     connections, parameter bindings); the generator's target is overridden with what the system
     input's connection would deliver (the input of the previous step), outputs are read after
     every step."""
-    from libcosimpy.CosimExecution import CosimExecution
-    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
-    from libcosimpy.CosimManipulator import CosimManipulator
-    from libcosimpy.CosimObserver import CosimObserver
-    log_output_level(CosimLogLevel.ERROR)
-    step_ns = int(round(TS * 1e9))
-    execution = CosimExecution.from_ssp_file(str(ssp), step_size=step_ns)
-    index = {i.name.decode(): i.index for i in execution.slave_infos()}
-    vrs = {name: {v.name.decode(): v.reference for v in execution.slave_variables(i)}
-           for name, i in index.items()}
-    if not shaper:
-        for key, value in WITHOUT_SHAPER.items():
-            comp, var = key.split(".", 1)
-            if not execution.integer_initial_value(index[comp], vrs[comp][var], value):
-                raise RuntimeError(f"libcosim refused {key}")
-    override = CosimManipulator.create_override()
-    execution.add_manipulator(manipulator=override)
-    observer = CosimObserver.create_last_value()
-    execution.add_observer(observer=observer)
-    t = (np.arange(n_steps) + 1) * TS
-    inputs = np.r_[0.0, target_signal(np.arange(n_steps - 1) * TS)]
-    s = np.empty(n_steps)
-    p = np.empty(n_steps)
-    gen, sh, pl = index["Generator"], index["Shaper"], index["Plant"]
-    for k in range(n_steps):
-        override.slave_real_values(gen, [vrs["Generator"]["target"]], [float(inputs[k])])
-        if not execution.step():
-            raise RuntimeError(f"libcosim step {k} failed")
-        s[k] = observer.last_real_values(sh, [vrs["Shaper"]["y"]])[0]
-        p[k] = observer.last_real_values(pl, [vrs["Plant"]["y"]])[0]
-    return t, s, p
+    return _ssp.run_libcosim(SYSTEM, ssp, shaper=shaper, n_steps=n_steps)
 
 
 # ---------------------------------------------------------------- reference and measures
@@ -237,17 +133,11 @@ def reference(n_steps: int, *, shaper: bool) -> tuple[np.ndarray, np.ndarray, np
     check_samples("n_steps", n_steps, "the reference run")
     if not isinstance(shaper, (bool, np.bool_)):
         raise ParameterError("shaper", f"shaper must be True or False, got {type(shaper).__name__}")
-    from .. import plants, reference as filters_reference
+    from .. import plants
     from ..stages import shaper as shaper_stage
-    from ..trajectory import generator_reference
-    tgt_in = np.r_[0.0, target_signal(np.arange(n_steps - 1) * TS)]   # connection: one step
-    q = np.r_[0.0, generator_reference(tgt_in, Ts=TS, **LIMITS)[:, 0]]
-    if shaper:
-        wn, zeta = plant_mode()
-        s = np.r_[0.0, filters_reference.filter([shaper_stage("zv", wn=wn, zeta=zeta)], q[:n_steps],
-                                               Ts=TS)]
-    else:
-        s = np.r_[0.0, q[:n_steps]]
+    wn, zeta = plant_mode()
+    stages = [shaper_stage("zv", wn=wn, zeta=zeta)] if shaper else []
+    s = np.r_[0.0, _ssp.generator_shaper_reference(SYSTEM, n_steps, limits=LIMITS, stages=stages)]
     plant = plants.two_mass(**PLANT)
     _, y = plants.simulate_zoh(plant, s, Ts=TS)
     return (np.arange(n_steps) + 1) * TS, s[1:], y[1:]
@@ -258,11 +148,7 @@ def residual_vibration(s: np.ndarray, p: np.ndarray) -> float:
     s, p = _finite_signal("s", s), _finite_signal("p", p)
     if p.shape != s.shape:
         raise ParameterError("p", f"p must have the shape of s {s.shape}, got {p.shape}")
-    off = np.nonzero(np.abs(s - MOVE) > 1e-12 * MOVE)[0]
-    settled = off[-1] + 1 if off.size else 0
-    if settled >= s.size - 10:
-        raise RuntimeError("the command did not settle within the run: lengthen STOP_TIME")
-    return float(np.max(np.abs(p[settled:] - MOVE)))
+    return _ssp.settled_residual(s, p, MOVE)
 
 
 @dataclass
@@ -327,7 +213,8 @@ def run(out_dir, *, fmus: dict | None = None, build_dir=None, importers=("libcos
         plots: bool = True) -> bool:
     """Build the FMUs (unless given), write the SSP, run it with and without the shaper in each
     importer, compare with the reference; write README.md, ShapedMotion.ssp and
-    system_cosim.png into out_dir. True if every run equals the reference."""
+    system_cosim.png into out_dir; then the same for ShapedServo (:mod:`.servo_cosim`) when
+    ServoDrive.fmu is among the FMUs. True if every run equals the reference."""
     from .build import build_fmus
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -367,9 +254,16 @@ def run(out_dir, *, fmus: dict | None = None, build_dir=None, importers=("libcos
               "![system](system_cosim.png)", "", f"**Result: {'PASS' if ok else 'FAIL'}**", ""]
     if plots:
         plot(out / "system_cosim.png", runs)
-    (out / "README.md").write_text("\n".join(lines))
     table = lines.index(header)
     print("\n".join(lines[table:table + len(runs) + 4]))     # the table and the percentage
+    if "ServoDrive" in fmus:   # the shaped reference into a drive in closed loop
+        from . import servo_cosim
+        servo_ok, servo_lines = servo_cosim.section(out, fmus, plots=plots)
+        ok &= servo_ok
+        lines += servo_lines
+        table = next(i for i, line in enumerate(servo_lines) if line.startswith("| importer"))
+        print("\n".join(servo_lines[table:table + 7]))
+    (out / "README.md").write_text("\n".join(lines))
     print(f"system co-simulation {'passed' if ok else 'FAILED'}: report in {out / 'README.md'}")
     return ok
 

@@ -86,8 +86,8 @@ def simulate_trajectory(fmu: str, t: np.ndarray, target: np.ndarray, *, Ts: floa
     return np.column_stack([np.asarray(r[c], dtype=float) for c in "qvaj"])
 
 
-def simulate_libcosim(fmu: str, t: np.ndarray, u: np.ndarray, params: dict, *, input_name: str = "u",
-                      outputs=("y",)) -> np.ndarray:
+def simulate_libcosim(fmu: str, t: np.ndarray, u: np.ndarray, params: dict, *,
+                      input_name: str | tuple = "u", outputs=("y",)) -> np.ndarray:
     """Outputs of an FMU in libcosim (libcosimpy), the second importer.
 
     Fixed step ``t[1] - t[0]``, the input overridden before every step (as fmpy sets it),
@@ -100,13 +100,13 @@ def simulate_libcosim(fmu: str, t: np.ndarray, u: np.ndarray, params: dict, *, i
         Path of the FMU file.
     t : ndarray of float64, shape (K,)
         Communication points [s] (:func:`communication_points`).
-    u : ndarray of float64, shape (K,)
-        Inputs set at ``t``.
+    u : ndarray of float64, shape (K,) or (K, m)
+        Inputs set at ``t`` (one column per input).
     params : dict
         Start values: int values are set as Integers (the FMUs' choice codes), the others as
         Reals.
-    input_name : str, keyword-only
-        The input variable (default ``"u"``).
+    input_name : str or tuple of str, keyword-only
+        The input variable (default ``"u"``), or the ``m`` inputs, one per column of ``u``.
     outputs : sequence of str, keyword-only
         Output variables, one column each (default ``("y",)``).
 
@@ -135,7 +135,9 @@ def simulate_libcosim(fmu: str, t: np.ndarray, u: np.ndarray, params: dict, *, i
     execution.add_manipulator(manipulator=override)
     observer = CosimObserver.create_last_value()
     execution.add_observer(observer=observer)
-    for name, value in {**params, input_name: float(u[0])}.items():
+    names = (input_name,) if isinstance(input_name, str) else tuple(input_name)
+    u = np.asarray(u, dtype=float).reshape(t.size, len(names))
+    for name, value in {**params, **dict(zip(names, map(float, u[0])))}.items():
         if isinstance(value, (int, np.integer)) and not isinstance(value, bool):
             accepted = execution.integer_initial_value(index, vr[name], int(value))
         else:
@@ -145,7 +147,7 @@ def simulate_libcosim(fmu: str, t: np.ndarray, u: np.ndarray, params: dict, *, i
     y = np.full((t.size, len(outputs)), np.nan)
     out_vrs = [vr[n] for n in outputs]
     for k in range(t.size - 1):
-        override.slave_real_values(index, [vr[input_name]], [float(u[k])])
+        override.slave_real_values(index, [vr[n] for n in names], [float(x) for x in u[k]])
         if not execution.step():
             raise RuntimeError(f"libcosim step {k} failed")
         y[k + 1] = observer.last_real_values(index, out_vrs)

@@ -2,12 +2,12 @@
 """``smoothshaper validate``: build the FMUs, check them with fmpy and fmutool, compare the two
 importers and every validation case with the NumPy reference, and write the report.
 
-:func:`run` builds ``SmoothShaper.fmu`` and ``TrajectoryGenerator.fmu`` with CMake, runs fmpy's
-model-description validation and ``fmutool -check`` on every FMU, runs each in libcosim and
-fmpy, simulates every stage family and a few chains through ``SmoothShaper.fmu`` with fmpy for
-several communication step sizes, compares the output with the reference
-(:mod:`smoothshaper.fmi.timing`) and writes ``README.md`` (tables of max errors) and PNG plots
-into ``out_dir``.
+:func:`run` builds the FMUs with CMake, runs fmpy's model-description validation and
+``fmutool -check`` on every FMU, runs each in libcosim and fmpy, simulates every stage family
+and a few chains through ``SmoothShaper.fmu`` with fmpy for several communication step sizes,
+compares the output with the reference (:mod:`smoothshaper.fmi.timing`), compares
+``ServoDrive.fmu`` with the servo testbed for every controller (:mod:`smoothshaper.fmi.servo`)
+and writes ``README.md`` (tables of max errors) and PNG plots into ``out_dir``.
 """
 from __future__ import annotations
 
@@ -16,6 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
+from . import servo
 from .build import build_fmus, fmpy_problems, fmutool_problems
 from .cases import TRAJECTORY_LIMITS, TRAJECTORY_PROFILES, validation_cases
 from .compare import REL_TOL, compare, compare_importers, compare_importers_trajectory, \
@@ -62,8 +63,38 @@ def _plot_trajectory(path: Path, t, target, y, ref) -> None:
     plt.close(fig)
 
 
+def _plot_servo(path: Path, name: str, c, n: float) -> None:
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(4, 1, figsize=(7, 8.5), sharex=True)
+    t = c.t
+    axes[0].plot(t, c.q_ref, color="0.6", lw=1, label="q_ref")
+    panels = ((axes[0], (("q_l", 1.0),), "position [rad]"),
+              (axes[1], (("w_m", 1.0 / n), ("w_l", 1.0)), "velocity, load side [rad/s]"),
+              (axes[2], (("tau_m", 1.0),), "motor torque [N m]"))
+    for ax, curves, label in panels:
+        for k, (out, gain) in enumerate(curves):
+            tag = out if gain == 1.0 else f"{out}/n"
+            ax.plot(t, gain * c.reference[out], f"C{k}-", lw=2.5, alpha=0.4,
+                    label=f"{tag}, testbed")
+            ax.plot(t, gain * c.fmu[out], "k--", lw=0.8, label=f"{tag}, FMU (fmpy)")
+        ax.set_ylabel(label, fontsize=9)
+        ax.legend(fontsize=7, loc="best")
+    for k, out in enumerate(c.fmu):
+        axes[3].plot(t, (c.fmu[out] - c.reference[out]) / c.scale[out], f"C{k}", lw=0.8,
+                     label=out)
+    axes[3].set_ylabel("(FMU - testbed) / max|testbed|", fontsize=9)
+    axes[3].legend(fontsize=7, ncol=5, loc="best")
+    axes[0].set_title(f"ServoDrive.fmu vs the servo testbed: {name}, h = Ts", fontsize=10)
+    axes[-1].set_xlabel("t [s]")
+    fig.tight_layout()
+    fig.savefig(path, dpi=90)
+    plt.close(fig)
+
+
 #: The steps of :func:`run`, in order, for a progress display.
-RUN_STEPS = ("build", "checks", "importers", "SmoothShaper", "TrajectoryGenerator")
+RUN_STEPS = ("build", "checks", "importers", "SmoothShaper", "TrajectoryGenerator", "ServoDrive")
 
 
 def run(out_dir, *, build_dir=None, fmus: dict | None = None, Ts: float = 1e-3,
@@ -124,7 +155,7 @@ def run(out_dir, *, build_dir=None, fmus: dict | None = None, Ts: float = 1e-3,
         lines.append(f"| {model}.fmu | {', '.join(platforms)} | {'; '.join(problems) or 'no problem'} | "
                      f"{'; '.join(checks) or 'passed'} |")
     step("importers")
-    if "SmoothShaper" in fmus or "TrajectoryGenerator" in fmus:
+    if {"SmoothShaper", "TrajectoryGenerator", "ServoDrive"} & set(fmus):
         lines += ["", "## Second importer (libcosim via libcosimpy)", "",
                   "Every parameter set in libcosim (choices as Integer codes), h = Ts; libcosim "
                   "must equal fmpy bit for bit.", "",
@@ -141,6 +172,17 @@ def run(out_dir, *, build_dir=None, fmus: dict | None = None, Ts: float = 1e-3,
             ok &= d_tg == 0.0
             lines.append(f"| TrajectoryGenerator | profile {name} | {d_tg:.1e} | "
                          f"{'yes' if d_tg == 0.0 else 'NO'} |")
+    if "ServoDrive" in fmus:
+        t = np.arange(1201) * servo.TS
+        q_ref, tau = servo.reference_input(t, t_torque=0.4)
+        for code, name in enumerate(servo.CONTROLLERS):
+            a = servo.simulate_servo(fmus["ServoDrive"], t, q_ref, tau, {"controller": code})
+            b = servo.simulate_servo(fmus["ServoDrive"], t, q_ref, tau, {"controller": code},
+                                     importer="libcosim")
+            d_sd = max(float(np.max(np.abs(a[n][1:] - b[n][1:]))) for n in servo.OUTPUTS)
+            ok &= d_sd == 0.0
+            lines.append(f"| ServoDrive | controller {code} ({name}) | {d_sd:.1e} | "
+                         f"{'yes' if d_sd == 0.0 else 'NO'} |")
     step("SmoothShaper")
     if "SmoothShaper" in fmus:
         steps = (("Ts", Ts), ("7 Ts", 7 * Ts), ("2.5 Ts", 2.5 * Ts), ("0.4 Ts", 0.4 * Ts))
@@ -180,6 +222,33 @@ def run(out_dir, *, build_dir=None, fmus: dict | None = None, Ts: float = 1e-3,
         lines += ["", "Cells: max |FMU - reference| / max |reference| of q, v, a, j. Where the jerk "
                   "jumps on a tick (these limits put every jump on the grid), both report the right "
                   "limit, the value held over the next sample period (trajectory.h)."]
+    step("ServoDrive")
+    if "ServoDrive" in fmus:
+        steps = (("Ts", servo.TS), ("4 Ts", 4 * servo.TS), ("2.5 Ts", 2.5 * servo.TS))
+        lines += ["", "## ServoDrive vs the servo testbed (`smoothshaper.servo`)", "",
+                  "The FMU designs its controller in C and the testbed in scipy; each sums in its "
+                  "own order, so they agree to the loop's rounding sensitivity: the tolerance of "
+                  f"each output is {servo.FLOOR_FACTOR:g} times how far it moves when every "
+                  "coefficient of the testbed's closed loop is perturbed by N u relative "
+                  "(`smoothshaper.fmi.servo.rounding_floor`). A 0.5 rad move shaped by two moving "
+                  "averages, then a 5 N m load torque step at 1 s; Ts = 0.5 ms.", "",
+                  "| case | " + " | ".join(f"h = {n}" for n, _ in steps) + " | pass |",
+                  "|---|" + "---|" * (len(steps) + 1)]
+        for i, (name, overrides) in enumerate(servo.VALIDATION_CASES):
+            cells, passed = [], True
+            for j, (_, h) in enumerate(steps):
+                c = servo.compare(fmus["ServoDrive"], overrides, step=h)
+                passed &= c.passed
+                rel = max(c.error[n] / c.scale[n] for n in servo.OUTPUTS)
+                cells.append(f"{rel:.1e} ({c.worst_ratio:.2f})")
+                if plots and j == 0 and name in ("pid", "lqg"):
+                    _plot_servo(out / f"servo_drive_{name}.png", name, c,
+                                servo.default_parameters(fmus["ServoDrive"])["n"])
+            ok &= passed
+            lines.append(f"| {name} | " + " | ".join(cells) + f" | {'yes' if passed else 'NO'} |")
+        lines += ["", "Cells: max over q_m, w_m, q_l, w_l, tau_m of max |FMU - testbed| / max "
+                  "|testbed|, and in brackets the largest error over its tolerance. Plots "
+                  "(h = Ts): `servo_drive_pid.png`, `servo_drive_lqg.png`."]
     lines += ["", f"**Result: {'PASS' if ok else 'FAIL'}**", ""]
     (out / "README.md").write_text("\n".join(lines))
     print(f"validation {'passed' if ok else 'FAILED'}: report in {out / 'README.md'}")

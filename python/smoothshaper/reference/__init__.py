@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Pure-NumPy reference of every smoothshaper stage and chain (the test oracle).
 
 Written from ``docs/filters.md`` and ``docs/exact-mode.md`` only; it never imports or calls the C

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Argument checks and the sample-grid rule shared by every reference stage.
 
 The integer test and the rounding are those of ``docs/exact-mode.md``: a ratio ``nu`` is the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The continuous filters of docs/filters.md (normalised to DC gain 1), for analysis and closed forms.
 
 Smoothers, with ``a = s - sigma`` (sigma = 0 for the undamped families) and

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Impulse responses, discrete transfer functions and the direct-convolution chain.
 
 Explicit state (``zi`` / ``zf``): a list with one float64 array per stage, in chain order:

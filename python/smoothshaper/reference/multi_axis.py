@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """NumPy reference of the multi-axis online generator (the test oracle for ``sms_multi_generator``).
 
 Written from the planning rules stated in ``c/include/smoothshaper/multi_generator.h`` and

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Notch stage as one biquad (``docs/filters.md``, ``docs/exact-mode.md``).
 
 Continuous: ``G(s) = (s^2 + 2 xi1 wn s + wn^2)/(s^2 + 2 xi2 wn s + wn^2)`` with ``xi1 = zeta``

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Input shapers: continuous designs (amplitudes and times) and their discrete taps.
 
 Continuous designs for the mode ``(wn, zeta)``, ``wd = wn sqrt(1-zeta^2)``, ``Td = 2 pi/wd``,

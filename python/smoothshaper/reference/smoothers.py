@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """FIR taps of the smoothers (rectangular, harmonic, damped harmonic, exponential).
 
 Written from ``docs/filters.md`` and ``docs/exact-mode.md``, never from the C code. Unnormalised

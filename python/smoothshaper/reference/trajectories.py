@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Closed-form step responses (trajectories) of the continuous smoothers, height ``h``.
 
 * harmonic: ``q(t) = h/2 (1 - cos(pi t/T))`` on [0, T];

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Seed reproduction report: the papers' figures and numbers regenerated and checked.
 
 ``run(out_dir)`` writes ``out_dir/README.md`` and the PNG figures it shows. Each section is one

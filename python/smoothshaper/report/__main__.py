@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """``python -m smoothshaper.report --out DIR [--only KEY ...]``: write the seed report."""
 from __future__ import annotations
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Numbers of the report, each next to the value it is checked against.
 
 A :class:`Claim` is the single record that the markdown report prints and the tests assert:

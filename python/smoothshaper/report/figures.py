@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Shared plotting for the report: one style, labelled axes with units, a legend, PNG out.
 
 Matplotlib is imported lazily with the non-interactive Agg backend so that computing a

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Seed 000 (Biagiotti, Melchiorri, Moriello, IEEE TCST 2020): the damped harmonic smoother.
 
 Claims of the paper and what this section checks (wn_hat = 1 rad/s, T0 = 2 pi s, as Fig. 4):

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Seed 001 (Biagiotti & Melchiorri, IFAC 2011): trajectories with trigonometric blends.
 
 Claims and numbers of the paper, and what this section checks:

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Seed 002 (Béarée, Control Eng. Practice 2014): the Damped-Jerk profile.
 
 The seed text stops after its Sec. 2; its claims, and the reading of Sec. 3 in docs/filters.md:

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Seed 003 (Biagiotti & Melchiorri): input shaping via B-spline filters.
 
 Claims of the paper and what this section checks (w0 = 2 pi/T):

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Seed 003's Cartesian robot moved through 3-D via-points by the phase-synchronised multi-axis
 generator, next to the B-spline of Sec. IV.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Seed 003 Sec. IV: the Cartesian robot tracking B-spline trajectories through via-points.
 
 The paper's via-points are not published; ours follow its description: straight lines with

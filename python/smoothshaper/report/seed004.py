@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Seed 004 (Bascetta, "Motion control: advanced control techniques"): input shaping and notch;
 the closed-loop part (TDO, pole placement, LQG vs PID, shaping on the drive) is
 :mod:`.seed004_servo`.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Beyond the seeds: the 5 % insensitivity of the shapers practitioners use.
 
 No seed prints these numbers. Claims checked:
