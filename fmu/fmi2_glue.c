@@ -390,6 +390,18 @@ static fmi2Status set_values(fmi2Component comp, const char *func, fmu_type type
                 && fabs(((const fmi2Real *)value)[i]) > input_max(c)))
             return refuse_value(c, func, type, cls, vr[i], value, i);
     }
+    if (c->clock.phase == FMU_STEP_COMPLETE) {   /* tunable parameters: the model checks */
+        int tunable = 0;
+        for (i = 0; i < nvr; ++i)
+            tunable |= fmu_model_class(type, vr[i]) == FMU_VAR_TUNABLE;
+        if (tunable) {
+            char msg[FMU_MESSAGE_LEN];
+            msg[0] = '\0';
+            if (fmu_model_check_tunable(c->model, type, vr, value, nvr, msg, sizeof msg) != 0)
+                return FAIL(c, "%s: %s", func, msg);
+            c->clock.steady = 0;   /* a retune changes the outputs: tick again */
+        }
+    }
     for (i = 0; i < nvr; ++i) {
         if (type == FMU_REAL && c->clock.steady != 0
             && fmu_model_class(type, vr[i]) == FMU_VAR_INPUT

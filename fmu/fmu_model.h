@@ -29,7 +29,9 @@ typedef enum fmu_var_class {
     FMU_VAR_UNKNOWN = 0,  /**< no variable of this type has this value reference */
     FMU_VAR_INPUT,        /**< settable in every state before termination */
     FMU_VAR_PARAMETER,    /**< fixed: settable only before fmi2ExitInitializationMode */
-    FMU_VAR_OUTPUT        /**< read only */
+    FMU_VAR_OUTPUT,       /**< read only */
+    FMU_VAR_TUNABLE       /**< a parameter settable in every state before termination; after
+                               initialization only when fmu_model_check_tunable() accepts it */
 } fmu_var_class;
 
 /** FMI 2.0 base types the models use (Enumerations travel as Integers). */
@@ -105,6 +107,16 @@ size_t fmu_model_settable(fmu_type type, fmi2ValueReference *out, size_t cap);
 /** @brief Read a variable (vr already classified as known). */
 double fmu_model_get_real(const void *model, fmi2ValueReference vr);
 int fmu_model_get_integer(const void *model, fmi2ValueReference vr);
+/**
+ * @brief After fmi2ExitInitializationMode, may these tunable parameters take these values (one
+ * fmi2SetReal/fmi2SetInteger call, all checked together with the model's other values)? The
+ * glue writes none of them unless it returns 0. A model without tunable parameters returns 0
+ * (it is never asked).
+ * @param values  fmi2Real or fmi2Integer values of type, one per vr
+ * @return 0, or non-zero with msg naming the variable and why (nothing is written then).
+ */
+int fmu_model_check_tunable(const void *model, fmu_type type, const fmi2ValueReference *vr,
+                            const void *values, size_t n, char *msg, size_t len);
 /** @brief Write an input or parameter (vr already classified, Real already finite). */
 void fmu_model_set_real(void *model, fmi2ValueReference vr, double value);
 void fmu_model_set_integer(void *model, fmi2ValueReference vr, int value);

@@ -299,7 +299,7 @@ static int read_values(reader *r, fmu_type type, void *model, char *msg, size_t 
         fmu_var_class cls = fmu_model_class(type, vr);
         if (r->bad)
             REFUSE("truncated state");
-        if (cls != FMU_VAR_INPUT && cls != FMU_VAR_PARAMETER)
+        if (cls != FMU_VAR_INPUT && cls != FMU_VAR_PARAMETER && cls != FMU_VAR_TUNABLE)
             REFUSE("state names value reference %lu, not a settable variable", (unsigned long)vr);
         if (type == FMU_REAL) {
             double v = get_f64(r);

@@ -3,7 +3,8 @@
  * MultiAxisGenerator: the multi-axis online generator of the smoothshaper library
  * (sms_multi_generator_*, multi_generator.h) as an FMU. Inputs target[i]; outputs q[i], v[i],
  * a[i], j[i] at the internal ticks, every axis within its own vmax[i], amax[i], jmax[i].
- * Parameters: Ts, axes (1..8), sync (0 phase-synchronised, 1 independent), per-axis limits,
+ * Parameters: Ts, axes (1..8), sync (0 phase-synchronised, 1 independent), align (1: every
+ * axis padded to the common lag of the stages; the output lag reports it), per-axis limits,
  * the rest position q0[i] and up to MA_MAX_STAGES vibration stages per axis
  * (stage[k].kind[i], designed for the mode stage[k].wn[i], stage[k].zeta[i]). At
  * fmi2ExitInitializationMode the generator rests at q0 (so a target that differs from q0 at
@@ -24,7 +25,7 @@ typedef struct ma_model {
     int kind[MA_MAX_STAGES][MA_MAX_AXES];      /* stage[k].kind[i] */
     double wn[MA_MAX_STAGES][MA_MAX_AXES], zeta[MA_MAX_STAGES][MA_MAX_AXES];
     double Ts;
-    int axes, sync;
+    int axes, sync, align;
     int built;
     int warned[MA_MAX_AXES];                   /* 1: move i's dropped target was logged */
     double dropped[MA_MAX_AXES];               /* the target of axis i when it was */
@@ -97,6 +98,7 @@ void fmu_model_defaults(void *model)
     m->Ts = 0.001;
     m->axes = 3;
     m->sync = SMS_SYNC_PHASE;
+    m->align = 0;
     m->built = 0;
 }
 
@@ -107,9 +109,12 @@ fmu_var_class fmu_model_class(fmu_type type, fmi2ValueReference vr)
         return (f == MA_STAGE_KIND) == (type == FMU_INTEGER) ? FMU_VAR_PARAMETER
                                                              : FMU_VAR_UNKNOWN;
     if (type == FMU_INTEGER)
-        return vr == MA_VR_AXES || vr == MA_VR_SYNC ? FMU_VAR_PARAMETER : FMU_VAR_UNKNOWN;
+        return vr == MA_VR_AXES || vr == MA_VR_SYNC || vr == MA_VR_ALIGN ? FMU_VAR_PARAMETER
+                                                                         : FMU_VAR_UNKNOWN;
     if (vr == MA_VR_TS)
         return FMU_VAR_PARAMETER;
+    if (vr == MA_VR_LAG)
+        return FMU_VAR_OUTPUT;
     if (!axis_var(vr, &f, &i))
         return FMU_VAR_UNKNOWN;
     return f == F_TARGET ? FMU_VAR_INPUT : f <= F_J ? FMU_VAR_OUTPUT : FMU_VAR_PARAMETER;
@@ -120,10 +125,10 @@ void fmu_model_name(fmu_type type, fmi2ValueReference vr, char *buf, size_t len)
     int f, i, k;
     if (stage_var(vr, &k, &f, &i))
         snprintf(buf, len, "stage[%d].%s[%d]", k, stage_field_names[f], i);
-    else if (type == FMU_INTEGER && (vr == MA_VR_AXES || vr == MA_VR_SYNC))
-        snprintf(buf, len, "%s", vr == MA_VR_AXES ? "axes" : "sync");
-    else if (type == FMU_REAL && vr == MA_VR_TS)
-        snprintf(buf, len, "Ts");
+    else if (type == FMU_INTEGER && (vr == MA_VR_AXES || vr == MA_VR_SYNC || vr == MA_VR_ALIGN))
+        snprintf(buf, len, "%s", vr == MA_VR_AXES ? "axes" : vr == MA_VR_SYNC ? "sync" : "align");
+    else if (type == FMU_REAL && (vr == MA_VR_TS || vr == MA_VR_LAG))
+        snprintf(buf, len, "%s", vr == MA_VR_TS ? "Ts" : "lag");
     else if (type == FMU_REAL && axis_var(vr, &f, &i))
         snprintf(buf, len, "%s[%d]", field_names[f], i);
     else
@@ -138,6 +143,8 @@ size_t fmu_model_settable(fmu_type type, fmi2ValueReference *out, size_t cap)
         if (n < cap) out[n] = MA_VR_AXES;
         ++n;
         if (n < cap) out[n] = MA_VR_SYNC;
+        ++n;
+        if (n < cap) out[n] = MA_VR_ALIGN;
         ++n;
     } else {
         if (n < cap) out[n] = MA_VR_TS;
@@ -170,6 +177,8 @@ double fmu_model_get_real(const void *model, fmi2ValueReference vr)
     int f, i, k;
     if (vr == MA_VR_TS)
         return m->Ts;
+    if (vr == MA_VR_LAG)
+        return m->built ? sms_multi_generator_lag(&m->gen) : 0.0;
     if (stage_var(vr, &k, &f, &i))
         return f == MA_STAGE_WN ? m->wn[k][i] : m->zeta[k][i];
     return axis_var(vr, &f, &i) ? m->field[f][i] : 0.0;
@@ -181,7 +190,15 @@ int fmu_model_get_integer(const void *model, fmi2ValueReference vr)
     int f, i, k;
     if (stage_var(vr, &k, &f, &i))
         return m->kind[k][i];
-    return vr == MA_VR_AXES ? m->axes : vr == MA_VR_SYNC ? m->sync : 0;
+    return vr == MA_VR_AXES ? m->axes : vr == MA_VR_SYNC ? m->sync
+           : vr == MA_VR_ALIGN ? m->align : 0;
+}
+
+int fmu_model_check_tunable(const void *model, fmu_type type, const fmi2ValueReference *vr,
+                            const void *values, size_t n, char *msg, size_t len)
+{
+    (void)model; (void)type; (void)vr; (void)values; (void)n; (void)msg; (void)len;
+    return 0;   /* no tunable parameters */
 }
 
 void fmu_model_set_real(void *model, fmi2ValueReference vr, double value)
@@ -206,6 +223,8 @@ void fmu_model_set_integer(void *model, fmi2ValueReference vr, int value)
         m->axes = value;
     else if (vr == MA_VR_SYNC)
         m->sync = value;
+    else if (vr == MA_VR_ALIGN)
+        m->align = value;
 }
 
 double fmu_model_sample_period(const void *model) { return ((const ma_model *)model)->Ts; }
@@ -358,6 +377,8 @@ static int configure(const ma_model *m, sms_multi_generator_config *c, ma_stages
         return snprintf(msg, len, "axes = %d: must be 1 .. %d", m->axes, MA_MAX_AXES), 1;
     if (m->sync != SMS_SYNC_PHASE && m->sync != SMS_SYNC_INDEPENDENT)
         return snprintf(msg, len, "sync = %d is not phase (0) or independent (1)", m->sync), 1;
+    if (m->align != 0 && m->align != 1)
+        return snprintf(msg, len, "align = %d is not off (0) or on (1)", m->align), 1;
     for (f = F_VMAX; f <= F_JMAX; ++f)
         for (i = 0; i < m->axes; ++i)
             if (!(m->field[f][i] > 0.0))
@@ -374,6 +395,7 @@ static int configure(const ma_model *m, sms_multi_generator_config *c, ma_stages
     memset(c, 0, sizeof *c);
     c->n_axes = (size_t)m->axes;
     c->sync = (sms_sync)m->sync;
+    c->align = m->align;
     for (i = 0; i < m->axes; ++i) {
         c->vmax[i] = m->field[F_VMAX][i];
         c->amax[i] = m->field[F_AMAX][i];
@@ -470,10 +492,16 @@ int fmu_model_build(void *model, void *mem, size_t bytes, char *msg, size_t len)
     for (i = 1; i < m->axes && differ < 0; ++i)
         if (!same_stages(m, &s, i))
             differ = i;
+    if (differ > 0 && m->align)
+        return snprintf(msg, len, "axes 0 and %d have different vibration stages "
+                        "(stage[k].kind/wn/zeta): aligned (align = 1), straight moves stay on "
+                        "the line at constant speed, but the accelerations are smoothed "
+                        "differently and bend", differ), -1;
     if (differ > 0)
         return snprintf(msg, len, "axes 0 and %d have different vibration stages "
                         "(stage[k].kind/wn/zeta): straight moves bend, the axes are delayed and "
-                        "smoothed differently", differ), -1;
+                        "smoothed differently (align = 1 keeps constant-speed segments on the "
+                        "line)", differ), -1;
     return 0;
 }
 

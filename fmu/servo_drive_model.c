@@ -156,6 +156,13 @@ int fmu_model_get_integer(const void *model, fmu_vr vr)
     return var ? *(const int *)(const void *)((const char *)model + var->offset) : 0;
 }
 
+int fmu_model_check_tunable(const void *model, fmu_type type, const fmu_vr *vr,
+                            const void *values, size_t n, char *msg, size_t len)
+{
+    (void)model; (void)type; (void)vr; (void)values; (void)n; (void)msg; (void)len;
+    return 0;   /* no tunable parameters: the loop is designed once, at initialization */
+}
+
 void fmu_model_set_real(void *model, fmu_vr vr, double value)
 {
     const sv_var *var = lookup(FMU_REAL, vr);

@@ -1,9 +1,18 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /*
- * SmoothShaper: y = H_7(...H_0(u)) at the internal ticks, a chain of up to SS_MAX_STAGES
- * stages of any family, set by the parameters stage[k].* (unused stages have kind = none).
- * Only the public smoothshaper API is used. At fmi2ExitInitializationMode the chain is put at
- * rest at the current value of u (as if u had held that value forever), so y starts at u.
+ * SmoothShaper: y = S(H_7(...H_0(u))) at the internal ticks, a chain of up to SS_MAX_STAGES
+ * stages of any family, set by the parameters stage[k].* (unused stages have kind = none), and
+ * optionally a scheduled ZV^n shaper S whose mode follows the input s through the table
+ * schedule.*. Only the public smoothshaper API is used. At fmi2ExitInitializationMode the
+ * chain is put at rest at the current value of u (as if u had held that value forever), so y
+ * starts at u.
+ *
+ * Retuning (retune_max_delay > 0): the stages are retunable (sms_tunable_chain, tunable.h),
+ * each with memory for any configuration of its kind lasting at most retune_max_delay; a
+ * tunable parameter set between steps is checked at once (fmi2Error naming it, nothing
+ * changed) and applied at the next communication point, or, while that stage's previous
+ * switch is still running, at the first tick after it has ended (the core's rule: one switch
+ * at a time). The output lag is the active stages' lag (align.h) plus the scheduled shaper's.
  */
 #include <math.h>
 #include <stdio.h>
@@ -29,23 +38,39 @@ typedef struct ss_params {
     double amplitude[SS_MAX_IMPULSES], time[SS_MAX_IMPULSES];   /* kind = impulses */
 } ss_params;
 
-/* Parameters and the chain's descriptors; the stages' memory (instances, tap tables, delay
- * lines) lives in the glue's block, sized to the configured chain. */
+/* Parameters (as set: a tunable value takes effect at the next communication point) and the
+ * filters; the stages' slots and the scheduled shaper's ring live in the glue's block. */
 typedef struct ss_model {
-    double u, y, Ts;
+    double u, y, Ts, retune_max_delay, s;
     ss_params stage[SS_MAX_STAGES];
+    int sched_kind, sched_order, sched_every, sched_points;
+    double sched[SS_SCHEDULE_POINTS][3];  /* value, wn, zeta of each row */
     int built;
     size_t n_active;                     /* stages with kind != none, in chain order */
-    sms_chain chain;
-    sms_stage stages[SS_MAX_STAGES];
-    size_t n_cells;                      /* memory cells of all stages (the glue's block) */
-    double input_max;                    /* sms_chain_input_max() of the built chain */
+    unsigned used[SS_MAX_STAGES];        /* stage k at each chain position */
+    int pending[SS_MAX_STAGES];          /* chain position: its parameters await a retune */
+    int any_pending;
+    sms_tunable_chain chain;
+    sms_tunable tunables[SS_MAX_STAGES];
+    size_t slot_cells[SS_MAX_STAGES];
+    size_t region[SS_MAX_STAGES];        /* doubles of each stage's part of the saved state */
+    size_t chain_cells;                  /* cells of the stages; the scheduled ring follows */
+    int scheduled;                       /* 1: a scheduled shaper after the chain */
+    sms_scheduled sch;
+    sms_schedule_point points[SS_SCHEDULE_POINTS];
+    double chain_lag;                    /* the active stages' lag [samples] */
 } ss_model;
 
 static int is_integer_field(unsigned f)
 {
     return f == SS_FIELD_KIND || f == SS_FIELD_DESIGN || f == SS_FIELD_TIMING || f == SS_FIELD_K
            || f == SS_FIELD_ORDER;
+}
+
+/* kind, design and timing stay fixed; the other fields are tunable */
+static int is_tunable_field(unsigned f)
+{
+    return f != SS_FIELD_KIND && f != SS_FIELD_DESIGN && f != SS_FIELD_TIMING;
 }
 
 /* Split a stage value reference into (stage, field); 0 if it is not one. */
@@ -80,6 +105,22 @@ static double *impulse_slot(ss_model *m, fmi2ValueReference vr)
     return is_time ? &m->stage[k].time[i] : &m->stage[k].amplitude[i];
 }
 
+/* A schedule table value reference into (row, field 0 value / 1 wn / 2 zeta); 0 if not one. */
+static int sched_field(fmi2ValueReference vr, unsigned *j, unsigned *f)
+{
+    if (vr < SS_SCHEDULE_BASE || vr >= SS_SCHEDULE_BASE + 3u * SS_SCHEDULE_POINTS)
+        return 0;
+    *j = (vr - SS_SCHEDULE_BASE) / 3u;
+    *f = (vr - SS_SCHEDULE_BASE) % 3u;
+    return 1;
+}
+
+static int is_sched_integer(fmi2ValueReference vr)
+{
+    return vr == SS_VR_SCHED_KIND || vr == SS_VR_SCHED_ORDER || vr == SS_VR_SCHED_EVERY
+           || vr == SS_VR_SCHED_POINTS;
+}
+
 size_t fmu_model_size(void) { return sizeof(ss_model); }
 const char *fmu_model_identifier(void) { return FMU_MODEL_IDENTIFIER; }
 const char *fmu_model_guid(void) { return FMU_MODEL_GUID; }
@@ -88,14 +129,10 @@ void fmu_model_defaults(void *model)
 {
     ss_model *m = (ss_model *)model;
     unsigned k;
-    m->u = 0.0;
-    m->y = 0.0;
+    memset(m, 0, sizeof *m);
     m->Ts = 0.001;
-    m->built = 0;
-    m->n_active = 0;
     for (k = 0; k < SS_MAX_STAGES; ++k) {   /* the start values of modelDescription.xml */
         ss_params *p = &m->stage[k];
-        memset(p, 0, sizeof *p);
         p->ints[SS_FIELD_KIND] = SS_DEFAULT_KIND(k);
         p->ints[SS_FIELD_K] = 1;
         p->ints[SS_FIELD_ORDER] = 1;
@@ -105,6 +142,14 @@ void fmu_model_defaults(void *model)
         p->reals[SS_FIELD_NOTCH_POLE_ZETA] = 0.7;
         p->reals[SS_FIELD_DURATION] = 0.75;
     }
+    m->sched_kind = -1;
+    m->sched_order = 1;
+    m->sched_every = 1;
+    m->sched_points = 1;
+    for (k = 0; k < SS_SCHEDULE_POINTS; ++k) {
+        m->sched[k][0] = (double)k;
+        m->sched[k][1] = 100.0;
+    }
 }
 
 fmu_var_class fmu_model_class(fmu_type type, fmi2ValueReference vr)
@@ -112,52 +157,75 @@ fmu_var_class fmu_model_class(fmu_type type, fmi2ValueReference vr)
     unsigned k, f, i;
     int is_time;
     if (type == FMU_REAL && impulse_field(vr, &k, &i, &is_time)) return FMU_VAR_PARAMETER;
-    if (type == FMU_REAL && vr == SS_VR_U) return FMU_VAR_INPUT;
-    if (type == FMU_REAL && vr == SS_VR_Y) return FMU_VAR_OUTPUT;
-    if (type == FMU_REAL && vr == SS_VR_TS) return FMU_VAR_PARAMETER;
+    if (type == FMU_REAL && (vr == SS_VR_U || vr == SS_VR_S)) return FMU_VAR_INPUT;
+    if (type == FMU_REAL && (vr == SS_VR_Y || vr == SS_VR_LAG)) return FMU_VAR_OUTPUT;
+    if (type == FMU_REAL && (vr == SS_VR_TS || vr == SS_VR_RETUNE_MAX_DELAY)) return FMU_VAR_PARAMETER;
+    if (type == FMU_INTEGER && is_sched_integer(vr)) return FMU_VAR_PARAMETER;
+    if (type == FMU_REAL && sched_field(vr, &k, &f)) return FMU_VAR_PARAMETER;
     if (stage_field(vr, &k, &f) && is_integer_field(f) == (type == FMU_INTEGER))
-        return FMU_VAR_PARAMETER;
+        return is_tunable_field(f) ? FMU_VAR_TUNABLE : FMU_VAR_PARAMETER;
     return FMU_VAR_UNKNOWN;
 }
 
 void fmu_model_name(fmu_type type, fmi2ValueReference vr, char *buf, size_t len)
 {
+    static const char *const sched_names[3] = {"value", "wn", "zeta"};
     unsigned k, f, i;
     int is_time;
-    (void)type;
-    if (impulse_field(vr, &k, &i, &is_time))
+    if (type == FMU_REAL && impulse_field(vr, &k, &i, &is_time)) {
         snprintf(buf, len, "stage[%u].%s[%u]", k, is_time ? "time" : "amplitude", i);
-    else if (vr == SS_VR_U || vr == SS_VR_Y || vr == SS_VR_TS)
-        snprintf(buf, len, "%s", vr == SS_VR_U ? "u" : vr == SS_VR_Y ? "y" : "Ts");
-    else if (stage_field(vr, &k, &f))
+    } else if (type == FMU_REAL && vr <= SS_VR_LAG) {
+        static const char *const names[6] = {"u", "y", "Ts", "retune_max_delay", "s", "lag"};
+        snprintf(buf, len, "%s", names[vr]);
+    } else if (type == FMU_INTEGER && is_sched_integer(vr)) {
+        snprintf(buf, len, "schedule.%s", vr == SS_VR_SCHED_KIND ? "kind" : vr == SS_VR_SCHED_ORDER
+                 ? "order" : vr == SS_VR_SCHED_EVERY ? "update_every" : "points");
+    } else if (type == FMU_REAL && sched_field(vr, &k, &f)) {
+        snprintf(buf, len, "schedule.%s[%u]", sched_names[f], k);
+    } else if (stage_field(vr, &k, &f)) {
         snprintf(buf, len, "stage[%u].%s", k, field_names[f]);
-    else
+    } else {
         snprintf(buf, len, "vr %lu", (unsigned long)vr);
+    }
 }
 
 size_t fmu_model_settable(fmu_type type, fmi2ValueReference *out, size_t cap)
 {
     size_t n = 0;
     unsigned k, f;
+#define PUT(v) do { if (n < cap) out[n] = (v); ++n; } while (0)
     if (type == FMU_REAL) {
-        if (n < cap) out[n] = SS_VR_U;
-        ++n;
-        if (n < cap) out[n] = SS_VR_TS;
-        ++n;
+        PUT(SS_VR_U);
+        PUT(SS_VR_TS);
+        PUT(SS_VR_RETUNE_MAX_DELAY);
+        PUT(SS_VR_S);
+        for (k = 0; k < 3u * SS_SCHEDULE_POINTS; ++k)
+            PUT(SS_SCHEDULE_BASE + k);
+    } else {
+        PUT(SS_VR_SCHED_KIND);
+        PUT(SS_VR_SCHED_ORDER);
+        PUT(SS_VR_SCHED_EVERY);
+        PUT(SS_VR_SCHED_POINTS);
     }
     for (k = 0; k < SS_MAX_STAGES; ++k)
         for (f = 0; f < SS_FIELD_COUNT; ++f)
-            if (is_integer_field(f) == (type == FMU_INTEGER)) {
-                if (n < cap) out[n] = SS_STAGE_BASE + SS_STAGE_STRIDE * k + f;
-                ++n;
-            }
+            if (is_integer_field(f) == (type == FMU_INTEGER))
+                PUT(SS_STAGE_BASE + SS_STAGE_STRIDE * k + f);
     if (type == FMU_REAL)
         for (k = 0; k < SS_MAX_STAGES; ++k)
-            for (f = 0; f < 2u * SS_MAX_IMPULSES; ++f) {
-                if (n < cap) out[n] = SS_IMPULSE_BASE + SS_IMPULSE_STRIDE * k + f;
-                ++n;
-            }
+            for (f = 0; f < 2u * SS_MAX_IMPULSES; ++f)
+                PUT(SS_IMPULSE_BASE + SS_IMPULSE_STRIDE * k + f);
+#undef PUT
     return n;
+}
+
+/* The lag output: the active stages' and the scheduled shaper's taps in use [s]. */
+static double lag_seconds(const ss_model *m)
+{
+    double lag = m->chain_lag;
+    if (m->built && m->scheduled)
+        lag += sms_scheduled_lag(&m->sch);
+    return lag * m->Ts;
 }
 
 double fmu_model_get_real(const void *model, fmi2ValueReference vr)
@@ -167,16 +235,45 @@ double fmu_model_get_real(const void *model, fmi2ValueReference vr)
     int is_time;
     if (impulse_field(vr, &k, &i, &is_time))
         return is_time ? m->stage[k].time[i] : m->stage[k].amplitude[i];
-    if (vr == SS_VR_U) return m->u;
-    if (vr == SS_VR_Y) return m->y;
-    if (vr == SS_VR_TS) return m->Ts;
+    switch (vr) {
+    case SS_VR_U: return m->u;
+    case SS_VR_Y: return m->y;
+    case SS_VR_TS: return m->Ts;
+    case SS_VR_RETUNE_MAX_DELAY: return m->retune_max_delay;
+    case SS_VR_S: return m->s;
+    case SS_VR_LAG: return m->built ? lag_seconds(m) : 0.0;
+    default: break;
+    }
+    if (sched_field(vr, &k, &f))
+        return m->sched[k][f];
     return stage_field(vr, &k, &f) ? m->stage[k].reals[f] : 0.0;
 }
 
 int fmu_model_get_integer(const void *model, fmi2ValueReference vr)
 {
+    const ss_model *m = (const ss_model *)model;
     unsigned k, f;
-    return stage_field(vr, &k, &f) ? ((const ss_model *)model)->stage[k].ints[f] : 0;
+    switch (vr) {
+    case SS_VR_SCHED_KIND: return m->sched_kind;
+    case SS_VR_SCHED_ORDER: return m->sched_order;
+    case SS_VR_SCHED_EVERY: return m->sched_every;
+    case SS_VR_SCHED_POINTS: return m->sched_points;
+    default: break;
+    }
+    return stage_field(vr, &k, &f) ? m->stage[k].ints[f] : 0;
+}
+
+/* A tunable field of stage k was set: after the build, its chain position awaits a retune. */
+static void mark_pending(ss_model *m, unsigned k)
+{
+    size_t i;
+    if (!m->built)
+        return;
+    for (i = 0; i < m->n_active; ++i)
+        if (m->used[i] == k) {
+            m->pending[i] = 1;
+            m->any_pending = 1;
+        }
 }
 
 void fmu_model_set_real(void *model, fmi2ValueReference vr, double value)
@@ -186,15 +283,30 @@ void fmu_model_set_real(void *model, fmi2ValueReference vr, double value)
     int is_time;
     if (impulse_field(vr, &k, &i, &is_time)) *impulse_slot(m, vr) = value;
     else if (vr == SS_VR_U) m->u = value;
+    else if (vr == SS_VR_S) m->s = value;
     else if (vr == SS_VR_TS) m->Ts = value;
-    else if (stage_field(vr, &k, &f)) m->stage[k].reals[f] = value;
+    else if (vr == SS_VR_RETUNE_MAX_DELAY) m->retune_max_delay = value;
+    else if (sched_field(vr, &k, &f)) m->sched[k][f] = value;
+    else if (stage_field(vr, &k, &f)) {
+        if (m->stage[k].reals[f] != value && is_tunable_field(f))
+            mark_pending(m, k);
+        m->stage[k].reals[f] = value;
+    }
 }
 
 void fmu_model_set_integer(void *model, fmi2ValueReference vr, int value)
 {
+    ss_model *m = (ss_model *)model;
     unsigned k, f;
-    if (stage_field(vr, &k, &f))
-        ((ss_model *)model)->stage[k].ints[f] = value;
+    if (vr == SS_VR_SCHED_KIND) m->sched_kind = value;
+    else if (vr == SS_VR_SCHED_ORDER) m->sched_order = value;
+    else if (vr == SS_VR_SCHED_EVERY) m->sched_every = value;
+    else if (vr == SS_VR_SCHED_POINTS) m->sched_points = value;
+    else if (stage_field(vr, &k, &f)) {
+        if (m->stage[k].ints[f] != value && is_tunable_field(f))
+            mark_pending(m, k);
+        m->stage[k].ints[f] = value;
+    }
 }
 
 double fmu_model_sample_period(const void *model) { return ((const ss_model *)model)->Ts; }
@@ -323,16 +435,6 @@ static int stage_config(const ss_model *m, unsigned k, sms_stage_config *c, char
     return 0;
 }
 
-unsigned fmu_model_real_bytes(void) { return (unsigned)sizeof(sms_real); }
-
-/* The chain's finite input range (sms_chain_input_max(): below SMS_INPUT_MAX for heavily
- * damped harmonic smoothers and large-gain stages). */
-double fmu_model_input_max(const void *model)
-{
-    const ss_model *m = (const ss_model *)model;
-    return m->built && m->n_active > 0 ? m->input_max : HUGE_VAL;
-}
-
 /* The filtering a long step needs to absorb a new input (sms_chain_hold_cost()) within
  * FMU_MAX_HOLD_SAMPLES; else 1 with msg naming the stage that takes longest alone. */
 static int hold_too_long(const ss_model *m, const sms_stage_config *configs,
@@ -369,104 +471,417 @@ static int hold_too_long(const ss_model *m, const sms_stage_config *configs,
     return fmu_refuse_hold(msg, len, names, cost, why, "shorten the stages or use fewer of them");
 }
 
-/* Validate every parameter: the configs of the used stages, their count, the delay-line
- * reals they need together (within FMU_MAX_REALS) and the memory cells (the core's size
- * queries: closed forms). 0, or non-zero with msg. */
-static int configure(const ss_model *m, sms_stage_config *configs, size_t *n, size_t *need,
+unsigned fmu_model_real_bytes(void) { return (unsigned)sizeof(sms_real); }
+
+/* The finite input range of the chain now (sms_tunable_chain_input_max(): below SMS_INPUT_MAX
+ * for heavily damped harmonic smoothers and large-gain stages). */
+double fmu_model_input_max(const void *model)
+{
+    const ss_model *m = (const ss_model *)model;
+    return m->built && m->n_active > 0 ? sms_tunable_chain_input_max(&m->chain) : HUGE_VAL;
+}
+
+/* The memory of the longest input smoother of this kind whose delay line holds at most
+ * `reals`: every sample of its window is a tap, so its memory grows with its length alone,
+ * and each length is reached by some wn (the kernel lasts c/wn). Bisection on log wn for the
+ * smallest wn whose length fits (below it: too long; above: fits, or too short to be valid).
+ * 0 if none fits. */
+static size_t input_smoother_capacity(int kind, size_t reals, double Ts)
+{
+    sms_stage_config c = sms_stage_config_default((sms_kind)kind);
+    double lo = 1e-300, hi = 3.14159265358979323846 / Ts;
+    size_t r = 0, cells = 0;
+    int i;
+    for (i = 0; i < 128; ++i) {
+        sms_status st;
+        c.wn = sqrt(lo) * sqrt(hi);
+        st = sms_stage_buffer_size(&c, Ts, &r);
+        if (st == SMS_ERR_TOO_LONG || (st == SMS_OK && r > reals))
+            lo = c.wn;
+        else
+            hi = c.wn;
+    }
+    c.wn = hi;
+    if (sms_stage_buffer_size(&c, Ts, &r) != SMS_OK || r > reals
+        || sms_stage_memory_size(&c, Ts, &cells) != SMS_OK)
+        return 0;
+    return cells;
+}
+
+/* The largest memory among configs of a family lasting `delay` [s] at Ts: the candidates
+ * below, each for the wn (shapers) or T (smoothers) that makes it last that long; 0 if none
+ * is valid. */
+static size_t family_capacity(int kind, double delay, double Ts)
+{
+    static const double pi = 3.14159265358979323846;
+    sms_stage_config c[6];
+    size_t n = 0, i, most = 0;
+    if (kind >= SMS_SMOOTH_ZV && kind <= SMS_SMOOTH_SI) {
+        /* a dense FIR of the kind: the delay line lasts_longer() still accepts */
+        const double reals = floor(delay / Ts + 1e-9) + 2.0;
+        return reals < (double)SMS_INPUT_SMOOTHER_MAX_LENGTH
+               ? input_smoother_capacity(kind, (size_t)reals, Ts)
+               : input_smoother_capacity(kind, SMS_INPUT_SMOOTHER_MAX_LENGTH, Ts);
+    }
+    if (kind <= SMS_EXPONENTIAL) {   /* smoothers: the longest ring is a bounded rectangle's */
+        static const sms_timing timings[3] = {SMS_TIMING_BOUNDED, SMS_TIMING_EXACT, SMS_TIMING_PAPER};
+        for (i = 0; i < 3; ++i) {
+            c[n] = sms_stage_config_default(SMS_RECTANGULAR);
+            c[n].T = delay;
+            c[n++].timing = timings[i];
+        }
+    } else if (kind == SMS_NOTCH_TUSTIN || kind == SMS_NOTCH_MATCHED) {
+        c[n] = sms_stage_config_default((sms_kind)kind);
+        c[n++].wn = 0.5 * pi / Ts;
+    } else {   /* shapers: the most taps and the longest ring for that span */
+        unsigned order = (unsigned)(delay / Ts) > 8u ? 8u : (unsigned)(delay / Ts);
+        c[n] = sms_stage_config_default(SMS_SHAPER_ZVN);
+        c[n].order = order < 1u ? 1u : order;
+        c[n].wn = (double)c[n].order * pi / delay;   /* n Td/2 = delay */
+        ++n;
+        c[n] = sms_stage_config_default(SMS_SHAPER_GMZV);
+        c[n].order = SMS_SHAPER_MAX_IMPULSES;
+        c[n].wn = 2.0 * pi * c[n].duration / delay;  /* D Td = delay */
+        ++n;
+        c[n] = sms_stage_config_default(SMS_SHAPER_EI3);
+        c[n++].wn = 4.0 * pi / delay;                 /* 2 Td */
+    }
+    for (i = 0; i < n; ++i) {
+        size_t cells;
+        if (sms_stage_memory_size(&c[i], Ts, &cells) == SMS_OK && cells > most)
+            most = cells;
+    }
+    return most;
+}
+
+/* 1 if config c's delay line is longer than a stage lasting retune_max_delay (whole samples
+ * plus the two of exact timing). */
+static int lasts_longer(const ss_model *m, const sms_stage_config *c)
+{
+    size_t reals = 0;
+    (void)sms_stage_buffer_size(c, m->Ts, &reals);
+    return (double)reals > floor(m->retune_max_delay / m->Ts + 1e-9) + 2.0;
+}
+
+/* Cells of the slot of stage k (config c): its own, or with retune_max_delay > 0 those of its
+ * family lasting retune_max_delay (fixed parameters only, so a loaded state finds the same
+ * slots). 0 or 1 with msg. */
+static int slot_size(const ss_model *m, unsigned k, const sms_stage_config *c, size_t *cells,
                      char *msg, size_t len)
 {
-    unsigned k, used[SS_MAX_STAGES], longest = 0;
-    size_t i, most = 0;
-    double samples = 0.0;
+    size_t own = 0, cap;
+    (void)sms_stage_memory_size(c, m->Ts, &own);   /* the config was validated */
+    *cells = own;
+    /* user-defined impulses are never retuned (their fields are fixed; sms_tunable_retune()
+     * refuses them): their own size, whatever retune_max_delay */
+    if (!(m->retune_max_delay > 0.0) || c->kind == SMS_SHAPER_IMPULSES)
+        return 0;
+    cap = family_capacity((int)c->kind, m->retune_max_delay, m->Ts);
+    if (cap == 0)
+        return snprintf(msg, len, "retune_max_delay = %.17g: no stage of stage[%u]'s family "
+                        "(kind = %d) lasts that long at Ts = %.17g (at least a few samples)",
+                        m->retune_max_delay, k, (int)c->kind, m->Ts), 1;
+    if (own > cap || lasts_longer(m, c))
+        return snprintf(msg, len, "stage[%u] (kind = %d) lasts longer than retune_max_delay = "
+                        "%.17g s: raise retune_max_delay or shorten the stage", k, (int)c->kind,
+                        m->retune_max_delay), 1;
+    *cells = cap;
+    return 0;
+}
+
+/* The scheduled shaper's config from its parameters; 0 (none, or valid) or 1 with msg. */
+static int schedule_config(ss_model *m, sms_scheduled_config *c, size_t *reals, char *msg,
+                           size_t len)
+{
+    int j;
+    sms_status st;
+    *reals = 0;
+    if (m->sched_kind == -1)
+        return 0;
+    if (m->sched_kind < 0 || m->sched_kind > 3)
+        return snprintf(msg, len, "schedule.kind = %d is not none (-1), zv (0), zvd (1), zvdd "
+                        "(2) or zvn (3)", m->sched_kind), 1;
+    if (m->sched_points < 1 || m->sched_points > SS_SCHEDULE_POINTS)
+        return snprintf(msg, len, "schedule.points = %d: must be 1 .. %d", m->sched_points,
+                        SS_SCHEDULE_POINTS), 1;
+    if (m->sched_every < 1 || m->sched_order < 1)
+        return snprintf(msg, len, "schedule.%s = %d: must be >= 1", m->sched_every < 1
+                        ? "update_every" : "order", m->sched_every < 1 ? m->sched_every
+                        : m->sched_order), 1;
+    for (j = 0; j < m->sched_points; ++j) {
+        m->points[j].value = m->sched[j][0];
+        m->points[j].wn = m->sched[j][1];
+        m->points[j].zeta = m->sched[j][2];
+    }
+    c->kind = (sms_kind)(SMS_SHAPER_ZV + m->sched_kind);   /* ZV, ZVD, ZVDD, ZVN in order */
+    c->order = (unsigned)m->sched_order;
+    c->points = m->points;
+    c->n_points = (size_t)m->sched_points;
+    c->update_every = (unsigned)m->sched_every;
+    st = sms_scheduled_buffer_size(c, m->Ts, reals);
+    if (st == SMS_ERR_STATE)
+        return snprintf(msg, len, "schedule.value[0 .. %d] must be finite and strictly "
+                        "increasing", m->sched_points - 1), 1;
+    if (st != SMS_OK)
+        return snprintf(msg, len, "schedule (kind = %d, %d rows): %s", m->sched_kind,
+                        m->sched_points, sms_status_string(st)), 1;
+    return 0;
+}
+
+/* Slots per stage: two to switch in when the stages are retunable, else one. */
+static size_t slots_per_stage(const ss_model *m)
+{
+    return m->retune_max_delay > 0.0 ? 2u : 1u;
+}
+
+/* Cells holding n reals. */
+static size_t cells_of_reals(size_t n)
+{
+    const size_t per = sizeof(sms_memory_cell) / sizeof(sms_real);
+    return n / per + (n % per != 0);
+}
+
+/* Validate every parameter: the configs of the used stages, their slots, the scheduled
+ * shaper, the reals they need together (within FMU_MAX_REALS) and the cells. 0, or non-zero
+ * with msg. */
+static int configure(ss_model *m, sms_stage_config *configs, size_t *n, size_t *slots,
+                     sms_scheduled_config *sc, size_t *need, char *msg, size_t len)
+{
+    unsigned k, used[SS_MAX_STAGES];
+    size_t i, chain_cells = 0, sched_reals = 0;
+    double reals = 0.0;
     *n = 0;
     *need = 0;
     if (!(m->Ts > 0.0))
         return snprintf(msg, len, "Ts = %.17g: must be finite and > 0", m->Ts), 1;
+    if (!(m->retune_max_delay >= 0.0))
+        return snprintf(msg, len, "retune_max_delay = %.17g: must be >= 0", m->retune_max_delay), 1;
     for (k = 0; k < SS_MAX_STAGES; ++k) {
         if (m->stage[k].ints[SS_FIELD_KIND] == SS_KIND_NONE)
             continue;
         if (stage_config(m, k, &configs[*n], msg, len) != 0)
             return 1;
+        if (slot_size(m, k, &configs[*n], &slots[*n], msg, len) != 0)
+            return 1;
         used[(*n)++] = k;
     }
-    for (i = 0; i < *n; ++i) {
-        size_t reals = 0;
-        (void)sms_stage_buffer_size(&configs[i], m->Ts, &reals);
-        samples += (double)reals;
-        if (reals > most) {
-            most = reals;
-            longest = used[i];
-        }
-    }
-    if (samples > (double)FMU_MAX_REALS) {
-        /* name what sets the longest stage's length: T, or the mode it is designed for */
-        const ss_params *p = &m->stage[longest];
+    if (schedule_config(m, sc, &sched_reals, msg, len) != 0)
+        return 1;
+    {   /* the delay lines (per slot) and the ring; name what sets the longest stage */
+        size_t most = 0;
+        unsigned longest = 0;
         char names[256];
-        if (p->ints[SS_FIELD_KIND] == SMS_SHAPER_IMPULSES)
-            snprintf(names, sizeof names, "stage[%u].time[%d] = %.17g, Ts = %.17g", longest,
-                     p->ints[SS_FIELD_ORDER] - 1, p->time[p->ints[SS_FIELD_ORDER] - 1], m->Ts);
-        else if (p->ints[SS_FIELD_DESIGN] == 1 || p->ints[SS_FIELD_KIND] >= SMS_SHAPER_ZV)
-            snprintf(names, sizeof names, "stage[%u].wn = %.17g, stage[%u].zeta = %.17g, "
-                     "Ts = %.17g", longest, p->reals[SS_FIELD_WN], longest,
-                     p->reals[SS_FIELD_ZETA], m->Ts);
-        else
-            snprintf(names, sizeof names, "stage[%u].T = %.17g, Ts = %.17g", longest,
-                     p->reals[SS_FIELD_T], m->Ts);
-        return fmu_refuse_size(msg, len, names, samples, *n > 1
-                               ? "shorten the stages (this one is the longest) or raise Ts"
-                               : "shorten the stage or raise Ts");
+        const ss_params *p;
+        for (i = 0; i < *n; ++i) {
+            size_t r = 0;
+            (void)sms_stage_buffer_size(&configs[i], m->Ts, &r);
+            reals += (double)slots_per_stage(m) * (double)(r > slots[i] ? r : slots[i]);
+            if (r >= most) {
+                most = r;
+                longest = used[i];
+            }
+        }
+        reals += (double)sched_reals;
+        if (reals > (double)FMU_MAX_REALS) {
+            p = &m->stage[longest];
+            if (*n == 0)
+                snprintf(names, sizeof names, "schedule.wn[0 .. %d], Ts = %.17g",
+                         m->sched_points - 1, m->Ts);
+            else if (p->ints[SS_FIELD_KIND] == SMS_SHAPER_IMPULSES)
+                snprintf(names, sizeof names, "stage[%u].time[%d] = %.17g, Ts = %.17g", longest,
+                         p->ints[SS_FIELD_ORDER] - 1, p->time[p->ints[SS_FIELD_ORDER] - 1], m->Ts);
+            else if (p->ints[SS_FIELD_DESIGN] == 1 || p->ints[SS_FIELD_KIND] >= SMS_SHAPER_ZV)
+                snprintf(names, sizeof names, "stage[%u].wn = %.17g, stage[%u].zeta = %.17g, "
+                         "Ts = %.17g", longest, p->reals[SS_FIELD_WN], longest,
+                         p->reals[SS_FIELD_ZETA], m->Ts);
+            else
+                snprintf(names, sizeof names, "stage[%u].T = %.17g, Ts = %.17g", longest,
+                         p->reals[SS_FIELD_T], m->Ts);
+            return fmu_refuse_size(msg, len, names, reals, m->retune_max_delay > 0.0
+                                   ? "shorten the stages or retune_max_delay, or raise Ts"
+                                   : *n > 1 ? "shorten the stages (this one is the longest) or "
+                                   "raise Ts" : "shorten the stage or raise Ts");
+        }
     }
     if (*n > 0 && hold_too_long(m, configs, used, *n, msg, len))
         return 1;
-    if (*n > 0 && sms_chain_memory_size(configs, *n, m->Ts, need) != SMS_OK)
-        return snprintf(msg, len, "the stages do not form a valid chain"), 1;
+    for (i = 0; i < *n; ++i) {
+        m->used[i] = used[i];
+        chain_cells += slots_per_stage(m) * slots[i];   /* each below FMU_MAX_REALS: no overflow */
+    }
+    *need = chain_cells + cells_of_reals(sched_reals);
     return 0;
 }
 
 int fmu_model_plan(const void *model, size_t *bytes, char *msg, size_t len)
 {
+    ss_model probe = *(const ss_model *)model;   /* configure fills the table's points */
     sms_stage_config configs[SS_MAX_STAGES];
-    size_t n, need;
-    if (configure((const ss_model *)model, configs, &n, &need, msg, len) != 0)
+    sms_scheduled_config sc;
+    size_t n, need, slots[SS_MAX_STAGES];
+    if (configure(&probe, configs, &n, slots, &sc, &need, msg, len) != 0)
         return 1;
     *bytes = need * sizeof(sms_memory_cell);
     return 0;
 }
 
+/* Doubles of a retunable stage's part of the saved state: a tunable's head and identities, and
+ * a stage state of at most the slot's reals per slot (a bound for every family). */
+static size_t region_of(size_t slot_cells, size_t slots)
+{
+    const size_t reals = slot_cells * (sizeof(sms_memory_cell) / sizeof(sms_real));
+    return SMS_TUNABLE_STATE_HEAD + 2u * SMS_STATE_IDENTITY_COUNT
+           + slots * (SMS_STATE_IDENTITY_COUNT + 14u + reals);
+}
+
+static double active_lag(const ss_model *m)
+{
+    double lag = 0.0;
+    size_t i;
+    for (i = 0; i < m->n_active; ++i)
+        lag += sms_stage_lag(sms_tunable_active(&m->tunables[i]));
+    return lag;
+}
+
 int fmu_model_build(void *model, void *mem, size_t bytes, char *msg, size_t len)
 {
     ss_model *m = (ss_model *)model;
+    ss_model b = *m;   /* the model changes only once the build succeeds */
     sms_stage_config configs[SS_MAX_STAGES];
-    size_t n, need;
-    if (configure(m, configs, &n, &need, msg, len) != 0)
+    sms_scheduled_config sc;
+    size_t n, need, i, slots[SS_MAX_STAGES], chain_cells = 0, reals = 0;
+    if (configure(&b, configs, &n, slots, &sc, &need, msg, len) != 0)
         return 1;
     if (need > bytes / sizeof(sms_memory_cell))
         return snprintf(msg, len, "the stages need %lu bytes of memory, the block holds %lu",
                         (unsigned long)(need * sizeof(sms_memory_cell)), (unsigned long)bytes), 1;
     if (n > 0) {
-        sms_chain chain;
-        sms_stage stages[SS_MAX_STAGES];
         double bound;
-        if (sms_chain_init(&chain, stages, configs, n, m->Ts, (sms_memory_cell *)mem, need)
-            != SMS_OK)
-            return snprintf(msg, len, "the chain could not be built"), 1;
-        bound = sms_chain_input_max(&chain);
-        if (fabs(m->u) > bound)
+        for (i = 0; i < n; ++i) {   /* stage after stage, one or two slots each */
+            const size_t cells = slots_per_stage(&b) * slots[i];
+            if (sms_tunable_init(&b.tunables[i], &configs[i], b.Ts, slots[i],
+                                 (sms_memory_cell *)mem + chain_cells, cells) != SMS_OK)
+                return snprintf(msg, len, "the chain could not be built"), 1;
+            chain_cells += cells;
+        }
+        b.chain.stages = b.tunables;
+        b.chain.n_stages = n;
+        b.chain.memory = (sms_memory_cell *)mem;
+        b.chain.memory_len = chain_cells;
+        bound = sms_tunable_chain_input_max(&b.chain);
+        if (fabs(b.u) > bound)
             return snprintf(msg, len, "u = %.17g is beyond %.17g, the finite input range of these "
                             "stages (sms_chain_input_max: the internal sums of a heavily damped "
-                            "or high-gain stage would overflow)", m->u, bound), 1;
-        memcpy(m->stages, stages, sizeof stages);
-        m->chain = chain;
-        m->chain.stages = m->stages;
-        m->input_max = bound;
+                            "or high-gain stage would overflow)", b.u, bound), 1;
     }
-    m->n_active = n;
-    m->n_cells = need;
-    m->built = 1;
+    b.scheduled = b.sched_kind != -1;
+    if (b.scheduled) {
+        (void)sms_scheduled_buffer_size(&sc, b.Ts, &reals);
+        if (sms_scheduled_init(&b.sch, &sc, b.Ts, &((sms_memory_cell *)mem + chain_cells)->r,
+                               reals) != SMS_OK)
+            return snprintf(msg, len, "the scheduled shaper could not be built"), 1;
+    }
+    b.n_active = n;
+    b.chain_cells = chain_cells;
+    for (i = 0; i < SS_MAX_STAGES; ++i) {
+        b.slot_cells[i] = i < n ? slots[i] : 0u;
+        /* a fixed stage never switches: its state's own size; a retunable one's bound */
+        b.region[i] = i >= n ? 0u : slots_per_stage(&b) == 1u ? sms_tunable_state_count(&b.tunables[i])
+                                  : region_of(slots[i], 2u);
+        b.pending[i] = 0;
+    }
+    b.any_pending = 0;
+    b.built = 1;
     if (n > 0)
-        sms_chain_reset(&m->chain, (sms_real)m->u);
-    m->y = m->u;
+        sms_tunable_chain_reset(&b.chain, (sms_real)b.u);
+    if (b.scheduled)
+        sms_scheduled_reset(&b.sch, (sms_real)b.u, b.s);
+    b.y = b.u;
+    *m = b;
+    if (n > 0)
+        sms_tunable_chain_rebind(&m->chain, m->tunables, (sms_memory_cell *)mem);
+    m->chain_lag = active_lag(m);
     return 0;
+}
+
+int fmu_model_check_tunable(const void *model, fmu_type type, const fmi2ValueReference *vr,
+                            const void *values, size_t n, char *msg, size_t len)
+{
+    const ss_model *m = (const ss_model *)model;
+    ss_params trial[SS_MAX_STAGES];
+    ss_model probe;
+    size_t i;
+    unsigned k, f;
+    int touched[SS_MAX_STAGES] = {0};
+    char name[64];
+    if (!(m->retune_max_delay > 0.0)) {
+        fmu_model_name(type, vr[0], name, sizeof name);
+        return snprintf(msg, len, "%s: the stages are fixed (retune_max_delay = 0): set "
+                        "retune_max_delay > 0 before fmi2ExitInitializationMode to retune "
+                        "them", name), 1;
+    }
+    memcpy(trial, m->stage, sizeof trial);
+    for (i = 0; i < n; ++i)
+        if (stage_field(vr[i], &k, &f)) {
+            if (type == FMU_REAL)
+                trial[k].reals[f] = ((const fmi2Real *)values)[i];
+            else
+                trial[k].ints[f] = ((const fmi2Integer *)values)[i];
+            touched[k] = 1;
+        }
+    probe.Ts = m->Ts;
+    memcpy(probe.stage, trial, sizeof trial);
+    for (i = 0; i < m->n_active; ++i) {
+        sms_stage_config c;
+        size_t cells = 0, j;
+        k = m->used[i];
+        if (!touched[k])
+            continue;
+        if (stage_config(&probe, k, &c, msg, len) != 0)
+            return 1;
+        if (c.kind == SMS_SHAPER_IMPULSES)
+            continue;   /* it reads none of the tunable fields: nothing to retune */
+        (void)sms_stage_memory_size(&c, m->Ts, &cells);
+        if (cells <= m->slot_cells[i] && !lasts_longer(m, &c))
+            continue;
+        for (j = 0; j < n; ++j)   /* name the first variable of that stage in this call */
+            if (stage_field(vr[j], &k, &f) && k == m->used[i])
+                break;
+        fmu_model_name(type, vr[j < n ? j : 0], name, sizeof name);
+        return snprintf(msg, len, "%s: stage[%u] would last longer than retune_max_delay = "
+                        "%.17g s, which its memory was sized for", name, m->used[i],
+                        m->retune_max_delay), 1;
+    }
+    return 0;
+}
+
+/* Retune every chain position whose parameters changed; one still switching waits. */
+static void apply_pending(ss_model *m)
+{
+    char msg[FMU_MESSAGE_LEN];
+    size_t i;
+    int left = 0, changed = 0;
+    for (i = 0; i < m->n_active; ++i) {
+        sms_stage_config c;
+        sms_status st;
+        if (!m->pending[i])
+            continue;
+        if (stage_config(m, m->used[i], &c, msg, sizeof msg) != 0
+            || c.kind == SMS_SHAPER_IMPULSES) {
+            m->pending[i] = 0;   /* refused at set: cannot happen; impulses read no tunable */
+            continue;
+        }
+        st = sms_tunable_chain_retune(&m->chain, i, &c);
+        if (st == SMS_ERR_RETUNE_BUSY) {
+            left = 1;
+            continue;
+        }
+        m->pending[i] = 0;
+        changed |= st == SMS_OK;
+    }
+    m->any_pending = left;
+    if (changed)
+        m->chain_lag = active_lag(m);
 }
 
 int fmu_model_tick(void *model)
@@ -474,25 +889,30 @@ int fmu_model_tick(void *model)
     ss_model *m = (ss_model *)model;
     sms_real x = (sms_real)m->u;
     double before = m->y;
+    if (m->any_pending)
+        apply_pending(m);
     if (m->n_active > 0)
-        sms_chain_step(&m->chain, &x);
+        sms_tunable_chain_step(&m->chain, &x);
+    if (m->scheduled)
+        sms_scheduled_step(&m->sch, &x, m->s);
     m->y = (double)x;
     return m->y != before;
 }
 
-/* The chain's closed forms under a constant input (sms_chain_hold()): bit for bit the ticks,
- * bounded by the chain's hold cost, which configure() keeps within FMU_MAX_HOLD_SAMPLES. */
+/* The chain's closed forms under a constant input (sms_tunable_chain_hold()): bit for bit the
+ * ticks, bounded by the chain's hold cost, which configure() keeps within
+ * FMU_MAX_HOLD_SAMPLES. A pending retune or the scheduled shaper: ticked one by one. */
 uint64_t fmu_model_hold(void *model, uint64_t n)
 {
     ss_model *m = (ss_model *)model;
     sms_real y;
-    if (n == 0)
+    if (n == 0 || m->any_pending || m->scheduled)
         return 0;
     if (m->n_active == 0) {
         m->y = (double)(sms_real)m->u;
         return n;
     }
-    sms_chain_hold(&m->chain, (sms_real)m->u, n, &y);
+    sms_tunable_chain_hold(&m->chain, (sms_real)m->u, n, &y);
     m->y = (double)y;
     return n;
 }
@@ -506,33 +926,111 @@ int fmu_model_warning(void *model, char *msg, size_t len)
 void fmu_model_rebind(void *model, void *mem)
 {
     ss_model *m = (ss_model *)model;
-    if (m->built && m->n_active > 0)
-        sms_chain_rebind(&m->chain, m->stages, (sms_memory_cell *)mem);
+    if (!m->built)
+        return;
+    if (m->n_active > 0)
+        sms_tunable_chain_rebind(&m->chain, m->tunables, (sms_memory_cell *)mem);
+    if (m->scheduled)
+        m->sch.ring = &((sms_memory_cell *)mem + m->chain_cells)->r;
 }
 
 size_t fmu_model_state_count(const void *model)
 {
     const ss_model *m = (const ss_model *)model;
-    return 1 + (m->n_active > 0 ? sms_chain_state_count(&m->chain) : 0);
+    size_t i, n = 1;
+    for (i = 0; i < m->n_active; ++i)
+        n += m->region[i];
+    return n + (m->scheduled ? sms_scheduled_state_count(&m->sch) : 0u);
 }
 
 void fmu_model_save_state(const void *model, double *dst)
 {
     const ss_model *m = (const ss_model *)model;
+    size_t i, j;
     dst[0] = m->y;
-    if (m->n_active > 0)
-        sms_chain_get_state(&m->chain, dst + 1);
+    ++dst;
+    for (i = 0; i < m->n_active; ++i) {
+        const size_t used = sms_tunable_state_count(&m->tunables[i]);
+        sms_tunable_get_state(&m->tunables[i], dst);
+        for (j = used; j < m->region[i]; ++j)
+            dst[j] = 0.0;
+        dst += m->region[i];
+    }
+    if (m->scheduled)
+        sms_scheduled_get_state(&m->sch, dst);
+}
+
+/* Same configuration on the fields the kind reads. */
+static int same_config(const sms_stage_config *a, const sms_stage_config *b)
+{
+    const sms_kind k = a->kind;
+    if (a->kind != b->kind)
+        return 0;
+    if (k <= SMS_EXPONENTIAL)
+        return a->timing == b->timing && a->T == b->T && a->k == b->k
+               && (k == SMS_RECTANGULAR || k == SMS_HARMONIC || a->sigma == b->sigma);
+    if (k == SMS_NOTCH_TUSTIN || k == SMS_NOTCH_MATCHED)
+        return a->wn == b->wn && a->zeta == b->zeta && a->notch_pole_zeta == b->notch_pole_zeta;
+    if (k == SMS_SHAPER_IMPULSES)
+        return 1;   /* its fields are fixed parameters: the same as built */
+    return a->timing == b->timing && a->wn == b->wn
+           && (a->zeta == b->zeta   /* the input smoothers that read no zeta */
+               || k == SMS_SMOOTH_EI2 || k == SMS_SMOOTH_ZVD_EI || k == SMS_SMOOTH_SI)
+           && ((k != SMS_SHAPER_ZVN && k != SMS_SHAPER_GMZV && k != SMS_SHAPER_SI)
+               || a->order == b->order)
+           && ((k != SMS_SHAPER_EI && k != SMS_SHAPER_EI2 && k != SMS_SHAPER_EI3
+                && k != SMS_SHAPER_SI) || a->tolerance == b->tolerance)
+           && ((k != SMS_SHAPER_GMZV && k != SMS_SHAPER_SI) || a->duration == b->duration);
 }
 
 int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, size_t len)
 {
     ss_model *m = (ss_model *)model;
-    (void)msg;
-    (void)len;
+    sms_memory_cell *mem = m->chain.memory;
+    size_t i, j, off = 1, at = 0;
     if (n != fmu_model_state_count(m) || src[0] != src[0])
         return 1;
-    if (m->n_active > 0 && sms_chain_set_state(&m->chain, src + 1, n - 1) != SMS_OK)
+    for (i = 0; i < m->n_active; ++i) {   /* each stage into the configuration it was saved in */
+        const double *part = src + off;
+        sms_stage_config active, old;
+        int switching = 0;
+        size_t count;
+        sms_status st = sms_tunable_state_configs(part, m->region[i], &active, &old, &switching);
+        char why[FMU_MESSAGE_LEN];
+        /* user-defined impulses: the state names them by a checksum; they are fixed
+         * parameters, so build them as configured (set_state refuses other impulses) */
+        if (st == SMS_ERR_KIND && m->stage[m->used[i]].ints[SS_FIELD_KIND] == SMS_SHAPER_IMPULSES
+            && stage_config(m, m->used[i], &active, why, sizeof why) == 0)
+            st = SMS_OK;
+        if (st != SMS_OK)
+            return snprintf(msg, len, "stage %lu's state is not a retunable stage's",
+                            (unsigned long)i), 1;
+        if (sms_tunable_init(&m->tunables[i], switching ? &old : &active, m->Ts, m->slot_cells[i],
+                             mem + at, slots_per_stage(m) * m->slot_cells[i]) != SMS_OK
+            || (switching && sms_tunable_retune(&m->tunables[i], &active) != SMS_OK))
+            return snprintf(msg, len, "stage %lu was saved in a configuration its memory "
+                            "(retune_max_delay) does not hold", (unsigned long)i), 1;
+        count = sms_tunable_state_count(&m->tunables[i]);
+        for (j = count; j < m->region[i]; ++j)
+            if (part[j] != 0.0)
+                return 1;
+        if (count > m->region[i]
+            || sms_tunable_set_state(&m->tunables[i], part, count) != SMS_OK)
+            return 1;
+        off += m->region[i];
+        at += slots_per_stage(m) * m->slot_cells[i];
+    }
+    if (m->scheduled && sms_scheduled_set_state(&m->sch, src + off, n - off) != SMS_OK)
         return 1;
     m->y = src[0];
+    m->any_pending = 0;
+    for (i = 0; i < m->n_active; ++i) {   /* parameters set since, not yet applied */
+        sms_stage_config want, now = sms_tunable_config(&m->tunables[i]);
+        char why[FMU_MESSAGE_LEN];
+        m->pending[i] = stage_config(m, m->used[i], &want, why, sizeof why) == 0
+                        && !same_config(&want, &now);
+        m->any_pending |= m->pending[i];
+    }
+    m->chain_lag = active_lag(m);
     return 0;
 }

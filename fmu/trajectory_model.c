@@ -125,6 +125,13 @@ int fmu_model_get_integer(const void *model, fmi2ValueReference vr)
     return vr == TG_VR_PROFILE ? ((const tg_model *)model)->profile : 0;
 }
 
+int fmu_model_check_tunable(const void *model, fmu_type type, const fmi2ValueReference *vr,
+                            const void *values, size_t n, char *msg, size_t len)
+{
+    (void)model; (void)type; (void)vr; (void)values; (void)n; (void)msg; (void)len;
+    return 0;   /* no tunable parameters */
+}
+
 void fmu_model_set_real(void *model, fmi2ValueReference vr, double value)
 {
     size_t i = real_index(vr);

@@ -105,6 +105,19 @@ SS_MAX_IMPULSES = 9
 SS_IMPULSE_BASE = 1000
 SS_IMPULSE_STRIDE = 32
 
+# Stage fields that stay fixed when the others are tunable (the family and how it is designed).
+SS_FIXED_FIELDS = ("kind", "design", "timing")
+# The scheduled shaper's table: row j at SS_SCHEDULE_BASE + 3 j + (value, wn, zeta).
+SS_SCHEDULE_POINTS = 8
+SS_SCHEDULE_BASE = 40
+SS_SCHEDULE_FIELDS = (  # (name, unit, start(j), description)
+    ("value", "", lambda j: float(j), "scheduling value of row {j} (strictly increasing over the "
+     "rows in use)"),
+    ("wn", "rad/s", lambda j: 100.0, "natural frequency of the mode at row {j}; finite, "
+     "0 < wn < pi/Ts"),
+    ("zeta", "1", lambda j: 0.0, "damping ratio of the mode at row {j}; in [0, 1)"),
+)
+
 # Choices travel as Integer codes (FMI 2.0 Enumerations are not settable in every importer:
 # libcosim and FMI Library based hosts ignore them). Each variable's min/max bound the codes and
 # its description lists every code with its name.
@@ -117,6 +130,8 @@ CHOICES = {
                ("paper", 1, "N = round(T/Ts), as in the source papers"),
                ("bounded", 2, "the exact zero with one more tap, no tap above the continuous "
                               "peak density (rectangular, exponential)")],
+    "ScheduleKind": [("none", -1, "no scheduled shaper"), ("zv", 0, "ZV"), ("zvd", 1, "ZVD"),
+                     ("zvdd", 2, "ZVDD"), ("zvn", 3, "ZV^n, n = schedule.order")],
     "Profile": [("polynomial", 0, "linear ramps of the acceleration: time-optimal double-S"),
                 ("trigonometric", 1, "half-cosine transitions, continuous jerk (modified "
                                      "double-S)"),
@@ -139,15 +154,47 @@ def smooth_shaper() -> tuple[list[Var], list[str], str]:
             initial_depends_on=["u"]),
         Var("Ts", 2, "Real", "parameter", "sample period of the internal ticks; finite, > 0", "s",
             0.001, variability="fixed", min=0.0, c_name="TS"),
+        Var("retune_max_delay", 3, "Real", "parameter", "0: the stages are fixed; > 0: their "
+            "parameters (all but kind, design and timing) are tunable, applied at the next "
+            "communication point, and each stage's memory holds any configuration of its kind "
+            "whose impulse response lasts at most this long (docs/retune.md)", "s", 0.0,
+            variability="fixed", min=0.0, c_name="RETUNE_MAX_DELAY"),
+        Var("s", 4, "Real", "input", "scheduling value of the scheduled shaper (position, load, "
+            "...; unit of schedule.value[j]), held over each communication step", "", 0.0,
+            c_name="S"),
+        Var("lag", 5, "Real", "output", "lag of the filtered command behind u at constant "
+            "speed, in seconds: the sum of the active stages' DC group delays (docs/align.md)",
+            "", variability="discrete", c_name="LAG", initial_depends_on=["s"]),
+        Var("schedule.kind", 6, "Integer", "parameter", "scheduled ZV^n shaper after the "
+            "stages, its mode following the input s through the table (docs/scheduled.md); "
+            + choice_text("ScheduleKind"), "", -1, "ScheduleKind", "fixed", c_name="SCHED_KIND"),
+        Var("schedule.order", 7, "Integer", "parameter", "n of ZV^n for schedule.kind = zvn, "
+            "1..8", "", 1, variability="fixed", min=1, max=8, c_name="SCHED_ORDER"),
+        Var("schedule.update_every", 8, "Integer", "parameter", "the scheduled shaper's taps are "
+            "recomputed every this many ticks (1: every tick)", "", 1, variability="fixed",
+            min=1, c_name="SCHED_EVERY"),
+        Var("schedule.points", 9, "Integer", "parameter", f"rows of the schedule table in use, "
+            f"1..{SS_SCHEDULE_POINTS}", "", 1, variability="fixed", min=1,
+            max=SS_SCHEDULE_POINTS, c_name="SCHED_POINTS"),
     ]
+    for j in range(SS_SCHEDULE_POINTS):
+        for f, (name, unit, start, desc) in enumerate(SS_SCHEDULE_FIELDS):
+            lo, hi = {"value": (None, None), "wn": (0.0, None), "zeta": (0.0, 1.0)}[name]
+            vs.append(Var(f"schedule.{name}[{j}]", SS_SCHEDULE_BASE + 3 * j + f, "Real",
+                          "parameter", desc.format(j=j), unit, start(j), variability="fixed",
+                          min=lo, max=hi))
     for k in range(SS_MAX_STAGES):
         for f, (name, typ, unit, start, desc, choices, lo, hi) in enumerate(SS_FIELDS):
             if name == "kind":   # default chain M(T) * ZV(wn): useful out of the box
                 start = SS_DEFAULT_KINDS.get(k, -1)
             if choices:
                 desc = f"{desc}; {choice_text(choices)}"
+            variability = "fixed" if name in SS_FIXED_FIELDS else "tunable"
+            if variability == "tunable":
+                desc = f"{desc}; tunable when retune_max_delay > 0"
             vs.append(Var(f"stage[{k}].{name}", SS_STAGE_BASE + SS_STAGE_STRIDE * k + f, typ,
-                          "parameter", f"stage {k}: {desc}", unit, start, choices, "fixed", lo, hi))
+                          "parameter", f"stage {k}: {desc}", unit, start, choices, variability,
+                          lo, hi))
     for k in range(SS_MAX_STAGES):
         for i in range(SS_MAX_IMPULSES):
             base = SS_IMPULSE_BASE + SS_IMPULSE_STRIDE * k
@@ -167,6 +214,8 @@ def smooth_shaper() -> tuple[list[Var], list[str], str]:
               f"#define SS_IMPULSE_STRIDE {SS_IMPULSE_STRIDE}"]
     header += [f"#define SS_FIELD_{name.upper()} {f}" for f, (name, *_rest) in enumerate(SS_FIELDS)]
     header.append(f"#define SS_FIELD_COUNT {len(SS_FIELDS)}")
+    header += [f"#define SS_SCHEDULE_POINTS {SS_SCHEDULE_POINTS}",
+               f"#define SS_SCHEDULE_BASE {SS_SCHEDULE_BASE}"]
     header.append("#define SS_KIND_NONE (-1)")
     header.append(f"#define SS_KIND_COUNT {len(KINDS)}   /* codes 0 .. SS_KIND_COUNT - 1 */")
     header.append("#define SS_DEFAULT_KIND(k) ((k) == 0 ? %d : (k) == 1 ? %d : SS_KIND_NONE)"
@@ -271,6 +320,13 @@ def multi_axis_generator() -> tuple[list[Var], list[str], str]:
             max=MA_MAX_AXES, c_name="AXES"),
         Var("sync", 3, "Integer", "parameter", "coordination of the axes; " + choice_text("Sync"),
             "", 0, "Sync", "fixed", c_name="SYNC"),
+        Var("align", 4, "Integer", "parameter", "1: pad every axis with a delay to the common lag "
+            "of the axes' stages, so straight moves stay on the line at constant speed whatever "
+            "stages the axes carry; 0: off", "", 0, variability="fixed", min=0, max=1,
+            c_name="ALIGN"),
+        Var("lag", 5, "Real", "output", "lag of the outputs behind the profile, in seconds: with "
+            "align = 1 every axis's, else the largest axis's (fixed at initialisation; 0 without "
+            "stages)", "", variability="discrete", c_name="LAG", initial_depends_on=["q0[0]"]),
     ]
     for f, (name, causality, start, desc) in enumerate(MA_FIELDS, 1):
         for i in range(MA_MAX_AXES):

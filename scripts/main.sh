@@ -2,32 +2,48 @@
 # SPDX-License-Identifier: Apache-2.0
 # The main job: set up, build the FMUs, validate them against the NumPy reference with fmpy,
 # reproduce the seed papers' claims and run the system co-simulation. Results land in
-# out/validation, out/report and out/cosim.
+# out/validation, out/report and out/cosim. Prints one line per phase with the time since the
+# start; the compilers' output goes to build/main-*.log (shown when a step fails).
 # Needs: python3 >= 3.10 (with venv), a C compiler, cmake >= 3.16. Idempotent: reuses .venv.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+start=$SECONDS
+phase() { printf 'main.sh [%4d s] %s\n' $((SECONDS - start)) "$*"; }
+# Run a quiet step; on failure show the end of its log and stop.
+logged() {
+    local log=$1; shift
+    "$@" >"$log" 2>&1 || { tail -n 40 "$log" >&2; echo "main.sh: failed, see $log" >&2; exit 1; }
+}
+mkdir -p build
+
 python3 -c 'import sys; sys.exit(0 if sys.version_info >= (3, 10) else "python3 >= 3.10 is required")'
+phase "Python environment (.venv)"
 [ -x .venv/bin/python ] || python3 -m venv .venv
 . .venv/bin/activate
-python -m pip install -q --upgrade pip
-python -m pip install -q -e ".[validate]"
+logged build/main-pip.log python -m pip install --upgrade pip
+phase "installing the package and its validate extra (compiles the C core into the extension)"
+logged build/main-pip.log python -m pip install -e ".[validate]"
 
-# The FMUs (SmoothShaper, TrajectoryGenerator, MultiAxisGenerator, ElasticPlant, ServoDrive)
-# with CMake; validate and the system co-simulations reuse this build.
-cmake -S . -B build/fmu -DCMAKE_BUILD_TYPE=Release -DSMS_BUILD_TESTS=OFF -DSMS_BUILD_SHARED=OFF
-cmake --build build/fmu -j2
+# The FMUs (SmoothShaper, TrajectoryGenerator, MultiAxisGenerator, ElasticPlant, ServoDrive),
+# only their CMake targets; the validation and the system co-simulations reuse them.
+phase "building the FMUs (CMake, build/fmu)"
+logged build/main-fmu.log python -c \
+    'from pathlib import Path; from smoothshaper.fmi.build import build_fmus; build_fmus(Path("build/fmu"))'
 
 status=0
+phase "smoothshaper validate --out out/validation"
 smoothshaper validate --out out/validation --build-dir build/fmu || status=$?
+phase "smoothshaper report --out out/report"
 smoothshaper report --out out/report || status=$?
 # System co-simulations: TrajectoryGenerator -> SmoothShaper -> ElasticPlant, and -> ServoDrive
 # (a drive in closed loop), connected by SSP files, run in libcosim and fmpy with and without the
 # shaper; plots and tables.
+phase "python -m smoothshaper.cosim --out out/cosim"
 python -m smoothshaper.cosim --out out/cosim --build-dir build/fmu || status=$?
 if [ "$status" -eq 0 ]; then
-    echo "main.sh: done; see out/validation, out/report and out/cosim"
+    phase "done; see out/validation, out/report and out/cosim"
 else
-    echo "main.sh: a step failed (exit $status); see the messages above" >&2
+    phase "a step failed (exit $status); see the messages above" >&2
 fi
 exit "$status"

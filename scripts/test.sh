@@ -5,6 +5,7 @@
 # Needs: python3 >= 3.10 (with venv), a C compiler, cmake >= 3.16. Idempotent: reuses .venv.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+start=$SECONDS
 
 python3 -c 'import sys; sys.exit(0 if sys.version_info >= (3, 10) else "python3 >= 3.10 is required")'
 [ -x .venv/bin/python ] || python3 -m venv .venv
@@ -13,9 +14,21 @@ python -m pip install -q --upgrade pip
 # Editable install: builds the cffi extensions smoothshaper._core/_core_float from c/src.
 python -m pip install -q -e ".[test,docs]"
 
-# Every suite runs even if an earlier one fails, so one report shows all failures.
+# Every suite runs even if an earlier one fails, so one report shows all failures. Each step
+# prints the time since the start.
 failed=()
-step() { local name=$1; shift; echo "== $name"; "$@" || failed+=("$name"); }
+step() {
+    local name=$1; shift
+    printf '== [%4d s] %s\n' $((SECONDS - start)) "$name"
+    "$@" || failed+=("$name")
+}
+
+# The Python suite runs on one core beside the C suites (pytest is serial; the C builds and
+# ctest take the other core and whatever pytest leaves): its output is shown when it ends.
+mkdir -p build
+printf '== [%4d s] pytest (in the background, output in build/pytest.log)\n' $((SECONDS - start))
+python -m pytest tests/python -q >build/pytest.log 2>&1 &
+pytest_pid=$!
 
 step "C build (release)" cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release
 step "C build (release)" cmake --build build/release -j2
@@ -25,19 +38,24 @@ step "C build (sanitize)" cmake -S . -B build/sanitize -DCMAKE_BUILD_TYPE=Debug 
 step "C build (sanitize)" cmake --build build/sanitize -j2
 step "ctest (sanitize)" ctest --test-dir build/sanitize --output-on-failure -j2
 
+pytest_rc=0
+wait "$pytest_pid" || pytest_rc=$?
+printf '== [%4d s] pytest (finished)\n' $((SECONDS - start))
+cat build/pytest.log
 # An empty collection (pytest exit code 5) must fail loudly, never pass as "nothing to do".
-collected=$(python -m pytest tests/python --collect-only -q 2>/dev/null | grep -c '::' || true)
-if [ "$collected" -eq 0 ]; then
+if [ "$pytest_rc" -eq 5 ]; then
     echo "test.sh: pytest collected no tests from tests/python" >&2
     failed+=("pytest collection")
-else
-    step "pytest ($collected tests)" python -m pytest tests/python -q
+elif [ "$pytest_rc" -ne 0 ]; then
+    failed+=("pytest")
 fi
 
 step "API reference (sphinx, warnings as errors)" bash scripts/docs.sh
+# What `pip install .` gives a user: the wheel in a fresh venv with the base dependencies only.
+step "wheel in a fresh venv" bash tests/install/fresh_venv.sh
 
 if [ ${#failed[@]} -gt 0 ]; then
-    printf 'test.sh: FAILED: %s\n' "${failed[@]}" >&2
+    printf 'test.sh: FAILED after %d s: %s\n' $((SECONDS - start)) "${failed[@]}" >&2
     exit 1
 fi
-echo "test.sh: all suites passed"
+echo "test.sh: all suites passed in $((SECONDS - start)) s"

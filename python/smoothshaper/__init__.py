@@ -17,16 +17,20 @@ from .stages import (KINDS, Stage, damped_harmonic, exponential, for_mode, harmo
                      impulse_shaper, input_smoother, notch, rectangular, shaper)
 from .filters import (Chain, Mode, design_for_mode, identify_from_peaks, identify_from_record,
                       notch_pole_zeta_from_bandwidth, si_design, si_insensitivity, si_shaper)
+from .tunable import TunableChain
+from .scheduled import ScheduledShaper
 
 __all__ = ["KINDS", "Stage", "rectangular", "harmonic", "damped_harmonic", "exponential",
-           "shaper", "notch", "input_smoother", "impulse_shaper", "for_mode", "Chain", "Mode",
-           "ParameterError", "design_for_mode", "identify_from_peaks", "identify_from_record",
-           "notch_pole_zeta_from_bandwidth", "si_design", "si_insensitivity", "si_shaper"]
+           "shaper", "notch", "input_smoother", "impulse_shaper", "for_mode", "Chain",
+           "TunableChain", "ScheduledShaper", "Mode", "ParameterError", "design_for_mode",
+           "identify_from_peaks", "identify_from_record", "notch_pole_zeta_from_bandwidth",
+           "si_design", "si_insensitivity", "si_shaper"]
 __version__ = "0.1.0"
 
 #: Public submodules, imported lazily on attribute access (as SciPy does).
-SUBMODULES = ("analysis", "cli", "design", "errors", "filters", "fmi", "multi_axis", "plants",
-              "reference", "report", "stages", "trajectory", "validation")
+SUBMODULES = ("align", "analysis", "cli", "design", "errors", "filters", "fmi", "multi_axis",
+              "plants", "reference", "report", "scheduled", "stages", "trajectory", "tunable",
+              "validation")
 
 
 def __getattr__(name):

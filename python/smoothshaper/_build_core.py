@@ -129,12 +129,14 @@ def _headers() -> list[str]:
         + glob.glob(os.path.join(SRC_DIR, "**", "*.h"), recursive=True))]
 
 
-# Binding glue compiled into each module (not part of the C library): Chain.process in one
-# call. It checks every input sample first (the state stays untouched on a bad one), then
-# filters float64 to float64; the float build converts through a small block on the stack,
-# so the float path makes no full-size copy of the signal.
+# Binding glue compiled into each module (not part of the C library): Chain.process and
+# TunableChain.process in one call. It checks every input sample first (the state stays
+# untouched on a bad one), then filters float64 to float64; the float build converts through a
+# small block on the stack, so the float path makes no full-size copy of the signal.
 _GLUE_CDEF = """
 ptrdiff_t smspy_chain_process_f64(sms_chain *chain, const double *in, double *out, size_t n);
+ptrdiff_t smspy_tunable_chain_process_f64(sms_tunable_chain *chain, const double *in,
+                                          double *out, size_t n);
 """
 _GLUE_SOURCE = r"""
 #include <float.h>
@@ -151,11 +153,14 @@ static ptrdiff_t smspy_first_bad_sample(const double *in, size_t n, double limit
     return -1;
 }
 
-/* -1 after filtering all n samples (in == out allowed); else the index of the first bad one,
- * and nothing filtered. */
-static ptrdiff_t smspy_chain_process_f64(sms_chain *chain, const double *in, double *out, size_t n)
+typedef void (*smspy_process_fn)(void *chain, const sms_real *in, sms_real *out, size_t n);
+
+/* -1 after filtering all n samples through process (in == out allowed); else the index of the
+ * first bad one, and nothing filtered. */
+static ptrdiff_t smspy_process_f64(void *chain, smspy_process_fn process, double limit,
+                                   const double *in, double *out, size_t n)
 {
-    const ptrdiff_t bad = smspy_first_bad_sample(in, n, sms_chain_input_max(chain));
+    const ptrdiff_t bad = smspy_first_bad_sample(in, n, limit);
     if (bad >= 0)
         return bad;
 #ifdef SMS_USE_FLOAT
@@ -164,7 +169,7 @@ static ptrdiff_t smspy_chain_process_f64(sms_chain *chain, const double *in, dou
         size_t m = n < 1024 ? n : 1024, i;
         for (i = 0; i < m; ++i)
             block[i] = (float)in[i];
-        sms_chain_process(chain, block, block, m);
+        process(chain, block, block, m);
         for (i = 0; i < m; ++i)
             out[i] = (double)block[i];
         in += m;
@@ -172,9 +177,33 @@ static ptrdiff_t smspy_chain_process_f64(sms_chain *chain, const double *in, dou
         n -= m;
     }
 #else
-    sms_chain_process(chain, in, out, n);
+    process(chain, in, out, n);
 #endif
     return -1;
+}
+
+static void smspy_chain_process(void *chain, const sms_real *in, sms_real *out, size_t n)
+{
+    sms_chain_process((sms_chain *)chain, in, out, n);
+}
+
+static void smspy_tunable_chain_process(void *chain, const sms_real *in, sms_real *out, size_t n)
+{
+    sms_tunable_chain_process((sms_tunable_chain *)chain, in, out, n);
+}
+
+static ptrdiff_t smspy_chain_process_f64(sms_chain *chain, const double *in, double *out, size_t n)
+{
+    return smspy_process_f64(chain, smspy_chain_process, sms_chain_input_max(chain), in, out, n);
+}
+
+/* The input range is that of the chain before the block: a retune (which may narrow it) only
+ * happens between calls. */
+static ptrdiff_t smspy_tunable_chain_process_f64(sms_tunable_chain *chain, const double *in,
+                                                 double *out, size_t n)
+{
+    return smspy_process_f64(chain, smspy_tunable_chain_process,
+                             sms_tunable_chain_input_max(chain), in, out, n);
 }
 """
 

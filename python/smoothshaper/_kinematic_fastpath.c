@@ -16,6 +16,9 @@
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
 
+#include <math.h>
+#include <string.h>
+
 #include "smoothshaper/smoothshaper.h"
 #include "trajectory/trajectory_internal.h"
 
@@ -179,6 +182,66 @@ static PyObject *design(PyObject *self, PyObject *const *args, Py_ssize_t nargs)
     return stages;
 }
 
+/* n plain numbers from a list or tuple of length n, or n copies of one plain number; 0 when
+ * o is neither (no exception set). */
+static int plain_numbers(PyObject *o, double *x, Py_ssize_t n)
+{
+    Py_ssize_t i;
+    if (PyList_CheckExact(o) || PyTuple_CheckExact(o)) {
+        if (PySequence_Fast_GET_SIZE(o) != n)
+            return 0;
+        for (i = 0; i < n; ++i)
+            if (!plain_number(PySequence_Fast_GET_ITEM(o, i), &x[i]))
+                return 0;
+        return 1;
+    }
+    if (!plain_number(o, &x[0]))
+        return 0;
+    for (i = 1; i < n; ++i)
+        x[i] = x[0];
+    return 1;
+}
+
+/* The path limits V = min vmax_i/|d_i| (and A, J) stay normal and far from overflow, so the
+ * C core's closed form in them is as exact as the time-scale form of the NumPy reference. */
+static int moderate(double r)
+{
+    return r > 0x1p-200 && r < 0x1p200;
+}
+
+/* phase_duration(delta, vmax, amax, jmax): sms_multi_phase_duration, or None. */
+static PyObject *phase_duration(PyObject *self, PyObject *const *args, Py_ssize_t nargs)
+{
+    sms_multi_generator_config config;
+    double delta[SMS_MULTI_MAX_AXES], T;
+    Py_ssize_t n, i;
+    (void)self;
+    if (nargs != 4) {
+        PyErr_SetString(PyExc_TypeError, "phase_duration() takes 4 positional arguments");
+        return NULL;
+    }
+    if (!PyList_CheckExact(args[0]) && !PyTuple_CheckExact(args[0]))
+        Py_RETURN_NONE;
+    n = PySequence_Fast_GET_SIZE(args[0]);
+    if (n < 1 || n > SMS_MULTI_MAX_AXES)
+        Py_RETURN_NONE;
+    memset(&config, 0, sizeof config);
+    config.n_axes = (size_t)n;
+    if (!plain_numbers(args[0], delta, n) || !plain_numbers(args[1], config.vmax, n) ||
+        !plain_numbers(args[2], config.amax, n) || !plain_numbers(args[3], config.jmax, n))
+        Py_RETURN_NONE;
+    for (i = 0; i < n; ++i) {
+        double d = fabs(delta[i]);
+        if (d > 0.0 && !(moderate(config.vmax[i] / d) && moderate(config.amax[i] / d) &&
+                         moderate(config.jmax[i] / d)))
+            Py_RETURN_NONE;
+    }
+    /* every value is checked by the C core (finite, limits > 0) */
+    if (sms_multi_phase_duration(&config, delta, &T) != SMS_OK || !isfinite(T))
+        Py_RETURN_NONE;
+    return PyFloat_FromDouble(T);
+}
+
 /* configure(Stage, KINDS, TIMINGS, profiles, extra_numbers): see the variables above. */
 static PyObject *configure(PyObject *self, PyObject *args)
 {
@@ -211,6 +274,10 @@ static PyMethodDef methods[] = {
      "design(h, vmax, amax, jmax, higher, profile, wn, zeta, Ts) -> list of Stage or None\n\n"
      "design.kinematic's fast path: the stages for plain numbers and at most three bounds,\n"
      "None where the fully checked path must run (other types, a refused design)."},
+    {"phase_duration", (PyCFunction)(void (*)(void))phase_duration, METH_FASTCALL,
+     "phase_duration(delta, vmax, amax, jmax) -> float or None\n\n"
+     "multi_axis.phase_duration's fast path: the C core's duration for plain numbers (a list\n"
+     "or tuple per argument, or one number for every axis), None where the checked path runs."},
     {"configure", configure, METH_VARARGS,
      "configure(Stage, KINDS, TIMINGS, profiles, extra_numbers): the Python objects used."},
     {NULL, NULL, 0, NULL}};

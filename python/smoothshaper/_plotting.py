@@ -8,6 +8,8 @@ import math
 
 import numpy as np
 
+from . import _optional
+
 __all__ = ["PRV_LEVELS", "PRV_CONTOURS", "percent_axis", "prv_map", "difference_map"]
 
 #: Colour band edges of a PRV map [%]: roughly logarithmic, clipped at 200 %.
@@ -20,7 +22,9 @@ def percent_axis(ax, *, top: float = 110.0) -> None:
     """Make the y axis of ``ax`` a residual-vibration axis [%]: linear from 0 to 1 %,
     logarithmic above (symlog), ticks at 0, 1, 2, 5, 10, 20, 50, 100 %..., range 0 to
     ``top``."""
-    from matplotlib.ticker import FixedLocator, FormatStrFormatter, NullLocator
+    ticker = _optional.require("matplotlib.ticker", "a residual-vibration axis")
+    FixedLocator, FormatStrFormatter, NullLocator = (ticker.FixedLocator, ticker.FormatStrFormatter,
+                                                     ticker.NullLocator)
     ax.set_yscale("symlog", linthresh=1.0, linscale=0.6)
     ax.set_ylim(0, top)
     if top <= 2000:
@@ -37,7 +41,7 @@ def percent_axis(ax, *, top: float = 110.0) -> None:
 def prv_map(ax, x, y, prv, *, label: str = "PRV [%] (clipped at 200 %)"):
     """Filled PRV map on :data:`PRV_LEVELS` bands with labelled :data:`PRV_CONTOURS` lines and
     a colour bar; ``prv[i, j]`` is at ``(x[j], y[i])``. Returns the filled contour set."""
-    from matplotlib.colors import BoundaryNorm
+    BoundaryNorm = _optional.require("matplotlib.colors", "PRV contours").BoundaryNorm
     prv = np.asarray(prv, dtype=float)
     levels = list(PRV_LEVELS)
     cs = ax.contourf(x, y, np.minimum(prv, levels[-1]), levels=levels, cmap="viridis",
@@ -54,7 +58,7 @@ def difference_map(ax, x, y, d, *, label: str):
     """Filled map of a signed difference of percentages with a diverging colour scale whose
     bands are roughly logarithmic in size (+-1, 2, 5, 10, 20, 50 %), so small and large
     differences are both visible. Returns the filled contour set."""
-    from matplotlib.colors import BoundaryNorm
+    BoundaryNorm = _optional.require("matplotlib.colors", "PRV contours").BoundaryNorm
     edges = [1, 2, 5, 10, 20, 50]
     levels = [-e for e in edges[::-1]] + [0] + edges
     d = np.clip(np.asarray(d, dtype=float), -edges[-1], edges[-1])

@@ -5,8 +5,8 @@
 fill one ``sms_generator_reach_info``: the first derived quantity out of range, the arguments
 it is formed from, its value and bound. :func:`refused` turns it into the ParameterError the
 Generator and the MultiAxisGenerator raise: the user's arguments with their values first
-(``vmax=1.0, jmax=1e-300`` or, for an axis, ``axis 1: vmax[1]=1.0, jmax[1]=1e-300``), then the
-quantity as explanation.
+(``jmax=1e-300, vmax=1.0`` or, for an axis, ``jmax[1]=1e-300, vmax[1]=1.0 (axis 1)``), the one
+the error names first, then the quantity as explanation.
 """
 from __future__ import annotations
 
@@ -60,28 +60,35 @@ def refused(ffi, info, limits: dict, Ts: float, st: int, axis: int | None = None
         from (``vmax[1]`` for an axis).
     """
     sub = "" if axis is None else f"[{axis}]"
-    head = "" if axis is None else f"axis {axis}: "
+    tail = "" if axis is None else f" (axis {axis})"
     vmax = f"vmax{sub}"
     if info.quantity == ffi.NULL:  # a limit not finite and > 0 (checked before the region)
+        bad = next((n for n in ("vmax", "amax", "jmax") if not 0 < limits[n] < float("inf")),
+                   "vmax")
         values = ", ".join(f"{n}{sub}={limits[n]!r}" for n in ("vmax", "amax", "jmax"))
-        where = "limits" if axis is None else f"limits of axis {axis}"
-        return ParameterError(vmax, f"{where} rejected: {values} must be finite and > 0", st)
+        return ParameterError(bad + sub, f"{bad}{sub}={limits[bad]!r}: the limits{tail} "
+                              f"{values} must be finite and > 0", st)
     quantity = ffi.string(info.quantity).decode()
     names = ffi.string(info.arguments).decode().split(", ")
     if quantity == "Ts":   # refused for every axis (the C core checks the limits first)
-        head = ""
-    values = head + ", ".join(f"{n}={Ts!r}" if n == "Ts" else f"{n}{sub}={limits[n]!r}"
-                              for n in names)
+        tail = ""
+    parameter = named(quantity, names, info.duration)
+    # the argument the error names first (the message starts with it), then the others
+    order = sorted(names, key=lambda n: n != parameter)
+    values = ", ".join(f"{n}={Ts!r}" if n == "Ts" else f"{n}{sub}={limits[n]!r}"
+                       for n in order) + tail
     value, bound = info.value, info.bound
     real = "float" if ffi.sizeof("sms_real") == 4 else "double"
-    parameter = named(quantity, names, info.duration)
     if quantity in names:
         msg = (f"{values}: below {bound:.6g}, the smallest normal {real}" if value < bound else
                f"{values}: above {bound:.6g}, the largest {real}" if quantity == "Ts" else
                f"{values}: above {bound:.6g}, the largest {real} over 16 (room for a reversal)")
     elif quantity in DURATIONS:
         move = "move" if axis is None else f"move of axis {axis}"
-        msg = (f"{values}, Ts={Ts!r}: {quantity} = {value:.6g} s, so reaching {vmax} from rest "
+        values = values if "Ts" in names else (
+            f"{values[:len(values) - len(tail)]}, Ts={Ts!r}{tail}" if parameter != "Ts" else
+            f"Ts={Ts!r}, {values}")
+        msg = (f"{values}: {quantity} = {value:.6g} s, so reaching {vmax} from rest "
                f"takes {info.duration:.6g} s = {info.samples:.6g} samples of Ts, more than "
                f"the 2^50 a plan can hold with room for a reversal (its limit is 2^52): no "
                f"{move} that reaches {vmax} can be planned")

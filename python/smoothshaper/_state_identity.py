@@ -106,6 +106,12 @@ def restore(owner: str, ffi, lib, setter: str, c_obj, state, fields: tuple[str, 
     from ._checks import real_array
     from .errors import ParameterError
     s = np.ascontiguousarray(real_array("state", state, ndim=1), dtype=np.float64)
+    # every saved value is finite (NaN would come out of every later sample); a non-finite
+    # identity field is a state of another configuration, which the message below names
+    bad = np.flatnonzero(~np.isfinite(s[len(c_obj.identity):]))
+    if bad.size:
+        i = int(bad[0]) + len(c_obj.identity)
+        raise ParameterError("state", f"state must be finite: state[{i}] = {float(s[i])!r}")
     st = getattr(lib, setter)(c_obj, ffi.from_buffer("double[]", s), s.size)
     if st == 0:
         return
@@ -163,7 +169,8 @@ def _wrapped(text: str) -> str:
 class SavedState:
     """``get_state`` / ``set_state`` of a C-backed generator (one implementation for all).
 
-    A subclass holds its C object in ``self._gen`` (with ``self._ffi``, ``self._lib``) and
+    A subclass holds its C object in ``self._gen`` (with ``self._ffi``, ``self._lib``, and the
+    object's lock ``self._lock``, :mod:`smoothshaper._shared`) and
     sets, as class attributes: ``_STATE_C``, the C prefix (``"sms_generator"``: the functions
     ``<prefix>_state_count``, ``_get_state``, ``_set_state``); ``_STATE_FIELDS`` and
     ``_STATE_CHOICES``, its identity fields after the head and the names of enumerated ones
@@ -197,13 +204,15 @@ class SavedState:
 
     def get_state(self) -> np.ndarray:
         """The dynamic state, tagged with the configuration it belongs to (a copy)."""
-        out = np.empty(getattr(self._lib, self._STATE_C + "_state_count")(self._gen),
-                       dtype=np.float64)
-        getattr(self._lib, self._STATE_C + "_get_state")(
-            self._gen, self._ffi.from_buffer("double[]", out))
-        return out
+        with self._lock:        # the object's lock (smoothshaper._shared)
+            out = np.empty(getattr(self._lib, self._STATE_C + "_state_count")(self._gen),
+                           dtype=np.float64)
+            getattr(self._lib, self._STATE_C + "_get_state")(
+                self._gen, self._ffi.from_buffer("double[]", out))
+            return out
 
     def set_state(self, state) -> None:
         """Restore a state saved by :meth:`get_state`."""
-        restore(type(self).__name__, self._ffi, self._lib, self._STATE_C + "_set_state",
-                self._gen, state, self._STATE_FIELDS, self._STATE_CHOICES)
+        with self._lock:
+            restore(type(self).__name__, self._ffi, self._lib, self._STATE_C + "_set_state",
+                    self._gen, state, self._STATE_FIELDS, self._STATE_CHOICES)

@@ -133,10 +133,9 @@ def _check_ratios(h: float, limits: list[float], wn: float) -> None:
         if not RATIO_RANGE[0] <= r <= RATIO_RANGE[1]:
             what = "longer than 1e60 s" if not r <= RATIO_RANGE[1] else "shorter than 1e-60 s"
             raise ParameterError(
-                den_name, f"{num_name}/{den_name} = {_quotient_text(num, den)} s: a stage of "
-                f"the design would be "
-                f"{what} ({num_name}={num!r}, {den_name}={den!r}); bring {den_name} and "
-                f"{num_name} closer together", -15 if r > 1 else -17)
+                den_name, f"{den_name}={den!r} with {num_name}={num!r}: {num_name}/{den_name} "
+                f"= {_quotient_text(num, den)} s, a stage of the design would be {what}; "
+                f"bring {den_name} and {num_name} closer together", -15 if r > 1 else -17)
     if wn and not RATIO_RANGE[0] <= 1.0 / wn <= RATIO_RANGE[1]:
         raise ParameterError("wn", f"wn = {wn!r} rad/s: the mode period 2 pi/wn is outside "
                              "[1e-60, 1e60] s", -6)

@@ -24,6 +24,7 @@ from typing import Iterable, Sequence
 import numpy as np
 
 from . import stages as _stages
+from ._shared import locked as _locked, new_lock as _new_lock
 from .stages import Stage
 from ._checks import (choice as _choice, finite as _finite, finite_signal as _signal,
                       integer as _integer, positive as _positive, real_array as _real_array,
@@ -48,6 +49,7 @@ _STATUS_PARAMETER = {
     # a saved C state of another configuration: the status names the field, the argument is the state
     **{code: "state" for code in range(-43, -21)},
     -44: "coeffs",
+    -45: "index",   # a retune of a stage whose previous switch is still in progress
     -50: "amplitudes", -51: "times",
 }
 #: Saved Chain states start with this tag and format version, then the configuration they
@@ -281,6 +283,74 @@ def _as_stage_list(stages) -> tuple[Stage, ...]:
     return out
 
 
+def _process_checked(ffi, process_f64, chain, u, precision: str, limit: float) -> np.ndarray:
+    """``u`` through a chain's glue ``process_f64`` (smspy_*_process_f64, which checks every
+    sample first); ParameterError naming ``u`` for a non-finite sample or one beyond ``limit``
+    (then nothing is filtered)."""
+    # The output: u is copied once (complex, boolean or text input is refused, not cast).
+    y = np.array(_real_array("u", u, ndim=1), dtype=np.float64)
+    if y.size:
+        data = ffi.from_buffer("double[]", y)
+        bad = process_f64(chain, data, data, y.size)
+        if bad >= 0:
+            if math.isfinite(y[bad]):
+                _check_input("u", y, precision, limit)
+            raise ParameterError("u", f"u must be finite: u[{bad}] = {float(y[bad])!r}")
+    return y
+
+
+def _validated_configs(stages: tuple, Ts: float, ffi, lib):
+    """The C configs of ``stages`` at ``Ts``, each validated and sized by the C core, and the
+    delay-line reals each needs; ParameterError naming the offending field and stage (a delay
+    line beyond :data:`MAX_BUFFER_REALS` in total names ``T`` or ``wn``)."""
+    n = len(stages)
+    configs = ffi.new("sms_stage_config[]", n)
+    need = ffi.new("size_t *")
+    sizes = []
+    for i, stage in enumerate(stages):
+        if stage.kind in _stages.SMOOTHERS and stage.T / Ts > MAX_BUFFER_REALS:
+            # Checked here because sizing a billion-sample smoother in C takes seconds.
+            raise ParameterError(
+                "T", f"T too long for Ts={Ts!r}: T/Ts = {stage.T / Ts:.4g} samples "
+                f"exceeds {MAX_BUFFER_REALS}; stages[{i}] is {stage.kind} with T={stage.T!r}")
+        try:
+            _fill_config(configs[i], stage)
+        except ParameterError as exc:
+            raise ParameterError(exc.parameter, f"{exc}; stages[{i}] is {stage.kind}") from None
+        # Validates and sizes the stage (its design is closed-form, O(1)).
+        st = lib.sms_stage_buffer_size(ffi.addressof(configs, i), Ts, need)
+        sizes.append(need[0])
+        if st != 0:
+            parameter, value = _stage_parameter(stage, st)
+            hint = ""
+            if st == _SMS_ERR_DURATION_BELOW_TS and "harmonic" in stage.kind:
+                hint = " (the harmonic families need T >= 2 Ts)"
+            if st == _SMS_ERR_ABOVE_NYQUIST and stage.kind in _stages.SMOOTHERS:
+                zero = f"{stage.k}*{'3' if 'harmonic' in stage.kind else '2'}*pi/T"
+                raise ParameterError(
+                    "T", f"T too short for exact timing: off the sample grid it pins a zero "
+                    f"at k*{zero.split('*', 1)[1]} = {zero}, which must lie below the "
+                    f"Nyquist frequency pi/Ts (got T={stage.T!r}); stages[{i}] is "
+                    f"{stage.kind}, Ts={Ts!r} (use a longer T, k=1, or timing='paper')",
+                    st)
+            _raise_status(st, lib, ffi, f"stages[{i}] is {stage.kind}, Ts={Ts!r}{hint}",
+                          parameter, value)
+    total = sum(sizes)
+    if total > MAX_BUFFER_REALS:
+        _raise_too_long(stages, Ts, sizes, total)
+    return configs, sizes
+
+
+def _raise_too_long(stages, Ts: float, sizes: list, total: int):
+    i = max(range(len(sizes)), key=sizes.__getitem__)
+    parameter = "T" if stages[i].kind in _stages.SMOOTHERS else "wn"
+    raise ParameterError(
+        parameter, f"{parameter} {'too long' if parameter == 'T' else 'too low'} for "
+        f"Ts={Ts!r}: the chain would need a delay line of {total} samples "
+        f"(more than {MAX_BUFFER_REALS}); stages[{i}] is {stages[i].kind} with "
+        f"{parameter}={getattr(stages[i], parameter)!r}")
+
+
 class Chain:
     """Stages in series, filtered by the C core: ``y = H_{n-1}(...H_1(H_0(u)))``.
 
@@ -296,6 +366,11 @@ class Chain:
     The chain starts at rest at 0. Every stage has unit DC gain and realises
     ``y[n] = sum_i h[i] x[n-i]`` (notches: their biquad), so the chain is their product.
 
+    A chain may be shared between threads: its methods hold the chain's lock, so calls run
+    one at a time, each on a consistent state (docs/python.md).
+    ``copy.copy``, ``copy.deepcopy`` and ``pickle`` give independent chains that continue
+    bit-exactly.
+
     Raises
     ------
     ParameterError
@@ -305,6 +380,7 @@ class Chain:
 
     def __init__(self, stages: Stage | Iterable[Stage], *, Ts: float, precision: str = "double"):
         self.Ts = _positive("Ts", Ts)
+        self._lock = _new_lock()
         self.stages = _as_stage_list(stages)
         precision = _choice("precision", precision, PRECISIONS)
         ffi, lib = _backend(precision)
@@ -314,40 +390,7 @@ class Chain:
         if not 1 <= n <= lib.SMS_CHAIN_MAX_STAGES:
             raise ParameterError(
                 "stages", f"stages: a chain needs 1 to {lib.SMS_CHAIN_MAX_STAGES} stages, got {n}")
-        configs = ffi.new("sms_stage_config[]", n)
-        need = ffi.new("size_t *")
-        sizes = []
-        for i, stage in enumerate(self.stages):
-            if stage.kind in _stages.SMOOTHERS and stage.T / self.Ts > MAX_BUFFER_REALS:
-                # Checked here because sizing a billion-sample smoother in C takes seconds.
-                raise ParameterError(
-                    "T", f"T too long for Ts={self.Ts!r}: T/Ts = {stage.T / self.Ts:.4g} samples "
-                    f"exceeds {MAX_BUFFER_REALS}; stages[{i}] is {stage.kind} with T={stage.T!r}")
-            try:
-                _fill_config(configs[i], stage)
-            except ParameterError as exc:
-                raise ParameterError(exc.parameter, f"{exc}; stages[{i}] is {stage.kind}") from None
-            # Validates and sizes the stage (its design is closed-form, O(1)).
-            st = lib.sms_stage_buffer_size(ffi.addressof(configs, i), self.Ts, need)
-            sizes.append(need[0])
-            if st != 0:
-                parameter, value = _stage_parameter(stage, st)
-                hint = ""
-                if st == _SMS_ERR_DURATION_BELOW_TS and "harmonic" in stage.kind:
-                    hint = " (the harmonic families need T >= 2 Ts)"
-                if st == _SMS_ERR_ABOVE_NYQUIST and stage.kind in _stages.SMOOTHERS:
-                    zero = f"{stage.k}*{'3' if 'harmonic' in stage.kind else '2'}*pi/T"
-                    raise ParameterError(
-                        "T", f"T too short for exact timing: off the sample grid it pins a zero "
-                        f"at k*{zero.split('*', 1)[1]} = {zero}, which must lie below the "
-                        f"Nyquist frequency pi/Ts (got T={stage.T!r}); stages[{i}] is "
-                        f"{stage.kind}, Ts={self.Ts!r} (use a longer T, k=1, or timing='paper')",
-                        st)
-                _raise_status(st, lib, ffi, f"stages[{i}] is {stage.kind}, Ts={self.Ts!r}{hint}",
-                              parameter, value)
-        total = sum(sizes)
-        if total > MAX_BUFFER_REALS:
-            self._raise_too_long(sizes, total)
+        configs, sizes = _validated_configs(self.stages, self.Ts, ffi, lib)
         cells = ffi.new("size_t *")
         st = lib.sms_chain_memory_size(configs, n, self.Ts, cells)
         if st != 0:
@@ -371,17 +414,16 @@ class Chain:
         :meth:`step` and :meth:`reset` refuse values beyond it."""
         return self._input_max
 
-    def _raise_too_long(self, sizes: list, total: int):
-        i = max(range(len(sizes)), key=sizes.__getitem__)
-        parameter = "T" if self.stages[i].kind in _stages.SMOOTHERS else "wn"
-        raise ParameterError(
-            parameter, f"{parameter} {'too long' if parameter == 'T' else 'too low'} for "
-            f"Ts={self.Ts!r}: the chain would need a delay line of {total} samples "
-            f"(more than {MAX_BUFFER_REALS}); stages[{i}] is {self.stages[i].kind} with "
-            f"{parameter}={getattr(self.stages[i], parameter)!r}")
+    @property
+    def lag(self) -> float:
+        """The chain's lag [s]: the delay it gives a constant-speed motion (its DC group
+        delay, the sum of the stages' centroids; C ``sms_chain_lag``). See
+        :mod:`smoothshaper.align` for centring and aligning."""
+        return float(self._lib.sms_chain_lag(self._chain)) * self.Ts
 
     # -- filtering ------------------------------------------------------------------------
 
+    @_locked
     def process(self, u) -> np.ndarray:
         """Filter a block of samples, continuing from the current state.
 
@@ -401,17 +443,10 @@ class Chain:
             Naming ``u`` if it is not 1-D real (complex, boolean and text are refused, not cast),
             holds NaN/Inf, or a sample beyond :attr:`input_max`; the state is then untouched.
         """
-        # The output: u is copied once (complex, boolean or text input is refused, not cast).
-        y = np.array(_real_array("u", u, ndim=1), dtype=np.float64)
-        if y.size:
-            data = self._ffi.from_buffer("double[]", y)
-            bad = self._lib.smspy_chain_process_f64(self._chain, data, data, y.size)
-            if bad >= 0:
-                if math.isfinite(y[bad]):
-                    _check_input("u", y, self.precision, self._input_max)
-                raise ParameterError("u", f"u must be finite: u[{bad}] = {float(y[bad])!r}")
-        return y
+        return _process_checked(self._ffi, self._lib.smspy_chain_process_f64, self._chain, u,
+                                self.precision, self._input_max)
 
+    @_locked
     def step(self, x: float) -> float:
         """Filter one sample.
 
@@ -438,6 +473,7 @@ class Chain:
         self._lib.sms_chain_step(self._chain, cell)
         return float(cell[0])
 
+    @_locked
     def reset(self, rest: float = 0.0) -> None:
         """Put every stage at rest at ``rest``, as if the input had been ``rest`` forever.
 
@@ -477,6 +513,7 @@ class Chain:
             head.extend(_stage_fields(stage))
         return np.array(head, dtype=np.float64)
 
+    @_locked
     def get_state(self) -> np.ndarray:
         """The full dynamic state, tagged with the configuration it belongs to.
 
@@ -531,6 +568,7 @@ class Chain:
                             f"this chain has {field}={ours!r}")
         return None
 
+    @_locked
     def set_state(self, state) -> None:
         """Restore a state saved by :meth:`get_state`.
 
@@ -567,6 +605,7 @@ class Chain:
 
     state = property(get_state, set_state, doc="The dynamic state (see get_state/set_state).")
 
+    @_locked
     def copy(self) -> "Chain":
         """An independent chain with the same stages and the same current state.
 
@@ -579,7 +618,8 @@ class Chain:
         """
         ffi, lib = self._ffi, self._lib
         twin = Chain.__new__(Chain)
-        twin.__dict__.update(self.__dict__)       # the description; the memory is replaced:
+        twin.__dict__.update(self.__dict__)       # the description; lock and memory are new:
+        twin._lock = _new_lock()
         twin._memory, twin._memory_c = _cells(ffi, int(self._chain.memory_len))
         twin._memory[:] = self._memory
         n = len(self.stages)

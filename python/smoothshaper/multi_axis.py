@@ -19,7 +19,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import _reach, _state_identity
+from . import _kinematic_fastpath, _reach, _state_identity
+from ._shared import Twins, locked, new_lock
 from .errors import DroppedTargetWarning
 from .filters import MAX_STAGE_LIST, ParameterError, _backend, _fill_config, _real_dtype
 from .reference import multi_axis as _ref
@@ -91,7 +92,7 @@ def _infeasible(lib, ffi, cfg, Ts, st):
                           Ts, st, axis=i)
 
 
-class MultiAxisGenerator(_state_identity.SavedState):
+class MultiAxisGenerator(_state_identity.SavedState, Twins):
     """Online multi-axis generator (C core ``sms_multi_generator``, up to ``MAX_AXES`` axes).
 
     :meth:`process` takes targets of shape (n, axes) and returns (n, axes, 4): q, v, a, j of
@@ -116,6 +117,10 @@ class MultiAxisGenerator(_state_identity.SavedState):
         Vibration stages applied to every axis, or one list per axis (different lists bend
         straight lines and give a warning); each axis's q, v, a, j pass through its own copy
         of the chain in the C core.
+    align : bool, keyword-only
+        Pad every axis with a fractional delay to the common lag of the axes' stages (C
+        ``config.align``; :attr:`lag` reports it), so that straight moves stay on the line at
+        constant speed whatever stages the axes carry (docs/align.md); no warning then.
     precision : {"double", "float"}, keyword-only
         Which build of the C core runs it.
 
@@ -126,6 +131,12 @@ class MultiAxisGenerator(_state_identity.SavedState):
         stage's parameter; also for limits with which no move of an axis can reach its vmax
         (``sms_multi_generator_reach``, docs/multi-axis.md "Feasible limits"), naming the
         axis, its values and the quantity out of range.
+
+    Notes
+    -----
+    A generator may be shared between threads (its methods hold its lock, so calls run one at
+    a time); ``copy.copy``, ``copy.deepcopy`` and ``pickle`` give independent generators that
+    continue bit-exactly (docs/python.md).
     """
 
     _STATE_C = "sms_multi_generator"
@@ -146,9 +157,10 @@ class MultiAxisGenerator(_state_identity.SavedState):
     MAX_AXES = _MAX_AXES
 
     def __init__(self, *, vmax, amax, jmax, Ts: float, sync: str = "phase", q0=None,
-                 stages=None, precision: str = "double"):
+                 stages=None, align: bool = False, precision: str = "double"):
         ffi, lib = _backend(precision)
         self._ffi, self._lib = ffi, lib
+        self._lock = new_lock()
         self.vmax, self.amax, self.jmax = _limits(vmax, amax, jmax)
         self.axes = self.vmax.size
         if not 1 <= self.axes <= lib.SMS_MULTI_MAX_AXES:
@@ -157,12 +169,16 @@ class MultiAxisGenerator(_state_identity.SavedState):
         self.Ts = _positive("Ts", Ts)
         self.sync = _sync(sync)
         self.precision = precision
+        if not isinstance(align, (bool, np.bool_)):
+            raise ParameterError("align", f"align must be True or False, got {_show(align)}")
+        self.align = bool(align)
         self.stages = self._stage_lists(stages)
         cfg = ffi.new("sms_multi_generator_config *")
         cfg.n_axes = self.axes
         for i in range(self.axes):
             cfg.vmax[i], cfg.amax[i], cfg.jmax[i] = self.vmax[i], self.amax[i], self.jmax[i]
         cfg.sync = SYNC_MODES.index(self.sync)
+        cfg.align = int(self.align)
         self._configs = []  # kept alive: the config points into them
         for i, lst in enumerate(self.stages):
             if lst:
@@ -188,7 +204,21 @@ class MultiAxisGenerator(_state_identity.SavedState):
                                           self._memory, n_cells[0], bad)
         if st != 0:  # the size query above validated everything
             raise ParameterError("stages", ffi.string(lib.sms_status_string(st)).decode(), st)
+        self._init_args = dict(vmax=self.vmax, amax=self.amax, jmax=self.jmax, Ts=self.Ts,
+                               sync=self.sync, stages=self.stages, precision=precision)
         self.reset(q0)
+
+    def _full_state(self):
+        # with the diagnostics that are not part of the saved state
+        return self.get_state(), {"dropped": int(self._gen.dropped),
+                                  "refused": [int(self._gen.move[i].refused)
+                                              for i in range(self.axes)]}
+
+    def _set_full_state(self, state, counters) -> None:
+        self.set_state(state)
+        self._gen.dropped = counters["dropped"]
+        for i, refused in enumerate(counters["refused"]):
+            self._gen.move[i].refused = refused
 
     def _stage_lists(self, stages) -> list[list]:
         """One list of stage descriptions per axis (validated: errors name the parameter)."""
@@ -208,12 +238,17 @@ class MultiAxisGenerator(_state_identity.SavedState):
         lists = [list(s) for s in stages] if per_axis else [list(stages)] * self.axes
         if any(lst != lists[0] for lst in lists):
             warnings.warn("different vibration stages per axis bend straight lines: the axes "
-                          "are delayed and smoothed differently", stacklevel=3)
+                          "are smoothed differently (in the accelerations; with align=True "
+                          "constant-speed segments stay on the line)" if self.align else
+                          "different vibration stages per axis bend straight lines: the axes "
+                          "are delayed and smoothed differently (align=True keeps "
+                          "constant-speed segments on the line)", stacklevel=3)
         from .filters import Chain
         for lst in {id(lst): lst for lst in lists if lst}.values():
             Chain(lst, Ts=self.Ts, precision=self.precision)  # validates, naming the parameter
         return lists
 
+    @locked
     def reset(self, q0=None) -> None:
         """Rest at ``q0`` on every axis (v = a = j = 0).
 
@@ -239,9 +274,11 @@ class MultiAxisGenerator(_state_identity.SavedState):
             if bad.size:
                 raise ParameterError("q0", f"q0[{bad[0]}] must be finite, got {float(q[bad[0]])!r}")
         self.q0 = q
+        self._init_args["q0"] = q.copy()         # where a copy's reset() returns to
         buf = np.ascontiguousarray(q, dtype=_real_dtype(self.precision))
         self._lib.sms_multi_generator_reset(self._gen, self._ffi.from_buffer("sms_real[]", buf))
 
+    @locked
     def process(self, targets) -> np.ndarray:
         """Run a block of target vectors.
 
@@ -298,6 +335,12 @@ class MultiAxisGenerator(_state_identity.SavedState):
                 f"refused now: {held or 'none'}; the axes keep their goals until the target "
                 "changes"), stacklevel=2)
         return out.astype(np.float64)
+
+    @property
+    def lag(self) -> float:
+        """The output's lag [s]: the common lag of every axis with ``align=True``, else the
+        largest axis's (C ``sms_multi_generator_lag``); 0 without stages."""
+        return float(self._lib.sms_multi_generator_lag(self._gen))
 
     @property
     def refused(self) -> tuple:
@@ -362,11 +405,30 @@ def phase_duration(delta, *, vmax, amax, jmax) -> float:
     Raises
     ------
     ParameterError
-        Naming a bound (``vmax[i]``, ...) or ``delta``.
+        Naming a bound (``vmax[i]``, ...) or ``delta``; ``delta`` also when the duration
+        exceeds the largest double (``delta = [1e300]`` with ``vmax = 1e-300``).
+
+    Notes
+    -----
+    The C core's ``sms_multi_phase_duration``. Plain numbers (a list or tuple per argument,
+    or one number for every axis) take a fast path that checks them in C (about as long as
+    ruckig's ``calculate`` of the same move, ``python -m smoothshaper.bench``); anything else,
+    and every refused value, runs the checks that name the argument. Limits more than 2^200
+    away from the displacement use the NumPy reference's time-scale form instead, which
+    stays finite there.
     """
+    T = _kinematic_fastpath.phase_duration(delta, vmax, amax, jmax)
+    if T is not None:
+        return T
     d = _finite_vector("delta", delta)
     v, a, j = _limits(vmax, amax, jmax, d.size)
-    return _ref._phase_duration(d, v, a, j)
+    T = _kinematic_fastpath.phase_duration(d.tolist(), v.tolist(), a.tolist(), j.tolist())
+    if T is None:
+        T = _ref._phase_duration(d, v, a, j)
+    if not math.isfinite(T):
+        raise ParameterError("delta", "delta is too long for these limits: the move lasts more "
+                             "than the largest double (1.8e308 s)")
+    return T
 
 
 def multi_axis_move(start, target, *, vmax, amax, jmax, Ts: float, sync: str = "phase",

@@ -11,6 +11,9 @@ Models (input: commanded position ``q_ref``):
 * ``cartesian_axis(m=, d=, k=)``: ``m q'' + d q' + k q = d q_d' + k q_d`` (seed 003 Table I);
 * ``series(p1, p2, ...)``: several modes in series (p1 acts first).
 
+``simulate_varying_mode`` is one mode whose frequency changes from sample to sample (a
+stiffness that depends on position), exact per sample for a held command.
+
 ``simulate_zoh`` is exact for a piecewise-constant input: ``x[n+1] = Ad x[n] + Bd u[n]`` with
 ``[[Ad, Bd], [0, I]] = expm([[A, B], [0, 0]] Ts)`` (no Euler steps).
 """
@@ -29,7 +32,8 @@ from .errors import ParameterError
 from .reference._checks import check_samples
 
 __all__ = ["Plant", "tracking_error", "mode", "two_mass", "cartesian_axis", "series", "rest_state",
-           "zoh_matrices", "simulate_zoh", "residual_amplitude"]
+           "zoh_matrices", "simulate_zoh", "residual_amplitude", "simulate_varying_mode",
+           "oscillation_amplitude"]
 
 
 @dataclass(frozen=True)
@@ -451,3 +455,88 @@ def residual_amplitude(t, y, *, wn: float, zeta: float = 0.0, t_start: float) ->
     X = np.column_stack([np.ones_like(tk), env * np.cos(wd * tk), env * np.sin(wd * tk)])
     coef = np.linalg.lstsq(X, y[keep], rcond=None)[0]
     return float(math.hypot(coef[1], coef[2]))
+
+
+def simulate_varying_mode(u, *, wn, zeta: float, Ts: float, x0=None) -> tuple[np.ndarray, np.ndarray]:
+    """Load of one mode whose natural frequency changes from sample to sample (a stiffness
+    that depends on where the machine is), exact for a command held over each sample.
+
+    ``x'' = -wn[n]^2 (x - u[n]) - 2 zeta wn[n] x'`` on ``[n Ts, (n+1) Ts)``: within a sample
+    the mode is fixed, so each step is the exact zero-order-hold transition of that sample's
+    mode (a damped rotation about the held command); the frequency ``wn[n]`` is the caller's,
+    e.g. the stiffness at the commanded position ``u[n]``.
+
+    Parameters
+    ----------
+    u : array_like of float, shape (N,)
+        The command, finite.
+    wn : array_like of float, shape (N,)
+        The natural frequency in each sample [rad/s], > 0.
+    zeta : float, keyword-only
+        The damping ratio, in [0, 1).
+    Ts : float, keyword-only
+        Sample period [s], > 0.
+    x0 : (float, float) or None, keyword-only
+        Initial position and velocity (default: at rest at ``u[0]``).
+
+    Returns
+    -------
+    x, v : ndarray of float64, shape (N + 1,)
+        Position and velocity at ``n Ts``, ``n = 0 .. N``.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``u``, ``wn`` (shape, not > 0), ``zeta``, ``Ts`` or ``x0``.
+    """
+    u = _finite_signal("u", u)
+    w = np.asarray(_real_array("wn", wn), dtype=np.float64)
+    if w.shape != u.shape or not np.all(w > 0) or not np.all(np.isfinite(w)):
+        raise ParameterError("wn", f"wn must be finite, > 0 and of the shape of u {u.shape}")
+    _mode_args(float(w[0]) if w.size else 1.0, zeta)
+    Ts = _positive("Ts", Ts)
+    pos, vel = (float(u[0]) if u.size else 0.0, 0.0) if x0 is None else (
+        _finite("x0", x0[0]), _finite("x0", x0[1]))
+    wd = w * math.sqrt(1.0 - zeta * zeta)
+    s = zeta * w
+    e = np.exp(-s * Ts)
+    c, sn = np.cos(wd * Ts), np.sin(wd * Ts)
+    xs, vs = np.empty(u.size + 1), np.empty(u.size + 1)
+    xs[0], vs[0] = pos, vel
+    for n in range(u.size):
+        d = pos - u[n]
+        pos, vel = (u[n] + e[n] * (d * (c[n] + s[n] / wd[n] * sn[n]) + vel * sn[n] / wd[n]),
+                    e[n] * (vel * (c[n] - s[n] / wd[n] * sn[n]) - d * w[n] * w[n] / wd[n] * sn[n]))
+        xs[n + 1], vs[n + 1] = pos, vel
+    return xs, vs
+
+
+def oscillation_amplitude(x: float, v: float, *, rest: float, wn: float, zeta: float = 0.0) -> float:
+    """Amplitude of the free oscillation of one mode about ``rest`` from position ``x`` and
+    velocity ``v``: ``hypot(x - rest, (v + zeta wn (x - rest))/wd)``.
+
+    Parameters
+    ----------
+    x, v : float
+        Position and velocity.
+    rest : float, keyword-only
+        The equilibrium.
+    wn : float, keyword-only
+        Natural frequency [rad/s], > 0.
+    zeta : float, keyword-only
+        Damping ratio, in [0, 1).
+
+    Returns
+    -------
+    float
+        The amplitude of ``e^{-zeta wn t}(a cos wd t + b sin wd t)`` at ``t = 0``.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``wn`` or ``zeta``.
+    """
+    wn, zeta = _mode_args(wn, zeta)
+    wd = wn * math.sqrt(1.0 - zeta * zeta)
+    d = float(x) - float(rest)
+    return math.hypot(d, (float(v) + zeta * wn * d) / wd)

@@ -19,6 +19,7 @@ import warnings
 import numpy as np
 
 from . import _reach, _state_identity
+from ._shared import Twins, locked, new_lock
 from . import design as _design
 from .errors import DroppedTargetWarning
 from .filters import (ParameterError, _backend, _raise_status, _real_dtype, check_memory,
@@ -69,7 +70,7 @@ def _generator_config(ffi, vmax, amax, jmax, profile, wn, zeta):
     return cfg
 
 
-class Generator(_state_identity.SavedState):
+class Generator(_state_identity.SavedState, Twins):
     """Online multi-point trajectory generator (C core, ``sms_generator``).
 
     :meth:`process` takes the target (a staircase) per sample and returns position,
@@ -123,6 +124,12 @@ class Generator(_state_identity.SavedState):
         True while the held target is dropped (see :meth:`process`).
     dropped : int
         Targets dropped since construction or the last :meth:`reset`.
+
+    Notes
+    -----
+    A generator may be shared between threads (its methods hold its lock, so calls run one at
+    a time); ``copy.copy``, ``copy.deepcopy`` and ``pickle`` give independent generators that
+    continue bit-exactly (docs/python.md).
     """
 
     _STATE_C = "sms_generator"
@@ -147,9 +154,12 @@ class Generator(_state_identity.SavedState):
                  q0: float = 0.0, precision: str = "double"):
         ffi, lib = _backend(precision)
         self._ffi, self._lib = ffi, lib
+        self._lock = new_lock()
         self.Ts = _design._positive("Ts", Ts)
         q0 = _finite("q0", q0)
         self.precision = precision
+        self._init_args = dict(vmax=vmax, amax=amax, jmax=jmax, Ts=Ts, profile=profile, wn=wn,
+                               zeta=zeta, q0=q0, precision=precision)
         cfg = _generator_config(ffi, vmax, amax, jmax, profile, wn, zeta)
         need = ffi.new("size_t *")
         st = lib.sms_generator_buffer_size(cfg, self.Ts, need)
@@ -184,6 +194,16 @@ class Generator(_state_identity.SavedState):
         the target L - 1 samples after the plan does."""
         return int(self._gen.stage_length)
 
+    def _full_state(self):
+        # with the diagnostics that are not part of the saved state
+        return self.get_state(), {"dropped": int(self._gen.dropped),
+                                  "refused": int(self._gen.refused)}
+
+    def _set_full_state(self, state, counters) -> None:
+        self.set_state(state)
+        self._gen.dropped, self._gen.refused = counters["dropped"], counters["refused"]
+
+    @locked
     def reset(self, position: float | None = None) -> None:
         """Rest at ``position``: q = position, v = a = j = 0.
 
@@ -200,6 +220,7 @@ class Generator(_state_identity.SavedState):
         position = self.q0 if position is None else _finite("position", position)
         self._lib.sms_generator_reset(self._gen, position)
 
+    @locked
     def process(self, targets) -> np.ndarray:
         """Run a block of targets, one C call for the whole block.
 
@@ -266,6 +287,7 @@ class Generator(_state_identity.SavedState):
             f"{goal!r} (the running plan started at q={q!r}) until the target changes"),
             stacklevel=3)
 
+    @locked
     def start_from(self, q: float, v: float = 0.0, a: float = 0.0, *,
                    target: float | None = None) -> None:
         """Continue from the motion state (q, v, a): the next sample plans afresh from there.
@@ -504,7 +526,7 @@ def _via(name, via, axes=None) -> np.ndarray:
     return q
 
 
-class BSpline:
+class BSpline(Twins):
     """Uniform B-spline interpolating filter on one to three axes, run by the C core
     (``sms_bspline``): a staircase of control points held ``N`` samples each, through
     ``degree`` moving averages of ``N`` samples (Biagiotti and Melchiorri, "Input Shaping via
@@ -534,6 +556,11 @@ class BSpline:
     ParameterError
         Naming ``degree``, ``T``, ``Ts``, ``axes`` or ``precision``; ``T`` also when the
         delay lines would exceed :data:`smoothshaper.filters.MAX_BUFFER_REALS`.
+
+    Notes
+    -----
+    A B-spline filter may be shared between threads (:meth:`process` holds its lock); copies
+    and pickles are independent filters (docs/python.md).
     """
 
     def __init__(self, *, degree: int, T: float, Ts: float, axes: int = 1,
@@ -541,6 +568,8 @@ class BSpline:
         degree, T, Ts, axes = _bspline_args(degree, T, Ts, axes)
         ffi, lib = _backend(precision)
         self._ffi, self._lib = ffi, lib
+        self._lock = new_lock()
+        self._init_args = dict(degree=degree, T=T, Ts=Ts, axes=axes, precision=precision)
         need = ffi.new("size_t *")
         st = lib.sms_bspline_buffer_size(degree, axes, T, Ts, need)
         if st != 0:
@@ -554,6 +583,17 @@ class BSpline:
         if st != 0:  # pragma: no cover
             _raise_status(st, lib, ffi, "B-spline filter")
         self.degree, self.axes, self.Ts, self.precision = degree, axes, Ts, precision
+
+    def _full_state(self):
+        out = np.empty(self._lib.sms_bspline_state_count(self._b), dtype=np.float64)
+        self._lib.sms_bspline_get_state(self._b, self._ffi.from_buffer("double[]", out))
+        return out, {}
+
+    def _set_full_state(self, state, counters) -> None:
+        st = self._lib.sms_bspline_set_state(self._b, self._ffi.from_buffer("double[]", state),
+                                             state.size)
+        if st != 0:
+            _raise_status(st, self._lib, self._ffi, "B-spline state")
 
     @property
     def N(self) -> int:
@@ -681,6 +721,7 @@ class BSpline:
         j = np.minimum(np.arange(n_samples) // self.N + 1, c.shape[0] - 1)
         return c[j]
 
+    @locked
     def process(self, x, rest=None, *, progress=None) -> np.ndarray:
         """Filter ``x`` after resting every axis at ``rest``.
 

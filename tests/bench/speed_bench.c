@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* Per-sample cost of every filter next to the plain recursion of the same filter, measured in
- * one run: contenders interleaved round by round, CPU time, median over the rounds.
+ * one run: contenders interleaved round by round, CPU time, median over the rounds. A
+ * retunable stage (tunable.h) and a scheduled shaper (scheduled.h) next to the fixed stage.
  *
  * The plain references are the textbook realisations, in sms_real like the library:
  * - rectangular: running sum s += x[n] - x[n-N], y = s/N (drifts: its rounding never leaves);
@@ -237,10 +238,35 @@ typedef struct contender {
     void (*plain_run)(plain *, const sms_real *, sms_real *, size_t);
     void (*plain_step)(plain *, sms_real *);
     sms_stage *stage;
+    sms_tunable *tunable;              /* a retunable stage instead of stage */
+    const sms_stage_config *alt;       /* with alt: retuned to alt[0], alt[1], ... in turn as
+                                          soon as each switch ends (always switching) */
+    sms_scheduled *scheduled;          /* a scheduled shaper, driven by `schedule` */
 } contender;
 
 /* 0: each contender filters a block in one call (process); 1: one call per sample (step). */
 static int per_sample;
+
+static double schedule[BLOCK];
+
+static unsigned next_alt;
+
+/* A tunable that keeps switching: filtered in pieces, retuned whenever its switch has ended. */
+static void run_switching(const contender *c, size_t n)
+{
+    size_t done = 0;
+    while (done < n) {
+        size_t m = n - done;
+        if (!sms_tunable_switching(c->tunable)) {
+            next_alt ^= 1u;
+            (void)sms_tunable_retune(c->tunable, &c->alt[next_alt]);
+        }
+        if (sms_tunable_switching(c->tunable) && c->tunable->fade < (uint64_t)m)
+            m = (size_t)c->tunable->fade;
+        sms_tunable_process(c->tunable, input + done, output + done, m);
+        done += m;
+    }
+}
 
 static void run(const contender *c, size_t n)
 {
@@ -254,6 +280,12 @@ static void run(const contender *c, size_t n)
                 c->plain_step(&plain_state, &x);
             output[i] = x;
         }
+    } else if (c->scheduled != NULL) {
+        sms_scheduled_process(c->scheduled, input, schedule, output, n);
+    } else if (c->tunable != NULL && c->alt != NULL) {
+        run_switching(c, n);
+    } else if (c->tunable != NULL) {
+        sms_tunable_process(c->tunable, input, output, n);
     } else if (c->stage != NULL) {
         sms_stage_process(c->stage, input, output, n);
     } else {
@@ -332,6 +364,7 @@ static void smoother_row(const char *path, sms_kind kind, double T, double sigma
     contender list[3];
     size_t n_c = 0, N;
     double r, cs;
+    memset(list, 0, sizeof list);
     c.T = T;
     c.sigma = sigma;
     c.timing = SMS_TIMING_PAPER;
@@ -380,6 +413,7 @@ static void direct_fir_row(const char *path, sms_kind kind, double T, double Ts,
     sms_stage_config c = sms_stage_config_default(kind);
     contender list[2];
     size_t i;
+    memset(list, 0, sizeof list);
     c.T = T;
     c.timing = SMS_TIMING_PAPER;
     if (!init_stage(&c, Ts))
@@ -404,6 +438,7 @@ static void notch_row(const char *path, double wn, double Ts, int rounds, int bl
     sms_stage_config c = sms_stage_config_default(SMS_NOTCH_TUSTIN);
     contender list[2];
     double t, a0, xi1, xi2;
+    memset(list, 0, sizeof list);
     c.wn = wn;
     c.zeta = 0.0;
     c.notch_pole_zeta = 0.7;
@@ -436,6 +471,7 @@ static void shaper_row(const char *path, sms_kind kind, double wn, double zeta, 
     sms_stage_config c = sms_stage_config_default(kind);
     contender list[2];
     size_t L, i;
+    memset(list, 0, sizeof list);
     c.wn = wn;
     c.zeta = zeta;
     if (!init_stage(&c, Ts))
@@ -458,6 +494,79 @@ static void shaper_row(const char *path, sms_kind kind, double wn, double zeta, 
     list[1].plain_run = plain_sparse_fir;
     list[1].plain_step = plain_sparse_fir_step;
     measure_both(path, list, 2, rounds, blocks);
+}
+
+static sms_tunable tunable;
+static sms_memory_cell tunable_memory[2 * MAX_RING];
+
+/* A fixed stage of config a, the same in a retunable stage (not switching), and a retunable
+ * stage switching between a and b all the time (each retune as soon as the previous switch
+ * has ended: its design, the zeroing of its delay line and both filters running). */
+static void tunable_row(const char *path, const sms_stage_config *ab, double Ts, int rounds,
+                        int blocks)
+{
+    static sms_tunable switching;
+    static sms_memory_cell switching_memory[2 * MAX_RING];
+    contender list[3];
+    size_t cells = 0;
+    memset(list, 0, sizeof list);
+    if (!init_stage(&ab[0], Ts) || sms_tunable_slot_cells(ab, 2, Ts, &cells) != SMS_OK
+        || sms_tunable_init(&tunable, &ab[0], Ts, cells, tunable_memory, 2 * MAX_RING) != SMS_OK
+        || sms_tunable_init(&switching, &ab[0], Ts, cells, switching_memory, 2 * MAX_RING)
+               != SMS_OK) {
+        printf("tunable init failed\n");
+        return;
+    }
+    list[0].name = "fixed";
+    list[0].stage = &stage;
+    list[1].name = "tunable";
+    list[1].tunable = &tunable;
+    list[2].name = "tunable, switching";
+    list[2].tunable = &switching;
+    list[2].alt = ab;
+    measure(path, list, 3, rounds, blocks);
+}
+
+/* A fixed ZVD at the table's middle mode, and the scheduled ZVD over a 9-point table from
+ * 0.8 to 1.2 of that mode, its schedule sweeping the table (every sample, and every 16). */
+static void scheduled_row(const char *path, double wn, double zeta, double Ts, int rounds,
+                          int blocks)
+{
+    static sms_scheduled every1, every16;
+    static sms_real ring1[MAX_RING], ring16[MAX_RING];
+    sms_schedule_point points[9];
+    sms_scheduled_config sc;
+    sms_stage_config c = sms_stage_config_default(SMS_SHAPER_ZVD);
+    contender list[3];
+    size_t i;
+    memset(list, 0, sizeof list);
+    for (i = 0; i < 9; ++i) {
+        points[i].value = (double)i;
+        points[i].wn = wn * (0.8 + 0.05 * (double)i);
+        points[i].zeta = zeta;
+    }
+    for (i = 0; i < BLOCK; ++i)
+        schedule[i] = 4.0 + 4.0 * sin(2.0 * PI * (double)i / (double)BLOCK);
+    sc.kind = SMS_SHAPER_ZVD;
+    sc.order = 2;
+    sc.points = points;
+    sc.n_points = 9;
+    sc.update_every = 1;
+    c.wn = wn;
+    c.zeta = zeta;
+    if (!init_stage(&c, Ts) || sms_scheduled_init(&every1, &sc, Ts, ring1, MAX_RING) != SMS_OK) {
+        printf("scheduled init failed\n");
+        return;
+    }
+    sc.update_every = 16;
+    (void)sms_scheduled_init(&every16, &sc, Ts, ring16, MAX_RING);
+    list[0].name = "fixed";
+    list[0].stage = &stage;
+    list[1].name = "scheduled, every sample";
+    list[1].scheduled = &every1;
+    list[2].name = "scheduled, every 16";
+    list[2].scheduled = &every16;
+    measure(path, list, 3, rounds, blocks);
 }
 
 static sms_real generator_table[1 << 16];
@@ -548,6 +657,22 @@ int main(int argc, char **argv)
     shaper_row("ZV shaper", SMS_SHAPER_ZV, wn, zeta, Ts, rounds, blocks);
     shaper_row("ZVD shaper", SMS_SHAPER_ZVD, wn, zeta, Ts, rounds, blocks);
     shaper_row("EI shaper", SMS_SHAPER_EI, wn, zeta, Ts, rounds, blocks);
+    {
+        sms_stage_config ab[2];
+        ab[0] = sms_stage_config_default(SMS_SHAPER_ZVD);
+        ab[0].wn = wn;
+        ab[0].zeta = zeta;
+        ab[1] = ab[0];
+        ab[1].wn = 0.8 * wn;
+        tunable_row("ZVD shaper, retunable", ab, Ts, rounds, blocks);
+        ab[0] = sms_stage_config_default(SMS_RECTANGULAR);
+        ab[0].T = T;
+        ab[0].timing = SMS_TIMING_PAPER;
+        ab[1] = ab[0];
+        ab[1].T = 0.8 * T;
+        tunable_row("rectangular, retunable", ab, Ts, rounds, blocks);
+    }
+    scheduled_row("ZVD shaper, scheduled", wn, zeta, Ts, rounds, blocks);
     generator_row(rounds);
     design_rows(rounds);
     return 0;

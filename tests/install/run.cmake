@@ -123,6 +123,16 @@ elseif(MODE STREQUAL "pkgconfig")
       -pedantic -Wshadow -Wstrict-prototypes -Wmissing-prototypes ${sanitize_flags}
       -DCONSUMER_EXPECT_REAL_SIZE=${real_size} ${consumer_source}/main.c ${flag_list} -o ${exe})
     run_consumer("pkg-config consumer ${package}" ${exe} ${libdir})
+    if(SHARED AND NOT WIN32 AND NOT APPLE)
+      # The README's way without LD_LIBRARY_PATH: the library directory as the run path.
+      execute_process(COMMAND ${PKG_CONFIG_EXECUTABLE} --variable=libdir ${package}
+        OUTPUT_VARIABLE pc_libdir OUTPUT_STRIP_TRAILING_WHITESPACE)
+      run_checked("pkg-config build ${package} with rpath" ${C_COMPILER} -std=c99
+        ${sanitize_flags} -DCONSUMER_EXPECT_REAL_SIZE=${real_size} ${consumer_source}/main.c
+        ${flag_list} -Wl,-rpath,${pc_libdir} -o ${exe}_rpath)
+      run_checked("pkg-config consumer ${package} with rpath" ${CMAKE_COMMAND} -E env
+        --unset=LD_LIBRARY_PATH ${exe}_rpath)
+    endif()
   endforeach()
 else()
   message(FATAL_ERROR "MODE must be cmake or pkgconfig, not '${MODE}'")

@@ -299,9 +299,12 @@ def test_public_calls_check_their_arguments_once():
         assert {k: counts[k] for k in once} == once, counts
     assert _check_calls(lambda: sms.for_mode("damped_harmonic", wn=100.0, zeta=0.1)
                         )["Stage.__post_init__"] == 0
-    limits = dict(vmax=[1.0, 2.0], amax=10.0, jmax=[100.0, 300.0])
-    assert _check_calls(lambda: sms.multi_axis.phase_duration([0.1, 0.2], **limits)
+    limits = dict(vmax=np.array([1.0, 2.0]), amax=10.0, jmax=np.array([100.0, 300.0]))
+    assert _check_calls(lambda: sms.multi_axis.phase_duration(np.array([0.1, 0.2]), **limits)
                         )["real_array"] == 4         # delta and each limit, once
+    plain = dict(vmax=[1.0, 2.0], amax=10.0, jmax=[100.0, 300.0])     # checked in C
+    assert _check_calls(lambda: sms.multi_axis.phase_duration([0.1, 0.2], **plain)
+                        )["real_array"] == 0
     assert _check_calls(lambda: sms.trajectory.generator_reference(
         np.ones(5), vmax=1.0, amax=10.0, jmax=200.0, Ts=Ts, wn=100.0))["stage"] == 0
 

@@ -22,12 +22,17 @@ def test_quick_run_writes_every_table(tmp_path, capsys):
     text = out.read_text()
     for title in ("C per-sample cost against the plain realisation",
                   "C one call per sample (step) against the plain form called the same way",
+                  "C per-sample cost of stages that follow the machine, next to the fixed stage",
                   "C trajectory paths",
                   "Python call floor", "Python throughput", "Python peak memory",
-                  "Design cost of a chain"):
+                  "Design cost of a chain", "Kinematic design against ruckig",
+                  "Multi-axis duration against ruckig"):
         assert f"## {title}" in text
+    multi = text.split("## Multi-axis duration against ruckig")[1].split("\n## ")[0]
+    assert multi.count("| yes |") == 2, multi      # the same durations as ruckig
     for path in ("rectangular", "harmonic", "damped harmonic", "exponential", "notch",
-                 "ZV shaper", "generator step", "vmax reached", "oaconvolve"):
+                 "ZV shaper", "generator step", "vmax reached", "oaconvolve",
+                 "ZVD shaper, retunable", "rectangular, retunable", "ZVD shaper, scheduled"):
         assert f"| {path}" in text
     assert "| n/a" not in text.split("## Python call floor")[0]   # every C figure measured
     printed = capsys.readouterr().out

@@ -260,15 +260,6 @@ def test_lazy_subcommand_calls_run(monkeypatch, capsys, tmp_path, command, modul
     assert cli.main([command, "--out", "o"]) == cli.EXIT_ERROR
 
 
-def test_missing_optional_dependency_names_the_extra(monkeypatch, capsys, tmp_path):
-    monkeypatch.setitem(sys.modules, "scipy", None)
-    monkeypatch.setitem(sys.modules, "scipy.optimize", None)
-    code, _, err = run(capsys, "analyze", "--stage", "harmonic:wn=100", "--Ts", "1e-3",
-                       "--wn", "100", "--out", str(tmp_path), "--points", "20")
-    assert code == cli.EXIT_UNAVAILABLE, err
-    assert "smoothshaper[analysis]" in err and err.count("\n") == 1
-
-
 def test_python_dash_m_runs_the_cli_without_traceback():
     env = dict(os.environ)
     ok = subprocess.run([sys.executable, "-m", "smoothshaper", "design", "--kind", "zv",

@@ -451,9 +451,9 @@ def test_batch_broadcasts():
     (dict(h=[1.0, 2.0, 3.0], vmax=[1.0, -1.0, 1.0]), "vmax", r"vmax must be > 0, got -1\.0 \(row 1\)$"),
     (dict(h=[1.0, 0.0], vmax=1.0), "h", r"^h must be non-zero.* \(row 1\)$"),
     (dict(h=[[1.0, float("nan")]], vmax=1.0), "h", r"^h must be finite, got nan \(index \(0, 1\)\)$"),
-    (dict(h=[1.0, 1e300], vmax=1e-50, amax=1.0), "vmax", r"^h/vmax = .* \(row 1\)$"),
+    (dict(h=[1.0, 1e300], vmax=1e-50, amax=1.0), "vmax", r"^vmax=1e-50 with h=1e\+300: h/vmax = .* \(row 1\)$"),
     # all scalars: one problem, no "(index ())" suffix
-    (dict(h=1e308, vmax=1.0), "vmax", r"^h/vmax = .* closer together$"),
+    (dict(h=1e308, vmax=1.0), "vmax", r"^vmax=1\.0 with h=1e\+308: h/vmax = .* closer together$"),
     (dict(h=1.0, vmax=[1.0, 1.0], amax=[1.0, float("inf")]), "amax", r"^amax must be finite.*\(row 1\)$"),
     (dict(h=[1.0, 2.0], vmax=[1.0, 2.0, 3.0]), "vmax", r"^vmax: shape \(3,\) does not broadcast"),
     (dict(h=[True], vmax=1.0), "h", r"^h must hold numbers, got a boolean array"),

@@ -273,6 +273,16 @@ def test_phase_duration_over_the_whole_range(delta, v, a, j, T):
     assert phase_duration([1e300], vmax=1e-300, amax=1.0, jmax=1.0) == math.inf
 
 
+def test_phase_duration_beyond_a_double_is_refused():
+    """The public function names delta instead of returning inf (as the C library refuses
+    with SMS_ERR_TOO_LONG); the NumPy reference keeps inf."""
+    from smoothshaper.multi_axis import phase_duration
+    for delta, v in (([1e300], 1e-300), ([1e-6, -0.5e-6], 4.9e-324)):
+        with pytest.raises(ParameterError) as e:
+            phase_duration(delta, vmax=v, amax=1.0, jmax=1.0)
+        assert e.value.parameter == "delta" and "largest double" in str(e.value)
+
+
 def test_multi_axis_move_broadcasts_limits_and_refuses_huge_moves_at_once():
     from smoothshaper.multi_axis import multi_axis_move
     m = multi_axis_move([0.0, 0.0], [1.0, 1.0], vmax=1.0, amax=10.0, jmax=100.0, Ts=1e-3)

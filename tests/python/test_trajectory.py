@@ -441,7 +441,7 @@ def test_unrepresentable_move_is_dropped(profile):
 
 @pytest.mark.parametrize("kw, parameter, words", [
     (dict(vmax=1.0, amax=1e-30, jmax=1e-300), "jmax",
-     ["vmax=1.0, jmax=1e-300", "sqrt(vmax/jmax) = 1e+150 s", "4e+150 s", "2^50"]),
+     ["jmax=1e-300, vmax=1.0", "sqrt(vmax/jmax) = 1e+150 s", "4e+150 s", "2^50"]),
     (dict(vmax=1.0, amax=1e-30, jmax=1e-300, profile="trigonometric"), "jmax",
      ["sqrt(pi vmax/(2 jmax)) = 1.25331e+150 s"]),
     (dict(vmax=1e300, amax=1e100, jmax=1e5), "amax", ["vmax/amax = 1e+200 s"]),

@@ -14,6 +14,7 @@
 #define SMOOTHSHAPER_MULTI_GENERATOR_H
 
 #include "smoothshaper/chain.h"
+#include "smoothshaper/align.h"
 #include "smoothshaper/trajectory.h"
 
 #ifdef __cplusplus
@@ -55,6 +56,7 @@ typedef enum sms_sync {
  * | sync | an ::sms_sync |
  * | n_stages[i], i < n_axes | 0 (no filter) .. ::SMS_CHAIN_MAX_STAGES |
  * | stages[i] | n_stages[i] valid stage configs (config.h), or NULL when n_stages[i] = 0 |
+ * | align | 0 (off) or 1: pad every axis to the common lag (below) |
  *
  * Vibration stages: axis i filters each of its four outputs q, v, a, j through its own copy
  * of the chain stages[i][0 .. n_stages[i]) (the stages of sms_chain_init(), the same configs
@@ -62,6 +64,15 @@ typedef enum sms_sync {
  * move q(t) = p + s(t) d gives p + H(s) d: the same stages on every axis keep a straight move
  * straight (every axis is delayed and smoothed alike); different stages per axis bend it.
  * A zero-initialised config has no stages.
+ *
+ * Alignment (align = 1): each axis's chain delays a constant-speed motion by its lag D_i
+ * (align.h); different lags put the axes of a straight move at different points of it, so the
+ * path leaves the line at constant speed by about v |D_i - D_j| Ts. With align = 1 every
+ * axis's q, v, a, j also pass through a fractional delay (sms_delay) of D - D_i samples,
+ * D = max_i D_i (axes without stages: D), so every axis lags by exactly D: a straight
+ * constant-speed segment stays on the line to rounding (the different smoothing of the
+ * stages still bends the accelerations; docs/align.md has both). sms_multi_generator_lag()
+ * reports D.
  */
 typedef struct sms_multi_generator_config {
     size_t n_axes;
@@ -71,6 +82,7 @@ typedef struct sms_multi_generator_config {
     sms_sync sync;
     const sms_stage_config *stages[SMS_MULTI_MAX_AXES];
     size_t n_stages[SMS_MULTI_MAX_AXES];
+    int align;
 } sms_multi_generator_config;
 
 /** @brief One running move of a group of axes (all axes in phase mode, one in independent). */
@@ -167,6 +179,11 @@ typedef struct sms_multi_generator {
     /** vibration stages of axis i, signal m (n_stages 0: none), in caller memory */
     sms_chain chain[SMS_MULTI_MAX_AXES][SMS_MULTI_SIGNALS];
     double identity[SMS_MULTI_IDENTITY_COUNT]; /**< configuration and Ts it was built for */
+    int aligned;                        /**< config.align */
+    double axis_lag[SMS_MULTI_MAX_AXES]; /**< lag of axis i's chain [samples] (0: none) */
+    double lag;                         /**< the common lag D when aligned, else max axis_lag */
+    /** alignment delays of axis i, signal m (aligned only), rings in caller memory */
+    sms_delay delay[SMS_MULTI_MAX_AXES][SMS_MULTI_SIGNALS];
 } sms_multi_generator;
 
 /**
@@ -210,7 +227,8 @@ SMS_API sms_status sms_multi_generator_reach(const sms_multi_generator_config *c
  * @param Ts       sample period [s], finite and > 0
  * @param n_stage_structs receives the ::sms_stage count: 4 sum_i n_stages[i] (0: no stages)
  * @param n_cells  receives the ::sms_memory_cell count of the stages' instances, tap tables
- *                 and delay lines: 4 sum_i sms_chain_memory_size(stages[i])
+ *                 and delay lines: 4 sum_i sms_chain_memory_size(stages[i]), and with align
+ *                 the alignment delays' rings (4 (floor(D - D_i) + 2) reals per axis)
  * @param bad_axis if not NULL, receives the offending axis (else 0)
  * @return as sms_multi_generator_init(): the limits and every stage config are validated.
  */
@@ -263,6 +281,9 @@ SMS_API void sms_multi_generator_reset(sms_multi_generator *g, const sms_real *p
  */
 SMS_API void sms_multi_generator_step(sms_multi_generator *g, const sms_real *target,
                                       sms_real *out);
+/** @brief The lag of the output [s]: with align, the common lag D Ts of every axis; without,
+ * the largest axis's (each axis i lags by axis_lag[i] Ts). 0 without stages. O(1). */
+SMS_API double sms_multi_generator_lag(const sms_multi_generator *g);
 /** @brief n samples: targets[k n_axes + i] in, out[(k n_axes + i) 4 + m] out. */
 SMS_API void sms_multi_generator_process(sms_multi_generator *g, const sms_real *targets,
                                          size_t n, sms_real *out);
@@ -291,9 +312,18 @@ SMS_API uint64_t sms_multi_generator_hold(sms_multi_generator *g, const sms_real
 /**
  * @brief Time-optimal phase-synchronised rest-to-rest duration for a displacement vector:
  * the jerk-limited straight move under every axis's limits (continuous time, no grid).
- * @param delta  n_axes displacements (finite; all zero gives 0)
- * @param T      receives the duration [s]
- * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_ORDER, ::SMS_ERR_LIMIT (limits or delta).
+ * Computed from the move's time constants (the longest |d_i|/vmax_i, sqrt(|d_i|/amax_i),
+ * cbrt(|d_i|/jmax_i) of the axes), never from the unit limits vmax_i/|d_i|, ..., which over-
+ * or underflow for long or short moves: over 200,000 random sets of 3 axes with limits and
+ * displacements in [1e-300, 1e300] it is within 8.8e-16 (relative) of the closed form
+ * evaluated in extended precision.
+ * @param config  n_axes in 1 .. ::SMS_MULTI_MAX_AXES; vmax[i], amax[i], jmax[i] finite, > 0
+ *                (sync and the stages are not read)
+ * @param delta   n_axes displacements (finite; all zero gives 0)
+ * @param T       receives the duration [s]; untouched on error
+ * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_ORDER, ::SMS_ERR_LIMIT (limits or delta),
+ *         ::SMS_ERR_TOO_LONG (the duration exceeds the largest double, e.g. vmax = 4.9e-324
+ *         over 1e-6).
  */
 SMS_API sms_status sms_multi_phase_duration(const sms_multi_generator_config *config,
                                             const double *delta, double *T);
@@ -301,7 +331,9 @@ SMS_API sms_status sms_multi_phase_duration(const sms_multi_generator_config *co
 /** @brief Number of doubles sms_multi_generator_get_state() writes:
  * ::SMS_MULTI_IDENTITY_COUNT (the configuration identity) + 5 n_axes (target, goal, p, V, W)
  * + 12 per move (n_axes moves, or 1 in phase mode) + the stages' states (sms_chain_state_count()
- * of each chain: axis by axis, q, v, a, j; every stage state with its own stage identity). */
+ * of each chain: axis by axis, q, v, a, j; every stage state with its own stage identity)
+ * + with align, the alignment delays' states (sms_delay_state_count(), axis by axis, q, v, a,
+ * j). */
 SMS_API size_t sms_multi_generator_state_count(const sms_multi_generator *g);
 /** @brief Write the state (sms_multi_generator_state_count() doubles, layout above) to dst. */
 SMS_API void sms_multi_generator_get_state(const sms_multi_generator *g, double *dst);

@@ -55,7 +55,7 @@ typedef double sms_real;  /**< signal and state type (double build) */
  * names the offending argument. On any error the object passed in is left untouched.
  */
 typedef enum sms_status {
-    SMS_OK = 0,
+    SMS_OK = 0,                     /**< success */
     SMS_ERR_NULL = -1,              /**< a required pointer argument is NULL */
     SMS_ERR_SAMPLE_PERIOD = -2,     /**< Ts is NaN/Inf or <= 0 */
     SMS_ERR_DURATION = -3,          /**< T is NaN/Inf or <= 0 */
@@ -110,6 +110,8 @@ typedef enum sms_status {
     SMS_ERR_COEFFS = -44,           /**< precomputed coefficients (coeffs.h) that no design
                                          writes: a length, tap or delay out of range, a
                                          non-finite value */
+    SMS_ERR_RETUNE_BUSY = -45,      /**< a retune while the previous switch of the stage is
+                                         still in progress (tunable.h) */
     SMS_ERR_IMPULSE_AMPLITUDE = -50, /**< user-defined impulses: an amplitude is NaN/Inf, or
                                           they do not sum to > 0 */
     SMS_ERR_IMPULSE_TIME = -51      /**< user-defined impulses: a time is NaN/Inf or < 0, or

@@ -57,6 +57,8 @@ const char *sms_status_string(sms_status status)
     case SMS_ERR_COEFFS:
         return "precomputed coefficients out of range (a length, tap or delay no design gives, "
                "or a non-finite value)";
+    case SMS_ERR_RETUNE_BUSY:
+        return "stage is still switching from its previous retune (the old filter is fading out)";
     case SMS_ERR_IMPULSE_AMPLITUDE:
         return "impulse amplitudes must be finite and sum to > 0";
     case SMS_ERR_IMPULSE_TIME:

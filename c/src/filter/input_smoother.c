@@ -268,6 +268,13 @@ void sms_input_smoother_transfer(const sms_stage_config *c, double s_re, double 
     kernel_transfer(q, degree, T, s_re, s_im, h_re, h_im);
 }
 
+double sms_input_smoother_lag(const sms_stage_config *c, double Ts)
+{
+    double q[11], T;
+    unsigned degree = sms_input_smoother_kernel(c, q, &T);
+    return integral(q, degree, T, 0.0, T, 0.0, 1.0) / Ts;
+}
+
 int sms_input_smoother_taps(const sms_stage_config *c, double Ts, size_t length,
                             sms_shaper_tap *taps, double *dense)
 {

@@ -23,6 +23,10 @@ sms_status sms_input_smoother_length(const sms_stage_config *config, double Ts, 
 void sms_input_smoother_transfer(const sms_stage_config *config, double s_re, double s_im,
                                  double *h_re, double *h_im);
 
+/* The lag [samples] a validated config's taps have at Ts: int g(tau) tau dtau / Ts, the
+ * centroid the correction pins. */
+double sms_input_smoother_lag(const sms_stage_config *config, double Ts);
+
 /* Write the L taps (delays 0..L-1) into taps and/or dense (either may be NULL); 0 (nothing
  * written) if the correction is not a number. */
 int sms_input_smoother_taps(const sms_stage_config *config, double Ts, size_t length,

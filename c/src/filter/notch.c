@@ -203,6 +203,15 @@ static sms_real notch_sample(sms_real d0, sms_real d2, sms_real a1, sms_real a2,
 /* The state lives in locals for the whole block (the instance is read and written once). */
 void sms_notch_process(sms_notch *f, const sms_real *in, sms_real *out, size_t n)
 {
+#ifdef __OPTIMIZE_SIZE__
+    /* A size-optimised build (-Os, firmware) keeps one copy of the recursion: the step's,
+     * with the state in the instance; the same operations, so the same bits. */
+    size_t i;
+    for (i = 0; i < n; ++i) {
+        out[i] = in[i];
+        sms_notch_step(f, &out[i]);
+    }
+#else
     const sms_real d0 = f->d0, d2 = f->d2, a1 = f->a1, a2 = f->a2;
     sms_real x1 = f->x1, x2 = f->x2, w1 = f->w1, w2 = f->w2;
     size_t i;
@@ -212,6 +221,7 @@ void sms_notch_process(sms_notch *f, const sms_real *in, sms_real *out, size_t n
     f->x2 = x2;
     f->w1 = w1;
     f->w2 = w2;
+#endif
 }
 
 void sms_notch_step(sms_notch *f, sms_real *x)

@@ -720,3 +720,29 @@ sms_status sms_shaper_transfer(const sms_stage_config *config, double s_re, doub
     *h_im = im;
     return SMS_OK;
 }
+
+sms_status sms_shaper_lag(const sms_stage_config *config, double Ts, double *lag)
+{
+    sparse s;
+    double sum = 0.0, moment = 0.0;
+    size_t i;
+    sms_status st;
+    if (config != NULL && sms_is_input_smoother(config->kind)) {
+        /* no sparse design: the correction pins the taps' sum to 1 and their centroid to the
+         * kernel's, int g(tau) tau dtau / Ts (sms_input_smoother_taps) */
+        size_t length;
+        st = smoother_length(config, Ts, &length);
+        if (st == SMS_OK)
+            *lag = sms_input_smoother_lag(config, Ts);
+        return st;
+    }
+    st = build(config, Ts, &s);
+    if (st != SMS_OK)
+        return st;
+    for (i = 0; i < s.n; ++i) {
+        sum += s.gain[i];
+        moment += (double)s.delay[i] * s.gain[i];
+    }
+    *lag = moment / sum;
+    return SMS_OK;
+}

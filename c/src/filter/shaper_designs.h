@@ -29,4 +29,8 @@ size_t sms_shaper_design(const sms_stage_config *config, double *amp, double *ti
 sms_status sms_shaper_sizes(const sms_stage_config *config, double Ts, size_t *n_reals,
                             size_t *n_taps);
 
+/* The realised taps' centroid sum_k d_k g_k / sum_k g_k [samples] (lag.c); the config's status
+ * otherwise. */
+sms_status sms_shaper_lag(const sms_stage_config *config, double Ts, double *lag);
+
 #endif

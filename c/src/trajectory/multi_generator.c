@@ -149,6 +149,15 @@ static sms_status check_config(const sms_multi_generator_config *config, double 
     }
     if (bad_axis != NULL)
         *bad_axis = 0;
+    if (config->align != 0 && config->align != 1)
+        return SMS_ERR_KIND;
+    {
+        size_t align_cells;
+        sms_status st = sms_multi_align_cells(config, Ts, &align_cells);
+        if (st != SMS_OK)
+            return st;
+        *n_cells += align_cells;
+    }
     return SMS_OK;
 }
 
@@ -213,6 +222,7 @@ sms_status sms_multi_generator_init(sms_multi_generator *g,
         g->jmax[i] = i < n ? (sms_real)config->jmax[i] : 1;
     }
     sms_multi_identity_write(config, Ts, g->identity);
+    sms_multi_align_init(g, config, Ts, memory);   /* memory: past the stages' */
     sms_multi_generator_reset(g, NULL);
     return SMS_OK;
 }
@@ -242,24 +252,37 @@ void sms_multi_generator_reset(sms_multi_generator *g, const sms_real *position)
             sms_chain_reset(&g->chain[i][3], 0);
         }
     }
+    sms_multi_align_reset(g, position);
 }
-/* Time-optimal unit rest-to-rest move under path limits V, A, J (closed form). */
-static double unit_move_time(double V, double A, double J)
+/* A time constant below TIME_FLOOR of the largest is raised to it: its limit is then 2^100 times
+ * more than the move can use, which changes the duration far below a rounding, and every product
+ * below stays normal and finite. */
+#define TIME_FLOOR 7.8886090522101181e-31 /* 2^-100 */
+
+/* Time-optimal rest-to-rest duration of a unit move under the path limits V = 1/v, A = 1/a^2,
+ * J = 1/j^3 (closed form), written in the time constants v, a, j relative to the largest (in
+ * [TIME_FLOOR, 1]): the limits themselves over- or underflow for long or short moves. */
+static double unit_move_time(double v, double a, double j)
 {
-    double Tv = V * J >= A * A ? V / A + A / J : 2.0 * sqrt(V / J), c;
-    if (V * Tv < 1.0)
-        return 1.0 / V + Tv; /* reaches V: cruise 1/V - Tv */
-    /* peak velocity c below V: c T(c) = 1 */
-    c = 0.5 * (-A * A / J + sqrt(A * A * A * A / (J * J) + 4.0 * A));
-    if (c * J >= A * A)
-        return 2.0 * (c / A + A / J);
-    return 4.0 * cbrt(0.5 / J); /* c = J Tj^2, 2 J Tj^3 = 1, T = 4 Tj */
+    double a2 = a * a, j3 = j * j * j, q, r;
+    /* time to accelerate to V: reaching A (V J >= A^2) or not */
+    double Tv = a2 * a2 >= v * j3 ? a2 / v + j3 / a2 : 2.0 * sqrt(j3 / v);
+    if (Tv < v)
+        return v + Tv; /* reaches V (V Tv < 1): cruise 1/V - Tv */
+    /* peak velocity c = 1/r below V: c T(c) = 1, T(c) = c/A + A/J */
+    q = j3 / a2;
+    r = 0.5 * (q + sqrt(q * q + 4.0 * a2));
+    if (r * q <= a2)
+        return 2.0 * (a2 / r + q); /* reaches A (c J >= A^2) */
+    return 4.0 * cbrt(0.5) * j; /* c = J Tj^2, 2 J Tj^3 = 1, T = 4 Tj */
 }
 
 sms_status sms_multi_phase_duration(const sms_multi_generator_config *config,
                                     const double *delta, double *T)
 {
-    double V = HUGE_VAL, A = HUGE_VAL, J = HUGE_VAL;
+    /* the move's time constants: the longest |d|/vmax, sqrt(|d|/amax), cbrt(|d|/jmax) of
+     * the axes (each root taken apart, so a quotient that over- or underflows does not) */
+    double tv = 0.0, ta = 0.0, tj = 0.0, top, t;
     size_t i;
     if (config == NULL || delta == NULL || T == NULL)
         return SMS_ERR_NULL;
@@ -272,11 +295,22 @@ sms_status sms_multi_phase_duration(const sms_multi_generator_config *config,
             !(isfinite(config->jmax[i]) && config->jmax[i] > 0.0))
             return SMS_ERR_LIMIT;
         if (d > 0.0) {
-            V = fmin(V, config->vmax[i] / d);
-            A = fmin(A, config->amax[i] / d);
-            J = fmin(J, config->jmax[i] / d);
+            tv = fmax(tv, d / config->vmax[i]);
+            ta = fmax(ta, sqrt(d) / sqrt(config->amax[i]));
+            tj = fmax(tj, cbrt(d) / cbrt(config->jmax[i]));
         }
     }
-    *T = V == HUGE_VAL ? 0.0 : unit_move_time(V, A, J);
+    top = fmax(tv, fmax(ta, tj));
+    if (top == 0.0) {
+        *T = 0.0; /* no displacement: ta > 0 for any d > 0 */
+        return SMS_OK;
+    }
+    if (!isfinite(top))
+        return SMS_ERR_TOO_LONG; /* T >= max(tv, 2 ta, 3 tj) */
+    t = top * unit_move_time(fmax(tv / top, TIME_FLOOR), fmax(ta / top, TIME_FLOOR),
+                             fmax(tj / top, TIME_FLOOR));
+    if (!isfinite(t))
+        return SMS_ERR_TOO_LONG;
+    *T = t;
     return SMS_OK;
 }

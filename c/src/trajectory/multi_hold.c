@@ -107,6 +107,8 @@ uint64_t sms_multi_generator_hold(sms_multi_generator *g, const sms_real *target
             if (b > bound)
                 bound = b;
         }
+    /* the alignment delays after the stages: their settle length on top */
+    bound += (double)sms_multi_align_settle_length(g);
     if (bound == 0.0) {                   /* no stages: the profile alone */
         hold_profile(g, target, n, out);
         return n;
@@ -125,7 +127,9 @@ uint64_t sms_multi_generator_hold(sms_multi_generator *g, const sms_real *target
             for (i = 0; i < g->n_axes; ++i)
                 if (g->chain[i][0].n_stages > 0)
                     for (m = 0; m < SMS_MULTI_SIGNALS; ++m)
-                        (void)sms_chain_settle(&g->chain[i][m], scratch[4 * i + m], n - 1u);
+                        scratch[4 * i + m] = sms_chain_settle(&g->chain[i][m], scratch[4 * i + m],
+                                                              n - 1u);
+            sms_multi_align_settle(g, scratch, n - 1u);   /* under the stages' outputs */
             sms_multi_generator_step(g, target, out);
             return n;
         }
@@ -137,6 +141,7 @@ uint64_t sms_multi_generator_hold(sms_multi_generator *g, const sms_real *target
             if (g->chain[i][0].n_stages > 0)
                 for (m = 0; m < SMS_MULTI_SIGNALS; ++m)
                     sms_chain_advance(&g->chain[i][m], n - window);
+        sms_multi_align_advance(g, n - window);
         n = window;
     }
     /* in blocks: the profile's samples first, then each chain over the block (the profile
@@ -147,14 +152,15 @@ uint64_t sms_multi_generator_hold(sms_multi_generator *g, const sms_real *target
         for (k = 0; k < b; ++k)
             sms_multi_step_profile(g, target, prof[k]);
         for (i = 0; i < g->n_axes; ++i)
-            if (g->chain[i][0].n_stages > 0)
-                for (m = 0; m < SMS_MULTI_SIGNALS; ++m) {
-                    for (k = 0; k < b; ++k)
-                        x[k] = prof[k][4 * i + m];
+            for (m = 0; m < SMS_MULTI_SIGNALS; ++m) {
+                for (k = 0; k < b; ++k)
+                    x[k] = prof[k][4 * i + m];
+                if (g->chain[i][0].n_stages > 0)
                     sms_chain_process(&g->chain[i][m], x, x, b);
-                    for (k = 0; k < b; ++k)
-                        prof[k][4 * i + m] = x[k];
-                }
+                sms_multi_align_process(g, i, m, x, b);
+                for (k = 0; k < b; ++k)
+                    prof[k][4 * i + m] = x[k];
+            }
         for (i = 0; i < 4 * g->n_axes; ++i)
             out[i] = prof[b - 1][i];
         n -= b;

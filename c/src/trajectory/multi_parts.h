@@ -6,6 +6,7 @@
  *   multi_step.c       one sample: follow, blend into a new target, evaluate; then the stages
  *   multi_hold.c       n samples under a held target at a cost bounded whatever n
  *   multi_state.c      the configuration identity and the state vector
+ *   multi_align.c      the common lag and the delays that pad every axis to it (align)
  * All in sms_real without libm on the per-sample path (roots by Newton), so a float build
  * stays single precision. */
 #ifndef SMS_MULTI_PARTS_H
@@ -37,6 +38,31 @@ int sms_multi_plan(sms_multi_generator *g, size_t first, const sms_multi_group *
 
 /* One sample of the profile alone (the targets, the moves, out), without the stages. */
 void sms_multi_step_profile(sms_multi_generator *g, const sms_real *target, sms_real *out);
+
+/* Alignment (multi_align.c; every function does nothing when the generator is not aligned):
+ * each axis's chain lag and their maximum from a config; the cells of the delays' rings;
+ * building them after the stages' memory; rebinding to a copy's memory past its stages;
+ * reset (q at the position, v, a, j at 0); a block of one axis's signal; a sample of every
+ * axis's four signals in out; the longest settle length; the absorbed state under the four
+ * signals' constants x[4 i + m]; the phase advance; the state's count, writing, check and
+ * reading (the delays' states after the stages'). */
+sms_status sms_multi_align_lags(const sms_multi_generator_config *c, double Ts, double *axis_lag,
+                                double *common);
+sms_status sms_multi_align_cells(const sms_multi_generator_config *c, double Ts, size_t *cells);
+void sms_multi_align_init(sms_multi_generator *g, const sms_multi_generator_config *c,
+                          double Ts, sms_memory_cell *memory);
+void sms_multi_align_rebind(sms_multi_generator *g, sms_memory_cell *memory);
+void sms_multi_align_reset(sms_multi_generator *g, const sms_real *position);
+void sms_multi_align_process(sms_multi_generator *g, size_t axis, size_t signal, sms_real *x,
+                             size_t n);
+void sms_multi_align_step(sms_multi_generator *g, sms_real *out);
+uint64_t sms_multi_align_settle_length(const sms_multi_generator *g);
+void sms_multi_align_settle(sms_multi_generator *g, const sms_real *x, uint64_t n);
+void sms_multi_align_advance(sms_multi_generator *g, uint64_t n);
+size_t sms_multi_align_state_count(const sms_multi_generator *g);
+void sms_multi_align_get_state(const sms_multi_generator *g, double *dst);
+sms_status sms_multi_align_check_state(const sms_multi_generator *g, const double *src);
+void sms_multi_align_set_state(sms_multi_generator *g, const double *src);
 
 /* The configuration identity a saved state starts with (SMS_MULTI_IDENTITY_COUNT doubles). */
 void sms_multi_identity_write(const sms_multi_generator_config *c, double Ts,

@@ -66,7 +66,7 @@ static size_t stages_state_count(const sms_multi_generator *g)
 size_t sms_multi_generator_state_count(const sms_multi_generator *g)
 {
     return SMS_MULTI_IDENTITY_COUNT + AXIS_FIELDS * g->n_axes + MOVE_FIELDS * move_count(g)
-           + stages_state_count(g);
+           + stages_state_count(g) + sms_multi_align_state_count(g);
 }
 
 void sms_multi_generator_get_state(const sms_multi_generator *g, double *dst)
@@ -105,6 +105,7 @@ void sms_multi_generator_get_state(const sms_multi_generator *g, double *dst)
             dst += sms_chain_state_count(&g->chain[i][s]);
         }
     }
+    sms_multi_align_get_state(g, dst);
 }
 
 /* Would every stage of every chain accept its part of src (n doubles)? Writes nothing. A stage
@@ -178,8 +179,11 @@ sms_status sms_multi_generator_check_state(const sms_multi_generator *g, const d
             (f[10] != 0.0 && f[10] != 1.0) || (f[11] != 0.0 && f[11] != 1.0))
             return SMS_ERR_STATE;
     }
-    return check_stages_state(g, mv + MOVE_FIELDS * move_count(g),
-                              n - AXIS_FIELDS * na - MOVE_FIELDS * move_count(g));
+    mv += MOVE_FIELDS * move_count(g);
+    st = check_stages_state(g, mv, stages_state_count(g));
+    if (st != SMS_OK)
+        return st;
+    return sms_multi_align_check_state(g, mv + stages_state_count(g));
 }
 
 sms_status sms_multi_generator_set_state(sms_multi_generator *g, const double *src, size_t n)
@@ -225,6 +229,7 @@ sms_status sms_multi_generator_set_state(sms_multi_generator *g, const double *s
             mv += count;
         }
     }
+    sms_multi_align_set_state(g, mv);
     return SMS_OK;
 }
 
@@ -241,5 +246,6 @@ void sms_multi_generator_rebind(sms_multi_generator *g, sms_stage *stages,
             stages += c->n_stages;
             memory += c->memory_len;
         }
+    sms_multi_align_rebind(g, memory);
 }
 

@@ -230,6 +230,7 @@ void sms_multi_generator_step(sms_multi_generator *g, const sms_real *target, sm
             for (m = 0; m < SMS_MULTI_SIGNALS; ++m)
                 sms_chain_step(&g->chain[i][m], &out[4 * i + m]);
         }
+    sms_multi_align_step(g, out);
 }
 
 void sms_multi_generator_process(sms_multi_generator *g, const sms_real *targets, size_t n,

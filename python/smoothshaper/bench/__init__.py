@@ -8,7 +8,7 @@
 * ``python -m smoothshaper.bench.grid_price``: what designing a kinematic chain on the sample
   grid costs, in samples (docs/sampled-limits.md).
 """
-from .suite import (C_ROWS, C_STEP_ROWS, ROOT, SPEED_BENCH, Table, __all__,  # noqa: F401
+from .suite import (C_ROWS, C_STEP_ROWS, FOLLOW_ROWS, ROOT, SPEED_BENCH, Table, __all__,  # noqa: F401
                     c_tables, fmu_table, interleaved, kinematic_call_table, kinematic_parts,
                     main, memory_tables, python_tables, run_c_bench, trajectory_table,
                     UNION_STAGE_BYTES)

@@ -10,7 +10,8 @@ busy machine slows them alike:
 
 - C per-sample cost (``tests/bench/speed_bench.c`` compiled here against ``c/src`` at ``-O2``
   and ``-O3 -march=native``, double and float): each filter next to the plain recursion of the
-  same filter, a plain biquad, a sparse FIR with the same taps and a direct-form FIR;
+  same filter, a plain biquad, a sparse FIR with the same taps and a direct-form FIR; a
+  retunable stage next to the fixed one (between switches, and switching all the time);
   the online generator per sample; the kinematic design per regime.
 - Python: the :class:`~smoothshaper.filters.Chain` call floor, throughput against
   ``scipy.signal.lfilter`` (the plain recursion, and the FIR taps) and ``oaconvolve``, the peak
@@ -48,6 +49,7 @@ from pathlib import Path
 import numpy as np
 
 __all__ = ["ROOT", "SPEED_BENCH", "interleaved", "Table", "run_c_bench", "C_ROWS", "C_STEP_ROWS",
+           "FOLLOW_ROWS",
            "c_tables",
            "python_tables", "trajectory_table", "kinematic_call_table", "kinematic_parts",
            "fmu_table", "UNION_STAGE_BYTES", "memory_tables",
@@ -166,6 +168,14 @@ C_STEP_ROWS = [
 ]
 
 
+#: Rows of the retunable and scheduled stages: path, contenders (the first is the fixed stage).
+FOLLOW_ROWS = [
+    ("ZVD shaper, retunable", ["fixed", "tunable", "tunable, switching"]),
+    ("rectangular, retunable", ["fixed", "tunable", "tunable, switching"]),
+    ("ZVD shaper, scheduled", ["fixed", "scheduled, every sample", "scheduled, every 16"]),
+]
+
+
 def c_tables(quick: bool) -> tuple[list[Table], dict]:
     """The C tables, and the figures of every build {(flags, precision): figures}."""
     if _compiler() is None or not SPEED_BENCH.is_file():
@@ -210,6 +220,24 @@ def c_tables(quick: bool) -> tuple[list[Table], dict]:
             loop = figures.get(("speed", path, ref))
             cells += [f"{_fmt(mine)} ({_fmt(theirs)})", _ratio(mine, theirs), _ratio(mine, loop)]
         per_call.add(*cells)
+    follow = Table(
+        "C per-sample cost of stages that follow the machine, next to the fixed stage",
+        ["path", "contender"] + [f"{p} {f}: ns (ratio to fixed)" for f, p in results],
+        "ns per sample, the same configuration as the row above (ZVD for the 40 Hz mode; "
+        "rectangular N = 200, paper timing). tunable: a retunable stage (tunable.h) between "
+        "switches; switching: retuned (to 0.8 wn or 0.8 T and back) as soon as each switch "
+        "has ended, so always switching: the retune's design and delay-line zeroing and both "
+        "filters running. scheduled: the ZVD whose mode follows a schedule sweeping a 9-point "
+        "table (0.8 to 1.2 of the 40 Hz mode), its taps redesigned every sample or every 16. "
+        "The fixed path is the stage of the table above, unchanged.")
+    for path, contenders in FOLLOW_ROWS:
+        for contender in contenders:
+            cells = [path, contender]
+            for figures in results.values():
+                mine = figures.get(("speed", path, contender))
+                fixed = figures.get(("speed", path, "fixed"))
+                cells.append(f"{_fmt(mine)} ({_ratio(mine, fixed)})")
+            follow.add(*cells)
     traj = Table("C trajectory paths", ["path"] + [f"{p} {f}" for f, p in results],
                  "Generator: ns per sample while cruising (vmax 250, amax 5000, jmax 2e5, "
                  "Ts = 0.1 ms). Kinematic design: ns per design of a rest-to-rest move.")
@@ -218,7 +246,7 @@ def c_tables(quick: bool) -> tuple[list[Table], dict]:
     for regime in ("vmax reached", "amax reached, vmax not", "jmax only"):
         traj.add(f"kinematic design, {regime} [ns]",
                  *[r.get(("design", regime, "")) for r in results.values()])
-    return [per_sample, per_call, traj], results
+    return [per_sample, per_call, follow, traj], results
 
 
 # -- Python paths ---------------------------------------------------------------------------
@@ -315,7 +343,8 @@ def trajectory_table(quick: bool, c_figures: dict) -> list[Table]:
     try:
         import ruckig
     except ImportError:
-        print("\n(kinematic design against ruckig skipped: ruckig is not installed)")
+        print("\n(kinematic design against ruckig skipped: ruckig is not installed; "
+              "pip install 'smoothshaper[bench]')")
         return []
     from .. import design as kinematic_design
     from ..filters import _backend
@@ -358,7 +387,37 @@ def trajectory_table(quick: bool, c_figures: dict) -> list[Table]:
                   _ratio(in_c * 1e-9 if in_c else None, t["ruckig"]),
                   _ratio(t["sms"], t["ruckig"]), _ratio(t["python"], t["ruckig"]),
                   "yes" if same else "NO")
-    return [table]
+    return [table, _phase_duration_table(quick, ruckig)]
+
+
+def _phase_duration_table(quick: bool, ruckig) -> Table:
+    """multi_axis.phase_duration against ruckig's phase-synchronised calculate, same moves."""
+    from .. import multi_axis
+    table = Table("Multi-axis duration against ruckig",
+                  ["move", "multi_axis.phase_duration ns", "ruckig ns", "ratio", "same duration"],
+                  "A phase-synchronised rest-to-rest move of three axes with limits per axis. "
+                  "ruckig: Ruckig(3).calculate with Synchronization.Phase through its Python "
+                  "binding, objects prepared beforehand; smoothshaper: "
+                  "multi_axis.phase_duration with the lists as a user writes them (the "
+                  "checks and sms_multi_phase_duration in one C call).")
+    limits = dict(vmax=[0.5, 0.4, 0.2], amax=[5.0, 4.0, 2.0], jmax=[200.0, 150.0, 100.0])
+    cases = {"long move (cruise)": [0.3, 0.1, 0.05], "short move": [0.01, -0.004, 0.002]}
+    for move, delta in cases.items():
+        otg, inp, traj = ruckig.Ruckig(3), ruckig.InputParameter(3), ruckig.Trajectory(3)
+        inp.current_position, inp.target_position = [0.0] * 3, delta
+        inp.max_velocity, inp.max_acceleration = limits["vmax"], limits["amax"]
+        inp.max_jerk = limits["jmax"]
+        inp.synchronization = ruckig.Synchronization.Phase
+        duration = multi_axis.phase_duration
+        t = interleaved({
+            "sms": lambda: duration(delta, **limits),
+            "ruckig": lambda: otg.calculate(inp, traj),
+        }, rounds=3 if quick else 15, repeat=200 if quick else 5000)
+        T = duration(delta, **limits)
+        same = abs(T - traj.duration) <= 1e-9 * traj.duration
+        table.add(move, t["sms"] * 1e9, t["ruckig"] * 1e9, _ratio(t["sms"], t["ruckig"]),
+                  "yes" if same else "NO")
+    return table
 
 
 def kinematic_call_table(quick: bool) -> list[Table]:
@@ -456,7 +515,8 @@ def fmu_table(quick: bool, build_dir: Path) -> list[Table]:
         from fmpy import extract, read_model_description
         from fmpy.fmi2 import FMU2Slave
     except ImportError:
-        print("\n(FMU benchmark skipped: fmpy is not installed)")
+        print("\n(FMU benchmark skipped: fmpy is not installed; "
+              "pip install 'smoothshaper[validate]')")
         return []
     if shutil.which("cmake") is None:
         print("\n(FMU benchmark skipped: cmake is needed to build the FMUs)")

@@ -28,6 +28,8 @@ import time
 
 import numpy as np
 
+from .. import _optional
+
 __all__ = ["arrival_ratios", "profile_prices", "ruckig_phase", "phase_comparison", "main",
            "RUCKIG_RELAX"]
 
@@ -55,7 +57,7 @@ def arrival_ratios(n_cases: int, seed: int = 1, mid_motion: bool = True,
                    unrelaxed: list | None = None) -> np.ndarray:
     """Arrival / ruckig's optimum from the same state, one per case. ``unrelaxed``, if given,
     receives the same ratio against ruckig asked with vmax exactly (see RUCKIG_RELAX)."""
-    import ruckig
+    ruckig = _optional.require("ruckig", "the comparison with ruckig")
     from ..trajectory import Generator
     rng = np.random.default_rng(seed)
     out = []
@@ -99,7 +101,7 @@ def profile_prices(n_cases: int, seed: int = 3) -> dict[str, np.ndarray]:
       which lets the tuned stage shape the jerk instead of adding it after the plan (the
       price of the online structure; polynomial profile, wn with Tm from 0.3 to 3 times
       amax/jmax)."""
-    import ruckig
+    ruckig = _optional.require("ruckig", "the comparison with ruckig")
     from .. import design
     from ..trajectory import Generator
     rng = np.random.default_rng(seed)
@@ -135,7 +137,7 @@ def ruckig_phase(delta, vmax, amax, jmax, samples: int = 201) -> tuple[float, fl
     its duration [s] and its largest distance from the straight line over ``samples`` instants,
     relative to the largest displacement (0 when ruckig found a phase-synchronised move; when
     it did not, it falls back to a curved time-synchronised one)."""
-    import ruckig
+    ruckig = _optional.require("ruckig", "the comparison with ruckig")
     d = np.asarray(delta, dtype=float)
     n = d.size
     inp = ruckig.InputParameter(n)
@@ -298,7 +300,7 @@ def main(argv=None) -> int:
             print(f"rest to rest, {key}: arrival / optimum ({r.size} cases, Ts <= T/500): "
                   f"min {r.min():.4f}  median {q[0]:.4f}  p99 {q[1]:.4f}  max {r.max():.4f}")
     except ImportError:
-        print("(arrival ratios skipped: ruckig is not installed; pip install '.[test]')")
+        print("(arrival ratios skipped: ruckig is not installed; pip install 'smoothshaper[bench]')")
 
     x = np.concatenate([np.full(n_samples // 4, v) for v in (1.0, -2.0, 0.5, 3.0)])
     for precision in ("double", "float"):
@@ -348,7 +350,8 @@ def main(argv=None) -> int:
                   f"max {r.max():.4f}; distance from the straight line / move: median "
                   f"{np.median(dev):.1e}  max {dev.max():.1e}")
     except ImportError:
-        print("(multi-axis comparison skipped: ruckig is not installed)")
+        print("(multi-axis comparison skipped: ruckig is not installed; "
+              "pip install 'smoothshaper[bench]')")
     print(_multi_replan_bench(args.quick))
     return 0
 

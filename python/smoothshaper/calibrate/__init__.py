@@ -8,7 +8,8 @@
 Steps (docs/calibrate.md): read and recognise the record (:mod:`.records`), estimate the
 spectrum (Welch) or fit the decay and identify every significant mode with its uncertainty
 (:mod:`.modes`), tune every candidate family to the modes and rank them (:mod:`.candidates`),
-then plots (:mod:`.plots`) and ready-to-use outputs (:mod:`.outputs`).
+then plots (:mod:`.plots`) and ready-to-use outputs (:mod:`.outputs`). A scheduled shaper's
+table from one record per point: :func:`.schedule.schedule_table`.
 """
 from __future__ import annotations
 
@@ -20,40 +21,75 @@ import numpy as np
 
 from .._checks import finite as _finite, positive as _positive, real_array as _real_array
 from ..errors import ParameterError
-from .candidates import (Candidate, Objective, Reference, evaluate, families,
-                         recommend, tune)
-from .modes import Mode, Spectrum, decay_modes, spectral_modes, welch
-from .records import KINDS, Record, RecordError, load
+from . import spectra
+from .candidates import Candidate, Reference, evaluate, families, recommend, tune
+from .modes import Mode, decay_modes
+from .objectives import ModalObjective, SpectralObjective
+from .records import AXIS_NAMES, KINDS, Record, RecordError, load
+from .spectra import Spectrum
+from .spectral_fit import fit_modes
 
 __all__ = ["run", "Calibration", "AxisResult", "Mode", "Candidate", "Reference", "RecordError",
-           "KINDS", "load"]
+           "KINDS", "RANKINGS", "load"]
+
+#: Which figure ranks the candidates: "auto" (the modal fit where it explains the spectrum,
+#: else the measured spectrum), "spectrum" or "modal" (the modal fit even where it does not).
+RANKINGS = ("auto", "spectrum", "modal")
 
 
 @dataclass
 class AxisResult:
-    """Everything found for one axis (one signal column) of one record.
+    """Everything found for one analysed axis of one record.
 
     Attributes
     ----------
     name : str
-        The column (``"x"``, ``"accel_y"``, ...; ``"file:column"`` with several files).
+        What was analysed: the test's axis (``"x"``, ``"y"``, ``"a"``/``"b"`` for CoreXY
+        belts) or ``"xyz"`` for the summed analysis of a record of unknown direction, a column
+        (``"x"``, ...), or a projection; ``"file:name"`` with several files.
     record : Record
         The parsed record it came from.
+    signal : str
+        How the analysed spectrum was formed (``"x+y+z"``, ``"x"``, ``"projection (0.71,
+        -0.71, 0)"``, ...).
     modes : list of Mode
-        The identified modes, lowest first, each with its frequency, damping and standard
-        deviations.
+        The identified modes, largest first, with standard deviations.
     band : (float, float)
-        Frequency band searched [Hz].
+        Frequency band analysed [Hz] (the user's ``band`` when given).
     resolution : float
         Frequency resolution of the spectrum [Hz].
     spectrum : Spectrum or None
-        What the modes were fitted on (None for free decays).
+        The analysed spectrum (None for free decays).
+    model : ndarray or None
+        The modal fit's PSD on the spectrum's bins (NaN outside the band).
+    misfit : float or None
+        The modal fit's goodness-of-fit statistic (the fraction of the measured vibration
+        energy it misplaces); the fit explains the spectrum when ``explains``.
+    explains : bool
+    ranked_by : str
+        ``"measured spectrum"`` or ``"modal fit"``: the figure the ranking used.
     candidates : list of Candidate
         Every tuned filter, least remaining vibration first.
     recommended : Candidate or None
         The best candidate within the limits (None if none meets them).
     fit_r2 : float or None
         Free decays: the fraction of the signal's variance the fit explains.
+    notes : list of str
+        What the analysis excluded, repaired or suspects (gaps, clipping, a sensor whose axes
+        do not match the printer's, modes at the end of the band).
+    firmware_axis : str
+        The firmware axis the recommendation is for (``"x"``, ``"y"``, ``"xy"`` for a
+        diagonal or unknown direction).
+    objectives : dict
+        The figures of merit the candidates were scored by (``"spectrum"``, and ``"modal"``
+        where the fit explains the spectrum or the modal ranking was asked for).
+    user_band : bool
+        Whether ``band`` is the user's (it then replaces the automatic band).
+    figure_spectrum : Spectrum or None
+        Raw records: the spectrum the spectral figure scores, at the established tool's
+        resolution (0.5 s windows); None when it is ``spectrum`` itself.
+    hull_hi : float or None
+        Top of the excited band [Hz] (the spectral figure's bins reach 1.5 times it).
     """
     name: str
     record: Record
@@ -64,16 +100,27 @@ class AxisResult:
     candidates: list[Candidate] = field(default_factory=list)
     recommended: Candidate | None = None
     fit_r2: float | None = None          # decays: variance explained
+    signal: str = ""
+    model: np.ndarray | None = None
+    misfit: float | None = None
+    explains: bool = False
+    ranked_by: str = ""
+    notes: list = field(default_factory=list)
+    firmware_axis: str = "x"
+    objectives: dict = field(default_factory=dict, repr=False)
+    user_band: bool = False
+    figure_spectrum: Spectrum | None = field(default=None, repr=False)
+    hull_hi: float | None = None
 
 
 @dataclass
 class Calibration:
-    """The result of :func:`run`: one :class:`AxisResult` per axis and the limits applied.
+    """The result of :func:`run`: one :class:`AxisResult` per analysed axis and the limits.
 
     Attributes
     ----------
     axes : list of AxisResult
-        The axes with a resonance.
+        The analysed axes.
     reference : Reference
         Sample period of the filters and the reference move.
     max_delay : float or None
@@ -82,70 +129,240 @@ class Calibration:
         Largest corner rounding allowed (length units of the reference move).
     skipped : list of str
         Axes without a resonance, and why.
+    firmware : str
+        The firmware whose shapers were the candidates (``"none"``: every family and chain of
+        the library).
     """
     axes: list[AxisResult]
     reference: Reference
     max_delay: float | None
     max_smoothing: float | None
     skipped: list[str] = field(default_factory=list)   # axes without a resonance, and why
+    firmware: str = "none"
 
 
-def _band(record: Record, band, spec: Spectrum | None) -> tuple[float, float]:
-    if record.kind in ("psd", "frf"):
-        lo_default, hi_default = float(record.f[1] if record.f[0] == 0 else record.f[0]), \
-            float(record.f[-1])
-        if record.kind == "psd":        # a resonance test's PSD: its excited part
-            lo_default, hi_default = excited_band(spec, lo_default, hi_default)
-    else:
-        df = float(spec.f[1] - spec.f[0])
-        lo_default, hi_default = excited_band(spec, 5 * df, 0.4 / record.Ts)
-    if band is None:
-        return lo_default, hi_default
-    lo, hi = band
-    return max(lo, lo_default), min(hi, hi_default)
+#: Lowest frequency an accelerometer test's band starts at [Hz] (below it a printer's test
+#: moves the toolhead slowly back and forth, which is no resonance).
+MIN_TEST_FREQ = 5.0
+
+
+def _running_median(x, w):
+    w = max(1, min(int(w), x.size) | 1)
+    if w == 1:
+        return x
+    pad = np.pad(x, w // 2, mode="edge")
+    return np.median(np.lib.stride_tricks.sliding_window_view(pad, w), axis=1)
 
 
 def excited_band(spec: Spectrum, lo: float, hi: float) -> tuple[float, float]:
-    """The part of [lo, hi] a resonance test excited: where the smoothed PSD stands 10 dB above
-    the noise floor (the median of the top fifth of the spectrum), shrunk by 15 % at each end,
-    so that the steep edges of a sweep's band are not taken for resonances."""
+    """The part of [lo, hi] a resonance test excited: the hull of the bins whose smoothed PSD
+    stands 10 dB above the quietest part of the spectrum (its 5th percentile); all of [lo, hi]
+    when nothing is quiet or too few bins stand out."""
     f, P = spec.f, spec.P
-    logP = np.log10(np.maximum(P, 1e-300))
-    kern = np.hanning(29)[1:-1]
-    smooth = np.convolve(logP, kern / kern.sum(), mode="same")
-    floor = float(np.median(logP[int(0.8 * f.size):]))
-    excited = np.flatnonzero((smooth > floor + 1.0) & (f >= lo) & (f <= hi))
-    if excited.size < 16:
+    inr = (f >= lo) & (f <= hi) & (f > 0)
+    if np.count_nonzero(inr) < 8:
         return lo, hi
-    return max(lo, f[excited[0]] * 1.15), min(hi, f[excited[-1]] / 1.15)
+    logP = np.log10(np.maximum(P, 1e-300))
+    smooth = _running_median(logP, 5)
+    floor = float(np.percentile(smooth[f > 0], 5))
+    excited = np.flatnonzero((smooth > floor + 1.0) & inr)
+    if excited.size < 8:
+        return lo, hi
+    return max(lo, float(f[excited[0]])), min(hi, float(f[excited[-1]]))
 
 
-def _columns(record: Record, axis: str) -> list[int]:
-    if axis == "all" or record.kind in ("decay", "frf"):
-        return list(range(record.signals.shape[1]))
-    if axis in record.names:
-        return [record.names.index(axis)]
-    raise RecordError(record.path, f"no axis {axis!r} (columns: {', '.join(record.names)})")
+def _parse_direction(axis: str):
+    parts = axis.split(",")
+    if len(parts) not in (2, 3):
+        return None
+    try:
+        v = np.array([float(p) for p in parts])
+    except ValueError:
+        return None
+    n = float(np.linalg.norm(v))
+    if not (np.all(np.isfinite(v)) and n > 0):
+        raise ParameterError("axis", f"axis: the direction {axis!r} must be finite and not 0")
+    return v / n
 
 
-def identify(record: Record, column: int, band=None) -> AxisResult:
-    """Modes of one column of a record."""
-    name = record.names[column]
-    if record.kind == "decay":
-        x = record.signals[:, column]
-        modes, r2 = decay_modes(x, record.Ts, path=record.path, column=name, band=band)
-        return AxisResult(name, record, modes, _band_decay(record, band),
-                          1.0 / (x.size * record.Ts), None, fit_r2=r2)
-    if record.kind == "raw":
-        spec = welch(record.signals[:, column], record.Ts)
+def _analyses(rec: Record, axis: str) -> list[tuple[str, str, object]]:
+    """(name, description of the signal, columns or direction) of each analysis of ``rec``."""
+    names = rec.names
+    if rec.kind in ("decay", "frf"):
+        return [(names[j], names[j], [j]) for j in range(len(names))]
+    label = rec.test_axis if rec.test_axis in ("x", "y", "z", "a", "b") else None
+    per_axis = [j for j, n in enumerate(names) if n in AXIS_NAMES]
+    d = _parse_direction(axis) if "," in axis else None
+    if d is not None:
+        if rec.kind != "raw":
+            raise RecordError(rec.path, f"--axis {axis}: a projection onto a direction needs a "
+                              "raw record (a PSD table holds no cross-spectra)")
+        return [(f"({', '.join(f'{v:.3g}' for v in d)})",
+                 "projection (" + ", ".join(f"{v:.3g}" for v in d) + ")", d)]
+    if axis in ("auto", "xyz"):
+        if rec.kind == "psd" and "xyz" in names:
+            return [(label or "xyz", "x+y+z (the table's psd_xyz)", [names.index("xyz")])]
+        cols = per_axis if len(per_axis) >= 2 else list(range(len(names)))
+        cols = [j for j in cols if names[j] != "xyz"] or cols
+        if len(cols) == 1:
+            return [(label or names[cols[0]], names[cols[0]], cols)]
+        return [(label or "xyz", "+".join(names[j] for j in cols), cols)]
+    if axis == "all":
+        cols = [j for j in range(len(names)) if names[j] != "xyz"]
+        return [(names[j], names[j], [j]) for j in cols]
+    if axis in names:
+        j = names.index(axis)
+        return [(axis, axis, [j])]
+    raise RecordError(rec.path, f"no axis {axis!r} (columns: {', '.join(names)}; or auto, "
+                      "xyz, all, or a direction such as 1,-1)")
+
+
+def _spectrum(rec: Record, cols) -> Spectrum:
+    if rec.kind == "raw":
+        if isinstance(cols, np.ndarray):
+            return spectra.record_spectrum(rec, None, direction=cols)
+        return spectra.record_spectrum(rec, cols)
+    P = rec.signals[:, cols].sum(axis=1)
+    if rec.kind == "frf":
+        P = P ** 2
+    df = np.diff(rec.f)
+    uniform = df.size > 0 and np.allclose(df, df[0], rtol=1e-3, atol=0.06)
+    # Klipper's tables are Welch estimates with a Kaiser window (beta 6): their kernel
+    kernel = spectra.kaiser_kernel() if (rec.kind == "psd" and uniform) else None
+    return Spectrum(rec.f, P, kernel, 4, None, 1.5 if kernel is not None else 1.0)
+
+
+def _firmware_axis(name: str, rec: Record) -> str:
+    if name in ("x", "y", "z"):
+        return name
+    return "xy"
+
+
+#: The established tool's test damping ratios: every spectral figure covers them.
+TEST_DAMPINGS = (0.075, 0.1, 0.15)
+
+
+def _zeta_nodes(f, modes, explains):
+    """(damping ratios of the spectral figure, relative half-width of each bin's mode): the
+    established tool's test dampings, and where the fit explains the spectrum the two main
+    modes' fitted damping +-3 sd."""
+    nodes = list(TEST_DAMPINGS)
+    if not modes:
+        return np.array(nodes), np.full(f.size, 0.08)
+    total = sum(m.weight for m in modes)
+    for m in sorted(modes, key=lambda m: -m.weight)[:2]:
+        if explains and m.weight >= 0.1 * total:
+            nodes += [m.zeta - 3 * m.zeta_std, m.zeta, m.zeta + 3 * m.zeta_std]
+    fm = np.array([m.f_hz for m in modes])
+    near = np.argmin(np.abs(np.log(np.maximum(f, 1e-9))[:, None] - np.log(fm)[None, :]), axis=1)
+    z = np.array([m.zeta for m in modes])[near]
+    return np.clip(np.array(nodes), 0.005, 0.6), np.clip(np.maximum(z, 0.02), 0.02, 0.5)
+
+
+def _energy_note(rec: Record, band) -> str | None:
+    """A note when the energy sits mostly on a column other than the test's direction."""
+    if rec.direction is None or rec.kind not in ("raw", "psd"):
+        return None
+    cols = [j for j, n in enumerate(rec.names) if n in AXIS_NAMES]
+    if len(cols) < 2:
+        return None
+    sub = Record(rec.path, rec.kind, [rec.names[j] for j in cols], t=rec.t, Ts=rec.Ts, f=rec.f,
+                 signals=rec.signals[:, cols], segments=rec.segments,
+                 grid_starts=rec.grid_starts)
+    share = spectra.energy_shares(sub, band)
+    d = np.array([abs(rec.direction[AXIS_NAMES.index(rec.names[j])]) for j in cols])
+    expected = float(share[d > 0.3].sum())
+    top = int(np.argmax(share))
+    if expected < 0.4 and d[top] < 0.3 and share[top] > 0.5:
+        return (f"{100 * share[top]:.0f} % of the vibration energy is on the "
+                f"{rec.names[cols[top]]} column during a {rec.test_axis} test: the sensor's "
+                "axes do not seem to match the printer's (check its axes_map); the summed "
+                "x+y+z analysis is unaffected")
+    return None
+
+
+def identify(rec: Record, name: str, signal: str, cols, band=None,
+             spread: float = 0.0) -> AxisResult:
+    """Spectrum, band, modal fit and notes of one analysis of a record."""
+    if rec.kind == "decay":
+        j = cols[0]
+        x = rec.signals[:, j]
+        modes, r2 = decay_modes(x, rec.Ts, path=rec.path, column=name, band=band)
+        res = AxisResult(name, rec, modes, _band_decay(rec, band), 1.0 / (x.size * rec.Ts), None,
+                         fit_r2=r2, signal=signal, explains=True)
+        res.firmware_axis = "x"
+        return res
+    spec = _spectrum(rec, cols)
+    f = spec.f
+    pos = f[f > 0]
+    if pos.size == 0 or not np.any(spec.P[f > 0] > 0):
+        raise RecordError(rec.path, f"the spectrum of {signal} is zero everywhere: no motion "
+                          "recorded", column=name)
+    full = (float(pos[0]), float(f[-1]))
+    hull_hi = None
+    if band is not None:
+        b = (max(band[0], full[0]), min(band[1], full[1]))
+        if not b[0] < b[1]:
+            raise RecordError(rec.path, f"--band {band[0]:g} {band[1]:g} Hz lies outside the "
+                              f"record's spectrum ({full[0]:.4g} to {full[1]:.4g} Hz)",
+                              column=name)
     else:
-        P = record.signals[:, column]
-        if record.kind == "frf":
-            P = P ** 2
-        spec = Spectrum(record.f, P)
-    b = _band(record, band, spec)
-    modes = spectral_modes(spec, b, path=record.path, column=name)
-    return AxisResult(name, record, modes, b, float(np.median(np.diff(spec.f))), spec)
+        lo = full[0]
+        if rec.kind in ("raw", "psd") and full[1] > 4 * MIN_TEST_FREQ:
+            lo = max(lo, MIN_TEST_FREQ)
+        hi = full[1] if rec.kind != "raw" else min(full[1], 0.45 / rec.Ts)
+        b = excited_band(spec, lo, hi)
+        hull_hi = b[1]
+        if rec.kind in ("raw", "psd") and b[1] / 1.15 > b[0] * 1.5:
+            # the steep end of a sweep is no resonance: the fit stops 15 % short of it (a mode
+            # there is marked); the spectral figure still reaches past it
+            b = (b[0], b[1] / 1.15)
+    inb = (f >= b[0]) & (f <= b[1]) & (f > 0)
+    if np.count_nonzero(inb) < 3:                # a band of one or two bins: widen to three
+        i = int(np.argmin(np.abs(f - 0.5 * (b[0] + b[1]))))
+        lo_i, hi_i = max(0, i - 1), min(f.size - 1, i + 1)
+        b = (float(f[max(lo_i, int(np.argmax(f > 0)))]), float(f[hi_i]))
+    res = AxisResult(name, rec, [], b, float(np.median(np.diff(f))) if f.size > 1 else 0.0, spec,
+                     signal=signal)
+    res.hull_hi = hull_hi if band is None else b[1]
+    res.notes = list(rec.notes)
+    res.user_band = band is not None
+    n = 1 << max(0, int(0.5 / rec.Ts - 1)).bit_length() if rec.kind == "raw" else 0
+    if n >= 64:
+        # the spectral figure at the established tool's resolution (segments of 0.5 s): a
+        # spectrum resolved finer than the modes move over a print rewards shapers too narrow
+        # (a record sampled too slowly for that keeps its own spectrum)
+        res.figure_spectrum = spectra.welch(
+            rec.signals[:, cols] if not isinstance(cols, np.ndarray) else
+            rec.signals[:, : cols.size] @ cols[: rec.signals.shape[1]], rec.Ts,
+            segments=rec.segments, starts=rec.grid_starts, nperseg=n)
+    fit = fit_modes(spec, b)
+    modes = []
+    if fit is not None:
+        res.model, res.misfit, res.explains = fit.model, fit.misfit, fit.explains
+        # the modes' weights on the spectrum the figures score: a resonance test's PSD divided
+        # by its excitation's growth with the frequency (spectra.normalize_to_excitation)
+        scale = rec.kind in ("raw", "psd") and not rec.marked
+        for d in fit.modes:
+            if scale:
+                d["weight"] = d["weight"] / (d["fn"] + 0.1)
+            sd = d["fn_sd"]
+            if spread:
+                sd = math.hypot(sd, spread * d["fn"])
+            modes.append(Mode(wn=2 * math.pi * d["fn"], zeta=d["zeta"], wn_std=2 * math.pi * sd,
+                              zeta_std=d["zeta_sd"], weight=d["weight"],
+                              weight_rsd=d["weight_rsd"], at_edge=d["at_edge"]))
+            if d["at_edge"]:
+                res.notes.append(f"the mode at {d['fn']:.4g} Hz lies within 3 half-power widths "
+                                 f"of the band's end ({b[0]:.4g} to {b[1]:.4g} Hz): its estimate "
+                                 "may be biased; a test over a wider range of frequencies "
+                                 "measures it better")
+    res.modes = modes
+    note = _energy_note(rec, b)
+    if note:
+        res.notes.append(note)
+    res.firmware_axis = _firmware_axis(name, rec)
+    return res
 
 
 def _band_decay(record, band):
@@ -153,21 +370,85 @@ def _band_decay(record, band):
     return (0.0, hi) if band is None else (max(0.0, band[0]), min(hi, band[1]))
 
 
+def _objectives(res: AxisResult, ranking: str):
+    """The spectral and (where the fit explains the spectrum, or ranking='modal') modal
+    objectives, and which ranks."""
+    if res.spectrum is None:                      # a free decay: modes only
+        modal = ModalObjective(res.modes)
+        spec = modal
+        spec_obj = _ModalAsSpectral(modal)
+        return {"spectrum": spec_obj, "modal": modal}, "modal"
+    fig = res.figure_spectrum if res.figure_spectrum is not None else res.spectrum
+    f = fig.f
+    # the figure's bins: the user's band, else everything up to 1.5 x the excited band's top
+    # (a twentieth of the peak is the figure's floor; the test's slow back-and-forth below
+    # 10 Hz is attenuated by the normalisation)
+    if res.user_band:
+        inb = (f >= res.band[0]) & (f <= res.band[1]) & (f > 0)
+    else:
+        inb = (f > 0) & (f <= 1.5 * (res.hull_hi or res.band[1]))
+        if res.record.kind not in ("raw", "psd"):
+            inb &= f >= res.band[0]
+    nodes, width = _zeta_nodes(f[inb], res.modes, res.explains)
+    P = fig.P[inb]
+    if res.record.kind in ("raw", "psd") and not res.record.marked:
+        P = spectra.normalize_to_excitation(f[inb], P)
+    if P.size < 3 or not float(np.max(P)) > 0.0:
+        raise RecordError(res.record.path, f"no vibration in the band {res.band[0]:.4g} to "
+                          f"{res.band[1]:.4g} Hz ({P.size} frequencies, none with power): "
+                          "nothing to score a filter against")
+    spec_obj = SpectralObjective(f[inb], P, nodes, width=width, group_hz=0.5)
+    modal = None
+    if res.modes and (res.explains or ranking == "modal"):
+        modal = ModalObjective(res.modes)
+    rank = "modal" if modal is not None and ranking in ("auto", "modal") else "spectrum"
+    unsure = ModalObjective(res.modes) if res.modes and modal is None else None
+    return {"spectrum": spec_obj, "modal": modal, "unsure": unsure}, rank
+
+
+class _ModalAsSpectral:
+    """A free decay has no spectrum: its 'measured spectrum' figure is the modal one."""
+
+    def __init__(self, modal):
+        self.m = modal
+        self.kind = "modal fit"
+        self.poles, self.box, self.nominal = modal.poles, modal.box, modal.nominal
+
+    def value(self, R2, L=0.0):
+        return self.m.value(R2, L)
+
+    def range(self, R2, L=0.0):
+        return self.m.range(R2, L)
+
+    def nominal_value(self, R2, L=0.0):
+        return self.m.nominal_value(R2, L)
+
+
+def _anchors(res: AxisResult, objs) -> list[float]:
+    """Natural frequencies [rad/s] to tune around: the modes by weight, else the largest bins
+    of the vibration content."""
+    if res.modes:
+        return [m.wn for m in res.modes]
+    spec = objs["spectrum"]
+    return [2 * math.pi * float(spec.f[int(np.argmax(spec.P))])]
+
+
 #: Most samples of Ts one period of the slowest mode may span (the filters' length, whose
 #: square the tuning costs: a 47 Hz mode at Ts = 3e-6 s, 7100 samples, tunes in about 20 s).
 MAX_PERIOD_SAMPLES = 1 << 14
 
 
-def run(paths, *, kind: str = "auto", axis: str = "all", band=None,
+def run(paths, *, kind: str = "auto", axis: str = "auto", band=None,
         reference: Reference | None = None, max_delay: float | None = None,
-        max_smoothing: float | None = None, spread: float = 0.0,
-        progress=None) -> Calibration:
-    """Identify the modes in every record and rank every candidate filter.
+        max_smoothing: float | None = None, spread: float = 0.0, firmware: str = "none",
+        ranking: str = "auto", progress=None) -> Calibration:
+    """Identify the resonances in every record and rank every candidate filter.
 
-    Modes come from Welch PSD estimates with least-squares modal fits (raw accelerometer
-    records, PSD tables, frequency responses) or from a least-squares fit of the whole free
-    decay; every filter family is then tuned to the modes and scored by its remaining
-    vibration over the modes' uncertainty (docs/calibrate.md).
+    Each analysed spectrum (a Welch estimate over the contiguous segments of a raw record, or a
+    PSD table's column) is fitted with every significant mode; every candidate (every family
+    and chain of the library, or a firmware's own shapers) is tuned and scored by what it
+    leaves of the measured vibration, over the spectrum itself and over the modal fit where
+    that fit explains the spectrum (docs/calibrate.md).
 
     Parameters
     ----------
@@ -176,10 +457,13 @@ def run(paths, *, kind: str = "auto", axis: str = "all", band=None,
     kind : {"auto", "raw", "decay", "psd", "frf"}, keyword-only
         Record kind (default ``"auto"``: from the header and the signal).
     axis : str, keyword-only
-        ``"x"``, ``"y"``, ``"z"`` (a column name) or ``"all"`` (default).
+        ``"auto"`` (default: the summed x+y+z analysis of an accelerometer record, named by
+        the test's axis when the file name tells it), ``"xyz"`` (the same), ``"all"`` (each
+        column on its own), a column name (``"x"``, ...), or a direction ``"1,-1"`` /
+        ``"1,1,0"`` (the projection of a raw record's acceleration onto it).
     band : (float, float) or None, keyword-only
-        Frequency band to search [Hz] (default: the part of the spectrum a resonance test
-        excited, the table's range for a frequency response).
+        Frequency band to analyse [Hz], replacing the automatic one (the part of the spectrum
+        the test excited).
     reference : Reference or None, keyword-only
         Sample period of the filters and the reference move (default ``Reference()``).
     max_delay : float or None, keyword-only
@@ -189,6 +473,12 @@ def run(paths, *, kind: str = "auto", axis: str = "all", band=None,
     spread : float, keyword-only
         Expected variation of the natural frequencies over the workspace as a fraction in
         [0, 0.5), added in quadrature to each fit's standard deviation (default 0).
+    firmware : {"none", "klipper", "marlin", "rrf", "prusa"}, keyword-only
+        Restrict the candidates to what that firmware runs, with its own definitions (default
+        ``"none"``: every family and chain of the library).
+    ranking : {"auto", "spectrum", "modal"}, keyword-only
+        The figure that ranks (default ``"auto"``: the modal fit where it explains the
+        spectrum, else the measured spectrum).
     progress : callable or None, keyword-only
         Called as ``progress(done, total)`` after each filter family is tuned.
 
@@ -203,8 +493,9 @@ def run(paths, *, kind: str = "auto", axis: str = "all", band=None,
         (a ValueError) naming the file, row or column and the reason the record cannot be
         used.
     ParameterError
-        Naming ``max_delay``, ``max_smoothing``, ``spread``, ``Ts`` or ``accel`` when out of
-        range, or ``Ts`` when a mode lies at or above the filters' Nyquist frequency.
+        Naming ``max_delay``, ``max_smoothing``, ``spread``, ``Ts``, ``accel``, ``axis``,
+        ``firmware`` or ``ranking`` when out of range, or ``Ts`` when a mode lies at or above
+        the filters' Nyquist frequency.
     """
     if reference is None:
         reference = Reference()
@@ -217,10 +508,6 @@ def run(paths, *, kind: str = "auto", axis: str = "all", band=None,
     spread = _finite("spread", spread)
     if not 0 <= spread < 0.5:
         raise ParameterError("spread", f"spread must be in [0, 0.5), got {spread!r}")
-    if not (math.isfinite(reference.Ts) and reference.Ts > 0):
-        raise ParameterError("Ts", f"Ts must be finite and > 0, got {reference.Ts!r}")
-    if not (math.isfinite(reference.accel) and reference.accel > 0):
-        raise ParameterError("accel", f"accel must be finite and > 0, got {reference.accel!r}")
     if isinstance(paths, (str, os.PathLike)):
         paths = [paths]            # one file (a str is not a sequence of file names)
     try:
@@ -231,8 +518,11 @@ def run(paths, *, kind: str = "auto", axis: str = "all", band=None,
     if not paths:
         raise ParameterError("paths", "paths must name at least one record")
     if not isinstance(axis, str):
-        raise ParameterError("axis", f"axis must be a column name or 'all', got "
-                             f"{type(axis).__name__}")
+        raise ParameterError("axis", f"axis must be a column name, auto, xyz, all or a "
+                             f"direction, got {type(axis).__name__}")
+    from .._checks import choice as _choice
+    firmware = _choice("firmware", firmware, ("none", "klipper", "marlin", "rrf", "prusa"))
+    ranking = _choice("ranking", ranking, RANKINGS)
     if band is not None:
         b = _real_array("band", band, ndim=1)
         if b.size != 2 or not (np.all(np.isfinite(b)) and b[0] < b[1] and b[1] > 0):
@@ -242,49 +532,50 @@ def run(paths, *, kind: str = "auto", axis: str = "all", band=None,
     records = [load(p, kind) for p in paths]
     axes, skipped = [], []
     for rec in records:
-        columns = _columns(rec, axis)
-        for j in columns:
+        plan = _analyses(rec, axis)
+        for name, signal, cols in plan:
             try:
-                res = identify(rec, j, band)
+                res = identify(rec, name, signal, cols, band, spread)
             except RecordError as exc:
-                # --axis all: an axis without a resonance (e.g. z of a horizontal test) is
-                # reported and skipped; a record with none at all is an error
-                if len(columns) == 1:
+                if len(plan) == 1:
                     raise
                 skipped.append(str(exc))
                 continue
-            if spread:
-                res.modes = [replace(m, wn_std=math.hypot(m.wn_std, spread * m.wn))
-                             for m in res.modes]
             if len(records) > 1:
                 res.name = f"{rec.path}:{res.name}"
             axes.append(res)
     if not axes:
-        raise RecordError(paths[0], "no axis shows a resonance: " + "; ".join(skipped))
-    work = sum(len(families(len(a.modes))) for a in axes)
-    done = 0
+        raise RecordError(paths[0], "no axis can be analysed: " + "; ".join(skipped))
+    plans = []
     for res in axes:
-        fast = [m for m in res.modes if m.wn < 0.95 * math.pi / reference.Ts]
-        if len(fast) < len(res.modes):
-            raise ParameterError("Ts", f"Ts = {reference.Ts:g} s: a mode at {res.modes[0].wn:.4g} rad/s "
-                             "is at or above the filters' Nyquist frequency; use a smaller --Ts")
-        # the filters span a few periods of the slowest mode, and scoring a filter costs the
-        # square of its length: refused here, before hours of tuning (a record read as the
+        objs, rank = _objectives(res, ranking)
+        res.objectives, res.ranked_by = objs, objs[rank].kind
+        anchors = _anchors(res, objs)
+        fams = families(len(res.modes) if res.modes else 1, firmware)
+        plans.append((res, objs, rank, anchors, fams))
+    work = sum(len(p[4]) for p in plans)
+    done = 0
+    for res, objs, rank, anchors, fams in plans:
+        fast = max(anchors)
+        if not fast < 0.95 * math.pi / reference.Ts:
+            raise ParameterError("Ts", f"Ts = {reference.Ts:g} s: a resonance at {fast:.4g} "
+                                 "rad/s is at or above the filters' Nyquist frequency; use a "
+                                 "smaller --Ts")
+        # the filters span a few periods of the slowest resonance, and scoring a filter costs
+        # the square of its length: refused here, before hours of tuning (a record read as the
         # wrong kind puts a "mode" at a fraction of a hertz)
-        slowest = min(m.wn for m in res.modes)
+        slowest = min(anchors)
         period = 2 * math.pi / (slowest * reference.Ts)
         if not period <= MAX_PERIOD_SAMPLES:
             raise ParameterError(
-                "Ts", f"Ts = {reference.Ts:g} s: the mode at {slowest:.4g} rad/s "
+                "Ts", f"Ts = {reference.Ts:g} s: the resonance at {slowest:.4g} rad/s "
                 f"({slowest / (2 * math.pi):.4g} Hz, axis {res.name}) lasts {period:.4g} samples "
                 f"a period, more than {MAX_PERIOD_SAMPLES}: tuning its filters would take hours; "
                 "use a larger --Ts, or check the record's kind and --band")
-        objective = Objective(res.modes, reference.Ts)
-        h0 = np.ones(1)
-        res.candidates.append(evaluate("none", [], h0, objective, reference, max_delay,
+        res.candidates.append(evaluate("none", [], objs, rank, reference, max_delay,
                                        max_smoothing))
-        for fam in families(len(res.modes)):
-            c = tune(fam, res.modes, objective, reference, max_delay, max_smoothing)
+        for fam in fams:
+            c = tune(fam, anchors, objs, rank, reference, max_delay, max_smoothing)
             if c is not None:
                 res.candidates.append(c)
             done += 1
@@ -292,4 +583,4 @@ def run(paths, *, kind: str = "auto", axis: str = "all", band=None,
                 progress(done, work)
         res.candidates.sort(key=lambda c: c.vibration)
         res.recommended = recommend(res.candidates)
-    return Calibration(axes, reference, max_delay, max_smoothing, skipped)
+    return Calibration(axes, reference, max_delay, max_smoothing, skipped, firmware)

@@ -1,18 +1,15 @@
 # SPDX-License-Identifier: Apache-2.0
-"""Candidate filters for a set of measured modes: tuning, figures of merit, recommendation.
+"""Candidate filters for a measured record: the registry of families, tuning, figures of merit,
+recommendation.
 
-Remaining vibration (docs/calibrate.md). A filter with taps h at sample period Ts leaves, of a
-mode with pole p = -zeta wn + j wn sqrt(1 - zeta^2), the fraction R(wn, zeta) = |sum_k h_k
-e^{-p k Ts}| of the vibration an unfiltered move excites (the percent residual vibration of
-Singer & Seering 1990, for the discrete filter). Over the identified modes, weighted by their
-share w_i of the measured vibration energy and averaged over each mode's uncertainty (Gauss-
-Hermite nodes over wn ~ N(wn_i, sd_wn) and zeta ~ N(zeta_i, sd_zeta)):
-
-    V = sqrt( sum_i w_i E[R(wn, zeta)^2] / sum_i w_i ).
-
-Each candidate's design frequency (and damping, and for the generalised MZV its duration) is
-tuned to minimise V (Nelder-Mead), subject to the delay and smoothing limits. The stated
-uncertainty of V is the range of the same sum with each mode anywhere in its +-3 sd box.
+Every family of the library (shapers, smoothers, their chains; one stage per mode for the
+multi-mode chains) and, with ``--firmware``, each firmware's own shapers (:mod:`.firmware`)
+comes from one registry (:func:`families`), so a new kind joins the ranking by registering
+itself. Each candidate's design frequency and damping (and the generalised MZV's duration) is
+tuned to minimise the ranking figure (:mod:`.objectives`) under the delay and smoothing limits:
+a coarse grid around the largest resonances, then Nelder-Mead from the best two points, on the
+continuous designs; the reported figures are those of the exact discrete filter at Ts (the
+firmware's shapers: their own impulses, as the firmware applies them).
 """
 from __future__ import annotations
 
@@ -22,25 +19,18 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..reference import impulse_response, shaper_impulses
+from ..stages import SHAPERS
 from ..reference.continuous import transfer_unchecked
 from ..stages import Stage, for_mode, shaper
-from .modes import Mode
 from .._checks import positive as _positive
+from .objectives import BOX, impulses_R2, stages_R2, taps_R2
 
-__all__ = ["FIRMWARE_NAMES", "BOX", "Reference", "Candidate", "chain_taps", "Objective",
-           "duration", "Family", "families", "continuity", "smoothing", "move_peaks", "class_name",
-           "tune", "evaluate", "recommend", "firmware_lines"]
+__all__ = ["BOX", "Reference", "Candidate", "chain_taps", "candidate_taps", "impulse_taps",
+           "duration", "Family", "register", "families", "continuity", "smoothing", "move_peaks",
+           "class_name", "tune", "evaluate", "recommend"]
 
 #: Stage families whose impulse response integrates a step once (+1) or twice (+2).
 _SMOOTHING_ORDER = {"rectangular": 1, "exponential": 1, "harmonic": 2, "damped_harmonic": 2}
-#: Shaper kinds 3-D printer firmware knows (Klipper [input_shaper] shaper_type names).
-FIRMWARE_NAMES = {"zv": "zv", "mzv": "mzv", "zvd": "zvd", "ei": "ei", "ei2": "2hump_ei",
-                  "ei3": "3hump_ei"}
-#: Half-width of the uncertainty box, in standard deviations, for the stated range.
-BOX = 3.0
-_GH_WN = np.polynomial.hermite_e.hermegauss(5)
-_GH_Z = np.polynomial.hermite_e.hermegauss(3)
-
 
 @dataclass
 class Reference:
@@ -73,6 +63,11 @@ class Candidate:
     continuity: str = ""
     meets: bool = True
     reasons: list[str] = field(default_factory=list)
+    vibration_spectrum: float = math.nan   # [%] over the measured spectrum
+    vibration_modal: float | None = None   # [%] over the modal fit (when it explains it)
+    ranked_by: str = ""
+    range_from: str = ""
+    firmware: object = None                # a firmware's shaper: (FirmwareShaper, freq, damping)
 
     def as_dict(self) -> dict:
         from dataclasses import asdict
@@ -84,7 +79,13 @@ class Candidate:
                 "peak_jerk": None if math.isinf(self.peak_jerk) else self.peak_jerk,
                 "jerk_bounded": not math.isinf(self.peak_jerk),
                 "continuity": self.continuity, "meets_limits": self.meets,
-                "limit_violations": self.reasons}
+                "limit_violations": self.reasons,
+                "vibration_spectrum": self.vibration_spectrum,
+                "vibration_modal": self.vibration_modal, "ranked_by": self.ranked_by,
+                "range_from": self.range_from,
+                "firmware_shaper": None if self.firmware is None else {
+                    "firmware": self.firmware[0].firmware, "name": self.firmware[0].name,
+                    "freq_hz": self.firmware[1], "damping": self.firmware[2]}}
 
 
 def chain_taps(stages: list[Stage], Ts: float) -> np.ndarray:
@@ -94,66 +95,26 @@ def chain_taps(stages: list[Stage], Ts: float) -> np.ndarray:
     return h
 
 
-class Objective:
-    """Remaining vibration of taps over the modes, nominal, band-averaged and +-3 sd range."""
+def candidate_taps(c, Ts: float) -> np.ndarray:
+    """Taps at Ts of a candidate: its chain, or its firmware shaper's impulses."""
+    if c.firmware is not None:
+        shaper, freq, damping = c.firmware
+        return impulse_taps(*shaper.impulses(freq, damping), Ts)
+    return chain_taps(c.stages, Ts) if c.stages else np.ones(1)
 
-    def __init__(self, modes: list[Mode], Ts: float):
-        self.Ts = Ts
-        w = np.array([m.weight for m in modes], dtype=float)
-        self.w = w / w.sum()
-        poles, gw, idx = [], [], []
-        box, box_idx = [], []
-        for i, m in enumerate(modes):
-            for xw, ww in zip(*_GH_WN):
-                for xz, wz in zip(*_GH_Z):
-                    wn = max(m.wn + xw * m.wn_std, 1e-9)
-                    z = min(max(m.zeta + xz * m.zeta_std, 0.0), 0.99)
-                    poles.append(_pole(wn, z))
-                    gw.append(ww * wz / (2 * math.pi))
-                    idx.append(i)
-            for wn in np.linspace(m.wn - BOX * m.wn_std, m.wn + BOX * m.wn_std, 9):
-                for z in (m.zeta - BOX * m.zeta_std, m.zeta, m.zeta + BOX * m.zeta_std):
-                    box.append(_pole(max(wn, 1e-9), min(max(z, 0.0), 0.99)))
-                    box_idx.append(i)
-        self.poles, self.gw, self.idx = np.array(poles), np.array(gw), np.array(idx)
-        self.box, self.box_idx = np.array(box), np.array(box_idx)
-        self.nominal = np.array([_pole(m.wn, m.zeta) for m in modes])
-        self.n = len(modes)
 
-    def _R2(self, h, poles):
-        k = np.flatnonzero(h)
-        if k.size * 4 < h.size:                  # sparse (shapers): the powers directly
-            z = np.exp(-np.outer(poles, k) * self.Ts)
-            return np.abs(z @ h[k]) ** 2
-        zinv = np.exp(-poles * self.Ts)          # dense (smoothers): powers by running product
-        z = np.empty((poles.size, h.size), dtype=complex)
-        z[:, 0] = 1.0
-        z[:, 1:] = zinv[:, None]
-        np.cumprod(z, axis=1, out=z)
-        return np.abs(z @ h) ** 2
-
-    def band_continuous(self, stages) -> float:
-        """``band`` for the continuous designs (the tuning loop: cheap, and within
-        O((wn Ts)^2) of the discrete filter, which the reported figures use)."""
-        H = np.ones(self.poles.size, dtype=complex)
-        for s in stages:
-            H *= transfer_unchecked(s, self.poles)    # valid stages, finite poles
-        per = np.bincount(self.idx, np.abs(H) ** 2 * self.gw, minlength=self.n)
-        return 100 * math.sqrt(float(self.w @ per))
-
-    def band(self, h) -> float:
-        R2 = self._R2(h, self.poles) * self.gw
-        per = np.bincount(self.idx, R2, minlength=self.n)
-        return 100 * math.sqrt(float(self.w @ per))
-
-    def nominal_value(self, h) -> float:
-        return 100 * math.sqrt(float(self.w @ self._R2(h, self.nominal)))
-
-    def range(self, h) -> tuple[float, float]:
-        R2 = self._R2(h, self.box)
-        lo = np.array([R2[self.box_idx == i].min() for i in range(self.n)])
-        hi = np.array([R2[self.box_idx == i].max() for i in range(self.n)])
-        return 100 * math.sqrt(float(self.w @ lo)), 100 * math.sqrt(float(self.w @ hi))
+def impulse_taps(A, t, Ts: float) -> np.ndarray:
+    """Taps at Ts of impulses (A, t [s]): each impulse split linearly between its two nearest
+    samples (for the figures of merit of a firmware's shaper, which the firmware applies in
+    continuous time)."""
+    A = np.asarray(A, dtype=float) / float(np.sum(A))
+    x = np.asarray(t, dtype=float) / Ts
+    k = np.floor(x).astype(int)
+    frac = x - k
+    h = np.zeros(int(k.max()) + 2)
+    np.add.at(h, k, A * (1 - frac))
+    np.add.at(h, k + 1, A * frac)
+    return np.trim_zeros(h, "b")
 
 
 _ZVN_ORDER = {"zv": lambda s: 1, "zvd": lambda s: 2, "zvdd": lambda s: 3,
@@ -184,11 +145,14 @@ def _pole(wn, zeta):
 
 @dataclass
 class Family:
-    """A candidate family: ``build(params)`` -> stages, params = per slot (wn, zeta) [+ extra]."""
+    """A candidate family: ``build(params)`` -> stages, params = per slot (wn, zeta) [+ extra].
+    A firmware's shaper has ``shaper`` (a :class:`.firmware.FirmwareShaper`) instead: its
+    impulses at (freq, damping) are the candidate."""
     name: str
     slots: int
-    build: object
+    build: object = None
     extra: tuple = ()          # (start, low, high) of extra parameters
+    shaper: object = None
 
 
 def _shaper(kind, **kw):
@@ -203,7 +167,7 @@ def _smoother(kind):
     return lambda p: [for_mode(kind, wn=p[0], zeta=p[1])]
 
 
-def families(n_modes: int) -> list[Family]:
+def _library_single() -> list[Family]:
     out = [Family(k, 1, _shaper(k)) for k in ("zv", "mzv", "zvd", "zvdd", "ei", "ei2", "ei3")]
     out.append(Family("zvn (n=4)", 1, _shaper("zvn", order=4)))
     out.append(Family("gmzv (n=4)", 1, _gmzv(4), extra=((1.0, 0.55, 1.45),)))
@@ -211,14 +175,50 @@ def families(n_modes: int) -> list[Family]:
     out += [Family(k, 1, _smoother(k)) for k in ("harmonic", "damped_harmonic", "exponential")]
     out.append(Family("rectangular*zv", 1, lambda p: [for_mode("rectangular", wn=p[0], zeta=p[1]),
                                                       shaper("zv", wn=p[0], zeta=p[1])]))
-    if n_modes >= 2:
-        for a, b in (("zv", "zv"), ("mzv", "mzv"), ("zvd", "zvd"), ("mzv", "zv"), ("ei", "ei")):
-            out.append(Family(f"{a}+{b}", 2, lambda p, a=a, b=b: [
-                shaper(a, wn=p[0], zeta=p[1]), shaper(b, wn=p[2], zeta=p[3])]))
+    return out
+
+
+def _library_chains() -> list[Family]:
+    return [Family(f"{a}+{b}", 2, lambda p, a=a, b=b: [shaper(a, wn=p[0], zeta=p[1]),
+                                                        shaper(b, wn=p[2], zeta=p[3])])
+            for a, b in (("zv", "zv"), ("mzv", "mzv"), ("zvd", "zvd"), ("mzv", "zv"), ("ei", "ei"))]
+
+
+#: The registry: (minimum number of resonances, factory of families). A new kind of filter
+#: joins every ranking by appending here (:func:`register`).
+_REGISTRY: list = [(1, _library_single), (2, _library_chains)]
+
+
+def register(factory, min_modes: int = 1) -> None:
+    """Add ``factory`` (a callable returning a list of :class:`Family`) to the candidates of
+    every record with at least ``min_modes`` resonances."""
+    _REGISTRY.append((min_modes, factory))
+
+
+def families(n_modes: int, firmware: str = "none") -> list[Family]:
+    """The candidate families for a record with ``n_modes`` resonances: every registered
+    family (``firmware="none"``), or the given firmware's own shapers."""
+    if firmware != "none":
+        from . import firmware as fw
+        return [Family(f"{s.firmware} {s.name}", 1, shaper=s) for s in fw.shapers(firmware)]
+    out = []
+    for need, factory in _REGISTRY:
+        if n_modes >= need:
+            out += factory()
     return out
 
 
 # ---------------------------------------------------------------- figures of merit
+
+def _convolve(a: np.ndarray, h: np.ndarray) -> np.ndarray:
+    """np.convolve(a, h), by FFT when both are long (the figures of merit convolve moves of
+    thousands of samples with filters of hundreds: a direct sum costs seconds)."""
+    if min(a.size, h.size) < 64:
+        return np.convolve(a, h)
+    n = a.size + h.size - 1
+    m = 1 << (n - 1).bit_length()
+    return np.fft.irfft(np.fft.rfft(a, m) * np.fft.rfft(h, m), m)[:n]
+
 
 def continuity(stages: list[Stage]) -> int:
     """Continuity class of a filtered step: -1 (position jumps), 0, 1, ..."""
@@ -234,14 +234,14 @@ def smoothing(h: np.ndarray, ref: Reference) -> float:
     t = (np.arange(-2 * L - 2, 2 * L + 2)) * Ts
     x = np.where(t < 0, vc * t - 0.5 * A * t * t, 0.0)
     y = np.where(t < 0, 0.0, vc * t + 0.5 * A * t * t)
-    xf = np.convolve(x, h)[: t.size]
-    yf = np.convolve(y, h)[: t.size]
+    xf = _convolve(x, h)[: t.size]
+    yf = _convolve(y, h)[: t.size]
     sl = slice(L, None)                     # past the start-up transient of the window
     d1 = np.hypot(np.maximum(xf[sl], 0.0), yf[sl])
     d2 = np.hypot(xf[sl], np.minimum(yf[sl], 0.0))
     dev90 = float(np.max(np.minimum(d1, d2)))
     r = -0.5 * A * t * t
-    rf = np.convolve(r, h)[: t.size]
+    rf = _convolve(r, h)[: t.size]
     dev180 = float(-np.max(rf[sl]))
     return max(dev90, dev180)
 
@@ -256,7 +256,7 @@ def move_peaks(h: np.ndarray, stages: list[Stage], ref: Reference) -> tuple[floa
     t = np.arange(n + h.size + 4) * Ts
     q = np.where(t < T, 0.5 * A * t * t,
                  np.where(t < 2 * T, ref.distance - 0.5 * A * (2 * T - t) ** 2, ref.distance))
-    qf = np.convolve(q, h)[: t.size]
+    qf = _convolve(q, h)[: t.size]
     acc = np.diff(qf, 2) / Ts ** 2
     peak_a = float(np.max(np.abs(acc)))
     if continuity(stages) + 2 < 2:
@@ -270,104 +270,217 @@ def class_name(k: int) -> str:
 
 # ---------------------------------------------------------------- tuning
 
-def tune(family: Family, modes: list[Mode], objective: Objective, ref: Reference,
+def _R2(objective_poles, stages=None, impulses=None, h=None, Ts=None):
+    if impulses is not None:
+        return impulses_R2(impulses[0], impulses[1], objective_poles)
+    if h is not None:
+        return taps_R2(h, Ts, objective_poles)
+    return stages_R2(stages, objective_poles)
+
+
+def tune(family: Family, anchors, objectives, rank: str, ref: Reference,
          max_delay: float | None, max_smoothing: float | None) -> Candidate | None:
-    """The family's design minimising the band-averaged remaining vibration within limits."""
+    """The family's design minimising the ranking figure within the limits.
+
+    ``anchors``: natural frequencies [rad/s] of the largest resonances, largest first;
+    ``objectives``: {"spectrum": SpectralObjective, "modal": ModalObjective or None};
+    ``rank``: which of them ranks."""
     from scipy.optimize import minimize
-    from ..filters import ParameterError
-    anchors = [modes[min(i, len(modes) - 1)] for i in range(family.slots)]
+    from ..errors import ParameterError
+    obj = objectives[rank]
+    slots = family.slots
+    anchors = [anchors[min(i, len(anchors) - 1)] for i in range(slots)]
     nyq = math.pi / ref.Ts
+    fw = family.shaper
+    if fw is not None:
+        zlo, zhi = fw.damping_range()
+        z_grid = sorted({min(max(z, zlo), zhi) for z in (zlo, 0.05, 0.1, 0.15, zhi)})
+        f_lo, f_hi = 2 * math.pi * fw.min_freq, 2 * math.pi * fw.max_freq
+    else:
+        zlo, zhi = 0.0, 0.6
+        z_grid = (0.02, 0.07, 0.12, 0.2)
+        f_lo, f_hi = 0.0, 0.95 * nyq
 
     def params(u):
         p = []
-        for i, m in enumerate(anchors):
-            p += [m.wn * math.exp(u[2 * i]), u[2 * i + 1]]
-        return p + list(u[2 * family.slots:])
+        for i, wn in enumerate(anchors):
+            p += [wn * math.exp(u[2 * i]), u[2 * i + 1]]
+        return p + list(u[2 * slots:])
 
-    def clip_penalty(u):
+    def penalty(u):
         pen = 0.0
-        for i in range(family.slots):
-            pen += max(0.0, abs(u[2 * i]) - 0.7) + max(0.0, -u[2 * i + 1]) \
-                + max(0.0, u[2 * i + 1] - 0.6)
+        for i in range(slots):
+            wn = anchors[i] * math.exp(u[2 * i])
+            pen += max(0.0, abs(u[2 * i]) - 1.2) + max(0.0, zlo - u[2 * i + 1]) \
+                + max(0.0, u[2 * i + 1] - zhi) + max(0.0, f_lo / wn - 1) + max(0.0, wn / f_hi - 1)
         for j, (_, lo, hi) in enumerate(family.extra):
-            v = u[2 * family.slots + j]
+            v = u[2 * slots + j]
             pen += max(0.0, lo - v) + max(0.0, v - hi)
         return pen
 
     cache = {}
 
     def design(u):
-        key = tuple(np.round(u, 12))
+        key = tuple(np.round(u, 10))
         if key not in cache:
             try:
                 p = params(u)
-                if any(p[2 * i] >= 0.95 * nyq for i in range(family.slots)):
-                    raise ValueError("above Nyquist")
-                stages = family.build(p)
-                cache[key] = (stages, duration(stages, ref.Ts))
-            except (ValueError, ParameterError):
+                if fw is not None:
+                    A, t = fw.impulses(p[0] / (2 * math.pi), p[1])
+                    cache[key] = (None, (np.asarray(A, float), np.asarray(t, float)),
+                                  float(t[-1]))
+                else:
+                    stages = family.build(p)
+                    cache[key] = (stages, None, duration(stages, ref.Ts))
+            except (ValueError, ParameterError, ZeroDivisionError, OverflowError):
                 cache[key] = None
         return cache[key]
 
     def cost(u):
-        pen = clip_penalty(u)
+        pen = penalty(u)
         if pen > 0:
             return 1e3 * (1 + pen)
         d = design(u)
         if d is None:
             return 1e3
-        stages, length = d
-        v = objective.band_continuous(stages)
+        stages, imp, length = d
+        v = obj.tuning_value(_R2(obj.poles, stages, imp), length)
+        if not math.isfinite(v):
+            return 1e3
         if max_delay is not None:
             excess = length / max_delay - 1
             if excess > 1e-9:               # any violation costs more than any V [%]
                 v += 1e3 * (1 + excess)
         if max_smoothing is not None:
-            excess = smoothing(chain_taps(stages, ref.Ts), ref) / max_smoothing - 1
+            h = chain_taps(stages, ref.Ts) if stages is not None else impulse_taps(*imp, ref.Ts)
+            excess = smoothing(h, ref) / max_smoothing - 1
             if excess > 0:
                 v += 1e3 * (1 + excess)
         return v
 
-    starts = []
-    base = []
-    for m in anchors:
-        base += [0.0, min(m.zeta, 0.5)]
-    base += [e[0] for e in family.extra]
-    starts.append(np.array(base))
-    if max_delay is not None:
-        # shorter designs (higher frequency) when the nominal one is too long: the one that
-        # just fits (the duration scales as 1/wn) and two others
-        d0 = design(np.array(base))
-        fit = math.log(d0[1] / max_delay) + 0.01 if d0 is not None and d0[1] > 0 else 0.0
-        for scale in sorted({min(max(fit, 0.0), 0.69), 0.3, 0.6}):
-            u = np.array(base)
-            for i in range(family.slots):
-                u[2 * i] = scale
-            starts.append(u)
+    extra0 = [e[0] for e in family.extra]
+    scored = []
+    if slots == 1:
+        ratios = np.geomspace(0.5, 2.0, 61)
+        base = design(np.array([0.0, z_grid[min(1, len(z_grid) - 1)]] + extra0))
+        if max_delay is not None and base is not None and base[2] > 0:
+            fit = base[2] / max_delay
+            ratios = np.r_[ratios, fit * np.array([1.002, 1.02, 1.08, 1.2])]
+        extras = [extra0]
+        if family.extra:            # the generalised MZV's duration: its start and two others
+            lo_e, hi_e = family.extra[0][1], family.extra[0][2]
+            extras += [[lo_e + 0.25 * (hi_e - lo_e)], [lo_e + 0.75 * (hi_e - lo_e)]]
+        for z in z_grid:
+            for ex in extras:
+                scored += _scan(design, obj, np.array([0.0, z] + ex), ratios, max_delay, cost,
+                                single=fw is not None or _is_single_shaper(design, z, ex))
+    else:
+        grid = [np.array([math.log(r1), z, math.log(r2), z] + extra0)
+                for r1 in (0.92, 1.0, 1.1) for r2 in (0.92, 1.0, 1.1) for z in z_grid[1:3]]
+        if max_delay is not None:
+            grid += [np.array([math.log(q), z, math.log(q), z] + extra0)
+                     for q in (1.2, 1.45, 1.75) for z in z_grid[1:3]]
+        scored = [(cost(u), tuple(u)) for u in grid]
+    scored.sort(key=lambda x: x[0])
+    starts = [np.array(u) for _, u in scored[:2]]
     best = None
     for u0 in starts:
-        simplex = [u0] + [u0 + np.eye(u0.size)[j] * (0.05 if j % 2 == 0 or j >= 2 * family.slots
-                                                   else 0.03) for j in range(u0.size)]
+        simplex = [u0] + [u0 + np.eye(u0.size)[j] * (0.02 if (j % 2 == 0 or j >= 2 * slots)
+                                                   else 0.02) for j in range(u0.size)]
         res = minimize(cost, u0, method="Nelder-Mead",
-                       options={"initial_simplex": np.array(simplex), "xatol": 1e-5,
-                                "fatol": 1e-4, "maxiter": 300 * u0.size})
+                       options={"initial_simplex": np.array(simplex), "xatol": 1e-4,
+                                "fatol": 1e-4, "maxiter": 30 * u0.size})
         if best is None or res.fun < best.fun:
             best = res
+    if best is None or best.fun >= 1e3:
+        return None
     d = design(best.x)
     if d is None:
         return None
-    stages = d[0]
-    h = chain_taps(stages, ref.Ts)
-    return evaluate(family.name, stages, h, objective, ref, max_delay, max_smoothing)
+    stages, imp, _ = d
+    if fw is not None:
+        p = params(best.x)
+        return evaluate(family.name, [], objectives, rank, ref, max_delay, max_smoothing,
+                        impulses=imp, firmware=(fw, p[0] / (2 * math.pi), p[1]))
+    return evaluate(family.name, stages, objectives, rank, ref, max_delay, max_smoothing)
 
 
-def evaluate(name: str, stages: list[Stage], h: np.ndarray, objective: Objective,
-             ref: Reference, max_delay: float | None, max_smoothing: float | None) -> Candidate:
-    c = Candidate(name, list(stages))
-    c.vibration = objective.band(h)
-    c.vibration_range = objective.range(h)
-    c.vibration_nominal = objective.nominal_value(h)
-    c.length = (h.size - 1) * ref.Ts
+def _is_single_shaper(design, z, extra0):
+    d = design(np.array([0.0, z] + extra0))
+    return d is not None and d[0] is not None and len(d[0]) == 1 and d[0][0].kind in SHAPERS
+
+
+def _scan(design, obj, u0, ratios, max_delay, cost, single):
+    """Costs of the design ``u0`` moved to each frequency ratio: for a single shaper (its
+    impulses scale as 1/f at a fixed damping, amplitudes unchanged) all at once, else one by
+    one. Returns [(cost, u)]."""
+    out = []
+    if not single:
+        for r in ratios[::4]:
+            u = u0.copy()
+            u[0] = math.log(r)
+            out.append((cost(u), tuple(u)))
+        return out
+    d = design(u0)
+    if d is None:
+        return out
+    stages, imp, length = d
+    if imp is None:
+        A, t = shaper_impulses(stages[0])
+    else:
+        A, t = imp
+    A = np.asarray(A, float) / float(np.sum(A))
+    tt = np.asarray(t, float)[None, :] / ratios[:, None]          # (n_r, m)
+    H = np.exp(-obj.poles[:, None, None] * tt[None, :, :]) @ A     # (n_poles, n_r)
+    R2 = np.abs(H) ** 2
+    for j, r in enumerate(ratios):
+        L = float(tt[j, -1]) if imp is not None else length / r
+        u = u0.copy()
+        u[0] = math.log(r)
+        v = obj.tuning_value(R2[:, j], L)
+        if max_delay is not None and L / max_delay - 1 > 1e-9:
+            v += 1e3 * (1 + L / max_delay - 1)
+        out.append((v, tuple(u)))
+    return out
+
+
+def evaluate(name: str, stages: list[Stage], objectives, rank: str, ref: Reference,
+             max_delay: float | None, max_smoothing: float | None, *, impulses=None,
+             firmware=None) -> Candidate:
+    """Every figure of one candidate: the library's ``stages`` as the exact discrete filter at
+    Ts, or a firmware's ``impulses`` (A, t) as the firmware applies them."""
+    c = Candidate(name, list(stages), firmware=firmware)
+    if impulses is not None:
+        h = impulse_taps(*impulses, ref.Ts)
+        c.length = float(impulses[1][-1])
+
+        def R2(p):
+            return _R2(p, impulses=impulses)
+    else:
+        h = chain_taps(stages, ref.Ts) if stages else np.ones(1)
+        c.length = (h.size - 1) * ref.Ts
+
+        def R2(p):
+            return _R2(p, h=h, Ts=ref.Ts)
+    spec, modal = objectives["spectrum"], objectives.get("modal")
+    L = c.length
+    c.vibration_spectrum = spec.value(R2(spec.poles), L)
+    if modal is not None:
+        c.vibration_modal = modal.value(R2(modal.poles), L)
+        c.vibration_range = modal.range(R2(modal.box), L)
+        c.vibration_nominal = modal.nominal_value(R2(modal.nominal), L)
+        c.range_from = modal.kind
+    else:
+        c.vibration_range = spec.range(R2(spec.box.ravel()), L)
+        c.vibration_nominal = spec.nominal_value(R2(spec.nominal), L)
+        c.range_from = spec.kind
+        unsure = objectives.get("unsure")
+        if unsure is not None:       # a fit that does not explain the spectrum: either may hold
+            lo, hi = unsure.range(R2(unsure.box), L)
+            c.vibration_range = (min(lo, c.vibration_range[0]), max(hi, c.vibration_range[1]))
+            c.range_from = "measured spectrum and modal fit"
+    c.vibration = c.vibration_modal if rank == "modal" else c.vibration_spectrum
+    c.ranked_by = objectives[rank].kind
     c.lag = float(np.dot(np.arange(h.size), h) / h.sum()) * ref.Ts
     c.smoothing = smoothing(h, ref)
     c.peak_accel, c.peak_jerk = move_peaks(h, stages, ref)
@@ -383,29 +496,9 @@ def evaluate(name: str, stages: list[Stage], h: np.ndarray, objective: Objective
 def recommend(candidates: list[Candidate]) -> Candidate | None:
     """Least remaining vibration among those within the limits; within 0.05 percentage points
     the shorter one."""
-    ok = [c for c in candidates if c.meets and c.stages]
+    ok = [c for c in candidates if c.meets and (c.stages or c.firmware is not None)]
     if not ok:
         return None
     best = min(c.vibration for c in ok)
     close = [c for c in ok if c.vibration <= best + 0.05]
     return min(close, key=lambda c: (c.length, c.vibration))
-
-
-def firmware_lines(c: Candidate, axis: str) -> list[str] | None:
-    """[input_shaper] lines for a single shaper 3-D printer firmware knows, else None."""
-    if len(c.stages) != 1:
-        return None
-    s = c.stages[0]
-    name = FIRMWARE_NAMES.get(s.kind)
-    if s.kind in ("ei", "ei2", "ei3") and abs(s.tolerance - 0.05) > 1e-12:
-        return None
-    if s.kind == "gmzv":
-        name = f"mzv(n={s.order}, t={s.duration:.6g})"
-    if name is None:
-        return None
-    lines = [f"shaper_type_{axis}: {name}", f"shaper_freq_{axis}: {s.wn / (2 * math.pi):.6g}",
-             f"damping_ratio_{axis}: {s.zeta:.6g}"]
-    if s.kind == "gmzv":
-        lines.insert(0, "# generalised MZV: understood by firmware with D. Butyugin's "
-                        "shaper_defs.py (e.g. Kalico); others take shaper_type mzv only")
-    return lines

@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: Apache-2.0
-"""Ready-to-use outputs of a calibration: table, JSON, C config, FMU start values, firmware lines.
+"""Ready-to-use outputs of a calibration: table, JSON, C config, FMU start values, firmware
+configuration.
 
 * ``recommended.stages``: dicts that ``smoothshaper.Stage(**d)`` accepts, so
   ``Chain([Stage(**d) for d in stages], Ts=...)`` builds the filter.
@@ -7,7 +8,8 @@
 * ``c_coeffs``: the chain's precomputed coefficients for ``sms_chain_init_coeffs`` (a firmware
   target builds it without designing it: no double arithmetic, no libm).
 * ``fmu_start_values``: ``fmpy.simulate_fmu(start_values=...)`` values for SmoothShaper.fmu.
-* ``input_shaper``: ``[input_shaper]`` lines when 3-D printer firmware knows the shaper.
+* ``firmware_config``: with ``--firmware``, the firmware's configuration for every analysed
+  axis (:func:`.firmware.config_text`), with the suggested maximum acceleration.
 """
 from __future__ import annotations
 
@@ -16,10 +18,10 @@ import os
 import math
 from dataclasses import asdict
 
-from .candidates import Candidate, firmware_lines
+from .candidates import Candidate
 
 __all__ = ["C_KIND", "c_config", "c_coeffs", "fmu_start_values", "axis_json", "to_json",
-           "write_json", "report_text"]
+           "write_json", "report_text", "firmware_picks", "firmware_config"]
 
 C_KIND = {"rectangular": "SMS_RECTANGULAR", "harmonic": "SMS_HARMONIC",
           "damped_harmonic": "SMS_DAMPED_HARMONIC", "exponential": "SMS_EXPONENTIAL",
@@ -83,6 +85,35 @@ def c_coeffs(c: Candidate, Ts: float, axis: str) -> str:
             + c_source(list(c.stages), Ts=Ts, name=f"coeffs_{axis}"))
 
 
+def firmware_picks(cal) -> dict:
+    """{axis: firmware.Pick} of every analysed axis (None shaper where nothing the firmware runs
+    meets the limits), keyed by the firmware's axis (``x``, ``y``, ``xy``) or, where two
+    analyses share one, by the analysis's name."""
+    from . import firmware as fw
+    picks, seen = {}, {}
+    for res in cal.axes:
+        seen[res.firmware_axis] = seen.get(res.firmware_axis, 0) + 1
+    for res in cal.axes:
+        key = res.firmware_axis if seen[res.firmware_axis] == 1 else res.name
+        c = res.recommended
+        if c is None or c.firmware is None:
+            picks[key] = fw.Pick(None, 1.0, 0.0, 0.0)
+            continue
+        shaper, freq, damping = c.firmware
+        A, t = shaper.impulses(freq, damping)
+        picks[key] = fw.Pick(shaper, freq, damping, fw.max_accel(A, t))
+    return picks
+
+
+def firmware_config(cal) -> str | None:
+    """The firmware's configuration text for every analysed axis, or None with
+    ``firmware="none"``."""
+    if cal.firmware == "none" or not cal.axes:
+        return None
+    from . import firmware as fw
+    return fw.config_text(cal.firmware, firmware_picks(cal))
+
+
 def fmu_start_values(c: Candidate, Ts: float) -> dict:
     from ..validation import start_values
     return start_values(c.stages, Ts=Ts)
@@ -90,23 +121,22 @@ def fmu_start_values(c: Candidate, Ts: float) -> dict:
 
 def axis_json(res, Ts: float) -> dict:
     out = {"axis": res.name, "file": res.record.path, "kind": res.record.kind,
-           "band_hz": list(res.band), "resolution_hz": res.resolution,
+           "signal": res.signal, "band_hz": list(res.band), "resolution_hz": res.resolution,
+           "modal_fit_misfit": res.misfit, "modal_fit_explains": res.explains,
+           "ranked_by": res.ranked_by, "notes": list(res.notes),
            "modes": [m.as_dict() for m in res.modes],
            "candidates": [c.as_dict() for c in res.candidates], "recommended": None}
     if res.record.kind == "raw":
         out["sample_period"] = res.record.Ts
         out["timestamp_jitter"] = res.record.jitter
+        out["excluded_fraction"] = res.record.excluded
     if res.fit_r2 is not None:
         out["decay_fit_r2"] = res.fit_r2
     c = res.recommended
     if c is not None:
-        out["recommended"] = {
-            "name": c.name, "stages": [asdict(s) for s in c.stages],
-            "vibration": c.vibration, "vibration_range": list(c.vibration_range),
-            "delay": {"length": c.length, "centroid": c.lag}, "smoothing": c.smoothing,
-            "c_config": c_config(c, Ts, _ident(res.name)),
-            "fmu_start_values": fmu_start_values(c, Ts),
-            "input_shaper": firmware_lines(c, _ident(res.name))}
+        out["recommended"] = dict(c.as_dict(), **{
+            "c_config": c_config(c, Ts, _ident(res.name)) if c.stages else None,
+            "fmu_start_values": fmu_start_values(c, Ts) if c.stages else None})
     return out
 
 
@@ -118,7 +148,8 @@ def to_json(cal) -> dict:
     ref = cal.reference
     doc = {"reference": asdict(ref), "max_delay": cal.max_delay,
            "max_smoothing": cal.max_smoothing,
-           "axes": [axis_json(a, ref.Ts) for a in cal.axes], "skipped": cal.skipped}
+           "axes": [axis_json(a, ref.Ts) for a in cal.axes], "skipped": cal.skipped,
+           "firmware": cal.firmware, "firmware_config": firmware_config(cal)}
     if len(doc["axes"]) == 1:        # one axis: its results at the top level too
         for key in ("modes", "candidates", "recommended"):
             doc[key] = doc["axes"][0][key]
@@ -150,8 +181,16 @@ def _fmt(v, spec=".3g"):
     return format(v, spec)
 
 
+def _candidate_design(c) -> str:
+    if c.firmware is not None:
+        shaper, freq, damping = c.firmware
+        return f"{shaper.firmware} {shaper.name} {freq:.4g} Hz damping {damping:.3g}"
+    return "; ".join(_design_text(s) for s in c.stages) or "-"
+
+
 def report_text(cal, top: int = 12) -> str:
-    """The stdout report: modes and the ranked candidates per axis."""
+    """The stdout report: what was analysed, the modes, notes and the ranked candidates per
+    axis, with both figures and which one ranked."""
     out = []
     ref = cal.reference
     for res in cal.axes:
@@ -161,24 +200,36 @@ def report_text(cal, top: int = 12) -> str:
             head += f", {rec.signals.shape[0]} samples at {1 / rec.Ts:.6g} Hz"
             if rec.resampled:
                 head += f", time stamps resampled (jitter {100 * rec.jitter:.2g} % of Ts)"
+        if res.signal and res.signal != res.name:
+            head += f"; analysed: {res.signal}"
         out.append(head + ")")
+        fit = ""
+        if res.fit_r2 is not None:
+            fit = f", decay fit explains {100 * res.fit_r2:.1f} %"
+        elif res.misfit is not None and res.modes:
+            fit = (f", modal fit misplaces {100 * min(res.misfit, 9.99):.3g} % of the vibration "
+                   f"({'explains' if res.explains else 'does not explain'} the spectrum)")
         out.append(f"band {res.band[0]:.4g} to {res.band[1]:.4g} Hz, resolution "
-                   f"{res.resolution:.4g} Hz" + (f", decay fit explains {100 * res.fit_r2:.1f} %"
-                                                  if res.fit_r2 is not None else ""))
-        out.append("modes (+- 1 standard deviation):")
+                   f"{res.resolution:.4g} Hz" + fit)
+        out.append("modes (+- 1 standard deviation):" if res.modes else
+                   "modes: no peak a modal fit confirms (the measured spectrum ranks)")
+        total = sum(x.weight for x in res.modes) or 1.0
         for i, m in enumerate(res.modes, 1):
             out.append(f"  {i}: {m.f_hz:.4g} Hz = {m.wn:.5g} +- {m.wn_std:.2g} rad/s, zeta "
-                       f"{m.zeta:.4g} +- {m.zeta_std:.2g}, share {100 * m.weight / sum(x.weight for x in res.modes):.0f} %")
+                       f"{m.zeta:.4g} +- {m.zeta_std:.2g}, share {100 * m.weight / total:.0f} %"
+                       + (" (end of band)" if m.at_edge else ""))
+        for note in res.notes:
+            out.append(f"note: {note}")
         rows = []
         for c in res.candidates[:top]:
             mark = "*" if c is res.recommended else (" " if c.meets else "x")
-            rows.append([mark + c.name, _fmt(c.vibration),
+            rows.append([mark + c.name, _fmt(c.vibration_spectrum), _fmt(c.vibration_modal),
                          f"{_fmt(c.vibration_range[0])} .. {_fmt(c.vibration_range[1])}",
                          _fmt(c.length, ".4g"), _fmt(c.lag, ".4g"), _fmt(c.smoothing),
                          _fmt(c.peak_accel), _fmt(c.peak_jerk), c.continuity,
-                         "; ".join(_design_text(s) for s in c.stages) or "-"])
-        head = ["candidate", "vibration %", "+-3 sd range %", "delay s", "lag s", "smoothing",
-                "peak acc", "peak jerk", "class", "design"]
+                         _candidate_design(c)])
+        head = ["candidate", "spectrum %", "modal %", "+-3 sd range %", "delay s", "lag s",
+                "smoothing", "peak acc", "peak jerk", "class", "design"]
         widths = [max(len(r[i]) for r in rows + [head]) for i in range(len(head))]
         out.append("  ".join(h.ljust(w) for h, w in zip(head, widths)).rstrip())
         out += ["  ".join(v.ljust(w) for v, w in zip(r, widths)).rstrip() for r in rows]
@@ -192,16 +243,18 @@ def report_text(cal, top: int = 12) -> str:
             out.append(f"no candidate meets {lim}: relax --max-delay / --max-smoothing")
         else:
             c = res.recommended
-            out.append(f"recommended ({lim}): {c.name}: {', '.join(_design_text(s) for s in c.stages)}"
-                       f"; remaining vibration {c.vibration:.3g} % (+-3 sd: "
-                       f"{c.vibration_range[0]:.3g} to {c.vibration_range[1]:.3g} %), delay "
-                       f"{c.length:.4g} s")
-            fw = firmware_lines(c, _ident(res.name))
-            if fw:
-                out.append("  [input_shaper]: " + "; ".join(fw))
-        out.append(f"(* recommended, x outside the limits; smoothing and peaks for a move at "
-                   f"{ref.accel:g}/s^2, corner velocity {ref.corner_velocity:g}/s, filters at "
-                   f"Ts = {ref.Ts:g} s)")
+            src = res.candidates[0].range_from if res.candidates else ""
+            out.append(f"recommended ({lim}; ranked by the {res.ranked_by}): {c.name}: "
+                       f"{_candidate_design(c)}; remaining vibration {c.vibration:.3g} % (+-3 sd: "
+                       f"{c.vibration_range[0]:.3g} to {c.vibration_range[1]:.3g} %, from the "
+                       f"{c.range_from or src}), delay {c.length:.4g} s")
+            if c.firmware is None and cal.firmware == "none":
+                out.append("  (a smoothshaper filter, for the C library and the FMUs; "
+                           "--firmware klipper|marlin|rrf|prusa ranks what that firmware runs)")
+        out.append(f"(* recommended, x outside the limits; spectrum %: what the filter leaves of "
+                   f"the measured PSD, modal %: of the fitted modes; smoothing and peaks for a "
+                   f"move at {ref.accel:g}/s^2, corner velocity {ref.corner_velocity:g}/s, "
+                   f"filters at Ts = {ref.Ts:g} s)")
         out.append("")
     for why in cal.skipped:
         out.append(f"skipped: {why}")

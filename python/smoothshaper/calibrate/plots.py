@@ -14,8 +14,9 @@ import os
 
 import numpy as np
 
+from .. import _optional
 from .._plotting import percent_axis
-from .candidates import BOX, chain_taps
+from .candidates import BOX, candidate_taps
 
 __all__ = ["COLORS", "write"]
 
@@ -39,16 +40,25 @@ def _spectrum(res):
 
 
 def _top(res, n):
-    top = [c for c in res.candidates if c.stages and c.meets][:n]
+    top = [c for c in res.candidates if (c.stages or c.firmware is not None) and c.meets][:n]
     if res.recommended is not None and res.recommended not in top:
         top = [res.recommended] + top[: n - 1]
     return top
 
 
+def _modes(res):
+    """The fitted modes, or (none confirmed) the spectrum's largest bin as one, zeta 0.1."""
+    if res.modes:
+        return res.modes
+    from .modes import Mode
+    f, P = res.spectrum.f, res.spectrum.P
+    inb = (f >= res.band[0]) & (f <= res.band[1]) & (f > 0)
+    fp = float(f[inb][np.argmax(P[inb])]) if inb.any() else float(np.mean(res.band))
+    return [Mode(wn=2 * math.pi * fp, zeta=0.1, wn_std=0.0, zeta_std=0.0)]
+
+
 def write(cal, out_dir: str) -> list[str]:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = _optional.pyplot("calibrate's figures (--out)")
     os.makedirs(out_dir, exist_ok=True)
     Ts = cal.reference.Ts
     n = len(cal.axes)
@@ -58,18 +68,19 @@ def write(cal, out_dir: str) -> list[str]:
     for ax, res in zip(axes[:, 0], cal.axes):
         f, P, label = _spectrum(res)
         lo, hi = res.band
-        m0 = res.modes[0]
-        show = (f >= max(lo, 0.2 * m0.f_hz) * 0.8) & (f <= min(hi, 3.0 * res.modes[-1].f_hz
+        modes = _modes(res)
+        m0 = modes[0]
+        show = (f >= max(lo, 0.2 * m0.f_hz) * 0.8) & (f <= min(hi, 3.0 * modes[-1].f_hz
                                                                  if len(res.modes) else hi))
         show &= f > 0
         ax.semilogy(f[show], P[show], color="black", lw=1.2, label=f"measured {label}")
         rec = res.recommended
         # the residual at each frequency for the damping of the nearest mode
-        fm = np.array([m.f_hz for m in res.modes])
+        fm = np.array([m.f_hz for m in modes])
         near = np.argmin(np.abs(np.log(np.maximum(f[show], 1e-9)[:, None] / fm)), axis=1)
-        zeta_for_curves = np.array([m.zeta for m in res.modes])[near]
+        zeta_for_curves = np.array([m.zeta for m in modes])[near]
         if rec is not None:
-            h = chain_taps(rec.stages, Ts)
+            h = candidate_taps(rec, Ts)
             R = _R(h, Ts, 2 * math.pi * f[show], zeta_for_curves)
             ax.semilogy(f[show], np.maximum(P[show] * R ** 2, 1e-300), color="tab:gray", lw=1.2,
                         ls="--", label=f"after {rec.name} ({rec.vibration:.2g} % remains)")
@@ -85,10 +96,11 @@ def write(cal, out_dir: str) -> list[str]:
         ax.grid(True, which="both", alpha=0.3)
         ax2 = ax.twinx()
         for c, col in zip(_top(res, 4), COLORS):
-            h = chain_taps(c.stages, Ts)
+            h = candidate_taps(c, Ts)
             R = _R(h, Ts, 2 * math.pi * f[show], zeta_for_curves)
-            design = " + ".join(f"{s.wn / (2 * math.pi):.3g} Hz = {s.wn:.4g} rad/s" if s.wn
-                                else f"T = {s.T:.3g} s" for s in c.stages)
+            design = (f"{c.firmware[1]:.3g} Hz" if c.firmware is not None else
+                      " + ".join(f"{s.wn / (2 * math.pi):.3g} Hz = {s.wn:.4g} rad/s" if s.wn
+                                 else f"T = {s.T:.3g} s" for s in c.stages))
             ax2.plot(f[show], 100 * R, color=col, lw=1.0,
                      label=f"{c.name} @ {design}: {c.vibration:.2g} %, {1e3 * c.length:.3g} ms")
         ax2.set_ylabel("residual vibration [%] (zeta of the nearest mode; log above 1 %)")
@@ -105,11 +117,11 @@ def write(cal, out_dir: str) -> list[str]:
 
     fig, axes = plt.subplots(n, 1, figsize=(11, 3.8 * n), squeeze=False)
     for ax, res in zip(axes[:, 0], cal.axes):
-        m = res.modes[0]
+        m = _modes(res)[0]
         half = max(4 * m.wn_std, 0.08 * m.wn)
         wn = np.linspace(m.wn - half, m.wn + half, 301)
         for c, col in zip(_top(res, 5), COLORS):
-            h = chain_taps(c.stages, Ts)
+            h = candidate_taps(c, Ts)
             ax.plot(wn / (2 * math.pi), 100 * _R(h, Ts, wn, m.zeta), color=col,
                     label=f"{c.name} ({1e3 * c.length:.3g} ms)")
         ax.axvspan((m.wn - BOX * m.wn_std) / (2 * math.pi), (m.wn + BOX * m.wn_std) / (2 * math.pi),

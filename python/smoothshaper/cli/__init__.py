@@ -37,15 +37,13 @@ from .common import (EXIT_ERROR, EXIT_UNAVAILABLE, EXIT_USAGE, CliError,  # noqa
 from .design import cmd_design
 from .identify import cmd_identify, first_two_peaks, read_record
 from .messages import option_for as _option_for, os_error as _os_error, readable as _readable
+from .. import _optional
 from ..errors import ParameterError
 
 __all__ = ["parse_stage", "stage_rows", "cmd_design", "cmd_analyze",
            "read_record", "first_two_peaks", "cmd_identify", "cmd_validate", "cmd_report",
            "build_parser", "main"]
 
-# Optional dependencies and the pyproject extra that installs each.
-_EXTRA_FOR_MODULE = {"scipy": "analysis", "matplotlib": "plot", "fmpy": "validate",
-                     "libcosimpy": "validate", "fmu_manipulation_toolbox": "validate"}
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -82,12 +80,10 @@ def main(argv: list[str] | None = None) -> int:
     except CliError as exc:
         code, message = exc.code, str(exc)
     except ModuleNotFoundError as exc:
-        extra = _EXTRA_FOR_MODULE.get((exc.name or "").split(".")[0])
-        if extra is None:
+        explained = _optional.explain(exc, "this command")
+        if explained is None:
             raise
-        code, message = EXIT_UNAVAILABLE, (
-            f"this command needs the Python package {exc.name.split('.')[0]!r}: "
-            f"pip install 'smoothshaper[{extra}]'")
+        code, message = EXIT_UNAVAILABLE, str(explained)
     except ParameterError as exc:
         if os.environ.get("SMOOTHSHAPER_DEBUG"):
             raise

@@ -1,14 +1,18 @@
 # SPDX-License-Identifier: Apache-2.0
 """``smoothshaper calibrate``: from measured records to a recommended filter.
 
-    smoothshaper calibrate FILE... [--kind auto|raw|decay|psd|frf] [--axis x|y|z|all]
-        [--band FMIN FMAX] [--max-delay S] [--max-smoothing D] [--accel A]
-        [--corner-velocity V] [--spread FRAC] [--Ts S] [--out DIR] [--json FILE]
+    smoothshaper calibrate FILE... [--kind auto|raw|decay|psd|frf] [--axis auto|xyz|all|x|y|z|DIR]
+        [--band FMIN FMAX] [--firmware none|klipper|marlin|rrf|prusa] [--ranking auto|spectrum|modal]
+        [--max-delay S] [--max-smoothing D] [--accel A] [--corner-velocity V] [--spread FRAC]
+        [--Ts S] [--out DIR] [--json FILE] [--schedule V1,V2,...]
 
 Prints the identified modes and the ranked candidates per axis; ``--out`` writes the two
-figures, ``config_<axis>.c``, ``fmu_start_values_<axis>.json`` (for
-``fmpy.simulate_fmu(start_values=...)``) and ``input_shaper.cfg`` when firmware knows the
-shaper; ``--json`` writes everything (docs/calibrate.md).
+figures, ``config_<axis>.c``, ``coeffs_<axis>.c`` (precomputed coefficients for
+``sms_chain_init_coeffs``), ``fmu_start_values_<axis>.json`` (for
+``fmpy.simulate_fmu(start_values=...)``) and, with ``--firmware``, the firmware's configuration
+for every analysed axis (``firmware_<name>.txt``); ``--json`` writes everything
+(docs/calibrate.md). ``--schedule`` (one value per record) prints the schedule table of a
+scheduled shaper instead (docs/scheduled.md).
 """
 from __future__ import annotations
 
@@ -33,10 +37,21 @@ def add_parser(sub) -> None:
     p.add_argument("files", nargs="+", metavar="FILE", help="CSV record(s)")
     p.add_argument("--kind", choices=("auto", "raw", "decay", "psd", "frf"), default="auto",
                    help="record kind (default auto: from the header and the signal)")
-    p.add_argument("--axis", default="all", help="x, y, z (a column name) or all (default)")
+    p.add_argument("--axis", default="auto",
+                   help="auto (default: the summed x+y+z analysis, named by the test's axis "
+                   "when the file name tells it), xyz (the same), all (each column on its own), "
+                   "x, y, z (one column), or a direction such as 1,-1 or 1,1,0 (the projection "
+                   "of a raw record's acceleration onto it)")
     p.add_argument("--band", nargs=2, type=float, metavar=("FMIN", "FMAX"),
-                   help="frequency band to search [Hz] (default: the part of the spectrum a "
-                   "resonance test excited, the table's range for a frequency response)")
+                   help="frequency band to analyse [Hz], replacing the automatic one (the part "
+                   "of the spectrum the test excited)")
+    p.add_argument("--firmware", choices=("none", "klipper", "marlin", "rrf", "prusa"),
+                   default="none", help="rank only the shapers this firmware runs, with its own "
+                   "definitions, and write its configuration (default none: every filter family "
+                   "and chain of the library, for the C library and the FMUs)")
+    p.add_argument("--ranking", choices=("auto", "spectrum", "modal"), default="auto",
+                   help="the figure that ranks: auto (default: the modal fit where it explains "
+                   "the spectrum, else the measured spectrum), spectrum or modal")
     p.add_argument("--max-delay", type=float, metavar="S",
                    help="longest filter impulse response allowed [s] (default: no limit)")
     p.add_argument("--max-smoothing", type=float, metavar="D",
@@ -55,6 +70,11 @@ def add_parser(sub) -> None:
                    help="sample period the filter will run at [s] (default 1e-4)")
     p.add_argument("--out", metavar="DIR", help="write figures and config files here")
     p.add_argument("--json", metavar="FILE", help="write all results as JSON")
+    p.add_argument("--schedule", metavar="V1,V2,...",
+                   help="one scheduling value per FILE (its position, load, ...): print the "
+                   "table (value, wn, zeta) of the dominant mode of --axis (default x) for a "
+                   "scheduled shaper instead of recommending a filter; with --out, write it "
+                   "as schedule.csv (docs/scheduled.md)")
     add_cost_options(p)
     p.set_defaults(func=cmd_calibrate)
 
@@ -92,13 +112,46 @@ def _check_options(args) -> None:
                        "--distance, raise --accel or use a larger --Ts")
 
 
+def _schedule_values(args) -> list:
+    try:
+        values = [float(v) for v in args.schedule.split(",")]
+    except ValueError:
+        raise CliError(f"--schedule must be numbers separated by commas, got "
+                       f"{args.schedule!r}") from None
+    if len(values) != len(args.files):
+        raise CliError(f"--schedule gives {len(values)} value(s) for {len(args.files)} FILE(s): "
+                       "one per record")
+    return values
+
+
+def cmd_schedule(args) -> int:
+    """--schedule: the table of the dominant mode per record."""
+    from ..calibrate import schedule
+    values = _schedule_values(args)
+    axis = "x" if args.axis == "all" else args.axis
+    table = schedule.schedule_table(args.files, values, axis=axis, kind=args.kind,
+                                    band=tuple(args.band) if args.band else None)
+    print(schedule.format_table(table), end="")
+    if args.out:
+        os.makedirs(args.out, exist_ok=True)
+        path = os.path.join(args.out, "schedule.csv")
+        with open(path, "w", encoding="utf-8") as f:
+            f.write("value,wn,zeta\n")
+            for value, wn, zeta in table:
+                f.write(f"{float(value)!r},{float(wn)!r},{float(zeta)!r}\n")
+        print(f"wrote {path}")
+    return 0
+
+
 def cmd_calibrate(args) -> int:
     from .. import calibrate
     from ..calibrate import outputs
     from .cost import record_cost, start as start_request
     _check_options(args)
+    if args.schedule is not None:
+        return cmd_schedule(args)
     nbytes = sum(os.path.getsize(f) for f in args.files if os.path.isfile(f))
-    # columns to tune: one with --axis x/y/z, up to three per file with --axis all
+    # analyses to tune: one per file, up to three with --axis all
     axes = len(args.files) * (3 if args.axis == "all" else 1)
     bar = start_request(record_cost("calibrate", nbytes=nbytes, axes=axes), args,
                         f"{len(args.files)} file(s), {nbytes} bytes")
@@ -118,7 +171,8 @@ def cmd_calibrate(args) -> int:
         cal = calibrate.run(args.files, kind=args.kind, axis=args.axis,
                             band=tuple(args.band) if args.band else None, reference=ref,
                             max_delay=args.max_delay, max_smoothing=args.max_smoothing,
-                            spread=args.spread, progress=progress)
+                            spread=args.spread, firmware=args.firmware, ranking=args.ranking,
+                            progress=progress)
     except (MemoryError, ValueError) as exc:
         if isinstance(exc, ValueError) and "Maximum allowed size" not in str(exc):
             raise            # numpy's refusal of an array too large to index
@@ -127,6 +181,10 @@ def cmd_calibrate(args) -> int:
     bar.finish()
     elapsed = time.process_time() - start
     print(outputs.report_text(cal), end="")
+    fw_text = outputs.firmware_config(cal)
+    if fw_text is not None:
+        print(f"{args.firmware} configuration:")
+        print(fw_text, end="")
     print(f"analysis: {elapsed:.2f} s of CPU time")
     if args.json:
         try:
@@ -138,10 +196,9 @@ def cmd_calibrate(args) -> int:
         from ..calibrate import plots
         os.makedirs(args.out, exist_ok=True)
         written = plots.write(cal, args.out)
-        firmware = []
         for res in cal.axes:
             c = res.recommended
-            if c is None:
+            if c is None or not c.stages:
                 continue
             ident = outputs._ident(res.name)
             path = os.path.join(args.out, f"config_{ident}.c")
@@ -156,13 +213,10 @@ def cmd_calibrate(args) -> int:
             with open(path, "w", encoding="utf-8") as fh:
                 json.dump(outputs.fmu_start_values(c, ref.Ts), fh, indent=1)
             written.append(path)
-            lines = calibrate.candidates.firmware_lines(c, ident)
-            if lines:
-                firmware += lines
-        if firmware:
-            path = os.path.join(args.out, "input_shaper.cfg")
+        if fw_text is not None:
+            path = os.path.join(args.out, f"firmware_{args.firmware}.txt")
             with open(path, "w", encoding="utf-8") as fh:
-                fh.write("[input_shaper]\n" + "\n".join(firmware) + "\n")
+                fh.write(fw_text)
             written.append(path)
         print("wrote " + ", ".join(written))
     if any(res.recommended is None for res in cal.axes):

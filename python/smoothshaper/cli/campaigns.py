@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import os
 
+from .._optional import MissingDependency, explain, require_all
 from .common import EXIT_ERROR, EXIT_UNAVAILABLE, CliError
 from .cost import add_options as add_cost_options
 
@@ -29,11 +30,17 @@ def _run_module(name: str, module_name: str, out_dir: str, args, cost, sizes: st
         if exc.name == modname:
             raise CliError(f"{name} is unavailable: module {modname} is not part of this "
                            "installation yet", EXIT_UNAVAILABLE) from None
-        raise CliError(f"{name} is unavailable: it needs the Python package {exc.name!r} "
-                       "(pip install 'smoothshaper[validate]')", EXIT_UNAVAILABLE) from None
+        explained = explain(exc, f"smoothshaper {name}")
+        if explained is None:
+            raise
+        raise CliError(str(explained), EXIT_UNAVAILABLE) from None
     run = getattr(module, "run", None)
     if run is None:
         raise CliError(f"{name} is unavailable: {modname} has no run(out_dir)", EXIT_UNAVAILABLE)
+    try:        # before the estimate: a missing package is named at once
+        require_all(getattr(module, "REQUIRES", ()), f"smoothshaper {name}")
+    except MissingDependency as exc:
+        raise CliError(str(exc), EXIT_UNAVAILABLE) from None
     bar = start(cost(module), args, sizes)
     if bar is None:
         return 0

@@ -11,6 +11,8 @@ import sys
 
 import numpy as np
 
+from .. import _optional
+
 __all__ = ["EXIT_ERROR", "EXIT_USAGE", "EXIT_UNAVAILABLE", "CliError", "Parser", "format_table",
            "run_samples", "Progress", "pyplot", "numbers", "parse_via_list", "parse_via_points", "write_csv", "write_outputs",
            "save_figure", "decimate"]
@@ -118,14 +120,11 @@ class Progress:
 
 
 def pyplot(command: str = "analyze"):
+    """matplotlib.pyplot (Agg); CliError with exit 3 naming the extra when it is missing."""
     try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
-        raise CliError(f"{command} needs matplotlib: pip install 'smoothshaper[plot]'",
-                       EXIT_UNAVAILABLE) from None
-    return plt
+        return _optional.pyplot(f"smoothshaper {command} (its figures)")
+    except _optional.MissingDependency as exc:
+        raise CliError(str(exc), EXIT_UNAVAILABLE) from None
 
 
 def numbers(option: str, text: str) -> list[float]:

@@ -24,9 +24,9 @@ from .parameters import KIND_VALUES, STAGE_FIELDS, ModeStage, reference_stages, 
 from .simulate import simulate, simulate_libcosim, simulate_trajectory
 from .timing import (TICK_SLACK, at_communication_points, communication_points,
                      expected_output, expected_trajectory, tick_inputs)
-from .validate import RUN_STEPS, run
+from .validate import REQUIRES, RUN_STEPS, run
 
-__all__ = ["REL_TOL", "RUN_STEPS", "ModeStage", "start_values", "reference_stages",
+__all__ = ["REL_TOL", "REQUIRES", "RUN_STEPS", "ModeStage", "start_values", "reference_stages",
            "communication_points", "tick_inputs", "at_communication_points", "expected_output",
            "expected_trajectory", "simulate", "validation_cases", "build_fmus", "fmpy_problems",
            "fmutool_problems", "simulate_libcosim", "compare_importers",

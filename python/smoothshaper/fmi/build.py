@@ -7,6 +7,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+from .. import _optional
+
 __all__ = ["repo_root", "FMU_MODELS", "build_fmus", "fmpy_problems", "fmutool_problems"]
 
 
@@ -86,9 +88,10 @@ def fmpy_problems(fmu: Path) -> list[str]:
 
     Raises
     ------
-    ImportError
-        fmpy is not installed.
+    MissingDependency
+        (an ImportError) fmpy is not installed (extra ``validate``).
     """
+    _optional.require("fmpy", "checking an FMU's model description")
     from fmpy.validation import validate_fmu
     return list(validate_fmu(str(fmu)))
 
@@ -113,7 +116,7 @@ def fmutool_problems(fmu: Path) -> list[str]:
     """
     exe = shutil.which("fmutool") or str(Path(sys.executable).with_name("fmutool"))
     if not Path(exe).is_file():
-        return ["fmutool not found (pip install fmu-manipulation-toolbox)"]
+        return [str(_optional.missing("fmu_manipulation_toolbox", "fmutool -check"))]
     run_ = subprocess.run([exe, "-input", str(fmu), "-check"], capture_output=True, text=True)
     text = run_.stdout + run_.stderr
     problems = [line.strip() for line in text.splitlines() if "ERROR" in line or "WARNING" in line]

@@ -31,6 +31,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .. import _optional
 from .._checks import (finite_array as _finite_array, finite_signal as _finite_signal,
                        integer as _integer)
 from ..errors import ParameterError
@@ -114,6 +115,7 @@ def write_ssp(out_dir: Path, fmus: dict[str, Path]) -> tuple[Path, Path]:
 def run_fmpy(ssp: Path, *, shaper: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(t, shaped command, load position) from fmpy's SSP master (t += h, step TS): row k is
     the state after step k, i.e. at t_(k+1)."""
+    _optional.require("fmpy", "the system co-simulation in fmpy")
     return _ssp.run_fmpy(SYSTEM, ssp, shaper=shaper)
 
 
@@ -122,6 +124,7 @@ def run_libcosim(ssp: Path, *, shaper: bool, n_steps: int):
     connections, parameter bindings); the generator's target is overridden with what the system
     input's connection would deliver (the input of the previous step), outputs are read after
     every step."""
+    _optional.require("libcosimpy", "the system co-simulation in libcosim")
     return _ssp.run_libcosim(SYSTEM, ssp, shaper=shaper, n_steps=n_steps)
 
 
@@ -182,9 +185,7 @@ def run_all(ssp: Path, ssp_libcosim: Path, *, importers=("libcosim", "fmpy")) ->
 
 
 def plot(path: Path, runs: list[Run]) -> None:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = _optional.pyplot("the system co-simulation (its figure)")
     fig, (a0, a1) = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
     n = runs[0].t.size
     _, _, p_ref_off = reference(n, shaper=False)
@@ -214,8 +215,11 @@ def run(out_dir, *, fmus: dict | None = None, build_dir=None, importers=("libcos
     """Build the FMUs (unless given), write the SSP, run it with and without the shaper in each
     importer, compare with the reference; write README.md, ShapedMotion.ssp and
     system_cosim.png into out_dir; then the same for ShapedServo (:mod:`.servo_cosim`) when
-    ServoDrive.fmu is among the FMUs. True if every run equals the reference."""
+    ServoDrive.fmu is among the FMUs. True if every run equals the reference; MissingDependency
+    (an ImportError naming the extra) before anything is done when an importer is missing."""
     from .build import build_fmus
+    needs = [{"libcosim": "libcosimpy"}.get(imp, imp) for imp in importers]
+    _optional.require_all(needs + ["matplotlib"] * bool(plots), "the system co-simulation")
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     if fmus is None:

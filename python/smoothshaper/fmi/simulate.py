@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .. import _optional
 from .parameters import start_values
 
 __all__ = ["simulate", "simulate_trajectory", "simulate_libcosim"]
@@ -37,7 +38,7 @@ def simulate(fmu: str, stages, t: np.ndarray, u: np.ndarray, *, Ts: float) -> np
     RuntimeError
         fmpy returned other points than ``t``.
     """
-    import fmpy
+    fmpy = _optional.require("fmpy", "running an FMU in fmpy")
     step = float(t[1] - t[0])
     signal = np.zeros(t.size, dtype=[("time", float), ("u", float)])
     signal["time"], signal["u"] = t, u
@@ -76,7 +77,7 @@ def simulate_trajectory(fmu: str, t: np.ndarray, target: np.ndarray, *, Ts: floa
     RuntimeError
         fmpy returned other points than ``t``.
     """
-    import fmpy
+    fmpy = _optional.require("fmpy", "running an FMU in fmpy")
     step = float(t[1] - t[0])
     signal = np.zeros(t.size, dtype=[("time", float), ("target", float)])
     signal["time"], signal["target"] = t, target
@@ -120,6 +121,8 @@ def simulate_libcosim(fmu: str, t: np.ndarray, u: np.ndarray, params: dict, *,
     RuntimeError
         libcosim refused an initial value or a step failed.
     """
+    _optional.require("fmpy", "running an FMU in libcosim (fmpy reads its model description)")
+    _optional.require("libcosimpy", "running an FMU in libcosim")
     from fmpy import read_model_description
     from libcosimpy.CosimExecution import CosimExecution
     from libcosimpy.CosimLogging import CosimLogLevel, log_output_level

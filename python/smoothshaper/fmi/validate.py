@@ -22,13 +22,17 @@ from .cases import TRAJECTORY_LIMITS, TRAJECTORY_PROFILES, validation_cases
 from .compare import REL_TOL, compare, compare_importers, compare_importers_trajectory, \
     compare_trajectory
 
-__all__ = ["RUN_STEPS", "run"]
+from .. import _optional
+from .._optional import pyplot
+
+__all__ = ["RUN_STEPS", "REQUIRES", "run"]
+
+#: The optional packages a run needs (extra ``validate``), checked before it starts.
+REQUIRES = ("fmpy", "libcosimpy", "fmu_manipulation_toolbox", "matplotlib")
 
 
 def _plot(path: Path, name: str, t, u, y, y_ref, Ts: float) -> None:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot("smoothshaper validate (its figures)")
     fig, (a0, a1) = plt.subplots(2, 1, figsize=(7, 4.8), sharex=True)
     a0.step(t, u, where="post", color="0.6", label="u (held)")
     a0.plot(t, y_ref, "k-", lw=2.5, alpha=0.4, label="reference")
@@ -46,9 +50,7 @@ def _plot(path: Path, name: str, t, u, y, y_ref, Ts: float) -> None:
 
 
 def _plot_trajectory(path: Path, t, target, y, ref) -> None:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot("smoothshaper validate (its figures)")
     fig, axes = plt.subplots(4, 1, figsize=(7, 7), sharex=True)
     axes[0].step(t, target, where="post", color="0.6", label="target")
     for ax, k, name in zip(axes, range(4), ("q [m]", "v [m/s]", "a [m/s2]", "j [m/s3]")):
@@ -129,7 +131,10 @@ def run(out_dir, *, build_dir=None, fmus: dict | None = None, Ts: float = 1e-3,
     ------
     RuntimeError
         The FMUs cannot be built (no sources, no CMake) or an importer failed.
+    MissingDependency
+        (an ImportError) a package of :data:`REQUIRES` is not installed: nothing is done.
     """
+    _optional.require_all(REQUIRES if plots else REQUIRES[:-1], "smoothshaper validate")
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     step = progress or (lambda name: None)

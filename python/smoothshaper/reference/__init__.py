@@ -9,12 +9,21 @@ core. Public API:
 * ``shaper_impulses(stage) -> (amplitudes, times)``: the continuous shaper design;
 * ``continuous_impulse_response(stage, t)``, ``continuous_transfer(stage, s)``;
 * ``filter(stages, x, *, Ts, zi=None)``, ``filter_zi(stages, *, Ts, x0=0.0)``;
+* ``switched(stages, x, *, Ts, switch_at, rest=0.0)``: one stage retuned at given samples
+  (each input increment through the stage active when it arrived);
+* ``scheduled(kind, table, x, schedule, *, Ts, ...)``: a ZV^n shaper whose mode follows a
+  schedule through a table (value -> wn, zeta);
+* ``lag(stages, *, Ts)`` (samples) and ``delay(x, *, samples, rest=None)``: a chain's DC
+  group delay and the fractional delay that pads chains to a common lag;
 * closed-form trajectories: ``harmonic_trajectory``, ``damped_harmonic_trajectory``,
   ``exponential_trajectory``, ``rectangular_chain_trajectory``.
 """
 from .continuous import continuous_impulse_response, continuous_transfer
 from .filtering import discrete_transfer, filter, filter_zi, impulse_response
 from .notch import notch_coefficients
+from .retune import switched
+from .align import delay, lag
+from .scheduled import schedule_mode, scheduled
 from .shapers import mode_pole, shaper_impulses
 from .smoothers import pinned_frequency
 from .trajectories import (damped_harmonic_trajectory, exponential_trajectory,
@@ -23,6 +32,6 @@ from .trajectories import (damped_harmonic_trajectory, exponential_trajectory,
 __all__ = [
     "impulse_response", "notch_coefficients", "discrete_transfer", "shaper_impulses",
     "mode_pole", "pinned_frequency", "continuous_impulse_response", "continuous_transfer",
-    "filter", "filter_zi", "harmonic_trajectory", "damped_harmonic_trajectory",
+    "filter", "filter_zi", "switched", "lag", "delay", "scheduled", "schedule_mode", "harmonic_trajectory", "damped_harmonic_trajectory",
     "exponential_trajectory", "rectangular_chain_trajectory",
 ]

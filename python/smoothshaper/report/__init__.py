@@ -15,13 +15,17 @@ import time
 import traceback
 from pathlib import Path
 
+from .. import _optional
 from ..errors import ParameterError
 from .claims import Claim, Figure, Section, claims_table
 
 #: Section keys in report order (most valuable first), each the name of a module here.
-SECTIONS = ("seed000", "seed001", "seed002", "seed003", "seed004", "shapers")
+SECTIONS = ("seed000", "seed001", "seed002", "seed003", "seed004", "shapers", "scheduled")
 
-__all__ = ["run", "build_section", "SECTIONS", "Claim", "Figure", "Section"]
+__all__ = ["run", "build_section", "SECTIONS", "REQUIRES", "Claim", "Figure", "Section"]
+
+#: The optional packages a run needs (extra ``plot``), checked before it starts.
+REQUIRES = ("matplotlib",)
 
 
 def build_section(key: str, fig_dir: Path | None = None) -> Section:
@@ -64,6 +68,7 @@ def run(out_dir, *, only=None, progress=None) -> Path:
         if key not in SECTIONS:
             raise ParameterError(
                 "only", f"only must name sections among {', '.join(SECTIONS)}, got {key!r}")
+    _optional.require_all(REQUIRES, "smoothshaper report")
     out_dir.mkdir(parents=True, exist_ok=True)
     rendered, summary, failures = [], [], []
     for key in keys:
@@ -71,6 +76,8 @@ def run(out_dir, *, only=None, progress=None) -> Path:
             progress(key)
         try:
             section = build_section(key, out_dir / "figures" / key)
+        except _optional.MissingDependency:
+            raise       # the installation lacks an extra: say which, write no half report
         except Exception:  # a broken section is reported, the others still build
             failures.append(key)
             rendered.append(f"## {key}\n\n**This section failed to build:**\n\n```\n"

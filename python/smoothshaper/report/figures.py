@@ -9,6 +9,7 @@ from __future__ import annotations
 from contextlib import contextmanager
 from pathlib import Path
 
+from .. import _optional
 from .claims import Figure
 
 __all__ = ["COLORS", "figure", "surface"]
@@ -23,10 +24,7 @@ COLORS = {
 
 
 def _pyplot():
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    return plt
+    return _optional.pyplot("smoothshaper report (its figures)")
 
 
 @contextmanager

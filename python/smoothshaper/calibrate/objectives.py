@@ -1,0 +1,224 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Remaining vibration: what a filter leaves of the measured vibration, two ways.
+
+A filter of length L with transfer H leaves, of a mode with pole p = -zeta wn + j wn
+sqrt(1 - zeta^2), the fraction R = e^{-zeta wn L} |H(p)| of the vibration an unfiltered move
+excites, each measured from the end of its own move (the percent residual vibration of N. C.
+Singer and W. P. Seering, "Preshaping command inputs to reduce system vibration", ASME J. Dyn.
+Sys. Meas. Control 112 (1990) 76-82, their eq. for V; for a discrete filter with taps h at Ts,
+H(p) = sum_k h_k e^{-p k Ts}; ``analysis.residual_vibration`` refers both to t = 0 instead,
+which leaves out the factor e^{-zeta wn L}). Two figures, in %:
+
+* **measured spectrum** (:class:`SpectralObjective`): every bin of the measured PSD is taken
+  as a mode at its frequency, and the figure is what the filter leaves of the PSD standing
+  above a twentieth of its peak, for the worst damping ratio of a band: the established 3-D
+  printer tool's estimate (Klipper's ``_estimate_remaining_vibrations``, D. Butyugin), here for
+  our exact filters and over a damping band the modal fit sharpens. It holds whatever the
+  spectrum holds, modal or not.
+* **modal fit** (:class:`ModalObjective`): the identified modes, each weighted by its energy
+  and averaged over its uncertainty, ``V = sqrt(sum_i w_i E[R_i^2] / sum_i w_i)``.
+
+Each objective states a +-3 sd range: the modal one with every mode anywhere in its +-3 sd box
+of (wn, zeta) and its weight within +-3 sd; the spectral one about the same quantity,
+with every bin of the vibration content a mode anywhere within the half-power width of its
+frequency and over the damping band (wide: the spectrum alone does not pin the modes).
+"""
+from __future__ import annotations
+
+import itertools
+import math
+
+import numpy as np
+
+from ..reference import shaper_impulses
+from ..reference.continuous import transfer_unchecked
+from ..stages import SHAPERS
+
+__all__ = ["BOX", "pole", "ModalObjective", "SpectralObjective", "taps_R2", "stages_R2"]
+
+#: Half-width of the uncertainty box, in standard deviations, for the stated range.
+BOX = 3.0
+_GH_WN = np.polynomial.hermite_e.hermegauss(5)
+_GH_Z = np.polynomial.hermite_e.hermegauss(3)
+#: Most frequency groups the spectral objective keeps (adjacent bins merged by energy).
+MAX_GROUPS = 120
+
+
+def pole(wn, zeta):
+    wn = np.asarray(wn, dtype=float)
+    zeta = np.clip(np.asarray(zeta, dtype=float), 0.0, 0.99)
+    return -zeta * wn + 1j * wn * np.sqrt(1 - zeta * zeta)
+
+
+def taps_R2(h: np.ndarray, Ts: float, poles: np.ndarray) -> np.ndarray:
+    """|H(p)|^2 of discrete taps h at the poles."""
+    poles = np.asarray(poles).ravel()
+    k = np.flatnonzero(h)
+    if k.size * 4 < h.size or k.size < 16:   # sparse (shapers): the powers directly
+        z = np.exp(-np.outer(poles, k) * Ts)
+        return np.abs(z @ h[k]) ** 2
+    # dense (smoothers): Horner's rule in z^-1 = e^{-p Ts}, one tap at a time over all poles
+    zinv = np.exp(-poles * Ts)
+    acc = np.zeros(poles.size, dtype=complex)
+    for c in h[::-1]:
+        acc = acc * zinv + c
+    return np.abs(acc) ** 2
+
+
+def stages_R2(stages, poles: np.ndarray) -> np.ndarray:
+    """|H(p)|^2 of the continuous designs (the tuning loop: within O((wn Ts)^2) of the
+    discrete filter, which the reported figures use)."""
+    H = np.ones(poles.size, dtype=complex)
+    for s in stages:
+        if s.kind in SHAPERS:
+            A, t = shaper_impulses(s)
+            H *= np.exp(-np.outer(poles, t)) @ A
+        else:
+            H *= transfer_unchecked(s, poles)
+    return np.abs(H) ** 2
+
+
+def impulses_R2(A, t, poles: np.ndarray) -> np.ndarray:
+    """|sum A_i e^{-p t_i}|^2 / (sum A)^2: a firmware shaper defined by its impulses."""
+    A = np.asarray(A, dtype=float)
+    z = np.exp(-np.outer(poles, np.asarray(t, dtype=float)))
+    return np.abs(z @ A) ** 2 / float(A.sum()) ** 2
+
+
+def _from_end(R2, poles, L):
+    """|H(p)|^2 referred to the end of a filter of length L: times e^{-2 zeta wn L}."""
+    return R2 * np.exp(2.0 * np.real(poles) * L) if L else R2
+
+
+class _PoleSet:
+    """A weighted set of poles: the figure is 100 sqrt(sum w R^2)."""
+    kind = ""
+
+    def value(self, R2: np.ndarray, L: float = 0.0) -> float:
+        return 100.0 * math.sqrt(max(float(self.w @ _from_end(R2, self.poles, L)), 0.0))
+
+    def tuning_value(self, R2: np.ndarray, L: float = 0.0) -> float:
+        return self.value(R2, L)
+
+
+class ModalObjective(_PoleSet):
+    """Remaining vibration over identified modes (Gauss-Hermite nodes over each mode's
+    uncertainty); ``range`` over their +-3 sd boxes."""
+    kind = "modal fit"
+
+    def __init__(self, modes):
+        w = np.array([m.weight for m in modes], dtype=float)
+        self.mode_w = w / w.sum()
+        self.mode_wsd = np.array([getattr(m, "weight_rsd", 0.0) for m in modes])
+        poles, gw = [], []
+        for i, m in enumerate(modes):
+            for xw, ww in zip(*_GH_WN):
+                for xz, wz in zip(*_GH_Z):
+                    poles.append(complex(pole(max(m.wn + xw * m.wn_std, 1e-9),
+                                              min(max(m.zeta + xz * m.zeta_std, 0.0), 0.99))))
+                    gw.append(self.mode_w[i] * ww * wz / (2 * math.pi))
+        self.poles, self.w = np.array(poles), np.array(gw)
+        self.nominal = np.array([complex(pole(m.wn, m.zeta)) for m in modes])
+        box, idx = [], []
+        for i, m in enumerate(modes):
+            for wn in np.linspace(m.wn - BOX * m.wn_std, m.wn + BOX * m.wn_std, 9):
+                for z in np.linspace(m.zeta - BOX * m.zeta_std, m.zeta + BOX * m.zeta_std, 3):
+                    box.append(complex(pole(max(wn, 1e-9), min(max(z, 0.0), 0.99))))
+                    idx.append(i)
+        self.box, self.box_idx = np.array(box), np.array(idx)
+        self.n = len(modes)
+
+    def nominal_value(self, R2_nominal, L: float = 0.0) -> float:
+        return 100.0 * math.sqrt(float(self.mode_w @ _from_end(R2_nominal, self.nominal, L)))
+
+    def range(self, R2_box, L: float = 0.0) -> tuple[float, float]:
+        R2_box = _from_end(R2_box, self.box, L)
+        lo = np.array([R2_box[self.box_idx == i].min() for i in range(self.n)])
+        hi = np.array([R2_box[self.box_idx == i].max() for i in range(self.n)])
+        # weights anywhere in +-3 sd (relative): the extreme ratios sit at the box's corners
+        w0 = self.mode_w
+        spread = np.minimum(BOX * self.mode_wsd, 0.95)
+        best, worst = math.inf, 0.0
+        corners = itertools.product(*[(-1.0, 1.0)] * self.n) if self.n <= 6 else [np.zeros(self.n)]
+        for c in corners:
+            w = w0 * np.exp(np.asarray(c) * spread)
+            w = w / w.sum()
+            best = min(best, float(w @ lo))
+            worst = max(worst, float(w @ hi))
+        return 100 * math.sqrt(max(best, 0.0)), 100 * math.sqrt(max(worst, 0.0))
+
+
+class SpectralObjective(_PoleSet):
+    """Remaining vibration over a measured PSD ``P`` on bins ``f`` [Hz] in the band: the
+    established tool's estimate, ``max over zeta of sum_f max(R(f, zeta) P(f) - tau, 0) /
+    sum_f max(P(f) - tau, 0)`` with ``tau = max(P) / 20`` (a shaper cannot take a vibration
+    below a twentieth of the largest one further down), over the damping ratios ``zetas``.
+
+    Its ``range`` is about the plant's remaining vibration (the modal quantity): every bin of
+    the vibration content ``max(P - tau, 0)`` taken as a mode anywhere within ``width``
+    (relative half-power half-width) of its frequency and over the damping band, energy
+    weighted."""
+    kind = "measured spectrum"
+
+    def __init__(self, f, P, zetas, width=None, threshold: float = 20.0, group_hz=None):
+        f = np.asarray(f, dtype=float)
+        P = np.asarray(P, dtype=float)
+        width = np.full(f.size, 0.08) if width is None else np.asarray(width, float)
+        if group_hz and f.size > 1 and np.median(np.diff(f)) < group_hz:
+            # merge neighbouring bins (power kept) to about group_hz: finer bins change the
+            # figure by nothing a filter can act on, and cost
+            m = max(1, int(round(group_hz / float(np.median(np.diff(f))))))
+            n = f.size // m
+            if n >= 8:
+                f = f[: n * m].reshape(n, m).mean(axis=1)
+                P = P[: n * m].reshape(n, m).mean(axis=1)
+                width = width[: n * m].reshape(n, m).mean(axis=1)
+        tau = float(P.max()) / threshold
+        self.tau = tau
+        self.den = float(np.sum(np.maximum(P - tau, 0.0)))
+        # a bin under the floor adds nothing (R <= 1 for filters of positive taps): only the
+        # bins above it are scored
+        above = P > tau
+        self.zetas = np.unique(np.clip(np.asarray(zetas, dtype=float), 0.002, 0.9))
+        wn = 2 * math.pi * f[above]
+        self.f, self.P = f[above], P[above]
+        self.poles = pole(wn[:, None], self.zetas[None, :]).ravel()
+        self.n, self.nz = self.f.size, self.zetas.size
+        self.tune_S = np.maximum(self.P - tau, 0.0) / max(self.den, 1e-300)
+        # the range: the vibration content down to a thousandth of the peak (every mode the
+        # plant has, not only those above the figure's floor), each bin a mode anywhere within
+        # its half-power width, over any damping from 0.002 to the band's highest
+        keep = P > float(P.max()) / 1000.0
+        S = P[keep] - float(P.max()) / 1000.0
+        self.S = S / S.sum()
+        wr = 2 * math.pi * f[keep]
+        offs = np.linspace(-1.0, 1.0, 5)
+        zb = np.array([0.002, self.zetas.max()])
+        grid = wr[:, None, None] * (1 + offs[None, :, None] * width[keep][:, None, None])
+        grid = np.broadcast_to(grid, (wr.size, offs.size, 2))
+        self.box = pole(grid, np.broadcast_to(zb[None, None, :], grid.shape)).reshape(wr.size, -1)
+        self.nominal = pole(wr, np.median(self.zetas))
+        self.n_range = wr.size
+
+    def value(self, R2, L: float = 0.0) -> float:
+        R = np.sqrt(np.maximum(_from_end(R2, self.poles, L), 0.0)).reshape(self.n, self.nz)
+        left = np.maximum(R * self.P[:, None] - self.tau, 0.0).sum(axis=0)
+        return 100.0 * float(left.max()) / self.den if self.den > 0 else 0.0
+
+    def tuning_value(self, R2, L: float = 0.0) -> float:
+        """:meth:`value` plus a thousandth of the energy-weighted RMS of R over the same bins [%]:
+        the figure is flat (zero) wherever every residual lies under its floor, and there the
+        tuning should still go on to the design with the most margin."""
+        R2e = _from_end(R2, self.poles, L).reshape(self.n, self.nz)
+        R = np.sqrt(np.maximum(R2e, 0.0))
+        left = np.maximum(R * self.P[:, None] - self.tau, 0.0).sum(axis=0)
+        v = 100.0 * float(left.max()) / self.den if self.den > 0 else 0.0
+        return v + 0.1 * math.sqrt(max(float(self.tune_S @ R2e.mean(axis=1)), 0.0))
+
+    def nominal_value(self, R2_nominal, L: float = 0.0) -> float:
+        return 100.0 * math.sqrt(float(self.S @ _from_end(R2_nominal, self.nominal, L)))
+
+    def range(self, R2_box, L: float = 0.0) -> tuple[float, float]:
+        R = _from_end(R2_box, self.box.ravel(), L).reshape(self.n_range, -1)
+        return (100 * math.sqrt(float(self.S @ R.min(axis=1))),
+                100 * math.sqrt(float(self.S @ R.max(axis=1))))

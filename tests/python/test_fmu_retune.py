@@ -1,0 +1,188 @@
+# SPDX-License-Identifier: Apache-2.0
+"""SmoothShaper.fmu retuned while it runs and scheduled by its input s, in fmpy and libcosim:
+a tunable parameter set at a communication point takes effect on the next tick, bit for bit
+the Python TunableChain retuned there (the same C core); one set while the stage is still
+switching waits until the switch ends, as the core's rule says; the lag output is the active
+stages' lag; the scheduled shaper equals ScheduledShaper fed the same s; a state serialised in
+the middle of a switch continues bit for bit; refusals name the variable and change nothing."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+fmpy = pytest.importorskip("fmpy", reason="fmpy is needed to import the FMUs")
+from fmpy import extract  # noqa: E402
+from fmpy.fmi1 import FMICallException  # noqa: E402
+
+import smoothshaper as sms  # noqa: E402
+from smoothshaper.scheduled import ScheduledShaper  # noqa: E402
+from test_fmu_multi_axis import start as base_start  # noqa: E402
+from test_fmu_smoothshaper import Logged, fmus, slave  # noqa: E402,F401
+
+TS = 1e-3
+ZV, RECT = 4, 0
+SCHEDULED_ZV = 0   # schedule.kind codes: 0 zv, 1 zvd, 2 zvdd, 3 zvn
+STAGES = {"stage[0].kind": RECT, "stage[0].T": 0.0153, "stage[1].kind": ZV,
+          "stage[1].wn": 200.0, "stage[1].zeta": 0.05}
+TABLE = [(0.0, 150.0, 0.02), (0.5, 190.0, 0.03), (1.0, 240.0, 0.05)]
+
+
+@pytest.fixture(scope="module")
+def ss_dir(fmus, tmp_path_factory):  # noqa: F811
+    return extract(str(fmus["SmoothShaper"]), str(tmp_path_factory.mktemp("ssr")))
+
+
+def start(fmu, values, u0=0.0):
+    base_start(fmu, **{**values, "u": float(u0)})
+
+
+def move(n=900):
+    t = np.arange(n)
+    return np.clip((t - 50) * 0.002, 0.0, 1.0) + 0.3 * np.clip((t - 500) * 0.004, 0.0, 1.0)
+
+
+def test_retune_at_a_communication_point_equals_tunable_chain(ss_dir):
+    u = move()
+    fmu = slave(ss_dir)
+    start(fmu, {**STAGES, "retune_max_delay": 0.05})
+    chain = sms.TunableChain([sms.rectangular(T=0.0153), sms.shaper("zv", wn=200.0, zeta=0.05)],
+                             Ts=TS, capacity=[None, sms.shaper("zv", wn=150.0, zeta=0.05)])
+    plan = {300: 150.0, 305: 260.0, 650: 175.0}   # the second arrives during the switch
+    y_fmu, y_py, lags = np.empty(u.size), np.empty(u.size), []
+    waiting = None
+    for i, ui in enumerate(u):
+        if i in plan:
+            fmu.setReal([fmu.vr["stage[1].wn"]], [plan[i]])
+            waiting = sms.shaper("zv", wn=plan[i], zeta=0.05)
+        if waiting is not None and not chain.switching[1]:   # applied when the switch allows
+            chain.retune(1, waiting)
+            waiting = None
+        fmu.setReal([fmu.vr["u"]], [ui])
+        fmu.doStep(i * TS, TS)
+        y_fmu[i] = fmu.getReal([fmu.vr["y"]])[0]
+        y_py[i] = chain.step(ui)
+        lags.append((fmu.getReal([fmu.vr["lag"]])[0], chain.lag))
+    fmu.terminate()
+    fmu.freeInstance()
+    assert np.array_equal(y_fmu, y_py)
+    assert all(a == pytest.approx(b, rel=1e-13) for a, b in lags)
+    assert lags[0][0] != lags[-1][0]                      # the lag follows the retunes
+
+
+def test_retune_refusals_name_the_variable(ss_dir):
+    logged = Logged()
+    fmu = slave(ss_dir, logged=logged)
+    start(fmu, STAGES)                                     # retune_max_delay = 0: fixed
+    with pytest.raises(FMICallException):
+        fmu.setReal([fmu.vr["stage[1].wn"]], [180.0])
+    assert "stage[1].wn" in logged.messages[-1] and "retune_max_delay" in logged.messages[-1]
+    fmu.terminate()
+    fmu.freeInstance()
+    fmu = slave(ss_dir, logged=logged)
+    start(fmu, {**STAGES, "retune_max_delay": 0.02})
+    with pytest.raises(FMICallException):                  # a ZV at 100 rad/s lasts 31 ms
+        fmu.setReal([fmu.vr["stage[1].wn"]], [100.0])
+    assert "retune_max_delay" in logged.messages[-1]
+    with pytest.raises(FMICallException):
+        fmu.setReal([fmu.vr["stage[1].zeta"]], [1.5])
+    assert "stage[1].zeta" in logged.messages[-1]
+    with pytest.raises(FMICallException):                  # kind stays fixed
+        fmu.setInteger([fmu.vr["stage[1].kind"]], [5])
+    assert fmu.getReal([fmu.vr["stage[1].wn"]])[0] == 200.0
+    fmu.terminate()
+    fmu.freeInstance()
+
+
+def test_state_serialised_mid_switch_continues(ss_dir):
+    u = move()
+    fmu = slave(ss_dir)
+    start(fmu, {**STAGES, "retune_max_delay": 0.05})
+    out = []
+    for i, ui in enumerate(u[:400]):
+        if i == 300:
+            fmu.setReal([fmu.vr["stage[1].wn"]], [150.0])
+        fmu.setReal([fmu.vr["u"]], [ui])
+        fmu.doStep(i * TS, TS)
+    blob = fmu.serializeFMUstate(fmu.getFMUstate())
+    twin = slave(ss_dir, name="twin")
+    start(twin, {**STAGES, "retune_max_delay": 0.05})
+    twin.setFMUstate(twin.deSerializeFMUstate(blob))
+    for i, ui in enumerate(u[400:], 400):
+        for f in (fmu, twin):
+            f.setReal([f.vr["u"]], [ui])
+            f.doStep(i * TS, TS)
+        out.append((fmu.getReal([fmu.vr["y"]])[0], twin.getReal([twin.vr["y"]])[0]))
+    assert all(a == b for a, b in out)
+    for f in (fmu, twin):
+        f.terminate()
+        f.freeInstance()
+
+
+def schedule_values(table):
+    values = {"schedule.kind": SCHEDULED_ZV, "schedule.points": len(table)}
+    for j, (s, wn, zeta) in enumerate(table):
+        values.update({f"schedule.value[{j}]": s, f"schedule.wn[{j}]": wn,
+                       f"schedule.zeta[{j}]": zeta})
+    return values
+
+
+def test_scheduled_shaper_follows_the_input_s(ss_dir):
+    """fmpy's simulate_fmu with inputs u and s: the outputs at the communication points equal
+    ScheduledShaper on the ticks (inputs held over each step), bit for bit."""
+    n = 800
+    t = np.arange(n) * TS
+    u = np.clip(t - 0.05, 0.0, None) * 0.8
+    s = np.clip(u, 0.0, 1.0)
+    signal = np.zeros(n, dtype=[("time", float), ("u", float), ("s", float)])
+    signal["time"], signal["u"], signal["s"] = t, u, s
+    values = {"stage[0].kind": -1, "stage[1].kind": -1, **schedule_values(TABLE)}
+    r = fmpy.simulate_fmu(str(ss_dir), start_values=values, input=signal, stop_time=t[-1],
+                          output_interval=TS, output=["y", "lag"])
+    sh = ScheduledShaper("zv", TABLE, Ts=TS)
+    sh.reset(u[0], s=s[0])
+    want = np.r_[u[0], [sh.step(u[k], s[k]) for k in range(n - 1)]]   # fmpy: y(t_k+1)
+    assert np.array_equal(np.asarray(r["y"]), want)
+    assert np.asarray(r["lag"])[-1] > 0.0
+
+
+def test_libcosim_retune_equals_fmpy(ss_dir, fmus):  # noqa: F811
+    pytest.importorskip("libcosimpy", reason="libcosimpy is the second importer")
+    from fmpy import read_model_description
+    from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+    from libcosimpy.CosimManipulator import CosimManipulator
+    from libcosimpy.CosimObserver import CosimObserver
+    from libcosimpy.CosimSlave import CosimLocalSlave
+    log_output_level(CosimLogLevel.ERROR)
+    path = str(fmus["SmoothShaper"])
+    vr = {v.name: v.valueReference for v in read_model_description(path).modelVariables}
+    u = move(600)
+    execution = CosimExecution.from_step_size(step_size=int(round(TS * 1e9)))
+    index = execution.add_local_slave(local_slave=CosimLocalSlave(fmu_path=path, instance_name="s"))
+    override = CosimManipulator.create_override()
+    execution.add_manipulator(manipulator=override)
+    observer = CosimObserver.create_last_value()
+    execution.add_observer(observer=observer)
+    for name, value in {**STAGES, "retune_max_delay": 0.05}.items():
+        ok = (execution.integer_initial_value(index, vr[name], value) if isinstance(value, int)
+              else execution.real_initial_value(index, vr[name], float(value)))
+        assert ok, name
+    y = []
+    for k, uk in enumerate(u):
+        if k == 250:
+            override.slave_real_values(index, [vr["stage[1].wn"]], [160.0])
+        override.slave_real_values(index, [vr["u"]], [float(uk)])
+        assert execution.step()
+        y.append(observer.last_real_values(index, [vr["y"]])[0])
+    fmu = slave(ss_dir)
+    start(fmu, {**STAGES, "retune_max_delay": 0.05})
+    ref = []
+    for k, uk in enumerate(u):
+        if k == 250:
+            fmu.setReal([fmu.vr["stage[1].wn"]], [160.0])
+        fmu.setReal([fmu.vr["u"]], [float(uk)])
+        fmu.doStep(k * TS, TS)
+        ref.append(fmu.getReal([fmu.vr["y"]])[0])
+    fmu.terminate()
+    fmu.freeInstance()
+    assert np.array_equal(np.array(y), np.array(ref))
