@@ -334,3 +334,37 @@ def test_fmu_names_the_impulse_it_refuses(tmp_path):
                           logger=lambda *a: messages.append(a[-1]), debug_logging=False)
     text = " ".join(m.decode() if isinstance(m, bytes) else str(m) for m in messages)
     assert "stage[0].time[1] = 0" in text
+
+
+def test_tunable_chain_new_families():
+    """TunableChain: an input smoother and an SI shaper retune and their state saved during the
+    switch restores into another chain of the same capacity (the stages it reports are the
+    saved ones, every SI field back); user-defined impulses run as built: a retune to or from
+    them is refused naming ``stage``, their state restores from the chain's own stage."""
+    Ts = 1e-3
+    imp = sms.impulse_shaper(amplitudes=[0.3, 0.5, 0.2], times=[0.0, 0.0042, 0.0091])
+    si_a = sms.shaper("si", wn=180.0, order=5, duration=1.4, tolerance=0.05)
+    si_b = sms.shaper("si", wn=150.0, order=7, duration=2.2, tolerance=0.03)
+    smooth_a = sms.input_smoother("smooth_mzv", wn=2 * np.pi * 40.0, zeta=0.1)
+    smooth_b = sms.input_smoother("smooth_mzv", wn=2 * np.pi * 25.0, zeta=0.2)
+    make = lambda: sms.TunableChain([smooth_a, imp, si_a], Ts=Ts,   # noqa: E731
+                                    capacity=[smooth_b, None, si_b])
+    chain = make()
+    u = np.clip((np.arange(400) - 20) * 0.004, 0.0, 1.0)
+    chain.process(u[:100])
+    with pytest.raises(sms.ParameterError, match="impulses") as err:
+        chain.retune(1, sms.shaper("zv", wn=200.0))
+    assert err.value.parameter == "stage"
+    with pytest.raises(sms.ParameterError, match="impulses") as err:
+        chain.retune(0, imp)
+    assert err.value.parameter == "stage" and chain.stages[0] == smooth_a
+    chain.retune(0, smooth_b)
+    chain.retune(2, si_b)
+    chain.process(u[100:110])
+    assert chain.switching == (True, False, True)
+    state = chain.get_state()
+    twin = make()
+    twin.set_state(state)
+    assert twin.stages == chain.stages == (smooth_b, imp, si_b)
+    assert np.array_equal(twin.process(u[110:]), chain.process(u[110:]))
+    assert twin.lag == chain.lag
