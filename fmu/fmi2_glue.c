@@ -403,9 +403,10 @@ static fmi2Status set_values(fmi2Component comp, const char *func, fmu_type type
         }
     }
     for (i = 0; i < nvr; ++i) {
-        if (type == FMU_REAL && c->clock.steady != 0
-            && fmu_model_class(type, vr[i]) == FMU_VAR_INPUT
-            && fmu_model_get_real(c->model, vr[i]) != ((const fmi2Real *)value)[i])
+        if (c->clock.steady != 0 && fmu_model_class(type, vr[i]) == FMU_VAR_INPUT
+            && (type == FMU_REAL
+                    ? fmu_model_get_real(c->model, vr[i]) != ((const fmi2Real *)value)[i]
+                    : fmu_model_get_integer(c->model, vr[i]) != ((const fmi2Integer *)value)[i]))
             c->clock.steady = 0;   /* a new input: it has to be absorbed again */
         if (type == FMU_REAL)
             fmu_model_set_real(c->model, vr[i], ((const fmi2Real *)value)[i]);
@@ -700,6 +701,14 @@ fmi2Status fmi2DoStep(fmi2Component comp, fmi2Real currentCommunicationPoint,
     if (!((double)c->clock.ticks + n < MAX_TICK_INDEX))
         return FAIL(c, "fmi2DoStep: the step (h = %g) would end beyond %g ticks",
                     communicationStepSize, MAX_TICK_INDEX);
+    {
+        /* inputs that are only invalid together (a target's velocity with its acceleration):
+         * refused before any tick, the instance unchanged */
+        char msg[FMU_MESSAGE_LEN];
+        msg[0] = '\0';
+        if (fmu_model_check_inputs(c->model, msg, sizeof msg))
+            return FAIL(c, "fmi2DoStep at t = %.17g: %s", c->clock.time, msg);
+    }
     run_ticks(c, (uint64_t)n);
     c->clock.ticks += (uint64_t)n;
     /* The remainder exactly (no drift over long runs): advanced - Ts is exact for one tick

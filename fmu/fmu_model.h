@@ -141,6 +141,10 @@ int fmu_model_plan(const void *model, size_t *bytes, char *msg, size_t len);
  * logs it as fmi2Warning); positive: refused, msg says why, and the model untouched.
  */
 int fmu_model_build(void *model, void *mem, size_t bytes, char *msg, size_t len);
+/** @brief Before fmi2DoStep's ticks: are the inputs valid together (each was checked alone
+ * when it was set)? Only after build.
+ * @return 0, or 1 with msg naming the inputs and why: the step then fails, nothing changed. */
+int fmu_model_check_inputs(const void *model, char *msg, size_t len);
 /** @brief One internal tick: filter the held input, update the outputs. Only after build.
  * @return non-zero if an output changed (bitwise), 0 if all kept their values. */
 int fmu_model_tick(void *model);

@@ -1,10 +1,12 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /*
- * TrajectoryGenerator: the online multi-point generator of the smoothshaper library
- * (sms_generator_*, trajectory.h) as an FMU. Input: target position (a staircase); outputs:
- * q, v, a, j at the internal ticks, never beyond vmax, amax, jmax for any target sequence.
- * At fmi2ExitInitializationMode the generator rests at the parameter q0 (default 0): a target
- * that differs from q0 from the first step on is a move.
+ * TrajectoryGenerator: the online generator of the smoothshaper library (sms_generator_*,
+ * trajectory.h) as an FMU. Inputs: the target (position, velocity and acceleration at arrival,
+ * and the interface: position, velocity or stop), held over each step; outputs: q, v, a, j at
+ * the internal ticks, never beyond vmax, amax, jmax for any target sequence. At
+ * fmi2ExitInitializationMode the generator rests at the parameter q0 (default 0): a target that
+ * differs from q0 from the first step on is a move. A target the generator cannot take (a
+ * velocity or acceleration beyond the limits) fails fmi2DoStep naming it, nothing changed.
  */
 #include <math.h>
 #include <stddef.h>
@@ -17,6 +19,8 @@
 
 typedef struct tg_model {
     double target, out[4];                     /* q, v, a, j */
+    double target_velocity, target_acceleration;
+    int interface;                             /* sms_interface */
     double Ts, vmax, amax, jmax, wn, zeta, q0;
     int profile;
     int built;
@@ -26,20 +30,26 @@ typedef struct tg_model {
 } tg_model;
 
 /* Real value references and the field each one is, in modelDescription order. */
+/* Real value references and the field each one is, in modelDescription order: the inputs,
+ * then the outputs (N_REAL_INPUTS .. N_REAL_INPUTS + 3), then the parameters. */
 static const fmi2ValueReference real_vrs[] = {
-    TG_VR_TARGET, TG_VR_Q, TG_VR_V, TG_VR_A, TG_VR_J, TG_VR_TS, TG_VR_VMAX, TG_VR_AMAX, TG_VR_JMAX,
-    TG_VR_WN, TG_VR_ZETA, TG_VR_Q0
+    TG_VR_TARGET, TG_VR_TARGET_VELOCITY, TG_VR_TARGET_ACCELERATION, TG_VR_Q, TG_VR_V, TG_VR_A,
+    TG_VR_J, TG_VR_TS, TG_VR_VMAX, TG_VR_AMAX, TG_VR_JMAX, TG_VR_WN, TG_VR_ZETA, TG_VR_Q0
 };
 static const char *const real_names[] = {
-    "target", "q", "v", "a", "j", "Ts", "vmax", "amax", "jmax", "wn", "zeta", "q0"
+    "target", "target_velocity", "target_acceleration", "q", "v", "a", "j", "Ts", "vmax", "amax",
+    "jmax", "wn", "zeta", "q0"
 };
 #define N_REALS (sizeof real_vrs / sizeof real_vrs[0])
+#define N_REAL_INPUTS 3u
 
 static const size_t real_offsets[] = {
-    offsetof(tg_model, target), offsetof(tg_model, out[0]), offsetof(tg_model, out[1]),
-    offsetof(tg_model, out[2]), offsetof(tg_model, out[3]), offsetof(tg_model, Ts),
-    offsetof(tg_model, vmax), offsetof(tg_model, amax), offsetof(tg_model, jmax),
-    offsetof(tg_model, wn), offsetof(tg_model, zeta), offsetof(tg_model, q0)
+    offsetof(tg_model, target), offsetof(tg_model, target_velocity),
+    offsetof(tg_model, target_acceleration), offsetof(tg_model, out[0]),
+    offsetof(tg_model, out[1]), offsetof(tg_model, out[2]), offsetof(tg_model, out[3]),
+    offsetof(tg_model, Ts), offsetof(tg_model, vmax), offsetof(tg_model, amax),
+    offsetof(tg_model, jmax), offsetof(tg_model, wn), offsetof(tg_model, zeta),
+    offsetof(tg_model, q0)
 };
 
 /* Index of a Real value reference in real_vrs, or N_REALS. */
@@ -59,6 +69,9 @@ void fmu_model_defaults(void *model)
 {
     tg_model *m = (tg_model *)model;   /* the start values of modelDescription.xml */
     m->target = 0.0;
+    m->target_velocity = 0.0;
+    m->target_acceleration = 0.0;
+    m->interface = SMS_INTERFACE_POSITION;
     memset(m->out, 0, sizeof m->out);
     m->Ts = 0.001;
     m->vmax = 1.0;
@@ -77,18 +90,20 @@ fmu_var_class fmu_model_class(fmu_type type, fmi2ValueReference vr)
 {
     size_t i;
     if (type == FMU_INTEGER)
-        return vr == TG_VR_PROFILE ? FMU_VAR_PARAMETER : FMU_VAR_UNKNOWN;
+        return vr == TG_VR_PROFILE ? FMU_VAR_PARAMETER
+             : vr == TG_VR_INTERFACE ? FMU_VAR_INPUT : FMU_VAR_UNKNOWN;
     for (i = 0; i < N_REALS; ++i)
         if (real_vrs[i] == vr)
-            return i == 0 ? FMU_VAR_INPUT : i <= 4 ? FMU_VAR_OUTPUT : FMU_VAR_PARAMETER;
+            return i < N_REAL_INPUTS ? FMU_VAR_INPUT
+                 : i < N_REAL_INPUTS + 4u ? FMU_VAR_OUTPUT : FMU_VAR_PARAMETER;
     return FMU_VAR_UNKNOWN;
 }
 
 void fmu_model_name(fmu_type type, fmi2ValueReference vr, char *buf, size_t len)
 {
     size_t i;
-    if (type == FMU_INTEGER && vr == TG_VR_PROFILE) {
-        snprintf(buf, len, "profile");
+    if (type == FMU_INTEGER && (vr == TG_VR_PROFILE || vr == TG_VR_INTERFACE)) {
+        snprintf(buf, len, vr == TG_VR_PROFILE ? "profile" : "interface");
         return;
     }
     for (i = 0; i < N_REALS; ++i)
@@ -104,10 +119,11 @@ size_t fmu_model_settable(fmu_type type, fmi2ValueReference *out, size_t cap)
     size_t i, n = 0;
     if (type == FMU_INTEGER) {
         if (cap > 0) out[0] = TG_VR_PROFILE;
-        return 1;
+        if (cap > 1) out[1] = TG_VR_INTERFACE;
+        return 2;
     }
     for (i = 0; i < N_REALS; ++i)
-        if (i == 0 || i > 4) {
+        if (i < N_REAL_INPUTS || i >= N_REAL_INPUTS + 4u) {
             if (n < cap) out[n] = real_vrs[i];
             ++n;
         }
@@ -122,7 +138,8 @@ double fmu_model_get_real(const void *model, fmi2ValueReference vr)
 
 int fmu_model_get_integer(const void *model, fmi2ValueReference vr)
 {
-    return vr == TG_VR_PROFILE ? ((const tg_model *)model)->profile : 0;
+    const tg_model *m = (const tg_model *)model;
+    return vr == TG_VR_PROFILE ? m->profile : vr == TG_VR_INTERFACE ? m->interface : 0;
 }
 
 int fmu_model_check_tunable(const void *model, fmu_type type, const fmi2ValueReference *vr,
@@ -143,6 +160,8 @@ void fmu_model_set_integer(void *model, fmi2ValueReference vr, int value)
 {
     if (vr == TG_VR_PROFILE)
         ((tg_model *)model)->profile = value;
+    else if (vr == TG_VR_INTERFACE)
+        ((tg_model *)model)->interface = value;
 }
 
 double fmu_model_sample_period(const void *model) { return ((const tg_model *)model)->Ts; }
@@ -289,12 +308,57 @@ int fmu_model_build(void *model, void *mem, size_t bytes, char *msg, size_t len)
     return 0;
 }
 
+/* The target the inputs hold (checked by fmu_model_check_inputs() before every step). */
+static sms_target held(const tg_model *m)
+{
+    sms_target t;
+    t.position = (sms_real)m->target;
+    t.velocity = (sms_real)m->target_velocity;
+    t.acceleration = (sms_real)m->target_acceleration;
+    t.interface = m->interface;
+    return t;
+}
+
+int fmu_model_check_inputs(const void *model, char *msg, size_t len)
+{
+    const tg_model *m = (const tg_model *)model;
+    sms_target t = held(m);
+    sms_status st = sms_generator_check_target(&m->gen, &t);
+    const double v = m->target_velocity, a = m->target_acceleration;
+    const double V = (double)m->gen.limits.vmax, A = (double)m->gen.limits.amax;
+    const double J = (double)m->gen.limits.jmax, reach = a * fabs(a) / (2.0 * J);
+    switch (st) {
+    case SMS_OK:
+        return 0;
+    case SMS_ERR_INTERFACE:
+        return snprintf(msg, len, "interface = %d is not position (0), velocity (1) or stop (2)",
+                        m->interface), 1;
+    case SMS_ERR_TARGET_POSITION:
+        return snprintf(msg, len, "target = %.17g: %s", m->target, sms_status_string(st)), 1;
+    case SMS_ERR_TARGET_VELOCITY:
+        if (m->profile == SMS_PROFILE_TRIGONOMETRIC && fabs(v) <= V)
+            return snprintf(msg, len, "target_velocity = %.17g: the trigonometric profile plans "
+                            "position targets at rest only (target_velocity 0)", v), 1;
+        return snprintf(msg, len, "target_velocity = %.17g is beyond vmax = %.17g", v, V), 1;
+    default:
+        if (m->profile == SMS_PROFILE_TRIGONOMETRIC && a != 0.0)
+            return snprintf(msg, len, "target_acceleration = %.17g: the trigonometric profile "
+                            "holds no acceleration at a target (target_acceleration 0)", a), 1;
+        return snprintf(msg, len, "target_acceleration = %.17g with target_velocity = %.17g: "
+                        "|a| must be within amax = %.17g and v - a|a|/(2 jmax) = %.17g, "
+                        "v + a|a|/(2 jmax) = %.17g within vmax = %.17g (jmax = %.17g: the "
+                        "velocity where the acceleration was zero on the way in and where it "
+                        "returns to zero after)", a, v, A, v - reach, v + reach, V, J), 1;
+    }
+}
+
 int fmu_model_tick(void *model)
 {
     tg_model *m = (tg_model *)model;
+    sms_target t = held(m);
     sms_real out[4];
     int i, changed = 0;
-    sms_generator_step(&m->gen, (sms_real)m->target, out);
+    sms_generator_step_target(&m->gen, &t, out);
     for (i = 0; i < 4; ++i) {
         changed |= m->out[i] != (double)out[i];
         m->out[i] = (double)out[i];
@@ -309,11 +373,12 @@ int fmu_model_tick(void *model)
 uint64_t fmu_model_hold(void *model, uint64_t n)
 {
     tg_model *m = (tg_model *)model;
+    sms_target t = held(m);
     sms_real out[4];
     int i;
     if (n == 0)
         return 0;
-    sms_generator_hold(&m->gen, (sms_real)m->target, n, out);
+    sms_generator_hold_target(&m->gen, &t, n, out);
     for (i = 0; i < 4; ++i)
         m->out[i] = (double)out[i];
     return n;
@@ -327,10 +392,10 @@ int fmu_model_warning(void *model, char *msg, size_t len)
         m->warned = 0;
         return 0;
     }
-    if (m->warned && m->dropped == (double)m->gen.target)
+    if (m->warned && m->dropped == (double)m->gen.target.position)
         return 0;
     m->warned = 1;
-    m->dropped = (double)m->gen.target;
+    m->dropped = (double)m->gen.target.position;
     goal = (double)m->gen.plan.goal;
     span = fabs(m->dropped - goal) / m->vmax / m->Ts;
     snprintf(msg, len, "target = %.17g dropped: its move cannot be represented with vmax = "
@@ -369,7 +434,7 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
     tg_model *m = (tg_model *)model;
     const double limit[4] = {0.0, (double)m->gen.limits.vmax, (double)m->gen.limits.amax,
                              (double)m->gen.limits.jmax};
-    const double *plan = src + 4 + SMS_GENERATOR_IDENTITY_COUNT; /* target, goal, q, v, a, k */
+    const double *plan = src + 4 + SMS_GENERATOR_IDENTITY_COUNT; /* trajectory.h's layout */
     sms_status st;
     int i;
     if (n != fmu_model_state_count(m))
@@ -391,7 +456,8 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
                      "out of range, a plan it cannot form, or the plan's start v = %.17g, "
                      "a = %.17g beyond vmax = %.17g, amax = %.17g (v, a and the brake velocity "
                      "v + a|a|/(2 J) within them to a relative %.3g)", sms_status_string(st),
-                     plan[3], plan[4], limit[1], limit[2], SMS_LIMIT_RTOL);
+                     plan[SMS_GENERATOR_STATE_V], plan[SMS_GENERATOR_STATE_A], limit[1],
+                     limit[2], SMS_LIMIT_RTOL);
         else
             snprintf(msg, len, "the generator's state: %s", sms_status_string(st));
         return 1;

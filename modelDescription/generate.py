@@ -130,6 +130,11 @@ CHOICES = {
                ("paper", 1, "N = round(T/Ts), as in the source papers"),
                ("bounded", 2, "the exact zero with one more tap, no tap above the continuous "
                               "peak density (rectangular, exponential)")],
+    "Interface": [("position", 0, "arrive at target with target_velocity and "
+                               "target_acceleration"),
+                  ("velocity", 1, "reach target_velocity with target_acceleration, the "
+                               "position free"),
+                  ("stop", 2, "brake to rest at once")],
     "ScheduleKind": [("none", -1, "no scheduled shaper"), ("zv", 0, "ZV"), ("zvd", 1, "ZVD"),
                      ("zvdd", 2, "ZVDD"), ("zvn", 3, "ZV^n, n = schedule.order")],
     "Profile": [("polynomial", 0, "linear ramps of the acceleration: time-optimal double-S"),
@@ -235,6 +240,18 @@ def trajectory_generator() -> tuple[list[Var], list[str], str]:
                       "tick", "", variability="discrete", c_name=n.upper(),
                       initial_depends_on=["target"]))
     vs += [
+        Var("target_velocity", 5, "Real", "input", "velocity (P/s) at arrival on target "
+            "(interface position), or the velocity to reach (interface velocity); |.| <= vmax "
+            "(0 for a position target of the trigonometric profile)", "", 0.0,
+            c_name="TARGET_VELOCITY"),
+        Var("target_acceleration", 6, "Real", "input", "acceleration (P/s2) at arrival; "
+            "|.| <= amax, and target_velocity -+ a|a|/(2 jmax) within +-vmax (the velocity "
+            "where the acceleration was zero on the way in and where it returns to zero after); "
+            "0 for the trigonometric profile", "", 0.0, c_name="TARGET_ACCELERATION"),
+        Var("interface", 7, "Integer", "input", "what the target asks for; "
+            + choice_text("Interface"), "", 0, "Interface", "discrete", c_name="INTERFACE"),
+    ]
+    vs += [
         Var("Ts", 10, "Real", "parameter", "sample period of the internal ticks; finite, > 0", "s",
             0.001, variability="fixed", min=0.0, c_name="TS"),
         Var("vmax", 11, "Real", "parameter", "velocity bound (P/s); finite, > 0", "", 1.0,
@@ -252,7 +269,8 @@ def trajectory_generator() -> tuple[list[Var], list[str], str]:
         Var("q0", 17, "Real", "parameter", "initial position (P): the generator starts at rest "
             "there; finite", "", 0.0, variability="fixed", c_name="Q0"),
     ]
-    return vs, [], "Online jerk-limited multi-point trajectory generator (smoothshaper)"
+    return vs, [], ("Online time-optimal jerk-limited trajectory generator to any target state "
+                    "(smoothshaper)")
 
 
 def elastic_plant() -> tuple[list[Var], list[str], str]:

@@ -50,6 +50,7 @@ _STATUS_PARAMETER = {
     **{code: "state" for code in range(-43, -21)},
     -44: "coeffs",
     -45: "index",   # a retune of a stage whose previous switch is still in progress
+    -46: "target", -47: "velocity", -48: "acceleration", -49: "interface",
     -50: "amplitudes", -51: "times",
 }
 #: Saved Chain states start with this tag and format version, then the configuration they

@@ -1,6 +1,13 @@
 # SPDX-License-Identifier: Apache-2.0
 """NumPy reference of the time-optimal online generator's plan.
 
+Linear ramps of the acceleration (the polynomial and damped profiles) plan from any state to
+any target state, or to a target velocity, with :mod:`smoothshaper.reference.third_order`
+(step 1, the time-optimal motion; a moving target reached on the sample grid by the convex
+combination of the two farthest motions of that many samples); after the target the
+acceleration returns to zero at jmax and the velocity is held. Half-cosine transitions (the
+trigonometric profile) plan to rest as below.
+
 Written independently of ``c/src/trajectory/plan.c``: the motion from a state (q, v, a) to a target at
 rest is built from the same three phases (velocity change to a peak velocity vp with the
 acceleration back at 0, a cruise at +-vmax when the distance allows, the stop), but vp is
@@ -29,12 +36,16 @@ import numpy as np
 from scipy.optimize import brentq
 
 from . import _reach
+from .reference import third_order as _to
 from ._checks import (choice as _choice, finite as _finite, positive as _positive,
                       real_array as _real_array)
 from .errors import ParameterError
 
 __all__ = ["plan_to_rest", "plan_duration", "time_optimal_reference", "mean_jerk", "C3", "reach",
-           "representable", "MAX_PLAN_SAMPLES"]
+           "representable", "MAX_PLAN_SAMPLES", "POSITION", "VELOCITY", "STOP"]
+
+#: Interfaces of a target (the values of ``sms_interface``).
+POSITION, VELOCITY, STOP = 0, 1, 2
 
 #: The longest plan in samples: its sample counts stay exact in a double (a saved state).
 MAX_PLAN_SAMPLES = 2.0 ** 52
@@ -313,10 +324,11 @@ def _ends(pieces, Ts):
     return out
 
 
-def _evaluate(pieces, starts, ends, goal, m, Ts, shape="ramp"):
-    """q, v, a, j at sample m >= 0 after the plan's start (jerk: right limit at a jump)."""
+def _evaluate(plan, m, Ts, shape="ramp"):
+    """q, v, a, j at sample m >= 0 after the plan's start (jerk: right limit at a jump); from
+    its end on, q = goal + drift t and v = drift."""
     begin = 0.0
-    for (d, j), (q0, v0, a0), end in zip(pieces, starts, ends):
+    for (d, j), (q0, v0, a0), end in zip(plan["pieces"], plan["starts"], plan["ends"]):
         if m < end:
             s = max(m * Ts - begin, 0.0)   # at its start when the breakpoint snapped onto m
             if shape == "cosine" and j != 0:
@@ -326,8 +338,153 @@ def _evaluate(pieces, starts, ends, goal, m, Ts, shape="ramp"):
                         a0 + half * (1 - math.cos(x)), half / w * math.sin(x))
             return (q0 + s * (v0 + s * (a0 / 2 + s * j / 6)), v0 + s * (a0 + s * j / 2),
                     a0 + s * j, j)
-        begin += d
-    return goal, 0.0, 0.0, 0.0
+        begin = end * Ts
+    drift, end = plan["drift"], plan["end"]
+    q = plan["goal"] + drift * (m - end) * Ts if drift != 0 and m > end else plan["goal"]
+    return q, drift, 0.0, 0.0
+
+
+def _rest_plan(q):
+    return dict(pieces=[], starts=[], ends=[], goal=q, drift=0.0, end=0.0, arrive=0.0)
+
+
+def _finish(pieces, starts, state, jmax):
+    """The pieces so far, then from the target state (exact) the acceleration back to zero at
+    jmax and the velocity it leaves held: (pieces, starts, goal, drift)."""
+    q, v, a = state
+    if a != 0:
+        d, j = abs(a) / jmax, -math.copysign(jmax, a)
+        pieces.append((d, j))
+        starts.append((q, v, a))
+        q, v, _ = _integrate([(d, j)], q, v, a)
+    return pieces, starts, q, v
+
+
+def _from_third_order(third, q, v, a, last, jmax, vend=0.0, aend=0.0):
+    """The pieces (jerk, duration, a_start[, v]) of a third-order motion from (q, v, a) as
+    (duration, jerk) pieces and their starts, then the target state `last` (exact), or the
+    state reached with vend, aend (the velocity interface) when last is None."""
+    pieces, starts = [], []
+    for piece in third:
+        j, d, a = piece[0], piece[1], piece[2]
+        if len(piece) > 3:
+            v = piece[3]
+        pieces.append((d, j))
+        starts.append((q, v, a))
+        q, v, a = q + d * (v + d * (a / 2 + d * j / 6)), v + d * (a + d * j / 2), a + d * j
+    return _finish(pieces, starts, last if last is not None else (q, vend, aend), jmax)
+
+
+def _blend(hi, lo, lam, q, v, a, T):
+    """lam hi + (1 - lam) lo, two motions of duration T from (q, v, a), on the union of their
+    breakpoints: (duration, jerk) pieces and their starts."""
+    cuts = set()
+    for prof in (hi, lo):
+        t = 0.0
+        for piece in prof[:-1]:
+            t += piece[1]
+            if 0 < t < T:
+                cuts.add(t)
+    cuts = [0.0] + sorted(cuts) + [T]
+    mu = 1.0 - lam
+    pieces, starts = [], []
+    for t0, t1 in zip(cuts[:-1], cuts[1:]):
+        pa, va, aa, _ = _to.state_at(hi, v, a, t0)
+        pb, vb, ab, _ = _to.state_at(lo, v, a, t0)
+        ja = _to.state_at(hi, v, a, (t0 + t1) / 2)[3]
+        jb = _to.state_at(lo, v, a, (t0 + t1) / 2)[3]
+        pieces.append((t1 - t0, lam * ja + mu * jb))
+        starts.append((q + (lam * pa + mu * pb), lam * va + mu * vb, lam * aa + mu * ab))
+    return pieces, starts
+
+
+def _grid_ceil(T, Ts):
+    """The first whole number of samples at or above T (within 8 ulps of its count: on it)."""
+    x = T / Ts
+    r = math.floor(x)
+    return int(r if x - r <= 8 * np.finfo(float).eps * max(x, 1.0) else r + 1)
+
+
+def _ramp_plan(state, goal, vmax, amax, jmax, Ts):
+    """The plan of linear ramps from state (q, v, a) towards goal (interface, position,
+    velocity, acceleration), or None when none is found or it cannot be represented."""
+    q, v, a = state
+    interface, pf, vf, af = goal
+    lim = _to.Limits(vmax, amax, jmax)
+    N = None
+    if interface == VELOCITY:
+        third = _to.velocity_change(v, a, vf, af, lim)
+        if third is None:
+            return None
+        pieces, starts, g, drift = _from_third_order(third, q, v, a, None, jmax, vf, af)
+        arrive = sum(piece[1] for piece in third) / Ts
+    else:
+        found = _to.time_optimal(q, v, a, pf, vf, af, lim)
+        if found is None:
+            return None
+        T, third, durations = found
+        pieces = None
+        if vf != 0 or af != 0:
+            # on the grid: the first whole number of samples at or after the optimum (or past
+            # a blocked duration, the next member's) at which a motion exists
+            for Tr in durations:
+                Tr = max(Tr, T)   # every member lasts the optimum at least, but for rounding
+                if not math.isfinite(Tr / Ts) or Tr / Ts + 2 > MAX_PLAN_SAMPLES:
+                    continue
+                for n in (_grid_ceil(Tr, Ts), _grid_ceil(Tr, Ts) + 1):
+                    hi = _to.farthest(v, a, vf, af, lim, n * Ts, 1)
+                    lo = _to.farthest(v, a, vf, af, lim, n * Ts, -1)
+                    if hi is None or lo is None:
+                        continue
+                    D = pf - q
+                    tol = 16 * np.finfo(float).eps * (abs(q) + abs(pf) + abs(hi[0]) + abs(lo[0])
+                                                      + 2 * vmax * n * Ts)
+                    if not lo[0] - tol <= D <= hi[0] + tol:
+                        continue
+                    lam = (D - lo[0]) / (hi[0] - lo[0]) if hi[0] > lo[0] else 1.0
+                    pieces, starts = _blend(hi[1], lo[1], min(max(lam, 0.0), 1.0), q, v, a, n * Ts)
+                    pieces, starts, g, drift = _finish(pieces, starts, (pf, vf, af), jmax)
+                    N = n
+                    break
+                if pieces is not None:
+                    break
+        if pieces is None:
+            pieces, starts, g, drift = _from_third_order(third, q, v, a, (pf, vf, af), jmax)
+        arrive = (N if N is not None else T / Ts)
+    if not representable(pieces, starts, Ts) or not math.isfinite(g) or not math.isfinite(drift):
+        return None
+    ends = _ends(pieces, Ts)
+    if N is not None:
+        # the target exactly on sample N: the motion's last piece ends there
+        k = len(pieces) - (1 if af != 0 else 0)
+        ends[k - 1] = float(N)
+    return dict(pieces=pieces, starts=starts, ends=ends, goal=g, drift=drift,
+                end=ends[-1] if ends else 0.0, arrive=arrive)
+
+
+def _cosine_plan(state, goal, vmax, amax, jmax, Ts):
+    """The half-cosine plan: to rest at the goal's position, or to its velocity at a = 0."""
+    q, v, a = state
+    interface, pf, vf, _ = goal
+    c3 = C3["cosine"]
+    Jm = _mean_jerk(jmax, "cosine")
+    if interface == VELOCITY:
+        pieces, starts, st = [], [], (q, v, a)
+        for d, j in _change(v, a, vf, amax, Jm, "cosine"):
+            if d > 0:
+                pieces.append((d, j))
+                starts.append(st)
+                st = _integrate([(d, j)], *st, c3)
+        g, drift = st[0], vf
+    else:
+        pieces, starts = _plan_to_rest(q, v, a, pf, vmax=vmax, amax=amax, jmax=jmax,
+                                       shape="cosine")
+        g, drift = pf, 0.0
+    if not representable(pieces, starts, Ts):
+        return None
+    ends = _ends(pieces, Ts)
+    return dict(pieces=pieces, starts=starts, ends=ends, goal=g, drift=drift,
+                end=ends[-1] if ends else 0.0, arrive=ends[-1] if ends else 0.0)
 
 
 def _can_start(v, a, vmax, jmax, shape):
@@ -338,37 +495,78 @@ def _can_start(v, a, vmax, jmax, shape):
     return abs(v + a * abs(a) / (2 * _mean_jerk(jmax, shape))) <= vmax
 
 
-def _run(targets, *, vmax, amax, jmax, Ts, q0=0.0, shape="ramp"):
-    """(out, goal, dropped): the samples, the running plan's goal at each sample, and 1 at
-    each sample where a target was dropped."""
+def canonical_target(interface, position, velocity, acceleration, *, vmax, amax, jmax,
+                     shape="ramp"):
+    """A target (interface, position, velocity, acceleration) in canonical form (a stop as
+    the velocity interface to 0, the position of a velocity target as 0), or None when it is
+    invalid: the interface unknown, a value not finite, or the velocity, acceleration or
+    v -+ a|a|/(2 jmax) beyond the bounds (:func:`~smoothshaper.reference.third_order.target_ok`);
+    half-cosine transitions take position targets at rest and velocity targets at a = 0."""
+    if interface == STOP:
+        return (VELOCITY, 0.0, 0.0, 0.0)
+    if interface not in (POSITION, VELOCITY):
+        return None
+    if interface == VELOCITY:
+        position = 0.0
+    if not math.isfinite(position):
+        return None
+    if shape == "cosine" and (acceleration != 0 or (interface == POSITION and velocity != 0)):
+        return None
+    if _to.target_ok(velocity, acceleration, _to.Limits(vmax, amax, jmax)) is not None:
+        return None
+    return (interface, float(position), float(velocity), float(acceleration))
+
+
+def _run(targets, *, vmax, amax, jmax, Ts, q0=0.0, shape="ramp", velocity=None,
+         acceleration=None, interface=None, start=None):
+    """(out, goal, dropped): the samples, the running plan's goal at each sample (where it
+    rests, or from where it drifts on), and 1 at each sample where a target was dropped.
+
+    targets: the position at every sample (position interface; ignored for the others);
+    velocity, acceleration: arrays of the same length (default 0); interface: POSITION,
+    VELOCITY or STOP per sample (default POSITION). An invalid target is ignored (the held one
+    kept), as a non-finite position is. start: (q, v, a, target) the generator continues
+    from (its plan to target formed at the sample before the first), default at rest on q0."""
     x = np.asarray(targets, dtype=np.float64)
-    out = np.empty((x.size, 4))
-    goals = np.empty(x.size)
-    dropped = np.zeros(x.size, dtype=bool)
-    pieces, starts, ends, goal, i0 = [], [], [], float(q0), 0
-    held, refused = float(q0), False
-    for i, target in enumerate(x):
-        if math.isfinite(target) and target != held:   # a new target (non-finite: ignored)
-            held, refused = float(target), False
-        state = _evaluate(pieces, starts, ends, goal, i - i0, Ts, shape)
+    n = x.size
+    vel = np.zeros(n) if velocity is None else np.asarray(velocity, dtype=np.float64)
+    acc = np.zeros(n) if acceleration is None else np.asarray(acceleration, dtype=np.float64)
+    itf = np.zeros(n, dtype=int) if interface is None else np.asarray(interface, dtype=int)
+    out = np.empty((n, 4))
+    goals = np.empty(n)
+    dropped = np.zeros(n, dtype=bool)
+    make = _cosine_plan if shape == "cosine" else _ramp_plan
+    plan, i0 = _rest_plan(float(q0)), 0
+    held = goal = (POSITION, float(q0), 0.0, 0.0)
+    refused = False
+    if start is not None:
+        q, v, a, target = start
+        goal = held = target
+        new = make((q, v, a), target, vmax, amax, jmax, Ts)
+        if new is None:
+            raise ParameterError("target", f"target={target!r}: the motion from (q, v, a) = "
+                                 f"({q!r}, {v!r}, {a!r}) cannot be represented")
+        plan, i0 = new, -1
+    for i in range(n):
+        t = canonical_target(int(itf[i]), float(x[i]), float(vel[i]), float(acc[i]), vmax=vmax,
+                             amax=amax, jmax=jmax, shape=shape)
+        if t is not None and t != held:   # a new target (invalid: ignored)
+            held, refused = t, False
+        state = _evaluate(plan, i - i0, Ts, shape)
         if held != goal and not refused and _can_start(state[1], state[2], vmax, jmax, shape):
             try:
                 with np.errstate(all="ignore"):
-                    new, new_starts = _plan_to_rest(state[0], state[1], state[2], held,
-                                                    vmax=vmax, amax=amax, jmax=jmax, shape=shape)
-                ok = representable(new, new_starts, Ts)
+                    new = make(state[:3], held, vmax, amax, jmax, Ts)
             except (OverflowError, ValueError, ZeroDivisionError):
-                ok = False
-            if ok:
-                pieces, starts = new, new_starts
-                ends = _ends(pieces, Ts)
-                goal, i0 = held, i
-                state = _evaluate(pieces, starts, ends, goal, 0, Ts, shape)
+                new = None
+            if new is not None:
+                plan, goal, i0 = new, held, i
+                state = _evaluate(plan, 0, Ts, shape)
             else:   # dropped: the running plan goes on; not tried again until it changes
                 refused = True
                 dropped[i] = True
         out[i] = state
-        goals[i] = goal
+        goals[i] = plan["goal"]
     return out, goals, dropped
 
 

@@ -144,10 +144,12 @@ class Generator(_state_identity.SavedState, Twins):
         "(``SMS_GENERATOR_IDENTITY_COUNT`` = 11 values: state tag, format version, "
         "``sizeof(sms_real)`` (8 double, 4 float), kind (100, a generator), ``Ts``, ``vmax``, "
         "``amax``, ``jmax``, profile index in :data:`~smoothshaper.design.PROFILES`, ``wn`` "
-        "(0 without a mode), ``zeta``); then target, goal, the running plan's start q, v, a "
-        "and the samples since it (n = 17 without a mode); with a mode also the samples the "
-        "plan has rested and the four states of the tuned stage (each with its own stage "
-        "identity).")
+        "(0 without a mode), ``zeta``); then the target and the goal of the running plan, "
+        "each as position, velocity, acceleration and interface (0 position, 1 velocity; a "
+        "stop is the velocity interface to 0), the running plan's start q, v, a and the "
+        "samples since it (n = 23 without a mode; the offsets are ``SMS_GENERATOR_STATE_*`` "
+        "of trajectory.h); with a mode also the samples the plan has rested and the four "
+        "states of the tuned stage (each with its own stage identity).")
 
     def __init__(self, *, vmax: float, amax: float, jmax: float, Ts: float,
                  profile: str = "polynomial", wn: float | None = None, zeta: float = 0.0,
@@ -221,13 +223,38 @@ class Generator(_state_identity.SavedState, Twins):
         self._lib.sms_generator_reset(self._gen, position)
 
     @locked
-    def process(self, targets) -> np.ndarray:
+    def process(self, targets=None, *, velocity=None, acceleration=None, interface=None,
+                stop=None) -> np.ndarray:
         """Run a block of targets, one C call for the whole block.
+
+        With ``targets`` alone, each sample's target is a position to reach and rest on (a
+        staircase). ``velocity`` and ``acceleration`` give the state at arrival (a moving
+        target: the output reaches the position with that velocity and acceleration exactly
+        on a sample, then its acceleration returns to zero at ``jmax`` and the velocity is
+        held). ``interface="velocity"`` (the default when ``targets`` is omitted) asks for
+        the velocity alone: reached in the least time, the position free. ``stop`` brakes to
+        rest at once where it is True. Every sample keeps every limit either way
+        (docs/sampled-limits.md).
 
         Parameters
         ----------
-        targets : array_like of float, shape (n,)
-            The target at every sample, finite.
+        targets : array_like of float, shape (n,), optional
+            The target position at every sample, finite (ignored where the interface is
+            "velocity" or ``stop`` holds).
+        velocity : float or array_like of float, shape (n,), keyword-only
+            Velocity at arrival (position interface) or the velocity to reach (velocity
+            interface) [units/s], default 0: ``|velocity| <= vmax``.
+        acceleration : float or array_like of float, shape (n,), keyword-only
+            Acceleration at arrival [units/s^2], default 0: ``|acceleration| <= amax`` and
+            ``velocity -+ acceleration|acceleration|/(2 jmax)`` within ``+-vmax`` (the
+            velocity on the way in and after, where the acceleration is zero). The
+            trigonometric profile takes position targets at rest and velocity targets with
+            acceleration 0 only.
+        interface : {"position", "velocity"} or array_like of them, shape (n,), keyword-only
+            What each target asks for (default "position" with ``targets``, "velocity"
+            without).
+        stop : bool or array_like of bool, shape (n,), keyword-only
+            Where True, brake to rest at once (the velocity interface to 0).
 
         Returns
         -------
@@ -241,8 +268,9 @@ class Generator(_state_identity.SavedState, Twins):
         Raises
         ------
         ParameterError
-            Naming ``targets`` when it is not a finite real 1-D array; the state is then
-            untouched.
+            Naming ``targets``, ``velocity``, ``acceleration``, ``interface`` or ``stop``
+            (with the first offending sample) when an array is not of the block's length or
+            a value is out of range; the state is then untouched.
 
         Warns
         -----
@@ -250,17 +278,92 @@ class Generator(_state_identity.SavedState, Twins):
             Once per call in which targets were dropped, naming the last one, the position
             it was to be reached from and the count (also in :attr:`dropped`).
         """
-        x = _targets("targets", targets)
+        rest_only = velocity is None and acceleration is None and interface is None and stop is None
+        if targets is None and rest_only:
+            raise ParameterError("targets", "targets must be given (positions), or velocity "
+                                 "for the velocity interface")
         before = self._gen.dropped
         dtype = _real_dtype(self.precision)
-        xin = np.ascontiguousarray(x, dtype=dtype)
-        out = np.empty((x.size, 4), dtype=dtype)
-        if x.size:
-            self._lib.sms_generator_process(self._gen, self._ffi.from_buffer("sms_real[]", xin),
-                                            x.size, self._ffi.from_buffer("sms_real[]", out))
+        if rest_only:
+            x = _targets("targets", targets)
+            n = x.size
+            xin = np.ascontiguousarray(x, dtype=dtype)
+            out = np.empty((n, 4), dtype=dtype)
+            if n:
+                self._lib.sms_generator_process(
+                    self._gen, self._ffi.from_buffer("sms_real[]", xin), n,
+                    self._ffi.from_buffer("sms_real[]", out))
+        else:
+            block = self._target_block(targets, velocity, acceleration, interface, stop)
+            n = block.size
+            out = np.empty((n, 4), dtype=dtype)
+            if n:
+                self._lib.sms_generator_process_targets(
+                    self._gen, self._ffi.cast("sms_target *", self._ffi.from_buffer(block)), n,
+                    self._ffi.from_buffer("sms_real[]", out))
         if self._gen.dropped != before:
             self._warn_dropped(self._gen.dropped - before)
         return out if dtype == np.float64 else out.astype(np.float64)
+
+    def _target_block(self, targets, velocity, acceleration, interface, stop) -> np.ndarray:
+        """The sms_target array of a block, every target checked by the C core (its status
+        names the field, the index the sample)."""
+        sizes = [np.size(x) for x in (targets, velocity, acceleration, interface, stop)
+                 if x is not None and np.ndim(x) > 0]
+        n = sizes[0] if sizes else 1
+        names = ("targets", "velocity", "acceleration", "interface", "stop")
+        for name, x in zip(names, (targets, velocity, acceleration, interface, stop)):
+            if x is not None and np.ndim(x) > 0 and np.size(x) != n:
+                raise ParameterError(name, f"{name} must have the block's length {n} (or be a "
+                                     f"scalar), got {np.size(x)} values")
+
+        def column(name, x, default):
+            if x is None:
+                return np.full(n, default, dtype=np.float64)
+            if np.ndim(x) == 0:
+                return np.full(n, _finite(name, x))
+            return _targets(name, x)
+        pos = column("targets", targets, 0.0)
+        vel = column("velocity", velocity, 0.0)
+        acc = column("acceleration", acceleration, 0.0)
+        if interface is None:
+            codes = np.full(n, 0 if targets is not None else 1, dtype=np.int32)
+        else:
+            names_ = np.asarray(interface, dtype=object).reshape(-1)
+            codes = np.empty(names_.size, dtype=np.int32)
+            for i, value in enumerate(names_):
+                if value not in ("position", "velocity"):
+                    raise ParameterError("interface", f"interface must be \"position\" or "
+                                         f"\"velocity\", got {_show(value)}" +
+                                         (f" at sample {i}" if np.ndim(interface) else ""))
+                codes[i] = 0 if value == "position" else 1
+            codes = np.broadcast_to(codes, (n,)).copy()
+            if targets is None and np.any(codes == 0):
+                raise ParameterError("targets", "targets (positions) must be given where the "
+                                     "interface is \"position\"")
+        if stop is not None:
+            halt = np.asarray(stop)
+            if halt.dtype != np.bool_:
+                raise ParameterError("stop", f"stop must be a bool or an array of bools, got "
+                                     f"{halt.dtype}")
+            codes[np.broadcast_to(halt, (n,))] = 2
+        real = _real_dtype(self.precision)
+        block = np.zeros(n, dtype=_target_dtype(real))
+        with np.errstate(over="ignore"):      # beyond float's range: inf, refused below
+            block["position"] = pos.astype(real)
+            block["velocity"] = vel.astype(real)
+            block["acceleration"] = acc.astype(real)
+        block["interface"] = codes
+        index = self._ffi.new("size_t *")
+        st = self._lib.sms_generator_check_targets(
+            self._gen, self._ffi.cast("sms_target *", self._ffi.from_buffer(block)), n, index)
+        if st != 0:
+            i = int(index[0])
+            field = {-46: ("targets",), -47: ("velocity",), -48: ("acceleration",),
+                     -49: ("interface",)}[st]
+            raise ParameterError(field[0], _target_message(
+                self, field[0], i, float(pos[i]), float(vel[i]), float(acc[i]), int(codes[i])), st)
+        return block
 
     @property
     def refused(self) -> bool:
@@ -275,9 +378,15 @@ class Generator(_state_identity.SavedState, Twins):
         not part of the saved state)."""
         return int(self._gen.dropped)
 
+    @property
+    def arrival(self) -> int:
+        """Samples from the last one output until the one on which the running plan reaches
+        its target state (0 once reached)."""
+        return int(self._lib.sms_generator_arrival(self._gen))
+
     def _warn_dropped(self, count: int) -> None:
         g = self._gen
-        target, q, goal = float(g.target), float(g.plan_q), float(g.plan.goal)
+        target, q, goal = float(g.target.position), float(g.plan_q), float(g.plan.goal)
         span = abs(target - goal) / self.vmax / self.Ts if math.isfinite(target - goal) else math.inf
         what = "target" if count == 1 else f"{count} targets dropped in this block; the last"
         warnings.warn(DroppedTargetWarning(
@@ -289,14 +398,14 @@ class Generator(_state_identity.SavedState, Twins):
 
     @locked
     def start_from(self, q: float, v: float = 0.0, a: float = 0.0, *,
-                   target: float | None = None) -> None:
-        """Continue from the motion state (q, v, a): the next sample plans afresh from there.
+                   target: float | None = None, velocity: float = 0.0,
+                   acceleration: float = 0.0, interface: str | None = None) -> None:
+        """Continue from the motion state (q, v, a): the generator is there now, on the first
+        sample of its plan to the target, and the next :meth:`process` goes on from there
+        (re-planning when its first target differs).
 
-        A state set through :meth:`set_state` (its plan fields), so the generator continues
-        exactly as if its own plan had brought it to (q, v, a) at the previous sample: the
-        next :meth:`process` re-plans from there to its first target (the time-optimal motion
-        of the profile). A tuned stage (``wn``) keeps its history: it filters the new plan
-        from the next sample on, as it would after a re-plan.
+        A tuned stage (``wn``) keeps its history: it filters the new plan from the next
+        sample on, as it would after a re-plan.
 
         Parameters
         ----------
@@ -312,59 +421,144 @@ class Generator(_state_identity.SavedState, Twins):
             of the precision, 2^-48 in double and 2^-19 in float) to which its reported v, a, j
             keep the limits, with v and a rounded to the precision: a sample the generator
             reported is always accepted.
-        target : float or None
-            The goal the motion heads for until the next target arrives (default: q).
+        target : float or None, keyword-only
+            The position the motion heads for until the next target arrives; None (the
+            default, with ``interface`` None): brake to rest at once.
+        velocity, acceleration : float, keyword-only
+            The target's velocity and acceleration at arrival (or the velocity to reach with
+            ``interface="velocity"``), as for :meth:`process`.
+        interface : {"position", "velocity"} or None, keyword-only
+            Default "position" when ``target`` is given; with neither, a stop.
 
         Raises
         ------
         ParameterError
-            Naming ``q``, ``v``, ``a`` or ``target`` when one is not finite or the state is
-            one no plan of this generator can start from; then nothing is changed.
+            Naming ``q``, ``v``, ``a``, ``target``, ``velocity``, ``acceleration`` or
+            ``interface`` when one is not finite or out of range, or the state is one no plan
+            of this generator can start from; ``target`` also when the motion to it cannot be
+            represented in the build's floats. Nothing is changed then.
         """
         q = _finite("q", q)
         v = _finite("v", v)
         a = _finite("a", a)
-        target = q if target is None else _finite("target", target)
-        # as the C check (sms_generator_check_state): the values as sms_real holds them,
-        # against the limits as sms_real, to the reported values' tolerance
-        real = _real_dtype(self.precision)
-        tol = float(self._lib.SMS_LIMIT_RTOL)
-        with np.errstate(over="ignore"):     # beyond float's range: inf, refused below
-            v_real, a_real = float(real(v)), float(real(a))
-        if not abs(v_real) <= float(real(self.vmax)) * (1 + tol):
+        ffi, lib = self._ffi, self._lib
+        t = ffi.new("sms_target *")
+        if interface is None:
+            interface = "position" if target is not None else None
+        if interface is None:
+            t.interface = 2
+        elif interface in ("position", "velocity"):
+            if interface == "position":
+                if target is None:
+                    raise ParameterError("target", "target must be given for the position "
+                                         "interface")
+                t.position = _finite("target", target)
+            t.velocity = _finite("velocity", velocity)
+            t.acceleration = _finite("acceleration", acceleration)
+            t.interface = 0 if interface == "position" else 1
+        else:
+            raise ParameterError("interface", f"interface must be \"position\", \"velocity\" or "
+                                 f"None, got {_show(interface)}")
+        with np.errstate(over="ignore"):      # beyond float's range: inf, refused by C
+            st = lib.sms_generator_start(self._gen, q, v, a, t)
+        if st == 0:
+            return
+        tol = float(lib.SMS_LIMIT_RTOL)
+        if st == -46:
+            raise ParameterError("q", f"q={q!r} must be finite", st)
+        if st == -47 and not lib.sms_generator_check_target(self._gen, t) == -47:
             raise ParameterError("v", f"v={v!r} exceeds vmax={self.vmax!r} (beyond the "
-                                 f"generator's own rounding, a relative {tol:.3g})")
-        if not abs(a_real) <= float(real(self.amax)) * (1 + tol):
-            raise ParameterError("a", f"a={a!r} exceeds amax={self.amax!r} (beyond the "
-                                 f"generator's own rounding, a relative {tol:.3g})")
-        s = self.get_state()
-        plan = int(self._lib.SMS_GENERATOR_IDENTITY_COUNT)
-        s[plan:plan + 6] = (target, target, q, v, a, 0.0)
-        if self.tail_samples:
-            s[plan + 6] = 0.0       # the plan has not rested on its goal yet
-        st = self._lib.sms_generator_set_state(self._gen, self._ffi.from_buffer("double[]", s),
-                                               s.size)
-        if st != 0 and target != q:
-            # the state itself is one a plan starts from (towards q): the target is what
-            # cannot be reached in the build's floats (sms_generator_check_state writes nothing)
-            probe = s.copy()
-            probe[plan:plan + 2] = (q, q)
-            if self._lib.sms_generator_check_state(
-                    self._gen, self._ffi.from_buffer("double[]", probe), probe.size) == 0:
-                raise ParameterError(
-                    "target", f"target={target!r}: the move from (q, v, a) = ({q!r}, {v!r}, "
-                    f"{a!r}) cannot be represented in {self.precision} (more than 2^52 samples "
-                    "of Ts, or a value beyond the range of a float)", st)
-        if st != 0:
+                                 f"generator's own rounding, a relative {tol:.3g})", st)
+        if st == -48 and not lib.sms_generator_check_target(self._gen, t) == -48:
             raise ParameterError(
-                "a", f"(q, v, a) = ({q!r}, {v!r}, {a!r}) towards target={target!r} is not a "
-                "state a plan of this generator can start from: bringing a to zero would pass "
-                f"vmax={self.vmax!r}, or a value of the plan cannot be represented", st)
+                "a", f"(q, v, a) = ({q!r}, {v!r}, {a!r}) is not a state a plan of this generator "
+                f"can start from: |a| beyond amax={self.amax!r}, or bringing a to zero would pass "
+                f"vmax={self.vmax!r} (beyond the generator's own rounding, a relative {tol:.3g})",
+                st)
+        if st in (-47, -48, -49):
+            name = {-47: "velocity", -48: "acceleration", -49: "interface"}[st]
+            raise ParameterError(name, _target_message(
+                self, name, None, float(t.position), float(t.velocity), float(t.acceleration),
+                int(t.interface)), st)
+        raise ParameterError(
+            "target", f"target: the move from (q, v, a) = ({q!r}, {v!r}, {a!r}) cannot be "
+            f"represented in {self.precision} (more than 2^52 samples of Ts, or a value beyond "
+            "the range of a float)", st)
+
+
+def _target_dtype(real):
+    """NumPy's layout of sms_target for the precision (C alignment)."""
+    return np.dtype([("position", real), ("velocity", real), ("acceleration", real),
+                     ("interface", np.int32)], align=True)
+
+
+def _target_message(g, name, i, position, velocity, acceleration, code):
+    """Why the generator refuses a target's field, with the values and the limits."""
+    at = "" if i is None else f" at sample {i}"
+    if name == "targets":
+        return f"targets{at}: the position {position!r} must be finite"
+    if name == "interface":
+        return f"interface{at}: {code!r} is not position, velocity or stop"
+    if name == "velocity":
+        if g.profile == "trigonometric" and velocity != 0 and math.isfinite(velocity) \
+                and abs(velocity) <= g.vmax:
+            return (f"velocity{at}: {velocity!r}: the trigonometric profile plans position "
+                    "targets at rest only (velocity 0)")
+        return f"velocity{at}: {velocity!r} must be finite and within +-vmax = +-{g.vmax!r}"
+    if g.profile == "trigonometric" and acceleration != 0:
+        return (f"acceleration{at}: {acceleration!r}: the trigonometric profile holds no "
+                "acceleration at a target (acceleration 0)")
+    reach = acceleration * abs(acceleration) / (2 * g.jmax) if math.isfinite(acceleration) else 0
+    return (f"acceleration{at}: {acceleration!r} must be finite, within +-amax = +-{g.amax!r}, "
+            f"and keep velocity -+ acceleration|acceleration|/(2 jmax) = {velocity - reach!r}, "
+            f"{velocity + reach!r} within +-vmax = +-{g.vmax!r} (the velocity where the "
+            "acceleration was zero on the way in and where it returns to zero after)")
 
 
 # ----------------------------------------------------------------------------------------------
 # NumPy reference of the generator
 # ----------------------------------------------------------------------------------------------
+
+def _reference_targets(targets, velocity, acceleration, interface, stop, *, vmax, amax, jmax,
+                       profile):
+    """(positions, velocities, accelerations, interface codes) of a block, checked as the
+    reference states the rules (:func:`smoothshaper.reference.third_order.target_ok`)."""
+    from .reference import third_order as _to
+    if velocity is None and acceleration is None and interface is None and stop is None:
+        x = _targets("targets", targets)
+        return x, None, None, None
+    arrays = [a for a in (targets, velocity, acceleration, interface, stop)
+              if a is not None and np.ndim(a) > 0]
+    n = np.size(arrays[0]) if arrays else 1
+    pos = np.zeros(n) if targets is None else np.broadcast_to(
+        _targets("targets", np.atleast_1d(targets)), (n,))
+    vel = np.zeros(n) if velocity is None else np.broadcast_to(
+        _targets("velocity", np.atleast_1d(velocity)), (n,))
+    acc = np.zeros(n) if acceleration is None else np.broadcast_to(
+        _targets("acceleration", np.atleast_1d(acceleration)), (n,))
+    if interface is None:
+        codes = np.full(n, 0 if targets is not None else 1)
+    else:
+        names = np.broadcast_to(np.asarray(interface, dtype=object), (n,))
+        if not all(name in ("position", "velocity") for name in names):
+            raise ParameterError("interface", 'interface must be "position" or "velocity"')
+        codes = np.array([0 if name == "position" else 1 for name in names])
+    if stop is not None:
+        codes = np.where(np.broadcast_to(np.asarray(stop, dtype=bool), (n,)), 2, codes)
+    lim = _to.Limits(_design._positive("vmax", vmax), _design._positive("amax", amax),
+                     _design._positive("jmax", jmax))
+    trig = _design.profile_name(profile) == "trigonometric"
+    for i in range(n):
+        if codes[i] == 2:
+            continue
+        bad = _to.target_ok(float(vel[i]), float(acc[i]), lim)
+        if trig and bad is None and (acc[i] != 0 or (codes[i] == 0 and vel[i] != 0)):
+            bad = "velocity" if acc[i] == 0 else "acceleration"
+        if bad is not None:
+            raise ParameterError(bad, f"{bad} at sample {i}: (velocity, acceleration) = "
+                                 f"({vel[i]!r}, {acc[i]!r}) is not a target of these limits")
+    return np.asarray(pos, dtype=float), np.asarray(vel), np.asarray(acc), codes
+
 
 def tuned_stage(profile: str, wn: float, zeta: float):
     """The shortest stage whose zero cancels the mode, as the C generator builds it: a
@@ -405,8 +599,9 @@ def _tuned_kind(profile: str, zeta: float) -> str:
             "trigonometric": "damped_harmonic" if zeta > 0 else "harmonic"}[profile]
 
 
-def generator_reference(targets, *, vmax, amax, jmax, Ts, profile="polynomial", wn=None,
-                        zeta=0.0, position=0.0) -> np.ndarray:
+def generator_reference(targets=None, *, vmax, amax, jmax, Ts, profile="polynomial", wn=None,
+                        zeta=0.0, position=0.0, velocity=None, acceleration=None,
+                        interface=None, stop=None) -> np.ndarray:
     """NumPy reference of :class:`Generator`.
 
     The plan is :func:`smoothshaper.time_optimal.time_optimal_reference` (linear ramps of the
@@ -420,8 +615,8 @@ def generator_reference(targets, *, vmax, amax, jmax, Ts, profile="polynomial", 
 
     Parameters
     ----------
-    targets : array_like of float, shape (n,)
-        The target at every sample.
+    targets : array_like of float, shape (n,), optional
+        The target position at every sample.
     vmax : float, keyword-only
         Velocity bound [units/s], > 0.
     amax : float, keyword-only
@@ -441,6 +636,8 @@ def generator_reference(targets, *, vmax, amax, jmax, Ts, profile="polynomial", 
         Its damping ratio, in [0, 1) (default 0).
     position : float, keyword-only
         Initial rest position (default 0).
+    velocity, acceleration, interface, stop : keyword-only
+        As for :meth:`Generator.process`.
 
     Returns
     -------
@@ -450,13 +647,16 @@ def generator_reference(targets, *, vmax, amax, jmax, Ts, profile="polynomial", 
     Raises
     ------
     ParameterError
-        Naming ``targets``, a bound, ``Ts``, ``profile``, ``wn`` or ``zeta``, or limits
-        outside the feasible region (no move that reaches vmax can be planned).
+        Naming ``targets``, a bound, ``Ts``, ``profile``, ``wn``, ``zeta``, ``velocity``,
+        ``acceleration``, ``interface`` or ``stop``, or limits outside the feasible region
+        (no move that reaches vmax can be planned).
     """
     from .time_optimal import _run, reach_unchecked
     from .reference.filtering import fir_taps_unchecked
     from .stages import _for_mode
-    x = _targets("targets", targets)
+    columns = _reference_targets(targets, velocity, acceleration, interface, stop, vmax=vmax,
+                                 amax=amax, jmax=jmax, profile=profile)
+    x = columns[0]
     vmax = _design._positive("vmax", vmax)
     amax = _design._positive("amax", amax)
     jmax = _design._positive("jmax", jmax)
@@ -473,7 +673,8 @@ def generator_reference(targets, *, vmax, amax, jmax, Ts, profile="polynomial", 
                              f"vmax={vmax!r}, amax={amax!r}, jmax={jmax!r}, Ts={Ts!r}: "
                              f"{quantity} is out of the feasible range: no move "
                              "that reaches vmax can be planned")
-    plan, goals, _ = _run(x, vmax=vmax, amax=amax, jmax=jmax, Ts=Ts, q0=position, shape=shape)
+    plan, goals, _ = _run(x, vmax=vmax, amax=amax, jmax=jmax, Ts=Ts, q0=position, shape=shape,
+                          velocity=columns[1], acceleration=columns[2], interface=columns[3])
     if not wn_:
         return plan
     taps = fir_taps_unchecked(_for_mode(_tuned_kind(profile, zeta_), wn_, zeta_, 1), Ts)

@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* Prints the generator's cost: ns per sample on a long move (no re-plan) for each profile,
  * with and without a mode, the re-plan cost (a target that moves every sample, minus the
- * steady cost), and the kinematic design time. Figures only; nothing is asserted. */
+ * steady cost), the re-plan cost of each kind of target (a moving one, the velocity
+ * interface), and the kinematic design time. Figures only; nothing is asserted. */
 #define _POSIX_C_SOURCE 199309L
 #include <stdio.h>
 #include "smoothshaper/smoothshaper.h"
@@ -21,6 +22,30 @@ static double per_step(sms_generator *g, long n, double wiggle)
     t0 = cpu_seconds();
     for (k = 0; k < n; ++k) {
         sms_generator_step(g, (sms_real)(1e3 + wiggle * (double)(k % 64)), out);
+        sink += out[0];
+    }
+    return (cpu_seconds() - t0) / (double)n * 1e9;
+}
+
+/* ns per step when every sample brings a new target of one kind (polynomial profile, no
+ * stage): 0 a position target at rest (a staircase), 1 a moving position target (a conveyor
+ * at 100 units/s, its position wiggled every sample), 2 the velocity interface (a velocity
+ * that changes every sample), 3 the same target held (no re-plan: the steady cost). */
+static double per_step_kind(sms_generator *g, long n, int kind)
+{
+    sms_real out[4];
+    sms_target t;
+    double t0, Ts = 1e-4;
+    long k;
+    sms_generator_reset(g, 0);
+    t.interface = kind == 2 ? SMS_INTERFACE_VELOCITY : SMS_INTERFACE_POSITION;
+    t.acceleration = 0;
+    t0 = cpu_seconds();
+    for (k = 0; k < n; ++k) {
+        double w = kind == 3 ? 0.0 : (double)(k % 64);
+        t.position = (sms_real)(kind == 1 ? 100.0 * Ts * (double)k + 1e-2 * w : 1e3 + w);
+        t.velocity = (sms_real)(kind == 1 ? 100.0 : kind == 2 ? 100.0 + w : 0.0);
+        sms_generator_step_target(g, &t, out);
         sink += out[0];
     }
     return (cpu_seconds() - t0) / (double)n * 1e9;
@@ -56,6 +81,25 @@ int main(void)
         replan = per_step(&g, 1000000, 1.0) - steady;
         printf("  %-30s per sample %.2f ns, a re-plan %.1f ns (stage %lu samples)\n",
                cases[i].name, steady, replan, (unsigned long)g.stage_length);
+    }
+    {
+        static const char *kinds[] = {"position target at rest", "moving position target",
+                                      "velocity interface"};
+        sms_generator g;
+        sms_generator_config c;
+        double steady;
+        int kind;
+        c.vmax = 250.0; c.amax = 5000.0; c.jmax = 200000.0;
+        c.profile = SMS_PROFILE_POLYNOMIAL; c.wn = 0.0; c.zeta = 0.0;
+        if (sms_generator_buffer_size(&c, Ts, &need) != SMS_OK || need > 100000 ||
+            sms_generator_init(&g, &c, Ts, table, need) != SMS_OK)
+            return 1;
+        steady = per_step_kind(&g, 2000000, 3);
+        printf("  a new target every sample (polynomial), per sample minus the held one's %.2f ns:\n",
+               steady);
+        for (kind = 0; kind < 3; ++kind)
+            printf("    %-28s a re-plan %.1f ns\n", kinds[kind],
+                   per_step_kind(&g, 500000, kind) - steady);
     }
     {
         double L[3] = {250.0, 5000.0, 200000.0}, T[3];

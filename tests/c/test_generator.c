@@ -364,7 +364,7 @@ static void replan_beyond_the_direct_stop(void)
                                                           : SMS_PROFILE_POLYNOMIAL, 0.0, 0.0);
         for (k = 8; k <= (sizeof(sms_real) == sizeof(double) ? 52 : 24); k += 2) {
             sms_generator g;
-            double st[SMS_GENERATOR_IDENTITY_COUNT + 6], *plan = st + SMS_GENERATOR_IDENTITY_COUNT;
+            double st[SMS_GENERATOR_IDENTITY_COUNT + SMS_GENERATOR_PLAN_STATE_COUNT], *plan = st + SMS_GENERATOR_IDENTITY_COUNT;
             double prev[4] = {0, 0, 0, 0}, L[4], S, peak[4] = {0, 0, 0, 0}, over = 0.0;
             const sms_real target = (sms_real)(dA * (1.0 + ldexp(1.0, -k)));
             sms_real out[4];
@@ -372,12 +372,13 @@ static void replan_beyond_the_direct_stop(void)
             int i;
             CHECK_STATUS(sms_generator_init(&g, &c, Ts, NULL, 0), SMS_OK);
             sms_generator_get_state(&g, st);
-            plan[0] = plan[1] = (double)(sms_real)dA; /* heading for the direct stop */
-            plan[2] = 0.0;
-            plan[3] = v0;
-            plan[4] = a0;
-            plan[5] = 0.0;
-            CHECK_STATUS(sms_generator_set_state(&g, st, SMS_GENERATOR_IDENTITY_COUNT + 6),
+            /* heading for the direct stop */
+            plan[SMS_GENERATOR_STATE_TARGET] = plan[SMS_GENERATOR_STATE_GOAL] = (double)(sms_real)dA;
+            plan[SMS_GENERATOR_STATE_Q] = 0.0;
+            plan[SMS_GENERATOR_STATE_V] = v0;
+            plan[SMS_GENERATOR_STATE_A] = a0;
+            plan[SMS_GENERATOR_STATE_K] = 0.0;
+            CHECK_STATUS(sms_generator_set_state(&g, st, SMS_GENERATOR_IDENTITY_COUNT + SMS_GENERATOR_PLAN_STATE_COUNT),
                          SMS_OK);
             prev[0] = 0.0;
             prev[1] = -v0 * Ts; /* the samples before: q - v Ts, q - 2 v Ts + a Ts^2 ... */
@@ -468,9 +469,9 @@ static void test_state_and_bad_input(void)
             sms_generator_step(&g, 1, a);
         n_state = sms_generator_state_count(&g);
         CHECK(n_state <= sizeof state / sizeof state[0]);
-        CHECK(n_state == SMS_GENERATOR_IDENTITY_COUNT
-                         + (realisation == 0 ? 6u
-                                             : 7u + 4u * sms_smoother_state_count(&g.stage[0])));
+        CHECK(n_state == SMS_GENERATOR_IDENTITY_COUNT + SMS_GENERATOR_PLAN_STATE_COUNT
+                         + (realisation == 0 ? 0u
+                                             : 1u + 4u * sms_smoother_state_count(&g.stage[0])));
         sms_generator_get_state(&g, state);
         h = g;
         for (i = 0; realisation == 1 && i < 4u * g.stage_window; ++i)
@@ -488,7 +489,7 @@ static void test_state_and_bad_input(void)
         bad[count_index] = 1.5;
         CHECK_STATUS(sms_generator_set_state(&h, bad, n_state), SMS_ERR_STATE);
         bad[count_index] = state[count_index];
-        bad[SMS_GENERATOR_IDENTITY_COUNT + 4] = NAN;
+        bad[SMS_GENERATOR_IDENTITY_COUNT + SMS_GENERATOR_STATE_A] = NAN;
         CHECK_STATUS(sms_generator_check_state(&h, bad, n_state), SMS_ERR_STATE);
         CHECK_STATUS(sms_generator_set_state(&h, state, n_state - 1u), SMS_ERR_STATE);
     }
@@ -533,7 +534,7 @@ static void test_state_and_bad_input(void)
     h = g;
     CHECK_STATUS(sms_generator_init(&g, &c, 1e-3, table, 10), SMS_ERR_BUFFER_TOO_SMALL);
     CHECK_STATUS(sms_generator_init(&g, &c, 1e-3, NULL, 0), SMS_ERR_NULL);
-    CHECK(g.stage_length == h.stage_length && g.plan_q == h.plan_q && g.target == h.target);
+    CHECK(g.stage_length == h.stage_length && g.plan_q == h.plan_q && g.target.position == h.target.position);
 }
 
 /* A rest-to-rest move of any length arrives on the first sample at or after the
@@ -578,21 +579,21 @@ static void test_long_moves(void)
         sms_generator g;
         sms_generator_config c = make_config(v, a, j, trig ? SMS_PROFILE_TRIGONOMETRIC
                                                            : SMS_PROFILE_POLYNOMIAL, 0.0, 0.0);
-        double state[SMS_GENERATOR_IDENTITY_COUNT + 6], start_k;
+        double state[SMS_GENERATOR_IDENTITY_COUNT + SMS_GENERATOR_PLAN_STATE_COUNT], start_k;
         sms_real out[4], prev = 0;
         long k, arrive = -1;
         int probe;
         if (!build(&g, &c, Ts))
             continue;
         sms_generator_step(&g, (sms_real)h, out); /* the plan starts at sample 0 */
-        CHECK(sms_generator_state_count(&g) == SMS_GENERATOR_IDENTITY_COUNT + 6u);
+        CHECK(sms_generator_state_count(&g) == SMS_GENERATOR_IDENTITY_COUNT + SMS_GENERATOR_PLAN_STATE_COUNT);
         sms_generator_get_state(&g, state);
         for (probe = 0; probe < 3; ++probe) {
             /* probes: 1 s windows mid-cruise, a window 1 s before arrival, the arrival */
             start_k = probe == 0 ? floor(0.5 * n_samples[m % 2])
                                  : n_samples[m % 2] - (probe == 1 ? 20000.0 : 10000.0);
-            state[SMS_GENERATOR_IDENTITY_COUNT + 5] = start_k;
-            CHECK_STATUS(sms_generator_set_state(&g, state, SMS_GENERATOR_IDENTITY_COUNT + 6),
+            state[SMS_GENERATOR_IDENTITY_COUNT + SMS_GENERATOR_STATE_K] = start_k;
+            CHECK_STATUS(sms_generator_set_state(&g, state, SMS_GENERATOR_IDENTITY_COUNT + SMS_GENERATOR_PLAN_STATE_COUNT),
                          SMS_OK);
             sms_generator_step(&g, (sms_real)h, out);
             prev = out[0];
@@ -653,7 +654,7 @@ static void test_long_moves_through_the_stage(void)
         CHECK(n_state <= sizeof state / sizeof state[0]);
         sms_generator_get_state(&g, state);
         start_k = (long)floor(0.5 * n_samples[m]);
-        state[SMS_GENERATOR_IDENTITY_COUNT + 5] = (double)(start_k - (long)L - 5);
+        state[SMS_GENERATOR_IDENTITY_COUNT + SMS_GENERATOR_STATE_K] = (double)(start_k - (long)L - 5);
         CHECK_STATUS(sms_generator_set_state(&g, state, n_state), SMS_OK);
         for (k = 0; k < (long)L + 5; ++k)
             sms_generator_step(&g, (sms_real)h, out);
@@ -795,7 +796,7 @@ static void check_plans(const sms_generator_config *c, double Ts)
     sms_generator g;
     sms_generator_reach_info r;
     sms_real out[4];
-    double st[SMS_GENERATOR_IDENTITY_COUNT + 6], *plan = st + SMS_GENERATOR_IDENTITY_COUNT;
+    double st[SMS_GENERATOR_IDENTITY_COUNT + SMS_GENERATOR_PLAN_STATE_COUNT], *plan = st + SMS_GENERATOR_IDENTITY_COUNT;
     CHECK_STATUS(sms_generator_reach(c, Ts, &r), SMS_OK);
     CHECK_STATUS(sms_generator_init(&g, c, Ts, NULL, 0), SMS_OK);
     sms_generator_step(&g, (sms_real)r.distance, out);
@@ -810,13 +811,14 @@ static void check_plans(const sms_generator_config *c, double Ts)
     CHECK(g.refused == 0);
     /* cruising at +vmax towards 2 h, the target jumps to -2 h (a state of this generator: its
      * identity, then the plan fields) */
-    CHECK(sms_generator_state_count(&g) == SMS_GENERATOR_IDENTITY_COUNT + 6);
+    CHECK(sms_generator_state_count(&g) == SMS_GENERATOR_IDENTITY_COUNT + SMS_GENERATOR_PLAN_STATE_COUNT);
     sms_generator_get_state(&g, st);
-    plan[0] = plan[1] = 2.0 * (double)(sms_real)r.distance;
-    plan[2] = 0.0;
-    plan[3] = (double)g.limits.vmax;
-    plan[4] = plan[5] = 0.0;
-    CHECK_STATUS(sms_generator_set_state(&g, st, SMS_GENERATOR_IDENTITY_COUNT + 6), SMS_OK);
+    plan[SMS_GENERATOR_STATE_TARGET] = plan[SMS_GENERATOR_STATE_GOAL] =
+        2.0 * (double)(sms_real)r.distance;
+    plan[SMS_GENERATOR_STATE_Q] = 0.0;
+    plan[SMS_GENERATOR_STATE_V] = (double)g.limits.vmax;
+    plan[SMS_GENERATOR_STATE_A] = plan[SMS_GENERATOR_STATE_K] = 0.0;
+    CHECK_STATUS(sms_generator_set_state(&g, st, SMS_GENERATOR_IDENTITY_COUNT + SMS_GENERATOR_PLAN_STATE_COUNT), SMS_OK);
     sms_generator_step(&g, (sms_real)(-2.0 * r.distance), out);
     CHECK(g.refused == 0);
 }
@@ -966,7 +968,7 @@ static void plan_excess(const sms_generator *g, const double *plan, double exces
     const double V = (double)g->limits.vmax, A = (double)g->limits.amax;
     const double J = g->shape == 1 ? (double)(g->limits.jmax * (sms_real)0.63661977236758134)
                                    : (double)g->limits.jmax;
-    const double v = plan[3], a = plan[4];
+    const double v = plan[SMS_GENERATOR_STATE_V], a = plan[SMS_GENERATOR_STATE_A];
     excess[0] = (fabs(v) / V - 1.0) / SAMPLE_EPS;
     excess[1] = (fabs(a) / A - 1.0) / SAMPLE_EPS;
     excess[2] = (fabs(v + a * fabs(a) / (2.0 * J)) / V - 1.0) / SAMPLE_EPS;
@@ -1035,7 +1037,7 @@ static void test_own_states_are_accepted(int trials)
  * generator reports v, a within the limits (1 + STATE_TOL) on its way to a far target. */
 static void restore_plan_state(sms_generator *g, double v, double a, sms_status want)
 {
-    enum { n = SMS_GENERATOR_IDENTITY_COUNT + 6 };
+    enum { n = SMS_GENERATOR_IDENTITY_COUNT + SMS_GENERATOR_PLAN_STATE_COUNT };
     static double state[n], before[n];
     sms_generator copy;
     sms_real out[4];
@@ -1045,8 +1047,8 @@ static void restore_plan_state(sms_generator *g, double v, double a, sms_status 
     sms_generator_reset(g, 0);
     sms_generator_get_state(g, before);
     sms_generator_get_state(g, state);
-    state[SMS_GENERATOR_IDENTITY_COUNT + 3] = v;
-    state[SMS_GENERATOR_IDENTITY_COUNT + 4] = a;
+    state[SMS_GENERATOR_IDENTITY_COUNT + SMS_GENERATOR_STATE_V] = v;
+    state[SMS_GENERATOR_IDENTITY_COUNT + SMS_GENERATOR_STATE_A] = a;
     copy = *g;
     CHECK_STATUS(sms_generator_check_state(g, state, n), want);
     CHECK_STATUS(sms_generator_set_state(g, state, n), want);

@@ -26,7 +26,7 @@ static double uniform(void)
 }
 
 /* The index of k in the saved state (trajectory.h: identity, target, goal, q, v, a, k). */
-#define STATE_K (SMS_GENERATOR_IDENTITY_COUNT + 5)
+#define STATE_K (SMS_GENERATOR_IDENTITY_COUNT + SMS_GENERATOR_STATE_K)
 
 static int cases, reduced;
 

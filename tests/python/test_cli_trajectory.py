@@ -271,7 +271,7 @@ BS = ["design", "bspline"]
     (GEN + ["--via", "0,1", "--wn", "5000"] + LIM, "wn"),
     (GEN + ["--via", "0,1", "--hold", "0"] + LIM, "--hold"),
     (GEN + ["--via", "0,1e9"] + LIM, "--via point 1 (1e+09): the run would take about 4e+06 s"),
-    (GEN + LIM, "required: --via"),
+    (GEN + LIM, "--via is required (or --velocity"),
     (GEN + ["--via", "-5,10"] + LIM, "--via=-5,10"),
     (GEN + ["--via", "0,1", "--profile", "cubic"] + LIM, "invalid choice"),
     (GEN + ["--via", "0,10"] + LIM + ["--plot", "/nonexistent/dir/x.png"], "--plot"),
@@ -315,3 +315,48 @@ def test_python_dash_m_runs_the_forms():
                          text=True, env=dict(os.environ), timeout=60)
     assert bad.returncode == cli.EXIT_ERROR and bad.stderr.count("\n") == 1
     assert bad.stderr.startswith("smoothshaper: error: --Ts=0: Ts")
+
+
+def test_generator_via_points_reached_moving(capsys, tmp_path):
+    """--via-velocity/--via-acceleration/--start: each target's state exactly at its arrival
+    (the table prints it), the run equal to the Python Generator fed the same targets."""
+    png, path = tmp_path / "g.png", tmp_path / "g.csv"
+    code, out, _ = run(capsys, "design", "generator", "--via", "0,0.5,1.2,0",
+                       "--via-velocity", "0.4,-0.3,0", "--via-acceleration", "0,2,0",
+                       "--start", "0.5,-3", "--vmax", 1, "--amax", 10, "--jmax", 100,
+                       "--Ts", TS, "--plot", png, "--csv", path)
+    assert code == 0 and "within the limits: yes" in out
+    assert png.read_bytes()[:8] == PNG_MAGIC
+    _, rows = table(out)
+    want = [(0.5, 0.4, 0.0), (1.2, -0.3, 2.0), (0.0, 0.0, 0.0)]
+    for row, (q, v, a) in zip(rows, want):
+        assert [float(row[6]), float(row[7]), float(row[8])] == pytest.approx(
+            [q, v, a], rel=PRINTED_RTOL, abs=1e-12)
+    with open(path) as f:
+        data = np.array([[float(x) for x in r] for r in list(csv.reader(f))[1:]])
+    g = Generator(vmax=1, amax=10, jmax=100, Ts=TS)
+    g.start_from(0.0, 0.5, -3.0, target=0.5, velocity=0.4)
+    y = g.process(data[:, 1], velocity=data[:, 2], acceleration=data[:, 3])
+    assert np.array_equal(y, data[:, 4:8])
+
+
+def test_generator_velocity_interface(capsys):
+    code, out, _ = run(capsys, "design", "generator", "--velocity", "0.8,-0.5,0", "--hold", 0.5,
+                       "--start", "0.6,6", "--vmax", 1, "--amax", 10, "--jmax", 100, "--Ts", TS)
+    assert code == 0 and "velocity interface" in out
+    _, rows = table(out)
+    assert [float(r[5]) for r in rows] == [0.8, -0.5, 0.0]      # v at each arrival
+
+
+@pytest.mark.parametrize("argv,words", [
+    (["--via", "0,1,2", "--via-velocity", "0.5"], "--via-velocity needs one value per target"),
+    (["--via", "0,1", "--via-velocity", "1.5"], "--via-velocity"),
+    (["--via", "0,1", "--start", "2,0"], "--start"),
+    (["--via", "0,1", "--start", "1"], "--start is the start velocity and acceleration"),
+    (["--velocity", "0.5,0.2"], "needs --hold"),
+    (["--velocity", "0.5", "--via-velocity", "0.1"], "takes no --via-velocity"),
+])
+def test_generator_target_options_are_refused_naming_them(capsys, argv, words):
+    code, out, err = run(capsys, "design", "generator", *argv, "--vmax", 1, "--amax", 10,
+                         "--jmax", 100, "--Ts", TS)
+    assert code != 0 and words in err, err

@@ -182,14 +182,15 @@ def test_a_generator_state_beyond_its_limits_is_refused_with_the_reason(trajecto
     blob = tg.serializeFMUstate(tg.getFMUstate())
     g = tr.Generator(Ts=TS, **limits)
     tol, plan = float(g._lib.SMS_LIMIT_RTOL), 4 + int(g._lib.SMS_GENERATOR_IDENTITY_COUNT)
+    plan_v, plan_a = plan + g._lib.SMS_GENERATOR_STATE_V, plan + g._lib.SMS_GENERATOR_STATE_A
     at = len(blob) - 8 - 8 * (4 + g.get_state().size)   # q, v, a, j, the generator's state
     assert struct.unpack_from("<d", blob, at + 8 * 4)[0] == g.get_state()[0]   # its state tag
     assert struct.unpack_from("<d", blob, at + 8)[0] == tg.getReal([tg.vr["v"]])[0]
     cases = [("its output v = ", {1: lambda o: 1 + o}),
              ("its output a = ", {2: lambda o: 8 * (1 + o)}),
-             ("start v = ", {plan + 3: lambda o: 1 + o, plan + 4: lambda o: 0.0}),
-             ("start v = ", {plan + 3: lambda o: 0.0, plan + 4: lambda o: 8 * (1 + o)}),
-             ("start v = ", {plan + 3: lambda o: 0.875 + o, plan + 4: lambda o: 4.0})]
+             ("start v = ", {plan_v: lambda o: 1 + o, plan_a: lambda o: 0.0}),
+             ("start v = ", {plan_v: lambda o: 0.0, plan_a: lambda o: 8 * (1 + o)}),
+             ("start v = ", {plan_v: lambda o: 0.875 + o, plan_a: lambda o: 4.0})]
     for words, fields in cases:
         for over in (2 * tol, tol):
             forged = blob

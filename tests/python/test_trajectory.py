@@ -173,7 +173,8 @@ def plan_excess(g, state):
     precision holds them, as the C check compares them."""
     real = np.float32 if g.precision == "float" else np.float64
     plan = int(g._lib.SMS_GENERATOR_IDENTITY_COUNT)
-    v, a = float(state[plan + 3]), float(state[plan + 4])
+    v = float(state[plan + g._lib.SMS_GENERATOR_STATE_V])
+    a = float(state[plan + g._lib.SMS_GENERATOR_STATE_A])
     V, A = float(real(g.vmax)), float(real(g.amax))
     J = float(real(g.jmax) * real(0.63661977236758134)) if g.profile == "trigonometric" \
         else float(real(g.jmax))
@@ -238,7 +239,8 @@ def test_a_state_beyond_the_limits_is_refused_and_the_generator_untouched(precis
                 cases.append((sign * (0.875 + over), sign * 4.0, "a"))
             for v, a, name in cases:
                 s = before.copy()
-                s[plan + 3], s[plan + 4] = v, a
+                s[plan + g._lib.SMS_GENERATOR_STATE_V] = v
+                s[plan + g._lib.SMS_GENERATOR_STATE_A] = a
                 if ok:
                     g.set_state(s)
                     g.start_from(0.0, v, a)

@@ -179,9 +179,12 @@ SMS_API sms_status sms_kinematic_design_batch(size_t m, const double *h, size_t 
 /* Online multi-point generator                                                                */
 /* ------------------------------------------------------------------------------------------ */
 
-/** @brief Most segments of a time-optimal plan: velocity change (3, or 4 when a half-cosine
- * plan first brings an opposite acceleration to zero), cruise (1), stop (3). */
-#define SMS_PLAN_MAX_SEGMENTS 8
+/** @brief Most segments of a plan: a motion to a moving target on the sample grid is the
+ * convex combination of two motions of up to 7 pieces each (13 segments on the union of
+ * their breakpoints), then the acceleration's return to zero after the target (1); a plan to
+ * rest has at most 8 (a velocity change of 3, or 4 when a half-cosine plan first brings an
+ * opposite acceleration to zero, a cruise, the stop). */
+#define SMS_PLAN_MAX_SEGMENTS 16
 
 /** @brief Bounds of a time-optimal plan: |v| <= vmax, |a| <= amax, |j| <= jmax (finite, > 0). */
 typedef struct sms_plan_limits {
@@ -192,20 +195,55 @@ typedef struct sms_plan_limits {
  * Segment i starts n[i] samples plus f[i] (in [0, Ts)) seconds after the plan's first
  * sample, in state (p, v, a), and applies jerk j for d seconds (shape 1: j is the mean jerk
  * of a half-cosine transition of a, whose peak jerk is (pi/2) j). From `end` samples + `end_f`
- * on the output rests exactly at `goal`. Times split into whole samples and a fraction keep
- * a float build exact over any number of samples (a float time in seconds would not). */
+ * on the output is exactly at `goal` and moves on at `drift` (0: at rest on it): q = goal +
+ * drift t, t the time since the end. The target state is reached at `arrive` samples +
+ * `arrive_f` (the end, or the start of the acceleration's return to zero after a target
+ * with an acceleration). Times split into whole samples and a fraction keep a float build
+ * exact over any number of samples (a float time in seconds would not). */
 typedef struct sms_plan {
     size_t count;                      /* segments in use (0: at rest at goal) */
     int shape;                         /* 0: linear ramps of a; 1: half-cosine transitions */
+    size_t end;                        /* (what every sample after the plan reads first) */
+    sms_real end_f;
+    sms_real goal;
+    sms_real drift;                    /* velocity after the end (0: at rest on goal) */
+    size_t arrive;
+    sms_real arrive_f;
+    sms_real duration;                 /* sum of d [s] (continuous, before the grid) */
     size_t n[SMS_PLAN_MAX_SEGMENTS];
     sms_real f[SMS_PLAN_MAX_SEGMENTS];
     sms_real p[SMS_PLAN_MAX_SEGMENTS], v[SMS_PLAN_MAX_SEGMENTS], a[SMS_PLAN_MAX_SEGMENTS];
     sms_real j[SMS_PLAN_MAX_SEGMENTS], d[SMS_PLAN_MAX_SEGMENTS];
-    size_t end;
-    sms_real end_f;
-    sms_real goal;
-    sms_real duration;                 /* sum of d [s] (continuous, before the grid) */
 } sms_plan;
+
+/** @brief What a target asks for (values stable: FMU enumeration and saved states). */
+typedef enum sms_interface {
+    SMS_INTERFACE_POSITION = 0, /**< arrive at `position` with `velocity` and `acceleration` */
+    SMS_INTERFACE_VELOCITY = 1, /**< reach `velocity` with `acceleration` (position free) */
+    SMS_INTERFACE_STOP = 2      /**< brake to rest at once (velocity 0, acceleration 0) */
+} sms_interface;
+
+/**
+ * @brief A target of the online generator (sms_generator_step_target()).
+ *
+ * | field        | valid range (sms_generator_check_target()) |
+ * |--------------|--------------------------------------------|
+ * | interface    | an ::sms_interface |
+ * | position     | finite (position interface; ignored otherwise) |
+ * | velocity     | finite, \|v\| <= vmax (ignored for stop) |
+ * | acceleration | finite, \|a\| <= amax, and v - a\|a\|/(2 jmax), v + a\|a\|/(2 jmax) within \|.\| <= vmax (ignored for stop) |
+ *
+ * The last row keeps the velocity within its bound on the way in (where the acceleration was
+ * last zero on the fastest approach) and after the target (where it returns to zero). The
+ * trigonometric profile plans position targets at rest and velocity targets with
+ * acceleration 0 only.
+ */
+typedef struct sms_target {
+    sms_real position;
+    sms_real velocity;
+    sms_real acceleration;
+    int interface;
+} sms_target;
 
 /**
  * @brief Limits and optional mode of the online generator (docs/design.md).
@@ -236,6 +274,18 @@ typedef struct sms_generator_config {
  * ::SMS_ERR_STATE_ZETA).
  */
 #define SMS_GENERATOR_IDENTITY_COUNT 11
+
+/** @brief Doubles of a saved generator state after its identity (sms_generator_get_state()),
+ * and where each field lies counted from the end of the identity: the latest target and the
+ * goal of the running plan (each position, velocity, acceleration, interface), the running
+ * plan's start q, v, a and the samples since it. */
+#define SMS_GENERATOR_PLAN_STATE_COUNT 12
+#define SMS_GENERATOR_STATE_TARGET 0 /**< target: position, velocity, acceleration, interface */
+#define SMS_GENERATOR_STATE_GOAL 4   /**< goal of the running plan, the same four */
+#define SMS_GENERATOR_STATE_Q 8      /**< the running plan's start position */
+#define SMS_GENERATOR_STATE_V 9      /**< ... velocity */
+#define SMS_GENERATOR_STATE_A 10     /**< ... acceleration */
+#define SMS_GENERATOR_STATE_K 11     /**< samples since the plan's first */
 
 /**
  * @brief How far, relative, the generators' reported |v|, |a|, |j| may exceed vmax, amax,
@@ -330,13 +380,19 @@ typedef struct sms_generator {
     sms_plan_limits limits; /**< vmax, amax, jmax in signal precision */
     double identity[SMS_GENERATOR_IDENTITY_COUNT]; /**< config and Ts it was built for */
     /* dynamic state */
-    sms_real target;      /**< latest valid target */
+    sms_target target;    /**< latest valid target (a stop as velocity 0, acceleration 0; the
+                               position of a velocity target as 0) */
+    sms_target goal;      /**< the target the running plan heads for */
+    sms_target request;   /**< the last target given, as given: a sample whose target equals it
+                               field for field takes no other look at it */
+    int pending;          /**< 1 while the target differs from the goal and is not dropped: a
+                               re-plan is due (at the first sample a plan can start from) */
     int refused;          /**< 1 while the held target is dropped (its move cannot be represented);
                                cleared when the target changes, by reset and set_state */
     size_t dropped;       /**< targets dropped since init or the last reset (read-only; not part
                                of the saved state: a diagnostic count) */
     sms_real plan_q, plan_v, plan_a; /**< state the running plan started from */
-    sms_plan plan;        /**< the running plan (its goal is the target it heads for) */
+    sms_plan plan;        /**< the running plan */
     size_t k;             /**< samples since the plan's first sample */
 } sms_generator;
 
@@ -433,14 +489,82 @@ SMS_API void sms_generator_process(sms_generator *g, const sms_real *targets, si
  * @param n  steps (0: nothing changes, out untouched)
  */
 SMS_API void sms_generator_hold(sms_generator *g, sms_real target, uint64_t n, sms_real out[4]);
+
+/**
+ * @brief Is `target` one the generator can plan to? O(1), writes nothing.
+ * @return ::SMS_OK; ::SMS_ERR_NULL; ::SMS_ERR_INTERFACE (not an ::sms_interface);
+ *         ::SMS_ERR_TARGET_POSITION (position interface, position not finite);
+ *         ::SMS_ERR_TARGET_VELOCITY (not finite, |v| > vmax, or not 0 for a position target
+ *         of the trigonometric profile); ::SMS_ERR_TARGET_ACCELERATION (not finite,
+ *         |a| > amax, v - a|a|/(2 jmax) or v + a|a|/(2 jmax) beyond +-vmax, or not 0 for
+ *         the trigonometric profile). The limits are compared as ::sms_real holds them.
+ */
+SMS_API sms_status sms_generator_check_target(const sms_generator *g, const sms_target *target);
+/** @brief sms_generator_check_target() of n targets: ::SMS_OK, or the status of the first
+ * refused one and its index in *index (n when all pass; index may be NULL). O(n), writes
+ * nothing else. ::SMS_ERR_NULL when g is NULL, or targets is NULL with n > 0. */
+SMS_API sms_status sms_generator_check_targets(const sms_generator *g, const sms_target *targets,
+                                               size_t n, size_t *index);
+/**
+ * @brief Advance one sample towards `target` and write out[0..3] = q, q', q'', q''' at this
+ * instant (sms_generator_step() is this with a position target at rest).
+ *
+ * The generator re-plans on the sample where the target differs from the one its plan heads
+ * for, from its exact state there:
+ * - ::SMS_INTERFACE_POSITION: the time-optimal motion to (position, velocity, acceleration)
+ *   within vmax, amax, jmax (the profile families of Berscheid and Kroeger, "Jerk-limited
+ *   real-time trajectory generation with arbitrary target states", 2021). A target at rest
+ *   is reached in the optimum's duration rounded up to the grid and rested on exactly; a
+ *   moving target is reached exactly on a sample: the first whole number of samples at or
+ *   after the optimum at which a motion within the limits exists (the next sample, unless
+ *   that duration is blocked: some moving targets cannot be reached in some durations above
+ *   the optimum, and the next duration that can is taken);
+ * - ::SMS_INTERFACE_VELOCITY: the time-optimal change to (velocity, acceleration), the
+ *   position free;
+ * - ::SMS_INTERFACE_STOP: the velocity interface to rest: braking at once.
+ * After the target the output moves on: its acceleration returns to zero at jmax and the
+ * velocity it leaves is held (a target at rest: the output rests on it). Every sample is the
+ * exact value of that continuous motion, so the limits hold at every sample as for rest
+ * targets (docs/sampled-limits.md). An invalid target (sms_generator_check_target()) is
+ * ignored, the previous one kept; a valid one whose motion cannot be represented is dropped
+ * (`refused`, `dropped`), as for sms_generator_step().
+ */
+SMS_API void sms_generator_step_target(sms_generator *g, const sms_target *target,
+                                       sms_real out[4]);
+/** @brief n steps: targets[0..n-1] in, out[4 i .. 4 i + 3] = q, v, a, j of step i. Equal,
+ * bit for bit, to n calls of sms_generator_step_target() and to any split into blocks. */
+SMS_API void sms_generator_process_targets(sms_generator *g, const sms_target *targets,
+                                           size_t n, sms_real *out);
+/** @brief sms_generator_hold() with any target: n calls of sms_generator_step_target(), bit
+ * for bit, at a cost bounded whatever n. */
+SMS_API void sms_generator_hold_target(sms_generator *g, const sms_target *target, uint64_t n,
+                                       sms_real out[4]);
+/**
+ * @brief Continue from the motion state (q, v, a): the generator is there now, on the first
+ * sample of a plan to `target` (NULL: a stop), and its next step is the plan's next sample.
+ * The tuned stage (a mode) keeps its history and filters the new plan from the next step on.
+ * @return ::SMS_OK; ::SMS_ERR_NULL (g); ::SMS_ERR_TARGET_POSITION (q not finite);
+ *         ::SMS_ERR_TARGET_VELOCITY (v not finite or |v| > vmax); ::SMS_ERR_TARGET_ACCELERATION
+ *         (a not finite, |a| > amax or |v + a|a|/(2 J)| > vmax, J the shape's mean jerk: no
+ *         plan can start there); a status of sms_generator_check_target() for `target`;
+ *         ::SMS_ERR_TOO_LONG (the motion to the target cannot be represented). Each bound
+ *         holds to ::SMS_LIMIT_RTOL (a state the generator reported is always accepted).
+ *         Nothing is changed on error. */
+SMS_API sms_status sms_generator_start(sms_generator *g, sms_real q, sms_real v, sms_real a,
+                                       const sms_target *target);
+/** @brief Samples from the last one output until the one on which the plan reaches its
+ * target state (0 once reached; a velocity target: its velocity and acceleration). */
+SMS_API uint64_t sms_generator_arrival(const sms_generator *g);
 /** @brief Length of the tuned stage [s]: the output lags the plan by it (0 without a mode). */
 SMS_API double sms_generator_tail_duration(const sms_generator *g);
 /** @brief Number of doubles sms_generator_get_state() writes:
- * ::SMS_GENERATOR_IDENTITY_COUNT + 6 without a mode (the configuration identity, then target,
- * goal, the start q, v, a of the running plan and the samples since it; loading re-plans from
- * these, so a saved state can also move the generator to any sample of its plan), and with a
- * mode 1 more (the quiet samples) plus the four stage states (sms_smoother_state_count()
- * each, every one with its own stage identity). */
+ * ::SMS_GENERATOR_IDENTITY_COUNT + 12 without a mode (the configuration identity, then the
+ * target and the goal of the running plan, each as position, velocity, acceleration and
+ * interface in canonical form (a stop as the velocity interface to 0), the start q, v, a of
+ * the running plan and the samples since it; loading re-plans from these, so a saved state
+ * can also move the generator to any sample of its plan), and with a mode 1 more (the quiet
+ * samples) plus the four stage states (sms_smoother_state_count() each, every one with its
+ * own stage identity). */
 SMS_API size_t sms_generator_state_count(const sms_generator *g);
 /** @brief Write the state (sms_generator_state_count() doubles, layout above) to dst. */
 SMS_API void sms_generator_get_state(const sms_generator *g, double *dst);
@@ -448,7 +572,8 @@ SMS_API void sms_generator_get_state(const sms_generator *g, double *dst);
  * @return ::SMS_OK; ::SMS_ERR_NULL; ::SMS_ERR_STATE_FORMAT .. ::SMS_ERR_STATE_ZETA (see
  *         ::SMS_GENERATOR_IDENTITY_COUNT) if it was saved by another configuration (checked
  *         first, whatever n); ::SMS_ERR_STATE if n differs or a field is invalid (non-finite,
- *         beyond the limits, a count out of range, a plan the generator cannot form). Nothing
+ *         beyond the limits, a target sms_generator_check_target() refuses or not in
+ *         canonical form, a count out of range, a plan the generator cannot form). Nothing
  *         is written on error. */
 SMS_API sms_status sms_generator_set_state(sms_generator *g, const double *src, size_t n);
 /** @brief What sms_generator_set_state() would return, writing nothing.

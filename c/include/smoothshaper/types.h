@@ -112,6 +112,14 @@ typedef enum sms_status {
                                          non-finite value */
     SMS_ERR_RETUNE_BUSY = -45,      /**< a retune while the previous switch of the stage is
                                          still in progress (tunable.h) */
+    SMS_ERR_TARGET_POSITION = -46,  /**< a target position is NaN/Inf */
+    SMS_ERR_TARGET_VELOCITY = -47,  /**< a target velocity is NaN/Inf, beyond the velocity
+                                         bounds, or not 0 where the profile plans to rest only */
+    SMS_ERR_TARGET_ACCELERATION = -48, /**< a target acceleration is NaN/Inf, beyond the
+                                         acceleration bounds, takes the velocity beyond its
+                                         bounds before or after the target (v -+ a|a|/(2 jmax)),
+                                         or is not 0 where the profile cannot hold one */
+    SMS_ERR_INTERFACE = -49,        /**< unknown control interface (::sms_interface) */
     SMS_ERR_IMPULSE_AMPLITUDE = -50, /**< user-defined impulses: an amplitude is NaN/Inf, or
                                           they do not sum to > 0 */
     SMS_ERR_IMPULSE_TIME = -51      /**< user-defined impulses: a time is NaN/Inf or < 0, or

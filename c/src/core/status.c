@@ -59,6 +59,15 @@ const char *sms_status_string(sms_status status)
                "or a non-finite value)";
     case SMS_ERR_RETUNE_BUSY:
         return "stage is still switching from its previous retune (the old filter is fading out)";
+    case SMS_ERR_TARGET_POSITION: return "target position must be finite";
+    case SMS_ERR_TARGET_VELOCITY:
+        return "target velocity must be finite and within the velocity bounds (0 where the "
+               "profile plans to rest only)";
+    case SMS_ERR_TARGET_ACCELERATION:
+        return "target acceleration must be finite, within the acceleration bounds, and keep "
+               "v - a|a|/(2 jmax) and v + a|a|/(2 jmax) within the velocity bounds (0 where the "
+               "profile cannot hold one)";
+    case SMS_ERR_INTERFACE: return "interface must be position, velocity or stop";
     case SMS_ERR_IMPULSE_AMPLITUDE:
         return "impulse amplitudes must be finite and sum to > 0";
     case SMS_ERR_IMPULSE_TIME:

@@ -1,23 +1,20 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* Online multi-point generator (trajectory.h, docs/sampled-limits.md): the time-optimal plan of
- * the profile's shape from the current state on every new target (plan.c), run through the
- * stage tuned to the mode when there is one. init may use libm; step is O(1) without it. */
+/* Online multi-point generator (trajectory.h, docs/sampled-limits.md): on every new target
+ * the time-optimal plan of the profile's shape from the current state (plan.c for half-cosine
+ * transitions, plan_target.c for ramps to any target state), run through the stage tuned to
+ * the mode when there is one. init may use libm; a sample is O(1) without it, in sms_real.
+ * The saved state is generator_state.c's. */
 #include <float.h>
 #include <math.h>
 #include <string.h>
 #include "smoothshaper/trajectory.h"
 #include "trajectory/plan.h"
+#include "trajectory/plan_target.h"
+#include "trajectory/generator_parts.h"
 #include "core/state_identity.h"
 #include "trajectory/trajectory_internal.h"
 
-/* A saved state: the identity (SMS_GENERATOR_IDENTITY_COUNT), then target, goal, the plan's
- * start q, v, a and k (GEN_PLAN_STATE_COUNT), then with a mode quiet and the stage states. */
-#define GEN_PLAN_STATE_COUNT 6u
-#define GEN_PLAN (SMS_GENERATOR_IDENTITY_COUNT)
-#define GEN_STAGES (GEN_PLAN + GEN_PLAN_STATE_COUNT)
-
-/* The identity fields after the common head, in this order (trajectory.h). */
-enum { ID_VMAX = SMS_STATE_IDENTITY_HEAD, ID_AMAX, ID_JMAX, ID_PROFILE, ID_WN, ID_ZETA };
+enum { ID_VMAX = SMS_GEN_ID_VMAX, ID_AMAX, ID_JMAX, ID_PROFILE, ID_WN, ID_ZETA };
 
 static void generator_identity(const sms_generator_config *c, double Ts,
                                double id[SMS_GENERATOR_IDENTITY_COUNT])
@@ -243,16 +240,150 @@ void sms_generator_reset(sms_generator *g, sms_real position)
     g->plan.count = 0;
     g->plan.shape = g->shape;
     g->plan.goal = position;
+    g->plan.drift = 0;
     g->plan.end = 0;
     g->plan.end_f = 0;
+    g->plan.arrive = 0;
+    g->plan.arrive_f = 0;
     g->plan.duration = 0;
-    g->target = position;
+    g->target.position = position;
+    g->target.velocity = 0;
+    g->target.acceleration = 0;
+    g->target.interface = SMS_INTERFACE_POSITION;
+    g->goal = g->target;
+    g->request = g->target;
+    g->pending = 0;
     g->refused = 0;
     g->dropped = 0;
     g->quiet = g->stage_length;
     if (g->stage_length > 0)
         for (i = 0; i < 4; ++i)
             sms_smoother_reset(&g->stage[i], i == 0 ? position : 0);
+}
+
+static int finite_real(sms_real x)
+{
+    return x - x == 0; /* NaN and +-Inf give NaN */
+}
+
+int sms_generator_state_ok(const sms_generator *g, double v, double a, double rtol)
+{
+    double V = (double)g->limits.vmax * (1.0 + rtol), A = (double)g->limits.amax * (1.0 + rtol);
+    double J = (double)sms_plan_mean_jerk(&g->limits, g->shape);
+    double brake = v + a * fabs(a) / (2.0 * J);
+    return fabs(v) <= V && fabs(a) <= A && fabs(brake) <= V;
+}
+
+static sms_real mag(sms_real x)
+{
+    return x < 0 ? -x : x;
+}
+
+/* In sms_real (it runs on every sample): the limits as sms_real holds them. */
+sms_status sms_generator_canonical(const sms_generator *g, const sms_target *in, sms_target *out)
+{
+    sms_target t;
+    sms_real V, A, reach;
+    if (g == NULL || in == NULL)
+        return SMS_ERR_NULL;
+    t = *in;
+    switch (t.interface) {
+    case SMS_INTERFACE_STOP:
+        t.interface = SMS_INTERFACE_VELOCITY;
+        t.velocity = 0;
+        t.acceleration = 0;
+        t.position = 0;
+        *out = t;
+        return SMS_OK;
+    case SMS_INTERFACE_VELOCITY:
+        t.position = 0;
+        break;
+    case SMS_INTERFACE_POSITION:
+        if (!finite_real(t.position))
+            return SMS_ERR_TARGET_POSITION;
+        break;
+    default:
+        return SMS_ERR_INTERFACE;
+    }
+    if (!finite_real(t.velocity))
+        return SMS_ERR_TARGET_VELOCITY;
+    if (!finite_real(t.acceleration))
+        return SMS_ERR_TARGET_ACCELERATION;
+    if (g->shape == SMS_PLAN_COSINE) {
+        /* half-cosine transitions plan to rest, or to a velocity held at a = 0 */
+        if (t.interface == SMS_INTERFACE_POSITION && t.velocity != 0)
+            return SMS_ERR_TARGET_VELOCITY;
+        if (t.acceleration != 0)
+            return SMS_ERR_TARGET_ACCELERATION;
+    }
+    V = g->limits.vmax;
+    A = g->limits.amax;
+    if (!(mag(t.velocity) <= V))
+        return SMS_ERR_TARGET_VELOCITY;
+    reach = t.acceleration * mag(t.acceleration) / (2 * g->limits.jmax);
+    if (!(mag(t.acceleration) <= A) || !(mag(t.velocity - reach) <= V) ||
+        !(mag(t.velocity + reach) <= V))
+        return SMS_ERR_TARGET_ACCELERATION;
+    *out = t;
+    return SMS_OK;
+}
+
+sms_status sms_generator_check_target(const sms_generator *g, const sms_target *target)
+{
+    sms_target t;
+    return sms_generator_canonical(g, target, &t);
+}
+
+sms_status sms_generator_check_targets(const sms_generator *g, const sms_target *targets,
+                                       size_t n, size_t *index)
+{
+    size_t i;
+    if (index != NULL)
+        *index = n;
+    if (g == NULL || (targets == NULL && n > 0))
+        return SMS_ERR_NULL;
+    for (i = 0; i < n; ++i) {
+        sms_status st = sms_generator_check_target(g, &targets[i]);
+        if (st != SMS_OK) {
+            if (index != NULL)
+                *index = i;
+            return st;
+        }
+    }
+    return SMS_OK;
+}
+
+static int same_target(const sms_target *a, const sms_target *b)
+{
+    return a->interface == b->interface && a->position == b->position &&
+           a->velocity == b->velocity && a->acceleration == b->acceleration;
+}
+
+int sms_generator_replan(const sms_generator *g, sms_plan *plan, sms_real q, sms_real v,
+                         sms_real a, const sms_target *goal)
+{
+    sms_to_limits lim;
+    lim.vmax = g->limits.vmax;
+    lim.vmin = -g->limits.vmax;
+    lim.amax = g->limits.amax;
+    lim.amin = -g->limits.amax;
+    lim.jmax = g->limits.jmax;
+    if (goal->interface == SMS_INTERFACE_VELOCITY) {
+        if (g->shape == SMS_PLAN_COSINE)
+            return sms_plan_velocity_shaped(plan, &g->limits, g->shape, g->Ts_signal, q, v, a,
+                                            goal->velocity);
+        return sms_plan_velocity(plan, &lim, g->Ts_signal, q, v, a, goal->velocity,
+                                 goal->acceleration);
+    }
+    if (g->shape == SMS_PLAN_COSINE)
+        return sms_plan_to_rest_shaped(plan, &g->limits, g->shape, g->Ts_signal, q, v, a,
+                                       goal->position);
+    if (sms_plan_to_state(plan, &lim, g->Ts_signal, q, v, a, goal->position, goal->velocity,
+                          goal->acceleration))
+        return 1;
+    /* not expected: the rest planner of the first version, never beyond the limits */
+    return goal->velocity == 0 && goal->acceleration == 0 &&
+           sms_plan_to_rest(plan, &g->limits, g->Ts_signal, q, v, a, goal->position);
 }
 
 /* Can a plan of the generator's shape start from (v, a)? The planner's precondition: bringing
@@ -274,24 +405,42 @@ static int can_start(const sms_generator *g, sms_real v, sms_real a)
     return brake <= V;
 }
 
-/* Advance the plan one sample; re-plan from the exact state there when the target differs
- * from the plan's goal (and the state allows it, can_start()). */
-static void step_plan(sms_generator *g, sms_real target, sms_real out[4])
+/* Take a new valid target (an invalid one is ignored, the previous kept). The same target
+ * as on the sample before, field for field, is the common case and costs four compares. */
+static void take_target(sms_generator *g, const sms_target *target)
 {
-    if (target - target == 0 && target != g->target) { /* finite (NaN, Inf give NaN), new */
-        g->target = target;
+    sms_target t;
+    if (same_target(target, &g->request))
+        return;
+    g->request = *target;
+    if (sms_generator_canonical(g, target, &t) == SMS_OK && !same_target(&t, &g->target)) {
+        g->target = t;
         g->refused = 0;
+        g->pending = !same_target(&t, &g->goal);
     }
+}
+
+/* Advance the plan one sample under the held target; re-plan from the exact state there when
+ * the target differs from the plan's goal (and the state allows it, can_start()). */
+static void step_plan(sms_generator *g, sms_real out[4])
+{
     ++g->k;
+    if (g->k > g->plan.end && g->plan.drift == 0 && !g->pending) {
+        /* resting on the goal (what sms_plan_eval() gives past the end), the common case */
+        out[0] = g->plan.goal;
+        out[1] = out[2] = out[3] = 0;
+        return;
+    }
     sms_plan_eval(&g->plan, g->Ts_signal, g->k, out);
-    if (g->target != g->plan.goal && !g->refused && can_start(g, out[1], out[2])) {
-        /* a move that cannot be represented (sms_plan_to_rest_shaped() returns 0) is dropped:
-         * the running plan goes on, and the target is not tried again until it changes */
-        if (sms_plan_to_rest_shaped(&g->plan, &g->limits, g->shape, g->Ts_signal, out[0],
-                                    out[1], out[2], g->target)) {
+    if (g->pending && can_start(g, out[1], out[2])) {
+        g->pending = 0;
+        /* a move that cannot be represented (the planner returns 0) is dropped: the running
+         * plan goes on, and the target is not tried again until it changes */
+        if (sms_generator_replan(g, &g->plan, out[0], out[1], out[2], &g->target)) {
             g->plan_q = out[0];
             g->plan_v = out[1];
             g->plan_a = out[2];
+            g->goal = g->target;
             g->k = 0;
             sms_plan_eval(&g->plan, g->Ts_signal, 0, out); /* the same q, v, a; the new jerk */
         } else {
@@ -306,7 +455,7 @@ static void step_plan(sms_generator *g, sms_real target, sms_real out[4])
  * of the plan's output o at rest, up to the stage's length. */
 static void count_quiet(sms_generator *g, const sms_real o[4])
 {
-    if (o[0] == g->plan.goal && o[1] == 0 && o[2] == 0 && o[3] == 0) {
+    if (o[0] == g->plan.goal && o[1] == 0 && o[2] == 0 && o[3] == 0 && g->plan.drift == 0) {
         if (g->quiet < g->stage_length)
             ++g->quiet;
     } else {
@@ -314,10 +463,11 @@ static void count_quiet(sms_generator *g, const sms_real o[4])
     }
 }
 
-void sms_generator_step(sms_generator *g, sms_real target, sms_real out[4])
+/* One sample under the held target: the plan, then the tuned stage if any. */
+static void step_held(sms_generator *g, sms_real out[4])
 {
     size_t i;
-    step_plan(g, target, out);
+    step_plan(g, out);
     if (g->stage_length == 0)
         return;
     count_quiet(g, out);
@@ -329,6 +479,37 @@ void sms_generator_step(sms_generator *g, sms_real target, sms_real out[4])
         out[2] = 0;
         out[3] = 0;
     }
+}
+
+void sms_generator_step_target(sms_generator *g, const sms_target *target, sms_real out[4])
+{
+    take_target(g, target);
+    step_held(g, out);
+}
+
+/* A position target at rest, as sms_generator_step() takes it (non-finite: the held one). */
+static sms_target rest_target(const sms_generator *g, sms_real position)
+{
+    sms_target t;
+    if (!finite_real(position))
+        return g->target;
+    t.position = position;
+    t.velocity = 0;
+    t.acceleration = 0;
+    t.interface = SMS_INTERFACE_POSITION;
+    return t;
+}
+
+void sms_generator_step(sms_generator *g, sms_real target, sms_real out[4])
+{
+    sms_target t;
+    if (target == g->request.position && g->request.interface == SMS_INTERFACE_POSITION &&
+        g->request.velocity == 0 && g->request.acceleration == 0) {
+        step_held(g, out); /* the held target, as on the sample before */
+        return;
+    }
+    t = rest_target(g, target);
+    sms_generator_step_target(g, &t, out);
 }
 
 /* n samples of a fixed plan (no re-plan to come) through the tuned stage, in blocks: the
@@ -359,20 +540,23 @@ static void hold_plan_through_stage(sms_generator *g, uint64_t n, sms_real out[4
 
 /* A re-plan still to come under the held target (a new target, or one waiting for a state
  * the plan can start from, can_start()). */
-static int replan_pending(const sms_generator *g, sms_real target)
+static int replan_pending(const sms_generator *g, const sms_target *target)
 {
-    if (target - target == 0 && target != g->target)
+    sms_target t;
+    if (!same_target(target, &g->request) && sms_generator_canonical(g, target, &t) == SMS_OK &&
+        !same_target(&t, &g->target))
         return 1;
-    return g->target != g->plan.goal && !g->refused;
+    return g->pending;
 }
 
-void sms_generator_hold(sms_generator *g, sms_real target, uint64_t n, sms_real out[4])
+void sms_generator_hold_target(sms_generator *g, const sms_target *target, uint64_t n,
+                               sms_real out[4])
 {
     uint64_t window, rest_at;
     size_t i;
     /* until the held target has been planned (or dropped): from then on the plan is fixed */
     while (n > 0u && replan_pending(g, target)) {
-        sms_generator_step(g, target, out);
+        sms_generator_step_target(g, target, out);
         --n;
     }
     if (n == 0u)
@@ -380,7 +564,7 @@ void sms_generator_hold(sms_generator *g, sms_real target, uint64_t n, sms_real 
     /* the plan in closed form: sample k of it is sms_plan_eval(k) */
     if (g->stage_length == 0) {
         g->k += (size_t)(n - 1u);
-        sms_generator_step(g, target, out);
+        sms_generator_step_target(g, target, out);
         return;
     }
     /* With the tuned stage: a stage's state depends only on its last 2M + 2 inputs (both
@@ -388,7 +572,7 @@ void sms_generator_hold(sms_generator *g, sms_real target, uint64_t n, sms_real 
     window = 2u * (uint64_t)g->stage_window + 2u;
     rest_at = sms_plan_rest_sample(&g->plan, g->Ts_signal);
     rest_at = rest_at > g->k ? rest_at - g->k : 0u;   /* samples of this hold before the rest */
-    if (n - 1u >= rest_at + window + 1u) {
+    if (g->plan.drift == 0 && n - 1u >= rest_at + window + 1u) {
         /* the stages see the rest (goal, 0, 0, 0) for their last 2M + 3 inputs: absorbed */
         sms_real x[4];
         x[0] = g->plan.goal;
@@ -397,7 +581,7 @@ void sms_generator_hold(sms_generator *g, sms_real target, uint64_t n, sms_real 
             (void)sms_smoother_settle(&g->stage[i], x[i], n - 1u);
         g->k += (size_t)(n - 1u);
         g->quiet = g->stage_length;
-        sms_generator_step(g, target, out);
+        sms_generator_step_target(g, target, out);
         return;
     }
     {
@@ -419,6 +603,12 @@ void sms_generator_hold(sms_generator *g, sms_real target, uint64_t n, sms_real 
     hold_plan_through_stage(g, n, out);
 }
 
+void sms_generator_hold(sms_generator *g, sms_real target, uint64_t n, sms_real out[4])
+{
+    sms_target t = rest_target(g, target);
+    sms_generator_hold_target(g, &t, n, out);
+}
+
 void sms_generator_process(sms_generator *g, const sms_real *targets, size_t n, sms_real *out)
 {
     size_t i;
@@ -426,126 +616,63 @@ void sms_generator_process(sms_generator *g, const sms_real *targets, size_t n, 
         sms_generator_step(g, targets[i], out + 4u * i);
 }
 
+void sms_generator_process_targets(sms_generator *g, const sms_target *targets, size_t n,
+                                   sms_real *out)
+{
+    size_t i;
+    for (i = 0; i < n; ++i)
+        sms_generator_step_target(g, &targets[i], out + 4u * i);
+}
+
+sms_status sms_generator_start(sms_generator *g, sms_real q, sms_real v, sms_real a,
+                               const sms_target *target)
+{
+    sms_target t, stop;
+    sms_plan plan;
+    sms_status st;
+    if (g == NULL)
+        return SMS_ERR_NULL;
+    if (!finite_real(q))
+        return SMS_ERR_TARGET_POSITION;
+    if (!finite_real(v) || !(fabs((double)v) <= (double)g->limits.vmax * (1.0 + SMS_LIMIT_RTOL)))
+        return SMS_ERR_TARGET_VELOCITY;
+    if (!finite_real(a) || !sms_generator_state_ok(g, (double)v, (double)a, SMS_LIMIT_RTOL))
+        return SMS_ERR_TARGET_ACCELERATION;
+    if (target == NULL) {
+        stop.interface = SMS_INTERFACE_STOP;
+        stop.position = stop.velocity = stop.acceleration = 0;
+        target = &stop;
+    }
+    st = sms_generator_canonical(g, target, &t);
+    if (st != SMS_OK)
+        return st;
+    if (!sms_generator_replan(g, &plan, q, v, a, &t))
+        return SMS_ERR_TOO_LONG;
+    g->plan = plan;
+    g->plan_q = q;
+    g->plan_v = v;
+    g->plan_a = a;
+    g->k = 0;
+    g->target = t;
+    g->goal = t;
+    g->request = t;
+    g->pending = 0;
+    g->refused = 0;
+    g->quiet = 0;
+    return SMS_OK;
+}
+
+uint64_t sms_generator_arrival(const sms_generator *g)
+{
+    size_t at = g->plan.arrive;
+    if (g->plan.arrive_f > 0)
+        ++at; /* the first sample at or after the arrival instant */
+    return at > g->k ? (uint64_t)(at - g->k) : 0u;
+}
+
 double sms_generator_tail_duration(const sms_generator *g)
 {
     return g->stage_T;
-}
-
-size_t sms_generator_state_count(const sms_generator *g)
-{
-    if (g->stage_length == 0)
-        return GEN_STAGES;
-    return GEN_STAGES + 1u + 4u * sms_smoother_state_count(&g->stage[0]);
-}
-
-void sms_generator_get_state(const sms_generator *g, double *dst)
-{
-    size_t i, per;
-    for (i = 0; i < SMS_GENERATOR_IDENTITY_COUNT; ++i)
-        dst[i] = g->identity[i];
-    dst[GEN_PLAN + 0] = (double)g->target;
-    dst[GEN_PLAN + 1] = (double)g->plan.goal;
-    dst[GEN_PLAN + 2] = (double)g->plan_q;
-    dst[GEN_PLAN + 3] = (double)g->plan_v;
-    dst[GEN_PLAN + 4] = (double)g->plan_a;
-    dst[GEN_PLAN + 5] = (double)g->k;
-    if (g->stage_length == 0)
-        return;
-    dst[GEN_STAGES] = (double)g->quiet;
-    per = sms_smoother_state_count(&g->stage[0]);
-    for (i = 0; i < 4; ++i)
-        sms_smoother_get_state(&g->stage[i], dst + GEN_STAGES + 1u + i * per);
-}
-
-static int is_count(double x, double max)
-{
-    return x >= 0.0 && x <= max && x == (double)(size_t)x;
-}
-
-static sms_status check_identity(const sms_generator *g, const double *src)
-{
-    static const sms_status field_status[SMS_GENERATOR_IDENTITY_COUNT - SMS_STATE_IDENTITY_HEAD] = {
-        SMS_ERR_STATE_VMAX, SMS_ERR_STATE_AMAX, SMS_ERR_STATE_JMAX, SMS_ERR_STATE_PROFILE,
-        SMS_ERR_STATE_WN, SMS_ERR_STATE_ZETA
-    };
-    return sms_state_identity_compare(g->identity, src,
-                                      SMS_GENERATOR_IDENTITY_COUNT - SMS_STATE_IDENTITY_HEAD,
-                                      field_status);
-}
-
-sms_status sms_generator_check_state(const sms_generator *g, const double *src, size_t n)
-{
-    double V, A, J, v, a, brake;
-    const double *p;
-    size_t i, per;
-    sms_status st;
-    if (g == NULL || src == NULL)
-        return SMS_ERR_NULL;
-    /* another configuration first, whatever the length: its state often has another one */
-    if (n >= SMS_GENERATOR_IDENTITY_COUNT && (st = check_identity(g, src)) != SMS_OK)
-        return st;
-    if (n != sms_generator_state_count(g))
-        return SMS_ERR_STATE;
-    p = src + GEN_PLAN;
-    for (i = 0; i < 5; ++i)
-        if (!isfinite(p[i]) || (sms_real)p[i] - (sms_real)p[i] != 0)
-            return SMS_ERR_STATE;
-    /* a state a plan can start from, as the generator itself leaves them: v and a within
-     * the bounds, and able to bring a to zero (at the shape's mean jerk) without passing vmax,
-     * each to the reported values' 32 u (SMS_LIMIT_RTOL; the generator's own states stay
-     * within 15 u, tests/c/test_generator.c), checked on the values as sms_real holds them */
-    V = (double)g->limits.vmax * (1.0 + SMS_LIMIT_RTOL);
-    A = (double)g->limits.amax * (1.0 + SMS_LIMIT_RTOL);
-    J = (double)sms_plan_mean_jerk(&g->limits, g->shape);
-    v = (double)(sms_real)p[3];
-    a = (double)(sms_real)p[4];
-    brake = v + a * fabs(a) / (2.0 * J);
-    if (!(fabs(v) <= V) || !(fabs(a) <= A) || !(fabs(brake) <= V))
-        return SMS_ERR_STATE;
-    if (!is_count(p[5], 9007199254740992.0)) /* 2^53 */
-        return SMS_ERR_STATE;
-    {
-        /* the running plan must be one the generator can form again */
-        sms_plan plan;
-        if (!sms_plan_to_rest_shaped(&plan, &g->limits, g->shape, g->Ts_signal,
-                                     (sms_real)p[2], (sms_real)p[3], (sms_real)p[4],
-                                     (sms_real)p[1]))
-            return SMS_ERR_STATE;
-    }
-    if (g->stage_length == 0)
-        return SMS_OK;
-    if (!is_count(src[GEN_STAGES], (double)g->stage_length))
-        return SMS_ERR_STATE;
-    per = sms_smoother_state_count(&g->stage[0]);
-    for (i = 0; i < 4; ++i)
-        if (sms_smoother_check_state(&g->stage[i], src + GEN_STAGES + 1u + i * per, per) != SMS_OK)
-            return SMS_ERR_STATE;
-    return SMS_OK;
-}
-
-sms_status sms_generator_set_state(sms_generator *g, const double *src, size_t n)
-{
-    size_t i, per;
-    const double *p;
-    sms_status st = sms_generator_check_state(g, src, n);
-    if (st != SMS_OK)
-        return st;
-    p = src + GEN_PLAN;
-    g->target = (sms_real)p[0];
-    g->plan_q = (sms_real)p[2];
-    g->plan_v = (sms_real)p[3];
-    g->plan_a = (sms_real)p[4];
-    g->k = (size_t)p[5];
-    g->refused = 0; /* a dropped target is tried (and dropped) again on the next sample */
-    (void)sms_plan_to_rest_shaped(&g->plan, &g->limits, g->shape, g->Ts_signal, g->plan_q,
-                                  g->plan_v, g->plan_a, (sms_real)p[1]); /* checked above */
-    if (g->stage_length == 0)
-        return SMS_OK;
-    g->quiet = (size_t)src[GEN_STAGES];
-    per = sms_smoother_state_count(&g->stage[0]);
-    for (i = 0; i < 4; ++i)
-        (void)sms_smoother_set_state(&g->stage[i], src + GEN_STAGES + 1u + i * per, per);
-    return SMS_OK;
 }
 
 void sms_generator_rebind(sms_generator *g, sms_real *buffer)

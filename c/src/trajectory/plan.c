@@ -137,9 +137,8 @@ sms_real sms_plan_mean_jerk(const sms_plan_limits *lim, int shape)
     return shape == SMS_PLAN_COSINE ? lim->jmax * (sms_real)0.63661977236758134 : lim->jmax;
 }
 
-/* Add a segment starting at time (n, f) and move (n, f) to its end. */
-static void push(sms_plan *plan, sms_real Ts, size_t *n, sms_real *f, sms_real p, sms_real v,
-                 sms_real a, sms_real j, sms_real d)
+void sms_plan_push(sms_plan *plan, sms_real Ts, size_t *n, sms_real *f, sms_real p, sms_real v,
+                   sms_real a, sms_real j, sms_real d)
 {
     size_t i = plan->count;
     sms_real total, whole;
@@ -174,9 +173,7 @@ int sms_plan_to_rest(sms_plan *plan, const sms_plan_limits *lim, sms_real Ts, sm
     return sms_plan_to_rest_shaped(plan, lim, SMS_PLAN_RAMP, Ts, q, v, a, goal);
 }
 
-/* A plan longer than this many samples is not formed: its sample counts must stay exact in
- * size_t and in the double of a saved state (2^52: about 1.4e5 years at 1 ms). */
-static sms_real max_samples(void)
+sms_real sms_plan_max_samples(void)
 {
     sms_real m = (sms_real)4503599627370496.0, s = (sms_real)((size_t)-1) * (sms_real)0.5;
     return s < m ? s : m;
@@ -192,10 +189,7 @@ static sms_real mag(sms_real x)
     return x < 0 ? -x : x;
 }
 
-/* Can every value the plan evaluates be formed? Each segment's start values and the bound
- * |p| + d (|v| + d (|a|/2 + d |j|/4)) of every term sms_plan_eval() forms within it (the
- * half-cosine position term is at most |j| d^3/4, the ramp's |j| d^3/6) are finite. */
-static int plan_finite(const sms_plan *plan)
+int sms_plan_finite(const sms_plan *plan)
 {
     size_t i;
     for (i = 0; i < plan->count; ++i) {
@@ -209,7 +203,8 @@ static int plan_finite(const sms_plan *plan)
             !is_finite(mag(plan->v[i]) + d * (mag(plan->a[i]) + d * mag(plan->j[i]))))
             return 0;
     }
-    return is_finite(plan->goal) && is_finite(plan->end_f) && is_finite(plan->duration);
+    return is_finite(plan->goal) && is_finite(plan->drift) && is_finite(plan->end_f) &&
+           is_finite(plan->duration);
 }
 
 int sms_plan_to_rest_shaped(sms_plan *out, const sms_plan_limits *lim, int shape, sms_real Ts,
@@ -226,10 +221,11 @@ int sms_plan_to_rest_shaped(sms_plan *out, const sms_plan_limits *lim, int shape
     plan->count = 0;
     plan->shape = shape;
     plan->goal = goal;
+    plan->drift = 0;
     plan->duration = 0;
     if (D == 0 && v == 0 && a == 0) {
-        plan->end = 0;
-        plan->end_f = 0;
+        plan->end = plan->arrive = 0;
+        plan->end_f = plan->arrive_f = 0;
         *out = tmp;
         return 1;
     }
@@ -321,27 +317,60 @@ int sms_plan_to_rest_shaped(sms_plan *out, const sms_plan_limits *lim, int shape
         total += first.d[i];
     for (i = 0; i < stop.count; ++i)
         total += stop.d[i];
-    if (!is_finite(vp) || !is_finite(total) || !(total / Ts + 2 <= max_samples()))
+    if (!is_finite(vp) || !is_finite(total) || !(total / Ts + 2 <= sms_plan_max_samples()))
         return 0;
     p = q;
     vv = v;
     aa = a;
     for (i = 0; i < first.count; ++i) {
-        push(plan, Ts, &n, &f, p, vv, aa, first.j[i], first.d[i]);
+        sms_plan_push(plan, Ts, &n, &f, p, vv, aa, first.j[i], first.d[i]);
         advance(&p, &vv, &aa, first.j[i], first.d[i], c3);
     }
     if (cruise > 0)
-        push(plan, Ts, &n, &f, p, vp, 0, 0, cruise);
+        sms_plan_push(plan, Ts, &n, &f, p, vp, 0, 0, cruise);
     p = start;
     vv = vp;
     aa = 0;
     for (i = 0; i < stop.count; ++i) {
-        push(plan, Ts, &n, &f, p, vv, aa, stop.j[i], stop.d[i]);
+        sms_plan_push(plan, Ts, &n, &f, p, vv, aa, stop.j[i], stop.d[i]);
         advance(&p, &vv, &aa, stop.j[i], stop.d[i], c3);
     }
-    plan->end = n;
-    plan->end_f = f;
-    if (!plan_finite(plan))
+    plan->end = plan->arrive = n;
+    plan->end_f = plan->arrive_f = f;
+    if (!sms_plan_finite(plan))
+        return 0;
+    *out = tmp;
+    return 1;
+}
+
+int sms_plan_velocity_shaped(sms_plan *out, const sms_plan_limits *lim, int shape, sms_real Ts,
+                             sms_real q, sms_real v, sms_real a, sms_real velocity)
+{
+    sms_plan tmp, *plan = &tmp;
+    sms_real J = sms_plan_mean_jerk(lim, shape), f = 0, p = q, vv = v, aa = a, total = 0;
+    sms_real c3 = shape == SMS_PLAN_COSINE ? PLAN_C3_COSINE : PLAN_C3_RAMP;
+    pieces change;
+    size_t n = 0;
+    int i;
+    if (!is_finite(q) || !is_finite(v) || !is_finite(a) || !is_finite(velocity))
+        return 0;
+    plan->count = 0;
+    plan->shape = shape;
+    plan->duration = 0;
+    velocity_change(v, a, velocity, lim->amax, J, shape, &change);
+    for (i = 0; i < change.count; ++i)
+        total += change.d[i];
+    if (!is_finite(total) || !(total / Ts + 2 <= sms_plan_max_samples()))
+        return 0;
+    for (i = 0; i < change.count; ++i) {
+        sms_plan_push(plan, Ts, &n, &f, p, vv, aa, change.j[i], change.d[i]);
+        advance(&p, &vv, &aa, change.j[i], change.d[i], c3);
+    }
+    plan->end = plan->arrive = n;
+    plan->end_f = plan->arrive_f = f;
+    plan->goal = p;
+    plan->drift = velocity;
+    if (!sms_plan_finite(plan))
         return 0;
     *out = tmp;
     return 1;
@@ -398,12 +427,17 @@ void sms_plan_eval(const sms_plan *plan, sms_real Ts, size_t k, sms_real out[4])
 {
     size_t i = plan->count;
     sms_real t, d, j;
-    /* at or after the end: exactly at rest on the goal */
+    /* at or after the end: exactly on the goal, moving on at the drift velocity (0: at rest) */
     if (i == 0 || at_or_after(k, plan->end, plan->end_f, Ts)) {
         out[0] = plan->goal;
-        out[1] = 0;
+        out[1] = plan->drift;
         out[2] = 0;
         out[3] = 0;
+        if (plan->drift != 0 && k > plan->end) {
+            t = (sms_real)(k - plan->end) * Ts - plan->end_f;
+            if (t > 0)
+                out[0] = plan->goal + plan->drift * t;
+        }
         return;
     }
     while (i > 1 && !at_or_after(k, plan->n[i - 1], plan->f[i - 1], Ts))

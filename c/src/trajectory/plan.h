@@ -41,11 +41,20 @@ int sms_plan_to_rest(sms_plan *plan, const sms_plan_limits *lim, sms_real Ts, sm
 int sms_plan_to_rest_shaped(sms_plan *plan, const sms_plan_limits *lim, int shape, sms_real Ts,
                             sms_real q, sms_real v, sms_real a, sms_real goal);
 
+/* The change of (v, a) to (velocity, 0) from position q in the least time of the shape's
+ * transitions (the velocity interface): a transition of a towards +-amax, a hold there if
+ * reached, a transition back to 0 (half cosines never take a across zero, as above); then the
+ * plan moves on at `velocity` (its drift). Same precondition on (v, a); returns as
+ * sms_plan_to_rest(). */
+int sms_plan_velocity_shaped(sms_plan *plan, const sms_plan_limits *lim, int shape, sms_real Ts,
+                             sms_real q, sms_real v, sms_real a, sms_real velocity);
+
 /* The jerk the planner uses for a shape: jmax (ramps) or (2/pi) jmax (half-cosine). */
 sms_real sms_plan_mean_jerk(const sms_plan_limits *lim, int shape);
 
 /* q, v, a, j at sample k after the plan's first sample (jerk: right limit at a jump; a
- * half-cosine transition is evaluated by its own series, no libm). */
+ * half-cosine transition is evaluated by its own series, no libm). From the end on: q = goal +
+ * drift t (t since the end), v = drift, a = j = 0. */
 void sms_plan_eval(const sms_plan *plan, sms_real Ts, size_t k, sms_real out[4]);
 
 /* The first sample k at which sms_plan_eval() gives the rest on the goal (q = goal, v = a =
@@ -54,5 +63,19 @@ size_t sms_plan_rest_sample(const sms_plan *plan, sms_real Ts);
 
 /* sqrt(x) for x >= 0 in sms_real without libm (Newton after scaling by powers of 4). */
 sms_real sms_plan_sqrt(sms_real x);
+
+/* Add a segment (start state p, v, a, jerk j, d seconds) at time (n, f) and move (n, f) to its
+ * end (whole samples plus a fraction in [0, Ts)); a segment of d <= 0 is skipped. */
+void sms_plan_push(sms_plan *plan, sms_real Ts, size_t *n, sms_real *f, sms_real p, sms_real v,
+                   sms_real a, sms_real j, sms_real d);
+
+/* Can every value the plan evaluates be formed? Each segment's start values and the bound
+ * |p| + d (|v| + d (|a|/2 + d |j|/4)) of every term sms_plan_eval() forms within it (the
+ * half-cosine position term is at most |j| d^3/4, the ramp's |j| d^3/6) are finite. */
+int sms_plan_finite(const sms_plan *plan);
+
+/* A plan longer than this many samples is not formed: its sample counts must stay exact in
+ * size_t and in the double of a saved state (2^52: about 1.4e5 years at 1 ms). */
+sms_real sms_plan_max_samples(void);
 
 #endif

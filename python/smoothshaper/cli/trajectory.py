@@ -16,6 +16,7 @@ import math
 
 import numpy as np
 
+from ..errors import ParameterError
 from .common import EXIT_ERROR, CliError, decimate, format_table, run_samples
 from .common import numbers as _numbers, parse_via_list, parse_via_points
 from .common import pyplot as _pyplot, save_figure as _save, write_outputs
@@ -126,9 +127,15 @@ def _limit(option: str):
 
 def cmd_generator(args) -> int:
     from ..trajectory import Generator
-    if ";" in args.via or any(isinstance(x, str) for x in (args.vmax, args.amax, args.jmax)):
+    if ";" in (args.via or "") or any(isinstance(x, str)
+                                      for x in (args.vmax, args.amax, args.jmax)):
         from .multi_axis import cmd_multi_generator
         return cmd_multi_generator(args)
+    if any(x is not None for x in (args.via_velocity, args.via_acceleration, args.start,
+                                   args.velocity)):
+        return cmd_generator_targets(args)
+    if args.via is None:
+        raise CliError("--via is required (or --velocity for the velocity interface)")
     via = parse_via_list(args.via)
     gen = Generator(vmax=args.vmax, amax=args.amax, jmax=args.jmax, Ts=args.Ts,
                     profile=args.profile, wn=args.wn, zeta=args.zeta)
@@ -200,13 +207,192 @@ def cmd_generator(args) -> int:
     return 0 if ok else EXIT_ERROR
 
 
-def _plot_generator(path, t, targets, out, starts, arrivals, limits, u, Ts, what=""):
+def _per_target(option: str, text, count: int) -> np.ndarray:
+    """--via-velocity / --via-acceleration: one value per target (default 0)."""
+    if text is None:
+        return np.zeros(count)
+    values = np.array(_numbers(option, text))
+    if values.size != count:
+        raise CliError(f"{option} needs one value per target ({count}), got {values.size}")
+    return values
+
+
+def run_targets(gen, targets, hold_samples, max_samples):
+    """Feed each target (position, velocity, acceleration, interface) until the plan has
+    reached it (Generator.arrival) or for hold_samples, the last until reached. Returns the
+    per-sample target columns, out, the segment starts and arrivals (None: not reached within
+    its hold)."""
+    cols = [[], [], [], []]
+    outs, starts, arrivals = [], [], []
+    k = 0
+    for i, (p, v, a, interface) in enumerate(targets):
+        last = i == len(targets) - 1
+        starts.append(k)
+        first = gen.process(np.array([p]), velocity=v, acceleration=a, interface=interface)
+        remaining = gen.arrival
+        n = remaining if (hold_samples is None or last) else hold_samples - 1
+        if k + 1 + n > max_samples:
+            raise CliError(f"target {i + 1} is not reached within {max_samples} samples "
+                           "(raise --Ts)")
+        rest = gen.process(np.full(n, p), velocity=v, acceleration=a, interface=interface)
+        outs += [first, rest]
+        for c, x in zip(cols, (p, v, a, interface)):
+            c += [x] * (1 + n)
+        arrivals.append(k + remaining if remaining <= n else None)
+        k += 1 + n
+    return ([np.array(c) for c in cols[:3]] + [np.array(cols[3])], np.concatenate(outs),
+            starts, arrivals)
+
+
+def cmd_generator_targets(args) -> int:
+    """Targets beyond rest: via-points reached with a velocity and an acceleration, a start
+    state in motion, or the velocity interface (--velocity)."""
+    from ..trajectory import Generator
+    gen = Generator(vmax=args.vmax, amax=args.amax, jmax=args.jmax, Ts=args.Ts,
+                    profile=args.profile, wn=args.wn, zeta=args.zeta)
+    if args.velocity is not None:
+        if args.via_velocity is not None or args.via_acceleration is not None:
+            raise CliError("--velocity (the velocity interface) takes no --via-velocity or "
+                           "--via-acceleration: its values are the velocities to reach")
+        via = parse_via_list(args.via + ",0") if args.via is not None else np.zeros(2)
+        if via.size != 2:
+            raise CliError("--via with --velocity is the start position alone (one number)")
+        speeds = np.array(_numbers("--velocity", args.velocity))
+        targets = [(0.0, float(v), 0.0, "velocity") for v in speeds]
+        if args.hold is None and speeds.size > 1:
+            raise CliError("--velocity with several velocities needs --hold SECONDS (how long "
+                           "each is held)")
+    else:
+        if args.via is None:
+            raise CliError("--via is required (or --velocity for the velocity interface)")
+        via = parse_via_list(args.via)
+        vel = _per_target("--via-velocity", args.via_velocity, via.size - 1)
+        acc = _per_target("--via-acceleration", args.via_acceleration, via.size - 1)
+        targets = [(float(p), float(v), float(a), "position")
+                   for p, v, a in zip(via[1:], vel, acc)]
+    v0, a0 = 0.0, 0.0
+    if args.start is not None:
+        state = _numbers("--start", args.start)
+        if len(state) != 2:
+            raise CliError("--start is the start velocity and acceleration: V,A")
+        v0, a0 = state
+    first = targets[0]
+    try:
+        if first[3] == "velocity":
+            gen.start_from(float(via[0]), v0, a0, interface="velocity", velocity=first[1])
+        else:
+            gen.start_from(float(via[0]), v0, a0, target=first[0], velocity=first[1],
+                           acceleration=first[2])
+    except ParameterError as exc:
+        option = {"v": "--start", "a": "--start", "velocity": "--via-velocity",
+                  "acceleration": "--via-acceleration", "target": "--via"}.get(exc.parameter,
+                                                                               "--via")
+        raise CliError(f"{option}: {exc}") from None
+    limits = (gen.vmax, gen.amax, gen.jmax)
+    hold_samples = None
+    if args.hold is not None:
+        if not (math.isfinite(args.hold) and args.hold >= gen.Ts):
+            raise CliError(f"--hold must be a time >= Ts = {gen.Ts:.3g} s, got {args.hold:.3g}")
+        hold_samples = int(round(args.hold / gen.Ts))
+    # the run's size from the distances, the limits and the holds (each term named)
+    moves = len(targets)
+    span = float(np.ptp(np.r_[via, [t[0] for t in targets]]))
+    terms = [("--via", 2 * moves * span / gen.vmax, "bring the points closer or raise --vmax"),
+             (f"--vmax={gen.vmax:.3g}, --amax={gen.amax:.3g}", 4 * moves * gen.vmax / gen.amax,
+              "raise --amax or lower --vmax"),
+             (f"--amax={gen.amax:.3g}, --jmax={gen.jmax:.3g}",
+              4 * moves * math.pi / 2 * gen.amax / gen.jmax, "raise --jmax or lower --amax"),
+             (f"--wn={gen.wn or 0:.3g}", 3 * moves * gen.stage_duration, "raise --wn")]
+    if args.hold is not None:
+        terms.append((f"--hold={args.hold:.3g}", moves * args.hold, "shorten --hold"))
+    max_samples = run_samples(terms, gen.Ts, MAX_SAMPLES, extra=10 * (moves + 2))
+    cost = trajectory_cost("generator", samples=max_samples, axes=1, csv=bool(args.csv),
+                           plot=bool(args.plot))
+    bar = start(cost, args, f"at most {max_samples} samples")
+    if bar is None:
+        return 0
+    bar.phase("generator")
+    try:
+        cols, out, starts, arrivals = run_targets(gen, targets, hold_samples, max_samples)
+    except ParameterError as exc:
+        option = {"velocity": "--via-velocity", "acceleration": "--via-acceleration"}.get(
+            exc.parameter, "--via")
+        if args.velocity is not None:
+            option = "--velocity"
+        raise CliError(f"{option}: {exc}") from None
+    t = np.arange(out.shape[0]) * gen.Ts
+    u = args.unit
+    print(f"online generator: vmax = {gen.vmax:g} {u}/s, amax = {gen.amax:g} {u}/s^2, "
+          f"jmax = {gen.jmax:g} {u}/s^3, profile {gen.profile}"
+          + (f", mode wn = {gen.wn:g} rad/s, zeta = {gen.zeta:g}" if gen.wn else ""))
+    print(f"start at {via[0]:g} {u} moving at {v0:g} {u}/s, {a0:g} {u}/s^2; "
+          + ("each velocity reached in the least time (the velocity interface)"
+             if args.velocity is not None else
+             "each via-point reached in the least time with its velocity and acceleration, "
+             "exactly on a sample")
+          + ("" if hold_samples is None else
+             f"; each held {hold_samples} samples ({hold_samples * gen.Ts:g} s), the last until "
+             "reached"))
+    rows = []
+    ends = starts[1:] + [out.shape[0]]
+    for i, (s0, e, a) in enumerate(zip(starts, ends, arrivals)):
+        peaks = np.max(np.abs(out[s0:e, 1:4]), axis=0)
+        state = out[a] if a is not None else [None] * 3
+        rows.append([i + 1, *([None] if args.velocity is not None else [targets[i][0]]),
+                     targets[i][1], *([] if args.velocity is not None else [targets[i][2]]),
+                     s0 * gen.Ts, None if a is None else a * gen.Ts,
+                     *[None if x is None else float(x) for x in state[:3]],
+                     *[float(p / lim) for p, lim in zip(peaks, limits)]])
+    if args.velocity is not None:
+        rows = [[r[0]] + r[2:] for r in rows]
+        head = ["#", f"velocity [{u}/s]", "start [s]", "arrival [s]", f"q [{u}]",
+                f"v [{u}/s]", f"a [{u}/s^2]", "v/vmax", "a/amax", "j/jmax"]
+    else:
+        head = ["#", f"target [{u}]", f"velocity [{u}/s]", f"acceleration [{u}/s^2]",
+                "start [s]", "arrival [s]", f"q [{u}]", f"v [{u}/s]", f"a [{u}/s^2]",
+                "v/vmax", "a/amax", "j/jmax"]
+    print(format_table(head, rows))
+    missed = [r[0] for r, a in zip(rows, arrivals) if a is None]
+    if missed:
+        print("not reached before the next target (--hold): segment "
+              + ", ".join(str(m) for m in missed))
+    peaks = np.max(np.abs(out[:, 1:4]), axis=0)
+    ok = all(p <= lim * (1 + LIMIT_RTOL) for p, lim in zip(peaks, limits))
+    print(f"total time: {(out.shape[0] - 1) * gen.Ts:.6g} s ({out.shape[0]} samples)")
+    print("sampled peaks within the limits: " + ("yes" if ok else "NO (exceeded)"))
+    what = f"{gen.profile} profile" + (f", mode {gen.wn:g} rad/s" if gen.wn else "")
+    write_outputs(args, bar, lambda: (
+        ["time", "target_position", "target_velocity", "target_acceleration", "position",
+         "velocity", "acceleration", "jerk"],
+        [t, cols[0], cols[1], cols[2], out[:, 0], out[:, 1], out[:, 2], out[:, 3]]),
+        lambda path: _plot_generator(
+            path, t, None if args.velocity is not None else cols[0], out, starts, arrivals,
+            limits, u, gen.Ts, what, velocity_targets=cols[1],
+            arrival_states=None if args.velocity is not None else [
+                (targets[i][0], targets[i][1]) for i in range(len(targets))],
+            title="Online generator, the velocity interface" if args.velocity is not None
+            else "Online generator, via-points reached moving"))
+    return 0 if ok else EXIT_ERROR
+
+
+def _plot_generator(path, t, targets, out, starts, arrivals, limits, u, Ts, what="",
+                    velocity_targets=None, arrival_states=None,
+                    title="Online multi-point generator"):
     plt = _pyplot("design generator --plot")
     fig, axes = plt.subplots(4, 1, sharex=True, figsize=(8, 8))
     names = [("position", f"[{u}]"), ("velocity", f"[{u}/s]"),
              ("acceleration", f"[{u}/s$^2$]"), ("jerk", f"[{u}/s$^3$]")]
-    axes[0].step(*decimate(t, targets, PLOT_POINTS), where="post", color="gray", lw=0.8,
-                 ls="--", label="target")
+    if targets is not None:
+        axes[0].step(*decimate(t, targets, PLOT_POINTS), where="post", color="gray", lw=0.8,
+                     ls="--", label="target")
+    if velocity_targets is not None and (targets is None or np.any(velocity_targets != 0)):
+        axes[1].step(*decimate(t, velocity_targets, PLOT_POINTS), where="post", color="gray",
+                     lw=0.8, ls="--", label="target velocity")
+    if arrival_states is not None:
+        for a, (q, v) in zip(arrivals, arrival_states):
+            if a is not None:
+                axes[0].plot(a * Ts, q, "o", ms=5, mfc="none", color="green")
+                axes[1].plot(a * Ts, v, "o", ms=5, mfc="none", color="green")
     for i, (ax, (name, unit)) in enumerate(zip(axes, names)):
         if i == 3:  # jerk: right limits at the samples, piecewise constant between
             ax.step(*decimate(t, out[:, i], PLOT_POINTS), where="post", lw=1.2, label=name)
@@ -224,8 +410,7 @@ def _plot_generator(path, t, targets, out, starts, arrivals, limits, u, Ts, what
     axes[0].legend(loc="best", fontsize=8)
     axes[1].legend(loc="best", fontsize=8)
     axes[-1].set_xlabel("time [s]")
-    axes[0].set_title("Online multi-point generator (green: arrivals)"
-                      + (f"\n{what}" if what else ""))
+    axes[0].set_title(f"{title} (green: arrivals)" + (f"\n{what}" if what else ""))
     fig.tight_layout()
     _save(fig, plt, path)
 
@@ -352,9 +537,22 @@ def add_design_forms(design_parser, parser_class) -> None:
                          "limits per axis ('1,2,3') or one for all; the axes move on straight "
                          "lines and arrive together (--sync phase) or each on its own "
                          "(--sync independent). Negative values: write --via=-5,10.")
-    p.add_argument("--via", required=True, metavar="P0,P1,... | X,Y,Z;X,Y,Z;...",
+    p.add_argument("--via", metavar="P0,P1,... | X,Y,Z;X,Y,Z;...",
                    help="positions: start, then the targets in order (e.g. 0,20,40,100,60,0); "
-                   "for several axes points separated by ';'")
+                   "for several axes points separated by ';' (with --velocity: the start "
+                   "position alone, default 0)")
+    p.add_argument("--via-velocity", metavar="V1,V2,...",
+                   help="one axis: the velocity at arrival on each target (default 0: at "
+                   "rest); the output reaches the target moving, exactly on a sample, then "
+                   "holds that velocity until the next target")
+    p.add_argument("--via-acceleration", metavar="A1,A2,...",
+                   help="one axis: the acceleration at arrival on each target (default 0)")
+    p.add_argument("--start", metavar="V,A",
+                   help="one axis: the start state's velocity and acceleration at the first "
+                   "--via point (default at rest)")
+    p.add_argument("--velocity", metavar="V1,V2,...",
+                   help="one axis, the velocity interface: reach each velocity in the least "
+                   "time (the position free; 0 = stop), each held --hold seconds")
     p.add_argument("--vmax", type=_limit("--vmax"), required=True,
                    help="velocity limit [unit/s] (one per axis: V1,V2,...)")
     p.add_argument("--amax", type=_limit("--amax"), required=True,

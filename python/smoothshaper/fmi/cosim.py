@@ -115,7 +115,6 @@ def write_ssp(out_dir: Path, fmus: dict[str, Path]) -> tuple[Path, Path]:
 def run_fmpy(ssp: Path, *, shaper: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(t, shaped command, load position) from fmpy's SSP master (t += h, step TS): row k is
     the state after step k, i.e. at t_(k+1)."""
-    _optional.require("fmpy", "the system co-simulation in fmpy")
     return _ssp.run_fmpy(SYSTEM, ssp, shaper=shaper)
 
 
@@ -124,7 +123,6 @@ def run_libcosim(ssp: Path, *, shaper: bool, n_steps: int):
     connections, parameter bindings); the generator's target is overridden with what the system
     input's connection would deliver (the input of the previous step), outputs are read after
     every step."""
-    _optional.require("libcosimpy", "the system co-simulation in libcosim")
     return _ssp.run_libcosim(SYSTEM, ssp, shaper=shaper, n_steps=n_steps)
 
 

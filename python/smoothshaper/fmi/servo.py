@@ -27,7 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .. import servo as _servo
+from .. import _optional, servo as _servo
 from ..errors import ParameterError
 from ..stages import notch as _notch
 from .timing import tick_inputs
@@ -78,6 +78,7 @@ def default_parameters(fmu) -> dict:
     ImportError
         fmpy is not installed.
     """
+    _optional.require("fmpy", "ServoDrive's default parameters")
     from fmpy import read_model_description
     out = {}
     for v in read_model_description(str(fmu)).modelVariables:
@@ -255,6 +256,7 @@ def simulate_servo(fmu, t: np.ndarray, q_ref: np.ndarray, tau_load: np.ndarray,
                               dict(start_values), input_name=("q_ref", "tau_load"),
                               outputs=OUTPUTS)
         return {name: y[:, i] for i, name in enumerate(OUTPUTS)}
+    _optional.require("fmpy", "running ServoDrive in fmpy")
     import fmpy
     step = float(t[1] - t[0])
     r = fmpy.simulate_fmu(str(fmu), start_values=dict(start_values),

@@ -24,7 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .. import servo as _servo
+from .. import _optional, servo as _servo
 from .._checks import finite_array as _finite_array, integer as _integer
 from ..errors import ParameterError
 from ..reference._checks import check_samples
@@ -263,9 +263,7 @@ def plot(path: Path, runs: list[ServoRun]) -> None:
     OSError
         The file cannot be written.
     """
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = _optional.pyplot("the ShapedServo co-simulation figure")
     fig, (a0, a1) = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
     styles = {("libcosim", False): ("C3", "-", 2.5), ("fmpy", False): ("k", ":", 1.2),
               ("libcosim", True): ("C0", "-", 2.5), ("fmpy", True): ("k", "--", 1.0)}

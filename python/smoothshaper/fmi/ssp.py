@@ -20,6 +20,8 @@ from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
+from .. import _optional
+
 __all__ = ["SSD_NS", "System", "system_structure", "write_ssp", "ssp_parameters", "run_fmpy",
            "run_libcosim", "generator_shaper_reference", "settled_residual"]
 
@@ -225,6 +227,7 @@ def run_fmpy(system: System, ssp: Path, *, shaper: bool) -> tuple[np.ndarray, ..
     StopIteration
         fmpy's result lacks a recorded variable.
     """
+    _optional.require("fmpy", "an SSP system in fmpy")
     from fmpy.ssp.simulation import simulate_ssp
     values = ssp_parameters(ssp)
     if not shaper:
@@ -265,6 +268,7 @@ def run_libcosim(system: System, ssp: Path, *, shaper: bool,
     RuntimeError
         libcosim refused a value or a step failed.
     """
+    _optional.require("libcosimpy", "an SSP system in libcosim")
     from libcosimpy.CosimExecution import CosimExecution
     from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
     from libcosimpy.CosimManipulator import CosimManipulator

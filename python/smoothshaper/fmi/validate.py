@@ -66,9 +66,7 @@ def _plot_trajectory(path: Path, t, target, y, ref) -> None:
 
 
 def _plot_servo(path: Path, name: str, c, n: float) -> None:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot("the ServoDrive validation figure")
     fig, axes = plt.subplots(4, 1, figsize=(7, 8.5), sharex=True)
     t = c.t
     axes[0].plot(t, c.q_ref, color="0.6", lw=1, label="q_ref")

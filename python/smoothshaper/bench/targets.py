@@ -1,0 +1,234 @@
+# SPDX-License-Identifier: Apache-2.0
+"""The single-axis generator against ruckig on random cases, one campaign per feature:
+
+* ``rest``: from any state (q, v, a) to a position at rest;
+* ``moving``: to a position reached with a velocity and an acceleration (a moving target);
+* ``velocity``: the velocity interface (a velocity and an acceleration, the position free);
+* ``stop``: braking to rest from any state.
+
+Per case the generator starts from a random state (:meth:`Generator.start_from`) and runs
+until its plan has reached the target; ruckig (the ``ruckig`` package) is asked for the same
+motion, continuous and with its discrete durations (``DurationDiscretization.Discrete``).
+Reported per campaign: the arrival in samples against ruckig's duration rounded up to the
+grid (``over`` = our samples minus that; the promise: at most one sample, moving targets
+past a blocked duration excepted, where ruckig's discrete duration is the bar), the worst
+reported |v|/vmax, |a|/amax, |j|/jmax and the worst backward difference of the sampled
+position over its bound after the rounding floor of docs/sampled-limits.md, the exact
+landing, and the cases where ruckig errs or is slower than our continuous optimum (not time
+optimal): those are counted, not compared.
+
+``python -m smoothshaper.bench.targets [--cases N] [--precision double|float] [--seed S]``
+prints the table; tests/python/test_generator_targets.py asserts it on fixed-seed draws.
+"""
+from __future__ import annotations
+
+import argparse
+import math
+
+import numpy as np
+
+__all__ = ["FEATURES", "draw_case", "run_case", "campaign", "main"]
+
+FEATURES = ("rest", "moving", "velocity", "stop")
+UNIT_ROUNDOFF = {"double": 2.0 ** -53, "float": 2.0 ** -24}
+
+
+def _state(rng, V, A, J, target):
+    """(v, a) within the bounds whose brake velocities (forward; and backward for a target)
+    lie within +-V."""
+    while True:
+        v, a = rng.uniform(-V, V), rng.uniform(-A, A)
+        r = a * abs(a) / (2 * J)
+        if abs(v + r) <= V and (not target or abs(v - r) <= V):
+            return v, a
+
+
+def draw_case(rng, feature: str) -> dict:
+    """A random case: limits over four decades of ratios, the start state, the target."""
+    V = 10.0 ** rng.uniform(-1, 1)
+    A = V * 10.0 ** rng.uniform(-1, 2)
+    J = A * 10.0 ** rng.uniform(-1, 2)
+    v0, a0 = _state(rng, V, A, J, False)
+    if rng.random() < 0.15:
+        v0, a0 = 0.0, 0.0
+    scale = V * (V / A + A / J)
+    case = dict(feature=feature, vmax=V, amax=A, jmax=J, q0=rng.uniform(-1, 1) * scale,
+                v0=v0, a0=a0, position=0.0, velocity=0.0, acceleration=0.0)
+    if feature in ("rest", "moving"):
+        case["position"] = case["q0"] + rng.uniform(-3, 3) * scale * 10.0 ** rng.uniform(-2, 1)
+    if feature in ("moving", "velocity"):
+        vf, af = _state(rng, V, A, J, True)
+        if feature == "moving" and rng.random() < 0.3:
+            af = 0.0
+        case["velocity"], case["acceleration"] = vf, af
+    return case
+
+
+def _ruckig(case, Ts=None):
+    """ruckig's duration for the case (continuous, or discrete with Ts), None when it errs."""
+    import ruckig
+    otg = ruckig.Ruckig(1, Ts) if Ts else ruckig.Ruckig(1)
+    inp, traj = ruckig.InputParameter(1), ruckig.Trajectory(1)
+    inp.current_position = [case["q0"]]
+    inp.current_velocity = [case["v0"]]
+    inp.current_acceleration = [case["a0"]]
+    inp.max_velocity = [case["vmax"]]
+    inp.max_acceleration = [case["amax"]]
+    inp.max_jerk = [case["jmax"]]
+    if case["feature"] in ("velocity", "stop"):
+        inp.control_interface = ruckig.ControlInterface.Velocity
+    else:
+        inp.target_position = [case["position"]]
+    inp.target_velocity = [case["velocity"]]
+    inp.target_acceleration = [case["acceleration"]]
+    if Ts:
+        inp.duration_discretization = ruckig.DurationDiscretization.Discrete
+    try:
+        result = otg.calculate(inp, traj)
+    except (RuntimeError, ValueError, ruckig.RuckigError):
+        return None
+    if result not in (ruckig.Result.Working, ruckig.Result.Finished):
+        return None
+    return traj.duration
+
+
+def run_case(case: dict, *, precision: str = "double", samples: float | None = None,
+             reference_T: float | None = None) -> dict:
+    """Run the case through the C generator. ``samples``: Ts as a fraction of the motion
+    (T/Ts), default drawn from the case's own duration (10 to 2000 samples)."""
+    from ..trajectory import Generator
+    T = reference_T if reference_T is not None else _ruckig(case)
+    if T is None:
+        return dict(ruckig=None)
+    if not T > 0:
+        return dict(ruckig=T, trivial=True)   # already there (a stop from rest)
+    nu = samples if samples is not None else 10.0 ** case.get("log_samples", 2.0)
+    Ts = T / nu
+    g = Generator(vmax=case["vmax"], amax=case["amax"], jmax=case["jmax"], Ts=Ts,
+                  precision=precision)
+    feature = case["feature"]
+    if feature == "stop":
+        g.start_from(case["q0"], case["v0"], case["a0"])
+    elif feature == "velocity":
+        g.start_from(case["q0"], case["v0"], case["a0"], interface="velocity",
+                     velocity=case["velocity"], acceleration=case["acceleration"])
+    else:
+        g.start_from(case["q0"], case["v0"], case["a0"], target=case["position"],
+                     velocity=case["velocity"], acceleration=case["acceleration"])
+    arrive = g.arrival                      # samples from the start state to the target
+    n = arrive + 8
+    if feature == "stop":
+        out = g.process(velocity=np.zeros(n), stop=True)
+    elif feature == "velocity":
+        out = g.process(velocity=np.full(n, case["velocity"]),
+                        acceleration=np.full(n, case["acceleration"]))
+    else:
+        out = g.process(np.full(n, case["position"]), velocity=case["velocity"],
+                        acceleration=case["acceleration"])
+    real = np.float32 if precision == "float" else np.float64
+    u = UNIT_ROUNDOFF[precision]
+    limits = (case["vmax"], case["amax"], case["jmax"])
+    reported = [float(np.max(np.abs(out[:, i]))) / float(real(limits[i - 1])) for i in (1, 2, 3)]
+    # backward differences of the samples: the start state and out, differences of order i
+    # over the last i + 1 samples (the first ones need the samples before the start)
+    q = np.r_[case["q0"], out[:, 0]]
+    S = float(np.max(np.abs(q))) + abs(case["position"])
+    sampled = []
+    for i, L in zip((1, 2, 3), limits):
+        d = np.diff(q, i)[max(0, 3 - i):] if q.size > i else np.zeros(1)
+        floor = 2.0 ** i * 16 * u * S / Ts ** i
+        sampled.append(float(np.max((np.abs(d) / Ts ** i - floor) / L)) if d.size else -np.inf)
+    # the target state exactly on the arrival sample, and after it
+    k = arrive - 1                            # out[k] is the sample the plan arrives on
+    want = (real(case["position"]), real(case["velocity"]), real(case["acceleration"]))
+    if feature == "stop":
+        landed = bool(out[k, 1] == 0 and out[k, 2] == 0 and np.all(out[k:, 1:] == 0))
+    elif feature == "velocity":
+        # reached between samples: from the first sample after, the velocity held exactly
+        # (with an acceleration at arrival, it returns to zero first: not compared)
+        landed = bool(want[2] != 0 or (np.all(out[k:, 1] == want[1])
+                                       and np.all(out[k:, 2:] == 0)))
+    elif feature == "rest":
+        landed = bool(out[k, 0] == want[0] and np.all(out[k:, 1:] == 0)
+                      and np.all(out[k:, 0] == want[0]))
+    else:
+        landed = bool(out[k, 0] == want[0] and out[k, 1] == want[1] and out[k, 2] == want[2])
+    grid = math.ceil(T / Ts * (1 - 1e-12))
+    discrete = _ruckig(case, Ts) if feature == "moving" else None
+    return dict(ruckig=T, Ts=Ts, samples=arrive, grid=grid, over=arrive - grid,
+                discrete=None if discrete is None else round(discrete / Ts), reported=reported,
+                sampled=sampled, landed=landed)
+
+
+def campaign(feature: str, n: int, *, seed: int = 1, precision: str = "double") -> dict:
+    """n random cases of the feature: the summary (see the module docstring) and the cases
+    that break a promise (``failures``)."""
+    rng = np.random.default_rng([seed, FEATURES.index(feature)])
+    summary = dict(feature=feature, precision=precision, cases=0, ruckig_errors=0,
+                   over=[], blocked=0, beyond_blocked=0, reported=[0.0, 0.0, 0.0],
+                   sampled=[-np.inf] * 3, not_landed=0, failures=[])
+    for _ in range(n):
+        case = draw_case(rng, feature)
+        case["log_samples"] = rng.uniform(1, 3.3)
+        r = run_case(case, precision=precision)
+        if r["ruckig"] is None:
+            summary["ruckig_errors"] += 1
+            continue
+        if r.get("trivial"):
+            continue
+        summary["cases"] += 1
+        over = r["over"]
+        if feature == "moving" and over > 1:
+            # past a blocked duration: ruckig's discrete duration is the bar
+            summary["blocked"] += 1
+            if r["discrete"] is None or r["samples"] > r["discrete"] + 1:
+                summary["beyond_blocked"] += 1
+                summary["failures"].append(("duration", case, r))
+        else:
+            summary["over"].append(over)
+            if over > 1:
+                summary["failures"].append(("duration", case, r))
+        summary["reported"] = [max(a, b) for a, b in zip(summary["reported"], r["reported"])]
+        summary["sampled"] = [max(a, b) for a, b in zip(summary["sampled"], r["sampled"])]
+        u = UNIT_ROUNDOFF[precision]
+        if max(r["reported"]) > 1 + 32 * u or max(r["sampled"]) > 1 + 1e-9:
+            summary["failures"].append(("limits", case, r))
+        if not r["landed"]:
+            summary["not_landed"] += 1
+            summary["failures"].append(("landing", case, r))
+    return summary
+
+
+def _row(s) -> str:
+    over = np.array(s["over"]) if s["over"] else np.zeros(1)
+    u = UNIT_ROUNDOFF[s["precision"]]
+    return (f"| {s['feature']} | {s['precision']} | {s['cases']} | {s['ruckig_errors']} | "
+            f"{np.mean(over <= 0):.3f} / {np.mean(over == 1):.3f} / {int(over.max())} | "
+            f"{s['blocked']} ({s['beyond_blocked']}) | "
+            f"{', '.join(f'{(r - 1) / u:.1f}' for r in s['reported'])} | "
+            f"{', '.join(f'{x - 1:.2e}' for x in s['sampled'])} | {s['not_landed']} |")
+
+
+def main(argv=None) -> int:
+    p = argparse.ArgumentParser(prog="python -m smoothshaper.bench.targets",
+                                description=__doc__.split("\n\n")[0])
+    p.add_argument("--cases", type=int, default=1000, help="cases per feature (default 1000)")
+    p.add_argument("--precision", choices=("double", "float"), default="double")
+    p.add_argument("--seed", type=int, default=1)
+    p.add_argument("--features", nargs="+", choices=FEATURES, default=list(FEATURES))
+    args = p.parse_args(argv)
+    print("| feature | precision | cases | ruckig errs | over the grid: <= 0 / 1 / max "
+          "[samples] | past a blocked duration (beyond ruckig's discrete) | reported "
+          "v, a, j beyond the limit [u] | sampled differences / bound - 1, after the floor | "
+          "not landed |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    bad = 0
+    for feature in args.features:
+        s = campaign(feature, args.cases, seed=args.seed, precision=args.precision)
+        print(_row(s), flush=True)
+        bad += len(s["failures"])
+    return 1 if bad else 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
