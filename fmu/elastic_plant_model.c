@@ -18,6 +18,7 @@
  * the size of y), so every matrix entry is of order one and the recursion stays finite for
  * any input up to SMS_INPUT_MAX, whatever wn (x0 = u/wn^2 itself overflows for a slow mode).
  */
+#include <float.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -57,20 +58,20 @@ static const size_t offsets[] = {
 };
 #define N_REALS (sizeof offsets / sizeof offsets[0])
 
-static const char *field_name(fmi2ValueReference vr)
+static const char *field_name(fmu_vr vr)
 {
     static const char *const names[N_REALS] = { "u", "y", "Ts", "J_l", "k_t", "b_t" };
     return vr < N_REALS ? names[vr] : NULL;
 }
 
-fmu_var_class fmu_model_class(fmu_type type, fmi2ValueReference vr)
+fmu_var_class fmu_model_class(fmu_type type, fmu_vr vr)
 {
     if (type != FMU_REAL || field_name(vr) == NULL)
         return FMU_VAR_UNKNOWN;
     return vr == EP_VR_U ? FMU_VAR_INPUT : vr == EP_VR_Y ? FMU_VAR_OUTPUT : FMU_VAR_PARAMETER;
 }
 
-void fmu_model_name(fmu_type type, fmi2ValueReference vr, char *buf, size_t len)
+void fmu_model_name(fmu_type type, fmu_vr vr, char *buf, size_t len)
 {
     const char *name = type == FMU_REAL ? field_name(vr) : NULL;
     if (name != NULL)
@@ -79,41 +80,41 @@ void fmu_model_name(fmu_type type, fmi2ValueReference vr, char *buf, size_t len)
         snprintf(buf, len, "vr %lu", (unsigned long)vr);
 }
 
-size_t fmu_model_settable(fmu_type type, fmi2ValueReference *out, size_t cap)
+size_t fmu_model_settable(fmu_type type, fmu_vr *out, size_t cap)
 {
-    static const fmi2ValueReference vrs[] = { EP_VR_U, EP_VR_TS, EP_VR_J_L, EP_VR_K_T, EP_VR_B_T };
+    static const fmu_vr vrs[] = { EP_VR_U, EP_VR_TS, EP_VR_J_L, EP_VR_K_T, EP_VR_B_T };
     size_t i, n = type == FMU_REAL ? sizeof vrs / sizeof vrs[0] : 0;
     for (i = 0; i < n && i < cap; ++i)
         out[i] = vrs[i];
     return n;
 }
 
-double fmu_model_get_real(const void *model, fmi2ValueReference vr)
+double fmu_model_get_real(const void *model, fmu_vr vr)
 {
     return vr < N_REALS ? *(const double *)(const void *)((const char *)model + offsets[vr]) : 0.0;
 }
 
-int fmu_model_get_integer(const void *model, fmi2ValueReference vr)
+int fmu_model_get_integer(const void *model, fmu_vr vr)
 {
     (void)model;
     (void)vr;
     return 0;
 }
 
-int fmu_model_check_tunable(const void *model, fmu_type type, const fmi2ValueReference *vr,
+int fmu_model_check_tunable(const void *model, fmu_type type, const fmu_vr *vr,
                             const void *values, size_t n, char *msg, size_t len)
 {
     (void)model; (void)type; (void)vr; (void)values; (void)n; (void)msg; (void)len;
     return 0;   /* no tunable parameters */
 }
 
-void fmu_model_set_real(void *model, fmi2ValueReference vr, double value)
+void fmu_model_set_real(void *model, fmu_vr vr, double value)
 {
     if (vr < N_REALS)
         *(double *)(void *)((char *)model + offsets[vr]) = value;
 }
 
-void fmu_model_set_integer(void *model, fmi2ValueReference vr, int value)
+void fmu_model_set_integer(void *model, fmu_vr vr, int value)
 {
     (void)model;
     (void)vr;
@@ -292,7 +293,10 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
     ep_model *m = (ep_model *)model;
     (void)msg;
     (void)len;
-    if (n != 3 || !isfinite(src[0]) || !isfinite(src[1]) || !isfinite(src[2]))
+    /* finite, and below a quarter of the largest double: a tick at most doubles |z| (Ad's rows
+     * sum to at most about 2 in magnitude), so a larger state could overflow on the next one */
+    if (n != 3 || !(fabs(src[0]) <= 0.25 * DBL_MAX) || !(fabs(src[1]) <= 0.25 * DBL_MAX)
+        || !(fabs(src[2]) <= 0.25 * DBL_MAX))
         return 1;
     m->y = src[0];
     m->x[0] = src[1];

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /*
- * The contract between the shared FMI 2.0 Co-Simulation glue (fmi2_glue.c) and one model file.
+ * The contract between the shared FMI glue (fmu_core.c, under fmi2_glue.c and fmi3_glue.c) and
+ * one model file. It names no FMI type: a model file is the same for FMI 2.0 and FMI 3.0.
  *
  * Each FMU binary links the glue with exactly one model file, which defines the functions
  * below. A model keeps its parameters and filter descriptors in one small plain struct of
@@ -18,36 +19,36 @@
 
 #include <stddef.h>
 #include <stdint.h>
-#include "fmi2Functions.h"
 
-/** A value reference (the variable's number in modelDescription.xml): model files name it so
- * and never an FMI type. */
-typedef fmi2ValueReference fmu_vr;
+/** A value reference: the variable's number in modelDescription.xml (FMI 2.0 and 3.0 alike;
+ * an FMI 3.0 array variable is the value reference of its first element). */
+typedef uint32_t fmu_vr;
 
 /** What a value reference of a given base type is. */
 typedef enum fmu_var_class {
     FMU_VAR_UNKNOWN = 0,  /**< no variable of this type has this value reference */
     FMU_VAR_INPUT,        /**< settable in every state before termination */
-    FMU_VAR_PARAMETER,    /**< fixed: settable only before fmi2ExitInitializationMode */
+    FMU_VAR_PARAMETER,    /**< fixed: settable only before the end of initialization */
     FMU_VAR_OUTPUT,       /**< read only */
     FMU_VAR_TUNABLE       /**< a parameter settable in every state before termination; after
                                initialization only when fmu_model_check_tunable() accepts it */
 } fmu_var_class;
 
-/** FMI 2.0 base types the models use (Enumerations travel as Integers). */
+/** The base types the models use: FMI 2.0 Real / FMI 3.0 Float64, FMI 2.0 Integer / FMI 3.0
+ * Int32 (the choices are Integer codes with min and max). */
 typedef enum fmu_type { FMU_REAL = 0, FMU_INTEGER = 1 } fmu_type;
 
 /** The per-instance limit on an FMU's state: all its delay lines and tables together, in reals
  * (2^22 = 4,194,304: 32 MiB in double, and the serialised state is then at most 32 MiB plus a
- * few hundred bytes). Every FMI call that touches the whole state (fmi2ExitInitializationMode,
- * fmi2Get/SetFMUstate, fmi2(De)SerializeFMUstate, fmi2Reset, fmi2FreeInstance) costs at most
+ * few hundred bytes). Every FMI call that touches the whole state (ExitInitializationMode,
+ * Get/SetFMUstate, (De)SerializeFMUstate, Reset, FreeInstance) costs at most
  * about 0.8 ns per byte of it in the release build (tests/fmu/bench_fmu_state_size.c), so at
  * this limit the slowest takes about 25 ms, a fourth of the 100 ms any call is allowed. Beyond
  * it fmu_model_plan() refuses at once (closed forms, O(1)) through fmu_refuse_size(). The Python
  * package has its own, larger limit for arrays it holds (smoothshaper.filters.MAX_BUFFER_REALS). */
 #define FMU_MAX_REALS ((size_t)1 << 22)
 
-/** The limit on the filtering a long fmi2DoStep may need, in stage-samples (2^24): a held input
+/** The limit on the filtering a long doStep may need, in stage-samples (2^24): a held input
  * is absorbed by a model's filters in a bounded number of samples, after which closed forms
  * take over (fmu_model_hold()); until then each filter stage is run, at about 1.5 to 4 ns per
  * stage-sample (release build, x86-64), so a step of any length costs at most about 25 to
@@ -56,7 +57,7 @@ typedef enum fmu_type { FMU_REAL = 0, FMU_INTEGER = 1 } fmu_type;
  * fmu_refuse_hold(). */
 #define FMU_MAX_HOLD_SAMPLES ((double)(1u << 24))
 
-/** The limit on the whole-model steps a long fmi2DoStep may take one by one (2^20, about 40 ns
+/** The limit on the whole-model steps a long doStep may take one by one (2^20, about 40 ns
  * each for a generator: 40 ms): the trigonometric profile waits, sample by sample, for a state
  * a new plan can start from, at most one acceleration transition of pi amax/jmax. */
 #define FMU_MAX_HOLD_STEPS ((double)(1u << 20))
@@ -92,34 +93,35 @@ int fmu_refuse_size(char *msg, size_t len, const char *parameters, double need, 
 size_t fmu_model_size(void);
 /** @return the model identifier (= modelIdentifier in modelDescription.xml). */
 const char *fmu_model_identifier(void);
-/** @return the instantiation token (guid) the generated header carries. */
+/** @return the FMI 2.0 guid the generated header carries (also the tag of a serialised state,
+ * so a state moves between a model's FMI 2.0 and FMI 3.0 binaries of one build). */
 const char *fmu_model_guid(void);
 /** @brief Put every variable at its start value, nothing built (the state after instantiate). */
 void fmu_model_defaults(void *model);
 /** @brief Classify a value reference of the given type. */
-fmu_var_class fmu_model_class(fmu_type type, fmi2ValueReference vr);
+fmu_var_class fmu_model_class(fmu_type type, fmu_vr vr);
 /** @brief Name of the variable (for log messages) into buf (always 0-terminated). */
-void fmu_model_name(fmu_type type, fmi2ValueReference vr, char *buf, size_t len);
+void fmu_model_name(fmu_type type, fmu_vr vr, char *buf, size_t len);
 /** @brief Every settable (input or parameter) value reference of the type, in a fixed order:
  * the serialised state stores their values in this order. Writes at most cap; returns the
  * count. */
-size_t fmu_model_settable(fmu_type type, fmi2ValueReference *out, size_t cap);
+size_t fmu_model_settable(fmu_type type, fmu_vr *out, size_t cap);
 /** @brief Read a variable (vr already classified as known). */
-double fmu_model_get_real(const void *model, fmi2ValueReference vr);
-int fmu_model_get_integer(const void *model, fmi2ValueReference vr);
+double fmu_model_get_real(const void *model, fmu_vr vr);
+int fmu_model_get_integer(const void *model, fmu_vr vr);
 /**
- * @brief After fmi2ExitInitializationMode, may these tunable parameters take these values (one
- * fmi2SetReal/fmi2SetInteger call, all checked together with the model's other values)? The
+ * @brief After the end of initialization, may these tunable parameters take these values (one
+ * set call of either FMI version, all checked together with the model's other values)? The
  * glue writes none of them unless it returns 0. A model without tunable parameters returns 0
  * (it is never asked).
- * @param values  fmi2Real or fmi2Integer values of type, one per vr
+ * @param values  doubles for FMU_REAL, int32_t for FMU_INTEGER, one per vr
  * @return 0, or non-zero with msg naming the variable and why (nothing is written then).
  */
-int fmu_model_check_tunable(const void *model, fmu_type type, const fmi2ValueReference *vr,
+int fmu_model_check_tunable(const void *model, fmu_type type, const fmu_vr *vr,
                             const void *values, size_t n, char *msg, size_t len);
 /** @brief Write an input or parameter (vr already classified, Real already finite). */
-void fmu_model_set_real(void *model, fmi2ValueReference vr, double value);
-void fmu_model_set_integer(void *model, fmi2ValueReference vr, int value);
+void fmu_model_set_real(void *model, fmu_vr vr, double value);
+void fmu_model_set_integer(void *model, fmu_vr vr, int value);
 /** @return the sample period parameter Ts [s] (validated by fmu_model_plan). */
 double fmu_model_sample_period(const void *model);
 /** @return sizeof(sms_real) of this build (a saved state of the other precision is refused). */
@@ -138,7 +140,7 @@ int fmu_model_plan(const void *model, size_t *bytes, char *msg, size_t len);
  * @brief Build the filters into mem (bytes from fmu_model_plan, aligned for any type), at rest
  * at the current input.
  * @return 0 on success; negative: built, with a warning about the parameters in msg (the glue
- * logs it as fmi2Warning); positive: refused, msg says why, and the model untouched.
+ * logs it as a warning); positive: refused, msg says why, and the model untouched.
  */
 int fmu_model_build(void *model, void *mem, size_t bytes, char *msg, size_t len);
 /** @brief Before fmi2DoStep's ticks: are the inputs valid together (each was checked alone
@@ -149,7 +151,7 @@ int fmu_model_check_inputs(const void *model, char *msg, size_t len);
  * @return non-zero if an output changed (bitwise), 0 if all kept their values. */
 int fmu_model_tick(void *model);
 /**
- * @brief fmi2DoStep's n ticks under the held input, at a cost bounded whatever n: the first k of
+ * @brief A doStep's n ticks under the held input, at a cost bounded whatever n: the first k of
  * them computed with the state and outputs of k calls of fmu_model_tick(), bit for bit (closed
  * forms of the model's filters under a constant input: the model's file says how); the glue
  * ticks the remaining n - k one by one until the outputs have held (FMU_STEADY_TICKS). Only
@@ -157,9 +159,9 @@ int fmu_model_tick(void *model);
  * @return k (n when the model holds any step itself).
  */
 uint64_t fmu_model_hold(void *model, uint64_t n);
-/** @brief After fmi2DoStep's ticks: a warning about something the model did with the inputs
- * (e.g. a target it dropped), once per cause: the glue logs msg as fmi2Warning and the step
- * returns fmi2Warning. Only after build.
+/** @brief After a doStep's ticks: a warning about something the model did with the inputs
+ * (e.g. a target it dropped), once per cause: the glue logs msg as a warning and the step
+ * returns a warning status. Only after build.
  * @return 1 with msg written, 0 when there is nothing to report. */
 int fmu_model_warning(void *model, char *msg, size_t len);
 /** @brief After a bytewise copy of a built model and its block, point it at its own block. */

@@ -21,7 +21,7 @@ int fmu_refuse_hold(char *msg, size_t len, const char *parameters, double need,
                     const char *slowest, const char *fix)
 {
     snprintf(msg, len, "%s: absorbing a held input needs %.4g stage-samples of filtering (%s), "
-             "more than the limit of %.0f that keeps a fmi2DoStep of any length well under "
+             "more than the limit of %.0f that keeps a doStep of any length well under "
              "100 ms: %s", parameters, need, slowest, FMU_MAX_HOLD_SAMPLES, fix);
     return 1;
 }

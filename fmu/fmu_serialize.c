@@ -20,7 +20,9 @@
  * fmu_model_plan() / fmu_model_build(), then loads the dynamic state: a blob from another model,
  * version or precision, truncated or altered, or whose clock disagrees with its tick count
  * (t != t0 + ticks*Ts + since_tick beyond the rounding of an accumulating host) is refused with
- * a message, so a crafted state can never make the next doStep run a huge number of ticks.
+ * a message, so a crafted state can never make the next doStep run a huge number of ticks; so is
+ * a dynamic state with a NaN or an infinity, or one beyond what the parameters' ranges allow
+ * (the model's fmu_model_load_state()), which would reach the outputs.
  *
  * Speed: the dynamic part is nearly all of a large state (delay lines of up to FMU_MAX_REALS),
  * so on a host whose doubles are stored as the format stores them (little-endian binary64,
@@ -41,9 +43,6 @@
 #define FMU_STATE_VERSION 5u   /* 3: the filter states start with their configuration identity;
                                   4: so do the generators' states;
                                   5: XXH64 checksum, dynamic part aligned to 8 bytes */
-/* Relative disagreement of t and t0 + ticks*Ts allowed: a host doing t += h drifts by about
- * 2e-8 t over 1e9 steps of 1 ms. */
-#define CLOCK_REL_SLACK 1e-6
 #define MAX_SETTABLE 1024u
 
 /* Does this host store a double as the format does (IEEE binary64, little-endian)? Decided by
@@ -175,7 +174,7 @@ static int is_built(const fmu_snapshot *s)
 
 static void write_all(const fmu_snapshot *s, writer *w)
 {
-    fmi2ValueReference vrs[MAX_SETTABLE];
+    fmu_vr vrs[MAX_SETTABLE];
     const char *guid = fmu_model_guid();
     size_t n, i;
     put_bytes(w, "SMSF", 4);
@@ -216,7 +215,7 @@ size_t fmu_serialized_size(const fmu_snapshot *s)
     return w.n + padding(w.n) + 8 * n + 8;   /* + the state doubles, the checksum */
 }
 
-int fmu_serialize(const fmu_snapshot *s, const fmi2CallbackFunctions *cb, unsigned char *out)
+int fmu_serialize(const fmu_snapshot *s, const fmu_host *host, unsigned char *out)
 {
     writer w;
     size_t n = is_built(s) ? fmu_model_state_count(s->model) : 0, i;
@@ -232,7 +231,7 @@ int fmu_serialize(const fmu_snapshot *s, const fmi2CallbackFunctions *cb, unsign
         if (native_doubles() && double_aligned(at)) {
             fmu_model_save_state(s->model, (double *)(void *)at);
         } else {
-            double *state = (double *)cb->allocateMemory(n, sizeof(double));
+            double *state = (double *)host->alloc(n, sizeof(double));
             if (state == NULL)
                 return -1;
             fmu_model_save_state(s->model, state);
@@ -241,7 +240,7 @@ int fmu_serialize(const fmu_snapshot *s, const fmi2CallbackFunctions *cb, unsign
             else
                 for (i = 0; i < n; ++i)
                     put_f64(&w, state[i]);
-            cb->freeMemory(state);
+            host->release(state);
         }
         w.n = (size_t)(at - out) + 8 * n;
     }
@@ -285,55 +284,106 @@ static double get_f64(reader *r)
 
 #define REFUSE(...) do { snprintf(msg, len, __VA_ARGS__); return -1; } while (0)
 
-static int read_values(reader *r, fmu_type type, void *model, char *msg, size_t len)
+/* What the reader learns about the state's settable values on the way: whether its parameters
+ * are the built instance `like`'s (NULL: there is none) and its inputs. */
+typedef struct settables {
+    const void *like;
+    int same;
+    size_t n_inputs;
+    fmu_vr input_vr[MAX_SETTABLE];
+    double input[MAX_SETTABLE];
+} settables;
+
+static int read_values(reader *r, fmu_type type, void *model, settables *seen, char *msg,
+                       size_t len)
 {
     uint32_t n = get_u32(r), i;
+    const size_t expected = fmu_model_settable(type, NULL, 0);
     char name[96];
     if (r->bad)
         REFUSE("truncated state");
-    if (n != fmu_model_settable(type, NULL, 0))
+    if (n != expected)
         REFUSE("state holds %lu %s variables, this model has %lu", (unsigned long)n,
-               type == FMU_REAL ? "Real" : "Integer", (unsigned long)fmu_model_settable(type, NULL, 0));
+               type == FMU_REAL ? "Real" : "Integer", (unsigned long)expected);
     for (i = 0; i < n; ++i) {
-        fmi2ValueReference vr = get_u32(r);
+        fmu_vr vr = get_u32(r);
         fmu_var_class cls = fmu_model_class(type, vr);
         if (r->bad)
             REFUSE("truncated state");
         if (cls != FMU_VAR_INPUT && cls != FMU_VAR_PARAMETER && cls != FMU_VAR_TUNABLE)
             REFUSE("state names value reference %lu, not a settable variable", (unsigned long)vr);
         if (type == FMU_REAL) {
-            double v = get_f64(r);
-            fmu_model_name(type, vr, name, sizeof name);
-            if (!r->bad && !isfinite(v))
+            double v = get_f64(r), w;
+            if (!r->bad && !isfinite(v)) {
+                fmu_model_name(type, vr, name, sizeof name);
                 REFUSE("state holds a non-finite %s", name);
+            }
             fmu_model_set_real(model, vr, v);
+            if (cls == FMU_VAR_INPUT && seen->n_inputs < MAX_SETTABLE) {
+                seen->input_vr[seen->n_inputs] = vr;
+                seen->input[seen->n_inputs++] = v;
+            } else if (cls == FMU_VAR_INPUT) {
+                seen->same = 0;   /* an input copy_built could not set: build instead */
+            } else if (seen->same) {   /* a fixed or tunable parameter: like's own, bit for bit */
+                w = fmu_model_get_real(seen->like, vr);
+                seen->same = memcmp(&v, &w, sizeof v) == 0;   /* bit for bit */
+            }
         } else {
-            fmu_model_set_integer(model, vr, (int)(int32_t)get_u32(r));
+            const int v = (int)(int32_t)get_u32(r);
+            fmu_model_set_integer(model, vr, v);
+            if (cls != FMU_VAR_INPUT && seen->same)
+                seen->same = fmu_model_get_integer(seen->like, vr) == v;
         }
     }
     return r->bad ? (snprintf(msg, len, "truncated state"), -1) : 0;
 }
 
-/* The clock of a built state: ticks below the limit, since_tick in [-slack Ts, Ts) widened by
- * the rounding of a tick count computed in double (one step of h counts floor(h/Ts) ticks, off
- * by up to a few ulp of h/Ts: 1e-4 Ts after a step of 1e12 ticks), and the time where the ticks
- * put it (within an accumulating host's drift). 0, or -1 with msg. */
-static int check_clock(const fmu_clock *k, double Ts, char *msg, size_t len)
+/* The dynamic state into the model: no value may be NaN or infinite (the FMU refuses
+ * non-finite inputs and parameters, so no run produces one, and a forged one would reach the
+ * outputs), then the model's own checks (ranges, limits). 0, or non-zero with why. */
+static int load_state(void *model, const double *v, size_t n, char *why, size_t len)
 {
-    double ticks = (double)k->ticks, at = k->start_time + ticks * Ts + k->since_tick;
-    double rounding = 4.0 * DBL_EPSILON * (ticks + 1.0) * Ts;
-    if (!(ticks < 4.0e15) || !(k->since_tick >= -2.0 * FMU_TICK_SLACK * Ts - rounding)
-        || !(k->since_tick < Ts + rounding))
-        REFUSE("the state's clock is inconsistent (ticks %.17g, time since the last tick %.17g s, "
-               "Ts %.17g s)", ticks, k->since_tick, Ts);
-    if (!(fabs(k->time - at) <= FMU_TICK_SLACK * Ts + CLOCK_REL_SLACK * fabs(k->time)))
-        REFUSE("the state's time %.17g s disagrees with its tick count (%.17g ticks of %.17g s "
-               "from t0 = %.17g s end at %.17g s)", k->time, ticks, Ts, k->start_time, at);
+    size_t i;
+    for (i = 0; i < n; ++i)
+        if (!isfinite(v[i])) {
+            snprintf(why, len, "value %lu of %lu is %s, which no run of the FMU produces",
+                     (unsigned long)i, (unsigned long)n, v[i] != v[i] ? "NaN" : "infinite");
+            return 1;
+        }
+    return fmu_model_load_state(model, v, n, why, len);
+}
+
+/* Is `like` an instance whose filters are built? */
+static int built_instance(const fmu_instance *like)
+{
+    return like != NULL && like->mem != NULL
+           && (like->clock.phase == FMU_STEP_COMPLETE || like->clock.phase == FMU_TERMINATED);
+}
+
+/* The model of a state with like's parameters, fixed and tunable (seen->same: a tunable value
+ * of like's that differs would be copied over the state's, and with fixed stages it sizes the
+ * block): like's built struct and block copied, the state's inputs set on the copy, which is
+ * what a build would give (the designs are functions of the parameters alone; a stage the
+ * state holds retuned is brought to its saved configuration by the model's load_state):
+ * O(block), no design. 0, or non-zero when out of memory. */
+static int copy_built(fmu_snapshot *dst, const fmu_instance *like, const settables *seen,
+                      const fmu_host *host)
+{
+    size_t i;
+    dst->mem = host->alloc(like->mem_bytes > 0 ? like->mem_bytes : 1, 1);
+    if (dst->mem == NULL)
+        return 1;
+    memcpy(dst->mem, like->mem, like->mem_bytes);
+    dst->mem_bytes = like->mem_bytes;
+    memcpy(dst->model, like->model, fmu_model_size());
+    fmu_model_rebind(dst->model, dst->mem);
+    for (i = 0; i < seen->n_inputs; ++i)
+        fmu_model_set_real(dst->model, seen->input_vr[i], seen->input[i]);
     return 0;
 }
 
 int fmu_deserialize(const unsigned char *in, size_t size, fmu_snapshot *dst,
-                    const fmi2CallbackFunctions *cb, char *msg, size_t len)
+                    const fmu_instance *like, const fmu_host *host, char *msg, size_t len)
 {
     reader r;
     const char *guid = fmu_model_guid();
@@ -341,6 +391,7 @@ int fmu_deserialize(const unsigned char *in, size_t size, fmu_snapshot *dst,
     size_t i;
     int rc;
     char why[FMU_MESSAGE_LEN / 2];
+    settables seen;
     why[0] = '\0';
     if (size < 16 || memcmp(in, "SMSF", 4) != 0)
         REFUSE("not a smoothshaper FMU state (bad magic)");
@@ -374,8 +425,11 @@ int fmu_deserialize(const unsigned char *in, size_t size, fmu_snapshot *dst,
     dst->clock.phase = (fmu_phase)phase;
     dst->clock.ticks = (uint64_t)hi << 32 | lo;
     fmu_model_defaults(dst->model);
-    if (read_values(&r, FMU_REAL, dst->model, msg, len) != 0
-        || read_values(&r, FMU_INTEGER, dst->model, msg, len) != 0)
+    seen.like = built_instance(like) && is_built(dst) ? like->model : NULL;
+    seen.same = seen.like != NULL;
+    seen.n_inputs = 0;
+    if (read_values(&r, FMU_REAL, dst->model, &seen, msg, len) != 0
+        || read_values(&r, FMU_INTEGER, dst->model, &seen, msg, len) != 0)
         return -1;
     n_state = get_u32(&r);
     for (i = padding(r.pos); i > 0 && !r.bad; --i)
@@ -387,18 +441,22 @@ int fmu_deserialize(const unsigned char *in, size_t size, fmu_snapshot *dst,
         return n_state == 0 ? 0 : (snprintf(msg, len, "state of an unbuilt FMU holds filter state"), -1);
     /* The clock before any work proportional to the filters (Ts itself is checked by the build). */
     if (fmu_model_sample_period(dst->model) > 0.0
-        && check_clock(&dst->clock, fmu_model_sample_period(dst->model), msg, len) != 0)
+        && fmu_clock_check(&dst->clock, fmu_model_sample_period(dst->model), msg, len) != 0)
         return -1;
-    if (fmu_build(cb, dst->model, &dst->mem, &dst->mem_bytes, msg, len) > 0)
+    if (seen.same) {
+        if (copy_built(dst, like, &seen, host) != 0)
+            REFUSE("out of memory");
+    } else if (fmu_build(host, dst->model, &dst->mem, &dst->mem_bytes, msg, len) > 0) {
         return -1;
+    }
     if (n_state != fmu_model_state_count(dst->model))
         REFUSE("state holds %lu filter values, the parameters need %lu", (unsigned long)n_state,
                (unsigned long)fmu_model_state_count(dst->model));
     if (native_doubles() && double_aligned(in + r.pos)) {
-        rc = fmu_model_load_state(dst->model, (const double *)(const void *)(in + r.pos), n_state,
-                                  why, sizeof why);
+        rc = load_state(dst->model, (const double *)(const void *)(in + r.pos), n_state, why,
+                        sizeof why);
     } else {
-        double *state = (double *)cb->allocateMemory(n_state > 0 ? n_state : 1, sizeof(double));
+        double *state = (double *)host->alloc(n_state > 0 ? n_state : 1, sizeof(double));
         if (state == NULL)
             REFUSE("out of memory");
         if (native_doubles())
@@ -406,8 +464,8 @@ int fmu_deserialize(const unsigned char *in, size_t size, fmu_snapshot *dst,
         else
             for (i = 0; i < n_state; ++i)
                 state[i] = get_f64(&r);
-        rc = fmu_model_load_state(dst->model, state, n_state, why, sizeof why);
-        cb->freeMemory(state);
+        rc = load_state(dst->model, state, n_state, why, sizeof why);
+        host->release(state);
     }
     if (rc != 0)
         REFUSE("the filter state does not fit the parameters%s%s", why[0] != '\0' ? ": " : "",

@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /*
  * The serialised FMU state (fmu_serialize.c, which documents the byte format): what the glue's
- * fmi2SerializedFMUstateSize / fmi2SerializeFMUstate / fmi2DeSerializeFMUstate call. Reading a
+ * SerializedFMUstateSize / SerializeFMUstate / DeSerializeFMUstate (FMI 3.0: ...FMUState)
+ * call. Reading a
  * state rebuilds the model through fmu_build() (fmu_instance.h), never through the glue.
  */
 #ifndef FMU_SERIALIZE_H
@@ -20,17 +21,20 @@ uint64_t fmu_xxh64(const unsigned char *p, size_t n);
 size_t fmu_serialized_size(const fmu_snapshot *s);
 /** Write the snapshot into out[0..size-1] (size from fmu_serialized_size); the model's state
  * vector is written in place when the host stores doubles as the format does and out puts them
- * at an address aligned for double, else it passes through scratch memory from cb.
+ * at an address aligned for double, else it passes through scratch memory from host.
  * @return 0, or non-zero when out of memory. */
-int fmu_serialize(const fmu_snapshot *s, const fmi2CallbackFunctions *cb, unsigned char *out);
+int fmu_serialize(const fmu_snapshot *s, const fmu_host *host, unsigned char *out);
 /**
  * Parse a serialised state into dst (whose model struct is allocated, fmu_model_size() bytes;
- * its block is allocated here through cb).
+ * its block is allocated here through host). The filters are rebuilt from the state's
+ * parameters, unless they equal those of `like` (the instance the state is read for, if built:
+ * NULL for none), whose built filters are copied instead, which a build would give bit for bit
+ * and costs no design: the fixed cost of reading a state of the instance's own configuration.
  * @return 0 on success, else non-zero with msg saying why (foreign, other precision, truncated,
  *         corrupted, clock and tick count disagreeing, invalid parameters); dst then holds no
  *         block and must only be freed.
  */
 int fmu_deserialize(const unsigned char *in, size_t size, fmu_snapshot *dst,
-                    const fmi2CallbackFunctions *cb, char *msg, size_t len);
+                    const fmu_instance *like, const fmu_host *host, char *msg, size_t len);
 
 #endif

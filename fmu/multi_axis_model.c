@@ -48,7 +48,7 @@ static const char *const field_names[MA_FIELD_COUNT] = {
 };
 
 /* Stage k, field g and axis i of a stage value reference; 0 if it is not one. */
-static int stage_var(fmi2ValueReference vr, int *k, int *g, int *axis)
+static int stage_var(fmu_vr vr, int *k, int *g, int *axis)
 {
     unsigned r;
     if (vr < MA_STAGE_BASE || vr >= MA_STAGE_BASE + 100u * MA_STAGE_STRIDE * MA_MAX_STAGES ||
@@ -64,7 +64,7 @@ static int stage_var(fmi2ValueReference vr, int *k, int *g, int *axis)
 static const char *const stage_field_names[MA_STAGE_STRIDE] = {"kind", "wn", "zeta"};
 
 /* Field and axis of a Real value reference; 0 if it is not an axis variable. */
-static int axis_var(fmi2ValueReference vr, int *field, int *axis)
+static int axis_var(fmu_vr vr, int *field, int *axis)
 {
     if (vr < 100 || vr >= 100u * (MA_FIELD_COUNT + 1) || vr % 100 >= MA_MAX_AXES)
         return 0;
@@ -102,7 +102,7 @@ void fmu_model_defaults(void *model)
     m->built = 0;
 }
 
-fmu_var_class fmu_model_class(fmu_type type, fmi2ValueReference vr)
+fmu_var_class fmu_model_class(fmu_type type, fmu_vr vr)
 {
     int f, i, k;
     if (stage_var(vr, &k, &f, &i))
@@ -120,7 +120,7 @@ fmu_var_class fmu_model_class(fmu_type type, fmi2ValueReference vr)
     return f == F_TARGET ? FMU_VAR_INPUT : f <= F_J ? FMU_VAR_OUTPUT : FMU_VAR_PARAMETER;
 }
 
-void fmu_model_name(fmu_type type, fmi2ValueReference vr, char *buf, size_t len)
+void fmu_model_name(fmu_type type, fmu_vr vr, char *buf, size_t len)
 {
     int f, i, k;
     if (stage_var(vr, &k, &f, &i))
@@ -135,7 +135,7 @@ void fmu_model_name(fmu_type type, fmi2ValueReference vr, char *buf, size_t len)
         snprintf(buf, len, "vr %lu", (unsigned long)vr);
 }
 
-size_t fmu_model_settable(fmu_type type, fmi2ValueReference *out, size_t cap)
+size_t fmu_model_settable(fmu_type type, fmu_vr *out, size_t cap)
 {
     size_t n = 0;
     int f, i, k;
@@ -153,7 +153,7 @@ size_t fmu_model_settable(fmu_type type, fmi2ValueReference *out, size_t cap)
             if (f >= F_Q && f <= F_J)
                 continue;
             for (i = 0; i < MA_MAX_AXES; ++i) {
-                if (n < cap) out[n] = (fmi2ValueReference)(100 * (f + 1) + i);
+                if (n < cap) out[n] = (fmu_vr)(100 * (f + 1) + i);
                 ++n;
             }
         }
@@ -164,14 +164,14 @@ size_t fmu_model_settable(fmu_type type, fmi2ValueReference *out, size_t cap)
                 continue;
             for (i = 0; i < MA_MAX_AXES; ++i) {
                 if (n < cap)
-                    out[n] = (fmi2ValueReference)(MA_STAGE_BASE + 100 * (MA_STAGE_STRIDE * k + f) + i);
+                    out[n] = (fmu_vr)(MA_STAGE_BASE + 100 * (MA_STAGE_STRIDE * k + f) + i);
                 ++n;
             }
         }
     return n;
 }
 
-double fmu_model_get_real(const void *model, fmi2ValueReference vr)
+double fmu_model_get_real(const void *model, fmu_vr vr)
 {
     const ma_model *m = (const ma_model *)model;
     int f, i, k;
@@ -184,7 +184,7 @@ double fmu_model_get_real(const void *model, fmi2ValueReference vr)
     return axis_var(vr, &f, &i) ? m->field[f][i] : 0.0;
 }
 
-int fmu_model_get_integer(const void *model, fmi2ValueReference vr)
+int fmu_model_get_integer(const void *model, fmu_vr vr)
 {
     const ma_model *m = (const ma_model *)model;
     int f, i, k;
@@ -194,14 +194,14 @@ int fmu_model_get_integer(const void *model, fmi2ValueReference vr)
            : vr == MA_VR_ALIGN ? m->align : 0;
 }
 
-int fmu_model_check_tunable(const void *model, fmu_type type, const fmi2ValueReference *vr,
+int fmu_model_check_tunable(const void *model, fmu_type type, const fmu_vr *vr,
                             const void *values, size_t n, char *msg, size_t len)
 {
     (void)model; (void)type; (void)vr; (void)values; (void)n; (void)msg; (void)len;
     return 0;   /* no tunable parameters */
 }
 
-void fmu_model_set_real(void *model, fmi2ValueReference vr, double value)
+void fmu_model_set_real(void *model, fmu_vr vr, double value)
 {
     ma_model *m = (ma_model *)model;
     int f, i, k;
@@ -213,7 +213,7 @@ void fmu_model_set_real(void *model, fmi2ValueReference vr, double value)
         m->field[f][i] = value;
 }
 
-void fmu_model_set_integer(void *model, fmi2ValueReference vr, int value)
+void fmu_model_set_integer(void *model, fmu_vr vr, int value)
 {
     ma_model *m = (ma_model *)model;
     int f, i, k;
@@ -469,9 +469,13 @@ int fmu_model_build(void *model, void *mem, size_t bytes, char *msg, size_t len)
         static const int fields[4] = { F_Q0, F_VMAX, F_AMAX, F_JMAX };
         double bound;
         int f;
-        if (g.chain[i][0].n_stages == 0)
+        bound = g.chain[i][0].n_stages > 0 ? sms_chain_input_max(&g.chain[i][0]) : SMS_INPUT_MAX;
+        if (g.chain[i][0].n_stages == 0) {   /* the positions within the glue's input range */
+            if (fabs(m->field[F_Q0][i]) > bound)
+                return snprintf(msg, len, "q0[%d] = %.17g is beyond %.17g, the input range "
+                                "(SMS_INPUT_MAX)", i, m->field[F_Q0][i], bound), 1;
             continue;
-        bound = sms_chain_input_max(&g.chain[i][0]);
+        }
         for (f = 0; f < 4; ++f)
             if (fabs(m->field[fields[f]][i]) > bound)
                 return snprintf(msg, len, "%s[%d] = %.17g is beyond %.17g, the finite input range "
@@ -624,17 +628,46 @@ void fmu_model_save_state(const void *model, double *dst)
     sms_multi_generator_get_state(&m->gen, dst);
 }
 
+/* The range of axis i's positions: its stages' finite input range (q0 and the targets are held
+ * to it), or the glue's SMS_INPUT_MAX without stages. */
+static double position_range(const ma_model *m, int i)
+{
+    return m->gen.chain[i][0].n_stages > 0 ? sms_chain_input_max(&m->gen.chain[i][0])
+                                           : SMS_INPUT_MAX;
+}
+
+/* A state must be one a run can reach: besides the generator's own checks (finite, velocities
+ * and the stages' values within the limits), the reported outputs and the positions it holds
+ * (target, goal, start of the running plan) within the axis's limits and position range. */
 int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, size_t len)
 {
+    static const char *const names[4] = {"q", "v", "a", "j"};
     ma_model *m = (ma_model *)model;
-    size_t own = 4u * (size_t)m->axes;
+    const size_t own = 4u * (size_t)m->axes, na = (size_t)m->axes;
+    const double *positions = src + own + SMS_MULTI_IDENTITY_COUNT;   /* target, goal, p */
+    const double margin = 1.0 + 0x1p-20;
     sms_status st;
     int i, k;
-    if (n != fmu_model_state_count(m))
+    if (n != fmu_model_state_count(m) || n < own + SMS_MULTI_IDENTITY_COUNT + 3u * na)
         return 1;
-    for (i = 0; i < (int)own; ++i)
-        if (!isfinite(src[i]))
-            return 1;
+    for (i = 0; i < m->axes; ++i) {
+        const double limit[4] = { position_range(m, i) * margin,
+                                  m->field[F_VMAX][i] * (1.0 + SMS_LIMIT_RTOL),
+                                  m->field[F_AMAX][i] * (1.0 + SMS_LIMIT_RTOL),
+                                  m->field[F_JMAX][i] * (1.0 + SMS_LIMIT_RTOL) };
+        for (k = 0; k < 4; ++k)
+            if (!(fabs(src[(size_t)k * na + (size_t)i]) <= limit[k]))
+                return snprintf(msg, len, "its output %s[%d] = %.17g is beyond %.17g (the axis's "
+                                "%s)", names[k], i, src[(size_t)k * na + (size_t)i], limit[k],
+                                k == 0 ? "position range" : "limit, to the reported values' "
+                                "tolerance"), 1;
+        for (k = 0; k < 3; ++k)
+            if (!(fabs(positions[(size_t)k * na + (size_t)i]) <= position_range(m, i)))
+                return snprintf(msg, len, "its %s of axis %d, %.17g, is beyond the axis's "
+                                "position range %.17g", k == 0 ? "target" : k == 1 ? "goal"
+                                : "plan start", i, positions[(size_t)k * na + (size_t)i],
+                                position_range(m, i)), 1;
+    }
     st = sms_multi_generator_set_state(&m->gen, src + own, n - own);
     if (st != SMS_OK) {
         snprintf(msg, len, "the generator refuses its state (%s): a value non-finite or out of "
@@ -645,5 +678,7 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
     for (k = 0; k < 4; ++k)
         for (i = 0; i < m->axes; ++i)
             m->field[F_Q + k][i] = *src++;
+    memset(m->warned, 0, sizeof m->warned);   /* as a build leaves them */
+    memset(m->dropped, 0, sizeof m->dropped);
     return 0;
 }

@@ -966,6 +966,20 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
                      "keeps finite", (unsigned long)(i - 5), src[i], m->d.state_max);
             return 1;
         }
+    /* The outputs are the plant at the last tick (the loop state's first four values) and the
+     * torque of that tick, which the bounds keep below DBL_MAX / 64 (bounds()): a state whose
+     * outputs are other is none a run makes. */
+    if (!(src[0] == src[5] && src[1] == src[6] && src[2] == src[7] * m->d.inv_n
+          && src[3] == src[8] * m->d.inv_n)) {
+        snprintf(msg, len, "its outputs q_m, w_m, q_l, w_l = %.17g, %.17g, %.17g, %.17g are not "
+                 "the plant's state they are read from", src[0], src[1], src[2], src[3]);
+        return 1;
+    }
+    if (!(fabs(src[4]) <= DBL_MAX / 64.0)) {
+        snprintf(msg, len, "its output tau_m = %.17g is beyond %.3g, the largest this loop "
+                 "forms", src[4], DBL_MAX / 64.0);
+        return 1;
+    }
     t = *m;
     if (unpack(&t, src + 5) != 0)
         return 1;

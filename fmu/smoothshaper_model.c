@@ -74,7 +74,7 @@ static int is_tunable_field(unsigned f)
 }
 
 /* Split a stage value reference into (stage, field); 0 if it is not one. */
-static int stage_field(fmi2ValueReference vr, unsigned *k, unsigned *f)
+static int stage_field(fmu_vr vr, unsigned *k, unsigned *f)
 {
     if (vr < SS_STAGE_BASE || vr >= SS_STAGE_BASE + SS_STAGE_STRIDE * SS_MAX_STAGES)
         return 0;
@@ -84,7 +84,7 @@ static int stage_field(fmi2ValueReference vr, unsigned *k, unsigned *f)
 }
 
 /* Split an impulse value reference into (stage, impulse, is_time); 0 if it is not one. */
-static int impulse_field(fmi2ValueReference vr, unsigned *k, unsigned *i, int *is_time)
+static int impulse_field(fmu_vr vr, unsigned *k, unsigned *i, int *is_time)
 {
     unsigned r;
     if (vr < SS_IMPULSE_BASE || vr >= SS_IMPULSE_BASE + SS_IMPULSE_STRIDE * SS_MAX_STAGES)
@@ -97,7 +97,7 @@ static int impulse_field(fmi2ValueReference vr, unsigned *k, unsigned *i, int *i
 }
 
 /* The stored impulse parameter vr names (valid per impulse_field). */
-static double *impulse_slot(ss_model *m, fmi2ValueReference vr)
+static double *impulse_slot(ss_model *m, fmu_vr vr)
 {
     unsigned k, i;
     int is_time;
@@ -106,7 +106,7 @@ static double *impulse_slot(ss_model *m, fmi2ValueReference vr)
 }
 
 /* A schedule table value reference into (row, field 0 value / 1 wn / 2 zeta); 0 if not one. */
-static int sched_field(fmi2ValueReference vr, unsigned *j, unsigned *f)
+static int sched_field(fmu_vr vr, unsigned *j, unsigned *f)
 {
     if (vr < SS_SCHEDULE_BASE || vr >= SS_SCHEDULE_BASE + 3u * SS_SCHEDULE_POINTS)
         return 0;
@@ -115,7 +115,7 @@ static int sched_field(fmi2ValueReference vr, unsigned *j, unsigned *f)
     return 1;
 }
 
-static int is_sched_integer(fmi2ValueReference vr)
+static int is_sched_integer(fmu_vr vr)
 {
     return vr == SS_VR_SCHED_KIND || vr == SS_VR_SCHED_ORDER || vr == SS_VR_SCHED_EVERY
            || vr == SS_VR_SCHED_POINTS;
@@ -152,7 +152,7 @@ void fmu_model_defaults(void *model)
     }
 }
 
-fmu_var_class fmu_model_class(fmu_type type, fmi2ValueReference vr)
+fmu_var_class fmu_model_class(fmu_type type, fmu_vr vr)
 {
     unsigned k, f, i;
     int is_time;
@@ -167,7 +167,7 @@ fmu_var_class fmu_model_class(fmu_type type, fmi2ValueReference vr)
     return FMU_VAR_UNKNOWN;
 }
 
-void fmu_model_name(fmu_type type, fmi2ValueReference vr, char *buf, size_t len)
+void fmu_model_name(fmu_type type, fmu_vr vr, char *buf, size_t len)
 {
     static const char *const sched_names[3] = {"value", "wn", "zeta"};
     unsigned k, f, i;
@@ -189,7 +189,7 @@ void fmu_model_name(fmu_type type, fmi2ValueReference vr, char *buf, size_t len)
     }
 }
 
-size_t fmu_model_settable(fmu_type type, fmi2ValueReference *out, size_t cap)
+size_t fmu_model_settable(fmu_type type, fmu_vr *out, size_t cap)
 {
     size_t n = 0;
     unsigned k, f;
@@ -228,7 +228,7 @@ static double lag_seconds(const ss_model *m)
     return lag * m->Ts;
 }
 
-double fmu_model_get_real(const void *model, fmi2ValueReference vr)
+double fmu_model_get_real(const void *model, fmu_vr vr)
 {
     const ss_model *m = (const ss_model *)model;
     unsigned k, f, i;
@@ -249,7 +249,7 @@ double fmu_model_get_real(const void *model, fmi2ValueReference vr)
     return stage_field(vr, &k, &f) ? m->stage[k].reals[f] : 0.0;
 }
 
-int fmu_model_get_integer(const void *model, fmi2ValueReference vr)
+int fmu_model_get_integer(const void *model, fmu_vr vr)
 {
     const ss_model *m = (const ss_model *)model;
     unsigned k, f;
@@ -276,7 +276,7 @@ static void mark_pending(ss_model *m, unsigned k)
         }
 }
 
-void fmu_model_set_real(void *model, fmi2ValueReference vr, double value)
+void fmu_model_set_real(void *model, fmu_vr vr, double value)
 {
     ss_model *m = (ss_model *)model;
     unsigned k, f, i;
@@ -294,7 +294,7 @@ void fmu_model_set_real(void *model, fmi2ValueReference vr, double value)
     }
 }
 
-void fmu_model_set_integer(void *model, fmi2ValueReference vr, int value)
+void fmu_model_set_integer(void *model, fmu_vr vr, int value)
 {
     ss_model *m = (ss_model *)model;
     unsigned k, f;
@@ -804,7 +804,7 @@ int fmu_model_build(void *model, void *mem, size_t bytes, char *msg, size_t len)
     return 0;
 }
 
-int fmu_model_check_tunable(const void *model, fmu_type type, const fmi2ValueReference *vr,
+int fmu_model_check_tunable(const void *model, fmu_type type, const fmu_vr *vr,
                             const void *values, size_t n, char *msg, size_t len)
 {
     const ss_model *m = (const ss_model *)model;
@@ -817,16 +817,16 @@ int fmu_model_check_tunable(const void *model, fmu_type type, const fmi2ValueRef
     if (!(m->retune_max_delay > 0.0)) {
         fmu_model_name(type, vr[0], name, sizeof name);
         return snprintf(msg, len, "%s: the stages are fixed (retune_max_delay = 0): set "
-                        "retune_max_delay > 0 before fmi2ExitInitializationMode to retune "
+                        "retune_max_delay > 0 before ExitInitializationMode to retune "
                         "them", name), 1;
     }
     memcpy(trial, m->stage, sizeof trial);
     for (i = 0; i < n; ++i)
         if (stage_field(vr[i], &k, &f)) {
             if (type == FMU_REAL)
-                trial[k].reals[f] = ((const fmi2Real *)values)[i];
+                trial[k].reals[f] = ((const double *)values)[i];
             else
-                trial[k].ints[f] = ((const fmi2Integer *)values)[i];
+                trial[k].ints[f] = (int)((const int32_t *)values)[i];
             touched[k] = 1;
         }
     probe.Ts = m->Ts;
@@ -992,18 +992,24 @@ static int same_config(const sms_stage_config *a, const sms_stage_config *b)
            && ((k != SMS_SHAPER_GMZV && k != SMS_SHAPER_SI) || a->duration == b->duration);
 }
 
+/* A state must be one a run can reach: inputs within the chain's range X (the glue refuses
+ * others), so stage i's values within what inputs within (1 + 2 G_0 ... G_{i-1}) X leave in it
+ * (sms_tunable_check_state_range(), the ranges of sms_chain_check_state_range()), the scheduled
+ * shaper's line within the chain's output bound R = (1 + 2 G_0 ... G_{n-1}) X, and y within R,
+ * times 1 + 2 sum |g_k| behind the scheduled shaper. */
 int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, size_t len)
 {
     ss_model *m = (ss_model *)model;
     sms_memory_cell *mem = m->chain.memory;
+    const double slack = 1.0 + 0x1p-20;
+    double x, product = 1.0, range = 1.0;
     size_t i, j, off = 1, at = 0;
-    if (n != fmu_model_state_count(m) || src[0] != src[0])
+    if (n != fmu_model_state_count(m))
         return 1;
     for (i = 0; i < m->n_active; ++i) {   /* each stage into the configuration it was saved in */
         const double *part = src + off;
         sms_stage_config active, old;
         int switching = 0;
-        size_t count;
         sms_status st = sms_tunable_state_configs(part, m->region[i], &active, &old, &switching);
         char why[FMU_MESSAGE_LEN];
         /* user-defined impulses: the state names them by a checksum; they are fixed
@@ -1019,18 +1025,50 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
             || (switching && sms_tunable_retune(&m->tunables[i], &active) != SMS_OK))
             return snprintf(msg, len, "stage %lu was saved in a configuration its memory "
                             "(retune_max_delay) does not hold", (unsigned long)i), 1;
-        count = sms_tunable_state_count(&m->tunables[i]);
-        for (j = count; j < m->region[i]; ++j)
-            if (part[j] != 0.0)
-                return 1;
-        if (count > m->region[i]
-            || sms_tunable_set_state(&m->tunables[i], part, count) != SMS_OK)
-            return 1;
         off += m->region[i];
         at += slots_per_stage(m) * m->slot_cells[i];
     }
-    if (m->scheduled && sms_scheduled_set_state(&m->sch, src + off, n - off) != SMS_OK)
-        return 1;
+    /* the input range X: the fixed chain's own, or SMS_INPUT_MAX when the stages were
+     * retunable (inputs taken under an earlier configuration may reach beyond today's) */
+    x = m->n_active > 0 && !(m->retune_max_delay > 0.0)
+        && sms_tunable_chain_input_max(&m->chain) < SMS_INPUT_MAX
+        ? sms_tunable_chain_input_max(&m->chain) : SMS_INPUT_MAX;
+    for (i = 0, off = 1; i < m->n_active; ++i) {
+        const double *part = src + off;
+        const size_t count = sms_tunable_state_count(&m->tunables[i]);
+        if (count > m->region[i])
+            return 1;
+        for (j = count; j < m->region[i]; ++j)
+            if (part[j] != 0.0)
+                return 1;
+        if (sms_tunable_check_state_range(&m->tunables[i], part, count, range * x * slack)
+            != SMS_OK)
+            return snprintf(msg, len, "stage %lu's values are beyond what inputs within the "
+                            "chain's range %.17g leave in it (sms_tunable_check_state_range)",
+                            (unsigned long)i, x), 1;
+        if (sms_tunable_set_state(&m->tunables[i], part, count) != SMS_OK)
+            return 1;
+        product *= sms_tunable_gain_bound(&m->tunables[i]);
+        range = 1.0 + 2.0 * product;   /* what stage i + 1 (or the shaper, or y) sees */
+        off += m->region[i];
+    }
+    if (m->scheduled) {   /* its ring holds the chain's outputs; y its taps' sum of them */
+        const size_t ring = sms_scheduled_state_count(&m->sch) - 5u;
+        double taps = 0.0;
+        for (j = 0; j < ring; ++j)
+            if (!(fabs(src[off + 5 + j]) <= range * x * slack))
+                return snprintf(msg, len, "the scheduled shaper's delay line holds %.17g, beyond "
+                                "what inputs within the chain's range %.17g can give",
+                                src[off + 5 + j], x), 1;
+        if (sms_scheduled_set_state(&m->sch, src + off, n - off) != SMS_OK)
+            return 1;
+        for (j = 0; j < m->sch.n_taps; ++j)
+            taps += fabs((double)m->sch.gain[j]);
+        range *= 1.0 + 2.0 * taps;   /* y = x + sum g_k (x[n - d_k] - x) */
+    }
+    if (!(fabs(src[0]) <= range * x * slack))
+        return snprintf(msg, len, "its output y = %.17g is beyond what inputs within the "
+                        "chain's range %.17g can give", src[0], x), 1;
     m->y = src[0];
     m->any_pending = 0;
     for (i = 0; i < m->n_active; ++i) {   /* parameters set since, not yet applied */

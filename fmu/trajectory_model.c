@@ -2,8 +2,8 @@
 /*
  * TrajectoryGenerator: the online generator of the smoothshaper library (sms_generator_*,
  * trajectory.h) as an FMU. Inputs: the target (position, velocity and acceleration at arrival,
- * and the interface: position, velocity or stop), held over each step; outputs: q, v, a, j at
- * the internal ticks, never beyond vmax, amax, jmax for any target sequence. At
+ * the interface: position, velocity or stop, and the move's minimum duration), held over
+ * each step; outputs: q, v, a, j at the internal ticks, never beyond vmax, amax, jmax for any target sequence. At
  * fmi2ExitInitializationMode the generator rests at the parameter q0 (default 0): a target that
  * differs from q0 from the first step on is a move. A target the generator cannot take (a
  * velocity or acceleration beyond the limits) fails fmi2DoStep naming it, nothing changed.
@@ -19,7 +19,7 @@
 
 typedef struct tg_model {
     double target, out[4];                     /* q, v, a, j */
-    double target_velocity, target_acceleration;
+    double target_velocity, target_acceleration, minimum_duration;
     int interface;                             /* sms_interface */
     double Ts, vmax, amax, jmax, wn, zeta, q0;
     int profile;
@@ -29,23 +29,24 @@ typedef struct tg_model {
     sms_generator gen;                         /* tables in the glue's block */
 } tg_model;
 
-/* Real value references and the field each one is, in modelDescription order. */
 /* Real value references and the field each one is, in modelDescription order: the inputs,
  * then the outputs (N_REAL_INPUTS .. N_REAL_INPUTS + 3), then the parameters. */
-static const fmi2ValueReference real_vrs[] = {
-    TG_VR_TARGET, TG_VR_TARGET_VELOCITY, TG_VR_TARGET_ACCELERATION, TG_VR_Q, TG_VR_V, TG_VR_A,
-    TG_VR_J, TG_VR_TS, TG_VR_VMAX, TG_VR_AMAX, TG_VR_JMAX, TG_VR_WN, TG_VR_ZETA, TG_VR_Q0
+static const fmu_vr real_vrs[] = {
+    TG_VR_TARGET, TG_VR_TARGET_VELOCITY, TG_VR_TARGET_ACCELERATION, TG_VR_MINIMUM_DURATION,
+    TG_VR_Q, TG_VR_V, TG_VR_A, TG_VR_J, TG_VR_TS, TG_VR_VMAX, TG_VR_AMAX, TG_VR_JMAX, TG_VR_WN,
+    TG_VR_ZETA, TG_VR_Q0
 };
 static const char *const real_names[] = {
-    "target", "target_velocity", "target_acceleration", "q", "v", "a", "j", "Ts", "vmax", "amax",
-    "jmax", "wn", "zeta", "q0"
+    "target", "target_velocity", "target_acceleration", "minimum_duration", "q", "v", "a", "j",
+    "Ts", "vmax", "amax", "jmax", "wn", "zeta", "q0"
 };
 #define N_REALS (sizeof real_vrs / sizeof real_vrs[0])
-#define N_REAL_INPUTS 3u
+#define N_REAL_INPUTS 4u
 
 static const size_t real_offsets[] = {
     offsetof(tg_model, target), offsetof(tg_model, target_velocity),
-    offsetof(tg_model, target_acceleration), offsetof(tg_model, out[0]),
+    offsetof(tg_model, target_acceleration), offsetof(tg_model, minimum_duration),
+    offsetof(tg_model, out[0]),
     offsetof(tg_model, out[1]), offsetof(tg_model, out[2]), offsetof(tg_model, out[3]),
     offsetof(tg_model, Ts), offsetof(tg_model, vmax), offsetof(tg_model, amax),
     offsetof(tg_model, jmax), offsetof(tg_model, wn), offsetof(tg_model, zeta),
@@ -53,7 +54,7 @@ static const size_t real_offsets[] = {
 };
 
 /* Index of a Real value reference in real_vrs, or N_REALS. */
-static size_t real_index(fmi2ValueReference vr)
+static size_t real_index(fmu_vr vr)
 {
     size_t i;
     for (i = 0; i < N_REALS && real_vrs[i] != vr; ++i)
@@ -71,6 +72,7 @@ void fmu_model_defaults(void *model)
     m->target = 0.0;
     m->target_velocity = 0.0;
     m->target_acceleration = 0.0;
+    m->minimum_duration = 0.0;
     m->interface = SMS_INTERFACE_POSITION;
     memset(m->out, 0, sizeof m->out);
     m->Ts = 0.001;
@@ -86,7 +88,7 @@ void fmu_model_defaults(void *model)
     m->dropped = 0.0;
 }
 
-fmu_var_class fmu_model_class(fmu_type type, fmi2ValueReference vr)
+fmu_var_class fmu_model_class(fmu_type type, fmu_vr vr)
 {
     size_t i;
     if (type == FMU_INTEGER)
@@ -99,7 +101,7 @@ fmu_var_class fmu_model_class(fmu_type type, fmi2ValueReference vr)
     return FMU_VAR_UNKNOWN;
 }
 
-void fmu_model_name(fmu_type type, fmi2ValueReference vr, char *buf, size_t len)
+void fmu_model_name(fmu_type type, fmu_vr vr, char *buf, size_t len)
 {
     size_t i;
     if (type == FMU_INTEGER && (vr == TG_VR_PROFILE || vr == TG_VR_INTERFACE)) {
@@ -114,7 +116,7 @@ void fmu_model_name(fmu_type type, fmi2ValueReference vr, char *buf, size_t len)
     snprintf(buf, len, "vr %lu", (unsigned long)vr);
 }
 
-size_t fmu_model_settable(fmu_type type, fmi2ValueReference *out, size_t cap)
+size_t fmu_model_settable(fmu_type type, fmu_vr *out, size_t cap)
 {
     size_t i, n = 0;
     if (type == FMU_INTEGER) {
@@ -130,33 +132,33 @@ size_t fmu_model_settable(fmu_type type, fmi2ValueReference *out, size_t cap)
     return n;
 }
 
-double fmu_model_get_real(const void *model, fmi2ValueReference vr)
+double fmu_model_get_real(const void *model, fmu_vr vr)
 {
     size_t i = real_index(vr);
     return i < N_REALS ? *(const double *)(const void *)((const char *)model + real_offsets[i]) : 0.0;
 }
 
-int fmu_model_get_integer(const void *model, fmi2ValueReference vr)
+int fmu_model_get_integer(const void *model, fmu_vr vr)
 {
     const tg_model *m = (const tg_model *)model;
     return vr == TG_VR_PROFILE ? m->profile : vr == TG_VR_INTERFACE ? m->interface : 0;
 }
 
-int fmu_model_check_tunable(const void *model, fmu_type type, const fmi2ValueReference *vr,
+int fmu_model_check_tunable(const void *model, fmu_type type, const fmu_vr *vr,
                             const void *values, size_t n, char *msg, size_t len)
 {
     (void)model; (void)type; (void)vr; (void)values; (void)n; (void)msg; (void)len;
     return 0;   /* no tunable parameters */
 }
 
-void fmu_model_set_real(void *model, fmi2ValueReference vr, double value)
+void fmu_model_set_real(void *model, fmu_vr vr, double value)
 {
     size_t i = real_index(vr);
     if (i < N_REALS)
         *(double *)(void *)((char *)model + real_offsets[i]) = value;
 }
 
-void fmu_model_set_integer(void *model, fmi2ValueReference vr, int value)
+void fmu_model_set_integer(void *model, fmu_vr vr, int value)
 {
     if (vr == TG_VR_PROFILE)
         ((tg_model *)model)->profile = value;
@@ -230,7 +232,19 @@ static int refuse(const tg_model *m, sms_status st, char *msg, size_t len)
 }
 
 unsigned fmu_model_real_bytes(void) { return (unsigned)sizeof(sms_real); }
-double fmu_model_input_max(const void *model) { (void)model; return HUGE_VAL; }
+
+/* The range of the positions (q0, the targets, the plan): the tuned stage's finite input range
+ * with a mode, the glue's SMS_INPUT_MAX without. Only after build. */
+static double position_range(const tg_model *m)
+{
+    return m->gen.stage_length > 0 ? sms_smoother_input_max(&m->gen.stage[0]) : SMS_INPUT_MAX;
+}
+
+double fmu_model_input_max(const void *model)
+{
+    const tg_model *m = (const tg_model *)model;
+    return m->built ? position_range(m) : HUGE_VAL;
+}
 
 /* Validate every parameter into c; need = table reals (the core's size query). 0 or 1 + msg. */
 static int configure(const tg_model *m, sms_generator_config *c, size_t *need, char *msg,
@@ -255,7 +269,7 @@ static int configure(const tg_model *m, sms_generator_config *c, size_t *need, c
         return snprintf(msg, len, "amax = %.17g, jmax = %.17g, Ts = %.17g: with the "
                         "trigonometric profile a new target may wait for the end of an "
                         "acceleration transition of up to pi amax/jmax = %.6g samples, stepped "
-                        "one by one, more than the %.0f that keep a fmi2DoStep of any length "
+                        "one by one, more than the %.0f that keep a doStep of any length "
                         "well under 100 ms: raise jmax or Ts, or lower amax",
                         m->amax, m->jmax, m->Ts,
                         3.14159265358979323846 * m->amax / m->jmax / m->Ts,
@@ -301,6 +315,10 @@ int fmu_model_build(void *model, void *mem, size_t bytes, char *msg, size_t len)
     st = sms_generator_init(&m->gen, &c, m->Ts, (sms_real *)mem, bytes / sizeof(sms_real));
     if (st != SMS_OK)
         return refuse(m, st, msg, len);
+    if (fabs(m->q0) > position_range(m))
+        return snprintf(msg, len, "q0 = %.17g is beyond %.17g, the input range of the "
+                        "generator's filters (SMS_INPUT_MAX, or the stage tuned to the mode's "
+                        "smaller range)", m->q0, position_range(m)), 1;
     sms_generator_reset(&m->gen, (sms_real)m->q0);
     m->out[0] = (double)(sms_real)m->q0;
     m->out[1] = m->out[2] = m->out[3] = 0.0;
@@ -316,6 +334,7 @@ static sms_target held(const tg_model *m)
     t.velocity = (sms_real)m->target_velocity;
     t.acceleration = (sms_real)m->target_acceleration;
     t.interface = m->interface;
+    t.minimum_duration = (sms_real)m->minimum_duration;
     return t;
 }
 
@@ -335,6 +354,12 @@ int fmu_model_check_inputs(const void *model, char *msg, size_t len)
                         m->interface), 1;
     case SMS_ERR_TARGET_POSITION:
         return snprintf(msg, len, "target = %.17g: %s", m->target, sms_status_string(st)), 1;
+    case SMS_ERR_DURATION:
+        if (m->profile == SMS_PROFILE_TRIGONOMETRIC && m->minimum_duration >= 0.0)
+            return snprintf(msg, len, "minimum_duration = %.17g: the trigonometric profile does "
+                            "not stretch a move (minimum_duration 0)", m->minimum_duration), 1;
+        return snprintf(msg, len, "minimum_duration = %.17g must be finite, >= 0 and below 2^50 "
+                        "ticks of Ts = %.17g", m->minimum_duration, m->Ts), 1;
     case SMS_ERR_TARGET_VELOCITY:
         if (m->profile == SMS_PROFILE_TRIGONOMETRIC && fabs(v) <= V)
             return snprintf(msg, len, "target_velocity = %.17g: the trigonometric profile plans "
@@ -442,6 +467,14 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
     for (i = 0; i < 4; ++i)
         if (!isfinite(src[i]))
             return 1;
+    if (!(fabs(src[0]) <= position_range(m) * (1.0 + 0x1p-20)))
+        return snprintf(msg, len, "its output q = %.17g is beyond the position range %.17g",
+                        src[0], position_range(m)), 1;
+    for (i = 0; i < 3; ++i)   /* the plan's target, goal and start position */
+        if (!(fabs(plan[i]) <= position_range(m)))
+            return snprintf(msg, len, "its plan's %s %.17g is beyond the position range %.17g",
+                            i == 0 ? "target" : i == 1 ? "goal" : "start", plan[i],
+                            position_range(m)), 1;
     for (i = 1; i < 4; ++i)
         if (!(fabs(src[i]) <= limit[i] * (1.0 + SMS_LIMIT_RTOL))) {
             snprintf(msg, len, "its output %s = %.17g is beyond %smax = %.17g by more than the "
@@ -463,5 +496,7 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
         return 1;
     }
     memcpy(m->out, src, sizeof m->out);
+    m->warned = 0;      /* as a build leaves it: a dropped target is reported again */
+    m->dropped = 0.0;
     return 0;
 }

@@ -1,13 +1,18 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: Apache-2.0
-"""Generate an FMU's modelDescription.xml and the matching C header of value references.
+"""Generate an FMU's modelDescription.xml, FMI 2.0 and FMI 3.0, and the matching C headers.
 
-One source of truth for every variable: the model tables below. The C model files include the
-generated `<Model>_variables.h` (value references, the instantiation token, array sizes), so the
-XML and the C code cannot disagree. Per-stage variables are produced by a loop, not by hand.
+One source of truth for every variable: the model tables below, emitted for both FMI versions
+(an array variable, such as MultiAxisGenerator's per-axis ones, is one FMI 3.0 array and
+`name[i]` scalars in FMI 2.0, with the value references of its elements consecutive). The C
+model files include the generated `<Model>_variables.h` (value references, the FMI 2.0 guid,
+array sizes), and the FMI 3.0 glue `fmu_fmi3_variables.h` (its instantiation token, the arrays),
+so the XML and the C code cannot disagree. Per-stage variables come from a loop, not by hand.
 
-Usage: generate.py MODEL OUT_DIR   (MODEL is SmoothShaper, TrajectoryGenerator,
-ElasticPlant, MultiAxisGenerator or ServoDrive)
+Usage: generate.py MODEL OUT_DIR [SOURCE_FILE...]   (MODEL is SmoothShaper, TrajectoryGenerator,
+ElasticPlant, MultiAxisGenerator or ServoDrive). Writes OUT_DIR/modelDescription.xml (FMI 2.0,
+listing the source files), OUT_DIR/fmi3/modelDescription.xml, OUT_DIR/<Model>_variables.h and
+OUT_DIR/fmu_fmi3_variables.h.
 """
 from __future__ import annotations
 
@@ -19,6 +24,14 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from xml.sax.saxutils import quoteattr
 
+# The licence every FMU states (LICENSE at the repository's root, packaged as
+# documentation/licenses/LICENSE.txt).
+COPYRIGHT = "Copyright the smoothshaper authors"
+LICENSE = ("Apache License 2.0 (SPDX-License-Identifier: Apache-2.0); the full text is in "
+           "documentation/licenses/LICENSE.txt")
+
+# FMI 3.0 needs an independent variable: `time`, at a value reference no model uses.
+TIME_VR = 2147483647
 
 
 @dataclass
@@ -39,6 +52,25 @@ class Var:
     # from at initialization (the rest point). No output depends on an input within a step (the
     # input set before doStep reaches the outputs only through that step), so <Outputs> lists no
     # direct feedthrough.
+    dims: int = 0              # > 0: an array of dims elements at value references vr, vr + 1,
+    # ...; its description says "{axis}" where FMI 2.0's element i says "axis i", and a
+    # dependency on another array of the same size is element by element.
+
+
+def fmi2_scalars(variables: list[Var]) -> list[Var]:
+    """The variables as FMI 2.0 sees them: every array as its elements name[i]."""
+    out = []
+    arrays = {v.name for v in variables if v.dims}
+    for v in variables:
+        if not v.dims:
+            out.append(v)
+            continue
+        for i in range(v.dims):
+            deps = [f"{d}[{i}]" if d in arrays else d for d in v.initial_depends_on]
+            out.append(Var(f"{v.name}[{i}]", v.vr + i, v.type, v.causality,
+                           v.description.format(axis=f"axis {i}"), v.unit, v.start, v.choices,
+                           v.variability, v.min, v.max, "", deps))
+    return out
 
 
 UNITS = {  # unit name -> SI base-unit exponents. Signals carry no unit: the filters and the
@@ -250,6 +282,12 @@ def trajectory_generator() -> tuple[list[Var], list[str], str]:
             "0 for the trigonometric profile", "", 0.0, c_name="TARGET_ACCELERATION"),
         Var("interface", 7, "Integer", "input", "what the target asks for; "
             + choice_text("Interface"), "", 0, "Interface", "discrete", c_name="INTERFACE"),
+        Var("minimum_duration", 8, "Real", "input", "least duration of the move to this target "
+            "(ruckig's minimum_duration), from the tick it is given on: the target is reached "
+            "exactly on the first tick at or after both this and the time-optimal duration at "
+            "which a motion within the limits exists; 0 = as fast as possible; finite, >= 0 "
+            "(0 for the trigonometric profile; ignored for a stop)", "s", 0.0, min=0.0,
+            c_name="MINIMUM_DURATION"),
     ]
     vs += [
         Var("Ts", 10, "Real", "parameter", "sample period of the internal ticks; finite, > 0", "s",
@@ -298,16 +336,16 @@ def elastic_plant() -> tuple[list[Var], list[str], str]:
 MA_MAX_AXES = 8   # == SMS_MULTI_MAX_AXES
 # MultiAxisGenerator value references: globals below 100, axis i of field f at 100 f + i.
 MA_FIELDS = (  # (name, causality, start, description); units: those of axis i (P)
-    ("target", "input", 0.0, "target position of axis {i} (piecewise constant via-points, any "
+    ("target", "input", 0.0, "target position of {axis} (piecewise constant via-points, any "
      "unit P), held over each communication step"),
-    ("q", "output", None, "position of axis {i} at the last internal tick"),
-    ("v", "output", None, "velocity of axis {i} (P/s) at the last internal tick"),
-    ("a", "output", None, "acceleration of axis {i} (P/s2) at the last internal tick"),
-    ("j", "output", None, "jerk of axis {i} (P/s3) at the last internal tick (right limit)"),
-    ("vmax", "parameter", 1.0, "velocity limit of axis {i} (P/s); finite, > 0 (axes in use)"),
-    ("amax", "parameter", 10.0, "acceleration limit of axis {i} (P/s2); finite, > 0 (axes in use)"),
-    ("jmax", "parameter", 100.0, "jerk limit of axis {i} (P/s3); finite, > 0 (axes in use)"),
-    ("q0", "parameter", 0.0, "initial rest position of axis {i} (P)"),
+    ("q", "output", None, "position of {axis} at the last internal tick"),
+    ("v", "output", None, "velocity of {axis} (P/s) at the last internal tick"),
+    ("a", "output", None, "acceleration of {axis} (P/s2) at the last internal tick"),
+    ("j", "output", None, "jerk of {axis} (P/s3) at the last internal tick (right limit)"),
+    ("vmax", "parameter", 1.0, "velocity limit of {axis} (P/s); finite, > 0 (axes in use)"),
+    ("amax", "parameter", 10.0, "acceleration limit of {axis} (P/s2); finite, > 0 (axes in use)"),
+    ("jmax", "parameter", 100.0, "jerk limit of {axis} (P/s3); finite, > 0 (axes in use)"),
+    ("q0", "parameter", 0.0, "initial rest position of {axis} (P)"),
 )
 # Vibration stages per axis: stage k of axis i is designed for the mode (wn, zeta) of that
 # axis (the SmoothShaper FMU's kind codes, design = for_mode with k = 1); value reference
@@ -315,12 +353,12 @@ MA_FIELDS = (  # (name, causality, start, description); units: those of axis i (
 MA_MAX_STAGES = 3
 MA_STAGE_BASE = 1000
 MA_STAGE_FIELDS = (  # (name, type, unit, start, description, choices, min, max)
-    ("kind", "Integer", "", -1, "family of vibration stage {k} of axis {i}, designed for the "
+    ("kind", "Integer", "", -1, "family of vibration stage {k} of {axis}, designed for the "
      "mode (wn, zeta); the same stages on every axis keep straight moves straight", "StageKind",
      None, None),
-    ("wn", "Real", "rad/s", 100.0, "natural frequency of the mode stage {k} of axis {i} cancels; "
+    ("wn", "Real", "rad/s", 100.0, "natural frequency of the mode stage {k} of {axis} cancels; "
      "finite, 0 < wn < pi/Ts", "", 0.0, None),
-    ("zeta", "Real", "1", 0.0, "damping ratio of the mode stage {k} of axis {i} cancels; in "
+    ("zeta", "Real", "1", 0.0, "damping ratio of the mode stage {k} of {axis} cancels; in "
      "[0, 1)", "", 0.0, 1.0),
 )
 MA_STAGE_STRIDE = len(MA_STAGE_FIELDS)
@@ -347,25 +385,22 @@ def multi_axis_generator() -> tuple[list[Var], list[str], str]:
             "stages)", "", variability="discrete", c_name="LAG", initial_depends_on=["q0[0]"]),
     ]
     for f, (name, causality, start, desc) in enumerate(MA_FIELDS, 1):
-        for i in range(MA_MAX_AXES):
-            extra = {}
-            if causality == "parameter":
-                extra = dict(variability="fixed")
-                if name != "q0":
-                    extra["min"] = 0.0
-            if causality == "output":
-                extra = dict(variability="discrete", initial_depends_on=[f"q0[{i}]"])
-            vs.append(Var(f"{name}[{i}]", 100 * f + i, "Real", causality, desc.format(i=i), "",
-                          start, **extra))
+        extra = {}
+        if causality == "parameter":
+            extra = dict(variability="fixed")
+            if name != "q0":
+                extra["min"] = 0.0
+        if causality == "output":
+            extra = dict(variability="discrete", initial_depends_on=["q0"])
+        vs.append(Var(name, 100 * f, "Real", causality, desc, "", start, dims=MA_MAX_AXES,
+                      **extra))
     for k in range(MA_MAX_STAGES):
         for g, (name, typ, unit, start, desc, choices, lo, hi) in enumerate(MA_STAGE_FIELDS):
             if choices:
                 desc = f"{desc}; {choice_text(choices)}"
-            for i in range(MA_MAX_AXES):
-                vs.append(Var(f"stage[{k}].{name}[{i}]",
-                              MA_STAGE_BASE + 100 * (MA_STAGE_STRIDE * k + g) + i, typ,
-                              "parameter", desc.format(k=k, i=i), unit, start, choices, "fixed",
-                              lo, hi))
+            vs.append(Var(f"stage[{k}].{name}", MA_STAGE_BASE + 100 * (MA_STAGE_STRIDE * k + g),
+                          typ, "parameter", desc.replace("{k}", str(k)), unit, start, choices,
+                          "fixed", lo, hi, dims=MA_MAX_AXES))
     header = [f"#define MA_MAX_AXES {MA_MAX_AXES}", f"#define MA_MAX_STAGES {MA_MAX_STAGES}",
               f"#define MA_STAGE_BASE {MA_STAGE_BASE}",
               f"#define MA_STAGE_STRIDE {MA_STAGE_STRIDE}"]
@@ -523,13 +558,38 @@ def _fmt(v) -> str:
     return str(v)
 
 
+def unit_definitions(variables: list[Var]) -> list[str]:
+    out = ['  <UnitDefinitions>']
+    for u in sorted({v.unit for v in variables if v.unit}):
+        exps = " ".join(f'{k}="{e}"' for k, e in UNITS[u].items())
+        out.append(f'    <Unit name="{u}"><BaseUnit {exps}/></Unit>' if exps else f'    <Unit name="{u}"/>')
+    out += ['  </UnitDefinitions>', '  <LogCategories>']
+    out += [f'    <Category name="{n}" description={quoteattr(d)}/>' for n, d in LOG_CATEGORIES]
+    out += ['  </LogCategories>', '  <DefaultExperiment startTime="0" stopTime="1" stepSize="0.001"/>']
+    return out
+
+
+def header_attributes(model: str, description: str) -> list[str]:
+    return [f'  description={quoteattr(description)}',
+            '  generationTool="smoothshaper modelDescription/generate.py" author="smoothshaper"',
+            f'  copyright={quoteattr(COPYRIGHT)} license={quoteattr(LICENSE)}']
+
+
+def bounds(v: Var) -> tuple[object, object]:
+    """min and max: an Integer code's from its list."""
+    if v.choices:
+        codes = [c[1] for c in CHOICES[v.choices]]
+        return min(codes), max(codes)
+    return v.min, v.max
+
+
 def model_description(model: str, variables: list[Var], description: str, guid: str) -> str:
-    used_units = sorted({v.unit for v in variables if v.unit})
+    """FMI 2.0: every array as its scalar elements."""
+    variables = fmi2_scalars(variables)
     out = ['<?xml version="1.0" encoding="UTF-8"?>',
-           f'<fmiModelDescription fmiVersion="2.0" modelName="{model}" guid="{guid}"',
-           f'  description={quoteattr(description)}',
-           '  generationTool="smoothshaper modelDescription/generate.py" author="smoothshaper"',
-           '  version="0.1.0" variableNamingConvention="structured" numberOfEventIndicators="0">',
+           f'<fmiModelDescription fmiVersion="2.0" modelName="{model}" guid="{guid}"']
+    out += header_attributes(model, description)
+    out += ['  version="0.1.0" variableNamingConvention="structured" numberOfEventIndicators="0">',
            f'  <CoSimulation modelIdentifier="{model}" canHandleVariableCommunicationStepSize="true"',
            '    canInterpolateInputs="false" maxOutputDerivativeOrder="0" canRunAsynchronuously="false"',
            '    canBeInstantiatedOnlyOncePerProcess="false" canNotUseMemoryManagementFunctions="false"',
@@ -537,14 +597,9 @@ def model_description(model: str, variables: list[Var], description: str, guid: 
            '    providesDirectionalDerivative="false">',
            '    <SourceFiles>']
     out += [f'      <File name="{f}"/>' for f in SOURCE_FILES_PLACEHOLDER]
-    out += ['    </SourceFiles>', '  </CoSimulation>', '  <UnitDefinitions>']
-    for u in used_units:
-        exps = " ".join(f'{k}="{e}"' for k, e in UNITS[u].items())
-        out.append(f'    <Unit name="{u}"><BaseUnit {exps}/></Unit>' if exps else f'    <Unit name="{u}"/>')
-    out += ['  </UnitDefinitions>', '  <LogCategories>']
-    out += [f'    <Category name="{n}" description={quoteattr(d)}/>' for n, d in LOG_CATEGORIES]
-    out += ['  </LogCategories>', '  <DefaultExperiment startTime="0" stopTime="1" stepSize="0.001"/>',
-            '  <ModelVariables>']
+    out += ['    </SourceFiles>', '  </CoSimulation>']
+    out += unit_definitions(variables)
+    out += ['  <ModelVariables>']
     for i, v in enumerate(variables, 1):
         attrs = f'name="{v.name}" valueReference="{v.vr}" causality="{v.causality}"'
         if v.variability:
@@ -555,9 +610,7 @@ def model_description(model: str, variables: list[Var], description: str, guid: 
             attrs += ' initial="calculated"'
         attrs += f' description={quoteattr(v.description)}'
         inner = ""
-        lo, hi = v.min, v.max
-        if v.choices:   # an Integer code: bounded by its list
-            lo, hi = min(c[1] for c in CHOICES[v.choices]), max(c[1] for c in CHOICES[v.choices])
+        lo, hi = bounds(v)
         if v.unit:
             inner += f' unit="{v.unit}"'
         if lo is not None:
@@ -581,6 +634,86 @@ def model_description(model: str, variables: list[Var], description: str, guid: 
         out.append(f'      <Unknown index="{index[v.name]}" dependencies="{deps}"/>')
     out += ['    </InitialUnknowns>', '  </ModelStructure>', '</fmiModelDescription>', '']
     return "\n".join(out)
+
+
+FMI3_TYPES = {"Real": "Float64", "Integer": "Int32"}
+
+
+def model_description_fmi3(model: str, variables: list[Var], description: str,
+                           token: str) -> str:
+    """FMI 3.0: arrays as arrays (a Dimension of fixed size), Integer codes as Int32 with
+    min/max, the independent variable `time`, fixedInternalStepSize = Ts's start value."""
+    ts = next((v.start for v in variables if v.name == "Ts"), 0.001)
+    out = ['<?xml version="1.0" encoding="UTF-8"?>',
+           f'<fmiModelDescription fmiVersion="3.0" modelName="{model}"',
+           f'  instantiationToken="{token}"']
+    out += header_attributes(model, description)
+    out += ['  version="0.1.0" variableNamingConvention="structured">',
+            f'  <CoSimulation modelIdentifier="{model}" canHandleVariableCommunicationStepSize="true"',
+            f'    fixedInternalStepSize="{_fmt(ts)}" hasEventMode="false"',
+            '    canBeInstantiatedOnlyOncePerProcess="false" canGetAndSetFMUState="true"',
+            '    canSerializeFMUState="true" providesDirectionalDerivatives="false"',
+            '    providesAdjointDerivatives="false" providesIntermediateUpdate="false"',
+            '    canReturnEarlyAfterIntermediateUpdate="false"/>']
+    out += unit_definitions(variables)
+    out += ['  <ModelVariables>',
+            f'    <Float64 name="time" valueReference="{TIME_VR}" causality="independent" '
+            'variability="continuous" description="simulation time (the communication point '
+            'reached)"/>']
+    for v in variables:
+        typ = FMI3_TYPES[v.type]
+        attrs = f'name="{v.name}" valueReference="{v.vr}" causality="{v.causality}"'
+        if v.variability:
+            attrs += f' variability="{v.variability}"'
+        if v.causality == "parameter":
+            attrs += ' initial="exact"'
+        if v.causality == "output":
+            attrs += ' initial="calculated"'
+        description_text = v.description.format(axis="each axis") if v.dims else v.description
+        attrs += f' description={quoteattr(description_text)}'
+        lo, hi = bounds(v)
+        if v.unit:
+            attrs += f' unit="{v.unit}"'
+        if lo is not None:
+            attrs += f' min="{_fmt(lo)}"'
+        if hi is not None:
+            attrs += f' max="{_fmt(hi)}"'
+        if v.start is not None:
+            attrs += f' start="{" ".join([_fmt(v.start)] * max(v.dims, 1))}"'
+        if v.dims:
+            out.append(f'    <{typ} {attrs}>')
+            out.append(f'      <Dimension start="{v.dims}"/>')
+            out.append(f'    </{typ}>')
+        else:
+            out.append(f'    <{typ} {attrs}/>')
+    vr = {v.name: v.vr for v in variables}
+    outputs = [v for v in variables if v.causality == "output"]
+    out += ['  </ModelVariables>', '  <ModelStructure>']
+    for v in outputs:   # no direct feedthrough: an input reaches the outputs only via doStep
+        out.append(f'    <Output valueReference="{v.vr}" dependencies=""/>')
+    for v in outputs:   # an element name[i] of FMI 2.0 is the array `name` here
+        deps = " ".join(str(vr[d] if d in vr else vr[d.split("[")[0]])
+                        for d in v.initial_depends_on)
+        out.append(f'    <InitialUnknown valueReference="{v.vr}" dependencies="{deps}"/>')
+    out += ['  </ModelStructure>', '</fmiModelDescription>', '']
+    return "\n".join(out)
+
+
+def fmi3_header(model: str, variables: list[Var], token: str) -> str:
+    """fmu_fmi3_variables.h: what the FMI 3.0 glue needs beyond the model's own header."""
+    arrays = [v for v in variables if v.dims]
+    lines = [f"/* Generated by modelDescription/generate.py for {model} (FMI 3.0): do not edit. */",
+             "#ifndef FMU_FMI3_VARIABLES_H", "#define FMU_FMI3_VARIABLES_H", "",
+             f'#define FMU_FMI3_TOKEN "{token}"',
+             f"#define FMU_FMI3_TIME_VR {TIME_VR}u   /* the independent variable time */",
+             "/* The array variables: value reference of the first element, element count (the",
+             " * elements' value references follow it one by one). */",
+             f"#define FMU_FMI3_ARRAY_COUNT {len(arrays)}"]
+    table = ", ".join(f"{{{v.vr}u, {v.dims}u}}" for v in arrays)
+    lines.append(f"#define FMU_FMI3_ARRAYS {{{table}}}" if arrays
+                 else "#define FMU_FMI3_ARRAYS {{0u, 0u}}")
+    lines += ["", "#endif", ""]
+    return "\n".join(lines)
 
 
 LOG_CATEGORIES = (("logStatusError", "errors: wrong call order, bad arguments, invalid "
@@ -611,13 +744,18 @@ def main(argv: list[str]) -> int:
     model, out_dir = argv[1], Path(argv[2])
     SOURCE_FILES_PLACEHOLDER[:] = argv[3:]   # source files listed in <SourceFiles>
     variables, extra, description = MODELS[model]()
-    # The token is a hash of everything but itself: any change of the interface changes it.
+    # A token is a hash of everything but itself: any change of the interface changes it.
     draft = model_description(model, variables, description, "{GUID}")
     guid = "{" + str(uuid.UUID(hashlib.sha256(draft.encode()).hexdigest()[:32])) + "}"
-    out_dir.mkdir(parents=True, exist_ok=True)
-    xml = model_description(model, variables, description, guid)
-    (out_dir / "modelDescription.xml").write_text(xml)
+    draft3 = model_description_fmi3(model, variables, description, "{TOKEN}")
+    token = "{" + str(uuid.UUID(hashlib.sha256(draft3.encode()).hexdigest()[:32])) + "}"
+    (out_dir / "fmi3").mkdir(parents=True, exist_ok=True)
+    (out_dir / "modelDescription.xml").write_text(model_description(model, variables,
+                                                                    description, guid))
+    (out_dir / "fmi3" / "modelDescription.xml").write_text(
+        model_description_fmi3(model, variables, description, token))
     (out_dir / f"{model}_variables.h").write_text(c_header(model, variables, extra, guid))
+    (out_dir / "fmu_fmi3_variables.h").write_text(fmi3_header(model, variables, token))
     return 0
 
 

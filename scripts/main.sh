@@ -26,10 +26,13 @@ phase "installing the package and its validate extra (compiles the C core into t
 logged build/main-pip.log python -m pip install -e ".[validate]"
 
 # The FMUs (SmoothShaper, TrajectoryGenerator, MultiAxisGenerator, ElasticPlant, ServoDrive),
-# only their CMake targets; the validation and the system co-simulations reuse them.
+# FMI 2.0 in build/fmu/fmus and FMI 3.0 in build/fmu/fmus/3.0, only their CMake targets;
+# validate (fmpy validate, fmutool -check and fmpy runs of both versions, the FMI 2.0 importers
+# libcosim and fmpy) and the system co-simulations reuse this build.
 phase "building the FMUs (CMake, build/fmu)"
 logged build/main-fmu.log python -c \
-    'from pathlib import Path; from smoothshaper.fmi.build import build_fmus; build_fmus(Path("build/fmu"))'
+    'from pathlib import Path; from smoothshaper.fmi.build import build_fmus
+for v in ("2.0", "3.0"): build_fmus(Path("build/fmu"), fmi_version=v)'
 
 status=0
 phase "smoothshaper validate --out out/validation"

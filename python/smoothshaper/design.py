@@ -252,6 +252,9 @@ _kinematic_fastpath.configure(Stage, _stages.KINDS, _stages.TIMINGS,
                               {p: i for i, p in enumerate(PROFILES)},
                               (np.float64, np.int64, np.float32))
 _fastpath = _kinematic_fastpath.design
+# design.kinematic as a builtin (the same docstring and signature): a call then costs no
+# Python frame before the fast path; where that declines, it calls the function above.
+kinematic = _kinematic_fastpath.configure_kinematic(kinematic, __name__)
 
 
 def _kinematic_checked(h, vmax, amax, jmax, higher, profile, wn, zeta, Ts) -> list[Stage]:

@@ -405,30 +405,71 @@ def _grid_ceil(T, Ts):
     return int(r if x - r <= 8 * np.finfo(float).eps * max(x, 1.0) else r + 1)
 
 
+def _plateau(v, a, vf, af, lim, hold):
+    """The velocity change (v, a) -> (w, 0), w = vf - af|af|/(2 jmax) (where the target's
+    acceleration was last zero), ``hold`` seconds at (w, 0), then the ramp at jmax to af: a
+    motion to (vf, af) of every duration from its own without the hold on."""
+    w = vf - af * abs(af) / (2 * lim.jmax)
+    change = _to.velocity_change(v, a, w, 0.0, lim)
+    if change is None:
+        return None
+    return change + [(0.0, hold, 0.0, w), (math.copysign(lim.jmax, af), abs(af) / lim.jmax, 0.0)]
+
+
+def _velocity_plan(q, v, a, vf, af, tmin, lim, Ts):
+    """(pieces, starts, goal, drift, N) of the velocity interface: the time-optimal change
+    (N None), or with a minimum duration beyond it the first sample N at or after it at which
+    a motion of N Ts exists: the midpoint of the two farthest ones, or (past the blocked
+    durations) the plateau motion at the first sample at or after its own duration."""
+    third = _to.velocity_change(v, a, vf, af, lim)
+    if third is None:
+        return None
+    if tmin > sum(piece[1] for piece in third):
+        n0 = _grid_ceil(tmin, Ts)
+        for n in (n0, n0 + 1):
+            hi = _to.farthest(v, a, vf, af, lim, n * Ts, 1)
+            lo = _to.farthest(v, a, vf, af, lim, n * Ts, -1)
+            if hi is not None and lo is not None:
+                pieces, starts = _blend(hi[1], lo[1], 0.5, q, v, a, n * Ts)
+                return _finish(pieces, starts, (q + (hi[0] + lo[0]) / 2, vf, af), lim.jmax) + (n,)
+        bare = _plateau(v, a, vf, af, lim, 0.0)
+        if bare is not None:
+            T1 = sum(piece[1] for piece in bare)
+            n = _grid_ceil(max(T1, tmin), Ts)
+            third = _plateau(v, a, vf, af, lim, n * Ts - T1)
+            pieces, starts = _blend(third, third, 1.0, q, v, a, n * Ts)
+            p = _to.integrate(third, q, v, a)[0]
+            return _finish(pieces, starts, (p, vf, af), lim.jmax) + (n,)
+    return _from_third_order(third, q, v, a, None, lim.jmax, vf, af) + (None,)
+
+
 def _ramp_plan(state, goal, vmax, amax, jmax, Ts):
     """The plan of linear ramps from state (q, v, a) towards goal (interface, position,
-    velocity, acceleration), or None when none is found or it cannot be represented."""
+    velocity, acceleration, minimum duration), or None when none is found or it cannot be
+    represented."""
     q, v, a = state
-    interface, pf, vf, af = goal
+    interface, pf, vf, af, tmin = goal
     lim = _to.Limits(vmax, amax, jmax)
     N = None
     if interface == VELOCITY:
-        third = _to.velocity_change(v, a, vf, af, lim)
-        if third is None:
+        found = _velocity_plan(q, v, a, vf, af, tmin, lim, Ts)
+        if found is None:
             return None
-        pieces, starts, g, drift = _from_third_order(third, q, v, a, None, jmax, vf, af)
-        arrive = sum(piece[1] for piece in third) / Ts
+        pieces, starts, g, drift, N = found
+        arrive = N if N is not None else sum(piece[0] for piece in pieces
+                                              [:len(pieces) - (1 if af != 0 else 0)]) / Ts
     else:
         found = _to.time_optimal(q, v, a, pf, vf, af, lim)
         if found is None:
             return None
         T, third, durations = found
         pieces = None
-        if vf != 0 or af != 0:
-            # on the grid: the first whole number of samples at or after the optimum (or past
-            # a blocked duration, the next member's) at which a motion exists
-            for Tr in durations:
-                Tr = max(Tr, T)   # every member lasts the optimum at least, but for rounding
+        if vf != 0 or af != 0 or tmin > T:
+            # on the grid: the first whole number of samples at or after the optimum and the
+            # minimum duration (or past a blocked duration, the next member's) at which a
+            # motion exists
+            start = max(T, tmin)
+            for Tr in [start] + [d for d in durations if d > start]:
                 if not math.isfinite(Tr / Ts) or Tr / Ts + 2 > MAX_PLAN_SAMPLES:
                     continue
                 for n in (_grid_ceil(Tr, Ts), _grid_ceil(Tr, Ts) + 1):
@@ -454,7 +495,7 @@ def _ramp_plan(state, goal, vmax, amax, jmax, Ts):
     if not representable(pieces, starts, Ts) or not math.isfinite(g) or not math.isfinite(drift):
         return None
     ends = _ends(pieces, Ts)
-    if N is not None:
+    if N is not None and pieces:
         # the target exactly on sample N: the motion's last piece ends there
         k = len(pieces) - (1 if af != 0 else 0)
         ends[k - 1] = float(N)
@@ -465,7 +506,7 @@ def _ramp_plan(state, goal, vmax, amax, jmax, Ts):
 def _cosine_plan(state, goal, vmax, amax, jmax, Ts):
     """The half-cosine plan: to rest at the goal's position, or to its velocity at a = 0."""
     q, v, a = state
-    interface, pf, vf, _ = goal
+    interface, pf, vf, _, _ = goal
     c3 = C3["cosine"]
     Jm = _mean_jerk(jmax, "cosine")
     if interface == VELOCITY:
@@ -496,15 +537,17 @@ def _can_start(v, a, vmax, jmax, shape):
 
 
 def canonical_target(interface, position, velocity, acceleration, *, vmax, amax, jmax,
-                     shape="ramp"):
+                     shape="ramp", minimum_duration=0.0):
     """A target (interface, position, velocity, acceleration) in canonical form (a stop as
     the velocity interface to 0, the position of a velocity target as 0), or None when it is
     invalid: the interface unknown, a value not finite, or the velocity, acceleration or
     v -+ a|a|/(2 jmax) beyond the bounds (:func:`~smoothshaper.reference.third_order.target_ok`);
     half-cosine transitions take position targets at rest and velocity targets at a = 0."""
     if interface == STOP:
-        return (VELOCITY, 0.0, 0.0, 0.0)
+        return (VELOCITY, 0.0, 0.0, 0.0, 0.0)
     if interface not in (POSITION, VELOCITY):
+        return None
+    if not (0 <= minimum_duration < math.inf) or (shape == "cosine" and minimum_duration != 0):
         return None
     if interface == VELOCITY:
         position = 0.0
@@ -514,11 +557,12 @@ def canonical_target(interface, position, velocity, acceleration, *, vmax, amax,
         return None
     if _to.target_ok(velocity, acceleration, _to.Limits(vmax, amax, jmax)) is not None:
         return None
-    return (interface, float(position), float(velocity), float(acceleration))
+    return (interface, float(position), float(velocity), float(acceleration),
+            float(minimum_duration))
 
 
 def _run(targets, *, vmax, amax, jmax, Ts, q0=0.0, shape="ramp", velocity=None,
-         acceleration=None, interface=None, start=None):
+         acceleration=None, interface=None, start=None, minimum_duration=None):
     """(out, goal, dropped): the samples, the running plan's goal at each sample (where it
     rests, or from where it drifts on), and 1 at each sample where a target was dropped.
 
@@ -532,12 +576,13 @@ def _run(targets, *, vmax, amax, jmax, Ts, q0=0.0, shape="ramp", velocity=None,
     vel = np.zeros(n) if velocity is None else np.asarray(velocity, dtype=np.float64)
     acc = np.zeros(n) if acceleration is None else np.asarray(acceleration, dtype=np.float64)
     itf = np.zeros(n, dtype=int) if interface is None else np.asarray(interface, dtype=int)
+    tmin = np.zeros(n) if minimum_duration is None else np.asarray(minimum_duration, dtype=float)
     out = np.empty((n, 4))
     goals = np.empty(n)
     dropped = np.zeros(n, dtype=bool)
     make = _cosine_plan if shape == "cosine" else _ramp_plan
     plan, i0 = _rest_plan(float(q0)), 0
-    held = goal = (POSITION, float(q0), 0.0, 0.0)
+    held = goal = (POSITION, float(q0), 0.0, 0.0, 0.0)
     refused = False
     if start is not None:
         q, v, a, target = start
@@ -549,7 +594,7 @@ def _run(targets, *, vmax, amax, jmax, Ts, q0=0.0, shape="ramp", velocity=None,
         plan, i0 = new, -1
     for i in range(n):
         t = canonical_target(int(itf[i]), float(x[i]), float(vel[i]), float(acc[i]), vmax=vmax,
-                             amax=amax, jmax=jmax, shape=shape)
+                             amax=amax, jmax=jmax, shape=shape, minimum_duration=float(tmin[i]))
         if t is not None and t != held:   # a new target (invalid: ignored)
             held, refused = t, False
         state = _evaluate(plan, i - i0, Ts, shape)

@@ -145,9 +145,9 @@ class Generator(_state_identity.SavedState, Twins):
         "``sizeof(sms_real)`` (8 double, 4 float), kind (100, a generator), ``Ts``, ``vmax``, "
         "``amax``, ``jmax``, profile index in :data:`~smoothshaper.design.PROFILES`, ``wn`` "
         "(0 without a mode), ``zeta``); then the target and the goal of the running plan, "
-        "each as position, velocity, acceleration and interface (0 position, 1 velocity; a "
-        "stop is the velocity interface to 0), the running plan's start q, v, a and the "
-        "samples since it (n = 23 without a mode; the offsets are ``SMS_GENERATOR_STATE_*`` "
+        "each as position, velocity, acceleration, interface (0 position, 1 velocity; a "
+        "stop is the velocity interface to 0) and minimum duration, the running plan's start "
+        "q, v, a and the samples since it (n = 25 without a mode; the offsets are ``SMS_GENERATOR_STATE_*`` "
         "of trajectory.h); with a mode also the samples the plan has rested and the four "
         "states of the tuned stage (each with its own stage identity).")
 
@@ -224,7 +224,7 @@ class Generator(_state_identity.SavedState, Twins):
 
     @locked
     def process(self, targets=None, *, velocity=None, acceleration=None, interface=None,
-                stop=None) -> np.ndarray:
+                stop=None, minimum_duration=None) -> np.ndarray:
         """Run a block of targets, one C call for the whole block.
 
         With ``targets`` alone, each sample's target is a position to reach and rest on (a
@@ -255,6 +255,14 @@ class Generator(_state_identity.SavedState, Twins):
             without).
         stop : bool or array_like of bool, shape (n,), keyword-only
             Where True, brake to rest at once (the velocity interface to 0).
+        minimum_duration : float or array_like of float, shape (n,), keyword-only
+            Least duration [s] of the move to each target (ruckig's ``minimum_duration``),
+            default 0 (as fast as the limits allow): finite, >= 0, below 2^50 samples of
+            ``Ts``; 0 for the trigonometric profile. A new target (any field changed) starts
+            its move on its sample; the target state is then reached exactly on the first
+            sample N after it with ``N Ts`` at least both this and the time-optimal
+            duration at which a motion within the limits exists (a blocked duration is
+            skipped to the next that has one; docs/design.md, "A minimum duration").
 
         Returns
         -------
@@ -268,9 +276,9 @@ class Generator(_state_identity.SavedState, Twins):
         Raises
         ------
         ParameterError
-            Naming ``targets``, ``velocity``, ``acceleration``, ``interface`` or ``stop``
-            (with the first offending sample) when an array is not of the block's length or
-            a value is out of range; the state is then untouched.
+            Naming ``targets``, ``velocity``, ``acceleration``, ``interface``, ``stop`` or
+            ``minimum_duration`` (with the first offending sample) when an array is not of
+            the block's length or a value is out of range; the state is then untouched.
 
         Warns
         -----
@@ -278,7 +286,8 @@ class Generator(_state_identity.SavedState, Twins):
             Once per call in which targets were dropped, naming the last one, the position
             it was to be reached from and the count (also in :attr:`dropped`).
         """
-        rest_only = velocity is None and acceleration is None and interface is None and stop is None
+        rest_only = (velocity is None and acceleration is None and interface is None and
+                     stop is None and minimum_duration is None)
         if targets is None and rest_only:
             raise ParameterError("targets", "targets must be given (positions), or velocity "
                                  "for the velocity interface")
@@ -294,7 +303,8 @@ class Generator(_state_identity.SavedState, Twins):
                     self._gen, self._ffi.from_buffer("sms_real[]", xin), n,
                     self._ffi.from_buffer("sms_real[]", out))
         else:
-            block = self._target_block(targets, velocity, acceleration, interface, stop)
+            block = self._target_block(targets, velocity, acceleration, interface, stop,
+                                       minimum_duration)
             n = block.size
             out = np.empty((n, 4), dtype=dtype)
             if n:
@@ -305,14 +315,15 @@ class Generator(_state_identity.SavedState, Twins):
             self._warn_dropped(self._gen.dropped - before)
         return out if dtype == np.float64 else out.astype(np.float64)
 
-    def _target_block(self, targets, velocity, acceleration, interface, stop) -> np.ndarray:
+    def _target_block(self, targets, velocity, acceleration, interface, stop,
+                      minimum_duration=None) -> np.ndarray:
         """The sms_target array of a block, every target checked by the C core (its status
         names the field, the index the sample)."""
-        sizes = [np.size(x) for x in (targets, velocity, acceleration, interface, stop)
-                 if x is not None and np.ndim(x) > 0]
+        fields = (targets, velocity, acceleration, interface, stop, minimum_duration)
+        sizes = [np.size(x) for x in fields if x is not None and np.ndim(x) > 0]
         n = sizes[0] if sizes else 1
-        names = ("targets", "velocity", "acceleration", "interface", "stop")
-        for name, x in zip(names, (targets, velocity, acceleration, interface, stop)):
+        names = ("targets", "velocity", "acceleration", "interface", "stop", "minimum_duration")
+        for name, x in zip(names, fields):
             if x is not None and np.ndim(x) > 0 and np.size(x) != n:
                 raise ParameterError(name, f"{name} must have the block's length {n} (or be a "
                                      f"scalar), got {np.size(x)} values")
@@ -326,6 +337,7 @@ class Generator(_state_identity.SavedState, Twins):
         pos = column("targets", targets, 0.0)
         vel = column("velocity", velocity, 0.0)
         acc = column("acceleration", acceleration, 0.0)
+        tmin = column("minimum_duration", minimum_duration, 0.0)
         if interface is None:
             codes = np.full(n, 0 if targets is not None else 1, dtype=np.int32)
         else:
@@ -353,16 +365,18 @@ class Generator(_state_identity.SavedState, Twins):
             block["position"] = pos.astype(real)
             block["velocity"] = vel.astype(real)
             block["acceleration"] = acc.astype(real)
+            block["minimum_duration"] = tmin.astype(real)
         block["interface"] = codes
         index = self._ffi.new("size_t *")
         st = self._lib.sms_generator_check_targets(
             self._gen, self._ffi.cast("sms_target *", self._ffi.from_buffer(block)), n, index)
         if st != 0:
             i = int(index[0])
-            field = {-46: ("targets",), -47: ("velocity",), -48: ("acceleration",),
-                     -49: ("interface",)}[st]
+            field = {-3: ("minimum_duration",), -46: ("targets",), -47: ("velocity",),
+                     -48: ("acceleration",), -49: ("interface",)}[st]
             raise ParameterError(field[0], _target_message(
-                self, field[0], i, float(pos[i]), float(vel[i]), float(acc[i]), int(codes[i])), st)
+                self, field[0], i, float(pos[i]), float(vel[i]), float(acc[i]), int(codes[i]),
+                float(tmin[i])), st)
         return block
 
     @property
@@ -399,7 +413,8 @@ class Generator(_state_identity.SavedState, Twins):
     @locked
     def start_from(self, q: float, v: float = 0.0, a: float = 0.0, *,
                    target: float | None = None, velocity: float = 0.0,
-                   acceleration: float = 0.0, interface: str | None = None) -> None:
+                   acceleration: float = 0.0, interface: str | None = None,
+                   minimum_duration: float = 0.0) -> None:
         """Continue from the motion state (q, v, a): the generator is there now, on the first
         sample of its plan to the target, and the next :meth:`process` goes on from there
         (re-planning when its first target differs).
@@ -429,12 +444,15 @@ class Generator(_state_identity.SavedState, Twins):
             ``interface="velocity"``), as for :meth:`process`.
         interface : {"position", "velocity"} or None, keyword-only
             Default "position" when ``target`` is given; with neither, a stop.
+        minimum_duration : float, keyword-only
+            Least duration [s] of the motion to the target, as for :meth:`process`
+            (default 0; ignored for a stop).
 
         Raises
         ------
         ParameterError
-            Naming ``q``, ``v``, ``a``, ``target``, ``velocity``, ``acceleration`` or
-            ``interface`` when one is not finite or out of range, or the state is one no plan
+            Naming ``q``, ``v``, ``a``, ``target``, ``velocity``, ``acceleration``,
+            ``interface`` or ``minimum_duration`` when one is not finite or out of range, or the state is one no plan
             of this generator can start from; ``target`` also when the motion to it cannot be
             represented in the build's floats. Nothing is changed then.
         """
@@ -455,6 +473,7 @@ class Generator(_state_identity.SavedState, Twins):
                 t.position = _finite("target", target)
             t.velocity = _finite("velocity", velocity)
             t.acceleration = _finite("acceleration", acceleration)
+            t.minimum_duration = _finite("minimum_duration", minimum_duration)
             t.interface = 0 if interface == "position" else 1
         else:
             raise ParameterError("interface", f"interface must be \"position\", \"velocity\" or "
@@ -475,11 +494,12 @@ class Generator(_state_identity.SavedState, Twins):
                 f"can start from: |a| beyond amax={self.amax!r}, or bringing a to zero would pass "
                 f"vmax={self.vmax!r} (beyond the generator's own rounding, a relative {tol:.3g})",
                 st)
-        if st in (-47, -48, -49):
-            name = {-47: "velocity", -48: "acceleration", -49: "interface"}[st]
+        if st in (-3, -47, -48, -49):
+            name = {-3: "minimum_duration", -47: "velocity", -48: "acceleration",
+                    -49: "interface"}[st]
             raise ParameterError(name, _target_message(
                 self, name, None, float(t.position), float(t.velocity), float(t.acceleration),
-                int(t.interface)), st)
+                int(t.interface), float(t.minimum_duration)), st)
         raise ParameterError(
             "target", f"target: the move from (q, v, a) = ({q!r}, {v!r}, {a!r}) cannot be "
             f"represented in {self.precision} (more than 2^52 samples of Ts, or a value beyond "
@@ -489,12 +509,18 @@ class Generator(_state_identity.SavedState, Twins):
 def _target_dtype(real):
     """NumPy's layout of sms_target for the precision (C alignment)."""
     return np.dtype([("position", real), ("velocity", real), ("acceleration", real),
-                     ("interface", np.int32)], align=True)
+                     ("interface", np.int32), ("minimum_duration", real)], align=True)
 
 
-def _target_message(g, name, i, position, velocity, acceleration, code):
+def _target_message(g, name, i, position, velocity, acceleration, code, minimum_duration=0.0):
     """Why the generator refuses a target's field, with the values and the limits."""
     at = "" if i is None else f" at sample {i}"
+    if name == "minimum_duration":
+        if g.profile == "trigonometric" and minimum_duration >= 0:
+            return (f"minimum_duration{at}: {minimum_duration!r}: the trigonometric profile "
+                    "does not stretch a move (minimum_duration 0)")
+        return (f"minimum_duration{at}: {minimum_duration!r} must be finite, >= 0 and below "
+                f"2^50 samples of Ts = {g.Ts!r}")
     if name == "targets":
         return f"targets{at}: the position {position!r} must be finite"
     if name == "interface":
@@ -520,14 +546,16 @@ def _target_message(g, name, i, position, velocity, acceleration, code):
 # ----------------------------------------------------------------------------------------------
 
 def _reference_targets(targets, velocity, acceleration, interface, stop, *, vmax, amax, jmax,
-                       profile):
-    """(positions, velocities, accelerations, interface codes) of a block, checked as the
-    reference states the rules (:func:`smoothshaper.reference.third_order.target_ok`)."""
+                       profile, minimum_duration=None):
+    """(positions, velocities, accelerations, interface codes, minimum durations) of a block,
+    checked as the reference states the rules
+    (:func:`smoothshaper.reference.third_order.target_ok`)."""
     from .reference import third_order as _to
-    if velocity is None and acceleration is None and interface is None and stop is None:
+    if (velocity is None and acceleration is None and interface is None and stop is None
+            and minimum_duration is None):
         x = _targets("targets", targets)
-        return x, None, None, None
-    arrays = [a for a in (targets, velocity, acceleration, interface, stop)
+        return x, None, None, None, None
+    arrays = [a for a in (targets, velocity, acceleration, interface, stop, minimum_duration)
               if a is not None and np.ndim(a) > 0]
     n = np.size(arrays[0]) if arrays else 1
     pos = np.zeros(n) if targets is None else np.broadcast_to(
@@ -536,6 +564,8 @@ def _reference_targets(targets, velocity, acceleration, interface, stop, *, vmax
         _targets("velocity", np.atleast_1d(velocity)), (n,))
     acc = np.zeros(n) if acceleration is None else np.broadcast_to(
         _targets("acceleration", np.atleast_1d(acceleration)), (n,))
+    tmin = np.zeros(n) if minimum_duration is None else np.broadcast_to(
+        _targets("minimum_duration", np.atleast_1d(minimum_duration)), (n,))
     if interface is None:
         codes = np.full(n, 0 if targets is not None else 1)
     else:
@@ -551,13 +581,16 @@ def _reference_targets(targets, velocity, acceleration, interface, stop, *, vmax
     for i in range(n):
         if codes[i] == 2:
             continue
+        if not tmin[i] >= 0 or (trig and tmin[i] != 0):
+            raise ParameterError("minimum_duration", f"minimum_duration at sample {i}: "
+                                 f"{tmin[i]!r} must be >= 0 (0 for the trigonometric profile)")
         bad = _to.target_ok(float(vel[i]), float(acc[i]), lim)
         if trig and bad is None and (acc[i] != 0 or (codes[i] == 0 and vel[i] != 0)):
             bad = "velocity" if acc[i] == 0 else "acceleration"
         if bad is not None:
             raise ParameterError(bad, f"{bad} at sample {i}: (velocity, acceleration) = "
                                  f"({vel[i]!r}, {acc[i]!r}) is not a target of these limits")
-    return np.asarray(pos, dtype=float), np.asarray(vel), np.asarray(acc), codes
+    return np.asarray(pos, dtype=float), np.asarray(vel), np.asarray(acc), codes, np.asarray(tmin)
 
 
 def tuned_stage(profile: str, wn: float, zeta: float):
@@ -601,7 +634,7 @@ def _tuned_kind(profile: str, zeta: float) -> str:
 
 def generator_reference(targets=None, *, vmax, amax, jmax, Ts, profile="polynomial", wn=None,
                         zeta=0.0, position=0.0, velocity=None, acceleration=None,
-                        interface=None, stop=None) -> np.ndarray:
+                        interface=None, stop=None, minimum_duration=None) -> np.ndarray:
     """NumPy reference of :class:`Generator`.
 
     The plan is :func:`smoothshaper.time_optimal.time_optimal_reference` (linear ramps of the
@@ -636,7 +669,7 @@ def generator_reference(targets=None, *, vmax, amax, jmax, Ts, profile="polynomi
         Its damping ratio, in [0, 1) (default 0).
     position : float, keyword-only
         Initial rest position (default 0).
-    velocity, acceleration, interface, stop : keyword-only
+    velocity, acceleration, interface, stop, minimum_duration : keyword-only
         As for :meth:`Generator.process`.
 
     Returns
@@ -655,7 +688,8 @@ def generator_reference(targets=None, *, vmax, amax, jmax, Ts, profile="polynomi
     from .reference.filtering import fir_taps_unchecked
     from .stages import _for_mode
     columns = _reference_targets(targets, velocity, acceleration, interface, stop, vmax=vmax,
-                                 amax=amax, jmax=jmax, profile=profile)
+                                 amax=amax, jmax=jmax, profile=profile,
+                                 minimum_duration=minimum_duration)
     x = columns[0]
     vmax = _design._positive("vmax", vmax)
     amax = _design._positive("amax", amax)
@@ -674,7 +708,8 @@ def generator_reference(targets=None, *, vmax, amax, jmax, Ts, profile="polynomi
                              f"{quantity} is out of the feasible range: no move "
                              "that reaches vmax can be planned")
     plan, goals, _ = _run(x, vmax=vmax, amax=amax, jmax=jmax, Ts=Ts, q0=position, shape=shape,
-                          velocity=columns[1], acceleration=columns[2], interface=columns[3])
+                          velocity=columns[1], acceleration=columns[2], interface=columns[3],
+                          minimum_duration=columns[4])
     if not wn_:
         return plan
     taps = fir_taps_unchecked(_for_mode(_tuned_kind(profile, zeta_), wn_, zeta_, 1), Ts)

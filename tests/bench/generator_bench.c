@@ -40,6 +40,7 @@ static double per_step_kind(sms_generator *g, long n, int kind)
     sms_generator_reset(g, 0);
     t.interface = kind == 2 ? SMS_INTERFACE_VELOCITY : SMS_INTERFACE_POSITION;
     t.acceleration = 0;
+    t.minimum_duration = 0;
     t0 = cpu_seconds();
     for (k = 0; k < n; ++k) {
         double w = kind == 3 ? 0.0 : (double)(k % 64);

@@ -200,9 +200,14 @@ static void test_impulses_refused(void)
     CHECK_STATUS(sms_tunable_set_state(&u, state_a, count), SMS_OK);
     sms_tunable_get_state(&u, state_b);
     CHECK(memcmp(state_a, state_b, count * sizeof(double)) == 0);
-    other.amplitudes[1] = 0.41;   /* other impulses: their checksum differs */
+    other.amplitudes[1] = 0.41;   /* other impulses: their checksum differs (in the head's
+                                   * identity, so the tunable refuses it as no state of its own) */
     CHECK_STATUS(sms_tunable_init(&u, &other, Ts, cells, mem_b, 2u * cells), SMS_OK);
-    CHECK_STATUS(sms_tunable_set_state(&u, state_a, count), SMS_ERR_STATE_DURATION);
+    CHECK_STATUS(sms_tunable_set_state(&u, state_a, count), SMS_ERR_STATE);
+    CHECK_STATUS(sms_stage_check_state(sms_tunable_active(&u), state_a + SMS_TUNABLE_STATE_HEAD
+                                       + 2u * SMS_STATE_IDENTITY_COUNT,
+                                       sms_stage_state_count(sms_tunable_active(&u))),
+                 SMS_ERR_STATE_DURATION);   /* the stage names the checksum's field */
     /* and a ZV tunable is refused a retune to impulses */
     CHECK_STATUS(sms_tunable_init(&u, &zv, Ts, cells, mem_b, 2u * cells), SMS_OK);
     before = u;

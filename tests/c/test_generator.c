@@ -458,9 +458,11 @@ static void test_state_and_bad_input(void)
     long k;
     int realisation;
     for (realisation = 0; realisation < 2; ++realisation) {
-        /* after the identity: 0: no mode (6 values: k is the last); 1: a mode (the quiet
+        /* a count that must be whole: 0: no mode (k is the last value); 1: a mode (the quiet
          * count follows k, then the four stage states) */
-        size_t count_index = SMS_GENERATOR_IDENTITY_COUNT + (realisation == 0 ? 5u : 6u);
+        size_t count_index = SMS_GENERATOR_IDENTITY_COUNT +
+                             (realisation == 0 ? (size_t)SMS_GENERATOR_STATE_K
+                                               : (size_t)SMS_GENERATOR_PLAN_STATE_COUNT);
         c.profile = realisation == 0 ? SMS_PROFILE_POLYNOMIAL : SMS_PROFILE_TRIGONOMETRIC;
         c.wn = realisation == 0 ? 0.0 : 90.0;
         if (!build(&g, &c, 1e-3))

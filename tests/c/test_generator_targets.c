@@ -42,6 +42,7 @@ static sms_target target(int interface, double q, double v, double a)
     t.position = (sms_real)q;
     t.velocity = (sms_real)v;
     t.acceleration = (sms_real)a;
+    t.minimum_duration = 0;
     return t;
 }
 
@@ -155,6 +156,102 @@ static void test_moving_targets(int trials)
     }
     printf("moving targets [%s]: %d of %d exactly on their arrival sample\n",
            SMS_TEST_PRECISION, landed, trials);
+}
+
+/* A move stretched to a minimum duration Tmin (a random fraction of up to 3x the optimum):
+ * the target state exactly on the arrival sample N, N Ts >= Tmin and N at least the
+ * optimum's; a target at rest with Tmin at most the optimum arrives as without it; every
+ * bound at every sample. The velocity interface too (its velocity reached on sample N). */
+static void test_minimum_duration(int trials)
+{
+    int trial, landed = 0, beyond = 0;
+    for (trial = 0; trial < trials; ++trial) {
+        const double V = pow(10.0, 2.0 * urand() - 1.0), A = V * pow(10.0, 3.0 * urand() - 1.0);
+        const double J = A * pow(10.0, 3.0 * urand() - 1.0), scale = V * (V / A + A / J);
+        const double Ts = (V / A + A / J + V / (V + 1.0)) / (20.0 + 400.0 * urand());
+        const int kind = trial % 3; /* 0: at rest, 1: moving, 2: velocity interface */
+        sms_generator_config c = config(V, A, J, SMS_PROFILE_POLYNOMIAL);
+        sms_generator g;
+        sms_target t;
+        sms_real out[4];
+        double v0, a0, vf = 0, af = 0, q0 = (urand() - 0.5) * scale, Tmin;
+        uint64_t n, n0, k, after;
+        watch w;
+        random_state(V, A, J, 0, &v0, &a0);
+        if (kind > 0)
+            random_state(V, A, J, 1, &vf, &af);
+        t = target(kind == 2 ? SMS_INTERFACE_VELOCITY : SMS_INTERFACE_POSITION,
+                   kind == 2 ? 0.0 : q0 + (urand() - 0.5) * 6.0 * scale, vf, af);
+        CHECK_STATUS(sms_generator_init(&g, &c, Ts, NULL, 0), SMS_OK);
+        CHECK_STATUS(sms_generator_start(&g, (sms_real)q0, (sms_real)v0, (sms_real)a0, &t),
+                     SMS_OK);
+        n0 = sms_generator_arrival(&g);
+        Tmin = 3.0 * urand() * (double)(n0 + 1u) * Ts;
+        t.minimum_duration = (sms_real)Tmin;
+        CHECK_STATUS(sms_generator_start(&g, (sms_real)q0, (sms_real)v0, (sms_real)a0, &t),
+                     SMS_OK);
+        n = sms_generator_arrival(&g);
+        CHECK(n >= n0 && n < 1000000u);
+        CHECK((double)n * Ts >= (double)t.minimum_duration * (1.0 - 64.0 * U));
+        if (!((double)n * Ts >= (double)t.minimum_duration * (1.0 - 64.0 * U)))
+            printf("kind %d n %lu n0 %lu Tmin/Ts %.17g v0 %.17g a0 %.17g vf %.17g af %.17g V %.17g A %.17g J %.17g Ts %.17g\n", kind,
+                   (unsigned long)n, (unsigned long)n0, Tmin / Ts, v0, a0, vf, af, V, A, J, Ts);
+        if ((double)t.minimum_duration <= (double)(n0 - 1u) * Ts && kind == 0)
+            CHECK(n == n0);
+        if ((double)n * Ts > (double)t.minimum_duration + 2.0 * Ts &&
+            (double)n * Ts > (double)n0 * Ts + 2.0 * Ts)
+            ++beyond; /* past a blocked interval */
+        watch_start(&w, &g, q0);
+        after = (uint64_t)(fabs(af) / J / Ts) + 3u;
+        for (k = 1; k <= n + after; ++k) {
+            sms_generator_step_target(&g, &t, out);
+            watch_sample(&w, out);
+            if (k == n) {
+                /* (the velocity interface not stretched arrives between samples) */
+                int exact = out[1] == t.velocity && out[2] == t.acceleration &&
+                            (kind == 2 || out[0] == t.position);
+                int stretched = kind < 2 || (double)t.minimum_duration > (double)n0 * Ts;
+                CHECK(exact || !stretched);
+                landed += exact;
+            }
+        }
+        CHECK(out[2] == 0 && out[3] == 0);
+        watch_check(&w);
+    }
+    printf("minimum duration [%s]: %d of %d exactly on their arrival sample, %d past a "
+           "blocked duration\n", SMS_TEST_PRECISION, landed, trials, beyond);
+}
+
+/* Invalid minimum durations are refused naming the field (SMS_ERR_DURATION), nothing changed;
+ * a stop ignores it; the trigonometric profile takes 0 only. */
+static void test_minimum_duration_refusals(void)
+{
+    static const double bad[] = {-1e-9, 1e300};
+    sms_generator_config c = config(1.0, 10.0, 100.0, SMS_PROFILE_POLYNOMIAL);
+    sms_generator_config ct = config(1.0, 10.0, 100.0, SMS_PROFILE_TRIGONOMETRIC);
+    sms_generator g, copy;
+    sms_target t = target(SMS_INTERFACE_POSITION, 0.5, 0, 0);
+    sms_real out[4];
+    size_t i;
+    CHECK_STATUS(sms_generator_init(&g, &c, 1e-3, NULL, 0), SMS_OK);
+    for (i = 0; i < 4; ++i) {
+        t.minimum_duration = i < 2 ? (sms_real)bad[i] : i == 2 ? (sms_real)NAN : (sms_real)INFINITY;
+        CHECK_STATUS(sms_generator_check_target(&g, &t), SMS_ERR_DURATION);
+        copy = g;
+        CHECK_STATUS(sms_generator_start(&g, 0, 0, 0, &t), SMS_ERR_DURATION);
+        CHECK(memcmp(&copy, &g, sizeof g) == 0);
+        sms_generator_step_target(&g, &t, out); /* ignored: at rest on 0 */
+        CHECK(out[0] == 0 && out[1] == 0);
+    }
+    t.interface = SMS_INTERFACE_STOP;
+    CHECK_STATUS(sms_generator_check_target(&g, &t), SMS_OK);
+    t.interface = SMS_INTERFACE_POSITION;
+    t.minimum_duration = 0.25;
+    CHECK_STATUS(sms_generator_check_target(&g, &t), SMS_OK);
+    CHECK_STATUS(sms_generator_init(&g, &ct, 1e-3, NULL, 0), SMS_OK);
+    CHECK_STATUS(sms_generator_check_target(&g, &t), SMS_ERR_DURATION);
+    t.minimum_duration = 0;
+    CHECK_STATUS(sms_generator_check_target(&g, &t), SMS_OK);
 }
 
 /* A staircase of every kind of target, changed every 1 to 120 samples: every bound at every
@@ -324,7 +421,7 @@ static void test_hold_and_state(void)
     for (mode = 0; mode < 2; ++mode) {
         sms_generator_config c = config(1.0, 10.0, 100.0, SMS_PROFILE_POLYNOMIAL);
         sms_generator a, b;
-        sms_target t[2];
+        sms_target t[3];
         sms_real oa[4], ob[4];
         size_t need = 0, n;
         int which, k;
@@ -334,8 +431,10 @@ static void test_hold_and_state(void)
         CHECK_STATUS(sms_generator_init(&a, &c, 1e-3, ring, need), SMS_OK);
         CHECK_STATUS(sms_generator_init(&b, &c, 1e-3, ring + need, need), SMS_OK);
         t[0] = target(SMS_INTERFACE_POSITION, 0.6, -0.4, 2.0);
-        t[1] = target(SMS_INTERFACE_VELOCITY, 0, -0.7, 0);
-        for (which = 0; which < 2; ++which) {
+        t[1] = target(SMS_INTERFACE_POSITION, -0.3, 0, 0);
+        t[1].minimum_duration = (sms_real)1.2345; /* saved with the target, not re-planned */
+        t[2] = target(SMS_INTERFACE_VELOCITY, 0, -0.7, 0);
+        for (which = 0; which < 3; ++which) {
             for (k = 0; k < 37; ++k)
                 sms_generator_step_target(&a, &t[which], oa);
             n = sms_generator_state_count(&a);
@@ -366,6 +465,8 @@ int main(void)
     test_mixed_staircase(SMS_PROFILE_TRIGONOMETRIC, 12u);
     test_velocity_and_stop();
     test_refusals();
+    test_minimum_duration(300);
+    test_minimum_duration_refusals();
     test_hold_and_state();
     return check_summary("test_generator_targets");
 }

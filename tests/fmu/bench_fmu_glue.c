@@ -5,8 +5,10 @@
  * - fmi2SetReal(u) and fmi2GetReal(y), one value per call (no formatting on this path);
  * - fmi2DoStep(t, Ts) with no stage (the glue alone: state machine, identity, tick count, one
  *   trivial tick), and with a moving average next to sms_chain_step on the same chain;
- * - fmi2GetFMUstate / fmi2SetFMUstate / fmi2SerializeFMUstate for chains of 10, 1000 and 100000
- *   delay-line samples (cost and bytes proportional to the chain);
+ * - fmi2GetFMUstate / fmi2SetFMUstate / fmi2SerializeFMUstate / fmi2DeSerializeFMUstate for
+ *   chains of 10, 1000 and 100000 delay-line samples (cost and bytes proportional to the chain);
+ *   deserialised by the instance itself (its own configuration: its built filters are copied)
+ *   and by a new instance (no filters yet: the state's are designed and built);
  * - fmi2DoStep(t, 1e9 s) over a newly held input (absorbed in a few chain lengths, then skipped).
  * Usage: bench_fmu_glue [--quick]
  */
@@ -128,12 +130,15 @@ int main(int argc, char **argv)
     free(buffer);
 
     printf("\nFMU state of a moving average of N samples (median of %d)\n", ROUNDS);
-    printf("  %8s %12s %12s %12s %14s %14s\n", "N", "get [us]", "set [us]", "serialize [us]",
-           "bytes", "doStep(1e9 s) [us]");
+    printf("  %8s %9s %9s %15s %16s %16s %10s %19s\n", "N", "get [us]", "set [us]",
+           "serialize [us]", "deserialize [us]", "  (new instance)", "bytes", "doStep(1e9 s) [us]");
     for (s = 0; s < 3; ++s) {
         fmi2Component c = instance(sizes[s] * Ts);
-        fmi2FMUstate state = NULL;
-        double get_us[ROUNDS], set_us[ROUNDS], ser_us[ROUNDS], huge_us[ROUNDS], u = 1.0;
+        fmi2Component fresh = fmi2Instantiate("bench", fmi2CoSimulation, FMU_MODEL_GUID, "",
+                                              &callbacks, fmi2False, fmi2False);
+        fmi2FMUstate state = NULL, back = NULL;
+        double get_us[ROUNDS], set_us[ROUNDS], ser_us[ROUNDS], des_us[ROUNDS], fresh_us[ROUNDS];
+        double huge_us[ROUNDS], u = 1.0;
         size_t bytes = 0;
         unsigned char *blob;
         int reps = quick ? 3 : (sizes[s] > 5000 ? 20 : 2000), k;
@@ -154,6 +159,22 @@ int main(int argc, char **argv)
             for (k = 0; k < reps; ++k)
                 fmi2SerializeFMUstate(c, state, (fmi2Byte *)blob, bytes);
             ser_us[r] = (cpu_seconds() - t0) / reps * 1e6;
+            des_us[r] = 0.0;
+            fresh_us[r] = 0.0;
+            for (k = 0; k < reps; ++k) {
+                t0 = cpu_seconds();
+                if (fmi2DeSerializeFMUstate(c, (fmi2Byte *)blob, bytes, &back) != fmi2OK)
+                    return 1;
+                des_us[r] += cpu_seconds() - t0;
+                fmi2FreeFMUstate(c, &back);
+                t0 = cpu_seconds();
+                if (fmi2DeSerializeFMUstate(fresh, (fmi2Byte *)blob, bytes, &back) != fmi2OK)
+                    return 1;
+                fresh_us[r] += cpu_seconds() - t0;
+                fmi2FreeFMUstate(fresh, &back);
+            }
+            des_us[r] *= 1e6 / reps;
+            fresh_us[r] *= 1e6 / reps;
             u = -u;   /* a new held input, then one step of 1e9 s (1e12 ticks) */
             fmi2SetReal(c, &vr_u, 1, &u);
             t0 = cpu_seconds();
@@ -162,12 +183,14 @@ int main(int argc, char **argv)
             huge_us[r] = (cpu_seconds() - t0) * 1e6;
             t += 1e9;
         }
-        printf("  %8.0f %12.2f %12.2f %12.2f %14lu %14.0f\n", sizes[s], median(get_us, ROUNDS),
-               median(set_us, ROUNDS), median(ser_us, ROUNDS), (unsigned long)bytes,
+        printf("  %8.0f %9.2f %9.2f %15.2f %16.2f %16.2f %10lu %19.0f\n", sizes[s],
+               median(get_us, ROUNDS), median(set_us, ROUNDS), median(ser_us, ROUNDS),
+               median(des_us, ROUNDS), median(fresh_us, ROUNDS), (unsigned long)bytes,
                median(huge_us, ROUNDS));
         free(blob);
         fmi2FreeFMUstate(c, &state);
         fmi2FreeInstance(c);
+        fmi2FreeInstance(fresh);
     }
     return sink == 0.5 ? 2 : 0;   /* keeps the loops */
 }

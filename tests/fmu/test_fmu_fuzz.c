@@ -15,7 +15,9 @@
  * - an fmi2Error leaves the instance unchanged (its serialised state is byte for byte the
  *   same before and after the failing call);
  * - no fmi2OK with a non-finite output (fmi2GetReal after every successful step);
- * - every FMU state saved loads again (fmi2SetFMUstate, and serialise -> deserialise -> set).
+ * - every FMU state saved loads again (fmi2SetFMUstate, and serialise -> deserialise -> set);
+ * - a state forged from a serialised one (one value of its dynamic part set to NaN, an infinity
+ *   or beyond half the largest double, the checksum recomputed) is refused.
  * Usage: test_fmu_fuzz_<Model> [sequences [seed [huge] [from=S]]]; default 1000 sequences
  * (seconds). Steps are up to 2000 ticks long; "huge" adds steps of up to 1e12 s, which the
  * models hold in bounded time (fmu_model_hold(): closed forms of every model under a held
@@ -36,6 +38,7 @@
 
 #include "fmi2Functions.h"
 #include "fmu_model.h"
+#include "fmu_serialize.h"
 #include "smoothshaper/smoothshaper.h"
 #if defined(FMU_TEST_TRAJECTORY)
 #include "TrajectoryGenerator_variables.h"
@@ -69,6 +72,7 @@
 
 static unsigned long failures, n_calls, n_errors, n_steps, n_inits, n_restores, n_slow, n_warnings;
 static unsigned long n_nonfinite, n_unloadable, sequence, n_big_inits;
+static unsigned long n_forged, n_forged_accepted;
 static double slowest;
 static unsigned slowest_op;
 static size_t largest_state;   /* bytes of the largest serialised state seen */
@@ -468,6 +472,66 @@ static void closing_call(double dt, const char *call)
     }
 }
 
+static uint32_t u32_at(const unsigned char *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+
+/* Offset and count of the serialised state's dynamic part (fmu_serialize.c's layout). */
+static size_t dynamic_part(const unsigned char *blob, size_t size, size_t *count)
+{
+    size_t off = 8;
+    off += 4 + u32_at(blob + off);                 /* guid */
+    off += 4 + 4 + 8 + 8 + 4 + 4 + 8 + 4 + 4;      /* real bytes, the clock */
+    off += 4 + 12 * (size_t)u32_at(blob + off);    /* Real values */
+    off += 4 + 8 * (size_t)u32_at(blob + off);     /* Integer values */
+    *count = u32_at(blob + off);
+    off += 4;
+    off += (8 - off % 8) % 8;
+    CHECK(off + 8 * *count + 8 == size);
+    return off;
+}
+
+/* A state forged from a valid blob: one value of its dynamic part (outputs and filter state)
+ * replaced by NaN, an infinity or a finite value beyond half the largest double, which no
+ * state of any model holds (every internal sum stays below it for inputs in range), and the
+ * checksum recomputed. Deserialising it must fail. */
+static void forge(fmi2Component c, const unsigned char *blob, size_t size)
+{
+    static const double kinds[5] = { 0.0, 1.0, -1.0, 0.5, -0.5 };
+    size_t count, off = dynamic_part(blob, size, &count), at;
+    unsigned char *forged;
+    unsigned kind = pick(5);
+    double value;
+    uint64_t sum;
+    fmi2FMUstate back = NULL;
+    fmi2Status st;
+    int i;
+    if (count == 0)
+        return;
+    forged = (unsigned char *)malloc(size);
+    memcpy(forged, blob, size);
+    at = off + 8 * (size_t)pick((unsigned)(count < 4000000u ? count : 4000000u));
+    value = kind == 0 ? NAN : kind <= 2 ? kinds[kind] * HUGE_VAL
+                                        : kinds[kind] * DBL_MAX * (1.0 + uniform());
+    if (kind >= 3 && !isfinite(value))
+        value = kinds[kind] * DBL_MAX;
+    memcpy(forged + at, &value, 8);   /* little-endian hosts only, as the tests run */
+    sum = fmu_xxh64(forged, size - 8);
+    for (i = 0; i < 8; ++i)
+        forged[size - 8 + (size_t)i] = (unsigned char)(sum >> (8 * i));
+    st = fmi2DeSerializeFMUstate(c, (fmi2Byte *)forged, size, &back);
+    ++n_forged;
+    if (st != fmi2Error) {
+        ++n_forged_accepted;
+        fprintf(stderr, "sequence %lu: a forged state was accepted (value %lu of %lu set to "
+                "%.17g)\n", sequence, (unsigned long)((at - off) / 8), (unsigned long)count,
+                value);
+        fmi2FreeFMUstate(c, &back);
+    }
+    free(forged);
+}
+
 static void run_sequence(unsigned length)
 {
     fmi2Component c = fmi2Instantiate("fuzz", fmi2CoSimulation, FMU_MODEL_GUID, NULL,
@@ -574,6 +638,8 @@ static void run_sequence(unsigned length)
                     longest_inner = seconds() - inner;
                 CHECK(st == fmi2OK);
                 n_unloadable += st != fmi2OK;
+                if (st == fmi2OK && pick(2) == 0)
+                    forge(c, blob, size);
                 if (st == fmi2OK) {
                     inner = seconds();
                     ok = fmi2SetFMUstate(c, back);
@@ -706,13 +772,15 @@ int main(int argc, char **argv)
     CHECK(n < 10 * LARGE_EVERY
           || (n_big_inits > 0 && largest_state >= FMU_MAX_REALS / 4 * 8));
 #endif
-    CHECK(n < 200 || (n_inits > n / 4 && n_steps > n && n_restores > n / 4));
+    CHECK(n < 200 || (n_inits > n / 4 && n_steps > n && n_restores > n / 4 && n_forged > 0));
+    CHECK(n_forged_accepted == 0);
     printf("fmu_fuzz %s: %lu sequences (seed %llu), %lu calls (%lu errors), %lu initialisations "
            "(%lu right after a draw of a large state), %lu steps (%lu with a warning), %lu "
            "states restored, largest serialised state %lu bytes; %lu calls over %.0f ms (slowest "
            "%.3f ms, call %u), %lu non-finite outputs after fmi2OK, %lu saved states not loadable, "
-           "%lu failures\n", FMU_MODEL_IDENTIFIER, n, seed, n_calls, n_errors, n_inits,
-           n_big_inits, n_steps, n_warnings, n_restores, (unsigned long)largest_state, n_slow,
-           1e3 * CALL_LIMIT_S, 1e3 * slowest, slowest_op, n_nonfinite, n_unloadable, failures);
+           "%lu of %lu forged states accepted, %lu failures\n", FMU_MODEL_IDENTIFIER, n, seed,
+           n_calls, n_errors, n_inits, n_big_inits, n_steps, n_warnings, n_restores,
+           (unsigned long)largest_state, n_slow, 1e3 * CALL_LIMIT_S, 1e3 * slowest, slowest_op,
+           n_nonfinite, n_unloadable, n_forged_accepted, n_forged, failures);
     return failures == 0 ? 0 : 1;
 }

@@ -75,6 +75,8 @@ def draw(category: str, seed: int, directory: str, fs: float = 1600.0, **run_kw)
     ours = syn.true_remaining(Ai, ti, truth, shift)
     theirs = syn.true_remaining(pick["A"], pick["T"], truth, shift)
     lo, hi = c.vibration_range
+    # the range is stated with its own value (the plant estimate) and holds it
+    assert lo * (1 - 1e-9) <= c.vibration_estimate <= hi * (1 + 1e-9), (category, seed, c.name)
     return Draw(category, seed, ours, theirs, lo, hi, c.name,
                 f"{pick['name']}@{pick['freq']:.1f}", res.ranked_by,
                 [(m.f_hz, m.zeta) for m in res.modes], truth)

@@ -250,3 +250,12 @@ def test_percent_scales_keep_1_5_20_100_apart():
     assert {1, 5, 20, 100} <= set(cs.levels) and len(c.collections or c.get_children()) > 0
     assert set(PRV_CONTOURS) == {1, 5, 20, 100}
     plt.close(fig)
+
+
+def test_every_report_section_has_a_cost():
+    """smoothshaper report models every section before it starts: a section without a
+    measured time stopped the whole command with a KeyError before it wrote anything."""
+    from smoothshaper.cli.cost import REPORT_SECONDS, report_cost
+    from smoothshaper.report import SECTIONS
+    assert set(REPORT_SECONDS) == set(SECTIONS)
+    assert report_cost(list(SECTIONS)).seconds == pytest.approx(sum(REPORT_SECONDS.values()))

@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: Apache-2.0
-"""The system co-simulations (TrajectoryGenerator -> SmoothShaper -> ElasticPlant, and ->
-ServoDrive, SSP) in libcosim and fmpy against the NumPy reference (and the servo testbed), and
-the ElasticPlant FMU against the exact ZOH plant for several communication steps."""
+"""The system co-simulations (TrajectoryGenerator -> SmoothShaper -> ElasticPlant, one SSP file
+for both importers, and -> ServoDrive, SSP) in libcosim and fmpy against the NumPy reference (and
+the servo testbed), fmpy's handling of a file's parameter bindings, and the ElasticPlant FMU
+against the exact ZOH plant for several communication steps."""
 from __future__ import annotations
 
 import zipfile
@@ -20,8 +21,8 @@ TOL = 1e-12 * cosim.MOVE   # double rounding of a 10 mm move through three FMUs
 @pytest.fixture(scope="module")
 def runs(fmus, tmp_path_factory):  # noqa: F811
     pytest.importorskip("libcosimpy", reason="libcosimpy is the second importer")
-    ssp, ssp_libcosim = cosim.write_ssp(tmp_path_factory.mktemp("ssp"), fmus)
-    return cosim.run_all(ssp, ssp_libcosim)
+    ssp = cosim.write_ssp(tmp_path_factory.mktemp("ssp"), fmus)
+    return cosim.run_all(ssp)
 
 
 def test_every_run_equals_the_reference(runs):
@@ -41,18 +42,30 @@ def test_the_zv_shaper_removes_the_residual_vibration(runs):
     assert all(w <= TOL for w in with_zv), with_zv
 
 
-def test_the_ssp_files_hold_the_system(fmus, tmp_path):  # noqa: F811
-    ssp, ssp_libcosim = cosim.write_ssp(tmp_path, fmus)
+def test_the_ssp_file_holds_the_system(fmus, tmp_path):  # noqa: F811
+    ssp = cosim.write_ssp(tmp_path, fmus)
     from fmpy.ssp.ssd import read_ssd
     system = read_ssd(str(ssp)).system            # validates against the SSP 1.0 schema
     assert [e.name for e in system.elements] == ["Generator", "Shaper", "Plant"]
-    assert len(system.connections) == 3
-    assert len(read_ssd(str(ssp_libcosim)).system.connections) == 2
+    assert len(system.connections) == 2 and not system.connectors
     values = cosim.ssp_parameters(ssp)
     assert values["Shaper.stage[0].kind"] == cosim.KIND_ZV and values["Plant.k_t"] == 0.156
+    assert values["Generator.target"] == cosim.MOVE
     with zipfile.ZipFile(ssp) as z:
         assert {"resources/ElasticPlant.fmu", "resources/SmoothShaper.fmu",
                 "resources/TrajectoryGenerator.fmu"} <= set(z.namelist())
+
+
+def test_fmpy_alone_ignores_the_bindings_and_the_runner_applies_them(fmus, tmp_path):  # noqa: F811
+    """fmpy.ssp.simulate_ssp parses the SSD's bindings but applies only its parameter_set
+    argument: alone, the generator keeps its default target 0 and nothing moves (the product
+    detects that); with ssp_parameter_set the same call runs the system as the file says."""
+    from fmpy.ssp.simulation import simulate_ssp
+    ssp = cosim.write_ssp(tmp_path, fmus)
+    assert not cosim.fmpy_applies_bindings(ssp)
+    r = simulate_ssp(str(ssp), stop_time=0.1, step_size=cosim.TS,
+                     parameter_set=cosim.ssp_parameter_set(ssp))
+    assert np.asarray(r["Generator.q"])[-1] > 0.5 * cosim.MOVE
 
 
 @pytest.mark.parametrize("step", [1e-3, 2.5e-3, 0.4e-3], ids=["Ts", "2.5Ts", "0.4Ts"])

@@ -118,6 +118,42 @@ def test_state_serialised_mid_switch_continues(ss_dir):
         f.freeInstance()
 
 
+def test_state_restored_after_a_retune_keeps_its_own_parameters(ss_dir):
+    """A state saved before a retune, restored into the instance that has retuned since: the
+    state's tunable values come back (stage[1].wn reads the saved 200, not the 150 set after)
+    and the run continues bit for bit as a fresh instance that loads the same state. The
+    restore into an instance of the state's own parameters copies that instance's built
+    filters instead of designing them; the retuned instance's must not be copied over the
+    state's values (its pending retune to 150 would then be applied on the next tick)."""
+    u = move(700)
+    fmu = slave(ss_dir)
+    start(fmu, {**STAGES, "retune_max_delay": 0.05})
+    for i, ui in enumerate(u[:300]):
+        fmu.setReal([fmu.vr["u"]], [ui])
+        fmu.doStep(i * TS, TS)
+    blob = fmu.serializeFMUstate(fmu.getFMUstate())
+    fmu.setReal([fmu.vr["stage[1].wn"]], [150.0])
+    for i, ui in enumerate(u[300:350], 300):
+        fmu.setReal([fmu.vr["u"]], [ui])
+        fmu.doStep(i * TS, TS)
+    twin = slave(ss_dir, name="twin")
+    start(twin, {**STAGES, "retune_max_delay": 0.05})
+    for f in (fmu, twin):
+        f.setFMUstate(f.deSerializeFMUstate(blob))
+        assert f.getReal([f.vr["stage[1].wn"]]) == [200.0]
+    out = []
+    for i, ui in enumerate(u[300:], 300):
+        for f in (fmu, twin):
+            f.setReal([f.vr["u"]], [ui])
+            f.doStep(i * TS, TS)
+        out.append((fmu.getReal([fmu.vr["y"]])[0], twin.getReal([twin.vr["y"]])[0],
+                    fmu.getReal([fmu.vr["lag"]])[0], twin.getReal([twin.vr["lag"]])[0]))
+    assert all(a == b and la == lb for a, b, la, lb in out)
+    for f in (fmu, twin):
+        f.terminate()
+        f.freeInstance()
+
+
 def schedule_values(table):
     values = {"schedule.kind": SCHEDULED_ZV, "schedule.points": len(table)}
     for j, (s, wn, zeta) in enumerate(table):

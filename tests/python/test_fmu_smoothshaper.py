@@ -303,10 +303,16 @@ def test_inputs_are_continuous_outputs_have_no_direct_feedthrough(fmus):
                  and v.name.split("[")[0] not in ("q0", "schedule.value")]   # a rest position
         # and a scheduling value (a position, a load) have no natural bound
         assert all(v.min is not None or v.max is not None for v in reals)
-        assert all(v.unit in (None, "s", "1/s", "rad/s", "1", "kg.m2", "N.m/rad", "N.m.s/rad")
-                   for v in md.modelVariables)
-        signals = [v for v in md.modelVariables if v.causality in ("input", "output")]
-        assert all(v.unit is None for v in signals)   # any unit: the filters are linear
+        assert all(v.unit in (None, "s", "1/s", "rad/s", "1", "kg.m2", "N.m/rad", "N.m.s/rad",
+                              "rad", "N.m") for v in md.modelVariables)
+        # (a duration input, TrajectoryGenerator's minimum_duration, is in seconds)
+        signals = [v for v in md.modelVariables if v.causality in ("input", "output")
+                   and v.name != "minimum_duration"]
+        assert all(v.unit == "s" for v in md.modelVariables if v.name == "minimum_duration")
+        if md.modelName != "ServoDrive":   # a drive's signals are angles and torques
+            assert all(v.unit is None for v in signals)   # any unit: the filters are linear
+        else:
+            assert all(v.unit in ("rad", "rad/s", "N.m") for v in signals)
 
 
 def test_setting_u_does_not_change_y_before_the_next_step(smoothshaper_dir):

@@ -33,24 +33,42 @@ def targets(seed, blocks=12, hold=60):
     return np.array(pos), np.array(vel), np.array(acc), np.array(code)
 
 
-def run_targets(fmu, t0, pos, vel, acc, code):
+def run_targets(fmu, t0, pos, vel, acc, code, tmin=None):
     out = np.empty((pos.size, 4))
     qvaj = [fmu.vr[n] for n in "qvaj"]
     real = [fmu.vr["target"], fmu.vr["target_velocity"], fmu.vr["target_acceleration"]]
     for i in range(pos.size):
         fmu.setReal(real, [pos[i], vel[i], acc[i]])
+        if tmin is not None:
+            fmu.setReal([fmu.vr["minimum_duration"]], [tmin[i]])
         fmu.setInteger([fmu.vr["interface"]], [int(code[i])])
         fmu.doStep(t0 + i * TS, TS)
         out[i] = fmu.getReal(qvaj)
     return out
 
 
-def python_run(pos, vel, acc, code, **extra):
+def python_run(pos, vel, acc, code, tmin=None, **extra):
     if "profile" in extra:   # the FMU's code, the class's name
         extra = dict(extra, profile=("polynomial", "trigonometric", "damped")[extra["profile"]])
     g = Generator(Ts=TS, **LIMITS, **extra)
     names = np.array(["position", "velocity", "velocity"])[code]
-    return g.process(pos, velocity=vel, acceleration=acc, interface=names, stop=code == 2)
+    return g.process(pos, velocity=vel, acceleration=acc, interface=names, stop=code == 2,
+                     minimum_duration=tmin)
+
+
+def test_minimum_duration_through_fmpy_equals_the_python_generator(trajectory_dir):  # noqa: F811
+    """The input minimum_duration (half the targets stretched to up to 0.2 s)."""
+    pos, vel, acc, code = targets(5, blocks=16, hold=200)
+    rng = np.random.default_rng(6)
+    # one minimum per held target: constant over each block of equal targets
+    block = np.r_[0, np.cumsum((np.diff(pos) != 0) | (np.diff(vel) != 0) | (np.diff(code) != 0))]
+    tmin = np.where(rng.random(block.max() + 1) < 0.5, rng.uniform(0, 0.2, block.max() + 1),
+                    0.0)[block]
+    fmu = slave(trajectory_dir, "tg")
+    start(fmu)
+    y = run_targets(fmu, 0.0, pos, vel, acc, code, tmin)
+    fmu.freeInstance()
+    assert np.array_equal(y, python_run(pos, vel, acc, code, tmin))
 
 
 @pytest.mark.parametrize("seed,extra", [(1, {}), (2, {"profile": 2, "wn": 60.0, "zeta": 0.1})],
@@ -96,6 +114,7 @@ def test_simulate_fmu_with_its_defaults_equals_the_python_generator(fmus):  # no
     ("target_velocity", 1.5, "target_velocity = 1.5 is beyond vmax"),
     ("target_acceleration", 12.0, "target_acceleration = 12"),
     ("target_acceleration", 3.0, "v + a|a|/(2 jmax)"),
+    ("minimum_duration", -1.0, "minimum_duration = -1 must be finite, >= 0"),
 ])
 def test_a_target_beyond_the_limits_fails_the_step_naming_it(trajectory_dir, field, value,  # noqa: F811
                                                              words):
@@ -116,6 +135,7 @@ def test_a_target_beyond_the_limits_fails_the_step_naming_it(trajectory_dir, fie
         fmu.doStep(t0, TS)
     assert words in log.messages[-1], log.messages[-1]
     assert fmu.serializeFMUstate(fmu.getFMUstate()) == before
+    fmu.setReal([fmu.vr["minimum_duration"]], [0.0])   # (run_targets sets the other three)
     more = targets(4, blocks=3)
     assert np.array_equal(run_targets(fmu, t0, *more), run_targets(twin, t0, *more))
     for f in (fmu, twin):

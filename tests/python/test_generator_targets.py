@@ -42,9 +42,10 @@ def test_campaign_full(feature, precision):
 
 
 def _sequence(rng, n_blocks, profile):
-    """Per-sample targets of every kind, held 1 to 150 samples each."""
+    """Per-sample targets of every kind, held 1 to 150 samples each (a third of them with a
+    minimum duration of up to 0.4 s, but for the trigonometric profile)."""
     V, A, J = 1.0, 10.0, 100.0
-    pos, vel, acc, itf, stop = [], [], [], [], []
+    pos, vel, acc, itf, stop, tmin = [], [], [], [], [], []
     for _ in range(n_blocks):
         k = int(rng.integers(1, 150))
         kind = rng.choice(3, p=[0.55, 0.35, 0.10])
@@ -56,7 +57,10 @@ def _sequence(rng, n_blocks, profile):
         acc += [a] * k
         itf += ["velocity" if kind == 1 else "position"] * k
         stop += [kind == 2] * k
-    return (np.array(pos), np.array(vel), np.array(acc), np.array(itf), np.array(stop))
+        stretch = profile != "trigonometric" and rng.random() < 1 / 3
+        tmin += [rng.uniform(0, 0.4) if stretch else 0.0] * k
+    return (np.array(pos), np.array(vel), np.array(acc), np.array(itf), np.array(stop),
+            np.array(tmin))
 
 
 @pytest.mark.parametrize("profile,mode", [("polynomial", {}), ("trigonometric", {}),
@@ -66,15 +70,16 @@ def test_c_equals_the_reference_on_every_kind_of_target(profile, mode):
     at the odd breakpoint within rounding of a sample (the two may take opposite sides)."""
     rng = np.random.default_rng(4)
     for _ in range(6):
-        pos, vel, acc, itf, stop = _sequence(rng, 14, profile)
+        pos, vel, acc, itf, stop, tmin = _sequence(rng, 14, profile)
         pos = np.r_[pos, np.full(3000, 0.3)]
         vel, acc = np.r_[vel, np.zeros(3000)], np.r_[acc, np.zeros(3000)]
         itf, stop = np.r_[itf, ["position"] * 3000], np.r_[stop, np.zeros(3000, bool)]
+        tmin = np.r_[tmin, np.zeros(3000)]
         kw = dict(vmax=1.0, amax=10.0, jmax=100.0, Ts=1e-3, profile=profile, **mode)
         y = Generator(**kw).process(pos, velocity=vel, acceleration=acc, interface=itf,
-                                    stop=stop)
+                                    stop=stop, minimum_duration=tmin)
         ref = generator_reference(pos, velocity=vel, acceleration=acc, interface=itf, stop=stop,
-                                  **kw)
+                                  minimum_duration=tmin, **kw)
         scale = np.array([np.max(np.abs(y[:, 0])) + 1, 1.0, 10.0])
         assert np.all(np.abs(y[:, :3] - ref[:, :3]) <= 1e-9 * scale)
         assert np.mean(np.abs(y[:, 3] - ref[:, 3]) > 1e-9 * 100.0) <= 0.01
@@ -97,6 +102,10 @@ def test_process_refuses_a_bad_target_naming_it_and_changes_nothing():
         (dict(targets=np.zeros(n), stop=np.zeros(n)), "stop", "bool"),
         (dict(velocity=0.2, interface="position"), "targets", "position"),
         (dict(targets=np.r_[np.zeros(3), np.nan]), "targets", "finite"),
+        (dict(targets=np.zeros(n), minimum_duration=np.r_[np.zeros(7), -0.1, np.zeros(12)]),
+         "minimum_duration", "sample 7"),
+        (dict(targets=np.zeros(n), minimum_duration=np.inf), "minimum_duration", "finite"),
+        (dict(targets=np.zeros(n), minimum_duration=1e300), "minimum_duration", "2^50"),
     ]
     for kwargs, name, words in bad:
         with pytest.raises(ParameterError) as info:
@@ -109,6 +118,31 @@ def test_process_refuses_a_bad_target_naming_it_and_changes_nothing():
         tg.process(np.zeros(3), velocity=0.5)
     with pytest.raises(ParameterError, match="^acceleration") as info:
         tg.process(velocity=np.full(3, 0.5), acceleration=1.0)
+    with pytest.raises(ParameterError, match="^minimum_duration at sample 0: 0.5: the trig"):
+        tg.process(np.zeros(3), minimum_duration=0.5)
+
+
+def test_minimum_duration_stretches_the_move_onto_its_sample():
+    """A rest-to-rest move of 0.297 s (trajectory.h) asked to last 1 s arrives on sample 1000
+    exactly, within every limit; a minimum below the optimum changes nothing; the minimum is
+    part of the target (the same target with another minimum re-plans from there)."""
+    kw = dict(vmax=1.0, amax=10.0, jmax=100.0, Ts=1e-3)
+    fast = Generator(**kw).process(np.full(1200, 0.0819))
+    y = Generator(**kw).process(np.full(1200, 0.0819), minimum_duration=1.0)
+    at = np.flatnonzero((y[:, 0] == 0.0819) & np.all(y[:, 1:] == 0, axis=1))[0]
+    assert at == 1000                        # the move starts on out[0]
+    assert np.all(np.abs(y[:, 1:]) <= np.array([1.0, 10.0, 100.0]) * (1 + 2.0 ** -48))
+    assert np.array_equal(Generator(**kw).process(np.full(1200, 0.0819), minimum_duration=0.1),
+                          fast)
+    g = Generator(**kw)
+    g.start_from(0.0, 0.0, 0.0, target=0.5, minimum_duration=2.0)
+    assert g.arrival == 2000
+    g.process(np.full(10, 0.5), minimum_duration=2.0)        # held: no re-plan
+    assert g.arrival == 1990
+    g.process(np.full(1, 0.5), minimum_duration=0.0)         # changed: as fast as possible
+    assert g.arrival < 1000
+    with pytest.raises(ParameterError, match="^minimum_duration"):
+        g.start_from(0.0, target=0.5, minimum_duration=np.nan)
 
 
 def test_start_from_any_state_towards_every_kind_of_target():

@@ -116,6 +116,13 @@ SMS_API void sms_chain_get_state(const sms_chain *chain, double *dst);
  * first field that differs in the first stage saved by another configuration (also when the
  * lengths differ); ::SMS_ERR_STATE if n or a value does not fit. */
 SMS_API sms_status sms_chain_set_state(sms_chain *chain, const double *src, size_t n);
+/** @brief Is src a state a run of the chain with every input and rest value |x| <= x_max could
+ * reach? Each stage's part as sms_stage_check_state_range() with the range stage i sees,
+ * (1 + 2 G_0 ... G_{i-1}) x_max (sms_chain_input_max()). Writes nothing.
+ * @param x_max  the largest |input| of the run, at most sms_chain_input_max()
+ * @return ::SMS_OK, ::SMS_ERR_NULL, a stage's identity status, or ::SMS_ERR_STATE. */
+SMS_API sms_status sms_chain_check_state_range(const sms_chain *chain, const double *src,
+                                               size_t n, double x_max);
 /** @brief After copying chain, stages and memory elsewhere, point the copy at its own stages
  * and memory. */
 SMS_API void sms_chain_rebind(sms_chain *chain, sms_stage *stages, sms_memory_cell *memory);

@@ -99,6 +99,14 @@ SMS_API void sms_notch_get_state(const sms_notch *f, double *dst);
 SMS_API sms_status sms_notch_set_state(sms_notch *f, const double *src, size_t n);
 /** @brief The validation of sms_notch_set_state() alone: writes nothing. */
 SMS_API sms_status sms_notch_check_state(const sms_notch *f, const double *src, size_t n);
+/** @brief Is src a state a run with every input and rest value |x| <= x_max could reach? What
+ * sms_notch_check_state() accepts, with the last inputs and the rest finite and within x_max and
+ * the recursion's w1, w2 finite and within w_max (sms_stage_check_state_range() passes
+ * 2 x_max (G - 1), G = sms_stage_gain_bound(): the l1 bound of (1 - z^-1)(d0 - d2 z^-1)/A).
+ * Writes nothing.
+ * @return ::SMS_OK, what sms_notch_check_state() returns, or ::SMS_ERR_STATE. */
+SMS_API sms_status sms_notch_check_state_range(const sms_notch *f, const double *src, size_t n,
+                                               double x_max, double w_max);
 /**
  * @brief Pole damping xi2 such that the continuous notch (zero damping xi1 = zeta, centre wn)
  * has the given -3 dB bandwidth B [rad/s] (distance between the two frequencies where

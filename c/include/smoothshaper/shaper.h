@@ -192,6 +192,12 @@ SMS_API void sms_shaper_get_state(const sms_shaper *f, double *dst);
 SMS_API sms_status sms_shaper_set_state(sms_shaper *f, const double *src, size_t n);
 /** @brief The validation of sms_shaper_set_state() alone: writes nothing. */
 SMS_API sms_status sms_shaper_check_state(const sms_shaper *f, const double *src, size_t n);
+/** @brief Is src a state a run with every input and rest value |x| <= x_max could reach? What
+ * sms_shaper_check_state() accepts, with the rest and the delay line (the inputs as they came)
+ * finite and within x_max. Writes nothing.
+ * @return ::SMS_OK, what sms_shaper_check_state() returns, or ::SMS_ERR_STATE. */
+SMS_API sms_status sms_shaper_check_state_range(const sms_shaper *f, const double *src,
+                                                size_t n, double x_max);
 /**
  * @brief The continuous design: amplitudes (sum 1) and times [s] in increasing order.
  * @param capacity room in amplitudes and times; ::SMS_SHAPER_MAX_IMPULSES always suffices

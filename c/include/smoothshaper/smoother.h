@@ -243,6 +243,19 @@ SMS_API sms_status sms_smoother_set_state(sms_smoother *f, const double *src, si
 
 /** @brief The validation of sms_smoother_set_state() alone: writes nothing. */
 SMS_API sms_status sms_smoother_check_state(const sms_smoother *f, const double *src, size_t n);
+/**
+ * @brief Is src a state a run could reach with every input and rest value |x| <= x_max? What
+ * sms_smoother_check_state() accepts, and every value finite: the rest within x_max, the ring
+ * and the references (which hold x - rest) within 2 x_max, the two copies within 2 x_max times
+ * the internal gain the input range leaves room for (::SMS_REAL_MAX over the uncapped range
+ * behind sms_smoother_input_max()) and at most half of ::SMS_REAL_MAX, each with a margin of
+ * 2^-20 for rounding. A loader of
+ * states from outside (a file, an FMU state) uses this to refuse a state no run produces.
+ * @param x_max  the largest |input| of the run, at most sms_smoother_input_max()
+ * @return ::SMS_OK, what sms_smoother_check_state() returns, or ::SMS_ERR_STATE. Writes nothing.
+ */
+SMS_API sms_status sms_smoother_check_state_range(const sms_smoother *f, const double *src,
+                                                  size_t n, double x_max);
 
 /**
  * @brief Write the L impulse-response taps (normalised, DC gain 1) of a config, computed in

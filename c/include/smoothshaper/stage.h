@@ -113,6 +113,13 @@ SMS_API void sms_stage_get_state(const sms_stage *stage, double *dst);
 SMS_API sms_status sms_stage_set_state(sms_stage *stage, const double *src, size_t n);
 /** @brief Would sms_stage_set_state() accept this vector? Writes nothing. */
 SMS_API sms_status sms_stage_check_state(const sms_stage *stage, const double *src, size_t n);
+/** @brief Is src a state a run with every input and rest value |x| <= x_max could reach? What
+ * sms_stage_check_state() accepts, with every value finite and within what such inputs leave
+ * in it (sms_smoother_check_state_range(), sms_shaper_check_state_range(),
+ * sms_notch_check_state_range()). For loading states that come from outside. Writes nothing.
+ * @param x_max  the largest |input| of the run, at most sms_stage_input_max() */
+SMS_API sms_status sms_stage_check_state_range(const sms_stage *stage, const double *src,
+                                               size_t n, double x_max);
 /** @brief Cells of memory this stage uses (= sms_stage_memory_size() of its config). */
 SMS_API size_t sms_stage_memory_len(const sms_stage *stage);
 /** @brief Point a stage copied together with its memory (cell for cell) at the copy. */

@@ -232,17 +232,29 @@ typedef enum sms_interface {
  * | position     | finite (position interface; ignored otherwise) |
  * | velocity     | finite, \|v\| <= vmax (ignored for stop) |
  * | acceleration | finite, \|a\| <= amax, and v - a\|a\|/(2 jmax), v + a\|a\|/(2 jmax) within \|.\| <= vmax (ignored for stop) |
+ * | minimum_duration | finite, >= 0 [s], below 2^50 samples of Ts; 0 with the trigonometric profile (ignored for stop) |
  *
- * The last row keeps the velocity within its bound on the way in (where the acceleration was
- * last zero on the fastest approach) and after the target (where it returns to zero). The
- * trigonometric profile plans position targets at rest and velocity targets with
- * acceleration 0 only.
+ * The acceleration row keeps the velocity within its bound on the way in (where the
+ * acceleration was last zero on the fastest approach) and after the target (where it returns
+ * to zero). The trigonometric profile plans position targets at rest and velocity targets
+ * with acceleration 0 only.
+ *
+ * `minimum_duration` (ruckig's minimum_duration; 0: none) stretches the move: the target
+ * state is reached exactly on the first sample N after the re-plan with N Ts >= both the
+ * time-optimal duration and minimum_duration (within 8 ulps of a sample: on it) at which a
+ * motion of N Ts within the limits exists (a blocked duration is skipped to the next that
+ * has one). Such a motion is the convex combination of the two that end farthest either way
+ * (docs/design.md, "A minimum duration"); for the velocity interface, their midpoint. Like
+ * every field it is part of the target: the move is stretched from the sample the target
+ * (with it) was given on. Last in the struct so that initialisers of the other four stay
+ * valid ({q, v, a, interface} leaves it 0).
  */
 typedef struct sms_target {
     sms_real position;
     sms_real velocity;
     sms_real acceleration;
     int interface;
+    sms_real minimum_duration; /**< [s], 0: as fast as the limits allow */
 } sms_target;
 
 /**
@@ -277,15 +289,16 @@ typedef struct sms_generator_config {
 
 /** @brief Doubles of a saved generator state after its identity (sms_generator_get_state()),
  * and where each field lies counted from the end of the identity: the latest target and the
- * goal of the running plan (each position, velocity, acceleration, interface), the running
- * plan's start q, v, a and the samples since it. */
-#define SMS_GENERATOR_PLAN_STATE_COUNT 12
-#define SMS_GENERATOR_STATE_TARGET 0 /**< target: position, velocity, acceleration, interface */
-#define SMS_GENERATOR_STATE_GOAL 4   /**< goal of the running plan, the same four */
-#define SMS_GENERATOR_STATE_Q 8      /**< the running plan's start position */
-#define SMS_GENERATOR_STATE_V 9      /**< ... velocity */
-#define SMS_GENERATOR_STATE_A 10     /**< ... acceleration */
-#define SMS_GENERATOR_STATE_K 11     /**< samples since the plan's first */
+ * goal of the running plan (each position, velocity, acceleration, interface,
+ * minimum_duration), the running plan's start q, v, a and the samples since it. */
+#define SMS_GENERATOR_PLAN_STATE_COUNT 14
+#define SMS_GENERATOR_STATE_TARGET 0 /**< target: position, velocity, acceleration, interface,
+                                        minimum_duration */
+#define SMS_GENERATOR_STATE_GOAL 5   /**< goal of the running plan, the same five */
+#define SMS_GENERATOR_STATE_Q 10     /**< the running plan's start position */
+#define SMS_GENERATOR_STATE_V 11     /**< ... velocity */
+#define SMS_GENERATOR_STATE_A 12     /**< ... acceleration */
+#define SMS_GENERATOR_STATE_K 13     /**< samples since the plan's first */
 
 /**
  * @brief How far, relative, the generators' reported |v|, |a|, |j| may exceed vmax, amax,

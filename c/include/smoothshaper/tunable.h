@@ -169,6 +169,13 @@ SMS_API void sms_tunable_get_state(const sms_tunable *t, double *dst);
 SMS_API sms_status sms_tunable_set_state(sms_tunable *t, const double *src, size_t n);
 /** @brief Would sms_tunable_set_state() accept this vector? Writes nothing. */
 SMS_API sms_status sms_tunable_check_state(const sms_tunable *t, const double *src, size_t n);
+/** @brief Is src, besides what sms_tunable_check_state() accepts, a state a run with every
+ * input |x| <= x_max could reach? The last input and the held h within x_max, and each
+ * filter's part as sms_stage_check_state_range() with x_max (the old filter ran on h since the
+ * switch). For loading states that come from outside. Writes nothing.
+ * @return as sms_tunable_check_state(), or ::SMS_ERR_STATE. */
+SMS_API sms_status sms_tunable_check_state_range(const sms_tunable *t, const double *src,
+                                                 size_t n, double x_max);
 /**
  * @brief The configurations a saved tunable state belongs to, read from its stages'
  * identities (the fields each kind reads; the others at sms_stage_config_default()).

@@ -58,7 +58,9 @@ typedef enum sms_status {
     SMS_OK = 0,                     /**< success */
     SMS_ERR_NULL = -1,              /**< a required pointer argument is NULL */
     SMS_ERR_SAMPLE_PERIOD = -2,     /**< Ts is NaN/Inf or <= 0 */
-    SMS_ERR_DURATION = -3,          /**< T is NaN/Inf or <= 0 */
+    SMS_ERR_DURATION = -3,          /**< T is NaN/Inf or <= 0 (a target's minimum_duration: NaN/Inf,
+                                         < 0, beyond 2^50 samples, or not 0 where the
+                                         profile cannot stretch a move) */
     SMS_ERR_DURATION_BELOW_TS = -4, /**< T < Ts (beyond the 1e-9 grid tolerance): shorter than
                                      one sample; see config.h for the one rule */
     SMS_ERR_SIGMA = -5,             /**< sigma is NaN/Inf or > 0 (an unstable mode) */

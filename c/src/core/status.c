@@ -8,7 +8,7 @@ const char *sms_status_string(sms_status status)
     case SMS_OK: return "ok";
     case SMS_ERR_NULL: return "a required pointer argument is NULL";
     case SMS_ERR_SAMPLE_PERIOD: return "Ts must be finite and > 0";
-    case SMS_ERR_DURATION: return "T must be finite and > 0";
+    case SMS_ERR_DURATION: return "T must be finite and > 0 (a minimum duration: >= 0)";
     case SMS_ERR_DURATION_BELOW_TS: return "T must be >= Ts";
     case SMS_ERR_SIGMA: return "sigma must be finite and <= 0, and not so negative that the "
                                "smoother's internal gain (about e^(-sigma Ts)) overflows";

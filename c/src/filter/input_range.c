@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* The finite input range of a stage and of a chain (types.h, SMS_INPUT_MAX), in closed form
- * from the built constants: O(1) per stage, nothing on the per-sample path. */
+ * from the built constants: O(1) per stage, nothing on the per-sample path; and the states a
+ * run within a range can reach. */
 #include <float.h>
 #include <math.h>
 #include "smoothshaper/chain.h"
@@ -119,4 +120,51 @@ double sms_chain_input_max(const sms_chain *chain)
         product *= sms_stage_gain_bound(&chain->stages[i]);
     }
     return bound;
+}
+
+sms_status sms_stage_check_state_range(const sms_stage *stage, const double *src, size_t n,
+                                       double x_max)
+{
+    if (stage == NULL || src == NULL)
+        return SMS_ERR_NULL;
+    switch (sms_family_of(stage->kind)) {
+    case SMS_FAMILY_SMOOTHER:
+        return sms_smoother_check_state_range(stage->u.smoother, src, n, x_max);
+    case SMS_FAMILY_SHAPER:
+        return sms_shaper_check_state_range(stage->u.shaper, src, n, x_max);
+    case SMS_FAMILY_NOTCH:
+        /* w = (1 - z^-1)(d0 - d2 z^-1)/A of x - rest: at most 2 x_max (G - 1), and never
+         * above half the largest sms_real (the next sample could overflow) */
+        return sms_notch_check_state_range(stage->u.notch, src, n, x_max,
+                                           min2(2.0 * x_max * (notch_gain(stage->u.notch) - 1.0)
+                                                * (1.0 + 0x1p-20), 0.5 * (double)SMS_REAL_MAX));
+    case SMS_FAMILY_NONE:
+        break;
+    }
+    return SMS_ERR_KIND;
+}
+
+/* Stage i sees inputs within (1 + 2 P_i) x_max (see sms_chain_input_max), its rest within
+ * x_max. */
+sms_status sms_chain_check_state_range(const sms_chain *chain, const double *src, size_t n,
+                                       double x_max)
+{
+    double product = 1.0;
+    size_t i, offset = 0;
+    sms_status st;
+    if (chain == NULL || src == NULL)
+        return SMS_ERR_NULL;
+    if (n != sms_chain_state_count(chain))
+        return SMS_ERR_STATE;
+    for (i = 0; i < chain->n_stages; ++i) {
+        const size_t count = sms_stage_state_count(&chain->stages[i]);
+        const double range = i == 0 ? 1.0 : 1.0 + 2.0 * product;
+        st = sms_stage_check_state_range(&chain->stages[i], src + offset, count,
+                                         range * x_max * (1.0 + 0x1p-20));
+        if (st != SMS_OK)
+            return st;
+        product *= sms_stage_gain_bound(&chain->stages[i]);
+        offset += count;
+    }
+    return SMS_OK;
 }

@@ -262,6 +262,21 @@ sms_status sms_notch_check_state(const sms_notch *f, const double *src, size_t n
     return SMS_OK;
 }
 
+sms_status sms_notch_check_state_range(const sms_notch *f, const double *src, size_t n,
+                                       double x_max, double w_max)
+{
+    sms_status st = sms_notch_check_state(f, src, n);
+    if (st != SMS_OK)
+        return st;
+    /* x1, x2, rest: inputs as they came; w1, w2: the recursion (finite: NaN fails the test) */
+    src += SMS_STATE_IDENTITY_COUNT;
+    if (!(fabs(src[1]) <= x_max && fabs(src[2]) <= x_max && fabs(src[5]) <= x_max))
+        return SMS_ERR_STATE;
+    if (!(fabs(src[3]) <= w_max && fabs(src[4]) <= w_max))
+        return SMS_ERR_STATE;
+    return SMS_OK;
+}
+
 sms_status sms_notch_set_state(sms_notch *f, const double *src, size_t n)
 {
     sms_status st = sms_notch_check_state(f, src, n);

@@ -618,6 +618,21 @@ sms_status sms_shaper_check_state(const sms_shaper *f, const double *src, size_t
     return SMS_OK;
 }
 
+sms_status sms_shaper_check_state_range(const sms_shaper *f, const double *src, size_t n,
+                                        double x_max)
+{
+    size_t i;
+    sms_status st = sms_shaper_check_state(f, src, n);
+    if (st != SMS_OK)
+        return st;
+    /* the rest and the delay line hold inputs as they came (finite: NaN fails the test) */
+    src += SMS_STATE_IDENTITY_COUNT;
+    for (i = 3; i < 4 + f->history_len; ++i)
+        if (!(fabs(src[i]) <= x_max))
+            return SMS_ERR_STATE;
+    return SMS_OK;
+}
+
 sms_status sms_shaper_set_state(sms_shaper *f, const double *src, size_t n)
 {
     size_t i;

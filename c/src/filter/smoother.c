@@ -714,6 +714,43 @@ sms_status sms_smoother_check_state(const sms_smoother *f, const double *src, si
     return SMS_OK;
 }
 
+/* |v| <= bound, v finite (NaN fails the negated test). */
+static int within(double v, double bound)
+{
+    return fabs(v) <= bound;
+}
+
+sms_status sms_smoother_check_state_range(const sms_smoother *f, const double *src, size_t n,
+                                          double x_max)
+{
+    /* x - rest, rounded once in sms_real; and the room the input range leaves the copies */
+    const double margin = 1.0 + 0x1p-20;
+    double signal, internal;
+    size_t i;
+    sms_status st = sms_smoother_check_state(f, src, n);
+    if (st != SMS_OK)
+        return st;
+    if (!(x_max >= 0.0))
+        return SMS_ERR_STATE;
+    signal = 2.0 * x_max * margin;
+    /* never above half the largest sms_real: the next sample could overflow */
+    internal = signal * ((double)SMS_REAL_MAX / f->input_limit);
+    if (!(internal <= 0.5 * (double)SMS_REAL_MAX))
+        internal = 0.5 * (double)SMS_REAL_MAX;
+    src += SMS_STATE_IDENTITY_COUNT;
+    if (!within(src[STATE_REST], x_max * margin))
+        return SMS_ERR_STATE;
+    for (i = STATE_W0_RE; i < STATE_REF0; ++i)
+        if (!within(src[i], internal))
+            return SMS_ERR_STATE;
+    if (!within(src[STATE_REF0], signal) || !within(src[STATE_REF1], signal))
+        return SMS_ERR_STATE;
+    for (i = 0; i < f->window; ++i)
+        if (!within(src[STATE_FIXED + i], signal))
+            return SMS_ERR_STATE;
+    return SMS_OK;
+}
+
 sms_status sms_smoother_set_state(sms_smoother *f, const double *src, size_t n)
 {
     size_t i;

@@ -3,6 +3,8 @@
  * head (config.h) with the tunable's own fields, the identities of the active and the old
  * configuration (fixed size, so they can be read without knowing either), then the stages'
  * own states. */
+#include <math.h>
+
 #include "filter/tunable_internal.h"
 #include "core/kind.h"
 #include "core/state_identity.h"
@@ -117,7 +119,7 @@ static int is_finite(double v)
 sms_status sms_tunable_check_state(const sms_tunable *t, const double *src, size_t n)
 {
     const sms_stage *active, *old;
-    size_t n_active, n_old, max_fade;
+    size_t n_active, n_old, max_fade, i;
     sms_status st;
     if (t == NULL || src == NULL)
         return SMS_ERR_NULL;
@@ -131,6 +133,12 @@ sms_status sms_tunable_check_state(const sms_tunable *t, const double *src, size
         return SMS_ERR_STATE;
     n_active = sms_stage_state_count(active);
     n_old = old != NULL ? sms_stage_state_count(old) : 0u;
+    /* the identities in the head are the stages' (an unused old one is 0): set_state reads
+     * neither, so a state that differs there is not one get_state writes */
+    for (i = 0; i < SMS_STATE_IDENTITY_COUNT; ++i)
+        if (src[ST_ACTIVE_ID + i] != sms_stage_identity(active)[i]
+            || src[ST_OLD_ID + i] != (old != NULL ? sms_stage_identity(old)[i] : 0.0))
+            return SMS_ERR_STATE;
     /* a stage's own check names the first field of its identity that differs */
     st = sms_stage_check_state(active, src + ST_STAGES,
                                n - ST_STAGES < n_active ? n - ST_STAGES : n_active);
@@ -158,6 +166,25 @@ sms_status sms_tunable_check_state(const sms_tunable *t, const double *src, size
     if (old == NULL && src[ST_FADE] != 0.0)
         return SMS_ERR_STATE;
     return SMS_OK;
+}
+
+/* Both filters ran on inputs within x_max (the old one since the switch on the held h, itself
+ * an earlier input), so each stage's part is held to x_max, as are the last input and h. */
+sms_status sms_tunable_check_state_range(const sms_tunable *t, const double *src, size_t n,
+                                         double x_max)
+{
+    size_t n_active;
+    sms_status st = sms_tunable_check_state(t, src, n);
+    if (st != SMS_OK)
+        return st;
+    if (!(fabs(src[ST_LAST]) <= x_max) || !(fabs(src[ST_HOLD]) <= x_max))
+        return SMS_ERR_STATE;
+    n_active = sms_stage_state_count(&t->slot[t->active]);
+    st = sms_stage_check_state_range(&t->slot[t->active], src + ST_STAGES, n_active, x_max);
+    if (st != SMS_OK || src[ST_SWITCHING] != 1.0)
+        return st;
+    return sms_stage_check_state_range(&t->slot[1u - t->active], src + ST_STAGES + n_active,
+                                       n - ST_STAGES - n_active, x_max);
 }
 
 sms_status sms_tunable_set_state(sms_tunable *t, const double *src, size_t n)

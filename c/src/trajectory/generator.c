@@ -250,6 +250,7 @@ void sms_generator_reset(sms_generator *g, sms_real position)
     g->target.velocity = 0;
     g->target.acceleration = 0;
     g->target.interface = SMS_INTERFACE_POSITION;
+    g->target.minimum_duration = 0;
     g->goal = g->target;
     g->request = g->target;
     g->pending = 0;
@@ -293,6 +294,7 @@ sms_status sms_generator_canonical(const sms_generator *g, const sms_target *in,
         t.velocity = 0;
         t.acceleration = 0;
         t.position = 0;
+        t.minimum_duration = 0;
         *out = t;
         return SMS_OK;
     case SMS_INTERFACE_VELOCITY:
@@ -309,12 +311,18 @@ sms_status sms_generator_canonical(const sms_generator *g, const sms_target *in,
         return SMS_ERR_TARGET_VELOCITY;
     if (!finite_real(t.acceleration))
         return SMS_ERR_TARGET_ACCELERATION;
+    /* (the sample count bound of the plan's feasible limits, sms_generator_reach()) */
+    if (!(t.minimum_duration >= 0) ||
+        !(t.minimum_duration / g->Ts_signal <= (sms_real)GEN_MAX_REACH_SAMPLES))
+        return SMS_ERR_DURATION;
     if (g->shape == SMS_PLAN_COSINE) {
         /* half-cosine transitions plan to rest, or to a velocity held at a = 0 */
         if (t.interface == SMS_INTERFACE_POSITION && t.velocity != 0)
             return SMS_ERR_TARGET_VELOCITY;
         if (t.acceleration != 0)
             return SMS_ERR_TARGET_ACCELERATION;
+        if (t.minimum_duration != 0)
+            return SMS_ERR_DURATION;
     }
     V = g->limits.vmax;
     A = g->limits.amax;
@@ -356,7 +364,8 @@ sms_status sms_generator_check_targets(const sms_generator *g, const sms_target 
 static int same_target(const sms_target *a, const sms_target *b)
 {
     return a->interface == b->interface && a->position == b->position &&
-           a->velocity == b->velocity && a->acceleration == b->acceleration;
+           a->velocity == b->velocity && a->acceleration == b->acceleration &&
+           a->minimum_duration == b->minimum_duration;
 }
 
 int sms_generator_replan(const sms_generator *g, sms_plan *plan, sms_real q, sms_real v,
@@ -373,16 +382,16 @@ int sms_generator_replan(const sms_generator *g, sms_plan *plan, sms_real q, sms
             return sms_plan_velocity_shaped(plan, &g->limits, g->shape, g->Ts_signal, q, v, a,
                                             goal->velocity);
         return sms_plan_velocity(plan, &lim, g->Ts_signal, q, v, a, goal->velocity,
-                                 goal->acceleration);
+                                 goal->acceleration, goal->minimum_duration);
     }
     if (g->shape == SMS_PLAN_COSINE)
         return sms_plan_to_rest_shaped(plan, &g->limits, g->shape, g->Ts_signal, q, v, a,
                                        goal->position);
     if (sms_plan_to_state(plan, &lim, g->Ts_signal, q, v, a, goal->position, goal->velocity,
-                          goal->acceleration))
+                          goal->acceleration, goal->minimum_duration))
         return 1;
     /* not expected: the rest planner of the first version, never beyond the limits */
-    return goal->velocity == 0 && goal->acceleration == 0 &&
+    return goal->velocity == 0 && goal->acceleration == 0 && goal->minimum_duration == 0 &&
            sms_plan_to_rest(plan, &g->limits, g->Ts_signal, q, v, a, goal->position);
 }
 
@@ -497,6 +506,7 @@ static sms_target rest_target(const sms_generator *g, sms_real position)
     t.velocity = 0;
     t.acceleration = 0;
     t.interface = SMS_INTERFACE_POSITION;
+    t.minimum_duration = 0;
     return t;
 }
 
@@ -504,7 +514,8 @@ void sms_generator_step(sms_generator *g, sms_real target, sms_real out[4])
 {
     sms_target t;
     if (target == g->request.position && g->request.interface == SMS_INTERFACE_POSITION &&
-        g->request.velocity == 0 && g->request.acceleration == 0) {
+        g->request.velocity == 0 && g->request.acceleration == 0 &&
+        g->request.minimum_duration == 0) {
         step_held(g, out); /* the held target, as on the sample before */
         return;
     }
@@ -640,7 +651,7 @@ sms_status sms_generator_start(sms_generator *g, sms_real q, sms_real v, sms_rea
         return SMS_ERR_TARGET_ACCELERATION;
     if (target == NULL) {
         stop.interface = SMS_INTERFACE_STOP;
-        stop.position = stop.velocity = stop.acceleration = 0;
+        stop.position = stop.velocity = stop.acceleration = stop.minimum_duration = 0;
         target = &stop;
     }
     st = sms_generator_canonical(g, target, &t);

@@ -8,9 +8,9 @@
 #include "trajectory/generator_parts.h"
 #include "core/state_identity.h"
 
-/* Target (position, velocity, acceleration, interface), goal (the same), the plan's start
- * q, v, a, and k. */
-#define GEN_TARGET_COUNT 4u
+/* Target (position, velocity, acceleration, interface, minimum_duration), goal (the same),
+ * the plan's start q, v, a, and k. */
+#define GEN_TARGET_COUNT 5u
 #define GEN_PLAN_STATE_COUNT ((size_t)SMS_GENERATOR_PLAN_STATE_COUNT)
 #define GEN_PLAN (SMS_GENERATOR_IDENTITY_COUNT)
 #define GEN_STAGES (GEN_PLAN + GEN_PLAN_STATE_COUNT)
@@ -28,6 +28,7 @@ static void put_target(double *dst, const sms_target *t)
     dst[1] = (double)t->velocity;
     dst[2] = (double)t->acceleration;
     dst[3] = (double)t->interface;
+    dst[4] = (double)t->minimum_duration;
 }
 
 void sms_generator_get_state(const sms_generator *g, double *dst)
@@ -77,9 +78,10 @@ static int get_target(const sms_generator *g, const double *src, sms_target *t)
     t->velocity = (sms_real)src[1];
     t->acceleration = (sms_real)src[2];
     t->interface = (int)src[3];
+    t->minimum_duration = (sms_real)src[4];
     if (sms_generator_canonical(g, t, &c) != SMS_OK || c.interface != t->interface ||
         c.position != t->position || c.velocity != t->velocity ||
-        c.acceleration != t->acceleration)
+        c.acceleration != t->acceleration || c.minimum_duration != t->minimum_duration)
         return 0;
     return 1;
 }
@@ -123,9 +125,21 @@ sms_status sms_generator_check_state(const sms_generator *g, const double *src, 
     if (!is_count(src[GEN_STAGES], (double)g->stage_length))
         return SMS_ERR_STATE;
     per = sms_smoother_state_count(&g->stage[0]);
-    for (i = 0; i < 4; ++i)
-        if (sms_smoother_check_state(&g->stage[i], src + GEN_STAGES + 1u + i * per, per) != SMS_OK)
-            return SMS_ERR_STATE;
+    {
+        /* each stage's values within what its signal leaves in it: positions within the
+         * stage's input range, v, a, j within the limits to the reported values' tolerance
+         * (a state no run produces, a forged one, would report beyond them) */
+        const double range[4] = {
+            sms_smoother_input_max(&g->stage[0]),
+            (double)g->limits.vmax * (1.0 + SMS_LIMIT_RTOL),
+            (double)g->limits.amax * (1.0 + SMS_LIMIT_RTOL),
+            (double)g->limits.jmax * (1.0 + SMS_LIMIT_RTOL)
+        };
+        for (i = 0; i < 4; ++i)
+            if (sms_smoother_check_state_range(&g->stage[i], src + GEN_STAGES + 1u + i * per, per,
+                                               range[i]) != SMS_OK)
+                return SMS_ERR_STATE;
+    }
     return SMS_OK;
 }
 
@@ -149,7 +163,8 @@ sms_status sms_generator_set_state(sms_generator *g, const double *src, size_t n
     g->pending = g->target.interface != g->goal.interface ||
                  g->target.position != g->goal.position ||
                  g->target.velocity != g->goal.velocity ||
-                 g->target.acceleration != g->goal.acceleration;
+                 g->target.acceleration != g->goal.acceleration ||
+                 g->target.minimum_duration != g->goal.minimum_duration;
     (void)sms_generator_replan(g, &g->plan, g->plan_q, g->plan_v, g->plan_a, &g->goal);
     if (g->stage_length == 0)
         return SMS_OK;

@@ -81,6 +81,11 @@ static double tight_root(unsigned d, double C, double logK)
     return S;
 }
 
+/* 2^e, e < SMS_KINEMATIC_MAX_ORDER (the exponents of at_bound and of the plain path):
+ * x * pow2[e] is exactly ldexp(x, e) for e >= 0 (both are the correctly rounded x 2^e)
+ * without a libm call, which was a quarter of a three-bound design's time. */
+static const double pow2[8] = {1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0, 128.0};
+
 /* The end of a solve from stage k whose stage m is at its bound with length Tm and whose
  * stages below m last `rest`: the tight stages k..m-1 above m are each exactly the sum of
  * those below them. Lengths into T[k..m] when T != NULL; returns the duration from k. */
@@ -97,7 +102,7 @@ static double at_bound(size_t k, size_t m, double Tm, double rest, double *T)
             below += T[i];
         }
     }
-    return m > k ? ldexp(Tm + rest, (int)(m - k)) : Tm + rest;
+    return (Tm + rest) * pow2[m - k];
 }
 
 /* Duration D_k(X) of stages k..n-1; lengths into T[k..] when T != NULL. C[j] = D_{j+1}(cap_j)
@@ -248,7 +253,7 @@ static double solve_from_plain(const sms_kin_plan *p, const double *C, size_t k,
     for (m = k; m < p->n; ++m) {
         unsigned d = (unsigned)(m - k), i;
         double bad = 1.0, lx;
-        c2 = ldexp(1.0, (int)(d * (d - (d > 0u)) / 2u));   /* 2^(d(d-1)/2) */
+        c2 = pow2[d * (d - (d > 0u)) / 2u];   /* 2^(d(d-1)/2) */
         if (m + 1 == p->n)
             S = p->fixed ? p->T_fixed : root_of(p->c_last * X / (c2 * p->L[m]), d + 1u);
         else
@@ -262,7 +267,7 @@ static double solve_from_plain(const sms_kin_plan *p, const double *C, size_t k,
             double excess = lx / (level_cap(p, j) * C[j]);
             if (excess > bad)
                 bad = excess;
-            lx /= ldexp(S, (int)(m - 1 - j));
+            lx /= S * pow2[m - 1 - j];
         }
         if (m + 1 < p->n) {
             double deficit = C[m] * level_cap(p, m) / Xm;
@@ -281,16 +286,16 @@ static double solve_from_plain(const sms_kin_plan *p, const double *C, size_t k,
     S = best_S;
     if (T != NULL)
         for (j = k; j < m; ++j)
-            T[j] = ldexp(S, (int)(m - 1 - j));
+            T[j] = S * pow2[m - 1 - j];
     if (m + 1 == p->n) {
         if (T != NULL)
             T[m] = S;
-        return ldexp(S, (int)(m - k));
+        return S * pow2[m - k];
     }
     /* stage m at its bound, then the problem from the level cap_m */
     {
         unsigned d = (unsigned)(m - k), i;
-        c2 = ldexp(1.0, (int)(d * (d - (d > 0u)) / 2u));
+        c2 = pow2[d * (d - (d > 0u)) / 2u];
         for (i = 0, Sd = 1.0; i < d; ++i)
             Sd *= S;
     }

@@ -68,9 +68,13 @@ static double harmonic_peak_tap(double N)
  *    backward difference never overlap (the discrete form of T_k >= T_k+1 + ... + T_n-1);
  *  - level i < n-1: h / (N[0] ... N[i] Ts^(i+1)) <= L[i];
  *  - top: h / (N[0] ... N[n-2] Ts^(n-1)) * (largest tap of the last stage) / Ts <= L[n-1].
- * Returns 1 when all hold (to 1e-12 relative). */
-static int grid_feasible(const sms_kin_plan *p, double logh, double logTs, const double *N,
-                         sms_kind last_kind, int tuned, double tap_last, double supp_last)
+ * Returns 1 when all hold (to 1e-12 relative). rhs[i] is the right-hand side of level i,
+ * logh - log L[i] - (i + 1) log Ts - 1e-12 (grid_bounds(): the same for every candidate);
+ * logN, when not NULL, holds log N[i] for the stages the caller varies (i < n, or i < n - 1
+ * with a tuned last stage), so a candidate costs no logarithm of its own. */
+static int grid_feasible(const sms_kin_plan *p, const double *rhs, const double *N,
+                         const double *logN, sms_kind last_kind, int tuned, double tap_last,
+                         double supp_last)
 {
     size_t n = p->n, i;
     double below = tuned ? supp_last : N[n - 1], logprod = 0.0, logtap;
@@ -80,8 +84,8 @@ static int grid_feasible(const sms_kin_plan *p, double logh, double logTs, const
         below += N[i];
     }
     for (i = 0; i + 1 < n; ++i) {
-        logprod += log(N[i]);
-        if (logprod < logh - log(p->L[i]) - (double)(i + 1) * logTs - 1e-12)
+        logprod += logN != NULL ? logN[i] : log(N[i]);
+        if (logprod < rhs[i])
             return 0;
     }
     if (tuned)
@@ -92,8 +96,8 @@ static int grid_feasible(const sms_kin_plan *p, double logh, double logTs, const
         logtap = log(harmonic_peak_tap(N[n - 1]));
     }
     else
-        logtap = -log(N[n - 1]);
-    return logprod - logtap >= logh - log(p->L[n - 1]) - (double)n * logTs - 1e-12;
+        logtap = -(logN != NULL ? logN[n - 1] : log(N[n - 1]));
+    return logprod - logtap >= rhs[n - 1];
 }
 
 /* Whole-sample lengths: the shortest total among N[i] = ceil(T[i]/Ts) + {-1, 0, 1} that
@@ -106,7 +110,11 @@ sms_status sms_kin_on_grid(const sms_kin_plan *p, double h, const double *T, sms
 {
     size_t n = p->n, m = tuned ? n - 1 : n, i, combos = 1, c;
     double base[SMS_KINEMATIC_MAX_ORDER], cand[SMS_KINEMATIC_MAX_ORDER], below, total, best;
-    double logh = log(h), logTs = log(Ts), tap_last = 0.0;
+    double logh = log(h), logTs = log(Ts), tap_last = 0.0, rhs[SMS_KINEMATIC_MAX_ORDER];
+    double logcand[SMS_KINEMATIC_MAX_ORDER] = {0.0}, logbase[SMS_KINEMATIC_MAX_ORDER][3];
+    size_t pick[SMS_KINEMATIC_MAX_ORDER];
+    for (i = 0; i < n; ++i)
+        rhs[i] = logh - log(p->L[i]) - (double)(i + 1) * logTs - 1e-12;
     for (i = 0; i < n; ++i)
         if (!(T[i] / Ts <= 4503599627370496.0)) /* 2^52 samples */
             return SMS_ERR_TOO_LONG;
@@ -141,7 +149,10 @@ sms_status sms_kin_on_grid(const sms_kin_plan *p, double h, const double *T, sms
     best = total;
     /* neighbourhood search */
     for (i = 0; i < m; ++i) {
+        int d;
         base[i] = sms_kin_grid_ceil(T[i] / Ts);
+        for (d = 0; d < 3; ++d) /* log of base - 1, base, base + 1, when first needed */
+            logbase[i][d] = -1.0;
         combos *= 3u;
     }
     cand[n - 1] = 0.0;
@@ -151,6 +162,7 @@ sms_status sms_kin_on_grid(const sms_kin_plan *p, double h, const double *T, sms
         int ok = 1, better;
         for (i = 0; i < m; ++i) {
             cand[i] = base[i] + (double)(code % 3u) - 1.0;
+            pick[i] = code % 3u;
             code /= 3u;
             if (cand[i] < 1.0)
                 ok = 0;
@@ -158,7 +170,12 @@ sms_status sms_kin_on_grid(const sms_kin_plan *p, double h, const double *T, sms
         }
         if (!ok || sum > best)
             continue;
-        if (!grid_feasible(p, logh, logTs, cand, last_kind, tuned, tap_last, supp_last))
+        for (i = 0; i < m; ++i) {
+            if (logbase[i][pick[i]] < 0.0) /* log N >= 0 for N >= 1: -1 marks "not yet" */
+                logbase[i][pick[i]] = log(cand[i]);
+            logcand[i] = logbase[i][pick[i]];
+        }
+        if (!grid_feasible(p, rhs, cand, logcand, last_kind, tuned, tap_last, supp_last))
             continue;
         better = sum < best;
         for (i = 0; i < m && !better && sum == best; ++i) {
@@ -210,7 +227,7 @@ sms_status sms_kin_on_grid(const sms_kin_plan *p, double h, const double *T, sms
                 }
                 if (sum >= best)
                     continue;
-                if (!grid_feasible(p, logh, logTs, cand, last_kind, tuned, tap_last, supp_last))
+                if (!grid_feasible(p, rhs, cand, NULL, last_kind, tuned, tap_last, supp_last))
                     continue;
                 best = sum;
                 for (i = 0; i < m; ++i)

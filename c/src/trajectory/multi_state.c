@@ -131,6 +131,31 @@ static sms_status check_stages_state(const sms_multi_generator *g, const double 
     return n == 0 ? SMS_OK : SMS_ERR_STATE;
 }
 
+/* Every chain's values within what its signal leaves in it: the positions within the chain's
+ * input range, v, a, j within the axis's limits to the reported values' tolerance
+ * (SMS_LIMIT_RTOL): a state no run produces (a forged one) would report beyond them. */
+static sms_status check_stages_range(const sms_multi_generator *g, const double *src)
+{
+    size_t i, m;
+    for (i = 0; i < g->n_axes; ++i)
+        for (m = 0; m < SMS_MULTI_SIGNALS; ++m) {
+            const sms_chain *c = &g->chain[i][m];
+            const double limit[SMS_MULTI_SIGNALS] = {
+                sms_chain_input_max(c), (double)g->vmax[i], (double)g->amax[i],
+                (double)g->jmax[i]
+            };
+            const size_t count = sms_chain_state_count(c);
+            if (c->n_stages > 0
+                && sms_chain_check_state_range(c, src, count,
+                                               m == 0 ? limit[0]
+                                                      : limit[m] * (1.0 + SMS_LIMIT_RTOL))
+                   != SMS_OK)
+                return SMS_ERR_STATE;
+            src += count;
+        }
+    return SMS_OK;
+}
+
 static int whole(double x)
 {
     return x >= 0.0 && x <= 9007199254740992.0 && x == (double)(size_t)x;
@@ -172,8 +197,12 @@ sms_status sms_multi_generator_check_state(const sms_multi_generator *g, const d
     }
     mv = src + AXIS_FIELDS * na;
     for (i = 0; i < move_count(g); ++i) {
-        const double *f = mv + MOVE_FIELDS * i;
+        /* durations [s] within the 2^53 samples a move's counts hold, the first sample's
+         * move time within one sample */
+        const double *f = mv + MOVE_FIELDS * i, horizon = 9007199254740992.0 * g->Ts;
         if (f[0] < 0.0 || f[2] < 0.0 || f[3] < 0.0 || f[5] < 0.0 || f[6] < 0.0 ||
+            f[0] > horizon || f[2] > horizon || f[3] > horizon || f[5] > g->Ts
+            || f[6] > horizon ||
             !(f[1] > 0.0 && f[1] <= 0.5) || !(f[4] > 0.0 && f[4] <= 0.5) || !whole(f[7]) ||
             !whole(f[8]) || f[7] > f[8] || (f[9] != 0.0 && f[9] != 1.0) ||
             (f[10] != 0.0 && f[10] != 1.0) || (f[11] != 0.0 && f[11] != 1.0))
@@ -181,6 +210,8 @@ sms_status sms_multi_generator_check_state(const sms_multi_generator *g, const d
     }
     mv += MOVE_FIELDS * move_count(g);
     st = check_stages_state(g, mv, stages_state_count(g));
+    if (st == SMS_OK)
+        st = check_stages_range(g, mv);
     if (st != SMS_OK)
         return st;
     return sms_multi_align_check_state(g, mv + stages_state_count(g));

@@ -151,6 +151,7 @@ static int from_blend(sms_plan *out, sms_real Ts, size_t N, sms_real q, sms_real
     plan_begin(&tmp);
     for (k = 0; k + 1 < m; ++k) {
         sms_real pa, va, aa, ja, pb, vb, ab, jb, mid = (sms_real)0.5 * (cut[k] + cut[k + 1]);
+        sms_real vk, ak, jk, dk = cut[k + 1] - cut[k];
         profile_at(A, v, a, cut[k], &pa, &va, &aa, &ja);
         profile_at(B, v, a, cut[k], &pb, &vb, &ab, &jb);
         /* the jerk of the piece each lies in over this interval (its middle) */
@@ -159,8 +160,15 @@ static int from_blend(sms_plan *out, sms_real Ts, size_t N, sms_real q, sms_real
             profile_at(A, v, a, mid, &x0, &x1, &x2, &ja);
             profile_at(B, v, a, mid, &x0, &x1, &x2, &jb);
         }
-        sms_plan_push(&tmp, Ts, &n, &f, q + (lambda * pa + mu * pb), lambda * va + mu * vb,
-                      lambda * aa + mu * ab, lambda * ja + mu * jb, cut[k + 1] - cut[k]);
+        vk = lambda * va + mu * vb;
+        ak = lambda * aa + mu * ab;
+        jk = lambda * ja + mu * jb;
+        /* The position by integrating the blend, not blending the positions: two motions that
+         * end far apart either way (a long minimum duration) travel far, and lambda pa + mu pb
+         * would carry the rounding of their distances into every segment's start (in float
+         * a step of u vmax T between segments, far above the jerk's floor). */
+        sms_plan_push(&tmp, Ts, &n, &f, q, vk, ak, jk, dk);
+        q += dk * (vk + dk * (ak * (sms_real)0.5 + dk * jk * (sms_real)(1.0 / 6.0)));
     }
     /* on the grid: the target state exactly on sample N */
     move_on(&tmp, Ts, N, 0, last[0], last[1], last[2], J);
@@ -186,11 +194,22 @@ static int grid_ceil(sms_real T, sms_real Ts, size_t *N)
     return 1;
 }
 
+/* The two motions of N samples from (v, a) to (vf, af) that end farthest either way and
+ * their displacements; 0 when a family has no member that long. */
+static int extremes(sms_real v, sms_real a, sms_real vf, sms_real af, const sms_to_limits *lim,
+                    sms_real T, sms_to_profile *hi, sms_real *dhi, sms_to_profile *lo,
+                    sms_real *dlo)
+{
+    return sms_to_extremal(v, a, vf, af, lim, T, 1, hi, dhi) &&
+           sms_to_extremal(v, a, vf, af, lim, T, -1, lo, dlo);
+}
+
 int sms_plan_to_state(sms_plan *plan, const sms_to_limits *lim, sms_real Ts, sms_real q,
-                      sms_real v, sms_real a, sms_real pf, sms_real vf, sms_real af)
+                      sms_real v, sms_real a, sms_real pf, sms_real vf, sms_real af,
+                      sms_real Tmin)
 {
     sms_to_profile best, hi, lo;
-    sms_real roots[SMS_TO_MAX_ROOTS], last[3];
+    sms_real roots[SMS_TO_MAX_ROOTS], last[3], from;
     int n_roots, i;
     last[0] = pf;
     last[1] = vf;
@@ -199,19 +218,23 @@ int sms_plan_to_state(sms_plan *plan, const sms_to_limits *lim, sms_real Ts, sms
         return 0;
     if (!sms_to_time_optimal(q, v, a, pf, vf, af, lim, &best, roots, &n_roots))
         return 0;
-    if (vf == 0 && af == 0)
+    if (vf == 0 && af == 0 && Tmin <= best.duration)
         return from_profile(plan, Ts, q, v, a, &best, last, 0, 0, lim->jmax);
-    /* a moving target on the grid: the first whole number of samples at or after the optimum
-     * at which a motion exists (past a blocked interval: after the next member's duration) */
-    for (i = 0; i < n_roots; ++i) {
+    /* on the grid: the first whole number of samples at or after the optimum and Tmin at
+     * which a motion exists (past a blocked interval: after the next member's duration).
+     * Feasibility changes only at the members' durations (roots), so the candidates are
+     * max(optimum, Tmin) and every root above it, each rounded up to the grid (and one more
+     * sample, in case the rounding put it just inside a blocked interval). */
+    from = best.duration > Tmin ? best.duration : Tmin;
+    for (i = -1; i < n_roots; ++i) {
         size_t N, extra;
-        /* (every root is at or above the optimum's duration, but for the rounding of its sum) */
-        if (!grid_ceil(roots[i] > best.duration ? roots[i] : best.duration, Ts, &N))
+        if (i >= 0 && !(roots[i] > from))
+            continue;
+        if (!grid_ceil(i < 0 ? from : roots[i], Ts, &N))
             continue;
         for (extra = 0; extra < 2; ++extra) {
             sms_real T = (sms_real)(N + extra) * Ts, dhi, dlo, D = pf - q, tol, lambda;
-            if (!sms_to_extremal(v, a, vf, af, lim, T, 1, &hi, &dhi) ||
-                !sms_to_extremal(v, a, vf, af, lim, T, -1, &lo, &dlo))
+            if (!extremes(v, a, vf, af, lim, T, &hi, &dhi, &lo, &dlo))
                 continue;
             tol = 16 * PT_EPS * (mag(q) + mag(pf) + mag(dhi) + mag(dlo) +
                                  (lim->vmax - lim->vmin) * T);
@@ -230,13 +253,70 @@ int sms_plan_to_state(sms_plan *plan, const sms_to_limits *lim, sms_real Ts, sms
     return from_profile(plan, Ts, q, v, a, &best, last, 0, 0, lim->jmax);
 }
 
-int sms_plan_velocity(sms_plan *plan, const sms_to_limits *lim, sms_real Ts, sms_real q,
-                      sms_real v, sms_real a, sms_real vf, sms_real af)
+/* The velocity change (v, a) -> (w, 0), w = vf - af|af|/(2J) the target's velocity where its
+ * acceleration was last zero, a hold at (w, 0) for `hold` seconds, the ramp at J to af: a
+ * motion to (vf, af) of any duration from its own without the hold (T1) on. 0 when it has
+ * more pieces than a profile holds or no change is found. */
+static int plateau(sms_real v, sms_real a, sms_real vf, sms_real af, const sms_to_limits *lim,
+                   sms_real hold, sms_to_profile *out)
 {
-    sms_to_profile prof;
+    sms_real J = lim->jmax, w = vf - af * mag(af) / (2 * J);
+    if (!sms_to_velocity(v, a, w, 0, lim, out) || out->count + 2 > SMS_TO_PIECES)
+        return 0;
+    out->j[out->count] = 0;
+    out->t[out->count] = hold;
+    out->a[out->count] = 0;
+    out->cruise = out->count; /* exactly at w */
+    out->v_cruise = w;
+    ++out->count;
+    out->j[out->count] = af > 0 ? J : -J;
+    out->t[out->count] = mag(af) / J;
+    out->a[out->count] = 0;
+    ++out->count;
+    out->duration += hold + mag(af) / J;
+    return 1;
+}
+
+int sms_plan_velocity(sms_plan *plan, const sms_to_limits *lim, sms_real Ts, sms_real q,
+                      sms_real v, sms_real a, sms_real vf, sms_real af, sms_real Tmin)
+{
+    sms_to_profile prof, hi, lo;
+    sms_real last[3], T1;
+    size_t N, extra;
     if (!finite(q) || !finite(v) || !finite(a))
         return 0;
     if (!sms_to_velocity(v, a, vf, af, lim, &prof))
         return 0;
+    if (Tmin <= prof.duration || !grid_ceil(Tmin, Ts, &N))
+        return from_profile(plan, Ts, q, v, a, &prof, NULL, vf, af, lim->jmax);
+    last[1] = vf;
+    last[2] = af;
+    /* the position is free: any motion of N samples ending at (vf, af) will do; the midpoint
+     * of the farthest two lies between them (the motions of one duration form a convex set,
+     * third_order.h) */
+    for (extra = 0; extra < 2; ++extra) {
+        sms_real T = (sms_real)(N + extra) * Ts, dhi, dlo;
+        if (!extremes(v, a, vf, af, lim, T, &hi, &dhi, &lo, &dlo))
+            continue;
+        last[0] = q + (sms_real)0.5 * (dhi + dlo);
+        if (from_blend(plan, Ts, N + extra, q, v, a, &hi, &lo, (sms_real)0.5, last, lim->jmax))
+            return 1;
+    }
+    /* Tmin in a blocked interval (no motion of N samples: the start's acceleration carries it
+     * past where the target's ramp could begin): the plateau motion, at the first sample at or
+     * after both Tmin and its own shortest duration T1, at which the blocked interval ends */
+    if (plateau(v, a, vf, af, lim, 0, &prof)) {
+        T1 = prof.duration;
+        if (grid_ceil(T1 > Tmin ? T1 : Tmin, Ts, &N) &&
+            plateau(v, a, vf, af, lim, (sms_real)N * Ts - T1, &prof)) {
+            sms_real p = 0, vv = v, aa = a;
+            prof.duration = (sms_real)N * Ts;
+            sms_to_integrate(&prof, &p, &vv, &aa);
+            last[0] = q + p;
+            if (from_blend(plan, Ts, N, q, v, a, &prof, &prof, 1, last, lim->jmax))
+                return 1;
+        }
+    }
+    /* not expected: the optimum, arriving early */
     return from_profile(plan, Ts, q, v, a, &prof, NULL, vf, af, lim->jmax);
 }

@@ -354,7 +354,10 @@ def trajectory_table(quick: bool, c_figures: dict) -> list[Table]:
                   ["regime", "smoothshaper C ns", "smoothshaper via cffi ns",
                    "design.kinematic ns", "ruckig ns", "C / ruckig", "cffi / ruckig",
                    "design.kinematic / ruckig", "same duration"],
-                  "One rest-to-rest move within {vmax, amax, jmax}. ruckig: Ruckig.calculate "
+                  "One rest-to-rest move within {vmax, amax, jmax}, continuous and on a "
+                  "1 ms grid (ruckig: Ruckig(1, Ts) with DurationDiscretization.Discrete; "
+                  "smoothshaper: Ts=1e-3, bounding the sampled differences, so the durations "
+                  "differ by design). ruckig: Ruckig.calculate "
                   "through its Python binding (the C++ core plus the binding's call), objects "
                   "prepared beforehand. smoothshaper: sms_kinematic_design in C (double, -O2), "
                   "through cffi (the call itself costs about 0.2 us), and design.kinematic "
@@ -364,29 +367,38 @@ def trajectory_table(quick: bool, c_figures: dict) -> list[Table]:
     cases = {"vmax reached": (1.0, 0.5, 5.0, 100.0),
              "amax reached, vmax not": (0.1, 2.0, 5.0, 100.0),
              "jmax only": (0.001, 2.0, 5.0, 100.0)}
-    for regime, (h, v, a, j) in cases.items():
+    for (regime, (h, v, a, j)), Ts in [(c, Ts) for Ts in (None, 1e-3) for c in cases.items()]:
         limits = ffi.new("double[]", [v, a, j])
         T = ffi.new("double[]", 3)
         count = ffi.new("size_t *")
         design = lib.sms_kinematic_design
         poly = lib.SMS_PROFILE_POLYNOMIAL
-        otg = ruckig.Ruckig(1)
+        otg = ruckig.Ruckig(1) if Ts is None else ruckig.Ruckig(1, Ts)
         inp = ruckig.InputParameter(1)
         inp.current_position, inp.target_position = [0.0], [h]
         inp.max_velocity, inp.max_acceleration, inp.max_jerk = [v], [a], [j]
+        if Ts is not None:
+            inp.duration_discretization = ruckig.DurationDiscretization.Discrete
         traj = ruckig.Trajectory(1)
         kinematic = kinematic_design.kinematic
+        Ts_c = 0.0 if Ts is None else Ts
         t = interleaved({
-            "sms": lambda: design(h, limits, 3, poly, 0.0, 0.0, 0.0, T, 3, count),
-            "python": lambda: kinematic(h=h, vmax=v, amax=a, jmax=j),
+            "sms": lambda: design(h, limits, 3, poly, 0.0, 0.0, Ts_c, T, 3, count),
+            "python": lambda: kinematic(h=h, vmax=v, amax=a, jmax=j, Ts=Ts),
             "ruckig": lambda: otg.calculate(inp, traj),
         }, rounds=3 if quick else 15, repeat=200 if quick else 5000)
-        same = abs(sum(T[i] for i in range(count[0])) - traj.duration) <= 1e-12 * traj.duration
-        in_c = c_figures.get(("-O2", "double"), {}).get(("design", regime, ""))
+        if Ts is None:
+            same = abs(sum(T[i] for i in range(count[0])) - traj.duration) <= 1e-12 * traj.duration
+            in_c = c_figures.get(("-O2", "double"), {}).get(("design", regime, ""))
+        else:
+            # on a grid the two bound different things (ruckig: the continuous profile,
+            # its duration rounded up to a sample; here: the sampled differences)
+            same, in_c = None, None
+            regime = f"{regime}, Ts = {Ts * 1e3:g} ms"
         table.add(regime, in_c, t["sms"] * 1e9, t["python"] * 1e9, t["ruckig"] * 1e9,
                   _ratio(in_c * 1e-9 if in_c else None, t["ruckig"]),
                   _ratio(t["sms"], t["ruckig"]), _ratio(t["python"], t["ruckig"]),
-                  "yes" if same else "NO")
+                  "n/a" if same is None else "yes" if same else "NO")
     return [table, _phase_duration_table(quick, ruckig)]
 
 

@@ -4,7 +4,11 @@
 * ``rest``: from any state (q, v, a) to a position at rest;
 * ``moving``: to a position reached with a velocity and an acceleration (a moving target);
 * ``velocity``: the velocity interface (a velocity and an acceleration, the position free);
-* ``stop``: braking to rest from any state.
+* ``stop``: braking to rest from any state;
+* ``minimum``, ``minimum_velocity``: a position target (at rest or moving) and the velocity
+  interface with a minimum duration (ruckig's ``minimum_duration``), drawn as 0 to 3 times
+  the unstretched optimum: the arrival never before it, within a sample of ruckig's
+  stretched duration on the grid (past a blocked duration: of its discrete one).
 
 Per case the generator starts from a random state (:meth:`Generator.start_from`) and runs
 until its plan has reached the target; ruckig (the ``ruckig`` package) is asked for the same
@@ -27,9 +31,13 @@ import math
 
 import numpy as np
 
+from .. import _optional
+
 __all__ = ["FEATURES", "draw_case", "run_case", "campaign", "main"]
 
-FEATURES = ("rest", "moving", "velocity", "stop")
+FEATURES = ("rest", "moving", "velocity", "stop", "minimum", "minimum_velocity")
+# a move stretched to a minimum duration: a position target (at rest or moving), a velocity
+STRETCHED = {"minimum": "moving", "minimum_velocity": "velocity"}
 UNIT_ROUNDOFF = {"double": 2.0 ** -53, "float": 2.0 ** -24}
 
 
@@ -54,6 +62,13 @@ def draw_case(rng, feature: str) -> dict:
     scale = V * (V / A + A / J)
     case = dict(feature=feature, vmax=V, amax=A, jmax=J, q0=rng.uniform(-1, 1) * scale,
                 v0=v0, a0=a0, position=0.0, velocity=0.0, acceleration=0.0)
+    if feature in STRETCHED:
+        # the minimum duration: this fraction of the unstretched optimum (campaign())
+        case["stretch"] = rng.uniform(0.0, 3.0)
+        if feature == "minimum" and rng.random() < 0.4:
+            feature = "rest"
+        else:
+            feature = STRETCHED[feature]
     if feature in ("rest", "moving"):
         case["position"] = case["q0"] + rng.uniform(-3, 3) * scale * 10.0 ** rng.uniform(-2, 1)
     if feature in ("moving", "velocity"):
@@ -66,7 +81,7 @@ def draw_case(rng, feature: str) -> dict:
 
 def _ruckig(case, Ts=None):
     """ruckig's duration for the case (continuous, or discrete with Ts), None when it errs."""
-    import ruckig
+    ruckig = _optional.require("ruckig", "the campaigns against ruckig")
     otg = ruckig.Ruckig(1, Ts) if Ts else ruckig.Ruckig(1)
     inp, traj = ruckig.InputParameter(1), ruckig.Trajectory(1)
     inp.current_position = [case["q0"]]
@@ -75,7 +90,8 @@ def _ruckig(case, Ts=None):
     inp.max_velocity = [case["vmax"]]
     inp.max_acceleration = [case["amax"]]
     inp.max_jerk = [case["jmax"]]
-    if case["feature"] in ("velocity", "stop"):
+    inp.minimum_duration = case.get("minimum_duration") or None
+    if case["feature"] in ("velocity", "stop", "minimum_velocity"):
         inp.control_interface = ruckig.ControlInterface.Velocity
     else:
         inp.target_position = [case["position"]]
@@ -107,24 +123,32 @@ def run_case(case: dict, *, precision: str = "double", samples: float | None = N
     g = Generator(vmax=case["vmax"], amax=case["amax"], jmax=case["jmax"], Ts=Ts,
                   precision=precision)
     feature = case["feature"]
+    tmin = case.get("minimum_duration", 0.0)
+    # a stretched velocity change is reached exactly on its sample, as a position target is
+    stretched = feature == "minimum_velocity" and tmin > case["unstretched"]
+    if feature in STRETCHED:
+        feature = "velocity" if feature == "minimum_velocity" else (
+            "moving" if case["velocity"] != 0 or case["acceleration"] != 0 else "rest")
     if feature == "stop":
         g.start_from(case["q0"], case["v0"], case["a0"])
     elif feature == "velocity":
         g.start_from(case["q0"], case["v0"], case["a0"], interface="velocity",
-                     velocity=case["velocity"], acceleration=case["acceleration"])
+                     velocity=case["velocity"], acceleration=case["acceleration"],
+                     minimum_duration=tmin)
     else:
         g.start_from(case["q0"], case["v0"], case["a0"], target=case["position"],
-                     velocity=case["velocity"], acceleration=case["acceleration"])
+                     velocity=case["velocity"], acceleration=case["acceleration"],
+                     minimum_duration=tmin)
     arrive = g.arrival                      # samples from the start state to the target
     n = arrive + 8
     if feature == "stop":
         out = g.process(velocity=np.zeros(n), stop=True)
     elif feature == "velocity":
         out = g.process(velocity=np.full(n, case["velocity"]),
-                        acceleration=np.full(n, case["acceleration"]))
+                        acceleration=np.full(n, case["acceleration"]), minimum_duration=tmin)
     else:
         out = g.process(np.full(n, case["position"]), velocity=case["velocity"],
-                        acceleration=case["acceleration"])
+                        acceleration=case["acceleration"], minimum_duration=tmin)
     real = np.float32 if precision == "float" else np.float64
     u = UNIT_ROUNDOFF[precision]
     limits = (case["vmax"], case["amax"], case["jmax"])
@@ -143,6 +167,8 @@ def run_case(case: dict, *, precision: str = "double", samples: float | None = N
     want = (real(case["position"]), real(case["velocity"]), real(case["acceleration"]))
     if feature == "stop":
         landed = bool(out[k, 1] == 0 and out[k, 2] == 0 and np.all(out[k:, 1:] == 0))
+    elif feature == "velocity" and stretched:
+        landed = bool(out[k, 1] == want[1] and out[k, 2] == want[2])
     elif feature == "velocity":
         # reached between samples: from the first sample after, the velocity held exactly
         # (with an acceleration at arrival, it returns to zero first: not compared)
@@ -153,9 +179,21 @@ def run_case(case: dict, *, precision: str = "double", samples: float | None = N
                       and np.all(out[k:, 0] == want[0]))
     else:
         landed = bool(out[k, 0] == want[0] and out[k, 1] == want[1] and out[k, 2] == want[2])
+        # A return of the acceleration to zero shorter than the grid tolerance (8 ulps of the
+        # sample count, docs/sampled-limits.md) ends on the arrival sample itself: that sample
+        # shows the state after it exactly (the plan's goal, the drift velocity, a = 0). In
+        # float: a target acceleration below about 2e-6 jmax N Ts.
+        eps = 2 * UNIT_ROUNDOFF[precision]
+        if not landed and abs(want[2]) / case["jmax"] <= 8 * eps * max(arrive, 1) * Ts:
+            plan = g._gen.plan
+            landed = bool(out[k, 0] == real(plan.goal) and out[k, 1] == real(plan.drift)
+                          and out[k, 2] == 0)
     grid = math.ceil(T / Ts * (1 - 1e-12))
-    discrete = _ruckig(case, Ts) if feature == "moving" else None
+    discrete = _ruckig(case, Ts) if feature == "moving" or tmin > 0 else None
     return dict(ruckig=T, Ts=Ts, samples=arrive, grid=grid, over=arrive - grid,
+                # (on the grid within 8 ulps of the count, the minimum and Ts rounded to
+                # the precision)
+                short=arrive * Ts < tmin * (1 - 32 * u),
                 discrete=None if discrete is None else round(discrete / Ts), reported=reported,
                 sampled=sampled, landed=landed)
 
@@ -170,6 +208,12 @@ def campaign(feature: str, n: int, *, seed: int = 1, precision: str = "double") 
     for _ in range(n):
         case = draw_case(rng, feature)
         case["log_samples"] = rng.uniform(1, 3.3)
+        if feature in STRETCHED:
+            T0 = _ruckig(case)
+            if T0 is None:
+                summary["ruckig_errors"] += 1
+                continue
+            case["unstretched"], case["minimum_duration"] = T0, case["stretch"] * T0
         r = run_case(case, precision=precision)
         if r["ruckig"] is None:
             summary["ruckig_errors"] += 1
@@ -178,7 +222,9 @@ def campaign(feature: str, n: int, *, seed: int = 1, precision: str = "double") 
             continue
         summary["cases"] += 1
         over = r["over"]
-        if feature == "moving" and over > 1:
+        if r["short"]:
+            summary["failures"].append(("shorter than the minimum duration", case, r))
+        if feature in ("moving", "minimum", "minimum_velocity") and over > 1:
             # past a blocked duration: ruckig's discrete duration is the bar
             summary["blocked"] += 1
             if r["discrete"] is None or r["samples"] > r["discrete"] + 1:

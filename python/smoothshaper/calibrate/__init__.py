@@ -156,8 +156,9 @@ def _running_median(x, w):
 
 def excited_band(spec: Spectrum, lo: float, hi: float) -> tuple[float, float]:
     """The part of [lo, hi] a resonance test excited: the hull of the bins whose smoothed PSD
-    stands 10 dB above the quietest part of the spectrum (its 5th percentile); all of [lo, hi]
-    when nothing is quiet or too few bins stand out."""
+    stands 10 dB above the quietest part of the spectrum (its 5th percentile), ending at the
+    sweep's end where the spectrum falls off a cliff (:func:`_sweep_end`); all of [lo, hi] when
+    nothing is quiet or too few bins stand out."""
     f, P = spec.f, spec.P
     inr = (f >= lo) & (f <= hi) & (f > 0)
     if np.count_nonzero(inr) < 8:
@@ -168,7 +169,46 @@ def excited_band(spec: Spectrum, lo: float, hi: float) -> tuple[float, float]:
     excited = np.flatnonzero((smooth > floor + 1.0) & inr)
     if excited.size < 8:
         return lo, hi
-    return max(lo, float(f[excited[0]])), min(hi, float(f[excited[-1]]))
+    a, b = max(lo, float(f[excited[0]])), min(hi, float(f[excited[-1]]))
+    return a, _sweep_end(f, smooth, a, b, hi)
+
+
+def _sweep_end(f, smooth, a, b, hi):
+    """The top of a sweep's excited band: the last bin of the highest cliff in [a, b] (the
+    smoothed PSD over 5 % above it stands 10 dB over everything from 10 % above it up to
+    ``hi``, and what follows lies under the band's start, where the test's acceleration is the
+    weakest); ``b`` when there is none.
+
+    The quiet floor of :func:`excited_band` is a percentile of the whole spectrum, so a record
+    sampled faster holds more quiet bins and a lower floor, and the sweep's harmonics and noise
+    above its end (a test's square-wave acceleration has odd harmonics) then stand above it: at
+    1.6 kHz the band reached 200 to 500 Hz where at 800 Hz it stopped at the sweep's end, and
+    the fit took the cliff for a broad mode. The cliff is where the sweep ends whatever the
+    rate."""
+    inb = np.flatnonzero((f >= a) & (f <= b))
+    if inb.size < 8:
+        return b
+    start = float(np.median(smooth[inb[: max(3, inb.size // 50)]]))
+    # the running maximum from the top down: the largest smoothed PSD at or above each bin
+    top = np.maximum.accumulate(np.where(f <= hi, smooth, -np.inf)[::-1])[::-1]
+    best = None
+    for i in inb:
+        fc = float(f[i])
+        j_post = int(np.searchsorted(f, 1.1 * fc))
+        if j_post >= f.size or f[j_post] > hi:
+            break
+        j_pre = int(np.searchsorted(f, 1.05 * fc, side="right"))
+        pre = float(np.median(smooth[i: max(j_pre, i + 1)]))
+        post = float(top[j_post])
+        if pre - post >= 1.0 and post < start:
+            best = (i, j_post, pre)
+    if best is None:
+        return b
+    # the cliff's top: its last bin within 5 dB of the level before it (what lies under the
+    # cliff, harmonics and noise, depends on the rate)
+    i, j_post, pre = best
+    last = i + int(np.flatnonzero(smooth[i: j_post] > pre - 0.5)[-1])
+    return min(b, float(f[last]))
 
 
 def _parse_direction(axis: str):

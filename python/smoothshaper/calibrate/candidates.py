@@ -53,8 +53,9 @@ class Candidate:
     name: str
     stages: list[Stage]
     vibration: float = math.nan            # [%], band RMS
-    vibration_range: tuple[float, float] = (math.nan, math.nan)
+    vibration_range: tuple[float, float] = (math.nan, math.nan)   # [%] +-3 sd, of the estimate
     vibration_nominal: float = math.nan    # [%] at the identified modes
+    vibration_estimate: float = math.nan   # [%] on the plant: the value the range is about
     length: float = 0.0                    # impulse-response length [s]
     lag: float = 0.0                       # centroid [s]
     smoothing: float = 0.0                 # corner rounding, length units
@@ -73,6 +74,7 @@ class Candidate:
         from dataclasses import asdict
         return {"name": self.name, "stages": [asdict(s) for s in self.stages],
                 "vibration": self.vibration, "vibration_range": list(self.vibration_range),
+                "vibration_estimate": self.vibration_estimate,
                 "vibration_nominal": self.vibration_nominal, "delay": {
                     "length": self.length, "centroid": self.lag},
                 "smoothing": self.smoothing, "peak_accel": self.peak_accel,
@@ -469,10 +471,14 @@ def evaluate(name: str, stages: list[Stage], objectives, rank: str, ref: Referen
         c.vibration_modal = modal.value(R2(modal.poles), L)
         c.vibration_range = modal.range(R2(modal.box), L)
         c.vibration_nominal = modal.nominal_value(R2(modal.nominal), L)
+        c.vibration_estimate = c.vibration_modal
         c.range_from = modal.kind
     else:
         c.vibration_range = spec.range(R2(spec.box.ravel()), L)
         c.vibration_nominal = spec.nominal_value(R2(spec.nominal), L)
+        # the spectral figure is not the plant's remaining vibration (it counts nothing under a
+        # twentieth of the peak): the range is about the spectrum's estimate of the plant's
+        c.vibration_estimate = c.vibration_nominal
         c.range_from = spec.kind
         unsure = objectives.get("unsure")
         if unsure is not None:       # a fit that does not explain the spectrum: either may hold

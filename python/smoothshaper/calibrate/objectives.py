@@ -125,6 +125,11 @@ class ModalObjective(_PoleSet):
                 for z in np.linspace(m.zeta - BOX * m.zeta_std, m.zeta + BOX * m.zeta_std, 3):
                     box.append(complex(pole(max(wn, 1e-9), min(max(z, 0.0), 0.99))))
                     idx.append(i)
+        # the value's own nodes (within +-3 sd: Gauss-Hermite's outermost is 2.86 sd) belong to
+        # the box, so the range holds the value whatever the residual does between grid points
+        n_nodes = _GH_WN[0].size * _GH_Z[0].size
+        box += poles
+        idx += [i for i in range(len(modes)) for _ in range(n_nodes)]
         self.box, self.box_idx = np.array(box), np.array(idx)
         self.n = len(modes)
 
@@ -193,9 +198,10 @@ class SpectralObjective(_PoleSet):
         self.S = S / S.sum()
         wr = 2 * math.pi * f[keep]
         offs = np.linspace(-1.0, 1.0, 5)
-        zb = np.array([0.002, self.zetas.max()])
+        # the nominal damping (the estimate's) is a node, so the range holds the estimate
+        zb = np.array([0.002, float(np.median(self.zetas)), self.zetas.max()])
         grid = wr[:, None, None] * (1 + offs[None, :, None] * width[keep][:, None, None])
-        grid = np.broadcast_to(grid, (wr.size, offs.size, 2))
+        grid = np.broadcast_to(grid, (wr.size, offs.size, zb.size))
         self.box = pole(grid, np.broadcast_to(zb[None, None, :], grid.shape)).reshape(wr.size, -1)
         self.nominal = pole(wr, np.median(self.zetas))
         self.n_range = wr.size

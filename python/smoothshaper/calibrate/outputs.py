@@ -224,11 +224,12 @@ def report_text(cal, top: int = 12) -> str:
         for c in res.candidates[:top]:
             mark = "*" if c is res.recommended else (" " if c.meets else "x")
             rows.append([mark + c.name, _fmt(c.vibration_spectrum), _fmt(c.vibration_modal),
-                         f"{_fmt(c.vibration_range[0])} .. {_fmt(c.vibration_range[1])}",
+                         f"{_fmt(c.vibration_estimate)} ({_fmt(c.vibration_range[0])} .. "
+                         f"{_fmt(c.vibration_range[1])})",
                          _fmt(c.length, ".4g"), _fmt(c.lag, ".4g"), _fmt(c.smoothing),
                          _fmt(c.peak_accel), _fmt(c.peak_jerk), c.continuity,
                          _candidate_design(c)])
-        head = ["candidate", "spectrum %", "modal %", "+-3 sd range %", "delay s", "lag s",
+        head = ["candidate", "spectrum %", "modal %", "plant % (+-3 sd)", "delay s", "lag s",
                 "smoothing", "peak acc", "peak jerk", "class", "design"]
         widths = [max(len(r[i]) for r in rows + [head]) for i in range(len(head))]
         out.append("  ".join(h.ljust(w) for h, w in zip(head, widths)).rstrip())
@@ -244,15 +245,19 @@ def report_text(cal, top: int = 12) -> str:
         else:
             c = res.recommended
             src = res.candidates[0].range_from if res.candidates else ""
-            out.append(f"recommended ({lim}; ranked by the {res.ranked_by}): {c.name}: "
-                       f"{_candidate_design(c)}; remaining vibration {c.vibration:.3g} % (+-3 sd: "
-                       f"{c.vibration_range[0]:.3g} to {c.vibration_range[1]:.3g} %, from the "
-                       f"{c.range_from or src}), delay {c.length:.4g} s")
+            # the ranked figure, then the plant's remaining vibration with its range (the two
+            # differ where the spectrum ranks: its figure counts nothing under its floor)
+            out.append(f"recommended ({lim}; ranked by the {res.ranked_by}, {c.vibration:.3g} "
+                       f"%): {c.name}: {_candidate_design(c)}; remaining vibration of the plant "
+                       f"{c.vibration_estimate:.3g} % (+-3 sd: {c.vibration_range[0]:.3g} to "
+                       f"{c.vibration_range[1]:.3g} %, from the {c.range_from or src}), delay "
+                       f"{c.length:.4g} s")
             if c.firmware is None and cal.firmware == "none":
                 out.append("  (a smoothshaper filter, for the C library and the FMUs; "
                            "--firmware klipper|marlin|rrf|prusa ranks what that firmware runs)")
         out.append(f"(* recommended, x outside the limits; spectrum %: what the filter leaves of "
-                   f"the measured PSD, modal %: of the fitted modes; smoothing and peaks for a "
+                   f"the measured PSD, modal %: of the fitted modes, plant %: the estimate of "
+                   f"what the plant is left with and its +-3 sd range; smoothing and peaks for a "
                    f"move at {ref.accel:g}/s^2, corner velocity {ref.corner_velocity:g}/s, "
                    f"filters at Ts = {ref.Ts:g} s)")
         out.append("")

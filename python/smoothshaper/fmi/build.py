@@ -8,8 +8,10 @@ import sys
 from pathlib import Path
 
 from .. import _optional
+from ..errors import ParameterError
 
-__all__ = ["repo_root", "FMU_MODELS", "build_fmus", "fmpy_problems", "fmutool_problems"]
+__all__ = ["repo_root", "FMU_MODELS", "FMI_VERSIONS", "build_fmus", "fmpy_problems",
+           "fmutool_problems"]
 
 
 def repo_root() -> Path:
@@ -34,7 +36,12 @@ FMU_MODELS = {"SmoothShaper": "smoothshaper_model.c", "TrajectoryGenerator": "tr
               "ServoDrive": "servo_drive_model.c"}
 
 
-def build_fmus(build_dir: Path, *, source_dir: Path | None = None) -> dict[str, Path]:
+#: The FMI versions the FMUs are built for, and where each lands in the build folder.
+FMI_VERSIONS = {"2.0": "fmus", "3.0": "fmus/3.0"}
+
+
+def build_fmus(build_dir: Path, *, source_dir: Path | None = None,
+               fmi_version: str = "2.0") -> dict[str, Path]:
     """Configure and build the FMUs with CMake.
 
     Parameters
@@ -43,6 +50,9 @@ def build_fmus(build_dir: Path, *, source_dir: Path | None = None) -> dict[str, 
         CMake build folder (an existing build is reused).
     source_dir : Path or None, keyword-only
         Source checkout (default: the repository this package is installed from).
+    fmi_version : str, keyword-only
+        ``"2.0"`` (default; ``fmus/<Model>.fmu``) or ``"3.0"`` (``fmus/3.0/<Model>.fmu``): both
+        are built from the same model files.
 
     Returns
     -------
@@ -51,11 +61,16 @@ def build_fmus(build_dir: Path, *, source_dir: Path | None = None) -> dict[str, 
 
     Raises
     ------
+    ParameterError
+        ``fmi_version`` is not ``"2.0"`` or ``"3.0"``.
     RuntimeError
         No FMU sources under ``source_dir``, or CMake not on PATH.
     subprocess.CalledProcessError
         CMake failed.
     """
+    if fmi_version not in FMI_VERSIONS:
+        raise ParameterError("fmi_version", f"fmi_version must be one of "
+                             f"{', '.join(map(repr, FMI_VERSIONS))}, got {fmi_version!r}")
     source_dir = Path(source_dir) if source_dir else repo_root()
     if not (source_dir / "fmu" / "CMakeLists.txt").is_file():
         raise RuntimeError(f"no FMU sources under {source_dir} (run from a source checkout)")
@@ -65,11 +80,12 @@ def build_fmus(build_dir: Path, *, source_dir: Path | None = None) -> dict[str, 
     subprocess.run([cmake, "-S", str(source_dir), "-B", str(build_dir), "-DSMS_BUILD_TESTS=OFF",
                     "-DSMS_BUILD_SHARED=OFF", f"-DPython3_EXECUTABLE={sys.executable}"],
                    check=True, stdout=subprocess.DEVNULL)
-    targets = [m + "_fmu" for m, src in FMU_MODELS.items()
+    suffix = "_fmu" if fmi_version == "2.0" else "_fmi3_fmu"
+    targets = [m + suffix for m, src in FMU_MODELS.items()
                if (source_dir / "fmu" / src).is_file()]
     subprocess.run([cmake, "--build", str(build_dir), "-j2", "--target", *targets], check=True,
                    stdout=subprocess.DEVNULL)
-    found = {m: build_dir / "fmus" / f"{m}.fmu" for m in FMU_MODELS}
+    found = {m: Path(build_dir) / FMI_VERSIONS[fmi_version] / f"{m}.fmu" for m in FMU_MODELS}
     return {m: p for m, p in found.items() if p.is_file()}
 
 

@@ -8,11 +8,12 @@ import numpy as np
 
 from ..stages import (damped_harmonic, exponential, harmonic, impulse_shaper, input_smoother,
                       notch, rectangular, shaper)
-from .._checks import finite_array as _finite_array
+from .._checks import finite_array as _finite_array, integer as _integer
+from ..errors import ParameterError
 from .parameters import ModeStage
 
 __all__ = ["test_input", "validation_cases", "TRAJECTORY_LIMITS", "TRAJECTORY_PROFILES",
-           "target_staircase"]
+           "target_staircase", "multi_axis_case"]
 
 
 def test_input(t: np.ndarray, *, seed: int = 1) -> np.ndarray:
@@ -138,3 +139,53 @@ def target_staircase(t: np.ndarray) -> np.ndarray:
     for at, value in ((0.05, 0.4), (0.4, 0.0), (0.45, 0.35), (1.0, 0.3501)):
         x[t >= at] = value
     return x
+
+
+def multi_axis_case(axes: int, t: np.ndarray) -> tuple[dict, np.ndarray, dict]:
+    """A MultiAxisGenerator case for ``axes`` axes (1 to 8): limits and rest positions that
+    differ by axis, phase-synchronised for an even count and independent for an odd one, a ZV
+    stage (50 rad/s, zeta 0.05) on every axis from 4 axes on; targets that step at t = 0 and
+    change mid-motion.
+
+    Parameters
+    ----------
+    axes : int
+        Axes in use, 1 to 8.
+    t : ndarray of float64, shape (K,)
+        Communication points [s].
+
+    Returns
+    -------
+    tuple
+        ``(values, targets, reference)``: the FMU's start values as the FMI 2.0 FMU names
+        them (with ``Ts`` = 1 ms), the targets (K, axes) and the arguments of
+        ``reference.multi_axis.multi_axis_reference`` (limits, ``q0``, ``sync``, ``stages``).
+
+    Raises
+    ------
+    ParameterError
+        ``axes`` is not an integer from 1 to 8.
+    """
+    axes = _integer("axes", axes, 1)
+    if axes > 8:
+        raise ParameterError("axes", f"axes must be at most 8, got {axes}")
+    t = _finite_array("t", t)
+    i = np.arange(axes)
+    limits = dict(vmax=list(0.5 + 0.1 * i), amax=list(5.0 + i), jmax=list(80.0 + 10.0 * i))
+    q0 = list(0.02 * i - 0.05)
+    values = {"Ts": 1e-3, "axes": axes, "sync": axes % 2}
+    for name, v in limits.items():
+        values.update({f"{name}[{k}]": x for k, x in enumerate(v)})
+    values.update({f"q0[{k}]": x for k, x in enumerate(q0)})
+    stages = None
+    if axes >= 4:
+        values.update({f"stage[0].kind[{k}]": 4 for k in range(axes)})
+        values.update({f"stage[0].wn[{k}]": 50.0 for k in range(axes)})
+        values.update({f"stage[0].zeta[{k}]": 0.05 for k in range(axes)})
+        stages = [[shaper("zv", wn=50.0, zeta=0.05)]] * axes
+    targets = np.zeros((t.size, axes))
+    for at, shift in ((0.0, 0.25), (0.3, -0.15)):
+        targets[t >= at - 1e-12] = [shift * (1 + 0.1 * k) for k in range(axes)]
+    reference = dict(limits, q0=q0, sync="phase" if axes % 2 == 0 else "independent",
+                     stages=stages)
+    return values, targets, reference

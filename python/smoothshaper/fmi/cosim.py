@@ -3,25 +3,31 @@
 
 Run ``python -m smoothshaper.cosim --out DIR`` (``scripts/main.sh`` does, into out/cosim).
 
-The system (``ShapedMotion.ssp``, SSP 1.0)::
+The system (``ShapedMotion.ssp``, SSP 1.0, one file for both importers)::
 
-    target --> Generator (TrajectoryGenerator) --q--> Shaper (SmoothShaper) --y--> Plant (ElasticPlant)
+    Generator (TrajectoryGenerator) --q--> Shaper (SmoothShaper) --y--> Plant (ElasticPlant)
 
-A jerk-limited move of height ``MOVE`` drives the two-mass elastic transmission of Biagiotti and
-Melchiorri ("FIR filters for online trajectory planning with time- and frequency-domain
-specifications", 2012, eq. 12, Table 1: wn = 260.4 rad/s, zeta = 0.0083) through a ZV input shaper
-designed for that mode, or (run "without shaper") through a shaper whose stages are all ``none``.
-The system runs in two importers, libcosim (libcosimpy loads the SSP file) and fmpy
-(``fmpy.ssp.simulate_ssp``, whose master accumulates ``t += h``), and the residual vibration of
-every run is compared with the NumPy reference of the same system: the generator reference
+The generator's target is one of the SSP's parameter bindings (``Generator.target = MOVE``,
+its start value), so the system needs no input of its own: a jerk-limited move of height
+``MOVE`` from t = 0 drives the two-mass elastic transmission of Biagiotti and Melchiorri ("FIR
+filters for online trajectory planning with time- and frequency-domain specifications", 2012,
+eq. 12, Table 1: wn = 260.4 rad/s, zeta = 0.0083) through a ZV input shaper designed for that
+mode, or (run "without shaper") through a shaper whose stages are all ``none``. The system runs
+in two importers: libcosim (libcosimpy loads the SSP file and applies its parameter bindings)
+and fmpy (``fmpy.ssp.simulate_ssp``, whose master accumulates ``t += h``). fmpy reads the
+bindings but does not apply them (its ``instantiate_fmu`` sets only the ``parameter_set``
+argument): :func:`fmpy_applies_bindings` detects that (run alone, the generator never moves)
+and :func:`run_fmpy` passes the file's own bindings as ``parameter_set``
+(:func:`ssp_parameter_set`), saying so. The residual vibration of every run is compared with
+the NumPy reference of the same system: the generator reference
 (``trajectory.generator_reference``), the shaper reference (``reference.filter``) and the exact
 zero-order-hold plant (``plants.simulate_zoh``), composed with the one-step delay of each
 connection. Residual vibration: the largest distance of the load from the target once the
 command into the plant has settled (the shaped command stays within 1e-12 of the target).
 
 Co-simulation timing (both importers, step h = Ts): at step k every FMU steps with the inputs
-its connections carried after step k-1, so the generator sees the system input of step k-1,
-and each connection adds one step of delay. :func:`reference` builds exactly this.
+its connections carried after step k-1, and each connection adds one step of delay.
+:func:`reference` builds exactly this.
 """
 from __future__ import annotations
 
@@ -37,18 +43,19 @@ from .._checks import (finite_array as _finite_array, finite_signal as _finite_s
 from ..errors import ParameterError
 from ..reference._checks import check_samples
 from . import ssp as _ssp
-from .ssp import SSD_NS, ssp_parameters
+from .ssp import SSD_NS, ssp_parameter_set, ssp_parameters
 
-__all__ = ["TS", "STOP_TIME", "T_MOVE", "MOVE", "PLANT", "LIMITS", "SSD_NS", "plant_mode",
+__all__ = ["TS", "STOP_TIME", "MOVE", "PLANT", "LIMITS", "SSD_NS", "plant_mode",
            "parameters", "WITHOUT_SHAPER", "COMPONENTS", "CONNECTIONS", "SYSTEM",
-           "system_structure", "write_ssp", "target_signal", "ssp_parameters", "run_fmpy", "run_libcosim", "reference",
+           "system_structure", "write_ssp", "target_signal", "ssp_parameters",
+           "ssp_parameter_set", "fmpy_applies_bindings", "run_fmpy", "run_libcosim", "reference",
            "residual_vibration", "Run", "run_all", "plot", "run", "main"]
 
 #: Sample period of every FMU and the communication step [s].
 TS = 1e-3
-#: Length of a run [s], time of the move [s] and its height (any position unit; here m).
+#: Length of a run [s] and the height of the move (any position unit; here m), which starts at
+#: t = 0: the generator's target, set by the SSP's parameter bindings.
 STOP_TIME = 0.6
-T_MOVE = 0.02
 MOVE = 0.01
 #: The plant: Table 1 of Biagiotti and Melchiorri (2012).
 PLANT = {"J_l": 0.23e-5, "k_t": 0.156, "b_t": 1.0e-5}
@@ -68,61 +75,68 @@ def parameters() -> dict[str, dict[str, float | int]]:
     wn, zeta = plant_mode()
     shaper = {"Ts": TS, "stage[0].kind": KIND_ZV, "stage[0].wn": wn, "stage[0].zeta": zeta}
     shaper.update({f"stage[{k}].kind": KIND_NONE for k in range(1, 8)})
-    return {"Generator": {"Ts": TS, **LIMITS, "profile": 0},
+    return {"Generator": {"Ts": TS, **LIMITS, "profile": 0, "target": MOVE},
             "Shaper": shaper,
             "Plant": {"Ts": TS, **PLANT}}
 
 
 WITHOUT_SHAPER = {"Shaper.stage[0].kind": KIND_NONE}
 
-COMPONENTS = (("Generator", "TrajectoryGenerator", (("target", "input"), ("q", "output"))),
+# The generator's target is no connector: it keeps the value its binding sets (an importer sets
+# every input connector before each step, fmpy to 0.0 when nothing is connected to it).
+COMPONENTS = (("Generator", "TrajectoryGenerator", (("q", "output"),)),
               ("Shaper", "SmoothShaper", (("u", "input"), ("y", "output"))),
               ("Plant", "ElasticPlant", (("u", "input"), ("y", "output"))))
 CONNECTIONS = (("Generator", "q", "Shaper", "u"), ("Shaper", "y", "Plant", "u"))
 
 
 def target_signal(t: np.ndarray) -> np.ndarray:
-    """The system input: 0, then MOVE from T_MOVE on."""
-    return np.where(_finite_array("t", t) >= T_MOVE - 1e-9 * TS, MOVE, 0.0)
+    """The generator's target at the times ``t``: MOVE (bound at initialization)."""
+    return np.full(np.shape(_finite_array("t", t)), MOVE)
 
 
-#: The system (fmi.ssp): target -> Generator -> Shaper -> Plant.
+#: The system (fmi.ssp): Generator -> Shaper -> Plant, the target bound.
 SYSTEM = _ssp.System(
     name="ShapedMotion", description="jerk-limited move, input shaper, two-mass elastic plant",
     components=COMPONENTS, connections=CONNECTIONS, parameters=parameters(),
-    without_shaper=WITHOUT_SHAPER, system_input=("target", "Generator", "target"),
+    without_shaper=WITHOUT_SHAPER, system_input=None,
     recorded=(("Shaper", "y"), ("Plant", "y")), Ts=TS, stop_time=STOP_TIME,
     target=target_signal)
 
 
-def system_structure(*, system_input: bool = True) -> str:
-    """SystemStructure.ssd of the system (SSP 1.0; parameters inline as ssv parameter sets).
-    ``system_input=False`` leaves out the system's input connector ``target`` and its
-    connection to the generator (libcosim refuses connections without a start element)."""
-    return _ssp.system_structure(SYSTEM, system_input=system_input)
+def system_structure() -> str:
+    """SystemStructure.ssd of the system (SSP 1.0; parameters inline as ssv parameter sets,
+    the generator's target among them; no system-level connector, so that libcosim, which
+    refuses a connection from one, and fmpy read the same file)."""
+    return _ssp.system_structure(SYSTEM)
 
 
-def write_ssp(out_dir: Path, fmus: dict[str, Path]) -> tuple[Path, Path]:
-    """Write ``ShapedMotion.ssp`` (a zip: SystemStructure.ssd + resources/<Model>.fmu), the
-    system with its input ``target``, and ``ShapedMotion-libcosim.ssp``, the same without the
-    system-level input (libcosim cannot connect it; its runner sets the generator's target).
-    Returns both paths."""
-    return _ssp.write_ssp(SYSTEM, out_dir, fmus)
+def write_ssp(out_dir: Path, fmus: dict[str, Path]) -> Path:
+    """Write ``ShapedMotion.ssp`` (a zip: SystemStructure.ssd + resources/<Model>.fmu, the FMI
+    2.0 FMUs, which both importers run) into out_dir and return its path."""
+    return _ssp.write_ssp(SYSTEM, out_dir, fmus)[0]
+
+
+def fmpy_applies_bindings(ssp: Path) -> bool:
+    """Does ``fmpy.ssp.simulate_ssp`` apply the SSP's parameter bindings by itself? Run alone
+    for 50 steps, the shaped command moves towards the bound target only if it does (fmpy 0.3:
+    it does not)."""
+    return _ssp.fmpy_applies_bindings(SYSTEM, ssp)
 
 
 # ---------------------------------------------------------------- the two importers
 
 def run_fmpy(ssp: Path, *, shaper: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(t, shaped command, load position) from fmpy's SSP master (t += h, step TS): row k is
-    the state after step k, i.e. at t_(k+1)."""
+    the state after step k, i.e. at t_(k+1). The file's parameter bindings are passed as
+    ``parameter_set`` (fmpy does not apply them itself, :func:`fmpy_applies_bindings`)."""
     return _ssp.run_fmpy(SYSTEM, ssp, shaper=shaper)
 
 
 def run_libcosim(ssp: Path, *, shaper: bool, n_steps: int):
-    """The same in libcosim: libcosim loads the SSP (``ShapedMotion-libcosim.ssp``: components,
-    connections, parameter bindings); the generator's target is overridden with what the system
-    input's connection would deliver (the input of the previous step), outputs are read after
-    every step."""
+    """The same in libcosim: libcosim loads the SSP (components, connections, parameter
+    bindings, the generator's target among them); "without shaper" sets the shaper's first
+    stage to none over the binding; outputs are read after every step."""
     return _ssp.run_libcosim(SYSTEM, ssp, shaper=shaper, n_steps=n_steps)
 
 
@@ -164,7 +178,8 @@ class Run:
     max_error: float      # max |load - reference load| over the run
 
 
-def run_all(ssp: Path, ssp_libcosim: Path, *, importers=("libcosim", "fmpy")) -> list[Run]:
+def run_all(ssp: Path, *, importers=("libcosim", "fmpy")) -> list[Run]:
+    """Every importer with and without the shaper, on the one SSP file."""
     n = int(round(STOP_TIME / TS))
     runs = []
     for shaper in (False, True):
@@ -174,7 +189,7 @@ def run_all(ssp: Path, ssp_libcosim: Path, *, importers=("libcosim", "fmpy")) ->
             if importer == "fmpy":
                 t, s, p = run_fmpy(ssp, shaper=shaper)
             else:
-                t, s, p = run_libcosim(ssp_libcosim, shaper=shaper, n_steps=n)
+                t, s, p = run_libcosim(ssp, shaper=shaper, n_steps=n)
             if s.size != n:
                 raise RuntimeError(f"{importer} returned {s.size} steps, expected {n}")
             runs.append(Run(importer, shaper, t, s, p, residual_vibration(s, p), ref_residual,
@@ -188,7 +203,7 @@ def plot(path: Path, runs: list[Run]) -> None:
     n = runs[0].t.size
     _, _, p_ref_off = reference(n, shaper=False)
     t = runs[0].t
-    a0.plot(t, target_signal(t - TS) * 1e3, color="0.6", lw=1, label="target")
+    a0.axhline(MOVE * 1e3, color="0.6", lw=1, label="target")
     styles = {("libcosim", False): ("C3", "-", 2.5), ("fmpy", False): ("k", ":", 1.2),
               ("libcosim", True): ("C0", "-", 2.5), ("fmpy", True): ("k", "--", 1.0)}
     for r in runs:
@@ -222,18 +237,27 @@ def run(out_dir, *, fmus: dict | None = None, build_dir=None, importers=("libcos
     out.mkdir(parents=True, exist_ok=True)
     if fmus is None:
         fmus = build_fmus(Path(build_dir) if build_dir else out / "build")
-    ssp, ssp_libcosim = write_ssp(out, fmus)
-    runs = run_all(ssp, ssp_libcosim, importers=importers)
+    ssp = write_ssp(out, fmus)
+    applies = "fmpy" not in importers or fmpy_applies_bindings(ssp)
+    if not applies:
+        fmpy = _optional.require("fmpy", "the system co-simulation in fmpy")
+        print(f"fmpy {fmpy.__version__}: fmpy.ssp.simulate_ssp does not apply the SSP's "
+              "parameter bindings (run alone, the system did not move); passing them as "
+              "parameter_set")
+    runs = run_all(ssp, importers=importers)
     wn, zeta = plant_mode()
     tol = 1e-12 * MOVE
     header = ("| importer | shaper | residual vibration [m] | reference [m] | "
               "max abs(load - reference) [m] | equal |")
     lines = ["# System co-simulation: TrajectoryGenerator -> SmoothShaper -> ElasticPlant", "",
-             f"`ShapedMotion.ssp` (SSP 1.0) connects the three FMUs (fmpy runs it; libcosim runs "
-             "`ShapedMotion-libcosim.ssp`, the same system without the system-level input, which "
-             "libcosim cannot connect: its runner sets the generator's target). "
-             f"Move of {MOVE * 1e3:g} mm at "
-             f"t = {T_MOVE:g} s, limits vmax = {LIMITS['vmax']:g} m/s, "
+             "`ShapedMotion.ssp` (SSP 1.0) connects the three FMUs; libcosim and fmpy run the "
+             "same file, with its parameter bindings (the generator's target among them). "
+             + ("fmpy's `simulate_ssp` applies them itself. " if applies else
+                "fmpy's `simulate_ssp` reads them but does not apply them (detected: run alone, "
+                "the system did not move), so the runner passes them as `parameter_set` "
+                "(`cosim.ssp_parameter_set`). ")
+             + f"Move of {MOVE * 1e3:g} mm from "
+             f"t = 0, limits vmax = {LIMITS['vmax']:g} m/s, "
              f"amax = {LIMITS['amax']:g} m/s2, jmax = {LIMITS['jmax']:g} m/s3; "
              f"plant J_l = {PLANT['J_l']:g} kg m2, "
              f"k_t = {PLANT['k_t']:g} N m/rad, b_t = {PLANT['b_t']:g} N m s/rad "

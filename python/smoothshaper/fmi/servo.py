@@ -66,7 +66,7 @@ def default_parameters(fmu) -> dict:
     Parameters
     ----------
     fmu : str or Path
-        Path of ServoDrive.fmu.
+        Path of ServoDrive.fmu (FMI 2.0 or 3.0).
 
     Returns
     -------
@@ -83,7 +83,7 @@ def default_parameters(fmu) -> dict:
     out = {}
     for v in read_model_description(str(fmu)).modelVariables:
         if v.causality == "parameter":
-            out[v.name] = int(v.start) if v.type == "Integer" else float(v.start)
+            out[v.name] = int(v.start) if v.type in ("Integer", "Int32") else float(v.start)
     return out
 
 

@@ -6,9 +6,11 @@ from __future__ import annotations
 import numpy as np
 
 from .. import _optional
+from ..errors import ParameterError
 from .parameters import start_values
 
-__all__ = ["simulate", "simulate_trajectory", "simulate_libcosim"]
+__all__ = ["simulate", "simulate_trajectory", "simulate_libcosim", "start_values_for",
+           "multi_axis_input", "simulate_multi_axis"]
 
 
 def simulate(fmu: str, stages, t: np.ndarray, u: np.ndarray, *, Ts: float) -> np.ndarray:
@@ -85,6 +87,148 @@ def simulate_trajectory(fmu: str, t: np.ndarray, target: np.ndarray, *, Ts: floa
                           stop_time=float(t[-1]), output_interval=step, output=list("qvaj"),
                           validate=False)
     return np.column_stack([np.asarray(r[c], dtype=float) for c in "qvaj"])
+
+
+def start_values_for(model_description, values: dict) -> dict:
+    """Start values named as the FMI 2.0 FMU names them (``"vmax[1]"``, ``"stage[0].kind[2]"``)
+    for an FMU of either version: for FMI 3.0 the elements of an array variable become that
+    array, its other elements at their start values.
+
+    Parameters
+    ----------
+    model_description : fmpy ModelDescription
+        The FMU's (``fmpy.read_model_description``).
+    values : dict
+        Variable name -> value; names of FMI 2.0 array elements end in ``[i]``.
+
+    Returns
+    -------
+    dict
+        Start values for ``fmpy.simulate_fmu`` on that FMU.
+
+    Raises
+    ------
+    ParameterError
+        A name is none of the FMU's variables (nor an element of one of its arrays).
+    """
+    if model_description.fmiVersion == "2.0":
+        return dict(values)
+    arrays = {v.name: v for v in model_description.modelVariables if v.shape}
+    scalars = {v.name for v in model_description.modelVariables if not v.shape}
+    out, grouped = {}, {}
+    for name, value in values.items():
+        base, _, index = name.rpartition("[")
+        if name in scalars or name in arrays:
+            out[name] = value
+        elif base in arrays and index.endswith("]") and index[:-1].isdigit():
+            grouped.setdefault(base, {})[int(index[:-1])] = value
+        else:
+            raise ParameterError("values", f"values names {name!r}, not a variable of "
+                                 f"{model_description.modelName}")
+    for base, elements in grouped.items():
+        v = arrays[base]
+        full = [v._python_type(x) for x in str(v.start).split()] if v.start is not None \
+            else [0] * int(np.prod(v.shape))
+        for i, value in elements.items():
+            if i >= len(full):
+                raise ParameterError("values", f"values names {base}[{i}], beyond the "
+                                     f"{len(full)} elements of {base}")
+            full[i] = value
+        out[base] = full
+    return out
+
+
+def multi_axis_input(model_description, t: np.ndarray, target: np.ndarray,
+                     rest=None) -> np.ndarray:
+    """The input signal of the MultiAxisGenerator FMU for fmpy: every axis's target, the axes
+    beyond ``target``'s columns held at ``rest`` (q0, default 0), so that fmpy finds every input
+    and prints no "missing input" warning: ``target[0]`` .. ``target[7]`` for FMI 2.0, the array
+    ``target`` for FMI 3.0.
+
+    Parameters
+    ----------
+    model_description : fmpy ModelDescription
+        The FMU's.
+    t : ndarray of float64, shape (K,)
+        Communication points [s].
+    target : ndarray of float64, shape (K, axes)
+        Targets of the axes in use.
+    rest : sequence of float or None
+        Values for every one of the 8 axes' targets (default 0); the columns of ``target``
+        replace the first ones.
+
+    Returns
+    -------
+    ndarray (structured)
+        ``time`` and the targets, as ``fmpy.simulate_fmu``'s ``input``.
+
+    Raises
+    ------
+    ParameterError
+        ``target`` has more columns than the FMU has axes, or rows other than ``t``.
+    """
+    arrays = {v.name: v for v in model_description.modelVariables if v.shape}
+    n = int(np.prod(arrays["target"].shape)) if "target" in arrays else sum(
+        1 for v in model_description.modelVariables if v.name.startswith("target["))
+    target = np.asarray(target, dtype=float).reshape(len(t), -1)
+    if target.shape[1] > n:
+        raise ParameterError("target", f"target has {target.shape[1]} columns, the FMU has "
+                             f"{n} axes")
+    full = np.tile(np.zeros(n) if rest is None else np.asarray(rest, float)[:n], (len(t), 1))
+    full[:, :target.shape[1]] = target
+    if "target" in arrays:
+        signal = np.zeros(len(t), dtype=[("time", float), ("target", float, (n,))])
+        signal["target"] = full
+    else:
+        signal = np.zeros(len(t), dtype=[("time", float)] + [(f"target[{i}]", float)
+                                                             for i in range(n)])
+        for i in range(n):
+            signal[f"target[{i}]"] = full[:, i]
+    signal["time"] = t
+    return signal
+
+
+def simulate_multi_axis(fmu: str, t: np.ndarray, target: np.ndarray, values: dict) -> np.ndarray:
+    """Outputs q, v, a, j of the MultiAxisGenerator FMU (FMI 2.0 or 3.0) simulated by fmpy.
+
+    Parameters
+    ----------
+    fmu : str or Path
+        Path of the FMU file.
+    t : ndarray of float64, shape (K,)
+        Communication points [s].
+    target : ndarray of float64, shape (K, axes)
+        Targets of the axes in use (``axes`` from ``values``).
+    values : dict
+        Start values named as the FMI 2.0 FMU names them (:func:`start_values_for`), with
+        ``axes``.
+
+    Returns
+    -------
+    ndarray of float64, shape (K, axes, 4)
+        q, v, a, j of each axis at ``t``.
+
+    Raises
+    ------
+    ParameterError
+        A start value names no variable, or ``target`` does not fit.
+    """
+    fmpy = _optional.require("fmpy", "running MultiAxisGenerator in fmpy")
+    md = fmpy.read_model_description(str(fmu))
+    axes = int(values["axes"])
+    rest = [values.get(f"q0[{i}]", 0.0) for i in range(8)]
+    signal = multi_axis_input(md, t, target, rest)
+    if md.fmiVersion == "2.0":
+        names = [f"{c}[{i}]" for i in range(axes) for c in "qvaj"]
+    else:
+        names = list("qvaj")
+    r = fmpy.simulate_fmu(str(fmu), start_values=start_values_for(md, values), input=signal,
+                          stop_time=float(t[-1]), output_interval=float(t[1] - t[0]),
+                          output=names, validate=False)
+    if md.fmiVersion == "2.0":
+        return np.stack([np.asarray(r[n], dtype=float) for n in names],
+                        axis=1).reshape(t.size, axes, 4)
+    return np.stack([np.asarray(r[c], dtype=float)[:, :axes] for c in "qvaj"], axis=2)
 
 
 def simulate_libcosim(fmu: str, t: np.ndarray, u: np.ndarray, params: dict, *,

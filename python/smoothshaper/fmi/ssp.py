@@ -3,11 +3,19 @@
 libcosim and fmpy: what the system co-simulations (:mod:`~smoothshaper.fmi.cosim`,
 :mod:`~smoothshaper.fmi.servo_cosim`) share.
 
-A :class:`System` is a chain ``target -> Generator -> ... -> last``: components, connections,
-their parameters, the parameter changes of its "without shaper" run, the system input and the
-variables recorded. Co-simulation timing (both importers, step h = Ts): at step k every FMU
-steps with the inputs its connections carried after step k-1, so each connection adds one step
-of delay and the generator sees the system input of step k-1.
+A :class:`System` is a chain ``Generator -> ... -> last``: components, connections, their
+parameters, the parameter changes of its "without shaper" run, the system input (or none: the
+generator's target is then one of the bound parameters) and the variables recorded.
+Co-simulation timing (both importers, step h = Ts): at step k every FMU steps with the inputs
+its connections carried after step k-1, so each connection adds one step of delay and the
+generator sees the system input of step k-1.
+
+A system without an input is one file that both importers run: libcosim refuses a connection
+from a system-level connector ("Unable to create execution from path"), so a system with an
+input gets a second file without it for libcosim. libcosim applies the file's parameter
+bindings; fmpy 0.3's ``simulate_ssp`` reads them but applies only its ``parameter_set``
+argument (:func:`fmpy_applies_bindings` detects it), so :func:`run_fmpy` passes them
+(:func:`ssp_parameter_set`).
 """
 from __future__ import annotations
 
@@ -22,8 +30,9 @@ import numpy as np
 
 from .. import _optional
 
-__all__ = ["SSD_NS", "System", "system_structure", "write_ssp", "ssp_parameters", "run_fmpy",
-           "run_libcosim", "generator_shaper_reference", "settled_residual"]
+__all__ = ["SSD_NS", "System", "system_structure", "write_ssp", "ssp_parameters",
+           "ssp_parameter_set", "fmpy_applies_bindings", "run_fmpy", "run_libcosim",
+           "generator_shaper_reference", "settled_residual"]
 
 SSD_NS = ('xmlns:ssc="http://ssp-standard.org/SSP1/SystemStructureCommon" '
           'xmlns:ssd="http://ssp-standard.org/SSP1/SystemStructureDescription" '
@@ -48,8 +57,9 @@ class System:
         Component -> {variable: value} (int values are Integers).
     without_shaper : dict
         ``"Component.variable"`` -> value for the run without the shaper.
-    system_input : tuple
-        ``(connector, element, element's connector)`` of the system input.
+    system_input : tuple or None
+        ``(connector, element, element's connector)`` of the system input; None: the system
+        has none, the generator's target is among its ``parameters`` (set at initialization).
     recorded : tuple
         ``(element, variable)`` pairs the runs return, in order.
     Ts : float
@@ -57,7 +67,7 @@ class System:
     stop_time : float
         Length of a run [s].
     target : callable
-        ``target(t)``: the system input at the times ``t`` [s].
+        ``target(t)``: the system input (the bound target) at the times ``t`` [s].
     """
     name: str
     description: str
@@ -65,7 +75,7 @@ class System:
     connections: tuple
     parameters: dict
     without_shaper: dict
-    system_input: tuple
+    system_input: tuple | None
     recorded: tuple
     Ts: float
     stop_time: float
@@ -86,7 +96,7 @@ def system_structure(system: System, *, system_input: bool = True) -> str:
     system : System
     system_input : bool, keyword-only
         False leaves out the system's input connector and its connection (libcosim refuses
-        connections without a start element).
+        connections without a start element); a system without an input has neither.
 
     Returns
     -------
@@ -98,7 +108,8 @@ def system_structure(system: System, *, system_input: bool = True) -> str:
     KeyError
         A component without its parameters in ``system.parameters``.
     """
-    connector, element, element_connector = system.system_input
+    system_input = system_input and system.system_input is not None
+    connector, element, element_connector = system.system_input or (None, None, None)
     lines = ['<?xml version="1.0" encoding="UTF-8"?>',
              f'<ssd:SystemStructureDescription {SSD_NS} version="1.0" name="{system.name}">',
              f'  <ssd:System name="{system.name}" description={quoteattr(system.description)}>']
@@ -137,7 +148,8 @@ def system_structure(system: System, *, system_input: bool = True) -> str:
 def write_ssp(system: System, out_dir: Path, fmus: dict[str, Path]) -> tuple[Path, Path]:
     """Write ``<name>.ssp`` (a zip: SystemStructure.ssd + resources/<Model>.fmu), the system
     with its input, and ``<name>-libcosim.ssp``, the same without the system-level input
-    (libcosim cannot connect it; its runner sets the generator's input).
+    (libcosim cannot connect it; its runner sets the generator's input). A system without an
+    input is the one file ``<name>.ssp``, which both importers run.
 
     Parameters
     ----------
@@ -150,7 +162,7 @@ def write_ssp(system: System, out_dir: Path, fmus: dict[str, Path]) -> tuple[Pat
     Returns
     -------
     tuple of Path
-        The two files.
+        The files fmpy and libcosim run (the same file for a system without an input).
 
     Raises
     ------
@@ -163,7 +175,10 @@ def write_ssp(system: System, out_dir: Path, fmus: dict[str, Path]) -> tuple[Pat
     if missing:
         raise RuntimeError(f"the system needs {', '.join(missing)}.fmu (build the FMUs first)")
     paths = out_dir / f"{system.name}.ssp", out_dir / f"{system.name}-libcosim.ssp"
-    for path, with_input in zip(paths, (True, False)):
+    files = tuple(zip(paths, (True, False)))
+    if system.system_input is None:
+        paths, files = (paths[0], paths[0]), files[:1]
+    for path, with_input in files:
         with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED) as z:
             z.writestr("SystemStructure.ssd", system_structure(system, system_input=with_input))
             for _, model, _ in system.components:
@@ -205,9 +220,73 @@ def ssp_parameters(ssp: Path) -> dict[str, float | int]:
     return values
 
 
+def ssp_parameter_set(ssp: Path, **overrides) -> SimpleNamespace:
+    """An SSP's parameter bindings as ``fmpy.ssp.simulate_ssp``'s ``parameter_set``: fmpy reads
+    a system's bindings but applies only this argument, so
+    ``simulate_ssp(ssp, parameter_set=ssp_parameter_set(ssp))`` runs the system as its file
+    says.
+
+    Parameters
+    ----------
+    ssp : Path
+        An SSP file.
+    **overrides
+        ``"Component.variable"`` -> value, replacing or adding to the bindings.
+
+    Returns
+    -------
+    SimpleNamespace
+        ``parameters``: a list of objects with ``name`` and ``value``.
+
+    Raises
+    ------
+    OSError
+        The file cannot be read.
+    zipfile.BadZipFile
+        It is not an SSP (zip) file.
+    """
+    values = {**ssp_parameters(ssp), **overrides}
+    return SimpleNamespace(parameters=[SimpleNamespace(name=n, value=v) for n, v in values.items()])
+
+
+def _recorded_columns(system: System, r) -> list[str]:
+    names = r.dtype.names
+    return [next(n for n in names if n.endswith(f"{e}.{v}")) for e, v in system.recorded]
+
+
+def fmpy_applies_bindings(system: System, ssp: Path) -> bool:
+    """Does ``fmpy.ssp.simulate_ssp`` apply an SSP's parameter bindings by itself? The system
+    (one without an input, its move bound from t = 0) runs alone for 50 steps: its first
+    recorded variable moves only if the bindings were applied (fmpy 0.3: they are not).
+
+    Parameters
+    ----------
+    system : System
+        One without an input.
+    ssp : Path
+        Its file.
+
+    Returns
+    -------
+    bool
+
+    Raises
+    ------
+    ValueError
+        The system has an input (its move would depend on it, not on the bindings).
+    """
+    if system.system_input is not None:
+        raise ValueError(f"{system.name} has an input: its move does not show the bindings")
+    _optional.require("fmpy", "checking whether fmpy applies an SSP's bindings")
+    from fmpy.ssp.simulation import simulate_ssp
+    r = simulate_ssp(str(ssp), stop_time=50.5 * system.Ts, step_size=system.Ts)
+    return bool(np.any(np.asarray(r[_recorded_columns(system, r)[0]], float) != 0.0))
+
+
 def run_fmpy(system: System, ssp: Path, *, shaper: bool) -> tuple[np.ndarray, ...]:
     """(t, recorded...) from fmpy's SSP master (t += h, step Ts): row k is the state after
-    step k, i.e. at t_(k+1).
+    step k, i.e. at t_(k+1). The file's parameter bindings are passed as ``parameter_set``
+    (:func:`ssp_parameter_set`), the system input (if any) as ``input``.
 
     Parameters
     ----------
@@ -229,30 +308,28 @@ def run_fmpy(system: System, ssp: Path, *, shaper: bool) -> tuple[np.ndarray, ..
     """
     _optional.require("fmpy", "an SSP system in fmpy")
     from fmpy.ssp.simulation import simulate_ssp
-    values = ssp_parameters(ssp)
-    if not shaper:
-        values.update(system.without_shaper)
-    pset = SimpleNamespace(parameters=[SimpleNamespace(name=n, value=v) for n, v in values.items()])
+    pset = ssp_parameter_set(ssp, **({} if shaper else system.without_shaper))
     Ts = system.Ts
+    inputs = {} if system.system_input is None else {
+        "input": {system.system_input[0]: lambda t: float(system.target(t))}}
     r = simulate_ssp(str(ssp), stop_time=system.stop_time - 0.5 * Ts, step_size=Ts,
-                     parameter_set=pset,
-                     input={system.system_input[0]: lambda t: float(system.target(t))})
-    names = r.dtype.names
-    columns = [next(n for n in names if n.endswith(f"{e}.{v}")) for e, v in system.recorded]
+                     parameter_set=pset, **inputs)
+    columns = _recorded_columns(system, r)
     return (np.asarray(r["time"]) + Ts, *(np.asarray(r[c], float) for c in columns))
 
 
 def run_libcosim(system: System, ssp: Path, *, shaper: bool,
                  n_steps: int) -> tuple[np.ndarray, ...]:
     """The same in libcosim: libcosim loads ``<name>-libcosim.ssp`` (components, connections,
-    parameter bindings); the generator's input is overridden with what the system input's
-    connection would deliver (the input of the previous step), outputs read after every step.
+    parameter bindings; ``<name>.ssp`` for a system without an input); the generator's input is
+    overridden with what the system input's connection would deliver (the input of the
+    previous step), outputs read after every step.
 
     Parameters
     ----------
     system : System
     ssp : Path
-        ``<name>-libcosim.ssp``.
+        ``<name>-libcosim.ssp`` (the second file :func:`write_ssp` returns).
     shaper : bool, keyword-only
         False applies ``system.without_shaper``.
     n_steps : int, keyword-only
@@ -286,16 +363,20 @@ def run_libcosim(system: System, ssp: Path, *, shaper: bool,
                       else execution.real_initial_value)
             if not setter(index[comp], vrs[comp][var], value):
                 raise RuntimeError(f"libcosim refused {key}")
-    override = CosimManipulator.create_override()
-    execution.add_manipulator(manipulator=override)
+    override = None
+    if system.system_input is not None:
+        override = CosimManipulator.create_override()
+        execution.add_manipulator(manipulator=override)
     observer = CosimObserver.create_last_value()
     execution.add_observer(observer=observer)
     t = (np.arange(n_steps) + 1) * Ts
     inputs = np.r_[0.0, system.target(np.arange(n_steps - 1) * Ts)]
     rows = np.empty((len(system.recorded), n_steps))
-    _, element, connector = system.system_input
     for k in range(n_steps):
-        override.slave_real_values(index[element], [vrs[element][connector]], [float(inputs[k])])
+        if override is not None:
+            _, element, connector = system.system_input
+            override.slave_real_values(index[element], [vrs[element][connector]],
+                                       [float(inputs[k])])
         if not execution.step():
             raise RuntimeError(f"libcosim step {k} failed")
         for j, (e, v) in enumerate(system.recorded):
@@ -307,7 +388,8 @@ def generator_shaper_reference(system: System, n_steps: int, *, limits: dict,
                                stages) -> np.ndarray:
     """The NumPy reference of the chain's first two components, TrajectoryGenerator and
     SmoothShaper, with the one-step delay of each connection: the shaper's output after each
-    of ``n_steps`` steps (the generator rests at 0, ``stages`` empty is no shaper).
+    of ``n_steps`` steps (the generator rests at 0, ``stages`` empty is no shaper; a bound
+    target is the generator's from the first step on).
 
     Parameters
     ----------
@@ -332,7 +414,10 @@ def generator_shaper_reference(system: System, n_steps: int, *, limits: dict,
     from .. import reference as filters_reference
     from ..trajectory import generator_reference
     Ts = system.Ts
-    tgt_in = np.r_[0.0, system.target(np.arange(n_steps - 1) * Ts)]   # connection: one step
+    if system.system_input is None:   # bound at initialization
+        tgt_in = np.asarray(system.target(np.arange(n_steps) * Ts), float)
+    else:                             # through a connection: one step late
+        tgt_in = np.r_[0.0, system.target(np.arange(n_steps - 1) * Ts)]
     q = np.r_[0.0, generator_reference(tgt_in, Ts=Ts, **limits)[:, 0]]
     if not stages:
         return q[:n_steps]

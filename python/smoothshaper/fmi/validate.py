@@ -2,12 +2,14 @@
 """``smoothshaper validate``: build the FMUs, check them with fmpy and fmutool, compare the two
 importers and every validation case with the NumPy reference, and write the report.
 
-:func:`run` builds the FMUs with CMake, runs fmpy's model-description validation and
-``fmutool -check`` on every FMU, runs each in libcosim and fmpy, simulates every stage family
-and a few chains through ``SmoothShaper.fmu`` with fmpy for several communication step sizes,
-compares the output with the reference (:mod:`smoothshaper.fmi.timing`), compares
-``ServoDrive.fmu`` with the servo testbed for every controller (:mod:`smoothshaper.fmi.servo`)
-and writes ``README.md`` (tables of max errors) and PNG plots into ``out_dir``.
+:func:`run` builds the FMI 2.0 and FMI 3.0 FMUs with CMake, runs fmpy's model-description
+validation and ``fmutool -check`` on every FMU, runs each FMI 2.0 FMU in libcosim and fmpy
+(libcosim has no FMI 3.0), simulates every stage family and a few chains through
+``SmoothShaper.fmu`` with fmpy for several communication step sizes, compares the output with
+the reference (:mod:`smoothshaper.fmi.timing`), compares ``ServoDrive.fmu`` with the servo
+testbed for every controller (:mod:`smoothshaper.fmi.servo`), runs every model's FMI 3.0 FMU
+in fmpy against its FMI 2.0 FMU (bit for bit; MultiAxisGenerator with 1 to 8 axes) and writes
+``README.md`` (tables of max errors) and PNG plots into ``out_dir``.
 """
 from __future__ import annotations
 
@@ -18,14 +20,16 @@ import numpy as np
 
 from . import servo
 from .build import build_fmus, fmpy_problems, fmutool_problems
-from .cases import TRAJECTORY_LIMITS, TRAJECTORY_PROFILES, validation_cases
+from .cases import (TRAJECTORY_LIMITS, TRAJECTORY_PROFILES, multi_axis_case, target_staircase,
+                    test_input, validation_cases)
 from .compare import REL_TOL, compare, compare_importers, compare_importers_trajectory, \
     compare_trajectory
+from .timing import communication_points
 
 from .. import _optional
 from .._optional import pyplot
 
-__all__ = ["RUN_STEPS", "REQUIRES", "run"]
+__all__ = ["RUN_STEPS", "REQUIRES", "fmi3_against_fmi2", "run"]
 
 #: The optional packages a run needs (extra ``validate``), checked before it starts.
 REQUIRES = ("fmpy", "libcosimpy", "fmu_manipulation_toolbox", "matplotlib")
@@ -94,11 +98,83 @@ def _plot_servo(path: Path, name: str, c, n: float) -> None:
 
 
 #: The steps of :func:`run`, in order, for a progress display.
-RUN_STEPS = ("build", "checks", "importers", "SmoothShaper", "TrajectoryGenerator", "ServoDrive")
+RUN_STEPS = ("build", "checks", "importers", "SmoothShaper", "TrajectoryGenerator", "ServoDrive",
+             "FMI 3.0")
 
 
-def run(out_dir, *, build_dir=None, fmus: dict | None = None, Ts: float = 1e-3,
-        stop_time: float = 0.42, plots: bool = True, progress=None) -> bool:
+def _elastic_plant(fmu, t, u, Ts: float) -> np.ndarray:
+    fmpy = _optional.require("fmpy", "running ElasticPlant in fmpy")
+    sig = np.zeros(t.size, dtype=[("time", float), ("u", float)])
+    sig["time"], sig["u"] = t, u
+    r = fmpy.simulate_fmu(str(fmu), start_values={"Ts": Ts}, input=sig, stop_time=float(t[-1]),
+                          output_interval=float(t[1] - t[0]), output=["y"], validate=False)
+    return np.asarray(r["y"], dtype=float)
+
+
+def fmi3_against_fmi2(fmus: dict, fmus3: dict, *, Ts: float = 1e-3):
+    """Every model's FMI 3.0 FMU against its FMI 2.0 FMU in fmpy, on the same cases: every
+    SmoothShaper validation case, every TrajectoryGenerator profile, MultiAxisGenerator with 1
+    to 8 axes (arrays in FMI 3.0), ElasticPlant, every ServoDrive validation case; each pair
+    must agree bit for bit.
+
+    Parameters
+    ----------
+    fmus, fmus3 : dict
+        Model name -> FMU path, FMI 2.0 and FMI 3.0.
+    Ts : float, keyword-only
+        Sample period and communication step [s] (default 1e-3).
+
+    Returns
+    -------
+    list of tuple
+        ``(model, case, max |FMI 3.0 - FMI 2.0|)`` for every case of a model built in both.
+
+    Raises
+    ------
+    RuntimeError
+        fmpy returned other points than asked for.
+    """
+    from .simulate import simulate, simulate_multi_axis, simulate_trajectory
+    rows = []
+    both = set(fmus) & set(fmus3)
+    if "SmoothShaper" in both:
+        t = communication_points(step=Ts, stop_time=0.3)
+        u = test_input(t)
+        for name, stages in validation_cases(Ts):
+            y2, y3 = (simulate(str(f["SmoothShaper"]), stages, t, u, Ts=Ts) for f in (fmus, fmus3))
+            rows.append(("SmoothShaper", name, float(np.max(np.abs(y3 - y2)))))
+    if "TrajectoryGenerator" in both:
+        t = communication_points(step=Ts, stop_time=1.2)
+        target = target_staircase(t)
+        for name, params in TRAJECTORY_PROFILES:
+            y2, y3 = (simulate_trajectory(str(f["TrajectoryGenerator"]), t, target, Ts=Ts,
+                                          **TRAJECTORY_LIMITS, **params) for f in (fmus, fmus3))
+            rows.append(("TrajectoryGenerator", f"profile {name}", float(np.max(np.abs(y3 - y2)))))
+    if "MultiAxisGenerator" in both:
+        t = communication_points(step=Ts, stop_time=0.8)
+        for axes in range(1, 9):
+            values, targets, _ = multi_axis_case(axes, t)
+            y2, y3 = (simulate_multi_axis(f["MultiAxisGenerator"], t, targets, values)
+                      for f in (fmus, fmus3))
+            rows.append(("MultiAxisGenerator", f"{axes} axes", float(np.max(np.abs(y3 - y2)))))
+    if "ElasticPlant" in both:
+        t = communication_points(step=2.5 * Ts, stop_time=0.3)
+        u = test_input(t)
+        y2, y3 = (_elastic_plant(f["ElasticPlant"], t, u, Ts) for f in (fmus, fmus3))
+        rows.append(("ElasticPlant", "h = 2.5 Ts", float(np.max(np.abs(y3 - y2)))))
+    if "ServoDrive" in both:   # at its own Ts, the testbed's
+        t = communication_points(step=servo.TS, stop_time=1.5)
+        q_ref, tau_load = servo.reference_input(t, Ts=servo.TS)
+        for name, overrides in servo.VALIDATION_CASES:
+            y2, y3 = (servo.simulate_servo(f["ServoDrive"], t, q_ref, tau_load, overrides)
+                      for f in (fmus, fmus3))
+            rows.append(("ServoDrive", name, max(float(np.max(np.abs(y3[n] - y2[n])))
+                                                 for n in servo.OUTPUTS)))
+    return rows
+
+
+def run(out_dir, *, build_dir=None, fmus: dict | None = None, fmus3: dict | None = None,
+        Ts: float = 1e-3, stop_time: float = 0.42, plots: bool = True, progress=None) -> bool:
     """Build the FMUs, check them (fmpy, fmutool), compare both importers and compare every
     validation case with the NumPy reference; write ``README.md`` and the plots to
     ``out_dir``.
@@ -110,7 +186,9 @@ def run(out_dir, *, build_dir=None, fmus: dict | None = None, Ts: float = 1e-3,
     build_dir : str or Path or None, keyword-only
         CMake build folder (default ``out_dir/build``).
     fmus : dict or None, keyword-only
-        Model name -> FMU path, to skip the build.
+        Model name -> FMU path, to skip the build (FMI 2.0).
+    fmus3 : dict or None, keyword-only
+        The same for FMI 3.0 (default: built, unless ``fmus`` is given).
     Ts : float, keyword-only
         Sample period of the cases [s] (default 1e-3).
     stop_time : float, keyword-only
@@ -138,7 +216,11 @@ def run(out_dir, *, build_dir=None, fmus: dict | None = None, Ts: float = 1e-3,
     step = progress or (lambda name: None)
     step("build")
     if fmus is None:
-        fmus = build_fmus(Path(build_dir) if build_dir else out / "build")
+        folder = Path(build_dir) if build_dir else out / "build"
+        fmus = build_fmus(folder)
+        if fmus3 is None:
+            fmus3 = build_fmus(folder, fmi_version="3.0")
+    fmus3 = fmus3 or {}
     step("checks")
     lines = ["# FMU validation", "",
              "Built with CMake; checked with fmpy; simulated with fmpy and compared with the "
@@ -147,16 +229,19 @@ def run(out_dir, *, build_dir=None, fmus: dict | None = None, Ts: float = 1e-3,
              "t_{k+1}; the FMU computes the ticks n*Ts in (t_k, t_k + h] with u held at u(t_k) "
              "and reports the last tick's output (see `smoothshaper.fmi.timing`).", "",
              "## fmpy validate and fmutool -check", "",
-             "| FMU | binaries | fmpy validate | fmutool -check |", "|---|---|---|---|"]
+             "| FMU | FMI | binaries | fmpy validate | fmutool -check |", "|---|---|---|---|---|"]
     ok = True
-    for model, path in sorted(fmus.items()):
-        problems, checks = fmpy_problems(path), fmutool_problems(path)
-        ok &= not problems and not checks
-        with zipfile.ZipFile(path) as z:
-            platforms = sorted({n.split("/")[1] for n in z.namelist()
-                                if n.startswith("binaries/") and n.count("/") == 2 and not n.endswith("/")})
-        lines.append(f"| {model}.fmu | {', '.join(platforms)} | {'; '.join(problems) or 'no problem'} | "
-                     f"{'; '.join(checks) or 'passed'} |")
+    for version, built in (("2.0", fmus), ("3.0", fmus3)):
+        for model, path in sorted(built.items()):
+            problems, checks = fmpy_problems(path), fmutool_problems(path)
+            ok &= not problems and not checks
+            with zipfile.ZipFile(path) as z:
+                platforms = sorted({n.split("/")[1] for n in z.namelist()
+                                    if n.startswith("binaries/") and n.count("/") == 2
+                                    and not n.endswith("/")})
+            lines.append(f"| {model}.fmu | {version} | {', '.join(platforms)} | "
+                         f"{'; '.join(problems) or 'no problem'} | "
+                         f"{'; '.join(checks) or 'passed'} |")
     step("importers")
     if {"SmoothShaper", "TrajectoryGenerator", "ServoDrive"} & set(fmus):
         lines += ["", "## Second importer (libcosim via libcosimpy)", "",
@@ -252,6 +337,17 @@ def run(out_dir, *, build_dir=None, fmus: dict | None = None, Ts: float = 1e-3,
         lines += ["", "Cells: max over q_m, w_m, q_l, w_l, tau_m of max |FMU - testbed| / max "
                   "|testbed|, and in brackets the largest error over its tolerance. Plots "
                   "(h = Ts): `servo_drive_pid.png`, `servo_drive_lqg.png`."]
+    step("FMI 3.0")
+    if fmus3:
+        lines += ["", "## FMI 3.0 against FMI 2.0 (fmpy, h = Ts)", "",
+                  "The FMI 3.0 FMUs are built from the same model files; each must give the FMI "
+                  "2.0 FMU's outputs bit for bit (MultiAxisGenerator's per-axis variables are "
+                  "arrays of 8 in FMI 3.0; every axis's target is given, so fmpy warns of no "
+                  "missing input).", "", "| FMU | case | max abs(FMI 3.0 - FMI 2.0) | same |",
+                  "|---|---|---|---|"]
+        for model, case, diff in fmi3_against_fmi2(fmus, fmus3, Ts=Ts):
+            ok &= diff == 0.0
+            lines.append(f"| {model} | {case} | {diff:.1e} | {'yes' if diff == 0.0 else 'NO'} |")
     lines += ["", f"**Result: {'PASS' if ok else 'FAIL'}**", ""]
     (out / "README.md").write_text("\n".join(lines))
     print(f"validation {'passed' if ok else 'FAILED'}: report in {out / 'README.md'}")
