@@ -22,8 +22,10 @@
 #include "SmoothShaper_variables.h"
 #include "fmu_model.h"
 
-/* The generated kind codes are the core's sms_kind values (compile-time check). */
+/* The generated kind codes are the core's sms_kind values, and a stage's impulse parameters
+ * fit a config (compile-time checks). */
 typedef char ss_kind_codes_match_sms_kind[(SS_KIND_COUNT == SMS_KIND_COUNT) ? 1 : -1];
+typedef char ss_impulses_fit_config[(SS_MAX_IMPULSES == SMS_SHAPER_MAX_IMPULSES) ? 1 : -1];
 
 static const char *const field_names[SS_FIELD_COUNT] = {
     "kind", "design", "timing", "T", "sigma", "k", "wn", "zeta", "order", "tolerance",
@@ -33,6 +35,7 @@ static const char *const field_names[SS_FIELD_COUNT] = {
 typedef struct ss_params {
     int ints[SS_FIELD_COUNT];     /* kind, design, timing, k, order (by SS_FIELD_*) */
     double reals[SS_FIELD_COUNT]; /* T, sigma, wn, zeta, tolerance, notch_pole_zeta, duration */
+    double amplitude[SS_MAX_IMPULSES], time[SS_MAX_IMPULSES];   /* kind = impulses */
 } ss_params;
 
 /* Parameters (as set: a tunable value takes effect at the next communication point) and the
@@ -78,6 +81,28 @@ static int stage_field(fmu_vr vr, unsigned *k, unsigned *f)
     *k = (vr - SS_STAGE_BASE) / SS_STAGE_STRIDE;
     *f = (vr - SS_STAGE_BASE) % SS_STAGE_STRIDE;
     return *f < SS_FIELD_COUNT;
+}
+
+/* Split an impulse value reference into (stage, impulse, is_time); 0 if it is not one. */
+static int impulse_field(fmu_vr vr, unsigned *k, unsigned *i, int *is_time)
+{
+    unsigned r;
+    if (vr < SS_IMPULSE_BASE || vr >= SS_IMPULSE_BASE + SS_IMPULSE_STRIDE * SS_MAX_STAGES)
+        return 0;
+    *k = (vr - SS_IMPULSE_BASE) / SS_IMPULSE_STRIDE;
+    r = (vr - SS_IMPULSE_BASE) % SS_IMPULSE_STRIDE;
+    *is_time = r >= SS_MAX_IMPULSES;
+    *i = *is_time ? r - SS_MAX_IMPULSES : r;
+    return *i < SS_MAX_IMPULSES;
+}
+
+/* The stored impulse parameter vr names (valid per impulse_field). */
+static double *impulse_slot(ss_model *m, fmu_vr vr)
+{
+    unsigned k, i;
+    int is_time;
+    (void)impulse_field(vr, &k, &i, &is_time);
+    return is_time ? &m->stage[k].time[i] : &m->stage[k].amplitude[i];
 }
 
 /* A schedule table value reference into (row, field 0 value / 1 wn / 2 zeta); 0 if not one. */
@@ -129,7 +154,9 @@ void fmu_model_defaults(void *model)
 
 fmu_var_class fmu_model_class(fmu_type type, fmu_vr vr)
 {
-    unsigned k, f;
+    unsigned k, f, i;
+    int is_time;
+    if (type == FMU_REAL && impulse_field(vr, &k, &i, &is_time)) return FMU_VAR_PARAMETER;
     if (type == FMU_REAL && (vr == SS_VR_U || vr == SS_VR_S)) return FMU_VAR_INPUT;
     if (type == FMU_REAL && (vr == SS_VR_Y || vr == SS_VR_LAG)) return FMU_VAR_OUTPUT;
     if (type == FMU_REAL && (vr == SS_VR_TS || vr == SS_VR_RETUNE_MAX_DELAY)) return FMU_VAR_PARAMETER;
@@ -143,8 +170,11 @@ fmu_var_class fmu_model_class(fmu_type type, fmu_vr vr)
 void fmu_model_name(fmu_type type, fmu_vr vr, char *buf, size_t len)
 {
     static const char *const sched_names[3] = {"value", "wn", "zeta"};
-    unsigned k, f;
-    if (type == FMU_REAL && vr <= SS_VR_LAG) {
+    unsigned k, f, i;
+    int is_time;
+    if (type == FMU_REAL && impulse_field(vr, &k, &i, &is_time)) {
+        snprintf(buf, len, "stage[%u].%s[%u]", k, is_time ? "time" : "amplitude", i);
+    } else if (type == FMU_REAL && vr <= SS_VR_LAG) {
         static const char *const names[6] = {"u", "y", "Ts", "retune_max_delay", "s", "lag"};
         snprintf(buf, len, "%s", names[vr]);
     } else if (type == FMU_INTEGER && is_sched_integer(vr)) {
@@ -181,6 +211,10 @@ size_t fmu_model_settable(fmu_type type, fmu_vr *out, size_t cap)
         for (f = 0; f < SS_FIELD_COUNT; ++f)
             if (is_integer_field(f) == (type == FMU_INTEGER))
                 PUT(SS_STAGE_BASE + SS_STAGE_STRIDE * k + f);
+    if (type == FMU_REAL)
+        for (k = 0; k < SS_MAX_STAGES; ++k)
+            for (f = 0; f < 2u * SS_MAX_IMPULSES; ++f)
+                PUT(SS_IMPULSE_BASE + SS_IMPULSE_STRIDE * k + f);
 #undef PUT
     return n;
 }
@@ -197,7 +231,10 @@ static double lag_seconds(const ss_model *m)
 double fmu_model_get_real(const void *model, fmu_vr vr)
 {
     const ss_model *m = (const ss_model *)model;
-    unsigned k, f;
+    unsigned k, f, i;
+    int is_time;
+    if (impulse_field(vr, &k, &i, &is_time))
+        return is_time ? m->stage[k].time[i] : m->stage[k].amplitude[i];
     switch (vr) {
     case SS_VR_U: return m->u;
     case SS_VR_Y: return m->y;
@@ -242,8 +279,10 @@ static void mark_pending(ss_model *m, unsigned k)
 void fmu_model_set_real(void *model, fmu_vr vr, double value)
 {
     ss_model *m = (ss_model *)model;
-    unsigned k, f;
-    if (vr == SS_VR_U) m->u = value;
+    unsigned k, f, i;
+    int is_time;
+    if (impulse_field(vr, &k, &i, &is_time)) *impulse_slot(m, vr) = value;
+    else if (vr == SS_VR_U) m->u = value;
     else if (vr == SS_VR_S) m->s = value;
     else if (vr == SS_VR_TS) m->Ts = value;
     else if (vr == SS_VR_RETUNE_MAX_DELAY) m->retune_max_delay = value;
@@ -296,6 +335,34 @@ static unsigned offending_field(sms_status st, int design_for_mode, const char *
     case SMS_ERR_SHAPER_DURATION: return SS_FIELD_DURATION;
     default: return SS_FIELD_KIND;
     }
+}
+
+/* User-defined impulses: the first impulse parameter the refusal st is about (the core
+ * checks amplitudes, then times, in order), as the refusal text. */
+static int impulses_error(const ss_model *m, unsigned k, sms_status st, char *msg, size_t len)
+{
+    const ss_params *p = &m->stage[k];
+    unsigned n = (unsigned)p->ints[SS_FIELD_ORDER], i, bad = 0;
+    double sum = 0.0;
+    if (st == SMS_ERR_IMPULSE_AMPLITUDE) {
+        for (i = 0; i < n; ++i) {
+            sum += p->amplitude[i];
+            if (!(p->amplitude[i] - p->amplitude[i] == 0.0))
+                return snprintf(msg, len, "stage[%u].amplitude[%u] = %.17g: %s", k, i,
+                                p->amplitude[i], sms_status_string(st)), 1;
+        }
+        return snprintf(msg, len, "stage[%u].amplitude[0 .. %u] sum to %.17g: %s", k, n - 1u,
+                        sum, sms_status_string(st)), 1;
+    }
+    bad = st == SMS_ERR_TOO_LONG ? n - 1u : 0u;      /* too long: the last time */
+    for (i = 0; i < n && st != SMS_ERR_TOO_LONG; ++i)
+        if (!(p->time[i] - p->time[i] == 0.0) || p->time[i] < 0.0
+            || (i > 0u && !(p->time[i] > p->time[i - 1u]))) {
+            bad = i;
+            break;
+        }
+    return snprintf(msg, len, "stage[%u].time[%u] = %.17g: %s", k, bad, p->time[bad],
+                    sms_status_string(st)), 1;
 }
 
 /* "stage[k].field = value<note>: <status>" into msg; returns 1 (the build fails). */
@@ -355,9 +422,14 @@ static int stage_config(const ss_model *m, unsigned k, sms_stage_config *c, char
     c->tolerance = p->reals[SS_FIELD_TOLERANCE];
     c->notch_pole_zeta = p->reals[SS_FIELD_NOTCH_POLE_ZETA];
     c->duration = p->reals[SS_FIELD_DURATION];
+    memcpy(c->amplitudes, p->amplitude, sizeof c->amplitudes);
+    memcpy(c->times, p->time, sizeof c->times);
     st = sms_stage_config_validate(c, m->Ts);
     if (st == SMS_ERR_SAMPLE_PERIOD)
         return snprintf(msg, len, "Ts = %.17g: must be finite and > 0", m->Ts), 1;
+    if (st == SMS_ERR_IMPULSE_AMPLITUDE || st == SMS_ERR_IMPULSE_TIME
+        || (kind == SMS_SHAPER_IMPULSES && st == SMS_ERR_TOO_LONG))
+        return impulses_error(m, k, st, msg, len);
     if (st != SMS_OK)
         return stage_error(m, k, st, for_mode, msg, len);
     return 0;
@@ -409,6 +481,33 @@ double fmu_model_input_max(const void *model)
     return m->built && m->n_active > 0 ? sms_tunable_chain_input_max(&m->chain) : HUGE_VAL;
 }
 
+/* The memory of the longest input smoother of this kind whose delay line holds at most
+ * `reals`: every sample of its window is a tap, so its memory grows with its length alone,
+ * and each length is reached by some wn (the kernel lasts c/wn). Bisection on log wn for the
+ * smallest wn whose length fits (below it: too long; above: fits, or too short to be valid).
+ * 0 if none fits. */
+static size_t input_smoother_capacity(int kind, size_t reals, double Ts)
+{
+    sms_stage_config c = sms_stage_config_default((sms_kind)kind);
+    double lo = 1e-300, hi = 3.14159265358979323846 / Ts;
+    size_t r = 0, cells = 0;
+    int i;
+    for (i = 0; i < 128; ++i) {
+        sms_status st;
+        c.wn = sqrt(lo) * sqrt(hi);
+        st = sms_stage_buffer_size(&c, Ts, &r);
+        if (st == SMS_ERR_TOO_LONG || (st == SMS_OK && r > reals))
+            lo = c.wn;
+        else
+            hi = c.wn;
+    }
+    c.wn = hi;
+    if (sms_stage_buffer_size(&c, Ts, &r) != SMS_OK || r > reals
+        || sms_stage_memory_size(&c, Ts, &cells) != SMS_OK)
+        return 0;
+    return cells;
+}
+
 /* The largest memory among configs of a family lasting `delay` [s] at Ts: the candidates
  * below, each for the wn (shapers) or T (smoothers) that makes it last that long; 0 if none
  * is valid. */
@@ -417,6 +516,13 @@ static size_t family_capacity(int kind, double delay, double Ts)
     static const double pi = 3.14159265358979323846;
     sms_stage_config c[6];
     size_t n = 0, i, most = 0;
+    if (kind >= SMS_SMOOTH_ZV && kind <= SMS_SMOOTH_SI) {
+        /* a dense FIR of the kind: the delay line lasts_longer() still accepts */
+        const double reals = floor(delay / Ts + 1e-9) + 2.0;
+        return reals < (double)SMS_INPUT_SMOOTHER_MAX_LENGTH
+               ? input_smoother_capacity(kind, (size_t)reals, Ts)
+               : input_smoother_capacity(kind, SMS_INPUT_SMOOTHER_MAX_LENGTH, Ts);
+    }
     if (kind <= SMS_EXPONENTIAL) {   /* smoothers: the longest ring is a bounded rectangle's */
         static const sms_timing timings[3] = {SMS_TIMING_BOUNDED, SMS_TIMING_EXACT, SMS_TIMING_PAPER};
         for (i = 0; i < 3; ++i) {
@@ -466,7 +572,9 @@ static int slot_size(const ss_model *m, unsigned k, const sms_stage_config *c, s
     size_t own = 0, cap;
     (void)sms_stage_memory_size(c, m->Ts, &own);   /* the config was validated */
     *cells = own;
-    if (!(m->retune_max_delay > 0.0))
+    /* user-defined impulses are never retuned (their fields are fixed; sms_tunable_retune()
+     * refuses them): their own size, whatever retune_max_delay */
+    if (!(m->retune_max_delay > 0.0) || c->kind == SMS_SHAPER_IMPULSES)
         return 0;
     cap = family_capacity((int)c->kind, m->retune_max_delay, m->Ts);
     if (cap == 0)
@@ -579,6 +687,9 @@ static int configure(ss_model *m, sms_stage_config *configs, size_t *n, size_t *
             if (*n == 0)
                 snprintf(names, sizeof names, "schedule.wn[0 .. %d], Ts = %.17g",
                          m->sched_points - 1, m->Ts);
+            else if (p->ints[SS_FIELD_KIND] == SMS_SHAPER_IMPULSES)
+                snprintf(names, sizeof names, "stage[%u].time[%d] = %.17g, Ts = %.17g", longest,
+                         p->ints[SS_FIELD_ORDER] - 1, p->time[p->ints[SS_FIELD_ORDER] - 1], m->Ts);
             else if (p->ints[SS_FIELD_DESIGN] == 1 || p->ints[SS_FIELD_KIND] >= SMS_SHAPER_ZV)
                 snprintf(names, sizeof names, "stage[%u].wn = %.17g, stage[%u].zeta = %.17g, "
                          "Ts = %.17g", longest, p->reals[SS_FIELD_WN], longest,
@@ -728,6 +839,8 @@ int fmu_model_check_tunable(const void *model, fmu_type type, const fmu_vr *vr,
             continue;
         if (stage_config(&probe, k, &c, msg, len) != 0)
             return 1;
+        if (c.kind == SMS_SHAPER_IMPULSES)
+            continue;   /* it reads none of the tunable fields: nothing to retune */
         (void)sms_stage_memory_size(&c, m->Ts, &cells);
         if (cells <= m->slot_cells[i] && !lasts_longer(m, &c))
             continue;
@@ -753,8 +866,9 @@ static void apply_pending(ss_model *m)
         sms_status st;
         if (!m->pending[i])
             continue;
-        if (stage_config(m, m->used[i], &c, msg, sizeof msg) != 0) {
-            m->pending[i] = 0;   /* refused at set: cannot happen */
+        if (stage_config(m, m->used[i], &c, msg, sizeof msg) != 0
+            || c.kind == SMS_SHAPER_IMPULSES) {
+            m->pending[i] = 0;   /* refused at set: cannot happen; impulses read no tunable */
             continue;
         }
         st = sms_tunable_chain_retune(&m->chain, i, &c);
@@ -866,11 +980,16 @@ static int same_config(const sms_stage_config *a, const sms_stage_config *b)
                && (k == SMS_RECTANGULAR || k == SMS_HARMONIC || a->sigma == b->sigma);
     if (k == SMS_NOTCH_TUSTIN || k == SMS_NOTCH_MATCHED)
         return a->wn == b->wn && a->zeta == b->zeta && a->notch_pole_zeta == b->notch_pole_zeta;
-    return a->timing == b->timing && a->wn == b->wn && a->zeta == b->zeta
-           && ((k != SMS_SHAPER_ZVN && k != SMS_SHAPER_GMZV) || a->order == b->order)
-           && ((k != SMS_SHAPER_EI && k != SMS_SHAPER_EI2 && k != SMS_SHAPER_EI3)
-               || a->tolerance == b->tolerance)
-           && (k != SMS_SHAPER_GMZV || a->duration == b->duration);
+    if (k == SMS_SHAPER_IMPULSES)
+        return 1;   /* its fields are fixed parameters: the same as built */
+    return a->timing == b->timing && a->wn == b->wn
+           && (a->zeta == b->zeta   /* the input smoothers that read no zeta */
+               || k == SMS_SMOOTH_EI2 || k == SMS_SMOOTH_ZVD_EI || k == SMS_SMOOTH_SI)
+           && ((k != SMS_SHAPER_ZVN && k != SMS_SHAPER_GMZV && k != SMS_SHAPER_SI)
+               || a->order == b->order)
+           && ((k != SMS_SHAPER_EI && k != SMS_SHAPER_EI2 && k != SMS_SHAPER_EI3
+                && k != SMS_SHAPER_SI) || a->tolerance == b->tolerance)
+           && ((k != SMS_SHAPER_GMZV && k != SMS_SHAPER_SI) || a->duration == b->duration);
 }
 
 /* A state must be one a run can reach: inputs within the chain's range X (the glue refuses
@@ -891,7 +1010,14 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
         const double *part = src + off;
         sms_stage_config active, old;
         int switching = 0;
-        if (sms_tunable_state_configs(part, m->region[i], &active, &old, &switching) != SMS_OK)
+        sms_status st = sms_tunable_state_configs(part, m->region[i], &active, &old, &switching);
+        char why[FMU_MESSAGE_LEN];
+        /* user-defined impulses: the state names them by a checksum; they are fixed
+         * parameters, so build them as configured (set_state refuses other impulses) */
+        if (st == SMS_ERR_KIND && m->stage[m->used[i]].ints[SS_FIELD_KIND] == SMS_SHAPER_IMPULSES
+            && stage_config(m, m->used[i], &active, why, sizeof why) == 0)
+            st = SMS_OK;
+        if (st != SMS_OK)
             return snprintf(msg, len, "stage %lu's state is not a retunable stage's",
                             (unsigned long)i), 1;
         if (sms_tunable_init(&m->tunables[i], switching ? &old : &active, m->Ts, m->slot_cells[i],

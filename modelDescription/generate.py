@@ -82,14 +82,23 @@ UNITS = {  # unit name -> SI base-unit exponents. Signals carry no unit: the fil
 }
 
 KINDS = ("rectangular", "harmonic", "damped_harmonic", "exponential", "zv", "zvd", "zvdd", "zvn",
-         "ei", "ei2", "mzv", "notch_tustin", "notch_matched", "ei3", "gmzv")  # == sms_kind 0..14
+         "ei", "ei2", "mzv", "notch_tustin", "notch_matched", "ei3", "gmzv", "smooth_zv",
+         "smooth_mzv", "smooth_ei", "smooth_ei2", "smooth_zvd_ei", "smooth_si", "si",
+         "impulses")  # == sms_kind 0..22
 KIND_TEXT = ("moving average M", "sinusoidal smoother S",
              "damped sinusoidal smoother S_sigma", "exponential smoother M_sigma",
              "ZV input shaper", "ZVD input shaper", "ZVDD input shaper", "ZV^n input shaper (order n)",
              "extra-insensitive shaper", "two-hump extra-insensitive shaper", "modified ZV shaper",
              "notch, Tustin pre-warped at wn", "notch, pole-zero matched",
              "three-hump extra-insensitive shaper",
-             "generalised MZV shaper (order impulses over duration damped periods)")
+             "generalised MZV shaper (order impulses over duration damped periods)",
+             "smooth ZV input smoother (zeta in [0, 0.25])",
+             "smooth MZV input smoother (zeta in [0, 0.25])",
+             "smooth EI input smoother (zeta in [0, 0.25])",
+             "smooth two-hump EI input smoother", "smooth ZVD-EI input smoother",
+             "smooth SI input smoother",
+             "specified-insensitivity shaper (order impulses over duration damped periods)",
+             "user-defined impulses (order of them: stage[k].amplitude[i] at stage[k].time[i])")
 
 # SmoothShaper value references: globals below 100, stage k field f at 100 + 16 k + f.
 SS_MAX_STAGES = 8
@@ -111,13 +120,22 @@ SS_FIELDS = (  # (name, type, unit, start, description, choices, min, max)
     ("zeta", "Real", "1", 0.0, "damping ratio of the mode (shapers, notch zeros, design = "
      "for_mode); in [0, 1)", "", 0.0, 1.0),
     ("order", "Integer", "", 1, "n of the ZV^n shaper (kind = zvn), 1..8; impulses of the "
-     "generalised MZV (kind = gmzv), 3..9", "", 1, 9),
-    ("tolerance", "Real", "1", 0.05, "vibration tolerance of the EI shapers; in (0, 1)", "", 0.0, 1.0),
+     "generalised MZV (kind = gmzv), 3..9, of the SI shaper (kind = si), 3, 5, 7 or 9, and of "
+     "the user-defined impulses (kind = impulses), 1..9", "", 1, 9),
+    ("tolerance", "Real", "1", 0.05, "vibration tolerance of the EI and SI shapers; in (0, 1)",
+     "", 0.0, 1.0),
     ("notch_pole_zeta", "Real", "1", 0.7, "pole damping of the notch; finite, > zeta, <= 1e6", "",
      0.0, 1e6),
     ("duration", "Real", "1", 0.75, "span of the generalised MZV (kind = gmzv) in damped periods; "
-     "in (0.5, (order-1)/2) (0.75 with order 3 is MZV)", "", 0.0, 4.0),
+     "in (0.5, (order-1)/2) (0.75 with order 3 is MZV); of the SI shaper (kind = si) in "
+     "[(order-1)/4, (order-1)/2]", "", 0.0, 4.0),
 )
+
+# User-defined impulses (kind = impulses): stage k's impulse i has its amplitude at
+# SS_IMPULSE_BASE + SS_IMPULSE_STRIDE k + i and its time SS_MAX_IMPULSES further.
+SS_MAX_IMPULSES = 9
+SS_IMPULSE_BASE = 1000
+SS_IMPULSE_STRIDE = 32
 
 # Stage fields that stay fixed when the others are tunable (the family and how it is designed).
 SS_FIXED_FIELDS = ("kind", "design", "timing")
@@ -214,8 +232,23 @@ def smooth_shaper() -> tuple[list[Var], list[str], str]:
             vs.append(Var(f"stage[{k}].{name}", SS_STAGE_BASE + SS_STAGE_STRIDE * k + f, typ,
                           "parameter", f"stage {k}: {desc}", unit, start, choices, variability,
                           lo, hi))
+    for k in range(SS_MAX_STAGES):
+        for i in range(SS_MAX_IMPULSES):
+            base = SS_IMPULSE_BASE + SS_IMPULSE_STRIDE * k
+            vs.append(Var(f"stage[{k}].amplitude[{i}]", base + i, "Real", "parameter",
+                          f"stage {k}, kind = impulses: amplitude of impulse {i} (the first "
+                          "order of them; of positive sum, normalised to 1; within +-1e300, "
+                          "so that the sum of nine stays finite)", "1", 0.0,
+                          variability="fixed", min=-1e300, max=1e300))
+            vs.append(Var(f"stage[{k}].time[{i}]", base + SS_MAX_IMPULSES + i, "Real",
+                          "parameter", f"stage {k}, kind = impulses: time of impulse {i} "
+                          "(finite, >= 0, strictly increasing over the first order)", "s", 0.0,
+                          variability="fixed", min=0.0))
     header = [f"#define SS_MAX_STAGES {SS_MAX_STAGES}", f"#define SS_STAGE_BASE {SS_STAGE_BASE}",
-              f"#define SS_STAGE_STRIDE {SS_STAGE_STRIDE}"]
+              f"#define SS_STAGE_STRIDE {SS_STAGE_STRIDE}",
+              f"#define SS_MAX_IMPULSES {SS_MAX_IMPULSES}",
+              f"#define SS_IMPULSE_BASE {SS_IMPULSE_BASE}",
+              f"#define SS_IMPULSE_STRIDE {SS_IMPULSE_STRIDE}"]
     header += [f"#define SS_FIELD_{name.upper()} {f}" for f, (name, *_rest) in enumerate(SS_FIELDS)]
     header.append(f"#define SS_FIELD_COUNT {len(SS_FIELDS)}")
     header += [f"#define SS_SCHEDULE_POINTS {SS_SCHEDULE_POINTS}",

@@ -13,17 +13,18 @@ attribute names the offending parameter, and whose message starts with that name
 import importlib as _importlib
 
 from .errors import ParameterError
-from .stages import (KINDS, Stage, damped_harmonic, exponential, for_mode, harmonic, notch,
-                     rectangular, shaper)
+from .stages import (KINDS, Stage, damped_harmonic, exponential, for_mode, harmonic,
+                     impulse_shaper, input_smoother, notch, rectangular, shaper)
 from .filters import (Chain, Mode, design_for_mode, identify_from_peaks, identify_from_record,
-                      notch_pole_zeta_from_bandwidth)
+                      notch_pole_zeta_from_bandwidth, si_design, si_insensitivity, si_shaper)
 from .tunable import TunableChain
 from .scheduled import ScheduledShaper
 
 __all__ = ["KINDS", "Stage", "rectangular", "harmonic", "damped_harmonic", "exponential",
-           "shaper", "notch", "for_mode", "Chain", "TunableChain", "ScheduledShaper", "Mode",
-           "ParameterError", "design_for_mode", "identify_from_peaks", "identify_from_record",
-           "notch_pole_zeta_from_bandwidth"]
+           "shaper", "notch", "input_smoother", "impulse_shaper", "for_mode", "Chain",
+           "TunableChain", "ScheduledShaper", "Mode", "ParameterError", "design_for_mode",
+           "identify_from_peaks", "identify_from_record", "notch_pole_zeta_from_bandwidth",
+           "si_design", "si_insensitivity", "si_shaper"]
 __version__ = "0.1.0"
 
 #: Public submodules, imported lazily on attribute access (as SciPy does).

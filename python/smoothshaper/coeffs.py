@@ -24,6 +24,8 @@ __all__ = ["coefficients", "c_source"]
 
 _C_KIND = {kind: "SMS_" + ("SHAPER_" if kind in _stages.SHAPERS else "") + kind.upper()
            for kind in _stages.KINDS}
+#: The kinds whose coefficients are a tap table (shapers and input smoothers).
+_FIR = _stages.SHAPERS + _stages.INPUT_SMOOTHERS
 _IDENTIFIER = re.compile(r"^[A-Za-z_][A-Za-z0-9_]{0,55}$")   # NAME_stages stays within 63
 
 
@@ -36,8 +38,11 @@ def _made(stages, Ts: float, precision: str):
         config = ffi.new("sms_stage_config *")
         _fill_config(config, stage)
         coeffs = ffi.new("sms_stage_coeffs *")
-        taps = ffi.new("sms_shaper_tap[]", lib.SMS_SHAPER_MAX_TAPS)
-        status = lib.sms_stage_coeffs_make(config, chain.Ts, coeffs, taps, lib.SMS_SHAPER_MAX_TAPS)
+        n_taps = ffi.new("size_t *", lib.SMS_SHAPER_MAX_TAPS)
+        if stage.kind in _FIR:      # an input smoother has a tap per sample of its window
+            lib.sms_shaper_tap_count(config, chain.Ts, n_taps)
+        taps = ffi.new("sms_shaper_tap[]", n_taps[0])
+        status = lib.sms_stage_coeffs_make(config, chain.Ts, coeffs, taps, n_taps[0])
         if status != 0:        # the Chain above accepted the same config
             raise RuntimeError(f"sms_stage_coeffs_make failed ({status}) on stages[{i}]")
         made.append((coeffs, taps))
@@ -63,8 +68,8 @@ def coefficients(stages, *, Ts: float, precision: str = "float") -> list[dict]:
         Per stage: ``kind``, ``identity`` (15 floats, config.h) and the family's fields:
         smoothers ``length``, ``window``, ``pole_m1_re``, ``pole_im``, ``pole_lo_re``,
         ``pole_lo_im``, ``gain``, ``tail_re``, ``tail_im``, ``correction_delay``,
-        ``correction_gain`` (empty without direct taps), ``input_limit``; shapers ``length``
-        and ``taps`` (``(delay, gain)`` pairs); notches ``d0``, ``d2``, ``a1``, ``a2``. The
+        ``correction_gain`` (empty without direct taps), ``input_limit``; shapers and input
+        smoothers ``length`` and ``taps`` (``(delay, gain)`` pairs); notches ``d0``, ``d2``, ``a1``, ``a2``. The
         reals are Python floats holding the ``precision`` values exactly.
 
     Raises
@@ -90,7 +95,7 @@ def coefficients(stages, *, Ts: float, precision: str = "float") -> list[dict]:
                          correction_delay=[int(s.correction_delay[j]) for j in range(n)],
                          correction_gain=[float(s.correction_gain[j]) for j in range(n)],
                          input_limit=float(s.input_limit))
-        elif kind in _stages.SHAPERS:
+        elif kind in _FIR:
             s = coeffs.u.shaper
             entry.update(length=int(s.length),
                          taps=[(int(s.taps[j].delay), float(s.taps[j].gain))

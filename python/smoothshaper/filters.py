@@ -33,7 +33,7 @@ from .errors import ParameterError
 
 __all__ = ["Chain", "Mode", "ParameterError", "PRECISIONS", "MAX_BUFFER_REALS", "status_string",
            "raise_for_status", "design_for_mode", "identify_from_peaks", "identify_from_record",
-           "notch_pole_zeta_from_bandwidth"]
+           "notch_pole_zeta_from_bandwidth", "si_insensitivity", "si_design", "si_shaper"]
 
 PRECISIONS = ("double", "float")
 #: Largest delay line a Chain allocates (2**28 reals: 2 GiB in double); beyond it the
@@ -51,6 +51,7 @@ _STATUS_PARAMETER = {
     -44: "coeffs",
     -45: "index",   # a retune of a stage whose previous switch is still in progress
     -46: "target", -47: "velocity", -48: "acceleration", -49: "interface",
+    -50: "amplitudes", -51: "times",
 }
 #: Saved Chain states start with this tag and format version, then the configuration they
 #: belong to (see :meth:`Chain.get_state`).
@@ -248,6 +249,9 @@ def _fill_config(config, stage: Stage) -> None:
     config.tolerance = stage.tolerance
     config.notch_pole_zeta = stage.notch_pole_zeta
     config.duration = stage.duration
+    for i, (a, t) in enumerate(zip(stage.amplitudes, stage.times)):
+        config.amplitudes[i] = a
+        config.times[i] = t
 
 
 def _stage_from_config(config) -> Stage:
@@ -255,6 +259,8 @@ def _stage_from_config(config) -> Stage:
     common = dict(timing=_stages.TIMINGS[config.timing], k=config.k)
     if kind in _stages.SMOOTHERS:
         return Stage(kind, T=config.T, sigma=config.sigma, **common)
+    if kind in _stages.INPUT_SMOOTHERS:
+        return Stage(kind, wn=config.wn, zeta=config.zeta, **common)
     return Stage(kind, wn=config.wn, zeta=config.zeta, order=config.order,
                  tolerance=config.tolerance, notch_pole_zeta=config.notch_pole_zeta,
                  duration=config.duration, **common)
@@ -759,6 +765,119 @@ def design_for_mode(kind: str, *, wn: float, zeta: float = 0.0, k: int = 1) -> S
         value = {"wn": wn_v, "zeta": zeta_v, "k": k}.get(parameter)
         _raise_status(st, lib, ffi, f"designing {kind} for a mode", parameter, value)
     return _stage_from_config(config)
+
+
+def si_insensitivity(*, order: int, duration: float, tolerance: float = 0.05) -> float:
+    """The insensitivity I of a specified-insensitivity shaper (C
+    ``sms_shaper_si_insensitivity``): its residual stays <= ``tolerance`` for mode frequencies
+    within ``wd (1 +- I/2)``.
+
+    Closed form (docs/filters.md): the equal-ripple Chebyshev design of ``order`` equally
+    spaced impulses over ``duration`` damped periods (Singhose, Seering and Singer, "Input
+    shaping for vibration reduction with specified insensitivity to modeling errors", 1996;
+    Dolph 1946).
+
+    Parameters
+    ----------
+    order : int, keyword-only
+        Number of impulses: 3, 5, 7 or 9.
+    duration : float, keyword-only
+        Span in damped periods, in [(order - 1)/4, (order - 1)/2].
+    tolerance : float, keyword-only
+        Vibration tolerance V, in (0, 1) (default 0.05).
+
+    Returns
+    -------
+    float
+        I, the band's width relative to the damped frequency, in (0, 2).
+
+    Raises
+    ------
+    ParameterError
+        Naming ``order``, ``tolerance`` or ``duration``.
+    """
+    n = _integer("order", order)
+    D, V = _finite("duration", duration), _finite("tolerance", tolerance)
+    ffi, lib = _backend("double")
+    out = ffi.new("double *")
+    # an order beyond C's unsigned is out of range like any other: 0 gets SMS_ERR_ORDER
+    st = lib.sms_shaper_si_insensitivity(n if 0 <= n <= 0xFFFFFFFF else 0, D, V, out)
+    if st != 0:
+        parameter = _STATUS_PARAMETER.get(st, "argument")
+        _raise_status(st, lib, ffi, "si shaper", parameter,
+                      {"order": n, "duration": D, "tolerance": V}.get(parameter))
+    return float(out[0])
+
+
+def si_design(*, insensitivity: float, tolerance: float = 0.05) -> tuple[int, float]:
+    """The shortest specified-insensitivity shaper for a band (C ``sms_shaper_si_design``).
+
+    Parameters
+    ----------
+    insensitivity : float, keyword-only
+        I, the relative width of the band around the mode (``wd (1 +- I/2)``) over which the
+        residual must stay <= ``tolerance``, in (0, 2); up to about 1.43 at V = 0.05 (9
+        impulses). Below ZV's band (0.064 at V = 0.05) ZV itself is returned.
+    tolerance : float, keyword-only
+        Vibration tolerance V, in (0, 1) (default 0.05).
+
+    Returns
+    -------
+    order : int
+        Number of impulses (3, 5, 7 or 9).
+    duration : float
+        Span in damped periods.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``tolerance`` or ``insensitivity`` (outside (0, 2), or wider than nine
+        impulses reach).
+    """
+    I, V = _finite("insensitivity", insensitivity), _finite("tolerance", tolerance)
+    ffi, lib = _backend("double")
+    order, duration = ffi.new("unsigned *"), ffi.new("double *")
+    st = lib.sms_shaper_si_design(V, I, order, duration)
+    if st in (-10, -21):            # SMS_ERR_ORDER, SMS_ERR_SHAPER_DURATION: the band
+        raise ParameterError(
+            "insensitivity", f"insensitivity must be in (0, 2) and reachable with at most "
+            f"{_stages.MAX_IMPULSES} impulses at tolerance {V!r}, got {I!r}", st)
+    if st != 0:
+        _raise_status(st, lib, ffi, "si design", "tolerance", V)
+    return int(order[0]), float(duration[0])
+
+
+def si_shaper(*, wn: float, zeta: float = 0.0, insensitivity: float,
+              tolerance: float = 0.05, timing: str = "exact") -> Stage:
+    """The shortest specified-insensitivity shaper for the mode (``wn``, ``zeta``) whose
+    residual stays <= ``tolerance`` over ``wd (1 +- insensitivity/2)`` (:func:`si_design`).
+
+    Parameters
+    ----------
+    wn : float, keyword-only
+        Natural frequency [rad/s], > 0.
+    zeta : float, keyword-only
+        Damping ratio, in [0, 1) (default 0).
+    insensitivity : float, keyword-only
+        Relative width of the band, see :func:`si_design`.
+    tolerance : float, keyword-only
+        Vibration tolerance V, in (0, 1) (default 0.05).
+    timing : {"exact", "paper"}, keyword-only
+        Realisation between samples (default ``"exact"``).
+
+    Returns
+    -------
+    Stage
+        kind ``"si"`` with the designed order and duration.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``wn``, ``zeta``, ``insensitivity``, ``tolerance`` or ``timing``.
+    """
+    order, duration = si_design(insensitivity=insensitivity, tolerance=tolerance)
+    return Stage("si", wn=wn, zeta=zeta, order=order, duration=duration, tolerance=tolerance,
+                 timing=timing)
 
 
 def _mode(m) -> Mode:

@@ -14,23 +14,36 @@ from dataclasses import dataclass, replace
 from ._checks import choice as _choice, finite as _finite, integer as _integer, show as _show
 from .errors import ParameterError
 
-__all__ = ["KINDS", "SMOOTHERS", "SHAPERS", "NOTCHES", "TIMINGS", "MAX_ZVN_ORDER", "MAX_IMPULSES",
-           "Stage", "kind_name", "rectangular", "harmonic", "damped_harmonic", "exponential",
-           "shaper", "notch", "for_mode"]
+__all__ = ["KINDS", "SMOOTHERS", "SHAPERS", "NOTCHES", "INPUT_SMOOTHERS", "TIMINGS",
+           "MAX_ZVN_ORDER", "MAX_IMPULSES", "SMOOTH_ZETA_MAX", "Stage", "kind_name", "rectangular",
+           "harmonic", "damped_harmonic", "exponential", "shaper", "notch", "input_smoother",
+           "impulse_shaper", "for_mode"]
 
 #: Stage kinds, in the order of the C enumeration ``sms_kind`` (index == C value).
 KINDS = (
     "rectangular", "harmonic", "damped_harmonic", "exponential",
     "zv", "zvd", "zvdd", "zvn", "ei", "ei2", "mzv",
     "notch_tustin", "notch_matched", "ei3", "gmzv",
+    "smooth_zv", "smooth_mzv", "smooth_ei", "smooth_ei2", "smooth_zvd_ei", "smooth_si",
+    "si", "impulses",
 )
+#: The smoothers of duration T (the trajectory smoothers of docs/filters.md).
 SMOOTHERS = KINDS[:4]
-SHAPERS = KINDS[4:11] + KINDS[13:15]
+#: Impulse shapers: a few impulses (si: specified insensitivity; impulses: user-defined).
+SHAPERS = KINDS[4:11] + KINDS[13:15] + KINDS[21:23]
 NOTCHES = KINDS[11:13]
+#: The input smoothers of Klipper-derived firmware: polynomial kernels for a mode, every
+#: sample a tap (docs/filters.md).
+INPUT_SMOOTHERS = KINDS[15:21]
 TIMINGS = ("exact", "paper", "bounded")
 MAX_ZVN_ORDER = 8
-#: Most impulses of a shaper design (ZV^8; the generalised MZV takes 3..MAX_IMPULSES).
+#: Most impulses of a shaper design (ZV^8; the generalised MZV takes 3..MAX_IMPULSES, and so
+#: many user-defined impulses at most).
 MAX_IMPULSES = MAX_ZVN_ORDER + 1
+#: Largest zeta of the smooth_zv, smooth_mzv and smooth_ei kernels (their cubic fits in zeta).
+SMOOTH_ZETA_MAX = 0.25
+#: The input smoothers whose kernel depends on zeta.
+_SMOOTH_READS_ZETA = ("smooth_zv", "smooth_mzv", "smooth_ei")
 
 
 @dataclass(frozen=True)
@@ -67,7 +80,13 @@ class Stage:
         rectangular and exponential smoothers only) pins the zero like ``"exact"`` with one
         more tap, none above the continuous response's peak density times ``Ts``.
     duration : float
-        Span of gmzv in damped periods, in (0, (order - 1)/2) (0.75 with order 3 is MZV).
+        Span of gmzv in damped periods, in (0, (order - 1)/2) (0.75 with order 3 is MZV); of
+        si in [(order - 1)/4, (order - 1)/2].
+    amplitudes : tuple of float
+        impulses: the impulse amplitudes (1 to :data:`MAX_IMPULSES`, finite, positive sum;
+        normalised to sum 1 where the filter is built). Empty for every other kind.
+    times : tuple of float
+        impulses: the impulse times [s], as many as ``amplitudes``, >= 0, strictly increasing.
 
     Raises
     ------
@@ -86,12 +105,20 @@ class Stage:
     notch_pole_zeta: float = 0.7
     timing: str = "exact"
     duration: float = 0.75
+    amplitudes: tuple = ()
+    times: tuple = ()
 
     def __post_init__(self):
         object.__setattr__(self, "kind", kind_name(self.kind))
         object.__setattr__(self, "timing", _choice("timing", self.timing, TIMINGS))
+        if self.kind == "impulses":
+            _check_impulses(self)
+        elif self.amplitudes or self.times:
+            raise ParameterError(
+                "amplitudes", f"amplitudes and times are for kind='impulses', got "
+                f"kind={self.kind!r}")
         if self.order is None:
-            object.__setattr__(self, "order", 3 if self.kind == "gmzv" else 1)
+            object.__setattr__(self, "order", 3 if self.kind in ("gmzv", "si") else 1)
         for name in ("T", "sigma", "wn", "zeta", "tolerance", "notch_pole_zeta", "duration"):
             object.__setattr__(self, name, _finite(name, getattr(self, name)))
         object.__setattr__(self, "k", _integer("k", self.k, 1))
@@ -101,7 +128,13 @@ class Stage:
                 "timing", f"timing='bounded' is for the rectangular and exponential smoothers "
                 f"(a half sine peaks mid-window; shapers and notches have no such taps), got "
                 f"kind={self.kind!r}")
-        if self.kind in SMOOTHERS:
+        if self.timing == "paper" and self.kind in INPUT_SMOOTHERS:
+            raise ParameterError(
+                "timing", f"timing='paper' does not exist for {self.kind}: an input smoother is "
+                "a continuous kernel, realised one way (timing='exact')")
+        if self.kind == "impulses":
+            pass                        # no mode: wn and zeta are not read
+        elif self.kind in SMOOTHERS:
             if self.T <= 0:
                 raise ParameterError("T", f"T must be > 0 s, got {self.T!r}")
             if self.sigma > 0:
@@ -113,10 +146,16 @@ class Stage:
                 raise ParameterError("wn", f"wn must be > 0 rad/s, got {self.wn!r}")
             if not 0.0 <= self.zeta < 1.0:
                 raise ParameterError("zeta", f"zeta must be in [0, 1), got {self.zeta!r}")
+            if self.kind in _SMOOTH_READS_ZETA and self.zeta > SMOOTH_ZETA_MAX:
+                raise ParameterError(
+                    "zeta", f"zeta must be in [0, {SMOOTH_ZETA_MAX}] for {self.kind} (the range "
+                    f"of its kernel's fit in zeta), got {self.zeta!r}")
         if self.kind == "zvn" and not 1 <= self.order <= MAX_ZVN_ORDER:
             raise ParameterError(
                 "order", f"order must be in 1..{MAX_ZVN_ORDER} for zvn, got {self.order!r}")
-        if self.kind in ("ei", "ei2", "ei3") and not 0.0 < self.tolerance < 1.0:
+        if self.kind == "si":
+            _check_si(self.order, self.duration)
+        if self.kind in ("ei", "ei2", "ei3", "si") and not 0.0 < self.tolerance < 1.0:
             raise ParameterError(
                 "tolerance", f"tolerance must be in (0, 1), got {self.tolerance!r}")
         if self.kind == "gmzv":
@@ -159,6 +198,54 @@ class Stage:
             A name is not a field.
         """
         return replace(self, **changes)
+
+
+def _check_si(order: int, duration: float) -> None:
+    if order not in (3, 5, 7, 9):
+        raise ParameterError(
+            "order", f"order (number of impulses) must be 3, 5, 7 or 9 for si, got {order!r}")
+    d = (order - 1) / 2
+    if not 0.5 * d <= duration <= d:
+        raise ParameterError(
+            "duration", f"duration must be in [{0.5 * d!r}, {d!r}] damped periods for si with "
+            f"order {order}, got {duration!r}")
+
+
+def _check_impulses(stage: "Stage") -> None:
+    """Validate and store the impulses of an ``impulses`` stage as tuples of floats (order
+    set to their count)."""
+    if isinstance(stage.amplitudes, (str, bytes)) or isinstance(stage.times, (str, bytes)):
+        raise ParameterError("amplitudes", "amplitudes and times must be sequences of numbers")
+    try:
+        amps, times = list(stage.amplitudes), list(stage.times)
+    except TypeError:
+        raise ParameterError(
+            "amplitudes", f"amplitudes and times must be sequences of numbers, got "
+            f"{_show(stage.amplitudes)} and {_show(stage.times)}") from None
+    if not 1 <= len(amps) <= MAX_IMPULSES:
+        raise ParameterError(
+            "amplitudes", f"amplitudes: 1 to {MAX_IMPULSES} impulses, got {len(amps)}")
+    if len(times) != len(amps):
+        raise ParameterError(
+            "times", f"times must have as many entries as amplitudes ({len(amps)}), got "
+            f"{len(times)}")
+    amps = tuple(_finite(f"amplitudes[{i}]", a) for i, a in enumerate(amps))
+    times = tuple(_finite(f"times[{i}]", t) for i, t in enumerate(times))
+    total = math.fsum(amps)
+    if not total > 0 or not math.isfinite(total):
+        raise ParameterError("amplitudes", f"amplitudes must sum to > 0, got sum {total!r}")
+    for i, t in enumerate(times):
+        if t < 0 or (i and not t > times[i - 1]):
+            raise ParameterError(
+                f"times[{i}]", f"times[{i}] must be >= 0 and above times[{i - 1}]" if i else
+                f"times[0] must be >= 0, got {t!r}")
+    if stage.order is not None and _integer("order", stage.order) != len(amps):
+        raise ParameterError(
+            "order", f"order must be the number of impulses ({len(amps)}) for impulses, got "
+            f"{stage.order!r}")
+    object.__setattr__(stage, "amplitudes", amps)
+    object.__setattr__(stage, "times", times)
+    object.__setattr__(stage, "order", len(amps))
 
 
 class _UncheckedStage:
@@ -367,23 +454,28 @@ def shaper(kind: str, *, wn: float, zeta: float = 0.0, order: int | None = None,
     ZV, ZVD, ZVDD and ZV^n (Singer and Seering 1990; Singhose, Seering and Singer, "Residual
     vibration reduction using vector diagrams to generate shaped inputs", 1994), EI and
     two-/three-hump EI (Singhose, Porter, Tuttle and Singer, "Vibration reduction using
-    multi-hump input shapers", 1997), MZV as Klipper defines it, and the generalised MZV
-    (n impulses over ``duration`` damped periods). Amplitudes and times: docs/filters.md.
+    multi-hump input shapers", 1997), MZV as Klipper defines it, the generalised MZV
+    (n impulses over ``duration`` damped periods) and the specified-insensitivity shaper si
+    (Singhose, Seering and Singer, "Input shaping for vibration reduction with specified
+    insensitivity to modeling errors", 1996: residual <= ``tolerance`` over the widest band for
+    ``order`` impulses over ``duration`` periods; :func:`smoothshaper.filters.si_shaper` picks
+    them for a band). Amplitudes and times: docs/filters.md. User-defined impulses:
+    :func:`impulse_shaper`.
 
     Parameters
     ----------
     kind : str
-        One of zv, zvd, zvdd, zvn, ei, ei2, ei3, mzv, gmzv (any case).
+        One of zv, zvd, zvdd, zvn, ei, ei2, ei3, mzv, gmzv, si (any case).
     wn : float, keyword-only
         Natural frequency of the mode [rad/s], > 0.
     zeta : float, keyword-only
         Damping ratio of the mode, in [0, 1) (default 0).
     order : int or None, keyword-only
-        n of ZV^n (zvn, 1..8) or the number of impulses of gmzv (3..9).
+        n of ZV^n (zvn, 1..8) or the number of impulses of gmzv (3..9) and si (3, 5, 7, 9).
     tolerance : float, keyword-only
-        Vibration tolerance V of the EI family, in (0, 1) (default 0.05).
+        Vibration tolerance V of the EI family and si, in (0, 1) (default 0.05).
     duration : float, keyword-only
-        Span of gmzv in damped periods (default 0.75).
+        Span of gmzv and si in damped periods (default 0.75).
     timing : {"exact", "paper"}, keyword-only
         Impulses placed between samples by linear interpolation (exact) or rounded to the
         nearest sample (paper).
@@ -399,9 +491,74 @@ def shaper(kind: str, *, wn: float, zeta: float = 0.0, order: int | None = None,
         Naming ``kind``, ``wn``, ``zeta``, ``order``, ``tolerance``, ``duration`` or
         ``timing``.
     """
-    kind = kind_name(kind, SHAPERS)
+    kind = kind_name(kind, SHAPERS[:-1])
     return Stage(kind, wn=wn, zeta=zeta, order=order, tolerance=tolerance, duration=duration,
                  timing=timing)
+
+
+def input_smoother(kind: str, *, wn: float, zeta: float = 0.0) -> Stage:
+    """Input smoother of Klipper-derived firmware for the mode (``wn``, ``zeta``): a polynomial
+    kernel with zero end values (D. Butyugin's smooth_zv, smooth_mzv, smooth_ei,
+    smooth_2hump_ei, smooth_zvd_ei, smooth_si; dmbutyugin/klipper ``shaper_defs.py``, 2024).
+
+    Realised with every sample a tap: the kernel applied to the linear interpolation of the
+    samples, corrected so that the residual at the mode is the continuous design's for any Ts
+    (docs/filters.md).
+
+    Parameters
+    ----------
+    kind : str
+        One of smooth_zv, smooth_mzv, smooth_ei, smooth_ei2 (the firmware's smooth_2hump_ei),
+        smooth_zvd_ei, smooth_si (any case).
+    wn : float, keyword-only
+        Design frequency [rad/s] (the firmware's ``smoother_freq`` times 2 pi), > 0.
+    zeta : float, keyword-only
+        Damping ratio; read by smooth_zv, smooth_mzv and smooth_ei, in [0, 0.25] (default 0).
+        The others were designed for damping 0.1 and do not read it.
+
+    Returns
+    -------
+    Stage
+        The validated description (no C memory is allocated until a Chain is built).
+
+    Raises
+    ------
+    ParameterError
+        Naming ``kind``, ``wn`` or ``zeta``.
+    """
+    if isinstance(kind, str) and kind.strip().lower() == "smooth_2hump_ei":
+        kind = "smooth_ei2"
+    return Stage(kind_name(kind, INPUT_SMOOTHERS), wn=wn, zeta=zeta)
+
+
+def impulse_shaper(*, amplitudes, times, timing: str = "exact") -> Stage:
+    """A shaper given as its impulses, e.g. a firmware's shaper pasted as amplitudes and times.
+
+    The amplitudes are normalised to sum 1 where the filter is built (as Klipper's
+    ``input_shaper`` divides by their sum); negative amplitudes are allowed. Exact timing
+    splits an impulse between two samples linearly (sum and centroid exact); paper timing
+    rounds each to the nearest sample.
+
+    Parameters
+    ----------
+    amplitudes : sequence of float, keyword-only
+        1 to :data:`MAX_IMPULSES` finite amplitudes of positive sum.
+    times : sequence of float, keyword-only
+        As many impulse times [s], >= 0, strictly increasing (a first time > 0 is a delay).
+    timing : {"exact", "paper"}, keyword-only
+        Realisation between samples (default ``"exact"``).
+
+    Returns
+    -------
+    Stage
+        The validated description (kind ``"impulses"``).
+
+    Raises
+    ------
+    ParameterError
+        Naming ``amplitudes``, ``times`` (or the entry, e.g. ``times[2]``) or ``timing``.
+    """
+    return Stage("impulses", amplitudes=amplitudes, times=times, timing=timing)
 
 
 def notch(*, wn: float, zeta: float = 0.0, notch_pole_zeta: float = 0.7,
@@ -475,7 +632,8 @@ def for_mode(kind: str, *, wn: float, zeta: float = 0.0, k: int = 1) -> Stage:
     With ``wd = wn sqrt(1 - zeta^2)``: rectangular ``T = k 2 pi / wd``; harmonic
     ``T = k 3 pi / wd`` (k odd); damped harmonic ``sigma = -zeta wn``, ``T = k 3 pi / wd``
     (Biagiotti, Melchiorri and Moriello 2020); exponential ``sigma = -zeta wn``,
-    ``T = k 2 pi / wd``; shapers and notches take the mode itself (docs/design.md).
+    ``T = k 2 pi / wd``; shapers, input smoothers and notches take the mode itself
+    (docs/design.md); user-defined impulses have no mode (ParameterError naming ``kind``).
 
     Parameters
     ----------
@@ -522,6 +680,10 @@ def _for_mode(kind: str, wn: float, zeta: float, k: int) -> Stage:
         if kind in ("damped_harmonic", "exponential"):
             object.__setattr__(stage, "sigma", -zeta * wn)      # -0.0 too, as Stage keeps it
         return stage
+    if kind == "impulses":
+        raise ParameterError(
+            "kind", "kind='impulses' has no mode to design for: give its amplitudes and times "
+            "(impulse_shaper)")
     if k != 1:
         raise ParameterError(
             "k", f"k must be 1 for {kind}: shapers and notches are placed on the mode itself")

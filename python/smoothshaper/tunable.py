@@ -29,6 +29,7 @@ __all__ = ["TunableChain"]
 
 _SMS_ERR_RETUNE_BUSY = -45
 _SMS_ERR_BUFFER_TOO_SMALL = -11
+_SMS_ERR_KIND = -12
 #: Saved TunableChain states start with this tag (then the format version, precision, Ts, the
 #: number of stages and each stage's slot size in cells), then the C core's state.
 STATE_TAG = 5460308.0          # "SMT" read as a 24-bit integer
@@ -230,6 +231,13 @@ class TunableChain:
                 "stage", f"stage: {stage.kind} needs {need[0]} memory cells at Ts={self.Ts!r}, "
                 f"more than the {self._slots[i]} that stages[{i}] was built with; declare it "
                 f"(or a larger one) in capacity=", st)
+        if st == _SMS_ERR_KIND and "impulses" in (stage.kind, self._stages[i].kind):
+            # a saved state names user-defined impulses by a checksum only: a switch to or
+            # from them could not be restored, so the C library refuses it
+            raise ParameterError(
+                "stage", f"stage: user-defined impulses cannot be retuned to or from "
+                f"(stages[{i}] is {self._stages[i].kind}, stage is {stage.kind}); build the "
+                f"chain with them, they run as built", st)
         if st != 0:
             _raise_status(st, lib, ffi, f"retuning stages[{i}] to {stage.kind}")
         self._stages[i] = stage
@@ -382,6 +390,12 @@ class TunableChain:
             switching = ffi.new("int *")
             st = lib.sms_tunable_state_configs(ffi.from_buffer("double[]", part), part.size,
                                                active, old, switching)
+            if st == _SMS_ERR_KIND and self._stages[i].kind == "impulses":
+                # the state names the impulses by a checksum: build this chain's own, and
+                # sms_tunable_chain_set_state refuses a state of other impulses
+                active = _validated_configs((self._stages[i],), self.Ts, ffi, lib)[0]
+                switching[0] = 0
+                st = 0
             if st != 0:
                 _raise_status(st, lib, ffi, f"stage {i} of the saved state", "state")
             first = old if switching[0] else active
@@ -394,7 +408,8 @@ class TunableChain:
             if st != 0:
                 _raise_status(st, lib, ffi, f"stages[{i}] of the saved state does not fit this "
                               f"chain's capacity", "state")
-            twin._stages[i] = _filters._stage_from_config(active[0])
+            twin._stages[i] = (self._stages[i] if self._stages[i].kind == "impulses"
+                               else _filters._stage_from_config(active[0]))
             offset += int(lib.sms_tunable_state_count(cell))
         return twin
 

@@ -11,6 +11,9 @@
 #define MAX_CELLS 20000
 #define CASES 300
 #define RUN 3000
+/* tap table entries: a shaper's at most SMS_SHAPER_MAX_TAPS, an input smoother's one per
+ * sample of its window (MAX_CELLS bounds it) */
+#define MAX_TAP_ENTRIES 8192
 
 static sms_memory_cell mem_a[MAX_CELLS], mem_b[MAX_CELLS], before[MAX_CELLS];
 static sms_real in[RUN], out_a[RUN], out_b[RUN];
@@ -38,19 +41,34 @@ static sms_stage_config random_config(void)
     c.duration = uniform(0.5, 0.45 * (double)(c.order - 1u) + 0.5);
     c.tolerance = uniform(0.02, 0.2);
     c.notch_pole_zeta = c.zeta + uniform(0.05, 0.8);
+    if (c.kind == SMS_SHAPER_SI) {      /* 3, 5, 7 or 9 impulses over [(n-1)/4, (n-1)/2] */
+        c.order = 3u + 2u * (unsigned)(xorshift_uniform(&rng) * 4.0);
+        c.duration = uniform(0.25, 0.5) * (double)(c.order - 1u);
+    }
+    if (c.kind == SMS_SHAPER_IMPULSES) {  /* 1 .. 9 impulses, a first time at or after 0 */
+        unsigned m;
+        double at = xorshift_uniform(&rng) < 0.5 ? 0.0 : uniform(0.0, 5e-3);
+        c.order = 1u + (unsigned)(xorshift_uniform(&rng) * 9.0);
+        for (m = 0; m < c.order; ++m) {
+            c.amplitudes[m] = uniform(-0.2, 1.0);
+            c.times[m] = at;
+            at += uniform(0.3e-3, 20e-3);
+        }
+        c.amplitudes[0] = uniform(0.5, 1.0);  /* a positive sum */
+    }
     return c;
 }
 
 /* A stage from its config and one from its coefficients agree bit for bit. */
 static int same_stage(const sms_stage_config *c)
 {
-    sms_shaper_tap taps[SMS_SHAPER_MAX_TAPS];
+    static sms_shaper_tap taps[MAX_TAP_ENTRIES];
     sms_stage_coeffs coeffs;
     sms_stage a, b;
     size_t cells, cells_coeffs, i, n;
     if (sms_stage_memory_size(c, 1e-3, &cells) != SMS_OK || cells > MAX_CELLS)
         return 0;
-    CHECK_STATUS(sms_stage_coeffs_make(c, 1e-3, &coeffs, taps, SMS_SHAPER_MAX_TAPS), SMS_OK);
+    CHECK_STATUS(sms_stage_coeffs_make(c, 1e-3, &coeffs, taps, MAX_TAP_ENTRIES), SMS_OK);
     CHECK_STATUS(sms_stage_coeffs_memory_size(&coeffs, &cells_coeffs), SMS_OK);
     CHECK(cells_coeffs == cells);
     CHECK_STATUS(sms_stage_init(&a, c, 1e-3, mem_a, MAX_CELLS), SMS_OK);
@@ -158,12 +176,42 @@ static void test_malformed(void)
     }
 }
 
+/* An input smoother's coefficients: every sample of the window a tap, delays 0 .. L-1. */
+static void test_input_smoother_malformed(void)
+{
+    static sms_shaper_tap taps[MAX_TAP_ENTRIES], bad_taps[MAX_TAP_ENTRIES];
+    sms_stage_config c = sms_stage_config_default(SMS_SMOOTH_MZV);
+    sms_stage_coeffs good, bad;
+    size_t n_taps;
+    c.wn = 2.0 * 3.14159265358979323846 * 10.0;     /* T about 85 ms: 80-odd taps at 1 ms */
+    c.zeta = 0.1;
+    CHECK_STATUS(sms_shaper_tap_count(&c, 1e-3, &n_taps), SMS_OK);
+    CHECK(n_taps > SMS_SHAPER_MAX_TAPS && n_taps <= MAX_TAP_ENTRIES);
+    CHECK_STATUS(sms_stage_coeffs_make(&c, 1e-3, &good, taps, n_taps - 1u),
+                 SMS_ERR_BUFFER_TOO_SMALL);
+    CHECK_STATUS(sms_stage_coeffs_make(&c, 1e-3, &good, NULL, n_taps), SMS_ERR_NULL);
+    CHECK_STATUS(sms_stage_coeffs_make(&c, 1e-3, &good, taps, n_taps), SMS_OK);
+    CHECK(good.u.shaper.n_taps == n_taps && good.u.shaper.length == n_taps);
+    memcpy(bad_taps, taps, sizeof taps);
+    bad = good; bad.u.shaper.taps = bad_taps;
+    bad_taps[3].delay = 4u; refused(&bad, SMS_ERR_COEFFS);            /* a sample skipped */
+    memcpy(bad_taps, taps, sizeof taps);
+    bad_taps[n_taps - 1u].gain = (sms_real)INFINITY; refused(&bad, SMS_ERR_COEFFS);
+    memcpy(bad_taps, taps, sizeof taps);
+    bad.u.shaper.length += 1u; refused(&bad, SMS_ERR_COEFFS);         /* length != taps */
+    bad = good; bad.u.shaper.n_taps = bad.u.shaper.length = 4u;       /* below 4 samples */
+    refused(&bad, SMS_ERR_COEFFS);
+    bad = good; bad.u.shaper.n_taps = bad.u.shaper.length = SMS_INPUT_SMOOTHER_MAX_LENGTH + 1u;
+    refused(&bad, SMS_ERR_COEFFS);
+    bad = good; bad.u.shaper.taps = NULL; refused(&bad, SMS_ERR_COEFFS);
+}
+
 /* A chain from coefficients is the chain from the configs. */
 static void test_chains(void)
 {
     int i;
     for (i = 0; i < 40; ++i) {
-        static sms_shaper_tap taps[4][SMS_SHAPER_MAX_TAPS];
+        static sms_shaper_tap taps[4][MAX_TAP_ENTRIES];
         sms_stage_config cfg[4];
         sms_stage_coeffs coeffs[4];
         sms_stage sa[4], sb[4];
@@ -175,7 +223,7 @@ static void test_chains(void)
                 cfg[k] = random_config();
             while (sms_stage_memory_size(&cfg[k], 1e-3, &cells) != SMS_OK || cells > MAX_CELLS / 4);
             CHECK_STATUS(sms_stage_coeffs_make(&cfg[k], 1e-3, &coeffs[k], taps[k],
-                                               SMS_SHAPER_MAX_TAPS), SMS_OK);
+                                               MAX_TAP_ENTRIES), SMS_OK);
         }
         CHECK_STATUS(sms_chain_memory_size(cfg, n, 1e-3, &need), SMS_OK);
         CHECK_STATUS(sms_chain_coeffs_memory_size(coeffs, n, &need_coeffs), SMS_OK);
@@ -205,13 +253,21 @@ static void test_chains(void)
 
 int main(void)
 {
-    int i, built = 0;
+    int i, k, built = 0, per_kind[SMS_KIND_COUNT] = {0};
     for (i = 0; i < CASES; ++i) {
         sms_stage_config c = random_config();
-        built += same_stage(&c);
+        const int ok = same_stage(&c);
+        built += ok;
+        per_kind[c.kind] += ok;
     }
     CHECK(built >= CASES / 2);
+    for (k = 0; k < SMS_KIND_COUNT; ++k)   /* every kind was built both ways */
+        if (per_kind[k] == 0) {
+            printf("kind %d: no valid random configuration\n", k);
+            CHECK(per_kind[k] > 0);
+        }
     test_malformed();
+    test_input_smoother_malformed();
     test_chains();
     return check_summary("test_coeffs");
 }

@@ -84,6 +84,15 @@ static sms_stage_config any_config(void)
     c.tolerance = any_real(-320.0, 0.0);
     c.notch_pole_zeta = any_real(-3.0, 1.0);
     c.duration = any_real(-1.0, 0.5);
+    {   /* user-defined impulses: mostly increasing times and positive amplitudes */
+        unsigned m;
+        double t = pick(4) == 0 ? 0.0 : any_real(-4.0, -1.0);
+        for (m = 0; m < SMS_SHAPER_MAX_IMPULSES; ++m) {
+            c.amplitudes[m] = pick(8) == 0 ? -any_real(-3.0, 0.0) : any_real(-3.0, 0.0);
+            t += pick(10) == 0 ? -any_real(-4.0, -1.0) : any_real(-4.0, -1.0);
+            c.times[m] = t;
+        }
+    }
     return c;
 }
 

@@ -21,7 +21,7 @@ from hypothesis import given, settings, strategies as st
 
 import smoothshaper as sms
 from smoothshaper import reference
-from smoothshaper.stages import NOTCHES, SHAPERS, SMOOTHERS
+from smoothshaper.stages import INPUT_SMOOTHERS, NOTCHES, SHAPERS, SMOOTHERS
 
 DOUBLE_REL_TOL = 1e-12
 FLOAT_REL_TOL = 1e-5
@@ -72,7 +72,27 @@ def shaper_stages(draw, Ts):
         # least squares: C (Householder) and NumPy agree to cond(M) eps; cond(M) < 600 here,
         # it grows to 1e12 as the duration approaches its limit (n - 1)/2
         fields["duration"] = draw(st.floats(0.55, max(0.6, 0.3 * (n - 1))))
+    if kind == "si":
+        fields["order"] = n = draw(st.sampled_from([3, 5, 7, 9]))
+        fields["duration"] = draw(st.floats(0.25 * (n - 1), 0.5 * (n - 1)))
+        fields["tolerance"] = draw(st.floats(0.01, 0.5))
+    if kind == "impulses":
+        n = draw(st.integers(1, 9))
+        gaps = draw(st.lists(st.floats(0.05, 40.0), min_size=n, max_size=n))
+        return sms.Stage(kind, amplitudes=draw(st.lists(st.floats(0.05, 2.0), min_size=n,
+                                                        max_size=n)),
+                         times=list(np.cumsum(gaps) * Ts - gaps[0] * Ts * draw(st.booleans())),
+                         timing=fields["timing"])
     return sms.Stage(kind, **fields)
+
+
+@st.composite
+def input_smoother_stages(draw, Ts):
+    kind = draw(st.sampled_from(INPUT_SMOOTHERS))
+    zeta = draw(st.floats(0.0, 0.25))
+    # the kernel spans 0.66 to 1.5 design periods and must span 4 samples: periods of 7 to 100
+    wn = 2 * math.pi / (draw(st.floats(7.0, 100.0)) * Ts)
+    return sms.input_smoother(kind, wn=wn, zeta=zeta)
 
 
 @st.composite
@@ -85,8 +105,9 @@ def notch_stages(draw, Ts):
 
 @st.composite
 def any_stage(draw, Ts):
-    family = draw(st.sampled_from(["smoother", "smoother", "shaper", "notch"]))
-    strategy = {"smoother": smoother_stages, "shaper": shaper_stages, "notch": notch_stages}
+    family = draw(st.sampled_from(["smoother", "smoother", "shaper", "notch", "input smoother"]))
+    strategy = {"smoother": smoother_stages, "shaper": shaper_stages, "notch": notch_stages,
+                "input smoother": input_smoother_stages}
     return draw(strategy[family](Ts))
 
 
@@ -127,7 +148,7 @@ def _assert_close(y, y_ref, u, stages, Ts, rel):
 
 
 def _every_kind():
-    """One stage of each of the 13 kinds, on and off the sample grid, every timing."""
+    """One stage of each kind, on and off the sample grid, every timing."""
     out = []
     for kind in SMOOTHERS:
         cases = [(0.040, "exact"), (0.0437, "exact"), (0.0437, "paper")]
@@ -138,7 +159,12 @@ def _every_kind():
             out.append(sms.Stage(kind, T=T, sigma=sigma, timing=timing))
     for kind in SHAPERS:
         for timing in ("exact", "paper"):
+            if kind == "impulses":      # a firmware shaper pasted: ZVD at 57 Hz, off the grid
+                out.append(sms.impulse_shaper(amplitudes=[0.25, 0.5, 0.25],
+                                              times=[0.0, 0.00877, 0.01754], timing=timing))
+                continue
             out.append(sms.Stage(kind, wn=71.3, zeta=0.08, order=3, timing=timing))
+    out += [sms.input_smoother(kind, wn=71.3, zeta=0.08) for kind in INPUT_SMOOTHERS]
     out += [sms.Stage(kind, wn=210.0, zeta=0.03, notch_pole_zeta=0.4) for kind in NOTCHES]
     return out
 
@@ -157,7 +183,8 @@ def test_every_kind_matches_reference(stage, precision):
 @given(data=st.data())
 def test_single_stage_of_every_family_matches_reference(data):
     Ts = data.draw(sample_periods())
-    stage = data.draw(st.one_of(smoother_stages(Ts), shaper_stages(Ts), notch_stages(Ts)))
+    stage = data.draw(st.one_of(smoother_stages(Ts), shaper_stages(Ts), notch_stages(Ts),
+                                input_smoother_stages(Ts)))
     chain = sms.Chain(stage, Ts=Ts)
     u = _signal(data.draw(st.integers(0, 2**32 - 1)),
                 data.draw(st.integers(1, 3 * chain.length + 200)))

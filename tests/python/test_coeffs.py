@@ -31,6 +31,10 @@ CHAINS = {
                 sms.shaper("gmzv", wn=120.0, order=4, duration=1.2)],
     "notches": [sms.notch(wn=200.0, zeta=0.05), sms.exponential(T=0.02, sigma=-3.0),
                 sms.notch(wn=300.0, discretization="tustin")],
+    # an input smoother's table has a tap per sample (here 99, above any shaper's 45)
+    "fir": [sms.shaper("si", wn=150.0, zeta=0.05, order=5, duration=1.5),
+            sms.impulse_shaper(amplitudes=[0.3, 0.4, 0.3], times=[0.0013, 0.0061, 0.0112]),
+            sms.input_smoother("smooth_ei", wn=2 * np.pi * 10.0, zeta=0.05)],
 }
 
 MAIN = r"""

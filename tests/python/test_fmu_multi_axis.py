@@ -191,7 +191,8 @@ def start(fmu, **values):
 @pytest.mark.parametrize("name,value,expected", [
     ("axes", 0, "axes = 0"), ("axes", 9, "axes = 9"), ("sync", 2, "sync = 2"),
     ("amax[1]", -2.0, "amax[1]"), ("vmax[2]", 0.0, "vmax[2]"), ("Ts", -1.0, "Ts"),
-    ("stage[1].kind[2]", 15, "stage[1].kind[2] = 15"),
+    ("stage[1].kind[2]", 23, "stage[1].kind[2] = 23"),
+    ("stage[1].kind[2]", 22, "stage[1].kind[2] = 22"),   # impulses: no mode to design for
     ("stage[1].kind[2]", -2, "stage[1].kind[2] = -2"),
     ("stage[0].wn[1]", 5000.0, "stage[0].wn[1]"), ("stage[0].wn[1]", 0.0, "stage[0].wn[1]"),
     ("stage[1].zeta[0]", 1.0, "stage[1].zeta[0]"),

@@ -222,3 +222,93 @@ def test_libcosim_retune_equals_fmpy(ss_dir, fmus):  # noqa: F811
     fmu.terminate()
     fmu.freeInstance()
     assert np.array_equal(np.array(y), np.array(ref))
+
+
+# An input smoother (every sample a tap), an SI shaper and user-defined impulses retunable in
+# one chain: the smoother's slot holds the longest of its kind that retune_max_delay admits;
+# the impulses run as built (their fields are fixed, a wn set on them changes nothing).
+FAMILIES = {"stage[0].kind": 15, "stage[0].wn": 2 * np.pi * 40.0, "stage[0].zeta": 0.1,
+            "stage[1].kind": 22, "stage[1].order": 3,
+            **{f"stage[1].amplitude[{i}]": a for i, a in enumerate((0.3, 0.5, 0.2))},
+            **{f"stage[1].time[{i}]": t for i, t in enumerate((0.0, 0.0042, 0.0091))},
+            "stage[2].kind": 21, "stage[2].wn": 180.0, "stage[2].order": 5,
+            "stage[2].duration": 1.4, "stage[2].tolerance": 0.05, "retune_max_delay": 0.06}
+
+
+def families_chain(smoother_wn, si_wn):
+    return [sms.input_smoother("smooth_zv", wn=smoother_wn, zeta=0.1),
+            sms.impulse_shaper(amplitudes=[0.3, 0.5, 0.2], times=[0.0, 0.0042, 0.0091]),
+            sms.shaper("si", wn=si_wn, zeta=0.0, order=5, duration=1.4, tolerance=0.05)]
+
+
+def test_new_families_retune_and_restore(ss_dir):
+    u = move()
+    fmu = slave(ss_dir)
+    start(fmu, FAMILIES)
+    slow = 2 * np.pi * 12.0            # the smooth_zv kernel at 12 Hz lasts 55 ms < 60 ms
+    chain = sms.TunableChain(families_chain(2 * np.pi * 40.0, 180.0), Ts=TS,
+                             capacity=[sms.input_smoother("smooth_zv", wn=slow, zeta=0.1), None,
+                                       sms.shaper("si", wn=150.0, order=5, duration=1.4,
+                                                  tolerance=0.05)])
+    plan = {200: ("stage[0].wn", slow), 210: ("stage[2].wn", 150.0), 220: ("stage[1].wn", 9.0)}
+    y_fmu, y_py, lags, blob = np.empty(u.size), np.empty(u.size), [], None
+    for i, ui in enumerate(u):
+        if i in plan:
+            name, value = plan[i]
+            fmu.setReal([fmu.vr[name]], [value])
+            if name != "stage[1].wn":       # impulses read no wn
+                k = int(name[6])
+                chain.retune(k, families_chain(value, value)[k])
+        if i == 230:                        # the old SI (49 ms) still fading out
+            assert chain.switching == (False, False, True)
+            blob = fmu.serializeFMUstate(fmu.getFMUstate())
+        fmu.setReal([fmu.vr["u"]], [ui])
+        fmu.doStep(i * TS, TS)
+        y_fmu[i] = fmu.getReal([fmu.vr["y"]])[0]
+        y_py[i] = chain.step(ui)
+        lags.append((fmu.getReal([fmu.vr["lag"]])[0], chain.lag))
+    assert np.array_equal(y_fmu, y_py)
+    assert all(a == pytest.approx(b, rel=1e-13) for a, b in lags)
+    # a state saved mid-switch continues bit for bit in a twin configured alike
+    twin = slave(ss_dir, name="twin")
+    start(twin, FAMILIES)
+    twin.setFMUstate(twin.deSerializeFMUstate(blob))
+    for i, ui in enumerate(u[230:], 230):
+        twin.setReal([twin.vr["u"]], [ui])
+        twin.doStep(i * TS, TS)
+        assert twin.getReal([twin.vr["y"]])[0] == y_fmu[i]
+    for f in (fmu, twin):
+        f.terminate()
+        f.freeInstance()
+
+
+def test_new_families_retune_refusals(ss_dir):
+    logged = Logged()
+    fmu = slave(ss_dir, logged=logged)
+    start(fmu, FAMILIES)
+    with pytest.raises(FMICallException):   # the kernel at 10 Hz lasts 66 ms > 60 ms
+        fmu.setReal([fmu.vr["stage[0].wn"]], [2 * np.pi * 10.0])
+    assert "stage[0].wn" in logged.messages[-1] and "retune_max_delay" in logged.messages[-1]
+    fmu.terminate()
+    fmu.freeInstance()
+    # a state carries the parameters: an FMU configured with other impulses takes the saved
+    # ones back (the impulses restored from them, not from the state's checksum)
+    u = move(300)
+    first = slave(ss_dir, name="a")
+    start(first, FAMILIES)
+    for i, ui in enumerate(u[:150]):
+        first.setReal([first.vr["u"]], [ui])
+        first.doStep(i * TS, TS)
+    blob = first.serializeFMUstate(first.getFMUstate())
+    other = slave(ss_dir, name="b")
+    start(other, {**FAMILIES, "stage[1].amplitude[1]": 0.51})
+    other.setFMUstate(other.deSerializeFMUstate(blob))
+    assert other.getReal([other.vr["stage[1].amplitude[1]"]])[0] == 0.5
+    for i, ui in enumerate(u[150:], 150):
+        for f in (first, other):
+            f.setReal([f.vr["u"]], [ui])
+            f.doStep(i * TS, TS)
+        assert other.getReal([other.vr["y"]])[0] == first.getReal([first.vr["y"]])[0]
+    for f in (first, other):
+        f.terminate()
+        f.freeInstance()

@@ -43,7 +43,9 @@ SMS_API sms_status sms_stage_config_lag(const sms_stage_config *config, double T
 SMS_API sms_status sms_chain_config_lag(const sms_stage_config *configs, size_t n, double Ts,
                                         double *lag);
 /** @brief The lag of a built stage [samples], from the configuration and Ts it was built with
- * (its identity, config.h). */
+ * (its identity, config.h); for user-defined impulses, whose identity holds a checksum, from
+ * the stage's taps (the same design: sms_stage_config_lag() of its config, to the rounding of
+ * the taps to ::sms_real). */
 SMS_API double sms_stage_lag(const sms_stage *stage);
 /** @brief The lag of a built chain [samples] (0 for no stages). */
 SMS_API double sms_chain_lag(const sms_chain *chain);

@@ -80,8 +80,9 @@ SMS_API void sms_chain_hold(sms_chain *chain, sms_real x, uint64_t n, sms_real *
  * @brief Worst-case filtering work of sms_chain_hold() for a chain of these configs: the sum
  * over the stages of T_i = B_0 + ... + B_i samples, B_j = 2 M_j + 2 for a smoother (M_j its ring
  * length), L_j + 1 for a shaper, sms_notch_settle_bound() for a notch (HUGE_VAL when its poles
- * do not decay). Multiply by the cost of a stage-sample (about 1.5 to 4 ns, x86-64) for a
- * time. O(stages).
+ * do not decay); an input smoother's T_i counts its taps / ::SMS_SHAPER_MAX_TAPS times (every
+ * sample of its window is a tap). Multiply by the cost of a stage-sample (about 1.5 to 4 ns,
+ * x86-64) for a time. O(stages).
  * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_ORDER (n = 0 or > ::SMS_CHAIN_MAX_STAGES), or the
  *         first failing config's status.
  */

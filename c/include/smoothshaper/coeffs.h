@@ -51,8 +51,10 @@ typedef struct sms_smoother_coeffs {
 /** @brief A shaper's taps (shaper.h): y[n] = sum_k g_k x[n - d_k]. */
 typedef struct sms_shaper_coeffs {
     size_t length;                     /**< L = last delay + 1 */
-    size_t n_taps;                     /**< 1 .. ::SMS_SHAPER_MAX_TAPS */
-    const sms_shaper_tap *taps;        /**< n_taps taps, delays strictly increasing from 0 */
+    size_t n_taps;                     /**< 1 .. ::SMS_SHAPER_MAX_TAPS; an input smoother's
+                                            5 .. ::SMS_INPUT_SMOOTHER_MAX_LENGTH, = length */
+    const sms_shaper_tap *taps;        /**< n_taps taps, delays strictly increasing (an input
+                                            smoother's are 0 .. length-1) */
 } sms_shaper_coeffs;
 
 /** @brief A notch's coefficients (notch.h):
@@ -69,7 +71,7 @@ typedef struct sms_stage_coeffs {
     double identity[SMS_STATE_IDENTITY_COUNT];
     union {
         sms_smoother_coeffs smoother;  /**< kind ::SMS_RECTANGULAR .. ::SMS_EXPONENTIAL */
-        sms_shaper_coeffs shaper;      /**< the shaper kinds */
+        sms_shaper_coeffs shaper;      /**< the shaper and input smoother kinds */
         sms_notch_coeffs notch;        /**< ::SMS_NOTCH_TUSTIN, ::SMS_NOTCH_MATCHED */
     } u;
 } sms_stage_coeffs;
@@ -80,8 +82,10 @@ typedef struct sms_stage_coeffs {
  * @param config  the stage (config.h for ranges)
  * @param Ts      sample period [s], finite, > 0
  * @param coeffs  receives the coefficients; untouched on error
- * @param taps    a shaper's taps go here (coeffs->u.shaper.taps points at it): at least
- *                sms_shaper_tap_count() entries; may be NULL for smoothers and notches
+ * @param taps    a shaper's or input smoother's taps go here (coeffs->u.shaper.taps points
+ *                at it): at least sms_shaper_tap_count() entries (::SMS_SHAPER_MAX_TAPS for
+ *                any shaper; an input smoother has one per sample of its window); may be NULL
+ *                for smoothers and notches
  * @param n_taps  length of taps
  * @return ::SMS_OK, ::SMS_ERR_NULL (config or coeffs; taps for a shaper),
  *         ::SMS_ERR_BUFFER_TOO_SMALL (n_taps below the shaper's tap count), or the config's

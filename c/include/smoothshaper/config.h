@@ -50,6 +50,10 @@ extern "C" {
 /** @brief Most ZV^n order accepted (ZV^n has n+1 impulses). */
 #define SMS_SHAPER_MAX_ORDER 8
 
+/** @brief Most impulses of a continuous shaper design (ZV^n with n = ::SMS_SHAPER_MAX_ORDER),
+ * and of a user-defined one (::SMS_SHAPER_IMPULSES: sms_stage_config::amplitudes). */
+#define SMS_SHAPER_MAX_IMPULSES (SMS_SHAPER_MAX_ORDER + 1)
+
 /**
  * @brief Everything that defines one stage.
  *
@@ -64,9 +68,18 @@ extern "C" {
  * | zeta             | shapers, notches (zero damping xi1)      | [0, 1) |
  * | order            | ::SMS_SHAPER_ZVN: n of ZV^n              | 1 .. ::SMS_SHAPER_MAX_ORDER |
  * |                  | ::SMS_SHAPER_GMZV: number of impulses    | 3 .. ::SMS_SHAPER_MAX_IMPULSES |
- * | tolerance        | ::SMS_SHAPER_EI, ::SMS_SHAPER_EI2, ::SMS_SHAPER_EI3 | (0, 1), e.g. 0.05 |
+ * |                  | ::SMS_SHAPER_SI: number of impulses      | 3, 5, 7 or 9 |
+ * |                  | ::SMS_SHAPER_IMPULSES: number of impulses | 1 .. ::SMS_SHAPER_MAX_IMPULSES |
+ * | tolerance        | ::SMS_SHAPER_EI, ::SMS_SHAPER_EI2, ::SMS_SHAPER_EI3, ::SMS_SHAPER_SI | (0, 1), e.g. 0.05 |
  * | duration         | ::SMS_SHAPER_GMZV: span in damped periods Td | (0, (order-1)/2), no negative impulse; 0.75 = MZV |
+ * |                  | ::SMS_SHAPER_SI: span in damped periods Td | [(order-1)/4, (order-1)/2]; (order-1)/2 = EI, EI3 |
  * | notch_pole_zeta  | notches (pole damping xi2)               | finite, > zeta |
+ * | amplitudes       | ::SMS_SHAPER_IMPULSES: the first order entries | finite, sum > 0 (normalised to 1) |
+ * | times            | ::SMS_SHAPER_IMPULSES: the first order entries [s] | finite, >= 0, strictly increasing |
+ *
+ * The input smoothers ::SMS_SMOOTH_ZV .. ::SMS_SMOOTH_SI read wn (their design frequency) and,
+ * ::SMS_SMOOTH_ZV, ::SMS_SMOOTH_MZV and ::SMS_SMOOTH_EI only, zeta in [0, 0.25] (shaper.h).
+ * ::SMS_SHAPER_IMPULSES reads neither wn nor zeta.
  *
  * (1) One rule for short durations, everywhere (smoothers, B-splines, the Python reference and
  * the FMUs): T/Ts below 1 is refused with ::SMS_ERR_DURATION_BELOW_TS, except within the
@@ -90,13 +103,17 @@ typedef struct sms_stage_config {
     double tolerance;
     double notch_pole_zeta;
     double duration;
+    double amplitudes[SMS_SHAPER_MAX_IMPULSES];
+    double times[SMS_SHAPER_MAX_IMPULSES];
 } sms_stage_config;
 
 /**
  * @brief A config of the given kind with every field at a documented default:
  * timing ::SMS_TIMING_EXACT, T = 0 (must be set for smoothers), sigma = 0, k = 1, wn = 0
- * (must be set for shapers and notches), zeta = 0, order = 1 (3 for ::SMS_SHAPER_GMZV), tolerance = 0.05,
- * notch_pole_zeta = 0.7, duration = 0.75. The kind is stored as given (validated only by init).
+ * (must be set for shapers and notches), zeta = 0, order = 1 (3 for ::SMS_SHAPER_GMZV and
+ * ::SMS_SHAPER_SI, 0 for ::SMS_SHAPER_IMPULSES: its impulses must be set), tolerance = 0.05,
+ * notch_pole_zeta = 0.7, duration = 0.75,
+ * amplitudes and times all 0. The kind is stored as given (validated only by init).
  */
 SMS_API sms_stage_config sms_stage_config_default(sms_kind kind);
 

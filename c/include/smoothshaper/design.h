@@ -26,8 +26,10 @@ extern "C" {
  * Why k must be odd for the harmonic families: their zeros sit at sigma +- j (2m+1) pi/T; with
  * T = k 3 pi/wd the zero index is wd T/pi = 3k, an odd number only when k is odd. An even k
  * puts wd between two zeros (about 2.9 % residual for k = 2, docs/errata.md).
- * Checks in order: config NULL, kind, wn, zeta, k < 1, k even (harmonic families), k != 1
- * (shapers, notches). *config is untouched on error.
+ * - input smoothers: wn, zeta copied (k must be 1; their own zeta range is checked by init)
+ * Checks in order: config NULL, kind (::SMS_SHAPER_IMPULSES has no mode: ::SMS_ERR_KIND), wn,
+ * zeta, k < 1, k even (harmonic families), k != 1 (shapers, notches). *config is untouched on
+ * error.
  * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_KIND, ::SMS_ERR_WN, ::SMS_ERR_ZETA,
  *         ::SMS_ERR_MULTIPLE (k < 1, or k != 1 for shapers/notches), ::SMS_ERR_EVEN_MULTIPLE.
  */

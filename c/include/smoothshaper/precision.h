@@ -104,6 +104,9 @@
 #define sms_shaper_check_state_range sms_shaper_check_state_range_f32
 #define sms_shaper_impulses sms_shaper_impulses_f32
 #define sms_shaper_taps sms_shaper_taps_f32
+#define sms_shaper_transfer sms_shaper_transfer_f32
+#define sms_shaper_si_insensitivity sms_shaper_si_insensitivity_f32
+#define sms_shaper_si_design sms_shaper_si_design_f32
 /* smoother.h */
 #define sms_smoother_buffer_size sms_smoother_buffer_size_f32
 #define sms_smoother_init sms_smoother_init_f32

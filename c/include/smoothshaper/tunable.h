@@ -113,7 +113,10 @@ SMS_API sms_status sms_tunable_init(sms_tunable *t, const sms_stage_config *conf
  * @return ::SMS_OK; ::SMS_ERR_NULL; ::SMS_ERR_RETUNE_BUSY (the previous switch is still in
  *         progress: see sms_tunable_switching()); the config's status at the tunable's Ts;
  *         ::SMS_ERR_BUFFER_TOO_SMALL (it needs more memory than a slot holds, or the tunable
- *         has one slot). On error nothing changes.
+ *         has one slot); ::SMS_ERR_KIND (config, or the active filter, is
+ *         ::SMS_SHAPER_IMPULSES: a saved state names user-defined impulses by a checksum
+ *         only, so a switch to or from them could not be restored; such a stage runs as
+ *         built). On error nothing changes.
  */
 SMS_API sms_status sms_tunable_retune(sms_tunable *t, const sms_stage_config *config);
 /** @brief 1 while a switch is in progress (a retune would be refused), else 0. O(1). */
@@ -135,7 +138,8 @@ SMS_API void sms_tunable_process(sms_tunable *t, const sms_real *in, sms_real *o
 /** @brief The active filter (the stage a retune last built). */
 SMS_API const sms_stage *sms_tunable_active(const sms_tunable *t);
 /** @brief The configuration of the active filter, rebuilt from its saved identity (config.h):
- * the fields its kind reads, the others at sms_stage_config_default(). */
+ * the fields its kind reads, the others at sms_stage_config_default(). For
+ * ::SMS_SHAPER_IMPULSES (never retuned) only the kind: the caller holds the impulses. */
 SMS_API sms_stage_config sms_tunable_config(const sms_tunable *t);
 /** @brief Input range: the smaller of the two filters' sms_stage_input_max() during a switch,
  * the active one's otherwise. O(1). */
@@ -179,7 +183,10 @@ SMS_API sms_status sms_tunable_check_state_range(const sms_tunable *t, const dou
  * @param old        receives the fading one (or NULL); written only when *switching is 1
  * @param switching  receives 1 if the state was saved during a switch
  * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_STATE_FORMAT, ::SMS_ERR_STATE_PRECISION,
- *         ::SMS_ERR_STATE_KIND, ::SMS_ERR_STATE (too short, or a kind that is no stage).
+ *         ::SMS_ERR_STATE_KIND, ::SMS_ERR_STATE (too short, or a kind that is no stage);
+ *         ::SMS_ERR_KIND: the stage is ::SMS_SHAPER_IMPULSES, whose identity holds a checksum
+ *         of the impulses: build the tunable with the caller's own configuration, and
+ *         sms_tunable_set_state() refuses the state if the impulses differ.
  */
 SMS_API sms_status sms_tunable_state_configs(const double *src, size_t n, sms_stage_config *active,
                                              sms_stage_config *old, int *switching);

@@ -65,7 +65,9 @@ typedef enum sms_status {
                                      one sample; see config.h for the one rule */
     SMS_ERR_SIGMA = -5,             /**< sigma is NaN/Inf or > 0 (an unstable mode) */
     SMS_ERR_WN = -6,                /**< natural frequency wn is NaN/Inf or <= 0 */
-    SMS_ERR_ZETA = -7,              /**< damping ratio zeta is NaN/Inf or outside [0, 1) */
+    SMS_ERR_ZETA = -7,              /**< damping ratio zeta is NaN/Inf or outside [0, 1)
+                                         ([0, 0.25] for ::SMS_SMOOTH_ZV, ::SMS_SMOOTH_MZV,
+                                         ::SMS_SMOOTH_EI) */
     SMS_ERR_MULTIPLE = -8,          /**< the multiple k is < 1 */
     SMS_ERR_EVEN_MULTIPLE = -9,     /**< k is even for a harmonic family: no zero lands on wn */
     SMS_ERR_ORDER = -10,            /**< order out of range (ZV^n n, chain length, B-spline degree) */
@@ -96,7 +98,8 @@ typedef enum sms_status {
     SMS_ERR_STATE_ORDER = -32,      /**< saved with another order */
     SMS_ERR_STATE_TOLERANCE = -33,  /**< saved with another tolerance */
     SMS_ERR_STATE_NOTCH_POLE_ZETA = -34, /**< saved with another notch_pole_zeta */
-    SMS_ERR_STATE_DURATION = -35,   /**< saved with another (GMZV) duration */
+    SMS_ERR_STATE_DURATION = -35,   /**< saved with another (GMZV, SI) duration, or for other
+                                         user-defined impulses */
     SMS_ERR_STATE_VMAX = -36,       /**< saved with another vmax (generators) */
     SMS_ERR_STATE_AMAX = -37,       /**< saved with another amax (generators) */
     SMS_ERR_STATE_JMAX = -38,       /**< saved with another jmax (generators) */
@@ -118,7 +121,11 @@ typedef enum sms_status {
                                          acceleration bounds, takes the velocity beyond its
                                          bounds before or after the target (v -+ a|a|/(2 jmax)),
                                          or is not 0 where the profile cannot hold one */
-    SMS_ERR_INTERFACE = -49         /**< unknown control interface (::sms_interface) */
+    SMS_ERR_INTERFACE = -49,        /**< unknown control interface (::sms_interface) */
+    SMS_ERR_IMPULSE_AMPLITUDE = -50, /**< user-defined impulses: an amplitude is NaN/Inf, or
+                                          they do not sum to > 0 */
+    SMS_ERR_IMPULSE_TIME = -51      /**< user-defined impulses: a time is NaN/Inf or < 0, or
+                                         the times do not strictly increase */
 } sms_status;
 
 /** @brief Stage families. Values are stable (the FMU enumeration and saved states use them). */
@@ -137,11 +144,23 @@ typedef enum sms_kind {
     SMS_NOTCH_TUSTIN = 11,    /**< notch, Tustin with pre-warping at wn, docs/filters.md */
     SMS_NOTCH_MATCHED = 12,   /**< notch, pole-zero matched, docs/filters.md */
     SMS_SHAPER_EI3 = 13,      /**< three-hump extra-insensitive */
-    SMS_SHAPER_GMZV = 14      /**< generalised MZV: sms_stage_config::order impulses over
+    SMS_SHAPER_GMZV = 14,     /**< generalised MZV: sms_stage_config::order impulses over
                                    sms_stage_config::duration damped periods */
+    SMS_SMOOTH_ZV = 15,       /**< smooth ZV input smoother: a polynomial kernel with zero end
+                                   taps for the mode wn, zeta (shaper.h) */
+    SMS_SMOOTH_MZV = 16,      /**< smooth MZV input smoother */
+    SMS_SMOOTH_EI = 17,       /**< smooth EI input smoother */
+    SMS_SMOOTH_EI2 = 18,      /**< smooth two-hump EI input smoother */
+    SMS_SMOOTH_ZVD_EI = 19,   /**< smooth ZVD-EI input smoother */
+    SMS_SMOOTH_SI = 20,       /**< smooth SI input smoother */
+    SMS_SHAPER_SI = 21,       /**< specified-insensitivity shaper: sms_stage_config::order
+                                   impulses over sms_stage_config::duration damped periods,
+                                   residual <= tolerance over the widest band */
+    SMS_SHAPER_IMPULSES = 22  /**< user-defined impulses: sms_stage_config::amplitudes at
+                                   sms_stage_config::times */
 } sms_kind;
 
-#define SMS_KIND_COUNT 15
+#define SMS_KIND_COUNT 23
 
 /**
  * @brief How a duration that is not a whole number of sample periods is realised.

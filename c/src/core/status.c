@@ -13,7 +13,8 @@ const char *sms_status_string(sms_status status)
     case SMS_ERR_SIGMA: return "sigma must be finite and <= 0, and not so negative that the "
                                "smoother's internal gain (about e^(-sigma Ts)) overflows";
     case SMS_ERR_WN: return "wn must be finite and > 0";
-    case SMS_ERR_ZETA: return "zeta must be finite and in [0, 1)";
+    case SMS_ERR_ZETA:
+        return "zeta must be finite and in [0, 1) ([0, 0.25] for smooth_zv, smooth_mzv, smooth_ei)";
     case SMS_ERR_MULTIPLE: return "k must be >= 1 (and 1 for shapers and notches)";
     case SMS_ERR_EVEN_MULTIPLE: return "k must be odd for harmonic families: an even k puts no zero on the mode";
     case SMS_ERR_ORDER: return "order out of range";
@@ -28,7 +29,8 @@ const char *sms_status_string(sms_status status)
     case SMS_ERR_STATE: return "saved state does not match this object";
     case SMS_ERR_BANDWIDTH: return "bandwidth must be finite, > 0 and narrower than the notch allows";
     case SMS_ERR_SHAPER_DURATION:
-        return "duration must lie in (0, (order-1)/2) damped periods and give no negative impulse";
+        return "duration must lie in (0, (order-1)/2) damped periods ([(order-1)/4, (order-1)/2] "
+               "for si) and give no negative impulse";
     case SMS_ERR_STATE_FORMAT: return "saved state is not a state of this format version";
     case SMS_ERR_STATE_PRECISION: return "saved state is from the other precision (float/double)";
     case SMS_ERR_STATE_KIND: return "saved state is from another kind of stage or object";
@@ -42,7 +44,8 @@ const char *sms_status_string(sms_status status)
     case SMS_ERR_STATE_ORDER: return "saved state is from another order";
     case SMS_ERR_STATE_TOLERANCE: return "saved state is from another tolerance";
     case SMS_ERR_STATE_NOTCH_POLE_ZETA: return "saved state is from another notch_pole_zeta";
-    case SMS_ERR_STATE_DURATION: return "saved state is from another duration";
+    case SMS_ERR_STATE_DURATION:
+        return "saved state is from another duration (or other user-defined impulses)";
     case SMS_ERR_STATE_VMAX: return "saved state is from another vmax";
     case SMS_ERR_STATE_AMAX: return "saved state is from another amax";
     case SMS_ERR_STATE_JMAX: return "saved state is from another jmax";
@@ -65,6 +68,10 @@ const char *sms_status_string(sms_status status)
                "v - a|a|/(2 jmax) and v + a|a|/(2 jmax) within the velocity bounds (0 where the "
                "profile cannot hold one)";
     case SMS_ERR_INTERFACE: return "interface must be position, velocity or stop";
+    case SMS_ERR_IMPULSE_AMPLITUDE:
+        return "impulse amplitudes must be finite and sum to > 0";
+    case SMS_ERR_IMPULSE_TIME:
+        return "impulse times must be finite, >= 0 and strictly increasing";
     }
     return "unknown status";
 }
@@ -87,6 +94,14 @@ const char *sms_kind_name(sms_kind kind)
     case SMS_NOTCH_MATCHED: return "notch_matched";
     case SMS_SHAPER_EI3: return "ei3";
     case SMS_SHAPER_GMZV: return "gmzv";
+    case SMS_SMOOTH_ZV: return "smooth_zv";
+    case SMS_SMOOTH_MZV: return "smooth_mzv";
+    case SMS_SMOOTH_EI: return "smooth_ei";
+    case SMS_SMOOTH_EI2: return "smooth_ei2";
+    case SMS_SMOOTH_ZVD_EI: return "smooth_zvd_ei";
+    case SMS_SMOOTH_SI: return "smooth_si";
+    case SMS_SHAPER_SI: return "si";
+    case SMS_SHAPER_IMPULSES: return "impulses";
     }
     return NULL;
 }

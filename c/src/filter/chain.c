@@ -350,14 +350,22 @@ sms_status sms_chain_hold_cost(const sms_stage_config *configs, size_t n, double
     if (n == 0 || n > SMS_CHAIN_MAX_STAGES)
         return SMS_ERR_ORDER;
     for (i = 0; i < n; ++i) {
-        double settle;
+        double settle, weight = 1.0;
         size_t reals;
         sms_status st = sms_stage_buffer_size(&configs[i], Ts, &reals);
         if (st != SMS_OK)
             return st;
         switch (sms_family_of(configs[i].kind)) {
         case SMS_FAMILY_SMOOTHER: settle = 2.0 * (double)reals + 2.0; break;
-        case SMS_FAMILY_SHAPER: settle = (double)reals + 1.0; break;
+        case SMS_FAMILY_SHAPER: {
+            /* a sample of an input smoother (one tap per sample of its window) costs its
+             * taps over SMS_SHAPER_MAX_TAPS stage-samples */
+            size_t taps = 0;
+            (void)sms_shaper_tap_count(&configs[i], Ts, &taps);
+            settle = (double)reals + 1.0;
+            weight = taps > SMS_SHAPER_MAX_TAPS ? (double)taps / SMS_SHAPER_MAX_TAPS : 1.0;
+            break;
+        }
         default: {
             sms_notch probe;
             (void)sms_notch_init(&probe, &configs[i], Ts);   /* valid: sized above */
@@ -366,7 +374,7 @@ sms_status sms_chain_hold_cost(const sms_stage_config *configs, size_t n, double
         }
         }
         t += settle;        /* stage i has absorbed a new input by then, at the latest */
-        total += t;         /* and it is filtered until then */
+        total += t * weight;   /* and it is filtered until then */
     }
     *samples = total;
     return SMS_OK;

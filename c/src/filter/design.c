@@ -14,7 +14,8 @@ sms_status sms_design_for_mode(sms_kind kind, double wn, double zeta, unsigned k
     if (config == NULL)
         return SMS_ERR_NULL;
     /* unsigned: negatives wrap, and short enums (ARM EABI) are unsigned already */
-    if ((unsigned)kind >= (unsigned)SMS_KIND_COUNT)
+    /* user-defined impulses are not designed for a mode */
+    if ((unsigned)kind >= (unsigned)SMS_KIND_COUNT || kind == SMS_SHAPER_IMPULSES)
         return SMS_ERR_KIND;
     if (!(wn - wn == 0.0) || wn <= 0.0)
         return SMS_ERR_WN;

@@ -18,7 +18,8 @@ static int whole(double v, double most)
 }
 
 /* The configuration an identity describes: the fields its kind reads, the others at their
- * defaults. 0 if the kind is no stage kind or an integer field does not fit. */
+ * defaults. 0 if the kind is no stage kind, an integer field does not fit, or user-defined
+ * impulses. */
 int sms_identity_config(const double *id, sms_stage_config *out)
 {
     sms_stage_config c;
@@ -28,6 +29,8 @@ int sms_identity_config(const double *id, sms_stage_config *out)
         return 0;
     c = sms_stage_config_default((sms_kind)(unsigned)id[SMS_ID_KIND]);
     fam = sms_family_of(c.kind);
+    if (c.kind == SMS_SHAPER_IMPULSES)
+        return 0;   /* the identity holds a checksum of the impulses, not the impulses */
     if (fam == SMS_FAMILY_SMOOTHER) {
         c.timing = (sms_timing)(unsigned)id[ID_TIMING];
         c.T = id[ID_T];
@@ -40,11 +43,12 @@ int sms_identity_config(const double *id, sms_stage_config *out)
             c.notch_pole_zeta = id[ID_NOTCH_POLE_ZETA];
         } else {
             c.timing = (sms_timing)(unsigned)id[ID_TIMING];
-            if (c.kind == SMS_SHAPER_ZVN || c.kind == SMS_SHAPER_GMZV)
+            if (c.kind == SMS_SHAPER_ZVN || c.kind == SMS_SHAPER_GMZV || c.kind == SMS_SHAPER_SI)
                 c.order = (unsigned)id[ID_ORDER];
-            if (c.kind == SMS_SHAPER_EI || c.kind == SMS_SHAPER_EI2 || c.kind == SMS_SHAPER_EI3)
+            if (c.kind == SMS_SHAPER_EI || c.kind == SMS_SHAPER_EI2 || c.kind == SMS_SHAPER_EI3
+                || c.kind == SMS_SHAPER_SI)
                 c.tolerance = id[ID_TOLERANCE];
-            if (c.kind == SMS_SHAPER_GMZV)
+            if (c.kind == SMS_SHAPER_GMZV || c.kind == SMS_SHAPER_SI)
                 c.duration = id[ID_DURATION];
         }
     }

@@ -117,6 +117,17 @@ double sms_stage_lag(const sms_stage *stage)
     sms_stage_config c;
     double lag = 0.0;
     const double *id = sms_stage_identity(stage);
+    if (stage->kind == SMS_SHAPER_IMPULSES) {
+        /* the identity names the impulses by a checksum only: the built taps' centroid */
+        const sms_shaper *f = stage->u.shaper;
+        double sum = 0.0, moment = 0.0;
+        size_t i;
+        for (i = 0; i < f->n_taps; ++i) {
+            sum += (double)f->taps[i].gain;
+            moment += (double)f->taps[i].delay * (double)f->taps[i].gain;
+        }
+        return moment / sum;
+    }
     if (id != NULL && sms_identity_config(id, &c))
         (void)sms_stage_config_lag(&c, id[SMS_ID_TS], &lag);
     return lag;

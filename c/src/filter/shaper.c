@@ -4,6 +4,7 @@
 #include <math.h>
 #include <string.h>
 #include "filter/shaper_designs.h"
+#include "filter/input_smoother.h"
 #include "filter/coeffs_check.h"
 #include "core/state_identity.h"
 
@@ -21,7 +22,7 @@ typedef struct sparse {
 static int is_shaper(sms_kind kind)
 {
     return (kind >= SMS_SHAPER_ZV && kind <= SMS_SHAPER_MZV) || kind == SMS_SHAPER_EI3
-           || kind == SMS_SHAPER_GMZV;
+           || (kind >= SMS_SHAPER_GMZV && kind <= SMS_SHAPER_IMPULSES);
 }
 
 static int is_finite(double v)
@@ -29,11 +30,41 @@ static int is_finite(double v)
     return v - v == 0.0;
 }
 
+/* User-defined impulses: a count, finite amplitudes of positive sum, finite times >= 0 that
+ * strictly increase. */
+static sms_status check_impulses(const sms_stage_config *c)
+{
+    double sum = 0.0;
+    unsigned m;
+    if (c->order < 1u || c->order > SMS_SHAPER_MAX_IMPULSES)
+        return SMS_ERR_ORDER;
+    for (m = 0; m < c->order; ++m) {
+        if (!is_finite(c->amplitudes[m]))
+            return SMS_ERR_IMPULSE_AMPLITUDE;
+        sum += c->amplitudes[m];
+    }
+    if (!(sum > 0.0) || !is_finite(sum))
+        return SMS_ERR_IMPULSE_AMPLITUDE;
+    for (m = 0; m < c->order; ++m)
+        if (!is_finite(c->times[m]) || c->times[m] < 0.0
+            || (m > 0u && !(c->times[m] > c->times[m - 1u])))
+            return SMS_ERR_IMPULSE_TIME;
+    return SMS_OK;
+}
+
 /* Checks that do not need Ts (shared with sms_shaper_impulses). */
 static sms_status check_fields(const sms_stage_config *c)
 {
+    if (c->kind == SMS_SHAPER_IMPULSES)
+        return check_impulses(c);
     if (!is_finite(c->wn) || c->wn <= 0.0)
         return SMS_ERR_WN;
+    if (sms_is_input_smoother(c->kind)) {     /* zeta only where the kernel depends on it */
+        if (sms_input_smoother_reads_zeta(c->kind)
+            && (!is_finite(c->zeta) || c->zeta < 0.0 || c->zeta > 0.25))
+            return SMS_ERR_ZETA;
+        return SMS_OK;
+    }
     if (!is_finite(c->zeta) || c->zeta < 0.0 || c->zeta >= 1.0)
         return SMS_ERR_ZETA;
     if (c->kind == SMS_SHAPER_ZVN && (c->order < 1u || c->order > SMS_SHAPER_MAX_ORDER))
@@ -48,7 +79,24 @@ static sms_status check_fields(const sms_stage_config *c)
         if (!is_finite(c->duration) || !sms_gmzv_undamped(c->order, c->duration, amp, units))
             return SMS_ERR_SHAPER_DURATION;
     }
+    if (c->kind == SMS_SHAPER_SI) {
+        double amp[SMS_SHAPER_MAX_IMPULSES], units[SMS_SHAPER_MAX_IMPULSES];
+        if (c->order < 3u || c->order > SMS_SHAPER_MAX_IMPULSES || c->order % 2u == 0u)
+            return SMS_ERR_ORDER;
+        if (!is_finite(c->tolerance) || c->tolerance <= 0.0 || c->tolerance >= 1.0)
+            return SMS_ERR_TOLERANCE;
+        if (!sms_si_undamped(c->order, c->duration, c->tolerance, amp, units, NULL))
+            return SMS_ERR_SHAPER_DURATION;
+    }
     return SMS_OK;
+}
+
+/* The timings a kind has: the input smoothers are continuous kernels, realised one way. */
+static int has_timing(const sms_stage_config *c)
+{
+    if (sms_is_input_smoother(c->kind))
+        return c->timing == SMS_TIMING_EXACT;
+    return c->timing == SMS_TIMING_EXACT || c->timing == SMS_TIMING_PAPER;
 }
 
 static sms_status check_config(const sms_stage_config *c, double Ts)
@@ -56,8 +104,10 @@ static sms_status check_config(const sms_stage_config *c, double Ts)
     sms_status st;
     if (!is_finite(Ts) || Ts <= 0.0)
         return SMS_ERR_SAMPLE_PERIOD;
-    if (!is_shaper(c->kind) || (c->timing != SMS_TIMING_EXACT && c->timing != SMS_TIMING_PAPER))
+    if (!is_shaper(c->kind) || !has_timing(c))
         return SMS_ERR_KIND;
+    if (c->kind == SMS_SHAPER_IMPULSES)
+        return check_impulses(c);
     if (!is_finite(c->wn) || c->wn <= 0.0)
         return SMS_ERR_WN;
     if (c->wn * Ts >= pi)
@@ -139,7 +189,7 @@ static void solve3(double M[3][3], double r[3], double y[3])
  * least-norm correction d on S = {0} + split indices with sum d = 0 and
  * sum d_i z^{-i} = H_c(p) - G(z_p), d = C^T (C C^T)^{-1} r. */
 static void realise_exact(const double *amp, const double *time, size_t n_imp, double Ts,
-                          double sigma, double wd, sparse *out)
+                          double sigma, double wd, int correct, sparse *out)
 {
     size_t support[2 * SMS_SHAPER_MAX_IMPULSES + 1], n_s = 1, m, i, j;
     double cr[2 * SMS_SHAPER_MAX_IMPULSES + 1], ci[2 * SMS_SHAPER_MAX_IMPULSES + 1];
@@ -175,7 +225,7 @@ static void realise_exact(const double *amp, const double *time, size_t n_imp, d
      * many impulses near Nyquist); the last impulse lies at >= Td/2 > Ts, so either it splits
      * at m0 >= 1 or it sits on a sample m >= 2 and the one before it, less than Ts earlier,
      * splits onto {m-1, m}: |S| >= 3 always, so C C^T is invertible. */
-    if (n_s == 1)
+    if (n_s == 1 || !correct)
         return;
     for (i = 0; i < out->n; ++i) {
         double re, im;
@@ -234,6 +284,9 @@ static sms_status realise(const sms_stage_config *c, double Ts, sparse *out)
         return SMS_ERR_TOO_LONG;
     if (c->timing == SMS_TIMING_PAPER) {
         realise_paper(amp, time, n_imp, Ts, out);
+    } else if (c->kind == SMS_SHAPER_IMPULSES) {
+        /* no mode to pin: the linear split alone (keeps sum 1 and the centroid exactly) */
+        realise_exact(amp, time, n_imp, Ts, 0.0, 0.0, 0, out);
     } else if (order > 0u) {
         /* ZV^n: n-fold convolution of the exact ZV, a zero of multiplicity n at e^{p Ts}. */
         sms_stage_config zv = *c;
@@ -241,14 +294,14 @@ static sms_status realise(const sms_stage_config *c, double Ts, sparse *out)
         unsigned m;
         zv.kind = SMS_SHAPER_ZV;
         n_imp = sms_shaper_design(&zv, amp, time);
-        realise_exact(amp, time, n_imp, Ts, sigma, wd, &single);
+        realise_exact(amp, time, n_imp, Ts, sigma, wd, 1, &single);
         *out = single;
         for (m = 1; m < order; ++m) {
             acc = *out;
             convolve(&acc, &single, out);
         }
     } else {
-        realise_exact(amp, time, n_imp, Ts, sigma, wd, out);
+        realise_exact(amp, time, n_imp, Ts, sigma, wd, 1, out);
     }
     /* Exact timing weighs the impulses with z^-i = e^{zeta wn i Ts}...: for zeta near 1 over a
      * long span that overflows (while K^m underflows), and the correction is not a number.
@@ -273,6 +326,18 @@ static sms_status build(const sms_stage_config *config, double Ts, sparse *taps)
     return realise(config, Ts, taps);
 }
 
+/* An input smoother's length L (its tap count too: every sample of the window is a tap). */
+static sms_status smoother_length(const sms_stage_config *config, double Ts, size_t *length)
+{
+    sms_status st;
+    if (config == NULL)
+        return SMS_ERR_NULL;
+    st = check_config(config, Ts);
+    if (st != SMS_OK)
+        return st;
+    return sms_input_smoother_length(config, Ts, length);
+}
+
 sms_status sms_shaper_sizes(const sms_stage_config *config, double Ts, size_t *n_reals,
                             size_t *n_taps)
 {
@@ -280,6 +345,13 @@ sms_status sms_shaper_sizes(const sms_stage_config *config, double Ts, size_t *n
     sms_status st;
     if (n_reals == NULL || n_taps == NULL)
         return SMS_ERR_NULL;
+    if (config != NULL && sms_is_input_smoother(config->kind)) {
+        size_t length;
+        st = smoother_length(config, Ts, &length);
+        if (st == SMS_OK)
+            *n_reals = *n_taps = length;
+        return st;
+    }
     st = build(config, Ts, &taps);
     if (st == SMS_OK) {
         *n_reals = taps.delay[taps.n - 1] + 1u;
@@ -316,11 +388,38 @@ static void coeffs_of_design(const sms_stage_config *config, double Ts, const sp
     coeffs->u.shaper.taps = taps;
 }
 
+/* An input smoother's L taps (delays 0 .. L-1) into the caller's table and its coefficients
+ * pointing at them; SMS_ERR_ZETA (nothing written) if the correction is not a number. */
+static sms_status smoother_coeffs(const sms_stage_config *config, double Ts, size_t length,
+                                  sms_stage_coeffs *coeffs, sms_shaper_tap *taps)
+{
+    if (!sms_input_smoother_taps(config, Ts, length, taps, NULL))
+        return SMS_ERR_ZETA;
+    coeffs->kind = config->kind;
+    sms_state_identity(config, Ts, coeffs->identity);
+    coeffs->u.shaper.length = length;
+    coeffs->u.shaper.n_taps = length;
+    coeffs->u.shaper.taps = taps;
+    return SMS_OK;
+}
+
 sms_status sms_shaper_coeffs_make(const sms_stage_config *config, double Ts,
                                   sms_stage_coeffs *coeffs, sms_shaper_tap *taps, size_t n_taps)
 {
     sparse design;
-    sms_status st = build(config, Ts, &design);
+    sms_status st;
+    if (config != NULL && sms_is_input_smoother(config->kind)) {
+        size_t length;
+        st = smoother_length(config, Ts, &length);
+        if (st != SMS_OK)
+            return st;
+        if (taps == NULL)
+            return SMS_ERR_NULL;
+        if (n_taps < length)
+            return SMS_ERR_BUFFER_TOO_SMALL;
+        return smoother_coeffs(config, Ts, length, coeffs, taps);
+    }
+    st = build(config, Ts, &design);
     if (st != SMS_OK)
         return st;
     if (taps == NULL)
@@ -338,6 +437,17 @@ sms_status sms_shaper_coeffs_check(const sms_stage_coeffs *coeffs)
     size_t i;
     if (!is_shaper(coeffs->kind))
         return SMS_ERR_KIND;
+    if (sms_is_input_smoother(coeffs->kind)) {
+        /* every sample of the window a tap: delays 0 .. L-1, 5 <= L <= the cap (the kernel
+         * spans at least 4 samples) */
+        if (c->taps == NULL || c->n_taps < 5u || c->n_taps > SMS_INPUT_SMOOTHER_MAX_LENGTH
+            || c->length != c->n_taps)
+            return SMS_ERR_COEFFS;
+        for (i = 0; i < c->n_taps; ++i)
+            if (c->taps[i].delay != i || c->taps[i].gain - c->taps[i].gain != (sms_real)0)
+                return SMS_ERR_COEFFS;
+        return SMS_OK;
+    }
     if (c->taps == NULL || c->n_taps < 1u || c->n_taps > SMS_SHAPER_MAX_TAPS)
         return SMS_ERR_COEFFS;
     for (i = 0; i < c->n_taps; ++i) {
@@ -395,6 +505,20 @@ sms_status sms_shaper_init(sms_shaper *f, const sms_stage_config *config, double
     sms_status st;
     if (f == NULL)
         return SMS_ERR_NULL;
+    if (config != NULL && sms_is_input_smoother(config->kind)) {
+        size_t length;
+        st = smoother_length(config, Ts, &length);
+        if (st != SMS_OK)
+            return st;
+        if (taps == NULL || buffer == NULL)
+            return SMS_ERR_NULL;
+        if (n_taps < length || n_reals < length)
+            return SMS_ERR_BUFFER_TOO_SMALL;
+        st = smoother_coeffs(config, Ts, length, &coeffs, taps);
+        if (st != SMS_OK)
+            return st;
+        return sms_shaper_init_coeffs(f, &coeffs, taps, n_taps, buffer, n_reals);
+    }
     st = build(config, Ts, &design);
     if (st != SMS_OK)
         return st;
@@ -531,8 +655,8 @@ sms_status sms_shaper_impulses(const sms_stage_config *config, double *amplitude
     sms_status st;
     if (config == NULL || amplitudes == NULL || times == NULL || count == NULL)
         return SMS_ERR_NULL;
-    if (!is_shaper(config->kind) || (config->timing != SMS_TIMING_EXACT
-                                     && config->timing != SMS_TIMING_PAPER))
+    /* an input smoother is a kernel, not impulses */
+    if (!is_shaper(config->kind) || sms_is_input_smoother(config->kind) || !has_timing(config))
         return SMS_ERR_KIND;
     st = check_fields(config);
     if (st != SMS_OK)
@@ -559,6 +683,14 @@ sms_status sms_shaper_taps(const sms_stage_config *config, double Ts, double *ta
     sms_status st;
     if (taps == NULL)
         return SMS_ERR_NULL;
+    if (config != NULL && sms_is_input_smoother(config->kind)) {
+        st = smoother_length(config, Ts, &len);
+        if (st != SMS_OK)
+            return st;
+        if (n_taps < len)
+            return SMS_ERR_BUFFER_TOO_SMALL;
+        return sms_input_smoother_taps(config, Ts, len, NULL, taps) ? SMS_OK : SMS_ERR_ZETA;
+    }
     st = build(config, Ts, &s);
     if (st != SMS_OK)
         return st;
@@ -572,12 +704,54 @@ sms_status sms_shaper_taps(const sms_stage_config *config, double Ts, double *ta
     return SMS_OK;
 }
 
+sms_status sms_shaper_transfer(const sms_stage_config *config, double s_re, double s_im,
+                               double *h_re, double *h_im)
+{
+    double amp[SMS_SHAPER_MAX_IMPULSES], time[SMS_SHAPER_MAX_IMPULSES], re = 0.0, im = 0.0;
+    size_t n, m;
+    sms_status st;
+    if (config == NULL || h_re == NULL || h_im == NULL)
+        return SMS_ERR_NULL;
+    if (!is_shaper(config->kind) || !has_timing(config))
+        return SMS_ERR_KIND;
+    st = check_fields(config);
+    if (st != SMS_OK)
+        return st;
+    if (!is_finite(s_re) || !is_finite(s_im))
+        return SMS_ERR_WN;
+    if (sms_is_input_smoother(config->kind)) {
+        sms_input_smoother_transfer(config, s_re, s_im, &re, &im);
+    } else {
+        n = sms_shaper_design(config, amp, time);
+        for (m = 0; m < n; ++m) {
+            double mag = exp(-s_re * time[m]);
+            re += amp[m] * mag * cos(s_im * time[m]);
+            im -= amp[m] * mag * sin(s_im * time[m]);
+        }
+    }
+    if (!is_finite(re) || !is_finite(im))
+        return SMS_ERR_TOO_LONG;
+    *h_re = re;
+    *h_im = im;
+    return SMS_OK;
+}
+
 sms_status sms_shaper_lag(const sms_stage_config *config, double Ts, double *lag)
 {
     sparse s;
     double sum = 0.0, moment = 0.0;
     size_t i;
-    sms_status st = build(config, Ts, &s);
+    sms_status st;
+    if (config != NULL && sms_is_input_smoother(config->kind)) {
+        /* no sparse design: the correction pins the taps' sum to 1 and their centroid to the
+         * kernel's, int g(tau) tau dtau / Ts (sms_input_smoother_taps) */
+        size_t length;
+        st = smoother_length(config, Ts, &length);
+        if (st == SMS_OK)
+            *lag = sms_input_smoother_lag(config, Ts);
+        return st;
+    }
+    st = build(config, Ts, &s);
     if (st != SMS_OK)
         return st;
     for (i = 0; i < s.n; ++i) {

@@ -235,12 +235,40 @@ static size_t design_gmzv(unsigned n, double duration, double zeta, double df, d
     return normalise(amp, n);
 }
 
+/* SI: the undamped design of shaper_si.c weighted by e^{-zeta wn t_m} (as EI), normalised. */
+static size_t design_si(const sms_stage_config *c, double zeta, double df, double Td,
+                        double *amp, double *time)
+{
+    double units[SMS_SHAPER_MAX_IMPULSES];
+    size_t m;
+    (void)sms_si_undamped(c->order, c->duration, c->tolerance, amp, units, NULL); /* validated */
+    for (m = 0; m < c->order; ++m) {
+        time[m] = units[m] * Td;
+        amp[m] *= exp(-2.0 * pi * zeta * units[m] / df);
+    }
+    return normalise(amp, c->order);
+}
+
+/* User-defined impulses: the amplitudes normalised to sum 1 (as 3-D printer firmware applies
+ * its shapers: Klipper's input_shaper divides by sum A), the times as given. */
+static size_t design_impulses(const sms_stage_config *c, double *amp, double *time)
+{
+    size_t m;
+    for (m = 0; m < c->order; ++m) {
+        amp[m] = c->amplitudes[m];
+        time[m] = c->times[m];
+    }
+    return normalise(amp, c->order);
+}
+
 size_t sms_shaper_design(const sms_stage_config *config, double *amp, double *time)
 {
-    double z = config->zeta;
-    double df = sqrt(1.0 - z * z);
-    double Td = 2.0 * pi / (config->wn * df);
-    double K = exp(-z * pi / df);
+    double z = config->zeta, df, Td, K;
+    if (config->kind == SMS_SHAPER_IMPULSES)     /* no mode: wn and zeta are not read */
+        return design_impulses(config, amp, time);
+    df = sqrt(1.0 - z * z);
+    Td = 2.0 * pi / (config->wn * df);
+    K = exp(-z * pi / df);
     switch (config->kind) {
     case SMS_SHAPER_EI:
         return design_ei(config->tolerance, K, Td, amp, time);
@@ -252,6 +280,8 @@ size_t sms_shaper_design(const sms_stage_config *config, double *amp, double *ti
         return design_ei3(config->tolerance, K, Td, amp, time);
     case SMS_SHAPER_GMZV:
         return design_gmzv(config->order, config->duration, z, df, Td, amp, time);
+    case SMS_SHAPER_SI:
+        return design_si(config, z, df, Td, amp, time);
     default:
         return design_zvn(sms_shaper_zv_order(config), K, Td, amp, time);
     }

@@ -13,6 +13,13 @@ unsigned sms_shaper_zv_order(const sms_stage_config *config);
  * amplitude is negative. */
 int sms_gmzv_undamped(unsigned n, double duration, double *amp, double *units);
 
+/* Undamped SI shaper (shaper_si.c): n (odd, 3..SMS_SHAPER_MAX_IMPULSES) impulses over
+ * `duration` damped periods in [(n-1)/4, (n-1)/2] for tolerance V in (0, 1): amplitudes (sum 1,
+ * none negative), times in damped periods and, if insensitivity is not NULL, the relative
+ * width I of the band of |H| <= V; 0 if (n, duration, V) is out of range. */
+int sms_si_undamped(unsigned n, double duration, double V, double *amp, double *units,
+                    double *insensitivity);
+
 /* Fill amp[] (sum 1) and time[] [s] (increasing, time[0] = 0) for a validated config; returns
  * the number of impulses (<= SMS_SHAPER_MAX_IMPULSES). */
 size_t sms_shaper_design(const sms_stage_config *config, double *amp, double *time);

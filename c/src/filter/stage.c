@@ -6,10 +6,12 @@
 #include "filter/coeffs_check.h"
 #include "core/kind.h"
 #include "filter/shaper_designs.h"
+#include "filter/input_smoother.h"
 
 sms_stage_config sms_stage_config_default(sms_kind kind)
 {
     sms_stage_config c;
+    unsigned m;
     c.kind = kind;
     c.timing = SMS_TIMING_EXACT;
     c.T = 0.0;
@@ -20,7 +22,13 @@ sms_stage_config sms_stage_config_default(sms_kind kind)
     c.order = kind == SMS_SHAPER_GMZV ? 3u : 1u;   /* GMZV: 3 impulses over 0.75 Td = MZV */
     c.tolerance = 0.05;
     c.duration = 0.75;
+    if (kind == SMS_SHAPER_SI)                    /* 3 impulses, between ZV and EI */
+        c.order = 3u;
+    if (kind == SMS_SHAPER_IMPULSES)
+        c.order = 0u;                             /* the impulses must be set */
     c.notch_pole_zeta = 0.7;
+    for (m = 0; m < SMS_SHAPER_MAX_IMPULSES; ++m)
+        c.amplitudes[m] = c.times[m] = 0.0;
     return c;
 }
 
@@ -47,7 +55,8 @@ static int plan(sms_family fam, size_t n_taps, size_t n_reals, layout *out)
     case SMS_FAMILY_SHAPER: instance = cells_of_bytes(sizeof(sms_shaper)); break;
     default: instance = cells_of_bytes(sizeof(sms_notch)); break;
     }
-    table = cells_of_bytes(n_taps * sizeof(sms_shaper_tap)); /* n_taps <= SMS_SHAPER_MAX_TAPS */
+    /* n_taps <= SMS_SHAPER_MAX_TAPS, or an input smoother's <= 2^20: no overflow */
+    table = cells_of_bytes(n_taps * sizeof(sms_shaper_tap));
     ring = n_reals / per_cell + (n_reals % per_cell != 0);
     if (ring > SIZE_MAX - instance - table)
         return 0;
@@ -121,13 +130,28 @@ sms_status sms_stage_config_validate(const sms_stage_config *config, double Ts)
 sms_status sms_stage_init(sms_stage *stage, const sms_stage_config *config, double Ts,
                           sms_memory_cell *memory, size_t n_cells)
 {
-    sms_shaper_tap taps[SMS_SHAPER_MAX_TAPS];
+    sms_shaper_tap taps[SMS_SHAPER_MAX_TAPS], *table = taps;
+    size_t n_taps = SMS_SHAPER_MAX_TAPS;
     sms_stage_coeffs coeffs;
     sms_status st;
     if (stage == NULL || config == NULL)
         return SMS_ERR_NULL;
+    if (sms_is_input_smoother(config->kind)) {
+        /* A tap per sample of the window, up to 2^20: designed straight into the stage's own
+         * tap table, which sms_shaper_init_coeffs then keeps in place. */
+        layout lay;
+        st = stage_layout(config, Ts, &lay);
+        if (st != SMS_OK)
+            return st;
+        if (memory == NULL)
+            return SMS_ERR_NULL;
+        if (n_cells < lay.total)
+            return SMS_ERR_BUFFER_TOO_SMALL;
+        table = (sms_shaper_tap *)(void *)&memory[lay.table];
+        n_taps = (lay.ring - lay.table) * sizeof(sms_memory_cell) / sizeof(sms_shaper_tap);
+    }
     /* Design once, then build the stage from its coefficients as a target does. */
-    st = sms_stage_coeffs_make(config, Ts, &coeffs, taps, SMS_SHAPER_MAX_TAPS);
+    st = sms_stage_coeffs_make(config, Ts, &coeffs, table, n_taps);
     if (st != SMS_OK)
         return st;
     return sms_stage_init_coeffs(stage, &coeffs, memory, n_cells);

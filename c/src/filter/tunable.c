@@ -150,6 +150,10 @@ sms_status sms_tunable_retune(sms_tunable *t, const sms_stage_config *config)
         return SMS_ERR_NULL;
     if (t->switching)
         return SMS_ERR_RETUNE_BUSY;
+    /* user-defined impulses: a saved state names them by a checksum, so a switch to or from
+     * them could not be brought back (sms_tunable_state_configs()) */
+    if (config->kind == SMS_SHAPER_IMPULSES || t->slot[t->active].kind == SMS_SHAPER_IMPULSES)
+        return SMS_ERR_KIND;
     st = sms_tunable_fits(config, t->Ts, t->slot_cells);
     if (st == SMS_OK && t->n_slots < 2u)
         st = SMS_ERR_BUFFER_TOO_SMALL;   /* no room to switch */

@@ -100,6 +100,8 @@ sms_status sms_tunable_state_configs(const double *src, size_t n, sms_stage_conf
     if (st != SMS_OK)
         return st;
     sw = src[ST_SWITCHING] == 1.0;
+    if (src[ST_ACTIVE_ID + SMS_ID_KIND] == (double)SMS_SHAPER_IMPULSES && !sw)
+        return SMS_ERR_KIND;   /* its identity holds a checksum, not the impulses */
     if (!sms_identity_config(src + ST_ACTIVE_ID, &a) || (sw && !sms_identity_config(src + ST_OLD_ID, &b)))
         return SMS_ERR_STATE;
     *active = a;

@@ -3,11 +3,17 @@
 
 A stage is written KIND:key=value,key=value (--stage, repeatable; stages chain in the given
 order). KIND is one of rectangular, harmonic, damped_harmonic, exponential, zv, zvd, zvdd, zvn,
-ei, ei2, ei3, mzv, gmzv, notch_tustin, notch_matched ('notch' means notch_matched). Keys:
-T [s], sigma [1/s], k, wn [rad/s], zeta, order, tolerance, duration (gmzv, in damped periods),
-notch_pole_zeta, timing (exact, paper, or bounded for rectangular and exponential). A
-smoother given wn (and optionally zeta, k) instead of T is designed for that mode. Examples:
-harmonic:T=0.05, zv:wn=100,zeta=0.05, damped_harmonic:wn=125,zeta=0.12.
+ei, ei2, ei3, mzv, gmzv, si, impulses, the input smoothers smooth_zv, smooth_mzv, smooth_ei,
+smooth_ei2 (or smooth_2hump_ei), smooth_zvd_ei, smooth_si, notch_tustin, notch_matched
+('notch' means notch_matched). Keys: T [s], sigma [1/s], k, wn [rad/s], f [Hz] (instead of
+wn), zeta, order, tolerance, duration (gmzv, si: in damped periods), insensitivity (si: the
+band to keep the residual under tolerance; order and duration are then designed),
+notch_pole_zeta, timing (exact, paper, or bounded for rectangular and exponential), and for
+impulses amplitudes=[...] and times=[...] (seconds; a firmware's shaper_a/shaper_t lists as
+they are). A smoother given wn (and optionally zeta, k) instead of T is designed for that
+mode. Examples: harmonic:T=0.05, zv:wn=100,zeta=0.05, damped_harmonic:wn=125,zeta=0.12,
+si:f=40,zeta=0.1,insensitivity=0.6, smooth_mzv:f=45,zeta=0.1,
+impulses:amplitudes=[0.2,0.5,0.3],times=[0,0.006,0.012].
 
 Trajectory forms: 'design generator' runs via-points through the online generator, 'design
 bspline' interpolates them with a B-spline (see 'smoothshaper design generator --help' and

@@ -4,6 +4,7 @@ the table of a chain's stages that design and analyze print."""
 from __future__ import annotations
 
 import argparse
+import math
 
 from .. import stages as _stages
 from ..errors import ParameterError
@@ -13,8 +14,42 @@ from .common import CliError
 __all__ = ["parse_stage", "chain_from_args", "stage_rows", "duration", "add_chain_options"]
 
 _KEY_ALIASES = {"pole_zeta": "notch_pole_zeta"}
+_KIND_ALIASES = {"notch": "notch_matched", "smooth_2hump_ei": "smooth_ei2"}
 _INT_KEYS = ("k", "order")
-_FLOAT_KEYS = ("T", "sigma", "wn", "zeta", "tolerance", "notch_pole_zeta", "duration")
+_FLOAT_KEYS = ("T", "sigma", "wn", "f", "zeta", "tolerance", "notch_pole_zeta", "duration",
+               "insensitivity")
+_LIST_KEYS = ("amplitudes", "times")
+
+
+def _items(spec: str, rest: str) -> list[str]:
+    """``rest`` split at the commas outside brackets (``amplitudes=[a, b, c]`` is one item)."""
+    items, depth, start = [], 0, 0
+    for i, ch in enumerate(rest):
+        if ch == "[":
+            depth += 1
+        elif ch == "]":
+            depth -= 1
+            if depth < 0:
+                raise ParameterError("stage", f"stage {spec!r}: ']' without '['")
+        elif ch == "," and depth == 0:
+            items.append(rest[start:i])
+            start = i + 1
+    if depth:
+        raise ParameterError("stage", f"stage {spec!r}: '[' without ']'")
+    items.append(rest[start:])
+    return [p.strip() for p in items if p.strip()]
+
+
+def _number_list(spec: str, key: str, value: str) -> list[float]:
+    text = value.strip()
+    if not (text.startswith("[") and text.endswith("]")):
+        raise ParameterError(
+            "stage", f"stage {spec!r}: {key} must be a list in brackets, e.g. {key}=[0.5,0.5]")
+    try:
+        return [float(v) for v in text[1:-1].replace(",", " ").split()]
+    except ValueError:
+        raise ParameterError(
+            "stage", f"stage {spec!r}: {key} must hold numbers, got {value!r}") from None
 
 
 def parse_stage(spec: str) -> Stage:
@@ -22,21 +57,22 @@ def parse_stage(spec: str) -> Stage:
     naming ``stage`` on bad syntax."""
     kind, _, rest = spec.partition(":")
     kind = kind.strip().lower()
-    if kind == "notch":
-        kind = "notch_matched"
+    kind = _KIND_ALIASES.get(kind, kind)
     if kind not in _stages.KINDS:
         raise ParameterError(
             "stage", f"stage {spec!r}: kind must be one of {', '.join(_stages.KINDS)}, "
                      "or notch")
     fields: dict = {}
-    for item in filter(None, (p.strip() for p in rest.split(","))):
+    for item in _items(spec, rest):
         key, eq, value = item.partition("=")
         key = _KEY_ALIASES.get(key.strip(), key.strip())
         if not eq:
             raise ParameterError("stage", f"stage {spec!r}: expected key=value, got {item!r}")
         if key in fields:
             raise ParameterError("stage", f"stage {spec!r}: {key} given twice")
-        if key in _INT_KEYS:
+        if key in _LIST_KEYS:
+            fields[key] = _number_list(spec, key, value)
+        elif key in _INT_KEYS:
             try:
                 fields[key] = int(value)
             except ValueError:
@@ -52,8 +88,23 @@ def parse_stage(spec: str) -> Stage:
             fields[key] = value.strip()
         else:
             raise ParameterError(
-                "stage", f"stage {spec!r}: unknown key {key!r} (keys: T, sigma, k, wn, zeta, "
-                         "order, tolerance, duration, notch_pole_zeta, timing)")
+                "stage", f"stage {spec!r}: unknown key {key!r} (keys: T, sigma, k, wn, f, zeta, "
+                         "order, tolerance, duration, insensitivity, notch_pole_zeta, timing, "
+                         "amplitudes, times)")
+    if "f" in fields:
+        if "wn" in fields:
+            raise ParameterError("stage", f"stage {spec!r}: give wn or f, not both")
+        fields["wn"] = 2 * math.pi * fields.pop("f")
+    if "insensitivity" in fields:
+        if kind != "si" or "order" in fields or "duration" in fields:
+            raise ParameterError(
+                "stage", f"stage {spec!r}: insensitivity is for si, and designs its order and "
+                         "duration (give either)")
+        from ..filters import si_shaper
+        return si_shaper(wn=fields.get("wn", 0.0), zeta=fields.get("zeta", 0.0),
+                         insensitivity=fields["insensitivity"],
+                         tolerance=fields.get("tolerance", 0.05),
+                         timing=fields.get("timing", "exact"))
     if kind in _stages.SMOOTHERS and "T" not in fields and "wn" in fields:
         from ..filters import design_for_mode
         unused = set(fields) - {"wn", "zeta", "k", "timing"}
@@ -103,6 +154,9 @@ def _shaper_duration(stage: Stage) -> float | None:
 def duration(stage: Stage) -> float | None:
     if stage.kind in _stages.SMOOTHERS:
         return stage.T
+    if stage.kind in _stages.INPUT_SMOOTHERS:
+        from ..reference.input_smoothers import smoother_kernel
+        return smoother_kernel(stage)[1]
     return _shaper_duration(stage)
 
 
@@ -113,9 +167,11 @@ def stage_rows(stages: list[Stage], Ts: float | None) -> tuple[list[str], list[l
     rows = []
     for i, s in enumerate(stages):
         smoother = s.kind in _stages.SMOOTHERS
+        mode = not smoother and s.kind != "impulses"
         row = [i, s.kind, duration(s), s.sigma if smoother else None,
-               None if smoother else s.wn, None if smoother else s.zeta,
-               s.k if smoother else None, s.order if s.kind == "zvn" else None,
+               s.wn if mode else None, s.zeta if mode else None,
+               s.k if smoother else None,
+               s.order if s.kind in ("zvn", "gmzv", "si", "impulses") else None,
                None if s.kind in _stages.NOTCHES else s.timing]
         if Ts is not None:
             from ..filters import Chain, ParameterError

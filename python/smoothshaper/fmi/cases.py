@@ -6,7 +6,8 @@ import math
 
 import numpy as np
 
-from ..stages import damped_harmonic, exponential, harmonic, notch, rectangular, shaper
+from ..stages import (damped_harmonic, exponential, harmonic, impulse_shaper, input_smoother,
+                      notch, rectangular, shaper)
 from .._checks import finite_array as _finite_array, integer as _integer
 from ..errors import ParameterError
 from .parameters import ModeStage
@@ -83,6 +84,14 @@ def validation_cases(Ts: float) -> list[tuple[str, list]]:
         ("ei3", [shaper("ei3", wn=wn, zeta=zeta, tolerance=0.05)]),
         ("gmzv (n=5, 1.2 Td)", [shaper("gmzv", wn=wn, zeta=zeta, order=5, duration=1.2)]),
         ("zv (paper)", [shaper("zv", wn=wn, zeta=zeta, timing="paper")]),
+        ("si (n=7, 2.3 Td)", [shaper("si", wn=wn, zeta=zeta, order=7, duration=2.3)]),
+        ("smooth_mzv", [input_smoother("smooth_mzv", wn=wn, zeta=zeta)]),
+        ("smooth_si", [input_smoother("smooth_si", wn=wn)]),
+        ("chain smooth_zv*smooth_ei*smooth_ei2*smooth_zvd_ei (3 wn)",
+         [input_smoother(kind, wn=3 * wn, zeta=zeta)
+          for kind in ("smooth_zv", "smooth_ei", "smooth_ei2", "smooth_zvd_ei")]),
+        ("impulses (pasted ZVD, a delay)",
+         [impulse_shaper(amplitudes=[0.25, 0.5, 0.25], times=[3.3 * Ts, 71.8 * Ts, 140.3 * Ts])]),
         ("notch_tustin", [notch(wn=wn, zeta=0.02, notch_pole_zeta=0.5, discretization="tustin")]),
         ("notch_matched", [notch(wn=wn, zeta=0.02, notch_pole_zeta=0.5, discretization="matched")]),
         ("zvd for mode", [ModeStage("zvd", wn, zeta)]),

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..stages import TIMINGS, Stage, for_mode
+from ..stages import KINDS, TIMINGS, Stage, for_mode
 from ..errors import ParameterError
 from .._checks import positive as _positive
 
@@ -18,9 +18,8 @@ STAGE_FIELDS = ("kind", "design", "timing", "T", "sigma", "k", "wn", "zeta", "or
                 "notch_pole_zeta", "duration")
 
 
-KIND_VALUES = {k: i for i, k in enumerate(
-    ("rectangular", "harmonic", "damped_harmonic", "exponential", "zv", "zvd", "zvdd", "zvn", "ei",
-     "ei2", "mzv", "notch_tustin", "notch_matched", "ei3", "gmzv"))}
+#: Integer code of each kind: its ``sms_kind`` value (the order of KINDS).
+KIND_VALUES = {k: i for i, k in enumerate(KINDS)}
 
 
 @dataclass(frozen=True)
@@ -81,6 +80,9 @@ def start_values(stages, *, Ts: float) -> dict:
                            p + "T": s.T, p + "sigma": s.sigma, p + "order": s.order,
                            p + "tolerance": s.tolerance, p + "notch_pole_zeta": s.notch_pole_zeta,
                            p + "duration": s.duration})
+            for i, (a, t) in enumerate(zip(s.amplitudes, s.times)):   # kind = impulses
+                values[f"{p}amplitude[{i}]"] = a
+                values[f"{p}time[{i}]"] = t
     return values
 
 

@@ -11,6 +11,8 @@ Smoothers, with ``a = s - sigma`` (sigma = 0 for the undamped families) and
   ``= (pi/T)(1 + e^{-aT})/(a^2 + (pi/T)^2)``; ``H(s) = F(s - sigma)/F(-sigma)``
   (docs/filters.md). The phi form has no removable singularity at ``a = ±j pi/T``.
 * shapers: ``H(s) = sum_m A_m e^{-s t_m}`` (impulses, see ``shaper_impulses``);
+* input smoothers: ``H(s) = int_0^T g(tau) e^{-s tau} dtau`` of their polynomial kernel
+  (``input_smoothers``);
 * notches: ``(s^2 + 2 xi1 wn s + wn^2)/(s^2 + 2 xi2 wn s + wn^2)``.
 """
 from __future__ import annotations
@@ -19,10 +21,11 @@ import math
 
 import numpy as np
 
-from ..stages import NOTCHES, SHAPERS, Stage
+from ..stages import INPUT_SMOOTHERS, NOTCHES, SHAPERS, Stage
 from ._checks import check_stage
 from .._checks import (complex_array as _complex_array, finite_array as _finite_array,
                        representable as _representable)
+from .input_smoothers import smoother_kernel, smoother_transfer
 from .notch import notch_transfer_unchecked
 from .shapers import shaper_transfer_unchecked
 from ..errors import ParameterError
@@ -99,6 +102,8 @@ def transfer_unchecked(stage: Stage, s: np.ndarray) -> np.ndarray:
         return shaper_transfer_unchecked(stage, s)
     if stage.kind in NOTCHES:
         return notch_transfer_unchecked(stage, s)
+    if stage.kind in INPUT_SMOOTHERS:
+        return smoother_transfer(stage, s)
     sigma = _sigma(stage)
     dc = _smoother_laplace(stage, np.array(-sigma, dtype=complex))
     return _smoother_laplace(stage, s - sigma) / dc
@@ -110,7 +115,8 @@ def continuous_impulse_response(stage: Stage, t) -> np.ndarray:
     Parameters
     ----------
     stage : Stage
-        A smoother stage (rectangular, harmonic, damped_harmonic, exponential).
+        A smoother stage (rectangular, harmonic, damped_harmonic, exponential) or an input
+        smoother (its kernel ``g``, on ``[0, T]``).
     t : array_like of float
         Times [s], any shape.
 
@@ -131,6 +137,11 @@ def continuous_impulse_response(stage: Stage, t) -> np.ndarray:
             "stage", f"stage must be a smoother for continuous_impulse_response; {stage.kind} "
                      "has impulses (see shaper_impulses / continuous_transfer)")
     t = _finite_array("t", t)
+    if stage.kind in INPUT_SMOOTHERS:
+        q, T = smoother_kernel(stage)
+        inside = (t >= 0) & (t <= T)
+        return np.where(inside, np.polynomial.polynomial.polyval(
+            np.where(inside, t, 0.0) / T - 0.5, q) / T, 0.0)
     sigma, T = _sigma(stage), stage.T
     inside = (t >= 0) & (t < T)
     tc = np.where(inside, t, 0.0)

@@ -15,9 +15,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..stages import NOTCHES, SMOOTHERS, Stage
+from ..stages import INPUT_SMOOTHERS, NOTCHES, SMOOTHERS, Stage
 from ._checks import as_stage_list, check_samples, check_stage, check_Ts
 from .notch import biquad, notch_coefficients_unchecked
+from .input_smoothers import taps_unchecked as input_smoother_taps_unchecked
 from .shapers import shaper_taps_unchecked
 from .smoothers import smoother_taps_unchecked
 from .._checks import (complex_array as _complex_array, finite as _finite,
@@ -73,6 +74,8 @@ def fir_taps_unchecked(stage: Stage, Ts: float) -> np.ndarray:
     checked on the way)."""
     if stage.kind in SMOOTHERS:
         return smoother_taps_unchecked(stage, Ts)
+    if stage.kind in INPUT_SMOOTHERS:
+        return input_smoother_taps_unchecked(stage, Ts)
     return shaper_taps_unchecked(stage, Ts)
 
 

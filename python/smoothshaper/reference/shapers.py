@@ -20,6 +20,13 @@ Continuous designs for the mode ``(wn, zeta)``, ``wd = wn sqrt(1-zeta^2)``, ``Td
   ``get_mzv_coeffs``): ``n = stage.order`` impulses at ``j D Td/(n-1)``, ``D = stage.duration``;
   amplitudes are the least-squares solution (``numpy.linalg.lstsq``) of ``sum A = 1`` and
   ``H(j wd (1 + i/tau)) = 0`` for i = 0..n-2, ``tau = D (n-2)/(n-2D-1)``. n = 3, D = 0.75 is MZV.
+* SI, specified insensitivity (Singhose, Seering and Singer 1996) over ``n = 2d + 1`` equally
+  spaced impulses at ``m D Td/(2d)``: with ``c = cos(w D Td/(2d))`` the response is the
+  Chebyshev polynomial ``V T_d`` of the band's image ``[c_lo, c_hi]`` (Dolph 1946), unit gain
+  at ``c = 1``; here the band edge solves that condition by ``scipy.optimize.brentq`` and
+  ``numpy.polynomial.chebyshev`` gives the cosine coefficients (:func:`si_undamped`).
+* impulses (user-defined): ``stage.amplitudes`` normalised to sum 1 at ``stage.times``; no
+  mode, so no damping transformation and no exact-timing correction (the linear split alone).
 
 Damping: every design above is an undamped amplitude set ``B_m`` at times ``t_m`` (multiples of
 ``Td``) carried to the damped mode by ``A_m = B_m e^{-zeta wn t_m} / sum_m B_m e^{-zeta wn t_m}``,
@@ -43,7 +50,8 @@ from ._checks import check_Ts, check_samples, check_stage, on_grid, round_half_u
 from ..errors import ParameterError
 from .._checks import finite as _finite, positive as _positive
 
-__all__ = ["zvn_order", "mode_pole", "shaper_impulses", "shaper_continuous_transfer", "shaper_taps"]
+__all__ = ["zvn_order", "mode_pole", "shaper_impulses", "shaper_continuous_transfer", "shaper_taps",
+           "si_undamped"]
 
 _ZVN_ORDER = {"zv": 1, "zvd": 2, "zvdd": 3}
 
@@ -92,6 +100,9 @@ def _undamped_design(stage: Stage) -> tuple[np.ndarray, np.ndarray]:
         return np.array([a1, a2, (1 + V) / 2 - 2 * a1, a2, a1]), 0.5 * np.arange(5.0)
     if kind == "gmzv":
         return gmzv_undamped(stage.order, stage.duration)
+    if kind == "si":
+        A, units, _ = si_undamped(stage.order, stage.duration, stage.tolerance)
+        return A, units
     raise ParameterError("kind", f"kind must be a shaper ({', '.join(SHAPERS)}), got {kind!r}")
 
 
@@ -143,6 +154,78 @@ def gmzv_undamped(n: int, duration: float) -> tuple[np.ndarray, np.ndarray]:
             "duration", f"duration {duration!r} gives a negative impulse for gmzv with {n} "
                         "impulses (the least-squares design needs duration > 0.5 damped periods)")
     return A / A.sum(), units
+
+
+def si_undamped(order: int, duration: float, tolerance: float
+                ) -> tuple[np.ndarray, np.ndarray, float]:
+    """Undamped specified-insensitivity shaper: ``order`` impulses over ``duration`` damped
+    periods whose residual stays <= ``tolerance`` over the widest band ``wd (1 +- I/2)``.
+
+    Singhose, Seering and Singer, "Input shaping for vibration reduction with specified
+    insensitivity to modeling errors", 1996 (the problem); over equally spaced symmetric
+    impulses its solution is the equal-ripple polynomial of Dolph, "A current distribution for
+    broadside arrays which optimizes the relationship between beam width and side-lobe level",
+    1946 (module docstring).
+
+    Parameters
+    ----------
+    order : int
+        3, 5, 7 or 9 impulses.
+    duration : float
+        Span in damped periods, in [(order - 1)/4, (order - 1)/2].
+    tolerance : float
+        V in (0, 1).
+
+    Returns
+    -------
+    amplitudes : ndarray of float64, shape (order,)
+        Non-negative, summing to 1.
+    times : ndarray of float64, shape (order,)
+        In damped periods, from 0 to ``duration``.
+    insensitivity : float
+        I, the band's width relative to the damped frequency.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``order``, ``duration`` or ``tolerance`` when out of range.
+    """
+    from scipy.optimize import brentq
+    if order not in (3, 5, 7, 9):
+        raise ParameterError("order", f"order must be 3, 5, 7 or 9 for si, got {order!r}")
+    if not 0.0 < tolerance < 1.0:
+        raise ParameterError("tolerance", f"tolerance must be in (0, 1), got {tolerance!r}")
+    d = (order - 1) // 2
+    if not 0.5 * d <= duration <= d:
+        raise ParameterError(
+            "duration", f"duration must be in [{0.5 * d!r}, {float(d)!r}] for si with order "
+                        f"{order}, got {duration!r}")
+    x1 = math.cosh(math.acosh(1.0 / tolerance) / d)
+    theta_c = math.pi * duration / d          # theta = w D Td/(2d) at the mode
+
+    def ends(I: float) -> tuple[float, float]:
+        lo, hi = theta_c * (1 - I / 2), theta_c * (1 + I / 2)
+        c_lo = -1.0 if hi >= math.pi else math.cos(hi)
+        return c_lo, max(math.cos(lo), math.cos(hi))
+
+    def excess(I: float) -> float:           # x(c = 1) of the band minus the unit-gain x1
+        c_lo, c_hi = ends(I)
+        if not c_hi > c_lo:                  # a band too narrow to register in c
+            return math.inf
+        return (2.0 - c_lo - c_hi) / (c_hi - c_lo) - x1
+
+    I = brentq(excess, 1e-12, 2.0 - 1e-12, xtol=1e-15, rtol=1e-15, maxiter=500)
+    c_lo, c_hi = ends(I)
+    # V T_d(x) with x = (2c - c_hi - c_lo)/(c_hi - c_lo), as a Chebyshev series in c = cos(theta)
+    x_of_c = np.polynomial.Polynomial([-(c_hi + c_lo) / (c_hi - c_lo), 2.0 / (c_hi - c_lo)])
+    R = tolerance * np.polynomial.Chebyshev.basis(d)(x_of_c)
+    r = np.polynomial.chebyshev.poly2cheb(R.coef)
+    r = np.concatenate([r, np.zeros(d + 1 - r.size)])
+    A = np.concatenate([r[:0:-1] / 2, [r[0]], r[1:] / 2])
+    A[(A < 0) & (A >= -1e-12 * np.abs(A).max())] = 0.0     # an exact 0 at duration = d/2
+    if np.any(A < 0):
+        raise ParameterError("duration", f"duration {duration!r} gives a negative impulse")
+    return A / A.sum(), duration * np.arange(order) / (2.0 * d), float(I)
 
 
 def mode_pole(wn: float, zeta: float) -> complex:
@@ -206,6 +289,9 @@ def shaper_impulses(stage: Stage) -> tuple[np.ndarray, np.ndarray]:
 
 def impulses_unchecked(stage: Stage) -> tuple[np.ndarray, np.ndarray]:
     """:func:`shaper_impulses` of a Stage (whose wn and zeta the Stage validated)."""
+    if stage.kind == "impulses":
+        A = np.array(stage.amplitudes, dtype=float)
+        return A / math.fsum(stage.amplitudes), np.array(stage.times, dtype=float)
     return _damped(*_undamped_design(stage), _pole(stage.wn, stage.zeta))
 
 
@@ -261,9 +347,10 @@ def _paper_taps(A: np.ndarray, t: np.ndarray, Ts: float) -> np.ndarray:
     return h
 
 
-def _exact_taps(A: np.ndarray, t: np.ndarray, target: complex, zp: complex,
+def _exact_taps(A: np.ndarray, t: np.ndarray, target: complex | None, zp: complex,
                 Ts: float) -> np.ndarray:
-    """Linear split plus least-norm correction pinning ``H(zp) = target``."""
+    """Linear split plus least-norm correction pinning ``H(zp) = target`` (no correction when
+    ``target`` is None)."""
     placed = []                       # (index, amplitude) of the base
     split = set()
     for a, tm in zip(A, t):
@@ -279,7 +366,7 @@ def _exact_taps(A: np.ndarray, t: np.ndarray, target: complex, zp: complex,
     g = np.zeros(max(i for i, _ in placed) + 1)
     for i, a in placed:
         g[i] += a
-    if not split:
+    if not split or target is None:
         return g
     support = np.array(sorted(split | {0}))
     zinv = zp ** (-np.arange(g.size, dtype=float))
@@ -327,6 +414,11 @@ def shaper_taps(stage: Stage, *, Ts: float) -> np.ndarray:
 def shaper_taps_unchecked(stage: Stage, Ts: float) -> np.ndarray:
     """:func:`shaper_taps` of a shaper Stage at a checked ``Ts``; what depends on both (the
     Nyquist frequency, the number of taps) is checked here."""
+    if stage.kind == "impulses":                   # no mode: no Nyquist check, no correction
+        A, t = impulses_unchecked(stage)
+        check_samples("times", t[-1] / Ts + 2.0, "the taps of the impulses")
+        return _paper_taps(A, t, Ts) if stage.timing == "paper" else \
+            _exact_taps(A, t, None, 1.0, Ts)
     _check_mode(stage, Ts)
     with np.errstate(over="ignore"):               # a span beyond a float: refused below
         A, t = impulses_unchecked(stage)
