@@ -104,8 +104,9 @@ def test_bspline_shared_between_threads():
 
 
 def test_step_reset_and_state_from_threads():
-    """step, reset, get_state and set_state interleaved from threads: every saved state is
-    one the chain had (it loads again) and the chain ends consistent."""
+    """step, get_state and set_state interleaved from threads: every saved state is one the
+    chain had (it loads again) and the chain ends consistent (each thread's get/set pair holds
+    the chain's lock, which is re-entrant, so that no other thread's step falls between them)."""
     c = chain()
     c.process(np.ones(100))
     saved, errors = [], []
@@ -115,9 +116,12 @@ def test_step_reset_and_state_from_threads():
             for i in range(200):
                 c.step(1.0)
                 if i % 50 == 0:
-                    s = c.get_state()
-                    saved.append(s)
-                    c.set_state(s)
+                    # get and set as one: between two separate calls another thread's step
+                    # would be undone by set_state, and the chain would end short of the twin
+                    with c._lock:
+                        s = c.get_state()
+                        saved.append(s)
+                        c.set_state(s)
         except Exception as exc:
             errors.append(exc)
 
