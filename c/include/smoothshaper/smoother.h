@@ -186,7 +186,7 @@ SMS_API void sms_smoother_reset(sms_smoother *f, sms_real rest);
  * (docs/numerics.md has a table). sms_smoother_init() refuses with ::SMS_ERR_SIGMA a sigma for
  * which the range would fall below 1 (sigma Ts below about -706 in double, -85 in float).
  * @param f       the smoother (read only)
- * @return the largest |input| [same unit as the signal], in (1, ::SMS_INPUT_MAX]
+ * @return the largest |input| [same unit as the signal], in [1, ::SMS_INPUT_MAX]
  */
 SMS_API double sms_smoother_input_max(const sms_smoother *f);
 
