@@ -329,6 +329,9 @@ def _energy_note(rec: Record, band) -> str | None:
 #: 1 : 0.47 where the plant's are 1 : 0.53.
 EXCITATION_RSD = 0.05
 
+#: Standard deviation of a fitted natural frequency's bias, in bins of the spectrum.
+FREQ_BIAS_BINS = 0.1
+
 
 def identify(rec: Record, name: str, signal: str, cols, band=None,
              spread: float = 0.0) -> AxisResult:
@@ -395,7 +398,9 @@ def identify(rec: Record, name: str, signal: str, cols, band=None,
         for d in fit.modes:
             if scale:
                 d["weight"] = d["weight"] / (d["fn"] + 0.1)
-            sd = d["fn_sd"]
+            # the fit's own sd, and a tenth of a bin for the model's bias (the window's kernel
+            # and the local power law: the campaign's modes came out up to 0.08 bin off)
+            sd = math.hypot(d["fn_sd"], FREQ_BIAS_BINS * res.resolution)
             if spread:
                 sd = math.hypot(sd, spread * d["fn"])
             modes.append(Mode(wn=2 * math.pi * d["fn"], zeta=d["zeta"], wn_std=2 * math.pi * sd,
