@@ -501,22 +501,10 @@ def evaluate(name: str, stages: list[Stage], objectives, rank: str, ref: Referen
 
 def recommend(candidates: list[Candidate]) -> Candidate | None:
     """Least remaining vibration among those within the limits; within 0.05 percentage points
-    of it, those whose estimate of the plant's remaining vibration is within 5 % (and 0.05
-    points) of the least such estimate, and of these the shorter one.
-
-    The measured-PSD figure counts nothing under a twentieth of the peak, so on a clean
-    spectrum many candidates tie at 0 %; the shortest of them was often the narrowest (a ZV
-    where an MZV leaves half as much of the plant: a mode whose frequency moves with the
-    amplitude, or the README's record, MZV at 12.5 % where a 4-impulse GMZV leaves 6.3 %). The
-    plant estimate tells those ties apart; where the modal fit ranks, it is the ranking figure."""
+    the shorter one."""
     ok = [c for c in candidates if c.meets and (c.stages or c.firmware is not None)]
     if not ok:
         return None
     best = min(c.vibration for c in ok)
     close = [c for c in ok if c.vibration <= best + 0.05]
-    est = [c.vibration_estimate for c in close if math.isfinite(c.vibration_estimate)]
-    if est:
-        least = min(est)
-        close = [c for c in close if not math.isfinite(c.vibration_estimate)
-                 or c.vibration_estimate <= 1.05 * least + 0.05] or close
     return min(close, key=lambda c: (c.length, c.vibration))
