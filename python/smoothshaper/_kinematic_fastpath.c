@@ -11,10 +11,12 @@
  * more than three bounds, a design the C core refuses); design.kinematic then runs its fully
  * checked path, which names the offending argument. The C core checks every value (finite,
  * > 0, ratios in range, zeta in [0, 1)), so only the types are tested here. The Stage objects
- * get the C core's values without re-validation: they equal what Stage(...) builds from the
- * same values (tests/python/test_design.py compares them field by field). */
+ * get the C core's values without re-validation, written straight into their slots (Stage is
+ * a slotted dataclass): they equal what Stage(...) builds from the same values
+ * (tests/python/test_design.py compares them field by field). */
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
+#include <structmember.h>
 
 #include <math.h>
 #include <string.h>
@@ -26,8 +28,14 @@
  * the C enumerations, the profile names mapped to sms_profile, the extra number types that
  * convert exactly like float() (NumPy float64, float32, int64). */
 static PyObject *stage_type, *kind_names, *timing_names, *profile_index, *extra_numbers;
-static PyObject *name_kind, *name_T, *name_order, *name_sigma, *name_k, *name_timing;
-static PyObject *one, *no_arguments;
+static PyObject *one;
+
+/* Stage's slots: the byte offset of each field in an instance (from its member descriptors)
+ * and the field's default, in field order; the fields this file writes, by index. */
+#define MAX_FIELDS 32
+static Py_ssize_t field_count, field_offset[MAX_FIELDS];
+static PyObject *field_default[MAX_FIELDS];
+static Py_ssize_t f_kind = -1, f_T = -1, f_sigma = -1, f_k = -1, f_order = -1, f_timing = -1;
 
 /* 1 and *x = its value if o is a plain number cffi would pass as float(o); 0 otherwise,
  * with no exception set (an int too large for a double included: the checked path names it). */
@@ -50,37 +58,40 @@ static int plain_number(PyObject *o, double *x)
     return 0;
 }
 
+#define SLOT(s, i) (*(PyObject **)((char *)(s) + field_offset[i]))
+
+/* Replaces field i of a new Stage by a new reference (stolen); -1 if value is NULL. */
+static int set_new(PyObject *s, Py_ssize_t i, PyObject *value)
+{
+    if (value == NULL)
+        return -1;
+    Py_XSETREF(SLOT(s, i), value);
+    return 0;
+}
+
 /* A Stage as Stage(kind, T=T, ...) would build it, from valid values, without running its
- * validation; object.__new__ then the fields written past the frozen dataclass's
- * __setattr__ (which only raises). Only fields that differ from the class defaults are set,
- * and order (the constructor turns None into 1 for smoothers). New reference or NULL. */
+ * validation: allocated by its type, every slot its field's default, then kind, T and order
+ * (the constructor turns None into 1 for smoothers). New reference or NULL. */
 static PyObject *new_stage(PyObject *kind, double T)
 {
-    PyObject *s, *t;
-    s = PyBaseObject_Type.tp_new((PyTypeObject *)stage_type, no_arguments, NULL);
+    PyTypeObject *type = (PyTypeObject *)stage_type;
+    PyObject *s = type->tp_alloc(type, 0);
+    Py_ssize_t i;
     if (s == NULL)
         return NULL;
-    t = PyFloat_FromDouble(T);
-    if (t == NULL || PyObject_GenericSetAttr(s, name_kind, kind) < 0 ||
-        PyObject_GenericSetAttr(s, name_T, t) < 0 ||
-        PyObject_GenericSetAttr(s, name_order, one) < 0) {
-        Py_XDECREF(t);
+    for (i = 0; i < field_count; ++i) {
+        Py_INCREF(field_default[i]);
+        SLOT(s, i) = field_default[i];
+    }
+    Py_INCREF(kind);
+    Py_SETREF(SLOT(s, f_kind), kind);
+    Py_INCREF(one);
+    Py_SETREF(SLOT(s, f_order), one);
+    if (set_new(s, f_T, PyFloat_FromDouble(T)) < 0) {
         Py_DECREF(s);
         return NULL;
     }
-    Py_DECREF(t);
     return s;
-}
-
-/* Sets a field from a new reference (stolen); -1 on failure. */
-static int set_new(PyObject *s, PyObject *name, PyObject *value)
-{
-    int r;
-    if (value == NULL)
-        return -1;
-    r = PyObject_GenericSetAttr(s, name, value);
-    Py_DECREF(value);
-    return r;
 }
 
 /* design(h, vmax, amax, jmax, higher, profile, wn, zeta, Ts): the stages, or None. */
@@ -98,7 +109,7 @@ static PyObject *design(PyObject *self, PyObject *const *args, Py_ssize_t nargs)
         PyErr_SetString(PyExc_TypeError, "design() takes 9 positional arguments");
         return NULL;
     }
-    if (stage_type == NULL) {
+    if (field_count == 0) {
         PyErr_SetString(PyExc_RuntimeError, "configure() has not been called");
         return NULL;
     }
@@ -168,13 +179,18 @@ static PyObject *design(PyObject *self, PyObject *const *args, Py_ssize_t nargs)
     {
         /* the last stage: its family, decay, mode multiple and timing */
         PyObject *s = PyList_GET_ITEM(stages, (Py_ssize_t)(n - 1));
-        if ((last.kind != SMS_RECTANGULAR &&
-             PyObject_GenericSetAttr(s, name_kind, PyTuple_GET_ITEM(kind_names, last.kind)) < 0)
-            || (last.sigma != 0.0 && set_new(s, name_sigma, PyFloat_FromDouble(last.sigma)) < 0)
-            || (last.k != 1u && set_new(s, name_k, PyLong_FromUnsignedLong(last.k)) < 0)
-            || (last.timing != SMS_TIMING_EXACT &&
-                PyObject_GenericSetAttr(s, name_timing,
-                                        PyTuple_GET_ITEM(timing_names, last.timing)) < 0)) {
+        if (last.kind != SMS_RECTANGULAR) {
+            PyObject *kind = PyTuple_GET_ITEM(kind_names, last.kind);
+            Py_INCREF(kind);
+            Py_SETREF(SLOT(s, f_kind), kind);
+        }
+        if (last.timing != SMS_TIMING_EXACT) {
+            PyObject *timing = PyTuple_GET_ITEM(timing_names, last.timing);
+            Py_INCREF(timing);
+            Py_SETREF(SLOT(s, f_timing), timing);
+        }
+        if ((last.sigma != 0.0 && set_new(s, f_sigma, PyFloat_FromDouble(last.sigma)) < 0) ||
+            (last.k != 1u && set_new(s, f_k, PyLong_FromUnsignedLong(last.k)) < 0)) {
             Py_DECREF(stages);
             return NULL;
         }
@@ -338,20 +354,72 @@ static PyObject *phase_duration(PyObject *self, PyObject *const *args, Py_ssize_
     return PyFloat_FromDouble(T);
 }
 
-/* configure(Stage, KINDS, TIMINGS, profiles, extra_numbers): see the variables above. */
+/* Index of the field called name in the (name, default) pairs, or -1. */
+static Py_ssize_t field_index(PyObject *defaults, const char *name)
+{
+    Py_ssize_t i;
+    for (i = 0; i < PyTuple_GET_SIZE(defaults); ++i)
+        if (PyUnicode_CompareWithASCIIString(
+                PyTuple_GET_ITEM(PyTuple_GET_ITEM(defaults, i), 0), name) == 0)
+            return i;
+    return -1;
+}
+
+/* configure(Stage, defaults, KINDS, TIMINGS, profiles, extra_numbers): see the variables
+ * above; defaults = Stage's (name, default) pairs in field order, each field a slot. */
 static PyObject *configure(PyObject *self, PyObject *args)
 {
-    PyObject *stage, *kinds, *timings, *profiles, *numbers;
+    PyObject *stage, *defaults, *kinds, *timings, *profiles, *numbers;
+    Py_ssize_t i, n;
     (void)self;
-    if (!PyArg_ParseTuple(args, "OO!O!O!O!:configure", &stage, &PyTuple_Type, &kinds,
-                          &PyTuple_Type, &timings, &PyDict_Type, &profiles, &PyTuple_Type,
-                          &numbers))
+    if (!PyArg_ParseTuple(args, "OO!O!O!O!O!:configure", &stage, &PyTuple_Type, &defaults,
+                          &PyTuple_Type, &kinds, &PyTuple_Type, &timings, &PyDict_Type,
+                          &profiles, &PyTuple_Type, &numbers))
         return NULL;
+    n = PyTuple_GET_SIZE(defaults);
     if (!PyType_Check(stage) || PyTuple_GET_SIZE(kinds) != SMS_KIND_COUNT ||
-        PyTuple_GET_SIZE(timings) != SMS_TIMING_BOUNDED + 1) {
-        PyErr_SetString(PyExc_ValueError, "configure(): Stage, KINDS and TIMINGS expected");
+        PyTuple_GET_SIZE(timings) != SMS_TIMING_BOUNDED + 1 || n > MAX_FIELDS ||
+        field_count != 0) {
+        PyErr_SetString(PyExc_ValueError, "configure(): Stage, KINDS and TIMINGS expected, "
+                                          "once");
         return NULL;
     }
+    for (i = 0; i < n; ++i) {
+        PyObject *pair = PyTuple_GET_ITEM(defaults, i), *descr;
+        PyMemberDef *member;
+        if (!PyTuple_Check(pair) || PyTuple_GET_SIZE(pair) != 2 ||
+            !PyUnicode_Check(PyTuple_GET_ITEM(pair, 0))) {
+            PyErr_SetString(PyExc_ValueError, "configure(): (name, default) pairs expected");
+            return NULL;
+        }
+        descr = PyObject_GetAttr(stage, PyTuple_GET_ITEM(pair, 0));
+        if (descr == NULL)
+            return NULL;
+        /* a slot holding any object: only then is the offset ours to write */
+        if (Py_TYPE(descr) != &PyMemberDescr_Type ||
+            (member = ((PyMemberDescrObject *)descr)->d_member)->type != T_OBJECT_EX) {
+            Py_DECREF(descr);
+            PyErr_SetString(PyExc_ValueError, "configure(): every Stage field must be a slot");
+            return NULL;
+        }
+        field_offset[i] = member->offset;
+        Py_DECREF(descr);
+    }
+    f_kind = field_index(defaults, "kind");
+    f_T = field_index(defaults, "T");
+    f_sigma = field_index(defaults, "sigma");
+    f_k = field_index(defaults, "k");
+    f_order = field_index(defaults, "order");
+    f_timing = field_index(defaults, "timing");
+    if (f_kind < 0 || f_T < 0 || f_sigma < 0 || f_k < 0 || f_order < 0 || f_timing < 0) {
+        PyErr_SetString(PyExc_ValueError, "configure(): a Stage field is missing");
+        return NULL;
+    }
+    for (i = 0; i < n; ++i) {
+        field_default[i] = PyTuple_GET_ITEM(PyTuple_GET_ITEM(defaults, i), 1);
+        Py_INCREF(field_default[i]);
+    }
+    field_count = n;
     Py_INCREF(stage);
     Py_INCREF(kinds);
     Py_INCREF(timings);
@@ -378,7 +446,8 @@ static PyMethodDef methods[] = {
      "configure_kinematic(function, module_name) -> kinematic: design.kinematic as a builtin\n"
      "that runs design() and calls function (the checked path) where it returns None."},
     {"configure", configure, METH_VARARGS,
-     "configure(Stage, KINDS, TIMINGS, profiles, extra_numbers): the Python objects used."},
+     "configure(Stage, defaults, KINDS, TIMINGS, profiles, extra_numbers): the Python objects\n"
+     "used (defaults: Stage's (name, default) pairs in field order)."},
     {NULL, NULL, 0, NULL}};
 
 static struct PyModuleDef module = {PyModuleDef_HEAD_INIT, "_kinematic_fastpath",
@@ -387,15 +456,8 @@ static struct PyModuleDef module = {PyModuleDef_HEAD_INIT, "_kinematic_fastpath"
 
 PyMODINIT_FUNC PyInit__kinematic_fastpath(void)
 {
-    if (name_kind == NULL) {
-        name_kind = PyUnicode_InternFromString("kind");
-        name_T = PyUnicode_InternFromString("T");
-        name_order = PyUnicode_InternFromString("order");
-        name_sigma = PyUnicode_InternFromString("sigma");
-        name_k = PyUnicode_InternFromString("k");
-        name_timing = PyUnicode_InternFromString("timing");
+    if (one == NULL) {
         one = PyLong_FromLong(1);
-        no_arguments = PyTuple_New(0);
         empty_tuple = PyTuple_New(0);
         default_profile = PyUnicode_InternFromString("polynomial");
         default_zeta = PyFloat_FromDouble(0.0);
@@ -407,8 +469,7 @@ PyMODINIT_FUNC PyInit__kinematic_fastpath(void)
                 if ((keyword_names[j] = PyUnicode_InternFromString(keyword_text[j])) == NULL)
                     return NULL;
         }
-        if (no_arguments == NULL || name_kind == NULL || name_T == NULL || name_order == NULL || name_sigma == NULL ||
-            name_k == NULL || name_timing == NULL || one == NULL)
+        if (one == NULL)
             return NULL;
     }
     return PyModule_Create(&module);

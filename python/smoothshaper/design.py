@@ -248,7 +248,7 @@ def kinematic(*, h: float, vmax: float, amax: float | None = None, jmax: float |
 # the profiles, and the number types besides float and int that convert exactly as float()
 # does (bool, complex, str and other types take the checked path, which refuses or converts
 # them by name).
-_kinematic_fastpath.configure(Stage, _stages.KINDS, _stages.TIMINGS,
+_kinematic_fastpath.configure(Stage, _stages._STAGE_DEFAULTS, _stages.KINDS, _stages.TIMINGS,
                               {p: i for i, p in enumerate(PROFILES)},
                               (np.float64, np.int64, np.float32))
 _fastpath = _kinematic_fastpath.design

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, fields, replace
 
 from ._checks import choice as _choice, finite as _finite, integer as _integer, show as _show
 from .errors import ParameterError
@@ -46,7 +46,10 @@ SMOOTH_ZETA_MAX = 0.25
 _SMOOTH_READS_ZETA = ("smooth_zv", "smooth_mzv", "smooth_ei")
 
 
-@dataclass(frozen=True)
+# slots: a Stage is built once per design.kinematic call in online planning; without them,
+# storing its fields in an instance dict and freeing that dict took about a third of the
+# call in a profile (_kinematic_fastpath.c writes the slots directly).
+@dataclass(frozen=True, slots=True)
 class Stage:
     """One stage of a chain: the physical parameters of a filter, validated on construction.
 
@@ -249,18 +252,20 @@ def _check_impulses(stage: "Stage") -> None:
 
 
 class _UncheckedStage:
-    """A blank with Stage's instance layout and no frozen-field guard, for building a Stage
-    from values that are already valid (the C design's) without :meth:`Stage.__post_init__`.
+    """A blank with Stage's slots and no frozen-field guard, for building a Stage from values
+    that are already valid (the C design's) without :meth:`Stage.__post_init__`.
 
-    Set its fields by plain assignment, then ``obj.__class__ = Stage`` (Python allows this
-    between classes of the same layout; both are plain classes with a ``__dict__``). Only the
-    fields that differ from Stage's class-level defaults need setting, and ``order`` must be
-    set (1 for smoothers: the constructor's None becomes 1). The result equals the validated
-    Stage (``==``, hash, repr, pickle, every field); its ``__dict__`` holds only the fields
-    set. Built this way a Stage costs about 0.1 us, against about 0.13 us through
-    ``object.__new__(Stage)`` and ``__dict__`` writes and 8 us through the constructor.
+    Set every field by plain assignment (a slot has no class-level default), then
+    ``obj.__class__ = Stage`` (Python allows this between classes with the same slots). The
+    result equals the validated Stage (``==``, hash, repr, pickle, every field).
     :func:`_unchecked_stage` builds one (design.kinematic's checked path; its fast path,
     ``_kinematic_fastpath.c``, builds the same objects in C)."""
+
+    __slots__ = tuple(f.name for f in fields(Stage))
+
+
+#: Stage's field defaults, in field order (what _unchecked_stage starts from).
+_STAGE_DEFAULTS = tuple((f.name, f.default) for f in fields(Stage))
 
 
 def _unchecked_stage(kind: str, T: float, sigma: float = 0.0, k: int = 1,
@@ -269,15 +274,15 @@ def _unchecked_stage(kind: str, T: float, sigma: float = 0.0, k: int = 1,
     ``sigma`` <= 0 float, ``k`` >= 1 int, odd for the harmonic kinds, ``timing`` one of
     :data:`TIMINGS` that the kind has), not re-validated."""
     s = _UncheckedStage()
+    for name, value in _STAGE_DEFAULTS:
+        setattr(s, name, value)
     s.kind = kind
     s.T = T
-    s.order = 1
-    if sigma:
+    s.order = 1     # the constructor's None becomes 1 for smoothers
+    if sigma:       # -0.0 (an undamped mode's -zeta wn) stays the default 0.0, as in C
         s.sigma = sigma
-    if k != 1:
-        s.k = k
-    if timing != "exact":
-        s.timing = timing
+    s.k = k
+    s.timing = timing
     s.__class__ = Stage
     return s
 

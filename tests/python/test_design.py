@@ -92,6 +92,38 @@ def test_c_matches_reference_any_order(lh, lv, la, lj, ls, profile):
     assert c == pytest.approx(ref, rel=1e-9)
 
 
+@given(lh=decades, n=st.integers(1, 4), slack=st.lists(st.floats(0.0, 2.0), min_size=4,
+       max_size=4), lt=decades, profile=st.sampled_from(["polynomial", "trigonometric"]))
+def test_every_bound_reached_gives_the_quotients(lh, n, slack, lt, profile):
+    """Where every stage lasts at least the sum of those below it (vmax reached, and every
+    bound below it), the lengths are the quotients h/L_0, L_0/L_1, ..., c L_{n-2}/L_{n-1}
+    (c = 1, or pi/2 for a harmonic last stage): the values of the recursion's closed form
+    there, bit for bit (the C core computes them directly in that regime), and the
+    reference's. Slack 0 puts a stage exactly at the regime's edge."""
+    c = 1.0 if profile == "polynomial" else 0.5 * math.pi
+    T = [10.0 ** lt]                            # the last stage, then upwards
+    for u in slack[:n - 1]:
+        T.insert(0, sum(T) * (1.0 + u))
+    h = 10.0 ** lh
+    L = [h / T[0]]                              # the bounds that give these lengths
+    for k in range(1, n):
+        L.append(L[-1] / T[k] * (c if k == n - 1 else 1.0))
+    if n == 1:
+        L = [c * h / T[0]]
+    q = [c * h / L[0]] if n == 1 else \
+        [h / L[0]] + [L[k - 1] / L[k] for k in range(1, n - 1)] + [c * L[n - 2] / L[n - 1]]
+    kw = dict(h=h, vmax=L[0], amax=L[1] if n > 1 else None, jmax=L[2] if n > 2 else None,
+              higher=tuple(L[3:]), profile=profile)
+    got = [s.T for s in design.kinematic(**kw)]
+    rest, regime = q[-1], True                  # the sums from the bottom, as the C core adds
+    for k in reversed(range(n - 1)):
+        regime &= q[k] >= rest
+        rest = q[k] + rest
+    if regime:
+        assert got == q
+    assert got == pytest.approx([s.T for s in design.kinematic_reference(**kw)], rel=1e-9)
+
+
 @settings(max_examples=15, deadline=None)   # the reference tries all 10,000 multiples
 @given(lv=st.floats(-4, -2), la=st.floats(1, 4), lj=st.floats(0, 3), n=st.integers(2, 3),
        lp=st.floats(-2.5, 0.5), zeta=st.sampled_from([0.0, 0.05]), grid=st.booleans())

@@ -239,8 +239,8 @@ void sms_smoother_reset(sms_smoother *f, sms_real rest)
  * lanes of one small vector (lane 0 old, lane 1 young; the young lane sees x[n-M] replaced by
  * its reference, i.e. 0, and a zero tail weight). Each copy's state is w + lo, updated for
  * the input u = c (x - ref) + t (x[n-M] - ref) as
- *   d = (q - 1) w + u,  w' + e = w + d (Fast2Sum),  lo' = lo + ((q - 1) lo + q_lo w + e):
- * lo collects what the addition rounds away and what the rounded pole misses, and rotates on
+ *   a + e1 = w + u,  w' + e2 = a + (q - 1) w (two Fast2Sums),  lo' = q lo + (q_lo w + e1 + e2):
+ * lo collects what the additions round away and what the rounded pole misses, and rotates on
  * the same pole. For the rectangular stage (q = 1, t = -c) u is c (x - x[n-M]) in the old
  * copy. Fast2Sum needs IEEE evaluation in sms_real: no -ffast-math reassociation, no x87
  * excess precision (FLT_EVAL_METHOD 0).
@@ -275,6 +275,14 @@ typedef sms_real lanes;
 #define LANES(a, b) ((void)(b), (a))
 #define LANE(v, i) ((void)(i), (v))
 #endif
+/* The per-variant loops are instances of segment() with constant flags: on the vector path
+ * each must be inlined (GCC at -O2 otherwise keeps one generic copy that tests the flags on
+ * every sample); the portable path keeps one copy for code size. */
+#ifdef SMS_SMOOTHER_VARIANT_LOOPS
+#define SEGMENT_BODY static inline __attribute__((always_inline))
+#else
+#define SEGMENT_BODY static inline
+#endif
 #define ADD(a, b) ((a) + (b))
 #define SUB(a, b) ((a) - (b))
 #define MUL(a, b) ((a) * (b))
@@ -294,7 +302,7 @@ typedef sms_real lanes;
 
 /* The recursion's constants by lane (lane 0 old, lane 1 young: no tail). */
 typedef struct constants {
-    lanes pm1, pim, plo_re, plo_im, gain, tail_re, tail_im;
+    lanes pm1, q, pim, plo_re, plo_im, gain, tail_re, tail_im;
 } constants;
 
 /* Both copies' state by lane. */
@@ -308,6 +316,7 @@ static inline constants constants_of(const sms_smoother *f, int with_tail)
 {
     constants k;
     k.pm1 = LANES(f->pole_m1_re, f->pole_m1_re);
+    k.q = LANES((sms_real)1 + f->pole_m1_re, (sms_real)1 + f->pole_m1_re);
     k.pim = LANES(f->pole_im, f->pole_im);
     k.plo_re = LANES(f->pole_lo_re, f->pole_lo_re);
     k.plo_im = LANES(f->pole_lo_im, f->pole_lo_im);
@@ -380,22 +389,29 @@ static inline void store_copies(sms_smoother *f, const copies *s, int c, int pol
 
 /* One sample of the recursion in both lanes; the old lane's w + lo (Re w for a real pole, Im w
  * for a complex one). `oldest` is x[n-M] (for the young lane its reference stands in). */
+/* The increment of w is split in two Fast2Sums, w + u then + (q - 1) w: the chain from w to
+ * its next value is then one product and one sum (w + u does not wait for the product), not a
+ * product and two sums, and both roundings are kept (the rounding of d = (q - 1) w + u, which a
+ * single Fast2Sum of w + d leaves out, no longer occurs). lo rotates as q lo with q rounded:
+ * lo is about an ulp of w, so the ulp of q that this loses is far below what lo tracks, and its
+ * chain is one product and one sum as well. */
 #ifdef SMS_SMOOTHER_VARIANT_LOOPS
 static inline sms_real recur_real(const constants *k, copies *s, sms_real x, sms_real oldest,
                                   int pole)
 {
-    lanes u, d, e, w;
+    lanes u, a, e1, p, w, e2;
     if (pole == POLE_UNIT) {
         /* q = 1, t = -c: c (x - x[n-M]) in the old lane, c (x - ref) in the young one */
         u = MUL(k->gain, SUB(LANES(x, x), LANES(oldest, LANE(s->ref, 1))));
-        FAST_TWO_SUM(w, e, s->w_re, u);
-        s->lo_re = ADD(s->lo_re, e);
+        FAST_TWO_SUM(w, e1, s->w_re, u);
+        s->lo_re = ADD(s->lo_re, e1);
     } else {
         u = ADD(MUL(k->gain, SUB(LANES(x, x), s->ref)),
                 MUL(k->tail_re, SUB(LANES(oldest, LANE(s->ref, 1)), s->ref)));
-        d = ADD(MUL(k->pm1, s->w_re), u);
-        FAST_TWO_SUM(w, e, s->w_re, d);
-        s->lo_re = ADD(s->lo_re, ADD(ADD(MUL(k->pm1, s->lo_re), MUL(k->plo_re, s->w_re)), e));
+        p = MUL(k->pm1, s->w_re);
+        FAST_TWO_SUM(a, e1, s->w_re, u);
+        FAST_TWO_SUM(w, e2, a, p);
+        s->lo_re = ADD(MUL(k->q, s->lo_re), ADD(ADD(MUL(k->plo_re, s->w_re), e1), e2));
     }
     s->w_re = w;
     return LANE(s->w_re, 0) + LANE(s->lo_re, 0);
@@ -406,18 +422,22 @@ static inline sms_real recur_complex(const constants *k, copies *s, sms_real x, 
                                      int real_out)
 {
     const lanes o = SUB(LANES(oldest, LANE(s->ref, 1)), s->ref);
-    const lanes d_re = ADD(SUB(MUL(k->pm1, s->w_re), MUL(k->pim, s->w_im)),
-                           ADD(MUL(k->gain, SUB(LANES(x, x), s->ref)), MUL(k->tail_re, o)));
-    const lanes d_im = ADD(ADD(MUL(k->pm1, s->w_im), MUL(k->pim, s->w_re)), MUL(k->tail_im, o));
-    lanes s_re, s_im, e_re, e_im, r_re, r_im;
-    FAST_TWO_SUM(s_re, e_re, s->w_re, d_re);
-    FAST_TWO_SUM(s_im, e_im, s->w_im, d_im);
-    r_re = ADD(ADD(SUB(MUL(k->pm1, s->lo_re), MUL(k->pim, s->lo_im)),
-                   SUB(MUL(k->plo_re, s->w_re), MUL(k->plo_im, s->w_im))), e_re);
-    r_im = ADD(ADD(ADD(MUL(k->pm1, s->lo_im), MUL(k->pim, s->lo_re)),
-                   ADD(MUL(k->plo_re, s->w_im), MUL(k->plo_im, s->w_re))), e_im);
-    s->lo_re = ADD(s->lo_re, r_re);
-    s->lo_im = ADD(s->lo_im, r_im);
+    const lanes u_re = ADD(MUL(k->gain, SUB(LANES(x, x), s->ref)), MUL(k->tail_re, o));
+    const lanes u_im = MUL(k->tail_im, o);
+    const lanes p_re = SUB(MUL(k->pm1, s->w_re), MUL(k->pim, s->w_im));
+    const lanes p_im = ADD(MUL(k->pm1, s->w_im), MUL(k->pim, s->w_re));
+    lanes a_re, a_im, s_re, s_im, e1_re, e1_im, e2_re, e2_im, r_re, r_im;
+    FAST_TWO_SUM(a_re, e1_re, s->w_re, u_re);
+    FAST_TWO_SUM(a_im, e1_im, s->w_im, u_im);
+    FAST_TWO_SUM(s_re, e2_re, a_re, p_re);
+    FAST_TWO_SUM(s_im, e2_im, a_im, p_im);
+    r_re = ADD(ADD(SUB(MUL(k->plo_re, s->w_re), MUL(k->plo_im, s->w_im)), e1_re), e2_re);
+    r_im = ADD(ADD(ADD(MUL(k->plo_re, s->w_im), MUL(k->plo_im, s->w_re)), e1_im), e2_im);
+    {
+        const lanes lo_re = ADD(SUB(MUL(k->q, s->lo_re), MUL(k->pim, s->lo_im)), r_re);
+        s->lo_im = ADD(ADD(MUL(k->q, s->lo_im), MUL(k->pim, s->lo_re)), r_im);
+        s->lo_re = lo_re;
+    }
     s->w_re = s_re;
     s->w_im = s_im;
     /* Tap 0 of the half-sine families is 0: x reaches Im w a sample later. 0 x (0, or NaN
@@ -474,8 +494,8 @@ static void retire_old_copy(sms_smoother *f)
  * constants its variant reads. varied: no input equals the one before it (so run stays 0 and
  * the output is never the input itself, L >= 2), known beforehand, which a block usually is:
  * its loop then skips the bookkeeping of runs. */
-static inline void segment(sms_smoother *f, const sms_real *in, sms_real *out, size_t n,
-                           int pole, int taps, int varied)
+SEGMENT_BODY void segment(sms_smoother *f, const sms_real *in, sms_real *out, size_t n,
+                          int pole, int taps, int varied)
 {
     const constants k = constants_of(f, 1);
     const sms_real corr0 = f->correction_gain[0], corr1 = f->correction_gain[1];
@@ -602,10 +622,33 @@ void sms_smoother_process(sms_smoother *f, const sms_real *in, sms_real *out, si
     }
 }
 
+#ifdef SMS_SMOOTHER_VARIANT_LOOPS
+/* One sample of one variant: the segment of length 1 unrolled, no loop, no look-ahead. */
+#define STEP_CASE(pole, taps)                                                               \
+    case 3 * (pole) + (taps): segment(f, x, x, 1u, pole, taps, 0); break
+
+void sms_smoother_step(sms_smoother *f, sms_real *x)
+{
+    if (f->head == 0u)
+        retire_old_copy(f);
+    switch (f->variant) {
+    STEP_CASE(POLE_UNIT, TAPS_NONE);
+    STEP_CASE(POLE_UNIT, TAPS_EXACT);
+    STEP_CASE(POLE_UNIT, TAPS_BOUNDED);
+    STEP_CASE(POLE_REAL, TAPS_NONE);
+    STEP_CASE(POLE_REAL, TAPS_EXACT);
+    STEP_CASE(POLE_REAL, TAPS_BOUNDED);
+    STEP_CASE(POLE_COMPLEX, TAPS_EXACT);
+    default: segment(f, x, x, 1u, POLE_COMPLEX, TAPS_NONE, 0); break;
+    }
+    f->head = f->head + 1u == f->window ? 0u : f->head + 1u;
+}
+#else
 void sms_smoother_step(sms_smoother *f, sms_real *x)
 {
     run_segment(f, x, x, 1u, 0);
 }
+#endif
 
 /* After n samples of a constant input x from now, the state depends on x alone (the
  * absorbed state: ring all x, both copies zero referred to x, run saturated at L) once both

@@ -304,12 +304,48 @@ static double solve_from_plain(const sms_kin_plan *p, const double *C, size_t k,
     return at_bound(k, m, X / (c2 * Sd) / cap, rest, T);
 }
 
+/* The regime where every stage is at its bound (vmax reached, and below it every bound; the
+ * common trapezoid / double-S move): T_0 = h/L_0, T_k = L_{k-1}/L_k, the free last stage
+ * c L_{n-2}/L_{n-1}, valid when each stage lasts at least the sum of those below it. There
+ * solve_from_plain() takes m = k at every level (its decision allows 1 + KIN_TOL of excess;
+ * this check none) and computes the same quotients and sums in the same order, so the lengths
+ * and the duration are the same bits at a few divisions' cost. Returns the duration, or -1 if
+ * the regime does not hold (the recursion then decides). Moderate free plans only. */
+static double all_at_bound(const sms_kin_plan *p, double h, double *T)
+{
+    double L[SMS_KINEMATIC_MAX_ORDER], rest;
+    size_t n = p->n, k;
+    if (n == 1u) {
+        L[0] = p->c_last * h / (1.0 * p->L[0]);
+    } else {
+        L[0] = h / p->L[0];
+        for (k = 1; k + 1 < n; ++k)
+            L[k] = p->L[k - 1] / p->L[k];
+        L[n - 1] = p->c_last * p->L[n - 2] / (1.0 * p->L[n - 1]);
+    }
+    rest = L[n - 1];
+    for (k = n - 1; k-- > 0;) {
+        if (!(L[k] >= rest))
+            return -1.0;
+        rest = L[k] + rest;
+    }
+    if (T != NULL)
+        for (k = 0; k < n; ++k)
+            T[k] = L[k];
+    return rest;
+}
+
 /* The contract is in kinematic_parts.h. */
 double sms_kin_solve_plan(const sms_kin_plan *p, double h, double *T)
 {
     double C[SMS_KINEMATIC_MAX_ORDER];
     size_t m;
     if (plan_is_moderate(p, h)) {
+        if (!p->fixed) {
+            double D = all_at_bound(p, h, T);
+            if (D >= 0.0)
+                return D;
+        }
         for (m = p->n - 1; m-- > 0;)
             C[m] = solve_from_plain(p, C, m + 1, level_cap(p, m), NULL);
         return solve_from_plain(p, C, 0, h, T);
