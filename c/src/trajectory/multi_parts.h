@@ -61,6 +61,11 @@ void sms_multi_align_settle(sms_multi_generator *g, const sms_real *x, uint64_t 
 void sms_multi_align_advance(sms_multi_generator *g, uint64_t n);
 size_t sms_multi_align_state_count(const sms_multi_generator *g);
 void sms_multi_align_get_state(const sms_multi_generator *g, double *dst);
+/* The largest |input| of axis i's chain for signal m (0 q, 1 v, 2 a, 3 j) in a run: the
+ * chain's input range for q, the limits to the reported values' tolerance for the others. */
+double sms_multi_signal_range(const sms_multi_generator *g, size_t i, size_t m);
+/* The alignment delays' part of a saved state: each delay's own check, and its ring within
+ * what its chain can output. */
 sms_status sms_multi_align_check_state(const sms_multi_generator *g, const double *src);
 void sms_multi_align_set_state(sms_multi_generator *g, const double *src);
 

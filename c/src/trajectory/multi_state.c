@@ -140,15 +140,9 @@ static sms_status check_stages_range(const sms_multi_generator *g, const double 
     for (i = 0; i < g->n_axes; ++i)
         for (m = 0; m < SMS_MULTI_SIGNALS; ++m) {
             const sms_chain *c = &g->chain[i][m];
-            const double limit[SMS_MULTI_SIGNALS] = {
-                sms_chain_input_max(c), (double)g->vmax[i], (double)g->amax[i],
-                (double)g->jmax[i]
-            };
             const size_t count = sms_chain_state_count(c);
             if (c->n_stages > 0
-                && sms_chain_check_state_range(c, src, count,
-                                               m == 0 ? limit[0]
-                                                      : limit[m] * (1.0 + SMS_LIMIT_RTOL))
+                && sms_chain_check_state_range(c, src, count, sms_multi_signal_range(g, i, m))
                    != SMS_OK)
                 return SMS_ERR_STATE;
             src += count;
