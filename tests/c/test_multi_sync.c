@@ -41,7 +41,7 @@ static void state(double V, double A, double J, int target, sms_real *v, sms_rea
 
 static size_t arrival(const sms_multi_generator *g, size_t i)
 {
-    return g->axis[i].plan.arrive + (g->axis[i].plan.arrive_f > 0 ? 1u : 0u);
+    return (size_t)sms_multi_generator_axis_arrival(g, i);
 }
 
 static sms_multi_generator g, twin;

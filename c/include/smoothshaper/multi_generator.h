@@ -403,6 +403,9 @@ SMS_API sms_status sms_multi_generator_start(sms_multi_generator *g, const sms_r
 /** @brief Samples from the last one output until every axis has reached its target state
  * (0 once reached). O(n_axes). Per-axis plan modes; 0 in the others. */
 SMS_API uint64_t sms_multi_generator_arrival(const sms_multi_generator *g);
+/** @brief The same for one axis: samples until it reaches its target state (0 once reached,
+ * for an axis out of range, and in the modes without per-axis plans). */
+SMS_API uint64_t sms_multi_generator_axis_arrival(const sms_multi_generator *g, size_t axis);
 /**
  * @brief Up to n steps with the same targets (target[0 .. n_axes-1]), at a cost bounded
  * whatever n: the state and last output (out, 4 n_axes values) of that many calls of

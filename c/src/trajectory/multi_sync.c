@@ -91,11 +91,6 @@ static int same_target(const sms_multi_target *x, const sms_multi_target *y, siz
     return 1;
 }
 
-/* The first sample at or after a plan's arrival instant. */
-static size_t arrival_sample(const sms_plan *p)
-{
-    return p->arrive + (p->arrive_f > 0 ? 1u : 0u);
-}
 
 /* Plans every axis from its state s[4 i + 0..2] to the target into plans[], tmin[] the minimum
  * durations used. Returns 1 when every axis is planned, 0 when a motion cannot be formed. */
@@ -116,8 +111,8 @@ static int plan_all(const sms_multi_generator *g, const sms_multi_target *t, con
         if (!sms_plan_to_state(&plans[i], &lim, Ts, s[4 * i], s[4 * i + 1], s[4 * i + 2],
                                t->position[i], t->velocity[i], t->acceleration[i], tmin[i]))
             return 0;
-        if (mode != SMS_SYNC_NONE && arrival_sample(&plans[i]) > N)
-            N = arrival_sample(&plans[i]);
+        if (mode != SMS_SYNC_NONE && sms_plan_arrival_sample(&plans[i], Ts) > N)
+            N = sms_plan_arrival_sample(&plans[i], Ts);
     }
     /* every synchronised axis onto sample N; an axis that cannot make N (a blocked duration)
      * returns the next N' it can, and the others are planned again for N' */
@@ -125,7 +120,7 @@ static int plan_all(const sms_multi_generator *g, const sms_multi_target *t, con
         int raised = 0;
         for (i = 0; i < n && !raised; ++i) {
             size_t at;
-            if (!synced[i] || arrival_sample(&plans[i]) == N)
+            if (!synced[i] || sms_plan_arrival_sample(&plans[i], Ts) == N)
                 continue;
             {
                 const sms_to_limits lim = axis_limits(g, i);
@@ -136,7 +131,7 @@ static int plan_all(const sms_multi_generator *g, const sms_multi_target *t, con
                     return 0;
                 tmin[i] = T;
             }
-            at = arrival_sample(&plans[i]);
+            at = sms_plan_arrival_sample(&plans[i], Ts);
             if (at > N) {
                 N = at;
                 raised = 1;
@@ -292,16 +287,23 @@ void sms_multi_sync_skip(sms_multi_generator *g, uint64_t n)
     }
 }
 
+uint64_t sms_multi_generator_axis_arrival(const sms_multi_generator *g, size_t axis)
+{
+    size_t at;
+    if (!SMS_SYNC_PER_AXIS_PLANS(g->sync) || axis >= g->n_axes)
+        return 0u;
+    at = sms_plan_arrival_sample(&g->axis[axis].plan, g->Ts_signal);
+    return at > g->axis[axis].k ? (uint64_t)(at - g->axis[axis].k) : 0u;
+}
+
 uint64_t sms_multi_generator_arrival(const sms_multi_generator *g)
 {
     size_t i;
     uint64_t left = 0;
-    if (!SMS_SYNC_PER_AXIS_PLANS(g->sync))
-        return 0u;
     for (i = 0; i < g->n_axes; ++i) {
-        const size_t at = arrival_sample(&g->axis[i].plan);
-        if (at > g->axis[i].k && (uint64_t)(at - g->axis[i].k) > left)
-            left = (uint64_t)(at - g->axis[i].k);
+        const uint64_t at = sms_multi_generator_axis_arrival(g, i);
+        if (at > left)
+            left = at;
     }
     return left;
 }
