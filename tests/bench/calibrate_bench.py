@@ -10,7 +10,7 @@ with 6 decimals as the firmware writes them):
   modes at 38 and 61 Hz, cross-talk on y and z, 30 dB of noise, gravity on z);
 * ``--lines``: a free decay and a one-axis sweep of that many lines (default 1e6 and 1e7).
 
-Per run it prints CPU seconds (user + system of that process alone, ``os.wait4``), peak
+Per run it prints CPU seconds (user + system of that process alone, ``os.wait4`` in a small launcher), peak
 resident memory (its max RSS), bytes of peak memory per input sample, the CLI's own estimate
 (``--estimate``) and the measured / estimated ratio; with ``--klipper DIR`` (a Klipper checkout,
 not part of this repository) the established tool's figures on the same raw records and the
@@ -32,19 +32,28 @@ import tempfile
 import numpy as np
 
 
+#: Runs the command as its own child and prints its CPU seconds and max RSS [KiB] on the last
+#: line of stderr: a small launcher, because max RSS survives exec and a child forked from this
+#: process (NumPy and the records in memory) would start from this process's size.
+_LAUNCHER = """
+import os, sys
+pid = os.fork()
+if pid == 0:
+    os.execvp(sys.argv[1], sys.argv[1:])
+_, status, ru = os.wait4(pid, 0)
+sys.stderr.write(f"\\n@@ {ru.ru_utime + ru.ru_stime} {ru.ru_maxrss} {os.waitstatus_to_exitcode(status)}\\n")
+"""
+
+
 def run_measured(cmd: list[str]) -> tuple[float, float, str]:
     """(CPU seconds, peak MiB, stdout) of one command, measured on its own process."""
-    with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err:
-        proc = subprocess.Popen(cmd, stdout=out, stderr=err)
-        _, status, usage = os.wait4(proc.pid, 0)
-        proc.returncode = os.waitstatus_to_exitcode(status)
-        out.seek(0)
-        text = out.read().decode(errors="replace")
-        if proc.returncode != 0:
-            err.seek(0)
-            sys.stderr.write(f"{' '.join(cmd)} exited {proc.returncode}:\n"
-                             f"{err.read().decode(errors='replace')[-2000:]}\n")
-    return usage.ru_utime + usage.ru_stime, usage.ru_maxrss / 1024.0, text
+    out = subprocess.run([sys.executable, "-S", "-c", _LAUNCHER] + cmd, capture_output=True,
+                         text=True)
+    tail = out.stderr.rstrip().rsplit("\n", 1)[-1].split()
+    cpu, kib, code = float(tail[1]), float(tail[2]), int(tail[3])
+    if code != 0:
+        sys.stderr.write(f"{' '.join(cmd)} exited {code}:\n{out.stderr[-2000:]}\n")
+    return cpu, kib / 1024.0, out.stdout
 
 
 def _modes_response(u, fs, modes):
