@@ -50,7 +50,7 @@ elif [ "$pytest_rc" -ne 0 ]; then
     failed+=("pytest")
 fi
 
-step "API reference (sphinx, warnings as errors)" bash scripts/docs.sh
+step "API references (sphinx and doxygen, warnings as errors)" bash scripts/docs.sh
 # What `pip install .` gives a user: the wheel in a fresh venv with the base dependencies only.
 step "wheel in a fresh venv" bash tests/install/fresh_venv.sh
 

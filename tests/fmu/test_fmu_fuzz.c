@@ -7,7 +7,7 @@
  * Unlike test_fmu_call_sequence.c, which walks the state machine with a few fixed values, the parameters here are drawn so that about half of the initialisations succeed
  * (random stage chains / limits, with NULL, NaN, Inf, huge, subnormal and negative values
  * mixed in), and every call is checked for:
- * - no crash, and no call longer than 100 ms (scaled under ASan or without optimisation, see
+ * - no crash, and no call longer than 250 ms (scaled under ASan or without optimisation, see
  *   CALL_LIMIT_S): the FMUs refuse states beyond FMU_MAX_REALS, and in one sequence in
  *   LARGE_EVERY (and one other draw in about 2000) the parameters ask for a state between a
  *   quarter of that limit and twice it (accepted and refused), so the largest accepted states
@@ -21,7 +21,7 @@
  * Usage: test_fmu_fuzz_<Model> [sequences [seed [huge] [from=S]]]; default 1000 sequences
  * (seconds). Steps are up to 2000 ticks long; "huge" adds steps of up to 1e12 s, which the
  * models hold in bounded time (fmu_model_hold(): closed forms of every model under a held
- * input, so "huge" campaigns keep every call under 100 ms too). Every sequence
+ * input, so "huge" campaigns keep every call under 250 ms too). Every sequence
  * draws from its own generator seeded by (seed, sequence number), and a failure or a slow call
  * names its sequence, so `test_fmu_fuzz_<Model> 1 <seed> from=<S> trace` replays sequence S alone
  * and prints every call.
@@ -62,7 +62,10 @@
 #else
 #define SANITIZER_SLOWDOWN 1.0
 #endif
-#define CALL_LIMIT_S (0.1 * SANITIZER_SLOWDOWN)
+/* The limit catches a hang or a cost that grows with the step length, not a slow machine: at
+ * 10x the slowest idle figure, a CPU time inflated by a machine shared with other jobs (106 ms
+ * seen at a load of 28 on 2 cores, where 100 ms was the limit) does not fail the suite. */
+#define CALL_LIMIT_S (0.25 * SANITIZER_SLOWDOWN)
 #define MAX_SLOTS 3
 /* Models without delay lines (their state is a few values in the model's struct): no large
  * states to draw. */

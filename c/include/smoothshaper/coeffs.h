@@ -38,13 +38,16 @@ extern "C" {
 typedef struct sms_smoother_coeffs {
     size_t length;                     /**< impulse response length L, M or M + 1 */
     size_t window;                     /**< M >= 1: taps from the recursion, ring length */
-    sms_real pole_m1_re, pole_im;      /**< Re q - 1 and Im q (Im q = 0 for a real pole) */
-    sms_real pole_lo_re, pole_lo_im;   /**< what their rounding lost of q */
+    sms_real pole_m1_re;               /**< Re q - 1, q the recursion's pole */
+    sms_real pole_im;                  /**< Im q (0 for a real pole) */
+    sms_real pole_lo_re;               /**< what the rounding lost of Re q */
+    sms_real pole_lo_im;               /**< what the rounding lost of Im q */
     sms_real gain;                     /**< c, weight of the newest input */
-    sms_real tail_re, tail_im;         /**< -c q^M, weight of x[n-M] */
+    sms_real tail_re;                  /**< Re of -c q^M, the weight of x[n-M] */
+    sms_real tail_im;                  /**< Im of -c q^M */
     size_t n_corrections;              /**< direct taps, 0 or 2 */
     size_t correction_delay[SMS_SMOOTHER_MAX_CORRECTIONS]; /**< {M-1, M} or {0, M} */
-    sms_real correction_gain[SMS_SMOOTHER_MAX_CORRECTIONS];
+    sms_real correction_gain[SMS_SMOOTHER_MAX_CORRECTIONS]; /**< the direct taps' gains d_j */
     double input_limit;                /**< sms_smoother_input_max() before its cap */
 } sms_smoother_coeffs;
 
@@ -60,15 +63,19 @@ typedef struct sms_shaper_coeffs {
 /** @brief A notch's coefficients (notch.h):
  * H = 1 + (1 - z^-1)(d0 - d2 z^-1)/(1 + a1 z^-1 + a2 z^-2). */
 typedef struct sms_notch_coeffs {
-    sms_real d0, d2, a1, a2;
+    sms_real d0;   /**< b0 - 1 */
+    sms_real d2;   /**< b2 - a2 */
+    sms_real a1;   /**< denominator coefficient of z^-1 */
+    sms_real a2;   /**< denominator coefficient of z^-2 */
 } sms_notch_coeffs;
 
 /** @brief Everything a target needs to build one stage without designing it. */
 typedef struct sms_stage_coeffs {
-    sms_kind kind;
+    sms_kind kind;                     /**< the family, selects the member of u */
     /** The configuration identity (config.h: the config and Ts they were made from), which
      * saved states are checked against; copied, never computed, on the target. */
     double identity[SMS_STATE_IDENTITY_COUNT];
+    /** @brief The family's constants. */
     union {
         sms_smoother_coeffs smoother;  /**< kind ::SMS_RECTANGULAR .. ::SMS_EXPONENTIAL */
         sms_shaper_coeffs shaper;      /**< the shaper and input smoother kinds */
@@ -102,6 +109,8 @@ SMS_API sms_status sms_stage_coeffs_make(const sms_stage_config *config, double 
  *         what sms_stage_coeffs_make() writes: a length, window, tap count, delay or direct
  *         tap out of its range, a non-finite coefficient, a NULL tap table),
  *         ::SMS_ERR_TOO_LONG (the size overflows size_t).
+ * @param coeffs   coefficients made by sms_stage_coeffs_make() of this precision
+ * @param n_cells  receives the number of ::sms_memory_cell
  */
 SMS_API sms_status sms_stage_coeffs_memory_size(const sms_stage_coeffs *coeffs, size_t *n_cells);
 
@@ -112,13 +121,20 @@ SMS_API sms_status sms_stage_coeffs_memory_size(const sms_stage_coeffs *coeffs, 
  *                 shaper's taps are copied into it: coeffs may live in flash or go away)
  * @return the statuses of sms_stage_coeffs_memory_size(), ::SMS_ERR_NULL (stage or memory),
  *         ::SMS_ERR_BUFFER_TOO_SMALL. Nothing is written on error.
+ * @param stage    instance to fill; untouched on error
+ * @param coeffs   coefficients made by sms_stage_coeffs_make() of this precision
+ * @param n_cells  length of memory in cells
  */
 SMS_API sms_status sms_stage_init_coeffs(sms_stage *stage, const sms_stage_coeffs *coeffs,
                                          sms_memory_cell *memory, size_t n_cells);
 
 /** @brief Target side: cells of memory a chain of these n stages needs (their sum).
  * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_ORDER (n = 0 or > ::SMS_CHAIN_MAX_STAGES),
- *         ::SMS_ERR_TOO_LONG, or the first failing stage's status. */
+ *         ::SMS_ERR_TOO_LONG, or the first failing stage's status.
+ * @param coeffs   n stages' coefficients, first applied first
+ * @param n        stages, 1 .. ::SMS_CHAIN_MAX_STAGES
+ * @param n_cells  receives the number of ::sms_memory_cell
+ */
 SMS_API sms_status sms_chain_coeffs_memory_size(const sms_stage_coeffs *coeffs, size_t n,
                                                 size_t *n_cells);
 
@@ -126,7 +142,14 @@ SMS_API sms_status sms_chain_coeffs_memory_size(const sms_stage_coeffs *coeffs, 
  * (as sms_chain_init() for their configs). No double arithmetic, no libm.
  * @return ::SMS_OK, ::SMS_ERR_NULL (chain, stages, coeffs or memory), the statuses of
  *         sms_chain_coeffs_memory_size(), ::SMS_ERR_BUFFER_TOO_SMALL. On error nothing is
- *         touched. */
+ *         touched.
+ * @param chain    instance to fill; untouched on error
+ * @param stages   caller array of n stages
+ * @param coeffs   n stages' coefficients, first applied first
+ * @param n        stages, 1 .. ::SMS_CHAIN_MAX_STAGES
+ * @param memory   caller memory of n_cells >= sms_chain_coeffs_memory_size() cells; kept
+ * @param n_cells  length of memory in cells
+ */
 SMS_API sms_status sms_chain_init_coeffs(sms_chain *chain, sms_stage *stages,
                                          const sms_stage_coeffs *coeffs, size_t n,
                                          sms_memory_cell *memory, size_t n_cells);
@@ -134,18 +157,33 @@ SMS_API sms_status sms_chain_init_coeffs(sms_chain *chain, sms_stage *stages,
 /** @brief A smoother from coefficients (coeffs->kind a smoother kind); buffer of at least
  * coeffs->u.smoother.window reals. As sms_smoother_init(), without the design.
  * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_KIND, ::SMS_ERR_COEFFS,
- *         ::SMS_ERR_BUFFER_TOO_SMALL. */
+ *         ::SMS_ERR_BUFFER_TOO_SMALL.
+ * @param f        instance to fill; untouched on error
+ * @param coeffs   a smoother's coefficients
+ * @param buffer   the ring, kept by f
+ * @param n_reals  reals in buffer, >= coeffs->u.smoother.window
+ */
 SMS_API sms_status sms_smoother_init_coeffs(sms_smoother *f, const sms_stage_coeffs *coeffs,
                                             sms_real *buffer, size_t n_reals);
 /** @brief A shaper from coefficients: its taps are copied into taps (n_taps >= their count),
  * buffer of at least coeffs->u.shaper.length reals. As sms_shaper_init(), without the design.
  * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_KIND, ::SMS_ERR_COEFFS,
- *         ::SMS_ERR_BUFFER_TOO_SMALL. */
+ *         ::SMS_ERR_BUFFER_TOO_SMALL.
+ * @param f        instance to fill; untouched on error
+ * @param coeffs   a shaper's or input smoother's coefficients
+ * @param taps     the tap table, kept by f
+ * @param n_taps   entries in taps, >= coeffs->u.shaper.n_taps
+ * @param buffer   the delay line, kept by f
+ * @param n_reals  reals in buffer, >= coeffs->u.shaper.length
+ */
 SMS_API sms_status sms_shaper_init_coeffs(sms_shaper *f, const sms_stage_coeffs *coeffs,
                                           sms_shaper_tap *taps, size_t n_taps, sms_real *buffer,
                                           size_t n_reals);
 /** @brief A notch from coefficients. As sms_notch_init(), without the design.
- * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_KIND, ::SMS_ERR_COEFFS. */
+ * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_KIND, ::SMS_ERR_COEFFS.
+ * @param f        instance to fill; untouched on error
+ * @param coeffs   a notch's coefficients
+ */
 SMS_API sms_status sms_notch_init_coeffs(sms_notch *f, const sms_stage_coeffs *coeffs);
 
 #ifdef __cplusplus

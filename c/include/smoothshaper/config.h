@@ -92,19 +92,19 @@ extern "C" {
  * family has none).
  */
 typedef struct sms_stage_config {
-    sms_kind kind;
-    sms_timing timing;
-    double T;
-    double sigma;
-    unsigned k;
-    double wn;
-    double zeta;
-    unsigned order;
-    double tolerance;
-    double notch_pole_zeta;
-    double duration;
-    double amplitudes[SMS_SHAPER_MAX_IMPULSES];
-    double times[SMS_SHAPER_MAX_IMPULSES];
+    sms_kind kind;            /**< the family */
+    sms_timing timing;        /**< how an off-grid duration is realised */
+    double T;                 /**< smoother duration [s], finite, >= Ts (1) */
+    double sigma;             /**< decay rate of the damped smoothers [1/s], finite, <= 0 */
+    unsigned k;               /**< which zero exact timing pins, >= 1 (odd for harmonic ones) */
+    double wn;                /**< mode natural frequency [rad/s], finite, 0 < wn < pi/Ts */
+    double zeta;              /**< mode damping ratio, [0, 1) ([0, 0.25] smooth ZV/MZV/EI) */
+    unsigned order;           /**< ZV^n n, or the number of impulses (GMZV, SI, impulses) */
+    double tolerance;         /**< residual vibration tolerance V of EI, EI2, EI3, SI, (0, 1) */
+    double notch_pole_zeta;   /**< notch pole damping xi2, finite, > zeta, <= 1e6 */
+    double duration;          /**< GMZV or SI span in damped periods Td */
+    double amplitudes[SMS_SHAPER_MAX_IMPULSES]; /**< user impulses: the first order amplitudes */
+    double times[SMS_SHAPER_MAX_IMPULSES];      /**< user impulses: the first order times [s] */
 } sms_stage_config;
 
 /**
@@ -114,6 +114,8 @@ typedef struct sms_stage_config {
  * ::SMS_SHAPER_SI, 0 for ::SMS_SHAPER_IMPULSES: its impulses must be set), tolerance = 0.05,
  * notch_pole_zeta = 0.7, duration = 0.75,
  * amplitudes and times all 0. The kind is stored as given (validated only by init).
+ * @param kind the family; any value is stored, init validates it
+ * @return the filled config (by value)
  */
 SMS_API sms_stage_config sms_stage_config_default(sms_kind kind);
 
@@ -121,6 +123,8 @@ SMS_API sms_stage_config sms_stage_config_default(sms_kind kind);
  * @brief Validate a config for sample period Ts without building anything.
  * @return ::SMS_OK or the status init would return (first offending field wins, in the
  *         table order above).
+ * @param config the stage description; NULL gives ::SMS_ERR_NULL
+ * @param Ts     sample period [s], finite and > 0
  */
 SMS_API sms_status sms_stage_config_validate(const sms_stage_config *config, double Ts);
 

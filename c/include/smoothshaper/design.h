@@ -32,13 +32,22 @@ extern "C" {
  * error.
  * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_KIND, ::SMS_ERR_WN, ::SMS_ERR_ZETA,
  *         ::SMS_ERR_MULTIPLE (k < 1, or k != 1 for shapers/notches), ::SMS_ERR_EVEN_MULTIPLE.
+ * @param kind   any stage kind but ::SMS_SHAPER_IMPULSES
+ * @param wn     natural frequency [rad/s], finite, > 0
+ * @param zeta   damping ratio, finite, in [0, 1)
+ * @param k      multiple, >= 1; odd for the harmonic families; 1 for shapers, notches and
+ *               input smoothers
+ * @param config receives the config
  */
 SMS_API sms_status sms_design_for_mode(sms_kind kind, double wn, double zeta, unsigned k,
                                        sms_stage_config *config);
 
 /** @brief An identified mode. */
 typedef struct sms_mode {
-    double wn, zeta, wd, sigma;
+    double wn;      /**< natural frequency [rad/s], > 0 */
+    double zeta;    /**< damping ratio, in [0, 1) */
+    double wd;      /**< damped frequency wn sqrt(1 - zeta^2) [rad/s] */
+    double sigma;   /**< decay rate -zeta wn [1/s], <= 0 */
 } sms_mode;
 
 /**
@@ -49,6 +58,7 @@ typedef struct sms_mode {
  * @param p1,p2 peak values, finite, same sign, 0 < |p2| < |p1| (decaying)
  * @return ::SMS_OK, ::SMS_ERR_NULL (mode), ::SMS_ERR_RECORD (any condition above violated);
  *         *mode is untouched on error.
+ * @param mode  receives the mode
  */
 SMS_API sms_status sms_identify_from_peaks(double t1, double p1, double t2, double p2, sms_mode *mode);
 
@@ -70,6 +80,8 @@ SMS_API sms_status sms_identify_from_peaks(double t1, double p1, double t2, doub
  *         non-finite sample, no oscillating fit, sigma >= 0 (not a decay), wd at or above
  *         pi/Ts, or less than one period wd (n-1) Ts < 2 pi in the record); *mode is untouched
  *         on error.
+ * @param n   samples in x
+ * @param mode receives the mode
  */
 SMS_API sms_status sms_identify_from_record(const double *x, size_t n, double Ts, sms_mode *mode);
 

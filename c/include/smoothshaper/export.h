@@ -5,6 +5,11 @@
  * `SMS_BUILDING_SHARED`; only functions marked ::SMS_API are exported.
  * Static builds (and the FMU, which compiles the sources in) define nothing.
  */
+/**
+ * @def SMS_API
+ * @brief Marks a public function: exported from the shared library (dllexport when building
+ * it on Windows, dllimport with `SMS_USING_SHARED`), empty in static builds.
+ */
 #ifndef SMOOTHSHAPER_EXPORT_H
 #define SMOOTHSHAPER_EXPORT_H
 

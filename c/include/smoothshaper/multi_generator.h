@@ -75,21 +75,23 @@ typedef enum sms_sync {
  * reports D.
  */
 typedef struct sms_multi_generator_config {
-    size_t n_axes;
-    double vmax[SMS_MULTI_MAX_AXES];
-    double amax[SMS_MULTI_MAX_AXES];
-    double jmax[SMS_MULTI_MAX_AXES];
-    sms_sync sync;
-    const sms_stage_config *stages[SMS_MULTI_MAX_AXES];
-    size_t n_stages[SMS_MULTI_MAX_AXES];
-    int align;
+    size_t n_axes;                      /**< 1 .. ::SMS_MULTI_MAX_AXES */
+    double vmax[SMS_MULTI_MAX_AXES];    /**< velocity bound of each axis, finite, > 0 */
+    double amax[SMS_MULTI_MAX_AXES];    /**< acceleration bound of each axis, finite, > 0 */
+    double jmax[SMS_MULTI_MAX_AXES];    /**< jerk bound of each axis, finite, > 0 */
+    sms_sync sync;                      /**< phase-synchronised or independent axes */
+    const sms_stage_config *stages[SMS_MULTI_MAX_AXES]; /**< each axis's vibration stages */
+    size_t n_stages[SMS_MULTI_MAX_AXES]; /**< how many, 0 .. ::SMS_CHAIN_MAX_STAGES */
+    int align;                          /**< 1: delay every axis to the common lag */
 } sms_multi_generator_config;
 
 /** @brief One running move of a group of axes (all axes in phase mode, one in independent). */
 typedef struct sms_multi_move {
-    sms_real T1, rho1; /**< first velocity transition: length [s], jerk-phase fraction */
+    sms_real T1;       /**< first velocity transition: length [s] */
+    sms_real rho1;     /**< its jerk-phase fraction, in (0, 1/2] */
     sms_real tau;      /**< cruise [s] */
-    sms_real T2, rho2; /**< stop transition */
+    sms_real T2;       /**< stop transition: length [s] */
+    sms_real rho2;     /**< its jerk-phase fraction */
     sms_real off;      /**< move time [s] of its first sample (k = 0), in [0, Ts) */
     sms_real seen;     /**< move time at which the pending target appeared */
     size_t k;          /**< samples since the first sample */
@@ -163,11 +165,13 @@ typedef struct sms_multi_move {
  * memory sized by sms_multi_generator_memory().
  */
 typedef struct sms_multi_generator {
-    size_t n_axes;
-    sms_sync sync;
-    double Ts;
-    sms_real Ts_signal;
-    sms_real vmax[SMS_MULTI_MAX_AXES], amax[SMS_MULTI_MAX_AXES], jmax[SMS_MULTI_MAX_AXES];
+    size_t n_axes;                       /**< axes in use */
+    sms_sync sync;                       /**< as configured */
+    double Ts;                           /**< sample period [s] */
+    sms_real Ts_signal;                  /**< Ts in signal precision */
+    sms_real vmax[SMS_MULTI_MAX_AXES];   /**< velocity bounds in signal precision */
+    sms_real amax[SMS_MULTI_MAX_AXES];   /**< acceleration bounds */
+    sms_real jmax[SMS_MULTI_MAX_AXES];   /**< jerk bounds */
     sms_real target[SMS_MULTI_MAX_AXES]; /**< latest valid target */
     sms_real goal[SMS_MULTI_MAX_AXES];   /**< target of the running move */
     sms_real p[SMS_MULTI_MAX_AXES];      /**< position at the running move's start */
@@ -218,6 +222,8 @@ typedef struct sms_multi_generator {
  * @param axis   out (may be NULL): the refused axis (else 0)
  * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_ORDER (n_axes), ::SMS_ERR_SAMPLE_PERIOD,
  *         ::SMS_ERR_LIMIT.
+ * @param config the axes' limits (sync and stages are not read)
+ * @param Ts     sample period [s], finite, > 0
  */
 SMS_API sms_status sms_multi_generator_reach(const sms_multi_generator_config *config, double Ts,
                                              sms_generator_reach_info *reach, size_t *axis);
@@ -262,7 +268,10 @@ SMS_API sms_status sms_multi_generator_init(sms_multi_generator *g,
                                             sms_memory_cell *memory, size_t n_cells,
                                             size_t *bad_axis);
 /** @brief Rest at position[0 .. n_axes-1] (targets and output there; the stages settled:
- * q's chain as if its input had been the position forever, v, a, j's at 0); NULL: at 0. */
+ * q's chain as if its input had been the position forever, v, a, j's at 0); NULL: at 0.
+ * @param g      the generator, built by sms_multi_generator_init()
+ * @param position n_axes finite positions, or NULL
+ */
 SMS_API void sms_multi_generator_reset(sms_multi_generator *g, const sms_real *position);
 /**
  * @brief Advance one sample with the current target vector (n_axes values; a non-finite
@@ -278,17 +287,31 @@ SMS_API void sms_multi_generator_reset(sms_multi_generator *g, const sms_real *p
  * every output stays finite, and it is not tried again until the target vector changes (one
  * attempt, not one per sample). The group's `move[].refused` is 1 while its held target is dropped, and `dropped` counts
  * the drops.
+ * @param g      the generator, built by sms_multi_generator_init()
+ * @param target n_axes target positions
+ * @param out    receives 4 n_axes values
  */
 SMS_API void sms_multi_generator_step(sms_multi_generator *g, const sms_real *target,
                                       sms_real *out);
 /** @brief The lag of the output [s]: with align, the common lag D Ts of every axis; without,
- * the largest axis's (each axis i lags by axis_lag[i] Ts). 0 without stages. O(1). */
+ * the largest axis's (each axis i lags by axis_lag[i] Ts). 0 without stages. O(1).
+ * @param g      the generator (read only)
+ * @return the lag [s], >= 0
+ */
 SMS_API double sms_multi_generator_lag(const sms_multi_generator *g);
-/** @brief n samples: targets[k n_axes + i] in, out[(k n_axes + i) 4 + m] out. */
+/** @brief n samples: targets[k n_axes + i] in, out[(k n_axes + i) 4 + m] out.
+ * @param g      the generator, built by sms_multi_generator_init()
+ * @param targets n rows of n_axes target positions
+ * @param n      number of samples, any
+ * @param out    receives 4 n_axes n values
+ */
 SMS_API void sms_multi_generator_process(sms_multi_generator *g, const sms_real *targets,
                                          size_t n, sms_real *out);
 /** @brief 1 while any axis's profile is moving or waiting for a new target, else 0 (stages'
- * outputs settle sms_chain_length() samples later; a notch's only asymptotically). */
+ * outputs settle sms_chain_length() samples later; a notch's only asymptotically).
+ * @param g      the generator (read only)
+ * @return 1 or 0
+ */
 SMS_API int sms_multi_generator_busy(const sms_multi_generator *g);
 /**
  * @brief Up to n steps with the same targets (target[0 .. n_axes-1]), at a cost bounded
@@ -306,6 +329,10 @@ SMS_API int sms_multi_generator_busy(const sms_multi_generator *g);
  * smallest subnormal, so the result is n steps to rounding (bit for bit in the tests, which
  * allow 8 eps of each value's scale).
  * @return the steps done: n, or 0 (a notch that does not decay, S >= 1e15).
+ * @param g      the generator, built by sms_multi_generator_init()
+ * @param target n_axes held target positions
+ * @param n      steps, any (0: nothing changes, out untouched)
+ * @param out    receives the last step's 4 n_axes values
  */
 SMS_API uint64_t sms_multi_generator_hold(sms_multi_generator *g, const sms_real *target,
                                           uint64_t n, sms_real *out);
@@ -333,9 +360,15 @@ SMS_API sms_status sms_multi_phase_duration(const sms_multi_generator_config *co
  * + 12 per move (n_axes moves, or 1 in phase mode) + the stages' states (sms_chain_state_count()
  * of each chain: axis by axis, q, v, a, j; every stage state with its own stage identity)
  * + with align, the alignment delays' states (sms_delay_state_count(), axis by axis, q, v, a,
- * j). */
+ * j).
+ * @param g      the generator (read only)
+ * @return the count
+ */
 SMS_API size_t sms_multi_generator_state_count(const sms_multi_generator *g);
-/** @brief Write the state (sms_multi_generator_state_count() doubles, layout above) to dst. */
+/** @brief Write the state (sms_multi_generator_state_count() doubles, layout above) to dst.
+ * @param g      the generator (read only)
+ * @param dst    sms_multi_generator_state_count() doubles
+ */
 SMS_API void sms_multi_generator_get_state(const sms_multi_generator *g, double *dst);
 /**
  * @brief Restore a saved state into a generator with the same configuration.
@@ -346,14 +379,26 @@ SMS_API void sms_multi_generator_get_state(const sms_multi_generator *g, double 
  * k > k_end, rho outside (0, 1/2], a duration negative, a start or cruise velocity beyond its
  * axis's vmax (1 + ::SMS_LIMIT_RTOL), the tolerance of the reported values, or
  * a stage state that does not fit its stage); nothing written on error.
+ * @param g      the generator, built by sms_multi_generator_init(); untouched on error
+ * @param src    the saved state
+ * @param n      its length in doubles, sms_multi_generator_state_count()
  */
 SMS_API sms_status sms_multi_generator_set_state(sms_multi_generator *g, const double *src,
                                                  size_t n);
-/** @brief What sms_multi_generator_set_state() would return, writing nothing. */
+/** @brief What sms_multi_generator_set_state() would return, writing nothing.
+ * @param g      the generator (read only)
+ * @param src    the saved state
+ * @param n      its length in doubles
+ * @return what sms_multi_generator_set_state() would return
+ */
 SMS_API sms_status sms_multi_generator_check_state(const sms_multi_generator *g,
                                                    const double *src, size_t n);
 /** @brief After copying g, its stages and its memory elsewhere (same layout), point the
- * copy's chains at the copy's stages and memory. */
+ * copy's chains at the copy's stages and memory.
+ * @param g      the copied generator
+ * @param stages the copy of its stage structs
+ * @param memory the copy of its memory
+ */
 SMS_API void sms_multi_generator_rebind(sms_multi_generator *g, sms_stage *stages,
                                         sms_memory_cell *memory);
 

@@ -52,10 +52,16 @@ extern "C" {
 
 /** @brief Instance of one notch. Fields are public for inspection only. */
 typedef struct sms_notch {
-    sms_kind kind;
-    sms_real d0, d2, a1, a2;      /**< w = d0 (x - x1) + d2 (x2 - x1) - a1 w1 - a2 w2; y = x + w */
-    sms_real x1, x2;              /**< past inputs */
-    sms_real w1, w2;              /**< past w = y - x */
+    sms_kind kind;                /**< ::SMS_NOTCH_TUSTIN or ::SMS_NOTCH_MATCHED */
+    /* w = d0 (x - x1) + d2 (x2 - x1) - a1 w1 - a2 w2; y = x + w */
+    sms_real d0;                  /**< d0 = b0 - 1, weight of x - x1 */
+    sms_real d2;                  /**< d2 = b2 - a2, weight of x2 - x1 */
+    sms_real a1;                  /**< denominator coefficient of z^-1 */
+    sms_real a2;                  /**< denominator coefficient of z^-2 */
+    sms_real x1;                  /**< the previous input x[n-1] */
+    sms_real x2;                  /**< the input before it, x[n-2] */
+    sms_real w1;                  /**< the previous w = y - x */
+    sms_real w2;                  /**< the w before it */
     sms_real rest;                /**< operating point set by the last reset */
     double identity[SMS_STATE_IDENTITY_COUNT]; /**< config and Ts it was built for (config.h) */
 } sms_notch;
@@ -68,13 +74,28 @@ typedef struct sms_notch {
  *         ::SMS_ERR_ZETA (outside [0,1)), ::SMS_ERR_NOTCH_DAMPING (notch_pole_zeta NaN/Inf,
  *         <= zeta or > ::SMS_NOTCH_MAX_POLE_ZETA). timing, T, sigma, k, order, tolerance
  *         are not read. f is untouched on error.
+ * @param f      instance to fill; untouched on error
+ * @param config a notch config (::SMS_NOTCH_TUSTIN or ::SMS_NOTCH_MATCHED); wn, zeta,
+ *               notch_pole_zeta are read
+ * @param Ts     sample period [s], finite, > 0
  */
 SMS_API sms_status sms_notch_init(sms_notch *f, const sms_stage_config *config, double Ts);
-/** @brief Rest at `rest`: as if the input had been `rest` forever. */
+/** @brief Rest at `rest`: as if the input had been `rest` forever.
+ * @param f     the notch, built by sms_notch_init() or sms_notch_init_coeffs()
+ * @param rest  finite; the next outputs equal rest until the input changes
+ */
 SMS_API void sms_notch_reset(sms_notch *f, sms_real rest);
-/** @brief One sample in place (see the difference equations above). */
+/** @brief One sample in place (see the difference equations above).
+ * @param f     the notch, built by sms_notch_init() or sms_notch_init_coeffs()
+ * @param x     in: the input x[n] (non-finite: passed through, see above); out: y[n]
+ */
 SMS_API void sms_notch_step(sms_notch *f, sms_real *x);
-/** @brief n samples; in == out allowed. Same result as n calls of step. */
+/** @brief n samples; in == out allowed. Same result as n calls of step.
+ * @param f     the notch, built by sms_notch_init() or sms_notch_init_coeffs()
+ * @param in    n inputs
+ * @param out   n outputs; may be in itself
+ * @param n     number of samples, any
+ */
 SMS_API void sms_notch_process(sms_notch *f, const sms_real *in, sms_real *out, size_t n);
 /**
  * @brief An estimate of the samples of a constant input after which the notch has absorbed it
@@ -84,27 +105,57 @@ SMS_API void sms_notch_process(sms_notch *f, const sms_real *in, sms_real *out, 
  * covers the (n + 1) rho^n of two close poles and rounding. E.g. Tustin, xi2 = 0.7,
  * wn Ts = 0.01: s = 0.007, about 395,000 samples. HUGE_VAL when a pole rounds onto the unit
  * circle (s <= 0: no decay). For sizing the work of a long hold (sms_chain_hold()); O(1).
+ * @param f     the notch (read only)
+ * @return the sample estimate (>= 4), or HUGE_VAL when a pole does not decay
  */
 SMS_API double sms_notch_settle_bound(const sms_notch *f);
 /** @brief 1 when the notch rests at the constant input x: x1 = x2 = x and w1 = w2 = +0, a
- * fixed point of the recursion (every further sample of x outputs x + 0); else 0. O(1). */
+ * fixed point of the recursion (every further sample of x outputs x + 0); else 0. O(1).
+ * @param f     the notch (read only)
+ * @param x     the held input
+ * @return 1 or 0
+ */
 SMS_API int sms_notch_is_settled(const sms_notch *f, sms_real x);
 /** @brief Doubles in a saved state: ::SMS_STATE_IDENTITY_COUNT + 6 (the configuration identity
- * of config.h, then kind, x1, x2, w1, w2, rest). */
+ * of config.h, then kind, x1, x2, w1, w2, rest).
+ * @param f     the notch (read only)
+ * @return ::SMS_STATE_IDENTITY_COUNT + 6
+ */
 SMS_API size_t sms_notch_state_count(const sms_notch *f);
-/** @brief Write sms_notch_state_count() doubles to dst. */
+/** @brief Write sms_notch_state_count() doubles to dst.
+ * @param f     the notch (read only)
+ * @param dst   sms_notch_state_count() doubles
+ */
 SMS_API void sms_notch_get_state(const sms_notch *f, double *dst);
 /** @brief Restore a saved state; validates first and writes nothing on error (::SMS_ERR_STATE:
- * wrong n or kind; ::SMS_ERR_NULL). */
+ * wrong n or kind; ::SMS_ERR_NULL).
+ * @param f     the notch, built by sms_notch_init() or sms_notch_init_coeffs(); untouched on error
+ * @param src   the saved state
+ * @param n     its length in doubles, sms_notch_state_count()
+ * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_STATE_FORMAT .. ::SMS_ERR_STATE_DURATION (saved by
+ *         another configuration: the first field of the identity that differs, config.h), or
+ *         ::SMS_ERR_STATE (wrong n or kind, a value outside the range of ::sms_real)
+ */
 SMS_API sms_status sms_notch_set_state(sms_notch *f, const double *src, size_t n);
-/** @brief The validation of sms_notch_set_state() alone: writes nothing. */
+/** @brief The validation of sms_notch_set_state() alone: writes nothing.
+ * @param f     the notch (read only)
+ * @param src   the saved state
+ * @param n     its length in doubles
+ * @return what sms_notch_set_state() would return
+ */
 SMS_API sms_status sms_notch_check_state(const sms_notch *f, const double *src, size_t n);
 /** @brief Is src a state a run with every input and rest value |x| <= x_max could reach? What
  * sms_notch_check_state() accepts, with the last inputs and the rest finite and within x_max and
  * the recursion's w1, w2 finite and within w_max (sms_stage_check_state_range() passes
  * 2 x_max (G - 1), G = sms_stage_gain_bound(): the l1 bound of (1 - z^-1)(d0 - d2 z^-1)/A).
  * Writes nothing.
- * @return ::SMS_OK, what sms_notch_check_state() returns, or ::SMS_ERR_STATE. */
+ * @return ::SMS_OK, what sms_notch_check_state() returns, or ::SMS_ERR_STATE.
+ * @param f     the notch (read only)
+ * @param src   the saved state
+ * @param n     its length in doubles
+ * @param x_max the largest |input| of the run, finite, >= 0
+ * @param w_max the largest |w| the run can reach, finite, >= 0
+ */
 SMS_API sms_status sms_notch_check_state_range(const sms_notch *f, const double *src, size_t n,
                                                double x_max, double w_max);
 /**

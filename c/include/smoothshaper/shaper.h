@@ -113,7 +113,7 @@ typedef struct sms_shaper_tap {
 /** @brief Instance of one shaper. Fields are public for inspection; change them only through
  * the functions below. */
 typedef struct sms_shaper {
-    sms_kind kind;
+    sms_kind kind;                        /**< a shaper or input-smoother kind */
     size_t length;                        /**< impulse response length L = max delay + 1 [samples] */
     size_t n_taps;                        /**< taps used, 1..::SMS_SHAPER_MAX_TAPS */
     sms_shaper_tap *taps;                 /**< caller table of n_taps taps (written by init) */
@@ -158,6 +158,9 @@ SMS_API sms_status sms_shaper_buffer_size(const sms_stage_config *config, double
  * non-zero taps, 1..::SMS_SHAPER_MAX_TAPS (e.g. 3 for an exact-timing ZV off the sample grid,
  * 2 on it; 45 for exact ZV^8); for an input smoother its length L (every sample a tap).
  * @return as sms_shaper_buffer_size() (same checks, same order).
+ * @param config  a shaper or input-smoother config (as sms_shaper_buffer_size())
+ * @param Ts      sample period [s], finite, > 0
+ * @param n_taps  receives the number of taps
  */
 SMS_API sms_status sms_shaper_tap_count(const sms_stage_config *config, double Ts, size_t *n_taps);
 /**
@@ -169,33 +172,70 @@ SMS_API sms_status sms_shaper_tap_count(const sms_stage_config *config, double T
  * @return as sms_shaper_buffer_size(), or ::SMS_ERR_NULL (f, config, taps or buffer NULL),
  *         ::SMS_ERR_BUFFER_TOO_SMALL (n_taps or n_reals below the size queries). Nothing is
  *         written on error (neither f, nor the table, nor the buffer).
+ * @param config  the stage description (checked as sms_shaper_buffer_size() says)
+ * @param Ts      sample period [s], finite, > 0
+ * @param n_taps  entries in taps
+ * @param n_reals reals in buffer
  */
 SMS_API sms_status sms_shaper_init(sms_shaper *f, const sms_stage_config *config, double Ts,
                                    sms_shaper_tap *taps, size_t n_taps, sms_real *buffer,
                                    size_t n_reals);
-/** @brief Rest at `rest`: as if the input had been `rest` forever (the output is then `rest`). */
+/** @brief Rest at `rest`: as if the input had been `rest` forever (the output is then `rest`).
+ * @param f       the shaper, built by sms_shaper_init() or sms_shaper_init_coeffs()
+ * @param rest    finite, |rest| <= ::SMS_INPUT_MAX
+ */
 SMS_API void sms_shaper_reset(sms_shaper *f, sms_real rest);
 /** @brief One sample in place: x <- sum_k g_k x[n - d_k], computed as
  * x[n] + sum_k g_k (x[n - d_k] - x[n]) (the taps sum to 1): once the last L inputs are equal
  * the output is that input exactly, and after sms_shaper_reset(f, rest) an input of rest
- * comes out as rest from the first sample. */
+ * comes out as rest from the first sample.
+ * @param f       the shaper, built by sms_shaper_init() or sms_shaper_init_coeffs()
+ * @param x       in: the input x[n]; out: the output y[n]
+ */
 SMS_API void sms_shaper_step(sms_shaper *f, sms_real *x);
-/** @brief n samples; in == out allowed, other overlaps not. Same result as n calls of step. */
+/** @brief n samples; in == out allowed, other overlaps not. Same result as n calls of step.
+ * @param f       the shaper, built by sms_shaper_init() or sms_shaper_init_coeffs()
+ * @param in      n inputs
+ * @param out     n outputs; may be in itself
+ * @param n       number of samples, any
+ */
 SMS_API void sms_shaper_process(sms_shaper *f, const sms_real *in, sms_real *out, size_t n);
 /** @brief Doubles in a saved state: ::SMS_STATE_IDENTITY_COUNT + L + 4 (the configuration
- * identity of config.h, then kind, L, head, rest, the delay line in ring order). */
+ * identity of config.h, then kind, L, head, rest, the delay line in ring order).
+ * @param f       the shaper (read only)
+ * @return ::SMS_STATE_IDENTITY_COUNT + L + 4
+ */
 SMS_API size_t sms_shaper_state_count(const sms_shaper *f);
-/** @brief Write sms_shaper_state_count() doubles to dst. */
+/** @brief Write sms_shaper_state_count() doubles to dst.
+ * @param f       the shaper (read only)
+ * @param dst     sms_shaper_state_count() doubles
+ */
 SMS_API void sms_shaper_get_state(const sms_shaper *f, double *dst);
 /** @brief Restore a saved state; validates first and writes nothing on error (::SMS_ERR_STATE:
- * wrong n, kind, length or head; ::SMS_ERR_NULL). */
+ * wrong n, kind, length or head; ::SMS_ERR_NULL).
+ * @param f       the shaper, built by sms_shaper_init() or sms_shaper_init_coeffs(); untouched on error
+ * @param src     the saved state
+ * @param n       its length in doubles, sms_shaper_state_count()
+ * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_STATE_FORMAT .. ::SMS_ERR_STATE_DURATION (saved by
+ *         another configuration, config.h), or ::SMS_ERR_STATE
+ */
 SMS_API sms_status sms_shaper_set_state(sms_shaper *f, const double *src, size_t n);
-/** @brief The validation of sms_shaper_set_state() alone: writes nothing. */
+/** @brief The validation of sms_shaper_set_state() alone: writes nothing.
+ * @param f       the shaper (read only)
+ * @param src     the saved state
+ * @param n       its length in doubles
+ * @return what sms_shaper_set_state() would return
+ */
 SMS_API sms_status sms_shaper_check_state(const sms_shaper *f, const double *src, size_t n);
 /** @brief Is src a state a run with every input and rest value |x| <= x_max could reach? What
  * sms_shaper_check_state() accepts, with the rest and the delay line (the inputs as they came)
  * finite and within x_max. Writes nothing.
- * @return ::SMS_OK, what sms_shaper_check_state() returns, or ::SMS_ERR_STATE. */
+ * @return ::SMS_OK, what sms_shaper_check_state() returns, or ::SMS_ERR_STATE.
+ * @param f       the shaper (read only)
+ * @param src     the saved state
+ * @param n       its length in doubles
+ * @param x_max   the largest |input| of the run, finite, >= 0
+ */
 SMS_API sms_status sms_shaper_check_state_range(const sms_shaper *f, const double *src,
                                                 size_t n, double x_max);
 /**
@@ -207,6 +247,9 @@ SMS_API sms_status sms_shaper_check_state_range(const sms_shaper *f, const doubl
  *         the Nyquist and length checks; ::SMS_ERR_KIND for an input smoother, a kernel rather
  *         than impulses), ::SMS_ERR_BUFFER_TOO_SMALL (capacity < count), ::SMS_ERR_TOO_LONG
  *         (the damped period 2 pi/(wn sqrt(1 - zeta^2)) overflows double).
+ * @param config   a shaper config (not an input smoother)
+ * @param amplitudes receives the count amplitudes A_m
+ * @param times    receives the count times t_m [s]
  */
 SMS_API sms_status sms_shaper_impulses(const sms_stage_config *config, double *amplitudes,
                                        double *times, size_t capacity, size_t *count);
@@ -214,6 +257,10 @@ SMS_API sms_status sms_shaper_impulses(const sms_stage_config *config, double *a
  * @brief The realised discrete impulse response h[0..L-1] (double, whatever the build
  * precision), L from sms_shaper_buffer_size(). Zeros between the sparse taps are written.
  * @return as sms_shaper_buffer_size(), or ::SMS_ERR_BUFFER_TOO_SMALL (n_taps < L).
+ * @param config  a shaper or input-smoother config
+ * @param Ts      sample period [s], finite, > 0
+ * @param taps    receives h[0..L-1]
+ * @param n_taps  room in taps, >= L
  */
 SMS_API sms_status sms_shaper_taps(const sms_stage_config *config, double Ts, double *taps, size_t n_taps);
 /**
@@ -225,6 +272,11 @@ SMS_API sms_status sms_shaper_taps(const sms_stage_config *config, double Ts, do
  * @return ::SMS_OK, ::SMS_ERR_NULL, the config's status (checked as for
  *         sms_shaper_impulses()), ::SMS_ERR_WN (s not finite), ::SMS_ERR_TOO_LONG (the value
  *         overflows); nothing written on error.
+ * @param config  a shaper or input-smoother config
+ * @param s_re    Re s [1/s], finite
+ * @param s_im    Im s [rad/s], finite
+ * @param h_re    receives Re H_c(s)
+ * @param h_im    receives Im H_c(s)
  */
 SMS_API sms_status sms_shaper_transfer(const sms_stage_config *config, double s_re, double s_im,
                                        double *h_re, double *h_im);

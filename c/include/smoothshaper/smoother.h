@@ -86,21 +86,27 @@ extern "C" {
 /** @brief Instance of one smoother. Fields are public for inspection; change them only
  * through the functions below. */
 typedef struct sms_smoother {
-    sms_kind kind;
+    sms_kind kind;              /**< ::SMS_RECTANGULAR .. ::SMS_EXPONENTIAL */
     size_t length;              /**< impulse response length L [samples] */
     size_t window;              /**< M: taps from the recursion, ring length; restarts every 2M */
-    sms_real pole_m1_re, pole_im;     /**< Re q - 1 and Im q, rounded: the recursion's pole q */
-    sms_real pole_lo_re, pole_lo_im;  /**< what the rounding lost of q (to ~2^-64) */
-    sms_real gain_re, gain_im;  /**< c, weight of the newest input */
-    sms_real tail_re, tail_im;  /**< -c q^M, weight of x[n-M] */
+    sms_real pole_m1_re;        /**< Re q - 1, rounded: the recursion's pole q */
+    sms_real pole_im;           /**< Im q, rounded */
+    sms_real pole_lo_re;        /**< what the rounding lost of Re q (to ~2^-64) */
+    sms_real pole_lo_im;        /**< what the rounding lost of Im q */
+    sms_real gain_re;           /**< Re c, c the weight of the newest input */
+    sms_real gain_im;           /**< Im c */
+    sms_real tail_re;           /**< Re of -c q^M, the weight of x[n-M] */
+    sms_real tail_im;           /**< Im of -c q^M */
     int imag_out;               /**< 1: output Im w (harmonic families); 0: Re w */
     int real_only;              /**< 1: q, c, -c q^M are real (rectangular, exponential) */
     size_t n_corrections;       /**< direct taps in use (0 or 2) */
     size_t correction_delay[SMS_SMOOTHER_MAX_CORRECTIONS];  /**< {M-1, M}, or {0, M} (bounded) */
-    sms_real correction_gain[SMS_SMOOTHER_MAX_CORRECTIONS];
-    sms_real w_re[2], w_im[2];  /**< state of the two restarted copies (main part): [0] the
-                                     old copy, which gives the output, [1] the young one */
-    sms_real lo_re[2], lo_im[2]; /**< their small parts: rounding of the increments, q_lo w */
+    sms_real correction_gain[SMS_SMOOTHER_MAX_CORRECTIONS]; /**< d_j, the direct taps' gains */
+    sms_real w_re[2];           /**< Re of the state of the two restarted copies (main part):
+                                     [0] the old copy, which gives the output, [1] the young one */
+    sms_real w_im[2];           /**< Im of the copies' states */
+    sms_real lo_re[2];          /**< Re of their small parts: rounding of the increments, q_lo w */
+    sms_real lo_im[2];          /**< Im of their small parts */
     sms_real ref[2];            /**< each copy's reference: its (finite) input at restart */
     size_t run;                 /**< of the latest inputs, how many equal the one before them
                                      (at most L): from L - 1 on, the output is the input */
@@ -151,6 +157,7 @@ SMS_API sms_status sms_smoother_buffer_size(const sms_stage_config *config, doub
  * @param buffer  caller memory for the ring, at least sms_smoother_buffer_size() reals; the
  *                smoother keeps this pointer (see sms_stage_rebind())
  * @param n_reals length of buffer
+ * @return ::SMS_OK, or the first failing check above (f untouched).
  */
 SMS_API sms_status sms_smoother_init(sms_smoother *f, const sms_stage_config *config, double Ts,
                                      sms_real *buffer, size_t n_reals);
@@ -159,6 +166,7 @@ SMS_API sms_status sms_smoother_init(sms_smoother *f, const sms_stage_config *co
  * @brief Put the filter at rest at `rest`, as if every past input had been `rest`: the next
  * outputs equal `rest` until the input changes. O(M) (clears the ring).
  * @param rest finite; a NaN/Inf rest makes every output NaN until the next finite reset.
+ * @param f       the smoother, built by sms_smoother_init() or sms_smoother_init_coeffs()
  */
 SMS_API void sms_smoother_reset(sms_smoother *f, sms_real rest);
 
@@ -177,15 +185,25 @@ SMS_API void sms_smoother_reset(sms_smoother *f, sms_real rest);
  * e.g. in double 3.1e298 at sigma Ts = -19, N = 2 and 7.8e219 at sigma Ts = -200, N = 2
  * (docs/numerics.md has a table). sms_smoother_init() refuses with ::SMS_ERR_SIGMA a sigma for
  * which the range would fall below 1 (sigma Ts below about -706 in double, -85 in float).
+ * @param f       the smoother (read only)
+ * @return the largest |input| [same unit as the signal], in [1, ::SMS_INPUT_MAX]
  */
 SMS_API double sms_smoother_input_max(const sms_smoother *f);
 
 /** @brief Filter one sample in place: *x = y[n] for input x[n]. O(1), no libm; the same bits
- * as sms_smoother_process() on that sample. */
+ * as sms_smoother_process() on that sample.
+ * @param f       the smoother, built by sms_smoother_init() or sms_smoother_init_coeffs()
+ * @param x       in: the input x[n], |x| <= sms_smoother_input_max(); out: the output y[n]
+ */
 SMS_API void sms_smoother_step(sms_smoother *f, sms_real *x);
 
 /** @brief Filter n samples; in == out (in place) is allowed, other overlaps are not.
- * Equal, bit for bit, to n calls of sms_smoother_step() and to any split into blocks. */
+ * Equal, bit for bit, to n calls of sms_smoother_step() and to any split into blocks.
+ * @param f       the smoother, built by sms_smoother_init() or sms_smoother_init_coeffs()
+ * @param in      n inputs, |x| <= sms_smoother_input_max()
+ * @param out     n outputs; may be in itself
+ * @param n       number of samples, any (0 does nothing)
+ */
 SMS_API void sms_smoother_process(sms_smoother *f, const sms_real *in, sms_real *out, size_t n);
 
 /**
@@ -196,6 +214,8 @@ SMS_API void sms_smoother_process(sms_smoother *f, const sms_real *in, sms_real 
  * ever), and at least L + 2, so it lies in [M + 2, 2M + 2] (M the ring length). After that
  * many samples of x the state is the absorbed one: the ring holds x, both copies w = lo = 0
  * and ref = x, run = L, and only head still moves (period M). O(1).
+ * @param f       the smoother (read only)
+ * @return the sample count, in [M + 2, 2M + 2]
  */
 SMS_API uint64_t sms_smoother_settle_length(const sms_smoother *f);
 
@@ -208,6 +228,7 @@ SMS_API uint64_t sms_smoother_settle_length(const sms_smoother *f);
  * @param x  finite, |x| <= sms_smoother_input_max()
  * @param n  samples, >= sms_smoother_settle_length() (fewer: the state is undefined)
  * @return the output of the last sample.
+ * @param f       the smoother, built by sms_smoother_init() or sms_smoother_init_coeffs()
  */
 SMS_API sms_real sms_smoother_settle(sms_smoother *f, sms_real x, uint64_t n);
 
@@ -218,16 +239,24 @@ SMS_API sms_real sms_smoother_settle(sms_smoother *f, sms_real x, uint64_t n);
  * the absorbed input; on any other it is the phase of n samples later with stale values, which
  * the next sms_smoother_settle_length() samples replace entirely (the generator jumps along a
  * plan this way, then filters the last samples). O(1).
+ * @param f       the smoother, built by sms_smoother_init() or sms_smoother_init_coeffs()
+ * @param n       samples to advance, any
  */
 SMS_API void sms_smoother_advance(sms_smoother *f, uint64_t n);
 
 /** @brief Number of doubles of the saved state: ::SMS_STATE_IDENTITY_COUNT + M + 13 (the
  * configuration identity of config.h, then head, run, rest, the two copies' w and lo as four
- * complex numbers (old copy first), their two references, the ring). */
+ * complex numbers (old copy first), their two references, the ring).
+ * @param f       the smoother (read only)
+ * @return ::SMS_STATE_IDENTITY_COUNT + M + 13
+ */
 SMS_API size_t sms_smoother_state_count(const sms_smoother *f);
 
 /** @brief Write the dynamic state, sms_smoother_state_count() doubles, into dst. Loading it
- * into an identically configured smoother continues bit-exactly. */
+ * into an identically configured smoother continues bit-exactly.
+ * @param f       the smoother (read only)
+ * @param dst     sms_smoother_state_count() doubles
+ */
 SMS_API void sms_smoother_get_state(const sms_smoother *f, double *dst);
 
 /**
@@ -238,21 +267,32 @@ SMS_API void sms_smoother_get_state(const sms_smoother *f, double *dst);
  * head is not an integer in [0, M), run is not an integer in [0, L],
  * rest or a reference is not finite, or a finite value lies outside the range of ::sms_real (NaN/Inf in the
  * ring and the copies are accepted: they are what a non-finite input leaves behind).
+ * @param f       the smoother, built by sms_smoother_init() or sms_smoother_init_coeffs(); untouched on error
+ * @param src     the saved state
+ * @param n       its length in doubles, sms_smoother_state_count()
  */
 SMS_API sms_status sms_smoother_set_state(sms_smoother *f, const double *src, size_t n);
 
-/** @brief The validation of sms_smoother_set_state() alone: writes nothing. */
+/** @brief The validation of sms_smoother_set_state() alone: writes nothing.
+ * @param f       the smoother (read only)
+ * @param src     the saved state
+ * @param n       its length in doubles
+ * @return what sms_smoother_set_state() would return.
+ */
 SMS_API sms_status sms_smoother_check_state(const sms_smoother *f, const double *src, size_t n);
 /**
  * @brief Is src a state a run could reach with every input and rest value |x| <= x_max? What
  * sms_smoother_check_state() accepts, and every value finite: the rest within x_max, the ring
  * and the references (which hold x - rest) within 2 x_max, the two copies within 2 x_max times
- * the internal gain the input range leaves room for (::SMS_REAL_MAX over the uncapped range
- * behind sms_smoother_input_max()) and at most half of ::SMS_REAL_MAX, each with a margin of
+ * the internal gain the input range leaves room for (REAL_MAX, the overflow threshold of ::sms_real, over the uncapped range
+ * behind sms_smoother_input_max()) and at most half of REAL_MAX, each with a margin of
  * 2^-20 for rounding. A loader of
  * states from outside (a file, an FMU state) uses this to refuse a state no run produces.
  * @param x_max  the largest |input| of the run, at most sms_smoother_input_max()
  * @return ::SMS_OK, what sms_smoother_check_state() returns, or ::SMS_ERR_STATE. Writes nothing.
+ * @param f       the smoother (read only)
+ * @param src     the saved state
+ * @param n       its length in doubles
  */
 SMS_API sms_status sms_smoother_check_state_range(const sms_smoother *f, const double *src,
                                                   size_t n, double x_max);
@@ -264,11 +304,18 @@ SMS_API sms_status sms_smoother_check_state_range(const sms_smoother *f, const d
  *               the grid, floor(T/Ts) + 2 for bounded timing); entries past L are left alone
  * @return ::SMS_OK, ::SMS_ERR_NULL (config or taps), ::SMS_ERR_BUFFER_TOO_SMALL (n_taps < L),
  *         or a validation status of sms_smoother_init().
+ * @param config  a smoother config
+ * @param Ts      sample period [s], finite and > 0
+ * @param taps    receives the L taps
  */
 SMS_API sms_status sms_smoother_taps(const sms_stage_config *config, double Ts, double *taps, size_t n_taps);
 
 /** @brief Impulse-response length L of a config (the n_taps that sms_smoother_taps() needs).
- * @return ::SMS_OK, ::SMS_ERR_NULL, or a validation status of sms_smoother_init(). */
+ * @return ::SMS_OK, ::SMS_ERR_NULL, or a validation status of sms_smoother_init().
+ * @param config  a smoother config
+ * @param Ts      sample period [s], finite and > 0
+ * @param length  receives L (untouched on error)
+ */
 SMS_API sms_status sms_smoother_length(const sms_stage_config *config, double Ts, size_t *length);
 
 #ifdef __cplusplus

@@ -36,19 +36,20 @@ extern "C" {
  * (allocate cells * sizeof(sms_memory_cell) bytes); static memory is an array of this type.
  */
 typedef union sms_memory_cell {
-    double d;
-    sms_real r;
-    size_t z;
-    void *p;
+    double d;      /**< as a double (design constants, identities) */
+    sms_real r;    /**< as a signal value (delay lines, states) */
+    size_t z;      /**< as an index */
+    void *p;       /**< as a pointer */
 } sms_memory_cell;
 
 /** @brief One stage: its kind and its instance, which lives in the stage's memory block. */
 typedef struct sms_stage {
-    sms_kind kind;
+    sms_kind kind;                 /**< the family, selects the member of u */
+    /** @brief The instance, in the stage's memory block. */
     union {
-        sms_smoother *smoother;
-        sms_shaper *shaper;
-        sms_notch *notch;
+        sms_smoother *smoother;    /**< ::SMS_RECTANGULAR .. ::SMS_EXPONENTIAL */
+        sms_shaper *shaper;        /**< shapers and input smoothers */
+        sms_notch *notch;          /**< ::SMS_NOTCH_TUSTIN, ::SMS_NOTCH_MATCHED */
     } u;
 } sms_stage;
 
@@ -57,12 +58,19 @@ typedef struct sms_stage {
  * the table above). O(1) for every family (the smoothers' sizes are closed forms).
  * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_TOO_LONG (the size overflows size_t), or the
  *         config's validation status.
+ * @param config   the stage description (see config.h for ranges)
+ * @param Ts       sample period [s], finite and > 0
+ * @param n_cells  receives the number of ::sms_memory_cell
  */
 SMS_API sms_status sms_stage_memory_size(const sms_stage_config *config, double Ts, size_t *n_cells);
 
 /** @brief Reals in the stage's delay line (M for a smoother, L for a shaper, 0 for a notch):
  * part of sms_stage_memory_size(), for reporting and limits; init needs the memory size.
- * @return ::SMS_OK, ::SMS_ERR_NULL, or the config's validation status. */
+ * @return ::SMS_OK, ::SMS_ERR_NULL, or the config's validation status.
+ * @param config   the stage description (see config.h for ranges)
+ * @param Ts       sample period [s], finite and > 0
+ * @param n_reals  receives the number of reals
+ */
 SMS_API sms_status sms_stage_buffer_size(const sms_stage_config *config, double Ts, size_t *n_reals);
 
 /**
@@ -77,17 +85,30 @@ SMS_API sms_status sms_stage_buffer_size(const sms_stage_config *config, double 
  */
 SMS_API sms_status sms_stage_init(sms_stage *stage, const sms_stage_config *config, double Ts,
                                   sms_memory_cell *memory, size_t n_cells);
-/** @brief Put the stage at rest at `rest`: as if its input had been `rest` forever. */
+/** @brief Put the stage at rest at `rest`: as if its input had been `rest` forever.
+ * @param stage  the stage, built by sms_stage_init() or sms_stage_init_coeffs()
+ * @param rest   finite, |rest| <= sms_stage_input_max()
+ */
 SMS_API void sms_stage_reset(sms_stage *stage, sms_real rest);
-/** @brief Filter one sample in place. */
+/** @brief Filter one sample in place.
+ * @param stage  the stage, built by sms_stage_init() or sms_stage_init_coeffs()
+ * @param x      in: the input x[n], |x| <= sms_stage_input_max(); out: the output y[n]
+ */
 SMS_API void sms_stage_step(sms_stage *stage, sms_real *x);
-/** @brief Filter n samples; in == out is allowed (in place), other overlaps are not. */
+/** @brief Filter n samples; in == out is allowed (in place), other overlaps are not.
+ * @param stage  the stage, built by sms_stage_init() or sms_stage_init_coeffs()
+ * @param in     n inputs, |x| <= sms_stage_input_max()
+ * @param out    n outputs; may be in itself
+ * @param n      number of samples, any
+ */
 SMS_API void sms_stage_process(sms_stage *stage, const sms_real *in, sms_real *out, size_t n);
 /**
  * @brief The stage's finite input range: inputs and reset values with |x| at most this keep
  * every output and state finite: min(::SMS_INPUT_MAX, L) with L = REAL_MAX over the stage's
  * internal gain. Smoothers: sms_smoother_input_max(); shapers: L = REAL_MAX / (2 sum |g_k|);
  * notches: L = REAL_MAX (an overflow restarts the notch, notch.h). O(1).
+ * @param stage  the stage (read only)
+ * @return the largest |input|, in (0, ::SMS_INPUT_MAX]
  */
 SMS_API double sms_stage_input_max(const sms_stage *stage);
 /**
@@ -97,32 +118,63 @@ SMS_API double sms_stage_input_max(const sms_stage *stage);
  * shapers: sum |g_k|; notches: 1 + (|d0| + |d2|) E, E a closed-form bound on the l1 norm of
  * (1 - z^-1)/A(z) from the poles (a bound, not the norm: about 3 to 5 for ordinary notches,
  * HUGE_VAL if a pole rounds onto the unit circle). O(1).
+ * @param stage  the stage (read only)
+ * @return G >= 1 (HUGE_VAL for a notch whose pole rounds onto the unit circle)
  */
 SMS_API double sms_stage_gain_bound(const sms_stage *stage);
-/** @brief Impulse-response length L in samples (notch: 0, it is IIR). */
+/** @brief Impulse-response length L in samples (notch: 0, it is IIR).
+ * @param stage  the stage (read only)
+ * @return L [samples], 0 for a notch
+ */
 SMS_API size_t sms_stage_length(const sms_stage *stage);
-/** @brief Number of doubles sms_stage_get_state() writes. */
+/** @brief Number of doubles sms_stage_get_state() writes.
+ * @param stage  the stage (read only)
+ * @return the count, ::SMS_STATE_IDENTITY_COUNT plus the family's dynamic state
+ */
 SMS_API size_t sms_stage_state_count(const sms_stage *stage);
 /** @brief Write the state: the configuration identity (config.h), then the delay line,
- * recursion state and indices, sms_stage_state_count() doubles. */
+ * recursion state and indices, sms_stage_state_count() doubles.
+ * @param stage  the stage (read only)
+ * @param dst    sms_stage_state_count() doubles
+ */
 SMS_API void sms_stage_get_state(const sms_stage *stage, double *dst);
 /** @brief Restore a state written by sms_stage_get_state() of an identically configured stage.
  * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_STATE_FORMAT .. ::SMS_ERR_STATE_DURATION (saved
  * by another configuration: the status names the first field of the identity that differs,
- * config.h), or ::SMS_ERR_STATE if n or any index does not fit. */
+ * config.h), or ::SMS_ERR_STATE if n or any index does not fit.
+ * @param stage  the stage, built by sms_stage_init() or sms_stage_init_coeffs(); untouched on error
+ * @param src    the saved state
+ * @param n      its length in doubles, sms_stage_state_count()
+ */
 SMS_API sms_status sms_stage_set_state(sms_stage *stage, const double *src, size_t n);
-/** @brief Would sms_stage_set_state() accept this vector? Writes nothing. */
+/** @brief Would sms_stage_set_state() accept this vector? Writes nothing.
+ * @param stage  the stage (read only)
+ * @param src    the saved state
+ * @param n      its length in doubles
+ * @return what sms_stage_set_state() would return
+ */
 SMS_API sms_status sms_stage_check_state(const sms_stage *stage, const double *src, size_t n);
 /** @brief Is src a state a run with every input and rest value |x| <= x_max could reach? What
  * sms_stage_check_state() accepts, with every value finite and within what such inputs leave
  * in it (sms_smoother_check_state_range(), sms_shaper_check_state_range(),
  * sms_notch_check_state_range()). For loading states that come from outside. Writes nothing.
- * @param x_max  the largest |input| of the run, at most sms_stage_input_max() */
+ * @param x_max  the largest |input| of the run, at most sms_stage_input_max()
+ * @param stage  the stage (read only)
+ * @param src    the saved state
+ * @param n      its length in doubles
+ * @return ::SMS_OK, what sms_stage_check_state() returns, or ::SMS_ERR_STATE
+ */
 SMS_API sms_status sms_stage_check_state_range(const sms_stage *stage, const double *src,
                                                size_t n, double x_max);
-/** @brief Cells of memory this stage uses (= sms_stage_memory_size() of its config). */
+/** @brief Cells of memory this stage uses (= sms_stage_memory_size() of its config).
+ * @param stage  the stage (read only)
+ * @return the number of cells
+ */
 SMS_API size_t sms_stage_memory_len(const sms_stage *stage);
-/** @brief Point a stage copied together with its memory (cell for cell) at the copy. */
+/** @brief Point a stage copied together with its memory (cell for cell) at the copy.
+ * @param stage  the copied stage
+ * @param memory the copy of its memory block
+ */
 SMS_API void sms_stage_rebind(sms_stage *stage, sms_memory_cell *memory);
 
 #ifdef __cplusplus

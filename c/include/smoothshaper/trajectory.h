@@ -134,6 +134,17 @@ SMS_API sms_status sms_kinematic_design(double h, const double *limits, size_t n
  * sms_chain_init() with the same Ts builds the chain directly and its sampled output keeps
  * every bound. Same arguments and statuses; Ts = 0 gives ::SMS_ERR_SAMPLE_PERIOD (a chain
  * always runs at a sample period).
+ * @param h         displacement, finite and != 0
+ * @param limits    n bounds, each finite and > 0
+ * @param n         1 .. ::SMS_KINEMATIC_MAX_ORDER
+ * @param profile   an ::sms_profile
+ * @param wn        0: no mode; else the mode's natural frequency, finite and > 0 [rad/s]
+ * @param zeta      damping ratio of the mode, [0, 1) (ignored when wn == 0)
+ * @param Ts        the sample period [s], finite and > 0
+ * @param configs   receives n stage configs
+ * @param capacity  length of configs (>= n)
+ * @param count     receives n
+ * @return as sms_kinematic_design(); ::SMS_ERR_SAMPLE_PERIOD also for Ts = 0
  */
 SMS_API sms_status sms_kinematic_configs(double h, const double *limits, size_t n,
                                          sms_profile profile, double wn, double zeta, double Ts,
@@ -188,7 +199,9 @@ SMS_API sms_status sms_kinematic_design_batch(size_t m, const double *h, size_t 
 
 /** @brief Bounds of a time-optimal plan: |v| <= vmax, |a| <= amax, |j| <= jmax (finite, > 0). */
 typedef struct sms_plan_limits {
-    sms_real vmax, amax, jmax;
+    sms_real vmax;   /**< velocity bound */
+    sms_real amax;   /**< acceleration bound */
+    sms_real jmax;   /**< jerk bound */
 } sms_plan_limits;
 
 /** @brief The generator's running time-optimal plan (read-only; built by the generator).
@@ -201,19 +214,23 @@ typedef struct sms_plan_limits {
  * with an acceleration). Times split into whole samples and a fraction keep a float build
  * exact over any number of samples (a float time in seconds would not). */
 typedef struct sms_plan {
-    size_t count;                      /* segments in use (0: at rest at goal) */
-    int shape;                         /* 0: linear ramps of a; 1: half-cosine transitions */
-    size_t end;                        /* (what every sample after the plan reads first) */
-    sms_real end_f;
-    sms_real goal;
-    sms_real drift;                    /* velocity after the end (0: at rest on goal) */
-    size_t arrive;
-    sms_real arrive_f;
-    sms_real duration;                 /* sum of d [s] (continuous, before the grid) */
-    size_t n[SMS_PLAN_MAX_SEGMENTS];
-    sms_real f[SMS_PLAN_MAX_SEGMENTS];
-    sms_real p[SMS_PLAN_MAX_SEGMENTS], v[SMS_PLAN_MAX_SEGMENTS], a[SMS_PLAN_MAX_SEGMENTS];
-    sms_real j[SMS_PLAN_MAX_SEGMENTS], d[SMS_PLAN_MAX_SEGMENTS];
+    size_t count;                      /**< segments in use (0: at rest at goal) */
+    int shape;                         /**< 0: linear ramps of a; 1: half-cosine transitions */
+    size_t end;                        /**< whole samples to the end (what every sample after
+                                            the plan reads first) */
+    sms_real end_f;                    /**< and the fraction of a sample [s], in [0, Ts) */
+    sms_real goal;                     /**< position the plan ends on */
+    sms_real drift;                    /**< velocity after the end (0: at rest on goal) */
+    size_t arrive;                     /**< whole samples to the target state */
+    sms_real arrive_f;                 /**< and the fraction [s], in [0, Ts) */
+    sms_real duration;                 /**< sum of d [s] (continuous, before the grid) */
+    size_t n[SMS_PLAN_MAX_SEGMENTS];   /**< segment starts: whole samples */
+    sms_real f[SMS_PLAN_MAX_SEGMENTS]; /**< segment starts: fraction [s], in [0, Ts) */
+    sms_real p[SMS_PLAN_MAX_SEGMENTS]; /**< position at each segment's start */
+    sms_real v[SMS_PLAN_MAX_SEGMENTS]; /**< velocity at each segment's start */
+    sms_real a[SMS_PLAN_MAX_SEGMENTS]; /**< acceleration at each segment's start */
+    sms_real j[SMS_PLAN_MAX_SEGMENTS]; /**< jerk of each segment (mean jerk for shape 1) */
+    sms_real d[SMS_PLAN_MAX_SEGMENTS]; /**< duration of each segment [s] */
 } sms_plan;
 
 /** @brief What a target asks for (values stable: FMU enumeration and saved states). */
@@ -250,10 +267,10 @@ typedef enum sms_interface {
  * valid ({q, v, a, interface} leaves it 0).
  */
 typedef struct sms_target {
-    sms_real position;
-    sms_real velocity;
-    sms_real acceleration;
-    int interface;
+    sms_real position;         /**< position interface: where to arrive */
+    sms_real velocity;         /**< velocity at the target */
+    sms_real acceleration;     /**< acceleration at the target */
+    int interface;             /**< an ::sms_interface */
     sms_real minimum_duration; /**< [s], 0: as fast as the limits allow */
 } sms_target;
 
@@ -268,10 +285,12 @@ typedef struct sms_target {
  * | zeta    | [0, 1) |
  */
 typedef struct sms_generator_config {
-    double vmax, amax, jmax;
-    sms_profile profile;
-    double wn;   /**< 0: no mode to cancel */
-    double zeta;
+    double vmax;          /**< velocity bound, finite, > 0 */
+    double amax;          /**< acceleration bound, finite, > 0 */
+    double jmax;          /**< jerk bound, finite, > 0 */
+    sms_profile profile;  /**< shape of the transitions, and of the tuned stage */
+    double wn;            /**< 0: no mode to cancel; else [rad/s], finite, below pi/Ts */
+    double zeta;          /**< the mode's damping ratio, [0, 1) */
 } sms_generator_config;
 
 /**
@@ -379,8 +398,8 @@ typedef struct sms_generator_config {
  * 2^52 samples are dropped (docs/sampled-limits.md).
  */
 typedef struct sms_generator {
-    double Ts;
-    double vmax;
+    double Ts;            /**< sample period [s] */
+    double vmax;          /**< velocity bound as given */
     int shape;            /**< the plan's transitions: 0 linear ramps, 1 half-cosine */
     double stage_T;       /**< length of the tuned stage [s] (0: no mode) */
     size_t stage_length;  /**< its taps L: the output rests L samples after the plan (0: none) */
@@ -404,7 +423,9 @@ typedef struct sms_generator {
                                cleared when the target changes, by reset and set_state */
     size_t dropped;       /**< targets dropped since init or the last reset (read-only; not part
                                of the saved state: a diagnostic count) */
-    sms_real plan_q, plan_v, plan_a; /**< state the running plan started from */
+    sms_real plan_q;      /**< position the running plan started from */
+    sms_real plan_v;      /**< velocity it started from */
+    sms_real plan_a;      /**< acceleration it started from */
     sms_plan plan;        /**< the running plan */
     size_t k;             /**< samples since the plan's first sample */
 } sms_generator;
@@ -457,6 +478,8 @@ typedef struct sms_generator_reach_info {
  * @param reach  out (may be NULL): the move, and on ::SMS_ERR_LIMIT the first quantity out
  *               of range with its value and bound.
  * @return ::SMS_OK, ::SMS_ERR_NULL (config), ::SMS_ERR_SAMPLE_PERIOD, ::SMS_ERR_LIMIT.
+ * @param config the limits and the profile
+ * @param Ts     sample period [s], finite, > 0
  */
 SMS_API sms_status sms_generator_reach(const sms_generator_config *config, double Ts,
                                        sms_generator_reach_info *reach);
@@ -468,23 +491,44 @@ SMS_API sms_status sms_generator_reach(const sms_generator_config *config, doubl
  *         says which quantity), ::SMS_ERR_KIND
  *         (profile), ::SMS_ERR_WN (wn < 0, NaN/Inf, or 0 with DAMPED), ::SMS_ERR_ZETA,
  *         ::SMS_ERR_ABOVE_NYQUIST (wn >= pi/Ts), ::SMS_ERR_DURATION_BELOW_TS (the tuned
- *         stage shorter than a sample), ::SMS_ERR_TOO_LONG (the tuned stage too long). */
+ *         stage shorter than a sample), ::SMS_ERR_TOO_LONG (the tuned stage too long).
+ * @param config the limits and the optional mode (ranges in ::sms_generator_config)
+ * @param Ts     sample period [s], finite, > 0
+ * @param n_reals receives 4 M (0 without a mode)
+ */
 SMS_API sms_status sms_generator_buffer_size(const sms_generator_config *config, double Ts,
                                              size_t *n_reals);
 /** @brief Validate, design the tuned stage if any; the generator rests at 0.
- * @return as sms_generator_buffer_size(), plus ::SMS_ERR_BUFFER_TOO_SMALL. Untouched on error. */
+ * @return as sms_generator_buffer_size(), plus ::SMS_ERR_BUFFER_TOO_SMALL. Untouched on error.
+ * @param g      instance to fill; untouched on error
+ * @param config the limits and the optional mode
+ * @param Ts     sample period [s], finite, > 0
+ * @param buffer the tuned stage's rings, kept by g (NULL allowed without a mode)
+ * @param n_reals reals in buffer, >= sms_generator_buffer_size()
+ */
 SMS_API sms_status sms_generator_init(sms_generator *g, const sms_generator_config *config,
                                       double Ts, sms_real *buffer, size_t n_reals);
-/** @brief Rest at `position` (target, plan and stage all there). O(M). */
+/** @brief Rest at `position` (target, plan and stage all there). O(M).
+ * @param g      the generator, built by sms_generator_init()
+ * @param position finite
+ */
 SMS_API void sms_generator_reset(sms_generator *g, sms_real position);
 /**
  * @brief Advance one sample with the current target (the staircase value) and write
  * out[0..3] = q, q', q'', q''' at this instant. A non-finite target is ignored (the previous
  * target is kept), so the output stays bounded.
+ * @param g      the generator, built by sms_generator_init()
+ * @param target the target position of this sample
+ * @param out    receives q, v, a, j
  */
 SMS_API void sms_generator_step(sms_generator *g, sms_real target, sms_real out[4]);
 /** @brief n steps: targets[0..n-1] in, out[4 i .. 4 i + 3] = q, v, a, j of step i.
- * Equal, bit for bit, to n calls of sms_generator_step() and to any split into blocks. */
+ * Equal, bit for bit, to n calls of sms_generator_step() and to any split into blocks.
+ * @param g      the generator, built by sms_generator_init()
+ * @param targets n target positions
+ * @param n      number of samples, any
+ * @param out    receives 4 n values
+ */
 SMS_API void sms_generator_process(sms_generator *g, const sms_real *targets, size_t n,
                                    sms_real *out);
 /**
@@ -500,6 +544,9 @@ SMS_API void sms_generator_process(sms_generator *g, const sms_real *targets, si
  * in their absorbed state (sms_smoother_settle(), O(M) writes); otherwise the plan index and
  * the stages' phase jump to the last 2M + 2 samples, which are stepped.
  * @param n  steps (0: nothing changes, out untouched)
+ * @param g      the generator, built by sms_generator_init()
+ * @param target the held target position
+ * @param out    receives q, v, a, j of the last step
  */
 SMS_API void sms_generator_hold(sms_generator *g, sms_real target, uint64_t n, sms_real out[4]);
 
@@ -511,11 +558,19 @@ SMS_API void sms_generator_hold(sms_generator *g, sms_real target, uint64_t n, s
  *         of the trigonometric profile); ::SMS_ERR_TARGET_ACCELERATION (not finite,
  *         |a| > amax, v - a|a|/(2 jmax) or v + a|a|/(2 jmax) beyond +-vmax, or not 0 for
  *         the trigonometric profile). The limits are compared as ::sms_real holds them.
+ * @param g      the generator (read only)
+ * @param target the target to check
  */
 SMS_API sms_status sms_generator_check_target(const sms_generator *g, const sms_target *target);
 /** @brief sms_generator_check_target() of n targets: ::SMS_OK, or the status of the first
  * refused one and its index in *index (n when all pass; index may be NULL). O(n), writes
- * nothing else. ::SMS_ERR_NULL when g is NULL, or targets is NULL with n > 0. */
+ * nothing else. ::SMS_ERR_NULL when g is NULL, or targets is NULL with n > 0.
+ * @param g      the generator (read only)
+ * @param targets n targets
+ * @param n      how many
+ * @param index  receives the index of the first refused target, or n (may be NULL)
+ * @return ::SMS_OK, ::SMS_ERR_NULL or the first refused target's status
+ */
 SMS_API sms_status sms_generator_check_targets(const sms_generator *g, const sms_target *targets,
                                                size_t n, size_t *index);
 /**
@@ -541,15 +596,28 @@ SMS_API sms_status sms_generator_check_targets(const sms_generator *g, const sms
  * targets (docs/sampled-limits.md). An invalid target (sms_generator_check_target()) is
  * ignored, the previous one kept; a valid one whose motion cannot be represented is dropped
  * (`refused`, `dropped`), as for sms_generator_step().
+ * @param g      the generator, built by sms_generator_init()
+ * @param target the target of this sample, not NULL (an invalid one is ignored, see above)
+ * @param out    receives q, v, a, j
  */
 SMS_API void sms_generator_step_target(sms_generator *g, const sms_target *target,
                                        sms_real out[4]);
 /** @brief n steps: targets[0..n-1] in, out[4 i .. 4 i + 3] = q, v, a, j of step i. Equal,
- * bit for bit, to n calls of sms_generator_step_target() and to any split into blocks. */
+ * bit for bit, to n calls of sms_generator_step_target() and to any split into blocks.
+ * @param g      the generator, built by sms_generator_init()
+ * @param targets n targets
+ * @param n      number of samples, any
+ * @param out    receives 4 n values
+ */
 SMS_API void sms_generator_process_targets(sms_generator *g, const sms_target *targets,
                                            size_t n, sms_real *out);
 /** @brief sms_generator_hold() with any target: n calls of sms_generator_step_target(), bit
- * for bit, at a cost bounded whatever n. */
+ * for bit, at a cost bounded whatever n.
+ * @param g      the generator, built by sms_generator_init()
+ * @param target the held target
+ * @param n      steps (0: nothing changes, out untouched)
+ * @param out    receives q, v, a, j of the last step
+ */
 SMS_API void sms_generator_hold_target(sms_generator *g, const sms_target *target, uint64_t n,
                                        sms_real out[4]);
 /**
@@ -562,13 +630,25 @@ SMS_API void sms_generator_hold_target(sms_generator *g, const sms_target *targe
  *         plan can start there); a status of sms_generator_check_target() for `target`;
  *         ::SMS_ERR_TOO_LONG (the motion to the target cannot be represented). Each bound
  *         holds to ::SMS_LIMIT_RTOL (a state the generator reported is always accepted).
- *         Nothing is changed on error. */
+ *         Nothing is changed on error.
+ * @param g      the generator, built by sms_generator_init(); untouched on error
+ * @param q      position now
+ * @param v      velocity now
+ * @param a      acceleration now
+ * @param target where to go from there (NULL: a stop)
+ */
 SMS_API sms_status sms_generator_start(sms_generator *g, sms_real q, sms_real v, sms_real a,
                                        const sms_target *target);
 /** @brief Samples from the last one output until the one on which the plan reaches its
- * target state (0 once reached; a velocity target: its velocity and acceleration). */
+ * target state (0 once reached; a velocity target: its velocity and acceleration).
+ * @param g      the generator (read only)
+ * @return samples, 0 once the target state is reached
+ */
 SMS_API uint64_t sms_generator_arrival(const sms_generator *g);
-/** @brief Length of the tuned stage [s]: the output lags the plan by it (0 without a mode). */
+/** @brief Length of the tuned stage [s]: the output lags the plan by it (0 without a mode).
+ * @param g      the generator (read only)
+ * @return the length [s], >= 0
+ */
 SMS_API double sms_generator_tail_duration(const sms_generator *g);
 /** @brief Number of doubles sms_generator_get_state() writes:
  * ::SMS_GENERATOR_IDENTITY_COUNT + 12 without a mode (the configuration identity, then the
@@ -577,9 +657,15 @@ SMS_API double sms_generator_tail_duration(const sms_generator *g);
  * the running plan and the samples since it; loading re-plans from these, so a saved state
  * can also move the generator to any sample of its plan), and with a mode 1 more (the quiet
  * samples) plus the four stage states (sms_smoother_state_count() each, every one with its
- * own stage identity). */
+ * own stage identity).
+ * @param g      the generator (read only)
+ * @return the count
+ */
 SMS_API size_t sms_generator_state_count(const sms_generator *g);
-/** @brief Write the state (sms_generator_state_count() doubles, layout above) to dst. */
+/** @brief Write the state (sms_generator_state_count() doubles, layout above) to dst.
+ * @param g      the generator (read only)
+ * @param dst    sms_generator_state_count() doubles
+ */
 SMS_API void sms_generator_get_state(const sms_generator *g, double *dst);
 /** @brief Restore a saved state.
  * @return ::SMS_OK; ::SMS_ERR_NULL; ::SMS_ERR_STATE_FORMAT .. ::SMS_ERR_STATE_ZETA (see
@@ -587,7 +673,11 @@ SMS_API void sms_generator_get_state(const sms_generator *g, double *dst);
  *         first, whatever n); ::SMS_ERR_STATE if n differs or a field is invalid (non-finite,
  *         beyond the limits, a target sms_generator_check_target() refuses or not in
  *         canonical form, a count out of range, a plan the generator cannot form). Nothing
- *         is written on error. */
+ *         is written on error.
+ * @param g      the generator, built by sms_generator_init(); untouched on error
+ * @param src    the saved state
+ * @param n      its length in doubles, sms_generator_state_count()
+ */
 SMS_API sms_status sms_generator_set_state(sms_generator *g, const double *src, size_t n);
 /** @brief What sms_generator_set_state() would return, writing nothing.
  *
@@ -596,16 +686,26 @@ SMS_API sms_status sms_generator_set_state(sms_generator *g, const double *src, 
  * |v + a|a|/(2 J)| <= vmax (1 + ::SMS_LIMIT_RTOL), J the shape's mean jerk (jmax, or (2/pi)
  * jmax for half-cosine transitions), the limits as ::sms_real: the tolerance of the reported
  * values, so a restored state is one the generator could have reached itself (its own saved
- * states stay within 15 u, tests/c/test_generator.c) and reports nothing beyond it. */
+ * states stay within 15 u, tests/c/test_generator.c) and reports nothing beyond it.
+ * @param g      the generator (read only)
+ * @param src    the saved state
+ * @param n      its length in doubles
+ * @return what sms_generator_set_state() would return
+ */
 SMS_API sms_status sms_generator_check_state(const sms_generator *g, const double *src, size_t n);
-/** @brief Point a copied generator at a buffer holding the same stage rings. */
+/** @brief Point a copied generator at a buffer holding the same stage rings.
+ * @param g      the copied generator
+ * @param buffer the copy of its buffer
+ */
 SMS_API void sms_generator_rebind(sms_generator *g, sms_real *buffer);
 
 /* ------------------------------------------------------------------------------------------ */
 /* B-spline interpolating filters                                                              */
 /* ------------------------------------------------------------------------------------------ */
 
+/** @brief Highest B-spline degree p. */
 #define SMS_BSPLINE_MAX_DEGREE 7
+/** @brief Most axes of one B-spline filter. */
 #define SMS_BSPLINE_MAX_AXES 3
 
 /**
@@ -642,11 +742,11 @@ typedef struct sms_bspline {
     unsigned degree;       /**< p, 1 .. ::SMS_BSPLINE_MAX_DEGREE */
     size_t n_axes;         /**< 1 .. ::SMS_BSPLINE_MAX_AXES */
     size_t N;              /**< knot spacing in samples, N = round(T/Ts) >= 1 */
-    double Ts;
+    double Ts;             /**< sample period [s] */
     size_t k0;             /**< pass-through offset (see above) */
     long m_first;          /**< first m with c_m != 0 (<= 0) */
     size_t n_coeff;        /**< number of c_m stored */
-    double coeff[SMS_BSPLINE_MAX_DEGREE + 2];
+    double coeff[SMS_BSPLINE_MAX_DEGREE + 2]; /**< c_m, m = m_first .. m_first + n_coeff - 1 */
     sms_smoother stages[SMS_BSPLINE_MAX_AXES * SMS_BSPLINE_MAX_DEGREE]; /**< rectangular, axis a:
                                                                          [a p, a p + p) */
     double identity[SMS_BSPLINE_IDENTITY_COUNT]; /**< configuration it was built for */
@@ -654,51 +754,105 @@ typedef struct sms_bspline {
 
 /** @brief Reals needed: n_axes p times one rectangular stage of N samples.
  * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_ORDER (degree or n_axes out of range),
- *         ::SMS_ERR_SAMPLE_PERIOD, ::SMS_ERR_DURATION, ::SMS_ERR_DURATION_BELOW_TS, ::SMS_ERR_TOO_LONG. */
+ *         ::SMS_ERR_SAMPLE_PERIOD, ::SMS_ERR_DURATION, ::SMS_ERR_DURATION_BELOW_TS, ::SMS_ERR_TOO_LONG.
+ * @param degree  p, 1 .. ::SMS_BSPLINE_MAX_DEGREE
+ * @param n_axes  1 .. ::SMS_BSPLINE_MAX_AXES
+ * @param T       knot spacing [s], finite, >= Ts (the rule of config.h)
+ * @param Ts      sample period [s], finite, > 0
+ * @param n_reals receives n_axes p N
+ */
 SMS_API sms_status sms_bspline_buffer_size(unsigned degree, size_t n_axes, double T, double Ts,
                                            size_t *n_reals);
 /** @brief Build the chains (knot spacing N = round(T/Ts) samples) at rest at 0 and compute
- * c_m. Same statuses as sms_bspline_buffer_size() plus ::SMS_ERR_BUFFER_TOO_SMALL. */
+ * c_m. Same statuses as sms_bspline_buffer_size() plus ::SMS_ERR_BUFFER_TOO_SMALL.
+ * @param b       instance to fill; untouched on error
+ * @param degree  p, 1 .. ::SMS_BSPLINE_MAX_DEGREE
+ * @param n_axes  1 .. ::SMS_BSPLINE_MAX_AXES
+ * @param T       knot spacing [s], finite, >= Ts
+ * @param Ts      sample period [s], finite, > 0
+ * @param buffer  the stages' delay lines, kept by b
+ * @param n_reals reals in buffer, >= sms_bspline_buffer_size()
+ * @return as sms_bspline_buffer_size(), or ::SMS_ERR_BUFFER_TOO_SMALL
+ */
 SMS_API sms_status sms_bspline_init(sms_bspline *b, unsigned degree, size_t n_axes, double T,
                                     double Ts, sms_real *buffer, size_t n_reals);
-/** @brief Rest every axis at rest[axis] (n_axes values). */
+/** @brief Rest every axis at rest[axis] (n_axes values).
+ * @param b      the B-spline filter, built by sms_bspline_init()
+ * @param rest   n_axes finite values
+ */
 SMS_API void sms_bspline_reset(sms_bspline *b, const sms_real *rest);
-/** @brief One sample: in[axis] (the held control point) -> out[axis]; in == out allowed. */
+/** @brief One sample: in[axis] (the held control point) -> out[axis]; in == out allowed.
+ * @param b      the B-spline filter, built by sms_bspline_init()
+ * @param in     n_axes inputs
+ * @param out    receives n_axes outputs; may be in itself
+ */
 SMS_API void sms_bspline_step(sms_bspline *b, const sms_real *in, sms_real *out);
-/** @brief Doubles of work memory sms_bspline_control_points() needs for n_via via-points. */
+/** @brief Doubles of work memory sms_bspline_control_points() needs for n_via via-points.
+ * @param b      the B-spline filter (read only)
+ * @param n_via  via-points
+ * @return the number of doubles
+ */
 SMS_API size_t sms_bspline_work_size(const sms_bspline *b, size_t n_via);
 /**
  * @brief Control points C (n_via rows of n_axes, row-major) from via-points Q (same layout).
  * @param work    sms_bspline_work_size() doubles of scratch memory
  * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_ORDER (n_via < 2), ::SMS_ERR_LIMIT (a
  *         non-finite via-point), ::SMS_ERR_BUFFER_TOO_SMALL (n_work). control untouched on error.
+ * @param b      the B-spline filter (read only)
+ * @param via    n_via rows of n_axes via-points, finite
+ * @param n_via  rows, >= 2
+ * @param control receives n_via rows of n_axes control points
+ * @param n_work doubles in work
  */
 SMS_API sms_status sms_bspline_control_points(const sms_bspline *b, const double *via,
                                               size_t n_via, double *control, double *work,
                                               size_t n_work);
 /** @brief Sample (after reset) at which the output passes through via-point i, 1 <= i <= M-2:
- * (i-1) N + k0. */
+ * (i-1) N + k0.
+ * @param b      the B-spline filter (read only)
+ * @param i      the via-point, 1 .. M-2
+ * @return the sample index
+ */
 SMS_API size_t sms_bspline_pass_sample(const sms_bspline *b, size_t i);
 /**
  * @brief Shortest knot spacing that puts the first zero of sinc^p at or below every mode:
  * T = N Ts with N = ceil(2 pi / (min wn Ts)) (T >= 2 pi / min wn, docs/filters.md).
  * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_ORDER (n = 0), ::SMS_ERR_WN, ::SMS_ERR_SAMPLE_PERIOD,
  *         ::SMS_ERR_TOO_LONG (T beyond double: a mode far below 1/Ts, or Ts near DBL_MAX).
+ * @param wn     n natural frequencies [rad/s], each finite and > 0
+ * @param n      modes, >= 1
+ * @param Ts     sample period [s], finite, > 0
+ * @param T      receives the knot spacing [s]
  */
 SMS_API sms_status sms_bspline_period_for_modes(const double *wn, size_t n, double Ts, double *T);
 /** @brief Doubles sms_bspline_get_state() writes: ::SMS_BSPLINE_IDENTITY_COUNT (the
  * configuration identity) + n_axes p stage states (sms_smoother_state_count() each, axis by
- * axis, stage by stage, every one with its own stage identity). */
+ * axis, stage by stage, every one with its own stage identity).
+ * @param b      the B-spline filter (read only)
+ * @return the count
+ */
 SMS_API size_t sms_bspline_state_count(const sms_bspline *b);
-/** @brief Write the state (sms_bspline_state_count() doubles, layout above) to dst. */
+/** @brief Write the state (sms_bspline_state_count() doubles, layout above) to dst.
+ * @param b      the B-spline filter (read only)
+ * @param dst    sms_bspline_state_count() doubles
+ */
 SMS_API void sms_bspline_get_state(const sms_bspline *b, double *dst);
 /** @brief Restore a saved state.
  * @return ::SMS_OK; ::SMS_ERR_NULL; ::SMS_ERR_STATE_FORMAT .. ::SMS_ERR_STATE_T (see
  *         ::SMS_BSPLINE_IDENTITY_COUNT) if it was saved by another configuration (checked
  *         first, whatever n); ::SMS_ERR_STATE if n differs or a stage state does not fit its
- *         stage. Nothing is written on error. */
+ *         stage. Nothing is written on error.
+ * @param b      the B-spline filter, built by sms_bspline_init(); untouched on error
+ * @param src    the saved state
+ * @param n      its length in doubles, sms_bspline_state_count()
+ */
 SMS_API sms_status sms_bspline_set_state(sms_bspline *b, const double *src, size_t n);
-/** @brief What sms_bspline_set_state() would return, writing nothing. */
+/** @brief What sms_bspline_set_state() would return, writing nothing.
+ * @param b      the B-spline filter (read only)
+ * @param src    the saved state
+ * @param n      its length in doubles
+ * @return what sms_bspline_set_state() would return
+ */
 SMS_API sms_status sms_bspline_check_state(const sms_bspline *b, const double *src, size_t n);
 
 #ifdef __cplusplus

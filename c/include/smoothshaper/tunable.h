@@ -75,7 +75,8 @@ typedef struct sms_tunable {
     /* Old notch: bounds on its remaining free response from its last two w's and its poles
      * (tunable.c). */
     int fade_real_poles;        /**< old notch: 1 for real poles, 0 complex */
-    sms_real fade_c1, fade_c2;  /**< complex: Re p, Im p; real: the two poles */
+    sms_real fade_c1;           /**< complex poles: Re p; real: the first pole */
+    sms_real fade_c2;           /**< complex poles: Im p; real: the second pole */
     sms_real fade_scale;        /**< complex: Im p; real: |p1 - p2| */
     sms_real fade_k;            /**< max over k >= 1 of k rho^(k-1), rho the pole radius */
 } sms_tunable;
@@ -93,7 +94,10 @@ typedef struct sms_tunable {
 SMS_API sms_status sms_tunable_slot_cells(const sms_stage_config *declared, size_t n_declared,
                                           double Ts, size_t *slot_cells);
 /** @brief Cells a tunable with slots of slot_cells needs (2 slot_cells).
- * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_TOO_LONG (overflows size_t). */
+ * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_TOO_LONG (overflows size_t).
+ * @param slot_cells cells of one slot, from sms_tunable_slot_cells()
+ * @param n_cells    receives 2 slot_cells
+ */
 SMS_API sms_status sms_tunable_memory_size(size_t slot_cells, size_t *n_cells);
 /**
  * @brief Validate and build a tunable stage at rest at 0, filtering with config.
@@ -105,6 +109,10 @@ SMS_API sms_status sms_tunable_memory_size(size_t slot_cells, size_t *n_cells);
  * @return ::SMS_OK, ::SMS_ERR_NULL, the config's status, ::SMS_ERR_BUFFER_TOO_SMALL (config
  *         needs more than slot_cells, or n_cells < slot_cells), ::SMS_ERR_TOO_LONG. Nothing
  *         is written on error.
+ * @param t           instance to fill; untouched on error
+ * @param config      the first filter (config.h for ranges)
+ * @param Ts          sample period [s], finite, > 0
+ * @param n_cells     length of memory in cells
  */
 SMS_API sms_status sms_tunable_init(sms_tunable *t, const sms_stage_config *config, double Ts,
                                     size_t slot_cells, sms_memory_cell *memory, size_t n_cells);
@@ -117,41 +125,77 @@ SMS_API sms_status sms_tunable_init(sms_tunable *t, const sms_stage_config *conf
  *         ::SMS_SHAPER_IMPULSES: a saved state names user-defined impulses by a checksum
  *         only, so a switch to or from them could not be restored; such a stage runs as
  *         built). On error nothing changes.
+ * @param t      the tunable, built by sms_tunable_init()
+ * @param config the new filter, at the tunable's Ts
  */
 SMS_API sms_status sms_tunable_retune(sms_tunable *t, const sms_stage_config *config);
-/** @brief 1 while a switch is in progress (a retune would be refused), else 0. O(1). */
+/** @brief 1 while a switch is in progress (a retune would be refused), else 0. O(1).
+ * @param t      the tunable (read only)
+ * @return 1 or 0
+ */
 SMS_API int sms_tunable_switching(const sms_tunable *t);
 /**
  * @brief Samples until the switch in progress ends (0 when none is): exactly the samples left
  * for a FIR old filter; for an old notch an upper bound from its poles and its current free
  * response (tunable.c), at most its exact settling bound (sms_notch_settle_bound()). Not for
  * the per-sample path (uses libm).
+ * @param t      the tunable (read only)
+ * @return samples, >= 0
  */
 SMS_API double sms_tunable_switch_left(const sms_tunable *t);
-/** @brief Put the stage at rest at rest (any switch in progress ends; the active filter stays). */
+/** @brief Put the stage at rest at rest (any switch in progress ends; the active filter stays).
+ * @param t      the tunable, built by sms_tunable_init()
+ * @param rest   finite, |rest| <= sms_tunable_input_max()
+ */
 SMS_API void sms_tunable_reset(sms_tunable *t, sms_real rest);
-/** @brief Filter one sample in place. */
+/** @brief Filter one sample in place.
+ * @param t      the tunable, built by sms_tunable_init()
+ * @param x      in: the input x[n], |x| <= sms_tunable_input_max(); out: the output y[n]
+ */
 SMS_API void sms_tunable_step(sms_tunable *t, sms_real *x);
 /** @brief Filter n samples; in == out allowed, other overlaps not. The same, bit for bit, as n
- * calls of sms_tunable_step() and any split into blocks. */
+ * calls of sms_tunable_step() and any split into blocks.
+ * @param t      the tunable, built by sms_tunable_init()
+ * @param in     n inputs
+ * @param out    n outputs; may be in itself
+ * @param n      number of samples, any
+ */
 SMS_API void sms_tunable_process(sms_tunable *t, const sms_real *in, sms_real *out, size_t n);
-/** @brief The active filter (the stage a retune last built). */
+/** @brief The active filter (the stage a retune last built).
+ * @param t      the tunable (read only)
+ * @return the active stage, inside t (valid while t is)
+ */
 SMS_API const sms_stage *sms_tunable_active(const sms_tunable *t);
 /** @brief The configuration of the active filter, rebuilt from its saved identity (config.h):
  * the fields its kind reads, the others at sms_stage_config_default(). For
- * ::SMS_SHAPER_IMPULSES (never retuned) only the kind: the caller holds the impulses. */
+ * ::SMS_SHAPER_IMPULSES (never retuned) only the kind: the caller holds the impulses.
+ * @param t      the tunable (read only)
+ * @return the configuration (by value)
+ */
 SMS_API sms_stage_config sms_tunable_config(const sms_tunable *t);
 /** @brief Input range: the smaller of the two filters' sms_stage_input_max() during a switch,
- * the active one's otherwise. O(1). */
+ * the active one's otherwise. O(1).
+ * @param t      the tunable (read only)
+ * @return the largest |input|, in (0, ::SMS_INPUT_MAX]
+ */
 SMS_API double sms_tunable_input_max(const sms_tunable *t);
 /** @brief Bound G on |y - r| / max |x - r| (sms_stage_gain_bound()): G_B of the active filter,
- * 1 + 2 G_A + 2 G_B during a switch (the two shares and their different rests). O(1). */
+ * 1 + 2 G_A + 2 G_B during a switch (the two shares and their different rests). O(1).
+ * @param t      the tunable (read only)
+ * @return G >= 1
+ */
 SMS_API double sms_tunable_gain_bound(const sms_tunable *t);
 /** @brief Doubles sms_tunable_get_state() writes: ::SMS_TUNABLE_STATE_HEAD, then the active
- * stage's state (sms_stage_state_count()), then the old one's during a switch. */
+ * stage's state (sms_stage_state_count()), then the old one's during a switch.
+ * @param t      the tunable (read only)
+ * @return the count
+ */
 SMS_API size_t sms_tunable_state_count(const sms_tunable *t);
 /** @brief Write the state: head, the stages' states (each opening with its configuration
- * identity, config.h). */
+ * identity, config.h).
+ * @param t      the tunable (read only)
+ * @param dst    sms_tunable_state_count() doubles
+ */
 SMS_API void sms_tunable_get_state(const sms_tunable *t, double *dst);
 /**
  * @brief Restore a state written by sms_tunable_get_state() of a tunable in the same
@@ -165,15 +209,28 @@ SMS_API void sms_tunable_get_state(const sms_tunable *t, double *dst);
  *         ::SMS_ERR_STATE_KIND, ::SMS_ERR_STATE_TS, ::SMS_ERR_STATE (another slot size or
  *         switch, n or a value that does not fit), or a stage's status naming the first field
  *         of its identity that differs.
+ * @param t      the tunable, built by sms_tunable_init(); untouched on error
+ * @param src    the saved state
+ * @param n      its length in doubles, sms_tunable_state_count() of the saving tunable
  */
 SMS_API sms_status sms_tunable_set_state(sms_tunable *t, const double *src, size_t n);
-/** @brief Would sms_tunable_set_state() accept this vector? Writes nothing. */
+/** @brief Would sms_tunable_set_state() accept this vector? Writes nothing.
+ * @param t      the tunable (read only)
+ * @param src    the saved state
+ * @param n      its length in doubles
+ * @return what sms_tunable_set_state() would return
+ */
 SMS_API sms_status sms_tunable_check_state(const sms_tunable *t, const double *src, size_t n);
 /** @brief Is src, besides what sms_tunable_check_state() accepts, a state a run with every
  * input |x| <= x_max could reach? The last input and the held h within x_max, and each
  * filter's part as sms_stage_check_state_range() with x_max (the old filter ran on h since the
  * switch). For loading states that come from outside. Writes nothing.
- * @return as sms_tunable_check_state(), or ::SMS_ERR_STATE. */
+ * @return as sms_tunable_check_state(), or ::SMS_ERR_STATE.
+ * @param t      the tunable (read only)
+ * @param src    the saved state
+ * @param n      its length in doubles
+ * @param x_max  the largest |input| of the run, at most sms_tunable_input_max()
+ */
 SMS_API sms_status sms_tunable_check_state_range(const sms_tunable *t, const double *src,
                                                  size_t n, double x_max);
 /**
@@ -187,64 +244,129 @@ SMS_API sms_status sms_tunable_check_state_range(const sms_tunable *t, const dou
  *         ::SMS_ERR_KIND: the stage is ::SMS_SHAPER_IMPULSES, whose identity holds a checksum
  *         of the impulses: build the tunable with the caller's own configuration, and
  *         sms_tunable_set_state() refuses the state if the impulses differ.
+ * @param src        the saved state of a tunable
+ * @param n          its length in doubles
  */
 SMS_API sms_status sms_tunable_state_configs(const double *src, size_t n, sms_stage_config *active,
                                              sms_stage_config *old, int *switching);
-/** @brief After copying the tunable and its memory (cell for cell), point the copy at it. */
+/** @brief After copying the tunable and its memory (cell for cell), point the copy at it.
+ * @param t      the copied tunable
+ * @param memory the copy of its memory
+ */
 SMS_API void sms_tunable_rebind(sms_tunable *t, sms_memory_cell *memory);
 
 /** @brief Retunable stages in series: y = T_{n-1}( ... T_0(x)), each an ::sms_tunable. The
  * caller owns the ::sms_tunable_chain, the array of n ::sms_tunable and one memory block, laid
  * out stage after stage (2 slot_cells[i] cells each). */
 typedef struct sms_tunable_chain {
-    sms_tunable *stages;
-    size_t n_stages;
-    sms_memory_cell *memory;
+    sms_tunable *stages;        /**< caller array of n_stages tunables, first applied first */
+    size_t n_stages;            /**< 1 .. ::SMS_CHAIN_MAX_STAGES */
+    sms_memory_cell *memory;    /**< the stages' memory, stage after stage */
     size_t memory_len;          /**< cells in use: sum of 2 slot_cells[i] */
 } sms_tunable_chain;
 
 /** @brief Cells a tunable chain with these slot sizes needs (sum of 2 slot_cells[i]).
  * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_ORDER (n = 0 or > ::SMS_CHAIN_MAX_STAGES),
- *         ::SMS_ERR_TOO_LONG. */
+ *         ::SMS_ERR_TOO_LONG.
+ * @param slot_cells n slot sizes, from sms_tunable_slot_cells()
+ * @param n          stages, 1 .. ::SMS_CHAIN_MAX_STAGES
+ * @param n_cells    receives the sum of 2 slot_cells[i]
+ */
 SMS_API sms_status sms_tunable_chain_memory_size(const size_t *slot_cells, size_t n,
                                                  size_t *n_cells);
 /** @brief Validate every config against its slot, then build all stages at rest at 0.
  * @return as sms_tunable_init() for the first failing stage, ::SMS_ERR_ORDER, or
  *         ::SMS_ERR_BUFFER_TOO_SMALL (n_cells below sms_tunable_chain_memory_size()). On error
- *         nothing is touched. */
+ *         nothing is touched.
+ * @param chain      instance to fill; untouched on error
+ * @param stages     caller array of n tunables
+ * @param configs    n first filters, first applied first
+ * @param slot_cells n slot sizes, from sms_tunable_slot_cells()
+ * @param n          stages, 1 .. ::SMS_CHAIN_MAX_STAGES
+ * @param Ts         sample period [s], finite, > 0
+ * @param memory     caller memory, kept by the chain
+ * @param n_cells    length of memory in cells, >= sms_tunable_chain_memory_size()
+ */
 SMS_API sms_status sms_tunable_chain_init(sms_tunable_chain *chain, sms_tunable *stages,
                                           const sms_stage_config *configs,
                                           const size_t *slot_cells, size_t n, double Ts,
                                           sms_memory_cell *memory, size_t n_cells);
-/** @brief sms_tunable_retune() of stage i (::SMS_ERR_ORDER if i >= n_stages). */
+/** @brief sms_tunable_retune() of stage i (::SMS_ERR_ORDER if i >= n_stages).
+ * @param chain  the tunable chain, built by sms_tunable_chain_init()
+ * @param i      the stage, 0 .. n_stages - 1
+ * @param config its new filter
+ * @return as sms_tunable_retune(), or ::SMS_ERR_ORDER
+ */
 SMS_API sms_status sms_tunable_chain_retune(sms_tunable_chain *chain, size_t i,
                                             const sms_stage_config *config);
+/** @brief Put every stage at rest at `rest` (sms_tunable_reset(): switches in progress end).
+ * @param chain  the tunable chain
+ * @param rest   finite, |rest| <= sms_tunable_chain_input_max() */
 SMS_API void sms_tunable_chain_reset(sms_tunable_chain *chain, sms_real rest);
+/** @brief Filter one sample in place through every stage in order.
+ * @param chain  the tunable chain
+ * @param x      in: the input x[n], |x| <= sms_tunable_chain_input_max(); out: y[n] */
 SMS_API void sms_tunable_chain_step(sms_tunable_chain *chain, sms_real *x);
-/** @brief Filter n samples through all stages; in == out allowed. */
+/** @brief Filter n samples through all stages; in == out allowed.
+ * @param chain  the tunable chain, built by sms_tunable_chain_init()
+ * @param in     n inputs
+ * @param out    n outputs; may be in itself
+ * @param n      number of samples, any
+ */
 SMS_API void sms_tunable_chain_process(sms_tunable_chain *chain, const sms_real *in,
                                        sms_real *out, size_t n);
-/** @brief 1 while any stage is switching. */
+/** @brief 1 while any stage is switching.
+ * @param chain  the tunable chain (read only)
+ * @return 1 or 0
+ */
 SMS_API int sms_tunable_chain_switching(const sms_tunable_chain *chain);
-/** @brief The FIR length of the active filters (sms_chain_length() of them). */
+/** @brief The FIR length of the active filters (sms_chain_length() of them).
+ * @param chain  the tunable chain (read only)
+ * @return the length [samples]
+ */
 SMS_API size_t sms_tunable_chain_length(const sms_tunable_chain *chain);
 /** @brief Input range: sms_chain_input_max() of the active filters when no stage is switching;
  * during a switch the same bound with the stages' sms_tunable_input_max() and
- * sms_tunable_gain_bound(). O(stages). */
+ * sms_tunable_gain_bound(). O(stages).
+ * @param chain  the tunable chain (read only)
+ * @return the largest |input|, in (0, ::SMS_INPUT_MAX]
+ */
 SMS_API double sms_tunable_chain_input_max(const sms_tunable_chain *chain);
 /** @brief sms_chain_hold() over the active filters: n samples of the constant x at a bounded
  * cost; a stage that is switching is first run sample by sample until its switch has ended.
- * Bit for bit n calls of sms_tunable_chain_step(). */
+ * Bit for bit n calls of sms_tunable_chain_step().
+ * @param chain  the tunable chain, built by sms_tunable_chain_init()
+ * @param x      the held input, finite, |x| <= sms_tunable_chain_input_max()
+ * @param n      samples (0: nothing changes)
+ * @param y      receives the last output (untouched when n = 0)
+ */
 SMS_API void sms_tunable_chain_hold(sms_tunable_chain *chain, sms_real x, uint64_t n,
                                     sms_real *y);
+/** @brief Doubles of the saved state: the sum of sms_tunable_state_count() over the stages
+ * (it grows while a stage is switching).
+ * @param chain  the tunable chain (read only)
+ * @return the count */
 SMS_API size_t sms_tunable_chain_state_count(const sms_tunable_chain *chain);
+/** @brief Write the state: each stage's sms_tunable_get_state() one after the other.
+ * @param chain  the tunable chain (read only)
+ * @param dst    sms_tunable_chain_state_count() doubles */
 SMS_API void sms_tunable_chain_get_state(const sms_tunable_chain *chain, double *dst);
 /** @brief Restore a state of sms_tunable_chain_get_state() (each stage as
- * sms_tunable_set_state(); all checked before any is written). */
+ * sms_tunable_set_state(); all checked before any is written).
+ * @param chain  the tunable chain, built by sms_tunable_chain_init(); untouched on error
+ * @param src    the saved state
+ * @param n      its length in doubles
+ * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_STATE (n does not fit), or the first failing
+ *         stage's status of sms_tunable_set_state()
+ */
 SMS_API sms_status sms_tunable_chain_set_state(sms_tunable_chain *chain, const double *src,
                                                size_t n);
 /** @brief After copying chain, stages and memory elsewhere, point the copy at them (the
- * stages' memory one after the other, n_slots slot_cells cells each). */
+ * stages' memory one after the other, n_slots slot_cells cells each).
+ * @param chain  the copied chain
+ * @param stages the copy of its tunables
+ * @param memory the copy of its memory
+ */
 SMS_API void sms_tunable_chain_rebind(sms_tunable_chain *chain, sms_tunable *stages,
                                       sms_memory_cell *memory);
 

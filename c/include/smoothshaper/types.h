@@ -160,6 +160,7 @@ typedef enum sms_kind {
                                    sms_stage_config::times */
 } sms_kind;
 
+/** @brief Number of ::sms_kind values (0 .. SMS_KIND_COUNT - 1). */
 #define SMS_KIND_COUNT 23
 
 /**
@@ -175,35 +176,48 @@ typedef enum sms_kind {
  * When T/Ts is an integer (to 1e-9 relative) all three give the same filter.
  */
 typedef enum sms_timing {
-    SMS_TIMING_EXACT = 0,
-    SMS_TIMING_PAPER = 1,
-    SMS_TIMING_BOUNDED = 2
+    SMS_TIMING_EXACT = 0,   /**< the continuous design, zero pinned exactly (default) */
+    SMS_TIMING_PAPER = 1,   /**< N = round(T/Ts) and the integer-N formulas of the papers */
+    SMS_TIMING_BOUNDED = 2  /**< exact zero, no tap above the peak density (rectangular,
+                                 exponential) */
 } sms_timing;
 
-/** @brief Human-readable one-line description of a status (static storage, never NULL). */
+/** @brief Human-readable one-line description of a status (static storage, never NULL).
+ * @param status any value; one outside ::sms_status gives "unknown status"
+ * @return a NUL-terminated string in static storage, never NULL
+ */
 SMS_API const char *sms_status_string(sms_status status);
 
-/** @brief Name of a kind ("rectangular", "harmonic", ..., "notch_matched"), or NULL if unknown. */
+/** @brief Name of a kind ("rectangular", "harmonic", ..., "notch_matched"), or NULL if unknown.
+ * @param kind any value
+ * @return the name in static storage (the Python and FMU spelling), or NULL when kind is not
+ *         an ::sms_kind
+ */
 SMS_API const char *sms_kind_name(sms_kind kind);
 
-/* Deprecated old names of the state functions. Every object now uses get_state/set_state,
- * the names of the Python API and of FMI's fmi2GetFMUstate/fmi2SetFMUstate. */
-#define sms_smoother_save_state sms_smoother_get_state
-#define sms_smoother_load_state sms_smoother_set_state
-#define sms_shaper_save_state sms_shaper_get_state
-#define sms_shaper_load_state sms_shaper_set_state
-#define sms_notch_save_state sms_notch_get_state
-#define sms_notch_load_state sms_notch_set_state
-#define sms_stage_save_state sms_stage_get_state
-#define sms_stage_load_state sms_stage_set_state
-#define sms_chain_save_state sms_chain_get_state
-#define sms_chain_load_state sms_chain_set_state
-#define sms_generator_save_state sms_generator_get_state
-#define sms_generator_load_state sms_generator_set_state
-#define sms_bspline_save_state sms_bspline_get_state
-#define sms_bspline_load_state sms_bspline_set_state
-#define sms_multi_generator_save_state sms_multi_generator_get_state
-#define sms_multi_generator_load_state sms_multi_generator_set_state
+/**
+ * @name Deprecated names of the state functions
+ * Every object now uses get_state/set_state, the names of the Python API and of FMI's
+ * fmi2GetFMUstate/fmi2SetFMUstate; the old save/load names remain as aliases.
+ * @{
+ */
+#define sms_smoother_save_state sms_smoother_get_state /**< deprecated: sms_smoother_get_state() */
+#define sms_smoother_load_state sms_smoother_set_state /**< deprecated: sms_smoother_set_state() */
+#define sms_shaper_save_state sms_shaper_get_state /**< deprecated: sms_shaper_get_state() */
+#define sms_shaper_load_state sms_shaper_set_state /**< deprecated: sms_shaper_set_state() */
+#define sms_notch_save_state sms_notch_get_state /**< deprecated: sms_notch_get_state() */
+#define sms_notch_load_state sms_notch_set_state /**< deprecated: sms_notch_set_state() */
+#define sms_stage_save_state sms_stage_get_state /**< deprecated: sms_stage_get_state() */
+#define sms_stage_load_state sms_stage_set_state /**< deprecated: sms_stage_set_state() */
+#define sms_chain_save_state sms_chain_get_state /**< deprecated: sms_chain_get_state() */
+#define sms_chain_load_state sms_chain_set_state /**< deprecated: sms_chain_set_state() */
+#define sms_generator_save_state sms_generator_get_state /**< deprecated: sms_generator_get_state() */
+#define sms_generator_load_state sms_generator_set_state /**< deprecated: sms_generator_set_state() */
+#define sms_bspline_save_state sms_bspline_get_state /**< deprecated: sms_bspline_get_state() */
+#define sms_bspline_load_state sms_bspline_set_state /**< deprecated: sms_bspline_set_state() */
+#define sms_multi_generator_save_state sms_multi_generator_get_state /**< deprecated: sms_multi_generator_get_state() */
+#define sms_multi_generator_load_state sms_multi_generator_set_state /**< deprecated: sms_multi_generator_set_state() */
+/** @} */
 
 #ifdef __cplusplus
 }
