@@ -3,7 +3,9 @@
  * @file multi_generator.h
  * @brief Online multi-axis generator: a staircase of target vectors in, q, v, a, j per axis out,
  * every axis within its own vmax, amax, jmax at every sample; phase-synchronised (straight
- * lines, common arrival) or independent axes.
+ * lines, common arrival) or independent axes from rest, or per-axis plans from any state to
+ * target states (position, velocity, acceleration) synchronised in time, time if necessary,
+ * or not at all (::sms_sync, sms_multi_generator_step_target()).
  *
  * The profile lives in the caller's ::sms_multi_generator; optional vibration stages per axis
  * live in caller memory sized by sms_multi_generator_memory(); nothing is allocated. The
@@ -74,17 +76,27 @@ typedef enum sms_sync {
  * every synchronised axis has a motion of exactly N samples; the other axes move time-optimally.
  */
 typedef struct sms_multi_target {
+    /** target position of axis i (units of axis i), finite; slots >= n_axes are not read */
     sms_real position[SMS_MULTI_MAX_AXES];
+    /** velocity of axis i at its arrival (units per s), \|v\| <= vmax[i]; 0 ends at rest */
     sms_real velocity[SMS_MULTI_MAX_AXES];
+    /** acceleration of axis i at its arrival (units per s^2), \|a\| <= amax[i], and the
+     * velocity it brings within +-vmax[i] (the table above) */
     sms_real acceleration[SMS_MULTI_MAX_AXES];
+    /** synchronisation of axis i for this target: 0 (the generator's mode), ::SMS_SYNC_TIME,
+     * ::SMS_SYNC_TIME_IF_NECESSARY or ::SMS_SYNC_NONE */
     int sync[SMS_MULTI_MAX_AXES];
-    sms_real minimum_duration; /**< [s] of the synchronised axes, 0: as fast as possible */
+    /** [s] of the synchronised axes, finite, >= 0, below 2^50 Ts; 0: as fast as possible
+     * (the other axes ignore it) */
+    sms_real minimum_duration;
 } sms_multi_target;
 
 /** @brief One axis's running plan in the per-axis plan modes (read-only). */
 typedef struct sms_multi_axis_plan {
     sms_plan plan;           /**< the single-axis plan to the target state (trajectory.h) */
-    sms_real q0, v0, a0;     /**< the state it started from */
+    sms_real q0;             /**< position it started from (its sample 0) */
+    sms_real v0;             /**< velocity it started from */
+    sms_real a0;             /**< acceleration it started from */
     sms_real tmin;           /**< the minimum duration it was planned with [s] (0: none) */
     size_t k;                /**< samples since its first sample */
 } sms_multi_axis_plan;
@@ -122,7 +134,7 @@ typedef struct sms_multi_generator_config {
     double vmax[SMS_MULTI_MAX_AXES];    /**< velocity bound of each axis, finite, > 0 */
     double amax[SMS_MULTI_MAX_AXES];    /**< acceleration bound of each axis, finite, > 0 */
     double jmax[SMS_MULTI_MAX_AXES];    /**< jerk bound of each axis, finite, > 0 */
-    sms_sync sync;                      /**< phase-synchronised or independent axes */
+    sms_sync sync;                      /**< how the axes are coordinated (::sms_sync) */
     const sms_stage_config *stages[SMS_MULTI_MAX_AXES]; /**< each axis's vibration stages */
     size_t n_stages[SMS_MULTI_MAX_AXES]; /**< how many, 0 .. ::SMS_CHAIN_MAX_STAGES */
     int align;                          /**< 1: delay every axis to the common lag */
@@ -367,8 +379,10 @@ SMS_API int sms_multi_generator_busy(const sms_multi_generator *g);
  * In ::SMS_SYNC_PHASE and ::SMS_SYNC_INDEPENDENT only positions at rest are planned: a
  * velocity or acceleration not 0 is refused with its status, a sync[i] not 0 with
  * ::SMS_ERR_TARGET_SYNC.
+ * @param g      the generator, built by sms_multi_generator_init() (read only)
+ * @param target the target vector: n_axes entries of each array are read
  * @param axis  out (may be NULL): the first refused axis (else 0)
- * @return ::SMS_OK; ::SMS_ERR_NULL; ::SMS_ERR_TARGET_POSITION, ::SMS_ERR_TARGET_VELOCITY,
+ * @return ::SMS_OK; ::SMS_ERR_NULL (g or target); ::SMS_ERR_TARGET_POSITION, ::SMS_ERR_TARGET_VELOCITY,
  *         ::SMS_ERR_TARGET_ACCELERATION (the ranges of ::sms_multi_target, the limits as
  *         ::sms_real holds them); ::SMS_ERR_TARGET_SYNC; ::SMS_ERR_DURATION
  *         (minimum_duration).
@@ -398,11 +412,20 @@ SMS_API sms_status sms_multi_generator_check_target(const sms_multi_generator *g
  *
  * ::SMS_SYNC_PHASE and ::SMS_SYNC_INDEPENDENT: the positions of a valid target, as
  * sms_multi_generator_step().
+ * @param g      the generator, built by sms_multi_generator_init()
+ * @param target the target state vector (n_axes entries of each array read); an invalid one
+ *               keeps the previous target
+ * @param out    receives 4 n_axes values
  */
 SMS_API void sms_multi_generator_step_target(sms_multi_generator *g,
                                              const sms_multi_target *target, sms_real *out);
 /** @brief n samples: targets[k] in, out[(k n_axes + i) 4 + m] out; equal, bit for bit, to n
- * calls of sms_multi_generator_step_target(). */
+ * calls of sms_multi_generator_step_target().
+ * @param g       the generator, built by sms_multi_generator_init()
+ * @param targets n target vectors, one per sample
+ * @param n       number of samples, any
+ * @param out     receives 4 n_axes n values
+ */
 SMS_API void sms_multi_generator_process_targets(sms_multi_generator *g,
                                                  const sms_multi_target *targets, size_t n,
                                                  sms_real *out);
@@ -412,6 +435,12 @@ SMS_API void sms_multi_generator_process_targets(sms_multi_generator *g,
  * sms_multi_generator_step_target() plans them; NULL: every axis brakes to rest at once,
  * time-optimally on its own, its target then the stop's position), and its next step is the
  * plans' next sample. The stages (if any) keep their history.
+ * @param g      the generator, built by sms_multi_generator_init(); unchanged on error
+ * @param q      n_axes positions, finite
+ * @param v      n_axes velocities, \|v[i]\| <= vmax[i]
+ * @param a      n_axes accelerations, \|a[i]\| <= amax[i] and \|v[i] + a[i]\|a[i]\|/(2 jmax[i])\|
+ *               <= vmax[i]
+ * @param target the target vector to plan to (the ranges of ::sms_multi_target), or NULL
  * @param axis  out (may be NULL): the refused axis (else 0)
  * @return ::SMS_OK; ::SMS_ERR_NULL; ::SMS_ERR_KIND (not a per-axis plan mode);
  *         ::SMS_ERR_TARGET_POSITION (q not finite); ::SMS_ERR_TARGET_VELOCITY (v not finite or
@@ -424,10 +453,17 @@ SMS_API sms_status sms_multi_generator_start(sms_multi_generator *g, const sms_r
                                              const sms_real *v, const sms_real *a,
                                              const sms_multi_target *target, size_t *axis);
 /** @brief Samples from the last one output until every axis has reached its target state
- * (0 once reached). O(n_axes). Per-axis plan modes; 0 in the others. */
+ * (0 once reached). O(n_axes). Per-axis plan modes; 0 in the others.
+ * @param g      the generator (read only)
+ * @return the samples left, the largest of sms_multi_generator_axis_arrival() over the axes
+ */
 SMS_API uint64_t sms_multi_generator_arrival(const sms_multi_generator *g);
 /** @brief The same for one axis: samples until it reaches its target state (0 once reached,
- * for an axis out of range, and in the modes without per-axis plans). */
+ * for an axis out of range, and in the modes without per-axis plans). O(1).
+ * @param g      the generator (read only)
+ * @param axis   the axis, 0 .. n_axes - 1
+ * @return the samples left
+ */
 SMS_API uint64_t sms_multi_generator_axis_arrival(const sms_multi_generator *g, size_t axis);
 /**
  * @brief Up to n steps with the same targets (target[0 .. n_axes-1]), at a cost bounded
