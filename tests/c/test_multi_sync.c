@@ -4,7 +4,8 @@
  * every reported v, a, j within its axis's limits (1 + SMS_LIMIT_RTOL), the synchronised axes
  * on one arrival sample, each axis exactly on its target state there; hold equals the steps
  * bit for bit; a saved state continues bit for bit; a bad target or start state is refused
- * naming the axis, the generator unchanged. */
+ * naming the axis, the generator unchanged; a stretched move keeps the limits in the
+ * sampled differences. */
 #include <math.h>
 #include <stdint.h>
 #include <string.h>
@@ -154,9 +155,76 @@ static void one_case(void)
     ++cases;
 }
 
+/* A stretched move to a moving target whose acceleration returns to zero 0.0017 samples
+ * after a sample, 1839 samples into the plan: in float that end is within the grid tolerance
+ * (8 eps of the sample count) and snapped onto the sample, whose position then was the goal
+ * rather than its point on the drift line, a jump of drift * 0.0017 Ts that put the third
+ * backward difference at 2.17 jmax. Every difference now keeps its bound after the floor of
+ * docs/sampled-limits.md (2^i 8 u S / Ts^i, S the largest |q| plus the move's scale). */
+static void stretched_move_keeps_the_jerk_in_the_differences(void)
+{
+    static const double V[2] = {0.4319680863857355, 5.84833177822312},
+                        A[2] = {5.616015635212631, 87.8727464092655},
+                        J[2] = {5.929965787131617, 12.117933221648622};
+    const double Ts = 0.014057337082789412,
+                 u = sizeof(sms_real) == sizeof(double) ? 0x1p-53 : 0x1p-24;
+    const sms_real q0[2] = {(sms_real)0.03224939574112045, (sms_real)-19.804138263775492},
+                   v0[2] = {0, (sms_real)-2.532102424271759},
+                   a0[2] = {0, (sms_real)0.4138591731718293};
+    sms_multi_generator_config c;
+    sms_multi_target t;
+    sms_real out[8];
+    static double q[2][2000];
+    size_t i, k, n, bad;
+    memset(&c, 0, sizeof c);
+    memset(&t, 0, sizeof t);
+    c.n_axes = 2;
+    c.sync = SMS_SYNC_TIME;
+    for (i = 0; i < 2; ++i) {
+        c.vmax[i] = V[i];
+        c.amax[i] = A[i];
+        c.jmax[i] = J[i];
+    }
+    t.position[0] = (sms_real)0.04190413410103918;
+    t.velocity[0] = (sms_real)-0.3030543708833958;
+    t.acceleration[0] = (sms_real)-0.1668615726286804;
+    t.position[1] = (sms_real)-106.03432531428084;
+    t.velocity[1] = (sms_real)3.1133096745369215;
+    t.acceleration[1] = (sms_real)-0.07723631053902125;
+    t.minimum_duration = (sms_real)25.81844465473689;
+    CHECK_STATUS(sms_multi_generator_init(&g, &c, Ts, NULL, 0, NULL, 0, &bad), SMS_OK);
+    CHECK_STATUS(sms_multi_generator_start(&g, q0, v0, a0, &t, &bad), SMS_OK);
+    n = (size_t)sms_multi_generator_arrival(&g) + 8;
+    CHECK(n > 1800 && n < 2000);
+    if (!(n < 2000))
+        return;
+    for (i = 0; i < 2; ++i)
+        q[i][0] = (double)q0[i];
+    for (k = 1; k < n; ++k) {
+        sms_multi_generator_step_target(&g, &t, out);
+        for (i = 0; i < 2; ++i)
+            q[i][k] = (double)out[4 * i];
+    }
+    for (i = 0; i < 2; ++i) {
+        double Q = 0, S;
+        for (k = 0; k < n; ++k)
+            Q = fmax(Q, fabs(q[i][k]));
+        S = Q + 3 * V[i] * (2 * V[i] / A[i] + A[i] / J[i]);
+        for (k = 3; k < n; ++k) {
+            const double d1 = q[i][k] - q[i][k - 1],
+                         d2 = d1 - (q[i][k - 1] - q[i][k - 2]),
+                         d3 = d2 - (q[i][k - 1] - 2 * q[i][k - 2] + q[i][k - 3]);
+            CHECK(fabs(d1) / Ts <= V[i] * (1 + 1e-9) + 2 * 8 * u * S / Ts);
+            CHECK(fabs(d2) / (Ts * Ts) <= A[i] * (1 + 1e-9) + 4 * 8 * u * S / (Ts * Ts));
+            CHECK(fabs(d3) / (Ts * Ts * Ts) <= J[i] * (1 + 1e-9) + 8 * 8 * u * S / (Ts * Ts * Ts));
+        }
+    }
+}
+
 int main(void)
 {
     int r;
+    stretched_move_keeps_the_jerk_in_the_differences();
     for (r = 0; r < 300; ++r)
         one_case();
     CHECK(cases > 200);

@@ -423,6 +423,13 @@ static void cosine_terms(sms_real x, sms_real out[4])
     out[3] = c4;
 }
 
+/* Is the breakpoint (n, f) the plan's arrival at its target state (which is landed on
+ * exactly, also when snapped onto a sample)? */
+static int on_arrival(const sms_plan *plan, size_t n, sms_real f)
+{
+    return n == plan->arrive && f == plan->arrive_f;
+}
+
 void sms_plan_eval(const sms_plan *plan, sms_real Ts, size_t k, sms_real out[4])
 {
     size_t i = plan->count;
@@ -433,10 +440,13 @@ void sms_plan_eval(const sms_plan *plan, sms_real Ts, size_t k, sms_real out[4])
         out[1] = plan->drift;
         out[2] = 0;
         out[3] = 0;
-        if (plan->drift != 0 && k > plan->end) {
+        if (plan->drift != 0 && (k > plan->end || !on_arrival(plan, plan->end, plan->end_f))) {
+            /* at the sample's own time, also on an end snapped onto it (t = -end_f): the
+             * goal there would be off the drift line by drift end_f, up to 8 eps of the
+             * plan's samples, a jump the third difference shows (float: 2 jmax). An end that
+             * is the arrival lands exactly on the target state instead. */
             t = (sms_real)(k - plan->end) * Ts - plan->end_f;
-            if (t > 0)
-                out[0] = plan->goal + plan->drift * t;
+            out[0] = plan->goal + plan->drift * t;
         }
         return;
     }
@@ -445,8 +455,19 @@ void sms_plan_eval(const sms_plan *plan, sms_real Ts, size_t k, sms_real out[4])
     --i;
     /* k >= n[i] here (the first segment starts at sample 0) */
     t = (sms_real)(k - plan->n[i]) * Ts - plan->f[i];
+    if (t < 0 && !on_arrival(plan, plan->n[i], plan->f[i])) {
+        /* a segment start snapped onto this sample (at most 8 eps of the plan's samples
+         * after it, -t): v, a, j are its right limit there, and q its value at the sample's
+         * own time, which the previous segment's continues to O(jmax t^3); its start value
+         * instead is a jump of v t, which the third difference shows (float: 2 jmax) */
+        out[0] = plan->p[i] + t * (plan->v[i] + t * plan->a[i] * (sms_real)0.5);
+        out[1] = plan->v[i];
+        out[2] = plan->a[i];
+        out[3] = plan->shape == SMS_PLAN_COSINE ? 0 : plan->j[i];
+        return;
+    }
     if (t < 0)
-        t = 0;
+        t = 0; /* the arrival snapped onto this sample: exactly the target state */
     j = plan->j[i];
     d = plan->d[i];
     if (plan->shape == SMS_PLAN_COSINE && j != 0) {
