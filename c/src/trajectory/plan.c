@@ -378,9 +378,8 @@ int sms_plan_velocity_shaped(sms_plan *out, const sms_plan_limits *lim, int shap
 
 /* Is sample k at or after the breakpoint (n, f)? A breakpoint within the rounding of its
  * sum (8 ulps of its sample count) of a sample instant is on it, so the sample takes the new
- * segment's values (the right limit) whatever side the rounded sum fell on; the new segment
- * is then evaluated at its start (t clamped to 0: q off by at most v times that rounding,
- * v and a exact, none beyond its bound). */
+ * segment's values (the right limit) whatever side the rounded sum fell on: v, a, j of its
+ * start (none beyond its bound) and q at the sample's own time (sms_plan_eval()). */
 static int at_or_after(size_t k, size_t n, sms_real f, sms_real Ts)
 {
     sms_real tol;
@@ -440,11 +439,12 @@ void sms_plan_eval(const sms_plan *plan, sms_real Ts, size_t k, sms_real out[4])
         out[1] = plan->drift;
         out[2] = 0;
         out[3] = 0;
-        if (plan->drift != 0 && (k > plan->end || !on_arrival(plan, plan->end, plan->end_f))) {
+        if (plan->drift != 0 &&
+            (k > plan->end || sms_plan_arrival_sample(plan, Ts) != k)) {
             /* at the sample's own time, also on an end snapped onto it (t = -end_f): the
              * goal there would be off the drift line by drift end_f, up to 8 eps of the
-             * plan's samples, a jump the third difference shows (float: 2 jmax). An end that
-             * is the arrival lands exactly on the target state instead. */
+             * plan's samples, a jump the third difference shows (float: 2 jmax). Where the
+             * arrival is snapped onto this sample too, it lands exactly on the goal. */
             t = (sms_real)(k - plan->end) * Ts - plan->end_f;
             out[0] = plan->goal + plan->drift * t;
         }
