@@ -15,8 +15,9 @@ from ..reference.shapers import _pole, impulses_unchecked
 
 __all__ = ["impulses", "zv_span"]
 
-#: Designs the tuning of one record visits are a few thousand.
-_SIZE = 8192
+#: The second ask follows the first within one design: a short memory is enough (a few
+#: thousand designs' arrays would be held for nothing).
+_SIZE = 64
 
 
 @lru_cache(maxsize=_SIZE)
