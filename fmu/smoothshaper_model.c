@@ -1078,6 +1078,10 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
     if (m->scheduled) {   /* its ring holds the chain's outputs; y its taps' sum of them */
         const size_t ring = sms_scheduled_state_count(&m->sch) - 5u;
         double taps = 0.0;
+        /* the scheduling input s it follows: an input, so within the range as u is */
+        if (!(fabs(src[off + 3]) <= x * slack))
+            return snprintf(msg, len, "the scheduled shaper's scheduling input s = %.17g is "
+                            "beyond the input range %.17g", src[off + 3], x), 1;
         for (j = 0; j < ring; ++j)
             if (!(fabs(src[off + 5 + j]) <= range * x * slack))
                 return snprintf(msg, len, "the scheduled shaper's delay line holds %.17g, beyond "

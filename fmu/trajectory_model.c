@@ -470,11 +470,20 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
     if (!(fabs(src[0]) <= position_range(m) * (1.0 + 0x1p-20)))
         return snprintf(msg, len, "its output q = %.17g is beyond the position range %.17g",
                         src[0], position_range(m)), 1;
-    for (i = 0; i < 3; ++i)   /* the plan's target, goal and start position */
-        if (!(fabs(plan[i]) <= position_range(m)))
+    for (i = 0; i < 3; ++i) {   /* the plan's target, goal and start position */
+        static const int at[3] = { SMS_GENERATOR_STATE_TARGET, SMS_GENERATOR_STATE_GOAL,
+                                   SMS_GENERATOR_STATE_Q };
+        if (!(fabs(plan[at[i]]) <= position_range(m)))
             return snprintf(msg, len, "its plan's %s %.17g is beyond the position range %.17g",
-                            i == 0 ? "target" : i == 1 ? "goal" : "start", plan[i],
+                            i == 0 ? "target" : i == 1 ? "goal" : "start", plan[at[i]],
                             position_range(m)), 1;
+    }
+    for (i = 0; i < 2; ++i) {   /* the minimum_duration of target and goal: an input's range */
+        const double d = plan[(i == 0 ? SMS_GENERATOR_STATE_TARGET : SMS_GENERATOR_STATE_GOAL) + 4];
+        if (!(fabs(d) <= SMS_INPUT_MAX))
+            return snprintf(msg, len, "its plan's %s minimum_duration %.17g is beyond the input "
+                            "range %.17g", i == 0 ? "target" : "goal", d, SMS_INPUT_MAX), 1;
+    }
     for (i = 1; i < 4; ++i)
         if (!(fabs(src[i]) <= limit[i] * (1.0 + SMS_LIMIT_RTOL))) {
             snprintf(msg, len, "its output %s = %.17g is beyond %smax = %.17g by more than the "

@@ -13,6 +13,7 @@
 #include <math.h>
 #include <time.h>
 #include "smoothshaper/smoothshaper.h"
+#include "compensated_sum.h"
 #include "smoother_fixtures.h"
 
 #ifdef SMS_USE_FLOAT
@@ -93,18 +94,18 @@ static void run(sms_kind kind, double T, double sigma, double total)
             naive_window = 0.0;
         }
         if (window_end >= 0.0) {
-            long double y = 0.0L; /* the reference's own rounding stays below the engine's */
+            compensated_sum y = { 0.0, 0.0 }; /* its own rounding stays below the engine's */
             double e;
             size_t idx = head;
             for (i = 0; i < L; ++i) {
-                y += (long double)taps[i] * recent[idx];
+                compensated_add_product(&y, taps[i], recent[idx]);
                 idx = idx == 0 ? L - 1 : idx - 1;
             }
-            e = (double)fabsl((long double)x - y);
+            e = fabs(((double)x - y.sum) - y.err);
             if (!(e <= worst_window))
                 worst_window = e;
-            if (naive && !((double)fabsl((long double)naive_y - y) <= naive_window))
-                naive_window = (double)fabsl((long double)naive_y - y);
+            if (naive && !(fabs((naive_y - y.sum) - y.err) <= naive_window))
+                naive_window = fabs((naive_y - y.sum) - y.err);
             if (n + 1.0 >= window_end || n + 1.0 >= total) {
                 if (worst_window > worst || worst_window != worst_window)
                     worst = worst_window;

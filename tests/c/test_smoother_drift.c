@@ -5,6 +5,7 @@
  * length. (tests/bench/drift_bench.c prints the figures for up to 1e9 samples.) */
 #include <float.h>
 #include "check.h"
+#include "compensated_sum.h"
 #include "smoother_fixtures.h"
 
 #ifdef SMS_USE_FLOAT
@@ -53,14 +54,14 @@ static void run_case(sms_kind kind, double T, double sigma)
         sms_smoother_step(&f, &x);
         if ((n >= WINDOW && n < 2 * WINDOW) || n >= RUN - WINDOW) {
             /* y[n] = sum_i h[i] x[n-i]; x[n-i] is at head - i (mod L). */
-            long double y = 0.0L; /* the reference's own rounding stays below the engine's */
+            compensated_sum y = { 0.0, 0.0 }; /* its own rounding stays below the engine's */
             double e;
             size_t idx = head;
             for (i = 0; i < L; ++i) {
-                y += (long double)taps[i] * recent[idx];
+                compensated_add_product(&y, taps[i], recent[idx]);
                 idx = idx == 0 ? L - 1 : idx - 1;
             }
-            e = (double)fabsl((long double)x - y);
+            e = fabs(((double)x - y.sum) - y.err);
             if (n < 2 * WINDOW && e > early)
                 early = e;
             if (n >= RUN - WINDOW && e > late)

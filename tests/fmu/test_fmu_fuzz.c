@@ -6,7 +6,9 @@
  * runs them under ASan and UBSan.
  * Unlike test_fmu_call_sequence.c, which walks the state machine with a few fixed values, the parameters here are drawn so that about half of the initialisations succeed
  * (random stage chains / limits, with NULL, NaN, Inf, huge, subnormal and negative values
- * mixed in), and every call is checked for:
+ * mixed in; SmoothShaper's draws include retune_max_delay, the scheduled shaper's table and
+ * its input s, and single retunes between steps; MultiAxisGenerator's include align), and
+ * every call is checked for:
  * - no crash, and no call longer than 250 ms (scaled under ASan or without optimisation, see
  *   CALL_LIMIT_S): the FMUs refuse states beyond FMU_MAX_REALS, and in one sequence in
  *   LARGE_EVERY (and one other draw in about 2000) the parameters ask for a state between a
@@ -50,6 +52,7 @@
 #include "ServoDrive_variables.h"
 #else
 #include "SmoothShaper_variables.h"
+#define FMU_TEST_SMOOTHSHAPER
 #endif
 
 /* No call may take longer than this (CPU time). Measured at the state limit in the release build
@@ -67,6 +70,12 @@
  * seen at a load of 28 on 2 cores, where 100 ms was the limit) does not fail the suite. */
 #define CALL_LIMIT_S (0.25 * SANITIZER_SLOWDOWN)
 #define MAX_SLOTS 3
+/* Operations drawn per call: SmoothShaper has one more (20: a single retune). */
+#ifdef FMU_TEST_SMOOTHSHAPER
+#define N_OPS 21u
+#else
+#define N_OPS 20u
+#endif
 /* Models without delay lines (their state is a few values in the model's struct): no large
  * states to draw. */
 #if defined(FMU_TEST_ELASTIC_PLANT) || defined(FMU_TEST_SERVO_DRIVE)
@@ -246,14 +255,15 @@ static fmi2ValueReference input_vr(void) { return MA_VR_TARGET(pick(MA_MAX_AXES)
 
 static void random_parameters(fmi2Component c)
 {
-    fmi2ValueReference ivr[2] = { MA_VR_AXES, MA_VR_SYNC };
-    fmi2Integer iv[2];
+    fmi2ValueReference ivr[3] = { MA_VR_AXES, MA_VR_SYNC, MA_VR_ALIGN };
+    fmi2Integer iv[3];
     fmi2ValueReference ts = MA_VR_TS;
     fmi2Real Ts = pick(6) ? pow(10.0, -4.0 + 2.0 * uniform()) : any_real(-4, 2);
     unsigned i, staged;
     iv[0] = pick(10) ? 1 + (fmi2Integer)pick(MA_MAX_AXES) : (fmi2Integer)pick(12) - 2;
     iv[1] = pick(10) ? (fmi2Integer)pick(2) : (fmi2Integer)pick(6) - 2;
-    fmi2SetInteger(c, ivr, 2, iv);
+    iv[2] = pick(20) ? (fmi2Integer)pick(2) : (fmi2Integer)pick(6) - 2;   /* align */
+    fmi2SetInteger(c, ivr, 3, iv);
     fmi2SetReal(c, &ts, 1, &Ts);
     for (i = 0; i < MA_MAX_AXES; ++i) {
         fmi2ValueReference vr[4] = { MA_VR_VMAX(i), MA_VR_AMAX(i), MA_VR_JMAX(i), MA_VR_Q0(i) };
@@ -267,6 +277,10 @@ static void random_parameters(fmi2Component c)
     /* Vibration stages (kind -1 = none) designed for random modes; or one rectangular stage
      * per axis in use whose delay lines (4 signals) share a large state. */
     drew_large = pick(LARGE_ODDS) == 0 || large_sequence;
+    if (drew_large && iv[2] != 0) {   /* the large draws' state is their stages' alone */
+        const fmi2Integer off = 0;
+        fmi2SetInteger(c, &ivr[2], 1, &off);
+    }
     staged = pick(2);   /* half the draws have no stages at all */
     for (i = 0; i < MA_MAX_AXES; ++i) {
         unsigned k;
@@ -395,14 +409,71 @@ static const fmi2ValueReference outputs[] = { SS_VR_Y };
 #define N_OUTPUTS 1
 #define TS_VR SS_VR_TS
 
-static fmi2ValueReference input_vr(void) { return SS_VR_U; }
+/* u, or the scheduled shaper's scheduling input s */
+static fmi2ValueReference input_vr(void) { return pick(4) ? SS_VR_U : SS_VR_S; }
+
+/* The scheduled shaper (schedule.*): none in about half the draws, else a kind, order and
+ * update period, and a table of rows with increasing values (sometimes not: refused) and
+ * modes of any damping; invalid codes and counts mixed in. */
+static void random_schedule(fmi2Component c, double Ts)
+{
+    const fmi2ValueReference ivr[4] = { SS_VR_SCHED_KIND, SS_VR_SCHED_ORDER, SS_VR_SCHED_EVERY,
+                                        SS_VR_SCHED_POINTS };
+    fmi2Integer iv[4];
+    unsigned j;
+    double value = -5.0;
+    iv[0] = pick(2) ? -1 : pick(10) ? (fmi2Integer)pick(4) : (fmi2Integer)pick(9) - 3;
+    iv[1] = pick(8) ? 1 + (fmi2Integer)pick(3) : (fmi2Integer)pick(12) - 2;
+    iv[2] = pick(8) ? 1 + (fmi2Integer)pick(4) : (fmi2Integer)pick(6) - 3;
+    iv[3] = pick(8) ? 1 + (fmi2Integer)pick(SS_SCHEDULE_POINTS)
+                    : (fmi2Integer)pick(SS_SCHEDULE_POINTS + 4) - 2;
+    fmi2SetInteger(c, ivr, 4, iv);
+    for (j = 0; j < SS_SCHEDULE_POINTS; ++j) {
+        const fmi2ValueReference rvr[3] = { SS_SCHEDULE_BASE + 3u * j, SS_SCHEDULE_BASE + 3u * j + 1u,
+                                            SS_SCHEDULE_BASE + 3u * j + 2u };
+        fmi2Real rv[3];
+        value += pick(12) ? 0.1 + 3.0 * uniform() : -any_real(-3, 1);
+        rv[0] = pick(30) ? value : any_real(-3, 3);
+        /* modes below Nyquist of plausible Ts (the ring grows with 1/wn: kept small) */
+        rv[1] = pick(10) ? pow(10.0, 1.0 + 2.0 * uniform()) / (Ts > 1e-3 ? Ts / 1e-3 : 1.0)
+                         : any_real(-1, 5);
+        rv[2] = any_zeta();
+        fmi2SetReal(c, rvr, 3, rv);
+    }
+}
+
+/* A retune between steps: one tunable field of one stage moved by a factor around 1 (often
+ * accepted when the stages are retunable), or set to any value (mostly refused). */
+static fmi2Status retune_one(fmi2Component c)
+{
+    static const unsigned fields[7] = { SS_FIELD_T, SS_FIELD_SIGMA, SS_FIELD_WN, SS_FIELD_ZETA,
+                                        SS_FIELD_TOLERANCE, SS_FIELD_NOTCH_POLE_ZETA,
+                                        SS_FIELD_DURATION };
+    const fmi2ValueReference base = SS_STAGE_BASE + SS_STAGE_STRIDE * pick(SS_MAX_STAGES);
+    fmi2ValueReference vr;
+    fmi2Real v = 0.0;
+    if (pick(5) == 0) {   /* an Integer one: k or order */
+        fmi2Integer iv = pick(4) ? 1 + (fmi2Integer)pick(3) : (fmi2Integer)pick(6) - 2;
+        vr = base + (pick(2) ? SS_FIELD_K : SS_FIELD_ORDER);
+        return fmi2SetInteger(c, &vr, 1, &iv);
+    }
+    vr = base + fields[pick(7)];
+    if (fmi2GetReal(c, &vr, 1, &v) != fmi2OK)
+        return fmi2Error;
+    v = pick(6) ? v * (0.5 + uniform()) : any_real(-3, 3) * (pick(2) ? 1.0 : -1.0);
+    return fmi2SetReal(c, &vr, 1, &v);
+}
 
 static void random_parameters(fmi2Component c)
 {
-    fmi2ValueReference ts = SS_VR_TS;
+    fmi2ValueReference ts = SS_VR_TS, rmd = SS_VR_RETUNE_MAX_DELAY;
     double Ts = pick(6) ? pow(10.0, -4.0 + 2.0 * uniform()) : any_real(-4, 2);
+    /* retunable stages in about half the draws: memory for stages lasting 2 .. 300 Ts */
+    double retune = pick(2) ? 0.0 : pick(8) ? Ts * (2.0 + 300.0 * uniform()) : any_real(-3, 3);
     unsigned k, n_active = pick(4);
     fmi2SetReal(c, &ts, 1, &Ts);
+    fmi2SetReal(c, &rmd, 1, &retune);
+    random_schedule(c, Ts);
     for (k = 0; k < SS_MAX_STAGES; ++k) {
         fmi2ValueReference base = SS_STAGE_BASE + SS_STAGE_STRIDE * k;
         fmi2ValueReference ivr[5] = { base + SS_FIELD_KIND, base + SS_FIELD_DESIGN,
@@ -434,6 +505,11 @@ static void random_parameters(fmi2Component c)
     }
     drew_large = pick(LARGE_ODDS) == 0 || large_sequence;
     if (drew_large) {   /* one moving average or harmonic smoother of a large state */
+        const fmi2ValueReference kind_vr = SS_VR_SCHED_KIND;
+        const fmi2Integer no_schedule = -1;
+        retune = 0.0;   /* one slot of it, no ring: the state is that smoother's */
+        fmi2SetReal(c, &rmd, 1, &retune);
+        fmi2SetInteger(c, &kind_vr, 1, &no_schedule);
         for (k = 0; k < SS_MAX_STAGES; ++k) {
             fmi2ValueReference base = SS_STAGE_BASE + SS_STAGE_STRIDE * k;
             fmi2ValueReference ivr[5] = { base + SS_FIELD_KIND, base + SS_FIELD_DESIGN,
@@ -548,7 +624,7 @@ static void run_sequence(unsigned length)
     for (i = 0; i < length; ++i) {
         unsigned char *before = NULL, *after = NULL;
         size_t n_before = 0, n_after;
-        unsigned op = pick(20);
+        unsigned op = pick(N_OPS);
         fmi2Status st = fmi2OK;
         double t0, dt;
         int compare = pick(8) == 0;
@@ -662,6 +738,9 @@ static void run_sequence(unsigned length)
         case 15: st = fmi2FreeFMUstate(c, slot); break;
         case 16: st = fmi2Terminate(c); break;
         case 17: if (pick(4) == 0) { st = fmi2Reset(c); t = 0.0; } break;
+#ifdef FMU_TEST_SMOOTHSHAPER
+        case 20: st = retune_one(c); break;   /* SmoothShaper: a retune between steps */
+#endif
         case 18: { fmi2Real y[N_OUTPUTS];
             size_t k, ny = pick(8) ? N_OUTPUTS : 0;
             st = fmi2GetReal(c, outputs, ny, pick(20) ? y : NULL);

@@ -288,7 +288,8 @@ def test_a_mostly_clipped_record_is_reconstructed_and_said(tmp_path, capsys):
     assert res.recommended.stages[0].wn / TWO_PI == pytest.approx(0.05 * 1000 / TWO_PI, rel=0.1)
 
 
-_STATED = re.compile(r"remaining vibration of the plant (\S+) % \(\+-3 sd: (\S+) to (\S+) %"
+_STATED = re.compile(r"estimated remaining vibration of the plant (\S+) % \(\+-3 sd: (\S+) to "
+                     r"(\S+) %"
                      r"|  (\S+) \((\S+) \.\. (\S+)\)  ")
 
 

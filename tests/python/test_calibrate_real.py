@@ -98,11 +98,45 @@ def test_every_category_gets_a_pick_within_the_established_delay(tmp_path):
     assert all(d.win for d in clean), [d.line() for d in clean]
 
 
+#: The acceptance campaign's seeds: each perturbs every category's modes and draws its noise.
+CAMPAIGN_SEEDS = (0, 1, 2)
+
+
 @pytest.mark.long
-def test_campaign_win_rate_and_coverage(tmp_path):
-    """The acceptance campaign: 5 seeds of every category; win rate >= 80 %, coverage >= 95 %."""
-    wins, cover, _ = _campaign(tmp_path, range(5), fs=1600.0)
-    assert wins >= 0.8 and cover >= 0.95, (wins, cover)
+@pytest.mark.parametrize("fs", [800.0, 1600.0])
+def test_campaign_win_rate_and_coverage(tmp_path, fs):
+    """The acceptance campaign at each sample rate: every category over three seeds (36 draws,
+    about 4 min of CPU); wins >= 80 %, coverage >= 95 %, and the median width of the stated
+    ranges printed (a range wide enough to hold anything is no answer)."""
+    wins, cover, draws = _campaign(tmp_path, CAMPAIGN_SEEDS, fs=fs)
+    width = float(np.median([d.high - d.low for d in draws]))
+    print(f"{fs:g} Hz: wins {100 * wins:.0f} %, covered {100 * cover:.0f} %, median width of "
+          f"the stated ranges {width:.3g} percentage points")
+    assert wins >= 0.8 and cover >= 0.95, (wins, cover, [d.line() for d in draws
+                                                         if not (d.win and d.covered)])
+
+
+@pytest.mark.parametrize("seed", [0, 2])
+def test_a_weak_mode_on_a_larger_ones_tail_is_resolved(tmp_path, seed):
+    """The campaign's three modes (35, 56 and 94 Hz, the last with a hundredth of the energy):
+    the weak one never falls to half its peak on the 56 Hz mode's tail, so its half-power width
+    reached that mode and the fit went there (94 Hz was not found). Its window now ends at the
+    valleys either side. Every mode is found within a quarter of a bin, and each one's share of
+    the energy within its stated +-3 sd (the power law of a window is taken at its peak: carried
+    out to a third and three times the frequency it had moved the 35/56 Hz shares to 1 : 0.85
+    where the plant holds 1 : 0.53)."""
+    t, A, truth, _ = syn.category_record("three modes", seed, fs=800.0)
+    rec = calibrate.load(str(_write(tmp_path, "raw_data_x_rec.csv", t, A)))
+    name, signal, cols = calibrate._analyses(rec, "auto")[0]
+    res = calibrate.identify(rec, name, signal, cols)
+    assert len(res.modes) == 3, [(m.f_hz, m.zeta) for m in res.modes]
+    true_total = sum(w for _, _, w in truth)
+    total = sum(m.weight for m in res.modes)
+    for f, z, w in truth:
+        m = min(res.modes, key=lambda m: abs(m.f_hz - f))
+        assert abs(m.f_hz - f) <= 0.25 * res.resolution, (m.f_hz, f)
+        share, true_share = m.weight / total, w / true_total
+        assert abs(math.log(share / true_share)) <= 3 * m.weight_rsd, (f, share, true_share)
 
 
 def test_klipper_sweep_is_a_square_wave_rising_one_hz_a_second():

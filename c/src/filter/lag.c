@@ -2,51 +2,67 @@
 /* The lag (DC group delay, the impulse response's centroid) of stages and chains, from their
  * realised designs (align.h). */
 #include "smoothshaper/align.h"
+#include "core/double_double.h"
 #include "core/kind.h"
 #include "core/state_identity.h"
 #include "filter/identity_config.h"
 #include "filter/shaper_designs.h"
 #include "filter/smoother_design.h"
 
-/* S0 = sum_{i<n} q^i and S1 = sum_{i<n} i q^i of the complex q = (qr, qi), in O(log n) by
- * binary doubling (S1(2m) = S1(m) + q^m (S1(m) + m S0(m)), S0(2m) = S0(m)(1 + q^m)) and
- * single steps, in long double: no closed form's cancellation for q near 1. */
-static void moment_sums(long double qr, long double qi, size_t n, long double s0[2],
-                        long double s1[2])
+/* Complex double-double: re + j im. */
+typedef struct lag_cdd {
+    sms_dd re, im;
+} lag_cdd;
+
+static lag_cdd cdd_add(lag_cdd a, lag_cdd b)
 {
-    long double a0r = 0.0L, a0i = 0.0L, a1r = 0.0L, a1i = 0.0L, pr = 1.0L, pi_ = 0.0L;
+    a.re = sms_dd_add(a.re, b.re);
+    a.im = sms_dd_add(a.im, b.im);
+    return a;
+}
+
+static lag_cdd cdd_mul(lag_cdd a, lag_cdd b)
+{
+    lag_cdd r;
+    r.re = sms_dd_sub(sms_dd_mul(a.re, b.re), sms_dd_mul(a.im, b.im));
+    r.im = sms_dd_add(sms_dd_mul(a.re, b.im), sms_dd_mul(a.im, b.re));
+    return r;
+}
+
+static lag_cdd cdd_scale(lag_cdd a, double m)
+{
+    a.re = sms_dd_mul(a.re, sms_dd_of(m));
+    a.im = sms_dd_mul(a.im, sms_dd_of(m));
+    return a;
+}
+
+/* S0 = sum_{i<n} q^i and S1 = sum_{i<n} i q^i of the complex q, in O(log n) by binary
+ * doubling (S1(2m) = S1(m) + q^m (S1(m) + m S0(m)), S0(2m) = S0(m)(1 + q^m)) and single
+ * steps, in double-double: no closed form's cancellation for q near 1. */
+static void moment_sums(lag_cdd q, size_t n, lag_cdd *s0, lag_cdd *s1)
+{
+    const lag_cdd zero = { { 0.0, 0.0 }, { 0.0, 0.0 } };
+    lag_cdd a0 = zero, a1 = zero, p = zero;
     size_t m = 0, bit = (size_t)1;
+    p.re = sms_dd_of(1.0);
     while (bit <= n / 2u)
         bit <<= 1;
     for (; n > 0u && bit > 0u; bit >>= 1) {
-        /* m -> 2 m */
-        const long double tr = a1r + (long double)m * a0r, ti = a1i + (long double)m * a0i;
-        const long double nr = a0r + (pr * a0r - pi_ * a0i), ni = a0i + (pr * a0i + pi_ * a0r);
-        a1r += pr * tr - pi_ * ti;
-        a1i += pr * ti + pi_ * tr;
-        a0r = nr;
-        a0i = ni;
-        {
-            const long double sr = pr * pr - pi_ * pi_, si = 2.0L * pr * pi_;
-            pr = sr;
-            pi_ = si;
-        }
+        /* m -> 2 m (m and 2 m are exact in a double: window lengths stay below 2^52) */
+        const lag_cdd t = cdd_add(a1, cdd_scale(a0, (double)m));
+        a0 = cdd_add(a0, cdd_mul(p, a0));
+        a1 = cdd_add(a1, cdd_mul(p, t));
+        p = cdd_mul(p, p);
         m *= 2u;
         if (n & bit) {   /* m -> m + 1 */
-            const long double sr = pr * qr - pi_ * qi, si = pr * qi + pi_ * qr;
-            a0r += pr;
-            a0i += pi_;
-            a1r += (long double)m * pr;
-            a1i += (long double)m * pi_;
-            pr = sr;
-            pi_ = si;
+            a0 = cdd_add(a0, p);
+            a1 = cdd_add(a1, cdd_scale(p, (double)m));
+            p = cdd_mul(p, q);
             ++m;
         }
     }
-    s0[0] = a0r;
-    s0[1] = a0i;
-    s1[0] = a1r;
-    s1[1] = a1i;
+    *s0 = a0;
+    *s1 = a1;
 }
 
 sms_status sms_stage_config_lag(const sms_stage_config *config, double Ts, double *lag)
@@ -59,20 +75,24 @@ sms_status sms_stage_config_lag(const sms_stage_config *config, double Ts, doubl
         /* the taps are c Re q^i (c Im q^i for the half-sine families) for i < M, and the
          * direct taps: the moments of the geometric series in O(log M) */
         sms_smoother_design d;
-        long double s0[2], s1[2], moment, sum;
+        lag_cdd q, s0, s1;
+        sms_dd moment, sum;
         size_t j;
         st = sms_smoother_design_make(config, Ts, &d);
         if (st != SMS_OK)
             return st;
-        moment_sums(1.0L + (long double)d.pole_m1_re + (long double)d.pole_m1_lo_re,
-                    (long double)d.pole_im + (long double)d.pole_lo_im, d.window, s0, s1);
-        moment = (long double)d.gain * s1[d.family.half_sine ? 1 : 0];
-        sum = (long double)d.gain * s0[d.family.half_sine ? 1 : 0];
+        q.re = sms_dd_add(sms_dd_add(sms_dd_of(1.0), sms_dd_of(d.pole_m1_re)),
+                          sms_dd_of(d.pole_m1_lo_re));
+        q.im = sms_dd_add(sms_dd_of(d.pole_im), sms_dd_of(d.pole_lo_im));
+        moment_sums(q, d.window, &s0, &s1);
+        moment = sms_dd_mul(sms_dd_of(d.gain), d.family.half_sine ? s1.im : s1.re);
+        sum = sms_dd_mul(sms_dd_of(d.gain), d.family.half_sine ? s0.im : s0.re);
         for (j = 0; j < d.n_corrections; ++j) {
-            moment += (long double)d.correction_delay[j] * (long double)d.correction_gain[j];
-            sum += (long double)d.correction_gain[j];
+            moment = sms_dd_add(moment, sms_dd_mul(sms_dd_of((double)d.correction_delay[j]),
+                                                   sms_dd_of(d.correction_gain[j])));
+            sum = sms_dd_add(sum, sms_dd_of(d.correction_gain[j]));
         }
-        *lag = (double)(moment / sum);
+        *lag = sms_dd_div(moment, sum).hi;
         return SMS_OK;
     }
     case SMS_FAMILY_SHAPER:

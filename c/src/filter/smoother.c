@@ -84,7 +84,8 @@ static void coeffs_of_design(const sms_smoother_design *d, sms_smoother_coeffs *
     c->window = d->window;
     c->pole_m1_re = (sms_real)d->pole_m1_re;
     c->pole_im = (sms_real)d->pole_im;
-    /* What rounding to sms_real lost (exact in double for float), plus the long double part. */
+    /* What rounding to sms_real lost (exact in double for float), plus the double-double low
+     * part. */
     c->pole_lo_re = (sms_real)((d->pole_m1_re - (double)c->pole_m1_re) + d->pole_m1_lo_re);
     c->pole_lo_im = (sms_real)((d->pole_im - (double)c->pole_im) + d->pole_lo_im);
     c->gain = (sms_real)d->gain;

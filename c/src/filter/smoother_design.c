@@ -4,6 +4,7 @@
 #include <float.h>
 #include <math.h>
 #include <stdint.h>
+#include "core/double_double.h"
 #include "filter/smoother_design.h"
 
 #ifdef SMS_USE_FLOAT
@@ -47,24 +48,21 @@ static double cos_pi(double x)
     return sign * cos(SMS_PI * x);
 }
 
-/* The pole e^{decay} e^{j pi/nu} in long double (its low part refines the double pole). */
-static void pole_long(double decay, double nu, int half_sine, long double *re, long double *im)
+/* The pole q = e^{decay} e^{j pi/nu} (e^{decay} without the half sine) in double-double, as
+ * q - 1 and Im q: Re q - 1 = expm1(decay) - 2 e^{decay} sin^2(pi/(2 nu)), two terms of one sign,
+ * so nothing cancels for q near 1 (long windows), and the low parts refine the double pole. */
+static void pole_dd(double decay, double nu, int half_sine, sms_dd *re_m1, sms_dd *im)
 {
-    const long double pi = 3.14159265358979323846264338327950288L;
-    long double mag = expl((long double)decay), x = 1.0L / (long double)nu;
-    if (!half_sine) {
-        *re = mag;
-        *im = 0.0L;
+    const sms_dd d = sms_dd_of(decay), x = sms_dd_div(sms_dd_of(1.0), sms_dd_of(nu));
+    sms_dd mag, s;
+    *re_m1 = sms_dd_expm1(d);
+    *im = sms_dd_of(0.0);
+    if (!half_sine)
         return;
-    }
-    /* 1/nu is in (0, 1]; reduce so that x = 1/2 and x = 1 give exact zeros. */
-    if (x > 0.5L) {
-        *re = -mag * cosl(pi * (1.0L - x));
-        *im = mag * sinl(pi * (1.0L - x));
-    } else {
-        *re = x == 0.5L ? 0.0L : mag * cosl(pi * x);
-        *im = mag * sinl(pi * x);
-    }
+    mag = sms_dd_exp(d);
+    s = sms_dd_sin_pi(sms_dd_scale(x, -1));
+    *re_m1 = sms_dd_sub(*re_m1, sms_dd_scale(sms_dd_mul(mag, sms_dd_mul(s, s)), 1));
+    *im = sms_dd_mul(mag, sms_dd_sin_pi(x));
 }
 
 static int on_grid(double nu, double *rounded)
@@ -99,66 +97,47 @@ static int fits_real(double v)
     return fabs(v) <= SMS_REAL_MAX; /* false for NaN and Inf too */
 }
 
-/* sin(pi x), cos(pi x) in long double for any real x, exact zeros at multiples of 1/2. */
-static long double sin_pi_long(long double x)
+static sms_dd dd_mul_d(sms_dd a, double b)
 {
-    const long double pi = 3.14159265358979323846264338327950288L;
-    long double sign = 1.0L;
-    if (x < 0.0L) {
-        x = -x;
-        sign = -1.0L;
-    }
-    x = fmodl(x, 2.0L);
-    if (x > 1.0L) {
-        x -= 1.0L;
-        sign = -sign;
-    }
-    if (x > 0.5L)
-        x = 1.0L - x;
-    return sign * sinl(pi * x);
-}
-
-static long double cos_pi_long(long double x)
-{
-    return sin_pi_long(fmodl(fabsl(x), 2.0L) + 0.5L);
+    return sms_dd_mul(a, sms_dd_of(b));
 }
 
 /* Sum_{i=0}^{n-1} q^i, q = e^{decay} e^{j pi t} (decay <= 0), in closed form: O(1) whatever n,
  * so that sizing and refusing a long filter costs no more than a short one.
  * (1 - q^n)/(1 - q) with 1 - e^{d} e^{j pi t} = -expm1(d) + 2 e^{d} sin^2(pi t/2) - j e^{d} sin(pi t):
  * both real parts are sums of non-negative terms, so nothing cancels when q is near 1 (long,
- * lightly damped windows) and the result keeps long double relative accuracy. */
-static void geometric_sum(long double decay, long double t, long double n, long double *re,
-                          long double *im)
+ * lightly damped windows), and in double-double the result is exact to far below double. */
+static void geometric_sum(double decay, sms_dd t, double n, sms_dd *re, sms_dd *im)
 {
-    long double r = expl(decay), rn = expl(decay * n), s, sn;
-    long double den_re, den_im, num_re, num_im, den;
-    s = sin_pi_long(0.5L * t);
-    sn = sin_pi_long(0.5L * t * n);
-    den_re = -expm1l(decay) + 2.0L * r * s * s;
-    den_im = -r * sin_pi_long(t);
-    num_re = -expm1l(decay * n) + 2.0L * rn * sn * sn;
-    num_im = -rn * sin_pi_long(t * n);
-    den = den_re * den_re + den_im * den_im;
-    if (den == 0.0L) { /* q = 1: n terms of 1 */
-        *re = n;
-        *im = 0.0L;
+    const sms_dd d = sms_dd_of(decay), dn = dd_mul_d(d, n), tn = dd_mul_d(t, n);
+    const sms_dd r = sms_dd_exp(d), rn = sms_dd_exp(dn);
+    const sms_dd s = sms_dd_sin_pi(sms_dd_scale(t, -1)), sn = sms_dd_sin_pi(sms_dd_scale(tn, -1));
+    sms_dd den_re, den_im, num_re, num_im, den;
+    den_re = sms_dd_add(sms_dd_neg(sms_dd_expm1(d)), sms_dd_scale(sms_dd_mul(r, sms_dd_mul(s, s)), 1));
+    den_im = sms_dd_neg(sms_dd_mul(r, sms_dd_sin_pi(t)));
+    num_re = sms_dd_add(sms_dd_neg(sms_dd_expm1(dn)),
+                        sms_dd_scale(sms_dd_mul(rn, sms_dd_mul(sn, sn)), 1));
+    num_im = sms_dd_neg(sms_dd_mul(rn, sms_dd_sin_pi(tn)));
+    den = sms_dd_add(sms_dd_mul(den_re, den_re), sms_dd_mul(den_im, den_im));
+    if (den.hi == 0.0) { /* q = 1: n terms of 1 */
+        *re = sms_dd_of(n);
+        *im = sms_dd_of(0.0);
         return;
     }
     /* num / den_c = num * conj(den_c) / |den_c|^2 */
-    *re = (num_re * den_re + num_im * den_im) / den;
-    *im = (num_im * den_re - num_re * den_im) / den;
+    *re = sms_dd_div(sms_dd_add(sms_dd_mul(num_re, den_re), sms_dd_mul(num_im, den_im)), den);
+    *im = sms_dd_div(sms_dd_sub(sms_dd_mul(num_im, den_re), sms_dd_mul(num_re, den_im)), den);
 }
 
 /* Sum of the unnormalised base taps e^{decay i} (sin(pi i/nu)), i = 0..n-1, in closed form. */
-static long double base_tap_sum(const sms_smoother_design *d, size_t n)
+static sms_dd base_tap_sum(const sms_smoother_design *d, size_t n)
 {
-    long double re, im;
+    sms_dd re, im;
     if (!d->family.half_sine) {
-        geometric_sum((long double)d->decay, 0.0L, (long double)n, &re, &im);
+        geometric_sum(d->decay, sms_dd_of(0.0), (double)n, &re, &im);
         return re;
     }
-    geometric_sum((long double)d->decay, 1.0L / (long double)d->nu, (long double)n, &re, &im);
+    geometric_sum(d->decay, sms_dd_div(sms_dd_of(1.0), sms_dd_of(d->nu)), (double)n, &re, &im);
     return im;
 }
 
@@ -167,44 +146,44 @@ static long double base_tap_sum(const sms_smoother_design *d, size_t n)
  * a z*^-(N0-1) + b z*^-N0 = -G(z*), i.e. a z* + b = R = -G(z*) z*^N0 (two real unknowns, one
  * complex equation). G(z*) = sum g[i] z*^-i: the damping of g[i] and of z*^-i cancel, leaving
  * geometric sums of unit phasors (sin(pi i/nu) = (e^{j pi i/nu} - e^{-j pi i/nu})/2j), summed
- * in closed form in long double (G is small next to its terms). Writes the unnormalised
+ * in closed form in double-double (G is small next to its terms). Writes the unnormalised
  * corrections and returns sum(g) + a + b over the whole support. */
-static long double exact_correction(const sms_smoother_design *d, size_t n0, double fraction,
-                                    double zero_turns_per_sample, long double *a_out,
-                                    long double *b_out)
+static sms_dd exact_correction(const sms_smoother_design *d, size_t n0, double fraction,
+                               sms_dd a, sms_dd *a_out, sms_dd *b_out)
 {
-    const long double a = (long double)zero_turns_per_sample; /* w* Ts / pi, in (0, 1) */
-    const long double nu = (long double)d->nu, decay = (long double)d->decay;
-    const long double n = (long double)n0, f = (long double)fraction;
-    long double g_re, g_im, sum, shape_n0, r_mag, r_re, r_im;
-    long double z_re, z_im, c_re, c_im, first;
+    /* a = w* Ts / pi, in (0, 1) */
+    const double n = (double)n0;
+    const sms_dd f = sms_dd_of(fraction), inv_nu = sms_dd_div(sms_dd_of(1.0), sms_dd_of(d->nu));
+    const sms_dd an = dd_mul_d(a, n), e_decay = sms_dd_exp(sms_dd_of(d->decay));
+    sms_dd g_re, g_im, sum, shape_n0, r_mag, r_re, r_im, z_re, z_im, c_re, c_im, first, fs;
     if (d->family.half_sine) {
-        long double p_re, p_im, m_re, m_im;
-        geometric_sum(0.0L, 1.0L / nu - a, n, &p_re, &p_im);
-        geometric_sum(0.0L, -(1.0L / nu + a), n, &m_re, &m_im);
+        sms_dd p_re, p_im, m_re, m_im;
+        geometric_sum(0.0, sms_dd_sub(inv_nu, a), n, &p_re, &p_im);
+        geometric_sum(0.0, sms_dd_neg(sms_dd_add(inv_nu, a)), n, &m_re, &m_im);
         /* (P - M)/(2j) */
-        g_re = 0.5L * (p_im - m_im);
-        g_im = -0.5L * (p_re - m_re);
-        shape_n0 = sin_pi_long(n / nu);
+        g_re = sms_dd_scale(sms_dd_sub(p_im, m_im), -1);
+        g_im = sms_dd_neg(sms_dd_scale(sms_dd_sub(p_re, m_re), -1));
+        shape_n0 = sms_dd_sin_pi(dd_mul_d(inv_nu, n));
     } else {
-        geometric_sum(0.0L, -a, n, &g_re, &g_im);
-        shape_n0 = 1.0L;
+        geometric_sum(0.0, sms_dd_neg(a), n, &g_re, &g_im);
+        shape_n0 = sms_dd_of(1.0);
     }
-    g_re += f * shape_n0 * cos_pi_long(a * n);
-    g_im -= f * shape_n0 * sin_pi_long(a * n);
-    sum = base_tap_sum(d, n0) + f * shape_n0 * expl(decay * n);
-    r_mag = expl(decay * n);
-    z_re = expl(decay) * cos_pi_long(a);
-    z_im = expl(decay) * sin_pi_long(a);
+    c_re = sms_dd_cos_pi(an);
+    c_im = sms_dd_sin_pi(an);
+    fs = sms_dd_mul(f, shape_n0);
+    g_re = sms_dd_add(g_re, sms_dd_mul(fs, c_re));
+    g_im = sms_dd_sub(g_im, sms_dd_mul(fs, c_im));
+    r_mag = sms_dd_exp(sms_dd_mul(sms_dd_of(d->decay), sms_dd_of(n)));
+    sum = sms_dd_add(base_tap_sum(d, n0), sms_dd_mul(fs, r_mag));
+    z_re = sms_dd_mul(e_decay, sms_dd_cos_pi(a));
+    z_im = sms_dd_mul(e_decay, sms_dd_sin_pi(a));
     /* R = -G e^{decay N0} e^{j pi a N0} */
-    c_re = cos_pi_long(a * n);
-    c_im = sin_pi_long(a * n);
-    r_re = -r_mag * (g_re * c_re - g_im * c_im);
-    r_im = -r_mag * (g_re * c_im + g_im * c_re);
-    first = r_im / z_im;
+    r_re = sms_dd_neg(sms_dd_mul(r_mag, sms_dd_sub(sms_dd_mul(g_re, c_re), sms_dd_mul(g_im, c_im))));
+    r_im = sms_dd_neg(sms_dd_mul(r_mag, sms_dd_add(sms_dd_mul(g_re, c_im), sms_dd_mul(g_im, c_re))));
+    first = sms_dd_div(r_im, z_im);
     *a_out = first;
-    *b_out = r_re - first * z_re;
-    return sum + *a_out + *b_out;
+    *b_out = sms_dd_sub(r_re, sms_dd_mul(first, z_re));
+    return sms_dd_add(sum, sms_dd_add(*a_out, *b_out));
 }
 
 /* Bounded timing (docs/exact-mode.md): taps u, q, q^2 .. q^N0, u q^(N0+1) (before scaling to
@@ -217,11 +196,13 @@ static long double exact_correction(const sms_smoother_design *d, size_t n0, dou
  * x0 (1 - f) modulo 1; the second form has no cancellation). 0 < u < 1/2 for nu > 2k, and the
  * largest tap is at most the continuous response's peak density times Ts: that is what these
  * taps are for (a stage that is also a kinematic bound). */
-static long double bounded_end_tap(double nu, double zero_turns_k)
+static sms_dd bounded_end_tap(double nu, double zero_turns_k)
 {
-    const long double x0 = 0.5L * (long double)zero_turns_k / (long double)nu;
-    const long double f = (long double)nu - floorl((long double)nu);
-    return sin_pi_long(x0 * f) / (2.0L * sin_pi_long(x0) * cos_pi_long(x0 * (1.0L - f)));
+    const sms_dd x0 = sms_dd_scale(sms_dd_div(sms_dd_of(zero_turns_k), sms_dd_of(nu)), -1);
+    const double f = nu - floor(nu);   /* exact */
+    const sms_dd den = sms_dd_scale(sms_dd_mul(sms_dd_sin_pi(x0),
+                                               sms_dd_cos_pi(dd_mul_d(x0, 1.0 - f))), 1);
+    return sms_dd_div(sms_dd_sin_pi(dd_mul_d(x0, f)), den);
 }
 
 /* Largest |x| (and |rest|) for which every sum on the per-sample path stays below the
@@ -322,43 +303,48 @@ sms_status sms_smoother_design_make(const sms_stage_config *config, double Ts,
     if (d.length > d.window && config->timing == SMS_TIMING_BOUNDED) {
         /* the end taps are the only taps that are not c q^i: write them as corrections */
         const size_t m = d.window;
-        const long double u = bounded_end_tap(nu, (double)config->k * d.family.zero_turns);
-        const long double u_last = u * expl((long double)d.decay * (long double)m);
-        const long double scale = 1.0L / (base_tap_sum(&d, m) + (u - 1.0L) + u_last);
-        d.gain = (double)scale;
+        const sms_dd u = bounded_end_tap(nu, (double)config->k * d.family.zero_turns);
+        const sms_dd u_m1 = sms_dd_sub(u, sms_dd_of(1.0));
+        const sms_dd u_last = sms_dd_mul(u, sms_dd_exp(dd_mul_d(sms_dd_of(d.decay), (double)m)));
+        const sms_dd scale = sms_dd_div(sms_dd_of(1.0), sms_dd_add(sms_dd_add(base_tap_sum(&d, m),
+                                                                              u_m1), u_last));
+        d.gain = scale.hi;
         d.n_corrections = 2;
         d.correction_delay[0] = 0u;
         d.correction_delay[1] = m;
-        d.correction_gain[0] = (double)(scale * (u - 1.0L));
-        d.correction_gain[1] = (double)(scale * u_last);
+        d.correction_gain[0] = sms_dd_mul(scale, u_m1).hi;
+        d.correction_gain[1] = sms_dd_mul(scale, u_last).hi;
     } else if (d.length > d.window) {
         const size_t n0 = d.window;
         const double fraction = nu - floor(nu);
-        long double a, b, last = (long double)fraction * expl((long double)d.decay * (long double)n0);
-        long double scale;
+        /* the zero's turns per sample k zero_turns / nu, kept in double-double */
+        const sms_dd turns = sms_dd_div(sms_dd_of((double)config->k * d.family.zero_turns),
+                                        sms_dd_of(nu));
+        sms_dd a, b, scale;
+        sms_dd last = dd_mul_d(sms_dd_exp(dd_mul_d(sms_dd_of(d.decay), (double)n0)), fraction);
         if (d.family.half_sine)
-            last *= sin_pi_long((long double)n0 / (long double)nu);
-        scale = 1.0L / exact_correction(&d, n0, fraction,
-                                        (double)config->k * d.family.zero_turns / nu, &a, &b);
-        d.gain = (double)scale;
+            last = sms_dd_mul(last, sms_dd_sin_pi(sms_dd_div(sms_dd_of((double)n0),
+                                                             sms_dd_of(nu))));
+        scale = sms_dd_div(sms_dd_of(1.0), exact_correction(&d, n0, fraction, turns, &a, &b));
+        d.gain = scale.hi;
         d.n_corrections = 2;
         d.correction_delay[0] = n0 - 1u;
         d.correction_delay[1] = n0;
-        d.correction_gain[0] = (double)(scale * a);
-        d.correction_gain[1] = (double)(scale * (last + b));
+        d.correction_gain[0] = sms_dd_mul(scale, a).hi;
+        d.correction_gain[1] = sms_dd_mul(scale, sms_dd_add(last, b)).hi;
         if (!(fits_real(d.correction_gain[0]) && fits_real(d.correction_gain[1])))
             return SMS_ERR_SIGMA;
     } else {
-        d.gain = (double)(1.0L / base_tap_sum(&d, d.window));
+        d.gain = sms_dd_div(sms_dd_of(1.0), base_tap_sum(&d, d.window)).hi;
     }
     tail_mag = exp(d.decay * (double)d.window);
     {
-        long double re, im;
-        pole_long(d.decay, d.nu, d.family.half_sine, &re, &im);
-        d.pole_m1_re = (double)(re - 1.0L);
-        d.pole_m1_lo_re = (double)((re - 1.0L) - (long double)d.pole_m1_re);
-        d.pole_im = (double)im;
-        d.pole_lo_im = (double)(im - (long double)d.pole_im);
+        sms_dd re_m1, im;
+        pole_dd(d.decay, d.nu, d.family.half_sine, &re_m1, &im);
+        d.pole_m1_re = re_m1.hi;
+        d.pole_m1_lo_re = re_m1.lo;
+        d.pole_im = im.hi;
+        d.pole_lo_im = im.lo;
     }
     if (d.family.half_sine) {
         d.tail_re = -d.gain * tail_mag * cos_pi((double)d.window / d.nu);

@@ -21,8 +21,8 @@ typedef struct sms_smoother_design {
     size_t length;         /* L: taps of the impulse response */
     size_t window;         /* M: taps 0..M-1 come from the recursion (M = N or N0) */
     double pole_m1_re, pole_im; /* q - 1: q = e^{sigma Ts} e^{j pi/nu} (half sine) or e^{sigma Ts} */
-    double pole_m1_lo_re, pole_lo_im; /* what those doubles miss of q (from long double): the
-                                       * pole to ~2^-64, so q^i stays accurate over long windows */
+    double pole_m1_lo_re, pole_lo_im; /* what those doubles miss of q (double-double): the
+                                       * pole to ~2^-100, so q^i stays accurate over long windows */
     double gain;           /* c = 1/sum(base taps): weight of the newest input */
     double tail_re, tail_im; /* -c q^M: weight of x[n-M], which truncates the response */
     size_t n_corrections;  /* 0 or 2 */

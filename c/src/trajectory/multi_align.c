@@ -176,16 +176,48 @@ void sms_multi_align_get_state(const sms_multi_generator *g, double *dst)
         }
 }
 
+double sms_multi_signal_range(const sms_multi_generator *g, size_t i, size_t m)
+{
+    const sms_chain *c = &g->chain[i][m];
+    switch (m) {
+    case 0: return sms_chain_input_max(c);
+    case 1: return (double)g->vmax[i] * (1.0 + SMS_LIMIT_RTOL);
+    case 2: return (double)g->amax[i] * (1.0 + SMS_LIMIT_RTOL);
+    default: return (double)g->jmax[i] * (1.0 + SMS_LIMIT_RTOL);
+    }
+}
+
+/* What the chain of axis i, signal m can output: (1 + 2 G_0 ... G_{n-1}) times its input range
+ * (the range sms_chain_check_state_range() gives a stage after the chain's last). */
+static double chain_output_range(const sms_multi_generator *g, size_t i, size_t m)
+{
+    const sms_chain *c = &g->chain[i][m];
+    double product = 1.0;
+    size_t k;
+    if (c->n_stages == 0)
+        return sms_multi_signal_range(g, i, m);
+    for (k = 0; k < c->n_stages; ++k)
+        product *= sms_stage_gain_bound(&c->stages[k]);
+    return (1.0 + 2.0 * product) * sms_multi_signal_range(g, i, m);
+}
+
 sms_status sms_multi_align_check_state(const sms_multi_generator *g, const double *src)
 {
-    size_t i, m;
+    size_t i, m, k;
     if (!g->aligned)
         return SMS_OK;
     for (i = 0; i < g->n_axes; ++i)
         for (m = 0; m < SMS_MULTI_SIGNALS; ++m) {
             const size_t count = sms_delay_state_count(&g->delay[i][m]);
+            /* the ring (after the delay's samples, length and head: sms_delay_get_state)
+             * holds the chain's outputs, within what the chain can output (a margin of
+             * 2^-20 for its rounding) */
+            const double bound = chain_output_range(g, i, m) * (1.0 + 0x1p-20);
             if (sms_delay_check_state(&g->delay[i][m], src, count) != SMS_OK)
                 return SMS_ERR_STATE;
+            for (k = 3; k < count; ++k)
+                if (!(fabs(src[k]) <= bound))
+                    return SMS_ERR_STATE;
             src += count;
         }
     return SMS_OK;

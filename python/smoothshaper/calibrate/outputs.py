@@ -123,7 +123,9 @@ def axis_json(res, Ts: float) -> dict:
     out = {"axis": res.name, "file": res.record.path, "kind": res.record.kind,
            "signal": res.signal, "band_hz": list(res.band), "resolution_hz": res.resolution,
            "modal_fit_misfit": res.misfit, "modal_fit_explains": res.explains,
-           "ranked_by": res.ranked_by, "notes": list(res.notes),
+           "ranked_by": res.ranked_by, "ranked_by_figure": (
+               "vibration_modal" if res.ranked_by == "modal fit" else "vibration_spectrum"),
+           "figures": dict(FIGURES), "notes": list(res.notes),
            "modes": [m.as_dict() for m in res.modes],
            "candidates": [c.as_dict() for c in res.candidates], "recommended": None}
     if res.record.kind == "raw":
@@ -188,6 +190,22 @@ def _candidate_design(c) -> str:
     return "; ".join(_design_text(s) for s in c.stages) or "-"
 
 
+#: What each remaining-vibration figure of a candidate is about (the text report's legend and
+#: the JSON's ``figures``).
+FIGURES = {
+    "vibration_spectrum": "measured PSD %: what the filter leaves of the measured PSD (above a "
+                          "twentieth of its peak, worst damping: the established tool's estimate)",
+    "vibration_modal": "modal plant %: what it leaves of the fitted modal plant (the identified "
+                       "modes by their energy)",
+    "vibration_estimate": "plant estimate %: the estimate of what the plant is left with, and "
+                          "its +-3 sd range",
+}
+
+#: The ranking figure by the objective's kind (``AxisResult.ranked_by``).
+RANKED_BY = {"measured spectrum": "what it leaves of the measured PSD",
+             "modal fit": "what it leaves of the fitted modal plant"}
+
+
 def report_text(cal, top: int = 12) -> str:
     """The stdout report: what was analysed, the modes, notes and the ranked candidates per
     axis, with both figures and which one ranked."""
@@ -229,7 +247,8 @@ def report_text(cal, top: int = 12) -> str:
                          _fmt(c.length, ".4g"), _fmt(c.lag, ".4g"), _fmt(c.smoothing),
                          _fmt(c.peak_accel), _fmt(c.peak_jerk), c.continuity,
                          _candidate_design(c)])
-        head = ["candidate", "spectrum %", "modal %", "plant % (+-3 sd)", "delay s", "lag s",
+        head = ["candidate", "measured PSD %", "modal plant %", "plant estimate % (+-3 sd)",
+                "delay s", "lag s",
                 "smoothing", "peak acc", "peak jerk", "class", "design"]
         widths = [max(len(r[i]) for r in rows + [head]) for i in range(len(head))]
         out.append("  ".join(h.ljust(w) for h, w in zip(head, widths)).rstrip())
@@ -244,22 +263,31 @@ def report_text(cal, top: int = 12) -> str:
             out.append(f"no candidate meets {lim}: relax --max-delay / --max-smoothing")
         else:
             c = res.recommended
-            src = res.candidates[0].range_from if res.candidates else ""
-            # the ranked figure, then the plant's remaining vibration with its range (the two
-            # differ where the spectrum ranks: its figure counts nothing under its floor)
-            out.append(f"recommended ({lim}; ranked by the {res.ranked_by}, {c.vibration:.3g} "
-                       f"%): {c.name}: {_candidate_design(c)}; remaining vibration of the plant "
-                       f"{c.vibration_estimate:.3g} % (+-3 sd: {c.vibration_range[0]:.3g} to "
-                       f"{c.vibration_range[1]:.3g} %, from the {c.range_from or src}), delay "
+            # three figures, each named by what it is about: the two the ranking can use
+            # (the measured PSD's, the fitted modal plant's) and the estimate of the plant's
+            # remaining vibration the +-3 sd range is about (the measured-PSD figure counts
+            # nothing under a twentieth of the peak, so it is often 0 % where the plant keeps
+            # several %)
+            out.append(f"recommended ({lim}): {c.name}: {_candidate_design(c)}, delay "
                        f"{c.length:.4g} s")
+            if res.spectrum is None:             # a free decay: its modes are all there is
+                out.append(f"  it leaves of the fitted modal plant {c.vibration_modal:.3g} %; "
+                           "ranked by it (a free decay has no PSD)")
+            else:
+                modal = ("" if c.vibration_modal is None else
+                         f", of the fitted modal plant {c.vibration_modal:.3g} %")
+                out.append(f"  it leaves of the measured PSD {c.vibration_spectrum:.3g} %{modal};"
+                           f" ranked by {RANKED_BY[res.ranked_by]}")
+            out.append(f"  estimated remaining vibration of the plant {c.vibration_estimate:.3g} "
+                       f"% (+-3 sd: {c.vibration_range[0]:.3g} to {c.vibration_range[1]:.3g} %, "
+                       f"from the {c.range_from})")
             if c.firmware is None and cal.firmware == "none":
                 out.append("  (a smoothshaper filter, for the C library and the FMUs; "
                            "--firmware klipper|marlin|rrf|prusa ranks what that firmware runs)")
-        out.append(f"(* recommended, x outside the limits; spectrum %: what the filter leaves of "
-                   f"the measured PSD, modal %: of the fitted modes, plant %: the estimate of "
-                   f"what the plant is left with and its +-3 sd range; smoothing and peaks for a "
-                   f"move at {ref.accel:g}/s^2, corner velocity {ref.corner_velocity:g}/s, "
-                   f"filters at Ts = {ref.Ts:g} s)")
+        out.append(f"(* recommended, x outside the limits; {FIGURES['vibration_spectrum']}; "
+                   f"{FIGURES['vibration_modal']}; {FIGURES['vibration_estimate']}; smoothing "
+                   f"and peaks for a move at {ref.accel:g}/s^2, corner velocity "
+                   f"{ref.corner_velocity:g}/s, filters at Ts = {ref.Ts:g} s)")
         out.append("")
     for why in cal.skipped:
         out.append(f"skipped: {why}")
