@@ -1,10 +1,10 @@
 # SPDX-License-Identifier: Apache-2.0
-"""calibrate.peaks finds the peaks and prominences scipy.signal.find_peaks finds, exactly."""
+"""calibrate.peaks finds the peaks, prominences, bases and widths scipy.signal finds, exactly."""
 import numpy as np
 import pytest
 import scipy.signal
 
-from smoothshaper.calibrate.peaks import find_peaks
+from smoothshaper.calibrate.peaks import find_peaks, peak_widths
 
 
 def _curves():
@@ -27,3 +27,15 @@ def test_same_as_scipy(i, prominence):
     ref, ref_props = scipy.signal.find_peaks(x, prominence=prominence)
     np.testing.assert_array_equal(pk, ref)
     np.testing.assert_array_equal(props["prominences"], ref_props["prominences"])
+    np.testing.assert_array_equal(props["left_bases"], ref_props["left_bases"])
+    np.testing.assert_array_equal(props["right_bases"], ref_props["right_bases"])
+
+
+@pytest.mark.parametrize("i", range(7))
+@pytest.mark.parametrize("rel_height", [0.0, 0.5, 1.0])
+def test_widths_same_as_scipy(i, rel_height):
+    x = list(_curves())[i]
+    pk, props = find_peaks(x, prominence=0.0)
+    data = (props["prominences"], props["left_bases"], props["right_bases"])
+    ref = scipy.signal.peak_widths(x, pk, rel_height=rel_height, prominence_data=data)[0]
+    np.testing.assert_array_equal(peak_widths(x, pk, rel_height, data), ref)
