@@ -27,9 +27,13 @@ from .reference import multi_axis as _ref
 from ._checks import (finite_vector as _finite_vector, positive as _positive,
                       real_array as _real_array, show as _show)
 
-__all__ = ["SYNC_MODES", "MultiAxisGenerator", "MultiAxisMove", "phase_duration", "multi_axis_move"]
+__all__ = ["SYNC_MODES", "PER_AXIS_SYNC_MODES", "MultiAxisGenerator", "MultiAxisMove", "phase_duration", "multi_axis_move"]
 
-SYNC_MODES = ("phase", "independent")
+#: Indices are the C ``sms_sync`` values. "time", "time_if_necessary" and "none" plan each
+#: axis from any state to any target state (:meth:`MultiAxisGenerator.process_targets`).
+SYNC_MODES = ("phase", "independent", "time", "time_if_necessary", "none")
+#: The modes that plan each axis on its own (ruckig's Time, TimeIfNecessary, None).
+PER_AXIS_SYNC_MODES = ("time", "time_if_necessary", "none")
 _MAX_AXES = 8   # SMS_MULTI_MAX_AXES: the identity has a slot for each, used or not
 #: The most values (samples x axes x 4) a multi_axis_move profile holds: 1 GiB of float64.
 _MAX_MOVE_VALUES = 2 ** 27
@@ -109,8 +113,12 @@ class MultiAxisGenerator(_state_identity.SavedState, Twins):
         axis (a scalar applies to every axis), each > 0.
     Ts : float, keyword-only
         Sample period [s], > 0.
-    sync : {"phase", "independent"}, keyword-only
-        Coordination of the axes (default ``"phase"``).
+    sync : {"phase", "independent", "time", "time_if_necessary", "none"}, keyword-only
+        Coordination of the axes (default ``"phase"``). The last three plan each axis from
+        its exact state (q, v, a) to a target state (position, velocity, acceleration,
+        :meth:`process_targets`, :meth:`start`): ``"time"`` lands every axis on one common
+        sample (curved paths), ``"time_if_necessary"`` only the axes whose target moves,
+        ``"none"`` each axis as fast as it can (ruckig's Time, TimeIfNecessary, None).
     q0 : sequence of float or None, keyword-only
         Initial rest position per axis (default 0).
     stages : list of Stage, list of lists of Stage, or None, keyword-only
@@ -212,13 +220,15 @@ class MultiAxisGenerator(_state_identity.SavedState, Twins):
         # with the diagnostics that are not part of the saved state
         return self.get_state(), {"dropped": int(self._gen.dropped),
                                   "refused": [int(self._gen.move[i].refused)
-                                              for i in range(self.axes)]}
+                                              for i in range(self.axes)],
+                                  "plan_refused": int(self._gen.plan_refused)}
 
     def _set_full_state(self, state, counters) -> None:
         self.set_state(state)
         self._gen.dropped = counters["dropped"]
         for i, refused in enumerate(counters["refused"]):
             self._gen.move[i].refused = refused
+        self._gen.plan_refused = counters.get("plan_refused", 0)
 
     def _stage_lists(self, stages) -> list[list]:
         """One list of stage descriptions per axis (validated: errors name the parameter)."""
@@ -336,6 +346,210 @@ class MultiAxisGenerator(_state_identity.SavedState, Twins):
                 "changes"), stacklevel=2)
         return out.astype(np.float64)
 
+    def _target_dtype(self) -> np.dtype:
+        ffi, real = self._ffi, _real_dtype(self.precision)
+        names = ("position", "velocity", "acceleration", "sync", "minimum_duration")
+        formats = [(real, _MAX_AXES)] * 3 + [(np.intc, _MAX_AXES), real]
+        return np.dtype({"names": list(names), "formats": formats,
+                         "offsets": [ffi.offsetof("sms_multi_target", n) for n in names],
+                         "itemsize": ffi.sizeof("sms_multi_target")})
+
+    def _targets(self, positions, velocities, accelerations, axis_sync, minimum_duration):
+        """The C target vectors of a block, checked as ``sms_multi_generator_check_target``
+        checks them (ParameterError naming the array and its entry)."""
+        real = _real_dtype(self.precision)
+        p = _real_array("positions", positions)
+        if p.ndim == 1:
+            p = p.reshape(-1, 1) if self.axes == 1 else p.reshape(1, -1)
+        if p.ndim != 2 or p.shape[1] != self.axes:
+            raise ParameterError("positions", f"positions must have shape (n, {self.axes}), "
+                                              f"got {np.shape(positions)}")
+        arrays = {"positions": p}
+        for name, x in (("velocities", velocities), ("accelerations", accelerations)):
+            if x is None:
+                arrays[name] = np.zeros_like(p)
+                continue
+            x = _real_array(name, x)
+            try:
+                arrays[name] = np.broadcast_to(x.reshape(p.shape) if x.size == p.size else x,
+                                               p.shape)
+            except ValueError:
+                raise ParameterError(name, f"{name} must have the shape of positions "
+                                           f"{p.shape}, got {np.shape(x)}") from None
+        pr, vr, ar = (np.asarray(arrays[k], dtype=real) for k in
+                      ("positions", "velocities", "accelerations"))
+        vmax, amax, jmax = (np.asarray(x, dtype=real) for x in (self.vmax, self.amax, self.jmax))
+        with np.errstate(all="ignore"):
+            reach = ar * np.abs(ar) / (real(2) * jmax)
+            checks = (("positions", ~np.isfinite(pr), "must be finite"),
+                      ("velocities", ~(np.abs(vr) <= vmax), "must be finite and within vmax"),
+                      ("accelerations", ~(np.abs(ar) <= amax) | ~(np.abs(vr - reach) <= vmax)
+                       | ~(np.abs(vr + reach) <= vmax),
+                       "must be finite, within amax and keep v -+ a|a|/(2 jmax) within vmax"))
+        for name, bad, rule in checks:
+            where = np.argwhere(bad)
+            if where.size:
+                k, i = where[0]
+                raise ParameterError(f"{name}[{k}, {i}]",
+                                     f"{name}[{k}, {i}] {rule} of axis {i}, got "
+                                     f"{float(arrays[name][k, i])!r}")
+        if self.sync not in PER_AXIS_SYNC_MODES:
+            moving = np.argwhere((vr != 0) | (ar != 0))
+            if moving.size:
+                raise ParameterError("velocities", f'sync="{self.sync}" plans positions at '
+                                     "rest only: velocities and accelerations must be 0 (use "
+                                     'sync="time", "time_if_necessary" or "none")')
+        codes = np.zeros(_MAX_AXES, dtype=np.intc)
+        if axis_sync is not None:
+            modes = [axis_sync] * self.axes if isinstance(axis_sync, str) else list(axis_sync)
+            if len(modes) != self.axes:
+                raise ParameterError("axis_sync", f"axis_sync must hold one mode per axis "
+                                     f"({self.axes}), got {len(modes)}")
+            for i, m in enumerate(modes):
+                if m is None:
+                    continue
+                if self.sync not in PER_AXIS_SYNC_MODES or str(m).lower() not in PER_AXIS_SYNC_MODES:
+                    raise ParameterError(f"axis_sync[{i}]", f"axis_sync[{i}] must be None or one "
+                                         f"of {PER_AXIS_SYNC_MODES} (with a per-axis sync mode "
+                                         f"of the generator), got {m!r}")
+                codes[i] = SYNC_MODES.index(str(m).lower())
+        md = float(minimum_duration)
+        if not (math.isfinite(md) and 0 <= md <= 2.0 ** 50 * self.Ts) or (
+                md != 0 and self.sync not in PER_AXIS_SYNC_MODES):
+            raise ParameterError("minimum_duration", "minimum_duration must be finite, >= 0 "
+                                 "and below 2^50 samples (with a per-axis sync mode), got "
+                                 f"{minimum_duration!r}")
+        t = np.zeros(p.shape[0], dtype=self._target_dtype())
+        t["position"][:, :self.axes] = pr
+        t["velocity"][:, :self.axes] = vr
+        t["acceleration"][:, :self.axes] = ar
+        t["sync"][:] = codes
+        t["minimum_duration"] = md
+        return t
+
+    @locked
+    def process_targets(self, positions, *, velocities=None, accelerations=None,
+                        axis_sync=None, minimum_duration: float = 0.0) -> np.ndarray:
+        """Run a block of target states (C ``sms_multi_generator_process_targets``).
+
+        With sync "time", "time_if_necessary" or "none", on every sample whose target differs
+        from the one before, every axis re-plans from its exact state there to its target
+        (position, velocity, acceleration) with the single-axis planner of
+        :meth:`TrajectoryGenerator.process_targets`; the synchronised axes (sync "time", or
+        "time_if_necessary" with a moving target) arrive together, exactly on the first
+        sample at or after every axis's own optimum (the axes of "none" aside) and
+        ``minimum_duration`` at which each of them can (docs/multi-axis.md). Every sample
+        holds every axis's limits; each axis lands exactly on its target.
+
+        Parameters
+        ----------
+        positions : array_like of float, shape (n, axes)
+        velocities, accelerations : array_like of float, shape (n, axes), or None (0)
+            Target velocity and acceleration per axis and sample: ``|v| <= vmax``,
+            ``|a| <= amax`` and ``v -+ a|a|/(2 jmax)`` within ``+-vmax``. Only 0 with sync
+            "phase" or "independent".
+        axis_sync : str or sequence of (str or None), or None, keyword-only
+            Per-axis choice among "time", "time_if_necessary", "none" (None: the
+            generator's mode), for the whole block.
+        minimum_duration : float, keyword-only
+            Least duration [s] of the synchronised axes' moves (0: as fast as possible).
+
+        Returns
+        -------
+        ndarray of float64, shape (n, axes, 4)
+
+        Raises
+        ------
+        ParameterError
+            Naming the array and entry (``velocities[k, i]``), ``axis_sync[i]`` or
+            ``minimum_duration``; the state is then untouched.
+        """
+        t = self._targets(positions, velocities, accelerations, axis_sync, minimum_duration)
+        dtype = _real_dtype(self.precision)
+        out = np.empty((t.shape[0], self.axes, 4), dtype=dtype)
+        before = self._gen.dropped
+        self._lib.sms_multi_generator_process_targets(
+            self._gen, self._ffi.cast("sms_multi_target *", self._ffi.from_buffer(t)),
+            t.shape[0], self._ffi.from_buffer("sms_real[]", out))
+        if self._gen.dropped != before:
+            warnings.warn(DroppedTargetWarning(
+                f"{self._gen.dropped - before} target vector(s) dropped in this block (a move "
+                f"longer than 2^52 samples, a value that overflows {self.precision}, or no "
+                "common duration); the axes keep their plans until the target changes"),
+                stacklevel=2)
+        return out.astype(np.float64)
+
+    @locked
+    def start(self, q, v, a, *, positions=None, velocities=None, accelerations=None,
+              axis_sync=None, minimum_duration: float = 0.0) -> None:
+        """Continue from the motion state (q[i], v[i], a[i]) of every axis (C
+        ``sms_multi_generator_start``; sync "time", "time_if_necessary" or "none"): the
+        generator is there now, on the first sample of the plans to the target (one row of
+        :meth:`process_targets`' arguments; ``positions=None``: every axis brakes to rest at
+        once), and the next sample is the plans' next.
+
+        Parameters
+        ----------
+        q, v, a : sequence of float
+            Position, velocity and acceleration of every axis now: ``|v| <= vmax``,
+            ``|a| <= amax`` and ``|v + a|a|/(2 jmax)| <= vmax``.
+        positions, velocities, accelerations, axis_sync, minimum_duration : keyword-only
+            The target, as one row of :meth:`process_targets` (``positions=None``: a stop).
+
+        Raises
+        ------
+        ParameterError
+            Naming ``q[i]``, ``v[i]``, ``a[i]`` (not finite, beyond the limits, or a state
+            no plan can start from: ``|v + a|a|/(2 jmax)| > vmax``), ``sync`` (a mode that
+            plans no state), or the target's entry; the state is then untouched.
+        """
+        if self.sync not in PER_AXIS_SYNC_MODES:
+            raise ParameterError("sync", f'start() needs sync "time", "time_if_necessary" or '
+                                         f'"none", this generator has "{self.sync}"')
+        real = _real_dtype(self.precision)
+        state = []
+        for name, x in (("q", q), ("v", v), ("a", a)):
+            x = np.atleast_1d(_real_array(name, x)).astype(np.float64)
+            if x.shape != (self.axes,):
+                raise ParameterError(name, f"{name} must hold one value per axis ({self.axes}),"
+                                           f" got shape {x.shape}")
+            state.append(np.ascontiguousarray(x, dtype=real))
+        t = None
+        if positions is not None:
+            t = self._targets(np.reshape(positions, (1, -1)),
+                              None if velocities is None else np.reshape(velocities, (1, -1)),
+                              None if accelerations is None else np.reshape(accelerations, (1, -1)),
+                              axis_sync, minimum_duration)
+        axis = self._ffi.new("size_t *")
+        ptrs = [self._ffi.from_buffer("sms_real[]", x) for x in state]
+        st = self._lib.sms_multi_generator_start(
+            self._gen, *ptrs,
+            self._ffi.NULL if t is None else self._ffi.cast("sms_multi_target *",
+                                                          self._ffi.from_buffer(t)), axis)
+        if st != 0:
+            i = axis[0]
+            name = {self._lib.SMS_ERR_TARGET_POSITION: "q", self._lib.SMS_ERR_TARGET_VELOCITY: "v",
+                    self._lib.SMS_ERR_TARGET_ACCELERATION: "a"}.get(st)
+            text = self._ffi.string(self._lib.sms_status_string(st)).decode()
+            if name is None:
+                raise ParameterError("positions", f"positions: the motion from this state "
+                                     f"cannot be formed ({text})", st)
+            raise ParameterError(f"{name}[{i}]", f"{name}[{i}] = {float(state['qva'.index(name)][i])!r}"
+                                 f" of axis {i} rejected: {text}", st)
+
+    @property
+    def arrival(self) -> int:
+        """Samples from the last one output until every axis has reached its target state
+        (per-axis sync modes; 0 once reached, and always 0 in the others)."""
+        return int(self._lib.sms_multi_generator_arrival(self._gen))
+
+    @property
+    def axis_arrival(self) -> tuple:
+        """Per axis, samples until it reaches its target state (C
+        ``sms_multi_generator_axis_arrival``; the synchronised axes all give :attr:`arrival`)."""
+        return tuple(int(self._lib.sms_multi_generator_axis_arrival(self._gen, i))
+                     for i in range(self.axes))
+
     @property
     def lag(self) -> float:
         """The output's lag [s]: the common lag of every axis with ``align=True``, else the
@@ -346,6 +560,8 @@ class MultiAxisGenerator(_state_identity.SavedState, Twins):
     def refused(self) -> tuple:
         """Per axis, True while its held target is dropped (all axes together in phase
         synchronisation, each axis alone when independent)."""
+        if self.sync in PER_AXIS_SYNC_MODES:
+            return (bool(self._gen.plan_refused),) * self.axes
         phase = self.sync == "phase"
         return tuple(bool(self._gen.move[0 if phase else i].refused) for i in range(self.axes))
 

@@ -43,8 +43,51 @@ extern "C" {
 /** @brief How the axes are coordinated (values stable: FMU parameter). */
 typedef enum sms_sync {
     SMS_SYNC_PHASE = 0,      /**< one common profile: straight lines, common start and arrival */
-    SMS_SYNC_INDEPENDENT = 1 /**< each axis time-optimal on its own */
+    SMS_SYNC_INDEPENDENT = 1, /**< each axis time-optimal on its own */
+    SMS_SYNC_TIME = 2,       /**< per-axis plans from any state (q, v, a) to any target state,
+                                  all arriving on one common sample (curved paths) */
+    SMS_SYNC_TIME_IF_NECESSARY = 3, /**< as ::SMS_SYNC_TIME for an axis whose target moves
+                                  (velocity or acceleration not 0); one whose target is at rest
+                                  takes its own time-optimal plan */
+    SMS_SYNC_NONE = 4        /**< per-axis plans, each axis time-optimal on its own */
 } sms_sync;
+
+/** @brief Does the mode plan each axis from any state (::SMS_SYNC_TIME,
+ * ::SMS_SYNC_TIME_IF_NECESSARY, ::SMS_SYNC_NONE, sms_multi_generator_step_target())? */
+#define SMS_SYNC_PER_AXIS_PLANS(sync) ((sync) >= SMS_SYNC_TIME && (sync) <= SMS_SYNC_NONE)
+
+/**
+ * @brief A target vector of the per-axis plan modes (sms_multi_generator_step_target()).
+ *
+ * | field | valid range (sms_multi_generator_check_target()) |
+ * |-------|---------------------------------------------------|
+ * | position[i] | finite |
+ * | velocity[i] | finite, \|v\| <= vmax[i] |
+ * | acceleration[i] | finite, \|a\| <= amax[i], v -+ a\|a\|/(2 jmax[i]) within +-vmax[i] |
+ * | sync[i] | 0 (the generator's mode) or ::SMS_SYNC_TIME, ::SMS_SYNC_TIME_IF_NECESSARY, ::SMS_SYNC_NONE |
+ * | minimum_duration | finite, >= 0 [s], below 2^50 samples |
+ *
+ * Axis i is synchronised when its mode (sync[i], or the generator's when 0) is
+ * ::SMS_SYNC_TIME, or ::SMS_SYNC_TIME_IF_NECESSARY with velocity[i] or acceleration[i] not 0.
+ * The common arrival N (samples from the re-plan) is the smallest at or after every axis's
+ * own earliest arrival (all axes but those of ::SMS_SYNC_NONE) and minimum_duration, at which
+ * every synchronised axis has a motion of exactly N samples; the other axes move time-optimally.
+ */
+typedef struct sms_multi_target {
+    sms_real position[SMS_MULTI_MAX_AXES];
+    sms_real velocity[SMS_MULTI_MAX_AXES];
+    sms_real acceleration[SMS_MULTI_MAX_AXES];
+    int sync[SMS_MULTI_MAX_AXES];
+    sms_real minimum_duration; /**< [s] of the synchronised axes, 0: as fast as possible */
+} sms_multi_target;
+
+/** @brief One axis's running plan in the per-axis plan modes (read-only). */
+typedef struct sms_multi_axis_plan {
+    sms_plan plan;           /**< the single-axis plan to the target state (trajectory.h) */
+    sms_real q0, v0, a0;     /**< the state it started from */
+    sms_real tmin;           /**< the minimum duration it was planned with [s] (0: none) */
+    size_t k;                /**< samples since its first sample */
+} sms_multi_axis_plan;
 
 /**
  * @brief Limits of the multi-axis generator.
@@ -188,6 +231,12 @@ typedef struct sms_multi_generator {
     double lag;                         /**< the common lag D when aligned, else max axis_lag */
     /** alignment delays of axis i, signal m (aligned only), rings in caller memory */
     sms_delay delay[SMS_MULTI_MAX_AXES][SMS_MULTI_SIGNALS];
+    /* per-axis plan modes (SMS_SYNC_PER_AXIS_PLANS) */
+    sms_multi_target request;   /**< the last target vector given, as given */
+    sms_multi_target aim;       /**< the target of the running plans */
+    sms_multi_axis_plan axis[SMS_MULTI_MAX_AXES]; /**< each axis's running plan */
+    int plan_pending;           /**< 1: a valid new target waits for this sample's re-plan */
+    int plan_refused;           /**< 1 while the held target's motion could not be formed */
 } sms_multi_generator;
 
 /**
@@ -313,6 +362,73 @@ SMS_API void sms_multi_generator_process(sms_multi_generator *g, const sms_real 
  * @return 1 or 0
  */
 SMS_API int sms_multi_generator_busy(const sms_multi_generator *g);
+/**
+ * @brief Is `target` one the generator can plan to? O(n_axes), writes nothing but *axis.
+ * In ::SMS_SYNC_PHASE and ::SMS_SYNC_INDEPENDENT only positions at rest are planned: a
+ * velocity or acceleration not 0 is refused with its status, a sync[i] not 0 with
+ * ::SMS_ERR_TARGET_SYNC.
+ * @param axis  out (may be NULL): the first refused axis (else 0)
+ * @return ::SMS_OK; ::SMS_ERR_NULL; ::SMS_ERR_TARGET_POSITION, ::SMS_ERR_TARGET_VELOCITY,
+ *         ::SMS_ERR_TARGET_ACCELERATION (the ranges of ::sms_multi_target, the limits as
+ *         ::sms_real holds them); ::SMS_ERR_TARGET_SYNC; ::SMS_ERR_DURATION
+ *         (minimum_duration).
+ */
+SMS_API sms_status sms_multi_generator_check_target(const sms_multi_generator *g,
+                                                    const sms_multi_target *target,
+                                                    size_t *axis);
+/**
+ * @brief Advance one sample towards a target state vector and write out[4 i + m] as
+ * sms_multi_generator_step() does.
+ *
+ * Per-axis plan modes: on the sample the target differs from the running plans' (field for
+ * field), every axis re-plans from its exact state (q, v, a) there with the single-axis
+ * planner of sms_generator_step_target() (Berscheid and Kroeger 2021 profile families; a
+ * motion of a given duration: the convex combination of the two that end farthest either
+ * way). The time-optimal arrivals N_i (whole samples) give N = max over the axes not of
+ * ::SMS_SYNC_NONE; every synchronised axis (::sms_multi_target) is planned to arrive exactly
+ * on sample N; where a duration is blocked for an axis (some moving targets cannot be
+ * reached in some durations above the optimum) its planner returns the next N' that it can
+ * reach, N becomes N' and the synchronised axes are planned again (a few rounds at most).
+ * Each axis's samples are the exact values of its continuous plan, so every axis keeps its
+ * vmax, amax, jmax at every sample and in the sampled differences
+ * (docs/sampled-limits.md), and lands exactly on its target. A target whose motion cannot be
+ * formed (a value not finite, more than 2^52 samples, no common duration) is dropped, the
+ * running plans go on; an invalid one (sms_multi_generator_check_target()) is ignored.
+ * sms_multi_generator_step() in these modes is this with the positions at rest.
+ *
+ * ::SMS_SYNC_PHASE and ::SMS_SYNC_INDEPENDENT: the positions of a valid target, as
+ * sms_multi_generator_step().
+ */
+SMS_API void sms_multi_generator_step_target(sms_multi_generator *g,
+                                             const sms_multi_target *target, sms_real *out);
+/** @brief n samples: targets[k] in, out[(k n_axes + i) 4 + m] out; equal, bit for bit, to n
+ * calls of sms_multi_generator_step_target(). */
+SMS_API void sms_multi_generator_process_targets(sms_multi_generator *g,
+                                                 const sms_multi_target *targets, size_t n,
+                                                 sms_real *out);
+/**
+ * @brief Per-axis plan modes: continue from the motion state (q[i], v[i], a[i]) of every axis:
+ * the generator is there now, on the first sample of the plans to `target` (as
+ * sms_multi_generator_step_target() plans them; NULL: every axis brakes to rest at once,
+ * time-optimally on its own, its target then the stop's position), and its next step is the
+ * plans' next sample. The stages (if any) keep their history.
+ * @param axis  out (may be NULL): the refused axis (else 0)
+ * @return ::SMS_OK; ::SMS_ERR_NULL; ::SMS_ERR_KIND (not a per-axis plan mode);
+ *         ::SMS_ERR_TARGET_POSITION (q not finite); ::SMS_ERR_TARGET_VELOCITY (v not finite or
+ *         |v| > vmax); ::SMS_ERR_TARGET_ACCELERATION (a not finite, |a| > amax or
+ *         |v + a|a|/(2 jmax)| > vmax: no plan can start there), each to ::SMS_LIMIT_RTOL; a
+ *         status of sms_multi_generator_check_target() for `target`; ::SMS_ERR_TOO_LONG (the
+ *         motion cannot be formed). Nothing changed on error.
+ */
+SMS_API sms_status sms_multi_generator_start(sms_multi_generator *g, const sms_real *q,
+                                             const sms_real *v, const sms_real *a,
+                                             const sms_multi_target *target, size_t *axis);
+/** @brief Samples from the last one output until every axis has reached its target state
+ * (0 once reached). O(n_axes). Per-axis plan modes; 0 in the others. */
+SMS_API uint64_t sms_multi_generator_arrival(const sms_multi_generator *g);
+/** @brief The same for one axis: samples until it reaches its target state (0 once reached,
+ * for an axis out of range, and in the modes without per-axis plans). */
+SMS_API uint64_t sms_multi_generator_axis_arrival(const sms_multi_generator *g, size_t axis);
 /**
  * @brief Up to n steps with the same targets (target[0 .. n_axes-1]), at a cost bounded
  * whatever n: the state and last output (out, 4 n_axes values) of that many calls of

@@ -124,8 +124,10 @@ typedef enum sms_status {
     SMS_ERR_INTERFACE = -49,        /**< unknown control interface (::sms_interface) */
     SMS_ERR_IMPULSE_AMPLITUDE = -50, /**< user-defined impulses: an amplitude is NaN/Inf, or
                                           they do not sum to > 0 */
-    SMS_ERR_IMPULSE_TIME = -51      /**< user-defined impulses: a time is NaN/Inf or < 0, or
+    SMS_ERR_IMPULSE_TIME = -51,     /**< user-defined impulses: a time is NaN/Inf or < 0, or
                                          the times do not strictly increase */
+    SMS_ERR_TARGET_SYNC = -52       /**< a multi-axis target's per-axis synchronisation is not
+                                         one the generator's mode takes (::sms_sync) */
 } sms_status;
 
 /** @brief Stage families. Values are stable (the FMU enumeration and saved states use them). */

@@ -72,6 +72,8 @@ const char *sms_status_string(sms_status status)
         return "impulse amplitudes must be finite and sum to > 0";
     case SMS_ERR_IMPULSE_TIME:
         return "impulse times must be finite, >= 0 and strictly increasing";
+    case SMS_ERR_TARGET_SYNC:
+        return "a target's per-axis synchronisation is not one the generator's mode takes";
     }
     return "unknown status";
 }

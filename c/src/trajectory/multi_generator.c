@@ -126,7 +126,7 @@ static sms_status check_config(const sms_multi_generator_config *config, double 
             return st;
         }
     }
-    if ((unsigned)config->sync > (unsigned)SMS_SYNC_INDEPENDENT)
+    if ((unsigned)config->sync > (unsigned)SMS_SYNC_NONE)
         return SMS_ERR_KIND;
     for (i = 0; i < n; ++i) {
         size_t need = 0;
@@ -253,6 +253,7 @@ void sms_multi_generator_reset(sms_multi_generator *g, const sms_real *position)
         }
     }
     sms_multi_align_reset(g, position);
+    sms_multi_sync_reset(g, position);
 }
 /* A time constant below TIME_FLOOR of the largest is raised to it: its limit is then 2^100 times
  * more than the move can use, which changes the duration far below a rounding, and every product

@@ -43,6 +43,18 @@ static void hold_profile(sms_multi_generator *g, const sms_real *target, uint64_
 {
     const size_t groups = g->sync == SMS_SYNC_PHASE ? 1u : g->n_axes;
     size_t i;
+    if (SMS_SYNC_PER_AXIS_PLANS(g->sync)) {
+        /* the first sample takes the target (and re-plans if it is new); then nothing is
+         * pending and every plan's sample is closed form in its index */
+        sms_multi_target t;
+        sms_multi_sync_rest_target(g, target, &t);
+        sms_multi_sync_step_profile(g, &t, out);
+        if (n > 1u) {
+            sms_multi_sync_skip(g, n - 2u);
+            sms_multi_sync_step_held(g, out);
+        }
+        return;
+    }
     while (n > 0u) {
         uint64_t e = UINT64_MAX;
         int fresh = 0;
@@ -80,6 +92,11 @@ static int profile_at_rest(const sms_multi_generator *g, const sms_real *target)
 {
     const size_t groups = g->sync == SMS_SYNC_PHASE ? 1u : g->n_axes;
     size_t i;
+    if (SMS_SYNC_PER_AXIS_PLANS(g->sync)) {
+        sms_multi_target t;
+        sms_multi_sync_rest_target(g, target, &t);
+        return !sms_multi_sync_fresh(g, &t) && !sms_multi_sync_busy(g);
+    }
     for (i = 0; i < g->n_axes; ++i)
         if (target[i] - target[i] == 0 && target[i] != g->target[i])
             return 0;

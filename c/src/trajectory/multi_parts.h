@@ -69,6 +69,28 @@ double sms_multi_signal_range(const sms_multi_generator *g, size_t i, size_t m);
 sms_status sms_multi_align_check_state(const sms_multi_generator *g, const double *src);
 void sms_multi_align_set_state(sms_multi_generator *g, const double *src);
 
+/* Per-axis plan modes (multi_sync.c): reset at rest; one sample of the profile towards a
+ * target (taken first) or under the held one; step()'s positions at rest as a target; is a
+ * target new; busy; n samples of index only (nothing pending, the request held); re-form an
+ * axis's plan from its saved start (1: formed); is a saved start state one a plan can start
+ * from. */
+void sms_multi_sync_reset(sms_multi_generator *g, const sms_real *position);
+void sms_multi_sync_step_profile(sms_multi_generator *g, const sms_multi_target *t,
+                                 sms_real *out);
+void sms_multi_sync_step_held(sms_multi_generator *g, sms_real *out);
+void sms_multi_sync_rest_target(const sms_multi_generator *g, const sms_real *position,
+                                sms_multi_target *t);
+int sms_multi_sync_fresh(const sms_multi_generator *g, const sms_multi_target *t);
+int sms_multi_sync_busy(const sms_multi_generator *g);
+void sms_multi_sync_skip(sms_multi_generator *g, uint64_t n);
+int sms_multi_sync_replan_axis(const sms_multi_generator *g, size_t i,
+                               const sms_multi_target *t, sms_multi_axis_plan *ax);
+int sms_multi_sync_start_ok(const sms_multi_generator *g, size_t i, double q, double v,
+                            double a);
+
+/* The stages and the alignment delays on one sample of the profile's output (in place). */
+void sms_multi_filter_output(sms_multi_generator *g, sms_real *out);
+
 /* The configuration identity a saved state starts with (SMS_MULTI_IDENTITY_COUNT doubles). */
 void sms_multi_identity_write(const sms_multi_generator_config *c, double Ts,
                               double id[SMS_MULTI_IDENTITY_COUNT]);

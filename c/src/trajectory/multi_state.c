@@ -2,6 +2,7 @@
 /* The multi-axis generator's saved state: its configuration identity, the profile's fields and
  * the stages' states, checked before anything is written (multi_generator.h). */
 #include <math.h>
+#include <string.h>
 #include "core/state_identity.h"
 #include "trajectory/multi_parts.h"
 
@@ -54,6 +55,102 @@ static size_t move_count(const sms_multi_generator *g)
     return g->sync == SMS_SYNC_PHASE ? 1u : g->n_axes;
 }
 
+/* The per-axis plan modes save, in place of the moves: the request and the aim (each per axis
+ * position, velocity, acceleration, sync, then the minimum duration), per axis the running
+ * plan's start q0, v0, a0, its minimum duration and k, and the refused flag. Loading re-forms
+ * each plan from its start (the planner is a function of these). */
+static size_t target_fields(const sms_multi_generator *g)
+{
+    return 4u * g->n_axes + 1u;
+}
+
+static size_t moves_fields(const sms_multi_generator *g)
+{
+    if (SMS_SYNC_PER_AXIS_PLANS(g->sync))
+        return 2u * target_fields(g) + 5u * g->n_axes + 1u;
+    return MOVE_FIELDS * move_count(g);
+}
+
+static void put_target(const sms_multi_target *t, size_t n, double *dst)
+{
+    size_t i;
+    for (i = 0; i < n; ++i) {
+        dst[i] = (double)t->position[i];
+        dst[n + i] = (double)t->velocity[i];
+        dst[2 * n + i] = (double)t->acceleration[i];
+        dst[3 * n + i] = (double)t->sync[i];
+    }
+    dst[4 * n] = (double)t->minimum_duration;
+}
+
+static void get_target(const double *src, size_t n, sms_multi_target *t)
+{
+    size_t i;
+    memset(t, 0, sizeof *t);
+    for (i = 0; i < n; ++i) {
+        t->position[i] = (sms_real)src[i];
+        t->velocity[i] = (sms_real)src[n + i];
+        t->acceleration[i] = (sms_real)src[2 * n + i];
+        t->sync[i] = (int)src[3 * n + i];
+    }
+    t->minimum_duration = (sms_real)src[4 * n];
+}
+
+static void put_plans(const sms_multi_generator *g, double *dst)
+{
+    size_t i, n = g->n_axes;
+    put_target(&g->request, n, dst);
+    dst += target_fields(g);
+    put_target(&g->aim, n, dst);
+    dst += target_fields(g);
+    for (i = 0; i < n; ++i, dst += 5) {
+        const sms_multi_axis_plan *ax = &g->axis[i];
+        dst[0] = (double)ax->q0;
+        dst[1] = (double)ax->v0;
+        dst[2] = (double)ax->a0;
+        dst[3] = (double)ax->tmin;
+        dst[4] = (double)ax->k;
+    }
+    dst[0] = (double)g->plan_refused;
+}
+
+static int whole(double x);
+
+/* The plans of a saved state, re-formed into ax (1: all formed and the fields valid). */
+static int read_plans(const sms_multi_generator *g, const double *src, sms_multi_target *request,
+                      sms_multi_target *aim, sms_multi_axis_plan *ax, int *refused)
+{
+    size_t i, n = g->n_axes;
+    for (i = 0; i < n; ++i) {
+        const double sr = src[3 * n + i], sa = src[target_fields(g) + 3 * n + i];
+        if (!(fabs(sr) <= 64.0) || !(fabs(sa) <= 64.0) || sr != (double)(int)sr ||
+            sa != (double)(int)sa)
+            return 0;
+    }
+    get_target(src, n, request);
+    src += target_fields(g);
+    get_target(src, n, aim);
+    src += target_fields(g);
+    if (sms_multi_generator_check_target(g, aim, NULL) != SMS_OK)
+        return 0;
+    for (i = 0; i < n; ++i, src += 5) {
+        if (!sms_multi_sync_start_ok(g, i, src[0], src[1], src[2]) || !(src[3] >= 0.0) ||
+            !whole(src[4]))
+            return 0;
+        ax[i].q0 = (sms_real)src[0];
+        ax[i].v0 = (sms_real)src[1];
+        ax[i].a0 = (sms_real)src[2];
+        ax[i].tmin = (sms_real)src[3];
+        ax[i].k = (size_t)src[4];
+        if (!sms_multi_sync_replan_axis(g, i, aim, &ax[i]))
+            return 0;
+    }
+    if (src[0] != 0.0 && src[0] != 1.0)
+        return 0;
+    *refused = (int)src[0];
+    return 1;
+}
+
 static size_t stages_state_count(const sms_multi_generator *g)
 {
     size_t i, m, total = 0;
@@ -65,7 +162,7 @@ static size_t stages_state_count(const sms_multi_generator *g)
 
 size_t sms_multi_generator_state_count(const sms_multi_generator *g)
 {
-    return SMS_MULTI_IDENTITY_COUNT + AXIS_FIELDS * g->n_axes + MOVE_FIELDS * move_count(g)
+    return SMS_MULTI_IDENTITY_COUNT + AXIS_FIELDS * g->n_axes + moves_fields(g)
            + stages_state_count(g) + sms_multi_align_state_count(g);
 }
 
@@ -83,7 +180,11 @@ void sms_multi_generator_get_state(const sms_multi_generator *g, double *dst)
         dst[4 * n + i] = (double)g->W[i];
     }
     dst += AXIS_FIELDS * n;
-    for (i = 0; i < move_count(g); ++i, dst += MOVE_FIELDS) {
+    if (SMS_SYNC_PER_AXIS_PLANS(g->sync)) {
+        put_plans(g, dst);
+        dst += moves_fields(g);
+    }
+    for (i = 0; i < move_count(g) && !SMS_SYNC_PER_AXIS_PLANS(g->sync); ++i, dst += MOVE_FIELDS) {
         const sms_multi_move *m = &g->move[i];
         dst[0] = (double)m->T1;
         dst[1] = (double)m->rho1;
@@ -170,8 +271,7 @@ sms_status sms_multi_generator_check_state(const sms_multi_generator *g, const d
     if (n != sms_multi_generator_state_count(g)) {
         /* the same limits, another length: a stage of another configuration, named by the
          * first stage identity that differs */
-        const size_t fixed = SMS_MULTI_IDENTITY_COUNT + AXIS_FIELDS * na
-                             + MOVE_FIELDS * move_count(g);
+        const size_t fixed = SMS_MULTI_IDENTITY_COUNT + AXIS_FIELDS * na + moves_fields(g);
         if (n > fixed && (st = check_stages_state(g, src + fixed, n - fixed)) <= SMS_ERR_STATE_FORMAT)
             return st;
         return SMS_ERR_STATE;
@@ -190,7 +290,14 @@ sms_status sms_multi_generator_check_state(const sms_multi_generator *g, const d
             return SMS_ERR_STATE;
     }
     mv = src + AXIS_FIELDS * na;
-    for (i = 0; i < move_count(g); ++i) {
+    if (SMS_SYNC_PER_AXIS_PLANS(g->sync)) {
+        sms_multi_target request, aim;
+        sms_multi_axis_plan ax[SMS_MULTI_MAX_AXES];
+        int refused;
+        if (!read_plans(g, mv, &request, &aim, ax, &refused))
+            return SMS_ERR_STATE;
+    }
+    for (i = 0; i < move_count(g) && !SMS_SYNC_PER_AXIS_PLANS(g->sync); ++i) {
         /* durations [s] within the 2^53 samples a move's counts hold, the first sample's
          * move time within one sample */
         const double *f = mv + MOVE_FIELDS * i, horizon = 9007199254740992.0 * g->Ts;
@@ -202,7 +309,7 @@ sms_status sms_multi_generator_check_state(const sms_multi_generator *g, const d
             (f[10] != 0.0 && f[10] != 1.0) || (f[11] != 0.0 && f[11] != 1.0))
             return SMS_ERR_STATE;
     }
-    mv += MOVE_FIELDS * move_count(g);
+    mv += moves_fields(g);
     st = check_stages_state(g, mv, stages_state_count(g));
     if (st == SMS_OK)
         st = check_stages_range(g, mv);
@@ -228,7 +335,16 @@ sms_status sms_multi_generator_set_state(sms_multi_generator *g, const double *s
         g->V[i] = (sms_real)src[3 * na + i];
         g->W[i] = (sms_real)src[4 * na + i];
     }
-    for (i = 0; i < move_count(g); ++i) {
+    if (SMS_SYNC_PER_AXIS_PLANS(g->sync)) {
+        sms_multi_axis_plan ax[SMS_MULTI_MAX_AXES];
+        int refused = 0;
+        (void)read_plans(g, mv, &g->request, &g->aim, ax, &refused); /* checked above */
+        for (i = 0; i < na; ++i)
+            g->axis[i] = ax[i];
+        g->plan_refused = refused;
+        g->plan_pending = 0;
+    }
+    for (i = 0; i < move_count(g) && !SMS_SYNC_PER_AXIS_PLANS(g->sync); ++i) {
         const double *f = mv + MOVE_FIELDS * i;
         sms_multi_move *m = &g->move[i];
         m->T1 = (sms_real)f[0];
@@ -244,7 +360,7 @@ sms_status sms_multi_generator_set_state(sms_multi_generator *g, const double *s
         m->pending = (int)f[10];
         m->refused = (int)f[11];
     }
-    mv += MOVE_FIELDS * move_count(g);
+    mv += moves_fields(g);
     for (i = 0; i < na; ++i) {
         size_t s;
         for (s = 0; s < SMS_MULTI_SIGNALS; ++s) {

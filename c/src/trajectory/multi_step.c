@@ -208,6 +208,12 @@ static void step_group(sms_multi_generator *g, size_t first, size_t n, sms_multi
 void sms_multi_step_profile(sms_multi_generator *g, const sms_real *target, sms_real *out)
 {
     size_t i;
+    if (SMS_SYNC_PER_AXIS_PLANS(g->sync)) {
+        sms_multi_target t;
+        sms_multi_sync_rest_target(g, target, &t);
+        sms_multi_sync_step_profile(g, &t, out);
+        return;
+    }
     for (i = 0; i < g->n_axes; ++i)
         if (target[i] - target[i] == 0 && target[i] != g->target[i]) { /* finite and new */
             g->target[i] = target[i];
@@ -222,8 +228,13 @@ void sms_multi_step_profile(sms_multi_generator *g, const sms_real *target, sms_
 }
 void sms_multi_generator_step(sms_multi_generator *g, const sms_real *target, sms_real *out)
 {
-    size_t i;
     sms_multi_step_profile(g, target, out);
+    sms_multi_filter_output(g, out);
+}
+
+void sms_multi_filter_output(sms_multi_generator *g, sms_real *out)
+{
+    size_t i;
     for (i = 0; i < g->n_axes; ++i)
         if (g->chain[i][0].n_stages > 0) {
             size_t m;
@@ -244,6 +255,8 @@ void sms_multi_generator_process(sms_multi_generator *g, const sms_real *targets
 int sms_multi_generator_busy(const sms_multi_generator *g)
 {
     size_t i, groups = g->sync == SMS_SYNC_PHASE ? 1u : g->n_axes;
+    if (SMS_SYNC_PER_AXIS_PLANS(g->sync))
+        return sms_multi_sync_busy(g);
     for (i = 0; i < groups; ++i)
         if (g->move[i].active || g->move[i].pending)
             return 1;

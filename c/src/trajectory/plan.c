@@ -469,6 +469,12 @@ void sms_plan_eval(const sms_plan *plan, sms_real Ts, size_t k, sms_real out[4])
     out[3] = j;
 }
 
+size_t sms_plan_arrival_sample(const sms_plan *plan, sms_real Ts)
+{
+    return at_or_after(plan->arrive, plan->arrive, plan->arrive_f, Ts) ? plan->arrive
+                                                                       : plan->arrive + 1u;
+}
+
 size_t sms_plan_rest_sample(const sms_plan *plan, sms_real Ts)
 {
     if (plan->count == 0)

@@ -61,6 +61,10 @@ void sms_plan_eval(const sms_plan *plan, sms_real Ts, size_t k, sms_real out[4])
  * j = 0 exactly), as every later one does. */
 size_t sms_plan_rest_sample(const sms_plan *plan, sms_real Ts);
 
+/* The first sample at or after the plan's arrival at its target state, by the rule
+ * sms_plan_eval() applies to every breakpoint (within the grid tolerance of a sample: on it). */
+size_t sms_plan_arrival_sample(const sms_plan *plan, sms_real Ts);
+
 /* sqrt(x) for x >= 0 in sms_real without libm (Newton after scaling by powers of 4). */
 sms_real sms_plan_sqrt(sms_real x);
 

@@ -306,10 +306,7 @@ def _energy_note(rec: Record, band) -> str | None:
     cols = [j for j, n in enumerate(rec.names) if n in AXIS_NAMES]
     if len(cols) < 2:
         return None
-    sub = Record(rec.path, rec.kind, [rec.names[j] for j in cols], t=rec.t, Ts=rec.Ts, f=rec.f,
-                 signals=rec.signals[:, cols], segments=rec.segments,
-                 grid_starts=rec.grid_starts)
-    share = spectra.energy_shares(sub, band)
+    share = spectra.energy_shares(rec, band, cols)
     d = np.array([abs(rec.direction[AXIS_NAMES.index(rec.names[j])]) for j in cols])
     expected = float(share[d > 0.3].sum())
     top = int(np.argmax(share))
@@ -384,10 +381,9 @@ def identify(rec: Record, name: str, signal: str, cols, band=None,
         # the spectral figure at the established tool's resolution (segments of 0.5 s): a
         # spectrum resolved finer than the modes move over a print rewards shapers too narrow
         # (a record sampled too slowly for that keeps its own spectrum)
-        res.figure_spectrum = spectra.welch(
-            rec.signals[:, cols] if not isinstance(cols, np.ndarray) else
-            rec.signals[:, : cols.size] @ cols[: rec.signals.shape[1]], rec.Ts,
-            segments=rec.segments, starts=rec.grid_starts, nperseg=n)
+        direction = cols if isinstance(cols, np.ndarray) else None
+        res.figure_spectrum = spectra.record_spectrum(rec, None if direction is not None else cols,
+                                                      direction, nperseg=n)
     fit = fit_modes(spec, b)
     modes = []
     if fit is not None:

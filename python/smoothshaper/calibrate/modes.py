@@ -46,7 +46,7 @@ class Mode:
 
 # ---------------------------------------------------------------- free decays
 
-def _decay_model(th, t, n_modes):
+def _decay_model(th, t, n_modes, values=False):
     c = th[0]
     out = np.full(t.shape, c)
     jac = [np.ones_like(t)]
@@ -56,8 +56,9 @@ def _decay_model(th, t, n_modes):
         co, si = np.cos(wd * t), np.sin(wd * t)
         osc = e * (A * co + B * si)
         out = out + osc
-        jac += [e * co, e * si, t * osc, e * t * (-A * si + B * co)]
-    return out, np.column_stack(jac)
+        if not values:
+            jac += [e * co, e * si, t * osc, e * t * (-A * si + B * co)]
+    return out if values else (out, np.column_stack(jac))
 
 
 def decay_modes(x: np.ndarray, Ts: float, *, path: str, column: str,
@@ -67,18 +68,23 @@ def decay_modes(x: np.ndarray, Ts: float, *, path: str, column: str,
     from scipy.optimize import least_squares
     import scipy.signal
     from ..filters import identify_from_record, ParameterError
-    t = np.arange(x.size) * Ts
+    from . import decay_decimation as dd
+    full, n_full = x, x.size
+    # a long record is fitted at the rate its content needs (decay_decimation: same modes,
+    # same uncertainty, bounded memory); R^2 is still that of every sample
+    idx, x, q = dd.fit_rate(full, Ts, band)
+    t = idx * Ts
     try:
-        seed = identify_from_record(x, Ts=Ts)
+        seed = identify_from_record(x, Ts=q * Ts)
     except (ParameterError, ValueError) as exc:
         raise RecordError(path, f"not a free decay: the one-mode fit fails ({exc})",
                           column=column) from None
     # further modes: peaks of the decay's periodogram other than the seed's
-    f, P = scipy.signal.periodogram(x - np.mean(x), fs=1 / Ts, window="hann")
+    f, P = scipy.signal.periodogram(x - np.mean(x), fs=1 / (q * Ts), window="hann")
     peaks, _ = scipy.signal.find_peaks(np.log10(np.maximum(P, 1e-300)), prominence=1.0)
     f_lo, f_hi = band if band else (0.0, 0.45 / Ts)
     extra = [f[p] for p in sorted(peaks, key=lambda p: -P[p])
-             if f_lo <= f[p] <= f_hi and abs(f[p] - seed.wd / (2 * math.pi)) > 3 / (x.size * Ts)]
+             if f_lo <= f[p] <= f_hi and abs(f[p] - seed.wd / (2 * math.pi)) > 3 / (n_full * Ts)]
     starts = [(seed.sigma, seed.wd)] + [(-0.02 * 2 * math.pi * fe, 2 * math.pi * fe)
                                         for fe in extra[:2]]
     best = None
@@ -104,7 +110,7 @@ def decay_modes(x: np.ndarray, Ts: float, *, path: str, column: str,
             sig = [res.x[3 + 4 * i] for i in range(n_modes)]
             if max(sig) >= 0 or min(amp) < 1e-2 * max(amp):
                 continue
-        r2 = 1.0 - ssr / float(np.sum((x - np.mean(x)) ** 2))
+        r2 = 1.0 - ssr / float(np.sum((x - np.mean(x)) ** 2)) if q == 1 else None
         k = th0.size
         # keep a further mode only if it explains clearly more (an F-test-like margin)
         if best is None or ssr < best[1] * (1 - 10.0 * (k - best[3]) / x.size):
@@ -113,6 +119,10 @@ def decay_modes(x: np.ndarray, Ts: float, *, path: str, column: str,
         raise RecordError(path, "not a free decay: the damped-oscillation fit diverges",
                           column=column)
     res, ssr, r2, k, n_modes = best
+    if r2 is None:
+        total = dd.residual_sum(lambda th, tt: _decay_model(th, tt, n_modes, values=True),
+                                res.x, full, Ts)
+        r2 = 1.0 - total / float(np.sum((full - np.mean(full)) ** 2))
     if r2 < DECAY_MIN_R2:
         raise RecordError(path, f"not a free decay: a sum of damped oscillations explains only "
                           f"{100 * max(r2, 0):.0f} % of the signal (a decay: > "

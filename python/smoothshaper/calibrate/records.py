@@ -96,6 +96,8 @@ class Record:
     direction: np.ndarray | None = None
     test_axis: str | None = None
     notes: list = field(default_factory=list)
+    #: Raw records: Welch PSD of each column per segment length (:func:`.spectra.column_spectrum`).
+    column_psd: dict = field(default_factory=dict, repr=False, compare=False)
 
 
 def _lower(names):

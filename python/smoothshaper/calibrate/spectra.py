@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Spectrum", "segment_length", "welch", "record_spectrum", "normalize_to_excitation",
+__all__ = ["Spectrum", "segment_length", "welch", "column_spectrum", "record_spectrum", "normalize_to_excitation",
            "vibration_content",
            "energy_shares"]
 
@@ -150,15 +150,32 @@ def welch(x: np.ndarray, Ts: float, *, segments=None, starts=None,
     return Spectrum(f, P, kernel, over, max(used, 1), float(enbw))
 
 
-def record_spectrum(record, columns, direction=None) -> Spectrum:
+def column_spectrum(record, j: int, nperseg: int | None = None) -> Spectrum:
+    """The Welch PSD of column ``j`` of a raw record, computed once per record and segment
+    length (the summed analysis, the spectral figure and the energy shares all read it)."""
+    cache = record.column_psd
+    key = (int(j), nperseg)
+    if key not in cache:
+        cache[key] = welch(record.signals[:, j], record.Ts, segments=record.segments,
+                           starts=record.grid_starts, nperseg=nperseg)
+    return cache[key]
+
+
+def record_spectrum(record, columns, direction=None, nperseg: int | None = None) -> Spectrum:
     """The PSD of a raw record: the sum of the ``columns``' PSDs, or (``direction`` a vector
     over the record's columns) the PSD of the projected acceleration."""
     x = record.signals
     if direction is not None:
         d = np.asarray(direction, dtype=float)
         y = x[:, : d.size] @ d[: x.shape[1]]
-        return welch(y, record.Ts, segments=record.segments, starts=record.grid_starts)
-    return welch(x[:, columns], record.Ts, segments=record.segments, starts=record.grid_starts)
+        return welch(y, record.Ts, segments=record.segments, starts=record.grid_starts,
+                     nperseg=nperseg)
+    parts = [column_spectrum(record, j, nperseg) for j in columns]
+    if len(parts) == 1:
+        return parts[0]
+    first = parts[0]
+    return Spectrum(first.f, np.sum([s.P for s in parts], axis=0), first.kernel,
+                    first.oversample, first.averages, first.enbw_bins)
 
 
 def normalize_to_excitation(f, P):
@@ -187,20 +204,20 @@ def vibration_content(f, P, band, threshold: float = 20.0) -> np.ndarray:
     return S
 
 
-def energy_shares(record, band) -> np.ndarray:
-    """Each column's share of the in-band PSD energy of a record (raw: its own Welch PSD; a
-    table: its column)."""
+def energy_shares(record, band, columns=None) -> np.ndarray:
+    """Each column's (of ``columns``, default all) share of the in-band PSD energy of a record
+    (raw: its own Welch PSD; a table: its column)."""
+    columns = range(record.signals.shape[1]) if columns is None else columns
     if record.kind == "raw":
         e = []
-        for j in range(record.signals.shape[1]):
-            s = welch(record.signals[:, j], record.Ts, segments=record.segments,
-                      starts=record.grid_starts)
+        for j in columns:
+            s = column_spectrum(record, j)
             inb = (s.f >= band[0]) & (s.f <= band[1])
             e.append(float(np.sum(s.P[inb])))
         e = np.array(e)
     else:
         inb = (record.f >= band[0]) & (record.f <= band[1])
-        e = np.array([float(np.sum(record.signals[inb, j])) for j in range(record.signals.shape[1])])
+        e = np.array([float(np.sum(record.signals[inb, j])) for j in columns])
     total = e.sum()
     return e / total if total > 0 else e
 

@@ -180,7 +180,7 @@ def _fit_peak(spec: Spectrum, i_peak: int, lo: int, hi: int, zeta0: float):
 def _peak_fits(spec: Spectrum, band: tuple[float, float], max_modes: int = 4) -> list[dict]:
     """The significant modes of a spectrum in ``band`` [Hz] as dicts, largest weight first
     ([] when there is none, or the band is too narrow to fit one)."""
-    import scipy.signal
+    from .peaks import find_peaks      # scipy.signal's, without importing scipy.stats
     f, P = spec.f, spec.P
     inband = np.flatnonzero((f >= band[0]) & (f <= band[1]) & (f > 0))
     if inband.size < 10:
@@ -197,8 +197,7 @@ def _peak_fits(spec: Spectrum, band: tuple[float, float], max_modes: int = 4) ->
         smooth = np.convolve(logP, kern / kern.sum(), mode="same")
         resid = logP - smooth
         sigma = 1.4826 * float(np.median(np.abs(resid - np.median(resid))))
-        pk, props = scipy.signal.find_peaks(smooth, prominence=max(0.05, 3.0 * sigma
-                                                                   / math.sqrt(width)))
+        pk, props = find_peaks(smooth, prominence=max(0.05, 3.0 * sigma / math.sqrt(width)))
         order = np.argsort(-props["prominences"])[:4]
         # each peak's extent: its half-prominence width and the valleys either side (a weak
         # mode on a larger one's tail never falls to half its power: its half-power width

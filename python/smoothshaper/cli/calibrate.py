@@ -143,6 +143,20 @@ def cmd_schedule(args) -> int:
     return 0
 
 
+def _looks_like_decay(path) -> bool:
+    """For the time estimate only, from the head of the file: two columns, neither named as an
+    acceleration nor a frequency (the reader decides from the whole record)."""
+    from ..calibrate.tables import _head
+    try:
+        header, _, _, values = _head(path)
+    except (OSError, ValueError):
+        return False
+    if values is None or len(values) != 2:
+        return False
+    names = " ".join(header).lower() if header else ""
+    return not any(w in names for w in ("accel", "freq", "psd", "hz"))
+
+
 def cmd_calibrate(args) -> int:
     from .. import calibrate
     from ..calibrate import outputs
@@ -153,7 +167,9 @@ def cmd_calibrate(args) -> int:
     nbytes = sum(os.path.getsize(f) for f in args.files if os.path.isfile(f))
     # analyses to tune: one per file, up to three with --axis all
     axes = len(args.files) * (3 if args.axis == "all" else 1)
-    bar = start_request(record_cost("calibrate", nbytes=nbytes, axes=axes), args,
+    decay = args.kind == "decay" or (args.kind == "auto" and any(_looks_like_decay(f)
+                                                                  for f in args.files))
+    bar = start_request(record_cost("calibrate", nbytes=nbytes, axes=axes, decay=decay), args,
                         f"{len(args.files)} file(s), {nbytes} bytes")
     if bar is None:
         return 0

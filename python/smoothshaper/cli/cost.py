@@ -22,7 +22,8 @@ from .common import CliError
 
 __all__ = ["ANNOUNCE_SECONDS", "LIMIT_SECONDS", "UNIT_COSTS", "PLOT_POINTS", "Cost",
            "add_options", "start", "show_progress", "announce", "chain_taps",
-           "analyze_cost", "trajectory_cost", "record_cost", "REPORT_SECONDS", "report_cost",
+           "analyze_cost", "trajectory_cost", "record_cost", "DECAY_FIT_BYTES", "REPORT_SECONDS",
+           "report_cost",
            "VALIDATE_SECONDS", "validate_cost", "measure"]
 
 #: A request modelled to take longer than this [s] prints its estimate before it starts.
@@ -47,12 +48,16 @@ UNIT_COSTS = {
     "generator_sample_axis": 1.5e-7,
     # one CSV row written with 17 significant digits, per value
     "csv_value": 1.2e-6,
-    # identify: reading a CSV record and the least-squares fit of the whole decay, per byte
-    "identify_byte": 1.2e-6,
-    # calibrate: reading a CSV record, Welch spectra and modal fits, per byte
-    "calibrate_byte": 3.0e-7,
-    # calibrate: tuning every filter family to the modes of one axis
-    "calibrate_axis": 1.5,
+    # identify and calibrate: reading a CSV record (numpy.loadtxt), the checks and (calibrate)
+    # the Welch spectra, per byte
+    "identify_byte": 4.6e-8,
+    "calibrate_byte": 2.7e-8,
+    # the whole-record fit of a free decay, per byte of the file up to DECAY_FIT_BYTES (longer
+    # decays are fitted at a lower rate on at most 2 x 65536 samples: a bounded cost)
+    "decay_fit_byte": 2.65e-6,
+    # calibrate: tuning every filter family to the modes of one axis (a resonance test's
+    # spectral fit and the start-up included)
+    "calibrate_axis": 2.5,
     # plotting one point of a line (matplotlib Agg, after decimation to at most 20k points)
     "plot_point": 2.0e-6,
 }
@@ -315,7 +320,12 @@ def trajectory_cost(form: str, *, samples: int, axes: int, csv: bool, plot: bool
     }, drivers)
 
 
-def record_cost(what: str, *, nbytes: int, axes: int = 1) -> Cost:
+#: Bytes of a CSV record beyond which a free decay's fit costs no more (2 x 65536 lines of
+#: about 20 characters: calibrate.decay_decimation fits longer ones at a lower rate).
+DECAY_FIT_BYTES = 2.6e6
+
+
+def record_cost(what: str, *, nbytes: int, axes: int = 1, decay: bool | None = None) -> Cost:
     """Model of reading and fitting CSV records (``identify``, ``calibrate``).
 
     Parameters
@@ -328,6 +338,9 @@ def record_cost(what: str, *, nbytes: int, axes: int = 1) -> Cost:
         Total size of the files [bytes] (``os.path.getsize``).
     axes : int
         Signal columns that will be tuned (calibrate).
+    decay : bool or None
+        Whether the record is a free decay (fitted in the time domain); default: yes for
+        identify, no for calibrate.
 
     Returns
     -------
@@ -340,7 +353,9 @@ def record_cost(what: str, *, nbytes: int, axes: int = 1) -> Cost:
         ``what`` is neither ``"identify"`` nor ``"calibrate"``.
     """
     c = UNIT_COSTS
-    phases = {"read and fit": c[f"{what}_byte"] * nbytes + 1.0}
+    decay = (what == "identify") if decay is None else decay
+    phases = {"read and fit": c[f"{what}_byte"] * nbytes + 1.0
+              + (c["decay_fit_byte"] * min(nbytes, DECAY_FIT_BYTES) if decay else 0.0)}
     if what == "calibrate":
         phases["tune"] = c["calibrate_axis"] * max(1, axes)
     return Cost(what, phases, {"FILE": f"{nbytes / 1e6:.3g} MB of records"})
