@@ -1,10 +1,10 @@
 # SPDX-License-Identifier: Apache-2.0
-"""calibrate.peaks finds the peaks and prominences scipy.signal.find_peaks finds, exactly."""
+"""calibrate.peaks finds the peaks, prominences, bases and widths scipy.signal finds, exactly."""
 import numpy as np
 import pytest
 import scipy.signal
 
-from smoothshaper.calibrate.peaks import find_peaks
+from smoothshaper.calibrate.peaks import find_peaks, peak_widths
 
 
 def _curves():
@@ -27,3 +27,11 @@ def test_same_as_scipy(i, prominence):
     ref, ref_props = scipy.signal.find_peaks(x, prominence=prominence)
     np.testing.assert_array_equal(pk, ref)
     np.testing.assert_array_equal(props["prominences"], ref_props["prominences"])
+    np.testing.assert_array_equal(props["left_bases"], ref_props["left_bases"])
+    np.testing.assert_array_equal(props["right_bases"], ref_props["right_bases"])
+    data = (props["prominences"], props["left_bases"], props["right_bases"])
+    for rel in (0.5, 1.0):
+        np.testing.assert_allclose(
+            peak_widths(x, pk, rel, data),
+            scipy.signal.peak_widths(x, ref, rel_height=rel, prominence_data=data)[0],
+            rtol=1e-12, atol=1e-12)

@@ -180,7 +180,7 @@ def _fit_peak(spec: Spectrum, i_peak: int, lo: int, hi: int, zeta0: float):
 def _peak_fits(spec: Spectrum, band: tuple[float, float], max_modes: int = 4) -> list[dict]:
     """The significant modes of a spectrum in ``band`` [Hz] as dicts, largest weight first
     ([] when there is none, or the band is too narrow to fit one)."""
-    from .peaks import find_peaks      # scipy.signal's, without importing scipy.stats
+    from .peaks import find_peaks, peak_widths   # scipy.signal's, without scipy.stats
     f, P = spec.f, spec.P
     inband = np.flatnonzero((f >= band[0]) & (f <= band[1]) & (f > 0))
     if inband.size < 10:
@@ -202,8 +202,8 @@ def _peak_fits(spec: Spectrum, band: tuple[float, float], max_modes: int = 4) ->
         # each peak's extent: its half-prominence width and the valleys either side (a weak
         # mode on a larger one's tail never falls to half its power: its half-power width
         # reached the larger mode and the fit went there)
-        widths = scipy.signal.peak_widths(smooth, pk, rel_height=0.5, prominence_data=(
-            props["prominences"], props["left_bases"], props["right_bases"]))[0]
+        widths = peak_widths(smooth, pk, rel_height=0.5, prominence_data=(
+            props["prominences"], props["left_bases"], props["right_bases"]))
         for o in order:
             if 2 <= pk[o] < smooth.size - 2 and all(abs(int(pk[o]) - c[0]) > 2 for c in cands):
                 cands.append((int(pk[o]), width, i0 + int(props["left_bases"][o]),
