@@ -59,6 +59,11 @@ typedef struct ss_model {
     sms_scheduled sch;
     sms_schedule_point points[SS_SCHEDULE_POINTS];
     double chain_lag;                    /* the active stages' lag [samples] */
+    /* sms_tunable_chain_input_max() of the chain, asked by every set of u: computed once per
+     * configuration (stale: recomputed on each ask until a tick finds the chain not switching;
+     * a build, a retune and a loaded state make it stale) */
+    double input_max;
+    int input_max_stale;
 } ss_model;
 
 static int is_integer_field(unsigned f)
@@ -478,7 +483,18 @@ unsigned fmu_model_real_bytes(void) { return (unsigned)sizeof(sms_real); }
 double fmu_model_input_max(const void *model)
 {
     const ss_model *m = (const ss_model *)model;
-    return m->built && m->n_active > 0 ? sms_tunable_chain_input_max(&m->chain) : HUGE_VAL;
+    if (!m->built || m->n_active == 0)
+        return HUGE_VAL;
+    return m->input_max_stale ? sms_tunable_chain_input_max(&m->chain) : m->input_max;
+}
+
+/* After ticks: the range of a chain that no longer switches is its configuration's. */
+static void refresh_input_max(ss_model *m)
+{
+    if (m->n_active > 0 && !sms_tunable_chain_switching(&m->chain)) {
+        m->input_max = sms_tunable_chain_input_max(&m->chain);
+        m->input_max_stale = 0;
+    }
 }
 
 /* The memory of the longest input smoother of this kind whose delay line holds at most
@@ -792,6 +808,7 @@ int fmu_model_build(void *model, void *mem, size_t bytes, char *msg, size_t len)
     }
     b.any_pending = 0;
     b.built = 1;
+    b.input_max_stale = 1;
     if (n > 0)
         sms_tunable_chain_reset(&b.chain, (sms_real)b.u);
     if (b.scheduled)
@@ -878,6 +895,7 @@ static void apply_pending(ss_model *m)
         }
         m->pending[i] = 0;
         changed |= st == SMS_OK;
+        m->input_max_stale |= st == SMS_OK;
     }
     m->any_pending = left;
     if (changed)
@@ -895,6 +913,8 @@ int fmu_model_tick(void *model)
         sms_tunable_chain_step(&m->chain, &x);
     if (m->scheduled)
         sms_scheduled_step(&m->sch, &x, m->s);
+    if (m->input_max_stale)
+        refresh_input_max(m);
     m->y = (double)x;
     return m->y != before;
 }
@@ -922,6 +942,8 @@ uint64_t fmu_model_hold(void *model, uint64_t n)
         return n;
     }
     sms_tunable_chain_hold(&m->chain, (sms_real)m->u, n, &y);
+    if (m->input_max_stale)
+        refresh_input_max(m);
     m->y = (double)y;
     return n;
 }
@@ -1006,6 +1028,7 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
     size_t i, j, off = 1, at = 0;
     if (n != fmu_model_state_count(m))
         return 1;
+    m->input_max_stale = 1;   /* the stages are built again below */
     for (i = 0; i < m->n_active; ++i) {   /* each stage into the configuration it was saved in */
         const double *part = src + off;
         sms_stage_config active, old;

@@ -35,6 +35,8 @@ def _type_text(value) -> str:
 def real(name: str, value) -> float:
     """``value`` as a float; ParameterError naming ``name`` unless it is a real number
     (int, float, NumPy real scalar or 0-d real array; not bool, complex or str)."""
+    if type(value) is float or type(value) is np.float64:
+        return float(value)         # the common case, first: every Stage checks seven fields
     if isinstance(value, np.ndarray) and value.ndim == 0:
         value = value[()]
     if isinstance(value, (bool, np.bool_, np.timedelta64)) \
@@ -84,11 +86,13 @@ def integer(name: str, value, minimum: int | None = None) -> int:
     ``>= minimum``; never a bool."""
     if isinstance(value, np.ndarray) and value.ndim == 0:
         value = value[()]
-    if isinstance(value, (bool, np.bool_, np.timedelta64)) \
+    if type(value) is int:          # the common case, without the ABC checks (bool is not int)
+        n = value
+    elif isinstance(value, (bool, np.bool_, np.timedelta64)) \
             or not isinstance(value, (numbers.Real, np.number)) \
             or isinstance(value, (complex, np.complexfloating)):
         raise ParameterError(name, f"{name} must be an integer, got {_type_text(value)}")
-    if isinstance(value, (numbers.Integral, np.integer)):
+    elif isinstance(value, (numbers.Integral, np.integer)):
         n = int(value)
     else:
         v = real(name, value)

@@ -61,7 +61,8 @@ def main() -> int:
     count = 0
     for info in pkgutil.walk_packages(smoothshaper.__path__, "smoothshaper."):
         leaf = info.name.rsplit(".", 1)[-1]
-        if leaf == "__main__" or leaf == "_build_core":   # a program; the build-time module
+        # a program; the build-time modules (setup.py's, they import setuptools)
+        if leaf in ("__main__", "_build_core", "_build_library"):
             continue
         importlib.import_module(info.name)
         count += 1

@@ -2,20 +2,18 @@
 """The benchmark command runs end to end (a smoke test: --quick, no timing is asserted) and
 writes every table the docs quote."""
 import shutil
-from pathlib import Path
 
 import pytest
 
 from smoothshaper import bench
 from smoothshaper.bench import suite
-
-ROOT = Path(__file__).resolve().parents[2]
+from fmu_builds import fmu_build_dir
 
 
 @pytest.mark.skipif(suite._compiler() is None, reason="needs a C compiler")
 def test_quick_run_writes_every_table(tmp_path, capsys):
     out = tmp_path / "benchmarks.md"
-    args = ["--quick", "--output", str(out), "--fmu-build-dir", str(ROOT / "build-pytest-fmu")]
+    args = ["--quick", "--output", str(out), "--fmu-build-dir", str(fmu_build_dir())]
     if shutil.which("cmake") is None:
         args.append("--no-fmu")
     assert bench.main(args) == 0

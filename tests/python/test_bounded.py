@@ -12,7 +12,6 @@ import math
 import shutil
 import sys
 import time
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -22,8 +21,8 @@ from smoothshaper.filters import Chain, ParameterError, identify_from_peaks, inp
 from smoothshaper.reference import filtering as ref_filtering, shapers as ref_shapers
 from smoothshaper.reference import smoothers as ref_smoothers
 from smoothshaper.stages import Stage
+from fmu_builds import fmu_build_dir
 
-ROOT = Path(__file__).resolve().parents[2]
 O1_SECONDS = 2.0
 
 
@@ -233,7 +232,7 @@ def smoothshaper_dir(tmp_path_factory):
     fmpy = pytest.importorskip("fmpy", reason="fmpy is needed to import the FMUs")
     if shutil.which("cmake") is None:
         pytest.skip("cmake is needed to build the FMUs")
-    fmus = fmi.build_fmus(ROOT / "build-pytest-fmu")
+    fmus = fmi.build_fmus(fmu_build_dir())
     return fmpy.extract(str(fmus["SmoothShaper"]), str(tmp_path_factory.mktemp("ssb")))
 
 

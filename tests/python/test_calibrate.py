@@ -20,6 +20,7 @@ from smoothshaper.calibrate.outputs import report_text
 from smoothshaper.cli import main
 
 import klipper_pick
+from fmu_builds import fmu_build_dir
 
 ROOT = Path(__file__).resolve().parents[2]
 TWO_PI = 2 * math.pi
@@ -423,7 +424,7 @@ def test_fmu_start_values_reproduce_the_chain_in_fmpy(tmp_path):
         pytest.skip("cmake is needed to build the FMUs")
     from smoothshaper import fmi
     from smoothshaper.calibrate import outputs
-    fmus = fmi.build_fmus(ROOT / "build-pytest-fmu")
+    fmus = fmi.build_fmus(fmu_build_dir())
     Ts = 1e-3
     c = calibrate.Candidate("two", [sms.shaper("ei3", wn=150.0, zeta=0.05),
                                     sms.shaper("gmzv", wn=260.0, zeta=0.02, order=5,

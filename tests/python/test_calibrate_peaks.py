@@ -29,9 +29,13 @@ def test_same_as_scipy(i, prominence):
     np.testing.assert_array_equal(props["prominences"], ref_props["prominences"])
     np.testing.assert_array_equal(props["left_bases"], ref_props["left_bases"])
     np.testing.assert_array_equal(props["right_bases"], ref_props["right_bases"])
+
+
+@pytest.mark.parametrize("i", range(7))
+@pytest.mark.parametrize("rel_height", [0.0, 0.5, 1.0])
+def test_widths_same_as_scipy(i, rel_height):
+    x = list(_curves())[i]
+    pk, props = find_peaks(x, prominence=0.0)
     data = (props["prominences"], props["left_bases"], props["right_bases"])
-    for rel in (0.5, 1.0):
-        np.testing.assert_allclose(
-            peak_widths(x, pk, rel, data),
-            scipy.signal.peak_widths(x, ref, rel_height=rel, prominence_data=data)[0],
-            rtol=1e-12, atol=1e-12)
+    ref = scipy.signal.peak_widths(x, pk, rel_height=rel_height, prominence_data=data)[0]
+    np.testing.assert_array_equal(peak_widths(x, pk, rel_height, data), ref)

@@ -20,14 +20,15 @@ from smoothshaper import fmi  # noqa: E402
 from smoothshaper.fmi.cases import multi_axis_case, validation_cases  # noqa: E402
 from smoothshaper.fmi.simulate import simulate_multi_axis  # noqa: E402
 from smoothshaper.reference.multi_axis import multi_axis_reference  # noqa: E402
-from test_fmu_smoothshaper import ROOT, fmus  # noqa: E402,F401
+from test_fmu_smoothshaper import fmus  # noqa: E402,F401
+from fmu_builds import fmu_build_dir  # noqa: E402
 
 TS = 1e-3
 
 
 @pytest.fixture(scope="session")
 def fmus3(fmus):  # noqa: F811   (the FMI 2.0 build first: the same build folder)
-    return fmi.build_fmus(ROOT / "build-pytest-fmu", fmi_version="3.0")
+    return fmi.build_fmus(fmu_build_dir(), fmi_version="3.0")
 
 
 def test_both_versions_pass_fmpy_validate_and_state_the_licence(fmus, fmus3):  # noqa: F811

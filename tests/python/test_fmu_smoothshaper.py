@@ -17,6 +17,7 @@ from fmpy.fmi1 import FMICallException  # noqa: E402
 
 from smoothshaper import fmi  # noqa: E402
 from smoothshaper.stages import damped_harmonic, harmonic, notch, rectangular, shaper  # noqa: E402
+from fmu_builds import fmu_build_dir  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 TS = 1e-3
@@ -26,7 +27,7 @@ TS = 1e-3
 def fmus():
     if shutil.which("cmake") is None:
         pytest.skip("cmake is needed to build the FMUs")
-    return fmi.build_fmus(ROOT / "build-pytest-fmu")
+    return fmi.build_fmus(fmu_build_dir())
 
 
 @pytest.fixture(scope="session")

@@ -24,15 +24,19 @@ def _requirement_name(text: str) -> str:
     return re.split(r"[<>=!~\[; ]", text, maxsplit=1)[0].strip().lower()
 
 
+# Modules setup.py runs to build the extensions; the installed package never imports them.
+BUILD_MODULES = ("_build_core.py", "_build_library.py")
+
+
 def _third_party_imports(build: bool = False):
     """(module file, node, top-level name, enclosing function or None, handled) for every
     import of a module that is neither the standard library nor this package; ``handled``
     is True inside a ``try`` that catches ImportError (the code then goes on without it).
-    ``build``: the build-time module (``_build_core.py``, run by setup.py) instead of the
-    installed package."""
+    ``build``: the build-time modules (``_build_core.py`` and ``_build_library.py``, run by
+    setup.py) instead of the installed package."""
     found = []
     for path in sorted(PACKAGE.rglob("*.py")):
-        if (path.name == "_build_core.py") != build:
+        if (path.name in BUILD_MODULES) != build:
             continue
         tree = ast.parse(path.read_text(), str(path))
 
@@ -92,7 +96,8 @@ def test_base_dependencies_are_what_the_package_imports():
 
 
 def test_build_requirements_are_what_the_build_imports():
-    """setup.py's cffi build: cffi (and pycparser, which cffi requires) and setuptools."""
+    """setup.py's build: cffi (and pycparser, which cffi requires) and setuptools (its
+    build_ext)."""
     declared = {_requirement_name(r) for r in PYPROJECT["build-system"]["requires"]}
     tops = {top for _, _, top, _, _ in _third_party_imports(build=True)}
     assert tops - {"pycparser"} <= declared and "cffi" in declared, tops

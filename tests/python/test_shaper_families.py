@@ -20,6 +20,7 @@ from smoothshaper.reference.input_smoothers import (input_smoother_taps, pinned_
                                                     smoother_kernel, smoother_transfer)
 from smoothshaper.reference.shapers import si_undamped
 from smoothshaper.stages import INPUT_SMOOTHERS, Stage
+from fmu_builds import fmu_build_dir
 
 # T f of each kernel at zeta = 0 (shaper_defs.py: the first term of its t cubic, or constant)
 SPANS = {"smooth_zv": 0.66471804, "smooth_mzv": 0.85165483, "smooth_ei": 0.96753911,
@@ -322,11 +323,10 @@ def test_fmu_names_the_impulse_it_refuses(capfd):
     # fmpy simulation in the same process once the call has failed)
     fmpy = pytest.importorskip("fmpy")
     import shutil
-    from pathlib import Path
     from smoothshaper import fmi
     if shutil.which("cmake") is None:
         pytest.skip("cmake is needed to build the FMUs")
-    path = fmi.build_fmus(Path(__file__).resolve().parents[2] / "build-pytest-fmu")["SmoothShaper"]
+    path = fmi.build_fmus(fmu_build_dir())["SmoothShaper"]
     values = fmi.start_values([sms.impulse_shaper(amplitudes=[0.5, 0.5], times=[0.0, 0.01])],
                               Ts=1e-3)
     values["stage[0].time[1]"] = 0.0               # not above time[0]

@@ -10,6 +10,7 @@ import pytest
 
 from smoothshaper import fmi
 from smoothshaper.stages import rectangular
+from fmu_builds import fmu_build_dir
 
 
 def test_tick_inputs_for_a_step_that_is_not_a_multiple_of_Ts():
@@ -47,9 +48,8 @@ def test_run_writes_a_passing_report(tmp_path):
     pytest.importorskip("matplotlib", reason="the report draws plots")
     if shutil.which("cmake") is None:
         pytest.skip("cmake is needed to build the FMUs")
-    from test_fmu_smoothshaper import ROOT
-    fmus = fmi.build_fmus(ROOT / "build-pytest-fmu")
-    fmus3 = fmi.build_fmus(ROOT / "build-pytest-fmu", fmi_version="3.0")
+    fmus = fmi.build_fmus(fmu_build_dir())
+    fmus3 = fmi.build_fmus(fmu_build_dir(), fmi_version="3.0")
     assert fmi.run(tmp_path, fmus=fmus, fmus3=fmus3, stop_time=0.2) is True
     report = (tmp_path / "README.md").read_text()
     assert "**Result: PASS**" in report and "| NO |" not in report

@@ -23,6 +23,7 @@ from ..stages import SHAPERS
 from ..reference.continuous import transfer_unchecked
 from ..stages import Stage, for_mode, impulse_shaper, shaper
 from .._checks import positive as _positive
+from .design_memo import impulses, zv_span
 from .objectives import BOX, impulses_R2, stages_R2, taps_R2
 
 __all__ = ["BOX", "Reference", "Candidate", "chain_taps", "candidate_taps", "impulse_taps",
@@ -134,10 +135,9 @@ def duration(stages, Ts: float) -> float:
         if s.kind in _SMOOTHING_ORDER:
             n += math.floor(s.T / Ts + 1e-9)
         elif s.kind in _ZVN_ORDER:      # exact ZV^n: n convolved exact ZVs
-            n += _ZVN_ORDER[s.kind](s) * math.ceil(float(shaper_impulses(
-                s.with_(kind="zv"))[1][-1]) / Ts - 1e-9)
+            n += _ZVN_ORDER[s.kind](s) * math.ceil(zv_span(s) / Ts - 1e-9)
         else:
-            n += math.ceil(float(shaper_impulses(s)[1][-1]) / Ts - 1e-9)
+            n += math.ceil(float(impulses(s)[1][-1]) / Ts - 1e-9)
     return n * Ts
 
 

@@ -30,7 +30,7 @@ import math
 
 import numpy as np
 
-from ..reference import shaper_impulses
+from .design_memo import impulses
 from ..reference.continuous import transfer_unchecked
 from ..stages import SHAPERS
 
@@ -71,7 +71,7 @@ def stages_R2(stages, poles: np.ndarray) -> np.ndarray:
     H = np.ones(poles.size, dtype=complex)
     for s in stages:
         if s.kind in SHAPERS:
-            A, t = shaper_impulses(s)
+            A, t = impulses(s)
             H *= np.exp(-np.outer(poles, t)) @ A
         else:
             H *= transfer_unchecked(s, poles)

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["local_maxima", "prominence_data", "prominences", "peak_widths", "find_peaks"]
+__all__ = ["local_maxima", "prominences", "find_peaks", "peak_widths"]
 
 
 def local_maxima(x: np.ndarray) -> np.ndarray:
@@ -34,59 +34,60 @@ def local_maxima(x: np.ndarray) -> np.ndarray:
     return ((left + right) // 2).astype(np.intp)
 
 
-def prominence_data(x: np.ndarray, peaks: np.ndarray):
+def prominences(x: np.ndarray, peaks: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(prominences, left_bases, right_bases) of ``peaks`` in ``x``: each base is the lowest
-    sample between the peak and the nearest higher one (or the end) on its side, the one
-    nearest the peak where several are as low (``scipy.signal.peak_prominences``)."""
+    sample between the peak and the nearest higher sample on that side (or the end), the one
+    nearest the peak among equal lows."""
     x = np.asarray(x, dtype=float)
-    prom = np.empty(len(peaks))
-    left = np.empty(len(peaks), dtype=np.intp)
-    right = np.empty(len(peaks), dtype=np.intp)
+    out = np.empty(len(peaks))
+    left_bases = np.empty(len(peaks), dtype=np.intp)
+    right_bases = np.empty(len(peaks), dtype=np.intp)
     for n, p in enumerate(peaks):
         v = x[p]
         higher = np.flatnonzero(x[:p] > v)
         lo = int(higher[-1]) + 1 if higher.size else 0
         higher = np.flatnonzero(x[p + 1:] > v)
         hi = p + 1 + int(higher[0]) if higher.size else x.size
-        seg = x[lo: p + 1]
-        left[n] = lo + seg.size - 1 - int(np.argmin(seg[::-1]))
-        right[n] = p + int(np.argmin(x[p: hi]))
-        prom[n] = v - max(float(x[left[n]]), float(x[right[n]]))
-    return prom, left, right
-
-
-def prominences(x: np.ndarray, peaks: np.ndarray) -> np.ndarray:
-    """Topographic prominence of each of ``peaks`` in ``x``."""
-    return prominence_data(x, peaks)[0]
-
-
-def peak_widths(x: np.ndarray, peaks: np.ndarray, rel_height: float, prominence_data):
-    """Width [samples] of each of ``peaks`` at ``rel_height`` of its prominence below it,
-    between its bases, the crossings interpolated linearly (``scipy.signal.peak_widths``'s
-    first output); ``prominence_data`` = (prominences, left_bases, right_bases)."""
-    x = np.asarray(x, dtype=float)
-    prom, lb, rb = prominence_data
-    out = np.empty(len(peaks))
-    for n, p in enumerate(peaks):
-        h = x[p] - prom[n] * rel_height
-        i = int(p)
-        while lb[n] < i and h < x[i]:
-            i -= 1
-        left = float(i) + ((h - x[i]) / (x[i + 1] - x[i]) if x[i] < h else 0.0)
-        i = int(p)
-        while i < rb[n] and h < x[i]:
-            i += 1
-        right = float(i) - ((h - x[i]) / (x[i - 1] - x[i]) if x[i] < h else 0.0)
-        out[n] = right - left
-    return out
+        left = x[lo: p + 1]
+        right = x[p: hi]
+        # the last of equal lows on the left, the first on the right: nearest the peak
+        left_bases[n] = lo + left.size - 1 - int(np.argmin(left[::-1]))
+        right_bases[n] = p + int(np.argmin(right))
+        out[n] = v - max(float(x[left_bases[n]]), float(x[right_bases[n]]))
+    return out, left_bases, right_bases
 
 
 def find_peaks(x: np.ndarray, prominence: float = 0.0) -> tuple[np.ndarray, dict]:
     """(peaks, {"prominences", "left_bases", "right_bases"}) of ``x`` whose prominence is at
-    least ``prominence``, as ``scipy.signal.find_peaks(x, prominence=prominence)`` returns
-    them."""
+    least ``prominence``, as ``scipy.signal.find_peaks(x, prominence=prominence)`` returns them."""
     pk = local_maxima(x)
-    prom, left, right = prominence_data(x, pk)
+    prom, left, right = prominences(x, pk)
     keep = prom >= prominence
     return pk[keep], {"prominences": prom[keep], "left_bases": left[keep],
                       "right_bases": right[keep]}
+
+
+def peak_widths(x: np.ndarray, peaks: np.ndarray, rel_height: float,
+                prominence_data: tuple[np.ndarray, np.ndarray, np.ndarray]) -> np.ndarray:
+    """Width [samples] of each of ``peaks`` at ``rel_height`` of its prominence below its top,
+    between its bases, the crossings interpolated linearly between samples, as
+    ``scipy.signal.peak_widths(...)[0]`` returns them."""
+    x = np.asarray(x, dtype=float)
+    prom, left_bases, right_bases = prominence_data
+    widths = np.empty(len(peaks))
+    for n, p in enumerate(peaks):
+        p, i_min, i_max = int(p), int(left_bases[n]), int(right_bases[n])
+        height = x[p] - prom[n] * rel_height
+        # left: the first sample from the peak down to its base at or below the height
+        below = np.flatnonzero(x[i_min + 1: p + 1] <= height)
+        i = i_min + 1 + int(below[-1]) if below.size else i_min
+        left_ip = float(i)
+        if x[i] < height:
+            left_ip += (height - x[i]) / (x[i + 1] - x[i])
+        below = np.flatnonzero(x[p: i_max] <= height)
+        i = p + int(below[0]) if below.size else i_max
+        right_ip = float(i)
+        if x[i] < height:
+            right_ip -= (height - x[i]) / (x[i - 1] - x[i])
+        widths[n] = right_ip - left_ip
+    return widths

@@ -180,7 +180,7 @@ def _fit_peak(spec: Spectrum, i_peak: int, lo: int, hi: int, zeta0: float):
 def _peak_fits(spec: Spectrum, band: tuple[float, float], max_modes: int = 4) -> list[dict]:
     """The significant modes of a spectrum in ``band`` [Hz] as dicts, largest weight first
     ([] when there is none, or the band is too narrow to fit one)."""
-    from .peaks import find_peaks, peak_widths   # scipy.signal's, without scipy.stats
+    from .peaks import find_peaks, peak_widths    # scipy.signal's, without scipy.stats
     f, P = spec.f, spec.P
     inband = np.flatnonzero((f >= band[0]) & (f <= band[1]) & (f > 0))
     if inband.size < 10:

@@ -47,7 +47,8 @@ def build_fmus(build_dir: Path, *, source_dir: Path | None = None,
     Parameters
     ----------
     build_dir : Path
-        CMake build folder (an existing build is reused).
+        CMake build folder. A configured one (``CMakeCache.txt``) is reused with its options,
+        so the FMUs of a full CMake build (C tests included) are taken as they are.
     source_dir : Path or None, keyword-only
         Source checkout (default: the repository this package is installed from).
     fmi_version : str, keyword-only
@@ -77,9 +78,13 @@ def build_fmus(build_dir: Path, *, source_dir: Path | None = None,
     cmake = shutil.which("cmake")
     if cmake is None:
         raise RuntimeError("cmake is not on PATH: it is needed to build the FMUs")
-    subprocess.run([cmake, "-S", str(source_dir), "-B", str(build_dir), "-DSMS_BUILD_TESTS=OFF",
-                    "-DSMS_BUILD_SHARED=OFF", f"-DPython3_EXECUTABLE={sys.executable}"],
-                   check=True, stdout=subprocess.DEVNULL)
+    # A configured tree (its own, or a full build with the C tests) is built as it is: its
+    # FMU targets are then up to date or rebuilt, and its options are left alone.
+    if not (Path(build_dir) / "CMakeCache.txt").is_file():
+        subprocess.run([cmake, "-S", str(source_dir), "-B", str(build_dir),
+                        "-DSMS_BUILD_TESTS=OFF", "-DSMS_BUILD_SHARED=OFF",
+                        f"-DPython3_EXECUTABLE={sys.executable}"],
+                       check=True, stdout=subprocess.DEVNULL)
     suffix = "_fmu" if fmi_version == "2.0" else "_fmi3_fmu"
     targets = [m + suffix for m, src in FMU_MODELS.items()
                if (source_dir / "fmu" / src).is_file()]
