@@ -347,13 +347,55 @@ def test_c_config_snippet_compiles(tmp_path):
     cc = shutil.which("cc") or shutil.which("gcc")
     if cc is None:
         pytest.skip("no C compiler")
-    c = calibrate.Candidate("two", [sms.shaper("gmzv", wn=250.0, zeta=0.05, order=4,
-                                               duration=1.1), sms.for_mode("harmonic", wn=400.0)])
+    c = calibrate.Candidate("three", [sms.shaper("gmzv", wn=250.0, zeta=0.05, order=4,
+                                                 duration=1.1), sms.for_mode("harmonic", wn=400.0),
+                                      sms.impulse_shaper(amplitudes=[0.3, 0.5, 0.2],
+                                                         times=[0.0, 0.01, 0.02])])
     src = tmp_path / "snippet.c"
     src.write_text('#include "smoothshaper/smoothshaper.h"\nint main(void)\n{\n'
                    + outputs.c_config(c, 1e-4, "x") + "(void)cfg_x;\nreturn 0;\n}\n")
     subprocess.run([cc, "-std=c99", "-Wall", "-Werror", "-pedantic", "-fsyntax-only",
                     "-I", str(ROOT / "c" / "include"), str(src)], check=True)
+
+
+def test_the_established_tools_own_ei_family_is_a_candidate_without_a_firmware():
+    """Under --firmware none the candidates hold Klipper's EI family (its fitted polynomials)
+    as user-defined impulses: at the design point their impulses are Klipper's exactly."""
+    from smoothshaper.calibrate import candidates, firmware
+    fams = {f.name: f for f in candidates.families(1)}
+    for name in candidates.KLIPPER_OWN:
+        fam = fams[f"klipper {name} impulses"]
+        (stage,) = fam.build([TWO_PI * 47.0, 0.08])
+        A, t = firmware.by_name("klipper", name).impulses(47.0, 0.08)
+        assert stage.kind == "impulses"
+        np.testing.assert_allclose(np.array(stage.amplitudes) / sum(stage.amplitudes), A,
+                                   rtol=1e-15, atol=0)
+        np.testing.assert_array_equal(stage.times, t)
+
+
+def _tied(name, f_hz, estimate, length):
+    c = calibrate.Candidate(name, [sms.shaper("zv", wn=TWO_PI * f_hz, zeta=0.05)],
+                            vibration=0.0, vibration_estimate=estimate, length=length,
+                            ranked_by="measured spectrum", design=((f_hz, 0.05),))
+    c.vibration_spectrum = 0.0
+    return c
+
+
+def test_spectral_ties_go_to_the_least_plant_estimate_designed_on_a_mode():
+    """Candidates tied on the measured PSD: the least plant estimate among those designed within
+    15 % of an identified mode wins (then the shorter); a design off every mode never does,
+    however low its estimate, and without modes the shortest tied one is kept."""
+    from smoothshaper.calibrate.candidates import recommend
+    from smoothshaper.calibrate.modes import Mode
+    mode = Mode(wn=TWO_PI * 8.0, zeta=0.05, wn_std=TWO_PI * 0.02, zeta_std=0.01, weight=1.0)
+    narrow = _tied("narrow", 8.1, 9.8, 0.06)        # shortest, but leaves the most
+    robust = _tied("robust", 7.4, 5.7, 0.09)        # 7.5 % under the mode: on it
+    off = _tied("off", 6.28, 1.0, 0.08)             # 21.5 % under it
+    assert recommend([narrow, robust, off], [mode]) is robust
+    assert recommend([narrow, off], [mode]) is narrow
+    assert recommend([narrow, robust, off], []) is narrow
+    worse = _tied("worse", 8.0, 5.9, 0.07)          # within 5 % of the least: shorter wins
+    assert recommend([narrow, robust, worse, off], [mode]) is worse
 
 
 def test_c_coeffs_compile_in_both_precisions(tmp_path):
@@ -424,7 +466,10 @@ def test_a_mode_too_slow_for_ts_is_refused_before_tuning(capsys):
     t = time.process_time()
     with pytest.raises(sms.ParameterError) as info:
         calibrate.run([str(path)], kind="psd")
-    assert info.value.parameter == "Ts" and "0.04119 Hz" in str(info.value)
+    assert info.value.parameter == "Ts"
+    # the 'mode' the PSD reading finds: a few hundredths of a hertz, named with its frequency
+    found = re.search(r"\(([0-9.e+-]+) Hz, axis", str(info.value))
+    assert found and 0.01 < float(found.group(1)) < 0.1, str(info.value)
     assert main(["calibrate", str(path), "--kind", "psd", "--no-progress"]) == 1
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "a period, more than 16384" in err, err

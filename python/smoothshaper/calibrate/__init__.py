@@ -633,5 +633,5 @@ def run(paths, *, kind: str = "auto", axis: str = "auto", band=None,
             if progress:
                 progress(done, work)
         res.candidates.sort(key=lambda c: c.vibration)
-        res.recommended = recommend(res.candidates)
+        res.recommended = recommend(res.candidates, res.modes)
     return Calibration(axes, reference, max_delay, max_smoothing, skipped, firmware)

@@ -28,7 +28,8 @@ C_KIND = {"rectangular": "SMS_RECTANGULAR", "harmonic": "SMS_HARMONIC",
           "zv": "SMS_SHAPER_ZV", "zvd": "SMS_SHAPER_ZVD", "zvdd": "SMS_SHAPER_ZVDD",
           "zvn": "SMS_SHAPER_ZVN", "ei": "SMS_SHAPER_EI", "ei2": "SMS_SHAPER_EI2",
           "mzv": "SMS_SHAPER_MZV", "ei3": "SMS_SHAPER_EI3", "gmzv": "SMS_SHAPER_GMZV",
-          "notch_tustin": "SMS_NOTCH_TUSTIN", "notch_matched": "SMS_NOTCH_MATCHED"}
+          "notch_tustin": "SMS_NOTCH_TUSTIN", "notch_matched": "SMS_NOTCH_MATCHED",
+          "impulses": "SMS_SHAPER_IMPULSES"}
 
 
 def c_config(c: Candidate, Ts: float, axis: str) -> str:
@@ -46,6 +47,10 @@ def c_config(c: Candidate, Ts: float, axis: str) -> str:
                 lines.append(f"{v}.sigma = {s.sigma!r};  /* 1/s */")
             if s.k != 1:
                 lines.append(f"{v}.k = {s.k}u;")
+        elif s.kind == "impulses":
+            lines.append(f"{v}.order = {s.order}u;")
+            for j, (a, t) in enumerate(zip(s.amplitudes, s.times)):
+                lines.append(f"{v}.amplitudes[{j}] = {a!r}; {v}.times[{j}] = {t!r};  /* s */")
         else:
             lines.append(f"{v}.wn = {s.wn!r};  /* rad/s ({s.wn / (2 * math.pi):.6g} Hz) */")
             lines.append(f"{v}.zeta = {s.zeta!r};")
@@ -187,6 +192,9 @@ def _candidate_design(c) -> str:
     if c.firmware is not None:
         shaper, freq, damping = c.firmware
         return f"{shaper.firmware} {shaper.name} {freq:.4g} Hz damping {damping:.3g}"
+    if len(c.stages) == 1 and c.stages[0].kind == "impulses" and c.design:
+        (f, z), = c.design
+        return f"{c.name} {f:.4g} Hz damping {z:.3g}: {c.stages[0].order} impulses"
     return "; ".join(_design_text(s) for s in c.stages) or "-"
 
 

@@ -100,7 +100,8 @@ def write(cal, out_dir: str) -> list[str]:
             R = _R(h, Ts, 2 * math.pi * f[show], zeta_for_curves)
             design = (f"{c.firmware[1]:.3g} Hz" if c.firmware is not None else
                       " + ".join(f"{s.wn / (2 * math.pi):.3g} Hz = {s.wn:.4g} rad/s" if s.wn
-                                 else f"T = {s.T:.3g} s" for s in c.stages))
+                                 else f"T = {s.T:.3g} s" if s.T
+                                 else f"{c.design[0][0]:.3g} Hz" for s in c.stages))
             ax2.plot(f[show], 100 * R, color=col, lw=1.0,
                      label=f"{c.name} @ {design}: {c.vibration:.2g} %, {1e3 * c.length:.3g} ms")
         ax2.set_ylabel("residual vibration [%] (zeta of the nearest mode; log above 1 %)")
