@@ -13,6 +13,8 @@ import numpy as np
 
 from .. import _optional
 
+__all__ = ["run", "plot"]
+
 # x starts moving away from its target at rest; y's target moves (0.3 unit/s); z, at rest,
 # is the slowest axis. time: x and y stretched to z; time_if_necessary: y alone stretched
 # (the only moving target); none: each on its own; axis_sync=["time", "none", "time"]: x
