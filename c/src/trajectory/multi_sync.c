@@ -308,30 +308,6 @@ uint64_t sms_multi_generator_arrival(const sms_multi_generator *g)
     return left;
 }
 
-void sms_multi_generator_step_target(sms_multi_generator *g, const sms_multi_target *target,
-                                     sms_real *out)
-{
-    if (!SMS_SYNC_PER_AXIS_PLANS(g->sync)) {
-        /* positions at rest only: an invalid target keeps the previous ones */
-        if (sms_multi_generator_check_target(g, target, NULL) == SMS_OK)
-            sms_multi_generator_step(g, target->position, out);
-        else
-            sms_multi_generator_step(g, g->target, out);
-        return;
-    }
-    sms_multi_sync_step_profile(g, target, out);
-    sms_multi_filter_output(g, out);
-}
-
-void sms_multi_generator_process_targets(sms_multi_generator *g,
-                                         const sms_multi_target *targets, size_t n,
-                                         sms_real *out)
-{
-    size_t k;
-    for (k = 0; k < n; ++k)
-        sms_multi_generator_step_target(g, &targets[k], out + 4u * k * g->n_axes);
-}
-
 /* The planner's precondition on a start state, to the reported values' tolerance. */
 static sms_status start_state_ok(const sms_multi_generator *g, size_t i, sms_real q,
                                  sms_real v, sms_real a)
