@@ -1026,9 +1026,9 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
     const double slack = 1.0 + 0x1p-20;
     double x, product = 1.0, range = 1.0;
     size_t i, j, off = 1, at = 0;
+    int rebuilt = 0;   /* 1: a stage was built again here (its lag may differ) */
     if (n != fmu_model_state_count(m))
         return 1;
-    m->input_max_stale = 1;   /* the stages are built again below */
     for (i = 0; i < m->n_active; ++i) {   /* each stage into the configuration it was saved in */
         const double *part = src + off;
         sms_stage_config active, old;
@@ -1043,6 +1043,18 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
         if (st != SMS_OK)
             return snprintf(msg, len, "stage %lu's state is not a retunable stage's",
                             (unsigned long)i), 1;
+        /* already in that configuration (the instance's own, copied, or just built): keep
+         * the built filters, no design; sms_tunable_set_state() below loads the values */
+        if (!switching && !m->tunables[i].switching
+            && sms_tunable_state_count(&m->tunables[i]) <= m->region[i]
+            && sms_tunable_check_state(&m->tunables[i], part,
+                                       sms_tunable_state_count(&m->tunables[i])) == SMS_OK) {
+            off += m->region[i];
+            at += slots_per_stage(m) * m->slot_cells[i];
+            continue;
+        }
+        rebuilt = 1;
+        m->input_max_stale = 1;   /* the stage is built again */
         if (sms_tunable_init(&m->tunables[i], switching ? &old : &active, m->Ts, m->slot_cells[i],
                              mem + at, slots_per_stage(m) * m->slot_cells[i]) != SMS_OK
             || (switching && sms_tunable_retune(&m->tunables[i], &active) != SMS_OK))
@@ -1053,9 +1065,8 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
     }
     /* the input range X: the fixed chain's own, or SMS_INPUT_MAX when the stages were
      * retunable (inputs taken under an earlier configuration may reach beyond today's) */
-    x = m->n_active > 0 && !(m->retune_max_delay > 0.0)
-        && sms_tunable_chain_input_max(&m->chain) < SMS_INPUT_MAX
-        ? sms_tunable_chain_input_max(&m->chain) : SMS_INPUT_MAX;
+    x = m->n_active > 0 && !(m->retune_max_delay > 0.0) ? fmu_model_input_max(m) : SMS_INPUT_MAX;
+    x = x < SMS_INPUT_MAX ? x : SMS_INPUT_MAX;   /* the cached range unless a stage was rebuilt */
     for (i = 0, off = 1; i < m->n_active; ++i) {
         const double *part = src + off;
         const size_t count = sms_tunable_state_count(&m->tunables[i]);
@@ -1105,6 +1116,7 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
                         && !same_config(&want, &now);
         m->any_pending |= m->pending[i];
     }
-    m->chain_lag = active_lag(m);
+    if (rebuilt)
+        m->chain_lag = active_lag(m);
     return 0;
 }

@@ -200,6 +200,13 @@ def _malformed(tmp_path):
          "row 3, column 1: value 1e+200 is beyond 1e+150"),
         ("long_text.csv", head + rows[:5] + ["0.005," + "x" * 5000] + rows[6:],
          "row 8, column 1: non-numeric value 'xxx"),
+        # a NaN or an infinity anywhere reaches the table's min or max: the row is still named
+        ("nan_value.csv", head + rows[:3] + [rows[3].split(",")[0] + ",nan"] + rows[4:],
+         "row 6, column 1: non-finite value (nan)"),
+        ("minus_inf.csv", head + rows[:40] + [rows[40].split(",")[0] + ",-inf"] + rows[41:],
+         "row 43, column 1: non-finite value (-inf)"),
+        ("huge_negative.csv", head + rows[:9] + [rows[9].split(",")[0] + ",-2e150"] + rows[10:],
+         "row 12, column 1: value -2e+150 is beyond 1e+150"),
     ]
 
 
