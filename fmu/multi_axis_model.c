@@ -636,9 +636,29 @@ static double position_range(const ma_model *m, int i)
                                            : SMS_INPUT_MAX;
 }
 
+/* What axis i reports for signal k = 1, 2, 3 (v, a, j): the profile's value within the limit
+ * to the reported values' tolerance, passed through the axis's stages when it has some. Those
+ * map x - rest to y - rest with gain at most G_0 ... G_{n-1} (sms_stage_gain_bound()) and can
+ * overshoot the limit (shapers with negative impulses, notches, corrected smoothers), so the
+ * bound is the chain's output range (1 + 2 G_0 ... G_{n-1}) times the limit with the chain's
+ * rounding margin 2^-20: the bound the generator's align ring holds the same outputs to. */
+static double signal_range(const ma_model *m, int i, int k)
+{
+    const sms_chain *c = &m->gen.chain[i][k];
+    const double limit = m->field[F_VMAX + k - 1][i] * (1.0 + SMS_LIMIT_RTOL);
+    double product = 1.0;
+    size_t s;
+    if (c->n_stages == 0)
+        return limit;
+    for (s = 0; s < c->n_stages; ++s)
+        product *= sms_stage_gain_bound(&c->stages[s]);
+    return (1.0 + 2.0 * product) * limit * (1.0 + 0x1p-20);
+}
+
 /* A state must be one a run can reach: besides the generator's own checks (finite, velocities
  * and the stages' values within the limits), the reported outputs and the positions it holds
- * (target, goal, start of the running plan) within the axis's limits and position range. */
+ * (target, goal, start of the running plan) within the axis's output ranges (signal_range())
+ * and position range. */
 int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, size_t len)
 {
     static const char *const names[4] = {"q", "v", "a", "j"};
@@ -651,16 +671,15 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
     if (n != fmu_model_state_count(m) || n < own + SMS_MULTI_IDENTITY_COUNT + 3u * na)
         return 1;
     for (i = 0; i < m->axes; ++i) {
-        const double limit[4] = { position_range(m, i) * margin,
-                                  m->field[F_VMAX][i] * (1.0 + SMS_LIMIT_RTOL),
-                                  m->field[F_AMAX][i] * (1.0 + SMS_LIMIT_RTOL),
-                                  m->field[F_JMAX][i] * (1.0 + SMS_LIMIT_RTOL) };
+        const double limit[4] = { position_range(m, i) * margin, signal_range(m, i, 1),
+                                  signal_range(m, i, 2), signal_range(m, i, 3) };
         for (k = 0; k < 4; ++k)
-            if (!(fabs(src[(size_t)k * na + (size_t)i]) <= limit[k]))
+            if (!isfinite(src[(size_t)k * na + (size_t)i])
+                || !(fabs(src[(size_t)k * na + (size_t)i]) <= limit[k]))
                 return snprintf(msg, len, "its output %s[%d] = %.17g is beyond %.17g (the axis's "
                                 "%s)", names[k], i, src[(size_t)k * na + (size_t)i], limit[k],
                                 k == 0 ? "position range" : "limit, to the reported values' "
-                                "tolerance"), 1;
+                                "tolerance, times its stages' gain"), 1;
         for (k = 0; k < 3; ++k)
             if (!(fabs(positions[(size_t)k * na + (size_t)i]) <= position_range(m, i)))
                 return snprintf(msg, len, "its %s of axis %d, %.17g, is beyond the axis's "
