@@ -249,6 +249,12 @@ double fmu_model_input_max(const void *model)
     return m->built ? stages_input_max(m) : HUGE_VAL;
 }
 
+/* Its inputs are checked against the configuration that holds them: the same range. */
+double fmu_model_state_input_max(const void *model)
+{
+    return fmu_model_input_max(model);
+}
+
 /* Config of stage k of axis i (designed for its mode); 0, or 1 with msg naming the variable. */
 static int stage_config(const ma_model *m, int k, int i, sms_stage_config *c, char *msg,
                         size_t len)
@@ -637,22 +643,13 @@ static double position_range(const ma_model *m, int i)
 }
 
 /* What axis i reports for signal k = 1, 2, 3 (v, a, j): the profile's value within the limit
- * to the reported values' tolerance, passed through the axis's stages when it has some. Those
- * map x - rest to y - rest with gain at most G_0 ... G_{n-1} (sms_stage_gain_bound()) and can
- * overshoot the limit (shapers with negative impulses, notches, corrected smoothers), so the
- * bound is the chain's output range (1 + 2 G_0 ... G_{n-1}) times the limit with the chain's
- * rounding margin 2^-20: the bound the generator's align ring holds the same outputs to. */
+ * to the reported values' tolerance, passed through the axis's stages when it has some, which
+ * can overshoot the limit (shapers with negative impulses, notches, corrected smoothers): the
+ * chain's output range, the bound the generator's align ring holds the same outputs to
+ * (sms_multi_generator_output_range()). */
 static double signal_range(const ma_model *m, int i, int k)
 {
-    const sms_chain *c = &m->gen.chain[i][k];
-    const double limit = m->field[F_VMAX + k - 1][i] * (1.0 + SMS_LIMIT_RTOL);
-    double product = 1.0;
-    size_t s;
-    if (c->n_stages == 0)
-        return limit;
-    for (s = 0; s < c->n_stages; ++s)
-        product *= sms_stage_gain_bound(&c->stages[s]);
-    return (1.0 + 2.0 * product) * limit * (1.0 + 0x1p-20);
+    return sms_multi_generator_output_range(&m->gen, (size_t)i, (size_t)k);
 }
 
 /* A state must be one a run can reach: besides the generator's own checks (finite, velocities

@@ -545,6 +545,30 @@ SMS_API sms_status sms_multi_generator_set_state(sms_multi_generator *g, const d
  */
 SMS_API sms_status sms_multi_generator_check_state(const sms_multi_generator *g,
                                                    const double *src, size_t n);
+/**
+ * @brief The largest |value| that axis `axis`'s chain for signal `signal` can output in a run:
+ * the bound a restored state's values behind that chain (the alignment delays' rings, an
+ * importer's last reported outputs) are held to, so that every state the generator reached
+ * itself is accepted.
+ *
+ * The chain's input is the axis's position (signal 0, within the chain's finite input range
+ * sms_chain_input_max()) or the profile's velocity, acceleration or jerk (signals 1, 2, 3,
+ * within vmax, amax, jmax times 1 + ::SMS_LIMIT_RTOL, the tolerance of the reported values,
+ * the limits as ::sms_real). Its stages map x - rest to y - rest with gain at most
+ * G_0 ... G_{n-1} (sms_stage_gain_bound()) and can overshoot their input's range (shapers with
+ * negative impulses, notches, corrected smoothers), so the result is
+ * (1 + 2 G_0 ... G_{n-1}) times that input range, times 1 + 2^-20 for the chain's rounding
+ * (relative, far above the rounding of any chain in double or float, whatever long double
+ * is); without stages, the input range itself (the signal passes through unchanged).
+ * @param g       the generator, built by sms_multi_generator_init() (read only)
+ * @param axis    the axis, 0 .. n_axes - 1
+ * @param signal  0 position [m], 1 velocity [m/s], 2 acceleration [m/s^2], 3 jerk [m/s^3]
+ *                (in the units of the configuration's limits)
+ * @return the bound, > 0, in the signal's unit (+inf only if a stage's gain bound is); 0 if
+ *         g is NULL or axis or signal is out of range
+ */
+SMS_API double sms_multi_generator_output_range(const sms_multi_generator *g, size_t axis,
+                                                size_t signal);
 /** @brief After copying g, its stages and its memory elsewhere (same layout), point the
  * copy's chains at the copy's stages and memory.
  * @param g      the copied generator

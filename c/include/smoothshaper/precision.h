@@ -82,6 +82,7 @@
 #define sms_multi_generator_get_state sms_multi_generator_get_state_f32
 #define sms_multi_generator_set_state sms_multi_generator_set_state_f32
 #define sms_multi_generator_check_state sms_multi_generator_check_state_f32
+#define sms_multi_generator_output_range sms_multi_generator_output_range_f32
 #define sms_multi_generator_rebind sms_multi_generator_rebind_f32
 /* notch.h */
 #define sms_notch_init sms_notch_init_f32
@@ -251,6 +252,7 @@
 #define sms_tunable_switch_left sms_tunable_switch_left_f32
 #define sms_tunable_step sms_tunable_step_f32
 #define sms_tunable_state_count sms_tunable_state_count_f32
+#define sms_tunable_saved_state_count sms_tunable_saved_state_count_f32
 #define sms_tunable_state_configs sms_tunable_state_configs_f32
 #endif
 

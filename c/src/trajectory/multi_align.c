@@ -187,18 +187,20 @@ double sms_multi_signal_range(const sms_multi_generator *g, size_t i, size_t m)
     }
 }
 
-/* What the chain of axis i, signal m can output: (1 + 2 G_0 ... G_{n-1}) times its input range
- * (the range sms_chain_check_state_range() gives a stage after the chain's last). */
-static double chain_output_range(const sms_multi_generator *g, size_t i, size_t m)
+double sms_multi_generator_output_range(const sms_multi_generator *g, size_t axis,
+                                        size_t signal)
 {
-    const sms_chain *c = &g->chain[i][m];
+    const sms_chain *c;
     double product = 1.0;
     size_t k;
+    if (g == NULL || axis >= g->n_axes || signal >= SMS_MULTI_SIGNALS)
+        return 0.0;
+    c = &g->chain[axis][signal];
     if (c->n_stages == 0)
-        return sms_multi_signal_range(g, i, m);
+        return sms_multi_signal_range(g, axis, signal);
     for (k = 0; k < c->n_stages; ++k)
         product *= sms_stage_gain_bound(&c->stages[k]);
-    return (1.0 + 2.0 * product) * sms_multi_signal_range(g, i, m);
+    return (1.0 + 2.0 * product) * sms_multi_signal_range(g, axis, signal) * (1.0 + 0x1p-20);
 }
 
 sms_status sms_multi_align_check_state(const sms_multi_generator *g, const double *src)
@@ -210,9 +212,8 @@ sms_status sms_multi_align_check_state(const sms_multi_generator *g, const doubl
         for (m = 0; m < SMS_MULTI_SIGNALS; ++m) {
             const size_t count = sms_delay_state_count(&g->delay[i][m]);
             /* the ring (after the delay's samples, length and head: sms_delay_get_state)
-             * holds the chain's outputs, within what the chain can output (a margin of
-             * 2^-20 for its rounding) */
-            const double bound = chain_output_range(g, i, m) * (1.0 + 0x1p-20);
+             * holds the chain's outputs, within what the chain can output */
+            const double bound = sms_multi_generator_output_range(g, i, m);
             if (sms_delay_check_state(&g->delay[i][m], src, count) != SMS_OK)
                 return SMS_ERR_STATE;
             for (k = 3; k < count; ++k)
