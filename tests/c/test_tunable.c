@@ -520,6 +520,73 @@ static void test_chain(void)
     CHECK(sms_tunable_chain_length(&ch) > 0);
 }
 
+/* A state saved while an old notch fades, loaded as a saved state's configurations say
+ * (sms_tunable_state_configs(): init with the old one, retune to the active one): that retune
+ * finds the freshly built old notch at rest and begins no switch, so the loading tunable (and
+ * chain) counts fewer values than the state holds. sms_tunable_saved_state_count() is the
+ * saving one's count; the tunable and the chain load the state with it and then continue bit
+ * for bit as the saving ones do. */
+static void test_notch_switch_reload(void)
+{
+    static sms_memory_cell mem[4 * SLOT_CELLS], mem2[4 * SLOT_CELLS];
+    static double s[4 * SLOT_CELLS];
+    sms_stage_config c[2], b, active, old;
+    size_t slots[2], need, n, i;
+    sms_tunable st[2], st2[2];
+    sms_tunable_chain ch, ch2;
+    int switching = 0;
+    c[0] = sms_stage_config_default(SMS_SHAPER_ZV);
+    c[0].wn = 300.0;
+    c[1] = sms_stage_config_default(SMS_NOTCH_TUSTIN);
+    c[1].wn = 200.0;
+    c[1].notch_pole_zeta = 0.7;
+    b = c[1];
+    b.wn = 260.0;
+    for (i = 0; i < 2; ++i)
+        CHECK_STATUS(sms_tunable_slot_cells(&c[i], 1, Ts, &slots[i]), SMS_OK);
+    CHECK_STATUS(sms_tunable_chain_memory_size(slots, 2, &need), SMS_OK);
+    CHECK(need <= 4 * SLOT_CELLS);
+    CHECK_STATUS(sms_tunable_chain_init(&ch, st, c, slots, 2, Ts, mem, need), SMS_OK);
+    for (i = 0; i < 200; ++i) {
+        sms_real v = (sms_real)(0.01 * (double)i + 5.0);
+        sms_tunable_chain_step(&ch, &v);
+    }
+    CHECK_STATUS(sms_tunable_chain_retune(&ch, 1, &b), SMS_OK);
+    for (i = 0; i < 3; ++i) {
+        sms_real v = (sms_real)7.0;
+        sms_tunable_chain_step(&ch, &v);
+    }
+    CHECK(sms_tunable_switching(&st[1]));
+    n = sms_tunable_chain_state_count(&ch);
+    CHECK(n <= 4 * SLOT_CELLS);
+    sms_tunable_chain_get_state(&ch, s);
+    /* a second chain brought to the state's configurations */
+    CHECK_STATUS(sms_tunable_chain_init(&ch2, st2, c, slots, 2, Ts, mem2, need), SMS_OK);
+    CHECK_STATUS(sms_tunable_state_configs(s + sms_tunable_state_count(&st[0]),
+                                           n - sms_tunable_state_count(&st[0]), &active, &old,
+                                           &switching), SMS_OK);
+    CHECK(switching == 1 && active.wn == b.wn && old.wn == c[1].wn);
+    CHECK_STATUS(sms_tunable_chain_retune(&ch2, 1, &active), SMS_OK);
+    CHECK(!sms_tunable_switching(&st2[1]));   /* the old notch was at rest: nothing to fade */
+    CHECK(sms_tunable_chain_state_count(&ch2) < n);
+    CHECK(sms_tunable_saved_state_count(&st2[1], s + sms_tunable_state_count(&st[0]),
+                                        n - sms_tunable_state_count(&st[0]))
+          == sms_tunable_state_count(&st[1]));
+    CHECK(sms_tunable_saved_state_count(&st2[1], s, 3) == 0);   /* too short to tell */
+    CHECK_STATUS(sms_tunable_chain_set_state(&ch2, s, n - 1), SMS_ERR_STATE);
+    CHECK_STATUS(sms_tunable_chain_set_state(&ch2, s, n), SMS_OK);
+    CHECK(sms_tunable_switching(&st2[1]));
+    for (i = 0; i < 3000; ++i) {
+        sms_real v = (sms_real)(7.0 + (i < 50 ? 0.01 * (double)i : 0.5)), w = v;
+        sms_tunable_chain_step(&ch, &v);
+        sms_tunable_chain_step(&ch2, &w);
+        CHECK(v == w);
+        if (v != w)
+            break;
+    }
+    CHECK(!sms_tunable_switching(&st[1]) && !sms_tunable_switching(&st2[1]));
+}
+
 int main(void)
 {
     test_switches();
@@ -527,5 +594,6 @@ int main(void)
     test_notch_fade_ends();
     test_no_drift();
     test_chain();
+    test_notch_switch_reload();
     return check_summary("test_tunable");
 }

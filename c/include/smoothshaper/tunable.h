@@ -191,6 +191,22 @@ SMS_API double sms_tunable_gain_bound(const sms_tunable *t);
  * @return the count
  */
 SMS_API size_t sms_tunable_state_count(const sms_tunable *t);
+/** @brief The length of the saved state that opens src, as t would read it: the
+ * sms_tunable_state_count() of the tunable that saved it, if t is in its configurations (as
+ * sms_tunable_set_state() requires). It differs from sms_tunable_state_count() of t when t is
+ * switching and the state is not, or the other way round: a state saved during a switch,
+ * loaded into a tunable brought there by sms_tunable_init() with the old configuration and
+ * sms_tunable_retune() to the active one, whose freshly built old notch is at rest, so that
+ * the retune started no switch (nothing to fade yet; the state's old values are loaded with it).
+ * @param t      the tunable (read only)
+ * @param src    a saved state of a tunable (and perhaps more values after it)
+ * @param n      the doubles readable at src
+ * @return ::SMS_TUNABLE_STATE_HEAD + 2 ::SMS_STATE_IDENTITY_COUNT + the active stage's
+ *         sms_stage_state_count() + during a switch (src's switching field 1) that of the
+ *         stage built in t's other slot, if any; 0 if t or src is NULL or n is shorter than
+ *         the head and both identities (the count is then not known)
+ */
+SMS_API size_t sms_tunable_saved_state_count(const sms_tunable *t, const double *src, size_t n);
 /** @brief Write the state: head, the stages' states (each opening with its configuration
  * identity, config.h).
  * @param t      the tunable (read only)
@@ -352,7 +368,8 @@ SMS_API size_t sms_tunable_chain_state_count(const sms_tunable_chain *chain);
  * @param dst    sms_tunable_chain_state_count() doubles */
 SMS_API void sms_tunable_chain_get_state(const sms_tunable_chain *chain, double *dst);
 /** @brief Restore a state of sms_tunable_chain_get_state() (each stage as
- * sms_tunable_set_state(); all checked before any is written).
+ * sms_tunable_set_state(), its part's length sms_tunable_saved_state_count(); all checked
+ * before any is written).
  * @param chain  the tunable chain, built by sms_tunable_chain_init(); untouched on error
  * @param src    the saved state
  * @param n      its length in doubles

@@ -187,18 +187,25 @@ sms_status sms_tunable_chain_set_state(sms_tunable_chain *chain, const double *s
     size_t i, offset = 0;
     if (chain == NULL || src == NULL)
         return SMS_ERR_NULL;
-    if (n != sms_tunable_chain_state_count(chain))
-        return SMS_ERR_STATE;
-    for (i = 0; i < chain->n_stages; ++i) {   /* every part checked before any is written */
-        const size_t count = sms_tunable_state_count(&chain->stages[i]);
-        sms_status st = sms_tunable_check_state(&chain->stages[i], src + offset, count);
+    /* every part checked before any is written; each part's length as the saving stage had
+     * it (a stage switching now may have saved no switch, and the other way round) */
+    for (i = 0; i < chain->n_stages; ++i) {
+        const size_t count = sms_tunable_saved_state_count(&chain->stages[i], src + offset,
+                                                           n - offset);
+        sms_status st;
+        if (count == 0 || count > n - offset)
+            return SMS_ERR_STATE;
+        st = sms_tunable_check_state(&chain->stages[i], src + offset, count);
         if (st != SMS_OK)
             return st;
         offset += count;
     }
+    if (offset != n)
+        return SMS_ERR_STATE;
     offset = 0;
     for (i = 0; i < chain->n_stages; ++i) {
-        const size_t count = sms_tunable_state_count(&chain->stages[i]);
+        const size_t count = sms_tunable_saved_state_count(&chain->stages[i], src + offset,
+                                                           n - offset);
         (void)sms_tunable_set_state(&chain->stages[i], src + offset, count);
         offset += count;
     }

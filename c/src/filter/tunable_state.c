@@ -50,6 +50,16 @@ size_t sms_tunable_state_count(const sms_tunable *t)
            + (old != NULL ? sms_stage_state_count(old) : 0u);
 }
 
+size_t sms_tunable_saved_state_count(const sms_tunable *t, const double *src, size_t n)
+{
+    const sms_stage *old;
+    if (t == NULL || src == NULL || n < ST_STAGES)
+        return 0;
+    old = src[ST_SWITCHING] == 1.0 ? other_slot(t) : NULL;
+    return ST_STAGES + sms_stage_state_count(&t->slot[t->active])
+           + (old != NULL ? sms_stage_state_count(old) : 0u);
+}
+
 void sms_tunable_get_state(const sms_tunable *t, double *dst)
 {
     const sms_stage *old = old_stage(t);
