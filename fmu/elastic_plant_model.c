@@ -40,6 +40,7 @@ const char *fmu_model_guid(void) { return FMU_MODEL_GUID; }
 unsigned fmu_model_real_bytes(void) { return (unsigned)sizeof(double); }
 /* The scaled realisation keeps any input up to SMS_INPUT_MAX finite (see the top). */
 double fmu_model_input_max(const void *model) { (void)model; return HUGE_VAL; }
+double fmu_model_state_input_max(const void *model) { return fmu_model_input_max(model); }
 
 void fmu_model_defaults(void *model)
 {

@@ -543,12 +543,13 @@ fmu_status fmu_serialize_state(fmu_instance *c, const char *func, void *state,
     return FMU_OK;
 }
 
-/* The inputs a loaded state holds within the range fmu_set keeps them in (a state of this FMU
- * never holds others). 1, or 0 with msg. */
+/* The inputs a loaded state holds within the range fmu_set kept them in when they were set (a
+ * state of this FMU never holds others; fmu_model_state_input_max()). 1, or 0 with msg. */
 static int inputs_in_range(const fmu_snapshot *s, char *msg, size_t len)
 {
     fmu_vr vrs[1024];
-    const double bound = model_input_max(s->model);
+    const double own = fmu_model_state_input_max(s->model);
+    const double bound = own < SMS_INPUT_MAX ? own : SMS_INPUT_MAX;
     size_t n = fmu_model_settable(FMU_REAL, vrs, 1024), i;
     for (i = 0; i < n && i < 1024; ++i) {
         double v;

@@ -131,6 +131,13 @@ unsigned fmu_model_real_bytes(void);
  * beyond it naming the variable), or HUGE_VAL when only the glue's SMS_INPUT_MAX applies. */
 double fmu_model_input_max(const void *model);
 /**
+ * @brief The largest |input| a loaded state may hold (an input saved with it): what
+ * fmu_model_input_max() gives, unless an input accepted under an earlier configuration stays
+ * held across a change of it (SmoothShaper's retunable stages: a retune that narrows the range
+ * keeps the held u and s, so their bound is the glue's SMS_INPUT_MAX); valid as that one.
+ */
+double fmu_model_state_input_max(const void *model);
+/**
  * @brief Validate every parameter; O(1) in the size of the filters.
  * @param bytes  out: bytes of memory fmu_model_build() needs (may be 0).
  * @return 0 on success; otherwise non-zero, msg naming the variable and its value.

@@ -100,6 +100,12 @@ double fmu_model_input_max(const void *model)
     return m->built ? m->d.input_max : HUGE_VAL;
 }
 
+/* Its inputs are checked against the configuration that holds them: the same range. */
+double fmu_model_state_input_max(const void *model)
+{
+    return fmu_model_input_max(model);
+}
+
 void fmu_model_defaults(void *model)
 {
     sv_model *m = (sv_model *)model;

@@ -488,6 +488,16 @@ double fmu_model_input_max(const void *model)
     return m->input_max_stale ? sms_tunable_chain_input_max(&m->chain) : m->input_max;
 }
 
+/* Retunable stages keep the held u and s across a retune that narrows the range (the inputs
+ * were within the range when they were set), so a state of theirs may hold inputs up to the
+ * glue's SMS_INPUT_MAX, the range fmu_model_load_state() holds their values to; fixed stages
+ * their own range. */
+double fmu_model_state_input_max(const void *model)
+{
+    const ss_model *m = (const ss_model *)model;
+    return m->retune_max_delay > 0.0 ? HUGE_VAL : fmu_model_input_max(model);
+}
+
 /* After ticks: the range of a chain that no longer switches is its configuration's. */
 static void refresh_input_max(ss_model *m)
 {
@@ -869,6 +879,25 @@ int fmu_model_check_tunable(const void *model, fmu_type type, const fmu_vr *vr,
                         "%.17g s, which its memory was sized for", name, m->used[i],
                         m->retune_max_delay), 1;
     }
+    {   /* the chain the retunes lead to must absorb a held input within FMU_MAX_HOLD_SAMPLES,
+         * as configure() requires at initialization and again when a saved state holding these
+         * parameters is loaded (a notch retuned to slowly decaying poles would pass the size
+         * check above and then make the FMU refuse its own saved states) */
+        sms_stage_config configs[SS_MAX_STAGES];
+        unsigned used[SS_MAX_STAGES];
+        for (i = 0; i < m->n_active; ++i) {
+            used[i] = m->used[i];
+            if (stage_config(&probe, m->used[i], &configs[i], msg, len) != 0)
+                return 1;
+        }
+        if (m->n_active > 0 && hold_too_long(&probe, configs, used, m->n_active, msg, len)) {
+            char why[FMU_MESSAGE_LEN];
+            fmu_model_name(type, vr[0], name, sizeof name);
+            snprintf(why, sizeof why, "%s", msg);
+            return snprintf(msg, len, "%s: the retuned stages would be too slow to hold: %s",
+                            name, why), 1;
+        }
+    }
     return 0;
 }
 
@@ -1026,15 +1055,17 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
     const double slack = 1.0 + 0x1p-20;
     double x, product = 1.0, range = 1.0;
     size_t i, j, off = 1, at = 0;
+    sms_status st;
     int rebuilt = 0;   /* 1: a stage was built again here (its lag may differ) */
     if (n != fmu_model_state_count(m))
-        return 1;
+        return snprintf(msg, len, "it holds %lu values, the stages need %lu", (unsigned long)n,
+                        (unsigned long)fmu_model_state_count(m)), 1;
     for (i = 0; i < m->n_active; ++i) {   /* each stage into the configuration it was saved in */
         const double *part = src + off;
         sms_stage_config active, old;
         int switching = 0;
-        sms_status st = sms_tunable_state_configs(part, m->region[i], &active, &old, &switching);
         char why[FMU_MESSAGE_LEN];
+        st = sms_tunable_state_configs(part, m->region[i], &active, &old, &switching);
         /* user-defined impulses: the state names them by a checksum; they are fixed
          * parameters, so build them as configured (set_state refuses other impulses) */
         if (st == SMS_ERR_KIND && m->stage[m->used[i]].ints[SS_FIELD_KIND] == SMS_SHAPER_IMPULSES
@@ -1069,19 +1100,26 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
     x = x < SMS_INPUT_MAX ? x : SMS_INPUT_MAX;   /* the cached range unless a stage was rebuilt */
     for (i = 0, off = 1; i < m->n_active; ++i) {
         const double *part = src + off;
-        const size_t count = sms_tunable_state_count(&m->tunables[i]);
-        if (count > m->region[i])
-            return 1;
+        /* the part's length as the saving stage had it: a switch saved with a notch fading
+         * is loaded into a stage whose rebuilt old notch is at rest (no switch begun yet) */
+        const size_t count = sms_tunable_saved_state_count(&m->tunables[i], part, m->region[i]);
+        if (count == 0 || count > m->region[i])
+            return snprintf(msg, len, "stage %lu's state needs %lu values, its region holds %lu",
+                            (unsigned long)i, (unsigned long)count,
+                            (unsigned long)m->region[i]), 1;
         for (j = count; j < m->region[i]; ++j)
             if (part[j] != 0.0)
-                return 1;
+                return snprintf(msg, len, "stage %lu's region is not zero after its %lu values",
+                                (unsigned long)i, (unsigned long)count), 1;
         if (sms_tunable_check_state_range(&m->tunables[i], part, count, range * x * slack)
             != SMS_OK)
             return snprintf(msg, len, "stage %lu's values are beyond what inputs within the "
                             "chain's range %.17g leave in it (sms_tunable_check_state_range)",
                             (unsigned long)i, x), 1;
-        if (sms_tunable_set_state(&m->tunables[i], part, count) != SMS_OK)
-            return 1;
+        st = sms_tunable_set_state(&m->tunables[i], part, count);
+        if (st != SMS_OK)
+            return snprintf(msg, len, "stage %lu refuses its values (sms_tunable_set_state: %s)",
+                            (unsigned long)i, sms_status_string(st)), 1;
         product *= sms_tunable_gain_bound(&m->tunables[i]);
         range = 1.0 + 2.0 * product;   /* what stage i + 1 (or the shaper, or y) sees */
         off += m->region[i];
@@ -1098,8 +1136,10 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
                 return snprintf(msg, len, "the scheduled shaper's delay line holds %.17g, beyond "
                                 "what inputs within the chain's range %.17g can give",
                                 src[off + 5 + j], x), 1;
-        if (sms_scheduled_set_state(&m->sch, src + off, n - off) != SMS_OK)
-            return 1;
+        st = sms_scheduled_set_state(&m->sch, src + off, n - off);
+        if (st != SMS_OK)
+            return snprintf(msg, len, "the scheduled shaper refuses its values "
+                            "(sms_scheduled_set_state: %s)", sms_status_string(st)), 1;
         for (j = 0; j < m->sch.n_taps; ++j)
             taps += fabs((double)m->sch.gain[j]);
         range *= 1.0 + 2.0 * taps;   /* y = x + sum g_k (x[n - d_k] - x) */

@@ -246,6 +246,12 @@ double fmu_model_input_max(const void *model)
     return m->built ? position_range(m) : HUGE_VAL;
 }
 
+/* Its inputs are checked against the configuration that holds them: the same range. */
+double fmu_model_state_input_max(const void *model)
+{
+    return fmu_model_input_max(model);
+}
+
 /* Validate every parameter into c; need = table reals (the core's size query). 0 or 1 + msg. */
 static int configure(const tg_model *m, sms_generator_config *c, size_t *need, char *msg,
                      size_t len)
