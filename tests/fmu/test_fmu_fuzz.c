@@ -854,7 +854,13 @@ int main(int argc, char **argv)
     CHECK(n < 10 * LARGE_EVERY
           || (n_big_inits > 0 && largest_state >= FMU_MAX_REALS / 4 * 8));
 #endif
-    CHECK(n < 200 || (n_inits > n / 4 && n_steps > n && n_restores > n / 4 && n_forged > 0));
+    /* Coverage floors: the draws still initialise, step, restore and forge. A successful step
+     * needs an initialised instance and a valid step; SmoothShaper's draws make about one per
+     * sequence (0.985 in 150000 sequences, seed 1; 0.98 per sequence with a standard deviation
+     * of 0.12 over blocks of 200), so "more steps than sequences" failed on about half the seeds
+     * from 2000 sequences on: the floor is half a step per sequence, 4 standard deviations
+     * below the mean at 200 sequences (initialisations 0.58, restores 2.4 per sequence). */
+    CHECK(n < 200 || (n_inits > n / 4 && n_steps > n / 2 && n_restores > n / 4 && n_forged > 0));
     CHECK(n_forged_accepted == 0);
     printf("fmu_fuzz %s: %lu sequences (seed %llu), %lu calls (%lu errors), %lu initialisations "
            "(%lu right after a draw of a large state), %lu steps (%lu with a warning), %lu "
