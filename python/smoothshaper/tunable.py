@@ -410,7 +410,10 @@ class TunableChain:
                               f"chain's capacity", "state")
             twin._stages[i] = (self._stages[i] if self._stages[i].kind == "impulses"
                                else _filters._stage_from_config(active[0]))
-            offset += int(lib.sms_tunable_state_count(cell))
+            # the part's length as the saving stage had it (a saved switch whose rebuilt old
+            # notch is at rest begins none here, and the part still holds the old values)
+            offset += int(lib.sms_tunable_saved_state_count(cell, ffi.from_buffer("double[]", part),
+                                                            part.size))
         return twin
 
     def copy(self) -> "TunableChain":

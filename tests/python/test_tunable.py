@@ -152,6 +152,29 @@ def test_split_blocks_and_state_mid_switch():
     assert np.array_equal(twin.process(x), chain.process(x))
 
 
+def test_state_mid_notch_switch_into_a_chain_at_rest():
+    """A state saved while a retuned notch fades, loaded into a chain built with other stages:
+    its notch is rebuilt in the old configuration, at rest, so the retune to the active one
+    begins no switch, and the saved part is longer than that stage's count (the old notch's
+    values): the next stage's part is still found, the switch goes on and the output continues
+    bit for bit."""
+    a, b = sms.notch(wn=200.0, notch_pole_zeta=0.7), sms.notch(wn=260.0, notch_pole_zeta=0.7)
+    s = sms.shaper("zv", wn=300.0)
+    x = move(11, 800, 5.0)
+    chain = sms.TunableChain([a, s], Ts=Ts, capacity=[[a, b], None])
+    chain.reset(5.0)
+    chain.process(x[:200])
+    chain.retune(0, b)
+    chain.process(x[200:203])
+    assert chain.switching == (True, False)
+    saved = chain.get_state()
+    other = sms.TunableChain([sms.notch(wn=500.0, notch_pole_zeta=0.7), s], Ts=Ts,
+                             capacity=[[a, b], None])
+    other.set_state(saved)
+    assert other.stages[0] == b and other.switching == (True, False)
+    assert np.array_equal(other.process(x[203:]), chain.process(x[203:]))
+
+
 def test_chain_retunes_its_middle_stage():
     """Stages in series: retuning stage 1 of three equals the reference chain of the fixed
     stages around the switched one."""
