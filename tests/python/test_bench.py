@@ -35,3 +35,19 @@ def test_quick_run_writes_every_table(tmp_path, capsys):
     assert "| n/a" not in text.split("## Python call floor")[0]   # every C figure measured
     printed = capsys.readouterr().out
     assert "wrote" in printed
+
+
+def test_sections_other_benchmarks_wrote_are_kept():
+    """Writing the file again keeps the sections the suite does not write (measured by other
+    benchmarks), in their order, and replaces those it writes."""
+    old = ("# Benchmarks\n\nheader\n\n## Python call floor\n\n| a |\n|---|\n| 1 |\n\n"
+           "## Calibrating from long records (calibrate, identify)\n\ntext\n\n| r |\n|---|\n"
+           "| 10 s |\n\n## FMU state load (DeSerializeFMUstate)\n\nmore\n")
+    kept = suite.kept_sections(old, ["Python call floor", "Python throughput"])
+    assert kept == ["## Calibrating from long records (calibrate, identify)\n\ntext\n\n"
+                    "| r |\n|---|\n| 10 s |\n",
+                    "## FMU state load (DeSerializeFMUstate)\n\nmore\n"]
+    assert suite.kept_sections(old, ["Python call floor",
+                                     "Calibrating from long records (calibrate, identify)",
+                                     "FMU state load (DeSerializeFMUstate)"]) == []
+    assert suite.kept_sections("", ["Python call floor"]) == []

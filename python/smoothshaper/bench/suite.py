@@ -37,6 +37,7 @@ import math
 import os
 import pickle
 import platform
+import re
 import shutil
 import statistics
 import subprocess
@@ -724,6 +725,19 @@ def _machine() -> str:
             f"NumPy {np.__version__}, SciPy {scipy.__version__}")
 
 
+def kept_sections(old: str, titles) -> list[str]:
+    """The ``## `` sections of ``old`` (the file written before) whose titles are not among
+    ``titles``: those other benchmarks measured (``tests/bench/calibrate_bench.py`` next to
+    the established tool, the FMU state load from its C host), kept where the file is written
+    again, in their order."""
+    titles = {str(t).strip() for t in titles}
+    out = []
+    for part in re.split(r"(?m)^(?=## )", old):
+        if part.startswith("## ") and part[3:].split("\n", 1)[0].strip() not in titles:
+            out.append(part.rstrip("\n") + "\n")
+    return out
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="python -m smoothshaper.bench",
                                      description=__doc__.split("\n\n")[0])
@@ -746,10 +760,13 @@ def main(argv: list[str] | None = None) -> int:
     text = ["# Benchmarks", "",
             "Written by `python -m smoothshaper.bench`" + (" --quick (smoke run: figures are "
                                                            "noise)" if args.quick else "")
-            + f". Machine: {machine}.", "",
+            + f". Machine: {machine}. Sections it does not write (other benchmarks', named in "
+            "each) are kept from the file it replaces.", "",
             "CPU time, median of several rounds, contenders of a row interleaved round by "
             "round. Smaller is faster; a ratio is smoothshaper's time over the reference's.", ""]
     text += [t.markdown() for t in tables]
+    if args.output.exists():
+        text += kept_sections(args.output.read_text(encoding="utf-8"), [t.title for t in tables])
     args.output.parent.mkdir(parents=True, exist_ok=True)
     args.output.write_text("\n".join(text), encoding="utf-8")
     print(f"\nwrote {args.output}")
