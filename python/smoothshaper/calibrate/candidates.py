@@ -7,7 +7,8 @@ multi-mode chains) and, with ``--firmware``, each firmware's own shapers (:mod:`
 comes from one registry (:func:`families`), so a new kind joins the ranking by registering
 itself. Each candidate's design frequency and damping (and the generalised MZV's duration) is
 tuned to minimise the ranking figure (:mod:`.objectives`) under the delay and smoothing limits:
-a coarse grid around the largest resonances, then Nelder-Mead from the best two points, on the
+a grid around the largest resonances (a shaper's frequencies at each damping, a chain's stage
+pairs, each in one matrix evaluation), then Nelder-Mead from its best point, on the
 continuous designs; the reported figures are those of the exact discrete filter at Ts (the
 firmware's shapers: their own impulses, as the firmware applies them).
 """
