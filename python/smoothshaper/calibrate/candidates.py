@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..reference import impulse_response, shaper_impulses
+from ..reference import impulse_response
 from ..stages import SHAPERS
 from ..reference.continuous import transfer_unchecked
 from ..stages import Stage, for_mode, impulse_shaper, shaper
@@ -387,7 +387,6 @@ def tune(family: Family, anchors, objectives, rank: str, ref: Reference,
     scored = []
     if slots == 1:
         ratios = np.geomspace(0.5, 2.0, 61)
-        base = design(np.array([0.0, z_grid[min(1, len(z_grid) - 1)]] + extra0))
         extras = [extra0]
         if family.extra:            # the generalised MZV's duration: its start and two others
             lo_e, hi_e = family.extra[0][1], family.extra[0][2]
@@ -403,6 +402,7 @@ def tune(family: Family, anchors, objectives, rank: str, ref: Reference,
                     scored += _scan_single(design, obj, np.array([0.0, z] + ex), ratios[::2],
                                            max_delay, ref.Ts, fw is not None)
         else:
+            base = design(np.array([0.0, z_grid[min(1, len(z_grid) - 1)]] + extra0))
             if max_delay is not None and base is not None and base[2] > 0:
                 fit = base[2] / max_delay
                 ratios = np.r_[ratios, fit * np.array([1.002, 1.02, 1.08, 1.2])]
