@@ -183,6 +183,8 @@ static int refuse_limits(const tg_model *m, char *msg, size_t len)
     c.profile = (sms_profile)m->profile;
     c.wn = m->wn;
     c.zeta = m->zeta;
+    c.vmin = 0.0; /* symmetric */
+    c.amin = 0.0;
     (void)sms_generator_reach(&c, m->Ts, &r);
     if (r.quantity == NULL) /* not expected: init and the check are one function */
         return snprintf(msg, len, "vmax = %.17g, amax = %.17g, jmax = %.17g: %s", m->vmax,
@@ -280,6 +282,8 @@ static int configure(const tg_model *m, sms_generator_config *c, size_t *need, c
     c->profile = (sms_profile)m->profile;
     c->wn = m->wn;
     c->zeta = m->zeta;
+    c->vmin = 0.0; /* symmetric */
+    c->amin = 0.0;
     *need = 0;
     st = sms_generator_buffer_size(c, m->Ts, need);
     if (st != SMS_OK)

@@ -75,6 +75,7 @@ int main(void)
         double steady, replan;
         c.vmax = 250.0; c.amax = 5000.0; c.jmax = 200000.0;
         c.profile = cases[i].profile; c.wn = cases[i].wn; c.zeta = cases[i].zeta;
+        c.vmin = c.amin = 0.0; /* symmetric */
         if (sms_generator_buffer_size(&c, Ts, &need) != SMS_OK || need > 100000 ||
             sms_generator_init(&g, &c, Ts, table, need) != SMS_OK)
             return 1;
@@ -92,6 +93,7 @@ int main(void)
         int kind;
         c.vmax = 250.0; c.amax = 5000.0; c.jmax = 200000.0;
         c.profile = SMS_PROFILE_POLYNOMIAL; c.wn = 0.0; c.zeta = 0.0;
+        c.vmin = c.amin = 0.0; /* symmetric */
         if (sms_generator_buffer_size(&c, Ts, &need) != SMS_OK || need > 100000 ||
             sms_generator_init(&g, &c, Ts, table, need) != SMS_OK)
             return 1;

@@ -32,6 +32,8 @@ static sms_generator_config config(double v, double a, double j, sms_profile pro
     c.profile = profile;
     c.wn = 0.0;
     c.zeta = 0.0;
+    c.vmin = 0.0; /* symmetric */
+    c.amin = 0.0;
     return c;
 }
 

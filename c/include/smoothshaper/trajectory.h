@@ -283,6 +283,18 @@ typedef struct sms_target {
  * | profile | an ::sms_profile (::SMS_PROFILE_DAMPED needs wn > 0) |
  * | wn      | 0 (no mode) or finite > 0 and below pi/Ts [rad/s] |
  * | zeta    | [0, 1) |
+ * | vmin    | 0 (symmetric: -vmax) or finite < 0, and a plan can reach it (sms_generator_reach()) |
+ * | amin    | 0 (symmetric: -amax) or finite < 0 |
+ *
+ * **Asymmetric limits** (ruckig's min_velocity and min_acceleration): with vmin or amin set,
+ * the velocity stays within [vmin, vmax] and the acceleration within [amin, amax] at every
+ * sample (different bounds forward and backward: gravity on a vertical axis, a conveyor that
+ * must never run backwards fast). The jerk bound stays symmetric. Every motion is planned by
+ * the same families (docs/design.md, "Asymmetric limits"); only the linear-ramp profiles
+ * (::SMS_PROFILE_POLYNOMIAL, ::SMS_PROFILE_DAMPED) take them: the trigonometric profile is
+ * refused with ::SMS_ERR_LIMIT when either is set. Last in the struct so that initialisers of
+ * the other six stay valid and mean the symmetric limits (set both fields, or zero the
+ * struct, when filling it field by field).
  */
 typedef struct sms_generator_config {
     double vmax;          /**< velocity bound, finite, > 0 */
@@ -291,20 +303,25 @@ typedef struct sms_generator_config {
     sms_profile profile;  /**< shape of the transitions, and of the tuned stage */
     double wn;            /**< 0: no mode to cancel; else [rad/s], finite, below pi/Ts */
     double zeta;          /**< the mode's damping ratio, [0, 1) */
+    double vmin;          /**< lower velocity bound, finite, < 0; 0: -vmax */
+    double amin;          /**< lower acceleration bound, finite, < 0; 0: -amax */
 } sms_generator_config;
 
 /**
  * @brief Doubles of configuration identity at the start of a saved generator state
  * (sms_generator_get_state()), in this order: the head of config.h (::SMS_STATE_TAG,
  * ::SMS_STATE_VERSION, sizeof(::sms_real), ::SMS_STATE_KIND_GENERATOR, Ts), then vmax, amax,
- * jmax, profile, wn, zeta exactly as given to sms_generator_init(). Loading compares them with
+ * jmax, profile, wn, zeta exactly as given to sms_generator_init(), then the lower bounds vmin
+ * and amin in effect (-vmax and -amax for symmetric limits, so a config with 0 and one with
+ * -vmax are the same configuration). Loading compares them with
  * the generator's own (exact equality) and refuses a state of another configuration, writing
  * nothing, with the status naming the first field that differs (::SMS_ERR_STATE_FORMAT,
  * ::SMS_ERR_STATE_PRECISION, ::SMS_ERR_STATE_KIND, ::SMS_ERR_STATE_TS, ::SMS_ERR_STATE_VMAX,
  * ::SMS_ERR_STATE_AMAX, ::SMS_ERR_STATE_JMAX, ::SMS_ERR_STATE_PROFILE, ::SMS_ERR_STATE_WN,
- * ::SMS_ERR_STATE_ZETA).
+ * ::SMS_ERR_STATE_ZETA, then ::SMS_ERR_STATE_VMAX for vmin and ::SMS_ERR_STATE_AMAX for amin:
+ * the velocity and the acceleration bounds).
  */
-#define SMS_GENERATOR_IDENTITY_COUNT 11
+#define SMS_GENERATOR_IDENTITY_COUNT 13
 
 /** @brief Doubles of a saved generator state after its identity (sms_generator_get_state()),
  * and where each field lies counted from the end of the identity: the latest target and the
@@ -410,6 +427,9 @@ typedef struct sms_generator {
     sms_real *buffer;     /**< caller buffer: 4 M reals (NULL without a mode) */
     int time_optimal;     /**< 1: the plan is time-optimal for the profile (every config) */
     sms_plan_limits limits; /**< vmax, amax, jmax in signal precision */
+    sms_real vmin;        /**< lower velocity bound in signal precision (-vmax: symmetric) */
+    sms_real amin;        /**< lower acceleration bound in signal precision (-amax: symmetric) */
+    int asymmetric;       /**< 1 when vmin != -vmax or amin != -amax */
     double identity[SMS_GENERATOR_IDENTITY_COUNT]; /**< config and Ts it was built for */
     /* dynamic state */
     sms_target target;    /**< latest valid target (a stop as velocity 0, acceleration 0; the
