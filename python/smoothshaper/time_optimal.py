@@ -609,6 +609,17 @@ def _run(targets, *, vmax, amax, jmax, Ts, q0=0.0, shape="ramp", velocity=None,
     goals = np.empty(n)
     dropped = np.zeros(n, dtype=bool)
     make = _cosine_plan if shape == "cosine" else _ramp_plan
+    if vmin is None and amin is None:
+        evaluate = _evaluate
+    else:
+        # asymmetric limits: v and a held to their bounds (the rounding of a segment's sum of
+        # terms of the larger bound's size, the generator's rule)
+        lo_v = -vmax if vmin is None else vmin
+        lo_a = -amax if amin is None else amin
+
+        def evaluate(plan, m, Ts, shape):
+            q, v, a, j = _evaluate(plan, m, Ts, shape)
+            return q, min(max(v, lo_v), vmax), min(max(a, lo_a), amax), j
     plan, i0 = _rest_plan(float(q0)), 0
     held = goal = (POSITION, float(q0), 0.0, 0.0, 0.0)
     refused = False
@@ -626,7 +637,7 @@ def _run(targets, *, vmax, amax, jmax, Ts, q0=0.0, shape="ramp", velocity=None,
                              vmin=vmin, amin=amin)
         if t is not None and t != held:   # a new target (invalid: ignored)
             held, refused = t, False
-        state = _evaluate(plan, i - i0, Ts, shape)
+        state = evaluate(plan, i - i0, Ts, shape)
         if held != goal and not refused and _can_start(state[1], state[2], vmax, jmax, shape):
             try:
                 with np.errstate(all="ignore"):
@@ -635,7 +646,7 @@ def _run(targets, *, vmax, amax, jmax, Ts, q0=0.0, shape="ramp", velocity=None,
                 new = None
             if new is not None:
                 plan, goal, i0 = new, held, i
-                state = _evaluate(plan, 0, Ts, shape)
+                state = evaluate(plan, 0, Ts, shape)
             else:   # dropped: the running plan goes on; not tried again until it changes
                 refused = True
                 dropped[i] = True

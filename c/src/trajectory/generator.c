@@ -494,6 +494,25 @@ static void take_target(sms_generator *g, const sms_target *target)
     }
 }
 
+/* With asymmetric limits, v and a held to [vmin, vmax] and [amin, amax]. A segment's value
+ * rounds relative to the largest terms it sums, which scale with the larger bound (a ramp from
+ * vmax down to vmin): near the smaller bound that is its magnitude times their ratio, beyond
+ * the reported values' 32 u. The exact motion is within the bounds, so holding the rounded
+ * value to them changes it by no more than that rounding. Symmetric limits: untouched. */
+static void hold_to_bounds(const sms_generator *g, sms_real out[4])
+{
+    if (!g->asymmetric)
+        return;
+    if (out[1] > g->limits.vmax)
+        out[1] = g->limits.vmax;
+    else if (out[1] < g->vmin)
+        out[1] = g->vmin;
+    if (out[2] > g->limits.amax)
+        out[2] = g->limits.amax;
+    else if (out[2] < g->amin)
+        out[2] = g->amin;
+}
+
 /* Advance the plan one sample under the held target; re-plan from the exact state there when
  * the target differs from the plan's goal (and the state allows it, can_start()). */
 static void step_plan(sms_generator *g, sms_real out[4])
@@ -506,6 +525,7 @@ static void step_plan(sms_generator *g, sms_real out[4])
         return;
     }
     sms_plan_eval(&g->plan, g->Ts_signal, g->k, out);
+    hold_to_bounds(g, out);
     if (g->pending && can_start(g, out[1], out[2])) {
         g->pending = 0;
         /* a move that cannot be represented (the planner returns 0) is dropped: the running
@@ -517,6 +537,7 @@ static void step_plan(sms_generator *g, sms_real out[4])
             g->goal = g->target;
             g->k = 0;
             sms_plan_eval(&g->plan, g->Ts_signal, 0, out); /* the same q, v, a; the new jerk */
+            hold_to_bounds(g, out);
         } else {
             g->refused = 1;
             ++g->dropped;
@@ -599,6 +620,7 @@ static void hold_plan_through_stage(sms_generator *g, uint64_t n, sms_real out[4
         b = n < 64u ? (size_t)n : 64u;
         for (i = 0; i < b; ++i) {
             sms_plan_eval(&g->plan, g->Ts_signal, ++g->k, o);
+            hold_to_bounds(g, o);
             count_quiet(g, o);
             for (c = 0; c < 4; ++c)
                 x[c][i] = o[c];
