@@ -66,7 +66,9 @@ def refused(ffi, info, limits: dict, Ts: float, st: int, axis: int | None = None
     """
     sub = "" if axis is None else f"[{axis}]"
     tail = "" if axis is None else f" (axis {axis})"
-    vmax = f"vmax{sub}"
+    # the velocity bound the refused move reaches (vmin for a move of asymmetric limits)
+    vmax = f"vmin{sub}" if info.quantity != ffi.NULL and "vmin" in ffi.string(
+        info.quantity).decode() else f"vmax{sub}"
     if info.quantity == ffi.NULL:  # a limit not finite and > 0 (checked before the region)
         bad = next((n for n in ("vmax", "amax", "jmax") if not 0 < limits[n] < float("inf")),
                    "vmax")

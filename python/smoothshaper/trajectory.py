@@ -55,7 +55,8 @@ def _infeasible(lib, ffi, cfg, Ts, st):
     info = ffi.new("sms_generator_reach_info *")
     lib.sms_generator_reach(cfg, Ts, info)
     return _reach.refused(ffi, info, dict(vmax=cfg.vmax, amax=cfg.amax, jmax=cfg.jmax,
-                                          vmin=cfg.vmin, amin=cfg.amin), Ts, st)
+                                          vmin=cfg.vmin or -cfg.vmax,
+                                          amin=cfg.amin or -cfg.amax), Ts, st)
 
 
 def _lower_bound(name, value, upper, upper_name, profile):

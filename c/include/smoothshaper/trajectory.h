@@ -292,9 +292,9 @@ typedef struct sms_target {
  * must never run backwards fast). The jerk bound stays symmetric. Every motion is planned by
  * the same families (docs/design.md, "Asymmetric limits"); only the linear-ramp profiles
  * (::SMS_PROFILE_POLYNOMIAL, ::SMS_PROFILE_DAMPED) take them: the trigonometric profile is
- * refused with ::SMS_ERR_LIMIT when either is set. Last in the struct so that initialisers of
- * the other six stay valid and mean the symmetric limits (set both fields, or zero the
- * struct, when filling it field by field).
+ * refused with ::SMS_ERR_LIMIT when either is set to another value than 0, -vmax or -amax.
+ * Last in the struct so that initialisers of the other six stay valid and mean the symmetric
+ * limits (set both fields, or zero the struct, when filling it field by field).
  */
 typedef struct sms_generator_config {
     double vmax;          /**< velocity bound, finite, > 0 */

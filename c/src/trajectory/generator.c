@@ -146,12 +146,14 @@ sms_status sms_generator_reach(const sms_generator_config *c, double Ts,
         /* each lower bound 0 (symmetric) or a negative normal number with the same room;
          * ramps only (the half-cosine plans are symmetric) */
         static const char *const names[2] = {"vmin", "amin"};
-        const double limit[2] = {c->vmin, c->amin};
+        const double limit[2] = {c->vmin, c->amin}, upper[2] = {c->vmax, c->amax};
         static const char *const with_profile[2] = {"vmin, profile", "amin, profile"};
         for (i = 0; i < 2; ++i) {
             if (limit[i] == 0.0)
                 continue;
-            if (trig) /* bound 0: only the symmetric default */
+            if (trig && limit[i] == -upper[i])
+                continue; /* the symmetric bound given explicitly */
+            if (trig) /* bound 0: only the symmetric default (or -vmax, -amax) */
                 return sms_reach_refused(r, names[i], with_profile[i], limit[i], 0.0);
             if (!(-limit[i] >= GEN_REAL_MIN)) /* positive, NaN or too small */
                 return sms_reach_refused(r, names[i], names[i], limit[i], -GEN_REAL_MIN);
