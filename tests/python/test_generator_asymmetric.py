@@ -12,6 +12,8 @@ from smoothshaper.bench import targets as bt
 from smoothshaper.errors import ParameterError
 from smoothshaper.trajectory import Generator, generator_reference
 
+pytest.importorskip("ruckig")
+
 # a vertical axis: fast up, slow down; braking downwards gently
 LIM = dict(vmax=1.0, amax=10.0, jmax=100.0, vmin=-0.25, amin=-2.5)
 
@@ -149,3 +151,52 @@ def test_saved_state_names_the_lower_bounds():
     h.set_state(state)
     x = np.full(900, 0.5)
     assert np.array_equal(h.process(x), g.process(x))
+
+
+def _reference_case(case, Ts):
+    """The campaign's case through C and the NumPy reference (time_optimal._run from the
+    same start state): both (n, 4) outputs."""
+    from smoothshaper import time_optimal as to
+    feature = bt.ASYMMETRIC[case["feature"]]
+    lim = dict(vmax=case["vmax"], amax=case["amax"], jmax=case["jmax"], vmin=case["vmin"],
+               amin=case["amin"])
+    g = Generator(Ts=Ts, **lim)
+    itf = {"stop": to.STOP, "velocity": to.VELOCITY}.get(feature, to.POSITION)
+    goal = to.canonical_target(itf, case["position"], case["velocity"], case["acceleration"],
+                               **lim)
+    if feature == "stop":
+        g.start_from(case["q0"], case["v0"], case["a0"])
+    elif feature == "velocity":
+        g.start_from(case["q0"], case["v0"], case["a0"], interface="velocity",
+                     velocity=case["velocity"], acceleration=case["acceleration"])
+    else:
+        g.start_from(case["q0"], case["v0"], case["a0"], target=case["position"],
+                     velocity=case["velocity"], acceleration=case["acceleration"])
+    n = g.arrival + 8
+    y = g.process(np.full(n, case["position"]), velocity=case["velocity"],
+                  acceleration=case["acceleration"], interface="velocity"
+                  if feature == "velocity" else "position", stop=feature == "stop")
+    ref, _, _ = to._run(np.full(n, case["position"]), Ts=Ts, velocity=np.full(n, goal[2]),
+                        acceleration=np.full(n, goal[3]), interface=np.full(n, itf),
+                        start=(case["q0"], case["v0"], case["a0"], goal), **lim)
+    return y, ref
+
+
+@pytest.mark.parametrize("feature", sorted(bt.ASYMMETRIC))
+def test_campaign_cases_equal_the_reference(feature):
+    """Random campaign cases (limits over four decades, vmin and amin 0.1 to 10 times the
+    negated upper bounds, random start states and targets): C equals the reference to 1e-9 of
+    each column's scale (max |q| + 1 for q, the limits for v, a), the jerk but at the odd
+    breakpoint within a rounding of a sample."""
+    rng = np.random.default_rng([5, bt.FEATURES.index(feature)])
+    for _ in range(40):
+        case = bt.draw_case(rng, feature)
+        T = bt._ruckig(case)
+        if not T:
+            continue
+        Ts = T / 10.0 ** rng.uniform(1, 2.5)
+        y, ref = _reference_case(case, Ts)
+        scale = np.array([np.max(np.abs(ref[:, 0])) + 1, max(case["vmax"], -case["vmin"]),
+                          max(case["amax"], -case["amin"])])
+        assert np.all(np.abs(y[:, :3] - ref[:, :3]) <= 1e-9 * scale), case
+        assert np.mean(np.abs(y[:, 3] - ref[:, 3]) > 1e-9 * case["jmax"]) <= 0.05, case
