@@ -491,6 +491,14 @@ typedef struct sms_generator_reach_info {
  * 4. ap^2 >= MIN/eps (squares of accelerations, and the products of moves down to about
  *    eps^1.5 `distance`, stay normal): "amax^2" or "vmax*jmax";
  * 5. duration >= MIN and MIN/eps <= distance <= MAX/M.
+ * With asymmetric limits (vmin or amin set) vmin and amin must be 0 or negative with their
+ * magnitudes in [MIN, MAX/M] (else the quantity is "vmin" or "amin"; with the trigonometric
+ * profile, which takes symmetric limits only, "vmin" or "amin" with the arguments
+ * "vmin, profile" or "amin, profile"), and steps 2 to 5 hold for each pair of a velocity
+ * bound and an acceleration bound, checked in the order (vmax, amax), (|vmin|, |amin|),
+ * (vmax, |amin|), (|vmin|, amax): a refusal names its pair ("vmin/amin", "vmin*jmax",
+ * "amin^2", "the distance to reach vmin", ...); on success `reach` describes the (vmax, amax)
+ * move.
  * Inside this region every rest-to-rest move from about eps^1.5 `distance` up to `distance`,
  * a reversal from full speed, and any longer move whose plan stays within 2^52 samples and
  * finite is planned; outside it no move that reaches vmax can be (3: beyond 2^52 samples
