@@ -247,8 +247,8 @@ typedef enum sms_interface {
  * |--------------|--------------------------------------------|
  * | interface    | an ::sms_interface |
  * | position     | finite (position interface; ignored otherwise) |
- * | velocity     | finite, \|v\| <= vmax (ignored for stop) |
- * | acceleration | finite, \|a\| <= amax, and v - a\|a\|/(2 jmax), v + a\|a\|/(2 jmax) within \|.\| <= vmax (ignored for stop) |
+ * | velocity     | finite, \|v\| <= vmax (ignored for stop); vmin <= v <= vmax with asymmetric limits |
+ * | acceleration | finite, \|a\| <= amax, and v - a\|a\|/(2 jmax), v + a\|a\|/(2 jmax) within \|.\| <= vmax (ignored for stop); with asymmetric limits amin <= a <= amax and both within [vmin, vmax] |
  * | minimum_duration | finite, >= 0 [s], below 2^50 samples of Ts; 0 with the trigonometric profile (ignored for stop) |
  *
  * The acceleration row keeps the velocity within its bound on the way in (where the
@@ -585,7 +585,8 @@ SMS_API void sms_generator_hold(sms_generator *g, sms_real target, uint64_t n, s
  *         ::SMS_ERR_TARGET_VELOCITY (not finite, |v| > vmax, or not 0 for a position target
  *         of the trigonometric profile); ::SMS_ERR_TARGET_ACCELERATION (not finite,
  *         |a| > amax, v - a|a|/(2 jmax) or v + a|a|/(2 jmax) beyond +-vmax, or not 0 for
- *         the trigonometric profile). The limits are compared as ::sms_real holds them.
+ *         the trigonometric profile). With asymmetric limits each side has its own bound:
+ *         [vmin, vmax] and [amin, amax]. The limits are compared as ::sms_real holds them.
  * @param g      the generator (read only)
  * @param target the target to check
  */
@@ -653,9 +654,10 @@ SMS_API void sms_generator_hold_target(sms_generator *g, const sms_target *targe
  * sample of a plan to `target` (NULL: a stop), and its next step is the plan's next sample.
  * The tuned stage (a mode) keeps its history and filters the new plan from the next step on.
  * @return ::SMS_OK; ::SMS_ERR_NULL (g); ::SMS_ERR_TARGET_POSITION (q not finite);
- *         ::SMS_ERR_TARGET_VELOCITY (v not finite or |v| > vmax); ::SMS_ERR_TARGET_ACCELERATION
- *         (a not finite, |a| > amax or |v + a|a|/(2 J)| > vmax, J the shape's mean jerk: no
- *         plan can start there); a status of sms_generator_check_target() for `target`;
+ *         ::SMS_ERR_TARGET_VELOCITY (v not finite or |v| > vmax; asymmetric limits: v outside
+ *         [vmin, vmax]); ::SMS_ERR_TARGET_ACCELERATION (a not finite, |a| > amax or
+ *         |v + a|a|/(2 J)| > vmax, J the shape's mean jerk, each on its own side with
+ *         asymmetric limits: no plan can start there); a status of sms_generator_check_target() for `target`;
  *         ::SMS_ERR_TOO_LONG (the motion to the target cannot be represented). Each bound
  *         holds to ::SMS_LIMIT_RTOL (a state the generator reported is always accepted).
  *         Nothing is changed on error.
