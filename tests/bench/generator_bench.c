@@ -93,16 +93,22 @@ int main(void)
         int kind;
         c.vmax = 250.0; c.amax = 5000.0; c.jmax = 200000.0;
         c.profile = SMS_PROFILE_POLYNOMIAL; c.wn = 0.0; c.zeta = 0.0;
-        c.vmin = c.amin = 0.0; /* symmetric */
-        if (sms_generator_buffer_size(&c, Ts, &need) != SMS_OK || need > 100000 ||
-            sms_generator_init(&g, &c, Ts, table, need) != SMS_OK)
-            return 1;
-        steady = per_step_kind(&g, 2000000, 3);
-        printf("  a new target every sample (polynomial), per sample minus the held one's %.2f ns:\n",
-               steady);
-        for (kind = 0; kind < 3; ++kind)
-            printf("    %-28s a re-plan %.1f ns\n", kinds[kind],
-                   per_step_kind(&g, 500000, kind) - steady);
+        int asym;
+        for (asym = 0; asym < 2; ++asym) {
+            /* symmetric, then asymmetric limits (vmin = -vmax/2, amin = -amax/4: the same
+             * targets, which stay within both; the moving target's 100 units/s forward) */
+            c.vmin = asym ? -125.0 : 0.0;
+            c.amin = asym ? -1250.0 : 0.0;
+            if (sms_generator_buffer_size(&c, Ts, &need) != SMS_OK || need > 100000 ||
+                sms_generator_init(&g, &c, Ts, table, need) != SMS_OK)
+                return 1;
+            steady = per_step_kind(&g, 2000000, 3);
+            printf("  a new target every sample (polynomial%s), per sample minus the held one's "
+                   "%.2f ns:\n", asym ? ", vmin = -vmax/2, amin = -amax/4" : "", steady);
+            for (kind = 0; kind < 3; ++kind)
+                printf("    %-28s a re-plan %.1f ns\n", kinds[kind],
+                       per_step_kind(&g, 500000, kind) - steady);
+        }
     }
     {
         double L[3] = {250.0, 5000.0, 200000.0}, T[3];
