@@ -2,7 +2,7 @@
 /* Prints the generator's cost: ns per sample on a long move (no re-plan) for each profile,
  * with and without a mode, the re-plan cost (a target that moves every sample, minus the
  * steady cost), the re-plan cost of each kind of target (a moving one, the velocity
- * interface), and the kinematic design time. Figures only; nothing is asserted. */
+ * interface), each with symmetric and with asymmetric limits, and the kinematic design time. Figures only; nothing is asserted. */
 #define _POSIX_C_SOURCE 199309L
 #include <stdio.h>
 #include "smoothshaper/smoothshaper.h"
