@@ -5,6 +5,8 @@ generator unchanged, and the saved state's identity. The campaigns against rucki
 (``asym_*`` in smoothshaper.bench.targets) run in tests/python/test_generator_targets.py."""
 from __future__ import annotations
 
+import pickle
+
 import numpy as np
 import pytest
 
@@ -149,8 +151,11 @@ def test_saved_state_names_the_lower_bounds():
         Generator(**kw, vmin=-0.25).set_state(state)
     h = Generator(**kw, vmin=-0.25, amin=-2.5)
     h.set_state(state)
+    p = pickle.loads(pickle.dumps(g))             # the lower bounds travel with a pickle
+    assert (p.vmin, p.amin) == (-0.25, -2.5)
     x = np.full(900, 0.5)
-    assert np.array_equal(h.process(x), g.process(x))
+    y = g.process(x)
+    assert np.array_equal(h.process(x), y) and np.array_equal(p.process(x), y)
 
 
 def _reference_case(case, Ts):
