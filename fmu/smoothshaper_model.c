@@ -1045,8 +1045,20 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
         const double *part = src + off;
         sms_stage_config active, old;
         int switching = 0;
-        sms_status st = sms_tunable_state_configs(part, m->region[i], &active, &old, &switching);
+        sms_status st;
         char why[FMU_MESSAGE_LEN];
+        /* already in that configuration (the instance's own, copied, or just built): keep
+         * the built filters, no design; sms_tunable_set_state() below loads the values (a
+         * stage not switching accepts only a state not switching of its own configuration) */
+        if (!m->tunables[i].switching
+            && sms_tunable_state_count(&m->tunables[i]) <= m->region[i]
+            && sms_tunable_check_state(&m->tunables[i], part,
+                                       sms_tunable_state_count(&m->tunables[i])) == SMS_OK) {
+            off += m->region[i];
+            at += slots_per_stage(m) * m->slot_cells[i];
+            continue;
+        }
+        st = sms_tunable_state_configs(part, m->region[i], &active, &old, &switching);
         /* user-defined impulses: the state names them by a checksum; they are fixed
          * parameters, so build them as configured (set_state refuses other impulses) */
         if (st == SMS_ERR_KIND && m->stage[m->used[i]].ints[SS_FIELD_KIND] == SMS_SHAPER_IMPULSES
@@ -1055,8 +1067,6 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
         if (st != SMS_OK)
             return snprintf(msg, len, "stage %lu's state is not a retunable stage's",
                             (unsigned long)i), 1;
-        /* already in that configuration (the instance's own, copied, or just built): keep
-         * the built filters, no design; sms_tunable_set_state() below loads the values */
         if (!switching && !m->tunables[i].switching
             && sms_tunable_state_count(&m->tunables[i]) <= m->region[i]
             && sms_tunable_check_state(&m->tunables[i], part,
