@@ -24,17 +24,20 @@ step() {
 }
 
 # The release tree first: its FMUs are the ones pytest tests (built once, not again in
-# build-pytest-fmu). The Python suite then runs on one core beside the sanitizer build and
-# the two ctest runs (pytest is serial; the C side takes the other core and whatever pytest
-# leaves): its output is shown when it ends.
+# build-pytest-fmu). The Python suite then runs on two worker processes (pytest-xdist, -n 2;
+# the tests that share a built tree take its lock, smoothshaper.fmi.build_fmus) beside the rest,
+# which runs in this order: ctest, the sanitizer build and its ctest, the API references and
+# the wheel in a fresh venv (so no step runs alone on the two cores at the end); pytest's
+# output is shown when it ends.
 mkdir -p build
 step "C build (release)" cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release
 step "C build (release)" cmake --build build/release -j2
 fmu_dir=build-pytest-fmu
 [ -d build/release/fmus ] && fmu_dir=build/release
-printf '== [%4d s] pytest (in the background, FMUs of %s, output in build/pytest.log)\n' \
+printf '== [%4d s] pytest -n 2 (in the background, FMUs of %s, output in build/pytest.log)\n' \
     $((SECONDS - start)) "$fmu_dir"
-SMOOTHSHAPER_TEST_FMU_DIR=$PWD/$fmu_dir python -m pytest tests/python -q >build/pytest.log 2>&1 &
+SMOOTHSHAPER_TEST_FMU_DIR=$PWD/$fmu_dir python -m pytest tests/python -q -n 2 --durations=15 \
+    >build/pytest.log 2>&1 &
 pytest_pid=$!
 
 step "ctest (release)" ctest --test-dir build/release --output-on-failure -j2 -LE long
@@ -42,6 +45,10 @@ step "ctest (release)" ctest --test-dir build/release --output-on-failure -j2 -L
 step "C build (sanitize)" cmake -S . -B build/sanitize -DCMAKE_BUILD_TYPE=Debug -DSMS_SANITIZE=ON
 step "C build (sanitize)" cmake --build build/sanitize -j2
 step "ctest (sanitize)" ctest --test-dir build/sanitize --output-on-failure -j2 -LE long
+
+step "API references (sphinx and doxygen, warnings as errors)" bash scripts/docs.sh
+# What `pip install .` gives a user: the wheel in a fresh venv with the base dependencies only.
+step "wheel in a fresh venv" bash tests/install/fresh_venv.sh
 
 pytest_rc=0
 wait "$pytest_pid" || pytest_rc=$?
@@ -54,10 +61,6 @@ if [ "$pytest_rc" -eq 5 ]; then
 elif [ "$pytest_rc" -ne 0 ]; then
     failed+=("pytest")
 fi
-
-step "API references (sphinx and doxygen, warnings as errors)" bash scripts/docs.sh
-# What `pip install .` gives a user: the wheel in a fresh venv with the base dependencies only.
-step "wheel in a fresh venv" bash tests/install/fresh_venv.sh
 
 if [ ${#failed[@]} -gt 0 ]; then
     # One line whatever the number of failed suites (printf would reuse its format per name).

@@ -7,7 +7,8 @@ multi-mode chains) and, with ``--firmware``, each firmware's own shapers (:mod:`
 comes from one registry (:func:`families`), so a new kind joins the ranking by registering
 itself. Each candidate's design frequency and damping (and the generalised MZV's duration) is
 tuned to minimise the ranking figure (:mod:`.objectives`) under the delay and smoothing limits:
-a coarse grid around the largest resonances, then Nelder-Mead from the best two points, on the
+a grid around the largest resonances (a shaper's frequencies at each damping, a chain's stage
+pairs, each in one matrix evaluation), then Nelder-Mead from its best point, on the
 continuous designs; the reported figures are those of the exact discrete filter at Ts (the
 firmware's shapers: their own impulses, as the firmware applies them).
 """
@@ -18,7 +19,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..reference import impulse_response, shaper_impulses
+from ..reference import impulse_response
 from ..stages import SHAPERS
 from ..reference.continuous import transfer_unchecked
 from ..stages import Stage, for_mode, impulse_shaper, shaper
@@ -310,7 +311,6 @@ def tune(family: Family, anchors, objectives, rank: str, ref: Reference,
     ``anchors``: natural frequencies [rad/s] of the largest resonances, largest first;
     ``objectives``: {"spectrum": SpectralObjective, "modal": ModalObjective or None};
     ``rank``: which of them ranks."""
-    from scipy.optimize import minimize
     from ..errors import ParameterError
     obj = objectives[rank]
     slots = family.slots
@@ -387,43 +387,72 @@ def tune(family: Family, anchors, objectives, rank: str, ref: Reference,
     scored = []
     if slots == 1:
         ratios = np.geomspace(0.5, 2.0, 61)
-        base = design(np.array([0.0, z_grid[min(1, len(z_grid) - 1)]] + extra0))
-        if max_delay is not None and base is not None and base[2] > 0:
-            fit = base[2] / max_delay
-            ratios = np.r_[ratios, fit * np.array([1.002, 1.02, 1.08, 1.2])]
         extras = [extra0]
         if family.extra:            # the generalised MZV's duration: its start and two others
             lo_e, hi_e = family.extra[0][1], family.extra[0][2]
             extras += [[lo_e + 0.25 * (hi_e - lo_e)], [lo_e + 0.75 * (hi_e - lo_e)]]
-        for z in z_grid:
-            for ex in extras:
-                scored += _scan(design, obj, np.array([0.0, z] + ex), ratios, max_delay, cost,
-                                single=fw is not None or _is_single_shaper(design, z, ex))
+        step_r, step_z = 0.03, 0.04
+        single = fw is not None or _is_single_shaper(design, z_grid[0], extra0)
+        if single:
+            # one shaper: every frequency at a damping ratio in one matrix evaluation, so the
+            # grid is fine in both (the refinement then starts next to the optimum)
+            zs = sorted(set(z_grid) | {min(max(z, zlo), zhi) for z in _SINGLE_ZETAS})
+            for z in zs:
+                for ex in extras:
+                    scored += _scan_single(design, obj, np.array([0.0, z] + ex), ratios[::2],
+                                           max_delay, ref.Ts, fw is not None)
+        else:
+            base = design(np.array([0.0, z_grid[min(1, len(z_grid) - 1)]] + extra0))
+            if max_delay is not None and base is not None and base[2] > 0:
+                fit = base[2] / max_delay
+                ratios = np.r_[ratios, fit * np.array([1.002, 1.02, 1.08, 1.2])]
+            step_r, step_z = 0.1, 0.06     # the coarser grid's steps
+            for z in z_grid:
+                for ex in extras:
+                    for r in ratios[::4]:
+                        u = np.array([math.log(r), z] + ex)
+                        scored.append((cost(u), tuple(u)))
     else:
-        grid = [np.array([math.log(r1), z, math.log(r2), z] + extra0)
-                for r1 in (0.92, 1.0, 1.1) for r2 in (0.92, 1.0, 1.1) for z in z_grid[1:3]]
-        if max_delay is not None:
-            grid += [np.array([math.log(q), z, math.log(q), z] + extra0)
-                     for q in (1.2, 1.45, 1.75) for z in z_grid[1:3]]
-        scored = [(cost(u), tuple(u)) for u in grid]
+        step_r, step_z, single = 0.06, 0.04, False
+        scored = _scan_chain(family, anchors, obj, max_delay, ref.Ts, extra0)
+        if scored is None:
+            grid = [np.array([math.log(r1), z, math.log(r2), z] + extra0)
+                    for r1 in (0.92, 1.0, 1.1) for r2 in (0.92, 1.0, 1.1) for z in z_grid[1:3]]
+            if max_delay is not None:
+                grid += [np.array([math.log(q), z, math.log(q), z] + extra0)
+                         for q in (1.2, 1.45, 1.75) for z in z_grid[1:3]]
+            scored = [(cost(u), tuple(u)) for u in grid]
     scored.sort(key=lambda x: x[0])
-    starts = [np.array(u) for _, u in scored[:2]]
-    best = None
-    for u0 in starts:
-        simplex = [u0] + [u0 + np.eye(u0.size)[j] * (0.02 if (j % 2 == 0 or j >= 2 * slots)
-                                                   else 0.02) for j in range(u0.size)]
-        res = minimize(cost, u0, method="Nelder-Mead",
-                       options={"initial_simplex": np.array(simplex), "xatol": 1e-4,
-                                "fatol": 1e-4, "maxiter": 30 * u0.size})
-        if best is None or res.fun < best.fun:
-            best = res
-    if best is None or best.fun >= 1e3:
+    # a short bounded refinement of each parameter in turn from the grid's best point, within
+    # about a grid step of it (scipy's bounded scalar minimiser: a dozen costs each)
+    steps = [step_r, step_z] * slots + [0.25 * (e[2] - e[1]) for e in family.extra]
+    clamp = None
+    if single and max_delay is not None:
+        def clamp(u):
+            """A one-shaper design below the least frequency that meets the delay limit, moved
+            onto it (the refinement then follows that limit as the damping moves: the best
+            design within a delay limit often lies on it)."""
+            taps = _shaper_taps(design, np.r_[0.0, u[1:]], fw is not None)
+            if taps is not None:
+                lo = math.log(_min_ratio(taps, max_delay, ref.Ts))
+                if math.isfinite(lo) and u[0] < lo:
+                    u = u.copy()
+                    u[0] = lo
+            return u
+    u, fu = _refine(cost if clamp is None else (lambda v: cost(clamp(v))),
+                    np.array(scored[0][1]), steps,
+                    # a chain's four parameters to 0.1 % of a frequency (a tenth of a bin of
+                    # a 60 s record at 60 Hz): half its costs of 1e-4
+                    xatol=1e-4 if slots == 1 else 1e-3)
+    if clamp is not None:
+        u = clamp(u)
+    if fu >= 1e3:
         return None
-    d = design(best.x)
+    d = design(u)
     if d is None:
         return None
     stages, imp, _ = d
-    p = params(best.x)
+    p = params(u)
     if fw is not None:
         c = evaluate(family.name, [], objectives, rank, ref, max_delay, max_smoothing,
                      impulses=imp, firmware=(fw, p[0] / (2 * math.pi), p[1]))
@@ -433,43 +462,147 @@ def tune(family: Family, anchors, objectives, rank: str, ref: Reference,
     return c
 
 
+def _refine(cost, u0, steps, xatol: float = 1e-4):
+    """``u0`` refined from a simplex of ``steps`` about it by scipy's Nelder-Mead (a narrow
+    valley of damping against frequency is followed, where a search along each parameter in
+    turn stopped at its first point); returns (u, cost)."""
+    from scipy.optimize import minimize
+    u0 = np.array(u0, dtype=float)
+    simplex = [u0] + [u0 + np.eye(u0.size)[j] * steps[j] for j in range(u0.size)]
+    res = minimize(cost, u0, method="Nelder-Mead",
+                   options={"initial_simplex": np.array(simplex), "xatol": xatol,
+                            "fatol": 1e-4, "maxiter": 30 * u0.size})
+    return np.asarray(res.x, dtype=float), float(res.fun)
+
+
 def _is_single_shaper(design, z, extra0):
     d = design(np.array([0.0, z] + extra0))
     return d is not None and d[0] is not None and len(d[0]) == 1 and d[0][0].kind in SHAPERS
 
 
-def _scan(design, obj, u0, ratios, max_delay, cost, single):
-    """Costs of the design ``u0`` moved to each frequency ratio: for a single shaper (its
-    impulses scale as 1/f at a fixed damping, amplitudes unchanged) all at once, else one by
-    one. Returns [(cost, u)]."""
-    out = []
-    if not single:
-        for r in ratios[::4]:
-            u = u0.copy()
-            u[0] = math.log(r)
-            out.append((cost(u), tuple(u)))
-        return out
+def _shaper_taps(design, u0, fw):
+    """(A normalised, t [s], zvn order or 0) of a one-shaper design, at ratio 1."""
     d = design(u0)
     if d is None:
-        return out
-    stages, imp, length = d
+        return None
+    stages, imp, _ = d
     if imp is None:
-        A, t = shaper_impulses(stages[0])
+        A, t = impulses(stages[0])
+        order = _ZVN_ORDER[stages[0].kind](stages[0]) if stages[0].kind in _ZVN_ORDER else 0
+        span = zv_span(stages[0]) if order else 0.0
     else:
         A, t = imp
+        order, span = 0, 0.0
     A = np.asarray(A, float) / float(np.sum(A))
-    tt = np.asarray(t, float)[None, :] / ratios[:, None]          # (n_r, m)
-    H = np.exp(-obj.poles[:, None, None] * tt[None, :, :]) @ A     # (n_poles, n_r)
-    R2 = np.abs(H) ** 2
-    for j, r in enumerate(ratios):
-        L = float(tt[j, -1]) if imp is not None else length / r
-        u = u0.copy()
-        u[0] = math.log(r)
-        v = obj.tuning_value(R2[:, j], L)
-        if max_delay is not None and L / max_delay - 1 > 1e-9:
-            v += 1e3 * (1 + L / max_delay - 1)
-        out.append((v, tuple(u)))
-    return out
+    return A, np.asarray(t, float), order, span, fw
+
+
+def _scaled_lengths(taps, ratios, Ts):
+    """Lengths [s] of the design at each frequency ratio: a firmware's impulses as applied
+    (their last time), a library shaper as :func:`duration` counts its discrete filter."""
+    A, t, order, span, fw = taps
+    if fw:
+        return t[-1] / ratios
+    if order:
+        return order * np.ceil(span / ratios / Ts - 1e-9) * Ts
+    return np.ceil(t[-1] / ratios / Ts - 1e-9) * Ts
+
+
+def _min_ratio(taps, max_delay, Ts):
+    """The least frequency ratio at which the design's length meets ``max_delay``: a firmware's
+    impulses as applied, a library shaper's discrete filter as :func:`duration` counts it."""
+    A, t, order, span, fw = taps
+    if fw:
+        return float(t[-1]) / max_delay * (1 + 1e-9)
+    n = math.floor(max_delay / Ts + 1e-9)
+    if order:
+        per = n // order
+        return math.inf if per < 1 else span / (per * Ts) * (1 + 1e-9)
+    return math.inf if n < 1 else float(t[-1]) / (n * Ts) * (1 + 1e-9)
+
+
+def _boundary_ratios(taps, max_delay, Ts):
+    """Frequency ratios at which the design's length just meets ``max_delay`` (and a few
+    above): the best design within a delay limit often lies on it."""
+    rb = _min_ratio(taps, max_delay, Ts)
+    if not math.isfinite(rb):
+        return np.zeros(0)
+    return rb * np.array([1.0, 1.02, 1.08, 1.2])
+
+
+def _delay_penalty(L, max_delay):
+    if max_delay is None:
+        return 0.0
+    excess = L / max_delay - 1
+    return np.where(excess > 1e-9, 1e3 * (1 + excess), 0.0)
+
+
+#: Damping ratios of the one-shaper grid (with the family's own grid and its limits).
+_SINGLE_ZETAS = (0.01, 0.035, 0.06, 0.09, 0.12, 0.15, 0.2, 0.25)
+
+
+def _scan_single(design, obj, u0, ratios, max_delay, Ts, fw):
+    """The least cost of the one-shaper design ``u0`` moved to each frequency ratio (its
+    impulses scale as 1/f at a fixed damping, amplitudes unchanged), all in one matrix
+    evaluation, with the ratios where its length meets ``max_delay``. Returns [(cost, u)]."""
+    taps = _shaper_taps(design, u0, fw)
+    if taps is None:
+        return []
+    if max_delay is not None:
+        ratios = np.r_[ratios, _boundary_ratios(taps, max_delay, Ts)]
+    A, t = taps[0], taps[1]
+    H = np.exp(-obj.poles[:, None, None] * (t[None, :] / ratios[:, None])[None, :, :]) @ A
+    L = _scaled_lengths(taps, ratios, Ts)
+    v = obj.tuning_values(H.real ** 2 + H.imag ** 2, L) + _delay_penalty(L, max_delay)
+    v = np.where(np.isfinite(v), v, 1e3)
+    j = int(np.argmin(v))               # the best of the scan (the refinement starts there)
+    u = u0.copy()
+    u[0] = math.log(ratios[j])
+    return [(float(v[j]), tuple(u))]
+
+
+#: The chains' grid: frequency ratios of each stage to its mode, and damping ratios.
+_CHAIN_RATIOS = np.geomspace(0.8, 1.25, 9)
+_CHAIN_ZETAS = (0.04, 0.07, 0.1, 0.14)
+
+
+def _scan_chain(family, anchors, obj, max_delay, Ts, extra0):
+    """Costs over a grid of a two-shaper chain, each stage at every frequency and damping ratio
+    of the grid independently (the chain's |H|^2 is the product of its stages': one matrix
+    evaluation of each stage, then every pair at once). None when the family is not two
+    library shapers."""
+    from ..errors import ParameterError
+    ratios = _CHAIN_RATIOS
+    if max_delay is not None:
+        ratios = np.r_[ratios, 1.2, 1.45, 1.75]
+    per_slot = []
+    for slot in range(2):
+        R2s, Ls, us = [], [], []
+        for z in _CHAIN_ZETAS:
+            try:
+                stages = family.build([anchors[0], z, anchors[1], z] + list(extra0))
+            except (ValueError, ParameterError, ZeroDivisionError, OverflowError):
+                return None
+            if len(stages) != 2 or any(s.kind not in SHAPERS for s in stages):
+                return None
+            st = stages[slot]
+            A, t = impulses(st)
+            A = np.asarray(A, float) / float(np.sum(A))
+            order = _ZVN_ORDER[st.kind](st) if st.kind in _ZVN_ORDER else 0
+            taps = (A, np.asarray(t, float), order, zv_span(st) if order else 0.0, False)
+            H = np.exp(-obj.poles[:, None, None] * (taps[1][None, :] / ratios[:, None])
+                       [None, :, :]) @ A
+            R2s.append(np.abs(H) ** 2)
+            Ls.append(_scaled_lengths(taps, ratios, Ts))
+            us += [(math.log(r), z) for r in ratios]
+        per_slot.append((np.hstack(R2s), np.concatenate(Ls), us))
+    (R1, L1, u1), (R2, L2, u2) = per_slot
+    R = (R1[:, :, None] * R2[:, None, :]).reshape(R1.shape[0], -1)
+    L = (L1[:, None] + L2[None, :]).ravel()
+    v = obj.tuning_values(R, L) + _delay_penalty(L, max_delay)
+    n2 = len(u2)
+    return [(float(v[k]) if math.isfinite(v[k]) else 1e3,
+             tuple(u1[k // n2]) + tuple(u2[k % n2]) + tuple(extra0)) for k in range(v.size)]
 
 
 def evaluate(name: str, stages: list[Stage], objectives, rank: str, ref: Reference,

@@ -57,11 +57,29 @@ def taps_R2(h: np.ndarray, Ts: float, poles: np.ndarray) -> np.ndarray:
     if k.size * 4 < h.size or k.size < 16:   # sparse (shapers): the powers directly
         z = np.exp(-np.outer(poles, k) * Ts)
         return np.abs(z @ h[k]) ** 2
-    # dense (smoothers): Horner's rule in z^-1 = e^{-p Ts}, one tap at a time over all poles
-    zinv = np.exp(-poles * Ts)
+    if poles.size > 1000:
+        # dense (smoothers), many poles: Horner's rule in z^-1 = e^{-p Ts}, one tap at a time
+        zinv = np.exp(-poles * Ts)
+        acc = np.zeros(poles.size, dtype=complex)
+        for c in h[::-1]:
+            acc = acc * zinv + c
+        return np.abs(acc) ** 2
+    # dense (smoothers), few poles: blocks of B taps, sum_k h_k z^-k = sum_a z^-aB sum_b h_aB+b z^-b with
+    # z^-1 = e^{-p Ts}: the inner sums one matrix product, Horner's rule over the blocks (a
+    # tap at a time over all poles cost a NumPy call per tap: 1650 for a 0.165 s smoother)
+    B = 32
+    nb = -(-h.size // B)
+    hb = np.zeros(nb * B)
+    hb[: h.size] = h
+    E = np.exp(-np.outer(poles, np.arange(B)) * Ts)
+    M = np.ascontiguousarray(hb.reshape(nb, B).T)
+    # (poles, nb), real products in einsum's own loops: BLAS's threads spin for products this
+    # small (a complex-by-real matrix product cost ten times the CPU time of the sum itself)
+    inner = np.einsum("pb,bn->pn", E.real, M) + 1j * np.einsum("pb,bn->pn", E.imag, M)
+    zB = np.exp(-poles * (B * Ts))
     acc = np.zeros(poles.size, dtype=complex)
-    for c in h[::-1]:
-        acc = acc * zinv + c
+    for a in range(nb - 1, -1, -1):
+        acc = acc * zB + inner[:, a]
     return np.abs(acc) ** 2
 
 
@@ -99,6 +117,12 @@ class _PoleSet:
 
     def tuning_value(self, R2: np.ndarray, L: float = 0.0) -> float:
         return self.value(R2, L)
+
+    def tuning_values(self, R2: np.ndarray, L: np.ndarray) -> np.ndarray:
+        """:meth:`tuning_value` of many designs at once: ``R2`` (poles, designs), ``L``
+        (designs,) [s]."""
+        R2e = R2 * np.exp(2.0 * np.real(self.poles)[:, None] * np.asarray(L, float)[None, :])
+        return 100.0 * np.sqrt(np.maximum(self.w @ R2e, 0.0))
 
 
 class ModalObjective(_PoleSet):
@@ -223,6 +247,19 @@ class SpectralObjective(_PoleSet):
         # tuning asks thousands of times
         mean = R2e.sum(axis=1) / self.nz
         return v + 0.1 * math.sqrt(max(float(self.tune_S @ mean), 0.0))
+
+    def tuning_values(self, R2: np.ndarray, L: np.ndarray) -> np.ndarray:
+        """:meth:`tuning_value` of many designs at once (the tuning's grid: one matrix
+        evaluation instead of a call per design): ``R2`` (poles, designs), ``L`` (designs,)
+        [s]."""
+        G = R2.shape[1]
+        R2e = (R2 * np.exp(2.0 * np.real(self.poles)[:, None] * np.asarray(L, float)[None, :])
+               ).reshape(self.n, self.nz, G)
+        R = np.sqrt(np.maximum(R2e, 0.0))
+        left = np.maximum(R * self.P[:, None, None] - self.tau, 0.0).sum(axis=0)   # (nz, G)
+        v = 100.0 * left.max(axis=0) / self.den if self.den > 0 else np.zeros(G)
+        mean = R2e.sum(axis=1) / self.nz                                          # (n, G)
+        return v + 0.1 * np.sqrt(np.maximum(self.tune_S @ mean, 0.0))
 
     def nominal_value(self, R2_nominal, L: float = 0.0) -> float:
         return 100.0 * math.sqrt(float(self.S @ _from_end(R2_nominal, self.nominal, L)))

@@ -2,6 +2,7 @@
 """Build the FMUs with CMake and check their model descriptions (fmpy, fmutool)."""
 from __future__ import annotations
 
+import contextlib
 import shutil
 import subprocess
 import sys
@@ -78,20 +79,41 @@ def build_fmus(build_dir: Path, *, source_dir: Path | None = None,
     cmake = shutil.which("cmake")
     if cmake is None:
         raise RuntimeError("cmake is not on PATH: it is needed to build the FMUs")
-    # A configured tree (its own, or a full build with the C tests) is built as it is: its
-    # FMU targets are then up to date or rebuilt, and its options are left alone.
-    if not (Path(build_dir) / "CMakeCache.txt").is_file():
-        subprocess.run([cmake, "-S", str(source_dir), "-B", str(build_dir),
-                        "-DSMS_BUILD_TESTS=OFF", "-DSMS_BUILD_SHARED=OFF",
-                        f"-DPython3_EXECUTABLE={sys.executable}"],
-                       check=True, stdout=subprocess.DEVNULL)
     suffix = "_fmu" if fmi_version == "2.0" else "_fmi3_fmu"
     targets = [m + suffix for m, src in FMU_MODELS.items()
                if (source_dir / "fmu" / src).is_file()]
-    subprocess.run([cmake, "--build", str(build_dir), "-j2", "--target", *targets], check=True,
-                   stdout=subprocess.DEVNULL)
+    Path(build_dir).mkdir(parents=True, exist_ok=True)
+    # One build of a tree at a time: processes sharing it (parallel test workers, two jobs)
+    # wait for each other instead of running CMake in the same tree at once.
+    with _tree_lock(Path(build_dir)):
+        # A configured tree (its own, or a full build with the C tests) is built as it is:
+        # its FMU targets are then up to date or rebuilt, and its options are left alone.
+        if not (Path(build_dir) / "CMakeCache.txt").is_file():
+            subprocess.run([cmake, "-S", str(source_dir), "-B", str(build_dir),
+                            "-DSMS_BUILD_TESTS=OFF", "-DSMS_BUILD_SHARED=OFF",
+                            f"-DPython3_EXECUTABLE={sys.executable}"],
+                           check=True, stdout=subprocess.DEVNULL)
+        subprocess.run([cmake, "--build", str(build_dir), "-j2", "--target", *targets],
+                       check=True, stdout=subprocess.DEVNULL)
     found = {m: Path(build_dir) / FMI_VERSIONS[fmi_version] / f"{m}.fmu" for m in FMU_MODELS}
     return {m: p for m, p in found.items() if p.is_file()}
+
+
+@contextlib.contextmanager
+def _tree_lock(build_dir: Path):
+    """Hold an exclusive lock on ``build_dir/.build_fmus.lock`` (``fcntl.flock``; where
+    ``fcntl`` is missing, as on Windows, no lock is taken)."""
+    try:
+        import fcntl
+    except ImportError:
+        yield
+        return
+    with open(build_dir / ".build_fmus.lock", "a") as f:
+        fcntl.flock(f, fcntl.LOCK_EX)
+        try:
+            yield
+        finally:
+            fcntl.flock(f, fcntl.LOCK_UN)
 
 
 def fmpy_problems(fmu: Path) -> list[str]:
