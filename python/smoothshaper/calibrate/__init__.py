@@ -23,7 +23,8 @@ from .._checks import finite as _finite, positive as _positive, real_array as _r
 from ..errors import ParameterError
 from . import spectra
 from .candidates import Candidate, Reference, evaluate, families, recommend, tune
-from .default_limit import DefaultLimit, default_limit
+from . import default_limit as _budget
+from .default_limit import DefaultLimit
 from .modes import Mode, decay_modes
 from .objectives import ModalObjective, SpectralObjective
 from .records import AXIS_NAMES, KINDS, Record, RecordError, load
@@ -472,7 +473,8 @@ def _default_limit(res: AxisResult, objs, anchors, firmware) -> DefaultLimit | N
     obj = objs.get("trade-off") or objs["spectrum"]
     printer = res.record.kind in ("raw", "psd")
     top = float(obj.f.max()) if getattr(obj, "f", None) is not None and obj.f.size else 0.0
-    return default_limit(obj, firmware, [a / (2 * math.pi) for a in anchors], printer=printer,
+    return _budget.default_limit(obj, firmware, [a / (2 * math.pi) for a in anchors],
+                                 printer=printer,
                          top_hz=top)
 
 
@@ -629,16 +631,6 @@ def run(paths, *, kind: str = "auto", axis: str = "auto", band=None,
     work = sum(len(p[4]) for p in plans)
     done = 0
     for res, objs, rank, anchors, fams in plans:
-        delay = max_delay
-        if max_delay is None and max_smoothing is None:
-            res.default_limit = _default_limit(res, objs, anchors, firmware)
-            if res.default_limit is not None:
-                # the exact discrete filters span whole samples of Ts: the budget is the
-                # shaper's duration rounded up to one
-                delay = res.default_limit.max_delay
-                delay = math.ceil(delay / reference.Ts - 1e-9) * reference.Ts
-                res.default_limit = replace(res.default_limit, max_delay=delay)
-                res.notes.append(res.default_limit.note())
         fast = max(anchors)
         if not fast < 0.95 * math.pi / reference.Ts:
             raise ParameterError("Ts", f"Ts = {reference.Ts:g} s: a resonance at {fast:.4g} "
@@ -655,6 +647,16 @@ def run(paths, *, kind: str = "auto", axis: str = "auto", band=None,
                 f"({slowest / (2 * math.pi):.4g} Hz, axis {res.name}) lasts {period:.4g} samples "
                 f"a period, more than {MAX_PERIOD_SAMPLES}: tuning its filters would take hours; "
                 "use a larger --Ts, or check the record's kind and --band")
+        delay = max_delay
+        if max_delay is None and max_smoothing is None:
+            res.default_limit = _default_limit(res, objs, anchors, firmware)
+            if res.default_limit is not None:
+                # the exact discrete filters span whole samples of Ts: the budget is the
+                # shaper's duration rounded up to one
+                delay = res.default_limit.max_delay
+                delay = math.ceil(delay / reference.Ts - 1e-9) * reference.Ts
+                res.default_limit = replace(res.default_limit, max_delay=delay)
+                res.notes.append(res.default_limit.note())
         res.candidates.append(evaluate("none", [], objs, rank, reference, delay,
                                        max_smoothing))
         for fam in fams:

@@ -17,9 +17,11 @@ applied here, on this calibration's own measured-spectrum figure, to fix the del
   shaper is Klipper's own minimum (``shaper_defs.py``, "chosen to have projected max_accel ~=
   1500"), for another firmware's shaper the lowest frequency whose suggested maximum
   acceleration (:func:`.firmware.max_accel`) reaches 1500 mm/s^2 (the rule gives Klipper's
-  minima within 1.6 Hz); for a free decay or a frequency response (no printer's test) the
-  scan runs from half the slowest to twice the fastest identified mode, in steps of a
-  hundredth of the lowest frequency at most.
+  minima within 1.6 Hz). A mode below every shaper's lowest frequency moves the scans' start
+  to half its frequency. For a free decay or a frequency response (no printer's test) the
+  scan runs from half the slowest to twice the fastest identified mode. Outside the printer's
+  grid the step is a hundredth of the lowest frequency, or coarser to keep to
+  :data:`MAX_SCAN` frequencies.
 * Each design's vibration ``v`` (a fraction) is the measured-spectrum figure at the test
   dampings 0.075, 0.1, 0.15 (the established tool's estimate), its smoothing ``s`` Klipper's
   ``_get_shaper_smoothing`` at 5000 mm/s^2 and a square-corner velocity of 5 mm/s, its score
@@ -61,6 +63,8 @@ FREQ_STEP = 0.2
 DESIGN_DAMPING = 0.1
 #: Acceleration [mm/s^2] and square-corner velocity [mm/s] of the score's smoothing.
 ACCEL, SCV = 5000.0, 5.0
+#: Most frequencies a shaper is scanned at outside the printer's range.
+MAX_SCAN = 4000
 #: A shaper's lowest frequency for another firmware: its suggested max_accel reaches this.
 MIN_ACCEL = 1500.0
 
@@ -171,6 +175,10 @@ def _vibrations(objective, R2, L):
     return np.array([objective.value(R2[:, i], float(L[i])) / 100.0 for i in range(L.size)])
 
 
+#: Designs scored at once (the poles x designs x impulses array stays a few MiB).
+_BLOCK = 256
+
+
 def _scan(shaper, freqs, objective):
     """Rows (freq, vibration fraction, smoothing, score, duration) of ``shaper`` at each of
     ``freqs`` it accepts, designed at DESIGN_DAMPING."""
@@ -181,10 +189,13 @@ def _scan(shaper, freqs, objective):
         return np.zeros((0, 5))
     out = np.zeros((f.size, 5))
     out[:, 0], out[:, 2], out[:, 4] = f, _smoothing(A, T), T[:, -1]
-    # |sum A e^{-p t}|^2 of every design at once (A sums to 1)
-    H = np.einsum("pnm,nm->pn", np.exp(-objective.poles[:, None, None] * T[None, :, :]), A)
-    v = _vibrations(objective, np.abs(H) ** 2, out[:, 4])
-    out[:, 1] = v
+    # |sum A e^{-p t}|^2 of the designs, a block at a time (A sums to 1)
+    for k in range(0, f.size, _BLOCK):
+        sl = slice(k, k + _BLOCK)
+        E = np.exp(-objective.poles[:, None, None] * T[None, sl, :])
+        H = np.einsum("pnm,nm->pn", E, A[sl])
+        out[sl, 1] = _vibrations(objective, np.abs(H) ** 2, out[sl, 4])
+    v = out[:, 1]
     out[:, 3] = out[:, 2] * (v ** 1.5 + 0.2 * v + 0.01)
     return out
 
@@ -203,15 +214,21 @@ def _fit(rows):
     return selected
 
 
-def _range(shaper, printer: bool, anchors_hz, top_hz):
-    if printer:
-        lo = shaper.suggested_min_freq
-        if lo is None:
-            lo = _min_accel_freq(shaper)
-        return max(lo, shaper.min_freq), min(max(MAX_SHAPER_FREQ, top_hz), shaper.max_freq), \
+def _printer_min(shaper) -> float:
+    lo = shaper.suggested_min_freq
+    return max(_min_accel_freq(shaper) if lo is None else lo, shaper.min_freq)
+
+
+def _range(shaper, printer: bool, anchors_hz, top_hz, below: bool):
+    """(lowest, highest frequency, step) of the shaper's scan [Hz]."""
+    if printer and not below:
+        return _printer_min(shaper), min(max(MAX_SHAPER_FREQ, top_hz), shaper.max_freq), \
             FREQ_STEP
-    lo, hi = 0.5 * min(anchors_hz), 2.0 * max(anchors_hz)
-    return max(lo, shaper.min_freq), min(hi, shaper.max_freq), min(FREQ_STEP, lo / 100.0)
+    lo = max(0.5 * min(anchors_hz), shaper.min_freq)
+    hi = min(max(MAX_SHAPER_FREQ, top_hz) if printer else 2.0 * max(anchors_hz),
+             shaper.max_freq)
+    # a hundredth of the lowest frequency, at most MAX_SCAN frequencies
+    return lo, hi, max(min(FREQ_STEP, lo / 100.0), (hi - lo) / MAX_SCAN)
 
 
 @functools.lru_cache(maxsize=None)
@@ -258,8 +275,12 @@ def default_limit(objective, firmware: str, anchors_hz, *, printer: bool,
     best = None
     best_name = None
     tuned = []
-    for s in trade_off_shapers(firmware):
-        lo, hi, step = _range(s, printer, anchors_hz, top_hz)
+    shapers = trade_off_shapers(firmware)
+    # a mode below every shaper's printer minimum: the scans start at half its frequency
+    below = printer and bool(anchors_hz) and min(anchors_hz) < min(_printer_min(s)
+                                                                    for s in shapers)
+    for s in shapers:
+        lo, hi, step = _range(s, printer, anchors_hz, top_hz, below)
         if not lo < hi:
             continue
         rows = _scan(s, np.arange(lo, hi, step), objective)
