@@ -196,11 +196,18 @@ def _si(n):
 SI_ORDERS = (3, 5, 7)
 
 
-def _library_insensitive() -> list[Family]:
+def _input_smoothers() -> list[Family]:
     """The input smoothers of Klipper-derived firmware (polynomial kernels zero at both ends,
-    D. Butyugin) and the specified-insensitivity shapers (Singhose, Seering and Singer 1996),
-    their span tuned: the library's families a record did not yet rank."""
-    out = [Family(k, 1, _smoother(k)) for k in INPUT_SMOOTHERS]
+    D. Butyugin): unlike a shaper they attenuate every frequency above their band, what a
+    spectrum with resonances above the first needs, so they join records of two or more
+    modes (each costs about 0.3 s of tuning: its kernel's transfer is a series)."""
+    return [Family(k, 1, _smoother(k)) for k in INPUT_SMOOTHERS]
+
+
+def _library_insensitive() -> list[Family]:
+    """The specified-insensitivity shapers (Singhose, Seering and Singer 1996) of 3, 5 and 7
+    impulses, their span tuned."""
+    out = []
     for n in SI_ORDERS:
         lo, hi = 0.25 * (n - 1), 0.5 * (n - 1)
         out.append(Family(f"si (n={n})", 1, _si(n), extra=((0.5 * (lo + hi), lo, hi),)))
@@ -251,7 +258,7 @@ def _firmware_extra(firmware: str):
 #: The registry: (minimum number of resonances, factory of families). A new kind of filter
 #: joins every ranking by appending here (:func:`register`).
 _REGISTRY: list = [(1, _library_single), (2, _library_chains), (1, _firmware_defined),
-                   (1, _library_insensitive)]
+                   (1, _library_insensitive), (2, _input_smoothers)]
 
 
 def register(factory, min_modes: int = 1) -> None:
