@@ -54,9 +54,10 @@ def add_parser(sub) -> None:
                    "the spectrum, else the measured spectrum), spectrum or modal")
     p.add_argument("--max-delay", type=float, metavar="S",
                    help="longest filter impulse response allowed [s] (default, when neither "
-                   "this nor --max-smoothing is given: per axis, the length of the shaper the "
-                   "established tool's trade-off of remaining vibration against smoothing picks "
-                   "on the record's spectrum; every candidate then competes within it, so the "
+                   "this nor --max-smoothing is given: per axis, the length of the shaper "
+                   "Klipper's calibrate_shaper.py trade-off of remaining vibration against "
+                   "smoothing picks on the record's spectrum, docs/calibrate.md; every "
+                   "candidate then competes within it, so the "
                    "pick is never longer than that shaper and leaves no more by the ranking "
                    "figure; without a limit the least vibration is always a longer filter)")
     p.add_argument("--max-smoothing", type=float, metavar="D",
