@@ -226,6 +226,7 @@ void fmu_free_instance(fmu_instance *c)
 {
     void (*release)(void *) = c->host.release;
     release_blocks(c);
+    fmu_values_image_free(&c->values, &c->host);
     c->id.magic = 0;
     release(c->model);
     release(c->name);
@@ -255,6 +256,7 @@ fmu_status fmu_exit_initialization(fmu_instance *c, const char *func)
     char msg[FMU_MESSAGE_LEN];
     int built;
     msg[0] = '\0';
+    c->values.valid = 0;
     built = fmu_build(&c->host, c->model, &c->mem, &c->mem_bytes, msg, sizeof msg);
     if (built > 0)
         return FAIL(c, "%s: %s", func, msg);
@@ -279,6 +281,7 @@ fmu_status fmu_terminate(fmu_instance *c)
 fmu_status fmu_reset(fmu_instance *c)
 {
     release_blocks(c);
+    c->values.valid = 0;
     memset(c->model, 0, fmu_model_size());
     fmu_model_defaults(c->model);
     memset(&c->clock, 0, sizeof c->clock);
@@ -395,6 +398,7 @@ fmu_status fmu_set(fmu_instance *c, const char *func, fmu_type type, const fmu_v
             c->clock.steady = 0;   /* a retune changes the outputs: tick again */
         }
     }
+    c->values.valid = 0;   /* a parameter may change: the values image is made again */
     for (i = 0; i < nvr; ++i) {
         if (c->clock.steady != 0 && fmu_model_class(type, vr[i]) == FMU_VAR_INPUT
             && (type == FMU_REAL
@@ -504,6 +508,7 @@ fmu_status fmu_set_state(fmu_instance *c, const char *func, void *state)
     c->clock = s->clock;
     memcpy(c->model, s->model, fmu_model_size());
     fmu_model_rebind(c->model, c->mem);
+    c->values.valid = 0;
     return FMU_OK;
 }
 
@@ -545,11 +550,19 @@ fmu_status fmu_serialize_state(fmu_instance *c, const char *func, void *state,
 
 /* The inputs a loaded state holds within the range fmu_set keeps them in (a state of this FMU
  * never holds others). 1, or 0 with msg. */
-static int inputs_in_range(const fmu_snapshot *s, char *msg, size_t len)
+static int inputs_in_range(const fmu_snapshot *s, const fmu_values_image *img, char *msg,
+                           size_t len)
 {
     fmu_vr vrs[1024];
     const double bound = model_input_max(s->model);
-    size_t n = fmu_model_settable(FMU_REAL, vrs, 1024), i;
+    size_t n, i;
+    if (img->valid) {   /* the Real inputs, listed by the image */
+        for (i = n = 0; i < img->n_inputs; ++i)
+            if (img->input_type[i] == FMU_REAL)
+                vrs[n++] = img->input_vr[i];
+    } else {
+        n = fmu_model_settable(FMU_REAL, vrs, 1024);
+    }
     for (i = 0; i < n && i < 1024; ++i) {
         double v;
         if (fmu_model_class(FMU_REAL, vrs[i]) != FMU_VAR_INPUT)
@@ -579,11 +592,16 @@ fmu_status fmu_deserialize_state(fmu_instance *c, const char *func, const unsign
     if (s == NULL)
         return FAIL(c, "%s: out of memory", func);
     msg[0] = '\0';
+    /* the instance's values as a state writes them, once per change of its parameters (if
+     * that fails, the state is read value by value) */
+    if (!c->values.valid && c->mem != NULL
+        && (c->clock.phase == FMU_STEP_COMPLETE || c->clock.phase == FMU_TERMINATED))
+        (void)fmu_values_image_make(&c->values, c->model, &c->host);
     if (fmu_deserialize(in, size, s, c, &c->host, msg, sizeof msg) != 0) {
         free_snapshot(c, s);
         return FAIL(c, "%s: %s", func, msg);
     }
-    if (s->mem != NULL && !inputs_in_range(s, msg, sizeof msg)) {
+    if (s->mem != NULL && !inputs_in_range(s, &c->values, msg, sizeof msg)) {
         free_snapshot(c, s);
         return FAIL(c, "%s: %s", func, msg);
     }

@@ -78,6 +78,26 @@ typedef struct fmu_identity {
     uint32_t real_bytes; /**< fmu_model_real_bytes() (for messages) */
 } fmu_identity;
 
+/** Most input variables (Real and Integer) a values image records (fmu_values_image). */
+#define FMU_MAX_IMAGE_INPUTS 16
+
+/**
+ * The settable values of an instance as fmu_serialize() writes them (the region from nR to the
+ * last Integer), made from its current parameters: a state whose region equals it outside the
+ * inputs' values holds the instance's parameters bit for bit, which one memcmp tells instead
+ * of reading and checking every value (fmu_deserialize()). Made on demand by
+ * fmu_values_image_make(), dropped (valid = 0) by every glue call that may write a parameter.
+ */
+typedef struct fmu_values_image {
+    unsigned char *bytes;        /**< the region's bytes (NULL: none made yet) */
+    size_t len;                  /**< its length */
+    int valid;                   /**< 1: bytes are the current parameters' */
+    size_t n_inputs;             /**< the inputs among the values, in region order */
+    size_t input_at[FMU_MAX_IMAGE_INPUTS];   /**< offset of each input's value in bytes */
+    fmu_vr input_vr[FMU_MAX_IMAGE_INPUTS];
+    fmu_type input_type[FMU_MAX_IMAGE_INPUTS];
+} fmu_values_image;
+
 typedef struct fmu_instance {
     fmu_identity id;     /**< first: checked at every entry before anything else is read */
     fmu_host host;
@@ -89,6 +109,7 @@ typedef struct fmu_instance {
     void *model;         /**< fmu_model_size() bytes */
     void *mem;           /**< the filters' block (NULL before build) */
     size_t mem_bytes;
+    fmu_values_image values;   /**< its settable values as a state writes them */
 } fmu_instance;
 
 /** An FMU state: a copy of the clock, the model struct and its block (rebound on set). */

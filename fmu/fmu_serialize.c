@@ -17,7 +17,10 @@
  *   u64 checksum                XXH64 (seed 0; Y. Collet's xxHash, 64-bit variant) of all the
  *                               bytes before it
  * Reading re-validates the parameters and rebuilds the filters through the model's own
- * fmu_model_plan() / fmu_model_build(), then loads the dynamic state: a blob from another model,
+ * fmu_model_plan() / fmu_model_build(), then loads the dynamic state. A state read for a built
+ * instance whose settable values it holds bit for bit (the instance's values image compared
+ * with memcmp between the inputs, fmu_values_image) copies the instance's built filters
+ * instead, reading only the inputs; everything after the values is checked alike: a blob from another model,
  * version or precision, truncated or altered, or whose clock disagrees with its tick count
  * (t != t0 + ticks*Ts + since_tick beyond the rounding of an accumulating host) is refused with
  * a message, so a crafted state can never make the next doStep run a huge number of ticks; so is
@@ -172,11 +175,11 @@ static int is_built(const fmu_snapshot *s)
     return s->clock.phase == FMU_STEP_COMPLETE || s->clock.phase == FMU_TERMINATED;
 }
 
+static void write_values(const void *model, writer *w);
+
 static void write_all(const fmu_snapshot *s, writer *w)
 {
-    fmu_vr vrs[MAX_SETTABLE];
     const char *guid = fmu_model_guid();
-    size_t n, i;
     put_bytes(w, "SMSF", 4);
     put_u32(w, FMU_STATE_VERSION);
     put_u32(w, (uint32_t)strlen(guid));
@@ -190,17 +193,85 @@ static void write_all(const fmu_snapshot *s, writer *w)
     put_f64(w, s->clock.since_tick);
     put_u32(w, (uint32_t)(s->clock.steady & 0xffffffffu));
     put_u32(w, (uint32_t)(s->clock.steady >> 32));
+    write_values(s->model, w);
+}
+
+/* Offset of the first settable value's field (the u32 nR) in a state of this model: the
+ * values image starts there. */
+static size_t values_offset(void)
+{
+    return 4u + 4u + 4u + strlen(fmu_model_guid()) + 4u + 4u + 8u + 8u + 4u + 4u + 8u + 4u + 4u;
+}
+
+int fmu_values_image_make(fmu_values_image *img, const void *model, const fmu_host *host)
+{
+    fmu_vr vrs[MAX_SETTABLE];
+    writer w;
+    size_t n, i, at = 4u, k = 0;
+    img->valid = 0;
+    w.p = NULL;
+    w.n = 0;
+    write_values(model, &w);
+    if (img->bytes == NULL || img->len != w.n) {
+        fmu_values_image_free(img, host);
+        img->bytes = (unsigned char *)host->alloc(w.n, 1);
+        if (img->bytes == NULL)
+            return 1;
+        img->len = w.n;
+    }
+    w.p = img->bytes;
+    w.n = 0;
+    write_values(model, &w);
+    /* the inputs' values: u32 vr then the value, 12 (Real) or 8 (Integer) bytes per entry */
+    n = fmu_model_settable(FMU_REAL, vrs, MAX_SETTABLE);
+    for (i = 0; i < n; ++i, at += 12u)
+        if (fmu_model_class(FMU_REAL, vrs[i]) == FMU_VAR_INPUT) {
+            if (k == FMU_MAX_IMAGE_INPUTS)
+                return 1;
+            img->input_at[k] = at + 4u;
+            img->input_vr[k] = vrs[i];
+            img->input_type[k++] = FMU_REAL;
+        }
+    at += 4u;   /* nI */
+    n = fmu_model_settable(FMU_INTEGER, vrs, MAX_SETTABLE);
+    for (i = 0; i < n; ++i, at += 8u)
+        if (fmu_model_class(FMU_INTEGER, vrs[i]) == FMU_VAR_INPUT) {
+            if (k == FMU_MAX_IMAGE_INPUTS)
+                return 1;
+            img->input_at[k] = at + 4u;
+            img->input_vr[k] = vrs[i];
+            img->input_type[k++] = FMU_INTEGER;
+        }
+    img->n_inputs = k;
+    img->valid = 1;
+    return 0;
+}
+
+void fmu_values_image_free(fmu_values_image *img, const fmu_host *host)
+{
+    if (img->bytes != NULL)
+        host->release(img->bytes);
+    img->bytes = NULL;
+    img->len = 0;
+    img->valid = 0;
+}
+
+/* The settable values (nR, every Real; nI, every Integer) of model. */
+static void write_values(const void *model, writer *w)
+{
+    fmu_vr vrs[MAX_SETTABLE];
+    size_t n, i;
     n = fmu_model_settable(FMU_REAL, vrs, MAX_SETTABLE);
     put_u32(w, (uint32_t)n);
     for (i = 0; i < n; ++i) {
         put_u32(w, vrs[i]);
-        put_f64(w, fmu_model_get_real(s->model, vrs[i]));
+        put_f64(w, fmu_model_get_real(model, vrs[i]));
     }
     n = fmu_model_settable(FMU_INTEGER, vrs, MAX_SETTABLE);
     put_u32(w, (uint32_t)n);
     for (i = 0; i < n; ++i) {
         put_u32(w, vrs[i]);
-        put_u32(w, (uint32_t)fmu_model_get_integer(s->model, vrs[i]));
+        put_u32(w, (uint32_t)fmu_model_get_integer(model, vrs[i]));
     }
 }
 
@@ -289,9 +360,10 @@ static double get_f64(reader *r)
 typedef struct settables {
     const void *like;
     int same;
-    size_t n_inputs;
-    fmu_vr input_vr[MAX_SETTABLE];
+    size_t n_inputs, n_int_inputs;
+    fmu_vr input_vr[MAX_SETTABLE], int_input_vr[FMU_MAX_IMAGE_INPUTS];
     double input[MAX_SETTABLE];
+    int int_input[FMU_MAX_IMAGE_INPUTS];
 } settables;
 
 static int read_values(reader *r, fmu_type type, void *model, settables *seen, char *msg,
@@ -331,8 +403,14 @@ static int read_values(reader *r, fmu_type type, void *model, settables *seen, c
         } else {
             const int v = (int)(int32_t)get_u32(r);
             fmu_model_set_integer(model, vr, v);
-            if (cls != FMU_VAR_INPUT && seen->same)
+            if (cls == FMU_VAR_INPUT && seen->n_int_inputs < FMU_MAX_IMAGE_INPUTS) {
+                seen->int_input_vr[seen->n_int_inputs] = vr;
+                seen->int_input[seen->n_int_inputs++] = v;
+            } else if (cls == FMU_VAR_INPUT) {
+                seen->same = 0;
+            } else if (seen->same) {
                 seen->same = fmu_model_get_integer(seen->like, vr) == v;
+            }
         }
     }
     return r->bad ? (snprintf(msg, len, "truncated state"), -1) : 0;
@@ -367,7 +445,7 @@ static int built_instance(const fmu_instance *like)
  * state holds retuned is brought to its saved configuration by the model's load_state):
  * O(block), no design. 0, or non-zero when out of memory. */
 static int copy_built(fmu_snapshot *dst, const fmu_instance *like, const settables *seen,
-                      const fmu_host *host)
+                      const fmu_host *host, int model_copied)
 {
     size_t i;
     dst->mem = host->alloc(like->mem_bytes > 0 ? like->mem_bytes : 1, 1);
@@ -375,11 +453,63 @@ static int copy_built(fmu_snapshot *dst, const fmu_instance *like, const settabl
         return 1;
     memcpy(dst->mem, like->mem, like->mem_bytes);
     dst->mem_bytes = like->mem_bytes;
+    if (model_copied) {   /* like's model with the state's inputs already (same_as_image()) */
+        fmu_model_rebind(dst->model, dst->mem);
+        return 0;
+    }
     memcpy(dst->model, like->model, fmu_model_size());
     fmu_model_rebind(dst->model, dst->mem);
     for (i = 0; i < seen->n_inputs; ++i)
         fmu_model_set_real(dst->model, seen->input_vr[i], seen->input[i]);
+    for (i = 0; i < seen->n_int_inputs; ++i)
+        fmu_model_set_integer(dst->model, seen->int_input_vr[i], seen->int_input[i]);
     return 0;
+}
+
+/* Do the state's settable values at r->pos equal like's image outside the inputs' values?
+ * Then they are like's parameters bit for bit (value references, order and counts included):
+ * the inputs are read into seen (a non-finite Real input refused as read_values() refuses
+ * it), r moves past the region and 1 is returned; else 0 and nothing moves. */
+static int same_as_image(reader *r, const fmu_values_image *img, settables *seen, char *msg,
+                         size_t len, int *refused)
+{
+    const unsigned char *at = r->p + r->pos;
+    size_t from = 0, k;
+    *refused = 0;
+    if (!img->valid || r->bad || r->n - r->pos < img->len)
+        return 0;
+    for (k = 0; k < img->n_inputs; ++k) {   /* the runs between the inputs' values */
+        if (memcmp(at + from, img->bytes + from, img->input_at[k] - from) != 0)
+            return 0;
+        from = img->input_at[k] + (img->input_type[k] == FMU_REAL ? 8u : 4u);
+    }
+    if (memcmp(at + from, img->bytes + from, img->len - from) != 0)
+        return 0;
+    seen->n_inputs = seen->n_int_inputs = 0;
+    for (k = 0; k < img->n_inputs; ++k) {
+        reader v;
+        v.p = at;
+        v.n = img->len;
+        v.pos = img->input_at[k];
+        v.bad = 0;
+        if (img->input_type[k] == FMU_REAL) {
+            const double x = get_f64(&v);
+            if (!isfinite(x)) {
+                char name[96];
+                fmu_model_name(FMU_REAL, img->input_vr[k], name, sizeof name);
+                *refused = 1;
+                snprintf(msg, len, "state holds a non-finite %s", name);
+                return 0;
+            }
+            seen->input_vr[seen->n_inputs] = img->input_vr[k];
+            seen->input[seen->n_inputs++] = x;
+        } else {
+            seen->int_input_vr[seen->n_int_inputs] = img->input_vr[k];
+            seen->int_input[seen->n_int_inputs++] = (int)(int32_t)get_u32(&v);
+        }
+    }
+    r->pos += img->len;
+    return 1;
 }
 
 int fmu_deserialize(const unsigned char *in, size_t size, fmu_snapshot *dst,
@@ -389,9 +519,10 @@ int fmu_deserialize(const unsigned char *in, size_t size, fmu_snapshot *dst,
     const char *guid = fmu_model_guid();
     uint32_t glen, real_bytes, phase, lo, hi, lo2, n_state;
     size_t i;
-    int rc;
+    int rc, model_copied = 0;
     char why[FMU_MESSAGE_LEN / 2];
     settables seen;
+    rc = 0;
     why[0] = '\0';
     if (size < 16 || memcmp(in, "SMSF", 4) != 0)
         REFUSE("not a smoothshaper FMU state (bad magic)");
@@ -424,13 +555,27 @@ int fmu_deserialize(const unsigned char *in, size_t size, fmu_snapshot *dst,
         REFUSE("truncated or invalid clock in the state");
     dst->clock.phase = (fmu_phase)phase;
     dst->clock.ticks = (uint64_t)hi << 32 | lo;
-    fmu_model_defaults(dst->model);
     seen.like = built_instance(like) && is_built(dst) ? like->model : NULL;
     seen.same = seen.like != NULL;
-    seen.n_inputs = 0;
-    if (read_values(&r, FMU_REAL, dst->model, &seen, msg, len) != 0
-        || read_values(&r, FMU_INTEGER, dst->model, &seen, msg, len) != 0)
+    seen.n_inputs = seen.n_int_inputs = 0;
+    if (seen.same && r.pos == values_offset()
+        && same_as_image(&r, &like->values, &seen, msg, len, &rc)) {
+        /* like's parameters: its model with the state's inputs (what read_values() would
+         * set), so that the clock check below reads the same Ts */
+        memcpy(dst->model, like->model, fmu_model_size());   /* bound by copy_built() */
+        for (i = 0; i < seen.n_inputs; ++i)
+            fmu_model_set_real(dst->model, seen.input_vr[i], seen.input[i]);
+        for (i = 0; i < seen.n_int_inputs; ++i)
+            fmu_model_set_integer(dst->model, seen.int_input_vr[i], seen.int_input[i]);
+        model_copied = 1;
+    } else if (rc != 0) {
         return -1;
+    } else {
+        fmu_model_defaults(dst->model);
+        if (read_values(&r, FMU_REAL, dst->model, &seen, msg, len) != 0
+            || read_values(&r, FMU_INTEGER, dst->model, &seen, msg, len) != 0)
+            return -1;
+    }
     n_state = get_u32(&r);
     for (i = padding(r.pos); i > 0 && !r.bad; --i)
         if (r.pos >= r.n || in[r.pos++] != 0)
@@ -444,7 +589,7 @@ int fmu_deserialize(const unsigned char *in, size_t size, fmu_snapshot *dst,
         && fmu_clock_check(&dst->clock, fmu_model_sample_period(dst->model), msg, len) != 0)
         return -1;
     if (seen.same) {
-        if (copy_built(dst, like, &seen, host) != 0)
+        if (copy_built(dst, like, &seen, host, model_copied) != 0)
             REFUSE("out of memory");
     } else if (fmu_build(host, dst->model, &dst->mem, &dst->mem_bytes, msg, len) > 0) {
         return -1;

@@ -17,6 +17,13 @@
  * library's values, every tail length). */
 uint64_t fmu_xxh64(const unsigned char *p, size_t n);
 
+/** Make (or refresh) img from model's current settable values: the bytes fmu_serialize()
+ * writes for them. Memory through host. @return 0, or non-zero (out of memory, or more inputs
+ * than FMU_MAX_IMAGE_INPUTS): img then stays invalid and states are read value by value. */
+int fmu_values_image_make(fmu_values_image *img, const void *model, const fmu_host *host);
+/** Release img's memory. */
+void fmu_values_image_free(fmu_values_image *img, const fmu_host *host);
+
 /** Bytes fmu_serialize() writes for this snapshot. */
 size_t fmu_serialized_size(const fmu_snapshot *s);
 /** Write the snapshot into out[0..size-1] (size from fmu_serialized_size); the model's state
@@ -30,6 +37,9 @@ int fmu_serialize(const fmu_snapshot *s, const fmu_host *host, unsigned char *ou
  * parameters, unless they equal those of `like` (the instance the state is read for, if built:
  * NULL for none), whose built filters are copied instead, which a build would give bit for bit
  * and costs no design: the fixed cost of reading a state of the instance's own configuration.
+ * When like->values is valid, a state whose settable values equal it outside the inputs (one
+ * memcmp per run between inputs) takes that path without reading the values one by one: only
+ * its inputs are read (and must be finite).
  * @return 0 on success, else non-zero with msg saying why (foreign, other precision, truncated,
  *         corrupted, clock and tick count disagreeing, invalid parameters); dst then holds no
  *         block and must only be freed.

@@ -385,8 +385,9 @@ static int stage_error(const ss_model *m, unsigned k, sms_status st, int design_
     return 1;
 }
 
-/* Config of stage k from its parameters; 0 or non-zero with msg. */
-static int stage_config(const ss_model *m, unsigned k, sms_stage_config *c, char *msg, size_t len)
+/* Stage k's configuration from its parameters, without the check of the whole configuration
+ * (stage_config() adds it): 0, or 1 with msg for an integer field out of its codes. */
+static int stage_fields(const ss_model *m, unsigned k, sms_stage_config *c, char *msg, size_t len)
 {
     const ss_params *p = &m->stage[k];
     int kind = p->ints[SS_FIELD_KIND], for_mode = p->ints[SS_FIELD_DESIGN] == 1;
@@ -429,6 +430,17 @@ static int stage_config(const ss_model *m, unsigned k, sms_stage_config *c, char
     c->duration = p->reals[SS_FIELD_DURATION];
     memcpy(c->amplitudes, p->amplitude, sizeof c->amplitudes);
     memcpy(c->times, p->time, sizeof c->times);
+    return 0;
+}
+
+/* Config of stage k from its parameters; 0 or non-zero with msg. */
+static int stage_config(const ss_model *m, unsigned k, sms_stage_config *c, char *msg, size_t len)
+{
+    const int kind = m->stage[k].ints[SS_FIELD_KIND];
+    const int for_mode = m->stage[k].ints[SS_FIELD_DESIGN] == 1;
+    sms_status st;
+    if (stage_fields(m, k, c, msg, len) != 0)
+        return 1;
     st = sms_stage_config_validate(c, m->Ts);
     if (st == SMS_ERR_SAMPLE_PERIOD)
         return snprintf(msg, len, "Ts = %.17g: must be finite and > 0", m->Ts), 1;
@@ -1033,8 +1045,20 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
         const double *part = src + off;
         sms_stage_config active, old;
         int switching = 0;
-        sms_status st = sms_tunable_state_configs(part, m->region[i], &active, &old, &switching);
+        sms_status st;
         char why[FMU_MESSAGE_LEN];
+        /* already in that configuration (the instance's own, copied, or just built): keep
+         * the built filters, no design; sms_tunable_set_state() below loads the values (a
+         * stage not switching accepts only a state not switching of its own configuration) */
+        if (!m->tunables[i].switching
+            && sms_tunable_state_count(&m->tunables[i]) <= m->region[i]
+            && sms_tunable_check_state(&m->tunables[i], part,
+                                       sms_tunable_state_count(&m->tunables[i])) == SMS_OK) {
+            off += m->region[i];
+            at += slots_per_stage(m) * m->slot_cells[i];
+            continue;
+        }
+        st = sms_tunable_state_configs(part, m->region[i], &active, &old, &switching);
         /* user-defined impulses: the state names them by a checksum; they are fixed
          * parameters, so build them as configured (set_state refuses other impulses) */
         if (st == SMS_ERR_KIND && m->stage[m->used[i]].ints[SS_FIELD_KIND] == SMS_SHAPER_IMPULSES
@@ -1043,8 +1067,6 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
         if (st != SMS_OK)
             return snprintf(msg, len, "stage %lu's state is not a retunable stage's",
                             (unsigned long)i), 1;
-        /* already in that configuration (the instance's own, copied, or just built): keep
-         * the built filters, no design; sms_tunable_set_state() below loads the values */
         if (!switching && !m->tunables[i].switching
             && sms_tunable_state_count(&m->tunables[i]) <= m->region[i]
             && sms_tunable_check_state(&m->tunables[i], part,
@@ -1112,8 +1134,13 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
     for (i = 0; i < m->n_active; ++i) {   /* parameters set since, not yet applied */
         sms_stage_config want, now = sms_tunable_config(&m->tunables[i]);
         char why[FMU_MESSAGE_LEN];
-        m->pending[i] = stage_config(m, m->used[i], &want, why, sizeof why) == 0
-                        && !same_config(&want, &now);
+        /* the parameters of the configuration the stage runs (a valid one): no check, no
+         * design; others are checked as a retune would be */
+        if (stage_fields(m, m->used[i], &want, why, sizeof why) == 0 && same_config(&want, &now))
+            m->pending[i] = 0;
+        else
+            m->pending[i] = stage_config(m, m->used[i], &want, why, sizeof why) == 0
+                            && !same_config(&want, &now);
         m->any_pending |= m->pending[i];
     }
     if (rebuilt)

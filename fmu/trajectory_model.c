@@ -21,7 +21,7 @@ typedef struct tg_model {
     double target, out[4];                     /* q, v, a, j */
     double target_velocity, target_acceleration, minimum_duration;
     int interface;                             /* sms_interface */
-    double Ts, vmax, amax, jmax, wn, zeta, q0;
+    double Ts, vmax, amax, jmax, wn, zeta, q0, vmin, amin;
     int profile;
     int built;
     int warned;                                /* 1: the dropped target `dropped` was logged */
@@ -34,11 +34,11 @@ typedef struct tg_model {
 static const fmu_vr real_vrs[] = {
     TG_VR_TARGET, TG_VR_TARGET_VELOCITY, TG_VR_TARGET_ACCELERATION, TG_VR_MINIMUM_DURATION,
     TG_VR_Q, TG_VR_V, TG_VR_A, TG_VR_J, TG_VR_TS, TG_VR_VMAX, TG_VR_AMAX, TG_VR_JMAX, TG_VR_WN,
-    TG_VR_ZETA, TG_VR_Q0
+    TG_VR_ZETA, TG_VR_Q0, TG_VR_VMIN, TG_VR_AMIN
 };
 static const char *const real_names[] = {
     "target", "target_velocity", "target_acceleration", "minimum_duration", "q", "v", "a", "j",
-    "Ts", "vmax", "amax", "jmax", "wn", "zeta", "q0"
+    "Ts", "vmax", "amax", "jmax", "wn", "zeta", "q0", "vmin", "amin"
 };
 #define N_REALS (sizeof real_vrs / sizeof real_vrs[0])
 #define N_REAL_INPUTS 4u
@@ -50,7 +50,7 @@ static const size_t real_offsets[] = {
     offsetof(tg_model, out[1]), offsetof(tg_model, out[2]), offsetof(tg_model, out[3]),
     offsetof(tg_model, Ts), offsetof(tg_model, vmax), offsetof(tg_model, amax),
     offsetof(tg_model, jmax), offsetof(tg_model, wn), offsetof(tg_model, zeta),
-    offsetof(tg_model, q0)
+    offsetof(tg_model, q0), offsetof(tg_model, vmin), offsetof(tg_model, amin)
 };
 
 /* Index of a Real value reference in real_vrs, or N_REALS. */
@@ -83,6 +83,8 @@ void fmu_model_defaults(void *model)
     m->wn = 0.0;
     m->zeta = 0.0;
     m->q0 = 0.0;
+    m->vmin = 0.0;
+    m->amin = 0.0;
     m->built = 0;
     m->warned = 0;
     m->dropped = 0.0;
@@ -183,6 +185,8 @@ static int refuse_limits(const tg_model *m, char *msg, size_t len)
     c.profile = (sms_profile)m->profile;
     c.wn = m->wn;
     c.zeta = m->zeta;
+    c.vmin = m->vmin; /* 0: symmetric */
+    c.amin = m->amin;
     (void)sms_generator_reach(&c, m->Ts, &r);
     if (r.quantity == NULL) /* not expected: init and the check are one function */
         return snprintf(msg, len, "vmax = %.17g, amax = %.17g, jmax = %.17g: %s", m->vmax,
@@ -195,6 +199,13 @@ static int refuse_limits(const tg_model *m, char *msg, size_t len)
         n += snprintf(names + n, sizeof names - (size_t)n, "amax = %.17g, ", m->amax);
     if (strstr(args, "jmax") != NULL)
         n += snprintf(names + n, sizeof names - (size_t)n, "jmax = %.17g, ", m->jmax);
+    if (strstr(args, "vmin") != NULL)
+        n += snprintf(names + n, sizeof names - (size_t)n, "vmin = %.17g, ", m->vmin);
+    if (strstr(args, "amin") != NULL)
+        n += snprintf(names + n, sizeof names - (size_t)n, "amin = %.17g, ", m->amin);
+    if (strstr(args, "profile") != NULL) /* asymmetric limits with the trigonometric profile */
+        return snprintf(msg, len, "%s= %.17g: the trigonometric profile takes symmetric limits "
+                        "only (%s = 0)", r.quantity, r.value, r.quantity), 1;
     if (strchr(r.quantity, '/') != NULL) /* a duration beyond the plan's sample counts */
         return snprintf(msg, len, "%sTs = %.17g: %s = %.6g s, so reaching vmax from rest takes "
                         "%.6g s = %.6g samples, more than the 2^50 a plan holds: no move that "
@@ -260,6 +271,10 @@ static int configure(const tg_model *m, sms_generator_config *c, size_t *need, c
     if (m->profile < SMS_PROFILE_POLYNOMIAL || m->profile > SMS_PROFILE_DAMPED)
         return snprintf(msg, len, "profile = %d is not polynomial (0), trigonometric (1) or "
                         "damped (2)", m->profile), 1;
+    if (!(m->vmin <= 0.0) || !(m->amin <= 0.0) || !isfinite(m->vmin) || !isfinite(m->amin))
+        return snprintf(msg, len, "%s = %.17g: must be 0 (symmetric) or finite and < 0",
+                        !(m->vmin <= 0.0) || !isfinite(m->vmin) ? "vmin" : "amin",
+                        !(m->vmin <= 0.0) || !isfinite(m->vmin) ? m->vmin : m->amin), 1;
     if (m->wn < 0.0)
         return snprintf(msg, len, "wn = %.17g: must be 0 (no mode) or > 0", m->wn), 1;
     if (!isfinite(m->q0) || (sms_real)m->q0 - (sms_real)m->q0 != 0)
@@ -280,6 +295,8 @@ static int configure(const tg_model *m, sms_generator_config *c, size_t *need, c
     c->profile = (sms_profile)m->profile;
     c->wn = m->wn;
     c->zeta = m->zeta;
+    c->vmin = m->vmin; /* 0: symmetric */
+    c->amin = m->amin;
     *need = 0;
     st = sms_generator_buffer_size(c, m->Ts, need);
     if (st != SMS_OK)
@@ -364,6 +381,9 @@ int fmu_model_check_inputs(const void *model, char *msg, size_t len)
         if (m->profile == SMS_PROFILE_TRIGONOMETRIC && fabs(v) <= V)
             return snprintf(msg, len, "target_velocity = %.17g: the trigonometric profile plans "
                             "position targets at rest only (target_velocity 0)", v), 1;
+        if (m->gen.asymmetric)
+            return snprintf(msg, len, "target_velocity = %.17g is outside [vmin, vmax] = "
+                            "[%.17g, %.17g]", v, (double)m->gen.vmin, V), 1;
         return snprintf(msg, len, "target_velocity = %.17g is beyond vmax = %.17g", v, V), 1;
     default:
         if (m->profile == SMS_PROFILE_TRIGONOMETRIC && a != 0.0)

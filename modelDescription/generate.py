@@ -306,6 +306,12 @@ def trajectory_generator() -> tuple[list[Var], list[str], str]:
             0.0, variability="fixed", min=0.0, max=1.0, c_name="ZETA"),
         Var("q0", 17, "Real", "parameter", "initial position (P): the generator starts at rest "
             "there; finite", "", 0.0, variability="fixed", c_name="Q0"),
+        Var("vmin", 18, "Real", "parameter", "lower velocity bound (P/s) for asymmetric limits; "
+            "0 = -vmax (symmetric), else finite, < 0 (polynomial and damped profiles)", "", 0.0,
+            variability="fixed", max=0.0, c_name="VMIN"),
+        Var("amin", 19, "Real", "parameter", "lower acceleration bound (P/s2) for asymmetric "
+            "limits; 0 = -amax (symmetric), else finite, < 0 (polynomial and damped profiles)",
+            "", 0.0, variability="fixed", max=0.0, c_name="AMIN"),
     ]
     return vs, [], ("Online time-optimal jerk-limited trajectory generator to any target state "
                     "(smoothshaper)")

@@ -12,8 +12,13 @@ from __future__ import annotations
 
 from .errors import ParameterError
 
-#: Durations: reaching vmax does not fit the plan's samples.
-DURATIONS = ("vmax/amax", "sqrt(vmax/jmax)", "sqrt(pi vmax/(2 jmax))")
+#: The limits a quantity may be formed from, in the order the arguments are named.
+LIMITS = ("vmax", "amax", "jmax", "vmin", "amin")
+#: Durations: reaching a velocity bound does not fit the plan's samples (asymmetric limits
+#: pair each velocity bound with each acceleration bound).
+DURATIONS = tuple(f"{v}/{a}" for v in ("vmax", "vmin") for a in ("amax", "amin")) + tuple(
+    f"sqrt({pi}{v}/{j})" for v in ("vmax", "vmin") for pi, j in (("", "jmax"),
+                                                                  ("pi ", "(2 jmax)")))
 #: The multi-axis planner's capped ratios limit/change.
 RATIOS = ("amax/vmax", "jmax/vmax", "amax/h", "jmax/h")
 
@@ -23,13 +28,13 @@ def named(quantity: str, arguments, duration: float) -> str:
     it is formed from (in the order vmax, amax, jmax) and the duration to reach vmax [s]:
     ``Ts`` when reaching vmax takes more samples than a plan holds although it lasts at most
     1e9 s (a plausible machine: Ts is extreme), else the limit to change."""
-    if quantity.startswith("the "):     # the duration or the distance to reach vmax
-        return "vmax"
+    if quantity.startswith("the "):     # the duration or the distance to reach vmax (vmin)
+        return "vmin" if quantity.endswith("vmin") else "vmax"
     if quantity in DURATIONS:
         return "Ts" if duration <= 1e9 else arguments[-1]
-    if quantity == "vmax*jmax":
+    if quantity in ("vmax*jmax", "vmin*jmax"):
         return arguments[-1]
-    return min((n for n in ("vmax", "amax", "jmax") if n in quantity), key=quantity.find,
+    return min((n for n in LIMITS if n in quantity), key=quantity.find,
                default=arguments[-1])         # the first limit the quantity names
 
 
@@ -61,7 +66,9 @@ def refused(ffi, info, limits: dict, Ts: float, st: int, axis: int | None = None
     """
     sub = "" if axis is None else f"[{axis}]"
     tail = "" if axis is None else f" (axis {axis})"
-    vmax = f"vmax{sub}"
+    # the velocity bound the refused move reaches (vmin for a move of asymmetric limits)
+    vmax = f"vmin{sub}" if info.quantity != ffi.NULL and "vmin" in ffi.string(
+        info.quantity).decode() else f"vmax{sub}"
     if info.quantity == ffi.NULL:  # a limit not finite and > 0 (checked before the region)
         bad = next((n for n in ("vmax", "amax", "jmax") if not 0 < limits[n] < float("inf")),
                    "vmax")
@@ -76,9 +83,16 @@ def refused(ffi, info, limits: dict, Ts: float, st: int, axis: int | None = None
     # the argument the error names first (the message starts with it), then the others
     order = sorted(names, key=lambda n: n != parameter)
     values = ", ".join(f"{n}={Ts!r}" if n == "Ts" else f"{n}{sub}={limits[n]!r}"
-                       for n in order) + tail
+                       for n in order if n in limits or n == "Ts") + tail
     value, bound = info.value, info.bound
     real = "float" if ffi.sizeof("sms_real") == 4 else "double"
+    if quantity in ("vmin", "amin"):
+        upper = "vmax" if quantity == "vmin" else "amax"
+        msg = (f"{values}: {quantity} must be < 0 with its magnitude a normal {real} at most "
+               f"the largest over 16 (room for a reversal)" if "profile" not in names else
+               f"{quantity}{sub}={limits[quantity]!r}: the trigonometric profile takes "
+               f"symmetric limits only ({quantity} 0 or -{upper})")
+        return ParameterError(quantity + sub, msg, st)
     if quantity in names:
         msg = (f"{values}: below {bound:.6g}, the smallest normal {real}" if value < bound else
                f"{values}: above {bound:.6g}, the largest {real}" if quantity == "Ts" else

@@ -155,6 +155,32 @@ def reach_unchecked(vmax: float, amax: float, jmax: float, Ts: float, shape: str
     return out
 
 
+def reach_pairs(vmax: float, amax: float, jmax: float, vmin: float, amin: float, Ts: float,
+                shape: str = "ramp", precision: str = "double") -> dict:
+    """:func:`reach_unchecked` of asymmetric limits (checked floats, vmin and amin < 0): the
+    moves that reach each velocity bound with each acceleration bound, in the order
+    (vmax, amax), (vmin, amin), (vmax, amin), (vmin, amax); the first refusal with its
+    quantity named after that pair (``"vmin/amin"``, ``"the distance to reach vmin"``), else
+    the (vmax, amax) move. ``vmin`` or ``amin`` out of [MIN, MAX/16] in magnitude is named
+    alone. The trigonometric shape takes symmetric limits only (the caller refuses it)."""
+    info = np.finfo(np.float32 if precision == "float" else np.float64)
+    big, least = float(info.max), float(info.tiny)
+    first = reach_unchecked(vmax, amax, jmax, Ts, shape, precision)
+    if first["quantity"] is not None:
+        return first
+    for name, x in (("vmin", vmin), ("amin", amin)):
+        if not least <= -x <= big / MARGIN:
+            return dict(first, quantity=name)
+    for vn, an, V, A in (("vmin", "amin", -vmin, -amin), ("vmax", "amin", vmax, -amin),
+                         ("vmin", "amax", -vmin, amax)):
+        out = reach_unchecked(V, A, jmax, Ts, shape, precision)
+        q = out["quantity"]
+        if q is not None:
+            out["quantity"] = q.replace("vmax", vn).replace("amax", an)
+            return out
+    return first
+
+
 def representable(pieces, starts, Ts: float) -> bool:
     """Can the plan be formed: every duration and start value finite, each piece's values
     bounded by |q| + d (|v| + d (|a|/2 + d |j|/4)) finite, and at most 2^52 samples long?"""
@@ -443,13 +469,13 @@ def _velocity_plan(q, v, a, vf, af, tmin, lim, Ts):
     return _from_third_order(third, q, v, a, None, lim.jmax, vf, af) + (None,)
 
 
-def _ramp_plan(state, goal, vmax, amax, jmax, Ts):
+def _ramp_plan(state, goal, vmax, amax, jmax, Ts, vmin=None, amin=None):
     """The plan of linear ramps from state (q, v, a) towards goal (interface, position,
     velocity, acceleration, minimum duration), or None when none is found or it cannot be
-    represented."""
+    represented. vmin, amin: the lower bounds (None: -vmax, -amax)."""
     q, v, a = state
     interface, pf, vf, af, tmin = goal
-    lim = _to.Limits(vmax, amax, jmax)
+    lim = _to.Limits(vmax, amax, jmax, vmin, amin)
     N = None
     if interface == VELOCITY:
         found = _velocity_plan(q, v, a, vf, af, tmin, lim, Ts)
@@ -479,7 +505,7 @@ def _ramp_plan(state, goal, vmax, amax, jmax, Ts):
                         continue
                     D = pf - q
                     tol = 16 * np.finfo(float).eps * (abs(q) + abs(pf) + abs(hi[0]) + abs(lo[0])
-                                                      + 2 * vmax * n * Ts)
+                                                      + (lim.vmax - lim.vmin) * n * Ts)
                     if not lo[0] - tol <= D <= hi[0] + tol:
                         continue
                     lam = (D - lo[0]) / (hi[0] - lo[0]) if hi[0] > lo[0] else 1.0
@@ -503,7 +529,7 @@ def _ramp_plan(state, goal, vmax, amax, jmax, Ts):
                 end=ends[-1] if ends else 0.0, arrive=arrive)
 
 
-def _cosine_plan(state, goal, vmax, amax, jmax, Ts):
+def _cosine_plan(state, goal, vmax, amax, jmax, Ts, vmin=None, amin=None):
     """The half-cosine plan: to rest at the goal's position, or to its velocity at a = 0."""
     q, v, a = state
     interface, pf, vf, _, _ = goal
@@ -537,7 +563,7 @@ def _can_start(v, a, vmax, jmax, shape):
 
 
 def canonical_target(interface, position, velocity, acceleration, *, vmax, amax, jmax,
-                     shape="ramp", minimum_duration=0.0):
+                     shape="ramp", minimum_duration=0.0, vmin=None, amin=None):
     """A target (interface, position, velocity, acceleration) in canonical form (a stop as
     the velocity interface to 0, the position of a velocity target as 0), or None when it is
     invalid: the interface unknown, a value not finite, or the velocity, acceleration or
@@ -555,14 +581,15 @@ def canonical_target(interface, position, velocity, acceleration, *, vmax, amax,
         return None
     if shape == "cosine" and (acceleration != 0 or (interface == POSITION and velocity != 0)):
         return None
-    if _to.target_ok(velocity, acceleration, _to.Limits(vmax, amax, jmax)) is not None:
+    if _to.target_ok(velocity, acceleration, _to.Limits(vmax, amax, jmax, vmin, amin)) is not None:
         return None
     return (interface, float(position), float(velocity), float(acceleration),
             float(minimum_duration))
 
 
 def _run(targets, *, vmax, amax, jmax, Ts, q0=0.0, shape="ramp", velocity=None,
-         acceleration=None, interface=None, start=None, minimum_duration=None):
+         acceleration=None, interface=None, start=None, minimum_duration=None, vmin=None,
+         amin=None):
     """(out, goal, dropped): the samples, the running plan's goal at each sample (where it
     rests, or from where it drifts on), and 1 at each sample where a target was dropped.
 
@@ -570,7 +597,8 @@ def _run(targets, *, vmax, amax, jmax, Ts, q0=0.0, shape="ramp", velocity=None,
     velocity, acceleration: arrays of the same length (default 0); interface: POSITION,
     VELOCITY or STOP per sample (default POSITION). An invalid target is ignored (the held one
     kept), as a non-finite position is. start: (q, v, a, target) the generator continues
-    from (its plan to target formed at the sample before the first), default at rest on q0."""
+    from (its plan to target formed at the sample before the first), default at rest on q0.
+    vmin, amin: the lower velocity and acceleration bounds (None: -vmax, -amax; ramps only)."""
     x = np.asarray(targets, dtype=np.float64)
     n = x.size
     vel = np.zeros(n) if velocity is None else np.asarray(velocity, dtype=np.float64)
@@ -581,32 +609,44 @@ def _run(targets, *, vmax, amax, jmax, Ts, q0=0.0, shape="ramp", velocity=None,
     goals = np.empty(n)
     dropped = np.zeros(n, dtype=bool)
     make = _cosine_plan if shape == "cosine" else _ramp_plan
+    if vmin is None and amin is None:
+        evaluate = _evaluate
+    else:
+        # asymmetric limits: v and a held to their bounds (the rounding of a segment's sum of
+        # terms of the larger bound's size, the generator's rule)
+        lo_v = -vmax if vmin is None else vmin
+        lo_a = -amax if amin is None else amin
+
+        def evaluate(plan, m, Ts, shape):
+            q, v, a, j = _evaluate(plan, m, Ts, shape)
+            return q, min(max(v, lo_v), vmax), min(max(a, lo_a), amax), j
     plan, i0 = _rest_plan(float(q0)), 0
     held = goal = (POSITION, float(q0), 0.0, 0.0, 0.0)
     refused = False
     if start is not None:
         q, v, a, target = start
         goal = held = target
-        new = make((q, v, a), target, vmax, amax, jmax, Ts)
+        new = make((q, v, a), target, vmax, amax, jmax, Ts, vmin, amin)
         if new is None:
             raise ParameterError("target", f"target={target!r}: the motion from (q, v, a) = "
                                  f"({q!r}, {v!r}, {a!r}) cannot be represented")
         plan, i0 = new, -1
     for i in range(n):
         t = canonical_target(int(itf[i]), float(x[i]), float(vel[i]), float(acc[i]), vmax=vmax,
-                             amax=amax, jmax=jmax, shape=shape, minimum_duration=float(tmin[i]))
+                             amax=amax, jmax=jmax, shape=shape, minimum_duration=float(tmin[i]),
+                             vmin=vmin, amin=amin)
         if t is not None and t != held:   # a new target (invalid: ignored)
             held, refused = t, False
-        state = _evaluate(plan, i - i0, Ts, shape)
+        state = evaluate(plan, i - i0, Ts, shape)
         if held != goal and not refused and _can_start(state[1], state[2], vmax, jmax, shape):
             try:
                 with np.errstate(all="ignore"):
-                    new = make(state[:3], held, vmax, amax, jmax, Ts)
+                    new = make(state[:3], held, vmax, amax, jmax, Ts, vmin, amin)
             except (OverflowError, ValueError, ZeroDivisionError):
                 new = None
             if new is not None:
                 plan, goal, i0 = new, held, i
-                state = _evaluate(plan, 0, Ts, shape)
+                state = evaluate(plan, 0, Ts, shape)
             else:   # dropped: the running plan goes on; not tried again until it changes
                 refused = True
                 dropped[i] = True

@@ -34,7 +34,7 @@ __all__ = ["Generator", "DroppedTargetWarning", "generator_reference", "tuned_st
 BSPLINE_MAX_DEGREE = 7
 BSPLINE_MAX_AXES = 3
 # The fields of a saved state's identity after the common head (trajectory.h).
-_GENERATOR_IDENTITY_FIELDS = ("vmax", "amax", "jmax", "profile", "wn", "zeta")
+_GENERATOR_IDENTITY_FIELDS = ("vmax", "amax", "jmax", "profile", "wn", "zeta", "vmin", "amin")
 
 
 def _generator_error(st, lib, ffi, cfg, Ts, profile):
@@ -54,10 +54,27 @@ def _infeasible(lib, ffi, cfg, Ts, st):
     the arguments and their values, the derived quantity out of range, its bound."""
     info = ffi.new("sms_generator_reach_info *")
     lib.sms_generator_reach(cfg, Ts, info)
-    return _reach.refused(ffi, info, dict(vmax=cfg.vmax, amax=cfg.amax, jmax=cfg.jmax), Ts, st)
+    return _reach.refused(ffi, info, dict(vmax=cfg.vmax, amax=cfg.amax, jmax=cfg.jmax,
+                                          vmin=cfg.vmin or -cfg.vmax,
+                                          amin=cfg.amin or -cfg.amax), Ts, st)
 
 
-def _generator_config(ffi, vmax, amax, jmax, profile, wn, zeta):
+def _lower_bound(name, value, upper, upper_name, profile):
+    """A lower bound (vmin, amin): None is the symmetric -upper; else finite and < 0, and
+    only with the linear-ramp profiles (the half-cosine plans are symmetric)."""
+    if value is None:
+        return None
+    x = _finite(name, value)
+    if not x < 0:
+        raise ParameterError(name, f"{name}={value!r} must be < 0 (the lower bound; "
+                                   f"{upper_name} is the upper one)")
+    if profile == "trigonometric" and x != -upper:
+        raise ParameterError(name, f"{name}={value!r}: the trigonometric profile takes symmetric "
+                                   f"limits only ({name} None or -{upper_name})")
+    return x
+
+
+def _generator_config(ffi, vmax, amax, jmax, profile, wn, zeta, vmin=None, amin=None):
     cfg = ffi.new("sms_generator_config *")
     cfg.vmax = _design._positive("vmax", vmax)
     cfg.amax = _design._positive("amax", amax)
@@ -67,6 +84,10 @@ def _generator_config(ffi, vmax, amax, jmax, profile, wn, zeta):
     cfg.profile = _design.PROFILES.index(profile)
     cfg.wn = wn_
     cfg.zeta = zeta_
+    lo_v = _lower_bound("vmin", vmin, cfg.vmax, "vmax", profile)
+    lo_a = _lower_bound("amin", amin, cfg.amax, "amax", profile)
+    cfg.vmin = 0.0 if lo_v is None else lo_v
+    cfg.amin = 0.0 if lo_a is None else lo_a
     return cfg
 
 
@@ -106,12 +127,18 @@ class Generator(_state_identity.SavedState, Twins):
         Initial position: the generator starts at rest there (default 0).
     precision : {"double", "float"}, keyword-only
         Which build of the C core runs it.
+    vmin, amin : float or None, keyword-only
+        Lower velocity and acceleration bounds (ruckig's ``min_velocity``,
+        ``min_acceleration``), finite and < 0; None (default): ``-vmax``, ``-amax``. The
+        velocity then stays within ``[vmin, vmax]`` and the acceleration within
+        ``[amin, amax]`` at every sample (docs/design.md, "Asymmetric limits"). Linear-ramp
+        profiles only (polynomial, damped).
 
     Raises
     ------
     ParameterError
         Naming the parameter out of range (a bound, ``Ts``, ``profile``, ``wn``, ``zeta``,
-        ``q0``, ``precision``), or limits with which no plan can reach ``vmax``: the message
+        ``q0``, ``precision``, ``vmin``, ``amin``), or limits with which no plan can reach ``vmax``: the message
         names the arguments, their values and the derived quantity out of range (e.g.
         ``sqrt(vmax/jmax) = 1e+150 s`` for ``vmax=1, jmax=1e-300``: reaching vmax would take
         more than the 2^50 samples a plan holds with room for a reversal; or a product that
@@ -138,22 +165,25 @@ class Generator(_state_identity.SavedState, Twins):
     # Old names (deprecated): one name per concept, as Chain.get_state / set_state.
     _STATE_ALIASES = {"save_state": "get_state", "load_state": "set_state"}
     _STATE_DOC = dict(
-        what="generator", same="``vmax``, ``amax``, ``jmax``, ``profile``, ``wn``, ``zeta``",
+        what="generator", same="``vmax``, ``amax``, ``jmax``, ``profile``, ``wn``, ``zeta``, "
+        "``vmin``, ``amin``",
         example='``"state is from vmax=2.0 (this Generator: vmax=1.0)"``',
         layout="``sms_generator_get_state``: first the configuration identity "
-        "(``SMS_GENERATOR_IDENTITY_COUNT`` = 11 values: state tag, format version, "
+        "(``SMS_GENERATOR_IDENTITY_COUNT`` = 13 values: state tag, format version, "
         "``sizeof(sms_real)`` (8 double, 4 float), kind (100, a generator), ``Ts``, ``vmax``, "
         "``amax``, ``jmax``, profile index in :data:`~smoothshaper.design.PROFILES`, ``wn`` "
-        "(0 without a mode), ``zeta``); then the target and the goal of the running plan, "
+        "(0 without a mode), ``zeta``, ``vmin``, ``amin`` (in effect: ``-vmax``, ``-amax`` "
+        "when symmetric)); then the target and the goal of the running plan, "
         "each as position, velocity, acceleration, interface (0 position, 1 velocity; a "
         "stop is the velocity interface to 0) and minimum duration, the running plan's start "
-        "q, v, a and the samples since it (n = 25 without a mode; the offsets are ``SMS_GENERATOR_STATE_*`` "
+        "q, v, a and the samples since it (n = 27 without a mode; the offsets are ``SMS_GENERATOR_STATE_*`` "
         "of trajectory.h); with a mode also the samples the plan has rested and the four "
         "states of the tuned stage (each with its own stage identity).")
 
     def __init__(self, *, vmax: float, amax: float, jmax: float, Ts: float,
                  profile: str = "polynomial", wn: float | None = None, zeta: float = 0.0,
-                 q0: float = 0.0, precision: str = "double"):
+                 q0: float = 0.0, precision: str = "double", vmin: float | None = None,
+                 amin: float | None = None):
         ffi, lib = _backend(precision)
         self._ffi, self._lib = ffi, lib
         self._lock = new_lock()
@@ -161,8 +191,8 @@ class Generator(_state_identity.SavedState, Twins):
         q0 = _finite("q0", q0)
         self.precision = precision
         self._init_args = dict(vmax=vmax, amax=amax, jmax=jmax, Ts=Ts, profile=profile, wn=wn,
-                               zeta=zeta, q0=q0, precision=precision)
-        cfg = _generator_config(ffi, vmax, amax, jmax, profile, wn, zeta)
+                               zeta=zeta, q0=q0, precision=precision, vmin=vmin, amin=amin)
+        cfg = _generator_config(ffi, vmax, amax, jmax, profile, wn, zeta, vmin, amin)
         need = ffi.new("size_t *")
         st = lib.sms_generator_buffer_size(cfg, self.Ts, need)
         if st != 0:
@@ -175,6 +205,9 @@ class Generator(_state_identity.SavedState, Twins):
         if st != 0:  # pragma: no cover - the size query validated the same arguments
             _raise_status(st, lib, ffi, "online generator")
         self.vmax, self.amax, self.jmax = cfg.vmax, cfg.amax, cfg.jmax
+        # the lower bounds in effect (-vmax, -amax when symmetric)
+        self.vmin = cfg.vmin if cfg.vmin != 0 else -cfg.vmax
+        self.amin = cfg.amin if cfg.amin != 0 else -cfg.amax
         self.profile, self.wn, self.zeta = _design.PROFILES[cfg.profile], cfg.wn, cfg.zeta
         self.q0 = q0
         self.reset(q0)
@@ -486,14 +519,14 @@ class Generator(_state_identity.SavedState, Twins):
         if st == -46:
             raise ParameterError("q", f"q={q!r} must be finite", st)
         if st == -47 and not lib.sms_generator_check_target(self._gen, t) == -47:
-            raise ParameterError("v", f"v={v!r} exceeds vmax={self.vmax!r} (beyond the "
-                                 f"generator's own rounding, a relative {tol:.3g})", st)
+            raise ParameterError("v", f"v={v!r} is outside {_velocity_bounds(self)} (beyond "
+                                 f"the generator's own rounding, a relative {tol:.3g})", st)
         if st == -48 and not lib.sms_generator_check_target(self._gen, t) == -48:
             raise ParameterError(
                 "a", f"(q, v, a) = ({q!r}, {v!r}, {a!r}) is not a state a plan of this generator "
-                f"can start from: |a| beyond amax={self.amax!r}, or bringing a to zero would pass "
-                f"vmax={self.vmax!r} (beyond the generator's own rounding, a relative {tol:.3g})",
-                st)
+                f"can start from: a outside {_acceleration_bounds(self)}, or bringing a to zero "
+                f"would leave {_velocity_bounds(self)} (beyond the generator's own rounding, a "
+                f"relative {tol:.3g})", st)
         if st in (-3, -47, -48, -49):
             name = {-3: "minimum_duration", -47: "velocity", -48: "acceleration",
                     -49: "interface"}[st]
@@ -510,6 +543,20 @@ def _target_dtype(real):
     """NumPy's layout of sms_target for the precision (C alignment)."""
     return np.dtype([("position", real), ("velocity", real), ("acceleration", real),
                      ("interface", np.int32), ("minimum_duration", real)], align=True)
+
+
+def _velocity_bounds(g) -> str:
+    """The velocity bounds as a message names them: +-vmax, or [vmin, vmax]."""
+    if g.vmin == -g.vmax:
+        return f"+-vmax = +-{g.vmax!r}"
+    return f"[vmin, vmax] = [{g.vmin!r}, {g.vmax!r}]"
+
+
+def _acceleration_bounds(g) -> str:
+    """The acceleration bounds as a message names them: +-amax, or [amin, amax]."""
+    if g.amin == -g.amax:
+        return f"+-amax = +-{g.amax!r}"
+    return f"[amin, amax] = [{g.amin!r}, {g.amax!r}]"
 
 
 def _target_message(g, name, i, position, velocity, acceleration, code, minimum_duration=0.0):
@@ -530,14 +577,15 @@ def _target_message(g, name, i, position, velocity, acceleration, code, minimum_
                 and abs(velocity) <= g.vmax:
             return (f"velocity{at}: {velocity!r}: the trigonometric profile plans position "
                     "targets at rest only (velocity 0)")
-        return f"velocity{at}: {velocity!r} must be finite and within +-vmax = +-{g.vmax!r}"
+        return f"velocity{at}: {velocity!r} must be finite and within {_velocity_bounds(g)}"
     if g.profile == "trigonometric" and acceleration != 0:
         return (f"acceleration{at}: {acceleration!r}: the trigonometric profile holds no "
                 "acceleration at a target (acceleration 0)")
     reach = acceleration * abs(acceleration) / (2 * g.jmax) if math.isfinite(acceleration) else 0
-    return (f"acceleration{at}: {acceleration!r} must be finite, within +-amax = +-{g.amax!r}, "
+    return (f"acceleration{at}: {acceleration!r} must be finite, within "
+            f"{_acceleration_bounds(g)}, "
             f"and keep velocity -+ acceleration|acceleration|/(2 jmax) = {velocity - reach!r}, "
-            f"{velocity + reach!r} within +-vmax = +-{g.vmax!r} (the velocity where the "
+            f"{velocity + reach!r} within {_velocity_bounds(g)} (the velocity where the "
             "acceleration was zero on the way in and where it returns to zero after)")
 
 
@@ -546,7 +594,7 @@ def _target_message(g, name, i, position, velocity, acceleration, code, minimum_
 # ----------------------------------------------------------------------------------------------
 
 def _reference_targets(targets, velocity, acceleration, interface, stop, *, vmax, amax, jmax,
-                       profile, minimum_duration=None):
+                       profile, minimum_duration=None, vmin=None, amin=None):
     """(positions, velocities, accelerations, interface codes, minimum durations) of a block,
     checked as the reference states the rules
     (:func:`smoothshaper.reference.third_order.target_ok`)."""
@@ -576,7 +624,7 @@ def _reference_targets(targets, velocity, acceleration, interface, stop, *, vmax
     if stop is not None:
         codes = np.where(np.broadcast_to(np.asarray(stop, dtype=bool), (n,)), 2, codes)
     lim = _to.Limits(_design._positive("vmax", vmax), _design._positive("amax", amax),
-                     _design._positive("jmax", jmax))
+                     _design._positive("jmax", jmax), vmin, amin)
     trig = _design.profile_name(profile) == "trigonometric"
     for i in range(n):
         if codes[i] == 2:
@@ -634,7 +682,8 @@ def _tuned_kind(profile: str, zeta: float) -> str:
 
 def generator_reference(targets=None, *, vmax, amax, jmax, Ts, profile="polynomial", wn=None,
                         zeta=0.0, position=0.0, velocity=None, acceleration=None,
-                        interface=None, stop=None, minimum_duration=None) -> np.ndarray:
+                        interface=None, stop=None, minimum_duration=None, vmin=None,
+                        amin=None) -> np.ndarray:
     """NumPy reference of :class:`Generator`.
 
     The plan is :func:`smoothshaper.time_optimal.time_optimal_reference` (linear ramps of the
@@ -671,6 +720,10 @@ def generator_reference(targets=None, *, vmax, amax, jmax, Ts, profile="polynomi
         Initial rest position (default 0).
     velocity, acceleration, interface, stop, minimum_duration : keyword-only
         As for :meth:`Generator.process`.
+    vmin, amin : float or None, keyword-only
+        Lower velocity and acceleration bounds, as for :class:`Generator` (None: ``-vmax``,
+        ``-amax``); the feasible region then covers the moves that reach each velocity bound
+        with each acceleration bound (:func:`smoothshaper.time_optimal.reach_pairs`).
 
     Returns
     -------
@@ -684,32 +737,38 @@ def generator_reference(targets=None, *, vmax, amax, jmax, Ts, profile="polynomi
         ``acceleration``, ``interface`` or ``stop``, or limits outside the feasible region
         (no move that reaches vmax can be planned).
     """
-    from .time_optimal import _run, reach_unchecked
+    from .time_optimal import _run, reach_pairs, reach_unchecked
     from .reference.filtering import fir_taps_unchecked
     from .stages import _for_mode
-    columns = _reference_targets(targets, velocity, acceleration, interface, stop, vmax=vmax,
-                                 amax=amax, jmax=jmax, profile=profile,
-                                 minimum_duration=minimum_duration)
-    x = columns[0]
     vmax = _design._positive("vmax", vmax)
     amax = _design._positive("amax", amax)
     jmax = _design._positive("jmax", jmax)
+    profile = _design.profile_name(profile)
+    vmin = _lower_bound("vmin", vmin, vmax, "vmax", profile)
+    amin = _lower_bound("amin", amin, amax, "amax", profile)
+    columns = _reference_targets(targets, velocity, acceleration, interface, stop, vmax=vmax,
+                                 amax=amax, jmax=jmax, profile=profile,
+                                 minimum_duration=minimum_duration, vmin=vmin, amin=amin)
+    x = columns[0]
     Ts = _design._positive("Ts", Ts)
     position = _finite("position", position)
-    profile = _design.profile_name(profile)
     wn_, zeta_ = _design._mode(profile, wn, zeta)
     shape = "cosine" if profile == "trigonometric" else "ramp"
-    feasible = reach_unchecked(vmax, amax, jmax, Ts, shape)
+    if vmin is None and amin is None:
+        feasible = reach_unchecked(vmax, amax, jmax, Ts, shape)
+    else:
+        feasible = reach_pairs(vmax, amax, jmax, -vmax if vmin is None else vmin,
+                               -amax if amin is None else amin, Ts, shape)
     quantity = feasible["quantity"]
     if quantity is not None:   # the argument named as the Generator names it
-        arguments = [n for n in ("vmax", "amax", "jmax") if n in quantity]
+        arguments = [n for n in _reach.LIMITS if n in quantity]
         raise ParameterError(_reach.named(quantity, arguments, feasible["duration"]),
                              f"vmax={vmax!r}, amax={amax!r}, jmax={jmax!r}, Ts={Ts!r}: "
                              f"{quantity} is out of the feasible range: no move "
                              "that reaches vmax can be planned")
     plan, goals, _ = _run(x, vmax=vmax, amax=amax, jmax=jmax, Ts=Ts, q0=position, shape=shape,
                           velocity=columns[1], acceleration=columns[2], interface=columns[3],
-                          minimum_duration=columns[4])
+                          minimum_duration=columns[4], vmin=vmin, amin=amin)
     if not wn_:
         return plan
     taps = fir_taps_unchecked(_for_mode(_tuned_kind(profile, zeta_), wn_, zeta_, 1), Ts)

@@ -2,7 +2,7 @@
 /* Prints the generator's cost: ns per sample on a long move (no re-plan) for each profile,
  * with and without a mode, the re-plan cost (a target that moves every sample, minus the
  * steady cost), the re-plan cost of each kind of target (a moving one, the velocity
- * interface), and the kinematic design time. Figures only; nothing is asserted. */
+ * interface), each with symmetric and with asymmetric limits, and the kinematic design time. Figures only; nothing is asserted. */
 #define _POSIX_C_SOURCE 199309L
 #include <stdio.h>
 #include "smoothshaper/smoothshaper.h"
@@ -75,6 +75,7 @@ int main(void)
         double steady, replan;
         c.vmax = 250.0; c.amax = 5000.0; c.jmax = 200000.0;
         c.profile = cases[i].profile; c.wn = cases[i].wn; c.zeta = cases[i].zeta;
+        c.vmin = c.amin = 0.0; /* symmetric */
         if (sms_generator_buffer_size(&c, Ts, &need) != SMS_OK || need > 100000 ||
             sms_generator_init(&g, &c, Ts, table, need) != SMS_OK)
             return 1;
@@ -92,15 +93,22 @@ int main(void)
         int kind;
         c.vmax = 250.0; c.amax = 5000.0; c.jmax = 200000.0;
         c.profile = SMS_PROFILE_POLYNOMIAL; c.wn = 0.0; c.zeta = 0.0;
-        if (sms_generator_buffer_size(&c, Ts, &need) != SMS_OK || need > 100000 ||
-            sms_generator_init(&g, &c, Ts, table, need) != SMS_OK)
-            return 1;
-        steady = per_step_kind(&g, 2000000, 3);
-        printf("  a new target every sample (polynomial), per sample minus the held one's %.2f ns:\n",
-               steady);
-        for (kind = 0; kind < 3; ++kind)
-            printf("    %-28s a re-plan %.1f ns\n", kinds[kind],
-                   per_step_kind(&g, 500000, kind) - steady);
+        int asym;
+        for (asym = 0; asym < 2; ++asym) {
+            /* symmetric, then asymmetric limits (vmin = -vmax/2, amin = -amax/4: the same
+             * targets, which stay within both; the moving target's 100 units/s forward) */
+            c.vmin = asym ? -125.0 : 0.0;
+            c.amin = asym ? -1250.0 : 0.0;
+            if (sms_generator_buffer_size(&c, Ts, &need) != SMS_OK || need > 100000 ||
+                sms_generator_init(&g, &c, Ts, table, need) != SMS_OK)
+                return 1;
+            steady = per_step_kind(&g, 2000000, 3);
+            printf("  a new target every sample (polynomial%s), per sample minus the held one's "
+                   "%.2f ns:\n", asym ? ", vmin = -vmax/2, amin = -amax/4" : "", steady);
+            for (kind = 0; kind < 3; ++kind)
+                printf("    %-28s a re-plan %.1f ns\n", kinds[kind],
+                       per_step_kind(&g, 500000, kind) - steady);
+        }
     }
     {
         double L[3] = {250.0, 5000.0, 200000.0}, T[3];

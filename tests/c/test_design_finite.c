@@ -128,6 +128,7 @@ static void generators(void)
                     c.profile = profiles[p];
                     c.wn = p == 2 ? 50.0 : 0.0;
                     c.zeta = p == 2 ? 0.1 : 0.0;
+                    c.vmin = c.amin = 0.0; /* symmetric */
                     st = sms_generator_reach(&c, mags[t], &r);
                     v[0] = r.peak_acceleration;
                     v[1] = r.duration;

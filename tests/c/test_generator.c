@@ -41,6 +41,8 @@ static sms_generator_config make_config(double v, double a, double j, sms_profil
     c.profile = profile;
     c.wn = wn;
     c.zeta = zeta;
+    c.vmin = 0.0; /* symmetric */
+    c.amin = 0.0;
     return c;
 }
 

@@ -32,6 +32,8 @@ static sms_generator_config config(double v, double a, double j, sms_profile pro
     c.profile = profile;
     c.wn = 0.0;
     c.zeta = 0.0;
+    c.vmin = 0.0; /* symmetric */
+    c.amin = 0.0;
     return c;
 }
 
@@ -458,6 +460,138 @@ static void test_hold_and_state(void)
     }
 }
 
+/* Asymmetric limits (vmin, amin): refusals at init naming the bound, targets and start states
+ * beyond a lower bound refused with the generator unchanged, a random sequence of every kind
+ * of target with every sample within [vmin, vmax], [amin, amax], |j| <= jmax (v and a held
+ * to their bounds exactly; j to 32 u), hold equal to stepping bit for bit, and the saved
+ * state refused by the symmetric generator naming the velocity bound. */
+static void test_asymmetric(unsigned seed)
+{
+    sms_generator g, h, s;
+    sms_generator_config c = config(1.0, 10.0, 100.0, SMS_PROFILE_POLYNOMIAL), bad;
+    sms_generator_reach_info r;
+    sms_target t;
+    sms_real out[4], out2[4];
+    double state[64], before[64], vmin = -0.25, amin = -2.5;
+    int i, k, worst_v = 0, worst_a = 0, worst_j = 0;
+    size_t n;
+    rng = seed;
+    c.vmin = vmin;
+    c.amin = amin;
+    /* refusals at init, O(1), naming the bound */
+    bad = c;
+    bad.vmin = 0.5;
+    CHECK_STATUS(sms_generator_reach(&bad, 1e-3, &r), SMS_ERR_LIMIT);
+    CHECK(r.quantity != NULL && strcmp(r.quantity, "vmin") == 0);
+    bad = c;
+    bad.amin = NAN;
+    CHECK_STATUS(sms_generator_init(&g, &bad, 1e-3, NULL, 0), SMS_ERR_LIMIT);
+    CHECK_STATUS(sms_generator_reach(&bad, 1e-3, &r), SMS_ERR_LIMIT);
+    CHECK(r.quantity != NULL && strcmp(r.quantity, "amin") == 0);
+    bad = c;
+    bad.profile = SMS_PROFILE_TRIGONOMETRIC;
+    CHECK_STATUS(sms_generator_reach(&bad, 1e-3, &r), SMS_ERR_LIMIT);
+    CHECK(r.quantity != NULL && strcmp(r.quantity, "vmin") == 0 &&
+          strcmp(r.arguments, "vmin, profile") == 0);
+    bad.vmin = -bad.vmax;
+    bad.amin = -bad.amax;
+    CHECK_STATUS(sms_generator_reach(&bad, 1e-3, NULL), SMS_OK); /* explicit symmetric bounds */
+    bad = c;
+    bad.vmin = -1e-200; /* double: reaching vmin covers a distance below the smallest normal
+                         * over eps; float: vmin itself below the smallest normal */
+    CHECK_STATUS(sms_generator_reach(&bad, 1e-3, &r), SMS_ERR_LIMIT);
+    CHECK(r.quantity != NULL &&
+          strcmp(r.quantity, sizeof(sms_real) == 4 ? "vmin" : "the distance to reach vmin") == 0);
+
+    CHECK_STATUS(sms_generator_init(&g, &c, 1e-3, NULL, 0), SMS_OK);
+    CHECK(g.asymmetric == 1 && g.vmin == (sms_real)vmin && g.amin == (sms_real)amin);
+    /* targets and states beyond a lower bound: refused, nothing changed */
+    for (k = 0; k < 300; ++k)
+        sms_generator_step(&g, (sms_real)0.4, out);
+    n = sms_generator_state_count(&g);
+    CHECK(n <= 64);
+    sms_generator_get_state(&g, before);
+    t = target(SMS_INTERFACE_VELOCITY, 0.0, -0.3, 0.0);
+    CHECK_STATUS(sms_generator_check_target(&g, &t), SMS_ERR_TARGET_VELOCITY);
+    t = target(SMS_INTERFACE_POSITION, 0.0, 0.0, -3.0);
+    CHECK_STATUS(sms_generator_check_target(&g, &t), SMS_ERR_TARGET_ACCELERATION);
+    t = target(SMS_INTERFACE_POSITION, 0.0, -0.2, 5.0); /* way in at -0.325 */
+    CHECK_STATUS(sms_generator_check_target(&g, &t), SMS_ERR_TARGET_ACCELERATION);
+    t = target(SMS_INTERFACE_POSITION, 0.0, 0.0, 0.0);
+    CHECK_STATUS(sms_generator_start(&g, 0, (sms_real)-0.3, 0, &t), SMS_ERR_TARGET_VELOCITY);
+    CHECK_STATUS(sms_generator_start(&g, 0, (sms_real)-0.24, (sms_real)-2.4, &t),
+                 SMS_ERR_TARGET_ACCELERATION); /* braking passes -0.2688 */
+    CHECK_STATUS(sms_generator_start(&g, 0, 0, (sms_real)-3.0, &t), SMS_ERR_TARGET_ACCELERATION);
+    sms_generator_get_state(&g, state);
+    CHECK(memcmp(state, before, n * sizeof(double)) == 0);
+
+    /* every kind of target, held 1..150 samples: every sample within the bounds */
+    sms_generator_reset(&g, 0);
+    h = g;
+    for (i = 0; i < 40; ++i) {
+        int kind = (int)(urand() * 3.0), hold = 1 + (int)(urand() * 150.0);
+        double v, a;
+        for (;;) {
+            double rr;
+            v = vmin + (1.0 - vmin) * urand();
+            a = amin + (10.0 - amin) * urand();
+            rr = a * fabs(a) / 200.0;
+            if (v - rr >= vmin && v - rr <= 1.0 && v + rr >= vmin && v + rr <= 1.0)
+                break;
+        }
+        t = target(kind == 1 ? SMS_INTERFACE_VELOCITY : kind == 2 ? SMS_INTERFACE_STOP
+                                                                   : SMS_INTERFACE_POSITION,
+                   4.0 * urand() - 2.0, v, a);
+        CHECK_STATUS(sms_generator_check_target(&g, &t), SMS_OK);
+        for (k = 0; k < hold; ++k) {
+            sms_generator_step_target(&g, &t, out);
+            if (!(out[1] >= (sms_real)vmin && out[1] <= (sms_real)1.0))
+                ++worst_v;
+            if (!(out[2] >= (sms_real)amin && out[2] <= (sms_real)10.0))
+                ++worst_a;
+            if (!(fabs((double)out[3]) <= 100.0 * (1.0 + BOUND_TOL)))
+                ++worst_j;
+        }
+        sms_generator_hold_target(&h, &t, (uint64_t)hold, out2);
+        CHECK(memcmp(out, out2, sizeof out) == 0);
+    }
+    CHECK(worst_v == 0);
+    CHECK(worst_a == 0);
+    CHECK(worst_j == 0);
+    /* to rest, far below: the descent cruises at vmin exactly */
+    t = target(SMS_INTERFACE_POSITION, -5.0, 0.0, 0.0);
+    for (k = 0; k < 40000; ++k) { /* at most 7 units at 0.25 unit/s, and the stop */
+        sms_generator_step_target(&g, &t, out);
+        if (k == 6000)
+            CHECK(out[1] == (sms_real)vmin && out[2] == 0);
+    }
+    CHECK(out[0] == (sms_real)-5.0 && out[1] == 0 && out[2] == 0 && out[3] == 0);
+
+    /* the saved state: the symmetric generator refuses it naming the velocity bound; the
+     * same configuration continues bit for bit */
+    sms_generator_get_state(&g, state);
+    n = sms_generator_state_count(&g);
+    CHECK_STATUS(sms_generator_init(&s, &bad, 1e-3, NULL, 0), SMS_ERR_LIMIT);
+    c.vmin = 0.0;
+    CHECK_STATUS(sms_generator_init(&s, &c, 1e-3, NULL, 0), SMS_OK);
+    CHECK_STATUS(sms_generator_set_state(&s, state, n), SMS_ERR_STATE_VMAX);
+    c.vmin = vmin;
+    c.amin = 0.0;
+    CHECK_STATUS(sms_generator_init(&s, &c, 1e-3, NULL, 0), SMS_OK);
+    CHECK_STATUS(sms_generator_set_state(&s, state, n), SMS_ERR_STATE_AMAX);
+    c.amin = amin;
+    CHECK_STATUS(sms_generator_init(&s, &c, 1e-3, NULL, 0), SMS_OK);
+    CHECK_STATUS(sms_generator_set_state(&s, state, n), SMS_OK);
+    t = target(SMS_INTERFACE_POSITION, 0.7, 0.0, 0.0);
+    for (k = 0; k < 3000; ++k) {
+        sms_generator_step_target(&g, &t, out);
+        sms_generator_step_target(&s, &t, out2);
+        CHECK(memcmp(out, out2, sizeof out) == 0);
+    }
+    printf("asymmetric limits [%s]: every sample within [vmin, vmax], [amin, amax], jmax\n",
+           sizeof(sms_real) == 4 ? "float" : "double");
+}
+
 int main(void)
 {
     test_moving_targets(300);
@@ -468,5 +602,6 @@ int main(void)
     test_minimum_duration(300);
     test_minimum_duration_refusals();
     test_hold_and_state();
+    test_asymmetric(31u);
     return check_summary("test_generator_targets");
 }

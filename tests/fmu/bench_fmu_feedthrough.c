@@ -9,7 +9,9 @@
  * (+ FreeFMUstate) of a small state, for FMI 2.0 and FMI 3.0. CPU time, median of interleaved
  * rounds (tests/bench/cpu_time.h).
  *
- * Usage: bench_fmu_feedthrough [--quick] [FEEDTHROUGH2_DIR [FEEDTHROUGH3_DIR]]
+ * Usage: bench_fmu_feedthrough [--quick | --state-load] [FEEDTHROUGH2_DIR [FEEDTHROUGH3_DIR]]
+ * --state-load: only the DeSerializeFMUstate rounds, each figure also as a machine-readable
+ * line "state_load<TAB>fmi2|fmi3<TAB>model<TAB>us" (read by python -m smoothshaper.bench).
  * The Feedthrough folders are the Reference-FMUs' unpacked FMUs, built with their own CMake:
  *   cmake -S Reference-FMUs -B build2 -DFMI_VERSION=2 -DCMAKE_BUILD_TYPE=Release
  *   cmake --build build2 --target Feedthrough       (-> build2/temp/Feedthrough)
@@ -315,7 +317,7 @@ static double chain_steps(long n, double *sink)
 
 int main(int argc, char **argv)
 {
-    int quick = 0, a = 1, r, have2 = 0, have3 = 0;
+    int quick = 0, state_load = 0, a = 1, r, have2 = 0, have3 = 0;
     const char *ft2 = NULL, *ft3 = NULL;
     long n, nd;
     double sink = 0.0;
@@ -323,6 +325,9 @@ int main(int argc, char **argv)
     fmi3_api ss3, ft3_api;
     if (argc > 1 && strcmp(argv[1], "--quick") == 0) {
         quick = 1;
+        a = 2;
+    } else if (argc > 1 && strcmp(argv[1], "--state-load") == 0) {
+        state_load = 1;
         a = 2;
     }
     if (a < argc)
@@ -350,6 +355,29 @@ int main(int argc, char **argv)
         if (s2 == NULL || s3 == NULL || (have2 && f2 == NULL) || (have3 && f3 == NULL)) {
             fprintf(stderr, "bench_fmu_feedthrough: an instance could not be set up\n");
             return 1;
+        }
+        if (state_load) {
+            for (r = 0; r < ROUNDS; ++r) {
+                ss2_de[r] = deserialize2(&ss2, s2, nd);
+                ss3_de[r] = deserialize3(&ss3, s3, nd);
+                ft2_de[r] = have2 ? deserialize2(&ft2_api, f2, nd) : 0.0;
+                ft3_de[r] = have3 ? deserialize3(&ft3_api, f3, nd) : 0.0;
+            }
+            printf("DeSerializeFMUstate + FreeFMUstate of the instance's state (median of %d "
+                   "rounds of %ld)\n", ROUNDS, nd);
+            printf("state_load\tfmi2\tSmoothShaper\t%.4f\n", median(ss2_de, ROUNDS));
+            printf("state_load\tfmi3\tSmoothShaper\t%.4f\n", median(ss3_de, ROUNDS));
+            if (have2)
+                printf("state_load\tfmi2\tFeedthrough\t%.4f\n", median(ft2_de, ROUNDS));
+            if (have3)
+                printf("state_load\tfmi3\tFeedthrough\t%.4f\n", median(ft3_de, ROUNDS));
+            ss2.free_instance(s2);
+            ss3.free_instance(s3);
+            if (have2)
+                ft2_api.free_instance(f2);
+            if (have3)
+                ft3_api.free_instance(f3);
+            return 0;
         }
         for (r = 0; r < ROUNDS; ++r) {
             ss2_ns[r] = steps2(&ss2, s2, 0, 1, n, &ts2, &sink);

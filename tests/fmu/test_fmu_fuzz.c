@@ -19,7 +19,8 @@
  * - no fmi2OK with a non-finite output (fmi2GetReal after every successful step);
  * - every FMU state saved loads again (fmi2SetFMUstate, and serialise -> deserialise -> set);
  * - a state forged from a serialised one (one value of its dynamic part set to NaN, an infinity
- *   or beyond half the largest double, the checksum recomputed) is refused.
+ *   or beyond half the largest double, or one of its Real inputs and parameters set to NaN or
+ *   an infinity, the checksum recomputed) is refused.
  * Usage: test_fmu_fuzz_<Model> [sequences [seed [huge] [from=S]]]; default 1000 sequences
  * (seconds). Steps are up to 2000 ticks long; "huge" adds steps of up to 1e12 s, which the
  * models hold in bounded time (fmu_model_hold(): closed forms of every model under a held
@@ -571,26 +572,46 @@ static size_t dynamic_part(const unsigned char *blob, size_t size, size_t *count
     return off;
 }
 
+/* Offset and count of the serialised state's Real settable values (u32 vr, f64 value each). */
+static size_t real_values(const unsigned char *blob, size_t *count)
+{
+    size_t off = 8;
+    off += 4 + u32_at(blob + off);                 /* guid */
+    off += 4 + 4 + 8 + 8 + 4 + 4 + 8 + 4 + 4;      /* real bytes, the clock */
+    *count = u32_at(blob + off);
+    return off + 4;
+}
+
 /* A state forged from a valid blob: one value of its dynamic part (outputs and filter state)
  * replaced by NaN, an infinity or a finite value beyond half the largest double, which no
- * state of any model holds (every internal sum stays below it for inputs in range), and the
- * checksum recomputed. Deserialising it must fail. */
+ * state of any model holds (every internal sum stays below it for inputs in range); or one of
+ * its Real inputs and parameters replaced by NaN or an infinity (the glue refuses them on set:
+ * a state of the instance's own parameters but one is read value by value, and one whose only
+ * difference is an input must still refuse it); the checksum recomputed. Deserialising it
+ * must fail. */
 static void forge(fmi2Component c, const unsigned char *blob, size_t size)
 {
     static const double kinds[5] = { 0.0, 1.0, -1.0, 0.5, -0.5 };
-    size_t count, off = dynamic_part(blob, size, &count), at;
+    size_t count, n_reals, off = dynamic_part(blob, size, &count), at;
+    const size_t reals = real_values(blob, &n_reals);
     unsigned char *forged;
     unsigned kind = pick(5);
+    const int settable = n_reals > 0 && pick(3) == 0;
     double value;
     uint64_t sum;
     fmi2FMUstate back = NULL;
     fmi2Status st;
     int i;
-    if (count == 0)
+    if (count == 0 && !settable)
         return;
     forged = (unsigned char *)malloc(size);
     memcpy(forged, blob, size);
-    at = off + 8 * (size_t)pick((unsigned)(count < 4000000u ? count : 4000000u));
+    if (settable) {
+        at = reals + 12 * (size_t)pick((unsigned)n_reals) + 4;
+        kind = pick(3);   /* NaN, +inf, -inf: finite values may be valid parameters */
+    } else {
+        at = off + 8 * (size_t)pick((unsigned)(count < 4000000u ? count : 4000000u));
+    }
     value = kind == 0 ? NAN : kind <= 2 ? kinds[kind] * HUGE_VAL
                                         : kinds[kind] * DBL_MAX * (1.0 + uniform());
     if (kind >= 3 && !isfinite(value))
@@ -603,9 +624,14 @@ static void forge(fmi2Component c, const unsigned char *blob, size_t size)
     ++n_forged;
     if (st != fmi2Error) {
         ++n_forged_accepted;
-        fprintf(stderr, "sequence %lu: a forged state was accepted (value %lu of %lu set to "
-                "%.17g)\n", sequence, (unsigned long)((at - off) / 8), (unsigned long)count,
-                value);
+        if (settable)
+            fprintf(stderr, "sequence %lu: a forged state was accepted (settable Real %lu of "
+                    "%lu set to %.17g)\n", sequence, (unsigned long)((at - reals) / 12),
+                    (unsigned long)n_reals, value);
+        else
+            fprintf(stderr, "sequence %lu: a forged state was accepted (value %lu of %lu set "
+                    "to %.17g)\n", sequence, (unsigned long)((at - off) / 8),
+                    (unsigned long)count, value);
         fmi2FreeFMUstate(c, &back);
     }
     free(forged);

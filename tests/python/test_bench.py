@@ -33,5 +33,19 @@ def test_quick_run_writes_every_table(tmp_path, capsys):
                  "ZVD shaper, retunable", "rectangular, retunable", "ZVD shaper, scheduled"):
         assert f"| {path}" in text
     assert "| n/a" not in text.split("## Python call floor")[0]   # every C figure measured
+    if shutil.which("cmake") is not None:   # the state load, from the raw C host
+        load = text.split("## FMU state load (DeSerializeFMUstate)")[1].split("\n## ")[0]
+        row = [r for r in load.splitlines() if r.startswith("| SmoothShaper")]
+        assert len(row) == 1 and "n/a" not in row[0], load
     printed = capsys.readouterr().out
     assert "wrote" in printed
+
+
+def test_hand_written_part_is_kept(tmp_path):
+    out = tmp_path / "benchmarks.md"
+    assert suite._hand_written(out) == ""                 # no file yet
+    out.write_text("# Benchmarks\n\n## old table\n\n" + suite.HAND_WRITTEN
+                   + "\n\n## By hand\n\ntext\n")
+    assert suite._hand_written(out) == suite.HAND_WRITTEN + "\n\n## By hand\n\ntext\n"
+    out.write_text("# Benchmarks\n\n## old table\n")   # no marker: nothing is kept
+    assert suite._hand_written(out) == ""

@@ -303,3 +303,34 @@ def test_random_staircases_keep_the_sampled_limits_and_equal_the_python_generato
     assert np.all(np.max(np.abs(y[:, 1:]), axis=0) <= np.array(limits) * (1 + BOUND_RTOL["double"]))
     # (d)
     assert y[-1, 0] == target[-1] and np.all(y[-1, 1:] == 0.0)
+
+
+def test_asymmetric_limits_equal_the_python_generator_bit_for_bit(trajectory_dir):
+    """Parameters vmin, amin (0: symmetric): the FMU's q, v, a, j equal the Python Generator
+    with the same lower bounds bit for bit, each side within its own bound; a positive vmin,
+    a trigonometric profile with amin and a target velocity below vmin fail naming them."""
+    lim = dict(vmin=-0.25, amin=-2.5)
+    fmu = slave(trajectory_dir)
+    start(fmu, **lim)
+    x = np.r_[np.full(1500, 0.6), np.full(3000, -0.2)]
+    y = run(fmu, 0.0, x)
+    fmu.freeInstance()
+    ref = Generator(Ts=TS, **LIMITS, **lim).process(x)
+    assert np.array_equal(y, ref)
+    assert y[:, 1].min() == -0.25 and y[:, 2].min() == -2.5
+    for params, words in [(dict(vmin=0.5), "vmin"),
+                          (dict(amin=-5.0, profile=1), "trigonometric profile takes symmetric")]:
+        log = Logged()
+        fmu = slave(trajectory_dir, logged=log)
+        with pytest.raises(FMICallException):
+            start(fmu, **params)
+        assert words in log.messages[-1], log.messages[-1]
+        fmu.freeInstance()
+    log = Logged()
+    fmu = slave(trajectory_dir, logged=log)
+    start(fmu, **lim)
+    fmu.setReal([fmu.vr["target_velocity"]], [-0.3])
+    with pytest.raises(FMICallException):
+        fmu.doStep(0.0, TS)
+    assert "[vmin, vmax]" in log.messages[-1], log.messages[-1]
+    fmu.freeInstance()

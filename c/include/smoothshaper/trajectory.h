@@ -247,8 +247,8 @@ typedef enum sms_interface {
  * |--------------|--------------------------------------------|
  * | interface    | an ::sms_interface |
  * | position     | finite (position interface; ignored otherwise) |
- * | velocity     | finite, \|v\| <= vmax (ignored for stop) |
- * | acceleration | finite, \|a\| <= amax, and v - a\|a\|/(2 jmax), v + a\|a\|/(2 jmax) within \|.\| <= vmax (ignored for stop) |
+ * | velocity     | finite, \|v\| <= vmax (ignored for stop); vmin <= v <= vmax with asymmetric limits |
+ * | acceleration | finite, \|a\| <= amax, and v - a\|a\|/(2 jmax), v + a\|a\|/(2 jmax) within \|.\| <= vmax (ignored for stop); with asymmetric limits amin <= a <= amax and both within [vmin, vmax] |
  * | minimum_duration | finite, >= 0 [s], below 2^50 samples of Ts; 0 with the trigonometric profile (ignored for stop) |
  *
  * The acceleration row keeps the velocity within its bound on the way in (where the
@@ -283,6 +283,18 @@ typedef struct sms_target {
  * | profile | an ::sms_profile (::SMS_PROFILE_DAMPED needs wn > 0) |
  * | wn      | 0 (no mode) or finite > 0 and below pi/Ts [rad/s] |
  * | zeta    | [0, 1) |
+ * | vmin    | 0 (symmetric: -vmax) or finite < 0, and a plan can reach it (sms_generator_reach()) |
+ * | amin    | 0 (symmetric: -amax) or finite < 0 |
+ *
+ * **Asymmetric limits** (ruckig's min_velocity and min_acceleration): with vmin or amin set,
+ * the velocity stays within [vmin, vmax] and the acceleration within [amin, amax] at every
+ * sample (different bounds forward and backward: gravity on a vertical axis, a conveyor that
+ * must never run backwards fast). The jerk bound stays symmetric. Every motion is planned by
+ * the same families (docs/design.md, "Asymmetric limits"); only the linear-ramp profiles
+ * (::SMS_PROFILE_POLYNOMIAL, ::SMS_PROFILE_DAMPED) take them: the trigonometric profile is
+ * refused with ::SMS_ERR_LIMIT when either is set to another value than 0, -vmax or -amax.
+ * Last in the struct so that initialisers of the other six stay valid and mean the symmetric
+ * limits (set both fields, or zero the struct, when filling it field by field).
  */
 typedef struct sms_generator_config {
     double vmax;          /**< velocity bound, finite, > 0 */
@@ -291,20 +303,25 @@ typedef struct sms_generator_config {
     sms_profile profile;  /**< shape of the transitions, and of the tuned stage */
     double wn;            /**< 0: no mode to cancel; else [rad/s], finite, below pi/Ts */
     double zeta;          /**< the mode's damping ratio, [0, 1) */
+    double vmin;          /**< lower velocity bound, finite, < 0; 0: -vmax */
+    double amin;          /**< lower acceleration bound, finite, < 0; 0: -amax */
 } sms_generator_config;
 
 /**
  * @brief Doubles of configuration identity at the start of a saved generator state
  * (sms_generator_get_state()), in this order: the head of config.h (::SMS_STATE_TAG,
  * ::SMS_STATE_VERSION, sizeof(::sms_real), ::SMS_STATE_KIND_GENERATOR, Ts), then vmax, amax,
- * jmax, profile, wn, zeta exactly as given to sms_generator_init(). Loading compares them with
+ * jmax, profile, wn, zeta exactly as given to sms_generator_init(), then the lower bounds vmin
+ * and amin in effect (-vmax and -amax for symmetric limits, so a config with 0 and one with
+ * -vmax are the same configuration). Loading compares them with
  * the generator's own (exact equality) and refuses a state of another configuration, writing
  * nothing, with the status naming the first field that differs (::SMS_ERR_STATE_FORMAT,
  * ::SMS_ERR_STATE_PRECISION, ::SMS_ERR_STATE_KIND, ::SMS_ERR_STATE_TS, ::SMS_ERR_STATE_VMAX,
  * ::SMS_ERR_STATE_AMAX, ::SMS_ERR_STATE_JMAX, ::SMS_ERR_STATE_PROFILE, ::SMS_ERR_STATE_WN,
- * ::SMS_ERR_STATE_ZETA).
+ * ::SMS_ERR_STATE_ZETA, then ::SMS_ERR_STATE_VMAX for vmin and ::SMS_ERR_STATE_AMAX for amin:
+ * the velocity and the acceleration bounds).
  */
-#define SMS_GENERATOR_IDENTITY_COUNT 11
+#define SMS_GENERATOR_IDENTITY_COUNT 13
 
 /** @brief Doubles of a saved generator state after its identity (sms_generator_get_state()),
  * and where each field lies counted from the end of the identity: the latest target and the
@@ -410,6 +427,9 @@ typedef struct sms_generator {
     sms_real *buffer;     /**< caller buffer: 4 M reals (NULL without a mode) */
     int time_optimal;     /**< 1: the plan is time-optimal for the profile (every config) */
     sms_plan_limits limits; /**< vmax, amax, jmax in signal precision */
+    sms_real vmin;        /**< lower velocity bound in signal precision (-vmax: symmetric) */
+    sms_real amin;        /**< lower acceleration bound in signal precision (-amax: symmetric) */
+    int asymmetric;       /**< 1 when vmin != -vmax or amin != -amax */
     double identity[SMS_GENERATOR_IDENTITY_COUNT]; /**< config and Ts it was built for */
     /* dynamic state */
     sms_target target;    /**< latest valid target (a stop as velocity 0, acceleration 0; the
@@ -471,6 +491,14 @@ typedef struct sms_generator_reach_info {
  * 4. ap^2 >= MIN/eps (squares of accelerations, and the products of moves down to about
  *    eps^1.5 `distance`, stay normal): "amax^2" or "vmax*jmax";
  * 5. duration >= MIN and MIN/eps <= distance <= MAX/M.
+ * With asymmetric limits (vmin or amin set) vmin and amin must be 0 or negative with their
+ * magnitudes in [MIN, MAX/M] (else the quantity is "vmin" or "amin"; with the trigonometric
+ * profile, which takes symmetric limits only, "vmin" or "amin" with the arguments
+ * "vmin, profile" or "amin, profile"), and steps 2 to 5 hold for each pair of a velocity
+ * bound and an acceleration bound, checked in the order (vmax, amax), (|vmin|, |amin|),
+ * (vmax, |amin|), (|vmin|, amax): a refusal names its pair ("vmin/amin", "vmin*jmax",
+ * "amin^2", "the distance to reach vmin", ...); on success `reach` describes the (vmax, amax)
+ * move.
  * Inside this region every rest-to-rest move from about eps^1.5 `distance` up to `distance`,
  * a reversal from full speed, and any longer move whose plan stays within 2^52 samples and
  * finite is planned; outside it no move that reaches vmax can be (3: beyond 2^52 samples
@@ -557,7 +585,8 @@ SMS_API void sms_generator_hold(sms_generator *g, sms_real target, uint64_t n, s
  *         ::SMS_ERR_TARGET_VELOCITY (not finite, |v| > vmax, or not 0 for a position target
  *         of the trigonometric profile); ::SMS_ERR_TARGET_ACCELERATION (not finite,
  *         |a| > amax, v - a|a|/(2 jmax) or v + a|a|/(2 jmax) beyond +-vmax, or not 0 for
- *         the trigonometric profile). The limits are compared as ::sms_real holds them.
+ *         the trigonometric profile). With asymmetric limits each side has its own bound:
+ *         [vmin, vmax] and [amin, amax]. The limits are compared as ::sms_real holds them.
  * @param g      the generator (read only)
  * @param target the target to check
  */
@@ -625,9 +654,10 @@ SMS_API void sms_generator_hold_target(sms_generator *g, const sms_target *targe
  * sample of a plan to `target` (NULL: a stop), and its next step is the plan's next sample.
  * The tuned stage (a mode) keeps its history and filters the new plan from the next step on.
  * @return ::SMS_OK; ::SMS_ERR_NULL (g); ::SMS_ERR_TARGET_POSITION (q not finite);
- *         ::SMS_ERR_TARGET_VELOCITY (v not finite or |v| > vmax); ::SMS_ERR_TARGET_ACCELERATION
- *         (a not finite, |a| > amax or |v + a|a|/(2 J)| > vmax, J the shape's mean jerk: no
- *         plan can start there); a status of sms_generator_check_target() for `target`;
+ *         ::SMS_ERR_TARGET_VELOCITY (v not finite or |v| > vmax; asymmetric limits: v outside
+ *         [vmin, vmax]); ::SMS_ERR_TARGET_ACCELERATION (a not finite, |a| > amax or
+ *         |v + a|a|/(2 J)| > vmax, J the shape's mean jerk, each on its own side with
+ *         asymmetric limits: no plan can start there); a status of sms_generator_check_target() for `target`;
  *         ::SMS_ERR_TOO_LONG (the motion to the target cannot be represented). Each bound
  *         holds to ::SMS_LIMIT_RTOL (a state the generator reported is always accepted).
  *         Nothing is changed on error.

@@ -499,66 +499,87 @@ static void retire_old_copy(sms_smoother *f)
     f->ref[1] = x - x == (sms_real)0 ? x : f->rest;
 }
 
+/* The exact rest of a segment run as varied (segment()) when some input equalled the one
+ * before it: the runs counted again from the inputs (now in the segment's ring slots, as out
+ * may have overwritten in) and the outputs of the samples whose last L inputs are equal set to
+ * the input, as rest_exactly() does sample by sample. Rare in a block; not inlined. */
+#if defined(__GNUC__)
+__attribute__((noinline, cold))
+#endif
+static void rest_after(sms_smoother *f, sms_real *out, size_t n, size_t run, sms_real prev)
+{
+    const sms_real *ring = f->history + f->head;
+    size_t i;
+    for (i = 0; i < n; ++i) {
+        out[i] = rest_exactly(&run, f->length, ring[i], prev, out[i]);
+        prev = ring[i];
+    }
+    f->run = run;
+}
+
 /* Samples head .. head + n - 1 (n <= M - head: no copy retires within) through the old copy
  * (lane 0) and, on the vector path, the young one (lane 1): the recursion, the direct taps
  * (on x[n-M+1], the ring slot after this one, ring[0] on the ring's last slot; or on x
  * itself) and x[n-M], the reference, the ring, the exact rest. Each instance loads only the
- * constants its variant reads. varied: no input equals the one before it (so run stays 0 and
- * the output is never the input itself, L >= 2), known beforehand, which a block usually is:
- * its loop then skips the bookkeeping of runs. */
+ * constants its variant reads. varied (L >= 2): the loop assumes that no input equals the one
+ * before it (so run stays 0 and the output is never the input itself, what a block usually
+ * is) and only notes whether one did, without a branch: then rest_after() does the runs'
+ * bookkeeping afterwards, with the same outputs. The copies never depend on the runs. The
+ * exact timing's tap on the ring's next slot wraps to ring[0] on the ring's last slot, the
+ * segment's last sample at most: that sample is run after the loop, so the loop has no
+ * per-sample test of it. */
 SEGMENT_BODY void segment(sms_smoother *f, const sms_real *in, sms_real *out, size_t n,
                           int pole, int taps, int varied)
 {
     const constants k = constants_of(f, 1);
     const sms_real corr0 = f->correction_gain[0], corr1 = f->correction_gain[1];
     const size_t length = f->length, last = f->window - f->head - 1u;
+    /* the samples whose direct tap reads ring[i + 1] (exact timing): all but a last slot */
+    const size_t body = taps == TAPS_EXACT && n > last ? last : n;
     sms_real *ring = f->history + f->head;
-    sms_real prev = f->history[(f->head == 0u ? f->window : f->head) - 1u];
+    const sms_real prev0 = f->history[(f->head == 0u ? f->window : f->head) - 1u];
+    const size_t run0 = f->run;
+    sms_real prev = prev0;
     copies s = copies_of(f, 0);
     const sms_real ref0 = LANE(s.ref, 0);
     size_t i, run = varied ? 0u : f->run;
-    for (i = 0; i < n; ++i) {
+    int repeated = 0;   /* varied: an input equal to the one before it was seen */
+    for (i = 0; i < body; ++i) {
         const sms_real x = in[i], oldest = ring[i];
         sms_real y = recur(&k, &s, x, oldest, pole);
         if (taps != TAPS_NONE) {
-            const sms_real first = taps == TAPS_BOUNDED ? x
-                                   : i == last ? f->history[0] : ring[i + 1u];
+            const sms_real first = taps == TAPS_BOUNDED ? x : ring[i + 1u];
             y += corr0 * (first - ref0) + corr1 * (oldest - ref0);
         }
         ring[i] = x;
-        out[i] = varied ? y + ref0 : rest_exactly(&run, length, x, prev, y + ref0);
+        if (varied)
+            out[i] = y + ref0, repeated |= x == prev;
+        else
+            out[i] = rest_exactly(&run, length, x, prev, y + ref0);
         prev = x;
+    }
+    if (body < n) {   /* exact timing, the ring's last slot: the tap wraps to ring[0] */
+        const sms_real x = in[i], oldest = ring[i], first = f->history[0];
+        sms_real y = recur(&k, &s, x, oldest, pole);
+        y += corr0 * (first - ref0) + corr1 * (oldest - ref0);
+        ring[i] = x;
+        if (varied)
+            out[i] = y + ref0, repeated |= x == prev;
+        else
+            out[i] = rest_exactly(&run, length, x, prev, y + ref0);
     }
     store_copies(f, &s, 0, pole);
     f->run = run;
+    if (repeated)
+        rest_after(f, out, n, run0, prev0);
 }
 
 #ifdef SMS_SMOOTHER_VARIANT_LOOPS
-/* 1 when none of the n inputs equals the one before it (prev before in[0]), and L >= 2; a
- * vector of inputs at a time. (The portable path does not look ahead: smaller code.) */
-static int all_varied(const sms_smoother *f, const sms_real *in, size_t n)
-{
-    enum { W = sizeof(lanes) / sizeof(sms_real) };
-    lanes a = {0}, b = {0};
-    __typeof__(a == b) equal = a != a;   /* all lanes false */
-    size_t i = 1, j;
-    if (f->length < 2u || in[0] == f->history[(f->head == 0u ? f->window : f->head) - 1u])
-        return 0;
-    for (; i + W <= n; i += W) {
-        memcpy(&a, in + i, sizeof a);
-        memcpy(&b, in + i - 1u, sizeof b);
-        equal |= a == b;
-    }
-    for (j = 0; j < W; ++j)
-        if (equal[j])
-            return 0;
-    for (; i < n; ++i)
-        if (in[i] == in[i - 1u])
-            return 0;
-    return 1;
-}
+/* A block runs as varied (segment()) when L >= 2. (The portable path keeps one loop, which
+ * counts the runs on every sample: smaller code.) */
+#define block_varied(f) ((f)->length >= 2u)
 #else
-#define all_varied(f, in, n) 0
+#define block_varied(f) 0
 #endif
 
 #ifndef SMS_SMOOTHER_VARIANT_LOOPS
@@ -627,7 +648,7 @@ void sms_smoother_process(sms_smoother *f, const sms_real *in, sms_real *out, si
         size_t seg = f->window - f->head;
         if (n < seg)
             seg = n;
-        run_segment(f, in, out, seg, all_varied(f, in, seg));
+        run_segment(f, in, out, seg, block_varied(f));
         in += seg;
         out += seg;
         n -= seg;

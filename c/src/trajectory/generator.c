@@ -14,7 +14,7 @@
 #include "core/state_identity.h"
 #include "trajectory/trajectory_internal.h"
 
-enum { ID_VMAX = SMS_GEN_ID_VMAX, ID_AMAX, ID_JMAX, ID_PROFILE, ID_WN, ID_ZETA };
+enum { ID_VMAX = SMS_GEN_ID_VMAX, ID_AMAX, ID_JMAX, ID_PROFILE, ID_WN, ID_ZETA, ID_VMIN, ID_AMIN };
 
 static void generator_identity(const sms_generator_config *c, double Ts,
                                double id[SMS_GENERATOR_IDENTITY_COUNT])
@@ -26,6 +26,8 @@ static void generator_identity(const sms_generator_config *c, double Ts,
     id[ID_PROFILE] = (double)c->profile;
     id[ID_WN] = c->wn;
     id[ID_ZETA] = c->zeta;
+    id[ID_VMIN] = c->vmin != 0.0 ? c->vmin : -c->vmax;
+    id[ID_AMIN] = c->amin != 0.0 ? c->amin : -c->amax;
 }
 
 /* The feasible limit sets (trajectory.h, sms_generator_reach()). For a move from any state
@@ -54,37 +56,37 @@ sms_status sms_reach_refused(sms_generator_reach_info *r, const char *quantity,
     return SMS_ERR_LIMIT;
 }
 
-sms_status sms_generator_reach(const sms_generator_config *c, double Ts,
-                               sms_generator_reach_info *reach)
+/* The names of one pair of bounds (V, A) in the quantities a refusal reports. */
+typedef struct reach_names {
+    const char *v, *a, *ratio, *root, *root_cos, *vj, *a2, *va, *vj_args, *dur, *dist, *vaj;
+} reach_names;
+
+static const reach_names REACH_NAMES[4] = {
+    {"vmax", "amax", "vmax/amax", "sqrt(vmax/jmax)", "sqrt(pi vmax/(2 jmax))", "vmax*jmax",
+     "amax^2", "vmax, amax", "vmax, jmax", "the duration to reach vmax",
+     "the distance to reach vmax", "vmax, amax, jmax"},
+    {"vmin", "amin", "vmin/amin", "sqrt(vmin/jmax)", "sqrt(pi vmin/(2 jmax))", "vmin*jmax",
+     "amin^2", "vmin, amin", "vmin, jmax", "the duration to reach vmin",
+     "the distance to reach vmin", "vmin, amin, jmax"},
+    {"vmax", "amin", "vmax/amin", "sqrt(vmax/jmax)", "sqrt(pi vmax/(2 jmax))", "vmax*jmax",
+     "amin^2", "vmax, amin", "vmax, jmax", "the duration to reach vmax",
+     "the distance to reach vmax", "vmax, amin, jmax"},
+    {"vmin", "amax", "vmin/amax", "sqrt(vmin/jmax)", "sqrt(pi vmin/(2 jmax))", "vmin*jmax",
+     "amax^2", "vmin, amax", "vmin, jmax", "the duration to reach vmin",
+     "the distance to reach vmin", "vmin, amax, jmax"}
+};
+
+/* The derived checks (steps 2 to 5 of sms_generator_reach()) of the move that reaches the
+ * velocity bound V from rest at the acceleration bound A and stops; V, A the magnitudes. */
+static sms_status reach_pair(sms_generator_reach_info *r, const reach_names *nm, double V,
+                             double A, double jmax, int trigonometric, double Ts)
 {
-    sms_generator_reach_info local, *r = reach != NULL ? reach : &local;
-    double V, A, J, ap, tv, tj, big = GEN_REAL_MAX, tiny = GEN_REAL_TINY;
+    double J = jmax, ap, tv, tj, big = GEN_REAL_MAX, tiny = GEN_REAL_TINY;
     int reached;
-    memset(r, 0, sizeof *r);
-    if (c == NULL)
-        return SMS_ERR_NULL;
-    if (!isfinite(Ts) || !(Ts > 0.0) || !((sms_real)Ts > 0) || !(Ts <= big)) {
-        (void)sms_reach_refused(r, "Ts", "Ts", Ts, big);
-        return SMS_ERR_SAMPLE_PERIOD;
-    }
-    {
-        static const char *const names[3] = {"vmax", "amax", "jmax"};
-        const double limit[3] = {c->vmax, c->amax, c->jmax};
-        int i;
-        for (i = 0; i < 3; ++i) /* each a normal number with room for 2 x and 16 x */
-            if (!(limit[i] >= GEN_REAL_MIN) || !(limit[i] <= big / GEN_MARGIN)) /* also NaN */
-                return sms_reach_refused(r, names[i], names[i], limit[i],
-                                         limit[i] >= GEN_REAL_MIN ? big / GEN_MARGIN
-                                                                  : GEN_REAL_MIN);
-    }
-    V = c->vmax;
-    A = c->amax;
-    J = c->jmax;
-    if (c->profile == SMS_PROFILE_TRIGONOMETRIC)
+    if (trigonometric)
         J *= 0.63661977236758134; /* the half-cosine transitions' mean jerk, 2/pi jmax */
     if (!(V * J * GEN_MARGIN <= big)) /* J dv, |dv| <= 2 vmax */
-        return sms_reach_refused(r, "vmax*jmax", "vmax, jmax", c->vmax * c->jmax,
-                                 big / GEN_MARGIN);
+        return sms_reach_refused(r, nm->vj, nm->vj_args, V * jmax, big / GEN_MARGIN);
     ap = sqrt(V) * sqrt(J);
     reached = A < ap;
     if (reached)
@@ -99,23 +101,83 @@ sms_status sms_generator_reach(const sms_generator_config *c, double Ts,
         double per_term = GEN_MAX_REACH_SAMPLES * Ts / (reached ? 2.0 : 4.0);
         /* amax reached (amax^2 < vmax J) makes amax/J < vmax/amax: the longer term */
         if (reached)
-            return sms_reach_refused(r, "vmax/amax", "vmax, amax", tv, per_term);
-        return sms_reach_refused(r, c->profile == SMS_PROFILE_TRIGONOMETRIC
-                                        ? "sqrt(pi vmax/(2 jmax))" : "sqrt(vmax/jmax)",
-                                 "vmax, jmax", tv, per_term);
+            return sms_reach_refused(r, nm->ratio, nm->va, tv, per_term);
+        return sms_reach_refused(r, trigonometric ? nm->root_cos : nm->root, nm->vj_args, tv,
+                                 per_term);
     }
     if (!(ap * ap >= tiny)) /* a^2 of the peak and of every state on the way */
-        return reached ? sms_reach_refused(r, "amax^2", "amax", A * A, tiny)
-                       : sms_reach_refused(r, "vmax*jmax", "vmax, jmax", c->vmax * c->jmax, tiny);
+        return reached ? sms_reach_refused(r, nm->a2, nm->a, A * A, tiny)
+                       : sms_reach_refused(r, nm->vj, nm->vj_args, V * jmax, tiny);
     if (!(r->duration >= GEN_REAL_MIN))
-        return sms_reach_refused(r, "the duration to reach vmax", "vmax, amax, jmax",
-                                 r->duration, GEN_REAL_MIN);
+        return sms_reach_refused(r, nm->dur, nm->vaj, r->duration, GEN_REAL_MIN);
     if (!(r->distance * GEN_MARGIN <= big))
-        return sms_reach_refused(r, "the distance to reach vmax", "vmax, amax, jmax",
-                                 r->distance, big / GEN_MARGIN);
+        return sms_reach_refused(r, nm->dist, nm->vaj, r->distance, big / GEN_MARGIN);
     if (!(r->distance >= tiny))
-        return sms_reach_refused(r, "the distance to reach vmax", "vmax, amax, jmax",
-                                 r->distance, tiny);
+        return sms_reach_refused(r, nm->dist, nm->vaj, r->distance, tiny);
+    return SMS_OK;
+}
+
+sms_status sms_generator_reach(const sms_generator_config *c, double Ts,
+                               sms_generator_reach_info *reach)
+{
+    sms_generator_reach_info local, *r = reach != NULL ? reach : &local, first;
+    double big = GEN_REAL_MAX, Vn, An;
+    int trig, asym, i;
+    sms_status st;
+    memset(r, 0, sizeof *r);
+    if (c == NULL)
+        return SMS_ERR_NULL;
+    if (!isfinite(Ts) || !(Ts > 0.0) || !((sms_real)Ts > 0) || !(Ts <= big)) {
+        (void)sms_reach_refused(r, "Ts", "Ts", Ts, big);
+        return SMS_ERR_SAMPLE_PERIOD;
+    }
+    {
+        static const char *const names[3] = {"vmax", "amax", "jmax"};
+        const double limit[3] = {c->vmax, c->amax, c->jmax};
+        for (i = 0; i < 3; ++i) /* each a normal number with room for 2 x and 16 x */
+            if (!(limit[i] >= GEN_REAL_MIN) || !(limit[i] <= big / GEN_MARGIN)) /* also NaN */
+                return sms_reach_refused(r, names[i], names[i], limit[i],
+                                         limit[i] >= GEN_REAL_MIN ? big / GEN_MARGIN
+                                                                  : GEN_REAL_MIN);
+    }
+    trig = c->profile == SMS_PROFILE_TRIGONOMETRIC;
+    asym = c->vmin != 0.0 || c->amin != 0.0;
+    if (asym) {
+        /* each lower bound 0 (symmetric) or a negative normal number with the same room;
+         * ramps only (the half-cosine plans are symmetric) */
+        static const char *const names[2] = {"vmin", "amin"};
+        const double limit[2] = {c->vmin, c->amin}, upper[2] = {c->vmax, c->amax};
+        static const char *const with_profile[2] = {"vmin, profile", "amin, profile"};
+        for (i = 0; i < 2; ++i) {
+            if (limit[i] == 0.0)
+                continue;
+            if (trig && limit[i] == -upper[i])
+                continue; /* the symmetric bound given explicitly */
+            if (trig) /* bound 0: only the symmetric default (or -vmax, -amax) */
+                return sms_reach_refused(r, names[i], with_profile[i], limit[i], 0.0);
+            if (!(-limit[i] >= GEN_REAL_MIN)) /* positive, NaN or too small */
+                return sms_reach_refused(r, names[i], names[i], limit[i], -GEN_REAL_MIN);
+            if (!(-limit[i] <= big / GEN_MARGIN))
+                return sms_reach_refused(r, names[i], names[i], limit[i], -big / GEN_MARGIN);
+        }
+    }
+    Vn = c->vmin != 0.0 ? -c->vmin : c->vmax;
+    An = c->amin != 0.0 ? -c->amin : c->amax;
+    st = reach_pair(r, &REACH_NAMES[0], c->vmax, c->amax, c->jmax, trig, Ts);
+    if (st != SMS_OK || !asym)
+        return st;
+    /* the reverse move, and each velocity bound with the other acceleration bound (reaching
+     * one bound accelerates with one acceleration bound and stops with the other) */
+    first = *r;
+    {
+        const double V[3] = {Vn, c->vmax, Vn}, A[3] = {An, An, c->amax};
+        for (i = 0; i < 3; ++i) {
+            st = reach_pair(r, &REACH_NAMES[i + 1], V[i], A[i], c->jmax, trig, Ts);
+            if (st != SMS_OK)
+                return st;
+        }
+    }
+    *r = first;
     return SMS_OK;
 }
 
@@ -223,6 +285,9 @@ sms_status sms_generator_init(sms_generator *g, const sms_generator_config *conf
     g->limits.vmax = (sms_real)config->vmax;
     g->limits.amax = (sms_real)config->amax;
     g->limits.jmax = (sms_real)config->jmax;
+    g->vmin = config->vmin != 0.0 ? (sms_real)config->vmin : -g->limits.vmax;
+    g->amin = config->amin != 0.0 ? (sms_real)config->amin : -g->limits.amax;
+    g->asymmetric = g->vmin != -g->limits.vmax || g->amin != -g->limits.amax;
     generator_identity(config, Ts, g->identity);
     sms_generator_reset(g, 0);
     return SMS_OK;
@@ -270,9 +335,10 @@ static int finite_real(sms_real x)
 int sms_generator_state_ok(const sms_generator *g, double v, double a, double rtol)
 {
     double V = (double)g->limits.vmax * (1.0 + rtol), A = (double)g->limits.amax * (1.0 + rtol);
+    double Vl = (double)g->vmin * (1.0 + rtol), Al = (double)g->amin * (1.0 + rtol);
     double J = (double)sms_plan_mean_jerk(&g->limits, g->shape);
     double brake = v + a * fabs(a) / (2.0 * J);
-    return fabs(v) <= V && fabs(a) <= A && fabs(brake) <= V;
+    return v >= Vl && v <= V && a >= Al && a <= A && brake >= Vl && brake <= V;
 }
 
 static sms_real mag(sms_real x)
@@ -326,11 +392,12 @@ sms_status sms_generator_canonical(const sms_generator *g, const sms_target *in,
     }
     V = g->limits.vmax;
     A = g->limits.amax;
-    if (!(mag(t.velocity) <= V))
+    if (!(t.velocity <= V) || !(t.velocity >= g->vmin))
         return SMS_ERR_TARGET_VELOCITY;
     reach = t.acceleration * mag(t.acceleration) / (2 * g->limits.jmax);
-    if (!(mag(t.acceleration) <= A) || !(mag(t.velocity - reach) <= V) ||
-        !(mag(t.velocity + reach) <= V))
+    if (!(t.acceleration <= A) || !(t.acceleration >= g->amin) ||
+        !(t.velocity - reach <= V) || !(t.velocity - reach >= g->vmin) ||
+        !(t.velocity + reach <= V) || !(t.velocity + reach >= g->vmin))
         return SMS_ERR_TARGET_ACCELERATION;
     *out = t;
     return SMS_OK;
@@ -373,9 +440,9 @@ int sms_generator_replan(const sms_generator *g, sms_plan *plan, sms_real q, sms
 {
     sms_to_limits lim;
     lim.vmax = g->limits.vmax;
-    lim.vmin = -g->limits.vmax;
+    lim.vmin = g->vmin;
     lim.amax = g->limits.amax;
-    lim.amin = -g->limits.amax;
+    lim.amin = g->amin;
     lim.jmax = g->limits.jmax;
     if (goal->interface == SMS_INTERFACE_VELOCITY) {
         if (g->shape == SMS_PLAN_COSINE)
@@ -391,8 +458,8 @@ int sms_generator_replan(const sms_generator *g, sms_plan *plan, sms_real q, sms
                           goal->acceleration, goal->minimum_duration))
         return 1;
     /* not expected: the rest planner of the first version, never beyond the limits */
-    return goal->velocity == 0 && goal->acceleration == 0 && goal->minimum_duration == 0 &&
-           sms_plan_to_rest(plan, &g->limits, g->Ts_signal, q, v, a, goal->position);
+    return !g->asymmetric && goal->velocity == 0 && goal->acceleration == 0 &&
+           goal->minimum_duration == 0 && sms_plan_to_rest(plan, &g->limits, g->Ts_signal, q, v, a, goal->position);
 }
 
 /* Can a plan of the generator's shape start from (v, a)? The planner's precondition: bringing
@@ -429,6 +496,25 @@ static void take_target(sms_generator *g, const sms_target *target)
     }
 }
 
+/* With asymmetric limits, v and a held to [vmin, vmax] and [amin, amax]. A segment's value
+ * rounds relative to the largest terms it sums, which scale with the larger bound (a ramp from
+ * vmax down to vmin): near the smaller bound that is its magnitude times their ratio, beyond
+ * the reported values' 32 u. The exact motion is within the bounds, so holding the rounded
+ * value to them changes it by no more than that rounding. Symmetric limits: untouched. */
+static void hold_to_bounds(const sms_generator *g, sms_real out[4])
+{
+    if (!g->asymmetric)
+        return;
+    if (out[1] > g->limits.vmax)
+        out[1] = g->limits.vmax;
+    else if (out[1] < g->vmin)
+        out[1] = g->vmin;
+    if (out[2] > g->limits.amax)
+        out[2] = g->limits.amax;
+    else if (out[2] < g->amin)
+        out[2] = g->amin;
+}
+
 /* Advance the plan one sample under the held target; re-plan from the exact state there when
  * the target differs from the plan's goal (and the state allows it, can_start()). */
 static void step_plan(sms_generator *g, sms_real out[4])
@@ -441,6 +527,7 @@ static void step_plan(sms_generator *g, sms_real out[4])
         return;
     }
     sms_plan_eval(&g->plan, g->Ts_signal, g->k, out);
+    hold_to_bounds(g, out);
     if (g->pending && can_start(g, out[1], out[2])) {
         g->pending = 0;
         /* a move that cannot be represented (the planner returns 0) is dropped: the running
@@ -452,6 +539,7 @@ static void step_plan(sms_generator *g, sms_real out[4])
             g->goal = g->target;
             g->k = 0;
             sms_plan_eval(&g->plan, g->Ts_signal, 0, out); /* the same q, v, a; the new jerk */
+            hold_to_bounds(g, out);
         } else {
             g->refused = 1;
             ++g->dropped;
@@ -534,6 +622,7 @@ static void hold_plan_through_stage(sms_generator *g, uint64_t n, sms_real out[4
         b = n < 64u ? (size_t)n : 64u;
         for (i = 0; i < b; ++i) {
             sms_plan_eval(&g->plan, g->Ts_signal, ++g->k, o);
+            hold_to_bounds(g, o);
             count_quiet(g, o);
             for (c = 0; c < 4; ++c)
                 x[c][i] = o[c];
@@ -645,7 +734,8 @@ sms_status sms_generator_start(sms_generator *g, sms_real q, sms_real v, sms_rea
         return SMS_ERR_NULL;
     if (!finite_real(q))
         return SMS_ERR_TARGET_POSITION;
-    if (!finite_real(v) || !(fabs((double)v) <= (double)g->limits.vmax * (1.0 + SMS_LIMIT_RTOL)))
+    if (!finite_real(v) || !((double)v <= (double)g->limits.vmax * (1.0 + SMS_LIMIT_RTOL)) ||
+        !((double)v >= (double)g->vmin * (1.0 + SMS_LIMIT_RTOL)))
         return SMS_ERR_TARGET_VELOCITY;
     if (!finite_real(a) || !sms_generator_state_ok(g, (double)v, (double)a, SMS_LIMIT_RTOL))
         return SMS_ERR_TARGET_ACCELERATION;

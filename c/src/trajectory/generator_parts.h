@@ -8,7 +8,7 @@
 
 /* The identity fields after the common head, in this order (trajectory.h). */
 enum { SMS_GEN_ID_VMAX = 5, SMS_GEN_ID_AMAX, SMS_GEN_ID_JMAX, SMS_GEN_ID_PROFILE, SMS_GEN_ID_WN,
-       SMS_GEN_ID_ZETA };
+       SMS_GEN_ID_ZETA, SMS_GEN_ID_VMIN, SMS_GEN_ID_AMIN };
 
 /* A target in its canonical form (a stop as velocity 0, acceleration 0; the position of a
  * velocity target as 0), or its status (sms_generator_check_target()). */

@@ -61,7 +61,7 @@ static sms_status check_identity(const sms_generator *g, const double *src)
 {
     static const sms_status field_status[SMS_GENERATOR_IDENTITY_COUNT - SMS_STATE_IDENTITY_HEAD] = {
         SMS_ERR_STATE_VMAX, SMS_ERR_STATE_AMAX, SMS_ERR_STATE_JMAX, SMS_ERR_STATE_PROFILE,
-        SMS_ERR_STATE_WN, SMS_ERR_STATE_ZETA
+        SMS_ERR_STATE_WN, SMS_ERR_STATE_ZETA, SMS_ERR_STATE_VMAX, SMS_ERR_STATE_AMAX
     };
     return sms_state_identity_compare(g->identity, src,
                                       SMS_GENERATOR_IDENTITY_COUNT - SMS_STATE_IDENTITY_HEAD,
@@ -131,8 +131,10 @@ sms_status sms_generator_check_state(const sms_generator *g, const double *src, 
          * (a state no run produces, a forged one, would report beyond them) */
         const double range[4] = {
             sms_smoother_input_max(&g->stage[0]),
-            (double)g->limits.vmax * (1.0 + SMS_LIMIT_RTOL),
-            (double)g->limits.amax * (1.0 + SMS_LIMIT_RTOL),
+            (double)(g->limits.vmax > -g->vmin ? g->limits.vmax : -g->vmin) *
+                (1.0 + SMS_LIMIT_RTOL),
+            (double)(g->limits.amax > -g->amin ? g->limits.amax : -g->amin) *
+                (1.0 + SMS_LIMIT_RTOL),
             (double)g->limits.jmax * (1.0 + SMS_LIMIT_RTOL)
         };
         for (i = 0; i < 4; ++i)

@@ -8,7 +8,11 @@
 * ``minimum``, ``minimum_velocity``: a position target (at rest or moving) and the velocity
   interface with a minimum duration (ruckig's ``minimum_duration``), drawn as 0 to 3 times
   the unstretched optimum: the arrival never before it, within a sample of ruckig's
-  stretched duration on the grid (past a blocked duration: of its discrete one).
+  stretched duration on the grid (past a blocked duration: of its discrete one);
+* ``asym_rest``, ``asym_moving``, ``asym_velocity``, ``asym_stop``: the first four with
+  asymmetric limits, ``vmin`` and ``amin`` (ruckig's ``min_velocity``, ``min_acceleration``)
+  each 0.1 to 10 times the negated upper bound: every sample within ``[vmin, vmax]`` and
+  ``[amin, amax]``.
 
 Per case the generator starts from a random state (:meth:`Generator.start_from`) and runs
 until its plan has reached the target; ruckig (the ``ruckig`` package) is asked for the same
@@ -35,19 +39,25 @@ from .. import _optional
 
 __all__ = ["FEATURES", "draw_case", "run_case", "campaign", "main"]
 
-FEATURES = ("rest", "moving", "velocity", "stop", "minimum", "minimum_velocity")
+FEATURES = ("rest", "moving", "velocity", "stop", "minimum", "minimum_velocity", "asym_rest",
+            "asym_moving", "asym_velocity", "asym_stop")
+# the asymmetric features: the same motions with vmin, amin drawn apart from -vmax, -amax
+ASYMMETRIC = {"asym_rest": "rest", "asym_moving": "moving", "asym_velocity": "velocity",
+              "asym_stop": "stop"}
 # a move stretched to a minimum duration: a position target (at rest or moving), a velocity
 STRETCHED = {"minimum": "moving", "minimum_velocity": "velocity"}
 UNIT_ROUNDOFF = {"double": 2.0 ** -53, "float": 2.0 ** -24}
 
 
-def _state(rng, V, A, J, target):
+def _state(rng, V, A, J, target, Vl=None, Al=None):
     """(v, a) within the bounds whose brake velocities (forward; and backward for a target)
-    lie within +-V."""
+    lie within [Vl, V] (Vl, Al default -V, -A)."""
+    Vl = -V if Vl is None else Vl
+    Al = -A if Al is None else Al
     while True:
-        v, a = rng.uniform(-V, V), rng.uniform(-A, A)
+        v, a = rng.uniform(Vl, V), rng.uniform(Al, A)
         r = a * abs(a) / (2 * J)
-        if abs(v + r) <= V and (not target or abs(v - r) <= V):
+        if Vl <= v + r <= V and (not target or Vl <= v - r <= V):
             return v, a
 
 
@@ -56,12 +66,18 @@ def draw_case(rng, feature: str) -> dict:
     V = 10.0 ** rng.uniform(-1, 1)
     A = V * 10.0 ** rng.uniform(-1, 2)
     J = A * 10.0 ** rng.uniform(-1, 2)
-    v0, a0 = _state(rng, V, A, J, False)
+    Vl, Al = -V, -A
+    if feature in ASYMMETRIC:
+        Vl, Al = -V * 10.0 ** rng.uniform(-1, 1), -A * 10.0 ** rng.uniform(-1, 1)
+    v0, a0 = _state(rng, V, A, J, False, Vl, Al)
     if rng.random() < 0.15:
         v0, a0 = 0.0, 0.0
-    scale = V * (V / A + A / J)
+    scale = max(V, -Vl) * (max(V, -Vl) / min(A, -Al) + min(A, -Al) / J)
     case = dict(feature=feature, vmax=V, amax=A, jmax=J, q0=rng.uniform(-1, 1) * scale,
                 v0=v0, a0=a0, position=0.0, velocity=0.0, acceleration=0.0)
+    if feature in ASYMMETRIC:
+        case.update(vmin=Vl, amin=Al)
+        feature = ASYMMETRIC[feature]
     if feature in STRETCHED:
         # the minimum duration: this fraction of the unstretched optimum (campaign())
         case["stretch"] = rng.uniform(0.0, 3.0)
@@ -72,7 +88,7 @@ def draw_case(rng, feature: str) -> dict:
     if feature in ("rest", "moving"):
         case["position"] = case["q0"] + rng.uniform(-3, 3) * scale * 10.0 ** rng.uniform(-2, 1)
     if feature in ("moving", "velocity"):
-        vf, af = _state(rng, V, A, J, True)
+        vf, af = _state(rng, V, A, J, True, Vl, Al)
         if feature == "moving" and rng.random() < 0.3:
             af = 0.0
         case["velocity"], case["acceleration"] = vf, af
@@ -90,8 +106,12 @@ def _ruckig(case, Ts=None):
     inp.max_velocity = [case["vmax"]]
     inp.max_acceleration = [case["amax"]]
     inp.max_jerk = [case["jmax"]]
+    if "vmin" in case:
+        inp.min_velocity = [case["vmin"]]
+        inp.min_acceleration = [case["amin"]]
     inp.minimum_duration = case.get("minimum_duration") or None
-    if case["feature"] in ("velocity", "stop", "minimum_velocity"):
+    if ASYMMETRIC.get(case["feature"], case["feature"]) in ("velocity", "stop",
+                                                               "minimum_velocity"):
         inp.control_interface = ruckig.ControlInterface.Velocity
     else:
         inp.target_position = [case["position"]]
@@ -121,8 +141,8 @@ def run_case(case: dict, *, precision: str = "double", samples: float | None = N
     nu = samples if samples is not None else 10.0 ** case.get("log_samples", 2.0)
     Ts = T / nu
     g = Generator(vmax=case["vmax"], amax=case["amax"], jmax=case["jmax"], Ts=Ts,
-                  precision=precision)
-    feature = case["feature"]
+                  precision=precision, vmin=case.get("vmin"), amin=case.get("amin"))
+    feature = ASYMMETRIC.get(case["feature"], case["feature"])
     tmin = case.get("minimum_duration", 0.0)
     # a stretched velocity change is reached exactly on its sample, as a position target is
     stretched = feature == "minimum_velocity" and tmin > case["unstretched"]
@@ -152,16 +172,20 @@ def run_case(case: dict, *, precision: str = "double", samples: float | None = N
     real = np.float32 if precision == "float" else np.float64
     u = UNIT_ROUNDOFF[precision]
     limits = (case["vmax"], case["amax"], case["jmax"])
-    reported = [float(np.max(np.abs(out[:, i]))) / float(real(limits[i - 1])) for i in (1, 2, 3)]
+    # the lower bounds (-vmax, -amax, -jmax when symmetric): each signed value over its own
+    lower = (-case.get("vmin", -case["vmax"]), -case.get("amin", -case["amax"]), case["jmax"])
+    reported = [max(float(np.max(out[:, i])) / float(real(limits[i - 1])),
+                    float(np.max(-out[:, i])) / float(real(lower[i - 1]))) for i in (1, 2, 3)]
     # backward differences of the samples: the start state and out, differences of order i
     # over the last i + 1 samples (the first ones need the samples before the start)
     q = np.r_[case["q0"], out[:, 0]]
     S = float(np.max(np.abs(q))) + abs(case["position"])
     sampled = []
-    for i, L in zip((1, 2, 3), limits):
+    for i, L, Lo in zip((1, 2, 3), limits, lower):
         d = np.diff(q, i)[max(0, 3 - i):] if q.size > i else np.zeros(1)
         floor = 2.0 ** i * 16 * u * S / Ts ** i
-        sampled.append(float(np.max((np.abs(d) / Ts ** i - floor) / L)) if d.size else -np.inf)
+        sampled.append(max(float(np.max((d / Ts ** i - floor) / L)),
+                           float(np.max((-d / Ts ** i - floor) / Lo))) if d.size else -np.inf)
     # the target state exactly on the arrival sample, and after it
     k = arrive - 1                            # out[k] is the sample the plan arrives on
     want = (real(case["position"]), real(case["velocity"]), real(case["acceleration"]))
@@ -224,7 +248,7 @@ def campaign(feature: str, n: int, *, seed: int = 1, precision: str = "double") 
         over = r["over"]
         if r["short"]:
             summary["failures"].append(("shorter than the minimum duration", case, r))
-        if feature in ("moving", "minimum", "minimum_velocity") and over > 1:
+        if feature in ("moving", "asym_moving", "minimum", "minimum_velocity") and over > 1:
             # past a blocked duration: ruckig's discrete duration is the bar
             summary["blocked"] += 1
             if r["discrete"] is None or r["samples"] > r["discrete"] + 1:
