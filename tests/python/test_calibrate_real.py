@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import example, given, settings, strategies as st
 
 from smoothshaper import calibrate
 from smoothshaper.calibrate import synthetic as syn
@@ -193,6 +193,10 @@ def test_every_klipper_table_vintage_is_read(tmp_path, extra):
 
 
 @settings(max_examples=12, deadline=None)
+# a peak no higher than the floor at the table's start: its single fit came out broader than
+# its frequency and the close-pair refit started a mode below 0 Hz (math domain error)
+@example(n_bins=60, df=1.5, peaks=[(20.0, 0.015139623193049453, 0.0)], floor=0.0, flat=False,
+         lo=0.0)
 @given(n_bins=st.integers(20, 140), df=st.sampled_from([0.5, 1.5, 3.0]),
        peaks=st.lists(st.tuples(st.floats(20, 120), st.floats(0.003, 0.3), st.floats(0, 6)),
                       min_size=0, max_size=3),

@@ -23,6 +23,8 @@ from .._checks import finite as _finite, positive as _positive, real_array as _r
 from ..errors import ParameterError
 from . import spectra
 from .candidates import Candidate, Reference, evaluate, families, recommend, tune
+from . import default_limit as _budget
+from .default_limit import DefaultLimit
 from .modes import Mode, decay_modes
 from .objectives import ModalObjective, SpectralObjective
 from .records import AXIS_NAMES, KINDS, Record, RecordError, load
@@ -90,6 +92,9 @@ class AxisResult:
         resolution (0.5 s windows); None when it is ``spectrum`` itself.
     hull_hi : float or None
         Top of the excited band [Hz] (the spectral figure's bins reach 1.5 times it).
+    default_limit : DefaultLimit or None
+        Without ``max_delay`` and ``max_smoothing``: the delay budget the candidates were
+        tuned within and the trade-off pick that set it (:mod:`.default_limit`).
     """
     name: str
     record: Record
@@ -111,6 +116,7 @@ class AxisResult:
     user_band: bool = False
     figure_spectrum: Spectrum | None = field(default=None, repr=False)
     hull_hi: float | None = None
+    default_limit: DefaultLimit | None = None
 
 
 @dataclass
@@ -449,12 +455,27 @@ def _objectives(res: AxisResult, ranking: str):
                           f"{res.band[1]:.4g} Hz ({P.size} frequencies, none with power): "
                           "nothing to score a filter against")
     spec_obj = SpectralObjective(f[inb], P, nodes, width=width, group_hz=0.5)
+    # the established tool's estimate itself (its three test dampings, every bin): what the
+    # default delay budget is traded against (default_limit)
+    trade = SpectralObjective(f[inb], P, TEST_DAMPINGS)
     modal = None
     if res.modes and (res.explains or ranking == "modal"):
         modal = ModalObjective(res.modes)
     rank = "modal" if modal is not None and ranking in ("auto", "modal") else "spectrum"
     unsure = ModalObjective(res.modes) if res.modes and modal is None else None
-    return {"spectrum": spec_obj, "modal": modal, "unsure": unsure}, rank
+    return {"spectrum": spec_obj, "modal": modal, "unsure": unsure, "trade-off": trade}, rank
+
+
+def _default_limit(res: AxisResult, objs, anchors, firmware) -> DefaultLimit | None:
+    """The default delay budget of one analysis (:mod:`.default_limit`): the established
+    tool's trade-off on its own estimate where there is a measured spectrum, else on the modal
+    figure of a free decay."""
+    obj = objs.get("trade-off") or objs["spectrum"]
+    printer = res.record.kind in ("raw", "psd")
+    top = float(obj.f.max()) if getattr(obj, "f", None) is not None and obj.f.size else 0.0
+    return _budget.default_limit(obj, firmware, [a / (2 * math.pi) for a in anchors],
+                                 printer=printer,
+                         top_hz=top)
 
 
 class _ModalAsSpectral:
@@ -518,7 +539,10 @@ def run(paths, *, kind: str = "auto", axis: str = "auto", band=None,
     reference : Reference or None, keyword-only
         Sample period of the filters and the reference move (default ``Reference()``).
     max_delay : float or None, keyword-only
-        Longest impulse response allowed [s], > 0.
+        Longest impulse response allowed [s], > 0. Without it and ``max_smoothing``, each
+        analysis gets a default budget: the length of the shaper the established tool's
+        trade-off of vibration against smoothing picks on its spectrum
+        (:mod:`.default_limit`, ``AxisResult.default_limit``).
     max_smoothing : float or None, keyword-only
         Largest corner rounding allowed (length units of ``reference``), > 0.
     spread : float, keyword-only
@@ -623,10 +647,20 @@ def run(paths, *, kind: str = "auto", axis: str = "auto", band=None,
                 f"({slowest / (2 * math.pi):.4g} Hz, axis {res.name}) lasts {period:.4g} samples "
                 f"a period, more than {MAX_PERIOD_SAMPLES}: tuning its filters would take hours; "
                 "use a larger --Ts, or check the record's kind and --band")
-        res.candidates.append(evaluate("none", [], objs, rank, reference, max_delay,
+        delay = max_delay
+        if max_delay is None and max_smoothing is None:
+            res.default_limit = _default_limit(res, objs, anchors, firmware)
+            if res.default_limit is not None:
+                # the exact discrete filters span whole samples of Ts: the budget is the
+                # shaper's duration rounded up to one
+                delay = res.default_limit.max_delay
+                delay = math.ceil(delay / reference.Ts - 1e-9) * reference.Ts
+                res.default_limit = replace(res.default_limit, max_delay=delay)
+                res.notes.append(res.default_limit.note())
+        res.candidates.append(evaluate("none", [], objs, rank, reference, delay,
                                        max_smoothing))
         for fam in fams:
-            c = tune(fam, anchors, objs, rank, reference, max_delay, max_smoothing)
+            c = tune(fam, anchors, objs, rank, reference, delay, max_smoothing)
             if c is not None:
                 res.candidates.append(c)
             done += 1

@@ -19,8 +19,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..reference import impulse_response
-from ..stages import SHAPERS
+from ..reference import impulse_response, shaper_impulses
+from ..reference.input_smoothers import smoother_kernel
+from ..stages import INPUT_SMOOTHERS, SHAPERS
 from ..reference.continuous import transfer_unchecked
 from ..stages import Stage, for_mode, impulse_shaper, shaper
 from .._checks import positive as _positive
@@ -32,7 +33,9 @@ __all__ = ["BOX", "Reference", "Candidate", "chain_taps", "candidate_taps", "imp
            "class_name", "tune", "evaluate", "on_a_mode", "recommend"]
 
 #: Stage families whose impulse response integrates a step once (+1) or twice (+2).
-_SMOOTHING_ORDER = {"rectangular": 1, "exponential": 1, "harmonic": 2, "damped_harmonic": 2}
+_SMOOTHING_ORDER = {"rectangular": 1, "exponential": 1, "harmonic": 2, "damped_harmonic": 2,
+                    # the input smoothers' kernels are continuous and zero at both ends
+                    **{k: 2 for k in INPUT_SMOOTHERS}}
 
 @dataclass
 class Reference:
@@ -133,7 +136,9 @@ def duration(stages, Ts: float) -> float:
     spans ceil(t/Ts) (exact timing splits it onto the next sample)."""
     n = 0
     for s in stages:
-        if s.kind in _SMOOTHING_ORDER:
+        if s.kind in INPUT_SMOOTHERS:   # every sample of the kernel's span a tap
+            n += math.ceil(smoother_kernel(s)[1] / Ts - 1e-9)
+        elif s.kind in _SMOOTHING_ORDER:
             n += math.floor(s.T / Ts + 1e-9)
         elif s.kind in _ZVN_ORDER:      # exact ZV^n: n convolved exact ZVs
             n += _ZVN_ORDER[s.kind](s) * math.ceil(zv_span(s) / Ts - 1e-9)
@@ -183,6 +188,33 @@ def _library_single() -> list[Family]:
     return out
 
 
+def _si(n):
+    return lambda p: [shaper("si", wn=p[0], zeta=p[1], order=n, duration=p[2])]
+
+
+#: The specified-insensitivity shapers' impulse counts and the span of each [damped periods]
+#: (``Stage``'s range for si: (n - 1)/4 to (n - 1)/2).
+SI_ORDERS = (3, 5, 7)
+
+
+def _input_smoothers() -> list[Family]:
+    """The input smoothers of Klipper-derived firmware (polynomial kernels zero at both ends,
+    D. Butyugin): unlike a shaper they attenuate every frequency above their band, what a
+    spectrum with resonances above the first needs, so they join records of two or more
+    modes (each costs about 0.3 s of tuning: its kernel's transfer is a series)."""
+    return [Family(k, 1, _smoother(k)) for k in INPUT_SMOOTHERS]
+
+
+def _library_insensitive() -> list[Family]:
+    """The specified-insensitivity shapers (Singhose, Seering and Singer 1996) of 3, 5 and 7
+    impulses, their span tuned."""
+    out = []
+    for n in SI_ORDERS:
+        lo, hi = 0.25 * (n - 1), 0.5 * (n - 1)
+        out.append(Family(f"si (n={n})", 1, _si(n), extra=((0.5 * (lo + hi), lo, hi),)))
+    return out
+
+
 def _library_chains() -> list[Family]:
     return [Family(f"{a}+{b}", 2, lambda p, a=a, b=b: [shaper(a, wn=p[0], zeta=p[1]),
                                                         shaper(b, wn=p[2], zeta=p[3])])
@@ -210,9 +242,24 @@ def _firmware_defined() -> list[Family]:
             for n in KLIPPER_OWN]
 
 
+#: What a firmware runs beyond its named shapers: RepRapFirmware's user-defined shaper (up to
+#: 5 impulses) holds the specified-insensitivity shapers of 3 and 5 impulses, each over the
+#: middle of its span. Klipper, Marlin and Prusa run neither the SI shapers nor the input
+#: smoothers (those are for the C library, the FMUs and Klipper-derived firmware).
+RRF_SI = ((3, 0.75), (5, 1.5))
+
+
+def _firmware_extra(firmware: str):
+    if firmware != "rrf":
+        return []
+    from . import firmware as fw
+    return [(f"rrf custom si (n={n}, {d:g} Td)", fw.rrf_si(n, d)) for n, d in RRF_SI]
+
+
 #: The registry: (minimum number of resonances, factory of families). A new kind of filter
 #: joins every ranking by appending here (:func:`register`).
-_REGISTRY: list = [(1, _library_single), (2, _library_chains), (1, _firmware_defined)]
+_REGISTRY: list = [(1, _library_single), (2, _library_chains), (1, _firmware_defined),
+                   (1, _library_insensitive), (2, _input_smoothers)]
 
 
 def register(factory, min_modes: int = 1) -> None:
@@ -226,7 +273,8 @@ def families(n_modes: int, firmware: str = "none") -> list[Family]:
     family (``firmware="none"``), or the given firmware's own shapers."""
     if firmware != "none":
         from . import firmware as fw
-        return [Family(f"{s.firmware} {s.name}", 1, shaper=s) for s in fw.shapers(firmware)]
+        out = [Family(f"{s.firmware} {s.name}", 1, shaper=s) for s in fw.shapers(firmware)]
+        return out + [Family(name, 1, shaper=s) for name, s in _firmware_extra(firmware)]
     out = []
     for need, factory in _REGISTRY:
         if n_modes >= need:

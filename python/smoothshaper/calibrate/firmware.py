@@ -27,7 +27,7 @@ from ..errors import ParameterError
 from . import firmware_config as _config
 from . import firmware_defs as defs
 
-__all__ = ["FIRMWARES", "FirmwareShaper", "Pick", "ConfigText", "shapers", "by_name",
+__all__ = ["FIRMWARES", "FirmwareShaper", "Pick", "ConfigText", "shapers", "by_name", "rrf_si",
            "klipper_mzv", "klipper_ei", "rrf_custom", "max_accel", "config_text",
            "TARGET_SMOOTHING", "SCV"]
 
@@ -310,6 +310,47 @@ def rrf_custom(A, t=None) -> FirmwareShaper:
     return FirmwareShaper("rrf", "custom", lo, hi, (0.0, 0.99),
                           defs.rrf_custom(a[:-1].tolist(), delays),
                           source=_SHAPERS["rrf"][0].source)
+
+
+def rrf_si(order: int, duration: float) -> FirmwareShaper:
+    """A specified-insensitivity shaper (Singhose, Seering and Singer 1996; the library's
+    ``si`` kind) as RepRapFirmware runs it: its user-defined ``M593 P"custom"`` shaper with the
+    SI impulses of the configured frequency and damping, delays in whole step clocks and the
+    last amplitude ``1 - sum`` of the others (as :func:`rrf_custom`).
+
+    Parameters
+    ----------
+    order : {3, 5}
+        Number of impulses (the firmware runs at most 5).
+    duration : float
+        Span in damped periods, in [(order - 1)/4, (order - 1)/2].
+
+    Returns
+    -------
+    FirmwareShaper
+        Named ``"custom"`` (:func:`config_text` writes ``M593 P"custom" H.. T..``).
+
+    Raises
+    ------
+    ParameterError
+        ``order`` unless 3 or 5, ``duration`` out of its range.
+    """
+    from ..reference.shapers import impulses_unchecked
+    from ..stages import Stage
+    n = integer("order", order)
+    if n not in (3, 5):
+        raise ParameterError("order", f"order must be 3 or 5 for RepRapFirmware's custom shaper "
+                             f"(at most 5 impulses, si takes odd counts), got {order!r}")
+    Stage("si", wn=1.0, order=n, duration=duration)          # validates the span
+
+    def formula(f, zeta):
+        A, t = impulses_unchecked(Stage("si", wn=2 * math.pi * f, zeta=zeta, order=n,
+                                        duration=float(duration)))
+        A = np.asarray(A, float) / float(np.sum(A))
+        return defs.rrf_custom(A[:-1].tolist(), np.asarray(t, float)[1:].tolist())(f, zeta)
+    return FirmwareShaper("rrf", "custom", defs.RRF_MIN_FREQ, 1000.0, (0.0, 0.99), formula,
+                          source=_SHAPERS["rrf"][0].source + "; M593 P\"custom\" with the "
+                          "specified-insensitivity impulses")
 
 
 def _smoothing_terms(A, t, scv):

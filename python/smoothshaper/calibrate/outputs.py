@@ -131,6 +131,8 @@ def axis_json(res, Ts: float) -> dict:
            "ranked_by": res.ranked_by, "ranked_by_figure": (
                "vibration_modal" if res.ranked_by == "modal fit" else "vibration_spectrum"),
            "figures": dict(FIGURES), "notes": list(res.notes),
+           "default_limit": (None if getattr(res, "default_limit", None) is None
+                             else res.default_limit.as_dict()),
            "modes": [m.as_dict() for m in res.modes],
            "candidates": [c.as_dict() for c in res.candidates], "recommended": None}
     if res.record.kind == "raw":
@@ -267,6 +269,9 @@ def report_text(cal, top: int = 12) -> str:
         if cal.max_smoothing is not None:
             limits.append(f"smoothing <= {cal.max_smoothing:g}")
         lim = " and ".join(limits) or "no limits"
+        if getattr(res, "default_limit", None) is not None:
+            lim = (f"delay <= {res.default_limit.max_delay:g} s, the default: the established "
+                   f"trade-off's {res.default_limit.shaper} at {res.default_limit.freq:.1f} Hz")
         if res.recommended is None:
             out.append(f"no candidate meets {lim}: relax --max-delay / --max-smoothing")
         else:

@@ -285,6 +285,8 @@ def _split_close(spec: Spectrum, kept: list[dict], i0: int, i1: int) -> list[dic
             ssr1 = one[1]
             for sep in (0.4, 0.7, 1.0):
                 delta = sep * hp
+                if delta >= 1.0:        # a peak as broad as its frequency: no pair below 0 Hz
+                    continue
                 pair = [dict(d, fn=d["fn"] * (1 - delta), zeta=hp / 2),
                         dict(d, fn=d["fn"] * (1 + delta), zeta=hp / 2)]
                 two = _joint_fit(spec, pair, i0, i1, with_ssr=True, wander=max(delta, 2 * hp),

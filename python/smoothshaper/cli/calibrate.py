@@ -53,10 +53,16 @@ def add_parser(sub) -> None:
                    help="the figure that ranks: auto (default: the modal fit where it explains "
                    "the spectrum, else the measured spectrum), spectrum or modal")
     p.add_argument("--max-delay", type=float, metavar="S",
-                   help="longest filter impulse response allowed [s] (default: no limit)")
+                   help="longest filter impulse response allowed [s] (default, when neither "
+                   "this nor --max-smoothing is given: per axis, the length of the shaper "
+                   "Klipper's calibrate_shaper.py trade-off of remaining vibration against "
+                   "smoothing picks on the record's spectrum, docs/calibrate.md; every "
+                   "candidate then competes within it, so the "
+                   "pick is never longer than that shaper and leaves no more by the ranking "
+                   "figure; without a limit the least vibration is always a longer filter)")
     p.add_argument("--max-smoothing", type=float, metavar="D",
                    help="largest corner rounding allowed (length unit of --accel; default: no "
-                   "limit)")
+                   "limit; giving it replaces the default delay limit)")
     p.add_argument("--accel", type=float, default=3000.0, metavar="A",
                    help="acceleration of the reference move (default 3000, e.g. mm/s^2)")
     p.add_argument("--corner-velocity", type=float, default=5.0, metavar="V",

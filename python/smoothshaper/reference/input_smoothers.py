@@ -24,6 +24,7 @@ is exact polynomial algebra:
 """
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -162,6 +163,19 @@ def _transfer_scalar(q: np.ndarray, a: complex) -> complex:
     return complex(_transfer(q, np.array([a], dtype=complex))[0])
 
 
+def _moment(q, m: int) -> float:
+    """``int_{-1/2}^{1/2} u^m P(u) du`` (the exact moments of u^n: 2^-n/(n+1), n even)."""
+    return sum(c * (0.5 ** (m + j) / (m + j + 1)) for j, c in enumerate(q) if (m + j) % 2 == 0)
+
+
+@functools.lru_cache(maxsize=256)
+def _moments(q: tuple) -> tuple:
+    """The first 96 moments of a kernel (the series of :func:`_transfer` needs about 60 for
+    ``|a| <= 12``; the tuning asks the same kernel hundreds of times), the same floats as
+    :func:`_moment`."""
+    return tuple(_moment(q, m) for m in range(96))
+
+
 def _transfer(q: np.ndarray, a: np.ndarray) -> np.ndarray:
     """:func:`_transfer_scalar` over an array of ``a = s T``: the exponential's series with the
     exact moments of P for ``|a| <= 12``, the closed antiderivative above."""
@@ -175,9 +189,9 @@ def _transfer(q: np.ndarray, a: np.ndarray) -> np.ndarray:
         total = np.zeros(x.shape, dtype=complex)
         term = np.ones(x.shape, dtype=complex)
         m = 0
+        moments = _moments(tuple(float(c) for c in q))
         while m <= 20 or np.max(np.abs(term)) > 1e-18:
-            moment = sum(c * (0.5 ** (m + j) / (m + j + 1)) for j, c in enumerate(q)
-                         if (m + j) % 2 == 0)
+            moment = moments[m] if m < len(moments) else _moment(q, m)
             total += term * moment
             m += 1
             term = term * (-x / m)
