@@ -11,6 +11,6 @@
   random states to every kind of target, one campaign per feature (docs/design.md).
 """
 from .suite import (C_ROWS, C_STEP_ROWS, FOLLOW_ROWS, ROOT, SPEED_BENCH, Table, __all__,  # noqa: F401
-                    c_tables, fmu_table, interleaved, kinematic_call_table, kinematic_parts,
-                    main, memory_tables, python_tables, run_c_bench, trajectory_table,
-                    UNION_STAGE_BYTES)
+                    c_tables, fmu_state_load_table, fmu_table, HAND_WRITTEN, interleaved,
+                    kinematic_call_table, kinematic_parts, main, memory_tables, python_tables,
+                    run_c_bench, STATE_LOAD_BENCH, trajectory_table, UNION_STAGE_BYTES)
