@@ -358,6 +358,29 @@ def test_c_config_snippet_compiles(tmp_path):
                     "-I", str(ROOT / "c" / "include"), str(src)], check=True)
 
 
+def test_c_config_names_every_kind_calibrate_can_pick(tmp_path):
+    """Every family calibrate ranks has its C statements (an SI shaper or an input smoother
+    once ended the report in a KeyError); the snippet of each compiles."""
+    import shutil
+    import subprocess
+    from smoothshaper.calibrate import candidates, outputs
+    cc = shutil.which("cc") or shutil.which("gcc")
+    if cc is None:
+        pytest.skip("no C compiler")
+    body = []
+    for i, fam in enumerate(candidates.families(2)):
+        if fam.build is None:       # a firmware's own shaper: written by its config, not C
+            continue
+        p = [TWO_PI * 40.0, 0.05] * fam.slots + [e[0] for e in fam.extra]
+        c = calibrate.Candidate(fam.name, fam.build(p))
+        body.append("{\n" + outputs.c_config(c, 1e-4, f"a{i}") + f"(void)cfg_a{i};\n}}\n")
+    src = tmp_path / "every_kind.c"
+    src.write_text('#include "smoothshaper/smoothshaper.h"\nint main(void)\n{\n'
+                   + "".join(body) + "return 0;\n}\n")
+    subprocess.run([cc, "-std=c99", "-Wall", "-Werror", "-pedantic", "-fsyntax-only",
+                    "-I", str(ROOT / "c" / "include"), str(src)], check=True)
+
+
 def test_the_established_tools_own_ei_family_is_a_candidate_without_a_firmware():
     """Under --firmware none the candidates hold Klipper's EI family (its fitted polynomials)
     as user-defined impulses: at the design point their impulses are Klipper's exactly."""

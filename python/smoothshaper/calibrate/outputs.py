@@ -19,6 +19,7 @@ import math
 from dataclasses import asdict
 
 from .candidates import Candidate
+from ..stages import INPUT_SMOOTHERS
 
 __all__ = ["C_KIND", "c_config", "c_coeffs", "fmu_start_values", "axis_json", "to_json",
            "write_json", "report_text", "firmware_picks", "firmware_config"]
@@ -29,7 +30,8 @@ C_KIND = {"rectangular": "SMS_RECTANGULAR", "harmonic": "SMS_HARMONIC",
           "zvn": "SMS_SHAPER_ZVN", "ei": "SMS_SHAPER_EI", "ei2": "SMS_SHAPER_EI2",
           "mzv": "SMS_SHAPER_MZV", "ei3": "SMS_SHAPER_EI3", "gmzv": "SMS_SHAPER_GMZV",
           "notch_tustin": "SMS_NOTCH_TUSTIN", "notch_matched": "SMS_NOTCH_MATCHED",
-          "impulses": "SMS_SHAPER_IMPULSES"}
+          "impulses": "SMS_SHAPER_IMPULSES", "si": "SMS_SHAPER_SI",
+          **{k: "SMS_" + k.upper() for k in INPUT_SMOOTHERS}}
 
 
 def c_config(c: Candidate, Ts: float, axis: str) -> str:
@@ -54,11 +56,11 @@ def c_config(c: Candidate, Ts: float, axis: str) -> str:
         else:
             lines.append(f"{v}.wn = {s.wn!r};  /* rad/s ({s.wn / (2 * math.pi):.6g} Hz) */")
             lines.append(f"{v}.zeta = {s.zeta!r};")
-            if s.kind in ("zvn", "gmzv"):
+            if s.kind in ("zvn", "gmzv", "si"):
                 lines.append(f"{v}.order = {s.order}u;")
-            if s.kind in ("ei", "ei2", "ei3"):
+            if s.kind in ("ei", "ei2", "ei3", "si"):
                 lines.append(f"{v}.tolerance = {s.tolerance!r};")
-            if s.kind == "gmzv":
+            if s.kind in ("gmzv", "si"):
                 lines.append(f"{v}.duration = {s.duration!r};  /* damped periods */")
     lines.append(f"/* then: sms_chain_memory_size(cfg_{axis}, {n}, Ts, &need); "
                  f"sms_chain_init(&chain, stages, cfg_{axis}, {n}, Ts, memory, need); */")
