@@ -1097,14 +1097,6 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
         if (st != SMS_OK)
             return snprintf(msg, len, "stage %lu's state is not a retunable stage's",
                             (unsigned long)i), 1;
-        if (!switching && !m->tunables[i].switching
-            && sms_tunable_state_count(&m->tunables[i]) <= m->region[i]
-            && sms_tunable_check_state(&m->tunables[i], part,
-                                       sms_tunable_state_count(&m->tunables[i])) == SMS_OK) {
-            off += m->region[i];
-            at += slots_per_stage(m) * m->slot_cells[i];
-            continue;
-        }
         rebuilt = 1;
         m->input_max_stale = 1;   /* the stage is built again */
         if (sms_tunable_init(&m->tunables[i], switching ? &old : &active, m->Ts, m->slot_cells[i],
