@@ -20,12 +20,11 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..reference import impulse_response, shaper_impulses
-from ..reference.input_smoothers import smoother_kernel
 from ..stages import INPUT_SMOOTHERS, SHAPERS
 from ..reference.continuous import transfer_unchecked
 from ..stages import Stage, for_mode, impulse_shaper, shaper
 from .._checks import positive as _positive
-from .design_memo import impulses, zv_span
+from .design_memo import impulses, kernel, zv_span
 from .objectives import BOX, impulses_R2, stages_R2, taps_R2
 
 __all__ = ["BOX", "Reference", "Candidate", "chain_taps", "candidate_taps", "impulse_taps",
@@ -137,7 +136,7 @@ def duration(stages, Ts: float) -> float:
     n = 0
     for s in stages:
         if s.kind in INPUT_SMOOTHERS:   # every sample of the kernel's span a tap
-            n += math.ceil(smoother_kernel(s)[1] / Ts - 1e-9)
+            n += math.ceil(kernel(s)[1] / Ts - 1e-9)
         elif s.kind in _SMOOTHING_ORDER:
             n += math.floor(s.T / Ts + 1e-9)
         elif s.kind in _ZVN_ORDER:      # exact ZV^n: n convolved exact ZVs

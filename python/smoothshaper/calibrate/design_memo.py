@@ -11,9 +11,12 @@ from __future__ import annotations
 import math
 from functools import lru_cache
 
+import numpy as np
+
+from ..reference.input_smoothers import _transfer, smoother_kernel
 from ..reference.shapers import _pole, impulses_unchecked
 
-__all__ = ["impulses", "zv_span"]
+__all__ = ["impulses", "kernel", "smoother_R", "zv_span"]
 
 #: The second ask follows the first within one design: a short memory is enough (a few
 #: thousand designs' arrays would be held for nothing).
@@ -28,6 +31,21 @@ def impulses(stage):
     A.setflags(write=False)
     t.setflags(write=False)
     return A, t
+
+
+@lru_cache(maxsize=_SIZE)
+def kernel(stage):
+    """``smoother_kernel`` of an input smoother Stage, remembered as :func:`impulses` is (the
+    tuning loop asks it for the length, then for the transfer)."""
+    q, T = smoother_kernel(stage)
+    q.setflags(write=False)
+    return q, T
+
+
+def smoother_R(stage, poles):
+    """``smoother_transfer(stage, poles)`` from the remembered kernel (the same floats)."""
+    q, T = kernel(stage)
+    return _transfer(q, np.asarray(poles, dtype=complex) * T)
 
 
 def zv_span(stage) -> float:

@@ -30,9 +30,9 @@ import math
 
 import numpy as np
 
-from .design_memo import impulses
+from .design_memo import impulses, smoother_R
 from ..reference.continuous import transfer_unchecked
-from ..stages import SHAPERS
+from ..stages import INPUT_SMOOTHERS, SHAPERS
 
 __all__ = ["BOX", "pole", "ModalObjective", "SpectralObjective", "taps_R2", "stages_R2"]
 
@@ -91,6 +91,8 @@ def stages_R2(stages, poles: np.ndarray) -> np.ndarray:
         if s.kind in SHAPERS:
             A, t = impulses(s)
             H *= np.exp(-np.outer(poles, t)) @ A
+        elif s.kind in INPUT_SMOOTHERS:
+            H *= smoother_R(s, poles)
         else:
             H *= transfer_unchecked(s, poles)
     return np.abs(H) ** 2

@@ -41,6 +41,7 @@ that pins ``H(z_p) = H_c(p)``; ZV^n is the n-fold convolution of the exact ZV.
 """
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -190,6 +191,14 @@ def si_undamped(order: int, duration: float, tolerance: float
     ParameterError
         Naming ``order``, ``duration`` or ``tolerance`` when out of range.
     """
+    A, units, I = _si_undamped(order, float(duration), float(tolerance))
+    return A.copy(), units.copy(), I
+
+
+@functools.lru_cache(maxsize=256)
+def _si_undamped(order: int, duration: float, tolerance: float):
+    """:func:`si_undamped`, remembered (read-only arrays): the design is a root search and
+    the tuning of a damping asks the same span and tolerance at every frequency."""
     from scipy.optimize import brentq
     if order not in (3, 5, 7, 9):
         raise ParameterError("order", f"order must be 3, 5, 7 or 9 for si, got {order!r}")
@@ -225,7 +234,11 @@ def si_undamped(order: int, duration: float, tolerance: float
     A[(A < 0) & (A >= -1e-12 * np.abs(A).max())] = 0.0     # an exact 0 at duration = d/2
     if np.any(A < 0):
         raise ParameterError("duration", f"duration {duration!r} gives a negative impulse")
-    return A / A.sum(), duration * np.arange(order) / (2.0 * d), float(I)
+    A = A / A.sum()
+    units = duration * np.arange(order) / (2.0 * d)
+    A.setflags(write=False)
+    units.setflags(write=False)
+    return A, units, float(I)
 
 
 def mode_pole(wn: float, zeta: float) -> complex:
