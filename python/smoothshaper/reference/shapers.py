@@ -143,6 +143,14 @@ def gmzv_undamped(n: int, duration: float) -> tuple[np.ndarray, np.ndarray]:
         Naming ``duration`` when the least-squares amplitudes go negative (in practice
         duration < 0.5).
     """
+    A, units = _gmzv_undamped(n, float(duration))
+    return A.copy(), units.copy()
+
+
+@functools.lru_cache(maxsize=256)
+def _gmzv_undamped(n: int, duration: float):
+    """:func:`gmzv_undamped`, remembered (read-only arrays): a least-squares solve the tuning
+    of a damping asks at every frequency for one span."""
     units = duration * np.arange(n) / (n - 1.0)
     tau = duration * (n - 2.0) / (n - 2.0 * duration - 1.0)
     w = 2.0 * math.pi * (1.0 + np.arange(n - 1)[:, None] / tau) * units[None, :]
@@ -154,7 +162,10 @@ def gmzv_undamped(n: int, duration: float) -> tuple[np.ndarray, np.ndarray]:
         raise ParameterError(
             "duration", f"duration {duration!r} gives a negative impulse for gmzv with {n} "
                         "impulses (the least-squares design needs duration > 0.5 damped periods)")
-    return A / A.sum(), units
+    A = A / A.sum()
+    A.setflags(write=False)
+    units.setflags(write=False)
+    return A, units
 
 
 def si_undamped(order: int, duration: float, tolerance: float
