@@ -10,7 +10,9 @@
 # doxygen is installed on its own first, so an unavailable cross tool cannot keep it out.
 set -euo pipefail
 have_cross_tools() {
-    command -v x86_64-w64-mingw32-gcc >/dev/null && command -v wine64 >/dev/null \
+    # Debian's wine64 package puts wine64 in /usr/lib/wine, off PATH (the tests look there).
+    command -v x86_64-w64-mingw32-gcc >/dev/null \
+        && { command -v wine64 >/dev/null || [ -x /usr/lib/wine/wine64 ]; } \
         && command -v arm-none-eabi-gcc >/dev/null
 }
 if command -v doxygen >/dev/null && have_cross_tools; then

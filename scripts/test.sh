@@ -14,6 +14,10 @@ python -m pip install -q --upgrade pip
 # Editable install: builds the cffi extensions smoothshaper._core/_core_float from c/src.
 python -m pip install -q -e ".[test,docs]"
 
+# The load average, so that the step times below can be read on a shared machine.
+load() { cut -d' ' -f1-3 /proc/loadavg 2>/dev/null || echo unknown; }
+printf '== [%4d s] set up; load average %s\n' $((SECONDS - start)) "$(load)"
+
 # Every suite runs even if an earlier one fails, so one report shows all failures. Each step
 # prints the time since the start.
 failed=()
@@ -52,7 +56,7 @@ step "wheel in a fresh venv" bash tests/install/fresh_venv.sh
 
 pytest_rc=0
 wait "$pytest_pid" || pytest_rc=$?
-printf '== [%4d s] pytest (finished)\n' $((SECONDS - start))
+printf '== [%4d s] pytest (finished); load average %s\n' $((SECONDS - start)) "$(load)"
 cat build/pytest.log
 # An empty collection (pytest exit code 5) must fail loudly, never pass as "nothing to do".
 if [ "$pytest_rc" -eq 5 ]; then
