@@ -14,29 +14,12 @@ from smoothshaper.bench import targets as bt
 from smoothshaper.errors import ParameterError
 from smoothshaper.trajectory import Generator, generator_reference
 
+from generator_sequences import pad, sequence
+
 pytest.importorskip("ruckig")
 
 # a vertical axis: fast up, slow down; braking downwards gently
 LIM = dict(vmax=1.0, amax=10.0, jmax=100.0, vmin=-0.25, amin=-2.5)
-
-
-def _sequence(rng, n_blocks, lim):
-    """Per-sample targets of every kind within the asymmetric bounds, held 1 to 150 samples
-    (a third with a minimum duration of up to 0.4 s)."""
-    pos, vel, acc, itf, stop, tmin = [], [], [], [], [], []
-    for _ in range(n_blocks):
-        k = int(rng.integers(1, 150))
-        kind = rng.choice(3, p=[0.55, 0.35, 0.10])
-        v, a = bt._state(rng, lim["vmax"], lim["amax"], lim["jmax"], True, lim["vmin"],
-                         lim["amin"])
-        pos += [rng.uniform(-2, 2)] * k
-        vel += [v] * k
-        acc += [a] * k
-        itf += ["velocity" if kind == 1 else "position"] * k
-        stop += [kind == 2] * k
-        tmin += [rng.uniform(0, 0.4) if rng.random() < 1 / 3 else 0.0] * k
-    return (np.array(pos), np.array(vel), np.array(acc), np.array(itf), np.array(stop),
-            np.array(tmin))
 
 
 @pytest.mark.parametrize("profile,mode", [("polynomial", {}), ("damped", dict(wn=60.0, zeta=0.05))])
@@ -46,12 +29,8 @@ def test_c_equals_the_reference_with_asymmetric_limits(profile, mode):
     every sample of both within the bounds exactly (v and a are held to them)."""
     rng = np.random.default_rng(7)
     for _ in range(4):
-        pos, vel, acc, itf, stop, tmin = _sequence(rng, 14, LIM)
-        pad = 12000                                  # 2 units down at 0.25 unit/s
-        pos = np.r_[pos, np.full(pad, 0.3)]
-        vel, acc = np.r_[vel, np.zeros(pad)], np.r_[acc, np.zeros(pad)]
-        itf, stop = np.r_[itf, ["position"] * pad], np.r_[stop, np.zeros(pad, bool)]
-        tmin = np.r_[tmin, np.zeros(pad)]
+        # 12000 samples: 2 units down at 0.25 unit/s
+        pos, vel, acc, itf, stop, tmin = pad(sequence(rng, 14, **LIM), 12000, 0.3)
         kw = dict(Ts=1e-3, profile=profile, **LIM, **mode)
         y = Generator(**kw).process(pos, velocity=vel, acceleration=acc, interface=itf,
                                     stop=stop, minimum_duration=tmin)

@@ -18,6 +18,8 @@ from smoothshaper.bench import targets as bt
 from smoothshaper.errors import ParameterError
 from smoothshaper.trajectory import Generator, generator_reference
 
+from generator_sequences import pad, sequence
+
 pytest.importorskip("ruckig")
 
 
@@ -41,28 +43,6 @@ def test_campaign_full(feature, precision):
     _assert_campaign(bt.campaign(feature, 10000, seed=1, precision=precision))
 
 
-def _sequence(rng, n_blocks, profile):
-    """Per-sample targets of every kind, held 1 to 150 samples each (a third of them with a
-    minimum duration of up to 0.4 s, but for the trigonometric profile)."""
-    V, A, J = 1.0, 10.0, 100.0
-    pos, vel, acc, itf, stop, tmin = [], [], [], [], [], []
-    for _ in range(n_blocks):
-        k = int(rng.integers(1, 150))
-        kind = rng.choice(3, p=[0.55, 0.35, 0.10])
-        v, a = bt._state(rng, V, A, J, True)
-        if profile == "trigonometric":
-            a, v = 0.0, (0.0 if kind == 0 else v)
-        pos += [rng.uniform(-2, 2)] * k
-        vel += [v] * k
-        acc += [a] * k
-        itf += ["velocity" if kind == 1 else "position"] * k
-        stop += [kind == 2] * k
-        stretch = profile != "trigonometric" and rng.random() < 1 / 3
-        tmin += [rng.uniform(0, 0.4) if stretch else 0.0] * k
-    return (np.array(pos), np.array(vel), np.array(acc), np.array(itf), np.array(stop),
-            np.array(tmin))
-
-
 @pytest.mark.parametrize("profile,mode", [("polynomial", {}), ("trigonometric", {}),
                                           ("damped", dict(wn=60.0, zeta=0.05))])
 def test_c_equals_the_reference_on_every_kind_of_target(profile, mode):
@@ -70,11 +50,8 @@ def test_c_equals_the_reference_on_every_kind_of_target(profile, mode):
     at the odd breakpoint within rounding of a sample (the two may take opposite sides)."""
     rng = np.random.default_rng(4)
     for _ in range(6):
-        pos, vel, acc, itf, stop, tmin = _sequence(rng, 14, profile)
-        pos = np.r_[pos, np.full(3000, 0.3)]
-        vel, acc = np.r_[vel, np.zeros(3000)], np.r_[acc, np.zeros(3000)]
-        itf, stop = np.r_[itf, ["position"] * 3000], np.r_[stop, np.zeros(3000, bool)]
-        tmin = np.r_[tmin, np.zeros(3000)]
+        seq = sequence(rng, 14, profile=profile)
+        pos, vel, acc, itf, stop, tmin = pad(seq, 3000, 0.3)
         kw = dict(vmax=1.0, amax=10.0, jmax=100.0, Ts=1e-3, profile=profile, **mode)
         y = Generator(**kw).process(pos, velocity=vel, acceleration=acc, interface=itf,
                                     stop=stop, minimum_duration=tmin)
