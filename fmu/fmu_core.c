@@ -257,6 +257,13 @@ fmu_status fmu_exit_initialization(fmu_instance *c, const char *func)
     int built;
     msg[0] = '\0';
     c->values.valid = 0;
+    {
+        const double Ts = fmu_model_sample_period(c->model);
+        if (isfinite(Ts) && Ts > SMS_TS_MAX) /* NaN, infinities: the model names them */
+            return FAIL(c, "%s: Ts = %.17g is above %.17g (SMS_TS_MAX): 2^56 Ts, the longest "
+                        "sum of tick and duration times in a state, would overflow", func, Ts,
+                        SMS_TS_MAX);
+    }
     built = fmu_build(&c->host, c->model, &c->mem, &c->mem_bytes, msg, sizeof msg);
     if (built > 0)
         return FAIL(c, "%s: %s", func, msg);

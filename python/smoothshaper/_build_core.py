@@ -39,7 +39,8 @@ _STD_HEADERS = ("stddef.h", "stdint.h", "stdbool.h", "limits.h", "float.h", "mat
                 "string.h", "stdlib.h")
 # Object-like macros with a value (function-like macros and SMS_API are not constants).
 _DEFINE = re.compile(r"^\s*#\s*define\s+(SMS_[A-Z0-9_]+)[ \t]+(\S.*?)\s*(?:/[*/].*)?$")
-_FLOAT_LITERAL = re.compile(r"(?<![xX0-9A-Fa-f])(?:\d+\.\d*|\.\d+|\d+[eE][-+]?\d+)")
+_FLOAT_LITERAL = re.compile(r"(?<![xX0-9A-Fa-f])(?:\d+\.\d*|\.\d+|\d+[eE][-+]?\d+)"
+                            r"|\b0[xX][0-9A-Fa-f.]+[pP][-+]?\d+")
 
 
 def _compiler() -> list[str]:

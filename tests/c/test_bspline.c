@@ -154,6 +154,8 @@ static void test_bad_input(void)
     CHECK_STATUS(sms_bspline_buffer_size(3, 1, NAN, 1e-3, &need), SMS_ERR_DURATION);
     CHECK_STATUS(sms_bspline_buffer_size(3, 1, 1e-4, 1e-3, &need), SMS_ERR_DURATION_BELOW_TS);
     CHECK_STATUS(sms_bspline_buffer_size(3, 1, 0.1, -1.0, &need), SMS_ERR_SAMPLE_PERIOD);
+    CHECK_STATUS(sms_bspline_buffer_size(3, 1, 1e300, nextafter(SMS_TS_MAX, HUGE_VAL), &need),
+                 SMS_ERR_SAMPLE_PERIOD_RANGE);
     CHECK(need == 77);
     CHECK_STATUS(sms_bspline_buffer_size(3, 1, 0.1, 1e-3, &need), SMS_OK);
     CHECK_STATUS(sms_bspline_init(&b, 3, 1, 0.1, 1e-3, buffer, need - 1), SMS_ERR_BUFFER_TOO_SMALL);

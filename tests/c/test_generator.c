@@ -531,6 +531,17 @@ static void test_state_and_bad_input(void)
     CHECK_STATUS(sms_generator_buffer_size(&c, 1e-3, &need), SMS_ERR_LIMIT);
     c.jmax = 100.0;
     CHECK_STATUS(sms_generator_buffer_size(&c, 0.0, &need), SMS_ERR_SAMPLE_PERIOD);
+    /* Ts up to SMS_TS_MAX (2^53 Ts must stay finite); the float build takes a Ts its floats
+     * hold, the tighter bound there */
+    CHECK_STATUS(sms_generator_buffer_size(&c, nextafter(SMS_TS_MAX, HUGE_VAL), &need),
+                 sizeof(sms_real) == sizeof(double) ? SMS_ERR_SAMPLE_PERIOD_RANGE
+                                                    : SMS_ERR_SAMPLE_PERIOD);
+    CHECK_STATUS(sms_generator_buffer_size(&c, DBL_MAX, &need),
+                 sizeof(sms_real) == sizeof(double) ? SMS_ERR_SAMPLE_PERIOD_RANGE
+                                                    : SMS_ERR_SAMPLE_PERIOD);
+    CHECK_STATUS(sms_generator_buffer_size(&c, sizeof(sms_real) == sizeof(double) ? SMS_TS_MAX
+                                                                                  : 1e30, &need),
+                 SMS_OK);
     CHECK_STATUS(sms_generator_buffer_size(&c, 0.5, &need), SMS_OK); /* any Ts: no stage */
     CHECK(need == 0u);
     c.profile = SMS_PROFILE_TRIGONOMETRIC;

@@ -4,6 +4,7 @@
  * and mid-motion changes (limits, exact arrival), independent axes, bad input. Fixed seeds. */
 #include <stdlib.h>
 #include <string.h>
+#include <float.h>
 #include "check.h"
 #include "multi_config.h"
 
@@ -314,6 +315,19 @@ static void bad_input(void)
     CHECK(bad == 2);
     c.jmax[2] = 1.0;
     CHECK_STATUS(sms_multi_generator_init(&g, &c, 0.0, NULL, 0, NULL, 0, NULL), SMS_ERR_SAMPLE_PERIOD);
+    /* 2^53 Ts must stay finite (a state's durations are held to it): the largest double and
+     * anything above SMS_TS_MAX are refused, SMS_TS_MAX itself builds */
+    CHECK_STATUS(sms_multi_generator_init(&g, &c, DBL_MAX, NULL, 0, NULL, 0, NULL),
+                 SMS_ERR_SAMPLE_PERIOD_RANGE);
+    CHECK_STATUS(sms_multi_generator_init(&g, &c, nextafter(SMS_TS_MAX, HUGE_VAL), NULL, 0, NULL,
+                                          0, NULL), SMS_ERR_SAMPLE_PERIOD_RANGE);
+    CHECK(isfinite(9007199254740992.0 * 8.0 * SMS_TS_MAX));
+    {   /* the float build: the generators take a Ts its floats hold, the tighter bound */
+        sms_multi_generator big;
+        CHECK_STATUS(sms_multi_generator_init(&big, &c, sizeof(sms_real) == sizeof(double)
+                                              ? SMS_TS_MAX : 1e30, NULL, 0, NULL, 0, NULL),
+                     SMS_OK);
+    }
     c.n_axes = 0;
     CHECK_STATUS(sms_multi_generator_init(&g, &c, 1e-3, NULL, 0, NULL, 0, NULL), SMS_ERR_ORDER);
     c.n_axes = SMS_MULTI_MAX_AXES + 1;

@@ -21,6 +21,7 @@
 #include <string.h>
 
 #include "fmi2Functions.h"
+#include "smoothshaper/types.h"
 #include "SmoothShaper_variables.h"
 #include "fmu_test_callbacks.h"
 #include "fmu_test_probe.h"
@@ -106,31 +107,33 @@ static long long_steps_reload(void)
     return bad;
 }
 
-/* With Ts = 1e306 two steps of 1.5e308 s would end beyond the largest double: the second is
- * refused (its end time would be inf, and no saved state could hold that clock), and the state
- * after the first loads again. Returns the number of failed checks. */
+/* With the largest Ts (SMS_TS_MAX = 2^967, 1.25e291 s: ticks below FMU_MAX_TICK_INDEX then
+ * span at most 5e306 s) and a start time 7e305 s below the largest double, a step of 2e305 s
+ * and then one of 4e306 s would end beyond the largest double: the second is refused (its end
+ * time would be inf, and no saved state could hold that clock), and the state after the first
+ * loads again. Returns the number of failed checks. */
 static long step_beyond_the_largest_double(void)
 {
     const fmi2ValueReference vr_ts = SS_VR_TS, vr_T = SS_STAGE_BASE + SS_FIELD_T;
     const fmi2ValueReference vr_kind1 = SS_STAGE_BASE + SS_STAGE_STRIDE + SS_FIELD_KIND;
     const fmi2Integer none = SS_KIND_NONE;   /* stage 0 a moving average of 2 Ts, no stage 1 */
-    const double Ts = 1e306, T = 2e306;
+    const double Ts = SMS_TS_MAX, T = 2.0 * SMS_TS_MAX, t0 = 1.79e308, h1 = 2e305, h2 = 4e306;
     fmi2Component c = fmi2Instantiate("clock", fmi2CoSimulation, FMU_MODEL_GUID, "", &callbacks,
                                       fmi2False, fmi2False);
     fmi2FMUstate s = NULL, back = NULL;
     unsigned char blob[4096];
     size_t size = 0;
     long bad = 0;
-    if (c == NULL || fmi2SetupExperiment(c, fmi2False, 0.0, 0.0, fmi2False, 0.0) != fmi2OK
+    if (c == NULL || fmi2SetupExperiment(c, fmi2False, 0.0, t0, fmi2False, 0.0) != fmi2OK
         || fmi2EnterInitializationMode(c) != fmi2OK
         || fmi2SetInteger(c, &vr_kind1, 1, &none) != fmi2OK
         || fmi2SetReal(c, &vr_ts, 1, &Ts) != fmi2OK
         || fmi2SetReal(c, &vr_T, 1, &T) != fmi2OK || fmi2ExitInitializationMode(c) != fmi2OK
-        || fmi2DoStep(c, 0.0, 1.5e308, fmi2True) != fmi2OK) {
+        || fmi2DoStep(c, t0, h1, fmi2True) != fmi2OK) {
         fmi2FreeInstance(c);
         return 1;
     }
-    bad += fmi2DoStep(c, 1.5e308, 1.5e308, fmi2True) != fmi2Error;
+    bad += fmi2DoStep(c, t0 + h1, h2, fmi2True) != fmi2Error;
     bad += fmi2GetFMUstate(c, &s) != fmi2OK || fmi2SerializedFMUstateSize(c, s, &size) != fmi2OK
            || size > sizeof blob || fmi2SerializeFMUstate(c, s, (fmi2Byte *)blob, size) != fmi2OK
            || fmi2DeSerializeFMUstate(c, (fmi2Byte *)blob, size, &back) != fmi2OK;

@@ -249,3 +249,18 @@ def test_smoothshaper_retune_in_step_mode_equals_fmi2(fmus, fmus3, tmp_path):  #
         s3.fmu.setFloat64([wn], [1.0])   # a ZV at 1 rad/s lasts far beyond retune_max_delay
     assert "stage[1].wn" in s3.messages[-1] and "retune_max_delay" in s3.messages[-1]
     assert s3.fmu.getFloat64([wn]) == [260.0]
+
+
+@pytest.mark.parametrize("Ts", [1.7976931348623157e308, 2.0 ** 967 * (1 + 2.0 ** -52)])
+def test_every_model_refuses_a_Ts_above_SMS_TS_MAX_naming_it(fmus3, Ts):
+    """2^53 Ts (the longest time a state holds) must stay finite: every FMI 3.0 model refuses
+    Ts > SMS_TS_MAX = 2^967 at ExitInitializationMode, the logger naming Ts and the bound."""
+    from fmpy import simulate_fmu
+    from fmpy.fmi1 import FMICallException
+    for name, path in fmus3.items():
+        messages = []
+        with pytest.raises(FMICallException):
+            simulate_fmu(str(path), start_values={"Ts": Ts}, stop_time=1e-2,
+                         logger=lambda *a: messages.append(a[-1].decode()))
+        assert any(f"Ts = {Ts!r}" in m and "(SMS_TS_MAX)" in m for m in messages), (name,
+                                                                                 messages)

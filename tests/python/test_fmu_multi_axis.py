@@ -196,7 +196,10 @@ def start(fmu, **values):
     ("stage[1].kind[2]", -2, "stage[1].kind[2] = -2"),
     ("stage[0].wn[1]", 5000.0, "stage[0].wn[1]"), ("stage[0].wn[1]", 0.0, "stage[0].wn[1]"),
     ("stage[1].zeta[0]", 1.0, "stage[1].zeta[0]"),
-    ("stage[0].wn[0]", 1e-9, "stage[0].wn[0]")])
+    ("stage[0].wn[0]", 1e-9, "stage[0].wn[0]"),
+    # 2^53 Ts (the longest duration a state holds) must stay finite: Ts <= SMS_TS_MAX = 2^967
+    ("Ts", 1.7976931348623157e308, "Ts = 1.7976931348623157e+308 is above"),
+    ("Ts", 2.0 ** 967 * (1 + 2.0 ** -52), "(SMS_TS_MAX)")])
 def test_bad_parameters_fail_naming_the_variable(multi_dir, name, value, expected):
     log = Logged()
     fmu = slave(multi_dir, "bad", logged=log)

@@ -3,6 +3,7 @@
 sample, straight line, limits at every sample, duration), staircases with reversals and
 mid-motion changes (limits, exact arrival, C == NumPy reference), independent axes, errors."""
 import math
+import sys
 import os
 import warnings
 
@@ -201,6 +202,8 @@ def test_last_jerk_phase_on_a_sample_keeps_amax(precision, u):
     (dict(jmax=[1, float("nan"), 1]), "jmax[1]"),
     (dict(amax=[1, 1]), "amax"),
     (dict(Ts=0.0), "Ts"),
+    (dict(Ts=sys.float_info.max), "Ts"),            # 2^53 Ts overflows: above SMS_TS_MAX
+    (dict(Ts=math.ldexp(1.0, 967) * (1 + 2 ** -52)), "Ts"),  # just above SMS_TS_MAX = 2^967
     (dict(sync="sideways"), "sync"),
     (dict(vmax=[1] * 9, amax=1, jmax=1), "vmax"),
     (dict(q0=[0, float("inf"), 0]), "q0"),

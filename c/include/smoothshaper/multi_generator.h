@@ -284,14 +284,16 @@ typedef struct sms_multi_generator {
  * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_ORDER (n_axes), ::SMS_ERR_SAMPLE_PERIOD,
  *         ::SMS_ERR_LIMIT.
  * @param config the axes' limits (sync and stages are not read)
- * @param Ts     sample period [s], finite, > 0
+ * @param Ts     sample period [s], finite, > 0,
+ *               at most ::SMS_TS_MAX (a larger one: ::SMS_ERR_SAMPLE_PERIOD_RANGE)
  */
 SMS_API sms_status sms_multi_generator_reach(const sms_multi_generator_config *config, double Ts,
                                              sms_generator_reach_info *reach, size_t *axis);
 /**
  * @brief Caller memory a configuration needs (size query, O(stages) closed form).
  * @param config   limits and stages (see ::sms_multi_generator_config)
- * @param Ts       sample period [s], finite and > 0
+ * @param Ts       sample period [s], finite and > 0,
+ *                 at most ::SMS_TS_MAX (a larger one: ::SMS_ERR_SAMPLE_PERIOD_RANGE)
  * @param n_stage_structs receives the ::sms_stage count: 4 sum_i n_stages[i] (0: no stages)
  * @param n_cells  receives the ::sms_memory_cell count of the stages' instances, tap tables
  *                 and delay lines: 4 sum_i sms_chain_memory_size(stages[i]), and with align
@@ -307,7 +309,8 @@ SMS_API sms_status sms_multi_generator_memory(const sms_multi_generator_config *
  * generator rests at 0 on every axis.
  * @param g       caller-owned generator
  * @param config  limits and stages (see ::sms_multi_generator_config for ranges)
- * @param Ts      sample period [s], finite and > 0
+ * @param Ts      sample period [s], finite and > 0,
+ *                at most ::SMS_TS_MAX (a larger one: ::SMS_ERR_SAMPLE_PERIOD_RANGE)
  * @param stages  caller memory of n_stage_structs ::sms_stage (sms_multi_generator_memory());
  *                may be NULL when no axis has stages
  * @param n_stage_structs its length

@@ -507,7 +507,8 @@ typedef struct sms_generator_reach_info {
  *               of range with its value and bound.
  * @return ::SMS_OK, ::SMS_ERR_NULL (config), ::SMS_ERR_SAMPLE_PERIOD, ::SMS_ERR_LIMIT.
  * @param config the limits and the profile
- * @param Ts     sample period [s], finite, > 0
+ * @param Ts     sample period [s], finite, > 0,
+ *               at most ::SMS_TS_MAX (a larger one: ::SMS_ERR_SAMPLE_PERIOD_RANGE)
  */
 SMS_API sms_status sms_generator_reach(const sms_generator_config *config, double Ts,
                                        sms_generator_reach_info *reach);
@@ -521,7 +522,8 @@ SMS_API sms_status sms_generator_reach(const sms_generator_config *config, doubl
  *         ::SMS_ERR_ABOVE_NYQUIST (wn >= pi/Ts), ::SMS_ERR_DURATION_BELOW_TS (the tuned
  *         stage shorter than a sample), ::SMS_ERR_TOO_LONG (the tuned stage too long).
  * @param config the limits and the optional mode (ranges in ::sms_generator_config)
- * @param Ts     sample period [s], finite, > 0
+ * @param Ts     sample period [s], finite, > 0,
+ *               at most ::SMS_TS_MAX (a larger one: ::SMS_ERR_SAMPLE_PERIOD_RANGE)
  * @param n_reals receives 4 M (0 without a mode)
  */
 SMS_API sms_status sms_generator_buffer_size(const sms_generator_config *config, double Ts,
@@ -530,7 +532,8 @@ SMS_API sms_status sms_generator_buffer_size(const sms_generator_config *config,
  * @return as sms_generator_buffer_size(), plus ::SMS_ERR_BUFFER_TOO_SMALL. Untouched on error.
  * @param g      instance to fill; untouched on error
  * @param config the limits and the optional mode
- * @param Ts     sample period [s], finite, > 0
+ * @param Ts     sample period [s], finite, > 0,
+ *               at most ::SMS_TS_MAX (a larger one: ::SMS_ERR_SAMPLE_PERIOD_RANGE)
  * @param buffer the tuned stage's rings, kept by g (NULL allowed without a mode)
  * @param n_reals reals in buffer, >= sms_generator_buffer_size()
  */
@@ -788,7 +791,8 @@ typedef struct sms_bspline {
  * @param degree  p, 1 .. ::SMS_BSPLINE_MAX_DEGREE
  * @param n_axes  1 .. ::SMS_BSPLINE_MAX_AXES
  * @param T       knot spacing [s], finite, >= Ts (the rule of config.h)
- * @param Ts      sample period [s], finite, > 0
+ * @param Ts      sample period [s], finite, > 0,
+ *                at most ::SMS_TS_MAX (a larger one: ::SMS_ERR_SAMPLE_PERIOD_RANGE)
  * @param n_reals receives n_axes p N
  */
 SMS_API sms_status sms_bspline_buffer_size(unsigned degree, size_t n_axes, double T, double Ts,
@@ -799,7 +803,8 @@ SMS_API sms_status sms_bspline_buffer_size(unsigned degree, size_t n_axes, doubl
  * @param degree  p, 1 .. ::SMS_BSPLINE_MAX_DEGREE
  * @param n_axes  1 .. ::SMS_BSPLINE_MAX_AXES
  * @param T       knot spacing [s], finite, >= Ts
- * @param Ts      sample period [s], finite, > 0
+ * @param Ts      sample period [s], finite, > 0,
+ *                at most ::SMS_TS_MAX (a larger one: ::SMS_ERR_SAMPLE_PERIOD_RANGE)
  * @param buffer  the stages' delay lines, kept by b
  * @param n_reals reals in buffer, >= sms_bspline_buffer_size()
  * @return as sms_bspline_buffer_size(), or ::SMS_ERR_BUFFER_TOO_SMALL

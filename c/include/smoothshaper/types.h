@@ -51,6 +51,22 @@ typedef double sms_real;  /**< signal and state type (double build) */
 #endif
 
 /**
+ * @brief Largest sample period [s] the generators (sms_generator_init(),
+ * sms_multi_generator_init(), sms_bspline_init()) and the FMUs take: 2^-56 times the largest
+ * double, rounded down to a power of two (2^967 = 1.25e291 s), in both builds (Ts, the times
+ * derived from it and a state's values are doubles in both).
+ *
+ * The bound comes from the time arithmetic. A move's durations and a state's times are held to
+ * 2^53 samples (the counts stay exact as doubles), so each is at most 2^53 Ts; a move adds up
+ * to 5 of them (its ramps, cruise and the first sample's offset) and the FMU's clock adds
+ * the start time to ticks Ts with ticks below 2^52. With 2^56 Ts no larger than the largest
+ * double all of these sums are finite; a larger Ts makes 2^53 Ts itself overflow
+ * (Ts = DBL_MAX), and a state check could no longer bound a duration. A larger Ts is refused
+ * with ::SMS_ERR_SAMPLE_PERIOD_RANGE.
+ */
+#define SMS_TS_MAX 0x1p967
+
+/**
  * @brief Result of every function that can fail. ::SMS_OK is 0, errors are negative and each
  * names the offending argument. On any error the object passed in is left untouched.
  */
@@ -126,8 +142,10 @@ typedef enum sms_status {
                                           they do not sum to > 0 */
     SMS_ERR_IMPULSE_TIME = -51,     /**< user-defined impulses: a time is NaN/Inf or < 0, or
                                          the times do not strictly increase */
-    SMS_ERR_TARGET_SYNC = -52       /**< a multi-axis target's per-axis synchronisation is not
+    SMS_ERR_TARGET_SYNC = -52,      /**< a multi-axis target's per-axis synchronisation is not
                                          one the generator's mode takes (::sms_sync) */
+    SMS_ERR_SAMPLE_PERIOD_RANGE = -55 /**< a generator's Ts is above ::SMS_TS_MAX: its tick and
+                                           duration arithmetic (2^56 Ts) would overflow */
 } sms_status;
 
 /** @brief Stage families. Values are stable (the FMU enumeration and saved states use them). */

@@ -74,6 +74,8 @@ const char *sms_status_string(sms_status status)
         return "impulse times must be finite, >= 0 and strictly increasing";
     case SMS_ERR_TARGET_SYNC:
         return "a target's per-axis synchronisation is not one the generator's mode takes";
+    case SMS_ERR_SAMPLE_PERIOD_RANGE:
+        return "Ts must be at most SMS_TS_MAX (2^56 Ts, the longest time sum, would overflow)";
     }
     return "unknown status";
 }

@@ -16,6 +16,8 @@ static sms_status knot_samples(unsigned degree, size_t n_axes, double T, double 
         return SMS_ERR_ORDER;
     if (!isfinite(Ts) || !(Ts > 0.0))
         return SMS_ERR_SAMPLE_PERIOD;
+    if (!(Ts <= SMS_TS_MAX))
+        return SMS_ERR_SAMPLE_PERIOD_RANGE;
     if (!isfinite(T) || !(T > 0.0))
         return SMS_ERR_DURATION;
     /* The rule of every duration: T below Ts is refused; T within the grid tolerance (1e-9

@@ -131,6 +131,10 @@ sms_status sms_generator_reach(const sms_generator_config *c, double Ts,
         (void)sms_reach_refused(r, "Ts", "Ts", Ts, big);
         return SMS_ERR_SAMPLE_PERIOD;
     }
+    if (!(Ts <= SMS_TS_MAX)) {
+        (void)sms_reach_refused(r, "Ts", "Ts", Ts, SMS_TS_MAX);
+        return SMS_ERR_SAMPLE_PERIOD_RANGE;
+    }
     {
         static const char *const names[3] = {"vmax", "amax", "jmax"};
         const double limit[3] = {c->vmax, c->amax, c->jmax};

@@ -299,12 +299,12 @@ sms_status sms_multi_generator_check_state(const sms_multi_generator *g, const d
             return SMS_ERR_STATE;
     }
     for (i = 0; i < move_count(g) && !SMS_SYNC_PER_AXIS_PLANS(g->sync); ++i) {
-        /* durations [s] within the 2^53 samples a move's counts hold and below half the
-         * largest double (with a huge Ts the former overflows; a move's durations add up),
-         * the first sample's move time within one sample */
+        /* durations [s] within the 2^53 samples a move's counts hold (finite: init holds Ts
+         * to SMS_TS_MAX) and below half the largest sms_real (the float build holds them in
+         * floats; a move's durations add up), the first sample's move time within one sample */
         const double *f = mv + MOVE_FIELDS * i;
-        const double horizon = g->Ts <= 0.5 * DBL_MAX / 9007199254740992.0
-                               ? 9007199254740992.0 * g->Ts : 0.5 * DBL_MAX;
+        const double span = 9007199254740992.0 * g->Ts;
+        const double horizon = span < 0.5 * (double)REAL_MAX ? span : 0.5 * (double)REAL_MAX;
         if (f[0] < 0.0 || f[2] < 0.0 || f[3] < 0.0 || f[5] < 0.0 || f[6] < 0.0 ||
             f[0] > horizon || f[2] > horizon || f[3] > horizon || f[5] > g->Ts
             || f[6] > horizon ||
