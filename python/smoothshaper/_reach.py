@@ -95,6 +95,8 @@ def refused(ffi, info, limits: dict, Ts: float, st: int, axis: int | None = None
         return ParameterError(quantity + sub, msg, st)
     if quantity in names:
         msg = (f"{values}: below {bound:.6g}, the smallest normal {real}" if value < bound else
+               f"{values}: above {bound:.6g} = 2^967, the largest Ts a generator takes (2^56 "
+               "Ts, its longest time sum, must stay finite)" if quantity == "Ts" and st == -55 else
                f"{values}: above {bound:.6g}, the largest {real}" if quantity == "Ts" else
                f"{values}: above {bound:.6g}, the largest {real} over 16 (room for a reversal)")
     elif quantity in DURATIONS:

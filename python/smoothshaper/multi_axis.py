@@ -199,7 +199,7 @@ class MultiAxisGenerator(_state_identity.SavedState, Twins):
         st = lib.sms_multi_generator_memory(cfg, self.Ts, n_structs, n_cells, bad)
         if st != 0:
             text = ffi.string(lib.sms_status_string(st)).decode()
-            if st == lib.SMS_ERR_LIMIT:
+            if st in (lib.SMS_ERR_LIMIT, lib.SMS_ERR_SAMPLE_PERIOD_RANGE):
                 raise _infeasible(lib, ffi, cfg, self.Ts, st)
             if self.stages[bad[0]]:
                 raise ParameterError("stages", f"stages of axis {bad[0]} rejected: {text}", st)

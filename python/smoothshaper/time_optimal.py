@@ -42,7 +42,7 @@ from ._checks import (choice as _choice, finite as _finite, positive as _positiv
 from .errors import ParameterError
 
 __all__ = ["plan_to_rest", "plan_duration", "time_optimal_reference", "mean_jerk", "C3", "reach",
-           "representable", "MAX_PLAN_SAMPLES", "POSITION", "VELOCITY", "STOP"]
+           "representable", "MAX_PLAN_SAMPLES", "TS_MAX", "POSITION", "VELOCITY", "STOP"]
 
 #: Interfaces of a target (the values of ``sms_interface``).
 POSITION, VELOCITY, STOP = 0, 1, 2
@@ -53,6 +53,9 @@ MAX_PLAN_SAMPLES = 2.0 ** 52
 MAX_REACH_SAMPLES = 2.0 ** 50
 #: Room for a reversal and the stop in the products and distances of a plan.
 MARGIN = 16.0
+#: The largest Ts a generator takes (``SMS_TS_MAX``, types.h): a duration is held to 2^53 Ts
+#: and a move or the FMU clock sums up to 8 of them, so 2^56 Ts must stay a finite double.
+TS_MAX = 2.0 ** 967
 
 
 C3 = {"ramp": 1.0 / 6.0, "cosine": 0.25 - 1.0 / math.pi ** 2}

@@ -44,7 +44,7 @@ def _generator_error(st, lib, ffi, cfg, Ts, profile):
                                    f"placed on the grid Ts={Ts!r} s (the mode is at or above "
                                    f"the Nyquist frequency pi/Ts = {math.pi / Ts:.6g} rad/s, or "
                                    "the stage spans too many samples)", st)
-    if st == -17:
+    if st in (-17, -55):
         raise _infeasible(lib, ffi, cfg, Ts, st)
     _raise_status(st, lib, ffi, "online generator")
 
@@ -737,7 +737,7 @@ def generator_reference(targets=None, *, vmax, amax, jmax, Ts, profile="polynomi
         ``acceleration``, ``interface`` or ``stop``, or limits outside the feasible region
         (no move that reaches vmax can be planned).
     """
-    from .time_optimal import _run, reach_pairs, reach_unchecked
+    from .time_optimal import TS_MAX, _run, reach_pairs, reach_unchecked
     from .reference.filtering import fir_taps_unchecked
     from .stages import _for_mode
     vmax = _design._positive("vmax", vmax)
@@ -754,6 +754,10 @@ def generator_reference(targets=None, *, vmax, amax, jmax, Ts, profile="polynomi
     position = _finite("position", position)
     wn_, zeta_ = _design._mode(profile, wn, zeta)
     shape = "cosine" if profile == "trigonometric" else "ramp"
+    if not Ts <= TS_MAX:      # checked before the limits, as the Generator does
+        raise ParameterError("Ts", f"Ts={Ts!r}, vmax={vmax!r}, amax={amax!r}, jmax={jmax!r}: "
+                                   f"Ts is above {TS_MAX:.6g} = 2^967, the largest a generator "
+                                   "takes (2^56 Ts, its longest time sum, must stay finite)")
     if vmin is None and amin is None:
         feasible = reach_unchecked(vmax, amax, jmax, Ts, shape)
     else:

@@ -317,10 +317,24 @@ static void bad_input(void)
     CHECK_STATUS(sms_multi_generator_init(&g, &c, 0.0, NULL, 0, NULL, 0, NULL), SMS_ERR_SAMPLE_PERIOD);
     /* 2^53 Ts must stay finite (a state's durations are held to it): the largest double and
      * anything above SMS_TS_MAX are refused, SMS_TS_MAX itself builds */
+    /* (the float build refuses a Ts above its largest float first, as the Generator does) */
     CHECK_STATUS(sms_multi_generator_init(&g, &c, DBL_MAX, NULL, 0, NULL, 0, NULL),
-                 SMS_ERR_SAMPLE_PERIOD_RANGE);
+                 sizeof(sms_real) == sizeof(double) ? SMS_ERR_SAMPLE_PERIOD_RANGE
+                                                    : SMS_ERR_SAMPLE_PERIOD);
     CHECK_STATUS(sms_multi_generator_init(&g, &c, nextafter(SMS_TS_MAX, HUGE_VAL), NULL, 0, NULL,
-                                          0, NULL), SMS_ERR_SAMPLE_PERIOD_RANGE);
+                                          0, NULL),
+                 sizeof(sms_real) == sizeof(double) ? SMS_ERR_SAMPLE_PERIOD_RANGE
+                                                    : SMS_ERR_SAMPLE_PERIOD);
+    {   /* Ts above SMS_TS_MAX is named before limits that would be refused too */
+        sms_generator_reach_info info;
+        size_t axis = 9;
+        c.jmax[1] = 1e308;
+        CHECK_STATUS(sms_multi_generator_reach(&c, nextafter(SMS_TS_MAX, HUGE_VAL), &info, &axis),
+                     sizeof(sms_real) == sizeof(double) ? SMS_ERR_SAMPLE_PERIOD_RANGE
+                                                        : SMS_ERR_SAMPLE_PERIOD);
+        CHECK(info.quantity != NULL && strcmp(info.quantity, "Ts") == 0 && axis == 0);
+        c.jmax[1] = 1.0;
+    }
     CHECK(isfinite(9007199254740992.0 * 8.0 * SMS_TS_MAX));
     {   /* the float build: the generators take a Ts its floats hold, the tighter bound */
         sms_multi_generator big;

@@ -12,7 +12,7 @@ from hypothesis import example, given, settings, strategies as st
 
 from smoothshaper import trajectory as tr
 from smoothshaper.filters import ParameterError
-from smoothshaper.time_optimal import MAX_PLAN_SAMPLES, _run, reach
+from smoothshaper.time_optimal import MAX_PLAN_SAMPLES, TS_MAX, _run, reach
 
 PROFILES = [("polynomial", {}), ("trigonometric", {}), ("damped", dict(wn=40.0, zeta=0.05))]
 
@@ -89,6 +89,8 @@ def test_c_and_the_reference_refuse_the_same_limits(ev, ea, ej, ets, profile, pr
         return
     if precision == "float" and not 1.2e-38 <= Ts <= 3.4e38:
         return   # Ts itself is refused before the limits (a sample period error)
+    if not Ts <= TS_MAX:
+        return   # Ts above SMS_TS_MAX is refused before the limits too (named Ts)
     expected = reach(vmax, amax, jmax, Ts, "cosine" if profile == "trigonometric" else "ramp",
                      precision)["quantity"]
     try:
@@ -131,3 +133,20 @@ def test_the_reference_names_the_argument_the_generator_names(ev, ea, ej, ets, p
     assert got.value.parameter == expected, (str(got.value), expected)
     for name in ("vmax", "amax", "jmax", "Ts"):
         assert f"{name}={kw[name]!r}" in str(got.value)
+
+
+@pytest.mark.parametrize("Ts", [2.0 ** 967 * (1 + 2.0 ** -52), 1e300, 1.7976931348623157e308])
+def test_a_Ts_above_the_largest_is_named_by_the_generator_and_the_reference(Ts):
+    """Ts above SMS_TS_MAX = 2^967 (2^56 Ts must stay finite) is refused by both, naming Ts
+    and its value, before limits that would be refused too (jmax = 1e308); 2^967 itself is
+    taken by both."""
+    for kw in (dict(vmax=1.0, amax=1.0, jmax=1.0), dict(vmax=1.0, amax=1.0, jmax=1e308)):
+        with pytest.raises(ParameterError, match=r"2\^967") as c_err:
+            tr.Generator(Ts=Ts, **kw)
+        with pytest.raises(ParameterError, match=r"2\^967") as ref_err:
+            tr.generator_reference(np.zeros(2), Ts=Ts, **kw)
+        assert c_err.value.parameter == ref_err.value.parameter == "Ts"
+        assert f"Ts={Ts!r}" in str(c_err.value) and f"Ts={Ts!r}" in str(ref_err.value)
+    kw = dict(vmax=1.0, amax=1.0, jmax=1.0, Ts=TS_MAX)
+    np.testing.assert_array_equal(tr.Generator(**kw).process(np.zeros(3)),
+                                  tr.generator_reference(np.zeros(3), **kw))

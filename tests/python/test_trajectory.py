@@ -450,7 +450,7 @@ def test_unrepresentable_move_is_dropped(profile):
     (dict(vmax=1.0, amax=10.0, jmax=100.0, Ts=1e-300), "Ts", ["Ts=1e-300", "4e+299 samples"]),
     (dict(vmax=1.7976931348623157e308, amax=9e-16, jmax=3e-14), "vmax", ["above 1.12356e+307"]),
     (dict(vmax=4.0, amax=1.0, jmax=1e307), "jmax", ["vmax*jmax = 4e+307 exceeds"]),
-    (dict(vmax=1e150, amax=1e-150, jmax=1e150, Ts=1e300), "amax", ["amax^2 = 1e-300 is below"]),
+    (dict(vmax=1e150, amax=1e-150, jmax=1e150, Ts=1e290), "amax", ["amax^2 = 1e-300 is below"]),
     (dict(vmax=1e-100, amax=1e-100, jmax=1e-100, precision="float"), "vmax",
      ["below 1.17549e-38, the smallest normal float"]),
     (dict(vmax=1e13, amax=1.0, jmax=1.0, precision="float"), "amax", ["vmax/amax = 1e+13 s"]),

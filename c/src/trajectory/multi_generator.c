@@ -109,8 +109,7 @@ static sms_status check_config(const sms_multi_generator_config *config, double 
         return SMS_ERR_ORDER;
     if (!isfinite(Ts) || !(Ts > 0.0) || !((sms_real)Ts > 0))
         return SMS_ERR_SAMPLE_PERIOD;
-    if (!(Ts <= SMS_TS_MAX))
-        return SMS_ERR_SAMPLE_PERIOD_RANGE;
+    /* Ts above SMS_TS_MAX: refused by sms_multi_generator_reach() below, with its reach info */
     for (i = 0; i < n; ++i) {
         if (!limit_ok(config->vmax[i]) || !limit_ok(config->amax[i]) ||
             !limit_ok(config->jmax[i])) {

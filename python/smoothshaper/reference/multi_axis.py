@@ -166,7 +166,7 @@ def reach(vmax, amax, jmax, Ts: float, precision: str = "double") -> dict:
     out = dict(axis=None, quantity=None, parameter=None, distance=0.0, duration=0.0)
     with np.errstate(over="ignore", under="ignore"):
         rounded = float(np.float32(Ts)) if precision == "float" else Ts
-    if not (rounded > 0 and Ts <= big):
+    if not (rounded > 0 and Ts <= big and Ts <= _single.TS_MAX):
         out.update(quantity="Ts", parameter="Ts")
         return out
     for i in range(axes):
