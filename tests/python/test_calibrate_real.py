@@ -257,3 +257,29 @@ def test_every_axis_of_a_raw_record_calibrates(capsys):
     assert main(["calibrate", str(path), "--axis", "all", "--no-progress"]) == 0
     out = capsys.readouterr().out
     assert "== axis x" in out and "== axis y" in out and out.count("recommended") >= 2
+
+
+def _one_mode_table(tmp_path, fc=41.0, zeta=0.08, name="resonances_y_20221026_004455.csv"):
+    """A Klipper PSD table of one mode on a floor, 1.5 Hz bins to 200 Hz (what the test of an
+    axis of a CoreXY printer writes)."""
+    f = np.arange(0.0, 200.0, 1.5)
+    P = 1e2 + 1e4 / ((1 - (f / fc) ** 2) ** 2 + (2 * zeta * f / fc) ** 2)
+    p = tmp_path / name
+    p.write_text(_table(f, P))
+    return p
+
+
+@pytest.mark.parametrize("firmware", ["marlin", "prusa", "rrf", "klipper"])
+def test_firmware_damping_up_to_one_raises_no_overflow(tmp_path, firmware):
+    """Marlin and Prusa accept a shaper damping ratio up to 1: there the shaper lasts seconds,
+    and the one-shaper scan's e^{zeta wn t} at the plant's poles overflowed (a RuntimeWarning
+    on every real table). Such scales are infeasible, and the run warns of nothing."""
+    import warnings
+    p = _one_mode_table(tmp_path)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        res = calibrate.run([str(p)], firmware=firmware).axes[0]
+    c = res.recommended
+    assert c is not None and c.firmware is not None
+    assert c.length <= res.default_limit.max_delay * (1 + 1e-9)
+    assert math.isfinite(c.vibration) and 0 <= c.vibration < 100

@@ -584,6 +584,10 @@ def _delay_penalty(L, max_delay):
     return np.where(excess > 1e-9, 1e3 * (1 + excess), 0.0)
 
 
+#: Largest real part of an exponent the scans evaluate: |e^x|^2 stays within the float range
+#: (e^709.78 is the largest double).
+_EXP_LIMIT = 350.0
+
 #: Damping ratios of the one-shaper grid (with the family's own grid and its limits).
 _SINGLE_ZETAS = (0.01, 0.035, 0.06, 0.09, 0.12, 0.15, 0.2, 0.25)
 
@@ -598,10 +602,17 @@ def _scan_single(design, obj, u0, ratios, max_delay, Ts, fw):
     if max_delay is not None:
         ratios = np.r_[ratios, _boundary_ratios(taps, max_delay, Ts)]
     A, t = taps[0], taps[1]
-    H = np.exp(-obj.poles[:, None, None] * (t[None, :] / ratios[:, None])[None, :, :]) @ A
+    E = -obj.poles[:, None, None] * (t[None, :] / ratios[:, None])[None, :, :]
+    # a firmware's damping ratio near 1 stretches its shaper to seconds: e^{zeta wn t} at the
+    # plant's poles, squared, then lies beyond the float range. Such a scale is infeasible
+    # (the cost of 1e3), not computed (an overflow warning on real records with Marlin or
+    # Prusa's damping up to 1)
+    unbounded = np.any(E.real > _EXP_LIMIT, axis=(0, 2))
+    E[:, unbounded, :] = 0.0
+    H = np.exp(E) @ A
     L = _scaled_lengths(taps, ratios, Ts)
     v = obj.tuning_values(H.real ** 2 + H.imag ** 2, L) + _delay_penalty(L, max_delay)
-    v = np.where(np.isfinite(v), v, 1e3)
+    v = np.where(np.isfinite(v) & ~unbounded, v, 1e3)
     j = int(np.argmin(v))               # the best of the scan (the refinement starts there)
     u = u0.copy()
     u[0] = math.log(ratios[j])
