@@ -289,7 +289,8 @@ def test_a_mostly_clipped_record_is_reconstructed_and_said(tmp_path, capsys):
     assert res.recommended.stages[0].wn / TWO_PI == pytest.approx(0.05 * 1000 / TWO_PI, rel=0.1)
 
 
-_STATED = re.compile(r"estimated remaining vibration of the plant (\S+) % \(\+-3 sd: (\S+) to "
+_STATED = re.compile(r"estimated remaining vibration of the plant (\S+) % \((?:\+-3 sd|range): "
+                     r"(\S+) to "
                      r"(\S+) %"
                      r"|  (\S+) \((\S+) \.\. (\S+)\)  ")
 
@@ -419,6 +420,34 @@ def test_spectral_ties_go_to_the_least_plant_estimate_designed_on_a_mode():
     assert recommend([narrow, robust, off], []) is narrow
     worse = _tied("worse", 8.0, 5.9, 0.07)          # within 5 % of the least: shorter wins
     assert recommend([narrow, robust, worse, off], [mode]) is worse
+
+
+def test_a_range_from_the_spectrum_is_said_to_be_no_standard_deviation():
+    """Where the spectrum states the range (its bounds: each bin a mode anywhere within its
+    half-power width, at any damping), the report says "range", not "+-3 sd", and names its
+    parts; joined with a modal fit that does not explain the spectrum, the range is exactly
+    the union of the two. A modal fit that explains the spectrum states its +-3 sd."""
+    cal = calibrate.run([str(ROOT / "examples" / "resonance_xy.csv")], axis="all",
+                        max_delay=0.03)
+    out = report_text(cal, top=40)
+    kinds = set()
+    for res in cal.axes:
+        c = res.recommended
+        if not c.range_parts:
+            assert c.range_from == "modal fit"
+            kinds.add("modal")
+            continue
+        kinds.add("spectrum")
+        parts = {k: (lo, hi) for k, lo, hi in c.range_parts}
+        assert set(parts) <= {"measured spectrum", "modal fit"} and "measured spectrum" in parts
+        assert c.vibration_range[0] == min(lo for lo, _ in parts.values())
+        assert c.vibration_range[1] == max(hi for _, hi in parts.values())
+        lo, hi = parts["measured spectrum"]
+        assert f"the measured spectrum bounds it to {lo:.3g} to {hi:.3g} %" in out
+        assert (f"% (range: {c.vibration_range[0]:.3g} to {c.vibration_range[1]:.3g} %, from "
+                f"the {c.range_from})") in out
+    assert kinds == {"modal", "spectrum"}, kinds
+    assert "% (+-3 sd: " in out
 
 
 def test_ties_of_one_length_go_to_the_least_smoothing():

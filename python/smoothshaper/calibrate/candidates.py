@@ -77,6 +77,9 @@ class Candidate:
     # [%] the established tool's own estimate (its three test dampings, every bin), where a
     # default delay budget was traded against it
     vibration_established: float = math.nan
+    # what the range joins: ((figure, low, high), ...), the measured spectrum's bounds and,
+    # where a fit does not explain the spectrum, the modal fit's +-3 sd
+    range_parts: tuple = ()
 
     def as_dict(self) -> dict:
         from dataclasses import asdict
@@ -93,6 +96,8 @@ class Candidate:
                 "vibration_spectrum": self.vibration_spectrum,
                 "vibration_modal": self.vibration_modal, "ranked_by": self.ranked_by,
                 "range_from": self.range_from,
+                "range_parts": [{"from": k, "low": lo, "high": hi}
+                                for k, lo, hi in self.range_parts],
                 "vibration_established": None if math.isnan(self.vibration_established)
                 else self.vibration_established,
                 "design": [{"freq_hz": f, "damping": z} for f, z in self.design],
@@ -697,6 +702,7 @@ def evaluate(name: str, stages: list[Stage], objectives, rank: str, ref: Referen
         c.range_from = modal.kind
     else:
         c.vibration_range = spec.range(R2(spec.box.ravel()), L)
+        c.range_parts = ((spec.kind, *c.vibration_range),)
         c.vibration_nominal = spec.nominal_value(R2(spec.nominal), L)
         # the spectral figure is not the plant's remaining vibration (it counts nothing under a
         # twentieth of the peak): the range is about the spectrum's estimate of the plant's
@@ -705,6 +711,7 @@ def evaluate(name: str, stages: list[Stage], objectives, rank: str, ref: Referen
         unsure = objectives.get("unsure")
         if unsure is not None:       # a fit that does not explain the spectrum: either may hold
             lo, hi = unsure.range(R2(unsure.box), L)
+            c.range_parts += ((unsure.kind, lo, hi),)
             c.vibration_range = (min(lo, c.vibration_range[0]), max(hi, c.vibration_range[1]))
             c.range_from = "measured spectrum and modal fit"
     c.vibration = c.vibration_modal if rank == "modal" else c.vibration_spectrum
