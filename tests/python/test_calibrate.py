@@ -452,10 +452,10 @@ def test_a_range_from_the_spectrum_is_said_to_be_no_standard_deviation():
 
 def test_ties_of_one_length_go_to_the_least_smoothing():
     """At the default budget most tied candidates last as long as it: of those within 1 % of
-    the shortest length the least smoothing wins (the first of them had rounded corners up to
-    9 % more than the established tool's pick of the same length); a candidate more than 1 %
-    longer never wins on smoothing."""
-    from smoothshaper.calibrate.candidates import LENGTH_TIE, recommend
+    the shortest length the least smoothing wins, when 1 % less than the least-vibration
+    one's (the first of them had rounded corners up to 9 % more than the established tool's
+    pick of the same length); a candidate more than 1 % longer never wins on smoothing."""
+    from smoothshaper.calibrate.candidates import LENGTH_TIE, SMOOTHING_GAIN, recommend
     from smoothshaper.calibrate.modes import Mode
     mode = Mode(wn=TWO_PI * 8.0, zeta=0.05, wn_std=TWO_PI * 0.02, zeta_std=0.01, weight=1.0)
     first = _tied("first", 8.0, 5.0, 0.0198)
@@ -465,6 +465,13 @@ def test_ties_of_one_length_go_to_the_least_smoothing():
     first.smoothing, rounder.smoothing, sharper.smoothing, longer.smoothing = 0.098, 0.1, 0.09, 0.05
     assert recommend([first, rounder, sharper, longer], [mode]) is sharper
     assert recommend([first, rounder, longer], [mode]) is first
+    # within a sample of the filters' period (the budget is rounded up to one): a tie
+    assert recommend([first, rounder, longer], [mode], sample=0.0198 * 1.5 * LENGTH_TIE) \
+        is longer
+    # under 1 % less smoothing is no gain: the least vibration, then the shorter, wins
+    sharper.smoothing, sharper.vibration = 0.098 * (1 - 0.5 * SMOOTHING_GAIN), 0.02
+    assert recommend([first, sharper], [mode]) is first
+    sharper.smoothing, sharper.vibration = 0.09, 0.0
     # outside the tie on the ranking figure (0.05 points), smoothing does not count
     sharper.vibration = 0.06
     assert recommend([first, rounder, sharper], [mode]) is first

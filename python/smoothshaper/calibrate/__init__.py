@@ -733,5 +733,5 @@ def run(paths, *, kind: str = "auto", axis: str = "auto", band=None,
         if res.default_limit is not None:
             _hold_to_trade_off(res, objs, rank, reference, delay, firmware)
         res.candidates.sort(key=lambda c: c.vibration)
-        res.recommended = recommend(res.candidates, res.modes)
+        res.recommended = recommend(res.candidates, res.modes, sample=reference.Ts)
     return Calibration(axes, reference, max_delay, max_smoothing, skipped, firmware)

@@ -734,6 +734,9 @@ TIE_PP = 0.05
 #: of them (at the default budget most lie on it: a firmware's impulses just under it, the
 #: library's discrete filters rounded up to a sample).
 LENGTH_TIE = 0.01
+#: Least relative gain in smoothing that a tie is given to (less is no gain worth the
+#: tie's extra vibration).
+SMOOTHING_GAIN = 0.01
 #: A design "on" an identified mode: within this fraction of its frequency (or its +-3 sd).
 ON_MODE = 0.15
 
@@ -746,17 +749,19 @@ def on_a_mode(c: Candidate, modes) -> bool:
                    for m in modes) for f, _ in c.design)
 
 
-def recommend(candidates: list[Candidate], modes=()) -> Candidate | None:
+def recommend(candidates: list[Candidate], modes=(), *, sample: float = 0.0) -> Candidate | None:
     """Least remaining vibration among those within the limits; within 0.05 percentage points
-    of it, the shorter one, and of those within 1 % of the shortest length, the one that
-    rounds corners least (the least smoothing). Where the measured PSD ranks, ties are first
+    of it, the shorter one, and of those within 1 % (and ``sample`` [s], the filters' sample
+    period: the budget is rounded up to it) of the shortest length, the one that rounds
+    corners least (the least smoothing, if 1 % less than the least-vibration one's). Where the measured PSD ranks, ties are first
     told apart by the plant estimate, among the candidates designed on an identified mode
     (``modes``): of those within 5 % (and 0.05 points) of their least estimate, the shorter
     one, then the least smoothing.
 
     At the default delay budget most tied candidates last as long as the budget: the shortest
     of them was whichever came first, with up to 9 % more corner rounding than the established
-    tool's pick of the same length on real records.
+    tool's pick of the same length on real records; and the trade-off's own pick lasts up to a
+    sample less than the budget it set, so "shorter" alone gave it every tie.
 
     The measured-PSD figure counts nothing under a twentieth of the peak, so on a clean
     spectrum many candidates tie at 0 %; the shortest of them was often the narrowest (a ZV
@@ -776,5 +781,9 @@ def recommend(candidates: list[Candidate], modes=()) -> Candidate | None:
         least = min(c.vibration_estimate for c in tied)
         close = [c for c in tied if c.vibration_estimate <= 1.05 * least + TIE_PP]
     shortest = min(c.length for c in close)
-    close = [c for c in close if c.length <= shortest * (1 + LENGTH_TIE)]
-    return min(close, key=lambda c: (c.smoothing, c.length, c.vibration))
+    close = [c for c in close if c.length <= shortest * (1 + LENGTH_TIE) + sample]
+    least = min(close, key=lambda c: (c.vibration, c.length))
+    sharper = [c for c in close if c.smoothing < (1 - SMOOTHING_GAIN) * least.smoothing]
+    if not sharper:
+        return least
+    return min(sharper, key=lambda c: (c.smoothing, c.length, c.vibration))
