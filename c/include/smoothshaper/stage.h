@@ -133,8 +133,9 @@ SMS_API double sms_stage_gain_bound(const sms_stage *stage);
  * @param config      the stage (config.h for ranges)
  * @param Ts          sample period [s], finite, > 0
  * @param input_max   receives the input range, in (0, ::SMS_INPUT_MAX]; untouched on error
- * @param gain_bound  receives the gain bound G >= 1 (HUGE_VAL for a notch whose pole rounds
- *                    onto the unit circle); untouched on error
+ * @param gain_bound  receives the gain bound G, at least 1 up to the rounding of the taps
+ *                    (HUGE_VAL for a notch whose pole rounds onto the unit circle); untouched
+ *                    on error
  * @return ::SMS_OK, ::SMS_ERR_NULL, or the config's status (as sms_stage_config_validate())
  */
 SMS_API sms_status sms_stage_config_range(const sms_stage_config *config, double Ts,

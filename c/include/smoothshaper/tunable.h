@@ -362,8 +362,8 @@ SMS_API double sms_tunable_chain_input_max(const sms_tunable_chain *chain);
  * @param retuned     n_stages flags: non-zero for a stage to be retuned
  * @param input_max   n_stages entries: the new configuration's range, in (0, ::SMS_INPUT_MAX]
  *                    (read only where retuned[i] != 0)
- * @param gain_bound  n_stages entries: the new configuration's gain bound, >= 1 (read only
- *                    where retuned[i] != 0)
+ * @param gain_bound  n_stages entries: the new configuration's gain bound (at least 1 up to
+ *                    the rounding of its taps; read only where retuned[i] != 0)
  * @return the largest |input|, in (0, ::SMS_INPUT_MAX], at most sms_tunable_chain_input_max()
  */
 SMS_API double sms_tunable_chain_retune_input_max(const sms_tunable_chain *chain,
