@@ -284,17 +284,34 @@ typedef sms_real lanes;
 #define SEGMENT_BODY static inline
 #endif
 /* Blocks of a complex pole on targets whose vector holds four sms_real (float on SSE2/NEON,
- * double with AVX): both copies' Re and Im in one vector, lanes {Re, Im} of the old copy, then
- * of the young one. The complex products need Im next to Re, a swap inside each pair (within a
- * 128-bit lane: one cheap shuffle); each lane still does exactly the IEEE operations of the
- * two-lane form (a - b c is computed as a + (-b) c, the same number bit for bit), so every
- * build gives the same bits. Needs __builtin_shufflevector (GCC 12, Clang). */
+ * double with AVX): both copies' Re and Im in one vector. The complex products need Re and Im
+ * swapped, which must stay within a 128-bit lane (one cheap shuffle): double (AVX) keeps
+ * {Re, Im} of the old copy, then of the young one; float keeps the instance's own order
+ * {Re old, Re young, Im old, Im young}, where SSE2 merges two vectors' halves in one shuffle
+ * (the input term's Re and Im parts). QL() builds a vector from the lanes in the order
+ * {Re old, Im old, Re young, Im young}, whatever the layout; RE0 .. IM1 are their indices.
+ * Each lane still does exactly the IEEE operations of the two-lane form (a - b c is computed
+ * as a + (-b) c, the same number bit for bit), so every build gives the same bits. Needs
+ * __builtin_shufflevector (GCC 12, Clang). */
 #if defined(SMS_SMOOTHER_VARIANT_LOOPS) && (defined(SMS_USE_FLOAT) || defined(__AVX__)) \
     && (defined(__clang__) || __GNUC__ >= 12) && !defined(SMS_NO_QUAD_LANES)
 #define SMS_SMOOTHER_QUAD 1
 typedef sms_real quad __attribute__((vector_size(4 * sizeof(sms_real))));
 #define QUAD(a, b, c, d) ((quad){(a), (b), (c), (d)})
+#ifdef SMS_USE_FLOAT
+enum { RE0 = 0, RE1 = 1, IM0 = 2, IM1 = 3 };
+#define QL(re0, im0, re1, im1) QUAD((re0), (re1), (im0), (im1))
+#define SWAP_PAIRS(v) __builtin_shufflevector((v), (v), 2, 3, 0, 1)
+/* Re lanes of a, Im lanes of b; the old copy's lanes of a, the young one's of b */
+#define RE_OF_IM_OF(a, b) __builtin_shufflevector((a), (b), 0, 1, 6, 7)
+#define OLD_OF_YOUNG_OF(a, b) __builtin_shufflevector((a), (b), 0, 4, 2, 6)
+#else
+enum { RE0 = 0, IM0 = 1, RE1 = 2, IM1 = 3 };
+#define QL(re0, im0, re1, im1) QUAD((re0), (im0), (re1), (im1))
 #define SWAP_PAIRS(v) __builtin_shufflevector((v), (v), 1, 0, 3, 2)
+#define RE_OF_IM_OF(a, b) __builtin_shufflevector((a), (b), 0, 5, 2, 7)
+#define OLD_OF_YOUNG_OF(a, b) __builtin_shufflevector((a), (b), 0, 1, 6, 7)
+#endif
 #endif
 #define ADD(a, b) ((a) + (b))
 #define SUB(a, b) ((a) - (b))
@@ -494,17 +511,16 @@ typedef struct quad_constants {
 static inline quad_constants quad_constants_of(const sms_smoother *f)
 {
     quad_constants k;
-    const sms_real r0 = f->ref[0], r1 = f->ref[1];
-    k.ref = QUAD(r0, r0, r1, r1);
-    k.ref_young = QUAD(r1, r1, r1, r1);
-    k.gain = QUAD(f->gain_re, f->gain_re, f->gain_re, f->gain_re);
-    k.tail = QUAD(f->tail_re, f->tail_im, (sms_real)0, (sms_real)0);
-    k.pm1 = QUAD(f->pole_m1_re, f->pole_m1_re, f->pole_m1_re, f->pole_m1_re);
-    k.pim_s = QUAD(-f->pole_im, f->pole_im, -f->pole_im, f->pole_im);
-    k.q = QUAD((sms_real)1 + f->pole_m1_re, (sms_real)1 + f->pole_m1_re,
-               (sms_real)1 + f->pole_m1_re, (sms_real)1 + f->pole_m1_re);
-    k.plo_re = QUAD(f->pole_lo_re, f->pole_lo_re, f->pole_lo_re, f->pole_lo_re);
-    k.plo_im_s = QUAD(-f->pole_lo_im, f->pole_lo_im, -f->pole_lo_im, f->pole_lo_im);
+    const sms_real r0 = f->ref[0], r1 = f->ref[1], q = (sms_real)1 + f->pole_m1_re;
+    k.ref = QL(r0, r0, r1, r1);
+    k.ref_young = QL(r1, r1, r1, r1);
+    k.gain = QL(f->gain_re, f->gain_re, f->gain_re, f->gain_re);
+    k.tail = QL(f->tail_re, f->tail_im, (sms_real)0, (sms_real)0);
+    k.pm1 = QL(f->pole_m1_re, f->pole_m1_re, f->pole_m1_re, f->pole_m1_re);
+    k.pim_s = QL(-f->pole_im, f->pole_im, -f->pole_im, f->pole_im);
+    k.q = QL(q, q, q, q);
+    k.plo_re = QL(f->pole_lo_re, f->pole_lo_re, f->pole_lo_re, f->pole_lo_re);
+    k.plo_im_s = QL(-f->pole_lo_im, f->pole_lo_im, -f->pole_lo_im, f->pole_lo_im);
     return k;
 }
 
@@ -525,16 +541,16 @@ static inline sms_real advance_quad(const quad_constants *k, quad *w, quad *lo, 
     *lo = (k->q * *lo + k->pim_s * los) + ((r0 + e1) + e2);
     *w = s;
     out = s + *lo;
-    return out[1];
+    return out[IM0];
 }
 
 static inline sms_real recur_quad(const quad_constants *k, quad *w, quad *lo, sms_real x,
                                   sms_real oldest)
 {
     const quad xq = QUAD(x, x, x, x), oq = QUAD(oldest, oldest, oldest, oldest);
-    const quad o = __builtin_shufflevector(oq, k->ref_young, 0, 1, 6, 7) - k->ref;
+    const quad o = OLD_OF_YOUNG_OF(oq, k->ref_young) - k->ref;
     const quad to = k->tail * o;
-    const quad u = __builtin_shufflevector(k->gain * (xq - k->ref) + to, to, 0, 5, 2, 7);
+    const quad u = RE_OF_IM_OF(k->gain * (xq - k->ref) + to, to);
     return advance_quad(k, w, lo, u) + (sms_real)0 * x;
 }
 #endif
@@ -630,8 +646,8 @@ SEGMENT_BODY void segment(sms_smoother *f, const sms_real *in, sms_real *out, si
      * once per segment, not per sample) */
     const int in_quads = wide && pole == POLE_COMPLEX;
     const quad_constants qk = quad_constants_of(f);
-    quad qw = QUAD(f->w_re[0], f->w_im[0], f->w_re[1], f->w_im[1]);
-    quad qlo = QUAD(f->lo_re[0], f->lo_im[0], f->lo_re[1], f->lo_im[1]);
+    quad qw = QL(f->w_re[0], f->w_im[0], f->w_re[1], f->w_im[1]);
+    quad qlo = QL(f->lo_re[0], f->lo_im[0], f->lo_re[1], f->lo_im[1]);
 #define RECUR(x, oldest) \
     (in_quads ? recur_quad(&qk, &qw, &qlo, (x), (oldest)) : recur(&k, &s, (x), (oldest), pole))
 #else
@@ -664,8 +680,9 @@ SEGMENT_BODY void segment(sms_smoother *f, const sms_real *in, sms_real *out, si
 #undef RECUR
 #ifdef SMS_SMOOTHER_QUAD
     if (in_quads) {
-        f->w_re[0] = qw[0], f->w_im[0] = qw[1], f->w_re[1] = qw[2], f->w_im[1] = qw[3];
-        f->lo_re[0] = qlo[0], f->lo_im[0] = qlo[1], f->lo_re[1] = qlo[2], f->lo_im[1] = qlo[3];
+        f->w_re[0] = qw[RE0], f->w_im[0] = qw[IM0], f->w_re[1] = qw[RE1], f->w_im[1] = qw[IM1];
+        f->lo_re[0] = qlo[RE0], f->lo_im[0] = qlo[IM0];
+        f->lo_re[1] = qlo[RE1], f->lo_im[1] = qlo[IM1];
     } else
 #endif
     store_copies(f, &s, 0, pole);
