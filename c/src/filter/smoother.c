@@ -293,8 +293,13 @@ typedef sms_real lanes;
  * Each lane still does exactly the IEEE operations of the two-lane form (a - b c is computed
  * as a + (-b) c, the same number bit for bit), so every build gives the same bits. Needs
  * __builtin_shufflevector (GCC 12, Clang). */
+/* Only where no product can be fused into a sum behind the code's back (no FMA on the target,
+ * or GCC in ISO C mode, which does not contract): a contracted sum in one layout and not in
+ * the other would make sms_smoother_step() (two lanes) and sms_smoother_process() differ. */
 #if defined(SMS_SMOOTHER_VARIANT_LOOPS) && (defined(SMS_USE_FLOAT) || defined(__AVX__)) \
-    && (defined(__clang__) || __GNUC__ >= 12) && !defined(SMS_NO_QUAD_LANES)
+    && (defined(__clang__) || __GNUC__ >= 12) && !defined(SMS_NO_QUAD_LANES) \
+    && ((!defined(__FP_FAST_FMA) && !defined(__FP_FAST_FMAF)) \
+        || (!defined(__clang__) && defined(__STRICT_ANSI__)))
 #define SMS_SMOOTHER_QUAD 1
 typedef sms_real quad __attribute__((vector_size(4 * sizeof(sms_real))));
 #define QUAD(a, b, c, d) ((quad){(a), (b), (c), (d)})
