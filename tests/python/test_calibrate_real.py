@@ -328,3 +328,17 @@ def test_a_floor_above_the_threshold_keeps_the_established_budget_and_estimate(
     assert any(k.name.endswith("(trade-off pick)") and k.meets for k in res.candidates)
     assert all(k.vibration_established <= 100 * pick["vibrs"] + TIE_PP + 1e-6
                for k in res.candidates if k.meets)
+
+
+def test_a_mode_above_a_firmwares_range_still_gets_its_shapers(tmp_path):
+    """Prusa's shapers run from 10 to 100 Hz: with the largest mode at 122 Hz (a Voron belt
+    sweep's) no design existed at the mode, every scan of a Prusa shaper came back empty and
+    calibrate ended in an IndexError. The scans now start at the nearest frequency the
+    firmware accepts; every pick is within its range."""
+    p = _one_mode_table(tmp_path, fc=122.0, zeta=0.06, name="resonances_x_20231128_221505.csv")
+    res = calibrate.run([str(p)], firmware="prusa").axes[0]
+    c = res.recommended
+    assert c is not None and c.firmware is not None
+    shaper, freq, damping = c.firmware
+    assert shaper.min_freq <= freq <= shaper.max_freq == 100.0
+    assert sum(k.firmware is not None for k in res.candidates) >= 3

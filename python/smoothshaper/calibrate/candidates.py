@@ -452,11 +452,15 @@ def tune(family: Family, anchors, objectives, rank: str, ref: Reference,
         single = fw is not None or _is_single_shaper(design, z_grid[0], extra0)
         if single:
             # one shaper: every frequency at a damping ratio in one matrix evaluation, so the
-            # grid is fine in both (the refinement then starts next to the optimum)
+            # grid is fine in both (the refinement then starts next to the optimum). The scan
+            # is built at the mode, or for a firmware at the nearest frequency it accepts (a
+            # belt's 122 Hz mode is above Prusa's 100 Hz: no design at the mode, an empty scan)
+            r0 = 0.0 if fw is None else math.log(min(max(anchors[0], f_lo * (1 + 1e-9)),
+                                                     f_hi * (1 - 1e-9)) / anchors[0])
             zs = sorted(set(z_grid) | {min(max(z, zlo), zhi) for z in _SINGLE_ZETAS})
             for z in zs:
                 for ex in extras:
-                    scored += _scan_single(design, obj, np.array([0.0, z] + ex), ratios[::2],
+                    scored += _scan_single(design, obj, np.array([r0, z] + ex), ratios[::2],
                                            max_delay, ref.Ts, fw is not None)
         else:
             base = design(np.array([0.0, z_grid[min(1, len(z_grid) - 1)]] + extra0))
@@ -479,6 +483,8 @@ def tune(family: Family, anchors, objectives, rank: str, ref: Reference,
                 grid += [np.array([math.log(q), z, math.log(q), z] + extra0)
                          for q in (1.2, 1.45, 1.75) for z in z_grid[1:3]]
             scored = [(cost(u), tuple(u)) for u in grid]
+    if not scored:                      # no design of the family near the modes
+        return None
     scored.sort(key=lambda x: x[0])
     # a short bounded refinement of each parameter in turn from the grid's best point, within
     # about a grid step of it (scipy's bounded scalar minimiser: a dozen costs each)
@@ -625,7 +631,7 @@ def _scan_single(design, obj, u0, ratios, max_delay, Ts, fw):
     v = np.where(np.isfinite(v) & ~unbounded, v, 1e3)
     j = int(np.argmin(v))               # the best of the scan (the refinement starts there)
     u = u0.copy()
-    u[0] = math.log(ratios[j])
+    u[0] = u0[0] + math.log(ratios[j])
     return [(float(v[j]), tuple(u))]
 
 
