@@ -133,8 +133,8 @@ static void gen_across(const sms_generator_config *a, double Ts_a, const sms_gen
 
 static void generator_fields(void)
 {
-    const sms_generator_config a = {1.0, 10.0, 100.0, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, 0.0, 0.0};
-    const sms_generator_config m = {1.0, 10.0, 100.0, SMS_PROFILE_POLYNOMIAL, 60.0, 0.1, 0.0, 0.0};
+    const sms_generator_config a = {1.0, 10.0, 100.0, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    const sms_generator_config m = {1.0, 10.0, 100.0, SMS_PROFILE_POLYNOMIAL, 60.0, 0.1, 0.0, 0.0, 0.0, 0.0};
     sms_generator_config b;
     gen_across(&a, Ts, &a, Ts, SMS_OK);
     gen_across(&m, Ts, &m, Ts, SMS_OK);
@@ -157,7 +157,7 @@ static void generator_fields(void)
 /* Tag, version, precision and kind: a vector that is not a generator state of this build. */
 static void generator_format(void)
 {
-    const sms_generator_config a = {1.0, 10.0, 100.0, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, 0.0, 0.0};
+    const sms_generator_config a = {1.0, 10.0, 100.0, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
     sms_generator g;
     sms_stage_config sc = sms_stage_config_default(SMS_RECTANGULAR);
     sms_stage s;
