@@ -553,7 +553,9 @@ class Generator(_state_identity.SavedState, Twins):
         Raises
         ------
         ParameterError
-            Naming ``q``, ``v``, ``a``, ``target``, ``velocity``, ``acceleration``,
+            Naming ``qmin`` or ``qmax`` (position limits) when ``q`` or the target lies
+            outside them or neither the motion to the target nor the brake to rest stays
+            inside; naming ``q``, ``v``, ``a``, ``target``, ``velocity``, ``acceleration``,
             ``interface`` or ``minimum_duration`` when one is not finite or out of range, or the state is one no plan
             of this generator can start from; ``target`` also when the motion to it cannot be
             represented in the build's floats. Nothing is changed then.
@@ -603,11 +605,13 @@ class Generator(_state_identity.SavedState, Twins):
                                      f"qmax] = [{self.qmin!r}, {self.qmax!r}]", st)
             side = ("qmin" if q < self.qmin else "qmax" if q > self.qmax else
                     "qmax" if v > 0 or (v == 0 and a > 0) else "qmin")
-            where = ("is outside" if not self.qmin <= q <= self.qmax else
-                     "brakes to rest (at amax, jmax, the stop) beyond")
-            raise ParameterError(side, f"(q, v, a) = ({q!r}, {v!r}, {a!r}) {where} [qmin, qmax] "
-                                 f"= [{self.qmin!r}, {self.qmax!r}]: no motion from there stays "
-                                 f"within {side}", st)
+            if not self.qmin <= q <= self.qmax:
+                raise ParameterError(side, f"q={q!r} is outside [qmin, qmax] = [{self.qmin!r}, "
+                                     f"{self.qmax!r}]", st)
+            raise ParameterError(side, f"(q, v, a) = ({q!r}, {v!r}, {a!r}): neither the "
+                                 "time-optimal motion to the target nor the brake to rest (the "
+                                 f"stop, at the limits) stays within [qmin, qmax] = "
+                                 f"[{self.qmin!r}, {self.qmax!r}]: it would pass {side}", st)
         if st in (-3, -47, -48, -49):
             name = {-3: "minimum_duration", -47: "velocity", -48: "acceleration",
                     -49: "interface"}[st]

@@ -108,7 +108,15 @@ static void test_target_and_start_refusals(void)
                  SMS_ERR_POSITION_LIMIT);
     sms_generator_get_state(&g, after);
     CHECK(memcmp(before, after, n * sizeof(double)) == 0);
-    CHECK_STATUS(sms_generator_start(&g, (sms_real)1.85, (sms_real)1.0, 0, &t), SMS_OK);
+    /* 0.098 below: the brake crosses (by 0.002), the time-optimal reversal to the target
+     * (a held at -amax through v = 0: 1/12 + 1/80 = 0.0958 on) does not: taken */
+    CHECK_STATUS(sms_generator_start(&g, (sms_real)1.902, (sms_real)1.0, 0, &t), SMS_OK);
+    for (k = 0; k < 2000; ++k) {
+        sms_generator_step_target(&g, &t, out);
+        CHECK(out[0] <= (sms_real)2.0 && out[0] >= (sms_real)-1.0);
+    }
+    CHECK(out[0] == (sms_real)1.0 && out[1] == 0);
+        CHECK_STATUS(sms_generator_start(&g, (sms_real)1.85, (sms_real)1.0, 0, &t), SMS_OK);
     for (k = 0; k < 2000; ++k) {
         sms_generator_step_target(&g, &t, out);
         CHECK(out[0] <= (sms_real)2.0 && out[0] >= (sms_real)-1.0);
@@ -194,8 +202,19 @@ static void test_campaign(int cases)
                 sms_generator_step_target(&u, &stop, o);
                 note(&su, o);
             }
-            if (su.hi > qmax - 1e-6 || su.lo < qmin + 1e-6)
-                ++refused_right;
+            if (su.hi > qmax - 1e-6 || su.lo < qmin + 1e-6) {
+                /* and the time-optimal motion to the target crosses too */
+                run_stats sd = {1e300, -1e300};
+                CHECK_STATUS(sms_generator_init(&u, &cf, Ts / 64.0, NULL, 0), SMS_OK);
+                CHECK_STATUS(sms_generator_start(&u, (sms_real)q0, (sms_real)v0, (sms_real)a0,
+                                                 &tg[0]), SMS_OK);
+                for (k = 0; k < (int)(4.0 * 64.0 / Ts) + 1000; ++k) {
+                    sms_generator_step_target(&u, &tg[0], o);
+                    note(&sd, o);
+                }
+                if (sd.hi > qmax - 1e-6 || sd.lo < qmin + 1e-6)
+                    ++refused_right;
+            }
             continue;
         }
         ++accepted;
@@ -235,7 +254,8 @@ static void test_campaign(int cases)
             ++crossed;
     }
     printf("position limits [%s]: %d starts accepted, %d refused (%d of them with the unbounded "
-           "brake crossing a limit), %d runs whose unbounded twin crosses a limit\n",
+           "brake and motion to the target crossing a limit), %d runs whose unbounded twin "
+           "crosses a limit\n",
            SMS_TEST_PRECISION, accepted, refused, refused_right, crossed);
     CHECK(refused_right == refused);
     CHECK(refused > cases / 20);

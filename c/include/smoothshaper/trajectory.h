@@ -307,8 +307,10 @@ typedef struct sms_target {
  * is refused with ::SMS_ERR_POSITION_LIMIT, and a target velocity or acceleration other than
  * 0 (a motion that would drift on after it) with ::SMS_ERR_TARGET_VELOCITY or
  * ::SMS_ERR_TARGET_ACCELERATION, so the velocity interface plans only the stop.
- * sms_generator_start() refuses a state outside, or whose brake to rest (the time-optimal
- * change to velocity 0, the stop interface) would cross a limit, with ::SMS_ERR_POSITION_LIMIT;
+ * sms_generator_start() refuses a state outside, or from which neither the time-optimal
+ * motion to the target nor the brake to rest (the time-optimal change to velocity 0, the stop
+ * interface) stays inside, with ::SMS_ERR_POSITION_LIMIT (a harder brake, one that reverses
+ * before it rests, may still stay inside from some of these: they are refused all the same);
  * sms_generator_reset() to a position outside is ignored, and init rests at 0, or at the limit
  * nearer to 0 when 0 lies outside. A re-plan takes the time-optimal motion when it stays
  * inside; else it brakes to rest at once (the stop), waits there for the next sample, and
@@ -697,7 +699,8 @@ SMS_API void sms_generator_hold_target(sms_generator *g, const sms_target *targe
  *         [vmin, vmax]); ::SMS_ERR_TARGET_ACCELERATION (a not finite, |a| > amax or
  *         |v + a|a|/(2 J)| > vmax, J the shape's mean jerk, each on its own side with
  *         asymmetric limits: no plan can start there); ::SMS_ERR_POSITION_LIMIT (position
- *         limits: q outside [qmin, qmax], or the brake to rest from (q, v, a) would cross one);
+ *         limits: q outside [qmin, qmax], or neither the time-optimal motion to the target
+ *         nor the brake to rest from (q, v, a) stays inside);
  *         a status of sms_generator_check_target() for `target`;
  *         ::SMS_ERR_TOO_LONG (the motion to the target cannot be represented). Each bound
  *         holds to ::SMS_LIMIT_RTOL (a state the generator reported is always accepted).

@@ -896,18 +896,15 @@ sms_status sms_generator_start(sms_generator *g, sms_real q, sms_real v, sms_rea
     st = sms_generator_canonical(g, target, &t);
     if (st != SMS_OK)
         return st;
-    if (g->bounded) {
-        /* inside, and able to brake to rest inside: a plan then stays inside */
-        if (!(q >= g->qmin && q <= g->qmax))
-            return SMS_ERR_POSITION_LIMIT;
-        if (plan_stop(g, &plan, q, v, a) && !plan_inside(g, &plan))
-            return SMS_ERR_POSITION_LIMIT;
-    }
+    if (g->bounded && !(q >= g->qmin && q <= g->qmax))
+        return SMS_ERR_POSITION_LIMIT;
     switch (sms_generator_replan(g, &plan, q, v, a, &t)) {
     case 1:
         break;
     case SMS_REPLAN_WAIT:
-        return SMS_ERR_POSITION_LIMIT; /* not expected: the brake stays inside */
+        /* position limits: neither the motion to the target nor the brake to rest stays
+         * inside (and no plan before this one would go on) */
+        return SMS_ERR_POSITION_LIMIT;
     default:
         return SMS_ERR_TOO_LONG;
     }
