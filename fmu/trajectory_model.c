@@ -187,6 +187,7 @@ static int refuse_limits(const tg_model *m, char *msg, size_t len)
     c.zeta = m->zeta;
     c.vmin = m->vmin; /* 0: symmetric */
     c.amin = m->amin;
+    c.qmin = c.qmax = 0.0;
     (void)sms_generator_reach(&c, m->Ts, &r);
     if (r.quantity == NULL) /* not expected: init and the check are one function */
         return snprintf(msg, len, "vmax = %.17g, amax = %.17g, jmax = %.17g: %s", m->vmax,
@@ -303,6 +304,7 @@ static int configure(const tg_model *m, sms_generator_config *c, size_t *need, c
     c->zeta = m->zeta;
     c->vmin = m->vmin; /* 0: symmetric */
     c->amin = m->amin;
+    c->qmin = c->qmax = 0.0; /* no position limits (the FMU has no parameters for them) */
     *need = 0;
     st = sms_generator_buffer_size(c, m->Ts, need);
     if (st != SMS_OK)

@@ -225,6 +225,7 @@ static void generator_random(void)
         a.wn = a.profile == SMS_PROFILE_DAMPED || uniform() < 0.3 ? 20.0 + 200.0 * uniform() : 0.0;
         a.zeta = a.wn > 0.0 ? 0.3 * uniform() : 0.0;
         a.vmin = a.amin = 0.0; /* symmetric */
+        a.qmin = a.qmax = 0.0; /* no position limits */
         b = a;
         switch (field) {
         case 0: b.vmax = nextafter(a.vmax, 1e300); break;
