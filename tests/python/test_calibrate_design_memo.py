@@ -25,3 +25,39 @@ def test_same_as_reference(stage):
     assert impulses(stage) is impulses(stage)            # one computation per stage
     assert not A.flags.writeable and not t.flags.writeable
     assert zv_span(stage) == float(shaper_impulses(stage.with_(kind="zv"))[1][-1])
+
+
+def _transfer_per_term(q, a):
+    """The input smoothers' transfer as a loop over the series' terms and NumPy's polynomial
+    routines (the form the faster one must equal bit for bit)."""
+    from numpy.polynomial import polynomial as P
+    from smoothshaper.reference.input_smoothers import _SERIES_LIMIT, _moment
+    a = np.asarray(a, dtype=complex)
+    out = np.empty(a.shape, dtype=complex)
+    small = np.abs(a) <= _SERIES_LIMIT
+    x = a[small]
+    total, term, m = np.zeros(x.shape, dtype=complex), np.ones(x.shape, dtype=complex), 0
+    while x.size and (m <= 20 or np.max(np.abs(term)) > 1e-18):
+        total += term * _moment(q, m)
+        m += 1
+        term = term * (-x / m)
+    out[small] = total * np.exp(-x / 2)
+    x = a[~small]
+    acc, deriv, power = np.zeros(x.shape, dtype=complex), q.astype(float), x.copy()
+    while deriv.size:
+        acc += (P.polyval(0.5, deriv) * np.exp(-x) - P.polyval(-0.5, deriv)) / power
+        deriv = P.polyder(deriv) if deriv.size > 1 else np.array([])
+        power = power * x
+    out[~small] = -acc
+    return out
+
+
+def test_smoother_transfer_same_floats_as_per_term_loop():
+    from smoothshaper.reference.input_smoothers import _transfer
+    rng = np.random.default_rng(5)
+    for trial in range(300):
+        q = rng.normal(size=int(rng.integers(1, 16)))
+        n = int(rng.integers(0, 400))
+        r = rng.uniform(0.0, (14.0, 60.0)[trial % 2], n)
+        a = r * np.exp(1j * rng.uniform(-np.pi, np.pi, n))
+        assert _transfer(q, a).tobytes() == _transfer_per_term(q, a).tobytes()

@@ -87,6 +87,9 @@ _CONSTANT = {
         1.267781046297883]),
 }
 _SERIES_LIMIT = 12.0
+#: Terms of the series whose factors -x/m are formed at once (it needs about 60 for |x| <= 12).
+_STEPS = 96
+_INV_M = 1.0 / np.arange(1, _STEPS + 1)
 
 
 def _check(stage: Stage) -> Stage:
@@ -176,6 +179,15 @@ def _moments(q: tuple) -> tuple:
     return tuple(_moment(q, m) for m in range(96))
 
 
+def _horner(c, u: float) -> float:
+    """``P.polyval(u, c)`` for a float u: the same Horner steps on Python floats (without its
+    array checks; the tuning asks this a dozen times per transfer)."""
+    v = float(c[-1])
+    for a in reversed(c[:-1]):
+        v = float(a) + v * u
+    return v
+
+
 def _transfer(q: np.ndarray, a: np.ndarray) -> np.ndarray:
     """:func:`_transfer_scalar` over an array of ``a = s T``: the exponential's series with the
     exact moments of P for ``|a| <= 12``, the closed antiderivative above."""
@@ -188,22 +200,27 @@ def _transfer(q: np.ndarray, a: np.ndarray) -> np.ndarray:
         # [-1/2, 1/2] exactly: int u^n du = 2^-n/(n+1) for even n, 0 for odd
         total = np.zeros(x.shape, dtype=complex)
         term = np.ones(x.shape, dtype=complex)
-        m = 0
         moments = _moments(tuple(float(c) for c in q))
-        while m <= 20 or np.max(np.abs(term)) > 1e-18:
+        # -x / m formed at once, as NumPy divides by m + 0j: each part times 1 / m
+        steps = np.empty((_STEPS, x.size), dtype=complex)
+        steps.real = -x.real * _INV_M[:, None]
+        steps.imag = -x.imag * _INV_M[:, None]
+        m = 0
+        while m <= 20 or np.abs(term).max() > 1e-18:
             moment = moments[m] if m < len(moments) else _moment(q, m)
             total += term * moment
             m += 1
-            term = term * (-x / m)
+            term = term * (steps[m - 1] if m <= _STEPS else -x / m)
         out[small] = total * np.exp(-x / 2)
     if (~small).any():
         # -e^{-a u} sum_j P^(j)(u)/a^(j+1) from -1/2 to 1/2, times e^{-a/2}
         x = a[~small]
         acc = np.zeros(x.shape, dtype=complex)
         deriv, power = q.astype(float), x.copy()
+        e = np.exp(-x)
         while deriv.size:
-            acc += (P.polyval(0.5, deriv) * np.exp(-x) - P.polyval(-0.5, deriv)) / power
-            deriv = P.polyder(deriv) if deriv.size > 1 else np.array([])
+            acc += (_horner(deriv, 0.5) * e - _horner(deriv, -0.5)) / power
+            deriv = deriv[1:] * np.arange(1, deriv.size)     # P.polyder's products j c_j
             power = power * x
         out[~small] = -acc
     return out
