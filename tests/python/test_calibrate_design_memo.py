@@ -1,5 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """The tuning loop's remembered impulses and ZV spans are the reference design's, bit for bit."""
+import math
+
 import numpy as np
 import pytest
 
@@ -61,3 +63,27 @@ def test_smoother_transfer_same_floats_as_per_term_loop():
         r = rng.uniform(0.0, (14.0, 60.0)[trial % 2], n)
         a = r * np.exp(1j * rng.uniform(-np.pi, np.pi, n))
         assert _transfer(q, a).tobytes() == _transfer_per_term(q, a).tobytes()
+
+
+@pytest.mark.parametrize("kind", ["smooth_zv", "smooth_mzv", "smooth_ei", "smooth_ei2",
+                                  "smooth_zvd_ei", "smooth_si"])
+def test_smoother_kernel_same_floats_as_numpy_polynomials(kind):
+    """The kernel's coefficients and area by Horner on floats equal NumPy's polyval/polyint."""
+    from numpy.polynomial import polynomial as P
+    from smoothshaper.reference import input_smoothers as ism
+    from smoothshaper.stages import Stage
+    rng = np.random.default_rng(9)
+    for _ in range(100):
+        stage = Stage(kind=kind, wn=float(rng.uniform(10.0, 3000.0)),
+                      zeta=float(rng.uniform(0.0, 0.25)))
+        z = ism._zeta(stage)
+        if kind in ism._CUBIC:
+            t, rows = ism._CUBIC[kind]
+            q, span = np.array([P.polyval(z, r) for r in rows]), P.polyval(z, t)
+        else:
+            span, high_first = ism._CONSTANT[kind]
+            q = np.array(high_first[::-1])
+        area = P.polyval(0.5, P.polyint(q)) - P.polyval(-0.5, P.polyint(q))
+        q_fast, T_fast = ism.smoother_kernel(stage)
+        assert (q / area).tobytes() == q_fast.tobytes()
+        assert span * 2.0 * math.pi / stage.wn == T_fast

@@ -479,7 +479,7 @@ def tune(family: Family, anchors, objectives, rank: str, ref: Reference,
             """A one-shaper design below the least frequency that meets the delay limit, moved
             onto it (the refinement then follows that limit as the damping moves: the best
             design within a delay limit often lies on it)."""
-            taps = _shaper_taps(design, np.r_[0.0, u[1:]], fw is not None)
+            taps = _shaper_taps(design, np.concatenate(([0.0], u[1:])), fw is not None)
             if taps is not None:
                 lo = math.log(_min_ratio(taps, max_delay, ref.Ts))
                 if math.isfinite(lo) and u[0] < lo:

@@ -129,12 +129,14 @@ def smoother_kernel(stage: Stage) -> tuple[np.ndarray, float]:
     z = _zeta(stage)
     if stage.kind in _CUBIC:
         t, rows = _CUBIC[stage.kind]
-        q = np.array([P.polyval(z, r) for r in rows])
-        span = P.polyval(z, t)
+        q = np.array([_horner(r, z) for r in rows])
+        span = _horner(t, z)
     else:
         span, high_first = _CONSTANT[stage.kind]
         q = np.array(high_first[::-1])
-    area = P.polyval(0.5, P.polyint(q)) - P.polyval(-0.5, P.polyint(q))
+    # P.polyint(q) is [0, q_0, q_1/2, q_2/3, ...]: its values at +-1/2 by the same Horner steps
+    integral = [0.0] + [float(c) / (j + 1) for j, c in enumerate(q)]
+    area = _horner(integral, 0.5) - _horner(integral, -0.5)
     return q / area, span * 2.0 * math.pi / stage.wn
 
 
