@@ -33,7 +33,11 @@ def _transfer_per_term(q, a):
     """The input smoothers' transfer as a loop over the series' terms and NumPy's polynomial
     routines (the form the faster one must equal bit for bit)."""
     from numpy.polynomial import polynomial as P
-    from smoothshaper.reference.input_smoothers import _SERIES_LIMIT, _moment
+    from smoothshaper.reference.input_smoothers import _SERIES_LIMIT
+
+    def _moment(q, m):       # int u^m P(u) du over [-1/2, 1/2], term by term
+        return sum(c * (0.5 ** (m + j) / (m + j + 1)) for j, c in enumerate(q)
+                   if (m + j) % 2 == 0)
     a = np.asarray(a, dtype=complex)
     out = np.empty(a.shape, dtype=complex)
     small = np.abs(a) <= _SERIES_LIMIT

@@ -168,17 +168,30 @@ def _transfer_scalar(q: np.ndarray, a: complex) -> complex:
     return complex(_transfer(q, np.array([a], dtype=complex))[0])
 
 
+#: ``2^-n / (n + 1)``, the moments of u^n over [-1/2, 1/2] for even n (the same floats as
+#: computed in place).
+_UNIT_MOMENTS = [0.5 ** n / (n + 1) for n in range(256)]
+
+
 def _moment(q, m: int) -> float:
     """``int_{-1/2}^{1/2} u^m P(u) du`` (the exact moments of u^n: 2^-n/(n+1), n even)."""
-    return sum(c * (0.5 ** (m + j) / (m + j + 1)) for j, c in enumerate(q) if (m + j) % 2 == 0)
+    return sum([c * (_UNIT_MOMENTS[m + j] if m + j < 256 else 0.5 ** (m + j) / (m + j + 1))
+                for j, c in enumerate(q) if (m + j) % 2 == 0])
 
 
 @functools.lru_cache(maxsize=256)
-def _moments(q: tuple) -> tuple:
-    """The first 96 moments of a kernel (the series of :func:`_transfer` needs about 60 for
-    ``|a| <= 12``; the tuning asks the same kernel hundreds of times), the same floats as
-    :func:`_moment`."""
-    return tuple(_moment(q, m) for m in range(96))
+def _moments(q: tuple) -> list:
+    """The moments of a kernel computed so far (:func:`_moments_upto` extends the list; the
+    tuning asks the same kernel hundreds of times)."""
+    return []
+
+
+def _moments_upto(q: tuple, n: int) -> list:
+    """The first ``n`` moments of a kernel (at least), the same floats as :func:`_moment`."""
+    got = _moments(q)
+    while len(got) < n:
+        got.append(_moment(q, len(got)))
+    return got
 
 
 def _horner(c, u: float) -> float:
@@ -202,7 +215,13 @@ def _transfer(q: np.ndarray, a: np.ndarray) -> np.ndarray:
         # [-1/2, 1/2] exactly: int u^n du = 2^-n/(n+1) for even n, 0 for odd
         total = np.zeros(x.shape, dtype=complex)
         term = np.ones(x.shape, dtype=complex)
-        moments = _moments(tuple(float(c) for c in q))
+        # the terms the loop will take: about where r^m / m! falls below 1e-18 (beyond the
+        # moments asked for, each is computed as it comes: the same floats)
+        r, need, bound = float(np.max(np.abs(x))), 0, 1.0
+        while need <= 20 or bound > 1e-18:
+            need += 1
+            bound *= r / need
+        moments = _moments_upto(tuple(float(c) for c in q), need + 2)
         # -x / m formed at once, as NumPy divides by m + 0j: each part times 1 / m
         steps = np.empty((_STEPS, x.size), dtype=complex)
         steps.real = -x.real * _INV_M[:, None]
