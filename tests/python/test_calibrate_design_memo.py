@@ -91,3 +91,19 @@ def test_smoother_kernel_same_floats_as_numpy_polynomials(kind):
         q_fast, T_fast = ism.smoother_kernel(stage)
         assert (q / area).tobytes() == q_fast.tobytes()
         assert span * 2.0 * math.pi / stage.wn == T_fast
+
+
+@pytest.mark.parametrize("d", range(6))
+def test_si_chebyshev_composition_same_floats_as_numpy_polynomials(d):
+    """T_d of a line by series arithmetic equals NumPy's Chebyshev-of-Polynomial, bit for bit
+    (the SI design's ripple polynomial)."""
+    from numpy.polynomial import Chebyshev, Polynomial
+    from smoothshaper.reference.shapers import _chebyshev_of_linear, _trimmed
+    rng = np.random.default_rng(13)
+    for k in range(500):
+        line = np.array([0.0 if k % 50 == 0 else rng.normal() * 10 ** rng.uniform(-3, 3),
+                         rng.normal() * 10 ** rng.uniform(-3, 3)])
+        tol = float(rng.uniform(1e-3, 0.9))
+        ref = (tol * Chebyshev.basis(d)(Polynomial(line))).coef
+        got = _trimmed(np.convolve(np.array([tol]), _chebyshev_of_linear(d, line)))
+        assert got.tobytes() == ref.tobytes()
