@@ -472,8 +472,8 @@ def tune(family: Family, anchors, objectives, rank: str, ref: Reference,
                          for q in (1.2, 1.45, 1.75) for z in z_grid[1:3]]
             scored = [(cost(u), tuple(u)) for u in grid]
     scored.sort(key=lambda x: x[0])
-    # one Nelder-Mead refinement from the grid's best point, its simplex a grid step along
-    # each parameter
+    # a short bounded refinement of each parameter in turn from the grid's best point, within
+    # about a grid step of it (scipy's bounded scalar minimiser: a dozen costs each)
     steps = [step_r, step_z] * slots + [0.25 * (e[2] - e[1]) for e in family.extra]
     clamp = None
     if single and max_delay is not None:
@@ -514,76 +514,16 @@ def tune(family: Family, anchors, objectives, rank: str, ref: Reference,
 
 
 def _refine(cost, u0, steps, xatol: float = 1e-4):
-    """``u0`` refined from a simplex of ``steps`` about it by Nelder-Mead (a narrow valley of
-    damping against frequency is followed, where a search along each parameter in turn
-    stopped at its first point); returns (u, cost)."""
+    """``u0`` refined from a simplex of ``steps`` about it by scipy's Nelder-Mead (a narrow
+    valley of damping against frequency is followed, where a search along each parameter in
+    turn stopped at its first point); returns (u, cost)."""
+    from scipy.optimize import minimize
     u0 = np.array(u0, dtype=float)
     simplex = [u0] + [u0 + np.eye(u0.size)[j] * steps[j] for j in range(u0.size)]
-    return _nelder_mead(cost, np.array(simplex), xatol=xatol, fatol=1e-4,
-                        maxiter=30 * u0.size)
-
-
-def _nelder_mead(cost, simplex, *, xatol: float, fatol: float, maxiter: int):
-    """The Nelder-Mead simplex search with the standard coefficients (reflection 1, expansion
-    2, contraction 1/2, shrink 1/2; J. A. Nelder and R. Mead, Comput. J. 7 (1965) 308-313,
-    in the form of J. C. Lagarias et al., SIAM J. Optim. 9 (1998) 112-147) from an initial
-    simplex of n + 1 points, as ``scipy.optimize.minimize(method="Nelder-Mead")`` steps it
-    (the same points in the same order, so the same floats): the tuning asks it about 30
-    times per axis, and the calibration then needs SciPy only for the modal fit.
-
-    Stops when every vertex lies within ``xatol`` of the best in every coordinate and every
-    cost within ``fatol`` of the best, or after ``maxiter - 1`` iterations. ``cost`` gets a
-    copy of each point. Returns (best point, its cost)."""
-    sim = np.array(simplex, dtype=float)
-    n = sim.shape[1]
-    fsim = np.full(n + 1, np.inf)
-    for k in range(n + 1):
-        fsim[k] = cost(sim[k].copy())
-
-    def ordered(sim, fsim):
-        # argsort's default kind, as the reference does (ties keep the order it gives them)
-        ind = np.argsort(fsim)
-        return np.take(sim, ind, 0), np.take(fsim, ind, 0)
-
-    sim, fsim = ordered(sim, fsim)
-    sim, fsim = ordered(sim, fsim)
-    iterations = 1
-    while iterations < maxiter:
-        if (np.max(np.abs(sim[1:] - sim[0])) <= xatol
-                and np.max(np.abs(fsim[0] - fsim[1:])) <= fatol):
-            break
-        centroid = np.add.reduce(sim[:-1], 0) / n
-        worst = sim[-1]
-        xr = 2 * centroid - 1 * worst
-        fr = cost(xr.copy())
-        shrink = False
-        if fr < fsim[0]:
-            xe = 3 * centroid - 2 * worst
-            fe = cost(xe.copy())
-            sim[-1], fsim[-1] = (xe, fe) if fe < fr else (xr, fr)
-        elif fr < fsim[-2]:
-            sim[-1], fsim[-1] = xr, fr
-        elif fr < fsim[-1]:
-            xc = 1.5 * centroid - 0.5 * worst           # outside contraction
-            fc = cost(xc.copy())
-            if fc <= fr:
-                sim[-1], fsim[-1] = xc, fc
-            else:
-                shrink = True
-        else:
-            xcc = 0.5 * centroid + 0.5 * worst          # inside contraction
-            fcc = cost(xcc.copy())
-            if fcc < fsim[-1]:
-                sim[-1], fsim[-1] = xcc, fcc
-            else:
-                shrink = True
-        if shrink:
-            for j in range(1, n + 1):
-                sim[j] = sim[0] + 0.5 * (sim[j] - sim[0])
-                fsim[j] = cost(sim[j].copy())
-        iterations += 1
-        sim, fsim = ordered(sim, fsim)
-    return np.asarray(sim[0], dtype=float), float(np.min(fsim))
+    res = minimize(cost, u0, method="Nelder-Mead",
+                   options={"initial_simplex": np.array(simplex), "xatol": xatol,
+                            "fatol": 1e-4, "maxiter": 30 * u0.size})
+    return np.asarray(res.x, dtype=float), float(res.fun)
 
 
 def _is_single_shaper(design, z, extra0):
