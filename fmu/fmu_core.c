@@ -358,8 +358,8 @@ static fmu_status refuse_value(fmu_instance *c, const char *func, fmu_type type,
     if (cls == FMU_VAR_INPUT && isfinite(((const double *)value)[i]))
         return FAIL(c, "%s: %s = %g is beyond %.17g, the input range within which the filters' "
                     "internal sums stay finite (SMS_INPUT_MAX, or less for a configuration with "
-                    "a large internal gain)", func, name, ((const double *)value)[i],
-                    input_max(c));
+                    "a large internal gain, now or after a retune still to take effect)", func,
+                    name, ((const double *)value)[i], input_max(c));
     return FAIL(c, "%s: %s must be finite, got %g", func, name, ((const double *)value)[i]);
 }
 

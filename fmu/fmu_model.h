@@ -132,9 +132,9 @@ unsigned fmu_model_real_bytes(void);
 double fmu_model_input_max(const void *model);
 /**
  * @brief The largest |input| a loaded state may hold (an input saved with it): what
- * fmu_model_input_max() gives, unless an input accepted under an earlier configuration stays
- * held across a change of it (SmoothShaper's retunable stages: a retune that narrows the range
- * keeps the held u and s, so their bound is the glue's SMS_INPUT_MAX); valid as that one.
+ * fmu_model_input_max() gives (SmoothShaper refuses a retune that would narrow the range below
+ * a held input, so no input accepted under an earlier configuration is beyond it); valid as
+ * that one.
  */
 double fmu_model_state_input_max(const void *model);
 /**

@@ -64,6 +64,13 @@ typedef struct ss_model {
      * a build, a retune and a loaded state make it stale) */
     double input_max;
     int input_max_stale;
+    /* the range and gain bound (sms_stage_config_range()) of each chain position's pending
+     * configuration, kept from the set that made it pending (pend_gain 0: none valid), so that
+     * every set of u is checked against the range of the retunes to come in O(stages) */
+    double pend_limit[SS_MAX_STAGES], pend_gain[SS_MAX_STAGES];
+    /* the largest |u| or |s| the stages' memory may hold: those ticked since the build, or the
+     * configuration's whole range after a state was loaded (its inputs are not known) */
+    double peak;
 } ss_model;
 
 static int is_integer_field(unsigned f)
@@ -268,6 +275,26 @@ int fmu_model_get_integer(const void *model, fmu_vr vr)
     return stage_field(vr, &k, &f) ? m->stage[k].ints[f] : 0;
 }
 
+static int stage_config(const ss_model *m, unsigned k, sms_stage_config *c, char *msg, size_t len);
+
+/* The range and gain bound of chain position i's configuration from its parameters as set
+ * (a retune to come), or none (pend_gain 0) while they are no valid configuration, which
+ * fmu_model_input_max() then counts as a range of 0: a set call is checked as a whole before
+ * its values are written one by one, so that lasts only until its last value. */
+static void pending_range(ss_model *m, size_t i)
+{
+    char why[FMU_MESSAGE_LEN];
+    sms_stage_config c;
+    m->pend_limit[i] = 0.0;
+    m->pend_gain[i] = 0.0;
+    if (stage_config(m, m->used[i], &c, why, sizeof why) != 0)
+        return;
+    if (c.kind == SMS_SHAPER_IMPULSES)
+        m->pend_gain[i] = -1.0;   /* never retuned (it reads no tunable field) */
+    else if (sms_stage_config_range(&c, m->Ts, &m->pend_limit[i], &m->pend_gain[i]) != SMS_OK)
+        m->pend_limit[i] = m->pend_gain[i] = 0.0;
+}
+
 /* A tunable field of stage k was set: after the build, its chain position awaits a retune. */
 static void mark_pending(ss_model *m, unsigned k)
 {
@@ -279,6 +306,15 @@ static void mark_pending(ss_model *m, unsigned k)
             m->pending[i] = 1;
             m->any_pending = 1;
         }
+}
+
+/* After a tunable value of stage k was written: its pending configuration's range. */
+static void update_pending_range(ss_model *m, unsigned k)
+{
+    size_t i;
+    for (i = 0; m->built && i < m->n_active; ++i)
+        if (m->used[i] == k && m->pending[i])
+            pending_range(m, i);
 }
 
 void fmu_model_set_real(void *model, fmu_vr vr, double value)
@@ -293,9 +329,12 @@ void fmu_model_set_real(void *model, fmu_vr vr, double value)
     else if (vr == SS_VR_RETUNE_MAX_DELAY) m->retune_max_delay = value;
     else if (sched_field(vr, &k, &f)) m->sched[k][f] = value;
     else if (stage_field(vr, &k, &f)) {
-        if (m->stage[k].reals[f] != value && is_tunable_field(f))
+        const int changed = m->stage[k].reals[f] != value && is_tunable_field(f);
+        if (changed)
             mark_pending(m, k);
         m->stage[k].reals[f] = value;
+        if (changed)
+            update_pending_range(m, k);
     }
 }
 
@@ -308,9 +347,12 @@ void fmu_model_set_integer(void *model, fmu_vr vr, int value)
     else if (vr == SS_VR_SCHED_EVERY) m->sched_every = value;
     else if (vr == SS_VR_SCHED_POINTS) m->sched_points = value;
     else if (stage_field(vr, &k, &f)) {
-        if (m->stage[k].ints[f] != value && is_tunable_field(f))
+        const int changed = m->stage[k].ints[f] != value && is_tunable_field(f);
+        if (changed)
             mark_pending(m, k);
         m->stage[k].ints[f] = value;
+        if (changed)
+            update_pending_range(m, k);
     }
 }
 
@@ -490,24 +532,45 @@ static int hold_too_long(const ss_model *m, const sms_stage_config *configs,
 
 unsigned fmu_model_real_bytes(void) { return (unsigned)sizeof(sms_real); }
 
+/* The range of the chain from now until the retunes to come have ended
+ * (sms_tunable_chain_retune_input_max()): chain position i goes to a configuration of range
+ * limit[i] and gain bound gain[i] where pending[i] is set, unless gain[i] is -1 (user-defined
+ * impulses, never retuned); 0 while one of them is not valid yet (see pending_range()). */
+static double retune_range(const ss_model *m, const int *pending, const double *limit,
+                           const double *gain)
+{
+    int retuned[SS_MAX_STAGES];
+    size_t i;
+    for (i = 0; i < m->n_active; ++i) {
+        retuned[i] = pending[i] && gain[i] != -1.0;
+        if (retuned[i] && !(gain[i] > 0.0))
+            return 0.0;
+    }
+    return sms_tunable_chain_retune_input_max(&m->chain, retuned, limit, gain);
+}
+
 /* The finite input range of the chain now (sms_tunable_chain_input_max(): below SMS_INPUT_MAX
- * for heavily damped harmonic smoothers and large-gain stages). */
+ * for heavily damped harmonic smoothers and large-gain stages), and with retunes pending the
+ * smaller range they lead to: an input set now stays held across them. */
 double fmu_model_input_max(const void *model)
 {
     const ss_model *m = (const ss_model *)model;
+    double x;
     if (!m->built || m->n_active == 0)
         return HUGE_VAL;
-    return m->input_max_stale ? sms_tunable_chain_input_max(&m->chain) : m->input_max;
+    x = m->input_max_stale ? sms_tunable_chain_input_max(&m->chain) : m->input_max;
+    if (m->any_pending) {
+        const double pending = retune_range(m, m->pending, m->pend_limit, m->pend_gain);
+        x = pending < x ? pending : x;
+    }
+    return x;
 }
 
-/* Retunable stages keep the held u and s across a retune that narrows the range (the inputs
- * were within the range when they were set), so a state of theirs may hold inputs up to the
- * glue's SMS_INPUT_MAX, the range fmu_model_load_state() holds their values to; fixed stages
- * their own range. */
+/* A retune that would narrow the range below a held input is refused (fmu_model_check_tunable),
+ * so the inputs a state holds are within its own configuration's range. */
 double fmu_model_state_input_max(const void *model)
 {
-    const ss_model *m = (const ss_model *)model;
-    return m->retune_max_delay > 0.0 ? HUGE_VAL : fmu_model_input_max(model);
+    return fmu_model_input_max(model);
 }
 
 /* After ticks: the range of a chain that no longer switches is its configuration's. */
@@ -831,6 +894,7 @@ int fmu_model_build(void *model, void *mem, size_t bytes, char *msg, size_t len)
     b.any_pending = 0;
     b.built = 1;
     b.input_max_stale = 1;
+    b.peak = fabs(b.u) > fabs(b.s) || !b.scheduled ? fabs(b.u) : fabs(b.s);
     if (n > 0)
         sms_tunable_chain_reset(&b.chain, (sms_real)b.u);
     if (b.scheduled)
@@ -841,6 +905,61 @@ int fmu_model_build(void *model, void *mem, size_t bytes, char *msg, size_t len)
         sms_tunable_chain_rebind(&m->chain, m->tunables, (sms_memory_cell *)mem);
     m->chain_lag = active_lag(m);
     return 0;
+}
+
+/* A retune must not narrow the chain's range below an input it holds: u, s, or one in the
+ * stages' memory (peak). The range from now until the retunes (those of this call, configs of
+ * the stages touched, and those pending) have ended is retune_range(); 1 with msg naming the
+ * call's first variable and the values if an input held is beyond it. */
+static int narrows_below_held(const ss_model *m, fmu_type type, const fmu_vr *vr,
+                              const void *values, size_t n, const int *touched,
+                              const sms_stage_config *configs, char *msg, size_t len)
+{
+    int pend[SS_MAX_STAGES];
+    double lim[SS_MAX_STAGES], gain[SS_MAX_STAGES], x;
+    const char *what;
+    double held;
+    char name[64], value[40];
+    size_t i, j;
+    unsigned k, f;
+    for (i = 0; i < m->n_active; ++i) {
+        pend[i] = touched[m->used[i]] || m->pending[i];
+        lim[i] = m->pend_limit[i];
+        gain[i] = m->pend_gain[i];
+        if (!touched[m->used[i]])
+            continue;
+        if (configs[i].kind == SMS_SHAPER_IMPULSES)
+            gain[i] = -1.0;   /* never retuned */
+        else if (sms_stage_config_range(&configs[i], m->Ts, &lim[i], &gain[i]) != SMS_OK)
+            lim[i] = gain[i] = 0.0;   /* validated above: cannot happen */
+    }
+    x = retune_range(m, pend, lim, gain);
+    if (fabs(m->u) > x) {
+        what = "the input u it holds";
+        held = fabs(m->u);
+    } else if (fabs(m->s) > x) {
+        what = "the scheduling input s it holds";
+        held = fabs(m->s);
+    } else if (m->peak > x) {
+        what = m->peak >= fmu_model_input_max(m) ? "the largest input the stages' memory may "
+               "hold (its whole range: inputs taken before a restored state are not known)"
+               : "the largest input the stages' memory may hold (the largest |u| or |s| ticked "
+               "since initialization)";
+        held = m->peak;
+    } else {
+        return 0;
+    }
+    for (j = 0; j + 1 < n && !stage_field(vr[j], &k, &f); ++j)
+        ;
+    fmu_model_name(type, vr[j], name, sizeof name);
+    if (type == FMU_REAL)
+        snprintf(value, sizeof value, "%.17g", ((const double *)values)[j]);
+    else
+        snprintf(value, sizeof value, "%d", (int)((const int32_t *)values)[j]);
+    return snprintf(msg, len, "%s = %s: the retuned stages' input range would be %.17g "
+                    "(sms_tunable_chain_retune_input_max: larger negative impulses, notch gain "
+                    "or correction), below %.17g, %s: the chain would overflow; retune to a "
+                    "configuration of a wider range", name, value, x, held, what), 1;
 }
 
 int fmu_model_check_tunable(const void *model, fmu_type type, const fmu_vr *vr,
@@ -909,6 +1028,9 @@ int fmu_model_check_tunable(const void *model, fmu_type type, const fmu_vr *vr,
             return snprintf(msg, len, "%s: the retuned stages would be too slow to hold: %s",
                             name, why), 1;
         }
+        if (m->n_active > 0 && narrows_below_held(m, type, vr, values, n, touched, configs, msg,
+                                                  len))
+            return 1;
     }
     return 0;
 }
@@ -943,11 +1065,21 @@ static void apply_pending(ss_model *m)
         m->chain_lag = active_lag(m);
 }
 
+/* The inputs a tick puts into the stages' memory raise its peak. */
+static void note_inputs(ss_model *m)
+{
+    if (fabs(m->u) > m->peak)
+        m->peak = fabs(m->u);
+    if (m->scheduled && fabs(m->s) > m->peak)
+        m->peak = fabs(m->s);
+}
+
 int fmu_model_tick(void *model)
 {
     ss_model *m = (ss_model *)model;
     sms_real x = (sms_real)m->u;
     double before = m->y;
+    note_inputs(m);
     if (m->any_pending)
         apply_pending(m);
     if (m->n_active > 0)
@@ -978,6 +1110,7 @@ uint64_t fmu_model_hold(void *model, uint64_t n)
     sms_real y;
     if (n == 0 || m->any_pending || m->scheduled)
         return 0;
+    note_inputs(m);
     if (m->n_active == 0) {
         m->y = (double)(sms_real)m->u;
         return n;
@@ -1107,8 +1240,10 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
         off += m->region[i];
         at += slots_per_stage(m) * m->slot_cells[i];
     }
-    /* the input range X: the fixed chain's own, or SMS_INPUT_MAX when the stages were
-     * retunable (inputs taken under an earlier configuration may reach beyond today's) */
+    /* the input range X: the fixed chain's own, or SMS_INPUT_MAX when the stages are
+     * retunable (the values a stage holds were left through earlier configurations, whose
+     * gains may exceed today's; the held inputs are within today's range, which the glue
+     * checks with fmu_model_state_input_max()) */
     x = m->n_active > 0 && !(m->retune_max_delay > 0.0) ? fmu_model_input_max(m) : SMS_INPUT_MAX;
     x = x < SMS_INPUT_MAX ? x : SMS_INPUT_MAX;   /* the cached range unless a stage was rebuilt */
     for (i = 0, off = 1; i < m->n_active; ++i) {
@@ -1173,8 +1308,13 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
             m->pending[i] = stage_config(m, m->used[i], &want, why, sizeof why) == 0
                             && !same_config(&want, &now);
         m->any_pending |= m->pending[i];
+        if (m->pending[i])
+            pending_range(m, i);
     }
     if (rebuilt)
         m->chain_lag = active_lag(m);
+    /* the inputs the loaded memory holds are not known: up to the range (fmu_model_input_max()
+     * after the pending ranges above) */
+    m->peak = fmu_model_input_max(m) < SMS_INPUT_MAX ? fmu_model_input_max(m) : SMS_INPUT_MAX;
     return 0;
 }

@@ -86,6 +86,9 @@
 static unsigned long failures, n_calls, n_errors, n_steps, n_inits, n_restores, n_slow, n_warnings;
 static unsigned long n_nonfinite, n_unloadable, sequence, n_big_inits;
 static unsigned long n_forged, n_forged_accepted;
+/* SmoothShaper: retune operations drawn and accepted; sets of stage parameters (by any
+ * operation) refused for narrowing the input range below an input held */
+static unsigned long n_retunes, n_retunes_accepted, n_narrowing;
 static double slowest;
 static unsigned slowest_op;
 static size_t largest_state;   /* bytes of the largest serialised state seen */
@@ -127,6 +130,8 @@ static void logger(fmi2ComponentEnvironment env, fmi2String name, fmi2Status sta
     va_start(ap, message);
     vsnprintf(last_message, sizeof last_message, message, ap);
     va_end(ap);
+    /* SmoothShaper: a set of stage parameters refused for narrowing the input range */
+    n_narrowing += strstr(last_message, "input range would be") != NULL;
 }
 
 static const fmi2CallbackFunctions callbacks = { logger, calloc, free, NULL, NULL };
@@ -777,7 +782,11 @@ static void run_sequence(unsigned length)
         case 16: st = fmi2Terminate(c); break;
         case 17: if (pick(4) == 0) { st = fmi2Reset(c); t = 0.0; } break;
 #ifdef FMU_TEST_SMOOTHSHAPER
-        case 20: st = retune_one(c); break;   /* SmoothShaper: a retune between steps */
+        case 20:   /* SmoothShaper: a retune between steps */
+            st = retune_one(c);
+            ++n_retunes;
+            n_retunes_accepted += st == fmi2OK;
+            break;
 #endif
         case 18: { fmi2Real y[N_OUTPUTS];
             size_t k, ny = pick(8) ? N_OUTPUTS : 0;
@@ -908,5 +917,10 @@ int main(int argc, char **argv)
            n_calls, n_errors, n_inits, n_big_inits, n_steps, n_warnings, n_restores,
            (unsigned long)largest_state, n_slow, 1e3 * CALL_LIMIT_S, 1e3 * slowest, slowest_op,
            n_nonfinite, n_unloadable, n_forged_accepted, n_forged, failures);
+#ifdef FMU_TEST_SMOOTHSHAPER
+    printf("fmu_fuzz %s: %lu retunes drawn, %lu accepted; %lu sets of stage parameters refused "
+           "for narrowing the input range below an input held\n", FMU_MODEL_IDENTIFIER,
+           n_retunes, n_retunes_accepted, n_narrowing);
+#endif
     return failures == 0 ? 0 : 1;
 }

@@ -264,3 +264,30 @@ def test_every_model_refuses_a_Ts_above_SMS_TS_MAX_naming_it(fmus3, Ts):
                          logger=lambda *a: messages.append(a[-1].decode()))
         assert any(f"Ts = {Ts!r}" in m and "(SMS_TS_MAX)" in m for m in messages), (name,
                                                                                  messages)
+
+
+def test_smoothshaper_retune_narrowing_below_the_held_input_is_refused(fmus3, tmp_path):
+    """FMI 3.0: fmi3SetFloat64 of a tunable parameter whose retune would narrow the range below
+    the held u returns fmi3Error naming it and the values; the instance runs on unchanged."""
+    from test_fmu_retune import DAMPED, HEAVY, LARGE_U, message_range, narrowed_range
+    s3, twin = (Slave3(fmus3["SmoothShaper"], tmp_path / name) for name in ("a", "b"))
+    for s in (s3, twin):
+        s.fmu.enterInitializationMode()
+        for name, value in {**DAMPED, "u": LARGE_U}.items():
+            if isinstance(value, int):
+                s.fmu.setInt32([s.vr[name]], [value])
+            else:
+                s.fmu.setFloat64([s.vr[name]], [value])
+        s.fmu.exitInitializationMode()
+    u, y, sigma = s3.vr["u"], s3.vr["y"], s3.vr["stage[0].sigma"]
+    for k in range(120):
+        if k == 40:
+            with pytest.raises(Exception):
+                s3.fmu.setFloat64([sigma], [HEAVY])
+            assert "stage[0].sigma = -15000" in s3.messages[-1]
+            assert message_range(s3.messages[-1]) == narrowed_range()
+            assert s3.fmu.getFloat64([sigma]) == [-30.0]
+        for s in (s3, twin):
+            s.fmu.setFloat64([u], [LARGE_U * (1.0 - 0.004 * k)])
+            s.fmu.doStep(k * TS, TS)
+        assert s3.fmu.getFloat64([y]) == twin.fmu.getFloat64([y])

@@ -312,3 +312,99 @@ def test_new_families_retune_refusals(ss_dir):
     for f in (first, other):
         f.terminate()
         f.freeInstance()
+
+
+# A damped harmonic smoother retuned to heavy damping (sigma T = -300): its range falls from
+# SMS_INPUT_MAX = 1e305 to 2.7e299 (its gain c grows with e^(-sigma Ts)), below the input
+# u = 1e301 the FMU holds.
+DAMPED = {"stage[0].kind": 2, "stage[0].T": 0.02, "stage[0].sigma": -30.0,
+          "stage[1].kind": -1, "retune_max_delay": 0.03}
+HEAVY = -15000.0
+LARGE_U = 1e301
+
+
+def narrowed_range() -> float:
+    """sms_stage_config_range() of the heavily damped smoother: the range of the one-stage
+    chain once it is retuned, during the switch (the smaller of the two) and after it."""
+    from smoothshaper.filters import _backend, _fill_config
+    ffi, lib = _backend("double")
+    config = ffi.new("sms_stage_config *")
+    _fill_config(config, sms.damped_harmonic(T=0.02, sigma=HEAVY))
+    x, g = ffi.new("double *"), ffi.new("double *")
+    assert lib.sms_stage_config_range(config, TS, x, g) == 0
+    return x[0]
+
+
+def message_range(message: str) -> float:
+    import re
+    return float(re.search(r"input range would be (\S+) ", message).group(1))
+
+
+def test_retune_narrowing_the_range_below_the_held_input_is_refused(ss_dir):
+    """The retune is refused at the set, naming the parameter, its value, the range it would
+    give and the held u; the FMU runs on unchanged (bit for bit a twin never asked), and its
+    saved state loads into the twin."""
+    bound = narrowed_range()
+    assert 1e299 < bound < LARGE_U / 10
+    logged = Logged()
+    fmu, twin = slave(ss_dir, logged=logged), slave(ss_dir, name="twin")
+    for f in (fmu, twin):
+        start(f, DAMPED, u0=LARGE_U)
+    u = LARGE_U * (1.0 - 0.5 * move(200))
+    for i, ui in enumerate(u):
+        if i == 80:
+            with pytest.raises(FMICallException):
+                fmu.setReal([fmu.vr["stage[0].sigma"]], [HEAVY])
+            text = logged.messages[-1]
+            assert "stage[0].sigma = -15000" in text and "u it holds" in text
+            assert message_range(text) == bound
+            assert f"{u[i - 1]:.17g}" in text                 # the u held
+            assert fmu.getReal([fmu.vr["stage[0].sigma"]])[0] == -30.0
+        for f in (fmu, twin):
+            f.setReal([f.vr["u"]], [ui])
+            f.doStep(i * TS, TS)
+        assert fmu.getReal([fmu.vr["y"]]) == twin.getReal([twin.vr["y"]])
+    blob = fmu.serializeFMUstate(fmu.getFMUstate())
+    twin.setFMUstate(twin.deSerializeFMUstate(blob))
+    for f in (fmu, twin):
+        f.terminate()
+        f.freeInstance()
+
+
+def test_input_beyond_a_pending_retunes_range_is_refused(ss_dir):
+    """With small inputs the retune is accepted; from the set on (pending, then switching, then
+    done) u is held to the narrowed range, exactly: the bound itself is taken, the next double
+    refused naming u; every state saved on the way loads again."""
+    bound = narrowed_range()
+    logged = Logged()
+    fmu = slave(ss_dir, logged=logged)
+    start(fmu, DAMPED, u0=0.5)
+    fmu.setReal([fmu.vr["u"]], [LARGE_U])             # within the built range: ticked once,
+    fmu.doStep(0.0, TS)                               # it is in the stages' memory
+    fmu.setReal([fmu.vr["u"]], [0.5])
+    fmu.doStep(TS, TS)
+    with pytest.raises(FMICallException):
+        fmu.setReal([fmu.vr["stage[0].sigma"]], [HEAVY])
+    assert "largest input the stages' memory may hold" in logged.messages[-1]
+    assert f"{LARGE_U:.17g}" in logged.messages[-1]
+    fmu.terminate()
+    fmu.freeInstance()
+    fmu = slave(ss_dir, logged=logged)
+    start(fmu, DAMPED, u0=0.5)
+    fmu.setReal([fmu.vr["u"]], [LARGE_U])             # set but never ticked: not held
+    fmu.setReal([fmu.vr["u"]], [0.5])
+    fmu.doStep(0.0, TS)
+    fmu.setReal([fmu.vr["stage[0].sigma"]], [HEAVY])
+    for i in range(1, 60):                            # pending, switching (20 ticks), done
+        with pytest.raises(FMICallException):
+            fmu.setReal([fmu.vr["u"]], [np.nextafter(bound, np.inf)])
+        assert "u = " in logged.messages[-1] and f"{bound:.17g}" in logged.messages[-1]
+        fmu.setReal([fmu.vr["u"]], [bound if i % 2 else -0.5 * bound])
+        fmu.doStep(i * TS, TS)
+        assert np.isfinite(fmu.getReal([fmu.vr["y"]])[0])
+        if i % 20 == 1:
+            state = fmu.deSerializeFMUstate(fmu.serializeFMUstate(fmu.getFMUstate()))
+            fmu.setFMUstate(state)
+    assert fmu.getReal([fmu.vr["stage[0].sigma"]])[0] == HEAVY
+    fmu.terminate()
+    fmu.freeInstance()

@@ -87,6 +87,20 @@ SMS_API size_t sms_chain_length(const sms_chain *chain);
  */
 SMS_API double sms_chain_input_max(const sms_chain *chain);
 /**
+ * @brief sms_chain_input_max() of the chain sms_chain_init() would build from these n configs
+ * at Ts, bit for bit, without building it: stage i's uncapped range (sms_stage_config_range()
+ * before the cap) over R_i = 1 + 2 G_0 ... G_{i-1}, capped at ::SMS_INPUT_MAX. O(stages), plus
+ * each shaper's taps.
+ * @param configs    n stage configurations, first applied first
+ * @param n          stages, 1 .. ::SMS_CHAIN_MAX_STAGES
+ * @param Ts         sample period [s], finite, > 0
+ * @param input_max  receives the range, in (0, ::SMS_INPUT_MAX]; untouched on error
+ * @return ::SMS_OK, ::SMS_ERR_NULL, ::SMS_ERR_ORDER (n = 0 or > ::SMS_CHAIN_MAX_STAGES), or the
+ *         first failing config's status
+ */
+SMS_API sms_status sms_chain_config_input_max(const sms_stage_config *configs, size_t n,
+                                              double Ts, double *input_max);
+/**
  * @brief Filter n samples of the constant input x: the state and the last output (into *y)
  * are those of n calls of sms_chain_step() with x, bit for bit, at a cost bounded whatever n.
  *

@@ -36,6 +36,7 @@
 #define sms_chain_process sms_chain_process_f32
 #define sms_chain_length sms_chain_length_f32
 #define sms_chain_input_max sms_chain_input_max_f32
+#define sms_chain_config_input_max sms_chain_config_input_max_f32
 #define sms_chain_hold sms_chain_hold_f32
 #define sms_chain_hold_cost sms_chain_hold_cost_f32
 #define sms_chain_settle_bound sms_chain_settle_bound_f32
@@ -140,6 +141,7 @@
 #define sms_stage_process sms_stage_process_f32
 #define sms_stage_input_max sms_stage_input_max_f32
 #define sms_stage_gain_bound sms_stage_gain_bound_f32
+#define sms_stage_config_range sms_stage_config_range_f32
 #define sms_stage_length sms_stage_length_f32
 #define sms_stage_state_count sms_stage_state_count_f32
 #define sms_stage_get_state sms_stage_get_state_f32
@@ -224,6 +226,7 @@
 #define sms_tunable_chain_hold sms_tunable_chain_hold_f32
 #define sms_tunable_chain_init sms_tunable_chain_init_f32
 #define sms_tunable_chain_input_max sms_tunable_chain_input_max_f32
+#define sms_tunable_chain_retune_input_max sms_tunable_chain_retune_input_max_f32
 #define sms_tunable_chain_length sms_tunable_chain_length_f32
 #define sms_tunable_chain_memory_size sms_tunable_chain_memory_size_f32
 #define sms_tunable_chain_process sms_tunable_chain_process_f32

@@ -60,10 +60,13 @@
  * exactly L samples after it was first applied, and after sms_smoother_reset(f, rest) an
  * input of rest comes out as rest from the first sample.
  * Cost (tests/bench/speed_bench.c, x86-64, -O2): about twice the plain drifting recursion of
- * the same filter; sms_smoother_process() runs blocks with the state in locals and the two
- * copies in the two lanes of one SIMD register (SSE2/NEON with GCC or Clang; elsewhere the
- * copies run one after the other, same arithmetic, smaller code); sms_smoother_step() runs
- * the same per-sample code on one sample with the state in the instance.
+ * the same filter (docs/benchmarks.md); sms_smoother_process() runs blocks with the state in
+ * locals and the two copies in the two lanes of one SIMD register (SSE2/NEON with GCC or
+ * Clang; elsewhere the copies run one after the other, same arithmetic, smaller code); for
+ * the harmonic families, where a register holds four sms_real (float, or double with AVX) and
+ * no product can be fused into a sum unseen (no FMA, or GCC in ISO C mode), both copies'
+ * Re and Im share one register. sms_smoother_step() runs the two-lane per-sample code on one
+ * sample with the state in the instance. Every path gives the same bits.
 
  * Non-finite input: a NaN or Inf sample makes the output NaN while it is inside the ring or
  * inside the recursion copy in use; at most 2M + 1 samples after it the output is again the

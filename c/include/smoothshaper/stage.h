@@ -122,6 +122,24 @@ SMS_API double sms_stage_input_max(const sms_stage *stage);
  * @return G >= 1 (HUGE_VAL for a notch whose pole rounds onto the unit circle)
  */
 SMS_API double sms_stage_gain_bound(const sms_stage *stage);
+/**
+ * @brief sms_stage_input_max() and sms_stage_gain_bound() of the stage sms_stage_init() would
+ * build from config at Ts, bit for bit, without building it (no memory): the design's
+ * constants rounded to ::sms_real as the stage holds them. Smoothers: the design's input limit
+ * and 1 + 2 (|d_0| + |d_1|); shapers and input smoothers: REAL_MAX / (2 sum |g_k|) and
+ * sum |g_k|; notches: REAL_MAX and the closed-form l1 bound. For checking a configuration
+ * before it replaces a running one (a retune that narrows the range). O(1) for smoothers and
+ * notches, O(taps) for shapers (an input smoother: two passes over its window).
+ * @param config      the stage (config.h for ranges)
+ * @param Ts          sample period [s], finite, > 0
+ * @param input_max   receives the input range, in (0, ::SMS_INPUT_MAX]; untouched on error
+ * @param gain_bound  receives the gain bound G, at least 1 up to the rounding of the taps
+ *                    (HUGE_VAL for a notch whose pole rounds onto the unit circle); untouched
+ *                    on error
+ * @return ::SMS_OK, ::SMS_ERR_NULL, or the config's status (as sms_stage_config_validate())
+ */
+SMS_API sms_status sms_stage_config_range(const sms_stage_config *config, double Ts,
+                                          double *input_max, double *gain_bound);
 /** @brief Impulse-response length L in samples (notch: 0, it is IIR).
  * @param stage  the stage (read only)
  * @return L [samples], 0 for a notch

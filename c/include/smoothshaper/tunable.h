@@ -348,6 +348,27 @@ SMS_API size_t sms_tunable_chain_length(const sms_tunable_chain *chain);
  * @return the largest |input|, in (0, ::SMS_INPUT_MAX]
  */
 SMS_API double sms_tunable_chain_input_max(const sms_tunable_chain *chain);
+/**
+ * @brief Input range from now until retunes still to come have ended: the smallest
+ * sms_tunable_chain_input_max() the chain has while stage i (retuned[i] != 0) switches from its
+ * active filter to a configuration of range input_max[i] and gain bound gain_bound[i]
+ * (sms_stage_config_range() of it) and after, the other stages as they are. Each stage counts
+ * with its smallest range and largest gain over those phases: its sms_tunable_input_max() and
+ * sms_tunable_gain_bound() now, the switch's 1 + 2 G_new + 2 G_active and range
+ * min(input_max[i], its filters' ranges). A retune narrows the range when this is below
+ * sms_tunable_chain_input_max(): inputs beyond it, held or in the filters' memory, would
+ * overflow after it. O(stages).
+ * @param chain       the tunable chain (read only)
+ * @param retuned     n_stages flags: non-zero for a stage to be retuned
+ * @param input_max   n_stages entries: the new configuration's range, in (0, ::SMS_INPUT_MAX]
+ *                    (read only where retuned[i] != 0)
+ * @param gain_bound  n_stages entries: the new configuration's gain bound (at least 1 up to
+ *                    the rounding of its taps; read only where retuned[i] != 0)
+ * @return the largest |input|, in (0, ::SMS_INPUT_MAX], at most sms_tunable_chain_input_max()
+ */
+SMS_API double sms_tunable_chain_retune_input_max(const sms_tunable_chain *chain,
+                                                  const int *retuned, const double *input_max,
+                                                  const double *gain_bound);
 /** @brief sms_chain_hold() over the active filters: n samples of the constant x at a bounded
  * cost; a stage that is switching is first run sample by sample until its switch has ended.
  * Bit for bit n calls of sms_tunable_chain_step().

@@ -276,12 +276,12 @@ double sms_input_smoother_lag(const sms_stage_config *c, double Ts)
 }
 
 int sms_input_smoother_taps(const sms_stage_config *c, double Ts, size_t length,
-                            sms_shaper_tap *taps, double *dense)
+                            sms_shaper_tap *taps, double *dense, double *abs_sum)
 {
     double q[11], T, M[4][4] = {{0.0}}, r[4], y[4], cs[4];
     double zeta = sms_input_smoother_reads_zeta(c->kind) ? c->zeta : 0.0;
     double sigma = -zeta * c->wn, wd = c->wn * sqrt(1.0 - zeta * zeta);
-    double hc_re, hc_im, moment;
+    double hc_re, hc_im, moment, sum = 0.0;
     unsigned degree = sms_input_smoother_kernel(c, q, &T);
     size_t k;
     int i, j;
@@ -317,6 +317,10 @@ int sms_input_smoother_taps(const sms_stage_config *c, double Ts, size_t length,
         }
         if (dense != NULL)
             dense[k] = h;
+        if (abs_sum != NULL)   /* of the gains as the stage holds them, in tap order */
+            sum += fabs((double)(sms_real)h);
     }
+    if (abs_sum != NULL)
+        *abs_sum = sum;
     return 1;
 }

@@ -27,9 +27,10 @@ void sms_input_smoother_transfer(const sms_stage_config *config, double s_re, do
  * centroid the correction pins. */
 double sms_input_smoother_lag(const sms_stage_config *config, double Ts);
 
-/* Write the L taps (delays 0..L-1) into taps and/or dense (either may be NULL); 0 (nothing
+/* Write the L taps (delays 0..L-1) into taps and/or dense, and the sum of |g_k| over the gains
+ * rounded to sms_real (as a built stage holds them) into abs_sum (any may be NULL); 0 (nothing
  * written) if the correction is not a number. */
 int sms_input_smoother_taps(const sms_stage_config *config, double Ts, size_t length,
-                            sms_shaper_tap *taps, double *dense);
+                            sms_shaper_tap *taps, double *dense, double *abs_sum);
 
 #endif

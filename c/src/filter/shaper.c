@@ -372,6 +372,29 @@ sms_status sms_shaper_tap_count(const sms_stage_config *config, double Ts, size_
     return sms_shaper_sizes(config, Ts, &n_reals, n_taps);
 }
 
+sms_status sms_shaper_abs_gain(const sms_stage_config *config, double Ts, double *abs_sum)
+{
+    sparse design;
+    double sum = 0.0;
+    size_t i;
+    sms_status st;
+    if (config != NULL && sms_is_input_smoother(config->kind)) {
+        size_t length;
+        st = smoother_length(config, Ts, &length);
+        if (st != SMS_OK)
+            return st;
+        return sms_input_smoother_taps(config, Ts, length, NULL, NULL, abs_sum) ? SMS_OK
+                                                                                : SMS_ERR_ZETA;
+    }
+    st = build(config, Ts, &design);
+    if (st != SMS_OK)
+        return st;
+    for (i = 0; i < design.n; ++i)   /* as coeffs_of_design() rounds them, in tap order */
+        sum += fabs((double)(sms_real)design.gain[i]);
+    *abs_sum = sum;
+    return SMS_OK;
+}
+
 /* A design's taps into the caller's table and its coefficients pointing at them. */
 static void coeffs_of_design(const sms_stage_config *config, double Ts, const sparse *design,
                              sms_stage_coeffs *coeffs, sms_shaper_tap *taps)
@@ -393,7 +416,7 @@ static void coeffs_of_design(const sms_stage_config *config, double Ts, const sp
 static sms_status smoother_coeffs(const sms_stage_config *config, double Ts, size_t length,
                                   sms_stage_coeffs *coeffs, sms_shaper_tap *taps)
 {
-    if (!sms_input_smoother_taps(config, Ts, length, taps, NULL))
+    if (!sms_input_smoother_taps(config, Ts, length, taps, NULL, NULL))
         return SMS_ERR_ZETA;
     coeffs->kind = config->kind;
     sms_state_identity(config, Ts, coeffs->identity);
@@ -698,7 +721,7 @@ sms_status sms_shaper_taps(const sms_stage_config *config, double Ts, double *ta
             return st;
         if (n_taps < len)
             return SMS_ERR_BUFFER_TOO_SMALL;
-        return sms_input_smoother_taps(config, Ts, len, NULL, taps) ? SMS_OK : SMS_ERR_ZETA;
+        return sms_input_smoother_taps(config, Ts, len, NULL, taps, NULL) ? SMS_OK : SMS_ERR_ZETA;
     }
     st = build(config, Ts, &s);
     if (st != SMS_OK)

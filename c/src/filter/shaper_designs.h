@@ -24,6 +24,12 @@ int sms_si_undamped(unsigned n, double duration, double V, double *amp, double *
  * the number of impulses (<= SMS_SHAPER_MAX_IMPULSES). */
 size_t sms_shaper_design(const sms_stage_config *config, double *amp, double *time);
 
+/* Sum of |g_k| over the taps sms_shaper_init() would build (gains rounded to sms_real, summed
+ * in tap order, as a built shaper's sms_stage_gain_bound()), without a tap table: O(taps), an
+ * input smoother's two passes over its window. Statuses as sms_shaper_coeffs_make();
+ * *abs_sum written only on SMS_OK. */
+sms_status sms_shaper_abs_gain(const sms_stage_config *config, double Ts, double *abs_sum);
+
 /* Both sizes of a shaper from one design: delay-line length L and number of taps (the two
  * public size queries, for callers that need both). Statuses as sms_shaper_buffer_size(). */
 sms_status sms_shaper_sizes(const sms_stage_config *config, double Ts, size_t *n_reals,

@@ -283,6 +283,41 @@ typedef sms_real lanes;
 #else
 #define SEGMENT_BODY static inline
 #endif
+/* Blocks of a complex pole on targets whose vector holds four sms_real (float on SSE2/NEON,
+ * double with AVX): both copies' Re and Im in one vector. The complex products need Re and Im
+ * swapped, which must stay within a 128-bit lane (one cheap shuffle): double (AVX) keeps
+ * {Re, Im} of the old copy, then of the young one; float keeps the instance's own order
+ * {Re old, Re young, Im old, Im young}, where SSE2 merges two vectors' halves in one shuffle
+ * (the input term's Re and Im parts). QL() builds a vector from the lanes in the order
+ * {Re old, Im old, Re young, Im young}, whatever the layout; RE0 .. IM1 are their indices.
+ * Each lane still does exactly the IEEE operations of the two-lane form (a - b c is computed
+ * as a + (-b) c, the same number bit for bit), so every build gives the same bits. Needs
+ * __builtin_shufflevector (GCC 12, Clang). */
+/* Only where no product can be fused into a sum behind the code's back (no FMA on the target,
+ * or GCC in ISO C mode, which does not contract): a contracted sum in one layout and not in
+ * the other would make sms_smoother_step() (two lanes) and sms_smoother_process() differ. */
+#if defined(SMS_SMOOTHER_VARIANT_LOOPS) && (defined(SMS_USE_FLOAT) || defined(__AVX__)) \
+    && (defined(__clang__) || __GNUC__ >= 12) && !defined(SMS_NO_QUAD_LANES) \
+    && ((!defined(__FP_FAST_FMA) && !defined(__FP_FAST_FMAF)) \
+        || (!defined(__clang__) && defined(__STRICT_ANSI__)))
+#define SMS_SMOOTHER_QUAD 1
+typedef sms_real quad __attribute__((vector_size(4 * sizeof(sms_real))));
+#define QUAD(a, b, c, d) ((quad){(a), (b), (c), (d)})
+#ifdef SMS_USE_FLOAT
+enum { RE0 = 0, RE1 = 1, IM0 = 2, IM1 = 3 };
+#define QL(re0, im0, re1, im1) QUAD((re0), (re1), (im0), (im1))
+#define SWAP_PAIRS(v) __builtin_shufflevector((v), (v), 2, 3, 0, 1)
+/* Re lanes of a, Im lanes of b; the old copy's lanes of a, the young one's of b */
+#define RE_OF_IM_OF(a, b) __builtin_shufflevector((a), (b), 0, 1, 6, 7)
+#define OLD_OF_YOUNG_OF(a, b) __builtin_shufflevector((a), (b), 0, 4, 2, 6)
+#else
+enum { RE0 = 0, IM0 = 1, RE1 = 2, IM1 = 3 };
+#define QL(re0, im0, re1, im1) QUAD((re0), (im0), (re1), (im1))
+#define SWAP_PAIRS(v) __builtin_shufflevector((v), (v), 1, 0, 3, 2)
+#define RE_OF_IM_OF(a, b) __builtin_shufflevector((a), (b), 0, 5, 2, 7)
+#define OLD_OF_YOUNG_OF(a, b) __builtin_shufflevector((a), (b), 0, 1, 6, 7)
+#endif
+#endif
 #define ADD(a, b) ((a) + (b))
 #define SUB(a, b) ((a) - (b))
 #define MUL(a, b) ((a) * (b))
@@ -408,18 +443,14 @@ static inline void store_copies(sms_smoother *f, const copies *s, int c, int pol
  * lo is about an ulp of w, so the ulp of q that this loses is far below what lo tracks, and its
  * chain is one product and one sum as well. */
 #ifdef SMS_SMOOTHER_VARIANT_LOOPS
-static inline sms_real recur_real(const constants *k, copies *s, sms_real x, sms_real oldest,
-                                  int pole)
+/* The state's part of recur_real(): w + lo advanced by the input term u. */
+static inline sms_real advance_real(const constants *k, copies *s, lanes u, int pole)
 {
-    lanes u, a, e1, p, w, e2;
+    lanes a, e1, p, w, e2;
     if (pole == POLE_UNIT) {
-        /* q = 1, t = -c: c (x - x[n-M]) in the old lane, c (x - ref) in the young one */
-        u = MUL(k->gain, SUB(LANES(x, x), LANES(oldest, LANE(s->ref, 1))));
         FAST_TWO_SUM(w, e1, s->w_re, u);
         s->lo_re = ADD(s->lo_re, e1);
     } else {
-        u = ADD(MUL(k->gain, SUB(LANES(x, x), s->ref)),
-                MUL(k->tail_re, SUB(LANES(oldest, LANE(s->ref, 1)), s->ref)));
         p = MUL(k->pm1, s->w_re);
         FAST_TWO_SUM(a, e1, s->w_re, u);
         FAST_TWO_SUM(w, e2, a, p);
@@ -428,14 +459,22 @@ static inline sms_real recur_real(const constants *k, copies *s, sms_real x, sms
     s->w_re = w;
     return LANE(s->w_re, 0) + LANE(s->lo_re, 0);
 }
+
+static inline sms_real recur_real(const constants *k, copies *s, sms_real x, sms_real oldest,
+                                  int pole)
+{
+    /* POLE_UNIT (q = 1, t = -c): c (x - x[n-M]) in the old lane, c (x - ref) in the young one */
+    const lanes u = pole == POLE_UNIT
+                        ? MUL(k->gain, SUB(LANES(x, x), LANES(oldest, LANE(s->ref, 1))))
+                        : ADD(MUL(k->gain, SUB(LANES(x, x), s->ref)),
+                              MUL(k->tail_re, SUB(LANES(oldest, LANE(s->ref, 1)), s->ref)));
+    return advance_real(k, s, u, pole);
+}
 #endif
 
-static inline sms_real recur_complex(const constants *k, copies *s, sms_real x, sms_real oldest,
-                                     int real_out)
+/* The state's part of recur_complex(): w + lo advanced by the input term u_re + j u_im. */
+static inline void advance_complex(const constants *k, copies *s, lanes u_re, lanes u_im)
 {
-    const lanes o = SUB(LANES(oldest, LANE(s->ref, 1)), s->ref);
-    const lanes u_re = ADD(MUL(k->gain, SUB(LANES(x, x), s->ref)), MUL(k->tail_re, o));
-    const lanes u_im = MUL(k->tail_im, o);
     const lanes p_re = SUB(MUL(k->pm1, s->w_re), MUL(k->pim, s->w_im));
     const lanes p_im = ADD(MUL(k->pm1, s->w_im), MUL(k->pim, s->w_re));
     lanes a_re, a_im, s_re, s_im, e1_re, e1_im, e2_re, e2_im, r_re, r_im;
@@ -452,11 +491,74 @@ static inline sms_real recur_complex(const constants *k, copies *s, sms_real x, 
     }
     s->w_re = s_re;
     s->w_im = s_im;
+}
+
+static inline sms_real recur_complex(const constants *k, copies *s, sms_real x, sms_real oldest,
+                                     int real_out)
+{
+    const lanes o = SUB(LANES(oldest, LANE(s->ref, 1)), s->ref);
+    advance_complex(k, s, ADD(MUL(k->gain, SUB(LANES(x, x), s->ref)), MUL(k->tail_re, o)),
+                    MUL(k->tail_im, o));
     /* Tap 0 of the half-sine families is 0: x reaches Im w a sample later. 0 x (0, or NaN
      * for a non-finite x) gives the output the NaN that the convolution's 0 x[n] has. */
     return real_out ? LANE(s->w_re, 0) + LANE(s->lo_re, 0)
                     : LANE(s->w_im, 0) + LANE(s->lo_im, 0) + (sms_real)0 * x;
 }
+
+#ifdef SMS_SMOOTHER_QUAD
+/* The recursion's constants in the four-lane layout {Re, Im} old copy, {Re, Im} young copy;
+ * *_ims carry the sign the product with the swapped pair takes: {-b, +b} (Re: - b Im w,
+ * Im: + b Re w). */
+typedef struct quad_constants {
+    quad ref, ref_young, gain, tail, pm1, pim_s, q, plo_re, plo_im_s;
+} quad_constants;
+
+static inline quad_constants quad_constants_of(const sms_smoother *f)
+{
+    quad_constants k;
+    const sms_real r0 = f->ref[0], r1 = f->ref[1], q = (sms_real)1 + f->pole_m1_re;
+    k.ref = QL(r0, r0, r1, r1);
+    k.ref_young = QL(r1, r1, r1, r1);
+    k.gain = QL(f->gain_re, f->gain_re, f->gain_re, f->gain_re);
+    k.tail = QL(f->tail_re, f->tail_im, (sms_real)0, (sms_real)0);
+    k.pm1 = QL(f->pole_m1_re, f->pole_m1_re, f->pole_m1_re, f->pole_m1_re);
+    k.pim_s = QL(-f->pole_im, f->pole_im, -f->pole_im, f->pole_im);
+    k.q = QL(q, q, q, q);
+    k.plo_re = QL(f->pole_lo_re, f->pole_lo_re, f->pole_lo_re, f->pole_lo_re);
+    k.plo_im_s = QL(-f->pole_lo_im, f->pole_lo_im, -f->pole_lo_im, f->pole_lo_im);
+    return k;
+}
+
+/* recur_complex() (Im out) on w = {Re w, Im w} of the old copy then of the young one, lo the
+ * same: the same operations lane by lane. u's Re lanes are c (x - ref) + t o, its Im lanes
+ * t_im o (taken from t o alone: adding the Re lanes' c (x - ref) there would change -0 and
+ * NaN). */
+/* The state's part of recur_quad(): w, lo advanced by u = {u_re, u_im} of both copies; returns
+ * Im (w + lo) of the old copy. */
+static inline sms_real advance_quad(const quad_constants *k, quad *w, quad *lo, quad u)
+{
+    const quad ws = SWAP_PAIRS(*w), los = SWAP_PAIRS(*lo);
+    const quad p = k->pm1 * *w + k->pim_s * ws;
+    const quad r0 = k->plo_re * *w + k->plo_im_s * ws;
+    const quad a = *w + u, e1 = u - (a - *w);   /* FAST_TWO_SUM() in quads */
+    const quad s = a + p, e2 = p - (s - a);
+    quad out;
+    *lo = (k->q * *lo + k->pim_s * los) + ((r0 + e1) + e2);
+    *w = s;
+    out = s + *lo;
+    return out[IM0];
+}
+
+static inline sms_real recur_quad(const quad_constants *k, quad *w, quad *lo, sms_real x,
+                                  sms_real oldest)
+{
+    const quad xq = QUAD(x, x, x, x), oq = QUAD(oldest, oldest, oldest, oldest);
+    const quad o = OLD_OF_YOUNG_OF(oq, k->ref_young) - k->ref;
+    const quad to = k->tail * o;
+    const quad u = RE_OF_IM_OF(k->gain * (xq - k->ref) + to, to);
+    return advance_quad(k, w, lo, u) + (sms_real)0 * x;
+}
+#endif
 
 /* The vector path runs each pole type's own recursion; the portable path runs the complex one
  * for every pole (smaller code): a real pole has Im q = 0 and Im c = Im t = Im q_lo = 0, so
@@ -529,7 +631,7 @@ static void rest_after(sms_smoother *f, sms_real *out, size_t n, size_t run, sms
  * segment's last sample at most: that sample is run after the loop, so the loop has no
  * per-sample test of it. */
 SEGMENT_BODY void segment(sms_smoother *f, const sms_real *in, sms_real *out, size_t n,
-                          int pole, int taps, int varied)
+                          int pole, int taps, int varied, int wide)
 {
     const constants k = constants_of(f, 1);
     const sms_real corr0 = f->correction_gain[0], corr1 = f->correction_gain[1];
@@ -544,9 +646,21 @@ SEGMENT_BODY void segment(sms_smoother *f, const sms_real *in, sms_real *out, si
     const sms_real ref0 = LANE(s.ref, 0);
     size_t i, run = varied ? 0u : f->run;
     int repeated = 0;   /* varied: an input equal to the one before it was seen */
+#ifdef SMS_SMOOTHER_QUAD
+    /* wide: a complex pole runs in the four-lane layout (a block: the state's layout changes
+     * once per segment, not per sample) */
+    const int in_quads = wide && pole == POLE_COMPLEX;
+    const quad_constants qk = quad_constants_of(f);
+    quad qw = QL(f->w_re[0], f->w_im[0], f->w_re[1], f->w_im[1]);
+    quad qlo = QL(f->lo_re[0], f->lo_im[0], f->lo_re[1], f->lo_im[1]);
+#define RECUR(x, oldest) \
+    (in_quads ? recur_quad(&qk, &qw, &qlo, (x), (oldest)) : recur(&k, &s, (x), (oldest), pole))
+#else
+#define RECUR(x, oldest) ((void)wide, recur(&k, &s, (x), (oldest), pole))
+#endif
     for (i = 0; i < body; ++i) {
         const sms_real x = in[i], oldest = ring[i];
-        sms_real y = recur(&k, &s, x, oldest, pole);
+        sms_real y = RECUR(x, oldest);
         if (taps != TAPS_NONE) {
             const sms_real first = taps == TAPS_BOUNDED ? x : ring[i + 1u];
             y += corr0 * (first - ref0) + corr1 * (oldest - ref0);
@@ -560,7 +674,7 @@ SEGMENT_BODY void segment(sms_smoother *f, const sms_real *in, sms_real *out, si
     }
     if (body < n) {   /* exact timing, the ring's last slot: the tap wraps to ring[0] */
         const sms_real x = in[i], oldest = ring[i], first = f->history[0];
-        sms_real y = recur(&k, &s, x, oldest, pole);
+        sms_real y = RECUR(x, oldest);
         y += corr0 * (first - ref0) + corr1 * (oldest - ref0);
         ring[i] = x;
         if (varied)
@@ -568,6 +682,14 @@ SEGMENT_BODY void segment(sms_smoother *f, const sms_real *in, sms_real *out, si
         else
             out[i] = rest_exactly(&run, length, x, prev, y + ref0);
     }
+#undef RECUR
+#ifdef SMS_SMOOTHER_QUAD
+    if (in_quads) {
+        f->w_re[0] = qw[RE0], f->w_im[0] = qw[IM0], f->w_re[1] = qw[RE1], f->w_im[1] = qw[IM1];
+        f->lo_re[0] = qlo[RE0], f->lo_im[0] = qlo[IM0];
+        f->lo_re[1] = qlo[RE1], f->lo_im[1] = qlo[IM1];
+    } else
+#endif
     store_copies(f, &s, 0, pole);
     f->run = run;
     if (repeated)
@@ -599,9 +721,9 @@ static void young_segment(sms_smoother *f, const sms_real *in, size_t n, int pol
 #define SEGMENT(pole, taps)                                                                 \
     do {                                                                                    \
         if (varied)                                                                         \
-            segment(f, in, out, n, pole, taps, 1);                                          \
+            segment(f, in, out, n, pole, taps, 1, 1);                                       \
         else                                                                                \
-            segment(f, in, out, n, pole, taps, 0);                                          \
+            segment(f, in, out, n, pole, taps, 0, 1);                                       \
     } while (0)
 #endif
 
@@ -635,7 +757,7 @@ SEGMENT_LINKAGE void run_segment(sms_smoother *f, const sms_real *in, sms_real *
 #else
     /* One loop for every variant (smaller code), the same arithmetic. */
     young_segment(f, in, n, (int)(f->variant / 3u));
-    segment(f, in, out, n, (int)(f->variant / 3u), (int)(f->variant % 3u), varied);
+    segment(f, in, out, n, (int)(f->variant / 3u), (int)(f->variant % 3u), varied, 0);
 #endif
     f->head += n;
     if (f->head == f->window)
@@ -658,7 +780,7 @@ void sms_smoother_process(sms_smoother *f, const sms_real *in, sms_real *out, si
 #ifdef SMS_SMOOTHER_VARIANT_LOOPS
 /* One sample of one variant: the segment of length 1 unrolled, no loop, no look-ahead. */
 #define STEP_CASE(pole, taps)                                                               \
-    case 3 * (pole) + (taps): segment(f, x, x, 1u, pole, taps, 0); break
+    case 3 * (pole) + (taps): segment(f, x, x, 1u, pole, taps, 0, 0); break
 
 void sms_smoother_step(sms_smoother *f, sms_real *x)
 {
@@ -672,7 +794,7 @@ void sms_smoother_step(sms_smoother *f, sms_real *x)
     STEP_CASE(POLE_REAL, TAPS_EXACT);
     STEP_CASE(POLE_REAL, TAPS_BOUNDED);
     STEP_CASE(POLE_COMPLEX, TAPS_EXACT);
-    default: segment(f, x, x, 1u, POLE_COMPLEX, TAPS_NONE, 0); break;
+    default: segment(f, x, x, 1u, POLE_COMPLEX, TAPS_NONE, 0, 0); break;
     }
     f->head = f->head + 1u == f->window ? 0u : f->head + 1u;
 }

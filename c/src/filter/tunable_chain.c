@@ -143,6 +143,33 @@ double sms_tunable_chain_input_max(const sms_tunable_chain *chain)
     return bound;
 }
 
+double sms_tunable_chain_retune_input_max(const sms_tunable_chain *chain, const int *retuned,
+                                          const double *input_max, const double *gain_bound)
+{
+    double bound = SMS_INPUT_MAX, product = 1.0;
+    size_t i;
+    /* as the switching case of sms_tunable_chain_input_max(), each stage over every phase to
+     * come: its range the smallest and its gain the largest of now, of the switch from its
+     * active filter to the new one (sms_tunable_gain_bound() of that switch) and after it */
+    for (i = 0; i < chain->n_stages; ++i) {
+        const sms_tunable *t = &chain->stages[i];
+        const double range = i == 0 ? 1.0 : 1.0 + 2.0 * product;
+        double limit = sms_tunable_input_max(t), gain = sms_tunable_gain_bound(t);
+        if (retuned[i]) {
+            const double next = 1.0 + 2.0 * gain_bound[i]
+                                + 2.0 * sms_stage_gain_bound(sms_tunable_active(t));
+            if (input_max[i] < limit)
+                limit = input_max[i];
+            if (next > gain)
+                gain = next;
+        }
+        if (limit / range < bound)
+            bound = limit / range;
+        product *= gain;
+    }
+    return bound;
+}
+
 void sms_tunable_chain_hold(sms_tunable_chain *chain, sms_real x, uint64_t n, sms_real *y)
 {
     sms_real v = x;
