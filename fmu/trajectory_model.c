@@ -21,7 +21,7 @@ typedef struct tg_model {
     double target, out[4];                     /* q, v, a, j */
     double target_velocity, target_acceleration, minimum_duration;
     int interface;                             /* sms_interface */
-    double Ts, vmax, amax, jmax, wn, zeta, q0, vmin, amin;
+    double Ts, vmax, amax, jmax, wn, zeta, q0, vmin, amin, qmin, qmax;
     int profile;
     int built;
     int warned;                                /* 1: the dropped target `dropped` was logged */
@@ -34,11 +34,11 @@ typedef struct tg_model {
 static const fmu_vr real_vrs[] = {
     TG_VR_TARGET, TG_VR_TARGET_VELOCITY, TG_VR_TARGET_ACCELERATION, TG_VR_MINIMUM_DURATION,
     TG_VR_Q, TG_VR_V, TG_VR_A, TG_VR_J, TG_VR_TS, TG_VR_VMAX, TG_VR_AMAX, TG_VR_JMAX, TG_VR_WN,
-    TG_VR_ZETA, TG_VR_Q0, TG_VR_VMIN, TG_VR_AMIN
+    TG_VR_ZETA, TG_VR_Q0, TG_VR_VMIN, TG_VR_AMIN, TG_VR_QMIN, TG_VR_QMAX
 };
 static const char *const real_names[] = {
     "target", "target_velocity", "target_acceleration", "minimum_duration", "q", "v", "a", "j",
-    "Ts", "vmax", "amax", "jmax", "wn", "zeta", "q0", "vmin", "amin"
+    "Ts", "vmax", "amax", "jmax", "wn", "zeta", "q0", "vmin", "amin", "qmin", "qmax"
 };
 #define N_REALS (sizeof real_vrs / sizeof real_vrs[0])
 #define N_REAL_INPUTS 4u
@@ -50,7 +50,8 @@ static const size_t real_offsets[] = {
     offsetof(tg_model, out[1]), offsetof(tg_model, out[2]), offsetof(tg_model, out[3]),
     offsetof(tg_model, Ts), offsetof(tg_model, vmax), offsetof(tg_model, amax),
     offsetof(tg_model, jmax), offsetof(tg_model, wn), offsetof(tg_model, zeta),
-    offsetof(tg_model, q0), offsetof(tg_model, vmin), offsetof(tg_model, amin)
+    offsetof(tg_model, q0), offsetof(tg_model, vmin), offsetof(tg_model, amin),
+    offsetof(tg_model, qmin), offsetof(tg_model, qmax)
 };
 
 /* Index of a Real value reference in real_vrs, or N_REALS. */
@@ -85,6 +86,8 @@ void fmu_model_defaults(void *model)
     m->q0 = 0.0;
     m->vmin = 0.0;
     m->amin = 0.0;
+    m->qmin = 0.0;
+    m->qmax = 0.0;
     m->built = 0;
     m->warned = 0;
     m->dropped = 0.0;
@@ -187,6 +190,8 @@ static int refuse_limits(const tg_model *m, char *msg, size_t len)
     c.zeta = m->zeta;
     c.vmin = m->vmin; /* 0: symmetric */
     c.amin = m->amin;
+    c.qmin = m->qmin; /* both 0: no position limits */
+    c.qmax = m->qmax;
     (void)sms_generator_reach(&c, m->Ts, &r);
     if (r.quantity == NULL) /* not expected: init and the check are one function */
         return snprintf(msg, len, "vmax = %.17g, amax = %.17g, jmax = %.17g: %s", m->vmax,
@@ -281,6 +286,18 @@ static int configure(const tg_model *m, sms_generator_config *c, size_t *need, c
         return snprintf(msg, len, "%s = %.17g: must be 0 (symmetric) or finite and < 0",
                         !(m->vmin <= 0.0) || !isfinite(m->vmin) ? "vmin" : "amin",
                         !(m->vmin <= 0.0) || !isfinite(m->vmin) ? m->vmin : m->amin), 1;
+    if (m->qmin != 0.0 || m->qmax != 0.0) {
+        if (!isfinite(m->qmin) || !isfinite(m->qmax) || !((sms_real)m->qmin < (sms_real)m->qmax))
+            return snprintf(msg, len, "qmin = %.17g, qmax = %.17g: position limits must be "
+                            "finite with qmin < qmax (both 0: none)", m->qmin, m->qmax), 1;
+        if (m->profile == SMS_PROFILE_TRIGONOMETRIC)
+            return snprintf(msg, len, "qmin = %.17g, qmax = %.17g: position limits take the "
+                            "polynomial or damped profile, not the trigonometric one", m->qmin,
+                            m->qmax), 1;
+        if (!(m->q0 >= m->qmin && m->q0 <= m->qmax))
+            return snprintf(msg, len, "q0 = %.17g is outside [qmin, qmax] = [%.17g, %.17g]",
+                            m->q0, m->qmin, m->qmax), 1;
+    }
     if (m->wn < 0.0)
         return snprintf(msg, len, "wn = %.17g: must be 0 (no mode) or > 0", m->wn), 1;
     if (!isfinite(m->q0) || (sms_real)m->q0 - (sms_real)m->q0 != 0)
@@ -303,6 +320,8 @@ static int configure(const tg_model *m, sms_generator_config *c, size_t *need, c
     c->zeta = m->zeta;
     c->vmin = m->vmin; /* 0: symmetric */
     c->amin = m->amin;
+    c->qmin = m->qmin; /* both 0: no position limits */
+    c->qmax = m->qmax;
     *need = 0;
     st = sms_generator_buffer_size(c, m->Ts, need);
     if (st != SMS_OK)
@@ -377,6 +396,9 @@ int fmu_model_check_inputs(const void *model, char *msg, size_t len)
                         m->interface), 1;
     case SMS_ERR_TARGET_POSITION:
         return snprintf(msg, len, "target = %.17g: %s", m->target, sms_status_string(st)), 1;
+    case SMS_ERR_POSITION_LIMIT:
+        return snprintf(msg, len, "target = %.17g is outside [qmin, qmax] = [%.17g, %.17g]",
+                        m->target, m->qmin, m->qmax), 1;
     case SMS_ERR_DURATION:
         if (m->profile == SMS_PROFILE_TRIGONOMETRIC && m->minimum_duration >= 0.0)
             return snprintf(msg, len, "minimum_duration = %.17g: the trigonometric profile does "
@@ -384,6 +406,9 @@ int fmu_model_check_inputs(const void *model, char *msg, size_t len)
         return snprintf(msg, len, "minimum_duration = %.17g must be finite, >= 0 and below 2^50 "
                         "ticks of Ts = %.17g", m->minimum_duration, m->Ts), 1;
     case SMS_ERR_TARGET_VELOCITY:
+        if (m->gen.bounded && v != 0.0)
+            return snprintf(msg, len, "target_velocity = %.17g: with position limits [qmin, qmax] "
+                            "a target rests (target_velocity 0)", v), 1;
         if (m->profile == SMS_PROFILE_TRIGONOMETRIC && fabs(v) <= V)
             return snprintf(msg, len, "target_velocity = %.17g: the trigonometric profile plans "
                             "position targets at rest only (target_velocity 0)", v), 1;
@@ -392,6 +417,9 @@ int fmu_model_check_inputs(const void *model, char *msg, size_t len)
                             "[%.17g, %.17g]", v, (double)m->gen.vmin, V), 1;
         return snprintf(msg, len, "target_velocity = %.17g is beyond vmax = %.17g", v, V), 1;
     default:
+        if (m->gen.bounded && a != 0.0)
+            return snprintf(msg, len, "target_acceleration = %.17g: with position limits [qmin, "
+                            "qmax] a target rests (target_acceleration 0)", a), 1;
         if (m->profile == SMS_PROFILE_TRIGONOMETRIC && a != 0.0)
             return snprintf(msg, len, "target_acceleration = %.17g: the trigonometric profile "
                             "holds no acceleration at a target (target_acceleration 0)", a), 1;

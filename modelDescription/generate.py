@@ -312,6 +312,12 @@ def trajectory_generator() -> tuple[list[Var], list[str], str]:
         Var("amin", 19, "Real", "parameter", "lower acceleration bound (P/s2) for asymmetric "
             "limits; 0 = -amax (symmetric), else finite, < 0 (polynomial and damped profiles)",
             "", 0.0, variability="fixed", max=0.0, c_name="AMIN"),
+        Var("qmin", 20, "Real", "parameter", "lower position limit (P); with qmax both 0 = none, "
+            "else finite, < qmax (polynomial and damped profiles); targets and q0 inside", "",
+            0.0, variability="fixed", c_name="QMIN"),
+        Var("qmax", 21, "Real", "parameter", "upper position limit (P); with qmin both 0 = none, "
+            "else finite, > qmin: every output q stays in [qmin, qmax]", "", 0.0,
+            variability="fixed", c_name="QMAX"),
     ]
     return vs, [], ("Online time-optimal jerk-limited trajectory generator to any target state "
                     "(smoothshaper)")

@@ -51,7 +51,7 @@ _STATUS_PARAMETER = {
     -44: "coeffs",
     -45: "index",   # a retune of a stage whose previous switch is still in progress
     -46: "target", -47: "velocity", -48: "acceleration", -49: "interface",
-    -50: "amplitudes", -51: "times", -52: "sync", -55: "Ts",
+    -50: "amplitudes", -51: "times", -52: "sync", -55: "Ts", -56: "qmax",
 }
 #: Saved Chain states start with this tag and format version, then the configuration they
 #: belong to (see :meth:`Chain.get_state`).

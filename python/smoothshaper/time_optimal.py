@@ -566,12 +566,14 @@ def _can_start(v, a, vmax, jmax, shape):
 
 
 def canonical_target(interface, position, velocity, acceleration, *, vmax, amax, jmax,
-                     shape="ramp", minimum_duration=0.0, vmin=None, amin=None):
+                     shape="ramp", minimum_duration=0.0, vmin=None, amin=None, qlim=None):
     """A target (interface, position, velocity, acceleration) in canonical form (a stop as
     the velocity interface to 0, the position of a velocity target as 0), or None when it is
     invalid: the interface unknown, a value not finite, or the velocity, acceleration or
     v -+ a|a|/(2 jmax) beyond the bounds (:func:`~smoothshaper.reference.third_order.target_ok`);
-    half-cosine transitions take position targets at rest and velocity targets at a = 0."""
+    half-cosine transitions take position targets at rest and velocity targets at a = 0.
+    With position limits ``qlim = (qmin, qmax)`` a target rests within them (velocity and
+    acceleration 0, a position in [qmin, qmax])."""
     if interface == STOP:
         return (VELOCITY, 0.0, 0.0, 0.0, 0.0)
     if interface not in (POSITION, VELOCITY):
@@ -584,15 +586,80 @@ def canonical_target(interface, position, velocity, acceleration, *, vmax, amax,
         return None
     if shape == "cosine" and (acceleration != 0 or (interface == POSITION and velocity != 0)):
         return None
+    if qlim is not None and (velocity != 0 or acceleration != 0 or (
+            interface == POSITION and not qlim[0] <= position <= qlim[1])):
+        return None
     if _to.target_ok(velocity, acceleration, _to.Limits(vmax, amax, jmax, vmin, amin)) is not None:
         return None
     return (interface, float(position), float(velocity), float(acceleration),
             float(minimum_duration))
 
 
+#: A re-plan under position limits from a state whose brake would cross one: not now.
+WAIT = "wait"
+
+
+def _extent(plan):
+    """(lowest, highest) position of a ramp plan over its whole time: the ends of every piece
+    and the zeros of its velocity (a quadratic in the piece's time) inside it."""
+    lo = hi = plan["goal"]
+    for (d, j), (q0, v0, a0) in zip(plan["pieces"], plan["starts"]):
+        times = [0.0, d]
+        coeffs = [j / 2, a0, v0] if j != 0 else [a0, v0]
+        if any(c != 0 for c in coeffs):
+            for r in np.roots(coeffs):
+                if abs(r.imag) <= 1e-12 * max(abs(r.real), d) and 0 < r.real < d:
+                    times.append(float(r.real))
+        for t in times:
+            q = q0 + t * v0 + t * t * a0 / 2 + t ** 3 * j / 6
+            lo, hi = min(lo, q), max(hi, q)
+    return lo, hi
+
+
+def _inside(plan, qlim, tol):
+    lo, hi = _extent(plan)
+    return lo >= qlim[0] - tol and hi <= qlim[1] + tol
+
+
+def _bounded_plan(state, goal, vmax, amax, jmax, Ts, vmin, amin, qlim):
+    """The plan under position limits: the time-optimal one when it stays inside; else the
+    brake to rest, a rest until the next sample, and the move from there (with what is left
+    of the minimum duration, then without); WAIT when not even the brake stays inside."""
+    tol = 16 * np.finfo(float).eps / 2 * (abs(qlim[0]) + abs(qlim[1]))
+    direct = _ramp_plan(state, goal, vmax, amax, jmax, Ts, vmin, amin)
+    if direct is None:
+        return None
+    if _inside(direct, qlim, tol):
+        return direct
+    if goal[0] == VELOCITY:
+        return WAIT
+    brake = _ramp_plan(state, (VELOCITY, 0.0, 0.0, 0.0, 0.0), vmax, amax, jmax, Ts, vmin, amin)
+    if brake is None:
+        return None
+    if not _inside(brake, qlim, tol):
+        return WAIT
+    S = math.ceil(brake["end"])
+    tmin = goal[4]
+    for left in ([max(tmin - S * Ts, 0.0), 0.0] if tmin else [0.0]):
+        move = _ramp_plan((brake["goal"], 0.0, 0.0), (POSITION, goal[1], 0.0, 0.0, left), vmax,
+                          amax, jmax, Ts, vmin, amin)
+        if move is None:
+            return None
+        if not _inside(move, qlim, tol):
+            continue
+        wait = [(S * Ts - brake["end"] * Ts, 0.0)] if S > brake["end"] else []
+        return dict(pieces=brake["pieces"] + wait + move["pieces"],
+                    starts=brake["starts"] + [(brake["goal"], 0.0, 0.0)] * len(wait)
+                    + move["starts"],
+                    ends=brake["ends"] + [float(S)] * len(wait) + [e + S for e in move["ends"]],
+                    goal=move["goal"], drift=move["drift"], end=move["end"] + S,
+                    arrive=move["arrive"] + S)
+    return WAIT
+
+
 def _run(targets, *, vmax, amax, jmax, Ts, q0=0.0, shape="ramp", velocity=None,
          acceleration=None, interface=None, start=None, minimum_duration=None, vmin=None,
-         amin=None):
+         amin=None, qlim=None):
     """(out, goal, dropped): the samples, the running plan's goal at each sample (where it
     rests, or from where it drifts on), and 1 at each sample where a target was dropped.
 
@@ -601,7 +668,9 @@ def _run(targets, *, vmax, amax, jmax, Ts, q0=0.0, shape="ramp", velocity=None,
     VELOCITY or STOP per sample (default POSITION). An invalid target is ignored (the held one
     kept), as a non-finite position is. start: (q, v, a, target) the generator continues
     from (its plan to target formed at the sample before the first), default at rest on q0.
-    vmin, amin: the lower velocity and acceleration bounds (None: -vmax, -amax; ramps only)."""
+    vmin, amin: the lower velocity and acceleration bounds (None: -vmax, -amax; ramps only).
+    qlim: the position limits (qmin, qmax) or None (ramps only): every plan stays inside
+    (:func:`_bounded_plan`), q unrounded (the generator holds its q to them)."""
     x = np.asarray(targets, dtype=np.float64)
     n = x.size
     vel = np.zeros(n) if velocity is None else np.asarray(velocity, dtype=np.float64)
@@ -612,6 +681,9 @@ def _run(targets, *, vmax, amax, jmax, Ts, q0=0.0, shape="ramp", velocity=None,
     goals = np.empty(n)
     dropped = np.zeros(n, dtype=bool)
     make = _cosine_plan if shape == "cosine" else _ramp_plan
+    if qlim is not None:
+        def make(state, goal, vmax, amax, jmax, Ts, vmin, amin):
+            return _bounded_plan(state, goal, vmax, amax, jmax, Ts, vmin, amin, qlim)
     if vmin is None and amin is None:
         evaluate = _evaluate
     else:
@@ -637,7 +709,7 @@ def _run(targets, *, vmax, amax, jmax, Ts, q0=0.0, shape="ramp", velocity=None,
     for i in range(n):
         t = canonical_target(int(itf[i]), float(x[i]), float(vel[i]), float(acc[i]), vmax=vmax,
                              amax=amax, jmax=jmax, shape=shape, minimum_duration=float(tmin[i]),
-                             vmin=vmin, amin=amin)
+                             vmin=vmin, amin=amin, qlim=qlim)
         if t is not None and t != held:   # a new target (invalid: ignored)
             held, refused = t, False
         state = evaluate(plan, i - i0, Ts, shape)
@@ -647,7 +719,9 @@ def _run(targets, *, vmax, amax, jmax, Ts, q0=0.0, shape="ramp", velocity=None,
                     new = make(state[:3], held, vmax, amax, jmax, Ts, vmin, amin)
             except (OverflowError, ValueError, ZeroDivisionError):
                 new = None
-            if new is not None:
+            if new is WAIT:   # position limits: the running plan goes on, tried again next
+                pass
+            elif new is not None:
                 plan, goal, i0 = new, held, i
                 state = evaluate(plan, 0, Ts, shape)
             else:   # dropped: the running plan goes on; not tried again until it changes

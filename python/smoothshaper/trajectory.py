@@ -34,7 +34,8 @@ __all__ = ["Generator", "DroppedTargetWarning", "generator_reference", "tuned_st
 BSPLINE_MAX_DEGREE = 7
 BSPLINE_MAX_AXES = 3
 # The fields of a saved state's identity after the common head (trajectory.h).
-_GENERATOR_IDENTITY_FIELDS = ("vmax", "amax", "jmax", "profile", "wn", "zeta", "vmin", "amin")
+_GENERATOR_IDENTITY_FIELDS = ("vmax", "amax", "jmax", "profile", "wn", "zeta", "vmin", "amin",
+                              "qmin", "qmax")
 
 
 def _generator_error(st, lib, ffi, cfg, Ts, profile):
@@ -74,7 +75,35 @@ def _lower_bound(name, value, upper, upper_name, profile):
     return x
 
 
-def _generator_config(ffi, vmax, amax, jmax, profile, wn, zeta, vmin=None, amin=None):
+def _position_limits(qmin, qmax, profile, precision="double"):
+    """(qmin, qmax) as the C config takes them: (0, 0) for none (both None); else both
+    finite, qmin < qmax (also in the build's floats), each at most the largest float over 16,
+    and a linear-ramp profile."""
+    if qmin is None and qmax is None:
+        return 0.0, 0.0
+    for name, value, other in (("qmin", qmin, "qmax"), ("qmax", qmax, "qmin")):
+        if value is None:
+            raise ParameterError(name, f"{name} must be given with {other} (position limits "
+                                       f"[qmin, qmax]; both None: none)")
+    lo, hi = _finite("qmin", qmin), _finite("qmax", qmax)
+    big = float(np.finfo(_real_dtype(precision)).max) / 16
+    for name, value in (("qmin", lo), ("qmax", hi)):
+        if not abs(value) <= big:
+            raise ParameterError(name, f"{name}={value!r}: its magnitude must be at most "
+                                       f"{big:.6g}, the largest {precision} over 16")
+    real = _real_dtype(precision)
+    if not real(lo) < real(hi):
+        raise ParameterError("qmax", f"qmax={qmax!r} must be above qmin={qmin!r} (in "
+                                     f"{precision})")
+    if profile == "trigonometric":
+        raise ParameterError("qmin", f"qmin={qmin!r}, qmax={qmax!r}: position limits take a "
+                                     "linear-ramp profile (polynomial or damped), not the "
+                                     "trigonometric one")
+    return lo, hi
+
+
+def _generator_config(ffi, vmax, amax, jmax, profile, wn, zeta, vmin=None, amin=None,
+                      qmin=None, qmax=None, precision="double"):
     cfg = ffi.new("sms_generator_config *")
     cfg.vmax = _design._positive("vmax", vmax)
     cfg.amax = _design._positive("amax", amax)
@@ -88,6 +117,7 @@ def _generator_config(ffi, vmax, amax, jmax, profile, wn, zeta, vmin=None, amin=
     lo_a = _lower_bound("amin", amin, cfg.amax, "amax", profile)
     cfg.vmin = 0.0 if lo_v is None else lo_v
     cfg.amin = 0.0 if lo_a is None else lo_a
+    cfg.qmin, cfg.qmax = _position_limits(qmin, qmax, profile, precision)
     return cfg
 
 
@@ -133,12 +163,21 @@ class Generator(_state_identity.SavedState, Twins):
         velocity then stays within ``[vmin, vmax]`` and the acceleration within
         ``[amin, amax]`` at every sample (docs/design.md, "Asymmetric limits"). Linear-ramp
         profiles only (polynomial, damped).
+    qmin, qmax : float or None, keyword-only
+        Position limits (ruckig's ``min_position``, ``max_position``): both finite with
+        ``qmin < qmax``, or both None (default: none). Every sample's position then lies in
+        ``[qmin, qmax]`` exactly. Targets must rest inside (a position outside, or a target
+        velocity or acceleration other than 0, is refused naming ``qmin``/``qmax``, or
+        ``velocity``/``acceleration``); :meth:`start_from` refuses a state whose brake to
+        rest would cross a limit; a re-plan whose time-optimal motion would cross one brakes
+        to rest first and then moves (docs/design.md, "Position limits"). Linear-ramp
+        profiles only. The generator starts at ``q0``, which must lie inside.
 
     Raises
     ------
     ParameterError
         Naming the parameter out of range (a bound, ``Ts``, ``profile``, ``wn``, ``zeta``,
-        ``q0``, ``precision``, ``vmin``, ``amin``), or limits with which no plan can reach ``vmax``: the message
+        ``q0``, ``precision``, ``vmin``, ``amin``, ``qmin``, ``qmax``), or limits with which no plan can reach ``vmax``: the message
         names the arguments, their values and the derived quantity out of range (e.g.
         ``sqrt(vmax/jmax) = 1e+150 s`` for ``vmax=1, jmax=1e-300``: reaching vmax would take
         more than the 2^50 samples a plan holds with room for a reversal; or a product that
@@ -166,24 +205,25 @@ class Generator(_state_identity.SavedState, Twins):
     _STATE_ALIASES = {"save_state": "get_state", "load_state": "set_state"}
     _STATE_DOC = dict(
         what="generator", same="``vmax``, ``amax``, ``jmax``, ``profile``, ``wn``, ``zeta``, "
-        "``vmin``, ``amin``",
+        "``vmin``, ``amin``, ``qmin``, ``qmax``",
         example='``"state is from vmax=2.0 (this Generator: vmax=1.0)"``',
         layout="``sms_generator_get_state``: first the configuration identity "
-        "(``SMS_GENERATOR_IDENTITY_COUNT`` = 13 values: state tag, format version, "
+        "(``SMS_GENERATOR_IDENTITY_COUNT`` = 15 values: state tag, format version, "
         "``sizeof(sms_real)`` (8 double, 4 float), kind (100, a generator), ``Ts``, ``vmax``, "
         "``amax``, ``jmax``, profile index in :data:`~smoothshaper.design.PROFILES`, ``wn`` "
         "(0 without a mode), ``zeta``, ``vmin``, ``amin`` (in effect: ``-vmax``, ``-amax`` "
-        "when symmetric)); then the target and the goal of the running plan, "
+        "when symmetric), ``qmin``, ``qmax`` (0, 0 without position limits)); then the target and the goal of the running plan, "
         "each as position, velocity, acceleration, interface (0 position, 1 velocity; a "
         "stop is the velocity interface to 0) and minimum duration, the running plan's start "
-        "q, v, a and the samples since it (n = 27 without a mode; the offsets are ``SMS_GENERATOR_STATE_*`` "
+        "q, v, a and the samples since it (n = 29 without a mode; the offsets are ``SMS_GENERATOR_STATE_*`` "
         "of trajectory.h); with a mode also the samples the plan has rested and the four "
         "states of the tuned stage (each with its own stage identity).")
 
     def __init__(self, *, vmax: float, amax: float, jmax: float, Ts: float,
                  profile: str = "polynomial", wn: float | None = None, zeta: float = 0.0,
                  q0: float = 0.0, precision: str = "double", vmin: float | None = None,
-                 amin: float | None = None):
+                 amin: float | None = None, qmin: float | None = None,
+                 qmax: float | None = None):
         ffi, lib = _backend(precision)
         self._ffi, self._lib = ffi, lib
         self._lock = new_lock()
@@ -191,8 +231,13 @@ class Generator(_state_identity.SavedState, Twins):
         q0 = _finite("q0", q0)
         self.precision = precision
         self._init_args = dict(vmax=vmax, amax=amax, jmax=jmax, Ts=Ts, profile=profile, wn=wn,
-                               zeta=zeta, q0=q0, precision=precision, vmin=vmin, amin=amin)
-        cfg = _generator_config(ffi, vmax, amax, jmax, profile, wn, zeta, vmin, amin)
+                               zeta=zeta, q0=q0, precision=precision, vmin=vmin, amin=amin,
+                               qmin=qmin, qmax=qmax)
+        cfg = _generator_config(ffi, vmax, amax, jmax, profile, wn, zeta, vmin, amin, qmin, qmax,
+                                precision)
+        if (cfg.qmin or cfg.qmax) and not cfg.qmin <= q0 <= cfg.qmax:
+            raise ParameterError("q0", f"q0={q0!r} is outside [qmin, qmax] = [{cfg.qmin!r}, "
+                                       f"{cfg.qmax!r}]")
         need = ffi.new("size_t *")
         st = lib.sms_generator_buffer_size(cfg, self.Ts, need)
         if st != 0:
@@ -208,6 +253,10 @@ class Generator(_state_identity.SavedState, Twins):
         # the lower bounds in effect (-vmax, -amax when symmetric)
         self.vmin = cfg.vmin if cfg.vmin != 0 else -cfg.vmax
         self.amin = cfg.amin if cfg.amin != 0 else -cfg.amax
+        # the position limits (None without)
+        bounded = cfg.qmin != 0 or cfg.qmax != 0
+        self.qmin = cfg.qmin if bounded else None
+        self.qmax = cfg.qmax if bounded else None
         self.profile, self.wn, self.zeta = _design.PROFILES[cfg.profile], cfg.wn, cfg.zeta
         self.q0 = q0
         self.reset(q0)
@@ -250,9 +299,12 @@ class Generator(_state_identity.SavedState, Twins):
         Raises
         ------
         ParameterError
-            Naming ``position`` when it is not finite.
+            Naming ``position`` when it is not finite, or outside ``[qmin, qmax]``.
         """
         position = self.q0 if position is None else _finite("position", position)
+        if self.qmin is not None and not self.qmin <= position <= self.qmax:
+            raise ParameterError("position", f"position={position!r} is outside [qmin, qmax] = "
+                                             f"[{self.qmin!r}, {self.qmax!r}]")
         self._lib.sms_generator_reset(self._gen, position)
 
     @locked
@@ -329,6 +381,8 @@ class Generator(_state_identity.SavedState, Twins):
         if rest_only:
             x = _targets("targets", targets)
             n = x.size
+            if self.qmin is not None:
+                self._check_inside(x)
             xin = np.ascontiguousarray(x, dtype=dtype)
             out = np.empty((n, 4), dtype=dtype)
             if n:
@@ -405,12 +459,27 @@ class Generator(_state_identity.SavedState, Twins):
             self._gen, self._ffi.cast("sms_target *", self._ffi.from_buffer(block)), n, index)
         if st != 0:
             i = int(index[0])
+            if st == -56:
+                side = "qmin" if pos[i] < self.qmin else "qmax"
+                raise ParameterError(side, f"targets at sample {i}: the position {pos[i]!r} is "
+                                     f"outside [qmin, qmax] = [{self.qmin!r}, {self.qmax!r}] "
+                                     f"({'below qmin' if side == 'qmin' else 'above qmax'})", st)
             field = {-3: ("minimum_duration",), -46: ("targets",), -47: ("velocity",),
                      -48: ("acceleration",), -49: ("interface",)}[st]
             raise ParameterError(field[0], _target_message(
                 self, field[0], i, float(pos[i]), float(vel[i]), float(acc[i]), int(codes[i]),
                 float(tmin[i])), st)
         return block
+
+    def _check_inside(self, x) -> None:
+        """ParameterError naming qmin or qmax for the first target position outside them."""
+        bad = np.flatnonzero((x < self.qmin) | (x > self.qmax))
+        if bad.size:
+            i = int(bad[0])
+            side = "qmin" if x[i] < self.qmin else "qmax"
+            raise ParameterError(side, f"targets at sample {i}: the position {float(x[i])!r} is "
+                                 f"outside [qmin, qmax] = [{self.qmin!r}, {self.qmax!r}] "
+                                 f"({'below qmin' if side == 'qmin' else 'above qmax'})", -56)
 
     @property
     def refused(self) -> bool:
@@ -484,7 +553,9 @@ class Generator(_state_identity.SavedState, Twins):
         Raises
         ------
         ParameterError
-            Naming ``q``, ``v``, ``a``, ``target``, ``velocity``, ``acceleration``,
+            Naming ``qmin`` or ``qmax`` (position limits) when ``q`` or the target lies
+            outside them or neither the motion to the target nor the brake to rest stays
+            inside; naming ``q``, ``v``, ``a``, ``target``, ``velocity``, ``acceleration``,
             ``interface`` or ``minimum_duration`` when one is not finite or out of range, or the state is one no plan
             of this generator can start from; ``target`` also when the motion to it cannot be
             represented in the build's floats. Nothing is changed then.
@@ -527,6 +598,20 @@ class Generator(_state_identity.SavedState, Twins):
                 f"can start from: a outside {_acceleration_bounds(self)}, or bringing a to zero "
                 f"would leave {_velocity_bounds(self)} (beyond the generator's own rounding, a "
                 f"relative {tol:.3g})", st)
+        if st == -56:
+            if lib.sms_generator_check_target(self._gen, t) == -56:
+                side = "qmin" if t.position < self.qmin else "qmax"
+                raise ParameterError(side, f"target={float(t.position)!r} is outside [qmin, "
+                                     f"qmax] = [{self.qmin!r}, {self.qmax!r}]", st)
+            side = ("qmin" if q < self.qmin else "qmax" if q > self.qmax else
+                    "qmax" if v > 0 or (v == 0 and a > 0) else "qmin")
+            if not self.qmin <= q <= self.qmax:
+                raise ParameterError(side, f"q={q!r} is outside [qmin, qmax] = [{self.qmin!r}, "
+                                     f"{self.qmax!r}]", st)
+            raise ParameterError(side, f"(q, v, a) = ({q!r}, {v!r}, {a!r}): neither the "
+                                 "time-optimal motion to the target nor the brake to rest (the "
+                                 f"stop, at the limits) stays within [qmin, qmax] = "
+                                 f"[{self.qmin!r}, {self.qmax!r}]: it would pass {side}", st)
         if st in (-3, -47, -48, -49):
             name = {-3: "minimum_duration", -47: "velocity", -48: "acceleration",
                     -49: "interface"}[st]
@@ -572,6 +657,13 @@ def _target_message(g, name, i, position, velocity, acceleration, code, minimum_
         return f"targets{at}: the position {position!r} must be finite"
     if name == "interface":
         return f"interface{at}: {code!r} is not position, velocity or stop"
+    bounded = getattr(g, "qmin", None) is not None
+    if bounded and name in ("velocity", "acceleration") and \
+            (velocity if name == "velocity" else acceleration) != 0:
+        value = velocity if name == "velocity" else acceleration
+        return (f"{name}{at}: {value!r}: with position limits [qmin, qmax] = [{g.qmin!r}, "
+                f"{g.qmax!r}] a target rests ({name} 0; a motion moving on after it would leave "
+                "them)")
     if name == "velocity":
         if g.profile == "trigonometric" and velocity != 0 and math.isfinite(velocity) \
                 and abs(velocity) <= g.vmax:
@@ -683,7 +775,7 @@ def _tuned_kind(profile: str, zeta: float) -> str:
 def generator_reference(targets=None, *, vmax, amax, jmax, Ts, profile="polynomial", wn=None,
                         zeta=0.0, position=0.0, velocity=None, acceleration=None,
                         interface=None, stop=None, minimum_duration=None, vmin=None,
-                        amin=None) -> np.ndarray:
+                        amin=None, qmin=None, qmax=None) -> np.ndarray:
     """NumPy reference of :class:`Generator`.
 
     The plan is :func:`smoothshaper.time_optimal.time_optimal_reference` (linear ramps of the
@@ -724,6 +816,12 @@ def generator_reference(targets=None, *, vmax, amax, jmax, Ts, profile="polynomi
         Lower velocity and acceleration bounds, as for :class:`Generator` (None: ``-vmax``,
         ``-amax``); the feasible region then covers the moves that reach each velocity bound
         with each acceleration bound (:func:`smoothshaper.time_optimal.reach_pairs`).
+    qmin, qmax : float or None, keyword-only
+        Position limits, as for :class:`Generator`: targets outside them, or not at rest, are
+        ignored (the held one kept); each plan is the time-optimal one when its extremes (the
+        zeros of each piece's velocity) stay inside, else the brake to rest, a rest until the
+        next sample and the move from there. The reference does not hold q to the limits:
+        its samples show the plan's rounding (docs/design.md, "Position limits").
 
     Returns
     -------
@@ -746,6 +844,11 @@ def generator_reference(targets=None, *, vmax, amax, jmax, Ts, profile="polynomi
     profile = _design.profile_name(profile)
     vmin = _lower_bound("vmin", vmin, vmax, "vmax", profile)
     amin = _lower_bound("amin", amin, amax, "amax", profile)
+    qlo, qhi = _position_limits(qmin, qmax, profile)
+    qlim = (qlo, qhi) if (qlo or qhi) else None
+    if qlim is not None and not qlo <= _finite("position", position) <= qhi:
+        raise ParameterError("position", f"position={position!r} is outside [qmin, qmax] = "
+                                         f"[{qlo!r}, {qhi!r}]")
     columns = _reference_targets(targets, velocity, acceleration, interface, stop, vmax=vmax,
                                  amax=amax, jmax=jmax, profile=profile,
                                  minimum_duration=minimum_duration, vmin=vmin, amin=amin)
@@ -772,7 +875,7 @@ def generator_reference(targets=None, *, vmax, amax, jmax, Ts, profile="polynomi
                              "that reaches vmax can be planned")
     plan, goals, _ = _run(x, vmax=vmax, amax=amax, jmax=jmax, Ts=Ts, q0=position, shape=shape,
                           velocity=columns[1], acceleration=columns[2], interface=columns[3],
-                          minimum_duration=columns[4], vmin=vmin, amin=amin)
+                          minimum_duration=columns[4], vmin=vmin, amin=amin, qlim=qlim)
     if not wn_:
         return plan
     taps = fir_taps_unchecked(_for_mode(_tuned_kind(profile, zeta_), wn_, zeta_, 1), Ts)

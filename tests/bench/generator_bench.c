@@ -76,6 +76,7 @@ int main(void)
         c.vmax = 250.0; c.amax = 5000.0; c.jmax = 200000.0;
         c.profile = cases[i].profile; c.wn = cases[i].wn; c.zeta = cases[i].zeta;
         c.vmin = c.amin = 0.0; /* symmetric */
+        c.qmin = c.qmax = 0.0; /* no position limits */
         if (sms_generator_buffer_size(&c, Ts, &need) != SMS_OK || need > 100000 ||
             sms_generator_init(&g, &c, Ts, table, need) != SMS_OK)
             return 1;
@@ -99,6 +100,7 @@ int main(void)
              * targets, which stay within both; the moving target's 100 units/s forward) */
             c.vmin = asym ? -125.0 : 0.0;
             c.amin = asym ? -1250.0 : 0.0;
+            c.qmin = c.qmax = 0.0; /* no position limits */
             if (sms_generator_buffer_size(&c, Ts, &need) != SMS_OK || need > 100000 ||
                 sms_generator_init(&g, &c, Ts, table, need) != SMS_OK)
                 return 1;

@@ -587,6 +587,7 @@ static void generator_row(int rounds)
     c.wn = 0.0;
     c.zeta = 0.0;
     c.vmin = c.amin = 0.0; /* symmetric */
+    c.qmin = c.qmax = 0.0; /* no position limits */
     if (sms_generator_buffer_size(&c, 1e-4, &need) != SMS_OK || need > sizeof generator_table / sizeof generator_table[0]
         || sms_generator_init(&g, &c, 1e-4, generator_table, need) != SMS_OK) {
         printf("generator init failed\n");

@@ -61,6 +61,7 @@ static void campaign_draw(campaign_case *k, campaign_uniform u, int grid)
             k->config.wn = 2.5 / Ts * (0.1 + 0.9 * u());
         k->config.zeta = profile == SMS_PROFILE_POLYNOMIAL ? 0.0 : 0.2 * u();
         k->config.vmin = k->config.amin = 0.0; /* symmetric */
+        k->config.qmin = k->config.qmax = 0.0; /* no position limits */
     }
     k->scale = v * campaign_log_uniform(u, 1e-3, grid ? 3.0 : 1.0);
 }

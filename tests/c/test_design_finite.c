@@ -129,6 +129,7 @@ static void generators(void)
                     c.wn = p == 2 ? 50.0 : 0.0;
                     c.zeta = p == 2 ? 0.1 : 0.0;
                     c.vmin = c.amin = 0.0; /* symmetric */
+                    c.qmin = c.qmax = 0.0; /* no position limits */
                     st = sms_generator_reach(&c, mags[t], &r);
                     v[0] = r.peak_acceleration;
                     v[1] = r.duration;

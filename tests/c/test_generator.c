@@ -43,6 +43,7 @@ static sms_generator_config make_config(double v, double a, double j, sms_profil
     c.zeta = zeta;
     c.vmin = 0.0; /* symmetric */
     c.amin = 0.0;
+    c.qmin = c.qmax = 0.0; /* no position limits */
     return c;
 }
 

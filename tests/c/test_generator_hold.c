@@ -81,6 +81,7 @@ static void long_move(void)
     c.wn = 2.0 * 3.14159265358979323846;   /* 1 Hz: M = 1000 samples */
     c.zeta = 0.0;
     c.vmin = c.amin = 0.0; /* symmetric */
+    c.qmin = c.qmax = 0.0; /* no position limits */
     for (k = 0; k < 4; ++k) {
         sms_generator a, b;
         sms_real out_a[4], out_b[4] = {0, 0, 0, 0};
@@ -115,6 +116,7 @@ int main(void)
                                                  : 0.0;
         c.zeta = c.wn > 0.0 && uniform() < 0.5 ? 0.2 * uniform() : 0.0;
         c.vmin = c.amin = 0.0; /* symmetric */
+        c.qmin = c.qmax = 0.0; /* no position limits */
         ns[0] = 1;
         ns[1] = 2;
         ns[2] = 3 + (uint64_t)(uniform() * 50.0);

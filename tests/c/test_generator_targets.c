@@ -34,6 +34,7 @@ static sms_generator_config config(double v, double a, double j, sms_profile pro
     c.zeta = 0.0;
     c.vmin = 0.0; /* symmetric */
     c.amin = 0.0;
+    c.qmin = c.qmax = 0.0; /* no position limits */
     return c;
 }
 

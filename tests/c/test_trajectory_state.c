@@ -133,8 +133,8 @@ static void gen_across(const sms_generator_config *a, double Ts_a, const sms_gen
 
 static void generator_fields(void)
 {
-    const sms_generator_config a = {1.0, 10.0, 100.0, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, 0.0, 0.0};
-    const sms_generator_config m = {1.0, 10.0, 100.0, SMS_PROFILE_POLYNOMIAL, 60.0, 0.1, 0.0, 0.0};
+    const sms_generator_config a = {1.0, 10.0, 100.0, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    const sms_generator_config m = {1.0, 10.0, 100.0, SMS_PROFILE_POLYNOMIAL, 60.0, 0.1, 0.0, 0.0, 0.0, 0.0};
     sms_generator_config b;
     gen_across(&a, Ts, &a, Ts, SMS_OK);
     gen_across(&m, Ts, &m, Ts, SMS_OK);
@@ -157,7 +157,7 @@ static void generator_fields(void)
 /* Tag, version, precision and kind: a vector that is not a generator state of this build. */
 static void generator_format(void)
 {
-    const sms_generator_config a = {1.0, 10.0, 100.0, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, 0.0, 0.0};
+    const sms_generator_config a = {1.0, 10.0, 100.0, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
     sms_generator g;
     sms_stage_config sc = sms_stage_config_default(SMS_RECTANGULAR);
     sms_stage s;
@@ -225,6 +225,7 @@ static void generator_random(void)
         a.wn = a.profile == SMS_PROFILE_DAMPED || uniform() < 0.3 ? 20.0 + 200.0 * uniform() : 0.0;
         a.zeta = a.wn > 0.0 ? 0.3 * uniform() : 0.0;
         a.vmin = a.amin = 0.0; /* symmetric */
+        a.qmin = a.qmax = 0.0; /* no position limits */
         b = a;
         switch (field) {
         case 0: b.vmax = nextafter(a.vmax, 1e300); break;

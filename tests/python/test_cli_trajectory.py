@@ -360,3 +360,33 @@ def test_generator_target_options_are_refused_naming_them(capsys, argv, words):
     code, out, err = run(capsys, "design", "generator", *argv, "--vmax", 1, "--amax", 10,
                          "--jmax", 100, "--Ts", TS)
     assert code != 0 and words in err, err
+
+
+def test_generator_position_and_lower_limits(capsys, tmp_path):
+    """--qmin/--qmax keep every sample inside and equal the API's run; --vmin/--amin are the
+    Generator's lower bounds; refusals name the option."""
+    path = tmp_path / "q.csv"
+    argv = ["design", "generator", "--via=0,0.5,-0.2", "--vmax", 1, "--amax", 10, "--jmax",
+            100, "--Ts", 1e-3, "--qmin=-0.3", "--qmax", 0.6, "--vmin=-0.25", "--amin=-2.5",
+            "--csv", path]
+    code, out, err = run(capsys, *argv)
+    assert code == 0, err
+    _, data = read_csv(path)
+    q, v = data[:, 2], data[:, 3]
+    assert -0.3 <= q.min() and q.max() <= 0.6 and q[-1] == -0.2
+    assert v.min() >= -0.25 and v.min() <= -0.2499 and v.max() <= 1.0
+    g = Generator(vmax=1.0, amax=10.0, jmax=100.0, Ts=1e-3, qmin=-0.3, qmax=0.6, vmin=-0.25,
+                  amin=-2.5)
+    x = np.r_[np.full(int(round(data[:, 0][np.flatnonzero(data[:, 1] == -0.2)[0]] / 1e-3)), 0.5),
+              np.full(data.shape[0], -0.2)][:data.shape[0]]
+    assert np.allclose(g.process(x)[:, 0], q, rtol=0, atol=1e-12)
+    for extra, word in [(["--via=0,0.7", "--qmin=-0.3", "--qmax", "0.6"], "--qmax: --via point 1"),
+                        (["--via=0,0.5", "--qmin", "0.1", "--qmax=-1"], "--qmax"),
+                        (["--via=0,0.5", "--qmin=-1"], "--qmax"),
+                        (["--via=0,0.5", "--vmin", "0.5"], "--vmin"),
+                        (["--via=0.55,0.5", "--start", "1,0", "--qmin=-1", "--qmax", "0.6"],
+                         "--qmax: qmax: (q, v, a) = (0.55, 1.0, 0.0)"),
+                        (["--via=0,0,0;1,1,1", "--qmin=-1", "--qmax", "2"], "one axis only")]:
+        code, out, err = run(capsys, "design", "generator", *extra, "--vmax", 1, "--amax", 10,
+                             "--jmax", 100, "--Ts", 1e-3)
+        assert code != 0 and word in err and err.count("\n") == 1, (extra, err)

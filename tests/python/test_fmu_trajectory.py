@@ -334,3 +334,35 @@ def test_asymmetric_limits_equal_the_python_generator_bit_for_bit(trajectory_dir
         fmu.doStep(0.0, TS)
     assert "[vmin, vmax]" in log.messages[-1], log.messages[-1]
     fmu.freeInstance()
+
+
+def test_position_limits_equal_the_python_generator_bit_for_bit(trajectory_dir):
+    """Parameters qmin, qmax (both 0: none): the FMU's outputs equal the Python Generator with
+    the same limits bit for bit, q within them; limits in the wrong order, q0 outside and a
+    target outside fail naming them."""
+    lim = dict(qmin=-0.3, qmax=0.5)
+    fmu = slave(trajectory_dir)
+    start(fmu, **lim)
+    x = np.r_[np.full(1500, 0.5), np.full(3000, -0.3)]
+    y = run(fmu, 0.0, x)
+    fmu.freeInstance()
+    ref = Generator(Ts=TS, **LIMITS, **lim).process(x)
+    assert np.array_equal(y, ref)
+    assert y[:, 0].min() == -0.3 and y[:, 0].max() == 0.5
+    for params, words in [(dict(qmin=1.0, qmax=-1.0), "qmin < qmax"),
+                          (dict(qmin=0.1, qmax=1.0), "q0 = 0 is outside"),
+                          (dict(qmin=-1.0, qmax=1.0, profile=1), "not the trigonometric")]:
+        log = Logged()
+        fmu = slave(trajectory_dir, logged=log)
+        with pytest.raises(FMICallException):
+            start(fmu, **params)
+        assert words in log.messages[-1], log.messages[-1]
+        fmu.freeInstance()
+    log = Logged()
+    fmu = slave(trajectory_dir, logged=log)
+    start(fmu, **lim)
+    fmu.setReal([fmu.vr["target"]], [0.7])
+    with pytest.raises(FMICallException):
+        fmu.doStep(0.0, TS)
+    assert "outside [qmin, qmax]" in log.messages[-1], log.messages[-1]
+    fmu.freeInstance()

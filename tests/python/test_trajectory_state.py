@@ -114,13 +114,14 @@ def test_a_non_finite_enumeration_field_is_named(field, value):
 def test_layout_is_documented():
     g = Generator(**dict(BASE, profile="trigonometric"))
     s = g.get_state()
-    assert s.size == 27
-    # ... profile, wn, zeta, then vmin and amin in effect (symmetric: -vmax, -amax)
-    assert list(s[:13]) == [5459283.0, 2.0, 8.0, 100.0, 1e-3, 1.0, 10.0, 100.0, 1.0, 0.0, 0.0,
-                            -1.0, -10.0]
+    assert s.size == 29
+    # ... profile, wn, zeta, then vmin and amin in effect (symmetric: -vmax, -amax), then qmin
+    # and qmax (0, 0: no position limits)
+    assert list(s[:15]) == [5459283.0, 2.0, 8.0, 100.0, 1e-3, 1.0, 10.0, 100.0, 1.0, 0.0, 0.0,
+                            -1.0, -10.0, 0.0, 0.0]
     # the target and the goal at rest on 0 (position interface, no minimum duration), the
     # plan from (0, 0, 0), k
-    assert list(s[13:]) == [0.0] * 14
+    assert list(s[15:]) == [0.0] * 14
 
 
 _limits = st.floats(min_value=0.05, max_value=50.0)

@@ -194,8 +194,10 @@ SMS_API sms_status sms_kinematic_design_batch(size_t m, const double *h, size_t 
  * convex combination of two motions of up to 7 pieces each (13 segments on the union of
  * their breakpoints), then the acceleration's return to zero after the target (1); a plan to
  * rest has at most 8 (a velocity change of 3, or 4 when a half-cosine plan first brings an
- * opposite acceleration to zero, a cruise, the stop). */
-#define SMS_PLAN_MAX_SEGMENTS 16
+ * opposite acceleration to zero, a cruise, the stop). With position limits (qmin, qmax of
+ * ::sms_generator_config) a plan may first brake to rest (3 segments) and wait there for the
+ * next sample (1) before its move: 4 more. */
+#define SMS_PLAN_MAX_SEGMENTS 20
 
 /** @brief Bounds of a time-optimal plan: |v| <= vmax, |a| <= amax, |j| <= jmax (finite, > 0). */
 typedef struct sms_plan_limits {
@@ -246,9 +248,9 @@ typedef enum sms_interface {
  * | field        | valid range (sms_generator_check_target()) |
  * |--------------|--------------------------------------------|
  * | interface    | an ::sms_interface |
- * | position     | finite (position interface; ignored otherwise) |
- * | velocity     | finite, \|v\| <= vmax (ignored for stop); vmin <= v <= vmax with asymmetric limits |
- * | acceleration | finite, \|a\| <= amax, and v - a\|a\|/(2 jmax), v + a\|a\|/(2 jmax) within \|.\| <= vmax (ignored for stop); with asymmetric limits amin <= a <= amax and both within [vmin, vmax] |
+ * | position     | finite (position interface; ignored otherwise); within [qmin, qmax] with position limits (else ::SMS_ERR_POSITION_LIMIT) |
+ * | velocity     | finite, \|v\| <= vmax (ignored for stop); vmin <= v <= vmax with asymmetric limits; 0 with position limits |
+ * | acceleration | finite, \|a\| <= amax, and v - a\|a\|/(2 jmax), v + a\|a\|/(2 jmax) within \|.\| <= vmax (ignored for stop); with asymmetric limits amin <= a <= amax and both within [vmin, vmax]; 0 with position limits |
  * | minimum_duration | finite, >= 0 [s], below 2^50 samples of Ts; 0 with the trigonometric profile (ignored for stop) |
  *
  * The acceleration row keeps the velocity within its bound on the way in (where the
@@ -285,6 +287,7 @@ typedef struct sms_target {
  * | zeta    | [0, 1) |
  * | vmin    | 0 (symmetric: -vmax) or finite < 0, and a plan can reach it (sms_generator_reach()) |
  * | amin    | 0 (symmetric: -amax) or finite < 0 |
+ * | qmin, qmax | both 0 (no position limits) or finite with qmin < qmax (as ::sms_real too), each at most 2^-4 of the largest ::sms_real in magnitude; linear-ramp profiles only |
  *
  * **Asymmetric limits** (ruckig's min_velocity and min_acceleration): with vmin or amin set,
  * the velocity stays within [vmin, vmax] and the acceleration within [amin, amax] at every
@@ -295,6 +298,31 @@ typedef struct sms_target {
  * refused with ::SMS_ERR_LIMIT when either is set to another value than 0, -vmax or -amax.
  * Last in the struct so that initialisers of the other six stay valid and mean the symmetric
  * limits (set both fields, or zero the struct, when filling it field by field).
+ *
+ * **Position limits** (ruckig's min_position and max_position): with qmin, qmax set the
+ * position stays within [qmin, qmax] at every sample (the reported q exactly: the plan is
+ * checked with the continuous extremes of its segments to 16 u (|qmin| + |qmax|), u the unit
+ * roundoff, and q is held to the limits, which changes it by no more than that and the
+ * rounding of the sample). Targets then rest inside: a position target outside [qmin, qmax]
+ * is refused with ::SMS_ERR_POSITION_LIMIT, and a target velocity or acceleration other than
+ * 0 (a motion that would drift on after it) with ::SMS_ERR_TARGET_VELOCITY or
+ * ::SMS_ERR_TARGET_ACCELERATION, so the velocity interface plans only the stop.
+ * sms_generator_start() refuses a state outside, or from which neither the time-optimal
+ * motion to the target nor the brake to rest (the time-optimal change to velocity 0, the stop
+ * interface) stays inside, with ::SMS_ERR_POSITION_LIMIT (a harder brake, one that reverses
+ * before it rests, may still stay inside from some of these: they are refused all the same);
+ * sms_generator_reset() to a position outside is ignored, and init rests at 0, or at the limit
+ * nearer to 0 when 0 lies outside. A re-plan takes the time-optimal motion when it stays
+ * inside; else it brakes to rest at once (the stop), waits there for the next sample, and
+ * moves to the target (time-optimal from that rest, with what is left of minimum_duration;
+ * without it when the stretched motion would cross a limit): the first whose segments stay
+ * inside. When not even the brake stays inside (a state on the way of a plan that overshoots
+ * towards a limit and turns back before it: its own brake turns later), the running plan goes
+ * on, which stays inside, and the re-plan is tried again on the next sample, as for a state
+ * no half-cosine plan can start from. The brake-then-move motion is not time-optimal under
+ * the constraint in general (a motion that starts braking and turns towards the target
+ * before it rests is shorter); it is what docs/design.md ("Position limits") describes.
+ * Last in the struct (0, 0: none, as a zeroed or shorter initialiser leaves them).
  */
 typedef struct sms_generator_config {
     double vmax;          /**< velocity bound, finite, > 0 */
@@ -305,6 +333,8 @@ typedef struct sms_generator_config {
     double zeta;          /**< the mode's damping ratio, [0, 1) */
     double vmin;          /**< lower velocity bound, finite, < 0; 0: -vmax */
     double amin;          /**< lower acceleration bound, finite, < 0; 0: -amax */
+    double qmin;          /**< lower position limit, finite, < qmax; 0 and qmax 0: none */
+    double qmax;          /**< upper position limit, finite, > qmin; 0 and qmin 0: none */
 } sms_generator_config;
 
 /**
@@ -313,15 +343,16 @@ typedef struct sms_generator_config {
  * ::SMS_STATE_VERSION, sizeof(::sms_real), ::SMS_STATE_KIND_GENERATOR, Ts), then vmax, amax,
  * jmax, profile, wn, zeta exactly as given to sms_generator_init(), then the lower bounds vmin
  * and amin in effect (-vmax and -amax for symmetric limits, so a config with 0 and one with
- * -vmax are the same configuration). Loading compares them with
+ * -vmax are the same configuration), then qmin and qmax (0, 0: no position limits). Loading
+ * compares them with
  * the generator's own (exact equality) and refuses a state of another configuration, writing
  * nothing, with the status naming the first field that differs (::SMS_ERR_STATE_FORMAT,
  * ::SMS_ERR_STATE_PRECISION, ::SMS_ERR_STATE_KIND, ::SMS_ERR_STATE_TS, ::SMS_ERR_STATE_VMAX,
  * ::SMS_ERR_STATE_AMAX, ::SMS_ERR_STATE_JMAX, ::SMS_ERR_STATE_PROFILE, ::SMS_ERR_STATE_WN,
  * ::SMS_ERR_STATE_ZETA, then ::SMS_ERR_STATE_VMAX for vmin and ::SMS_ERR_STATE_AMAX for amin:
- * the velocity and the acceleration bounds).
+ * the velocity and the acceleration bounds, and ::SMS_ERR_POSITION_LIMIT for qmin and qmax).
  */
-#define SMS_GENERATOR_IDENTITY_COUNT 13
+#define SMS_GENERATOR_IDENTITY_COUNT 15
 
 /** @brief Doubles of a saved generator state after its identity (sms_generator_get_state()),
  * and where each field lies counted from the end of the identity: the latest target and the
@@ -430,6 +461,11 @@ typedef struct sms_generator {
     sms_real vmin;        /**< lower velocity bound in signal precision (-vmax: symmetric) */
     sms_real amin;        /**< lower acceleration bound in signal precision (-amax: symmetric) */
     int asymmetric;       /**< 1 when vmin != -vmax or amin != -amax */
+    int bounded;          /**< 1 with position limits (qmin, qmax) */
+    sms_real qmin;        /**< lower position limit in signal precision (bounded only) */
+    sms_real qmax;        /**< upper position limit in signal precision (bounded only) */
+    sms_real qtol;        /**< how far a plan's computed extremes may pass them: 16 u
+                               (|qmin| + |qmax|), the rounding of the positions */
     double identity[SMS_GENERATOR_IDENTITY_COUNT]; /**< config and Ts it was built for */
     /* dynamic state */
     sms_target target;    /**< latest valid target (a stop as velocity 0, acceleration 0; the
@@ -528,7 +564,8 @@ SMS_API sms_status sms_generator_reach(const sms_generator_config *config, doubl
  */
 SMS_API sms_status sms_generator_buffer_size(const sms_generator_config *config, double Ts,
                                              size_t *n_reals);
-/** @brief Validate, design the tuned stage if any; the generator rests at 0.
+/** @brief Validate, design the tuned stage if any; the generator rests at 0 (with position
+ * limits that exclude 0: at the nearer limit).
  * @return as sms_generator_buffer_size(), plus ::SMS_ERR_BUFFER_TOO_SMALL. Untouched on error.
  * @param g      instance to fill; untouched on error
  * @param config the limits and the optional mode
@@ -541,7 +578,8 @@ SMS_API sms_status sms_generator_init(sms_generator *g, const sms_generator_conf
                                       double Ts, sms_real *buffer, size_t n_reals);
 /** @brief Rest at `position` (target, plan and stage all there). O(M).
  * @param g      the generator, built by sms_generator_init()
- * @param position finite
+ * @param position finite, and within [qmin, qmax] with position limits (else ignored: the
+ *                 generator stays as it is, as for a non-finite one)
  */
 SMS_API void sms_generator_reset(sms_generator *g, sms_real position);
 /**
@@ -660,7 +698,10 @@ SMS_API void sms_generator_hold_target(sms_generator *g, const sms_target *targe
  *         ::SMS_ERR_TARGET_VELOCITY (v not finite or |v| > vmax; asymmetric limits: v outside
  *         [vmin, vmax]); ::SMS_ERR_TARGET_ACCELERATION (a not finite, |a| > amax or
  *         |v + a|a|/(2 J)| > vmax, J the shape's mean jerk, each on its own side with
- *         asymmetric limits: no plan can start there); a status of sms_generator_check_target() for `target`;
+ *         asymmetric limits: no plan can start there); ::SMS_ERR_POSITION_LIMIT (position
+ *         limits: q outside [qmin, qmax], or neither the time-optimal motion to the target
+ *         nor the brake to rest from (q, v, a) stays inside);
+ *         a status of sms_generator_check_target() for `target`;
  *         ::SMS_ERR_TOO_LONG (the motion to the target cannot be represented). Each bound
  *         holds to ::SMS_LIMIT_RTOL (a state the generator reported is always accepted).
  *         Nothing is changed on error.

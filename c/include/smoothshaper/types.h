@@ -144,8 +144,13 @@ typedef enum sms_status {
                                          the times do not strictly increase */
     SMS_ERR_TARGET_SYNC = -52,      /**< a multi-axis target's per-axis synchronisation is not
                                          one the generator's mode takes (::sms_sync) */
-    SMS_ERR_SAMPLE_PERIOD_RANGE = -55 /**< a generator's Ts is above ::SMS_TS_MAX: its tick and
+    SMS_ERR_SAMPLE_PERIOD_RANGE = -55, /**< a generator's Ts is above ::SMS_TS_MAX: its tick and
                                            duration arithmetic (2^56 Ts) would overflow */
+    SMS_ERR_POSITION_LIMIT = -56    /**< position limits of the generator (qmin, qmax of
+                                         ::sms_generator_config): a target position outside
+                                         [qmin, qmax], a start state outside or whose brake to
+                                         rest would cross a limit, or a saved state of other
+                                         position limits */
 } sms_status;
 
 /** @brief Stage families. Values are stable (the FMU enumeration and saved states use them). */

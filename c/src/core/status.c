@@ -76,6 +76,8 @@ const char *sms_status_string(sms_status status)
         return "a target's per-axis synchronisation is not one the generator's mode takes";
     case SMS_ERR_SAMPLE_PERIOD_RANGE:
         return "Ts must be at most SMS_TS_MAX (2^56 Ts, the longest time sum, would overflow)";
+    case SMS_ERR_POSITION_LIMIT:
+        return "a position (a target, or where a start state brakes to rest) outside [qmin, qmax]";
     }
     return "unknown status";
 }

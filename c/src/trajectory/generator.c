@@ -14,7 +14,8 @@
 #include "core/state_identity.h"
 #include "trajectory/trajectory_internal.h"
 
-enum { ID_VMAX = SMS_GEN_ID_VMAX, ID_AMAX, ID_JMAX, ID_PROFILE, ID_WN, ID_ZETA, ID_VMIN, ID_AMIN };
+enum { ID_VMAX = SMS_GEN_ID_VMAX, ID_AMAX, ID_JMAX, ID_PROFILE, ID_WN, ID_ZETA, ID_VMIN, ID_AMIN,
+       ID_QMIN, ID_QMAX };
 
 static void generator_identity(const sms_generator_config *c, double Ts,
                                double id[SMS_GENERATOR_IDENTITY_COUNT])
@@ -28,6 +29,8 @@ static void generator_identity(const sms_generator_config *c, double Ts,
     id[ID_ZETA] = c->zeta;
     id[ID_VMIN] = c->vmin != 0.0 ? c->vmin : -c->vmax;
     id[ID_AMIN] = c->amin != 0.0 ? c->amin : -c->amax;
+    id[ID_QMIN] = c->qmin;
+    id[ID_QMAX] = c->qmax;
 }
 
 /* The feasible limit sets (trajectory.h, sms_generator_reach()). For a move from any state
@@ -44,6 +47,8 @@ static void generator_identity(const sms_generator_config *c, double Ts,
 #define GEN_REAL_TINY (sizeof(sms_real) == sizeof(double) ? DBL_MIN / DBL_EPSILON \
                                                           : (double)FLT_MIN / (double)FLT_EPSILON)
 #define GEN_MARGIN 16.0
+#define GEN_UNIT_ROUNDOFF (sizeof(sms_real) == sizeof(double) ? DBL_EPSILON / 2 \
+                                                              : (double)FLT_EPSILON / 2)
 #define GEN_MAX_REACH_SAMPLES 1125899906842624.0 /* 2^50 */
 
 sms_status sms_reach_refused(sms_generator_reach_info *r, const char *quantity,
@@ -164,6 +169,19 @@ sms_status sms_generator_reach(const sms_generator_config *c, double Ts,
             if (!(-limit[i] <= big / GEN_MARGIN))
                 return sms_reach_refused(r, names[i], names[i], limit[i], -big / GEN_MARGIN);
         }
+    }
+    if (c->qmin != 0.0 || c->qmax != 0.0) {
+        /* position limits: finite, ordered as sms_real holds them, with room for a reversal
+         * (16 x); linear ramps only (the extremes of a half-cosine segment are not formed) */
+        if (trig)
+            return sms_reach_refused(r, c->qmin != 0.0 ? "qmin" : "qmax", "qmin, qmax, profile",
+                                     c->qmin != 0.0 ? c->qmin : c->qmax, 0.0);
+        if (!(fabs(c->qmin) <= big / GEN_MARGIN))
+            return sms_reach_refused(r, "qmin", "qmin", c->qmin, big / GEN_MARGIN);
+        if (!(fabs(c->qmax) <= big / GEN_MARGIN))
+            return sms_reach_refused(r, "qmax", "qmax", c->qmax, big / GEN_MARGIN);
+        if (!((sms_real)c->qmin < (sms_real)c->qmax))
+            return sms_reach_refused(r, "qmax", "qmin, qmax", c->qmax, c->qmin);
     }
     Vn = c->vmin != 0.0 ? -c->vmin : c->vmax;
     An = c->amin != 0.0 ? -c->amin : c->amax;
@@ -292,8 +310,14 @@ sms_status sms_generator_init(sms_generator *g, const sms_generator_config *conf
     g->vmin = config->vmin != 0.0 ? (sms_real)config->vmin : -g->limits.vmax;
     g->amin = config->amin != 0.0 ? (sms_real)config->amin : -g->limits.amax;
     g->asymmetric = g->vmin != -g->limits.vmax || g->amin != -g->limits.amax;
+    g->bounded = config->qmin != 0.0 || config->qmax != 0.0;
+    g->qmin = (sms_real)config->qmin;
+    g->qmax = (sms_real)config->qmax;
+    g->qtol = (sms_real)(16.0 * GEN_UNIT_ROUNDOFF * (fabs(config->qmin) + fabs(config->qmax)));
     generator_identity(config, Ts, g->identity);
-    sms_generator_reset(g, 0);
+    g->bounded = 0; /* the rest below is inside by construction */
+    sms_generator_reset(g, g->qmin > 0 ? g->qmin : g->qmax < 0 ? g->qmax : 0);
+    g->bounded = config->qmin != 0.0 || config->qmax != 0.0;
     return SMS_OK;
 }
 
@@ -302,6 +326,8 @@ void sms_generator_reset(sms_generator *g, sms_real position)
     size_t i;
     if (position - position != 0)
         return; /* NaN/Inf: stay where it is */
+    if (g->bounded && !(position >= g->qmin && position <= g->qmax))
+        return; /* outside the position limits: the same */
     g->plan_q = position;
     g->plan_v = 0;
     g->plan_a = 0;
@@ -373,6 +399,8 @@ sms_status sms_generator_canonical(const sms_generator *g, const sms_target *in,
     case SMS_INTERFACE_POSITION:
         if (!finite_real(t.position))
             return SMS_ERR_TARGET_POSITION;
+        if (g->bounded && !(t.position >= g->qmin && t.position <= g->qmax))
+            return SMS_ERR_POSITION_LIMIT;
         break;
     default:
         return SMS_ERR_INTERFACE;
@@ -393,6 +421,13 @@ sms_status sms_generator_canonical(const sms_generator *g, const sms_target *in,
             return SMS_ERR_TARGET_ACCELERATION;
         if (t.minimum_duration != 0)
             return SMS_ERR_DURATION;
+    }
+    if (g->bounded) {
+        /* at rest on the target: a motion moving on after it would leave the limits */
+        if (t.velocity != 0)
+            return SMS_ERR_TARGET_VELOCITY;
+        if (t.acceleration != 0)
+            return SMS_ERR_TARGET_ACCELERATION;
     }
     V = g->limits.vmax;
     A = g->limits.amax;
@@ -439,8 +474,8 @@ static int same_target(const sms_target *a, const sms_target *b)
            a->minimum_duration == b->minimum_duration;
 }
 
-int sms_generator_replan(const sms_generator *g, sms_plan *plan, sms_real q, sms_real v,
-                         sms_real a, const sms_target *goal)
+static int plan_direct(const sms_generator *g, sms_plan *plan, sms_real q, sms_real v,
+                       sms_real a, const sms_target *goal)
 {
     sms_to_limits lim;
     lim.vmax = g->limits.vmax;
@@ -464,6 +499,97 @@ int sms_generator_replan(const sms_generator *g, sms_plan *plan, sms_real q, sms
     /* not expected: the rest planner of the first version, never beyond the limits */
     return !g->asymmetric && goal->velocity == 0 && goal->acceleration == 0 &&
            goal->minimum_duration == 0 && sms_plan_to_rest(plan, &g->limits, g->Ts_signal, q, v, a, goal->position);
+}
+
+/* Do the plan's positions stay within [qmin, qmax] (to qtol, the rounding of its extremes)? */
+static int plan_inside(const sms_generator *g, const sms_plan *plan)
+{
+    sms_real lo, hi;
+    return sms_plan_extent(plan, &lo, &hi) && lo >= g->qmin - g->qtol && hi <= g->qmax + g->qtol;
+}
+
+/* The brake to rest at once from (q, v, a): the stop interface's plan. */
+static int plan_stop(const sms_generator *g, sms_plan *plan, sms_real q, sms_real v, sms_real a)
+{
+    sms_target stop;
+    stop.interface = SMS_INTERFACE_VELOCITY;
+    stop.position = stop.velocity = stop.acceleration = stop.minimum_duration = 0;
+    return plan_direct(g, plan, q, v, a, &stop);
+}
+
+/* The brake `stop` (resting on its goal from stop->end + stop->end_f), a rest there until the
+ * next sample S, then `move` (formed from that rest, times from its own first sample) shifted
+ * by S samples; 0 when the segments do not fit. */
+static int join_plans(const sms_generator *g, sms_plan *plan, const sms_plan *stop, size_t S,
+                      const sms_plan *move)
+{
+    size_t i, c, n = stop->end;
+    sms_real f = stop->end_f;
+    if (stop->count + 1u + move->count > SMS_PLAN_MAX_SEGMENTS)
+        return 0;
+    *plan = *stop;
+    if (S > stop->end)
+        sms_plan_push(plan, g->Ts_signal, &n, &f, stop->goal, 0, 0, 0, g->Ts_signal - stop->end_f);
+    for (i = 0; i < move->count; ++i) {
+        c = plan->count++;
+        plan->n[c] = move->n[i] + S;
+        plan->f[c] = move->f[i];
+        plan->p[c] = move->p[i];
+        plan->v[c] = move->v[i];
+        plan->a[c] = move->a[i];
+        plan->j[c] = move->j[i];
+        plan->d[c] = move->d[i];
+        plan->duration += move->d[i];
+    }
+    plan->end = move->end + S;
+    plan->end_f = move->end_f;
+    plan->goal = move->goal;
+    plan->drift = move->drift;
+    plan->arrive = move->arrive + S;
+    plan->arrive_f = move->arrive_f;
+    return sms_plan_finite(plan) &&
+           (sms_real)plan->end + plan->end_f / g->Ts_signal + 2 <= sms_plan_max_samples();
+}
+
+int sms_generator_replan(const sms_generator *g, sms_plan *plan, sms_real q, sms_real v,
+                         sms_real a, const sms_target *goal)
+{
+    sms_plan direct, stop, move;
+    sms_target rest;
+    sms_real left;
+    size_t S;
+    int pass;
+    if (!g->bounded)
+        return plan_direct(g, plan, q, v, a, goal);
+    /* position limits (goals rest inside, sms_generator_canonical()): the time-optimal motion
+     * when it stays inside */
+    if (!plan_direct(g, &direct, q, v, a, goal))
+        return 0;
+    if (plan_inside(g, &direct)) {
+        *plan = direct;
+        return 1;
+    }
+    if (goal->interface == SMS_INTERFACE_VELOCITY)
+        return SMS_REPLAN_WAIT; /* the stop itself crosses: the running plan goes on */
+    /* else brake to rest, wait for the next sample, move: with what is left of the minimum
+     * duration, then without it */
+    if (!plan_stop(g, &stop, q, v, a))
+        return 0;
+    if (!plan_inside(g, &stop))
+        return SMS_REPLAN_WAIT;
+    S = stop.end + (stop.end_f > 0 ? 1u : 0u);
+    rest = *goal;
+    left = goal->minimum_duration - (sms_real)S * g->Ts_signal;
+    for (pass = 0; pass < 2; ++pass) {
+        rest.minimum_duration = pass == 0 && left > 0 ? left : 0;
+        if (pass == 1 && goal->minimum_duration == 0)
+            break;
+        if (!plan_direct(g, &move, stop.goal, 0, 0, &rest))
+            return 0;
+        if (plan_inside(g, &move))
+            return join_plans(g, plan, &stop, S, &move);
+    }
+    return SMS_REPLAN_WAIT;
 }
 
 /* Can a plan of the generator's shape start from (v, a)? The planner's precondition: bringing
@@ -500,6 +626,16 @@ static void take_target(sms_generator *g, const sms_target *target)
     }
 }
 
+/* With position limits, q held to [qmin, qmax]: the plan's continuous extremes are inside
+ * to qtol (plan_inside()), so this changes q by no more than that and its rounding. */
+static void hold_position(const sms_generator *g, sms_real out[4])
+{
+    if (out[0] > g->qmax)
+        out[0] = g->qmax;
+    else if (out[0] < g->qmin)
+        out[0] = g->qmin;
+}
+
 /* With asymmetric limits, v and a held to [vmin, vmax] and [amin, amax]. A segment's value
  * rounds relative to the largest terms it sums, which scale with the larger bound (a ramp from
  * vmax down to vmin): near the smaller bound that is its magnitude times their ratio, beyond
@@ -507,6 +643,8 @@ static void take_target(sms_generator *g, const sms_target *target)
  * value to them changes it by no more than that rounding. Symmetric limits: untouched. */
 static void hold_to_bounds(const sms_generator *g, sms_real out[4])
 {
+    if (g->bounded) /* the plan's extremes are inside to their rounding: the same holds q */
+        hold_position(g, out);
     if (!g->asymmetric)
         return;
     if (out[1] > g->limits.vmax)
@@ -536,7 +674,10 @@ static void step_plan(sms_generator *g, sms_real out[4])
         g->pending = 0;
         /* a move that cannot be represented (the planner returns 0) is dropped: the running
          * plan goes on, and the target is not tried again until it changes */
-        if (sms_generator_replan(g, &g->plan, out[0], out[1], out[2], &g->target)) {
+        int planned = sms_generator_replan(g, &g->plan, out[0], out[1], out[2], &g->target);
+        if (planned == SMS_REPLAN_WAIT) {
+            g->pending = 1; /* position limits: not from this state, tried on the next */
+        } else if (planned) {
             g->plan_q = out[0];
             g->plan_v = out[1];
             g->plan_a = out[2];
@@ -579,6 +720,8 @@ static void step_held(sms_generator *g, sms_real out[4])
         out[1] = 0;
         out[2] = 0;
         out[3] = 0;
+    } else if (g->bounded) {
+        hold_position(g, out); /* the average of values inside, to its rounding */
     }
 }
 
@@ -640,6 +783,8 @@ static void hold_plan_through_stage(sms_generator *g, uint64_t n, sms_real out[4
     for (c = 0; c < 4; ++c)
         out[c] = g->quiet >= g->stage_length ? (c == 0 ? g->plan.goal : (sms_real)0)
                                              : x[c][b - 1];
+    if (g->bounded && g->quiet < g->stage_length)
+        hold_position(g, out);
 }
 
 /* A re-plan still to come under the held target (a new target, or one waiting for a state
@@ -751,8 +896,18 @@ sms_status sms_generator_start(sms_generator *g, sms_real q, sms_real v, sms_rea
     st = sms_generator_canonical(g, target, &t);
     if (st != SMS_OK)
         return st;
-    if (!sms_generator_replan(g, &plan, q, v, a, &t))
+    if (g->bounded && !(q >= g->qmin && q <= g->qmax))
+        return SMS_ERR_POSITION_LIMIT;
+    switch (sms_generator_replan(g, &plan, q, v, a, &t)) {
+    case 1:
+        break;
+    case SMS_REPLAN_WAIT:
+        /* position limits: neither the motion to the target nor the brake to rest stays
+         * inside (and no plan before this one would go on) */
+        return SMS_ERR_POSITION_LIMIT;
+    default:
         return SMS_ERR_TOO_LONG;
+    }
     g->plan = plan;
     g->plan_q = q;
     g->plan_v = v;

@@ -61,7 +61,8 @@ static sms_status check_identity(const sms_generator *g, const double *src)
 {
     static const sms_status field_status[SMS_GENERATOR_IDENTITY_COUNT - SMS_STATE_IDENTITY_HEAD] = {
         SMS_ERR_STATE_VMAX, SMS_ERR_STATE_AMAX, SMS_ERR_STATE_JMAX, SMS_ERR_STATE_PROFILE,
-        SMS_ERR_STATE_WN, SMS_ERR_STATE_ZETA, SMS_ERR_STATE_VMAX, SMS_ERR_STATE_AMAX
+        SMS_ERR_STATE_WN, SMS_ERR_STATE_ZETA, SMS_ERR_STATE_VMAX, SMS_ERR_STATE_AMAX,
+        SMS_ERR_POSITION_LIMIT, SMS_ERR_POSITION_LIMIT
     };
     return sms_state_identity_compare(g->identity, src,
                                       SMS_GENERATOR_IDENTITY_COUNT - SMS_STATE_IDENTITY_HEAD,
@@ -117,7 +118,7 @@ sms_status sms_generator_check_state(const sms_generator *g, const double *src, 
     {
         /* the running plan must be one the generator can form again */
         sms_plan plan;
-        if (!sms_generator_replan(g, &plan, (sms_real)p[0], (sms_real)p[1], (sms_real)p[2], &goal))
+        if (sms_generator_replan(g, &plan, (sms_real)p[0], (sms_real)p[1], (sms_real)p[2], &goal) != 1)
             return SMS_ERR_STATE;
     }
     if (g->stage_length == 0)

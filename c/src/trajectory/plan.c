@@ -502,3 +502,45 @@ size_t sms_plan_rest_sample(const sms_plan *plan, sms_real Ts)
         return 0;
     return at_or_after(plan->end, plan->end, plan->end_f, Ts) ? plan->end : plan->end + 1u;
 }
+
+int sms_plan_extent(const sms_plan *plan, sms_real *lo, sms_real *hi)
+{
+    sms_real l = plan->goal, h = plan->goal;
+    size_t i;
+    if (plan->drift != 0 || plan->shape != SMS_PLAN_RAMP)
+        return 0;
+    for (i = 0; i < plan->count; ++i) {
+        const sms_real p = plan->p[i], v = plan->v[i], a = plan->a[i], j = plan->j[i],
+                       d = plan->d[i];
+        sms_real t[3], x;
+        int n = 0, k;
+        t[n++] = d;
+        if (j != 0) {
+            /* v + a t + j t^2/2 = 0 */
+            const sms_real disc = a * a - 2 * j * v;
+            if (disc >= 0) {
+                const sms_real r = sms_plan_sqrt(disc);
+                t[n++] = (-a - r) / j;
+                t[n++] = (-a + r) / j;
+            }
+        } else if (a != 0) {
+            t[n++] = -v / a;
+        }
+        if (p < l)
+            l = p;
+        if (p > h)
+            h = p;
+        for (k = 0; k < n; ++k) {
+            if (!(t[k] > 0) || !(t[k] <= d))
+                continue;
+            x = p + t[k] * (v + t[k] * (a * (sms_real)0.5 + t[k] * j * (sms_real)(1.0 / 6.0)));
+            if (x < l)
+                l = x;
+            if (x > h)
+                h = x;
+        }
+    }
+    *lo = l;
+    *hi = h;
+    return 1;
+}

@@ -65,6 +65,12 @@ size_t sms_plan_rest_sample(const sms_plan *plan, sms_real Ts);
  * sms_plan_eval() applies to every breakpoint (within the grid tolerance of a sample: on it). */
 size_t sms_plan_arrival_sample(const sms_plan *plan, sms_real Ts);
 
+/* The least and the largest position of a plan of linear ramps (shape SMS_PLAN_RAMP) over
+ * its whole time, the rest on the goal after it included: each segment's ends and the
+ * instants inside it where its velocity (a quadratic) is zero. Returns 0 (lo, hi untouched)
+ * for a plan that drifts on (drift != 0: no bound) or of the half-cosine shape. */
+int sms_plan_extent(const sms_plan *plan, sms_real *lo, sms_real *hi);
+
 /* sqrt(x) for x >= 0 in sms_real without libm (Newton after scaling by powers of 4). */
 sms_real sms_plan_sqrt(sms_real x);
 

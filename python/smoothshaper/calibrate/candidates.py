@@ -25,6 +25,8 @@ from ..reference.continuous import transfer_unchecked
 from ..stages import Stage, for_mode, impulse_shaper, shaper
 from .._checks import positive as _positive
 from .design_memo import impulses, kernel, zv_span
+from ..errors import ParameterError
+from ..reference.shapers import _pole as _pole_of, _undamped_design
 from .objectives import BOX, impulses_R2, stages_R2, taps_R2
 
 __all__ = ["BOX", "Reference", "Candidate", "chain_taps", "candidate_taps", "impulse_taps",
@@ -479,7 +481,9 @@ def tune(family: Family, anchors, objectives, rank: str, ref: Reference,
             """A one-shaper design below the least frequency that meets the delay limit, moved
             onto it (the refinement then follows that limit as the damping moves: the best
             design within a delay limit often lies on it)."""
-            taps = _shaper_taps(design, np.r_[0.0, u[1:]], fw is not None)
+            u0 = np.concatenate(([0.0], u[1:]))
+            taps = (_shaper_taps(design, u0, True) if fw is not None
+                    else _shaper_span(family, params(u0)))
             if taps is not None:
                 lo = math.log(_min_ratio(taps, max_delay, ref.Ts))
                 if math.isfinite(lo) and u[0] < lo:
@@ -542,6 +546,24 @@ def _shaper_taps(design, u0, fw):
         order, span = 0, 0.0
     A = np.asarray(A, float) / float(np.sum(A))
     return A, np.asarray(t, float), order, span, fw
+
+
+def _shaper_span(family, p):
+    """What :func:`_min_ratio` reads of :func:`_shaper_taps` for a one-shaper library design
+    at parameters ``p`` (its last impulse time, ZV^n order and ZV span), without computing its
+    impulses: the last time is the undamped design's last time in damped periods times the
+    damped period, the float its impulses hold. None where the design fails, as there."""
+    try:
+        stage = family.build(p)[0]
+        if stage.kind in _ZVN_ORDER:
+            return None, None, _ZVN_ORDER[stage.kind](stage), zv_span(stage), False
+        if stage.kind == "impulses":        # a shaper given by its impulses: their last time
+            return None, impulses(stage)[1], 0, 0.0, False
+        units = _undamped_design(stage)[1]
+    except (ValueError, ParameterError, ZeroDivisionError, OverflowError):
+        return None
+    last = units[-1] * (2.0 * math.pi / _pole_of(stage.wn, stage.zeta).imag)
+    return None, (last,), 0, 0.0, False
 
 
 def _scaled_lengths(taps, ratios, Ts):

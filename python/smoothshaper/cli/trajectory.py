@@ -125,10 +125,41 @@ def _limit(option: str):
     return parse
 
 
+_ONE_AXIS = ("vmin", "amin", "qmin", "qmax")
+
+
+def _generator(Generator, args):
+    """The single-axis Generator of the options; a refused lower bound or position limit
+    names its option."""
+    extra = {name: getattr(args, name) for name in _ONE_AXIS}
+    try:
+        return Generator(vmax=args.vmax, amax=args.amax, jmax=args.jmax, Ts=args.Ts,
+                         profile=args.profile, wn=args.wn, zeta=args.zeta, **extra)
+    except ParameterError as exc:
+        if exc.parameter in _ONE_AXIS:
+            raise CliError(f"--{exc.parameter}: {exc}") from None
+        raise
+
+
+def _outside(args, via) -> None:
+    """Via-points outside --qmin/--qmax: refused naming the option and the point."""
+    if args.qmin is None or args.qmax is None:
+        return
+    for i, x in enumerate(np.asarray(via, dtype=float)):
+        if not args.qmin <= x <= args.qmax:
+            side = "--qmin" if x < args.qmin else "--qmax"
+            raise CliError(f"{side}: --via point {i} ({x:.6g}) is outside [qmin, qmax] = "
+                           f"[{args.qmin:.6g}, {args.qmax:.6g}]")
+
+
 def cmd_generator(args) -> int:
     from ..trajectory import Generator
     if ";" in (args.via or "") or any(isinstance(x, str)
                                       for x in (args.vmax, args.amax, args.jmax)):
+        given = [f"--{n}" for n in _ONE_AXIS if getattr(args, n) is not None]
+        if given:
+            raise CliError(f"{', '.join(given)}: one axis only (the multi-axis generator has "
+                           "symmetric limits and no position limits)")
         from .multi_axis import cmd_multi_generator
         return cmd_multi_generator(args)
     if any(x is not None for x in (args.via_velocity, args.via_acceleration, args.start,
@@ -137,8 +168,8 @@ def cmd_generator(args) -> int:
     if args.via is None:
         raise CliError("--via is required (or --velocity for the velocity interface)")
     via = parse_via_list(args.via)
-    gen = Generator(vmax=args.vmax, amax=args.amax, jmax=args.jmax, Ts=args.Ts,
-                    profile=args.profile, wn=args.wn, zeta=args.zeta)
+    gen = _generator(Generator, args)
+    _outside(args, via)
     gen.reset(position=float(via[0]))
     scale = max(float(np.max(np.abs(via))), gen.vmax * gen.Ts)
     limits = (gen.vmax, gen.amax, gen.jmax)
@@ -146,9 +177,11 @@ def cmd_generator(args) -> int:
     # pi/2 for the half-cosine transitions) and the stage tuned to a mode; each term is
     # charged to the option it comes from, so a refusal names the one that makes the run long.
     moves = via.size - 1
-    terms = [(f"--via point {i + 1} ({b:.3g})", abs(b - a) / gen.vmax,
+    # the slower side's bounds (--vmin, --amin) for the estimate
+    V, A = min(gen.vmax, -gen.vmin), min(gen.amax, -gen.amin)
+    terms = [(f"--via point {i + 1} ({b:.3g})", abs(b - a) / V,
               "bring it closer or raise --vmax") for i, (a, b) in enumerate(zip(via[:-1], via[1:]))]
-    terms += [(f"--vmax={gen.vmax:.3g}, --amax={gen.amax:.3g}", 3 * moves * gen.vmax / gen.amax,
+    terms += [(f"--vmax={gen.vmax:.3g}, --amax={gen.amax:.3g}", 3 * moves * gen.vmax / A,
                "raise --amax or lower --vmax"),
               (f"--amax={gen.amax:.3g}, --jmax={gen.jmax:.3g}",
                3 * moves * math.pi / 2 * gen.amax / gen.jmax, "raise --jmax or lower --amax"),
@@ -248,8 +281,7 @@ def cmd_generator_targets(args) -> int:
     """Targets beyond rest: via-points reached with a velocity and an acceleration, a start
     state in motion, or the velocity interface (--velocity)."""
     from ..trajectory import Generator
-    gen = Generator(vmax=args.vmax, amax=args.amax, jmax=args.jmax, Ts=args.Ts,
-                    profile=args.profile, wn=args.wn, zeta=args.zeta)
+    gen = _generator(Generator, args)
     if args.velocity is not None:
         if args.via_velocity is not None or args.via_acceleration is not None:
             raise CliError("--velocity (the velocity interface) takes no --via-velocity or "
@@ -266,6 +298,7 @@ def cmd_generator_targets(args) -> int:
         if args.via is None:
             raise CliError("--via is required (or --velocity for the velocity interface)")
         via = parse_via_list(args.via)
+        _outside(args, via)
         vel = _per_target("--via-velocity", args.via_velocity, via.size - 1)
         acc = _per_target("--via-acceleration", args.via_acceleration, via.size - 1)
         targets = [(float(p), float(v), float(a), "position")
@@ -285,8 +318,8 @@ def cmd_generator_targets(args) -> int:
                            acceleration=first[2])
     except ParameterError as exc:
         option = {"v": "--start", "a": "--start", "velocity": "--via-velocity",
-                  "acceleration": "--via-acceleration", "target": "--via"}.get(exc.parameter,
-                                                                               "--via")
+                  "acceleration": "--via-acceleration", "target": "--via", "qmin": "--qmin",
+                  "qmax": "--qmax"}.get(exc.parameter, "--via")
         raise CliError(f"{option}: {exc}") from None
     limits = (gen.vmax, gen.amax, gen.jmax)
     hold_samples = None
@@ -297,8 +330,9 @@ def cmd_generator_targets(args) -> int:
     # the run's size from the distances, the limits and the holds (each term named)
     moves = len(targets)
     span = float(np.ptp(np.r_[via, [t[0] for t in targets]]))
-    terms = [("--via", 2 * moves * span / gen.vmax, "bring the points closer or raise --vmax"),
-             (f"--vmax={gen.vmax:.3g}, --amax={gen.amax:.3g}", 4 * moves * gen.vmax / gen.amax,
+    V, A = min(gen.vmax, -gen.vmin), min(gen.amax, -gen.amin)
+    terms = [("--via", 2 * moves * span / V, "bring the points closer or raise --vmax"),
+             (f"--vmax={gen.vmax:.3g}, --amax={gen.amax:.3g}", 4 * moves * gen.vmax / A,
               "raise --amax or lower --vmax"),
              (f"--amax={gen.amax:.3g}, --jmax={gen.jmax:.3g}",
               4 * moves * math.pi / 2 * gen.amax / gen.jmax, "raise --jmax or lower --amax"),
@@ -559,6 +593,14 @@ def add_design_forms(design_parser, parser_class) -> None:
                    help="acceleration limit [unit/s^2] (one per axis: A1,A2,...)")
     p.add_argument("--jmax", type=_limit("--jmax"), required=True,
                    help="jerk limit [unit/s^3] (one per axis: J1,J2,...)")
+    p.add_argument("--vmin", type=float,
+                   help="one axis: lower velocity limit [unit/s], < 0 (default -vmax)")
+    p.add_argument("--amin", type=float,
+                   help="one axis: lower acceleration limit [unit/s^2], < 0 (default -amax)")
+    p.add_argument("--qmin", type=float,
+                   help="one axis, with --qmax: lower position limit [unit]; every sample stays "
+                   "in [qmin, qmax] and the via-points must lie inside")
+    p.add_argument("--qmax", type=float, help="one axis, with --qmin: upper position limit [unit]")
     p.add_argument("--sync", choices=("phase", "independent"), default="phase",
                    help="several axes: straight lines and common arrival (phase, default) or "
                    "each axis time-optimal on its own (independent)")
