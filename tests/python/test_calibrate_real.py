@@ -7,6 +7,7 @@ its delay."""
 from __future__ import annotations
 
 import math
+import os
 from pathlib import Path
 
 import numpy as np
@@ -192,7 +193,19 @@ def test_every_klipper_table_vintage_is_read(tmp_path, extra):
     assert abs(res.modes[0].f_hz - 45) < 1.5
 
 
-@settings(max_examples=12, deadline=None)
+#: The property test's draws: a third of the full dozen in the default suite (about 10 s of CPU
+#: each), all of them in the long mode (SMOOTHSHAPER_LONG=1 ... -m long).
+NEVER_REFUSED_DRAWS = 12 if os.environ.get("SMOOTHSHAPER_LONG") == "1" else 4
+
+
+@pytest.mark.long
+def test_real_looking_spectra_never_refused_full_draw(tmp_path_factory):
+    """The property test below in the long mode (``-m long`` selects this one): all twelve
+    draws, as SMOOTHSHAPER_LONG=1 sizes it."""
+    test_real_looking_spectra_never_refused(tmp_path_factory)
+
+
+@settings(max_examples=NEVER_REFUSED_DRAWS, deadline=None)
 # a peak no higher than the floor at the table's start: its single fit came out broader than
 # its frequency and the close-pair refit started a mode below 0 Hz (math domain error)
 @example(n_bins=60, df=1.5, peaks=[(20.0, 0.015139623193049453, 0.0)], floor=0.0, flat=False,
