@@ -87,6 +87,9 @@ _CONSTANT = {
         1.267781046297883]),
 }
 _SERIES_LIMIT = 12.0
+#: Terms of the series whose factors -x/m are formed at once (it needs about 60 for |x| <= 12).
+_STEPS = 96
+_INV_M = 1.0 / np.arange(1, _STEPS + 1)
 
 
 def _check(stage: Stage) -> Stage:
@@ -126,12 +129,14 @@ def smoother_kernel(stage: Stage) -> tuple[np.ndarray, float]:
     z = _zeta(stage)
     if stage.kind in _CUBIC:
         t, rows = _CUBIC[stage.kind]
-        q = np.array([P.polyval(z, r) for r in rows])
-        span = P.polyval(z, t)
+        q = np.array([_horner(r, z) for r in rows])
+        span = _horner(t, z)
     else:
         span, high_first = _CONSTANT[stage.kind]
         q = np.array(high_first[::-1])
-    area = P.polyval(0.5, P.polyint(q)) - P.polyval(-0.5, P.polyint(q))
+    # P.polyint(q) is [0, q_0, q_1/2, q_2/3, ...]: its values at +-1/2 by the same Horner steps
+    integral = [0.0] + [float(c) / (j + 1) for j, c in enumerate(q)]
+    area = _horner(integral, 0.5) - _horner(integral, -0.5)
     return q / area, span * 2.0 * math.pi / stage.wn
 
 
@@ -163,17 +168,39 @@ def _transfer_scalar(q: np.ndarray, a: complex) -> complex:
     return complex(_transfer(q, np.array([a], dtype=complex))[0])
 
 
+#: ``2^-n / (n + 1)``, the moments of u^n over [-1/2, 1/2] for even n (the same floats as
+#: computed in place).
+_UNIT_MOMENTS = [0.5 ** n / (n + 1) for n in range(256)]
+
+
 def _moment(q, m: int) -> float:
     """``int_{-1/2}^{1/2} u^m P(u) du`` (the exact moments of u^n: 2^-n/(n+1), n even)."""
-    return sum(c * (0.5 ** (m + j) / (m + j + 1)) for j, c in enumerate(q) if (m + j) % 2 == 0)
+    return sum([c * (_UNIT_MOMENTS[m + j] if m + j < 256 else 0.5 ** (m + j) / (m + j + 1))
+                for j, c in enumerate(q) if (m + j) % 2 == 0])
 
 
 @functools.lru_cache(maxsize=256)
-def _moments(q: tuple) -> tuple:
-    """The first 96 moments of a kernel (the series of :func:`_transfer` needs about 60 for
-    ``|a| <= 12``; the tuning asks the same kernel hundreds of times), the same floats as
-    :func:`_moment`."""
-    return tuple(_moment(q, m) for m in range(96))
+def _moments(q: tuple) -> list:
+    """The moments of a kernel computed so far (:func:`_moments_upto` extends the list; the
+    tuning asks the same kernel hundreds of times)."""
+    return []
+
+
+def _moments_upto(q: tuple, n: int) -> list:
+    """The first ``n`` moments of a kernel (at least), the same floats as :func:`_moment`."""
+    got = _moments(q)
+    while len(got) < n:
+        got.append(_moment(q, len(got)))
+    return got
+
+
+def _horner(c, u: float) -> float:
+    """``P.polyval(u, c)`` for a float u: the same Horner steps on Python floats (without its
+    array checks; the tuning asks this a dozen times per transfer)."""
+    v = float(c[-1])
+    for a in reversed(c[:-1]):
+        v = float(a) + v * u
+    return v
 
 
 def _transfer(q: np.ndarray, a: np.ndarray) -> np.ndarray:
@@ -188,22 +215,33 @@ def _transfer(q: np.ndarray, a: np.ndarray) -> np.ndarray:
         # [-1/2, 1/2] exactly: int u^n du = 2^-n/(n+1) for even n, 0 for odd
         total = np.zeros(x.shape, dtype=complex)
         term = np.ones(x.shape, dtype=complex)
+        # the terms the loop will take: about where r^m / m! falls below 1e-18 (beyond the
+        # moments asked for, each is computed as it comes: the same floats)
+        r, need, bound = float(np.max(np.abs(x))), 0, 1.0
+        while need <= 20 or bound > 1e-18:
+            need += 1
+            bound *= r / need
+        moments = _moments_upto(tuple(float(c) for c in q), need + 2)
+        # -x / m formed at once, as NumPy divides by m + 0j: each part times 1 / m
+        steps = np.empty((_STEPS, x.size), dtype=complex)
+        steps.real = -x.real * _INV_M[:, None]
+        steps.imag = -x.imag * _INV_M[:, None]
         m = 0
-        moments = _moments(tuple(float(c) for c in q))
-        while m <= 20 or np.max(np.abs(term)) > 1e-18:
+        while m <= 20 or np.abs(term).max() > 1e-18:
             moment = moments[m] if m < len(moments) else _moment(q, m)
             total += term * moment
             m += 1
-            term = term * (-x / m)
+            term = term * (steps[m - 1] if m <= _STEPS else -x / m)
         out[small] = total * np.exp(-x / 2)
     if (~small).any():
         # -e^{-a u} sum_j P^(j)(u)/a^(j+1) from -1/2 to 1/2, times e^{-a/2}
         x = a[~small]
         acc = np.zeros(x.shape, dtype=complex)
         deriv, power = q.astype(float), x.copy()
+        e = np.exp(-x)
         while deriv.size:
-            acc += (P.polyval(0.5, deriv) * np.exp(-x) - P.polyval(-0.5, deriv)) / power
-            deriv = P.polyder(deriv) if deriv.size > 1 else np.array([])
+            acc += (_horner(deriv, 0.5) * e - _horner(deriv, -0.5)) / power
+            deriv = deriv[1:] * np.arange(1, deriv.size)     # P.polyder's products j c_j
             power = power * x
         out[~small] = -acc
     return out

@@ -237,9 +237,9 @@ def _si_undamped(order: int, duration: float, tolerance: float):
     I = brentq(excess, 1e-12, 2.0 - 1e-12, xtol=1e-15, rtol=1e-15, maxiter=500)
     c_lo, c_hi = ends(I)
     # V T_d(x) with x = (2c - c_hi - c_lo)/(c_hi - c_lo), as a Chebyshev series in c = cos(theta)
-    x_of_c = np.polynomial.Polynomial([-(c_hi + c_lo) / (c_hi - c_lo), 2.0 / (c_hi - c_lo)])
-    R = tolerance * np.polynomial.Chebyshev.basis(d)(x_of_c)
-    r = np.polynomial.chebyshev.poly2cheb(R.coef)
+    x_of_c = np.array([-(c_hi + c_lo) / (c_hi - c_lo), 2.0 / (c_hi - c_lo)])
+    R = _trimmed(np.convolve(np.array([tolerance]), _chebyshev_of_linear(d, x_of_c)))
+    r = np.polynomial.chebyshev.poly2cheb(R)
     r = np.concatenate([r, np.zeros(d + 1 - r.size)])
     A = np.concatenate([r[:0:-1] / 2, [r[0]], r[1:] / 2])
     A[(A < 0) & (A >= -1e-12 * np.abs(A).max())] = 0.0     # an exact 0 at duration = d/2
@@ -250,6 +250,54 @@ def _si_undamped(order: int, duration: float, tolerance: float):
     A.setflags(write=False)
     units.setflags(write=False)
     return A, units, float(I)
+
+
+def _trimmed(c: np.ndarray) -> np.ndarray:
+    """Trailing exact zeros dropped, at least one coefficient kept (as NumPy's series trim)."""
+    n = c.size
+    while n > 1 and c[n - 1] == 0:
+        n -= 1
+    return c[:n]
+
+
+def _series_add(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    if a.size > b.size:
+        out = a.copy()
+        out[:b.size] += b
+    else:
+        out = b.copy()
+        out[:a.size] += a
+    return _trimmed(out)
+
+
+def _series_sub(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    if a.size > b.size:
+        out = a.copy()
+        out[:b.size] -= b
+    else:
+        out = -b
+        out[:a.size] += a
+    return _trimmed(out)
+
+
+def _chebyshev_of_linear(d: int, line: np.ndarray) -> np.ndarray:
+    """Power-series coefficients of T_d(line[0] + line[1] c): Clenshaw's recurrence for the
+    basis series [0, .., 0, 1] with series arithmetic, step for step as
+    ``Chebyshev.basis(d)(Polynomial(line))`` computes it (the same floats, without the
+    polynomial objects: the tuning designs an SI shaper at every step of its span)."""
+    one, zero = np.array([1.0]), np.array([0.0])
+    x = _series_add(zero, _trimmed(np.convolve(np.array([1.0]), line)))   # its domain map
+    if d == 0:
+        return one
+    if d == 1:
+        return _series_add(zero, _trimmed(np.convolve(one, x)))
+    x2 = _trimmed(np.convolve(np.array([2.0]), x))
+    c0, c1 = zero, one
+    for _ in range(3, d + 2):
+        tmp = c0
+        c0 = _series_sub(zero, c1)
+        c1 = _series_add(tmp, _trimmed(np.convolve(c1, x2)))
+    return _series_add(c0, _trimmed(np.convolve(c1, x)))
 
 
 def mode_pole(wn: float, zeta: float) -> complex:
