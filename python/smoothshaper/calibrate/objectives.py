@@ -272,10 +272,11 @@ class SpectralObjective(_PoleSet):
         evaluation instead of a call per design): ``R2`` (poles, designs), ``L`` (designs,)
         [s]."""
         G = R2.shape[1]
-        R2e = (R2 * np.exp(2.0 * np.real(self.poles)[:, None] * np.asarray(L, float)[None, :])
+        twice_re, P_col = self._tuning_terms()
+        R2e = (R2 * np.exp(twice_re[:, None] * np.asarray(L, float)[None, :])
                ).reshape(self.n, self.nz, G)
-        R = np.sqrt(np.maximum(R2e, 0.0))
-        left = np.maximum(R * self.P[:, None, None] - self.tau, 0.0).sum(axis=0)   # (nz, G)
+        # squared magnitudes (>= 0 or NaN): no clip before the root, as in tuning_value
+        left = np.maximum(np.sqrt(R2e) * P_col[:, :, None] - self.tau, 0.0).sum(axis=0)  # (nz, G)
         v = 100.0 * left.max(axis=0) / self.den if self.den > 0 else np.zeros(G)
         mean = R2e.sum(axis=1) / self.nz                                          # (n, G)
         return v + 0.1 * np.sqrt(np.maximum(self.tune_S @ mean, 0.0))
