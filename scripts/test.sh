@@ -16,15 +16,25 @@ python -m pip install -q -e ".[test,docs]"
 
 # The load average, so that the step times below can be read on a shared machine.
 load() { cut -d' ' -f1-3 /proc/loadavg 2>/dev/null || echo unknown; }
-printf '== [%4d s] set up; load average %s\n' $((SECONDS - start)) "$(load)"
+
+# CPU seconds (user + sys) of this script's finished children (cutime + cstime of this shell,
+# read from /proc, as `times` in a command substitution would count the subshell's). A step in
+# the foreground has finished when it returns, so the difference around it is its CPU time;
+# the pytest run in the background counts when it has been waited for.
+cpu() { awk -v hz="$(getconf CLK_TCK)" '{ sub(/^.*\) /, ""); printf "%d", ($14 + $15) / hz }' \
+        /proc/$$/stat 2>/dev/null || echo 0; }
 
 # Every suite runs even if an earlier one fails, so one report shows all failures. Each step
-# prints the time since the start.
+# prints the time since the start when it begins, and its wall and CPU time when it ends.
+printf '== [%4d s] set up: %d s CPU; load average %s\n' $((SECONDS - start)) "$(cpu)" "$(load)"
 failed=()
 step() {
     local name=$1; shift
+    local t0=$SECONDS c0; c0=$(cpu)
     printf '== [%4d s] %s\n' $((SECONDS - start)) "$name"
     "$@" || failed+=("$name")
+    printf '== [%4d s] %s: %d s wall, %d s CPU; load average %s\n' $((SECONDS - start)) \
+        "$name" $((SECONDS - t0)) $(($(cpu) - c0)) "$(load)"
 }
 
 # The release tree first: its FMUs are the ones pytest tests (built once, not again in
@@ -46,7 +56,11 @@ pytest_pid=$!
 
 step "ctest (release)" ctest --test-dir build/release --output-on-failure -j2 -LE long
 
-step "C build (sanitize)" cmake -S . -B build/sanitize -DCMAKE_BUILD_TYPE=Debug -DSMS_SANITIZE=ON
+# The sanitizer tree runs the same C suites on instrumented code; what does not depend on the
+# instrumentation (the shared libraries' exports, the headers compiled alone, the per-sample
+# link probes, the Cortex-M build) the release tree has checked already, so it is not built here.
+step "C build (sanitize)" cmake -S . -B build/sanitize -DCMAKE_BUILD_TYPE=Debug -DSMS_SANITIZE=ON \
+    -DSMS_BUILD_SHARED=OFF
 step "C build (sanitize)" cmake --build build/sanitize -j2
 step "ctest (sanitize)" ctest --test-dir build/sanitize --output-on-failure -j2 -LE long
 
@@ -55,8 +69,10 @@ step "API references (sphinx and doxygen, warnings as errors)" bash scripts/docs
 step "wheel in a fresh venv" bash tests/install/fresh_venv.sh
 
 pytest_rc=0
+c0=$(cpu)
 wait "$pytest_pid" || pytest_rc=$?
-printf '== [%4d s] pytest (finished); load average %s\n' $((SECONDS - start)) "$(load)"
+printf '== [%4d s] pytest (finished): %d s CPU; load average %s\n' $((SECONDS - start)) \
+    $(($(cpu) - c0)) "$(load)"
 cat build/pytest.log
 # An empty collection (pytest exit code 5) must fail loudly, never pass as "nothing to do".
 if [ "$pytest_rc" -eq 5 ]; then
@@ -68,7 +84,7 @@ fi
 
 if [ ${#failed[@]} -gt 0 ]; then
     # One line whatever the number of failed suites (printf would reuse its format per name).
-    echo "test.sh: FAILED after $((SECONDS - start)) s: $(IFS=';'; echo "${failed[*]}")" >&2
+    echo "test.sh: FAILED after $((SECONDS - start)) s wall, $(cpu) s CPU: $(IFS=';'; echo "${failed[*]}")" >&2
     exit 1
 fi
-echo "test.sh: all suites passed in $((SECONDS - start)) s"
+echo "test.sh: all suites passed in $((SECONDS - start)) s wall, $(cpu) s CPU"

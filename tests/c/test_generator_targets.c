@@ -225,6 +225,54 @@ static void test_minimum_duration(int trials)
            "blocked duration\n", SMS_TEST_PRECISION, landed, trials, beyond);
 }
 
+/* A minimum duration given on the ramp into the cruise (or on the cruise itself): the start's
+ * acceleration returns to zero on vmax to the rounding of the running plan, the farthest
+ * motion back cruises from there, so the stretched motion exists and the target rests on its
+ * sample N (the first with N Ts at or after the minimum), never on the time-optimal one. */
+static void test_minimum_duration_into_the_cruise(void)
+{
+    static const double lim[][4] = {/* vmax, amax, jmax, target */
+                                    {1.0, 10.0, 100.0, -0.5}, {2.0, 10.0, 50.0, -1.0},
+                                    {2.0, 5.0, 300.0, 1.0},   {3.0, 10.0, 100.0, -2.0},
+                                    {3.0, 20.0, 300.0, 1.0},  {2.0, 10.0, 300.0, -0.5}};
+    const double Ts = 1e-3;
+    size_t i;
+    int cases = 0;
+    for (i = 0; i < sizeof lim / sizeof lim[0]; ++i) {
+        const double V = lim[i][0], A = lim[i][1], J = lim[i][2];
+        sms_generator_config c = config(V, A, J, SMS_PROFILE_POLYNOMIAL);
+        sms_target t = target(SMS_INTERFACE_POSITION, lim[i][3], 0, 0);
+        sms_generator g;
+        sms_real out[4];
+        /* the first sample of the cruise: the ramps up and down to a = amax, then the
+         * velocity's rest on amax (every case here reaches amax and vmax) */
+        const uint64_t cruise = (uint64_t)((2.0 * A / J + (V - A * A / J) / A) / Ts + 0.5);
+        uint64_t k, m, n, opt;
+        for (k = cruise - 6u; k <= cruise + 2u; ++k) {
+            CHECK_STATUS(sms_generator_init(&g, &c, Ts, NULL, 0), SMS_OK);
+            t.minimum_duration = 0;
+            for (m = 0; m < k; ++m)
+                sms_generator_step_target(&g, &t, out);
+            opt = sms_generator_arrival(&g);
+            t.minimum_duration = (sms_real)((double)(opt + 500u) * Ts);
+            sms_generator_step_target(&g, &t, out);
+            n = sms_generator_arrival(&g);
+            /* N = opt + 500 samples after the one before this (within a sample of rounding
+             * of N Ts), this sample being the first */
+            CHECK(n + 1u >= opt + 500u && n + 1u <= opt + 501u);
+            if (!(n + 1u >= opt + 500u && n + 1u <= opt + 501u))
+                printf("into the cruise: vmax %g amax %g jmax %g at sample %lu: arrival %lu, "
+                       "the minimum asks %lu\n", V, A, J, (unsigned long)k, (unsigned long)n,
+                       (unsigned long)(opt + 499u));
+            for (m = 0; m < n; ++m)
+                sms_generator_step_target(&g, &t, out);
+            CHECK(out[0] == t.position && out[1] == 0 && out[2] == 0);
+            ++cases;
+        }
+    }
+    printf("minimum duration into the cruise [%s]: %d cases\n", SMS_TEST_PRECISION, cases);
+}
+
 /* Invalid minimum durations are refused naming the field (SMS_ERR_DURATION), nothing changed;
  * a stop ignores it; the trigonometric profile takes 0 only. */
 static void test_minimum_duration_refusals(void)
@@ -601,6 +649,7 @@ int main(void)
     test_velocity_and_stop();
     test_refusals();
     test_minimum_duration(300);
+    test_minimum_duration_into_the_cruise();
     test_minimum_duration_refusals();
     test_hold_and_state();
     test_asymmetric(31u);

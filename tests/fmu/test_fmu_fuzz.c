@@ -86,9 +86,12 @@
 static unsigned long failures, n_calls, n_errors, n_steps, n_inits, n_restores, n_slow, n_warnings;
 static unsigned long n_nonfinite, n_unloadable, sequence, n_big_inits;
 static unsigned long n_forged, n_forged_accepted;
-/* SmoothShaper: retune operations drawn and accepted; sets of stage parameters (by any
- * operation) refused for narrowing the input range below an input held */
-static unsigned long n_retunes, n_retunes_accepted, n_narrowing;
+/* Sets of stage parameters (by any operation) refused for narrowing the input range below an
+ * input held; SmoothShaper: retune operations drawn and accepted (the other models have none) */
+static unsigned long n_narrowing;
+#ifdef FMU_TEST_SMOOTHSHAPER
+static unsigned long n_retunes, n_retunes_accepted;
+#endif
 static double slowest;
 static unsigned slowest_op;
 static size_t largest_state;   /* bytes of the largest serialised state seen */

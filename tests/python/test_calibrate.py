@@ -289,7 +289,8 @@ def test_a_mostly_clipped_record_is_reconstructed_and_said(tmp_path, capsys):
     assert res.recommended.stages[0].wn / TWO_PI == pytest.approx(0.05 * 1000 / TWO_PI, rel=0.1)
 
 
-_STATED = re.compile(r"estimated remaining vibration of the plant (\S+) % \(\+-3 sd: (\S+) to "
+_STATED = re.compile(r"estimated remaining vibration of the plant (\S+) % \((?:\+-3 sd|range): "
+                     r"(\S+) to "
                      r"(\S+) %"
                      r"|  (\S+) \((\S+) \.\. (\S+)\)  ")
 
@@ -419,6 +420,61 @@ def test_spectral_ties_go_to_the_least_plant_estimate_designed_on_a_mode():
     assert recommend([narrow, robust, off], []) is narrow
     worse = _tied("worse", 8.0, 5.9, 0.07)          # within 5 % of the least: shorter wins
     assert recommend([narrow, robust, worse, off], [mode]) is worse
+
+
+def test_a_range_from_the_spectrum_is_said_to_be_no_standard_deviation():
+    """Where the spectrum states the range (its bounds: each bin a mode anywhere within its
+    half-power width, at any damping), the report says "range", not "+-3 sd", and names its
+    parts; joined with a modal fit that does not explain the spectrum, the range is exactly
+    the union of the two. A modal fit that explains the spectrum states its +-3 sd."""
+    cal = calibrate.run([str(ROOT / "examples" / "resonance_xy.csv")], axis="all",
+                        max_delay=0.03)
+    out = report_text(cal, top=40)
+    kinds = set()
+    for res in cal.axes:
+        c = res.recommended
+        if not c.range_parts:
+            assert c.range_from == "modal fit"
+            kinds.add("modal")
+            continue
+        kinds.add("spectrum")
+        parts = {k: (lo, hi) for k, lo, hi in c.range_parts}
+        assert set(parts) <= {"measured spectrum", "modal fit"} and "measured spectrum" in parts
+        assert c.vibration_range[0] == min(lo for lo, _ in parts.values())
+        assert c.vibration_range[1] == max(hi for _, hi in parts.values())
+        lo, hi = parts["measured spectrum"]
+        assert f"the measured spectrum bounds it to {lo:.3g} to {hi:.3g} %" in out
+        assert (f"% (range: {c.vibration_range[0]:.3g} to {c.vibration_range[1]:.3g} %, from "
+                f"the {c.range_from})") in out
+    assert kinds == {"modal", "spectrum"}, kinds
+    assert "% (+-3 sd: " in out
+
+
+def test_ties_of_one_length_go_to_the_least_smoothing():
+    """At the default budget most tied candidates last as long as it: of those within 1 % of
+    the shortest length the least smoothing wins, when 1 % less than the least-vibration
+    one's (the first of them had rounded corners up to 9 % more than the established tool's
+    pick of the same length); a candidate more than 1 % longer never wins on smoothing."""
+    from smoothshaper.calibrate.candidates import LENGTH_TIE, SMOOTHING_GAIN, recommend
+    from smoothshaper.calibrate.modes import Mode
+    mode = Mode(wn=TWO_PI * 8.0, zeta=0.05, wn_std=TWO_PI * 0.02, zeta_std=0.01, weight=1.0)
+    first = _tied("first", 8.0, 5.0, 0.0198)
+    rounder = _tied("rounder", 8.1, 5.1, 0.0198)
+    sharper = _tied("sharper", 7.9, 5.1, 0.0198 * (1 + 0.5 * LENGTH_TIE))
+    longer = _tied("longer", 7.8, 5.0, 0.0198 * (1 + 2 * LENGTH_TIE))
+    first.smoothing, rounder.smoothing, sharper.smoothing, longer.smoothing = 0.098, 0.1, 0.09, 0.05
+    assert recommend([first, rounder, sharper, longer], [mode]) is sharper
+    assert recommend([first, rounder, longer], [mode]) is first
+    # within a sample of the filters' period (the budget is rounded up to one): a tie
+    assert recommend([first, rounder, longer], [mode], sample=0.0198 * 1.5 * LENGTH_TIE) \
+        is longer
+    # under 1 % less smoothing is no gain: the least vibration, then the shorter, wins
+    sharper.smoothing, sharper.vibration = 0.098 * (1 - 0.5 * SMOOTHING_GAIN), 0.02
+    assert recommend([first, sharper], [mode]) is first
+    sharper.smoothing, sharper.vibration = 0.09, 0.0
+    # outside the tie on the ranking figure (0.05 points), smoothing does not count
+    sharper.vibration = 0.06
+    assert recommend([first, rounder, sharper], [mode]) is first
 
 
 def test_c_coeffs_compile_in_both_precisions(tmp_path):

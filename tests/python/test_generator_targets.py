@@ -63,6 +63,35 @@ def test_c_equals_the_reference_on_every_kind_of_target(profile, mode):
         assert y[-1, 0] == 0.3 and np.all(y[-1, 1:] == 0)
 
 
+@pytest.mark.parametrize("vmax,amax,jmax,goal", [(1.0, 10.0, 100.0, -0.5), (2.0, 10.0, 50.0, -1.0),
+                                                 (2.0, 10.0, 300.0, -0.5)])
+def test_minimum_duration_given_on_the_ramp_into_the_cruise(vmax, amax, jmax, goal):
+    """Only the minimum changes, on the last samples of the ramp into the cruise and the
+    first of the cruise: the start's acceleration returns to zero on vmax to the rounding of
+    the running plan, so the motion that ends farthest back cruises from there and the
+    stretched motion exists (docs/design.md, "A minimum duration"). C arrives on the sample
+    the minimum asks for (N samples after the one before the change, within a sample of
+    rounding of N Ts) and equals the reference to 1e-9 of the scale; both rest on the target
+    from there (the blend may reach it earlier and rest: its two motions' jerks cancel)."""
+    Ts = 1e-3
+    kw = dict(vmax=vmax, amax=amax, jmax=jmax, Ts=Ts)
+    cruise = round((2 * amax / jmax + (vmax - amax ** 2 / jmax) / amax) / Ts)
+    for k in range(cruise - 5, cruise + 2):
+        g = Generator(**kw)
+        g.process(np.full(k, goal))
+        N = g.arrival + 500
+        g.process(np.full(1, goal), minimum_duration=N * Ts)
+        assert g.arrival in (N - 1, N), (k, g.arrival, N)
+        n = k + N + 20
+        tmin = np.r_[np.zeros(k), np.full(n - k, N * Ts)]
+        y = Generator(**kw).process(np.full(n, goal), minimum_duration=tmin)
+        ref = generator_reference(np.full(n, goal), minimum_duration=tmin, **kw)
+        scale = np.array([abs(goal) + 1, 1.0, 10.0])
+        assert np.all(np.abs(y[:, :3] - ref[:, :3]) <= 1e-9 * scale), k
+        for out in (y, ref):
+            assert np.all(out[k + N:, 0] == goal) and np.all(out[k + N:, 1:] == 0), k
+
+
 def test_process_refuses_a_bad_target_naming_it_and_changes_nothing():
     g = Generator(vmax=1.0, amax=10.0, jmax=100.0, Ts=1e-3)
     g.process(np.full(50, 0.4))

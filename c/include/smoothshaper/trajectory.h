@@ -263,7 +263,9 @@ typedef enum sms_interface {
  * time-optimal duration and minimum_duration (within 8 ulps of a sample: on it) at which a
  * motion of N Ts within the limits exists (a blocked duration is skipped to the next that
  * has one). Such a motion is the convex combination of the two that end farthest either way
- * (docs/design.md, "A minimum duration"); for the velocity interface, their midpoint. Like
+ * (docs/design.md, "A minimum duration"); for the velocity interface, their midpoint. A start
+ * whose acceleration returns to zero on the velocity bound to 16 u of the velocity scale (the
+ * ramp into a cruise, the cruise) counts as on it, so a minimum given there stretches the move. Like
  * every field it is part of the target: the move is stretched from the sample the target
  * (with it) was given on. Last in the struct so that initialisers of the other four stay
  * valid ({q, v, a, interface} leaves it 0).

@@ -258,10 +258,19 @@ static sms_real member_duration(const frame *f, const member *m)
 }
 
 /* x (and t2) such that the middle ramp's crest lies at m; y (and t6) likewise. Return 0 when
- * the crest lies below the ramp's own (no such member). */
+ * the crest lies below the ramp's own (no such member). A crest within TO_FIT vs of the
+ * lowest the ramp can reach (x = max(a0, 0): the acceleration only returns to zero) is on
+ * it: a start on the ramp into a cruise, or on the cruise, reaches the bound exactly, but
+ * its rounded c0 = v0 - a0^2/2 may lie an ulp above it, and the square root turns that ulp
+ * into a gap of about vs u / x in x. */
 static int top_for_crest(const frame *f, sms_real crest, sms_real *x, sms_real *t2)
 {
-    sms_real d = crest - f->c0;
+    sms_real d = crest - f->c0, b = mx(f->a0, 0);
+    if (d < b * b && b * b - d <= TO_FIT * f->vs) {
+        *x = b;
+        *t2 = 0;
+        return 1;
+    }
     if (!(d >= 0))
         return 0;
     if (d <= f->Au * f->Au) {
@@ -276,7 +285,12 @@ static int top_for_crest(const frame *f, sms_real crest, sms_real *x, sms_real *
 
 static int bottom_for_crest(const frame *f, sms_real crest, sms_real *y, sms_real *t6)
 {
-    sms_real d = crest - f->cf;
+    sms_real d = crest - f->cf, b = mx(-f->af, 0);
+    if (d < b * b && b * b - d <= TO_FIT * f->vs) {
+        *y = -b;
+        *t6 = 0;
+        return 1;
+    }
     if (!(d >= 0))
         return 0;
     if (d <= f->Al * f->Al) {

@@ -27,8 +27,9 @@ busy machine slows them alike:
   (``tests/fmu/bench_fmu_feedthrough.c --state-load``).
 - Memory per stage (not a time): the bytes each family's stage takes on this machine, next to
   the retired layout that sized every stage by the largest shaper; and, when
-  ``arm-none-eabi-gcc`` and cmake are available, ``tests/portability/cortex_m.cmake`` for a
-  Cortex-M4F: the per-sample code size and the bytes of each family's instance there.
+  ``arm-none-eabi-gcc`` and cmake are available (and not ``--quick``),
+  ``tests/portability/cortex_m.cmake`` for a Cortex-M4F: the per-sample code size and the
+  bytes of each family's instance there.
 
 Nothing here asserts a time: machines are noisy; the numbers are for reading.
 """
@@ -702,12 +703,17 @@ def memory_tables(quick: bool) -> list[Table]:
             table.add(label, precision, now,
                       f"{ffi.sizeof(family)} + {taps} + {ring}",
                       union_total, _ratio(now, union_total) if union_total else "n/a")
-    return [table] + _cortex_m_tables()
+    return [table] + _cortex_m_tables(quick)
 
 
-def _cortex_m_tables() -> list[Table]:
+def _cortex_m_tables(quick: bool = False) -> list[Table]:
     """Code size of the per-sample paths and instance sizes on a Cortex-M4F, from
-    tests/portability/cortex_m.cmake (skipped without arm-none-eabi-gcc or cmake)."""
+    tests/portability/cortex_m.cmake (skipped without arm-none-eabi-gcc or cmake, and in the
+    ``--quick`` smoke run: the script cross-compiles the library three times, and ctest's
+    ``cortex_m_compile`` runs the same script in every test run)."""
+    if quick:
+        print("\n(Cortex-M4F sizes skipped in --quick: ctest cortex_m_compile runs their script)")
+        return []
     script = ROOT / "tests" / "portability" / "cortex_m.cmake"
     if not (shutil.which("arm-none-eabi-gcc") and shutil.which("cmake") and script.is_file()):
         print("\n(Cortex-M4F sizes skipped: needs arm-none-eabi-gcc and cmake)")

@@ -76,6 +76,12 @@ class Candidate:
     range_from: str = ""
     firmware: object = None                # a firmware's shaper: (FirmwareShaper, freq, damping)
     design: tuple = ()                     # ((f [Hz], zeta), ...) it was tuned to, per slot
+    # [%] the established tool's own estimate (its three test dampings, every bin), where a
+    # default delay budget was traded against it
+    vibration_established: float = math.nan
+    # what the range joins: ((figure, low, high), ...), the measured spectrum's bounds and,
+    # where a fit does not explain the spectrum, the modal fit's +-3 sd
+    range_parts: tuple = ()
 
     def as_dict(self) -> dict:
         from dataclasses import asdict
@@ -92,6 +98,10 @@ class Candidate:
                 "vibration_spectrum": self.vibration_spectrum,
                 "vibration_modal": self.vibration_modal, "ranked_by": self.ranked_by,
                 "range_from": self.range_from,
+                "range_parts": [{"from": k, "low": lo, "high": hi}
+                                for k, lo, hi in self.range_parts],
+                "vibration_established": None if math.isnan(self.vibration_established)
+                else self.vibration_established,
                 "design": [{"freq_hz": f, "damping": z} for f, z in self.design],
                 "firmware_shaper": None if self.firmware is None else {
                     "firmware": self.firmware[0].firmware, "name": self.firmware[0].name,
@@ -476,11 +486,15 @@ def tune(family: Family, anchors, objectives, rank: str, ref: Reference,
         single = fw is not None or _is_single_shaper(design, z_grid[0], extra0)
         if single:
             # one shaper: every frequency at a damping ratio in one matrix evaluation, so the
-            # grid is fine in both (the refinement then starts next to the optimum)
+            # grid is fine in both (the refinement then starts next to the optimum). The scan
+            # is built at the mode, or for a firmware at the nearest frequency it accepts (a
+            # belt's 122 Hz mode is above Prusa's 100 Hz: no design at the mode, an empty scan)
+            r0 = 0.0 if fw is None else math.log(min(max(anchors[0], f_lo * (1 + 1e-9)),
+                                                     f_hi * (1 - 1e-9)) / anchors[0])
             zs = sorted(set(z_grid) | {min(max(z, zlo), zhi) for z in _SINGLE_ZETAS})
             for z in zs:
                 for ex in extras:
-                    scored += _scan_single(design, obj, np.array([0.0, z] + ex), ratios[::2],
+                    scored += _scan_single(design, obj, np.array([r0, z] + ex), ratios[::2],
                                            max_delay, ref.Ts, fw is not None)
         else:
             base = design(np.array([0.0, z_grid[min(1, len(z_grid) - 1)]] + extra0))
@@ -503,6 +517,8 @@ def tune(family: Family, anchors, objectives, rank: str, ref: Reference,
                 grid += [np.array([math.log(q), z, math.log(q), z] + extra0)
                          for q in (1.2, 1.45, 1.75) for z in z_grid[1:3]]
             scored = [(cost(u), tuple(u)) for u in grid]
+    if not scored:                      # no design of the family near the modes
+        return None
     scored.sort(key=lambda x: x[0])
     # a short bounded refinement of each parameter in turn from the grid's best point, within
     # about a grid step of it (scipy's bounded scalar minimiser: a dozen costs each)
@@ -638,6 +654,10 @@ def _delay_penalty(L, max_delay):
     return np.where(excess > 1e-9, 1e3 * (1 + excess), 0.0)
 
 
+#: Largest real part of an exponent the scans evaluate: |e^x|^2 stays within the float range
+#: (e^709.78 is the largest double).
+_EXP_LIMIT = 350.0
+
 #: Damping ratios of the one-shaper grid (with the family's own grid and its limits).
 _SINGLE_ZETAS = (0.01, 0.035, 0.06, 0.09, 0.12, 0.15, 0.2, 0.25)
 
@@ -652,13 +672,20 @@ def _scan_single(design, obj, u0, ratios, max_delay, Ts, fw):
     if max_delay is not None:
         ratios = np.r_[ratios, _boundary_ratios(taps, max_delay, Ts)]
     A, t = taps[0], taps[1]
-    H = np.exp(-obj.poles[:, None, None] * (t[None, :] / ratios[:, None])[None, :, :]) @ A
+    E = -obj.poles[:, None, None] * (t[None, :] / ratios[:, None])[None, :, :]
+    # a firmware's damping ratio near 1 stretches its shaper to seconds: e^{zeta wn t} at the
+    # plant's poles, squared, then lies beyond the float range. Such a scale is infeasible
+    # (the cost of 1e3), not computed (an overflow warning on real records with Marlin or
+    # Prusa's damping up to 1)
+    unbounded = np.any(E.real > _EXP_LIMIT, axis=(0, 2))
+    E[:, unbounded, :] = 0.0
+    H = np.exp(E) @ A
     L = _scaled_lengths(taps, ratios, Ts)
     v = obj.tuning_values(H.real ** 2 + H.imag ** 2, L) + _delay_penalty(L, max_delay)
-    v = np.where(np.isfinite(v), v, 1e3)
+    v = np.where(np.isfinite(v) & ~unbounded, v, 1e3)
     j = int(np.argmin(v))               # the best of the scan (the refinement starts there)
     u = u0.copy()
-    u[0] = math.log(ratios[j])
+    u[0] = u0[0] + math.log(ratios[j])
     return [(float(v[j]), tuple(u))]
 
 
@@ -735,6 +762,7 @@ def evaluate(name: str, stages: list[Stage], objectives, rank: str, ref: Referen
         c.range_from = modal.kind
     else:
         c.vibration_range = spec.range(R2(spec.box.ravel()), L)
+        c.range_parts = ((spec.kind, *c.vibration_range),)
         c.vibration_nominal = spec.nominal_value(R2(spec.nominal), L)
         # the spectral figure is not the plant's remaining vibration (it counts nothing under a
         # twentieth of the peak): the range is about the spectrum's estimate of the plant's
@@ -743,6 +771,7 @@ def evaluate(name: str, stages: list[Stage], objectives, rank: str, ref: Referen
         unsure = objectives.get("unsure")
         if unsure is not None:       # a fit that does not explain the spectrum: either may hold
             lo, hi = unsure.range(R2(unsure.box), L)
+            c.range_parts += ((unsure.kind, lo, hi),)
             c.vibration_range = (min(lo, c.vibration_range[0]), max(hi, c.vibration_range[1]))
             c.range_from = "measured spectrum and modal fit"
     c.vibration = c.vibration_modal if rank == "modal" else c.vibration_spectrum
@@ -761,6 +790,13 @@ def evaluate(name: str, stages: list[Stage], objectives, rank: str, ref: Referen
 
 #: Candidates whose ranking figure lies within this many percentage points of the least tie.
 TIE_PP = 0.05
+#: Tied candidates whose lengths lie within this fraction of the shortest: the least smoothing
+#: of them (at the default budget most lie on it: a firmware's impulses just under it, the
+#: library's discrete filters rounded up to a sample).
+LENGTH_TIE = 0.01
+#: Least relative gain in smoothing that a tie is given to (less is no gain worth the
+#: tie's extra vibration).
+SMOOTHING_GAIN = 0.01
 #: A design "on" an identified mode: within this fraction of its frequency (or its +-3 sd).
 ON_MODE = 0.15
 
@@ -773,11 +809,19 @@ def on_a_mode(c: Candidate, modes) -> bool:
                    for m in modes) for f, _ in c.design)
 
 
-def recommend(candidates: list[Candidate], modes=()) -> Candidate | None:
+def recommend(candidates: list[Candidate], modes=(), *, sample: float = 0.0) -> Candidate | None:
     """Least remaining vibration among those within the limits; within 0.05 percentage points
-    of it, the shorter one. Where the measured PSD ranks, ties are first told apart by the
-    plant estimate, among the candidates designed on an identified mode (``modes``): of
-    those within 5 % (and 0.05 points) of their least estimate, the shorter one.
+    of it, the shorter one, and of those within 1 % (and ``sample`` [s], the filters' sample
+    period: the budget is rounded up to it) of the shortest length, the one that rounds
+    corners least (the least smoothing, if 1 % less than the least-vibration one's). Where the measured PSD ranks, ties are first
+    told apart by the plant estimate, among the candidates designed on an identified mode
+    (``modes``): of those within 5 % (and 0.05 points) of their least estimate, the shorter
+    one, then the least smoothing.
+
+    At the default delay budget most tied candidates last as long as the budget: the shortest
+    of them was whichever came first, with up to 9 % more corner rounding than the established
+    tool's pick of the same length on real records; and the trade-off's own pick lasts up to a
+    sample less than the budget it set, so "shorter" alone gave it every tie.
 
     The measured-PSD figure counts nothing under a twentieth of the peak, so on a clean
     spectrum many candidates tie at 0 %; the shortest of them was often the narrowest (a ZV
@@ -796,4 +840,10 @@ def recommend(candidates: list[Candidate], modes=()) -> Candidate | None:
     if tied:
         least = min(c.vibration_estimate for c in tied)
         close = [c for c in tied if c.vibration_estimate <= 1.05 * least + TIE_PP]
-    return min(close, key=lambda c: (c.length, c.vibration))
+    shortest = min(c.length for c in close)
+    close = [c for c in close if c.length <= shortest * (1 + LENGTH_TIE) + sample]
+    least = min(close, key=lambda c: (c.vibration, c.length))
+    sharper = [c for c in close if c.smoothing < (1 - SMOOTHING_GAIN) * least.smoothing]
+    if not sharper:
+        return least
+    return min(sharper, key=lambda c: (c.smoothing, c.length, c.vibration))

@@ -21,7 +21,7 @@ from dataclasses import asdict
 from .candidates import Candidate
 from ..stages import INPUT_SMOOTHERS
 
-__all__ = ["C_KIND", "c_config", "c_coeffs", "fmu_start_values", "axis_json", "to_json",
+__all__ = ["C_KIND", "range_statement", "c_config", "c_coeffs", "fmu_start_values", "axis_json", "to_json",
            "write_json", "report_text", "firmware_picks", "firmware_config"]
 
 C_KIND = {"rectangular": "SMS_RECTANGULAR", "harmonic": "SMS_HARMONIC",
@@ -202,6 +202,22 @@ def _candidate_design(c) -> str:
     return "; ".join(_design_text(s) for s in c.stages) or "-"
 
 
+def range_statement(c) -> str:
+    """What a range from the measured spectrum is: the spectrum's bounds (every bin of the
+    vibration content a mode anywhere within its half-power width, at any damping of the
+    band: not a standard deviation), joined with the modal fit's +-3 sd where a fit was found
+    that does not explain the spectrum (the two disagree, and either may hold)."""
+    parts = {k: (lo, hi) for k, lo, hi in c.range_parts}
+    lo, hi = parts["measured spectrum"]
+    text = (f"(the measured spectrum bounds it to {lo:.3g} to {hi:.3g} %: each bin a mode "
+            "anywhere within its half-power width, at any damping, a bound and not 3 sd")
+    if "modal fit" in parts:
+        mlo, mhi = parts["modal fit"]
+        text += (f"; joined with the modal fit's +-3 sd, {mlo:.3g} to {mhi:.3g} %, from a fit "
+                 "that does not explain the spectrum")
+    return text + ")"
+
+
 #: What each remaining-vibration figure of a candidate is about (the text report's legend and
 #: the JSON's ``figures``).
 FIGURES = {
@@ -210,7 +226,8 @@ FIGURES = {
     "vibration_modal": "modal plant %: what it leaves of the fitted modal plant (the identified "
                        "modes by their energy)",
     "vibration_estimate": "plant estimate %: the estimate of what the plant is left with, and "
-                          "its +-3 sd range",
+                          "its range (+-3 sd of a modal fit that explains the spectrum, else "
+                          "the measured spectrum's bounds)",
 }
 
 #: The ranking figure by the objective's kind (``AxisResult.ranked_by``).
@@ -259,7 +276,7 @@ def report_text(cal, top: int = 12) -> str:
                          _fmt(c.length, ".4g"), _fmt(c.lag, ".4g"), _fmt(c.smoothing),
                          _fmt(c.peak_accel), _fmt(c.peak_jerk), c.continuity,
                          _candidate_design(c)])
-        head = ["candidate", "measured PSD %", "modal plant %", "plant estimate % (+-3 sd)",
+        head = ["candidate", "measured PSD %", "modal plant %", "plant estimate % (range)",
                 "delay s", "lag s",
                 "smoothing", "peak acc", "peak jerk", "class", "design"]
         widths = [max(len(r[i]) for r in rows + [head]) for i in range(len(head))]
@@ -294,8 +311,11 @@ def report_text(cal, top: int = 12) -> str:
                 out.append(f"  it leaves of the measured PSD {c.vibration_spectrum:.3g} %{modal};"
                            f" ranked by {RANKED_BY[res.ranked_by]}")
             out.append(f"  estimated remaining vibration of the plant {c.vibration_estimate:.3g} "
-                       f"% (+-3 sd: {c.vibration_range[0]:.3g} to {c.vibration_range[1]:.3g} %, "
+                       f"% ({'range' if c.range_parts else '+-3 sd'}: "
+                       f"{c.vibration_range[0]:.3g} to {c.vibration_range[1]:.3g} %, "
                        f"from the {c.range_from})")
+            if c.range_parts:
+                out.append("  " + range_statement(c))
             if c.firmware is None and cal.firmware == "none":
                 out.append("  (a smoothshaper filter, for the C library and the FMUs; "
                            "--firmware klipper|marlin|rrf|prusa ranks what that firmware runs)")

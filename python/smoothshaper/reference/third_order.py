@@ -148,14 +148,24 @@ class _Frame:
         return 2 * (x - y) + self.af - self.a0 + t2 + t4 + t6
 
     def top(self, crest):
-        """x, t2 of the first half for a crest velocity (None below the first ramp's own)."""
-        d = crest - self.c0
+        """x, t2 of the first half for a crest velocity (None below the first ramp's own).
+        A crest within 16 u of the velocity scale below the lowest the first ramp reaches
+        (x = max(a0, 0)) is on it: a start on the ramp into a cruise (or on it) reaches the
+        bound exactly, but the rounded c0 may lie an ulp above, which the square root makes
+        a gap of about vs u / x in x, beyond the member's tolerance."""
+        d, b = crest - self.c0, max(self.a0, 0.0)
+        if d < b * b <= d + 16 * EPS * self._vs():
+            return b, 0.0
         if not d >= 0:
             return None
         return (math.sqrt(d), 0.0) if d <= self.Au ** 2 else (self.Au, (d - self.Au ** 2) / self.Au)
 
     def bottom(self, crest):
-        d = crest - self.cf
+        """y, t6 of the last half for a crest velocity (None below the last ramp's own; on
+        it within 16 u of the velocity scale, as for :meth:`top`)."""
+        d, b = crest - self.cf, max(-self.af, 0.0)
+        if d < b * b <= d + 16 * EPS * self._vs():
+            return -b, 0.0
         if not d >= 0:
             return None
         return ((-math.sqrt(d), 0.0) if d <= self.Al ** 2
