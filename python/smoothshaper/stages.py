@@ -287,6 +287,47 @@ def _unchecked_stage(kind: str, T: float, sigma: float = 0.0, k: int = 1,
     return s
 
 
+def _with_mode(stage: Stage, wn, zeta, duration=None) -> Stage:
+    """``stage.with_(wn=wn, zeta=zeta[, duration=duration])`` for a validated shaper or input
+    smoother ``stage``, checking only the fields that change, as :meth:`Stage.__post_init__`
+    checks them (the same ParameterError naming the same field, the same floats; the result
+    equals the validated Stage). The calibration's tuning builds thousands of designs of one
+    family that differ only in these fields; its kind, order, tolerance and timing were
+    checked when ``stage`` was built."""
+    kind = stage.kind
+    if kind not in SHAPERS[:-1] and kind not in INPUT_SMOOTHERS:
+        raise ParameterError("kind", f"_with_mode is for shapers and input smoothers, got "
+                             f"kind={kind!r}")
+    wn = _finite("wn", wn)
+    zeta = _finite("zeta", zeta)
+    if wn <= 0:
+        raise ParameterError("wn", f"wn must be > 0 rad/s, got {wn!r}")
+    if not 0.0 <= zeta < 1.0:
+        raise ParameterError("zeta", f"zeta must be in [0, 1), got {zeta!r}")
+    if kind in _SMOOTH_READS_ZETA and zeta > SMOOTH_ZETA_MAX:
+        raise ParameterError(
+            "zeta", f"zeta must be in [0, {SMOOTH_ZETA_MAX}] for {kind} (the range of its "
+            f"kernel's fit in zeta), got {zeta!r}")
+    if duration is None:
+        duration = stage.duration
+    else:
+        duration = _finite("duration", duration)
+        if kind == "si":
+            _check_si(stage.order, duration)
+        elif kind == "gmzv" and not 0.0 < duration < 0.5 * (stage.order - 1):
+            raise ParameterError(
+                "duration", f"duration must be in (0, {0.5 * (stage.order - 1)!r}) damped "
+                f"periods for gmzv with order {stage.order}, got {duration!r}")
+    s = _UncheckedStage()
+    for name, _ in _STAGE_DEFAULTS:
+        setattr(s, name, getattr(stage, name))
+    s.wn = wn
+    s.zeta = zeta
+    s.duration = duration
+    s.__class__ = Stage
+    return s
+
+
 def kind_name(kind, allowed=KINDS, parameter: str = "kind") -> str:
     """The canonical (lower-case) name of a stage kind.
 

@@ -22,7 +22,7 @@ import numpy as np
 from ..reference import impulse_response, shaper_impulses
 from ..stages import INPUT_SMOOTHERS, SHAPERS
 from ..reference.continuous import transfer_unchecked
-from ..stages import Stage, for_mode, impulse_shaper, shaper
+from ..stages import Stage, _with_mode, for_mode, impulse_shaper, shaper
 from .._checks import positive as _positive
 from .design_memo import impulses, kernel, zv_span
 from ..errors import ParameterError
@@ -176,16 +176,41 @@ class Family:
     shaper: object = None
 
 
+class _ModeStage:
+    """Builds the family's stage at a mode (wn, zeta[, duration]): the first design through
+    the public constructor ``make`` (every field checked), every later one as a copy of it
+    with only those fields changed and checked (``stages._with_mode``: the same Stage, the
+    same errors). The tuning builds thousands of designs per family, and re-checking the
+    kind, order, tolerance and timing of each was about a fourteenth of its time."""
+    __slots__ = ("make", "first")
+
+    def __init__(self, make):
+        self.make = make
+        self.first = None
+
+    def __call__(self, wn, zeta, duration=None):
+        if self.first is not None:
+            return _with_mode(self.first, wn, zeta, duration)
+        stage = self.make(wn, zeta) if duration is None else self.make(wn, zeta, duration)
+        self.first = stage
+        return stage
+
+
 def _shaper(kind, **kw):
-    return lambda p: [shaper(kind, wn=p[0], zeta=p[1], **kw)]
+    st = _ModeStage(lambda wn, zeta: shaper(kind, wn=wn, zeta=zeta, **kw))
+    return lambda p: [st(p[0], p[1])]
 
 
 def _gmzv(n):
-    return lambda p: [shaper("gmzv", wn=p[0], zeta=p[1], order=n, duration=p[2])]
+    st = _ModeStage(lambda wn, zeta, d: shaper("gmzv", wn=wn, zeta=zeta, order=n, duration=d))
+    return lambda p: [st(p[0], p[1], p[2])]
 
 
 def _smoother(kind):
-    return lambda p: [for_mode(kind, wn=p[0], zeta=p[1])]
+    if kind not in INPUT_SMOOTHERS:     # the trajectory smoothers: for_mode builds them unchecked
+        return lambda p: [for_mode(kind, wn=p[0], zeta=p[1])]
+    st = _ModeStage(lambda wn, zeta: for_mode(kind, wn=wn, zeta=zeta))
+    return lambda p: [st(p[0], p[1])]
 
 
 def _library_single() -> list[Family]:
@@ -194,13 +219,15 @@ def _library_single() -> list[Family]:
     out.append(Family("gmzv (n=4)", 1, _gmzv(4), extra=((1.0, 0.55, 1.45),)))
     out.append(Family("gmzv (n=5)", 1, _gmzv(5), extra=((1.3, 0.6, 1.95),)))
     out += [Family(k, 1, _smoother(k)) for k in ("harmonic", "damped_harmonic", "exponential")]
+    zv = _ModeStage(lambda wn, zeta: shaper("zv", wn=wn, zeta=zeta))
     out.append(Family("rectangular*zv", 1, lambda p: [for_mode("rectangular", wn=p[0], zeta=p[1]),
-                                                      shaper("zv", wn=p[0], zeta=p[1])]))
+                                                      zv(p[0], p[1])]))
     return out
 
 
 def _si(n):
-    return lambda p: [shaper("si", wn=p[0], zeta=p[1], order=n, duration=p[2])]
+    st = _ModeStage(lambda wn, zeta, d: shaper("si", wn=wn, zeta=zeta, order=n, duration=d))
+    return lambda p: [st(p[0], p[1], p[2])]
 
 
 #: The specified-insensitivity shapers' impulse counts and the span of each [damped periods]
@@ -226,9 +253,14 @@ def _library_insensitive() -> list[Family]:
     return out
 
 
+def _chain(a, b):
+    sa = _ModeStage(lambda wn, zeta: shaper(a, wn=wn, zeta=zeta))
+    sb = _ModeStage(lambda wn, zeta: shaper(b, wn=wn, zeta=zeta))
+    return lambda p: [sa(p[0], p[1]), sb(p[2], p[3])]
+
+
 def _library_chains() -> list[Family]:
-    return [Family(f"{a}+{b}", 2, lambda p, a=a, b=b: [shaper(a, wn=p[0], zeta=p[1]),
-                                                        shaper(b, wn=p[2], zeta=p[3])])
+    return [Family(f"{a}+{b}", 2, _chain(a, b))
             for a, b in (("zv", "zv"), ("mzv", "mzv"), ("zvd", "zvd"), ("mzv", "zv"), ("ei", "ei"))]
 
 

@@ -86,15 +86,20 @@ def taps_R2(h: np.ndarray, Ts: float, poles: np.ndarray) -> np.ndarray:
 def stages_R2(stages, poles: np.ndarray) -> np.ndarray:
     """|H(p)|^2 of the continuous designs (the tuning loop: within O((wn Ts)^2) of the
     discrete filter, which the reported figures use)."""
-    H = np.ones(poles.size, dtype=complex)
+    H = None
     for s in stages:
         if s.kind in SHAPERS:
             A, t = impulses(s)
-            H *= np.exp(-np.outer(poles, t)) @ A
+            Hs = np.exp(-np.outer(poles, t)) @ A
         elif s.kind in INPUT_SMOOTHERS:
-            H *= smoother_R(s, poles)
+            Hs = smoother_R(s, poles)
         else:
-            H *= transfer_unchecked(s, poles)
+            Hs = transfer_unchecked(s, poles)
+        # the first stage's H itself, not 1 times it: the product's real and imaginary parts
+        # are the factor's own floats (only a zero's sign could differ, which |H| drops)
+        H = Hs if H is None else H * Hs
+    if H is None:
+        return np.ones(np.size(poles))
     return np.abs(H) ** 2
 
 
@@ -240,25 +245,38 @@ class SpectralObjective(_PoleSet):
     def tuning_value(self, R2, L: float = 0.0) -> float:
         """:meth:`value` plus a thousandth of the energy-weighted RMS of R over the same bins [%]:
         the figure is flat (zero) wherever every residual lies under its floor, and there the
-        tuning should still go on to the design with the most margin."""
-        R2e = _from_end(R2, self.poles, L).reshape(self.n, self.nz)
-        R = np.sqrt(np.maximum(R2e, 0.0))
-        left = np.maximum(R * self.P[:, None] - self.tau, 0.0).sum(axis=0)
+        tuning should still go on to the design with the most margin.
+
+        ``R2`` is a squared magnitude (>= 0 or NaN), so its square root needs no clip; the
+        pole factors and the bins' column come from :meth:`_tuning_terms` (the same floats as
+        :func:`_from_end` and ``P[:, None]``: the tuning asks thousands of times)."""
+        twice_re, P_col = self._tuning_terms()
+        R2e = (R2 * np.exp(twice_re * L) if L else R2).reshape(self.n, self.nz)
+        left = np.maximum(np.sqrt(R2e) * P_col - self.tau, 0.0).sum(axis=0)
         v = 100.0 * float(left.max()) / self.den if self.den > 0 else 0.0
-        # sum / count is what ndarray.mean computes (the same floats), without its wrapper: the
-        # tuning asks thousands of times
+        # sum / count is what ndarray.mean computes (the same floats), without its wrapper
         mean = R2e.sum(axis=1) / self.nz
         return v + 0.1 * math.sqrt(max(float(self.tune_S @ mean), 0.0))
+
+    def _tuning_terms(self):
+        """(2 Re(poles), P as a column), computed once for the poles and bins the objective
+        holds now (again if either array is replaced)."""
+        memo = self.__dict__.get("_terms")
+        if memo is None or memo[0] is not self.poles or memo[1] is not self.P:
+            memo = (self.poles, self.P, 2.0 * np.real(self.poles), self.P[:, None])
+            self._terms = memo
+        return memo[2], memo[3]
 
     def tuning_values(self, R2: np.ndarray, L: np.ndarray) -> np.ndarray:
         """:meth:`tuning_value` of many designs at once (the tuning's grid: one matrix
         evaluation instead of a call per design): ``R2`` (poles, designs), ``L`` (designs,)
         [s]."""
         G = R2.shape[1]
-        R2e = (R2 * np.exp(2.0 * np.real(self.poles)[:, None] * np.asarray(L, float)[None, :])
+        twice_re, P_col = self._tuning_terms()
+        R2e = (R2 * np.exp(twice_re[:, None] * np.asarray(L, float)[None, :])
                ).reshape(self.n, self.nz, G)
-        R = np.sqrt(np.maximum(R2e, 0.0))
-        left = np.maximum(R * self.P[:, None, None] - self.tau, 0.0).sum(axis=0)   # (nz, G)
+        # squared magnitudes (>= 0 or NaN): no clip before the root, as in tuning_value
+        left = np.maximum(np.sqrt(R2e) * P_col[:, :, None] - self.tau, 0.0).sum(axis=0)  # (nz, G)
         v = 100.0 * left.max(axis=0) / self.den if self.den > 0 else np.zeros(G)
         mean = R2e.sum(axis=1) / self.nz                                          # (n, G)
         return v + 0.1 * np.sqrt(np.maximum(self.tune_S @ mean, 0.0))
