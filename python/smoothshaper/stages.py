@@ -287,6 +287,18 @@ def _unchecked_stage(kind: str, T: float, sigma: float = 0.0, k: int = 1,
     return s
 
 
+def _checked_mode(wn, zeta) -> tuple[float, float]:
+    """A mode's (wn, zeta) as floats, wn > 0 rad/s and 0 <= zeta < 1; ParameterError naming
+    the one that is not."""
+    wn = _finite("wn", wn)
+    zeta = _finite("zeta", zeta)
+    if wn <= 0:
+        raise ParameterError("wn", f"wn must be > 0 rad/s, got {wn!r}")
+    if not 0.0 <= zeta < 1.0:
+        raise ParameterError("zeta", f"zeta must be in [0, 1), got {zeta!r}")
+    return wn, zeta
+
+
 def _with_mode(stage: Stage, wn, zeta, duration=None) -> Stage:
     """``stage.with_(wn=wn, zeta=zeta[, duration=duration])`` for a validated shaper or input
     smoother ``stage``, checking only the fields that change, as :meth:`Stage.__post_init__`
@@ -298,12 +310,7 @@ def _with_mode(stage: Stage, wn, zeta, duration=None) -> Stage:
     if kind not in SHAPERS[:-1] and kind not in INPUT_SMOOTHERS:
         raise ParameterError("kind", f"_with_mode is for shapers and input smoothers, got "
                              f"kind={kind!r}")
-    wn = _finite("wn", wn)
-    zeta = _finite("zeta", zeta)
-    if wn <= 0:
-        raise ParameterError("wn", f"wn must be > 0 rad/s, got {wn!r}")
-    if not 0.0 <= zeta < 1.0:
-        raise ParameterError("zeta", f"zeta must be in [0, 1), got {zeta!r}")
+    wn, zeta = _checked_mode(wn, zeta)
     if kind in _SMOOTH_READS_ZETA and zeta > SMOOTH_ZETA_MAX:
         raise ParameterError(
             "zeta", f"zeta must be in [0, {SMOOTH_ZETA_MAX}] for {kind} (the range of its "
@@ -704,12 +711,7 @@ def for_mode(kind: str, *, wn: float, zeta: float = 0.0, k: int = 1) -> Stage:
         Naming ``kind``, ``wn``, ``zeta`` or ``k``.
     """
     kind = kind_name(kind)
-    wn = _finite("wn", wn)
-    zeta = _finite("zeta", zeta)
-    if wn <= 0:
-        raise ParameterError("wn", f"wn must be > 0 rad/s, got {wn!r}")
-    if not 0.0 <= zeta < 1.0:
-        raise ParameterError("zeta", f"zeta must be in [0, 1), got {zeta!r}")
+    wn, zeta = _checked_mode(wn, zeta)
     return _for_mode(kind, wn, zeta, _integer("k", k, 1))
 
 

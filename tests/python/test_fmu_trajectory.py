@@ -70,6 +70,27 @@ def run(fmu, t0, targets):
 TARGETS = np.repeat(np.random.default_rng(7).uniform(-0.5, 0.5, 20), 40)
 
 
+def run_equal_to_the_generator(trajectory_dir, lim, x):
+    """The FMU started with the extra parameters ``lim`` and fed ``x``: its outputs, asserted
+    equal bit for bit to the Python Generator's with the same parameters."""
+    fmu = slave(trajectory_dir)
+    start(fmu, **lim)
+    y = run(fmu, 0.0, x)
+    fmu.freeInstance()
+    assert np.array_equal(y, Generator(Ts=TS, **LIMITS, **lim).process(x))
+    return y
+
+
+def assert_start_refused(trajectory_dir, params, words):
+    """Initialising with ``params`` is refused, and the logger's last message has ``words``."""
+    log = Logged()
+    fmu = slave(trajectory_dir, logged=log)
+    with pytest.raises(FMICallException):
+        start(fmu, **params)
+    assert words in log.messages[-1], log.messages[-1]
+    fmu.freeInstance()
+
+
 @pytest.mark.parametrize("profile", [0, 1, 2])
 def test_state_and_serialisation_round_trip(trajectory_dir, profile):
     extra = {"profile": profile, "wn": 60.0, "zeta": 0.1} if profile == 2 else {"profile": profile}
@@ -310,22 +331,11 @@ def test_asymmetric_limits_equal_the_python_generator_bit_for_bit(trajectory_dir
     with the same lower bounds bit for bit, each side within its own bound; a positive vmin,
     a trigonometric profile with amin and a target velocity below vmin fail naming them."""
     lim = dict(vmin=-0.25, amin=-2.5)
-    fmu = slave(trajectory_dir)
-    start(fmu, **lim)
-    x = np.r_[np.full(1500, 0.6), np.full(3000, -0.2)]
-    y = run(fmu, 0.0, x)
-    fmu.freeInstance()
-    ref = Generator(Ts=TS, **LIMITS, **lim).process(x)
-    assert np.array_equal(y, ref)
+    y = run_equal_to_the_generator(trajectory_dir, lim, np.r_[np.full(1500, 0.6), np.full(3000, -0.2)])
     assert y[:, 1].min() == -0.25 and y[:, 2].min() == -2.5
     for params, words in [(dict(vmin=0.5), "vmin"),
                           (dict(amin=-5.0, profile=1), "trigonometric profile takes symmetric")]:
-        log = Logged()
-        fmu = slave(trajectory_dir, logged=log)
-        with pytest.raises(FMICallException):
-            start(fmu, **params)
-        assert words in log.messages[-1], log.messages[-1]
-        fmu.freeInstance()
+        assert_start_refused(trajectory_dir, params, words)
     log = Logged()
     fmu = slave(trajectory_dir, logged=log)
     start(fmu, **lim)
@@ -341,23 +351,12 @@ def test_position_limits_equal_the_python_generator_bit_for_bit(trajectory_dir):
     the same limits bit for bit, q within them; limits in the wrong order, q0 outside and a
     target outside fail naming them."""
     lim = dict(qmin=-0.3, qmax=0.5)
-    fmu = slave(trajectory_dir)
-    start(fmu, **lim)
-    x = np.r_[np.full(1500, 0.5), np.full(3000, -0.3)]
-    y = run(fmu, 0.0, x)
-    fmu.freeInstance()
-    ref = Generator(Ts=TS, **LIMITS, **lim).process(x)
-    assert np.array_equal(y, ref)
+    y = run_equal_to_the_generator(trajectory_dir, lim, np.r_[np.full(1500, 0.5), np.full(3000, -0.3)])
     assert y[:, 0].min() == -0.3 and y[:, 0].max() == 0.5
     for params, words in [(dict(qmin=1.0, qmax=-1.0), "qmin < qmax"),
                           (dict(qmin=0.1, qmax=1.0), "q0 = 0 is outside"),
                           (dict(qmin=-1.0, qmax=1.0, profile=1), "not the trigonometric")]:
-        log = Logged()
-        fmu = slave(trajectory_dir, logged=log)
-        with pytest.raises(FMICallException):
-            start(fmu, **params)
-        assert words in log.messages[-1], log.messages[-1]
-        fmu.freeInstance()
+        assert_start_refused(trajectory_dir, params, words)
     log = Logged()
     fmu = slave(trajectory_dir, logged=log)
     start(fmu, **lim)

@@ -13,6 +13,7 @@ import sys
 import numpy as np
 
 from .. import _optional
+from .profile_axes import finish
 
 __all__ = ["LIMITS", "SYMMETRIC", "run", "plot"]
 
@@ -59,16 +60,9 @@ def plot(path: str) -> None:
                        (axes[3], -LIMITS["jmax"], LIMITS["jmax"])):
         for b in (lo, hi):
             ax.axhline(b, color="gray", lw=0.8, ls=":")
-    for ax, name in zip(axes, names):
-        ax.set_ylabel(name)
-        ax.grid(alpha=0.3)
-    axes[0].legend(loc="upper right", fontsize=8)
-    axes[0].set_title("A vertical axis: up fast, down slowly (Ts = 1 ms; circles: at rest on "
-                      "the target)", fontsize=9)
-    axes[-1].set_xlabel("t [s]")
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    finish(fig, axes, names, legend_loc="upper right", path=path,
+           title="A vertical axis: up fast, down slowly (Ts = 1 ms; circles: at rest on the "
+                 "target)")
 
 
 if __name__ == "__main__":

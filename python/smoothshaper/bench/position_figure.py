@@ -13,6 +13,7 @@ import sys
 import numpy as np
 
 from .. import _optional
+from .profile_axes import finish
 
 __all__ = ["LIMITS", "QMAX", "run", "plot"]
 
@@ -51,16 +52,9 @@ def plot(path: str) -> None:
                      fontsize=8, color="gray")
     for ax in axes:
         ax.axvline(START[4] * Ts, color="gray", lw=0.6, ls="-.")
-    for ax, name in zip(axes, names):
-        ax.set_ylabel(name)
-        ax.grid(alpha=0.3)
-    axes[0].legend(loc="lower left", fontsize=8)
-    axes[0].set_title("Retarget at 44 ms to 0.09 with a minimum duration of 1 s "
-                      "(Ts = 1 ms; both arrive at 1.044 s)", fontsize=9)
-    axes[-1].set_xlabel("t [s]")
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    finish(fig, axes, names, legend_loc="lower left", path=path,
+           title="Retarget at 44 ms to 0.09 with a minimum duration of 1 s (Ts = 1 ms; both "
+                 "arrive at 1.044 s)")
 
 
 if __name__ == "__main__":
