@@ -303,8 +303,9 @@ def test_inputs_are_continuous_outputs_have_no_direct_feedthrough(fmus):
         assert all(u.dependencies and set(u.dependencies) <= set(rest)
                    for u in md.initialUnknowns)
         reals = [v for v in md.modelVariables if v.causality == "parameter" and v.type == "Real"
-                 and v.name.split("[")[0] not in ("q0", "schedule.value")]   # a rest position
-        # and a scheduling value (a position, a load) have no natural bound
+                 and v.name.split("[")[0] not in ("q0", "qmin", "qmax", "schedule.value")]
+        # a rest position, position limits and a scheduling value (a position, a load) have no
+        # natural bound
         assert all(v.min is not None or v.max is not None for v in reals)
         assert all(v.unit in (None, "s", "1/s", "rad/s", "1", "kg.m2", "N.m/rad", "N.m.s/rad",
                               "rad", "N.m") for v in md.modelVariables)

@@ -3,13 +3,15 @@
 grid, legend, title, x label, and the PNG written at the size the docs show."""
 from __future__ import annotations
 
+from .. import _optional
+
 __all__ = ["finish"]
 
 
 def finish(fig, axes, names, *, title: str, legend_loc: str, path: str) -> None:
     """Label ``axes`` (top to bottom) with ``names``, put the legend on the top one at
     ``legend_loc``, title it, write ``fig`` to ``path`` (PNG, 110 dpi) and close it."""
-    import matplotlib.pyplot as plt   # the callers have required it through _optional
+    plt = _optional.require("matplotlib.pyplot", "the generator figures")
     for ax, name in zip(axes, names):
         ax.set_ylabel(name)
         ax.grid(alpha=0.3)
