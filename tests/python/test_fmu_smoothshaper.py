@@ -343,3 +343,20 @@ def test_errors_reach_the_logger_with_logging_off(fmus, capfd, values, expected)
                           validate=False)
     out = capfd.readouterr()
     assert expected in out.out + out.err
+
+
+def test_fmpy_runs_of_the_package_drive_every_input(fmus, capsys):
+    """fmi.run_fmpy gives fmpy a column for each scalar input the caller does not drive (held
+    at its start value), so fmpy prints no "missing input" warning; the outputs equal a run
+    that drives only the target."""
+    from smoothshaper.fmi.simulate import run_fmpy
+    from smoothshaper.trajectory import Generator
+    t = np.arange(201) * 1e-3
+    target = np.where(t < 0.05, 0.0, 0.2)
+    capsys.readouterr()
+    r = run_fmpy(fmus["TrajectoryGenerator"], t, {"target": target},
+                 {"Ts": 1e-3, "vmax": 1.0, "amax": 10.0, "jmax": 100.0}, ["q"])
+    assert "missing input" not in capsys.readouterr().out
+    # fmpy records the outputs of the inputs at t_k at t_(k+1)
+    ref = Generator(Ts=1e-3, vmax=1.0, amax=10.0, jmax=100.0).process(target)[:, 0]
+    assert np.array_equal(r["q"][1:], ref[:-1])

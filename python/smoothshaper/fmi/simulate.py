@@ -84,12 +84,36 @@ def run_fmpy(fmu, t: np.ndarray, inputs, start_values: dict, outputs, *,
         signal["time"] = t
     else:
         signal = inputs
+    signal = _with_held_inputs(fmpy, fmu, signal, start_values)
     result = fmpy.simulate_fmu(str(fmu), start_values=dict(start_values), input=signal,
                                start_time=0.0, stop_time=float(t[-1]), output_interval=step,
                                output=list(outputs), validate=False)
     if result.size != t.size or not np.allclose(result["time"], t, rtol=0, atol=1e-9 * step):
         raise RuntimeError(f"fmpy returned {result.size} samples, expected {t.size}")
     return result
+
+
+def _with_held_inputs(fmpy, fmu, signal, start_values: dict):
+    """``signal`` with a constant column for every scalar input of ``fmu`` it does not drive,
+    at the value the run starts it with (``start_values``, else the model description's start):
+    the input the FMU holds anyway, given to fmpy so it does not warn of a missing input."""
+    names = set(signal.dtype.names)
+    kinds = {"Real": float, "Float64": float, "Float32": float, "Boolean": bool}
+    held = [v for v in fmpy.read_model_description(str(fmu)).modelVariables
+            if v.causality == "input" and v.name not in names and not v.dimensions
+            and (v.start is not None or v.name in start_values)]
+    if not held:
+        return signal
+    dtype = signal.dtype.descr + [(v.name, kinds.get(v.type, np.int64)) for v in held]
+    out = np.zeros(signal.size, dtype=dtype)
+    for name in signal.dtype.names:
+        out[name] = signal[name]
+    for v in held:
+        value = start_values.get(v.name, v.start)
+        if isinstance(value, str):   # the model description's start, as written
+            value = value.lower() == "true" if v.type == "Boolean" else float(value)
+        out[v.name] = value
+    return out
 
 
 def simulate_trajectory(fmu: str, t: np.ndarray, target: np.ndarray, *, Ts: float, **limits):
