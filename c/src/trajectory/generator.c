@@ -310,12 +310,12 @@ sms_status sms_generator_init(sms_generator *g, const sms_generator_config *conf
     g->vmin = config->vmin != 0.0 ? (sms_real)config->vmin : -g->limits.vmax;
     g->amin = config->amin != 0.0 ? (sms_real)config->amin : -g->limits.amax;
     g->asymmetric = g->vmin != -g->limits.vmax || g->amin != -g->limits.amax;
-    g->bounded = config->qmin != 0.0 || config->qmax != 0.0;
     g->qmin = (sms_real)config->qmin;
     g->qmax = (sms_real)config->qmax;
     g->qtol = (sms_real)(16.0 * GEN_UNIT_ROUNDOFF * (fabs(config->qmin) + fabs(config->qmax)));
     generator_identity(config, Ts, g->identity);
-    g->bounded = 0; /* the rest below is inside by construction */
+    /* rest at 0, or at the limit nearer 0 when 0 is outside; the limits apply from here on */
+    g->bounded = 0;
     sms_generator_reset(g, g->qmin > 0 ? g->qmin : g->qmax < 0 ? g->qmax : 0);
     g->bounded = config->qmin != 0.0 || config->qmax != 0.0;
     return SMS_OK;
