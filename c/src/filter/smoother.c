@@ -654,10 +654,20 @@ SEGMENT_BODY void segment(sms_smoother *f, const sms_real *in, sms_real *out, si
     int repeated = 0;   /* varied: an input equal to the one before it was seen */
 #ifdef SMS_SMOOTHER_VARIANT_LOOPS
     /* varied: x == prev noted lane-wise in a mask, one compare and one or a sample (the scalar
-     * test and its unordered flag took five instructions); the same IEEE equality */
+     * test and its unordered flag take five instructions, on the integer units); the same IEEE
+     * equality. Not for a complex pole in double: that loop is bound by the vector adders
+     * (30 additions of 91 instructions a sample on SSE2, 18 256-bit ones on AVX), which the
+     * compare would take a slot of; measured slower there, faster for the others. */
+    const int masked = pole != POLE_COMPLEX || sizeof(sms_real) < sizeof(double);
     lane_mask seen = {0};
     lanes prev_v = LANES(prev0, prev0);
-#define NOTE_REPEAT(x) (seen |= LANES((x), (x)) == prev_v, prev_v = LANES((x), (x)))
+#define NOTE_REPEAT(x)                                                                      \
+    do {                                                                                    \
+        if (masked)                                                                         \
+            seen |= LANES((x), (x)) == prev_v, prev_v = LANES((x), (x));                    \
+        else                                                                                \
+            repeated |= (x) == prev;                                                        \
+    } while (0)
 #else
 #define NOTE_REPEAT(x) (repeated |= (x) == prev)
 #endif
@@ -681,9 +691,10 @@ SEGMENT_BODY void segment(sms_smoother *f, const sms_real *in, sms_real *out, si
             y += corr0 * (first - ref0) + corr1 * (oldest - ref0);
         }
         ring[i] = x;
-        if (varied)
-            out[i] = y + ref0, NOTE_REPEAT(x);
-        else
+        if (varied) {
+            out[i] = y + ref0;
+            NOTE_REPEAT(x);
+        } else
             out[i] = rest_exactly(&run, length, x, prev, y + ref0);
         prev = x;
     }
@@ -692,15 +703,16 @@ SEGMENT_BODY void segment(sms_smoother *f, const sms_real *in, sms_real *out, si
         sms_real y = RECUR(x, oldest);
         y += corr0 * (first - ref0) + corr1 * (oldest - ref0);
         ring[i] = x;
-        if (varied)
-            out[i] = y + ref0, NOTE_REPEAT(x);
-        else
+        if (varied) {
+            out[i] = y + ref0;
+            NOTE_REPEAT(x);
+        } else
             out[i] = rest_exactly(&run, length, x, prev, y + ref0);
     }
 #undef RECUR
 #undef NOTE_REPEAT
 #ifdef SMS_SMOOTHER_VARIANT_LOOPS
-    repeated = seen[0] != 0;
+    repeated |= seen[0] != 0;
 #endif
 #ifdef SMS_SMOOTHER_QUAD
     if (in_quads) {
