@@ -9,24 +9,32 @@
 #include "filter/shaper_sample.h"
 
 /* The smoothers are the kinds 0 .. 3 (one comparison before their step, the most frequent
- * per-sample stage); the rest as sms_family_of() sorts them. */
+ * per-sample stage); the rest as sms_family_of() sorts them. A size-optimised build (-Os)
+ * keeps main's one dispatch and calls the shaper's step: the firmware probes' code sizes do
+ * not change. */
 typedef char smoother_kinds_first[SMS_SMOOTHER_KINDS == 15u ? 1 : -1];
 
 SMS_FEW_TAPS void sms_stage_step(sms_stage *stage, sms_real *x)
 {
+#ifdef __OPTIMIZE_SIZE__
+    /* size-optimised (firmware): one dispatch, the shaper's step called (its one copy) */
+    switch (sms_family_of(stage->kind)) {
+    case SMS_FAMILY_SMOOTHER: sms_smoother_step(stage->u.smoother, x); break;
+    case SMS_FAMILY_SHAPER: sms_shaper_step(stage->u.shaper, x); break;
+    case SMS_FAMILY_NOTCH: sms_notch_step(stage->u.notch, x); break;
+    case SMS_FAMILY_NONE: break;
+    }
+#else
     if ((unsigned)stage->kind <= (unsigned)SMS_EXPONENTIAL) {
         sms_smoother_step(stage->u.smoother, x);
         return;
     }
     switch (sms_family_of(stage->kind)) {
-#ifdef __OPTIMIZE_SIZE__
-    case SMS_FAMILY_SHAPER: sms_shaper_step(stage->u.shaper, x); break;   /* one copy (-Os) */
-#else
     case SMS_FAMILY_SHAPER: sms_shaper_step_inline(stage->u.shaper, x); break;
-#endif
     case SMS_FAMILY_NOTCH: sms_notch_step(stage->u.notch, x); break;
     default: break;
     }
+#endif
 }
 
 SMS_FEW_TAPS void sms_chain_step(sms_chain *chain, sms_real *x)
