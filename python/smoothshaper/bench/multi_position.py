@@ -241,8 +241,10 @@ def campaign(mode: str, n: int, *, seed: int = 1, precision: str = "double") -> 
 def _row(s) -> str:
     return (f"| {s['mode']} | {s['precision']} | {s['cases']} | {s['refused']} | "
             f"{s['outside']:.3g} | {s['ruckig_errors']} | {s['ruckig_crosses']} | "
-            f"{s['direct']} | {over_shares(s)} (max {max(s['over'], default=0)}) | "
-            f"{len(s['longer'])} (max {max(s['longer'], default=0)}) | {limit_cells(s)} | "
+            + (f"{s['direct']} | {over_shares(s)} (max {max(s['over'], default=0)}) | "
+               f"{len(s['longer'])} (max {max(s['longer'], default=0)}) | " if s["over"] else
+               "- | - (from rest to rest, no duration compared) | - | ")
+            + f"{limit_cells(s)} | "
             f"{s['not_landed']} |")
 
 
