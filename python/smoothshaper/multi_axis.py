@@ -47,7 +47,8 @@ _MULTI_IDENTITY_FIELDS = ("axes", "sync") + tuple(
 def _axis_position_limits(qmin, qmax, axes: int, precision: str) -> list:
     """Per axis (qmin, qmax) as the C config takes them ((0, 0): none), from None, or a
     sequence of one value (or None) per axis for each; errors name ``qmin[i]``/``qmax[i]``."""
-    from .trajectory import _position_limits
+    from ._checks import position_limits
+    real = _real_dtype(precision)
     if qmin is None and qmax is None:
         return [(0.0, 0.0)] * axes
     seqs = {}
@@ -64,7 +65,7 @@ def _axis_position_limits(qmin, qmax, axes: int, precision: str) -> list:
     out = []
     for i, (lo, hi) in enumerate(zip(seqs["qmin"], seqs["qmax"])):
         try:
-            out.append(_position_limits(lo, hi, "polynomial", precision))
+            out.append(position_limits(lo, hi, "polynomial", real, precision))
         except ParameterError as e:
             raise ParameterError(f"{e.parameter}[{i}]",
                                  f"{e.parameter}[{i}] (axis {i}): {e}", e.status) from None
