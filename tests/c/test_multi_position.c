@@ -145,5 +145,5 @@ int main(void)
     test_staircases_stay_inside(SMS_SYNC_NONE);
     test_refusals();
     test_hold_equals_steps();
-    return check_summary();
+    return check_summary("test_multi_position");
 }
