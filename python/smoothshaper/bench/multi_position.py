@@ -39,7 +39,6 @@ import math
 
 import numpy as np
 
-from .. import _optional
 from ..errors import ParameterError
 from .targets import UNIT_ROUNDOFF, _state, campaign_main, limit_cells, over_shares, tally_limits
 
@@ -65,8 +64,8 @@ def draw_case(rng, mode: str) -> dict:
         lo = min(q0, pf, second) - scale * 10.0 ** rng.uniform(-3, 1)
         hi = max(q0, pf, second) + scale * 10.0 ** rng.uniform(-3, 1)
         axes.append(dict(vmax=V, amax=A, jmax=J, q0=q0, v0=v0, a0=a0, position=pf,
-                         second=second, qmin=lo, qmax=hi))
-    return dict(mode=mode, axes=axes, log_samples=rng.uniform(1, 3.3),
+                         velocity=0.0, acceleration=0.0, second=second, qmin=lo, qmax=hi))
+    return dict(mode=mode, per_axis=None, axes=axes, log_samples=rng.uniform(1, 3.3),
                 switch=rng.uniform(0.1, 0.9), unlimited=int(rng.integers(0, n)) if n > 1
                 and rng.random() < 0.3 else None)
 
@@ -79,29 +78,9 @@ def ruckig_motion(case, Ts=None):
     """ruckig's (duration, inside) for the case's first target from its start state
     (continuous, or discrete with Ts), None when it errs; inside: its position extrema within
     every limited axis's [qmin, qmax]."""
-    ruckig = _optional.require("ruckig", "the campaigns against ruckig")
-    n = len(case["axes"])
-    otg = ruckig.Ruckig(n, Ts) if Ts else ruckig.Ruckig(n)
-    inp, traj = ruckig.InputParameter(n), ruckig.Trajectory(n)
-    inp.current_position = _field(case, "q0")
-    inp.current_velocity = _field(case, "v0")
-    inp.current_acceleration = _field(case, "a0")
-    inp.target_position = _field(case, "position")
-    inp.max_velocity = _field(case, "vmax")
-    inp.max_acceleration = _field(case, "amax")
-    inp.max_jerk = _field(case, "jmax")
-    inp.synchronization = {"time": ruckig.Synchronization.Time,
-                           "time_if_necessary": ruckig.Synchronization.TimeIfNecessary,
-                           "none": ruckig.Synchronization.No,
-                           "phase": ruckig.Synchronization.Phase,
-                           "independent": ruckig.Synchronization.No}[case["mode"]]
-    if Ts:
-        inp.duration_discretization = ruckig.DurationDiscretization.Discrete
-    try:
-        result = otg.calculate(inp, traj)
-    except (RuntimeError, ValueError, ruckig.RuckigError):
-        return None
-    if result not in (ruckig.Result.Working, ruckig.Result.Finished):
+    from .multi_sync import ruckig_trajectory
+    traj = ruckig_trajectory(case, Ts)
+    if traj is None:
         return None
     inside = all(case["unlimited"] == i or
                  (e.min >= ax["qmin"] and e.max <= ax["qmax"])

@@ -30,7 +30,8 @@ import math
 import numpy as np
 
 from .. import _optional
-from .targets import UNIT_ROUNDOFF, _state, campaign_main, limit_cells, over_shares, tally_limits
+from .targets import (UNIT_ROUNDOFF, _state, campaign_main, limit_cells, over_shares,
+                      ruckig_calculate, tally_limits)
 
 __all__ = ["FEATURES", "draw_case", "run_case", "campaign", "main"]
 
@@ -72,6 +73,13 @@ def _field(case, name):
 
 def ruckig_duration(case, Ts=None):
     """ruckig's duration for the case (continuous, or discrete with Ts), None when it errs."""
+    traj = ruckig_trajectory(case, Ts)
+    return None if traj is None else traj.duration
+
+
+def ruckig_trajectory(case, Ts=None):
+    """ruckig's trajectory for the case (continuous, or discrete with Ts), None when it errs;
+    case["mode"] may also be "phase" or "independent" (ruckig's Phase and None)."""
     ruckig = _optional.require("ruckig", "the campaigns against ruckig")
     n = len(case["axes"])
     otg = ruckig.Ruckig(n, Ts) if Ts else ruckig.Ruckig(n)
@@ -87,21 +95,14 @@ def ruckig_duration(case, Ts=None):
     inp.max_jerk = _field(case, "jmax")
     sync = {"time": ruckig.Synchronization.Time,
             "time_if_necessary": ruckig.Synchronization.TimeIfNecessary,
-            "none": ruckig.Synchronization.No}   # (ruckig's None, spelled No in Python)
+            "none": ruckig.Synchronization.No,   # (ruckig's None, spelled No in Python)
+            "phase": ruckig.Synchronization.Phase, "independent": ruckig.Synchronization.No}
     inp.synchronization = sync[case["mode"]]
     if case["per_axis"] is not None:
         inp.per_dof_synchronization = [sync[m] for m in case["per_axis"]]
     if case.get("minimum_duration"):
         inp.minimum_duration = case["minimum_duration"]
-    if Ts:
-        inp.duration_discretization = ruckig.DurationDiscretization.Discrete
-    try:
-        result = otg.calculate(inp, traj)
-    except (RuntimeError, ValueError, ruckig.RuckigError):
-        return None
-    if result not in (ruckig.Result.Working, ruckig.Result.Finished):
-        return None
-    return traj.duration
+    return traj if ruckig_calculate(ruckig, otg, inp, traj, Ts) else None
 
 
 def _synced(case):

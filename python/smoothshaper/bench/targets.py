@@ -117,15 +117,19 @@ def _ruckig(case, Ts=None):
         inp.target_position = [case["position"]]
     inp.target_velocity = [case["velocity"]]
     inp.target_acceleration = [case["acceleration"]]
+    return traj.duration if ruckig_calculate(ruckig, otg, inp, traj, Ts) else None
+
+
+def ruckig_calculate(ruckig, otg, inp, traj, Ts=None) -> bool:
+    """ruckig's calculate into traj (with its discrete durations when Ts is given): True when
+    it plans (Working or Finished), False when it errs."""
     if Ts:
         inp.duration_discretization = ruckig.DurationDiscretization.Discrete
     try:
         result = otg.calculate(inp, traj)
     except (RuntimeError, ValueError, ruckig.RuckigError):
-        return None
-    if result not in (ruckig.Result.Working, ruckig.Result.Finished):
-        return None
-    return traj.duration
+        return False
+    return result in (ruckig.Result.Working, ruckig.Result.Finished)
 
 
 def run_case(case: dict, *, precision: str = "double", samples: float | None = None,
