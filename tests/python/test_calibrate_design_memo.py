@@ -149,3 +149,17 @@ def test_smoother_taps_same_floats_as_numpy_polyval(kind):
         Ts = float(rng.uniform(2e-5, 2e-4))
         L = int(math.ceil(T / Ts)) + 1
         assert ism._taps_linear(q, T, Ts, L).tobytes() == _taps_linear_polyval(q, T, Ts, L).tobytes()
+
+
+def test_si_poly2cheb_same_floats_as_numpy():
+    """The SI design's power-to-Chebyshev conversion equals NumPy's poly2cheb, bit for bit."""
+    from smoothshaper.reference.shapers import _poly2cheb
+    rng = np.random.default_rng(17)
+    for k in range(500):
+        n = int(rng.integers(1, 12))
+        pol = rng.normal(size=n) * 10.0 ** rng.uniform(-6, 6, n)
+        pol[rng.random(n) < 0.2] = 0.0          # exact zeros, trailing ones included
+        if k % 97 == 0:
+            pol[:] = 0.0
+        ref = np.polynomial.chebyshev.poly2cheb(pol)
+        assert _poly2cheb(pol).tobytes() == ref.tobytes(), pol
