@@ -26,6 +26,7 @@ from . import spectra
 from .candidates import (TIE_PP, Candidate, Reference, candidate_taps, evaluate, families,
                          recommend, tune)
 from . import default_limit as _budget
+from . import firmware as _fw
 from .default_limit import DefaultLimit
 from .modes import Mode, decay_modes
 from .objectives import ModalObjective, SpectralObjective, impulses_R2, taps_R2
@@ -489,9 +490,19 @@ def _default_limit(res: AxisResult, objs, anchors, firmware) -> DefaultLimit | N
     # the top of the scored spectrum (the ranking's bins, up to 1.5 x the excited band's top)
     spec = objs["spectrum"]
     top = float(spec.f.max()) if getattr(spec, "f", None) is not None and spec.f.size else 0.0
-    return _budget.default_limit(obj, firmware, [a / (2 * math.pi) for a in anchors],
-                                 printer=printer,
-                         top_hz=top)
+    hz = [a / (2 * math.pi) for a in anchors]
+    own = _budget.default_limit(obj, firmware, hz, printer=printer, top_hz=top)
+    if own is None or firmware in ("none", "klipper") or objs.get("trade-off") is None:
+        return own
+    # another firmware: the established tool's own pick on this spectrum too. The firmware's
+    # trade-off over its own shapers can pick a shorter one that leaves more (a ZV where the
+    # established tool picks an MZV); its shapers get at least the established pick's length,
+    # and the pick is held to that pick's estimate where a candidate reaches it
+    # (_hold_to_trade_off)
+    ref = _budget.default_limit(obj, "klipper", hz, printer=printer, top_hz=top)
+    if ref is None:
+        return own
+    return replace(own, max_delay=max(own.max_delay, ref.max_delay), established=ref)
 
 
 def _established(c: Candidate, trade, Ts: float) -> float:
@@ -535,10 +546,25 @@ def _hold_to_trade_off(res: AxisResult, objs, rank, reference, delay, firmware) 
     for c in res.candidates:
         c.vibration_established = _established(c, trade, reference.Ts)
     cap = pick.vibration_established
+    whose = "its trade-off pick's"
+    ref = limit.established
+    if ref is not None:
+        # the established tool's own pick (which this firmware may not run): where a candidate
+        # leaves no more than it, the pick must not either
+        kA, kt = _fw.by_name("klipper", ref.shaper.split(maxsplit=1)[1]).impulses(
+            ref.freq, _budget.DESIGN_DAMPING)
+        theirs = trade.value(impulses_R2(kA, kt, trade.poles), float(kt[-1]))
+        reach = min((c.vibration_established for c in res.candidates if c.meets),
+                    default=math.inf)
+        held = max(theirs, reach)
+        if held < cap:
+            cap, whose = held, (f"the established tool's pick's ({ref.shaper} at "
+                                f"{ref.freq:.1f} Hz: {theirs:.3g} %)" if held == theirs else
+                                "the least any candidate leaves")
     for c in res.candidates:
         if c.meets and c.vibration_established > cap + TIE_PP:
             c.reasons.append(f"leaves {c.vibration_established:.3g} % by the established "
-                             f"estimate > {cap:.3g} % (+{TIE_PP:g}), its trade-off pick's")
+                             f"estimate > {cap:.3g} % (+{TIE_PP:g}), {whose}")
             c.meets = False
 
 

@@ -11,7 +11,8 @@ tool's trade-off (Klipper ``klippy/extras/shaper_calibrate.py``, ``fit_shaper`` 
 applied here, on this calibration's own measured-spectrum figure, to fix the delay budget:
 
 * Candidates: the target firmware's shapers (Klipper's five it calibrates, zv, mzv, ei,
-  2hump_ei and 3hump_ei, for ``firmware="none"`` and ``"klipper"``), each designed for a
+  2hump_ei and 3hump_ei, for ``firmware="none"`` and ``"klipper"``; another firmware's
+  shapers shortest first, :func:`trade_off_shapers`), each designed for a
   damping ratio of 0.1 and scanned every 0.2 Hz from its lowest frequency up to 150 Hz (or
   the top of the scored spectrum, if higher). The lowest frequency of a resonance test's
   shaper is Klipper's own minimum (``shaper_defs.py``, "chosen to have projected max_accel ~=
@@ -30,7 +31,13 @@ applied here, on this calibration's own measured-spectrum figure, to fix the del
   frequencies leaving at most ``1.1 v_best + 0.0005``. Across shapers, in the order above, a
   later one replaces the pick when its score is 20 % lower, or 5 % lower with 10 % less
   smoothing; then any of its frequencies with both less vibration and less smoothing than the
-  pick replaces it; a ZV pick gives way to the first other shaper leaving 10 % less.
+  pick replaces it; a ZV pick gives way to the first other shaper leaving 10 % less (every
+  two-impulse shaper counts as a ZV: Marlin's classic ``M593 ZV`` too).
+
+With a firmware other than Klipper, the established tool's own trade-off (over Klipper's
+shapers) is also taken on the same spectrum, and the budget is the longer of the two picks'
+durations (:attr:`DefaultLimit.established`): the firmware's shapers, visited shortest first
+as the established tool visits its own, can still trade to a shorter one that leaves more.
 
 The budget is the picked shaper's duration (its last impulse). Every candidate family then
 competes within it for the least remaining vibration, so the recommendation is never longer
@@ -95,24 +102,71 @@ class DefaultLimit:
     freq: float
     vibration: float
     smoothing: float
+    #: With a firmware other than Klipper: the established tool's own trade-off pick (over
+    #: Klipper's shapers) on the same spectrum, whose length the budget also covers.
+    established: "DefaultLimit | None" = None
 
     def note(self) -> str:
+        e = self.established
+        if e is None:
+            return (f"no --max-delay or --max-smoothing: the delay is limited to "
+                    f"{1e3 * self.max_delay:.4g} ms, the length of {self.shaper} at "
+                    f"{self.freq:.1f} Hz, the established tool's trade-off of vibration "
+                    f"({self.vibration:.2g} %) against smoothing on this spectrum "
+                    "(docs/calibrate.md)")
         return (f"no --max-delay or --max-smoothing: the delay is limited to "
-                f"{1e3 * self.max_delay:.4g} ms, the length of {self.shaper} at "
-                f"{self.freq:.1f} Hz, the established tool's trade-off of vibration "
-                f"({self.vibration:.2g} %) against smoothing on this spectrum "
+                f"{1e3 * self.max_delay:.4g} ms, the longer of {self.shaper} at "
+                f"{self.freq:.1f} Hz ({1e3 * self.duration:.4g} ms, {self.vibration:.2g} %), "
+                "the established tool's trade-off of vibration against smoothing over this "
+                f"firmware's shapers, and the established tool's own pick {e.shaper} at "
+                f"{e.freq:.1f} Hz ({1e3 * e.duration:.4g} ms, {e.vibration:.2g} %), whose "
+                "estimate the pick is held to where a shaper of this firmware reaches it "
                 "(docs/calibrate.md)")
 
     def as_dict(self) -> dict:
-        return {"max_delay": self.max_delay, "duration": self.duration, "shaper": self.shaper, "freq_hz": self.freq,
-                "vibration": self.vibration, "smoothing": self.smoothing}
+        out = {"max_delay": self.max_delay, "duration": self.duration, "shaper": self.shaper,
+               "freq_hz": self.freq, "vibration": self.vibration, "smoothing": self.smoothing}
+        if self.established is not None:
+            out["established"] = self.established.as_dict()
+        return out
+
+
+#: The frequency [Hz] at which a firmware's shapers are ordered by their length in periods.
+ORDER_FREQ = 50.0
+
+
+def _periods(shaper) -> float:
+    """Length of ``shaper`` in undamped periods at :data:`ORDER_FREQ` (designed at
+    :data:`DESIGN_DAMPING`): ZV 0.5, MZV 0.75, ZVD and EI 1, ZVDD and 2-hump EI 1.5, ..."""
+    lo_z, hi_z = shaper.damping_range()
+    f = min(max(ORDER_FREQ, shaper.min_freq), shaper.max_freq)
+    _, t = shaper.impulses(f, min(max(DESIGN_DAMPING, lo_z), hi_z))
+    return float(t[-1]) * f
+
+
+def _is_zv(shaper) -> bool:
+    """A shaper of the ZV form (two impulses), whatever the firmware calls it (Marlin has two:
+    FT Motion's ``ZV`` and classic ``M593 ZV``)."""
+    lo_z, hi_z = shaper.damping_range()
+    f = min(max(ORDER_FREQ, shaper.min_freq), shaper.max_freq)
+    A, _ = shaper.impulses(f, min(max(DESIGN_DAMPING, lo_z), hi_z))
+    return A.size == 2
 
 
 def trade_off_shapers(firmware: str) -> tuple:
-    """The firmware shapers the trade-off is taken over (Klipper's five for "none")."""
+    """The firmware shapers the trade-off is taken over, in the order it visits them.
+
+    Klipper's five it calibrates, in its order, for ``"none"`` and ``"klipper"``. Another
+    firmware's shapers, shortest first (their length in periods, ties in the firmware's own
+    order): the established order runs from the shortest to the longest (zv 0.5, mzv 0.75, ei
+    1, 2hump_ei 1.5, 3hump_ei 2 periods), and its rule lets a later shaper replace the pick
+    only for a much lower score, so visiting a firmware's list in its own order (Marlin's ends
+    with MZV and classic ZV, after the 2-period 3HEI) let a short shaper that leaves more take
+    the pick."""
     if firmware in ("none", "klipper"):
         return tuple(fw.by_name("klipper", n) for n in TRADE_OFF_SHAPERS)
-    return fw.shapers(firmware)
+    own = fw.shapers(firmware)
+    return tuple(sorted(own, key=_periods))
 
 
 def _smoothing(A, T):
@@ -299,9 +353,9 @@ def default_limit(objective, firmware: str, anchors_hz, *, printer: bool,
         tuned.append((s, pick))
     if best is None:
         return None
-    if best_name.name.lower() == "zv":
+    if _is_zv(best_name):
         for s, r in tuned:
-            if s.name.lower() != "zv" and r[1] * 1.1 < best[1]:
+            if not _is_zv(s) and r[1] * 1.1 < best[1]:
                 best, best_name = r, s
                 break
     return DefaultLimit(float(best[4]), float(best[4]), f"{best_name.firmware} {best_name.name}", float(best[0]),
