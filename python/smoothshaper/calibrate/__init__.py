@@ -29,7 +29,7 @@ from . import default_limit as _budget
 from . import firmware as _fw
 from .default_limit import DefaultLimit
 from .modes import Mode, decay_modes
-from .objectives import ModalObjective, SpectralObjective, impulses_R2, taps_R2
+from .objectives import ModalObjective, SpectralObjective, WorstOf, impulses_R2, taps_R2
 from .records import AXIS_NAMES, KINDS, Record, RecordError, load
 from .spectra import Spectrum
 from .spectral_fit import fit_modes
@@ -98,6 +98,10 @@ class AxisResult:
     default_limit : DefaultLimit or None
         Without ``max_delay`` and ``max_smoothing``: the delay budget the candidates were
         tuned within and the trade-off pick that set it (:mod:`.default_limit`).
+    datasets : tuple of int
+        A PSD table of several data sets of one axis (``freq,name1,name2,...``: a test at
+        several points): their columns. The modes are fitted on their sum; every spectral
+        figure is the worst over the data sets (:class:`.objectives.WorstOf`).
     """
     name: str
     record: Record
@@ -120,6 +124,7 @@ class AxisResult:
     figure_spectrum: Spectrum | None = field(default=None, repr=False)
     hull_hi: float | None = None
     default_limit: DefaultLimit | None = None
+    datasets: tuple = ()
 
 
 @dataclass
@@ -420,6 +425,13 @@ def identify(rec: Record, name: str, signal: str, cols, band=None,
                                  "may be biased; a test over a wider range of frequencies "
                                  "measures it better")
     res.modes = modes
+    if (rec.kind == "psd" and not isinstance(cols, np.ndarray) and len(cols) >= 2
+            and not any(rec.names[j] in AXIS_NAMES + ("xyz",) for j in cols)):
+        # a table of several data sets of one axis: scored as the established tool scores
+        # them, each on its own and the worst counts
+        res.datasets = tuple(int(j) for j in cols)
+        res.notes.append(f"{len(cols)} data sets ({', '.join(rec.names[j] for j in cols)}): "
+                         "modes fitted on their sum, each filter scored by the worst of them")
     note = _energy_note(rec, b)
     if note:
         res.notes.append(note)
@@ -452,27 +464,42 @@ def _objectives(res: AxisResult, ranking: str):
         if res.record.kind not in ("raw", "psd"):
             inb &= f >= res.band[0]
     nodes, width = _zeta_nodes(f[inb], res.modes, res.explains)
-    P = fig.P[inb]
-    if res.record.kind in ("raw", "psd") and not res.record.marked:
-        P = spectra.normalize_to_excitation(f[inb], P)
+    scale = res.record.kind in ("raw", "psd") and not res.record.marked
+    # one PSD per data set (several for a table of several data sets of one axis)
+    sets = ([res.record.signals[:, j] for j in res.datasets] if res.datasets else [fig.P])
+
+    def scored(keep):
+        out = []
+        for Q in sets:
+            Q = Q[keep]
+            out.append(spectra.normalize_to_excitation(f[keep], Q) if scale else Q)
+        return out
+
+    Ps = scored(inb)
+    P = np.sum(Ps, axis=0)
     if P.size < 3 or not float(np.max(P)) > 0.0:
         raise RecordError(res.record.path, f"no vibration in the band {res.band[0]:.4g} to "
                           f"{res.band[1]:.4g} Hz ({P.size} frequencies, none with power): "
                           "nothing to score a filter against")
-    spec_obj = SpectralObjective(f[inb], P, nodes, width=width, group_hz=0.5)
+
+    def objective(fs, parts, zetas, **kw):
+        parts = [Q for Q in parts if float(np.max(Q)) > 0.0]
+        if len(parts) == 1:
+            return SpectralObjective(fs, parts[0], zetas, **kw)
+        return WorstOf([SpectralObjective(fs, Q, zetas, **kw) for Q in parts])
+
+    spec_obj = objective(f[inb], Ps, nodes, width=width, group_hz=0.5)
     # the established tool's estimate itself (its three test dampings, every bin): what the
     # default delay budget is traded against (default_limit) and what the pick must not lose
     # on. A printer's test is scored, as that tool does, on every bin up to ESTIMATE_MAX_FREQ:
     # a real table's floor stood above a twentieth of its peak up to 200 Hz, and cut at 1.5
     # times the excited band's top the estimate had moved its trade-off pick from 63.4 to
     # 63.8 Hz and put 0.9 points on what it leaves
-    fk, Pk = f[inb], P
+    fk, Pk = f[inb], Ps
     if res.record.kind in ("raw", "psd") and not res.user_band:
         kb = (f > 0) & (f <= ESTIMATE_MAX_FREQ)
-        fk, Pk = f[kb], fig.P[kb]
-        if not res.record.marked:
-            Pk = spectra.normalize_to_excitation(fk, Pk)
-    trade = SpectralObjective(fk, Pk, TEST_DAMPINGS)
+        fk, Pk = f[kb], scored(kb)
+    trade = objective(fk, Pk, TEST_DAMPINGS)
     modal = None
     if res.modes and (res.explains or ranking == "modal"):
         modal = ModalObjective(res.modes)
