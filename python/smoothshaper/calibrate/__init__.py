@@ -483,9 +483,10 @@ def _objectives(res: AxisResult, ranking: str):
                           "nothing to score a filter against")
 
     def objective(fs, parts, zetas, **kw):
-        parts = [Q for Q in parts if float(np.max(Q)) > 0.0]
-        if len(parts) == 1:
-            return SpectralObjective(fs, parts[0], zetas, **kw)
+        loud = [Q for Q in parts if Q.size and float(np.max(Q)) > 0.0]
+        if len(loud) <= 1:               # one data set (or none with power: as before)
+            return SpectralObjective(fs, (loud or parts)[0], zetas, **kw)
+        parts = loud
         return WorstOf([SpectralObjective(fs, Q, zetas, **kw) for Q in parts])
 
     spec_obj = objective(f[inb], Ps, nodes, width=width, group_hz=0.5)
