@@ -91,6 +91,12 @@ def test_firmware_pick_as_good_as_the_established(folder, name, firmware):
     assert lim.established is not None
     assert lim.established.shaper == f"klipper {pick['name']}"
     assert lim.max_delay >= pick["duration"] - 1e-12
+    if lim.match is not None:        # the firmware's design that matches the established pick
+        assert lim.match[4] <= pick["vibrs"] + VIBRATION_PP / 100
+        # held to the established pick's estimate, or to the match where that leaves less
+        # (0.05: the ranking's tie; 1e-3: the exact filters' length, rounded to Ts)
+        assert c.vibration_established <= max(100 * lim.match[4], 100 * pick["vibrs"]) \
+            + 0.05 + 1e-3
     ours = _estimate(c, cal.reference.Ts, data)
     assert ours <= 100 * pick["vibrs"] + VIBRATION_PP, (c.name, ours, 100 * pick["vibrs"])
 
@@ -103,6 +109,7 @@ def test_firmware_trade_off_visits_shapers_shortest_first():
         assert order == sorted(order)
     zvs = [s.name for s in dl.trade_off_shapers("marlin") if dl._is_zv(s)]
     assert zvs == ["ZV", "M593 ZV"]
+    assert not any(dl._is_zv(s) for s in dl.trade_off_shapers("rrf"))
     assert [dl._periods(s) for s in dl.trade_off_shapers("klipper")] == pytest.approx(
         [0.5, 0.75, 1.0, 1.5, 2.0], abs=0.02)
 

@@ -519,9 +519,8 @@ def _default_limit(res: AxisResult, objs, anchors, firmware) -> DefaultLimit | N
     spec = objs["spectrum"]
     top = float(spec.f.max()) if getattr(spec, "f", None) is not None and spec.f.size else 0.0
     hz = [a / (2 * math.pi) for a in anchors]
-    own = _budget.default_limit(obj, firmware, hz, printer=printer, top_hz=top)
-    if own is None or firmware in ("none", "klipper") or objs.get("trade-off") is None:
-        return own
+    if firmware in ("none", "klipper") or objs.get("trade-off") is None:
+        return _budget.default_limit(obj, firmware, hz, printer=printer, top_hz=top)
     # another firmware: the established tool's own pick on this spectrum too. The firmware's
     # trade-off over its own shapers can pick a shorter one that leaves more (a ZV where the
     # established tool picks an MZV); its shapers get at least the established pick's length,
@@ -530,7 +529,11 @@ def _default_limit(res: AxisResult, objs, anchors, firmware) -> DefaultLimit | N
     ref = _budget.default_limit(obj, "klipper", hz, printer=printer, top_hz=top)
     if ref is None:
         return own
-    return replace(own, max_delay=max(own.max_delay, ref.max_delay), established=ref)
+    # and where none of its designs within both lengths leaves as little as the established
+    # pick (a firmware's time grid, or a definition that differs from the established one),
+    # the budget reaches the shortest that does
+    return _budget.default_limit(obj, firmware, hz, printer=printer, top_hz=top,
+                                 established=ref)
 
 
 def _established(c: Candidate, trade, Ts: float) -> float:
@@ -573,6 +576,18 @@ def _hold_to_trade_off(res: AxisResult, objs, rank, reference, delay, firmware) 
     res.candidates.append(pick)
     for c in res.candidates:
         c.vibration_established = _established(c, trade, reference.Ts)
+    if limit.match is not None:
+        # the firmware's design that leaves no more than the established pick: a candidate,
+        # so one always reaches it where any design of this firmware does
+        ms, mf, mz, _, _ = limit.match
+        mA, mt = ms.impulses(mf, mz)
+        near = evaluate(f"{ms.firmware} {ms.name} (as the established pick)", [], objs, rank,
+                        reference, delay, None, impulses=(np.asarray(mA, float),
+                                                          np.asarray(mt, float)),
+                        firmware=(ms, mf, mz))
+        near.design = ((mf, mz),)
+        near.vibration_established = _established(near, trade, reference.Ts)
+        res.candidates.append(near)
     cap = pick.vibration_established
     whose = "its trade-off pick's"
     ref = limit.established
