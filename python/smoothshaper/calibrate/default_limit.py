@@ -96,6 +96,14 @@ class DefaultLimit:
         Its measured-spectrum figure at the test dampings [%].
     smoothing : float
         Its smoothing at :data:`ACCEL`, :data:`SCV` [mm].
+    established : DefaultLimit or None
+        A firmware other than Klipper: the established tool's own trade-off pick over
+        Klipper's shapers on the same spectrum (the budget covers its length).
+    match : tuple or None
+        With ``established``: ``(FirmwareShaper, freq [Hz], damping, duration [s], vibration
+        fraction)`` of the firmware's design leaving at most the established pick's estimate +
+        ``TIE_PP`` (the least within both picks' lengths, else the shortest, which the budget
+        then reaches); None when no design of the firmware does.
     """
     max_delay: float
     duration: float
@@ -103,12 +111,7 @@ class DefaultLimit:
     freq: float
     vibration: float
     smoothing: float
-    #: With a firmware other than Klipper: the established tool's own trade-off pick (over
-    #: Klipper's shapers) on the same spectrum, whose length the budget also covers.
     established: "DefaultLimit | None" = None
-    #: With ``established``: the firmware's design (shaper, freq, damping, duration, vibration
-    #: fraction) that leaves no more than the established pick by its estimate, the least
-    #: within the budget or else the shortest (the budget then reaches it); None if none does.
     match: tuple | None = None
 
     def note(self) -> str:
