@@ -11,8 +11,7 @@ tool's trade-off (Klipper ``klippy/extras/shaper_calibrate.py``, ``fit_shaper`` 
 applied here, on this calibration's own measured-spectrum figure, to fix the delay budget:
 
 * Candidates: the target firmware's shapers (Klipper's five it calibrates, zv, mzv, ei,
-  2hump_ei and 3hump_ei, for ``firmware="none"`` and ``"klipper"``; another firmware's
-  shapers shortest first, :func:`trade_off_shapers`), each designed for a
+  2hump_ei and 3hump_ei, for ``firmware="none"`` and ``"klipper"``), each designed for a
   damping ratio of 0.1 and scanned every 0.2 Hz from its lowest frequency up to 150 Hz (or
   the top of the scored spectrum, if higher). The lowest frequency of a resonance test's
   shaper is Klipper's own minimum (``shaper_defs.py``, "chosen to have projected max_accel ~=
@@ -36,8 +35,8 @@ applied here, on this calibration's own measured-spectrum figure, to fix the del
 
 With a firmware other than Klipper, the established tool's own trade-off (over Klipper's
 shapers) is also taken on the same spectrum, and the budget is the longer of the two picks'
-durations (:attr:`DefaultLimit.established`): the firmware's shapers, visited shortest first
-as the established tool visits its own, can still trade to a shorter one that leaves more.
+durations (:attr:`DefaultLimit.established`): a trade-off over the firmware's shapers can pick
+a shorter one that leaves more than the established pick.
 
 The budget is the picked shaper's duration (its last impulse). Every candidate family then
 competes within it for the least remaining vibration, so the recommendation is never longer
@@ -147,42 +146,26 @@ class DefaultLimit:
         return out
 
 
-#: The frequency [Hz] at which a firmware's shapers are ordered by their length in periods.
-ORDER_FREQ = 50.0
-
-
-def _periods(shaper) -> float:
-    """Length of ``shaper`` in undamped periods at :data:`ORDER_FREQ` (designed at
-    :data:`DESIGN_DAMPING`): ZV 0.5, MZV 0.75, ZVD and EI 1, ZVDD and 2-hump EI 1.5, ..."""
-    lo_z, hi_z = shaper.damping_range()
-    f = min(max(ORDER_FREQ, shaper.min_freq), shaper.max_freq)
-    _, t = shaper.impulses(f, min(max(DESIGN_DAMPING, lo_z), hi_z))
-    return float(t[-1]) * f
+#: The frequency [Hz] at which a shaper's form is read (:func:`_is_zv`).
+FORM_FREQ = 50.0
 
 
 def _is_zv(shaper) -> bool:
     """A shaper of the ZV form (two impulses), whatever the firmware calls it (Marlin has two:
     FT Motion's ``ZV`` and classic ``M593 ZV``)."""
     lo_z, hi_z = shaper.damping_range()
-    f = min(max(ORDER_FREQ, shaper.min_freq), shaper.max_freq)
+    f = min(max(FORM_FREQ, shaper.min_freq), shaper.max_freq)
     A, _ = shaper.impulses(f, min(max(DESIGN_DAMPING, lo_z), hi_z))
     return A.size == 2
 
 
 def trade_off_shapers(firmware: str) -> tuple:
-    """The firmware shapers the trade-off is taken over, in the order it visits them.
-
-    Klipper's five it calibrates, in its order, for ``"none"`` and ``"klipper"``. Another
-    firmware's shapers, shortest first (their length in periods, ties in the firmware's own
-    order): the established order runs from the shortest to the longest (zv 0.5, mzv 0.75, ei
-    1, 2hump_ei 1.5, 3hump_ei 2 periods), and its rule lets a later shaper replace the pick
-    only for a much lower score, so visiting a firmware's list in its own order (Marlin's ends
-    with MZV and classic ZV, after the 2-period 3HEI) let a short shaper that leaves more take
-    the pick."""
+    """The firmware shapers the trade-off is taken over, in the order it visits them: Klipper's
+    five it calibrates, in its order, for ``"none"`` and ``"klipper"``; another firmware's
+    shapers in that firmware's own order (its list of shapers)."""
     if firmware in ("none", "klipper"):
         return tuple(fw.by_name("klipper", n) for n in TRADE_OFF_SHAPERS)
-    own = fw.shapers(firmware)
-    return tuple(sorted(own, key=_periods))
+    return fw.shapers(firmware)
 
 
 def _smoothing(A, T):
