@@ -1202,6 +1202,7 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
     size_t i, j, off = 1, at = 0;
     sms_status st;
     int rebuilt = 0;   /* 1: a stage was built again here (its lag may differ) */
+    int kept[SS_MAX_STAGES];   /* stage i was already in its saved configuration */
     if (n != fmu_model_state_count(m))
         return snprintf(msg, len, "it holds %lu values, the stages need %lu", (unsigned long)n,
                         (unsigned long)fmu_model_state_count(m)), 1;
@@ -1217,6 +1218,7 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
             && sms_tunable_state_count(&m->tunables[i]) <= m->region[i]
             && sms_tunable_check_state(&m->tunables[i], part,
                                        sms_tunable_state_count(&m->tunables[i])) == SMS_OK) {
+            kept[i] = 1;
             off += m->region[i];
             at += slots_per_stage(m) * m->slot_cells[i];
             continue;
@@ -1230,6 +1232,7 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
         if (st != SMS_OK)
             return snprintf(msg, len, "stage %lu's state is not a retunable stage's",
                             (unsigned long)i), 1;
+        kept[i] = 0;
         rebuilt = 1;
         m->input_max_stale = 1;   /* the stage is built again */
         if (sms_tunable_init(&m->tunables[i], switching ? &old : &active, m->Ts, m->slot_cells[i],
@@ -1298,8 +1301,15 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
     m->y = src[0];
     m->any_pending = 0;
     for (i = 0; i < m->n_active; ++i) {   /* parameters set since, not yet applied */
-        sms_stage_config want, now = sms_tunable_config(&m->tunables[i]);
+        sms_stage_config want, now;
         char why[FMU_MESSAGE_LEN];
+        /* a stage kept in its configuration with nothing pending: the model's parameters
+         * (the instance's own, copied, or the state's, just built) are the ones that
+         * configuration was built or last retuned from, so none awaits a retune (what the
+         * comparison below finds, without designing two configs) */
+        if (kept[i] && !m->pending[i])
+            continue;
+        now = sms_tunable_config(&m->tunables[i]);
         /* the parameters of the configuration the stage runs (a valid one): no check, no
          * design; others are checked as a retune would be */
         if (stage_fields(m, m->used[i], &want, why, sizeof why) == 0 && same_config(&want, &now))
