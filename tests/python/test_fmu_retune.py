@@ -486,7 +486,7 @@ def test_a_loaded_retunable_state_is_held_to_its_configurations_range(ss_dir):
         fmu.doStep(i * TS, TS)
     blob = bytes(fmu.serializeFMUstate(fmu.getFMUstate()))
     fmu.setFMUstate(fmu.deSerializeFMUstate(blob))             # its own state loads
-    last = struct.pack("<d", -bound)                             # the last input ticked
+    last = struct.pack("<d", bound)                              # the last input ticked (i = 49)
     at = [o for o in range(0, len(blob) - 8, 8) if blob[o:o + 8] == last]   # doubles: 8-aligned
     dynamic = [o for o in at if struct.unpack_from("<d", blob, o - 8 * 9)[0]
                == fmu.getReal([fmu.vr["y"]])[0]]              # y opens the dynamic part
