@@ -5,7 +5,9 @@
  * after fmi2OK and a saved state that did not load) has a range below SMS_INPUT_MAX. An input
  * beyond it is refused at fmi2SetReal and at fmi2ExitInitializationMode, naming u; inputs up to
  * it, swinging between the two ends, give finite outputs after every step, and every FMU state
- * saved on the way loads again (also through serialisation).
+ * saved on the way loads again (also through serialisation). And the held-input bound of
+ * retunable stages (held_bound()): an input leaves it once the stages' memory has forgotten it,
+ * a rest never does, nor an input through a notch.
  */
 #include <math.h>
 #include <stdarg.h>
