@@ -192,6 +192,12 @@ static void refusals(void)
  * min(L_A, L_B), stage 1 sees 1 + 2 (1 + 2 G_B + 2 G_A) during the switch (G_A = 1, paper
  * timing); nothing retuned gives L_A / 3; once the switch is made sms_tunable_chain_input_max()
  * equals the bound (the switch has its gains), and after the switch it is at least the bound. */
+static double min3(double a, double b, double c)
+{
+    const double ab = a < b ? a : b;
+    return ab < c ? ab : c;
+}
+
 static void tunable_retune_range(void)
 {
     sms_stage_config c[2], target = sms_stage_config_default(SMS_DAMPED_HARMONIC);
@@ -200,7 +206,7 @@ static void tunable_retune_range(void)
     sms_memory_cell *mem;
     size_t slot_cells[2], cells = 0, i;
     int retuned[2] = { 1, 0 }, none[2] = { 0, 0 };
-    double lim[2] = { 0.0, 0.0 }, gain[2] = { 0.0, 0.0 }, x, rect_limit, own;
+    double lim[2] = { 0.0, 0.0 }, gain[2] = { 0.0, 0.0 }, x, first_limit, rect_limit, own;
     for (i = 0; i < 2; ++i) {
         c[i] = sms_stage_config_default(SMS_RECTANGULAR);
         c[i].T = 20.0 * Ts;
@@ -229,15 +235,18 @@ static void tunable_retune_range(void)
     CHECK_STATUS(sms_tunable_chain_init(&chain, stages, c, slot_cells, 2, Ts, mem, cells),
                  SMS_OK);
     CHECK_STATUS(sms_stage_config_range(&target, Ts, &lim[0], &gain[0]), SMS_OK);
-    rect_limit = sms_tunable_input_max(&stages[1]);
+    /* the per-stage limits before the cap: the bound caps once, at its end */
+    first_limit = sms_tunable_input_limit(&stages[0]);
+    rect_limit = sms_tunable_input_limit(&stages[1]);
     own = sms_tunable_chain_input_max(&chain);
     x = sms_tunable_chain_retune_input_max(&chain, none, lim, gain);
-    CHECK(x <= own && x == rect_limit / 3.0);
+    CHECK(x <= own && x == min3(SMS_INPUT_MAX, first_limit, rect_limit / 3.0));
     CHECK(lim[0] < rect_limit && lim[0] < SMS_INPUT_MAX && gain[0] >= 1.0);
     x = sms_tunable_chain_retune_input_max(&chain, retuned, lim, gain);
     {
         const double stage1 = rect_limit / (1.0 + 2.0 * (1.0 + 2.0 * gain[0] + 2.0 * 1.0));
-        const double want = lim[0] < stage1 ? lim[0] : stage1;
+        const double want = min3(SMS_INPUT_MAX, lim[0] < first_limit ? lim[0] : first_limit,
+                                 stage1);
         CHECK(x == want && x < own);
     }
     CHECK_STATUS(sms_tunable_chain_retune(&chain, 0, &target), SMS_OK);
