@@ -2,6 +2,8 @@
 /* Kinematic design on a sample grid (docs/sampled-limits.md): whole-sample lengths that keep
  * every bound at every sample, and the taps of a stage tuned to a mode as the grid samples
  * it. Design-time code: libm is allowed here. */
+#include <string.h>
+
 #include "filter/smoother_design.h"
 #include "trajectory/kinematic_parts.h"
 
@@ -100,6 +102,92 @@ static int grid_feasible(const sms_kin_plan *p, const double *rhs, const double 
     return logprod - logtap >= rhs[n - 1];
 }
 
+/* The neighbourhood search of sms_kin_on_grid(): stage i takes base[i] - 1, base[i] or
+ * base[i] + 1 samples, chosen depth first from stage 0, so that a level test that fails on
+ * the first i + 1 stages (which it alone depends on), a stage shorter than the fewest
+ * samples the stages after it can have, or a partial total that no completion keeps within
+ * the best, drops every completion at once. Each completion that is left gets the full test
+ * of grid_feasible() (the same sums in the same order), and the rule for keeping it (shorter,
+ * or as short with the first differing stage longer) orders all chains strictly, so the
+ * chain kept is the one the plain loop over all 3^m chains keeps. */
+typedef struct grid_hood {
+    const sms_kin_plan *p;
+    const double *rhs;
+    size_t n, m;
+    sms_kind last_kind;
+    int tuned;
+    double tap_last, supp_last, best;
+    double *N;
+    double base[SMS_KINEMATIC_MAX_ORDER], cand[SMS_KINEMATIC_MAX_ORDER];
+    double logc[SMS_KINEMATIC_MAX_ORDER];
+    /* rest_min[i]: the fewest samples stages i .. m-1 can have together; need[i]: the
+     * fewest the stages after i take in the structure (a tuned last stage's support and the
+     * shortest candidates of stages i+1 .. m-1) */
+    double rest_min[SMS_KINEMATIC_MAX_ORDER + 1], need[SMS_KINEMATIC_MAX_ORDER];
+    double logv[SMS_KINEMATIC_MAX_ORDER][3]; /* log of base - 1, base, base + 1 ... */
+    unsigned char have[SMS_KINEMATIC_MAX_ORDER][3]; /* ... once computed */
+} grid_hood;
+
+static double hood_log(grid_hood *g, size_t i, unsigned d)
+{
+    if (!g->have[i][d]) {
+        g->logv[i][d] = log(g->cand[i]);
+        g->have[i][d] = 1u;
+    }
+    return g->logv[i][d];
+}
+
+/* A complete candidate of total `sum`: the rest of grid_feasible() and the rule for
+ * keeping it. */
+static void hood_leaf(grid_hood *g, double sum)
+{
+    size_t m = g->m, i;
+    const double *cand = g->cand;
+    int better;
+    if (!grid_feasible(g->p, g->rhs, cand, g->logc, g->last_kind, g->tuned, g->tap_last,
+                       g->supp_last))
+        return;
+    better = sum < g->best;
+    for (i = 0; i < m && !better && sum == g->best; ++i) {
+        if (cand[i] != g->N[i]) {
+            better = cand[i] > g->N[i];
+            break;
+        }
+    }
+    if (better) {
+        g->best = sum;
+        for (i = 0; i < m; ++i)
+            g->N[i] = cand[i];
+    }
+}
+
+/* Stage i's three candidates after stages 0 .. i-1 (total `sum`, log product `logprod` of
+ * those below the top level). */
+static void hood_visit(grid_hood *g, size_t i, double sum, double logprod)
+{
+    unsigned d;
+    for (d = 0; d < 3u; ++d) {
+        double c = g->base[i] + (double)d - 1.0, s = sum + c;
+        if (c < 1.0 || s + g->rest_min[i + 1] > g->best || c < g->need[i])
+            continue;
+        g->cand[i] = c;
+        if (i + 1 < g->n) { /* level i: its test needs stages 0 .. i only */
+            double lp;
+            g->logc[i] = hood_log(g, i, d);
+            lp = logprod + g->logc[i];
+            if (lp < g->rhs[i])
+                continue;
+            if (i + 1 < g->m)
+                hood_visit(g, i + 1, s, lp);
+            else
+                hood_leaf(g, s);
+        } else { /* the free last stage: the top level, in the full test */
+            g->logc[i] = hood_log(g, i, d);
+            hood_leaf(g, s);
+        }
+    }
+}
+
 /* Whole-sample lengths: the shortest total among N[i] = ceil(T[i]/Ts) + {-1, 0, 1} that
  * meets grid_feasible() (ties: longer early stages), with the greedy rounding (each N[i]
  * the larger of its ceiling and the samples after it, which is always feasible) as the
@@ -108,16 +196,17 @@ sms_status sms_kin_on_grid(const sms_kin_plan *p, double h, const double *T, sms
                            int tuned, double supp_last, const sms_kin_tuned *form, double Ts,
                            double *N)
 {
-    size_t n = p->n, m = tuned ? n - 1 : n, i, combos = 1, c;
+    size_t n = p->n, m = tuned ? n - 1 : n, i, c;
     double base[SMS_KINEMATIC_MAX_ORDER], cand[SMS_KINEMATIC_MAX_ORDER], below, total, best;
     double logh = log(h), logTs = log(Ts), tap_last = 0.0, rhs[SMS_KINEMATIC_MAX_ORDER];
-    double logcand[SMS_KINEMATIC_MAX_ORDER] = {0.0}, logbase[SMS_KINEMATIC_MAX_ORDER][3];
-    size_t pick[SMS_KINEMATIC_MAX_ORDER];
+    grid_hood g;
     for (i = 0; i < n; ++i)
         rhs[i] = logh - log(p->L[i]) - (double)(i + 1) * logTs - 1e-12;
     for (i = 0; i < n; ++i)
         if (!(T[i] / Ts <= 4503599627370496.0)) /* 2^52 samples */
             return SMS_ERR_TOO_LONG;
+    for (i = 0; i < m; ++i)
+        base[i] = sms_kin_grid_ceil(T[i] / Ts);
     if (tuned)
         tap_last = p->rho_fixed * Ts; /* >= the largest tap: the density the design used */
     /* greedy */
@@ -126,7 +215,7 @@ sms_status sms_kin_on_grid(const sms_kin_plan *p, double h, const double *T, sms
         below = supp_last;
     } else {
         double nu = T[n - 1] / Ts;
-        N[n - 1] = sms_kin_grid_ceil(nu);
+        N[n - 1] = base[n - 1];
         if (last_kind == SMS_HARMONIC) {
             if (N[n - 1] < 2.0)
                 N[n - 1] = 2.0;
@@ -137,7 +226,7 @@ sms_status sms_kin_on_grid(const sms_kin_plan *p, double h, const double *T, sms
     }
     total = tuned ? 0.0 : N[n - 1];
     for (i = n - 1; i-- > 0;) {
-        double Ni = sms_kin_grid_ceil(T[i] / Ts);
+        double Ni = base[i];
         if (Ni < below)
             Ni = below;
         N[i] = Ni;
@@ -148,47 +237,28 @@ sms_status sms_kin_on_grid(const sms_kin_plan *p, double h, const double *T, sms
         return SMS_ERR_TOO_LONG;
     best = total;
     /* neighbourhood search */
-    for (i = 0; i < m; ++i) {
-        int d;
-        base[i] = sms_kin_grid_ceil(T[i] / Ts);
-        for (d = 0; d < 3; ++d) /* log of base - 1, base, base + 1, when first needed */
-            logbase[i][d] = -1.0;
-        combos *= 3u;
-    }
-    cand[n - 1] = 0.0;
-    for (c = 0; c < combos; ++c) {
-        size_t code = c;
-        double sum = 0.0;
-        int ok = 1, better;
-        for (i = 0; i < m; ++i) {
-            cand[i] = base[i] + (double)(code % 3u) - 1.0;
-            pick[i] = code % 3u;
-            code /= 3u;
-            if (cand[i] < 1.0)
-                ok = 0;
-            sum += cand[i];
+    if (m >= 1u) {
+        g.p = p;
+        g.rhs = rhs;
+        g.n = n;
+        g.m = m;
+        g.last_kind = last_kind;
+        g.tuned = tuned;
+        g.tap_last = tap_last;
+        g.supp_last = supp_last;
+        g.best = best;
+        g.N = N;
+        g.rest_min[m] = 0.0;
+        g.cand[n - 1] = 0.0;
+        memset(g.have, 0, sizeof g.have);
+        for (i = m; i-- > 0;) {
+            double low = base[i] - 1.0 < 1.0 ? 1.0 : base[i] - 1.0;
+            g.base[i] = base[i];
+            g.rest_min[i] = g.rest_min[i + 1] + low;
+            g.need[i] = (tuned ? supp_last : 0.0) + g.rest_min[i + 1];
         }
-        if (!ok || sum > best)
-            continue;
-        for (i = 0; i < m; ++i) {
-            if (logbase[i][pick[i]] < 0.0) /* log N >= 0 for N >= 1: -1 marks "not yet" */
-                logbase[i][pick[i]] = log(cand[i]);
-            logcand[i] = logbase[i][pick[i]];
-        }
-        if (!grid_feasible(p, rhs, cand, logcand, last_kind, tuned, tap_last, supp_last))
-            continue;
-        better = sum < best;
-        for (i = 0; i < m && !better && sum == best; ++i) {
-            if (cand[i] != N[i]) {
-                better = cand[i] > N[i];
-                break;
-            }
-        }
-        if (better) {
-            best = sum;
-            for (i = 0; i < m; ++i)
-                N[i] = cand[i];
-        }
+        hood_visit(&g, 0u, 0.0, 0.0);
+        best = g.best;
     }
     /* Tight stages (each as long as the stages after it) double the rounding of the stages
      * below them, so with five or more bounds the neighbourhood can leave the chain many
