@@ -6,7 +6,8 @@
  * Parameters: Ts, axes (1..8), sync (0 phase-synchronised, 1 independent), align (1: every
  * axis padded to the common lag of the stages; the output lag reports it), per-axis limits,
  * the rest position q0[i] and up to MA_MAX_STAGES vibration stages per axis
- * (stage[k].kind[i], designed for the mode stage[k].wn[i], stage[k].zeta[i]). At
+ * (stage[k].kind[i], designed for the mode stage[k].wn[i], stage[k].zeta[i]), and per-axis
+ * position limits qmin[i], qmax[i] (both 0: none; a target outside fails the step). At
  * fmi2ExitInitializationMode the generator rests at q0 (so a target that differs from q0 at
  * t = 0 moves from the first tick on); axes in use with different stages get a warning (they
  * bend straight moves). The stage structs and delay lines live in the glue's block.
@@ -24,6 +25,7 @@ typedef struct ma_model {
     double field[MA_FIELD_COUNT][MA_MAX_AXES]; /* target, q, v, a, j, vmax, amax, jmax, q0 */
     int kind[MA_MAX_STAGES][MA_MAX_AXES];      /* stage[k].kind[i] */
     double wn[MA_MAX_STAGES][MA_MAX_AXES], zeta[MA_MAX_STAGES][MA_MAX_AXES];
+    double qlim[2][MA_MAX_AXES];               /* qmin[i], qmax[i]; both 0: none */
     double Ts;
     int axes, sync, align;
     int built;
@@ -73,6 +75,18 @@ static int axis_var(fmu_vr vr, int *field, int *axis)
     return 1;
 }
 
+/* Position limit (0 qmin, 1 qmax) and axis of a value reference; 0 if it is not one. */
+static int qlim_var(fmu_vr vr, int *which, int *axis)
+{
+    if (vr < MA_QLIM_BASE || vr >= MA_QLIM_BASE + 200u || vr % 100 >= MA_MAX_AXES)
+        return 0;
+    *which = (int)((vr - MA_QLIM_BASE) / 100);
+    *axis = (int)(vr % 100);
+    return 1;
+}
+
+static const char *const qlim_names[2] = {"qmin", "qmax"};
+
 size_t fmu_model_size(void) { return sizeof(ma_model); }
 const char *fmu_model_identifier(void) { return FMU_MODEL_IDENTIFIER; }
 const char *fmu_model_guid(void) { return FMU_MODEL_GUID; }
@@ -82,6 +96,7 @@ void fmu_model_defaults(void *model)
     ma_model *m = (ma_model *)model;   /* the start values of modelDescription.xml */
     int i;
     memset(m->field, 0, sizeof m->field);
+    memset(m->qlim, 0, sizeof m->qlim);
     memset(m->warned, 0, sizeof m->warned);
     for (i = 0; i < MA_MAX_AXES; ++i) {
         int k;
@@ -111,7 +126,7 @@ fmu_var_class fmu_model_class(fmu_type type, fmu_vr vr)
     if (type == FMU_INTEGER)
         return vr == MA_VR_AXES || vr == MA_VR_SYNC || vr == MA_VR_ALIGN ? FMU_VAR_PARAMETER
                                                                          : FMU_VAR_UNKNOWN;
-    if (vr == MA_VR_TS)
+    if (vr == MA_VR_TS || qlim_var(vr, &f, &i))
         return FMU_VAR_PARAMETER;
     if (vr == MA_VR_LAG)
         return FMU_VAR_OUTPUT;
@@ -131,6 +146,8 @@ void fmu_model_name(fmu_type type, fmu_vr vr, char *buf, size_t len)
         snprintf(buf, len, "%s", vr == MA_VR_TS ? "Ts" : "lag");
     else if (type == FMU_REAL && axis_var(vr, &f, &i))
         snprintf(buf, len, "%s[%d]", field_names[f], i);
+    else if (type == FMU_REAL && qlim_var(vr, &f, &i))
+        snprintf(buf, len, "%s[%d]", qlim_names[f], i);
     else
         snprintf(buf, len, "vr %lu", (unsigned long)vr);
 }
@@ -157,6 +174,11 @@ size_t fmu_model_settable(fmu_type type, fmu_vr *out, size_t cap)
                 ++n;
             }
         }
+        for (f = 0; f < 2; ++f)
+            for (i = 0; i < MA_MAX_AXES; ++i) {
+                if (n < cap) out[n] = (fmu_vr)(MA_QLIM_BASE + 100 * f + i);
+                ++n;
+            }
     }
     for (k = 0; k < MA_MAX_STAGES; ++k)
         for (f = 0; f < MA_STAGE_STRIDE; ++f) {
@@ -181,6 +203,8 @@ double fmu_model_get_real(const void *model, fmu_vr vr)
         return m->built ? sms_multi_generator_lag(&m->gen) : 0.0;
     if (stage_var(vr, &k, &f, &i))
         return f == MA_STAGE_WN ? m->wn[k][i] : m->zeta[k][i];
+    if (qlim_var(vr, &f, &i))
+        return m->qlim[f][i];
     return axis_var(vr, &f, &i) ? m->field[f][i] : 0.0;
 }
 
@@ -209,6 +233,8 @@ void fmu_model_set_real(void *model, fmu_vr vr, double value)
         m->Ts = value;
     else if (stage_var(vr, &k, &f, &i))
         *(f == MA_STAGE_WN ? &m->wn[k][i] : &m->zeta[k][i]) = value;
+    else if (qlim_var(vr, &f, &i))
+        m->qlim[f][i] = value;
     else if (axis_var(vr, &f, &i))
         m->field[f][i] = value;
 }
@@ -392,9 +418,18 @@ static int configure(const ma_model *m, sms_multi_generator_config *c, ma_stages
                                 m->field[f][i]), 1;
     for (i = 0; i < m->axes; ++i) {
         sms_real q0 = (sms_real)m->field[F_Q0][i]; /* finite in double, maybe not in float */
+        const double lo = m->qlim[0][i], hi = m->qlim[1][i];
         if (q0 - q0 != 0)
             return snprintf(msg, len, "q0[%d] = %.17g: the rest position must be finite in "
                             "the signal type", i, m->field[F_Q0][i]), 1;
+        if (lo == 0.0 && hi == 0.0)
+            continue;
+        if (!isfinite(lo) || !isfinite(hi) || !((sms_real)lo < (sms_real)hi))
+            return snprintf(msg, len, "qmin[%d] = %.17g, qmax[%d] = %.17g: position limits "
+                            "must be finite with qmin < qmax (both 0: none)", i, lo, i, hi), 1;
+        if (!(m->field[F_Q0][i] >= lo && m->field[F_Q0][i] <= hi))
+            return snprintf(msg, len, "q0[%d] = %.17g is outside [qmin[%d], qmax[%d]] = "
+                            "[%.17g, %.17g]", i, m->field[F_Q0][i], i, i, lo, hi), 1;
     }
     if (stage_configs(m, s, msg, len) != 0)
         return 1;
@@ -408,6 +443,8 @@ static int configure(const ma_model *m, sms_multi_generator_config *c, ma_stages
         c->jmax[i] = m->field[F_JMAX][i];
         c->stages[i] = s->n[i] > 0 ? s->config[i] : NULL;
         c->n_stages[i] = s->n[i];
+        c->qmin[i] = m->qlim[0][i]; /* both 0: no position limits */
+        c->qmax[i] = m->qlim[1][i];
     }
     st = sms_multi_generator_memory(c, m->Ts, n_structs, n_cells, &bad); /* the core's checks */
     if (st == SMS_ERR_LIMIT) {
@@ -534,12 +571,19 @@ int fmu_model_tick(void *model)
 /* The generator's closed form under held targets (sms_multi_generator_hold()), the ticks to
  * rounding; it returns 0 (the glue then ticks) only for a notch that does not decay, which
  * fmi2ExitInitializationMode refuses through the hold limit. */
-/* Every input is valid alone (the glue checks its range when it is set). */
+/* Every input is valid alone (the glue checks its range when it is set); with position limits
+ * a target outside its axis's [qmin, qmax] fails the step (the generator would keep the
+ * previous one without a word). */
 int fmu_model_check_inputs(const void *model, char *msg, size_t len)
 {
-    (void)model;
-    (void)msg;
-    (void)len;
+    const ma_model *m = (const ma_model *)model;
+    int i;
+    for (i = 0; i < m->axes; ++i) {
+        const double x = m->field[F_TARGET][i], lo = m->qlim[0][i], hi = m->qlim[1][i];
+        if ((lo != 0.0 || hi != 0.0) && !(x >= lo && x <= hi))
+            return snprintf(msg, len, "target[%d] = %.17g is outside [qmin[%d], qmax[%d]] = "
+                            "[%.17g, %.17g]", i, x, i, i, lo, hi), 1;
+    }
     return 0;
 }
 

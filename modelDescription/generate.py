@@ -374,6 +374,13 @@ MA_STAGE_FIELDS = (  # (name, type, unit, start, description, choices, min, max)
      "[0, 1)", "", 0.0, 1.0),
 )
 MA_STAGE_STRIDE = len(MA_STAGE_FIELDS)
+# Position limits per axis (both 0: none): qmin[i] at MA_QLIM_BASE + i, qmax[i] 100 above.
+MA_QLIM_BASE = 2000
+MA_QLIM_FIELDS = (
+    ("qmin", "lower position limit of {axis} (P); with qmax[i], every sample's q[i] stays in "
+     "[qmin[i], qmax[i]] (targets outside fail the step); both 0: none"),
+    ("qmax", "upper position limit of {axis} (P), above qmin[i]; both 0: none"),
+)
 CHOICES["Sync"] = [("phase", 0, "one common profile: straight lines, every axis starts and "
                     "arrives on the same sample, time-optimal under every axis's limits"),
                    ("independent", 1, "each axis time-optimal on its own")]
@@ -413,7 +420,11 @@ def multi_axis_generator() -> tuple[list[Var], list[str], str]:
             vs.append(Var(f"stage[{k}].{name}", MA_STAGE_BASE + 100 * (MA_STAGE_STRIDE * k + g),
                           typ, "parameter", desc.replace("{k}", str(k)), unit, start, choices,
                           "fixed", lo, hi, dims=MA_MAX_AXES))
+    for g, (name, desc) in enumerate(MA_QLIM_FIELDS):
+        vs.append(Var(name, MA_QLIM_BASE + 100 * g, "Real", "parameter", desc, "", 0.0,
+                      variability="fixed", dims=MA_MAX_AXES))
     header = [f"#define MA_MAX_AXES {MA_MAX_AXES}", f"#define MA_MAX_STAGES {MA_MAX_STAGES}",
+              f"#define MA_QLIM_BASE {MA_QLIM_BASE}",
               f"#define MA_STAGE_BASE {MA_STAGE_BASE}",
               f"#define MA_STAGE_STRIDE {MA_STAGE_STRIDE}"]
     header += [f"#define MA_STAGE_{name.upper()} {g}"

@@ -203,3 +203,29 @@ def representable(name: str, values, what: str) -> np.ndarray:
         raise ParameterError(name, f"{name}: {what} at (flat) index {bad[0]} is beyond the "
                              "range of a float for these arguments (it came out NaN or inf)")
     return values
+
+
+def position_limits(qmin, qmax, profile: str, real, precision: str):
+    """(qmin, qmax) as the C config takes them: (0, 0) for none (both None); else both
+    finite, qmin < qmax (also in the build's floats), each at most the largest float over 16,
+    and a linear-ramp profile; ``real`` is the build's NumPy float type."""
+    if qmin is None and qmax is None:
+        return 0.0, 0.0
+    for name, value, other in (("qmin", qmin, "qmax"), ("qmax", qmax, "qmin")):
+        if value is None:
+            raise ParameterError(name, f"{name} must be given with {other} (position limits "
+                                       f"[qmin, qmax]; both None: none)")
+    lo, hi = finite("qmin", qmin), finite("qmax", qmax)
+    big = float(np.finfo(real).max) / 16
+    for name, value in (("qmin", lo), ("qmax", hi)):
+        if not abs(value) <= big:
+            raise ParameterError(name, f"{name}={value!r}: its magnitude must be at most "
+                                       f"{big:.6g}, the largest {precision} over 16")
+    if not real(lo) < real(hi):
+        raise ParameterError("qmax", f"qmax={qmax!r} must be above qmin={qmin!r} (in "
+                                     f"{precision})")
+    if profile == "trigonometric":
+        raise ParameterError("qmin", f"qmin={qmin!r}, qmax={qmax!r}: position limits take a "
+                                     "linear-ramp profile (polynomial or damped), not the "
+                                     "trigonometric one")
+    return lo, hi

@@ -40,7 +40,36 @@ _MAX_MOVE_VALUES = 2 ** 27
 
 # The fields of a saved state's identity after the common head (multi_generator.h).
 _MULTI_IDENTITY_FIELDS = ("axes", "sync") + tuple(
-    f"{name}[{i}]" for i in range(_MAX_AXES) for name in ("vmax", "amax", "jmax", "n_stages"))
+    f"{name}[{i}]" for i in range(_MAX_AXES)
+    for name in ("vmax", "amax", "jmax", "n_stages", "qmin", "qmax"))
+
+
+def _axis_position_limits(qmin, qmax, axes: int, precision: str) -> list:
+    """Per axis (qmin, qmax) as the C config takes them ((0, 0): none), from None, or a
+    sequence of one value (or None) per axis for each; errors name ``qmin[i]``/``qmax[i]``."""
+    from ._checks import position_limits
+    real = _real_dtype(precision)
+    if qmin is None and qmax is None:
+        return [(0.0, 0.0)] * axes
+    seqs = {}
+    for name, x in (("qmin", qmin), ("qmax", qmax)):
+        if x is None:
+            raise ParameterError(name, f"{name} must be given with "
+                                 f"{'qmax' if name == 'qmin' else 'qmin'} (one value or None "
+                                 "per axis; both None: no position limits)")
+        x = [x] * axes if np.ndim(x) == 0 else list(x)
+        if len(x) != axes:
+            raise ParameterError(name, f"{name} must hold one value (or None) per axis "
+                                 f"({axes}), got {len(x)}")
+        seqs[name] = x
+    out = []
+    for i, (lo, hi) in enumerate(zip(seqs["qmin"], seqs["qmax"])):
+        try:
+            out.append(position_limits(lo, hi, "polynomial", real, precision))
+        except ParameterError as e:
+            raise ParameterError(f"{e.parameter}[{i}]",
+                                 f"{e.parameter}[{i}] (axis {i}): {e}", e.status) from None
+    return out
 
 
 def _limit_vector(name: str, values, axes: int | None) -> np.ndarray:
@@ -131,11 +160,22 @@ class MultiAxisGenerator(_state_identity.SavedState, Twins):
         constant speed whatever stages the axes carry (docs/align.md); no warning then.
     precision : {"double", "float"}, keyword-only
         Which build of the C core runs it.
+    qmin, qmax : sequence of (float or None), or None, keyword-only
+        Position limits per axis (ruckig's min_position, max_position), finite with
+        ``qmin[i] < qmax[i]``, or None for an axis without them (both None: none). Every
+        sample's position of such an axis lies in ``[qmin[i], qmax[i]]`` exactly, in every
+        sync mode. Its targets rest inside (a position outside is refused naming
+        ``qmin``/``qmax``, or kept from before by :meth:`process`; a target velocity or
+        acceleration other than 0 is refused). "phase" and "independent" then start a
+        changed target from rest at the arrival instead of blending it; the per-axis modes
+        plan such an axis by :class:`TrajectoryGenerator`'s rule (its time-optimal motion
+        when it stays inside, else brake, rest, move), docs/multi-axis.md "Position limits".
 
     Raises
     ------
     ParameterError
-        Naming the offending argument, e.g. ``vmax[2]``, ``Ts``, ``sync``, ``q0`` or a
+        Naming the offending argument, e.g. ``vmax[2]``, ``Ts``, ``sync``, ``q0``,
+        ``qmin[1]`` or a
         stage's parameter; also for limits with which no move of an axis can reach its vmax
         (``sms_multi_generator_reach``, docs/multi-axis.md "Feasible limits"), naming the
         axis, its values and the quantity out of range.
@@ -155,17 +195,19 @@ class MultiAxisGenerator(_state_identity.SavedState, Twins):
         example='``"state is from vmax[1]=2.0 (this MultiAxisGenerator: vmax[1]=1.0)"``, or '
         "which field of a vibration stage",
         layout="``sms_multi_generator_get_state``: first the configuration identity "
-        "(``SMS_MULTI_IDENTITY_COUNT`` = 39 values: state tag, format version, "
+        "(``SMS_MULTI_IDENTITY_COUNT`` = 55 values: state tag, format version, "
         "``sizeof(sms_real)``, kind (102), ``Ts``, the number of axes, the sync index in "
         ":data:`SYNC_MODES`, then for each of the 8 axis slots ``vmax``, ``amax``, ``jmax`` "
-        "and the number of vibration stages, 0 beyond ``axes``); then per axis target, "
+        "the number of vibration stages, ``qmin`` and ``qmax`` (0, 0: none), 0 beyond "
+        "``axes``); then per axis target, "
         "goal, start position, start and cruise velocity, the running moves and the "
         "vibration stages' states.")
 
     MAX_AXES = _MAX_AXES
 
     def __init__(self, *, vmax, amax, jmax, Ts: float, sync: str = "phase", q0=None,
-                 stages=None, align: bool = False, precision: str = "double"):
+                 stages=None, align: bool = False, precision: str = "double",
+                 qmin=None, qmax=None):
         ffi, lib = _backend(precision)
         self._ffi, self._lib = ffi, lib
         self._lock = new_lock()
@@ -187,6 +229,12 @@ class MultiAxisGenerator(_state_identity.SavedState, Twins):
             cfg.vmax[i], cfg.amax[i], cfg.jmax[i] = self.vmax[i], self.amax[i], self.jmax[i]
         cfg.sync = SYNC_MODES.index(self.sync)
         cfg.align = int(self.align)
+        limits = _axis_position_limits(qmin, qmax, self.axes, precision)
+        for i, (lo, hi) in enumerate(limits):
+            cfg.qmin[i], cfg.qmax[i] = lo, hi
+        self.qmin = tuple(lo if (lo, hi) != (0.0, 0.0) else None for lo, hi in limits)
+        self.qmax = tuple(hi if (lo, hi) != (0.0, 0.0) else None for lo, hi in limits)
+        self._bounded = any(x is not None for x in self.qmin)
         self._configs = []  # kept alive: the config points into them
         for i, lst in enumerate(self.stages):
             if lst:
@@ -213,7 +261,9 @@ class MultiAxisGenerator(_state_identity.SavedState, Twins):
         if st != 0:  # the size query above validated everything
             raise ParameterError("stages", ffi.string(lib.sms_status_string(st)).decode(), st)
         self._init_args = dict(vmax=self.vmax, amax=self.amax, jmax=self.jmax, Ts=self.Ts,
-                               sync=self.sync, stages=self.stages, precision=precision)
+                               sync=self.sync, stages=self.stages, precision=precision,
+                               qmin=self.qmin if self._bounded else None,
+                               qmax=self.qmax if self._bounded else None)
         self.reset(q0)
 
     def _full_state(self):
@@ -270,10 +320,11 @@ class MultiAxisGenerator(_state_identity.SavedState, Twins):
         Raises
         ------
         ParameterError
-            Naming ``q0`` (wrong length or not finite).
+            Naming ``q0`` (wrong length, not finite, or outside an axis's position limits).
         """
         if q0 is None:
-            q = np.zeros(self.axes)
+            q = np.array([lo if lo is not None and lo > 0 else hi if hi is not None and hi < 0
+                          else 0.0 for lo, hi in zip(self.qmin, self.qmax)])
         else:
             q = np.atleast_1d(_real_array("q0", q0)).astype(np.float64)
             if q.ndim != 1 or q.size not in (1, self.axes):
@@ -283,6 +334,10 @@ class MultiAxisGenerator(_state_identity.SavedState, Twins):
             bad = np.flatnonzero(~np.isfinite(q))
             if bad.size:
                 raise ParameterError("q0", f"q0[{bad[0]}] must be finite, got {float(q[bad[0]])!r}")
+            for i, (lo, hi) in enumerate(zip(self.qmin, self.qmax)):
+                if lo is not None and not lo <= q[i] <= hi:
+                    raise ParameterError("q0", f"q0[{i}] = {float(q[i])!r} is outside "
+                                         f"[qmin[{i}], qmax[{i}]] = [{lo!r}, {hi!r}]")
         self.q0 = q
         self._init_args["q0"] = q.copy()         # where a copy's reset() returns to
         buf = np.ascontiguousarray(q, dtype=_real_dtype(self.precision))
@@ -330,6 +385,8 @@ class MultiAxisGenerator(_state_identity.SavedState, Twins):
         if bad.size:
             raise ParameterError("targets", f"targets must be finite: targets[{bad[0][0]}, "
                                             f"{bad[0][1]}] = {float(x[tuple(bad[0])])!r}")
+        if self._bounded:
+            self._check_inside(x, "targets")
         dtype = _real_dtype(self.precision)
         xin = np.ascontiguousarray(x, dtype=dtype)
         out = np.empty((x.shape[0], self.axes, 4), dtype=dtype)
@@ -345,6 +402,20 @@ class MultiAxisGenerator(_state_identity.SavedState, Twins):
                 f"refused now: {held or 'none'}; the axes keep their goals until the target "
                 "changes"), stacklevel=2)
         return out.astype(np.float64)
+
+    def _check_inside(self, x, name) -> None:
+        """ParameterError naming qmin or qmax for the first entry of x (n, axes) outside its
+        axis's position limits."""
+        for i, (lo, hi) in enumerate(zip(self.qmin, self.qmax)):
+            if lo is None:
+                continue
+            out = np.flatnonzero((x[:, i] < lo) | (x[:, i] > hi))
+            if out.size:
+                k = out[0]
+                side = "qmin" if x[k, i] < lo else "qmax"
+                raise ParameterError(side, f"{name}[{k}, {i}] = {float(x[k, i])!r} is outside "
+                                     f"[qmin[{i}], qmax[{i}]] = [{lo!r}, {hi!r}] of axis {i}",
+                                     self._lib.SMS_ERR_POSITION_LIMIT)
 
     def _target_dtype(self) -> np.dtype:
         ffi, real = self._ffi, _real_dtype(self.precision)
@@ -393,6 +464,16 @@ class MultiAxisGenerator(_state_identity.SavedState, Twins):
                 raise ParameterError(f"{name}[{k}, {i}]",
                                      f"{name}[{k}, {i}] {rule} of axis {i}, got "
                                      f"{float(arrays[name][k, i])!r}")
+        if self._bounded:
+            self._check_inside(p, "positions")
+            for name, x in (("velocities", vr), ("accelerations", ar)):
+                for i, lo in enumerate(self.qmin):
+                    moving = np.flatnonzero(x[:, i] != 0) if lo is not None else []
+                    if len(moving):
+                        raise ParameterError(f"{name}[{moving[0]}, {i}]",
+                                             f"{name}[{moving[0]}, {i}] must be 0: axis {i} "
+                                             "has position limits (a target drifting on would "
+                                             "leave them)")
         if self.sync not in PER_AXIS_SYNC_MODES:
             moving = np.argwhere((vr != 0) | (ar != 0))
             if moving.size:
@@ -526,6 +607,17 @@ class MultiAxisGenerator(_state_identity.SavedState, Twins):
             self._gen, *ptrs,
             self._ffi.NULL if t is None else self._ffi.cast("sms_multi_target *",
                                                           self._ffi.from_buffer(t)), axis)
+        if st == self._lib.SMS_ERR_POSITION_LIMIT:
+            i = axis[0]
+            qi, vi, ai = (float(x[i]) for x in state)
+            lo, hi = self.qmin[i], self.qmax[i]
+            side = ("qmin" if qi < lo else "qmax" if qi > hi else
+                    "qmax" if vi > 0 or (vi == 0 and ai > 0) else "qmin")
+            where = ("is outside" if not lo <= qi <= hi else
+                     "cannot be brought to rest (nor moved to its target) within")
+            raise ParameterError(side, f"q[{i}] = {qi!r} (v = {vi!r}, a = {ai!r}) of axis {i} "
+                                 f"{where} [qmin[{i}], qmax[{i}]] = [{lo!r}, {hi!r}]: it "
+                                 f"would pass {side}[{i}]", st)
         if st != 0:
             i = axis[0]
             name = {self._lib.SMS_ERR_TARGET_POSITION: "q", self._lib.SMS_ERR_TARGET_VELOCITY: "v",

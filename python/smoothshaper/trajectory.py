@@ -24,6 +24,7 @@ from . import design as _design
 from .errors import DroppedTargetWarning
 from .filters import (ParameterError, _backend, _raise_status, _real_dtype, check_memory,
                       input_max)
+from ._checks import position_limits as _checked_position_limits
 from ._checks import (finite as _finite, finite_signal as _targets, integer as _integer,
                       real_array as _real_array, show as _show)
 
@@ -76,30 +77,8 @@ def _lower_bound(name, value, upper, upper_name, profile):
 
 
 def _position_limits(qmin, qmax, profile, precision="double"):
-    """(qmin, qmax) as the C config takes them: (0, 0) for none (both None); else both
-    finite, qmin < qmax (also in the build's floats), each at most the largest float over 16,
-    and a linear-ramp profile."""
-    if qmin is None and qmax is None:
-        return 0.0, 0.0
-    for name, value, other in (("qmin", qmin, "qmax"), ("qmax", qmax, "qmin")):
-        if value is None:
-            raise ParameterError(name, f"{name} must be given with {other} (position limits "
-                                       f"[qmin, qmax]; both None: none)")
-    lo, hi = _finite("qmin", qmin), _finite("qmax", qmax)
-    big = float(np.finfo(_real_dtype(precision)).max) / 16
-    for name, value in (("qmin", lo), ("qmax", hi)):
-        if not abs(value) <= big:
-            raise ParameterError(name, f"{name}={value!r}: its magnitude must be at most "
-                                       f"{big:.6g}, the largest {precision} over 16")
-    real = _real_dtype(precision)
-    if not real(lo) < real(hi):
-        raise ParameterError("qmax", f"qmax={qmax!r} must be above qmin={qmin!r} (in "
-                                     f"{precision})")
-    if profile == "trigonometric":
-        raise ParameterError("qmin", f"qmin={qmin!r}, qmax={qmax!r}: position limits take a "
-                                     "linear-ramp profile (polynomial or damped), not the "
-                                     "trigonometric one")
-    return lo, hi
+    """(qmin, qmax) as the C config takes them (:func:`._checks.position_limits`)."""
+    return _checked_position_limits(qmin, qmax, profile, _real_dtype(precision), precision)
 
 
 def _generator_config(ffi, vmax, amax, jmax, profile, wn, zeta, vmin=None, amin=None,

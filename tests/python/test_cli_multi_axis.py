@@ -95,3 +95,26 @@ def test_bad_input(capsys, argv, message):
     code, out, err = run(capsys, "design", "generator", *flat, "--Ts", "1e-3")
     assert code != 0
     assert message in err
+
+
+def test_position_limits_per_axis(capsys, tmp_path):
+    """--qmin/--qmax one per axis: the samples (--csv) equal MultiAxisGenerator with the same
+    limits, every q inside; a limit list of the wrong length is refused naming the option."""
+    path_csv = tmp_path / "q.csv"
+    args = ["design", "generator", "--via", "0,0;0.9,0.1;0.6,0.3", "--vmax", "1,2", "--amax",
+            "10,4", "--jmax", "100,50", "--Ts", "1e-3", "--qmin=-0.1,-0.1", "--qmax", "1,0.8"]
+    code, out, err = run(capsys, *args, "--csv", path_csv)
+    assert code == 0, err
+    with open(path_csv) as f:
+        rows = [r for r in csv.reader(f) if r and not r[0].startswith("#")]
+    data = np.array([[float(x) for x in r] for r in rows[1:]])
+    g = MultiAxisGenerator(vmax=[1, 2], amax=[10, 4], jmax=[100, 50], Ts=1e-3, q0=[0, 0],
+                           qmin=[-0.1, -0.1], qmax=[1, 0.8])
+    header = rows[0]
+    qx, qy = data[:, header.index("x_q")], data[:, header.index("y_q")]
+    assert np.all((qx >= -0.1) & (qx <= 1) & (qy >= -0.1) & (qy <= 0.8))
+    first = np.flatnonzero(np.abs(qx - 0.9) + np.abs(qy - 0.1) == 0)[0]
+    ref = g.process(np.tile([0.9, 0.1], (first + 1, 1)))
+    assert np.array_equal(ref[:, :, 0], np.c_[qx[:first + 1], qy[:first + 1]])
+    code, out, err = run(capsys, *args[:-3], "--qmin=-1,-1,-1", "--qmax", "1,1")
+    assert code != 0 and "--qmin: give one value or one per axis (2), got 3" in err, err

@@ -386,7 +386,9 @@ def test_generator_position_and_lower_limits(capsys, tmp_path):
                         (["--via=0,0.5", "--vmin", "0.5"], "--vmin"),
                         (["--via=0.55,0.5", "--start", "1,0", "--qmin=-1", "--qmax", "0.6"],
                          "--qmax: qmax: (q, v, a) = (0.55, 1.0, 0.0)"),
-                        (["--via=0,0,0;1,1,1", "--qmin=-1", "--qmax", "2"], "one axis only")]:
+                        (["--via=0,0,0;1,1,1", "--vmin=-0.5"], "one axis only"),
+                        (["--via=0,0,0;1,1,3", "--qmin=-1", "--qmax", "2"],
+                         "--qmax: --via point 1 (3 on axis z)")]:
         code, out, err = run(capsys, "design", "generator", *extra, "--vmax", 1, "--amax", 10,
                              "--jmax", 100, "--Ts", 1e-3)
         assert code != 0 and word in err and err.count("\n") == 1, (extra, err)

@@ -333,3 +333,43 @@ def test_two_axes_dropping_in_one_step_are_both_named(multi_dir, sync):
     assert "(farthest, axis 1: " in steps[0] and "vmax[1] = 0.5, amax[1] = 9, jmax[1] = 200;" \
         in steps[0], steps
     fmu.freeInstance()
+
+
+@pytest.mark.parametrize("sync", [0, 1], ids=["phase", "independent"])
+def test_position_limits_equal_the_reference_and_fail_outside(multi_fmu, multi_dir, sync):
+    """Parameters qmin[i], qmax[i] (both 0: none): the staircase, which retargets mid-motion,
+    equals the reference under the same limits (no blend for a limited group), every q inside;
+    a target outside fails the step naming it; limits out of order or a q0 outside fail
+    initialisation naming them."""
+    lo, hi = [-0.3, -0.2, -0.3], [0.35, 0.4, 0.35]
+    values = start_values(3, sync)
+    values.update({f"qmin[{i}]": x for i, x in enumerate(lo)})
+    values.update({f"qmax[{i}]": x for i, x in enumerate(hi)})
+    t = fmi.communication_points(step=TS, stop_time=2.0)
+    target = staircase(t, 3)
+    from smoothshaper.fmi.simulate import simulate_multi_axis
+    y = simulate_multi_axis(multi_fmu, t, target, values)
+    x, n_at = fmi.tick_inputs(t, np.arange(t.size), Ts=TS)
+    rows = multi_axis_reference(target[x.astype(int)], Ts=TS,
+                                sync="phase" if sync == 0 else "independent", q0=Q0[3],
+                                qmin=lo, qmax=hi, **LIMITS[3])
+    rest = np.zeros((3, 4))
+    rest[:, 0] = Q0[3]
+    assert_matches(y, fmi.at_communication_points(rows, n_at, rest), 3)
+    assert np.all(y[:, :, 0] >= lo) and np.all(y[:, :, 0] <= hi)
+    log = Logged()
+    fmu = slave(multi_dir, "outside", logged=log)
+    start(fmu, **values)
+    fmu.setReal([fmu.vr["target[1]"]], [0.5])
+    with pytest.raises(FMICallException):
+        fmu.doStep(currentCommunicationPoint=0.0, communicationStepSize=TS)
+    assert "target[1] = 0.5 is outside [qmin[1], qmax[1]]" in log.messages[-1], log.messages[-1]
+    fmu.freeInstance()
+    for changes, words in [({"qmin[2]": 0.5}, "qmin[2] = 0.5, qmax[2] = 0.34999999999999998"),
+                           ({"q0[0]": 0.4}, "q0[0] = 0.40000000000000002 is outside")]:
+        log = Logged()
+        fmu = slave(multi_dir, "bad-limits", logged=log)
+        with pytest.raises(FMICallException):
+            start(fmu, **{**values, **changes})
+        assert words in log.messages[-1], log.messages[-1]
+        fmu.freeInstance()

@@ -32,15 +32,15 @@ extern "C" {
  * (sms_multi_generator_get_state()), in this order: the head of config.h (::SMS_STATE_TAG,
  * ::SMS_STATE_VERSION, sizeof(::sms_real), ::SMS_STATE_KIND_MULTI_GENERATOR, Ts), n_axes,
  * sync, then for each of the ::SMS_MULTI_MAX_AXES axis slots vmax, amax, jmax (as given to
- * init) and n_stages (0 for the slots beyond n_axes). Loading compares them with the
+ * init), n_stages, qmin and qmax (0 for the slots beyond n_axes; 0, 0: no position limits). Loading compares them with the
  * generator's own (exact equality) and refuses a state of another configuration, writing
  * nothing, with the status naming the first field that differs (::SMS_ERR_STATE_FORMAT,
  * ::SMS_ERR_STATE_PRECISION, ::SMS_ERR_STATE_KIND, ::SMS_ERR_STATE_TS, ::SMS_ERR_STATE_AXES,
  * ::SMS_ERR_STATE_SYNC, ::SMS_ERR_STATE_VMAX, ::SMS_ERR_STATE_AMAX, ::SMS_ERR_STATE_JMAX,
- * ::SMS_ERR_STATE_STAGES); a stage of another stage configuration is named by its own
+ * ::SMS_ERR_STATE_STAGES, ::SMS_ERR_POSITION_LIMIT for qmin and qmax); a stage of another stage configuration is named by its own
  * stage identity (config.h: ::SMS_ERR_STATE_KIND, ::SMS_ERR_STATE_WN, ...).
  */
-#define SMS_MULTI_IDENTITY_COUNT (7 + 4 * SMS_MULTI_MAX_AXES)
+#define SMS_MULTI_IDENTITY_COUNT (7 + 6 * SMS_MULTI_MAX_AXES)
 
 /** @brief How the axes are coordinated (values stable: FMU parameter). */
 typedef enum sms_sync {
@@ -63,9 +63,9 @@ typedef enum sms_sync {
  *
  * | field | valid range (sms_multi_generator_check_target()) |
  * |-------|---------------------------------------------------|
- * | position[i] | finite |
- * | velocity[i] | finite, \|v\| <= vmax[i] |
- * | acceleration[i] | finite, \|a\| <= amax[i], v -+ a\|a\|/(2 jmax[i]) within +-vmax[i] |
+ * | position[i] | finite; within [qmin[i], qmax[i]] when axis i has position limits (else ::SMS_ERR_POSITION_LIMIT) |
+ * | velocity[i] | finite, \|v\| <= vmax[i]; 0 when axis i has position limits |
+ * | acceleration[i] | finite, \|a\| <= amax[i], v -+ a\|a\|/(2 jmax[i]) within +-vmax[i]; 0 when axis i has position limits |
  * | sync[i] | 0 (the generator's mode) or ::SMS_SYNC_TIME, ::SMS_SYNC_TIME_IF_NECESSARY, ::SMS_SYNC_NONE |
  * | minimum_duration | finite, >= 0 [s], below 2^50 samples |
  *
@@ -112,6 +112,31 @@ typedef struct sms_multi_axis_plan {
  * | n_stages[i], i < n_axes | 0 (no filter) .. ::SMS_CHAIN_MAX_STAGES |
  * | stages[i] | n_stages[i] valid stage configs (config.h), or NULL when n_stages[i] = 0 |
  * | align | 0 (off) or 1: pad every axis to the common lag (below) |
+ * | qmin[i], qmax[i], i < n_axes | both 0 (axis i has no position limits) or finite with qmin[i] < qmax[i] (as ::sms_real too), each at most 2^-4 of the largest ::sms_real in magnitude (sms_generator_reach() of the axis) |
+ *
+ * Position limits (ruckig's min_position and max_position per DoF): an axis with qmin[i],
+ * qmax[i] set reports q within [qmin[i], qmax[i]] at every sample, in every mode. Its targets
+ * rest inside: a position outside is refused with ::SMS_ERR_POSITION_LIMIT (naming the axis),
+ * a velocity or acceleration other than 0 with ::SMS_ERR_TARGET_VELOCITY or
+ * ::SMS_ERR_TARGET_ACCELERATION; sms_multi_generator_step() keeps such an axis's previous
+ * target position, as for a non-finite one, and sms_multi_generator_reset() to a position
+ * outside changes nothing. Init rests each such axis at 0, or at its limit nearer 0.
+ * - ::SMS_SYNC_PHASE, ::SMS_SYNC_INDEPENDENT: a move from rest to a target inside stays on
+ *   the segment between two points inside. A group (all axes in phase, one in independent)
+ *   with an axis under position limits does not blend a target that changes mid-motion: the
+ *   new target waits for the running move's arrival (as one seen during the stop transition
+ *   does) and starts from rest there, so every move is one from rest to rest inside.
+ * - Per-axis plan modes: each bounded axis plans by the single-axis generator's rule
+ *   (trajectory.h, ::sms_generator_config): its time-optimal motion when it stays inside,
+ *   else the brake to rest, a rest until the next sample and the move from there; the first
+ *   whose continuous extremes stay inside to 16 u (|qmin[i]| + |qmax[i]|), q then held to the
+ *   limits. A synchronised bounded axis whose motion of the common duration would cross (the
+ *   stretched move after its brake) takes its move without the stretch and arrives earlier.
+ *   When no plan of some bounded axis stays inside (a state whose brake would cross), the
+ *   running plans of every axis go on and the re-plan is tried on the next sample;
+ *   sms_multi_generator_start() refuses such a state, or a q outside, with
+ *   ::SMS_ERR_POSITION_LIMIT naming the axis.
+ * Last in the struct: a zeroed or shorter initialiser has none.
  *
  * Vibration stages: axis i filters each of its four outputs q, v, a, j through its own copy
  * of the chain stages[i][0 .. n_stages[i]) (the stages of sms_chain_init(), the same configs
@@ -138,6 +163,8 @@ typedef struct sms_multi_generator_config {
     const sms_stage_config *stages[SMS_MULTI_MAX_AXES]; /**< each axis's vibration stages */
     size_t n_stages[SMS_MULTI_MAX_AXES]; /**< how many, 0 .. ::SMS_CHAIN_MAX_STAGES */
     int align;                          /**< 1: delay every axis to the common lag */
+    double qmin[SMS_MULTI_MAX_AXES];    /**< lower position limit of each axis (0 and qmax 0: none) */
+    double qmax[SMS_MULTI_MAX_AXES];    /**< upper position limit of each axis (0 and qmin 0: none) */
 } sms_multi_generator_config;
 
 /** @brief One running move of a group of axes (all axes in phase mode, one in independent). */
@@ -249,6 +276,12 @@ typedef struct sms_multi_generator {
     sms_multi_axis_plan axis[SMS_MULTI_MAX_AXES]; /**< each axis's running plan */
     int plan_pending;           /**< 1: a valid new target waits for this sample's re-plan */
     int plan_refused;           /**< 1 while the held target's motion could not be formed */
+    /* position limits (::sms_multi_generator_config qmin, qmax) */
+    int bounded[SMS_MULTI_MAX_AXES];     /**< 1: axis i has position limits */
+    sms_real qmin[SMS_MULTI_MAX_AXES];   /**< its lower limit in signal precision */
+    sms_real qmax[SMS_MULTI_MAX_AXES];   /**< its upper limit */
+    sms_real qtol[SMS_MULTI_MAX_AXES];   /**< how far a plan's computed extremes may pass them:
+                                              16 u (|qmin| + |qmax|) */
 } sms_multi_generator;
 
 /**
@@ -332,7 +365,9 @@ SMS_API sms_status sms_multi_generator_init(sms_multi_generator *g,
                                             sms_memory_cell *memory, size_t n_cells,
                                             size_t *bad_axis);
 /** @brief Rest at position[0 .. n_axes-1] (targets and output there; the stages settled:
- * q's chain as if its input had been the position forever, v, a, j's at 0); NULL: at 0.
+ * q's chain as if its input had been the position forever, v, a, j's at 0); NULL: at 0 (an
+ * axis with position limits that exclude 0: at the nearer limit). A position outside an
+ * axis's position limits changes nothing.
  * @param g      the generator, built by sms_multi_generator_init()
  * @param position n_axes finite positions, or NULL
  */
@@ -387,7 +422,8 @@ SMS_API int sms_multi_generator_busy(const sms_multi_generator *g);
  * @param axis  out (may be NULL): the first refused axis (else 0)
  * @return ::SMS_OK; ::SMS_ERR_NULL (g or target); ::SMS_ERR_TARGET_POSITION, ::SMS_ERR_TARGET_VELOCITY,
  *         ::SMS_ERR_TARGET_ACCELERATION (the ranges of ::sms_multi_target, the limits as
- *         ::sms_real holds them); ::SMS_ERR_TARGET_SYNC; ::SMS_ERR_DURATION
+ *         ::sms_real holds them); ::SMS_ERR_POSITION_LIMIT (a position outside its axis's
+ *         [qmin, qmax]); ::SMS_ERR_TARGET_SYNC; ::SMS_ERR_DURATION
  *         (minimum_duration).
  */
 SMS_API sms_status sms_multi_generator_check_target(const sms_multi_generator *g,
@@ -449,8 +485,10 @@ SMS_API void sms_multi_generator_process_targets(sms_multi_generator *g,
  *         ::SMS_ERR_TARGET_POSITION (q not finite); ::SMS_ERR_TARGET_VELOCITY (v not finite or
  *         |v| > vmax); ::SMS_ERR_TARGET_ACCELERATION (a not finite, |a| > amax or
  *         |v + a|a|/(2 jmax)| > vmax: no plan can start there), each to ::SMS_LIMIT_RTOL; a
- *         status of sms_multi_generator_check_target() for `target`; ::SMS_ERR_TOO_LONG (the
- *         motion cannot be formed). Nothing changed on error.
+ *         status of sms_multi_generator_check_target() for `target`;
+ *         ::SMS_ERR_POSITION_LIMIT (position limits: q[i] outside [qmin[i], qmax[i]], or no
+ *         plan of axis i from its state stays inside, its brake to rest included);
+ *         ::SMS_ERR_TOO_LONG (the motion cannot be formed). Nothing changed on error.
  */
 SMS_API sms_status sms_multi_generator_start(sms_multi_generator *g, const sms_real *q,
                                              const sms_real *v, const sms_real *a,

@@ -10,6 +10,7 @@
 #include "smoothshaper/trajectory.h"
 #include "trajectory/plan.h"
 #include "trajectory/plan_target.h"
+#include "trajectory/plan_bounded.h"
 #include "trajectory/generator_parts.h"
 #include "core/state_identity.h"
 #include "trajectory/trajectory_internal.h"
@@ -47,8 +48,6 @@ static void generator_identity(const sms_generator_config *c, double Ts,
 #define GEN_REAL_TINY (sizeof(sms_real) == sizeof(double) ? DBL_MIN / DBL_EPSILON \
                                                           : (double)FLT_MIN / (double)FLT_EPSILON)
 #define GEN_MARGIN 16.0
-#define GEN_UNIT_ROUNDOFF (sizeof(sms_real) == sizeof(double) ? DBL_EPSILON / 2 \
-                                                              : (double)FLT_EPSILON / 2)
 #define GEN_MAX_REACH_SAMPLES 1125899906842624.0 /* 2^50 */
 
 sms_status sms_reach_refused(sms_generator_reach_info *r, const char *quantity,
@@ -312,7 +311,7 @@ sms_status sms_generator_init(sms_generator *g, const sms_generator_config *conf
     g->asymmetric = g->vmin != -g->limits.vmax || g->amin != -g->limits.amax;
     g->qmin = (sms_real)config->qmin;
     g->qmax = (sms_real)config->qmax;
-    g->qtol = (sms_real)(16.0 * GEN_UNIT_ROUNDOFF * (fabs(config->qmin) + fabs(config->qmax)));
+    g->qtol = sms_plan_box_tolerance(config->qmin, config->qmax);
     generator_identity(config, Ts, g->identity);
     /* rest at 0, or at the limit nearer 0 when 0 is outside; the limits apply from here on */
     g->bounded = 0;
@@ -501,95 +500,31 @@ static int plan_direct(const sms_generator *g, sms_plan *plan, sms_real q, sms_r
            goal->minimum_duration == 0 && sms_plan_to_rest(plan, &g->limits, g->Ts_signal, q, v, a, goal->position);
 }
 
-/* Do the plan's positions stay within [qmin, qmax] (to qtol, the rounding of its extremes)? */
-static int plan_inside(const sms_generator *g, const sms_plan *plan)
+static int direct_plan(const void *ctx, sms_plan *plan, sms_real q, sms_real v, sms_real a,
+                       const sms_target *goal)
 {
-    sms_real lo, hi;
-    return sms_plan_extent(plan, &lo, &hi) && lo >= g->qmin - g->qtol && hi <= g->qmax + g->qtol;
+    return plan_direct((const sms_generator *)ctx, plan, q, v, a, goal);
 }
 
-/* The brake to rest at once from (q, v, a): the stop interface's plan. */
-static int plan_stop(const sms_generator *g, sms_plan *plan, sms_real q, sms_real v, sms_real a)
+static sms_plan_box generator_box(const sms_generator *g)
 {
-    sms_target stop;
-    stop.interface = SMS_INTERFACE_VELOCITY;
-    stop.position = stop.velocity = stop.acceleration = stop.minimum_duration = 0;
-    return plan_direct(g, plan, q, v, a, &stop);
-}
-
-/* The brake `stop` (resting on its goal from stop->end + stop->end_f), a rest there until the
- * next sample S, then `move` (formed from that rest, times from its own first sample) shifted
- * by S samples; 0 when the segments do not fit. */
-static int join_plans(const sms_generator *g, sms_plan *plan, const sms_plan *stop, size_t S,
-                      const sms_plan *move)
-{
-    size_t i, c, n = stop->end;
-    sms_real f = stop->end_f;
-    if (stop->count + 1u + move->count > SMS_PLAN_MAX_SEGMENTS)
-        return 0;
-    *plan = *stop;
-    if (S > stop->end)
-        sms_plan_push(plan, g->Ts_signal, &n, &f, stop->goal, 0, 0, 0, g->Ts_signal - stop->end_f);
-    for (i = 0; i < move->count; ++i) {
-        c = plan->count++;
-        plan->n[c] = move->n[i] + S;
-        plan->f[c] = move->f[i];
-        plan->p[c] = move->p[i];
-        plan->v[c] = move->v[i];
-        plan->a[c] = move->a[i];
-        plan->j[c] = move->j[i];
-        plan->d[c] = move->d[i];
-        plan->duration += move->d[i];
-    }
-    plan->end = move->end + S;
-    plan->end_f = move->end_f;
-    plan->goal = move->goal;
-    plan->drift = move->drift;
-    plan->arrive = move->arrive + S;
-    plan->arrive_f = move->arrive_f;
-    return sms_plan_finite(plan) &&
-           (sms_real)plan->end + plan->end_f / g->Ts_signal + 2 <= sms_plan_max_samples();
+    sms_plan_box box;
+    box.qmin = g->qmin;
+    box.qmax = g->qmax;
+    box.qtol = g->qtol;
+    box.Ts = g->Ts_signal;
+    return box;
 }
 
 int sms_generator_replan(const sms_generator *g, sms_plan *plan, sms_real q, sms_real v,
                          sms_real a, const sms_target *goal)
 {
-    sms_plan direct, stop, move;
-    sms_target rest;
-    sms_real left;
-    size_t S;
-    int pass;
+    sms_plan_box box;
     if (!g->bounded)
         return plan_direct(g, plan, q, v, a, goal);
-    /* position limits (goals rest inside, sms_generator_canonical()): the time-optimal motion
-     * when it stays inside */
-    if (!plan_direct(g, &direct, q, v, a, goal))
-        return 0;
-    if (plan_inside(g, &direct)) {
-        *plan = direct;
-        return 1;
-    }
-    if (goal->interface == SMS_INTERFACE_VELOCITY)
-        return SMS_REPLAN_WAIT; /* the stop itself crosses: the running plan goes on */
-    /* else brake to rest, wait for the next sample, move: with what is left of the minimum
-     * duration, then without it */
-    if (!plan_stop(g, &stop, q, v, a))
-        return 0;
-    if (!plan_inside(g, &stop))
-        return SMS_REPLAN_WAIT;
-    S = stop.end + (stop.end_f > 0 ? 1u : 0u);
-    rest = *goal;
-    left = goal->minimum_duration - (sms_real)S * g->Ts_signal;
-    for (pass = 0; pass < 2; ++pass) {
-        rest.minimum_duration = pass == 0 && left > 0 ? left : 0;
-        if (pass == 1 && goal->minimum_duration == 0)
-            break;
-        if (!plan_direct(g, &move, stop.goal, 0, 0, &rest))
-            return 0;
-        if (plan_inside(g, &move))
-            return join_plans(g, plan, &stop, S, &move);
-    }
-    return SMS_REPLAN_WAIT;
+    /* position limits (goals rest inside, sms_generator_canonical()): plan_bounded.c */
+    box = generator_box(g);
+    return sms_plan_within(&box, direct_plan, g, plan, q, v, a, goal);
 }
 
 /* Can a plan of the generator's shape start from (v, a)? The planner's precondition: bringing
@@ -626,14 +561,11 @@ static void take_target(sms_generator *g, const sms_target *target)
     }
 }
 
-/* With position limits, q held to [qmin, qmax]: the plan's continuous extremes are inside
- * to qtol (plan_inside()), so this changes q by no more than that and its rounding. */
+/* With position limits, q held to [qmin, qmax] (plan_bounded.c). */
 static void hold_position(const sms_generator *g, sms_real out[4])
 {
-    if (out[0] > g->qmax)
-        out[0] = g->qmax;
-    else if (out[0] < g->qmin)
-        out[0] = g->qmin;
+    const sms_plan_box box = generator_box(g);
+    sms_plan_hold_position(&box, &out[0]);
 }
 
 /* With asymmetric limits, v and a held to [vmin, vmax] and [amin, amax]. A segment's value

@@ -18,9 +18,8 @@ sms_status sms_generator_canonical(const sms_generator *g, const sms_target *in,
  * limits? */
 int sms_generator_state_ok(const sms_generator *g, double v, double a, double rtol);
 
-/* sms_generator_replan(): with position limits, no plan from this state stays inside (its
- * brake would cross a limit): the running plan goes on and the re-plan waits. */
-#define SMS_REPLAN_WAIT 2
+/* SMS_REPLAN_WAIT: with position limits, no plan from this state stays inside */
+#include "trajectory/plan_bounded.h"
 
 /* Plan from (q, v, a) towards `goal` (canonical) into plan; 1 when planned, 0 when the motion
  * cannot be represented, SMS_REPLAN_WAIT (position limits) when no plan from there stays

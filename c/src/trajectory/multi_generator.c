@@ -8,6 +8,7 @@
 #include <string.h>
 #include "trajectory/multi_parts.h"
 #include "trajectory/trajectory_internal.h"
+#include "trajectory/plan_bounded.h"
 
 static int limit_ok(double x)
 {
@@ -54,6 +55,8 @@ sms_status sms_multi_generator_reach(const sms_multi_generator_config *config, d
         one.vmax = config->vmax[i];
         one.amax = config->amax[i];
         one.jmax = config->jmax[i];
+        one.qmin = config->qmin[i]; /* position limits: the single-axis rule (finite, ordered) */
+        one.qmax = config->qmax[i];
         st = sms_generator_reach(&one, Ts, r);
         if (st == SMS_OK && !(one.amax <= MAX_LIMIT_RATIO * one.vmax))
             st = sms_reach_refused(r, "amax/vmax", "vmax, amax", one.amax / one.vmax,
@@ -222,18 +225,40 @@ sms_status sms_multi_generator_init(sms_multi_generator *g,
         g->amax[i] = i < n ? (sms_real)config->amax[i] : 1;
         g->jmax[i] = i < n ? (sms_real)config->jmax[i] : 1;
     }
+    for (i = 0; i < SMS_MULTI_MAX_AXES; ++i) {
+        const int b = i < n && (config->qmin[i] != 0.0 || config->qmax[i] != 0.0);
+        g->bounded[i] = 0; /* the initial rest below is free; the limits apply from there */
+        g->qmin[i] = b ? (sms_real)config->qmin[i] : 0;
+        g->qmax[i] = b ? (sms_real)config->qmax[i] : 0;
+        g->qtol[i] = b ? sms_plan_box_tolerance(config->qmin[i], config->qmax[i]) : 0;
+    }
     sms_multi_identity_write(config, Ts, g->identity);
     sms_multi_align_init(g, config, Ts, memory);   /* memory: past the stages' */
     sms_multi_generator_reset(g, NULL);
+    for (i = 0; i < n; ++i)
+        g->bounded[i] = config->qmin[i] != 0.0 || config->qmax[i] != 0.0;
     return SMS_OK;
+}
+
+/* Where axis i rests by default: 0, or its limit nearer 0 when its limits exclude 0. */
+static sms_real default_rest(const sms_multi_generator *g, size_t i)
+{
+    return g->qmin[i] > 0 ? g->qmin[i] : g->qmax[i] < 0 ? g->qmax[i] : 0;
 }
 
 void sms_multi_generator_reset(sms_multi_generator *g, const sms_real *position)
 {
+    sms_real rest[SMS_MULTI_MAX_AXES];
     size_t i;
+    for (i = 0; i < SMS_MULTI_MAX_AXES; ++i) {
+        rest[i] = (position != NULL && i < g->n_axes) ? position[i] : default_rest(g, i);
+        if (g->bounded[i] && !(rest[i] >= g->qmin[i] && rest[i] <= g->qmax[i]))
+            return; /* outside an axis's position limits: nothing changes */
+    }
+    position = rest;
     g->dropped = 0;
     for (i = 0; i < SMS_MULTI_MAX_AXES; ++i) {
-        sms_real x = (position != NULL && i < g->n_axes) ? position[i] : 0;
+        sms_real x = position[i];
         g->target[i] = x;
         g->goal[i] = x;
         g->p[i] = x;

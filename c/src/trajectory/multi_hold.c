@@ -19,8 +19,9 @@ static uint64_t group_event(const sms_multi_generator *g, const sms_multi_move *
         return 1u;
     hi = (uint64_t)(m->k_end - m->k);   /* the arrival sample: planned from rest there */
     tr = m->seen > m->T1 ? m->seen : m->T1;
-    if (tr > m->T1 + m->tau)
-        return hi;
+    if (tr > m->T1 + m->tau || sms_multi_group_bounded(g, (size_t)(m - g->move),
+                                                       g->sync == SMS_SYNC_PHASE ? g->n_axes : 1u))
+        return hi; /* planned from rest at the arrival (position limits: no blend) */
     /* the first sample whose move time reaches T1 (multi_step.c's blend test): t = off + k Ts
      * grows with k. A target seen at a sample that the step already counted in the stop
      * while seen <= T1 + tau (a rounding apart) blends on the next one, as there */
@@ -49,8 +50,12 @@ static void hold_profile(sms_multi_generator *g, const sms_real *target, uint64_
         sms_multi_target t;
         sms_multi_sync_rest_target(g, target, &t);
         sms_multi_sync_step_profile(g, &t, out);
-        if (n > 1u) {
-            sms_multi_sync_skip(g, n - 2u);
+        /* a re-plan that waits (position limits: for a state from which it stays inside)
+         * is tried sample by sample; it is planned by the running plans' end at the latest */
+        for (--n; n > 0u && g->plan_pending; --n)
+            sms_multi_sync_step_held(g, out);
+        if (n > 0u) {
+            sms_multi_sync_skip(g, n - 1u);
             sms_multi_sync_step_held(g, out);
         }
         return;
@@ -59,7 +64,7 @@ static void hold_profile(sms_multi_generator *g, const sms_real *target, uint64_
         uint64_t e = UINT64_MAX;
         int fresh = 0;
         for (i = 0; i < g->n_axes; ++i)
-            if (target[i] - target[i] == 0 && target[i] != g->target[i])
+            if (sms_multi_takes_position(g, i, target[i]) && target[i] != g->target[i])
                 fresh = 1;
         if (!fresh)
             for (i = 0; i < groups; ++i) {
@@ -98,7 +103,7 @@ static int profile_at_rest(const sms_multi_generator *g, const sms_real *target)
         return !sms_multi_sync_fresh(g, &t) && !sms_multi_sync_busy(g);
     }
     for (i = 0; i < g->n_axes; ++i)
-        if (target[i] - target[i] == 0 && target[i] != g->target[i])
+        if (sms_multi_takes_position(g, i, target[i]) && target[i] != g->target[i])
             return 0;
     for (i = 0; i < groups; ++i)
         if (g->move[i].active || g->move[i].pending)

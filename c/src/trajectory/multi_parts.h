@@ -36,6 +36,9 @@ typedef struct sms_multi_group {
 int sms_multi_plan(sms_multi_generator *g, size_t first, const sms_multi_group *G,
                    sms_multi_move *m, const sms_real *p, const sms_real *V, sms_real off);
 
+/* Has an axis of the group [first, first + n) position limits (then it does not blend)? */
+int sms_multi_group_bounded(const sms_multi_generator *g, size_t first, size_t n);
+
 /* One sample of the profile alone (the targets, the moves, out), without the stages. */
 void sms_multi_step_profile(sms_multi_generator *g, const sms_real *target, sms_real *out);
 
@@ -81,6 +84,11 @@ void sms_multi_sync_step_held(sms_multi_generator *g, sms_real *out);
 void sms_multi_sync_rest_target(const sms_multi_generator *g, const sms_real *position,
                                 sms_multi_target *t);
 int sms_multi_sync_fresh(const sms_multi_generator *g, const sms_multi_target *t);
+/* Does sms_multi_generator_step() take x as axis i's target position (finite, and inside
+ * the axis's position limits if it has them; else the previous one is kept)? */
+int sms_multi_takes_position(const sms_multi_generator *g, size_t i, sms_real x);
+/* Does a valid request wait for its plans (not the running plans' target)? */
+int sms_multi_sync_fresh_aim(const sms_multi_generator *g);
 int sms_multi_sync_busy(const sms_multi_generator *g);
 void sms_multi_sync_skip(sms_multi_generator *g, uint64_t n);
 int sms_multi_sync_replan_axis(const sms_multi_generator *g, size_t i,

@@ -8,9 +8,9 @@
 #include "trajectory/multi_parts.h"
 
 /* The configuration identity of a saved state (multi_generator.h, SMS_MULTI_IDENTITY_COUNT):
- * the common head, n_axes, sync, then per axis slot vmax, amax, jmax, n_stages (0 beyond
- * n_axes). The stages' configs are in their own stage states. */
-enum { ID_AXES = SMS_STATE_IDENTITY_HEAD, ID_SYNC, ID_AXIS, ID_AXIS_FIELDS = 4 };
+ * the common head, n_axes, sync, then per axis slot vmax, amax, jmax, n_stages, qmin, qmax
+ * (0 beyond n_axes). The stages' configs are in their own stage states. */
+enum { ID_AXES = SMS_STATE_IDENTITY_HEAD, ID_SYNC, ID_AXIS, ID_AXIS_FIELDS = 6 };
 
 void sms_multi_identity_write(const sms_multi_generator_config *c, double Ts,
                               double id[SMS_MULTI_IDENTITY_COUNT])
@@ -25,6 +25,8 @@ void sms_multi_identity_write(const sms_multi_generator_config *c, double Ts,
         axis[1] = i < c->n_axes ? c->amax[i] : 0.0;
         axis[2] = i < c->n_axes ? c->jmax[i] : 0.0;
         axis[3] = i < c->n_axes ? (double)c->n_stages[i] : 0.0;
+        axis[4] = i < c->n_axes ? c->qmin[i] : 0.0;
+        axis[5] = i < c->n_axes ? c->qmax[i] : 0.0;
     }
 }
 
@@ -40,6 +42,8 @@ static sms_status check_identity(const sms_multi_generator *g, const double *src
         axis[1] = SMS_ERR_STATE_AMAX;
         axis[2] = SMS_ERR_STATE_JMAX;
         axis[3] = SMS_ERR_STATE_STAGES;
+        axis[4] = SMS_ERR_POSITION_LIMIT;
+        axis[5] = SMS_ERR_POSITION_LIMIT;
     }
     return sms_state_identity_compare(g->identity, src,
                                       SMS_MULTI_IDENTITY_COUNT - SMS_STATE_IDENTITY_HEAD,
@@ -346,7 +350,9 @@ sms_status sms_multi_generator_set_state(sms_multi_generator *g, const double *s
         for (i = 0; i < na; ++i)
             g->axis[i] = ax[i];
         g->plan_refused = refused;
-        g->plan_pending = 0;
+        /* a valid request not yet planned (position limits: a re-plan that waits for a
+         * state from which it stays inside) is tried again on the next sample */
+        g->plan_pending = !refused && sms_multi_sync_fresh_aim(g);
     }
     for (i = 0; i < move_count(g) && !SMS_SYNC_PER_AXIS_PLANS(g->sync); ++i) {
         const double *f = mv + MOVE_FIELDS * i;

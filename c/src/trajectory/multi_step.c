@@ -132,6 +132,15 @@ static void drop_target(sms_multi_generator *g, sms_multi_move *m)
     ++g->dropped;
 }
 
+int sms_multi_group_bounded(const sms_multi_generator *g, size_t first, size_t n)
+{
+    size_t i;
+    for (i = first; i < first + n; ++i)
+        if (g->bounded[i])
+            return 1;
+    return 0;
+}
+
 static void step_group(sms_multi_generator *g, size_t first, size_t n, sms_multi_move *m,
                        sms_real *out)
 {
@@ -163,7 +172,10 @@ static void step_group(sms_multi_generator *g, size_t first, size_t n, sms_multi
             if (!sms_multi_plan(g, first, &G, m, g->goal + first, zero, 0))
                 drop_target(g, m);
             t = 0;
-        } else if (t >= m->T1) {
+        } else if (t >= m->T1 && !sms_multi_group_bounded(g, first, n)) {
+            /* (a group with an axis under position limits does not blend: the new target
+             * waits for the arrival and starts from rest, multi_generator.h, so every move
+             * runs from rest to rest between points inside, on the segment between them) */
             /* blend at tr: the end of the first transition, or the instant the target came
              * during the cruise (at this very sample: when the stop has not begun there by
              * the rule evaluate() uses). Not before T1, not even by a rounding: the new move
@@ -215,7 +227,7 @@ void sms_multi_step_profile(sms_multi_generator *g, const sms_real *target, sms_
         return;
     }
     for (i = 0; i < g->n_axes; ++i)
-        if (target[i] - target[i] == 0 && target[i] != g->target[i]) { /* finite and new */
+        if (sms_multi_takes_position(g, i, target[i]) && target[i] != g->target[i]) {
             g->target[i] = target[i];
             g->move[g->sync == SMS_SYNC_PHASE ? 0 : i].refused = 0;
         }

@@ -8,6 +8,7 @@
 #include "trajectory/multi_parts.h"
 #include "trajectory/plan.h"
 #include "trajectory/plan_target.h"
+#include "trajectory/plan_bounded.h"
 
 /* A minimum duration beyond this many samples is refused (the generator's feasible limits
  * reach vmax within it, sms_generator_reach()). */
@@ -60,6 +61,13 @@ sms_status sms_multi_generator_check_target(const sms_multi_generator *g,
             st = SMS_ERR_TARGET_ACCELERATION;
         else if (s != 0 && (!plans || !SMS_SYNC_PER_AXIS_PLANS(s)))
             st = SMS_ERR_TARGET_SYNC;
+        else if (g->bounded[i] && v != 0) /* a target drifting on would leave the limits */
+            st = SMS_ERR_TARGET_VELOCITY;
+        else if (g->bounded[i] && a != 0)
+            st = SMS_ERR_TARGET_ACCELERATION;
+        else if (g->bounded[i] &&
+                 !(t->position[i] >= g->qmin[i] && t->position[i] <= g->qmax[i]))
+            st = SMS_ERR_POSITION_LIMIT;
         if (st == SMS_OK) {
             /* the velocity within its bound on the way in and after the target */
             reach = a * mag(a) / (2 * g->jmax[i]);
@@ -92,25 +100,78 @@ static int same_target(const sms_multi_target *x, const sms_multi_target *y, siz
 }
 
 
+/* One axis of the per-axis modes, the single-axis planner without position limits. */
+typedef struct axis_ctx {
+    const sms_multi_generator *g;
+    size_t i;
+} axis_ctx;
+
+static int axis_direct(const void *ctx, sms_plan *plan, sms_real q, sms_real v, sms_real a,
+                       const sms_target *goal)
+{
+    const axis_ctx *c = (const axis_ctx *)ctx;
+    const sms_to_limits lim = axis_limits(c->g, c->i);
+    if (goal->interface == SMS_INTERFACE_VELOCITY)
+        return sms_plan_velocity(plan, &lim, c->g->Ts_signal, q, v, a, goal->velocity,
+                                 goal->acceleration, goal->minimum_duration);
+    return sms_plan_to_state(plan, &lim, c->g->Ts_signal, q, v, a, goal->position,
+                             goal->velocity, goal->acceleration, goal->minimum_duration);
+}
+
+static sms_plan_box axis_box(const sms_multi_generator *g, size_t i)
+{
+    sms_plan_box box;
+    box.qmin = g->qmin[i];
+    box.qmax = g->qmax[i];
+    box.qtol = g->qtol[i];
+    box.Ts = g->Ts_signal;
+    return box;
+}
+
+/* Axis i from (q, v, a) to its target state in t with minimum duration Tmin: 1 planned, 0 not
+ * representable, SMS_REPLAN_WAIT (position limits: no plan from there stays inside). An axis
+ * with position limits plans by the single-axis generator's rule (plan_bounded.c). */
+static int plan_axis(const sms_multi_generator *g, size_t i, sms_plan *plan, sms_real q,
+                     sms_real v, sms_real a, const sms_multi_target *t, sms_real Tmin)
+{
+    axis_ctx ctx;
+    sms_target goal;
+    sms_plan_box box;
+    ctx.g = g;
+    ctx.i = i;
+    goal.interface = SMS_INTERFACE_POSITION;
+    goal.position = t->position[i];
+    goal.velocity = t->velocity[i];
+    goal.acceleration = t->acceleration[i];
+    goal.minimum_duration = Tmin;
+    if (!g->bounded[i])
+        return axis_direct(&ctx, plan, q, v, a, &goal);
+    box = axis_box(g, i);
+    return sms_plan_within(&box, axis_direct, &ctx, plan, q, v, a, &goal);
+}
+
 /* Plans every axis from its state s[4 i + 0..2] to the target into plans[], tmin[] the minimum
- * durations used. Returns 1 when every axis is planned, 0 when a motion cannot be formed. */
+ * durations used. Returns 1 when every axis is planned, 0 when a motion cannot be formed,
+ * SMS_REPLAN_WAIT when no plan of a bounded axis stays inside (that axis in *bad). */
 static int plan_all(const sms_multi_generator *g, const sms_multi_target *t, const sms_real *s,
-                    sms_plan *plans, sms_real *tmin)
+                    sms_plan *plans, sms_real *tmin, size_t *bad)
 {
     const size_t n = g->n_axes;
     int synced[SMS_MULTI_MAX_AXES];
     size_t i, N = 0, round;
     const sms_real Ts = g->Ts_signal;
     for (i = 0; i < n; ++i) {
-        const sms_to_limits lim = axis_limits(g, i);
         const int mode = t->sync[i] != 0 ? t->sync[i] : (int)g->sync;
         synced[i] = mode == SMS_SYNC_TIME ||
                     (mode == SMS_SYNC_TIME_IF_NECESSARY &&
                      (t->velocity[i] != 0 || t->acceleration[i] != 0));
+        int planned;
         tmin[i] = synced[i] ? t->minimum_duration : 0;
-        if (!sms_plan_to_state(&plans[i], &lim, Ts, s[4 * i], s[4 * i + 1], s[4 * i + 2],
-                               t->position[i], t->velocity[i], t->acceleration[i], tmin[i]))
-            return 0;
+        planned = plan_axis(g, i, &plans[i], s[4 * i], s[4 * i + 1], s[4 * i + 2], t, tmin[i]);
+        if (planned != 1) {
+            *bad = i;
+            return planned;
+        }
         if (mode != SMS_SYNC_NONE && sms_plan_arrival_sample(&plans[i], Ts) > N)
             N = sms_plan_arrival_sample(&plans[i], Ts);
     }
@@ -123,21 +184,22 @@ static int plan_all(const sms_multi_generator *g, const sms_multi_target *t, con
             if (!synced[i] || sms_plan_arrival_sample(&plans[i], Ts) == N)
                 continue;
             {
-                const sms_to_limits lim = axis_limits(g, i);
                 const sms_real T = (sms_real)N * Ts;
-                if (!sms_plan_to_state(&plans[i], &lim, Ts, s[4 * i], s[4 * i + 1],
-                                       s[4 * i + 2], t->position[i], t->velocity[i],
-                                       t->acceleration[i], T))
-                    return 0;
+                const int planned = plan_axis(g, i, &plans[i], s[4 * i], s[4 * i + 1],
+                                              s[4 * i + 2], t, T);
+                if (planned != 1) {
+                    *bad = i;
+                    return planned;
+                }
                 tmin[i] = T;
             }
             at = sms_plan_arrival_sample(&plans[i], Ts);
             if (at > N) {
                 N = at;
                 raised = 1;
-            } else if (at < N) {
+            } else if (at < N && !g->bounded[i]) {
                 return 0; /* not expected: the planner honours its minimum duration */
-            }
+            } /* (a bounded axis whose stretched move would cross takes it unstretched) */
         }
         if (!raised)
             return 1;
@@ -173,6 +235,10 @@ static void eval_axis(const sms_multi_generator *g, size_t i, sms_real *out)
         return;
     }
     sms_plan_eval(&ax->plan, g->Ts_signal, ax->k, out);
+    if (g->bounded[i]) {
+        const sms_plan_box box = axis_box(g, i);
+        sms_plan_hold_position(&box, &out[0]);
+    }
 }
 
 void sms_multi_sync_reset(sms_multi_generator *g, const sms_real *position)
@@ -219,11 +285,21 @@ void sms_multi_sync_step_held(sms_multi_generator *g, sms_real *out)
     if (g->plan_pending) {
         sms_plan plans[SMS_MULTI_MAX_AXES];
         sms_real tmin[SMS_MULTI_MAX_AXES];
+        size_t bad;
+        int planned;
         g->plan_pending = 0;
-        if (plan_all(g, &g->request, out, plans, tmin)) {
+        planned = plan_all(g, &g->request, out, plans, tmin, &bad);
+        if (planned == SMS_REPLAN_WAIT) {
+            g->plan_pending = 1; /* position limits: not from this state, tried on the next */
+        } else if (planned) {
             install(g, &g->request, out, plans, tmin);
-            for (i = 0; i < g->n_axes; ++i) /* the same q, v, a; the new jerk */
+            for (i = 0; i < g->n_axes; ++i) { /* the same q, v, a; the new jerk */
                 sms_plan_eval(&g->axis[i].plan, g->Ts_signal, 0, out + 4 * i);
+                if (g->bounded[i]) {
+                    const sms_plan_box box = axis_box(g, i);
+                    sms_plan_hold_position(&box, out + 4 * i);
+                }
+            }
         } else {
             g->plan_refused = 1; /* the running plans go on until the target changes */
             ++g->dropped;
@@ -238,6 +314,11 @@ void sms_multi_sync_step_profile(sms_multi_generator *g, const sms_multi_target 
     sms_multi_sync_step_held(g, out);
 }
 
+int sms_multi_takes_position(const sms_multi_generator *g, size_t i, sms_real x)
+{
+    return finite_real(x) && (!g->bounded[i] || (x >= g->qmin[i] && x <= g->qmax[i]));
+}
+
 /* sms_multi_generator_step() in the per-axis plan modes: positions at rest, a non-finite
  * component keeping that axis's previous target position. */
 void sms_multi_sync_rest_target(const sms_multi_generator *g, const sms_real *position,
@@ -246,7 +327,7 @@ void sms_multi_sync_rest_target(const sms_multi_generator *g, const sms_real *po
     size_t i;
     *t = g->request;
     for (i = 0; i < g->n_axes; ++i) {
-        if (finite_real(position[i]))
+        if (sms_multi_takes_position(g, i, position[i]))
             t->position[i] = position[i];
         t->velocity[i] = 0;
         t->acceleration[i] = 0;
@@ -258,6 +339,12 @@ void sms_multi_sync_rest_target(const sms_multi_generator *g, const sms_real *po
 int sms_multi_sync_fresh(const sms_multi_generator *g, const sms_multi_target *t)
 {
     return !same_target(t, &g->request, g->n_axes);
+}
+
+int sms_multi_sync_fresh_aim(const sms_multi_generator *g)
+{
+    return !same_target(&g->request, &g->aim, g->n_axes) &&
+           sms_multi_generator_check_target(g, &g->request, NULL) == SMS_OK;
 }
 
 int sms_multi_sync_busy(const sms_multi_generator *g)
@@ -317,11 +404,31 @@ static sms_status start_state_ok(const sms_multi_generator *g, size_t i, sms_rea
     const double brake = (double)v + (double)a * fabs((double)a) / (2.0 * (double)g->jmax[i]);
     if (!finite_real(q))
         return SMS_ERR_TARGET_POSITION;
+    if (g->bounded[i] && !(q >= g->qmin[i] && q <= g->qmax[i]))
+        return SMS_ERR_POSITION_LIMIT;
     if (!finite_real(v) || !(fabs((double)v) <= V))
         return SMS_ERR_TARGET_VELOCITY;
     if (!finite_real(a) || !(fabs((double)a) <= A) || !(fabs(brake) <= V))
         return SMS_ERR_TARGET_ACCELERATION;
     return SMS_OK;
+}
+
+/* plan_all() for sms_multi_generator_start(): its status, the axis that waits in *axis. */
+static sms_status start_plans(const sms_multi_generator *g, const sms_multi_target *t,
+                              const sms_real *s, sms_plan *plans, sms_real *tmin, size_t *axis)
+{
+    size_t bad = 0;
+    const int planned = plan_all(g, t, s, plans, tmin, &bad);
+    if (planned == 1)
+        return SMS_OK;
+    if (planned == SMS_REPLAN_WAIT) {
+        /* position limits: neither the motion to the target nor the brake to rest stays
+         * inside */
+        if (axis != NULL)
+            *axis = bad;
+        return SMS_ERR_POSITION_LIMIT;
+    }
+    return SMS_ERR_TOO_LONG;
 }
 
 sms_status sms_multi_generator_start(sms_multi_generator *g, const sms_real *q,
@@ -355,8 +462,9 @@ sms_status sms_multi_generator_start(sms_multi_generator *g, const sms_real *q,
         st = sms_multi_generator_check_target(g, target, axis);
         if (st != SMS_OK)
             return st;
-        if (!plan_all(g, target, s, plans, tmin))
-            return SMS_ERR_TOO_LONG;
+        st = start_plans(g, target, s, plans, tmin, axis);
+        if (st != SMS_OK)
+            return st;
         t = *target;
     } else {
         /* each axis's own stop: its target is where the fastest stop rests, planned as a
@@ -364,13 +472,22 @@ sms_status sms_multi_generator_start(sms_multi_generator *g, const sms_real *q,
         memset(&t, 0, sizeof t);
         for (i = 0; i < g->n_axes; ++i) {
             const sms_to_limits lim = axis_limits(g, i);
+            const sms_plan_box box = axis_box(g, i);
             if (!sms_plan_velocity(&plans[i], &lim, g->Ts_signal, q[i], v[i], a[i], 0, 0, 0))
                 return SMS_ERR_TOO_LONG;
+            if (g->bounded[i] && !sms_plan_inside(&box, &plans[i])) {
+                if (axis != NULL)
+                    *axis = i;
+                return SMS_ERR_POSITION_LIMIT; /* the brake itself crosses */
+            }
             t.position[i] = plans[i].goal;
+            if (g->bounded[i]) /* inside to the rounding of the brake's extremes */
+                sms_plan_hold_position(&box, &t.position[i]);
             t.sync[i] = SMS_SYNC_NONE;
         }
-        if (!plan_all(g, &t, s, plans, tmin))
-            return SMS_ERR_TOO_LONG;
+        st = start_plans(g, &t, s, plans, tmin, axis);
+        if (st != SMS_OK)
+            return st;
     }
     install(g, &t, s, plans, tmin);
     g->request = t;
@@ -382,9 +499,7 @@ sms_status sms_multi_generator_start(sms_multi_generator *g, const sms_real *q,
 int sms_multi_sync_replan_axis(const sms_multi_generator *g, size_t i,
                                const sms_multi_target *t, sms_multi_axis_plan *ax)
 {
-    const sms_to_limits lim = axis_limits(g, i);
-    return sms_plan_to_state(&ax->plan, &lim, g->Ts_signal, ax->q0, ax->v0, ax->a0,
-                             t->position[i], t->velocity[i], t->acceleration[i], ax->tmin);
+    return plan_axis(g, i, &ax->plan, ax->q0, ax->v0, ax->a0, t, ax->tmin) == 1;
 }
 
 int sms_multi_sync_start_ok(const sms_multi_generator *g, size_t i, double q, double v,

@@ -25,13 +25,13 @@ table; tests/python/test_multi_axis_sync.py asserts it on fixed-seed draws.
 """
 from __future__ import annotations
 
-import argparse
 import math
 
 import numpy as np
 
 from .. import _optional
-from .targets import UNIT_ROUNDOFF, _state
+from .targets import (UNIT_ROUNDOFF, _state, campaign_main, limit_cells, over_shares,
+                      ruckig_calculate, tally_limits)
 
 __all__ = ["FEATURES", "draw_case", "run_case", "campaign", "main"]
 
@@ -73,6 +73,13 @@ def _field(case, name):
 
 def ruckig_duration(case, Ts=None):
     """ruckig's duration for the case (continuous, or discrete with Ts), None when it errs."""
+    traj = ruckig_trajectory(case, Ts)
+    return None if traj is None else traj.duration
+
+
+def ruckig_trajectory(case, Ts=None):
+    """ruckig's trajectory for the case (continuous, or discrete with Ts), None when it errs;
+    case["mode"] may also be "phase" or "independent" (ruckig's Phase and None)."""
     ruckig = _optional.require("ruckig", "the campaigns against ruckig")
     n = len(case["axes"])
     otg = ruckig.Ruckig(n, Ts) if Ts else ruckig.Ruckig(n)
@@ -88,21 +95,14 @@ def ruckig_duration(case, Ts=None):
     inp.max_jerk = _field(case, "jmax")
     sync = {"time": ruckig.Synchronization.Time,
             "time_if_necessary": ruckig.Synchronization.TimeIfNecessary,
-            "none": ruckig.Synchronization.No}   # (ruckig's None, spelled No in Python)
+            "none": ruckig.Synchronization.No,   # (ruckig's None, spelled No in Python)
+            "phase": ruckig.Synchronization.Phase, "independent": ruckig.Synchronization.No}
     inp.synchronization = sync[case["mode"]]
     if case["per_axis"] is not None:
         inp.per_dof_synchronization = [sync[m] for m in case["per_axis"]]
     if case.get("minimum_duration"):
         inp.minimum_duration = case["minimum_duration"]
-    if Ts:
-        inp.duration_discretization = ruckig.DurationDiscretization.Discrete
-    try:
-        result = otg.calculate(inp, traj)
-    except (RuntimeError, ValueError, ruckig.RuckigError):
-        return None
-    if result not in (ruckig.Result.Working, ruckig.Result.Finished):
-        return None
-    return traj.duration
+    return traj if ruckig_calculate(ruckig, otg, inp, traj, Ts) else None
 
 
 def _synced(case):
@@ -193,7 +193,6 @@ def campaign(feature: str, n: int, *, seed: int = 1, precision: str = "double") 
     summary = dict(feature=feature, precision=precision, cases=0, ruckig_errors=0, over=[],
                    blocked=0, beyond_blocked=0, reported=[0.0] * 3, sampled=[-np.inf] * 3,
                    not_synchronised=0, not_landed=0, failures=[])
-    u = UNIT_ROUNDOFF[precision]
     for _ in range(n):
         case = draw_case(rng, feature)
         if feature == "minimum":
@@ -220,49 +219,27 @@ def campaign(feature: str, n: int, *, seed: int = 1, precision: str = "double") 
             summary["over"].append(over)
         if r["short"]:
             summary["failures"].append(("shorter than the minimum duration", case, r))
-        summary["reported"] = [max(a, b) for a, b in zip(summary["reported"], r["reported"])]
-        summary["sampled"] = [max(a, b) for a, b in zip(summary["sampled"], r["sampled"])]
-        if max(r["reported"]) > 1 + 32 * u or max(r["sampled"]) > 1 + 1e-9:
-            summary["failures"].append(("limits", case, r))
+        tally_limits(summary, case, r, precision)
         if not r["synchronised"]:
             summary["not_synchronised"] += 1
             summary["failures"].append(("synchronisation", case, r))
-        if not r["landed"]:
-            summary["not_landed"] += 1
-            summary["failures"].append(("landing", case, r))
     return summary
 
 
 def _row(s) -> str:
-    over = np.array(s["over"]) if s["over"] else np.zeros(1)
-    u = UNIT_ROUNDOFF[s["precision"]]
     return (f"| {s['feature']} | {s['precision']} | {s['cases']} | {s['ruckig_errors']} | "
-            f"{np.mean(over < 0):.3f} / {np.mean(over == 0):.3f} / {np.mean(over == 1):.3f} | "
-            f"{s['blocked']} ({s['beyond_blocked']}) | "
-            f"{', '.join(f'{(r - 1) / u:.1f}' for r in s['reported'])} | "
-            f"{', '.join(f'{x - 1:.2e}' for x in s['sampled'])} | {s['not_synchronised']} | "
-            f"{s['not_landed']} |")
+            f"{over_shares(s)} | {s['blocked']} ({s['beyond_blocked']}) | {limit_cells(s)} | "
+            f"{s['not_synchronised']} | {s['not_landed']} |")
 
 
 def main(argv=None) -> int:
-    p = argparse.ArgumentParser(prog="python -m smoothshaper.bench.multi_sync",
-                                description=__doc__.split("\n\n")[0])
-    p.add_argument("--cases", type=int, default=10000, help="cases per feature (default 10000)")
-    p.add_argument("--precision", choices=("double", "float"), default="double")
-    p.add_argument("--seed", type=int, default=1)
-    p.add_argument("--features", nargs="+", choices=FEATURES, default=list(FEATURES))
-    args = p.parse_args(argv)
-    print("| sync | precision | cases | ruckig errs | over the grid: < 0 / 0 / 1 [share] | "
-          "past a blocked duration (beyond ruckig's discrete + 1) | reported v, a, j beyond "
-          "the limit [u] | sampled differences / bound - 1, after the floor | not "
-          "synchronised | not landed |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
-    bad = 0
-    for feature in args.features:
-        s = campaign(feature, args.cases, seed=args.seed, precision=args.precision)
-        print(_row(s), flush=True)
-        bad += len(s["failures"])
-    return 1 if bad else 0
+    return campaign_main(
+        argv, prog="python -m smoothshaper.bench.multi_sync", doc=__doc__, names=FEATURES,
+        flag="--features", campaign=campaign, row=_row, cases=10000,
+        header=["sync", "precision", "cases", "ruckig errs", "over the grid: < 0 / 0 / 1 "
+                "[share]", "past a blocked duration (beyond ruckig's discrete + 1)", "reported "
+                "v, a, j beyond the limit [u]", "sampled differences / bound - 1, after the "
+                "floor", "not synchronised", "not landed"])
 
 
 if __name__ == "__main__":

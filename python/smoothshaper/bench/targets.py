@@ -117,15 +117,19 @@ def _ruckig(case, Ts=None):
         inp.target_position = [case["position"]]
     inp.target_velocity = [case["velocity"]]
     inp.target_acceleration = [case["acceleration"]]
+    return traj.duration if ruckig_calculate(ruckig, otg, inp, traj, Ts) else None
+
+
+def ruckig_calculate(ruckig, otg, inp, traj, Ts=None) -> bool:
+    """ruckig's calculate into traj (with its discrete durations when Ts is given): True when
+    it plans (Working or Finished), False when it errs."""
     if Ts:
         inp.duration_discretization = ruckig.DurationDiscretization.Discrete
     try:
         result = otg.calculate(inp, traj)
     except (RuntimeError, ValueError, ruckig.RuckigError):
-        return None
-    if result not in (ruckig.Result.Working, ruckig.Result.Finished):
-        return None
-    return traj.duration
+        return False
+    return result in (ruckig.Result.Working, ruckig.Result.Finished)
 
 
 def run_case(case: dict, *, precision: str = "double", samples: float | None = None,
@@ -258,46 +262,74 @@ def campaign(feature: str, n: int, *, seed: int = 1, precision: str = "double") 
             summary["over"].append(over)
             if over > 1:
                 summary["failures"].append(("duration", case, r))
-        summary["reported"] = [max(a, b) for a, b in zip(summary["reported"], r["reported"])]
-        summary["sampled"] = [max(a, b) for a, b in zip(summary["sampled"], r["sampled"])]
-        u = UNIT_ROUNDOFF[precision]
-        if max(r["reported"]) > 1 + 32 * u or max(r["sampled"]) > 1 + 1e-9:
-            summary["failures"].append(("limits", case, r))
-        if not r["landed"]:
-            summary["not_landed"] += 1
-            summary["failures"].append(("landing", case, r))
+        tally_limits(summary, case, r, precision)
     return summary
+
+
+def tally_limits(summary: dict, case: dict, r: dict, precision: str) -> None:
+    """Fold one case's worst reported v, a, j (over their limits) and sampled differences
+    (over their bounds, after the floor) into the summary; a value beyond 32 u or 1e-9, or an
+    axis not landed, is a failure of the case (the campaigns' shared promise)."""
+    u = UNIT_ROUNDOFF[precision]
+    summary["reported"] = [max(a, b) for a, b in zip(summary["reported"], r["reported"])]
+    summary["sampled"] = [max(a, b) for a, b in zip(summary["sampled"], r["sampled"])]
+    if max(r["reported"]) > 1 + 32 * u or max(r["sampled"]) > 1 + 1e-9:
+        summary["failures"].append(("limits", case, r))
+    if not r["landed"]:
+        summary["not_landed"] += 1
+        summary["failures"].append(("landing", case, r))
+
+
+def over_shares(s: dict) -> str:
+    """The share of arrivals before, on and one sample after ruckig's rounded duration."""
+    over = np.array(s["over"]) if s["over"] else np.zeros(1)
+    return f"{np.mean(over < 0):.3f} / {np.mean(over == 0):.3f} / {np.mean(over == 1):.3f}"
+
+
+def limit_cells(s: dict) -> str:
+    """The table cells of a summary's worst reported values [u] and sampled differences."""
+    u = UNIT_ROUNDOFF[s["precision"]]
+    return (f"{', '.join(f'{(r - 1) / u:.1f}' for r in s['reported'])} | "
+            f"{', '.join(f'{x - 1:.2e}' for x in s['sampled'])}")
+
+
+def campaign_main(argv, *, prog: str, doc: str, header: list, names: tuple, flag: str,
+                  campaign, row, cases: int) -> int:
+    """The campaigns' command line: --cases, --precision, --seed and the names to run
+    (``flag``); prints the table header and one row per name; 1 when any case failed."""
+    p = argparse.ArgumentParser(prog=prog, description=doc.split("\n\n")[0])
+    p.add_argument("--cases", type=int, default=cases, help=f"cases per {flag[2:-1]} "
+                   f"(default {cases})")
+    p.add_argument("--precision", choices=("double", "float"), default="double")
+    p.add_argument("--seed", type=int, default=1)
+    p.add_argument(flag, nargs="+", choices=names, default=list(names), dest="names")
+    args = p.parse_args(argv)
+    print("| " + " | ".join(header) + " |")
+    print("|" + "---|" * len(header))
+    bad = 0
+    for name in args.names:
+        s = campaign(name, args.cases, seed=args.seed, precision=args.precision)
+        print(row(s), flush=True)
+        bad += len(s["failures"])
+    return 1 if bad else 0
 
 
 def _row(s) -> str:
     over = np.array(s["over"]) if s["over"] else np.zeros(1)
-    u = UNIT_ROUNDOFF[s["precision"]]
     return (f"| {s['feature']} | {s['precision']} | {s['cases']} | {s['ruckig_errors']} | "
             f"{np.mean(over <= 0):.3f} / {np.mean(over == 1):.3f} / {int(over.max())} | "
             f"{s['blocked']} ({s['beyond_blocked']}) | "
-            f"{', '.join(f'{(r - 1) / u:.1f}' for r in s['reported'])} | "
-            f"{', '.join(f'{x - 1:.2e}' for x in s['sampled'])} | {s['not_landed']} |")
+            f"{limit_cells(s)} | {s['not_landed']} |")
 
 
 def main(argv=None) -> int:
-    p = argparse.ArgumentParser(prog="python -m smoothshaper.bench.targets",
-                                description=__doc__.split("\n\n")[0])
-    p.add_argument("--cases", type=int, default=1000, help="cases per feature (default 1000)")
-    p.add_argument("--precision", choices=("double", "float"), default="double")
-    p.add_argument("--seed", type=int, default=1)
-    p.add_argument("--features", nargs="+", choices=FEATURES, default=list(FEATURES))
-    args = p.parse_args(argv)
-    print("| feature | precision | cases | ruckig errs | over the grid: <= 0 / 1 / max "
-          "[samples] | past a blocked duration (beyond ruckig's discrete) | reported "
-          "v, a, j beyond the limit [u] | sampled differences / bound - 1, after the floor | "
-          "not landed |")
-    print("|---|---|---|---|---|---|---|---|---|")
-    bad = 0
-    for feature in args.features:
-        s = campaign(feature, args.cases, seed=args.seed, precision=args.precision)
-        print(_row(s), flush=True)
-        bad += len(s["failures"])
-    return 1 if bad else 0
+    return campaign_main(
+        argv, prog="python -m smoothshaper.bench.targets", doc=__doc__, names=FEATURES,
+        flag="--features", campaign=campaign, row=_row, cases=1000,
+        header=["feature", "precision", "cases", "ruckig errs", "over the grid: <= 0 / 1 / max "
+                "[samples]", "past a blocked duration (beyond ruckig's discrete)", "reported "
+                "v, a, j beyond the limit [u]", "sampled differences / bound - 1, after the "
+                "floor", "not landed"])
 
 
 if __name__ == "__main__":

@@ -26,9 +26,10 @@ from . import spectra
 from .candidates import (TIE_PP, Candidate, Reference, candidate_taps, evaluate, families,
                          recommend, tune)
 from . import default_limit as _budget
+from . import firmware as _fw
 from .default_limit import DefaultLimit
 from .modes import Mode, decay_modes
-from .objectives import ModalObjective, SpectralObjective, impulses_R2, taps_R2
+from .objectives import ModalObjective, SpectralObjective, WorstOf, impulses_R2, taps_R2
 from .records import AXIS_NAMES, KINDS, Record, RecordError, load
 from .spectra import Spectrum
 from .spectral_fit import fit_modes
@@ -97,6 +98,10 @@ class AxisResult:
     default_limit : DefaultLimit or None
         Without ``max_delay`` and ``max_smoothing``: the delay budget the candidates were
         tuned within and the trade-off pick that set it (:mod:`.default_limit`).
+    datasets : tuple of int
+        A PSD table of several data sets of one axis (``freq,name1,name2,...``: a test at
+        several points): their columns. The modes are fitted on their sum; every spectral
+        figure is the worst over the data sets (:class:`.objectives.WorstOf`).
     """
     name: str
     record: Record
@@ -119,6 +124,7 @@ class AxisResult:
     figure_spectrum: Spectrum | None = field(default=None, repr=False)
     hull_hi: float | None = None
     default_limit: DefaultLimit | None = None
+    datasets: tuple = ()
 
 
 @dataclass
@@ -419,6 +425,13 @@ def identify(rec: Record, name: str, signal: str, cols, band=None,
                                  "may be biased; a test over a wider range of frequencies "
                                  "measures it better")
     res.modes = modes
+    if (rec.kind == "psd" and not isinstance(cols, np.ndarray) and len(cols) >= 2
+            and not any(rec.names[j] in AXIS_NAMES + ("xyz",) for j in cols)):
+        # a table of several data sets of one axis: scored as the established tool scores
+        # them, each on its own and the worst counts
+        res.datasets = tuple(int(j) for j in cols)
+        res.notes.append(f"{len(cols)} data sets ({', '.join(rec.names[j] for j in cols)}): "
+                         "modes fitted on their sum, each filter scored by the worst of them")
     note = _energy_note(rec, b)
     if note:
         res.notes.append(note)
@@ -451,27 +464,43 @@ def _objectives(res: AxisResult, ranking: str):
         if res.record.kind not in ("raw", "psd"):
             inb &= f >= res.band[0]
     nodes, width = _zeta_nodes(f[inb], res.modes, res.explains)
-    P = fig.P[inb]
-    if res.record.kind in ("raw", "psd") and not res.record.marked:
-        P = spectra.normalize_to_excitation(f[inb], P)
+    scale = res.record.kind in ("raw", "psd") and not res.record.marked
+    # one PSD per data set (several for a table of several data sets of one axis)
+    sets = ([res.record.signals[:, j] for j in res.datasets] if res.datasets else [fig.P])
+
+    def scored(keep):
+        out = []
+        for Q in sets:
+            Q = Q[keep]
+            out.append(spectra.normalize_to_excitation(f[keep], Q) if scale else Q)
+        return out
+
+    Ps = scored(inb)
+    P = np.sum(Ps, axis=0)
     if P.size < 3 or not float(np.max(P)) > 0.0:
         raise RecordError(res.record.path, f"no vibration in the band {res.band[0]:.4g} to "
                           f"{res.band[1]:.4g} Hz ({P.size} frequencies, none with power): "
                           "nothing to score a filter against")
-    spec_obj = SpectralObjective(f[inb], P, nodes, width=width, group_hz=0.5)
+
+    def objective(fs, parts, zetas, **kw):
+        loud = [Q for Q in parts if Q.size and float(np.max(Q)) > 0.0]
+        if len(loud) <= 1:               # one data set (or none with power: as before)
+            return SpectralObjective(fs, (loud or parts)[0], zetas, **kw)
+        parts = loud
+        return WorstOf([SpectralObjective(fs, Q, zetas, **kw) for Q in parts])
+
+    spec_obj = objective(f[inb], Ps, nodes, width=width, group_hz=0.5)
     # the established tool's estimate itself (its three test dampings, every bin): what the
     # default delay budget is traded against (default_limit) and what the pick must not lose
     # on. A printer's test is scored, as that tool does, on every bin up to ESTIMATE_MAX_FREQ:
     # a real table's floor stood above a twentieth of its peak up to 200 Hz, and cut at 1.5
     # times the excited band's top the estimate had moved its trade-off pick from 63.4 to
     # 63.8 Hz and put 0.9 points on what it leaves
-    fk, Pk = f[inb], P
+    fk, Pk = f[inb], Ps
     if res.record.kind in ("raw", "psd") and not res.user_band:
         kb = (f > 0) & (f <= ESTIMATE_MAX_FREQ)
-        fk, Pk = f[kb], fig.P[kb]
-        if not res.record.marked:
-            Pk = spectra.normalize_to_excitation(fk, Pk)
-    trade = SpectralObjective(fk, Pk, TEST_DAMPINGS)
+        fk, Pk = f[kb], scored(kb)
+    trade = objective(fk, Pk, TEST_DAMPINGS)
     modal = None
     if res.modes and (res.explains or ranking == "modal"):
         modal = ModalObjective(res.modes)
@@ -489,9 +518,22 @@ def _default_limit(res: AxisResult, objs, anchors, firmware) -> DefaultLimit | N
     # the top of the scored spectrum (the ranking's bins, up to 1.5 x the excited band's top)
     spec = objs["spectrum"]
     top = float(spec.f.max()) if getattr(spec, "f", None) is not None and spec.f.size else 0.0
-    return _budget.default_limit(obj, firmware, [a / (2 * math.pi) for a in anchors],
-                                 printer=printer,
-                         top_hz=top)
+    hz = [a / (2 * math.pi) for a in anchors]
+    if firmware in ("none", "klipper") or objs.get("trade-off") is None:
+        return _budget.default_limit(obj, firmware, hz, printer=printer, top_hz=top)
+    # another firmware: the established tool's own pick on this spectrum too. The firmware's
+    # trade-off over its own shapers can pick a shorter one that leaves more (a ZV where the
+    # established tool picks an MZV); its shapers get at least the established pick's length,
+    # and the pick is held to that pick's estimate where a candidate reaches it
+    # (_hold_to_trade_off)
+    ref = _budget.default_limit(obj, "klipper", hz, printer=printer, top_hz=top)
+    if ref is None:
+        return own
+    # and where none of its designs within both lengths leaves as little as the established
+    # pick (a firmware's time grid, or a definition that differs from the established one),
+    # the budget reaches the shortest that does
+    return _budget.default_limit(obj, firmware, hz, printer=printer, top_hz=top,
+                                 established=ref)
 
 
 def _established(c: Candidate, trade, Ts: float) -> float:
@@ -534,11 +576,38 @@ def _hold_to_trade_off(res: AxisResult, objs, rank, reference, delay, firmware) 
     res.candidates.append(pick)
     for c in res.candidates:
         c.vibration_established = _established(c, trade, reference.Ts)
+    if limit.match is not None:
+        # the firmware's design that leaves no more than the established pick: a candidate,
+        # so one always reaches it where any design of this firmware does
+        ms, mf, mz, _, _ = limit.match
+        mA, mt = ms.impulses(mf, mz)
+        near = evaluate(f"{ms.firmware} {ms.name} (as the established pick)", [], objs, rank,
+                        reference, delay, None, impulses=(np.asarray(mA, float),
+                                                          np.asarray(mt, float)),
+                        firmware=(ms, mf, mz))
+        near.design = ((mf, mz),)
+        near.vibration_established = _established(near, trade, reference.Ts)
+        res.candidates.append(near)
     cap = pick.vibration_established
+    whose = "its trade-off pick's"
+    ref = limit.established
+    if ref is not None:
+        # the established tool's own pick (which this firmware may not run): where a candidate
+        # leaves no more than it, the pick must not either
+        kA, kt = _fw.by_name("klipper", ref.shaper.split(maxsplit=1)[1]).impulses(
+            ref.freq, _budget.DESIGN_DAMPING)
+        theirs = trade.value(impulses_R2(kA, kt, trade.poles), float(kt[-1]))
+        reach = min((c.vibration_established for c in res.candidates if c.meets),
+                    default=math.inf)
+        held = max(theirs, reach)
+        if held < cap:
+            cap, whose = held, (f"the established tool's pick's ({ref.shaper} at "
+                                f"{ref.freq:.1f} Hz: {theirs:.3g} %)" if held == theirs else
+                                "the least any candidate leaves")
     for c in res.candidates:
         if c.meets and c.vibration_established > cap + TIE_PP:
             c.reasons.append(f"leaves {c.vibration_established:.3g} % by the established "
-                             f"estimate > {cap:.3g} % (+{TIE_PP:g}), its trade-off pick's")
+                             f"estimate > {cap:.3g} % (+{TIE_PP:g}), {whose}")
             c.meets = False
 
 

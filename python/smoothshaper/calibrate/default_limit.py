@@ -30,7 +30,13 @@ applied here, on this calibration's own measured-spectrum figure, to fix the del
   frequencies leaving at most ``1.1 v_best + 0.0005``. Across shapers, in the order above, a
   later one replaces the pick when its score is 20 % lower, or 5 % lower with 10 % less
   smoothing; then any of its frequencies with both less vibration and less smoothing than the
-  pick replaces it; a ZV pick gives way to the first other shaper leaving 10 % less.
+  pick replaces it; a ZV pick gives way to the first other shaper leaving 10 % less (every
+  two-impulse shaper counts as a ZV: Marlin's classic ``M593 ZV`` too).
+
+With a firmware other than Klipper, the established tool's own trade-off (over Klipper's
+shapers) is also taken on the same spectrum, and the budget is the longer of the two picks'
+durations (:attr:`DefaultLimit.established`): a trade-off over the firmware's shapers can pick
+a shorter one that leaves more than the established pick.
 
 The budget is the picked shaper's duration (its last impulse). Every candidate family then
 competes within it for the least remaining vibration, so the recommendation is never longer
@@ -48,6 +54,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import firmware as fw
+from .candidates import TIE_PP
 from .objectives import impulses_R2
 
 __all__ = ["TRADE_OFF_SHAPERS", "MAX_SHAPER_FREQ", "FREQ_STEP", "DESIGN_DAMPING", "ACCEL",
@@ -88,6 +95,14 @@ class DefaultLimit:
         Its measured-spectrum figure at the test dampings [%].
     smoothing : float
         Its smoothing at :data:`ACCEL`, :data:`SCV` [mm].
+    established : DefaultLimit or None
+        A firmware other than Klipper: the established tool's own trade-off pick over
+        Klipper's shapers on the same spectrum (the budget covers its length).
+    match : tuple or None
+        With ``established``: ``(FirmwareShaper, freq [Hz], damping, duration [s], vibration
+        fraction)`` of the firmware's design leaving at most the established pick's estimate +
+        ``TIE_PP`` (the least within both picks' lengths, else the shortest, which the budget
+        then reaches); None when no design of the firmware does.
     """
     max_delay: float
     duration: float
@@ -95,21 +110,59 @@ class DefaultLimit:
     freq: float
     vibration: float
     smoothing: float
+    established: "DefaultLimit | None" = None
+    match: tuple | None = None
 
     def note(self) -> str:
+        e = self.established
+        if e is None:
+            return (f"no --max-delay or --max-smoothing: the delay is limited to "
+                    f"{1e3 * self.max_delay:.4g} ms, the length of {self.shaper} at "
+                    f"{self.freq:.1f} Hz, the established tool's trade-off of vibration "
+                    f"({self.vibration:.2g} %) against smoothing on this spectrum "
+                    "(docs/calibrate.md)")
         return (f"no --max-delay or --max-smoothing: the delay is limited to "
-                f"{1e3 * self.max_delay:.4g} ms, the length of {self.shaper} at "
-                f"{self.freq:.1f} Hz, the established tool's trade-off of vibration "
-                f"({self.vibration:.2g} %) against smoothing on this spectrum "
-                "(docs/calibrate.md)")
+                f"{1e3 * self.max_delay:.4g} ms, the longer of {self.shaper} at "
+                f"{self.freq:.1f} Hz ({1e3 * self.duration:.4g} ms, {self.vibration:.2g} %), "
+                "the established tool's trade-off of vibration against smoothing over this "
+                f"firmware's shapers, and the established tool's own pick {e.shaper} at "
+                f"{e.freq:.1f} Hz ({1e3 * e.duration:.4g} ms, {e.vibration:.2g} %), whose "
+                "estimate the pick is held to where a shaper of this firmware reaches it"
+                + ("" if self.match is None or self.match[3] <= max(self.duration, e.duration)
+                   else f", here first at {1e3 * self.match[3]:.4g} ms "
+                   f"({self.match[0].firmware} {self.match[0].name} at {self.match[1]:.1f} Hz, "
+                   f"damping {self.match[2]:.3g})")
+                + " (docs/calibrate.md)")
 
     def as_dict(self) -> dict:
-        return {"max_delay": self.max_delay, "duration": self.duration, "shaper": self.shaper, "freq_hz": self.freq,
-                "vibration": self.vibration, "smoothing": self.smoothing}
+        out = {"max_delay": self.max_delay, "duration": self.duration, "shaper": self.shaper,
+               "freq_hz": self.freq, "vibration": self.vibration, "smoothing": self.smoothing}
+        if self.established is not None:
+            out["established"] = self.established.as_dict()
+        if self.match is not None:
+            s, f, z, d, v = self.match
+            out["match"] = {"shaper": f"{s.firmware} {s.name}", "freq_hz": f, "damping": z,
+                            "duration": d, "vibration": 100.0 * v}
+        return out
+
+
+#: The frequency [Hz] at which a shaper's form is read (:func:`_is_zv`).
+FORM_FREQ = 50.0
+
+
+def _is_zv(shaper) -> bool:
+    """A shaper of the ZV form (two impulses), whatever the firmware calls it (Marlin has two:
+    FT Motion's ``ZV`` and classic ``M593 ZV``)."""
+    lo_z, hi_z = shaper.damping_range()
+    f = min(max(FORM_FREQ, shaper.min_freq), shaper.max_freq)
+    A, _ = shaper.impulses(f, min(max(DESIGN_DAMPING, lo_z), hi_z))
+    return A.size == 2
 
 
 def trade_off_shapers(firmware: str) -> tuple:
-    """The firmware shapers the trade-off is taken over (Klipper's five for "none")."""
+    """The firmware shapers the trade-off is taken over, in the order it visits them: Klipper's
+    five it calibrates, in its order, for ``"none"`` and ``"klipper"``; another firmware's
+    shapers in that firmware's own order (its list of shapers)."""
     if firmware in ("none", "klipper"):
         return tuple(fw.by_name("klipper", n) for n in TRADE_OFF_SHAPERS)
     return fw.shapers(firmware)
@@ -179,11 +232,11 @@ def _vibrations(objective, R2, L):
 _BLOCK = 256
 
 
-def _scan(shaper, freqs, objective):
+def _scan(shaper, freqs, objective, damping=DESIGN_DAMPING):
     """Rows (freq, vibration fraction, smoothing, score, duration) of ``shaper`` at each of
-    ``freqs`` it accepts, designed at DESIGN_DAMPING."""
+    ``freqs`` it accepts, designed at ``damping`` (default DESIGN_DAMPING)."""
     lo_z, hi_z = shaper.damping_range()
-    z = min(max(DESIGN_DAMPING, lo_z), hi_z)
+    z = min(max(damping, lo_z), hi_z)
     f, A, T = _designs(shaper, np.asarray(freqs, float), z)
     if f.size == 0:
         return np.zeros((0, 5))
@@ -247,8 +300,43 @@ def _min_accel_freq(shaper) -> float:
     return max(shaper.min_freq, 1.0)
 
 
+#: Damping ratios a firmware's shapers are also designed at when none designed at
+#: DESIGN_DAMPING leaves as little as the established pick (their damping is tuned later).
+MATCH_DAMPINGS = (0.05, 0.15, 0.2)
+
+
+def _match(scans, objective, target, within, below, printer, anchors_hz, top_hz):
+    """(shaper, freq, damping, duration, vibration) of the firmware design leaving at most
+    ``target`` (a fraction): the least-vibration one no longer than ``within`` [s], else the
+    shortest one, designed at DESIGN_DAMPING or at :data:`MATCH_DAMPINGS`; None if none."""
+    def pick(found):
+        short = [r for r in found if r[3] <= within * (1 + 1e-12)]
+        if short:
+            return min(short, key=lambda r: (r[4], r[3]))
+        return min(found, key=lambda r: (r[3], r[4])) if found else None
+
+    def rows_ok(s, z, rows):
+        ok = rows[:, 1] <= target
+        return [(s, float(r[0]), z, float(r[4]), float(r[1])) for r in rows[ok]]
+
+    found = [m for s, rows in scans for m in rows_ok(s, DESIGN_DAMPING, rows)]
+    best = pick(found)
+    if best is not None and best[3] <= within * (1 + 1e-12):
+        return best
+    for z in MATCH_DAMPINGS:
+        for s, _ in scans:
+            lo_z, hi_z = s.damping_range()
+            if not lo_z <= z <= hi_z:
+                continue
+            lo, hi, step = _range(s, printer, anchors_hz, top_hz, below)
+            if lo < hi:
+                found += rows_ok(s, z, _scan(s, np.arange(lo, hi, step), objective, z))
+    return pick(found)
+
+
 def default_limit(objective, firmware: str, anchors_hz, *, printer: bool,
-                  top_hz: float = 0.0) -> DefaultLimit | None:
+                  top_hz: float = 0.0, established: DefaultLimit | None = None
+                  ) -> DefaultLimit | None:
     """The default delay budget of one analysis (module docstring).
 
     Parameters
@@ -266,6 +354,11 @@ def default_limit(objective, firmware: str, anchors_hz, *, printer: bool,
         table): the scan then runs over the established tool's frequencies.
     top_hz : float, keyword-only
         Highest frequency of the scored spectrum [Hz] (the scan reaches it if above 150 Hz).
+    established : DefaultLimit or None, keyword-only
+        Another firmware: the established tool's own pick on the same objective. The budget
+        is then the longest of this firmware's pick, the established pick and, where no
+        design of this firmware within those leaves as little as the established pick (+
+        ``TIE_PP``), the shortest design that does (``DefaultLimit.match``).
 
     Returns
     -------
@@ -274,7 +367,7 @@ def default_limit(objective, firmware: str, anchors_hz, *, printer: bool,
     """
     best = None
     best_name = None
-    tuned = []
+    tuned, scans = [], []
     shapers = trade_off_shapers(firmware)
     # a mode below every shaper's printer minimum: the scans start at half its frequency
     below = printer and bool(anchors_hz) and min(anchors_hz) < min(_printer_min(s)
@@ -286,6 +379,7 @@ def default_limit(objective, firmware: str, anchors_hz, *, printer: bool,
         rows = _scan(s, np.arange(lo, hi, step), objective)
         if rows.shape[0] == 0:
             continue
+        scans.append((s, rows))
         i = _fit(rows)
         pick = rows[i]
         if (best is None or pick[3] * 1.2 < best[3]
@@ -299,10 +393,18 @@ def default_limit(objective, firmware: str, anchors_hz, *, printer: bool,
         tuned.append((s, pick))
     if best is None:
         return None
-    if best_name.name.lower() == "zv":
+    if _is_zv(best_name):
         for s, r in tuned:
-            if s.name.lower() != "zv" and r[1] * 1.1 < best[1]:
+            if not _is_zv(s) and r[1] * 1.1 < best[1]:
                 best, best_name = r, s
                 break
-    return DefaultLimit(float(best[4]), float(best[4]), f"{best_name.firmware} {best_name.name}", float(best[0]),
-                        100.0 * float(best[1]), float(best[2]))
+    own = DefaultLimit(float(best[4]), float(best[4]), f"{best_name.firmware} {best_name.name}",
+                       float(best[0]), 100.0 * float(best[1]), float(best[2]))
+    if established is None:
+        return own
+    within = max(own.duration, established.duration)
+    match = _match(scans, objective, (established.vibration + TIE_PP) / 100.0, within, below,
+                   printer, anchors_hz, top_hz)
+    budget = within if match is None else max(within, match[3])
+    return DefaultLimit(budget, own.duration, own.shaper, own.freq, own.vibration,
+                        own.smoothing, established, match)

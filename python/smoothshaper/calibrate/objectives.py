@@ -34,7 +34,7 @@ from .design_memo import impulses, smoother_R
 from ..reference.continuous import transfer_unchecked
 from ..stages import INPUT_SMOOTHERS, SHAPERS
 
-__all__ = ["BOX", "pole", "ModalObjective", "SpectralObjective", "taps_R2", "stages_R2"]
+__all__ = ["BOX", "pole", "ModalObjective", "SpectralObjective", "WorstOf", "taps_R2", "stages_R2"]
 
 #: Half-width of the uncertainty box, in standard deviations, for the stated range.
 BOX = 3.0
@@ -288,3 +288,54 @@ class SpectralObjective(_PoleSet):
         R = _from_end(R2_box, self.box.ravel(), L).reshape(self.n_range, -1)
         return (100 * math.sqrt(float(self.S @ R.min(axis=1))),
                 100 * math.sqrt(float(self.S @ R.max(axis=1))))
+
+
+class WorstOf:
+    """The measured-spectrum figure over several data sets of one axis (a test at several
+    points of the bed, Klipper's tables of several data sets): each data set scored on its own
+    (its own floor, a twentieth of its own peak, and its own total), the figure the worst of
+    them, as the established tool combines its data sets (``fit_shaper``: the largest remaining
+    vibration over the data sets and the test dampings), not the figure of their sum, in which
+    the loudest data set would hide what a shaper leaves of a quieter one.
+
+    ``parts``: one :class:`SpectralObjective` per data set. The poles are the parts' poles one
+    after the other (an ``R2`` is sliced into them); the range and the plant estimate are the
+    worst part's too (the largest lower and upper bounds)."""
+    kind = SpectralObjective.kind
+
+    def __init__(self, parts):
+        self.parts = list(parts)
+        if not self.parts:
+            raise ValueError("parts: at least one data set")
+
+        def cut(arrays):
+            sizes = [a.size for a in arrays]
+            edges = np.concatenate([[0], np.cumsum(sizes)])
+            return np.concatenate(arrays), [slice(int(a), int(b)) for a, b in
+                                            zip(edges[:-1], edges[1:])]
+
+        self.poles, self._p = cut([np.asarray(p.poles).ravel() for p in self.parts])
+        self.box, self._b = cut([np.asarray(p.box).ravel() for p in self.parts])
+        self.nominal, self._n = cut([np.asarray(p.nominal).ravel() for p in self.parts])
+        self.zetas = self.parts[0].zetas
+
+    def value(self, R2, L: float = 0.0) -> float:
+        return max(p.value(R2[s], L) for p, s in zip(self.parts, self._p))
+
+    def values(self, R2, L) -> np.ndarray:
+        """:meth:`value` of many designs: ``R2`` (poles, designs), ``L`` (designs,) [s]."""
+        L = np.asarray(L, float)
+        return np.array([self.value(R2[:, i], float(L[i])) for i in range(L.size)])
+
+    def tuning_value(self, R2, L: float = 0.0) -> float:
+        return max(p.tuning_value(R2[s], L) for p, s in zip(self.parts, self._p))
+
+    def tuning_values(self, R2, L) -> np.ndarray:
+        return np.max([p.tuning_values(R2[s], L) for p, s in zip(self.parts, self._p)], axis=0)
+
+    def nominal_value(self, R2_nominal, L: float = 0.0) -> float:
+        return max(p.nominal_value(R2_nominal[s], L) for p, s in zip(self.parts, self._n))
+
+    def range(self, R2_box, L: float = 0.0) -> tuple[float, float]:
+        r = [p.range(R2_box[s], L) for p, s in zip(self.parts, self._b)]
+        return max(a for a, _ in r), max(b for _, b in r)

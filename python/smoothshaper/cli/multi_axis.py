@@ -20,6 +20,7 @@ from .common import numbers as _numbers
 from .cost import PLOT_POINTS, start, trajectory_cost
 from .common import parse_via_points, pyplot as _pyplot, save_figure as _save
 from .common import write_outputs
+from ..errors import ParameterError
 
 __all__ = ["LIMIT_RTOL", "MAX_SAMPLES", "AXIS_NAMES", "parse_points", "parse_limit", "run",
            "cmd_multi_generator", "plot"]
@@ -46,6 +47,33 @@ def parse_limit(option: str, value, axes: int) -> np.ndarray:
         raise CliError(f"{option}: every limit must be > 0, got {v[bad[0]]:g} for axis "
                        f"{AXIS_NAMES[bad[0]]}")
     return v
+
+
+def position_limits(args, via: np.ndarray) -> dict:
+    """qmin, qmax per axis of --qmin/--qmax (one value for every axis, or one per axis), the
+    via-points inside them (else CliError naming the option and the point); {} without."""
+    if getattr(args, "qmin", None) is None and getattr(args, "qmax", None) is None:
+        return {}
+    axes = via.shape[1]
+    out = {}
+    for name in ("qmin", "qmax"):
+        value = getattr(args, name)
+        if value is None:
+            raise CliError(f"--{name} must be given with --{'qmax' if name == 'qmin' else 'qmin'}")
+        q = np.array(_numbers(f"--{name}", value) if isinstance(value, str) else [float(value)])
+        if q.size == 1:
+            q = np.full(axes, q[0])
+        if q.size != axes:
+            raise CliError(f"--{name}: give one value or one per axis ({axes}), got {q.size}")
+        out[name] = q
+    for k, point in enumerate(via):
+        bad = np.flatnonzero((point < out["qmin"]) | (point > out["qmax"]))
+        if bad.size:
+            i = bad[0]
+            side = "--qmin" if point[i] < out["qmin"][i] else "--qmax"
+            raise CliError(f"{side}: --via point {k} ({point[i]:.6g} on axis {AXIS_NAMES[i]}) "
+                           f"is outside [{out['qmin'][i]:.6g}, {out['qmax'][i]:.6g}]")
+    return {name: list(map(float, q)) for name, q in out.items()}
 
 
 def _arrival(out: np.ndarray, target: np.ndarray) -> np.ndarray:
@@ -110,7 +138,14 @@ def cmd_multi_generator(args) -> int:
     a = parse_limit("--amax", args.amax, axes)
     j = parse_limit("--jmax", args.jmax, axes)
     sync = getattr(args, "sync", None) or "phase"
-    gen = MultiAxisGenerator(vmax=v, amax=a, jmax=j, Ts=args.Ts, sync=sync, q0=via[0])
+    limits = position_limits(args, via)
+    try:
+        gen = MultiAxisGenerator(vmax=v, amax=a, jmax=j, Ts=args.Ts, sync=sync, q0=via[0],
+                                 **limits)
+    except ParameterError as exc:
+        if exc.parameter.split("[")[0] not in ("qmin", "qmax"):
+            raise
+        raise CliError(f"--{exc}") from None
     Ts = gen.Ts
     optimum = [phase_duration(q1 - q0, vmax=v, amax=a, jmax=j) for q0, q1 in zip(via[:-1], via[1:])]
     # each move within 3 times its optimum: the cruise part charged to its via-point, the rest

@@ -126,6 +126,7 @@ def _limit(option: str):
 
 
 _ONE_AXIS = ("vmin", "amin", "qmin", "qmax")
+_MULTI_TOO = ("qmin", "qmax")   # one per axis with multi-axis via-points
 
 
 def _generator(Generator, args):
@@ -154,12 +155,13 @@ def _outside(args, via) -> None:
 
 def cmd_generator(args) -> int:
     from ..trajectory import Generator
-    if ";" in (args.via or "") or any(isinstance(x, str)
-                                      for x in (args.vmax, args.amax, args.jmax)):
-        given = [f"--{n}" for n in _ONE_AXIS if getattr(args, n) is not None]
+    if ";" in (args.via or "") or any(isinstance(x, str) for x in (
+            args.vmax, args.amax, args.jmax, args.qmin, args.qmax)):
+        given = [f"--{n}" for n in _ONE_AXIS if getattr(args, n) is not None
+                 and n not in _MULTI_TOO]
         if given:
             raise CliError(f"{', '.join(given)}: one axis only (the multi-axis generator has "
-                           "symmetric limits and no position limits)")
+                           "symmetric limits)")
         from .multi_axis import cmd_multi_generator
         return cmd_multi_generator(args)
     if any(x is not None for x in (args.via_velocity, args.via_acceleration, args.start,
@@ -597,10 +599,11 @@ def add_design_forms(design_parser, parser_class) -> None:
                    help="one axis: lower velocity limit [unit/s], < 0 (default -vmax)")
     p.add_argument("--amin", type=float,
                    help="one axis: lower acceleration limit [unit/s^2], < 0 (default -amax)")
-    p.add_argument("--qmin", type=float,
-                   help="one axis, with --qmax: lower position limit [unit]; every sample stays "
-                   "in [qmin, qmax] and the via-points must lie inside")
-    p.add_argument("--qmax", type=float, help="one axis, with --qmin: upper position limit [unit]")
+    p.add_argument("--qmin", type=_limit("--qmin"),
+                   help="with --qmax: lower position limit [unit] (one per axis: Q1,Q2,...); "
+                   "every sample stays in [qmin, qmax] and the via-points must lie inside")
+    p.add_argument("--qmax", type=_limit("--qmax"),
+                   help="with --qmin: upper position limit [unit] (one per axis: Q1,Q2,...)")
     p.add_argument("--sync", choices=("phase", "independent"), default="phase",
                    help="several axes: straight lines and common arrival (phase, default) or "
                    "each axis time-optimal on its own (independent)")

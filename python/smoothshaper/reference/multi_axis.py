@@ -536,7 +536,7 @@ def _evaluate(m, t, left):
 
 
 def multi_axis_reference(targets, *, vmax, amax, jmax, Ts: float, sync: str = "phase",
-                         q0=None, stages=None) -> np.ndarray:
+                         q0=None, stages=None, qmin=None, qmax=None) -> np.ndarray:
     """Sampled output of the multi-axis generator for a staircase of target vectors, written
     independently of the C code (the same plan in NumPy, then the reference filters).
 
@@ -560,6 +560,10 @@ def multi_axis_reference(targets, *, vmax, amax, jmax, Ts: float, sync: str = "p
         Vibration stages for every axis, or one list per axis; each axis's q, v, a, j are
         filtered by :func:`smoothshaper.reference.filtering.filter` from rest (q at q0, the
         others at 0).
+    qmin, qmax : array_like, shape (axes,), optional
+        Position limits per axis (NaN or None entries: none). A target component outside
+        keeps that axis's previous target; a group with a limited axis does not blend a
+        changed target but starts it from rest at the arrival (multi_generator.h).
 
     Returns
     -------
@@ -593,7 +597,25 @@ def multi_axis_reference(targets, *, vmax, amax, jmax, Ts: float, sync: str = "p
         q0 = _finite_vector("q0", q0)
         if q0.size != x.shape[1]:
             raise ParameterError("q0", f"q0 must hold {x.shape[1]} values, got {q0.size}")
-    out = _profile(x, vmax=vmax, amax=amax, jmax=jmax, Ts=Ts, sync=sync, q0=q0)
+    bounded = np.zeros(x.shape[1], dtype=bool)
+    if qmin is not None or qmax is not None:
+        lo = np.array([np.nan if v is None else v for v in np.broadcast_to(
+            np.asarray(qmin, dtype=object), (x.shape[1],))], dtype=float)
+        hi = np.array([np.nan if v is None else v for v in np.broadcast_to(
+            np.asarray(qmax, dtype=object), (x.shape[1],))], dtype=float)
+        bounded = np.isfinite(lo) & np.isfinite(hi)
+        x = x.copy()
+        for i in np.flatnonzero(bounded):   # an outside component keeps the previous target
+            held = (q0[i] if q0 is not None else
+                    lo[i] if lo[i] > 0 else hi[i] if hi[i] < 0 else 0.0)
+            for k in range(x.shape[0]):
+                if lo[i] <= x[k, i] <= hi[i]:
+                    held = x[k, i]
+                x[k, i] = held
+        if q0 is None:
+            q0 = np.where(bounded & (lo > 0), lo, np.where(bounded & (hi < 0), hi, 0.0))
+    out = _profile(x, vmax=vmax, amax=amax, jmax=jmax, Ts=Ts, sync=sync, q0=q0,
+                   bounded=bounded)
     if stages is None:
         return out
     axes = out.shape[1]
@@ -608,7 +630,7 @@ def multi_axis_reference(targets, *, vmax, amax, jmax, Ts: float, sync: str = "p
     return out
 
 
-def _profile(targets, *, vmax, amax, jmax, Ts, sync, q0) -> np.ndarray:
+def _profile(targets, *, vmax, amax, jmax, Ts, sync, q0, bounded=None) -> np.ndarray:
     """The generator's profile before any stage (see :func:`multi_axis_reference`)."""
     x = np.asarray(targets, dtype=np.float64)
     n, axes = x.shape
@@ -618,6 +640,7 @@ def _profile(targets, *, vmax, amax, jmax, Ts, sync, q0) -> np.ndarray:
     out = np.zeros((n, axes, 4))
     for idx in groups:
         lim = (vmax[idx], amax[idx], jmax[idx])
+        blends = bounded is None or not np.any(bounded[idx])   # position limits: no blend
         position = rest[idx].copy()  # where the group rests when no move runs
         move, k, seen, pending = None, 0, 0.0, False
         refused = None  # a target whose move was refused: not tried again while it is held
@@ -648,7 +671,7 @@ def _profile(targets, *, vmax, amax, jmax, Ts, sync, q0) -> np.ndarray:
                             position = B.copy()
                     pending = False
                     t = 0.0
-                elif t >= move["T1"]:
+                elif t >= move["T1"] and blends:
                     # blend at the end of the first transition, or where the target came in
                     # the cruise (at this very sample: before the stop by _evaluate's rule);
                     # never before T1, or the new move's first sample would be taken at tr
