@@ -64,13 +64,16 @@ typedef struct ss_model {
      * a build, a retune and a loaded state make it stale) */
     double input_max;
     int input_max_stale;
-    /* the range and gain bound (sms_stage_config_range()) of each chain position's pending
+    /* the limit and gain bound (sms_stage_config_limit(), uncapped) of each chain position's pending
      * configuration, kept from the set that made it pending (pend_gain 0: none valid), so that
      * every set of u is checked against the range of the retunes to come in O(stages) */
     double pend_limit[SS_MAX_STAGES], pend_gain[SS_MAX_STAGES];
-    /* the largest |u| or |s| the stages' memory may hold: those ticked since the build, or the
-     * configuration's whole range after a state was loaded (its inputs are not known) */
-    double peak;
+    /* The held-input bound (held_bound()): peak_cur and peak_prev are the largest |u| (and |s|)
+     * ticked in the current epoch (epoch_ticks ticks so far) and in the one before, each epoch
+     * span_max ticks long (memory_span()); after a state was loaded both start at the
+     * configuration's whole range (the inputs before it are not known). */
+    double peak_cur, peak_prev;
+    uint64_t epoch_ticks, span_max;
 } ss_model;
 
 static int is_integer_field(unsigned f)
@@ -291,7 +294,7 @@ static void pending_range(ss_model *m, size_t i)
         return;
     if (c.kind == SMS_SHAPER_IMPULSES)
         m->pend_gain[i] = -1.0;   /* never retuned (it reads no tunable field) */
-    else if (sms_stage_config_range(&c, m->Ts, &m->pend_limit[i], &m->pend_gain[i]) != SMS_OK)
+    else if (sms_stage_config_limit(&c, m->Ts, &m->pend_limit[i], &m->pend_gain[i]) != SMS_OK)
         m->pend_limit[i] = m->pend_gain[i] = 0.0;
 }
 
@@ -894,7 +897,9 @@ int fmu_model_build(void *model, void *mem, size_t bytes, char *msg, size_t len)
     b.any_pending = 0;
     b.built = 1;
     b.input_max_stale = 1;
-    b.peak = fabs(b.u) > fabs(b.s) || !b.scheduled ? fabs(b.u) : fabs(b.s);
+    b.peak_cur = fabs(b.u) > fabs(b.s) || !b.scheduled ? fabs(b.u) : fabs(b.s);
+    b.peak_prev = 0.0;
+    b.epoch_ticks = b.span_max = 0;
     if (n > 0)
         sms_tunable_chain_reset(&b.chain, (sms_real)b.u);
     if (b.scheduled)
@@ -907,8 +912,115 @@ int fmu_model_build(void *model, void *mem, size_t bytes, char *msg, size_t len)
     return 0;
 }
 
+/* The rest a stage's slot holds (every family keeps the value of its last reset). */
+static double slot_rest(const sms_stage *st)
+{
+    if (st->kind <= SMS_EXPONENTIAL)
+        return fabs((double)st->u.smoother->rest);
+    if (st->kind == SMS_NOTCH_TUSTIN || st->kind == SMS_NOTCH_MATCHED)
+        return fabs((double)st->u.notch->rest);
+    return fabs((double)st->u.shaper->rest);
+}
+
+/* Ticks of chain inputs the stages' memory can still depend on, besides the values kept from
+ * a reset (slot_rest(), the tunables' h and last input), or 0 when that is not bounded: a
+ * notch (IIR: every past input stays in its state, decaying) or the scheduled shaper (not a
+ * stage of the chain). A shaper's delay line holds its last L inputs; a smoother's its last
+ * `window` inputs and two running sums, each restarted from zero every window samples with a
+ * reference input of that moment, so at most 2 window + 2 samples back. A stage's inputs at
+ * tick n depend on the chain's inputs back to n - (the lengths of the stages before it), so the
+ * sum over every slot (both during a switch) of those counts bounds the chain's. */
+static uint64_t memory_span(const ss_model *m)
+{
+    uint64_t w = 2u;
+    size_t i;
+    unsigned s;
+    if (m->scheduled)
+        return 0u;
+    for (i = 0; i < m->n_active; ++i) {
+        const sms_tunable *t = &m->tunables[i];
+        for (s = 0; s < (t->switching ? 2u : 1u); ++s) {
+            const sms_stage *st = &t->slot[s == 0 ? t->active : 1u - t->active];
+            if (st->kind == SMS_NOTCH_TUSTIN || st->kind == SMS_NOTCH_MATCHED)
+                return 0u;
+            w += (uint64_t)sms_stage_length(st) + 2u;
+            if (st->kind <= SMS_EXPONENTIAL)
+                w += 2u * (uint64_t)st->u.smoother->window + 2u;
+        }
+    }
+    return w;
+}
+
+/* n ticks of the inputs held: the epochs of held_bound(). With a span (memory_span() > 0) an
+ * epoch lasts span_max ticks, the largest span since the build (a retune to a longer filter
+ * puts only inputs from its start on into the new slot, so no input older than the spans
+ * before it re-enters; the largest is a safe length for every epoch); at its end the epoch
+ * becomes the previous one and a new one starts empty. So peak_prev and peak_cur together
+ * cover at least the last span_max ticks, which is every input the memory can depend on. With
+ * no span nothing rotates and the epoch restarts, so the first two rotations after a notch
+ * leaves the chain still count every input before it. O(1) whatever n. */
+static void note_inputs(ss_model *m, uint64_t n)
+{
+    double a = fabs(m->u);
+    const uint64_t span = memory_span(m);
+    uint64_t left;
+    if (m->scheduled && fabs(m->s) > a)
+        a = fabs(m->s);
+    if (n == 0)
+        return;
+    if (span == 0) {
+        m->peak_cur = a > m->peak_cur ? a : m->peak_cur;
+        m->epoch_ticks = 0;
+        return;
+    }
+    if (span > m->span_max)
+        m->span_max = span;
+    left = m->span_max - (m->epoch_ticks < m->span_max ? m->epoch_ticks : m->span_max);
+    m->peak_cur = a > m->peak_cur ? a : m->peak_cur;
+    if (n < left) {
+        m->epoch_ticks += n;
+        return;
+    }
+    m->peak_prev = m->peak_cur;   /* this epoch ends */
+    m->peak_cur = 0.0;
+    m->epoch_ticks = 0;
+    n -= left;
+    if (n >= m->span_max) {       /* whole epochs of a alone; the last is the previous one */
+        m->peak_prev = a;
+        n %= m->span_max;
+    }
+    if (n > 0) {
+        m->peak_cur = a;
+        m->epoch_ticks = n;
+    }
+}
+
+/* The largest |input| the stages' memory may hold: the inputs of the last span_max ticks or
+ * more (note_inputs()), and every value a stage keeps from a reset, whatever its age: each
+ * slot's rest, the tunables' held h and last input (the new filter of a retune starts at rest
+ * at h = the last input; a stage's rest after ExitInitializationMode is u). A rest of stage
+ * i > 0 is a value of that stage's input, which a chain input bound P covers once
+ * |rest| <= (1 + 2 G_0 ... G_(i-1)) P: taking |rest| itself is the safe side. O(stages). */
+static double held_bound(const ss_model *m)
+{
+    double b = m->peak_cur > m->peak_prev ? m->peak_cur : m->peak_prev;
+    size_t i;
+    for (i = 0; i < m->n_active; ++i) {
+        const sms_tunable *t = &m->tunables[i];
+        double r = slot_rest(&t->slot[t->active]);
+        if (t->switching && slot_rest(&t->slot[1u - t->active]) > r)
+            r = slot_rest(&t->slot[1u - t->active]);
+        if (fabs((double)t->hold) > r)
+            r = fabs((double)t->hold);
+        if (fabs((double)t->last) > r)
+            r = fabs((double)t->last);
+        b = r > b ? r : b;
+    }
+    return b;
+}
+
 /* A retune must not narrow the chain's range below an input it holds: u, s, or one in the
- * stages' memory (peak). The range from now until the retunes (those of this call, configs of
+ * stages' memory (held_bound()). The range from now until the retunes (those of this call, configs of
  * the stages touched, and those pending) have ended is retune_range(); 1 with msg naming the
  * call's first variable and the values if an input held is beyond it. */
 static int narrows_below_held(const ss_model *m, fmu_type type, const fmu_vr *vr,
@@ -930,7 +1042,7 @@ static int narrows_below_held(const ss_model *m, fmu_type type, const fmu_vr *vr
             continue;
         if (configs[i].kind == SMS_SHAPER_IMPULSES)
             gain[i] = -1.0;   /* never retuned */
-        else if (sms_stage_config_range(&configs[i], m->Ts, &lim[i], &gain[i]) != SMS_OK)
+        else if (sms_stage_config_limit(&configs[i], m->Ts, &lim[i], &gain[i]) != SMS_OK)
             lim[i] = gain[i] = 0.0;   /* validated above: cannot happen */
     }
     x = retune_range(m, pend, lim, gain);
@@ -940,12 +1052,13 @@ static int narrows_below_held(const ss_model *m, fmu_type type, const fmu_vr *vr
     } else if (fabs(m->s) > x) {
         what = "the scheduling input s it holds";
         held = fabs(m->s);
-    } else if (m->peak > x) {
-        what = m->peak >= fmu_model_input_max(m) ? "the largest input the stages' memory may "
-               "hold (its whole range: inputs taken before a restored state are not known)"
+    } else if (held_bound(m) > x) {
+        held = held_bound(m);
+        what = held >= fmu_model_input_max(m) ? "the largest input the stages' memory may "
+               "hold (its whole range: inputs taken before a restored state are not known, "
+               "until the stages' memory has been refilled)"
                : "the largest input the stages' memory may hold (the largest |u| or |s| ticked "
-               "since initialization)";
-        held = m->peak;
+               "within the stages' memory span, or a rest value a stage keeps)";
     } else {
         return 0;
     }
@@ -1065,21 +1178,12 @@ static void apply_pending(ss_model *m)
         m->chain_lag = active_lag(m);
 }
 
-/* The inputs a tick puts into the stages' memory raise its peak. */
-static void note_inputs(ss_model *m)
-{
-    if (fabs(m->u) > m->peak)
-        m->peak = fabs(m->u);
-    if (m->scheduled && fabs(m->s) > m->peak)
-        m->peak = fabs(m->s);
-}
-
 int fmu_model_tick(void *model)
 {
     ss_model *m = (ss_model *)model;
     sms_real x = (sms_real)m->u;
     double before = m->y;
-    note_inputs(m);
+    note_inputs(m, 1u);
     if (m->any_pending)
         apply_pending(m);
     if (m->n_active > 0)
@@ -1110,7 +1214,7 @@ uint64_t fmu_model_hold(void *model, uint64_t n)
     sms_real y;
     if (n == 0 || m->any_pending || m->scheduled)
         return 0;
-    note_inputs(m);
+    note_inputs(m, n);
     if (m->n_active == 0) {
         m->y = (double)(sms_real)m->u;
         return n;
@@ -1202,6 +1306,7 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
     size_t i, j, off = 1, at = 0;
     sms_status st;
     int rebuilt = 0;   /* 1: a stage was built again here (its lag may differ) */
+    int kept[SS_MAX_STAGES];   /* stage i was already in its saved configuration */
     if (n != fmu_model_state_count(m))
         return snprintf(msg, len, "it holds %lu values, the stages need %lu", (unsigned long)n,
                         (unsigned long)fmu_model_state_count(m)), 1;
@@ -1217,6 +1322,7 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
             && sms_tunable_state_count(&m->tunables[i]) <= m->region[i]
             && sms_tunable_check_state(&m->tunables[i], part,
                                        sms_tunable_state_count(&m->tunables[i])) == SMS_OK) {
+            kept[i] = 1;
             off += m->region[i];
             at += slots_per_stage(m) * m->slot_cells[i];
             continue;
@@ -1230,6 +1336,7 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
         if (st != SMS_OK)
             return snprintf(msg, len, "stage %lu's state is not a retunable stage's",
                             (unsigned long)i), 1;
+        kept[i] = 0;
         rebuilt = 1;
         m->input_max_stale = 1;   /* the stage is built again */
         if (sms_tunable_init(&m->tunables[i], switching ? &old : &active, m->Ts, m->slot_cells[i],
@@ -1240,12 +1347,16 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
         off += m->region[i];
         at += slots_per_stage(m) * m->slot_cells[i];
     }
-    /* the input range X: the fixed chain's own, or SMS_INPUT_MAX when the stages are
-     * retunable (the values a stage holds were left through earlier configurations, whose
-     * gains may exceed today's; the held inputs are within today's range, which the glue
-     * checks with fmu_model_state_input_max()) */
-    x = m->n_active > 0 && !(m->retune_max_delay > 0.0) ? fmu_model_input_max(m) : SMS_INPUT_MAX;
-    x = x < SMS_INPUT_MAX ? x : SMS_INPUT_MAX;   /* the cached range unless a stage was rebuilt */
+    /* the input range X of the configuration the state was saved in, fixed or retunable alike
+     * (sms_tunable_chain_input_max() of the stages as rebuilt: during a switch its smaller
+     * range of both filters). Its inputs are within it: every input ticked into the stages'
+     * memory and every rest was within the range at its tick, and a retune that would narrow
+     * the range below one that memory still holds is refused (narrows_below_held()), so no
+     * configuration since has a smaller range than those inputs; the pending retunes' range
+     * (smaller still) bounds the held u and s, which the glue checks
+     * (fmu_model_state_input_max()). */
+    x = m->n_active > 0 ? sms_tunable_chain_input_max(&m->chain) : SMS_INPUT_MAX;
+    x = x < SMS_INPUT_MAX ? x : SMS_INPUT_MAX;
     for (i = 0, off = 1; i < m->n_active; ++i) {
         const double *part = src + off;
         /* the part's length as the saving stage had it: a switch saved with a notch fading
@@ -1298,8 +1409,15 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
     m->y = src[0];
     m->any_pending = 0;
     for (i = 0; i < m->n_active; ++i) {   /* parameters set since, not yet applied */
-        sms_stage_config want, now = sms_tunable_config(&m->tunables[i]);
+        sms_stage_config want, now;
         char why[FMU_MESSAGE_LEN];
+        /* a stage kept in its configuration with nothing pending: the model's parameters
+         * (the instance's own, copied, or the state's, just built) are the ones that
+         * configuration was built or last retuned from, so none awaits a retune (what the
+         * comparison below finds, without designing two configs) */
+        if (kept[i] && !m->pending[i])
+            continue;
+        now = sms_tunable_config(&m->tunables[i]);
         /* the parameters of the configuration the stage runs (a valid one): no check, no
          * design; others are checked as a retune would be */
         if (stage_fields(m, m->used[i], &want, why, sizeof why) == 0 && same_config(&want, &now))
@@ -1315,6 +1433,8 @@ int fmu_model_load_state(void *model, const double *src, size_t n, char *msg, si
         m->chain_lag = active_lag(m);
     /* the inputs the loaded memory holds are not known: up to the range (fmu_model_input_max()
      * after the pending ranges above) */
-    m->peak = fmu_model_input_max(m) < SMS_INPUT_MAX ? fmu_model_input_max(m) : SMS_INPUT_MAX;
+    m->peak_cur = m->peak_prev = fmu_model_input_max(m) < SMS_INPUT_MAX ? fmu_model_input_max(m)
+                                                                         : SMS_INPUT_MAX;
+    m->epoch_ticks = 0;   /* two epochs from now the loaded memory has been refilled */
     return 0;
 }

@@ -165,7 +165,11 @@ class TunableChain:
     @property
     def input_max(self) -> float:
         """Largest ``|x|`` the chain keeps every output and state finite for, now (C
-        ``sms_tunable_chain_input_max``: during a switch, over both filters of the stage)."""
+        ``sms_tunable_chain_input_max``: during a switch, over both filters of the stage):
+        ``min(input_max(), min_i L_i / R_i)``, ``L_i`` each stage's limit before the cap (the
+        smaller of its two filters' during a switch), ``R_0 = 1``,
+        ``R_i = 1 + 2 G_0 ... G_(i-1)`` with ``G_j`` each stage's gain bound (both filters
+        together ``1 + 2 G_A + 2 G_B`` during a switch)."""
         return float(self._lib.sms_tunable_chain_input_max(self._chain))
 
     @property

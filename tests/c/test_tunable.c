@@ -587,6 +587,71 @@ static void test_notch_switch_reload(void)
     CHECK(!sms_tunable_switching(&st[1]) && !sms_tunable_switching(&st2[1]));
 }
 
+/* The chain's range during a switch and over a retune to come divides each stage's limit
+ * before the cap (sms_tunable_input_limit(), sms_stage_config_limit()) by R_i: two moving
+ * averages, whose limit is REAL_MAX / 2 (sum |g| = 1), keep SMS_INPUT_MAX while stage 1
+ * switches (REAL_MAX / 2 / (1 + 2 G_0) with G_0 = 1 is REAL_MAX / 6, far above it), where the
+ * capped figure gave SMS_INPUT_MAX / 3. A heavily damped harmonic smoother in stage 1 (its
+ * limit far below REAL_MAX) gives exactly its limit over R_1 = 3, both ways. */
+static void test_switch_range_uncapped(void)
+{
+    static sms_memory_cell mem[4 * SLOT_CELLS];
+    sms_stage_config c[2], b, heavy;
+    size_t slots[2], need, i;
+    double limit, gain, capped, capped_gain, bound;
+    int retuned[2] = {0, 1};
+    double lim[2], g[2];
+    sms_tunable st[2];
+    sms_tunable_chain ch;
+    c[0] = sms_stage_config_default(SMS_RECTANGULAR);
+    c[0].T = 10 * Ts;
+    c[1] = c[0];
+    c[1].T = 5 * Ts;
+    b = c[1];
+    b.T = 20 * Ts;
+    for (i = 0; i < 2; ++i)
+        CHECK_STATUS(sms_tunable_slot_cells(i == 0 ? &c[0] : &b, 1, Ts, &slots[i]), SMS_OK);
+    CHECK_STATUS(sms_tunable_chain_memory_size(slots, 2, &need), SMS_OK);
+    CHECK(need <= 4 * SLOT_CELLS);
+    CHECK_STATUS(sms_tunable_chain_init(&ch, st, c, slots, 2, Ts, mem, need), SMS_OK);
+    CHECK_STATUS(sms_stage_config_limit(&b, Ts, &limit, &gain), SMS_OK);
+    CHECK_STATUS(sms_stage_config_range(&b, Ts, &capped, &capped_gain), SMS_OK);
+    CHECK(gain == capped_gain && capped == SMS_INPUT_MAX && limit > 6.0 * SMS_INPUT_MAX);
+    CHECK(sms_tunable_input_limit(&st[1]) == sms_stage_input_limit(sms_tunable_active(&st[1])));
+    lim[1] = limit;
+    g[1] = gain;
+    lim[0] = g[0] = 0.0;   /* not read */
+    CHECK(sms_tunable_chain_retune_input_max(&ch, retuned, lim, g) == SMS_INPUT_MAX);
+    lim[1] = capped;       /* a capped range: still a bound, the smaller one */
+    CHECK(sms_tunable_chain_retune_input_max(&ch, retuned, lim, g) == SMS_INPUT_MAX / 3.0);
+    CHECK_STATUS(sms_tunable_chain_retune(&ch, 1, &b), SMS_OK);
+    {
+        sms_real v = (sms_real)SMS_INPUT_MAX;
+        sms_tunable_chain_step(&ch, &v);
+        CHECK(sms_tunable_switching(&st[1]));
+        CHECK(sms_tunable_chain_input_max(&ch) == SMS_INPUT_MAX);
+        for (i = 0; i < 40; ++i) {
+            v = (sms_real)(i % 2 ? SMS_INPUT_MAX : -SMS_INPUT_MAX);
+            sms_tunable_chain_step(&ch, &v);
+            CHECK(v - v == (sms_real)0);   /* finite */
+        }
+    }
+#ifndef SMS_USE_FLOAT   /* e^(sigma T) = e^300 is beyond float */
+    heavy = sms_stage_config_default(SMS_DAMPED_HARMONIC);
+    heavy.T = 20 * Ts;
+    heavy.sigma = -15000.0;
+    CHECK_STATUS(sms_stage_config_limit(&heavy, Ts, &limit, &gain), SMS_OK);
+    CHECK(limit < SMS_INPUT_MAX);
+    lim[1] = limit;
+    g[1] = gain;
+    bound = sms_tunable_chain_retune_input_max(&ch, retuned, lim, g);
+    CHECK(bound == limit / 3.0);   /* R_1 = 1 + 2 G_0, G_0 = 1 (moving average) */
+#else
+    (void)heavy;
+    (void)bound;
+#endif
+}
+
 int main(void)
 {
     test_switches();
@@ -595,5 +660,6 @@ int main(void)
     test_no_drift();
     test_chain();
     test_notch_switch_reload();
+    test_switch_range_uncapped();
     return check_summary("test_tunable");
 }

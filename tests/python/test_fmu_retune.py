@@ -408,3 +408,94 @@ def test_input_beyond_a_pending_retunes_range_is_refused(ss_dir):
     assert fmu.getReal([fmu.vr["stage[0].sigma"]])[0] == HEAVY
     fmu.terminate()
     fmu.freeInstance()
+
+
+def test_the_held_input_bound_forgets_an_input_once_the_memory_has(ss_dir):
+    """A large input ticked once stays in the bound while the stages' memory can hold it (the
+    narrowing retune is refused) and leaves it two memory spans later (the same retune is then
+    taken): the span of DAMPED's smoother of 21 samples (its delay line, its two running sums
+    restarted every window, plus a margin per stage) is below 100 ticks, so 2 spans < 200. A
+    rest keeps the bound for good: at rest at LARGE_U, the retune stays refused."""
+    logged = Logged()
+    fmu = slave(ss_dir, logged=logged)
+    start(fmu, DAMPED, u0=0.5)
+    fmu.setReal([fmu.vr["u"]], [LARGE_U])
+    fmu.doStep(0.0, TS)
+    for i in range(1, 400):
+        fmu.setReal([fmu.vr["u"]], [0.5])
+        fmu.doStep(i * TS, TS)
+        if i in (2, 15):          # LARGE_U is still in the smoother's window
+            with pytest.raises(FMICallException):
+                fmu.setReal([fmu.vr["stage[0].sigma"]], [HEAVY])
+            assert "memory may hold" in logged.messages[-1]
+    fmu.setReal([fmu.vr["stage[0].sigma"]], [HEAVY])          # taken
+    for i in range(400, 460):
+        fmu.setReal([fmu.vr["u"]], [0.5])
+        fmu.doStep(i * TS, TS)
+        assert np.isfinite(fmu.getReal([fmu.vr["y"]])[0])
+    fmu.setFMUstate(fmu.deSerializeFMUstate(fmu.serializeFMUstate(fmu.getFMUstate())))
+    fmu.terminate()
+    fmu.freeInstance()
+    fmu = slave(ss_dir, logged=logged)
+    start(fmu, DAMPED, u0=LARGE_U)                            # the rest: kept by every slot
+    for i in range(400):
+        fmu.setReal([fmu.vr["u"]], [0.5])
+        fmu.doStep(i * TS, TS)
+    with pytest.raises(FMICallException):
+        fmu.setReal([fmu.vr["stage[0].sigma"]], [HEAVY])
+    assert "memory may hold" in logged.messages[-1]
+    fmu.terminate()
+    fmu.freeInstance()
+
+
+def test_a_two_stage_switch_takes_inputs_up_to_sms_input_max(ss_dir):
+    """Two moving averages switching: each stage's limit (REAL_MAX / 2) over R_1 = 3 is far
+    above SMS_INPUT_MAX, so the chain's range stays SMS_INPUT_MAX during the switch (it was
+    SMS_INPUT_MAX / 3, the stage's capped range over R_1): the retune with u = SMS_INPUT_MAX
+    held is taken, and so is u = SMS_INPUT_MAX during the switch, every output finite."""
+    from smoothshaper.filters import input_max
+    top = input_max("double")
+    fmu = slave(ss_dir)
+    start(fmu, {"stage[0].kind": RECT, "stage[0].T": 0.01, "stage[1].kind": RECT,
+                "stage[1].T": 0.005, "retune_max_delay": 0.03}, u0=top)
+    fmu.doStep(0.0, TS)
+    fmu.setReal([fmu.vr["stage[1].T"]], [0.02])
+    for i in range(1, 40):
+        fmu.setReal([fmu.vr["u"]], [top if i % 3 else -top])
+        fmu.doStep(i * TS, TS)
+        assert np.isfinite(fmu.getReal([fmu.vr["y"]])[0])
+        if i % 10 == 0:
+            fmu.setFMUstate(fmu.deSerializeFMUstate(fmu.serializeFMUstate(fmu.getFMUstate())))
+    fmu.terminate()
+    fmu.freeInstance()
+
+
+def test_a_loaded_retunable_state_is_held_to_its_configurations_range(ss_dir):
+    """DAMPED retuned to HEAVY has the range B = narrowed_range() < SMS_INPUT_MAX. A state it
+    saved with inputs swinging to +-B loads; the same state with the stage's last input
+    (the tunable's field 8 of its part, after y) forged to 2 B, within SMS_INPUT_MAX but beyond
+    the configuration's range, is refused (it was checked against SMS_INPUT_MAX)."""
+    import struct
+    xxhash = pytest.importorskip("xxhash")
+    bound = narrowed_range()
+    logged = Logged()
+    fmu = slave(ss_dir, logged=logged)
+    start(fmu, {**DAMPED, "stage[0].sigma": HEAVY}, u0=0.0)
+    for i in range(50):
+        fmu.setReal([fmu.vr["u"]], [bound if i % 2 else -bound])
+        fmu.doStep(i * TS, TS)
+    blob = bytes(fmu.serializeFMUstate(fmu.getFMUstate()))
+    fmu.setFMUstate(fmu.deSerializeFMUstate(blob))             # its own state loads
+    last = struct.pack("<d", bound)                              # the last input ticked (i = 49)
+    at = [o for o in range(0, len(blob) - 8, 8) if blob[o:o + 8] == last]   # doubles: 8-aligned
+    dynamic = [o for o in at if struct.unpack_from("<d", blob, o - 8 * 9)[0]
+               == fmu.getReal([fmu.vr["y"]])[0]]              # y opens the dynamic part
+    assert len(dynamic) == 1
+    forged = bytearray(blob)
+    struct.pack_into("<d", forged, dynamic[0], 2.0 * bound)
+    struct.pack_into("<Q", forged, len(forged) - 8, xxhash.xxh64_intdigest(bytes(forged[:-8])))
+    with pytest.raises(FMICallException):
+        fmu.deSerializeFMUstate(bytes(forged))
+    assert "chain's range" in logged.messages[-1] and f"{bound:.17g}" in logged.messages[-1]
+    fmu.terminate()
+    fmu.freeInstance()

@@ -233,3 +233,19 @@ def test_refusals_change_nothing():
     with pytest.raises(sms.ParameterError) as e:
         small.set_state(before)
     assert e.value.parameter == "state" and "capacity" in str(e.value)
+
+
+def test_input_max_during_a_switch_divides_the_uncapped_limit():
+    """Two moving averages, stage 1 switching: each limit is REAL_MAX / 2 (sum |g| = 1) and
+    R_1 = 1 + 2 G_0 = 3 (G_0 = 1), so the range stays at input_max() (REAL_MAX / 6 is far
+    above it), where capping each stage first gave input_max() / 3."""
+    from smoothshaper.filters import input_max
+    chain = sms.TunableChain([sms.rectangular(T=0.01), sms.rectangular(T=0.005)], Ts=1e-3,
+                             capacity=[None, sms.rectangular(T=0.02)])
+    chain.process(np.zeros(30))
+    chain.retune(1, sms.rectangular(T=0.02))
+    chain.process([1.0])
+    assert chain.switching == (False, True)
+    assert chain.input_max == input_max("double")
+    y = chain.process(np.where(np.arange(40) % 2, 1.0, -1.0) * input_max("double"))
+    assert np.all(np.isfinite(y))

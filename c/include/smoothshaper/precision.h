@@ -140,8 +140,10 @@
 #define sms_stage_step sms_stage_step_f32
 #define sms_stage_process sms_stage_process_f32
 #define sms_stage_input_max sms_stage_input_max_f32
+#define sms_stage_input_limit sms_stage_input_limit_f32
 #define sms_stage_gain_bound sms_stage_gain_bound_f32
 #define sms_stage_config_range sms_stage_config_range_f32
+#define sms_stage_config_limit sms_stage_config_limit_f32
 #define sms_stage_length sms_stage_length_f32
 #define sms_stage_state_count sms_stage_state_count_f32
 #define sms_stage_get_state sms_stage_get_state_f32
@@ -244,6 +246,7 @@
 #define sms_tunable_get_state sms_tunable_get_state_f32
 #define sms_tunable_init sms_tunable_init_f32
 #define sms_tunable_input_max sms_tunable_input_max_f32
+#define sms_tunable_input_limit sms_tunable_input_limit_f32
 #define sms_tunable_memory_size sms_tunable_memory_size_f32
 #define sms_tunable_process sms_tunable_process_f32
 #define sms_tunable_rebind sms_tunable_rebind_f32

@@ -112,6 +112,17 @@ SMS_API void sms_stage_process(sms_stage *stage, const sms_real *in, sms_real *o
  */
 SMS_API double sms_stage_input_max(const sms_stage *stage);
 /**
+ * @brief The stage's input limit before the cap at ::SMS_INPUT_MAX: the L of
+ * sms_stage_input_max() (REAL_MAX over the internal gain; REAL_MAX for a notch). Inputs and
+ * rest values with |x| <= L keep every sum of the stage finite. A chain's range divides each
+ * stage's L by the bound R_i its inputs grow by before capping (sms_chain_input_max()): the
+ * capped figure divided by R_i >= 3 would put every chain of two stages or more below
+ * ::SMS_INPUT_MAX / 3 for no reason. O(1).
+ * @param stage  the stage (read only)
+ * @return L, in [sms_stage_input_max(), REAL_MAX]
+ */
+SMS_API double sms_stage_input_limit(const sms_stage *stage);
+/**
  * @brief An upper bound G on the l1 norm of the stage's impulse response (its largest gain
  * from input to output in the time domain): |y - rest| <= G max |x - rest|. Smoothers:
  * 1 + 2 (|d_0| + |d_1|) (the base taps are non-negative and sum with the direct taps to 1);
@@ -140,6 +151,21 @@ SMS_API double sms_stage_gain_bound(const sms_stage *stage);
  */
 SMS_API sms_status sms_stage_config_range(const sms_stage_config *config, double Ts,
                                           double *input_max, double *gain_bound);
+/**
+ * @brief sms_stage_input_limit() and sms_stage_gain_bound() of the stage sms_stage_init() would
+ * build from config at Ts, bit for bit, without building it: sms_stage_config_range() before
+ * its cap at ::SMS_INPUT_MAX (the same closed forms of the design's constants rounded to
+ * ::sms_real). For the range of a chain that a retune leads to
+ * (sms_tunable_chain_retune_input_max()), which caps only after dividing by each stage's R_i.
+ * O(1) for smoothers and notches, O(taps) for shapers.
+ * @param config      the stage (config.h for ranges)
+ * @param Ts          sample period [s], finite, > 0
+ * @param limit       receives L, in [the capped range, REAL_MAX]; untouched on error
+ * @param gain_bound  receives the gain bound G, as sms_stage_config_range(); untouched on error
+ * @return ::SMS_OK, ::SMS_ERR_NULL, or the config's status (as sms_stage_config_validate())
+ */
+SMS_API sms_status sms_stage_config_limit(const sms_stage_config *config, double Ts,
+                                          double *limit, double *gain_bound);
 /** @brief Impulse-response length L in samples (notch: 0, it is IIR).
  * @param stage  the stage (read only)
  * @return L [samples], 0 for a notch

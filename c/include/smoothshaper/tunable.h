@@ -179,6 +179,14 @@ SMS_API sms_stage_config sms_tunable_config(const sms_tunable *t);
  * @return the largest |input|, in (0, ::SMS_INPUT_MAX]
  */
 SMS_API double sms_tunable_input_max(const sms_tunable *t);
+/** @brief Input limit before the cap at ::SMS_INPUT_MAX (sms_stage_input_limit()): the smaller
+ * of the two filters' during a switch (the old one runs on the held h, the new one on the
+ * inputs since: each sees only inputs within both limits), the active one's otherwise. The
+ * chain's ranges below divide it by each stage's R_i and cap only then. O(1).
+ * @param t      the tunable (read only)
+ * @return L, in [sms_tunable_input_max(), REAL_MAX]
+ */
+SMS_API double sms_tunable_input_limit(const sms_tunable *t);
 /** @brief Bound G on |y - r| / max |x - r| (sms_stage_gain_bound()): G_B of the active filter,
  * 1 + 2 G_A + 2 G_B during a switch (the two shares and their different rests). O(1).
  * @param t      the tunable (read only)
@@ -342,8 +350,13 @@ SMS_API int sms_tunable_chain_switching(const sms_tunable_chain *chain);
  */
 SMS_API size_t sms_tunable_chain_length(const sms_tunable_chain *chain);
 /** @brief Input range: sms_chain_input_max() of the active filters when no stage is switching;
- * during a switch the same bound with the stages' sms_tunable_input_max() and
- * sms_tunable_gain_bound(). O(stages).
+ * during a switch the same bound with the stages' sms_tunable_input_limit() and
+ * sms_tunable_gain_bound(): min(::SMS_INPUT_MAX, min_i L_i / R_i), R_0 = 1,
+ * R_i = 1 + 2 G_0 ... G_{i-1}. Stage i's inputs are within R_i |x| (every stage maps
+ * x - rest to y - rest with gain at most G, both of its filters during a switch together at
+ * most 1 + 2 G_A + 2 G_B), and within L_i its sums are finite; each L_i enters before the cap
+ * (capping it first would put a chain of two stages or more below ::SMS_INPUT_MAX / 3 during
+ * every switch). O(stages).
  * @param chain  the tunable chain (read only)
  * @return the largest |input|, in (0, ::SMS_INPUT_MAX]
  */
@@ -355,13 +368,17 @@ SMS_API double sms_tunable_chain_input_max(const sms_tunable_chain *chain);
  * (sms_stage_config_range() of it) and after, the other stages as they are. Each stage counts
  * with its smallest range and largest gain over those phases: its sms_tunable_input_max() and
  * sms_tunable_gain_bound() now, the switch's 1 + 2 G_new + 2 G_active and range
- * min(input_max[i], its filters' ranges). A retune narrows the range when this is below
+ * min(input_max[i], its filters' limits). Limits enter before the cap at ::SMS_INPUT_MAX
+ * (sms_tunable_input_limit(), and input_max from sms_stage_config_limit()), which applies to
+ * the result only: min(::SMS_INPUT_MAX, min_i L_i / R_i) over every phase; a capped input_max
+ * (sms_stage_config_range()) gives a smaller, still valid bound. A retune narrows the range
+ * when this is below
  * sms_tunable_chain_input_max(): inputs beyond it, held or in the filters' memory, would
  * overflow after it. O(stages).
  * @param chain       the tunable chain (read only)
  * @param retuned     n_stages flags: non-zero for a stage to be retuned
- * @param input_max   n_stages entries: the new configuration's range, in (0, ::SMS_INPUT_MAX]
- *                    (read only where retuned[i] != 0)
+ * @param input_max   n_stages entries: the new configuration's limit L (sms_stage_config_limit(),
+ *                    > 0, or its capped range; read only where retuned[i] != 0)
  * @param gain_bound  n_stages entries: the new configuration's gain bound (at least 1 up to
  *                    the rounding of its taps; read only where retuned[i] != 0)
  * @return the largest |input|, in (0, ::SMS_INPUT_MAX], at most sms_tunable_chain_input_max()

@@ -116,6 +116,11 @@ double sms_stage_input_max(const sms_stage *stage)
     return min2(SMS_INPUT_MAX, stage_limit(stage));
 }
 
+double sms_stage_input_limit(const sms_stage *stage)
+{
+    return stage_limit(stage);
+}
+
 double sms_stage_gain_bound(const sms_stage *stage)
 {
     switch (sms_family_of(stage->kind)) {
@@ -200,6 +205,21 @@ sms_status sms_stage_config_range(const sms_stage_config *config, double Ts, dou
         return st;
     *input_max = min2(SMS_INPUT_MAX, limit);   /* as sms_stage_input_max() */
     *gain_bound = gain;
+    return SMS_OK;
+}
+
+sms_status sms_stage_config_limit(const sms_stage_config *config, double Ts, double *limit,
+                                  double *gain_bound)
+{
+    double l, g;
+    sms_status st;
+    if (config == NULL || limit == NULL || gain_bound == NULL)
+        return SMS_ERR_NULL;
+    st = config_limit(config, Ts, &l, &g);
+    if (st != SMS_OK)
+        return st;
+    *limit = l;   /* as sms_stage_input_limit() of the built stage */
+    *gain_bound = g;
     return SMS_OK;
 }
 

@@ -6,6 +6,7 @@
 #include "filter/shaper_designs.h"
 #include "filter/input_smoother.h"
 #include "filter/coeffs_check.h"
+#include "filter/shaper_sample.h"
 #include "core/state_identity.h"
 
 static const double pi = 3.14159265358979323846;
@@ -562,53 +563,23 @@ void sms_shaper_reset(sms_shaper *f, sms_real rest)
     f->head = 0;
 }
 
-/* One sample: y = x + sum_k g_k (x[n - d_k] - x), the sparse FIR sum_k g_k x[n - d_k] with
- * the newest input taken out. The taps sum to 1, so the two agree to rounding, but this one is
- * exact at rest: once the last L inputs are equal every difference is 0 and y is x, bit for
- * bit (the plain sum of rounded products is not: a ZVD fed 3.7 gives 3.6999999999999993). A
- * tap on delay 0 (the first, for every design) contributes x - x = 0 and is skipped. A tap's
- * sample sits d_k slots behind the head, wrapped once. */
-/* A shaper has a few taps (2 to 5 past the first for the common designs): GCC's vectoriser
- * (-O3) turns their loop into a gather with a prologue that costs more than the loop, and
- * would in the plain sparse FIR too; the scalar loop is what both are measured as. */
-#if defined(__GNUC__) && !defined(__clang__)
-#define FEW_TAPS __attribute__((optimize("no-tree-vectorize")))
-#else
-#define FEW_TAPS
-#endif
-
-static inline sms_real shaper_sample(const sms_shaper_tap *taps, size_t n_taps, sms_real *ring,
-                                     size_t head, size_t len, sms_real x)
-{
-    sms_real acc = 0;
-    size_t k;
-    ring[head] = x;
-    for (k = taps[0].delay == 0u; k < n_taps; ++k) {
-        const size_t d = taps[k].delay, wrapped = head + len - d;
-        acc += taps[k].gain * (ring[head >= d ? head - d : wrapped] - x);
-    }
-    return x + acc;
-}
-
 /* The ring index and the tap table stay in locals for the whole block. */
-FEW_TAPS void sms_shaper_process(sms_shaper *f, const sms_real *in, sms_real *out, size_t n)
+SMS_FEW_TAPS void sms_shaper_process(sms_shaper *f, const sms_real *in, sms_real *out, size_t n)
 {
     const size_t len = f->history_len, n_taps = f->n_taps;
     const sms_shaper_tap *taps = f->taps;
     sms_real *ring = f->history;
     size_t i, head = f->head;
     for (i = 0; i < n; ++i) {
-        out[i] = shaper_sample(taps, n_taps, ring, head, len, in[i]);
+        out[i] = sms_shaper_sample(taps, n_taps, ring, head, len, in[i]);
         head = head + 1u == len ? 0u : head + 1u;
     }
     f->head = head;
 }
 
-FEW_TAPS void sms_shaper_step(sms_shaper *f, sms_real *x)
+SMS_FEW_TAPS void sms_shaper_step(sms_shaper *f, sms_real *x)
 {
-    const size_t head = f->head;
-    *x = shaper_sample(f->taps, f->n_taps, f->history, head, f->history_len, *x);
-    f->head = head + 1u == f->history_len ? 0u : head + 1u;
+    sms_shaper_step_inline(f, x);
 }
 
 size_t sms_shaper_state_count(const sms_shaper *f)

@@ -265,6 +265,12 @@ typedef sms_real lanes __attribute__((vector_size(16)));
 #define LANES(a, b) ((lanes){(a), (b)})
 #endif
 #define LANE(v, i) ((v)[i])
+/* The lane-wise result of comparing two lanes (all ones where equal). */
+#ifdef SMS_USE_FLOAT
+typedef int lane_mask __attribute__((vector_size(16)));
+#else
+typedef long long lane_mask __attribute__((vector_size(16)));
+#endif
 /* Fast targets: one loop per variant (real or complex pole, with or without direct taps). */
 #define SMS_SMOOTHER_VARIANT_LOOPS 1
 #else
@@ -646,6 +652,25 @@ SEGMENT_BODY void segment(sms_smoother *f, const sms_real *in, sms_real *out, si
     const sms_real ref0 = LANE(s.ref, 0);
     size_t i, run = varied ? 0u : f->run;
     int repeated = 0;   /* varied: an input equal to the one before it was seen */
+#ifdef SMS_SMOOTHER_VARIANT_LOOPS
+    /* varied: x == prev noted lane-wise in a mask, one compare and one or a sample (the scalar
+     * test and its unordered flag take five instructions, on the integer units); the same IEEE
+     * equality. Not for a complex pole in double: that loop is bound by the vector adders
+     * (30 additions of 91 instructions a sample on SSE2, 18 256-bit ones on AVX), which the
+     * compare would take a slot of; measured slower there, faster for the others. */
+    const int masked = pole != POLE_COMPLEX || sizeof(sms_real) < sizeof(double);
+    lane_mask seen = {0};
+    lanes prev_v = LANES(prev0, prev0);
+#define NOTE_REPEAT(x)                                                                      \
+    do {                                                                                    \
+        if (masked)                                                                         \
+            seen |= LANES((x), (x)) == prev_v, prev_v = LANES((x), (x));                    \
+        else                                                                                \
+            repeated |= (x) == prev;                                                        \
+    } while (0)
+#else
+#define NOTE_REPEAT(x) (repeated |= (x) == prev)
+#endif
 #ifdef SMS_SMOOTHER_QUAD
     /* wide: a complex pole runs in the four-lane layout (a block: the state's layout changes
      * once per segment, not per sample) */
@@ -666,9 +691,10 @@ SEGMENT_BODY void segment(sms_smoother *f, const sms_real *in, sms_real *out, si
             y += corr0 * (first - ref0) + corr1 * (oldest - ref0);
         }
         ring[i] = x;
-        if (varied)
-            out[i] = y + ref0, repeated |= x == prev;
-        else
+        if (varied) {
+            out[i] = y + ref0;
+            NOTE_REPEAT(x);
+        } else
             out[i] = rest_exactly(&run, length, x, prev, y + ref0);
         prev = x;
     }
@@ -677,12 +703,17 @@ SEGMENT_BODY void segment(sms_smoother *f, const sms_real *in, sms_real *out, si
         sms_real y = RECUR(x, oldest);
         y += corr0 * (first - ref0) + corr1 * (oldest - ref0);
         ring[i] = x;
-        if (varied)
-            out[i] = y + ref0, repeated |= x == prev;
-        else
+        if (varied) {
+            out[i] = y + ref0;
+            NOTE_REPEAT(x);
+        } else
             out[i] = rest_exactly(&run, length, x, prev, y + ref0);
     }
 #undef RECUR
+#undef NOTE_REPEAT
+#ifdef SMS_SMOOTHER_VARIANT_LOOPS
+    repeated |= seen[0] != 0;
+#endif
 #ifdef SMS_SMOOTHER_QUAD
     if (in_quads) {
         f->w_re[0] = qw[RE0], f->w_im[0] = qw[IM0], f->w_re[1] = qw[RE1], f->w_im[1] = qw[IM1];

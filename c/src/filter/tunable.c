@@ -352,6 +352,17 @@ double sms_tunable_input_max(const sms_tunable *t)
     return a;
 }
 
+double sms_tunable_input_limit(const sms_tunable *t)
+{
+    double a = sms_stage_input_limit(&t->slot[t->active]);
+    if (t->switching) {
+        const double b = sms_stage_input_limit(&t->slot[1u - t->active]);
+        if (b < a)
+            a = b;
+    }
+    return a;
+}
+
 double sms_tunable_gain_bound(const sms_tunable *t)
 {
     const double g = sms_stage_gain_bound(&t->slot[t->active]);

@@ -132,10 +132,11 @@ double sms_tunable_chain_input_max(const sms_tunable_chain *chain)
         const sms_chain c = active_view(chain, view);
         return sms_chain_input_max(&c);
     }
-    /* as sms_chain_input_max(), with each stage's range and gain over both its filters */
+    /* as sms_chain_input_max(), with each stage's limit (before the cap, which the bound's
+     * start applies) and gain over both its filters */
     for (i = 0; i < chain->n_stages; ++i) {
         const double range = i == 0 ? 1.0 : 1.0 + 2.0 * product;
-        const double limit = sms_tunable_input_max(&chain->stages[i]) / range;
+        const double limit = sms_tunable_input_limit(&chain->stages[i]) / range;
         if (limit < bound)
             bound = limit;
         product *= sms_tunable_gain_bound(&chain->stages[i]);
@@ -149,12 +150,13 @@ double sms_tunable_chain_retune_input_max(const sms_tunable_chain *chain, const 
     double bound = SMS_INPUT_MAX, product = 1.0;
     size_t i;
     /* as the switching case of sms_tunable_chain_input_max(), each stage over every phase to
-     * come: its range the smallest and its gain the largest of now, of the switch from its
-     * active filter to the new one (sms_tunable_gain_bound() of that switch) and after it */
+     * come: its limit (uncapped: the bound starts at SMS_INPUT_MAX, which caps the result
+     * once) the smallest and its gain the largest of now, of the switch from its active filter
+     * to the new one (sms_tunable_gain_bound() of that switch) and after it */
     for (i = 0; i < chain->n_stages; ++i) {
         const sms_tunable *t = &chain->stages[i];
         const double range = i == 0 ? 1.0 : 1.0 + 2.0 * product;
-        double limit = sms_tunable_input_max(t), gain = sms_tunable_gain_bound(t);
+        double limit = sms_tunable_input_limit(t), gain = sms_tunable_gain_bound(t);
         if (retuned[i]) {
             const double next = 1.0 + 2.0 * gain_bound[i]
                                 + 2.0 * sms_stage_gain_bound(sms_tunable_active(t));

@@ -145,10 +145,15 @@ sms_status sms_tunable_check_state(const sms_tunable *t, const double *src, size
     n_old = old != NULL ? sms_stage_state_count(old) : 0u;
     /* the identities in the head are the stages' (an unused old one is 0): set_state reads
      * neither, so a state that differs there is not one get_state writes */
-    for (i = 0; i < SMS_STATE_IDENTITY_COUNT; ++i)
-        if (src[ST_ACTIVE_ID + i] != sms_stage_identity(active)[i]
-            || src[ST_OLD_ID + i] != (old != NULL ? sms_stage_identity(old)[i] : 0.0))
-            return SMS_ERR_STATE;
+    {
+        /* each identity looked up once (a call through the stage's family), not per field */
+        const double *active_id = sms_stage_identity(active);
+        const double *old_id = old != NULL ? sms_stage_identity(old) : NULL;
+        for (i = 0; i < SMS_STATE_IDENTITY_COUNT; ++i)
+            if (src[ST_ACTIVE_ID + i] != active_id[i]
+                || src[ST_OLD_ID + i] != (old_id != NULL ? old_id[i] : 0.0))
+                return SMS_ERR_STATE;
+    }
     /* a stage's own check names the first field of its identity that differs */
     st = sms_stage_check_state(active, src + ST_STAGES,
                                n - ST_STAGES < n_active ? n - ST_STAGES : n_active);
