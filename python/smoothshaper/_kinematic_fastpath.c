@@ -37,6 +37,21 @@ static Py_ssize_t field_count, field_offset[MAX_FIELDS];
 static PyObject *field_default[MAX_FIELDS];
 static Py_ssize_t f_kind = -1, f_T = -1, f_sigma = -1, f_k = -1, f_order = -1, f_timing = -1;
 
+/* When the slots fill the whole instance (no dict, no weak-reference list, nothing else
+ * after the object header), a new smoother Stage is that block as a copy of `image` (every
+ * default, kind rectangular, order 1, T NULL until set) with one reference more on each
+ * object in it (image_objects: the image without the NULL). */
+static int use_image;
+static Py_ssize_t image_start, image_objects_count;
+static PyObject *image[MAX_FIELDS], *image_objects[MAX_FIELDS];
+
+/* The profile names as the profiles dict holds them (interned, as a keyword's constant in a
+ * call is) with their sms_profile, matched by identity before the dict is asked. */
+#define MAX_PROFILES 8
+static Py_ssize_t profile_count;
+static PyObject *profile_name[MAX_PROFILES];
+static long profile_number[MAX_PROFILES];
+
 /* 1 and *x = its value if o is a plain number cffi would pass as float(o); 0 otherwise,
  * with no exception set (an int too large for a double included: the checked path names it). */
 static int plain_number(PyObject *o, double *x)
@@ -75,8 +90,27 @@ static int set_new(PyObject *s, Py_ssize_t i, PyObject *value)
 static PyObject *new_stage(PyObject *kind, double T)
 {
     PyTypeObject *type = (PyTypeObject *)stage_type;
-    PyObject *s = type->tp_alloc(type, 0);
+    PyObject *s;
     Py_ssize_t i;
+    if (use_image && kind == image[(field_offset[f_kind] - image_start) / sizeof(PyObject *)]) {
+        /* allocated as tp_alloc allocates it, then every byte after the header written
+         * before the collector can see it (tracked last, as tp_alloc's caller would find it) */
+        PyObject *value = PyFloat_FromDouble(T);
+        if (value == NULL)
+            return NULL;
+        s = (PyObject *)PyObject_GC_New(PyObject, type);
+        if (s == NULL) {
+            Py_DECREF(value);
+            return NULL;
+        }
+        memcpy((char *)s + image_start, image, (size_t)field_count * sizeof(PyObject *));
+        for (i = 0; i < image_objects_count; ++i)
+            Py_INCREF(image_objects[i]);
+        SLOT(s, f_T) = value;
+        PyObject_GC_Track(s);
+        return s;
+    }
+    s = type->tp_alloc(type, 0);
     if (s == NULL)
         return NULL;
     for (i = 0; i < field_count; ++i) {
@@ -123,13 +157,19 @@ static PyObject *design(PyObject *self, PyObject *const *args, Py_ssize_t nargs)
     if (!PyTuple_CheckExact(higher) || PyTuple_GET_SIZE(higher) != 0 ||
         !PyUnicode_CheckExact(profile))
         Py_RETURN_NONE;
-    prof = PyDict_GetItemWithError(profile_index, profile);
-    if (prof == NULL) {
-        if (PyErr_Occurred())
-            return NULL;
-        Py_RETURN_NONE;
+    for (i = 0; i < (size_t)profile_count && profile_name[i] != profile; ++i)
+        ;
+    if (i < (size_t)profile_count) {
+        profile_value = profile_number[i];
+    } else {
+        prof = PyDict_GetItemWithError(profile_index, profile);
+        if (prof == NULL) {
+            if (PyErr_Occurred())
+                return NULL;
+            Py_RETURN_NONE;
+        }
+        profile_value = PyLong_AsLong(prof);
     }
-    profile_value = PyLong_AsLong(prof);
     if (!plain_number(args[0], &h) || !plain_number(args[1], &limits[0]))
         Py_RETURN_NONE;
     n = 1;
@@ -226,10 +266,13 @@ static PyObject *kinematic(PyObject *self, PyObject *const *args, size_t nargsf,
     v[K_PROFILE] = default_profile;
     v[K_ZETA] = default_zeta;
     nk = PyTuple_GET_SIZE(kwnames);
-    for (i = 0; i < nk; ++i) {
+    for (i = 0, j = -1; i < nk; ++i) {
         PyObject *name = PyTuple_GET_ITEM(kwnames, i);
-        for (j = 0; j < K_COUNT && keyword_names[j] != name; ++j)
-            ;
+        /* the keyword after the last one first (a call in the signature's order), then all */
+        if (!(j + 1 < K_COUNT && keyword_names[j + 1] == name))
+            for (j = -1; j + 1 < K_COUNT && keyword_names[j + 1] != name; ++j)
+                ;
+        ++j;
         if (j == K_COUNT) /* not interned (a **dict built at run time): compare the text */
             for (j = 0; j < K_COUNT; ++j)
                 if (PyUnicode_Check(name) &&
@@ -365,6 +408,63 @@ static Py_ssize_t field_index(PyObject *defaults, const char *name)
     return -1;
 }
 
+/* use_image and the image when Stage's instances are its slots after the header. */
+static void configure_image(PyTypeObject *type, PyObject *kinds)
+{
+    Py_ssize_t i, start = PY_SSIZE_T_MAX, size = (Py_ssize_t)sizeof(PyObject *);
+    unsigned long other_layouts = 0;
+#ifdef Py_TPFLAGS_MANAGED_DICT
+    other_layouts |= Py_TPFLAGS_MANAGED_DICT;
+#endif
+#ifdef Py_TPFLAGS_MANAGED_WEAKREF
+    other_layouts |= Py_TPFLAGS_MANAGED_WEAKREF;
+#endif
+    use_image = 0;
+    for (i = 0; i < field_count; ++i)
+        if (field_offset[i] < start)
+            start = field_offset[i];
+    if (type->tp_alloc != PyType_GenericAlloc || !PyType_IS_GC(type) ||
+        type->tp_itemsize != 0 || type->tp_dictoffset != 0 || type->tp_weaklistoffset != 0 ||
+        (PyType_GetFlags(type) & other_layouts) != 0 || start != (Py_ssize_t)sizeof(PyObject) ||
+        type->tp_basicsize != start + field_count * size)
+        return;
+    memset(image, 0, sizeof image);
+    for (i = 0; i < field_count; ++i) {
+        Py_ssize_t at = field_offset[i] - start;
+        if (at % size != 0 || image[at / size] != NULL)
+            return; /* not one pointer per slot, each its own */
+        image[at / size] = field_default[i];
+    }
+    image[(field_offset[f_kind] - start) / size] = PyTuple_GET_ITEM(kinds, SMS_RECTANGULAR);
+    image[(field_offset[f_order] - start) / size] = one;
+    image[(field_offset[f_T] - start) / size] = NULL;
+    image_objects_count = 0;
+    for (i = 0; i < field_count; ++i)
+        if (image[i] != NULL)
+            image_objects[image_objects_count++] = image[i];
+    image_start = start;
+    use_image = 1;
+}
+
+/* The profile names and numbers from the profiles dict (name -> sms_profile). */
+static void configure_profiles(PyObject *profiles)
+{
+    PyObject *key, *value;
+    Py_ssize_t pos = 0;
+    profile_count = 0;
+    while (PyDict_Next(profiles, &pos, &key, &value)) {
+        long number = PyLong_AsLong(value);
+        if (number == -1 && PyErr_Occurred()) {
+            PyErr_Clear(); /* design() asks the dict, which raises it again */
+            return;
+        }
+        if (profile_count == MAX_PROFILES || !PyUnicode_CheckExact(key))
+            return; /* the dict alone answers for the rest */
+        profile_name[profile_count] = key; /* held by the dict, which configure() keeps */
+        profile_number[profile_count++] = number;
+    }
+}
+
 /* configure(Stage, defaults, KINDS, TIMINGS, profiles, extra_numbers): see the variables
  * above; defaults = Stage's (name, default) pairs in field order, each field a slot. */
 static PyObject *configure(PyObject *self, PyObject *args)
@@ -420,6 +520,8 @@ static PyObject *configure(PyObject *self, PyObject *args)
         Py_INCREF(field_default[i]);
     }
     field_count = n;
+    configure_image((PyTypeObject *)stage, kinds);
+    configure_profiles(profiles);
     Py_INCREF(stage);
     Py_INCREF(kinds);
     Py_INCREF(timings);

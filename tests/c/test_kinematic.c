@@ -438,8 +438,117 @@ static void test_extreme_bounds(void)
     }
 }
 
+/* Whole samples of T/Ts as the grid design rounds them: the nearest integer when within 1e-9
+ * (relative) of it, else the ceiling; at least 1. */
+static double grid_ceil_ref(double nu)
+{
+    double r = floor(nu + 0.5);
+    if (fabs(nu - r) <= 1e-9 * (nu > 1.0 ? nu : 1.0))
+        return r < 1.0 ? 1.0 : r;
+    return ceil(nu);
+}
+
+/* The grid design of a rectangular chain of n <= 3 bounds written out as its documentation
+ * states it (docs/sampled-limits.md): every chain N_i = ceil(T_i/Ts) + {-1, 0, 1} tested for
+ * the structure and, in logarithms with the 1e-12 margin, every level; the shortest feasible
+ * total wins (ties: longer early stages), the greedy rounding when none is shorter. Returns the
+ * reference's excess over the continuous total in samples (its searches beyond the
+ * neighbourhood start past n samples). */
+static double grid_reference(double h, const double *L, size_t n, double Ts, double *best_N)
+{
+    double T[3], base[3], N[3], cont = 0.0, best, below, lh = log(h), lTs = log(Ts), rhs[3];
+    size_t count, i, c, combos = 1;
+    CHECK(sms_kinematic_design(h, L, n, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, 0.0, T, 3, &count) ==
+          SMS_OK);
+    for (i = 0; i < n; ++i) {
+        base[i] = grid_ceil_ref(T[i] / Ts);
+        cont += T[i] / Ts;
+        rhs[i] = lh - log(L[i]) - (double)(i + 1) * lTs - 1e-12;
+        combos *= 3u;
+    }
+    below = 0.0;
+    best = 0.0;
+    for (i = n; i-- > 0;) {
+        best_N[i] = base[i] < below ? below : base[i];
+        below += best_N[i];
+        best += best_N[i];
+    }
+    for (c = 0; c < combos; ++c) {
+        size_t code = c;
+        double sum = 0.0, lp = 0.0;
+        int ok = 1, better;
+        for (i = 0; i < n; ++i, code /= 3u) {
+            N[i] = base[i] + (double)(code % 3u) - 1.0;
+            ok = ok && N[i] >= 1.0;
+            sum += N[i];
+        }
+        for (below = N[n - 1], i = n - 1; ok && i-- > 0; below += N[i])
+            ok = N[i] >= below;
+        for (i = 0; ok && i < n; ++i) {
+            lp += log(N[i]);
+            ok = lp >= rhs[i];
+        }
+        if (!ok || sum > best)
+            continue;
+        better = sum < best;
+        for (i = 0; i < n && !better; ++i)
+            if (N[i] != best_N[i]) {
+                better = N[i] > best_N[i];
+                break;
+            }
+        if (better) {
+            best = sum;
+            for (i = 0; i < n; ++i)
+                best_N[i] = N[i];
+        }
+    }
+    return best - cont;
+}
+
+/* The grid design decides most level tests on the product of the lengths and takes the
+ * logarithms only near the 1e-12 margin: its chains equal the reference's, on limits that put
+ * a level exactly on the grid (h/vmax, vmax/amax, amax/jmax whole multiples of Ts, the case a
+ * product meets its bound to the last bit), a few 1e-12 to either side of it (the margin
+ * itself) and at random. */
+static void test_grid_neighbourhood(void)
+{
+    const double nudges[] = {0.0, 0.5e-12, 0.9e-12, 1.1e-12, 2e-12, -0.5e-12, -1e-12, -3e-12};
+    unsigned seed = 20261204u;
+    int c, compared = 0;
+    for (c = 0; c < 6000; ++c) {
+        size_t n = 1u + (size_t)c % 3u, count, i;
+        double Ts = c % 2 ? 1e-3 : 2.5e-4, h, L[3], T[3], Nref[3], over;
+        double nudge = nudges[(size_t)(c / 12) % (sizeof nudges / sizeof nudges[0])];
+        if (c % 4 != 3) {
+            /* whole samples: h/vmax = a Ts, vmax/amax = b Ts, amax/jmax = d Ts */
+            double a = floor(10.0 + 3000.0 * urand(&seed)), b = floor(2.0 + 200.0 * urand(&seed));
+            double d = floor(1.0 + 60.0 * urand(&seed));
+            h = 0.1 + urand(&seed);
+            L[0] = h / (a * Ts);
+            L[1] = L[0] / (b * Ts);
+            L[2] = L[1] / (d * Ts);
+            L[c % 3] *= 1.0 + nudge;
+        } else {
+            h = log_uniform(&seed, 1e-3, 10.0);
+            L[0] = log_uniform(&seed, 0.05, 5.0);
+            L[1] = L[0] * log_uniform(&seed, 1.0, 500.0);
+            L[2] = L[1] * log_uniform(&seed, 1.0, 2000.0);
+        }
+        over = grid_reference(h, L, n, Ts, Nref);
+        if (over > (double)n)
+            continue; /* beyond the neighbourhood: other searches decide */
+        CHECK(sms_kinematic_design(h, L, n, SMS_PROFILE_POLYNOMIAL, 0.0, 0.0, Ts, T, 3,
+                                   &count) == SMS_OK);
+        for (i = 0; i < n; ++i)
+            CHECK(floor(T[i] / Ts + 0.5) == Nref[i]);
+        ++compared;
+    }
+    CHECK(compared > 5000);
+}
+
 int main(void)
 {
+    test_grid_neighbourhood();
     test_position_scaling();
     test_sampled_limits_examples();
     test_sampled_limits_random();
