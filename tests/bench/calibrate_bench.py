@@ -17,7 +17,9 @@ not part of this repository) the established tool's figures on the same raw reco
 ratios ours / Klipper's. ``calibrate`` runs with ``--progress`` (the bar drawn, to a pipe).
 
 Run: ``python tests/bench/calibrate_bench.py [--lengths 10 60 600] [--lines 1e6 1e7]
-[--klipper /path/to/klipper]``
+[--klipper /path/to/klipper] [--bytecode]`` (``--bytecode``: both tools with Python's bytecode
+cache, as a normal install runs them; without it the environment is inherited, and where it
+sets PYTHONDONTWRITEBYTECODE every run compiles this package's modules again)
 """
 from __future__ import annotations
 
@@ -45,10 +47,14 @@ sys.stderr.write(f"\\n@@ {ru.ru_utime + ru.ru_stime} {ru.ru_maxrss} {os.waitstat
 """
 
 
+#: The environment of every measured command (``--bytecode``: with Python's bytecode cache).
+_ENV = None
+
+
 def run_measured(cmd: list[str]) -> tuple[float, float, str]:
     """(CPU seconds, peak MiB, stdout) of one command, measured on its own process."""
     out = subprocess.run([sys.executable, "-S", "-c", _LAUNCHER] + cmd, capture_output=True,
-                         text=True)
+                         text=True, env=_ENV)
     tail = out.stderr.rstrip().rsplit("\n", 1)[-1].split()
     cpu, kib, code = float(tail[1]), float(tail[2]), int(tail[3])
     if code != 0:
@@ -154,19 +160,32 @@ def main() -> None:
     ap.add_argument("--lines", type=float, nargs="*", default=[1e6, 1e7])
     ap.add_argument("--klipper", help="a Klipper checkout: time its scripts/calibrate_shaper.py")
     ap.add_argument("--tmp", help="folder for the records (default: a temporary one)")
+    ap.add_argument("--bytecode", action="store_true",
+                    help="run every command with Python's bytecode cache (as a normal install "
+                         "has it: PYTHONDONTWRITEBYTECODE unset, a cache folder of its own, "
+                         "each command run once before it is measured); by default the "
+                         "environment is inherited as it is")
     args = ap.parse_args()
     me = [sys.executable, "-m", "smoothshaper"]
     with tempfile.TemporaryDirectory(dir=args.tmp) as tmp:
+        if args.bytecode:
+            global _ENV
+            _ENV = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+            _ENV["PYTHONPYCACHEPREFIX"] = os.path.join(tmp, "pycache")
         print(f"{'command, record':28s} {'CPU':>9s} {'peak':>11s} {'per sample':>15s}")
         for T in args.lengths:
             path, n = resonance_file(tmp, T)
             cmd = me + ["calibrate", path]
+            if args.bytecode:          # the first run writes the cache
+                run_measured(cmd + ["--progress"])
             cpu, mib, _ = run_measured(cmd + ["--progress"])
             other = None
             if args.klipper:
                 script = os.path.join(args.klipper, "scripts", "calibrate_shaper.py")
-                k = run_measured([sys.executable, script, path, "-c",
-                                  os.path.join(tmp, "klipper.csv")])
+                kcmd = [sys.executable, script, path, "-c", os.path.join(tmp, "klipper.csv")]
+                if args.bytecode:
+                    run_measured(kcmd)
+                k = run_measured(kcmd)
                 other = k[:2]
             _row(f"calibrate {T:g} s x 3 axes", n, cpu, mib, _estimate(cmd), other)
             os.remove(path)

@@ -107,3 +107,59 @@ def test_si_chebyshev_composition_same_floats_as_numpy_polynomials(d):
         ref = (tol * Chebyshev.basis(d)(Polynomial(line))).coef
         got = _trimmed(np.convolve(np.array([tol]), _chebyshev_of_linear(d, line)))
         assert got.tobytes() == ref.tobytes()
+
+
+def _taps_linear_polyval(q, T, Ts, L):
+    """The linear-interpolation taps written with NumPy's polyval (the form the faster one
+    must equal bit for bit)."""
+    from numpy.polynomial import polynomial as P
+    h = np.zeros(L)
+    derivs = [q]
+    while derivs[-1].size > 1:
+        derivs.append(P.polyder(derivs[-1]))
+    for k in range(int(math.ceil(T / Ts - 1e-12))):
+        a, b = k * Ts, min((k + 1) * Ts, T)
+        if b <= a:
+            continue
+        u0, du = a / T - 0.5, (b - a) / T
+        whole = ramp = 0.0
+        fact = 1.0
+        for j, d in enumerate(derivs):
+            pj = P.polyval(u0, d) / fact
+            whole += pj * du ** (j + 1) / (j + 1)
+            ramp += pj * du ** (j + 2) / (j + 2)
+            fact *= j + 1
+        ramp *= T / Ts
+        h[k] += whole - ramp
+        if k + 1 < L:
+            h[k + 1] += ramp
+    return h
+
+
+@pytest.mark.parametrize("kind", ["smooth_zv", "smooth_mzv", "smooth_ei", "smooth_ei2",
+                                  "smooth_zvd_ei", "smooth_si"])
+def test_smoother_taps_same_floats_as_numpy_polyval(kind):
+    from smoothshaper.reference import input_smoothers as ism
+    from smoothshaper.stages import Stage
+    rng = np.random.default_rng(11)
+    for _ in range(10):
+        stage = Stage(kind=kind, wn=float(rng.uniform(100.0, 3000.0)),
+                      zeta=float(rng.uniform(0.0, 0.25)))
+        q, T = ism.smoother_kernel(stage)
+        Ts = float(rng.uniform(2e-5, 2e-4))
+        L = int(math.ceil(T / Ts)) + 1
+        assert ism._taps_linear(q, T, Ts, L).tobytes() == _taps_linear_polyval(q, T, Ts, L).tobytes()
+
+
+def test_si_poly2cheb_same_floats_as_numpy():
+    """The SI design's power-to-Chebyshev conversion equals NumPy's poly2cheb, bit for bit."""
+    from smoothshaper.reference.shapers import _poly2cheb
+    rng = np.random.default_rng(17)
+    for k in range(500):
+        n = int(rng.integers(1, 12))
+        pol = rng.normal(size=n) * 10.0 ** rng.uniform(-6, 6, n)
+        pol[rng.random(n) < 0.2] = 0.0          # exact zeros, trailing ones included
+        if k % 97 == 0:
+            pol[:] = 0.0
+        ref = np.polynomial.chebyshev.poly2cheb(pol)
+        assert _poly2cheb(pol).tobytes() == ref.tobytes(), pol

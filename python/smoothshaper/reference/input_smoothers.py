@@ -213,25 +213,33 @@ def _transfer(q: np.ndarray, a: np.ndarray) -> np.ndarray:
         x = a[small]
         # e^{-a (u + 1/2)} = e^{-a/2} sum_m (-a u)^m / m!, with the moments of P over
         # [-1/2, 1/2] exactly: int u^n du = 2^-n/(n+1) for even n, 0 for odd
-        total = np.zeros(x.shape, dtype=complex)
-        term = np.ones(x.shape, dtype=complex)
-        # the terms the loop will take: about where r^m / m! falls below 1e-18 (beyond the
-        # moments asked for, each is computed as it comes: the same floats)
-        r, need, bound = float(np.max(np.abs(x))), 0, 1.0
-        while need <= 20 or bound > 1e-18:
-            need += 1
-            bound *= r / need
-        moments = _moments_upto(tuple(float(c) for c in q), need + 2)
         # -x / m formed at once, as NumPy divides by m + 0j: each part times 1 / m
         steps = np.empty((_STEPS, x.size), dtype=complex)
         steps.real = -x.real * _INV_M[:, None]
         steps.imag = -x.imag * _INV_M[:, None]
-        m = 0
-        while m <= 20 or np.abs(term).max() > 1e-18:
-            moment = moments[m] if m < len(moments) else _moment(q, m)
-            total += term * moment
-            m += 1
-            term = term * (steps[m - 1] if m <= _STEPS else -x / m)
+        # the terms (-x)^m / m!, term_m = term_{m-1} * steps[m-1] (one NumPy call each, the
+        # products the term-by-term loop formed), as far as the largest |x| needs them (about
+        # where r^m / m! falls below 1e-18); then which are taken (m <= 20, then on while some
+        # |term_m| > 1e-18) at once, and their running sum over m as the loop added them (an
+        # accumulation: a reduction of one column would sum pairwise): the same floats,
+        # without the loop's four further NumPy calls per term
+        r, need, bound = float(np.max(np.abs(x))), 0, 1.0
+        while need <= 20 or bound > 1e-18:
+            need += 1
+            bound *= r / need
+        n_terms = min(need + 2, _STEPS)
+        terms = np.empty((n_terms + 1, x.size), dtype=complex)
+        terms[0] = 1.0
+        for m in range(1, n_terms + 1):
+            np.multiply(terms[m - 1], steps[m - 1], out=terms[m])
+        big = np.abs(terms[21:]).max(axis=1) > 1e-18
+        if big.all():                   # not yet below (or past the factors formed at once)
+            total = _series_loop(q, x, steps)
+        else:
+            stop = 21 + int(np.argmin(big))
+            moments = _moments_upto(tuple(float(c) for c in q), stop)
+            total = np.add.accumulate(terms[:stop] * np.array(moments[:stop])[:, None],
+                                      axis=0)[-1]
         out[small] = total * np.exp(-x / 2)
     if (~small).any():
         # -e^{-a u} sum_j P^(j)(u)/a^(j+1) from -1/2 to 1/2, times e^{-a/2}
@@ -245,6 +253,19 @@ def _transfer(q: np.ndarray, a: np.ndarray) -> np.ndarray:
             power = power * x
         out[~small] = -acc
     return out
+
+
+def _series_loop(q, x, steps):
+    """The series term by term (for an argument whose terms stay above 1e-18 past
+    ``_STEPS`` of them; the tuning's stay below |x| = 12, about 60 terms)."""
+    total = np.zeros(x.shape, dtype=complex)
+    term = np.ones(x.shape, dtype=complex)
+    m = 0
+    while m <= 20 or np.abs(term).max() > 1e-18:
+        total += term * _moment(q, m)
+        m += 1
+        term = term * (steps[m - 1] if m <= _STEPS else -x / m)
+    return total
 
 
 def smoother_transfer(stage: Stage, s) -> np.ndarray:
@@ -289,7 +310,7 @@ def _taps_linear(q: np.ndarray, T: float, Ts: float, L: int) -> np.ndarray:
         whole = ramp = 0.0
         fact = 1.0
         for j, d in enumerate(derivs):
-            pj = P.polyval(u0, d) / fact
+            pj = _horner(d, u0) / fact     # P.polyval's Horner steps, on floats
             whole += pj * du ** (j + 1) / (j + 1)
             ramp += pj * du ** (j + 2) / (j + 2)
             fact *= j + 1

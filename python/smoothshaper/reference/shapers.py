@@ -239,7 +239,7 @@ def _si_undamped(order: int, duration: float, tolerance: float):
     # V T_d(x) with x = (2c - c_hi - c_lo)/(c_hi - c_lo), as a Chebyshev series in c = cos(theta)
     x_of_c = np.array([-(c_hi + c_lo) / (c_hi - c_lo), 2.0 / (c_hi - c_lo)])
     R = _trimmed(np.convolve(np.array([tolerance]), _chebyshev_of_linear(d, x_of_c)))
-    r = np.polynomial.chebyshev.poly2cheb(R)
+    r = _poly2cheb(R)
     r = np.concatenate([r, np.zeros(d + 1 - r.size)])
     A = np.concatenate([r[:0:-1] / 2, [r[0]], r[1:] / 2])
     A[(A < 0) & (A >= -1e-12 * np.abs(A).max())] = 0.0     # an exact 0 at duration = d/2
@@ -250,6 +250,28 @@ def _si_undamped(order: int, duration: float, tolerance: float):
     A.setflags(write=False)
     units.setflags(write=False)
     return A, units, float(I)
+
+
+def _poly2cheb(pol: np.ndarray) -> np.ndarray:
+    """``np.polynomial.chebyshev.poly2cheb(pol)`` step for step on floats: from the highest
+    power down, the series times x (``chebmulx``: c_0 * 0, c_0, then c_k / 2 added one place
+    up and one down) plus the next coefficient (``chebadd``), trailing zeros trimmed at every
+    step as NumPy's series arithmetic trims them (the same floats, without its array checks and
+    type resolution: the tuning designs an SI shaper at every step of its span)."""
+    res = [0.0]
+    for a in reversed(_trimmed(np.asarray(pol, dtype=float)).tolist()):
+        if not (len(res) == 1 and res[0] == 0):
+            half = [c / 2 for c in res[1:]]
+            prd = [res[0] * 0, res[0]] + half
+            for k, h in enumerate(half):
+                prd[k] = prd[k] + h
+            res = prd
+        res[0] = res[0] + a
+        n = len(res)
+        while n > 1 and res[n - 1] == 0:
+            n -= 1
+        res = res[:n]
+    return np.array(res)
 
 
 def _trimmed(c: np.ndarray) -> np.ndarray:
