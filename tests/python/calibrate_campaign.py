@@ -47,6 +47,12 @@ class Draw:
     def covered(self) -> bool:
         return self.low <= self.ours <= self.high
 
+    @property
+    def relative_width(self) -> float:
+        """The stated range's width over the true value (a range wide enough to hold anything
+        is no answer)."""
+        return (self.high - self.low) / max(self.ours, 1e-12)
+
     def line(self) -> str:
         return (f"{self.category:30s} {self.seed:2d} established {self.pick:16s} "
                 f"{self.theirs:7.3f} % | ours {self.name:16s} {self.ours:7.3f} % "
@@ -95,11 +101,13 @@ def run(seeds, directory: str, fs: float = 1600.0, categories=None, verbose=True
 
 
 def table(draws) -> str:
-    """Wins and coverage per category and over all draws."""
-    rows = [f"{'category':30s} {'wins':>7s} {'covered':>8s}"]
+    """Wins, coverage and the median width of the stated ranges relative to the true value,
+    per category and over all draws."""
+    rows = [f"{'category':30s} {'wins':>7s} {'covered':>8s} {'width/true':>10s}"]
     names = list(dict.fromkeys(d.category for d in draws))
     for name in names + ["all"]:
         ds = [d for d in draws if name in ("all", d.category)]
         rows.append(f"{name:30s} {sum(d.win for d in ds):3d}/{len(ds):<3d} "
-                    f"{sum(d.covered for d in ds):4d}/{len(ds):<3d}")
+                    f"{sum(d.covered for d in ds):4d}/{len(ds):<3d} "
+                    f"{float(np.median([d.relative_width for d in ds])):10.3g}")
     return "\n".join(rows)

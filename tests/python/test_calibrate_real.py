@@ -41,10 +41,6 @@ def _campaign(tmp_path, seeds, fs=800.0):
     return wins, cover, draws
 
 
-#: The default suite's draw of the campaign: a clean sweep and the two sensor defects.
-SMALL_DRAW = ("klipper sweep", "fifo gaps", "clipped")
-
-
 def _draw(tmp_path, category, **kw):
     """(our pick, its remaining vibration on the true plant [%], the established pick's there,
     our pick's by the established tool's estimate [%], the established pick's, axis result)
@@ -64,17 +60,6 @@ def _draw(tmp_path, category, **kw):
             100 * pick["vibrs"], res.axes[0])
 
 
-@pytest.mark.parametrize("category", SMALL_DRAW)
-def test_small_draw_wins_on_the_true_plant_and_covers_it(tmp_path, category):
-    """The modal fit explains these records (gaps and clipped runs handled): the pick leaves
-    no more on the true plant than the established pick at its delay, and the stated +-3 sd
-    range holds the true value."""
-    c, ours, theirs, _, _, res = _draw(tmp_path, category)
-    assert res.ranked_by == "modal fit"
-    assert ours <= theirs, (c.name, ours, theirs)
-    assert c.vibration_range[0] <= ours <= c.vibration_range[1]
-
-
 def test_spectral_ranking_within_the_established_estimate(tmp_path):
     """Ranked on the measured spectrum alone, the pick leaves by the established tool's own
     estimate (on the PSD it computes) at most 0.1 percentage point more than its pick at its
@@ -86,35 +71,109 @@ def test_spectral_ranking_within_the_established_estimate(tmp_path):
     assert ours <= theirs + 0.1, (c.name, ours, theirs)
 
 
-@pytest.mark.long
-def test_every_category_gets_a_pick_within_the_established_delay(tmp_path):
-    """One record of each category (seed 0): no refusal, a pick no longer than the established
-    tool's, figures printed; the modal fit recognises the single clean modes."""
+def test_campaign_every_category_once(tmp_path):
+    """The acceptance campaign at test size: one record of every category (seed 0, 800 Hz),
+    each written as the established tool's raw test and scored on its true plant. No refusal,
+    a pick no longer than the established tool's; wins (no more vibration on the true plant
+    than its pick) on at least 80 % and the stated +-3 sd range holding the true value on at
+    least 95 % (here: all twelve). The figures and the ranges' widths are printed."""
     wins, cover, draws = _campaign(tmp_path, [0])
     assert len(draws) == len(syn.CATEGORIES)
     assert all(math.isfinite(d.ours) for d in draws)
-    # where the modal fit explains a clean single mode, the pick leaves less on the true plant
-    clean = [d for d in draws if d.category in ("klipper sweep", "sensor rotated 45 deg",
-                                                "zeta 0.25")]
-    assert all(d.win for d in clean), [d.line() for d in clean]
+    assert wins >= 0.8 and cover >= 0.95, [d.line() for d in draws
+                                           if not (d.win and d.covered)]
+    # where the modal fit explains the spectrum it ranks (the single clean modes, gaps and
+    # clipped runs handled), and there the pick leaves less on the true plant
+    assert all(d.ranked_by == "modal fit" for d in draws
+               if d.category in ("klipper sweep", "fifo gaps", "clipped"))
+    assert all(d.win for d in draws if d.ranked_by == "modal fit"), [d.line() for d in draws]
 
 
-#: The acceptance campaign's seeds: each perturbs every category's modes and draws its noise.
-CAMPAIGN_SEEDS = (0, 1, 2)
+#: The acceptance campaign's seeds in the long mode: 0 to N - 1 with
+#: SMOOTHSHAPER_CAMPAIGN_SEEDS=N (default 3); each perturbs every category's modes and draws its
+#: noise (N = 17 makes 204 records per sample rate).
+CAMPAIGN_SEEDS = tuple(range(int(os.environ.get("SMOOTHSHAPER_CAMPAIGN_SEEDS", "3"))))
 
 
 @pytest.mark.long
 @pytest.mark.parametrize("fs", [800.0, 1600.0])
 def test_campaign_win_rate_and_coverage(tmp_path, fs):
-    """The acceptance campaign at each sample rate: every category over three seeds (36 draws,
-    about 4 min of CPU); wins >= 80 %, coverage >= 95 %, and the median width of the stated
-    ranges printed (a range wide enough to hold anything is no answer)."""
+    """The acceptance campaign at each sample rate: every category over the seeds (36 draws at
+    the default 3, about 4 min of CPU); wins >= 80 %, coverage >= 95 %, and per category the
+    median width of the stated ranges relative to the true value printed (a range wide enough
+    to hold anything is no answer)."""
     wins, cover, draws = _campaign(tmp_path, CAMPAIGN_SEEDS, fs=fs)
-    width = float(np.median([d.high - d.low for d in draws]))
+    width = float(np.median([d.relative_width for d in draws]))
     print(f"{fs:g} Hz: wins {100 * wins:.0f} %, covered {100 * cover:.0f} %, median width of "
-          f"the stated ranges {width:.3g} percentage points")
+          f"the stated ranges {width:.3g} times the true value")
     assert wins >= 0.8 and cover >= 0.95, (wins, cover, [d.line() for d in draws
                                                          if not (d.win and d.covered)])
+
+
+def test_mode_uncertainty_is_calibrated(tmp_path):
+    """The stated sd of each fitted mode: every true mode within 3 sd in frequency and damping
+    (a mode in series behind a 20 Hz one came out 3.1 sd off in damping with a fixed tenth of a
+    bin for the model's bias), and a clean single mode's frequency sd below that tenth of a bin
+    (which was 5 to 30 times its error: a range that loose is no answer). The bias now grows
+    with the fit's misfit (``calibrate.FREQ_BIAS_PER_MISFIT``)."""
+    for category, seed in (("klipper sweep", 0), ("20 Hz belt mode", 1)):
+        t, A, truth, _ = syn.category_record(category, seed, fs=800.0)
+        rec = calibrate.load(str(_write(tmp_path, f"raw_data_x_{seed}.csv", t, A)))
+        name, signal, cols = calibrate._analyses(rec, "auto")[0]
+        res = calibrate.identify(rec, name, signal, cols)
+        assert res.explains and len(res.modes) == len(truth)
+        for f, z, _ in truth:
+            m = min(res.modes, key=lambda m: abs(m.f_hz - f))
+            assert abs(m.wn - 2 * math.pi * f) <= 3 * m.wn_std, (category, f, m)
+            assert abs(m.zeta - z) <= 3 * m.zeta_std, (category, z, m)
+        if category == "klipper sweep":
+            assert res.modes[0].wn_std / (2 * math.pi) < 0.1 * res.resolution
+
+
+def test_modal_range_is_the_joint_three_sd_disc():
+    """One mode, one shaper: the range's ends are the residual's extremes over the joint
+    +-3 sd disc of (wn, zeta), which reaches +-3 sd along each axis and stops short of the
+    box's corners (4.2 sd out); the range holds the value it is stated with, and its least is
+    0 where the shaper's zero lies inside the disc (a grid's least had stated 0.0185 % where
+    the campaign's true plant was left with 0.009 %)."""
+    from types import SimpleNamespace
+    from smoothshaper.calibrate.objectives import ModalObjective, impulses_R2
+    wn, zeta = 2 * math.pi * 40.0, 0.05
+    mode = SimpleNamespace(wn=wn, zeta=zeta, wn_std=0.01 * wn, zeta_std=0.2 * zeta, weight=1.0,
+                           weight_rsd=0.05)
+    obj = ModalObjective([mode])
+    K = math.exp(-zeta * math.pi / math.sqrt(1 - zeta ** 2))
+    A = np.array([1.0, K]) / (1 + K)
+    t = np.array([0.0, math.pi / (wn * math.sqrt(1 - zeta ** 2))])     # ZV on the mode
+
+    def R(u, v):                # residual [%] at (wn, zeta) + (u, v) sd, from the filter's end
+        p = complex(-(zeta + v * mode.zeta_std) * (wn + u * mode.wn_std),
+                    (wn + u * mode.wn_std) * math.sqrt(1 - (zeta + v * mode.zeta_std) ** 2))
+        return 100 * math.sqrt(float(impulses_R2(A, t, np.array([p]))[0])) * math.exp(p.real * t[-1])
+    lo, hi = obj.range(impulses_R2(A, t, obj.box), t[-1])
+    value = obj.value(impulses_R2(A, t, obj.poles), t[-1])
+    assert lo <= value <= hi
+    on_axes = max(R(3, 0), R(-3, 0), R(0, 3), R(0, -3))
+    corners = max(R(a, b) for a in (-3, 3) for b in (-3, 3))
+    assert on_axes <= hi * (1 + 1e-9) and hi < corners
+    # the disc's rim at 32 points under-reads a residual linear in (u, v) by at most 0.5 %
+    rim = max(R(3 * math.cos(a), 3 * math.sin(a)) for a in np.linspace(0, 2 * math.pi, 721))
+    assert hi <= rim * (1 + 1e-9) and hi >= rim * (1 - 0.005)
+    # the shaper's zero lies inside: the least is 0, not the grid's least
+    assert lo == 0.0
+    # a ZV tuned 5 sd above the mode: no zero inside, the least is on the rim (the residual is
+    # the modulus of a function analytic in the pole), within the rim's sampling
+    wz = wn * (1 + 5 * 0.01)
+    tz = np.array([0.0, math.pi / (wz * math.sqrt(1 - zeta ** 2))])
+    lo, hi = obj.range(impulses_R2(A, tz, obj.box), tz[-1])
+
+    def Rz(u, v):
+        p = complex(-(zeta + v * mode.zeta_std) * (wn + u * mode.wn_std),
+                    (wn + u * mode.wn_std) * math.sqrt(1 - (zeta + v * mode.zeta_std) ** 2))
+        return 100 * math.sqrt(float(impulses_R2(A, tz, np.array([p]))[0])) * math.exp(p.real * tz[-1])
+    fine = min(Rz(r * math.cos(a), r * math.sin(a)) for r in np.linspace(0, 3, 31)
+               for a in np.linspace(0, 2 * math.pi, 181))
+    assert 0 < lo and fine * (1 - 0.005) <= lo <= fine * (1 + 0.005)
 
 
 @pytest.mark.parametrize("seed", [0, 2])
