@@ -14,7 +14,6 @@ import pytest
 from smoothshaper import calibrate
 from smoothshaper.calibrate import load
 from smoothshaper.calibrate.records import RecordError
-from smoothshaper.cli import calibrate as cli_calibrate
 from smoothshaper.calibrate.candidates import candidate_taps
 
 import klipper_pick
@@ -176,3 +175,25 @@ def test_a_raw_record_combines_with_a_table(tmp_path):
     assert rec.signals[peak, 0] == pytest.approx(ref[1][kp], rel=0.3)
     np.testing.assert_allclose(rec.signals[:, 1], np.interp(rec.f, f, b), rtol=1e-5)
     assert calibrate._combines([load(str(raw)), load(table)], None)
+
+
+def test_cli_combine_and_separate(tmp_path, capsys):
+    """``--combine`` / ``--separate`` reach ``run`` (default: None, decided from the files); a
+    refused combination is one line on stderr naming the file."""
+    from smoothshaper.cli import build_parser, main
+    from smoothshaper.cli.common import CliError
+    parser = build_parser()
+    assert parser.parse_args(["calibrate", "a.csv", "b.csv"]).combine is None
+    assert parser.parse_args(["calibrate", "a.csv", "b.csv", "--combine"]).combine is True
+    assert parser.parse_args(["calibrate", "a.csv", "b.csv", "--separate"]).combine is False
+    with pytest.raises(CliError, match="not allowed with"):
+        parser.parse_args(["calibrate", "a.csv", "--combine", "--separate"])
+    capsys.readouterr()
+    f1, f2 = np.arange(0.0, 200.0, 1.0), np.arange(0.0, 60.0, 1.0)
+    a, b = _points(f1)
+    p1 = _table(tmp_path / "resonances_x_p1.csv", a, f1)
+    p2 = _table(tmp_path / "resonances_x_p2.csv", b[:f2.size], f2)
+    code = main(["calibrate", p1, p2, "--no-progress"])
+    err = capsys.readouterr().err
+    assert code == 1 and err.count("\n") == 1 and "Traceback" not in err
+    assert f"{p2}: its frequencies" in err, err
