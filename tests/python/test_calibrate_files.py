@@ -148,7 +148,8 @@ def test_a_calibration_table_with_a_resonance_test_is_refused(tmp_path):
 def test_a_raw_record_combines_with_a_table(tmp_path):
     """A raw record (white base noise through a 42 Hz mode, 8 s at 800 Hz) with a table: the
     raw record's data set is its x+y+z PSD at the established tool's resolution (0.5 s
-    segments, the density Klipper computes from the file) and the table is on its grid."""
+    segments, the density Klipper computes from the file), the table is on its grid, and the
+    default budget is the established tool's pick on both files."""
     rng = np.random.default_rng(4)
     fs, n = 800.0, 6400
     t = np.arange(n) / fs
@@ -175,6 +176,12 @@ def test_a_raw_record_combines_with_a_table(tmp_path):
     assert rec.signals[peak, 0] == pytest.approx(ref[1][kp], rel=0.3)
     np.testing.assert_allclose(rec.signals[:, 1], np.interp(rec.f, f, b), rtol=1e-5)
     assert calibrate._combines([load(str(raw)), load(table)], None)
+    # scored as one axis: the default budget is the established tool's pick on both files
+    pick = klipper_pick.best_shaper(klipper_pick.load(raw) + klipper_pick.load(table))
+    res = calibrate.run([str(raw), table], firmware="klipper").axes[0]
+    assert res.datasets == (0, 1)
+    assert res.default_limit.shaper == f"klipper {pick['name']}"
+    assert res.default_limit.freq == pytest.approx(pick["freq"], abs=0.1)
 
 
 def test_cli_combine_and_separate(tmp_path, capsys):
