@@ -271,6 +271,107 @@ def _analyses(rec: Record, axis: str) -> list[tuple[str, str, object]]:
                       "xyz, all, or a direction such as 1,-1)")
 
 
+#: Shortest overlap of the frequency grids of files combined into one axis, as a fraction of
+#: the first file's span (a shorter one leaves most of a test unscored).
+MIN_GRID_OVERLAP = 0.5
+
+
+def _datasets(rec: Record, axis: str) -> list[tuple[str, np.ndarray, np.ndarray]]:
+    """(name, f [Hz], PSD) of each data set one record brings to a combined axis."""
+    if rec.kind not in ("raw", "psd"):
+        raise RecordError(rec.path, f"combining files into one axis takes resonance tests (raw "
+                          f"accelerometer records or PSD tables), not a {rec.kind} record")
+    plan = _analyses(rec, axis)
+    if len(plan) != 1:
+        raise RecordError(rec.path, f"--axis {axis} gives {len(plan)} analyses of this file; "
+                          "combining files into one axis takes one per file (--axis auto, a "
+                          "column or a direction)")
+    label, _signal, cols = plan[0]
+    base = os.path.basename(str(rec.path)) or str(rec.path)
+    if rec.kind == "raw":
+        direction = cols if isinstance(cols, np.ndarray) else None
+        n = 1 << max(0, int(0.5 / rec.Ts - 1)).bit_length()
+        # the established tool's resolution (0.5 s segments), as a raw record's figure has
+        spec = spectra.record_spectrum(rec, None if direction is not None else cols, direction,
+                                       nperseg=n if n >= 64 else None)
+        return [(base, spec.f, spec.P)]
+    if (len(cols) >= 2 and not any(rec.names[j] in AXIS_NAMES + ("xyz",) for j in cols)):
+        # a table that already holds several data sets: each stays one
+        return [(f"{base}:{rec.names[j]}", rec.f, rec.signals[:, j]) for j in cols]
+    return [(base, rec.f, rec.signals[:, cols].sum(axis=1))]
+
+
+def _combine(records: list[Record], axis: str) -> Record:
+    """One PSD table of several data sets from several resonance tests of one axis: each file
+    (its summed x+y+z, or the ``axis`` asked for) a data set, on the first file's frequency
+    grid (the others linearly interpolated onto it, over the frequencies every file covers)."""
+    marked = {bool(r.marked) for r in records}
+    if len(marked) > 1:
+        odd = next(r for r in records if r.marked != records[0].marked)
+        raise RecordError(odd.path, "a calibration table (header with 'shapers:', already "
+                          "divided by the frequency) cannot be combined with an unprocessed "
+                          "resonance test: give files of one kind")
+    sets, owner = [], []
+    for rec in records:
+        for name, f, P in _datasets(rec, axis):
+            sets.append((name, np.asarray(f, float), np.asarray(P, float)))
+            owner.append(rec)
+    f0 = sets[0][1]
+    lo = max(float(f[0]) for _n, f, _P in sets)
+    hi = min(float(f[-1]) for _n, f, _P in sets)
+    # the span that counts: the first file's, up to the established tool's last scored bin (a
+    # raw record's spectrum reaches its Nyquist frequency, a table stops at 200 Hz)
+    top = min(float(f0[-1]), ESTIMATE_MAX_FREQ)
+    span = top - float(f0[0])
+    if not min(hi, top) - lo >= MIN_GRID_OVERLAP * span:
+        # the file that cuts the overlap most
+        k = max(range(len(sets)), key=lambda i: max(float(sets[i][1][0]) - f0[0],
+                                                    top - float(sets[i][1][-1])))
+        f = sets[k][1]
+        raise RecordError(owner[k].path, f"its frequencies ({f[0]:.4g} to {f[-1]:.4g} Hz) "
+                          f"overlap those of {owner[0].path} ({f0[0]:.4g} to {top:.4g} Hz) "
+                          f"over less than {MIN_GRID_OVERLAP:.0%} of them: the files cannot be "
+                          "scored as one axis; analyse them on their own (--separate)")
+    keep = (f0 >= lo - 1e-9) & (f0 <= hi + 1e-9)
+    grid = f0[keep]
+    cols, notes, names = [], [], []
+    for (name, f, P), rec in zip(sets, owner):
+        same = f.size == f0.size and np.allclose(f, f0, rtol=0, atol=1e-6 * max(1.0, f0[-1]))
+        cols.append(P[keep] if same else np.interp(grid, f, P))
+        if not same:
+            notes.append(f"{rec.path}: its frequency grid ({f.size} bins, {f[0]:.4g} to "
+                         f"{f[-1]:.4g} Hz) differs from {owner[0].path}'s: linearly "
+                         "interpolated onto it")
+        names.append(name)
+    if len(set(names)) < len(names):       # the same file name in two folders
+        names = [f"{i + 1}:{n}" for i, n in enumerate(names)]
+    if keep.sum() < f0.size:
+        notes.append(f"scored over {grid[0]:.4g} to {grid[-1]:.4g} Hz, the frequencies every "
+                     "file covers")
+    for rec in records:
+        notes.extend(f"{rec.path}: {n}" for n in rec.notes)
+    axes_named = {r.test_axis for r in records}
+    first = records[0]
+    return Record(path=" + ".join(str(r.path) for r in records), kind="psd", names=names,
+                  f=grid, signals=np.column_stack(cols),
+                  normalized=all(r.kind == "psd" and r.normalized for r in records),
+                  marked=bool(first.marked),
+                  direction=first.direction if len(axes_named) == 1 else None,
+                  test_axis=first.test_axis if len(axes_named) == 1 else None, notes=notes)
+
+
+def _combines(records: list[Record], combine) -> bool:
+    """Whether several records are one axis: asked (True/False), or by default (None) when
+    every file is a resonance test named for the same axis (Klipper's resonances_x_*.csv)."""
+    if len(records) < 2 or combine is False:
+        return False
+    if combine:
+        return True
+    axes_named = {r.test_axis for r in records}
+    return (all(r.kind in ("raw", "psd") for r in records) and len(axes_named) == 1
+            and None not in axes_named and len({r.marked for r in records}) == 1)
+
+
 def _spectrum(rec: Record, cols) -> Spectrum:
     if rec.kind == "raw":
         if isinstance(cols, np.ndarray):
@@ -656,7 +757,7 @@ MAX_PERIOD_SAMPLES = 1 << 14
 def run(paths, *, kind: str = "auto", axis: str = "auto", band=None,
         reference: Reference | None = None, max_delay: float | None = None,
         max_smoothing: float | None = None, spread: float = 0.0, firmware: str = "none",
-        ranking: str = "auto", progress=None) -> Calibration:
+        ranking: str = "auto", combine: bool | None = None, progress=None) -> Calibration:
     """Identify the resonances in every record and rank every candidate filter.
 
     Each analysed spectrum (a Welch estimate over the contiguous segments of a raw record, or a
@@ -697,6 +798,14 @@ def run(paths, *, kind: str = "auto", axis: str = "auto", band=None,
     ranking : {"auto", "spectrum", "modal"}, keyword-only
         The figure that ranks (default ``"auto"``: the modal fit where it explains the
         spectrum, else the measured spectrum).
+    combine : bool or None, keyword-only
+        Several files analysed as one axis with one data set each, as Klipper's
+        ``calibrate_shaper.py FILE1 FILE2 ...`` does: the modes fitted on their sum, every
+        filter scored by the worst data set (:class:`.objectives.WorstOf`); files on other
+        frequency grids are linearly interpolated onto the first file's. ``None`` (default):
+        when every file is a resonance test named for the same axis (``resonances_x_*.csv``);
+        ``True``: always (the files must be raw records or PSD tables); ``False``: each file
+        on its own.
     progress : callable or None, keyword-only
         Called as ``progress(done, total)`` after each filter family is tuned.
 
@@ -712,7 +821,7 @@ def run(paths, *, kind: str = "auto", axis: str = "auto", band=None,
         used.
     ParameterError
         Naming ``max_delay``, ``max_smoothing``, ``spread``, ``Ts``, ``accel``, ``axis``,
-        ``firmware`` or ``ranking`` when out of range, or ``Ts`` when a mode lies at or above
+        ``firmware``, ``ranking`` or ``combine`` when out of range, or ``Ts`` when a mode lies at or above
         the filters' Nyquist frequency.
     """
     if reference is None:
@@ -747,7 +856,12 @@ def run(paths, *, kind: str = "auto", axis: str = "auto", band=None,
             raise ParameterError("band", "band must be two finite frequencies FMIN < FMAX [Hz] "
                                  f"with FMAX > 0, got {b.tolist()}")
         band = (float(b[0]), float(b[1]))
+    if combine is not None and not isinstance(combine, bool):
+        raise ParameterError("combine", "combine must be True, False or None, got "
+                             f"{type(combine).__name__}")
     records = [load(p, kind) for p in paths]
+    if _combines(records, combine):
+        records, axis = [_combine(records, axis)], "auto"
     axes, skipped = [], []
     for rec in records:
         plan = _analyses(rec, axis)

@@ -4,7 +4,7 @@
     smoothshaper calibrate FILE... [--kind auto|raw|decay|psd|frf] [--axis auto|xyz|all|x|y|z|DIR]
         [--band FMIN FMAX] [--firmware none|klipper|marlin|rrf|prusa] [--ranking auto|spectrum|modal]
         [--max-delay S] [--max-smoothing D] [--accel A] [--corner-velocity V] [--spread FRAC]
-        [--Ts S] [--out DIR] [--json FILE] [--schedule V1,V2,...]
+        [--Ts S] [--combine | --separate] [--out DIR] [--json FILE] [--schedule V1,V2,...]
 
 Prints the identified modes and the ranked candidates per axis; ``--out`` writes the two
 figures, ``config_<axis>.c``, ``coeffs_<axis>.c`` (precomputed coefficients for
@@ -52,6 +52,15 @@ def add_parser(sub) -> None:
     p.add_argument("--ranking", choices=("auto", "spectrum", "modal"), default="auto",
                    help="the figure that ranks: auto (default: the modal fit where it explains "
                    "the spectrum, else the measured spectrum), spectrum or modal")
+    group = p.add_mutually_exclusive_group()
+    group.add_argument("--combine", dest="combine", action="store_const", const=True,
+                       default=None,
+                       help="analyse all FILEs as one axis, one data set each (several test "
+                       "points), every filter scored by the worst, as Klipper's "
+                       "calibrate_shaper.py FILE1 FILE2 ... does (default when every file is "
+                       "a resonance test named for the same axis, resonances_x_*.csv)")
+    group.add_argument("--separate", dest="combine", action="store_const", const=False,
+                       help="analyse each FILE on its own")
     p.add_argument("--max-delay", type=float, metavar="S",
                    help="longest filter impulse response allowed [s] (default, when neither "
                    "this nor --max-smoothing is given: per axis, the length of the shaper "
@@ -194,7 +203,7 @@ def cmd_calibrate(args) -> int:
                             band=tuple(args.band) if args.band else None, reference=ref,
                             max_delay=args.max_delay, max_smoothing=args.max_smoothing,
                             spread=args.spread, firmware=args.firmware, ranking=args.ranking,
-                            progress=progress)
+                            combine=args.combine, progress=progress)
     except (MemoryError, ValueError) as exc:
         if isinstance(exc, ValueError) and "Maximum allowed size" not in str(exc):
             raise            # numpy's refusal of an array too large to index
