@@ -16,7 +16,7 @@ import pytest
 from smoothshaper.reference.multi_axis import phase_duration
 from smoothshaper.trajectory import MultiAxisGenerator
 
-IDENTITY = 39   # SMS_MULTI_IDENTITY_COUNT
+IDENTITY = 7 + 6 * 8   # SMS_MULTI_IDENTITY_COUNT = 7 + 6 SMS_MULTI_MAX_AXES
 AXIS_FIELDS = 5
 MOVE_FIELDS = 12  # T1, rho1, tau, T2, rho2, off, seen, k, k_end, active, pending, refused
 WIN = 1000
