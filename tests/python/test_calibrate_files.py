@@ -14,13 +14,13 @@ import pytest
 from smoothshaper import calibrate
 from smoothshaper.calibrate import load
 from smoothshaper.calibrate.records import RecordError
-from smoothshaper.calibrate.candidates import candidate_taps
 
+import calibrate_checks
 import klipper_pick
 
 #: By the established estimate, the pick may leave at most this much more [percentage points]
 #: than the established pick on the worst data set (the acceptance bar of a firmware run).
-VIBRATION_PP = 0.1
+VIBRATION_PP = calibrate_checks.VIBRATION_PP
 
 
 def _mode(f, fn, z, w):
@@ -44,14 +44,6 @@ def _points(f):
     return a, b
 
 
-def _estimate(c, Ts, data):
-    if c.firmware is not None:
-        shaper, freq, damping = c.firmware
-        A, T = shaper.impulses(freq, damping)
-    else:
-        A, T = klipper_pick.taps_as_impulses(candidate_taps(c, Ts), Ts)
-    return 100.0 * klipper_pick.remaining(A, T, data)
-
 
 def test_two_tables_of_one_axis_are_scored_by_the_worst(tmp_path):
     """Given as two files, the two points are one axis of two data sets: the default budget is
@@ -72,14 +64,7 @@ def test_two_tables_of_one_axis_are_scored_by_the_worst(tmp_path):
     res = cal.axes[0]
     assert res.name == "x" and res.datasets == (0, 1)
     assert res.record.names == ["resonances_x_p1.csv", "resonances_x_p2.csv"]
-    assert res.default_limit.shaper == f"klipper {pick['name']}"
-    assert res.default_limit.freq == pytest.approx(pick["freq"], abs=0.1)
-    for c in res.candidates:
-        if c.firmware is not None:
-            assert c.vibration_established == pytest.approx(
-                _estimate(c, cal.reference.Ts, data), abs=1e-3)
-    assert _estimate(res.recommended, cal.reference.Ts, data) <= \
-        100 * pick["vibrs"] + VIBRATION_PP
+    calibrate_checks.assert_held_to_pick(res, cal.reference.Ts, data, pick)
 
 
 def test_when_files_are_combined(tmp_path):

@@ -21,13 +21,13 @@ import pytest
 
 from smoothshaper import calibrate
 from smoothshaper.calibrate import default_limit as dl
-from smoothshaper.calibrate.candidates import candidate_taps
 
+import calibrate_checks
 import klipper_pick
 
 #: By the established estimate, the pick may leave at most this much more [percentage points]
 #: than the established pick (the acceptance bar; the pick is held to 0.05 of it).
-VIBRATION_PP = 0.1
+VIBRATION_PP = calibrate_checks.VIBRATION_PP
 
 
 def _table(path, modes, *, low=0.0, floor=20.0, df=1.5625):
@@ -44,16 +44,6 @@ def _table(path, modes, *, low=0.0, floor=20.0, df=1.5625):
         f"{a:.1f},{0.6 * b:.4e},{0.3 * b:.4e},{0.1 * b:.4e},{b:.4e}\n" for a, b in zip(f, P)))
     return path
 
-
-def _estimate(c, Ts, data):
-    """What the candidate leaves by the established estimate [%]: a firmware's shaper by its
-    own impulses (the firmware runs them in continuous time), else the exact taps."""
-    if c.firmware is not None:
-        shaper, freq, damping = c.firmware
-        A, T = shaper.impulses(freq, damping)
-    else:
-        A, T = klipper_pick.taps_as_impulses(candidate_taps(c, Ts), Ts)
-    return 100.0 * klipper_pick.remaining(A, T, data)
 
 
 #: name: (modes, low-frequency floor)
@@ -97,7 +87,7 @@ def test_firmware_pick_as_good_as_the_established(folder, name, firmware):
         # (0.05: the ranking's tie; 1e-3: the exact filters' length, rounded to Ts)
         assert c.vibration_established <= max(100 * lim.match[4], 100 * pick["vibrs"]) \
             + 0.05 + 1e-3
-    ours = _estimate(c, cal.reference.Ts, data)
+    ours = calibrate_checks.estimate(c, cal.reference.Ts, data)
     assert ours <= 100 * pick["vibrs"] + VIBRATION_PP, (c.name, ours, 100 * pick["vibrs"])
 
 
@@ -140,11 +130,4 @@ def test_several_data_sets_scored_by_the_worst(tmp_path):
     cal = calibrate.run([str(path)], firmware="klipper")
     res = cal.axes[0]
     assert res.datasets == (0, 1)
-    assert res.default_limit.shaper == f"klipper {pick['name']}"
-    assert res.default_limit.freq == pytest.approx(pick["freq"], abs=0.1)
-    for c in res.candidates:
-        if c.firmware is not None:
-            assert c.vibration_established == pytest.approx(
-                _estimate(c, cal.reference.Ts, data), abs=1e-3)
-    assert _estimate(res.recommended, cal.reference.Ts, data) <= \
-        100 * pick["vibrs"] + VIBRATION_PP
+    calibrate_checks.assert_held_to_pick(res, cal.reference.Ts, data, pick)
