@@ -4,7 +4,7 @@
 # - doxygen, which scripts/docs.sh needs for the C API reference (in CI a missing doxygen
 #   fails the docs step; elsewhere docs.sh skips the C reference and says so);
 # - optional: the mingw-w64 cross compiler (builds binaries/win64 into the FMUs), wine64 (runs
-#   that binary through fmpy's remoting in tests/python/test_fmu_win64.py) and the Cortex-M
+#   that binary through a minimal importer in tests/python/test_fmu_win64.py) and the Cortex-M
 #   toolchain with newlib (ctest cortex_m_compile). Without them the FMUs carry linux64 only
 #   and those tests are skipped with their stated reason.
 # doxygen is installed on its own first, so an unavailable cross tool cannot keep it out.
