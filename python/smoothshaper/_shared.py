@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
-"""What every C-backed object (Chain, Generator, MultiAxisGenerator, BSpline) shares: a lock
-that makes it safe to share between threads, and its copies and pickles.
+"""What every C-backed object (Chain, TunableChain, ScheduledShaper, Generator,
+MultiAxisGenerator, BSpline) shares: a lock that makes it safe to share between threads, and
+its copies and pickles.
 
 Threads: cffi releases the GIL around each C call, so two threads calling one object at once
 would run the C core on one state together (and corrupt it). Every method that reads or

@@ -16,8 +16,10 @@ import math
 
 import numpy as np
 
-from .filters import PRECISIONS, ParameterError, _backend, _raise_status, _real_dtype
+from .filters import (PRECISIONS, ParameterError, _backend, _check_input, _raise_status,
+                      _real_dtype, input_max as _input_max)
 from .stages import kind_name
+from ._shared import Twins, locked as _locked, new_lock as _new_lock
 from ._checks import (choice as _choice, finite as _finite, integer as _integer,
                       positive as _positive, real_array as _real_array)
 
@@ -66,7 +68,7 @@ def schedule_table(table) -> np.ndarray:
     return t
 
 
-class ScheduledShaper:
+class ScheduledShaper(Twins):
     """A ZV^n shaper scheduled by a signal through a table, filtered by the C core.
 
     Parameters
@@ -86,6 +88,10 @@ class ScheduledShaper:
     precision : {"double", "float"}, keyword-only
         Which build of the C core filters.
 
+    A shaper may be shared between threads: its methods hold the shaper's lock, so calls run
+    one at a time, each on a consistent state (docs/python.md). ``copy``, ``copy.copy``,
+    ``copy.deepcopy`` and ``pickle`` give independent shapers that continue bit-exactly.
+
     Raises
     ------
     ParameterError
@@ -103,6 +109,11 @@ class ScheduledShaper:
         if self.update_every > 0xFFFFFFFF or self.order > 0xFFFFFFFF:
             raise ParameterError("update_every", "update_every and order must fit 32 bits")
         self.precision = _choice("precision", precision, PRECISIONS)
+        self._lock = _new_lock()
+        self._init_args = dict(kind=self.kind, table=self.table.copy(), Ts=self.Ts,
+                               order=self.order, update_every=self.update_every,
+                               precision=self.precision)
+        self._input_max = _input_max(self.precision)
         ffi, lib = _backend(self.precision)
         self._ffi, self._lib = ffi, lib
         self._points = ffi.new("sms_schedule_point[]", self.table.shape[0])
@@ -132,6 +143,7 @@ class ScheduledShaper:
         """The delay line L [samples]: the longest ZV^n over the table, plus one."""
         return int(self._f.len)
 
+    @_locked
     def mode(self, s: float) -> tuple[float, float]:
         """The mode (wn [rad/s], zeta) the schedule maps ``s`` to.
 
@@ -155,6 +167,7 @@ class ScheduledShaper:
         self._lib.sms_scheduled_mode(self._f, v, wn, zeta)
         return float(wn[0]), float(zeta[0])
 
+    @_locked
     def taps(self) -> np.ndarray:
         """The impulse response of the taps in use.
 
@@ -167,6 +180,7 @@ class ScheduledShaper:
         self._lib.sms_scheduled_taps(self._f, self._ffi.from_buffer("double[]", out), out.size)
         return out
 
+    @_locked
     def reset(self, rest: float = 0.0, *, s: float | None = None) -> None:
         """Rest at ``rest`` with the taps of schedule value ``s`` (default the first row's).
 
@@ -180,12 +194,15 @@ class ScheduledShaper:
         Raises
         ------
         ParameterError
-            Naming ``rest`` or ``s`` when not finite.
+            Naming ``rest`` or ``s`` when not finite, or ``rest`` beyond ``SMS_INPUT_MAX``
+            (:func:`smoothshaper.filters.input_max`).
         """
         v = _finite("rest", rest)
+        _check_input("rest", np.float64(v), self.precision, self._input_max)
         sv = self.table[0, 0] if s is None else _finite("s", s)
         self._lib.sms_scheduled_reset(self._f, v, sv)
 
+    @_locked
     def process(self, x, schedule) -> np.ndarray:
         """Filter samples, each scheduled by its value.
 
@@ -205,12 +222,14 @@ class ScheduledShaper:
         Raises
         ------
         ParameterError
-            Naming ``x`` (not 1-D, not finite) or ``schedule`` (another length); nothing is
+            Naming ``x`` (not 1-D, not finite, a sample beyond ``SMS_INPUT_MAX``) or
+            ``schedule`` (another length); nothing is
             filtered then.
         """
         xin = np.array(_real_array("x", x, ndim=1), dtype=np.float64)
         if not np.all(np.isfinite(xin)):
             raise ParameterError("x", "x must be finite")
+        _check_input("x", xin, self.precision, self._input_max)
         sched = np.broadcast_to(np.asarray(_real_array("schedule", schedule), dtype=np.float64),
                                 xin.shape) if np.ndim(schedule) == 0 else \
             np.asarray(_real_array("schedule", schedule), dtype=np.float64)
@@ -226,6 +245,7 @@ class ScheduledShaper:
                                             ffi.from_buffer("sms_real[]", buf), buf.size)
         return buf.astype(np.float64)
 
+    @_locked
     def step(self, x: float, s: float) -> float:
         """Filter one sample scheduled by ``s``.
 
@@ -244,12 +264,15 @@ class ScheduledShaper:
         Raises
         ------
         ParameterError
-            Naming ``x`` when it is not finite.
+            Naming ``x`` when it is not finite or beyond ``SMS_INPUT_MAX``.
         """
-        v = self._ffi.new("sms_real *", _finite("x", x))
+        xv = _finite("x", x)
+        _check_input("x", np.float64(xv), self.precision, self._input_max)
+        v = self._ffi.new("sms_real *", xv)
         self._lib.sms_scheduled_step(self._f, v, float(s))
         return float(v[0])
 
+    @_locked
     def get_state(self) -> np.ndarray:
         """The dynamic state (C ``sms_scheduled_get_state``: order, update period, countdown,
         the schedule value of the taps, the ring head, the ring).
@@ -263,6 +286,7 @@ class ScheduledShaper:
         self._lib.sms_scheduled_get_state(self._f, self._ffi.from_buffer("double[]", out))
         return out
 
+    @_locked
     def set_state(self, state) -> None:
         """Restore a state from :meth:`get_state`.
 
@@ -274,14 +298,27 @@ class ScheduledShaper:
         Raises
         ------
         ParameterError
-            Naming ``state`` when it does not fit this shaper; nothing changes then.
+            Naming ``state`` when it does not fit this shaper or holds a non-finite value;
+            nothing changes then.
         """
         s = np.ascontiguousarray(_real_array("state", state, ndim=1), dtype=np.float64)
+        if not np.isfinite(s).all():
+            raise ParameterError("state", "state must be finite (a saved ScheduledShaper state "
+                                 "holds only finite values)")
+        if s.size > 5 and np.abs(s[5:]).max() > self._input_max:
+            raise ParameterError("state", f"state holds a delay-line value beyond "
+                                 f"{self._input_max:g}, which this shaper never takes as input")
         st = self._lib.sms_scheduled_set_state(self._f, self._ffi.from_buffer("double[]", s),
                                                s.size)
         if st != 0:
             _raise_status(st, self._lib, self._ffi, "it was not saved by a scheduled shaper "
                           "built alike", "state")
+
+    def _full_state(self):
+        return self.get_state(), {}
+
+    def _set_full_state(self, state, counters) -> None:
+        self.set_state(state)
 
     def __repr__(self) -> str:
         return (f"ScheduledShaper({self.kind!r}, table of {self.table.shape[0]} rows, "

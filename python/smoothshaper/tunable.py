@@ -22,6 +22,7 @@ from . import filters as _filters
 from .filters import (PRECISIONS, ParameterError, _backend, _cells, _check_input,
                       _process_checked, _raise_status, _validated_configs, check_memory)
 from .stages import Stage
+from ._shared import locked as _locked, new_lock as _new_lock
 from ._checks import (choice as _choice, finite as _finite, integer as _integer,
                       positive as _positive, real_array as _real_array, show as _show)
 
@@ -79,6 +80,11 @@ class TunableChain:
 
     The chain starts at rest at 0; every stage has unit DC gain.
 
+    A chain may be shared between threads: its methods hold the chain's lock, so calls run
+    one at a time, each on a consistent state (docs/python.md). ``copy.copy``,
+    ``copy.deepcopy`` and ``pickle`` give independent chains that continue bit-exactly (a
+    pickle is rebuilt from the initial stages and the capacity, then given the state).
+
     Raises
     ------
     ParameterError
@@ -89,6 +95,7 @@ class TunableChain:
     def __init__(self, stages: Stage | Iterable[Stage], *, Ts: float,
                  capacity: Sequence | None = None, precision: str = "double"):
         self.Ts = _positive("Ts", Ts)
+        self._lock = _new_lock()
         self.precision = _choice("precision", precision, PRECISIONS)
         self._stages = list(_filters._as_stage_list(stages))
         ffi, lib = _backend(self.precision)
@@ -100,7 +107,12 @@ class TunableChain:
         configs, _ = _validated_configs(tuple(self._stages), self.Ts, ffi, lib)
         slots = ffi.new("size_t[]", n)
         reals = 0
-        for i, declared in enumerate(_capacity_lists(tuple(self._stages), capacity)):
+        declared_lists = _capacity_lists(tuple(self._stages), capacity)
+        # what a pickle rebuilds the chain from: the initial stages and the declared capacity
+        self._init_args = dict(stages=tuple(self._stages), Ts=self.Ts,
+                               capacity=[tuple(d[1:]) for d in declared_lists],
+                               precision=self.precision)
+        for i, declared in enumerate(declared_lists):
             try:
                 cd, sizes = _validated_configs(declared, self.Ts, ffi, lib)
             except ParameterError as exc:
@@ -133,12 +145,14 @@ class TunableChain:
         return tuple(self._stages)
 
     @property
+    @_locked
     def switching(self) -> tuple[bool, ...]:
         """Per stage: True while its last retune is still in progress (the old filter is
         fading out and a further retune of it would be refused)."""
         return tuple(bool(self._lib.sms_tunable_switching(self._tunables + i))
                      for i in range(len(self._stages)))
 
+    @_locked
     def switch_left(self, index: int) -> float:
         """Samples until the switch of stage ``index`` ends, at most.
 
@@ -163,6 +177,7 @@ class TunableChain:
         return float(self._lib.sms_tunable_switch_left(self._tunables + i))
 
     @property
+    @_locked
     def input_max(self) -> float:
         """Largest ``|x|`` the chain keeps every output and state finite for, now (C
         ``sms_tunable_chain_input_max``: during a switch, over both filters of the stage):
@@ -173,6 +188,7 @@ class TunableChain:
         return float(self._lib.sms_tunable_chain_input_max(self._chain))
 
     @property
+    @_locked
     def lag(self) -> float:
         """The lag of the active stages [s] (C ``sms_chain_lag`` of them): what a
         constant-speed motion is delayed by once every switch has passed."""
@@ -180,6 +196,7 @@ class TunableChain:
         return lag(self.stages, Ts=self.Ts)
 
     @property
+    @_locked
     def length(self) -> int:
         """FIR length of the active stages in series (notches count 0)."""
         return int(self._lib.sms_tunable_chain_length(self._chain))
@@ -193,6 +210,7 @@ class TunableChain:
 
     # -- retune ---------------------------------------------------------------------------
 
+    @_locked
     def retune(self, index: int, stage: Stage) -> None:
         """Replace stage ``index`` by ``stage`` from the next sample on.
 
@@ -248,6 +266,7 @@ class TunableChain:
 
     # -- filtering ------------------------------------------------------------------------
 
+    @_locked
     def process(self, u) -> np.ndarray:
         """Filter a block of samples, continuing from the current state.
 
@@ -270,6 +289,7 @@ class TunableChain:
         return _process_checked(self._ffi, self._lib.smspy_tunable_chain_process_f64,
                                 self._chain, u, self.precision, self.input_max)
 
+    @_locked
     def step(self, x: float) -> float:
         """Filter one sample.
 
@@ -297,6 +317,7 @@ class TunableChain:
         self._lib.sms_tunable_chain_step(self._chain, cell)
         return float(cell[0])
 
+    @_locked
     def reset(self, rest: float = 0.0) -> None:
         """Put every stage at rest at ``rest``, as if the input had been ``rest`` forever; any
         switch in progress ends, the active stages stay.
@@ -321,6 +342,7 @@ class TunableChain:
         return np.array([STATE_TAG, STATE_VERSION, float(PRECISIONS.index(self.precision)),
                          self.Ts, float(len(self._stages)), *map(float, self._slots)])
 
+    @_locked
     def get_state(self) -> np.ndarray:
         """The full dynamic state: a header (tag, version, precision, Ts, number of stages,
         each stage's slot size) and the C state (each stage's active and, during a switch,
@@ -340,6 +362,7 @@ class TunableChain:
                                                   self._ffi.from_buffer("double[]", core))
         return np.concatenate([head, core])
 
+    @_locked
     def set_state(self, state) -> None:
         """Restore a state saved by :meth:`get_state`: the stages become those it was saved
         with (also in the middle of a switch) and continue bit for bit.
@@ -358,6 +381,9 @@ class TunableChain:
             changes.
         """
         s = np.array(_real_array("state", state, ndim=1), dtype=np.float64)
+        if not np.isfinite(s).all():
+            raise ParameterError("state", "state must be finite (a saved TunableChain state "
+                                 "holds only finite values)")
         head = self._header()
         if s.size < head.size or s[0] != STATE_TAG or s[1] != STATE_VERSION:
             raise ParameterError("state", "state is not a saved TunableChain state (no tag or "
@@ -420,6 +446,7 @@ class TunableChain:
                                                             part.size))
         return twin
 
+    @_locked
     def copy(self) -> "TunableChain":
         """An independent chain with the same stages, capacity and state (the C instances and
         their memory copied, nothing designed again).
@@ -432,6 +459,7 @@ class TunableChain:
         ffi, lib = self._ffi, self._lib
         twin = TunableChain.__new__(TunableChain)
         twin.__dict__.update(self.__dict__)
+        twin._lock = _new_lock()
         twin._stages = list(self._stages)
         twin._memory, twin._memory_c = _cells(ffi, int(self._chain.memory_len))
         twin._memory[:] = self._memory
@@ -448,6 +476,16 @@ class TunableChain:
     def __deepcopy__(self, memo) -> "TunableChain":
         return self.copy()
 
+    def __reduce__(self):
+        # the constructor's arguments and the state, never the pointers
+        return (_restore_tunable, (self._init_args, self.get_state()))
+
     def __repr__(self) -> str:
         kinds = ", ".join(s.kind for s in self._stages)
         return f"TunableChain([{kinds}], Ts={self.Ts!r}, precision={self.precision!r})"
+
+
+def _restore_tunable(init_args: dict, state) -> TunableChain:
+    chain = TunableChain(**init_args)
+    chain.set_state(state)
+    return chain

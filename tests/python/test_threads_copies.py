@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: Apache-2.0
-"""Every C-backed object (Chain, Generator, MultiAxisGenerator, BSpline) is safe to share
+"""Every C-backed object (Chain, TunableChain, ScheduledShaper, Generator, MultiAxisGenerator,
+BSpline) is safe to share
 between threads, copies and pickles into an independent object that continues bit-exactly,
 and refuses a non-finite saved state (docs/python.md).
 
@@ -21,7 +22,9 @@ import pytest
 import smoothshaper as sms
 from smoothshaper import ParameterError
 from smoothshaper.multi_axis import MultiAxisGenerator
+from smoothshaper.scheduled import ScheduledShaper
 from smoothshaper.trajectory import BSpline, Generator
+from smoothshaper.tunable import TunableChain
 
 Ts = 1e-3
 THREADS, CALLS, BLOCK = 4, 10, 20000
@@ -42,6 +45,24 @@ def multi(precision="double"):
                               stages=[sms.shaper("zv", wn=50.0, zeta=0.1)], precision=precision)
 
 
+def tunable(precision="double"):
+    """A chain caught in a retune: the saved state holds the fading old stage too."""
+    c = TunableChain([sms.damped_harmonic(T=0.05, sigma=-20.0), sms.shaper("zv", wn=200.0)], Ts=Ts,
+                     capacity=[None, sms.shaper("zvd", wn=80.0)], precision=precision)
+    c.retune(1, sms.shaper("zvd", wn=90.0))
+    return c
+
+
+def scheduled(precision="double"):
+    return ScheduledShaper("zvd", [(0.0, 150.0, 0.02), (0.5, 190.0, 0.03), (1.0, 240.0, 0.05)],
+                           Ts=Ts, precision=precision)
+
+
+#: The scheduled shaper's schedule: the input block's sample index mapped onto [0, 1].
+def _scheduled_run(obj, block):
+    return obj.process(block, np.linspace(0.0, 1.0, block.size))
+
+
 def staircase(axes: int, scale: float):
     """Random targets held 500 samples each (a fixed draw)."""
     steps = np.random.default_rng(7).uniform(-scale, scale, size=(BLOCK // 500, axes))
@@ -51,12 +72,22 @@ def staircase(axes: int, scale: float):
 # (factory, a block of input)
 OBJECTS = {
     "Chain": (chain, np.random.default_rng(5).normal(size=BLOCK)),
+    "TunableChain": (tunable, np.random.default_rng(6).normal(size=BLOCK)),
+    "ScheduledShaper": (scheduled, np.random.default_rng(8).normal(size=BLOCK)),
     "Generator": (generator, staircase(1, 40.0)[:, 0]),
     "MultiAxisGenerator": (multi, staircase(2, 0.3)),
 }
+#: How each filters a block (the scheduled shaper also takes its schedule).
+RUN = {"ScheduledShaper": _scheduled_run}
+#: Filters of a single input that run 20000 samples too fast to meet another thread.
+FAST = ("Chain", "TunableChain", "ScheduledShaper")
 
 
-def _hammer(obj, block, threads=THREADS, calls=CALLS):
+def run(name, obj, block):
+    return RUN.get(name, lambda o, b: o.process(b))(obj, block)
+
+
+def _hammer(obj, block, threads=THREADS, calls=CALLS, process=lambda o, b: o.process(b)):
     """Run ``calls`` blocks on ``obj`` from each of ``threads`` threads at once; the outputs."""
     outputs, errors = [], []
     start = threading.Barrier(threads)
@@ -65,7 +96,7 @@ def _hammer(obj, block, threads=THREADS, calls=CALLS):
         try:
             start.wait()
             for _ in range(calls):
-                outputs.append(obj.process(block))
+                outputs.append(process(obj, block))
         except Exception as exc:       # reported below, with the test's failure
             errors.append(exc)
 
@@ -83,11 +114,11 @@ def _hammer(obj, block, threads=THREADS, calls=CALLS):
 def test_shared_between_threads_is_one_call_at_a_time(name):
     factory, block = OBJECTS[name]
     calls = CALLS
-    if name == "Chain":     # a chain filters 20000 samples too fast to meet another thread
+    if name in FAST:     # filters 20000 samples too fast to meet another thread
         block, calls = np.tile(block, 10), 3
     shared, alone = factory(), factory()
-    outputs = _hammer(shared, block, calls=calls)
-    expected = [alone.process(block) for _ in range(THREADS * calls)]
+    outputs = _hammer(shared, block, calls=calls, process=lambda o, b: run(name, o, b))
+    expected = [run(name, alone, block) for _ in range(THREADS * calls)]
     assert np.array_equal(shared.get_state(), alone.get_state())
 
     assert sorted(b.tobytes() for b in outputs) == sorted(b.tobytes() for b in expected)
@@ -151,15 +182,15 @@ def test_duplicates_are_independent_and_continue_bit_exactly(name, how, precisio
     factory, block = OBJECTS[name]
     original, reference = factory(precision), factory(precision)
     half, block = block[:BLOCK // 100], block[:BLOCK // 20]
-    original.process(half)
-    reference.process(half)
+    run(name, original, half)
+    run(name, reference, half)
     twin = DUPLICATES[how](original)
     assert twin is not original and type(twin) is type(original)
     assert np.array_equal(twin.get_state(), original.get_state())
-    y_twin = twin.process(block)            # the twin runs ahead ...
+    y_twin = run(name, twin, block)            # the twin runs ahead ...
     assert np.array_equal(original.get_state(), reference.get_state())   # ... alone
-    assert np.array_equal(y_twin, reference.process(block))
-    assert np.array_equal(original.process(block), y_twin)
+    assert np.array_equal(y_twin, run(name, reference, block))
+    assert np.array_equal(run(name, original, block), y_twin)
 
 
 @pytest.mark.parametrize("how", DUPLICATES)
@@ -186,7 +217,7 @@ def test_set_state_refuses_non_finite_values_everywhere(name, bad):
     non-finite value is refused, naming ``state``, and the object is unchanged."""
     factory, block = OBJECTS[name]
     obj = factory()
-    obj.process(block[:50])
+    run(name, obj, block[:50])
     good = obj.get_state()
     for i in range(good.size):
         s = good.copy()
