@@ -101,7 +101,20 @@ def main() -> int:
         done = run([str(exe), *argv], expect=3, contains=f"pip install 'smoothshaper[{extra}]'")
         if done.stderr.count("\n") != 1 or os.path.exists("out/README.md"):
             fail(f"{argv[0]} without its extra: {done.stderr!r}")
-    say("design and identify run; report, validate and analyze exit 3 naming their extra")
+    for argv, leftover in ((["design", "generator", "--via", "0,20,40", "--vmax", "250",
+                             "--amax", "5000", "--jmax", "200000", "--Ts", "1e-3", "--plot",
+                             "g.png", "--csv", "g.csv"], "g.csv"),
+                           (["calibrate", str(args.examples / "resonance_xy.csv"), "--axis",
+                             "y", "--out", "cal"], "cal")):
+        done = run([str(exe), *argv], expect=3, contains="pip install 'smoothshaper[plot]'")
+        if done.stdout or os.path.exists(leftover):
+            fail(f"{argv[0]} without matplotlib worked before exiting: {done.stdout!r}")
+    done = run([sys.executable, "-m", "smoothshaper.cosim", "--out", "c"], expect=3,
+               contains="pip install 'smoothshaper[validate]'")
+    if done.stderr.count("\n") != 1 or os.path.exists("c"):
+        fail(f"the co-simulation without its extra: {done.stderr!r}")
+    say("design and identify run; report, validate, analyze, design --plot, calibrate --out "
+        "and the co-simulation exit 3 naming their extra, before any work")
     print("wheel_smoke: all checks passed")
     return 0
 

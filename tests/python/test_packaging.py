@@ -166,3 +166,35 @@ def test_cli_without_an_extra_exits_3_naming_it(monkeypatch, capsys, tmp_path, a
     assert code == cli.EXIT_UNAVAILABLE, err
     assert f"pip install 'smoothshaper[{extra}]'" in err and err.count("\n") == 1, err
     assert not (out_dir / "README.md").exists()
+
+
+@pytest.mark.parametrize("argv, written", [
+    (("design", "generator", "--via", "0,20,40", "--vmax", "250", "--amax", "5000", "--jmax",
+      "200000", "--Ts", "1e-3", "--plot", "{d}/g.png", "--csv", "{d}/g.csv"), "g.csv"),
+    (("design", "generator", "--via", "0,0,0;100,50,20", "--vmax", "250,200,100", "--amax",
+      "5000,4000,2000", "--jmax", "2e5,1e5,5e4", "--Ts", "1e-3", "--plot", "{d}/m.png"), "m.png"),
+    (("design", "bspline", "--via", "0,0;1,2;3,1", "--wn", "25", "--Ts", "1e-3", "--plot",
+      "{d}/b.png"), "b.png"),
+    (("calibrate", "{examples}/resonance_xy.csv", "--axis", "y", "--out", "{d}/cal"), "cal"),
+])
+def test_figures_without_matplotlib_exit_3_before_any_work(monkeypatch, capsys, tmp_path, argv,
+                                                           written):
+    """An option that asks for figures, matplotlib missing: exit 3 with one line naming the
+    extra, nothing printed to stdout and nothing written (no table, no CSV, no folder)."""
+    for name in ("matplotlib", "matplotlib.pyplot"):
+        monkeypatch.setitem(sys.modules, name, None)
+    examples = Path(__file__).resolve().parents[2] / "examples"
+    code, out, err = _run(capsys, *[a.format(d=tmp_path, examples=examples) for a in argv])
+    assert code == cli.EXIT_UNAVAILABLE, err
+    assert "pip install 'smoothshaper[plot]'" in err and err.count("\n") == 1, err
+    assert err.startswith(f"smoothshaper {argv[0]} "), err
+    assert out == "" and not (tmp_path / written).exists()
+
+
+def test_cosim_without_its_extra_exits_3_in_one_line(monkeypatch, capsys, tmp_path):
+    from smoothshaper.fmi import cosim
+    monkeypatch.setitem(sys.modules, "libcosimpy", None)
+    code = cosim.main(["--out", str(tmp_path / "c")])
+    out, err = capsys.readouterr()
+    assert code == 3 and err.count("\n") == 1 and "smoothshaper[validate]" in err, err
+    assert not (tmp_path / "c").exists()

@@ -805,8 +805,14 @@ def main(argv: list[str] | None = None) -> int:
                                      description=__doc__.split("\n\n")[0])
     parser.add_argument("--quick", action="store_true",
                         help="a few seconds: short runs, -O2 only (a smoke test; figures are noise)")
-    parser.add_argument("--output", type=Path, default=ROOT / "docs" / "benchmarks.md",
-                        help="Markdown file to write (default: docs/benchmarks.md)")
+    # In a source checkout the tables go to its docs/; from an installed package (no checkout
+    # around it) to the current folder, never into site-packages' parents.
+    in_checkout = (ROOT / "CMakeLists.txt").is_file() and (ROOT / "docs").is_dir()
+    parser.add_argument("--output", type=Path,
+                        default=ROOT / "docs" / "benchmarks.md" if in_checkout
+                        else Path("benchmarks.md"),
+                        help="Markdown file to write (default: docs/benchmarks.md of the source "
+                             "checkout; ./benchmarks.md for an installed package)")
     parser.add_argument("--no-fmu", action="store_true", help="skip the FMU paths")
     parser.add_argument("--fmu-build-dir", type=Path, default=ROOT / "build-bench-fmu",
                         help="where the FMUs are built (default: build-bench-fmu)")

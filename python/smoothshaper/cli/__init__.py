@@ -63,6 +63,19 @@ def build_parser() -> argparse.ArgumentParser:
 MAX_MESSAGE = 600
 
 
+def _require_figures(args) -> None:
+    """Exit 3 (CliError) before any work when an option asks for figures and matplotlib is not
+    installed: ``--plot`` (design generator / bspline) and calibrate's ``--out`` (figures and
+    configs: without the figures its folder would be half written). analyze, report and
+    validate check their own needs as they start."""
+    option = "--plot" if getattr(args, "plot", None) else None
+    if args.command == "calibrate" and getattr(args, "out", None):
+        option = "--out"
+    if option is not None:
+        from .common import pyplot
+        pyplot(f"{args.command} {option}")
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run the CLI; returns the exit code (errors: one line on stderr, no traceback). A
     library ParameterError is prefixed with the option the user gave for it (``--jmax=...``)
@@ -71,6 +84,7 @@ def main(argv: list[str] | None = None) -> int:
     try:
         args = build_parser().parse_args(argv)
         args.argv = argv        # the command line, for files that say how they were written
+        _require_figures(args)
         return args.func(args)
     except BrokenPipeError:
         # The reader went away (e.g. `| head`): not an error worth a message.
