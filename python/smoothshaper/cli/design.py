@@ -33,6 +33,9 @@ def cmd_design(args) -> int:
         stages = chain_from_args(args)
     if not stages:
         raise CliError("nothing to design: give --kind with --wn, --stage, or --h/--vmax limits")
+    # the coefficients first: a file that cannot be written fails before anything is printed
+    wrote = (write_c_coeffs(args.c_coeffs, stages, args.Ts, args.c_name,
+                            getattr(args, "argv", [])) if args.c_coeffs else None)
     header, rows = stage_rows(stages, args.Ts)
     print(format_table(header, rows))
     total = sum(d for d in (duration(s) for s in stages) if d is not None)
@@ -42,14 +45,14 @@ def cmd_design(args) -> int:
         chain = Chain(stages, Ts=args.Ts)
         print(f"chain FIR length at Ts={args.Ts:g} s: {chain.length} samples"
               + ("" if chain.is_fir else " (plus IIR notch)"))
-    if args.c_coeffs:
-        write_c_coeffs(args.c_coeffs, stages, args.Ts, args.c_name, getattr(args, "argv", []))
+    if wrote is not None:
+        print(wrote)
     return 0
 
 
-def write_c_coeffs(path: str, stages, Ts, name: str, argv: list[str]) -> None:
+def write_c_coeffs(path: str, stages, Ts, name: str, argv: list[str]) -> str:
     """Write the chain's precomputed coefficients as C source (smoothshaper.coeffs), headed by
-    the command line (``argv``, without the program) that wrote them."""
+    the command line (``argv``, without the program) that wrote them; the line to report."""
     import shlex
 
     from ..coeffs import c_source
@@ -62,7 +65,7 @@ def write_c_coeffs(path: str, stages, Ts, name: str, argv: list[str]) -> None:
             fh.write(f"/* Written by: smoothshaper {line} */\n" + text)
     except OSError as exc:
         raise CliError(f"--c-coeffs={path}: {exc.strerror or exc}") from None
-    print(f"wrote {path} (precomputed coefficients {name}[], coeffs.h)")
+    return f"wrote {path} (precomputed coefficients {name}[], coeffs.h)"
 
 
 def add_parser(sub) -> None:
