@@ -88,15 +88,17 @@ class ScheduledShaper(Twins):
     precision : {"double", "float"}, keyword-only
         Which build of the C core filters.
 
-    A shaper may be shared between threads: its methods hold the shaper's lock, so calls run
-    one at a time, each on a consistent state (docs/python.md). ``copy``, ``copy.copy``,
-    ``copy.deepcopy`` and ``pickle`` give independent shapers that continue bit-exactly.
-
     Raises
     ------
     ParameterError
         Naming ``kind``, ``table`` (with the row), ``Ts`` (or a row's mode at or above the
         Nyquist frequency, naming ``table``), ``order`` or ``update_every``.
+
+    Notes
+    -----
+    A shaper may be shared between threads: its methods hold the shaper's lock, so calls run
+    one at a time, each on a consistent state (docs/python.md). ``copy``, ``copy.copy``,
+    ``copy.deepcopy`` and ``pickle`` give independent shapers that continue bit-exactly.
     """
 
     def __init__(self, kind: str, table, *, Ts: float, order: int = 1, update_every: int = 1,

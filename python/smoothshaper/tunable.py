@@ -80,16 +80,18 @@ class TunableChain:
 
     The chain starts at rest at 0; every stage has unit DC gain.
 
-    A chain may be shared between threads: its methods hold the chain's lock, so calls run
-    one at a time, each on a consistent state (docs/python.md). ``copy.copy``,
-    ``copy.deepcopy`` and ``pickle`` give independent chains that continue bit-exactly (a
-    pickle is rebuilt from the initial stages and the capacity, then given the state).
-
     Raises
     ------
     ParameterError
         Naming the invalid parameter (``Ts``, ``stages``, ``capacity``, a stage field such as
         ``wn``), as :class:`smoothshaper.Chain` does.
+
+    Notes
+    -----
+    A chain may be shared between threads: its methods hold the chain's lock, so calls run
+    one at a time, each on a consistent state (docs/python.md). ``copy.copy``,
+    ``copy.deepcopy`` and ``pickle`` give independent chains that continue bit-exactly (a
+    pickle is rebuilt from the initial stages and the capacity, then given the state).
     """
 
     def __init__(self, stages: Stage | Iterable[Stage], *, Ts: float,
