@@ -4,7 +4,8 @@
 # Cortex-M), its whole ctest suite (the FMU tests with it; with mingw-w64 and wine, the win64
 # FMU fuzz of WIN64_FUZZ_SEQUENCES sequences per model, default 1e4, built with a 64-bit long
 # double as MSVC x64 has it), then the FMU fuzz campaign of FUZZ_SEQUENCES sequences per
-# model, which must end with 0 failures (no FMU refuses a state it saved). Run with cmake -P; variables:
+# model, which must end with 0 failures (no FMU refuses a state it saved). Run with cmake -P;
+# variables:
 #   SOURCE_DIR  the source tree               WORK_DIR  the build tree of this run
 #   GENERATOR, MAKE_PROGRAM, C_COMPILER       PYTHON    the interpreter with fmpy (FMI headers)
 #   FMI_HEADERS the FMI 2.0/3.0 headers       FUZZ_SEQUENCES  default 100000

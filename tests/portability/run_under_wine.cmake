@@ -1,9 +1,10 @@
 # SPDX-License-Identifier: Apache-2.0
 # Runs a win64 program under wine64 for ctest (cmake -P): EXE the program, ARGS its arguments
 # (a ;-list), PREFIX the wine prefix to use (created on first use; the user's ~/.wine is never
-# touched). Without EXE: only the check that wine runs, which creates the prefix. Prints "SKIPPED: <reason>" (the test's SKIP_REGULAR_EXPRESSION) without wine64, or
-# when wine cannot start even its own cmd.exe: a broken tool, not a broken program. Otherwise
-# the program's exit status decides.
+# touched). Without EXE: only the check that wine runs, which creates the prefix. Prints
+# "SKIPPED: <reason>" (the test's SKIP_REGULAR_EXPRESSION) without wine64, or when wine cannot
+# start even its own cmd.exe: a broken tool, not a broken program. Otherwise the program's exit
+# status decides.
 cmake_minimum_required(VERSION 3.16)
 find_program(WINE64 wine64 HINTS /usr/lib/wine /usr/lib64/wine /opt/wine-stable/bin)
 if(NOT WINE64)
