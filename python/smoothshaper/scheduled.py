@@ -20,14 +20,17 @@ from .filters import (PRECISIONS, ParameterError, _backend, _check_input, _raise
                       _real_dtype, input_max as _input_max)
 from .stages import kind_name
 from ._shared import Twins, locked as _locked, new_lock as _new_lock
-from ._checks import (choice as _choice, finite as _finite, integer as _integer,
-                      positive as _positive, real_array as _real_array)
+from ._checks import (choice as _choice, finite as _finite, finite_array as _finite_array,
+                      integer as _integer, positive as _positive, real_array as _real_array)
 
 __all__ = ["ScheduledShaper", "SCHEDULED_KINDS", "schedule_table"]
 
 #: The shapers a schedule can drive (the ZV^n family).
 SCHEDULED_KINDS = ("zv", "zvd", "zvdd", "zvn")
 _KIND_CODES = {"zv": 4, "zvd": 5, "zvdd": 6, "zvn": 7}
+#: Where the delay line starts in a saved state (after the order, the update period, the
+#: countdown, the schedule value of the taps and the ring head: sms_scheduled_get_state).
+_STATE_RING = 5
 _STATUS_PARAMETER = {-2: "Ts", -6: "table", -7: "table", -10: "order", -8: "update_every",
                      -12: "kind", -16: "table", -19: "table", -15: "table"}
 
@@ -303,13 +306,13 @@ class ScheduledShaper(Twins):
             Naming ``state`` when it does not fit this shaper or holds a non-finite value;
             nothing changes then.
         """
-        s = np.ascontiguousarray(_real_array("state", state, ndim=1), dtype=np.float64)
-        if not np.isfinite(s).all():
-            raise ParameterError("state", "state must be finite (a saved ScheduledShaper state "
-                                 "holds only finite values)")
-        if s.size > 5 and np.abs(s[5:]).max() > self._input_max:
-            raise ParameterError("state", f"state holds a delay-line value beyond "
-                                 f"{self._input_max:g}, which this shaper never takes as input")
+        s = np.ascontiguousarray(_finite_array("state", _real_array("state", state, ndim=1)))
+        beyond = np.flatnonzero(np.abs(s[_STATE_RING:]) > self._input_max)
+        if beyond.size:
+            i = _STATE_RING + int(beyond[0])
+            raise ParameterError("state", f"state[{i}] = {float(s[i])!r} is a delay-line value "
+                                 f"beyond {self._input_max:g} (SMS_INPUT_MAX), which this "
+                                 f"shaper never takes as input")
         st = self._lib.sms_scheduled_set_state(self._f, self._ffi.from_buffer("double[]", s),
                                                s.size)
         if st != 0:

@@ -23,8 +23,9 @@ from .filters import (PRECISIONS, ParameterError, _backend, _cells, _check_input
                       _process_checked, _raise_status, _validated_configs, check_memory)
 from .stages import Stage
 from ._shared import locked as _locked, new_lock as _new_lock
-from ._checks import (choice as _choice, finite as _finite, integer as _integer,
-                      positive as _positive, real_array as _real_array, show as _show)
+from ._checks import (choice as _choice, finite as _finite, finite_array as _finite_array,
+                      integer as _integer, positive as _positive, real_array as _real_array,
+                      show as _show)
 
 __all__ = ["TunableChain"]
 
@@ -382,10 +383,7 @@ class TunableChain:
             stages or capacity (the message says which), or does not fit; then nothing
             changes.
         """
-        s = np.array(_real_array("state", state, ndim=1), dtype=np.float64)
-        if not np.isfinite(s).all():
-            raise ParameterError("state", "state must be finite (a saved TunableChain state "
-                                 "holds only finite values)")
+        s = np.array(_finite_array("state", _real_array("state", state, ndim=1)))
         head = self._header()
         if s.size < head.size or s[0] != STATE_TAG or s[1] != STATE_VERSION:
             raise ParameterError("state", "state is not a saved TunableChain state (no tag or "

@@ -18,6 +18,7 @@ from hypothesis import given, settings, strategies as st
 import smoothshaper as sms
 from smoothshaper import reference as ref
 from smoothshaper.report import scheduled as campaign
+from smoothshaper.filters import input_max
 from smoothshaper.scheduled import ScheduledShaper
 
 Ts = 1e-3
@@ -101,6 +102,29 @@ def test_state_round_trip_and_refusals():
     with pytest.raises(sms.ParameterError) as e:
         sh.process(x[:5], x[:4])
     assert e.value.parameter == "schedule"
+
+
+
+@pytest.mark.parametrize("precision", ["double", "float"])
+def test_inputs_and_states_beyond_the_input_range_are_refused(precision):
+    """x, rest and delay-line values beyond SMS_INPUT_MAX are refused naming the argument, with
+    nothing changed (in float such an input would be an infinity in the delay line)."""
+    limit = input_max(precision)
+    sh = ScheduledShaper("zvd", campaign.table(), Ts=Ts, precision=precision)
+    sh.process(np.linspace(0.0, 1.0, 50), 0.5)
+    saved = sh.get_state()
+    for call, parameter in [(lambda: sh.process([0.0, 2 * limit], 0.5), "x"),
+                            (lambda: sh.step(-2 * limit, 0.5), "x"),
+                            (lambda: sh.reset(2 * limit), "rest")]:
+        with pytest.raises(sms.ParameterError) as e:
+            call()
+        assert e.value.parameter == parameter
+        assert np.array_equal(sh.get_state(), saved)
+    beyond = saved.copy()
+    beyond[-1] = 2 * limit
+    with pytest.raises(sms.ParameterError, match=rf"state\[{saved.size - 1}\]") as e:
+        sh.set_state(beyond)
+    assert e.value.parameter == "state" and np.array_equal(sh.get_state(), saved)
 
 
 SECTION = campaign.build()
