@@ -64,14 +64,13 @@ MAX_MESSAGE = 600
 
 
 def _require_figures(args) -> None:
-    """Exit 3 (CliError) before any work when an option asks for figures and matplotlib is not
-    installed: ``--plot`` (design generator / bspline) and calibrate's ``--out`` (figures and
-    configs: without the figures its folder would be half written). analyze, report and
-    validate check their own needs as they start."""
-    option = "--plot" if getattr(args, "plot", None) else None
-    if args.command == "calibrate" and getattr(args, "out", None):
-        option = "--out"
-    if option is not None:
+    """Exit 3 (CliError) before any work when the option that asks a subcommand for figures
+    is given and matplotlib is not installed. A subcommand names that option in its parser's
+    defaults (``figures_option``: design generator / bspline ``--plot``, calibrate ``--out``,
+    whose folder would otherwise be half written); analyze, report and validate check their
+    own needs as they start."""
+    option = getattr(args, "figures_option", None)
+    if option is not None and getattr(args, option.lstrip("-").replace("-", "_"), None):
         from .common import pyplot
         pyplot(f"{args.command} {option}")
 

@@ -91,7 +91,7 @@ def add_parser(sub) -> None:
                    "scheduled shaper instead of recommending a filter; with --out, write it "
                    "as schedule.csv (docs/scheduled.md)")
     add_cost_options(p)
-    p.set_defaults(func=cmd_calibrate)
+    p.set_defaults(func=cmd_calibrate, figures_option="--out")
 
 
 #: The reference rest-to-rest move is sampled at Ts: at most this many samples.

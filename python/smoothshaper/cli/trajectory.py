@@ -621,7 +621,7 @@ def add_design_forms(design_parser, parser_class) -> None:
     p.add_argument("--plot", metavar="PNG", help="write q, v, a, j over time to this PNG")
     p.add_argument("--csv", metavar="CSV", help="write time, target, q, v, a, j to this CSV")
     add_cost_options(p)
-    p.set_defaults(func=cmd_generator)
+    p.set_defaults(func=cmd_generator, figures_option="--plot")
 
     p = forms.add_parser("bspline", help="B-spline through via-points",
                          description="Interpolate via-points with the C-backed uniform "
@@ -637,4 +637,4 @@ def add_design_forms(design_parser, parser_class) -> None:
     p.add_argument("--plot", metavar="PNG", help="write the axes over time to this PNG")
     p.add_argument("--csv", metavar="CSV", help="write time and the axes to this CSV")
     add_cost_options(p)
-    p.set_defaults(func=cmd_bspline)
+    p.set_defaults(func=cmd_bspline, figures_option="--plot")

@@ -287,11 +287,9 @@ def main(argv=None) -> int:
     ap.add_argument("--out", default="out/cosim", help="output directory")
     ap.add_argument("--build-dir", default=None, help="CMake build directory of the FMUs")
     args = ap.parse_args(argv)
-    from .._optional import MissingDependency, require_all
-    try:   # before any work: one line naming the extra, exit 3, as the CLI does
-        require_all(("fmpy", "libcosimpy", "matplotlib"), "the system co-simulation")
+    try:   # run() checks its packages before any work: one line naming the extra, exit 3
         return 0 if run(args.out, build_dir=args.build_dir) else 1
-    except MissingDependency as exc:
+    except _optional.MissingDependency as exc:
         import sys
         sys.stderr.write(f"python -m smoothshaper.cosim: {exc}\n")
         return 3
