@@ -112,7 +112,7 @@ def write(cal, out_dir: str) -> list[str]:
                   bbox_to_anchor=(0.5, -0.14), frameon=False)
     fig.tight_layout()
     p = os.path.join(out_dir, "calibrate_psd.png")
-    fig.savefig(p, dpi=110)
+    fig.savefig(p, dpi=110, bbox_inches="tight")   # the legends sit outside the axes
     plt.close(fig)
     paths.append(p)
 
@@ -141,7 +141,7 @@ def write(cal, out_dir: str) -> list[str]:
         ax.legend(fontsize=8, loc="center left", bbox_to_anchor=(1.01, 0.5))
     fig.tight_layout()
     p = os.path.join(out_dir, "calibrate_band.png")
-    fig.savefig(p, dpi=110)
+    fig.savefig(p, dpi=110, bbox_inches="tight")   # the legends sit outside the axes
     plt.close(fig)
     paths.append(p)
     return paths
